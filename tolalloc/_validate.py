@@ -1,0 +1,54 @@
+"""Input checks used at public entry points.
+
+Every failure raises :class:`TolallocError` whose message says what was
+expected, what arrived and what to do; the CLI turns it into one line on
+stderr and a non-zero exit.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+__all__ = ["TolallocError", "check_vector", "check_finite_array", "check_positive"]
+
+
+class TolallocError(ValueError):
+    """A user-facing input error (bad robot file, bad joint values, bad sigma ...)."""
+
+
+def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.ndarray:
+    """Return ``value`` as a float array; raise if non-numeric, non-finite or of the wrong shape.
+
+    ``shape`` may contain ``None`` for a free dimension.
+    """
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TolallocError(f"{name}: expected numbers, got {value!r}.") from None
+    if shape is not None:
+        ok = arr.ndim == len(shape) and all(s is None or s == a for s, a in zip(shape, arr.shape))
+        if not ok:
+            want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
+            raise TolallocError(f"{name}: expected an array of shape {want}, got shape {arr.shape}.")
+    if not np.all(np.isfinite(arr)):
+        raise TolallocError(f"{name}: expected finite numbers, got {np.array2string(arr, threshold=12)}.")
+    return arr
+
+
+def check_vector(value: Any, name: str, size: int) -> np.ndarray:
+    """Return a finite float vector of length ``size``."""
+    return check_finite_array(value, name, (size,))
+
+
+def check_positive(value: Any, name: str, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as a float, raising unless it is finite and > 0 (or >= 0)."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise TolallocError(f"{name}: expected a number, got {value!r}.") from None
+    if not np.isfinite(x) or x < 0 or (x == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise TolallocError(f"{name}: expected a finite number {bound}, got {value!r}.")
+    return x

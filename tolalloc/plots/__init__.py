@@ -1,0 +1,9 @@
+"""Figures. Every function draws from a result object and never recomputes.
+
+One module per pipeline stage (``mc``, ``linear``, ``allocate``, ``diagnose``).
+The non-interactive Agg backend is selected so figures are produced without a display.
+"""
+
+import matplotlib
+
+matplotlib.use("Agg")
