@@ -189,11 +189,14 @@ class ErrorModel:
             if k in done:
                 continue
             if p.distribution == "ring":
-                k2 = next(i for i, o in enumerate(self.params) if o.group == p.group and i != k)
+                k2 = next((i for i, o in enumerate(self.params) if o.group == p.group and i != k), None)
                 s = rng.normal(0.0, np.sqrt(2.0) * p.sigma, n)
                 t = rng.uniform(0.0, 2 * np.pi, n)
-                out[:, k], out[:, k2] = s * np.cos(t), s * np.sin(t)
-                done.update((k, k2))
+                out[:, k] = s * np.cos(t)
+                if k2 is not None:  # the partner component may have been excluded
+                    out[:, k2] = s * np.sin(t)
+                    done.add(k2)
+                done.add(k)
             elif p.distribution == "uniform":
                 out[:, k] = rng.uniform(-np.sqrt(3.0) * p.sigma, np.sqrt(3.0) * p.sigma, n)
             elif p.distribution == "truncnormal":
@@ -391,11 +394,12 @@ def build_error_model(
     for item in exclude:
         if item not in names and item not in KINDS:
             raise TolallocError(f"exclude: {item!r} is neither a parameter ({', '.join(names)}) nor a kind ({', '.join(KINDS)}).")
-    params = [p for p in params if p.name not in exclude and p.kind not in exclude]
     if sigma_set is None:
         sigma_set = next(iter(robot.sigma_sets), "generic")
+    # sigma of the full parameter list first, so that a set naming an excluded parameter stays valid
     geo = [p for p in params if not p.kind.startswith("clearance")]
     geo_sigma = dict(zip([p.name for p in geo], _sigma_from_set(robot, geo, sigma_set)))
+    params = [p for p in params if p.name not in exclude and p.kind not in exclude]
     out = []
     for p in params:
         s = geo_sigma.get(p.name, p.sigma)

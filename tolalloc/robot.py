@@ -180,6 +180,11 @@ class Robot:
                 point = point + e.vector_mm
             else:
                 w = np.asarray(e.axis, dtype=float)
+                if w.shape != (3,) or not np.all(np.isfinite(w)) or abs(np.linalg.norm(w) - 1.0) > 1e-6:
+                    raise TolallocError(f"robot {self.name!r}, joint {e.name}: axis {w.tolist()} is not a finite unit "
+                                        "3-vector; expected e.g. [0, 0, 1] (norm 1 within 1e-6).")
+                if e.kind not in (REVOLUTE, PRISMATIC):
+                    raise TolallocError(f"robot {self.name!r}, joint {e.name}: kind {e.kind!r}; expected 'revolute' or 'prismatic'.")
                 if e.kind == REVOLUTE:
                     screws.append(np.concatenate([w, -np.cross(w, point)]))
                 else:

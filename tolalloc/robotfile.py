@@ -146,10 +146,13 @@ class JointEntry(_Strict):
             default_lim = np.array([-4 * np.pi, 4 * np.pi])
         lim, _ = _unit_value(extra, "limits", allowed, default_lim)
         nom, _ = _unit_value(extra, "nominal", allowed, 0.0)
+        shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
+        unit = "deg" if revolute else "mm"
         if np.shape(lim) != (2,) or not lim[0] < lim[1]:
-            raise ValueError(f"limits must be [lower, upper] with lower < upper, got {lim.tolist()}")
-        if not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
-            raise ValueError("nominal value lies outside the joint limits")
+            raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+        if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+            raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                             "expected one number inside the limits")
         return Joint(self.joint, kind, np.array(self.axis), float(lim[0]), float(lim[1]), float(nom))
 
 
@@ -288,14 +291,20 @@ def builtin_robots() -> dict[str, str]:
     return out
 
 
-def load_robot(robot: str | Path | Robot) -> Robot:
+def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     """Load a robot: a :class:`Robot` (returned as is), a built-in name, or a path to a robot file.
+
+    Robot files: TOML (chain or DH layout), a DH table in CSV (``.csv``, see :mod:`tolalloc.dh`) or a
+    URDF (``.urdf``, see :mod:`tolalloc.urdf`); ``tool`` names the URDF tool link (URDF only).
 
     Raises
     ------
     TolallocError
         Naming the file, the field and what was expected.
     """
+    if tool is not None and (isinstance(robot, Robot) or not str(robot).lower().endswith(".urdf")):
+        got = f"robot {robot.name!r}" if isinstance(robot, Robot) else repr(str(robot))
+        raise TolallocError(f"--tool {tool!r}: the tool link can only be chosen for a URDF robot file (*.urdf), got {got}.")
     if isinstance(robot, Robot):
         return robot
     text_name = str(robot)
@@ -310,8 +319,16 @@ def load_robot(robot: str | Path | Robot) -> Robot:
         if path.suffix.lower() == ".urdf":
             from .urdf import load_urdf  # noqa: PLC0415  (optional importer, issue 8)
 
-            return load_urdf(path)
-        source, text = f"robot file {str(path)!r}", path.read_text()
+            return load_urdf(path, tool=tool)
+        if path.suffix.lower() == ".csv":
+            from .dh import load_dh_csv  # noqa: PLC0415
+
+            return load_dh_csv(path)
+        source = f"robot file {str(path)!r}"
+        try:
+            text = path.read_text()
+        except (OSError, UnicodeDecodeError) as exc:
+            raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a TOML robot file.") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

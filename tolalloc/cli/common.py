@@ -19,11 +19,14 @@ __all__ = ["parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "writ
 
 
 def add_robot_arg(parser) -> None:
-    parser.add_argument("robot", metavar="ROBOT", help="built-in robot name (see `tolalloc robots`) or path to a robot file")
+    parser.add_argument("robot", metavar="ROBOT",
+                        help="built-in robot name (see `tolalloc robots`) or path to a robot file (.toml, DH .csv, .urdf)")
+    parser.add_argument("--tool", metavar="LINK", default=None,
+                        help="URDF only: the tool link (default: the last link of the chain; required if the URDF branches)")
 
 
 def robot_from_args(args) -> Robot:
-    return load_robot(args.robot)
+    return load_robot(args.robot, tool=getattr(args, "tool", None))
 
 
 def parse_q(text: str, robot: Robot, flag: str = "--q") -> np.ndarray:

@@ -1,0 +1,130 @@
+"""Shared test fixtures: random serial chains, an independent Pinocchio model, finite differences.
+
+``random_chain(rng, n_joints)`` is importable by any test module (``from conftest import random_chain``)
+and also exposed as the fixture ``make_chain``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tolalloc.lie import exp_so3, inv_transform, rotvec
+from tolalloc.robot import Joint, Link, Robot
+
+
+def random_unit(rng: np.random.Generator) -> np.ndarray:
+    v = rng.normal(size=3)
+    return v / np.linalg.norm(v)
+
+
+def random_rotation(rng: np.random.Generator) -> np.ndarray:
+    return exp_so3(random_unit(rng) * rng.uniform(0, np.pi))
+
+
+def random_chain(rng: np.random.Generator, n_joints: int, *, p_prismatic: float = 0.3, name: str = "random") -> Robot:
+    """A random serial chain of ``n_joints`` joints (mixed revolute / prismatic, random axes and offsets).
+
+    Between joints there are 0-2 links of random direction and length 0-600 mm (a zero link count
+    makes two joints share a point); the tool has a random offset and orientation. Limits are wide
+    (revolute +-2 pi, prismatic +-1000 mm) so random configurations are valid.
+    """
+    chain = []
+    k_link = 0
+    for j in range(n_joints):
+        for _ in range(int(rng.integers(0, 3)) if j else 1):
+            k_link += 1
+            chain.append(Link(f"l{k_link}", random_unit(rng) * rng.uniform(10.0, 600.0)))
+        prismatic = rng.uniform() < p_prismatic
+        if prismatic:
+            chain.append(Joint(f"j{j + 1}", "prismatic", random_unit(rng), -1000.0, 1000.0, 0.0))
+        else:
+            chain.append(Joint(f"j{j + 1}", "revolute", random_unit(rng), -2 * np.pi, 2 * np.pi, 0.0))
+    if rng.uniform() < 0.7:
+        k_link += 1
+        chain.append(Link(f"l{k_link}", random_unit(rng) * rng.uniform(10.0, 300.0)))
+    return Robot(name, tuple(chain), tool_offset_mm=rng.normal(scale=50.0, size=3),
+                 tool_rotation=random_rotation(rng))
+
+
+def random_q(rng: np.random.Generator, robot: Robot, size=None) -> np.ndarray:
+    """Random joint values [rad, mm] inside the limits (revolute +-pi, prismatic +-300 mm)."""
+    shape = (robot.n_joints,) if size is None else (size, robot.n_joints)
+    rev = rng.uniform(-np.pi, np.pi, shape)
+    pri = rng.uniform(-300.0, 300.0, shape)
+    return np.where(robot.revolute_mask, rev, pri)
+
+
+def pinocchio_model(robot: Robot, rng: np.random.Generator | None = None):
+    """Build an independent Pinocchio model of ``robot`` (metres), with a frame ``tool``.
+
+    Joint frames are placed at the joint points with (optionally random) orientations, so the joint
+    axes are expressed in rotated local frames (JointModelRevoluteUnaligned / PrismaticUnaligned).
+    Returns ``(model, tool_frame_id)``. Pinocchio joint values: rad and m (prismatic mm / 1000).
+    """
+    import pinocchio as pin
+
+    model = pin.Model()
+    parent = 0
+    R_prev, p_prev = np.eye(3), np.zeros(3)
+    for j, joint in enumerate(robot.joints):
+        R_j = random_rotation(rng) if rng is not None else np.eye(3)
+        p_j = robot.joint_points_mm[j] / 1000.0
+        placement = pin.SE3(R_prev.T @ R_j, R_prev.T @ (p_j - p_prev))
+        axis_local = R_j.T @ joint.axis
+        jm = (pin.JointModelRevoluteUnaligned(*axis_local) if joint.is_revolute
+              else pin.JointModelPrismaticUnaligned(*axis_local))
+        parent = model.addJoint(parent, jm, placement, joint.name)
+        R_prev, p_prev = R_j, p_j
+    M = robot.home
+    tool = pin.SE3(R_prev.T @ M[:3, :3], R_prev.T @ (M[:3, 3] / 1000.0 - p_prev))
+    fid = model.addFrame(pin.Frame("tool", parent, tool, pin.FrameType.OP_FRAME))
+    return model, fid
+
+
+def to_pin_q(robot: Robot, q: np.ndarray) -> np.ndarray:
+    """Joint values [rad, mm] -> Pinocchio's [rad, m]."""
+    return np.where(robot.revolute_mask, q, q / 1000.0)
+
+
+def pin_jacobian_to_ours(robot: Robot, J_pin: np.ndarray) -> np.ndarray:
+    """Pinocchio frame Jacobian (rows (v [m], w), columns per rad or per m) -> ours (rows (w, v [mm]), per rad or mm)."""
+    col = np.where(robot.revolute_mask, 1.0, 1e-3)
+    return np.vstack([J_pin[3:], 1000.0 * J_pin[:3]]) * col
+
+
+def twist_fd(fk, q: np.ndarray, h: float = 1e-6, frame: str = "space") -> np.ndarray:
+    """Central finite-difference Jacobian of ``fk`` (q -> 4x4), columns ``(omega, v)``.
+
+    ``space``: the twist ``[V] = dT T^-1``; ``body``: ``T^-1 dT``.
+    """
+    n = q.shape[-1]
+    J = np.zeros((6, n))
+    for k in range(n):
+        e = np.zeros(n)
+        e[k] = h
+        Tp, Tm = fk(q + e), fk(q - e)
+        T = fk(q)
+        dT = (Tp - Tm) / (2 * h)
+        X = dT @ inv_transform(T) if frame == "space" else inv_transform(T) @ dT
+        J[:3, k] = [X[2, 1], X[0, 2], X[1, 0]]
+        J[3:, k] = X[:3, 3]
+    return J
+
+
+def pose_error(T1: np.ndarray, T2: np.ndarray) -> tuple[float, float]:
+    """(position difference [same unit], rotation angle [rad]) between two poses."""
+    dp = float(np.linalg.norm(T1[:3, 3] - T2[:3, 3]))
+    dr = float(np.linalg.norm(rotvec(T1[:3, :3].T @ T2[:3, :3])))
+    return dp, dr
+
+
+@pytest.fixture
+def make_chain():
+    """Fixture returning :func:`random_chain`."""
+    return random_chain
+
+
+@pytest.fixture
+def rng():
+    return np.random.default_rng(20240611)

@@ -1,0 +1,238 @@
+"""Nonlinear Monte Carlo: fast exact path vs the generic POE path, closed forms, reproducibility, statistics."""
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from tolalloc import TolallocError, load_robot
+from tolalloc.errors import build_error_model
+from tolalloc.lie import rot_x, rot_z
+from tolalloc.montecarlo import (BLOCK_SIZE, generic_pose_errors, pose_errors, proportion_ci, run_mc,
+                                 sample_values)
+from tolalloc.robot import Joint, Link, Robot
+
+
+@pytest.fixture(scope="module")
+def robot():
+    return load_robot("tool_changer")
+
+
+@pytest.fixture(scope="module")
+def model(robot):
+    return build_error_model(robot, "table2")
+
+
+def _skew_robot():
+    """A robot with non-axis-aligned joints (exercises the generic rotation branch)."""
+    a = np.array([0.0, 0.6, 0.8])
+    b = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)
+    chain = (Link("l1", np.array([0.0, 0.0, 300.0])), Joint("j1", "revolute", a),
+             Link("l2", np.array([100.0, 400.0, 50.0])), Joint("j2", "revolute", b),
+             Link("l3", np.array([0.0, 200.0, 0.0])), Joint("j3", "prismatic", b, -100.0, 100.0),
+             Link("l4", np.array([50.0, 100.0, 0.0])))
+    return Robot("skew", chain)
+
+
+@pytest.mark.parametrize("opts", [{}, {"link_mode": "axes_only"}, {"deflection_mode": "tilt"}, {"clearance": True},
+                                  {"clearance": True, "link_mode": "axes_only", "deflection_mode": "tilt"}])
+def test_fast_path_equals_generic_poe_path(robot, opts):
+    m = build_error_model(robot, "table2", **opts)
+    v = m.sample(400, np.random.default_rng(3)) * 30  # large errors: nonlinear regime
+    q = robot.poses("working")[7]
+    a, b = pose_errors(m, q, v), generic_pose_errors(m, q, v)
+    for k in a:
+        assert np.allclose(a[k], b[k], rtol=0, atol=1e-9), k
+
+
+def test_fast_path_generic_axes():
+    r = _skew_robot()
+    m = build_error_model(r, "generic", clearance=True)
+    v = m.sample(300, np.random.default_rng(0)) * 200
+    q = np.array([0.4, -0.7, 30.0])
+    a, b = pose_errors(m, q, v), generic_pose_errors(m, q, v)
+    for k in a:
+        assert np.allclose(a[k], b[k], rtol=0, atol=1e-9), k
+
+
+def test_zero_sigma_gives_zero_error(model, robot):
+    m0 = model.with_sigma(np.zeros(len(model.params)))
+    res = run_mc(m0, robot.poses("working")[:3], 1000, seed=1, radii_mm=(1e-9,))
+    for arr in (res.mean_mm, res.std_mm, res.norm_mm, res.reach_mm, res.angle_std_rad, res.rotvec_std_rad):
+        assert np.all(np.abs(arr) < 1e-9)
+    assert np.all(res.p_within[1e-9][:, 0] == 1.0)
+
+
+def test_single_link_error_closed_form(model, robot):
+    q = robot.q_nominal
+    k = model.index("dl3")
+    v = np.zeros((1, len(model.params)))
+    v[0, k] = 0.5
+    dp = pose_errors(model, q, v)["dp_mm"][0]
+    # consistent model: link 3 (after joints 1, 2) translates the rest of the chain along its rotated direction
+    assert np.allclose(dp, 0.5 * rot_z(q[0]) @ rot_x(q[1]) @ [0, 1, 0], atol=1e-12)
+    # drive error of joint 1 (axis z through the origin): the tool rotates rigidly about z
+    v[:] = 0
+    v[0, model.index("dth1")] = 0.01
+    p = robot.fk(q)[:3, 3]
+    assert np.allclose(pose_errors(model, q, v)["dp_mm"][0], rot_z(0.01) @ p - p, atol=1e-10)
+
+
+def test_axes_only_link_error_closed_form(robot):
+    m = build_error_model(robot, "table2", link_mode="axes_only")
+    q = robot.q_nominal
+    v = np.zeros((1, len(m.params)))
+    v[0, m.index("dl1")] = 0.7
+    R = robot.fk(q)[:3, :3]
+    ez = np.array([0.0, 0.0, 1.0])
+    # T' = Tr(d ez) E1..E6 Tr(-d ez) M  =>  dp = d (ez - R ez)
+    assert np.allclose(pose_errors(m, q, v)["dp_mm"][0], 0.7 * (ez - R @ ez), atol=1e-12)
+
+
+def test_paper_literal_options_change_what_they_should(robot):
+    q = robot.q_nominal.copy()
+    q[5] = 0.0  # joint 6 at zero
+    q[1] = 0.0  # joint 2 at zero
+    cons, axes = build_error_model(robot, "table2"), build_error_model(robot, "table2", link_mode="axes_only")
+    v = np.zeros((1, len(cons.params)))
+    v[0, cons.index("dl6")] = 0.3
+    # axes-only: the last link only moves axis 6, on which the tool lies -> no error at q6 = 0
+    assert np.linalg.norm(pose_errors(axes, q, v)["dp_mm"]) < 1e-12
+    assert np.isclose(np.linalg.norm(pose_errors(cons, q, v)["dp_mm"]), 0.3)
+    screw, tilt = cons, build_error_model(robot, "table2", deflection_mode="tilt")
+    v[:] = 0
+    v[0, screw.index("e2y")] = 0.004
+    # a tilted axis turned by 0 leaves the chain unchanged; an error screw does not
+    assert np.linalg.norm(pose_errors(tilt, q, v)["dp_mm"]) < 1e-12
+    # the error screw (home-frame y axis through joint 2, carried by joint 1) turns the downstream chain
+    c, pt, R1 = robot.joint_points_mm[1], robot.fk(q)[:3, 3], rot_z(q[0])
+    from tolalloc.lie import rot_y
+    assert np.allclose(pose_errors(screw, q, v)["dp_mm"][0], R1 @ (c + rot_y(0.004) @ (R1.T @ pt - c)) - pt, atol=1e-11)
+    # both options leave drive errors untouched
+    v[:] = 0
+    v[0, screw.index("dth3")] = 0.003
+    for m in (axes, tilt):
+        assert np.allclose(pose_errors(m, q, v)["dp_mm"], pose_errors(cons, q, v)["dp_mm"], atol=1e-12)
+
+
+def test_table1_table2_differ_only_in_link_and_drive_sigma(robot):
+    t1, t2 = build_error_model(robot, "table1"), build_error_model(robot, "table2")
+    assert t1.names == t2.names
+    diff = {n for n, a, b in zip(t1.names, t1.sigma, t2.sigma) if a != b}
+    assert diff == {f"dl{i}" for i in (1, 2, 4, 5, 6)} | {"dth1", "dth2", "dth3", "dd4", "dth5", "dth6"}
+    assert np.isclose(t1.sigma[t1.index("dth5")], 0.0087) and np.isclose(t2.sigma[t2.index("dth5")], np.deg2rad(0.5))
+    # Table 1's much larger revolute drive sigma (0.0087 rad = 0.5 deg vs 0.15-0.5 deg) raises the MC std
+    q = robot.q_nominal
+    s1 = run_mc(t1, q, 4000, seed=2).std_mm[0]
+    s2 = run_mc(t2, q, 4000, seed=2).std_mm[0]
+    assert np.all(s1 > s2)
+
+
+def test_same_seed_same_numbers_and_chunk_independence(model, robot):
+    q = robot.poses("working")[:2]
+    n = 2 * BLOCK_SIZE + 123
+    kw = dict(radii_mm=(10.0, 20.0), angle_radii_rad=(0.01,))
+    a = run_mc(model, q, n, seed=5, chunk_size=BLOCK_SIZE, n_jobs=1, **kw)
+    b = run_mc(model, q, n, seed=5, chunk_size=10 * BLOCK_SIZE, n_jobs=2, **kw)
+    c = run_mc(model, q, n, seed=5, chunk_size=1, n_jobs=2, **kw)
+    d = run_mc(model, q, n, seed=6, **kw)
+    for f in ("mean_mm", "std_mm", "cov_mm2", "norm_mm", "reach_mm", "angle_std_rad", "rotvec_std_rad"):
+        assert np.array_equal(getattr(a, f), getattr(b, f)), f
+        assert np.array_equal(getattr(a, f), getattr(c, f)), f
+        assert not np.array_equal(getattr(a, f), getattr(d, f)), f
+    assert all(np.array_equal(a.p_within[r], b.p_within[r]) for r in a.p_within)
+    assert a.n == n
+
+
+def test_moments_merge_matches_direct_computation(model, robot):
+    q = robot.q_nominal
+    n = BLOCK_SIZE + 5000
+    res = run_mc(model, q, n, seed=9, keep_samples=n)
+    s = res.samples
+    assert s["dp_mm"].shape == (n, 3)
+    assert np.allclose(res.mean_mm[0], s["dp_mm"].mean(0), atol=1e-10)
+    assert np.allclose(res.cov_mm2[0], np.cov(s["dp_mm"].T), rtol=1e-10)
+    assert np.allclose(res.norm_mm[0], [s["norm_mm"].mean(), s["norm_mm"].std(ddof=1), s["norm_mm"].max(), s["norm_mm"].min()])
+    assert np.allclose(res.angle_std_rad[0], s["euler_rad"].std(0, ddof=1))
+    k = np.count_nonzero(s["norm_mm"] < 10.0)
+    res2 = run_mc(model, q, n, seed=9, radii_mm=(10.0,))
+    assert res2.p_within[10.0][0, 0] == k / n
+
+
+def test_mc_std_matches_linear_prediction(model, robot):
+    """At the paper's sigma the chain is nearly linear: MC std within 3 % of sqrt(diag(J S J^T))."""
+    q = robot.q_nominal
+    n = 20000
+    res = run_mc(model, q, n, seed=11)
+    J = model.jacobian(q)
+    cov = J @ np.diag(model.sigma**2) @ J.T
+    sd_lin = np.sqrt(np.diag(cov))
+    assert np.allclose(res.std_mm[0], sd_lin[:3], rtol=0.03)
+    assert np.allclose(res.rotvec_std_rad[0], sd_lin[3:], rtol=0.03)
+    # zero-mean inputs: mean within sampling noise plus a 1 % second-order bias allowance
+    assert np.all(np.abs(res.mean_mm[0]) < 4 * sd_lin[:3] / np.sqrt(n) + 0.01 * sd_lin[:3])
+
+
+def test_clearance_radial_is_not_gaussian(robot):
+    m = build_error_model(robot, "table2", clearance=True, exclude=("link_length", "joint_drive", "axis_deflection"))
+    V = sample_values(m, 200000, np.random.default_rng(0))
+    x, y = V[m.index("cr2y")], V[m.index("cr2z")]
+    # each component has sigma 0.5/sqrt(2) mm but kurtosis 3 * 3/8 / (1/2)^2 = 4.5, not the Gaussian 3
+    assert np.isclose(x.std(), 0.5 / np.sqrt(2), rtol=0.01)
+    assert np.isclose(stats.kurtosis(x, fisher=False), 4.5, atol=0.15)
+    # the radius |s| is half-normal (sigma 0.5 mm), not the Rayleigh law of two independent Gaussians
+    r = np.hypot(x, y)
+    assert stats.kstest(r, stats.halfnorm(scale=0.5).cdf).pvalue > 1e-3
+    assert stats.kstest(r, stats.rayleigh(scale=0.5 / np.sqrt(2)).cdf).pvalue < 1e-6
+    # through the chain: only the joint-6 radial clearance -> tool error component is non-Gaussian too
+    m6 = build_error_model(robot, "table2", clearance=True, sigma={"clearance_axial": 0, "clearance_tilt": 0},
+                           exclude=("link_length", "joint_drive", "axis_deflection", "cr1x", "cr1y", "cr2y", "cr2z",
+                                    "cr3y", "cr3z", "cr5y", "cr5z"))
+    res = run_mc(m6, robot.q_nominal, 50000, seed=1, keep_samples=50000)
+    assert stats.kurtosis(res.samples["dp_mm"][:, 0], fisher=False) > 4.0
+
+
+def test_sample_values_matches_model_sample_moments(robot):
+    m = build_error_model(robot, "table2", clearance=True, distribution={"link_length": "uniform", "dd4": "truncnormal"})
+    a = sample_values(m, 100000, np.random.default_rng(1))
+    b = m.sample(100000, np.random.default_rng(2)).T
+    assert np.allclose(a.std(1), b.std(1), rtol=0.03)
+    assert np.allclose(a.std(1), m.sigma * np.where(np.array([p.distribution for p in m.params]) == "truncnormal",
+                                                     np.sqrt(1 - 6 * stats.norm.pdf(3) / (2 * stats.norm.cdf(3) - 1)), 1.0), rtol=0.03)
+
+
+def test_proportion_ci_matches_scipy():
+    for k, n in [(0, 50), (13, 50), (500, 1000), (1000, 1000)]:
+        p, lo, hi = proportion_ci(k, n, "wilson")
+        ref = stats.binomtest(k, n).proportion_ci(0.95, method="wilson")
+        assert np.isclose(lo, ref.low) and np.isclose(hi, ref.high) and p == k / n
+        p, lo, hi = proportion_ci(k, n, "exact")
+        ref = stats.binomtest(k, n).proportion_ci(0.95, method="exact")
+        assert np.isclose(lo, ref.low) and np.isclose(hi, ref.high)
+
+
+def test_to_frame_table3_layout(model, robot):
+    res = run_mc(model, robot.poses("working")[:2], 500, seed=0)
+    df = res.to_frame()
+    assert list(df.columns) == ["pose", "quantity", "mean", "std", "max", "min"]
+    assert len(df) == 2 * 8
+    row = df[(df.pose == 1) & (df.quantity == "dy_mm")].iloc[0]
+    assert row["std"] == res.std_mm[1, 1] and row["max"] == res.dp_max_mm[1, 1]
+    assert res.labels["clearance"] is False and res.labels["sigma_set"] == "table2"
+
+
+@pytest.mark.parametrize("call", [
+    lambda m, r: run_mc(m, r.q_nominal, 0),
+    lambda m, r: run_mc(m, r.q_nominal, 2.5),
+    lambda m, r: run_mc(m, np.array([0, 0, 0, 0, 0, 4.0]), 10),  # joint 6 outside +-180 deg
+    lambda m, r: run_mc(m, r.q_nominal, 10, radii_mm=(-1.0,)),
+    lambda m, r: run_mc(m, r.q_nominal, 10, ci="bayes"),
+    lambda m, r: pose_errors(m, r.q_nominal, np.zeros((3, 5))),
+    lambda m, r: pose_errors(m, r.q_nominal, np.full((1, len(m.params)), np.nan)),
+    lambda m, r: m.with_sigma(-np.ones(len(m.params))),
+    lambda m, r: build_error_model(r, "table9"),
+    lambda m, r: build_error_model(r, "table2", sigma={"dl1": np.inf}),
+    lambda m, r: build_error_model(r, "table2", sigma={"dl99": 1.0}),
+])
+def test_bad_input_raises(model, robot, call):
+    with pytest.raises(TolallocError):
+        call(model, robot)

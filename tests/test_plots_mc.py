@@ -1,0 +1,50 @@
+"""Monte Carlo figures are produced without a display."""
+
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from tolalloc import TolallocError, load_robot
+from tolalloc.errors import build_error_model
+from tolalloc.montecarlo import run_mc
+from tolalloc.plots import mc as mcplots
+from tolalloc.sensitivity import PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity, trajectory_errors
+
+
+@pytest.fixture(scope="module")
+def model():
+    return build_error_model(load_robot("tool_changer"), "table2", clearance=True)
+
+
+def test_backend_is_headless():
+    assert matplotlib.get_backend().lower() == "agg"
+
+
+def test_figures_written(tmp_path, model):
+    q = model.robot.q_nominal
+    res = run_mc(model, q, 3000, seed=0, keep_samples=3000)
+    fig = mcplots.scatter_density(res, tmp_path / "scatter.png")
+    assert len(fig.axes) >= 4
+    plt.close(fig)
+    sens = sensitivity(model, q, ["dl3", "dl4"], PAPER_LINK_GRID_MM)
+    fig = mcplots.sensitivity_curves(sens, ("dx", "norm", "beta", "rot"), tmp_path / "sens.png")
+    assert len(fig.axes[0].lines) == 2
+    plt.close(fig)
+    P = model.robot.poses("working")
+    t, Q = quintic_trajectory(P[0], P[5], 5.0, 11)
+    tr = trajectory_errors(model, t, Q, ["dth2"], mc=run_mc(model, Q, 500, seed=0))
+    plt.close(mcplots.trajectory_plot(tr, tmp_path / "traj.png"))
+    for name in ("scatter.png", "sens.png", "traj.png"):
+        data = (tmp_path / name).read_bytes()
+        assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 5000
+
+
+def test_scatter_needs_samples(model):
+    res = run_mc(model, model.robot.q_nominal, 100, seed=0)
+    with pytest.raises(TolallocError):
+        mcplots.scatter_density(res)
+    sens = sensitivity(model, model.robot.q_nominal, ["dl3"], [0.1])
+    with pytest.raises(TolallocError):
+        mcplots.sensitivity_curves(sens, ("speed",))
+    plt.close("all")

@@ -1,0 +1,47 @@
+"""The README's promises: two quick-start commands, the CI runs the test one, the robot-file example loads."""
+
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from tolalloc.errors import build_error_model
+from tolalloc.robotfile import robot_from_dict
+
+ROOT = Path(__file__).resolve().parents[1]
+README = (ROOT / "README.md").read_text()
+
+
+def _quickstart_commands():
+    section = README.split("## Quick start", 1)[1].split("\n## ", 1)[0]
+    blocks = re.findall(r"```bash\n(.*?)```", section, flags=re.S)
+    return [line for b in blocks for line in b.splitlines() if line.strip() and not line.startswith("#")]
+
+
+def test_quickstart_has_exactly_two_commands_one_main_job_one_tests():
+    cmds = _quickstart_commands()
+    assert len(cmds) == 2
+    assert "tolalloc allocate tool_changer" in cmds[0]
+    assert "pytest" in cmds[1]
+    for c in cmds:
+        assert c.startswith("python3 -m venv .venv")
+
+
+def test_ci_runs_the_readme_test_command():
+    ci = (ROOT / ".ci" / "run").read_text()
+    assert _quickstart_commands()[1] in ci
+
+
+def test_robot_file_example_loads_and_matches_hand_computation():
+    block = re.search(r"```toml\n(.*?)```", README, flags=re.S).group(1)
+    robot = robot_from_dict(tomllib.loads(block), "README example")
+    assert [j.name for j in robot.joints] == ["shoulder", "slide"]
+    assert robot.poses("working").shape == (3, 2)
+    # home: base (0,0,400) + upper arm (600,0,0) + forearm (250,0,0) + tool (0,0,-50)
+    np.testing.assert_allclose(robot.home[:3, 3], [850, 0, 350], atol=1e-12)
+    # at q = (0 deg, 100 mm) the slide adds 100 mm along x
+    np.testing.assert_allclose(robot.fk(np.array([0.0, 100.0]))[:3, 3], [950, 0, 350], atol=1e-9)
+    model = build_error_model(robot, "shop")
+    assert model.names == ["dbase", "dupper_arm", "dforearm", "dth1", "dd2", "e1x", "e1z"]
+    np.testing.assert_allclose(model.sigma[3], np.deg2rad(0.005))

@@ -1,0 +1,78 @@
+"""`tolalloc diagnose ROBOT --train TRAIN.csv [--test TEST.csv] [--json OUT] [--predictions PRED.csv] [--report DIR]`."""
+
+from __future__ import annotations
+
+import contextlib
+
+import pandas as pd
+
+from .common import add_robot_arg, atomic_output, robot_from_args, write_json
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "diagnose", help="sim-to-real diagnosis from laser-tracker measurements",
+        description="Calibrate the tracker registration, target offset and identifiable geometric errors on "
+        "the training measurements, break the residual down, select the unmodelled effect that lowers the "
+        "held-out error (cross-validation + test file) significantly, or 'none'. CSV columns: q1..qN (deg / mm), "
+        "x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1/-1), payload_kg, time_s. Rows with empty "
+        "cells are skipped and counted.")
+    add_robot_arg(p)
+    p.add_argument("--train", required=True, metavar="TRAIN.csv", help="measurements to fit (and cross-validate)")
+    p.add_argument("--test", metavar="TEST.csv", help="held-out measurements, scored only")
+    p.add_argument("--test-frame", choices=("same", "refit"), default="same",
+                   help="'refit': the test file is another session in another tracker frame; its registration "
+                   "and target offset are re-estimated (two-fold) before scoring (default: same)")
+    p.add_argument("--json", metavar="OUT.json", help="write the result as JSON ('-' for stdout)")
+    p.add_argument("--predictions", metavar="PRED.csv",
+                   help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (needs --test)")
+    p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
+    p.add_argument("--folds", type=int, default=5, help="cross-validation folds (default 5)")
+    p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the fold assignment (default 0)")
+    p.set_defaults(func=cmd_diagnose)
+
+
+def cmd_diagnose(args) -> int:
+    from .._validate import TolallocError
+    from ..diagnose import diagnose, read_measurements
+    from ..diagnose.report import write_report
+
+    robot = robot_from_args(args)
+    if args.predictions and not args.test:
+        raise TolallocError("--predictions needs --test: predictions are written for the rows of the test file.")
+    if not 0 < args.alpha < 1:
+        raise TolallocError(f"--alpha: expected a level in (0, 1), got {args.alpha}.")
+    train = read_measurements(args.train, robot)
+    test = read_measurements(args.test, robot) if args.test else None
+    d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame)
+    with contextlib.ExitStack() as stack:
+        # all outputs are produced in temporaries and moved into place together at the end
+        if args.predictions:
+            tmp_pred = stack.enter_context(atomic_output(args.predictions))
+            pred = d.final.test_pred_mm
+            frame = pd.DataFrame({"row": test.rows, "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
+            if test.n_skipped:
+                # skipped rows (empty cells) get empty predictions, so rows still line up with the test file
+                full = pd.DataFrame({"row": range(1, test.n_poses + test.n_skipped + 1)})
+                frame = full.merge(frame, on="row", how="left")
+            frame[["x_mm", "y_mm", "z_mm"]].to_csv(tmp_pred, index=False, float_format="%.6f")
+        if args.report:
+            tmp_dir = stack.enter_context(atomic_output(args.report, directory=True))
+            write_report(d, tmp_dir)
+        if args.json and args.json != "-":
+            tmp_json = stack.enter_context(atomic_output(args.json))
+            write_json(d.to_dict(), tmp_json)
+    if args.json == "-":
+        write_json(d.to_dict(), "-")
+    ba = d.before_after()
+    print(f"effect: {d.effect}" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""))
+    print("held-out error [mm]:")
+    print(ba[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]].to_string(index=False, float_format="%.4f"))
+    print("ranking:")
+    for c in d.ranking:
+        if c.applicable:
+            print(f"  {c.effect:17s} held-out RMS {c.heldout_rms_mm:.4f} mm  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %")
+        else:
+            print(f"  {c.effect:17s} not testable: {c.reason}")
+    return 0

@@ -1,0 +1,125 @@
+"""`tolalloc mc ROBOT --n N --seed S ...`: nonlinear Monte Carlo of the tool-pose error."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validate import TolallocError
+from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD, build_error_model
+from ..montecarlo import run_mc
+from .common import add_robot_arg, atomic_output, parse_q, robot_from_args, write_json
+
+
+def register(sub) -> None:
+    p = sub.add_parser(
+        "mc", help="nonlinear Monte Carlo of the tool-pose error",
+        description="Sample N robots with random errors (error screws, optional joint clearance), compute their exact "
+        "tool poses and summarise the error: mean/std/max/min of dx, dy, dz [mm], |dp| [mm], the reach change "
+        "|p'|-|p| (the paper's Table-3 'Δp'), X-Y-Z fixed Euler-angle errors [rad], and P(|dp| < r) with 95%% CIs.")
+    add_robot_arg(p)
+    p.add_argument("--sigma-set", default=None, help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
+    p.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
+                   help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
+    p.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
+                   help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
+    p.add_argument("--clearance", action="store_true", help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint")
+    p.add_argument("--clearance-tilt-literal", action="store_true",
+                   help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of the corrected {CLEARANCE_SIGMA['tilt_rad']} rad")
+    p.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
+    p.add_argument("--exclude", action="append", default=[], metavar="NAME", help="leave out a parameter or kind; repeatable")
+    p.add_argument("--n", type=int, required=True, help="number of samples (>= 1)")
+    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same numbers)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
+    g.add_argument("--pose-set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
+    p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
+    p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
+    p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
+    p.add_argument("--json", metavar="OUT", help="write the summary as JSON to OUT ('-' for stdout)")
+    p.add_argument("--out", metavar="DIR", help="write mc_table.csv, mc_summary.json and mc_scatter.png to DIR")
+    p.set_defaults(func=cmd_mc)
+
+
+def _overrides(model_params, items):
+    out = {}
+    for item in items:
+        if "=" not in item:
+            raise TolallocError(f"--sigma: expected NAME=VALUE (mm or deg), got {item!r}.")
+        name, val = item.split("=", 1)
+        name = name.strip()
+        try:
+            v = float(val)
+        except ValueError:
+            raise TolallocError(f"--sigma {name}: expected a number (mm or deg), got {val!r}.") from None
+        unit = next((p.unit for p in model_params if name in (p.name, p.kind)), None)
+        if unit is None:
+            known = ", ".join(sorted({p.name for p in model_params} | {p.kind for p in model_params}))
+            raise TolallocError(f"--sigma: unknown parameter or kind {name!r}; known: {known}.")
+        out[name] = v if unit == "mm" else np.deg2rad(v)
+    return out
+
+
+def summary_dict(res, robot) -> dict:
+    """JSON-ready summary; per-pose arrays are flattened when there is one pose."""
+    one = res.q.shape[0] == 1
+
+    def f(a):
+        a = np.asarray(a)
+        return a[0].tolist() if one else a.tolist()
+
+    def pw(d, key):
+        return {f"{r:g}": {"p": f(v[:, 0]), "ci_low": f(v[:, 1]), "ci_high": f(v[:, 2]), key: r} for r, v in d.items()}
+
+    return {
+        "robot": robot.name, "n": res.n, "seed": res.seed, "labels": res.labels, "ci": res.ci,
+        "q_deg_mm": f(robot.q_to_interface(res.q)),
+        "mean_mm": f(res.mean_mm), "std_mm": f(res.std_mm), "cov_mm2": f(res.cov_mm2),
+        "max_mm": f(res.dp_max_mm), "min_mm": f(res.dp_min_mm),
+        "norm_mm": f(res.norm_mm), "reach_mm": f(res.reach_mm),
+        "angle_mean_rad": f(res.angle_mean_rad), "angle_std_rad": f(res.angle_std_rad),
+        "rotvec_std_rad": f(res.rotvec_std_rad),
+        "p_within": pw(res.p_within, "radius_mm"), "p_within_angle": pw(res.p_within_angle, "radius_rad"),
+        "stats_order": "norm_mm and reach_mm are [mean, std, max, min]; angles are X-Y-Z fixed [alpha, beta, gamma]",
+    }
+
+
+def cmd_mc(args) -> int:
+    robot = robot_from_args(args)
+    if args.n is None or args.n < 1:
+        raise TolallocError(f"--n: expected a number of samples >= 1, got {args.n}.")
+    base = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
+                             clearance=args.clearance)
+    sigma = _overrides(base.params, args.sigma)
+    cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if args.clearance_tilt_literal else None
+    model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
+                              clearance=args.clearance, clearance_sigma=cs, sigma=sigma or None, exclude=tuple(args.exclude))
+    if args.pose:
+        q = parse_q(args.pose, robot, "--pose")
+    else:
+        q = robot.poses(args.pose_set)
+    radii = args.radius_mm if args.radius_mm else [0.15, 0.25]
+    aradii = args.angle_radius_rad if args.angle_radius_rad else [0.002]
+    keep = min(args.n, 20000) if args.out else 0
+    res = run_mc(model, q, args.n, args.seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep, ci=args.ci)
+    summary = summary_dict(res, robot)
+    summary["labels"] = {**summary["labels"], "clearance_tilt_rad": (CLEARANCE_TILT_LITERAL_RAD if args.clearance_tilt_literal
+                                                                     else CLEARANCE_SIGMA["tilt_rad"]) if args.clearance else None}
+    if args.out:
+        from ..plots.mc import scatter_density
+        import matplotlib.pyplot as plt
+
+        with atomic_output(args.out, directory=True) as tmp:
+            res.to_frame().to_csv(tmp / "mc_table.csv", index=False)
+            write_json(summary, tmp / "mc_summary.json")
+            fig = scatter_density(res, tmp / "mc_scatter.png")
+            plt.close(fig)
+    if args.json:
+        write_json(summary, args.json)
+    if not args.json or args.json != "-":
+        tab = res.to_frame()
+        print(f"robot {robot.name}, n={res.n}, seed={res.seed}, {res.labels}")
+        print(tab.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
+        for r, v in res.p_within.items():
+            print(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v))
+    return 0

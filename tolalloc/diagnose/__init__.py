@@ -1,0 +1,17 @@
+"""Sim-to-real diagnosis: where the measured robot misses its model, which unmodelled effect explains it,
+and how far the held-out error shrinks once the effect is added.
+
+Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.calibrate` (registration, target offset,
+identifiable geometric errors), :mod:`.effects` (candidate effects), :mod:`.select` (held-out scoring and
+selection), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`), :mod:`.synth`
+(synthetic measurement sets with a withheld effect), :mod:`.report` (Markdown report).
+"""
+
+from .calibrate import Calibration, Fit, Identifiability, calibrate
+from .effects import EFFECTS
+from .measurements import Measurements, measurements_from_frame, read_measurements
+from .pipeline import Diagnosis, diagnose
+from .synth import LABELS, SynthCase, generate
+
+__all__ = ["EFFECTS", "LABELS", "Measurements", "read_measurements", "measurements_from_frame", "calibrate",
+           "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase"]

@@ -1,0 +1,360 @@
+"""Geometric calibration: tracker registration, target offset and identifiable geometric errors.
+
+Model of a measured point (tracker frame)::
+
+    x_i = R ( T(q_i + dq; delta) [t; 1] + B_i beta ) + p
+
+``R, p`` the registration (tracker <- robot base, 6), ``t`` the target offset on the flange (3, flange
+frame), ``delta`` the identifiable geometric error parameters of :mod:`tolalloc.errors` (exact perturbed
+chain), ``B_i beta`` an optional linear effect correction (:mod:`tolalloc.diagnose.effects`).
+
+The fit starts from a point-set alignment (Kabsch, via ``Rotation.align_vectors``) of the nominal flange
+points to the measured points -- any tracker orientation works -- then solves robust nonlinear least
+squares (``scipy.optimize.least_squares``, TRF; first a plain fit, then ``soft_l1`` loss with a scale of 3
+robust standard deviations). The Jacobian is analytic: the first-order error Jacobian of the nominal model
+for ``delta`` (exact up to second order), exact for ``R, p, t, beta``.
+
+Identifiability: the geometric columns, normalised to unit norm, are projected off the registration
+and offset columns; a pivoted QR keeps a column while the part of it not explained by the columns kept
+before is at least ``tol`` (default 1e-3) of its norm. The rest, and the SVD null-space combinations of
+the projected columns, are reported as unidentifiable and not fitted.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import pandas as pd
+import scipy.linalg
+from scipy.optimize import least_squares
+from scipy.spatial.transform import Rotation
+
+from .._validate import TolallocError
+from ..errors import ErrorModel, build_error_model
+from ..lie import hat
+from ..robot import Robot, fk_poe
+from .measurements import Measurements
+
+__all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
+           "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
+
+DEFAULT_TOL = 1e-3
+
+
+def kabsch(a: np.ndarray, b: np.ndarray):
+    """Rotation ``R`` and translation ``p`` minimising ``sum |R a_i + p - b_i|^2``; a, b shape (P, 3)."""
+    ca, cb = a.mean(0), b.mean(0)
+    rot, _ = Rotation.align_vectors(b - cb, a - ca)
+    R = rot.as_matrix()
+    return R, cb - R @ ca
+
+
+def select_columns(J_fixed: np.ndarray, J_cand: np.ndarray, tol: float = DEFAULT_TOL):
+    """Which candidate columns are identifiable on top of the always-fitted ones.
+
+    Parameters
+    ----------
+    J_fixed : array, shape (m, f)
+    J_cand : array, shape (m, k)
+
+    Returns
+    -------
+    keep : array of int (sorted), independent candidate columns
+    share : array, shape (k,), the fraction of each candidate column not explained by ``J_fixed``
+        and the candidates picked before it (0 for dropped columns)
+    sing : array, singular values of the projected, normalised candidate columns (descending)
+    Vt : array, shape (k, k), right singular vectors (rows)
+    """
+    k = J_cand.shape[1]
+    if k == 0:
+        return np.zeros(0, int), np.zeros(0), np.zeros(0), np.zeros((0, 0))
+    norms = np.linalg.norm(J_cand, axis=0)
+    Jn = J_cand / np.where(norms > 0, norms, 1.0)
+    if J_fixed.shape[1]:
+        Qf, _ = np.linalg.qr(J_fixed / np.linalg.norm(J_fixed, axis=0))
+        Jn = Jn - Qf @ (Qf.T @ Jn)
+    Jn[:, norms == 0] = 0.0
+    _, Rq, piv = scipy.linalg.qr(Jn, mode="economic", pivoting=True)
+    diag = np.abs(np.diag(Rq))
+    share = np.zeros(k)
+    share[piv[: len(diag)]] = diag
+    ok = np.cumprod(diag >= tol).astype(bool)
+    keep = np.sort(piv[: len(diag)][ok])
+    _, sing, Vt = np.linalg.svd(Jn, full_matrices=False)
+    return keep, share, sing, Vt
+
+
+@dataclass(frozen=True, eq=False)
+class Identifiability:
+    """What the poses can and cannot separate.
+
+    Attributes
+    ----------
+    names : tuple of str            all geometric parameters of the error model
+    identifiable : tuple of str     fitted
+    unidentifiable : tuple of str   not fitted (absorbed by the registration / offset or by other parameters)
+    share : array, shape (K,)       independent share of each parameter's column (see :func:`select_columns`)
+    rank : int                      rank of the full problem (9 + identifiable)
+    condition_number : float        of the column-normalised Jacobian of the fitted parameters
+    observability_index : float     Borm-Menq O1 = (prod sigma_i)^(1/L) / sqrt(P) (normalised columns)
+    null_combinations : tuple of str  parameter combinations the data cannot separate
+    min_poses : int                 poses needed for the fitted parameters (3 coordinates per pose, 2 spare)
+    """
+
+    names: tuple
+    identifiable: tuple
+    unidentifiable: tuple
+    share: np.ndarray
+    rank: int
+    condition_number: float
+    observability_index: float
+    null_combinations: tuple
+    min_poses: int
+
+    def to_frame(self) -> pd.DataFrame:
+        return pd.DataFrame({"parameter": self.names, "identifiable": [n in self.identifiable for n in self.names],
+                             "independent_share": self.share})
+
+    def to_dict(self) -> dict:
+        return {"rank": self.rank, "condition_number": self.condition_number,
+                "observability_index": self.observability_index, "identifiable": list(self.identifiable),
+                "unidentifiable": list(self.unidentifiable), "null_combinations": list(self.null_combinations),
+                "min_poses": self.min_poses}
+
+
+@dataclass(frozen=True, eq=False)
+class Fit:
+    """A fitted measurement model (see the module docstring).
+
+    Attributes
+    ----------
+    model : ErrorModel
+    R : array, shape (3, 3)      tracker <- base rotation
+    p_mm : array, shape (3,)     tracker <- base translation [mm]
+    t_mm : array, shape (3,)     target offset in the flange frame [mm]
+    delta : array, shape (K,)    geometric parameter values [mm, rad] (0 where not fitted)
+    geo_index : array of int     fitted geometric parameters
+    beta : array, shape (M,)     effect parameters (0 where not identifiable)
+    beta_index : array of int    fitted effect parameters
+    effect_names : tuple of str
+    residual_mm : array, shape (P, 3)  measured - predicted, tracker frame
+    f_scale_mm : float           robust loss scale used
+    """
+
+    model: ErrorModel
+    R: np.ndarray
+    p_mm: np.ndarray
+    t_mm: np.ndarray
+    delta: np.ndarray
+    geo_index: np.ndarray
+    beta: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    beta_index: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    effect_names: tuple = ()
+    residual_mm: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    f_scale_mm: float = 0.0
+
+    @property
+    def rms_mm(self) -> float:
+        return float(np.sqrt(np.mean(np.sum(self.residual_mm ** 2, axis=1))))
+
+    def base_points(self, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarray:
+        """Predicted target points in the robot base frame [mm], shape (P, 3)."""
+        screws, home, dq = self.model.perturbed_chain(self.delta[None, :])
+        T = fk_poe(screws[0], home[0], q + dq[0])
+        x = T[:, :3, 3] + T[:, :3, :3] @ self.t_mm
+        if B is not None and B.shape[-1]:
+            x = x + B @ self.beta
+        return x
+
+    def predict(self, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarray:
+        """Predicted target points in the tracker frame [mm], shape (P, 3)."""
+        return self.base_points(q, B) @ self.R.T + self.p_mm
+
+    def parameters_frame(self) -> pd.DataFrame:
+        """Fitted geometric and effect parameters in interface units."""
+        rows = [{"parameter": self.model.params[k].name, "value": self.delta[k] * self.model.params[k].to_interface,
+                 "unit": self.model.params[k].interface_unit} for k in self.geo_index]
+        rows += [{"parameter": nm, "value": b, "unit": ""} for nm, b in zip(self.effect_names, self.beta)]
+        return pd.DataFrame(rows, columns=["parameter", "value", "unit"])
+
+
+def _geo_point_jacobian(model: ErrorModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Error Jacobian rows of the flange: dp (P,3,K) and dw (P,3,K), and flange rotations (P,3,3)."""
+    J = model.jacobian(q)
+    return J[:, :3, :], J[:, 3:, :]
+
+
+class _Problem:
+    """Residual and analytic Jacobian for a fixed set of fitted columns."""
+
+    def __init__(self, fit0: Fit, q, xyz, geo_index, B, extra=None):
+        self.model, self.q, self.xyz = fit0.model, q, xyz
+        self.extra = np.zeros((len(q), 3)) if extra is None else extra
+        self.R0 = fit0.R
+        self.geo = np.asarray(geo_index, int)
+        self.B = B if B is not None else np.zeros((len(q), 3, 0))
+        self.Jp, self.Jw = _geo_point_jacobian(self.model, q)
+        self.Rfl = self.model.robot.fk(q)[:, :3, :3]
+        self.fit0 = fit0
+        self._cache = (None, None)
+
+    def unpack(self, x):
+        k = len(self.geo)
+        R = self.R0 @ Rotation.from_rotvec(x[:3]).as_matrix()
+        delta = self.fit0.delta.copy()
+        delta[self.geo] = x[9:9 + k]
+        return R, x[3:6], x[6:9], delta, x[9 + k:]
+
+    def x0(self):
+        return np.concatenate([np.zeros(3), self.fit0.p_mm, self.fit0.t_mm, self.fit0.delta[self.geo],
+                               np.zeros(self.B.shape[-1])])
+
+    def base(self, x):
+        if self._cache[0] is not None and np.array_equal(self._cache[0], x):
+            return self._cache[1]
+        out = self._base(x)
+        self._cache = (np.array(x, copy=True), out)
+        return out
+
+    def _base(self, x):
+        R, p, t, delta, beta = self.unpack(x)
+        screws, home, dq = self.model.perturbed_chain(delta[None, :])
+        T = fk_poe(screws[0], home[0], self.q + dq[0])
+        y = T[:, :3, 3] + T[:, :3, :3] @ t + self.B @ beta + self.extra
+        return y, R, p
+
+    def fun(self, x):
+        y, R, p = self.base(x)
+        return (y @ R.T + p - self.xyz).ravel()
+
+    def jac(self, x):
+        y, R, p = self.base(x)
+        t = x[6:9]
+        arm = self.Rfl @ t  # (P, 3)
+        Jg = self.Jp[:, :, self.geo] + np.cross(self.Jw[:, :, self.geo], arm[:, :, None], axis=1)
+        P = len(self.q)
+        cols = [
+            -np.einsum("ij,pjk->pik", R, hat(y)),
+            np.broadcast_to(np.eye(3), (P, 3, 3)),
+            np.einsum("ij,pjk->pik", R, self.Rfl),
+            np.einsum("ij,pjk->pik", R, Jg),
+            np.einsum("ij,pjk->pik", R, self.B),
+        ]
+        return np.concatenate(cols, axis=2).reshape(3 * P, -1)
+
+
+def _robust_scale(res: np.ndarray) -> float:
+    return float(max(3.0 * 1.4826 * np.median(np.abs(res - np.median(res))), 1e-4))
+
+
+def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
+              robust: bool = True, extra: np.ndarray | None = None) -> Fit:
+    """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
+
+    Parameters
+    ----------
+    start : Fit
+        Starting point (registration, offset, geometric values); see :func:`initial_fit`.
+    q : array, shape (P, n) [rad, mm]
+    xyz : array, shape (P, 3) [mm], tracker frame
+    geo_index : array of int, optional (default: ``start.geo_index``)
+    B : array, shape (P, 3, M), optional, effect basis [mm per unit]
+    extra : array, shape (P, 3), optional
+        A fixed displacement of the target in the base frame [mm] (a frozen effect, for re-registration).
+    """
+    geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
+    prob = _Problem(start, q, xyz, geo_index, B, extra)
+    opts = dict(jac=prob.jac, method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10)
+    sol = least_squares(prob.fun, prob.x0(), max_nfev=60, **opts)
+    f_scale = 0.0
+    if robust:
+        f_scale = _robust_scale(sol.fun)
+        sol = least_squares(prob.fun, sol.x, loss="soft_l1", f_scale=f_scale, max_nfev=30, **opts)
+    R, p, t, delta, beta = prob.unpack(sol.x)
+    res = -sol.fun.reshape(-1, 3)
+    return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), res, f_scale)
+
+
+def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
+    """Jacobian (3P, 9 + len(geo_index)) of the registration, offset and fitted geometric columns at ``fit``."""
+    prob = _Problem(fit, q, xyz, fit.geo_index, None)
+    return prob.jac(prob.x0())
+
+
+def initial_fit(model: ErrorModel, q: np.ndarray, xyz: np.ndarray) -> Fit:
+    """Kabsch alignment of the nominal flange points to the measured points (target offset 0)."""
+    flange = model.robot.fk(q)[:, :3, 3]
+    R, p = kabsch(flange, xyz)
+    K = len(model.params)
+    return Fit(model, R, p, np.zeros(3), np.zeros(K), np.zeros(0, int))
+
+
+def identifiability(fit: Fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identifiability:
+    """Identifiability of the geometric parameters on the poses ``q`` at the registration/offset of ``fit``."""
+    model = fit.model
+    P = len(q)
+    Jp, Jw = _geo_point_jacobian(model, q)
+    T = model.robot.fk(q)
+    arm = T[:, :3, :3] @ fit.t_mm
+    y = T[:, :3, 3] + arm
+    Jg = (Jp + np.cross(Jw, arm[:, :, None], axis=1)).reshape(3 * P, -1)
+    Jf = np.concatenate([-hat(y), np.broadcast_to(np.eye(3), (P, 3, 3)), T[:, :3, :3]], axis=2).reshape(3 * P, 9)
+    keep, share, sing, Vt = select_columns(Jf, Jg, tol)
+    names = tuple(model.names)
+    null = []
+    smax = sing.max() if len(sing) else 1.0
+    for i in range(Vt.shape[0]):
+        s = sing[i] if i < len(sing) else 0.0
+        if s >= tol * max(smax, 1e-300) and s >= tol:
+            continue
+        v = Vt[i]
+        order = np.argsort(-np.abs(v))[:4]
+        terms = [f"{v[k]:+.2f} {names[k]}" for k in order if abs(v[k]) > 0.05]
+        null.append(" ".join(terms) if terms else "(none)")
+    Jall = np.concatenate([Jf, Jg[:, keep]], axis=1)
+    Jn = Jall / np.maximum(np.linalg.norm(Jall, axis=0), 1e-300)
+    sv = np.linalg.svd(Jn, compute_uv=False)
+    rank = int(np.sum(sv > sv[0] * 1e-10))
+    cond = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
+    o1 = float(np.exp(np.mean(np.log(np.maximum(sv, 1e-300)))) / np.sqrt(P))
+    L = 9 + len(keep)
+    min_poses = int(np.ceil(L / 3)) + 2
+    return Identifiability(names, tuple(names[k] for k in keep), tuple(n for k, n in enumerate(names) if k not in set(keep)),
+                           share, rank, cond, o1, tuple(null), min_poses)
+
+
+@dataclass(frozen=True, eq=False)
+class Calibration:
+    """Result of :func:`calibrate`: nominal (registration + offset only) and geometric fits on the training poses."""
+
+    nominal: Fit
+    geometric: Fit
+    identifiability: Identifiability
+
+
+def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = None, tol: float = DEFAULT_TOL,
+              robust: bool = True) -> Calibration:
+    """Register the tracker frame, the target offset and the identifiable geometric parameters.
+
+    Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
+    """
+    model = model or build_error_model(robot, "generic")
+    q, xyz = meas.q, meas.xyz_mm
+    if len(q) < 5:
+        raise TolallocError(f"{meas.source}: {len(q)} pose(s) after skipping NaN rows; registration and target offset "
+                            "alone (9 parameters) need at least 5 poses, geometric calibration many more -- measure more poses.")
+    nominal = fit_model(initial_fit(model, q, xyz), q, xyz, robust=robust)
+    ident = identifiability(nominal, q, tol)
+    # structural count: the same robot on a rich pose set; tells how many poses a full calibration needs
+    rng = np.random.default_rng(0)
+    lo, hi = np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi)
+    rich = identifiability(nominal, rng.uniform(lo, hi, (60, robot.n_joints)), tol)
+    if len(q) < rich.min_poses:
+        raise TolallocError(
+            f"{meas.source}: {len(q)} poses for {9 + len(rich.identifiable)} identifiable parameters "
+            f"(registration 6, target offset 3, geometric {len(rich.identifiable)}); need at least {rich.min_poses} poses "
+            "(3 coordinates each, 2 spare) -- measure more poses spread over the workspace.")
+    geo = np.array([model.index(n) for n in ident.identifiable], int)
+    geometric = fit_model(replace(nominal, geo_index=geo), q, xyz, geo_index=geo, robust=robust)
+    return Calibration(nominal, geometric, ident)

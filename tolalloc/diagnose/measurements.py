@@ -1,0 +1,197 @@
+"""Laser-tracker measurement sets: reading and validating the measurement CSV.
+
+Columns (extra columns are ignored):
+
+``q1..qN``          joint values in interface units (deg for revolute, mm for prismatic joints)
+``x_mm,y_mm,z_mm``  measured target position in the tracker's fixed frame [mm]
+``temperature_c``   optional, ambient temperature [degC]
+``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
+``payload_kg``      optional
+``time_s``          optional, time stamp [s]
+
+NaN policy: a row with an empty / NaN cell in a required column (``q*``, ``x_mm..z_mm``) is
+**skipped and counted** (``Measurements.n_skipped``); a cell holding text that is not a number is an
+**error** naming the row and column. Optional covariates with NaN are an error (fill or drop them).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .._validate import TolallocError
+from ..robot import Robot
+
+__all__ = ["Measurements", "read_measurements", "measurements_from_frame", "POSITION_COLUMNS"]
+
+POSITION_COLUMNS = ("x_mm", "y_mm", "z_mm")
+
+
+@dataclass(frozen=True, eq=False)
+class Measurements:
+    """A validated measurement set.
+
+    Attributes
+    ----------
+    q : array, shape (P, n) [rad, mm]
+        Joint values (internal units).
+    xyz_mm : array, shape (P, 3) [mm]
+        Measured target positions in the tracker frame.
+    temperature_c, payload_kg, time_s : array, shape (P,) or None
+    direction : array, shape (P, n) of +1/-1, or None
+    rows : array of int, shape (P,)
+        Row number (1-based, header excluded) in the source file of every kept pose.
+    n_skipped : int
+        Rows skipped because a required cell was empty / NaN.
+    source : str
+    """
+
+    q: np.ndarray
+    xyz_mm: np.ndarray
+    temperature_c: np.ndarray | None = None
+    direction: np.ndarray | None = None
+    payload_kg: np.ndarray | None = None
+    time_s: np.ndarray | None = None
+    rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    n_skipped: int = 0
+    source: str = "<frame>"
+
+    @property
+    def n_poses(self) -> int:
+        return int(self.q.shape[0])
+
+    def subset(self, idx) -> "Measurements":
+        """The poses ``idx`` (integer index array or boolean mask) as a new set."""
+        idx = np.asarray(idx)
+        pick = (lambda a: None if a is None else a[idx])
+        return Measurements(self.q[idx], self.xyz_mm[idx], pick(self.temperature_c), pick(self.direction),
+                            pick(self.payload_kg), pick(self.time_s), self.rows[idx], 0, self.source)
+
+    def covariates(self) -> dict:
+        """Available scalar covariates by column name, each shape (P,)."""
+        out = {}
+        for key in ("temperature_c", "payload_kg", "time_s"):
+            v = getattr(self, key)
+            if v is not None:
+                out[key] = v
+        return out
+
+
+def _numeric(df: pd.DataFrame, col: str, source: str) -> np.ndarray:
+    """Column as floats; text that is not a number -> error naming the first bad cell."""
+    raw = df[col]
+    num = pd.to_numeric(raw, errors="coerce")
+    bad = num.isna() & raw.notna() & (raw.astype(str).str.strip() != "")
+    if bad.any():
+        i = int(np.flatnonzero(bad.to_numpy())[0])
+        raise TolallocError(
+            f"{source}: column {col!r}, row {i + 1}: expected a number, got {raw.iloc[i]!r}; "
+            "use '.' as decimal separator and numbers only (convert the file first if it uses decimal commas).")
+    return num.to_numpy(dtype=float)
+
+
+def _scale_check(robot: Robot, q: np.ndarray, xyz: np.ndarray, source: str) -> None:
+    """Compare the spread of the measured points with the spread of the nominal model's points."""
+    if len(q) < 3:
+        return
+    p_nom = robot.fk(q)[:, :3, 3]
+    s_nom = np.sqrt(np.mean(np.sum((p_nom - p_nom.mean(0)) ** 2, axis=1)))
+    s_meas = np.sqrt(np.mean(np.sum((xyz - xyz.mean(0)) ** 2, axis=1)))
+    if s_nom < 20.0:  # poses too close together to judge the scale
+        return
+    ratio = s_meas / s_nom
+    if 2e-4 < ratio < 5e-3:
+        raise TolallocError(
+            f"{source}: the measured positions look like metres, not mm: they spread over {s_meas:.4g} "
+            f"while the robot model's points spread over {s_nom:.4g} mm at the same joint values; "
+            "multiply x_mm, y_mm, z_mm by 1000.")
+    if ratio < 0.3 or ratio > 3.0:
+        raise TolallocError(
+            f"{source}: the measured positions spread over {s_meas:.4g} mm but the robot model's points spread "
+            f"over {s_nom:.4g} mm at the same joint values (ratio {ratio:.3g}); expected comparable spreads. "
+            "Check the units (mm expected), the robot and the joint columns (deg / mm expected).")
+
+
+def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<frame>") -> Measurements:
+    """Validate a measurement table (see the module docstring) and return :class:`Measurements`."""
+    n = robot.n_joints
+    qcols = [f"q{j + 1}" for j in range(n)]
+    cols = [str(c).strip() for c in df.columns]
+    df = df.copy()
+    df.columns = cols
+    missing = [c for c in (*qcols, *POSITION_COLUMNS) if c not in cols]
+    if missing:
+        lower = {c.lower(): c for c in cols}
+        hints = [f"{lower[m.lower()]!r} -> {m!r}" for m in missing if m.lower() in lower]
+        hint = f" Rename: {', '.join(hints)}." if hints else ""
+        extra_q = [c for c in cols if c.startswith("q") and c[1:].isdigit() and c not in qcols]
+        if extra_q:
+            hint += f" The file has joint columns {extra_q} beyond the robot's {n} joints; is it the right robot?"
+        raise TolallocError(
+            f"{source}: missing column(s) {missing}; expected {', '.join(qcols)} (deg / mm) and "
+            f"{', '.join(POSITION_COLUMNS)}, got columns {cols}.{hint}")
+    if len(df) == 0:
+        raise TolallocError(f"{source}: no data rows; expected one row per measured pose.")
+    Q = np.column_stack([_numeric(df, c, source) for c in qcols])
+    X = np.column_stack([_numeric(df, c, source) for c in POSITION_COLUMNS])
+    bad_inf = np.isinf(np.concatenate([Q, X], axis=1))
+    if bad_inf.any():
+        raise TolallocError(f"{source}: row {int(np.argwhere(bad_inf)[0, 0]) + 1}: infinite value; expected finite numbers.")
+    keep = ~(np.isnan(Q).any(1) | np.isnan(X).any(1))
+    n_skipped = int((~keep).sum())
+    if not keep.any():
+        raise TolallocError(f"{source}: every row has an empty or NaN cell in q1..q{n} / x_mm,y_mm,z_mm; no pose left.")
+    rows = np.flatnonzero(keep) + 1
+    Q, X = Q[keep], X[keep]
+    qi = robot.q_from_interface(Q)
+    lo, hi = robot.lower, robot.upper
+    bad = (qi < lo - 1e-9) | (qi > hi + 1e-9)
+    if bad.any():
+        i, k = np.argwhere(bad)[0]
+        j = robot.joints[k]
+        lim = robot.q_to_interface(np.array([lo, hi]))[:, k]
+        raise TolallocError(
+            f"{source}: row {rows[i]}: {qcols[k]} ({j.name}) = {Q[i, k]:g} {j.unit} is outside the joint limits "
+            f"[{lim[0]:g}, {lim[1]:g}] {j.unit} ({int(bad.any(1).sum())} row(s) affected); joint values must be in "
+            "deg (revolute) / mm (prismatic) -- convert radians with degrees(), or check the robot file's limits.")
+
+    def optional(col):
+        if col not in cols:
+            return None
+        v = _numeric(df, col, source)[keep]
+        if np.isnan(v).any():
+            raise TolallocError(f"{source}: column {col!r} has empty / NaN cells (row {rows[np.isnan(v)][0]}); "
+                                "fill them or drop the column.")
+        return v
+
+    dcols = [f"dir{j + 1}" for j in range(n)]
+    direction = None
+    present = [c for c in dcols if c in cols]
+    if present:
+        if len(present) != n:
+            raise TolallocError(f"{source}: direction columns {present} given, expected all of {dcols} or none.")
+        direction = np.column_stack([optional(c) for c in dcols])
+        if not np.all(np.isin(direction, (-1.0, 1.0))):
+            bad_v = direction[~np.isin(direction, (-1.0, 1.0))][0]
+            raise TolallocError(f"{source}: dir columns must hold +1 or -1 (sign of the last motion), got {bad_v:g}.")
+    _scale_check(robot, qi, X, source)
+    return Measurements(qi, X, optional("temperature_c"), direction, optional("payload_kg"), optional("time_s"),
+                        rows, n_skipped, source)
+
+
+def read_measurements(path, robot: Robot) -> Measurements:
+    """Read and validate a measurement CSV (comma-separated, '.' decimals); see the module docstring."""
+    path = Path(path)
+    if not path.is_file():
+        raise TolallocError(f"measurement file {str(path)!r} does not exist; expected a CSV with columns q1..qN, x_mm, y_mm, z_mm.")
+    try:
+        df = pd.read_csv(path, dtype=str, skipinitialspace=True)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise TolallocError(f"{path}: cannot be read as CSV ({exc}); expected comma-separated columns q1..qN, x_mm, y_mm, z_mm.") from None
+    if df.shape[1] == 1 and ";" in str(df.columns[0]):
+        raise TolallocError(f"{path}: looks ';'-separated; expected a comma-separated CSV with '.' decimals "
+                            "(convert it, e.g. with studies/sim2real_ur10/convert_ur10.py for the UR10 data).")
+    return measurements_from_frame(df, robot, str(path))

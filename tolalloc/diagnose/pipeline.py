@@ -1,0 +1,155 @@
+"""The whole diagnosis: calibrate, break the residual down, select effects, score before/after."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from threadpoolctl import threadpool_limits
+
+from .._validate import TolallocError
+from ..errors import build_error_model
+from ..robot import Robot
+from .calibrate import DEFAULT_TOL, Calibration, calibrate
+from .effects import EFFECTS
+from .measurements import Measurements
+from .select import Evaluation, Stage, error_stats, evaluate, make_context, select_effects
+from .where import WhereBreakdown, where_breakdown
+
+__all__ = ["Diagnosis", "diagnose"]
+
+
+@dataclass(frozen=True, eq=False)
+class Diagnosis:
+    """Result of :func:`diagnose`.
+
+    Attributes
+    ----------
+    robot : Robot
+    train, test : Measurements (test may be None)
+    calibration : Calibration      registration + offset (+ identifiable geometry) on all training poses
+    stages : tuple of Stage        sequential selection; ``stages[0].candidates`` is the ranking
+    effects : tuple of str         selected effects in order (empty: ``none``)
+    nominal, geometric, final : Evaluation   held-out evaluations of the three models
+    where : WhereBreakdown         residual breakdown after geometric calibration (training poses)
+    test_frame : {"same", "refit"}
+    """
+
+    robot: Robot
+    train: Measurements
+    test: Measurements | None
+    calibration: Calibration
+    stages: tuple
+    effects: tuple
+    nominal: Evaluation
+    geometric: Evaluation
+    final: Evaluation
+    where: WhereBreakdown
+    test_frame: str = "same"
+
+    @property
+    def effect(self) -> str:
+        """The first selected effect or ``none``."""
+        return self.effects[0] if self.effects else "none"
+
+    @property
+    def ranking(self) -> tuple:
+        return self.stages[0].candidates
+
+    def before_after(self, which: str = "heldout") -> pd.DataFrame:
+        """RMS / p95 / max / mean error [mm] of nominal, geometric and final models with the shrink in percent.
+
+        ``which``: ``heldout`` (CV + test), ``cv`` (out-of-fold training poses) or ``test``.
+        """
+        rows = []
+        for name, ev in (("nominal", self.nominal), ("geometric", self.geometric), ("final", self.final)):
+            res = {"heldout": ev.heldout_mm, "cv": ev.oof_mm, "test": ev.test_mm}[which]
+            if res is None:
+                raise TolallocError("no test file was given; use which='heldout' or 'cv'.")
+            rows.append({"model": name, "label": ev.label, **error_stats(res)})
+        df = pd.DataFrame(rows)
+        for col in ("rms_mm", "p95_mm", "max_mm"):
+            base = df[col].iloc[0]
+            df[col.replace("_mm", "_shrink_pct")] = 100.0 * (1.0 - df[col] / base)
+        df["rms_shrink_vs_geometric_pct"] = 100.0 * (1.0 - df["rms_mm"] / df["rms_mm"].iloc[1])
+        return df
+
+    def ranking_frame(self) -> pd.DataFrame:
+        return pd.DataFrame([c.to_dict() for c in self.ranking])
+
+    def sequence_frame(self) -> pd.DataFrame:
+        rows = []
+        for i, st in enumerate(self.stages):
+            for c in st.candidates:
+                rows.append({"step": i + 1, "base": "+".join(("geometric", *st.base)), "base_rms_mm": st.base_rms_mm,
+                             **c.to_dict(), "selected": c.effect == st.selected})
+        return pd.DataFrame(rows)
+
+    def to_dict(self) -> dict:
+        ba = self.before_after()
+        out = {
+            "robot": self.robot.name,
+            "effect": self.effect,
+            "effects": list(self.effects),
+            "ranking": [c.to_dict() for c in self.ranking],
+            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none",
+                          "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
+            "rms_mm": dict(zip(ba["model"], ba["rms_mm"])),
+            "p95_mm": dict(zip(ba["model"], ba["p95_mm"])),
+            "max_mm": dict(zip(ba["model"], ba["max_mm"])),
+            "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
+                           "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
+                           "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
+            "heldout": {"cv_poses": self.train.n_poses, "test_poses": 0 if self.test is None else self.test.n_poses,
+                        "test_frame": self.test_frame},
+            "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
+                      "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
+                                 "final": self.final.fit.rms_mm}},
+            "identifiability": self.calibration.identifiability.to_dict(),
+            "registration": {"rotation": self.calibration.geometric.R, "translation_mm": self.calibration.geometric.p_mm,
+                             "target_offset_mm": self.calibration.geometric.t_mm},
+            "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
+        }
+        if self.test is not None:
+            bt = self.before_after("test")
+            out["test_rms_mm"] = dict(zip(bt["model"], bt["rms_mm"]))
+            out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source}
+        return out
+
+
+def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
+             alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
+             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1) -> Diagnosis:
+    """Diagnose the gap between a robot model and its measurements.
+
+    Parameters
+    ----------
+    robot : Robot
+    train : Measurements        fitted (and cross-validated with ``folds`` folds)
+    test : Measurements, optional  scored only
+    alpha : float               family-wise significance level of the selection
+    min_gain : float            minimum relative held-out RMS reduction of a selected effect
+    test_frame : {"same", "refit"}
+        ``refit``: the test file is in another tracker frame (another session); its registration and
+        target offset are re-estimated on one half of it and scored on the other (two-fold).
+    threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
+    """
+    if test_frame not in ("same", "refit"):
+        raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
+    if folds < 2:
+        raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
+    with threadpool_limits(threads):
+        model = build_error_model(robot, "generic")
+        cal = calibrate(robot, train, model=model, tol=tol)
+        if test is not None and test_frame == "refit" and test.n_poses < 10:
+            raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
+        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol)
+        nominal = evaluate(ctx, nominal=True)
+        geometric = evaluate(ctx)
+        stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        where = where_breakdown(robot, train, cal.geometric)
+    return Diagnosis(robot, train, test, cal, tuple(stages), tuple(st.selected for st in stages if st.selected),
+                     nominal, geometric, final, where, test_frame)
+
+

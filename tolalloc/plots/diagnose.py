@@ -1,0 +1,101 @@
+"""Figures of the sim-to-real diagnosis; each draws from a :class:`~tolalloc.diagnose.Diagnosis` (or its parts)."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+__all__ = ["plot_where", "plot_ranking", "plot_before_after", "plot_confusion"]
+
+
+def plot_where(where, path, n_features: int = 6, dpi: int = 90) -> None:
+    """Residual norm against the strongest features, per-axis RMS and the worst (reach, elevation) cells."""
+    trends = where.trends.head(n_features)
+    k = len(trends)
+    ncol = 3
+    nrow = int(np.ceil((k + 2) / ncol))
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.2 * nrow), squeeze=False)
+    norm = where.norm_mm
+    for ax, (_, row) in zip(axes.flat, trends.iterrows()):
+        v = where.features[row["feature"]].to_numpy()
+        ax.scatter(v, norm, s=6, alpha=0.5)
+        order = np.argsort(v)
+        chunks = np.array_split(order, 8)
+        ax.plot([v[c].mean() for c in chunks], [np.sqrt(np.mean(norm[c] ** 2)) for c in chunks], "r-o", ms=3,
+                label="RMS in bins")
+        ax.set_xlabel(row["feature"])
+        ax.set_ylabel("|residual| [mm]")
+        ax.set_title(f"rho={row['spearman_norm']:+.2f}, max|r| comp={row['max_abs_corr_component']:.2f}", fontsize=9)
+    flat = list(axes.flat)
+    ax = flat[k]
+    pa = where.per_axis
+    ax.bar(pa["axis"], pa["rms_mm"])
+    ax.set_ylabel("RMS [mm]")
+    ax.set_title("per axis (robot base frame)", fontsize=9)
+    ax = flat[k + 1]
+    reg = where.regions
+    ax.barh([f"r {a} / z {b}" for a, b in zip(reg["reach_mm"], reg["elevation_mm"])], reg["rms_mm"])
+    ax.invert_yaxis()
+    ax.set_xlabel("RMS [mm]")
+    ax.set_title("regions (reach / elevation mm)", fontsize=9)
+    ax.tick_params(axis="y", labelsize=7)
+    for ax in flat[k + 2:]:
+        ax.axis("off")
+    fig.suptitle("Residual after geometric calibration: where")
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
+def plot_ranking(diagnosis, path, dpi: int = 90) -> None:
+    """Held-out RMS of every candidate effect against the geometric model (first selection step)."""
+    ranking = [c for c in diagnosis.ranking if c.applicable]
+    fig, ax = plt.subplots(figsize=(6.5, 3.2))
+    names = ["geometric only"] + [c.effect for c in ranking]
+    vals = [diagnosis.stages[0].base_rms_mm] + [c.heldout_rms_mm for c in ranking]
+    colors = ["grey"] + ["tab:green" if c.significant else "tab:blue" for c in ranking]
+    ax.barh(names, vals, color=colors)
+    for i, c in enumerate(ranking, start=1):
+        ax.text(vals[i], i, f"  p={c.p_value:.1e}", va="center", fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("held-out RMS [mm]")
+    ax.set_title("Candidate effects on top of the geometric calibration (green: significant)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
+def plot_before_after(table, path, dpi: int = 90) -> None:
+    """Bars of RMS / p95 / max held-out error for nominal, geometric and final models (``before_after()`` table)."""
+    fig, ax = plt.subplots(figsize=(6, 3.2))
+    x = np.arange(len(table))
+    for i, col in enumerate(("rms_mm", "p95_mm", "max_mm")):
+        ax.bar(x + (i - 1) * 0.27, table[col], width=0.27, label=col.replace("_mm", ""))
+    ax.set_xticks(x, table["model"])
+    ax.set_yscale("log")
+    ax.set_ylabel("held-out error [mm]")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+
+
+def plot_confusion(matrix, labels, path, title: str = "", dpi: int = 90) -> None:
+    """Confusion matrix (rows: true label, columns: diagnosed), counts annotated."""
+    m = np.asarray(matrix)
+    fig, ax = plt.subplots(figsize=(6, 5))
+    ax.imshow(m, cmap="Blues")
+    ax.set_xticks(range(len(labels)), labels, rotation=45, ha="right")
+    ax.set_yticks(range(len(labels)), labels)
+    for i in range(m.shape[0]):
+        for j in range(m.shape[1]):
+            ax.text(j, i, str(m[i, j]), ha="center", va="center", color="black")
+    ax.set_xlabel("diagnosed")
+    ax.set_ylabel("true (withheld)")
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
