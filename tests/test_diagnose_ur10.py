@@ -1,0 +1,45 @@
+"""The diagnosis on the real UR10 laser-tracker data (read from ../shared/data, never copied).
+
+Known from the data's README (independent measurement): nominal model with base and probe fitted gives a
+mean error of roughly 0.7-1.0 mm; a geometric fit roughly halves the held-out error within a session.
+"""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import tolalloc
+from tolalloc.diagnose import diagnose, measurements_from_frame
+from tolalloc.diagnose.synth import split_frame
+
+ROOT = Path(__file__).resolve().parents[1]
+spec = importlib.util.spec_from_file_location("convert_ur10", ROOT / "studies" / "sim2real_ur10" / "convert_ur10.py")
+convert_ur10 = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(convert_ur10)
+
+pytestmark = pytest.mark.skipif(not convert_ur10.DATA.is_dir(),
+                                reason=f"UR10 data folder {convert_ur10.DATA} is absent (read-only shared data)")
+
+
+def test_converter_columns_and_units():
+    df = convert_ur10.series("C")
+    assert len(df) >= 2772
+    assert list(df.columns[:9]) == ["q1", "q2", "q3", "q4", "q5", "q6", "x_mm", "y_mm", "z_mm"]
+    # first row of Series C: shoulder_pan_joint = -3.14159 rad, measurement_x = 383.97123 mm
+    assert df["q1"].iloc[0] == pytest.approx(-180.0, abs=1e-3)
+    assert df["x_mm"].iloc[0] == pytest.approx(383.97123)
+    assert set(np.unique(df[[f"dir{j}" for j in range(1, 7)]].to_numpy())) <= {-1.0, 1.0}
+
+
+def test_within_session_matches_known_figures():
+    robot = tolalloc.load_robot("ur10")
+    df = convert_ur10.series("C").iloc[::6].reset_index(drop=True)
+    tr, te = split_frame(df, 0.25, np.random.default_rng(0))
+    d = diagnose(robot, measurements_from_frame(tr, robot), measurements_from_frame(te, robot), folds=3,
+                 max_effects=1)
+    bt = d.before_after("test")
+    assert 0.5 < bt["mean_mm"].iloc[0] < 1.3          # nominal + registration: README ~0.7-1.0 mm
+    assert bt["rms_mm"].iloc[1] < 0.75 * bt["rms_mm"].iloc[0]  # geometric calibration: roughly halves it
+    assert d.calibration.identifiability.rank >= 20
