@@ -1,7 +1,6 @@
 """Reading and validating measurement CSVs: every bad input gives a TolallocError saying what to do."""
 
 import numpy as np
-import pandas as pd
 import pytest
 
 import tolalloc

@@ -17,6 +17,7 @@ multipliers of the pose constraints say which poses drive the cost; ``sum_i y_i`
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
@@ -90,17 +91,23 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
             cons += lst
             pose_cons.append(("psd", lst))
     prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
-    try:
-        prob.solve(solver="CLARABEL", verbose=verbose)
-    except cp.error.SolverError as exc:  # pragma: no cover - solver failure
-        return Design(solver, "failed", time_s=time.perf_counter() - t0, message=f"Clarabel failed: {exc}")
+    for tol in (1e-10, None):  # tight tolerances; Clarabel's defaults if they end inaccurate
+        settings = {} if tol is None else {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)
+                prob.solve(solver="CLARABEL", verbose=verbose, **settings)
+        except cp.error.SolverError as exc:  # pragma: no cover - solver failure
+            return Design(solver, "failed", time_s=time.perf_counter() - t0, message=f"Clarabel failed: {exc}")
+        if prob.status != "optimal_inaccurate":
+            break
     dt = time.perf_counter() - t0
     if prob.status in ("infeasible", "infeasible_inaccurate"):
         return Design(solver, "infeasible", time_s=dt,
                       message=f"the {rule} rule cannot be met within the process limits")
     if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
         return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
-    uv = np.clip(u.value, u_min, u_max)
+    uv = _repair(problem, rule, np.clip(u.value, u_min, u_max))
     duals = []
     for kind, c in pose_cons:
         if kind == "vector":
@@ -114,6 +121,29 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     msg = "" if prob.status == "optimal" else f"Clarabel status {prob.status}"
     return make_design(problem, solver, problem.t_from_u(uv), pose_dual=pose_dual, bound_dual=bound_dual,
                        time_s=dt, message=msg)
+
+
+def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
+    """Largest ``tr Sigma / trace_bound`` (or ``lambda_max / eig_bound``) over poses and blocks; <= 1 is certified."""
+    t = problem.t_from_u(u)
+    out = 0.0
+    for b in problem.blocks:
+        C = problem.covariances(t, b["rows"])
+        if rule == "trace":
+            out = max(out, float(np.einsum("pii->p", C).max() / b["trace_bound"]))
+        else:
+            out = max(out, float(np.linalg.eigvalsh(C)[:, -1].max() / b["eig_bound"]))
+    return out
+
+
+def _repair(problem: AllocationProblem, rule: str, u):
+    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly."""
+    for _ in range(3):
+        rho = rule_ratio(problem, rule, u)
+        if rho <= 1.0:
+            break
+        u = np.clip(u / (rho * (1 + 1e-12)), problem.u_min, problem.u_max)
+    return u
 
 
 def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:

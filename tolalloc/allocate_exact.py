@@ -25,6 +25,7 @@ __all__ = ["solve_exact", "FEAS_TOL"]
 
 #: Accepted shortfall of the exact probability below p (the CasADi direction rule is accurate to ~1e-6).
 FEAS_TOL = 1e-5
+_KEEP_ALIVE: list = []
 
 
 def _build(problem: AllocationProblem, active: dict):
@@ -54,7 +55,11 @@ def _build(problem: AllocationProblem, active: dict):
         lbg += [b["prob"]] * len(idx)
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.tol": 1e-9,
             "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 300}
-    return ca.nlpsol("tolalloc_exact", "ipopt", {"x": u, "f": f, "g": ca.vertcat(*g)}, opts), np.array(lbg)
+    solver = ca.nlpsol("tolalloc_exact", "ipopt", {"x": u, "f": f, "g": ca.vertcat(*g)}, opts)
+    # CasADi caches the derivative functions of the probability function only while something
+    # uses them; keeping the last solver alive saves ~0.4 s of regeneration per later build.
+    _KEEP_ALIVE[:] = [solver]
+    return solver, np.array(lbg)
 
 
 def _initial_active(problem: AllocationProblem, start: Design | None, n0: int = 6) -> dict:

@@ -119,6 +119,7 @@ class FastChain:
         for i in range(3):
             X[i] = self.home[i, :, None]
         th_buf, s, c, t1, t2 = work["th"][:N], work["s"][:N], work["c"][:N], work["t1"][:, :N], work["t2"][:, :N]
+        off = [0.0, 0.0, 0.0]  # lazy shift of p: the pose is X with off added to column 3
         for f, const, coefs in prog:
             if coefs:
                 th = self._amount(const, coefs, V, th_buf)
@@ -150,10 +151,10 @@ class FastChain:
             if f["axis"] is not None:
                 a, b, sg = f["axis"]
                 Xa, Xb = X[a], X[b]
-                if r0[a] != 0.0:
-                    Xa[3] -= r0[a]
-                if r0[b] != 0.0:
-                    Xb[3] -= r0[b]
+                for r in (a, b):  # shift p so that it is relative to the axis point r0
+                    if off[r] != r0[r]:
+                        X[r, 3] += off[r] - r0[r]
+                        off[r] = r0[r]
                 np.multiply(Xa, ss, out=t1)
                 np.multiply(Xb, ss, out=t2)
                 Xa *= cc
@@ -164,16 +165,13 @@ class FastChain:
                 else:
                     Xa += t2
                     Xb -= t1
-                if r0[a] != 0.0:
-                    Xa[3] += r0[a]
-                if r0[b] != 0.0:
-                    Xb[3] += r0[b]
             else:  # general axis: R = I + s A + (1 - c) A^2 applied to the rows, p about r0
                 A = f["A"]
                 B = A @ A
                 Y = X.copy()
                 for j in range(3):
-                    Y[j, 3] -= r0[j]
+                    Y[j, 3] += off[j] - r0[j]
+                    off[j] = 0.0
                 for i in range(3):
                     row = None
                     for j in range(3):
@@ -186,6 +184,9 @@ class FastChain:
                 for i in range(3):
                     if f["w"][i] != 0.0:
                         X[i, 3] += (f["h"] * f["w"][i]) * th
+        for i in range(3):
+            if off[i] != 0.0:
+                X[i, 3] += off[i]
         return X
 
     @staticmethod

@@ -115,7 +115,7 @@ def ordered_map(fn: Callable, tasks: Iterable, shared: Any = None, *, scheduler=
         client = get_client()
     elif isinstance(scheduler, str):
         try:
-            client = Client(scheduler, set_as_default=False, timeout=30)
+            client = Client(scheduler, set_as_default=False)
         except (OSError, TimeoutError) as exc:
             raise TolallocError(f"scheduler: could not connect to the Dask scheduler at {scheduler!r} ({exc}); "
                                 "start one with 'dask scheduler' and workers with 'dask worker ADDRESS'.") from None

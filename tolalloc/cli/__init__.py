@@ -15,7 +15,7 @@ import sys
 from .._validate import TolallocError
 
 #: command modules, in the order shown by --help
-COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze"]
+COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import argparse
+
 import numpy as np
 
 from .._validate import TolallocError
@@ -36,6 +38,17 @@ def register(sub) -> None:
     p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
     p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
+    p.add_argument("--scheduler", default=None, metavar="WHERE",
+                   help="where the samples run: local threads (default), 'threads' or 'processes' (Dask, this machine), "
+                   "or a Dask scheduler address such as tcp://10.0.0.5:8786; never changes the numbers")
+    p.add_argument("--jobs", type=int, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
+    p.add_argument("--chunk-size", type=int, default=2**20, help="samples per Dask task (default 1048576); never changes the numbers")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bar on stderr (default: for runs of 10^7 samples or more when stderr is a terminal)")
+    p.add_argument("--hist-bins", type=int, default=0,
+                   help="accumulate BINSxBINS x-y, x-z, y-z histograms of the position error over all samples "
+                   "(with --out: mc_density.png and mc_hist.npz)")
+    p.add_argument("--hist-range-mm", type=float, default=None, help="half-width of the histogram window [mm] (default: 6 linear std per axis)")
     p.add_argument("--json", metavar="OUT", help="write the summary as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write mc_table.csv, mc_summary.json and mc_scatter.png to DIR")
     p.set_defaults(func=cmd_mc)
@@ -101,8 +114,16 @@ def cmd_mc(args) -> int:
     radii = args.radius_mm if args.radius_mm else [0.15, 0.25]
     aradii = args.angle_radius_rad if args.angle_radius_rad else [0.002]
     keep = min(args.n, 20000) if args.out else 0
-    res = run_mc(model, q, args.n, args.seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep, ci=args.ci)
+    if args.jobs is not None and args.jobs < 1:
+        raise TolallocError(f"--jobs: expected a number of workers >= 1, got {args.jobs}.")
+    if args.chunk_size < 1:
+        raise TolallocError(f"--chunk-size: expected a number of samples >= 1, got {args.chunk_size}.")
+    res = run_mc(model, q, args.n, args.seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep, ci=args.ci,
+                 n_jobs=args.jobs, scheduler=args.scheduler, chunk_size=args.chunk_size, progress=args.progress,
+                 hist_bins=args.hist_bins, hist_range_mm=args.hist_range_mm)
     summary = summary_dict(res, robot)
+    if res.hist is not None:
+        summary["hist_fraction_outside"] = (res.hist.outside / res.n).tolist()
     summary["labels"] = {**summary["labels"], "clearance_tilt_rad": (CLEARANCE_TILT_LITERAL_RAD if args.clearance_tilt_literal
                                                                      else CLEARANCE_SIGMA["tilt_rad"]) if args.clearance else None}
     if args.out:
@@ -114,6 +135,12 @@ def cmd_mc(args) -> int:
             write_json(summary, tmp / "mc_summary.json")
             fig = scatter_density(res, tmp / "mc_scatter.png")
             plt.close(fig)
+            if res.hist is not None:
+                from ..plots.mc import hist_density
+
+                plt.close(hist_density(res, tmp / "mc_density.png"))
+                np.savez_compressed(tmp / "mc_hist.npz", counts=res.hist.counts, edges_mm=res.hist.edges_mm,
+                                    outside=res.hist.outside, n=res.hist.n, planes=np.array(res.hist.planes))
     if args.json:
         write_json(summary, args.json)
     if not args.json or args.json != "-":

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
 import pandas as pd
 from threadpoolctl import threadpool_limits
 
@@ -12,9 +11,8 @@ from .._validate import TolallocError
 from ..errors import build_error_model
 from ..robot import Robot
 from .calibrate import DEFAULT_TOL, Calibration, calibrate
-from .effects import EFFECTS
 from .measurements import Measurements
-from .select import Evaluation, Stage, error_stats, evaluate, make_context, select_effects
+from .select import Evaluation, error_stats, evaluate, make_context, select_effects
 from .where import WhereBreakdown, where_breakdown
 
 __all__ = ["Diagnosis", "diagnose"]

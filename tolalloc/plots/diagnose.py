@@ -11,8 +11,12 @@ import numpy as np  # noqa: E402
 __all__ = ["plot_where", "plot_ranking", "plot_before_after", "plot_confusion"]
 
 
-def plot_where(where, path, n_features: int = 6, dpi: int = 90) -> None:
-    """Residual norm against the strongest features, per-axis RMS and the worst (reach, elevation) cells."""
+def plot_where(where, path, n_features: int = 6, dpi: int = 72, max_points: int = 600) -> None:
+    """Residual norm against the strongest features, per-axis RMS and the worst (reach, elevation) cells.
+
+    At most ``max_points`` poses are drawn as dots (an even subsample, to keep the file small); the binned
+    RMS line uses all poses.
+    """
     trends = where.trends.head(n_features)
     k = len(trends)
     ncol = 3
@@ -21,7 +25,8 @@ def plot_where(where, path, n_features: int = 6, dpi: int = 90) -> None:
     norm = where.norm_mm
     for ax, (_, row) in zip(axes.flat, trends.iterrows()):
         v = where.features[row["feature"]].to_numpy()
-        ax.scatter(v, norm, s=6, alpha=0.5)
+        show = np.linspace(0, len(v) - 1, min(len(v), max_points)).astype(int)
+        ax.scatter(v[show], norm[show], s=5, alpha=0.5, rasterized=True)
         order = np.argsort(v)
         chunks = np.array_split(order, 8)
         ax.plot([v[c].mean() for c in chunks], [np.sqrt(np.mean(norm[c] ** 2)) for c in chunks], "r-o", ms=3,

@@ -12,7 +12,7 @@ import numpy as np
 
 from .._validate import TolallocError
 
-__all__ = ["scatter_density", "sensitivity_curves", "trajectory_plot"]
+__all__ = ["scatter_density", "hist_density", "sensitivity_curves", "trajectory_plot"]
 
 _DIRS = {"dx": (0, "Δx [mm]"), "dy": (1, "Δy [mm]"), "dz": (2, "Δz [mm]")}
 
@@ -101,5 +101,27 @@ def trajectory_plot(result, path=None, *, title: str = "", dpi: int = 90):
     axes[-1].legend(fontsize=7)
     if title:
         fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return _save(fig, path, dpi)
+
+
+def hist_density(result, path=None, *, pose: int = 0, title: str = "", dpi: int = 90):
+    """x-y, x-z, y-z projection densities of ``p' - p`` from streamed histograms (all samples, Figs. 6/12).
+
+    Needs ``result.hist`` (run :func:`run_mc` with ``hist_bins > 0``).
+    """
+    h = getattr(result, "hist", None)
+    if h is None:
+        raise TolallocError("hist_density: the result has no histograms; run the Monte Carlo with hist_bins > 0.")
+    fig, axes = plt.subplots(1, 3, figsize=(11, 3.4))
+    for k, (ax, plane) in enumerate(zip(axes, h.planes)):
+        i, j = "xyz".index(plane[0]), "xyz".index(plane[1])
+        ei, ej = h.edges_mm[pose, i], h.edges_mm[pose, j]
+        m = ax.pcolormesh(ei, ej, h.density(pose, plane).T, cmap="viridis", shading="flat")
+        fig.colorbar(m, ax=ax, fraction=0.046)
+        ax.set_xlabel(f"Δ{plane[0]} [mm]")
+        ax.set_ylabel(f"Δ{plane[1]} [mm]")
+        ax.set_title(f"{plane[0]}-{plane[1]} density ({h.outside[pose, k] / h.n:.1e} outside)", fontsize=9)
+    fig.suptitle(title or f"n={h.n}, pose {pose}", fontsize=9)
     fig.tight_layout()
     return _save(fig, path, dpi)

@@ -1,0 +1,57 @@
+"""`tolalloc allocate`: outputs, summary keys, infeasible message, bad input."""
+
+import json
+
+import pandas as pd
+import pytest
+
+from tolalloc.cli import main
+
+
+def test_allocate_writes_everything(tmp_path, capsys):
+    out = tmp_path / "alloc"
+    rc = main(["allocate", "tool_changer", "--poses", "nominal", "--n-mc", "100000", "--seed", "3", "--out", str(out)])
+    text = capsys.readouterr().out
+    assert rc == 0, text
+    assert "status: optimal" in text and "dth2" in text and "verified by nonlinear Monte Carlo" in text
+    names = {p.name for p in out.iterdir()}
+    assert {"tolerances.csv", "tolerances.md", "tolerances.tex", "summary.json", "error_budget.png",
+            "error_cloud.png", "verification.csv", "pose_probabilities.png"} <= names
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "optimal" and s["solver"] == "exact" and s["pose_set"] == "nominal"
+    assert s["costs"]["exact"] <= s["costs"]["certified"]
+    pose = s["poses"][0]
+    for key in ("q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
+        assert key in pose
+    assert pose["p_mc_ci"][0] <= pose["p_mc"] <= pose["p_mc_ci"][1]
+    assert pose["p_linear"] == pytest.approx(0.95, abs=1e-5)
+    tab = pd.read_csv(out / "tolerances.csv")
+    for col in ("parameter", "kind", "unit", "tolerance", "sigma", "it_grade", "cost", "variance_share"):
+        assert col in tab.columns
+    assert set(tab["unit"]) == {"mm", "deg"} and len(tab) == 22
+    assert tab.loc[tab.parameter == "dl3", "it_grade"].item().startswith("IT")
+
+
+def test_certified_solver_no_verify(capsys):
+    rc = main(["allocate", "tool_changer", "--solver", "certified", "--no-verify", "--uniform"])
+    text = capsys.readouterr().out
+    assert rc == 0 and "design: certified-" in text and "sigma = t / 1.732" in text
+
+
+def test_infeasible_is_said_plainly(tmp_path, capsys):
+    costs = tmp_path / "c.toml"
+    costs.write_text("[kinds.joint_drive]\nt_min_deg = 0.05\n")
+    out = tmp_path / "o"
+    rc = main(["allocate", "tool_changer", "--costs", str(costs), "--out", str(out)])
+    text = capsys.readouterr().out
+    assert rc == 1
+    assert "INFEASIBLE" in text and "radius achievable at p = 0.95" in text and "dth" in text
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "infeasible" and s["diagnosis"]["p_best_min"]["position"] < 0.95
+
+
+@pytest.mark.parametrize("args, match", [(["--prob", "1.2"], "prob"), (["--poses", "nope"], "pose set"),
+                                         (["--uniform", "--z", "2"], "--uniform"), (["--n-mc", "5"], "--n-mc")])
+def test_bad_input_exits_2(args, match, capsys):
+    assert main(["allocate", "tool_changer", *args]) == 2
+    assert match in capsys.readouterr().err

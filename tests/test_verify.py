@@ -1,0 +1,64 @@
+"""Monte Carlo verification of allocated designs (seeded; modest sample sizes)."""
+
+import numpy as np
+import pytest
+from dataclasses import replace
+
+from tolalloc import TolallocError, load_robot
+from tolalloc.allocate import allocate, build_problem, make_design
+from tolalloc.errors import build_error_model
+from tolalloc.verify import EXACT_TOL, verify_design
+
+N = 100_000  # sd of P_hat near 0.95: 0.0007, well inside the 0.002 allowance
+
+
+@pytest.fixture(scope="module")
+def res():
+    robot = load_robot("tool_changer")
+    pr = build_problem(build_error_model(robot), robot.poses("working")[[0, 9, 11]])
+    return allocate(pr, snap=False)
+
+
+def test_exact_design_passes(res):
+    v = verify_design(res.problem, res.design, n_mc=N, seed=1, keep_samples=500)
+    assert v.criterion == "exact" and v.ok, v.message()
+    assert np.all(v.p_mc >= 0.95 - EXACT_TOL)
+    # MC agrees with the linear prediction (the design is small against the arm: nonlinearity is negligible)
+    assert np.all(np.abs(v.p_mc - v.p_linear) < 4 * np.sqrt(0.05 * 0.95 / N) + 1e-3)
+    assert np.all((v.ci_low <= v.p_mc) & (v.p_mc <= v.ci_high))
+    assert v.samples_mm.shape == (500, 3) and v.samples_pose == int(np.argmin(v.p_linear))
+    assert "verified" in v.message() and list(v.to_frame().columns)[:3] == ["pose", "p_linear", "p_mc"]
+
+
+def test_certified_design_passes_with_the_whole_interval(res):
+    v = verify_design(res.problem, res.certified, n_mc=N, seed=2, keep_samples=0)
+    assert v.criterion == "certified" and v.ok, v.message()
+    assert np.all(v.ci_low >= 0.95)
+
+
+def test_under_specified_design_fails_with_reason(res):
+    pr = res.problem
+    loose = make_design(pr, "exact", res.design.t * 1.3)
+    v = verify_design(pr, loose, n_mc=N, seed=3, keep_samples=0)
+    assert not v.ok
+    worst = int(np.argmin(loose.p_linear["position"]))
+    assert not v.passed[worst]
+    assert "under-specified" in v.reason[worst]
+    assert f"pose {worst + 1}" in v.message() and "FAILED" in v.message()
+    assert v.failing[0][0] == np.flatnonzero(~v.passed)[0] + 1
+
+
+def test_nonlinearity_is_named_when_the_linear_prediction_passes(res):
+    # a design that the linear map passes but the MC does not: fake the linear prediction
+    pr = res.problem
+    loose = make_design(pr, "exact", res.design.t * 1.3)
+    fake = replace(loose, p_linear={"position": np.full(pr.n_poses, 0.99)})
+    v = verify_design(pr, fake, n_mc=N, seed=4, keep_samples=0)
+    assert not v.ok and all(r.startswith("nonlinearity") for r, ok in zip(v.reason, v.passed) if not ok)
+
+
+def test_bad_inputs(res):
+    with pytest.raises(TolallocError, match="n_mc"):
+        verify_design(res.problem, res.design, n_mc=10)
+    with pytest.raises(TolallocError, match="no tolerances"):
+        verify_design(res.problem, replace(res.design, t=None, status="infeasible"))

@@ -1,0 +1,173 @@
+"""Monte Carlo work units: parameter sampling and the statistics of one random-number block.
+
+A block (:data:`BLOCK_SIZE` samples, its own generator ``SeedSequence(seed)`` child ``b``) is the unit
+of reproducibility; it is processed in sub-blocks of :data:`SUB_BLOCK` samples (cache-sized) whose
+statistics are merged in order. :func:`run_blocks` is the task that every scheduler runs
+(:mod:`tolalloc.parallel`); :func:`tolalloc.montecarlo.run_mc` merges the results in block order.
+"""
+
+from __future__ import annotations
+
+import threading
+
+import numpy as np
+
+from .errors import ErrorModel
+from .fastchain import N_BUF, ErrorFeatures, FastChain, features_to_dict
+from .streaming import Extras, HistSpec, Moments
+
+__all__ = ["BLOCK_SIZE", "SUB_BLOCK", "sample_values", "McSpec", "run_blocks"]
+
+#: Samples per random-number block (the unit of reproducibility).
+BLOCK_SIZE = 2**16
+#: Samples per kinematics/statistics sub-block (cache-sized; part of the definition of the numbers).
+SUB_BLOCK = 8192
+
+
+# ----------------------------------------------------------------- sampling
+def _draw(model: ErrorModel, m: int, rng: np.random.Generator, out: np.ndarray) -> np.ndarray:
+    """Fill ``out`` (K, m) with parameter draws; returns the row multipliers ``mult`` (K,).
+
+    Normal rows hold standard normals (value = ``mult * row``, ``mult = sigma``); other rows hold the
+    values (``mult = 1``); zero-sigma rows are 0 (``mult = 0``). All normal rows are drawn in one call,
+    then the others in parameter order (the stream of :func:`sample_values`).
+    """
+    params = model.params
+    sig = model.sigma
+    mult = np.zeros(len(params))
+    normal = [k for k, p in enumerate(params) if p.distribution == "normal" and sig[k] > 0]
+    if normal:
+        a = normal[0]
+        if normal == list(range(a, a + len(normal))):
+            rng.standard_normal(out=out[a:a + len(normal)])
+        else:
+            out[normal] = rng.standard_normal((len(normal), m))
+        mult[normal] = sig[normal]
+    done = set(normal)
+    for k, p in enumerate(params):
+        if k in done:
+            continue
+        if sig[k] == 0:
+            out[k] = 0.0
+            continue
+        mult[k] = 1.0
+        if p.distribution == "ring":
+            k2 = next((i for i, o in enumerate(params) if o.group == p.group and i != k), None)
+            s = rng.standard_normal(m) * (np.sqrt(2.0) * p.sigma)
+            t = rng.uniform(0.0, 2 * np.pi, m)
+            out[k] = s * np.cos(t)
+            done.add(k)
+            if k2 is not None:
+                out[k2] = s * np.sin(t)
+                mult[k2] = 1.0
+                done.add(k2)
+        elif p.distribution == "uniform":
+            out[k] = rng.uniform(-np.sqrt(3.0) * p.sigma, np.sqrt(3.0) * p.sigma, m)
+        elif p.distribution == "truncnormal":
+            from scipy.stats import truncnorm
+
+            out[k] = truncnorm.rvs(-3, 3, scale=p.sigma, size=m, random_state=rng)
+    return mult
+
+
+def sample_values(model: ErrorModel, m: int, rng: np.random.Generator) -> np.ndarray:
+    """Draw ``m`` samples of the parameter values, transposed: shape (K, m) [mm, rad].
+
+    Same distributions as :meth:`ErrorModel.sample` (normal, uniform over ``±sqrt(3) sigma``,
+    normal truncated at ``±3 sigma``, ring pairs ``s (cos t, sin t)``), drawn in bulk: all normal
+    parameters with non-zero sigma in one call; zero-sigma parameters are exactly 0 and draw nothing.
+    """
+    out = np.empty((len(model.params), m))
+    mult = _draw(model, m, rng, out)
+    scaled = [k for k, p in enumerate(model.params) if p.distribution == "normal" and mult[k] > 0]
+    out[scaled] *= mult[scaled, None]
+    return out
+
+
+# ----------------------------------------------------------------- block task
+class McSpec:
+    """Everything a block needs (picklable; the prepared kernel is rebuilt once per process)."""
+
+    def __init__(self, model, q, n, seed, radii, aradii, hist: HistSpec | None, keep: int):
+        self.model, self.q, self.n, self.seed = model, q, n, seed
+        self.radii, self.aradii, self.hist, self.keep = radii, aradii, hist, keep
+        self._kernel = None
+        self._lock = threading.Lock()
+
+    def __getstate__(self):
+        return {k: v for k, v in self.__dict__.items() if k not in ("_kernel", "_lock")}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._kernel, self._lock = None, threading.Lock()
+
+    def kernel(self):
+        with self._lock:
+            if self._kernel is None:
+                chain = FastChain(self.model)
+                V = np.empty((len(self.model.params), 1))
+                mult = _draw(self.model, 1, np.random.default_rng(0), V)
+                progs = [chain.program(qi, mult) for qi in self.q]
+                feats = [ErrorFeatures(self.model.robot.fk(qi)) for qi in self.q]
+                self._kernel = (chain, progs, feats)
+            return self._kernel
+
+
+_local = threading.local()
+
+
+def _workspace(K: int) -> dict:
+    ws = getattr(_local, "ws", None)
+    if ws is None or ws["K"] != K or ws["tmp"].shape[1] != SUB_BLOCK:
+        ws = {"K": K, "V": np.empty(K * BLOCK_SIZE), "X": np.empty(12 * SUB_BLOCK), "buf": np.empty((N_BUF, SUB_BLOCK)),
+              "tmp": np.empty((2, SUB_BLOCK)), "cells": np.empty((3, BLOCK_SIZE), dtype=np.intp),
+              "chain": FastChain.workspace(SUB_BLOCK)}
+        _local.ws = ws
+    return ws
+
+
+def _block(spec: McSpec, b: int):
+    """Statistics of block ``b``: per pose Moments and Extras, and kept samples of pose 0."""
+    chain, progs, feats = spec.kernel()
+    m = min(BLOCK_SIZE, spec.n - b * BLOCK_SIZE)
+    ws = _workspace(len(spec.model.params))
+    V = ws["V"][: len(spec.model.params) * m].reshape(-1, m)
+    _draw(spec.model, m, np.random.default_rng(np.random.SeedSequence(spec.seed, spawn_key=(b,))), V)
+    keep = max(0, min(m, spec.keep - b * BLOCK_SIZE))
+    moments, extras, kept = [], [], []
+    for i, prog in enumerate(progs):
+        mom, ext = Moments(), None
+        for s0 in range(0, m, SUB_BLOCK):
+            s1 = min(m, s0 + SUB_BLOCK)
+            N = s1 - s0
+            X = ws["X"][: 12 * N].reshape(3, 4, N)
+            chain.run(prog, V[:, s0:s1], X, ws["chain"])
+            F = feats[i].compute(X, ws["buf"], ws["tmp"])
+            ang = ErrorFeatures.angle_row(ws["buf"], N)
+            norm = F[6]
+            cnt = np.array([np.count_nonzero(norm < r) for r in spec.radii]
+                           + [np.count_nonzero(ang < r) for r in spec.aradii], dtype=np.int64)
+            e = Extras(F.max(axis=1), F.min(axis=1), cnt)
+            ext = e if ext is None else ext.merge(e)
+            if spec.hist is not None:
+                spec.hist.cell_index(F[0:3], i, ws["cells"][:, s0:s1], ws["tmp"][0])
+            if i == 0 and s0 < keep:
+                kept.append({k: v[: keep - s0] for k, v in features_to_dict(F).items()})
+            mom.merge(Moments.of(F))
+        if spec.hist is not None:
+            ext.hist = spec.hist.count(ws["cells"][:, :m])
+        moments.append(mom)
+        extras.append(ext)
+    return m, moments, extras, kept
+
+
+def run_blocks(spec: McSpec, blocks: tuple[int, int]):
+    """Blocks ``b0 <= b < b1``: per-block moments (merged later in block order), summed exact extras."""
+    out_m, ext, kept, ns = [], None, [], []
+    for b in range(*blocks):
+        m, moments, extras, k = _block(spec, b)
+        ns.append(m)
+        out_m.append(moments)
+        ext = extras if ext is None else [a.merge(x) for a, x in zip(ext, extras)]
+        kept += k
+    return ns, out_m, ext, kept
