@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from tolalloc import load_robot
+from tolalloc.costs import load_costs
 from tolalloc.errors import build_error_model
 from tolalloc.robotfile import robot_from_dict
 
@@ -17,6 +19,10 @@ def _quickstart_commands():
     section = README.split("## Quick start", 1)[1].split("\n## ", 1)[0]
     blocks = re.findall(r"```bash\n(.*?)```", section, flags=re.S)
     return [line for b in blocks for line in b.splitlines() if line.strip() and not line.startswith("#")]
+
+
+def _toml_blocks():
+    return re.findall(r"```toml\n(.*?)```", README, flags=re.S)
 
 
 def test_quickstart_has_exactly_two_commands_one_main_job_one_tests():
@@ -34,7 +40,7 @@ def test_ci_runs_the_readme_test_command():
 
 
 def test_robot_file_example_loads_and_matches_hand_computation():
-    block = re.search(r"```toml\n(.*?)```", README, flags=re.S).group(1)
+    block = next(b for b in _toml_blocks() if 'name = "demo_arm"' in b)
     robot = robot_from_dict(tomllib.loads(block), "README example")
     assert [j.name for j in robot.joints] == ["shoulder", "slide"]
     assert robot.poses("working").shape == (3, 2)
@@ -45,3 +51,15 @@ def test_robot_file_example_loads_and_matches_hand_computation():
     model = build_error_model(robot, "shop")
     assert model.names == ["dbase", "dupper_arm", "dforearm", "dth1", "dd2", "e1x", "e1z"]
     np.testing.assert_allclose(model.sigma[3], np.deg2rad(0.005))
+
+
+def test_costs_file_example_loads(tmp_path):
+    block = next(b for b in _toml_blocks() if "[kinds.joint_drive]" in b)
+    path = tmp_path / "costs.toml"
+    path.write_text(block)
+    model = build_error_model(load_robot("tool_changer"))
+    costs = load_costs(path, model)
+    assert costs.z == 3
+    assert dict(zip(costs.names, costs.role))["dth6"] == "fixed"
+    frame = costs.to_frame(model)
+    assert len(frame) == len(model.names)
