@@ -168,3 +168,29 @@ def test_certified_rules_hold_exactly(robot, z):
         assert d.status == "optimal"
         assert rule_ratio(pr, rule, pr.u_from_t(d.t)) <= 1.0
         assert rule_ratio(pr, rule, pr.u_from_t(d.t)) > 1 - 1e-6  # active: nothing left on the table
+
+
+def test_exact_tolerances_at_t_max_sit_on_it_and_snap_to_it(result):
+    # regression: IPOPT left dth6, e6x, e6y a hair below t_max = 0.5 deg and snapping took 0.4997 deg (1799")
+    pr, d = result.problem, result.exact
+    at = np.array([a == "t_max" for a in d.at_limit])
+    assert at.sum() == 3
+    assert np.all(d.t[at] == pr.t_max[at])
+    np.testing.assert_allclose(result.standard.t[at], pr.t_max[at], rtol=1e-12)
+
+
+def test_diagnosis_message_and_summary_units(robot):
+    # regressions: the message said P(|dpos| < ...); summary radius_best_max had no unit (orientation in rad)
+    res = allocate(build_problem(build_error_model(robot), radius_mm=0.01, angle_radius_deg=1e-4))
+    assert res.status == "infeasible"
+    assert "P(|dP| < 0.01 mm)" in res.message and "P(|dw| < 0.0001 deg)" in res.message
+    rb = res.summary()["diagnosis"]["radius_best_max"]
+    assert rb["position_mm"] == pytest.approx(res.diagnosis.radius_best["position"].max())
+    assert rb["orientation_deg"] == pytest.approx(np.rad2deg(res.diagnosis.radius_best["orientation"].max()))
+
+
+def test_uniform_costs_make_the_design_errors_uniform(robot):
+    pr = build_problem(build_error_model(robot), robot.poses("nominal"), costs={"distribution": "uniform"})
+    assert pr.costs.z == pytest.approx(np.sqrt(3))
+    assert {p.distribution for p in pr.model.params} == {"uniform"}
+    assert {p.distribution for p in pr.model_for(pr.t_max).params} == {"uniform"}  # what the Monte Carlo samples

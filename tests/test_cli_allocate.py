@@ -55,3 +55,50 @@ def test_infeasible_is_said_plainly(tmp_path, capsys):
 def test_bad_input_exits_2(args, match, capsys):
     assert main(["allocate", "tool_changer", *args]) == 2
     assert match in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("args, match", [
+    (["--radius-mm", "0"], "--radius-mm: expected a finite number > 0 [mm]"),
+    (["--radius-mm", "nan"], "--radius-mm: expected a finite number > 0 [mm]"),
+    (["--prob", "0"], "--prob: expected a probability strictly between 0 and 1"),
+    (["--z", "-3"], "--z: expected a number > 0"),
+    (["--angle-radius-deg", "-1"], "--angle-radius-deg: expected a finite number > 0 [deg]"),
+    (["--angle-prob", "0.9"], "--angle-prob 0.9 needs an orientation requirement"),
+    (["--angle-step-deg", "0"], "--angle-step-deg: expected a finite number > 0 [deg]"),
+])
+def test_bad_numbers_are_named_by_their_flag(args, match, capsys, tmp_path):
+    # regression: the messages named library arguments (radius_mm, prob, angle step, "costs defaults: z")
+    out = tmp_path / "o"
+    assert main(["allocate", "tool_changer", "--no-verify", "--out", str(out), *args]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: ") and match in err and err.count("\n") == 1 and not out.exists()
+
+
+def test_unwritable_out_is_refused_before_the_work(tmp_path, capsys):
+    blocker = tmp_path / "f"
+    blocker.write_text("x")
+    assert main(["allocate", "tool_changer", "--out", str(blocker)]) == 2
+    cap = capsys.readouterr()
+    assert cap.out == "" and "--out" in cap.err and "is a file" in cap.err
+
+
+def test_trace_rule_not_applicable_says_why(capsys):
+    assert main(["allocate", "tool_changer", "--poses", "nominal", "--prob", "0.7", "--no-verify"]) == 0
+    assert "certified-trace: n/a, not_applicable: the trace rule is valid only for p >= 0.785" in capsys.readouterr().out
+
+
+def test_orientation_verification_and_uniform_errors_are_reported(tmp_path, capsys):
+    out = tmp_path / "o"
+    rc = main(["allocate", "tool_changer", "--poses", "nominal", "--angle-radius-deg", "0.02", "--uniform",
+               "--n-mc", "20000", "--out", str(out)])
+    text = capsys.readouterr().out
+    assert rc == 0, text
+    assert "errors uniform over +-t" in text and "orientation: lowest P_hat" in text
+    s = json.loads((out / "summary.json").read_text())
+    assert s["distribution"] == "uniform" and s["z"] == pytest.approx(3 ** 0.5)
+    pose = s["poses"][0]
+    assert pose["p_mc_angle_ci"][0] <= pose["p_mc_angle"] <= pose["p_mc_angle_ci"][1]
+    assert set(s["diagnosis"]["radius_best_max"]) == {"position_mm", "orientation_deg"}
+    ver = pd.read_csv(out / "verification.csv")
+    assert {"p_linear_angle", "p_mc_angle", "ci_low_angle", "ci_high_angle"} <= set(ver.columns)
+    assert ver["p_mc_angle"].iloc[0] == pytest.approx(pose["p_mc_angle"])

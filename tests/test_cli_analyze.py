@@ -72,7 +72,9 @@ def test_analyze_single_pose_and_overrides(capsys, tmp_path):
     assert code == 0
     d = json.loads(out)
     robot = load_robot("tool_changer")
-    model = build_error_model(robot, "table2", sigma={"joint_drive": np.deg2rad(0.01)}, exclude=("axis_deflection",))
+    # a kind's sigma is in each parameter's own unit: 0.01 deg for the revolute drives, 0.01 mm for dd4
+    model = build_error_model(robot, "table2", sigma={"joint_drive": np.deg2rad(0.01), "dd4": 0.01},
+                              exclude=("axis_deflection",))
     np.testing.assert_allclose(d["std_mm"], linear_map(model, robot.q_nominal).std_mm[0], rtol=1e-12)
 
 
@@ -92,3 +94,17 @@ def test_analyze_bad_input_exit_2_no_files(capsys, tmp_path, argv, msg):
     assert err.startswith("error:") and msg in err and err.count("\n") == 1
     assert not out.exists() and not js.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_analyze_bad_outputs_and_sigma_units_exit_2(capsys, tmp_path):
+    # regressions: an unwritable --out / --json gave a traceback (after the work); a negative --sigma in deg was
+    # reported in rad; --pose-set (the mc spelling) is accepted
+    blocker = tmp_path / "f"
+    blocker.write_text("x")
+    for argv, msg in [(["--out", str(blocker)], "--out"), (["--json", str(tmp_path)], "--json"),
+                      (["--sigma", "dth1=-0.01"], "--sigma dth1: expected a finite sigma >= 0 in deg, got '-0.01'")]:
+        code, _, err = run(capsys, "analyze", "tool_changer", *argv)
+        assert code == 2 and err.startswith("error:") and msg in err and err.count("\n") == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]
+    code, out, _ = run(capsys, "analyze", "tool_changer", "--pose-set", "working", "--json", "-")
+    assert code == 0 and json.loads(out)["n_poses"] == 12

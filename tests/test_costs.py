@@ -107,3 +107,26 @@ def test_missing_file_and_nothing_to_allocate(tmp_path, model):
         load_costs(tmp_path / "none.toml", model)
     with pytest.raises(TolallocError, match="no parameter is left"):
         cost_set(model, {"parameters": {nm: {"fixed": True} for nm in model.names}})
+
+
+@pytest.mark.parametrize("text, match", [
+    # regressions: kinds = 3 gave a traceback; fixed = "yes" was taken as true; the unknown-parameter message
+    # did not name the file and section
+    ("kinds = 3\n", r"costs .*bad\.toml: kinds expected tables \[kinds\.NAME\]"),
+    ("[parameters.dth6]\nfixed = 'yes'\n", r"\[parameters\.dth6\]: fixed expected true or false, got 'yes'"),
+    ("[parameters.nope]\nb = 1\n", r"costs .*bad\.toml \[parameters\.nope\]: unknown error parameter 'nope'"),
+])
+def test_malformed_costs_files_name_file_and_field(tmp_path, model, text, match):
+    f = tmp_path / "bad.toml"
+    f.write_text(text)
+    with pytest.raises(TolallocError, match=match):
+        load_costs(f, model)
+
+
+def test_uniform_distribution_sets_z_and_is_recorded(model):
+    cs = cost_set(model, {"distribution": "uniform"})
+    assert cs.distribution == "uniform" and cs.z == pytest.approx(np.sqrt(3))
+    assert cost_set(model, None, distribution="uniform").distribution == "uniform"
+    explicit = cost_set(model, {"distribution": "uniform"}, z=3.0)  # an explicit z means normal errors
+    assert explicit.distribution == "normal" and explicit.z == 3.0
+    assert cost_set(model, None).distribution == "normal"

@@ -225,3 +225,24 @@ def test_bad_dh_rows(tmp_path, row, match):
 def test_bad_dh_convention():
     with pytest.raises(TolallocError, match=r"convention: Input should be 'standard' or 'modified'"):
         robot_from_dict({"name": "x", "convention": "craig", "dh": [{"name": "a"}]})
+
+
+@pytest.mark.parametrize("row, match", [
+    # regressions: these were accepted (a NaN link, inverted limits, a nominal pose outside the limits)
+    ("q1,nan,0,-10,10,0", r"dh\[0\]: d must be one finite number, got nan"),
+    ("q1,100,0,10,-10,0", r"dh\[0\]: limits must be \[lower, upper\] with lower < upper, got \[10\.0, -10\.0\] deg"),
+    ("q1,100,0,-10,10,50", r"dh\[0\]: nominal value 50\.0 deg lies outside the joint limits \[-10\.0, 10\.0\] deg"),
+])
+def test_dh_csv_values_are_checked(tmp_path, row, match):
+    path = tmp_path / "bad.csv"
+    path.write_text(f"# convention: standard\nname,d_mm,a_mm,lower_deg_mm,upper_deg_mm,nominal_deg_mm\n{row}\n")
+    with pytest.raises(TolallocError, match=match):
+        load_robot(path)
+
+
+def test_dh_csv_that_is_not_text(tmp_path):
+    # regression: a binary file gave a UnicodeDecodeError traceback
+    path = tmp_path / "bin.csv"
+    path.write_bytes(b"\xff\xfe\x00garbage")
+    with pytest.raises(TolallocError, match=r"DH CSV file .*bin\.csv.*cannot be read as text"):
+        load_robot(path)

@@ -293,3 +293,17 @@ def test_model_helpers(tc):
         model.with_sigma(-np.ones(22))
     assert model.labels == {"sigma_set": "table2", "link_mode": "consistent", "deflection_mode": "screw"}
     assert set(KINDS) >= set(model.kinds)
+
+
+def test_sigma_set_values_and_exclusions_are_checked(tc):
+    # regressions: a non-numeric or non-table sigma set entry gave a traceback; a negative sigma_deg was
+    # reported in rad; excluding every parameter crashed the Jacobian
+    good = dict(tc.sigma_sets["table2"])
+    cases = [({**good, "sigma_deg": {**good["sigma_deg"], "dth1": "a"}}, r"sigma_deg\.dth1 expected a finite sigma >= 0 in deg, got 'a'"),
+             ({**good, "sigma_deg": {**good["sigma_deg"], "dth1": -0.1}}, r"sigma_deg\.dth1 expected a finite sigma >= 0 in deg, got -0\.1"),
+             ({**good, "sigma_mm": 3}, r"sigma set 's': sigma_mm expected a table")]
+    for entry, match in cases:
+        with pytest.raises(TolallocError, match=match):
+            build_error_model(dataclasses.replace(tc, sigma_sets={"s": entry}), "s")
+    with pytest.raises(TolallocError, match="leaves no error parameter"):
+        build_error_model(tc, exclude=("link_length", "joint_drive", "axis_deflection"))

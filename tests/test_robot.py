@@ -218,3 +218,10 @@ def test_link_properties_and_readonly():
     with pytest.raises(ValueError):
         robot.screws[0, 0] = 1.0
     assert tolalloc.load_robot(robot) is robot
+
+
+def test_check_q_non_numeric_is_a_tolalloc_error():
+    # regression: a string among the joint values gave a numpy ValueError traceback
+    robot = load_robot("tool_changer")
+    with pytest.raises(TolallocError, match=r"joints: expected numbers \(deg, deg, deg, mm, deg, deg\)"):
+        robot.check_q([15, "a", -10, 0, -20, -5], "joints", interface=True)

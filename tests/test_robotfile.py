@@ -180,3 +180,11 @@ def test_tool_option_only_for_urdf(tmp_path):
         load_robot("tool_changer", tool="x")
     with pytest.raises(TolallocError, match=r"got robot 'tool_changer'"):
         load_robot(load_robot("tool_changer"), tool="x")
+
+
+@pytest.mark.parametrize("rows", ["[[0, 1], [2]]", "[['a', 1]]"])
+def test_ragged_or_non_numeric_pose_set_is_a_clear_error(tmp_path, rows):
+    # regression: a ragged or non-numeric q_deg_mm gave a numpy ValueError traceback
+    path = write(tmp_path, BASE + f"[pose_sets.w]\nq_deg_mm = {rows}\n", "ragged.toml")
+    with pytest.raises(TolallocError, match=r"ragged\.toml.*pose_sets\.w\.q_deg_mm: expected rows of 2 numbers"):
+        load_robot(path)

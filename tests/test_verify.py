@@ -62,3 +62,16 @@ def test_bad_inputs(res):
         verify_design(res.problem, res.design, n_mc=10)
     with pytest.raises(TolallocError, match="no tolerances"):
         verify_design(res.problem, replace(res.design, t=None, status="infeasible"))
+
+
+def test_orientation_columns_in_the_verification_table():
+    # regression: with an orientation requirement the per-pose orientation P_hat was computed but not reported
+    robot = load_robot("tool_changer")
+    pr = build_problem(build_error_model(robot), robot.poses("working")[[0, 11]], angle_radius_deg=0.02)
+    ver = verify_design(pr, allocate(pr, snap=False).design, n_mc=20000, seed=1)
+    frame = ver.to_frame()
+    for col in ("p_linear_angle", "p_mc_angle", "ci_low_angle", "ci_high_angle"):
+        assert col in frame.columns
+    assert np.all(frame.ci_low_angle <= frame.p_mc_angle) and np.all(frame.p_mc_angle <= frame.ci_high_angle)
+    np.testing.assert_allclose(frame.p_linear_angle, ver.angle["p_linear"])
+    assert "orientation: lowest P_hat" in ver.message() or not ver.ok

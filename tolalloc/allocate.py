@@ -154,7 +154,10 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     if set(cs.names) | set(cs.excluded) != set(model.names):
         raise TolallocError("costs: the cost set was resolved for another error model; resolve it again for this one.")
     keep = [model.index(nm) for nm in cs.names]
-    sub = replace(model, params=tuple(model.params[i] for i in keep))
+    params = [model.params[i] for i in keep]
+    if cs.distribution == "uniform":  # errors uniform over +-t: the Monte Carlo verification samples them so
+        params = [p if p.distribution == "ring" else replace(p, distribution="uniform") for p in params]
+    sub = replace(model, params=tuple(params))
     role = np.array(cs.role)
     alloc = np.flatnonzero(role == "allocate")
     fixed = np.flatnonzero(role == "fixed")
@@ -302,10 +305,11 @@ def diagnose(problem: AllocationProblem) -> Diagnosis:
                 f"{problem.model.params[names.index(nm)].interface_unit} ({s:.0%})" for nm, s in top)
             lines.append(
                 f"infeasible within the process limits: with every tolerance at its lower limit the worst pose "
-                f"({i + 1} of {problem.n_poses}) reaches P(|d{b['name'][:3]}| < {b['radius'] * f:g} {unit}) = {p[i]:.4f} "
+                f"({i + 1} of {problem.n_poses}) reaches P(|{'dP' if b['name'] == 'position' else 'dw'}| < "
+                f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
                 f"< {b['prob']:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
-                f"Limits that bind (variance share at that pose): {lim}. Lower these t_min in a costs file "
-                f"(--costs) or relax the requirement.")
+                f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
+                f"tolerances) in a costs file (--costs) or relax the requirement.")
     return Diagnosis(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")
 
 

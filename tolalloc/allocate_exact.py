@@ -110,6 +110,9 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
         stats = solver.stats()
         ok, why = bool(stats.get("success", False)), str(stats.get("return_status", ""))
         u = np.clip(np.asarray(sol["x"]).ravel(), u_lo, u_hi)
+        # IPOPT ends a hair inside an active bound (~1e-8 relative); put such values on the bound, so that a
+        # tolerance at t_max is t_max (and snaps to it, not to one standard step below)
+        u = np.where(u >= u_hi * (1 - 1e-7), u_hi, np.where(u <= u_lo * (1 + 1e-7), u_lo, u))
         lam = np.asarray(sol["lam_g"]).ravel()
         # constraint generation: add the poses the reduced problem violates
         probs = problem.probabilities(problem.t_from_u(u))

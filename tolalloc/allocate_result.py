@@ -107,6 +107,7 @@ class AllocationResult:
             "solver_requested": self.solver,
             "cost": self.design.cost,
             "z": pr.costs.z,
+            "distribution": pr.costs.distribution,
             "costs_source": pr.costs.source,
             "message": self.message,
             "costs": {
@@ -123,7 +124,9 @@ class AllocationResult:
                         "exact": None if self.exact is None else self.exact.time_s},
             "diagnosis": {"feasible": self.diagnosis.feasible, "message": self.diagnosis.message,
                           "p_best_min": {k: float(v.min()) for k, v in self.diagnosis.p_best.items()},
-                          "radius_best_max": {k: float(v.max()) for k, v in self.diagnosis.radius_best.items()},
+                          "radius_best_max": {f"{k}_{'mm' if k == 'position' else 'deg'}":
+                                              float(v.max() if k == "position" else np.rad2deg(v.max()))
+                                              for k, v in self.diagnosis.radius_best.items()},
                           "binding": [{"parameter": n, "variance_share": s} for n, s in self.diagnosis.binding]},
             "standard": None if self.standard is None else {
                 "meets": self.standard.status == "optimal", "message": self.standard.message,

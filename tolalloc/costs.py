@@ -156,6 +156,9 @@ class CostSet:
     excluded : tuple of str
     source : str
         ``"defaults"`` or the costs file's path.
+    distribution : {"normal", "uniform"}
+        How a part's error is distributed within its tolerance: ``uniform`` over ``±t`` (``z = sqrt(3)``),
+        else normal; the allocation's Monte Carlo verification samples it so.
     """
 
     names: tuple
@@ -165,6 +168,7 @@ class CostSet:
     z: float
     excluded: tuple = ()
     source: str = "defaults"
+    distribution: str = "normal"
 
     def to_frame(self, model: ErrorModel) -> pd.DataFrame:
         """One row per parameter: law, coefficients and limits in the interface unit."""
@@ -210,6 +214,9 @@ def _value(entry: dict, base: str, unit: str, where: str):
 def _check_entry(entry, where: str) -> None:
     if not isinstance(entry, dict):
         raise TolallocError(f"{where}: expected a table of keys, got {entry!r}.")
+    for key in ("fixed", "exclude"):
+        if key in entry and not isinstance(entry[key], bool):
+            raise TolallocError(f"{where}: {key} expected true or false, got {entry[key]!r}.")
     for key in entry:
         base_ok = any(key.startswith(b + "_") and key[len(b) + 1:] in {**_LEN, **_ANG} for b in _UNIT_BASES)
         if key not in _ENTRY_KEYS and not base_ok:
@@ -217,7 +224,8 @@ def _check_entry(entry, where: str) -> None:
                                 "t_ref_<mm|deg>, t_min_<mm|deg>, t_max_<mm|deg>, tol_<mm|deg>.")
 
 
-def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = None, source: str = "defaults") -> CostSet:
+def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = None, source: str = "defaults",
+             distribution: str | None = None) -> CostSet:
     """Resolve the cost model and role of every parameter of ``model``.
 
     Parameters
@@ -226,26 +234,33 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     data : dict, optional
         Parsed costs file (see the module docstring); merged over :data:`DEFAULT_COSTS` per kind.
     z : float, optional
-        Overrides the file's ``z`` (``sigma = t / z``).
+        Overrides the file's ``z`` (``sigma = t / z``) and its ``distribution`` (then normal).
+    distribution : {"normal", "uniform"}, optional
+        Overrides the file's ``distribution``; ``uniform`` means ``z = sqrt(3)``.
     """
     data = data or {}
     for key in data:
         if key not in ("z", "distribution", "kinds", "parameters"):
             raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
     zz = data.get("z", DEFAULT_COSTS["z"])
-    if data.get("distribution") is not None:
-        if data["distribution"] not in ("normal", "uniform"):
-            raise TolallocError(f"costs {source}: distribution expected 'normal' or 'uniform', got {data['distribution']!r}.")
-        if data["distribution"] == "uniform":
-            zz = np.sqrt(3.0)
+    dist = distribution if distribution is not None else data.get("distribution")
+    if dist is not None and dist not in ("normal", "uniform"):
+        where = "distribution" if distribution is not None else f"costs {source}: distribution"
+        raise TolallocError(f"{where} expected 'normal' or 'uniform', got {dist!r}.")
+    dist = dist or "normal"
+    if dist == "uniform":
+        zz = np.sqrt(3.0)
     if z is not None:
-        zz = z
+        zz, dist = z, "normal"
     try:
         zz = float(zz)
     except (TypeError, ValueError):
         zz = np.nan
     if not np.isfinite(zz) or zz <= 0:
         raise TolallocError(f"costs {source}: z (sigma = t / z) expected a number > 0, got {zz!r}.")
+    for key in ("kinds", "parameters"):
+        if not isinstance(data.get(key) or {}, dict):
+            raise TolallocError(f"costs {source}: {key} expected tables [{key}.NAME], got {key} = {data[key]!r}.")
     kinds = {k: dict(v) for k, v in DEFAULT_COSTS["kinds"].items()}
     for k, v in (data.get("kinds") or {}).items():
         _check_entry(v, f"costs {source} [kinds.{k}]")
@@ -258,7 +273,9 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     per = data.get("parameters") or {}
     for nm, v in per.items():
         _check_entry(v, f"costs {source} [parameters.{nm}]")
-        model.index(nm)  # raises on an unknown name
+        if nm not in model.names:
+            raise TolallocError(f"costs {source} [parameters.{nm}]: unknown error parameter {nm!r}; "
+                                f"known: {', '.join(model.names)}.")
     names, role, models, fixed, excluded = [], [], [], [], []
     for p in model.params:
         where = f"costs {source} [{p.name}]"
@@ -299,10 +316,10 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
             fixed.append(np.nan)
     if not any(r == "allocate" for r in role):
         raise TolallocError(f"costs {source}: no parameter is left to allocate; un-fix or un-exclude some.")
-    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source)
+    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist)
 
 
-def load_costs(path, model: ErrorModel, *, z: float | None = None) -> CostSet:
+def load_costs(path, model: ErrorModel, *, z: float | None = None, distribution: str | None = None) -> CostSet:
     """Read a costs file (TOML) and resolve it against ``model`` (see :func:`cost_set`)."""
     path = Path(path)
     if not path.is_file():
@@ -311,4 +328,4 @@ def load_costs(path, model: ErrorModel, *, z: float | None = None) -> CostSet:
         data = tomllib.loads(path.read_text())
     except tomllib.TOMLDecodeError as exc:
         raise TolallocError(f"costs file {path}: not valid TOML ({exc}).") from None
-    return cost_set(model, data, z=z, source=str(path))
+    return cost_set(model, data, z=z, source=str(path), distribution=distribution)

@@ -119,6 +119,16 @@ def robot_from_dh_dict(data: dict, source: str = "<dict>"):
             units = ANGLE_UNITS if rev else LENGTH_UNITS
             lim, _ = _unit_value(row, "limits", units, np.array([-2 * np.pi, 2 * np.pi]) if rev else np.array([-1000.0, 1000.0]))
             nom, _ = _unit_value(row, "nominal", units, 0.0)
+            unit = "deg" if rev else "mm"
+            shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if rev else (lambda x: np.asarray(x).tolist())
+            for key, val in (("d", d), ("a", a), ("alpha", alpha), ("theta_offset", th0)):
+                if np.shape(val) != () or not np.isfinite(val):
+                    raise ValueError(f"{key} must be one finite number, got {np.asarray(val).tolist()}")
+            if np.shape(lim) != (2,) or not lim[0] < lim[1]:
+                raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+            if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+                raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                                 "expected one number inside the limits")
         except ValueError as exc:
             raise TolallocError(f"{where}: {exc}") from None
         rows.append(dict(name=str(row.get("name", f"j{i + 1}")), type="revolute" if rev else "prismatic",
@@ -149,7 +159,11 @@ def load_dh_csv(path):
     path = Path(path)
     source = f"DH CSV file {str(path)!r}"
     meta, lines = {}, []
-    for line in path.read_text().splitlines():
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a DH table in CSV.") from None
+    for line in text.splitlines():
         if line.lstrip().startswith("#"):
             key, sep, value = line.lstrip()[1:].partition(":")
             if sep:

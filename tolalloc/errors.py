@@ -291,23 +291,34 @@ def _sigma_from_set(robot: Robot, params: list, sigma_set: str) -> np.ndarray:
         raise TolallocError(f"unknown sigma set {sigma_set!r} for robot {robot.name!r}; known: {known}.")
     entry = robot.sigma_sets[sigma_set]
     factors = {"sigma_mm": ("mm", 1.0), "sigma_m": ("mm", 1000.0), "sigma_deg": ("rad", np.pi / 180), "sigma_rad": ("rad", 1.0)}
+    where = f"sigma set {sigma_set!r}"
     sigma = np.full(len(params), np.nan)
     for key, table in entry.items():
         if key == "description":
             continue
         if key not in factors:
-            raise TolallocError(f"sigma set {sigma_set!r}: unknown key {key!r}; expected {', '.join(factors)}.")
+            raise TolallocError(f"{where}: unknown key {key!r}; expected {', '.join(factors)}.")
+        if not isinstance(table, dict):
+            raise TolallocError(f"{where}: {key} expected a table {{ name = sigma, ... }} such as "
+                                f"{key} = {{ {names[0]} = 0.01 }}, got {table!r}.")
         unit, f = factors[key]
         for name, value in table.items():
             if name not in names:
-                raise TolallocError(f"sigma set {sigma_set!r}: unknown error parameter {name!r}; known: {', '.join(names)}.")
+                raise TolallocError(f"{where}: unknown error parameter {name!r}; known: {', '.join(names)}.")
             p = params[names.index(name)]
             if p.unit != unit:
-                raise TolallocError(f"sigma set {sigma_set!r}: {name} is in {p.interface_unit}, but was given under {key}.")
-            sigma[names.index(name)] = float(value) * f
+                raise TolallocError(f"{where}: {name} is in {p.interface_unit}, but was given under {key}.")
+            try:
+                v = float(value)
+            except (TypeError, ValueError):
+                v = np.nan
+            if isinstance(value, bool) or not np.isfinite(v) or v < 0:
+                raise TolallocError(f"{where}: {key}.{name} expected a finite sigma >= 0 in {key[6:]}, got {value!r}.")
+            sigma[names.index(name)] = v * f
     missing = [nm for nm, s in zip(names, sigma) if np.isnan(s)]
     if missing:
-        raise TolallocError(f"sigma set {sigma_set!r} has no sigma for {', '.join(missing)}.")
+        raise TolallocError(f"{where} has no sigma for {', '.join(missing)}; give one for each "
+                            "(sigma_mm for lengths, sigma_deg for angles).")
     return sigma
 
 
@@ -400,6 +411,9 @@ def build_error_model(
     geo = [p for p in params if not p.kind.startswith("clearance")]
     geo_sigma = dict(zip([p.name for p in geo], _sigma_from_set(robot, geo, sigma_set)))
     params = [p for p in params if p.name not in exclude and p.kind not in exclude]
+    if not params:
+        raise TolallocError(f"exclude: {', '.join(exclude)} leaves no error parameter of robot {robot.name!r}; "
+                            "expected at least one left: exclude fewer parameters or kinds.")
     out = []
     for p in params:
         s = geo_sigma.get(p.name, p.sigma)

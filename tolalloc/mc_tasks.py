@@ -12,6 +12,7 @@ import threading
 
 import numpy as np
 
+from . import kernel as kernel_mod
 from .errors import ErrorModel
 from .fastchain import N_BUF, ErrorFeatures, FastChain, features_to_dict
 from .streaming import Extras, HistSpec, Moments
@@ -88,9 +89,10 @@ def sample_values(model: ErrorModel, m: int, rng: np.random.Generator) -> np.nda
 class McSpec:
     """Everything a block needs (picklable; the prepared kernel is rebuilt once per process)."""
 
-    def __init__(self, model, q, n, seed, radii, aradii, hist: HistSpec | None, keep: int):
+    def __init__(self, model, q, n, seed, radii, aradii, hist: HistSpec | None, keep: int, engine: str = "numpy"):
         self.model, self.q, self.n, self.seed = model, q, n, seed
         self.radii, self.aradii, self.hist, self.keep = radii, aradii, hist, keep
+        self.engine = engine  # "numba" (tolalloc.kernel) or "numpy"; resolved by the caller
         self._kernel = None
         self._lock = threading.Lock()
 
@@ -109,7 +111,10 @@ class McSpec:
                 mult = _draw(self.model, 1, np.random.default_rng(0), V)
                 progs = [chain.program(qi, mult) for qi in self.q]
                 feats = [ErrorFeatures(self.model.robot.fk(qi)) for qi in self.q]
-                self._kernel = (chain, progs, feats)
+                compiled = None
+                if self.engine == "numba" and kernel_mod.NUMBA_AVAILABLE:  # a worker without numba: numpy
+                    compiled = kernel_mod.compile_programs(progs, feats, chain.home)
+                self._kernel = (chain, progs, feats, compiled)
             return self._kernel
 
 
@@ -128,12 +133,19 @@ def _workspace(K: int) -> dict:
 
 def _block(spec: McSpec, b: int):
     """Statistics of block ``b``: per pose Moments and Extras, and kept samples of pose 0."""
-    chain, progs, feats = spec.kernel()
+    chain, progs, feats, compiled = spec.kernel()
     m = min(BLOCK_SIZE, spec.n - b * BLOCK_SIZE)
     ws = _workspace(len(spec.model.params))
     V = ws["V"][: len(spec.model.params) * m].reshape(-1, m)
     _draw(spec.model, m, np.random.default_rng(np.random.SeedSequence(spec.seed, spawn_key=(b,))), V)
     keep = max(0, min(m, spec.keep - b * BLOCK_SIZE))
+    if compiled is not None:
+        out = kernel_mod.block_stats(compiled, V, SUB_BLOCK, spec.radii, spec.aradii, spec.hist, keep)
+        if out is not None:  # None: a rotation error near pi, which the numpy path handles
+            moms, exts, F = out
+            kept = [{k: v for k, v in features_to_dict(F).items()}] if keep else []
+            return (m, [Moments(*mo) for mo in moms],
+                    [Extras(mx, mn, c, h) for mx, mn, c, h in exts], kept)
     moments, extras, kept = [], [], []
     for i, prog in enumerate(progs):
         mom, ext = Moments(), None

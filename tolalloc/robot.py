@@ -255,7 +255,11 @@ class Robot:
                 f"{name}: robot {self.name!r} has {n} joints ({', '.join(j.name for j in self.joints)}); "
                 f"expected {n} values ({units}), got {arr.shape[-1] if arr.ndim else 0}."
             )
-        q = check_finite_array(arr.astype(float) if arr.dtype == object else arr, name)
+        try:
+            arr = arr.astype(float)
+        except (TypeError, ValueError):
+            raise TolallocError(f"{name}: expected numbers ({units}), got {np.asarray(q, dtype=object).tolist()!r}.") from None
+        q = check_finite_array(arr, name)
         qi = self.q_from_interface(q) if interface else q
         lo, hi = self.lower, self.upper
         bad = (qi < lo - 1e-12) | (qi > hi + 1e-12)

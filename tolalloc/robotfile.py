@@ -270,7 +270,13 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     for set_name, entry in pose_sets.items():
         if set(entry) != {"q_deg_mm"}:
             raise TolallocError(f"pose_sets.{set_name}: expected one key 'q_deg_mm' (rows of joint values in deg / mm), got keys {sorted(entry)}")
-        sets[set_name] = robot.check_q(np.atleast_2d(entry["q_deg_mm"]), f"pose_sets.{set_name}.q_deg_mm", interface=True)
+        where = f"pose_sets.{set_name}.q_deg_mm"
+        try:
+            rows = np.atleast_2d(np.asarray(entry["q_deg_mm"], dtype=float))
+        except (TypeError, ValueError):
+            raise TolallocError(f"{where}: expected rows of {robot.n_joints} numbers (deg / mm), one row per pose, "
+                                f"got {entry['q_deg_mm']!r}.") from None
+        sets[set_name] = robot.check_q(rows, where, interface=True)
     object.__setattr__(robot, "masses", tuple(mass_list))
     object.__setattr__(robot, "pose_sets", sets)
     object.__setattr__(robot, "sigma_sets", dict(sigma_sets or {}))

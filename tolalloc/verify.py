@@ -82,15 +82,28 @@ class Verification:
     def message(self) -> str:
         rule = ("whole 95% interval >= p" if self.criterion == "certified" else f"P_hat >= p - {EXACT_TOL}")
         if self.ok:
+            angle = ("" if self.angle is None else
+                     f"; orientation: lowest P_hat = {self.angle['p_mc'].min():.4f} at pose "
+                     f"{int(np.argmin(self.angle['p_mc'])) + 1}")
             return (f"verified by nonlinear Monte Carlo at all {len(self.passed)} poses ({rule}); "
-                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}")
+                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}")
         return f"verification FAILED ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason."""
-        return pd.DataFrame({"pose": np.arange(1, len(self.p_mc) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
-                             "ci_low": self.ci_low, "ci_high": self.ci_high, "n": self.n, "passed": self.passed,
-                             "reason": list(self.reason)})
+        """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason.
+
+        With an orientation requirement also ``p_linear_angle, p_mc_angle, ci_low_angle, ci_high_angle`` and
+        ``passed`` covers both requirements.
+        """
+        cols = {"pose": np.arange(1, len(self.p_mc) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
+                "ci_low": self.ci_low, "ci_high": self.ci_high}
+        if self.angle is not None:
+            nan = np.full(len(self.p_mc), np.nan)
+            cols.update({"p_linear_angle": nan if self.angle["p_linear"] is None else self.angle["p_linear"],
+                         "p_mc_angle": self.angle["p_mc"], "ci_low_angle": self.angle["ci_low"],
+                         "ci_high_angle": self.angle["ci_high"]})
+        cols.update({"n": self.n, "passed": self.passed, "reason": list(self.reason)})
+        return pd.DataFrame(cols)
 
 
 def _run(model, q, n, seed, radius, angle, keep):

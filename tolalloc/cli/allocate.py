@@ -6,7 +6,7 @@ import numpy as np
 
 from .._validate import TolallocError
 from ..errors import build_error_model
-from .common import add_robot_arg, atomic_output, robot_from_args, write_json
+from .common import add_robot_arg, atomic_output, check_output, robot_from_args, write_json
 
 
 def register(sub) -> None:
@@ -21,7 +21,7 @@ def register(sub) -> None:
     add_robot_arg(p)
     p.add_argument("--radius-mm", type=float, default=0.25, help="required radius r [mm] (default 0.25)")
     p.add_argument("--prob", type=float, default=0.95, help="required probability p (default 0.95)")
-    p.add_argument("--poses", default=None, metavar="SET",
+    p.add_argument("--poses", "--pose-set", dest="poses", default=None, metavar="SET",
                    help="pose set of the robot file (default: 'working' if the robot has it, else nominal)")
     p.add_argument("--solver", default="exact", choices=["exact", "certified"],
                    help="design to report: exact (IPOPT, default) or certified (cvxpy + Clarabel)")
@@ -58,14 +58,12 @@ def cmd_allocate(args) -> int:
     from ..tables import format_text, write_tables
 
     robot = robot_from_args(args)
-    if args.uniform and args.z is not None:
-        raise TolallocError("--uniform and --z both set sigma = t / z; give one of them.")
-    z = np.sqrt(3.0) if args.uniform else args.z
-    if args.n_mc < 100 and not args.no_verify:
-        raise TolallocError(f"--n-mc: expected at least 100 samples per pose, got {args.n_mc}; or use --no-verify.")
+    _check_args(args)
+    dist = "uniform" if args.uniform else None
     model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, clearance=args.clearance,
                               exclude=tuple(args.exclude))
-    costs = load_costs(args.costs, model, z=z) if args.costs else cost_set(model, None, z=z)
+    costs = (load_costs(args.costs, model, z=args.z, distribution=dist) if args.costs
+             else cost_set(model, None, z=args.z, distribution=dist))
     set_name, q = _poses_of(robot, args.poses)
     problem = build_problem(model, q, radius_mm=args.radius_mm, prob=args.prob, costs=costs,
                             angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob)
@@ -82,8 +80,11 @@ def cmd_allocate(args) -> int:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
                                    "n_per_pose": ver.n, "seed": ver.seed}
         for i, row in enumerate(summary["poses"]):
-            row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])],
-                        "n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
+            row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])]})
+            if ver.angle is not None:
+                row.update({"p_mc_angle": float(ver.angle["p_mc"][i]),
+                            "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
+            row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
     _print(res, table, ver, set_name, format_text)
     if args.out:
         with atomic_output(args.out, directory=True) as tmp:
@@ -106,12 +107,39 @@ def cmd_allocate(args) -> int:
     return 0 if ver is None or ver.ok else 1
 
 
+def _check_args(args) -> None:
+    """Refuse bad numbers by their flag names before any computation, and an output that cannot be written."""
+    def positive(value, flag, unit, example):
+        if value is not None and not (np.isfinite(value) and value > 0):
+            raise TolallocError(f"{flag}: expected a finite number > 0 [{unit}] (e.g. {flag} {example}), got {value!r}.")
+
+    def probability(value, flag):
+        if value is not None and not (np.isfinite(value) and 0 < value < 1):
+            raise TolallocError(f"{flag}: expected a probability strictly between 0 and 1 (e.g. {flag} 0.95), got {value!r}.")
+
+    positive(args.radius_mm, "--radius-mm", "mm", "0.25")
+    probability(args.prob, "--prob")
+    positive(args.angle_radius_deg, "--angle-radius-deg", "deg", "0.02")
+    probability(args.angle_prob, "--angle-prob")
+    if args.angle_prob is not None and args.angle_radius_deg is None:
+        raise TolallocError(f"--angle-prob {args.angle_prob:g} needs an orientation requirement: add --angle-radius-deg A.")
+    positive(args.angle_step_deg, "--angle-step-deg", "deg", "0.001")
+    if args.uniform and args.z is not None:
+        raise TolallocError("--uniform and --z both set sigma = t / z; give one of them.")
+    if args.z is not None and not (np.isfinite(args.z) and args.z > 0):
+        raise TolallocError(f"--z: expected a number > 0 (sigma = t / z, e.g. --z 3), got {args.z!r}.")
+    if args.n_mc < 100 and not args.no_verify:
+        raise TolallocError(f"--n-mc: expected at least 100 samples per pose, got {args.n_mc}; or use --no-verify.")
+    check_output(args.out, "--out", directory=True)
+
+
 def _print(res, table, ver, set_name, format_text) -> None:
     pr = res.problem
     print(f"robot: {pr.model.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} at "
           f"{pr.n_poses} {set_name} pose(s)" + ("" if pr.angle_radius_rad is None else
                                                f", P(|dw| < {np.rad2deg(pr.angle_radius_rad):g} deg) >= {pr.angle_prob:g}"))
-    print(f"costs: {pr.costs.source}; sigma = t / {pr.costs.z:.4g}")
+    print(f"costs: {pr.costs.source}; sigma = t / {pr.costs.z:.4g}"
+          + ("; errors uniform over +-t" if pr.costs.distribution == "uniform" else ""))
     if res.status != "optimal":
         print(f"\nstatus: INFEASIBLE. {res.message}")
         print("\ntightest design the process limits allow (for reference):")
@@ -119,12 +147,14 @@ def _print(res, table, ver, set_name, format_text) -> None:
         return
     s = res.summary()["costs"]
 
-    def c(x):
-        return "n/a" if x is None else f"{x:.4f}"
+    def c(x, d=None):
+        if x is not None:
+            return f"{x:.4f}"
+        return "n/a" if d is None or not d.message else f"n/a, {d.status}: {d.message}"
 
     print(f"status: optimal   design: {res.design.solver}   cost: {res.design.cost:.4f}")
-    print(f"cost: certified {c(s['certified'])} ({s['certified_rule']}; {s['certified_other_rule']}: "
-          f"{c(s['certified_other'])})   exact {c(s['exact'])}"
+    print(f"cost: certified {c(s['certified'], res.certified)} ({s['certified_rule']}; {s['certified_other_rule']}: "
+          f"{c(s['certified_other'], res.certified_other)})   exact {c(s['exact'])}"
           + ("" if s["saving"] is None else f"   saving {s['saving']:.4f} ({s['saving_pct']:.2f}%)"))
     if res.design.message:
         print(f"note: {res.design.message}")

@@ -5,10 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from .._validate import TolallocError
-from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD, build_error_model
 from ..linear import budget, linear_map
-from .common import add_robot_arg, atomic_output, parse_q, robot_from_args, write_json
-from .mc import _overrides
+from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args, parse_q,
+                     robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -20,20 +19,11 @@ def register(sub) -> None:
         "of |dp|², dominant first). Clearance enters by its second moments only (it is not Gaussian); check "
         "with `tolalloc mc` when it matters.")
     add_robot_arg(p)
-    p.add_argument("--sigma-set", default=None, help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
-    p.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
-                   help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
-    p.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
-                   help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
-    p.add_argument("--clearance", action="store_true", help="add joint clearance (axial, radial ring, tilt) to every revolute joint")
-    p.add_argument("--clearance-tilt-literal", action="store_true",
-                   help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of {CLEARANCE_SIGMA['tilt_rad']} rad")
-    p.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
-    p.add_argument("--exclude", action="append", default=[], metavar="NAME", help="leave out a parameter or kind; repeatable")
+    add_error_model_args(p)
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
-    g.add_argument("--poses", metavar="SET", help="a pose set of the robot file (e.g. working), or 'nominal'")
+    g.add_argument("--poses", "--pose-set", dest="poses", metavar="SET",
+                   help="a pose set of the robot file (e.g. working), or 'nominal'")
     p.add_argument("--radius-mm", type=float, action="append", default=[], metavar="R",
                    help="radius for P(|dp| < r) [mm]; repeatable")
     p.add_argument("--prob", type=float, action="append", default=[], metavar="P",
@@ -93,12 +83,9 @@ def cmd_analyze(args) -> int:
             raise TolallocError(f"--prob: expected a probability strictly between 0 and 1 (e.g. 0.95), got {p!r}.")
     if args.top < 1:
         raise TolallocError(f"--top: expected a number of rows >= 1, got {args.top}.")
-    base = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
-                             clearance=args.clearance)
-    sigma = _overrides(base.params, args.sigma)
-    cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if args.clearance_tilt_literal else None
-    model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
-                              clearance=args.clearance, clearance_sigma=cs, sigma=sigma or None, exclude=tuple(args.exclude))
+    check_output(args.out, "--out", directory=True)
+    check_output(args.json, "--json")
+    model = error_model_from_args(robot, args)
     q = parse_q(args.pose, robot, "--pose") if args.pose else robot.poses(args.poses)
     res = linear_map(model, q)
     summary = analyze_dict(res, args.radius_mm, args.prob)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import json
 import os
+import re
 import shutil
 import tempfile
 from pathlib import Path
@@ -15,10 +16,15 @@ from .._validate import TolallocError
 from ..robot import Robot
 from ..robotfile import load_robot
 
-__all__ = ["parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default"]
+__all__ = ["parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
+           "check_output", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
+
+#: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value
+_NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-\.?\d[\d.eE+-]*([,;]\s*[-+]?[\d.eE+-]*)+$")
 
 
 def add_robot_arg(parser) -> None:
+    parser._negative_number_matcher = _NEGATIVE_VALUE  # --q "-15,30,-10,0,-20,-5" is a value, not an option
     parser.add_argument("robot", metavar="ROBOT",
                         help="built-in robot name (see `tolalloc robots`) or path to a robot file (.toml, DH .csv, .urdf)")
     parser.add_argument("--tool", metavar="LINK", default=None,
@@ -48,37 +54,80 @@ def json_default(obj):
     raise TypeError(f"not JSON serialisable: {type(obj)}")
 
 
+def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:
+    what = "an output directory" if directory else "an output file"
+    why = exc.strerror or type(exc).__name__
+    return TolallocError(f"cannot write {what} at {str(path)!r} ({why}: {exc.filename or path}); expected {what} "
+                         "path in a writable place; choose another path.")
+
+
+def check_output(path, flag: str, *, directory: bool = False) -> None:
+    """Fail early (before any computation) if ``path`` cannot be written as an output file / directory.
+
+    ``None`` and ``'-'`` (stdout, files only) pass. Nothing is created.
+    """
+    if path is None or (str(path) == "-" and not directory):
+        return
+    p = Path(path)
+    if p.exists() and p.is_dir() != directory:
+        want = "a directory" if directory else "a file"
+        raise TolallocError(f"{flag} {str(p)!r}: expected {want} path, but {str(p)!r} is "
+                            f"{'a directory' if p.is_dir() else 'a file'}; choose another path.")
+    parent = p if directory and p.exists() else p.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise TolallocError(f"{flag} {str(p)!r}: expected a path below a directory, but {str(parent)!r} is a file; "
+                            "choose another path.")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise TolallocError(f"{flag} {str(p)!r}: expected a writable place, but {str(parent)!r} is not writable; "
+                            "choose another path.")
+
+
 @contextlib.contextmanager
 def atomic_output(path: str | os.PathLike, *, directory: bool = False):
     """Yield a temporary path; move it to ``path`` only if the block finishes without error.
 
     For ``directory=True`` the temporary path is a fresh directory whose content
     replaces the files of the same name in ``path`` (other files there are kept).
+    A file gets the usual permissions (``0o666`` less the umask). An operating-system
+    error (unwritable place, a file where a directory is expected ...) raises
+    :class:`TolallocError`.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if directory:
-        tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=path.parent))
+    tmp = None
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if directory:
+            tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=path.parent))
+        else:
+            fd, tmp_name = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
+            os.close(fd)
+            tmp = Path(tmp_name)
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0o600
+    except OSError as exc:
+        raise _cannot_write(path, directory, exc) from None
+    try:
+        yield tmp
         try:
-            yield tmp
-            path.mkdir(parents=True, exist_ok=True)
-            for item in tmp.iterdir():
-                target = path / item.name
-                if target.is_dir():
-                    shutil.rmtree(target)
-                os.replace(item, target)
-        finally:
+            if directory:
+                path.mkdir(parents=True, exist_ok=True)
+                for item in tmp.iterdir():
+                    target = path / item.name
+                    if target.is_dir():
+                        shutil.rmtree(target)
+                    os.replace(item, target)
+            else:
+                os.replace(tmp, path)
+        except OSError as exc:
+            raise _cannot_write(path, directory, exc) from None
+    finally:
+        if directory:
             shutil.rmtree(tmp, ignore_errors=True)
-    else:
-        fd, tmp_name = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-        os.close(fd)
-        tmp = Path(tmp_name)
-        try:
-            yield tmp
-            os.replace(tmp, path)
-        finally:
-            if tmp.exists():
-                tmp.unlink()
+        elif tmp.exists():
+            tmp.unlink()
 
 
 def write_json(obj, path) -> None:
@@ -89,3 +138,71 @@ def write_json(obj, path) -> None:
         return
     with atomic_output(path) as tmp:
         tmp.write_text(text + "\n")
+
+
+def add_error_model_args(parser) -> None:
+    """The error-model options shared by the analysis commands (read back by :func:`error_model_from_args`)."""
+    from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
+
+    parser.add_argument("--sigma-set", default=None,
+                        help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
+    parser.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
+                        help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
+    parser.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
+                        help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
+    parser.add_argument("--clearance", action="store_true",
+                        help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint")
+    parser.add_argument("--clearance-tilt-literal", action="store_true",
+                        help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of the "
+                        f"corrected {CLEARANCE_SIGMA['tilt_rad']} rad")
+    parser.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
+                        help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
+    parser.add_argument("--exclude", action="append", default=[], metavar="NAME",
+                        help="leave out a parameter or kind; repeatable")
+
+
+def sigma_overrides(model_params, items) -> dict:
+    """Parse ``--sigma NAME=VALUE`` items into ``{parameter name: sigma [mm or rad]}``.
+
+    VALUE is in mm for length parameters and in deg for angle parameters. A kind (``joint_drive``)
+    sets every parameter of that kind, each in its own unit (a revolute drive in deg, a prismatic
+    drive in mm); a parameter name given as well wins over its kind, whatever the order.
+
+    Raises
+    ------
+    TolallocError
+        Malformed item, unknown parameter or kind, or a value that is not a finite number >= 0.
+    """
+    by_kind, by_name = {}, {}
+    for item in items:
+        if "=" not in item:
+            raise TolallocError(f"--sigma: expected NAME=VALUE (mm or deg), got {item!r}.")
+        name, val = item.split("=", 1)
+        name = name.strip()
+        hits = [p for p in model_params if name in (p.name, p.kind)]
+        if not hits:
+            known = ", ".join(sorted({p.name for p in model_params} | {p.kind for p in model_params}))
+            raise TolallocError(f"--sigma: unknown parameter or kind {name!r}; known: {known}.")
+        units = " / ".join(sorted({p.interface_unit for p in hits}))
+        try:
+            v = float(val)
+        except ValueError:
+            v = np.nan
+        if not np.isfinite(v) or v < 0:
+            raise TolallocError(f"--sigma {name}: expected a finite sigma >= 0 in {units}, got {val.strip()!r}.")
+        target = by_name if any(p.name == name for p in hits) else by_kind
+        for p in hits:
+            target[p.name] = v if p.interface_unit == "mm" else np.deg2rad(v)
+    return {**by_kind, **by_name}
+
+
+def error_model_from_args(robot: Robot, args):
+    """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
+    from ..errors import CLEARANCE_TILT_LITERAL_RAD, build_error_model
+
+    opts = dict(link_mode=args.link_mode, deflection_mode=args.deflection_mode, clearance=args.clearance)
+    base = build_error_model(robot, args.sigma_set, **opts)
+    sigma = sigma_overrides(base.params, args.sigma)
+    cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if args.clearance_tilt_literal else None
+    return build_error_model(robot, args.sigma_set, **opts, clearance_sigma=cs, sigma=sigma or None,
+                             exclude=tuple(args.exclude))

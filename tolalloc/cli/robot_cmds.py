@@ -69,8 +69,8 @@ def cmd_show(args) -> int:
     })
     print("\nlinks:")
     print(links.to_string(index=False))
-    sets = ", ".join(f"{k} ({len(v)} poses)" for k, v in robot.pose_sets.items()) or "none"
-    print(f"\npose sets: nominal, {sets}")
+    sets = "".join(f", {k} ({len(v)} pose{'s' if len(v) != 1 else ''})" for k, v in robot.pose_sets.items())
+    print(f"\npose sets: nominal (1 pose){sets}")
     if robot.sigma_sets:
         print(f"sigma sets: {', '.join(robot.sigma_sets)}")
     print("\nnominal pose:")
@@ -83,7 +83,8 @@ def cmd_fk(args) -> int:
     q = parse_q(args.q, robot)
     T = robot.fk(q)
     if args.json:
-        print(json.dumps({"robot": robot.name, "q_deg_mm": robot.q_to_interface(q), "position_mm": T[:3, 3],
+        # rounded to 1e-9 deg / mm so that "15" comes back as 15.0, not 14.999999999999998
+        print(json.dumps({"robot": robot.name, "q_deg_mm": np.round(robot.q_to_interface(q), 9), "position_mm": T[:3, 3],
                           "rotation": T[:3, :3]}, default=json_default))
     else:
         print(_pose_text(T))

@@ -1,0 +1,72 @@
+"""CLI helpers (tolalloc/cli/common.py): all-or-nothing output, early output checks, negative joint lists, --sigma."""
+
+from __future__ import annotations
+
+import os
+import stat
+
+import numpy as np
+import pytest
+
+from tolalloc import TolallocError, load_robot
+from tolalloc.cli import main
+from tolalloc.cli.common import atomic_output, check_output, sigma_overrides, write_json
+from tolalloc.errors import build_error_model
+
+
+def test_atomic_file_gets_the_usual_permissions(tmp_path):
+    # regression: mkstemp made summary.json / analyze.json readable by the owner only (0o600)
+    path = tmp_path / "a.json"
+    write_json({"x": 1}, path)
+    umask = os.umask(0)
+    os.umask(umask)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o666 & ~umask
+    assert [p.name for p in tmp_path.iterdir()] == ["a.json"]
+
+
+def test_unwritable_places_raise_tolalloc_error(tmp_path):
+    # regression: an OSError (a file where a directory should be ...) came out as a traceback
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    with pytest.raises(TolallocError, match="cannot write an output directory"):
+        with atomic_output(blocker / "sub", directory=True) as tmp:
+            (tmp / "x.txt").write_text("never")
+    with pytest.raises(TolallocError, match="cannot write an output file"):
+        with atomic_output(tmp_path, directory=False) as tmp:  # the target is a directory
+            tmp.write_text("never")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file"]
+
+
+@pytest.mark.parametrize("kind, directory, match", [
+    ("file_as_dir", True, "expected a directory path, but .* is a file"),
+    ("dir_as_file", False, "expected a file path, but .* is a directory"),
+    ("below_file", False, "expected a path below a directory, but .* is a file"),
+])
+def test_check_output_refuses_before_any_work(tmp_path, kind, directory, match):
+    blocker = tmp_path / "f"
+    blocker.write_text("x")
+    path = {"file_as_dir": blocker, "dir_as_file": tmp_path, "below_file": blocker / "deeper" / "x.json"}[kind]
+    with pytest.raises(TolallocError, match="--out .*" + match):
+        check_output(path, "--out", directory=directory)
+    check_output(tmp_path / "new" / "dir", "--out", directory=True)  # a new place is fine
+    check_output("-", "--json")
+    assert not (tmp_path / "new").exists()
+
+
+def test_joint_list_starting_with_a_minus_is_a_value(capsys):
+    # regression: argparse took "-15,30,..." for an unknown option ("expected one argument")
+    assert main(["fk", "tool_changer", "--q", "-15,30,-10,0,-20,-5"]) == 0
+    out = capsys.readouterr().out
+    assert "position_mm: [415.691939, 1551.383436, 1196.616115]" in out  # the mirror image of the nominal pose
+
+
+def test_sigma_overrides_units_per_parameter():
+    model = build_error_model(load_robot("tool_changer"))
+    got = sigma_overrides(model.params, ["joint_drive=0.01", "dd4=0.2", "dl1=0.05"])
+    # a kind sets each parameter in its own unit (deg for revolute drives, mm for the prismatic one); names win
+    assert got["dth1"] == pytest.approx(np.deg2rad(0.01)) and got["dd4"] == 0.2 and got["dl1"] == 0.05
+    assert sigma_overrides(model.params, ["dd4=0.2", "joint_drive=0.01"])["dd4"] == 0.2
+    with pytest.raises(TolallocError, match=r"--sigma dth1: expected a finite sigma >= 0 in deg, got '-0.01'"):
+        sigma_overrides(model.params, ["dth1=-0.01"])
+    with pytest.raises(TolallocError, match=r"--sigma joint_drive: expected a finite sigma >= 0 in deg / mm"):
+        sigma_overrides(model.params, ["joint_drive=nan"])
