@@ -52,8 +52,9 @@ def test_analyze_pose_set_worst_and_out_dir(capsys, tmp_path):
     robot = load_robot("tool_changer")
     res = linear_map(build_error_model(robot, "table2", clearance=True), robot.poses("working"))
     assert len(d["poses"]) == res.n_poses
-    assert d["worst_pose"] == int(np.argmax(res.rms_mm)) == budget(res).worst_pose
-    np.testing.assert_allclose(d["std_mm"], res.std_mm[d["worst_pose"]], rtol=1e-12)
+    # the CLI numbers poses from 1; the library index is 0-based
+    assert d["worst_pose"] - 1 == int(np.argmax(res.rms_mm)) == budget(res).worst_pose
+    np.testing.assert_allclose(d["std_mm"], res.std_mm[d["worst_pose"] - 1], rtol=1e-12)
     for i, pose in enumerate(d["poses"]):
         np.testing.assert_allclose(pose["covariance_mm2"], res.cov_mm2[i], rtol=1e-12)
         assert pose["radius_mm_for_prob"]["0.9"] == pytest.approx(float(radius_for_prob(res.cov_mm2[i], 0.9)), rel=1e-9)

@@ -60,3 +60,34 @@ def test_bad_input_exit_2_no_files(tmp_path, capsys, args):
     assert "error:" in capsys.readouterr().err
     assert not out.exists() and not js.exists()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_sigma_override_by_kind_uses_each_parameters_unit(tmp_path):
+    """``--sigma joint_drive=0.01`` is 0.01 deg for revolute drives and 0.01 mm for the prismatic dd4."""
+    from tolalloc import load_robot
+    from tolalloc.errors import build_error_model
+    from tolalloc.montecarlo import run_mc
+
+    d = _run_json(tmp_path, "--n", "3000", "--sigma", "joint_drive=0.01", "--exclude", "link_length",
+                  "--exclude", "axis_deflection")
+    robot = load_robot("tool_changer")
+    sigma = {p: (0.01 if p == "dd4" else np.deg2rad(0.01)) for p in ("dth1", "dth2", "dth3", "dd4", "dth5", "dth6")}
+    model = build_error_model(robot, sigma=sigma, exclude=("link_length", "axis_deflection"))
+    ref = run_mc(model, robot.q_nominal, 3000, seed=4)
+    np.testing.assert_allclose(d["std_mm"], ref.std_mm[0], rtol=1e-10)
+
+
+def test_angle_radius_in_degrees_equals_radians(tmp_path):
+    a = _run_json(tmp_path, "--n", "2000", "--angle-radius-deg", "0.1")
+    b = _run_json(tmp_path, "--n", "2000", "--angle-radius-rad", str(np.deg2rad(0.1)))
+    assert list(a["p_within_angle"].values())[0]["p"] == list(b["p_within_angle"].values())[0]["p"]
+
+
+def test_output_piped_into_a_closed_pipe_is_not_an_error():
+    import subprocess
+    import sys
+
+    cmd = f"{sys.executable} -m tolalloc show tool_changer | head -1"
+    proc = subprocess.run(["bash", "-c", "set -o pipefail; " + cmd], capture_output=True, text=True, timeout=60)
+    assert "Traceback" not in proc.stderr
+    assert proc.stdout.startswith("robot: tool_changer")

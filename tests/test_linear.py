@@ -188,7 +188,8 @@ def test_budget_sums_order_and_kinds(tmp_path):
     k = model.index("dth2")
     np.testing.assert_allclose(b.var[:, k, 0], res.J[:, 0, k] ** 2 * model.sigma[k] ** 2, rtol=1e-12)
     df = b.to_frame(pose="worst")
-    assert df["pose"].unique().tolist() == [b.worst_pose] == [int(np.argmax(res.rms_mm))]
+    # tables number poses from 1; the library index is 0-based
+    assert df["pose"].unique().tolist() == [b.worst_pose + 1] == [int(np.argmax(res.rms_mm)) + 1]
     assert df["share_norm"].is_monotonic_decreasing
     kinds = b.to_frame(by="kind", pose=0)
     assert kinds["share_norm"].sum() == pytest.approx(1.0)

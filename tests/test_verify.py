@@ -75,3 +75,12 @@ def test_orientation_columns_in_the_verification_table():
     assert np.all(frame.ci_low_angle <= frame.p_mc_angle) and np.all(frame.p_mc_angle <= frame.ci_high_angle)
     np.testing.assert_allclose(frame.p_linear_angle, ver.angle["p_linear"])
     assert "orientation: lowest P_hat" in ver.message() or not ver.ok
+
+
+def test_scheduler_does_not_change_the_verification(res):
+    """The verification's Monte Carlo gives the same numbers on a Dask scheduler as locally."""
+    pytest.importorskip("dask")
+    local = verify_design(res.problem, res.design, n_mc=20_000, seed=5, keep_samples=0)
+    dask = verify_design(res.problem, res.design, n_mc=20_000, seed=5, keep_samples=0, scheduler="threads")
+    np.testing.assert_array_equal(local.p_mc, dask.p_mc)
+    np.testing.assert_array_equal(local.ci_low, dask.ci_low)

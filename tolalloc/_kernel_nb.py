@@ -25,7 +25,7 @@ _PIO4, _PIO2, _PI = 7.85398163397448309616e-01, 1.57079632679489661923e+00, 3.14
 _MOREBITS = 6.123233995736765886130e-17  # pi/2 - _PIO2
 
 
-@njit(nogil=True, cache=True, inline="always")
+@njit(nogil=True, cache=True, error_model="numpy", inline="always")
 def _sincos(x):
     """sin and cos of x [rad], |x| < 1e5: Cody-Waite reduction by pi/2, fdlibm kernels (< 1 ulp)."""
     n = math.floor(x * _TWO_OVER_PI + 0.5)
@@ -39,34 +39,36 @@ def _sincos(x):
     w1 = 1.0 - hz
     c = w1 + (((1.0 - w1) - hz) + z * rc)
     q = n - 4.0 * math.floor(n * 0.25)  # quadrant 0..3
-    odd = q == 1.0 or q == 3.0
+    odd = (q == 1.0) | (q == 3.0)
     si = c if odd else s
     co = s if odd else c
     si = -si if q >= 2.0 else si
-    co = -co if (q == 1.0 or q == 2.0) else co
+    co = -co if ((q == 1.0) | (q == 2.0)) else co
     return si, co
 
 
-@njit(nogil=True, cache=True, inline="always")
+@njit(nogil=True, cache=True, error_model="numpy", inline="always")
 def _atan2(y, x):
     """atan2 with Cephes' rational arctangent on [0, 0.66] (about 1 ulp)."""
     ax, ay = abs(x), abs(y)
-    swap = ay > ax
-    num = ax if swap else ay
-    den = ay if swap else ax
-    a = num / den if den > 0.0 else 0.0
-    big = a > 0.66
-    t = (a - 1.0) / (a + 1.0) if big else a
+    sf = 1.0 if ay > ax else 0.0  # only selects of constants and values: the loops stay vectorisable
+    num = ay if ay <= ax else ax
+    den = ax if ay <= ax else ay
+    a = num / (den if den > 0.0 else 1.0)
+    bf = 1.0 if a > 0.66 else 0.0
+    t = (a - bf) / (bf * a + 1.0)  # a, or (a - 1) / (a + 1) with pi/4 added below
     z = t * t
     p = z * ((((_P0 * z + _P1) * z + _P2) * z + _P3) * z + _P4) / (((((z + _Q0) * z + _Q1) * z + _Q2) * z + _Q3) * z + _Q4)
     r = t * p + t
-    r = _PIO4 + (r + 0.5 * _MOREBITS) if big else r
-    r = _PIO2 + (_MOREBITS - r) if swap else r
-    r = _PI + (2.0 * _MOREBITS - r) if x < 0.0 else r
-    return math.copysign(r, y)
+    r = bf * _PIO4 + (r + bf * (0.5 * _MOREBITS))
+    r = sf * _PIO2 + (sf * _MOREBITS + (1.0 - 2.0 * sf) * r)
+    xf = 1.0 if x < 0.0 else 0.0
+    r = xf * _PI + (xf * (2.0 * _MOREBITS) + (1.0 - 2.0 * xf) * r)
+    pos = (y > 0.0) | ((y == 0.0) & (1.0 / y > 0.0))  # the sign of y, also of a signed zero
+    return r if pos else -r
 
 
-@njit(nogil=True, cache=True)
+@njit(nogil=True, cache=True, error_model="numpy")
 def _chain(V, base, nc, fi, fk, fcf, fd, endoff, home, X, Y, th, S, C):
     """The FastChain program of one pose on samples ``base .. base + nc`` into X (3, 4, CHUNK)."""
     for i in range(3):
@@ -162,38 +164,38 @@ def _chain(V, base, nc, fi, fk, fcf, fd, endoff, home, X, Y, th, S, C):
                 X[r, 3, n] = X[r, 3, n] + endoff[r]
 
 
-@njit(nogil=True, cache=True)
-def _features(X, nc, pc, FB, c0):
-    """ErrorFeatures rows (dx dy dz rv(3) norm reach alpha beta gamma, then |rv|) into FB[:, c0:c0+nc].
+@njit(nogil=True, cache=True, error_model="numpy")
+def _features(Xf, nc, pc, Fo):
+    """ErrorFeatures rows (dx dy dz rv(3) norm reach alpha beta gamma, then |rv|) of the chain outputs.
+
+    ``Xf`` is X (3, 4, CHUNK) flattened and ``Fo`` (12 * CHUNK) the output rows: one base pointer each with
+    constant row offsets, so that the loop vectorises without run-time alias checks.
 
     Returns the number of samples whose rotation error is near pi (cos < -0.999).
     """
-    x00, x01, x02, x03 = X[0, 0], X[0, 1], X[0, 2], X[0, 3]
-    x10, x11, x12, x13 = X[1, 0], X[1, 1], X[1, 2], X[1, 3]
-    x20, x21, x22, x23 = X[2, 0], X[2, 1], X[2, 2], X[2, 3]
-    o0, o1, o2, o3, o4, o5 = FB[0, c0:], FB[1, c0:], FB[2, c0:], FB[3, c0:], FB[4, c0:], FB[5, c0:]
-    o6, o7, o8, o9, o10, o11 = FB[6, c0:], FB[7, c0:], FB[8, c0:], FB[9, c0:], FB[10, c0:], FB[11, c0:]
+    W = CHUNK
     p0x, p0y, p0z, r0sq, r0 = pc[0], pc[1], pc[2], pc[3], pc[4]
     q00, q01, q02, q10, q11, q12, q20, q21, q22 = pc[5], pc[6], pc[7], pc[8], pc[9], pc[10], pc[11], pc[12], pc[13]
     ca, sa, cg, sg, b0 = pc[14], pc[15], pc[16], pc[17], pc[18]
+    r0pos = r0 > 0.0
     bad = 0
     for n in range(nc):
-        px, py, pz = x03[n], x13[n], x23[n]
+        px, py, pz = Xf[3 * W + n], Xf[7 * W + n], Xf[11 * W + n]
         dx, dy, dz = px - p0x, py - p0y, pz - p0z
         dot = (p0x * px + p0y * py + p0z * pz) - r0sq
-        b1 = ca * x21[n] - sa * x22[n]
-        b2 = ca * x22[n] + sa * x21[n]
-        b3 = cg * x10[n] - sg * x00[n]
-        b4 = cg * x00[n] + sg * x10[n]
-        e00 = x00[n] * q00 + x01[n] * q01 + x02[n] * q02
-        e01 = x00[n] * q10 + x01[n] * q11 + x02[n] * q12
-        e02 = x00[n] * q20 + x01[n] * q21 + x02[n] * q22
-        e10 = x10[n] * q00 + x11[n] * q01 + x12[n] * q02
-        e11 = x10[n] * q10 + x11[n] * q11 + x12[n] * q12
-        e12 = x10[n] * q20 + x11[n] * q21 + x12[n] * q22
-        e20 = x20[n] * q00 + x21[n] * q01 + x22[n] * q02
-        e21 = x20[n] * q10 + x21[n] * q11 + x22[n] * q12
-        e22 = x20[n] * q20 + x21[n] * q21 + x22[n] * q22
+        b1 = ca * Xf[9 * W + n] - sa * Xf[10 * W + n]
+        b2 = ca * Xf[10 * W + n] + sa * Xf[9 * W + n]
+        b3 = cg * Xf[4 * W + n] - sg * Xf[0 * W + n]
+        b4 = cg * Xf[0 * W + n] + sg * Xf[4 * W + n]
+        e00 = Xf[0 * W + n] * q00 + Xf[1 * W + n] * q01 + Xf[2 * W + n] * q02
+        e01 = Xf[0 * W + n] * q10 + Xf[1 * W + n] * q11 + Xf[2 * W + n] * q12
+        e02 = Xf[0 * W + n] * q20 + Xf[1 * W + n] * q21 + Xf[2 * W + n] * q22
+        e10 = Xf[4 * W + n] * q00 + Xf[5 * W + n] * q01 + Xf[6 * W + n] * q02
+        e11 = Xf[4 * W + n] * q10 + Xf[5 * W + n] * q11 + Xf[6 * W + n] * q12
+        e12 = Xf[4 * W + n] * q20 + Xf[5 * W + n] * q21 + Xf[6 * W + n] * q22
+        e20 = Xf[8 * W + n] * q00 + Xf[9 * W + n] * q01 + Xf[10 * W + n] * q02
+        e21 = Xf[8 * W + n] * q10 + Xf[9 * W + n] * q11 + Xf[10 * W + n] * q12
+        e22 = Xf[8 * W + n] * q20 + Xf[9 * W + n] * q21 + Xf[10 * W + n] * q22
         v0, v1, v2 = 0.5 * (e21 - e12), 0.5 * (e02 - e20), 0.5 * (e10 - e01)
         n2 = dx * dx + dy * dy + dz * dz
         num = 2.0 * dot + n2
@@ -202,25 +204,37 @@ def _features(X, nc, pc, FB, c0):
         cosv = 0.5 * ((e00 + e11 + e22) - 1.0)
         bad += cosv < -0.999
         theta = _atan2(sn, cosv)
-        u = theta / (sn if sn > 1e-300 else theta)
-        o0[n], o1[n], o2[n] = dx, dy, dz
-        o3[n], o4[n], o5[n] = v0 * u, v1 * u, v2 * u
-        o6[n], o7[n] = math.sqrt(n2), num / den
-        o8[n] = _atan2(b1, b2)
-        o9[n] = _atan2(-x20[n], math.sqrt(b3 * b3 + b4 * b4)) - b0
-        o10[n] = _atan2(b3, b4)
-        o11[n] = theta
+        u = theta / (sn if sn > 1e-300 else 1e-300)  # sn == 0: theta == 0 and v == 0
+        Fo[0 * W + n], Fo[1 * W + n], Fo[2 * W + n] = dx, dy, dz
+        Fo[3 * W + n], Fo[4 * W + n], Fo[5 * W + n] = v0 * u, v1 * u, v2 * u
+        reach0 = math.sqrt(max(num, 0.0))  # tool point at the base origin
+        Fo[6 * W + n], Fo[7 * W + n] = math.sqrt(n2), (num / den if r0pos else reach0)
+        Fo[8 * W + n] = _atan2(b1, b2)
+        Fo[9 * W + n] = _atan2(-Xf[8 * W + n], math.sqrt(b3 * b3 + b4 * b4)) - b0
+        Fo[10 * W + n] = _atan2(b3, b4)
+        Fo[11 * W + n] = theta
     return bad
 
 
-@njit(nogil=True, cache=True, fastmath=True)
+@njit(nogil=True, cache=True, error_model="numpy", fastmath=True)
 def _extrema_counts(FB, N, mx, mn, radii, aradii, cnt):
+    hi, lo = np.empty(8), np.empty(8)
     for i in range(11):
         row = FB[i, :N]
+        hi[:] = mx[i]
+        lo[:] = mn[i]
+        for n0 in range(0, N - 7, 8):  # 8 lanes, unrolled: vectorised selects
+            for k in range(8):
+                v = row[n0 + k]
+                hi[k] = v if v > hi[k] else hi[k]
+                lo[k] = v if v < lo[k] else lo[k]
         a, b = mx[i], mn[i]
-        for n in range(N):
-            a = max(a, row[n])
-            b = min(b, row[n])
+        for k in range(8):
+            a = hi[k] if hi[k] > a else a
+            b = lo[k] if lo[k] < b else b
+        for n in range(N - N % 8, N):
+            a = row[n] if row[n] > a else a
+            b = row[n] if row[n] < b else b
         mx[i], mn[i] = a, b
     for j in range(radii.size + aradii.size):
         row = FB[6, :N] if j < radii.size else FB[11, :N]
@@ -231,7 +245,7 @@ def _extrema_counts(FB, N, mx, mn, radii, aradii, cnt):
         cnt[j] += c
 
 
-@njit(nogil=True, cache=True)
+@njit(nogil=True, cache=True, error_model="numpy")
 def _hist(FB, N, lo, inv_w, nb, H):
     """HistSpec.cell_index + count, same floating-point operations."""
     w = nb + 2
@@ -244,7 +258,7 @@ def _hist(FB, N, lo, inv_w, nb, H):
         H[2, i1 * w + i2] += 1
 
 
-@njit(nogil=True, cache=True, fastmath=True)
+@njit(nogil=True, cache=True, error_model="numpy", fastmath=True)
 def _moments(FB, N, mean, M2):
     """Two-pass moments of FB[:11, :N] (centred in place): mean (11,), co-moment matrix (11, 11)."""
     for i in range(11):
@@ -272,13 +286,15 @@ def _moments(FB, N, mean, M2):
             M2[j, i] = M2[i, j]
 
 
-@njit(nogil=True, cache=True)
+@njit(nogil=True, cache=True, error_model="numpy")
 def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, lo, inv_w, nb, keep,
                  mean, M2, mx, mn, cnt, H, kept):
     """One block, every pose; sub-block moments merged in order (Chan et al., as Moments.merge)."""
     m = V.shape[1]
     P = fi.shape[0]
-    X = np.empty((3, 4, CHUNK))
+    Xf = np.empty(12 * CHUNK)
+    X = Xf.reshape(3, 4, CHUNK)
+    Fo = np.empty(12 * CHUNK)
     Y = np.empty((3, 4, CHUNK))
     th, S, C = np.empty(CHUNK), np.empty(CHUNK), np.empty(CHUNK)
     FB = np.empty((12, sub))
@@ -292,8 +308,10 @@ def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, l
             for c0 in range(0, N, CHUNK):
                 nc = min(CHUNK, N - c0)
                 _chain(V, s0 + c0, nc, fi[p], fk[p], fcf[p], fd[p], endoff[p], home, X, Y, th, S, C)
-                if _features(X, nc, pose_c[p], FB, c0) > 0:
+                if _features(Xf, nc, pose_c[p], Fo) > 0:
                     return False
+                for i in range(12):
+                    FB[i, c0:c0 + nc] = Fo[i * CHUNK:i * CHUNK + nc]
             _extrema_counts(FB, N, mx[p], mn[p], radii, aradii, cnt[p])
             if nb >= 0:
                 _hist(FB, N, lo[p], inv_w[p], nb, H[p])
@@ -316,3 +334,13 @@ def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, l
                         M2[p, i, j] = (M2[p, i, j] + sM2[i, j]) + (d[i] * d[j]) * w
                 nacc[p] = tot
     return True
+
+
+@njit(nogil=True, cache=True)
+def fill_standard_normal(rng, out):
+    """``rng.standard_normal(out=out)`` for a C-contiguous 2-D ``out``: numba's port of numpy's ziggurat on
+    the same bit generator gives the same numbers in the same order (tested), about 2x faster here."""
+    for i in range(out.shape[0]):
+        row = out[i]
+        for j in range(row.size):
+            row[j] = rng.standard_normal()

@@ -24,7 +24,7 @@ import numpy as np
 from ._validate import TolallocError
 from .lie import euler_xyz_fixed
 
-__all__ = ["NUMBA_AVAILABLE", "ENGINES", "resolve_engine", "compile_programs", "block_stats"]
+__all__ = ["NUMBA_AVAILABLE", "ENGINES", "resolve_engine", "compile_programs", "block_stats", "fill_standard_normal"]
 
 #: True when numba can be imported (checked without importing it).
 NUMBA_AVAILABLE = importlib.util.find_spec("numba") is not None
@@ -147,10 +147,16 @@ def block_stats(compiled: tuple, V: np.ndarray, sub: int, radii, aradii, hist, k
     return ([(m, mean[p], M2[p]) for p in range(P)], [(mx[p], mn[p], cnt[p], hs[p]) for p in range(P)], kept)
 
 
+def fill_standard_normal(rng: np.random.Generator, out: np.ndarray) -> None:
+    """Fill ``out`` (rows, m), C-contiguous, like ``rng.standard_normal(out=out)`` (same numbers), compiled."""
+    _kernel()
+    _jit[1](rng, out)
+
+
 def _kernel():
     global _jit
     if _jit is None:
-        from ._kernel_nb import block_kernel
+        from ._kernel_nb import block_kernel, fill_standard_normal as fill
 
-        _jit = block_kernel
-    return _jit
+        _jit = (block_kernel, fill)
+    return _jit[0]

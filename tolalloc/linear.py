@@ -144,7 +144,7 @@ class LinearResult:
         robot = self.model.robot
         qi = robot.q_to_interface(self.q)
         cols = {f"{j.name}_{j.unit}": qi[:, k] for k, j in enumerate(robot.joints)}
-        df = pd.DataFrame({"pose": np.arange(self.n_poses), **cols})
+        df = pd.DataFrame({"pose": np.arange(1, self.n_poses + 1), **cols})
         for a, ax in enumerate("xyz"):
             df[f"std_{ax}_mm"] = self.std_mm[:, a]
         df["rms_mm"] = self.rms_mm
@@ -261,9 +261,9 @@ class ErrorBudget:
                 kinds = list(dict.fromkeys(self.kinds))
                 mask = np.array([[k == kd for k in self.kinds] for kd in kinds], dtype=float)
                 var, share = mask @ var, mask @ share
-                df = pd.DataFrame({"pose": i, "kind": kinds})
+                df = pd.DataFrame({"pose": i + 1, "kind": kinds})
             else:
-                df = pd.DataFrame({"pose": i, "parameter": list(self.names), "kind": list(self.kinds),
+                df = pd.DataFrame({"pose": i + 1, "parameter": list(self.names), "kind": list(self.kinds),
                                    "sigma": self.sigma_interface, "unit": list(self.units)})
             for a, ax in enumerate(_AXES):
                 df[f"var_{ax}_{u}"] = var[:, a]

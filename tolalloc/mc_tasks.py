@@ -26,12 +26,13 @@ SUB_BLOCK = 8192
 
 
 # ----------------------------------------------------------------- sampling
-def _draw(model: ErrorModel, m: int, rng: np.random.Generator, out: np.ndarray) -> np.ndarray:
+def _draw(model: ErrorModel, m: int, rng: np.random.Generator, out: np.ndarray, fast: bool = False) -> np.ndarray:
     """Fill ``out`` (K, m) with parameter draws; returns the row multipliers ``mult`` (K,).
 
     Normal rows hold standard normals (value = ``mult * row``, ``mult = sigma``); other rows hold the
     values (``mult = 1``); zero-sigma rows are 0 (``mult = 0``). All normal rows are drawn in one call,
-    then the others in parameter order (the stream of :func:`sample_values`).
+    then the others in parameter order (the stream of :func:`sample_values`). ``fast``: the normal rows
+    through numba's port of the same generator (:func:`tolalloc.kernel.fill_standard_normal`, same numbers).
     """
     params = model.params
     sig = model.sigma
@@ -39,7 +40,11 @@ def _draw(model: ErrorModel, m: int, rng: np.random.Generator, out: np.ndarray) 
     normal = [k for k, p in enumerate(params) if p.distribution == "normal" and sig[k] > 0]
     if normal:
         a = normal[0]
-        if normal == list(range(a, a + len(normal))):
+        if fast:
+            tmp = out[a:a + len(normal)] if normal == list(range(a, a + len(normal))) else np.empty((len(normal), m))
+            kernel_mod.fill_standard_normal(rng, tmp)
+            out[normal] = tmp
+        elif normal == list(range(a, a + len(normal))):
             rng.standard_normal(out=out[a:a + len(normal)])
         else:
             out[normal] = rng.standard_normal((len(normal), m))
@@ -137,7 +142,8 @@ def _block(spec: McSpec, b: int):
     m = min(BLOCK_SIZE, spec.n - b * BLOCK_SIZE)
     ws = _workspace(len(spec.model.params))
     V = ws["V"][: len(spec.model.params) * m].reshape(-1, m)
-    _draw(spec.model, m, np.random.default_rng(np.random.SeedSequence(spec.seed, spawn_key=(b,))), V)
+    _draw(spec.model, m, np.random.default_rng(np.random.SeedSequence(spec.seed, spawn_key=(b,))), V,
+          fast=compiled is not None)
     keep = max(0, min(m, spec.keep - b * BLOCK_SIZE))
     if compiled is not None:
         out = kernel_mod.block_stats(compiled, V, SUB_BLOCK, spec.radii, spec.aradii, spec.hist, keep)

@@ -164,7 +164,7 @@ class McResult:
             for a, nm in enumerate(("dalpha_rad", "dbeta_rad", "dgamma_rad")):
                 items.append((nm, self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
                               self.angle_max_rad[i, a], self.angle_min_rad[i, a]))
-            rows += [{"pose": i, "quantity": it[0], "mean": it[1], "std": it[2], "max": it[3], "min": it[4]} for it in items]
+            rows += [{"pose": i + 1, "quantity": it[0], "mean": it[1], "std": it[2], "max": it[3], "min": it[4]} for it in items]
         return pd.DataFrame(rows)
 
 

@@ -106,11 +106,11 @@ class Verification:
         return pd.DataFrame(cols)
 
 
-def _run(model, q, n, seed, radius, angle, keep):
+def _run(model, q, n, seed, radius, angle, keep, scheduler=None):
     from .montecarlo import run_mc
 
     res = run_mc(model, q, int(n), seed, radii_mm=(radius,), angle_radii_rad=() if angle is None else (angle,),
-                 keep_samples=keep)
+                 keep_samples=keep, scheduler=scheduler)
     pw = np.asarray(res.p_within[float(radius)] if float(radius) in res.p_within else next(iter(res.p_within.values())))
     pa = None
     if angle is not None:
@@ -123,7 +123,7 @@ def _run(model, q, n, seed, radius, angle, keep):
 
 def verify_design(problem: AllocationProblem, design: Design, *, criterion: str | None = None, n_mc: int = 10**6,
                   n_max: int | None = None, seed: int = 0, keep_samples: int = 4000,
-                  nongauss_share: float = 0.05) -> Verification:
+                  nongauss_share: float = 0.05, scheduler=None) -> Verification:
     """Verify a design by nonlinear Monte Carlo at every pose of ``problem``.
 
     Parameters
@@ -143,6 +143,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         Position errors kept at the worst pose for figures.
     nongauss_share : float
         Variance share of non-normal parameters above which a failure is attributed to them.
+    scheduler : str or dask.distributed.Client, optional
+        Where the Monte Carlo runs (see :func:`tolalloc.parallel.ordered_map`); never changes the numbers.
     """
     from .montecarlo import proportion_ci
 
@@ -164,7 +166,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     P = problem.n_poses
-    pw, pa, samples = _run(model, problem.q[order], n_mc, seed, r, ang, keep_samples)
+    pw, pa, samples = _run(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler)
     inv = np.argsort(order)
     pw, pa = pw[inv], None if pa is None else pa[inv]
     n = np.full(P, int(n_mc))
@@ -178,7 +180,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         redo = np.flatnonzero((pw[:, 1] < p) & (pw[:, 2] >= p))
         if redo.size:
             extra = n_max - int(n_mc)
-            pw2, _, _ = _run(model, problem.q[redo], extra, seed + 1, r, None, 0)
+            pw2, _, _ = _run(model, problem.q[redo], extra, seed + 1, r, None, 0, scheduler)
             k[redo] += np.rint(pw2[:, 0] * extra)
             n[redo] += extra
     est = np.stack([np.asarray(proportion_ci(k[i], int(n[i]))).reshape(3) for i in range(P)])  # (P, 3)

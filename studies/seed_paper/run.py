@@ -42,7 +42,7 @@ def metre_robot(robot):
 
 def stats_rows(res, keys):
     df = res.to_frame()
-    df = df[df.pose == 0].set_index("quantity")
+    df = df[df.pose == 1].set_index("quantity")  # tables number poses from 1
     return {k: tuple(df.loc[k, ["mean", "std", "max", "min"]]) for k in keys}
 
 

@@ -40,6 +40,9 @@ def register(sub) -> None:
     p.add_argument("--n-mc", type=int, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--seed", type=int, default=0, help="random seed of the verification")
+    p.add_argument("--scheduler", default=None, metavar="WHERE",
+                   help="where the verification's Monte Carlo runs: local threads (default), 'threads' or 'processes' "
+                   "(Dask, this machine) or a Dask scheduler address tcp://HOST:PORT; never changes the numbers")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
     p.add_argument("--out", metavar="DIR", help="write tables, summary.json and figures to DIR")
@@ -73,7 +76,7 @@ def cmd_allocate(args) -> int:
     if res.status == "optimal" and not args.no_verify:
         from ..verify import verify_design
 
-        ver = verify_design(problem, res.design, n_mc=args.n_mc, seed=args.seed)
+        ver = verify_design(problem, res.design, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
     summary = res.summary()
     summary["pose_set"] = set_name
     if ver is not None:

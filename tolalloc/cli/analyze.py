@@ -40,7 +40,7 @@ def _pose_dict(res, b, i, radii, probs, robot) -> dict:
     kinds = b.to_frame(pose=i, by="kind")
     keep = [c for c in frame.columns if c != "pose"]
     d = {
-        "pose": i,
+        "pose": i + 1,
         "q_deg_mm": robot.q_to_interface(res.q[i]),
         "std_mm": res.std_mm[i],
         "covariance_mm2": res.cov_mm2[i],
@@ -65,7 +65,7 @@ def analyze_dict(res, radii, probs) -> dict:
     b = budget(res)
     worst = b.worst_pose
     out = {"robot": robot.name, "labels": res.model.labels, "method": "linear (first order), Gaussian approximation",
-           "n_poses": res.n_poses, "worst_pose": worst,
+           "n_poses": res.n_poses, "worst_pose": worst + 1, "pose_numbering": "1-based, in the order of the pose set",
            "budget_columns": "var_*_mm2: contribution to the variance [mm^2]; share_*: fraction of it; norm = trace",
            **_pose_dict(res, b, worst, radii, probs, robot)}
     if res.n_poses > 1:
@@ -101,7 +101,7 @@ def cmd_analyze(args) -> int:
             b.write_csv(tmp / "budget.csv")
             b.write_csv(tmp / "budget_kinds.csv", by="kind")
             with open(tmp / "budget.md", "w") as fh:
-                fh.write(f"# Error budget of {robot.name} (worst pose {b.worst_pose}), {model.labels}\n\n")
+                fh.write(f"# Error budget of {robot.name} (worst pose {b.worst_pose + 1}), {model.labels}\n\n")
                 fh.write(b.to_markdown(pose="worst", by="kind") + "\n\n" + b.to_markdown(pose="worst") + "\n")
             fig = budget_bars(b, tmp / "budget.png", top=args.top)
             plt.close(fig)
@@ -115,6 +115,6 @@ def cmd_analyze(args) -> int:
             print(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{v:.6g}" for v in res.p_within(r)))
         for p in args.prob:
             print(f"radius for P = {p:g}: " + ", ".join(f"{v:.5g}" for v in res.radius_for(p)) + " mm")
-        print(f"\nerror budget at the worst pose ({b.worst_pose}), top {args.top}:")
+        print(f"\nerror budget at the worst pose ({b.worst_pose + 1}), top {args.top}:")
         print(b.to_markdown(pose="worst", top=args.top))
     return 0

@@ -7,9 +7,10 @@ import argparse
 import numpy as np
 
 from .._validate import TolallocError
-from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD, build_error_model
+from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 from ..montecarlo import run_mc
-from .common import add_robot_arg, atomic_output, parse_q, robot_from_args, write_json
+from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args, parse_q,
+                     robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -19,24 +20,15 @@ def register(sub) -> None:
         "tool poses and summarise the error: mean/std/max/min of dx, dy, dz [mm], |dp| [mm], the reach change "
         "|p'|-|p| (the paper's Table-3 'Δp'), X-Y-Z fixed Euler-angle errors [rad], and P(|dp| < r) with 95%% CIs.")
     add_robot_arg(p)
-    p.add_argument("--sigma-set", default=None, help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
-    p.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
-                   help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
-    p.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
-                   help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
-    p.add_argument("--clearance", action="store_true", help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint")
-    p.add_argument("--clearance-tilt-literal", action="store_true",
-                   help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of the corrected {CLEARANCE_SIGMA['tilt_rad']} rad")
-    p.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
-    p.add_argument("--exclude", action="append", default=[], metavar="NAME", help="leave out a parameter or kind; repeatable")
+    add_error_model_args(p)
     p.add_argument("--n", type=int, required=True, help="number of samples (>= 1)")
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same numbers)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
-    g.add_argument("--pose-set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
+    g.add_argument("--pose-set", "--poses", dest="pose_set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
     p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
+    p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees; repeatable")
     p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
     p.add_argument("--scheduler", default=None, metavar="WHERE",
                    help="where the samples run: local threads (default), 'threads' or 'processes' (Dask, this machine), "
@@ -52,25 +44,6 @@ def register(sub) -> None:
     p.add_argument("--json", metavar="OUT", help="write the summary as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write mc_table.csv, mc_summary.json and mc_scatter.png to DIR")
     p.set_defaults(func=cmd_mc)
-
-
-def _overrides(model_params, items):
-    out = {}
-    for item in items:
-        if "=" not in item:
-            raise TolallocError(f"--sigma: expected NAME=VALUE (mm or deg), got {item!r}.")
-        name, val = item.split("=", 1)
-        name = name.strip()
-        try:
-            v = float(val)
-        except ValueError:
-            raise TolallocError(f"--sigma {name}: expected a number (mm or deg), got {val!r}.") from None
-        unit = next((p.unit for p in model_params if name in (p.name, p.kind)), None)
-        if unit is None:
-            known = ", ".join(sorted({p.name for p in model_params} | {p.kind for p in model_params}))
-            raise TolallocError(f"--sigma: unknown parameter or kind {name!r}; known: {known}.")
-        out[name] = v if unit == "mm" else np.deg2rad(v)
-    return out
 
 
 def summary_dict(res, robot) -> dict:
@@ -101,18 +74,18 @@ def cmd_mc(args) -> int:
     robot = robot_from_args(args)
     if args.n is None or args.n < 1:
         raise TolallocError(f"--n: expected a number of samples >= 1, got {args.n}.")
-    base = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
-                             clearance=args.clearance)
-    sigma = _overrides(base.params, args.sigma)
-    cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if args.clearance_tilt_literal else None
-    model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
-                              clearance=args.clearance, clearance_sigma=cs, sigma=sigma or None, exclude=tuple(args.exclude))
+    check_output(args.out, "--out", directory=True)
+    check_output(args.json, "--json")
+    model = error_model_from_args(robot, args)
     if args.pose:
         q = parse_q(args.pose, robot, "--pose")
     else:
         q = robot.poses(args.pose_set)
     radii = args.radius_mm if args.radius_mm else [0.15, 0.25]
-    aradii = args.angle_radius_rad if args.angle_radius_rad else [0.002]
+    aradii = list(args.angle_radius_rad or []) + [np.deg2rad(a) for a in (args.angle_radius_deg or [])] or [0.002]
+    for r in [*radii, *aradii]:
+        if not np.isfinite(r) or r <= 0:
+            raise TolallocError(f"--radius-mm / --angle-radius-*: expected radii > 0, got {r}.")
     keep = min(args.n, 20000) if args.out else 0
     if args.jobs is not None and args.jobs < 1:
         raise TolallocError(f"--jobs: expected a number of workers >= 1, got {args.jobs}.")

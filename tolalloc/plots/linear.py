@@ -39,12 +39,12 @@ def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter
     h = 0.2
     for i, axn in enumerate(("x", "y", "z", "norm")):
         ax.barh(y + (1.5 - i) * h, 100 * df[f"share_{axn}"], height=h, color=_COLORS[axn],
-                label=f"{axn} (var {b.total[int(df['pose'].iloc[0]), i]:.3g} {b.unit.replace('2', '²')})")
+                label=f"{axn} (var {b.total[int(df['pose'].iloc[0]) - 1, i]:.3g} {b.unit.replace('2', '²')})")
     ax.set_yticks(y)
     ax.set_yticklabels(label, fontsize=8)
     ax.set_xlabel("share of variance [%]")
     pose_i = int(df["pose"].iloc[0])
-    qtxt = ", ".join(f"{v:g}" for v in np.round(b.q_interface[pose_i], 2))
+    qtxt = ", ".join(f"{v:g}" for v in np.round(b.q_interface[pose_i - 1], 2))  # pose_i is 1-based
     ax.set_title(f"{b.quantity} error budget, pose {pose_i} (q = {qtxt} deg/mm)", fontsize=9)
     ax.legend(fontsize=7, loc="lower right")
     ax.grid(axis="x", alpha=0.3)
