@@ -3,7 +3,8 @@
     python benchmarks/bench_montecarlo.py [--n 4194304] [--loop-n 20000]
 
 Measures, in one run on this machine: run_mc (sampling + exact chains + statistics) samples/s (wall clock
-and per CPU-second), and per perturbed sample: Pinocchio's forwardKinematics in a Python loop,
+and per CPU-second) with the compiled kernel (numba, when installed) and the numpy path, and per perturbed
+sample: Pinocchio's forwardKinematics in a Python loop,
 modern_robotics' FKinSpace in a Python loop and roboticstoolbox-python's batched ETS.fkine, and prints
 ratios. The functions are reused by ``benchmarks/run_all.py``.
 """
@@ -36,7 +37,8 @@ def timeit(f, reps=3):
 
 
 def measure_run_mc(model, q, n, n_jobs=None, reps=2, **kw) -> dict:
-    """Best of ``reps`` runs: wall-clock samples/s and samples per CPU-second of this process."""
+    """Best of ``reps`` runs (after a small warm-up run): wall-clock samples/s and samples per CPU-second."""
+    run_mc(model, q, 1000, seed=0, n_jobs=n_jobs, **kw)  # JIT cache load / thread pools outside the timing
     best = None
     for _ in range(reps):
         c0, t0 = time.process_time(), time.perf_counter()
@@ -138,9 +140,14 @@ def main():
     model = build_error_model(robot, "table2")
     q = robot.q_nominal
     print(f"tool_changer, {len(model.params)} error parameters, cpus={os.cpu_count()}, load={os.getloadavg()}")
+    from tolalloc.kernel import NUMBA_AVAILABLE
+
+    for engine in (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"]:
+        for jobs in (2, 1):
+            r0 = measure_run_mc(model, q, a.n, n_jobs=jobs, radii_mm=(0.25,), engine=engine)
+            print(f"run_mc engine={engine} n={a.n} threads={jobs}: {r0['wall_rate'] / 1e6:.2f} M samples/s wall, "
+                  f"{r0['cpu_rate'] / 1e6:.2f} M per CPU-second; peak RSS {rss_mb():.0f} MB")
     r = measure_run_mc(model, q, a.n, radii_mm=(0.25,))
-    print(f"run_mc n={a.n}: {r['wall_rate'] / 1e6:.2f} M samples/s wall, {r['cpu_rate'] / 1e6:.2f} M per CPU-second; "
-          f"peak RSS {rss_mb():.0f} MB")
     for name, rate in peers(model, q, a.loop_n).items():
         if isinstance(rate, str):
             print(f"{name}: {rate}")

@@ -2,7 +2,8 @@
 
     python benchmarks/run_all.py [--quick] [--big-n 100000000]
 
-Rows: Monte Carlo throughput (run_mc vs Pinocchio / modern_robotics loops and roboticstoolbox-python's
+Rows: Monte Carlo throughput with the compiled kernel (numba) and the numpy path, and the verification
+workload (12 poses) in a fresh process per engine (run_mc vs Pinocchio / modern_robotics loops and roboticstoolbox-python's
 batched fkine), a streamed 10^8-sample run (time, peak RSS), the error-Jacobian stack for 1,000 poses,
 allocation for 1, 20 and 200 poses with each solver (and SciPy SLSQP as a peer), and P(|x| < r) against
 SciPy-integrated Imhof and a Monte Carlo estimate. Prints a table and writes reports/benchmarks/
@@ -62,7 +63,13 @@ def machine() -> dict:
         pass
     import scipy
 
-    return {"date": datetime.datetime.now().isoformat(timespec="seconds"), "cpu": cpu,
+    try:
+        import numba
+
+        nb = numba.__version__
+    except ImportError:
+        nb = "not installed (numpy path only)"
+    return {"numba": nb, "date": datetime.datetime.now().isoformat(timespec="seconds"), "cpu": cpu,
             "cores_usable": len(os.sched_getaffinity(0)), "cores_total": os.cpu_count(),
             "load_avg_1_5_15": " ".join(f"{x:.2f}" for x in os.getloadavg()),
             "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
@@ -71,18 +78,50 @@ def machine() -> dict:
 
 # ----------------------------------------------------------------- Monte Carlo
 def bench_mc(model, q, n, loop_n):
-    r2 = measure_run_mc(model, q, n, n_jobs=2, radii_mm=(0.15, 0.25), angle_radii_rad=(0.002,))
-    r1 = measure_run_mc(model, q, n // 2, n_jobs=1, reps=1, radii_mm=(0.15, 0.25), angle_radii_rad=(0.002,))
-    row("monte_carlo", "run_mc, 2 threads (wall clock)", r2["wall_rate"], "samples/s",
-        note=f"22 params, n={n}; goal >= 3e6")
-    row("monte_carlo", "run_mc, per CPU-second (2 threads)", r2["cpu_rate"], "samples/s",
-        note=f"x2 cores = {2 * r2['cpu_rate']:.3g}/s if both cores were free")
-    row("monte_carlo", "run_mc, 1 thread (wall clock)", r1["wall_rate"], "samples/s")
+    from tolalloc.kernel import NUMBA_AVAILABLE
+
+    kw = dict(radii_mm=(0.15, 0.25), angle_radii_rad=(0.002,))
+    engines = (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"]
+    rates = {}
+    for engine in engines:
+        r2 = measure_run_mc(model, q, n, n_jobs=2, engine=engine, **kw)
+        r1 = measure_run_mc(model, q, n // 2, n_jobs=1, reps=1, engine=engine, **kw)
+        rates[engine] = r2
+        row("monte_carlo", f"run_mc {engine}, 2 threads (wall clock)", r2["wall_rate"], "samples/s",
+            note=f"22 params, n={n}; goal >= 3e6")
+        row("monte_carlo", f"run_mc {engine}, per CPU-second (2 threads)", r2["cpu_rate"], "samples/s",
+            note=f"x2 cores = {2 * r2['cpu_rate']:.3g}/s if both cores were free")
+        row("monte_carlo", f"run_mc {engine}, 1 thread (wall clock)", r1["wall_rate"], "samples/s")
+    if len(engines) == 2:
+        row("monte_carlo", "run_mc numba vs numpy path, 2 threads", rates["numba"]["wall_rate"], "samples/s",
+            "numpy path (same draws, same statistics)", rates["numpy"]["wall_rate"])
+    best = rates[engines[0]]
     for name, rate in peers(model, q, loop_n).items():
         if isinstance(rate, str):
             row("monte_carlo", "peer unavailable", np.nan, "samples/s", name, note=rate)
         else:
-            row("monte_carlo", "run_mc 2 threads vs peer (per sample)", r2["wall_rate"], "samples/s", name, rate)
+            row("monte_carlo", f"run_mc {engines[0]} 2 threads vs peer (per sample)", best["wall_rate"], "samples/s",
+                name, rate)
+
+
+def bench_verify_workload(n, engines):
+    """The allocation's verification workload (12 poses x n samples) in a fresh process per engine:
+    wall time including imports and loading the compiled kernel from numba's on-disk cache."""
+    times = {}
+    for engine in engines:
+        code = ("import time; t0 = time.perf_counter()\n"
+                "from tolalloc import load_robot\nfrom tolalloc.errors import build_error_model\n"
+                "from tolalloc.montecarlo import run_mc\n"
+                "r = load_robot('tool_changer'); m = build_error_model(r, 'table2')\n"
+                "q = r.poses('working')[:12]\n"
+                f"res = run_mc(m, q, {n}, seed=0, radii_mm=(0.25,), engine='{engine}')\n"
+                "print(time.perf_counter() - t0)\n")
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+        times[engine] = float(out.stdout.strip().splitlines()[-1])
+    for engine in engines:
+        peer = ("numpy path, same workload", times["numpy"]) if engine != "numpy" else ("", np.nan)
+        row("monte_carlo", f"12 poses x {n:.0e} samples, {engine} (fresh process)", times[engine], "s", *peer,
+            note="imports + cached kernel load + run")
 
 
 def bench_big(n):
@@ -242,6 +281,9 @@ def main():
     model = build_error_model(robot, "table2")
     print(f"{'section':12s} {'case':44s} {'ours':>12s} {'unit':10s} {'peer value':>12s} {'ratio':>10s}  peer")
     bench_mc(model, robot.q_nominal, 2**18 if a.quick else 2**23, 2000 if a.quick else 20000)
+    from tolalloc.kernel import NUMBA_AVAILABLE
+
+    bench_verify_workload(10**5 if a.quick else 10**6, (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"])
     bench_jacobian(robot, model)
     bench_probability(robot, model, 20000 if a.quick else 100000)
     bench_allocation(robot, model, (1, 20) if a.quick else (1, 20, 200))
