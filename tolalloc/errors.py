@@ -34,8 +34,8 @@ import numpy as np
 import pandas as pd
 
 from ._validate import TolallocError
-from .lie import adjoint, exp_se3, hat
-from .robot import Robot, poe_prefix
+from .lie import adjoint, exp_se3
+from .robot import Robot, _prefix_lists
 
 __all__ = ["ErrorParameter", "ErrorModel", "build_error_model", "KINDS"]
 
@@ -260,18 +260,42 @@ class ErrorModel:
             error ``dw`` (space frame) [rad] (3), per unit of each parameter.
         """
         q = np.asarray(q, dtype=float)
-        P = poe_prefix(self.robot.screws, q)  # (..., n+1, 4, 4)
-        Ad = adjoint(P)  # (..., n+1, 6, 6)
-        sites = np.array([p.site for p in self.params])
-        twists = np.array([p.twist for p in self.params])  # (K, 6)
-        V = np.einsum("...kij,kj->...ik", Ad[..., sites, :, :], twists)  # (..., 6, K) spatial twists
-        undo = [k for k, p in enumerate(self.params) if p.undo_site is not None]
-        if undo:
-            us = np.array([self.params[k].undo_site for k in undo])
-            V[..., undo] -= np.einsum("...kij,kj->...ik", Ad[..., us, :, :], twists[undo])
-        p_tool = (P[..., -1, :, :] @ self.robot.home)[..., :3, 3]  # (..., 3)
-        dp = V[..., 3:, :] - np.einsum("...ij,...jk->...ik", hat(p_tool), V[..., :3, :])
-        return np.concatenate([dp, V[..., :3, :]], axis=-2)
+        R, p = _prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
+        batch = q.shape[:-1]
+        K = len(self.params)
+        # spatial twist Ad_{P_site} xi = (R w, R v + p x R w) per parameter, grouped by insertion site
+        Rw = np.zeros(batch + (3, K))
+        Vv = np.zeros(batch + (3, K))
+        for site, idx, sign, W in self._site_groups():
+            Rs = np.ascontiguousarray(np.broadcast_to(R[site], batch + (3, 3)))
+            rw = (Rs.reshape(-1, 3) @ W[:3]).reshape(batch + (3, len(idx)))  # one BLAS product per site
+            vv = (Rs.reshape(-1, 3) @ W[3:]).reshape(batch + (3, len(idx))) + _cross_cols(p[site], rw)
+            if sign > 0:
+                Rw[..., idx], Vv[..., idx] = rw, vv
+            else:
+                Rw[..., idx] -= rw
+                Vv[..., idx] -= vv
+        p_tool = (R[-1] @ self.robot.home[:3, 3]) + p[-1]  # (..., 3)
+        dp = Vv - _cross_cols(p_tool, Rw)  # (..., 3, K)
+        return np.concatenate([dp, Rw], axis=-2)
+
+    def _site_groups(self):
+        """(site, parameter indices, sign, twists (6, k)) of the insertions, direct ones (+1) before undos (-1)."""
+        out = []
+        twists = np.array([prm.twist for prm in self.params])
+        for sign in (1.0, -1.0):
+            sites = [prm.site if sign > 0 else prm.undo_site for prm in self.params]
+            for site in sorted({s for s in sites if s is not None}):
+                idx = [k for k, s in enumerate(sites) if s == site]
+                out.append((site, idx, sign, np.ascontiguousarray(twists[idx].T)))
+        return out
+
+
+def _cross_cols(a: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """``a x B[:, k]`` for every column k: ``a`` (..., 3), ``B`` (..., 3, K) -> (..., 3, K)."""
+    a0, a1, a2 = a[..., 0, None], a[..., 1, None], a[..., 2, None]
+    b0, b1, b2 = B[..., 0, :], B[..., 1, :], B[..., 2, :]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-2)
 
 
 def _sigma_from_set(robot: Robot, params: list, sigma_set: str) -> np.ndarray:

@@ -17,6 +17,7 @@ __all__ = [
     "hat",
     "exp_so3",
     "exp_se3",
+    "exp_se3_rp",
     "adjoint",
     "inv_transform",
     "euler_xyz_fixed",
@@ -61,6 +62,23 @@ def _sinc_terms(theta: np.ndarray):
     return a, b, c
 
 
+def _rodrigues(w: np.ndarray, theta: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """``I + a [w] + b [w]^2`` using ``[w]^2 = w w^T - |w|^2 I`` (no matrix products), shape (..., 3, 3)."""
+    M = (b[..., None, None] * w[..., :, None]) * w[..., None, :]
+    d = 1.0 - b * theta * theta
+    M[..., 0, 0] += d
+    M[..., 1, 1] += d
+    M[..., 2, 2] += d
+    aw = a[..., None] * w
+    M[..., 0, 1] -= aw[..., 2]
+    M[..., 0, 2] += aw[..., 1]
+    M[..., 1, 0] += aw[..., 2]
+    M[..., 1, 2] -= aw[..., 0]
+    M[..., 2, 0] -= aw[..., 1]
+    M[..., 2, 1] += aw[..., 0]
+    return M
+
+
 def exp_so3(w: np.ndarray) -> np.ndarray:
     """Rotation matrix ``exp([w])`` of a rotation vector (Rodrigues).
 
@@ -75,8 +93,29 @@ def exp_so3(w: np.ndarray) -> np.ndarray:
     w = np.asarray(w, dtype=float)
     theta = np.linalg.norm(w, axis=-1)
     a, b, _ = _sinc_terms(theta)
-    W = hat(w)
-    return np.eye(3) + a[..., None, None] * W + b[..., None, None] * (W @ W)
+    return _rodrigues(w, theta, a, b)
+
+
+def exp_se3_rp(xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rotation and translation of ``exp([xi])`` for twists ``xi = (omega, v)``.
+
+    Parameters
+    ----------
+    xi : array, shape (..., 6)  [rad, mm]
+
+    Returns
+    -------
+    R : array, shape (..., 3, 3)
+    p : array, shape (..., 3)  [mm], ``p = V v`` with ``V = I + b [w] + c [w]^2``.
+    """
+    xi = np.asarray(xi, dtype=float)
+    w, v = xi[..., :3], xi[..., 3:]
+    theta = np.linalg.norm(w, axis=-1)
+    a, b, c = _sinc_terms(theta)
+    R = _rodrigues(w, theta, a, b)
+    wv = np.sum(w * v, axis=-1)
+    p = (1.0 - c * theta * theta)[..., None] * v + b[..., None] * np.cross(w, v) + (c * wv)[..., None] * w
+    return R, p
 
 
 def exp_se3(xi: np.ndarray) -> np.ndarray:
@@ -93,17 +132,10 @@ def exp_se3(xi: np.ndarray) -> np.ndarray:
     T : array, shape (..., 4, 4)
     """
     xi = np.asarray(xi, dtype=float)
-    w, v = xi[..., :3], xi[..., 3:]
-    theta = np.linalg.norm(w, axis=-1)
-    a, b, c = _sinc_terms(theta)
-    W = hat(w)
-    W2 = W @ W
-    eye = np.eye(3)
-    R = eye + a[..., None, None] * W + b[..., None, None] * W2
-    V = eye + b[..., None, None] * W + c[..., None, None] * W2
+    R, p = exp_se3_rp(xi)
     T = np.zeros(xi.shape[:-1] + (4, 4))
     T[..., :3, :3] = R
-    T[..., :3, 3] = np.einsum("...ij,...j->...i", V, v)
+    T[..., :3, 3] = p
     T[..., 3, 3] = 1.0
     return T
 

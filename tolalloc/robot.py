@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import TolallocError, check_finite_array
-from .lie import adjoint, exp_se3, inv_transform
+from .lie import adjoint, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
     "Link",
@@ -32,6 +32,7 @@ __all__ = [
     "Robot",
     "fk_poe",
     "poe_prefix",
+    "poe_prefix_rp",
     "space_jacobian",
     "body_jacobian",
 ]
@@ -302,6 +303,63 @@ class Robot:
         return body_jacobian(self.screws, self.home, q)
 
 
+def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
+    """``exp([S] q)`` as (R, p) for joint screws, shapes (..., n, 3, 3) and (..., n, 3).
+
+    Joint screws have a unit (revolute) or zero (prismatic) angular part, which allows the closed form
+    ``R = cos q I + sin q [w] + (1 - cos q) w w^T``, ``p = (I - R)(w x v) + w (w . v) q`` (prismatic:
+    ``R = I``, ``p = v q``) without the small-angle series of a general twist; other screws take
+    :func:`~tolalloc.lie.exp_se3_rp`.
+    """
+    w, v = screws[..., :3], screws[..., 3:]
+    w2 = np.sum(w * w, axis=-1)
+    if not np.all((np.abs(w2 - 1.0) < 1e-12) | (w2 == 0.0)):
+        return exp_se3_rp(screws * q[..., None])
+    th = q * np.sqrt(w2)
+    s, c = np.sin(th), np.cos(th)
+    R = ((1.0 - c)[..., None, None] * w[..., :, None]) * w[..., None, :]
+    R[..., 0, 0] += c
+    R[..., 1, 1] += c
+    R[..., 2, 2] += c
+    sw = s[..., None] * w
+    R[..., 0, 1] -= sw[..., 2]
+    R[..., 0, 2] += sw[..., 1]
+    R[..., 1, 0] += sw[..., 2]
+    R[..., 1, 2] -= sw[..., 0]
+    R[..., 2, 0] -= sw[..., 1]
+    R[..., 2, 1] += sw[..., 0]
+    u = np.cross(w, v)
+    p = ((1.0 - c)[..., None] * u - s[..., None] * np.cross(w, u)
+         + (np.sum(w * v, axis=-1) * q)[..., None] * w + ((1.0 - w2) * q)[..., None] * v)
+    return R, p
+
+
+def _prefix_lists(screws, q):
+    """Cumulative products as lists of contiguous arrays: ``R[j]`` (..., 3, 3), ``p[j]`` (..., 3), j = 0..n."""
+    screws = np.asarray(screws, dtype=float)
+    q = np.asarray(q, dtype=float)
+    ER, Ep = _joint_exp_rp(screws, q)  # (..., n, 3, 3), (..., n, 3)
+    batch = ER.shape[:-3]
+    R = [np.broadcast_to(np.eye(3), batch + (3, 3))]
+    p = [np.zeros(batch + (3,))]
+    for j in range(ER.shape[-3]):
+        R.append(R[j] @ ER[..., j, :, :])
+        p.append((R[j] @ Ep[..., j, :, None])[..., 0] + p[j])
+    return R, p
+
+
+def poe_prefix_rp(screws, q) -> tuple[np.ndarray, np.ndarray]:
+    """Rotations and translations of the cumulative products ``P_j`` of :func:`poe_prefix`.
+
+    Returns
+    -------
+    R : array, shape (..., n + 1, 3, 3)
+    p : array, shape (..., n + 1, 3)  [mm]
+    """
+    R, p = _prefix_lists(screws, q)
+    return np.stack(R, axis=-3), np.stack(p, axis=-2)
+
+
 def poe_prefix(screws, q) -> np.ndarray:
     """Cumulative products ``P_j = exp([S_1]q_1) ... exp([S_j]q_j)`` for ``j = 0..n``.
 
@@ -315,14 +373,11 @@ def poe_prefix(screws, q) -> np.ndarray:
     -------
     P : array, shape (..., n + 1, 4, 4), ``P[..., 0] = I``.
     """
-    screws = np.asarray(screws, dtype=float)
-    q = np.asarray(q, dtype=float)
-    E = exp_se3(screws * q[..., None])  # (..., n, 4, 4)
-    n = E.shape[-3]
-    P = np.empty(E.shape[:-3] + (n + 1, 4, 4))
-    P[..., 0, :, :] = np.eye(4)
-    for j in range(n):
-        P[..., j + 1, :, :] = P[..., j, :, :] @ E[..., j, :, :]
+    R, p = poe_prefix_rp(screws, q)
+    P = np.zeros(R.shape[:-2] + (4, 4))
+    P[..., :3, :3] = R
+    P[..., :3, 3] = p
+    P[..., 3, 3] = 1.0
     return P
 
 
