@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import TolallocError, check_finite_array
-from .lie import adjoint, exp_se3, exp_se3_rp, inv_transform
+from .lie import _rodrigues, adjoint, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
     "Link",
@@ -317,17 +317,7 @@ def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
         return exp_se3_rp(screws * q[..., None])
     th = q * np.sqrt(w2)
     s, c = np.sin(th), np.cos(th)
-    R = ((1.0 - c)[..., None, None] * w[..., :, None]) * w[..., None, :]
-    R[..., 0, 0] += c
-    R[..., 1, 1] += c
-    R[..., 2, 2] += c
-    sw = s[..., None] * w
-    R[..., 0, 1] -= sw[..., 2]
-    R[..., 0, 2] += sw[..., 1]
-    R[..., 1, 0] += sw[..., 2]
-    R[..., 1, 2] -= sw[..., 0]
-    R[..., 2, 0] -= sw[..., 1]
-    R[..., 2, 1] += sw[..., 0]
+    R = _rodrigues(w, np.sqrt(w2), s, 1.0 - c)  # c I + s [w] + (1 - c) w w^T for |w| = 1; I for w = 0
     u = np.cross(w, v)
     p = ((1.0 - c)[..., None] * u - s[..., None] * np.cross(w, u)
          + (np.sum(w * v, axis=-1) * q)[..., None] * w + ((1.0 - w2) * q)[..., None] * v)
