@@ -4,6 +4,9 @@ A block (:data:`BLOCK_SIZE` samples, its own generator ``SeedSequence(seed)`` ch
 of reproducibility; it is processed in sub-blocks of :data:`SUB_BLOCK` samples (cache-sized) whose
 statistics are merged in order. :func:`run_blocks` is the task that every scheduler runs
 (:mod:`tolalloc.parallel`); :func:`tolalloc.montecarlo.run_mc` merges the results in block order.
+With ``McSpec.engine == "numba"`` a block's normals are drawn by numba's port of the same generator and
+its statistics come from the compiled kernel of :mod:`tolalloc.kernel` (same draws, same block and
+sub-block structure, same merge order; equal to the numpy path to rounding).
 """
 
 from __future__ import annotations
@@ -149,7 +152,7 @@ def _block(spec: McSpec, b: int):
         out = kernel_mod.block_stats(compiled, V, SUB_BLOCK, spec.radii, spec.aradii, spec.hist, keep)
         if out is not None:  # None: a rotation error near pi, which the numpy path handles
             moms, exts, F = out
-            kept = [{k: v for k, v in features_to_dict(F).items()}] if keep else []
+            kept = [features_to_dict(F)] if keep else []
             return (m, [Moments(*mo) for mo in moms],
                     [Extras(mx, mn, c, h) for mx, mn, c, h in exts], kept)
     moments, extras, kept = [], [], []
