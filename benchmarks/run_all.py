@@ -144,12 +144,41 @@ def bench_big(n):
 
 
 # ----------------------------------------------------------------- Jacobians
+def _pin_error_jacobian(pm, pdata, robot, model, q):
+    """The same 6xK error Jacobian with Pinocchio, pose by pose: forward kinematics, then each error screw
+    moved to the current configuration by the SE3 action of ``P_site = oMi[site] oMi_home[site]^-1``."""
+    import pinocchio as pin
+
+    pin.forwardKinematics(pm, pdata, np.zeros(robot.n_joints))
+    home_inv = [pdata.oMi[i].inverse() for i in range(robot.n_joints + 1)]
+    twists = [pin.Motion(p.twist[3:], p.twist[:3]) for p in model.params]
+    sites = [p.site for p in model.params]
+    undo = [p.undo_site for p in model.params]
+    out = np.empty((len(q), 6, len(twists)))
+    tool = robot.home[:3, 3]
+    for i, qi in enumerate(q):
+        pin.forwardKinematics(pm, pdata, qi)
+        P = [pdata.oMi[j] * home_inv[j] for j in range(robot.n_joints + 1)]
+        p_tool = P[-1].act(tool)
+        for k, tw in enumerate(twists):
+            m = P[sites[k]].act(tw)
+            w, v = m.angular.copy(), m.linear.copy()
+            if undo[k] is not None:
+                mu = P[undo[k]].act(tw)
+                w, v = w - mu.angular, v - mu.linear
+            out[i, :3, k] = v - np.cross(p_tool, w)
+            out[i, 3:, k] = w
+    return out
+
+
 def bench_jacobian(robot, model):
     q = np.random.default_rng(0).uniform(robot.lower, robot.upper, (1000, robot.n_joints))
     t_jac = median_time(lambda: model.jacobian(q))
     t_lin = median_time(lambda: linear_map(model, q), repeat=5)
     t_loop = median_time(lambda: [model.jacobian(qi) for qi in q[:100]], repeat=3) * 10
-    row("jacobian", "ErrorModel.jacobian, 1000 poses (6x22)", t_jac, "s", "per-pose Python loop of the same", t_loop)
+    K = len(model.params)
+    row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K})", t_jac, "s", "per-pose Python loop of the same", t_loop)
+    t_sj = median_time(lambda: robot.space_jacobian(q))
     try:
         import pinocchio as pin
 
@@ -158,11 +187,17 @@ def bench_jacobian(robot, model):
         def pin_loop():
             for qi in q:
                 pin.computeJointJacobians(pm, pdata, qi)
-                pin.getJointJacobian(pm, pdata, 6, pin.ReferenceFrame.WORLD)
+                pin.getJointJacobian(pm, pdata, robot.n_joints, pin.ReferenceFrame.WORLD)
 
         t_pin = median_time(pin_loop, repeat=3)
-        row("jacobian", "ErrorModel.jacobian, 1000 poses (6x22)", t_jac, "s",
-            "pinocchio computeJointJacobians loop (6x6 only)", t_pin)
+        row("jacobian", "space Jacobian stack, 1000 poses (6x6)", t_sj, "s",
+            "pinocchio computeJointJacobians loop (C++ per pose)", t_pin)
+        J_pin = _pin_error_jacobian(pm, pdata, robot, model, q[:50])
+        err = float(np.max(np.abs(J_pin - model.jacobian(q[:50]))))
+        t_pin_err = median_time(lambda: _pin_error_jacobian(pm, pdata, robot, model, q[:100]), repeat=3) * 10
+        row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K})", t_jac, "s",
+            "pinocchio forwardKinematics + SE3 action of each error screw, loop", t_pin_err,
+            note=f"same quantity: max |difference| {err:.1e}")
     except ImportError as exc:
         row("jacobian", "peer unavailable", np.nan, "s", "pinocchio", note=str(exc))
     row("jacobian", "linear_map (Jacobian + covariances), 1000", t_lin, "s")

@@ -409,9 +409,13 @@ def space_jacobian(screws, q) -> np.ndarray:
     J : array, shape (..., 6, n); the spatial twist of the end effector is ``J @ qdot``.
     """
     screws = np.asarray(screws, dtype=float)
-    P = poe_prefix(screws, q)[..., :-1, :, :]  # (..., n, 4, 4)
-    cols = np.einsum("...kij,...kj->...ik", adjoint(P), np.broadcast_to(screws, P.shape[:-2] + (6,)))
-    return cols
+    R, p = _prefix_lists(screws, q)
+    cols = []
+    for j in range(screws.shape[-2]):  # Ad_{P_j} S_j = (R w, R v + p x R w)
+        rw = (R[j] @ screws[..., j, :3, None])[..., 0]
+        rv = (R[j] @ screws[..., j, 3:, None])[..., 0]
+        cols.append(np.concatenate([rw, rv + np.cross(p[j], rw)], axis=-1))
+    return np.stack(cols, axis=-1)
 
 
 def body_jacobian(screws, home, q) -> np.ndarray:
