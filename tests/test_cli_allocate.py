@@ -21,7 +21,7 @@ def test_allocate_writes_everything(tmp_path, capsys):
     assert s["status"] == "optimal" and s["solver"] == "exact" and s["pose_set"] == "nominal"
     assert s["costs"]["exact"] <= s["costs"]["certified"]
     pose = s["poses"][0]
-    for key in ("q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
+    for key in ("q", "q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
         assert key in pose
     assert pose["p_mc_ci"][0] <= pose["p_mc"] <= pose["p_mc_ci"][1]
     assert pose["p_linear"] == pytest.approx(0.95, abs=1e-5)

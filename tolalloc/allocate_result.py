@@ -136,7 +136,8 @@ class AllocationResult:
         poses = []
         qi = np.round(robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
-            row = {"pose": i + 1, "q_deg_mm": qi[i], "p_linear": float(self.design.p_linear["position"][i])}
+            # "q" is the contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
+            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(self.design.p_linear["position"][i])}
             if "orientation" in self.design.p_linear:
                 row["p_linear_angle"] = float(self.design.p_linear["orientation"][i])
             if self.certified.ok:
