@@ -172,13 +172,24 @@ def _pin_error_jacobian(pm, pdata, robot, model, q):
 
 
 def bench_jacobian(robot, model):
+    """Jacobian stacks for 1,000 poses: default engine (numba when installed), the numpy path, Pinocchio loops."""
+    from tolalloc.kernel import resolve_engine
+
     q = np.random.default_rng(0).uniform(robot.lower, robot.upper, (1000, robot.n_joints))
+    eng = resolve_engine(None)
+    robot.space_jacobian(q), model.jacobian(q)  # first call: numba import / compile or disk-cache load
     t_jac = median_time(lambda: model.jacobian(q))
+    t_jac_np = median_time(lambda: model.jacobian(q, engine="numpy"))
     t_lin = median_time(lambda: linear_map(model, q), repeat=5)
     t_loop = median_time(lambda: [model.jacobian(qi) for qi in q[:100]], repeat=3) * 10
     K = len(model.params)
-    row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K})", t_jac, "s", "per-pose Python loop of the same", t_loop)
+    row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K}) [{eng}]", t_jac, "s", "per-pose Python loop of the same", t_loop)
+    if eng == "numba":
+        err = float(np.max(np.abs(model.jacobian(q) - model.jacobian(q, engine="numpy"))))
+        row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K}) [numba]", t_jac, "s", "ours, numpy path", t_jac_np,
+            note=f"max |difference| {err:.1e}")
     t_sj = median_time(lambda: robot.space_jacobian(q))
+    t_sj_np = median_time(lambda: robot.space_jacobian(q, engine="numpy"))
     try:
         import pinocchio as pin
 
@@ -190,15 +201,20 @@ def bench_jacobian(robot, model):
                 pin.getJointJacobian(pm, pdata, robot.n_joints, pin.ReferenceFrame.WORLD)
 
         t_pin = median_time(pin_loop, repeat=3)
-        row("jacobian", "space Jacobian stack, 1000 poses (6x6)", t_sj, "s",
+        row("jacobian", f"space Jacobian stack, 1000 poses (6x6) [{eng}]", t_sj, "s",
+            "pinocchio computeJointJacobians loop (C++ per pose)", t_pin)
+        row("jacobian", "space Jacobian stack, 1000 poses (6x6) [numpy]", t_sj_np, "s",
             "pinocchio computeJointJacobians loop (C++ per pose)", t_pin)
         J_pin = _pin_error_jacobian(pm, pdata, robot, model, q[:50])
         err = float(np.max(np.abs(J_pin - model.jacobian(q[:50]))))
         t_pin_err = median_time(lambda: _pin_error_jacobian(pm, pdata, robot, model, q[:100]), repeat=3) * 10
-        row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K})", t_jac, "s",
+        row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K}) [{eng}]", t_jac, "s",
             "pinocchio forwardKinematics + SE3 action of each error screw, loop", t_pin_err,
             note=f"same quantity: max |difference| {err:.1e}")
+        row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K}) [numpy]", t_jac_np, "s",
+            "pinocchio forwardKinematics + SE3 action of each error screw, loop", t_pin_err)
     except ImportError as exc:
+        row("jacobian", f"space Jacobian stack, 1000 poses (6x6) [{eng}]", t_sj, "s", "ours, numpy path", t_sj_np)
         row("jacobian", "peer unavailable", np.nan, "s", "pinocchio", note=str(exc))
     row("jacobian", "linear_map (Jacobian + covariances), 1000", t_lin, "s")
 

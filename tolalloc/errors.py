@@ -35,7 +35,7 @@ import pandas as pd
 
 from ._validate import TolallocError
 from .lie import adjoint, exp_se3
-from .robot import Robot, _prefix_lists
+from .robot import Robot, _jacobian_kernel, _prefix_lists
 
 __all__ = ["ErrorParameter", "ErrorModel", "build_error_model", "KINDS"]
 
@@ -246,12 +246,14 @@ class ErrorModel:
         return screws, home, dq
 
     # ----------------------------------------------------- first order
-    def jacobian(self, q: np.ndarray) -> np.ndarray:
+    def jacobian(self, q: np.ndarray, *, engine: str | None = None) -> np.ndarray:
         """First-order error Jacobian of the tool pose at ``q``.
 
         Parameters
         ----------
         q : array, shape (..., n) [rad, mm]
+        engine : {None, "auto", "numba", "numpy"}
+            As :func:`tolalloc.robot.space_jacobian` (compiled kernel for many poses (P, n)).
 
         Returns
         -------
@@ -260,6 +262,11 @@ class ErrorModel:
             error ``dw`` (space frame) [rad] (3), per unit of each parameter.
         """
         q = np.asarray(q, dtype=float)
+        nb = _jacobian_kernel(self.robot.screws, q, engine)
+        if nb is not None:
+            undo = [-1 if prm.undo_site is None else prm.undo_site for prm in self.params]
+            return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, [prm.site for prm in self.params],
+                                     undo, [prm.twist for prm in self.params])
         R, p = _prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
         batch = q.shape[:-1]
         K = len(self.params)

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import TolallocError, check_finite_array
+from .kernel import resolve_engine
 from .lie import _rodrigues, adjoint, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
@@ -294,9 +295,9 @@ class Robot:
         """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) [rad, mm]."""
         return fk_poe(self.screws, self.home, q)
 
-    def space_jacobian(self, q) -> np.ndarray:
-        """Space Jacobian, shape (..., 6, n)."""
-        return space_jacobian(self.screws, q)
+    def space_jacobian(self, q, *, engine: str | None = None) -> np.ndarray:
+        """Space Jacobian, shape (..., 6, n); ``engine`` as in :func:`space_jacobian`."""
+        return space_jacobian(self.screws, q, engine=engine)
 
     def body_jacobian(self, q) -> np.ndarray:
         """Body Jacobian, shape (..., 6, n)."""
@@ -396,19 +397,46 @@ def fk_poe(screws, home, q) -> np.ndarray:
     return T @ np.asarray(home, dtype=float)
 
 
-def space_jacobian(screws, q) -> np.ndarray:
+#: Poses from which the default engine uses the compiled Jacobian kernels (below: numpy, no JIT-call overhead).
+JAC_KERNEL_MIN_POSES = 64
+
+
+def _jacobian_kernel(screws: np.ndarray, q: np.ndarray, engine: str | None):
+    """:mod:`tolalloc._jacobian_nb` when ``engine`` resolves to numba, ``screws`` is one chain (n, 6) with unit
+    or zero angular parts and ``q`` is (P, n) with P >= :data:`JAC_KERNEL_MIN_POSES` (any P for
+    ``engine="numba"``); else ``None`` (numpy path)."""
+    if resolve_engine(engine) != "numba" or screws.ndim != 2 or screws.shape[1] != 6 or q.ndim != 2:
+        return None
+    if q.shape[1] != screws.shape[0] or (engine != "numba" and q.shape[0] < JAC_KERNEL_MIN_POSES):
+        return None
+    w2 = np.sum(screws[:, :3] * screws[:, :3], axis=-1)
+    if not np.all((np.abs(w2 - 1.0) < 1e-12) | (w2 == 0.0)):  # as _joint_exp_rp's closed form
+        return None
+    from . import _jacobian_nb
+
+    return _jacobian_nb
+
+
+def space_jacobian(screws, q, *, engine: str | None = None) -> np.ndarray:
     """Space Jacobian ``J_s`` with columns ``Ad_{P_{j-1}} S_j``.
 
     Parameters
     ----------
     screws : array, shape (..., n, 6)
     q : array, shape (..., n)
+    engine : {None, "auto", "numba", "numpy"}
+        As :func:`tolalloc.kernel.resolve_engine`; the compiled kernel runs for one chain (n, 6) of joint
+        screws at many poses (P, n), P >= :data:`JAC_KERNEL_MIN_POSES` unless ``engine="numba"``.
 
     Returns
     -------
     J : array, shape (..., 6, n); the spatial twist of the end effector is ``J @ qdot``.
     """
     screws = np.asarray(screws, dtype=float)
+    q = np.asarray(q, dtype=float)
+    nb = _jacobian_kernel(screws, q, engine)
+    if nb is not None:
+        return nb.space_jacobian(screws, q)
     R, p = _prefix_lists(screws, q)
     cols = []
     for j in range(screws.shape[-2]):  # Ad_{P_j} S_j = (R w, R v + p x R w)
