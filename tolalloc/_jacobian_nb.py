@@ -2,9 +2,9 @@
 
 For ``P`` poses of one chain whose screws have a unit (revolute) or zero (prismatic) angular part, one pass
 per pose computes the prefix products ``P_j = exp([S_1] q_1) ... exp([S_j] q_j)`` (the closed form of
-:func:`tolalloc.robot._joint_exp_rp`, same operations) and from them
+:func:`tolalloc.kinematics._joint_exp_rp`, same operations) and from them
 
-* :func:`space_jacobian` -- the columns ``Ad_{P_{j-1}} S_j`` of :func:`tolalloc.robot.space_jacobian`;
+* :func:`space_jacobian` -- the columns ``Ad_{P_{j-1}} S_j`` of :func:`tolalloc.kinematics.space_jacobian`;
 * :func:`error_jacobian` -- the rows ``dp = V_v - p_tool x V_w``, ``dw = V_w`` of
   :meth:`tolalloc.errors.ErrorModel.jacobian`, with ``V_k = Ad_{P_s} xi_k - Ad_{P_u} xi_k`` (the undo term
   only where an undo site exists) and ``p_tool = R_n home_p + p_n``.

@@ -35,7 +35,8 @@ import pandas as pd
 
 from ._validate import TolallocError
 from .lie import adjoint, exp_se3
-from .robot import Robot, _jacobian_kernel, _prefix_lists
+from .kinematics import _jacobian_kernel, _prefix_lists
+from .robot import Robot
 
 __all__ = ["ErrorParameter", "ErrorModel", "build_error_model", "KINDS"]
 
@@ -253,7 +254,7 @@ class ErrorModel:
         ----------
         q : array, shape (..., n) [rad, mm]
         engine : {None, "auto", "numba", "numpy"}
-            As :func:`tolalloc.robot.space_jacobian` (compiled kernel for many poses (P, n)).
+            As :func:`tolalloc.kinematics.space_jacobian` (compiled kernel for many poses (P, n)).
 
         Returns
         -------

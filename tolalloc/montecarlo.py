@@ -91,7 +91,7 @@ def pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray, *, chain: 
 
 def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) -> dict[str, np.ndarray]:
     """Reference implementation of :func:`pose_errors` through ``perturbed_chain`` + ``fk_poe`` (slow)."""
-    from .robot import fk_poe
+    from .kinematics import fk_poe
 
     values = _check_values(model, values)
     screws, home, dq = model.perturbed_chain(values)

@@ -33,7 +33,8 @@ from scipy.spatial.transform import Rotation
 from .._validate import TolallocError
 from ..errors import ErrorModel, build_error_model
 from ..lie import hat
-from ..robot import Robot, fk_poe
+from ..kinematics import fk_poe
+from ..robot import Robot
 from .measurements import Measurements
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",

@@ -30,7 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import build_error_model
-from ..robot import Mass, Robot, poe_prefix
+from ..kinematics import poe_prefix
+from ..robot import Mass, Robot
 from .measurements import Measurements
 
 __all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_reference", "applicable", "gravity_torques",

@@ -23,7 +23,8 @@ from scipy.spatial.transform import Rotation
 
 from .._validate import TolallocError
 from ..errors import build_error_model
-from ..robot import Robot, fk_poe
+from ..kinematics import fk_poe
+from ..robot import Robot
 from .effects import EFFECTS, effect_basis, joint_effect_dq, target_points
 from .measurements import Measurements
 

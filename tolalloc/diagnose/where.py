@@ -59,7 +59,7 @@ def pose_features(robot: Robot, meas: Measurements, points_base_mm: np.ndarray) 
     cols["reach_mm"] = np.linalg.norm(horiz, axis=1)
     cols["elevation_mm"] = -(points_base_mm @ g)
     shoulder = robot.joint_points_mm[min(1, robot.n_joints - 1)]
-    from ..robot import poe_prefix
+    from ..kinematics import poe_prefix
 
     Pj = poe_prefix(robot.screws, meas.q)[:, min(1, robot.n_joints - 1)]
     sh = Pj[:, :3, :3] @ shoulder + Pj[:, :3, 3]
