@@ -6,8 +6,8 @@ import numpy as np
 
 from .._validate import TolallocError
 from ..linear import budget, linear_map
-from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args, parse_q,
-                     robot_from_args, write_json)
+from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
+                     format_labels, parse_q, robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -101,7 +101,7 @@ def cmd_analyze(args) -> int:
             b.write_csv(tmp / "budget.csv")
             b.write_csv(tmp / "budget_kinds.csv", by="kind")
             with open(tmp / "budget.md", "w") as fh:
-                fh.write(f"# Error budget of {robot.name} (worst pose {b.worst_pose + 1}), {model.labels}\n\n")
+                fh.write(f"# Error budget of {robot.name} (worst pose {b.worst_pose + 1}), {format_labels(model.labels)}\n\n")
                 fh.write(b.to_markdown(pose="worst", by="kind") + "\n\n" + b.to_markdown(pose="worst") + "\n")
             fig = budget_bars(b, tmp / "budget.png", top=args.top)
             plt.close(fig)
@@ -109,7 +109,7 @@ def cmd_analyze(args) -> int:
     if args.json:
         write_json(summary, args.json)
     if args.json != "-":
-        print(f"robot {robot.name}, {model.labels}, clearance={bool(args.clearance)}; linear map, Gaussian approximation")
+        print(f"robot {robot.name}, {format_labels(model.labels)}, clearance={bool(args.clearance)}; linear map, Gaussian approximation")
         print(res.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}"))
         for r in args.radius_mm:
             print(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{v:.6g}" for v in res.p_within(r)))

@@ -16,7 +16,7 @@ from .._validate import TolallocError
 from ..robot import Robot
 from ..robotfile import load_robot
 
-__all__ = ["parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
+__all__ = ["format_labels", "parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
            "check_output", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
 
 #: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value
@@ -42,6 +42,11 @@ def parse_q(text: str, robot: Robot, flag: str = "--q") -> np.ndarray:
     except ValueError:
         raise TolallocError(f"{flag}: expected comma-separated numbers in deg (revolute) / mm (prismatic), got {text!r}.") from None
     return robot.check_q(values, flag, interface=True)
+
+
+def format_labels(labels: dict) -> str:
+    """Model options for a one-line header: ``sigma_set=table2, link_mode=consistent, ...``."""
+    return ", ".join(f"{k}={v}" for k, v in labels.items() if v is not None)
 
 
 def json_default(obj):

@@ -9,8 +9,8 @@ import numpy as np
 from .._validate import TolallocError
 from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 from ..montecarlo import run_mc
-from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args, parse_q,
-                     robot_from_args, write_json)
+from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
+                     format_labels, parse_q, robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -118,7 +118,7 @@ def cmd_mc(args) -> int:
         write_json(summary, args.json)
     if not args.json or args.json != "-":
         tab = res.to_frame()
-        print(f"robot {robot.name}, n={res.n}, seed={res.seed}, {res.labels}")
+        print(f"robot {robot.name}, n={res.n}, seed={res.seed}, {format_labels(res.labels)}")
         print(tab.to_string(index=False, float_format=lambda x: f"{x:.6g}"))
         for r, v in res.p_within.items():
             print(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v))
