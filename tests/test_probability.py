@@ -222,3 +222,29 @@ def test_casadi_works_inside_ipopt():
     sol = solver(x0=0.001, lbx=1e-8, ubx=1.0, lbg=0.95, ubg=1.0)
     s2_opt = float(sol["x"])
     assert abs(p_within_radius(s2_opt * np.diag([1.0, 0.5, 0.1]), 0.25) - 0.95) < 1e-6
+
+
+def test_mean_isotropic_is_noncentral_chi2_and_rank_one_off_axis():
+    """The mean path against noncentral chi-square closed forms; pins its documented accuracy:
+    below 1e-6 with the mean inside the ball, below 5e-5 with the mean on or outside it (grazing rays)."""
+    from scipy.stats import ncx2
+
+    for s in [0.05, 0.1, 0.3, 1.0, 4.0]:
+        for mn in [0.4, 1.0, 2.5]:
+            tol = 1e-6 if mn < 1.0 else 5e-5
+            P = p_within_radius(s * s * np.eye(3), 1.0, [0.0, mn, 0.0])
+            assert abs(P - ncx2.cdf(1 / s**2, 3, mn**2 / s**2)) < tol
+            P2 = p_within_radius(s * s * np.diag([1.0, 1.0, 0.0]), 1.0, [mn / 2, mn / 2, 0.0])
+            assert abs(P2 - ncx2.cdf(1 / s**2, 2, mn**2 / (2 * s**2))) < tol
+    # rank one along x, mean (m, m_perp): r' = sqrt(r^2 - m_perp^2)
+    s, m, mp = 0.4, 0.3, 0.6
+    rp = np.sqrt(1 - mp**2)
+    P = p_within_radius(np.diag([s * s, 0, 0]), 1.0, [m, mp, 0.0])
+    assert abs(P - (norm.cdf((rp - m) / s) - norm.cdf((-rp - m) / s))) < 1e-9
+
+
+def test_mean_inverse_roundtrip():
+    cov = _cov(_rotation(np.random.default_rng(9)), [0.5, 0.05, 1e-4])
+    mean = np.array([0.3, -0.2, 0.4])
+    r = radius_for_prob(cov, 0.9, mean)
+    assert abs(p_within_radius(cov, r, mean) - 0.9) < 1e-9
