@@ -225,17 +225,17 @@ def test_casadi_works_inside_ipopt():
 
 
 def test_mean_isotropic_is_noncentral_chi2_and_rank_one_off_axis():
-    """The mean path against noncentral chi-square closed forms; pins its documented accuracy:
-    below 1e-6 with the mean inside the ball, below 5e-5 with the mean on or outside it (grazing rays)."""
+    """Means inside, on and outside the ball against noncentral chi-square closed forms (3 and 2 dof)."""
     from scipy.stats import ncx2
 
     for s in [0.05, 0.1, 0.3, 1.0, 4.0]:
-        for mn in [0.4, 1.0, 2.5]:
-            tol = 1e-6 if mn < 1.0 else 5e-5
+        for mn in [0.4, 0.9, 1.0, 1.1, 2.5]:
+            # ray rule (|mean| <= 0.75 r): < 1e-6; nested quadrature (beyond): ~1e-11
             P = p_within_radius(s * s * np.eye(3), 1.0, [0.0, mn, 0.0])
-            assert abs(P - ncx2.cdf(1 / s**2, 3, mn**2 / s**2)) < tol
+            assert abs(P - ncx2.cdf(1 / s**2, 3, mn**2 / s**2)) < (1e-6 if mn <= 0.75 else 1e-9)
             P2 = p_within_radius(s * s * np.diag([1.0, 1.0, 0.0]), 1.0, [mn / 2, mn / 2, 0.0])
-            assert abs(P2 - ncx2.cdf(1 / s**2, 2, mn**2 / (2 * s**2))) < tol
+            tol2 = 1e-6 if mn / np.sqrt(2) <= 0.75 else 1e-9
+            assert abs(P2 - ncx2.cdf(1 / s**2, 2, mn**2 / (2 * s**2))) < tol2
     # rank one along x, mean (m, m_perp): r' = sqrt(r^2 - m_perp^2)
     s, m, mp = 0.4, 0.3, 0.6
     rp = np.sqrt(1 - mp**2)
@@ -243,8 +243,39 @@ def test_mean_isotropic_is_noncentral_chi2_and_rank_one_off_axis():
     assert abs(P - (norm.cdf((rp - m) / s) - norm.cdf((-rp - m) / s))) < 1e-9
 
 
+def test_ray_rule_agrees_with_nested_quadrature_inside_its_range():
+    """The fast ray rule is used only for |mean| <= 0.75 r: there it matches the exact nested rule to 1e-6."""
+    from tolalloc.probability import RAY_RULE_MAX_MEAN, _p_mean_nested, _p_with_mean
+
+    rng = np.random.default_rng(11)
+    for _ in range(8):
+        lam = np.sort(10 ** rng.uniform(-5, 0, 3))[::-1] * 0.4
+        d = rng.normal(size=3)
+        m = rng.uniform(0, RAY_RULE_MAX_MEAN) * d / np.linalg.norm(d)
+        ray = float(_p_with_mean(lam[None], m[None], np.array([1.0]))[0])
+        assert abs(ray - _p_mean_nested(lam, m, 1.0)) < 1e-6
+
+
+def test_mean_on_and_outside_the_ball_anisotropic_monte_carlo():
+    rng = np.random.default_rng(5)
+    z = rng.standard_normal((4_000_000, 3))
+    for lam, m in [((0.5, 0.05, 1e-4), (0.6, -0.5, 0.3)), ((0.3, 0.01, 1e-6), (1.0, 0.0, 0.0)),
+                   ((0.2, 0.2, 0.001), (0.0, 0.9, 0.8))]:
+        Q = _rotation(rng)
+        lam, m = np.array(lam), np.array(m)
+        x = z @ (Q * np.sqrt(lam)).T + m
+        mc = np.mean(np.einsum("ij,ij->i", x, x) < 1.0)
+        P = float(p_within_radius(_cov(Q, lam), 1.0, m))
+        assert abs(P - mc) < 4 * np.sqrt(P * (1 - P) / len(z)) + 1e-6
+
+
 def test_mean_inverse_roundtrip():
     cov = _cov(_rotation(np.random.default_rng(9)), [0.5, 0.05, 1e-4])
     mean = np.array([0.3, -0.2, 0.4])
     r = radius_for_prob(cov, 0.9, mean)
     assert abs(p_within_radius(cov, r, mean) - 0.9) < 1e-9
+    # isotropic with a mean: the noncentral chi-square quantile
+    from scipy.stats import ncx2
+
+    r = radius_for_prob(0.09 * np.eye(3), 0.5, [0.0, 0.0, 0.5])
+    np.testing.assert_allclose(r, 0.3 * np.sqrt(ncx2.ppf(0.5, 3, 0.25 / 0.09)), rtol=1e-8)
