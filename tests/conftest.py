@@ -128,3 +128,16 @@ def make_chain():
 @pytest.fixture
 def rng():
     return np.random.default_rng(20240611)
+
+
+def skew_robot():
+    """A robot with non-axis-aligned joints (exercises the generic rotation branch of the fast paths)."""
+    from tolalloc.robot import Joint, Link, Robot
+
+    a = np.array([0.0, 0.6, 0.8])
+    b = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)
+    chain = (Link("l1", np.array([0.0, 0.0, 300.0])), Joint("j1", "revolute", a),
+             Link("l2", np.array([100.0, 400.0, 50.0])), Joint("j2", "revolute", b),
+             Link("l3", np.array([0.0, 200.0, 0.0])), Joint("j3", "prismatic", b, -100.0, 100.0),
+             Link("l4", np.array([50.0, 100.0, 0.0])))
+    return Robot("skew", chain)

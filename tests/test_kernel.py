@@ -7,7 +7,7 @@ from tolalloc import TolallocError, load_robot
 from tolalloc import kernel
 from tolalloc.errors import build_error_model
 from tolalloc.montecarlo import BLOCK_SIZE, run_mc
-from tolalloc.robot import Joint, Link, Robot
+from conftest import skew_robot
 
 pytestmark = pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba not installed: the compiled kernel is "
                                 "optional (pip install tolalloc[fast]); the numpy path is tested elsewhere")
@@ -21,14 +21,6 @@ def robot():
     return load_robot("tool_changer")
 
 
-def _skew_robot():
-    a = np.array([0.0, 0.6, 0.8])
-    b = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)
-    chain = (Link("l1", np.array([0.0, 0.0, 300.0])), Joint("j1", "revolute", a),
-             Link("l2", np.array([100.0, 400.0, 50.0])), Joint("j2", "revolute", b),
-             Link("l3", np.array([0.0, 200.0, 0.0])), Joint("j3", "prismatic", b, -100.0, 100.0),
-             Link("l4", np.array([50.0, 100.0, 0.0])))
-    return Robot("skew", chain)
 
 
 def assert_same(a, b):
@@ -80,7 +72,7 @@ def test_kernel_equals_numpy_path(robot, sigma_set, opts):
 
 def test_kernel_generic_axes_and_large_errors():
     """Non-axis-aligned joints (general rotation branch), errors of 0.1 rad, joint angles beyond pi/2."""
-    r = _skew_robot()
+    r = skew_robot()
     m = build_error_model(r, "generic", clearance=True)
     m = m.with_sigma(m.sigma * 30)
     q = np.array([[0.4, -0.7, 30.0], [2.5, 1.9, -50.0]])

@@ -9,7 +9,7 @@ from tolalloc.errors import build_error_model
 from tolalloc.lie import rot_x, rot_z
 from tolalloc.montecarlo import (BLOCK_SIZE, generic_pose_errors, pose_errors, proportion_ci, run_mc,
                                  sample_values)
-from tolalloc.robot import Joint, Link, Robot
+from conftest import skew_robot
 
 
 @pytest.fixture(scope="module")
@@ -22,15 +22,6 @@ def model(robot):
     return build_error_model(robot, "table2")
 
 
-def _skew_robot():
-    """A robot with non-axis-aligned joints (exercises the generic rotation branch)."""
-    a = np.array([0.0, 0.6, 0.8])
-    b = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)
-    chain = (Link("l1", np.array([0.0, 0.0, 300.0])), Joint("j1", "revolute", a),
-             Link("l2", np.array([100.0, 400.0, 50.0])), Joint("j2", "revolute", b),
-             Link("l3", np.array([0.0, 200.0, 0.0])), Joint("j3", "prismatic", b, -100.0, 100.0),
-             Link("l4", np.array([50.0, 100.0, 0.0])))
-    return Robot("skew", chain)
 
 
 @pytest.mark.parametrize("opts", [{}, {"link_mode": "axes_only"}, {"deflection_mode": "tilt"}, {"clearance": True},
@@ -45,7 +36,7 @@ def test_fast_path_equals_generic_poe_path(robot, opts):
 
 
 def test_fast_path_generic_axes():
-    r = _skew_robot()
+    r = skew_robot()
     m = build_error_model(r, "generic", clearance=True)
     v = m.sample(300, np.random.default_rng(0)) * 200
     q = np.array([0.4, -0.7, 30.0])

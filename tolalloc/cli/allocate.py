@@ -6,7 +6,7 @@ import numpy as np
 
 from .._validate import TolallocError
 from ..errors import build_error_model
-from .common import add_robot_arg, atomic_output, check_output, robot_from_args, write_json
+from .common import add_robot_arg, add_scheduler_arg, atomic_output, check_output, robot_from_args, write_json
 
 
 def register(sub) -> None:
@@ -40,9 +40,7 @@ def register(sub) -> None:
     p.add_argument("--n-mc", type=int, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--seed", type=int, default=0, help="random seed of the verification")
-    p.add_argument("--scheduler", default=None, metavar="WHERE",
-                   help="where the verification's Monte Carlo runs: local threads (default), 'threads' or 'processes' "
-                   "(Dask, this machine) or a Dask scheduler address tcp://HOST:PORT; never changes the numbers")
+    add_scheduler_arg(p, "the verification's Monte Carlo samples")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
     p.add_argument("--out", metavar="DIR", help="write tables, summary.json and figures to DIR")

@@ -166,6 +166,13 @@ def add_error_model_args(parser) -> None:
                         help="leave out a parameter or kind; repeatable")
 
 
+def add_scheduler_arg(parser, what: str = "the samples") -> None:
+    """``--scheduler WHERE``: local threads (default), Dask on this machine, or a Dask scheduler address."""
+    parser.add_argument("--scheduler", default=None, metavar="WHERE",
+                        help=f"where {what} run: local threads (default), 'threads' or 'processes' (Dask, this "
+                        "machine), or a Dask scheduler address such as tcp://HOST:8786; never changes the numbers")
+
+
 def sigma_overrides(model_params, items) -> dict:
     """Parse ``--sigma NAME=VALUE`` items into ``{parameter name: sigma [mm or rad]}``.
 

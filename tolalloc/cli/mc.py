@@ -9,8 +9,8 @@ import numpy as np
 from .._validate import TolallocError
 from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 from ..montecarlo import run_mc
-from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
-                     format_labels, parse_q, robot_from_args, write_json)
+from .common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
+                     error_model_from_args, format_labels, parse_q, robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -30,9 +30,7 @@ def register(sub) -> None:
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
     p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees; repeatable")
     p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
-    p.add_argument("--scheduler", default=None, metavar="WHERE",
-                   help="where the samples run: local threads (default), 'threads' or 'processes' (Dask, this machine), "
-                   "or a Dask scheduler address such as tcp://10.0.0.5:8786; never changes the numbers")
+    add_scheduler_arg(p)
     p.add_argument("--jobs", type=int, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
     p.add_argument("--chunk-size", type=int, default=2**20, help="samples per Dask task (default 1048576); never changes the numbers")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
