@@ -9,7 +9,7 @@ from conftest import random_chain, random_q
 import tolalloc.robot as robot_mod
 from tolalloc import TolallocError, kernel, load_robot
 from tolalloc.errors import build_error_model
-from tolalloc.robot import JAC_KERNEL_MIN_POSES, space_jacobian
+from tolalloc.kinematics import JAC_KERNEL_MIN_POSES, space_jacobian
 
 needs_numba = pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba not installed: the compiled "
                                  "Jacobian kernel is optional (pip install 'tolalloc[fast]')")

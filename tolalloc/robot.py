@@ -23,11 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._validate import TolallocError, check_finite_array
-from .kinematics import (  # noqa: F401  (re-exported: the kinematics functions predate their own module)
-    JAC_KERNEL_MIN_POSES,
-    _jacobian_kernel,
-    _joint_exp_rp,
-    _prefix_lists,
+from .kinematics import (  # noqa: F401  (public kinematics functions, re-exported for `from tolalloc.robot import`)
     body_jacobian,
     fk_poe,
     poe_prefix,
