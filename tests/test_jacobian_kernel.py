@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from conftest import random_chain, random_q
 
-import tolalloc.robot as robot_mod
+import tolalloc.kinematics as kinematics_mod
 from tolalloc import TolallocError, kernel, load_robot
 from tolalloc.errors import build_error_model
 from tolalloc.kinematics import JAC_KERNEL_MIN_POSES, space_jacobian
@@ -110,7 +110,7 @@ def test_numba_absent(monkeypatch):
     model = build_error_model(robot, clearance=True)
     q = poses(robot, 100)
     monkeypatch.setattr(kernel, "NUMBA_AVAILABLE", False)
-    assert robot_mod._jacobian_kernel(robot.screws, q, None) is None
+    assert kinematics_mod._jacobian_kernel(robot.screws, q, None) is None
     with pytest.raises(TolallocError, match="numba"):
         robot.space_jacobian(q, engine="numba")
     J, E = robot.space_jacobian(q), model.jacobian(q)
