@@ -183,30 +183,9 @@ class ErrorModel:
     # ------------------------------------------------------------- sampling
     def sample(self, n: int, rng: np.random.Generator) -> np.ndarray:
         """Draw ``n`` samples of all parameter values, shape (n, K) [mm or rad]."""
-        K = len(self.params)
-        out = np.empty((n, K))
-        done = set()
-        for k, p in enumerate(self.params):
-            if k in done:
-                continue
-            if p.distribution == "ring":
-                k2 = next((i for i, o in enumerate(self.params) if o.group == p.group and i != k), None)
-                s = rng.normal(0.0, np.sqrt(2.0) * p.sigma, n)
-                t = rng.uniform(0.0, 2 * np.pi, n)
-                out[:, k] = s * np.cos(t)
-                if k2 is not None:  # the partner component may have been excluded
-                    out[:, k2] = s * np.sin(t)
-                    done.add(k2)
-                done.add(k)
-            elif p.distribution == "uniform":
-                out[:, k] = rng.uniform(-np.sqrt(3.0) * p.sigma, np.sqrt(3.0) * p.sigma, n)
-            elif p.distribution == "truncnormal":
-                from scipy.stats import truncnorm
+        from .mc_tasks import sample_values  # the one sampler, shared with the Monte Carlo engine
 
-                out[:, k] = truncnorm.rvs(-3, 3, scale=p.sigma, size=n, random_state=rng) if p.sigma > 0 else 0.0
-            else:
-                out[:, k] = rng.normal(0.0, 1.0, n) * p.sigma
-        return out
+        return sample_values(self, n, rng).T
 
     # ------------------------------------------------------- exact chains
     def perturbed_chain(self, values: np.ndarray):

@@ -82,9 +82,10 @@ def _draw(model: ErrorModel, m: int, rng: np.random.Generator, out: np.ndarray, 
 def sample_values(model: ErrorModel, m: int, rng: np.random.Generator) -> np.ndarray:
     """Draw ``m`` samples of the parameter values, transposed: shape (K, m) [mm, rad].
 
-    Same distributions as :meth:`ErrorModel.sample` (normal, uniform over ``±sqrt(3) sigma``,
+    The distributions of :class:`~tolalloc.errors.ErrorParameter` (normal, uniform over ``±sqrt(3) sigma``,
     normal truncated at ``±3 sigma``, ring pairs ``s (cos t, sin t)``), drawn in bulk: all normal
     parameters with non-zero sigma in one call; zero-sigma parameters are exactly 0 and draw nothing.
+    :meth:`ErrorModel.sample` is this, transposed.
     """
     out = np.empty((len(model.params), m))
     mult = _draw(model, m, rng, out)
