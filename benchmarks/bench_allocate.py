@@ -17,10 +17,10 @@ import time
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.allocate import build_problem
-from tolalloc.allocate_convex import solve_rule
-from tolalloc.allocate_exact import solve_exact
-from tolalloc.errors import build_error_model
+from tolalloc.allocate.problem import build_problem
+from tolalloc.allocate.convex import solve_rule
+from tolalloc.allocate.exact import solve_exact
+from tolalloc.errormodel.model import build_error_model
 
 
 def median_time(fn, repeat):

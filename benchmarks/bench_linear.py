@@ -11,9 +11,9 @@ import time
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.linear import linear_map
-from tolalloc.probability import p_within_radius, p_within_radius_lebedev, radius_for_prob
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.linear.covariance import linear_map
+from tolalloc.linear.probability import p_within_radius, p_within_radius_lebedev, radius_for_prob
 
 
 def timeit(fn, repeat=15):

@@ -19,8 +19,8 @@ import time
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import run_mc, sample_values
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import run_mc, sample_values
 
 
 def rss_mb() -> float:
@@ -140,7 +140,7 @@ def main():
     model = build_error_model(robot, "table2")
     q = robot.q_nominal
     print(f"tool_changer, {len(model.params)} error parameters, cpus={os.cpu_count()}, load={os.getloadavg()}")
-    from tolalloc.kernel import NUMBA_AVAILABLE
+    from tolalloc.engine import NUMBA_AVAILABLE
 
     for engine in (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"]:
         for jobs in (2, 1):

@@ -32,9 +32,9 @@ from bench_linear import timeit as median_time  # noqa: E402
 from bench_montecarlo import measure_run_mc, peers, pinocchio_model  # noqa: E402
 
 from tolalloc import load_robot  # noqa: E402
-from tolalloc.errors import build_error_model  # noqa: E402
-from tolalloc.linear import linear_map  # noqa: E402
-from tolalloc.probability import p_within_radius  # noqa: E402
+from tolalloc.errormodel.model import build_error_model  # noqa: E402
+from tolalloc.linear.covariance import linear_map  # noqa: E402
+from tolalloc.linear.probability import p_within_radius  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 ROWS: list[dict] = []
@@ -78,7 +78,7 @@ def machine() -> dict:
 
 # ----------------------------------------------------------------- Monte Carlo
 def bench_mc(model, q, n, loop_n):
-    from tolalloc.kernel import NUMBA_AVAILABLE
+    from tolalloc.engine import NUMBA_AVAILABLE
 
     kw = dict(radii_mm=(0.15, 0.25), angle_radii_rad=(0.002,))
     engines = (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"]
@@ -110,8 +110,8 @@ def bench_verify_workload(n, engines):
     times = {}
     for engine in engines:
         code = ("import time; t0 = time.perf_counter()\n"
-                "from tolalloc import load_robot\nfrom tolalloc.errors import build_error_model\n"
-                "from tolalloc.montecarlo import run_mc\n"
+                "from tolalloc import load_robot\nfrom tolalloc.errormodel import build_error_model\n"
+                "from tolalloc.montecarlo.run import run_mc\n"
                 "r = load_robot('tool_changer'); m = build_error_model(r, 'table2')\n"
                 "q = r.poses('working')[:12]\n"
                 f"res = run_mc(m, q, {n}, seed=0, radii_mm=(0.25,), engine='{engine}')\n"
@@ -128,8 +128,8 @@ def bench_big(n):
     """A streamed run in a fresh process: wall time and peak RSS."""
     code = (
         "import json, resource, time, numpy as np\n"
-        "from tolalloc import load_robot\nfrom tolalloc.errors import build_error_model\n"
-        "from tolalloc.montecarlo import run_mc\n"
+        "from tolalloc import load_robot\nfrom tolalloc.errormodel import build_error_model\n"
+        "from tolalloc.montecarlo.run import run_mc\n"
         "r = load_robot('tool_changer'); m = build_error_model(r, 'table2')\n"
         "t = time.perf_counter()\n"
         f"res = run_mc(m, r.q_nominal, {n}, seed=0, radii_mm=(0.15, 0.25), angle_radii_rad=(0.002,), hist_bins=100, "
@@ -173,7 +173,7 @@ def _pin_error_jacobian(pm, pdata, robot, model, q):
 
 def bench_jacobian(robot, model):
     """Jacobian stacks for 1,000 poses: default engine (numba when installed), the numpy path, Pinocchio loops."""
-    from tolalloc.kernel import resolve_engine
+    from tolalloc.engine import resolve_engine
 
     q = np.random.default_rng(0).uniform(robot.lower, robot.upper, (1000, robot.n_joints))
     eng = resolve_engine(None)
@@ -334,7 +334,7 @@ def main():
     model = build_error_model(robot, "table2")
     print(f"{'section':12s} {'case':44s} {'ours':>12s} {'unit':10s} {'peer value':>12s} {'ratio':>10s}  peer")
     bench_mc(model, robot.q_nominal, 2**18 if a.quick else 2**23, 2000 if a.quick else 20000)
-    from tolalloc.kernel import NUMBA_AVAILABLE
+    from tolalloc.engine import NUMBA_AVAILABLE
 
     bench_verify_workload(10**5 if a.quick else 10**6, (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"])
     bench_jacobian(robot, model)

@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tolalloc.lie import exp_so3, inv_transform, rotvec
-from tolalloc.robot import Joint, Link, Robot
+from tolalloc.robot.lie import exp_so3, inv_transform, rotvec
+from tolalloc.robot.model import Joint, Link, Robot
 
 
 def random_unit(rng: np.random.Generator) -> np.ndarray:
@@ -132,7 +132,7 @@ def rng():
 
 def skew_robot():
     """A robot with non-axis-aligned joints (exercises the generic rotation branch of the fast paths)."""
-    from tolalloc.robot import Joint, Link, Robot
+    from tolalloc.robot.model import Joint, Link, Robot
 
     a = np.array([0.0, 0.6, 0.8])
     b = np.array([1.0, 1.0, 1.0]) / np.sqrt(3)

@@ -5,11 +5,12 @@ import pytest
 from scipy.stats import chi2, norm
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.allocate import allocate, build_problem, diagnose
-from tolalloc.allocate_convex import solve_rule
-from tolalloc.allocate_exact import solve_exact
-from tolalloc.errors import build_error_model
-from tolalloc.probability import p_within_radius
+from tolalloc.allocate import allocate, build_problem
+from tolalloc.allocate.problem import diagnose
+from tolalloc.allocate.convex import solve_rule
+from tolalloc.allocate.exact import solve_exact
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.linear.probability import p_within_radius
 
 ALL = ["dl1", "dl2", "dl3", "dl4", "dl5", "dl6", "dth1", "dth2", "dth3", "dd4", "dth5", "dth6",
        "e1x", "e1y", "e2y", "e2z", "e3y", "e3z", "e5y", "e5z", "e6x", "e6y"]
@@ -158,8 +159,8 @@ def test_bad_solver_name(result):
 
 @pytest.mark.parametrize("z", [3.0, np.sqrt(3.0)])
 def test_certified_rules_hold_exactly(robot, z):
-    from tolalloc.allocate_convex import rule_ratio
-    from tolalloc.costs import cost_set
+    from tolalloc.allocate.convex import rule_ratio
+    from tolalloc.allocate.costs import cost_set
 
     model = build_error_model(robot)
     pr = build_problem(model, costs=cost_set(model, None, z=z))

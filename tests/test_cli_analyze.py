@@ -10,9 +10,9 @@ import pytest
 
 from tolalloc import load_robot
 from tolalloc.cli import main
-from tolalloc.errors import build_error_model
-from tolalloc.linear import budget, linear_map
-from tolalloc.probability import p_within_radius, radius_for_prob
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.linear.covariance import budget, linear_map
+from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
 
 def run(capsys, *argv):

@@ -7,10 +7,10 @@ import pytest
 from conftest import twist_fd
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.dh import chain_from_dh
-from tolalloc.lie import rot_x, rot_z, transform
-from tolalloc.robot import Robot
-from tolalloc.robotfile import robot_from_dict
+from tolalloc.robot.io.dh import chain_from_dh
+from tolalloc.robot.lie import rot_x, rot_z, transform
+from tolalloc.robot.model import Robot
+from tolalloc.robot.io import robot_from_dict
 
 UR10_DH = dict(  # ../shared/data/ipa-ur10/README.md, metres and rad
     d=[0.1273, 0, 0, 0.163941, 0.1157, 0.0922],
@@ -148,7 +148,7 @@ def test_dh_toml_file_with_tool(tmp_path, convention, reference):
     names = [lk.name for lk in robot.links]
     assert names == (["d1", "a1", "a2", "d3_offset"] if convention == "standard" else ["a0", "d1", "a1", "d3_offset"])
     # the prismatic offset's length error does not clash with the drive error dd3
-    from tolalloc.errors import build_error_model
+    from tolalloc.errormodel.model import build_error_model
 
     model = build_error_model(robot)
     assert "dd3" in model.names and "dd3_offset" in model.names

@@ -7,8 +7,8 @@ import tolalloc
 from tolalloc.diagnose.effects import (effect_basis, gravity_torques, joint_effect_dq, point_jacobian,
                                        target_points)
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.errors import build_error_model
-from tolalloc.robot import fk_poe
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.kinematics import fk_poe
 
 
 def _meas(robot, P=15, seed=0):

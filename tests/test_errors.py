@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errors import CLEARANCE_SIGMA, GENERIC_SIGMA, KINDS, build_error_model
-from tolalloc.lie import exp_se3, rot_x, rot_z, rotvec, transform
-from tolalloc.robot import fk_poe
+from tolalloc.errormodel.model import CLEARANCE_SIGMA, GENERIC_SIGMA, KINDS, build_error_model
+from tolalloc.robot.lie import exp_se3, rot_x, rot_z, rotvec, transform
+from tolalloc.robot.kinematics import fk_poe
 
 TC_NAMES = ["dl1", "dl2", "dl3", "dl4", "dl5", "dl6", "dth1", "dth2", "dth3", "dd4", "dth5", "dth6",
             "e1x", "e1y", "e2y", "e2z", "e3y", "e3z", "e5y", "e5z", "e6x", "e6y"]

@@ -5,11 +5,11 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from tolalloc import load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.fastchain import FEATURES, N_BUF, ErrorFeatures, FastChain
-from tolalloc.lie import euler_xyz_fixed
-from tolalloc.montecarlo import generic_pose_errors, pose_errors
-from tolalloc.robot import fk_poe
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel.chain import FEATURES, N_BUF, ErrorFeatures, FastChain
+from tolalloc.robot.lie import euler_xyz_fixed
+from tolalloc.montecarlo.run import generic_pose_errors, pose_errors
+from tolalloc.robot.kinematics import fk_poe
 
 
 @pytest.fixture(scope="module")

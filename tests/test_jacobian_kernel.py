@@ -6,13 +6,11 @@ import numpy as np
 import pytest
 from conftest import random_chain, random_q
 
-import tolalloc.kinematics as kinematics_mod
-from tolalloc import TolallocError, kernel, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.kinematics import JAC_KERNEL_MIN_POSES, space_jacobian
+import tolalloc.robot.kinematics as kinematics_mod
+from tolalloc import TolallocError, engine, load_robot
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.kinematics import JAC_KERNEL_MIN_POSES, space_jacobian
 
-needs_numba = pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba not installed: the compiled "
-                                 "Jacobian kernel is optional (pip install 'tolalloc[fast]')")
 RTOL = 1e-12
 OPTIONS = [dict(link_mode=lm, deflection_mode=dm, clearance=c)
            for lm in ("consistent", "axes_only") for dm in ("screw", "tilt") for c in (False, True)]
@@ -39,12 +37,11 @@ def poses(robot, P, seed=0):
     return rng.uniform(robot.lower, robot.upper, (P, robot.n_joints))
 
 
-@needs_numba
 @pytest.mark.parametrize("robot", robots(), ids=lambda r: f"{r.name}{r.n_joints}")
 def test_space_jacobian_equals_numpy(robot):
     q = poses(robot, 200)
     ref = space_jacobian(robot.screws, q, engine="numpy")
-    from tolalloc import _jacobian_nb
+    from tolalloc.robot import _jacobian_nb
 
     assert_close(_jacobian_nb.space_jacobian(robot.screws, q), ref)  # the kernel itself, called directly
     assert_close(robot.space_jacobian(q), ref)  # dispatched (P >= JAC_KERNEL_MIN_POSES)
@@ -61,7 +58,6 @@ def test_space_jacobian_equals_numpy(robot):
         assert np.allclose(J, tw, rtol=1e-5, atol=1e-5 * (1 + np.max(np.abs(tw))))
 
 
-@needs_numba
 @pytest.mark.parametrize("opts", OPTIONS, ids=lambda o: "-".join(str(v) for v in o.values()))
 @pytest.mark.parametrize("robot", robots()[:4], ids=lambda r: f"{r.name}{r.n_joints}")
 def test_error_jacobian_equals_numpy(robot, opts):
@@ -74,13 +70,12 @@ def test_error_jacobian_equals_numpy(robot, opts):
     assert_close(model.jacobian(q[:2], engine="numba"), ref[:2])
 
 
-@needs_numba
 def test_dispatch_rules(monkeypatch):
     """Kernel for one chain at many poses; numpy for single poses, stacked chains, general screws."""
     robot = load_robot("tool_changer")
     model = build_error_model(robot)
     calls = []
-    from tolalloc import _jacobian_nb
+    from tolalloc.robot import _jacobian_nb
 
     for name in ("space_jacobian", "error_jacobian"):
         orig = getattr(_jacobian_nb, name)
@@ -109,7 +104,7 @@ def test_numba_absent(monkeypatch):
     robot = load_robot("tool_changer")
     model = build_error_model(robot, clearance=True)
     q = poses(robot, 100)
-    monkeypatch.setattr(kernel, "NUMBA_AVAILABLE", False)
+    monkeypatch.setattr(engine, "NUMBA_AVAILABLE", False)
     assert kinematics_mod._jacobian_kernel(robot.screws, q, None) is None
     with pytest.raises(TolallocError, match="numba"):
         robot.space_jacobian(q, engine="numba")

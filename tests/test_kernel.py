@@ -4,13 +4,12 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc import kernel
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import BLOCK_SIZE, run_mc
+from tolalloc import engine
+from tolalloc.montecarlo.engines import numba_engine as kernel
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
 from conftest import skew_robot
 
-pytestmark = pytest.mark.skipif(not kernel.NUMBA_AVAILABLE, reason="numba not installed: the compiled kernel is "
-                                "optional (pip install tolalloc[fast]); the numpy path is tested elsewhere")
 
 MOMENTS = ("mean_mm", "std_mm", "cov_mm2", "angle_mean_rad", "angle_std_rad", "rotvec_std_rad")
 KW = dict(radii_mm=(0.05, 0.15, 0.3), angle_radii_rad=(0.002, 0.01), hist_bins=12, keep_samples=300)
@@ -117,7 +116,7 @@ def test_compiled_normals_equal_numpy(seed):
 
 
 def test_sincos_atan2_accuracy():
-    from tolalloc._kernel_nb import _atan2, _sincos
+    from tolalloc.montecarlo.engines._kernel_nb import _atan2, _sincos
 
     rng = np.random.default_rng(0)
     x = np.concatenate([rng.normal(0, 1e-3, 300), rng.uniform(-7, 7, 700), [0.0, -0.0, np.pi / 2, -np.pi, 1e-300]])
@@ -134,17 +133,17 @@ def test_sincos_atan2_accuracy():
 
 def test_engine_switch(robot, monkeypatch):
     m = build_error_model(robot, "table2")
-    assert kernel.resolve_engine("numpy") == "numpy" and kernel.resolve_engine(None) == "numba"
+    assert engine.resolve_engine("numpy") == "numpy" and engine.resolve_engine(None) == "numba"
     monkeypatch.setenv("TOLALLOC_NUMBA", "0")
-    assert kernel.resolve_engine(None) == "numpy" and kernel.resolve_engine("numba") == "numba"
+    assert engine.resolve_engine(None) == "numpy" and engine.resolve_engine("numba") == "numba"
     monkeypatch.delenv("TOLALLOC_NUMBA")
     with pytest.raises(TolallocError, match="engine"):
-        kernel.resolve_engine("fortran")
+        engine.resolve_engine("fortran")
     b = run_mc(m, robot.q_nominal, 3000, seed=5, engine="numpy", **KW)
-    monkeypatch.setattr(kernel, "NUMBA_AVAILABLE", False)  # as if numba were not installed
-    assert kernel.resolve_engine(None) == "numpy"
+    monkeypatch.setattr(engine, "NUMBA_AVAILABLE", False)  # as if numba were not installed
+    assert engine.resolve_engine(None) == "numpy"
     with pytest.raises(TolallocError, match="numba"):
-        kernel.resolve_engine("numba")
+        engine.resolve_engine("numba")
     a = run_mc(m, robot.q_nominal, 3000, seed=5, **KW)
     for f in MOMENTS + ("norm_mm", "dp_max_mm"):
         assert np.array_equal(getattr(a, f), getattr(b, f)), f

@@ -10,7 +10,7 @@ from hypothesis.extra.numpy import arrays
 from scipy.linalg import expm
 from scipy.spatial.transform import Rotation
 
-from tolalloc.lie import (adjoint, euler_xyz_fixed, exp_se3, exp_so3, hat, inv_transform, rot_x, rot_y, rot_z,
+from tolalloc.robot.lie import (adjoint, euler_xyz_fixed, exp_se3, exp_so3, hat, inv_transform, rot_x, rot_y, rot_z,
                           rotvec, transform)
 
 finite = st.floats(-10.0, 10.0, allow_nan=False, allow_infinity=False)

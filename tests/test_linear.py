@@ -7,9 +7,9 @@ import pytest
 from conftest import random_chain, random_q
 
 from tolalloc import TolallocError, fk_poe, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.linear import VARIANCE_FACTOR, budget, input_covariance, linear_map
-from tolalloc.lie import rotvec
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.linear.covariance import VARIANCE_FACTOR, budget, input_covariance, linear_map
+from tolalloc.robot.lie import rotvec
 
 OPTIONS = [(lm, dm, cl) for lm in ("consistent", "axes_only") for dm in ("screw", "tilt") for cl in (False, True)]
 

@@ -5,9 +5,9 @@ import pytest
 from scipy import stats
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.lie import rot_x, rot_z
-from tolalloc.montecarlo import (BLOCK_SIZE, generic_pose_errors, pose_errors, proportion_ci, run_mc,
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.lie import rot_x, rot_z
+from tolalloc.montecarlo.run import (BLOCK_SIZE, generic_pose_errors, pose_errors, proportion_ci, run_mc,
                                  sample_values)
 from conftest import skew_robot
 
@@ -96,7 +96,7 @@ def test_paper_literal_options_change_what_they_should(robot):
     assert np.linalg.norm(pose_errors(tilt, q, v)["dp_mm"]) < 1e-12
     # the error screw (home-frame y axis through joint 2, carried by joint 1) turns the downstream chain
     c, pt, R1 = robot.joint_points_mm[1], robot.fk(q)[:3, 3], rot_z(q[0])
-    from tolalloc.lie import rot_y
+    from tolalloc.robot.lie import rot_y
     assert np.allclose(pose_errors(screw, q, v)["dp_mm"][0], R1 @ (c + rot_y(0.004) @ (R1.T @ pt - c)) - pt, atol=1e-11)
     # both options leave drive errors untouched
     v[:] = 0

@@ -9,9 +9,9 @@ import pytest
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.cli import main
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import BLOCK_SIZE, run_mc
-from tolalloc.parallel import check_scheduler, ordered_map
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
+from tolalloc.montecarlo.parallel import check_scheduler, ordered_map
 
 STATS = ("mean_mm", "std_mm", "cov_mm2", "norm_mm", "reach_mm", "angle_mean_rad", "angle_std_rad", "rotvec_std_rad",
          "dp_max_mm", "dp_min_mm", "angle_max_rad", "angle_min_rad")

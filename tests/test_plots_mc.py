@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import run_mc
-from tolalloc.plots import mc as mcplots
-from tolalloc.sensitivity import PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity, trajectory_errors
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import run_mc
+from tolalloc.report.plots import mc as mcplots
+from tolalloc.montecarlo.sensitivity import PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity, trajectory_errors
 
 
 @pytest.fixture(scope="module")

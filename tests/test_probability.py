@@ -6,7 +6,7 @@ import pytest
 from scipy.stats import chi2, norm
 
 from tolalloc import TolallocError
-from tolalloc.probability import (
+from tolalloc.linear.probability import (
     angle_for_prob,
     casadi_rule_error,
     chi2_3_cdf,
@@ -245,7 +245,7 @@ def test_mean_isotropic_is_noncentral_chi2_and_rank_one_off_axis():
 
 def test_ray_rule_agrees_with_nested_quadrature_inside_its_range():
     """The fast ray rule is used only for |mean| <= 0.75 r: there it matches the exact nested rule to 1e-6."""
-    from tolalloc.probability import RAY_RULE_MAX_MEAN, _p_mean_nested, _p_with_mean
+    from tolalloc.linear.probability import RAY_RULE_MAX_MEAN, _p_mean_nested, _p_with_mean
 
     rng = np.random.default_rng(11)
     for _ in range(8):

@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.costs import load_costs
-from tolalloc.errors import build_error_model
-from tolalloc.robotfile import robot_from_dict
+from tolalloc.allocate.costs import load_costs
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.io import robot_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()

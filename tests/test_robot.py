@@ -8,8 +8,8 @@ from conftest import (pin_jacobian_to_ours, pinocchio_model, random_chain, rando
 
 import tolalloc
 from tolalloc import Joint, Link, Robot, TolallocError, load_robot
-from tolalloc.lie import exp_se3, rot_z
-from tolalloc.robot import body_jacobian, fk_poe, poe_prefix, space_jacobian
+from tolalloc.robot.lie import exp_se3, rot_z
+from tolalloc.robot.kinematics import body_jacobian, fk_poe, poe_prefix, space_jacobian
 
 L = dict(l1=315.0, l2=210.0, l3=796.0, l4=560.0, l5=240.0, l6=165.0)
 

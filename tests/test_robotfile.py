@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, builtin_robots, load_robot
-from tolalloc.lie import rot_x, rot_y, rot_z
-from tolalloc.robotfile import robot_from_dict
+from tolalloc.robot.lie import rot_x, rot_y, rot_z
+from tolalloc.robot.io import robot_from_dict
 
 BASE = textwrap.dedent("""\
     name = "two"

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import pose_errors, run_mc
-from tolalloc.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import pose_errors, run_mc
+from tolalloc.montecarlo.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,
                                   trajectory_errors)
 
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError
-from tolalloc.standards import IT_GRADES, IT_SIZES_MM, IT_TABLE_UM, it_value_mm, snap_angle, snap_length
+from tolalloc.allocate.standards import IT_GRADES, IT_SIZES_MM, IT_TABLE_UM, it_value_mm, snap_angle, snap_length
 
 LOWER = np.concatenate([[1.0], IT_SIZES_MM[:-1]])  # the first range is 0-3 mm; the standard uses D = sqrt(1*3)
 D = np.sqrt(LOWER * IT_SIZES_MM)

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import BLOCK_SIZE, run_mc
-from tolalloc.streaming import PLANES, Extras, HistSpec, Moments
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
+from tolalloc.montecarlo.streaming import PLANES, Extras, HistSpec, Moments
 
 
 @pytest.fixture(scope="module")

@@ -5,7 +5,7 @@ import pandas as pd
 import pytest
 
 from tolalloc import TolallocError
-from tolalloc.tables import TABLE_COLUMNS, display_frame, format_text, write_tables
+from tolalloc.report.tables import TABLE_COLUMNS, display_frame, format_text, write_tables
 
 
 @pytest.fixture

@@ -10,7 +10,7 @@ import pytest
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.cli import main
-from tolalloc.urdf import load_urdf
+from tolalloc.robot.io.urdf import load_urdf
 
 pin = pytest.importorskip("pinocchio")  # a test dependency (`pin`); skip reason: Pinocchio not installed
 

@@ -5,9 +5,10 @@ import pytest
 from dataclasses import replace
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.allocate import allocate, build_problem, make_design
-from tolalloc.errors import build_error_model
-from tolalloc.verify import EXACT_TOL, verify_design
+from tolalloc.allocate import allocate, build_problem
+from tolalloc.allocate.problem import make_design
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.verify.designs import EXACT_TOL, verify_design
 
 N = 100_000  # sd of P_hat near 0.95: 0.0007, well inside the 0.002 allowance
 

@@ -4,9 +4,8 @@ Units inside the library: lengths in mm, angles in rad. Joint values at the
 interface (robot files, CLI, CSV) are in degrees (revolute) and mm (prismatic).
 """
 
-from ._validate import TolallocError
-from .robot import Joint, Link, Mass, Robot, body_jacobian, fk_poe, space_jacobian
-from .robotfile import builtin_robots, load_robot
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot import Joint, Link, Mass, Robot, body_jacobian, builtin_robots, fk_poe, load_robot, space_jacobian
 
 __version__ = "0.1.0"
 

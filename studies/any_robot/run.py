@@ -4,7 +4,7 @@ The URDFs are the ones shipped by the ``example-robot-data`` package (a test ext
 ``ur_description/urdf/ur5_robot.urdf`` (tool link ``tool0``) and ``panda_description/urdf/panda.urdf``
 (tool link ``panda_hand_tcp``). For each robot:
 
-1. import the URDF (:func:`tolalloc.urdf.load_urdf`), generic error sigma (no sigma set in a URDF);
+1. import the URDF (:func:`tolalloc.robot.io.urdf.load_urdf`), generic error sigma (no sigma set in a URDF);
 2. working poses: the URDF has none, so ``N_POSES`` seeded random poses inside the middle 60 % of
    each joint range (revolute ranges clipped to +-180 deg first) -- an assumption of this study;
 3. allocate tolerances for P(|dP| < 0.25 mm) >= 0.95 at every pose (default costs, exact solver);
@@ -26,10 +26,10 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate import allocate, build_problem
-from tolalloc.errors import build_error_model
-from tolalloc.montecarlo import run_mc
-from tolalloc.plots.mc import scatter_density
-from tolalloc.urdf import load_urdf
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.montecarlo.run import run_mc
+from tolalloc.report.plots.mc import scatter_density
+from tolalloc.robot.io.urdf import load_urdf
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "any_robot"
 ROBOTS = {"ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),

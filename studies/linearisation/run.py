@@ -23,10 +23,10 @@ import numpy as np
 import pandas as pd
 
 from tolalloc import load_robot
-from tolalloc.errors import build_error_model
-from tolalloc.linear import linear_map
-from tolalloc.montecarlo import run_mc
-from tolalloc.plots.linear import linearisation_figure
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.linear.covariance import linear_map
+from tolalloc.montecarlo.run import run_mc
+from tolalloc.report.plots.linear import linearisation_figure
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "linearisation"
 SCALES = (1, 3, 10, 30, 100)

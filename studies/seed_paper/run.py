@@ -21,11 +21,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import paper  # noqa: E402
 
 from tolalloc import load_robot  # noqa: E402
-from tolalloc.errors import CLEARANCE_TILT_LITERAL_RAD, build_error_model  # noqa: E402
-from tolalloc.montecarlo import proportion_ci, run_mc  # noqa: E402
-from tolalloc.plots import mc as mcplots  # noqa: E402
-from tolalloc.robot import Link  # noqa: E402
-from tolalloc.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,  # noqa: E402
+from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD, build_error_model  # noqa: E402
+from tolalloc.montecarlo.run import proportion_ci, run_mc  # noqa: E402
+from tolalloc.report.plots import mc as mcplots  # noqa: E402
+from tolalloc.robot.model import Link  # noqa: E402
+from tolalloc.montecarlo.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,  # noqa: E402
                                   trajectory_errors)
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -22,7 +22,7 @@ import pandas as pd
 import tolalloc
 from tolalloc.diagnose import LABELS, diagnose, generate, measurements_from_frame
 from tolalloc.diagnose.synth import split_frame
-from tolalloc.plots.diagnose import plot_confusion
+from tolalloc.report.plots.diagnose import plot_confusion
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_blind"
 

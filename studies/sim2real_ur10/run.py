@@ -27,7 +27,7 @@ import pandas as pd
 
 import tolalloc
 from tolalloc.diagnose import diagnose, measurements_from_frame
-from tolalloc.diagnose.report import write_report
+from tolalloc.report.diagnosis import write_report
 from tolalloc.diagnose.synth import split_frame
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))

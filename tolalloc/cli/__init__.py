@@ -12,7 +12,7 @@ import argparse
 import importlib
 import sys
 
-from .._validate import TolallocError
+from tolalloc.exceptions import TolallocError
 
 #: command modules, in the order shown by --help
 COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate"]

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import TolallocError
-from ..errors import build_error_model
-from .common import add_robot_arg, add_scheduler_arg, atomic_output, check_output, robot_from_args, write_json
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.cli.common import add_robot_arg, add_scheduler_arg, atomic_output, check_output, robot_from_args, write_json
 
 
 def register(sub) -> None:
@@ -54,9 +54,9 @@ def _poses_of(robot, name):
 
 
 def cmd_allocate(args) -> int:
-    from ..allocate import allocate, build_problem
-    from ..costs import cost_set, load_costs
-    from ..tables import format_text, write_tables
+    from tolalloc.allocate import allocate, build_problem
+    from tolalloc.allocate.costs import cost_set, load_costs
+    from tolalloc.report.tables import format_text, write_tables
 
     robot = robot_from_args(args)
     _check_args(args)
@@ -72,7 +72,7 @@ def cmd_allocate(args) -> int:
     table = res.to_frame()
     ver = None
     if res.status == "optimal" and not args.no_verify:
-        from ..verify import verify_design
+        from tolalloc.verify.designs import verify_design
 
         ver = verify_design(problem, res.design, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
     summary = res.summary()
@@ -92,7 +92,7 @@ def cmd_allocate(args) -> int:
             write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
                          f"{args.prob:g} at the {set_name} poses ({res.design.solver})")
             write_json(summary, tmp / "summary.json")
-            from ..plots.allocate import plot_budget, plot_cloud, plot_pose_probabilities
+            from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pose_probabilities
 
             plot_budget(table, tmp / "error_budget.png",
                         title=f"{robot.name}: {res.design.solver} design, worst pose {res.worst_pose + 1}")

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validate import TolallocError
-from ..linear import budget, linear_map
-from .common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
+from tolalloc.exceptions import TolallocError
+from tolalloc.linear.covariance import budget, linear_map
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
                      format_labels, parse_q, robot_from_args, write_json)
 
 
@@ -94,7 +94,7 @@ def cmd_analyze(args) -> int:
     if args.out:
         import matplotlib.pyplot as plt
 
-        from ..plots.linear import budget_bars
+        from tolalloc.report.plots.linear import budget_bars
 
         with atomic_output(args.out, directory=True) as tmp:
             res.to_frame().to_csv(tmp / "linear_table.csv", index=False, float_format="%.6g")

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._validate import TolallocError
-from ..robot import Robot
-from ..robotfile import load_robot
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.model import Robot
+from tolalloc.robot.io import load_robot
 
 __all__ = ["format_labels", "parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
            "check_output", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
@@ -147,7 +147,7 @@ def write_json(obj, path) -> None:
 
 def add_error_model_args(parser) -> None:
     """The error-model options shared by the analysis commands (read back by :func:`error_model_from_args`)."""
-    from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
+    from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 
     parser.add_argument("--sigma-set", default=None,
                         help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
@@ -210,7 +210,7 @@ def sigma_overrides(model_params, items) -> dict:
 
 def error_model_from_args(robot: Robot, args):
     """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
-    from ..errors import CLEARANCE_TILT_LITERAL_RAD, build_error_model
+    from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD, build_error_model
 
     opts = dict(link_mode=args.link_mode, deflection_mode=args.deflection_mode, clearance=args.clearance)
     base = build_error_model(robot, args.sigma_set, **opts)

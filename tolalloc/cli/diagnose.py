@@ -6,7 +6,7 @@ import contextlib
 
 import pandas as pd
 
-from .common import add_robot_arg, atomic_output, robot_from_args, write_json
+from tolalloc.cli.common import add_robot_arg, atomic_output, robot_from_args, write_json
 
 
 def register(sub) -> None:
@@ -34,9 +34,9 @@ def register(sub) -> None:
 
 
 def cmd_diagnose(args) -> int:
-    from .._validate import TolallocError
-    from ..diagnose import diagnose, read_measurements
-    from ..diagnose.report import write_report
+    from tolalloc.exceptions import TolallocError
+    from tolalloc.diagnose import diagnose, read_measurements
+    from tolalloc.report.diagnosis import write_report
 
     robot = robot_from_args(args)
     if args.predictions and not args.test:

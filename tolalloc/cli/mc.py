@@ -6,10 +6,10 @@ import argparse
 
 import numpy as np
 
-from .._validate import TolallocError
-from ..errors import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
-from ..montecarlo import run_mc
-from .common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
+from tolalloc.montecarlo.run import run_mc
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
                      error_model_from_args, format_labels, parse_q, robot_from_args, write_json)
 
 
@@ -98,7 +98,7 @@ def cmd_mc(args) -> int:
     summary["labels"] = {**summary["labels"], "clearance_tilt_rad": (CLEARANCE_TILT_LITERAL_RAD if args.clearance_tilt_literal
                                                                      else CLEARANCE_SIGMA["tilt_rad"]) if args.clearance else None}
     if args.out:
-        from ..plots.mc import scatter_density
+        from tolalloc.report.plots.mc import scatter_density
         import matplotlib.pyplot as plt
 
         with atomic_output(args.out, directory=True) as tmp:
@@ -107,7 +107,7 @@ def cmd_mc(args) -> int:
             fig = scatter_density(res, tmp / "mc_scatter.png")
             plt.close(fig)
             if res.hist is not None:
-                from ..plots.mc import hist_density
+                from tolalloc.report.plots.mc import hist_density
 
                 plt.close(hist_density(res, tmp / "mc_density.png"))
                 np.savez_compressed(tmp / "mc_hist.npz", counts=res.hist.counts, edges_mm=res.hist.edges_mm,

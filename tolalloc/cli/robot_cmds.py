@@ -7,9 +7,9 @@ import json
 import numpy as np
 import pandas as pd
 
-from ..lie import euler_xyz_fixed
-from ..robotfile import builtin_robots
-from .common import add_robot_arg, json_default, parse_q, robot_from_args
+from tolalloc.robot.lie import euler_xyz_fixed
+from tolalloc.robot.io import builtin_robots
+from tolalloc.cli.common import add_robot_arg, json_default, parse_q, robot_from_args
 
 
 def register(sub) -> None:

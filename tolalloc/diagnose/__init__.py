@@ -7,11 +7,11 @@ selection), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnos
 (synthetic measurement sets with a withheld effect), :mod:`.report` (Markdown report).
 """
 
-from .calibrate import Calibration, Fit, Identifiability, calibrate
-from .effects import EFFECTS
-from .measurements import Measurements, measurements_from_frame, read_measurements
-from .pipeline import Diagnosis, diagnose
-from .synth import LABELS, SynthCase, generate
+from tolalloc.diagnose.calibrate import Calibration, Fit, Identifiability, calibrate
+from tolalloc.diagnose.effects import EFFECTS
+from tolalloc.diagnose.measurements import Measurements, measurements_from_frame, read_measurements
+from tolalloc.diagnose.pipeline import Diagnosis, diagnose
+from tolalloc.diagnose.synth import LABELS, SynthCase, generate
 
 __all__ = ["EFFECTS", "LABELS", "Measurements", "read_measurements", "measurements_from_frame", "calibrate",
            "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase"]

@@ -5,7 +5,7 @@ Model of a measured point (tracker frame)::
     x_i = R ( T(q_i + dq; delta) [t; 1] + B_i beta ) + p
 
 ``R, p`` the registration (tracker <- robot base, 6), ``t`` the target offset on the flange (3, flange
-frame), ``delta`` the identifiable geometric error parameters of :mod:`tolalloc.errors` (exact perturbed
+frame), ``delta`` the identifiable geometric error parameters of :mod:`tolalloc.errormodel.model` (exact perturbed
 chain), ``B_i beta`` an optional linear effect correction (:mod:`tolalloc.diagnose.effects`).
 
 The fit starts from a point-set alignment (Kabsch, via ``Rotation.align_vectors``) of the nominal flange
@@ -30,12 +30,12 @@ import scipy.linalg
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from .._validate import TolallocError
-from ..errors import ErrorModel, build_error_model
-from ..lie import hat
-from ..kinematics import fk_poe
-from ..robot import Robot
-from .measurements import Measurements
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import ErrorModel, build_error_model
+from tolalloc.robot.lie import hat
+from tolalloc.robot.kinematics import fk_poe
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]

@@ -29,10 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import build_error_model
-from ..kinematics import poe_prefix
-from ..robot import Mass, Robot
-from .measurements import Measurements
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.kinematics import poe_prefix
+from tolalloc.robot.model import Mass, Robot
+from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_reference", "applicable", "gravity_torques",
            "robot_masses", "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian"]

@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .._validate import TolallocError
-from ..robot import Robot
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.model import Robot
 
 __all__ = ["Measurements", "read_measurements", "measurements_from_frame", "POSITION_COLUMNS"]
 

@@ -7,13 +7,13 @@ from dataclasses import dataclass
 import pandas as pd
 from threadpoolctl import threadpool_limits
 
-from .._validate import TolallocError
-from ..errors import build_error_model
-from ..robot import Robot
-from .calibrate import DEFAULT_TOL, Calibration, calibrate
-from .measurements import Measurements
-from .select import Evaluation, error_stats, evaluate, make_context, select_effects
-from .where import WhereBreakdown, where_breakdown
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
+from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
 __all__ = ["Diagnosis", "diagnose"]
 

@@ -18,8 +18,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.stats import wilcoxon
 
-from .calibrate import Fit, fit_model, fixed_jacobian, kabsch, select_columns
-from .effects import EFFECTS, applicable, effect_basis, effect_reference
+from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, kabsch, select_columns
+from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_reference
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "evaluate", "select_effects", "rms", "error_stats"]
 

@@ -21,12 +21,12 @@ import numpy as np
 import pandas as pd
 from scipy.spatial.transform import Rotation
 
-from .._validate import TolallocError
-from ..errors import build_error_model
-from ..kinematics import fk_poe
-from ..robot import Robot
-from .effects import EFFECTS, effect_basis, joint_effect_dq, target_points
-from .measurements import Measurements
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import build_error_model
+from tolalloc.robot.kinematics import fk_poe
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.effects import EFFECTS, effect_basis, joint_effect_dq, target_points
+from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["SynthCase", "generate", "split_frame", "LABELS"]
 

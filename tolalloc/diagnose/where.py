@@ -16,10 +16,10 @@ import numpy as np
 import pandas as pd
 from scipy.stats import spearmanr
 
-from ..robot import Robot
-from .calibrate import Fit
-from .effects import gravity_torques
-from .measurements import Measurements
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.calibrate import Fit
+from tolalloc.diagnose.effects import gravity_torques
+from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["WhereBreakdown", "where_breakdown", "pose_features"]
 
@@ -59,7 +59,7 @@ def pose_features(robot: Robot, meas: Measurements, points_base_mm: np.ndarray) 
     cols["reach_mm"] = np.linalg.norm(horiz, axis=1)
     cols["elevation_mm"] = -(points_base_mm @ g)
     shoulder = robot.joint_points_mm[min(1, robot.n_joints - 1)]
-    from ..kinematics import poe_prefix
+    from tolalloc.robot.kinematics import poe_prefix
 
     Pj = poe_prefix(robot.screws, meas.q)[:, min(1, robot.n_joints - 1)]
     sh = Pj[:, :3, :3] @ shoulder + Pj[:, :3, 3]

@@ -1,0 +1,157 @@
+"""Certified allocation (cvxpy + Clarabel): trace rule and eigenvalue (LMI) rule.
+
+Both are convex problems in the scaled variances ``u`` (see :mod:`tolalloc.allocate.problem`)::
+
+    minimise   sum_k c_k(u_k)                                 (convex laws of tolalloc.costs)
+    subject to u_min <= u <= u_max
+               trace: tr Sigma_i(u) / (r^2 / chi2_1^-1(p)) <= 1        for every pose i
+               lmi:   Sigma_i(u) / (r^2 / chi2_3^-1(p)) <= I (PSD)      for every pose i
+
+The trace rule implies ``P(|x| < r) >= p`` for every covariance when ``p >= 0.785``
+(Szekely & Bakirov 2003: for fixed trace the probability is smallest with all variance on one
+axis); the eigenvalue rule implies it for every ``p`` (``|x|^2 <= lambda_max chi2_3``). The
+multipliers of the pose constraints say which poses drive the cost; ``sum_i y_i`` is
+``-d cost / d ln(budget)``, i.e. ``d cost / d ln r = -2 sum_i y_i``.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+
+import numpy as np
+
+from tolalloc.allocate.problem import TRACE_RULE_MIN_P, AllocationProblem, Design, make_design
+
+__all__ = ["solve_certified", "solve_rule"]
+
+
+def _cost_expr(problem: AllocationProblem, u):
+    """Total cost of the allocatable parameters as a DCP expression of ``u`` (grouped by law)."""
+    import cvxpy as cp
+
+    models = [problem.costs.models[k] for k in problem.alloc]
+    const = sum(m.a for m in models)
+    terms = []
+    groups: dict = {}
+    for i, m in enumerate(models):
+        key = (m.model, m.k if m.model == "reciprocal_power" else None)
+        groups.setdefault(key, []).append(i)
+    for (form, k), idx in groups.items():
+        b = np.array([models[i].b for i in idx])
+        ui = u[idx] if len(idx) < len(models) else u
+        if form == "reciprocal":
+            terms.append(b @ cp.power(ui, -0.5))
+        elif form == "reciprocal_power":
+            terms.append(b @ cp.power(ui, -k / 2.0))
+        else:
+            terms.append(b @ cp.exp(-cp.sqrt(ui)))
+    return const + cp.sum(cp.hstack(terms)) if len(terms) > 1 else const + terms[0]
+
+
+def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) -> Design:
+    """Solve the certified problem with one rule (``"trace"`` or ``"lmi"``).
+
+    Returns
+    -------
+    Design
+        ``status`` ``optimal``, ``infeasible`` (the rule cannot be met within the limits),
+        ``not_applicable`` (trace rule with ``p < 0.785``) or ``failed``.
+    """
+    import cvxpy as cp
+
+    t0 = time.perf_counter()
+    solver = f"certified-{rule}"
+    if rule == "trace" and min(b["prob"] for b in problem.blocks) < TRACE_RULE_MIN_P:
+        return Design(solver, "not_applicable", message=f"the trace rule is valid only for p >= {TRACE_RULE_MIN_P}")
+    Ka = len(problem.alloc)
+    u_min, u_max = problem.u_min, problem.u_max
+    u = cp.Variable(Ka)
+    lo, hi = u >= u_min, u <= u_max
+    cons = [lo, hi]
+    pose_cons = []  # (block, constraint or list)
+    for b in problem.blocks:
+        A, C0 = b["A"], b["C0"]
+        P = A.shape[0]
+        if rule == "trace":
+            bound = b["trace_bound"]
+            G = np.einsum("pkii->pk", A) / bound
+            h = 1.0 - np.einsum("pii->p", C0) / bound
+            c = G @ u <= h
+            cons.append(c)
+            pose_cons.append(("vector", c))
+        else:
+            bound = b["eig_bound"]
+            lst = []
+            for p in range(P):
+                M = A[p].reshape(Ka, 9).T / bound
+                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound
+                c = np.eye(3) - S >> 0
+                lst.append(c)
+            cons += lst
+            pose_cons.append(("psd", lst))
+    prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
+    for tol in (1e-10, None):  # tight tolerances; Clarabel's defaults if they end inaccurate
+        settings = {} if tol is None else {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", UserWarning)
+                prob.solve(solver="CLARABEL", verbose=verbose, **settings)
+        except cp.error.SolverError as exc:  # pragma: no cover - solver failure
+            return Design(solver, "failed", time_s=time.perf_counter() - t0, message=f"Clarabel failed: {exc}")
+        if prob.status != "optimal_inaccurate":
+            break
+    dt = time.perf_counter() - t0
+    if prob.status in ("infeasible", "infeasible_inaccurate"):
+        return Design(solver, "infeasible", time_s=dt,
+                      message=f"the {rule} rule cannot be met within the process limits")
+    if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
+        return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
+    uv = _repair(problem, rule, np.clip(u.value, u_min, u_max))
+    duals = []
+    for kind, c in pose_cons:
+        if kind == "vector":
+            duals.append(np.maximum(np.asarray(c.dual_value, float).reshape(-1), 0.0))
+        else:
+            duals.append(np.array([max(float(np.trace(ci.dual_value)), 0.0) for ci in c]))
+    pose_dual = np.sum(duals, axis=0)
+    K = len(problem.costs.names)
+    bound_dual = np.zeros(K)
+    bound_dual[problem.alloc] = np.asarray(lo.dual_value, float) - np.asarray(hi.dual_value, float)
+    msg = "" if prob.status == "optimal" else f"Clarabel status {prob.status}"
+    return make_design(problem, solver, problem.t_from_u(uv), pose_dual=pose_dual, bound_dual=bound_dual,
+                       time_s=dt, message=msg)
+
+
+def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
+    """Largest ``tr Sigma / trace_bound`` (or ``lambda_max / eig_bound``) over poses and blocks; <= 1 is certified."""
+    t = problem.t_from_u(u)
+    out = 0.0
+    for b in problem.blocks:
+        C = problem.covariances(t, b["rows"])
+        if rule == "trace":
+            out = max(out, float(np.einsum("pii->p", C).max() / b["trace_bound"]))
+        else:
+            out = max(out, float(np.linalg.eigvalsh(C)[:, -1].max() / b["eig_bound"]))
+    return out
+
+
+def _repair(problem: AllocationProblem, rule: str, u):
+    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly."""
+    for _ in range(3):
+        rho = rule_ratio(problem, rule, u)
+        if rho <= 1.0:
+            break
+        u = np.clip(u / (rho * (1 + 1e-12)), problem.u_min, problem.u_max)
+    return u
+
+
+def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:
+    """Solve both rules; return ``(kept, other)`` where ``kept`` is the cheaper feasible design."""
+    tr = solve_rule(problem, "trace")
+    lmi = solve_rule(problem, "lmi")
+    cands = [d for d in (tr, lmi) if d.ok]
+    if not cands:
+        return (tr, lmi) if tr.status != "not_applicable" else (lmi, tr)
+    best = min(cands, key=lambda d: d.cost)
+    return (best, lmi if best is tr else tr)

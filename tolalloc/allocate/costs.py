@@ -1,0 +1,331 @@
+"""Cost-tolerance models, process limits and the costs file.
+
+Every allocatable parameter ``k`` gets a symmetric tolerance ``±t_k`` and a cost
+``c_k(t_k)``. All models are written with a *reference tolerance* ``t_ref`` (which
+carries the unit, mm or deg at the interface) and two cost coefficients ``a`` and
+``b`` in relative cost units; with ``tau = t / t_ref``:
+
+``reciprocal``        ``c = a + b / tau``           (``A + B/t`` with ``A = a``, ``B = b t_ref``)
+``reciprocal_power``  ``c = a + b / tau**k``        (``A + B t^-k``)
+``exponential``       ``c = a + b exp(-tau)``       (``A' + A e^(-B t)`` with ``B = 1/t_ref``)
+
+With ``sigma = t / z`` the allocation works in the scaled variance
+``u = (t / t_ref)**2 = tau**2``; every model above is convex in ``u`` (``u**-1/2``,
+``u**-k/2`` and ``exp(-sqrt(u))``), which is what the certified conic solver needs.
+
+Costs file (TOML, units in the keys)::
+
+    z = 3.0                       # sigma = t / z (3: a +-3 sigma process); distribution = "uniform" -> sqrt(3)
+
+    [kinds.link_length]           # kinds: link_length, joint_drive (revolute),
+    model = "reciprocal"          #   joint_drive_prismatic, axis_deflection, clearance_*
+    a = 1.0
+    b = 1.0
+    t_ref_mm = 0.1
+    t_min_mm = 0.005
+    t_max_mm = 1.0
+
+    [parameters.dl3]              # per-parameter overrides (merged over the kind's entry)
+    t_min_mm = 0.01
+    [parameters.e6x]
+    fixed = true                  # keep at tol_deg (or at the error model's sigma * z)
+    tol_deg = 0.01
+    [parameters.dth6]
+    exclude = true                # leave out of the problem entirely
+
+Angles are given with ``_deg`` (or ``_rad``), lengths with ``_mm`` (or ``_m``).
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import ErrorModel
+
+__all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "param_kind_key", "MODELS"]
+
+MODELS = ("reciprocal", "reciprocal_power", "exponential")
+_LEN = {"mm": 1.0, "m": 1000.0}
+_ANG = {"deg": np.pi / 180.0, "rad": 1.0}
+
+#: Default cost-tolerance data for the tool_changer (and any robot without a costs file).
+#: ASSUMPTIONS of this project, not measured data: relative cost 2 (= a + b) at the reference
+#: tolerance, reciprocal law (Chase & Greenwood's classic form); references and process limits
+#: chosen as typical for precision machining of ~0.2-0.8 m links (+-0.1 mm ordinary, +-5 um
+#: the best process, about IT4 over 500 mm), servo drives with absolute encoders (+-0.01 deg
+#: ordinary, +-0.0005 deg = 1.8 arcsec after calibration), and assembled bearing axes
+#: (+-0.01 deg ordinary, +-0.001 deg = 3.6 arcsec with precision bearings and alignment).
+DEFAULT_COSTS = {
+    "z": 3.0,
+    "kinds": {
+        "link_length": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.1, "t_min_mm": 0.005, "t_max_mm": 1.0},
+        "joint_drive": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_deg": 0.01, "t_min_deg": 0.0005, "t_max_deg": 0.5},
+        "joint_drive_prismatic": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.05, "t_min_mm": 0.002,
+                                  "t_max_mm": 1.0},
+        "axis_deflection": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_deg": 0.01, "t_min_deg": 0.001,
+                            "t_max_deg": 0.5},
+        "clearance_axial": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.05, "t_min_mm": 0.002, "t_max_mm": 1.0},
+        "clearance_radial": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.05, "t_min_mm": 0.002,
+                             "t_max_mm": 1.5},
+        "clearance_tilt": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_deg": 0.01, "t_min_deg": 0.001, "t_max_deg": 1.0},
+    },
+}
+
+_ENTRY_KEYS = {"model", "a", "b", "k", "fixed", "exclude"}
+_UNIT_BASES = ("t_ref", "t_min", "t_max", "tol")
+
+
+@dataclass(frozen=True)
+class CostModel:
+    """Cost-tolerance law and process limits of one parameter (internal units mm or rad).
+
+    Attributes
+    ----------
+    model : {"reciprocal", "reciprocal_power", "exponential"}
+    a, b : float
+        Cost coefficients [relative cost units], ``b > 0``.
+    t_ref : float
+        Reference tolerance [mm or rad] (``tau = t / t_ref``).
+    t_min, t_max : float
+        Process limits on the half-width ``t`` [mm or rad], ``0 < t_min <= t_max``.
+    k : float
+        Exponent of ``reciprocal_power``.
+    """
+
+    model: str
+    a: float
+    b: float
+    t_ref: float
+    t_min: float
+    t_max: float
+    k: float = 1.0
+
+    def cost(self, t) -> np.ndarray:
+        """Cost at half-width ``t`` [mm or rad] (array-like)."""
+        tau = np.asarray(t, dtype=float) / self.t_ref
+        with np.errstate(divide="ignore"):
+            if self.model == "reciprocal":
+                return self.a + self.b / tau
+            if self.model == "reciprocal_power":
+                return self.a + self.b / tau**self.k
+            return self.a + self.b * np.exp(-tau)
+
+    def cost_u(self, u, lib):
+        """Cost as an expression of the scaled variance ``u = (t/t_ref)**2``.
+
+        ``lib`` is ``"cvxpy"`` (a convex DCP expression) or ``"casadi"``; ``u`` is that library's variable.
+        """
+        if lib == "cvxpy":
+            import cvxpy as cp
+
+            if self.model == "reciprocal":
+                return self.a + self.b * cp.power(u, -0.5)
+            if self.model == "reciprocal_power":
+                return self.a + self.b * cp.power(u, -self.k / 2.0)
+            return self.a + self.b * cp.exp(-cp.sqrt(u))
+        import casadi as ca
+
+        if self.model == "reciprocal":
+            return self.a + self.b * u ** (-0.5)
+        if self.model == "reciprocal_power":
+            return self.a + self.b * u ** (-self.k / 2.0)
+        return self.a + self.b * ca.exp(-ca.sqrt(u))
+
+
+@dataclass(frozen=True)
+class CostSet:
+    """Cost models and roles of the parameters of an error model.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Parameter names (the error model's order, excluded ones left out).
+    role : tuple of str
+        ``"allocate"`` or ``"fixed"`` per parameter.
+    models : tuple of CostModel
+    fixed_tol : tuple of float
+        Half-width of fixed parameters [mm or rad] (NaN for allocatable ones).
+    z : float
+        ``sigma = t / z``.
+    excluded : tuple of str
+    source : str
+        ``"defaults"`` or the costs file's path.
+    distribution : {"normal", "uniform"}
+        How a part's error is distributed within its tolerance: ``uniform`` over ``±t`` (``z = sqrt(3)``),
+        else normal; the allocation's Monte Carlo verification samples it so.
+    """
+
+    names: tuple
+    role: tuple
+    models: tuple
+    fixed_tol: tuple
+    z: float
+    excluded: tuple = ()
+    source: str = "defaults"
+    distribution: str = "normal"
+
+    def to_frame(self, model: ErrorModel) -> pd.DataFrame:
+        """One row per parameter: law, coefficients and limits in the interface unit."""
+        rows = []
+        for nm, role, cm, ft in zip(self.names, self.role, self.models, self.fixed_tol):
+            p = model.params[model.index(nm)]
+            f = p.to_interface
+            rows.append({"parameter": nm, "kind": p.kind, "unit": p.interface_unit, "role": role, "model": cm.model,
+                         "a": cm.a, "b": cm.b, "k": cm.k, "t_ref": cm.t_ref * f, "t_min": cm.t_min * f,
+                         "t_max": cm.t_max * f, "fixed_tol": ft * f})
+        return pd.DataFrame(rows)
+
+
+def param_kind_key(p) -> str:
+    """The costs-file section a parameter falls under (``joint_drive_prismatic`` for prismatic drives)."""
+    if p.kind == "joint_drive" and p.unit == "mm":
+        return "joint_drive_prismatic"
+    return p.kind
+
+
+def _value(entry: dict, base: str, unit: str, where: str):
+    """Value of ``base_<unit suffix>`` in internal units (None if absent); the suffix must fit ``unit``."""
+    table = _LEN if unit == "mm" else _ANG
+    keys = [k for k in entry if k.startswith(base + "_") and k[len(base) + 1:] in {**_LEN, **_ANG}]
+    if not keys:
+        return None
+    if len(keys) > 1:
+        raise TolallocError(f"{where}: give {base} once, got {keys}.")
+    key = keys[0]
+    suffix = key[len(base) + 1:]
+    if suffix not in table:
+        want = f"{base}_mm or {base}_m" if unit == "mm" else f"{base}_deg or {base}_rad"
+        raise TolallocError(f"{where}: {key} has the wrong unit for a parameter in {unit}; use {want}.")
+    try:
+        x = float(entry[key])
+    except (TypeError, ValueError):
+        raise TolallocError(f"{where}: {key} expected a number, got {entry[key]!r}.") from None
+    if not np.isfinite(x) or x <= 0:
+        raise TolallocError(f"{where}: {key} expected a finite number > 0, got {entry[key]!r}.")
+    return x * table[suffix]
+
+
+def _check_entry(entry, where: str) -> None:
+    if not isinstance(entry, dict):
+        raise TolallocError(f"{where}: expected a table of keys, got {entry!r}.")
+    for key in ("fixed", "exclude"):
+        if key in entry and not isinstance(entry[key], bool):
+            raise TolallocError(f"{where}: {key} expected true or false, got {entry[key]!r}.")
+    for key in entry:
+        base_ok = any(key.startswith(b + "_") and key[len(b) + 1:] in {**_LEN, **_ANG} for b in _UNIT_BASES)
+        if key not in _ENTRY_KEYS and not base_ok:
+            raise TolallocError(f"{where}: unknown key {key!r}; expected model, a, b, k, fixed, exclude, "
+                                "t_ref_<mm|deg>, t_min_<mm|deg>, t_max_<mm|deg>, tol_<mm|deg>.")
+
+
+def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = None, source: str = "defaults",
+             distribution: str | None = None) -> CostSet:
+    """Resolve the cost model and role of every parameter of ``model``.
+
+    Parameters
+    ----------
+    model : ErrorModel
+    data : dict, optional
+        Parsed costs file (see the module docstring); merged over :data:`DEFAULT_COSTS` per kind.
+    z : float, optional
+        Overrides the file's ``z`` (``sigma = t / z``) and its ``distribution`` (then normal).
+    distribution : {"normal", "uniform"}, optional
+        Overrides the file's ``distribution``; ``uniform`` means ``z = sqrt(3)``.
+    """
+    data = data or {}
+    for key in data:
+        if key not in ("z", "distribution", "kinds", "parameters"):
+            raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
+    zz = data.get("z", DEFAULT_COSTS["z"])
+    dist = distribution if distribution is not None else data.get("distribution")
+    if dist is not None and dist not in ("normal", "uniform"):
+        where = "distribution" if distribution is not None else f"costs {source}: distribution"
+        raise TolallocError(f"{where} expected 'normal' or 'uniform', got {dist!r}.")
+    dist = dist or "normal"
+    if dist == "uniform":
+        zz = np.sqrt(3.0)
+    if z is not None:
+        zz, dist = z, "normal"
+    try:
+        zz = float(zz)
+    except (TypeError, ValueError):
+        zz = np.nan
+    if not np.isfinite(zz) or zz <= 0:
+        raise TolallocError(f"costs {source}: z (sigma = t / z) expected a number > 0, got {zz!r}.")
+    for key in ("kinds", "parameters"):
+        if not isinstance(data.get(key) or {}, dict):
+            raise TolallocError(f"costs {source}: {key} expected tables [{key}.NAME], got {key} = {data[key]!r}.")
+    kinds = {k: dict(v) for k, v in DEFAULT_COSTS["kinds"].items()}
+    for k, v in (data.get("kinds") or {}).items():
+        _check_entry(v, f"costs {source} [kinds.{k}]")
+        if k not in kinds:
+            raise TolallocError(f"costs {source}: unknown kind [kinds.{k}]; expected one of {', '.join(kinds)}.")
+        # a new reference/limit with another unit suffix replaces the default one
+        base = {key: val for key, val in kinds[k].items()
+                if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in v) for b in _UNIT_BASES)}
+        kinds[k] = {**base, **v}
+    per = data.get("parameters") or {}
+    for nm, v in per.items():
+        _check_entry(v, f"costs {source} [parameters.{nm}]")
+        if nm not in model.names:
+            raise TolallocError(f"costs {source} [parameters.{nm}]: unknown error parameter {nm!r}; "
+                                f"known: {', '.join(model.names)}.")
+    names, role, models, fixed, excluded = [], [], [], [], []
+    for p in model.params:
+        where = f"costs {source} [{p.name}]"
+        base = kinds[param_kind_key(p)]
+        own = per.get(p.name, {})
+        entry = {key: val for key, val in base.items()
+                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in own) for b in _UNIT_BASES)}
+        entry.update(own)
+        if entry.get("exclude", False):
+            excluded.append(p.name)
+            continue
+        form = entry.get("model", "reciprocal")
+        if form not in MODELS:
+            raise TolallocError(f"{where}: model expected one of {', '.join(MODELS)}, got {form!r}.")
+        try:
+            a, b, kk = float(entry.get("a", 0.0)), float(entry.get("b", 1.0)), float(entry.get("k", 1.0))
+        except (TypeError, ValueError):
+            raise TolallocError(f"{where}: a, b, k expected numbers, got {entry!r}.") from None
+        if not (np.isfinite(a) and np.isfinite(b) and b > 0 and np.isfinite(kk) and kk > 0):
+            raise TolallocError(f"{where}: expected finite a, b > 0 and k > 0, got a={a}, b={b}, k={kk}.")
+        t_ref = _value(entry, "t_ref", p.unit, where)
+        t_min = _value(entry, "t_min", p.unit, where)
+        t_max = _value(entry, "t_max", p.unit, where)
+        if t_ref is None or t_min is None or t_max is None:
+            raise TolallocError(f"{where}: t_ref, t_min and t_max are required (in {p.interface_unit}).")
+        if t_min > t_max:
+            raise TolallocError(f"{where}: process limits t_min > t_max ({t_min * p.to_interface:g} > "
+                                f"{t_max * p.to_interface:g} {p.interface_unit}); swap them.")
+        cm = CostModel(form, a, b, t_ref, t_min, t_max, kk)
+        names.append(p.name)
+        models.append(cm)
+        if entry.get("fixed", False):
+            tol = _value(entry, "tol", p.unit, where)
+            role.append("fixed")
+            fixed.append(tol if tol is not None else p.sigma * zz)
+        else:
+            role.append("allocate")
+            fixed.append(np.nan)
+    if not any(r == "allocate" for r in role):
+        raise TolallocError(f"costs {source}: no parameter is left to allocate; un-fix or un-exclude some.")
+    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist)
+
+
+def load_costs(path, model: ErrorModel, *, z: float | None = None, distribution: str | None = None) -> CostSet:
+    """Read a costs file (TOML) and resolve it against ``model`` (see :func:`cost_set`)."""
+    path = Path(path)
+    if not path.is_file():
+        raise TolallocError(f"costs file {str(path)!r} not found; give a TOML file (see `tolalloc allocate --help`).")
+    try:
+        data = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise TolallocError(f"costs file {path}: not valid TOML ({exc}).") from None
+    return cost_set(model, data, z=z, source=str(path), distribution=distribution)

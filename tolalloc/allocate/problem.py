@@ -1,0 +1,312 @@
+"""Tolerance allocation: the cheapest tolerances meeting ``P(|dP| < r) >= p`` at every working pose.
+
+Decision variables: a symmetric tolerance ``±t_k`` per allocatable parameter with ``sigma_k = t_k / z``.
+Internally the solvers use the scaled variance ``u_k = (t_k / t_ref_k)**2`` (order one for every
+kind, mm or rad), in which the position covariance at pose ``i`` is linear::
+
+    Sigma_i(u) = C0_i + sum_k u_k A_ik,   A_ik = J_ik J_ik^T t_ref_k^2 / z^2
+
+(``J_ik`` the first-order error Jacobian column, ``C0_i`` the fixed parameters' share) and every
+cost law of :mod:`tolalloc.allocate.costs` is convex. Two solvers (see :mod:`tolalloc.allocate.convex`,
+:mod:`.allocate_exact`):
+
+* **certified** (cvxpy + Clarabel): the trace rule ``tr Sigma <= r^2 / chi2_1^-1(p)`` (valid for
+  ``p >= 0.785``, Szekely & Bakirov 2003) and the eigenvalue rule ``Sigma <= r^2 / chi2_3^-1(p) I``
+  (an LMI); each implies the requirement for any covariance, both are solved, the cheaper kept;
+* **exact** (CasADi + IPOPT): the Gaussian probability itself per pose, warm-started from the
+  certified design, never dearer than it (falls back to it otherwise).
+
+:func:`allocate` runs both, diagnoses infeasibility (best probability at ``r`` and radius at ``p``
+with every tolerance at its process limit, and the limits that bind) and snaps to standard grades.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.stats import chi2
+
+from tolalloc.exceptions import TolallocError, check_positive
+from tolalloc.allocate.costs import CostSet, cost_set
+from tolalloc.errormodel.model import ErrorModel
+from tolalloc.linear.probability import p_within_radius, radius_for_prob
+
+__all__ = ["AllocationProblem", "Design", "Diagnosis", "build_problem", "make_design", "diagnose", "TRACE_RULE_MIN_P"]
+
+#: The trace rule is a valid sufficient condition only for p at or above this (Szekely & Bakirov 2003).
+TRACE_RULE_MIN_P = 0.785
+
+
+@dataclass(frozen=True, eq=False)
+class AllocationProblem:
+    """A tolerance-allocation problem (build with :func:`build_problem`).
+
+    Attributes
+    ----------
+    model : ErrorModel
+        Error model without the excluded parameters; fixed parameters carry ``sigma = fixed_tol / z``.
+    costs : CostSet
+        Aligned with ``model.params``.
+    q : array, shape (P, n) [rad, mm]
+    radius_mm, prob : float
+        Requirement ``P(|dP| < radius_mm) >= prob`` at every pose.
+    angle_radius_rad : float or None
+        Optional orientation requirement ``P(|dw| < angle_radius_rad) >= angle_prob``.
+    angle_prob : float
+    J : array, shape (P, 6, K)
+        Error Jacobian at the poses.
+    alloc, fixed : arrays of int
+        Indices of the allocatable and fixed parameters.
+    t_ref, t_min, t_max : arrays, shape (K,) [mm or rad]
+    blocks : list of dict
+        One per requirement: ``name``, ``rows``, ``radius``, ``prob``, ``A`` (P, Ka, 3, 3), ``C0`` (P, 3, 3).
+    """
+
+    model: ErrorModel
+    costs: CostSet
+    q: np.ndarray
+    radius_mm: float
+    prob: float
+    angle_radius_rad: float | None = None
+    angle_prob: float = 0.95
+    J: np.ndarray = field(default=None, repr=False)
+    alloc: np.ndarray = field(default=None, repr=False)
+    fixed: np.ndarray = field(default=None, repr=False)
+    t_ref: np.ndarray = field(default=None, repr=False)
+    t_min: np.ndarray = field(default=None, repr=False)
+    t_max: np.ndarray = field(default=None, repr=False)
+    blocks: list = field(default=None, repr=False)
+
+    @property
+    def n_poses(self) -> int:
+        return self.q.shape[0]
+
+    @property
+    def u_min(self) -> np.ndarray:
+        a = self.alloc
+        return (self.t_min[a] / self.t_ref[a]) ** 2
+
+    @property
+    def u_max(self) -> np.ndarray:
+        a = self.alloc
+        return (self.t_max[a] / self.t_ref[a]) ** 2
+
+    def t_from_u(self, u) -> np.ndarray:
+        """Full half-width vector (K,) [mm or rad] from the allocatable ``u`` (Ka,); fixed ones at their value."""
+        t = np.array(self.costs.fixed_tol, dtype=float)
+        t[self.alloc] = self.t_ref[self.alloc] * np.sqrt(np.maximum(np.asarray(u, float), 0.0))
+        return t
+
+    def u_from_t(self, t) -> np.ndarray:
+        a = self.alloc
+        return (np.asarray(t, float)[a] / self.t_ref[a]) ** 2
+
+    def sigma(self, t) -> np.ndarray:
+        """Standard deviations (K,) [mm or rad] of half-widths ``t``."""
+        return np.asarray(t, float) / self.costs.z
+
+    def param_costs(self, t) -> np.ndarray:
+        """Cost of every parameter (K,) at half-widths ``t``."""
+        return np.array([cm.cost(tk) for cm, tk in zip(self.costs.models, t)], dtype=float)
+
+    def covariances(self, t, rows=slice(0, 3)) -> np.ndarray:
+        """Linear covariance of the error rows at every pose, shape (P, 3, 3)."""
+        J = self.J[:, rows, :]
+        return np.einsum("pik,k,pjk->pij", J, self.sigma(t) ** 2, J)
+
+    def probabilities(self, t) -> dict:
+        """Gaussian ``P(|x| < radius)`` per requirement block at every pose: name -> (P,)."""
+        return {b["name"]: p_within_radius(self.covariances(t, b["rows"]), b["radius"]) for b in self.blocks}
+
+    def model_for(self, t) -> ErrorModel:
+        """The error model of a design (``sigma = t / z``) for the nonlinear Monte Carlo."""
+        return self.model.with_sigma(self.sigma(t))
+
+
+def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: float = 0.95,
+                  costs: CostSet | dict | None = None, pose_set: str | None = None,
+                  angle_radius_deg: float | None = None, angle_prob: float | None = None) -> AllocationProblem:
+    """Set up an allocation problem.
+
+    Parameters
+    ----------
+    model : ErrorModel
+    q : array, shape (P, n) [rad, mm], optional
+        Working poses; default: the robot's ``pose_set`` (``working`` if it has one, else nominal).
+    radius_mm : float
+    prob : float in (0, 1)
+    costs : CostSet or dict, optional
+        Resolved costs (:func:`tolalloc.allocate.costs.load_costs`) or a parsed costs dict; default the built-in defaults.
+    angle_radius_deg, angle_prob : float, optional
+        Orientation requirement ``P(|dw| < angle) >= angle_prob`` (``angle_prob`` defaults to ``prob``).
+    """
+    radius_mm = check_positive(radius_mm, "radius_mm")
+    prob = float(prob)
+    if not np.isfinite(prob) or not 0 < prob < 1:
+        raise TolallocError(f"prob: expected a probability strictly between 0 and 1, got {prob!r}.")
+    robot = model.robot
+    if q is None:
+        q = robot.poses(pose_set if pose_set is not None else ("working" if "working" in robot.pose_sets else None))
+    q = np.atleast_2d(robot.check_q(q, "poses"))
+    cs = costs if isinstance(costs, CostSet) else cost_set(model, costs)
+    if set(cs.names) | set(cs.excluded) != set(model.names):
+        raise TolallocError("costs: the cost set was resolved for another error model; resolve it again for this one.")
+    keep = [model.index(nm) for nm in cs.names]
+    params = [model.params[i] for i in keep]
+    if cs.distribution == "uniform":  # errors uniform over +-t: the Monte Carlo verification samples them so
+        params = [p if p.distribution == "ring" else replace(p, distribution="uniform") for p in params]
+    sub = replace(model, params=tuple(params))
+    role = np.array(cs.role)
+    alloc = np.flatnonzero(role == "allocate")
+    fixed = np.flatnonzero(role == "fixed")
+    sig = sub.sigma.copy()
+    sig[fixed] = np.array(cs.fixed_tol)[fixed] / cs.z
+    sub = sub.with_sigma(sig)
+    t_ref = np.array([m.t_ref for m in cs.models])
+    J = sub.jacobian(q)
+    blocks = [_block("position", slice(0, 3), radius_mm, prob, J, alloc, fixed, t_ref, sig, cs.z)]
+    if angle_radius_deg is not None:
+        ar = np.deg2rad(check_positive(angle_radius_deg, "angle_radius_deg"))
+        ap = prob if angle_prob is None else float(angle_prob)
+        if not np.isfinite(ap) or not 0 < ap < 1:
+            raise TolallocError(f"angle_prob: expected a probability strictly between 0 and 1, got {angle_prob!r}.")
+        blocks.append(_block("orientation", slice(3, 6), ar, ap, J, alloc, fixed, t_ref, sig, cs.z))
+    else:
+        ar, ap = None, prob
+    return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
+                             np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks)
+
+
+def _block(name, rows, radius, prob, J, alloc, fixed, t_ref, sig, z) -> dict:
+    Jr = J[:, rows, :]
+    Ja = Jr[:, :, alloc] * (t_ref[alloc] / z)  # (P, 3, Ka)
+    A = np.einsum("pik,pjk->pkij", Ja, Ja)
+    Jf = Jr[:, :, fixed]
+    C0 = np.einsum("pik,k,pjk->pij", Jf, sig[fixed] ** 2, Jf)
+    return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "A": A, "C0": C0,
+            "trace_bound": radius**2 / chi2.ppf(prob, 1), "eig_bound": radius**2 / chi2.ppf(prob, 3)}
+
+
+# ------------------------------------------------------------------------ results
+@dataclass(frozen=True, eq=False)
+class Design:
+    """One allocated design.
+
+    Attributes
+    ----------
+    solver : str
+        ``certified-trace``, ``certified-lmi``, ``exact``, ``standard`` (snapped) ...
+    status : str
+        ``optimal``, ``infeasible``, ``not_applicable`` or ``failed``.
+    t : array, shape (K,) [mm or rad] or None
+        Half-widths of all parameters (fixed ones included).
+    cost : float
+        Total cost (NaN if no design).
+    p_linear : dict name -> array (P,)
+        Gaussian probability per requirement block at every pose.
+    pose_dual : array, shape (P,) or None
+        Multipliers of the pose constraints (certified: per unit of the relative budget
+        ``tr Sigma / bound`` or ``lambda_max``; exact: per unit of probability): which poses drive the cost.
+    bound_dual : array, shape (K,) or None
+        Multipliers of the process limits (> 0 at ``t_min``, < 0 at ``t_max``, per unit of ``u``).
+    at_limit : tuple of str
+        ``t_min``, ``t_max`` or ``""`` per parameter.
+    time_s : float
+    message : str
+    """
+
+    solver: str
+    status: str
+    t: np.ndarray | None = None
+    cost: float = float("nan")
+    p_linear: dict = field(default_factory=dict)
+    pose_dual: np.ndarray | None = None
+    bound_dual: np.ndarray | None = None
+    at_limit: tuple = ()
+    time_s: float = 0.0
+    message: str = ""
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "optimal" and self.t is not None
+
+
+def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, bound_dual=None, time_s=0.0,
+                message="", status="optimal") -> Design:
+    """Evaluate cost, probabilities and limit flags of half-widths ``t`` (K,) into a :class:`Design`."""
+    t = np.asarray(t, dtype=float)
+    at = []
+    for k in range(len(t)):
+        if problem.costs.role[k] == "fixed":
+            at.append("fixed")
+        elif t[k] <= problem.t_min[k] * (1 + 1e-4):
+            at.append("t_min")
+        elif t[k] >= problem.t_max[k] * (1 - 1e-4):
+            at.append("t_max")
+        else:
+            at.append("")
+    return Design(solver, status, t, float(problem.param_costs(t).sum()), problem.probabilities(t),
+                  None if pose_dual is None else np.asarray(pose_dual, float),
+                  None if bound_dual is None else np.asarray(bound_dual, float), tuple(at), float(time_s), message)
+
+
+@dataclass(frozen=True, eq=False)
+class Diagnosis:
+    """What the process limits allow: every allocatable tolerance at ``t_min``.
+
+    Attributes
+    ----------
+    feasible : bool
+        Whether that tightest design meets every requirement (exact Gaussian probability).
+    p_best : dict name -> array (P,)
+        Best achievable probability at the required radius, per pose.
+    radius_best : dict name -> array (P,)
+        Radius achievable at the required probability [mm or rad], per pose.
+    worst_pose : dict name -> int
+    binding : list of (parameter, variance share at the worst pose)
+        Limits that bind, largest share first (``t_min`` of allocatable parameters, fixed values).
+    message : str
+    """
+
+    feasible: bool
+    p_best: dict
+    radius_best: dict
+    worst_pose: dict
+    binding: list
+    message: str
+
+
+def diagnose(problem: AllocationProblem) -> Diagnosis:
+    """Best achievable probability and radius within the process limits, and the limits that bind."""
+    t = problem.t_min.copy()
+    t[problem.fixed] = np.array(problem.costs.fixed_tol)[problem.fixed]
+    names = problem.costs.names
+    feasible, p_best, r_best, worst, binding, lines = True, {}, {}, {}, [], []
+    for b in problem.blocks:
+        C = problem.covariances(t, b["rows"])
+        p = p_within_radius(C, b["radius"])
+        r = radius_for_prob(C, b["prob"])
+        i = int(np.argmin(p))
+        p_best[b["name"]], r_best[b["name"]], worst[b["name"]] = p, r, i
+        if p[i] < b["prob"]:
+            feasible = False
+            J = problem.J[i, b["rows"], :]
+            share = (J**2).sum(0) * problem.sigma(t) ** 2
+            share = share / share.sum()
+            order = np.argsort(share)[::-1]
+            top = [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
+            binding += top
+            unit, f = ("mm", 1.0) if b["name"] == "position" else ("deg", 180 / np.pi)
+            lim = ", ".join(
+                f"{nm} {'fixed at' if problem.costs.role[names.index(nm)] == 'fixed' else 't_min ='} "
+                f"{t[names.index(nm)] * problem.model.params[names.index(nm)].to_interface:.4g} "
+                f"{problem.model.params[names.index(nm)].interface_unit} ({s:.0%})" for nm, s in top)
+            lines.append(
+                f"infeasible within the process limits: with every tolerance at its lower limit the worst pose "
+                f"({i + 1} of {problem.n_poses}) reaches P(|{'dP' if b['name'] == 'position' else 'dw'}| < "
+                f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
+                f"< {b['prob']:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
+                f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
+                f"tolerances) in a costs file (--costs) or relax the requirement.")
+    return Diagnosis(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

@@ -1,0 +1,197 @@
+"""Result of a tolerance allocation (:class:`AllocationResult`) and snapping to standard grades.
+
+Split from :mod:`tolalloc.allocate.problem`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.allocate.problem import AllocationProblem, Design, Diagnosis, make_design
+
+__all__ = ["AllocationResult", "snap_design"]
+
+
+@dataclass(frozen=True, eq=False)
+class AllocationResult:
+    """Result of :func:`allocate`.
+
+    Attributes
+    ----------
+    problem : AllocationProblem
+    status : {"optimal", "infeasible"}
+    solver : {"exact", "certified"}
+        The solver asked for.
+    design : Design
+        The chosen design (if infeasible: the tightest design the limits allow, status ``infeasible``).
+    certified, certified_other : Design
+        The cheaper and the other certified rule.
+    exact : Design or None
+    standard : Design or None
+        ``design`` snapped to standard grades (ISO 286 for link lengths), re-checked.
+    it_grade : tuple of str
+        IT grade per parameter (``""`` for non-lengths).
+    diagnosis : Diagnosis
+    message : str
+    """
+
+    problem: AllocationProblem
+    status: str
+    solver: str
+    design: Design
+    certified: Design
+    certified_other: Design
+    exact: Design | None
+    standard: Design | None
+    it_grade: tuple
+    diagnosis: Diagnosis
+    message: str = ""
+
+    @property
+    def worst_pose(self) -> int:
+        """Pose index with the lowest position probability of ``design``."""
+        return int(np.argmin(self.design.p_linear["position"]))
+
+    def variance_share(self, design: Design | None = None, pose: int | None = None) -> np.ndarray:
+        """Share of each parameter in ``tr Sigma`` of the position error at ``pose`` (default: the worst), (K,)."""
+        d = design or self.design
+        i = self.worst_pose if pose is None else pose
+        J = self.problem.J[i, :3, :]
+        v = (J**2).sum(0) * self.problem.sigma(d.t) ** 2
+        return v / v.sum() if v.sum() > 0 else v
+
+    def to_frame(self, design: Design | None = None) -> pd.DataFrame:
+        """Tolerance table: one row per parameter, tolerance and sigma in the interface unit (mm or deg)."""
+        d = design or self.design
+        pr = self.problem
+        params = pr.model.params
+        f = np.array([p.to_interface for p in params])
+        std = self.standard.t if self.standard is not None and self.standard.t is not None else np.full(len(f), np.nan)
+        return pd.DataFrame({
+            "parameter": [p.name for p in params],
+            "kind": [p.kind for p in params],
+            "element": [p.element for p in params],
+            "unit": [p.interface_unit for p in params],
+            "role": list(pr.costs.role),
+            "tolerance": d.t * f,
+            "sigma": pr.sigma(d.t) * f,
+            "tolerance_std": std * f,
+            "it_grade": list(self.it_grade),
+            "cost": pr.param_costs(d.t),
+            "variance_share": self.variance_share(d),
+            "at_limit": list(d.at_limit),
+            "t_min": pr.t_min * f,
+            "t_max": pr.t_max * f,
+        })
+
+    def summary(self) -> dict:
+        """JSON-ready summary (the ``summary.json`` content without the Monte Carlo verification)."""
+        pr = self.problem
+        robot = pr.model.robot
+
+        def cost(d):
+            return None if d is None or not d.ok else d.cost
+
+        cert, ex = cost(self.certified), cost(self.exact)
+        out = {
+            "robot": robot.name,
+            "sigma_set": pr.model.sigma_set,
+            "requirement": {"radius_mm": pr.radius_mm, "prob": pr.prob,
+                            "angle_radius_deg": None if pr.angle_radius_rad is None else float(np.rad2deg(pr.angle_radius_rad)),
+                            "angle_prob": pr.angle_prob if pr.angle_radius_rad is not None else None},
+            "status": self.status,
+            "solver": self.design.solver,
+            "solver_requested": self.solver,
+            "cost": self.design.cost,
+            "z": pr.costs.z,
+            "distribution": pr.costs.distribution,
+            "costs_source": pr.costs.source,
+            "message": self.message,
+            "costs": {
+                "certified": cert, "certified_rule": self.certified.solver, "certified_status": self.certified.status,
+                "certified_other": cost(self.certified_other), "certified_other_rule": self.certified_other.solver,
+                "certified_other_status": self.certified_other.status,
+                "exact": ex, "exact_solver": None if self.exact is None else self.exact.solver,
+                "exact_message": None if self.exact is None else self.exact.message,
+                "saving": None if cert is None or ex is None else cert - ex,
+                "saving_pct": None if cert is None or ex is None else 100 * (cert - ex) / cert,
+                "standard": cost(self.standard),
+            },
+            "times_s": {"certified": self.certified.time_s, "certified_other": self.certified_other.time_s,
+                        "exact": None if self.exact is None else self.exact.time_s},
+            "diagnosis": {"feasible": self.diagnosis.feasible, "message": self.diagnosis.message,
+                          "p_best_min": {k: float(v.min()) for k, v in self.diagnosis.p_best.items()},
+                          "radius_best_max": {f"{k}_{'mm' if k == 'position' else 'deg'}":
+                                              float(v.max() if k == "position" else np.rad2deg(v.max()))
+                                              for k, v in self.diagnosis.radius_best.items()},
+                          "binding": [{"parameter": n, "variance_share": s} for n, s in self.diagnosis.binding]},
+            "standard": None if self.standard is None else {
+                "meets": self.standard.status == "optimal", "message": self.standard.message,
+                "p_linear_min": {k: float(v.min()) for k, v in self.standard.p_linear.items()}},
+            "worst_pose": self.worst_pose + 1,
+        }
+        poses = []
+        qi = np.round(robot.q_to_interface(pr.q), 9)
+        for i in range(pr.n_poses):
+            # "q" is the issue's contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
+            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(self.design.p_linear["position"][i])}
+            if "orientation" in self.design.p_linear:
+                row["p_linear_angle"] = float(self.design.p_linear["orientation"][i])
+            if self.certified.ok:
+                row["p_linear_certified"] = float(self.certified.p_linear["position"][i])
+                row["pose_dual_certified"] = float(self.certified.pose_dual[i]) if self.certified.pose_dual is not None else None
+            if self.exact is not None and self.exact.ok and self.exact.pose_dual is not None and self.exact.solver == "exact":
+                row["pose_dual_exact"] = float(self.exact.pose_dual[i])
+            poses.append(row)
+        out["poses"] = poses
+        return out
+
+
+def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: float | None = None,
+                length_step_mm: float = 0.001) -> tuple[Design, tuple]:
+    """Snap a design to standard values and re-check the requirement.
+
+    Link lengths: ISO 286 IT grade at or below the allocated zone (nominal size: the link length);
+    other lengths: down to a multiple of ``length_step_mm``; angles: down to a multiple of
+    ``angle_step_deg`` (default 1 arcsec). Fixed parameters are kept. A snapped value below ``t_min``
+    is moved up to the nearest standard value at or above it.
+
+    Returns
+    -------
+    (Design, it_grade)
+        ``Design.solver`` is ``standard``; its status is ``optimal`` if every requirement still holds,
+        else ``violated`` with the failing poses in ``message``.
+    """
+    from tolalloc.allocate.standards import ANGLE_STEP_DEG, snap_angle, snap_length
+
+    step = ANGLE_STEP_DEG if angle_step_deg is None else angle_step_deg
+    lengths = {lk.name: lk.length_mm for lk in problem.model.robot.links}
+    t = design.t.copy()
+    grades = []
+    for k, p in enumerate(problem.model.params):
+        g = ""
+        if problem.costs.role[k] != "fixed":
+            if p.kind == "link_length" and 0 < lengths.get(p.element, 0) <= 3150:
+                t[k], g = snap_length(t[k], lengths[p.element], problem.t_min[k])
+            elif p.unit == "mm":
+                tt = np.floor(t[k] / length_step_mm * (1 + 1e-12)) * length_step_mm
+                if tt < problem.t_min[k] * (1 - 1e-12) or tt <= 0:
+                    tt = np.ceil(problem.t_min[k] / length_step_mm * (1 - 1e-12)) * length_step_mm
+                t[k] = tt
+            else:
+                t[k] = snap_angle(t[k], step, problem.t_min[k])
+        grades.append(g)
+    d = make_design(problem, "standard", t)
+    bad = []
+    for b in problem.blocks:
+        p = d.p_linear[b["name"]]
+        bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["prob"] - 1e-9)]
+    if bad:
+        d = replace(d, status="violated", message="after snapping the requirement fails at " + ", ".join(bad)
+                    + "; use the unsnapped tolerances or a finer angle step")
+    else:
+        d = replace(d, message="requirement re-checked after snapping: met at every pose")
+    return d, tuple(grades)

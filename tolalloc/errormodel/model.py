@@ -1,0 +1,451 @@
+"""Error-screw model: named geometric error parameters of a serial chain.
+
+Every error parameter ``k`` is a small rigid displacement ``exp([xi_k] e_k)``
+inserted into the POE chain at a *site* ``s`` (the number of joints before
+it; ``xi_k`` is a unit twist in the base frame at home, ``(omega, v)``)::
+
+    T = G_0 e^{[S1]q1} G_1 e^{[S2]q2} ... G_{n-1} e^{[Sn]qn} G_n M
+
+Kinds (internal units mm / rad):
+
+``link_length``      translation along the link vector, at the link's site
+                     (``consistent``: moves every downstream axis *and* the tool;
+                     ``axes_only``: the paper's Eq. 24, the tool point stays -- an
+                     inverse translation is inserted before ``M``).
+``joint_drive``      joint value offset ``q_j + dq_j`` (twist ``S_j`` at site ``j``).
+``axis_deflection``  rotation about a base axis perpendicular to the joint axis,
+                     through the joint point (``screw``: Eqs. 20-22, before the
+                     joint's exponential; ``tilt``: Eqs. 32/37, the axis direction
+                     itself tilts -- an inverse rotation follows the joint).
+``clearance_axial``  slip along the revolute joint axis (Table 4).
+``clearance_radial`` two components of a radial clearance rod ``s`` of uniform
+                     random direction (Eq. 42): not Gaussian (a ring).
+``clearance_tilt``   clearance deflection angles about the perpendicular axes.
+
+An exact perturbed chain (per-sample screws, home pose and joint offsets) and
+the first-order error Jacobian both follow from the same insertion table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.lie import adjoint, exp_se3
+from tolalloc.robot.kinematics import _jacobian_kernel, _prefix_lists
+from tolalloc.robot.model import Robot
+from tolalloc.errormodel.sampling import sample_values  # the one sampler, shared with the Monte Carlo engine
+
+__all__ = ["ErrorParameter", "ErrorModel", "build_error_model", "KINDS"]
+
+KINDS = ("link_length", "joint_drive", "axis_deflection", "clearance_axial", "clearance_radial", "clearance_tilt")
+DISTRIBUTIONS = ("normal", "uniform", "truncnormal", "ring")
+
+#: Defaults for robots without sigma sets (assumed typical values, see README) [mm or rad].
+GENERIC_SIGMA = {
+    "link_length": 0.02,
+    "joint_drive_revolute": np.deg2rad(0.005),
+    "joint_drive_prismatic": 0.01,
+    "axis_deflection": np.deg2rad(0.005),
+}
+#: Joint clearance of the seed paper's Table 4 [mm, rad]; tilt 0.0087 rad corrects Table 4's literal 0.087.
+CLEARANCE_SIGMA = {"axial_mm": 0.2, "radial_mm": 0.5, "tilt_rad": 0.0087}
+CLEARANCE_TILT_LITERAL_RAD = 0.087
+
+
+@dataclass(frozen=True, eq=False)
+class ErrorParameter:
+    """One error parameter.
+
+    Attributes
+    ----------
+    name : str
+    kind : str, one of :data:`KINDS`
+    element : str
+        Link or joint it belongs to.
+    unit : {"mm", "rad"}
+        Internal unit of the value and of ``sigma``.
+    site : int
+        Insertion site (joints before it), ``0..n``.
+    twist : array, shape (6,)
+        Unit twist in the base frame at home.
+    undo_site : int or None
+        Site where the inverse displacement is inserted (``axes_only`` links, ``tilt`` deflections).
+    sigma : float
+        Standard deviation of the value [unit].
+    distribution : {"normal", "uniform", "truncnormal", "ring"}
+        ``ring``: the pair with the same ``group`` is ``s (cos t, sin t)`` with ``s ~ N(0, sqrt(2) sigma)``
+        and ``t`` uniform, so each component has standard deviation ``sigma``.
+    group : str
+        Name shared by the two components of a radial clearance.
+    joint_index : int or None
+        For joint drives: the index of the joint (0-based).
+    """
+
+    name: str
+    kind: str
+    element: str
+    unit: str
+    site: int
+    twist: np.ndarray
+    undo_site: int | None = None
+    sigma: float = 0.0
+    distribution: str = "normal"
+    group: str = ""
+    joint_index: int | None = None
+
+    @property
+    def interface_unit(self) -> str:
+        """Unit shown to users: ``mm`` or ``deg``."""
+        return "mm" if self.unit == "mm" else "deg"
+
+    @property
+    def to_interface(self) -> float:
+        """Factor converting internal values to ``interface_unit``."""
+        return 1.0 if self.unit == "mm" else 180.0 / np.pi
+
+
+def _perpendicular_axes(axis: np.ndarray):
+    """The two base axes most perpendicular to ``axis`` (Gram-Schmidt against it), with their letters."""
+    order = [i for i in range(3) if i != int(np.argmax(np.abs(axis)))]
+    out = []
+    for i in order:
+        e = np.eye(3)[i]
+        e = e - axis * (axis @ e)
+        out.append(("xyz"[i], e / np.linalg.norm(e)))
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class ErrorModel:
+    """The error parameters of a robot with their standard deviations and modelling options.
+
+    Attributes
+    ----------
+    robot : Robot
+    params : tuple of ErrorParameter
+    link_mode : {"consistent", "axes_only"}
+    deflection_mode : {"screw", "tilt"}
+    sigma_set : str
+    """
+
+    robot: Robot
+    params: tuple
+    link_mode: str = "consistent"
+    deflection_mode: str = "screw"
+    sigma_set: str = "generic"
+
+    # ---------------------------------------------------------------- views
+    @property
+    def names(self) -> list[str]:
+        return [p.name for p in self.params]
+
+    @property
+    def kinds(self) -> np.ndarray:
+        return np.array([p.kind for p in self.params])
+
+    @property
+    def sigma(self) -> np.ndarray:
+        """Standard deviations [mm or rad], shape (K,)."""
+        return np.array([p.sigma for p in self.params])
+
+    @property
+    def labels(self) -> dict:
+        """Options as shown in outputs."""
+        return {"sigma_set": self.sigma_set, "link_mode": self.link_mode, "deflection_mode": self.deflection_mode}
+
+    def index(self, name: str) -> int:
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise TolallocError(f"unknown error parameter {name!r}; known: {', '.join(self.names)}") from None
+
+    def with_sigma(self, sigma) -> "ErrorModel":
+        """A copy with new standard deviations, shape (K,) [mm or rad]."""
+        sigma = np.asarray(sigma, dtype=float)
+        if sigma.shape != (len(self.params),) or np.any(~np.isfinite(sigma)) or np.any(sigma < 0):
+            raise TolallocError(f"sigma: expected {len(self.params)} finite values >= 0, got {np.array2string(sigma, threshold=8)}")
+        return replace(self, params=tuple(replace(p, sigma=float(s)) for p, s in zip(self.params, sigma)))
+
+    def to_frame(self) -> pd.DataFrame:
+        """One row per parameter: name, kind, element, unit, sigma in the interface unit, distribution."""
+        return pd.DataFrame({
+            "parameter": self.names,
+            "kind": self.kinds,
+            "element": [p.element for p in self.params],
+            "unit": [p.interface_unit for p in self.params],
+            "sigma": [p.sigma * p.to_interface for p in self.params],
+            "distribution": [p.distribution for p in self.params],
+        })
+
+    # ------------------------------------------------------------- sampling
+    def sample(self, n: int, rng: np.random.Generator) -> np.ndarray:
+        """Draw ``n`` samples of all parameter values, shape (n, K) [mm or rad]."""
+
+        return sample_values(self, n, rng).T
+
+    # ------------------------------------------------------- exact chains
+    def perturbed_chain(self, values: np.ndarray):
+        """Exact perturbed chains for sampled parameter values.
+
+        Parameters
+        ----------
+        values : array, shape (N, K) [mm or rad]
+
+        Returns
+        -------
+        screws : array, shape (N, n, 6)
+        home : array, shape (N, 4, 4)
+        dq : array, shape (N, n)
+            Joint offsets; evaluate ``fk_poe(screws, home, q + dq)``.
+        """
+        values = np.atleast_2d(np.asarray(values, dtype=float))
+        N = values.shape[0]
+        robot = self.robot
+        n = robot.n_joints
+        dq = np.zeros((N, n))
+        inserts = [[] for _ in range(n + 1)]  # per site: (twist, values) in order, undo first
+        for k, p in enumerate(self.params):
+            if p.kind == "joint_drive":
+                dq[:, p.joint_index] += values[:, k]
+                continue
+            inserts[p.site].append((p.twist, values[:, k]))
+            if p.undo_site is not None:
+                inserts[p.undo_site].insert(0, (p.twist, -values[:, k]))
+        C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
+        screws = np.empty((N, n, 6))
+        for s in range(n + 1):
+            for twist, val in inserts[s]:
+                C = C @ exp_se3(val[:, None] * twist)
+            if s < n:
+                screws[:, s, :] = adjoint(C) @ robot.screws[s]
+        home = C @ robot.home
+        return screws, home, dq
+
+    # ----------------------------------------------------- first order
+    def jacobian(self, q: np.ndarray, *, engine: str | None = None) -> np.ndarray:
+        """First-order error Jacobian of the tool pose at ``q``.
+
+        Parameters
+        ----------
+        q : array, shape (..., n) [rad, mm]
+        engine : {None, "auto", "numba", "numpy"}
+            As :func:`tolalloc.robot.kinematics.space_jacobian` (compiled kernel for many poses (P, n)).
+
+        Returns
+        -------
+        J : array, shape (..., 6, K)
+            Rows: tool-point position error ``dp`` [mm] (3), then the rotation
+            error ``dw`` (space frame) [rad] (3), per unit of each parameter.
+        """
+        q = np.asarray(q, dtype=float)
+        nb = _jacobian_kernel(self.robot.screws, q, engine)
+        if nb is not None:
+            undo = [-1 if prm.undo_site is None else prm.undo_site for prm in self.params]
+            return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, [prm.site for prm in self.params],
+                                     undo, [prm.twist for prm in self.params])
+        R, p = _prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
+        batch = q.shape[:-1]
+        K = len(self.params)
+        # spatial twist Ad_{P_site} xi = (R w, R v + p x R w) per parameter, grouped by insertion site
+        Rw = np.zeros(batch + (3, K))
+        Vv = np.zeros(batch + (3, K))
+        for site, idx, sign, W in self._site_groups():
+            Rs = np.ascontiguousarray(np.broadcast_to(R[site], batch + (3, 3)))
+            rw = (Rs.reshape(-1, 3) @ W[:3]).reshape(batch + (3, len(idx)))  # one BLAS product per site
+            vv = (Rs.reshape(-1, 3) @ W[3:]).reshape(batch + (3, len(idx))) + _cross_cols(p[site], rw)
+            if sign > 0:
+                Rw[..., idx], Vv[..., idx] = rw, vv
+            else:
+                Rw[..., idx] -= rw
+                Vv[..., idx] -= vv
+        p_tool = (R[-1] @ self.robot.home[:3, 3]) + p[-1]  # (..., 3)
+        dp = Vv - _cross_cols(p_tool, Rw)  # (..., 3, K)
+        return np.concatenate([dp, Rw], axis=-2)
+
+    def _site_groups(self):
+        """(site, parameter indices, sign, twists (6, k)) of the insertions, direct ones (+1) before undos (-1)."""
+        out = []
+        twists = np.array([prm.twist for prm in self.params])
+        for sign in (1.0, -1.0):
+            sites = [prm.site if sign > 0 else prm.undo_site for prm in self.params]
+            for site in sorted({s for s in sites if s is not None}):
+                idx = [k for k, s in enumerate(sites) if s == site]
+                out.append((site, idx, sign, np.ascontiguousarray(twists[idx].T)))
+        return out
+
+
+def _cross_cols(a: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """``a x B[:, k]`` for every column k: ``a`` (..., 3), ``B`` (..., 3, K) -> (..., 3, K)."""
+    a0, a1, a2 = a[..., 0, None], a[..., 1, None], a[..., 2, None]
+    b0, b1, b2 = B[..., 0, :], B[..., 1, :], B[..., 2, :]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-2)
+
+
+def _sigma_from_set(robot: Robot, params: list, sigma_set: str) -> np.ndarray:
+    """Standard deviations [internal units] of ``params`` from a named set of the robot file or ``generic``."""
+    names = [p.name for p in params]
+    if sigma_set == "generic":
+        out = []
+        for p in params:
+            if p.kind == "joint_drive":
+                key = "joint_drive_" + ("revolute" if p.unit == "rad" else "prismatic")
+                out.append(GENERIC_SIGMA[key])
+            else:
+                out.append(GENERIC_SIGMA.get(p.kind, 0.0))
+        return np.array(out)
+    if sigma_set not in robot.sigma_sets:
+        known = ", ".join(["generic", *robot.sigma_sets])
+        raise TolallocError(f"unknown sigma set {sigma_set!r} for robot {robot.name!r}; known: {known}.")
+    entry = robot.sigma_sets[sigma_set]
+    factors = {"sigma_mm": ("mm", 1.0), "sigma_m": ("mm", 1000.0), "sigma_deg": ("rad", np.pi / 180), "sigma_rad": ("rad", 1.0)}
+    where = f"sigma set {sigma_set!r}"
+    sigma = np.full(len(params), np.nan)
+    for key, table in entry.items():
+        if key == "description":
+            continue
+        if key not in factors:
+            raise TolallocError(f"{where}: unknown key {key!r}; expected {', '.join(factors)}.")
+        if not isinstance(table, dict):
+            raise TolallocError(f"{where}: {key} expected a table {{ name = sigma, ... }} such as "
+                                f"{key} = {{ {names[0]} = 0.01 }}, got {table!r}.")
+        unit, f = factors[key]
+        for name, value in table.items():
+            if name not in names:
+                raise TolallocError(f"{where}: unknown error parameter {name!r}; known: {', '.join(names)}.")
+            p = params[names.index(name)]
+            if p.unit != unit:
+                raise TolallocError(f"{where}: {name} is in {p.interface_unit}, but was given under {key}.")
+            try:
+                v = float(value)
+            except (TypeError, ValueError):
+                v = np.nan
+            if isinstance(value, bool) or not np.isfinite(v) or v < 0:
+                raise TolallocError(f"{where}: {key}.{name} expected a finite sigma >= 0 in {key[6:]}, got {value!r}.")
+            sigma[names.index(name)] = v * f
+    missing = [nm for nm, s in zip(names, sigma) if np.isnan(s)]
+    if missing:
+        raise TolallocError(f"{where} has no sigma for {', '.join(missing)}; give one for each "
+                            "(sigma_mm for lengths, sigma_deg for angles).")
+    return sigma
+
+
+def build_error_model(
+    robot: Robot,
+    sigma_set: str | None = None,
+    *,
+    link_mode: str = "consistent",
+    deflection_mode: str = "screw",
+    clearance: bool = False,
+    clearance_sigma: dict | None = None,
+    sigma: dict | None = None,
+    exclude: tuple = (),
+    distribution: str | dict = "normal",
+) -> ErrorModel:
+    """Build the error model of a robot.
+
+    Parameters
+    ----------
+    robot : Robot
+    sigma_set : str, optional
+        A set from the robot file (``table2`` is the tool_changer's default) or ``generic``;
+        default: the robot file's first set, else ``generic``.
+    link_mode : {"consistent", "axes_only"}
+        ``axes_only`` is the paper-literal Eq. 24.
+    deflection_mode : {"screw", "tilt"}
+        ``tilt`` is the paper's Eqs. 32/37 reading.
+    clearance : bool
+        Add joint clearance parameters (axial, radial ring, tilt) to every revolute joint.
+    clearance_sigma : dict, optional
+        Keys ``axial_mm``, ``radial_mm``, ``tilt_rad`` (default :data:`CLEARANCE_SIGMA`).
+    sigma : dict, optional
+        Overrides: parameter name or kind -> sigma [mm or rad].
+    exclude : tuple of str
+        Parameter names or kinds to leave out.
+    distribution : str or dict
+        ``normal`` (default), ``uniform`` or ``truncnormal``; a dict maps names or kinds to one.
+    """
+    if link_mode not in ("consistent", "axes_only"):
+        raise TolallocError(f"link_mode: expected 'consistent' or 'axes_only' (paper-literal), got {link_mode!r}.")
+    if deflection_mode not in ("screw", "tilt"):
+        raise TolallocError(f"deflection_mode: expected 'screw' or 'tilt', got {deflection_mode!r}.")
+    n = robot.n_joints
+    params: list[ErrorParameter] = []
+    for link, site in zip(robot.links, robot.link_sites):
+        if link.length_mm == 0:
+            continue
+        twist = np.concatenate([np.zeros(3), link.direction])
+        undo = n if link_mode == "axes_only" else None
+        params.append(ErrorParameter(f"d{link.name}", "link_length", link.name, "mm", int(site), twist, undo))
+    for j, joint in enumerate(robot.joints):
+        tag = f"dth{j + 1}" if joint.is_revolute else f"dd{j + 1}"
+        params.append(ErrorParameter(tag, "joint_drive", joint.name, "rad" if joint.is_revolute else "mm", j,
+                                     robot.screws[j].copy(), joint_index=j))
+    for j, joint in enumerate(robot.joints):
+        if not joint.is_revolute:
+            continue
+        pt = robot.joint_points_mm[j]
+        for letter, e in _perpendicular_axes(joint.axis):
+            twist = np.concatenate([e, -np.cross(e, pt)])
+            undo = j + 1 if deflection_mode == "tilt" else None
+            params.append(ErrorParameter(f"e{j + 1}{letter}", "axis_deflection", joint.name, "rad", j, twist, undo))
+    if clearance:
+        cs = {**CLEARANCE_SIGMA, **(clearance_sigma or {})}
+        for j, joint in enumerate(robot.joints):
+            if not joint.is_revolute:
+                continue
+            pt = robot.joint_points_mm[j]
+            w = joint.axis
+            params.append(ErrorParameter(f"ca{j + 1}", "clearance_axial", joint.name, "mm", j,
+                                         np.concatenate([np.zeros(3), w]), sigma=cs["axial_mm"]))
+            perp = _perpendicular_axes(w)
+            for letter, e in perp:
+                params.append(ErrorParameter(f"cr{j + 1}{letter}", "clearance_radial", joint.name, "mm", j,
+                                             np.concatenate([np.zeros(3), e]), sigma=cs["radial_mm"] / np.sqrt(2),
+                                             distribution="ring", group=f"cr{j + 1}"))
+            for letter, e in perp:
+                params.append(ErrorParameter(f"cw{j + 1}{letter}", "clearance_tilt", joint.name, "rad", j,
+                                             np.concatenate([e, -np.cross(e, pt)]), sigma=cs["tilt_rad"]))
+    names = [p.name for p in params]
+    dup = sorted({x for x in names if names.count(x) > 1})
+    if dup:
+        raise TolallocError(f"robot {robot.name!r}: error parameter names clash ({dup}); rename the links so that 'd'+link name differs from the drive names dth<j>/dd<j>.")
+    for item in exclude:
+        if item not in names and item not in KINDS:
+            raise TolallocError(f"exclude: {item!r} is neither a parameter ({', '.join(names)}) nor a kind ({', '.join(KINDS)}).")
+    if sigma_set is None:
+        sigma_set = next(iter(robot.sigma_sets), "generic")
+    # sigma of the full parameter list first, so that a set naming an excluded parameter stays valid
+    geo = [p for p in params if not p.kind.startswith("clearance")]
+    geo_sigma = dict(zip([p.name for p in geo], _sigma_from_set(robot, geo, sigma_set)))
+    params = [p for p in params if p.name not in exclude and p.kind not in exclude]
+    if not params:
+        raise TolallocError(f"exclude: {', '.join(exclude)} leaves no error parameter of robot {robot.name!r}; "
+                            "expected at least one left: exclude fewer parameters or kinds.")
+    out = []
+    for p in params:
+        s = geo_sigma.get(p.name, p.sigma)
+        if sigma:
+            for key in (p.kind, p.name):
+                if key in sigma:
+                    s = sigma[key]
+        try:
+            s = float(s)
+        except (TypeError, ValueError):
+            raise TolallocError(f"sigma of {p.name}: expected a number, got {s!r}.") from None
+        if not np.isfinite(s) or s < 0:
+            raise TolallocError(f"sigma of {p.name}: expected a finite value >= 0 [{p.unit}], got {s!r}.")
+        dist = p.distribution
+        if p.distribution != "ring":
+            dist = distribution if isinstance(distribution, str) else distribution.get(p.name, distribution.get(p.kind, "normal"))
+            if dist not in ("normal", "uniform", "truncnormal"):
+                raise TolallocError(f"distribution of {p.name}: expected normal, uniform or truncnormal, got {dist!r}.")
+        out.append(replace(p, sigma=s, distribution=dist))
+    if sigma:
+        unknown = [k for k in sigma if k not in names and k not in KINDS]
+        if unknown:
+            raise TolallocError(f"sigma: unknown parameter or kind {unknown}; known parameters: {', '.join(names)}.")
+    return ErrorModel(robot, tuple(out), link_mode, deflection_mode, sigma_set)

@@ -1,0 +1,316 @@
+"""Nonlinear Monte Carlo: exact forward kinematics of sampled perturbed chains, streamed.
+
+Every sample is a robot built with random errors; its tool pose is computed exactly (no
+linearisation, :class:`~tolalloc.errormodel.chain.FastChain`) at one or several joint configurations and
+compared with the nominal pose.
+
+Reproducibility
+---------------
+Random numbers are drawn per block of :data:`BLOCK_SIZE` samples, block ``b`` with its own generator
+``SeedSequence(seed).spawn`` child ``b``; a block is processed in sub-blocks of :data:`SUB_BLOCK`
+samples whose statistics are merged in order, and blocks are merged in block order (Chan et al.'s
+parallel update, :mod:`tolalloc.montecarlo.streaming`). So the same seed gives the same numbers whatever
+``chunk_size``, thread count or scheduler (local threads, Dask processes, a Dask cluster).
+
+Memory
+------
+Statistics (moments, extrema, probabilities, fixed-range 2-D histograms) are streamed: memory is a
+few blocks per worker plus ``keep_samples`` (10^8 samples run in well under 1 GB).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.model import ErrorModel
+from tolalloc.errormodel.chain import N_BUF, ErrorFeatures, FastChain, features_to_dict
+from tolalloc.engine import resolve_engine
+from tolalloc.errormodel.sampling import sample_values
+from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks
+from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
+from tolalloc.montecarlo.streaming import HistSpec, McHistogram, Moments, proportion_ci
+
+__all__ = ["BLOCK_SIZE", "SUB_BLOCK", "FastChain", "pose_errors", "McResult", "run_mc", "proportion_ci",
+           "sample_values", "generic_pose_errors", "McHistogram"]
+
+#: Runs of at least this many samples show a progress bar when stderr is a terminal.
+PROGRESS_MIN_N = 10**7
+
+
+# ----------------------------------------------------------------- per-sample errors
+def _check_values(model: ErrorModel, values) -> np.ndarray:
+    values = np.asarray(values, dtype=float)
+    if values.ndim == 1:
+        values = values[None, :]
+    if values.ndim != 2 or values.shape[1] != len(model.params):
+        raise TolallocError(f"values: expected shape (N, {len(model.params)}) (one column per error parameter "
+                            f"{', '.join(model.names)}), got {values.shape}.")
+    if not np.all(np.isfinite(values)):
+        raise TolallocError("values: expected finite parameter values [mm, rad]; got NaN or inf.")
+    return values
+
+
+def _errors_from_X(X: np.ndarray, T0: np.ndarray) -> dict:
+    X = np.ascontiguousarray(X)
+    N = X.shape[2]
+    buf = np.empty((N_BUF, N))
+    return features_to_dict(ErrorFeatures(T0).compute(X, buf, np.empty((2, N))))
+
+
+def pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray, *, chain: FastChain | None = None) -> dict[str, np.ndarray]:
+    """Exact nonlinear tool-pose errors of perturbed chains at one pose.
+
+    Parameters
+    ----------
+    model : ErrorModel
+    q : array, shape (n,) [rad, mm]
+    values : array, shape (N, K) [mm, rad]
+        Error parameter values (one row per sample, columns in ``model.names`` order).
+    chain : FastChain, optional
+        Reuse a prepared kernel.
+
+    Returns
+    -------
+    dict with
+        ``dp_mm`` (N, 3) position error ``p' - p``; ``norm_mm`` (N,) ``|p' - p|``;
+        ``reach_mm`` (N,) ``|p'| - |p|`` (the paper's Table-3 "Δp"); ``euler_rad`` (N, 3)
+        X-Y-Z fixed Euler-angle errors ``euler(R') - euler(R)`` (wrapped to (-pi, pi]);
+        ``rotvec_rad`` (N, 3) rotation vector of ``R' R^T`` (space frame).
+    """
+    q = model.robot.check_q(q, "q")
+    if q.ndim != 1:
+        raise TolallocError(f"q: expected one pose of shape ({model.robot.n_joints},), got {q.shape}.")
+    values = _check_values(model, values)
+    chain = chain or FastChain(model)
+    return _errors_from_X(chain.pose(q, values), model.robot.fk(q))
+
+
+def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) -> dict[str, np.ndarray]:
+    """Reference implementation of :func:`pose_errors` through ``perturbed_chain`` + ``fk_poe`` (slow)."""
+    from tolalloc.robot.kinematics import fk_poe
+
+    values = _check_values(model, values)
+    screws, home, dq = model.perturbed_chain(values)
+    T = fk_poe(screws, home, np.asarray(q, float) + dq)
+    X = np.moveaxis(T[:, :3, :], 0, -1)
+    return _errors_from_X(X, model.robot.fk(q))
+
+
+# ----------------------------------------------------------------- result
+@dataclass(frozen=True)
+class McResult:
+    """Monte Carlo summary, one entry per pose along axis 0 (``P`` poses).
+
+    Attributes
+    ----------
+    n, seed : int
+    q : array, shape (P, n_joints) [rad, mm]
+    labels : dict
+        Model options (``sigma_set``, ``link_mode``, ``deflection_mode``, ``clearance``).
+    mean_mm, std_mm : array, shape (P, 3)
+        Mean and standard deviation (ddof 1) of ``p' - p``.
+    cov_mm2 : array, shape (P, 3, 3)
+    norm_mm, reach_mm : array, shape (P, 4)
+        Mean, std, max, min of ``|p' - p|`` and of ``|p'| - |p|`` (the paper's "Δp").
+    angle_mean_rad, angle_std_rad : array, shape (P, 3)
+        X-Y-Z fixed Euler-angle errors ``(alpha, beta, gamma)``.
+    rotvec_std_rad : array, shape (P, 3)
+    p_within : dict float -> array, shape (P, 3)
+        Radius [mm] -> ``P(|p' - p| < r)``, CI low, CI high.
+    p_within_angle : dict float -> array, shape (P, 3)
+        Angle [rad] -> ``P(|rotvec| < r)`` with CI.
+    samples : dict or None
+        The first ``keep_samples`` per-sample arrays (keys of :func:`pose_errors`) at pose 0.
+    dp_max_mm, dp_min_mm, angle_max_rad, angle_min_rad : array, shape (P, 3)
+    ci : str
+        Interval method (95 %).
+    hist : McHistogram or None
+        Fixed-range x-y, x-z, y-z histograms of ``p' - p`` over all samples (``hist_bins > 0``).
+    """
+
+    n: int
+    seed: int
+    q: np.ndarray
+    labels: dict
+    mean_mm: np.ndarray
+    std_mm: np.ndarray
+    cov_mm2: np.ndarray
+    norm_mm: np.ndarray
+    reach_mm: np.ndarray
+    angle_mean_rad: np.ndarray
+    angle_std_rad: np.ndarray
+    rotvec_std_rad: np.ndarray
+    p_within: dict
+    p_within_angle: dict
+    samples: dict | None = None
+    dp_max_mm: np.ndarray = field(default=None, repr=False)
+    dp_min_mm: np.ndarray = field(default=None, repr=False)
+    angle_max_rad: np.ndarray = field(default=None, repr=False)
+    angle_min_rad: np.ndarray = field(default=None, repr=False)
+    ci: str = "wilson"
+    hist: McHistogram | None = field(default=None, repr=False)
+
+    def to_frame(self) -> pd.DataFrame:
+        """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
+        rows = []
+        for i in range(self.q.shape[0]):
+            items = [("dp_reach_mm", *self.reach_mm[i]), ("dp_norm_mm", *self.norm_mm[i])]
+            for a, nm in enumerate(("dx_mm", "dy_mm", "dz_mm")):
+                items.append((nm, self.mean_mm[i, a], self.std_mm[i, a], self.dp_max_mm[i, a], self.dp_min_mm[i, a]))
+            for a, nm in enumerate(("dalpha_rad", "dbeta_rad", "dgamma_rad")):
+                items.append((nm, self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
+                              self.angle_max_rad[i, a], self.angle_min_rad[i, a]))
+            rows += [{"pose": i + 1, "quantity": it[0], "mean": it[1], "std": it[2], "max": it[3], "min": it[4]} for it in items]
+        return pd.DataFrame(rows)
+
+
+# ----------------------------------------------------------------- driver
+def _hist_spec(model, q, bins, hist_range_mm, hist_sigmas=6.0):
+    P = len(q)
+    if hist_range_mm is None:
+        J = model.jacobian(q)[:, :3]  # (P, 3, K)
+        sd = np.sqrt(np.einsum("pik,k->pi", J**2, model.sigma**2))
+        half = np.where(sd > 0, hist_sigmas * sd, 1e-6)
+    else:
+        h = np.asarray(hist_range_mm, float)
+        half = np.broadcast_to(h, (P, 3)) if h.ndim <= 1 else h
+    return HistSpec.symmetric(np.array(half, float), bins)
+
+
+def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_rad=(), chunk_size: int = 2**17,
+           keep_samples: int = 0, ci: str = "wilson", n_jobs: int | None = None, scheduler=None,
+           progress: bool | None = None, hist_bins: int = 0, hist_range_mm=None, engine: str | None = None) -> McResult:
+    """Nonlinear Monte Carlo of the tool-pose error at one or several poses (streamed, bounded memory).
+
+    The same sampled robots (parameter values) are evaluated at every pose.
+
+    Parameters
+    ----------
+    model : ErrorModel
+    q : array, shape (n_joints,) or (P, n_joints) [rad, mm]
+    n : int
+        Number of samples (>= 1).
+    seed : int
+    radii_mm : sequence of float
+        Radii for ``P(|p' - p| < r)``.
+    angle_radii_rad : sequence of float
+        Radii for ``P(|rotvec| < r)``.
+    chunk_size : int
+        Samples per task on Dask schedulers (rounded up to whole blocks of :data:`BLOCK_SIZE`);
+        never changes the numbers.
+    keep_samples : int
+        Keep the first this many per-sample errors of pose 0 (for figures).
+    ci : {"wilson", "exact"}
+    n_jobs : int, optional
+        Local threads (default: the usable CPUs, at most 8); never changes the numbers.
+    scheduler : None, "local", "sync", "threads", "processes", "distributed", "tcp://HOST:PORT" or a
+        ``distributed.Client``
+        Where blocks run (:mod:`tolalloc.montecarlo.parallel`); never changes the numbers.
+    progress : bool, optional
+        Progress bar on stderr; default: when ``n >= PROGRESS_MIN_N`` and stderr is a terminal.
+    hist_bins : int
+        If > 0, accumulate fixed-range ``hist_bins x hist_bins`` histograms of ``p' - p`` on the x-y,
+        x-z and y-z planes over all samples (``McResult.hist``).
+    hist_range_mm : float, array (3,) or (P, 3), optional
+        Half-width of the histogram window per axis [mm]; default 6 linear standard deviations.
+    engine : {None, "auto", "numba", "numpy"}
+        Per-block computation: the compiled kernel of :mod:`tolalloc.montecarlo.engines.numba_engine` (default when numba is
+        installed and ``TOLALLOC_NUMBA`` is not ``0``) or numpy. Same random numbers; results agree to
+        rounding (about 1e-13 relative).
+
+    Returns
+    -------
+    McResult
+    """
+    q = np.atleast_2d(model.robot.check_q(q, "q"))
+    try:
+        n_ok = int(n) == n and n >= 1
+    except (TypeError, ValueError, OverflowError):
+        n_ok = False
+    if not n_ok:
+        raise TolallocError(f"n: expected an integer number of samples >= 1, got {n!r}.")
+    n = int(n)
+    sig = model.sigma
+    if np.any(~np.isfinite(sig)) or np.any(sig < 0):
+        raise TolallocError(f"sigma: expected finite values >= 0, got {sig}; fix the sigma set or overrides.")
+    radii = [float(r) for r in radii_mm]
+    aradii = [float(r) for r in angle_radii_rad]
+    for r, nm in [(r, "radii_mm") for r in radii] + [(r, "angle_radii_rad") for r in aradii]:
+        if not np.isfinite(r) or r <= 0:
+            raise TolallocError(f"{nm}: expected finite radii > 0, got {r!r}.")
+    if ci not in ("wilson", "exact", "clopper-pearson"):
+        raise TolallocError(f"ci: expected 'wilson' or 'exact' (Clopper-Pearson), got {ci!r}.")
+    scheduler = check_scheduler(scheduler)
+    hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
+    spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
+    n_blocks = -(-n // BLOCK_SIZE)
+    local = scheduler in (None, "local", "sync")
+    per_task = 1 if local else max(1, -(-int(chunk_size) // BLOCK_SIZE))
+    tasks = [(b, min(n_blocks, b + per_task)) for b in range(0, n_blocks, per_task)]
+    show = progress if progress is not None else (n >= PROGRESS_MIN_N and sys.stderr.isatty())
+    bar = None
+    if show:
+        from tqdm import tqdm
+
+        bar = tqdm(total=n, unit="sample", unit_scale=True, file=sys.stderr, desc="Monte Carlo", leave=False)
+    P = len(q)
+    moms = [Moments() for _ in range(P)]
+    ext, kept = None, []
+    from threadpoolctl import threadpool_limits
+
+    try:
+        with threadpool_limits(limits=1, user_api="blas"):
+            for ns, block_moms, e, k in ordered_map(run_blocks, tasks, spec, scheduler=scheduler,
+                                                    n_jobs=n_jobs or default_jobs()):
+                for bm in block_moms:
+                    for acc, mo in zip(moms, bm):
+                        acc.merge(mo)
+                ext = e if ext is None else [a.merge(x) for a, x in zip(ext, e)]
+                kept += k
+                if bar is not None:
+                    bar.update(sum(ns))
+    finally:
+        if bar is not None:
+            bar.close()
+    return _result(model, spec, moms, ext, kept, ci)
+
+
+def _result(model, spec, moms, ext, kept, ci) -> McResult:
+    n, q, radii, aradii = spec.n, spec.q, spec.radii, spec.aradii
+    P = len(q)
+    samples = {k: np.concatenate([d[k] for d in kept]) for k in kept[0]} if kept else None
+    mean = np.array([a.mean for a in moms])
+    ddof = 1 if n > 1 else 0
+    cov = np.array([a.cov(ddof) for a in moms])
+    std = np.sqrt(np.maximum(np.diagonal(cov, axis1=1, axis2=2), 0))
+    mx, mn = np.array([e.mx for e in ext]), np.array([e.mn for e in ext])
+    counts = np.array([e.counts for e in ext]).reshape(P, -1)
+
+    def four(j):
+        return np.stack([mean[:, j], std[:, j], mx[:, j], mn[:, j]], axis=1)
+
+    pci = proportion_ci(counts, n, ci) if counts.size else np.zeros((P, 0, 3))
+    hist = None
+    if spec.hist is not None:
+        H = np.array([e.hist for e in ext])  # (P, 3, b + 2, b + 2)
+        inner = H[:, :, 1:-1, 1:-1]
+        b = spec.hist.bins
+        edges = spec.hist.lo_mm[:, :, None] + spec.hist.width_mm[:, :, None] * np.arange(b + 1)
+        hist = McHistogram(n, edges, inner.copy(), n - inner.sum(axis=(2, 3)))
+    labels = {**model.labels, "clearance": any(p.kind.startswith("clearance") for p in model.params)}
+    # feature rows: dx dy dz rvx rvy rvz norm reach alpha beta gamma
+    return McResult(
+        n=n, seed=spec.seed, q=q, labels=labels,
+        mean_mm=mean[:, 0:3], std_mm=std[:, 0:3], cov_mm2=cov[:, 0:3, 0:3],
+        norm_mm=four(6), reach_mm=four(7),
+        angle_mean_rad=mean[:, 8:11], angle_std_rad=std[:, 8:11], rotvec_std_rad=std[:, 3:6],
+        p_within={r: pci[:, j] for j, r in enumerate(radii)},
+        p_within_angle={r: pci[:, len(radii) + j] for j, r in enumerate(aradii)},
+        samples=samples, dp_max_mm=mx[:, 0:3], dp_min_mm=mn[:, 0:3], angle_max_rad=mx[:, 8:11],
+        angle_min_rad=mn[:, 8:11], ci="exact" if ci == "clopper-pearson" else ci, hist=hist,
+    )

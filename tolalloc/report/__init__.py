@@ -1,0 +1,2 @@
+"""Tolerance tables (CSV / Markdown / LaTeX) and figures drawn from result objects."""
+

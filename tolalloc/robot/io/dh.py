@@ -1,0 +1,212 @@
+"""Denavit-Hartenberg tables (standard or modified) converted to a POE chain.
+
+Each non-zero DH length becomes a named :class:`~tolalloc.robot.model.Link`
+(``d1``, ``a2`` ...), so it carries a length tolerance like any other link.
+
+Standard DH (``T_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i)``): joint ``i``
+turns about ``z_{i-1}`` through the origin of frame ``i-1``.
+Modified DH (Craig, ``T_i = Rx(alpha_{i-1}) Tx(a_{i-1}) Rz(theta_i) Tz(d_i)``):
+joint ``i`` turns about ``z_i`` through the origin of frame ``i``; the row of
+joint ``i`` holds ``alpha_{i-1}`` and ``a_{i-1}``.
+The tool frame is the last DH frame, optionally followed by ``[tool]``.
+For a prismatic joint ``i`` the constant part of ``d_i`` is the link ``d<i>_offset`` (so that its
+length error ``dd<i>_offset`` does not clash with the drive error ``dd<i>``).
+
+CSV form (``load_dh_csv``): ``#`` comment lines ``# key: value`` give ``convention`` (required:
+``standard`` or ``modified``), ``name`` and ``description``; then a header row and one row per
+joint with the columns ``name``, ``type`` (optional, default revolute), ``d_mm`` | ``d_m``,
+``a_mm`` | ``a_m``, ``alpha_deg`` | ``alpha_rad``, ``theta_offset_deg`` | ``theta_offset_rad`` and
+optionally ``lower_deg_mm``, ``upper_deg_mm``, ``nominal_deg_mm`` (deg for revolute, mm for
+prismatic rows); empty cells take the defaults. Example::
+
+    # convention: standard
+    # name: ur10_csv
+    name,d_m,a_m,alpha_rad
+    shoulder_pan_joint,0.1273,0,1.5707963267948966
+    shoulder_lift_joint,0,-0.612,0
+    ...
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.lie import rot_x, rot_z
+from tolalloc.robot.io.robotfile import _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, _finish_robot, _unit_value, _validate, parse_tool
+from tolalloc.robot.model import Joint, Link
+
+__all__ = ["robot_from_dh_dict", "chain_from_dh", "load_dh_csv"]
+
+
+class DHFile(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: str
+    description: str = ""
+    convention: Literal["standard", "modified"]
+    dh: list[dict]
+    tool: dict = {}
+    gravity: tuple[float, float, float] = (0.0, 0.0, -1.0)
+    masses: list[dict] = []
+    pose_sets: dict[str, dict] = {}
+    sigma_sets: dict[str, dict] = {}
+
+
+def chain_from_dh(rows: list[dict], convention: str):
+    """Build chain elements and the final frame rotation from DH rows in internal units.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Keys ``name``, ``type`` (``revolute`` / ``prismatic``), ``d``, ``a`` [mm],
+        ``alpha``, ``theta_offset`` [rad], ``lower``, ``upper``, ``nominal``.
+    convention : {"standard", "modified"}
+
+    Returns
+    -------
+    chain : list of Link and Joint
+    R_tool : array, shape (3, 3)
+        Orientation of the last DH frame at the zero configuration.
+    """
+    R = np.eye(3)
+    chain = []
+    for i, r in enumerate(rows, start=1):
+        if convention == "modified":
+            R = R @ rot_x(r["alpha"])
+            if r["a"] != 0:
+                chain.append(Link(f"a{i - 1}", r["a"] * R[:, 0]))
+            R = R @ rot_z(r["theta_offset"])
+            axis = R[:, 2].copy()
+            chain.append(Joint(r["name"], r["type"], axis, r["lower"], r["upper"], r["nominal"]))
+            if r["d"] != 0:
+                chain.append(Link(f"d{i}_offset" if r["type"] == "prismatic" else f"d{i}", r["d"] * R[:, 2]))
+        else:
+            axis = R[:, 2].copy()
+            chain.append(Joint(r["name"], r["type"], axis, r["lower"], r["upper"], r["nominal"]))
+            if r["d"] != 0:
+                chain.append(Link(f"d{i}_offset" if r["type"] == "prismatic" else f"d{i}", r["d"] * R[:, 2]))
+            R = R @ rot_z(r["theta_offset"])
+            if r["a"] != 0:
+                chain.append(Link(f"a{i}", r["a"] * R[:, 0]))
+            R = R @ rot_x(r["alpha"])
+    return chain, R
+
+
+def robot_from_dh_dict(data: dict, source: str = "<dict>"):
+    """Build a robot from a parsed DH TOML file (see the README)."""
+
+    spec = _validate(DHFile, data, "")
+    rows = []
+    for i, row in enumerate(spec.dh):
+        where = f"dh[{i}]"
+        known = {"name", "type"}
+        try:
+            kind = row.get("type", "revolute")
+            if kind not in ("revolute", "prismatic", "continuous"):
+                raise ValueError(f"type must be 'revolute', 'prismatic' or 'continuous', got {kind!r}")
+            for key in row:
+                if key not in known and not any(key.startswith(b + "_") and key[len(b) + 1:] in _ALL_UNITS
+                                                for b in ("d", "a", "alpha", "theta_offset", "limits", "nominal")):
+                    raise ValueError(f"unknown key {key!r}; expected name, type, d_mm|d_m, a_mm|a_m, alpha_deg|alpha_rad, theta_offset_deg|theta_offset_rad, limits_*, nominal_*")
+            d, _ = _unit_value(row, "d", LENGTH_UNITS, 0.0)
+            a, _ = _unit_value(row, "a", LENGTH_UNITS, 0.0)
+            alpha, _ = _unit_value(row, "alpha", ANGLE_UNITS, 0.0)
+            th0, _ = _unit_value(row, "theta_offset", ANGLE_UNITS, 0.0)
+            rev = kind != "prismatic"
+            units = ANGLE_UNITS if rev else LENGTH_UNITS
+            lim, _ = _unit_value(row, "limits", units, np.array([-2 * np.pi, 2 * np.pi]) if rev else np.array([-1000.0, 1000.0]))
+            nom, _ = _unit_value(row, "nominal", units, 0.0)
+            unit = "deg" if rev else "mm"
+            shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if rev else (lambda x: np.asarray(x).tolist())
+            for key, val in (("d", d), ("a", a), ("alpha", alpha), ("theta_offset", th0)):
+                if np.shape(val) != () or not np.isfinite(val):
+                    raise ValueError(f"{key} must be one finite number, got {np.asarray(val).tolist()}")
+            if np.shape(lim) != (2,) or not lim[0] < lim[1]:
+                raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+            if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+                raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                                 "expected one number inside the limits")
+        except ValueError as exc:
+            raise TolallocError(f"{where}: {exc}") from None
+        rows.append(dict(name=str(row.get("name", f"j{i + 1}")), type="revolute" if rev else "prismatic",
+                         d=float(d), a=float(a), alpha=float(alpha), theta_offset=float(th0),
+                         lower=float(lim[0]), upper=float(lim[1]), nominal=float(nom)))
+    chain, R_last = chain_from_dh(rows, spec.convention)
+    offset, R_tool = parse_tool(spec.tool)
+    # the tool of a DH robot is given in the last DH frame
+    return _finish_robot(spec.name, chain, R_last @ offset, R_last @ R_tool, spec.gravity, spec.masses,
+                         spec.pose_sets, spec.description, spec.sigma_sets)
+
+
+CSV_COLUMNS = ("name", "type", "d_mm", "d_m", "a_mm", "a_m", "alpha_deg", "alpha_rad", "theta_offset_deg",
+               "theta_offset_rad", "lower_deg_mm", "upper_deg_mm", "nominal_deg_mm")
+
+
+def load_dh_csv(path):
+    """Load a robot from a DH table in CSV form (see the module docstring).
+
+    Raises
+    ------
+    TolallocError
+        Naming the file, the row (``dh[i]`` = data row ``i``, 0-based) and the column.
+    """
+    import csv
+    from pathlib import Path
+
+    path = Path(path)
+    source = f"DH CSV file {str(path)!r}"
+    meta, lines = {}, []
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a DH table in CSV.") from None
+    for line in text.splitlines():
+        if line.lstrip().startswith("#"):
+            key, sep, value = line.lstrip()[1:].partition(":")
+            if sep:
+                meta[key.strip().lower()] = value.strip()
+        elif line.strip():
+            lines.append(line)
+    if meta.get("convention") not in ("standard", "modified"):
+        raise TolallocError(f"{source}: expected a comment line '# convention: standard' or '# convention: modified' "
+                            f"before the header, got convention {meta.get('convention')!r}.")
+    reader = csv.DictReader(lines, skipinitialspace=True)
+    header = [h.strip() for h in (reader.fieldnames or [])]
+    unknown = [h for h in header if h not in CSV_COLUMNS]
+    if "name" not in header or unknown:
+        raise TolallocError(f"{source}: header {header}: expected a 'name' column and columns among {', '.join(CSV_COLUMNS)}"
+                            + (f"; unknown: {unknown}" if unknown else "") + ".")
+    rows = []
+    for i, raw in enumerate(reader):
+        cells = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
+        if None in raw:
+            raise TolallocError(f"{source}: dh[{i}]: more cells than header columns ({len(header)}).")
+        row = {"name": cells["name"]}
+        kind = cells.get("type") or "revolute"
+        row["type"] = kind
+        unit = "mm" if kind == "prismatic" else "deg"
+        try:
+            for col, val in cells.items():
+                if col in ("name", "type") or val == "":
+                    continue
+                if col in ("lower_deg_mm", "upper_deg_mm"):
+                    continue
+                key = f"nominal_{unit}" if col == "nominal_deg_mm" else col
+                row[key] = float(val)
+            lo, hi = cells.get("lower_deg_mm", ""), cells.get("upper_deg_mm", "")
+            if (lo == "") != (hi == ""):
+                raise ValueError("give both lower_deg_mm and upper_deg_mm, or neither")
+            if lo != "":
+                row[f"limits_{unit}"] = [float(lo), float(hi)]
+        except ValueError as exc:
+            raise TolallocError(f"{source}: dh[{i}] ({cells['name']}): {exc}; expected numbers in the unit of the column name.") from None
+        rows.append(row)
+    data = {"name": meta.get("name", path.stem), "description": meta.get("description", ""),
+            "convention": meta["convention"], "dh": rows}
+    try:
+        return robot_from_dh_dict(data, source)
+    except TolallocError as exc:
+        raise TolallocError(f"{source}: {exc}") from None

@@ -1,0 +1,276 @@
+"""Robot files (TOML) and the built-in robots.
+
+Two TOML layouts are read, both with the unit in every key name:
+
+* the **chain** layout (``[[chain]]`` entries of links and joints, see the
+  README for a complete example), and
+* the **DH** layout (``convention = "standard" | "modified"`` and
+  ``[[dh]]`` rows), converted to a chain by :mod:`tolalloc.robot.io.dh`.
+
+Lengths may be given in ``_mm`` or ``_m``, angles in ``_deg`` or ``_rad``;
+everything is converted to mm and rad on load. Validation is done by
+pydantic models; errors are re-raised as :class:`TolallocError` naming the
+file, the field and what was expected.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, model_validator
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.lie import exp_so3
+from tolalloc.robot.model import Joint, Link, Mass, Robot
+
+__all__ = ["robot_from_chain_dict", "parse_tool", "LENGTH_UNITS", "ANGLE_UNITS"]
+
+LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
+ANGLE_UNITS = {"deg": np.pi / 180.0, "rad": 1.0}
+_ALL_UNITS = {**LENGTH_UNITS, **ANGLE_UNITS}
+#: base key -> allowed unit suffixes
+_UNIT_KEYS = {
+    "vector": LENGTH_UNITS,
+    "offset": LENGTH_UNITS,
+    "com": LENGTH_UNITS,
+    "rpy": ANGLE_UNITS,
+    "limits": _ALL_UNITS,
+    "nominal": _ALL_UNITS,
+    "d": LENGTH_UNITS,
+    "a": LENGTH_UNITS,
+    "alpha": ANGLE_UNITS,
+    "theta_offset": ANGLE_UNITS,
+    "d_offset": LENGTH_UNITS,
+}
+
+Vec3 = tuple[float, float, float]
+
+
+def _unit_value(data: dict, base: str, allowed: dict, default=None):
+    """Return (value in internal units, unit) for ``base_<unit>`` in ``data``; check exactly one is given."""
+    present = [k for k in data if k == base or (k.startswith(base + "_") and k[len(base) + 1 :] in _ALL_UNITS)]
+    present = [k for k in present if not (base == "d" and k.startswith("d_offset"))]
+    if not present:
+        return default, None
+    if len(present) > 1:
+        raise ValueError(f"give {base} once, got {present}")
+    key = present[0]
+    unit = key[len(base) + 1 :] if key != base else ""
+    if unit not in allowed:
+        want = " or ".join(f"{base}_{u}" for u in allowed)
+        raise ValueError(f"key {key!r} has unit {unit or 'none'!r}; expected {want}")
+    return np.asarray(data[key], dtype=float) * allowed[unit], unit
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="allow", frozen=True)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _check_unit_suffixes(cls, data):
+        if isinstance(data, dict):
+            for key in data:
+                for base, allowed in _UNIT_KEYS.items():
+                    if key.startswith(base + "_") and key not in cls.model_fields:
+                        unit = key[len(base) + 1 :]
+                        if unit in ("offset",):
+                            continue
+                        if unit not in allowed:
+                            want = " or ".join(f"{base}_{u}" for u in allowed)
+                            raise ValueError(f"unknown unit {unit!r} in key {key!r}; expected {want}")
+            extra = [k for k in data if k not in cls.model_fields and not _is_unit_key(k)]
+            if extra:
+                raise ValueError(f"unknown key(s) {extra}; expected keys among {sorted(cls.model_fields) + cls._unit_bases()}")
+        return data
+
+    @classmethod
+    def _unit_bases(cls) -> list:
+        return []
+
+
+def _is_unit_key(key: str) -> bool:
+    return any(key.startswith(b + "_") and key[len(b) + 1 :] in allowed for b, allowed in _UNIT_KEYS.items())
+
+
+def _check_axis(v):
+    a = np.asarray(v, dtype=float)
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"axis must be finite, got {list(v)}")
+    n = np.linalg.norm(a)
+    if n == 0:
+        raise ValueError("axis is the zero vector; expected a unit vector such as [0, 0, 1]")
+    if abs(n - 1.0) > 1e-6:
+        raise ValueError(f"axis {list(v)} has norm {n:.6g}; expected a unit vector (norm 1 within 1e-6)")
+    return tuple(a / n)
+
+
+class LinkEntry(_Strict):
+    link: str
+
+    @classmethod
+    def _unit_bases(cls):
+        return ["vector_mm|vector_m"]
+
+    def build(self) -> Link:
+        extra = self.model_extra or {}
+        vec, _ = _unit_value(extra, "vector", LENGTH_UNITS)
+        if vec is None:
+            raise ValueError("missing vector_mm (the link's translation at home, base axes)")
+        if vec.shape != (3,) or not np.all(np.isfinite(vec)):
+            raise ValueError(f"vector must be 3 finite numbers, got {extra}")
+        return Link(self.link, vec)
+
+
+class JointEntry(_Strict):
+    joint: str
+    type: Literal["revolute", "prismatic", "continuous"]
+    axis: Vec3
+
+    _check = field_validator("axis")(classmethod(lambda cls, v: _check_axis(v)))
+
+    @classmethod
+    def _unit_bases(cls):
+        return ["limits_deg|limits_rad|limits_mm|limits_m", "nominal_deg|nominal_rad|nominal_mm|nominal_m"]
+
+    def build(self) -> Joint:
+        extra = self.model_extra or {}
+        revolute = self.type != "prismatic"
+        allowed = ANGLE_UNITS if revolute else LENGTH_UNITS
+        kind = "revolute" if revolute else "prismatic"
+        default_lim = np.array([-np.pi, np.pi]) if revolute else np.array([-1000.0, 1000.0])
+        if self.type == "continuous":
+            default_lim = np.array([-4 * np.pi, 4 * np.pi])
+        lim, _ = _unit_value(extra, "limits", allowed, default_lim)
+        nom, _ = _unit_value(extra, "nominal", allowed, 0.0)
+        shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
+        unit = "deg" if revolute else "mm"
+        if np.shape(lim) != (2,) or not lim[0] < lim[1]:
+            raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+        if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+            raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                             "expected one number inside the limits")
+        return Joint(self.joint, kind, np.array(self.axis), float(lim[0]), float(lim[1]), float(nom))
+
+
+class MassEntry(_Strict):
+    link: str
+    mass_kg: float
+
+    @classmethod
+    def _unit_bases(cls):
+        return ["com_mm|com_m"]
+
+
+class ToolEntry(_Strict):
+    pass
+
+
+class ChainFile(BaseModel):
+    model_config = ConfigDict(extra="forbid")
+    name: str
+    description: str = ""
+    chain: list[dict]
+    tool: dict = {}
+    gravity: Vec3 = (0.0, 0.0, -1.0)
+    masses: list[dict] = []
+    pose_sets: dict[str, dict] = {}
+    sigma_sets: dict[str, dict] = {}
+
+
+def _loc(err) -> str:
+    out = ""
+    for part in err["loc"]:
+        out += f"[{part}]" if isinstance(part, int) else (("." if out else "") + str(part))
+    return out or "(top level)"
+
+
+def _format(exc: ValidationError, prefix: str) -> str:
+    lines = []
+    for err in exc.errors():
+        msg = err["msg"].removeprefix("Value error, ")
+        loc = prefix + ("." if prefix and err["loc"] else "") + _loc(err) if err["loc"] else prefix or "(top level)"
+        lines.append(f"{loc}: {msg}")
+    return "; ".join(lines)
+
+
+def _validate(model, data, where: str):
+    try:
+        return model.model_validate(data)
+    except ValidationError as exc:
+        raise TolallocError(_format(exc, where)) from None
+
+
+def robot_from_chain_dict(data: dict, source: str = "<dict>") -> Robot:
+    """Build a :class:`Robot` from the parsed TOML of a chain-layout robot file."""
+    spec = _validate(ChainFile, data, "")
+    chain = []
+    for i, entry in enumerate(spec.chain):
+        where = f"chain[{i}]"
+        if "link" in entry and "joint" not in entry:
+            model = LinkEntry
+        elif "joint" in entry and "link" not in entry:
+            model = JointEntry
+        else:
+            raise TolallocError(f"{where}: expected either a 'link' or a 'joint' key, got keys {sorted(entry)}")
+        item = _validate(model, entry, where)
+        try:
+            chain.append(item.build())
+        except ValueError as exc:
+            raise TolallocError(f"{where} ({item.link if model is LinkEntry else item.joint}): {exc}") from None
+    offset, R_tool = parse_tool(spec.tool)
+    return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets)
+
+
+def parse_tool(tool: dict):
+    """Return (offset [mm] (3,), rotation (3, 3)) of a ``[tool]`` table (``offset_mm``, ``rpy_deg`` X-Y-Z fixed)."""
+    extra = _validate(ToolEntry, tool, "tool").model_extra or {}
+    try:
+        offset, _ = _unit_value(extra, "offset", LENGTH_UNITS, np.zeros(3))
+        rpy, _ = _unit_value(extra, "rpy", ANGLE_UNITS, np.zeros(3))
+    except ValueError as exc:
+        raise TolallocError(f"tool: {exc}") from None
+    if np.shape(offset) != (3,) or np.shape(rpy) != (3,):
+        raise TolallocError(f"tool: expected offset_mm and rpy_deg of 3 numbers each, got {tool}")
+    R = exp_so3([0, 0, rpy[2]]) @ exp_so3([0, rpy[1], 0]) @ exp_so3([rpy[0], 0, 0])
+    return np.asarray(offset, float), R
+
+
+def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None) -> Robot:
+    """Shared tail of the chain and DH loaders: gravity, masses, pose sets."""
+    g = np.asarray(gravity, dtype=float)
+    if not np.all(np.isfinite(g)) or np.linalg.norm(g) == 0:
+        raise TolallocError(f"gravity: expected a non-zero direction such as [0, 0, -1], got {list(gravity)}")
+    robot = Robot(name, tuple(chain), tool_offset_mm=np.asarray(offset, float), tool_rotation=np.asarray(R_tool),
+                  gravity=g / np.linalg.norm(g), description=description)
+    body_of = {}
+    for e in chain:
+        if isinstance(e, Link):
+            body_of[e.name] = int(sum(isinstance(x, Joint) for x in chain[: chain.index(e)]))
+    mass_list = []
+    for i, m in enumerate(masses):
+        entry = _validate(MassEntry, m, f"masses[{i}]")
+        if entry.link not in body_of:
+            raise TolallocError(f"masses[{i}].link: {entry.link!r} is not a link of the chain; links: {sorted(body_of)}")
+        try:
+            com, _ = _unit_value(entry.model_extra or {}, "com", LENGTH_UNITS)
+        except ValueError as exc:
+            raise TolallocError(f"masses[{i}]: {exc}") from None
+        if com is None or entry.mass_kg < 0:
+            raise TolallocError(f"masses[{i}]: expected mass_kg >= 0 and com_mm (3 numbers), got {m}")
+        mass_list.append(Mass(entry.link, body_of[entry.link], float(entry.mass_kg), com))
+    sets = {}
+    for set_name, entry in pose_sets.items():
+        if set(entry) != {"q_deg_mm"}:
+            raise TolallocError(f"pose_sets.{set_name}: expected one key 'q_deg_mm' (rows of joint values in deg / mm), got keys {sorted(entry)}")
+        where = f"pose_sets.{set_name}.q_deg_mm"
+        try:
+            rows = np.atleast_2d(np.asarray(entry["q_deg_mm"], dtype=float))
+        except (TypeError, ValueError):
+            raise TolallocError(f"{where}: expected rows of {robot.n_joints} numbers (deg / mm), one row per pose, "
+                                f"got {entry['q_deg_mm']!r}.") from None
+        sets[set_name] = robot.check_q(rows, where, interface=True)
+    object.__setattr__(robot, "masses", tuple(mass_list))
+    object.__setattr__(robot, "pose_sets", sets)
+    object.__setattr__(robot, "sigma_sets", dict(sigma_sets or {}))
+    return robot

@@ -1,0 +1,293 @@
+"""Serial-chain robot model and product-of-exponentials (POE) kinematics.
+
+A robot is described at its zero configuration as an ordered chain of
+
+* :class:`Link` -- a fixed translation (a named length parameter, so that a
+  link-length tolerance has a name and a direction), and
+* :class:`Joint` -- a revolute or prismatic joint with a unit axis in the base
+  frame,
+
+followed by a tool frame. From it follow the space-frame screw axes ``S``
+(one per row, ``(omega, v)``), the joint points and the home pose ``M``; the
+forward kinematics is ``T(q) = exp([S1] q1) ... exp([Sn] qn) M``.
+
+Units inside the library: lengths in mm, angles in rad. Joint values at the
+interface (files, CLI) are in degrees (revolute) and mm (prismatic); use
+:meth:`Robot.q_from_interface` / :meth:`Robot.q_to_interface` to convert.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tolalloc.exceptions import TolallocError, check_finite_array
+from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
+
+__all__ = ["Link", "Joint", "Mass", "Robot"]
+
+REVOLUTE = "revolute"
+PRISMATIC = "prismatic"
+
+
+@dataclass(frozen=True, eq=False)
+class Link:
+    """A fixed translation of the chain at the zero configuration.
+
+    Attributes
+    ----------
+    name : str
+        Length-parameter name (``l1`` ...).
+    vector_mm : array, shape (3,)
+        Translation in the base frame at home [mm].
+    """
+
+    name: str
+    vector_mm: np.ndarray
+
+    @property
+    def length_mm(self) -> float:
+        """Nominal length [mm]."""
+        return float(np.linalg.norm(self.vector_mm))
+
+    @property
+    def direction(self) -> np.ndarray:
+        """Unit direction of the link (zero vector for a zero-length link), shape (3,)."""
+        n = self.length_mm
+        return self.vector_mm / n if n > 0 else np.zeros(3)
+
+
+@dataclass(frozen=True, eq=False)
+class Joint:
+    """A one-degree-of-freedom joint.
+
+    Attributes
+    ----------
+    name : str
+    kind : {"revolute", "prismatic"}
+    axis : array, shape (3,)
+        Unit axis in the base frame at home.
+    lower, upper : float
+        Joint limits [rad or mm].
+    nominal : float
+        Nominal joint value [rad or mm].
+    """
+
+    name: str
+    kind: str
+    axis: np.ndarray
+    lower: float = -np.pi
+    upper: float = np.pi
+    nominal: float = 0.0
+
+    @property
+    def is_revolute(self) -> bool:
+        return self.kind == REVOLUTE
+
+    @property
+    def unit(self) -> str:
+        """Interface unit of the joint value: ``deg`` or ``mm``."""
+        return "deg" if self.is_revolute else "mm"
+
+
+@dataclass(frozen=True, eq=False)
+class Mass:
+    """A point mass carried by the chain (used by the gravity models of the diagnosis).
+
+    Attributes
+    ----------
+    name : str
+        Label (usually the link it belongs to).
+    body : int
+        Number of joints between the base and the mass (0 = fixed to the base,
+        ``n`` = moves with the last joint).
+    mass_kg : float
+    com_mm : array, shape (3,)
+        Centre of mass in the base frame at home [mm].
+    """
+
+    name: str
+    body: int
+    mass_kg: float
+    com_mm: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class Robot:
+    """A serial robot; derived quantities are computed once at construction.
+
+    Attributes
+    ----------
+    name : str
+    chain : tuple of Link and Joint
+        Elements in order from the base, at the zero configuration.
+    tool_offset_mm : array, shape (3,)
+        Tool point relative to the end of the last link, base axes [mm].
+    tool_rotation : array, shape (3, 3)
+        Tool frame orientation at home.
+    masses : tuple of Mass
+    gravity : array, shape (3,)
+        Unit gravity direction in the base frame.
+    pose_sets : dict of str -> array, shape (P, n)
+        Named sets of working poses [rad, mm].
+    description : str
+    sigma_sets : dict of str -> dict
+        Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
+
+    Derived (read-only)
+    -------------------
+    joints, links : tuples of Joint, Link
+    screws : array, shape (n, 6)       space screw axes ``(omega, v)``
+    joint_points_mm : array, shape (n, 3)
+    home : array, shape (4, 4)         ``M``
+    link_sites : array of int, shape (L,)  joints preceding each link
+    """
+
+    name: str
+    chain: tuple
+    tool_offset_mm: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    tool_rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
+    masses: tuple = ()
+    gravity: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, -1.0]))
+    pose_sets: dict = field(default_factory=dict)
+    description: str = ""
+    sigma_sets: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        joints = tuple(e for e in self.chain if isinstance(e, Joint))
+        links = tuple(e for e in self.chain if isinstance(e, Link))
+        if not joints:
+            raise TolallocError(f"robot {self.name!r}: the chain has no joint; expected at least one.")
+        names = [e.name for e in self.chain]
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise TolallocError(f"robot {self.name!r}: duplicate element names {dup}; every link and joint needs its own name.")
+        point = np.zeros(3)
+        screws, points, sites = [], [], []
+        for e in self.chain:
+            if isinstance(e, Link):
+                sites.append(len(points))
+                point = point + e.vector_mm
+            else:
+                w = np.asarray(e.axis, dtype=float)
+                if w.shape != (3,) or not np.all(np.isfinite(w)) or abs(np.linalg.norm(w) - 1.0) > 1e-6:
+                    raise TolallocError(f"robot {self.name!r}, joint {e.name}: axis {w.tolist()} is not a finite unit "
+                                        "3-vector; expected e.g. [0, 0, 1] (norm 1 within 1e-6).")
+                if e.kind not in (REVOLUTE, PRISMATIC):
+                    raise TolallocError(f"robot {self.name!r}, joint {e.name}: kind {e.kind!r}; expected 'revolute' or 'prismatic'.")
+                if e.kind == REVOLUTE:
+                    screws.append(np.concatenate([w, -np.cross(w, point)]))
+                else:
+                    screws.append(np.concatenate([np.zeros(3), w]))
+                points.append(point.copy())
+        M = np.eye(4)
+        M[:3, :3] = self.tool_rotation
+        M[:3, 3] = point + self.tool_offset_mm
+        object.__setattr__(self, "joints", joints)
+        object.__setattr__(self, "links", links)
+        object.__setattr__(self, "screws", np.array(screws))
+        object.__setattr__(self, "joint_points_mm", np.array(points))
+        object.__setattr__(self, "home", M)
+        object.__setattr__(self, "link_sites", np.array(sites, dtype=int))
+        for arr in (self.screws, self.joint_points_mm, self.home, self.link_sites):
+            arr.flags.writeable = False
+
+    # ------------------------------------------------------------------ joints
+    @property
+    def n_joints(self) -> int:
+        return len(self.joints)
+
+    @property
+    def q_nominal(self) -> np.ndarray:
+        """Nominal joint values [rad, mm], shape (n,)."""
+        return np.array([j.nominal for j in self.joints])
+
+    @property
+    def lower(self) -> np.ndarray:
+        return np.array([j.lower for j in self.joints])
+
+    @property
+    def upper(self) -> np.ndarray:
+        return np.array([j.upper for j in self.joints])
+
+    @property
+    def revolute_mask(self) -> np.ndarray:
+        """True for revolute joints, shape (n,)."""
+        return np.array([j.is_revolute for j in self.joints])
+
+    def q_from_interface(self, q_deg_mm) -> np.ndarray:
+        """Convert joint values from interface units (deg / mm) to internal (rad / mm), shape (..., n)."""
+        q = np.asarray(q_deg_mm, dtype=float)
+        return np.where(self.revolute_mask, np.deg2rad(q), q)
+
+    def q_to_interface(self, q) -> np.ndarray:
+        """Convert joint values from internal (rad / mm) to interface units (deg / mm), shape (..., n)."""
+        q = np.asarray(q, dtype=float)
+        return np.where(self.revolute_mask, np.rad2deg(q), q)
+
+    def check_q(self, q, name: str = "joint values", *, interface: bool = False) -> np.ndarray:
+        """Validate joint values (shape (n,) or (P, n)) against count, finiteness and limits.
+
+        Parameters
+        ----------
+        q : array-like, shape (n,) or (P, n)
+            Internal units [rad, mm], or interface units [deg, mm] if ``interface``.
+
+        Returns
+        -------
+        q : array, internal units [rad, mm], same shape.
+        """
+        n = self.n_joints
+        units = ", ".join(j.unit for j in self.joints)
+        arr = np.atleast_1d(np.asarray(q, dtype=object))
+        if arr.shape[-1] != n or arr.ndim > 2:
+            raise TolallocError(
+                f"{name}: robot {self.name!r} has {n} joints ({', '.join(j.name for j in self.joints)}); "
+                f"expected {n} values ({units}), got {arr.shape[-1] if arr.ndim else 0}."
+            )
+        try:
+            arr = arr.astype(float)
+        except (TypeError, ValueError):
+            raise TolallocError(f"{name}: expected numbers ({units}), got {np.asarray(q, dtype=object).tolist()!r}.") from None
+        q = check_finite_array(arr, name)
+        qi = self.q_from_interface(q) if interface else q
+        lo, hi = self.lower, self.upper
+        bad = (qi < lo - 1e-12) | (qi > hi + 1e-12)
+        if np.any(bad):
+            idx = tuple(np.argwhere(bad)[0])
+            k = int(idx[-1])
+            j = self.joints[k]
+            val = self.q_to_interface(qi)[idx]
+            where = f" (pose {idx[0] + 1})" if qi.ndim == 2 else ""
+            lim = self.q_to_interface(np.array([lo, hi]))[:, k]
+            raise TolallocError(
+                f"{name}{where}: joint {j.name} = {val:g} {j.unit} is outside its limits "
+                f"[{lim[0]:g}, {lim[1]:g}] {j.unit}; give a value inside the limits or widen them in the robot file."
+            )
+        return qi
+
+    def poses(self, pose_set: str | None = None) -> np.ndarray:
+        """Joint values of a named pose set [rad, mm], shape (P, n); the nominal pose if ``None``.
+
+        The set ``nominal`` always exists.
+        """
+        if pose_set is None or pose_set == "nominal":
+            return self.q_nominal[None, :]
+        if pose_set not in self.pose_sets:
+            known = ", ".join(["nominal", *self.pose_sets])
+            raise TolallocError(f"pose set {pose_set!r} is not defined for robot {self.name!r}; known sets: {known}.")
+        return np.array(self.pose_sets[pose_set])
+
+    # -------------------------------------------------------------- kinematics
+    def fk(self, q) -> np.ndarray:
+        """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) [rad, mm]."""
+        return fk_poe(self.screws, self.home, q)
+
+    def space_jacobian(self, q, *, engine: str | None = None) -> np.ndarray:
+        """Space Jacobian, shape (..., 6, n); ``engine`` as in :func:`space_jacobian`."""
+        return space_jacobian(self.screws, q, engine=engine)
+
+    def body_jacobian(self, q) -> np.ndarray:
+        """Body Jacobian, shape (..., 6, n)."""
+        return body_jacobian(self.screws, self.home, q)
