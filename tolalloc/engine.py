@@ -26,7 +26,7 @@ def resolve_engine(engine: str | None = None) -> str:
         return "numpy"
     if engine == "numba":
         if not NUMBA_AVAILABLE:
-            raise TolallocError("engine='numba' needs the numba package: pip install 'tolalloc[fast]' "
+            raise TolallocError("engine='numba' needs the numba package: pip install numba "
                                 "(or use engine='numpy').")
         return "numba"
     if os.environ.get("TOLALLOC_NUMBA", "1").strip().lower() in ("0", "false", "no", "off"):

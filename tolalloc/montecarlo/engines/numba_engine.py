@@ -14,7 +14,7 @@ The normal draws of a block go through numba's port of numpy's ziggurat on the s
 (:func:`fill_standard_normal`: the same numbers in the same order, about twice as fast here), so the random
 stream, the blocks and the reproducibility rules of :mod:`tolalloc.montecarlo.run` are unchanged.
 
-numba is optional (``pip install tolalloc[fast]``); without it, or with ``TOLALLOC_NUMBA=0`` or
+numba is a core dependency; without it (a broken install), or with ``TOLALLOC_NUMBA=0`` or
 ``engine="numpy"``, everything runs on the numpy path. Compiled code is cached on disk (``cache=True``).
 """
 
