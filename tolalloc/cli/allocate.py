@@ -6,6 +6,7 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import build_error_model
+from tolalloc.cli.argtypes import count, seed
 from tolalloc.cli.common import add_robot_arg, add_scheduler_arg, atomic_output, check_output, robot_from_args, write_json
 
 
@@ -37,9 +38,9 @@ def register(sub) -> None:
     p.add_argument("--angle-radius-deg", type=float, default=None,
                    help="also require P(|rotation error| < this) >= --angle-prob [deg]")
     p.add_argument("--angle-prob", type=float, default=None, help="probability of the orientation requirement (default --prob)")
-    p.add_argument("--n-mc", type=int, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
+    p.add_argument("--n-mc", type=count, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
-    p.add_argument("--seed", type=int, default=0, help="random seed of the verification")
+    p.add_argument("--seed", type=seed, default=0, help="random seed of the verification")
     add_scheduler_arg(p, "the verification's Monte Carlo samples")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
@@ -58,8 +59,8 @@ def cmd_allocate(args) -> int:
     from tolalloc.allocate.costs import cost_set, load_costs
     from tolalloc.report.tables import format_text, write_tables
 
-    robot = robot_from_args(args)
     _check_args(args)
+    robot = robot_from_args(args)
     dist = "uniform" if args.uniform else None
     model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, clearance=args.clearance,
                               exclude=tuple(args.exclude))
@@ -87,7 +88,7 @@ def cmd_allocate(args) -> int:
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
             row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
     _print(res, table, ver, set_name, format_text)
-    if args.out:
+    if args.out is not None:
         with atomic_output(args.out, directory=True) as tmp:
             write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
                          f"{args.prob:g} at the {set_name} poses ({res.design.solver})")

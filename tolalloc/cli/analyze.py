@@ -6,6 +6,7 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.covariance import budget, linear_map
+from tolalloc.cli.argtypes import count
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
                      format_labels, parse_q, robot_from_args, write_json)
 
@@ -28,7 +29,7 @@ def register(sub) -> None:
                    help="radius for P(|dp| < r) [mm]; repeatable")
     p.add_argument("--prob", type=float, action="append", default=[], metavar="P",
                    help="probability in (0, 1) for the radius with P(|dp| < r) = P [mm]; repeatable")
-    p.add_argument("--top", type=int, default=10, help="budget rows printed (default 10)")
+    p.add_argument("--top", type=count, default=10, help="budget rows printed (default 10)")
     p.add_argument("--json", metavar="OUT", help="write the results as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write linear_table.csv, budget.csv, budget_kinds.csv, budget.md, "
                    "budget.png and analyze.json to DIR")
@@ -74,6 +75,8 @@ def analyze_dict(res, radii, probs) -> dict:
 
 
 def cmd_analyze(args) -> int:
+    check_output(args.out, "--out", directory=True)
+    check_output(args.json, "--json")
     robot = robot_from_args(args)
     for r in args.radius_mm:
         if not np.isfinite(r) or r <= 0:
@@ -91,7 +94,7 @@ def cmd_analyze(args) -> int:
     summary = analyze_dict(res, args.radius_mm, args.prob)
     summary["labels"] = {**summary["labels"], "clearance": bool(args.clearance)}
     b = budget(res)
-    if args.out:
+    if args.out is not None:
         import matplotlib.pyplot as plt
 
         from tolalloc.report.plots.linear import budget_bars
@@ -106,7 +109,7 @@ def cmd_analyze(args) -> int:
             fig = budget_bars(b, tmp / "budget.png", top=args.top)
             plt.close(fig)
             write_json(summary, tmp / "analyze.json")
-    if args.json:
+    if args.json is not None:
         write_json(summary, args.json)
     if args.json != "-":
         print(f"robot {robot.name}, {format_labels(model.labels)}, clearance={bool(args.clearance)}; linear map, Gaussian approximation")

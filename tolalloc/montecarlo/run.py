@@ -20,6 +20,7 @@ few blocks per worker plus ``keep_samples`` (10^8 samples run in well under 1 GB
 
 from __future__ import annotations
 
+import contextlib
 import sys
 from dataclasses import dataclass, field
 
@@ -251,7 +252,8 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     n_blocks = -(-n // BLOCK_SIZE)
     local = scheduler in (None, "local", "sync")
     per_task = 1 if local else max(1, -(-int(chunk_size) // BLOCK_SIZE))
-    tasks = [(b, min(n_blocks, b + per_task)) for b in range(0, n_blocks, per_task)]
+    # generated lazily (a range, not a list): memory does not grow with n_blocks (n = 1e20 is fine)
+    tasks = ((b, min(n_blocks, b + per_task)) for b in range(0, n_blocks, per_task))
     show = progress if progress is not None else (n >= PROGRESS_MIN_N and sys.stderr.isatty())
     bar = None
     if show:
@@ -265,8 +267,8 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
 
     try:
         with threadpool_limits(limits=1, user_api="blas"):
-            for ns, block_moms, e, k in ordered_map(run_blocks, tasks, spec, scheduler=scheduler,
-                                                    n_jobs=n_jobs or default_jobs()):
+            results = ordered_map(run_blocks, tasks, spec, scheduler=scheduler, n_jobs=n_jobs or default_jobs())
+            for ns, block_moms, e, k in contextlib.closing(results):
                 for bm in block_moms:
                     for acc, mo in zip(moms, bm):
                         acc.merge(mo)
