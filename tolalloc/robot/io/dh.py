@@ -36,7 +36,8 @@ from pydantic import BaseModel, ConfigDict
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import rot_x, rot_z
-from tolalloc.robot.io.robotfile import _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, _finish_robot, _unit_value, _validate, parse_tool
+from tolalloc.robot.io.robotfile import _finish_robot, _unit_value, _validate, parse_tool
+from tolalloc.units import ALL_UNITS as _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS
 from tolalloc.robot.model import Joint, Link
 
 __all__ = ["robot_from_dh_dict", "chain_from_dh", "load_dh_csv"]
@@ -160,7 +161,7 @@ def load_dh_csv(path):
     source = f"DH CSV file {str(path)!r}"
     meta, lines = {}, []
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Windows editors) is fine
     except (OSError, UnicodeDecodeError) as exc:
         raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a DH table in CSV.") from None
     for line in text.splitlines():
@@ -179,6 +180,9 @@ def load_dh_csv(path):
     if "name" not in header or unknown:
         raise TolallocError(f"{source}: header {header}: expected a 'name' column and columns among {', '.join(CSV_COLUMNS)}"
                             + (f"; unknown: {unknown}" if unknown else "") + ".")
+    if "alpha_deg" not in header and "alpha_rad" not in header:  # alpha = 0 everywhere would be another robot
+        raise TolallocError(f"{source}: header {header}: no alpha_deg or alpha_rad column; a DH table needs the link "
+                            "twists alpha (write 0 where a twist is zero).")
     rows = []
     for i, raw in enumerate(reader):
         cells = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
