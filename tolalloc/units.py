@@ -110,12 +110,12 @@ def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
     big = float(a.max())
     if unit == "m" and big > MAX_PLAUSIBLE_M:
         raise error(f"{key} = {_shown(raw)} is {big:g} m; that looks like millimetres: use the _mm key "
-                    f"({key[:-2]}_mm) or divide by 1000 ({TRUST_HINT})")
+                    f"({key[:-2]}_mm) or divide by 1000 ({TRUST_HINT}).")
     if unit == "deg" and big > 360.0 + 1e-9:
-        raise error(f"{key} = {_shown(raw)} goes beyond +-360 deg; expected angles within one turn each way ({TRUST_HINT})")
+        raise error(f"{key} = {_shown(raw)} goes beyond +-360 deg; expected angles within one turn each way ({TRUST_HINT}).")
     if unit == "rad" and big > 2 * np.pi + 1e-9:
         raise error(f"{key} = {_shown(raw)} goes beyond +-2 pi rad; that looks like degrees: use the _deg key "
-                    f"({key[:-4]}_deg) ({TRUST_HINT})")
+                    f"({key[:-4]}_deg) ({TRUST_HINT}).")
 
 
 def check_reach(lengths_mm, where: str) -> None:

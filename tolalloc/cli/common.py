@@ -24,10 +24,16 @@ def add_robot_arg(parser) -> None:
                         help="built-in robot name (see `tolalloc robots`) or path to a robot file (.toml, DH .csv, .urdf)")
     parser.add_argument("--tool", metavar="LINK", default=None,
                         help="URDF only: the tool link (default: the last link of the chain; required if the URDF branches)")
+    parser.add_argument("--trust-units", action="store_true",
+                        help="accept robot-file values that look like a unit slip (lengths under _m above 20 m, a "
+                        "robot under 10 mm long, angles beyond one turn)")
 
 
 def robot_from_args(args) -> Robot:
-    return load_robot(args.robot, tool=getattr(args, "tool", None))
+    from tolalloc.units import trusting_units
+
+    with trusting_units(getattr(args, "trust_units", False)):
+        return load_robot(args.robot, tool=getattr(args, "tool", None))
 
 
 def parse_q(text: str, robot: Robot, flag: str = "--q") -> np.ndarray:

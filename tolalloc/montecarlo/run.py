@@ -268,14 +268,15 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     try:
         with threadpool_limits(limits=1, user_api="blas"):
             results = ordered_map(run_blocks, tasks, spec, scheduler=scheduler, n_jobs=n_jobs or default_jobs())
-            for ns, block_moms, e, k in contextlib.closing(results):
-                for bm in block_moms:
-                    for acc, mo in zip(moms, bm):
-                        acc.merge(mo)
-                ext = e if ext is None else [a.merge(x) for a, x in zip(ext, e)]
-                kept += k
-                if bar is not None:
-                    bar.update(sum(ns))
+            with contextlib.closing(results):  # an interrupt cancels the queued blocks at once
+                for ns, block_moms, e, k in results:
+                    for bm in block_moms:
+                        for acc, mo in zip(moms, bm):
+                            acc.merge(mo)
+                    ext = e if ext is None else [a.merge(x) for a, x in zip(ext, e)]
+                    kept += k
+                    if bar is not None:
+                        bar.update(sum(ns))
     finally:
         if bar is not None:
             bar.close()

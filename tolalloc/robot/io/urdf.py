@@ -53,6 +53,13 @@ def _parse(path: Path, source: str):
     except etree.XMLSyntaxError as exc:
         raise TolallocError(f"{source}: not valid XML ({exc}); expected a URDF file (expand a .xacro file first "
                             "with `xacro robot.urdf.xacro > robot.urdf`).") from None
+    def _xacro(el) -> bool:
+        tag = el.tag if isinstance(el.tag, str) else ""
+        return "xacro" in tag or any("${" in v or "$(" in v for v in el.attrib.values())
+
+    if any(_xacro(el) for el in root.iter()):
+        raise TolallocError(f"{source}: an unexpanded xacro file (xacro elements or ${{...}} / $(...) expressions); "
+                            "expand it first with `xacro robot.urdf.xacro > robot.urdf` and load robot.urdf.")
     if root.tag != "robot":
         raise TolallocError(f"{source}: the root element is <{root.tag}>; expected <robot> (a URDF file).")
     no_axis = {j.get("name") for j in root.findall("joint") if j.get("type") in MOVABLE and j.find("axis") is None}
@@ -124,12 +131,23 @@ def _choose_tool(parent_joint, children, root, tool, source):
     depth = {leaf: sum(j.type in MOVABLE for j in _path(parent_joint, root, leaf)) for leaf in leaves}
     best = max(depth.values())
     cands = [leaf for leaf in leaves if depth[leaf] == best]
+    if len(cands) == 1:
+        # a fixed frame (tool0, flange) branching off near the end of the longest chain, whose remaining
+        # movable joints are a gripper's fingers: the tool is as likely the frame as the finger
+        main = _path(parent_joint, root, cands[0])
+        for leaf in leaves:
+            side = _path(parent_joint, root, leaf)
+            shared = next((k for k, (a, b) in enumerate(zip(main, side)) if a is not b), min(len(main), len(side)))
+            at = sum(j.type in MOVABLE for j in main[:shared])
+            if leaf != cands[0] and at >= 1 and best - at <= 2 and not any(j.type in MOVABLE for j in side[shared:]):
+                cands = [cands[0], leaf]
+                break
     if len(cands) > 1:
         paths = [[root] + [j.child for j in _path(parent_joint, root, c)] for c in cands]
         common = [names[0] for names in zip(*paths) if len(set(names)) == 1]
         raise TolallocError(f"{source}: the URDF branches at link {common[-1]!r}, so the tool link is ambiguous: leaf links "
-                            f"{cands} all end a chain of {best} movable joints; choose the tool link with --tool LINK "
-                            f"(e.g. --tool {common[-1]} or --tool {cands[0]}).")
+                            f"{cands} end chains of {', '.join(str(depth[c]) for c in cands)} movable joints; choose "
+                            f"the tool link with --tool LINK (e.g. --tool {common[-1]} or --tool {cands[0]}).")
     return cands[0]
 
 
