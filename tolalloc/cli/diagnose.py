@@ -51,8 +51,8 @@ def cmd_diagnose(args) -> int:
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
     check_output(args.report, "--report", directory=True)
-    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
-                            ("--train", args.train), ("--test", args.test)])
+    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
+                           inputs=[("--train", args.train), ("--test", args.test)])
     robot = robot_from_args(args)
     train = read_measurements(args.train, robot)
     test = read_measurements(args.test, robot) if args.test else None

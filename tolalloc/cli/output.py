@@ -80,16 +80,24 @@ def check_output(path, flag: str, *, directory: bool = False) -> None:
                             "choose another path.")
 
 
-def check_distinct_outputs(items) -> None:
-    """Refuse two output flags naming the same path (``items``: ``(flag, path or None)`` pairs)."""
+def check_distinct_outputs(outputs, inputs=()) -> None:
+    """Refuse two output flags naming the same path, or an output that would overwrite an input.
+
+    ``outputs`` and ``inputs`` are ``(flag, path or None)`` pairs; ``None`` and ``'-'`` are skipped.
+    """
     seen = {}
-    for flag, path in items:
+    for flag, path in inputs:
+        if path is not None:
+            seen.setdefault(os.path.realpath(str(path)), ("input", flag))
+    for flag, path in outputs:
         if path is None or str(path) == "-":
             continue
-        key = os.path.abspath(str(path))
+        key = os.path.realpath(str(path))
         if key in seen:
-            raise TolallocError(f"{flag} {str(path)!r}: the same path as {seen[key]}; give each output its own path.")
-        seen[key] = flag
+            role, other = seen[key]
+            what = f"the input {other}; an output would overwrite it" if role == "input" else f"the same path as {other}"
+            raise TolallocError(f"{flag} {str(path)!r}: {what}; give each output its own path.")
+        seen[key] = ("output", flag)
 
 
 @contextlib.contextmanager
