@@ -50,25 +50,34 @@ def format_labels(labels: dict) -> str:
     return ", ".join(f"{k}={v}" for k, v in labels.items() if v is not None)
 
 
-def add_error_model_args(parser) -> None:
-    """The error-model options shared by the analysis commands (read back by :func:`error_model_from_args`)."""
+def add_error_model_args(parser, *, allocation: bool = False) -> None:
+    """The error-model options of every command (read back by :func:`error_model_from_args`).
+
+    ``allocation``: the sigmas are what the allocation chooses, so the sigma overrides and the
+    clearance-sigma choice are left out and ``--sigma-set`` only serves fixed parameters.
+    """
     from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 
     parser.add_argument("--sigma-set", default=None,
-                        help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
+                        help="sigma set used for fixed parameters without tol_mm/tol_deg (default: the robot file's "
+                        "first)" if allocation else
+                        "sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
     parser.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
                         help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
     parser.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
                         help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
     parser.add_argument("--clearance", action="store_true",
-                        help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint")
+                        help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint"
+                        + (" (allocated like the others)" if allocation else ""))
+    parser.add_argument("--exclude", action="append", default=[], metavar="NAME",
+                        help="leave out a parameter or kind; repeatable")
+    if allocation:
+        return
     parser.add_argument("--clearance-tilt-literal", action="store_true",
                         help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of the "
                         f"corrected {CLEARANCE_SIGMA['tilt_rad']} rad")
     parser.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
                         help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
-    parser.add_argument("--exclude", action="append", default=[], metavar="NAME",
-                        help="leave out a parameter or kind; repeatable")
 
 
 def add_scheduler_arg(parser, what: str = "the samples") -> None:
@@ -117,6 +126,9 @@ def error_model_from_args(robot: Robot, args):
     """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
     from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD, build_error_model
 
+    if not hasattr(args, "sigma"):  # allocation options (add_error_model_args(allocation=True))
+        return build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
+                                 clearance=args.clearance, exclude=tuple(args.exclude))
     if args.clearance_tilt_literal and not args.clearance:
         raise TolallocError("--clearance-tilt-literal changes the clearance tilt sigma, but clearance is off; "
                             "add --clearance (or leave out --clearance-tilt-literal).")
