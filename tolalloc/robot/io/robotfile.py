@@ -25,7 +25,7 @@ from tolalloc.robot.lie import exp_so3
 from tolalloc.robot.model import Joint, Link, Mass, Robot
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
 
-__all__ = ["robot_from_chain_dict", "parse_tool", "LENGTH_UNITS", "ANGLE_UNITS"]
+__all__ = ["robot_from_chain_dict", "parse_tool", "check_limits", "LENGTH_UNITS", "ANGLE_UNITS"]
 
 _ALL_UNITS = ALL_UNITS
 #: base key -> allowed unit suffixes
@@ -135,14 +135,19 @@ class JointEntry(_Strict):
         # a continuous joint may turn more than once each way
         lim, _ = _unit_value(extra, "limits", allowed, default_lim, check=self.type != "continuous")
         nom, _ = _unit_value(extra, "nominal", allowed, 0.0, check=self.type != "continuous")
-        shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
-        unit = "deg" if revolute else "mm"
-        if np.shape(lim) != (2,) or not lim[0] < lim[1]:
-            raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
-        if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
-            raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
-                             "expected one number inside the limits")
+        check_limits(lim, nom, revolute)
         return Joint(self.joint, kind, np.array(self.axis), float(lim[0]), float(lim[1]), float(nom))
+
+
+def check_limits(lim, nom, revolute: bool) -> None:
+    """Joint limits ``[lower, upper]`` and nominal value [rad or mm]: lower < upper, nominal inside (ValueError)."""
+    shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
+    unit = "deg" if revolute else "mm"
+    if np.shape(lim) != (2,) or not lim[0] < lim[1]:
+        raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+    if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+        raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                         "expected one number inside the limits")
 
 
 class MassEntry(_Strict):
