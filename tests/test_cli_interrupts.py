@@ -125,3 +125,22 @@ def test_interrupt_handler_is_restored_after_main():
     before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
     main(["robots"])
     assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before
+
+
+def test_output_group_publishes_all_or_nothing(tmp_path):
+    from tolalloc.cli.output import output_group, published
+
+    with pytest.raises(RuntimeError):
+        with output_group() as out:
+            out.file(tmp_path / "a.json").write_text("x")
+            (out.directory(tmp_path / "rep") / "r.md").write_text("y")
+            raise RuntimeError("the second output failed")
+    assert list(tmp_path.iterdir()) == []
+    published(reset=True)
+    with output_group() as out:
+        out.file(tmp_path / "a.json").write_text("x")
+        (out.directory(tmp_path / "rep") / "r.md").write_text("y")
+        assert sorted(p.name for p in tmp_path.iterdir() if not p.name.startswith(".")) == []
+    assert (tmp_path / "a.json").read_text() == "x" and (tmp_path / "rep" / "r.md").read_text() == "y"
+    assert sorted(published()) == sorted([str(tmp_path / "a.json"), str(tmp_path / "rep")])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "rep"]

@@ -78,6 +78,9 @@ def _interrupt_handlers():
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
+    from tolalloc.cli.output import published
+
+    published(reset=True)
     with _interrupt_handlers():
         try:
             args = build_parser().parse_args(argv)
@@ -87,7 +90,9 @@ def main(argv: list[str] | None = None) -> int:
             return 2
         except KeyboardInterrupt as exc:
             signum = getattr(exc, "signum", signal.SIGINT)
-            print("interrupted; nothing written", file=sys.stderr)
+            done = published()
+            print("interrupted; nothing written" if not done else
+                  f"interrupted after writing {', '.join(done)} (complete); nothing else written", file=sys.stderr)
             return 128 + int(signum)
         except BrokenPipeError:  # output piped into `head` and closed early: not an error of ours
             import os

@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import contextlib
-
 import pandas as pd
 
 from tolalloc.cli.argtypes import count, seed
-from tolalloc.cli.common import (add_robot_arg, atomic_output, check_distinct_outputs, check_output, robot_from_args,
-                                 write_json)
+from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_from_args, write_json
+from tolalloc.cli.output import output_group
 
 
 def register(sub) -> None:
@@ -59,10 +57,10 @@ def cmd_diagnose(args) -> int:
     if test is not None:
         check_train_test(train, test, args.train, args.test)
     d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame)
-    with contextlib.ExitStack() as stack:
+    with output_group() as out:
         # all outputs are produced in temporaries and moved into place together at the end
         if args.predictions is not None:
-            tmp_pred = stack.enter_context(atomic_output(args.predictions))
+            tmp_pred = out.file(args.predictions)
             pred = d.final.test_pred_mm
             frame = pd.DataFrame({"row": test.rows, "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
             if test.n_skipped:
@@ -71,10 +69,10 @@ def cmd_diagnose(args) -> int:
                 frame = full.merge(frame, on="row", how="left")
             frame[["x_mm", "y_mm", "z_mm"]].to_csv(tmp_pred, index=False, float_format="%.6f")
         if args.report is not None:
-            tmp_dir = stack.enter_context(atomic_output(args.report, directory=True))
+            tmp_dir = out.directory(args.report)
             write_report(d, tmp_dir)
         if args.json is not None and args.json != "-":
-            tmp_json = stack.enter_context(atomic_output(args.json))
+            tmp_json = out.file(args.json)
             write_json(d.to_dict(), tmp_json)
     if args.json == "-":
         write_json(d.to_dict(), "-")

@@ -10,7 +10,8 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 from tolalloc.montecarlo.run import run_mc
 from tolalloc.cli.argtypes import count, nonnegative_int, positive_float, seed
-from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
+from tolalloc.cli.output import output_group
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs, check_output,
                      error_model_from_args, format_labels, parse_q, robot_from_args, write_json)
 
 
@@ -72,6 +73,7 @@ def summary_dict(res, robot) -> dict:
 def cmd_mc(args) -> int:
     check_output(args.out, "--out", directory=True)
     check_output(args.json, "--json")
+    check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     robot = robot_from_args(args)
     model = error_model_from_args(robot, args)
     if args.pose:
@@ -95,11 +97,12 @@ def cmd_mc(args) -> int:
         summary["hist_fraction_outside"] = (res.hist.outside / res.n).tolist()
     summary["labels"] = {**summary["labels"], "clearance_tilt_rad": (CLEARANCE_TILT_LITERAL_RAD if args.clearance_tilt_literal
                                                                      else CLEARANCE_SIGMA["tilt_rad"]) if args.clearance else None}
-    if args.out is not None:
-        from tolalloc.report.plots.mc import scatter_density
-        import matplotlib.pyplot as plt
+    with output_group() as out:  # --out and --json are published together
+        if args.out is not None:
+            from tolalloc.report.plots.mc import scatter_density
+            import matplotlib.pyplot as plt
 
-        with atomic_output(args.out, directory=True) as tmp:
+            tmp = out.directory(args.out)
             res.to_frame().to_csv(tmp / "mc_table.csv", index=False)
             write_json(summary, tmp / "mc_summary.json")
             fig = scatter_density(res, tmp / "mc_scatter.png")
@@ -110,8 +113,10 @@ def cmd_mc(args) -> int:
                 plt.close(hist_density(res, tmp / "mc_density.png"))
                 np.savez_compressed(tmp / "mc_hist.npz", counts=res.hist.counts, edges_mm=res.hist.edges_mm,
                                     outside=res.hist.outside, n=res.hist.n, planes=np.array(res.hist.planes))
-    if args.json is not None:
-        write_json(summary, args.json)
+        if args.json is not None and args.json != "-":
+            write_json(summary, out.file(args.json))
+    if args.json == "-":
+        write_json(summary, "-")
     if not args.json or args.json != "-":
         tab = res.to_frame()
         print(f"robot {robot.name}, n={res.n}, seed={res.seed}, {format_labels(res.labels)}")

@@ -28,7 +28,11 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["atomic_output", "check_output", "write_json", "json_default", "directory_lock"]
+__all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
+           "directory_lock", "published"]
+
+#: paths published by this process since the last :func:`published` reset (read by the interrupt message)
+_PUBLISHED: list = []
 
 
 def json_default(obj):
@@ -140,6 +144,13 @@ def _signals_held():
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
+def published(reset: bool = False) -> list:
+    """Paths published by :func:`atomic_output` so far (a copy); ``reset`` empties the record first."""
+    if reset:
+        _PUBLISHED.clear()
+    return list(_PUBLISHED)
+
+
 def _publish_dir(tmp: Path, path: Path) -> None:
     with _signals_held():
         if not path.exists():
@@ -194,11 +205,38 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
                     os.replace(tmp, path)
             except OSError as exc:
                 raise _cannot_write(path, directory, exc) from None
+            _PUBLISHED.append(str(path))
         finally:
             if directory:
                 shutil.rmtree(tmp, ignore_errors=True)
             elif tmp.exists():
                 tmp.unlink()
+
+
+class _Group:
+    def __init__(self, stack: contextlib.ExitStack):
+        self._stack = stack
+
+    def file(self, path) -> Path:
+        """Staging path of output file ``path``."""
+        return self._stack.enter_context(atomic_output(path))
+
+    def directory(self, path) -> Path:
+        """Staging folder of output directory ``path``."""
+        return self._stack.enter_context(atomic_output(path, directory=True))
+
+
+@contextlib.contextmanager
+def output_group():
+    """Several outputs staged together and published together (SIGINT / SIGTERM held back meanwhile).
+
+    Yields an object with ``file(path)`` and ``directory(path)``, each returning a staging path
+    (see :func:`atomic_output`). An error or interrupt in the block removes every staged output.
+    """
+    with contextlib.ExitStack() as stack:
+        yield _Group(stack)
+        with _signals_held():
+            stack.close()
 
 
 def _umask() -> int:
