@@ -152,19 +152,19 @@ def published(reset: bool = False) -> list:
 
 
 def _publish_dir(tmp: Path, path: Path) -> None:
-    with _signals_held():
-        if not path.exists():
-            try:
-                os.rename(tmp, path)  # one step: the directory appears complete
-                return
-            except OSError:
-                if not path.is_dir():
-                    raise
-        for item in tmp.iterdir():
-            target = path / item.name
-            if target.is_dir() and not target.is_symlink():
-                shutil.rmtree(target)
-            os.replace(item, target)
+    """Move staged folder ``tmp`` to ``path`` (the caller holds the signals back)."""
+    if not path.exists():
+        try:
+            os.rename(tmp, path)  # one step: the directory appears complete
+            return
+        except OSError:
+            if not path.is_dir():
+                raise
+    for item in tmp.iterdir():
+        target = path / item.name
+        if target.is_dir() and not target.is_symlink():
+            shutil.rmtree(target)
+        os.replace(item, target)
 
 
 @contextlib.contextmanager
@@ -198,14 +198,16 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
         try:
             yield tmp
             try:
-                if directory:
-                    os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0o700
-                    _publish_dir(tmp, path)
-                else:
-                    os.replace(tmp, path)
+                with _signals_held():  # an interrupt is delivered after the record below, never between
+                    if directory:
+                        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0o700
+                        _publish_dir(tmp, path)
+                    else:
+                        os.replace(tmp, path)
+                    if not any(part.startswith(".tmp-") for part in path.parts):  # not a write into a staging path
+                        _PUBLISHED.append(str(path))
             except OSError as exc:
                 raise _cannot_write(path, directory, exc) from None
-            _PUBLISHED.append(str(path))
         finally:
             if directory:
                 shutil.rmtree(tmp, ignore_errors=True)
