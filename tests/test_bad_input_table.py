@@ -70,6 +70,7 @@ def files(tmp_path_factory) -> Path:
     robots = {
         "metres_under_m.toml": _robot_text(vector="vector_m = [0, 0, 400]"),
         "metres_under_mm.toml": _robot_text(vector="vector_mm = [0, 0, 0.4]").replace("[300, 0, 0]", "[0.3, 0, 0]"),
+        "one_link_metres.toml": _robot_text(vector="vector_mm = [0, 0, 0.4]"),
         "deg_under_rad.toml": _robot_text(limits="limits_rad = [-90, 90]"),
         "beyond_turn.toml": _robot_text(limits="limits_deg = [-400, 400]"),
         "nan_tool.toml": _robot_text(tool="[tool]\noffset_mm = [nan, 0, 0]"),
@@ -134,6 +135,7 @@ def _rows():
         ("{F}/missing.toml", "no such file"),
         ("{F}/metres_under_m.toml", r"chain\[1\] \(l1\): vector_m .* looks like millimetres"),
         ("{F}/metres_under_mm.toml", "lengths: .* looks like metres"),
+        ("{F}/one_link_metres.toml", "link l1 is 0.4 mm long while link l2 is 300 mm; .* metres under a _mm key"),
         ("{F}/deg_under_rad.toml", r"chain\[0\] \(j1\): limits_rad .* looks like degrees"),
         ("{F}/beyond_turn.toml", r"limits_deg .* beyond \+-360 deg"),
         ("{F}/nan_tool.toml", "tool: expected offset_mm .* finite"),

@@ -5,7 +5,8 @@ keys (robot files, DH tables, costs files, sigma sets) and converts to the inter
 
 Plausibility guards catch the common unit slips and say how to proceed: a length under ``_m``
 above :data:`MAX_PLAUSIBLE_M` (millimetres under a metre key), a robot whose lengths given in mm
-all together are under :data:`MIN_PLAUSIBLE_REACH_MM` (metres under a mm key), an angle under
+all together are under :data:`MIN_PLAUSIBLE_REACH_MM` or one of which is tiny next to the longest
+(metres under a mm key), an angle under
 ``_deg`` beyond +-360 deg or under ``_rad`` beyond +-2 pi (degrees under a radian key). A file
 that really is that way is accepted inside :func:`trusting_units` (the CLI's ``--trust-units``).
 """
@@ -20,7 +21,8 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
-           "units_trusted", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "TRUST_HINT"]
+           "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
+           "TINY_LINK_RATIO", "TRUST_HINT"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -31,6 +33,9 @@ ALL_UNITS = {**LENGTH_UNITS, **ANGLE_UNITS}
 MAX_PLAUSIBLE_M = 20.0
 #: a chain whose link lengths add up to less than this [mm] looks like it was written in metres
 MIN_PLAUSIBLE_REACH_MM = 10.0
+#: a link shorter than this [mm] and TINY_LINK_RATIO times shorter than the longest one looks like metres
+MAX_TINY_LINK_MM = 2.0
+TINY_LINK_RATIO = 200.0
 TRUST_HINT = "if the values really are meant so, pass --trust-units"
 
 _TRUST = contextvars.ContextVar("tolalloc_trust_units", default=False)
@@ -118,13 +123,29 @@ def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
                     f"({key[:-4]}_deg) ({TRUST_HINT}).")
 
 
-def check_reach(lengths_mm, where: str) -> None:
-    """Refuse a chain whose link lengths [mm] add up to less than :data:`MIN_PLAUSIBLE_REACH_MM` (metres slip)."""
-    total = float(np.sum(np.abs(np.asarray(lengths_mm, dtype=float))))
-    if units_trusted() or total == 0 or total >= MIN_PLAUSIBLE_REACH_MM:
+def check_reach(lengths_mm: dict, where: str) -> None:
+    """Refuse link lengths [mm] that look like metres: all together under :data:`MIN_PLAUSIBLE_REACH_MM`, or
+    one link under :data:`MAX_TINY_LINK_MM` that is over :data:`TINY_LINK_RATIO` times shorter than the longest.
+
+    Parameters
+    ----------
+    lengths_mm : dict
+        Link name -> length [mm].
+    where : str
+        Prefix of the message.
+    """
+    if units_trusted() or not lengths_mm:
         return
-    raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like metres given under _mm "
-                        f"keys: multiply by 1000 or use the _m keys ({TRUST_HINT}).")
+    total = float(sum(abs(v) for v in lengths_mm.values()))
+    if 0 < total < MIN_PLAUSIBLE_REACH_MM:
+        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like metres given under _mm "
+                            f"keys: multiply by 1000 or use the _m keys ({TRUST_HINT}).")
+    longest = max(lengths_mm, key=lambda k: abs(lengths_mm[k]))
+    for name, v in lengths_mm.items():
+        if 0 < abs(v) < MAX_TINY_LINK_MM and abs(v) * TINY_LINK_RATIO < abs(lengths_mm[longest]):
+            raise TolallocError(f"{where}: link {name} is {abs(v):g} mm long while link {longest} is "
+                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in metres under a _mm key: "
+                                f"multiply it by 1000 or use the _m key ({TRUST_HINT}).")
 
 
 def _shown(raw):

@@ -238,8 +238,7 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     g = np.asarray(gravity, dtype=float)
     if not np.all(np.isfinite(g)) or np.linalg.norm(g) == 0:
         raise TolallocError(f"gravity: expected a non-zero direction such as [0, 0, -1], got {list(gravity)}")
-    check_reach([np.linalg.norm(e.vector_mm) for e in chain if isinstance(e, Link)]
-                + [float(np.linalg.norm(offset))] * any(isinstance(e, Link) for e in chain), "lengths")
+    check_reach({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)}, "lengths")
     robot = Robot(name, tuple(chain), tool_offset_mm=np.asarray(offset, float), tool_rotation=np.asarray(R_tool),
                   gravity=g / np.linalg.norm(g), description=description)
     body_of = {}
