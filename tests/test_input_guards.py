@@ -135,3 +135,13 @@ def test_repeated_pose_with_another_reading_is_kept_but_an_exact_copy_is_not():
     assert measurements_from_frame(pd.concat([frame, again]), robot).n_poses == 21
     with pytest.raises(TolallocError, match="row 21 repeats row 4 exactly"):
         measurements_from_frame(pd.concat([frame, frame.iloc[[3]]]), robot)
+
+
+def test_duplicate_rows_found_by_hash_match_a_direct_comparison():
+    from tolalloc.diagnose.measurements import _duplicated
+
+    rng = np.random.default_rng(7)
+    A = rng.integers(0, 3, size=(400, 3)).astype(float)  # many repeats
+    direct = np.array([any((A[i] == A[j]).all() for i in range(j)) for j in range(len(A))])
+    assert np.array_equal(_duplicated(A), direct)
+    assert _duplicated(A).sum() == len(A) - len(np.unique(A, axis=0))

@@ -118,26 +118,40 @@ def _scale_check(robot: Robot, q: np.ndarray, xyz: np.ndarray, source: str) -> N
             "Check the units (mm expected), the robot (wrong robot?) and the joint columns (deg / mm expected).")
 
 
+def _row_hash(A: np.ndarray) -> np.ndarray:
+    """One 64-bit hash per row of ``A`` (equal rows, equal hashes), shape (rows,)."""
+    return pd.util.hash_pandas_object(pd.DataFrame(A), index=False).to_numpy()
+
+
+def _duplicated(A: np.ndarray) -> np.ndarray:
+    """True for every row equal to an earlier row of ``A``, shape (rows,): rows of equal hash are compared
+    exactly with the first row of that hash (O(rows log rows))."""
+    h = _row_hash(A)
+    _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+    earlier = first[np.ravel(inverse)]
+    return (earlier != np.arange(len(A))) & (A[earlier] == A).all(axis=1)
+
+
 def _first_duplicate(A: np.ndarray):
     """Indices ``(i, j)``, i < j, of the first row ``j`` equal to an earlier row ``i``, or None."""
-    _, first, inverse = np.unique(A, axis=0, return_index=True, return_inverse=True)
-    inverse = np.ravel(inverse)
-    dup = np.flatnonzero(first[inverse] != np.arange(len(A)))
+    dup = np.flatnonzero(_duplicated(A))
     if dup.size == 0:
         return None
     j = int(dup[0])
-    return int(first[inverse[j]]), j
+    i = int(np.flatnonzero((A[:j] == A[j]).all(axis=1))[0])
+    return i, j
 
 
 def _check_poses(Q: np.ndarray, X: np.ndarray, rows: np.ndarray, source: str) -> None:
     """Refuse duplicated rows (they would leak across cross-validation folds) and too few distinct poses."""
-    d = _first_duplicate(np.concatenate([Q, X], axis=1))
+    QX = np.concatenate([Q, X], axis=1)
+    d = _first_duplicate(QX)
     if d is not None:
-        n_dup = len(Q) - len(np.unique(np.concatenate([Q, X], axis=1), axis=0))
+        n_dup = int(_duplicated(QX).sum())
         raise TolallocError(f"{source}: row {rows[d[1]]} repeats row {rows[d[0]]} exactly ({n_dup} duplicated row(s)); "
                             "expected each measurement once (a copy would be scored as held out against itself); "
                             "remove the duplicates.")
-    n_distinct = len(np.unique(Q, axis=0))
+    n_distinct = len(np.unique(_row_hash(Q)))
     if n_distinct < MIN_DISTINCT_POSES:
         raise TolallocError(f"{source}: only {n_distinct} distinct pose(s) in {len(Q)} rows; expected at least "
                             f"{MIN_DISTINCT_POSES} different joint configurations (the registration alone has 9 "
@@ -149,13 +163,14 @@ def check_train_test(train: Measurements, test: Measurements, train_name: str, t
     if Path(train_name).resolve() == Path(test_name).resolve():
         raise TolallocError(f"--test {test_name!r} is the training file; expected held-out measurements in another file "
                             "(or leave out --test: cross-validation still scores held-out rows).")
-    both = np.concatenate([train.q, test.q])
-    _, inverse = np.unique(both, axis=0, return_inverse=True)
-    inverse = np.ravel(inverse)
-    shared = np.isin(inverse[len(train.q):], inverse[:len(train.q)])
+    keys, first = np.unique(_row_hash(train.q), return_index=True)
+    h_test = _row_hash(test.q)
+    at = np.minimum(np.searchsorted(keys, h_test), len(keys) - 1)
+    # same hash and the same joint values (a hash collision of different poses is not sharing)
+    shared = (keys[at] == h_test) & (train.q[first[at]] == test.q).all(axis=1)
     if shared.any():
         j = int(np.flatnonzero(shared)[0])
-        i = int(np.flatnonzero(inverse[:len(train.q)] == inverse[len(train.q) + j])[0])
+        i = int(np.flatnonzero((train.q == test.q[j]).all(axis=1))[0])
         raise TolallocError(f"--test {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in --train "
                             f"{train_name!r} (e.g. test row {test.rows[j]} = train row {train.rows[i]}); expected "
                             "held-out poses; remove them from one of the files.")
