@@ -9,10 +9,8 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pytest
 
-from tolalloc import TolallocError
 from tolalloc.cli import main
 from tolalloc.cli.output import atomic_output, directory_lock
 
