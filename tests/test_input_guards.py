@@ -145,3 +145,14 @@ def test_duplicate_rows_found_by_hash_match_a_direct_comparison():
     direct = np.array([any((A[i] == A[j]).all() for i in range(j)) for j in range(len(A))])
     assert np.array_equal(_duplicated(A), direct)
     assert _duplicated(A).sum() == len(A) - len(np.unique(A, axis=0))
+
+
+def test_pose_groups_join_repeats_of_one_pose():
+    robot = load_robot("tool_changer")
+    from tolalloc.diagnose import generate
+
+    frame = generate(robot, "none", 6, np.random.default_rng(5)).frame
+    again = frame.iloc[[4, 1]].copy()
+    again["z_mm"] += 0.02
+    m = measurements_from_frame(pd.concat([frame, again]), robot)
+    assert m.pose_groups().tolist() == [0, 1, 2, 3, 4, 5, 4, 1]

@@ -73,6 +73,15 @@ class Measurements:
         return Measurements(self.q[idx], self.xyz_mm[idx], pick(self.temperature_c), pick(self.direction),
                             pick(self.payload_kg), pick(self.time_s), self.rows[idx], 0, self.source)
 
+    def pose_groups(self) -> np.ndarray:
+        """Group number per row, equal for rows with the same joint values (repeated measurements of one pose),
+        shape (P,) of int, numbered in order of first appearance. Cross-validation folds that keep each group
+        together do not score a pose against its own repeat."""
+        h = _row_hash(self.q)
+        _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+        order = np.argsort(np.argsort(first))  # renumber by first appearance
+        return order[np.ravel(inverse)]
+
     def covariates(self) -> dict:
         """Available scalar covariates by column name, each shape (P,)."""
         out = {}
