@@ -156,3 +156,11 @@ def test_pose_groups_join_repeats_of_one_pose():
     again["z_mm"] += 0.02
     m = measurements_from_frame(pd.concat([frame, again]), robot)
     assert m.pose_groups().tolist() == [0, 1, 2, 3, 4, 5, 4, 1]
+
+
+def test_random_q_of_a_multi_turn_joint_stays_within_one_turn():
+    chain = (Joint("j1", "revolute", np.array([0.0, 0, 1]), -4 * np.pi, 4 * np.pi), Link("l1", np.array([100.0, 0, 0])),
+             Joint("j2", "prismatic", np.array([1.0, 0, 0]), 0.0, 800.0))
+    q = Robot("r", chain).random_q(np.random.default_rng(1), 5000)
+    assert q[:, 0].min() >= -np.pi and q[:, 0].max() <= np.pi and q[:, 0].min() < -3.0 and q[:, 0].max() > 3.0
+    assert q[:, 1].min() >= 0.0 and q[:, 1].max() > 790.0

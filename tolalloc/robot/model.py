@@ -223,13 +223,13 @@ class Robot:
     def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
 
-        An unbounded limit (+-inf) is replaced by +-pi rad for revolute joints and by +-1000 mm for
-        prismatic joints.
+        Revolute joints are drawn within their limits intersected with [-pi, pi] (a joint that may turn
+        more than once reaches no other pose beyond); prismatic joints over their whole stroke (an
+        unbounded stroke: +-1000 mm).
         """
         rev = self.revolute_mask
-        wide = np.where(rev, np.pi, 1000.0)
-        lo = np.where(np.isfinite(self.lower), self.lower, -wide)
-        hi = np.where(np.isfinite(self.upper), self.upper, wide)
+        lo = np.where(rev, np.maximum(self.lower, -np.pi), np.where(np.isfinite(self.lower), self.lower, -1000.0))
+        hi = np.where(rev, np.minimum(self.upper, np.pi), np.where(np.isfinite(self.upper), self.upper, 1000.0))
         return rng.uniform(lo, hi, (int(n), self.n_joints))
 
     # ------------------------------------------------------------------ joints
