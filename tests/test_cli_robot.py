@@ -135,6 +135,6 @@ def test_fk_json_echoes_clean_joint_values_and_show_lists_pose_sets(capsys, tmp_
     code, out, _ = run(capsys, "fk", "tool_changer", "--q", "15,30,-10,0,-20,-5", "--json")
     assert code == 0 and json.loads(out)["q_deg_mm"] == [15.0, 30.0, -10.0, 0.0, -20.0, -5.0]
     path = tmp_path / "one.csv"
-    path.write_text("# convention: standard\nname,d_mm\nq1,100\n")
+    path.write_text("# convention: standard\nname,d_mm,alpha_deg\nq1,100,0\n")
     code, out, _ = run(capsys, "show", str(path))
     assert code == 0 and "pose sets: nominal (1 pose)\n" in out and "none" not in out

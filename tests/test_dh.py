@@ -195,9 +195,9 @@ def test_dh_csv_modified_prismatic(tmp_path):
     ("name,d_mm\nq1,100\n", r"expected a comment line '# convention: standard'"),
     ("# convention: craig\nname,d_mm\nq1,100\n", r"got convention 'craig'"),
     ("# convention: standard\nname,d_in\nq1,100\n", r"header \['name', 'd_in'\].*unknown: \['d_in'\]"),
-    ("# convention: standard\nname,d_mm\nq1,abc\n", r"dh\[0\] \(q1\): could not convert string to float"),
-    ("# convention: standard\nname,d_mm,lower_deg_mm\nq1,1,5\n", r"dh\[0\] \(q1\): give both lower_deg_mm and upper_deg_mm"),
-    ("# convention: standard\nname,type\nq1,ball\n", r"dh\[0\]: type must be 'revolute', 'prismatic' or 'continuous'"),
+    ("# convention: standard\nname,d_mm,alpha_deg\nq1,abc,0\n", r"dh\[0\] \(q1\): could not convert string to float"),
+    ("# convention: standard\nname,d_mm,lower_deg_mm,alpha_deg\nq1,1,5,0\n", r"dh\[0\] \(q1\): give both lower_deg_mm and upper_deg_mm"),
+    ("# convention: standard\nname,type,alpha_deg\nq1,ball,0\n", r"dh\[0\]: type must be 'revolute', 'prismatic' or 'continuous'"),
 ])
 def test_bad_dh_csv(tmp_path, text, match):
     path = tmp_path / "bad.csv"
@@ -235,7 +235,7 @@ def test_bad_dh_convention():
 ])
 def test_dh_csv_values_are_checked(tmp_path, row, match):
     path = tmp_path / "bad.csv"
-    path.write_text(f"# convention: standard\nname,d_mm,a_mm,lower_deg_mm,upper_deg_mm,nominal_deg_mm\n{row}\n")
+    path.write_text(f"# convention: standard\nname,d_mm,a_mm,lower_deg_mm,upper_deg_mm,nominal_deg_mm,alpha_deg\n{row},0\n")
     with pytest.raises(TolallocError, match=match):
         load_robot(path)
 

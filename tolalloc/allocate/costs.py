@@ -47,12 +47,13 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
+from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "param_kind_key", "MODELS"]
 
 MODELS = ("reciprocal", "reciprocal_power", "exponential")
-_LEN = {"mm": 1.0, "m": 1000.0}
-_ANG = {"deg": np.pi / 180.0, "rad": 1.0}
+_LEN = LENGTH_UNITS
+_ANG = ANGLE_UNITS
 
 #: Default cost-tolerance data for the tool_changer (and any robot without a costs file).
 #: ASSUMPTIONS of this project, not measured data: relative cost 2 (= a + b) at the reference
@@ -192,23 +193,16 @@ def param_kind_key(p) -> str:
 def _value(entry: dict, base: str, unit: str, where: str):
     """Value of ``base_<unit suffix>`` in internal units (None if absent); the suffix must fit ``unit``."""
     table = _LEN if unit == "mm" else _ANG
-    keys = [k for k in entry if k.startswith(base + "_") and k[len(base) + 1:] in {**_LEN, **_ANG}]
-    if not keys:
-        return None
-    if len(keys) > 1:
-        raise TolallocError(f"{where}: give {base} once, got {keys}.")
-    key = keys[0]
-    suffix = key[len(base) + 1:]
-    if suffix not in table:
-        want = f"{base}_mm or {base}_m" if unit == "mm" else f"{base}_deg or {base}_rad"
-        raise TolallocError(f"{where}: {key} has the wrong unit for a parameter in {unit}; use {want}.")
     try:
-        x = float(entry[key])
-    except (TypeError, ValueError):
-        raise TolallocError(f"{where}: {key} expected a number, got {entry[key]!r}.") from None
-    if not np.isfinite(x) or x <= 0:
+        value, suffix = unit_value({k: v for k, v in entry.items() if k != base}, base, table)
+    except ValueError as exc:
+        raise TolallocError(f"{where}: {exc} (the wrong unit for a parameter in {unit}).") from None
+    if suffix is None:
+        return None
+    key = f"{base}_{suffix}"
+    if np.shape(value) != () or not np.isfinite(value) or value <= 0:
         raise TolallocError(f"{where}: {key} expected a finite number > 0, got {entry[key]!r}.")
-    return x * table[suffix]
+    return float(value)
 
 
 def _check_entry(entry, where: str) -> None:
@@ -242,6 +236,36 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     for key in data:
         if key not in ("z", "distribution", "kinds", "parameters"):
             raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
+    zz, dist = _z_of(data, z, distribution, source)
+    kinds, per = _entries(data, model, source)
+    names, role, models, fixed, excluded = [], [], [], [], []
+    for p in model.params:
+        where = f"costs {source} [{p.name}]"
+        base = kinds[param_kind_key(p)]
+        own = per.get(p.name, {})
+        entry = {key: val for key, val in base.items()
+                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in own) for b in _UNIT_BASES)}
+        entry.update(own)
+        if entry.get("exclude", False):
+            excluded.append(p.name)
+            continue
+        cm = _cost_model(entry, p, where)
+        names.append(p.name)
+        models.append(cm)
+        if entry.get("fixed", False):
+            tol = _value(entry, "tol", p.unit, where)
+            role.append("fixed")
+            fixed.append(tol if tol is not None else p.sigma * zz)
+        else:
+            role.append("allocate")
+            fixed.append(np.nan)
+    if not any(r == "allocate" for r in role):
+        raise TolallocError(f"costs {source}: no parameter is left to allocate; un-fix or un-exclude some.")
+    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist)
+
+
+def _z_of(data: dict, z, distribution, source: str):
+    """``(z, distribution)`` from the file, overridden by the ``z`` / ``distribution`` arguments."""
     zz = data.get("z", DEFAULT_COSTS["z"])
     dist = distribution if distribution is not None else data.get("distribution")
     if dist is not None and dist not in ("normal", "uniform"):
@@ -252,12 +276,20 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
         zz = np.sqrt(3.0)
     if z is not None:
         zz, dist = z, "normal"
+    raw = zz
     try:
-        zz = float(zz)
+        zz = float(zz) if not isinstance(zz, (bool, str)) else np.nan
     except (TypeError, ValueError):
         zz = np.nan
     if not np.isfinite(zz) or zz <= 0:
-        raise TolallocError(f"costs {source}: z (sigma = t / z) expected a number > 0, got {zz!r}.")
+        what = "not a number" if np.isnan(zz) else "not > 0" if np.isfinite(zz) else "not finite"
+        raise TolallocError(f"costs {source}: z (sigma = t / z) expected a finite number > 0 (e.g. z = 3), got "
+                            f"{raw!r} ({what}).")
+    return zz, dist
+
+
+def _entries(data: dict, model: ErrorModel, source: str):
+    """Per-kind entries (defaults merged with the file's) and the file's per-parameter entries."""
     for key in ("kinds", "parameters"):
         if not isinstance(data.get(key) or {}, dict):
             raise TolallocError(f"costs {source}: {key} expected tables [{key}.NAME], got {key} = {data[key]!r}.")
@@ -276,56 +308,44 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
         if nm not in model.names:
             raise TolallocError(f"costs {source} [parameters.{nm}]: unknown error parameter {nm!r}; "
                                 f"known: {', '.join(model.names)}.")
-    names, role, models, fixed, excluded = [], [], [], [], []
-    for p in model.params:
-        where = f"costs {source} [{p.name}]"
-        base = kinds[param_kind_key(p)]
-        own = per.get(p.name, {})
-        entry = {key: val for key, val in base.items()
-                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in own) for b in _UNIT_BASES)}
-        entry.update(own)
-        if entry.get("exclude", False):
-            excluded.append(p.name)
-            continue
-        form = entry.get("model", "reciprocal")
-        if form not in MODELS:
-            raise TolallocError(f"{where}: model expected one of {', '.join(MODELS)}, got {form!r}.")
-        try:
-            a, b, kk = float(entry.get("a", 0.0)), float(entry.get("b", 1.0)), float(entry.get("k", 1.0))
-        except (TypeError, ValueError):
-            raise TolallocError(f"{where}: a, b, k expected numbers, got {entry!r}.") from None
-        if not (np.isfinite(a) and np.isfinite(b) and b > 0 and np.isfinite(kk) and kk > 0):
-            raise TolallocError(f"{where}: expected finite a, b > 0 and k > 0, got a={a}, b={b}, k={kk}.")
-        t_ref = _value(entry, "t_ref", p.unit, where)
-        t_min = _value(entry, "t_min", p.unit, where)
-        t_max = _value(entry, "t_max", p.unit, where)
-        if t_ref is None or t_min is None or t_max is None:
-            raise TolallocError(f"{where}: t_ref, t_min and t_max are required (in {p.interface_unit}).")
-        if t_min > t_max:
-            raise TolallocError(f"{where}: process limits t_min > t_max ({t_min * p.to_interface:g} > "
-                                f"{t_max * p.to_interface:g} {p.interface_unit}); swap them.")
-        cm = CostModel(form, a, b, t_ref, t_min, t_max, kk)
-        names.append(p.name)
-        models.append(cm)
-        if entry.get("fixed", False):
-            tol = _value(entry, "tol", p.unit, where)
-            role.append("fixed")
-            fixed.append(tol if tol is not None else p.sigma * zz)
-        else:
-            role.append("allocate")
-            fixed.append(np.nan)
-    if not any(r == "allocate" for r in role):
-        raise TolallocError(f"costs {source}: no parameter is left to allocate; un-fix or un-exclude some.")
-    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist)
+    return kinds, per
+
+
+def _cost_model(entry: dict, p, where: str) -> CostModel:
+    """The cost law and process limits of one parameter's merged entry."""
+    form = entry.get("model", "reciprocal")
+    if form not in MODELS:
+        raise TolallocError(f"{where}: model expected one of {', '.join(MODELS)}, got {form!r}.")
+    vals = {k: entry.get(k, d) for k, d in (("a", 0.0), ("b", 1.0), ("k", 1.0))}
+    for k, v in vals.items():
+        if isinstance(v, (bool, str)) or not isinstance(v, (int, float)):
+            raise TolallocError(f"{where}: {k} expected a number, got {v!r}.")
+    a, b, kk = float(vals["a"]), float(vals["b"]), float(vals["k"])
+    if not (np.isfinite(a) and a >= 0 and np.isfinite(b) and b > 0 and np.isfinite(kk) and kk > 0):
+        raise TolallocError(f"{where}: expected a finite fixed cost a >= 0, b > 0 and k > 0 (a part never costs "
+                            f"less than nothing), got a={a:g}, b={b:g}, k={kk:g}.")
+    t_ref = _value(entry, "t_ref", p.unit, where)
+    t_min = _value(entry, "t_min", p.unit, where)
+    t_max = _value(entry, "t_max", p.unit, where)
+    if t_ref is None or t_min is None or t_max is None:
+        raise TolallocError(f"{where}: t_ref, t_min and t_max are required (in {p.interface_unit}).")
+    if t_min > t_max:
+        raise TolallocError(f"{where}: process limits t_min > t_max ({t_min * p.to_interface:g} > "
+                            f"{t_max * p.to_interface:g} {p.interface_unit}); swap them.")
+    return CostModel(form, a, b, t_ref, t_min, t_max, kk)
 
 
 def load_costs(path, model: ErrorModel, *, z: float | None = None, distribution: str | None = None) -> CostSet:
     """Read a costs file (TOML) and resolve it against ``model`` (see :func:`cost_set`)."""
     path = Path(path)
+    if path.is_dir():
+        raise TolallocError(f"costs file {str(path)!r} is a directory; give a TOML file (see `tolalloc allocate --help`).")
     if not path.is_file():
         raise TolallocError(f"costs file {str(path)!r} not found; give a TOML file (see `tolalloc allocate --help`).")
     try:
-        data = tomllib.loads(path.read_text())
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark is fine
+    except UnicodeDecodeError as exc:
+        raise TolallocError(f"costs file {path}: cannot be read as text ({exc}); expected a TOML file.") from None
     except tomllib.TOMLDecodeError as exc:
         raise TolallocError(f"costs file {path}: not valid TOML ({exc}).") from None
     return cost_set(model, data, z=z, source=str(path), distribution=distribution)

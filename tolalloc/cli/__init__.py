@@ -1,16 +1,21 @@
 """Command-line interface: ``tolalloc <command> ...``.
 
 Each command lives in its own module exposing ``register(subparsers)``; the
-module list below is the whole command set. Every :class:`TolallocError` is
-printed as one ``error:`` line with exit status 2; nothing half-written stays
-on disk (outputs are written through :func:`tolalloc.cli.common.atomic_output`).
+module list below is the whole command set. Every :class:`TolallocError` and every
+malformed argument is printed as one ``error:`` line with exit status 2; nothing
+half-written stays on disk (outputs go through :func:`tolalloc.cli.output.atomic_output`).
+Ctrl-C (SIGINT) and SIGTERM print ``interrupted; nothing written`` and exit with
+130 / 143; staged output is removed, no traceback.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
+import signal
 import sys
+import threading
 
 from tolalloc.exceptions import TolallocError
 
@@ -18,8 +23,27 @@ from tolalloc.exceptions import TolallocError
 COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate"]
 
 
+class _UsageError(TolallocError):
+    """A malformed command line (printed like any other error)."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGINT or SIGTERM arrived; ``signum`` says which."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors: ``error: tolalloc mc: argument --n: ... (see tolalloc mc --help)``."""
+
+    def error(self, message):  # noqa: D102 - argparse API
+        raise _UsageError(f"{self.prog}: {message} (see '{self.prog} --help').")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="tolalloc",
         description="Tolerance allocation, verification and sim-to-real diagnosis for serial robots. "
         "Units: lengths in mm, joint values in deg (revolute) and mm (prismatic).",
@@ -31,19 +55,50 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        return int(args.func(args) or 0)
-    except TolallocError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # output piped into `head` and closed early: not an error of ours
-        import os
+def _on_signal(signum, frame):
+    # the first signal wins; later ones are ignored while the staged output is cleaned up
+    for s in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(s, signal.SIG_IGN)
+    raise Interrupted(signum)
 
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 0
+
+@contextlib.contextmanager
+def _interrupt_handlers():
+    """Turn SIGINT / SIGTERM into :class:`Interrupted` for the block (main thread only), then restore."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield
+    finally:
+        for s, h in old.items():
+            signal.signal(s, h)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
+    from tolalloc.cli.output import published
+
+    published(reset=True)
+    with _interrupt_handlers():
+        try:
+            args = build_parser().parse_args(argv)
+            return int(args.func(args) or 0)
+        except TolallocError as exc:
+            print(f"error: {exc}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt as exc:
+            signum = getattr(exc, "signum", signal.SIGINT)
+            done = published()
+            print("interrupted; nothing written" if not done else
+                  f"interrupted after writing {', '.join(done)} (complete); nothing else written", file=sys.stderr)
+            return 128 + int(signum)
+        except BrokenPipeError:  # output piped into `head` and closed early: not an error of ours
+            import os
+
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import build_error_model
-from tolalloc.cli.common import add_robot_arg, add_scheduler_arg, atomic_output, check_output, robot_from_args, write_json
+from tolalloc.cli.argtypes import count, seed
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
+                                 error_model_from_args, robot_from_args, write_json)
 
 
 def register(sub) -> None:
@@ -28,18 +29,13 @@ def register(sub) -> None:
     p.add_argument("--costs", metavar="FILE", help="costs file (TOML): cost laws, process limits, fixed/excluded parameters")
     p.add_argument("--z", type=float, default=None, help="sigma = t / z (default 3, or the costs file's z)")
     p.add_argument("--uniform", action="store_true", help="uniform tolerance distribution: sigma = t / sqrt(3)")
-    p.add_argument("--sigma-set", default=None,
-                   help="sigma set used for fixed parameters without tol_mm/tol_deg (default: the robot file's first)")
-    p.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
-                   help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
-    p.add_argument("--clearance", action="store_true", help="add joint clearance parameters (allocated like the others)")
-    p.add_argument("--exclude", action="append", default=[], metavar="NAME", help="leave out a parameter or kind; repeatable")
+    add_error_model_args(p, allocation=True)
     p.add_argument("--angle-radius-deg", type=float, default=None,
                    help="also require P(|rotation error| < this) >= --angle-prob [deg]")
     p.add_argument("--angle-prob", type=float, default=None, help="probability of the orientation requirement (default --prob)")
-    p.add_argument("--n-mc", type=int, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
+    p.add_argument("--n-mc", type=count, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
-    p.add_argument("--seed", type=int, default=0, help="random seed of the verification")
+    p.add_argument("--seed", type=seed, default=0, help="random seed of the verification")
     add_scheduler_arg(p, "the verification's Monte Carlo samples")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
@@ -58,11 +54,10 @@ def cmd_allocate(args) -> int:
     from tolalloc.allocate.costs import cost_set, load_costs
     from tolalloc.report.tables import format_text, write_tables
 
-    robot = robot_from_args(args)
     _check_args(args)
+    robot = robot_from_args(args)
     dist = "uniform" if args.uniform else None
-    model = build_error_model(robot, args.sigma_set, link_mode=args.link_mode, clearance=args.clearance,
-                              exclude=tuple(args.exclude))
+    model = error_model_from_args(robot, args)
     costs = (load_costs(args.costs, model, z=args.z, distribution=dist) if args.costs
              else cost_set(model, None, z=args.z, distribution=dist))
     set_name, q = _poses_of(robot, args.poses)
@@ -87,7 +82,7 @@ def cmd_allocate(args) -> int:
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
             row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
     _print(res, table, ver, set_name, format_text)
-    if args.out:
+    if args.out is not None:
         with atomic_output(args.out, directory=True) as tmp:
             write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
                          f"{args.prob:g} at the {set_name} poses ({res.design.solver})")

@@ -6,7 +6,9 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.covariance import budget, linear_map
-from tolalloc.cli.common import (add_error_model_args, add_robot_arg, atomic_output, check_output, error_model_from_args,
+from tolalloc.cli.argtypes import count
+from tolalloc.cli.output import output_group
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, check_distinct_outputs, check_output, error_model_from_args,
                      format_labels, parse_q, robot_from_args, write_json)
 
 
@@ -28,7 +30,7 @@ def register(sub) -> None:
                    help="radius for P(|dp| < r) [mm]; repeatable")
     p.add_argument("--prob", type=float, action="append", default=[], metavar="P",
                    help="probability in (0, 1) for the radius with P(|dp| < r) = P [mm]; repeatable")
-    p.add_argument("--top", type=int, default=10, help="budget rows printed (default 10)")
+    p.add_argument("--top", type=count, default=10, help="budget rows printed (default 10)")
     p.add_argument("--json", metavar="OUT", help="write the results as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write linear_table.csv, budget.csv, budget_kinds.csv, budget.md, "
                    "budget.png and analyze.json to DIR")
@@ -74,6 +76,9 @@ def analyze_dict(res, radii, probs) -> dict:
 
 
 def cmd_analyze(args) -> int:
+    check_output(args.out, "--out", directory=True)
+    check_output(args.json, "--json")
+    check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     robot = robot_from_args(args)
     for r in args.radius_mm:
         if not np.isfinite(r) or r <= 0:
@@ -83,20 +88,19 @@ def cmd_analyze(args) -> int:
             raise TolallocError(f"--prob: expected a probability strictly between 0 and 1 (e.g. 0.95), got {p!r}.")
     if args.top < 1:
         raise TolallocError(f"--top: expected a number of rows >= 1, got {args.top}.")
-    check_output(args.out, "--out", directory=True)
-    check_output(args.json, "--json")
     model = error_model_from_args(robot, args)
     q = parse_q(args.pose, robot, "--pose") if args.pose else robot.poses(args.poses)
     res = linear_map(model, q)
     summary = analyze_dict(res, args.radius_mm, args.prob)
     summary["labels"] = {**summary["labels"], "clearance": bool(args.clearance)}
     b = budget(res)
-    if args.out:
-        import matplotlib.pyplot as plt
+    with output_group() as out:  # --out and --json are published together
+        if args.out is not None:
+            import matplotlib.pyplot as plt
 
-        from tolalloc.report.plots.linear import budget_bars
+            from tolalloc.report.plots.linear import budget_bars
 
-        with atomic_output(args.out, directory=True) as tmp:
+            tmp = out.directory(args.out)
             res.to_frame().to_csv(tmp / "linear_table.csv", index=False, float_format="%.6g")
             b.write_csv(tmp / "budget.csv")
             b.write_csv(tmp / "budget_kinds.csv", by="kind")
@@ -106,8 +110,10 @@ def cmd_analyze(args) -> int:
             fig = budget_bars(b, tmp / "budget.png", top=args.top)
             plt.close(fig)
             write_json(summary, tmp / "analyze.json")
-    if args.json:
-        write_json(summary, args.json)
+        if args.json is not None and args.json != "-":
+            write_json(summary, out.file(args.json))
+    if args.json == "-":
+        write_json(summary, "-")
     if args.json != "-":
         print(f"robot {robot.name}, {format_labels(model.labels)}, clearance={bool(args.clearance)}; linear map, Gaussian approximation")
         print(res.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}"))

@@ -2,22 +2,17 @@
 
 from __future__ import annotations
 
-import contextlib
-import json
-import os
 import re
-import shutil
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.robot.io import load_robot
+from tolalloc.cli.output import atomic_output, check_distinct_outputs, check_output, json_default, write_json
 
 __all__ = ["format_labels", "parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
-           "check_output", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
+           "check_output", "check_distinct_outputs", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
 
 #: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value
 _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-\.?\d[\d.eE+-]*([,;]\s*[-+]?[\d.eE+-]*)+$")
@@ -29,10 +24,16 @@ def add_robot_arg(parser) -> None:
                         help="built-in robot name (see `tolalloc robots`) or path to a robot file (.toml, DH .csv, .urdf)")
     parser.add_argument("--tool", metavar="LINK", default=None,
                         help="URDF only: the tool link (default: the last link of the chain; required if the URDF branches)")
+    parser.add_argument("--trust-units", action="store_true",
+                        help="accept robot-file values that look like a unit slip (lengths under _m above 20 m, a "
+                        "robot under 10 mm long, angles beyond one turn)")
 
 
 def robot_from_args(args) -> Robot:
-    return load_robot(args.robot, tool=getattr(args, "tool", None))
+    from tolalloc.units import trusting_units
+
+    with trusting_units(getattr(args, "trust_units", False)):
+        return load_robot(args.robot, tool=getattr(args, "tool", None))
 
 
 def parse_q(text: str, robot: Robot, flag: str = "--q") -> np.ndarray:
@@ -49,121 +50,34 @@ def format_labels(labels: dict) -> str:
     return ", ".join(f"{k}={v}" for k, v in labels.items() if v is not None)
 
 
-def json_default(obj):
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, (np.floating, np.integer)):
-        return obj.item()
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    raise TypeError(f"not JSON serialisable: {type(obj)}")
+def add_error_model_args(parser, *, allocation: bool = False) -> None:
+    """The error-model options of every command (read back by :func:`error_model_from_args`).
 
-
-def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:
-    what = "an output directory" if directory else "an output file"
-    why = exc.strerror or type(exc).__name__
-    return TolallocError(f"cannot write {what} at {str(path)!r} ({why}: {exc.filename or path}); expected {what} "
-                         "path in a writable place; choose another path.")
-
-
-def check_output(path, flag: str, *, directory: bool = False) -> None:
-    """Fail early (before any computation) if ``path`` cannot be written as an output file / directory.
-
-    ``None`` and ``'-'`` (stdout, files only) pass. Nothing is created.
+    ``allocation``: the sigmas are what the allocation chooses, so the sigma overrides and the
+    clearance-sigma choice are left out and ``--sigma-set`` only serves fixed parameters.
     """
-    if path is None or (str(path) == "-" and not directory):
-        return
-    p = Path(path)
-    if p.exists() and p.is_dir() != directory:
-        want = "a directory" if directory else "a file"
-        raise TolallocError(f"{flag} {str(p)!r}: expected {want} path, but {str(p)!r} is "
-                            f"{'a directory' if p.is_dir() else 'a file'}; choose another path.")
-    parent = p if directory and p.exists() else p.parent
-    while not parent.exists() and parent != parent.parent:
-        parent = parent.parent
-    if not parent.is_dir():
-        raise TolallocError(f"{flag} {str(p)!r}: expected a path below a directory, but {str(parent)!r} is a file; "
-                            "choose another path.")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise TolallocError(f"{flag} {str(p)!r}: expected a writable place, but {str(parent)!r} is not writable; "
-                            "choose another path.")
-
-
-@contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, *, directory: bool = False):
-    """Yield a temporary path; move it to ``path`` only if the block finishes without error.
-
-    For ``directory=True`` the temporary path is a fresh directory whose content
-    replaces the files of the same name in ``path`` (other files there are kept).
-    A file gets the usual permissions (``0o666`` less the umask). An operating-system
-    error (unwritable place, a file where a directory is expected ...) raises
-    :class:`TolallocError`.
-    """
-    path = Path(path)
-    tmp = None
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        if directory:
-            tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=path.parent))
-        else:
-            fd, tmp_name = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
-            os.close(fd)
-            tmp = Path(tmp_name)
-            umask = os.umask(0)
-            os.umask(umask)
-            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0o600
-    except OSError as exc:
-        raise _cannot_write(path, directory, exc) from None
-    try:
-        yield tmp
-        try:
-            if directory:
-                path.mkdir(parents=True, exist_ok=True)
-                for item in tmp.iterdir():
-                    target = path / item.name
-                    if target.is_dir():
-                        shutil.rmtree(target)
-                    os.replace(item, target)
-            else:
-                os.replace(tmp, path)
-        except OSError as exc:
-            raise _cannot_write(path, directory, exc) from None
-    finally:
-        if directory:
-            shutil.rmtree(tmp, ignore_errors=True)
-        elif tmp.exists():
-            tmp.unlink()
-
-
-def write_json(obj, path) -> None:
-    """Write ``obj`` as indented JSON to ``path`` atomically ('-' prints to stdout)."""
-    text = json.dumps(obj, indent=2, default=json_default)
-    if str(path) == "-":
-        print(text)
-        return
-    with atomic_output(path) as tmp:
-        tmp.write_text(text + "\n")
-
-
-def add_error_model_args(parser) -> None:
-    """The error-model options shared by the analysis commands (read back by :func:`error_model_from_args`)."""
     from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 
     parser.add_argument("--sigma-set", default=None,
-                        help="sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
+                        help="sigma set used for fixed parameters without tol_mm/tol_deg (default: the robot file's "
+                        "first)" if allocation else
+                        "sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
     parser.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
                         help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
     parser.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
                         help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
     parser.add_argument("--clearance", action="store_true",
-                        help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint")
+                        help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint"
+                        + (" (allocated like the others)" if allocation else ""))
+    parser.add_argument("--exclude", action="append", default=[], metavar="NAME",
+                        help="leave out a parameter or kind; repeatable")
+    if allocation:
+        return
     parser.add_argument("--clearance-tilt-literal", action="store_true",
                         help=f"use Table 4's literal tilt sigma {CLEARANCE_TILT_LITERAL_RAD} rad instead of the "
                         f"corrected {CLEARANCE_SIGMA['tilt_rad']} rad")
     parser.add_argument("--sigma", action="append", default=[], metavar="NAME=VALUE",
                         help="override a parameter's or kind's sigma, in mm (lengths) or deg (angles); repeatable")
-    parser.add_argument("--exclude", action="append", default=[], metavar="NAME",
-                        help="leave out a parameter or kind; repeatable")
 
 
 def add_scheduler_arg(parser, what: str = "the samples") -> None:
@@ -212,6 +126,12 @@ def error_model_from_args(robot: Robot, args):
     """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
     from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD, build_error_model
 
+    if not hasattr(args, "sigma"):  # allocation options (add_error_model_args(allocation=True))
+        return build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
+                                 clearance=args.clearance, exclude=tuple(args.exclude))
+    if args.clearance_tilt_literal and not args.clearance:
+        raise TolallocError("--clearance-tilt-literal changes the clearance tilt sigma, but clearance is off; "
+                            "add --clearance (or leave out --clearance-tilt-literal).")
     opts = dict(link_mode=args.link_mode, deflection_mode=args.deflection_mode, clearance=args.clearance)
     base = build_error_model(robot, args.sigma_set, **opts)
     sigma = sigma_overrides(base.params, args.sigma)

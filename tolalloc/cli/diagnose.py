@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import contextlib
-
 import pandas as pd
 
-from tolalloc.cli.common import add_robot_arg, atomic_output, robot_from_args, write_json
+from tolalloc.cli.argtypes import count, seed
+from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_from_args, write_json
+from tolalloc.cli.output import output_group
 
 
 def register(sub) -> None:
@@ -27,29 +27,40 @@ def register(sub) -> None:
     p.add_argument("--predictions", metavar="PRED.csv",
                    help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
-    p.add_argument("--folds", type=int, default=5, help="cross-validation folds (default 5)")
+    p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the fold assignment (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment (default 0)")
     p.set_defaults(func=cmd_diagnose)
 
 
 def cmd_diagnose(args) -> int:
     from tolalloc.exceptions import TolallocError
     from tolalloc.diagnose import diagnose, read_measurements
+    from tolalloc.diagnose.measurements import check_train_test
     from tolalloc.report.diagnosis import write_report
 
-    robot = robot_from_args(args)
-    if args.predictions and not args.test:
+    if args.predictions is not None and not args.test:
         raise TolallocError("--predictions needs --test: predictions are written for the rows of the test file.")
     if not 0 < args.alpha < 1:
         raise TolallocError(f"--alpha: expected a level in (0, 1), got {args.alpha}.")
+    if args.folds < 2:
+        raise TolallocError(f"--folds: expected at least 2 cross-validation folds, got {args.folds}.")
+    # every output path is checked before any computation, so a late failure cannot leave some written
+    check_output(args.json, "--json")
+    check_output(args.predictions, "--predictions")
+    check_output(args.report, "--report", directory=True)
+    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
+                           inputs=[("--train", args.train), ("--test", args.test)])
+    robot = robot_from_args(args)
     train = read_measurements(args.train, robot)
     test = read_measurements(args.test, robot) if args.test else None
+    if test is not None:
+        check_train_test(train, test, args.train, args.test)
     d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame)
-    with contextlib.ExitStack() as stack:
+    with output_group() as out:
         # all outputs are produced in temporaries and moved into place together at the end
-        if args.predictions:
-            tmp_pred = stack.enter_context(atomic_output(args.predictions))
+        if args.predictions is not None:
+            tmp_pred = out.file(args.predictions)
             pred = d.final.test_pred_mm
             frame = pd.DataFrame({"row": test.rows, "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
             if test.n_skipped:
@@ -57,11 +68,11 @@ def cmd_diagnose(args) -> int:
                 full = pd.DataFrame({"row": range(1, test.n_poses + test.n_skipped + 1)})
                 frame = full.merge(frame, on="row", how="left")
             frame[["x_mm", "y_mm", "z_mm"]].to_csv(tmp_pred, index=False, float_format="%.6f")
-        if args.report:
-            tmp_dir = stack.enter_context(atomic_output(args.report, directory=True))
+        if args.report is not None:
+            tmp_dir = out.directory(args.report)
             write_report(d, tmp_dir)
-        if args.json and args.json != "-":
-            tmp_json = stack.enter_context(atomic_output(args.json))
+        if args.json is not None and args.json != "-":
+            tmp_json = out.file(args.json)
             write_json(d.to_dict(), tmp_json)
     if args.json == "-":
         write_json(d.to_dict(), "-")

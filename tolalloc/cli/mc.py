@@ -9,7 +9,9 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
 from tolalloc.montecarlo.run import run_mc
-from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, atomic_output, check_output,
+from tolalloc.cli.argtypes import count, nonnegative_int, positive_float, seed
+from tolalloc.cli.output import output_group
+from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs, check_output,
                      error_model_from_args, format_labels, parse_q, robot_from_args, write_json)
 
 
@@ -21,8 +23,8 @@ def register(sub) -> None:
         "|p'|-|p| (the paper's Table-3 'Δp'), X-Y-Z fixed Euler-angle errors [rad], and P(|dp| < r) with 95%% CIs.")
     add_robot_arg(p)
     add_error_model_args(p)
-    p.add_argument("--n", type=int, required=True, help="number of samples (>= 1)")
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same numbers)")
+    p.add_argument("--n", type=count, required=True, help="number of samples (>= 1; 1e6 and 1_000_000 accepted)")
+    p.add_argument("--seed", type=seed, default=0, help="random seed (same seed, same numbers)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
     g.add_argument("--pose-set", "--poses", dest="pose_set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
@@ -31,14 +33,14 @@ def register(sub) -> None:
     p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees; repeatable")
     p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
     add_scheduler_arg(p)
-    p.add_argument("--jobs", type=int, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
-    p.add_argument("--chunk-size", type=int, default=2**20, help="samples per Dask task (default 1048576); never changes the numbers")
+    p.add_argument("--jobs", type=count, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
+    p.add_argument("--chunk-size", type=count, default=2**20, help="samples per Dask task (default 1048576); never changes the numbers")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress bar on stderr (default: for runs of 10^7 samples or more when stderr is a terminal)")
-    p.add_argument("--hist-bins", type=int, default=0,
+    p.add_argument("--hist-bins", type=nonnegative_int, default=0,
                    help="accumulate BINSxBINS x-y, x-z, y-z histograms of the position error over all samples "
                    "(with --out: mc_density.png and mc_hist.npz)")
-    p.add_argument("--hist-range-mm", type=float, default=None, help="half-width of the histogram window [mm] (default: 6 linear std per axis)")
+    p.add_argument("--hist-range-mm", type=positive_float, default=None, help="half-width of the histogram window [mm] (default: 6 linear std per axis)")
     p.add_argument("--json", metavar="OUT", help="write the summary as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write mc_table.csv, mc_summary.json and mc_scatter.png to DIR")
     p.set_defaults(func=cmd_mc)
@@ -69,11 +71,10 @@ def summary_dict(res, robot) -> dict:
 
 
 def cmd_mc(args) -> int:
-    robot = robot_from_args(args)
-    if args.n is None or args.n < 1:
-        raise TolallocError(f"--n: expected a number of samples >= 1, got {args.n}.")
     check_output(args.out, "--out", directory=True)
     check_output(args.json, "--json")
+    check_distinct_outputs([("--out", args.out), ("--json", args.json)])
+    robot = robot_from_args(args)
     model = error_model_from_args(robot, args)
     if args.pose:
         q = parse_q(args.pose, robot, "--pose")
@@ -85,10 +86,9 @@ def cmd_mc(args) -> int:
         if not np.isfinite(r) or r <= 0:
             raise TolallocError(f"--radius-mm / --angle-radius-*: expected radii > 0, got {r}.")
     keep = min(args.n, 20000) if args.out else 0
-    if args.jobs is not None and args.jobs < 1:
-        raise TolallocError(f"--jobs: expected a number of workers >= 1, got {args.jobs}.")
-    if args.chunk_size < 1:
-        raise TolallocError(f"--chunk-size: expected a number of samples >= 1, got {args.chunk_size}.")
+    if args.hist_range_mm is not None and not args.hist_bins:
+        raise TolallocError(f"--hist-range-mm {args.hist_range_mm:g} sets the histogram window, but no histogram is "
+                            "made; add --hist-bins BINS (e.g. --hist-bins 100) or leave out --hist-range-mm.")
     res = run_mc(model, q, args.n, args.seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep, ci=args.ci,
                  n_jobs=args.jobs, scheduler=args.scheduler, chunk_size=args.chunk_size, progress=args.progress,
                  hist_bins=args.hist_bins, hist_range_mm=args.hist_range_mm)
@@ -97,11 +97,12 @@ def cmd_mc(args) -> int:
         summary["hist_fraction_outside"] = (res.hist.outside / res.n).tolist()
     summary["labels"] = {**summary["labels"], "clearance_tilt_rad": (CLEARANCE_TILT_LITERAL_RAD if args.clearance_tilt_literal
                                                                      else CLEARANCE_SIGMA["tilt_rad"]) if args.clearance else None}
-    if args.out:
-        from tolalloc.report.plots.mc import scatter_density
-        import matplotlib.pyplot as plt
+    with output_group() as out:  # --out and --json are published together
+        if args.out is not None:
+            from tolalloc.report.plots.mc import scatter_density
+            import matplotlib.pyplot as plt
 
-        with atomic_output(args.out, directory=True) as tmp:
+            tmp = out.directory(args.out)
             res.to_frame().to_csv(tmp / "mc_table.csv", index=False)
             write_json(summary, tmp / "mc_summary.json")
             fig = scatter_density(res, tmp / "mc_scatter.png")
@@ -112,8 +113,10 @@ def cmd_mc(args) -> int:
                 plt.close(hist_density(res, tmp / "mc_density.png"))
                 np.savez_compressed(tmp / "mc_hist.npz", counts=res.hist.counts, edges_mm=res.hist.edges_mm,
                                     outside=res.hist.outside, n=res.hist.n, planes=np.array(res.hist.planes))
-    if args.json:
-        write_json(summary, args.json)
+        if args.json is not None and args.json != "-":
+            write_json(summary, out.file(args.json))
+    if args.json == "-":
+        write_json(summary, "-")
     if not args.json or args.json != "-":
         tab = res.to_frame()
         print(f"robot {robot.name}, n={res.n}, seed={res.seed}, {format_labels(res.labels)}")

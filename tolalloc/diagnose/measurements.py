@@ -25,7 +25,10 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 
-__all__ = ["Measurements", "read_measurements", "measurements_from_frame", "POSITION_COLUMNS"]
+__all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "POSITION_COLUMNS"]
+
+#: fewer distinct poses than this cannot fix the tracker registration and target offset (9 unknowns, 3 per pose)
+MIN_DISTINCT_POSES = 3
 
 POSITION_COLUMNS = ("x_mm", "y_mm", "z_mm")
 
@@ -70,6 +73,15 @@ class Measurements:
         return Measurements(self.q[idx], self.xyz_mm[idx], pick(self.temperature_c), pick(self.direction),
                             pick(self.payload_kg), pick(self.time_s), self.rows[idx], 0, self.source)
 
+    def pose_groups(self) -> np.ndarray:
+        """Group number per row, equal for rows with the same joint values (repeated measurements of one pose),
+        shape (P,) of int, numbered in order of first appearance. Cross-validation folds that keep each group
+        together do not score a pose against its own repeat."""
+        h = _row_hash(self.q)
+        _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+        order = np.argsort(np.argsort(first))  # renumber by first appearance
+        return order[np.ravel(inverse)]
+
     def covariates(self) -> dict:
         """Available scalar covariates by column name, each shape (P,)."""
         out = {}
@@ -112,7 +124,65 @@ def _scale_check(robot: Robot, q: np.ndarray, xyz: np.ndarray, source: str) -> N
         raise TolallocError(
             f"{source}: the measured positions spread over {s_meas:.4g} mm but the robot model's points spread "
             f"over {s_nom:.4g} mm at the same joint values (ratio {ratio:.3g}); expected comparable spreads. "
-            "Check the units (mm expected), the robot and the joint columns (deg / mm expected).")
+            "Check the units (mm expected), the robot (wrong robot?) and the joint columns (deg / mm expected).")
+
+
+def _row_hash(A: np.ndarray) -> np.ndarray:
+    """One 64-bit hash per row of ``A`` (equal rows, equal hashes), shape (rows,)."""
+    return pd.util.hash_pandas_object(pd.DataFrame(A), index=False).to_numpy()
+
+
+def _duplicated(A: np.ndarray) -> np.ndarray:
+    """True for every row equal to an earlier row of ``A``, shape (rows,): rows of equal hash are compared
+    exactly with the first row of that hash (O(rows log rows))."""
+    h = _row_hash(A)
+    _, first, inverse = np.unique(h, return_index=True, return_inverse=True)
+    earlier = first[np.ravel(inverse)]
+    return (earlier != np.arange(len(A))) & (A[earlier] == A).all(axis=1)
+
+
+def _first_duplicate(A: np.ndarray):
+    """Indices ``(i, j)``, i < j, of the first row ``j`` equal to an earlier row ``i``, or None."""
+    dup = np.flatnonzero(_duplicated(A))
+    if dup.size == 0:
+        return None
+    j = int(dup[0])
+    i = int(np.flatnonzero((A[:j] == A[j]).all(axis=1))[0])
+    return i, j
+
+
+def _check_poses(Q: np.ndarray, X: np.ndarray, rows: np.ndarray, source: str) -> None:
+    """Refuse duplicated rows (they would leak across cross-validation folds) and too few distinct poses."""
+    QX = np.concatenate([Q, X], axis=1)
+    d = _first_duplicate(QX)
+    if d is not None:
+        n_dup = int(_duplicated(QX).sum())
+        raise TolallocError(f"{source}: row {rows[d[1]]} repeats row {rows[d[0]]} exactly ({n_dup} duplicated row(s)); "
+                            "expected each measurement once (a copy would be scored as held out against itself); "
+                            "remove the duplicates.")
+    n_distinct = len(np.unique(_row_hash(Q)))
+    if n_distinct < MIN_DISTINCT_POSES:
+        raise TolallocError(f"{source}: only {n_distinct} distinct pose(s) in {len(Q)} rows; expected at least "
+                            f"{MIN_DISTINCT_POSES} different joint configurations (the registration alone has 9 "
+                            "unknowns); measure more poses.")
+
+
+def check_train_test(train: Measurements, test: Measurements, train_name: str, test_name: str) -> None:
+    """Refuse a test set that shares poses with the training set (its error would not be held out)."""
+    if Path(train_name).resolve() == Path(test_name).resolve():
+        raise TolallocError(f"--test {test_name!r} is the training file; expected held-out measurements in another file "
+                            "(or leave out --test: cross-validation still scores held-out rows).")
+    keys, first = np.unique(_row_hash(train.q), return_index=True)
+    h_test = _row_hash(test.q)
+    at = np.minimum(np.searchsorted(keys, h_test), len(keys) - 1)
+    # same hash and the same joint values (a hash collision of different poses is not sharing)
+    shared = (keys[at] == h_test) & (train.q[first[at]] == test.q).all(axis=1)
+    if shared.any():
+        j = int(np.flatnonzero(shared)[0])
+        i = int(np.flatnonzero((train.q == test.q[j]).all(axis=1))[0])
+        raise TolallocError(f"--test {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in --train "
+                            f"{train_name!r} (e.g. test row {test.rows[j]} = train row {train.rows[i]}); expected "
+                            "held-out poses; remove them from one of the files.")
 
 
 def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<frame>") -> Measurements:
@@ -130,6 +200,8 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
         extra_q = [c for c in cols if c.startswith("q") and c[1:].isdigit() and c not in qcols]
         if extra_q:
             hint += f" The file has joint columns {extra_q} beyond the robot's {n} joints; is it the right robot?"
+        elif any(m in qcols for m in missing) and any(c in cols for c in qcols):
+            hint += f" The file has fewer joint columns than the robot's {n} joints; wrong robot?"
         raise TolallocError(
             f"{source}: missing column(s) {missing}; expected {', '.join(qcols)} (deg / mm) and "
             f"{', '.join(POSITION_COLUMNS)}, got columns {cols}.{hint}")
@@ -153,10 +225,13 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
         i, k = np.argwhere(bad)[0]
         j = robot.joints[k]
         lim = robot.q_to_interface(np.array([lo, hi]))[:, k]
+        rad_like = all(np.abs(Q[:, c]).max() <= 2 * np.pi for c, jt in enumerate(robot.joints) if jt.kind == "revolute")
+        advice = ("joint values must be in deg (revolute) / mm (prismatic) -- these look like radians: convert them "
+                  "with degrees()" if rad_like else
+                  f"the values do not fit robot {robot.name!r} -- wrong robot? (or check the robot file's limits)")
         raise TolallocError(
             f"{source}: row {rows[i]}: {qcols[k]} ({j.name}) = {Q[i, k]:g} {j.unit} is outside the joint limits "
-            f"[{lim[0]:g}, {lim[1]:g}] {j.unit} ({int(bad.any(1).sum())} row(s) affected); joint values must be in "
-            "deg (revolute) / mm (prismatic) -- convert radians with degrees(), or check the robot file's limits.")
+            f"[{lim[0]:g}, {lim[1]:g}] {j.unit} ({int(bad.any(1).sum())} row(s) affected); {advice}.")
 
     def optional(col):
         if col not in cols:
@@ -177,6 +252,7 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
         if not np.all(np.isin(direction, (-1.0, 1.0))):
             bad_v = direction[~np.isin(direction, (-1.0, 1.0))][0]
             raise TolallocError(f"{source}: dir columns must hold +1 or -1 (sign of the last motion), got {bad_v:g}.")
+    _check_poses(Q, X, rows, source)
     _scale_check(robot, qi, X, source)
     return Measurements(qi, X, optional("temperature_c"), direction, optional("payload_kg"), optional("time_s"),
                         rows, n_skipped, source)
@@ -185,10 +261,13 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
 def read_measurements(path, robot: Robot) -> Measurements:
     """Read and validate a measurement CSV (comma-separated, '.' decimals); see the module docstring."""
     path = Path(path)
+    if path.is_dir():
+        raise TolallocError(f"measurement file {str(path)!r} is a directory; expected a CSV file with columns q1..qN, "
+                            "x_mm, y_mm, z_mm.")
     if not path.is_file():
         raise TolallocError(f"measurement file {str(path)!r} does not exist; expected a CSV with columns q1..qN, x_mm, y_mm, z_mm.")
     try:
-        df = pd.read_csv(path, dtype=str, skipinitialspace=True)
+        df = pd.read_csv(path, dtype=str, skipinitialspace=True, encoding="utf-8-sig")
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise TolallocError(f"{path}: cannot be read as CSV ({exc}); expected comma-separated columns q1..qN, x_mm, y_mm, z_mm.") from None
     if df.shape[1] == 1 and ";" in str(df.columns[0]):

@@ -34,6 +34,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.units import ALL_UNITS, LENGTH_UNITS
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.kinematics import _jacobian_kernel, _prefix_lists
 from tolalloc.robot.model import Robot
@@ -301,7 +302,7 @@ def _sigma_from_set(robot: Robot, params: list, sigma_set: str) -> np.ndarray:
         known = ", ".join(["generic", *robot.sigma_sets])
         raise TolallocError(f"unknown sigma set {sigma_set!r} for robot {robot.name!r}; known: {known}.")
     entry = robot.sigma_sets[sigma_set]
-    factors = {"sigma_mm": ("mm", 1.0), "sigma_m": ("mm", 1000.0), "sigma_deg": ("rad", np.pi / 180), "sigma_rad": ("rad", 1.0)}
+    factors = {f"sigma_{u}": ("mm" if u in LENGTH_UNITS else "rad", f) for u, f in ALL_UNITS.items()}
     where = f"sigma set {sigma_set!r}"
     sigma = np.full(len(params), np.nan)
     for key, table in entry.items():

@@ -20,6 +20,7 @@ few blocks per worker plus ``keep_samples`` (10^8 samples run in well under 1 GB
 
 from __future__ import annotations
 
+import contextlib
 import sys
 from dataclasses import dataclass, field
 
@@ -182,6 +183,37 @@ def _hist_spec(model, q, bins, hist_range_mm, hist_sigmas=6.0):
     return HistSpec.symmetric(np.array(half, float), bins)
 
 
+def _checked_args(model: ErrorModel, q, n, radii_mm, angle_radii_rad, ci):
+    """Validated ``(q (P, n_joints), n, radii, angle radii)`` of :func:`run_mc` (TolallocError naming the argument)."""
+    q = np.atleast_2d(model.robot.check_q(q, "q"))
+    try:
+        n_ok = int(n) == n and n >= 1
+    except (TypeError, ValueError, OverflowError):
+        n_ok = False
+    if not n_ok:
+        raise TolallocError(f"n: expected an integer number of samples >= 1, got {n!r}.")
+    n = int(n)
+    sig = model.sigma
+    if np.any(~np.isfinite(sig)) or np.any(sig < 0):
+        raise TolallocError(f"sigma: expected finite values >= 0, got {sig}; fix the sigma set or overrides.")
+    radii = [float(r) for r in radii_mm]
+    aradii = [float(r) for r in angle_radii_rad]
+    for r, nm in [(r, "radii_mm") for r in radii] + [(r, "angle_radii_rad") for r in aradii]:
+        if not np.isfinite(r) or r <= 0:
+            raise TolallocError(f"{nm}: expected finite radii > 0, got {r!r}.")
+    if ci not in ("wilson", "exact", "clopper-pearson"):
+        raise TolallocError(f"ci: expected 'wilson' or 'exact' (Clopper-Pearson), got {ci!r}.")
+    return q, n, radii, aradii
+
+
+def _tasks(n: int, scheduler, chunk_size: int):
+    """Block ranges ``(b0, b1)`` of the run, generated lazily: memory does not grow with n (1e20 is fine)."""
+    n_blocks = -(-n // BLOCK_SIZE)
+    local = scheduler in (None, "local", "sync")
+    per_task = 1 if local else max(1, -(-int(chunk_size) // BLOCK_SIZE))
+    return ((b, min(n_blocks, b + per_task)) for b in range(0, n_blocks, per_task))
+
+
 def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_rad=(), chunk_size: int = 2**17,
            keep_samples: int = 0, ci: str = "wilson", n_jobs: int | None = None, scheduler=None,
            progress: bool | None = None, hist_bins: int = 0, hist_range_mm=None, engine: str | None = None) -> McResult:
@@ -227,31 +259,11 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     -------
     McResult
     """
-    q = np.atleast_2d(model.robot.check_q(q, "q"))
-    try:
-        n_ok = int(n) == n and n >= 1
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
-        raise TolallocError(f"n: expected an integer number of samples >= 1, got {n!r}.")
-    n = int(n)
-    sig = model.sigma
-    if np.any(~np.isfinite(sig)) or np.any(sig < 0):
-        raise TolallocError(f"sigma: expected finite values >= 0, got {sig}; fix the sigma set or overrides.")
-    radii = [float(r) for r in radii_mm]
-    aradii = [float(r) for r in angle_radii_rad]
-    for r, nm in [(r, "radii_mm") for r in radii] + [(r, "angle_radii_rad") for r in aradii]:
-        if not np.isfinite(r) or r <= 0:
-            raise TolallocError(f"{nm}: expected finite radii > 0, got {r!r}.")
-    if ci not in ("wilson", "exact", "clopper-pearson"):
-        raise TolallocError(f"ci: expected 'wilson' or 'exact' (Clopper-Pearson), got {ci!r}.")
+    q, n, radii, aradii = _checked_args(model, q, n, radii_mm, angle_radii_rad, ci)
     scheduler = check_scheduler(scheduler)
     hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
     spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
-    n_blocks = -(-n // BLOCK_SIZE)
-    local = scheduler in (None, "local", "sync")
-    per_task = 1 if local else max(1, -(-int(chunk_size) // BLOCK_SIZE))
-    tasks = [(b, min(n_blocks, b + per_task)) for b in range(0, n_blocks, per_task)]
+    tasks = _tasks(n, scheduler, chunk_size)
     show = progress if progress is not None else (n >= PROGRESS_MIN_N and sys.stderr.isatty())
     bar = None
     if show:
@@ -265,15 +277,16 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
 
     try:
         with threadpool_limits(limits=1, user_api="blas"):
-            for ns, block_moms, e, k in ordered_map(run_blocks, tasks, spec, scheduler=scheduler,
-                                                    n_jobs=n_jobs or default_jobs()):
-                for bm in block_moms:
-                    for acc, mo in zip(moms, bm):
-                        acc.merge(mo)
-                ext = e if ext is None else [a.merge(x) for a, x in zip(ext, e)]
-                kept += k
-                if bar is not None:
-                    bar.update(sum(ns))
+            results = ordered_map(run_blocks, tasks, spec, scheduler=scheduler, n_jobs=n_jobs or default_jobs())
+            with contextlib.closing(results):  # an interrupt cancels the queued blocks at once
+                for ns, block_moms, e, k in results:
+                    for bm in block_moms:
+                        for acc, mo in zip(moms, bm):
+                            acc.merge(mo)
+                    ext = e if ext is None else [a.merge(x) for a, x in zip(ext, e)]
+                    kept += k
+                    if bar is not None:
+                        bar.update(sum(ns))
     finally:
         if bar is not None:
             bar.close()

@@ -163,6 +163,7 @@ class Robot:
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             raise TolallocError(f"robot {self.name!r}: duplicate element names {dup}; every link and joint needs its own name.")
+        self._check_numbers()
         point = np.zeros(3)
         screws, points, sites = [], [], []
         for e in self.chain:
@@ -192,6 +193,44 @@ class Robot:
         object.__setattr__(self, "link_sites", np.array(sites, dtype=int))
         for arr in (self.screws, self.joint_points_mm, self.home, self.link_sites):
             arr.flags.writeable = False
+
+    def _check_numbers(self) -> None:
+        """Refuse NaN / inf in links, limits, nominal values and the tool frame, and zero-length links."""
+        who = f"robot {self.name!r}"
+        for e in self.chain:
+            if isinstance(e, Link):
+                v = np.asarray(e.vector_mm, dtype=float)
+                if v.shape != (3,) or not np.all(np.isfinite(v)):
+                    raise TolallocError(f"{who}, link {e.name}: vector {v.tolist()} mm; expected 3 finite numbers.")
+                if not np.any(v):
+                    raise TolallocError(f"{who}, link {e.name}: zero length; a link needs a length > 0 (its "
+                                        "tolerance has a direction); leave the entry out.")
+            elif isinstance(e, Joint):
+                vals = np.array([e.lower, e.upper, e.nominal], dtype=float)
+                if np.isnan(vals).any() or not np.isfinite(e.nominal):
+                    raise TolallocError(f"{who}, joint {e.name}: limits [{e.lower}, {e.upper}] and nominal {e.nominal}; "
+                                        "expected numbers (finite nominal value).")
+                if not e.lower <= e.nominal <= e.upper:
+                    raise TolallocError(f"{who}, joint {e.name}: nominal value {e.nominal:g} outside its limits "
+                                        f"[{e.lower:g}, {e.upper:g}] [rad / mm]; expected a value inside the limits.")
+        off = np.asarray(self.tool_offset_mm, dtype=float)
+        if off.shape != (3,) or not np.all(np.isfinite(off)):
+            raise TolallocError(f"{who}: tool offset {off.tolist()} mm; expected 3 finite numbers (tool offset_mm).")
+        R = np.asarray(self.tool_rotation, dtype=float)
+        if R.shape != (3, 3) or not np.all(np.isfinite(R)) or not np.allclose(R @ R.T, np.eye(3), atol=1e-6):
+            raise TolallocError(f"{who}: tool rotation is not a finite rotation matrix; expected finite tool rpy angles.")
+
+    def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
+
+        Revolute joints are drawn within their limits intersected with [-pi, pi] (a joint that may turn
+        more than once reaches no other pose beyond); prismatic joints over their whole stroke (an
+        unbounded stroke: +-1000 mm).
+        """
+        rev = self.revolute_mask
+        lo = np.where(rev, np.maximum(self.lower, -np.pi), np.where(np.isfinite(self.lower), self.lower, -1000.0))
+        hi = np.where(rev, np.minimum(self.upper, np.pi), np.where(np.isfinite(self.upper), self.upper, 1000.0))
+        return rng.uniform(lo, hi, (int(n), self.n_joints))
 
     # ------------------------------------------------------------------ joints
     @property

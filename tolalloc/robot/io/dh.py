@@ -36,7 +36,8 @@ from pydantic import BaseModel, ConfigDict
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import rot_x, rot_z
-from tolalloc.robot.io.robotfile import _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, _finish_robot, _unit_value, _validate, parse_tool
+from tolalloc.robot.io.robotfile import _finish_robot, _unit_value, _validate, check_limits, parse_tool
+from tolalloc.units import ALL_UNITS as _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS
 from tolalloc.robot.model import Joint, Link
 
 __all__ = ["robot_from_dh_dict", "chain_from_dh", "load_dh_csv"]
@@ -119,16 +120,10 @@ def robot_from_dh_dict(data: dict, source: str = "<dict>"):
             units = ANGLE_UNITS if rev else LENGTH_UNITS
             lim, _ = _unit_value(row, "limits", units, np.array([-2 * np.pi, 2 * np.pi]) if rev else np.array([-1000.0, 1000.0]))
             nom, _ = _unit_value(row, "nominal", units, 0.0)
-            unit = "deg" if rev else "mm"
-            shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if rev else (lambda x: np.asarray(x).tolist())
             for key, val in (("d", d), ("a", a), ("alpha", alpha), ("theta_offset", th0)):
                 if np.shape(val) != () or not np.isfinite(val):
                     raise ValueError(f"{key} must be one finite number, got {np.asarray(val).tolist()}")
-            if np.shape(lim) != (2,) or not lim[0] < lim[1]:
-                raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
-            if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
-                raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
-                                 "expected one number inside the limits")
+            check_limits(lim, nom, rev)
         except ValueError as exc:
             raise TolallocError(f"{where}: {exc}") from None
         rows.append(dict(name=str(row.get("name", f"j{i + 1}")), type="revolute" if rev else "prismatic",
@@ -160,7 +155,7 @@ def load_dh_csv(path):
     source = f"DH CSV file {str(path)!r}"
     meta, lines = {}, []
     try:
-        text = path.read_text()
+        text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Windows editors) is fine
     except (OSError, UnicodeDecodeError) as exc:
         raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a DH table in CSV.") from None
     for line in text.splitlines():
@@ -179,6 +174,9 @@ def load_dh_csv(path):
     if "name" not in header or unknown:
         raise TolallocError(f"{source}: header {header}: expected a 'name' column and columns among {', '.join(CSV_COLUMNS)}"
                             + (f"; unknown: {unknown}" if unknown else "") + ".")
+    if "alpha_deg" not in header and "alpha_rad" not in header:  # alpha = 0 everywhere would be another robot
+        raise TolallocError(f"{source}: header {header}: no alpha_deg or alpha_rad column; a DH table needs the link "
+                            "twists alpha (write 0 where a twist is zero).")
     rows = []
     for i, raw in enumerate(reader):
         cells = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}

@@ -58,6 +58,9 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
         source, text = f"built-in robot {text_name!r}", builtin.read_text()
     else:
         path = Path(text_name)
+        if path.is_dir():
+            raise TolallocError(f"robot {text_name!r} is a directory; expected a built-in robot name or a robot file "
+                                "(.toml, DH .csv, .urdf).")
         if not path.is_file():
             known = ", ".join(builtin_robots())
             raise TolallocError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
@@ -67,7 +70,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
             return load_dh_csv(path)
         source = f"robot file {str(path)!r}"
         try:
-            text = path.read_text()
+            text = path.read_text(encoding="utf-8-sig")  # a byte-order mark (Windows editors) is fine
         except (OSError, UnicodeDecodeError) as exc:
             raise TolallocError(f"{source}: cannot be read as text ({exc}); expected a TOML robot file.") from None
     try:

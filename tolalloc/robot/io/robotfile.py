@@ -23,12 +23,11 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
 from tolalloc.robot.model import Joint, Link, Mass, Robot
+from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
 
-__all__ = ["robot_from_chain_dict", "parse_tool", "LENGTH_UNITS", "ANGLE_UNITS"]
+__all__ = ["robot_from_chain_dict", "parse_tool", "check_limits", "LENGTH_UNITS", "ANGLE_UNITS"]
 
-LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
-ANGLE_UNITS = {"deg": np.pi / 180.0, "rad": 1.0}
-_ALL_UNITS = {**LENGTH_UNITS, **ANGLE_UNITS}
+_ALL_UNITS = ALL_UNITS
 #: base key -> allowed unit suffixes
 _UNIT_KEYS = {
     "vector": LENGTH_UNITS,
@@ -47,20 +46,9 @@ _UNIT_KEYS = {
 Vec3 = tuple[float, float, float]
 
 
-def _unit_value(data: dict, base: str, allowed: dict, default=None):
-    """Return (value in internal units, unit) for ``base_<unit>`` in ``data``; check exactly one is given."""
-    present = [k for k in data if k == base or (k.startswith(base + "_") and k[len(base) + 1 :] in _ALL_UNITS)]
-    present = [k for k in present if not (base == "d" and k.startswith("d_offset"))]
-    if not present:
-        return default, None
-    if len(present) > 1:
-        raise ValueError(f"give {base} once, got {present}")
-    key = present[0]
-    unit = key[len(base) + 1 :] if key != base else ""
-    if unit not in allowed:
-        want = " or ".join(f"{base}_{u}" for u in allowed)
-        raise ValueError(f"key {key!r} has unit {unit or 'none'!r}; expected {want}")
-    return np.asarray(data[key], dtype=float) * allowed[unit], unit
+def _unit_value(data: dict, base: str, allowed: dict, default=None, check: bool = True):
+    """Return (value in internal units, unit) for ``base_<unit>`` in ``data`` (:func:`tolalloc.units.unit_value`)."""
+    return unit_value(data, base, allowed, default, exclude=("d_offset",) if base == "d" else (), check=check)
 
 
 class _Strict(BaseModel):
@@ -119,6 +107,9 @@ class LinkEntry(_Strict):
             raise ValueError("missing vector_mm (the link's translation at home, base axes)")
         if vec.shape != (3,) or not np.all(np.isfinite(vec)):
             raise ValueError(f"vector must be 3 finite numbers, got {extra}")
+        if not np.any(vec):
+            raise ValueError("the vector is zero; a link needs a length > 0 (its tolerance has a direction); "
+                             "leave the entry out")
         return Link(self.link, vec)
 
 
@@ -141,16 +132,22 @@ class JointEntry(_Strict):
         default_lim = np.array([-np.pi, np.pi]) if revolute else np.array([-1000.0, 1000.0])
         if self.type == "continuous":
             default_lim = np.array([-4 * np.pi, 4 * np.pi])
-        lim, _ = _unit_value(extra, "limits", allowed, default_lim)
-        nom, _ = _unit_value(extra, "nominal", allowed, 0.0)
-        shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
-        unit = "deg" if revolute else "mm"
-        if np.shape(lim) != (2,) or not lim[0] < lim[1]:
-            raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
-        if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
-            raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
-                             "expected one number inside the limits")
+        # a continuous joint may turn more than once each way
+        lim, _ = _unit_value(extra, "limits", allowed, default_lim, check=self.type != "continuous")
+        nom, _ = _unit_value(extra, "nominal", allowed, 0.0, check=self.type != "continuous")
+        check_limits(lim, nom, revolute)
         return Joint(self.joint, kind, np.array(self.axis), float(lim[0]), float(lim[1]), float(nom))
+
+
+def check_limits(lim, nom, revolute: bool) -> None:
+    """Joint limits ``[lower, upper]`` and nominal value [rad or mm]: lower < upper, nominal inside (ValueError)."""
+    shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
+    unit = "deg" if revolute else "mm"
+    if np.shape(lim) != (2,) or not lim[0] < lim[1]:
+        raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
+    if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
+        raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
+                         "expected one number inside the limits")
 
 
 class MassEntry(_Strict):
@@ -230,8 +227,8 @@ def parse_tool(tool: dict):
         rpy, _ = _unit_value(extra, "rpy", ANGLE_UNITS, np.zeros(3))
     except ValueError as exc:
         raise TolallocError(f"tool: {exc}") from None
-    if np.shape(offset) != (3,) or np.shape(rpy) != (3,):
-        raise TolallocError(f"tool: expected offset_mm and rpy_deg of 3 numbers each, got {tool}")
+    if np.shape(offset) != (3,) or np.shape(rpy) != (3,) or not np.all(np.isfinite(offset)) or not np.all(np.isfinite(rpy)):
+        raise TolallocError(f"tool: expected offset_mm and rpy_deg of 3 finite numbers each, got {tool}")
     R = exp_so3([0, 0, rpy[2]]) @ exp_so3([0, rpy[1], 0]) @ exp_so3([rpy[0], 0, 0])
     return np.asarray(offset, float), R
 
@@ -241,6 +238,7 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     g = np.asarray(gravity, dtype=float)
     if not np.all(np.isfinite(g)) or np.linalg.norm(g) == 0:
         raise TolallocError(f"gravity: expected a non-zero direction such as [0, 0, -1], got {list(gravity)}")
+    check_reach({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)}, "lengths")
     robot = Robot(name, tuple(chain), tool_offset_mm=np.asarray(offset, float), tool_rotation=np.asarray(R_tool),
                   gravity=g / np.linalg.norm(g), description=description)
     body_of = {}

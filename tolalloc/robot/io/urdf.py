@@ -53,6 +53,13 @@ def _parse(path: Path, source: str):
     except etree.XMLSyntaxError as exc:
         raise TolallocError(f"{source}: not valid XML ({exc}); expected a URDF file (expand a .xacro file first "
                             "with `xacro robot.urdf.xacro > robot.urdf`).") from None
+    def _xacro(el) -> bool:
+        tag = el.tag if isinstance(el.tag, str) else ""
+        return "xacro" in tag or any("${" in v or "$(" in v for v in el.attrib.values())
+
+    if any(_xacro(el) for el in root.iter()):
+        raise TolallocError(f"{source}: an unexpanded xacro file (xacro elements or ${{...}} / $(...) expressions); "
+                            "expand it first with `xacro robot.urdf.xacro > robot.urdf` and load robot.urdf.")
     if root.tag != "robot":
         raise TolallocError(f"{source}: the root element is <{root.tag}>; expected <robot> (a URDF file).")
     no_axis = {j.get("name") for j in root.findall("joint") if j.get("type") in MOVABLE and j.find("axis") is None}
@@ -124,12 +131,23 @@ def _choose_tool(parent_joint, children, root, tool, source):
     depth = {leaf: sum(j.type in MOVABLE for j in _path(parent_joint, root, leaf)) for leaf in leaves}
     best = max(depth.values())
     cands = [leaf for leaf in leaves if depth[leaf] == best]
+    if len(cands) == 1:
+        # a fixed frame (tool0, flange) branching off near the end of the longest chain, whose remaining
+        # movable joints are a gripper's fingers: the tool is as likely the frame as the finger
+        main = _path(parent_joint, root, cands[0])
+        for leaf in leaves:
+            side = _path(parent_joint, root, leaf)
+            shared = next((k for k, (a, b) in enumerate(zip(main, side)) if a is not b), min(len(main), len(side)))
+            at = sum(j.type in MOVABLE for j in main[:shared])
+            if leaf != cands[0] and at >= 1 and best - at <= 2 and not any(j.type in MOVABLE for j in side[shared:]):
+                cands = [cands[0], leaf]
+                break
     if len(cands) > 1:
         paths = [[root] + [j.child for j in _path(parent_joint, root, c)] for c in cands]
         common = [names[0] for names in zip(*paths) if len(set(names)) == 1]
         raise TolallocError(f"{source}: the URDF branches at link {common[-1]!r}, so the tool link is ambiguous: leaf links "
-                            f"{cands} all end a chain of {best} movable joints; choose the tool link with --tool LINK "
-                            f"(e.g. --tool {common[-1]} or --tool {cands[0]}).")
+                            f"{cands} end chains of {', '.join(str(depth[c]) for c in cands)} movable joints; choose "
+                            f"the tool link with --tool LINK (e.g. --tool {common[-1]} or --tool {cands[0]}).")
     return cands[0]
 
 
@@ -171,6 +189,35 @@ def _joint(j, axis_base, source) -> Joint:
     return Joint(j.name, kind, axis_base, lower, upper, nominal)
 
 
+def _home_frames(children, root, on_path):
+    """Home transforms (all joints at zero) of every link, breadth-first from the root, and the number of
+    tool-chain movable joints between the root and each link."""
+    home = {root: np.eye(4)}
+    body = {root: 0}
+    queue = [root]
+    while queue:
+        name = queue.pop(0)
+        for j in children[name]:
+            origin = j.origin if j.origin is not None else np.eye(4)
+            home[j.child] = home[name] @ origin
+            body[j.child] = body[name] + (1 if j.name in on_path and j.type in MOVABLE else 0)
+            queue.append(j.child)
+    return home, body
+
+
+def _masses(urdf, home, body) -> list:
+    """Point masses [kg] at the centres of mass [mm, base frame at home] of the links with an <inertial>."""
+    masses = []
+    for lk in urdf.robot.links:
+        inertial = lk.inertial
+        if inertial is None or inertial.mass is None or float(inertial.mass) <= 0:
+            continue
+        origin = inertial.origin if inertial.origin is not None else np.eye(4)
+        com = 1000.0 * (home[lk.name] @ origin)[:3, 3]
+        masses.append(Mass(lk.name, int(body[lk.name]), float(inertial.mass), com))
+    return masses
+
+
 def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
     """Import the serial chain from the root link to ``tool`` of a URDF file.
 
@@ -197,6 +244,8 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
     """
     path = Path(path)
     source = f"URDF file {str(path)!r}"
+    if path.is_dir():
+        raise TolallocError(f"{source}: is a directory; expected a URDF file.")
     if not path.is_file():
         raise TolallocError(f"{source}: no such file.")
     urdf, no_axis = _parse(path, source)
@@ -214,18 +263,7 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
                             "choose another --tool.")
     _check_units(urdf, path_joints, source)
 
-    # home transforms of every link (all joints at zero), breadth-first from the root
-    home = {root: np.eye(4)}
-    body = {root: 0}
-    on_path = {j.name for j in path_joints}
-    queue = [root]
-    while queue:
-        name = queue.pop(0)
-        for j in children[name]:
-            origin = j.origin if j.origin is not None else np.eye(4)
-            home[j.child] = home[name] @ origin
-            body[j.child] = body[name] + (1 if j.name in on_path and j.type in MOVABLE else 0)
-            queue.append(j.child)
+    home, body = _home_frames(children, root, {j.name for j in path_joints})
 
     joint_names = {j.name for j in path_joints}
     chain = []
@@ -244,14 +282,7 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
                 raise TolallocError(f"{source}: joint {j.name!r} has axis {axis.tolist()}; expected a non-zero finite "
                                     "3-vector such as <axis xyz=\"0 0 1\"/>.")
             chain.append(_joint(j, home[j.child][:3, :3] @ (axis / norm), source))
-    masses = []
-    for lk in urdf.robot.links:
-        inertial = lk.inertial
-        if inertial is None or inertial.mass is None or float(inertial.mass) <= 0:
-            continue
-        origin = inertial.origin if inertial.origin is not None else np.eye(4)
-        com = 1000.0 * (home[lk.name] @ origin)[:3, 3]
-        masses.append(Mass(lk.name, int(body[lk.name]), float(inertial.mass), com))
+    masses = _masses(urdf, home, body)
     name = urdf.robot.name or path.stem
     desc = (f"Imported from URDF {path.name} (robot {name!r}): base link {root!r}, tool link {tool!r}, "
             f"{sum(j.type in MOVABLE for j in path_joints)} joints; lengths converted from m to mm.")

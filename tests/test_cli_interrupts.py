@@ -1,0 +1,144 @@
+"""Interrupts, concurrent writers, staged output and bounded Monte Carlo task generation (issue 12)."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from tolalloc.cli import main
+from tolalloc.cli.output import atomic_output, directory_lock
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _start(argv, cwd):
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    return subprocess.Popen([sys.executable, "-m", "tolalloc", *argv], cwd=cwd, env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def _wait_running(proc, seconds):
+    """Give the process time to import and start computing (it must still be running afterwards)."""
+    time.sleep(seconds)
+    assert proc.poll() is None, proc.communicate()
+
+
+@pytest.mark.parametrize("argv, sig, code", [
+    (["mc", "tool_changer", "--n", "1e20", "--out", "out", "--json", "s.json"], signal.SIGINT, 130),
+    (["mc", "tool_changer", "--n", "1e20", "--out", "out"], signal.SIGTERM, 143),
+    (["allocate", "tool_changer", "--n-mc", "1e10", "--out", "out"], signal.SIGTERM, 143),
+    (["allocate", "tool_changer", "--n-mc", "1e10", "--out", "out"], signal.SIGINT, 130),
+])
+def test_interrupt_prints_one_line_and_leaves_nothing(tmp_path, argv, sig, code):
+    proc = _start(argv, tmp_path)
+    _wait_running(proc, 6.0)
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == code, err
+    assert err.strip() == "interrupted; nothing written"
+    assert "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == []  # no out/, no .tmp-*, no lock file
+
+
+def test_interrupt_while_staging_removes_the_temporary_folder(tmp_path):
+    target = tmp_path / "out"
+    with pytest.raises(KeyboardInterrupt):
+        with atomic_output(target, directory=True) as tmp:
+            (tmp / "half.csv").write_text("1,2\n")
+            raise KeyboardInterrupt
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_new_directory_is_published_whole_and_existing_one_keeps_other_files(tmp_path):
+    target = tmp_path / "out"
+    with atomic_output(target, directory=True) as tmp:
+        (tmp / "a.txt").write_text("1")
+        (tmp / "sub").mkdir()
+        assert not target.exists()  # nothing visible before the end of the block
+    assert sorted(p.name for p in target.iterdir()) == ["a.txt", "sub"]
+    (target / "mine.txt").write_text("keep")
+    with atomic_output(target, directory=True) as tmp:
+        (tmp / "a.txt").write_text("2")
+    assert (target / "a.txt").read_text() == "2" and (target / "mine.txt").read_text() == "keep"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no staging folder, no lock left
+    umask = os.umask(0)
+    os.umask(umask)
+    assert (target.stat().st_mode & 0o777) == 0o777 & ~umask  # not mkdtemp's 0o700
+
+
+def test_second_writer_of_the_same_directory_is_refused(tmp_path, capsys):
+    target = tmp_path / "out"
+    with directory_lock(target):  # another run is publishing into out/
+        code = main(["mc", "tool_changer", "--n", "100", "--out", str(target)])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.strip().splitlines() == [f"error: {str(target)!r} is being written by another run (lock "
+                                        f"{str(tmp_path / '.out.lock')!r}); wait for it to finish or choose another "
+                                        "output directory."]
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+    assert main(["mc", "tool_changer", "--n", "100", "--out", str(target)]) == 0  # the lock is gone with the run
+    assert (target / "mc_summary.json").is_file()
+
+
+def test_mc_tasks_are_generated_lazily(monkeypatch):
+    # regression: one task per block was built up front, so n = 1e20 ran out of memory
+    import tolalloc.montecarlo.run as run_mod
+    from tolalloc import load_robot
+    from tolalloc.errormodel.model import build_error_model
+
+    seen = {}
+
+    def fake_map(fn, tasks, shared, **kw):
+        seen["type"] = type(tasks)
+        first = next(iter(tasks))
+        seen["first"] = first
+        raise KeyboardInterrupt  # stop at once: the caller must not have built the task list
+
+    monkeypatch.setattr(run_mod, "ordered_map", fake_map)
+    model = build_error_model(load_robot("tool_changer"))
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        run_mod.run_mc(model, model.robot.q_nominal, 10**20, 0)
+    assert time.perf_counter() - t0 < 30  # a list of 1e20 / BLOCK_SIZE tuples would never finish
+    assert seen["type"] is not list and seen["first"] == (0, 1)
+
+
+def test_counts_accept_scientific_notation_as_the_help_says(capsys, tmp_path):
+    assert main(["mc", "tool_changer", "--n", "1e3", "--json", str(tmp_path / "s.json")]) == 0
+    import json
+
+    assert json.loads((tmp_path / "s.json").read_text())["n"] == 1000
+    from tolalloc.cli.argtypes import count
+
+    assert count("1e6") == 10**6 and count("1_000_000") == 10**6 and count("1e20") == 10**20
+
+
+def test_interrupt_handler_is_restored_after_main():
+    before = signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)
+    main(["robots"])
+    assert (signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)) == before
+
+
+def test_output_group_publishes_all_or_nothing(tmp_path):
+    from tolalloc.cli.output import output_group, published
+
+    with pytest.raises(RuntimeError):
+        with output_group() as out:
+            out.file(tmp_path / "a.json").write_text("x")
+            (out.directory(tmp_path / "rep") / "r.md").write_text("y")
+            raise RuntimeError("the second output failed")
+    assert list(tmp_path.iterdir()) == []
+    published(reset=True)
+    with output_group() as out:
+        out.file(tmp_path / "a.json").write_text("x")
+        (out.directory(tmp_path / "rep") / "r.md").write_text("y")
+        assert sorted(p.name for p in tmp_path.iterdir() if not p.name.startswith(".")) == []
+    assert (tmp_path / "a.json").read_text() == "x" and (tmp_path / "rep" / "r.md").read_text() == "y"
+    assert sorted(published()) == sorted([str(tmp_path / "a.json"), str(tmp_path / "rep")])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "rep"]

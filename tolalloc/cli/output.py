@@ -1,0 +1,257 @@
+"""All-or-nothing output for the CLI: early path checks, staged writes, one-step publication, a writer lock.
+
+Every output is written into a temporary sibling of its target (``.tmp-*`` in the target's parent)
+and published only when the whole command succeeded:
+
+* a file by one :func:`os.replace`;
+* a new directory by one :func:`os.rename` of the staged folder;
+* an existing directory by replacing its files of the same name (other files are kept), with
+  SIGINT / SIGTERM held back until the last file is in place.
+
+A directory output is locked (``.NAME.lock`` next to it, :func:`fcntl.flock`, released by the
+kernel if the process dies) from staging to publication; a second run writing the same directory at
+the same time gets ``DIR is being written by another run``. An error or an interrupt removes the
+staged folder, so nothing half-written stays on disk.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import shutil
+import signal
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from tolalloc.exceptions import TolallocError
+
+__all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
+           "directory_lock", "published"]
+
+#: paths published by this process since the last :func:`published` reset (read by the interrupt message)
+_PUBLISHED: list = []
+
+
+def json_default(obj):
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, (np.floating, np.integer)):
+        return obj.item()
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    raise TypeError(f"not JSON serialisable: {type(obj)}")
+
+
+def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:
+    what = "an output directory" if directory else "an output file"
+    why = exc.strerror or type(exc).__name__
+    return TolallocError(f"cannot write {what} at {str(path)!r} ({why}: {exc.filename or path}); expected {what} "
+                         "path in a writable place; choose another path.")
+
+
+def check_output(path, flag: str, *, directory: bool = False) -> None:
+    """Fail early (before any computation) if ``path`` cannot be written as an output file / directory.
+
+    ``None`` and ``'-'`` (stdout, files only) pass; an empty path is refused. Nothing is created.
+
+    Raises
+    ------
+    TolallocError
+        Naming ``flag`` and the path: empty, a directory where a file is expected (or the reverse),
+        below a file, or in a place that is not writable.
+    """
+    if path is None or (str(path) == "-" and not directory):
+        return
+    if not str(path).strip():
+        want = "a directory" if directory else "a file"
+        raise TolallocError(f"{flag}: expected {want} path, got an empty string; give a path or leave out {flag}.")
+    p = Path(path)
+    if p.exists() and p.is_dir() != directory:
+        want = "a directory" if directory else "a file"
+        raise TolallocError(f"{flag} {str(p)!r}: expected {want} path, but {str(p)!r} is "
+                            f"{'a directory' if p.is_dir() else 'a file'}; choose another path.")
+    parent = p if directory and p.exists() else p.parent
+    while not parent.exists() and parent != parent.parent:
+        parent = parent.parent
+    if not parent.is_dir():
+        raise TolallocError(f"{flag} {str(p)!r}: expected a path below a directory, but {str(parent)!r} is a file; "
+                            "choose another path.")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise TolallocError(f"{flag} {str(p)!r}: expected a writable place, but {str(parent)!r} is not writable; "
+                            "choose another path.")
+
+
+def check_distinct_outputs(outputs, inputs=()) -> None:
+    """Refuse two output flags naming the same path, or an output that would overwrite an input.
+
+    ``outputs`` and ``inputs`` are ``(flag, path or None)`` pairs; ``None`` and ``'-'`` are skipped.
+    """
+    seen = {}
+    for flag, path in inputs:
+        if path is not None:
+            seen.setdefault(os.path.realpath(str(path)), ("input", flag))
+    for flag, path in outputs:
+        if path is None or str(path) == "-":
+            continue
+        key = os.path.realpath(str(path))
+        if key in seen:
+            role, other = seen[key]
+            what = f"the input {other}; an output would overwrite it" if role == "input" else f"the same path as {other}"
+            raise TolallocError(f"{flag} {str(path)!r}: {what}; give each output its own path.")
+        seen[key] = ("output", flag)
+
+
+@contextlib.contextmanager
+def directory_lock(path: Path):
+    """Hold ``.NAME.lock`` next to directory ``path`` (non-blocking ``flock``) for the block."""
+    import fcntl
+
+    lock = path.parent / f".{path.name}.lock"
+    try:
+        fd = os.open(lock, os.O_CREAT | os.O_RDWR, 0o666)
+    except OSError as exc:
+        raise _cannot_write(path, True, exc) from None
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            raise TolallocError(f"{str(path)!r} is being written by another run (lock {str(lock)!r}); wait for it "
+                                "to finish or choose another output directory.") from None
+        try:
+            yield
+        finally:
+            with contextlib.suppress(OSError):
+                os.unlink(lock)
+    finally:
+        os.close(fd)
+
+
+@contextlib.contextmanager
+def _signals_held():
+    """Hold SIGINT / SIGTERM back during the block (delivered right after it); main thread only."""
+    sigs = {signal.SIGINT, signal.SIGTERM}
+    try:
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
+    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def published(reset: bool = False) -> list:
+    """Paths published by :func:`atomic_output` so far (a copy); ``reset`` empties the record first."""
+    if reset:
+        _PUBLISHED.clear()
+    return list(_PUBLISHED)
+
+
+def _publish_dir(tmp: Path, path: Path) -> None:
+    """Move staged folder ``tmp`` to ``path`` (the caller holds the signals back)."""
+    if not path.exists():
+        try:
+            os.rename(tmp, path)  # one step: the directory appears complete
+            return
+        except OSError:
+            if not path.is_dir():
+                raise
+    for item in tmp.iterdir():
+        target = path / item.name
+        if target.is_dir() and not target.is_symlink():
+            shutil.rmtree(target)
+        os.replace(item, target)
+
+
+@contextlib.contextmanager
+def atomic_output(path: str | os.PathLike, *, directory: bool = False):
+    """Yield a temporary path; publish it at ``path`` only if the block finishes without error.
+
+    For ``directory=True`` the temporary path is a fresh directory; a new ``path`` is created from it
+    by one rename, an existing one gets its files of the same name replaced (other files are kept).
+    The directory is locked against other runs meanwhile (see the module docstring). A file gets the
+    usual permissions (``0o666`` less the umask). An operating-system error (unwritable place, a file
+    where a directory is expected ...) raises :class:`TolallocError`; an error or interrupt in the
+    block removes the temporary path.
+    """
+    path = Path(path)
+    tmp = None
+    with contextlib.ExitStack() as stack:
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            if directory:
+                stack.enter_context(directory_lock(path))
+                tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=path.parent))
+            else:
+                fd, tmp_name = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
+                os.close(fd)
+                tmp = Path(tmp_name)
+                umask = os.umask(0)
+                os.umask(umask)
+                os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0o600
+        except OSError as exc:
+            raise _cannot_write(path, directory, exc) from None
+        try:
+            yield tmp
+            try:
+                with _signals_held():  # an interrupt is delivered after the record below, never between
+                    if directory:
+                        os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0o700
+                        _publish_dir(tmp, path)
+                    else:
+                        os.replace(tmp, path)
+                    if not any(part.startswith(".tmp-") for part in path.parts):  # not a write into a staging path
+                        _PUBLISHED.append(str(path))
+            except OSError as exc:
+                raise _cannot_write(path, directory, exc) from None
+        finally:
+            if directory:
+                shutil.rmtree(tmp, ignore_errors=True)
+            elif tmp.exists():
+                tmp.unlink()
+
+
+class _Group:
+    def __init__(self, stack: contextlib.ExitStack):
+        self._stack = stack
+
+    def file(self, path) -> Path:
+        """Staging path of output file ``path``."""
+        return self._stack.enter_context(atomic_output(path))
+
+    def directory(self, path) -> Path:
+        """Staging folder of output directory ``path``."""
+        return self._stack.enter_context(atomic_output(path, directory=True))
+
+
+@contextlib.contextmanager
+def output_group():
+    """Several outputs staged together and published together (SIGINT / SIGTERM held back meanwhile).
+
+    Yields an object with ``file(path)`` and ``directory(path)``, each returning a staging path
+    (see :func:`atomic_output`). An error or interrupt in the block removes every staged output.
+    """
+    with contextlib.ExitStack() as stack:
+        yield _Group(stack)
+        with _signals_held():
+            stack.close()
+
+
+def _umask() -> int:
+    umask = os.umask(0)
+    os.umask(umask)
+    return umask
+
+
+def write_json(obj, path) -> None:
+    """Write ``obj`` as indented JSON to ``path`` atomically ('-' prints to stdout)."""
+    text = json.dumps(obj, indent=2, default=json_default)
+    if str(path) == "-":
+        print(text)
+        return
+    with atomic_output(path) as tmp:
+        tmp.write_text(text + "\n")

@@ -1,0 +1,153 @@
+"""Unit suffixes of input keys (``vector_mm``, ``limits_deg``, ``t_ref_mm`` ...) and unit plausibility guards.
+
+Every user-facing key carries its unit; :func:`unit_value` is the one parser of ``base_<unit>``
+keys (robot files, DH tables, costs files, sigma sets) and converts to the internal units mm / rad.
+
+Plausibility guards catch the common unit slips and say how to proceed: a length under ``_m``
+above :data:`MAX_PLAUSIBLE_M` (millimetres under a metre key), a robot whose lengths given in mm
+all together are under :data:`MIN_PLAUSIBLE_REACH_MM` or one of which is tiny next to the longest
+(metres under a mm key), an angle under
+``_deg`` beyond +-360 deg or under ``_rad`` beyond +-2 pi (degrees under a radian key). A file
+that really is that way is accepted inside :func:`trusting_units` (the CLI's ``--trust-units``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import contextvars
+
+import numpy as np
+
+from tolalloc.exceptions import TolallocError
+
+__all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
+           "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
+           "TINY_LINK_RATIO", "TRUST_HINT"]
+
+#: factor from the suffix to the internal unit
+LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
+ANGLE_UNITS = {"deg": np.pi / 180.0, "rad": 1.0}
+ALL_UNITS = {**LENGTH_UNITS, **ANGLE_UNITS}
+
+#: a single length under a ``_m`` key above this many metres looks like millimetres
+MAX_PLAUSIBLE_M = 20.0
+#: a chain whose link lengths add up to less than this [mm] looks like it was written in metres
+MIN_PLAUSIBLE_REACH_MM = 10.0
+#: a link shorter than this [mm] and TINY_LINK_RATIO times shorter than the longest one looks like metres
+MAX_TINY_LINK_MM = 2.0
+TINY_LINK_RATIO = 200.0
+TRUST_HINT = "if the values really are meant so, pass --trust-units"
+
+_TRUST = contextvars.ContextVar("tolalloc_trust_units", default=False)
+
+
+@contextlib.contextmanager
+def trusting_units(trust: bool = True):
+    """Within the block, the plausibility guards are off (``trust=True``)."""
+    token = _TRUST.set(bool(trust))
+    try:
+        yield
+    finally:
+        _TRUST.reset(token)
+
+
+def units_trusted() -> bool:
+    """True inside :func:`trusting_units`."""
+    return _TRUST.get()
+
+
+def unit_key(data: dict, base: str, exclude: tuple[str, ...] = ()) -> str | None:
+    """The one key ``base`` or ``base_<unit>`` of ``data`` (None if absent); ValueError if given twice."""
+    present = [k for k in data if (k == base or (k.startswith(base + "_") and k[len(base) + 1:] in ALL_UNITS))
+               and not any(k.startswith(e) for e in exclude)]
+    if not present:
+        return None
+    if len(present) > 1:
+        raise ValueError(f"give {base} once, got {present}")
+    return present[0]
+
+
+def unit_value(data: dict, base: str, allowed: dict, default=None, *, exclude: tuple[str, ...] = (),
+               check: bool = True):
+    """``(value in internal units, unit)`` of the key ``base_<unit>`` in ``data``; ``(default, None)`` if absent.
+
+    Parameters
+    ----------
+    data : dict
+    base : str
+        Key without suffix (``vector``, ``limits``, ``t_ref``).
+    allowed : dict
+        Allowed suffixes -> factor to the internal unit (:data:`LENGTH_UNITS`, :data:`ANGLE_UNITS`).
+    exclude : tuple of str
+        Key prefixes that are other bases (``d_offset`` is not ``d``).
+    check : bool
+        Apply :func:`check_plausible` to the value as given.
+
+    Raises
+    ------
+    ValueError
+        Given twice, a suffix not in ``allowed``, not numbers, or implausible for its unit.
+    """
+    key = unit_key(data, base, exclude)
+    if key is None:
+        return default, None
+    unit = key[len(base) + 1:] if key != base else ""
+    if unit not in allowed:
+        want = " or ".join(f"{base}_{u}" for u in allowed)
+        raise ValueError(f"key {key!r} has unit {unit or 'none'!r}; expected {want}")
+    try:
+        raw = np.asarray(data[key], dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{key} expected numbers, got {data[key]!r}") from None
+    if check:
+        check_plausible(raw, key, unit)
+    return raw * allowed[unit], unit
+
+
+def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
+    """Refuse a value that looks like it is in another unit than its suffix says (see the module docstring)."""
+    if units_trusted():
+        return
+    a = np.abs(np.asarray(raw, dtype=float))
+    a = a[np.isfinite(a)]
+    if a.size == 0:
+        return
+    big = float(a.max())
+    if unit == "m" and big > MAX_PLAUSIBLE_M:
+        raise error(f"{key} = {_shown(raw)} is {big:g} m; that looks like millimetres: use the _mm key "
+                    f"({key[:-2]}_mm) or divide by 1000 ({TRUST_HINT}).")
+    if unit == "deg" and big > 360.0 + 1e-9:
+        raise error(f"{key} = {_shown(raw)} goes beyond +-360 deg; expected angles within one turn each way ({TRUST_HINT}).")
+    if unit == "rad" and big > 2 * np.pi + 1e-9:
+        raise error(f"{key} = {_shown(raw)} goes beyond +-2 pi rad; that looks like degrees: use the _deg key "
+                    f"({key[:-4]}_deg) ({TRUST_HINT}).")
+
+
+def check_reach(lengths_mm: dict, where: str) -> None:
+    """Refuse link lengths [mm] that look like metres: all together under :data:`MIN_PLAUSIBLE_REACH_MM`, or
+    one link under :data:`MAX_TINY_LINK_MM` that is over :data:`TINY_LINK_RATIO` times shorter than the longest.
+
+    Parameters
+    ----------
+    lengths_mm : dict
+        Link name -> length [mm].
+    where : str
+        Prefix of the message.
+    """
+    if units_trusted() or not lengths_mm:
+        return
+    total = float(sum(abs(v) for v in lengths_mm.values()))
+    if 0 < total < MIN_PLAUSIBLE_REACH_MM:
+        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like metres given under _mm "
+                            f"keys: multiply by 1000 or use the _m keys ({TRUST_HINT}).")
+    longest = max(lengths_mm, key=lambda k: abs(lengths_mm[k]))
+    for name, v in lengths_mm.items():
+        if 0 < abs(v) < MAX_TINY_LINK_MM and abs(v) * TINY_LINK_RATIO < abs(lengths_mm[longest]):
+            raise TolallocError(f"{where}: link {name} is {abs(v):g} mm long while link {longest} is "
+                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in metres under a _mm key: "
+                                f"multiply it by 1000 or use the _m key ({TRUST_HINT}).")
+
+
+def _shown(raw):
+    a = np.asarray(raw, dtype=float)
+    return a.tolist() if a.ndim else float(a)
