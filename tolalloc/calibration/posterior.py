@@ -31,7 +31,7 @@ from tolalloc.calibration.split import ErrorSplit
 from tolalloc.linear.covariance import VARIANCE_FACTOR
 from tolalloc.robot.kinematics import fk_poe
 
-__all__ = ["Posterior", "posterior", "nuisance_columns", "estimated_index", "ID_TOL"]
+__all__ = ["Posterior", "posterior", "identification_matrix", "nuisance_columns", "estimated_index", "ID_TOL"]
 
 #: Relative singular-value threshold below which a direction counts as unidentifiable.
 ID_TOL = 1e-8
@@ -159,7 +159,6 @@ def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = 
     Posterior
     """
     model = split.model
-    K = len(model.params)
     fac = np.array([VARIANCE_FACTOR[p.distribution] for p in model.params])
     prior_var = np.where(split.systematic, fac * model.sigma**2, 0.0)
     rand_var = split.random_variance()
@@ -168,19 +167,7 @@ def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = 
     cov = np.diag(prior_var)
     if plan.n_poses == 0 or len(E) == 0:
         return Posterior(split, plan, cov, prior_var, rand_var, E, tuple(model.names[k] for k in E))
-    rows = plan.rows_per_pose
-    J = model.jacobian(plan.q)[:, :rows, :]  # (M, rows, K)
-    M = len(plan.q)
-    Lc = np.linalg.cholesky(_noise_cov(plan, J, rand_var, X, prior_var, random_noise))
-    white = lambda A: np.linalg.solve(Lc, A)  # noqa: E731  (W = Lc^-1)
-    JE = white(J[:, :, E].reshape(M * rows, len(E)))
-    if plan.registration:
-        JN = white(nuisance_columns(model, plan.q, rows).reshape(M * rows, 9))
-        U, s, _ = np.linalg.svd(JN, full_matrices=False)
-        Q = U[:, s > ID_TOL * max(s.max(), 1e-300)]
-        A = JE - Q @ (Q.T @ JE)
-    else:
-        A = JE
+    A, JE, white = _reduced(split, plan, E, X, prior_var, rand_var, random_noise)
     L = np.sqrt(prior_var[E])
     _, sb, Vt = np.linalg.svd(A * L, full_matrices=True)
     d = np.ones(len(E))
@@ -188,11 +175,45 @@ def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = 
     SE = (L[:, None] * (Vt.T * d) @ Vt) * L[None, :]
     cov[np.ix_(E, E)] = 0.5 * (SE + SE.T)
     if len(X):
-        WJX = white(J[:, :, X].reshape(M * rows, len(X)))
+        WJX = white(X)
         C = -SE @ A.T @ WJX * prior_var[X][None, :]
         cov[np.ix_(E, X)], cov[np.ix_(X, E)] = C, C.T
     return Posterior(split, plan, cov, prior_var, rand_var, E,
                      _unidentifiable(A, np.linalg.norm(JE, axis=0), [model.names[k] for k in E]))
+
+
+def _reduced(split, plan, E, X, prior_var, rand_var, random_noise):
+    """``A = P W J_E`` (m, Ke), ``W J_E`` and a function giving ``W J_cols`` for parameter indices."""
+    model = split.model
+    rows = plan.rows_per_pose
+    J = model.jacobian(plan.q)[:, :rows, :]  # (M, rows, K)
+    M = len(plan.q)
+    Lc = np.linalg.cholesky(_noise_cov(plan, J, rand_var, X, prior_var, random_noise))
+
+    def white(cols):
+        return np.linalg.solve(Lc, J[:, :, cols].reshape(M * rows, len(cols)))
+
+    JE = white(E)
+    if not plan.registration:
+        return JE, JE, white
+    JN = np.linalg.solve(Lc, nuisance_columns(model, plan.q, rows).reshape(M * rows, 9))
+    U, s, _ = np.linalg.svd(JN, full_matrices=False)
+    Q = U[:, s > ID_TOL * max(s.max(), 1e-300)]
+    return JE - Q @ (Q.T @ JE), JE, white
+
+
+def identification_matrix(split: ErrorSplit, plan: CalibrationPlan, E=None, *, random_noise: bool = True):
+    """Whitened identification matrix of the estimated parameters, nuisance projected out.
+
+    Returns ``A`` (m, Ke) with posterior precision ``diag(1 / prior_var_E) + A^T A`` (m = 0 for an empty plan).
+    """
+    E = estimated_index(split, plan) if E is None else np.asarray(E, int)
+    if plan.n_poses == 0:
+        return np.zeros((0, len(E)))
+    fac = np.array([VARIANCE_FACTOR[p.distribution] for p in split.model.params])
+    prior_var = np.where(split.systematic, fac * split.model.sigma**2, 0.0)
+    X = np.setdiff1d(split.sys_index, E)
+    return _reduced(split, plan, E, X, prior_var, split.random_variance(), random_noise)[0]
 
 
 def _unidentifiable(A: np.ndarray, scale: np.ndarray, names: list) -> tuple:

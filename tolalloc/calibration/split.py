@@ -90,6 +90,10 @@ class ErrorSplit:
         rnd = np.where(self.systematic, self.random_sigma, model.sigma)
         return ErrorSplit(model, self.systematic.copy(), rnd)
 
+    def with_random_sigma(self, random_sigma) -> "ErrorSplit":
+        """A copy with new random-part sigmas, shape (K,) [mm or rad]."""
+        return ErrorSplit(self.model, self.systematic.copy(), np.asarray(random_sigma, float).copy())
+
     def to_frame(self) -> pd.DataFrame:
         """One row per parameter: kind, systematic?, prior sigma and random sigma in the interface unit."""
         m = self.model
