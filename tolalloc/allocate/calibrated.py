@@ -77,7 +77,12 @@ class CalibratedAllocation:
         return self.design.ok and self.ratio <= 1.0
 
     def to_frame(self) -> pd.DataFrame:
-        """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance (interface units)."""
+        """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance (interface units).
+
+        Status: ``loose (at t_max)`` (the process's loosest tolerance suffices), ``calibrated away`` (post-calibration
+        sigma below :data:`CALIBRATED_AWAY_RATIO` of the manufactured one), else ``must be held`` (``(random)`` for
+        random-only parameters).
+        """
         pr, m = self.problem, self.problem.model
         f = np.array([p.to_interface for p in m.params])
         sp = self.post.split
@@ -85,7 +90,9 @@ class CalibratedAllocation:
         postsig = self.post.sigma_post
         status = []
         for k in range(len(f)):
-            if not sp.systematic[k]:
+            if self.design.at_limit[k] == "t_max":
+                status.append("loose (at t_max)")
+            elif not sp.systematic[k]:
                 status.append("must be held (random)")
             elif postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
                 status.append("calibrated away")

@@ -240,7 +240,7 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     """
     data = data or {}
     for key in data:
-        if key not in ("z", "distribution", "kinds", "parameters"):
+        if key not in ("z", "distribution", "kinds", "parameters", "calibration"):  # [calibration]: the calibration split
             raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
     zz = data.get("z", DEFAULT_COSTS["z"])
     dist = distribution if distribution is not None else data.get("distribution")

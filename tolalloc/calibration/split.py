@@ -78,6 +78,14 @@ class ErrorSplit:
         """Prior (manufacturing) sigma of the systematic parts, shape (Ks,) [mm or rad]."""
         return self.model.sigma[self.systematic]
 
+    def prior_var_of(self, idx) -> np.ndarray:
+        """Prior variance of the systematic parts of parameters ``idx`` [mm^2 or rad^2]."""
+        from tolalloc.linear.covariance import VARIANCE_FACTOR
+
+        idx = np.asarray(idx, int)
+        fac = np.array([VARIANCE_FACTOR[self.model.params[k].distribution] for k in idx])
+        return np.where(self.systematic[idx], fac * self.model.sigma[idx] ** 2, 0.0)
+
     def random_variance(self) -> np.ndarray:
         """Second moment of the random part per parameter, shape (K,) [mm^2 or rad^2]."""
         from tolalloc.linear.covariance import VARIANCE_FACTOR

@@ -15,7 +15,7 @@ import sys
 from tolalloc.exceptions import TolallocError
 
 #: command modules, in the order shown by --help
-COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate"]
+COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
 
 
 def build_parser() -> argparse.ArgumentParser:
