@@ -149,3 +149,20 @@ def test_bad_input(tc, tmp_path):
     path.write_text(path.read_text().replace("# noise_mm = 0.03", "# noise_mm = -1"))
     with pytest.raises(TolallocError, match="noise_mm"):
         read_plan(path, tc)
+
+
+def test_planar_2r_designed_plan_is_the_closed_form_optimum(planar):
+    """With a task weight W = I (evaluation poses at t2 = +-90 deg) the A-optimal 2-pose plan has
+    cos t2a + cos t2b = 0 and trace S_post = 2 / (1/s0^2 + 2/s^2); the designer must find one among the candidates."""
+    from tolalloc.calibration.design import design_plan
+
+    model = build_error_model(planar, sigma={"dl1": 0.04, "dl2": 0.04}, exclude=("joint_drive", "axis_deflection"))
+    split = split_errors(model, {"kinds": {"joint_drive": {"repeatability_deg": 0.0}}})
+    t2 = np.deg2rad(np.arange(0.0, 181.0, 15.0))
+    cand = np.column_stack([np.deg2rad(np.linspace(-60, 60, len(t2))), t2])
+    q_eval = np.deg2rad([[0.0, 90.0], [30.0, -90.0]])
+    d = design_plan(split, 2, cand, q_eval, noise_mm=0.01, registration=False)
+    assert abs(np.cos(d.plan.q[:, 1]).sum()) < 1e-12
+    post = posterior(split, d.plan)
+    assert np.trace(post.cov_sys) == pytest.approx(2 / (1 / 0.04**2 + 2 / 0.01**2), rel=1e-10)
+    assert d.relaxation_bound_mm2 <= d.score_mm2 * (1 + 1e-9)

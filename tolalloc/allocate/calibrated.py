@@ -38,7 +38,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.problem import AllocationProblem, Design, make_design
 from tolalloc.calibration.plan import CalibrationPlan
-from tolalloc.calibration.posterior import Posterior, identification_matrix, posterior
+from tolalloc.calibration.posterior import Posterior, estimated_index, identification_matrix, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
 
 __all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO"]
@@ -79,8 +79,8 @@ class CalibratedAllocation:
     def to_frame(self) -> pd.DataFrame:
         """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance (interface units).
 
-        Status: ``loose (at t_max)`` (the process's loosest tolerance suffices), ``calibrated away`` (post-calibration
-        sigma below :data:`CALIBRATED_AWAY_RATIO` of the manufactured one), else ``must be held`` (``(random)`` for
+        Status: ``calibrated away`` (post-calibration sigma below :data:`CALIBRATED_AWAY_RATIO` of the manufactured
+        one), ``loose (at t_max)`` (not calibrated, but the process's loosest tolerance suffices), else ``must be held`` (``(random)`` for
         random-only parameters).
         """
         pr, m = self.problem, self.problem.model
@@ -90,14 +90,12 @@ class CalibratedAllocation:
         postsig = self.post.sigma_post
         status = []
         for k in range(len(f)):
-            if self.design.at_limit[k] == "t_max":
-                status.append("loose (at t_max)")
-            elif not sp.systematic[k]:
-                status.append("must be held (random)")
-            elif postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
+            if sp.systematic[k] and postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
                 status.append("calibrated away")
+            elif self.design.at_limit[k] == "t_max":
+                status.append("loose (at t_max)")
             else:
-                status.append("must be held")
+                status.append("must be held" + ("" if sp.systematic[k] else " (random)"))
         return pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
                              "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
                              if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
@@ -114,6 +112,7 @@ class CalibratedAllocation:
 
 
 def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan) -> np.ndarray:
+    estimated_index(split, plan)  # unknown names first
     if len(problem.blocks) != 1:
         raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only; "
                             "drop --angle-radius-deg.")

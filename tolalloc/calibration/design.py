@@ -121,7 +121,7 @@ def _relax(G: np.ndarray, B: np.ndarray, n: int, prior: np.ndarray, iters: int =
     ``|df/dlambda_c| = |G_c M^-1 B|_F^2``). Returns the weights and the Frank-Wolfe lower bound on the optimum
     (``f + grad . (s - lambda)``, valid because f is convex)."""
     C, D = G.shape[0], G.shape[2]
-    ridge = 1e-10 * np.eye(D)  # keeps the flat nuisance block invertible before it is seen
+    ridge = 1e-9 * max(np.einsum("cri,cri->i", G, G).max() * n / C, 1.0) * np.eye(D)  # flat nuisance block
     lam = np.full(C, n / C)
     bound = -np.inf
     best_f = np.inf
@@ -150,7 +150,8 @@ def _exchange(F, B, chosen, prior, passes: int = 2):
         improved = False
         for i in range(len(chosen)):
             base = info - F[chosen[i]]
-            X = np.linalg.solve(base[None] + F + 1e-12 * np.eye(len(base)), np.broadcast_to(B, (len(F),) + B.shape))
+            ridge = 1e-9 * np.abs(np.diag(info)).max() * np.eye(len(base))  # nuisance unseen with too few poses
+            X = np.linalg.solve(base[None] + F + ridge, np.broadcast_to(B, (len(F),) + B.shape))
             scores = np.einsum("dk,cdk->c", B, X)
             scores[chosen] = np.inf
             j = int(np.argmin(scores))
