@@ -104,6 +104,13 @@ def mc_checks(problem, split, res, plan, work, n_robots, name):
     return pd.DataFrame(rows)
 
 
+WHY = """ Where it is not, a likely reason
+(not tested here) is the objective: `calplan` minimises the post-calibration variance under the robot file's
+manufacturing sigmas (the prior it is given), while the allocation then changes those sigmas (it loosens what the
+calibration removes and tightens what it cannot), so the plan is optimal for a different prior than the one the
+final design has. Designing plan and tolerances jointly (alternating the two) is not implemented."""
+
+
 def study_robot(name: str, quick: bool) -> str:
     """All sections for one robot; writes its CSV tables and figure with the robot's name as prefix."""
     robot = load_robot(name)
@@ -137,11 +144,7 @@ def study_robot(name: str, quick: bool) -> str:
 
 {md(fp)}
 
-The designed plan is cheaper than the random one at {wins} of {len(piv)} pose counts. Where it is not, a likely
-reason (not tested here) is the objective: `calplan` minimises the post-calibration variance under the robot
-file's manufacturing sigmas (the prior it is given), while the allocation then changes those sigmas (it loosens
-what the calibration removes and tightens what it cannot), so the plan is optimal for a different prior than the
-one the final design has. Designing plan and tolerances jointly (alternating the two) is not implemented.
+The designed plan is cheaper than the random one at {wins} of {len(piv)} pose counts.{WHY if wins < len(piv) else ""}
 
 ## Cost against the tracker noise (designed 12-pose plan)
 
