@@ -234,7 +234,7 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     """
     data = data or {}
     for key in data:
-        if key not in ("z", "distribution", "kinds", "parameters"):
+        if key not in ("z", "distribution", "kinds", "parameters", "calibration"):  # [calibration]: the calibration split
             raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
     zz, dist = _z_of(data, z, distribution, source)
     kinds, per = _entries(data, model, source)

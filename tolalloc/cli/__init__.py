@@ -20,7 +20,7 @@ import threading
 from tolalloc.exceptions import TolallocError
 
 #: command modules, in the order shown by --help
-COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate"]
+COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
 
 
 class _UsageError(TolallocError):

@@ -39,6 +39,9 @@ def register(sub) -> None:
     add_scheduler_arg(p, "the verification's Monte Carlo samples")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
+    p.add_argument("--calibration", metavar="PLAN.csv", default=None,
+                   help="allocate for the accuracy after this calibration plan (from `tolalloc calplan`): certified "
+                   "calibration-aware design, per parameter 'calibrated away' or 'must be held'")
     p.add_argument("--out", metavar="DIR", help="write tables, summary.json and figures to DIR")
     p.set_defaults(func=cmd_allocate)
 
@@ -63,6 +66,10 @@ def cmd_allocate(args) -> int:
     set_name, q = _poses_of(robot, args.poses)
     problem = build_problem(model, q, radius_mm=args.radius_mm, prob=args.prob, costs=costs,
                             angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob)
+    if args.calibration is not None:
+        from tolalloc.cli.calplan import run_calibrated
+
+        return run_calibrated(args, problem, set_name)
     res = allocate(problem, solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg)
     table = res.to_frame()
     ver = None

@@ -1,0 +1,63 @@
+"""CLI: calplan writes a plan that allocate --calibration reads; bad input -> exit 2, one error line, nothing written."""
+
+import numpy as np
+import pytest
+
+from tolalloc.calibration import make_plan, write_plan
+from tolalloc.cli import main
+from tolalloc.robot.io import load_robot
+
+
+@pytest.fixture(scope="module")
+def tc():
+    return load_robot("tool_changer")
+
+
+def test_calplan_then_allocate(tmp_path, capsys):
+    plan = tmp_path / "plan.csv"
+    assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "256", "--out", str(plan)]) == 0
+    out = capsys.readouterr().out
+    assert "designed" in out and plan.is_file()
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--out", str(tmp_path / "res")])
+    out = capsys.readouterr().out
+    assert rc == 0 and "(certified;" in out and "calibrated away" in out
+    assert (tmp_path / "res" / "calibrated_tolerances.csv").is_file()
+
+
+@pytest.mark.parametrize("edit, msg", [
+    (("# noise_mm = 0.02", "# noise_mm = -1"), "noise_mm"),
+    (("# noise_mm = 0.02", "# noise_mm = nan"), "noise_mm"),
+    (("# estimate = all", "# estimate = dl1 nope"), "unknown parameter 'nope'"),
+    (("# registration = true", "# registration = maybe"), "registration"),
+])
+def test_bad_plan_exit_2_nothing_written(tc, tmp_path, capsys, edit, msg):
+    path = tmp_path / "plan.csv"
+    write_plan(make_plan(tc, tc.poses("working")[:5]), tc, path)
+    path.write_text(path.read_text().replace(*edit))
+    out = tmp_path / "res"
+    rc = main(["allocate", "tool_changer", "--calibration", str(path), "--out", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("error:") and msg in err and err.count("\n") == 1
+    assert not out.exists()
+
+
+def test_pose_outside_limits_and_bad_flags(tc, tmp_path, capsys):
+    path = tmp_path / "plan.csv"
+    write_plan(make_plan(tc, tc.poses("working")[:3]), tc, path)
+    lines = path.read_text().splitlines()
+    lines[-1] = "170," + lines[-1].split(",", 1)[1]  # j1 beyond its +-90 deg limits
+    path.write_text("\n".join(lines) + "\n")
+    assert main(["allocate", "tool_changer", "--calibration", str(path), "--no-verify"]) == 2
+    assert "outside its limits" in capsys.readouterr().err
+    out = tmp_path / "p.csv"
+    assert main(["calplan", "tool_changer", "--n-poses", "5", "--noise-mm", "-0.1", "--out", str(out)]) == 2
+    assert "--noise-mm" in capsys.readouterr().err and not out.exists()
+    assert main(["calplan", "tool_changer", "--n-poses", "0", "--n-candidates", "64", "--out", str(out)]) == 2
+    assert "--n-poses" in capsys.readouterr().err and not out.exists()
+
+
+def test_few_poses_name_unidentifiable(tmp_path, capsys):
+    out = tmp_path / "p.csv"
+    assert main(["calplan", "tool_changer", "--n-poses", "2", "--n-candidates", "64", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "not identifiable with this plan" in text and "dth1" in text

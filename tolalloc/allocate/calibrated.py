@@ -1,0 +1,285 @@
+"""Calibration-aware allocation: the cheapest manufacturing tolerances such that, *after* a given calibration,
+``P(|dP| < r) >= p`` at every working pose (certified by the eigenvalue rule).
+
+Variables, with ``s_k = t_ref,k / z`` the reference sigma of parameter ``k``:
+
+* systematic parameters (estimated by the plan): normalised prior precision ``omega_k = s_k^2 / sigma_k^2
+  = 1 / u_k`` -- the posterior precision ``diag(omega) + D A^T A D`` (``D = diag(s)``) is *affine* in omega;
+* random-only parameters (clearances): the scaled variance ``u_k`` of :mod:`tolalloc.allocate.problem`.
+
+Constraint per working pose ``i`` (Schur complement of ``Sigma_post,i <= b I``, ``b = r^2 / chi2_3^-1(p)``)::
+
+    [[ diag(omega) + D A^T A D ,  D J_E,i^T                 ],
+     [ J_E,i D                 ,  b I - J_R,i V(u) J_R,i^T - C_fixed,i ]]  >= 0
+
+which is an LMI in (omega, u). Cost laws in omega: ``reciprocal`` ``a + b sqrt(omega)`` and
+``reciprocal_power`` with ``k < 2`` are *concave* (minimising them is not a convex problem); they are replaced by
+their tangent at the current point -- an upper bound -- and the convex problem is re-solved from the new point
+(majorisation-minimisation: every iterate is feasible and certified, the cost never increases; the result is a
+local optimum, not a certified global one). ``reciprocal_power`` with ``k >= 2`` is convex and kept exact;
+``exponential`` is not supported for systematic parameters.
+
+The calibration's measurements see the random parts as noise; the whitening uses the random variances of the
+previous iterate (the first: the process upper limits) and the random variances are constrained not to exceed
+them, so the posterior used is never optimistic. The final design is re-checked with
+:func:`tolalloc.calibration.posterior.posterior` at the design's own sigmas.
+"""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.allocate.convex import solve_rule
+from tolalloc.allocate.problem import AllocationProblem, Design, make_design
+from tolalloc.calibration.plan import CalibrationPlan
+from tolalloc.calibration.posterior import Posterior, estimated_index, identification_matrix, posterior
+from tolalloc.calibration.split import ErrorSplit, split_errors
+
+__all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO"]
+
+#: A systematic part counts as "calibrated away" when its post-calibration sigma is below this share of its prior.
+CALIBRATED_AWAY_RATIO = 0.1
+
+
+@dataclass(frozen=True, eq=False)
+class CalibratedAllocation:
+    """Result of :func:`allocate_calibrated`.
+
+    Attributes
+    ----------
+    problem : AllocationProblem
+    design : Design
+        Calibration-aware design (``solver`` ``calibrated-lmi``).
+    baseline : Design
+        Certified LMI design without calibration (same problem).
+    post : Posterior or None
+        Post-calibration statistics at the design's sigmas.
+    ratio : float
+        Largest ``lambda_max(Sigma_post) / b`` over the poses (``<= 1``: certified).
+    iterations : int
+    """
+
+    problem: AllocationProblem
+    design: Design
+    baseline: Design
+    post: Posterior | None
+    ratio: float
+    iterations: int
+
+    @property
+    def certified(self) -> bool:
+        return self.design.ok and self.ratio <= 1.0
+
+    def to_frame(self) -> pd.DataFrame:
+        """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance (interface units).
+
+        Status: ``calibrated away`` (post-calibration sigma below :data:`CALIBRATED_AWAY_RATIO` of the manufactured
+        one), ``loose (at t_max)`` (not calibrated, but the process's loosest tolerance suffices), else ``must be held`` (``(random)`` for
+        random-only parameters).
+        """
+        pr, m = self.problem, self.problem.model
+        f = np.array([p.to_interface for p in m.params])
+        sp = self.post.split
+        prior = np.sqrt(self.post.prior_var)
+        postsig = self.post.sigma_post
+        status = []
+        for k in range(len(f)):
+            if sp.systematic[k] and postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
+                status.append("calibrated away")
+            elif self.design.at_limit[k] == "t_max":
+                status.append("loose (at t_max)")
+            else:
+                status.append("must be held" + ("" if sp.systematic[k] else " (random)"))
+        return pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
+                             "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
+                             if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
+                             "sigma_post_calibration": postsig * f, "sigma_random": np.sqrt(self.post.random_var) * f,
+                             "status": status, "cost": pr.param_costs(self.design.t)})
+
+    def summary(self) -> dict:
+        base = self.baseline.cost if self.baseline.ok else None
+        return {"cost": self.design.cost, "cost_no_calibration": base,
+                "saving": None if base is None else base - self.design.cost,
+                "saving_pct": None if base is None else 100 * (base - self.design.cost) / base,
+                "certified": self.certified, "ratio": self.ratio, "iterations": self.iterations,
+                "unidentifiable": list(self.post.unidentifiable) if self.post is not None else []}
+
+
+def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan) -> np.ndarray:
+    estimated_index(split, plan)  # unknown names first
+    if len(problem.blocks) != 1:
+        raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only; "
+                            "drop --angle-radius-deg.")
+    if plan.estimate is not None:
+        raise TolallocError("--calibration: the allocation needs a plan that estimates every systematic parameter "
+                            "(estimate = all); got an explicit list.")
+    E = split.sys_index
+    for k in E:
+        cm = problem.costs.models[k]
+        if problem.costs.role[k] == "allocate" and cm.model == "exponential":
+            raise TolallocError(f"--calibration: {problem.model.names[k]} has the exponential cost law, which the "
+                                "calibration-aware allocation does not support for systematic parameters; use "
+                                "reciprocal or reciprocal_power in the costs file.")
+    return E
+
+
+def _cost_omega(cm, om, om0):
+    """Cost of a systematic parameter in omega: exact if convex, else its tangent (an upper bound) at ``om0``."""
+    import cvxpy as cp
+
+    k = 1.0 if cm.model == "reciprocal" else cm.k
+    if k >= 2:
+        return cm.a + cm.b * cp.power(om, k / 2.0)
+    g = om0 ** (k / 2.0)
+    return cm.a + cm.b * (g + (k / 2.0) * om0 ** (k / 2.0 - 1.0) * (om - om0))
+
+
+def _information(problem, split, plan, E, u_rand_max):
+    """Normalised information matrix ``D A^T A D`` (Ke, Ke) with the random variances at ``u_rand_max``."""
+    pr = problem
+    s = pr.t_ref / pr.costs.z  # reference sigma (K,)
+    rand_sig = np.where(split.systematic, split.random_sigma, 0.0)
+    a_pos = {k: i for i, k in enumerate(pr.alloc)}
+    for k in np.flatnonzero(~split.systematic):
+        rand_sig[k] = s[k] * np.sqrt(u_rand_max[a_pos[k]]) if k in a_pos else pr.costs.fixed_tol[k] / pr.costs.z
+    G = identification_matrix(split.with_random_sigma(rand_sig), plan, E) * s[E]  # (m, Ke)
+    return G.T @ G
+
+
+def _solve_step(problem, split, plan, E, om0, u_rand_max):
+    """One convex MM step: returns (omega (Ke,), u (Ka,)) or None if infeasible.
+
+    Parameters that touch neither the working poses' position rows nor the information (e.g. rotations about an
+    axis through the tool point) drop out of the LMIs exactly; they get their loosest tolerance.
+    """
+    import cvxpy as cp
+
+    pr, z = problem, problem.costs.z
+    role = np.array(pr.costs.role)
+    s = pr.t_ref / z
+    a_pos = {k: i for i, k in enumerate(pr.alloc)}
+    R_idx = np.flatnonzero(~split.systematic)
+    info = _information(pr, split, plan, E, u_rand_max)
+    J = pr.J[:, :3, :]
+    JEs = J[:, :, E] * s[E]  # (P, 3, Ke)
+    mag = np.abs(JEs).max(axis=(0, 1)) + np.abs(info).max(axis=0)
+    live = np.flatnonzero(mag > 1e-12 * mag.max())
+    om_out = np.array([1.0 / pr.u_max[a_pos[k]] if role[k] == "allocate" else (s[k] * z / pr.costs.fixed_tol[k]) ** 2
+                       for k in E])
+    om = cp.Variable(len(live))
+    u = cp.Variable(len(pr.alloc))
+    cons = [u >= pr.u_min, u <= pr.u_max]
+    cost = 0
+    for i, k in enumerate(E[live]):
+        if role[k] == "allocate":
+            j = a_pos[k]
+            cons += [om[i] >= 1.0 / pr.u_max[j], om[i] <= 1.0 / pr.u_min[j]]
+            cost += _cost_omega(pr.costs.models[k], om[i], om0[live[i]])
+        else:
+            cons.append(om[i] == om_out[live[i]])
+    for k in R_idx:
+        if k in a_pos:
+            cons.append(u[a_pos[k]] <= u_rand_max[a_pos[k]])
+            cost += pr.costs.models[k].cost_u(u[a_pos[k]], "cvxpy")
+    fixed_var = np.where(split.systematic, split.random_sigma, 0.0) ** 2  # repeatability variances
+    for k in R_idx:
+        if k not in a_pos:
+            fixed_var[k] = (pr.costs.fixed_tol[k] / z) ** 2
+    Lam = cp.diag(om) + info[np.ix_(live, live)]
+    b = pr.blocks[0]["eig_bound"]
+    for p in range(pr.n_poses):
+        S = b * np.eye(3) - J[p] @ (fixed_var[:, None] * J[p].T)
+        for k in R_idx:
+            if k in a_pos:
+                S = S - u[a_pos[k]] * (s[k] ** 2) * np.outer(J[p][:, k], J[p][:, k])
+        M = cp.bmat([[Lam, JEs[p][:, live].T], [JEs[p][:, live], S]])
+        cons.append(0.5 * (M + M.T) >> 0)
+    prob = cp.Problem(cp.Minimize(cost), cons)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)
+        prob.solve(solver="CLARABEL", tol_gap_abs=1e-6, tol_gap_rel=1e-6, tol_feas=1e-7)  # _repair restores the rule
+    if prob.status not in ("optimal", "optimal_inaccurate") or om.value is None:
+        return None
+    om_out[live] = om.value
+    return om_out, (np.asarray(u.value, float) if len(pr.alloc) else np.zeros(0))
+
+
+def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, split: ErrorSplit | None = None,
+                        max_iter: int = 8, rtol: float = 1e-3) -> CalibratedAllocation:
+    """Calibration-aware certified allocation (see the module docstring).
+
+    Parameters
+    ----------
+    problem : AllocationProblem
+        From :func:`tolalloc.allocate.problem.build_problem` (position requirement only).
+    plan : CalibrationPlan
+        Must estimate every systematic parameter (``estimate = all``).
+    split : ErrorSplit, optional
+        Default :func:`tolalloc.calibration.split.split_errors` of the problem's model.
+    max_iter : int
+        Majorisation-minimisation iterations.
+    rtol : float
+        Stop when the cost changes by less than this fraction.
+    """
+    t0 = time.perf_counter()
+    split = split or split_errors(problem.model)
+    E = _check(problem, split, plan)
+    baseline = solve_rule(problem, "lmi")
+    pr = problem
+    a_pos = {k: i for i, k in enumerate(pr.alloc)}
+    u_start = pr.u_from_t(baseline.t) if baseline.ok else pr.u_max.copy()
+    om0 = np.array([1.0 / u_start[a_pos[k]] if k in a_pos else 1.0 for k in E])
+    u_rand_max = pr.u_max.copy()
+    best, last_cost, it = None, np.inf, 0
+    for it in range(1, max_iter + 1):
+        step = _solve_step(pr, split, plan, E, om0, u_rand_max)
+        if step is None:
+            break
+        om, u = step
+        for i, k in enumerate(E):
+            if k in a_pos:
+                u[a_pos[k]] = 1.0 / om[i]
+        u = np.clip(u, pr.u_min, pr.u_max)
+        t = pr.t_from_u(u)
+        cost = float(pr.param_costs(t).sum())
+        best = t
+        om0 = np.maximum(om, 1e-12)
+        u_rand_max = np.where(np.isin(pr.alloc, split.sys_index), pr.u_max, u)
+        if abs(last_cost - cost) <= rtol * max(cost, 1e-12):
+            break
+        last_cost = cost
+    dt = time.perf_counter() - t0
+    if best is None:
+        return CalibratedAllocation(pr, Design("calibrated-lmi", "infeasible", time_s=dt,
+                                               message="no design meets the requirement after this calibration "
+                                                       "within the process limits"), baseline, None, np.inf, it)
+    best, ratio, post = _repair(pr, split, plan, best)
+    design = make_design(pr, "calibrated-lmi", best, time_s=time.perf_counter() - t0,
+                         message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum")
+    return CalibratedAllocation(pr, design, baseline, post, ratio, it)
+
+
+def post_ratio(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan, t):
+    """``max_i lambda_max(Sigma_post(q_i)) / b`` of half-widths ``t`` and the :class:`Posterior`."""
+    model = problem.model_for(t)
+    post = posterior(split.with_model(model), plan)
+    C = post.tool_covariance(problem.q)
+    return float(np.linalg.eigvalsh(C)[:, -1].max() / problem.blocks[0]["eig_bound"]), post
+
+
+def _repair(problem, split, plan, t):
+    """Tighten the allocatable tolerances by the (tiny) excess the solver tolerance leaves, so the rule holds."""
+    ratio, post = post_ratio(problem, split, plan, t)
+    for _ in range(5):
+        if ratio <= 1.0:
+            break
+        u = problem.u_from_t(t) / (ratio * (1 + 1e-9))
+        t = problem.t_from_u(np.clip(u, problem.u_min, problem.u_max))
+        ratio, post = post_ratio(problem, split, plan, t)
+    return t, ratio, post

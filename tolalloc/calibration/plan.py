@@ -1,0 +1,149 @@
+"""Calibration plan: measurement poses, what is measured, its noise, and what is estimated.
+
+Plan CSV (what ``tolalloc calplan`` writes and ``tolalloc allocate --calibration`` reads)::
+
+    # measurement = position           (or: pose)
+    # noise_mm = 0.02                   tracker noise sigma per coordinate [mm]
+    # noise_deg = 0.001                 orientation noise sigma [deg] (pose measurements only)
+    # estimate = all                    or a space-separated list of parameter names
+    # registration = true               estimate the tracker registration (6) and tool offset (3)
+    J1_deg,J2_deg,...                   one row per measurement pose, interface units (deg / mm)
+    10.0,-20.0,...
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.model import Robot
+
+__all__ = ["CalibrationPlan", "make_plan", "read_plan", "write_plan"]
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationPlan:
+    """A calibration plan.
+
+    Attributes
+    ----------
+    q : array, shape (M, n) [rad, mm]
+        Measurement poses (M may be 0: no calibration).
+    measurement : {"position", "pose"}
+    noise_mm : float
+        Position noise sigma per coordinate [mm].
+    noise_rad : float
+        Orientation noise sigma per axis [rad] (``pose`` only).
+    estimate : tuple of str or None
+        Parameters estimated; ``None``: every systematic one.
+    registration : bool
+        Whether the tracker registration (6) and tool offset (3) are estimated too (nuisance, marginalised).
+    """
+
+    q: np.ndarray
+    measurement: str = "position"
+    noise_mm: float = 0.02
+    noise_rad: float = np.deg2rad(0.001)
+    estimate: tuple | None = None
+    registration: bool = True
+
+    @property
+    def n_poses(self) -> int:
+        return self.q.shape[0]
+
+    @property
+    def rows_per_pose(self) -> int:
+        return 3 if self.measurement == "position" else 6
+
+    def to_frame(self, robot: Robot) -> pd.DataFrame:
+        """One row per pose, joint values in interface units (deg / mm)."""
+        qi = robot.q_to_interface(self.q)
+        return pd.DataFrame({f"{j.name}_{j.unit}": qi[:, k] for k, j in enumerate(robot.joints)})
+
+
+def _check_noise(value, name: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = np.nan
+    if isinstance(value, bool) or not np.isfinite(v) or v <= 0:
+        raise TolallocError(f"{name}: expected a finite noise standard deviation > 0, got {value!r}; "
+                            "a perfect measurement is the limit of a small one (e.g. 1e-6).")
+    return v
+
+
+def make_plan(robot: Robot, q, *, measurement: str = "position", noise_mm: float = 0.02, noise_deg: float = 0.001,
+              estimate=None, registration: bool = True) -> CalibrationPlan:
+    """Validated :class:`CalibrationPlan`.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array, shape (M, n) [rad, mm]
+        Measurement poses, inside the joint limits (M = 0 allowed: an empty plan).
+    measurement : {"position", "pose"}
+    noise_mm, noise_deg : float
+        Measurement noise sigma [mm] and [deg], > 0.
+    estimate : iterable of str, optional
+        Parameter names (checked against the error model where the plan is used); default all systematic.
+    registration : bool
+    """
+    if measurement not in ("position", "pose"):
+        raise TolallocError(f"measurement: expected 'position' or 'pose', got {measurement!r}.")
+    q = np.asarray(q, dtype=float).reshape(-1, robot.n_joints) if np.size(q) else np.zeros((0, robot.n_joints))
+    if q.shape[0]:
+        q = np.atleast_2d(robot.check_q(q, "calibration poses"))
+    est = None if estimate is None or estimate == "all" else tuple(estimate)
+    return CalibrationPlan(q, measurement, _check_noise(noise_mm, "noise_mm"),
+                           np.deg2rad(_check_noise(noise_deg, "noise_deg")), est, bool(registration))
+
+
+def write_plan(plan: CalibrationPlan, robot: Robot, path) -> None:
+    """Write ``plan`` as CSV with its settings in ``#`` header lines."""
+    est = "all" if plan.estimate is None else " ".join(plan.estimate)
+    head = (f"# measurement = {plan.measurement}\n# noise_mm = {plan.noise_mm:.12g}\n"
+            f"# noise_deg = {np.rad2deg(plan.noise_rad):.12g}\n# estimate = {est}\n"
+            f"# registration = {'true' if plan.registration else 'false'}\n")
+    Path(path).write_text(head + plan.to_frame(robot).to_csv(index=False, float_format="%.10g"), encoding="utf-8")
+
+
+def read_plan(path, robot: Robot) -> CalibrationPlan:
+    """Read a plan CSV (see the module docstring); poses must lie inside the robot's limits."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise TolallocError(f"calibration plan {str(path)!r}: cannot read it ({exc.strerror}); give an existing CSV "
+                            "written by `tolalloc calplan`.") from None
+    settings = {}
+    for line in text.splitlines():
+        if line.startswith("#") and "=" in line:
+            key, _, val = line[1:].partition("=")
+            settings[key.strip()] = val.strip()
+    known = {"measurement", "noise_mm", "noise_deg", "estimate", "registration"}
+    bad = set(settings) - known
+    if bad:
+        raise TolallocError(f"calibration plan {path.name}: unknown setting(s) {', '.join(sorted(bad))}; "
+                            f"expected {', '.join(sorted(known))}.")
+    df = pd.read_csv(io.StringIO(text), comment="#")
+    cols = [f"{j.name}_{j.unit}" for j in robot.joints]
+    if list(df.columns) != cols:
+        raise TolallocError(f"calibration plan {path.name}: expected the columns {', '.join(cols)}, "
+                            f"got {', '.join(map(str, df.columns))}.")
+    try:
+        qi = df.to_numpy(dtype=float)
+    except ValueError:
+        raise TolallocError(f"calibration plan {path.name}: joint values must be numbers (deg / mm).") from None
+    q = robot.check_q(qi, f"calibration plan {path.name}", interface=True) if len(qi) else np.zeros((0, len(cols)))
+    reg = settings.get("registration", "true").lower()
+    if reg not in ("true", "false"):
+        raise TolallocError(f"calibration plan {path.name}: registration expected true or false, got {reg!r}.")
+    est = settings.get("estimate", "all")
+    return make_plan(robot, q, measurement=settings.get("measurement", "position"),
+                     noise_mm=settings.get("noise_mm", 0.02), noise_deg=settings.get("noise_deg", 0.001),
+                     estimate=None if est == "all" else est.split(), registration=reg == "true")
