@@ -226,10 +226,9 @@ def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", to
         pr = build_problem(model, active, **problem_kw)
         res = allocate(pr, solver=solver, snap=False)
         d = res.design if solver == "exact" else res.certified
-        if d.t is None:
-            raise TolallocError(f"region {region.name}: the requirement is infeasible on the active set "
-                                f"({d.status}); worst pose added so far (deg/mm): "
-                                f"{np.round(model.robot.q_to_interface(active[-1]), 3).tolist()}")
+        if d.t is None:  # infeasible on the active set: the caller reports the allocation's own diagnosis
+            return RegionAllocation(res, region, active, rnd, float("nan"), active[-1], evals,
+                                    np.zeros(len(region.q_min), bool), False, time.perf_counter() - t0, tuple(hist))
         if static is None:
             static = static_joints(pr, region, seed=seed)
         q, pw, ne = worst_pose(pr, d.t, region, n_seed=n_seed, n_starts=n_starts, seed=seed + rnd,
