@@ -94,3 +94,19 @@ def test_robot_file_region_inverted_is_refused():
         robot_from_chain_dict(bad)
     ok = robot_from_chain_dict({**PLANAR, "regions": {"w": {"q_min_deg_mm": [0, 0], "q_max_deg_mm": [10, 20]}}})
     np.testing.assert_allclose(ok.regions["w"][1], np.deg2rad([10, 20]))
+
+
+def test_screened_coverage_equals_brute_force():
+    # the eigenvalue screen skips poses proven above p; count and minimum must equal evaluating every pose
+    from tolalloc.allocate.region import pose_probability
+
+    robot = load_robot("tool_changer")
+    W = robot.poses("working")
+    pr = build_problem(build_error_model(robot), W)
+    t = allocate(pr, snap=False).design.t
+    box = box_region(robot, W.min(0), W.max(0))
+    cov = coverage(pr, t, box, n=20000, seed=3)
+    Q = box.q_min + np.random.default_rng(3).random((20000, 6)) * (box.q_max - box.q_min)
+    P = pose_probability(pr, t, Q)
+    assert cov.n_below == int(np.sum(P < 0.95 - 1e-4)) > 0 and cov.min_p == pytest.approx(P.min(), abs=1e-12)
+    assert cov.n_exact < 20000
