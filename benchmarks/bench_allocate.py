@@ -1,7 +1,9 @@
 """Benchmark: tolerance allocation of the tool_changer's 22 parameters (goals, issue 5).
 
 * 1 pose: under 0.1 s for either solver, problem construction included;
-* 200 poses: under 3 s.
+* 200 poses: under 3 s;
+* region allocation (issue 13, cutting planes over a box): tool_changer ``working`` box < 10 s, ur10 joint
+  limits < 30 s; coverage check of 1e5 fresh poses < 2 s.
 
 Prints medians of repeated runs (after one warm-up that pays the imports and CasADi's derivative
 generation) and ratios against a peer measured in the same run: one Gaussian-probability evaluation
@@ -64,6 +66,29 @@ def main() -> None:
         print(f"{P:5d} {t_tr:10.4f} {t_lmi:10.4f} {t_ex:10.4f} {t_p:11.5f} {t_lmi / t_p:8.0f} {t_ex / t_p:8.0f}  "
               f"{flag:9s} {d_tr.cost:.3f} / {d_lmi.cost:.3f} / {d_ex.cost:.3f}  ({d_ex.solver})")
     print("exact includes building the problem and solving the certified rule it starts from (the full pipeline).")
+    region_rows()
+
+
+def region_rows() -> None:
+    """Region allocation and coverage timings (single runs: each takes seconds)."""
+    from tolalloc.allocate.region import allocate_region, box_region, coverage
+
+    print(f"\n{'region':>22s} {'time [s]':>9s} {'rounds':>6s} {'active':>6s} {'evals':>6s} {'worst P':>8s} "
+          f"{'cov 1e5 [s]':>11s}  goal")
+    for name, region_of, goal in (("tool_changer working", lambda r: r.regions["working"], 10.0),
+                                  ("ur10 limits", lambda r: (r.lower, r.upper), 30.0)):
+        robot = load_robot(name.split()[0])
+        model = build_error_model(robot)
+        box = box_region(robot, *region_of(robot), name)
+        ra = allocate_region(model, box)
+        coverage(ra.result.problem, ra.result.design.t, box, n=1000)  # warm-up
+        t0 = time.perf_counter()
+        cov = coverage(ra.result.problem, ra.result.design.t, box)
+        t_cov = time.perf_counter() - t0
+        ok = ra.time_s < goal and t_cov < 2.0
+        print(f"{name:>22s} {ra.time_s:9.2f} {ra.rounds:6d} {len(ra.active_q):6d} {ra.evaluations:6d} "
+              f"{ra.worst_p:8.5f} {t_cov:11.2f}  <{goal:g}s / <2s {'ok' if ok else 'MISSED'}"
+              f"{'' if ra.converged else ' (not converged)'}; {cov.n_below} fresh poses below p")
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ from scipy.stats import chi2, norm
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.allocate import allocate, build_problem
-from tolalloc.allocate.problem import diagnose
+from tolalloc.allocate.problem import check_process_limits
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.exact import solve_exact
 from tolalloc.errormodel.model import build_error_model
@@ -142,7 +142,7 @@ def test_certified_only_and_orientation_requirement(robot):
     res = allocate(pr, solver="certified")
     assert res.design.solver.startswith("certified") and res.exact is None
     assert res.design.p_linear["orientation"].min() >= 0.95 - 1e-9
-    assert diagnose(pr).feasible
+    assert check_process_limits(pr).feasible
 
 
 @pytest.mark.parametrize("kw, match", [({"prob": 1.5}, "prob"), ({"radius_mm": -1}, "radius_mm"),

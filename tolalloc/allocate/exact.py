@@ -39,6 +39,8 @@ def _build(problem: AllocationProblem, active: dict):
     f = 0
     for i, k in enumerate(problem.alloc):
         f = f + problem.costs.models[k].cost_u(u[i], "casadi")
+    # Lebedev order 41 inside the NLP (not the order 65 whose accuracy linear.probability quotes): cheaper
+    # derivatives; every design is re-checked with the accurate p_within_radius below (FEAS_TOL), issue 11
     F = _casadi_function(41)
     g, lbg = [], []
     for b in problem.blocks:

@@ -32,7 +32,7 @@ from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
-__all__ = ["AllocationProblem", "Design", "Diagnosis", "build_problem", "make_design", "diagnose", "TRACE_RULE_MIN_P"]
+__all__ = ["AllocationProblem", "Design", "LimitReport", "build_problem", "make_design", "check_process_limits", "TRACE_RULE_MIN_P"]
 
 #: The trace rule is a valid sufficient condition only for p at or above this (Szekely & Bakirov 2003).
 TRACE_RULE_MIN_P = 0.785
@@ -252,7 +252,7 @@ def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, b
 
 
 @dataclass(frozen=True, eq=False)
-class Diagnosis:
+class LimitReport:
     """What the process limits allow: every allocatable tolerance at ``t_min``.
 
     Attributes
@@ -277,7 +277,7 @@ class Diagnosis:
     message: str
 
 
-def diagnose(problem: AllocationProblem) -> Diagnosis:
+def check_process_limits(problem: AllocationProblem) -> LimitReport:
     """Best achievable probability and radius within the process limits, and the limits that bind."""
     t = problem.t_min.copy()
     t[problem.fixed] = np.array(problem.costs.fixed_tol)[problem.fixed]
@@ -309,4 +309,4 @@ def diagnose(problem: AllocationProblem) -> Diagnosis:
                 f"< {b['prob']:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
                 f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
                 f"tolerances) in a costs file (--costs) or relax the requirement.")
-    return Diagnosis(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")
+    return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

@@ -10,7 +10,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.problem import AllocationProblem, Design, Diagnosis, make_design
+from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
 
 __all__ = ["AllocationResult", "snap_design"]
 
@@ -34,7 +34,7 @@ class AllocationResult:
         ``design`` snapped to standard grades (ISO 286 for link lengths), re-checked.
     it_grade : tuple of str
         IT grade per parameter (``""`` for non-lengths).
-    diagnosis : Diagnosis
+    diagnosis : LimitReport
     message : str
     """
 
@@ -47,7 +47,7 @@ class AllocationResult:
     exact: Design | None
     standard: Design | None
     it_grade: tuple
-    diagnosis: Diagnosis
+    diagnosis: LimitReport
     message: str = ""
 
     @property

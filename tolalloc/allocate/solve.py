@@ -11,7 +11,7 @@ import numpy as np
 
 from tolalloc.allocate.convex import solve_certified
 from tolalloc.allocate.exact import solve_exact
-from tolalloc.allocate.problem import AllocationProblem, diagnose, make_design
+from tolalloc.allocate.problem import AllocationProblem, check_process_limits, make_design
 from tolalloc.allocate.result import AllocationResult, snap_design
 from tolalloc.exceptions import TolallocError
 
@@ -20,7 +20,7 @@ __all__ = ["allocate"]
 
 def allocate(problem: AllocationProblem, *, solver: str = "exact", snap: bool = True,
              angle_step_deg: float | None = None) -> AllocationResult:
-    """Allocate tolerances: certified (both rules) and, for ``solver="exact"``, exact; diagnose; snap.
+    """Allocate tolerances: certified (both rules) and, for ``solver="exact"``, exact; check_process_limits; snap.
 
     Parameters
     ----------
@@ -34,7 +34,7 @@ def allocate(problem: AllocationProblem, *, solver: str = "exact", snap: bool = 
     """
     if solver not in ("exact", "certified"):
         raise TolallocError(f"solver: expected 'exact' or 'certified', got {solver!r}.")
-    diag = diagnose(problem)
+    diag = check_process_limits(problem)
     cert, other = solve_certified(problem)
     exact = None
     if solver == "exact" and diag.feasible:

@@ -24,6 +24,13 @@ def register(sub) -> None:
     p.add_argument("--prob", type=float, default=0.95, help="required probability p (default 0.95)")
     p.add_argument("--poses", "--pose-set", dest="poses", default=None, metavar="SET",
                    help="pose set of the robot file (default: 'working' if the robot has it, else nominal)")
+    p.add_argument("--region", default=None, metavar="SPEC",
+                   help="where the requirement must hold: a pose set of the robot file, 'limits' (the joint limits), "
+                   "a region (box) of the robot file, or a trajectory CSV (q1..qN per row, deg / mm). Boxes are "
+                   "searched for their worst pose (cutting planes) and checked on a fresh sample. Default: the "
+                   "robot's 'working' region if it has one, else the pose set (--poses)")
+    p.add_argument("--coverage-n", type=int, default=100_000,
+                   help="fresh poses for the coverage check of a box region (default 1e5)")
     p.add_argument("--solver", default="exact", choices=["exact", "certified"],
                    help="design to report: exact (IPOPT, default) or certified (cvxpy + Clarabel)")
     p.add_argument("--costs", metavar="FILE", help="costs file (TOML): cost laws, process limits, fixed/excluded parameters")
@@ -52,6 +59,59 @@ def _poses_of(robot, name):
     return name, robot.poses(name)
 
 
+def _region_of(robot, args):
+    """``(name, box Region or None, poses (P, n) [rad, mm])`` from --region / --poses."""
+    from pathlib import Path
+
+    from tolalloc.allocate.region import box_region
+
+    regions = robot.regions
+    spec = args.region
+    if spec is None:
+        if args.poses is None and "working" in regions:
+            spec = "working"
+        else:
+            name, q = _poses_of(robot, args.poses)
+            return name, None, q
+    if spec == "limits":
+        return spec, box_region(robot, robot.lower, robot.upper, "limits", "--region limits"), None
+    if spec in regions:
+        lo, hi = regions[spec]
+        return spec, box_region(robot, lo, hi, spec, f"--region {spec}"), None
+    if spec in robot.pose_sets or spec == "nominal":
+        return spec, None, robot.poses(spec)
+    if spec.lower().endswith(".csv") or Path(spec).is_file():
+        return spec, None, _trajectory(robot, spec)
+    known = ", ".join(["limits", *regions, "nominal", *robot.pose_sets])
+    raise TolallocError(f"--region: {spec!r} is neither a region, a pose set nor a trajectory CSV file; "
+                        f"known: {known}, or give a path to a .csv file.")
+
+
+def _trajectory(robot, path):
+    """Rows q1..qN [deg / mm] of a CSV file -> (P, n) [rad, mm]; header line optional."""
+    from pathlib import Path
+
+    p = Path(path)
+    if not p.is_file():
+        raise TolallocError(f"--region {path}: no such trajectory file; give a CSV with one pose (q1..qN, deg / mm) per row.")
+    try:
+        rows = np.genfromtxt(p, delimiter=",", dtype=float, skip_header=0)
+    except ValueError as exc:
+        raise TolallocError(f"--region {path}: cannot read the trajectory ({exc}); expected {robot.n_joints} "
+                            "comma-separated numbers per row.") from None
+    rows = np.atleast_2d(rows)
+    if rows.size and np.all(np.isnan(rows[0])):  # a header line
+        rows = rows[1:]
+    if rows.ndim != 2 or rows.shape[0] == 0 or rows.shape[1] != robot.n_joints:
+        raise TolallocError(f"--region {path}: expected rows of {robot.n_joints} joint values (deg / mm), got shape "
+                            f"{rows.shape}.")
+    if not np.all(np.isfinite(rows)):
+        bad = int(np.flatnonzero(~np.all(np.isfinite(rows), axis=1))[0]) + 1
+        raise TolallocError(f"--region {path}: row {bad} has a missing or non-finite value; every joint value must "
+                            "be a finite number (deg / mm).")
+    return robot.check_q(rows, f"--region {path}", interface=True)
+
+
 def cmd_allocate(args) -> int:
     from tolalloc.allocate import allocate, build_problem
     from tolalloc.allocate.costs import cost_set, load_costs
@@ -63,22 +123,58 @@ def cmd_allocate(args) -> int:
     model = error_model_from_args(robot, args)
     costs = (load_costs(args.costs, model, z=args.z, distribution=dist) if args.costs
              else cost_set(model, None, z=args.z, distribution=dist))
-    set_name, q = _poses_of(robot, args.poses)
-    problem = build_problem(model, q, radius_mm=args.radius_mm, prob=args.prob, costs=costs,
-                            angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob)
+    set_name, region, q = _region_of(robot, args)
     if args.calibration is not None:
         from tolalloc.cli.calplan import run_calibrated
 
+        if region is not None:
+            if args.region is not None:
+                raise TolallocError(f"--calibration: the calibration-aware allocation works on a pose set, got the "
+                                    f"box region {set_name!r}; give --poses SET (or --region SET with a pose set).")
+            set_name, q = _poses_of(robot, None)  # the robot's default pose set instead of its default box
+        problem = build_problem(model, q, radius_mm=args.radius_mm, prob=args.prob, costs=costs,
+                                angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob)
         return run_calibrated(args, problem, set_name)
+    kw = dict(radius_mm=args.radius_mm, prob=args.prob, costs=costs, angle_radius_deg=args.angle_radius_deg,
+              angle_prob=args.angle_prob)
+    reg_info, cov = None, None
+    if region is not None:
+        from tolalloc.allocate.region import allocate_region
+
+        q0 = robot.poses("working") if "working" in robot.pose_sets else None
+        if q0 is not None and not np.all((q0 >= region.q_min - 1e-12) & (q0 <= region.q_max + 1e-12)):
+            q0 = None
+        ra = allocate_region(model, region, q0, solver=args.solver, **kw)
+        q = ra.active_q
+        reg_info = ra
+    problem = build_problem(model, q, **kw)
     res = allocate(problem, solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg)
     table = res.to_frame()
+    vproblem, vdesign = problem, res.design
+    if region is not None and res.status == "optimal":
+        from tolalloc.allocate.problem import make_design
+        from tolalloc.allocate.region import coverage
+
+        cov = coverage(problem, res.design.t, region, n=args.coverage_n, seed=args.seed + 12345)
+        vproblem = build_problem(model, np.vstack([q, cov.worst_q]), **kw)
+        vdesign = make_design(vproblem, res.design.solver, res.design.t)
     ver = None
     if res.status == "optimal" and not args.no_verify:
         from tolalloc.verify.designs import verify_design
 
-        ver = verify_design(problem, res.design, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
+        ver = verify_design(vproblem, vdesign, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
     summary = res.summary()
     summary["pose_set"] = set_name
+    if reg_info is not None:
+        summary["region"] = {"name": region.name, "q_min_deg_mm": robot.q_to_interface(region.q_min),
+                             "q_max_deg_mm": robot.q_to_interface(region.q_max), "rounds": reg_info.rounds,
+                             "converged": reg_info.converged, "active_poses": len(reg_info.active_q),
+                             "search_evaluations": reg_info.evaluations, "worst_p_linear": reg_info.worst_p,
+                             "static_joints": [int(j) + 1 for j in np.flatnonzero(reg_info.static)],
+                             "time_s": reg_info.time_s}
+    if cov is not None:
+        summary["coverage"] = {"n": cov.n, "min_p": cov.min_p, "n_below": cov.n_below,
+                               "frac_below": cov.frac_below, "frac_below_upper95": cov.frac_below_upper95}
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
                                    "n_per_pose": ver.n, "seed": ver.seed}
@@ -88,6 +184,13 @@ def cmd_allocate(args) -> int:
                 row.update({"p_mc_angle": float(ver.angle["p_mc"][i]),
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
             row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
+        summary["verification"]["verdict"] = ver.verdict
+    if reg_info is not None:
+        print(f"region {region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
+              f"{reg_info.evaluations} search evaluations, worst linear P found {reg_info.worst_p:.5f}"
+              + ("" if reg_info.converged else " (NOT converged: round limit reached)"))
+    if cov is not None:
+        print(cov.message(args.prob))
     _print(res, table, ver, set_name, format_text)
     if args.out is not None:
         with atomic_output(args.out, directory=True) as tmp:
@@ -106,6 +209,8 @@ def cmd_allocate(args) -> int:
         print(f"\nwrote {args.out}/: tolerances.csv, tolerances.md, tolerances.tex, summary.json, error_budget.png"
               + (", verification.csv, pose_probabilities.png, error_cloud.png" if ver is not None else ""))
     if res.status != "optimal":
+        return 1
+    if cov is not None and not cov.ok:
         return 1
     return 0 if ver is None or ver.ok else 1
 

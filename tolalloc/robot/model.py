@@ -132,6 +132,8 @@ class Robot:
     pose_sets : dict of str -> array, shape (P, n)
         Named sets of working poses [rad, mm].
     description : str
+    regions : dict of str -> (array, array)
+        Named boxes of the working region, ``{name: (q_min (n,), q_max (n,))}`` [rad, mm].
     sigma_sets : dict of str -> dict
         Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
 
@@ -153,6 +155,7 @@ class Robot:
     pose_sets: dict = field(default_factory=dict)
     description: str = ""
     sigma_sets: dict = field(default_factory=dict)
+    regions: dict = field(default_factory=dict)
 
     def __post_init__(self):
         joints = tuple(e for e in self.chain if isinstance(e, Joint))

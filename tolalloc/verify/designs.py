@@ -4,8 +4,12 @@ The design's error model (``sigma = t / z``) is sampled and evaluated with the e
 kinematics (:func:`tolalloc.montecarlo.run.run_mc`); ``P(|dP| < r)`` is estimated at every pose with a
 95 % Wilson interval and set beside the linear (Gaussian) prediction. Criteria (issue 5):
 
-* a **certified** design passes a pose if the whole interval is at or above ``p``;
-* an **exact** design passes if ``P_hat >= p - 0.002``.
+* a pose is **demonstrated** when the whole interval is at or above ``p`` (lower bound ``>= p``);
+* it is **consistent** when the interval reaches ``p`` (upper bound ``>= p``) but its lower bound is below;
+* it **failed** when the whole interval lies below ``p``.
+
+A **certified** design passes a pose only when demonstrated; an **exact** design passes a consistent pose
+(no fixed allowance: a design whose interval lies below ``p`` fails, issue 13).
 
 A certified pose whose interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled).
 Failing poses are named with the reason: *under-specified* (the linear prediction itself is below
@@ -23,10 +27,30 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.problem import AllocationProblem, Design
 
-__all__ = ["Verification", "verify_design", "EXACT_TOL"]
+__all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict"]
 
-#: Exact designs must show P_hat >= p - EXACT_TOL.
-EXACT_TOL = 0.002
+
+def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
+    """Per-pose verdict from the 95 % interval of ``P_hat``.
+
+    Parameters
+    ----------
+    ci_low, ci_high : array, shape (P,)
+    prob : float
+
+    Returns
+    -------
+    array of str, shape (P,)
+        ``"demonstrated"`` (lower bound >= p), ``"consistent"`` (upper bound >= p) or ``"failed"``.
+    """
+    lo, hi = np.asarray(ci_low, float), np.asarray(ci_high, float)
+    return np.where(lo >= prob, "demonstrated", np.where(hi >= prob, "consistent", "failed"))
+
+
+def overall_verdict(verdicts) -> str:
+    """The weakest per-pose verdict: ``failed`` < ``consistent`` < ``demonstrated``."""
+    v = set(np.asarray(verdicts).tolist())
+    return "failed" if "failed" in v else ("consistent" if "consistent" in v else "demonstrated")
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,19 +99,32 @@ class Verification:
         return bool(np.all(self.passed))
 
     @property
+    def verdicts(self) -> np.ndarray:
+        """Per-pose ``demonstrated | consistent | failed`` (position requirement), shape (P,)."""
+        v = pose_verdicts(self.ci_low, self.ci_high, self.prob)
+        if self.angle is not None:
+            v = np.where(np.asarray(self.angle["passed"], bool), v, "failed")
+        return v
+
+    @property
+    def verdict(self) -> str:
+        """Overall verdict: the weakest pose's."""
+        return overall_verdict(self.verdicts)
+
+    @property
     def failing(self) -> list:
         """``[(pose number (1-based), reason), ...]``."""
         return [(i + 1, self.reason[i]) for i in np.flatnonzero(~self.passed)]
 
     def message(self) -> str:
-        rule = ("whole 95% interval >= p" if self.criterion == "certified" else f"P_hat >= p - {EXACT_TOL}")
+        rule = ("whole 95% interval >= p" if self.criterion == "certified" else "95% interval reaches p")
         if self.ok:
             angle = ("" if self.angle is None else
                      f"; orientation: lowest P_hat = {self.angle['p_mc'].min():.4f} at pose "
                      f"{int(np.argmin(self.angle['p_mc'])) + 1}")
-            return (f"verified by nonlinear Monte Carlo at all {len(self.passed)} poses ({rule}); "
+            return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({rule}); "
                     f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}")
-        return f"verification FAILED ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
+        return f"verified: failed ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
 
     def to_frame(self) -> pd.DataFrame:
         """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason.
@@ -102,7 +139,7 @@ class Verification:
             cols.update({"p_linear_angle": nan if self.angle["p_linear"] is None else self.angle["p_linear"],
                          "p_mc_angle": self.angle["p_mc"], "ci_low_angle": self.angle["ci_low"],
                          "ci_high_angle": self.angle["ci_high"]})
-        cols.update({"n": self.n, "passed": self.passed, "reason": list(self.reason)})
+        cols.update({"n": self.n, "passed": self.passed, "verdict": self.verdicts, "reason": list(self.reason)})
         return pd.DataFrame(cols)
 
 
@@ -172,8 +209,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     n = np.full(P, int(n_mc))
     k = np.rint(pw[:, 0] * n_mc)
 
-    def passes(est, lo):
-        return lo >= p if crit == "certified" else est >= p - EXACT_TOL
+    def passes(lo, hi):
+        return lo >= p if crit == "certified" else hi >= p
 
     # more samples where a certified interval straddles p
     if crit == "certified" and n_max > n_mc:
@@ -184,11 +221,11 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
             k[redo] += np.rint(pw2[:, 0] * extra)
             n[redo] += extra
     est = np.stack([np.asarray(proportion_ci(k[i], int(n[i]))).reshape(3) for i in range(P)])  # (P, 3)
-    ok = passes(est[:, 0], est[:, 1])
+    ok = passes(est[:, 1], est[:, 2])
     angle = None
     if pa is not None:
         ap = problem.angle_prob
-        a_ok = pa[:, 1] >= ap if crit == "certified" else pa[:, 0] >= ap - EXACT_TOL
+        a_ok = pa[:, 1] >= ap if crit == "certified" else pa[:, 2] >= ap
         angle = {"p_linear": design.p_linear.get("orientation"), "p_mc": pa[:, 0], "ci_low": pa[:, 1],
                  "ci_high": pa[:, 2], "passed": a_ok}
     else:

@@ -15,6 +15,7 @@ file, the field and what was expected.
 
 from __future__ import annotations
 
+
 from typing import Literal
 
 import numpy as np
@@ -173,6 +174,7 @@ class ChainFile(BaseModel):
     masses: list[dict] = []
     pose_sets: dict[str, dict] = {}
     sigma_sets: dict[str, dict] = {}
+    regions: dict[str, dict] = {}
 
 
 def _loc(err) -> str:
@@ -216,7 +218,8 @@ def robot_from_chain_dict(data: dict, source: str = "<dict>") -> Robot:
         except ValueError as exc:
             raise TolallocError(f"{where} ({item.link if model is LinkEntry else item.joint}): {exc}") from None
     offset, R_tool = parse_tool(spec.tool)
-    return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets)
+    return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets,
+                         regions=spec.regions)
 
 
 def parse_tool(tool: dict):
@@ -233,7 +236,8 @@ def parse_tool(tool: dict):
     return np.asarray(offset, float), R
 
 
-def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None) -> Robot:
+def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None, *,
+                  regions=None) -> Robot:
     """Shared tail of the chain and DH loaders: gravity, masses, pose sets."""
     g = np.asarray(gravity, dtype=float)
     if not np.all(np.isfinite(g)) or np.linalg.norm(g) == 0:
@@ -271,4 +275,31 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     object.__setattr__(robot, "masses", tuple(mass_list))
     object.__setattr__(robot, "pose_sets", sets)
     object.__setattr__(robot, "sigma_sets", dict(sigma_sets or {}))
+    object.__setattr__(robot, "regions", _parse_regions(robot, regions or {}))
     return robot
+
+
+def _parse_regions(robot: Robot, regions: dict) -> dict:
+    """``[regions.NAME]`` boxes -> ``{NAME: (q_min, q_max)}`` in internal units [rad, mm], each shape (n,)."""
+    out = {}
+    for name, entry in regions.items():
+        where = f"regions.{name}"
+        if not isinstance(entry, dict) or set(entry) != {"q_min_deg_mm", "q_max_deg_mm"}:
+            got = sorted(entry) if isinstance(entry, dict) else entry
+            raise TolallocError(f"{where}: expected keys 'q_min_deg_mm' and 'q_max_deg_mm' ({robot.n_joints} numbers "
+                                f"each, deg / mm), got {got!r}.")
+        try:
+            lo = np.asarray(entry["q_min_deg_mm"], dtype=float).ravel()
+            hi = np.asarray(entry["q_max_deg_mm"], dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise TolallocError(f"{where}: expected numbers (deg / mm), got {entry!r}.") from None
+        if lo.shape != (robot.n_joints,) or hi.shape != (robot.n_joints,):
+            raise TolallocError(f"{where}: expected {robot.n_joints} values in q_min_deg_mm and q_max_deg_mm, "
+                                f"got {lo.size} and {hi.size}.")
+        if np.any(hi < lo):
+            bad = [int(j) + 1 for j in np.flatnonzero(hi < lo)]
+            raise TolallocError(f"{where}: q_max_deg_mm < q_min_deg_mm at joint(s) {bad}: the box is inverted; "
+                                "give q_min <= q_max for every joint.")
+        q = robot.check_q(np.stack([lo, hi]), where, interface=True)
+        out[name] = (q[0], q[1])
+    return out
