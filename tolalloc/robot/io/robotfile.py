@@ -15,7 +15,6 @@ file, the field and what was expected.
 
 from __future__ import annotations
 
-
 from typing import Literal
 
 import numpy as np
