@@ -31,11 +31,12 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import ErrorModel, build_error_model
+from tolalloc.errormodel.model import ErrorModel
 from tolalloc.robot.lie import hat
 from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.geometry import build_geometry_model
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
@@ -101,6 +102,7 @@ class Identifiability:
     observability_index : float     Borm-Menq O1 = (prod sigma_i)^(1/L) / sqrt(P) (normalised columns)
     null_combinations : tuple of str  parameter combinations the data cannot separate
     min_poses : int                 poses needed for the fitted parameters (3 coordinates per pose, 2 spare)
+    reasons : dict                  why each unidentifiable parameter was dropped (name -> text)
     """
 
     names: tuple
@@ -112,16 +114,17 @@ class Identifiability:
     observability_index: float
     null_combinations: tuple
     min_poses: int
+    reasons: dict = field(default_factory=dict)
 
     def to_frame(self) -> pd.DataFrame:
         return pd.DataFrame({"parameter": self.names, "identifiable": [n in self.identifiable for n in self.names],
-                             "independent_share": self.share})
+                             "independent_share": self.share, "reason": [self.reasons.get(n, "") for n in self.names]})
 
     def to_dict(self) -> dict:
         return {"rank": self.rank, "condition_number": self.condition_number,
                 "observability_index": self.observability_index, "identifiable": list(self.identifiable),
                 "unidentifiable": list(self.unidentifiable), "null_combinations": list(self.null_combinations),
-                "min_poses": self.min_poses}
+                "min_poses": self.min_poses, "dropped": dict(self.reasons)}
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,7 +190,11 @@ def _geo_point_jacobian(model: ErrorModel, q: np.ndarray) -> tuple[np.ndarray, n
 
 
 class _Problem:
-    """Residual and analytic Jacobian for a fixed set of fitted columns."""
+    """Residual and analytic Jacobian for a fixed set of fitted columns.
+
+    With ``prior_w`` (shape (len(geo_index),), set by :func:`fit_model`) the residual vector ends with the
+    MAP prior rows ``prior_w * delta[geo_index]`` (``prior_w = noise / prior sigma``, mm).
+    """
 
     def __init__(self, fit0: Fit, q, xyz, geo_index, B, extra=None):
         self.model, self.q, self.xyz = fit0.model, q, xyz
@@ -198,6 +205,7 @@ class _Problem:
         self.Jp, self.Jw = _geo_point_jacobian(self.model, q)
         self.Rfl = self.model.robot.fk(q)[:, :3, :3]
         self.fit0 = fit0
+        self.prior_w = np.zeros(len(self.geo))
         self._cache = (None, None)
 
     def unpack(self, x):
@@ -227,7 +235,10 @@ class _Problem:
 
     def fun(self, x):
         y, R, p = self.base(x)
-        return (y @ R.T + p - self.xyz).ravel()
+        res = (y @ R.T + p - self.xyz).ravel()
+        if not self.prior_w.any():
+            return res
+        return np.concatenate([res, self.prior_w * x[9:9 + len(self.geo)]])
 
     def jac(self, x):
         y, R, p = self.base(x)
@@ -242,7 +253,13 @@ class _Problem:
             np.einsum("ij,pjk->pik", R, Jg),
             np.einsum("ij,pjk->pik", R, self.B),
         ]
-        return np.concatenate(cols, axis=2).reshape(3 * P, -1)
+        J = np.concatenate(cols, axis=2).reshape(3 * P, -1)
+        if not self.prior_w.any():
+            return J
+        k = len(self.geo)
+        Jp = np.zeros((k, J.shape[1]))
+        Jp[:, 9:9 + k] = np.diag(self.prior_w)
+        return np.concatenate([J, Jp])
 
 
 def _robust_scale(res: np.ndarray) -> float:
@@ -250,7 +267,7 @@ def _robust_scale(res: np.ndarray) -> float:
 
 
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
-              robust: bool = True, extra: np.ndarray | None = None) -> Fit:
+              robust: bool = True, extra: np.ndarray | None = None, prior: bool = True) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -263,17 +280,27 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     B : array, shape (P, 3, M), optional, effect basis [mm per unit]
     extra : array, shape (P, 3), optional
         A fixed displacement of the target in the base frame [mm] (a frozen effect, for re-registration).
+    prior : bool
+        MAP: after a plain least-squares pass, add a Gaussian prior ``N(0, model.sigma)`` on every fitted
+        geometric parameter (parameters with sigma 0 get none), weighted with the robust noise estimate
+        of the plain pass (``1.4826 MAD`` per coordinate). Registration, offset and effects have no prior.
     """
     geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
     prob = _Problem(start, q, xyz, geo_index, B, extra)
     opts = dict(jac=prob.jac, method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10)
     sol = least_squares(prob.fun, prob.x0(), max_nfev=60, **opts)
     f_scale = 0.0
+    sig = start.model.sigma[geo_index]
+    if prior and len(geo_index) and np.any(sig > 0):
+        noise = _robust_scale(sol.fun) / 3.0
+        prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
+        if not robust:
+            sol = least_squares(prob.fun, sol.x, max_nfev=30, **opts)
     if robust:
-        f_scale = _robust_scale(sol.fun)
+        f_scale = _robust_scale(sol.fun[:3 * len(q)])
         sol = least_squares(prob.fun, sol.x, loss="soft_l1", f_scale=f_scale, max_nfev=30, **opts)
     R, p, t, delta, beta = prob.unpack(sol.x)
-    res = -sol.fun.reshape(-1, 3)
+    res = -sol.fun[:3 * len(q)].reshape(-1, 3)
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), res, f_scale)
 
 
@@ -322,7 +349,30 @@ def identifiability(fit: Fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identi
     L = 9 + len(keep)
     min_poses = int(np.ceil(L / 3)) + 2
     return Identifiability(names, tuple(names[k] for k in keep), tuple(n for k, n in enumerate(names) if k not in set(keep)),
-                           share, rank, cond, o1, tuple(null), min_poses)
+                           share, rank, cond, o1, tuple(null), min_poses, _drop_reasons(Jf, Jg, keep, names, tol))
+
+
+def _drop_reasons(Jf: np.ndarray, Jg: np.ndarray, keep: np.ndarray, names: tuple, tol: float) -> dict:
+    """Why each geometric column not in ``keep`` was dropped: absorbed by registration/offset, or redundant."""
+    norms = np.linalg.norm(Jg, axis=0)
+    Jn = Jg / np.where(norms > 0, norms, 1.0)
+    Qf, _ = np.linalg.qr(Jf / np.linalg.norm(Jf, axis=0))
+    proj = Jn - Qf @ (Qf.T @ Jn)
+    free = np.linalg.norm(proj, axis=0)
+    out = {}
+    for k in sorted(set(range(Jg.shape[1])) - set(keep.tolist())):
+        if norms[k] == 0:
+            out[names[k]] = "no effect on the measured points at these poses"
+        elif free[k] < tol:
+            out[names[k]] = f"absorbed by the registration / probe offset (independent share {free[k]:.1e} < {tol:g})"
+        else:
+            c, *_ = np.linalg.lstsq(proj[:, keep], proj[:, k], rcond=None)
+            left = np.linalg.norm(proj[:, k] - proj[:, keep] @ c)
+            top = np.argsort(-np.abs(c))[:3]
+            combo = " ".join(f"{c[i] / free[k]:+.2f} {names[keep[i]]}" for i in top if abs(c[i]) > 1e-3 * free[k])
+            out[names[k]] = (f"redundant with the identifiable parameters (independent share {left / free[k]:.1e} "
+                             f"of what registration/offset leave; ~ {combo})")
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -340,7 +390,7 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
 
     Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
     """
-    model = model or build_error_model(robot, "generic")
+    model = model or build_geometry_model(robot)
     q, xyz = meas.q, meas.xyz_mm
     if len(q) < 5:
         raise TolallocError(f"{meas.source}: {len(q)} pose(s) after skipping NaN rows; registration and target offset "

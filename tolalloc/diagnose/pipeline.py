@@ -8,9 +8,9 @@ import pandas as pd
 from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import build_error_model
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
@@ -138,7 +138,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
     with threadpool_limits(threads):
-        model = build_error_model(robot, "generic")
+        model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
         if test is not None and test_frame == "refit" and test.n_poses < 10:
             raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
