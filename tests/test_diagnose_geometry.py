@@ -83,6 +83,12 @@ def _cases():
 CASES = _cases()
 
 
+def _limits(robot):
+    """Joint limits, revolute joints clipped to one turn [rad, mm]."""
+    rev = robot.revolute_mask
+    return np.where(rev, np.maximum(robot.lower, -np.pi), robot.lower), np.where(rev, np.minimum(robot.upper, np.pi), robot.upper)
+
+
 def _measure(robot, q, R, p, t, rng):
     T = robot.fk(q)
     x = T[:, :3, 3] + T[:, :3, :3] @ t
@@ -94,7 +100,7 @@ def absorption_ratio(robot_name: str, case: tuple, seed: int = 0) -> float:
     nominal = tolalloc.load_robot(robot_name)
     true = ur10_perturbed(*case[1:]) if case[0] == "dh" else tool_changer_perturbed(*case)
     rng = np.random.default_rng([seed, len(str(case)), sum(map(ord, str(case)))])
-    lo, hi = np.maximum(nominal.lower, -np.pi), np.minimum(nominal.upper, np.pi)
+    lo, hi = _limits(nominal)
     R = Rotation.random(random_state=rng).as_matrix()
     p = rng.uniform(-3000.0, 3000.0, 3)
     t = rng.uniform(-100.0, 100.0, 3)
@@ -117,7 +123,7 @@ def test_generator_changes_the_robot():
     for robot_name, case in CASES:
         nominal = tolalloc.load_robot(robot_name)
         true = ur10_perturbed(*case[1:]) if case[0] == "dh" else tool_changer_perturbed(*case)
-        lo, hi = np.maximum(nominal.lower, -np.pi), np.minimum(nominal.upper, np.pi)
+        lo, hi = _limits(nominal)
         q = rng.uniform(lo, hi, (60, nominal.n_joints))
         t = np.array([100.0, -50.0, 150.0])  # a probe offset, as in the measurements (alpha6 moves only the probe)
         x_true, x_nom = true.fk(q), nominal.fk(q)

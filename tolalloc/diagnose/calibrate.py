@@ -399,7 +399,9 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     ident = identifiability(nominal, q, tol)
     # structural count: the same robot on a rich pose set; tells how many poses a full calibration needs
     rng = np.random.default_rng(0)
-    lo, hi = np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi)
+    rev = robot.revolute_mask  # revolute joints clipped to one turn; prismatic joints over their whole stroke
+    lo = np.where(rev, np.maximum(robot.lower, -np.pi), robot.lower)
+    hi = np.where(rev, np.minimum(robot.upper, np.pi), robot.upper)
     rich = identifiability(nominal, rng.uniform(lo, hi, (60, robot.n_joints)), tol)
     if len(q) < rich.min_poses:
         raise TolallocError(
