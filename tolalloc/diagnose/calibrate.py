@@ -193,7 +193,9 @@ class _Problem:
     """Residual and analytic Jacobian for a fixed set of fitted columns.
 
     With ``prior_w`` (shape (len(geo_index),), set by :func:`fit_model`) the residual vector ends with the
-    MAP prior rows ``prior_w * delta[geo_index]`` (``prior_w = noise / prior sigma``, mm).
+    MAP prior rows ``prior_w * delta[geo_index]`` (``prior_w = noise / prior sigma``, mm). With ``f_scale > 0``
+    the data rows ``r`` are replaced by ``sign(r) f sqrt(2 (sqrt(1 + (r/f)^2) - 1))``, whose squares sum to the
+    ``soft_l1`` loss, so the robust loss acts on the measurements only and never weakens the prior.
     """
 
     def __init__(self, fit0: Fit, q, xyz, geo_index, B, extra=None):
@@ -206,6 +208,7 @@ class _Problem:
         self.Rfl = self.model.robot.fk(q)[:, :3, :3]
         self.fit0 = fit0
         self.prior_w = np.zeros(len(self.geo))
+        self.f_scale = 0.0
         self._cache = (None, None)
 
     def unpack(self, x):
@@ -233,9 +236,23 @@ class _Problem:
         y = T[:, :3, 3] + T[:, :3, :3] @ t + self.B @ beta + self.extra
         return y, R, p
 
-    def fun(self, x):
+    def raw(self, x):
+        """Data residual predicted - measured, shape (3P,) [mm], without robust transform or prior rows."""
         y, R, p = self.base(x)
-        res = (y @ R.T + p - self.xyz).ravel()
+        return (y @ R.T + p - self.xyz).ravel()
+
+    def _robust(self, r):
+        """Transformed residual and its derivative d r' / d r (soft_l1), identity when ``f_scale`` is 0."""
+        if self.f_scale <= 0:
+            return r, np.ones_like(r)
+        f = self.f_scale
+        root = np.sqrt(1.0 + (r / f) ** 2)
+        rt = np.sign(r) * f * np.sqrt(2.0 * (root - 1.0))
+        ratio = np.divide(r, rt, out=np.ones_like(r), where=np.abs(rt) > 1e-12 * f)
+        return rt, ratio / root
+
+    def fun(self, x):
+        res = self._robust(self.raw(x))[0]
         if not self.prior_w.any():
             return res
         return np.concatenate([res, self.prior_w * x[9:9 + len(self.geo)]])
@@ -254,6 +271,8 @@ class _Problem:
             np.einsum("ij,pjk->pik", R, self.B),
         ]
         J = np.concatenate(cols, axis=2).reshape(3 * P, -1)
+        if self.f_scale > 0:
+            J = J * self._robust(self.raw(x))[1][:, None]
         if not self.prior_w.any():
             return J
         k = len(self.geo)
@@ -294,13 +313,12 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     if prior and len(geo_index) and np.any(sig > 0):
         noise = _robust_scale(sol.fun) / 3.0
         prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
-        if not robust:
-            sol = least_squares(prob.fun, sol.x, max_nfev=30, **opts)
     if robust:
-        f_scale = _robust_scale(sol.fun[:3 * len(q)])
-        sol = least_squares(prob.fun, sol.x, loss="soft_l1", f_scale=f_scale, max_nfev=30, **opts)
+        f_scale = prob.f_scale = _robust_scale(prob.raw(sol.x))
+    if robust or prob.prior_w.any():
+        sol = least_squares(prob.fun, sol.x, max_nfev=30, **opts)
     R, p, t, delta, beta = prob.unpack(sol.x)
-    res = -sol.fun[:3 * len(q)].reshape(-1, 3)
+    res = -prob.raw(sol.x).reshape(-1, 3)
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), res, f_scale)
 
 

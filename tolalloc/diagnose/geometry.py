@@ -44,7 +44,7 @@ __all__ = ["build_geometry_model", "PRIOR_SCALE"]
 PRIOR_SCALE = 10.0
 
 
-def _base_sigmas(robot: Robot, sigma_set: str) -> tuple[dict, dict, float]:
+def _base_sigmas(robot: Robot, sigma_set: str | None) -> tuple[dict, dict, float]:
     """Per joint the largest tilt and the drive sigma, and the largest link-length sigma, from ``sigma_set``."""
     base = build_error_model(robot, sigma_set, exclude=tuple(k for k in ("clearance_axial", "clearance_radial",
                                                                          "clearance_tilt")))
@@ -59,14 +59,15 @@ def _base_sigmas(robot: Robot, sigma_set: str) -> tuple[dict, dict, float]:
     return tilt, drive, link
 
 
-def build_geometry_model(robot: Robot, sigma_set: str = "generic", prior_scale: float = PRIOR_SCALE) -> ErrorModel:
+def build_geometry_model(robot: Robot, sigma_set: str | None = None, prior_scale: float = PRIOR_SCALE) -> ErrorModel:
     """The complete geometric calibration model of ``robot`` (see the module docstring).
 
     Parameters
     ----------
     robot : Robot
-    sigma_set : str
-        Sigma set of the robot file (or ``generic``) the prior standard deviations derive from.
+    sigma_set : str or None
+        Sigma set of the robot file (or ``generic``) the prior standard deviations derive from; None: the
+        robot's default set, as :func:`~tolalloc.errormodel.model.build_error_model`.
     prior_scale : float
         Prior sigma = ``prior_scale`` x the set's sigma.
 
@@ -96,4 +97,4 @@ def build_geometry_model(robot: Robot, sigma_set: str = "generic", prior_scale: 
         params.append(ErrorParameter(f"{joint.name}_offset", "joint_drive", joint.name,
                                      "rad" if joint.is_revolute else "mm", j, robot.screws[j].copy(),
                                      sigma=prior_scale * drive_s[joint.name], joint_index=j))
-    return ErrorModel(robot, tuple(params), sigma_set=f"{sigma_set} x{prior_scale:g} (calibration prior)")
+    return ErrorModel(robot, tuple(params), sigma_set=f"{sigma_set or 'default'} x{prior_scale:g} (calibration prior)")
