@@ -5,19 +5,25 @@ Model of a measured point (tracker frame)::
     x_i = R ( T(q_i + dq; delta) [t; 1] + B_i beta ) + p
 
 ``R, p`` the registration (tracker <- robot base, 6), ``t`` the target offset on the flange (3, flange
-frame), ``delta`` the identifiable geometric error parameters of :mod:`tolalloc.errormodel.model` (exact perturbed
-chain), ``B_i beta`` an optional linear effect correction (:mod:`tolalloc.diagnose.effects`).
+frame), ``delta`` the identifiable geometric error parameters (exact perturbed chain) of the calibration model
+-- by default the complete, minimal model of :mod:`tolalloc.diagnose.geometry` (4 line errors per revolute
+joint, 2 per prismatic joint, joint offsets; the paper's tolerance model of :mod:`tolalloc.errormodel.model`
+can still be passed as ``model``) -- and ``B_i beta`` an optional linear effect correction
+(:mod:`tolalloc.diagnose.effects`).
 
 The fit starts from a point-set alignment (Kabsch, via ``Rotation.align_vectors``) of the nominal flange
 points to the measured points -- any tracker orientation works -- then solves robust nonlinear least
 squares (``scipy.optimize.least_squares``, TRF; first a plain fit, then ``soft_l1`` loss with a scale of 3
-robust standard deviations). The Jacobian is analytic: the first-order error Jacobian of the nominal model
+robust standard deviations, applied to the measurement rows only). MAP: the second pass adds a Gaussian
+prior ``N(0, model.sigma)`` on the fitted geometric parameters (see :func:`fit_model`). The Jacobian is analytic: the first-order error Jacobian of the nominal model
 for ``delta`` (exact up to second order), exact for ``R, p, t, beta``.
 
 Identifiability: the geometric columns, normalised to unit norm, are projected off the registration
 and offset columns; a pivoted QR keeps a column while the part of it not explained by the columns kept
 before is at least ``tol`` (default 1e-3) of its norm. The rest, and the SVD null-space combinations of
-the projected columns, are reported as unidentifiable and not fitted.
+the projected columns, are reported as unidentifiable and not fitted, each with the reason
+(``Identifiability.reasons``: absorbed by the registration / probe offset, or redundant with named
+identifiable parameters).
 """
 
 from __future__ import annotations
