@@ -127,3 +127,25 @@ def test_pipeline_falls_back_when_geometry_overfits():
     assert cv["g"] > 1.01 * cv["n"]
     assert d.fallback == "nominal" and d.final is d.nominal and d.effect == "none"
     assert any(g.startswith("fallback:") for g in d.guards) and d.to_dict()["fallback"] == "nominal"
+
+
+def test_cli_prints_guards_and_writes_them_to_json(tmp_path, capsys):
+    import json
+
+    import pandas as pd
+
+    from tolalloc.cli import main
+
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(7)
+    for name, q6 in (("train", (-30, 30)), ("test", (90, 150))):
+        m = _data(robot, robot, _poses(robot, 60 if name == "train" else 30, rng, q6), rng)
+        df = pd.DataFrame(robot.q_to_interface(m.q), columns=[f"q{j + 1}" for j in range(6)])
+        df[["x_mm", "y_mm", "z_mm"]] = m.xyz_mm
+        df.to_csv(tmp_path / f"{name}.csv", index=False)
+    rc = main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+               "--folds", "3", "--json", str(tmp_path / "d.json")])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert "GUARD: extrapolation: 30 of 30 test poses" in out
+    assert any(g.startswith("extrapolation") for g in json.loads((tmp_path / "d.json").read_text())["guards"])
