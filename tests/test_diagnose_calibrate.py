@@ -57,10 +57,13 @@ def test_identifiability_reports_known_redundancies():
     robot = tolalloc.load_robot("tool_changer")
     case = generate(robot, "none", 100, np.random.default_rng(7))
     ident = calibrate(robot, measurements_from_frame(case.frame, robot)).identifiability
-    # the last joint's zero is absorbed by the target offset, the base-link errors by the registration
-    for name in ("dth6", "e1x", "dl1"):
+    # the last joint's zero is absorbed by the target offset, the first joint's line errors by the registration
+    for name in ("j6_offset", "j1_tilt_x", "j1_shift_x"):
         assert name in ident.unidentifiable
+        assert "registration" in ident.reasons[name]
     assert ident.rank == 9 + len(ident.identifiable)
-    assert any("dth6" in c for c in ident.null_combinations)
+    # complete, minimal model: rank 4 R + 2 P + 6 - 3 (position-only) = 4*5 + 2*1 + 3 (Everett's count)
+    assert ident.rank == 25
+    assert any("j6_offset" in c for c in ident.null_combinations)
     assert np.isfinite(ident.condition_number) and ident.condition_number > 1
     assert ident.min_poses == int(np.ceil((9 + len(ident.identifiable)) / 3)) + 2

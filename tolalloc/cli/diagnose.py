@@ -78,6 +78,8 @@ def cmd_diagnose(args) -> int:
         write_json(d.to_dict(), "-")
     ba = d.before_after()
     print(f"effect: {d.effect}" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""))
+    for g in d.guards:
+        print(f"GUARD: {g}")
     print("held-out error [mm]:")
     print(ba[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]].to_string(index=False, float_format="%.4f"))
     print("ranking:")

@@ -1,8 +1,10 @@
 """Sim-to-real diagnosis: where the measured robot misses its model, which unmodelled effect explains it,
 and how far the held-out error shrinks once the effect is added.
 
-Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.calibrate` (registration, target offset,
-identifiable geometric errors), :mod:`.effects` (candidate effects), :mod:`.select` (held-out scoring and
+Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.geometry` (the complete, minimal geometric
+calibration model; the paper's error-screw model stays the tolerance model), :mod:`.calibrate` (registration,
+target offset, identifiable geometric errors, MAP), :mod:`.guards` (implausible parameters, extrapolation,
+CV fallback), :mod:`.effects` (candidate effects), :mod:`.select` (held-out scoring and
 selection), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`), :mod:`.synth`
 (synthetic measurement sets with a withheld effect), :mod:`.report` (Markdown report).
 """

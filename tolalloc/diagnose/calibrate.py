@@ -5,19 +5,25 @@ Model of a measured point (tracker frame)::
     x_i = R ( T(q_i + dq; delta) [t; 1] + B_i beta ) + p
 
 ``R, p`` the registration (tracker <- robot base, 6), ``t`` the target offset on the flange (3, flange
-frame), ``delta`` the identifiable geometric error parameters of :mod:`tolalloc.errormodel.model` (exact perturbed
-chain), ``B_i beta`` an optional linear effect correction (:mod:`tolalloc.diagnose.effects`).
+frame), ``delta`` the identifiable geometric error parameters (exact perturbed chain) of the calibration model
+-- by default the complete, minimal model of :mod:`tolalloc.diagnose.geometry` (4 line errors per revolute
+joint, 2 per prismatic joint, joint offsets; the paper's tolerance model of :mod:`tolalloc.errormodel.model`
+can still be passed as ``model``) -- and ``B_i beta`` an optional linear effect correction
+(:mod:`tolalloc.diagnose.effects`).
 
 The fit starts from a point-set alignment (Kabsch, via ``Rotation.align_vectors``) of the nominal flange
 points to the measured points -- any tracker orientation works -- then solves robust nonlinear least
 squares (``scipy.optimize.least_squares``, TRF; first a plain fit, then ``soft_l1`` loss with a scale of 3
-robust standard deviations). The Jacobian is analytic: the first-order error Jacobian of the nominal model
+robust standard deviations, applied to the measurement rows only). MAP: the second pass adds a Gaussian
+prior ``N(0, model.sigma)`` on the fitted geometric parameters (see :func:`fit_model`). The Jacobian is analytic: the first-order error Jacobian of the nominal model
 for ``delta`` (exact up to second order), exact for ``R, p, t, beta``.
 
 Identifiability: the geometric columns, normalised to unit norm, are projected off the registration
 and offset columns; a pivoted QR keeps a column while the part of it not explained by the columns kept
 before is at least ``tol`` (default 1e-3) of its norm. The rest, and the SVD null-space combinations of
-the projected columns, are reported as unidentifiable and not fitted.
+the projected columns, are reported as unidentifiable and not fitted, each with the reason
+(``Identifiability.reasons``: absorbed by the registration / probe offset, or redundant with named
+identifiable parameters).
 """
 
 from __future__ import annotations
@@ -26,21 +32,20 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
-import scipy.linalg
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import ErrorModel, build_error_model
+from tolalloc.errormodel.model import ErrorModel
 from tolalloc.robot.lie import hat
 from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
-
-DEFAULT_TOL = 1e-3
 
 
 def kabsch(a: np.ndarray, b: np.ndarray):
@@ -49,79 +54,6 @@ def kabsch(a: np.ndarray, b: np.ndarray):
     rot, _ = Rotation.align_vectors(b - cb, a - ca)
     R = rot.as_matrix()
     return R, cb - R @ ca
-
-
-def select_columns(J_fixed: np.ndarray, J_cand: np.ndarray, tol: float = DEFAULT_TOL):
-    """Which candidate columns are identifiable on top of the always-fitted ones.
-
-    Parameters
-    ----------
-    J_fixed : array, shape (m, f)
-    J_cand : array, shape (m, k)
-
-    Returns
-    -------
-    keep : array of int (sorted), independent candidate columns
-    share : array, shape (k,), the fraction of each candidate column not explained by ``J_fixed``
-        and the candidates picked before it (0 for dropped columns)
-    sing : array, singular values of the projected, normalised candidate columns (descending)
-    Vt : array, shape (k, k), right singular vectors (rows)
-    """
-    k = J_cand.shape[1]
-    if k == 0:
-        return np.zeros(0, int), np.zeros(0), np.zeros(0), np.zeros((0, 0))
-    norms = np.linalg.norm(J_cand, axis=0)
-    Jn = J_cand / np.where(norms > 0, norms, 1.0)
-    if J_fixed.shape[1]:
-        Qf, _ = np.linalg.qr(J_fixed / np.linalg.norm(J_fixed, axis=0))
-        Jn = Jn - Qf @ (Qf.T @ Jn)
-    Jn[:, norms == 0] = 0.0
-    _, Rq, piv = scipy.linalg.qr(Jn, mode="economic", pivoting=True)
-    diag = np.abs(np.diag(Rq))
-    share = np.zeros(k)
-    share[piv[: len(diag)]] = diag
-    ok = np.cumprod(diag >= tol).astype(bool)
-    keep = np.sort(piv[: len(diag)][ok])
-    _, sing, Vt = np.linalg.svd(Jn, full_matrices=False)
-    return keep, share, sing, Vt
-
-
-@dataclass(frozen=True, eq=False)
-class Identifiability:
-    """What the poses can and cannot separate.
-
-    Attributes
-    ----------
-    names : tuple of str            all geometric parameters of the error model
-    identifiable : tuple of str     fitted
-    unidentifiable : tuple of str   not fitted (absorbed by the registration / offset or by other parameters)
-    share : array, shape (K,)       independent share of each parameter's column (see :func:`select_columns`)
-    rank : int                      rank of the full problem (9 + identifiable)
-    condition_number : float        of the column-normalised Jacobian of the fitted parameters
-    observability_index : float     Borm-Menq O1 = (prod sigma_i)^(1/L) / sqrt(P) (normalised columns)
-    null_combinations : tuple of str  parameter combinations the data cannot separate
-    min_poses : int                 poses needed for the fitted parameters (3 coordinates per pose, 2 spare)
-    """
-
-    names: tuple
-    identifiable: tuple
-    unidentifiable: tuple
-    share: np.ndarray
-    rank: int
-    condition_number: float
-    observability_index: float
-    null_combinations: tuple
-    min_poses: int
-
-    def to_frame(self) -> pd.DataFrame:
-        return pd.DataFrame({"parameter": self.names, "identifiable": [n in self.identifiable for n in self.names],
-                             "independent_share": self.share})
-
-    def to_dict(self) -> dict:
-        return {"rank": self.rank, "condition_number": self.condition_number,
-                "observability_index": self.observability_index, "identifiable": list(self.identifiable),
-                "unidentifiable": list(self.unidentifiable), "null_combinations": list(self.null_combinations),
-                "min_poses": self.min_poses}
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,7 +119,13 @@ def _geo_point_jacobian(model: ErrorModel, q: np.ndarray) -> tuple[np.ndarray, n
 
 
 class _Problem:
-    """Residual and analytic Jacobian for a fixed set of fitted columns."""
+    """Residual and analytic Jacobian for a fixed set of fitted columns.
+
+    With ``prior_w`` (shape (len(geo_index),), set by :func:`fit_model`) the residual vector ends with the
+    MAP prior rows ``prior_w * delta[geo_index]`` (``prior_w = noise / prior sigma``, mm). With ``f_scale > 0``
+    the data rows ``r`` are replaced by ``sign(r) f sqrt(2 (sqrt(1 + (r/f)^2) - 1))``, whose squares sum to the
+    ``soft_l1`` loss, so the robust loss acts on the measurements only and never weakens the prior.
+    """
 
     def __init__(self, fit0: Fit, q, xyz, geo_index, B, extra=None):
         self.model, self.q, self.xyz = fit0.model, q, xyz
@@ -198,6 +136,8 @@ class _Problem:
         self.Jp, self.Jw = _geo_point_jacobian(self.model, q)
         self.Rfl = self.model.robot.fk(q)[:, :3, :3]
         self.fit0 = fit0
+        self.prior_w = np.zeros(len(self.geo))
+        self.f_scale = 0.0
         self._cache = (None, None)
 
     def unpack(self, x):
@@ -225,9 +165,26 @@ class _Problem:
         y = T[:, :3, 3] + T[:, :3, :3] @ t + self.B @ beta + self.extra
         return y, R, p
 
-    def fun(self, x):
+    def raw(self, x):
+        """Data residual predicted - measured, shape (3P,) [mm], without robust transform or prior rows."""
         y, R, p = self.base(x)
         return (y @ R.T + p - self.xyz).ravel()
+
+    def _robust(self, r):
+        """Transformed residual and its derivative d r' / d r (soft_l1), identity when ``f_scale`` is 0."""
+        if self.f_scale <= 0:
+            return r, np.ones_like(r)
+        f = self.f_scale
+        root = np.sqrt(1.0 + (r / f) ** 2)
+        rt = np.sign(r) * f * np.sqrt(2.0 * (root - 1.0))
+        ratio = np.divide(r, rt, out=np.ones_like(r), where=np.abs(rt) > 1e-12 * f)
+        return rt, ratio / root
+
+    def fun(self, x):
+        res = self._robust(self.raw(x))[0]
+        if not self.prior_w.any():
+            return res
+        return np.concatenate([res, self.prior_w * x[9:9 + len(self.geo)]])
 
     def jac(self, x):
         y, R, p = self.base(x)
@@ -242,7 +199,15 @@ class _Problem:
             np.einsum("ij,pjk->pik", R, Jg),
             np.einsum("ij,pjk->pik", R, self.B),
         ]
-        return np.concatenate(cols, axis=2).reshape(3 * P, -1)
+        J = np.concatenate(cols, axis=2).reshape(3 * P, -1)
+        if self.f_scale > 0:
+            J = J * self._robust(self.raw(x))[1][:, None]
+        if not self.prior_w.any():
+            return J
+        k = len(self.geo)
+        Jp = np.zeros((k, J.shape[1]))
+        Jp[:, 9:9 + k] = np.diag(self.prior_w)
+        return np.concatenate([J, Jp])
 
 
 def _robust_scale(res: np.ndarray) -> float:
@@ -250,7 +215,7 @@ def _robust_scale(res: np.ndarray) -> float:
 
 
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
-              robust: bool = True, extra: np.ndarray | None = None) -> Fit:
+              robust: bool = True, extra: np.ndarray | None = None, prior: bool = True) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -263,17 +228,26 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     B : array, shape (P, 3, M), optional, effect basis [mm per unit]
     extra : array, shape (P, 3), optional
         A fixed displacement of the target in the base frame [mm] (a frozen effect, for re-registration).
+    prior : bool
+        MAP: after a plain least-squares pass, add a Gaussian prior ``N(0, model.sigma)`` on every fitted
+        geometric parameter (parameters with sigma 0 get none), weighted with the robust noise estimate
+        of the plain pass (``1.4826 MAD`` per coordinate). Registration, offset and effects have no prior.
     """
     geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
     prob = _Problem(start, q, xyz, geo_index, B, extra)
     opts = dict(jac=prob.jac, method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10)
     sol = least_squares(prob.fun, prob.x0(), max_nfev=60, **opts)
     f_scale = 0.0
+    sig = start.model.sigma[geo_index]
+    if prior and len(geo_index) and np.any(sig > 0):
+        noise = _robust_scale(sol.fun) / 3.0
+        prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
     if robust:
-        f_scale = _robust_scale(sol.fun)
-        sol = least_squares(prob.fun, sol.x, loss="soft_l1", f_scale=f_scale, max_nfev=30, **opts)
+        f_scale = prob.f_scale = _robust_scale(prob.raw(sol.x))
+    if robust or prob.prior_w.any():
+        sol = least_squares(prob.fun, sol.x, max_nfev=30, **opts)
     R, p, t, delta, beta = prob.unpack(sol.x)
-    res = -sol.fun.reshape(-1, 3)
+    res = -prob.raw(sol.x).reshape(-1, 3)
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), res, f_scale)
 
 
@@ -291,40 +265,6 @@ def initial_fit(model: ErrorModel, q: np.ndarray, xyz: np.ndarray) -> Fit:
     return Fit(model, R, p, np.zeros(3), np.zeros(K), np.zeros(0, int))
 
 
-def identifiability(fit: Fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identifiability:
-    """Identifiability of the geometric parameters on the poses ``q`` at the registration/offset of ``fit``."""
-    model = fit.model
-    P = len(q)
-    Jp, Jw = _geo_point_jacobian(model, q)
-    T = model.robot.fk(q)
-    arm = T[:, :3, :3] @ fit.t_mm
-    y = T[:, :3, 3] + arm
-    Jg = (Jp + np.cross(Jw, arm[:, :, None], axis=1)).reshape(3 * P, -1)
-    Jf = np.concatenate([-hat(y), np.broadcast_to(np.eye(3), (P, 3, 3)), T[:, :3, :3]], axis=2).reshape(3 * P, 9)
-    keep, share, sing, Vt = select_columns(Jf, Jg, tol)
-    names = tuple(model.names)
-    null = []
-    smax = sing.max() if len(sing) else 1.0
-    for i in range(Vt.shape[0]):
-        s = sing[i] if i < len(sing) else 0.0
-        if s >= tol * max(smax, 1e-300) and s >= tol:
-            continue
-        v = Vt[i]
-        order = np.argsort(-np.abs(v))[:4]
-        terms = [f"{v[k]:+.2f} {names[k]}" for k in order if abs(v[k]) > 0.05]
-        null.append(" ".join(terms) if terms else "(none)")
-    Jall = np.concatenate([Jf, Jg[:, keep]], axis=1)
-    Jn = Jall / np.maximum(np.linalg.norm(Jall, axis=0), 1e-300)
-    sv = np.linalg.svd(Jn, compute_uv=False)
-    rank = int(np.sum(sv > sv[0] * 1e-10))
-    cond = float(sv[0] / sv[-1]) if sv[-1] > 0 else float("inf")
-    o1 = float(np.exp(np.mean(np.log(np.maximum(sv, 1e-300)))) / np.sqrt(P))
-    L = 9 + len(keep)
-    min_poses = int(np.ceil(L / 3)) + 2
-    return Identifiability(names, tuple(names[k] for k in keep), tuple(n for k, n in enumerate(names) if k not in set(keep)),
-                           share, rank, cond, o1, tuple(null), min_poses)
-
-
 @dataclass(frozen=True, eq=False)
 class Calibration:
     """Result of :func:`calibrate`: nominal (registration + offset only) and geometric fits on the training poses."""
@@ -340,7 +280,7 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
 
     Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
     """
-    model = model or build_error_model(robot, "generic")
+    model = model or build_geometry_model(robot)
     q, xyz = meas.q, meas.xyz_mm
     if len(q) < 5:
         raise TolallocError(f"{meas.source}: {len(q)} pose(s) after skipping NaN rows; registration and target offset "
@@ -349,7 +289,9 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     ident = identifiability(nominal, q, tol)
     # structural count: the same robot on a rich pose set; tells how many poses a full calibration needs
     rng = np.random.default_rng(0)
-    lo, hi = np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi)
+    rev = robot.revolute_mask  # revolute joints clipped to one turn; prismatic joints over their whole stroke
+    lo = np.where(rev, np.maximum(robot.lower, -np.pi), robot.lower)
+    hi = np.where(rev, np.minimum(robot.upper, np.pi), robot.upper)
     rich = identifiability(nominal, rng.uniform(lo, hi, (60, robot.n_joints)), tol)
     if len(q) < rich.min_poses:
         raise TolallocError(

@@ -8,9 +8,10 @@ import pandas as pd
 from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import build_error_model
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.guards import Extrapolation, cv_fallback, extrapolation_flags, prior_flags
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
@@ -32,6 +33,9 @@ class Diagnosis:
     nominal, geometric, final : Evaluation   held-out evaluations of the three models
     where : WhereBreakdown         residual breakdown after geometric calibration (training poses)
     test_frame : {"same", "refit"}
+    guards : tuple of str          guards that fired (implausible parameters, extrapolating test poses, fallback)
+    extrapolation : Extrapolation or None   per test pose flags (None without a test file)
+    fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
     """
 
     robot: Robot
@@ -45,6 +49,9 @@ class Diagnosis:
     final: Evaluation
     where: WhereBreakdown
     test_frame: str = "same"
+    guards: tuple = ()
+    extrapolation: Extrapolation | None = None
+    fallback: str | None = None
 
     @property
     def effect(self) -> str:
@@ -108,7 +115,14 @@ class Diagnosis:
             "registration": {"rotation": self.calibration.geometric.R, "translation_mm": self.calibration.geometric.p_mm,
                              "target_offset_mm": self.calibration.geometric.t_mm},
             "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
+            "guards": list(self.guards),
+            "fallback": self.fallback,
+            "models": {"calibration": "complete minimal geometric model (diagnose.geometry): 4 line errors per "
+                                      "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
+                       "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
         }
+        if self.extrapolation is not None:
+            out["extrapolation"] = self.extrapolation.to_dict()
         if self.test is not None:
             bt = self.before_after("test")
             out["test_rms_mm"] = dict(zip(bt["model"], bt["rms_mm"]))
@@ -138,7 +152,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
     with threadpool_limits(threads):
-        model = build_error_model(robot, "generic")
+        model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
         if test is not None and test_frame == "refit" and test.n_poses < 10:
             raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
@@ -147,7 +161,24 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         geometric = evaluate(ctx)
         stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
         where = where_breakdown(robot, train, cal.geometric)
-    return Diagnosis(robot, train, test, cal, tuple(stages), tuple(st.selected for st in stages if st.selected),
-                     nominal, geometric, final, where, test_frame)
+    effects = tuple(st.selected for st in stages if st.selected)
+    guards = list(prior_flags(cal.geometric))
+    chosen, msgs = cv_fallback(nominal, geometric, final)
+    guards.extend(msgs)
+    fallback = None
+    if chosen is not final:
+        fallback, final, effects = chosen.label, chosen, ()
+    extrap = None
+    if test is not None:
+        extrap = extrapolation_flags(robot, train.q, test.q)
+        if extrap.message():
+            guards.append(extrap.message())
+        worse = {k: (error_stats(final.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
+        for k, (f, nmn) in worse.items():
+            if f > nmn:
+                guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
+                              f"({f:.4g} vs {nmn:.4g} mm)")
+    return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
+                     tuple(guards), extrap, fallback)
 
 

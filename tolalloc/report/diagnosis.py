@@ -41,7 +41,12 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
              + (f"; test file `{d.test.source}` ({d.test.n_poses} poses, frame: {d.test_frame})" if d.test is not None else "")
              + ".", "",
              f"**Diagnosed effect: `{d.effect}`**" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""),
-             "", "## How far: held-out error (cross-validation" + (" + test file" if d.test is not None else "") + ")", "",
+             "", "Calibration model: the complete, minimal geometric model (4 line errors per revolute joint, 2 per "
+             "prismatic joint, joint offsets, tracker registration, probe offset; `tolalloc.diagnose.geometry`), MAP "
+             "with priors 10x the robot's sigma set. The paper's error-screw model is the tolerance model "
+             "(allocation, Monte Carlo), not used here.", ""]
+    lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
+    lines += ["## How far: held-out error (cross-validation" + (" + test file" if d.test is not None else "") + ")", "",
              markdown_table(ba[["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct",
                                 "rms_shrink_vs_geometric_pct"]]), "",
              f"![before/after]({prefix}before_after.png)", ""]
@@ -66,6 +71,7 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
               f"{ident.condition_number:.3g}, observability index O1 {ident.observability_index:.3g}; minimum poses "
               f"{ident.min_poses}.", "",
               f"Not identifiable (not fitted): {', '.join(ident.unidentifiable) or 'none'}.", "",
+              *[f"- `{k}`: {v}" for k, v in ident.reasons.items()], "",
               "Combinations the data cannot separate (normalised columns): "
               + ("; ".join(f"`{c}`" for c in ident.null_combinations) or "none") + ".", ""]
     path = out / f"{prefix}report.md"

@@ -1,0 +1,189 @@
+"""Blind cases from the independent physics of :mod:`physics`, and the truth-aware reference fit.
+
+A case: random geometric errors on every parameter of the robot's description (sigma 0.3 mm / 0.05 deg
+each; DH d, a, alpha, theta, beta for the UR10, link vectors and joint axis directions/positions/zeros for
+the tool_changer), a random tracker frame (uniform rotation, translation within +-3 m), a probe offset of
+50-200 mm, tracker noise sigma U(0.02, 0.05) mm per coordinate, in a quarter of the cases gross outliers
+(2 % of the poses, at least one, 1-3 mm), random poses within the joint limits in time order (30 s apart),
+a payload of 0-5 kg (constant per case), an ambient temperature log and one effect, two effects ("a+b",
+each half the magnitude) or none. The effect's amplitudes are scaled so that it moves the probe by an
+RMS ``U(0.15, 0.6)`` mm before calibration.
+
+The **reference fit** knows the truth's structure but not its values: the diagnosis's calibration model
+(registration, probe offset, identifiable geometry) plus the first-order displacement columns of the true
+effect's own amplitudes (finite differences of :func:`physics.walk`, with the true lag, harmonic order,
+backlash side rule and mass model), fitted on the training poses and scored on the test poses.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.spatial.transform import Rotation
+
+from physics import EFFECT_NAMES, _perturbed_ops, describe, gravity_torque, walk
+
+DT_S = 30.0
+
+
+@dataclass
+class Case:
+    """One generated case: the measurement table, the truth, and the reference's effect columns."""
+
+    frame: pd.DataFrame
+    label: str
+    magnitude_mm: float
+    noise_mm: float
+    outliers: int
+    detail: str
+    ref_B: np.ndarray  # (P, 3, M) [mm per unit amplitude], base frame, at the nominal geometry
+
+
+def _limits(robot):
+    return np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi)
+
+
+class _Physics:
+    """Draws of one case's effect physics; ``state(amps)`` gives (dq, growth, sag) for amplitude vectors."""
+
+    def __init__(self, robot, desc, effects, q, direction, temp, time_s, rng, t_mm, payload_kg):
+        self.payload = payload_kg
+        self.robot, self.desc, self.effects, self.q, self.t = robot, desc, effects, q, t_mm
+        self.n = robot.n_joints
+        ops0 = _perturbed_ops(desc, np.zeros(len(desc.geo_names)))
+        x, joints, segs = walk(ops0, q, desc.tool_mm + t_mm)
+        self.n_seg = len(segs)
+        masses = {"rod_kg_per_m": rng.uniform(6, 14, len(segs)), "motor_kg": rng.uniform(1.5, 5, self.n),
+                  "payload_kg": float(self.payload)}
+        self.tau = gravity_torque(joints, segs, x, masses)
+        self.details, self.size = [], {}
+        if "backlash" in effects:
+            self.side_mode = rng.choice(["approach", "gravity"])
+            if self.side_mode == "approach":
+                self.side = direction
+            else:
+                span = np.maximum(np.ptp(self.tau, axis=0), 1e-9)
+                self.side = np.tanh(self.tau / (0.02 * span))
+            self.details.append(f"backlash side={self.side_mode}")
+        if "transmission" in effects:
+            self.k = int(rng.choice([1, 2], p=[0.6, 0.4]))
+            self.details.append(f"transmission {self.k}x/rev")
+        if "thermal" in effects:
+            self.th_mode = rng.choice(["lag", "warmup"])
+            tau_s = 60 * rng.uniform(15, 45)
+            if self.th_mode == "lag":
+                eff = np.empty_like(temp)
+                eff[0] = temp[0]
+                a = 1 - np.exp(-DT_S / tau_s)
+                for i in range(1, len(temp)):
+                    eff[i] = eff[i - 1] + a * (temp[i] - eff[i - 1])
+                self.dT = eff - temp[0]
+            else:
+                self.dT = 5.0 * (1 - np.exp(-time_s / tau_s))
+            self.details.append(f"thermal {self.th_mode} tau={tau_s / 60:.0f} min")
+        if "link_deflection" in effects:
+            self.r = rng.uniform(0.5, 2.0)
+            self.details.append(f"beam sag r={self.r:.2f}")
+        self.sag_mask = np.array([np.linalg.norm(b - a, axis=1).max() >= 250 for a, b, _ in segs])
+
+    def n_amps(self, e):
+        return {"joint_compliance": self.n, "backlash": self.n, "transmission": 2 * self.n, "thermal": 1,
+                "link_deflection": self.n_seg}[e]
+
+    def unit_amps(self, e, rng):
+        """Random amplitudes with every column of comparable size (before the case's magnitude scaling)."""
+        if e == "joint_compliance":
+            return rng.uniform(0.3, 1, self.n) / np.maximum(np.sqrt(np.mean(self.tau ** 2, 0)), 1e-9) * 1e-4
+        if e == "backlash":
+            return rng.uniform(0.3, 1, self.n) * 1e-4
+        if e == "transmission":
+            a = rng.normal(size=2 * self.n) * 1e-4
+            a[np.repeat(~self.robot.revolute_mask, 2)] = 0.0
+            return a
+        if e == "thermal":
+            return np.array([10.0])
+        return rng.uniform(0.3, 1, self.n_seg) * self.sag_mask
+
+    def state(self, amps: dict):
+        P = len(self.q)
+        dq, growth, sag = np.zeros((P, self.n)), None, None
+        for e, a in amps.items():
+            if e == "joint_compliance":
+                dq += self.tau * a
+            elif e == "backlash":
+                dq += self.side * a
+            elif e == "transmission":
+                kq = self.k * self.q
+                dq += (np.sin(kq) * a[0::2] + np.cos(kq) * a[1::2]) * self.robot.revolute_mask
+            elif e == "thermal":
+                growth = 1e-6 * a[0] * self.dT
+            elif e == "link_deflection":
+                sag = (a, self.r)
+        return dq, growth, sag
+
+
+def generate(robot, label: str, n_poses: int, rng: np.random.Generator) -> Case:
+    """One blind case (see the module docstring); ``label`` one effect name, ``a+b`` or ``none``."""
+    desc = describe(robot)
+    n = robot.n_joints
+    effects = [] if label == "none" else label.split("+")
+    lo, hi = _limits(robot)
+    q = rng.uniform(lo, hi, (n_poses, n))
+    direction = np.sign(np.diff(q, axis=0, prepend=q[:1] - rng.choice([-1.0, 1.0], n)))
+    direction[direction == 0] = 1.0
+    time_s = DT_S * np.arange(n_poses)
+    temp = 20.0 + rng.uniform(0.3, 3.0) * (1 - np.exp(-time_s / (60 * rng.uniform(20, 90)))) + rng.normal(0, 0.03, n_poses)
+    geo = rng.normal(size=len(desc.geo_scale)) * desc.geo_scale
+    ops = _perturbed_ops(desc, geo)
+    R = Rotation.random(random_state=rng).as_matrix()
+    p = rng.uniform(-3000, 3000, 3)
+    t = rng.normal(size=3)
+    t *= rng.uniform(50, 200) / np.linalg.norm(t)
+    payload = float(rng.uniform(0, 5))
+    phys = _Physics(robot, desc, effects, q, direction, temp, time_s, rng, t, payload)
+    mag = float(rng.uniform(0.15, 0.6))
+    x0 = walk(ops, q, desc.tool_mm + t)[0]
+    amps = {}
+    for e in effects:
+        a = phys.unit_amps(e, rng)
+        dq, growth, sag = phys.state({e: a})
+        x1 = walk(ops, q + dq, desc.tool_mm + t, growth=growth, sag=sag)[0]
+        r = np.sqrt(np.mean(np.sum((x1 - x0) ** 2, axis=1)))
+        amps[e] = a * (mag / len(effects)) / max(r, 1e-12)
+    dq, growth, sag = phys.state(amps)
+    x = walk(ops, q + dq, desc.tool_mm + t, growth=growth, sag=sag)[0]
+    noise = float(rng.uniform(0.02, 0.05))
+    xyz = x @ R.T + p + rng.normal(0, noise, x.shape)
+    n_out = 0
+    if rng.random() < 0.25:
+        n_out = max(1, int(round(0.02 * n_poses)))
+        idx = rng.choice(n_poses, n_out, replace=False)
+        v = rng.normal(size=(n_out, 3))
+        xyz[idx] += v / np.linalg.norm(v, axis=1)[:, None] * rng.uniform(1, 3, (n_out, 1))
+    ref_B = _reference_columns(phys, desc, q, t, amps)
+    cols = {f"q{j + 1}": robot.q_to_interface(q)[:, j] for j in range(n)}
+    cols.update({"x_mm": xyz[:, 0], "y_mm": xyz[:, 1], "z_mm": xyz[:, 2], "temperature_c": temp})
+    cols.update({f"dir{j + 1}": direction[:, j] for j in range(n)})
+    cols.update({"payload_kg": np.full(n_poses, payload), "time_s": time_s})
+    return Case(pd.DataFrame(cols), label, mag if effects else 0.0, noise, n_out, "; ".join(phys.details), ref_B)
+
+
+def _reference_columns(phys, desc, q, t, amps) -> np.ndarray:
+    """Displacement per unit of every true amplitude (finite differences at the nominal geometry), (P, 3, M)."""
+    ops0 = _perturbed_ops(desc, np.zeros(len(desc.geo_names)))
+    x0 = walk(ops0, q, desc.tool_mm + t)[0]
+    cols = []
+    for e, a in amps.items():
+        h = np.max(np.abs(a)) if np.any(a) else 1.0
+        for k in range(len(a)):
+            if a[k] == 0 and e != "transmission":
+                continue
+            ek = np.zeros_like(a)
+            ek[k] = h
+            dq, growth, sag = phys.state({e: ek})
+            x1 = walk(ops0, q + dq, desc.tool_mm + t, growth=growth, sag=sag)[0]
+            if np.abs(x1 - x0).max() > 1e-9:
+                cols.append((x1 - x0) / h)
+    return np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))

@@ -1,0 +1,151 @@
+"""Guards of the diagnosis on constructed cases: extrapolation, implausible (prior) parameters, CV fallback."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+import tolalloc
+from tolalloc.diagnose import diagnose
+from tolalloc.diagnose.calibrate import calibrate, fit_model, initial_fit
+from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, prior_flags
+from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.select import Evaluation
+
+from test_diagnose_geometry import _limits, _measure
+
+
+def _poses(robot, n, rng, q6_deg=None):
+    lo, hi = _limits(robot)
+    q = rng.uniform(lo, hi, (n, robot.n_joints))
+    if q6_deg is not None:
+        q[:, 5] = np.deg2rad(rng.uniform(*q6_deg, n))
+    return q
+
+
+def _data(robot, true, q, rng):
+    R = Rotation.from_rotvec([0.1, -0.2, 0.3]).as_matrix()
+    return Measurements(q, _measure(true, q, R, np.array([1500.0, -200.0, 300.0]), np.array([20.0, 30.0, 90.0]), rng))
+
+
+def test_extrapolation_flag_fires_outside_the_training_range():
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(0)
+    q_train = _poses(robot, 60, rng, (-30, 30))
+    q_test = q_train[:40].copy()  # the other joints as in training: only wrist 3 leaves its range
+    q_test[:, 5] = np.deg2rad(rng.uniform(90, 150, 40))
+    ex = extrapolation_flags(robot, q_train, q_test)
+    assert ex.outside_range.all() and ex.joints_outside == ("wrist_3_joint",)
+    assert "40 of 40" in ex.message()
+
+
+def test_extrapolation_flag_quiet_inside_the_training_data():
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(1)
+    q = _poses(robot, 400, rng, (-30, 30))
+    ex = extrapolation_flags(robot, q[:300], q[300:])
+    # same distribution: no range flag can fire beyond the 5 deg margin on 300 training poses of 6 joints
+    # by more than chance; the distance flag (1.5x the 95th percentile of LOO distances) fires rarely
+    assert ex.outside_range.sum() <= 2
+    assert ex.far.mean() <= 0.05
+
+
+def test_pipeline_reports_extrapolation_guard_in_result_and_json():
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(2)
+    train = _data(robot, robot, _poses(robot, 60, rng, (-30, 30)), rng)
+    test = _data(robot, robot, _poses(robot, 30, rng, (90, 150)), rng)
+    d = diagnose(robot, train, test, folds=3)
+    assert d.extrapolation.flagged.all()
+    assert any(g.startswith("extrapolation: 30 of 30") for g in d.guards)
+    out = d.to_dict()
+    assert out["guards"] == list(d.guards) and all(out["extrapolation"]["flagged"])
+
+
+def test_prior_flag_fires_on_an_implausible_error_and_not_on_a_plausible_one():
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(3)
+    q = _poses(robot, 60, rng)
+    big = calibrate(robot, _data(robot, _scaled_a2(20.0), q, rng)).geometric
+    small = calibrate(robot, _data(robot, _scaled_a2(0.3), q, rng)).geometric
+    assert prior_flags(big) and all("prior sigma" in m for m in prior_flags(big))
+    assert prior_flags(small) == ()
+
+
+def _scaled_a2(err_mm):
+    """UR10 with its DH a2 (upper-arm length) off by ``err_mm``."""
+    import copy
+    import tomllib
+    from importlib.resources import files
+    from tolalloc.robot.io.dh import robot_from_dh_dict
+    data = copy.deepcopy(tomllib.loads((files("tolalloc") / "data/robots/ur10.toml").read_text()))
+    data["dh"][1]["a_m"] += err_mm * 1e-3
+    return robot_from_dh_dict(data)
+
+
+def test_map_prior_shrinks_towards_zero():
+    """A prior far tighter than the error pins the parameters at 0; without a prior they move."""
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(4)
+    q = _poses(robot, 60, rng)
+    meas = _data(robot, _scaled_a2(0.3), q, rng)
+    model = build_geometry_model(robot)
+    cal = calibrate(robot, meas, model=model)
+    geo = cal.geometric.geo_index
+    tight = model.with_sigma(np.full(len(model.params), 1e-7))
+    start = initial_fit(tight, meas.q, meas.xyz_mm)
+    pinned = fit_model(start, meas.q, meas.xyz_mm, geo_index=geo)
+    free = fit_model(start, meas.q, meas.xyz_mm, geo_index=geo, prior=False)
+    assert np.abs(pinned.delta).max() < 1e-5
+    assert np.abs(free.delta).max() > 1e-4
+    assert free.rms_mm < pinned.rms_mm
+
+
+def _ev(label, oof):
+    return Evaluation(label, (), None, (), np.zeros(0, int), oof, None, None)
+
+
+def test_cv_fallback_on_constructed_evaluations():
+    rng = np.random.default_rng(5)
+    base = rng.normal(size=(50, 3))
+    nominal, geometric = _ev("nominal", 0.10 * base), _ev("geometric", 0.05 * base)
+    worse = _ev("geometric+thermal", 0.20 * base)
+    chosen, msgs = cv_fallback(nominal, geometric, worse)
+    assert chosen is nominal and msgs[0].startswith("fallback:") and "+100.0 %" in msgs[0]
+    chosen, msgs = cv_fallback(nominal, geometric, _ev("geometric+thermal", 0.07 * base))
+    assert chosen is geometric and msgs[0].startswith("fallback:")
+    chosen, msgs = cv_fallback(nominal, geometric, geometric)
+    assert chosen is geometric and msgs == ()
+
+
+def test_pipeline_falls_back_when_geometry_overfits():
+    """Perfect nominal geometry, 24 noisy poses, 3 folds: ~27 parameters on 16 poses per fold overfit."""
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(6)
+    d = diagnose(robot, _data(robot, robot, _poses(robot, 24, rng), rng), folds=3)
+    cv = {k: np.sqrt(np.mean(np.sum(ev.oof_mm ** 2, 1))) for k, ev in (("n", d.nominal), ("g", d.geometric))}
+    assert cv["g"] > 1.01 * cv["n"]
+    assert d.fallback == "nominal" and d.final is d.nominal and d.effect == "none"
+    assert any(g.startswith("fallback:") for g in d.guards) and d.to_dict()["fallback"] == "nominal"
+
+
+def test_cli_prints_guards_and_writes_them_to_json(tmp_path, capsys):
+    import json
+
+    import pandas as pd
+
+    from tolalloc.cli import main
+
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(7)
+    for name, q6 in (("train", (-30, 30)), ("test", (90, 150))):
+        m = _data(robot, robot, _poses(robot, 60 if name == "train" else 30, rng, q6), rng)
+        df = pd.DataFrame(robot.q_to_interface(m.q), columns=[f"q{j + 1}" for j in range(6)])
+        df[["x_mm", "y_mm", "z_mm"]] = m.xyz_mm
+        df.to_csv(tmp_path / f"{name}.csv", index=False)
+    rc = main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+               "--folds", "3", "--json", str(tmp_path / "d.json")])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert "GUARD: extrapolation: 30 of 30 test poses" in out
+    assert any(g.startswith("extrapolation") for g in json.loads((tmp_path / "d.json").read_text())["guards"])
