@@ -164,3 +164,23 @@ def test_random_q_of_a_multi_turn_joint_stays_within_one_turn():
     q = Robot("r", chain).random_q(np.random.default_rng(1), 5000)
     assert q[:, 0].min() >= -np.pi and q[:, 0].max() <= np.pi and q[:, 0].min() < -3.0 and q[:, 0].max() > 3.0
     assert q[:, 1].min() >= 0.0 and q[:, 1].max() > 790.0
+
+
+def test_dh_table_with_small_calibrated_offset_is_accepted_but_chain_link_is_not():
+    """A calibrated DH table holds sub-mm offsets (a1 = 0.3 mm on a UR10); a 0.3 mm chain link among metre-long
+    ones is a unit slip."""
+    import tomllib
+    from importlib.resources import files
+
+    from tolalloc.robot.io import robot_from_dict
+
+    data = tomllib.loads((files("tolalloc") / "data/robots/ur10.toml").read_text())
+    data["dh"][0]["a_m"] = 0.0003
+    robot = robot_from_dict(data)
+    assert any(link.name == "a1" for link in robot.links)
+    chain = {"name": "x", "chain": [{"link": "base", "vector_mm": [0, 0, 400]},
+                                    {"joint": "j1", "type": "revolute", "axis": [0, 0, 1], "limits_deg": [-90, 90]},
+                                    {"link": "tiny", "vector_mm": [0.3, 0, 0]},
+                                    {"link": "arm", "vector_mm": [600, 0, 0]}]}
+    with pytest.raises(TolallocError, match="looks like a length in metres"):
+        robot_from_dict(chain)

@@ -123,7 +123,7 @@ def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
                     f"({key[:-4]}_deg) ({TRUST_HINT}).")
 
 
-def check_reach(lengths_mm: dict, where: str) -> None:
+def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True) -> None:
     """Refuse link lengths [mm] that look like metres: all together under :data:`MIN_PLAUSIBLE_REACH_MM`, or
     one link under :data:`MAX_TINY_LINK_MM` that is over :data:`TINY_LINK_RATIO` times shorter than the longest.
 
@@ -133,6 +133,8 @@ def check_reach(lengths_mm: dict, where: str) -> None:
         Link name -> length [mm].
     where : str
         Prefix of the message.
+    tiny_links : bool
+        Also apply the one-tiny-link rule (off for DH tables, whose small calibrated offsets are real).
     """
     if units_trusted() or not lengths_mm:
         return
@@ -140,6 +142,8 @@ def check_reach(lengths_mm: dict, where: str) -> None:
     if 0 < total < MIN_PLAUSIBLE_REACH_MM:
         raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like metres given under _mm "
                             f"keys: multiply by 1000 or use the _m keys ({TRUST_HINT}).")
+    if not tiny_links:
+        return
     longest = max(lengths_mm, key=lambda k: abs(lengths_mm[k]))
     for name, v in lengths_mm.items():
         if 0 < abs(v) < MAX_TINY_LINK_MM and abs(v) * TINY_LINK_RATIO < abs(lengths_mm[longest]):

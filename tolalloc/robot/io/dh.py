@@ -133,7 +133,7 @@ def robot_from_dh_dict(data: dict, source: str = "<dict>"):
     offset, R_tool = parse_tool(spec.tool)
     # the tool of a DH robot is given in the last DH frame
     return _finish_robot(spec.name, chain, R_last @ offset, R_last @ R_tool, spec.gravity, spec.masses,
-                         spec.pose_sets, spec.description, spec.sigma_sets)
+                         spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False)
 
 
 CSV_COLUMNS = ("name", "type", "d_mm", "d_m", "a_mm", "a_m", "alpha_deg", "alpha_rad", "theta_offset_deg",

@@ -236,12 +236,18 @@ def parse_tool(tool: dict):
 
 
 def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None, *,
-                  regions=None) -> Robot:
-    """Shared tail of the chain and DH loaders: gravity, masses, pose sets."""
+                  regions=None, tiny_links_suspect: bool = True) -> Robot:
+    """Shared tail of the chain and DH loaders: gravity, masses, pose sets.
+
+    ``tiny_links_suspect``: a sub-millimetre link among long ones is taken for a length in metres (chain
+    layout, where every link is a part); a DH table legitimately holds small calibrated offsets, so the DH
+    loader only checks the total reach.
+    """
     g = np.asarray(gravity, dtype=float)
     if not np.all(np.isfinite(g)) or np.linalg.norm(g) == 0:
         raise TolallocError(f"gravity: expected a non-zero direction such as [0, 0, -1], got {list(gravity)}")
-    check_reach({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)}, "lengths")
+    check_reach({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)}, "lengths",
+                tiny_links=tiny_links_suspect)
     robot = Robot(name, tuple(chain), tool_offset_mm=np.asarray(offset, float), tool_rotation=np.asarray(R_tool),
                   gravity=g / np.linalg.norm(g), description=description)
     body_of = {}
