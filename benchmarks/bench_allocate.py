@@ -22,7 +22,7 @@ from tolalloc import load_robot
 from tolalloc.allocate.problem import build_problem
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.exact import solve_exact
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 
 
 def median_time(fn, repeat):

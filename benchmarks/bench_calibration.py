@@ -19,7 +19,7 @@ import numpy as np
 
 from tolalloc import load_robot
 from tolalloc.calibration import make_plan, posterior, split_errors
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import linear_map
 
 

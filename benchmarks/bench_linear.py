@@ -11,9 +11,10 @@ import time
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import linear_map
-from tolalloc.linear.probability import p_within_radius, p_within_radius_lebedev, radius_for_prob
+from tolalloc.linear.probability import p_within_radius, radius_for_prob
+from tolalloc.linear.probability_casadi import p_within_radius_lebedev
 
 
 def timeit(fn, repeat=15):

@@ -2,7 +2,7 @@
 
     python benchmarks/bench_montecarlo.py [--n 4194304] [--loop-n 20000]
 
-Measures, in one run on this machine: run_mc (sampling + exact chains + statistics) samples/s (wall clock
+Measures, in one run on this machine: the numba kernels' first-compile and cached-load times, run_mc (sampling + exact chains + statistics) samples/s (wall clock
 and per CPU-second) with the compiled kernel (numba, when installed) and the numpy path, and per perturbed
 sample: Pinocchio's forwardKinematics in a Python loop,
 modern_robotics' FKinSpace in a Python loop and roboticstoolbox-python's batched ETS.fkine, and prints
@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 from tolalloc import load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import run_mc, sample_values
 
 
@@ -47,6 +47,33 @@ def measure_run_mc(model, q, n, n_jobs=None, reps=2, **kw) -> dict:
         if best is None or wall < best[0]:
             best = (wall, cpu)
     return {"wall_rate": n / best[0], "cpu_rate": n / best[1], "wall_s": best[0]}
+
+
+def numba_compile_times() -> dict:
+    """First-compile and cached-load time [s] of all numba kernels (Monte Carlo and Jacobians).
+
+    Each is measured in a fresh Python subprocess running
+    :func:`tolalloc.montecarlo.engines.warmup.warm_numba_kernels` with ``NUMBA_CACHE_DIR`` set to a new empty
+    temporary directory (first compile), then again with the directory that run filled (cached load). Times are
+    the wall clock of the warm-up call alone (imports excluded).
+    """
+    import subprocess
+    import sys
+    import tempfile
+
+    code = ("import time; import tolalloc.montecarlo.run, tolalloc.robot.kinematics; "
+            "from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as w; "
+            "t = time.perf_counter(); ok = w(); print(ok, time.perf_counter() - t)")
+    out = {}
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+        for key in ("first_compile_s", "cached_load_s"):
+            res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+            ok, sec = res.stdout.split()[-2:]
+            if ok != "True":
+                return {}
+            out[key] = float(sec)
+    return out
 
 
 def pinocchio_model(robot):
@@ -142,6 +169,10 @@ def main():
     print(f"tool_changer, {len(model.params)} error parameters, cpus={os.cpu_count()}, load={os.getloadavg()}")
     from tolalloc.engine import NUMBA_AVAILABLE
 
+    ct = numba_compile_times()
+    if ct:
+        print(f"numba kernels (fresh subprocess, empty NUMBA_CACHE_DIR): first compile {ct['first_compile_s']:.1f} s, "
+              f"cached load {ct['cached_load_s']:.2f} s")
     for engine in (["numba"] if NUMBA_AVAILABLE else []) + ["numpy"]:
         for jobs in (2, 1):
             r0 = measure_run_mc(model, q, a.n, n_jobs=jobs, radii_mm=(0.25,), engine=engine)

@@ -32,7 +32,7 @@ from bench_linear import timeit as median_time  # noqa: E402
 from bench_montecarlo import measure_run_mc, peers, pinocchio_model  # noqa: E402
 
 from tolalloc import load_robot  # noqa: E402
-from tolalloc.errormodel.model import build_error_model  # noqa: E402
+from tolalloc.errormodel import build_error_model  # noqa: E402
 from tolalloc.linear.covariance import linear_map  # noqa: E402
 from tolalloc.linear.probability import p_within_radius  # noqa: E402
 

@@ -141,3 +141,17 @@ def skew_robot():
              Link("l3", np.array([0.0, 200.0, 0.0])), Joint("j3", "prismatic", b, -100.0, 100.0),
              Link("l4", np.array([50.0, 100.0, 0.0])))
     return Robot("skew", chain)
+
+
+
+@pytest.fixture(scope="session", autouse=True)
+def warm_numba_kernels():
+    """Compile (or load from numba's on-disk cache) the numba kernels once per test session.
+
+    See :func:`tolalloc.montecarlo.engines.warmup.warm_numba_kernels` (Monte Carlo kernel via a tiny ``run_mc``,
+    Jacobian kernels on 64 poses). The first compile of a fresh environment is paid here instead of inside
+    whichever test happens to run first; ``benchmarks/bench_montecarlo.py`` reports first-compile and cached-load times.
+    """
+    from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as warm
+
+    warm()

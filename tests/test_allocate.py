@@ -9,7 +9,7 @@ from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.problem import check_process_limits
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.exact import solve_exact
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.probability import p_within_radius
 
 ALL = ["dl1", "dl2", "dl3", "dl4", "dl5", "dl6", "dth1", "dth2", "dth3", "dd4", "dth5", "dth6",

@@ -6,7 +6,7 @@ import pytest
 from tolalloc import TolallocError, load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.region import allocate_region, box_region, coverage, static_joints, worst_pose
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.io.robotfile import robot_from_chain_dict
 
 PLANAR = {"name": "planar2", "chain": [

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tolalloc.calibration import make_plan, posterior, read_plan, split_errors, write_plan
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.covariance import linear_map
 from tolalloc.robot.io import load_robot

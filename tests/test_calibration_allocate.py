@@ -6,7 +6,7 @@ import pytest
 from tolalloc.allocate.calibrated import allocate_calibrated, post_ratio
 from tolalloc.allocate.problem import build_problem
 from tolalloc.calibration import make_plan, split_errors
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.io import load_robot
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tolalloc.calibration import make_plan, posterior, split_errors
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import radius_for_prob
 from tolalloc.robot.io import load_robot

@@ -10,7 +10,7 @@ import pytest
 
 from tolalloc import load_robot
 from tolalloc.cli import main
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import budget, linear_map
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 

@@ -11,7 +11,7 @@ import pytest
 from tolalloc import TolallocError, load_robot
 from tolalloc.cli import main
 from tolalloc.cli.common import atomic_output, check_output, sigma_overrides, write_json
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 
 
 def test_atomic_file_gets_the_usual_permissions(tmp_path):

@@ -90,7 +90,7 @@ def test_mc_tasks_are_generated_lazily(monkeypatch):
     # regression: one task per block was built up front, so n = 1e20 ran out of memory
     import tolalloc.montecarlo.run as run_mod
     from tolalloc import load_robot
-    from tolalloc.errormodel.model import build_error_model
+    from tolalloc.errormodel import build_error_model
 
     seen = {}
 

@@ -65,7 +65,7 @@ def test_bad_input_exit_2_no_files(tmp_path, capsys, args):
 def test_sigma_override_by_kind_uses_each_parameters_unit(tmp_path):
     """``--sigma joint_drive=0.01`` is 0.01 deg for revolute drives and 0.01 mm for the prismatic dd4."""
     from tolalloc import load_robot
-    from tolalloc.errormodel.model import build_error_model
+    from tolalloc.errormodel import build_error_model
     from tolalloc.montecarlo.run import run_mc
 
     d = _run_json(tmp_path, "--n", "3000", "--sigma", "joint_drive=0.01", "--exclude", "link_length",

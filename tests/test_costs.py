@@ -7,7 +7,7 @@ import pytest
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.allocate.costs import DEFAULT_COSTS, CostModel, cost_set, load_costs
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 
 LAWS = [CostModel("reciprocal", 1.0, 2.0, 0.1, 0.01, 1.0),
         CostModel("reciprocal_power", 0.5, 1.5, 0.1, 0.01, 1.0, k=2.0),

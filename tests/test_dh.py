@@ -148,7 +148,7 @@ def test_dh_toml_file_with_tool(tmp_path, convention, reference):
     names = [lk.name for lk in robot.links]
     assert names == (["d1", "a1", "a2", "d3_offset"] if convention == "standard" else ["a0", "d1", "a1", "d3_offset"])
     # the prismatic offset's length error does not clash with the drive error dd3
-    from tolalloc.errormodel.model import build_error_model
+    from tolalloc.errormodel import build_error_model
 
     model = build_error_model(robot)
     assert "dd3" in model.names and "dd3_offset" in model.names

@@ -7,7 +7,7 @@ import tolalloc
 from tolalloc.diagnose.effects import (effect_basis, gravity_torques, joint_effect_dq, point_jacobian,
                                        target_points)
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import fk_poe
 
 

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errormodel.model import CLEARANCE_SIGMA, GENERIC_SIGMA, KINDS, build_error_model
+from tolalloc.errormodel import build_error_model
+from tolalloc.errormodel.model import CLEARANCE_SIGMA, GENERIC_SIGMA, KINDS
 from tolalloc.robot.lie import exp_se3, rot_x, rot_z, rotvec, transform
 from tolalloc.robot.kinematics import fk_poe
 

@@ -5,7 +5,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from tolalloc import load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.errormodel.chain import FEATURES, N_BUF, ErrorFeatures, FastChain
 from tolalloc.robot.lie import euler_xyz_fixed
 from tolalloc.montecarlo.run import generic_pose_errors, pose_errors

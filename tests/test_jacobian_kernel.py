@@ -8,7 +8,7 @@ from conftest import random_chain, random_q
 
 import tolalloc.robot.kinematics as kinematics_mod
 from tolalloc import TolallocError, engine, load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import JAC_KERNEL_MIN_POSES, space_jacobian
 
 RTOL = 1e-12

@@ -6,7 +6,7 @@ import pytest
 from tolalloc import TolallocError, load_robot
 from tolalloc import engine
 from tolalloc.montecarlo.engines import numba_engine as kernel
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
 from conftest import skew_robot
 

@@ -7,7 +7,7 @@ import pytest
 from conftest import random_chain, random_q
 
 from tolalloc import TolallocError, fk_poe, load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import VARIANCE_FACTOR, budget, input_covariance, linear_map
 from tolalloc.robot.lie import rotvec
 

@@ -9,7 +9,7 @@ import pytest
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.cli import main
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
 from tolalloc.montecarlo.parallel import check_scheduler, ordered_map
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import run_mc
 from tolalloc.report.plots import mc as mcplots
 from tolalloc.montecarlo.sensitivity import PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity, trajectory_errors

@@ -6,17 +6,9 @@ import pytest
 from scipy.stats import chi2, norm
 
 from tolalloc import TolallocError
-from tolalloc.linear.probability import (
-    angle_for_prob,
-    casadi_rule_error,
-    chi2_3_cdf,
-    p_within_angle,
-    p_within_angle_casadi,
-    p_within_radius,
-    p_within_radius_casadi,
-    p_within_radius_lebedev,
-    radius_for_prob,
-)
+from tolalloc.linear.probability import angle_for_prob, chi2_3_cdf, p_within_angle, p_within_radius, radius_for_prob
+from tolalloc.linear.probability_casadi import (casadi_rule_error, p_within_angle_casadi, p_within_radius_casadi,
+                                                p_within_radius_lebedev)
 
 
 def _rotation(rng):

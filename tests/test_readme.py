@@ -8,7 +8,7 @@ import numpy as np
 
 from tolalloc import load_robot
 from tolalloc.allocate.costs import load_costs
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.io import robot_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import pose_errors, run_mc
 from tolalloc.montecarlo.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,
                                   trajectory_errors)

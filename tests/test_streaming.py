@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import BLOCK_SIZE, run_mc
 from tolalloc.montecarlo.streaming import PLANES, Extras, HistSpec, Moments
 

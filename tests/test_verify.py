@@ -7,7 +7,7 @@ from dataclasses import replace
 from tolalloc import TolallocError, load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.problem import make_design
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.verify.designs import overall_verdict, pose_verdicts, verify_design
 
 N = 100_000  # sd of P_hat near 0.95: 0.0007

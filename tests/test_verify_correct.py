@@ -7,7 +7,7 @@ import pytest
 
 from tolalloc import load_robot
 from tolalloc.allocate.costs import DEFAULT_COSTS
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.verify.correct import correct_design
 
 N = 100_000

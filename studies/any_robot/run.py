@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate import allocate, build_problem
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import run_mc
 from tolalloc.report.plots.mc import scatter_density
 from tolalloc.robot.io.urdf import load_urdf

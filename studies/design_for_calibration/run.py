@@ -33,7 +33,7 @@ from tolalloc.allocate.calibrated import allocate_calibrated  # noqa: E402
 from tolalloc.allocate.problem import build_problem  # noqa: E402
 from tolalloc.calibration import make_plan, split_errors  # noqa: E402
 from tolalloc.calibration.design import candidate_poses, design_plan  # noqa: E402
-from tolalloc.errormodel.model import build_error_model  # noqa: E402
+from tolalloc.errormodel import build_error_model  # noqa: E402
 from tolalloc.verify.calibrated import verify_calibration  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "design_for_calibration"

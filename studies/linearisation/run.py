@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc import load_robot
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import linear_map
 from tolalloc.montecarlo.run import run_mc
 from tolalloc.report.plots.linear import linearisation_figure

@@ -26,7 +26,7 @@ import pandas as pd
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.problem import diagnose
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pareto, plot_pose_probabilities
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.report.tables import display_frame, write_tables

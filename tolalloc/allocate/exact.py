@@ -6,7 +6,7 @@
     subject to u_min <= u <= u_max,
                P(|x_i| < r) >= p  at every pose i,   x_i ~ N(0, Sigma_i(u))
 
-with ``P`` the differentiable probability of :func:`tolalloc.linear.probability.p_within_radius_casadi`.
+with ``P`` the differentiable probability of :func:`tolalloc.linear.probability_casadi.p_within_radius_casadi`.
 The problem is not convex in general, so IPOPT starts from the certified design (feasible, since
 the certified rules imply the constraint) and the result is accepted only if it is feasible by the
 exact numpy probability (to 1e-5) and not dearer than the certified design; otherwise the
@@ -32,7 +32,7 @@ def _build(problem: AllocationProblem, active: dict):
     """IPOPT solver over the poses in ``active`` (block name -> pose indices); returns (solver, lbg)."""
     import casadi as ca
 
-    from tolalloc.linear.probability import _casadi_function
+    from tolalloc.linear.probability_casadi import _casadi_function
 
     Ka = len(problem.alloc)
     u = ca.MX.sym("u", Ka)

@@ -115,7 +115,7 @@ def _trajectory(robot, path):
 def cmd_allocate(args) -> int:
     from tolalloc.allocate import allocate, build_problem
     from tolalloc.allocate.costs import cost_set, load_costs
-    from tolalloc.report.tables import format_text, write_tables
+    from tolalloc.report.tables import format_text
 
     _check_args(args)
     robot = robot_from_args(args)
@@ -163,6 +163,25 @@ def cmd_allocate(args) -> int:
         from tolalloc.verify.designs import verify_design
 
         ver = verify_design(vproblem, vdesign, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
+    summary = _summary(res, robot, set_name, region, reg_info, cov, ver)
+    if reg_info is not None:
+        print(f"region {region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
+              f"{reg_info.evaluations} search evaluations, worst linear P found {reg_info.worst_p:.5f}"
+              + ("" if reg_info.converged else " (NOT converged: round limit reached)"))
+    if cov is not None:
+        print(cov.message(args.prob))
+    _print(res, table, ver, set_name, format_text)
+    if args.out is not None:
+        _write_outputs(args, robot, set_name, res, table, summary, ver)
+    if res.status != "optimal":
+        return 1
+    if cov is not None and not cov.ok:
+        return 1
+    return 0 if ver is None or ver.ok else 1
+
+
+def _summary(res, robot, set_name, region, reg_info, cov, ver) -> dict:
+    """summary.json: the allocation, the region search, the coverage check and the verification."""
     summary = res.summary()
     summary["pose_set"] = set_name
     if reg_info is not None:
@@ -185,34 +204,28 @@ def cmd_allocate(args) -> int:
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
             row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
         summary["verification"]["verdict"] = ver.verdict
-    if reg_info is not None:
-        print(f"region {region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
-              f"{reg_info.evaluations} search evaluations, worst linear P found {reg_info.worst_p:.5f}"
-              + ("" if reg_info.converged else " (NOT converged: round limit reached)"))
-    if cov is not None:
-        print(cov.message(args.prob))
-    _print(res, table, ver, set_name, format_text)
-    if args.out is not None:
-        with atomic_output(args.out, directory=True) as tmp:
-            write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
-                         f"{args.prob:g} at the {set_name} poses ({res.design.solver})")
-            write_json(summary, tmp / "summary.json")
-            from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pose_probabilities
+    return summary
 
-            plot_budget(table, tmp / "error_budget.png",
-                        title=f"{robot.name}: {res.design.solver} design, worst pose {res.worst_pose + 1}")
-            if ver is not None:
-                ver.to_frame().to_csv(tmp / "verification.csv", index=False, float_format="%.8g")
-                plot_pose_probabilities(ver, tmp / "pose_probabilities.png")
-                if ver.samples_mm is not None:
-                    plot_cloud(ver, tmp / "error_cloud.png")
-        print(f"\nwrote {args.out}/: tolerances.csv, tolerances.md, tolerances.tex, summary.json, error_budget.png"
-              + (", verification.csv, pose_probabilities.png, error_cloud.png" if ver is not None else ""))
-    if res.status != "optimal":
-        return 1
-    if cov is not None and not cov.ok:
-        return 1
-    return 0 if ver is None or ver.ok else 1
+
+def _write_outputs(args, robot, set_name, res, table, summary, ver) -> None:
+    """The --out directory: tables, summary.json, verification.csv and figures, published all at once."""
+    from tolalloc.report.tables import write_tables
+
+    with atomic_output(args.out, directory=True) as tmp:
+        write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
+                     f"{args.prob:g} at the {set_name} poses ({res.design.solver})")
+        write_json(summary, tmp / "summary.json")
+        from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pose_probabilities
+
+        plot_budget(table, tmp / "error_budget.png",
+                    title=f"{robot.name}: {res.design.solver} design, worst pose {res.worst_pose + 1}")
+        if ver is not None:
+            ver.to_frame().to_csv(tmp / "verification.csv", index=False, float_format="%.8g")
+            plot_pose_probabilities(ver, tmp / "pose_probabilities.png")
+            if ver.samples_mm is not None:
+                plot_cloud(ver, tmp / "error_cloud.png")
+    print(f"\nwrote {args.out}/: tolerances.csv, tolerances.md, tolerances.tex, summary.json, error_budget.png"
+          + (", verification.csv, pose_probabilities.png, error_cloud.png" if ver is not None else ""))
 
 
 def _check_args(args) -> None:

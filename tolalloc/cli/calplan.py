@@ -53,7 +53,7 @@ def split_from_costs(model, path):
 def cmd_calplan(args) -> int:
     from tolalloc.calibration.design import candidate_poses, design_plan
     from tolalloc.calibration.plan import write_plan
-    from tolalloc.errormodel.model import build_error_model
+    from tolalloc.errormodel import build_error_model
 
     robot = robot_from_args(args)
     if args.n_candidates < 1:

@@ -124,7 +124,8 @@ def sigma_overrides(model_params, items) -> dict:
 
 def error_model_from_args(robot: Robot, args):
     """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
-    from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD, build_error_model
+    from tolalloc.errormodel import build_error_model
+    from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD
 
     if not hasattr(args, "sigma"):  # allocation options (add_error_model_args(allocation=True))
         return build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,

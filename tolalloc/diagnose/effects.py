@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Mass, Robot
 from tolalloc.diagnose.measurements import Measurements

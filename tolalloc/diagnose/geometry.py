@@ -35,7 +35,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.errormodel.model import ErrorModel, ErrorParameter, _perpendicular_axes, build_error_model
+from tolalloc.errormodel import build_error_model
+from tolalloc.errormodel.model import ErrorModel, ErrorParameter, _perpendicular_axes
 from tolalloc.robot.model import Robot
 
 __all__ = ["build_geometry_model", "PRIOR_SCALE"]

@@ -22,7 +22,7 @@ import pandas as pd
 from scipy.spatial.transform import Rotation
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.model import build_error_model
+from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.effects import EFFECTS, effect_basis, joint_effect_dq, target_points

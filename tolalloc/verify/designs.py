@@ -230,9 +230,23 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
                  "ci_high": pa[:, 2], "passed": a_ok}
     else:
         a_ok = np.ones(P, bool)
+    reasons = _failure_reasons(problem, model, crit, p_lin, est, n, ok, a_ok, pa, nongauss_share)
+    worst = int(np.argmin(est[:, 0]))
+    return Verification(crit, r, p, n, int(seed), p_lin.copy(), est[:, 0], est[:, 1], est[:, 2], ok & a_ok,
+                        reasons, worst, samples, int(order[0]), angle)
+
+
+def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.ndarray, est: np.ndarray, n: np.ndarray,
+                     ok: np.ndarray, a_ok: np.ndarray, pa, nongauss_share: float) -> tuple:
+    """Per pose, why it failed ("" when it passed): under-specified, non-Gaussian, inconclusive or nonlinear.
+
+    ``p_lin`` (P,): linear position probabilities; ``est`` (P, 3): position estimate and interval; ``n`` (P,) samples; ``ok`` / ``a_ok`` (P,) position /
+    orientation verdicts; ``pa`` (P, 3) orientation estimate and interval or None.
+    """
+    p = problem.prob
     nongauss = np.array([prm.distribution != "normal" for prm in model.params])
     reasons = []
-    for i in range(P):
+    for i in range(len(est)):
         if ok[i] and a_ok[i]:
             reasons.append("")
             continue
@@ -256,6 +270,4 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         if not a_ok[i]:
             bits.append(f"orientation P_hat = {pa[i, 0]:.4f} below {problem.angle_prob:g}")
         reasons.append("; ".join(bits))
-    worst = int(np.argmin(est[:, 0]))
-    return Verification(crit, r, p, n, int(seed), p_lin.copy(), est[:, 0], est[:, 1], est[:, 2], ok & a_ok,
-                        tuple(reasons), worst, samples, int(order[0]), angle)
+    return tuple(reasons)
