@@ -6,7 +6,8 @@ from scipy.spatial.transform import Rotation
 
 from tolalloc import load_robot
 from tolalloc.errormodel import build_error_model
-from tolalloc.errormodel.chain import FEATURES, N_BUF, ErrorFeatures, FastChain
+from tolalloc.errormodel.chain import FastChain
+from tolalloc.errormodel.features import FEATURES, N_BUF, ErrorFeatures
 from tolalloc.robot.lie import euler_xyz_fixed
 from tolalloc.montecarlo.run import generic_pose_errors, pose_errors
 from tolalloc.robot.kinematics import fk_poe
@@ -33,7 +34,7 @@ def test_program_drops_zero_sigma_and_folds_multipliers(model):
     mult = model.sigma.copy()
     mult[model.index("dl3")] = 0.0
     prog = chain.program(q, mult)
-    used = {k for _, _, coefs in prog for k, _ in coefs}
+    used = {k for _, coefs, _, _, _ in prog.steps for k, _ in coefs}
     assert model.index("dl3") not in used and model.index("dl4") in used
     Z = np.random.default_rng(0).standard_normal((len(model.params), 50))
     X = np.empty((3, 4, 50))

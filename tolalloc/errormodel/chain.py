@@ -1,67 +1,256 @@
-"""Fast exact perturbed-chain kinematics and per-sample tool-pose error features.
+"""The perturbed-chain program: one description of ``G_0 E_1 G_1 ... E_n G_n M`` for every consumer.
 
-The perturbed chain of :meth:`ErrorModel.perturbed_chain` is the product
-``G_0 E_1 G_1 ... E_n G_n M`` of error displacements ``G_s`` (exponentials of
-the parameters' twists) and joint exponentials ``E_j = exp([S_j](q_j + dq_j))``.
-:class:`FastChain` evaluates it right to left, in place, on a structure-of-arrays
-``(3, 4, N)`` block (rows of ``[R | p]``) with closed-form exponentials: a rotation
-about a base axis mixes only the two rows it touches, a pure translation only adds
-to ``p``, a factor whose amount is a constant is applied with scalars (and skipped
-when it is the identity). ``cos`` is taken as ``sqrt(1 - sin^2)`` when every angle
-of the block lies in ``[-1, 1]`` rad (exact to rounding, a third of the cost).
-It equals the generic ``fk_poe`` path to rounding (tested to 1e-9).
+The chain program
+-----------------
+An :class:`~tolalloc.errormodel.model.ErrorModel` inserts small displacements ``G_s`` (exponentials of its
+parameters' twists) between the joint exponentials ``E_j = exp([S_j](q_j + dq_j))`` of the nominal chain.
+:func:`chain_program` writes that product down *once*, left to right, as a frozen :class:`ChainProgram` of
+plain arrays (``F`` factors, ``K`` parameters)::
 
-:class:`ErrorFeatures` turns chain outputs into the Monte Carlo features with one
-small matrix product (every feature's linear part) and a few element-wise passes;
-Euler-angle errors are taken as ``atan2`` of the rotated pair, which wraps the
-difference to ``(-pi, pi]`` without a modulo.
+    kind  (F,)    ERROR (0): an error displacement; JOINT (1): a joint exponential
+    twist (F, 6)  the factor's twist (omega, v) in the base frame at home (a parameter's twist, or S_j)
+    joint (F,)    joint index of a JOINT factor, -1 for an ERROR factor
+    site  (F,)    joints before the factor (0..n; a JOINT factor j has site j)
+    coef  (F, K)  the factor's amount is  coef[f] @ values  (+ q[joint[f]] for a JOINT factor)
+    home  (4, 4)  M
+
+so the factor is ``exp([twist_f] (q_joint + coef_f . e))``. A parameter appears with coefficient +1 at its
+insertion site and, for ``axes_only`` links and ``tilt`` deflections, with -1 at its undo site (undos first
+among a site's insertions); a joint drive is a +1 in its joint's row. Every consumer reads these arrays and
+nothing else of the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; used by the
+calibration simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the
+compiled kernel of :mod:`tolalloc.robot._jacobian_nb` through :meth:`ChainProgram.param_entries`), the numpy
+Monte Carlo engine :class:`FastChain` and the numba engine (through :class:`PoseProgram`). A change to the
+error model's insertion rules is a change to :func:`chain_program` and reaches all of them.
+
+The pose program and the numpy engine
+-------------------------------------
+:meth:`FastChain.program` specialises the chain program to one pose ``q`` (and optional per-parameter
+multipliers, e.g. sigma for standard-normal draws) as a :class:`PoseProgram`: the factors right to left with
+their constant amounts folded in, identity factors dropped, and per factor ``fi = (type, n_coefs, a, b)``,
+coefficient indices/values ``fk, fcf`` and the floats ``fd`` (layout in :class:`PoseProgram`). The numpy
+evaluator :meth:`FastChain.run` and the numba kernel (:mod:`tolalloc.montecarlo.engines`) both run these
+same arrays on a structure-of-arrays ``(3, 4, N)`` block (rows of ``[R | p]``) with closed-form
+exponentials: a rotation about a base axis mixes only the two rows it touches, a pure translation only adds
+to ``p``, ``p`` is shifted lazily to the rotation axis' point. In :meth:`FastChain.run` ``cos`` is taken as
+``sqrt(1 - sin^2)`` when every angle of the block lies in ``[-1, 1]`` rad (exact to rounding, a third of the
+cost). Both equal the generic ``fk_poe`` path to rounding (tested to 1e-9, ``tests/test_chain_program.py``).
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from functools import cached_property
+
 import numpy as np
 
-from tolalloc.errormodel.model import ErrorModel
-from tolalloc.robot.lie import euler_xyz_fixed, hat
+from tolalloc.robot.lie import hat
 
-__all__ = ["FastChain", "ErrorFeatures", "FEATURES"]
+__all__ = ["ChainProgram", "PoseProgram", "chain_program", "FastChain", "ERROR", "JOINT", "FD"]
 
-#: Rows of the feature matrix returned by :meth:`ErrorFeatures.compute` [mm, rad].
-FEATURES = ("dx", "dy", "dz", "rvx", "rvy", "rvz", "norm", "reach", "alpha", "beta", "gamma")
-_FIRST = 7  # feature rows start here in the work buffer (rows 0-6 are intermediate)
-N_BUF = _FIRST + len(FEATURES)
+ERROR, JOINT = 0, 1
+#: Floats per factor in :attr:`PoseProgram.fd`.
+FD = 32
+
+
+@dataclass(frozen=True, eq=False)
+class ChainProgram:
+    """The perturbed chain ``G_0 E_1 G_1 ... E_n G_n M`` as ``F`` factors, left to right (see the module doc).
+
+    Attributes
+    ----------
+    kind : array of int, shape (F,)
+        :data:`ERROR` or :data:`JOINT`.
+    twist : array, shape (F, 6)
+        Twist ``(omega, v)`` of the factor in the base frame at home [rad, mm].
+    joint : array of int, shape (F,)
+        Joint index of a JOINT factor, -1 otherwise.
+    site : array of int, shape (F,)
+        Joints before the factor, ``0..n``.
+    coef : array, shape (F, K)
+        Amount of factor ``f`` per unit of each parameter (added to ``q[joint[f]]`` for a JOINT factor).
+    home : array, shape (4, 4)
+        Home pose ``M`` [mm].
+    """
+
+    kind: np.ndarray
+    twist: np.ndarray
+    joint: np.ndarray
+    site: np.ndarray
+    coef: np.ndarray
+    home: np.ndarray
+
+    @property
+    def n_factors(self) -> int:
+        return len(self.kind)
+
+    def sources(self, f: int) -> list[tuple[int, float]]:
+        """``(k, coef)`` of the parameters that move factor ``f``, in parameter order."""
+        return [(int(k), float(self.coef[f, k])) for k in np.flatnonzero(self.coef[f])]
+
+    def amount(self, f: int, values: np.ndarray) -> np.ndarray:
+        """Parameter part of factor ``f``'s amount, ``coef[f] @ values`` summed in parameter order, shape (N,).
+
+        ``values`` (N, K) [mm, rad]; the joint value of a JOINT factor is not included.
+        """
+        out = np.zeros(values.shape[0])
+        for k, cf in self.sources(f):
+            out = out + (values[:, k] if cf == 1.0 else cf * values[:, k])
+        return out
+
+    def param_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Factors of each parameter (CSR by parameter, factors left to right) for first-order consumers.
+
+        Returns
+        -------
+        ptr : array of int, shape (K + 1,)
+            Parameter ``k``'s entries are ``ptr[k]:ptr[k + 1]``.
+        site : array of int, shape (E,)
+        coef : array, shape (E,)
+        twist : array, shape (E, 6)
+        """
+        f, k = np.nonzero(self.coef.T)[::-1]  # sorted by parameter, then factor
+        ptr = np.searchsorted(k, np.arange(self.coef.shape[1] + 1))
+        return ptr, self.site[f], self.coef[f, k], np.ascontiguousarray(self.twist[f])
+
+    def site_groups(self) -> list[tuple[int, list, float, np.ndarray]]:
+        """``(site, parameter indices, coef, twists (6, k))`` of the entries with coefficient +1 first, then -1,
+        then any other coefficient, each by increasing site (at most one entry per parameter and group)."""
+        ptr, site, coef, twist = self.param_entries()
+        k_of = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
+        out = []
+        for cf in [1.0, -1.0] + sorted(set(coef.tolist()) - {1.0, -1.0}, reverse=True):
+            for s in sorted(set(site[coef == cf].tolist())):
+                sel = np.flatnonzero((coef == cf) & (site == s))
+                out.append((s, k_of[sel].tolist(), cf, np.ascontiguousarray(twist[sel].T)))
+        return out
+
+
+def chain_program(model) -> ChainProgram:
+    """Build the :class:`ChainProgram` of an :class:`~tolalloc.errormodel.model.ErrorModel` (the one insertion table).
+
+    Parameter ``k`` of kind ``joint_drive`` adds to joint ``joint_index``'s value; any other is the factor
+    ``exp([twist_k] e_k)`` at ``site`` and, with an ``undo_site``, ``exp(-[twist_k] e_k)`` first at that site.
+    """
+    robot, params = model.robot, model.params
+    n, K = robot.n_joints, len(params)
+    drives = [[] for _ in range(n)]
+    inserts = [[] for _ in range(n + 1)]  # per site: (k, sign) in order, undos first
+    for k, p in enumerate(params):
+        if p.kind == "joint_drive":
+            drives[p.joint_index].append(k)
+            continue
+        inserts[p.site].append((k, 1.0))
+        if p.undo_site is not None:
+            inserts[p.undo_site].insert(0, (k, -1.0))
+    kind, twist, joint, site, coef = [], [], [], [], []
+    for s in range(n + 1):
+        rows = [(ERROR, np.asarray(params[k].twist, float), -1, {k: sign}) for k, sign in inserts[s]]
+        if s < n:
+            rows.append((JOINT, np.asarray(robot.screws[s], float), s, {k: 1.0 for k in drives[s]}))
+        for kd, tw, j, src in rows:
+            row = np.zeros(K)
+            for k, cf in src.items():
+                row[k] += cf
+            kind.append(kd), twist.append(tw), joint.append(j), site.append(s), coef.append(row)
+    return ChainProgram(np.array(kind, np.int64), np.array(twist, float).reshape(-1, 6), np.array(joint, np.int64),
+                        np.array(site, np.int64), np.array(coef, float).reshape(-1, K),
+                        np.asarray(robot.home, float).copy())
+
+
+@dataclass(frozen=True, eq=False)
+class PoseProgram:
+    """A :class:`ChainProgram` at one pose, right to left, as the arrays both Monte Carlo engines run.
+
+    Attributes
+    ----------
+    fi : array of int, shape (F', 4)
+        ``(type, n_coefs, a, b)``: type 0 translation, 1 rotation about a base axis mixing rows ``a, b``,
+        2 general rotation.
+    fk, fcf : array of int / float, shape (F', C)
+        Parameter indices and coefficients of the amount ``const + sum_j fcf[f, j] V[fk[f, j]]``.
+    fd : array, shape (F', FD)
+        ``[const, sign of the base axis, shift of p (3), h*w (3), has_h, v or r0 (3), sin/cos of const (2),
+        A (9), A^2 (9)]`` (``A = [w]``; ``shift`` is the lazy move of ``p`` to the axis point before the factor).
+    endoff : array, shape (3,)
+        Lazy shift of ``p`` left after the last factor.
+    """
+
+    fi: np.ndarray
+    fk: np.ndarray
+    fcf: np.ndarray
+    fd: np.ndarray
+    endoff: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.fi)
+
+    @cached_property
+    def steps(self) -> list:
+        """Per factor ``(type, coefs ((k, cf), ...), a, b, fd as floats)`` for the numpy evaluator."""
+        out = []
+        for (typ, ncf, a, b), ks, cfs, d in zip(self.fi.tolist(), self.fk.tolist(), self.fcf.tolist(), self.fd.tolist()):
+            out.append((typ, tuple(zip(ks[:ncf], cfs[:ncf])), a, b, d))
+        return out
+
+
+def _pose_program(rows: list) -> PoseProgram:
+    """Flatten ``(prepared factor, const, coefs)`` rows (right to left) into a :class:`PoseProgram`."""
+    nf = len(rows)
+    nc = max([1] + [len(c) for _, _, c in rows])
+    fi = np.zeros((nf, 4), np.int64)
+    fk = np.zeros((nf, nc), np.int64)
+    fcf = np.zeros((nf, nc))
+    fd = np.zeros((nf, FD))
+    off = [0.0, 0.0, 0.0]
+    for i, (f, const, coefs) in enumerate(rows):
+        d = fd[i]
+        d[0] = const
+        for j, (k, cf) in enumerate(coefs):
+            fk[i, j], fcf[i, j] = k, cf
+        a = b = 0
+        if f["kind"] == "trans":
+            typ = 0
+            d[9:12] = f["v"]
+        else:
+            d[12], d[13] = np.sin(const), np.cos(const)
+            if f["h"] != 0.0:
+                d[8] = 1.0
+                d[5:8] = [(f["h"] * f["w"][r]) if f["w"][r] != 0.0 else 0.0 for r in range(3)]
+            r0 = f["r0"]
+            if f["axis"] is not None:
+                typ = 1
+                a, b, d[1] = f["axis"]
+                for r in (a, b):
+                    if off[r] != r0[r]:
+                        d[2 + r] = off[r] - r0[r]
+                        off[r] = r0[r]
+            else:
+                typ = 2
+                for r in range(3):
+                    d[2 + r] = off[r] - r0[r]
+                    off[r] = 0.0
+                d[9:12] = r0
+                d[14:23], d[23:32] = f["A"].ravel(), (f["A"] @ f["A"]).ravel()
+        fi[i] = (typ, len(coefs), a, b)
+    return PoseProgram(fi, fk, fcf, fd, np.array(off))
 
 
 class FastChain:
-    """Exact perturbed-chain kinematics of an :class:`ErrorModel`, vectorised over samples.
+    """The numpy evaluator of an :class:`ErrorModel`'s :class:`ChainProgram`, vectorised over samples.
 
     Parameters
     ----------
     model : ErrorModel
     """
 
-    def __init__(self, model: ErrorModel):
-        robot = model.robot
-        n = robot.n_joints
+    def __init__(self, model):
         self.model = model
-        self.K = len(model.params)
-        drives = [[] for _ in range(n)]
-        inserts = [[] for _ in range(n + 1)]  # same order as ErrorModel.perturbed_chain
-        for k, p in enumerate(model.params):
-            if p.kind == "joint_drive":
-                drives[p.joint_index].append(k)
-                continue
-            inserts[p.site].append((np.asarray(p.twist, float), k, 1.0))
-            if p.undo_site is not None:
-                inserts[p.undo_site].insert(0, (np.asarray(p.twist, float), k, -1.0))
-        factors = []  # left to right: (twist, joint index or None, [(k, sign), ...])
-        for s in range(n + 1):
-            for twist, k, sign in inserts[s]:
-                factors.append((twist, None, [(k, sign)]))
-            if s < n:
-                factors.append((np.asarray(robot.screws[s], float), s, [(k, 1.0) for k in drives[s]]))
-        self.factors = [self._prepare(*f) for f in factors]
-        self.home = np.asarray(robot.home, float)
+        cp = model.program
+        self.K = cp.coef.shape[1]
+        self.factors = [self._prepare(cp.twist[f], int(cp.joint[f]) if cp.kind[f] == JOINT else None, cp.sources(f))
+                        for f in range(cp.n_factors)]
+        self.home = cp.home
 
     @staticmethod
     def _prepare(twist, joint, sources):
@@ -79,13 +268,13 @@ class FastChain:
                 "A": hat(w), "joint": joint, "src": sources, "axis": axis}
 
     # ------------------------------------------------------------- programs
-    def program(self, q: np.ndarray, mult: np.ndarray | None = None) -> list:
-        """Factors right to left with their amounts ``const + sum(coef_k V[k])`` at pose ``q``.
+    def program(self, q: np.ndarray, mult: np.ndarray | None = None) -> PoseProgram:
+        """The chain program at pose ``q``: factors right to left, amounts ``const + sum(coef_k V[k])``.
 
         ``mult`` (K,) scales the value rows (e.g. sigma for standard-normal rows); a source
         with ``mult == 0`` is dropped, an identity factor is skipped.
         """
-        prog = []
+        rows = []
         for f in reversed(self.factors):
             const = float(q[f["joint"]]) * f["scale"] if f["joint"] is not None else 0.0
             coefs = []
@@ -95,8 +284,8 @@ class FastChain:
                     coefs.append((k, sign * f["scale"] * m))
             if not coefs and const == 0.0:
                 continue
-            prog.append((f, const, tuple(coefs)))
-        return prog
+            rows.append((f, const, tuple(coefs)))
+        return _pose_program(rows)
 
     @staticmethod
     def _amount(const, coefs, V, th):
@@ -110,7 +299,7 @@ class FastChain:
             th += const
         return th
 
-    def run(self, prog: list, V: np.ndarray, X: np.ndarray, work: dict) -> np.ndarray:
+    def run(self, prog: PoseProgram, V: np.ndarray, X: np.ndarray, work: dict) -> np.ndarray:
         """Evaluate a :meth:`program` on values ``V`` (K, N) into ``X`` (3, 4, N), in place.
 
         ``work`` holds scratch arrays ``t1, t2`` (4, N) and ``th, s, c`` (N,) (see :meth:`workspace`).
@@ -118,16 +307,12 @@ class FastChain:
         N = X.shape[2]
         for i in range(3):
             X[i] = self.home[i, :, None]
-        th_buf, s, c, t1, t2 = work["th"][:N], work["s"][:N], work["c"][:N], work["t1"][:, :N], work["t2"][:, :N]
-        off = [0.0, 0.0, 0.0]  # lazy shift of p: the pose is X with off added to column 3
-        for f, const, coefs in prog:
-            if coefs:
-                th = self._amount(const, coefs, V, th_buf)
-            else:
-                th = const
-            if f["kind"] == "trans":
+        th_buf, s, c = work["th"][:N], work["s"][:N], work["c"][:N]
+        for typ, coefs, a, b, d in prog.steps:
+            th = self._amount(d[0], coefs, V, th_buf) if coefs else d[0]
+            if typ == 0:
                 for i in range(3):
-                    vi = f["v"][i]
+                    vi = d[9 + i]
                     if vi == 0.0:
                         continue
                     if vi == 1.0 or not coefs:
@@ -146,48 +331,53 @@ class FastChain:
                     np.cos(th, out=c)
                 ss, cc = s, c
             else:
-                ss, cc = np.sin(th), np.cos(th)
-            r0 = f["r0"]
-            if f["axis"] is not None:
-                a, b, sg = f["axis"]
-                Xa, Xb = X[a], X[b]
-                for r in (a, b):  # shift p so that it is relative to the axis point r0
-                    if off[r] != r0[r]:
-                        X[r, 3] += off[r] - r0[r]
-                        off[r] = r0[r]
-                np.multiply(Xa, ss, out=t1)
-                np.multiply(Xb, ss, out=t2)
-                Xa *= cc
-                Xb *= cc
-                if sg > 0:
-                    Xa -= t2
-                    Xb += t1
-                else:
-                    Xa += t2
-                    Xb -= t1
-            else:  # general axis: R = I + s A + (1 - c) A^2 applied to the rows, p about r0
-                A = f["A"]
-                B = A @ A
-                Y = X.copy()
-                for j in range(3):
-                    Y[j, 3] += off[j] - r0[j]
-                    off[j] = 0.0
+                ss, cc = d[12], d[13]
+            if typ == 1:
+                self._rotate_base(X, a, b, d, ss, cc, work["t1"][:, :N], work["t2"][:, :N])
+            else:
+                self._rotate_general(X, d, ss, cc)
+            if d[8] != 0.0:
                 for i in range(3):
-                    row = None
-                    for j in range(3):
-                        cij = (1.0 if i == j else 0.0) + B[i, j] + A[i, j] * ss - B[i, j] * cc
-                        term = Y[j] * cij
-                        row = term if row is None else row + term
-                    X[i] = row
-                    X[i, 3] += r0[i]
-            if f["h"] != 0.0:
-                for i in range(3):
-                    if f["w"][i] != 0.0:
-                        X[i, 3] += (f["h"] * f["w"][i]) * th
+                    if d[5 + i] != 0.0:
+                        X[i, 3] += d[5 + i] * th
         for i in range(3):
-            if off[i] != 0.0:
-                X[i, 3] += off[i]
+            if prog.endoff[i] != 0.0:
+                X[i, 3] += prog.endoff[i]
         return X
+
+    @staticmethod
+    def _rotate_base(X, a, b, d, ss, cc, t1, t2):
+        """Rotation about base axis ``a x b`` (sign ``d[1]``): rows a, b mix; p first shifted by ``d[2 + r]``."""
+        Xa, Xb = X[a], X[b]
+        for r in (a, b):
+            if d[2 + r] != 0.0:
+                X[r, 3] += d[2 + r]
+        np.multiply(Xa, ss, out=t1)
+        np.multiply(Xb, ss, out=t2)
+        Xa *= cc
+        Xb *= cc
+        if d[1] > 0:
+            Xa -= t2
+            Xb += t1
+        else:
+            Xa += t2
+            Xb -= t1
+
+    @staticmethod
+    def _rotate_general(X, d, ss, cc):
+        """General axis: ``R = I + s A + (1 - c) A^2`` applied to the rows, ``p`` about the axis point ``r0``."""
+        A, B, r0 = d[14:23], d[23:32], d[9:12]
+        Y = X.copy()
+        for j in range(3):
+            Y[j, 3] += d[2 + j]
+        for i in range(3):
+            row = None
+            for j in range(3):
+                cij = (1.0 if i == j else 0.0) + B[3 * i + j] + A[3 * i + j] * ss - B[3 * i + j] * cc
+                term = Y[j] * cij
+                row = term if row is None else row + term
+            X[i] = row
+            X[i, 3] += r0[i]
 
     @staticmethod
     def workspace(N: int) -> dict:
@@ -210,112 +400,3 @@ class FastChain:
         N = V.shape[1]
         X = np.empty((3, 4, N))
         return self.run(self.program(np.asarray(q, float)), V, X, self.workspace(N))
-
-
-class ErrorFeatures:
-    """Per-sample tool-pose error features of perturbed poses relative to a nominal pose.
-
-    Parameters
-    ----------
-    T0 : array, shape (4, 4)
-        Nominal tool pose [mm].
-
-    Notes
-    -----
-    :meth:`compute` returns the rows of :data:`FEATURES`: ``dx, dy, dz`` = ``p' - p`` [mm]; the
-    rotation vector of ``R' R^T`` [rad]; ``|p' - p|``; the reach change ``|p'| - |p|`` [mm]; and the
-    X-Y-Z fixed Euler-angle errors ``euler(R') - euler(R)`` [rad] (alpha, gamma wrapped to (-pi, pi]).
-    """
-
-    def __init__(self, T0: np.ndarray):
-        T0 = np.asarray(T0, float)
-        R0, p0 = T0[:3, :3], T0[:3, 3]
-        self.R0, self.p0 = R0, p0
-        self.r0 = float(np.linalg.norm(p0))
-        a0, self.b0, g0 = euler_xyz_fixed(R0)
-        L = np.zeros((13, 3, 4))
-        L[0, :, 3] = p0  # p0 . p'
-        ca, sa, cg, sg = np.cos(a0), np.sin(a0), np.cos(g0), np.sin(g0)
-        L[1, 2, 1], L[1, 2, 2] = ca, -sa  # cos(b) sin(a - a0)
-        L[2, 2, 2], L[2, 2, 1] = ca, sa  # cos(b) cos(a - a0)
-        L[3, 1, 0], L[3, 0, 0] = cg, -sg  # cos(b) sin(g - g0)
-        L[4, 0, 0], L[4, 1, 0] = cg, sg  # cos(b) cos(g - g0)
-        L[5, 2, 0] = -1.0  # sin(b)
-        L[6, :, :3] = R0  # trace(R' R0^T)
-        for i in range(3):
-            L[7 + i, i, 3] = 1.0
-        for row, (i, j) in zip((10, 11, 12), ((2, 1), (0, 2), (1, 0))):  # antisymmetric part of E = R' R0^T
-            L[row, i, :3] += 0.5 * R0[j]
-            L[row, j, :3] -= 0.5 * R0[i]
-        self.L = L.reshape(13, 12)
-
-    def compute(self, X: np.ndarray, buf: np.ndarray, tmp: np.ndarray) -> np.ndarray:
-        """Features of chain outputs ``X`` (3, 4, N), written into ``buf`` (N_BUF, >= N); returns the (11, N) view.
-
-        ``tmp`` is scratch of shape (2, >= N).
-        """
-        N = X.shape[2]
-        B = buf[:, :N]
-        t, u = tmp[0, :N], tmp[1, :N]
-        np.matmul(self.L, X.reshape(12, N), out=B[:13])
-        for i in range(3):
-            B[7 + i] -= self.p0[i]
-        B[0] -= self.r0**2  # dp . p0
-        n2 = B[13]
-        np.multiply(B[7], B[7], out=n2)
-        for i in (8, 9):
-            np.multiply(B[i], B[i], out=t)
-            n2 += t
-        num = B[0]
-        num *= 2.0
-        num += n2  # |p'|^2 - |p|^2
-        if self.r0 > 0:
-            np.add(num, self.r0**2, out=t)
-            np.sqrt(t, out=t)
-            t += self.r0
-            np.divide(num, t, out=B[14])
-        else:
-            np.sqrt(num, out=B[14])
-        np.sqrt(n2, out=n2)
-        np.arctan2(B[1], B[2], out=B[15])
-        np.arctan2(B[3], B[4], out=B[17])
-        np.multiply(B[3], B[3], out=t)
-        np.multiply(B[4], B[4], out=u)
-        t += u
-        np.sqrt(t, out=t)
-        np.arctan2(B[5], t, out=B[16])
-        B[16] -= self.b0
-        v = B[10:13]
-        np.multiply(v[0], v[0], out=t)
-        for i in (1, 2):
-            np.multiply(v[i], v[i], out=u)
-            t += u
-        np.sqrt(t, out=t)  # sin(theta)
-        cosv = B[5]
-        np.subtract(B[6], 1.0, out=cosv)
-        cosv *= 0.5
-        theta = B[6]
-        np.arctan2(t, cosv, out=theta)
-        u.fill(1.0)
-        np.divide(theta, t, out=u, where=t > 1e-300)
-        v *= u
-        if cosv.min() < -0.999:  # near pi the antisymmetric part loses the axis: use scipy there
-            from scipy.spatial.transform import Rotation
-
-            bad = np.flatnonzero(cosv < -0.999)
-            E = np.einsum("ikn,jk->nij", X[:, :3, bad], self.R0)
-            rv = Rotation.from_matrix(E).as_rotvec()
-            v[:, bad] = rv.T
-            theta[bad] = np.linalg.norm(rv, axis=1)
-        return B[_FIRST:]
-
-    @staticmethod
-    def angle_row(buf: np.ndarray, N: int) -> np.ndarray:
-        """``|rotation vector|`` [rad] of the last :meth:`compute` (valid until the buffer is reused)."""
-        return buf[6, :N]
-
-
-def features_to_dict(F: np.ndarray) -> dict[str, np.ndarray]:
-    """Split a feature matrix (11, N) into the per-sample arrays of :func:`tolalloc.montecarlo.run.pose_errors`."""
-    return {"dp_mm": F[0:3].T.copy(), "norm_mm": F[6].copy(), "reach_mm": F[7].copy(),
-            "euler_rad": F[8:11].T.copy(), "rotvec_rad": F[3:6].T.copy()}

@@ -22,18 +22,21 @@ Kinds (internal units mm / rad):
                      random direction (Eq. 42): not Gaussian (a ring).
 ``clearance_tilt``   clearance deflection angles about the perpendicular axes.
 
-An exact perturbed chain (per-sample screws, home pose and joint offsets) and
-the first-order error Jacobian both follow from the same insertion table.
+The insertion table is built once, as the plain-array :class:`~tolalloc.errormodel.chain.ChainProgram`
+(:attr:`ErrorModel.program`); the exact perturbed chain (per-sample screws, home pose and joint offsets),
+the first-order error Jacobian and both Monte Carlo engines read it.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.kinematics import _jacobian_kernel, _prefix_lists
 from tolalloc.robot.model import Robot
@@ -188,8 +191,13 @@ class ErrorModel:
         return sample_values(self, n, rng).T
 
     # ------------------------------------------------------- exact chains
+    @cached_property
+    def program(self) -> ChainProgram:
+        """The perturbed chain as the plain-array program every evaluator reads (:mod:`tolalloc.errormodel.chain`)."""
+        return chain_program(self)
+
     def perturbed_chain(self, values: np.ndarray):
-        """Exact perturbed chains for sampled parameter values.
+        """Exact perturbed chains for sampled parameter values (the generic path, from :attr:`program`).
 
         Parameters
         ----------
@@ -204,30 +212,24 @@ class ErrorModel:
         """
         values = np.atleast_2d(np.asarray(values, dtype=float))
         N = values.shape[0]
-        robot = self.robot
-        n = robot.n_joints
+        prog = self.program
+        n = self.robot.n_joints
         dq = np.zeros((N, n))
-        inserts = [[] for _ in range(n + 1)]  # per site: (twist, values) in order, undo first
-        for k, p in enumerate(self.params):
-            if p.kind == "joint_drive":
-                dq[:, p.joint_index] += values[:, k]
-                continue
-            inserts[p.site].append((p.twist, values[:, k]))
-            if p.undo_site is not None:
-                inserts[p.undo_site].insert(0, (p.twist, -values[:, k]))
         C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
         screws = np.empty((N, n, 6))
-        for s in range(n + 1):
-            for twist, val in inserts[s]:
-                C = C @ exp_se3(val[:, None] * twist)
-            if s < n:
-                screws[:, s, :] = adjoint(C) @ robot.screws[s]
-        home = C @ robot.home
+        for f in range(prog.n_factors):
+            if prog.kind[f] == JOINT:  # E_j = exp([S'_j](q_j + dq_j)) with S'_j = Ad_C S_j
+                j = int(prog.joint[f])
+                dq[:, j] += prog.amount(f, values)
+                screws[:, j, :] = adjoint(C) @ prog.twist[f]
+            else:
+                C = C @ exp_se3(prog.amount(f, values)[:, None] * prog.twist[f])
+        home = C @ prog.home
         return screws, home, dq
 
     # ----------------------------------------------------- first order
     def jacobian(self, q: np.ndarray, *, engine: str | None = None) -> np.ndarray:
-        """First-order error Jacobian of the tool pose at ``q``.
+        """First-order error Jacobian of the tool pose at ``q`` (from :attr:`program`).
 
         Parameters
         ----------
@@ -239,43 +241,35 @@ class ErrorModel:
         -------
         J : array, shape (..., 6, K)
             Rows: tool-point position error ``dp`` [mm] (3), then the rotation
-            error ``dw`` (space frame) [rad] (3), per unit of each parameter.
+            error ``dw`` (space frame) [rad] (3), per unit of each parameter: the sum over the parameter's
+            factors ``f`` of ``coef_f Ad_{P_site(f)} twist_f`` (``P_s`` the nominal prefix product).
         """
         q = np.asarray(q, dtype=float)
         nb = _jacobian_kernel(self.robot.screws, q, engine)
         if nb is not None:
-            undo = [-1 if prm.undo_site is None else prm.undo_site for prm in self.params]
-            return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, [prm.site for prm in self.params],
-                                     undo, [prm.twist for prm in self.params])
+            return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, *self.program.param_entries())
         R, p = _prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
         batch = q.shape[:-1]
         K = len(self.params)
-        # spatial twist Ad_{P_site} xi = (R w, R v + p x R w) per parameter, grouped by insertion site
+        # spatial twist Ad_{P_site} xi = (R w, R v + p x R w) per entry, grouped by insertion site and coefficient
         Rw = np.zeros(batch + (3, K))
         Vv = np.zeros(batch + (3, K))
-        for site, idx, sign, W in self._site_groups():
+        for site, idx, cf, W in self.program.site_groups():
             Rs = np.ascontiguousarray(np.broadcast_to(R[site], batch + (3, 3)))
             rw = (Rs.reshape(-1, 3) @ W[:3]).reshape(batch + (3, len(idx)))  # one BLAS product per site
             vv = (Rs.reshape(-1, 3) @ W[3:]).reshape(batch + (3, len(idx))) + _cross_cols(p[site], rw)
-            if sign > 0:
-                Rw[..., idx], Vv[..., idx] = rw, vv
-            else:
+            if cf == 1.0:
+                Rw[..., idx] += rw
+                Vv[..., idx] += vv
+            elif cf == -1.0:
                 Rw[..., idx] -= rw
                 Vv[..., idx] -= vv
+            else:
+                Rw[..., idx] += cf * rw
+                Vv[..., idx] += cf * vv
         p_tool = (R[-1] @ self.robot.home[:3, 3]) + p[-1]  # (..., 3)
         dp = Vv - _cross_cols(p_tool, Rw)  # (..., 3, K)
         return np.concatenate([dp, Rw], axis=-2)
-
-    def _site_groups(self):
-        """(site, parameter indices, sign, twists (6, k)) of the insertions, direct ones (+1) before undos (-1)."""
-        out = []
-        twists = np.array([prm.twist for prm in self.params])
-        for sign in (1.0, -1.0):
-            sites = [prm.site if sign > 0 else prm.undo_site for prm in self.params]
-            for site in sorted({s for s in sites if s is not None}):
-                idx = [k for k, s in enumerate(sites) if s == site]
-                out.append((site, idx, sign, np.ascontiguousarray(twists[idx].T)))
-        return out
 
 
 def _cross_cols(a: np.ndarray, B: np.ndarray) -> np.ndarray:

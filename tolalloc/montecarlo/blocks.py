@@ -19,7 +19,8 @@ from tolalloc.engine import NUMBA_AVAILABLE
 from tolalloc.montecarlo.engines import numba_engine as kernel_mod
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.sampling import draw_rows
-from tolalloc.errormodel.chain import N_BUF, ErrorFeatures, FastChain, features_to_dict
+from tolalloc.errormodel.chain import FastChain
+from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
 from tolalloc.montecarlo.streaming import Extras, HistSpec, Moments
 
 __all__ = ["BLOCK_SIZE", "SUB_BLOCK", "McSpec", "run_blocks"]

@@ -29,7 +29,8 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
-from tolalloc.errormodel.chain import N_BUF, ErrorFeatures, FastChain, features_to_dict
+from tolalloc.errormodel.chain import FastChain
+from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
 from tolalloc.engine import resolve_engine
 from tolalloc.errormodel.sampling import sample_values
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks

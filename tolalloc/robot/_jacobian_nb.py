@@ -6,8 +6,9 @@ per pose computes the prefix products ``P_j = exp([S_1] q_1) ... exp([S_j] q_j)`
 
 * :func:`space_jacobian` -- the columns ``Ad_{P_{j-1}} S_j`` of :func:`tolalloc.robot.kinematics.space_jacobian`;
 * :func:`error_jacobian` -- the rows ``dp = V_v - p_tool x V_w``, ``dw = V_w`` of
-  :meth:`tolalloc.errormodel.model.ErrorModel.jacobian`, with ``V_k = Ad_{P_s} xi_k - Ad_{P_u} xi_k`` (the undo term
-  only where an undo site exists) and ``p_tool = R_n home_p + p_n``.
+  :meth:`tolalloc.errormodel.model.ErrorModel.jacobian`, with ``V_k = sum_e coef_e Ad_{P_site(e)} xi_e`` over the
+  parameter's entries in the chain program (plain arrays: +1 at its site, -1 at an undo site) and
+  ``p_tool = R_n home_p + p_n``.
 
 The numpy functions stay the reference: the results equal theirs to rounding (tested to 1e-12 relative).
 Compiled code is cached on disk (``cache=True``); the first call in a fresh environment compiles (~1-2 s).
@@ -80,7 +81,7 @@ def _space_kernel(S, Q, J):
 
 
 @njit(nogil=True, cache=True, error_model="numpy")
-def _error_kernel(S, home_p, Q, site, undo, X, J):
+def _error_kernel(S, home_p, Q, ptr, site, coef, X, J):
     n = S.shape[0]
     R = np.empty((n + 1, 3, 3))
     p = np.empty((n + 1, 3))
@@ -92,13 +93,14 @@ def _error_kernel(S, home_p, Q, site, undo, X, J):
         t0 = (Rn[0, 0] * home_p[0] + Rn[0, 1] * home_p[1] + Rn[0, 2] * home_p[2]) + pn[0]
         t1 = (Rn[1, 0] * home_p[0] + Rn[1, 1] * home_p[1] + Rn[1, 2] * home_p[2]) + pn[1]
         t2 = (Rn[2, 0] * home_p[0] + Rn[2, 1] * home_p[1] + Rn[2, 2] * home_p[2]) + pn[2]
-        for k in range(X.shape[0]):
-            _ad(R[site[k]], p[site[k]], X[k], V)
-            u = undo[k]
-            if u >= 0:
-                _ad(R[u], p[u], X[k], U)
+        for k in range(ptr.shape[0] - 1):
+            for r in range(6):
+                V[r] = 0.0
+            for e in range(ptr[k], ptr[k + 1]):  # V = sum_e coef_e Ad_{P_site_e} X_e
+                _ad(R[site[e]], p[site[e]], X[e], U)
+                c = coef[e]
                 for r in range(6):
-                    V[r] = V[r] - U[r]
+                    V[r] = V[r] + c * U[r]
             J[i, 0, k] = V[3] - (t1 * V[2] - t2 * V[1])
             J[i, 1, k] = V[4] - (t2 * V[0] - t0 * V[2])
             J[i, 2, k] = V[5] - (t0 * V[1] - t1 * V[0])
@@ -114,12 +116,14 @@ def space_jacobian(screws: np.ndarray, q: np.ndarray) -> np.ndarray:
     return J
 
 
-def error_jacobian(screws, home_p, q, site, undo, twists) -> np.ndarray:
-    """Error Jacobians, shape (P, 6, K): sites (K,) in 0..n, undo sites (K,) (-1: none), unit twists (K, 6)."""
+def error_jacobian(screws, home_p, q, ptr, site, coef, twists) -> np.ndarray:
+    """Error Jacobians, shape (P, 6, K), from a chain program's entries (CSR by parameter, see
+    :meth:`tolalloc.errormodel.chain.ChainProgram.param_entries`): ``ptr`` (K + 1,), per entry its site in 0..n,
+    coefficient and twist (E, 6)."""
     S = np.ascontiguousarray(screws, dtype=float)
     Q = np.ascontiguousarray(q, dtype=float)
     X = np.ascontiguousarray(twists, dtype=float)
-    J = np.empty((Q.shape[0], 6, X.shape[0]))
-    _error_kernel(S, np.ascontiguousarray(home_p, dtype=float), Q, np.asarray(site, np.int64),
-                  np.asarray(undo, np.int64), X, J)
+    J = np.empty((Q.shape[0], 6, len(ptr) - 1))
+    _error_kernel(S, np.ascontiguousarray(home_p, dtype=float), Q, np.asarray(ptr, np.int64),
+                  np.asarray(site, np.int64), np.ascontiguousarray(coef, dtype=float), X, J)
     return J
