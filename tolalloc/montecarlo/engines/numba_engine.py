@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.engine import NUMBA_AVAILABLE
-from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import FD
 
 __all__ = ["compile_programs", "block_stats", "fill_standard_normal"]
