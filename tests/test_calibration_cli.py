@@ -61,3 +61,24 @@ def test_few_poses_name_unidentifiable(tmp_path, capsys):
     assert main(["calplan", "tool_changer", "--n-poses", "2", "--n-candidates", "64", "--out", str(out)]) == 0
     text = capsys.readouterr().out
     assert "not identifiable with this plan" in text and "dth1" in text
+
+
+def test_allocate_with_repeatability_grades_from_the_costs_file(tc, tmp_path, capsys):
+    """A `grade` table in the costs file's [calibration] section makes the repeatability a priced decision."""
+    import json
+
+    plan = tmp_path / "plan.csv"
+    rng = np.random.default_rng(0)
+    write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, plan)
+    costs = tmp_path / "costs.toml"
+    costs.write_text('[calibration.kinds.joint_drive.grade]\nmodel = "reciprocal"\na = 0.2\nb = 0.3\n'
+                     't_ref_deg = 0.001\nt_min_deg = 0.0003\nt_max_deg = 0.01\n', encoding="utf-8")
+    out = tmp_path / "res"
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--costs", str(costs), "--no-verify",
+               "--out", str(out)])
+    text = capsys.readouterr().out
+    assert rc == 0 and "repeatability grades" in text
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["cost"] == pytest.approx(summary["cost_parts"] + summary["cost_repeatability_grades"])
+    assert summary["cost_repeatability_grades"] > 0
+    assert "repeatability_grade" in (out / "calibrated_tolerances.csv").read_text().splitlines()[0]

@@ -23,6 +23,14 @@ The calibration's measurements see the random parts as noise; the whitening uses
 previous iterate (the first: the process upper limits) and the random variances are constrained not to exceed
 them, so the posterior used is never optimistic. The final design is re-checked with
 :func:`tolalloc.calibration.posterior.posterior` at the design's own sigmas.
+
+Repeatability grades (``grade`` tables of the costs file's ``[calibration]`` section, see
+:mod:`tolalloc.calibration.split`): the random part of a systematic parameter (e.g. a joint's encoder /
+transmission repeatability) becomes a decision variable with its own cost law and process limits, in the scaled
+variance ``v = (t / t_ref)**2`` of its band ``+-t`` (``sigma = t / z``). It enters the LMI affinely (``- v s_g^2
+J_k J_k^T`` in the lower-right block) and the whitening like the random-only parts (at the previous iterate, never
+loosened). The no-calibration baseline buys the loosest grade (the requirement without calibration is stated on the
+error model's sigmas, which do not include the repeatability).
 """
 
 from __future__ import annotations
@@ -71,6 +79,9 @@ class CalibratedAllocation:
     post: Posterior | None
     ratio: float
     iterations: int
+    grade_t: np.ndarray | None = None
+    grade_cost: float = 0.0
+    grade_cost_loosest: float = 0.0
 
     @property
     def certified(self) -> bool:
@@ -96,17 +107,23 @@ class CalibratedAllocation:
                 status.append("loose (at t_max)")
             else:
                 status.append("must be held" + ("" if sp.systematic[k] else " (random)"))
-        return pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
-                             "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
-                             if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
-                             "sigma_post_calibration": postsig * f, "sigma_random": np.sqrt(self.post.random_var) * f,
-                             "status": status, "cost": pr.param_costs(self.design.t)})
+        df = pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
+                           "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
+                           if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
+                           "sigma_post_calibration": postsig * f, "sigma_random": np.sqrt(self.post.random_var) * f,
+                           "status": status, "cost": pr.param_costs(self.design.t)})
+        if self.grade_t is not None:
+            df["repeatability_grade"] = self.grade_t * f
+            df["repeatability_grade_cost"] = _grades(pr, sp).costs_full(self.grade_t)
+        return df
 
     def summary(self) -> dict:
-        base = self.baseline.cost if self.baseline.ok else None
-        return {"cost": self.design.cost, "cost_no_calibration": base,
-                "saving": None if base is None else base - self.design.cost,
-                "saving_pct": None if base is None else 100 * (base - self.design.cost) / base,
+        base = self.baseline.cost + self.grade_cost_loosest if self.baseline.ok else None
+        cost = self.design.cost + self.grade_cost
+        return {"cost": cost, "cost_parts": self.design.cost, "cost_repeatability_grades": self.grade_cost,
+                "cost_no_calibration": base,
+                "saving": None if base is None else base - cost,
+                "saving_pct": None if base is None else 100 * (base - cost) / base,
                 "certified": self.certified, "ratio": self.ratio, "iterations": self.iterations,
                 "unidentifiable": list(self.post.unidentifiable) if self.post is not None else []}
 
@@ -127,6 +144,66 @@ def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan)
                                 "calibration-aware allocation does not support for systematic parameters; use "
                                 "reciprocal or reciprocal_power in the costs file.")
     return E
+
+
+@dataclass(frozen=True, eq=False)
+class _Grades:
+    """Allocatable repeatability grades of a split.
+
+    ``idx`` (G,) parameter indices; ``models`` their cost laws; ``t_ref`` (G,) [mm or rad]; ``z`` the costs file's
+    sigma factor; ``v_min``, ``v_max`` (G,) process limits of the scaled variance ``v = (t / t_ref)**2``.
+    """
+
+    idx: np.ndarray
+    models: tuple
+    t_ref: np.ndarray
+    z: float
+    v_min: np.ndarray
+    v_max: np.ndarray
+
+    def sigma(self, v) -> np.ndarray:
+        """Random-part sigma (G,) [mm or rad] at scaled variances ``v``."""
+        return self.t_ref * np.sqrt(np.asarray(v, float)) / self.z
+
+    def split_at(self, split: ErrorSplit, v) -> ErrorSplit:
+        """``split`` with the graded random parts at ``v``."""
+        rnd = split.random_sigma.copy()
+        rnd[self.idx] = self.sigma(v)
+        return split.with_random_sigma(rnd)
+
+    def costs_full(self, t_full) -> np.ndarray:
+        """Cost per parameter (K,) of bands ``t_full`` (NaN where a parameter has no grade)."""
+        out = np.full(len(t_full), np.nan)
+        for g, k in enumerate(self.idx):
+            out[k] = float(self.models[g].cost(t_full[k]))
+        return out
+
+    def total(self, v) -> float:
+        """Total cost of the grades at ``v``."""
+        t = self.t_ref * np.sqrt(np.asarray(v, float))
+        return float(sum(float(cm.cost(tg)) for cm, tg in zip(self.models, t)))
+
+
+def _grades(problem: AllocationProblem, split: ErrorSplit) -> _Grades:
+    """Resolve the split's grade tables into cost models (costs-file syntax and checks)."""
+    from tolalloc.allocate.costs import _check_entry, _cost_model
+
+    idx = split.graded
+    models = []
+    for k in idx:
+        p = problem.model.params[k]
+        where = f"calibration grade of {p.name}"
+        entry = split.grade[k]
+        _check_entry(entry, where)
+        bad = [key for key in entry if key in ("fixed", "exclude") or key.startswith("tol_")]
+        if bad:
+            raise TolallocError(f"{where}: {', '.join(bad)} has no meaning for a grade; give model, a, b, k, "
+                                f"t_ref_{p.interface_unit}, t_min_{p.interface_unit}, t_max_{p.interface_unit}.")
+        models.append(_cost_model(entry, p, where))
+    t_ref = np.array([cm.t_ref for cm in models])
+    return _Grades(idx, tuple(models), t_ref, float(problem.costs.z),
+                   np.array([(cm.t_min / cm.t_ref) ** 2 for cm in models]),
+                   np.array([(cm.t_max / cm.t_ref) ** 2 for cm in models]))
 
 
 def _cost_omega(cm, om, om0):
@@ -152,8 +229,10 @@ def _information(problem, split, plan, E, u_rand_max):
     return G.T @ G
 
 
-def _solve_step(problem, split, plan, E, om0, u_rand_max):
-    """One convex MM step: returns (omega (Ke,), u (Ka,)) or None if infeasible.
+def _solve_step(problem, split, plan, E, om0, u_rand_max, gr: _Grades, v_max):
+    """One convex MM step: returns (omega (Ke,), u (Ka,), v (G,)) or None if infeasible.
+
+    ``split`` carries the graded random parts at ``v_max`` (the whitening); ``v <= v_max``.
 
     Parameters that touch neither the working poses' position rows nor the information (e.g. rotations about an
     axis through the tool point) drop out of the LMIs exactly; they get their loosest tolerance.
@@ -187,7 +266,12 @@ def _solve_step(problem, split, plan, E, om0, u_rand_max):
         if k in a_pos:
             cons.append(u[a_pos[k]] <= u_rand_max[a_pos[k]])
             cost += pr.costs.models[k].cost_u(u[a_pos[k]], "cvxpy")
+    v = cp.Variable(len(gr.idx))
+    if len(gr.idx):
+        cons += [v >= gr.v_min, v <= v_max]
+        cost += sum(cm.cost_u(v[g], "cvxpy") for g, cm in enumerate(gr.models))
     fixed_var = np.where(split.systematic, split.random_sigma, 0.0) ** 2  # repeatability variances
+    fixed_var[gr.idx] = 0.0
     for k in R_idx:
         if k not in a_pos:
             fixed_var[k] = (pr.costs.fixed_tol[k] / z) ** 2
@@ -198,6 +282,8 @@ def _solve_step(problem, split, plan, E, om0, u_rand_max):
         for k in R_idx:
             if k in a_pos:
                 S = S - u[a_pos[k]] * (s[k] ** 2) * np.outer(J[p][:, k], J[p][:, k])
+        for g, k in enumerate(gr.idx):
+            S = S - v[g] * (gr.t_ref[g] / gr.z) ** 2 * np.outer(J[p][:, k], J[p][:, k])
         M = cp.bmat([[Lam, JEs[p][:, live].T], [JEs[p][:, live], S]])
         cons.append(0.5 * (M + M.T) >> 0)
     prob = cp.Problem(cp.Minimize(cost), cons)
@@ -207,7 +293,8 @@ def _solve_step(problem, split, plan, E, om0, u_rand_max):
     if prob.status not in ("optimal", "optimal_inaccurate") or om.value is None:
         return None
     om_out[live] = om.value
-    return om_out, (np.asarray(u.value, float) if len(pr.alloc) else np.zeros(0))
+    v_out = np.clip(np.asarray(v.value, float), gr.v_min, v_max) if len(gr.idx) else np.zeros(0)
+    return om_out, (np.asarray(u.value, float) if len(pr.alloc) else np.zeros(0)), v_out
 
 
 def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, split: ErrorSplit | None = None,
@@ -230,27 +317,29 @@ def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, sp
     t0 = time.perf_counter()
     split = split or split_errors(problem.model)
     E = _check(problem, split, plan)
+    gr = _grades(problem, split)
     baseline = solve_rule(problem, "lmi")
     pr = problem
     a_pos = {k: i for i, k in enumerate(pr.alloc)}
     u_start = pr.u_from_t(baseline.t) if baseline.ok else pr.u_max.copy()
     om0 = np.array([1.0 / u_start[a_pos[k]] if k in a_pos else 1.0 for k in E])
-    u_rand_max = pr.u_max.copy()
-    best, last_cost, it = None, np.inf, 0
+    u_rand_max, v_max = pr.u_max.copy(), gr.v_max.copy()
+    best, v_best, last_cost, it = None, v_max, np.inf, 0
     for it in range(1, max_iter + 1):
-        step = _solve_step(pr, split, plan, E, om0, u_rand_max)
+        step = _solve_step(pr, gr.split_at(split, v_max), plan, E, om0, u_rand_max, gr, v_max)
         if step is None:
             break
-        om, u = step
+        om, u, v = step
         for i, k in enumerate(E):
             if k in a_pos:
                 u[a_pos[k]] = 1.0 / om[i]
         u = np.clip(u, pr.u_min, pr.u_max)
         t = pr.t_from_u(u)
-        cost = float(pr.param_costs(t).sum())
-        best = t
+        cost = float(pr.param_costs(t).sum()) + gr.total(v)
+        best, v_best = t, v
         om0 = np.maximum(om, 1e-12)
         u_rand_max = np.where(np.isin(pr.alloc, split.sys_index), pr.u_max, u)
+        v_max = v
         if abs(last_cost - cost) <= rtol * max(cost, 1e-12):
             break
         last_cost = cost
@@ -259,10 +348,14 @@ def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, sp
         return CalibratedAllocation(pr, Design("calibrated-lmi", "infeasible", time_s=dt,
                                                message="no design meets the requirement after this calibration "
                                                        "within the process limits"), baseline, None, np.inf, it)
-    best, ratio, post = _repair(pr, split, plan, best)
+    best, ratio, post = _repair(pr, gr.split_at(split, v_best), plan, best)
     design = make_design(pr, "calibrated-lmi", best, time_s=time.perf_counter() - t0,
                          message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum")
-    return CalibratedAllocation(pr, design, baseline, post, ratio, it)
+    grade_t = None
+    if len(gr.idx):
+        grade_t = np.full(len(pr.model.params), np.nan)
+        grade_t[gr.idx] = gr.t_ref * np.sqrt(v_best)
+    return CalibratedAllocation(pr, design, baseline, post, ratio, it, grade_t, gr.total(v_best), gr.total(gr.v_max))
 
 
 def post_ratio(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan, t):

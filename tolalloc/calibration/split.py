@@ -23,6 +23,20 @@ Overrides (the costs file's ``[calibration]`` table, or a dict of the same shape
 
 ``repeatability_*`` is a standard deviation; the random part of a non-systematic parameter is its whole
 error-model sigma.
+
+The random part of a systematic parameter can also be *chosen* by the calibration-aware allocation, like a
+tolerance, with its own cost law and process limits (e.g. encoder / transmission grades)::
+
+    [calibration.kinds.joint_drive.grade]
+    model = "reciprocal"             # any cost law of the costs file (a, b, k, t_ref_*, t_min_*, t_max_*)
+    a = 0.2
+    b = 0.3
+    t_ref_deg = 0.001                # a grade is a repeatability band +-t, sigma = t / z (z of the costs file)
+    t_min_deg = 0.0003
+    t_max_deg = 0.003
+
+A ``grade`` replaces ``repeatability_*`` for that parameter (a parameter-level entry overrides the kind's); it is
+allowed only for parameters with a systematic part (a random-only parameter's tolerance is allocated already).
 """
 
 from __future__ import annotations
@@ -47,7 +61,7 @@ DEFAULT_SPLIT = {
     "clearance_radial": {"systematic": False},
     "clearance_tilt": {"systematic": False},
 }
-_KEYS = {"systematic", "repeatability_deg", "repeatability_rad", "repeatability_mm", "repeatability_m"}
+_KEYS = {"systematic", "grade", "repeatability_deg", "repeatability_rad", "repeatability_mm", "repeatability_m"}
 _FACTOR = {"deg": ("rad", np.pi / 180), "rad": ("rad", 1.0), "mm": ("mm", 1.0), "m": ("mm", 1000.0)}
 
 
@@ -62,11 +76,22 @@ class ErrorSplit:
         Whether the parameter has a systematic part (prior sigma = the model's sigma).
     random_sigma : array, shape (K,) [mm or rad]
         Standard deviation of the random part.
+    grade : tuple of (dict or None), length K, optional
+        Per parameter, the raw cost-law table of an allocatable repeatability grade (``None``: the random part is
+        fixed at ``random_sigma``); resolved into a cost model by :mod:`tolalloc.allocate.calibrated`.
     """
 
     model: ErrorModel
     systematic: np.ndarray
     random_sigma: np.ndarray
+    grade: tuple | None = None
+
+    @property
+    def graded(self) -> np.ndarray:
+        """Indices of the parameters whose random part is an allocatable grade, shape (G,)."""
+        if self.grade is None:
+            return np.zeros(0, int)
+        return np.array([k for k, g in enumerate(self.grade) if g is not None], int)
 
     @property
     def sys_index(self) -> np.ndarray:
@@ -96,11 +121,11 @@ class ErrorSplit:
     def with_model(self, model: ErrorModel) -> "ErrorSplit":
         """The same split on a model with new sigmas (same parameters); random-only parts follow the new sigma."""
         rnd = np.where(self.systematic, self.random_sigma, model.sigma)
-        return ErrorSplit(model, self.systematic.copy(), rnd)
+        return ErrorSplit(model, self.systematic.copy(), rnd, self.grade)
 
     def with_random_sigma(self, random_sigma) -> "ErrorSplit":
         """A copy with new random-part sigmas, shape (K,) [mm or rad]."""
-        return ErrorSplit(self.model, self.systematic.copy(), np.asarray(random_sigma, float).copy())
+        return ErrorSplit(self.model, self.systematic.copy(), np.asarray(random_sigma, float).copy(), self.grade)
 
     def to_frame(self) -> pd.DataFrame:
         """One row per parameter: kind, systematic?, prior sigma and random sigma in the interface unit."""
@@ -126,6 +151,14 @@ def _entry(p, entry: dict, where: str, out: dict) -> None:
         if not isinstance(entry["systematic"], bool):
             raise TolallocError(f"{where}.systematic: expected true or false, got {entry['systematic']!r}.")
         out["systematic"] = entry["systematic"]
+    if "grade" in entry:
+        if any(key.startswith("repeatability_") for key in entry):
+            raise TolallocError(f"{where}: give either a fixed repeatability_* or an allocatable grade, not both.")
+        if not isinstance(entry["grade"], dict):
+            raise TolallocError(f"{where}.grade: expected a cost-law table such as {{ model = \"reciprocal\", a = 0.2, "
+                                f"b = 0.3, t_ref_{p.interface_unit} = ..., t_min_{p.interface_unit} = ..., "
+                                f"t_max_{p.interface_unit} = ... }}, got {entry['grade']!r}.")
+        out["grade"], out["grade_where"] = entry["grade"], f"{where}.grade"
     for key, value in entry.items():
         if not key.startswith("repeatability_"):
             continue
@@ -140,6 +173,7 @@ def _entry(p, entry: dict, where: str, out: dict) -> None:
         if isinstance(value, bool) or not np.isfinite(v) or v < 0:
             raise TolallocError(f"{where}.{key}: expected a finite standard deviation >= 0, got {value!r}.")
         out["repeatability"] = v * fac
+        out["grade"] = None
 
 
 def split_errors(model: ErrorModel, overrides: dict | None = None) -> ErrorSplit:
@@ -169,9 +203,10 @@ def split_errors(model: ErrorModel, overrides: dict | None = None) -> ErrorSplit
             raise TolallocError(f"calibration.parameters: unknown error parameter {nm!r}; known: {', '.join(model.names)}.")
     sys_ = np.zeros(len(model.params), bool)
     rnd = np.zeros(len(model.params))
+    grades: list = []
     for k, p in enumerate(model.params):
         key = _kind_key(p)
-        spec: dict = {"repeatability": 0.0}
+        spec: dict = {"repeatability": 0.0, "grade": None}
         _entry(p, DEFAULT_SPLIT[key], f"default split of {key}", spec)
         if key in kinds:
             _entry(p, kinds[key], f"calibration.kinds.{key}", spec)
@@ -179,4 +214,9 @@ def split_errors(model: ErrorModel, overrides: dict | None = None) -> ErrorSplit
             _entry(p, pars[p.name], f"calibration.parameters.{p.name}", spec)
         sys_[k] = spec["systematic"]
         rnd[k] = spec["repeatability"] if sys_[k] else p.sigma
-    return ErrorSplit(model, sys_, rnd)
+        if spec["grade"] is not None and not sys_[k]:
+            raise TolallocError(f"{spec['grade_where']}: {p.name} has no systematic part (systematic = false), so its "
+                                "whole error is random and its tolerance is allocated by the costs file already; "
+                                "drop the grade or set systematic = true.")
+        grades.append(spec["grade"])
+    return ErrorSplit(model, sys_, rnd, tuple(grades) if any(g is not None for g in grades) else None)

@@ -107,6 +107,9 @@ def run_calibrated(args, problem, set_name) -> int:
     print(f"design: {res.design.solver} ({verdict}; {res.design.message})   cost {s['cost']:.4f}   "
           f"without calibration {base}" + ("" if s["saving"] is None else
                                            f"   saving {s['saving']:.4f} ({s['saving_pct']:.2f}%)"))
+    if res.grade_t is not None:
+        print(f"  of which repeatability grades {s['cost_repeatability_grades']:.4f} (parts {s['cost_parts']:.4f}); "
+              f"without calibration: the loosest grades, {res.grade_cost_loosest:.4f}")
     table = res.to_frame()
     print()
     print(table.to_string(index=False, float_format=lambda x: f"{x:.5g}"))
