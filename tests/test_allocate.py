@@ -113,8 +113,9 @@ def test_snapping_tightens_and_rechecks(result):
 
 def test_guard_falls_back_to_certified(result):
     d = solve_exact(result.problem, result.certified, max_rounds=0)  # no IPOPT run: must fall back
-    assert d.solver.startswith("exact (fallback: certified")
-    assert d.cost == result.certified.cost and "guard" in d.message
+    assert d.solver == result.certified.solver and d.solver.certified and d.fallback_from == "exact"
+    assert d.label == f"{result.certified.solver} (fallback from exact)"
+    assert d.cost == result.certified.cost and "guard" in d.message and "max_rounds = 0" in d.message
 
 
 def test_infeasible_limits_are_stated(robot):

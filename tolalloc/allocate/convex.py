@@ -21,7 +21,7 @@ import warnings
 
 import numpy as np
 
-from tolalloc.allocate.problem import TRACE_RULE_MIN_P, AllocationProblem, Design, make_design
+from tolalloc.allocate.problem import NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver, make_design
 
 __all__ = ["solve_certified", "solve_rule"]
 
@@ -56,12 +56,14 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     -------
     Design
         ``status`` ``optimal``, ``infeasible`` (the rule cannot be met within the limits),
-        ``not_applicable`` (trace rule with ``p < 0.785``) or ``failed``.
+        ``not_applicable`` (trace rule with ``p < 0.785``), ``failed``, or ``not_converged`` (Clarabel ended
+        ``optimal_inaccurate`` even with its default tolerances, or the repair below did not restore the rule:
+        the design is kept for reference, never called certified).
     """
     import cvxpy as cp
 
     t0 = time.perf_counter()
-    solver = f"certified-{rule}"
+    solver = Solver(f"certified-{rule}")
     if rule == "trace" and min(b["prob"] for b in problem.blocks) < TRACE_RULE_MIN_P:
         return Design(solver, "not_applicable", message=f"the trace rule is valid only for p >= {TRACE_RULE_MIN_P}")
     Ka = len(problem.alloc)
@@ -107,7 +109,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
                       message=f"the {rule} rule cannot be met within the process limits")
     if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
         return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
-    uv = _repair(problem, rule, np.clip(u.value, u_min, u_max))
+    uv, rho = _repair(problem, rule, np.clip(u.value, u_min, u_max))
     duals = []
     for kind, c in pose_cons:
         if kind == "vector":
@@ -118,9 +120,15 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     K = len(problem.costs.names)
     bound_dual = np.zeros(K)
     bound_dual[problem.alloc] = np.asarray(lo.dual_value, float) - np.asarray(hi.dual_value, float)
-    msg = "" if prob.status == "optimal" else f"Clarabel status {prob.status}"
+    status, msg = "optimal", ""
+    if prob.status != "optimal":
+        status, msg = NOT_CONVERGED, f"Clarabel did not converge (status {prob.status})"
+    if rho > 1.0:
+        status = NOT_CONVERGED
+        msg = (msg + "; " if msg else "") + (f"the repair stopped without a successful re-check: the {rule} rule "
+                                             f"is exceeded by a factor {rho:.6g}")
     return make_design(problem, solver, problem.t_from_u(uv), pose_dual=pose_dual, bound_dual=bound_dual,
-                       time_s=dt, message=msg)
+                       time_s=dt, message=msg, status=status)
 
 
 def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
@@ -136,14 +144,18 @@ def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
     return out
 
 
-def _repair(problem: AllocationProblem, rule: str, u):
-    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly."""
-    for _ in range(3):
-        rho = rule_ratio(problem, rule, u)
+def _repair(problem: AllocationProblem, rule: str, u, rounds: int = 3):
+    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly.
+
+    Returns ``(u, rho)`` with ``rho`` the rule ratio re-checked after the last step (``<= 1``: certified).
+    """
+    rho = rule_ratio(problem, rule, u)
+    for _ in range(rounds):
         if rho <= 1.0:
             break
         u = np.clip(u / (rho * (1 + 1e-12)), problem.u_min, problem.u_max)
-    return u
+        rho = rule_ratio(problem, rule, u)
+    return u, rho
 
 
 def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:
@@ -151,7 +163,9 @@ def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:
     tr = solve_rule(problem, "trace")
     lmi = solve_rule(problem, "lmi")
     cands = [d for d in (tr, lmi) if d.ok]
-    if not cands:
-        return (tr, lmi) if tr.status != "not_applicable" else (lmi, tr)
+    if not cands:  # a non-converged design is kept (labelled so) before an infeasible or inapplicable one
+        rank = {NOT_CONVERGED: 0, "infeasible": 1, "failed": 2, "not_applicable": 3}
+        kept = min((tr, lmi), key=lambda d: rank.get(d.status, 2))
+        return kept, (lmi if kept is tr else tr)
     best = min(cands, key=lambda d: d.cost)
     return (best, lmi if best is tr else tr)

@@ -23,6 +23,7 @@ with every tolerance at its process limit, and the limits that bind) and snaps t
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from enum import StrEnum
 
 import numpy as np
 from scipy.stats import chi2
@@ -32,7 +33,8 @@ from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
-__all__ = ["AllocationProblem", "Design", "LimitReport", "build_problem", "make_design", "check_process_limits", "TRACE_RULE_MIN_P"]
+__all__ = ["AllocationProblem", "Design", "Solver", "NOT_CONVERGED", "LimitReport", "build_problem", "make_design",
+           "check_process_limits", "TRACE_RULE_MIN_P"]
 
 #: The trace rule is a valid sufficient condition only for p at or above this (Szekely & Bakirov 2003).
 TRACE_RULE_MIN_P = 0.785
@@ -189,16 +191,38 @@ def _block(name, rows, radius, prob, J, alloc, fixed, t_ref, sig, z) -> dict:
 
 
 # ------------------------------------------------------------------------ results
+#: ``Design.status`` of a design whose solver stopped without converging (issue 11): never certified or exact.
+NOT_CONVERGED = "not_converged"
+
+
+class Solver(StrEnum):
+    """The method that produced a design (``Design.solver``); compares equal to its string value."""
+
+    CERTIFIED_TRACE = "certified-trace"
+    CERTIFIED_LMI = "certified-lmi"
+    EXACT = "exact"
+    STANDARD = "standard"  # snapped to standard grades, re-checked by the linear P
+    CALIBRATED_LMI = "calibrated-lmi"
+    PROCESS_LIMITS = "process-limits"  # every tolerance at its tightest limit (reference when infeasible)
+
+    @property
+    def certified(self) -> bool:
+        """Whether a converged design of this solver carries the certified (sufficient) rule."""
+        return self in (Solver.CERTIFIED_TRACE, Solver.CERTIFIED_LMI)
+
+
 @dataclass(frozen=True, eq=False)
 class Design:
     """One allocated design.
 
     Attributes
     ----------
-    solver : str
-        ``certified-trace``, ``certified-lmi``, ``exact``, ``standard`` (snapped) ...
+    solver : Solver
+        The method that produced ``t`` (``certified-trace``, ``certified-lmi``, ``exact``, ``standard`` ...).
     status : str
-        ``optimal``, ``infeasible``, ``not_applicable`` or ``failed``.
+        ``optimal``, ``infeasible``, ``not_applicable``, ``failed``, ``violated`` (snapped design) or
+        ``not_converged`` (the solver stopped without converging: ``t`` is shown for reference, never called
+        certified, exact or optimal; ``ok`` is False).
     t : array, shape (K,) [mm or rad] or None
         Half-widths of all parameters (fixed ones included).
     cost : float
@@ -214,9 +238,12 @@ class Design:
         ``t_min``, ``t_max`` or ``""`` per parameter.
     time_s : float
     message : str
+    fallback_from : Solver or None
+        The solver that was asked for when this design is a fallback (e.g. ``exact`` when IPOPT failed or
+        was not accepted and the certified design was kept).
     """
 
-    solver: str
+    solver: Solver
     status: str
     t: np.ndarray | None = None
     cost: float = float("nan")
@@ -226,14 +253,33 @@ class Design:
     at_limit: tuple = ()
     time_s: float = 0.0
     message: str = ""
+    fallback_from: Solver | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "solver", Solver(self.solver))
+        if self.fallback_from is not None:
+            object.__setattr__(self, "fallback_from", Solver(self.fallback_from))
 
     @property
     def ok(self) -> bool:
         return self.status == "optimal" and self.t is not None
 
+    @property
+    def label(self) -> str:
+        """Human label: the solver, the fallback and any status other than optimal, e.g.
+        ``certified-lmi (fallback from exact)`` or ``exact (NOT CONVERGED)``."""
+        out = str(self.solver)
+        if self.fallback_from is not None:
+            out += f" (fallback from {self.fallback_from})"
+        if self.status == NOT_CONVERGED:
+            out += " (NOT CONVERGED)"
+        elif self.status != "optimal":
+            out += f" ({self.status})"
+        return out
 
-def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, bound_dual=None, time_s=0.0,
-                message="", status="optimal") -> Design:
+
+def make_design(problem: AllocationProblem, solver: Solver | str, t, *, pose_dual=None, bound_dual=None, time_s=0.0,
+                message="", status="optimal", fallback_from: Solver | str | None = None) -> Design:
     """Evaluate cost, probabilities and limit flags of half-widths ``t`` (K,) into a :class:`Design`."""
     t = np.asarray(t, dtype=float)
     at = []
@@ -248,7 +294,8 @@ def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, b
             at.append("")
     return Design(solver, status, t, float(problem.param_costs(t).sum()), problem.probabilities(t),
                   None if pose_dual is None else np.asarray(pose_dual, float),
-                  None if bound_dual is None else np.asarray(bound_dual, float), tuple(at), float(time_s), message)
+                  None if bound_dual is None else np.asarray(bound_dual, float), tuple(at), float(time_s), message,
+                  fallback_from)
 
 
 @dataclass(frozen=True, eq=False)

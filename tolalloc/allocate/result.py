@@ -22,7 +22,8 @@ class AllocationResult:
     Attributes
     ----------
     problem : AllocationProblem
-    status : {"optimal", "infeasible"}
+    status : {"optimal", "infeasible", "not_converged"}
+        ``not_converged``: the chosen solver stopped without converging; ``design`` is its point, labelled so.
     solver : {"exact", "certified"}
         The solver asked for.
     design : Design
@@ -95,7 +96,8 @@ class AllocationResult:
         def cost(d):
             return None if d is None or not d.ok else d.cost
 
-        cert, ex = cost(self.certified), cost(self.exact)
+        exact_ok = self.exact is not None and self.exact.fallback_from is None  # a fallback is no exact design
+        cert, ex = cost(self.certified), (cost(self.exact) if exact_ok else None)
         out = {
             "robot": robot.name,
             "sigma_set": pr.model.sigma_set,
@@ -103,18 +105,22 @@ class AllocationResult:
                             "angle_radius_deg": None if pr.angle_radius_rad is None else float(np.rad2deg(pr.angle_radius_rad)),
                             "angle_prob": pr.angle_prob if pr.angle_radius_rad is not None else None},
             "status": self.status,
-            "solver": self.design.solver,
+            "solver": str(self.design.solver),
             "solver_requested": self.solver,
+            "fallback_from": None if self.design.fallback_from is None else str(self.design.fallback_from),
+            "design_status": self.design.status,
+            "design_label": self.design.label,
             "cost": self.design.cost,
             "z": pr.costs.z,
             "distribution": pr.costs.distribution,
             "costs_source": pr.costs.source,
             "message": self.message,
             "costs": {
-                "certified": cert, "certified_rule": self.certified.solver, "certified_status": self.certified.status,
-                "certified_other": cost(self.certified_other), "certified_other_rule": self.certified_other.solver,
+                "certified": cert, "certified_rule": str(self.certified.solver), "certified_status": self.certified.status,
+                "certified_other": cost(self.certified_other), "certified_other_rule": str(self.certified_other.solver),
                 "certified_other_status": self.certified_other.status,
-                "exact": ex, "exact_solver": None if self.exact is None else self.exact.solver,
+                "exact": ex, "exact_solver": None if self.exact is None else self.exact.label,
+                "exact_status": None if self.exact is None else self.exact.status,
                 "exact_message": None if self.exact is None else self.exact.message,
                 "saving": None if cert is None or ex is None else cert - ex,
                 "saving_pct": None if cert is None or ex is None else 100 * (cert - ex) / cert,
@@ -143,7 +149,7 @@ class AllocationResult:
             if self.certified.ok:
                 row["p_linear_certified"] = float(self.certified.p_linear["position"][i])
                 row["pose_dual_certified"] = float(self.certified.pose_dual[i]) if self.certified.pose_dual is not None else None
-            if self.exact is not None and self.exact.ok and self.exact.pose_dual is not None and self.exact.solver == "exact":
+            if exact_ok and self.exact.ok and self.exact.pose_dual is not None:
                 row["pose_dual_exact"] = float(self.exact.pose_dual[i])
             poses.append(row)
         out["poses"] = poses

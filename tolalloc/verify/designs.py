@@ -25,7 +25,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.allocate.problem import AllocationProblem, Design
+from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict"]
 
@@ -169,7 +169,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     design : Design
         Must have half-widths ``t``.
     criterion : {"certified", "exact"}, optional
-        Default: ``certified`` for designs whose solver starts with ``certified``, else ``exact``.
+        Default: ``certified`` for designs of a certified rule (``Design.solver.certified``, a certified fallback
+        of the exact solver included), else ``exact``.
     n_mc : int
         Samples per pose (the same sampled robots at every pose).
     n_max : int, optional
@@ -187,13 +188,16 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
 
     if design.t is None:
         raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
+    if design.status == NOT_CONVERGED:
+        raise TolallocError(f"verify: the design {design.label} did not converge ({design.message}); re-solve it "
+                            "(or verify its tolerances as a design of their own) before calling it verified.")
     try:
         n_ok = int(n_mc) == n_mc and n_mc >= 100
     except (TypeError, ValueError, OverflowError):
         n_ok = False
     if not n_ok:
         raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
-    crit = criterion or ("certified" if design.solver.startswith("certified") else "exact")
+    crit = criterion or ("certified" if design.solver.certified else "exact")
     if crit not in ("certified", "exact"):
         raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
     n_max = 4 * int(n_mc) if n_max is None else int(n_max)
