@@ -192,9 +192,9 @@ def _solve_step(problem, split, plan, E, om0, u_rand_max):
         if k not in a_pos:
             fixed_var[k] = (pr.costs.fixed_tol[k] / z) ** 2
     Lam = cp.diag(om) + info[np.ix_(live, live)]
-    b = pr.blocks[0]["eig_bound"]
+    b = pr.blocks[0]["eig_bound"]  # (P,)
     for p in range(pr.n_poses):
-        S = b * np.eye(3) - J[p] @ (fixed_var[:, None] * J[p].T)
+        S = b[p] * np.eye(3) - J[p] @ (fixed_var[:, None] * J[p].T)
         for k in R_idx:
             if k in a_pos:
                 S = S - u[a_pos[k]] * (s[k] ** 2) * np.outer(J[p][:, k], J[p][:, k])
@@ -270,7 +270,7 @@ def post_ratio(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationP
     model = problem.model_for(t)
     post = posterior(split.with_model(model), plan)
     C = post.tool_covariance(problem.q)
-    return float(np.linalg.eigvalsh(C)[:, -1].max() / problem.blocks[0]["eig_bound"]), post
+    return float((np.linalg.eigvalsh(C)[:, -1] / problem.blocks[0]["eig_bound"]).max()), post
 
 
 def _repair(problem, split, plan, t):

@@ -77,7 +77,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
         P = A.shape[0]
         if rule == "trace":
             bound = b["trace_bound"]
-            G = np.einsum("pkii->pk", A) / bound
+            G = np.einsum("pkii->pk", A) / bound[:, None]
             h = 1.0 - np.einsum("pii->p", C0) / bound
             c = G @ u <= h
             cons.append(c)
@@ -86,8 +86,8 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
             bound = b["eig_bound"]
             lst = []
             for p in range(P):
-                M = A[p].reshape(Ka, 9).T / bound
-                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound
+                M = A[p].reshape(Ka, 9).T / bound[p]
+                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound[p]
                 c = np.eye(3) - S >> 0
                 lst.append(c)
             cons += lst
@@ -138,9 +138,9 @@ def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
     for b in problem.blocks:
         C = problem.covariances(t, b["rows"])
         if rule == "trace":
-            out = max(out, float(np.einsum("pii->p", C).max() / b["trace_bound"]))
+            out = max(out, float((np.einsum("pii->p", C) / b["trace_bound"]).max()))
         else:
-            out = max(out, float(np.linalg.eigvalsh(C)[:, -1].max() / b["eig_bound"]))
+            out = max(out, float((np.linalg.eigvalsh(C)[:, -1] / b["eig_bound"]).max()))
     return out
 
 

@@ -56,13 +56,13 @@ def _build(problem: AllocationProblem, active: dict):
         if len(idx) == 0:
             continue
         # scale covariances by the eigenvalue bound so the probability function sees O(1) numbers
-        s = b["eig_bound"]
+        s = float(np.max(b["eig_bound"]))
         M = np.concatenate([b["A"][p].reshape(Ka, 9).T for p in idx], 0) / s  # (9m, Ka)
         c0 = np.concatenate([b["C0"][p].reshape(9) for p in idx]) / s
         V = ca.mtimes(ca.DM(M), u) + ca.DM(c0)  # stacked symmetric 3x3 blocks
         rr = b["radius"] / np.sqrt(s)
         g += [F(ca.reshape(V[9 * j:9 * j + 9], 3, 3), rr) for j in range(len(idx))]
-        lbg += [b["prob"]] * len(idx)
+        lbg += list(b["target"][idx])
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.tol": 1e-9,
             "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 300}
     solver = ca.nlpsol("tolalloc_exact", "ipopt", {"x": u, "f": f, "g": ca.vertcat(*g)}, opts)
@@ -134,7 +134,7 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
             idx = active[b["name"]]
             lam_full[idx] += np.maximum(-lam[pos:pos + len(idx)], 0.0)
             pos += len(idx)
-            viol = np.setdiff1d(np.flatnonzero(probs[b["name"]] < b["prob"] - FEAS_TOL), idx)
+            viol = np.setdiff1d(np.flatnonzero(probs[b["name"]] < b["target"] - FEAS_TOL), idx)
             if viol.size:
                 worst = viol[np.argsort(probs[b["name"]][viol])[:max(4, len(idx))]]
                 active[b["name"]] = np.union1d(idx, worst)
@@ -146,7 +146,7 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
     reason = ""
     if u is not None:
         d = make_design(problem, Solver.EXACT, problem.t_from_u(u), pose_dual=lam_full, time_s=dt)
-        short = min(float((d.p_linear[b["name"]] - b["prob"]).min()) for b in problem.blocks)
+        short = min(float((d.p_linear[b["name"]] - b["target"]).min()) for b in problem.blocks)
         if not ok:
             reason = f"IPOPT did not converge ({why})"
         elif short < -FEAS_TOL:

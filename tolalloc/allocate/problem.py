@@ -62,7 +62,9 @@ class AllocationProblem:
         Indices of the allocatable and fixed parameters.
     t_ref, t_min, t_max : arrays, shape (K,) [mm or rad]
     blocks : list of dict
-        One per requirement: ``name``, ``rows``, ``radius``, ``prob``, ``A`` (P, Ka, 3, 3), ``C0`` (P, 3, 3).
+        One per requirement: ``name``, ``rows``, ``radius``, ``prob`` (the requirement), ``target`` (P,) (the
+        probability each pose is solved for: ``prob`` unless tightened by the correction loop), ``A`` (P, Ka, 3, 3),
+        ``C0`` (P, 3, 3), ``trace_bound`` and ``eig_bound`` (P,) (the certified rules' budgets at ``target``).
     """
 
     model: ErrorModel
@@ -128,7 +130,8 @@ class AllocationProblem:
 
 def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: float = 0.95,
                   costs: CostSet | dict | None = None, pose_set: str | None = None,
-                  angle_radius_deg: float | None = None, angle_prob: float | None = None) -> AllocationProblem:
+                  angle_radius_deg: float | None = None, angle_prob: float | None = None,
+                  target=None) -> AllocationProblem:
     """Set up an allocation problem.
 
     Parameters
@@ -142,6 +145,10 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
         Resolved costs (:func:`tolalloc.allocate.costs.load_costs`) or a parsed costs dict; default the built-in defaults.
     angle_radius_deg, angle_prob : float, optional
         Orientation requirement ``P(|dw| < angle) >= angle_prob`` (``angle_prob`` defaults to ``prob``).
+    target : array, shape (P,), optional
+        Per-pose probability the position requirement is solved for, each in ``[prob, 1)`` (default ``prob``):
+        the correction loop (:mod:`tolalloc.verify.correct`) tightens the poses where the nonlinear Monte Carlo
+        falls short of the linear prediction. ``prob`` stays the requirement that is verified.
     """
     radius_mm = check_positive(radius_mm, "radius_mm")
     prob = float(prob)
@@ -167,27 +174,30 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     sub = sub.with_sigma(sig)
     t_ref = np.array([m.t_ref for m in cs.models])
     J = sub.jacobian(q)
-    blocks = [_block("position", slice(0, 3), radius_mm, prob, J, alloc, fixed, t_ref, sig, cs.z)]
+    tgt = np.full(len(q), prob) if target is None else np.asarray(target, float).reshape(-1)
+    if tgt.shape != (len(q),) or not np.all((tgt >= prob) & (tgt < 1)):
+        raise TolallocError(f"target: expected {len(q)} per-pose probabilities in [prob = {prob:g}, 1), got {target!r}.")
+    blocks = [_block("position", slice(0, 3), radius_mm, prob, tgt, J, alloc, fixed, t_ref, sig, cs.z)]
     if angle_radius_deg is not None:
         ar = np.deg2rad(check_positive(angle_radius_deg, "angle_radius_deg"))
         ap = prob if angle_prob is None else float(angle_prob)
         if not np.isfinite(ap) or not 0 < ap < 1:
             raise TolallocError(f"angle_prob: expected a probability strictly between 0 and 1, got {angle_prob!r}.")
-        blocks.append(_block("orientation", slice(3, 6), ar, ap, J, alloc, fixed, t_ref, sig, cs.z))
+        blocks.append(_block("orientation", slice(3, 6), ar, ap, np.full(len(q), ap), J, alloc, fixed, t_ref, sig, cs.z))
     else:
         ar, ap = None, prob
     return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
                              np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks)
 
 
-def _block(name, rows, radius, prob, J, alloc, fixed, t_ref, sig, z) -> dict:
+def _block(name, rows, radius, prob, target, J, alloc, fixed, t_ref, sig, z) -> dict:
     Jr = J[:, rows, :]
     Ja = Jr[:, :, alloc] * (t_ref[alloc] / z)  # (P, 3, Ka)
     A = np.einsum("pik,pjk->pkij", Ja, Ja)
     Jf = Jr[:, :, fixed]
     C0 = np.einsum("pik,k,pjk->pij", Jf, sig[fixed] ** 2, Jf)
-    return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "A": A, "C0": C0,
-            "trace_bound": radius**2 / chi2.ppf(prob, 1), "eig_bound": radius**2 / chi2.ppf(prob, 3)}
+    return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "target": target, "A": A,
+            "C0": C0, "trace_bound": radius**2 / chi2.ppf(target, 1), "eig_bound": radius**2 / chi2.ppf(target, 3)}
 
 
 # ------------------------------------------------------------------------ results
@@ -334,9 +344,9 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
         C = problem.covariances(t, b["rows"])
         p = p_within_radius(C, b["radius"])
         r = radius_for_prob(C, b["prob"])
-        i = int(np.argmin(p))
+        i = int(np.argmin(p - b["target"]))
         p_best[b["name"]], r_best[b["name"]], worst[b["name"]] = p, r, i
-        if p[i] < b["prob"]:
+        if p[i] < b["target"][i]:
             feasible = False
             J = problem.J[i, b["rows"], :]
             share = (J**2).sum(0) * problem.sigma(t) ** 2
@@ -353,7 +363,7 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
                 f"infeasible within the process limits: with every tolerance at its lower limit the worst pose "
                 f"({i + 1} of {problem.n_poses}) reaches P(|{'dP' if b['name'] == 'position' else 'dw'}| < "
                 f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
-                f"< {b['prob']:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
+                f"< {b['target'][i]:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
                 f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
                 f"tolerances) in a costs file (--costs) or relax the requirement.")
     return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

@@ -194,7 +194,7 @@ def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: f
     bad = []
     for b in problem.blocks:
         p = d.p_linear[b["name"]]
-        bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["prob"] - 1e-9)]
+        bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["target"] - 1e-9)]
     if bad:
         d = replace(d, status="violated", message="after snapping the requirement fails at " + ", ".join(bad)
                     + "; use the unsnapped tolerances or a finer angle step")
