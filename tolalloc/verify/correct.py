@@ -104,7 +104,8 @@ def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
 
 def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0,
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
-                   angle_step_deg: float | None = None, scheduler=None, **problem_kw) -> Correction:
+                   angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
+                   **problem_kw) -> Correction:
     """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten those poses and re-solve.
 
     Parameters
@@ -128,6 +129,8 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         Passed to :func:`tolalloc.allocate.solve.allocate` for the re-solved designs.
     scheduler
         Where the Monte Carlo runs (never changes the numbers).
+    keep_samples : int
+        Position errors kept at the worst linear pose of each re-verification (for figures).
     problem_kw
         The requirement and costs, as :func:`tolalloc.allocate.problem.build_problem` (``radius_mm``, ``prob``,
         ``costs``, ``angle_radius_deg``, ``angle_prob``).
@@ -138,8 +141,8 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         return allocate(build_problem(model, q, target=target, **problem_kw), solver=solver, snap=snap,
                         angle_step_deg=angle_step_deg)
 
-    def check(res):  # against p itself (the problem's prob); the certified criterion re-runs straddling poses
-        return verify_design(res.problem, res.design, n_mc=n_mc, seed=seed, keep_samples=0, criterion="certified",
+    def check(res):  # against p itself (the problem's prob), with the design's own criterion
+        return verify_design(res.problem, res.design, n_mc=n_mc, seed=seed, keep_samples=keep_samples,
                              scheduler=scheduler)
 
     res = result if result is not None else solve()
