@@ -49,7 +49,8 @@ def test_infeasible_is_said_plainly(tmp_path, capsys):
     costs = tmp_path / "c.toml"
     costs.write_text("[kinds.joint_drive]\nt_min_deg = 0.05\n")
     out = tmp_path / "o"
-    rc = main(["allocate", "tool_changer", "--costs", str(costs), "--out", str(out)])
+    # on a pose set the infeasible design is reported and written (a region: tests/test_cli_correction.py)
+    rc = main(["allocate", "tool_changer", "--poses", "working", "--costs", str(costs), "--out", str(out)])
     text = capsys.readouterr().out
     assert rc == 1
     assert "INFEASIBLE" in text and "radius achievable at p = 0.95" in text and "dth" in text

@@ -204,14 +204,13 @@ def _verify_and_correct(args, model, kw, res, region):
 
     Returns ``(result, coverage, verification, correction)``: the final (corrected) allocation and its checks.
     """
-    from tolalloc.allocate.problem import make_design
+    from tolalloc.allocate.problem import build_problem, make_design
+    from tolalloc.allocate.region import coverage
 
     if res.status != "optimal":
         return res, None, None, None
     cov, vproblem, vdesign = None, res.problem, res.design
     if region is not None:
-        from tolalloc.allocate.region import coverage
-
         cov = coverage(res.problem, res.design.t, region, n=args.coverage_n, seed=args.seed + 12345)
         vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
         vdesign = make_design(vproblem, res.design.solver, res.design.t, fallback_from=res.design.fallback_from)
