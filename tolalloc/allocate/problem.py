@@ -31,6 +31,7 @@ from scipy.stats import chi2
 from tolalloc.exceptions import TolallocError, check_positive
 from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
+from tolalloc.linear.covariance import variance_share
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
 __all__ = ["AllocationProblem", "Design", "Solver", "NOT_CONVERGED", "LimitReport", "build_problem", "make_design",
@@ -348,9 +349,7 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
         p_best[b["name"]], r_best[b["name"]], worst[b["name"]] = p, r, i
         if p[i] < b["target"][i]:
             feasible = False
-            J = problem.J[i, b["rows"], :]
-            share = (J**2).sum(0) * problem.sigma(t) ** 2
-            share = share / share.sum()
+            share = variance_share(problem.J[i, b["rows"], :], problem.sigma(t) ** 2)
             order = np.argsort(share)[::-1]
             top = [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
             binding += top

@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
+from tolalloc.linear.covariance import variance_share
 
 __all__ = ["AllocationResult", "snap_design"]
 
@@ -60,9 +61,7 @@ class AllocationResult:
         """Share of each parameter in ``tr Sigma`` of the position error at ``pose`` (default: the worst), (K,)."""
         d = design or self.design
         i = self.worst_pose if pose is None else pose
-        J = self.problem.J[i, :3, :]
-        v = (J**2).sum(0) * self.problem.sigma(d.t) ** 2
-        return v / v.sum() if v.sum() > 0 else v
+        return variance_share(self.problem.J[i, :3, :], self.problem.sigma(d.t) ** 2)
 
     def to_frame(self, design: Design | None = None) -> pd.DataFrame:
         """Tolerance table: one row per parameter, tolerance and sigma in the interface unit (mm or deg)."""
