@@ -28,11 +28,12 @@ __all__ = ["solve_exact", "FEAS_TOL", "LEBEDEV_ORDER"]
 FEAS_TOL = 1e-5
 _KEEP_ALIVE: list = []
 #: Lebedev order of the direction rule inside the NLP (see :mod:`tolalloc.linear.probability_casadi`). Order 41
-#: (not the order 65 whose accuracy that module quotes) is ~1.7x faster; its worst error over random orientations and
-#: anisotropies is < 2e-6 while the largest principal standard deviation is <= 0.75 r (P >~ 0.43; at p = 0.95 it is
-#: <= 0.51 r) and < 2e-5 at r (tests/test_allocate_convergence.py). Every IPOPT result is re-checked with the
-#: accurate numpy probability and accepted only within FEAS_TOL of p (the guard), so the rule's error cannot
-#: make a design that misses the requirement by more than FEAS_TOL.
+#: (not the order 65 whose accuracy that module quotes) is ~1.7x faster. Its worst error over random orientations and
+#: anisotropies (3000 draws) grows with the largest principal standard deviation s: < 2e-7 at s <= 0.51 r (rank one
+#: at p = 0.95), < 3e-6 at 0.75 r, < 3e-5 at r (tests/test_allocate_convergence.py). At low p it matters: rank one
+#: at p = 0.7 (s = 0.96 r) errs by up to 1.1e-5, about FEAS_TOL. Every IPOPT result is re-checked with the accurate
+#: numpy probability and accepted only within FEAS_TOL of the target (else the guard keeps the certified design),
+#: so the rule's error cannot make an "exact" design miss the requirement by more than FEAS_TOL.
 LEBEDEV_ORDER = 41
 
 
