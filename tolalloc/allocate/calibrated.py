@@ -36,7 +36,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.convex import solve_rule
-from tolalloc.allocate.problem import AllocationProblem, Design, make_design
+from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, make_design
 from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.posterior import Posterior, estimated_index, identification_matrix, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
@@ -260,8 +260,11 @@ def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, sp
                                                message="no design meets the requirement after this calibration "
                                                        "within the process limits"), baseline, None, np.inf, it)
     best, ratio, post = _repair(pr, split, plan, best)
+    ok = ratio <= 1.0  # the repair re-checked the rule; otherwise the design is not called certified
     design = make_design(pr, "calibrated-lmi", best, time_s=time.perf_counter() - t0,
-                         message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum")
+                         status="optimal" if ok else NOT_CONVERGED,
+                         message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum" if ok else
+                         f"the repair stopped without a successful re-check: the rule is exceeded by a factor {ratio:.6g}")
     return CalibratedAllocation(pr, design, baseline, post, ratio, it)
 
 

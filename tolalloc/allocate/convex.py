@@ -93,8 +93,10 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
             cons += lst
             pose_cons.append(("psd", lst))
     prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
-    for tol in (1e-10, None):  # tight tolerances; Clarabel's defaults if they end inaccurate
-        settings = {} if tol is None else {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
+    # tight tolerances; Clarabel's defaults (1e-8) if they end inaccurate, given explicitly: without them a re-solve
+    # keeps the previous call's settings and ends inaccurate again
+    for tol in (1e-10, 1e-8):
+        settings = {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", UserWarning)
