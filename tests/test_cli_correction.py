@@ -107,3 +107,18 @@ def test_infeasible_region_is_one_error_line_exit_1_nothing_written(tmp_path, ca
     p_best = float(msg.split("best achievable P is ")[1][:6])
     assert p_best < 0.95
     assert not out.exists()
+
+
+def test_correction_round_limit_is_said(tmp_path, capsys):
+    # the exact design sits on P = p at its one pose: consistent; with no correction round allowed the loop stops and
+    # says so, the tables hold the uncorrected design, and a consistent exact design still passes (exit 0)
+    out = tmp_path / "lim"
+    rc = main(["allocate", "tool_changer", "--poses", "nominal", "--n-mc", "20000", "--seed", "3",
+               "--correction-rounds", "0", "--out", str(out)])
+    text = capsys.readouterr().out
+    s = json.loads((out / "summary.json").read_text())
+    corr = s["correction"]
+    assert corr["rounds"] == 0 and corr["stopped"] and corr["reason"] == "round limit (0) reached"
+    assert corr["verdict"] == corr["verdict_before"] == "consistent" and corr["premium_pct"] == 0
+    assert "stopped, not demonstrated: round limit (0) reached" in text and "verdict per pose: 1 consistent" in text
+    assert (out / "tolerances.md").read_text().splitlines()[0] == "design: exact" and rc == 0
