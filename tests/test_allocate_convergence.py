@@ -1,11 +1,11 @@
 """Solver status honesty (issue 11): non-converged solvers are labelled so; the NLP's Lebedev rule accuracy;
 per-pose targets; the one variance_share; the correction loop's target rule."""
 
-import cvxpy as cp
 import numpy as np
 import pytest
 from scipy.stats import special_ortho_group
 
+from solver_patches import clarabel_inaccurate, ipopt_not_converged
 import tolalloc.allocate.convex as convex
 import tolalloc.allocate.exact as exact_mod
 from tolalloc import TolallocError, load_robot
@@ -25,14 +25,7 @@ def problem():
 
 
 def test_clarabel_optimal_inaccurate_is_not_certified(problem, monkeypatch):
-    orig = cp.Problem.solve
-
-    def solve(self, *args, **kw):
-        out = orig(self, *args, **kw)
-        self._status = "optimal_inaccurate"
-        return out
-
-    monkeypatch.setattr(cp.Problem, "solve", solve)
+    clarabel_inaccurate(monkeypatch)
     d = convex.solve_rule(problem, "lmi")
     assert d.status == NOT_CONVERGED and not d.ok and d.t is not None
     assert d.label == "certified-lmi (NOT CONVERGED)" and "optimal_inaccurate" in d.message
@@ -49,21 +42,9 @@ def test_repair_without_a_successful_recheck_is_not_converged(problem, monkeypat
     assert d.status == NOT_CONVERGED and "repair stopped without a successful re-check" in d.message
 
 
-class _MaxIter:
-    def __init__(self, solver):
-        self.solver = solver
-
-    def __call__(self, **kw):
-        return self.solver(**kw)
-
-    def stats(self):
-        return {"success": False, "return_status": "Maximum_Iterations_Exceeded"}
-
-
 def test_ipopt_not_converged_is_never_called_exact(problem, monkeypatch):
     cert = convex.solve_rule(problem, "lmi")
-    orig = exact_mod._build
-    monkeypatch.setattr(exact_mod, "_build", lambda pr, act: (lambda s, lbg: (_MaxIter(s), lbg))(*orig(pr, act)))
+    ipopt_not_converged(monkeypatch)
     d = exact_mod.solve_exact(problem, cert)  # with a certified start: the guard keeps it, labelled as a fallback
     assert d.solver == Solver.CERTIFIED_LMI and d.fallback_from == Solver.EXACT and d.ok
     assert d.label == "certified-lmi (fallback from exact)"

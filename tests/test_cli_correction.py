@@ -2,42 +2,9 @@
 
 import json
 
-import cvxpy as cp
-import pytest
-
-import tolalloc.allocate.exact as exact_mod
+from solver_patches import clarabel_inaccurate as _clarabel_inaccurate
+from solver_patches import ipopt_not_converged as _ipopt_not_converged
 from tolalloc.cli import main
-
-
-def _clarabel_inaccurate(monkeypatch):
-    """Every cvxpy solve ends ``optimal_inaccurate`` (what Clarabel reports when it stops short of its tolerances)."""
-    orig = cp.Problem.solve
-
-    def solve(self, *args, **kw):
-        out = orig(self, *args, **kw)
-        self._status = "optimal_inaccurate"
-        return out
-
-    monkeypatch.setattr(cp.Problem, "solve", solve)
-
-
-class _NotConverged:
-    """An IPOPT solver whose run ends with ``Maximum_Iterations_Exceeded``."""
-
-    def __init__(self, solver):
-        self.solver = solver
-
-    def __call__(self, **kw):
-        return self.solver(**kw)
-
-    def stats(self):
-        return {**self.solver.stats(), "success": False, "return_status": "Maximum_Iterations_Exceeded"}
-
-
-def _ipopt_not_converged(monkeypatch):
-    orig = exact_mod._build
-    monkeypatch.setattr(exact_mod, "_build", lambda problem, active: (lambda s, lbg: (_NotConverged(s), lbg))(
-        *orig(problem, active)))
 
 
 def test_certified_not_converged_is_labelled_and_exits_1(monkeypatch, tmp_path, capsys):
