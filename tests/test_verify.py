@@ -108,3 +108,30 @@ def test_scheduler_does_not_change_the_verification(res):
     dask = verify_design(res.problem, res.design, n_mc=20_000, seed=5, keep_samples=0, scheduler="threads")
     np.testing.assert_array_equal(local.p_mc, dask.p_mc)
     np.testing.assert_array_equal(local.ci_low, dask.ci_low)
+
+
+def test_non_gaussian_reason_is_named():
+    # every parameter uniform over +-t (costs distribution "uniform"): a design that the (faked) linear map passes
+    # but the Monte Carlo does not is attributed to the non-Gaussian parameters, which carry all of the variance
+    robot = load_robot("tool_changer")
+    pr = build_problem(build_error_model(robot), robot.poses("working")[[0, 11]], costs={"distribution": "uniform"})
+    d = allocate(pr, snap=False).design
+    loose = make_design(pr, "exact", d.t * 1.3)
+    fake = replace(loose, p_linear={"position": np.full(pr.n_poses, 0.99)})
+    v = verify_design(pr, fake, n_mc=20_000, seed=6, keep_samples=0)
+    assert not v.ok and v.verdict == "failed"
+    failing = [r for r, ok in zip(v.reason, v.passed) if not ok]
+    assert failing and all(r.startswith("non-Gaussian parameters (uniform) carry 100% of the variance") for r in failing)
+
+
+def test_interval_containing_p_with_few_samples_is_inconclusive(res):
+    # certified criterion without pooling at n = 2000 (interval +-0.01): the exact design's poses on P = p have
+    # intervals that contain p -> "inconclusive" (never "nonlinearity"), verdict consistent, not "failed"
+    v = verify_design(res.problem, res.design, criterion="certified", n_mc=2000, n_max=2000, seed=7, keep_samples=0)
+    contains = (v.ci_low < 0.95) & (v.ci_high >= 0.95)
+    assert contains.any() and not v.ok
+    for i in np.flatnonzero(contains):
+        assert v.reason[i].startswith("inconclusive: interval") and "contains 0.95 at n = 2000" in v.reason[i]
+        assert v.verdicts[i] == "consistent"
+    assert "nonlinearity" not in v.message() and not v.message().startswith("verified: failed")
+    assert v.message().startswith("verified: consistent, criterion not met")

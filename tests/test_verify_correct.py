@@ -30,12 +30,17 @@ def test_correction_ends_demonstrated_and_costs_more(case):
     c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=N, seed=1, max_rounds=2)
     assert c.rounds >= 1 and not c.stopped and c.verification.verdict == "demonstrated"
     assert np.all(c.verification.ci_low >= 0.95)
-    assert c.targets[0] == 0.95 and c.targets[-1] > 0.95 and c.cost_of_correction > 0
+    assert c.before.verdict != "demonstrated"
+    assert c.targets[0] > 0.95 and c.tightened.tolist() == [0] and c.cost_of_correction > 0
+    assert c.result.problem.prob == 0.95 and c.verification.prob == 0.95  # verified against p, not the target
+    assert c.result.design.p_linear["position"][0] >= c.targets[0] - 1e-5
     assert "verified: demonstrated after" in c.message()
+    block = c.to_dict()
+    assert block["verdict"] == "demonstrated" and block["poses_tightened"] == [1] and block["premium_pct"] > 0
 
 
 def test_without_rounds_the_loop_stops_and_says_so(case):
     model, q, costs = case
     c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=N, seed=1, max_rounds=0)
     assert c.rounds == 0 and c.stopped and c.verification.verdict != "demonstrated"
-    assert "not demonstrated" in c.message() and c.cost_of_correction == 0
+    assert "not demonstrated" in c.message() and "round limit" in c.reason and c.cost_of_correction == 0

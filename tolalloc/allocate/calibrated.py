@@ -44,7 +44,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.convex import solve_rule
-from tolalloc.allocate.problem import AllocationProblem, Design, make_design
+from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, make_design
 from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.posterior import Posterior, estimated_index, identification_matrix, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
@@ -276,9 +276,9 @@ def _solve_step(problem, split, plan, E, om0, u_rand_max, gr: _Grades, v_max):
         if k not in a_pos:
             fixed_var[k] = (pr.costs.fixed_tol[k] / z) ** 2
     Lam = cp.diag(om) + info[np.ix_(live, live)]
-    b = pr.blocks[0]["eig_bound"]
+    b = pr.blocks[0]["eig_bound"]  # (P,)
     for p in range(pr.n_poses):
-        S = b * np.eye(3) - J[p] @ (fixed_var[:, None] * J[p].T)
+        S = b[p] * np.eye(3) - J[p] @ (fixed_var[:, None] * J[p].T)
         for k in R_idx:
             if k in a_pos:
                 S = S - u[a_pos[k]] * (s[k] ** 2) * np.outer(J[p][:, k], J[p][:, k])
@@ -349,8 +349,11 @@ def allocate_calibrated(problem: AllocationProblem, plan: CalibrationPlan, *, sp
                                                message="no design meets the requirement after this calibration "
                                                        "within the process limits"), baseline, None, np.inf, it)
     best, ratio, post = _repair(pr, gr.split_at(split, v_best), plan, best)
+    ok = ratio <= 1.0  # the repair re-checked the rule; otherwise the design is not called certified
     design = make_design(pr, "calibrated-lmi", best, time_s=time.perf_counter() - t0,
-                         message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum")
+                         status="optimal" if ok else NOT_CONVERGED,
+                         message=f"majorisation-minimisation, {it} iteration(s): a certified local optimum" if ok else
+                         f"the repair stopped without a successful re-check: the rule is exceeded by a factor {ratio:.6g}")
     grade_t = None
     if len(gr.idx):
         grade_t = np.full(len(pr.model.params), np.nan)
@@ -363,7 +366,7 @@ def post_ratio(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationP
     model = problem.model_for(t)
     post = posterior(split.with_model(model), plan)
     C = post.tool_covariance(problem.q)
-    return float(np.linalg.eigvalsh(C)[:, -1].max() / problem.blocks[0]["eig_bound"]), post
+    return float((np.linalg.eigvalsh(C)[:, -1] / problem.blocks[0]["eig_bound"]).max()), post
 
 
 def _repair(problem, split, plan, t):

@@ -21,7 +21,7 @@ import warnings
 
 import numpy as np
 
-from tolalloc.allocate.problem import TRACE_RULE_MIN_P, AllocationProblem, Design, make_design
+from tolalloc.allocate.problem import NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver, make_design
 
 __all__ = ["solve_certified", "solve_rule"]
 
@@ -56,12 +56,14 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     -------
     Design
         ``status`` ``optimal``, ``infeasible`` (the rule cannot be met within the limits),
-        ``not_applicable`` (trace rule with ``p < 0.785``) or ``failed``.
+        ``not_applicable`` (trace rule with ``p < 0.785``), ``failed``, or ``not_converged`` (Clarabel ended
+        ``optimal_inaccurate`` even with its default tolerances, or the repair below did not restore the rule:
+        the design is kept for reference, never called certified).
     """
     import cvxpy as cp
 
     t0 = time.perf_counter()
-    solver = f"certified-{rule}"
+    solver = Solver(f"certified-{rule}")
     if rule == "trace" and min(b["prob"] for b in problem.blocks) < TRACE_RULE_MIN_P:
         return Design(solver, "not_applicable", message=f"the trace rule is valid only for p >= {TRACE_RULE_MIN_P}")
     Ka = len(problem.alloc)
@@ -75,7 +77,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
         P = A.shape[0]
         if rule == "trace":
             bound = b["trace_bound"]
-            G = np.einsum("pkii->pk", A) / bound
+            G = np.einsum("pkii->pk", A) / bound[:, None]
             h = 1.0 - np.einsum("pii->p", C0) / bound
             c = G @ u <= h
             cons.append(c)
@@ -84,15 +86,17 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
             bound = b["eig_bound"]
             lst = []
             for p in range(P):
-                M = A[p].reshape(Ka, 9).T / bound
-                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound
+                M = A[p].reshape(Ka, 9).T / bound[p]
+                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound[p]
                 c = np.eye(3) - S >> 0
                 lst.append(c)
             cons += lst
             pose_cons.append(("psd", lst))
     prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
-    for tol in (1e-10, None):  # tight tolerances; Clarabel's defaults if they end inaccurate
-        settings = {} if tol is None else {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
+    # tight tolerances; Clarabel's defaults (1e-8) if they end inaccurate, given explicitly: without them a re-solve
+    # keeps the previous call's settings and ends inaccurate again
+    for tol in (1e-10, 1e-8):
+        settings = {"tol_gap_abs": tol, "tol_gap_rel": tol, "tol_feas": tol}
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", UserWarning)
@@ -107,7 +111,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
                       message=f"the {rule} rule cannot be met within the process limits")
     if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
         return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
-    uv = _repair(problem, rule, np.clip(u.value, u_min, u_max))
+    uv, rho = _repair(problem, rule, np.clip(u.value, u_min, u_max))
     duals = []
     for kind, c in pose_cons:
         if kind == "vector":
@@ -118,9 +122,15 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     K = len(problem.costs.names)
     bound_dual = np.zeros(K)
     bound_dual[problem.alloc] = np.asarray(lo.dual_value, float) - np.asarray(hi.dual_value, float)
-    msg = "" if prob.status == "optimal" else f"Clarabel status {prob.status}"
+    status, msg = "optimal", ""
+    if prob.status != "optimal":
+        status, msg = NOT_CONVERGED, f"Clarabel did not converge (status {prob.status})"
+    if rho > 1.0:
+        status = NOT_CONVERGED
+        msg = (msg + "; " if msg else "") + (f"the repair stopped without a successful re-check: the {rule} rule "
+                                             f"is exceeded by a factor {rho:.6g}")
     return make_design(problem, solver, problem.t_from_u(uv), pose_dual=pose_dual, bound_dual=bound_dual,
-                       time_s=dt, message=msg)
+                       time_s=dt, message=msg, status=status)
 
 
 def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
@@ -130,20 +140,24 @@ def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
     for b in problem.blocks:
         C = problem.covariances(t, b["rows"])
         if rule == "trace":
-            out = max(out, float(np.einsum("pii->p", C).max() / b["trace_bound"]))
+            out = max(out, float((np.einsum("pii->p", C) / b["trace_bound"]).max()))
         else:
-            out = max(out, float(np.linalg.eigvalsh(C)[:, -1].max() / b["eig_bound"]))
+            out = max(out, float((np.linalg.eigvalsh(C)[:, -1] / b["eig_bound"]).max()))
     return out
 
 
-def _repair(problem: AllocationProblem, rule: str, u):
-    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly."""
-    for _ in range(3):
-        rho = rule_ratio(problem, rule, u)
+def _repair(problem: AllocationProblem, rule: str, u, rounds: int = 3):
+    """Scale ``u`` down by the (tiny) excess the solver's tolerance leaves, so the rule holds exactly.
+
+    Returns ``(u, rho)`` with ``rho`` the rule ratio re-checked after the last step (``<= 1``: certified).
+    """
+    rho = rule_ratio(problem, rule, u)
+    for _ in range(rounds):
         if rho <= 1.0:
             break
         u = np.clip(u / (rho * (1 + 1e-12)), problem.u_min, problem.u_max)
-    return u
+        rho = rule_ratio(problem, rule, u)
+    return u, rho
 
 
 def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:
@@ -151,7 +165,9 @@ def solve_certified(problem: AllocationProblem) -> tuple[Design, Design]:
     tr = solve_rule(problem, "trace")
     lmi = solve_rule(problem, "lmi")
     cands = [d for d in (tr, lmi) if d.ok]
-    if not cands:
-        return (tr, lmi) if tr.status != "not_applicable" else (lmi, tr)
+    if not cands:  # a non-converged design is kept (labelled so) before an infeasible or inapplicable one
+        rank = {NOT_CONVERGED: 0, "infeasible": 1, "failed": 2, "not_applicable": 3}
+        kept = min((tr, lmi), key=lambda d: rank.get(d.status, 2))
+        return kept, (lmi if kept is tr else tr)
     best = min(cands, key=lambda d: d.cost)
     return (best, lmi if best is tr else tr)

@@ -23,6 +23,7 @@ with every tolerance at its process limit, and the limits that bind) and snaps t
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from enum import StrEnum
 
 import numpy as np
 from scipy.stats import chi2
@@ -30,9 +31,11 @@ from scipy.stats import chi2
 from tolalloc.exceptions import TolallocError, check_positive
 from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
+from tolalloc.linear.covariance import variance_share
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
-__all__ = ["AllocationProblem", "Design", "LimitReport", "build_problem", "make_design", "check_process_limits", "TRACE_RULE_MIN_P"]
+__all__ = ["AllocationProblem", "Design", "Solver", "NOT_CONVERGED", "LimitReport", "build_problem", "make_design",
+           "check_process_limits", "TRACE_RULE_MIN_P"]
 
 #: The trace rule is a valid sufficient condition only for p at or above this (Szekely & Bakirov 2003).
 TRACE_RULE_MIN_P = 0.785
@@ -60,7 +63,9 @@ class AllocationProblem:
         Indices of the allocatable and fixed parameters.
     t_ref, t_min, t_max : arrays, shape (K,) [mm or rad]
     blocks : list of dict
-        One per requirement: ``name``, ``rows``, ``radius``, ``prob``, ``A`` (P, Ka, 3, 3), ``C0`` (P, 3, 3).
+        One per requirement: ``name``, ``rows``, ``radius``, ``prob`` (the requirement), ``target`` (P,) (the
+        probability each pose is solved for: ``prob`` unless tightened by the correction loop), ``A`` (P, Ka, 3, 3),
+        ``C0`` (P, 3, 3), ``trace_bound`` and ``eig_bound`` (P,) (the certified rules' budgets at ``target``).
     """
 
     model: ErrorModel
@@ -126,7 +131,8 @@ class AllocationProblem:
 
 def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: float = 0.95,
                   costs: CostSet | dict | None = None, pose_set: str | None = None,
-                  angle_radius_deg: float | None = None, angle_prob: float | None = None) -> AllocationProblem:
+                  angle_radius_deg: float | None = None, angle_prob: float | None = None,
+                  target=None) -> AllocationProblem:
     """Set up an allocation problem.
 
     Parameters
@@ -140,6 +146,10 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
         Resolved costs (:func:`tolalloc.allocate.costs.load_costs`) or a parsed costs dict; default the built-in defaults.
     angle_radius_deg, angle_prob : float, optional
         Orientation requirement ``P(|dw| < angle) >= angle_prob`` (``angle_prob`` defaults to ``prob``).
+    target : array, shape (P,), optional
+        Per-pose probability the position requirement is solved for, each in ``[prob, 1)`` (default ``prob``):
+        the correction loop (:mod:`tolalloc.verify.correct`) tightens the poses where the nonlinear Monte Carlo
+        falls short of the linear prediction. ``prob`` stays the requirement that is verified.
     """
     radius_mm = check_positive(radius_mm, "radius_mm")
     prob = float(prob)
@@ -165,40 +175,65 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     sub = sub.with_sigma(sig)
     t_ref = np.array([m.t_ref for m in cs.models])
     J = sub.jacobian(q)
-    blocks = [_block("position", slice(0, 3), radius_mm, prob, J, alloc, fixed, t_ref, sig, cs.z)]
+    tgt = np.full(len(q), prob) if target is None else np.asarray(target, float).reshape(-1)
+    if tgt.shape != (len(q),) or not np.all((tgt >= prob) & (tgt < 1)):
+        raise TolallocError(f"target: expected {len(q)} per-pose probabilities in [prob = {prob:g}, 1), got {target!r}.")
+    blocks = [_block("position", slice(0, 3), radius_mm, prob, tgt, J, alloc, fixed, t_ref, sig, cs.z)]
     if angle_radius_deg is not None:
         ar = np.deg2rad(check_positive(angle_radius_deg, "angle_radius_deg"))
         ap = prob if angle_prob is None else float(angle_prob)
         if not np.isfinite(ap) or not 0 < ap < 1:
             raise TolallocError(f"angle_prob: expected a probability strictly between 0 and 1, got {angle_prob!r}.")
-        blocks.append(_block("orientation", slice(3, 6), ar, ap, J, alloc, fixed, t_ref, sig, cs.z))
+        blocks.append(_block("orientation", slice(3, 6), ar, ap, np.full(len(q), ap), J, alloc, fixed, t_ref, sig, cs.z))
     else:
         ar, ap = None, prob
     return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
                              np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks)
 
 
-def _block(name, rows, radius, prob, J, alloc, fixed, t_ref, sig, z) -> dict:
+def _block(name, rows, radius, prob, target, J, alloc, fixed, t_ref, sig, z) -> dict:
     Jr = J[:, rows, :]
     Ja = Jr[:, :, alloc] * (t_ref[alloc] / z)  # (P, 3, Ka)
     A = np.einsum("pik,pjk->pkij", Ja, Ja)
     Jf = Jr[:, :, fixed]
     C0 = np.einsum("pik,k,pjk->pij", Jf, sig[fixed] ** 2, Jf)
-    return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "A": A, "C0": C0,
-            "trace_bound": radius**2 / chi2.ppf(prob, 1), "eig_bound": radius**2 / chi2.ppf(prob, 3)}
+    return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "target": target, "A": A,
+            "C0": C0, "trace_bound": radius**2 / chi2.ppf(target, 1), "eig_bound": radius**2 / chi2.ppf(target, 3)}
 
 
 # ------------------------------------------------------------------------ results
+#: ``Design.status`` of a design whose solver stopped without converging (issue 11): never certified or exact.
+NOT_CONVERGED = "not_converged"
+
+
+class Solver(StrEnum):
+    """The method that produced a design (``Design.solver``); compares equal to its string value."""
+
+    CERTIFIED_TRACE = "certified-trace"
+    CERTIFIED_LMI = "certified-lmi"
+    EXACT = "exact"
+    STANDARD = "standard"  # snapped to standard grades, re-checked by the linear P
+    CALIBRATED_LMI = "calibrated-lmi"
+    PROCESS_LIMITS = "process-limits"  # every tolerance at its tightest limit (reference when infeasible)
+
+    @property
+    def certified(self) -> bool:
+        """Whether a converged design of this solver carries the certified (sufficient) rule."""
+        return self in (Solver.CERTIFIED_TRACE, Solver.CERTIFIED_LMI)
+
+
 @dataclass(frozen=True, eq=False)
 class Design:
     """One allocated design.
 
     Attributes
     ----------
-    solver : str
-        ``certified-trace``, ``certified-lmi``, ``exact``, ``standard`` (snapped) ...
+    solver : Solver
+        The method that produced ``t`` (``certified-trace``, ``certified-lmi``, ``exact``, ``standard`` ...).
     status : str
-        ``optimal``, ``infeasible``, ``not_applicable`` or ``failed``.
+        ``optimal``, ``infeasible``, ``not_applicable``, ``failed``, ``violated`` (snapped design) or
+        ``not_converged`` (the solver stopped without converging: ``t`` is shown for reference, never called
+        certified, exact or optimal; ``ok`` is False).
     t : array, shape (K,) [mm or rad] or None
         Half-widths of all parameters (fixed ones included).
     cost : float
@@ -214,9 +249,12 @@ class Design:
         ``t_min``, ``t_max`` or ``""`` per parameter.
     time_s : float
     message : str
+    fallback_from : Solver or None
+        The solver that was asked for when this design is a fallback (e.g. ``exact`` when IPOPT failed or
+        was not accepted and the certified design was kept).
     """
 
-    solver: str
+    solver: Solver
     status: str
     t: np.ndarray | None = None
     cost: float = float("nan")
@@ -226,14 +264,33 @@ class Design:
     at_limit: tuple = ()
     time_s: float = 0.0
     message: str = ""
+    fallback_from: Solver | None = None
+
+    def __post_init__(self):
+        object.__setattr__(self, "solver", Solver(self.solver))
+        if self.fallback_from is not None:
+            object.__setattr__(self, "fallback_from", Solver(self.fallback_from))
 
     @property
     def ok(self) -> bool:
         return self.status == "optimal" and self.t is not None
 
+    @property
+    def label(self) -> str:
+        """Human label: the solver, the fallback and any status other than optimal, e.g.
+        ``certified-lmi (fallback from exact)`` or ``exact (NOT CONVERGED)``."""
+        out = str(self.solver)
+        if self.fallback_from is not None:
+            out += f" (fallback from {self.fallback_from})"
+        if self.status == NOT_CONVERGED:
+            out += " (NOT CONVERGED)"
+        elif self.status != "optimal":
+            out += f" ({self.status})"
+        return out
 
-def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, bound_dual=None, time_s=0.0,
-                message="", status="optimal") -> Design:
+
+def make_design(problem: AllocationProblem, solver: Solver | str, t, *, pose_dual=None, bound_dual=None, time_s=0.0,
+                message="", status="optimal", fallback_from: Solver | str | None = None) -> Design:
     """Evaluate cost, probabilities and limit flags of half-widths ``t`` (K,) into a :class:`Design`."""
     t = np.asarray(t, dtype=float)
     at = []
@@ -248,7 +305,8 @@ def make_design(problem: AllocationProblem, solver: str, t, *, pose_dual=None, b
             at.append("")
     return Design(solver, status, t, float(problem.param_costs(t).sum()), problem.probabilities(t),
                   None if pose_dual is None else np.asarray(pose_dual, float),
-                  None if bound_dual is None else np.asarray(bound_dual, float), tuple(at), float(time_s), message)
+                  None if bound_dual is None else np.asarray(bound_dual, float), tuple(at), float(time_s), message,
+                  fallback_from)
 
 
 @dataclass(frozen=True, eq=False)
@@ -287,13 +345,11 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
         C = problem.covariances(t, b["rows"])
         p = p_within_radius(C, b["radius"])
         r = radius_for_prob(C, b["prob"])
-        i = int(np.argmin(p))
+        i = int(np.argmin(p - b["target"]))
         p_best[b["name"]], r_best[b["name"]], worst[b["name"]] = p, r, i
-        if p[i] < b["prob"]:
+        if p[i] < b["target"][i]:
             feasible = False
-            J = problem.J[i, b["rows"], :]
-            share = (J**2).sum(0) * problem.sigma(t) ** 2
-            share = share / share.sum()
+            share = variance_share(problem.J[i, b["rows"], :], problem.sigma(t) ** 2)
             order = np.argsort(share)[::-1]
             top = [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
             binding += top
@@ -306,7 +362,7 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
                 f"infeasible within the process limits: with every tolerance at its lower limit the worst pose "
                 f"({i + 1} of {problem.n_poses}) reaches P(|{'dP' if b['name'] == 'position' else 'dw'}| < "
                 f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
-                f"< {b['prob']:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
+                f"< {b['target'][i]:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
                 f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
                 f"tolerances) in a costs file (--costs) or relax the requirement.")
     return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

@@ -229,7 +229,7 @@ def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", to
         pr = build_problem(model, active, **problem_kw)
         res = allocate(pr, solver=solver, snap=False)
         d = res.design if solver == "exact" else res.certified
-        if d.t is None:  # infeasible on the active set: the caller reports the allocation's own diagnosis
+        if not d.ok:  # infeasible (or not converged) on the active set: the caller reports the allocation's diagnosis
             return RegionAllocation(res, region, active, rnd, float("nan"), active[-1], evals,
                                     np.zeros(len(region.q_min), bool), False, time.perf_counter() - t0, tuple(hist))
         if static is None:

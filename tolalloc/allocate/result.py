@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
+from tolalloc.linear.covariance import variance_share
 
 __all__ = ["AllocationResult", "snap_design"]
 
@@ -22,7 +23,8 @@ class AllocationResult:
     Attributes
     ----------
     problem : AllocationProblem
-    status : {"optimal", "infeasible"}
+    status : {"optimal", "infeasible", "not_converged"}
+        ``not_converged``: the chosen solver stopped without converging; ``design`` is its point, labelled so.
     solver : {"exact", "certified"}
         The solver asked for.
     design : Design
@@ -59,9 +61,7 @@ class AllocationResult:
         """Share of each parameter in ``tr Sigma`` of the position error at ``pose`` (default: the worst), (K,)."""
         d = design or self.design
         i = self.worst_pose if pose is None else pose
-        J = self.problem.J[i, :3, :]
-        v = (J**2).sum(0) * self.problem.sigma(d.t) ** 2
-        return v / v.sum() if v.sum() > 0 else v
+        return variance_share(self.problem.J[i, :3, :], self.problem.sigma(d.t) ** 2)
 
     def to_frame(self, design: Design | None = None) -> pd.DataFrame:
         """Tolerance table: one row per parameter, tolerance and sigma in the interface unit (mm or deg)."""
@@ -95,7 +95,8 @@ class AllocationResult:
         def cost(d):
             return None if d is None or not d.ok else d.cost
 
-        cert, ex = cost(self.certified), cost(self.exact)
+        exact_ok = self.exact is not None and self.exact.fallback_from is None  # a fallback is no exact design
+        cert, ex = cost(self.certified), (cost(self.exact) if exact_ok else None)
         out = {
             "robot": robot.name,
             "sigma_set": pr.model.sigma_set,
@@ -103,18 +104,22 @@ class AllocationResult:
                             "angle_radius_deg": None if pr.angle_radius_rad is None else float(np.rad2deg(pr.angle_radius_rad)),
                             "angle_prob": pr.angle_prob if pr.angle_radius_rad is not None else None},
             "status": self.status,
-            "solver": self.design.solver,
+            "solver": str(self.design.solver),
             "solver_requested": self.solver,
+            "fallback_from": None if self.design.fallback_from is None else str(self.design.fallback_from),
+            "design_status": self.design.status,
+            "design_label": self.design.label,
             "cost": self.design.cost,
             "z": pr.costs.z,
             "distribution": pr.costs.distribution,
             "costs_source": pr.costs.source,
             "message": self.message,
             "costs": {
-                "certified": cert, "certified_rule": self.certified.solver, "certified_status": self.certified.status,
-                "certified_other": cost(self.certified_other), "certified_other_rule": self.certified_other.solver,
+                "certified": cert, "certified_rule": str(self.certified.solver), "certified_status": self.certified.status,
+                "certified_other": cost(self.certified_other), "certified_other_rule": str(self.certified_other.solver),
                 "certified_other_status": self.certified_other.status,
-                "exact": ex, "exact_solver": None if self.exact is None else self.exact.solver,
+                "exact": ex, "exact_solver": None if self.exact is None else self.exact.label,
+                "exact_status": None if self.exact is None else self.exact.status,
                 "exact_message": None if self.exact is None else self.exact.message,
                 "saving": None if cert is None or ex is None else cert - ex,
                 "saving_pct": None if cert is None or ex is None else 100 * (cert - ex) / cert,
@@ -143,7 +148,7 @@ class AllocationResult:
             if self.certified.ok:
                 row["p_linear_certified"] = float(self.certified.p_linear["position"][i])
                 row["pose_dual_certified"] = float(self.certified.pose_dual[i]) if self.certified.pose_dual is not None else None
-            if self.exact is not None and self.exact.ok and self.exact.pose_dual is not None and self.exact.solver == "exact":
+            if exact_ok and self.exact.ok and self.exact.pose_dual is not None:
                 row["pose_dual_exact"] = float(self.exact.pose_dual[i])
             poses.append(row)
         out["poses"] = poses
@@ -188,7 +193,7 @@ def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: f
     bad = []
     for b in problem.blocks:
         p = d.p_linear[b["name"]]
-        bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["prob"] - 1e-9)]
+        bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["target"] - 1e-9)]
     if bad:
         d = replace(d, status="violated", message="after snapping the requirement fails at " + ", ".join(bad)
                     + "; use the unsnapped tolerances or a finer angle step")

@@ -42,6 +42,12 @@ def register(sub) -> None:
     p.add_argument("--angle-prob", type=float, default=None, help="probability of the orientation requirement (default --prob)")
     p.add_argument("--n-mc", type=count, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
+    p.add_argument("--no-correction", action="store_true",
+                   help="do not run the correction loop (by default, when a verified pose is not demonstrated - its "
+                   "95%% interval of P_hat not wholly >= p - its probability target is raised by the shortfall of "
+                   "P_hat below the linear P plus 3 standard errors and the allocation re-solved)")
+    p.add_argument("--correction-rounds", type=int, default=2, metavar="N",
+                   help="largest number of correction rounds before the loop stops and says so (default 2)")
     p.add_argument("--seed", type=seed, default=0, help="random seed of the verification")
     add_scheduler_arg(p, "the verification's Monte Carlo samples")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
@@ -137,53 +143,109 @@ def cmd_allocate(args) -> int:
         return run_calibrated(args, problem, set_name)
     kw = dict(radius_mm=args.radius_mm, prob=args.prob, costs=costs, angle_radius_deg=args.angle_radius_deg,
               angle_prob=args.angle_prob)
-    reg_info, cov = None, None
+    reg_info = None
     if region is not None:
         from tolalloc.allocate.region import allocate_region
 
         q0 = robot.poses("working") if "working" in robot.pose_sets else None
         if q0 is not None and not np.all((q0 >= region.q_min - 1e-12) & (q0 <= region.q_max + 1e-12)):
             q0 = None
-        ra = allocate_region(model, region, q0, solver=args.solver, **kw)
-        q = ra.active_q
-        reg_info = ra
-    problem = build_problem(model, q, **kw)
-    res = allocate(problem, solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg)
+        reg_info = allocate_region(model, region, q0, solver=args.solver, **kw)
+        q = reg_info.active_q
+    res = allocate(build_problem(model, q, **kw), solver=args.solver, snap=not args.no_snap,
+                   angle_step_deg=args.angle_step_deg)
+    if region is not None and res.status == "infeasible":
+        return _region_infeasible(args, region, reg_info, res)
+    res, cov, ver, corr = _verify_and_correct(args, model, kw, res, region)
     table = res.to_frame()
-    vproblem, vdesign = problem, res.design
-    if region is not None and res.status == "optimal":
-        from tolalloc.allocate.problem import make_design
-        from tolalloc.allocate.region import coverage
-
-        cov = coverage(problem, res.design.t, region, n=args.coverage_n, seed=args.seed + 12345)
-        vproblem = build_problem(model, np.vstack([q, cov.worst_q]), **kw)
-        vdesign = make_design(vproblem, res.design.solver, res.design.t)
-    ver = None
-    if res.status == "optimal" and not args.no_verify:
-        from tolalloc.verify.designs import verify_design
-
-        ver = verify_design(vproblem, vdesign, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
-    summary = _summary(res, robot, set_name, region, reg_info, cov, ver)
+    table["design"] = _design_note(res, corr)
+    summary = _summary(res, robot, set_name, region, reg_info, cov, ver, corr)
     if reg_info is not None:
         print(f"region {region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
               f"{reg_info.evaluations} search evaluations, worst linear P found {reg_info.worst_p:.5f}"
               + ("" if reg_info.converged else " (NOT converged: round limit reached)"))
     if cov is not None:
         print(cov.message(args.prob))
-    _print(res, table, ver, set_name, format_text)
+    _print(res, table, ver, set_name, format_text, corr)
     if args.out is not None:
-        _write_outputs(args, robot, set_name, res, table, summary, ver)
-    if res.status != "optimal":
-        return 1
-    if cov is not None and not cov.ok:
+        _write_outputs(args, robot, set_name, res, table, summary, ver, corr)
+    if res.status != "optimal" or (cov is not None and not cov.ok):
         return 1
     return 0 if ver is None or ver.ok else 1
 
 
-def _summary(res, robot, set_name, region, reg_info, cov, ver) -> dict:
-    """summary.json: the allocation, the region search, the coverage check and the verification."""
+def _region_infeasible(args, region, reg_info, res) -> int:
+    """One ``error:`` line for a region infeasible even at the tightest process limits; exit 1, nothing written."""
+    import sys
+
+    from tolalloc.allocate.region import worst_pose
+
+    pr = res.problem
+    robot = pr.model.robot
+    q, p_best, _ = worst_pose(pr, res.design.t, region, seed=args.seed, fixed=reg_info.static)
+    p_set = float(res.diagnosis.p_best["position"].min())
+    if p_set < p_best:  # an active pose is worse than what the search found
+        q, p_best = pr.q[int(np.argmin(res.diagnosis.p_best["position"]))], p_set
+    qi = robot.q_to_interface(q)
+    joints = ", ".join(f"{j.name} = {v:.4g} {j.unit}"
+                       for j, v in zip(robot.joints, qi))
+    flag = f"--region {args.region}" if args.region is not None else f"--region {region.name} (the robot's default)"
+    binding = ", ".join(f"{n} ({s:.0%})" for n, s in res.diagnosis.binding[:4])
+    print(f"error: {flag}: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} is infeasible over the region even with every "
+          f"tolerance at its tightest process limit: at the worst pose found ({joints}) the best achievable P is "
+          f"{p_best:.4f}" + (f"; limits that bind: {binding}" if binding else "")
+          + ". Lower these t_min in a costs file (--costs), relax --radius-mm / --prob, or use a smaller region; "
+          "nothing written.", file=sys.stderr)
+    return 1
+
+
+def _verify_and_correct(args, model, kw, res, region):
+    """Coverage of a box region, Monte Carlo verification and the correction loop.
+
+    Returns ``(result, coverage, verification, correction)``: the final (corrected) allocation and its checks.
+    """
+    from tolalloc.allocate.problem import build_problem, make_design
+    from tolalloc.allocate.region import coverage
+
+    if res.status != "optimal":
+        return res, None, None, None
+    cov, vproblem, vdesign = None, res.problem, res.design
+    if region is not None:
+        cov = coverage(res.problem, res.design.t, region, n=args.coverage_n, seed=args.seed + 12345)
+        vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
+        vdesign = make_design(vproblem, res.design.solver, res.design.t, fallback_from=res.design.fallback_from)
+    if args.no_verify:
+        return res, cov, None, None
+    from tolalloc.verify.designs import verify_design
+
+    ver = verify_design(vproblem, vdesign, n_mc=args.n_mc, seed=args.seed, scheduler=args.scheduler)
+    if ver.verdict == "demonstrated" or args.no_correction:
+        return res, cov, ver, None
+    from tolalloc.verify.correct import correct_design
+
+    corr = correct_design(model, vproblem.q, solver=args.solver, n_mc=args.n_mc, seed=args.seed,
+                          max_rounds=args.correction_rounds, result=res, verification=ver, snap=not args.no_snap,
+                          angle_step_deg=args.angle_step_deg, scheduler=args.scheduler, keep_samples=4000, **kw)
+    if corr.rounds and region is not None:  # the corrected design, checked over the region again
+        cov = coverage(corr.result.problem, corr.result.design.t, region, n=args.coverage_n, seed=args.seed + 12345)
+    return corr.result, cov, corr.verification, corr
+
+
+def _design_note(res, corr) -> str:
+    """What the tables hold: the design's label, and whether it is the corrected one."""
+    note = f"{res.design.label}"
+    if corr is not None and corr.rounds:
+        note += (f", corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
+                 f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.2f}% cost)")
+    return note
+
+
+def _summary(res, robot, set_name, region, reg_info, cov, ver, corr) -> dict:
+    """summary.json: the allocation, the region search, the coverage check, the verification and the correction."""
     summary = res.summary()
     summary["pose_set"] = set_name
+    summary["tables_design"] = _design_note(res, corr)
+    summary["correction"] = None if corr is None else corr.to_dict()
     if reg_info is not None:
         summary["region"] = {"name": region.name, "q_min_deg_mm": robot.q_to_interface(region.q_min),
                              "q_max_deg_mm": robot.q_to_interface(region.q_max), "rounds": reg_info.rounds,
@@ -202,23 +264,25 @@ def _summary(res, robot, set_name, region, reg_info, cov, ver) -> dict:
             if ver.angle is not None:
                 row.update({"p_mc_angle": float(ver.angle["p_mc"][i]),
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})
-            row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "reason": ver.reason[i]})
+            row.update({"n_mc": int(ver.n[i]), "passed": bool(ver.passed[i]), "verdict": str(ver.verdicts[i]),
+                        "reason": ver.reason[i]})
         summary["verification"]["verdict"] = ver.verdict
+        summary["verification"]["verdicts"] = ver.verdicts.tolist()
     return summary
 
 
-def _write_outputs(args, robot, set_name, res, table, summary, ver) -> None:
+def _write_outputs(args, robot, set_name, res, table, summary, ver, corr) -> None:
     """The --out directory: tables, summary.json, verification.csv and figures, published all at once."""
     from tolalloc.report.tables import write_tables
 
     with atomic_output(args.out, directory=True) as tmp:
         write_tables(table, tmp, caption=f"Tolerances of {robot.name}: P(|dP| < {args.radius_mm:g} mm) >= "
-                     f"{args.prob:g} at the {set_name} poses ({res.design.solver})")
+                     f"{args.prob:g} at the {set_name} poses", note=f"design: {_design_note(res, corr)}")
         write_json(summary, tmp / "summary.json")
         from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pose_probabilities
 
         plot_budget(table, tmp / "error_budget.png",
-                    title=f"{robot.name}: {res.design.solver} design, worst pose {res.worst_pose + 1}")
+                    title=f"{robot.name}: {res.design.label} design, worst pose {res.worst_pose + 1}")
         if ver is not None:
             ver.to_frame().to_csv(tmp / "verification.csv", index=False, float_format="%.8g")
             plot_pose_probabilities(ver, tmp / "pose_probabilities.png")
@@ -249,18 +313,26 @@ def _check_args(args) -> None:
         raise TolallocError("--uniform and --z both set sigma = t / z; give one of them.")
     if args.z is not None and not (np.isfinite(args.z) and args.z > 0):
         raise TolallocError(f"--z: expected a number > 0 (sigma = t / z, e.g. --z 3), got {args.z!r}.")
+    if args.correction_rounds < 0:
+        raise TolallocError(f"--correction-rounds: expected a whole number >= 0 (rounds of the correction loop, e.g. "
+                            f"--correction-rounds 2), got {args.correction_rounds}; or use --no-correction.")
     if args.n_mc < 100 and not args.no_verify:
         raise TolallocError(f"--n-mc: expected at least 100 samples per pose, got {args.n_mc}; or use --no-verify.")
     check_output(args.out, "--out", directory=True)
 
 
-def _print(res, table, ver, set_name, format_text) -> None:
+def _print(res, table, ver, set_name, format_text, corr=None) -> None:
     pr = res.problem
     print(f"robot: {pr.model.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} at "
           f"{pr.n_poses} {set_name} pose(s)" + ("" if pr.angle_radius_rad is None else
                                                f", P(|dw| < {np.rad2deg(pr.angle_radius_rad):g} deg) >= {pr.angle_prob:g}"))
     print(f"costs: {pr.costs.source}; sigma = t / {pr.costs.z:.4g}"
           + ("; errors uniform over +-t" if pr.costs.distribution == "uniform" else ""))
+    if res.status == "not_converged":
+        print(f"\nstatus: NOT CONVERGED   design: {res.design.label}   cost: {res.design.cost:.4f}\n{res.message}")
+        print("\nthe non-converged design (for reference only):")
+        print(format_text(table))
+        return
     if res.status != "optimal":
         print(f"\nstatus: INFEASIBLE. {res.message}")
         print("\ntightest design the process limits allow (for reference):")
@@ -273,7 +345,7 @@ def _print(res, table, ver, set_name, format_text) -> None:
             return f"{x:.4f}"
         return "n/a" if d is None or not d.message else f"n/a, {d.status}: {d.message}"
 
-    print(f"status: optimal   design: {res.design.solver}   cost: {res.design.cost:.4f}")
+    print(f"status: optimal   design: {res.design.label}   cost: {res.design.cost:.4f}")
     print(f"cost: certified {c(s['certified'], res.certified)} ({s['certified_rule']}; {s['certified_other_rule']}: "
           f"{c(s['certified_other'], res.certified_other)})   exact {c(s['exact'])}"
           + ("" if s["saving"] is None else f"   saving {s['saving']:.4f} ({s['saving_pct']:.2f}%)"))
@@ -287,3 +359,9 @@ def _print(res, table, ver, set_name, format_text) -> None:
     print(f"\nlinear P per pose: min {p.min():.4f} (pose {int(np.argmin(p)) + 1}), max {p.max():.4f}")
     if ver is not None:
         print(ver.message())
+        print("verdict per pose: " + ", ".join(f"{i + 1} {v}" for i, v in enumerate(ver.verdicts))
+              + f"; overall: {ver.verdict}")
+    if corr is not None:
+        print(f"correction: {corr.message()}")
+        if corr.rounds:
+            print("the tolerance table above is the corrected design's")

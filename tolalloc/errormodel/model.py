@@ -45,7 +45,6 @@ from tolalloc.errormodel.sampling import sample_values  # the one sampler, share
 __all__ = ["ErrorParameter", "ErrorModel", "KINDS"]
 
 KINDS = ("link_length", "joint_drive", "axis_deflection", "clearance_axial", "clearance_radial", "clearance_tilt")
-DISTRIBUTIONS = ("normal", "uniform", "truncnormal", "ring")
 
 #: Defaults for robots without sigma sets (assumed typical values, see README) [mm or rad].
 GENERIC_SIGMA = {

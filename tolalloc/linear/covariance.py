@@ -36,7 +36,8 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
-__all__ = ["LinearResult", "ErrorBudget", "linear_map", "input_covariance", "budget", "VARIANCE_FACTOR"]
+__all__ = ["LinearResult", "ErrorBudget", "linear_map", "input_covariance", "budget", "variance_contributions",
+           "variance_share", "VARIANCE_FACTOR"]
 
 #: Second moment of each sampling distribution per unit sigma^2.
 VARIANCE_FACTOR = {"normal": 1.0, "uniform": 1.0, "ring": 1.0, "truncnormal": 0.9733369246625415}
@@ -293,6 +294,40 @@ class ErrorBudget:
             fh.write(self.to_markdown(pose, by, top) + "\n")
 
 
+def variance_contributions(J, cov) -> np.ndarray:
+    """Contribution of each parameter to the variance of each error row: ``J_ik (S J^T)_ki``.
+
+    Parameters
+    ----------
+    J : array, shape (..., R, K)
+        Error Jacobian rows (e.g. the position rows, R = 3).
+    cov : array, shape (K,) or (K, K)
+        Parameter variances (independent parameters: ``sigma**2``) or their covariance ``S``.
+
+    Returns
+    -------
+    array, shape (..., R, K)
+        Summed over K: the diagonal of ``J S J^T``; summed over R and K: its trace.
+    """
+    J = np.asarray(J, float)
+    cov = np.asarray(cov, float)
+    if cov.ndim == 1:
+        return J**2 * cov
+    return J * np.einsum("kl,...il->...ik", cov, J)
+
+
+def variance_share(J, cov) -> np.ndarray:
+    """Share of each parameter in the trace of ``J S J^T`` (the mean squared error), shape (..., K).
+
+    ``J`` (..., R, K) and ``cov`` (K,) or (K, K) as :func:`variance_contributions`; zero where the trace is 0.
+    The one implementation behind every "variance share" of the package (error budget, tolerance tables,
+    binding process limits, the verification's non-Gaussian attribution).
+    """
+    v = variance_contributions(J, cov).sum(-2)
+    tot = v.sum(-1, keepdims=True)
+    return np.divide(v, tot, out=np.zeros_like(v), where=tot > 0)
+
+
 def budget(result: LinearResult, quantity: str = "position") -> ErrorBudget:
     """Error budget of a :class:`LinearResult`.
 
@@ -309,8 +344,7 @@ def budget(result: LinearResult, quantity: str = "position") -> ErrorBudget:
         raise TolallocError(f"quantity: expected 'position' or 'rotation', got {quantity!r}.")
     rows = slice(0, 3) if quantity == "position" else slice(3, 6)
     Jq = result.J[:, rows, :]  # (P, 3, K)
-    S = result.cov_eps
-    contrib = Jq * np.einsum("kl,pil->pik", S, Jq)  # (P, 3, K): J_ik (S J^T)_ki
+    contrib = variance_contributions(Jq, result.cov_eps)  # (P, 3, K): J_ik (S J^T)_ki
     var = np.concatenate([np.swapaxes(contrib, 1, 2), contrib.sum(1)[:, :, None]], axis=2)  # (P, K, 4)
     total = var.sum(axis=1)
     model = result.model

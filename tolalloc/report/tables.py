@@ -55,8 +55,12 @@ def format_text(frame: pd.DataFrame, columns=None) -> str:
     return display_frame(frame, columns).to_string(index=False)
 
 
-def write_tables(frame: pd.DataFrame, out_dir, stem: str = "tolerances", *, caption: str | None = None) -> list[Path]:
+def write_tables(frame: pd.DataFrame, out_dir, stem: str = "tolerances", *, caption: str | None = None,
+                 note: str | None = None) -> list[Path]:
     """Write ``<stem>.csv`` (all columns, full precision), ``.md`` and ``.tex`` (formatted) into ``out_dir``.
+
+    ``note`` (e.g. which design the table holds: its solver label, fallback, non-convergence, correction) is
+    written as a line above the Markdown table and appended to the LaTeX caption.
 
     Returns
     -------
@@ -67,12 +71,14 @@ def write_tables(frame: pd.DataFrame, out_dir, stem: str = "tolerances", *, capt
     paths = [out_dir / f"{stem}.csv", out_dir / f"{stem}.md", out_dir / f"{stem}.tex"]
     frame.to_csv(paths[0], index=False, float_format="%.10g")
     disp = display_frame(frame)
-    paths[1].write_text(disp.to_markdown(index=False) + "\n")
+    paths[1].write_text(("" if note is None else f"{note}\n\n") + disp.to_markdown(index=False) + "\n")
     tex = disp.copy()
     tex.columns = [c.replace("_", r"\_") for c in tex.columns]
     for c in tex.columns:
         tex[c] = [str(x).replace("_", r"\_").replace("±", r"$\pm$").replace("%", r"\%") for x in tex[c]]
     styler = tex.style.hide(axis="index")
+    if note:
+        caption = f"{caption}. {note}" if caption else note
     if caption:
         caption = caption.replace("_", r"\_").replace("%", r"\%").replace(">=", r"$\geq$").replace("<", r"$<$")
     paths[2].write_text(styler.to_latex(caption=caption, hrules=True, column_format="l" * tex.shape[1]) + "\n")

@@ -1,12 +1,11 @@
 """Correction loop: tighten the target where the nonlinear Monte Carlo falls short of the linear P (issue 13).
 
-After a design is verified, every pose whose 95 % interval does not lie wholly at or above ``p`` gets the
-measured shortfall of ``P_hat`` below the linear prediction (zero if none) plus ``k_se`` standard errors
-added to its target. The allocation is solved again and re-verified (same seed, same poses), at most
-``max_rounds`` times; then the loop stops and says so.
-
-Simplification (stated): the allocation takes one probability per requirement, so the tightened target is
-the largest per-pose target, applied at every pose (conservative: it can cost more than per-pose targets).
+After a design is verified, every pose whose 95 % interval does not lie wholly at or above ``p`` (not
+*demonstrated*) gets a new target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the
+nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (never below its
+previous target). The allocation is solved again with these per-pose targets
+(:func:`tolalloc.allocate.problem.build_problem` ``target=``) and re-verified against ``p`` itself (same seed,
+same poses), at most ``max_rounds`` times; then the loop stops and says so.
 """
 
 from __future__ import annotations
@@ -28,97 +27,144 @@ class Correction:
     Attributes
     ----------
     result : AllocationResult
-        The final allocation (the input one if no round was needed).
+        The final allocation (the input one if no round was needed or none succeeded).
     verification : Verification
-        Its verification (verdict per pose and overall).
+        Its verification against ``p`` (verdict per pose and overall).
+    before : Verification
+        The verification of the uncorrected design.
     rounds : int
-        Correction rounds run (0: the first design was already demonstrated).
-    targets : tuple of float
-        The probability target of each solve (first: the requirement ``p``).
+        Correction rounds whose design was kept (0: nothing was re-solved).
+    targets : array, shape (P,)
+        The per-pose probability target of the final design (``p`` where no pose was tightened).
     costs : tuple of float
-        The design cost of each solve.
+        The design cost of each kept solve (first: the uncorrected design).
     stopped : bool
-        True when ``max_rounds`` were used and the design is still not demonstrated.
+        True when the final design is still not demonstrated (round limit, or no further tightening possible).
+    reason : str
+        Why the loop ended.
     """
 
     result: object
     verification: Verification
+    before: Verification
     rounds: int
-    targets: tuple
+    targets: np.ndarray
     costs: tuple
     stopped: bool
+    reason: str = ""
 
     @property
     def cost_of_correction(self) -> float:
         """Final cost minus the uncorrected cost."""
         return float(self.costs[-1] - self.costs[0])
 
+    @property
+    def premium_pct(self) -> float:
+        """The cost of the correction in % of the uncorrected cost."""
+        return 100.0 * self.cost_of_correction / self.costs[0] if self.costs[0] else float("nan")
+
+    @property
+    def tightened(self) -> np.ndarray:
+        """Pose indices (0-based) whose target was raised above ``p``."""
+        return np.flatnonzero(self.targets > self.verification.prob)
+
     def message(self) -> str:
         v = self.verification
-        head = (f"verified: {v.verdict} after {self.rounds} correction round(s); target "
-                f"{' -> '.join(f'{t:.5f}' for t in self.targets)}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
-                f"(+{self.cost_of_correction:.4f})")
-        return head + ("; stopped at the round limit, not demonstrated" if self.stopped else "")
+        poses = ", ".join(f"{i + 1} ({self.targets[i]:.5f})" for i in self.tightened) or "none"
+        head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
+                f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
+                f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.2f}%)")
+        return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
+
+    def to_dict(self) -> dict:
+        """JSON-ready ``correction`` block of summary.json (poses 1-based)."""
+        v = self.verification
+        return {"rounds": self.rounds, "stopped": self.stopped, "reason": self.reason,
+                "poses_tightened": [int(i) + 1 for i in self.tightened],
+                "target_per_pose": [float(x) for x in self.targets],
+                "cost_before": float(self.costs[0]), "cost_after": float(self.costs[-1]),
+                "cost_of_correction": self.cost_of_correction, "premium_pct": self.premium_pct,
+                "costs_per_round": [float(c) for c in self.costs],
+                "verdict_before": self.before.verdict, "verdicts_before": self.before.verdicts.tolist(),
+                "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "message": self.message()}
 
 
-def _needed_target(ver: Verification, k_se: float) -> float:
-    """Largest per-pose target ``p + max(0, p_lin - P_hat) + k_se se`` over poses not demonstrated, or ``p``."""
+def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
+    """Per-pose targets for the next round, shape (P,).
+
+    ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses not demonstrated (lower bound < p);
+    unchanged elsewhere. ``se = sqrt(P_hat (1 - P_hat) / n)``.
+    """
+    targets = np.asarray(targets, float)
     se = np.sqrt(np.maximum(ver.p_mc * (1 - ver.p_mc), 1e-12) / ver.n)
+    need = ver.prob + np.maximum(0.0, ver.p_linear - ver.p_mc) + k_se * se
     short = ver.ci_low < ver.prob
-    if not short.any():
-        return ver.prob
-    need = ver.prob + np.maximum(0.0, ver.p_linear - ver.p_mc)[short] + k_se * se[short]
-    return float(need.max())
+    return np.where(short, np.maximum(targets, need), targets)
 
 
-def correct_design(model, q, *, solver: str = "exact", radius_mm: float = 0.25, prob: float = 0.95,
-                   costs=None, n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0, max_rounds: int = 2,
-                   result=None) -> Correction:
-    """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten and re-solve.
+def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0,
+                   max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
+                   angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
+                   **problem_kw) -> Correction:
+    """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten those poses and re-solve.
 
     Parameters
     ----------
     model : ErrorModel
     q : array, shape (P, n) [rad, mm]
+        The poses that are verified (and tightened).
     solver : {"exact", "certified"}
-    radius_mm, prob, costs
-        The requirement and costs (as :func:`tolalloc.allocate.problem.build_problem`).
     n_mc : int
         Monte Carlo samples per pose.
+    seed : int
     k_se : float
         Margin in standard errors added to the measured shortfall.
     max_rounds : int
         Correction rounds before the loop stops.
     result : AllocationResult, optional
         An allocation already solved for ``p`` on ``q`` (saves the first solve).
+    verification : Verification, optional
+        Its verification on ``q`` (saves the first Monte Carlo run).
+    snap, angle_step_deg
+        Passed to :func:`tolalloc.allocate.solve.allocate` for the re-solved designs.
+    scheduler
+        Where the Monte Carlo runs (never changes the numbers).
+    keep_samples : int
+        Position errors kept at the worst linear pose of each re-verification (for figures).
+    problem_kw
+        The requirement and costs, as :func:`tolalloc.allocate.problem.build_problem` (``radius_mm``, ``prob``,
+        ``costs``, ``angle_radius_deg``, ``angle_prob``).
     """
     from tolalloc.allocate.solve import allocate
 
-    def solve(target):
-        pr = build_problem(model, q, radius_mm=radius_mm, prob=target, costs=costs)
-        return allocate(pr, solver=solver, snap=False)
+    def solve(target=None):
+        return allocate(build_problem(model, q, target=target, **problem_kw), solver=solver, snap=snap,
+                        angle_step_deg=angle_step_deg)
 
-    def check(res):
-        pr = build_problem(model, q, radius_mm=radius_mm, prob=prob, costs=costs)  # verified against p itself
-        d = res.design if solver == "exact" else res.certified
-        from tolalloc.allocate.problem import make_design
+    def check(res):  # against p itself (the problem's prob), with the design's own criterion
+        return verify_design(res.problem, res.design, n_mc=n_mc, seed=seed, keep_samples=keep_samples,
+                             scheduler=scheduler)
 
-        return verify_design(pr, make_design(pr, d.solver, d.t), n_mc=n_mc, seed=seed, keep_samples=0,
-                             criterion="certified")
-
-    res = result if result is not None else solve(prob)
-    targets, cost_list = [prob], [float(res.design.cost)]
-    ver = check(res)
-    rounds = 0
-    while ver.verdict != "demonstrated" and rounds < max_rounds:
-        target = _needed_target(ver, k_se)
-        if target <= targets[-1] or target >= 1:
+    res = result if result is not None else solve()
+    ver = verification if verification is not None else check(res)
+    before, targets = ver, np.full(len(np.atleast_2d(q)), ver.prob)
+    costs, rounds, reason = [float(res.design.cost)], 0, ""
+    while ver.verdict != "demonstrated":
+        if rounds >= max_rounds:
+            reason = f"round limit ({max_rounds}) reached"
             break
-        rounds += 1
-        res = solve(target)
-        if res.design.t is None:
+        new = needed_targets(ver, targets, k_se)
+        if np.any(new >= 1.0):
+            reason = "a pose would need a target of 1 or more"
             break
-        targets.append(target)
-        cost_list.append(float(res.design.cost))
+        if np.all(new <= targets):
+            reason = "no pose short of p can be tightened (orientation requirement failing?)"
+            break
+        nxt = solve(new)
+        if not nxt.design.ok or nxt.status != "optimal":
+            reason = f"the tightened problem has no design ({nxt.status}: {nxt.message})"
+            break
+        res, targets, rounds = nxt, new, rounds + 1
+        costs.append(float(res.design.cost))
         ver = check(res)
-    return Correction(res, ver, rounds, tuple(targets), tuple(cost_list), ver.verdict != "demonstrated")
+    return Correction(res, ver, before, rounds, targets, tuple(costs), ver.verdict != "demonstrated", reason)

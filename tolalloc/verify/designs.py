@@ -14,7 +14,8 @@ A **certified** design passes a pose only when demonstrated; an **exact** design
 A certified pose whose interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled).
 Failing poses are named with the reason: *under-specified* (the linear prediction itself is below
 ``p``), *non-Gaussian* parameters (ring clearances, uniform) carrying a sizeable share of the variance,
-*inconclusive* (interval straddles ``p`` at the largest sample size) or *nonlinearity*.
+*inconclusive* (the interval contains ``p`` at the largest sample size: more samples are needed, whatever
+``P_hat``) or *nonlinearity* (the whole interval lies below ``p`` although the linear prediction meets it).
 """
 
 from __future__ import annotations
@@ -25,7 +26,8 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.allocate.problem import AllocationProblem, Design
+from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
+from tolalloc.linear.covariance import variance_share
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict"]
 
@@ -124,7 +126,8 @@ class Verification:
                      f"{int(np.argmin(self.angle['p_mc'])) + 1}")
             return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({rule}); "
                     f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}")
-        return f"verified: failed ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
+        head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
+        return f"verified: {head} ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
 
     def to_frame(self) -> pd.DataFrame:
         """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason.
@@ -169,7 +172,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     design : Design
         Must have half-widths ``t``.
     criterion : {"certified", "exact"}, optional
-        Default: ``certified`` for designs whose solver starts with ``certified``, else ``exact``.
+        Default: ``certified`` for designs of a certified rule (``Design.solver.certified``, a certified fallback
+        of the exact solver included), else ``exact``.
     n_mc : int
         Samples per pose (the same sampled robots at every pose).
     n_max : int, optional
@@ -187,13 +191,16 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
 
     if design.t is None:
         raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
+    if design.status == NOT_CONVERGED:
+        raise TolallocError(f"verify: the design {design.label} did not converge ({design.message}); re-solve it "
+                            "(or verify its tolerances as a design of their own) before calling it verified.")
     try:
         n_ok = int(n_mc) == n_mc and n_mc >= 100
     except (TypeError, ValueError, OverflowError):
         n_ok = False
     if not n_ok:
         raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
-    crit = criterion or ("certified" if design.solver.startswith("certified") else "exact")
+    crit = criterion or ("certified" if design.solver.certified else "exact")
     if crit not in ("certified", "exact"):
         raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
     n_max = 4 * int(n_mc) if n_max is None else int(n_max)
@@ -250,9 +257,7 @@ def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.nda
         if ok[i] and a_ok[i]:
             reasons.append("")
             continue
-        J = problem.J[i, :3, :]
-        var = (J**2).sum(0) * model.sigma**2
-        share = float(var[nongauss].sum() / var.sum()) if var.sum() > 0 else 0.0
+        share = float(variance_share(problem.J[i, :3, :], model.sigma**2)[nongauss].sum())
         bits = []
         if not ok[i]:
             if p_lin[i] < p - 1e-6:
@@ -261,8 +266,8 @@ def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.nda
                 kinds = sorted({prm.distribution for prm, g in zip(model.params, nongauss) if g})
                 bits.append(f"non-Gaussian parameters ({', '.join(kinds)}) carry {share:.0%} of the variance: "
                             f"P_hat = {est[i, 0]:.4f} vs linear-Gaussian {p_lin[i]:.4f}")
-            elif crit == "certified" and est[i, 0] >= p and est[i, 1] < p:
-                bits.append(f"inconclusive: interval [{est[i, 1]:.4f}, {est[i, 2]:.4f}] straddles {p:g} "
+            elif est[i, 1] < p <= est[i, 2]:  # the interval contains p: too few samples to tell, whatever P_hat
+                bits.append(f"inconclusive: interval [{est[i, 1]:.4f}, {est[i, 2]:.4f}] contains {p:g} "
                             f"at n = {n[i]}; raise --n-mc")
             else:
                 bits.append(f"nonlinearity: exact kinematics give P_hat = {est[i, 0]:.4f} "
