@@ -10,12 +10,53 @@ import pandas as pd
 
 from tolalloc.diagnose.pipeline import Diagnosis
 
-__all__ = ["write_report", "markdown_table"]
+__all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions"]
 
 
 def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
     """A DataFrame as a Markdown table."""
     return df.to_markdown(index=False, floatfmt=floatfmt)
+
+
+def _joint_columns(robot) -> list:
+    return [f"q{k + 1}_{'deg' if j.is_revolute else 'mm'}" for k, j in enumerate(robot.joints)]
+
+
+def test_predictions(d: Diagnosis) -> pd.DataFrame:
+    """Per test pose: file row, final prediction [mm] (test frame), predicted 1-sigma and 95 % radius [mm],
+    whether the pose registered the frame (``refit``; then it is not scored) and whether it extrapolates."""
+    t = d.test
+    pred = d.final.test_pred_mm
+    reg = np.zeros(t.n_poses, bool)
+    if d.registration is not None:
+        reg[d.registration.register_index] = True
+    df = pd.DataFrame({"row": t.rows if len(t.rows) else np.arange(1, t.n_poses + 1),
+                       "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
+    if d.uncertainty is not None:
+        df["sigma_mm"] = d.uncertainty.sigma_mm
+        df["radius95_mm"] = d.uncertainty.radius95_mm
+    df["registration"] = reg.astype(int)
+    if d.extrapolation is not None:
+        df["extrapolation"] = d.extrapolation.flagged.astype(int)
+    return df
+
+
+def worst_test_poses(d: Diagnosis, n: int = 5) -> pd.DataFrame:
+    """The ``n`` scored test poses with the largest final 3-D error: row, joint values, nominal / final error [mm],
+    predicted 1-sigma and 95 % radius [mm], extrapolation flag."""
+    idx = d.scored_index
+    err_f = np.linalg.norm(d.final.test_mm, axis=1)
+    err_n = np.linalg.norm(d.nominal.test_mm, axis=1)
+    order = np.argsort(err_f)[::-1][:n]
+    rows = test_predictions(d).iloc[idx[order]].reset_index(drop=True)
+    q = pd.DataFrame(d.robot.q_to_interface(d.test.q[idx[order]]), columns=_joint_columns(d.robot))
+    out = pd.concat([rows[["row"]], q], axis=1)
+    out["error_nominal_mm"] = err_n[order]
+    out["error_final_mm"] = err_f[order]
+    for c in ("sigma_mm", "radius95_mm", "extrapolation"):
+        if c in rows:
+            out[c] = rows[c].to_numpy()
+    return out
 
 
 def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", prefix: str = "") -> Path:
