@@ -14,8 +14,9 @@
 * :func:`prediction_uncertainty` -- per test pose the predicted 1-sigma of the final model's prediction from the
   parameter covariance of its fit (Gauss-Newton ``sigma^2 (J^T J)^-1`` over the fitted parameters, with the MAP
   prior's precision added), and the 95 % radius of measured - predicted (prediction + measurement noise). The
-  fraction of scored test residuals inside that radius is the calibration check; far below 95 % (beyond 3
-  binomial standard deviations) it fires: the model misses systematic error its covariance does not know of.
+  fraction of scored test residuals inside that radius is the calibration check; below 85 % (and beyond 3
+  binomial standard deviations below 95 %) it fires: the model misses systematic error its covariance does not
+  know of.
 
 Every guard returns plain messages; the pipeline lists them in ``Diagnosis.guards`` (JSON ``guards``) and the
 CLI prints them.
@@ -35,7 +36,7 @@ from tolalloc.diagnose.calibrate import fixed_jacobian
 
 __all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "cv_fallback", "RANGE_MARGIN_DEG",
            "RANGE_MARGIN_MM", "FAR_FACTOR", "PRIOR_N_SIGMA", "FALLBACK_MARGIN",
-           "PoseUncertainty", "point_jacobian", "parameter_covariance", "prediction_uncertainty", "COVERAGE_P"]
+           "PoseUncertainty", "point_jacobian", "parameter_covariance", "prediction_uncertainty", "COVERAGE_P", "COVERAGE_LOW"]
 
 RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
@@ -43,6 +44,9 @@ FAR_FACTOR = 1.5
 PRIOR_N_SIGMA = 3.0
 FALLBACK_MARGIN = 0.01
 COVERAGE_P = 0.95
+#: The coverage guard fires below this (and 3 binomial sd below 95 %): the noise level is itself estimated
+#: (a few % off on ~100 training poses), which alone moves a correct model's coverage by a few points.
+COVERAGE_LOW = 0.85
 
 
 @dataclass(frozen=True, eq=False)
@@ -186,9 +190,9 @@ class PoseUncertainty:
         return float(self.inside.mean()) if len(self.inside) else float("nan")
 
     def message(self) -> str | None:
-        """A guard line when the coverage lies more than 3 binomial standard deviations below 95 %."""
+        """A guard line when the coverage is below :data:`COVERAGE_LOW` (85 %) and 3 binomial sd below 95 %."""
         n = len(self.inside)
-        low = COVERAGE_P - 3.0 * np.sqrt(COVERAGE_P * (1 - COVERAGE_P) / max(n, 1))
+        low = min(COVERAGE_LOW, COVERAGE_P - 3.0 * np.sqrt(COVERAGE_P * (1 - COVERAGE_P) / max(n, 1)))
         if n == 0 or self.coverage >= low:
             return None
         return (f"uncertainty: only {100 * self.coverage:.0f} % of the {n} scored test residuals lie within the "
