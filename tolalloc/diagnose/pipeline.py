@@ -10,7 +10,7 @@ from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.guards import (Extrapolation, PoseUncertainty, cv_fallback, extrapolation_flags,
                                      prediction_uncertainty, prior_flags)
@@ -41,6 +41,7 @@ class Diagnosis:
     fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
     registration : RegistrationSplit or None   ``refit``: test poses used to register the frame (never scored)
     uncertainty : PoseUncertainty or None      per test pose predicted 1-sigma and 95 % radius, coverage check
+    registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
     """
 
     robot: Robot
@@ -59,6 +60,7 @@ class Diagnosis:
     fallback: str | None = None
     registration: RegistrationSplit | None = None
     uncertainty: PoseUncertainty | None = None
+    registered: Fit | None = None
 
     @property
     def scored_index(self) -> np.ndarray:
@@ -142,6 +144,9 @@ class Diagnosis:
             out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source,
                            "scored_poses": len(self.scored_index), **self._block("test"),
                            "registration": None if self.registration is None else self.registration.to_dict(self.test.rows)}
+            if self.registered is not None:
+                out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
+                                                "target_offset_mm": self.registered.t_mm}
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
         return out
@@ -193,10 +198,10 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     fallback = None
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
-    extrap = unc = None
+    extrap = unc = reg = None
     if test is not None:
         with threadpool_limits(threads):
-            unc = _uncertainty(ctx, final)
+            unc, reg = _uncertainty(ctx, final)
         if unc.message():
             guards.append(unc.message())
         extrap = extrapolation_flags(robot, train.q, test.q)
@@ -208,21 +213,22 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                 guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
                               f"({f:.4g} vs {nmn:.4g} mm)")
     return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
-                     tuple(guards), extrap, fallback, ctx.registration, unc)
+                     tuple(guards), extrap, fallback, ctx.registration, unc, reg)
 
 
-def _uncertainty(ctx, final: Evaluation) -> PoseUncertainty:
-    """Predicted uncertainty of ``final`` on the test poses (re-registered with ``refit``)."""
+def _uncertainty(ctx, final: Evaluation) -> tuple:
+    """Predicted uncertainty of ``final`` on the test poses and, with ``refit``, the re-registered final fit."""
     fit, test = final.fit, ctx.test
     Btr = Bte = None
     if final.effects:
         Btr = np.concatenate([ctx.bases[e].B for e in final.effects], axis=2)[:, :, final.keep]
         Bte = np.concatenate([ctx.bases_test[e].B for e in final.effects], axis=2)[:, :, final.keep]
     if ctx.registration is None:
-        return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte)
+        return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte), None
     extra = np.zeros((test.n_poses, 3)) if Bte is None else Bte @ fit.beta
     reg = register_and_score(fit, test.q, test.xyz_mm, extra, ctx.registration)
-    return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte,
-                                  registered=reg.fit, split=ctx.registration)
+    unc = prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte,
+                                 registered=reg.fit, split=ctx.registration)
+    return unc, reg.fit
 
 

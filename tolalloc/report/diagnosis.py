@@ -65,7 +65,7 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    ba = d.before_after()
+    ba = d.before_after("test" if d.test is not None else "cv")
     ba.to_csv(out / f"{prefix}before_after.csv", index=False)
     d.sequence_frame().to_csv(out / f"{prefix}ranking.csv", index=False)
     d.where.trends.to_csv(out / f"{prefix}where_trends.csv", index=False)
@@ -86,14 +86,7 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
              "prismatic joint, joint offsets, tracker registration, probe offset; `tolalloc.diagnose.geometry`), MAP "
              "with priors 10x the robot's sigma set. The paper's error-screw model is the tolerance model "
              "(allocation, Monte Carlo), not used here.", ""]
-    lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
-    lines += ["## How far: held-out error (cross-validation" + (" + test file" if d.test is not None else "") + ")", "",
-             markdown_table(ba[["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct",
-                                "rms_shrink_vs_geometric_pct"]]), "",
-             f"![before/after]({prefix}before_after.png)", ""]
-    if d.test is not None:
-        bt = d.before_after("test")
-        lines += ["Test file alone:", "", markdown_table(bt[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]]), ""]
+    lines += _figures_section(d, prefix, out)
     lines += ["## Which: candidate effects", "",
               "Each candidate is fitted on training poses only and scored on held-out poses; p: one-sided Wilcoxon "
               "signed-rank test of the per-pose squared-error reduction (Bonferroni over the candidates of a step).", ""]
@@ -119,6 +112,35 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
     path.write_text("\n".join(lines) + "\n")
     (out / f"{prefix}diagnosis.json").write_text(json.dumps(d.to_dict(), indent=2, default=_default) + "\n")
     return path
+
+
+def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
+    """Test-file figures first, cross-validation separately, worst test poses, uncertainty check, guards."""
+    cols = ["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct", "rms_shrink_vs_geometric_pct"]
+    lines = []
+    if d.test is not None:
+        reg = d.registration
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} test poses spread in joint space "
+               "re-registered the tracker frame and probe offset and are **not** scored (rows in the JSON, "
+               "`registration` column of the predictions)" if reg is not None else
+               f"{d.test.n_poses} poses in the training tracker frame")
+        worst = worst_test_poses(d)
+        test_predictions(d).to_csv(out / f"{prefix}test_predictions.csv", index=False)
+        worst.to_csv(out / f"{prefix}worst_test_poses.csv", index=False)
+        u = d.uncertainty
+        lines += ["## Test file", "", f"{how}. Error [mm] of the 3-D position:", "",
+                  markdown_table(d.before_after("test")[cols]), "", f"![before/after]({prefix}before_after.png)", "",
+                  "Worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):", "",
+                  markdown_table(worst, ".4g"), "",
+                  f"Predicted uncertainty (parameter covariance of the final fit): median 1-sigma "
+                  f"{np.median(u.sigma_mm):.4f} mm, noise {u.noise_mm:.4f} mm per coordinate; "
+                  f"{100 * u.coverage:.1f} % of the {len(u.inside)} scored test residuals lie within the predicted "
+                  "95 % radius (95 % when the model's uncertainty is right).", ""]
+    lines += ["## Cross-validation on the training file (out-of-fold)", "",
+              markdown_table(d.before_after("cv")[cols]), "",
+              *([f"![before/after]({prefix}before_after.png)", ""] if d.test is None else [])]
+    lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
+    return lines
 
 
 def _default(o):
