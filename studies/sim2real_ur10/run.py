@@ -139,7 +139,7 @@ def main(argv=None) -> int:
     summary.to_csv(OUT / "summary.csv", index=False, float_format="%.5g")
     gap_all = pd.concat(gaps, ignore_index=True)[["run", "part", "ms_mm2", "rms_equiv_mm", "share_of_nominal_pct"]]
     gap_all.to_csv(OUT / "gap_split.csv", index=False, float_format="%.5g")
-    lines = report_lines(summary, gap_all, A_all, C_all, step_a, step_c, a.quick)
+    lines = report_lines(summary, gap_all, A_all, C_all, step_a, step_c, a.quick) + joint_ranges(A_all, C_all, robot)
     (OUT / "report.md").write_text("\n".join(lines + ["## Runs", "", *sections]) + "\n")
     print(f"-> {OUT / 'report.md'}")
     return 0
@@ -210,6 +210,15 @@ def reading(s: pd.DataFrame, share: pd.DataFrame) -> list:
            "* Predicted-uncertainty coverage (95 % expected): "
            + ", ".join(f"{r} {v:.0f} %" for r, v in s["coverage95_pct"].items()) + "."]
     return out
+
+
+def joint_ranges(A_all, C_all, robot) -> list:
+    """Joint ranges of the two sessions [deg]: why every cross-session test pose is flagged as extrapolation."""
+    cols = [f"q{j + 1}" for j in range(robot.n_joints)]
+    rows = [{"session": s, **{c: f"{df[c].min():.0f} .. {df[c].max():.0f}" for c in cols}} for s, df in (("A", A_all), ("C", C_all))]
+    return ["Joint ranges of the two sessions [deg] (cross-session test poses lie outside the training session's "
+            "ranges, hence the extrapolation guard on every one of them):", "",
+            pd.DataFrame(rows).to_markdown(index=False), ""]
 
 
 if __name__ == "__main__":

@@ -196,7 +196,7 @@ class PoseUncertainty:
         if n == 0 or self.coverage >= low:
             return None
         return (f"uncertainty: only {100 * self.coverage:.0f} % of the {n} scored test residuals lie within the "
-                f"predicted 95 % radius (expected 95 %, at least {100 * low:.0f} % by chance); the predicted "
+                f"predicted 95 % radius (expected 95 %; this guard fires below {100 * low:.0f} %); the predicted "
                 "uncertainties are too small -- systematic error the fitted model does not contain")
 
     def to_dict(self) -> dict:
