@@ -65,4 +65,10 @@ def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
     assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--predictions",
                  str(tmp_path / "p.csv")]) == 2
     assert "--predictions needs --test" in capsys.readouterr().err
+    assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+                 "--register-n", "10", *args]) == 2
+    assert "--register-n needs --test-frame refit" in capsys.readouterr().err
+    assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+                 "--test-frame", "refit", "--register-n", "38", *args]) == 2  # the test file has 40 poses
+    assert "gives 38 registration and 2 scored poses" in capsys.readouterr().err
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists() and not (tmp_path / "p.csv").exists()
