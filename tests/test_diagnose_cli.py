@@ -30,11 +30,24 @@ def test_end_to_end(tmp_path, capsys):
     assert js["effect"] == "backlash"
     assert js["rms_mm"]["final"] < js["rms_mm"]["geometric"] < js["rms_mm"]["nominal"]
     pred = pd.read_csv(tmp_path / "pred.csv")
-    assert list(pred.columns) == ["x_mm", "y_mm", "z_mm"] and len(pred) == len(te)
-    err = np.linalg.norm(pred.to_numpy() - te[["x_mm", "y_mm", "z_mm"]].to_numpy(), axis=1)
+    assert list(pred.columns) == ["x_mm", "y_mm", "z_mm", "sigma_mm", "radius95_mm", "registration", "extrapolation"]
+    assert len(pred) == len(te) and (pred["sigma_mm"] > 0).all() and (pred["registration"] == 0).all()
+    assert (pred["radius95_mm"] > pred["sigma_mm"]).all()  # the radius adds the measurement noise
+    err = np.linalg.norm(pred[["x_mm", "y_mm", "z_mm"]].to_numpy() - te[["x_mm", "y_mm", "z_mm"]].to_numpy(), axis=1)
     assert np.sqrt(np.mean(err ** 2)) == __import__("pytest").approx(js["test_rms_mm"]["final"], rel=1e-6)
     assert (tmp_path / "rep" / "report.md").exists() and (tmp_path / "rep" / "where.png").exists()
-    assert "effect: backlash" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "effect: backlash" in out
+    # order: test-file figures, then cross-validation, worst test poses, guards, ranking
+    heads = ["test file", "cross-validation on the training file", "worst test poses", "predicted uncertainty",
+             "ranking"]
+    pos = [out.index(h) for h in heads]
+    assert pos == sorted(pos)
+    test_block = out[pos[0]:pos[1]]
+    final_rms = float(test_block.split("final")[1].split()[0])
+    assert final_rms == __import__("pytest").approx(js["test"]["rms_mm"]["final"], abs=1e-4)
+    assert js["test"]["rms_mm"] == js["test_rms_mm"] and set(js["cv"]["rms_mm"]) == {"nominal", "geometric", "final"}
+    assert 0 <= js["uncertainty"]["coverage95"] <= 1 and len(js["uncertainty"]["sigma_mm"]) == len(te)
 
 
 def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
@@ -52,4 +65,10 @@ def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
     assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--predictions",
                  str(tmp_path / "p.csv")]) == 2
     assert "--predictions needs --test" in capsys.readouterr().err
+    assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+                 "--register-n", "10", *args]) == 2
+    assert "--register-n needs --test-frame refit" in capsys.readouterr().err
+    assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+                 "--test-frame", "refit", "--register-n", "38", *args]) == 2  # the test file has 40 poses
+    assert "gives 38 registration and 2 scored poses" in capsys.readouterr().err
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists() and not (tmp_path / "p.csv").exists()

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
-from tolalloc.cli.argtypes import count, seed
+from tolalloc.cli.argtypes import count, finite_float, seed
 from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_from_args, write_json
 from tolalloc.cli.output import output_group
 
@@ -22,10 +23,17 @@ def register(sub) -> None:
     p.add_argument("--test", metavar="TEST.csv", help="held-out measurements, scored only")
     p.add_argument("--test-frame", choices=("same", "refit"), default="same",
                    help="'refit': the test file is another session in another tracker frame; its registration "
-                   "and target offset are re-estimated (two-fold) before scoring (default: same)")
+                   "and target offset are re-estimated on --register-n test poses, and only the other test poses "
+                   "are scored (default: same)")
+    p.add_argument("--register-n", type=finite_float, metavar="N",
+                   help="with --test-frame refit: how many test poses register the frame -- a count (>= 5, default 30) "
+                   "or, below 1, a fraction of the test file; chosen spread in joint space (seeded by --seed), "
+                   "used for the registration only and never scored")
     p.add_argument("--json", metavar="OUT.json", help="write the result as JSON ('-' for stdout)")
     p.add_argument("--predictions", metavar="PRED.csv",
-                   help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (needs --test)")
+                   help="final model's prediction x_mm,y_mm,z_mm for every test row, in order, with its predicted "
+                   "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
+                   "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
     p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
@@ -37,7 +45,8 @@ def cmd_diagnose(args) -> int:
     from tolalloc.exceptions import TolallocError
     from tolalloc.diagnose import diagnose, read_measurements
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.report.diagnosis import write_report
+    from tolalloc.diagnose.register import REGISTER_N
+    from tolalloc.report.diagnosis import test_predictions, write_report
 
     if args.predictions is not None and not args.test:
         raise TolallocError("--predictions needs --test: predictions are written for the rows of the test file.")
@@ -45,6 +54,8 @@ def cmd_diagnose(args) -> int:
         raise TolallocError(f"--alpha: expected a level in (0, 1), got {args.alpha}.")
     if args.folds < 2:
         raise TolallocError(f"--folds: expected at least 2 cross-validation folds, got {args.folds}.")
+    if args.register_n is not None and args.test_frame != "refit":
+        raise TolallocError("--register-n needs --test-frame refit: only a test file in another frame is re-registered.")
     # every output path is checked before any computation, so a late failure cannot leave some written
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
@@ -56,18 +67,18 @@ def cmd_diagnose(args) -> int:
     test = read_measurements(args.test, robot) if args.test else None
     if test is not None:
         check_train_test(train, test, args.train, args.test)
-    d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame)
+    d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame,
+                 register_n=REGISTER_N if args.register_n is None else args.register_n)
     with output_group() as out:
         # all outputs are produced in temporaries and moved into place together at the end
         if args.predictions is not None:
             tmp_pred = out.file(args.predictions)
-            pred = d.final.test_pred_mm
-            frame = pd.DataFrame({"row": test.rows, "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
+            frame = test_predictions(d)
             if test.n_skipped:
                 # skipped rows (empty cells) get empty predictions, so rows still line up with the test file
                 full = pd.DataFrame({"row": range(1, test.n_poses + test.n_skipped + 1)})
                 frame = full.merge(frame, on="row", how="left")
-            frame[["x_mm", "y_mm", "z_mm"]].to_csv(tmp_pred, index=False, float_format="%.6f")
+            frame.drop(columns="row").to_csv(tmp_pred, index=False, float_format="%.6f")
         if args.report is not None:
             tmp_dir = out.directory(args.report)
             write_report(d, tmp_dir)
@@ -76,16 +87,39 @@ def cmd_diagnose(args) -> int:
             write_json(d.to_dict(), tmp_json)
     if args.json == "-":
         write_json(d.to_dict(), "-")
-    ba = d.before_after()
+    _print_summary(d, args.folds)
+    return 0
+
+
+def _print_summary(d, folds: int) -> None:
+    """Test-file figures first, then cross-validation, the worst test poses, every guard, the ranking."""
+    from tolalloc.report.diagnosis import worst_test_poses
+
+    cols = ["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]
     print(f"effect: {d.effect}" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""))
+    if d.test is not None:
+        reg = d.registration
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses registered the "
+               "tracker frame and probe offset and are not scored" if reg is not None
+               else f"{d.test.n_poses} poses, training tracker frame")
+        print(f"test file {d.test.source} ({how}) [mm]:")
+        print(d.before_after("test")[cols].to_string(index=False, float_format="%.4f"))
+    print(f"cross-validation on the training file ({d.train.n_poses} poses, {folds} folds, out-of-fold) [mm]:")
+    print(d.before_after("cv")[cols].to_string(index=False, float_format="%.4f"))
+    if d.test is not None:
+        print("worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):")
+        print(worst_test_poses(d).to_string(index=False, float_format="%.3f"))
+        u = d.uncertainty
+        print(f"predicted uncertainty: median 1-sigma {np.median(u.sigma_mm):.4f} mm (noise {u.noise_mm:.4f} mm per "
+              f"coordinate); {100 * u.coverage:.0f} % of {len(u.inside)} scored test residuals within the predicted "
+              "95 % radius (95 % expected when the model's uncertainty is right)")
     for g in d.guards:
         print(f"GUARD: {g}")
-    print("held-out error [mm]:")
-    print(ba[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]].to_string(index=False, float_format="%.4f"))
-    print("ranking:")
+    if not d.guards:
+        print("guards: none fired")
+    print("ranking (held-out RMS: cross-validation + scored test poses):")
     for c in d.ranking:
         if c.applicable:
             print(f"  {c.effect:17s} held-out RMS {c.heldout_rms_mm:.4f} mm  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %")
         else:
             print(f"  {c.effect:17s} not testable: {c.reason}")
-    return 0

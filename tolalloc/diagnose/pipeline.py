@@ -4,15 +4,18 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
 import pandas as pd
 from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
 from tolalloc.diagnose.geometry import build_geometry_model
-from tolalloc.diagnose.guards import Extrapolation, cv_fallback, extrapolation_flags, prior_flags
+from tolalloc.diagnose.guards import (Extrapolation, PoseUncertainty, cv_fallback, extrapolation_flags,
+                                     prediction_uncertainty, prior_flags)
 from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.register import REGISTER_N, RegistrationSplit, register_and_score, register_count
 from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
@@ -36,6 +39,9 @@ class Diagnosis:
     guards : tuple of str          guards that fired (implausible parameters, extrapolating test poses, fallback)
     extrapolation : Extrapolation or None   per test pose flags (None without a test file)
     fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
+    registration : RegistrationSplit or None   ``refit``: test poses used to register the frame (never scored)
+    uncertainty : PoseUncertainty or None      per test pose predicted 1-sigma and 95 % radius, coverage check
+    registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
     """
 
     robot: Robot
@@ -52,6 +58,14 @@ class Diagnosis:
     guards: tuple = ()
     extrapolation: Extrapolation | None = None
     fallback: str | None = None
+    registration: RegistrationSplit | None = None
+    uncertainty: PoseUncertainty | None = None
+    registered: Fit | None = None
+
+    @property
+    def scored_index(self) -> np.ndarray:
+        """Test poses (0-based) the test figures are computed on: all, or the non-registration ones."""
+        return self.registration.score_index if self.registration is not None else np.arange(self.test.n_poses)
 
     @property
     def effect(self) -> str:
@@ -106,7 +120,7 @@ class Diagnosis:
             "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
                            "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
                            "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
-            "heldout": {"cv_poses": self.train.n_poses, "test_poses": 0 if self.test is None else self.test.n_poses,
+            "heldout": {"cv_poses": self.train.n_poses, "test_poses": 0 if self.test is None else len(self.scored_index),
                         "test_frame": self.test_frame},
             "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
                       "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
@@ -121,18 +135,31 @@ class Diagnosis:
                                       "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
                        "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
         }
+        out["cv"] = self._block("cv") | {"poses": self.train.n_poses}
         if self.extrapolation is not None:
             out["extrapolation"] = self.extrapolation.to_dict()
         if self.test is not None:
             bt = self.before_after("test")
             out["test_rms_mm"] = dict(zip(bt["model"], bt["rms_mm"]))
-            out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source}
+            out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source,
+                           "scored_poses": len(self.scored_index), **self._block("test"),
+                           "registration": None if self.registration is None else self.registration.to_dict(self.test.rows)}
+            if self.registered is not None:
+                out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
+                                                "target_offset_mm": self.registered.t_mm}
+        if self.uncertainty is not None:
+            out["uncertainty"] = self.uncertainty.to_dict()
         return out
+
+    def _block(self, which: str) -> dict:
+        b = self.before_after(which)
+        return {k: dict(zip(b["model"], b[k])) for k in ("rms_mm", "p95_mm", "max_mm")}
 
 
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
-             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1) -> Diagnosis:
+             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
+             register_n: float = REGISTER_N) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     Parameters
@@ -144,19 +171,22 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     min_gain : float            minimum relative held-out RMS reduction of a selected effect
     test_frame : {"same", "refit"}
         ``refit``: the test file is in another tracker frame (another session); its registration and
-        target offset are re-estimated on one half of it and scored on the other (two-fold).
+        target offset are re-estimated on ``register_n`` test poses spread in joint space
+        (:mod:`.register`), and only the other test poses are scored.
+    register_n : float          ``refit``: registration poses, a count (>= 1, default 30) or a fraction (< 1)
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     """
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
+    if test is not None and test_frame == "refit":
+        register_count(test.n_poses, register_n)  # a bad --register-n fails before any fit
     with threadpool_limits(threads):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
-        if test is not None and test_frame == "refit" and test.n_poses < 10:
-            raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
-        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol)
+        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
+                           register_n=register_n)
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
         stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
@@ -168,8 +198,12 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     fallback = None
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
-    extrap = None
+    extrap = unc = reg = None
     if test is not None:
+        with threadpool_limits(threads):
+            unc, reg = _uncertainty(ctx, final)
+        if unc.message():
+            guards.append(unc.message())
         extrap = extrapolation_flags(robot, train.q, test.q)
         if extrap.message():
             guards.append(extrap.message())
@@ -179,6 +213,22 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                 guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
                               f"({f:.4g} vs {nmn:.4g} mm)")
     return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
-                     tuple(guards), extrap, fallback)
+                     tuple(guards), extrap, fallback, ctx.registration, unc, reg)
+
+
+def _uncertainty(ctx, final: Evaluation) -> tuple:
+    """Predicted uncertainty of ``final`` on the test poses and, with ``refit``, the re-registered final fit."""
+    fit, test = final.fit, ctx.test
+    Btr = Bte = None
+    if final.effects:
+        Btr = np.concatenate([ctx.bases[e].B for e in final.effects], axis=2)[:, :, final.keep]
+        Bte = np.concatenate([ctx.bases_test[e].B for e in final.effects], axis=2)[:, :, final.keep]
+    if ctx.registration is None:
+        return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte), None
+    extra = np.zeros((test.n_poses, 3)) if Bte is None else Bte @ fit.beta
+    reg = register_and_score(fit, test.q, test.xyz_mm, extra, ctx.registration)
+    unc = prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte,
+                                 registered=reg.fit, split=ctx.registration)
+    return unc, reg.fit
 
 

@@ -13,13 +13,14 @@ it (sequential forward selection, at most ``max_effects``). ``none`` when nothin
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.stats import wilcoxon
 
-from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, kabsch, select_columns
+from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_reference
+from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "evaluate", "select_effects", "rms", "error_stats"]
 
@@ -48,8 +49,8 @@ class Evaluation:
     param_names : tuple of str   fitted (identifiable) effect parameters
     keep : array of int          their columns in the concatenated basis
     oof_mm : array, shape (P, 3)         out-of-fold residuals of the training poses (measured - predicted)
-    test_mm : array, shape (T, 3) or None  residuals on the test file
-    test_pred_mm : array, shape (T, 3) or None  predictions on the test file (measurement frame)
+    test_mm : array, shape (T, 3) or None  residuals on the test file (``refit``: scored poses only, (T - r, 3))
+    test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
     """
 
     label: str
@@ -137,23 +138,6 @@ def _stack(bases: dict, effects) -> tuple:
     return B, names
 
 
-def _refit_frame(fit: Fit, q, xyz, extra, seed=0):
-    """Two-fold re-registration on a test set in another frame: residuals of each half with the frame of the other."""
-    res = np.zeros_like(xyz)
-    halves = np.array_split(np.random.default_rng(seed).permutation(len(q)), 2)
-    for a, b in ((halves[0], halves[1]), (halves[1], halves[0])):
-        base = fit.base_points(q[b]) + extra[b]
-        R, p = kabsch(base, xyz[b])
-        start = replace(fit, R=R, p_mm=p)
-        f = fit_model(start, q[b], xyz[b], geo_index=np.zeros(0, int), extra=extra[b])
-        res[a] = xyz[a] - _points_with(f, q[a], extra[a])
-    return res
-
-
-def _points_with(f: Fit, q, extra):
-    return (f.base_points(q) + extra) @ f.R.T + f.p_mm
-
-
 def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evaluation:
     """Fit a model on all training poses and on every CV fold; residuals on the held-out poses."""
     cal, train, test = ctx.cal, ctx.train, ctx.test
@@ -180,9 +164,10 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
             Bt, _ = _stack(ctx.bases_test, effects)
             Bt = Bt[:, :, keep]
         test_pred = full.predict(test.q, Bt)
-        if ctx.test_frame == "refit":
+        if ctx.test_frame == "refit":  # registered on ctx.registration.register_index, scored on the rest
             extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
-            test_res = _refit_frame(full, test.q, test.xyz_mm, extra)
+            reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration)
+            test_res, test_pred = reg.residual_mm, reg.pred_mm
         else:
             test_res = test.xyz_mm - test_pred
     label = "nominal" if nominal else "+".join(("geometric", *effects))
@@ -234,7 +219,10 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
-                 tol: float = 1e-3) -> _Context:
-    """Shared state of one diagnosis (folds, effect bases)."""
-    return _Context(cal, train, test, folds, seed, test_frame, tol)
+                 tol: float = 1e-3, register_n: float = REGISTER_N) -> _Context:
+    """Shared state of one diagnosis (folds, effect bases; with ``test_frame='refit'`` the registration split)."""
+    ctx = _Context(cal, train, test, folds, seed, test_frame, tol)
+    ctx.registration = (registration_split(test.q, cal.geometric.model.robot.revolute_mask, register_n, seed)
+                        if test is not None and test_frame == "refit" else None)
+    return ctx
 

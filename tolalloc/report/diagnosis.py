@@ -10,12 +10,53 @@ import pandas as pd
 
 from tolalloc.diagnose.pipeline import Diagnosis
 
-__all__ = ["write_report", "markdown_table"]
+__all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions"]
 
 
 def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
     """A DataFrame as a Markdown table."""
     return df.to_markdown(index=False, floatfmt=floatfmt)
+
+
+def _joint_columns(robot) -> list:
+    return [f"q{k + 1}_{'deg' if j.is_revolute else 'mm'}" for k, j in enumerate(robot.joints)]
+
+
+def test_predictions(d: Diagnosis) -> pd.DataFrame:
+    """Per test pose: file row, final prediction [mm] (test frame), predicted 1-sigma and 95 % radius [mm],
+    whether the pose registered the frame (``refit``; then it is not scored) and whether it extrapolates."""
+    t = d.test
+    pred = d.final.test_pred_mm
+    reg = np.zeros(t.n_poses, bool)
+    if d.registration is not None:
+        reg[d.registration.register_index] = True
+    df = pd.DataFrame({"row": t.rows if len(t.rows) else np.arange(1, t.n_poses + 1),
+                       "x_mm": pred[:, 0], "y_mm": pred[:, 1], "z_mm": pred[:, 2]})
+    if d.uncertainty is not None:
+        df["sigma_mm"] = d.uncertainty.sigma_mm
+        df["radius95_mm"] = d.uncertainty.radius95_mm
+    df["registration"] = reg.astype(int)
+    if d.extrapolation is not None:
+        df["extrapolation"] = d.extrapolation.flagged.astype(int)
+    return df
+
+
+def worst_test_poses(d: Diagnosis, n: int = 5) -> pd.DataFrame:
+    """The ``n`` scored test poses with the largest final 3-D error: row, joint values, nominal / final error [mm],
+    predicted 1-sigma and 95 % radius [mm], extrapolation flag."""
+    idx = d.scored_index
+    err_f = np.linalg.norm(d.final.test_mm, axis=1)
+    err_n = np.linalg.norm(d.nominal.test_mm, axis=1)
+    order = np.argsort(err_f)[::-1][:n]
+    rows = test_predictions(d).iloc[idx[order]].reset_index(drop=True)
+    q = pd.DataFrame(d.robot.q_to_interface(d.test.q[idx[order]]), columns=_joint_columns(d.robot))
+    out = pd.concat([rows[["row"]], q], axis=1)
+    out["error_nominal_mm"] = err_n[order]
+    out["error_final_mm"] = err_f[order]
+    for c in ("sigma_mm", "radius95_mm", "extrapolation"):
+        if c in rows:
+            out[c] = rows[c].to_numpy()
+    return out
 
 
 def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", prefix: str = "") -> Path:
@@ -24,7 +65,7 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    ba = d.before_after()
+    ba = d.before_after("test" if d.test is not None else "cv")
     ba.to_csv(out / f"{prefix}before_after.csv", index=False)
     d.sequence_frame().to_csv(out / f"{prefix}ranking.csv", index=False)
     d.where.trends.to_csv(out / f"{prefix}where_trends.csv", index=False)
@@ -45,14 +86,7 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
              "prismatic joint, joint offsets, tracker registration, probe offset; `tolalloc.diagnose.geometry`), MAP "
              "with priors 10x the robot's sigma set. The paper's error-screw model is the tolerance model "
              "(allocation, Monte Carlo), not used here.", ""]
-    lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
-    lines += ["## How far: held-out error (cross-validation" + (" + test file" if d.test is not None else "") + ")", "",
-             markdown_table(ba[["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct",
-                                "rms_shrink_vs_geometric_pct"]]), "",
-             f"![before/after]({prefix}before_after.png)", ""]
-    if d.test is not None:
-        bt = d.before_after("test")
-        lines += ["Test file alone:", "", markdown_table(bt[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]]), ""]
+    lines += _figures_section(d, prefix, out)
     lines += ["## Which: candidate effects", "",
               "Each candidate is fitted on training poses only and scored on held-out poses; p: one-sided Wilcoxon "
               "signed-rank test of the per-pose squared-error reduction (Bonferroni over the candidates of a step).", ""]
@@ -78,6 +112,35 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
     path.write_text("\n".join(lines) + "\n")
     (out / f"{prefix}diagnosis.json").write_text(json.dumps(d.to_dict(), indent=2, default=_default) + "\n")
     return path
+
+
+def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
+    """Test-file figures first, cross-validation separately, worst test poses, uncertainty check, guards."""
+    cols = ["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct", "rms_shrink_vs_geometric_pct"]
+    lines = []
+    if d.test is not None:
+        reg = d.registration
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} test poses spread in joint space "
+               "re-registered the tracker frame and probe offset and are **not** scored (rows in the JSON, "
+               "`registration` column of the predictions)" if reg is not None else
+               f"{d.test.n_poses} poses in the training tracker frame")
+        worst = worst_test_poses(d)
+        test_predictions(d).to_csv(out / f"{prefix}test_predictions.csv", index=False)
+        worst.to_csv(out / f"{prefix}worst_test_poses.csv", index=False)
+        u = d.uncertainty
+        lines += ["## Test file", "", f"{how}. Error [mm] of the 3-D position:", "",
+                  markdown_table(d.before_after("test")[cols]), "", f"![before/after]({prefix}before_after.png)", "",
+                  "Worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):", "",
+                  markdown_table(worst, ".4g"), "",
+                  f"Predicted uncertainty (parameter covariance of the final fit): median 1-sigma "
+                  f"{np.median(u.sigma_mm):.4f} mm, noise {u.noise_mm:.4f} mm per coordinate; "
+                  f"{100 * u.coverage:.1f} % of the {len(u.inside)} scored test residuals lie within the predicted "
+                  "95 % radius (95 % when the model's uncertainty is right).", ""]
+    lines += ["## Cross-validation on the training file (out-of-fold)", "",
+              markdown_table(d.before_after("cv")[cols]), "",
+              *([f"![before/after]({prefix}before_after.png)", ""] if d.test is None else [])]
+    lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
+    return lines
 
 
 def _default(o):

@@ -1,0 +1,144 @@
+"""Cross-session scoring: register the test file's tracker frame on a held-out part of it, score only the rest.
+
+A test file from another session (``--test-frame refit``) is in another tracker frame with another probe
+offset. Its registration (rotation, translation, 6) and target offset (3) are re-estimated with the trained
+model frozen -- on a small **registration subset** of the test poses (default :data:`REGISTER_N` = 30, or a
+fraction of the test file), and the model is scored on the **other** test poses only. Registering on the
+scored poses would let the 9 registration parameters absorb part of the error being scored.
+
+The registration subset is chosen to span the test series: farthest-point sampling in joint space (features
+``cos q, sin q`` of revolute joints and the standardised stroke of prismatic joints, see
+:func:`tolalloc.diagnose.gap.joint_features`), started from a seeded random pose. Poses spread in joint space
+give a well-conditioned registration.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.diagnose.calibrate import Fit, fit_model, kabsch
+from tolalloc.diagnose.gap import joint_features
+
+__all__ = ["REGISTER_N", "MIN_REGISTER", "MIN_SCORED", "RegistrationSplit", "registration_split", "register_count",
+           "Registered", "register_and_score"]
+
+#: Default number of test poses the registration is estimated on.
+REGISTER_N = 30
+#: Registration + probe offset are 9 unknowns, 3 coordinates per pose: at least 5 poses (15 rows, 6 spare).
+MIN_REGISTER = 5
+#: Fewer scored poses than this give no usable test figure.
+MIN_SCORED = 5
+
+
+@dataclass(frozen=True, eq=False)
+class RegistrationSplit:
+    """Which test poses register the tracker frame and which are scored.
+
+    Attributes
+    ----------
+    register_index : array of int, shape (r,)   test poses (0-based, sorted) the registration is fitted on
+    score_index : array of int, shape (T - r,)  the other test poses, the only ones scored
+    requested : float                           ``--register-n`` as given (count >= 1 or fraction < 1)
+    """
+
+    register_index: np.ndarray
+    score_index: np.ndarray
+    requested: float
+
+    @property
+    def n_poses(self) -> int:
+        return len(self.register_index) + len(self.score_index)
+
+    def to_dict(self, rows: np.ndarray | None = None) -> dict:
+        """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``)."""
+        pick = (lambda idx: (idx + 1).tolist()) if rows is None or not len(rows) else (lambda idx: rows[idx].tolist())
+        return {"register_n_requested": self.requested, "registration_poses": len(self.register_index),
+                "scored_poses": len(self.score_index), "registration_rows": pick(self.register_index),
+                "method": "farthest-point sampling in joint space (seeded start); registration and probe offset "
+                          "fitted on these rows only, the other rows scored"}
+
+
+def register_count(n_test: int, register_n: float) -> int:
+    """Number of registration poses: ``register_n`` itself when >= 1, else that fraction of ``n_test`` (rounded).
+
+    Raises :class:`TolallocError` when it leaves fewer than :data:`MIN_REGISTER` registration or
+    :data:`MIN_SCORED` scored poses.
+    """
+    if not np.isfinite(register_n) or register_n <= 0:
+        raise TolallocError(f"--register-n: expected a pose count >= {MIN_REGISTER} or a fraction in (0, 1), "
+                            f"got {register_n!r}.")
+    n = int(register_n) if register_n >= 1 else int(round(register_n * n_test))
+    if register_n >= 1 and n != register_n:
+        raise TolallocError(f"--register-n: a count must be a whole number, got {register_n!r}; "
+                            "use a value below 1 for a fraction.")
+    if n < MIN_REGISTER or n_test - n < MIN_SCORED:
+        raise TolallocError(
+            f"--register-n {register_n:g} gives {n} registration and {n_test - n} scored poses of the {n_test} test poses; "
+            f"re-registering needs at least {MIN_REGISTER} registration and {MIN_SCORED} scored poses -- "
+            "choose another --register-n or a larger test file.")
+    return n
+
+
+def registration_split(q: np.ndarray, revolute: np.ndarray, register_n: float = REGISTER_N,
+                       seed: int = 0) -> RegistrationSplit:
+    """Choose the registration poses by farthest-point sampling in joint space (see the module docstring).
+
+    Parameters
+    ----------
+    q : array, shape (T, n) [rad, mm]   test joint values
+    revolute : array of bool, shape (n,)
+    register_n : float   count (>= 1) or fraction (< 1) of the test poses
+    seed : int           seed of the first pose
+    """
+    T = len(q)
+    n = register_count(T, register_n)
+    X = joint_features(q, revolute)
+    X = X / np.maximum(X.std(0), 1e-9)
+    chosen = [int(np.random.default_rng(seed).integers(T))]
+    d = np.linalg.norm(X - X[chosen[0]], axis=1)
+    for _ in range(n - 1):
+        k = int(np.argmax(d))
+        chosen.append(k)
+        d = np.minimum(d, np.linalg.norm(X - X[k], axis=1))
+    reg = np.sort(np.array(chosen, int))
+    return RegistrationSplit(reg, np.setdiff1d(np.arange(T), reg), float(register_n))
+
+
+@dataclass(frozen=True, eq=False)
+class Registered:
+    """A trained model re-registered to the test file's frame.
+
+    Attributes
+    ----------
+    fit : Fit                      the trained fit with the test frame's ``R, p_mm, t_mm``
+    pred_mm : array, shape (T, 3)  predictions of every test pose in the test frame [mm]
+    residual_mm : array, shape (T - r, 3)  measured - predicted on the scored poses only [mm]
+    """
+
+    fit: Fit
+    pred_mm: np.ndarray
+    residual_mm: np.ndarray
+
+
+def register_and_score(fit: Fit, q: np.ndarray, xyz: np.ndarray, extra: np.ndarray,
+                       split: RegistrationSplit) -> Registered:
+    """Re-estimate registration and target offset on ``split.register_index`` (model frozen), score the rest.
+
+    Parameters
+    ----------
+    fit : Fit                       trained model (geometry, effects)
+    q : array, shape (T, n) [rad, mm]
+    xyz : array, shape (T, 3) [mm]  measured, test tracker frame
+    extra : array, shape (T, 3) [mm]  the trained effects' displacement in the base frame (frozen)
+    split : RegistrationSplit
+    """
+    r = split.register_index
+    R, p = kabsch(fit.base_points(q[r]) + extra[r], xyz[r])
+    f = fit_model(replace(fit, R=R, p_mm=p), q[r], xyz[r], geo_index=np.zeros(0, int), extra=extra[r])
+    f = replace(fit, R=f.R, p_mm=f.p_mm, t_mm=f.t_mm)
+    pred = (f.base_points(q) + extra) @ f.R.T + f.p_mm
+    s = split.score_index
+    return Registered(f, pred, xyz[s] - pred[s])
