@@ -130,8 +130,12 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
     if bad:
         raise TolallocError(f"calibration plan {path.name}: unknown setting(s) {', '.join(sorted(bad))}; "
                             f"expected {', '.join(sorted(known))}.")
-    df = pd.read_csv(io.StringIO(text), comment="#")
     cols = [f"{j.name}_{j.unit}" for j in robot.joints]
+    try:
+        df = pd.read_csv(io.StringIO(text), comment="#")
+    except (pd.errors.EmptyDataError, pd.errors.ParserError) as exc:
+        raise TolallocError(f"calibration plan {path.name}: cannot be read as CSV ({str(exc).strip()}); expected the "
+                            f"columns {', '.join(cols)} (write one with `tolalloc calplan`).") from None
     if list(df.columns) != cols:
         raise TolallocError(f"calibration plan {path.name}: expected the columns {', '.join(cols)}, "
                             f"got {', '.join(map(str, df.columns))}.")

@@ -29,7 +29,7 @@ def register(sub) -> None:
                    "a region (box) of the robot file, or a trajectory CSV (q1..qN per row, deg / mm). Boxes are "
                    "searched for their worst pose (cutting planes) and checked on a fresh sample. Default: the "
                    "robot's 'working' region if it has one, else the pose set (--poses)")
-    p.add_argument("--coverage-n", type=int, default=100_000,
+    p.add_argument("--coverage-n", type=count, default=100_000,
                    help="fresh poses for the coverage check of a box region (default 1e5)")
     p.add_argument("--solver", default="exact", choices=["exact", "certified"],
                    help="design to report: exact (IPOPT, default) or certified (cvxpy + Clarabel)")

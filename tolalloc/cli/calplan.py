@@ -43,8 +43,11 @@ def split_from_costs(model, path):
 
     if path is None:
         return split_errors(model)
+    from tolalloc.allocate.costs import load_costs
+
+    load_costs(path, model)  # the whole file is checked, not only its [calibration] table
     try:
-        data = tomllib.loads(Path(path).read_text())
+        data = tomllib.loads(Path(path).read_text(encoding="utf-8-sig"))
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise TolallocError(f"costs file {path}: cannot read it as TOML ({exc}).") from None
     return split_errors(model, data.get("calibration"))

@@ -69,6 +69,9 @@ def check_output(path, flag: str, *, directory: bool = False) -> None:
         want = "a directory" if directory else "a file"
         raise TolallocError(f"{flag}: expected {want} path, got an empty string; give a path or leave out {flag}.")
     p = Path(path)
+    if directory and p.resolve().parent == p.resolve():
+        raise TolallocError(f"{flag} {str(p)!r}: refusing to write results into the filesystem root; give a "
+                            "directory of their own, e.g. {flag} results.".replace("{flag}", flag))
     if p.exists() and p.is_dir() != directory:
         want = "a directory" if directory else "a file"
         raise TolallocError(f"{flag} {str(p)!r}: expected {want} path, but {str(p)!r} is "
@@ -167,6 +170,28 @@ def _publish_dir(tmp: Path, path: Path) -> None:
         os.replace(item, target)
 
 
+def _special(path: Path) -> bool:
+    """A symlink, device or pipe (``/dev/stdout``, ``/dev/null``): written through, never replaced."""
+    return path.is_symlink() or (path.exists() and not path.is_file() and not path.is_dir())
+
+
+@contextlib.contextmanager
+def _direct_output(path: Path):
+    """Stage in a private temporary folder, then copy the bytes into ``path`` (which stays what it is)."""
+    folder = Path(tempfile.mkdtemp(prefix="tolalloc-"))
+    try:
+        tmp = folder / (path.name or "out")
+        yield tmp
+        try:
+            with _signals_held(), open(path, "wb") as dst:
+                dst.write(tmp.read_bytes() if tmp.exists() else b"")
+        except OSError as exc:
+            raise _cannot_write(path, False, exc) from None
+        _PUBLISHED.append(str(path))
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+
+
 @contextlib.contextmanager
 def atomic_output(path: str | os.PathLike, *, directory: bool = False):
     """Yield a temporary path; publish it at ``path`` only if the block finishes without error.
@@ -179,6 +204,10 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
     block removes the temporary path.
     """
     path = Path(path)
+    if not directory and _special(path):
+        with _direct_output(path) as tmp:
+            yield tmp
+        return
     tmp = None
     with contextlib.ExitStack() as stack:
         try:

@@ -12,6 +12,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
 from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.guards import (Extrapolation, PoseUncertainty, cv_fallback, extrapolation_flags,
                                      prediction_uncertainty, prior_flags)
 from tolalloc.diagnose.measurements import Measurements
@@ -180,11 +181,15 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
+    if folds > train.n_poses // 2:
+        raise TolallocError(f"folds: expected at most {train.n_poses // 2} cross-validation folds for "
+                            f"{train.n_poses} training poses (at least 2 poses held out per fold), got {folds}.")
     if test is not None and test_frame == "refit":
         register_count(test.n_poses, register_n)  # a bad --register-n fails before any fit
     with threadpool_limits(threads):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
+        check_nominal_misfit(robot, train, cal.nominal)
         ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
                            register_n=register_n)
         nominal = evaluate(ctx, nominal=True)
