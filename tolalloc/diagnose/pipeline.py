@@ -132,7 +132,8 @@ class Diagnosis:
 
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
-             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1) -> Diagnosis:
+             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
+             cv: str = "blocked") -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     Parameters
@@ -146,6 +147,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         ``refit``: the test file is in another tracker frame (another session); its registration and
         target offset are re-estimated on one half of it and scored on the other (two-fold).
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
+    cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
     """
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
@@ -156,7 +158,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         cal = calibrate(robot, train, model=model, tol=tol)
         if test is not None and test_frame == "refit" and test.n_poses < 10:
             raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
-        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol)
+        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol, cv=cv)
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
         stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
