@@ -38,13 +38,15 @@ from physics import EFFECT_NAMES  # noqa: E402
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_blind"
 LABELS = (*EFFECT_NAMES, "none")
 MIXED = ("joint_compliance+thermal", "backlash+link_deflection", "transmission+joint_compliance")
+SMALL = ("none", "joint_compliance", "transmission")
+POSES = 120
 
 
 def _rms(e):
     return float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
 
 
-def score_case(robot, case, rng) -> dict:
+def score_case(robot, case, rng, folds: int = 5) -> dict:
     """Diagnose one case; scores and the reference fit."""
     P = len(case.frame)
     idx = rng.permutation(P)
@@ -52,7 +54,7 @@ def score_case(robot, case, rng) -> dict:
     ftr, fte = case.frame.iloc[tr].reset_index(drop=True), case.frame.iloc[te].reset_index(drop=True)
     mtr, mte = measurements_from_frame(ftr, robot, "train"), measurements_from_frame(fte, robot, "test")
     t0 = time.perf_counter()
-    d = diagnose(robot, mtr, mte)
+    d = diagnose(robot, mtr, mte, folds=folds)
     dt = time.perf_counter() - t0
     geo = d.calibration.geometric
     B = case.ref_B
@@ -65,25 +67,71 @@ def score_case(robot, case, rng) -> dict:
     return {"true": case.label, "diagnosed": d.effect, "sequence": "+".join(d.effects) or "none",
             "top1": d.effect in truth, "top2": (case.label == "none" and d.effect == "none") or bool(truth & set(top2[:2])),
             "detail": case.detail, "poses": P, "outliers": case.outliers, "magnitude_mm": case.magnitude_mm,
-            "noise_mm": case.noise_mm, "test_rms_nominal_mm": ba["rms_mm"].iloc[0],
+            "noise_mm": case.noise_mm, "noise_floor_mm": float(np.sqrt(3) * case.noise_mm), "test_rms_nominal_mm": ba["rms_mm"].iloc[0],
             "test_rms_geometric_mm": ba["rms_mm"].iloc[1], "test_rms_final_mm": ba["rms_mm"].iloc[2],
             "test_rms_reference_mm": _rms(ref_err), "seconds": dt}
 
 
-def run(per_label: int, seed: int, quick: bool) -> pd.DataFrame:
-    rng = np.random.default_rng(seed)
-    rows = []
-    for name in ("tool_changer", "ur10"):
-        robot = tolalloc.load_robot(name)
-        plan = [(lab, 200) for lab in LABELS for _ in range(per_label)]
-        plan += [(lab, 200) for lab in (MIXED[:1] if quick else MIXED)]
-        plan += [(lab, 40) for lab in (("none",) if quick else ("none", "joint_compliance", "link_deflection"))]
-        for label, poses in plan:
-            case = generate(robot, label, poses, rng)
-            row = {"robot": name, **score_case(robot, case, rng)}
-            rows.append(row)
-            print(f"{name:12s} {label:30s} {poses:4d} -> {row['diagnosed']:17s} final/ref "
-                  f"{row['test_rms_final_mm'] / row['test_rms_reference_mm']:.2f} ({row['seconds']:.1f} s)", flush=True)
+def _erd_robot():
+    """The Panda of example-robot-data (a URDF robot, tool link ``panda_hand``), or None when not installed."""
+    import site
+
+    from tolalloc.robot.io.urdf import load_urdf
+
+    for base in [*site.getsitepackages(), *sys.path]:
+        path = Path(base) / "cmeel.prefix/share/example-robot-data/robots/panda_description/urdf/panda.urdf"
+        if path.is_file():
+            return load_urdf(path, tool="panda_hand")
+    return None
+
+
+def _plan(per_label: int, quick: bool) -> list:
+    """(label, poses) of one robot's cases: every label, mixed pairs, and 30-pose cases."""
+    plan = [(lab, POSES) for lab in (*LABELS, "none") for _ in range(per_label)]
+    plan += [(lab, POSES) for lab in (MIXED[:1] if quick else MIXED)]
+    plan += [(lab, 30) for lab in (("none",) if quick else SMALL)]
+    return plan
+
+
+def _one(job):
+    name, k, label, poses, seed, folds = job
+    robot = ROBOTS[name]
+    rng = np.random.default_rng([seed, list(ROBOTS).index(name), k])  # per case: order and jobs do not matter
+    case = generate(robot, label, poses, rng)
+    try:
+        row = {"robot": name, **score_case(robot, case, rng, folds)}
+    except tolalloc.TolallocError as exc:  # e.g. too few poses for the robot's identifiable parameters
+        row = {"robot": name, "true": label, "diagnosed": "error", "sequence": "error", "top1": False, "top2": False,
+               "poses": poses, "detail": str(exc).splitlines()[0]}
+    row["_k"] = k
+    print(f"{name:12s} {label:30s} {poses:4d} -> {row['diagnosed']:17s} final/ref "
+          f"{row.get('test_rms_final_mm', np.nan) / row.get('test_rms_reference_mm', np.nan):.2f} "
+          f"({row.get('seconds', np.nan):.1f} s)", flush=True)
+    return row
+
+
+ROBOTS = {}
+
+
+def run(per_label: int, seed: int, quick: bool, folds: int, jobs: int) -> pd.DataFrame:
+    ROBOTS.update({name: tolalloc.load_robot(name) for name in ("tool_changer", "ur10")})
+    panda = _erd_robot()
+    if panda is not None:
+        ROBOTS["panda"] = panda
+    todo = [(name, k, lab, poses, seed, folds) for name in ROBOTS for k, (lab, poses) in enumerate(_plan(per_label, quick))]
+    if jobs > 1:
+        import multiprocessing as mp
+
+        with mp.get_context("fork").Pool(jobs) as pool:
+            rows = []
+            for row in pool.imap_unordered(_one, todo, chunksize=1):
+                rows.append(row)
+                pd.DataFrame(rows).to_csv(OUT / "cases_partial.csv", index=False, float_format="%.5g")
+    else:
+        rows = [_one(job) for job in todo]
+    (OUT / "cases_partial.csv").unlink(missing_ok=True)
+    key = {job[:2]: i for i, job in enumerate(todo)}  # back to plan order
+    rows.sort(key=lambda r: key.get((r["robot"], r.pop("_k", 0)), 0))
     return pd.DataFrame(rows)
 
 
@@ -111,15 +159,28 @@ def summary_lines(df: pd.DataFrame) -> tuple[list, dict]:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="1 case per label and robot, fewer mixed / small cases")
-    ap.add_argument("--per-label", type=int, default=3)
+    ap.add_argument("--per-label", type=int, default=1)
     ap.add_argument("--seed", type=int, default=20261123)
+    ap.add_argument("--folds", type=int, default=3, help="CV folds per blocked scheme (time and joint space)")
+    ap.add_argument("--jobs", type=int, default=1, help="worker processes")
+    ap.add_argument("--report-only", action="store_true", help="rewrite report.md from the existing cases.csv")
     a = ap.parse_args(argv)
     per = 1 if a.quick else a.per_label
-    df = run(per, a.seed, a.quick)
-    OUT.mkdir(parents=True, exist_ok=True)
-    for old in ("shrink.csv",):
-        (OUT / old).unlink(missing_ok=True)
-    df.to_csv(OUT / "cases.csv", index=False, float_format="%.5g")
+    if a.report_only:
+        df = pd.read_csv(OUT / "cases.csv")
+    else:
+        t0 = time.perf_counter()
+        df = run(per, a.seed, a.quick, a.folds, a.jobs)
+        df["wall_s_total"] = time.perf_counter() - t0
+        OUT.mkdir(parents=True, exist_ok=True)
+        for old in ("shrink.csv",):
+            (OUT / old).unlink(missing_ok=True)
+        df.to_csv(OUT / "cases.csv", index=False, float_format="%.5g")
+    return write_report(df, a)
+
+
+def write_report(df: pd.DataFrame, a) -> int:
+    """report.md, confusion.csv and confusion.png from the case table."""
     single = df[~df["true"].str.contains(r"\+")]
     labels = list(LABELS)
     conf = pd.crosstab(pd.Categorical(single["true"], labels), pd.Categorical(single["diagnosed"], labels), dropna=False)
