@@ -26,7 +26,7 @@ those the data can carry.
                       ``dir1..dirN``) or ``gravity`` (the sign of the gravity torque holds the gear on one flank).
 ``thermal``           every link length grows by ``alpha dT L``; ``alpha`` [1e-6/K]. ``dT``: ``temperature``
                       (logged ``temperature_c`` minus the training mean), ``lag_<tau>min`` (the log through a
-                      first-order lag, time constant from :data:`LAG_MIN`; needs ``time_s``) or
+                      first-order lag, time constant fitted on the grid :data:`LAG_MIN`; needs ``time_s``) or
                       ``warmup_<tau>min`` (``1 - exp(-(t - t0)/tau)`` per unit of growth [1e-6], time driven;
                       needs ``time_s``).
 ``transmission``      joint-side harmonics ``dq_j = sum_k a_jk sin(k q_j) + b_jk cos(k q_j)`` per revolute
@@ -46,14 +46,14 @@ from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Mass, Robot
 from tolalloc.diagnose.measurements import Measurements
 
-__all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_reference", "applicable", "variants", "gravity_torques",
+__all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_bases", "effect_reference", "applicable", "variants", "gravity_torques",
            "robot_masses", "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian", "lagged"]
 
 EFFECTS = ("joint_compliance", "link_deflection", "backlash", "thermal", "transmission")
 DEFAULT_KG_PER_M = 10.0
 MIN_OVERHANG_MM = 200.0
 G = 9.81
-LAG_MIN = (10.0, 30.0, 90.0)
+LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
 
 
@@ -332,9 +332,21 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     elif effect == "link_deflection":
         B, names = _link_deflection(robot, q, p_t, variant)
     else:
-        model = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection"))
-        J = model.jacobian(q)[:, :3, :]  # (P, 3, L) per mm of each link
-        L = np.array([lk.length_mm for lk in robot.links if lk.length_mm > 0])
-        B = (J @ L * 1e-6 * _temperature_signal(meas, ref, variant)[:, None])[:, :, None]
-        names = [f"alpha [1e-6/K] ({variant})" if not variant.startswith("warmup") else f"growth [1e-6] ({variant})"]
+        return effect_bases("thermal", robot, meas, t_mm, ref, (variant,))[0]
     return EffectBasis(effect, tuple(names), np.asarray(B, dtype=float), variant)
+
+
+def effect_bases(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict, names) -> list:
+    """:func:`effect_basis` for every variant in ``names`` (thermal: the link-growth field is computed once)."""
+    if effect != "thermal":
+        return [effect_basis(effect, robot, meas, t_mm, ref, v) for v in names]
+    model = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection"))
+    J = model.jacobian(meas.q)[:, :3, :]  # (P, 3, L) per mm of each link (a translation: same at the target)
+    L = np.array([lk.length_mm for lk in robot.links if lk.length_mm > 0])
+    grow = 1e-6 * (J @ L)  # (P, 3) per unit of relative growth 1e-6
+    out = []
+    for v in names:
+        B = (grow * _temperature_signal(meas, ref, v)[:, None])[:, :, None]
+        label = f"alpha [1e-6/K] ({v})" if not v.startswith("warmup") else f"growth [1e-6] ({v})"
+        out.append(EffectBasis(effect, (label,), np.asarray(B, dtype=float), v))
+    return out

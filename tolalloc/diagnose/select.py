@@ -24,7 +24,7 @@ import numpy as np
 from scipy.stats import wilcoxon
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, kabsch, select_columns
-from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_reference, variants
+from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate",
            "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
@@ -198,7 +198,7 @@ class _Context:
                 ok, why = False, "the test file lacks the columns this effect needs (dir / temperature_c / time_s)"
             self.reasons[e] = why
             if ok:
-                cands = [effect_basis(e, robot, train, t, self.ref, v) for v in names]
+                cands = effect_bases(e, robot, train, t, self.ref, names)
                 self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed)
                 self.ref["variants"][e] = self.bases[e].variant
                 if test is not None:
