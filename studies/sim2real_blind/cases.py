@@ -95,7 +95,8 @@ class _Physics:
     def unit_amps(self, e, rng):
         """Random amplitudes with every column of comparable size (before the case's magnitude scaling)."""
         if e == "joint_compliance":
-            return rng.uniform(0.3, 1, self.n) / np.maximum(np.sqrt(np.mean(self.tau ** 2, 0)), 1e-9) * 1e-4
+            rms = np.sqrt(np.mean(self.tau ** 2, 0))
+            return rng.uniform(0.3, 1, self.n) / np.maximum(rms, 1e-9) * 1e-4 * (rms > 1e-6)  # 0 on unloaded joints
         if e == "backlash":
             return rng.uniform(0.3, 1, self.n) * 1e-4
         if e == "transmission":
@@ -176,12 +177,15 @@ def _reference_columns(phys, desc, q, t, amps) -> np.ndarray:
     x0 = walk(ops0, q, desc.tool_mm + t)[0]
     cols = []
     for e, a in amps.items():
-        h = np.max(np.abs(a)) if np.any(a) else 1.0
+        nz = np.abs(a[a != 0])
         for k in range(len(a)):
             if a[k] == 0 and e != "transmission":
                 continue
+            # step: the amplitude's own size (one global step let a huge amplitude on a joint without load --
+            # the base joint's compliance -- make the other columns' finite differences nonlinear garbage)
             ek = np.zeros_like(a)
-            ek[k] = h
+            ek[k] = abs(a[k]) if a[k] != 0 else (np.median(nz) if len(nz) else 1.0)
+            h = ek[k]
             dq, growth, sag = phys.state({e: ek})
             x1 = walk(ops0, q + dq, desc.tool_mm + t, growth=growth, sag=sag)[0]
             if np.abs(x1 - x0).max() > 1e-9:

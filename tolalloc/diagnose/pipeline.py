@@ -160,7 +160,7 @@ class Diagnosis:
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
              test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
-             register_n: float = REGISTER_N) -> Diagnosis:
+             register_n: float = REGISTER_N, cv: str = "blocked") -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     Parameters
@@ -176,6 +176,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         (:mod:`.register`), and only the other test poses are scored.
     register_n : float          ``refit``: registration poses, a count (>= 1, default 30) or a fraction (< 1)
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
+    cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
     """
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
@@ -191,7 +192,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         cal = calibrate(robot, train, model=model, tol=tol)
         check_nominal_misfit(robot, train, cal.nominal)
         ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
-                           register_n=register_n)
+                           register_n=register_n, cv=cv)
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
         stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)

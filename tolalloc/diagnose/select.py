@@ -1,14 +1,19 @@
 """Which effect: fit every candidate on training poses only, score it on held-out poses, select.
 
-Held-out poses are the out-of-fold predictions of a K-fold cross-validation within the training file
-(every fit, including the registration, sees only the other folds) plus, when given, the separate test
-file (model fitted on the whole training file). A candidate's score is the RMS of the 3-D held-out error.
+Held-out poses are the out-of-fold predictions of a *blocked* K-fold cross-validation within the training
+file (every fit, including the registration, sees only the other folds; by default K contiguous blocks in
+row/time order and, scored beside them, K contiguous regions of joint space -- random folds only on request,
+see :func:`make_folds`) plus, when given, the separate test file (model fitted on the whole training file).
+Each effect's variant (:func:`tolalloc.diagnose.effects.variants`) is chosen first on the training residual
+(:func:`choose_variant`).
 
-Significance: one-sided Wilcoxon signed-rank test on the per-pose differences of squared held-out error
-(base model - base + candidate). A candidate is *significant* when ``p < alpha / m`` (Bonferroni over the
-``m`` applicable candidates) **and** it lowers the held-out RMS by at least ``min_gain`` (default 2 %).
-The significant candidate with the lowest held-out RMS is selected; the others are then tested on top of
-it (sequential forward selection, at most ``max_effects``). ``none`` when nothing is significant.
+Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model's median held-out error
+(:func:`clip_level`). Significance: one-sided Wilcoxon signed-rank test on the per-pose differences of clipped
+squared held-out error (base model - base + candidate). A candidate is *significant* when ``p < alpha / m``
+(Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
+(:func:`robust_rms`) by at least ``min_gain`` (default 2 %). The significant candidate with the lowest clipped
+held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
+``max_effects``: pairs where the data supports both). ``none`` when nothing is significant.
 """
 
 from __future__ import annotations
@@ -19,10 +24,11 @@ import numpy as np
 from scipy.stats import wilcoxon
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
-from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_reference
+from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "evaluate", "select_effects", "rms", "error_stats"]
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate",
+           "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
 
 
 def rms(res: np.ndarray) -> float:
@@ -51,6 +57,7 @@ class Evaluation:
     oof_mm : array, shape (P, 3)         out-of-fold residuals of the training poses (measured - predicted)
     test_mm : array, shape (T, 3) or None  residuals on the test file (``refit``: scored poses only, (T - r, 3))
     test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
+    oof_joint_mm : array, shape (P, 3) or None  out-of-fold residuals of the joint-space blocks (``cv="blocked"``)
     """
 
     label: str
@@ -61,6 +68,13 @@ class Evaluation:
     oof_mm: np.ndarray
     test_mm: np.ndarray | None
     test_pred_mm: np.ndarray | None
+    oof_joint_mm: np.ndarray | None = None
+
+    @property
+    def selection_mm(self) -> np.ndarray:
+        """Residuals the selection scores: out-of-fold (time blocks, then joint-space blocks), then test."""
+        parts = [self.oof_mm] + [a for a in (self.oof_joint_mm, self.test_mm) if a is not None]
+        return np.concatenate(parts)
 
     @property
     def heldout_mm(self) -> np.ndarray:
@@ -86,12 +100,14 @@ class Candidate:
     p_value: float
     gain_pct: float
     significant: bool
+    robust_rms_mm: float = float("nan")
+    variant: str = ""
 
     def to_dict(self) -> dict:
         return {"effect": self.effect, "heldout_rms_mm": self.heldout_rms_mm, "p_value": self.p_value,
                 "cv_rms_mm": self.cv_rms_mm, "test_rms_mm": self.test_rms_mm, "gain_pct": self.gain_pct,
                 "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
-                "reason": self.reason}
+                "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant}
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,30 +120,127 @@ class Stage:
     selected: str | None
 
 
-class _Context:
-    """Training / test data, folds and effect bases shared by all evaluations."""
+CV_SCHEMES = ("blocked", "time", "joint", "random")
 
-    def __init__(self, cal, train, test, folds, seed, test_frame, tol):
+
+def make_folds(meas, k: int, scheme: str = "blocked", seed: int = 0) -> list:
+    """Cross-validation folds (sorted index arrays partitioning the poses).
+
+    ``time``: ``k`` contiguous blocks in row (time) order; ``joint``: ``k`` contiguous regions of joint space
+    (k-means on the joint values scaled by their training range, seeded); ``random``: a random partition
+    (only on request: neighbouring poses in time or joint space then sit on both sides of a split and flatter
+    a model that interpolates). ``blocked`` is ``time`` here; :class:`_Context` adds the ``joint`` folds to it.
+    Repeated measurements of one pose always fall in the same fold.
+    """
+    if scheme not in CV_SCHEMES:
+        raise ValueError(f"cv: expected one of {', '.join(CV_SCHEMES)}, got {scheme!r}")
+    groups = meas.pose_groups()
+    G = int(groups.max()) + 1
+    k = max(2, min(k, G))
+    if scheme == "random":
+        label = np.zeros(G, int)
+        label[np.random.default_rng(seed).permutation(G)] = np.arange(G) % k
+    elif scheme == "joint":
+        first = np.unique(groups, return_index=True)[1]
+        q = meas.q[first]
+        z = (q - q.min(0)) / np.maximum(np.ptp(q, axis=0), 1e-12)
+        label = _kmeans(z, k, seed)
+    else:
+        label = np.minimum(np.arange(G) * k // G, k - 1)  # groups are numbered in order of first appearance
+    folds = [np.flatnonzero(label[groups] == i) for i in range(k)]
+    return [f for f in folds if len(f)]
+
+
+def _kmeans(z: np.ndarray, k: int, seed: int, iters: int = 30) -> np.ndarray:
+    """Labels of a small seeded k-means (k-means++ start), shape (N,)."""
+    rng = np.random.default_rng(seed)
+    c = [z[rng.integers(len(z))]]
+    for _ in range(1, k):
+        d = np.min([np.sum((z - ci) ** 2, 1) for ci in c], axis=0)
+        c.append(z[rng.choice(len(z), p=d / d.sum())] if d.sum() > 0 else z[rng.integers(len(z))])
+    c = np.array(c)
+    for _ in range(iters):
+        lab = np.argmin(((z[:, None, :] - c[None]) ** 2).sum(-1), axis=1)
+        c_new = np.array([z[lab == i].mean(0) if np.any(lab == i) else c[i] for i in range(k)])
+        if np.allclose(c_new, c):
+            break
+        c = c_new
+    return lab
+
+
+def robust_rms(res: np.ndarray, clip_mm: float) -> float:
+    """RMS of the 3-D error norms clipped at ``clip_mm`` [mm] (a Huber-type statistic outliers cannot dominate)."""
+    d = np.minimum(np.linalg.norm(res, axis=1), clip_mm)
+    return float(np.sqrt(np.mean(d ** 2))) if len(d) else float("nan")
+
+
+def clip_level(res: np.ndarray) -> float:
+    """Clip level of :func:`robust_rms`: 2.5 x the median 3-D error norm (~3.8 sigma for Gaussian noise) [mm]."""
+    return float(max(2.5 * np.median(np.linalg.norm(res, axis=1)), 1e-6))
+
+
+class _Context:
+    """Training / test data, folds, chosen effect variants and effect bases shared by all evaluations."""
+
+    def __init__(self, cal, train, test, folds, seed, test_frame, tol, cv="blocked", gear_ratio=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
-        P = train.n_poses
-        perm = np.random.default_rng(seed).permutation(P)
-        self.folds = [np.sort(f) for f in np.array_split(perm, min(folds, P))]
+        self.cv = cv
+        self.folds = make_folds(train, folds, cv, seed)
+        self.folds_joint = make_folds(train, folds, "joint", seed) if cv == "blocked" else []
         self.bases, self.bases_test, self.reasons = {}, {}, {}
         t = cal.geometric.t_mm
-        self.ref = effect_reference(train)
+        self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
+        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         for e in EFFECTS:
             ok, why = applicable(e, train)
-            if ok and test is not None and e == "backlash" and test.direction is None:
-                ok, why = False, "test file has no dir columns"
-            if ok and test is not None and e == "thermal" and test.temperature_c is None:
-                ok, why = False, "test file has no temperature_c column"
+            names = [v for v in variants(e, train, self.ref) if test is None or _test_can_carry(e, v, test)]
+            if ok and not names:
+                ok, why = False, "the test file lacks the columns this effect needs (dir / temperature_c / time_s)"
             self.reasons[e] = why
             if ok:
-                self.bases[e] = effect_basis(e, robot, train, t, self.ref)
+                cands = effect_bases(e, robot, train, t, self.ref, names)
+                self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed)
+                self.ref["variants"][e] = self.bases[e].variant
                 if test is not None:
                     self.bases_test[e] = effect_basis(e, robot, test, t, self.ref)
-        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
+
+
+def _test_can_carry(effect, variant, test) -> bool:
+    if effect == "backlash" and variant == "approach":
+        return test.direction is not None
+    if effect == "thermal":
+        need_T = not variant.startswith("warmup")
+        need_t = variant != "temperature"
+        return (not need_T or test.temperature_c is not None) and (not need_t or test.time_s is not None)
+    return True
+
+
+def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray):
+    """The variant whose columns best explain the geometric fit's training residual (BIC, winsorised residual).
+
+    Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
+    and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
+    outliers do not pick the variant. ``BIC = n log(RSS / n) + M log n`` (``n`` = 3P rows, ``M`` columns).
+    """
+    if len(cands) == 1:
+        return cands[0]
+    Q, _ = np.linalg.qr(J_fixed)
+    r = fit.residual_mm.ravel()
+    r = r - Q @ (Q.T @ r)
+    s = 1.4826 * np.median(np.abs(r - np.median(r)))
+    r = np.clip(r, -3 * s, 3 * s)
+    n = len(r)
+    best, best_bic = cands[0], np.inf
+    for c in cands:
+        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(n, -1)
+        Jc = Jc - Q @ (Q.T @ Jc)
+        beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
+        rss = float(np.sum((r - Jc @ beta) ** 2))
+        bic = n * np.log(max(rss, 1e-300) / n) + np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max())) * np.log(n)
+        if bic < best_bic:
+            best, best_bic = c, bic
+    return best
 
 
 def _stack(bases: dict, effects) -> tuple:
@@ -152,11 +265,9 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
         B = B[:, :, keep]
         names = tuple(names[k] for k in keep)
     full = fit_model(start, q, xyz, geo_index=geo, B=B, effect_names=names)
-    oof = np.zeros_like(xyz)
-    for f in ctx.folds:
-        tr = np.setdiff1d(np.arange(len(q)), f)
-        ff = fit_model(start, q[tr], xyz[tr], geo_index=geo, B=None if B is None else B[tr], effect_names=names)
-        oof[f] = xyz[f] - ff.predict(q[f], None if B is None else B[f])
+    warm = replace(full, beta=np.zeros(0))  # folds start from the full fit (same optimum, fewer iterations)
+    oof = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds)
+    oof_joint = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds_joint) if ctx.folds_joint else None
     test_res = test_pred = None
     if test is not None:
         Bt = None
@@ -171,46 +282,69 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
         else:
             test_res = test.xyz_mm - test_pred
     label = "nominal" if nominal else "+".join(("geometric", *effects))
-    return Evaluation(label, tuple(effects), full, names, keep, oof, test_res, test_pred)
+    return Evaluation(label, tuple(effects), full, names, keep, oof, test_res, test_pred, oof_joint)
 
 
-def _pvalue(base: np.ndarray, cand: np.ndarray) -> float:
-    d = np.sum(base ** 2, axis=1) - np.sum(cand ** 2, axis=1)
+def _out_of_fold(start, q, xyz, geo, B, names, folds) -> np.ndarray:
+    """Residuals of every fold's poses under the model fitted on the other folds, shape (P, 3)."""
+    oof = np.zeros_like(xyz)
+    for f in folds:
+        tr = np.setdiff1d(np.arange(len(q)), f)
+        ff = fit_model(start, q[tr], xyz[tr], geo_index=geo, B=None if B is None else B[tr], effect_names=names)
+        oof[f] = xyz[f] - ff.predict(q[f], None if B is None else B[f])
+    return oof
+
+
+def _pvalue(base: np.ndarray, cand: np.ndarray, clip_mm: float) -> float:
+    """One-sided Wilcoxon signed-rank p-value that ``cand`` has smaller clipped 3-D errors than ``base``."""
+    d = np.minimum(np.sum(base ** 2, axis=1), clip_mm ** 2) - np.minimum(np.sum(cand ** 2, axis=1), clip_mm ** 2)
     if np.allclose(d, 0):
         return 1.0
     return float(wilcoxon(d, alternative="greater").pvalue)
 
 
+def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
+    """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation)."""
+    ev = evaluate(ctx, (*chosen, e))
+    n_new = sum(nm.startswith(e + ":") for nm in ev.param_names)
+    base_r = robust_rms(current.selection_mm, clip)
+    r = robust_rms(ev.selection_mm, clip)
+    p = _pvalue(current.selection_mm, ev.selection_mm, clip) if n_new else 1.0
+    gain = 100.0 * (1.0 - r / base_r)
+    sig = bool(n_new and p < alpha / m and gain >= 100.0 * min_gain)
+    t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
+    cand = Candidate(e, True, "" if n_new else "not identifiable beside the geometric parameters", n_new,
+                     ev.heldout_rms_mm, rms(ev.oof_mm), t_rms, p, gain, sig, r, ctx.bases[e].variant)
+    return cand, ev
+
+
 def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01, min_gain: float = 0.02,
                    max_effects: int = 3):
-    """Sequential forward selection; returns (stages, evaluations by label, final evaluation)."""
+    """Sequential forward selection; returns (stages, evaluations by label, final evaluation).
+
+    Scores use every held-out residual of :attr:`Evaluation.selection_mm`; the gain and the Wilcoxon test use
+    3-D errors clipped at :func:`clip_level` of the geometric model's held-out errors (fixed for the whole
+    selection), so a few gross outliers neither hide nor fake an effect.
+    """
     evals = {base_eval.label: base_eval}
     stages = []
     current = base_eval
     chosen: tuple = ()
+    clip = clip_level(base_eval.selection_mm)
     while len(chosen) < max_effects:
         cands, cand_evals = [], {}
         pool = [e for e in EFFECTS if e not in chosen]
         m = max(1, sum(e in ctx.bases for e in pool))
-        base_rms = current.heldout_rms_mm
         for e in pool:
             if e not in ctx.bases:
                 cands.append(Candidate(e, False, ctx.reasons[e], 0, float("nan"), float("nan"), None, 1.0, 0.0, False))
                 continue
-            ev = evaluate(ctx, (*chosen, e))
-            evals[ev.label] = ev
-            cand_evals[e] = ev
-            n_new = sum(nm.startswith(e + ":") for nm in ev.param_names)
-            h = ev.heldout_rms_mm
-            p = _pvalue(current.heldout_mm, ev.heldout_mm) if n_new else 1.0
-            gain = 100.0 * (1.0 - h / base_rms)
-            sig = bool(n_new and p < alpha / m and gain >= 100.0 * min_gain)
-            t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
-            cands.append(Candidate(e, True, "" if n_new else "not identifiable beside the geometric parameters",
-                                   n_new, h, rms(ev.oof_mm), t_rms, p, gain, sig))
-        cands.sort(key=lambda c: (not c.applicable, c.heldout_rms_mm if np.isfinite(c.heldout_rms_mm) else np.inf))
+            cand, ev = _score(ctx, chosen, e, current, clip, m, alpha, min_gain)
+            evals[ev.label] = cand_evals[e] = ev
+            cands.append(cand)
+        cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         best = next((c for c in cands if c.significant), None)
-        stages.append(Stage(chosen, base_rms, tuple(cands), best.effect if best else None))
+        stages.append(Stage(chosen, current.heldout_rms_mm, tuple(cands), best.effect if best else None))
         if best is None:
             break
         chosen = (*chosen, best.effect)
@@ -219,9 +353,16 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
-                 tol: float = 1e-3, register_n: float = REGISTER_N) -> _Context:
-    """Shared state of one diagnosis (folds, effect bases; with ``test_frame='refit'`` the registration split)."""
-    ctx = _Context(cal, train, test, folds, seed, test_frame, tol)
+                 tol: float = 1e-3, register_n: float = REGISTER_N, cv: str = "blocked",
+                 gear_ratio=None) -> _Context:
+    """Shared state of one diagnosis (folds, effect variants and bases; with ``test_frame='refit'`` the
+    registration split).
+
+    ``cv``: ``blocked`` (default: ``folds`` contiguous time blocks *and* ``folds`` joint-space blocks, both
+    scored), ``time``, ``joint`` or ``random`` (see :func:`make_folds`). ``gear_ratio`` (n,): known gear
+    ratios, enabling the motor-side transmission variant.
+    """
+    ctx = _Context(cal, train, test, folds, seed, test_frame, tol, cv, gear_ratio)
     ctx.registration = (registration_split(test.q, cal.geometric.model.robot.revolute_mask, register_n, seed)
                         if test is not None and test_frame == "refit" else None)
     return ctx

@@ -11,6 +11,11 @@ through its first-order displacement.
 The table always has the same columns whatever the effect: ``q1..qN, x_mm, y_mm, z_mm, temperature_c,
 dir1..dirN, payload_kg, time_s`` (temperature drifts by 2-8 K over the run; ``dir`` is the sign of each
 joint's motion from the previous pose; payload 0). Only the data's shape reveals the effect.
+
+Role: a **self-consistency** check only. Each effect is drawn from the default variant of the very basis
+:mod:`tolalloc.diagnose.effects` fits, so a high identification rate here says the selection machinery works,
+not that the physics is right. The blind benchmark (issue 15) uses the independent generator of
+``studies/sim2real_blind`` (own kinematics, own effect physics, geometric errors on every DH/axis parameter).
 """
 
 from __future__ import annotations

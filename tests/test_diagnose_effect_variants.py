@@ -1,0 +1,195 @@
+"""Effect variants (issue 15 item 2) recover known parameters from data made by independent functions.
+
+The data are never built from the basis being fitted: joint-type effects move the joints of the exact forward
+kinematics (``robot.fk`` at ``q + dq``), gravity torques come from finite differences of the potential energy
+(not the cross-product formula of ``gravity_torques``), the thermal lag from its closed-form step response, and
+the beam from the textbook cantilever formulas on hand-computed horizontal poses. Tolerances are stated per test
+(first-order bases against exact kinematics: ~1e-3 relative at these amplitudes).
+"""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import tolalloc
+from tolalloc.diagnose.calibrate import fixed_jacobian, initial_fit
+from tolalloc.diagnose.effects import (G, effect_basis, effect_reference, gravity_torques, lagged, robot_masses,
+                                       target_points, variants)
+from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.select import choose_variant
+from tolalloc.robot.kinematics import poe_prefix
+
+
+def _q(robot, P, seed):
+    rng = np.random.default_rng(seed)
+    lo, hi = np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi)
+    return rng.uniform(lo, hi, (P, robot.n_joints))
+
+
+def _lsq(basis, d):
+    return np.linalg.lstsq(basis.B.reshape(-1, basis.B.shape[-1]), d.ravel(), rcond=None)[0]
+
+
+def _potential_torque(robot, q, tip_mm_fn=None, tip_kg=0.0, h=1e-6):
+    """Gravity load per joint as -dV/dq by central differences of the potential energy [N m] / [N]."""
+    g = np.asarray(robot.gravity, float)
+
+    def V(qq):
+        P = poe_prefix(robot.screws, qq)
+        v = np.zeros(len(qq))
+        for m in robot_masses(robot):
+            c = P[:, m.body, :3, :3] @ m.com_mm + P[:, m.body, :3, 3]
+            v -= m.mass_kg * G * (c @ g) / 1000.0
+        if tip_mm_fn is not None:
+            v -= tip_kg * G * (tip_mm_fn(qq) @ g) / 1000.0
+        return v
+
+    tau = np.zeros_like(q)
+    for j in range(robot.n_joints):
+        e = np.zeros(robot.n_joints)
+        e[j] = h * (1.0 if robot.joints[j].is_revolute else 1000.0)  # prismatic: mm, force in N
+        tau[:, j] = -(V(q + e) - V(q - e)) / (2 * e[j]) * (1.0 if robot.joints[j].is_revolute else 1000.0)
+    return tau
+
+
+@pytest.mark.parametrize("name", ["ur10", "tool_changer"])
+def test_gravity_torque_with_payload_matches_potential_energy(name):
+    robot = tolalloc.load_robot(name)
+    q = _q(robot, 12, 3)
+    t = np.array([10.0, -30.0, 80.0])
+    tip = target_points(robot, q, t)
+    got = gravity_torques(robot, q, tip, 2.5)
+    exp = _potential_torque(robot, q, lambda qq: target_points(robot, qq, t), 2.5)
+    np.testing.assert_allclose(got, exp, atol=1e-5 * np.abs(exp).max())
+
+
+def test_transmission_once_per_revolution_recovered():
+    robot = tolalloc.load_robot("ur10")
+    q = _q(robot, 60, 1)
+    t = np.array([0.0, 0.0, 100.0])
+    a, b = 2e-5, -1.5e-5  # rad: joint 3 error a sin q3 + b cos q3
+    dq = np.zeros_like(q)
+    dq[:, 2] = a * np.sin(q[:, 2]) + b * np.cos(q[:, 2])
+    d = target_points(robot, q + dq, t) - target_points(robot, q, t)
+    basis = effect_basis("transmission", robot, Measurements(q, np.zeros((60, 3))), t, {}, "1x")
+    beta = _lsq(basis, d)
+    k = basis.names.index("s1x_elbow_joint [rad]"), basis.names.index("c1x_elbow_joint [rad]")
+    np.testing.assert_allclose(beta[list(k)], [a, b], rtol=1e-3)
+    assert np.abs(np.delete(beta, k)).max() < 1e-3 * abs(a)
+
+
+def test_transmission_motor_side_with_gear_ratio():
+    robot = tolalloc.load_robot("ur10")
+    q = _q(robot, 200, 2)
+    t = np.array([0.0, 0.0, 100.0])
+    N = np.array([101.0, 101.0, 101.0, 121.0, 121.0, 121.0])
+    dq = np.zeros_like(q)
+    dq[:, 1] = 1e-5 * np.sin(N[1] * q[:, 1])  # motor-side ripple on joint 2
+    d = target_points(robot, q + dq, t) - target_points(robot, q, t)
+    meas = Measurements(q, np.zeros((200, 3)))
+    ref = effect_reference(meas, gear_ratio=N)
+    assert "motor" in variants("transmission", meas, ref)
+    basis = effect_basis("transmission", robot, meas, t, ref, "motor")
+    beta = _lsq(basis, d)
+    assert beta[basis.names.index("sm_shoulder_lift_joint [rad]")] == pytest.approx(1e-5, rel=1e-3)
+
+
+def test_lag_filter_step_response_closed_form():
+    t = np.arange(0.0, 7200.0, 30.0)
+    T = np.where(t > 0, 23.0, 20.0)
+    y = lagged(t, T, 900.0)
+    np.testing.assert_allclose(y, 20.0 + 3.0 * (1 - np.exp(-t / 900.0)), atol=1e-12)
+    perm = np.random.default_rng(0).permutation(len(t))  # row order does not matter, time does
+    np.testing.assert_allclose(lagged(t[perm], T[perm], 900.0), y[perm], atol=1e-12)
+
+
+def _fit_with_residual(robot, q, t, d):
+    """A fit at the nominal geometry whose training residual is the displacement ``d`` (registration identity)."""
+    model = build_geometry_model(robot)
+    xyz = target_points(robot, q, t)
+    fit = replace(initial_fit(model, q, xyz), R=np.eye(3), p_mm=np.zeros(3), t_mm=t, residual_mm=d)
+    return fit, fixed_jacobian(fit, q, xyz + d)
+
+
+def test_thermal_lag_variant_chosen_and_alpha_recovered():
+    robot = tolalloc.load_robot("tool_changer")
+    P = 120
+    q = _q(robot, P, 4)
+    t_s = 30.0 * np.arange(P)
+    temp = np.where(t_s > 0, 24.0, 20.0)  # a step in the log: the structure lags it by 30 min
+    t = np.array([0.0, 40.0, 60.0])
+    alpha = 40.0  # 1e-6/K
+    meas = Measurements(q, np.zeros((P, 3)), temp, None, None, t_s)
+    ref = effect_reference(meas)
+    dT = 20.0 + 4.0 * (1 - np.exp(-t_s / 1800.0)) - ref["temperature_c"]  # closed-form lag
+    # exact growth of every link vector by alpha dT: scale the chain's links (independent of the error model)
+    d = np.stack([_grown_point(robot, q[i], t, 1e-6 * alpha * dT[i]) for i in range(P)]) - target_points(robot, q, t)
+    fit, J = _fit_with_residual(robot, q, t, d)
+    cands = [effect_basis("thermal", robot, meas, t, ref, v) for v in variants("thermal", meas, ref)]
+    best = choose_variant(cands, fit, J)
+    assert best.variant == "lag_30min"  # on the grid 5 min .. 4 h
+    assert _lsq(best, d)[0] == pytest.approx(alpha, rel=2e-3)
+
+
+def _grown_point(robot, q1, t, eps):
+    from tolalloc.robot.model import Link, Robot
+
+    chain = tuple(Link(el.name, np.asarray(el.vector_mm) * (1 + eps)) if hasattr(el, "vector_mm") else el
+                  for el in robot.chain)
+    grown = Robot(robot.name, chain, tool_offset_mm=robot.tool_offset_mm, tool_rotation=robot.tool_rotation)
+    return target_points(grown, q1[None], t)[0]
+
+
+def test_backlash_gravity_side_recovered_without_dir_columns():
+    robot = tolalloc.load_robot("ur10")
+    q = _q(robot, 80, 5)
+    t = np.array([0.0, 0.0, 120.0])
+    side = np.sign(_potential_torque(robot, q))
+    b = np.array([0.0, 3e-5, 2e-5, 1e-5, 0.0, 0.0])  # rad, half backlash of j2, j3, j4
+    d = target_points(robot, q + side * b, t) - target_points(robot, q, t)
+    meas = Measurements(q, np.zeros((80, 3)))  # no dir columns: only the gravity-held variant applies
+    assert variants("backlash", meas) == ("gravity",)
+    basis = effect_basis("backlash", robot, meas, t, effect_reference(meas))
+    beta = dict(zip(basis.names, _lsq(basis, d)))
+    for j in (1, 2, 3):
+        assert beta[f"b_{robot.joints[j].name} [rad]"] == pytest.approx(b[j], rel=2e-3)
+
+
+def test_compliance_with_payload_and_with_unknown_tip_mass():
+    robot = tolalloc.load_robot("ur10")
+    P = 80
+    q = _q(robot, P, 6)
+    t = np.array([0.0, 0.0, 150.0])
+    kg = 4.0
+    tau = _potential_torque(robot, q, lambda qq: target_points(robot, qq, t), kg)
+    c = np.array([0.0, 2e-7, 3e-7, 4e-7, 0.0, 0.0])  # rad/(N m) on j2..j4
+    d = target_points(robot, q + tau * c, t) - target_points(robot, q, t)
+    known = effect_basis("joint_compliance", robot, Measurements(q, np.zeros((P, 3)), payload_kg=np.full(P, kg)),
+                         t, {}, "masses")
+    beta = dict(zip(known.names, _lsq(known, d)))
+    nm = [jt.name for jt in robot.joints]
+    for j in (1, 2, 3):
+        assert beta[f"c_{nm[j]} [rad/(N m)]"] == pytest.approx(c[j], rel=5e-3)
+    unknown = effect_basis("joint_compliance", robot, Measurements(q, np.zeros((P, 3))), t, {}, "masses+tip")
+    beta = dict(zip(unknown.names, _lsq(unknown, d)))
+    for j in (1, 2, 3):  # d_j = c_j * tip mass
+        assert beta[f"d_{nm[j]} [rad/kg]"] / beta[f"c_{nm[j]} [rad/(N m)]"] == pytest.approx(kg, rel=1e-2)
+
+
+def test_beam_deflection_telescopic_lever_arm():
+    robot = tolalloc.load_robot("tool_changer")
+    strokes = np.array([0.0, 100.0, 200.0, 300.0])
+    q = np.zeros((4, robot.n_joints))
+    q[:, 3] = strokes  # the arm stays horizontal; only the telescopic stage extends
+    basis = effect_basis("link_deflection", robot, Measurements(q, np.zeros((4, 3))), np.zeros(3), {}, "beam")
+    w, f = 2.0, 5.0  # mm/m^4, mm/m^3 of the telescopic segment j3 -> j5 (560 + 240 mm + stroke, 165 mm beyond)
+    L = 0.8 + strokes / 1000.0
+    drop = w * L ** 4 / 8 + f * L ** 3 / 3 + 165.0 * 1e-3 * (w * L ** 3 / 6 + f * L ** 2 / 2)
+    d = np.zeros((4, 3))
+    d[:, 2] = -drop
+    k = [basis.names.index("w_j3 [mm/m^4]"), basis.names.index("f_j3 [mm/m^3]")]
+    np.testing.assert_allclose(basis.B[:, :, k] @ np.array([w, f]), d, atol=1e-12)
+    beta = np.linalg.lstsq(basis.B[:, :, k].reshape(-1, 2), d.ravel(), rcond=None)[0]
+    np.testing.assert_allclose(beta, [w, f], rtol=1e-9)
