@@ -115,6 +115,10 @@ def files(tmp_path_factory) -> Path:
     text.iloc[2, 0] = "abc"
     text.to_csv(F / "text_cell.csv", index=False)
     (F / "semicolon.csv").write_text("q1;q2;q3;q4;q5;q6;x_mm;y_mm;z_mm\n1;2;3;4;5;6;7;8;9\n")
+    radians = frame.iloc[:40].copy()
+    radians["q2"] = np.radians(radians["q2"])
+    radians.to_csv(F / "radians.csv", index=False)
+    (F / "empty_plan.csv").write_text("")
     (F / "header_only.csv").write_text(",".join([f"q{i}" for i in range(1, 7)] + ["x_mm", "y_mm", "z_mm"]) + "\n")
     for p in F.iterdir():
         if p.is_file():
@@ -294,6 +298,15 @@ def _rows():
         ([*dg, "--folds", "0"], "argument --folds: expected a whole number >= 1"),
         ([*dg, "--seed", "-3"], "argument --seed: expected a whole number >= 0"),
         ([*dg, "--test-frame", "other"], "argument --test-frame: invalid choice"),
+        ([*dg, "--folds", "1000"], "--folds: expected at most 20 cross-validation folds for 40 training poses"),
+        (["diagnose", TC, "--train", "{F}/radians.csv"],
+         "radians.csv: .*misses the measured points by .* mm RMS.*Column\\(s\\) q2 look like radians"),
+        (["allocate", TC, "--no-verify", "--coverage-n", "0"], "argument --coverage-n: expected a whole number >= 1"),
+        (["allocate", TC, "--no-verify", "--coverage-n", "-1"], "argument --coverage-n: expected a whole number >= 1"),
+        (["allocate", TC, "--no-verify", "--out", "/"], "--out '/': refusing to write results into the filesystem root"),
+        (["allocate", TC, "--no-verify", "--calibration", "{F}/empty_plan.csv"],
+         "calibration plan empty_plan.csv: cannot be read as CSV"),
+        (["calplan", TC, "--n-poses", "8", "--costs", "{F}/unknown.toml", "--out", "plan.csv"], "unknown.toml"),
     ]:
         add(argv, pattern)
     return rows
@@ -332,3 +345,19 @@ def test_bad_input(files, tmp_path, monkeypatch, capsys, argv, pattern):
     assert re.search(pattern, lines[0]), lines[0]
     assert _listing(tmp_path) == before
     assert _listing(files) == inputs_before
+
+
+@pytest.mark.skipif(not Path("/dev/full").exists(), reason="needs /dev/full (Linux)")
+def test_outputs_to_devices_are_written_through_never_replaced(tmp_path, monkeypatch, capsys):
+    """--json /dev/full: the write error (disk full) is one error line and the device stays a device;
+    --json /dev/null works (a device is written through, not replaced by a file)."""
+    import stat
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["analyze", TC, "--json", "/dev/full"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "/dev/full" in err[0] and "No space left" in err[0]
+    assert stat.S_ISCHR(os.stat("/dev/full").st_mode)
+    assert main(["analyze", TC, "--json", "/dev/null"]) == 0
+    assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
+    assert list(tmp_path.iterdir()) == []

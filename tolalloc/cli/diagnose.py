@@ -64,6 +64,9 @@ def cmd_diagnose(args) -> int:
                            inputs=[("--train", args.train), ("--test", args.test)])
     robot = robot_from_args(args)
     train = read_measurements(args.train, robot)
+    if args.folds > train.n_poses // 2:
+        raise TolallocError(f"--folds: expected at most {train.n_poses // 2} cross-validation folds for "
+                            f"{train.n_poses} training poses (at least 2 poses held out per fold), got {args.folds}.")
     test = read_measurements(args.test, robot) if args.test else None
     if test is not None:
         check_train_test(train, test, args.train, args.test)

@@ -18,7 +18,7 @@ held-out RMS is selected; the others are then tested on top of it (sequential fo
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.stats import wilcoxon

@@ -17,7 +17,6 @@ import numpy as np
 
 from tolalloc.engine import NUMBA_AVAILABLE
 from tolalloc.montecarlo.engines import numba_engine as kernel_mod
-from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.sampling import draw_rows
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
