@@ -72,3 +72,16 @@ def test_clipped_rms_outliers_neither_hide_nor_fake():
     assert robust_rms(bad, clip) < 1.1 * robust_rms(base, clip)
     # a real 30 % reduction of the error still shows as ~30 % on the clipped statistic
     assert 1 - robust_rms(0.7 * bad, clip) / robust_rms(bad, clip) == pytest.approx(0.3, abs=0.03)
+
+
+def test_test_file_basis_keeps_the_training_columns():
+    """A column the test poses do not excite (e.g. gravity-held backlash of a joint whose torque keeps its sign on
+    the test file) is kept as zeros, so the fitted parameters line up with the test basis column by column."""
+    from tolalloc.diagnose.effects import EffectBasis
+    from tolalloc.diagnose.select import _aligned
+
+    b = EffectBasis("backlash", ("b_j1 [rad]", "b_j3 [rad]"), np.arange(12.0).reshape(2, 3, 2), "gravity")
+    a = _aligned(b, ("b_j1 [rad]", "b_j2 [rad]", "b_j3 [rad]"))
+    assert a.names == ("b_j1 [rad]", "b_j2 [rad]", "b_j3 [rad]") and a.B.shape == (2, 3, 3)
+    assert np.all(a.B[:, :, 1] == 0)
+    assert np.array_equal(a.B[:, :, 0], b.B[:, :, 0]) and np.array_equal(a.B[:, :, 2], b.B[:, :, 1])

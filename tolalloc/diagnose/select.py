@@ -203,7 +203,18 @@ class _Context:
                 self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed)
                 self.ref["variants"][e] = self.bases[e].variant
                 if test is not None:
-                    self.bases_test[e] = effect_basis(e, robot, test, t, self.ref)
+                    self.bases_test[e] = _aligned(effect_basis(e, robot, test, t, self.ref), self.bases[e].names)
+
+
+def _aligned(basis, names: tuple):
+    """``basis`` with exactly the columns ``names`` of the training basis, in that order (zeros where the test poses
+    do not excite a column, e.g. a joint whose gravity torque keeps its sign on the test file)."""
+    pos = {nm: i for i, nm in enumerate(basis.names)}
+    B = np.zeros(basis.B.shape[:2] + (len(names),))
+    for i, nm in enumerate(names):
+        if nm in pos:
+            B[:, :, i] = basis.B[:, :, pos[nm]]
+    return replace(basis, names=tuple(names), B=B)
 
 
 def _test_can_carry(effect, variant, test) -> bool:
