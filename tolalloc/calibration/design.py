@@ -6,10 +6,11 @@ weights ``lambda`` (``0 <= lambda_c <= 1``, ``sum lambda = N``) on the candidate
 
     Sigma_post(lambda)^-1 = Lambda_0 + sum_c lambda_c F_c,     F_c = G_c^T G_c   (whitened 3- or 6-row block)
 
--- the classic convex relaxation, solved in cvxpy as the Schur-complement SDP ``cp.matrix_frac`` with Clarabel,
-well scaled (congruence by the uniform design) and by column generation over the candidates, with Frank-Wolfe as
-the documented fallback (:mod:`tolalloc.calibration.relax`; :attr:`PlanDesign.relaxation_method` says which
-ran), then rounding to the N largest weights followed by greedy exchange passes on the exact (rounded) objective. The nuisance parameters
+-- the classic convex relaxation, solved in cvxpy as the Schur-complement SDP ``cp.matrix_frac`` with
+Clarabel, well scaled (congruence by the uniform design) and by column generation over the candidates, with
+Frank-Wolfe as the documented fallback (:mod:`tolalloc.calibration.relax`; :attr:`PlanDesign.relaxation_method`
+says which ran), then rounding to the N largest weights followed by greedy exchange passes on the exact
+(rounded) objective. The nuisance parameters
 (registration, tool offset) enter the information matrix with a zero (flat) prior and are marginalised exactly by
 the Schur form (a generalised inverse); the design's reported quality is always recomputed with
 :func:`tolalloc.calibration.posterior.posterior`.
