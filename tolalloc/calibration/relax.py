@@ -76,10 +76,12 @@ def _ridge(G: np.ndarray, n: int) -> np.ndarray:
 
 def _state(G, B, n, prior, ridge, lam):
     """``f(lam)``, its gradient (C,), the linear-oracle vertex ``s`` and the lower bound ``f - grad . (lam - s)``."""
-    M = np.diag(prior) + np.einsum("c,cri,crj->ij", lam, G, G) + ridge
+    C, rows, D = G.shape
+    Gf = G.reshape(C * rows, D)
+    M = np.diag(prior) + Gf.T @ (np.repeat(lam, rows)[:, None] * Gf) + ridge
     X = np.linalg.solve(M, B)  # (D, Ke)
     fval = float(np.sum(B * X))
-    grad = -np.einsum("crk->c", np.einsum("cri,ik->crk", G, X) ** 2)
+    grad = -np.sum((Gf @ X) ** 2, axis=1).reshape(C, rows).sum(axis=1)
     s = np.zeros(len(lam))
     s[np.argsort(grad)[:n]] = 1.0
     return fval, grad, s, fval - float(grad @ (lam - s))
