@@ -66,3 +66,35 @@ def test_plan_chains_match_the_generic_perturbed_chain(robot_name):
     screws, home, dq = model.perturbed_chain(vals)
     np.testing.assert_allclose(p0, fk_poe(screws[:, None], home[:, None], q[None] + dq[:, None])[..., :3, 3],
                                atol=1e-9)
+
+
+def test_exact_gauss_newton_reaches_a_stationary_point_of_the_map_objective():
+    """Jacobian-at-the-estimate steps (the large-error fallback of the fit) end where the gradient of the MAP
+    objective |r(x)|^2 + |x|^2_prior, by independent central differences, vanishes (tool_changer, 3x errors)."""
+    from tolalloc.verify.calibrated import _PlanChains, _exact_step, _measure
+
+    robot = load_robot("tool_changer")
+    model = build_error_model(robot)
+    split = split_errors(model.with_sigma(3 * model.sigma))
+    rng = np.random.default_rng(4)
+    plan = make_plan(robot, robot.lower + (robot.upper - robot.lower) * rng.random((15, 6)), registration=False)
+    E = split.sys_index
+    scale = np.sqrt(split.prior_var_of(E))
+    chains = _PlanChains(model, plan.q)
+    truth = split.model.with_sigma(np.where(split.systematic, split.model.sigma, 0)).sample(1, rng)[:, E]
+    y = _measure(chains, truth, E) + rng.normal(0, plan.noise_mm, (1, 15, 3))
+    prior = np.ones(len(E))
+
+    def phi(xn):  # normalised unknowns (D,)
+        r = (_measure(chains, (xn * scale)[None], E) - y).ravel() / plan.noise_mm
+        return float(r @ r + xn @ xn)
+
+    x = np.zeros((1, len(E)))
+    for _ in range(15):
+        r = (_measure(chains, x, E) - y).reshape(1, -1) / plan.noise_mm
+        x = x + _exact_step(chains, E, x, r, y, scale, prior, plan.noise_mm) * scale
+    xn, h = x[0] / scale, 1e-5
+    grad = np.array([(phi(xn + h * e) - phi(xn - h * e)) / (2 * h) for e in np.eye(len(E))])
+    grad0 = np.array([(phi(h * e) - phi(-h * e)) / (2 * h) for e in np.eye(len(E))])
+    assert np.abs(grad).max() < 1e-4 * np.abs(grad0).max()
+    assert phi(xn) < 1e-3 * phi(np.zeros(len(E)))
