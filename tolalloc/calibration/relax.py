@@ -10,15 +10,17 @@ the task weight). ``f`` is convex, so at any ``lambda >= 0`` the linear-oracle v
 the optimum; every result carries it, whichever method produced the weights.
 
 cvxpy form (:func:`cvxpy_relaxation`): ``cp.matrix_frac(B', M'(lambda))`` -- the Schur-complement SDP
-``[[M', B'], [B'^T, T]] >= 0``, minimise ``trace T``. Written naively it ends in Clarabel NumericalError on the
-tool_changer (the information spans ~1e7 against the prior). Well scaled it solves: congruence by ``T0`` with
+``[[M', B'], [B'^T, T]] >= 0``, minimise ``trace T``. Written naively (``M`` as is) Clarabel fails on the
+tool_changer: the information spans ~1e7 against the prior; main's first attempt ended in NumericalError, and on
+200 candidates (tracker frame known) it returns ``optimal_inaccurate`` at a value far above the optimum
+(``benchmarks/bench_calibration.py`` prints both). Well scaled it solves: congruence by ``T0`` with
 ``T0^T M0 T0 = I`` for the uniform design ``M0`` (so ``M'`` is O(1) at every sensible design; ``B' = T0^T B``)
-and the objective divided by its value at ``M0``. The SDP's KKT system has a dense ``svec(M) x C`` block, so
-Clarabel's time grows steeply with C (measured: 500 candidates ~11 s CPU); the relaxation over all C candidates
-is therefore solved by column generation: the SDP over a working set (seeded with the support of a few
-Frank-Wolfe iterations and the most negative gradients), then the optimality gap over *all* candidates; the
-candidates with the most negative gradient join the set until the gap is below ``tol * f``. The answer is
-the relaxation over all candidates (certified by that gap), not over a subset.
+and the objective divided by its value at ``M0``. Each Clarabel iteration is dominated by the
+``(D + Ke)``-sized PSD cone, and the KKT system carries a dense ``svec(M) x C`` block, so the relaxation over
+all C candidates is solved by column generation: the SDP over a working set (seeded with the largest weights
+of Frank-Wolfe and the most negative gradients there), then the optimality gap over *all* candidates; the
+candidates with the most negative gradient join the set until the gap is below ``tol * f``. The answer is the
+relaxation over all candidates (certified by that gap), not over a subset.
 
 Fallback (:func:`frank_wolfe`): used when cvxpy does not report ``optimal``, raises, or the column generation
 does not close the gap; :attr:`Relaxation.method` and :attr:`Relaxation.note` say which ran and why.
