@@ -15,6 +15,7 @@ relaxation as a cvxpy SDP). Run ``python benchmarks/bench_calibration.py``.
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
@@ -56,7 +57,9 @@ def naive_vs_scaled(robot, split, n_cand=200, n=12):
     M = np.eye(D) + cp.reshape(F.reshape(C, D * D).T @ lam, (D, D), order="C")
     prob = cp.Problem(cp.Minimize(cp.matrix_frac(B, 0.5 * (M + M.T))), [lam >= 0, lam <= 1, cp.sum(lam) == n])
     try:
-        prob.solve(solver="CLARABEL")
+        with warnings.catch_warnings():  # the status below says it
+            warnings.simplefilter("ignore", UserWarning)
+            prob.solve(solver="CLARABEL")
         naive = f"status {prob.status}, value {prob.value:.6g}"
     except cp.error.SolverError as exc:
         naive = f"SolverError ({exc})"

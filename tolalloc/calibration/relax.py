@@ -179,9 +179,11 @@ def relax(G: np.ndarray, B: np.ndarray, n: int, prior: np.ndarray, method: str =
     fw = frank_wolfe(G, B, n, prior) if method in ("auto", "frank-wolfe") else None
     if method == "frank-wolfe":
         return fw
+    from cvxpy.error import SolverError
+
     try:
         cv = cvxpy_relaxation(G, B, n, prior, seed_lam=None if fw is None else fw.lam)
-    except Exception as exc:  # solver error, NumericalError, status not optimal, gap not closed
+    except (SolverError, RuntimeError, np.linalg.LinAlgError) as exc:  # NumericalError, not optimal, gap open
         if method == "cvxpy":
             raise
         return Relaxation(fw.lam, fw.value, fw.bound, fw.method, f"{fw.note}; cvxpy not used: {exc}")
