@@ -10,8 +10,9 @@ For each of ``n_robots`` simulated robots:
    with fresh random parts at every measurement and tracker noise ``sigma_m``;
 3. a nonlinear least-squares calibration (Gauss-Newton on the exact residuals with the nominal Jacobian, MAP with
    the manufacturing prior on the estimated parameters, registration and target offset free; all robots solved
-   together, each started at the nominal model and iterated to convergence; see :func:`_fit`; the iteration
-   counts are in the result) estimates ``s_E``;
+   together, each started at the nominal model and iterated to convergence; a fit whose step grows restarts with
+   the Jacobian at the estimate; see :func:`_fit`; iteration counts and non-converged fits are in the result and
+   its message) estimates ``s_E``;
 4. the controller compensates with ``s_E_hat``; at every working pose a fresh random part is drawn and
    ``dP = p_true(q) - p_model(s_E_hat, q)`` is evaluated exactly.
 
