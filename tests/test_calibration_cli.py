@@ -18,6 +18,7 @@ def test_calplan_then_allocate(tmp_path, capsys):
     assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "256", "--out", str(plan)]) == 0
     out = capsys.readouterr().out
     assert "designed" in out and plan.is_file()
+    assert "relaxation: cvxpy/Clarabel (" in out  # 256 candidates: the column generation runs
     rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--out", str(tmp_path / "res")])
     out = capsys.readouterr().out
     assert rc == 0 and "(certified;" in out and "calibrated away" in out

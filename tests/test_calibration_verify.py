@@ -29,7 +29,9 @@ def test_monte_carlo_agrees_with_linear_prediction(small, registration):
     C = posterior(split, plan).tool_covariance(q)
     radius = float(np.median(radius_for_prob(C, 0.7)))  # probabilities near 0.7: sensitive to a wrong variance
     chk = verify_calibration(split, plan, q, radius, n_robots=1000, seed=11)
-    assert chk.rms_step < 1e-6  # the fits converged
+    assert chk.rms_step < 1e-6 and chk.converged  # the fits converged
+    assert chk.iterations.shape == (1000,) and chk.iterations.min() >= 2  # nonlinear: more than one step each
+    assert "Gauss-Newton iterations per fit" in chk.message() and chk.fit_cpu_s > 0
     assert np.all(chk.agree), chk.message()
     if not registration:  # the calibration matters here: the uncalibrated robot is far worse at this radius
         prior = posterior(split, make_plan(robot, np.zeros((0, 6)))).tool_covariance(q)
@@ -41,3 +43,58 @@ def test_refuses_pose_plans(small):
     with pytest.raises(TolallocError, match="position"):
         verify_calibration(split, make_plan(robot, robot.poses("working"), measurement="pose"),
                            robot.poses("working"), 1.0)
+
+
+@pytest.mark.parametrize("robot_name", ["tool_changer", "ur10"])
+def test_plan_chains_match_the_generic_perturbed_chain(robot_name):
+    """The FastChain evaluation the Monte Carlo uses equals the generic perturbed_chain + fk_poe path."""
+    from tolalloc.robot.kinematics import fk_poe
+    from tolalloc.verify.calibrated import _PlanChains
+
+    robot = load_robot(robot_name)
+    model = build_error_model(robot, clearance=True)
+    rng = np.random.default_rng(5)
+    q = robot.lower + (robot.upper - robot.lower) * rng.random((4, robot.n_joints))
+    vals = 20 * model.sample(6, rng)  # 20x the manufacturing errors; joint angles beyond 1 rad (both cos branches)
+    extra = model.sample(6 * 4, rng).reshape(6, 4, -1)
+    p, R = _PlanChains(model, q).tool(vals, extra)
+    screws, home, dq = model.perturbed_chain((vals[:, None, :] + extra).reshape(24, -1))
+    T = fk_poe(screws, home, np.tile(q, (6, 1)) + dq).reshape(6, 4, 4, 4)
+    np.testing.assert_allclose(p, T[..., :3, 3], atol=1e-9)
+    np.testing.assert_allclose(R, T[..., :3, :3], atol=1e-12)
+    p0, _ = _PlanChains(model, q).tool(vals)
+    screws, home, dq = model.perturbed_chain(vals)
+    np.testing.assert_allclose(p0, fk_poe(screws[:, None], home[:, None], q[None] + dq[:, None])[..., :3, 3],
+                               atol=1e-9)
+
+
+def test_exact_gauss_newton_reaches_a_stationary_point_of_the_map_objective():
+    """Jacobian-at-the-estimate steps (the large-error fallback of the fit) end where the gradient of the MAP
+    objective |r(x)|^2 + |x|^2_prior, by independent central differences, vanishes (tool_changer, 3x errors)."""
+    from tolalloc.verify.calibrated import _PlanChains, _exact_step, _measure
+
+    robot = load_robot("tool_changer")
+    model = build_error_model(robot)
+    split = split_errors(model.with_sigma(3 * model.sigma))
+    rng = np.random.default_rng(4)
+    plan = make_plan(robot, robot.lower + (robot.upper - robot.lower) * rng.random((15, 6)), registration=False)
+    E = split.sys_index
+    scale = np.sqrt(split.prior_var_of(E))
+    chains = _PlanChains(model, plan.q)
+    truth = split.model.with_sigma(np.where(split.systematic, split.model.sigma, 0)).sample(1, rng)[:, E]
+    y = _measure(chains, truth, E) + rng.normal(0, plan.noise_mm, (1, 15, 3))
+    prior = np.ones(len(E))
+
+    def phi(xn):  # normalised unknowns (D,)
+        r = (_measure(chains, (xn * scale)[None], E) - y).ravel() / plan.noise_mm
+        return float(r @ r + xn @ xn)
+
+    x = np.zeros((1, len(E)))
+    for _ in range(15):
+        r = (_measure(chains, x, E) - y).reshape(1, -1) / plan.noise_mm
+        x = x + _exact_step(chains, E, x, r, y, scale, prior, plan.noise_mm) * scale
+    xn, h = x[0] / scale, 1e-5
+    grad = np.array([(phi(xn + h * e) - phi(xn - h * e)) / (2 * h) for e in np.eye(len(E))])
+    grad0 = np.array([(phi(h * e) - phi(-h * e)) / (2 * h) for e in np.eye(len(E))])
+    assert np.abs(grad).max() < 1e-4 * np.abs(grad0).max()
+    assert phi(xn) < 1e-3 * phi(np.zeros(len(E)))

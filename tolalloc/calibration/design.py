@@ -6,9 +6,11 @@ weights ``lambda`` (``0 <= lambda_c <= 1``, ``sum lambda = N``) on the candidate
 
     Sigma_post(lambda)^-1 = Lambda_0 + sum_c lambda_c F_c,     F_c = G_c^T G_c   (whitened 3- or 6-row block)
 
--- the classic convex relaxation, solved by Frank-Wolfe (the SDP form ``[[M, B], [B^T, Y]] >= 0`` in cvxpy +
-Clarabel ended in NumericalError on the tool_changer: information spans ~1e7 against the prior), then rounding to the N
-largest weights followed by greedy exchange passes on the exact (rounded) objective. The nuisance parameters
+-- the classic convex relaxation, solved in cvxpy as the Schur-complement SDP ``cp.matrix_frac`` with
+Clarabel, well scaled (congruence by the uniform design) and by column generation over the candidates, with
+Frank-Wolfe as the documented fallback (:mod:`tolalloc.calibration.relax`; :attr:`PlanDesign.relaxation_method`
+says which ran), then rounding to the N largest weights followed by greedy exchange passes on the exact
+(rounded) objective. The nuisance parameters
 (registration, tool offset) enter the information matrix with a zero (flat) prior and are marginalised exactly by
 the Schur form (a generalised inverse); the design's reported quality is always recomputed with
 :func:`tolalloc.calibration.posterior.posterior`.
@@ -26,6 +28,7 @@ from scipy.stats import qmc
 from tolalloc.exceptions import TolallocError
 from tolalloc.calibration.plan import CalibrationPlan, make_plan
 from tolalloc.calibration.posterior import nuisance_columns, posterior
+from tolalloc.calibration.relax import METHODS, relax
 from tolalloc.calibration.split import ErrorSplit
 
 __all__ = ["PlanDesign", "design_plan", "candidate_poses", "plan_score", "NUISANCE_PRIOR"]
@@ -51,8 +54,14 @@ class PlanDesign:
         Score with every candidate measured once: what no N-pose plan from these candidates beats by much
         (unidentifiable directions and random parts keep it above zero).
     relaxation_bound_mm2 : float
-        Frank-Wolfe lower bound on the relaxation's optimum, hence on every N-pose plan's score [mm^2].
+        Certified lower bound on the relaxation's optimum, hence on every N-pose plan's score [mm^2].
     time_s : float
+    relaxation_value_mm2 : float
+        The relaxation's objective at its (fractional) weights [mm^2].
+    relaxation_method : str
+        ``"cvxpy/Clarabel"`` or ``"Frank-Wolfe"`` (the fallback).
+    relaxation_note : str
+        How the relaxation ended (rounds, iterations, gap; for the fallback, what failed in cvxpy).
     """
 
     plan: CalibrationPlan
@@ -62,6 +71,9 @@ class PlanDesign:
     floor_mm2: float
     relaxation_bound_mm2: float
     time_s: float
+    relaxation_value_mm2: float = float("nan")
+    relaxation_method: str = ""
+    relaxation_note: str = ""
 
 
 def candidate_poses(robot, n: int, region: str = "limits", *, seed: int = 0) -> np.ndarray:
@@ -115,32 +127,6 @@ def _score_info(info: np.ndarray, B: np.ndarray) -> float:
     return float(np.trace(B.T @ np.linalg.lstsq(info, B, rcond=None)[0]))
 
 
-def _relax(G: np.ndarray, B: np.ndarray, n: int, prior: np.ndarray, iters: int = 300) -> tuple[np.ndarray, float]:
-    """Convex relaxation ``min_lambda f(lambda) = trace(B^T M(lambda)^-1 B)``, ``M = diag(prior) + sum lam_c G_c^T G_c``
-    over ``0 <= lambda <= 1, sum lambda = n``, by Frank-Wolfe (the linear oracle takes the n candidates of largest
-    ``|df/dlambda_c| = |G_c M^-1 B|_F^2``). Returns the weights and the Frank-Wolfe lower bound on the optimum
-    (``f + grad . (s - lambda)``, valid because f is convex)."""
-    C, D = G.shape[0], G.shape[2]
-    ridge = 1e-9 * max(np.einsum("cri,cri->i", G, G).max() * n / C, 1.0) * np.eye(D)  # flat nuisance block
-    lam = np.full(C, n / C)
-    bound = -np.inf
-    best_f = np.inf
-    for it in range(iters):
-        M = np.diag(prior) + np.einsum("c,cri,crj->ij", lam, G, G) + ridge
-        X = np.linalg.solve(M, B)  # (D, Ke)
-        fval = float(np.sum(B * X))
-        best_f = min(best_f, fval)
-        grad = -np.einsum("crk->c", np.einsum("cri,ik->crk", G, X) ** 2)
-        s = np.zeros(C)
-        s[np.argsort(grad)[:n]] = 1.0
-        gap = float(grad @ (lam - s))
-        bound = max(bound, fval - gap)
-        if gap <= 1e-4 * fval:
-            break
-        lam = lam + 2.0 / (it + 3.0) * (s - lam)
-    return lam, bound
-
-
 def _exchange(F, B, chosen, prior, passes: int = 2):
     """Greedy exchange: swap a chosen candidate for the unchosen one that lowers the exact objective most."""
     chosen = list(int(c) for c in chosen)
@@ -164,8 +150,10 @@ def _exchange(F, B, chosen, prior, passes: int = 2):
 
 def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval: np.ndarray, *,
                 measurement: str = "position", noise_mm: float = 0.02, noise_deg: float = 0.001,
-                registration: bool = True, seed: int = 0) -> PlanDesign:
+                registration: bool = True, seed: int = 0, relaxation: str = "auto") -> PlanDesign:
     """Choose ``n_poses`` of ``candidates`` (C, n) [rad, mm] minimising the post-calibration error at ``q_eval``.
+
+    ``relaxation``: ``auto`` (cvxpy/Clarabel, Frank-Wolfe if it fails), ``cvxpy`` or ``frank-wolfe``.
 
     Returns
     -------
@@ -176,6 +164,8 @@ def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval:
     C = len(candidates)
     if not isinstance(n_poses, (int, np.integer)) or n_poses < 1 or n_poses > C:
         raise TolallocError(f"--n-poses: expected a whole number between 1 and the {C} candidates, got {n_poses!r}.")
+    if relaxation not in METHODS:
+        raise TolallocError(f"relaxation: expected one of {', '.join(METHODS)}, got {relaxation!r}.")
     like = make_plan(robot, candidates[:1], measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                      registration=registration)
     G = _blocks(split, like, candidates)
@@ -183,12 +173,12 @@ def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval:
     B = _weight(split, q_eval, F.shape[1])
     Ke = B.shape[1]
     prior = np.r_[np.ones(Ke), np.zeros(F.shape[1] - Ke)]
-    lam, bound = _relax(G, B, n_poses, prior)
-    chosen, _ = _exchange(F, B, np.argsort(-lam)[:n_poses], prior)
+    rel = relax(G, B, n_poses, prior, relaxation)
+    chosen, _ = _exchange(F, B, np.argsort(-rel.lam)[:n_poses], prior)
     mk = lambda idx: make_plan(robot, candidates[np.sort(idx)], measurement=measurement, noise_mm=noise_mm,  # noqa
                                noise_deg=noise_deg, registration=registration)
     plan = mk(chosen)
     rnd = mk(np.random.default_rng(seed).choice(C, n_poses, replace=False))
     floor = _score_info(np.diag(prior) + np.einsum("cri,crj->ij", G, G) + 1e-10 * np.eye(len(prior)), B)
-    return PlanDesign(plan, plan_score(split, plan, q_eval), rnd, plan_score(split, rnd, q_eval), floor, bound,
-                      time.perf_counter() - t0)
+    return PlanDesign(plan, plan_score(split, plan, q_eval), rnd, plan_score(split, rnd, q_eval), floor, rel.bound,
+                      time.perf_counter() - t0, rel.value, rel.method, rel.note)

@@ -127,20 +127,36 @@ def nuisance_columns(model, q: np.ndarray, rows: int) -> np.ndarray:
     return out
 
 
-def _noise_cov(plan: CalibrationPlan, J: np.ndarray, rand_var: np.ndarray, X: np.ndarray, prior_var: np.ndarray,
-               random_noise: bool) -> np.ndarray:
-    """Stacked measurement-noise covariance (M*rows, M*rows)."""
+def _noise_blocks(plan: CalibrationPlan, J: np.ndarray, rand_var: np.ndarray, random_noise: bool) -> np.ndarray:
+    """Per-pose measurement-noise covariance blocks (M, rows, rows): tracker noise plus the random parts."""
     M, rows, _ = J.shape
     sig = np.r_[np.full(3, plan.noise_mm), np.full(3, plan.noise_rad)][:rows]
-    R = np.diag(np.tile(sig**2, M))
+    blk = np.broadcast_to(np.diag(sig**2), (M, rows, rows)).copy()
     if random_noise and np.any(rand_var > 0):
-        blk = J @ (rand_var[:, None] * np.swapaxes(J, 1, 2))
-        for i in range(M):
-            R[i * rows:(i + 1) * rows, i * rows:(i + 1) * rows] += blk[i]
-    if len(X):
-        JX = J[:, :, X].reshape(M * rows, len(X))
-        R += JX @ (prior_var[X][:, None] * JX.T)
-    return R
+        blk += J @ (rand_var[:, None] * np.swapaxes(J, 1, 2))
+    return blk
+
+
+def _whitener(plan: CalibrationPlan, J: np.ndarray, rand_var: np.ndarray, X: np.ndarray, prior_var: np.ndarray,
+              random_noise: bool):
+    """Function ``Y (M*rows, c) -> L^-1 Y`` with ``L L^T`` the stacked measurement-noise covariance.
+
+    The covariance is block-diagonal per pose unless systematic parts the plan does not estimate (``X``, non-zero
+    prior) correlate the poses; the block-diagonal case is whitened pose by pose (batched ``rows x rows``
+    factors: no dense ``M*rows`` factorisation, which multithreaded LAPACK runs slowly on a loaded machine).
+    """
+    M, rows, _ = J.shape
+    blk = _noise_blocks(plan, J, rand_var, random_noise)
+    if not len(X) or not np.any(prior_var[X] > 0):
+        Lb = np.linalg.cholesky(blk)
+        return lambda Y: np.linalg.solve(Lb, Y.reshape(M, rows, -1)).reshape(M * rows, -1)
+    R = np.zeros((M * rows, M * rows))
+    for i in range(M):
+        R[i * rows:(i + 1) * rows, i * rows:(i + 1) * rows] = blk[i]
+    JX = J[:, :, X].reshape(M * rows, len(X))
+    R += JX @ (prior_var[X][:, None] * JX.T)
+    Lc = np.linalg.cholesky(R)
+    return lambda Y: np.linalg.solve(Lc, Y)
 
 
 def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = True) -> Posterior:
@@ -169,7 +185,7 @@ def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = 
         return Posterior(split, plan, cov, prior_var, rand_var, E, tuple(model.names[k] for k in E))
     A, JE, white = _reduced(split, plan, E, X, prior_var, rand_var, random_noise)
     L = np.sqrt(prior_var[E])
-    _, sb, Vt = np.linalg.svd(A * L, full_matrices=True)
+    sb, Vt = _right_svd(A * L)
     d = np.ones(len(E))
     d[: len(sb)] = 1.0 / (1.0 + sb**2)
     SE = (L[:, None] * (Vt.T * d) @ Vt) * L[None, :]
@@ -188,15 +204,15 @@ def _reduced(split, plan, E, X, prior_var, rand_var, random_noise):
     rows = plan.rows_per_pose
     J = model.jacobian(plan.q)[:, :rows, :]  # (M, rows, K)
     M = len(plan.q)
-    Lc = np.linalg.cholesky(_noise_cov(plan, J, rand_var, X, prior_var, random_noise))
+    whiten = _whitener(plan, J, rand_var, X, prior_var, random_noise)
 
     def white(cols):
-        return np.linalg.solve(Lc, J[:, :, cols].reshape(M * rows, len(cols)))
+        return whiten(J[:, :, cols].reshape(M * rows, len(cols)))
 
     JE = white(E)
     if not plan.registration:
         return JE, JE, white
-    JN = np.linalg.solve(Lc, nuisance_columns(model, plan.q, rows).reshape(M * rows, 9))
+    JN = whiten(nuisance_columns(model, plan.q, rows).reshape(M * rows, 9))
     U, s, _ = np.linalg.svd(JN, full_matrices=False)
     Q = U[:, s > ID_TOL * max(s.max(), 1e-300)]
     return JE - Q @ (Q.T @ JE), JE, white
@@ -216,6 +232,12 @@ def identification_matrix(split: ErrorSplit, plan: CalibrationPlan, E=None, *, r
     return _reduced(split, plan, E, X, prior_var, split.random_variance(), random_noise)[0]
 
 
+def _right_svd(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Singular values and the full square ``Vt`` (n, n) of ``A`` (m, n), without the (m, m) left factor."""
+    _, s, Vt = np.linalg.svd(A, full_matrices=A.shape[0] < A.shape[1])
+    return s, Vt
+
+
 def _unidentifiable(A: np.ndarray, scale: np.ndarray, names: list) -> tuple:
     """Names of the columns of ``A`` involved in its numerical null space.
 
@@ -224,7 +246,7 @@ def _unidentifiable(A: np.ndarray, scale: np.ndarray, names: list) -> tuple:
     """
     seen = scale > ID_TOL * max(scale.max(initial=0.0), 1e-300)  # columns the measurement rows see at all
     An = A / np.where(seen, scale, 1.0) * seen
-    _, s, Vt = np.linalg.svd(An, full_matrices=True)
+    s, Vt = _right_svd(An)
     rank = int(np.sum(s > ID_TOL ** 0.5)) if len(s) else 0
     null = Vt[rank:]
     weight = np.sum(null**2, axis=0) if len(null) else np.zeros(len(names))

@@ -16,8 +16,9 @@ def register(sub) -> None:
         "calplan", help="calibration-plan design: N measurement poses minimising the post-calibration error",
         description="Choose N laser-tracker measurement poses among scrambled-Sobol candidates (in the joint limits "
         "or in the box of a pose set) that minimise the mean post-calibration position variance of the systematic "
-        "errors over the evaluation poses (task-weighted A-optimal design: convex relaxation by Frank-Wolfe, "
-        "rounding, greedy exchange), compared with N random candidates. Writes the plan CSV that "
+        "errors over the evaluation poses (task-weighted A-optimal design: convex relaxation as a cvxpy SDP solved "
+        "by Clarabel, Frank-Wolfe if that fails; rounding, greedy exchange), compared with N random candidates. "
+        "Writes the plan CSV that "
         "`tolalloc allocate --calibration` reads.")
     add_robot_arg(p)
     p.add_argument("--n-poses", type=int, required=True, help="number of measurement poses N")
@@ -79,6 +80,7 @@ def cmd_calplan(args) -> int:
     print(f"mean post-calibration variance of the systematic part [mm^2]: designed {d.score_mm2:.6g}, "
           f"random {d.random_score_mm2:.6g}; all {len(cand)} candidates {d.floor_mm2:.6g}; "
           f"relaxation lower bound {d.relaxation_bound_mm2:.6g}")
+    print(f"relaxation: {d.relaxation_method} ({d.relaxation_note}); value {d.relaxation_value_mm2:.6g} mm^2")
     print(f"above the all-candidates floor: designed {d.score_mm2 - d.floor_mm2:.4g}, random "
           f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2   ({d.time_s:.2f} s)")
     if unid:

@@ -5,11 +5,14 @@ For each of ``n_robots`` simulated robots:
 1. the systematic parts ``s`` are drawn from the manufacturing prior (:meth:`ErrorModel.sample`), plus a tracker
    registration (rotation ``N(0, 1e-3 rad)``, translation ``N(0, 1 mm)``) and a target offset on the flange
    (``N(0, 1 mm)``);
-2. the plan's measurements are simulated with the exact perturbed kinematics (``ErrorModel.perturbed_chain`` +
-   ``fk_poe``) with fresh random parts at every measurement and tracker noise ``sigma_m``;
+2. the plan's measurements are simulated with the exact perturbed kinematics (the model's chain program evaluated
+   by :class:`~tolalloc.errormodel.chain.FastChain`, vectorised over the robots, one pose program per plan pose)
+   with fresh random parts at every measurement and tracker noise ``sigma_m``;
 3. a nonlinear least-squares calibration (Gauss-Newton on the exact residuals with the nominal Jacobian, MAP with
    the manufacturing prior on the estimated parameters, registration and target offset free; all robots solved
-   together, each started at the nominal model; see :func:`_fit`) estimates ``s_E``;
+   together, each started at the nominal model and iterated to convergence; a fit whose step grows restarts with
+   the Jacobian at the estimate; see :func:`_fit`; iteration counts and non-converged fits are in the result and
+   its message) estimates ``s_E``;
 4. the controller compensates with ``s_E_hat``; at every working pose a fresh random part is drawn and
    ``dP = p_true(q) - p_model(s_E_hat, q)`` is evaluated exactly.
 
@@ -31,16 +34,18 @@ import pandas as pd
 from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.posterior import nuisance_columns, posterior
 from tolalloc.calibration.split import ErrorSplit
+from tolalloc.errormodel.chain import FastChain
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.streaming import proportion_ci
-from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.lie import exp_so3
 
 __all__ = ["CalibrationCheck", "verify_calibration", "REGISTRATION_SIGMA"]
 
 #: Sigmas of the simulated registration rotation [rad], translation [mm] and target offset [mm].
 REGISTRATION_SIGMA = (1e-3, 1.0, 1.0)
+#: Gauss-Newton iteration cap and step tolerance (normalised units) of the simulated calibrations.
+_MAX_ITER, _STEP_TOL = 30, 1e-8
 
 
 @dataclass(frozen=True, eq=False)
@@ -59,6 +64,13 @@ class CalibrationCheck:
     rms_step : float
         Largest normalised size of the last Gauss-Newton step over the robots (convergence indicator).
     fits_per_s : float
+        Simulated calibrations per second of wall time (sampling, simulated measurements and the fits).
+    iterations : array of int, shape (n_robots,)
+        Gauss-Newton iterations of each robot's fit (the maximum where it did not converge).
+    fit_cpu_s : float
+        CPU time of the same part [s] (all threads of the process).
+    n_exact : int
+        Fits that left the fixed (nominal) Jacobian for the Jacobian at the estimate (see :func:`_fit`).
     """
 
     q: np.ndarray
@@ -70,6 +82,14 @@ class CalibrationCheck:
     n_robots: int
     rms_step: float
     fits_per_s: float
+    iterations: np.ndarray
+    fit_cpu_s: float
+    n_exact: int = 0
+
+    @property
+    def converged(self) -> bool:
+        """Whether every fit met its step tolerance."""
+        return bool(self.rms_step < _STEP_TOL)
 
     @property
     def agree(self) -> np.ndarray:
@@ -80,37 +100,60 @@ class CalibrationCheck:
         return pd.DataFrame({"pose": np.arange(1, len(self.q) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
                              "ci_low": self.ci_low, "ci_high": self.ci_high, "agree": self.agree})
 
+    def fits_note(self) -> str:
+        """Convergence of the fits: iteration counts, and how many robots did not converge."""
+        it = self.iterations
+        bad = int(np.sum(it >= _MAX_ITER)) if not self.converged else 0
+        note = f"Gauss-Newton iterations per fit: median {np.median(it):g}, max {it.max()}"
+        if self.n_exact:
+            note += f"; {self.n_exact} fits with the Jacobian at the estimate"
+        return note + (f"; {bad} of {self.n_robots} fits NOT converged (last step {self.rms_step:.2e})" if bad else "")
+
     def message(self) -> str:
         bad = np.flatnonzero(~self.agree)
         if not len(bad):
             return (f"the linear post-calibration prediction lies in the Monte Carlo interval at all {len(self.q)} "
-                    f"poses ({self.n_robots} simulated calibrations)")
+                    f"poses ({self.n_robots} simulated calibrations; {self.fits_note()})")
         worst = bad[np.argmax(np.abs(self.p_linear[bad] - self.p_mc[bad]))]
         return (f"the linear prediction is outside the interval at {len(bad)} of {len(self.q)} poses; worst pose "
                 f"{worst + 1}: linear {self.p_linear[worst]:.4f}, Monte Carlo {self.p_mc[worst]:.4f} "
-                f"[{self.ci_low[worst]:.4f}, {self.ci_high[worst]:.4f}]")
+                f"[{self.ci_low[worst]:.4f}, {self.ci_high[worst]:.4f}] ({self.fits_note()})")
 
 
-def _tool_points(model, values: np.ndarray, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Exact tool positions (B, M, 3) and rotations (B, M, 3, 3) for values (B, K) at poses q (M, n)."""
-    screws, home, dq = model.perturbed_chain(values)
-    T = fk_poe(screws[:, None], home[:, None], q[None] + dq[:, None])
-    return T[..., :3, 3], T[..., :3, :3]
+class _PlanChains:
+    """The chain program at fixed poses ``q`` (M, n), evaluated by :class:`FastChain` for many parameter sets.
+
+    The pose programs are built once; each evaluation runs them on a structure-of-arrays block of samples.
+    """
+
+    def __init__(self, model, q: np.ndarray):
+        self.chain = FastChain(model)
+        self.progs = [self.chain.program(qm) for qm in np.asarray(q, float)]
+        self.K = self.chain.K
+
+    def tool(self, values: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Exact tool positions (B, M, 3) and rotations (B, M, 3, 3).
+
+        ``values`` (B, K) [mm, rad] are the same at every pose; ``extra`` (B, M, K), if given, is added per pose.
+        """
+        B, M = len(values), len(self.progs)
+        p, R = np.empty((B, M, 3)), np.empty((B, M, 3, 3))
+        X = np.empty((3, 4, B))
+        work = FastChain.workspace(B)
+        V = np.ascontiguousarray(values.T)
+        for m, prog in enumerate(self.progs):
+            Vm = V if extra is None else np.ascontiguousarray((values + extra[:, m]).T)
+            self.chain.run(prog, Vm, X, work)
+            p[:, m] = X[:, 3].T
+            R[:, m] = np.moveaxis(X[:, :3], 2, 0)
+        return p, R
 
 
-def _measure(model, x: np.ndarray, E: np.ndarray, q: np.ndarray, extra: np.ndarray | None = None) -> np.ndarray:
+def _measure(chains: _PlanChains, x: np.ndarray, E: np.ndarray, extra: np.ndarray | None = None) -> np.ndarray:
     """Tracker readings (B, M, 3) predicted from unknowns x (B, Ke + 9) (random parts ``extra`` (B, M, K) optional)."""
-    B, K = len(x), len(model.params)
-    vals = np.zeros((B, K))
+    vals = np.zeros((len(x), chains.K))
     vals[:, E] = x[:, : len(E)]
-    if extra is None:
-        p, R = _tool_points(model, vals, q)
-    else:
-        M = len(q)
-        flat = (vals[:, None, :] + extra).reshape(B * M, K)
-        screws, home, dq = model.perturbed_chain(flat)
-        T = fk_poe(screws, home, np.tile(q, (B, 1)) + dq).reshape(B, M, 4, 4)
-        p, R = T[..., :3, 3], T[..., :3, :3]
+    p, R = chains.tool(vals, extra)
     reg = x[:, len(E):]
     if reg.shape[1] == 0:  # registration known (not estimated)
         return p
@@ -119,13 +162,40 @@ def _measure(model, x: np.ndarray, E: np.ndarray, q: np.ndarray, extra: np.ndarr
     return np.einsum("bij,bmj->bmi", Rr, p) + reg[:, None, 3:6]
 
 
-def _fit(model, E, prior_sd, plan: CalibrationPlan, y: np.ndarray, iters: int = 10):
+def _exact_step(chains, E, xa, r, y, scale, prior_prec, noise_mm, h: float = 1e-6) -> np.ndarray:
+    """Gauss-Newton step (normalised, (b, D)) with the Jacobian at ``xa`` (forward differences of the exact
+    residuals ``r`` (b, 3M), step ``h`` prior sigmas): ``(J^T J + Lambda0) dx = -(J^T r + Lambda0 x)``."""
+    b, D = xa.shape
+    xp = (xa[:, None, :] + np.diag(h * scale)[None]).reshape(b * D, D)  # all D perturbations in one batch
+    rp = (_measure(chains, xp, E).reshape(b, D, -1) - y.reshape(b, 1, -1)) / noise_mm
+    J = np.swapaxes(rp - r[:, None, :], 1, 2) / h  # (b, 3M, D)
+    H = np.einsum("bmi,bmj->bij", J, J) + np.diag(prior_prec)
+    H += 1e-12 * np.trace(H, axis1=1, axis2=2)[:, None, None] / D * np.eye(D)
+    g = np.einsum("bmi,bm->bi", J, r) + prior_prec * (xa / scale)
+    return -np.linalg.solve(H, g[..., None])[..., 0]
+
+
+def _fit(chains: _PlanChains, model, E, prior_sd, plan: CalibrationPlan, y: np.ndarray, *, max_iter: int = _MAX_ITER,
+         tol: float = _STEP_TOL):
     """Batched MAP fit of the unknowns (B, Ke + 9) to the readings ``y`` (B, M, 3).
 
-    Gauss-Newton on the exact residuals with the Jacobian fixed at the nominal model (error Jacobian and
-    registration/target columns, the same for every robot, factorised once). Its fixed point solves
-    ``J0^T r(x) + Lambda0 x = 0``; the exact MAP solves it with ``J(x)``, which differs by ``O(|x|)``, so the two
-    differ by ``O(|x| sigma_m)`` -- second order. Returns the estimates and the largest last step (normalised).
+    Gauss-Newton on the exact residuals (evaluated by :class:`FastChain`), every robot started at the nominal model
+    and iterated until its normalised step is below ``tol`` (converged robots leave the batch). First with the
+    Jacobian fixed at the nominal model (error Jacobian and registration/target columns, the same for every robot,
+    factorised once): its fixed point solves ``J0^T r(x) + Lambda0 x = 0``, the exact MAP ``J(x)^T r(x) + Lambda0 x
+    = 0``; they differ by ``O(|x| sigma_m)`` -- second order. A robot whose step stops contracting (large errors:
+    the fixed-Jacobian iteration converges slowly or diverges) restarts from the nominal model with the Jacobian
+    at the current estimate (forward differences, :func:`_exact_step`), which solves the exact MAP equations.
+
+    Returns
+    -------
+    x : array, shape (B, Ke + 9)
+    step : float
+        Largest last normalised step over the robots.
+    iters : array of int, shape (B,)
+        Gauss-Newton iterations per robot, both phases (``max_iter`` where it did not converge).
+    exact : array of bool, shape (B,)
+        Robots fitted with the Jacobian at the estimate.
     """
     nN = 9 if plan.registration else 0
     B, D = len(y), len(E) + nN
@@ -137,18 +207,30 @@ def _fit(model, E, prior_sd, plan: CalibrationPlan, y: np.ndarray, iters: int = 
     prior_prec = np.r_[np.ones(len(E)), np.zeros(nN)]  # normalised by the prior sigma
     A = J0.T @ J0 + np.diag(prior_prec)
     A += 1e-12 * np.trace(A) / D * np.eye(D)
-    cho = np.linalg.cholesky(A)
+    Ainv = np.linalg.inv(A)  # D x D, symmetric positive definite; one small product per step
     x = np.zeros((B, D))
-    step = np.inf
-    for _ in range(iters):
-        r = (_measure(model, x, E, plan.q) - y).reshape(B, -1) / plan.noise_mm  # (B, 3M)
-        g = r @ J0 + prior_prec * (x / scale)
-        dxn = -np.linalg.solve(cho.T, np.linalg.solve(cho, g.T)).T
-        x = x + dxn * scale
-        step = float(np.abs(dxn).max())
-        if step < 1e-10:
+    iters = np.full(B, max_iter)
+    steps = np.full(B, np.inf)
+    exact = np.zeros(B, bool)
+    live = np.arange(B)
+    for it in range(1, max_iter + 1):
+        xa = x[live]
+        r = (_measure(chains, xa, E) - y[live]).reshape(len(live), -1) / plan.noise_mm  # (b, 3M)
+        dxn = -(r @ J0 + prior_prec * (xa / scale)) @ Ainv
+        ex = exact[live]
+        if ex.any():
+            dxn[ex] = _exact_step(chains, E, xa[ex], r[ex], y[live[ex]], scale, prior_prec, plan.noise_mm)
+        x[live] = xa + dxn * scale
+        prev, steps[live] = steps[live], np.abs(dxn).max(axis=1)
+        done = steps[live] < tol
+        iters[live[done]] = it
+        stall = ~done & ~ex & (steps[live] > prev) & (steps[live] > 100 * tol)
+        x[live[stall]] = 0.0  # restart from the nominal model with the exact Jacobian
+        exact[live[stall]] = True
+        live = live[~done]
+        if not len(live):
             break
-    return x, step
+    return x, float(steps.max()), iters, exact
 
 
 def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_mm: float, *, n_robots: int = 400,
@@ -179,7 +261,7 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     sys_model = model.with_sigma(np.where(split.systematic, model.sigma, 0.0))
     rnd_model = model.with_sigma(split.random_sigma)
     M, P = plan.n_poses, len(q_eval)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     s = sys_model.sample(n_robots, rng)  # (B, K)
     sr, st, so = REGISTRATION_SIGMA
     truth = s[:, E]
@@ -189,20 +271,20 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     extra = rnd_model.sample(n_robots * M, rng).reshape(n_robots, M, K)
     not_est = np.setdiff1d(np.arange(K), E)
     extra = extra + s[:, None, :] * np.isin(np.arange(K), not_est)  # systematic parts not estimated stay in
-    y = _measure(model, truth, E, plan.q, extra) + rng.normal(0, plan.noise_mm, (n_robots, M, 3))
-    est, step = _fit(model, E, np.sqrt(split.prior_var_of(E)), plan, y)
-    fit_time = time.perf_counter() - t0
+    chains = _PlanChains(model, plan.q)
+    y = _measure(chains, truth, E, extra) + rng.normal(0, plan.noise_mm, (n_robots, M, 3))
+    est, step, iters, exact = _fit(chains, model, E, np.sqrt(split.prior_var_of(E)), plan, y)
+    fit_time, fit_cpu = time.perf_counter() - t0, time.process_time() - c0
     # use: fresh random parts at every working pose; the model predicts with the estimated systematic parts
     hat = np.zeros((n_robots, K))
     hat[:, E] = est[:, : len(E)]
     fresh = rnd_model.sample(n_robots * P, rng).reshape(n_robots, P, K)
-    true_vals = (s[:, None, :] + fresh).reshape(n_robots * P, K)
-    screws, home, dq = model.perturbed_chain(true_vals)
-    p_true = fk_poe(screws, home, np.tile(q_eval, (n_robots, 1)) + dq)[:, :3, 3].reshape(n_robots, P, 3)
-    p_hat, _ = _tool_points(model, hat, q_eval)
+    use = _PlanChains(model, q_eval)
+    p_true, _ = use.tool(s, fresh)
+    p_hat, _ = use.tool(hat)
     err = np.linalg.norm(p_true - p_hat, axis=-1)  # (B, P)
     k = np.sum(err < radius_mm, axis=0)
     ci = proportion_ci(k, n_robots, "wilson", 1 - (1 - level) / P)
     p_lin = p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm)
     return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots, step,
-                            n_robots / fit_time)
+                            n_robots / fit_time, iters, fit_cpu, int(exact.sum()))
