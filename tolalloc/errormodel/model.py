@@ -217,9 +217,13 @@ class ErrorModel:
                 inserts[p.undo_site].insert(0, (p.twist, -values[:, k]))
         C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
         screws = np.empty((N, n, 6))
+        flat = [val[:, None] * twist for site in inserts for twist, val in site]
+        E = exp_se3(np.stack(flat, axis=1)) if flat else None  # (N, inserts, 4, 4): one call, not one per insert
+        k = 0
         for s in range(n + 1):
-            for twist, val in inserts[s]:
-                C = C @ exp_se3(val[:, None] * twist)
+            for _ in inserts[s]:
+                C = C @ E[:, k]
+                k += 1
             if s < n:
                 screws[:, s, :] = adjoint(C) @ robot.screws[s]
         home = C @ robot.home
