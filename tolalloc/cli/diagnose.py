@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import argparse
+
 import pandas as pd
 
 from tolalloc.cli.argtypes import count, seed
@@ -29,7 +31,13 @@ def register(sub) -> None:
     p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
     p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
-    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "
+                   "subsample of large files (default 0)")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bars on stderr (default: when stderr is a terminal)")
+    p.add_argument("--cv-rows", type=count, default=None, metavar="N",
+                   help="training files with more rows cross-validate and select effects on a seeded random "
+                   "subsample of N rows; the final fits use all rows (default 20000)")
     p.set_defaults(func=cmd_diagnose)
 
 
@@ -37,6 +45,7 @@ def cmd_diagnose(args) -> int:
     from tolalloc.exceptions import TolallocError
     from tolalloc.diagnose import diagnose, read_measurements
     from tolalloc.diagnose.measurements import check_train_test
+    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
     from tolalloc.report.diagnosis import write_report
 
     if args.predictions is not None and not args.test:
@@ -45,6 +54,9 @@ def cmd_diagnose(args) -> int:
         raise TolallocError(f"--alpha: expected a level in (0, 1), got {args.alpha}.")
     if args.folds < 2:
         raise TolallocError(f"--folds: expected at least 2 cross-validation folds, got {args.folds}.")
+    if args.cv_rows is not None and args.cv_rows < MIN_SUBSAMPLE_ROWS:
+        raise TolallocError(f"--cv-rows: expected at least {MIN_SUBSAMPLE_ROWS} rows for the cross-validation subsample, "
+                            f"got {args.cv_rows}.")
     # every output path is checked before any computation, so a late failure cannot leave some written
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
@@ -56,7 +68,9 @@ def cmd_diagnose(args) -> int:
     test = read_measurements(args.test, robot) if args.test else None
     if test is not None:
         check_train_test(train, test, args.train, args.test)
-    d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame)
+    extra = {} if args.cv_rows is None else {"subsample_rows": args.cv_rows}
+    d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame,
+                 progress=args.progress, **extra)
     with output_group() as out:
         # all outputs are produced in temporaries and moved into place together at the end
         if args.predictions is not None:
@@ -80,6 +94,10 @@ def cmd_diagnose(args) -> int:
     print(f"effect: {d.effect}" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""))
     for g in d.guards:
         print(f"GUARD: {g}")
+    if d.subsample is not None:
+        s = d.subsample
+        print(f"subsample: cross-validation and effect selection on {s['cv_rows']:,} of {s['rows']:,} training rows "
+              f"(seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; final fits on all rows")
     print("held-out error [mm]:")
     print(ba[["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]].to_string(index=False, float_format="%.4f"))
     print("ranking:")

@@ -2,21 +2,27 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+import numpy as np
 import pandas as pd
 from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate
+from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, calibrate, fit_model
+from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.guards import Extrapolation, cv_fallback, extrapolation_flags, prior_flags
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
+from tolalloc.diagnose.scale import SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
+from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, score_test, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
-__all__ = ["Diagnosis", "diagnose"]
+__all__ = ["Diagnosis", "diagnose", "MIN_SUBSAMPLE_ROWS"]
+
+#: Smallest cross-validation subsample of a large training file.
+MIN_SUBSAMPLE_ROWS = 200
 
 
 @dataclass(frozen=True, eq=False)
@@ -36,6 +42,8 @@ class Diagnosis:
     guards : tuple of str          guards that fired (implausible parameters, extrapolating test poses, fallback)
     extrapolation : Extrapolation or None   per test pose flags (None without a test file)
     fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
+    subsample : dict or None       large training files: what ran on a seeded subsample (cross-validation,
+                                   effect selection, identifiability) and what on all rows (the final fits)
     """
 
     robot: Robot
@@ -52,6 +60,7 @@ class Diagnosis:
     guards: tuple = ()
     extrapolation: Extrapolation | None = None
     fallback: str | None = None
+    subsample: dict | None = None
 
     @property
     def effect(self) -> str:
@@ -106,7 +115,7 @@ class Diagnosis:
             "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
                            "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
                            "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
-            "heldout": {"cv_poses": self.train.n_poses, "test_poses": 0 if self.test is None else self.test.n_poses,
+            "heldout": {"cv_poses": len(self.nominal.oof_mm), "test_poses": 0 if self.test is None else self.test.n_poses,
                         "test_frame": self.test_frame},
             "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
                       "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
@@ -117,6 +126,7 @@ class Diagnosis:
             "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
             "guards": list(self.guards),
             "fallback": self.fallback,
+            "subsample": self.subsample,
             "models": {"calibration": "complete minimal geometric model (diagnose.geometry): 4 line errors per "
                                       "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
                        "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
@@ -132,7 +142,8 @@ class Diagnosis:
 
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
-             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1) -> Diagnosis:
+             test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
+             progress: bool | None = False, subsample_rows: int = SUBSAMPLE_ROWS) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     Parameters
@@ -146,21 +157,42 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         ``refit``: the test file is in another tracker frame (another session); its registration and
         target offset are re-estimated on one half of it and scored on the other (two-fold).
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
+    progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
+    subsample_rows : int
+        Training files with more rows cross-validate and select effects on a seeded random subsample (``seed``)
+        of this many rows; the nominal, geometric and final models are then fitted on all rows
+        (``Diagnosis.subsample`` says so).
     """
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
-    with threadpool_limits(threads):
+    if subsample_rows < MIN_SUBSAMPLE_ROWS:
+        raise TolallocError(f"subsample_rows: expected at least {MIN_SUBSAMPLE_ROWS} rows for the cross-validation "
+                            f"subsample, got {subsample_rows}.")
+    with threadpool_limits(threads), progress_scope(progress):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
         if test is not None and test_frame == "refit" and test.n_poses < 10:
             raise TolallocError(f"{test.source}: {test.n_poses} poses; re-registering a test file needs at least 10.")
-        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol)
-        nominal = evaluate(ctx, nominal=True)
-        geometric = evaluate(ctx)
-        stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        sub = subsample_index(train.n_poses, subsample_rows, seed)
+        cv_train = train if sub is None else train.subset(sub)
+        ctx = make_context(cal, cv_train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol)
+        with fit_counter(f"cross-validation ({cv_train.n_poses:,} rows)"):
+            nominal = evaluate(ctx, nominal=True)
+            geometric = evaluate(ctx)
+            stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        subsample = None
+        if sub is not None:
+            nominal, geometric, final = _all_rows(ctx, train, cal, nominal, geometric, final)
+            subsample = {"rows": train.n_poses, "cv_rows": len(sub), "seed": seed,
+                         "identifiability_rows": cal.identifiability_rows,
+                         "subsampled": "cross-validation (out-of-fold errors, p-values), effect selection, "
+                                       "identifiability of geometric and effect parameters",
+                         "all_rows": "nominal, geometric and final fits (parameters, training RMS, test-file scores)"}
+        bar = progress_bar("residual breakdown")
         where = where_breakdown(robot, train, cal.geometric)
+        bar.close()
     effects = tuple(st.selected for st in stages if st.selected)
     guards = list(prior_flags(cal.geometric))
     chosen, msgs = cv_fallback(nominal, geometric, final)
@@ -179,6 +211,27 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                 guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
                               f"({f:.4g} vs {nmn:.4g} mm)")
     return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
-                     tuple(guards), extrap, fallback)
+                     tuple(guards), extrap, fallback, subsample)
+
+
+def _all_rows(ctx, train, cal: Calibration, nominal: Evaluation, geometric: Evaluation, final: Evaluation):
+    """The three models of a subsampled diagnosis refitted on every training row (effect bases chunk by chunk)."""
+    robot, t = cal.geometric.model.robot, cal.geometric.t_mm
+
+    def rescore(ev, fit):
+        test_res, test_pred = score_test(ctx, fit, ev.effects, ev.keep)
+        return replace(ev, fit=fit, test_mm=test_res, test_pred_mm=test_pred)
+
+    def basis(sl):
+        part = train.subset(np.arange(sl.start, sl.stop))
+        B = np.concatenate([effect_basis(e, robot, part, t, ctx.ref).B for e in final.effects], axis=2)
+        return B[:, :, final.keep]
+
+    nominal, geometric = rescore(nominal, cal.nominal), rescore(geometric, cal.geometric)
+    if not final.effects:
+        return nominal, geometric, geometric  # no effect selected: the final model is the geometric one
+    fit = fit_model(cal.geometric, train.q, train.xyz_mm, geo_index=cal.geometric.geo_index, B=basis,
+                    n_effects=len(final.keep), effect_names=final.param_names, label="final fit")
+    return nominal, geometric, rescore(final, fit)
 
 

@@ -42,7 +42,7 @@ __all__ = ["CHUNK_ROWS", "SUBSAMPLE_ROWS", "PROGRESS_MIN_ROWS", "Problem", "solv
 #: Poses per chunk of a pass over the data (one chunk's Jacobian: 3 x CHUNK_ROWS x m floats).
 CHUNK_ROWS = 20_000
 #: Training files with more rows cross-validate and select effects on a seeded subsample of this size.
-SUBSAMPLE_ROWS = 20_000
+SUBSAMPLE_ROWS = 10_000
 #: Fits on at least this many rows show their own progress bar (when progress is on).
 PROGRESS_MIN_ROWS = 50_000
 
@@ -192,12 +192,14 @@ class Problem:
 
     # --------------------------------------------------------------- one chunk
     def _static_of(self, sl):
-        """Per-pose quantities independent of the parameters: nominal geometric point Jacobian, flange rotation."""
+        """Per-pose quantities independent of the parameters, coordinate-major: nominal geometric point Jacobian
+        ``Jp, Jw`` (3, rows, k) and flange rotation ``Rfl`` (3, rows, 3) (``Rfl[b, i, c] = R_flange,i[b, c]``)."""
         q = self.q[sl]
         J = self.model.jacobian(q)[:, :, self.geo] if len(self.geo) else np.zeros((len(q), 6, 0))
         robot = self.model.robot
         _, Rfl = point_kinematics(robot.screws, robot.home, q, np.zeros(3), self.chunk_rows)
-        return J[:, :3, :], J[:, 3:, :], Rfl
+        tr = lambda a: np.ascontiguousarray(a.transpose(1, 0, 2))  # noqa: E731
+        return tr(J[:, :3, :]), tr(J[:, 3:, :]), tr(Rfl)
 
     def _B(self, sl):
         if self.B is None or self.M == 0:
@@ -205,7 +207,9 @@ class Problem:
         return self.B(sl) if callable(self.B) else self.B[sl]
 
     def chunk(self, x, sl, chain, want_jac: bool = True):
-        """Data residual predicted - measured (rows, 3) [mm] and Jacobian (3 rows, m) (or None) on poses ``sl``."""
+        """Data residual predicted - measured (rows, 3) [mm] on poses ``sl`` and its Jacobian in the robot base
+        frame, coordinate-major ``A`` (3, rows, m) (or None); the tracker-frame Jacobian of coordinate ``a`` is
+        ``sum_b R[a, b] A[b]`` (:meth:`tracker_rows`)."""
         R, p, t, delta, beta = self.unpack(x)
         screws, home, dq = chain
         y, _ = point_kinematics(screws, home, self.q[sl] + dq, t, self.chunk_rows)
@@ -218,14 +222,25 @@ class Problem:
         if not want_jac:
             return r, None
         Jp, Jw, Rfl = self._static if self._static is not None else self._static_of(sl)
-        C = len(y)
-        arm = Rfl @ t
-        Jg = Jp + np.cross(Jw, arm[:, :, None], axis=1)
-        blocks = [-hat(y), np.broadcast_to(R.T, (C, 3, 3)), Rfl, Jg] + ([B] if B is not None else [])
-        A = np.concatenate(blocks, axis=2)  # base frame; the tracker frame is R @ A, one GEMM below
-        m = A.shape[2]
-        J = (A.transpose(0, 2, 1).reshape(C * m, 3) @ R.T).reshape(C, m, 3).transpose(0, 2, 1)
-        return r, J.reshape(3 * C, m)
+        C, k = len(y), Jp.shape[2]
+        A = np.zeros((3, C, 9 + k + self.M))
+        # rotation (right perturbation): -[y] dw ; translation: R^T dp (tracker frame -> base frame)
+        for b, (c1, c2) in enumerate(((1, 2), (2, 0), (0, 1))):  # -[y] row b: (y x .)_b columns
+            A[b, :, c1] = y[:, c2]
+            A[b, :, c2] = -y[:, c1]
+        A[:, :, 3:6] = R.T[:, None, :]
+        A[:, :, 6:9] = Rfl
+        arm = np.einsum("bic,c->bi", Rfl, t)  # flange-rotated offset, (3, rows)
+        for b, (c1, c2) in enumerate(((1, 2), (2, 0), (0, 1))):  # Jp + Jw x arm
+            A[b, :, 9:9 + k] = Jp[b] + Jw[c1] * arm[c2][:, None] - Jw[c2] * arm[c1][:, None]
+        if B is not None:
+            A[:, :, 9 + k:] = B.transpose(1, 0, 2)
+        return r, A
+
+    @staticmethod
+    def tracker_rows(A, R):
+        """Tracker-frame Jacobian rows of each coordinate, a list of three (rows, m) arrays."""
+        return [R[a, 0] * A[0] + R[a, 1] * A[1] + R[a, 2] * A[2] for a in range(3)]
 
     def _robust(self, r):
         """Transformed residual and its derivative d r' / d r (soft_l1); identity when ``f_scale`` is 0."""
@@ -256,9 +271,11 @@ class Problem:
     def jac(self, x) -> np.ndarray:
         """Stacked Jacobian of :meth:`fun` (holds 3P x m numbers: small problems only)."""
         ch = self.chain(x)
+        R = self.unpack(x)[0]
         parts = []
         for sl in self.slices():
-            r, J = self.chunk(x, sl, ch)
+            r, A = self.chunk(x, sl, ch)
+            J = np.stack(self.tracker_rows(A, R), axis=1).reshape(3 * len(r), -1)
             parts.append(J * self._robust(r.ravel())[1][:, None])
         J = np.concatenate(parts)
         if not self.prior_w.any():
@@ -275,14 +292,16 @@ class Problem:
         m = len(x)
         H, g, cost = np.zeros((m, m)), np.zeros(m), 0.0
         raw = np.empty((self.n_rows, 3))
+        R = self.unpack(x)[0]
         for sl in self.slices():
-            r, J = self.chunk(x, sl, ch)
+            r, A = self.chunk(x, sl, ch)
             raw[sl] = r
-            rt, s = self._robust(r.ravel())
-            Js = J * s[:, None]
-            H += Js.T @ Js
-            g += Js.T @ rt
-            cost += float(rt @ rt)
+            for a, Ja in enumerate(self.tracker_rows(A, R)):
+                rt, s = self._robust(r[:, a])
+                Js = Ja * s[:, None] if self.f_scale > 0 else Ja
+                H += Js.T @ Js
+                g += Js.T @ rt
+                cost += float(rt @ rt)
         k = len(self.geo)
         if self.prior_w.any():
             d = x[9:9 + k]
@@ -311,7 +330,8 @@ def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-
 
     Returns ``(x, raw)``: the solution (rotation moved into ``prob.R0``, ``x[:3] = 0``) and its raw data
     residual (P, 3). Stops when an accepted step lowers the cost by less than ``ftol`` of it or moves every
-    parameter by less than ``xtol (xtol + |x|)``, after ``max_iter`` passes, or when no step lowers the cost.
+    parameter by less than ``xtol (xtol + |x|)``, when the next step's predicted decrease (quadratic model) is
+    below ``1e-4 ftol`` of the cost (saves a pass), after ``max_iter`` passes, or when no step lowers the cost.
     """
     bar = progress_bar(f"{label} ({prob.n_rows:,} rows)", unit="pass") if prob.n_rows >= PROGRESS_MIN_ROWS \
         else _NoBar()
@@ -321,6 +341,8 @@ def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-
     lam = 1e-6
     for _ in range(max_iter):
         dx = _step(H, g, lam)
+        if -(g @ dx + 0.5 * dx @ H @ dx) <= 1e-4 * ftol * cost:  # the model predicts no useful decrease: converged
+            break
         trial = prob.normal(x + dx)
         bar.update()
         if trial[0] <= cost:

@@ -21,7 +21,8 @@ from scipy.stats import wilcoxon
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, kabsch, select_columns
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_reference
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "evaluate", "select_effects", "rms", "error_stats"]
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "evaluate", "score_test", "select_effects", "rms",
+           "error_stats"]
 
 
 def rms(res: np.ndarray) -> float:
@@ -173,20 +174,25 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
         tr = np.setdiff1d(np.arange(len(q)), f)
         ff = fit_model(start, q[tr], xyz[tr], geo_index=geo, B=None if B is None else B[tr], effect_names=names)
         oof[f] = xyz[f] - ff.predict(q[f], None if B is None else B[f])
-    test_res = test_pred = None
-    if test is not None:
-        Bt = None
-        if B is not None:
-            Bt, _ = _stack(ctx.bases_test, effects)
-            Bt = Bt[:, :, keep]
-        test_pred = full.predict(test.q, Bt)
-        if ctx.test_frame == "refit":
-            extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
-            test_res = _refit_frame(full, test.q, test.xyz_mm, extra)
-        else:
-            test_res = test.xyz_mm - test_pred
+    test_res, test_pred = score_test(ctx, full, effects, keep)
     label = "nominal" if nominal else "+".join(("geometric", *effects))
     return Evaluation(label, tuple(effects), full, names, keep, oof, test_res, test_pred)
+
+
+def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
+    """Residuals and predictions (T, 3) of ``full`` on the test file (None, None without one)."""
+    test = ctx.test
+    if test is None:
+        return None, None
+    Bt = None
+    if effects:
+        Bt, _ = _stack(ctx.bases_test, effects)
+        Bt = Bt[:, :, keep]
+    test_pred = full.predict(test.q, Bt)
+    if ctx.test_frame == "refit":
+        extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
+        return _refit_frame(full, test.q, test.xyz_mm, extra), test_pred
+    return test.xyz_mm - test_pred, test_pred
 
 
 def _pvalue(base: np.ndarray, cand: np.ndarray) -> float:
