@@ -40,7 +40,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
-from tolalloc.diagnose.scale import Problem, count_fit, point_kinematics, robust_scale, solve, subsample_index
+from tolalloc.diagnose.scale import CHUNK_ROWS, Problem, count_fit, point_kinematics, robust_scale, solve, subsample_index
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
@@ -109,15 +109,15 @@ class Fit:
         return pd.DataFrame(rows, columns=["parameter", "value", "unit"])
 
 
-def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None) -> Problem:
+def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None, chunk_rows=None) -> Problem:
     """The measurement model's :class:`~tolalloc.diagnose.scale.Problem` for the fitted columns, starting at ``fit0``."""
     return Problem(fit0.model, fit0.R, fit0.p_mm, fit0.t_mm, fit0.delta, q, xyz, geo_index, B, extra,
-                   n_effects=n_effects)
+                   n_effects=n_effects, chunk_rows=chunk_rows or CHUNK_ROWS)
 
 
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
               robust: bool = True, extra: np.ndarray | None = None, prior: bool = True, n_effects: int | None = None,
-              label: str = "fit") -> Fit:
+              label: str = "fit", chunk_rows: int | None = None) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -136,9 +136,10 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
         geometric parameter (parameters with sigma 0 get none), weighted with the robust noise estimate
         of the plain pass (``1.4826 MAD`` per coordinate). Registration, offset and effects have no prior.
     label : str   name of the fit on its progress bar (large files)
+    chunk_rows : int, optional   poses per chunk of the normal equations (default :data:`~.scale.CHUNK_ROWS`)
     """
     geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
-    prob = _Problem(start, q, xyz, geo_index, B, extra, n_effects=n_effects)
+    prob = _Problem(start, q, xyz, geo_index, B, extra, n_effects=n_effects, chunk_rows=chunk_rows)
     x, raw = solve(prob, prob.x0(), max_iter=60, label=label)
     sig = start.model.sigma[geo_index]
     if prior and len(geo_index) and np.any(sig > 0):
