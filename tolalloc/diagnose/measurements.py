@@ -96,9 +96,10 @@ def _numeric(df: pd.DataFrame, col: str, source: str) -> np.ndarray:
     """Column as floats; text that is not a number -> error naming the first bad cell."""
     raw = df[col]
     num = pd.to_numeric(raw, errors="coerce")
-    bad = num.isna() & raw.notna() & (raw.astype(str).str.strip() != "")
-    if bad.any():
-        i = int(np.flatnonzero(bad.to_numpy())[0])
+    cand = np.flatnonzero((num.isna() & raw.notna()).to_numpy())  # strip only these cells (large files)
+    bad = cand[(raw.iloc[cand].astype(str).str.strip() != "").to_numpy()]
+    if bad.size:
+        i = int(bad[0])
         raise TolallocError(
             f"{source}: column {col!r}, row {i + 1}: expected a number, got {raw.iloc[i]!r}; "
             "use '.' as decimal separator and numbers only (convert the file first if it uses decimal commas).")

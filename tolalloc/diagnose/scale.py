@@ -240,7 +240,7 @@ class Problem:
     @staticmethod
     def tracker_rows(A, R):
         """Tracker-frame Jacobian rows of each coordinate, a list of three (rows, m) arrays."""
-        return [R[a, 0] * A[0] + R[a, 1] * A[1] + R[a, 2] * A[2] for a in range(3)]
+        return list((R @ A.reshape(3, -1)).reshape(A.shape))  # one GEMM for the whole chunk
 
     def _robust(self, r):
         """Transformed residual and its derivative d r' / d r (soft_l1); identity when ``f_scale`` is 0."""
