@@ -15,7 +15,7 @@ from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.guards import Extrapolation, cv_fallback, extrapolation_flags, prior_flags
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.scale import SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
+from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
 from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, score_test, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
@@ -23,6 +23,9 @@ __all__ = ["Diagnosis", "diagnose", "MIN_SUBSAMPLE_ROWS"]
 
 #: Smallest cross-validation subsample of a large training file.
 MIN_SUBSAMPLE_ROWS = 200
+#: The final fit on all rows of a large file holds the effect basis when it needs at most this many bytes,
+#: else it recomputes it chunk by chunk on every pass.
+BASIS_CACHE_BYTES = 256 * 2**20
 
 
 @dataclass(frozen=True, eq=False)
@@ -230,7 +233,12 @@ def _all_rows(ctx, train, cal: Calibration, nominal: Evaluation, geometric: Eval
     nominal, geometric = rescore(nominal, cal.nominal), rescore(geometric, cal.geometric)
     if not final.effects:
         return nominal, geometric, geometric  # no effect selected: the final model is the geometric one
-    fit = fit_model(cal.geometric, train.q, train.xyz_mm, geo_index=cal.geometric.geo_index, B=basis,
+    B, P = basis, train.n_poses
+    if P * 3 * len(final.keep) * 8 <= BASIS_CACHE_BYTES:  # small enough: build it once, not on every pass
+        B = np.empty((P, 3, len(final.keep)))
+        for a in range(0, P, CHUNK_ROWS):
+            B[a:a + CHUNK_ROWS] = basis(slice(a, min(a + CHUNK_ROWS, P)))
+    fit = fit_model(cal.geometric, train.q, train.xyz_mm, geo_index=cal.geometric.geo_index, B=B,
                     n_effects=len(final.keep), effect_names=final.param_names, label="final fit")
     return nominal, geometric, rescore(final, fit)
 
