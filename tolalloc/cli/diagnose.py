@@ -46,6 +46,7 @@ def cmd_diagnose(args) -> int:
     from tolalloc.diagnose import diagnose, read_measurements
     from tolalloc.diagnose.measurements import check_train_test
     from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
     from tolalloc.report.diagnosis import write_report
 
     if args.predictions is not None and not args.test:
@@ -64,8 +65,13 @@ def cmd_diagnose(args) -> int:
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     robot = robot_from_args(args)
-    train = read_measurements(args.train, robot)
-    test = read_measurements(args.test, robot) if args.test else None
+    with progress_scope(args.progress):  # large files take a while to read: say so on stderr
+        bar = progress_bar(f"reading {args.train}" + (f" and {args.test}" if args.test else ""))
+        try:
+            train = read_measurements(args.train, robot)
+            test = read_measurements(args.test, robot) if args.test else None
+        finally:
+            bar.close()
     if test is not None:
         check_train_test(train, test, args.train, args.test)
     extra = {} if args.cv_rows is None else {"subsample_rows": args.cv_rows}
