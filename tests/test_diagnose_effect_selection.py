@@ -78,10 +78,10 @@ def test_test_file_basis_keeps_the_training_columns():
     """A column the test poses do not excite (e.g. gravity-held backlash of a joint whose torque keeps its sign on
     the test file) is kept as zeros, so the fitted parameters line up with the test basis column by column."""
     from tolalloc.diagnose.effects import EffectBasis
-    from tolalloc.diagnose.select import _aligned
+    from tolalloc.diagnose.select import align_basis
 
     b = EffectBasis("backlash", ("b_j1 [rad]", "b_j3 [rad]"), np.arange(12.0).reshape(2, 3, 2), "gravity")
-    a = _aligned(b, ("b_j1 [rad]", "b_j2 [rad]", "b_j3 [rad]"))
+    a = align_basis(b, ("b_j1 [rad]", "b_j2 [rad]", "b_j3 [rad]"))
     assert a.names == ("b_j1 [rad]", "b_j2 [rad]", "b_j3 [rad]") and a.B.shape == (2, 3, 3)
     assert np.all(a.B[:, :, 1] == 0)
     assert np.array_equal(a.B[:, :, 0], b.B[:, :, 0]) and np.array_equal(a.B[:, :, 2], b.B[:, :, 1])

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import argparse
+
 import numpy as np
 import pandas as pd
 
@@ -37,7 +39,13 @@ def register(sub) -> None:
     p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
     p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
-    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment (default 0)")
+    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "
+                   "subsample of large files (default 0)")
+    p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress bars on stderr (default: when stderr is a terminal)")
+    p.add_argument("--cv-rows", type=count, default=None, metavar="N",
+                   help="training files with more rows cross-validate and select effects on a seeded random "
+                   "subsample of N rows; the final fits use all rows (default 10000)")
     p.set_defaults(func=cmd_diagnose)
 
 
@@ -45,6 +53,8 @@ def cmd_diagnose(args) -> int:
     from tolalloc.exceptions import TolallocError
     from tolalloc.diagnose import diagnose, read_measurements
     from tolalloc.diagnose.measurements import check_train_test
+    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
     from tolalloc.diagnose.register import REGISTER_N
     from tolalloc.report.diagnosis import test_predictions, write_report
 
@@ -54,6 +64,9 @@ def cmd_diagnose(args) -> int:
         raise TolallocError(f"--alpha: expected a level in (0, 1), got {args.alpha}.")
     if args.folds < 2:
         raise TolallocError(f"--folds: expected at least 2 cross-validation folds, got {args.folds}.")
+    if args.cv_rows is not None and args.cv_rows < MIN_SUBSAMPLE_ROWS:
+        raise TolallocError(f"--cv-rows: expected at least {MIN_SUBSAMPLE_ROWS} rows for the cross-validation subsample, "
+                            f"got {args.cv_rows}.")
     if args.register_n is not None and args.test_frame != "refit":
         raise TolallocError("--register-n needs --test-frame refit: only a test file in another frame is re-registered.")
     # every output path is checked before any computation, so a late failure cannot leave some written
@@ -63,15 +76,21 @@ def cmd_diagnose(args) -> int:
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     robot = robot_from_args(args)
-    train = read_measurements(args.train, robot)
+    with progress_scope(args.progress):  # large files take a while to read: say so on stderr
+        bar = progress_bar(f"reading {args.train}" + (f" and {args.test}" if args.test else ""))
+        try:
+            train = read_measurements(args.train, robot)
+            test = read_measurements(args.test, robot) if args.test else None
+        finally:
+            bar.close()
     if args.folds > train.n_poses // 2:
         raise TolallocError(f"--folds: expected at most {train.n_poses // 2} cross-validation folds for "
                             f"{train.n_poses} training poses (at least 2 poses held out per fold), got {args.folds}.")
-    test = read_measurements(args.test, robot) if args.test else None
     if test is not None:
         check_train_test(train, test, args.train, args.test)
     d = diagnose(robot, train, test, folds=args.folds, alpha=args.alpha, seed=args.seed, test_frame=args.test_frame,
-                 register_n=REGISTER_N if args.register_n is None else args.register_n)
+                 register_n=REGISTER_N if args.register_n is None else args.register_n, progress=args.progress,
+                 **({} if args.cv_rows is None else {"subsample_rows": args.cv_rows}))
     with output_group() as out:
         # all outputs are produced in temporaries and moved into place together at the end
         if args.predictions is not None:
@@ -100,6 +119,10 @@ def _print_summary(d, folds: int) -> None:
 
     cols = ["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]
     print(f"effect: {d.effect}" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""))
+    if d.subsample is not None:
+        s = d.subsample
+        print(f"subsample: cross-validation and effect selection on {s['cv_rows']:,} of {s['rows']:,} training rows "
+              f"(seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; final fits on all rows")
     if d.test is not None:
         reg = d.registration
         how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses registered the "

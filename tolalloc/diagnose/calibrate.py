@@ -13,8 +13,8 @@ can still be passed as ``model``) -- and ``B_i beta`` an optional linear effect 
 
 The fit starts from a point-set alignment (Kabsch, via ``Rotation.align_vectors``) of the nominal flange
 points to the measured points -- any tracker orientation works -- then solves robust nonlinear least
-squares (``scipy.optimize.least_squares``, TRF; first a plain fit, then ``soft_l1`` loss with a scale of 3
-robust standard deviations, applied to the measurement rows only). MAP: the second pass adds a Gaussian
+squares (Levenberg-Marquardt on normal equations accumulated chunk by chunk, :mod:`.scale`; first a plain fit,
+then ``soft_l1`` loss with a scale of 3 robust standard deviations, applied to the measurement rows only). MAP: the second pass adds a Gaussian
 prior ``N(0, model.sigma)`` on the fitted geometric parameters (see :func:`fit_model`). The Jacobian is analytic: the first-order error Jacobian of the nominal model
 for ``delta`` (exact up to second order), exact for ``R, p, t, beta``.
 
@@ -32,17 +32,15 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
-from tolalloc.robot.lie import hat
-from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
+from tolalloc.diagnose.scale import CHUNK_ROWS, Problem, count_fit, point_kinematics, robust_scale, solve, subsample_index
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
@@ -94,8 +92,7 @@ class Fit:
     def base_points(self, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarray:
         """Predicted target points in the robot base frame [mm], shape (P, 3)."""
         screws, home, dq = self.model.perturbed_chain(self.delta[None, :])
-        T = fk_poe(screws[0], home[0], q + dq[0])
-        x = T[:, :3, 3] + T[:, :3, :3] @ self.t_mm
+        x, _ = point_kinematics(screws[0], home[0], q + dq[0], self.t_mm)
         if B is not None and B.shape[-1]:
             x = x + B @ self.beta
         return x
@@ -112,110 +109,15 @@ class Fit:
         return pd.DataFrame(rows, columns=["parameter", "value", "unit"])
 
 
-def _geo_point_jacobian(model: ErrorModel, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Error Jacobian rows of the flange: dp (P,3,K) and dw (P,3,K), and flange rotations (P,3,3)."""
-    J = model.jacobian(q)
-    return J[:, :3, :], J[:, 3:, :]
-
-
-class _Problem:
-    """Residual and analytic Jacobian for a fixed set of fitted columns.
-
-    With ``prior_w`` (shape (len(geo_index),), set by :func:`fit_model`) the residual vector ends with the
-    MAP prior rows ``prior_w * delta[geo_index]`` (``prior_w = noise / prior sigma``, mm). With ``f_scale > 0``
-    the data rows ``r`` are replaced by ``sign(r) f sqrt(2 (sqrt(1 + (r/f)^2) - 1))``, whose squares sum to the
-    ``soft_l1`` loss, so the robust loss acts on the measurements only and never weakens the prior.
-    """
-
-    def __init__(self, fit0: Fit, q, xyz, geo_index, B, extra=None):
-        self.model, self.q, self.xyz = fit0.model, q, xyz
-        self.extra = np.zeros((len(q), 3)) if extra is None else extra
-        self.R0 = fit0.R
-        self.geo = np.asarray(geo_index, int)
-        self.B = B if B is not None else np.zeros((len(q), 3, 0))
-        self.Jp, self.Jw = _geo_point_jacobian(self.model, q)
-        self.Rfl = self.model.robot.fk(q)[:, :3, :3]
-        self.fit0 = fit0
-        self.prior_w = np.zeros(len(self.geo))
-        self.f_scale = 0.0
-        self._cache = (None, None)
-
-    def unpack(self, x):
-        k = len(self.geo)
-        R = self.R0 @ Rotation.from_rotvec(x[:3]).as_matrix()
-        delta = self.fit0.delta.copy()
-        delta[self.geo] = x[9:9 + k]
-        return R, x[3:6], x[6:9], delta, x[9 + k:]
-
-    def x0(self):
-        return np.concatenate([np.zeros(3), self.fit0.p_mm, self.fit0.t_mm, self.fit0.delta[self.geo],
-                               np.zeros(self.B.shape[-1])])
-
-    def base(self, x):
-        if self._cache[0] is not None and np.array_equal(self._cache[0], x):
-            return self._cache[1]
-        out = self._base(x)
-        self._cache = (np.array(x, copy=True), out)
-        return out
-
-    def _base(self, x):
-        R, p, t, delta, beta = self.unpack(x)
-        screws, home, dq = self.model.perturbed_chain(delta[None, :])
-        T = fk_poe(screws[0], home[0], self.q + dq[0])
-        y = T[:, :3, 3] + T[:, :3, :3] @ t + self.B @ beta + self.extra
-        return y, R, p
-
-    def raw(self, x):
-        """Data residual predicted - measured, shape (3P,) [mm], without robust transform or prior rows."""
-        y, R, p = self.base(x)
-        return (y @ R.T + p - self.xyz).ravel()
-
-    def _robust(self, r):
-        """Transformed residual and its derivative d r' / d r (soft_l1), identity when ``f_scale`` is 0."""
-        if self.f_scale <= 0:
-            return r, np.ones_like(r)
-        f = self.f_scale
-        root = np.sqrt(1.0 + (r / f) ** 2)
-        rt = np.sign(r) * f * np.sqrt(2.0 * (root - 1.0))
-        ratio = np.divide(r, rt, out=np.ones_like(r), where=np.abs(rt) > 1e-12 * f)
-        return rt, ratio / root
-
-    def fun(self, x):
-        res = self._robust(self.raw(x))[0]
-        if not self.prior_w.any():
-            return res
-        return np.concatenate([res, self.prior_w * x[9:9 + len(self.geo)]])
-
-    def jac(self, x):
-        y, R, p = self.base(x)
-        t = x[6:9]
-        arm = self.Rfl @ t  # (P, 3)
-        Jg = self.Jp[:, :, self.geo] + np.cross(self.Jw[:, :, self.geo], arm[:, :, None], axis=1)
-        P = len(self.q)
-        cols = [
-            -np.einsum("ij,pjk->pik", R, hat(y)),
-            np.broadcast_to(np.eye(3), (P, 3, 3)),
-            np.einsum("ij,pjk->pik", R, self.Rfl),
-            np.einsum("ij,pjk->pik", R, Jg),
-            np.einsum("ij,pjk->pik", R, self.B),
-        ]
-        J = np.concatenate(cols, axis=2).reshape(3 * P, -1)
-        if self.f_scale > 0:
-            J = J * self._robust(self.raw(x))[1][:, None]
-        if not self.prior_w.any():
-            return J
-        k = len(self.geo)
-        Jp = np.zeros((k, J.shape[1]))
-        Jp[:, 9:9 + k] = np.diag(self.prior_w)
-        return np.concatenate([J, Jp])
-
-
-def _robust_scale(res: np.ndarray) -> float:
-    return float(max(3.0 * 1.4826 * np.median(np.abs(res - np.median(res))), 1e-4))
+def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None, chunk_rows=None) -> Problem:
+    """The measurement model's :class:`~tolalloc.diagnose.scale.Problem` for the fitted columns, starting at ``fit0``."""
+    return Problem(fit0.model, fit0.R, fit0.p_mm, fit0.t_mm, fit0.delta, q, xyz, geo_index, B, extra,
+                   n_effects=n_effects, chunk_rows=chunk_rows or CHUNK_ROWS)
 
 
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
-              robust: bool = True, extra: np.ndarray | None = None, prior: bool = True) -> Fit:
+              robust: bool = True, extra: np.ndarray | None = None, prior: bool = True, n_effects: int | None = None,
+              label: str = "fit", chunk_rows: int | None = None) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -225,30 +127,32 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     q : array, shape (P, n) [rad, mm]
     xyz : array, shape (P, 3) [mm], tracker frame
     geo_index : array of int, optional (default: ``start.geo_index``)
-    B : array, shape (P, 3, M), optional, effect basis [mm per unit]
+    B : array, shape (P, 3, M), or callable ``B(slice) -> (rows, 3, M)`` with ``n_effects = M``, optional
+        Effect basis [mm per unit]; a callable is evaluated chunk by chunk (large files).
     extra : array, shape (P, 3), optional
         A fixed displacement of the target in the base frame [mm] (a frozen effect, for re-registration).
     prior : bool
         MAP: after a plain least-squares pass, add a Gaussian prior ``N(0, model.sigma)`` on every fitted
         geometric parameter (parameters with sigma 0 get none), weighted with the robust noise estimate
         of the plain pass (``1.4826 MAD`` per coordinate). Registration, offset and effects have no prior.
+    label : str   name of the fit on its progress bar (large files)
+    chunk_rows : int, optional   poses per chunk of the normal equations (default :data:`~.scale.CHUNK_ROWS`)
     """
     geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
-    prob = _Problem(start, q, xyz, geo_index, B, extra)
-    opts = dict(jac=prob.jac, method="trf", x_scale="jac", xtol=1e-10, ftol=1e-10, gtol=1e-10)
-    sol = least_squares(prob.fun, prob.x0(), max_nfev=60, **opts)
-    f_scale = 0.0
+    prob = _Problem(start, q, xyz, geo_index, B, extra, n_effects=n_effects, chunk_rows=chunk_rows)
+    x, raw = solve(prob, prob.x0(), max_iter=60, label=label)
     sig = start.model.sigma[geo_index]
     if prior and len(geo_index) and np.any(sig > 0):
-        noise = _robust_scale(sol.fun) / 3.0
+        noise = robust_scale(raw.ravel()) / 3.0
         prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
     if robust:
-        f_scale = prob.f_scale = _robust_scale(prob.raw(sol.x))
+        prob.f_scale = robust_scale(raw.ravel())
     if robust or prob.prior_w.any():
-        sol = least_squares(prob.fun, sol.x, max_nfev=30, **opts)
-    R, p, t, delta, beta = prob.unpack(sol.x)
-    res = -prob.raw(sol.x).reshape(-1, 3)
-    return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), res, f_scale)
+        x, raw = solve(prob, x, max_iter=30, label=label + " (robust)")
+    R, p, t, delta, beta = prob.unpack(x)
+    count_fit()
+    return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), -raw,
+               prob.f_scale)
 
 
 def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
@@ -259,7 +163,7 @@ def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
 
 def initial_fit(model: ErrorModel, q: np.ndarray, xyz: np.ndarray) -> Fit:
     """Kabsch alignment of the nominal flange points to the measured points (target offset 0)."""
-    flange = model.robot.fk(q)[:, :3, 3]
+    flange, _ = point_kinematics(model.robot.screws, model.robot.home, q, np.zeros(3))
     R, p = kabsch(flange, xyz)
     K = len(model.params)
     return Fit(model, R, p, np.zeros(3), np.zeros(K), np.zeros(0, int))
@@ -267,11 +171,16 @@ def initial_fit(model: ErrorModel, q: np.ndarray, xyz: np.ndarray) -> Fit:
 
 @dataclass(frozen=True, eq=False)
 class Calibration:
-    """Result of :func:`calibrate`: nominal (registration + offset only) and geometric fits on the training poses."""
+    """Result of :func:`calibrate`: nominal (registration + offset only) and geometric fits on the training poses.
+
+    ``identifiability_rows``: the poses the identifiability analysis used (all, or a seeded subsample of
+    :data:`~tolalloc.diagnose.scale.SUBSAMPLE_ROWS` for larger files; the fits always use every pose).
+    """
 
     nominal: Fit
     geometric: Fit
     identifiability: Identifiability
+    identifiability_rows: int = 0
 
 
 def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = None, tol: float = DEFAULT_TOL,
@@ -279,14 +188,21 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     """Register the tracker frame, the target offset and the identifiable geometric parameters.
 
     Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
+    Files of more than :data:`~tolalloc.diagnose.scale.SUBSAMPLE_ROWS` poses: the identifiability analysis
+    runs on a seeded random subsample of that many poses, whose fits also start the fits on all poses.
     """
     model = model or build_geometry_model(robot)
     q, xyz = meas.q, meas.xyz_mm
     if len(q) < 5:
         raise TolallocError(f"{meas.source}: {len(q)} pose(s) after skipping NaN rows; registration and target offset "
                             "alone (9 parameters) need at least 5 poses, geometric calibration many more -- measure more poses.")
-    nominal = fit_model(initial_fit(model, q, xyz), q, xyz, robust=robust)
-    ident = identifiability(nominal, q, tol)
+    sub = subsample_index(len(q))
+    qs, xyzs = (q, xyz) if sub is None else (q[sub], xyz[sub])
+    start = initial_fit(model, qs, xyzs)
+    if sub is not None:
+        start = fit_model(start, qs, xyzs, robust=robust)
+    nominal = fit_model(start, q, xyz, robust=robust, label="nominal calibration")
+    ident = identifiability(nominal, qs, tol)
     # structural count: the same robot on a rich pose set; tells how many poses a full calibration needs
     rng = np.random.default_rng(0)
     rev = robot.revolute_mask  # revolute joints clipped to one turn; prismatic joints over their whole stroke
@@ -299,5 +215,8 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
             f"(registration 6, target offset 3, geometric {len(rich.identifiable)}); need at least {rich.min_poses} poses "
             "(3 coordinates each, 2 spare) -- measure more poses spread over the workspace.")
     geo = np.array([model.index(n) for n in ident.identifiable], int)
-    geometric = fit_model(replace(nominal, geo_index=geo), q, xyz, geo_index=geo, robust=robust)
-    return Calibration(nominal, geometric, ident)
+    start = replace(nominal, geo_index=geo)
+    if sub is not None:
+        start = fit_model(start, qs, xyzs, geo_index=geo, robust=robust)
+    geometric = fit_model(start, q, xyz, geo_index=geo, robust=robust, label="geometric calibration")
+    return Calibration(nominal, geometric, ident, len(qs))

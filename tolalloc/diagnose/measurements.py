@@ -24,6 +24,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
+from tolalloc.diagnose.scale import point_kinematics
 
 __all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "POSITION_COLUMNS"]
 
@@ -96,9 +97,10 @@ def _numeric(df: pd.DataFrame, col: str, source: str) -> np.ndarray:
     """Column as floats; text that is not a number -> error naming the first bad cell."""
     raw = df[col]
     num = pd.to_numeric(raw, errors="coerce")
-    bad = num.isna() & raw.notna() & (raw.astype(str).str.strip() != "")
-    if bad.any():
-        i = int(np.flatnonzero(bad.to_numpy())[0])
+    cand = np.flatnonzero((num.isna() & raw.notna()).to_numpy())  # strip only these cells (large files)
+    bad = cand[(raw.iloc[cand].astype(str).str.strip() != "").to_numpy()]
+    if bad.size:
+        i = int(bad[0])
         raise TolallocError(
             f"{source}: column {col!r}, row {i + 1}: expected a number, got {raw.iloc[i]!r}; "
             "use '.' as decimal separator and numbers only (convert the file first if it uses decimal commas).")
@@ -109,7 +111,7 @@ def _scale_check(robot: Robot, q: np.ndarray, xyz: np.ndarray, source: str) -> N
     """Compare the spread of the measured points with the spread of the nominal model's points."""
     if len(q) < 3:
         return
-    p_nom = robot.fk(q)[:, :3, 3]
+    p_nom, _ = point_kinematics(robot.screws, robot.home, q, np.zeros(3))  # chunked, no (P, n, 4, 4) temporaries
     s_nom = np.sqrt(np.mean(np.sum((p_nom - p_nom.mean(0)) ** 2, axis=1)))
     s_meas = np.sqrt(np.mean(np.sum((xyz - xyz.mean(0)) ** 2, axis=1)))
     if s_nom < 20.0:  # poses too close together to judge the scale
@@ -267,7 +269,11 @@ def read_measurements(path, robot: Robot) -> Measurements:
     if not path.is_file():
         raise TolallocError(f"measurement file {str(path)!r} does not exist; expected a CSV with columns q1..qN, x_mm, y_mm, z_mm.")
     try:
-        df = pd.read_csv(path, dtype=str, skipinitialspace=True, encoding="utf-8-sig")
+        # numbers straight to float64 (8 bytes a cell); any column that is not all numbers: read as text
+        # again, so every cell gets the usual checks and messages
+        df = pd.read_csv(path, skipinitialspace=True, encoding="utf-8-sig")
+        if not all(pd.api.types.is_float_dtype(t) or pd.api.types.is_integer_dtype(t) for t in df.dtypes):
+            df = pd.read_csv(path, dtype=str, skipinitialspace=True, encoding="utf-8-sig")
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise TolallocError(f"{path}: cannot be read as CSV ({exc}); expected comma-separated columns q1..qN, x_mm, y_mm, z_mm.") from None
     if df.shape[1] == 1 and ";" in str(df.columns[0]):

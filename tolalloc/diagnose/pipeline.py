@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -10,17 +10,25 @@ from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
+from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate, fit_model
+from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.guards import (Extrapolation, PoseUncertainty, cv_fallback, extrapolation_flags,
                                      prediction_uncertainty, prior_flags)
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.register import REGISTER_N, RegistrationSplit, register_and_score, register_count
-from tolalloc.diagnose.select import Evaluation, error_stats, evaluate, make_context, select_effects
+from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
+from tolalloc.diagnose.select import Evaluation, align_basis, error_stats, evaluate, make_context, score_test, select_effects
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
-__all__ = ["Diagnosis", "diagnose"]
+__all__ = ["Diagnosis", "diagnose", "MIN_SUBSAMPLE_ROWS"]
+
+#: Smallest cross-validation subsample of a large training file.
+MIN_SUBSAMPLE_ROWS = 200
+#: The final fit on all rows of a large file holds the effect basis when it needs at most this many bytes,
+#: else it recomputes it chunk by chunk on every pass.
+BASIS_CACHE_BYTES = 256 * 2**20
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,6 +51,8 @@ class Diagnosis:
     registration : RegistrationSplit or None   ``refit``: test poses used to register the frame (never scored)
     uncertainty : PoseUncertainty or None      per test pose predicted 1-sigma and 95 % radius, coverage check
     registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
+    subsample : dict or None       large training files: what ran on a seeded subsample (cross-validation,
+                                   effect selection, identifiability) and what on all rows (the final fits)
     """
 
     robot: Robot
@@ -62,6 +72,7 @@ class Diagnosis:
     registration: RegistrationSplit | None = None
     uncertainty: PoseUncertainty | None = None
     registered: Fit | None = None
+    subsample: dict | None = None
 
     @property
     def scored_index(self) -> np.ndarray:
@@ -121,7 +132,7 @@ class Diagnosis:
             "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
                            "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
                            "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
-            "heldout": {"cv_poses": self.train.n_poses, "test_poses": 0 if self.test is None else len(self.scored_index),
+            "heldout": {"cv_poses": len(self.nominal.oof_mm), "test_poses": 0 if self.test is None else len(self.scored_index),
                         "test_frame": self.test_frame},
             "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
                       "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
@@ -132,6 +143,7 @@ class Diagnosis:
             "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
             "guards": list(self.guards),
             "fallback": self.fallback,
+            "subsample": self.subsample,
             "models": {"calibration": "complete minimal geometric model (diagnose.geometry): 4 line errors per "
                                       "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
                        "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
@@ -160,7 +172,8 @@ class Diagnosis:
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
              test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
-             register_n: float = REGISTER_N, cv: str = "blocked") -> Diagnosis:
+             register_n: float = REGISTER_N, cv: str = "blocked", progress: bool | None = False,
+             subsample_rows: int = SUBSAMPLE_ROWS) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     Parameters
@@ -177,6 +190,11 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     register_n : float          ``refit``: registration poses, a count (>= 1, default 30) or a fraction (< 1)
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
+    progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
+    subsample_rows : int
+        Training files with more rows cross-validate and select effects on a seeded random subsample (``seed``)
+        of this many rows; the nominal, geometric and final models are then fitted on all rows
+        (``Diagnosis.subsample`` says so).
     """
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
@@ -187,16 +205,32 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                             f"{train.n_poses} training poses (at least 2 poses held out per fold), got {folds}.")
     if test is not None and test_frame == "refit":
         register_count(test.n_poses, register_n)  # a bad --register-n fails before any fit
-    with threadpool_limits(threads):
+    if subsample_rows < MIN_SUBSAMPLE_ROWS:
+        raise TolallocError(f"subsample_rows: expected at least {MIN_SUBSAMPLE_ROWS} rows for the cross-validation "
+                            f"subsample, got {subsample_rows}.")
+    with threadpool_limits(threads), progress_scope(progress):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol)
         check_nominal_misfit(robot, train, cal.nominal)
-        ctx = make_context(cal, train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
+        sub = subsample_index(train.n_poses, subsample_rows, seed)
+        cv_train = train if sub is None else train.subset(sub)
+        ctx = make_context(cal, cv_train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
                            register_n=register_n, cv=cv)
-        nominal = evaluate(ctx, nominal=True)
-        geometric = evaluate(ctx)
-        stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        with fit_counter(f"cross-validation ({cv_train.n_poses:,} rows)"):
+            nominal = evaluate(ctx, nominal=True)
+            geometric = evaluate(ctx)
+            stages, _, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        subsample = None
+        if sub is not None:
+            nominal, geometric, final = _all_rows(ctx, train, cal, nominal, geometric, final)
+            subsample = {"rows": train.n_poses, "cv_rows": len(sub), "seed": seed,
+                         "identifiability_rows": cal.identifiability_rows,
+                         "subsampled": "cross-validation (out-of-fold errors, p-values), effect selection, "
+                                       "identifiability of geometric and effect parameters",
+                         "all_rows": "nominal, geometric and final fits (parameters, training RMS, test-file scores)"}
+        bar = progress_bar("residual breakdown")
         where = where_breakdown(robot, train, cal.geometric)
+        bar.close()
     effects = tuple(st.selected for st in stages if st.selected)
     guards = list(prior_flags(cal.geometric))
     chosen, msgs = cv_fallback(nominal, geometric, final)
@@ -204,22 +238,56 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     fallback = None
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
-    extrap = unc = reg = None
-    if test is not None:
-        with threadpool_limits(threads):
-            unc, reg = _uncertainty(ctx, final)
-        if unc.message():
-            guards.append(unc.message())
-        extrap = extrapolation_flags(robot, train.q, test.q)
-        if extrap.message():
-            guards.append(extrap.message())
-        worse = {k: (error_stats(final.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
-        for k, (f, nmn) in worse.items():
-            if f > nmn:
-                guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
-                              f"({f:.4g} vs {nmn:.4g} mm)")
+    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
     return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
-                     tuple(guards), extrap, fallback, ctx.registration, unc, reg)
+                     tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample)
+
+
+def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list) -> tuple:
+    """Test-file guards (appended to ``guards``): predicted uncertainty, extrapolation, final worse than nominal."""
+    test = ctx.test
+    if test is None:
+        return None, None, None
+    with threadpool_limits(threads):
+        unc, reg = _uncertainty(ctx, final)
+    if unc.message():
+        guards.append(unc.message())
+    extrap = extrapolation_flags(robot, train.q, test.q)
+    if extrap.message():
+        guards.append(extrap.message())
+    worse = {k: (error_stats(final.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
+    for k, (f, nmn) in worse.items():
+        if f > nmn:
+            guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
+                          f"({f:.4g} vs {nmn:.4g} mm)")
+    return extrap, unc, reg
+
+
+def _all_rows(ctx, train, cal: Calibration, nominal: Evaluation, geometric: Evaluation, final: Evaluation):
+    """The three models of a subsampled diagnosis refitted on every training row (effect bases chunk by chunk)."""
+    robot, t = cal.geometric.model.robot, cal.geometric.t_mm
+
+    def rescore(ev, fit):
+        test_res, test_pred = score_test(ctx, fit, ev.effects, ev.keep)
+        return replace(ev, fit=fit, test_mm=test_res, test_pred_mm=test_pred)
+
+    def basis(sl):
+        part = train.subset(np.arange(sl.start, sl.stop))
+        B = np.concatenate([align_basis(effect_basis(e, robot, part, t, ctx.ref), ctx.bases[e].names).B
+                            for e in final.effects], axis=2)
+        return B[:, :, final.keep]
+
+    nominal, geometric = rescore(nominal, cal.nominal), rescore(geometric, cal.geometric)
+    if not final.effects:
+        return nominal, geometric, geometric  # no effect selected: the final model is the geometric one
+    B, P = basis, train.n_poses
+    if P * 3 * len(final.keep) * 8 <= BASIS_CACHE_BYTES:  # small enough: build it once, not on every pass
+        B = np.empty((P, 3, len(final.keep)))
+        for a in range(0, P, CHUNK_ROWS):
+            B[a:a + CHUNK_ROWS] = basis(slice(a, min(a + CHUNK_ROWS, P)))
+    fit = fit_model(cal.geometric, train.q, train.xyz_mm, geo_index=cal.geometric.geo_index, B=B,
+                    n_effects=len(final.keep), effect_names=final.param_names, label="final fit")
+    return nominal, geometric, rescore(final, fit)
 
 
 def _uncertainty(ctx, final: Evaluation) -> tuple:

@@ -27,7 +27,7 @@ from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_c
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate",
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate", "score_test",
            "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
 
 
@@ -203,10 +203,10 @@ class _Context:
                 self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed)
                 self.ref["variants"][e] = self.bases[e].variant
                 if test is not None:
-                    self.bases_test[e] = _aligned(effect_basis(e, robot, test, t, self.ref), self.bases[e].names)
+                    self.bases_test[e] = align_basis(effect_basis(e, robot, test, t, self.ref), self.bases[e].names)
 
 
-def _aligned(basis, names: tuple):
+def align_basis(basis, names: tuple):
     """``basis`` with exactly the columns ``names`` of the training basis, in that order (zeros where the test poses
     do not excite a column, e.g. a joint whose gravity torque keeps its sign on the test file)."""
     pos = {nm: i for i, nm in enumerate(basis.names)}
@@ -264,7 +264,7 @@ def _stack(bases: dict, effects) -> tuple:
 
 def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evaluation:
     """Fit a model on all training poses and on every CV fold; residuals on the held-out poses."""
-    cal, train, test = ctx.cal, ctx.train, ctx.test
+    cal, train = ctx.cal, ctx.train
     q, xyz = train.q, train.xyz_mm
     start = cal.nominal if nominal else cal.geometric
     geo = np.zeros(0, int) if nominal else cal.geometric.geo_index
@@ -279,21 +279,30 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
     warm = replace(full, beta=np.zeros(0))  # folds start from the full fit (same optimum, fewer iterations)
     oof = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds)
     oof_joint = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds_joint) if ctx.folds_joint else None
-    test_res = test_pred = None
-    if test is not None:
-        Bt = None
-        if B is not None:
-            Bt, _ = _stack(ctx.bases_test, effects)
-            Bt = Bt[:, :, keep]
-        test_pred = full.predict(test.q, Bt)
-        if ctx.test_frame == "refit":  # registered on ctx.registration.register_index, scored on the rest
-            extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
-            reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration)
-            test_res, test_pred = reg.residual_mm, reg.pred_mm
-        else:
-            test_res = test.xyz_mm - test_pred
+    test_res, test_pred = score_test(ctx, full, effects, keep)
     label = "nominal" if nominal else "+".join(("geometric", *effects))
     return Evaluation(label, tuple(effects), full, names, keep, oof, test_res, test_pred, oof_joint)
+
+
+def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
+    """Residuals and predictions of ``full`` on the test file (None, None without one).
+
+    ``refit``: registered on ``ctx.registration.register_index`` and scored on the rest (residuals (T - r, 3),
+    predictions in the re-registered frame); else residuals and predictions (T, 3) in the measurement frame.
+    """
+    test = ctx.test
+    if test is None:
+        return None, None
+    Bt = None
+    if effects:
+        Bt, _ = _stack(ctx.bases_test, effects)
+        Bt = Bt[:, :, keep]
+    test_pred = full.predict(test.q, Bt)
+    if ctx.test_frame == "refit":
+        extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
+        reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration)
+        return reg.residual_mm, reg.pred_mm
+    return test.xyz_mm - test_pred, test_pred
 
 
 def _out_of_fold(start, q, xyz, geo, B, names, folds) -> np.ndarray:

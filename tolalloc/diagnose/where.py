@@ -61,10 +61,12 @@ def pose_features(robot: Robot, meas: Measurements, points_base_mm: np.ndarray) 
     shoulder = robot.joint_points_mm[min(1, robot.n_joints - 1)]
     from tolalloc.robot.kinematics import poe_prefix
 
-    Pj = poe_prefix(robot.screws, meas.q)[:, min(1, robot.n_joints - 1)]
+    k = min(1, robot.n_joints - 1)
+    Pj = poe_prefix(robot.screws[:k], meas.q[:, :k])[:, k]  # only the prefix needed (memory of large files)
     sh = Pj[:, :3, :3] @ shoulder + Pj[:, :3, 3]
     cols["extension_mm"] = np.linalg.norm(points_base_mm - sh, axis=1)
-    tau = gravity_torques(robot, meas.q)
+    step = 20_000  # chunks bound the prefix products' memory for large files
+    tau = np.concatenate([gravity_torques(robot, meas.q[a:a + step]) for a in range(0, meas.n_poses, step)])
     for j in range(robot.n_joints):
         cols[f"gravity_load_j{j + 1}_{'Nm' if robot.joints[j].is_revolute else 'N'}"] = tau[:, j]
     for key, v in meas.covariates().items():
