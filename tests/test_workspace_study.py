@@ -44,7 +44,7 @@ def test_gradient_search_reaches_the_stretched_pose_from_poor_seeds(planar):
     assert abs(np.rad2deg(q[1])) < 0.01
     stretched = build_problem(model, np.array([[q[0], 0.0]]))
     # P is quadratic in q2 around the stretched pose: within 0.01 deg it equals the value there to ~1e-8
-    assert p == pytest.approx(make_design(stretched, "check", d.t).p_linear["position"][0], abs=1e-8)
+    assert p == pytest.approx(make_design(stretched, "standard", d.t).p_linear["position"][0], abs=1e-8)
     assert n_eval > 2  # the local search spent evaluations (5 poses per step for 2 free joints)
 
 
@@ -63,11 +63,11 @@ def test_study_slice_matches_the_problem_probabilities_and_the_coverage(planar, 
     s = p_slice(study, run, centre, (0, 1), n_grid=9)
     X, Y = np.meshgrid(s["x"], s["y"])
     grid = np.column_stack([X.ravel(), Y.ravel()])
-    ref = make_design(build_problem(model, grid), "check", d.t).p_linear["position"].reshape(X.shape)
+    ref = make_design(build_problem(model, grid), "standard", d.t).p_linear["position"].reshape(X.shape)
     np.testing.assert_allclose(s["P"], ref, rtol=0, atol=1e-12)
     # the slice passes through the worst sampled pose: its centre value is the coverage minimum
     assert s["x"][0] <= centre[0] <= s["x"][-1] and s["y"][0] <= centre[1] <= s["y"][-1]
-    at_centre = make_design(build_problem(model, centre[None]), "check", d.t).p_linear["position"][0]
+    at_centre = make_design(build_problem(model, centre[None]), "standard", d.t).p_linear["position"][0]
     assert at_centre == pytest.approx(cov.min_p, abs=1e-12)
     # and the folded design leaves the stretched side of the slice below p (the slice shows the failure)
     assert s["P"].min() < 0.95 - 1e-4 and cov.n_below > 0

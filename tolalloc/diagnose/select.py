@@ -192,6 +192,7 @@ class _Context:
         self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
         self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
+        res = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's residual on these poses
         for e in EFFECTS:
             ok, why = applicable(e, train)
             names = [v for v in variants(e, train, self.ref) if test is None or _test_can_carry(e, v, test)]
@@ -200,7 +201,7 @@ class _Context:
             self.reasons[e] = why
             if ok:
                 cands = effect_bases(e, robot, train, t, self.ref, names)
-                self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed)
+                self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed, res)
                 self.ref["variants"][e] = self.bases[e].variant
                 if test is not None:
                     self.bases_test[e] = align_basis(effect_basis(e, robot, test, t, self.ref), self.bases[e].names)
@@ -227,17 +228,19 @@ def _test_can_carry(effect, variant, test) -> bool:
     return True
 
 
-def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray):
+def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
     """The variant whose columns best explain the geometric fit's training residual (BIC, winsorised residual).
 
     Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
     and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
     outliers do not pick the variant. ``BIC = n log(RSS / n) + M log n`` (``n`` = 3P rows, ``M`` columns).
+    ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
+    fit was made on those very poses; a subsampled diagnosis passes the subsample's).
     """
     if len(cands) == 1:
         return cands[0]
     Q, _ = np.linalg.qr(J_fixed)
-    r = fit.residual_mm.ravel()
+    r = (fit.residual_mm if residual_mm is None else residual_mm).ravel()
     r = r - Q @ (Q.T @ r)
     s = 1.4826 * np.median(np.abs(r - np.median(r)))
     r = np.clip(r, -3 * s, 3 * s)
