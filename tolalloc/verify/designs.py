@@ -119,12 +119,15 @@ class Verification:
         return [(i + 1, self.reason[i]) for i in np.flatnonzero(~self.passed)]
 
     def message(self) -> str:
-        rule = ("whole 95% interval >= p" if self.criterion == "certified" else "95% interval reaches p")
+        rule = ("pass: whole 95% interval >= p" if self.criterion == "certified" else "pass: upper 95% bound >= p")
         if self.ok:
             angle = ("" if self.angle is None else
                      f"; orientation: lowest P_hat = {self.angle['p_mc'].min():.4f} at pose "
                      f"{int(np.argmin(self.angle['p_mc'])) + 1}")
-            return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({rule}); "
+            meaning = ("lower 95% bound >= p at every pose" if self.verdict == "demonstrated" else
+                       f"{rule}; at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s) the interval also extends "
+                       "below p")
+            return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({meaning}); "
                     f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}")
         head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
         return f"verified: {head} ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
