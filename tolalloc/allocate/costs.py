@@ -49,7 +49,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
 
-__all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "param_kind_key", "MODELS"]
+__all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
 
 MODELS = ("reciprocal", "reciprocal_power", "exponential")
 _LEN = LENGTH_UNITS
@@ -337,6 +337,11 @@ def _cost_model(entry: dict, p, where: str) -> CostModel:
 
 def load_costs(path, model: ErrorModel, *, z: float | None = None, distribution: str | None = None) -> CostSet:
     """Read a costs file (TOML) and resolve it against ``model`` (see :func:`cost_set`)."""
+    return cost_set(model, read_costs_file(path), z=z, source=str(path), distribution=distribution)
+
+
+def read_costs_file(path) -> dict:
+    """The parsed TOML of a costs file (a byte-order mark is fine); clear errors for a missing or bad file."""
     path = Path(path)
     if path.is_dir():
         raise TolallocError(f"costs file {str(path)!r} is a directory; give a TOML file (see `tolalloc allocate --help`).")
@@ -348,4 +353,4 @@ def load_costs(path, model: ErrorModel, *, z: float | None = None, distribution:
         raise TolallocError(f"costs file {path}: cannot be read as text ({exc}); expected a TOML file.") from None
     except tomllib.TOMLDecodeError as exc:
         raise TolallocError(f"costs file {path}: not valid TOML ({exc}).") from None
-    return cost_set(model, data, z=z, source=str(path), distribution=distribution)
+    return data

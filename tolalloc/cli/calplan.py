@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import tomllib
-from pathlib import Path
-
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
@@ -44,13 +41,10 @@ def split_from_costs(model, path):
 
     if path is None:
         return split_errors(model)
-    from tolalloc.allocate.costs import load_costs
+    from tolalloc.allocate.costs import cost_set, read_costs_file
 
-    load_costs(path, model)  # the whole file is checked, not only its [calibration] table
-    try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8-sig"))
-    except (OSError, tomllib.TOMLDecodeError) as exc:
-        raise TolallocError(f"costs file {path}: cannot read it as TOML ({exc}).") from None
+    data = read_costs_file(path)
+    cost_set(model, data, source=str(path))  # the whole file is checked, not only its [calibration] table
     return split_errors(model, data.get("calibration"))
 
 

@@ -71,7 +71,7 @@ def check_output(path, flag: str, *, directory: bool = False) -> None:
     p = Path(path)
     if directory and p.resolve().parent == p.resolve():
         raise TolallocError(f"{flag} {str(p)!r}: refusing to write results into the filesystem root; give a "
-                            "directory of their own, e.g. {flag} results.".replace("{flag}", flag))
+                            f"directory of their own, e.g. {flag} results.")
     if p.exists() and p.is_dir() != directory:
         want = "a directory" if directory else "a file"
         raise TolallocError(f"{flag} {str(p)!r}: expected {want} path, but {str(p)!r} is "
