@@ -20,6 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from tolalloc.exceptions import raise_if_interrupted
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, Solver, make_design
 
 __all__ = ["solve_exact", "FEAS_TOL", "LEBEDEV_ORDER"]
@@ -120,6 +121,7 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
         except RuntimeError as exc:  # pragma: no cover - casadi raises on internal errors
             ok, why, u = False, str(exc), None
             break
+        raise_if_interrupted()  # CasADi turns a signal during IPOPT into a solver stop; never carry on after it
         stats = solver.stats()
         why = str(stats.get("return_status", ""))
         ok = bool(stats.get("success", False)) and why == "Solve_Succeeded"

@@ -17,7 +17,7 @@ import signal
 import sys
 import threading
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import Interrupted, TolallocError, clear_interrupt, note_interrupt
 
 #: command modules, in the order shown by --help
 COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
@@ -25,14 +25,6 @@ COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calpl
 
 class _UsageError(TolallocError):
     """A malformed command line (printed like any other error)."""
-
-
-class Interrupted(KeyboardInterrupt):
-    """SIGINT or SIGTERM arrived; ``signum`` says which."""
-
-    def __init__(self, signum: int):
-        super().__init__(signum)
-        self.signum = signum
 
 
 class _Parser(argparse.ArgumentParser):
@@ -59,6 +51,7 @@ def _on_signal(signum, frame):
     # the first signal wins; later ones are ignored while the staged output is cleaned up
     for s in (signal.SIGINT, signal.SIGTERM):
         signal.signal(s, signal.SIG_IGN)
+    note_interrupt(signum)  # kept even if a native solver traps the exception below
     raise Interrupted(signum)
 
 
@@ -68,6 +61,7 @@ def _interrupt_handlers():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    clear_interrupt()
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
