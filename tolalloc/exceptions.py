@@ -7,6 +7,9 @@ stderr and a non-zero exit.
 
 from __future__ import annotations
 
+import contextlib
+import signal
+import threading
 from typing import Any
 
 import numpy as np
@@ -17,6 +20,25 @@ __all__ = ["TolallocError", "Interrupted", "note_interrupt", "clear_interrupt", 
 
 class TolallocError(ValueError):
     """A user-facing input error (bad robot file, bad joint values, bad sigma ...)."""
+
+
+@contextlib.contextmanager
+def signals_deferred():
+    """Hold SIGINT / SIGTERM back during a native call that would trap the Python handler's exception.
+
+    CasADi turns an exception raised by a signal handler during IPOPT into a solver stop (with a warning on
+    stderr) and carries on; held back, the signal is delivered right after the call and interrupts as usual.
+    Main thread only (elsewhere a no-op).
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    sigs = {signal.SIGINT, signal.SIGTERM}
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 class Interrupted(KeyboardInterrupt):

@@ -20,7 +20,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from tolalloc.exceptions import raise_if_interrupted
+from tolalloc.exceptions import signals_deferred
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, Solver, make_design
 
 __all__ = ["solve_exact", "FEAS_TOL", "LEBEDEV_ORDER"]
@@ -117,11 +117,11 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
     for _ in range(max_rounds):
         solver, lbg = _build(problem, active)
         try:
-            sol = solver(x0=x0, lbx=u_lo, ubx=u_hi, lbg=lbg, ubg=np.full(lbg.shape, 1.0 + 1e-9))
+            with signals_deferred():  # CasADi would trap an interrupt as a solver stop and carry on
+                sol = solver(x0=x0, lbx=u_lo, ubx=u_hi, lbg=lbg, ubg=np.full(lbg.shape, 1.0 + 1e-9))
         except RuntimeError as exc:  # pragma: no cover - casadi raises on internal errors
             ok, why, u = False, str(exc), None
             break
-        raise_if_interrupted()  # CasADi turns a signal during IPOPT into a solver stop; never carry on after it
         stats = solver.stats()
         why = str(stats.get("return_status", ""))
         ok = bool(stats.get("success", False)) and why == "Solve_Succeeded"
