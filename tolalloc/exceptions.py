@@ -14,8 +14,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "Interrupted", "note_interrupt", "clear_interrupt", "raise_if_interrupted",
-           "check_vector", "check_finite_array", "check_positive"]
+__all__ = ["TolallocError", "Interrupted", "signals_deferred", "check_vector", "check_finite_array", "check_positive"]
 
 
 class TolallocError(ValueError):
@@ -47,27 +46,6 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, signum: int):
         super().__init__(signum)
         self.signum = signum
-
-
-#: Signals recorded by the CLI's handler. Native solvers that trap the handler's exception (CasADi turns it into
-#: an IPOPT stop and carries on) are followed by :func:`raise_if_interrupted`, so the interrupt is never lost.
-_PENDING: list = []
-
-
-def note_interrupt(signum: int) -> None:
-    """Record that signal ``signum`` arrived (called by the CLI's signal handler)."""
-    _PENDING.append(signum)
-
-
-def clear_interrupt() -> None:
-    """Forget recorded signals (a new CLI run starts)."""
-    _PENDING.clear()
-
-
-def raise_if_interrupted() -> None:
-    """Raise :class:`Interrupted` if a signal was recorded (after a call that may have swallowed it)."""
-    if _PENDING:
-        raise Interrupted(_PENDING[0])
 
 
 def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.ndarray:

@@ -17,7 +17,7 @@ import signal
 import sys
 import threading
 
-from tolalloc.exceptions import Interrupted, TolallocError, clear_interrupt, note_interrupt
+from tolalloc.exceptions import Interrupted, TolallocError
 
 #: command modules, in the order shown by --help
 COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
@@ -51,7 +51,6 @@ def _on_signal(signum, frame):
     # the first signal wins; later ones are ignored while the staged output is cleaned up
     for s in (signal.SIGINT, signal.SIGTERM):
         signal.signal(s, signal.SIG_IGN)
-    note_interrupt(signum)  # kept even if a native solver traps the exception below
     raise Interrupted(signum)
 
 
@@ -61,7 +60,6 @@ def _interrupt_handlers():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    clear_interrupt()
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
