@@ -46,6 +46,33 @@ def test_interrupt_prints_one_line_and_leaves_nothing(tmp_path, argv, sig, code)
     assert sorted(p.name for p in tmp_path.iterdir()) == []  # no out/, no .tmp-*, no lock file
 
 
+def _wait_handlers(proc, timeout=60.0):
+    """Wait until the process catches SIGINT and SIGTERM (Linux: the SigCgt mask of /proc/PID/status)."""
+    want = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        for line in Path(f"/proc/{proc.pid}/status").read_text().splitlines():
+            if line.startswith("SigCgt:") and int(line.split()[1], 16) & want == want:
+                return
+        time.sleep(0.002)
+    raise AssertionError("the process never installed its signal handlers")
+
+
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs /proc to see when the handlers are in place")
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_interrupt_while_starting_up_is_just_as_quiet(tmp_path, sig, code):
+    # regression: a signal during the imports (before the run's own handlers) gave a KeyboardInterrupt
+    # traceback from inside an import (SIGINT) or a bare kill status -15 (SIGTERM). Sent as soon as the entry
+    # point has taken the signals over, i.e. while numpy and the solvers are still being imported.
+    proc = _start(["mc", "tool_changer", "--n", "1e20", "--out", "out"], tmp_path)
+    _wait_handlers(proc)
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == code, err
+    assert err.strip() == "interrupted; nothing written"
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
 def test_interrupt_while_staging_removes_the_temporary_folder(tmp_path):
     target = tmp_path / "out"
     with pytest.raises(KeyboardInterrupt):

@@ -1,5 +1,32 @@
+"""Entry point of ``tolalloc`` and ``python -m tolalloc``.
+
+SIGINT / SIGTERM are taken over before the heavy imports: an interrupt while the program is still starting
+ends it like any later one (one line on stderr, exit 130 / 143, nothing written), not with a traceback from
+inside an import. :func:`tolalloc.cli.main` installs its own handlers for the run itself.
+"""
+
+import os
+import signal
 import sys
 
-from tolalloc.cli import main
 
-sys.exit(main())
+def _starting(signum, frame):
+    sys.stderr.write("interrupted; nothing written\n")
+    sys.stderr.flush()
+    os._exit(128 + signum)  # nothing to clean up yet: no output has been staged
+
+
+def run() -> None:
+    """Console-script entry point."""
+    for s in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(s, _starting)
+    from tolalloc.cli import main
+
+    code = main()
+    for s in (signal.SIGINT, signal.SIGTERM):  # the run is over; its output is published
+        signal.signal(s, signal.SIG_IGN)
+    sys.exit(code)
+
+
+if __name__ == "__main__":
+    run()
