@@ -278,3 +278,16 @@ def test_cli_with_urdf_and_tool(tmp_path, capsys):
     assert "robot: synth" in capsys.readouterr().out
     assert main(["show", "tool_changer", "--tool", "l3"]) == 2
     assert re.search(r"--tool 'l3': the tool link can only be chosen for a URDF", capsys.readouterr().err)
+
+
+def test_single_jaw_gripper_is_not_taken_as_an_arm_joint(tmp_path):
+    # regression (z1, so100): a one-jaw gripper does not branch the tree, so the longest chain ran through the
+    # jaw joint and the import returned a 3-joint arm whose last "arm joint" was the gripper
+    jaw = dict(name="jointGripper", type="revolute", parent="l2", child="gripperMover", axis=(0, 1, 0), limit=(-1, 0))
+    path = _bad(tmp_path, [*CHAIN, jaw])
+    with pytest.raises(TolallocError, match=r"ends with joint 'jointGripper'.*--tool l2 for the arm without the gripper"):
+        load_urdf(path)
+    assert [j.name for j in load_urdf(path, tool="l2").joints] == ["j1", "j2"]
+    assert [j.name for j in load_urdf(path, tool="gripperMover").joints] == ["j1", "j2", "jointGripper"]
+    plain = _bad(tmp_path, [*CHAIN, {**jaw, "name": "j3", "child": "l3"}], name="plain.urdf")
+    assert load_urdf(plain).n_joints == 3  # an ordinary third joint is still taken without --tool

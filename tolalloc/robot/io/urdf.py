@@ -6,7 +6,9 @@ from the URDF's root link (the base frame) to the **tool link**:
 
 * the tool link is ``tool`` if given (``--tool LINK`` on the command line), otherwise the leaf link
   with the most movable joints above it; when several leaves tie (the tree branches, e.g. a gripper's
-  two fingers, or ``ee_link`` beside ``tool0``) the import is refused and the candidates are listed;
+  two fingers, or ``ee_link`` beside ``tool0``) the import is refused and the candidates are listed; so it is
+  when the longest chain ends in a movable joint named like a gripper (``grip``, ``finger``, ``jaw``, ``hand``)
+  -- a single-jaw gripper does not branch the tree;
 * movable joints off the path (gripper fingers ...) are ignored; their links count as rigid bodies of
   the path link they hang from (for the masses);
 * ``revolute`` and ``continuous`` joints become revolute joints (continuous: limits +-720 deg),
@@ -28,6 +30,7 @@ from the URDF's root link (the base frame) to the **tool link**:
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -38,6 +41,8 @@ from tolalloc.robot.model import Joint, Link, Mass, Robot
 __all__ = ["load_urdf"]
 
 MOVABLE = ("revolute", "continuous", "prismatic")
+#: Names of end-effector joints that must not be taken as arm joints without --tool (matched on joint and child link).
+GRIPPER_WORDS = re.compile(r"grip|finger|jaw|hand", re.IGNORECASE)
 MAX_ORIGIN_M = 5.0
 MAX_REACH_M = 20.0
 CONTINUOUS_LIMIT_RAD = 4 * np.pi
@@ -142,6 +147,8 @@ def _choose_tool(parent_joint, children, root, tool, source):
             if leaf != cands[0] and at >= 1 and best - at <= 2 and not any(j.type in MOVABLE for j in side[shared:]):
                 cands = [cands[0], leaf]
                 break
+    if len(cands) == 1:
+        _refuse_end_effector_joint(_path(parent_joint, root, cands[0]), source)
     if len(cands) > 1:
         paths = [[root] + [j.child for j in _path(parent_joint, root, c)] for c in cands]
         common = [names[0] for names in zip(*paths) if len(set(names)) == 1]
@@ -149,6 +156,22 @@ def _choose_tool(parent_joint, children, root, tool, source):
                             f"{cands} end chains of {', '.join(str(depth[c]) for c in cands)} movable joints; choose "
                             f"the tool link with --tool LINK (e.g. --tool {common[-1]} or --tool {cands[0]}).")
     return cands[0]
+
+
+def _refuse_end_effector_joint(path, source):
+    """Refuse an automatic tool link whose last movable joint is named like a gripper's (z1: ``jointGripper``).
+
+    A single-jaw gripper does not branch the tree, so the longest chain runs through its jaw joint and the jaw
+    would be allocated as one more arm joint.
+    """
+    movable = [j for j in path if j.type in MOVABLE]
+    last = movable[-1] if movable else None
+    if last is None or len(movable) < 2 or not GRIPPER_WORDS.search(f"{last.name} {last.child}"):
+        return
+    raise TolallocError(f"{source}: the longest chain ends with joint {last.name!r} (child link {last.child!r}), "
+                        "which is named like a gripper or hand joint, not an arm joint; choose the tool link with "
+                        f"--tool LINK (e.g. --tool {last.parent} for the arm without the gripper, or --tool "
+                        f"{last.child} if that joint is meant to be part of the arm).")
 
 
 def _check_units(urdf, path_joints, source):
