@@ -2,7 +2,6 @@
 
 import matplotlib
 import matplotlib.pyplot as plt
-import numpy as np
 import pytest
 
 from tolalloc import TolallocError, load_robot

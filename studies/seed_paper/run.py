@@ -177,7 +177,7 @@ def main(argv=None) -> int:
     w(md(rel))
     w("")
     w("With mm lengths the robot practically never lands within 0.25 mm (the errors are centimetres). The paper's "
-      f"0.7639 and 0.9503 fit no column of its own Table 3: a Gaussian with the paper's σ gives "
+      "0.7639 and 0.9503 fit no column of its own Table 3: a Gaussian with the paper's σ gives "
       + ", ".join(f"{k}: {a:.4f}/{b:.4f}" for k, (a, b) in gauss.items())
       + f" (P(|.|<0.15)/P(|.|<0.25)); the 3-D norm with the paper's σx, σy, σz gives "
       f"{np.mean(nz < 0.15):.4f}/{np.mean(nz < 0.25):.4f} (n = {n_big}). The first angle reliability repeats the "
