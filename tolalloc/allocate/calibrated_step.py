@@ -50,9 +50,12 @@ class StepData:
         Estimated (systematic) parameter indices.
     gr : _Grades
         Allocatable repeatability grades (``idx``, ``models``, ``t_ref``, ``z``, ``v_min``).
+    start_share : float
+        Initial working set: poses with a ratio of at least this share of the largest at the starting point (``0``:
+        every pose).
     """
 
-    def __init__(self, problem, split, E, gr):
+    def __init__(self, problem, split, E, gr, start_share: float = START_SHARE):
         pr, z = problem, problem.costs.z
         self.pr, self.E, self.gr = pr, np.asarray(E, int), gr
         self.role = np.array(pr.costs.role)
@@ -76,6 +79,7 @@ class StepData:
         self.om_out = np.array([1.0 / pr.u_max[self.a_pos[k]] if self.role[k] == "allocate"
                                 else (self.s[k] * z / pr.costs.fixed_tol[k]) ** 2 for k in self.E])
         self.compiled = {}  # (live, poses) -> _StepLMI
+        self.start_share = float(start_share)
         self.work = None  # working set of poses, carried over between MM steps
 
     def random_cov(self, u, v) -> np.ndarray:
@@ -210,7 +214,7 @@ def solve_step(data: StepData, split, plan, om0, u_rand_max, v_max):
     live = np.flatnonzero(mag > 1e-12 * mag.max())
     if data.work is None:
         ratio = pose_ratios(data, live, info, om0, u_rand_max, v_max)
-        data.work = frozenset(np.flatnonzero(ratio >= START_SHARE * ratio.max()).tolist())
+        data.work = frozenset(np.flatnonzero(ratio >= data.start_share * ratio.max()).tolist())
     while True:
         key = (tuple(live), tuple(sorted(data.work)))
         if key not in data.compiled:
