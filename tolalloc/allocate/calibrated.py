@@ -36,7 +36,6 @@ error model's sigmas, which do not include the repeatability).
 from __future__ import annotations
 
 import time
-import warnings
 from dataclasses import dataclass
 
 import numpy as np

@@ -94,10 +94,10 @@ class StepData:
 
 def information(data: StepData, split, plan, u_rand_max) -> np.ndarray:
     """Normalised information matrix ``D A^T A D`` (Ke, Ke) with the random variances at ``u_rand_max``."""
-    pr, s = data.pr, data.s
+    costs, s = data.pr.costs, data.s
     rand_sig = np.where(split.systematic, split.random_sigma, 0.0)
     for k in data.R_idx:
-        rand_sig[k] = s[k] * np.sqrt(u_rand_max[data.a_pos[k]]) if k in data.a_pos else pr.costs.fixed_tol[k] / pr.costs.z
+        rand_sig[k] = s[k] * np.sqrt(u_rand_max[data.a_pos[k]]) if k in data.a_pos else costs.fixed_tol[k] / costs.z
     G = identification_matrix(split.with_random_sigma(rand_sig), plan, data.E) * s[data.E]  # (m, Ke)
     return G.T @ G
 
@@ -127,9 +127,9 @@ class _StepLMI:
         self.info = cp.Parameter((L, L), name="information")
         self.u_rand_max = cp.Parameter(len(pr.alloc), name="u_rand_max") if len(data.R_alloc) else None
         self.v_max = cp.Parameter(len(gr.idx), name="v_max") if len(gr.idx) else None
-        cost, cons = self._cost(data, cp)
+        cost = self._cost(data, cp)
         om, u, v = self.om, self.u, self.v
-        cons += [u >= pr.u_min, u <= pr.u_max]
+        cons = [u >= pr.u_min, u <= pr.u_max]
         for i, k in enumerate(E[live]):
             if data.role[k] == "allocate":
                 j = data.a_pos[k]
@@ -167,7 +167,7 @@ class _StepLMI:
             cost += pr.costs.models[k].cost_u(self.u[data.a_pos[k]], "cvxpy")
         if len(gr.idx):
             cost += sum(cm.cost_u(self.v[g], "cvxpy") for g, cm in enumerate(gr.models))
-        return cost, []
+        return cost
 
     def solve(self, data: StepData, info, om0, u_rand_max, v_max):
         """Set the parameters and solve; ``(omega (L,), u (Ka,), v (G,))`` or ``None`` if not solved."""
@@ -208,12 +208,13 @@ def solve_step(data: StepData, split, plan, om0, u_rand_max, v_max):
     point) drop out of the LMIs exactly; they get their loosest tolerance. The LMIs are imposed on a working set of
     poses grown until every pose holds (module docstring).
     """
-    pr, gr = data.pr, data.gr
+    gr = data.gr
     info = information(data, split, plan, u_rand_max)
     mag = np.abs(data.JEs).max(axis=(0, 1)) + np.abs(info).max(axis=0)
     live = np.flatnonzero(mag > 1e-12 * mag.max())
-    if data.work is None:
-        ratio = pose_ratios(data, live, info, om0, u_rand_max, v_max)
+    if data.work is None:  # the starting point's ratios (fixed systematic parameters at their fixed precision)
+        om_start = np.where(data.role[data.E] == "allocate", om0, data.om_out)
+        ratio = pose_ratios(data, live, info, om_start, u_rand_max, v_max)
         data.work = frozenset(np.flatnonzero(ratio >= data.start_share * ratio.max()).tolist())
     while True:
         key = (tuple(live), tuple(sorted(data.work)))
