@@ -24,6 +24,10 @@ previous iterate (the first: the process upper limits) and the random variances 
 them, so the posterior used is never optimistic. The final design is re-checked with
 :func:`tolalloc.calibration.posterior.posterior` at the design's own sigmas.
 
+The convex step is :mod:`tolalloc.allocate.calibrated_step`: one cvxpy problem compiled once and re-solved with new
+parameters (DPP), its pose LMIs on a working set of poses grown until the requirement holds exactly at every
+working pose (the same step solution as with all pose LMIs, at a fraction of the interior-point cost).
+
 Repeatability grades (``grade`` tables of the costs file's ``[calibration]`` section, see
 :mod:`tolalloc.calibration.split`): the random part of a systematic parameter (e.g. a joint's encoder /
 transmission repeatability) becomes a decision variable with its own cost law and process limits, in the scaled
