@@ -71,6 +71,8 @@ class CalibrationCheck:
         CPU time of the same part [s] (all threads of the process).
     n_exact : int
         Fits that left the fixed (nominal) Jacobian for the Jacobian at the estimate (see :func:`_fit`).
+    n_converged : int
+        Fits whose last normalised step is below the step tolerance.
     """
 
     q: np.ndarray
@@ -85,11 +87,17 @@ class CalibrationCheck:
     iterations: np.ndarray
     fit_cpu_s: float
     n_exact: int = 0
+    n_converged: int = 0
 
     @property
     def converged(self) -> bool:
         """Whether every fit met its step tolerance."""
         return bool(self.rms_step < _STEP_TOL)
+
+    @property
+    def converged_share(self) -> float:
+        """Share of the simulated calibrations whose fit met its step tolerance."""
+        return self.n_converged / self.n_robots
 
     @property
     def agree(self) -> np.ndarray:
@@ -103,7 +111,7 @@ class CalibrationCheck:
     def fits_note(self) -> str:
         """Convergence of the fits: iteration counts, and how many robots did not converge."""
         it = self.iterations
-        bad = int(np.sum(it >= _MAX_ITER)) if not self.converged else 0
+        bad = self.n_robots - self.n_converged
         note = f"Gauss-Newton iterations per fit: median {np.median(it):g}, max {it.max()}"
         if self.n_exact:
             note += f"; {self.n_exact} fits with the Jacobian at the estimate"
@@ -190,8 +198,8 @@ def _fit(chains: _PlanChains, model, E, prior_sd, plan: CalibrationPlan, y: np.n
     Returns
     -------
     x : array, shape (B, Ke + 9)
-    step : float
-        Largest last normalised step over the robots.
+    steps : array, shape (B,)
+        Last normalised step of each robot (converged: below ``tol``).
     iters : array of int, shape (B,)
         Gauss-Newton iterations per robot, both phases (``max_iter`` where it did not converge).
     exact : array of bool, shape (B,)
@@ -230,7 +238,7 @@ def _fit(chains: _PlanChains, model, E, prior_sd, plan: CalibrationPlan, y: np.n
         live = live[~done]
         if not len(live):
             break
-    return x, float(steps.max()), iters, exact
+    return x, steps, iters, exact
 
 
 def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_mm: float, *, n_robots: int = 400,
@@ -273,7 +281,7 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     extra = extra + s[:, None, :] * np.isin(np.arange(K), not_est)  # systematic parts not estimated stay in
     chains = _PlanChains(model, plan.q)
     y = _measure(chains, truth, E, extra) + rng.normal(0, plan.noise_mm, (n_robots, M, 3))
-    est, step, iters, exact = _fit(chains, model, E, np.sqrt(split.prior_var_of(E)), plan, y)
+    est, steps, iters, exact = _fit(chains, model, E, np.sqrt(split.prior_var_of(E)), plan, y)
     fit_time, fit_cpu = time.perf_counter() - t0, time.process_time() - c0
     # use: fresh random parts at every working pose; the model predicts with the estimated systematic parts
     hat = np.zeros((n_robots, K))
@@ -286,5 +294,6 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     k = np.sum(err < radius_mm, axis=0)
     ci = proportion_ci(k, n_robots, "wilson", 1 - (1 - level) / P)
     p_lin = p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm)
-    return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots, step,
-                            n_robots / fit_time, iters, fit_cpu, int(exact.sum()))
+    return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots,
+                            float(steps.max()), n_robots / fit_time, iters, fit_cpu, int(exact.sum()),
+                            int(np.sum(steps < _STEP_TOL)))
