@@ -28,7 +28,7 @@ def test_smooth_systematic_residual_is_found_and_parts_add_up():
     g, tests = _split(np.random.default_rng(0), sys_mm=0.2, noise_mm=0.02)
     ms_final = np.mean(np.sum(tests["final"] ** 2, axis=1))
     assert g.systematic_unnamed > 0.8 * (ms_final - 3 * 0.02 ** 2)
-    assert g.regressor_cv_explained > 0.8
+    assert g.gp_test_explained > 0.8 and g.gp_loo_explained > 0.8
     total = g.removed_by_geometry + g.removed_by_effect + g.systematic_unnamed + g.noise_floor + g.rest
     assert total == pytest.approx(g.ms_nominal, rel=1e-12)
     assert g.removed_by_geometry == pytest.approx(g.ms_nominal * (1 - 1.5 ** 2 / 9))
@@ -38,8 +38,8 @@ def test_pure_noise_has_no_systematic_part():
     g, tests = _split(np.random.default_rng(1), sys_mm=0.0, noise_mm=0.03)
     ms_final = np.mean(np.sum(tests["final"] ** 2, axis=1))
     assert g.systematic_unnamed < 0.1 * ms_final
-    assert g.noise_floor == pytest.approx(3 * 0.03 ** 2, rel=0.25)  # regressor CV error ~ the noise
-    assert g.noise_source.startswith("regressor")
+    assert g.noise_floor == pytest.approx(3 * 0.03 ** 2, rel=0.25)  # the GP noise variance
+    assert g.noise_source.startswith("GP noise")
 
 
 def test_repeated_poses_give_the_noise_floor():
