@@ -6,6 +6,7 @@ refits without each row, and pure noise is called noise."""
 import numpy as np
 import pytest
 
+import tolalloc.diagnose.gp as gp_mod
 from tolalloc.diagnose.gp import _kernel, _nlml, fit_gp
 
 
@@ -78,3 +79,16 @@ def test_hyper_parameters_fitted_on_a_seeded_subset_posterior_on_all_rows():
 def test_bad_shapes_are_refused():
     with pytest.raises(ValueError, match="X must be"):
         fit_gp(np.zeros((5, 2)), np.zeros((4, 3)))
+
+
+def test_an_unresolved_white_signal_is_moved_into_the_noise(monkeypatch):
+    """Started only at length scales far below the row spacing, the optimum's 'signal' is white; the fit then
+    reports all of the variance as noise and predicts the mean."""
+    rng = np.random.default_rng(0)
+    X, Y = rng.uniform(-np.pi, np.pi, (300, 3)), rng.normal(0.0, 0.03, (300, 3))
+    monkeypatch.setattr(gp_mod, "_starts", lambda F, restarts, rng: [np.r_[np.full(F, np.log(0.03)), np.log(0.8),
+                                                                           np.log(0.5)]])
+    g = fit_gp(X, Y, restarts=1)
+    assert g.neighbour_corr < gp_mod.RESOLVED_CORR
+    assert g.noise_sd == pytest.approx(np.sqrt(np.mean((Y - Y.mean(0)) ** 2)), rel=0.02)
+    assert g.predict(X[:5]) == pytest.approx(np.tile(Y.mean(0), (5, 1)), abs=1e-5)

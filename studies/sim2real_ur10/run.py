@@ -274,8 +274,8 @@ def gp_lines(gp: pd.DataFrame, tracker_mm: float) -> list:
             f"* GP noise sd per coordinate {rng('', 'gp_noise_sd_mm', '.3f')} mm (3-D RMS "
             f"{rng('', 'gp_noise_3d_rms_mm', '.3f')} mm) against the tracker's own position scatter "
             f"(Series C's `measurement_std_x/y/z`, 3-D RMS over the poses) of {tracker_mm:.3f} mm: the noise floor "
-            "holds more than the tracker's scatter: it also holds the robot's repeatability and any systematic error varying "
-            "faster than the training poses resolve.", ""]
+            "holds more than the tracker's scatter: it also holds the robot's repeatability and any systematic "
+            "error varying faster than the training poses resolve.", ""]
 
 
 def joint_ranges(A_all, C_all, robot) -> list:

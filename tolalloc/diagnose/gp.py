@@ -10,7 +10,8 @@ hyper-parameters ``log(ell_1..ell_F, s_f, s_n)`` maximise the log marginal likel
 outputs (Rasmussen & Williams 2006, eq. 2.30 and 5.9: analytic gradients, L-BFGS-B with bounds, a few
 seeded multi-starts). An optimum whose signal the rows do not resolve (length scales so short that no
 row correlates with another: white, the same likelihood as noise) is rejected; when every start ends
-there, all the variance is noise (see :data:`RESOLVED_CORR`). Leave-one-out residuals come in closed form (R&W eq. 5.12). numpy/scipy only.
+there, all the variance is noise (see :data:`RESOLVED_CORR`). Leave-one-out residuals come in closed
+form (R&W eq. 5.12). numpy/scipy only (Cholesky).
 """
 
 from __future__ import annotations
@@ -69,7 +70,7 @@ def _nlml(theta, X, Y):
     return float(nll), -grad
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class GPFit:
     """A fitted GP (see the module docstring).
 
