@@ -6,18 +6,21 @@ On the held-out (test) poses, in mean squares (3-D error, mm^2), so that the par
 
 * ``removed_by_geometry = MS(nominal) - MS(geometric)``, ``removed_by_effect = MS(geometric) - MS(final)``
   (negative when a model made the held-out error worse -- reported as is);
-* ``systematic_unnamed``: the part of the final residual a non-parametric regressor on the joint values
-  predicts on the held-out poses, ``MS(final) - MS(final - prediction)`` (clipped at 0). The regressor is a
-  kernel ridge regression (Gaussian kernel on ``cos q, sin q`` of revolute joints and the scaled stroke of
-  prismatic joints; the posterior mean of a Gaussian process with that kernel), trained on the training
-  poses' out-of-fold final residuals; its length scale and ridge are chosen by **blocked** cross-validation
-  (contiguous blocks of rows, i.e. of time);
-* ``noise_floor``: from repeated poses when the data has them (pairs closer than ``repeat_tol`` in the
-  features: half the mean squared difference of their residuals), else the regressor's cross-validated
-  error on the training poses (its noise term, an upper bound of the noise);
+* ``systematic_unnamed``: the part of the final residual a Gaussian process on the joint values predicts on
+  the held-out poses, ``MS(final) - MS(final - prediction)`` (clipped at 0). The GP
+  (:mod:`tolalloc.diagnose.gp`) has one length scale per joint (inputs: the joint values themselves [rad, mm],
+  standardised) and a noise variance, shared by the three coordinates, all fitted by maximum marginal
+  likelihood on the **training** poses' out-of-fold final residuals only (on at most ``max_fit`` of them, a
+  seeded random subset; the posterior is conditioned on all training poses);
+* ``noise_floor``: from repeated poses when the data has them (pairs closer than ``repeat_tol`` in
+  :func:`joint_features`: half the mean squared difference of their residuals), else the GP's fitted noise
+  variance, ``3 s_n^2`` (a likelihood estimate of the non-systematic part; it also holds any systematic error
+  that varies faster than the training poses resolve);
 * ``rest``: what is left (``MS(final)`` minus the two above; negative when the noise estimate is too high).
 
-No scikit-learn: a few eigendecompositions of the kernel matrix.
+Also reported: the share of the held-out final residual the GP removes and the share of the training residual
+its leave-one-out predictions explain (a random-fold CV; on a time-ordered session a local residual can be
+predictable from neighbours in joint space yet not from a contiguous block of time).
 """
 
 from __future__ import annotations
@@ -26,11 +29,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GapSplit", "gap_split", "joint_features", "KernelRidge"]
+from tolalloc.diagnose.gp import GPFit, fit_gp
 
-LENGTH_FACTORS = (0.25, 0.5, 1.0, 2.0)
-RIDGES = (1e-3, 1e-2, 1e-1, 1.0, 10.0)
-MAX_TRAIN = 800
+__all__ = ["GapSplit", "gap_split", "joint_features", "fit_residual_gp"]
+
+#: At most this many training poses fit the GP's hyper-parameters (seeded random subset).
+MAX_FIT = 1000
+#: L-BFGS-B starts of the hyper-parameter fit.
+RESTARTS = 3
 
 
 def joint_features(q: np.ndarray, revolute: np.ndarray, stroke_mm: np.ndarray | None = None) -> np.ndarray:
@@ -45,54 +51,18 @@ def joint_features(q: np.ndarray, revolute: np.ndarray, stroke_mm: np.ndarray | 
     return np.column_stack(cols)
 
 
-class KernelRidge:
-    """Gaussian-kernel ridge regression with multi-output targets, hyper-parameters by blocked CV.
-
-    Parameters
-    ----------
-    X : array, shape (P, F)      features
-    Y : array, shape (P, 3) [mm] targets
-    folds : int                  contiguous blocks of rows
-    """
-
-    def __init__(self, X: np.ndarray, Y: np.ndarray, folds: int = 5):
-        self.X, self.Y = X, Y
-        d2 = _sqdist(X, X)
-        self.med = float(np.sqrt(np.median(d2[d2 > 0]))) if np.any(d2 > 0) else 1.0
-        blocks = np.array_split(np.arange(len(X)), min(folds, len(X)))
-        best = (np.inf, None, None)
-        self.cv_pred = None
-        for lf in LENGTH_FACTORS:
-            ell = lf * self.med
-            preds = {lam: np.zeros_like(Y) for lam in RIDGES}
-            for b in blocks:
-                tr = np.setdiff1d(np.arange(len(X)), b)
-                K = np.exp(-d2[np.ix_(tr, tr)] / (2 * ell ** 2))
-                s, U = np.linalg.eigh(K)
-                Kb = np.exp(-d2[np.ix_(b, tr)] / (2 * ell ** 2))
-                UtY = U.T @ (Y[tr] - Y[tr].mean(0))
-                for lam in RIDGES:
-                    preds[lam][b] = Kb @ (U @ (UtY / (s + lam)[:, None])) + Y[tr].mean(0)
-            for lam in RIDGES:
-                mse = float(np.mean(np.sum((Y - preds[lam]) ** 2, axis=1)))
-                if mse < best[0]:
-                    best = (mse, (ell, lam), preds[lam])
-        self.cv_mse, (self.ell, self.lam), self.cv_pred = best
-        K = np.exp(-d2 / (2 * self.ell ** 2))
-        self.mean = Y.mean(0)
-        self.alpha = np.linalg.solve(K + self.lam * np.eye(len(X)), Y - self.mean)
-
-    def predict(self, Xn: np.ndarray) -> np.ndarray:
-        """Predicted targets [mm], shape (Q, 3)."""
-        return np.exp(-_sqdist(Xn, self.X) / (2 * self.ell ** 2)) @ self.alpha + self.mean
-
-
-def _sqdist(A, B):
-    return np.maximum(np.sum(A ** 2, 1)[:, None] + np.sum(B ** 2, 1)[None, :] - 2 * A @ B.T, 0.0)
-
-
 def _ms(e):
     return float(np.mean(np.sum(e ** 2, axis=1)))
+
+
+def fit_residual_gp(q_train: np.ndarray, e_train: np.ndarray, *, max_fit: int = MAX_FIT, restarts: int = RESTARTS,
+                    seed: int = 0) -> GPFit:
+    """The GP of the module docstring: residuals ``e_train`` (P, 3) [mm] on joint values ``q_train`` (P, n) [rad, mm].
+
+    Its ``length_scales`` (n,) are per joint [rad, mm]; ``noise_sd`` and ``signal_sd`` per coordinate [mm].
+    """
+    return fit_gp(np.asarray(q_train, float), np.asarray(e_train, float), restarts=restarts, max_fit=max_fit,
+                  seed=seed)
 
 
 @dataclass(frozen=True)
@@ -102,10 +72,14 @@ class GapSplit:
     Attributes
     ----------
     ms_nominal, removed_by_geometry, removed_by_effect, systematic_unnamed, noise_floor, rest : float
-    noise_source : str           ``repeated poses`` or ``regressor CV error``
-    regressor_cv_explained : float  share of the training out-of-fold residual's MS the regressor explains
-        by blocked CV (0-1)
-    length_scale, ridge : float  the regressor's chosen hyper-parameters (feature units, relative)
+    noise_source : str              ``repeated poses (...)`` or ``GP noise variance (...)``
+    gp_test_explained : float       ``systematic_unnamed / MS(final)``: share of the held-out final residual the
+        GP removes (0-1)
+    gp_loo_explained : float        share of the training residual's MS (about its mean) the GP's
+        leave-one-out predictions explain (0-1; negative when they make it worse)
+    gp_noise_sd_mm, gp_signal_sd_mm : float   the GP's fitted noise and signal sd per coordinate [mm]
+    gp_length_scales : tuple of float          the GP's length scale per joint [rad, mm]
+    gp_fit_poses : int              training poses the GP's hyper-parameters were fitted on
     """
 
     ms_nominal: float
@@ -115,9 +89,12 @@ class GapSplit:
     noise_floor: float
     rest: float
     noise_source: str
-    regressor_cv_explained: float
-    length_scale: float
-    ridge: float
+    gp_test_explained: float
+    gp_loo_explained: float
+    gp_noise_sd_mm: float
+    gp_signal_sd_mm: float
+    gp_length_scales: tuple
+    gp_fit_poses: int
 
     def to_frame(self):
         import pandas as pd
@@ -128,41 +105,47 @@ class GapSplit:
                              "share_of_nominal_pct": [100 * v / self.ms_nominal for v in vals]})
 
     def to_dict(self) -> dict:
-        return {k: (float(v) if not isinstance(v, str) else v) for k, v in self.__dict__.items()}
+        conv = {str: str, tuple: list, int: int}
+        return {k: conv.get(type(v), float)(v) for k, v in self.__dict__.items()}
 
 
-def gap_split(q_train, e_train_final, q_test, e_test: dict, revolute, *, stroke_mm=None, folds: int = 5,
-              repeat_tol: float = 1e-3, seed: int = 0) -> GapSplit:
+def _repeat_pairs(X: np.ndarray, tol: float):
+    """Index pairs (i < j) of rows of ``X`` closer than ``tol``."""
+    from scipy.spatial import cKDTree
+
+    pairs = np.array(sorted(cKDTree(X).query_pairs(tol)), dtype=int).reshape(-1, 2)
+    return pairs[:, 0], pairs[:, 1]
+
+
+def gap_split(q_train, e_train_final, q_test, e_test: dict, revolute, *, stroke_mm=None, repeat_tol: float = 1e-3,
+              seed: int = 0, max_fit: int = MAX_FIT, restarts: int = RESTARTS) -> GapSplit:
     """Split the held-out error (see the module docstring).
 
     Parameters
     ----------
-    q_train : array, shape (P, n) [rad, mm], in time order
+    q_train : array, shape (P, n) [rad, mm]
     e_train_final : array, shape (P, 3) [mm]   out-of-fold residuals of the final model on the training poses
     q_test : array, shape (T, n)
     e_test : dict with ``nominal``, ``geometric``, ``final`` residual arrays, shape (T, 3) [mm], in the same
         frame as ``e_train_final``
     revolute : array of bool, shape (n,)
-    stroke_mm : array, shape (n,), optional   range of each prismatic joint (feature scaling)
+    stroke_mm : array, shape (n,), optional   range of each prismatic joint (repeat detection scaling)
+    repeat_tol : float                        repeat distance in :func:`joint_features` units
+    seed, max_fit, restarts :                 of the GP fit (:func:`fit_residual_gp`)
     """
-    Xtr = joint_features(q_train, revolute, stroke_mm)
-    Xte = joint_features(q_test, revolute, stroke_mm)
-    keep = np.arange(len(Xtr))
-    if len(keep) > MAX_TRAIN:  # evenly spaced in time, so the blocks stay contiguous
-        keep = np.linspace(0, len(Xtr) - 1, MAX_TRAIN).round().astype(int)
-    kr = KernelRidge(Xtr[keep], e_train_final[keep], folds)
+    e_train_final = np.asarray(e_train_final, float)
+    gp = fit_residual_gp(q_train, e_train_final, max_fit=max_fit, restarts=restarts, seed=seed)
     ms_f = _ms(e_test["final"])
-    pred = kr.predict(Xte)
-    systematic = max(ms_f - _ms(e_test["final"] - pred), 0.0)
-    explained = max(1.0 - kr.cv_mse / max(_ms(e_train_final[keep]), 1e-300), 0.0)
-    d2 = _sqdist(Xtr, Xtr)
-    i, j = np.nonzero(np.triu(d2 < repeat_tol ** 2, k=1))
+    systematic = max(ms_f - _ms(e_test["final"] - gp.predict(q_test)), 0.0)
+    loo_explained = 1.0 - _ms(gp.loo_residual) / max(_ms(e_train_final - e_train_final.mean(0)), 1e-300)
+    i, j = _repeat_pairs(joint_features(np.asarray(q_train, float), revolute, stroke_mm), repeat_tol)
     if len(i) >= 3:
         noise = 0.5 * _ms(e_train_final[i] - e_train_final[j])
         source = f"repeated poses ({len(i)} pairs)"
     else:
-        noise = kr.cv_mse
-        source = "regressor CV error (no repeated poses)"
+        noise = 3 * gp.noise_sd ** 2
+        source = f"GP noise variance (no repeated poses; s_n = {gp.noise_sd:.3f} mm per coordinate)"
     ms_n, ms_g = _ms(e_test["nominal"]), _ms(e_test["geometric"])
-    return GapSplit(ms_n, ms_n - ms_g, ms_g - ms_f, systematic, noise, ms_f - systematic - noise, source, explained,
-                    kr.ell, kr.lam)
+    return GapSplit(ms_n, ms_n - ms_g, ms_g - ms_f, systematic, noise, ms_f - systematic - noise, source,
+                    systematic / max(ms_f, 1e-300), float(loo_explained), gp.noise_sd, gp.signal_sd,
+                    tuple(float(v) for v in gp.length_scales), gp.n_fit)
