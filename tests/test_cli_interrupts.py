@@ -169,3 +169,21 @@ def test_output_group_publishes_all_or_nothing(tmp_path):
     assert (tmp_path / "a.json").read_text() == "x" and (tmp_path / "rep" / "r.md").read_text() == "y"
     assert sorted(published()) == sorted([str(tmp_path / "a.json"), str(tmp_path / "rep")])
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "rep"]
+
+
+def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait():
+    # regression: Clarabel releases the GIL but the main thread only runs Python's signal handlers when the solve
+    # returns, so Ctrl-C during a long solve waited for it (18 s on a loaded machine). A sleep stands in for it.
+    import threading
+
+    from tolalloc.exceptions import interruptible
+
+    assert interruptible(divmod, 7, 3) == (2, 1)
+    with pytest.raises(ZeroDivisionError):
+        interruptible(divmod, 1, 0)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    t0 = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        interruptible(time.sleep, 30.0)
+    assert time.monotonic() - t0 < 15.0  # the interrupt ends the wait, not the 30 s call

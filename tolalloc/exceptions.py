@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "Interrupted", "signals_deferred", "check_vector", "check_finite_array", "check_positive"]
+__all__ = ["TolallocError", "Interrupted", "signals_deferred", "interruptible", "check_vector", "check_finite_array", "check_positive"]
 
 
 class TolallocError(ValueError):
@@ -38,6 +38,34 @@ def signals_deferred():
         yield
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def interruptible(fn, *args, **kwargs):
+    """Return ``fn(*args, **kwargs)``, run in a worker thread so that SIGINT / SIGTERM stop the wait at once.
+
+    For native solvers that release the GIL but never return to the interpreter until they finish (Clarabel):
+    Python runs signal handlers only in the main thread between bytecodes, so an interrupt during a long solve
+    waited for the solve (18 s on a loaded machine). The main thread now waits in short joins, the handler's
+    exception propagates from there, and the daemon worker dies with the process. Outside the main thread
+    ``fn`` is called directly. Exceptions of ``fn`` are re-raised in the caller.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        return fn(*args, **kwargs)
+    box: dict = {}
+
+    def work():
+        try:
+            box["value"] = fn(*args, **kwargs)
+        except BaseException as exc:  # handed to the caller below
+            box["error"] = exc
+
+    worker = threading.Thread(target=work, name="tolalloc-solver", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.05)
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
 
 
 class Interrupted(KeyboardInterrupt):

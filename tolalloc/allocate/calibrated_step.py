@@ -29,6 +29,7 @@ import warnings
 import numpy as np
 
 from tolalloc.calibration.posterior import identification_matrix
+from tolalloc.exceptions import interruptible
 
 __all__ = ["StepData", "solve_step", "information", "pose_ratios", "START_SHARE", "CLARABEL_SETTINGS"]
 
@@ -188,7 +189,7 @@ class _StepLMI:
             self.slope.value = np.array(slope)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)
-            self.problem.solve(solver="CLARABEL", **CLARABEL_SETTINGS)
+            interruptible(self.problem.solve, solver="CLARABEL", **CLARABEL_SETTINGS)
         if self.problem.status not in ("optimal", "optimal_inaccurate") or self.om.value is None:
             return None
         return (np.asarray(self.om.value, float), np.asarray(self.u.value, float) if len(data.pr.alloc) else

@@ -22,6 +22,7 @@ import warnings
 import numpy as np
 
 from tolalloc.allocate.problem import NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver, make_design
+from tolalloc.exceptions import interruptible
 
 __all__ = ["solve_certified", "solve_rule"]
 
@@ -100,7 +101,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", UserWarning)
-                prob.solve(solver="CLARABEL", verbose=verbose, **settings)
+                interruptible(prob.solve, solver="CLARABEL", verbose=verbose, **settings)
         except cp.error.SolverError as exc:  # pragma: no cover - solver failure
             return Design(solver, "failed", time_s=time.perf_counter() - t0, message=f"Clarabel failed: {exc}")
         if prob.status != "optimal_inaccurate":

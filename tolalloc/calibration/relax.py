@@ -32,6 +32,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tolalloc.exceptions import interruptible
+
 __all__ = ["Relaxation", "relax", "frank_wolfe", "cvxpy_relaxation", "METHODS"]
 
 METHODS = ("auto", "cvxpy", "frank-wolfe")
@@ -132,7 +134,7 @@ def _sdp(G, B, n, prior, ridge, S):
     M = P0 + cp.reshape(Fw.reshape(len(S), D * D).T @ lam, (D, D), order="C")
     prob = cp.Problem(cp.Minimize(cp.matrix_frac(Bw, 0.5 * (M + M.T))),
                       [lam >= 0, lam <= 1, cp.sum(lam) == n])
-    prob.solve(solver="CLARABEL")
+    interruptible(prob.solve, solver="CLARABEL")
     return (None if lam.value is None else np.clip(lam.value, 0.0, 1.0)), prob.status, prob.solver_stats.num_iters
 
 
