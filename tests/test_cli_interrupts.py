@@ -187,3 +187,27 @@ def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait():
     with pytest.raises(KeyboardInterrupt):
         interruptible(time.sleep, 30.0)
     assert time.monotonic() - t0 < 15.0  # the interrupt ends the wait, not the 30 s call
+
+
+def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypatch, capsys):
+    # regression: SIGINT while cvxpy imported its solver interfaces became ImportError('initialization failed')
+    # inside a C extension, cvxpy logged and ignored it, and calplan finished and wrote its plan (exit 0) with
+    # signals ignored from then on
+    import tolalloc.calibration.design as design
+
+    orig = design.relax
+
+    def swallowing(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(5.0)  # the handler raises in here
+        except KeyboardInterrupt:
+            pass  # what the library did with it
+        return orig(*args, **kwargs)
+
+    monkeypatch.setattr(design, "relax", swallowing)
+    out = tmp_path / "plan.csv"
+    code = main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "200", "--out", str(out)])
+    assert code == 130
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
+    assert list(tmp_path.iterdir()) == []

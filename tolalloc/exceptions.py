@@ -14,7 +14,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "Interrupted", "signals_deferred", "interruptible", "check_vector", "check_finite_array", "check_positive"]
+__all__ = ["TolallocError", "Interrupted", "signals_deferred", "interruptible", "note_interrupt", "clear_interrupt",
+           "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive"]
 
 
 class TolallocError(ValueError):
@@ -60,9 +61,11 @@ def interruptible(fn, *args, **kwargs):
             box["error"] = exc
 
     worker = threading.Thread(target=work, name="tolalloc-solver", daemon=True)
+    raise_if_interrupted()
     worker.start()
     while worker.is_alive():
         worker.join(0.05)
+    raise_if_interrupted()
     if "error" in box:
         raise box["error"]
     return box["value"]
@@ -74,6 +77,32 @@ class Interrupted(KeyboardInterrupt):
     def __init__(self, signum: int):
         super().__init__(signum)
         self.signum = signum
+
+
+#: Signals the CLI's handler has seen (see :func:`raise_if_interrupted`).
+_PENDING: list = []
+
+
+def note_interrupt(signum: int) -> None:
+    """Record that signal ``signum`` arrived (the CLI's handler, before it raises :class:`Interrupted`)."""
+    _PENDING.append(signum)
+
+
+def clear_interrupt() -> None:
+    """Forget recorded signals (a CLI run starts or ends)."""
+    _PENDING.clear()
+
+
+def raise_if_interrupted() -> None:
+    """Checkpoint: raise :class:`Interrupted` again if a signal arrived whose exception a library swallowed.
+
+    The handler's exception can be lost: a signal while cvxpy imports its solver interfaces turns into an
+    ``ImportError('initialization failed')`` of a C extension, which cvxpy logs and ignores, and the run then
+    finished and wrote its output with signals ignored. Called before each solve and before anything is
+    published, so such a run still stops, with nothing written.
+    """
+    if _PENDING:
+        raise Interrupted(_PENDING[0])
 
 
 def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.ndarray:

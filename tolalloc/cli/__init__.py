@@ -17,7 +17,7 @@ import signal
 import sys
 import threading
 
-from tolalloc.exceptions import Interrupted, TolallocError
+from tolalloc.exceptions import Interrupted, TolallocError, clear_interrupt, note_interrupt, raise_if_interrupted
 
 #: command modules, in the order shown by --help
 COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
@@ -51,6 +51,7 @@ def _on_signal(signum, frame):
     # the first signal wins; later ones are ignored while the staged output is cleaned up
     for s in (signal.SIGINT, signal.SIGTERM):
         signal.signal(s, signal.SIG_IGN)
+    note_interrupt(signum)  # re-raised at the next checkpoint if a library swallows the exception below
     raise Interrupted(signum)
 
 
@@ -60,12 +61,14 @@ def _interrupt_handlers():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    clear_interrupt()
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
+        clear_interrupt()
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -76,7 +79,9 @@ def main(argv: list[str] | None = None) -> int:
     with _interrupt_handlers():
         try:
             args = build_parser().parse_args(argv)
-            return int(args.func(args) or 0)
+            code = int(args.func(args) or 0)
+            raise_if_interrupted()  # a signal whose exception a library swallowed (nothing was published since)
+            return code
         except TolallocError as exc:
             print(f"error: {exc}", file=sys.stderr)
             return 2

@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, raise_if_interrupted
 
 __all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
            "directory_lock", "published"]
@@ -182,6 +182,7 @@ def _direct_output(path: Path):
     try:
         tmp = folder / (path.name or "out")
         yield tmp
+        raise_if_interrupted()
         try:
             with _signals_held(), open(path, "wb") as dst:
                 dst.write(tmp.read_bytes() if tmp.exists() else b"")
@@ -226,6 +227,7 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
             raise _cannot_write(path, directory, exc) from None
         try:
             yield tmp
+            raise_if_interrupted()
             try:
                 with _signals_held():  # an interrupt is delivered after the record below, never between
                     if directory:
@@ -266,6 +268,7 @@ def output_group():
     """
     with contextlib.ExitStack() as stack:
         yield _Group(stack)
+        raise_if_interrupted()
         with _signals_held():
             stack.close()
 

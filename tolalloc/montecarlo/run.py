@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, raise_if_interrupted
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
@@ -281,6 +281,7 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
             results = ordered_map(run_blocks, tasks, spec, scheduler=scheduler, n_jobs=n_jobs or default_jobs())
             with contextlib.closing(results):  # an interrupt cancels the queued blocks at once
                 for ns, block_moms, e, k in results:
+                    raise_if_interrupted()  # a signal whose exception a worker library swallowed
                     for bm in block_moms:
                         for acc, mo in zip(moms, bm):
                             acc.merge(mo)
