@@ -25,10 +25,20 @@ measured poses can separate from the registration, the probe offset and each oth
 column-pivoted QR of the scaled identification Jacobian in :func:`tolalloc.diagnose.calibrate.identifiability`;
 the rest is reported as dropped with the reason.
 
-Priors (MAP calibration): every parameter gets a Gaussian prior ``N(0, sigma)`` with ``sigma`` taken from the
-robot's sigma set (tilts: the joint's largest axis-deflection sigma; shifts: the robot's largest link-length
-sigma; offsets: the joint-drive sigma), scaled by ``prior_scale`` (default 10) so that plausible errors are
-not shrunk but implausible ones are (and flagged beyond 3 prior sigma).
+Priors (MAP calibration) are the **as-built accuracy level** of the robot class, not its tolerance sigma set:
+every parameter gets a Gaussian prior ``N(0, sigma)`` with ``sigma`` the larger of
+
+* the class level: :data:`AS_BUILT_MM_PER_M` (1 mm) per metre of robot size for position errors (shifts,
+  prismatic offsets), :data:`AS_BUILT_DEG` (0.1 deg) for direction errors and revolute offsets -- the
+  order by which factory calibration files of industrial arms (e.g. UR's) differ from the nominal DH
+  table; the robot size is the largest distance of a joint point or the flange from the first joint point;
+* ``prior_scale`` (default 10) x the robot's sigma set (tilts: the joint's largest axis-deflection sigma;
+  shifts: the robot's largest link-length sigma; offsets: the joint-drive sigma) -- for robots toleranced
+  more loosely than the class level.
+
+A tolerance sigma set describes a design, not a built robot: a real UR10's 1 mm elbow offset is 50 sigma of
+its generic set but ordinary as built. The guards (:func:`tolalloc.diagnose.guards.prior_flags`) use the same
+levels: beyond 3 of them a value is implausible for the robot.
 """
 
 from __future__ import annotations
@@ -39,10 +49,25 @@ from tolalloc.errormodel import build_error_model
 from tolalloc.errormodel.model import ErrorModel, ErrorParameter, _perpendicular_axes
 from tolalloc.robot.model import Robot
 
-__all__ = ["build_geometry_model", "PRIOR_SCALE"]
+__all__ = ["build_geometry_model", "as_built_levels", "robot_size_mm", "PRIOR_SCALE", "AS_BUILT_MM_PER_M", "AS_BUILT_DEG"]
 
 #: Factor between the robot's sigma set and the calibration prior's standard deviations.
 PRIOR_SCALE = 10.0
+#: As-built position error level of a joint axis per metre of robot size [mm/m].
+AS_BUILT_MM_PER_M = 1.0
+#: As-built direction error / joint offset level [deg].
+AS_BUILT_DEG = 0.1
+
+
+def as_built_levels(robot: Robot) -> tuple[float, float]:
+    """As-built position level [mm] (:data:`AS_BUILT_MM_PER_M` x robot size) and angle level [rad] of ``robot``."""
+    return AS_BUILT_MM_PER_M * robot_size_mm(robot) / 1000.0, float(np.deg2rad(AS_BUILT_DEG))
+
+
+def robot_size_mm(robot: Robot) -> float:
+    """Largest distance of a joint point or the flange (home pose) from the first joint point [mm]."""
+    pts = np.vstack([robot.joint_points_mm, robot.home[:3, 3]])
+    return float(np.linalg.norm(pts - robot.joint_points_mm[0], axis=1).max())
 
 
 def _base_sigmas(robot: Robot, sigma_set: str | None) -> tuple[dict, dict, float]:
@@ -70,7 +95,7 @@ def build_geometry_model(robot: Robot, sigma_set: str | None = None, prior_scale
         Sigma set of the robot file (or ``generic``) the prior standard deviations derive from; None: the
         robot's default set, as :func:`~tolalloc.errormodel.model.build_error_model`.
     prior_scale : float
-        Prior sigma = ``prior_scale`` x the set's sigma.
+        Prior sigma = the larger of ``prior_scale`` x the set's sigma and the as-built class level.
 
     Returns
     -------
@@ -83,6 +108,7 @@ def build_geometry_model(robot: Robot, sigma_set: str | None = None, prior_scale
     tilt_s, drive_s, link_s = _base_sigmas(robot, sigma_set)
     fallback_tilt = max(tilt_s.values(), default=np.deg2rad(0.005))
     link_s = link_s or 0.02
+    pos_level, ang_level = as_built_levels(robot)
     params = []
     for j, joint in enumerate(robot.joints):
         w = robot.screws[j, :3] if joint.is_revolute else robot.screws[j, 3:]
@@ -90,12 +116,15 @@ def build_geometry_model(robot: Robot, sigma_set: str | None = None, prior_scale
         for letter, e in _perpendicular_axes(w):
             twist = np.concatenate([e, np.cross(r, e)])
             params.append(ErrorParameter(f"{joint.name}_tilt_{letter}", "axis_deflection", joint.name, "rad", j, twist,
-                                         sigma=prior_scale * tilt_s.get(joint.name, fallback_tilt)))
+                                         sigma=max(prior_scale * tilt_s.get(joint.name, fallback_tilt), ang_level)))
         if joint.is_revolute:
             for letter, e in _perpendicular_axes(w):
                 params.append(ErrorParameter(f"{joint.name}_shift_{letter}", "link_length", joint.name, "mm", j,
-                                             np.concatenate([np.zeros(3), e]), sigma=prior_scale * link_s))
+                                             np.concatenate([np.zeros(3), e]), sigma=max(prior_scale * link_s, pos_level)))
         params.append(ErrorParameter(f"{joint.name}_offset", "joint_drive", joint.name,
                                      "rad" if joint.is_revolute else "mm", j, robot.screws[j].copy(),
-                                     sigma=prior_scale * drive_s[joint.name], joint_index=j))
-    return ErrorModel(robot, tuple(params), sigma_set=f"{sigma_set or 'default'} x{prior_scale:g} (calibration prior)")
+                                     sigma=max(prior_scale * drive_s[joint.name],
+                                               ang_level if joint.is_revolute else pos_level), joint_index=j))
+    label = (f"max({sigma_set or 'default'} x{prior_scale:g}, as-built {AS_BUILT_MM_PER_M:g} mm/m, "
+             f"{AS_BUILT_DEG:g} deg) (calibration prior)")
+    return ErrorModel(robot, tuple(params), sigma_set=label)
