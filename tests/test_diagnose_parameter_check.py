@@ -3,7 +3,7 @@
 * A UR10 whose upper arm is 1 mm longer than nominal (the order of a real UR10's as-built DH errors): the
   error is well identified -- a **finding**, not a guard.
 * A training set in which wrist 3 barely moves (+-1 deg) and the probe sits on its axis, with an unmodelled
-  joint-2 compliance (1 mm at the tip) and a weak prior (100 x the as-built level): wrist-3 line errors and
+  joint-2 compliance (1 mm at the tip) and a weak prior (100 x the plausibility level): wrist-3 line errors and
   the sideways probe offset are nearly unidentifiable and drift with the unmodelled error -- the guard fires.
 * A session whose flange axis never changes direction (tool pointing down throughout): the probe offset
   along that axis is indistinguishable from the tracker translation -- the guard fires, the CLI's JSON has it.
@@ -20,7 +20,7 @@ import pytest
 import tolalloc
 from tolalloc.diagnose import diagnose, measurements_from_frame
 from tolalloc.diagnose.calibrate import calibrate
-from tolalloc.diagnose.geometry import AS_BUILT_DEG, as_built_levels, build_geometry_model
+from tolalloc.diagnose.geometry import AS_BUILT_DEG, as_built_levels, build_geometry_model, plausibility_levels
 from tolalloc.diagnose.guards import parameter_checks
 from tolalloc.diagnose.measurements import Measurements
 
@@ -32,8 +32,11 @@ NOISE_MM = 0.03
 def test_as_built_levels_scale_with_robot_size():
     pos, ang = as_built_levels(tolalloc.load_robot("ur10"))
     assert 1.1 < pos < 1.3 and ang == pytest.approx(np.deg2rad(AS_BUILT_DEG))  # ~1.2 m UR10: ~1.2 mm
-    sig = build_geometry_model(tolalloc.load_robot("ur10")).sigma
-    assert sig.min() == pytest.approx(ang) and sig.max() == pytest.approx(pos)
+    lev = plausibility_levels(build_geometry_model(tolalloc.load_robot("ur10")))  # UR10 prior: 0.2 mm, 0.05 deg
+    assert lev.min() == pytest.approx(ang) and lev.max() == pytest.approx(pos)
+    # tool_changer: its loose sigma set (prior 2.5 mm, 2.5-5 deg) is above the class level and wins
+    model = build_geometry_model(tolalloc.load_robot("tool_changer"))
+    np.testing.assert_array_equal(plausibility_levels(model), model.sigma)
 
 
 def test_well_identified_1mm_error_is_a_finding_not_a_guard():
@@ -65,8 +68,9 @@ def test_wrist_barely_moving_with_probe_on_its_axis_fires_under_a_weak_prior():
     q[:, 5] = rng.uniform(-np.deg2rad(1.0), np.deg2rad(1.0), 150)
     meas = _compliant(robot, q, np.array([0.0, 0.0, 90.0]), rng)
     model = build_geometry_model(robot)
-    g = calibrate(robot, meas, model=model.with_sigma(100 * model.sigma)).geometric
-    check = parameter_checks(g, q, level=model.sigma)
+    level = plausibility_levels(model)
+    g = calibrate(robot, meas, model=model.with_sigma(100 * level)).geometric
+    check = parameter_checks(g, q, level=level)
     f = check.to_frame().set_index("parameter")
     guards = check.guards()
     # the drifted wrist-3 tilt: 0.1 deg as-built level, the fit put it beyond 3 levels on a direction the data
@@ -76,9 +80,9 @@ def test_wrist_barely_moving_with_probe_on_its_axis_fires_under_a_weak_prior():
     assert f.loc["wrist_3_joint_tilt_x", "posterior_sd"] > AS_BUILT_DEG
     assert any(m.startswith("implausible parameter: wrist_3_joint_tilt_x") for m in guards)
     assert any(m.startswith("weakly identified probe offset: probe_offset_") for m in guards)
-    # the default (as-built) prior holds the same fit: no drift beyond the level
+    # the default prior (10 x the UR10 sigma set) holds the same fit: no drift beyond the level
     held = calibrate(robot, meas, model=model).geometric
-    assert np.all(np.abs(held.delta) <= 3 * model.sigma)
+    assert np.all(np.abs(held.delta) <= 3 * level)
 
 
 def _tool_down(robot, n, rng):

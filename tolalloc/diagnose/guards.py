@@ -1,13 +1,14 @@
 """Guards of the diagnosis: implausible parameters, extrapolating test poses, fits worse than nominal.
 
 * :func:`parameter_checks` (:func:`prior_flags` returns its guard lines) -- every fitted geometric parameter
-  against the as-built accuracy level ``b`` of the robot class (:mod:`.geometry`: ~1 mm per metre of size,
-  0.1 deg; the MAP prior) and its posterior standard deviation ``s`` (Gauss-Newton with the prior, see
-  :func:`parameter_covariance`). A guard fires when a value is **implausible** (``|v| > 3 b``: an
-  unidentifiable combination drifting, a wrong robot or probe, gross outliers) or **weakly identified**
-  (``|v| > b`` while ``s > |v| / 2``: larger than the robot class makes likely, on a direction the poses
-  barely resolve -- prior-data tension), and when a probe-offset component is pinned down only to more
-  than ``b`` (the flange axis hardly changed direction). A well-identified deviation (``|v| >= 3 s`` and
+  against the plausibility level ``b`` of the robot (:func:`.geometry.plausibility_levels`: the as-built
+  accuracy of the robot class, ~1 mm per metre of size and 0.1 deg, or the MAP prior sigma if larger) and
+  its posterior standard deviation ``s`` (Gauss-Newton with the prior, see :func:`parameter_covariance`). A
+  guard fires when a value is **implausible** (``|v| > 3 b``: an unidentifiable combination drifting, a
+  wrong robot or probe, gross outliers) or **weakly identified** (``|v| > b`` while ``s > |v| / 2``: larger
+  than the robot makes likely, on a direction the poses barely resolve -- prior-data tension under a weak
+  prior), and when a probe-offset component (no prior) is pinned down only to more than the as-built
+  position level (the flange axis hardly changed direction). A well-identified deviation (``|v| >= 3 s`` and
   ``|v| >= b / 2``) is a **finding**, reported but not a guard: a real UR10's 1 mm elbow offset is as built.
 * :func:`extrapolation_flags` -- per test pose: a joint value outside the training range by more than a
   margin (5 deg / 5 mm), or a joint-space distance to the nearest training pose (each joint divided by its
@@ -39,7 +40,7 @@ from tolalloc.linear.probability import radius_for_prob
 from tolalloc.robot.lie import hat
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import fixed_jacobian
-from tolalloc.diagnose.geometry import as_built_levels
+from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 
 __all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "ParameterCheck", "parameter_checks",
            "FINDING_FRACTION", "cv_fallback", "RANGE_MARGIN_DEG",
@@ -183,10 +184,11 @@ def parameter_checks(fit, q: np.ndarray, *, level: np.ndarray | None = None,
     ----------
     fit : :class:`tolalloc.diagnose.calibrate.Fit`   a geometric fit (its model's ``sigma`` is the MAP prior)
     q : array, shape (P, n) [rad, mm]   the poses ``fit`` was fitted on
-    level : array, shape (K,), optional  as-built level per model parameter [mm, rad]; default ``fit.model.sigma``
+    level : array, shape (K,), optional  plausibility level per model parameter [mm, rad]; default
+        :func:`~tolalloc.diagnose.geometry.plausibility_levels` (the larger of the prior sigma and the as-built level)
     """
     model = fit.model
-    level = model.sigma if level is None else np.asarray(level, float)
+    level = plausibility_levels(model) if level is None else np.asarray(level, float)
     cov, _ = parameter_covariance(fit, q, unresolved="inflate")
     sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
     prm = [model.params[k] for k in fit.geo_index]
