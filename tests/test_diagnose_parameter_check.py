@@ -6,7 +6,8 @@
   joint-2 compliance (1 mm at the tip) and a weak prior (100 x the plausibility level): wrist-3 line errors and
   the sideways probe offset are nearly unidentifiable and drift with the unmodelled error -- the guard fires.
 * A session whose flange axis never changes direction (tool pointing down throughout): the probe offset
-  along that axis is indistinguishable from the tracker translation -- the guard fires, the CLI's JSON has it.
+  along that axis is indistinguishable from the tracker translation -- the guard fires; the CLI prints it and
+  the finding, its JSON holds both.
 * The real UR10 sessions (read from ../shared/data when present): no parameter guard; the elbow offset is
   well identified (-0.4 to -1.3 mm), in session A (~1.1 mm) reported as a finding.
 """
@@ -18,7 +19,7 @@ import numpy as np
 import pytest
 
 import tolalloc
-from tolalloc.diagnose import diagnose, measurements_from_frame
+from tolalloc.diagnose import measurements_from_frame
 from tolalloc.diagnose.calibrate import calibrate
 from tolalloc.diagnose.geometry import AS_BUILT_DEG, as_built_levels, build_geometry_model, plausibility_levels
 from tolalloc.diagnose.guards import parameter_checks
@@ -87,12 +88,18 @@ def test_wrist_barely_moving_with_probe_on_its_axis_fires_under_a_weak_prior():
 
 def _tool_down(robot, n, rng):
     q = rng.uniform(-np.pi, np.pi, (n, 6))
-    q[:, 3] = -np.pi / 2 - q[:, 1] - q[:, 2]
+    q[:, 3] = np.angle(np.exp(1j * (-np.pi / 2 - q[:, 1] - q[:, 2])))  # wrapped into the joint limits
     q[:, 4] = np.pi / 2
     return q
 
 
-def test_flange_axis_that_never_changes_direction_fires_and_is_in_the_json():
+def test_flange_axis_that_never_changes_direction_fires_in_the_cli_and_the_json(tmp_path, capsys):
+    import json
+
+    import pandas as pd
+
+    from tolalloc.cli import main
+
     robot = tolalloc.load_robot("ur10")
     rng = np.random.default_rng(3)
     q = _tool_down(robot, 150, rng)
@@ -103,11 +110,19 @@ def test_flange_axis_that_never_changes_direction_fires_and_is_in_the_json():
     assert f.loc["probe_offset_z", "status"] == "weak" and f.loc["probe_offset_z", "posterior_sd"] > 100.0
     assert f.loc["probe_offset_x", "status"] == f.loc["probe_offset_y", "status"] == "ok"
     assert [m.split(":")[0] for m in check.guards()] == ["weakly identified probe offset"]
-    d = diagnose(robot, meas, folds=3, max_effects=1)
-    out = d.to_dict()
-    assert any(g.startswith("weakly identified probe offset: probe_offset_z") for g in out["guards"])
-    assert any(s.startswith("finding: elbow_joint_shift_x") for s in out["findings"])
-    assert {r["parameter"] for r in out["parameter_check"]} >= {"probe_offset_z", "elbow_joint_shift_x"}
+    df = pd.DataFrame(robot.q_to_interface(meas.q), columns=[f"q{j + 1}" for j in range(6)])
+    df[["x_mm", "y_mm", "z_mm"]] = meas.xyz_mm
+    df.to_csv(tmp_path / "train.csv", index=False)
+    rc = main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--folds", "3",
+               "--json", str(tmp_path / "d.json")])
+    assert rc == 0
+    out = capsys.readouterr().out
+    assert "GUARD: weakly identified probe offset: probe_offset_z" in out
+    assert "note: finding: elbow_joint_shift_x" in out
+    js = json.loads((tmp_path / "d.json").read_text())
+    assert any(g.startswith("weakly identified probe offset: probe_offset_z") for g in js["guards"])
+    assert any(m.startswith("finding: elbow_joint_shift_x") for m in js["findings"])
+    assert {r["parameter"] for r in js["parameter_check"]} >= {"probe_offset_z", "elbow_joint_shift_x"}
 
 
 ROOT = Path(__file__).resolve().parents[1]
