@@ -51,7 +51,7 @@ RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
 FAR_FACTOR = 1.5
 PRIOR_N_SIGMA = 3.0
-#: A well-identified deviation of at least this fraction of the as-built level is reported as a finding.
+#: A well-identified deviation of at least this fraction of the plausibility level is reported as a finding.
 FINDING_FRACTION = 0.5
 FALLBACK_MARGIN = 0.01
 COVERAGE_P = 0.95
@@ -123,12 +123,12 @@ def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *
 
 @dataclass(frozen=True, eq=False)
 class ParameterCheck:
-    """Fitted geometric parameters and probe offset against the as-built level and their posterior sd.
+    """Fitted geometric parameters and probe offset against the plausibility level and their posterior sd.
 
     Attributes
     ----------
     names, units : tuple of str        fitted geometric parameters, then ``probe_offset_x/y/z`` (flange frame)
-    value, sd, level : arrays, shape (k + 3,)   value, posterior sd, as-built level [interface units: mm, deg]
+    value, sd, level : arrays, shape (k + 3,)   value, posterior sd, plausibility level [interface units: mm, deg]
     status : tuple of str              ``implausible``, ``weak``, ``finding`` or ``ok`` per row
     n_sigma : float                    implausible beyond ``n_sigma`` x level
     """
@@ -144,7 +144,7 @@ class ParameterCheck:
     def to_frame(self):
         import pandas as pd
         return pd.DataFrame({"parameter": self.names, "unit": self.units, "value": self.value,
-                             "posterior_sd": self.sd, "as_built_level": self.level, "status": self.status})
+                             "posterior_sd": self.sd, "plausibility_level": self.level, "status": self.status})
 
     def _line(self, i) -> str:
         return f"{self.names[i]} = {self.value[i]:.3g} +- {self.sd[i]:.2g} {self.units[i]}"
@@ -155,24 +155,25 @@ class ParameterCheck:
         for i, st in enumerate(self.status):
             ratio = abs(self.value[i]) / self.level[i]
             if st == "implausible":
-                out.append(f"implausible parameter: {self._line(i)} is {ratio:.1f} x the as-built level of the robot "
-                           f"class ({self.level[i]:.3g} {self.units[i]}; fires beyond {self.n_sigma:g}); an unidentifiable "
+                out.append(f"implausible parameter: {self._line(i)} is {ratio:.1f} x the plausibility level "
+                           f"({self.level[i]:.3g} {self.units[i]}: the robot class's as-built accuracy or the prior, if larger; "
+                           f"fires beyond {self.n_sigma:g}); an unidentifiable "
                            "combination drifting, a wrong robot model or probe, or outliers -- check them")
             elif st == "weak" and self.names[i].startswith("probe_offset"):
                 out.append(f"weakly identified probe offset: {self._line(i)}: the poses pin it down only to "
-                           f"+-{self.sd[i]:.2g} {self.units[i]}, more than the as-built level {self.level[i]:.3g} "
+                           f"+-{self.sd[i]:.2g} {self.units[i]}, more than the as-built position level {self.level[i]:.3g} "
                            f"{self.units[i]} (the flange axes hardly changed direction) -- move the wrist joints more")
             elif st == "weak":
-                out.append(f"weakly identified parameter: {self._line(i)} is {ratio:.1f} x the as-built level "
+                out.append(f"weakly identified parameter: {self._line(i)} is {ratio:.1f} x the plausibility level "
                            f"({self.level[i]:.3g} {self.units[i]}) but the data pin it down only to +-{self.sd[i]:.2g} "
                            f"{self.units[i]}: its value rests on a direction the poses barely resolve -- spread the "
                            "poses of the joints involved")
         return tuple(out)
 
     def findings(self) -> tuple:
-        """Informational lines: well-identified deviations of at least half the as-built level (not guards)."""
+        """Informational lines: well-identified deviations of at least half the plausibility level (not guards)."""
         return tuple(f"finding: {self._line(i)} (well identified; {abs(self.value[i]) / self.level[i]:.2g} x the "
-                     f"as-built level {self.level[i]:.3g} {self.units[i]})"
+                     f"plausibility level {self.level[i]:.3g} {self.units[i]})"
                      for i, st in enumerate(self.status) if st == "finding")
 
 

@@ -54,7 +54,7 @@ class Diagnosis:
     registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
     subsample : dict or None       large training files: what ran on a seeded subsample (cross-validation,
                                    effect selection, identifiability) and what on all rows (the final fits)
-    parameter_check : ParameterCheck or None   geometric parameters and probe offset vs the as-built level
+    parameter_check : ParameterCheck or None   geometric parameters and probe offset vs the plausibility level
     findings : tuple of str        well-identified deviations from nominal (informational, not guards)
     """
 
