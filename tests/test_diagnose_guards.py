@@ -68,8 +68,8 @@ def test_prior_flag_fires_on_an_implausible_error_and_not_on_a_plausible_one():
     q = _poses(robot, 60, rng)
     big = calibrate(robot, _data(robot, _scaled_a2(20.0), q, rng)).geometric
     small = calibrate(robot, _data(robot, _scaled_a2(0.3), q, rng)).geometric
-    assert prior_flags(big) and all("prior sigma" in m for m in prior_flags(big))
-    assert prior_flags(small) == ()
+    assert prior_flags(big, q) and all("plausibility level" in m for m in prior_flags(big, q))
+    assert prior_flags(small, q) == ()
 
 
 def _scaled_a2(err_mm):

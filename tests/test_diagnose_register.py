@@ -57,11 +57,14 @@ def test_split_is_a_partition_spread_over_the_test_series():
     assert len(sp.register_index) == 30 and len(sp.score_index) == 170
     assert np.intersect1d(sp.register_index, sp.score_index).size == 0
     assert np.array_equal(np.union1d(sp.register_index, sp.score_index), np.arange(200))
-    # spread: on every joint the registration poses cover most of the test range (a random 30 of 200 too,
-    # but farthest-point sampling takes the extremes)
+    # spread: on every joint the registration poses cover most of the test range
     span = np.ptp(q[sp.register_index], axis=0) / np.ptp(q, axis=0)
     assert span.min() > 0.8
     assert np.array_equal(registration_split(q, robot.revolute_mask, 30, seed=3).register_index, sp.register_index)
+    # duplicate poses (fewer distinct poses than clusters) still give 30 distinct registration poses
+    dup = np.repeat(q[:20], 3, axis=0)
+    sp = registration_split(dup, robot.revolute_mask, 30, seed=0)
+    assert len(np.unique(sp.register_index)) == 30 and len(sp.score_index) == 30
 
 
 def _moved_session(robot, rng, n=90):

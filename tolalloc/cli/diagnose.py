@@ -143,6 +143,8 @@ def _print_summary(d, folds: int) -> None:
         print(f"GUARD: {g}")
     if not d.guards:
         print("guards: none fired")
+    for f in d.findings:
+        print(f"note: {f}")
     print("ranking (held-out RMS: cross-validation + scored test poses):")
     for c in d.ranking:
         if c.applicable:

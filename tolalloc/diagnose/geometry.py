@@ -27,8 +27,19 @@ the rest is reported as dropped with the reason.
 
 Priors (MAP calibration): every parameter gets a Gaussian prior ``N(0, sigma)`` with ``sigma`` taken from the
 robot's sigma set (tilts: the joint's largest axis-deflection sigma; shifts: the robot's largest link-length
-sigma; offsets: the joint-drive sigma), scaled by ``prior_scale`` (default 10) so that plausible errors are
-not shrunk but implausible ones are (and flagged beyond 3 prior sigma).
+sigma; offsets: the joint-drive sigma), scaled by ``prior_scale`` (default 10). The prior is a regulariser: a
+well-identified parameter is hardly shrunk (shrink factor ``s_data^2 / sigma^2``: ~2 % for a UR10 elbow
+offset known to 0.03 mm under a 0.2 mm prior), a weakly identified direction is held near 0 instead of
+drifting with unmodelled error. (A prior at the as-built level, below, let the geometry fitted on one UR10
+session transfer worse to the other.)
+
+Plausibility is judged separately, against the **as-built accuracy level** of the robot class
+(:func:`as_built_levels`): :data:`AS_BUILT_MM_PER_M` (1 mm) per metre of robot size for position errors,
+:data:`AS_BUILT_DEG` (0.1 deg) for direction errors and revolute offsets -- the order by which factory
+calibration files of industrial arms (e.g. UR's) differ from the nominal DH table. A tolerance sigma set
+describes a design, not a built robot: a real UR10's 1 mm elbow offset is 50 sigma of its generic set but
+ordinary as built. The guards (:func:`tolalloc.diagnose.guards.parameter_checks`) use the larger of this
+level and the prior sigma.
 """
 
 from __future__ import annotations
@@ -39,10 +50,32 @@ from tolalloc.errormodel import build_error_model
 from tolalloc.errormodel.model import ErrorModel, ErrorParameter, _perpendicular_axes
 from tolalloc.robot.model import Robot
 
-__all__ = ["build_geometry_model", "PRIOR_SCALE"]
+__all__ = ["build_geometry_model", "as_built_levels", "plausibility_levels", "robot_size_mm", "PRIOR_SCALE",
+           "AS_BUILT_MM_PER_M", "AS_BUILT_DEG"]
 
 #: Factor between the robot's sigma set and the calibration prior's standard deviations.
 PRIOR_SCALE = 10.0
+#: As-built position error level of a joint axis per metre of robot size [mm/m].
+AS_BUILT_MM_PER_M = 1.0
+#: As-built direction error / joint offset level [deg].
+AS_BUILT_DEG = 0.1
+
+
+def as_built_levels(robot: Robot) -> tuple[float, float]:
+    """As-built position level [mm] (:data:`AS_BUILT_MM_PER_M` x robot size) and angle level [rad] of ``robot``."""
+    return AS_BUILT_MM_PER_M * robot_size_mm(robot) / 1000.0, float(np.deg2rad(AS_BUILT_DEG))
+
+
+def plausibility_levels(model: ErrorModel) -> np.ndarray:
+    """Per parameter of ``model`` the larger of its prior sigma and the robot's as-built level [mm, rad], shape (K,)."""
+    pos, ang = as_built_levels(model.robot)
+    return np.maximum(model.sigma, np.array([pos if p.unit == "mm" else ang for p in model.params]))
+
+
+def robot_size_mm(robot: Robot) -> float:
+    """Largest distance of a joint point or the flange (home pose) from the first joint point [mm]."""
+    pts = np.vstack([robot.joint_points_mm, robot.home[:3, 3]])
+    return float(np.linalg.norm(pts - robot.joint_points_mm[0], axis=1).max())
 
 
 def _base_sigmas(robot: Robot, sigma_set: str | None) -> tuple[dict, dict, float]:

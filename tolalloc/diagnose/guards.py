@@ -1,8 +1,15 @@
 """Guards of the diagnosis: implausible parameters, extrapolating test poses, fits worse than nominal.
 
-* :func:`prior_flags` -- a fitted geometric parameter beyond ``n_sigma`` (3) prior standard deviations of the
-  MAP calibration (:mod:`.geometry`): the data pulled it far past what the robot's sigma set makes plausible
-  (an unidentifiable combination drifting, a wrong robot or probe, gross outliers).
+* :func:`parameter_checks` (:func:`prior_flags` returns its guard lines) -- every fitted geometric parameter
+  against the plausibility level ``b`` of the robot (:func:`.geometry.plausibility_levels`: the as-built
+  accuracy of the robot class, ~1 mm per metre of size and 0.1 deg, or the MAP prior sigma if larger) and
+  its posterior standard deviation ``s`` (Gauss-Newton with the prior, see :func:`parameter_covariance`). A
+  guard fires when a value is **implausible** (``|v| > 3 b``: an unidentifiable combination drifting, a
+  wrong robot or probe, gross outliers) or **weakly identified** (``|v| > b`` while ``s > |v| / 2``: larger
+  than the robot makes likely, on a direction the poses barely resolve -- prior-data tension under a weak
+  prior), and when a probe-offset component (no prior) is pinned down only to more than the as-built
+  position level (the flange axis hardly changed direction). A well-identified deviation (``|v| >= 3 s`` and
+  ``|v| >= b / 2``) is a **finding**, reported but not a guard: a real UR10's 1 mm elbow offset is as built.
 * :func:`extrapolation_flags` -- per test pose: a joint value outside the training range by more than a
   margin (5 deg / 5 mm), or a joint-space distance to the nearest training pose (each joint divided by its
   training standard deviation) beyond ``far_factor`` x the 95th percentile of the training poses'
@@ -33,8 +40,10 @@ from tolalloc.linear.probability import radius_for_prob
 from tolalloc.robot.lie import hat
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import fixed_jacobian
+from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 
-__all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "cv_fallback", "RANGE_MARGIN_DEG",
+__all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "ParameterCheck", "parameter_checks",
+           "FINDING_FRACTION", "cv_fallback", "RANGE_MARGIN_DEG",
            "RANGE_MARGIN_MM", "FAR_FACTOR", "PRIOR_N_SIGMA", "FALLBACK_MARGIN",
            "PoseUncertainty", "point_jacobian", "parameter_covariance", "prediction_uncertainty", "COVERAGE_P", "COVERAGE_LOW"]
 
@@ -42,6 +51,8 @@ RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
 FAR_FACTOR = 1.5
 PRIOR_N_SIGMA = 3.0
+#: A well-identified deviation of at least this fraction of the plausibility level is reported as a finding.
+FINDING_FRACTION = 0.5
 FALLBACK_MARGIN = 0.01
 COVERAGE_P = 0.95
 #: The coverage guard fires below this (and 3 binomial sd below 95 %): the noise level is itself estimated
@@ -110,21 +121,96 @@ def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *
     return Extrapolation(out_j.any(1), dist > threshold, dist, threshold, joints)
 
 
-def prior_flags(fit, n_sigma: float = PRIOR_N_SIGMA) -> tuple:
-    """Messages for fitted geometric parameters beyond ``n_sigma`` prior standard deviations.
+@dataclass(frozen=True, eq=False)
+class ParameterCheck:
+    """Fitted geometric parameters and probe offset against the plausibility level and their posterior sd.
+
+    Attributes
+    ----------
+    names, units : tuple of str        fitted geometric parameters, then ``probe_offset_x/y/z`` (flange frame)
+    value, sd, level : arrays, shape (k + 3,)   value, posterior sd, plausibility level [interface units: mm, deg]
+    status : tuple of str              ``implausible``, ``weak``, ``finding`` or ``ok`` per row
+    n_sigma : float                    implausible beyond ``n_sigma`` x level
+    """
+
+    names: tuple
+    units: tuple
+    value: np.ndarray
+    sd: np.ndarray
+    level: np.ndarray
+    status: tuple
+    n_sigma: float = PRIOR_N_SIGMA
+
+    def to_frame(self):
+        import pandas as pd
+        return pd.DataFrame({"parameter": self.names, "unit": self.units, "value": self.value,
+                             "posterior_sd": self.sd, "plausibility_level": self.level, "status": self.status})
+
+    def _line(self, i) -> str:
+        return f"{self.names[i]} = {self.value[i]:.3g} +- {self.sd[i]:.2g} {self.units[i]}"
+
+    def guards(self) -> tuple:
+        """Guard lines: implausible and weakly identified parameters, weakly identified probe offset."""
+        out = []
+        for i, st in enumerate(self.status):
+            ratio = abs(self.value[i]) / self.level[i]
+            if st == "implausible":
+                out.append(f"implausible parameter: {self._line(i)} is {ratio:.1f} x the plausibility level "
+                           f"({self.level[i]:.3g} {self.units[i]}: the robot class's as-built accuracy or the prior, if larger; "
+                           f"fires beyond {self.n_sigma:g}); an unidentifiable "
+                           "combination drifting, a wrong robot model or probe, or outliers -- check them")
+            elif st == "weak" and self.names[i].startswith("probe_offset"):
+                out.append(f"weakly identified probe offset: {self._line(i)}: the poses pin it down only to "
+                           f"+-{self.sd[i]:.2g} {self.units[i]}, more than the as-built position level {self.level[i]:.3g} "
+                           f"{self.units[i]} (the flange axes hardly changed direction) -- move the wrist joints more")
+            elif st == "weak":
+                out.append(f"weakly identified parameter: {self._line(i)} is {ratio:.1f} x the plausibility level "
+                           f"({self.level[i]:.3g} {self.units[i]}) but the data pin it down only to +-{self.sd[i]:.2g} "
+                           f"{self.units[i]}: its value rests on a direction the poses barely resolve -- spread the "
+                           "poses of the joints involved")
+        return tuple(out)
+
+    def findings(self) -> tuple:
+        """Informational lines: well-identified deviations of at least half the plausibility level (not guards)."""
+        return tuple(f"finding: {self._line(i)} (well identified; {abs(self.value[i]) / self.level[i]:.2g} x the "
+                     f"plausibility level {self.level[i]:.3g} {self.units[i]})"
+                     for i, st in enumerate(self.status) if st == "finding")
+
+
+def parameter_checks(fit, q: np.ndarray, *, level: np.ndarray | None = None,
+                     n_sigma: float = PRIOR_N_SIGMA) -> ParameterCheck:
+    """Check the fitted geometric parameters and probe offset of ``fit`` (see the module docstring).
 
     Parameters
     ----------
-    fit : :class:`tolalloc.diagnose.calibrate.Fit` (its model's ``sigma`` is the prior)
+    fit : :class:`tolalloc.diagnose.calibrate.Fit`   a geometric fit (its model's ``sigma`` is the MAP prior)
+    q : array, shape (P, n) [rad, mm]   the poses ``fit`` was fitted on
+    level : array, shape (K,), optional  plausibility level per model parameter [mm, rad]; default
+        :func:`~tolalloc.diagnose.geometry.plausibility_levels` (the larger of the prior sigma and the as-built level)
     """
-    out = []
-    for k in fit.geo_index:
-        prm = fit.model.params[k]
-        if prm.sigma > 0 and abs(fit.delta[k]) > n_sigma * prm.sigma:
-            f, u = prm.to_interface, prm.interface_unit
-            out.append(f"implausible parameter: {prm.name} = {fit.delta[k] * f:.3g} {u} is {abs(fit.delta[k]) / prm.sigma:.1f} "
-                       f"prior sigma ({prm.sigma * f:.3g} {u}); check the probe offset, the robot model and outliers")
-    return tuple(out)
+    model = fit.model
+    level = plausibility_levels(model) if level is None else np.asarray(level, float)
+    cov, _ = parameter_covariance(fit, q, unresolved="inflate")
+    sd = np.sqrt(np.maximum(np.diag(cov), 0.0))
+    prm = [model.params[k] for k in fit.geo_index]
+    f = np.array([p.to_interface for p in prm] + [1.0] * 3)
+    value = np.concatenate([fit.delta[fit.geo_index], fit.t_mm]) * f
+    sd = np.concatenate([sd[9:9 + len(prm)], sd[6:9]]) * f
+    lev = np.concatenate([level[fit.geo_index], np.full(3, as_built_levels(model.robot)[0])]) * f
+    v = np.abs(value)
+    is_geo = np.arange(len(v)) < len(prm)
+    implausible = is_geo & (v > n_sigma * lev)
+    weak = np.where(is_geo, (v > lev) & (sd > v / 2), sd > lev)
+    finding = is_geo & (v >= 3 * sd) & (v >= FINDING_FRACTION * lev)
+    status = tuple("implausible" if a else "weak" if b else "finding" if c else "ok"
+                   for a, b, c in zip(implausible, weak, finding))
+    return ParameterCheck(tuple(p.name for p in prm) + ("probe_offset_x", "probe_offset_y", "probe_offset_z"),
+                          tuple(p.interface_unit for p in prm) + ("mm",) * 3, value, sd, lev, status, n_sigma)
+
+
+def prior_flags(fit, q: np.ndarray, **kw) -> tuple:
+    """Guard lines of :func:`parameter_checks` (implausible / weakly identified parameters and probe offset)."""
+    return parameter_checks(fit, q, **kw).guards()
 
 
 def cv_fallback(nominal, geometric, final, margin: float = FALLBACK_MARGIN) -> tuple:
@@ -219,12 +305,14 @@ def point_jacobian(fit, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarra
     return J
 
 
-def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None) -> tuple:
+def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None, *, unresolved: str = "drop") -> tuple:
     """Covariance of the fitted parameters (columns of :func:`point_jacobian`) and the noise per coordinate.
 
     ``noise^2 = RSS / (3 P - n)`` from ``fit.residual_mm``; covariance ``(J^T J / noise^2 + diag(1 / s^2))^-1``
     with ``s`` the MAP prior standard deviations of the geometric parameters (``fit.model.sigma``; none for
-    registration, offset and effects).
+    registration, offset and effects). ``unresolved``: directions the information matrix does not resolve
+    (scaled eigenvalue below 1e-12 of the largest) get variance 0 (``"drop"``, a pseudo-inverse: prediction
+    uncertainty) or a variance 1e12 x their scale (``"inflate"``: the parameter is not pinned down).
 
     Returns
     -------
@@ -239,7 +327,12 @@ def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None) -> tup
     prec[9:9 + len(sig)] = np.where(sig > 0, 1.0 / np.where(sig > 0, sig, 1.0) ** 2, 0.0)
     info = J.T @ J / noise2 + np.diag(prec)
     d = 1.0 / np.sqrt(np.maximum(np.diag(info), 1e-300))
-    cov = d[:, None] * np.linalg.pinv(d[:, None] * info * d[None, :], rcond=1e-12, hermitian=True) * d[None, :]
+    if unresolved == "drop":
+        inv = np.linalg.pinv(d[:, None] * info * d[None, :], rcond=1e-12, hermitian=True)
+    else:
+        w, V = np.linalg.eigh(d[:, None] * info * d[None, :])
+        inv = (V / np.maximum(w, 1e-12 * w.max())) @ V.T
+    cov = d[:, None] * inv * d[None, :]
     return cov, float(np.sqrt(noise2))
 
 

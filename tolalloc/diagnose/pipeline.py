@@ -14,8 +14,8 @@ from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
-from tolalloc.diagnose.guards import (Extrapolation, PoseUncertainty, cv_fallback, extrapolation_flags,
-                                     prediction_uncertainty, prior_flags)
+from tolalloc.diagnose.guards import (Extrapolation, ParameterCheck, PoseUncertainty, cv_fallback,
+                                     extrapolation_flags, parameter_checks, prediction_uncertainty)
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.register import REGISTER_N, RegistrationSplit, register_and_score, register_count
 from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
@@ -45,7 +45,8 @@ class Diagnosis:
     nominal, geometric, final : Evaluation   held-out evaluations of the three models
     where : WhereBreakdown         residual breakdown after geometric calibration (training poses)
     test_frame : {"same", "refit"}
-    guards : tuple of str          guards that fired (implausible parameters, extrapolating test poses, fallback)
+    guards : tuple of str          guards that fired (implausible or weakly identified parameters, extrapolating
+                                   test poses, fallback)
     extrapolation : Extrapolation or None   per test pose flags (None without a test file)
     fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
     registration : RegistrationSplit or None   ``refit``: test poses used to register the frame (never scored)
@@ -53,6 +54,8 @@ class Diagnosis:
     registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
     subsample : dict or None       large training files: what ran on a seeded subsample (cross-validation,
                                    effect selection, identifiability) and what on all rows (the final fits)
+    parameter_check : ParameterCheck or None   geometric parameters and probe offset vs the plausibility level
+    findings : tuple of str        well-identified deviations from nominal (informational, not guards)
     """
 
     robot: Robot
@@ -73,6 +76,8 @@ class Diagnosis:
     uncertainty: PoseUncertainty | None = None
     registered: Fit | None = None
     subsample: dict | None = None
+    parameter_check: ParameterCheck | None = None
+    findings: tuple = ()
 
     @property
     def scored_index(self) -> np.ndarray:
@@ -142,6 +147,7 @@ class Diagnosis:
                              "target_offset_mm": self.calibration.geometric.t_mm},
             "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
             "guards": list(self.guards),
+            "findings": list(self.findings),
             "fallback": self.fallback,
             "subsample": self.subsample,
             "models": {"calibration": "complete minimal geometric model (diagnose.geometry): 4 line errors per "
@@ -162,6 +168,8 @@ class Diagnosis:
                                                 "target_offset_mm": self.registered.t_mm}
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
+        if self.parameter_check is not None:
+            out["parameter_check"] = self.parameter_check.to_frame().to_dict(orient="records")
         return out
 
     def _block(self, which: str) -> dict:
@@ -232,7 +240,9 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         where = where_breakdown(robot, train, cal.geometric)
         bar.close()
     effects = tuple(st.selected for st in stages if st.selected)
-    guards = list(prior_flags(cal.geometric))
+    geo = cal.geometric if sub is None else replace(cal.geometric, residual_mm=cal.geometric.residual_mm[sub])
+    check = parameter_checks(geo, cv_train.q)  # large files: posterior sd from the subsample (conservative)
+    guards = list(check.guards())
     chosen, msgs = cv_fallback(nominal, geometric, final)
     guards.extend(msgs)
     fallback = None
@@ -240,7 +250,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         fallback, final, effects = chosen.label, chosen, ()
     extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
     return Diagnosis(robot, train, test, cal, tuple(stages), effects, nominal, geometric, final, where, test_frame,
-                     tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample)
+                     tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check, check.findings())
 
 
 def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list) -> tuple:
