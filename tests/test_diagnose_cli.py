@@ -72,3 +72,29 @@ def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
                  "--test-frame", "refit", "--register-n", "38", *args]) == 2  # the test file has 40 poses
     assert "gives 38 registration and 2 scored poses" in capsys.readouterr().err
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists() and not (tmp_path / "p.csv").exists()
+
+
+def test_gap_split_adds_up_to_the_test_errors(tmp_path, capsys):
+    _files(tmp_path)
+    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+               "--json", str(tmp_path / "out.json"), "--report", str(tmp_path / "rep"), "--folds", "3", "--gap-split"])
+    assert rc == 0
+    js = json.loads((tmp_path / "out.json").read_text())
+    g, rms = js["gap_split"], js["test"]["rms_mm"]
+    parts = ["removed_by_geometry", "removed_by_effect", "systematic_unnamed", "noise_floor", "rest"]
+    assert sum(g[p] for p in parts) == __import__("pytest").approx(g["ms_nominal"], rel=1e-9)
+    # mean squares of the 3-D error are the squared RMS figures of the same test poses
+    assert g["ms_nominal"] == __import__("pytest").approx(rms["nominal"] ** 2, rel=1e-6)
+    assert g["removed_by_geometry"] == __import__("pytest").approx(rms["nominal"] ** 2 - rms["geometric"] ** 2, rel=1e-6)
+    assert g["removed_by_effect"] == __import__("pytest").approx(rms["geometric"] ** 2 - rms["final"] ** 2, rel=1e-6)
+    assert 0 <= g["systematic_unnamed"] <= rms["final"] ** 2 and g["noise_floor"] > 0
+    assert pd.read_csv(tmp_path / "rep" / "gap_split.csv")["part"].tolist() == parts
+    assert "where the test error lies" in capsys.readouterr().out
+
+
+def test_gap_split_needs_a_test_file(tmp_path, capsys):
+    _files(tmp_path)
+    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--gap-split",
+               "--json", str(tmp_path / "o.json")])
+    assert rc == 2 and "--gap-split needs --test" in capsys.readouterr().err
+    assert not (tmp_path / "o.json").exists()

@@ -34,7 +34,7 @@ import pandas as pd
 
 import tolalloc
 from tolalloc.diagnose import diagnose, measurements_from_frame
-from tolalloc.diagnose.gap import gap_split
+from tolalloc.diagnose.gap import diagnosis_gap_split
 from tolalloc.diagnose.synth import split_frame
 from tolalloc.report.diagnosis import write_report
 
@@ -61,14 +61,6 @@ def make_runs(A: pd.DataFrame, C: pd.DataFrame) -> dict:
     runs["across_A_to_C"] = (A, C, "refit", "across")
     runs["across_C_to_A"] = (C, A, "refit", "across")
     return runs
-
-
-def residual_split(d):
-    """gap.py's split of the scored test error; residuals rotated into the robot base frame (frames differ across sessions)."""
-    R_test = d.registered.R if d.registered is not None else d.final.fit.R
-    e_test = {"nominal": d.nominal.test_mm, "geometric": d.geometric.test_mm, "final": d.final.test_mm @ R_test}
-    return gap_split(d.train.q, d.final.oof_mm @ d.final.fit.R, d.test.q[d.scored_index], e_test,
-                     d.robot.revolute_mask)
 
 
 def gp_row(name: str, gap, joints: list) -> dict:
@@ -148,7 +140,7 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         d = diagnose(robot, measurements_from_frame(tr, robot, f"{name}:train"),
                      measurements_from_frame(te, robot, f"{name}:test"), test_frame=frame)
-        gap = residual_split(d)
+        gap = diagnosis_gap_split(d)
         dt = time.perf_counter() - t0
         write_report(d, OUT, title=f"UR10 {name}", prefix=f"{name}_")
         rows.append(summarise(name, kind, d, dt) | {"gap_gp_test_explained_pct": 100 * gap.gp_test_explained,

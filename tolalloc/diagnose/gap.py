@@ -31,7 +31,7 @@ import numpy as np
 
 from tolalloc.diagnose.gp import GPFit, fit_gp
 
-__all__ = ["GapSplit", "gap_split", "joint_features", "fit_residual_gp"]
+__all__ = ["GapSplit", "gap_split", "diagnosis_gap_split", "joint_features", "fit_residual_gp"]
 
 #: At most this many training poses fit the GP's hyper-parameters (seeded random subset).
 MAX_FIT = 1000
@@ -149,3 +149,17 @@ def gap_split(q_train, e_train_final, q_test, e_test: dict, revolute, *, stroke_
     return GapSplit(ms_n, ms_n - ms_g, ms_g - ms_f, systematic, noise, ms_f - systematic - noise, source,
                     systematic / max(ms_f, 1e-300), float(loo_explained), gp.noise_sd, gp.signal_sd,
                     tuple(float(v) for v in gp.length_scales), gp.n_fit)
+
+
+def diagnosis_gap_split(d, **kw) -> GapSplit:
+    """:func:`gap_split` of a diagnosis's scored test poses (a :class:`tolalloc.diagnose.pipeline.Diagnosis` with a
+    test file). Residuals are rotated into the robot's base frame, since a re-registered test file has its own
+    tracker frame; the GP is trained on the training poses' out-of-fold final residuals. ``kw`` go to
+    :func:`gap_split`.
+    """
+    if d.test is None:
+        raise ValueError("the gap split needs a test file: it splits the held-out test error")
+    R_test = d.registered.R if d.registered is not None else d.final.fit.R
+    e_test = {"nominal": d.nominal.test_mm, "geometric": d.geometric.test_mm, "final": d.final.test_mm @ R_test}
+    return gap_split(d.train.q, d.final.oof_mm @ d.final.fit.R, d.test.q[d.scored_index], e_test,
+                     d.robot.revolute_mask, **kw)

@@ -140,6 +140,8 @@ def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
               markdown_table(d.before_after("cv")[cols]), "",
               *([f"![before/after]({prefix}before_after.png)", ""] if d.test is None else [])]
     lines += (["## Guards", "", *[f"- {g}" for g in d.guards], ""] if d.guards else ["Guards: none fired.", ""])
+    if d.findings:  # well-identified deviations from nominal: results, not warnings
+        lines += ["## Findings", "", *[f"- {f}" for f in d.findings], ""]
     return lines
 
 
