@@ -14,7 +14,8 @@ of the two), top-2 (withheld effect among the first selected effect and the best
 claims on ``none``, and the final test RMS against a truth-aware reference fit (see :mod:`cases`).
 Writes reports/sim2real_blind/: report.md, cases.csv, confusion.csv, confusion.png.
 
-    python studies/sim2real_blind/run.py [--quick] [--per-label N] [--seed S] [--folds K] [--jobs J] [--report-only]
+    python studies/sim2real_blind/run.py [--quick] [--per-label N] [--seed S] [--folds K] [--jobs J] [--out DIR]
+                                         [--report-only]
 """
 
 from __future__ import annotations
@@ -198,9 +199,14 @@ def main(argv=None) -> int:
     ap.add_argument("--folds", type=int, default=3, help="CV folds per blocked scheme (time and joint space)")
     ap.add_argument("--jobs", type=int, default=1, help="worker processes")
     ap.add_argument("--report-only", action="store_true", help="rewrite report.md from the existing cases.csv")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output folder (default reports/sim2real_blind; use another one for other seeds)")
     ap.add_argument("--reference-only", action="store_true",
                     help="recompute the truth-aware reference column of the existing cases.csv, then the report")
     a = ap.parse_args(argv)
+    global OUT
+    OUT = a.out or OUT
+    OUT.mkdir(parents=True, exist_ok=True)
     per = 1 if a.quick else a.per_label
     if a.report_only or a.reference_only:
         df = pd.read_csv(OUT / "cases.csv")

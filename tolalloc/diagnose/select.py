@@ -27,7 +27,7 @@ from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_c
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate", "score_test",
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate", "score_test",
            "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
 
 
@@ -151,6 +151,21 @@ def make_folds(meas, k: int, scheme: str = "blocked", seed: int = 0) -> list:
     return [f for f in folds if len(f)]
 
 
+def fold_count(folds: int, n_rows: int, n_fixed: int) -> int:
+    """Folds per CV scheme: at least ``folds``, more when the poses are few.
+
+    A held-out block removes its rows from a fit that must still determine the registration, offset and
+    geometric parameters (``n_fixed`` columns of ``n_rows`` rows). When a block takes more than half of the
+    full training fit's redundancy ``n_rows - n_fixed``, every fold's fit is close to interpolating and the
+    out-of-fold error measures its conditioning (it grows with every extra effect parameter) rather than
+    the effect. So the blocks are made smaller: ``K`` is the smallest count >= ``folds`` with
+    ``n_rows / K <= (n_rows - n_fixed) / 2`` (e.g. 22 UR10 poses, 66 rows, 27 fixed columns: 4 folds; at 90
+    poses the requested 3 stand).
+    """
+    spare = max(n_rows - n_fixed, 1)
+    return int(max(folds, np.ceil(2.0 * n_rows / spare)))
+
+
 def _kmeans(z: np.ndarray, k: int, seed: int, iters: int = 30) -> np.ndarray:
     """Labels of a small seeded k-means (k-means++ start), shape (N,)."""
     rng = np.random.default_rng(seed)
@@ -185,13 +200,14 @@ class _Context:
     def __init__(self, cal, train, test, folds, seed, test_frame, tol, cv="blocked", gear_ratio=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
         self.cv = cv
-        self.folds = make_folds(train, folds, cv, seed)
-        self.folds_joint = make_folds(train, folds, "joint", seed) if cv == "blocked" else []
+        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
+        k = fold_count(folds, *self.J_fixed.shape)
+        self.folds = make_folds(train, k, cv, seed)
+        self.folds_joint = make_folds(train, k, "joint", seed) if cv == "blocked" else []
         self.bases, self.bases_test, self.reasons = {}, {}, {}
         t = cal.geometric.t_mm
         self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
-        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         res = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's residual on these poses
         for e in EFFECTS:
             ok, why = applicable(e, train)
