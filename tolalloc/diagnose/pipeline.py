@@ -124,7 +124,7 @@ class Diagnosis:
             "effect": self.effect,
             "effects": list(self.effects),
             "ranking": [c.to_dict() for c in self.ranking],
-            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none",
+            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
                           "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
             "rms_mm": dict(zip(ba["model"], ba["rms_mm"])),
             "p95_mm": dict(zip(ba["model"], ba["p95_mm"])),
@@ -231,7 +231,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         bar = progress_bar("residual breakdown")
         where = where_breakdown(robot, train, cal.geometric)
         bar.close()
-    effects = tuple(st.selected for st in stages if st.selected)
+    effects = final.effects  # forward selection, then backward elimination (select._backward)
     guards = list(prior_flags(cal.geometric))
     chosen, msgs = cv_fallback(nominal, geometric, final)
     guards.extend(msgs)

@@ -13,7 +13,8 @@ squared held-out error (base model - base + candidate). A candidate is *signific
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
 (:func:`robust_rms`) by at least ``min_gain`` (default 2 %). The significant candidate with the lowest clipped
 held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
-``max_effects``: pairs where the data supports both). ``none`` when nothing is significant.
+``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
+beside the others (backward elimination, :func:`_backward`). ``none`` when nothing is significant.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ import numpy as np
 from scipy.stats import wilcoxon
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
+from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
@@ -118,69 +120,7 @@ class Stage:
     base_rms_mm: float
     candidates: tuple
     selected: str | None
-
-
-CV_SCHEMES = ("blocked", "time", "joint", "random")
-
-
-def make_folds(meas, k: int, scheme: str = "blocked", seed: int = 0) -> list:
-    """Cross-validation folds (sorted index arrays partitioning the poses).
-
-    ``time``: ``k`` contiguous blocks in row (time) order; ``joint``: ``k`` contiguous regions of joint space
-    (k-means on the joint values scaled by their training range, seeded); ``random``: a random partition
-    (only on request: neighbouring poses in time or joint space then sit on both sides of a split and flatter
-    a model that interpolates). ``blocked`` is ``time`` here; :class:`_Context` adds the ``joint`` folds to it.
-    Repeated measurements of one pose always fall in the same fold.
-    """
-    if scheme not in CV_SCHEMES:
-        raise ValueError(f"cv: expected one of {', '.join(CV_SCHEMES)}, got {scheme!r}")
-    groups = meas.pose_groups()
-    G = int(groups.max()) + 1
-    k = max(2, min(k, G))
-    if scheme == "random":
-        label = np.zeros(G, int)
-        label[np.random.default_rng(seed).permutation(G)] = np.arange(G) % k
-    elif scheme == "joint":
-        first = np.unique(groups, return_index=True)[1]
-        q = meas.q[first]
-        z = (q - q.min(0)) / np.maximum(np.ptp(q, axis=0), 1e-12)
-        label = _kmeans(z, k, seed)
-    else:
-        label = np.minimum(np.arange(G) * k // G, k - 1)  # groups are numbered in order of first appearance
-    folds = [np.flatnonzero(label[groups] == i) for i in range(k)]
-    return [f for f in folds if len(f)]
-
-
-def fold_count(folds: int, n_rows: int, n_fixed: int) -> int:
-    """Folds per CV scheme: at least ``folds``, more when the poses are few.
-
-    A held-out block removes its rows from a fit that must still determine the registration, offset and
-    geometric parameters (``n_fixed`` columns of ``n_rows`` rows). When a block takes more than half of the
-    full training fit's redundancy ``n_rows - n_fixed``, every fold's fit is close to interpolating and the
-    out-of-fold error measures its conditioning (it grows with every extra effect parameter) rather than
-    the effect. So the blocks are made smaller: ``K`` is the smallest count >= ``folds`` with
-    ``n_rows / K <= (n_rows - n_fixed) / 2`` (e.g. 22 UR10 poses, 66 rows, 27 fixed columns: 4 folds; at 90
-    poses the requested 3 stand).
-    """
-    spare = max(n_rows - n_fixed, 1)
-    return int(max(folds, np.ceil(2.0 * n_rows / spare)))
-
-
-def _kmeans(z: np.ndarray, k: int, seed: int, iters: int = 30) -> np.ndarray:
-    """Labels of a small seeded k-means (k-means++ start), shape (N,)."""
-    rng = np.random.default_rng(seed)
-    c = [z[rng.integers(len(z))]]
-    for _ in range(1, k):
-        d = np.min([np.sum((z - ci) ** 2, 1) for ci in c], axis=0)
-        c.append(z[rng.choice(len(z), p=d / d.sum())] if d.sum() > 0 else z[rng.integers(len(z))])
-    c = np.array(c)
-    for _ in range(iters):
-        lab = np.argmin(((z[:, None, :] - c[None]) ** 2).sum(-1), axis=1)
-        c_new = np.array([z[lab == i].mean(0) if np.any(lab == i) else c[i] for i in range(k)])
-        if np.allclose(c_new, c):
-            break
-        c = c_new
-    return lab
+    removed: str | None = None  # backward step (:func:`_backward`): the effect dropped from ``base``, if any
 
 
 def robust_rms(res: np.ndarray, clip_mm: float) -> float:
@@ -388,7 +328,42 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             break
         chosen = (*chosen, best.effect)
         current = cand_evals[best.effect]
+    current = _backward(ctx, current, evals, stages, clip, alpha, min_gain)
     return stages, evals, current
+
+
+def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, min_gain) -> Evaluation:
+    """Backward elimination after the forward steps: drop an effect the others have made redundant.
+
+    Gravity-driven effects overlap (joint compliance ``c_j tau_j``, gravity-held backlash ``b_j sign(tau_j)``,
+    beam sag): the first forward step may pick the one that best explains their *sum* as a proxy, and the
+    true two are added after it. Each selected effect must therefore still pay its way beside the others:
+    the full model has to beat the model without it by the forward rule (Wilcoxon ``p < alpha / m`` over the
+    ``m`` selected effects, clipped gain >= ``min_gain``); else the effect is dropped (a :class:`Stage` with
+    ``removed`` set), and the test is repeated on what is left.
+    """
+    while len(current.effects) > 1:
+        m, tests = len(current.effects), []
+        for e in current.effects:
+            rest = tuple(x for x in current.effects if x != e)
+            label = "+".join(("geometric", *rest))
+            ev = evals.get(label) or evaluate(ctx, rest)
+            evals[label] = ev
+            r, r_rest = robust_rms(current.selection_mm, clip), robust_rms(ev.selection_mm, clip)
+            p = _pvalue(ev.selection_mm, current.selection_mm, clip)
+            gain = 100.0 * (1.0 - r / r_rest)
+            keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
+            n_e = sum(nm.startswith(e + ":") for nm in current.param_names)
+            tests.append((gain, Candidate(e, True, "" if keep else "redundant beside the other selected effects", n_e,
+                                          current.heldout_rms_mm, rms(current.oof_mm), None, p, gain, keep, r,
+                                          ctx.bases[e].variant), ev))
+        gain, cand, ev = min(tests, key=lambda x: x[0])
+        stages.append(Stage(current.effects, current.heldout_rms_mm, tuple(c for _, c, _ in tests), None,
+                            None if cand.significant else cand.effect))
+        if cand.significant:
+            break
+        current = ev
+    return current
 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
