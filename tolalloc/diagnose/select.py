@@ -189,7 +189,10 @@ def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.n
 
     Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
     and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
-    outliers do not pick the variant. ``BIC = n log(RSS / n) + M log n`` (``n`` = 3P rows, ``M`` columns).
+    outliers do not pick the variant. ``BIC = n log(RSS / (n - M)) + M log n`` with ``n`` the residual degrees
+    of freedom (3P rows minus the fixed columns) and ``M`` the variant's columns: the noise variance is estimated
+    from the degrees of freedom the variant leaves, so on few poses a many-column variant (e.g. two harmonics on
+    every joint) cannot win by fitting the noise of a nearly interpolated residual.
     ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
     fit was made on those very poses; a subsampled diagnosis passes the subsample's).
     """
@@ -200,14 +203,15 @@ def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.n
     r = r - Q @ (Q.T @ r)
     s = 1.4826 * np.median(np.abs(r - np.median(r)))
     r = np.clip(r, -3 * s, 3 * s)
-    n = len(r)
+    n = len(r) - Q.shape[1]  # residual degrees of freedom left by the fixed columns
     best, best_bic = cands[0], np.inf
     for c in cands:
-        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(n, -1)
+        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
         Jc = Jc - Q @ (Q.T @ Jc)
         beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
         rss = float(np.sum((r - Jc @ beta) ** 2))
-        bic = n * np.log(max(rss, 1e-300) / n) + np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max())) * np.log(n)
+        M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
+        bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
         if bic < best_bic:
             best, best_bic = c, bic
     return best
