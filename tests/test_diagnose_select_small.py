@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from tolalloc.diagnose.folds import fold_count
-from tolalloc.diagnose.select import Evaluation, _backward, clip_level
+from tolalloc.diagnose.select import Evaluation, _backward, choose_variant, clip_level
 
 
 @pytest.mark.parametrize("folds, rows, fixed, expected", [
@@ -65,3 +65,26 @@ def test_backward_keeps_effects_that_all_pay_their_way():
     final = _backward(ctx, full, evals, stages, clip_level(evals["geometric"].oof_mm), 0.01, 0.02)
     assert final is full and len(stages) == 1 and stages[0].removed is None
     assert all(c.significant for c in stages[0].candidates)
+
+
+def _variant_problem(extra_signal: float, P=22, f=31, seed=3):
+    """Residual of P poses (3P rows) off ``f`` fixed columns: 14 columns of variant A carry a signal; variant B
+    is A plus 16 more columns, which carry ``extra_signal`` [mm per unit]."""
+    rng = np.random.default_rng(seed)
+    J_fixed = rng.normal(size=(3 * P, f))
+    A = rng.normal(size=(P, 3, 14))
+    extra = rng.normal(size=(P, 3, 16))
+    res = A @ rng.normal(0, 0.3, 14) + extra @ (extra_signal * np.ones(16)) + rng.normal(0, 0.03, (P, 3))
+    fit = SimpleNamespace(R=np.eye(3), residual_mm=res)
+    cands = [SimpleNamespace(B=A, variant="A"), SimpleNamespace(B=np.concatenate([A, extra], axis=2), variant="B")]
+    return cands, fit, J_fixed
+
+
+def test_variant_bic_counts_the_degrees_of_freedom_left():
+    # 66 rows - 31 fixed = 35 degrees of freedom: B's 30 columns nearly interpolate the noise, which a BIC with
+    # the variance RSS / 66 rewarded (it mostly chose B on pure noise); with the variance from the
+    # degrees of freedom left, A wins on noise and B when its extra columns carry a signal. Fixed seeds 0-19,
+    # tolerance: at least 16 of 20 right each way (chance level 10).
+    right_noise = sum(choose_variant(*_variant_problem(0.0, seed=s)).variant == "A" for s in range(20))
+    right_signal = sum(choose_variant(*_variant_problem(0.05, seed=s)).variant == "B" for s in range(20))
+    assert right_noise >= 16 and right_signal >= 16, (right_noise, right_signal)
