@@ -263,8 +263,12 @@ def write_report(df: pd.DataFrame, a) -> int:
              "on 2 % of the poses in a quarter of the cases), 120-pose and 30-pose cases. Noise sigma U(0.02, 0.05) mm "
              "per coordinate. 75 % of each case's poses train, 25 % are the test file.", "",
              f"**Diagnosis settings.** `diagnose(robot, train, test, folds={getattr(a, 'folds', 3)})` with the default "
-             "blocked cross-validation: that many contiguous time blocks *and* as many joint-space blocks, both scored; "
-             "effect variants chosen on the training residual; clipped (robust) gain and Wilcoxon test.", "",
+             "blocked cross-validation: that many contiguous time blocks *and* as many joint-space blocks, both scored "
+             "(more, smaller blocks when the poses are few: a held-out block takes at most half of the fit's spare "
+             "rows, `diagnose.folds.fold_count`); effect variants chosen on the training "
+             "residual (BIC on the degrees of freedom left by the geometric fit); clipped (robust) gain and Wilcoxon "
+             "test; forward selection, then backward elimination (an effect no longer significant beside the "
+             "others is dropped).", "",
              "**Reference** (truth-aware): the diagnosis's geometric calibration model plus the first-order columns "
              "of the true effect's own amplitudes from the generator's own physics (true lag, harmonic order, side "
              "rule and mass model known, amplitudes fitted free), fitted on the training poses, scored on the test "
