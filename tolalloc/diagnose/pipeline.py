@@ -114,7 +114,7 @@ class Diagnosis:
         for i, st in enumerate(self.stages):
             for c in st.candidates:
                 rows.append({"step": i + 1, "base": "+".join(("geometric", *st.base)), "base_rms_mm": st.base_rms_mm,
-                             **c.to_dict(), "selected": c.effect == st.selected})
+                             **c.to_dict(), "selected": c.effect == st.selected, "removed": c.effect == st.removed})
         return pd.DataFrame(rows)
 
     def to_dict(self) -> dict:

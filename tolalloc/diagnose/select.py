@@ -343,8 +343,9 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
     beam sag): the first forward step may pick the one that best explains their *sum* as a proxy, and the
     true two are added after it. Each selected effect must therefore still pay its way beside the others:
     the full model has to beat the model without it by the forward rule (Wilcoxon ``p < alpha / m`` over the
-    ``m`` selected effects, clipped gain >= ``min_gain``); else the effect is dropped (a :class:`Stage` with
-    ``removed`` set), and the test is repeated on what is left.
+    ``m`` selected effects, clipped gain >= ``min_gain``); else the weakest such effect is dropped (a
+    :class:`Stage` with ``removed`` set), and the test is repeated on what is left. In such a stage each
+    candidate's scores are those of the model *without* it, its gain what keeping it gains.
     """
     while len(current.effects) > 1:
         m, tests = len(current.effects), []
@@ -358,9 +359,10 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
             gain = 100.0 * (1.0 - r / r_rest)
             keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
             n_e = sum(nm.startswith(e + ":") for nm in current.param_names)
-            tests.append((gain, Candidate(e, True, "" if keep else "redundant beside the other selected effects", n_e,
-                                          current.heldout_rms_mm, rms(current.oof_mm), None, p, gain, keep, r,
-                                          ctx.bases[e].variant), ev))
+            why = "backward step: " + ("" if keep else "not ") + "significant beside the others"
+            t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
+            tests.append((gain, Candidate(e, True, why, n_e, ev.heldout_rms_mm, rms(ev.oof_mm), t_rms, p, gain, keep,
+                                          r_rest, ctx.bases[e].variant), ev))
         gain, cand, ev = min(tests, key=lambda x: x[0])
         stages.append(Stage(current.effects, current.heldout_rms_mm, tuple(c for _, c, _ in tests), None,
                             None if cand.significant else cand.effect))
