@@ -179,7 +179,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     Parameters
     ----------
     robot : Robot
-    train : Measurements        fitted (and cross-validated with ``folds`` folds)
+    train : Measurements        fitted (and cross-validated with at least ``folds`` folds, more on few poses:
+                                :func:`tolalloc.diagnose.folds.fold_count`)
     test : Measurements, optional  scored only
     alpha : float               family-wise significance level of the selection
     min_gain : float            minimum relative held-out RMS reduction of a selected effect
