@@ -14,7 +14,8 @@ of the two), top-2 (withheld effect among the first selected effect and the best
 claims on ``none``, and the final test RMS against a truth-aware reference fit (see :mod:`cases`).
 Writes reports/sim2real_blind/: report.md, cases.csv, confusion.csv, confusion.png.
 
-    python studies/sim2real_blind/run.py [--quick] [--per-label N] [--seed S] [--folds K] [--jobs J] [--report-only]
+    python studies/sim2real_blind/run.py [--quick] [--per-label N] [--seed S] [--folds K] [--jobs J] [--out DIR]
+                                         [--report-only]
 """
 
 from __future__ import annotations
@@ -198,9 +199,14 @@ def main(argv=None) -> int:
     ap.add_argument("--folds", type=int, default=3, help="CV folds per blocked scheme (time and joint space)")
     ap.add_argument("--jobs", type=int, default=1, help="worker processes")
     ap.add_argument("--report-only", action="store_true", help="rewrite report.md from the existing cases.csv")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="output folder (default reports/sim2real_blind; use another one for other seeds)")
     ap.add_argument("--reference-only", action="store_true",
                     help="recompute the truth-aware reference column of the existing cases.csv, then the report")
     a = ap.parse_args(argv)
+    global OUT
+    OUT = a.out or OUT
+    OUT.mkdir(parents=True, exist_ok=True)
     per = 1 if a.quick else a.per_label
     if a.report_only or a.reference_only:
         df = pd.read_csv(OUT / "cases.csv")
@@ -257,8 +263,12 @@ def write_report(df: pd.DataFrame, a) -> int:
              "on 2 % of the poses in a quarter of the cases), 120-pose and 30-pose cases. Noise sigma U(0.02, 0.05) mm "
              "per coordinate. 75 % of each case's poses train, 25 % are the test file.", "",
              f"**Diagnosis settings.** `diagnose(robot, train, test, folds={getattr(a, 'folds', 3)})` with the default "
-             "blocked cross-validation: that many contiguous time blocks *and* as many joint-space blocks, both scored; "
-             "effect variants chosen on the training residual; clipped (robust) gain and Wilcoxon test.", "",
+             "blocked cross-validation: that many contiguous time blocks *and* as many joint-space blocks, both scored "
+             "(more, smaller blocks when the poses are few: a held-out block takes at most half of the fit's spare "
+             "rows, `diagnose.folds.fold_count`); effect variants chosen on the training "
+             "residual (BIC on the degrees of freedom left by the geometric fit); clipped (robust) gain and Wilcoxon "
+             "test; forward selection, then backward elimination (an effect no longer significant beside the "
+             "others is dropped).", "",
              "**Reference** (truth-aware): the diagnosis's geometric calibration model plus the first-order columns "
              "of the true effect's own amplitudes from the generator's own physics (true lag, harmonic order, side "
              "rule and mass model known, amplitudes fitted free), fitted on the training poses, scored on the test "

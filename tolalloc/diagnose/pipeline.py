@@ -119,7 +119,7 @@ class Diagnosis:
         for i, st in enumerate(self.stages):
             for c in st.candidates:
                 rows.append({"step": i + 1, "base": "+".join(("geometric", *st.base)), "base_rms_mm": st.base_rms_mm,
-                             **c.to_dict(), "selected": c.effect == st.selected})
+                             **c.to_dict(), "selected": c.effect == st.selected, "removed": c.effect == st.removed})
         return pd.DataFrame(rows)
 
     def to_dict(self) -> dict:
@@ -129,7 +129,7 @@ class Diagnosis:
             "effect": self.effect,
             "effects": list(self.effects),
             "ranking": [c.to_dict() for c in self.ranking],
-            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none",
+            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
                           "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
             "rms_mm": dict(zip(ba["model"], ba["rms_mm"])),
             "p95_mm": dict(zip(ba["model"], ba["p95_mm"])),
@@ -187,7 +187,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     Parameters
     ----------
     robot : Robot
-    train : Measurements        fitted (and cross-validated with ``folds`` folds)
+    train : Measurements        fitted (and cross-validated with at least ``folds`` folds, more on few poses:
+                                :func:`tolalloc.diagnose.folds.fold_count`)
     test : Measurements, optional  scored only
     alpha : float               family-wise significance level of the selection
     min_gain : float            minimum relative held-out RMS reduction of a selected effect
@@ -239,7 +240,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         bar = progress_bar("residual breakdown")
         where = where_breakdown(robot, train, cal.geometric)
         bar.close()
-    effects = tuple(st.selected for st in stages if st.selected)
+    effects = final.effects  # forward selection, then backward elimination (select._backward)
     geo = cal.geometric if sub is None else replace(cal.geometric, residual_mm=cal.geometric.residual_mm[sub])
     check = parameter_checks(geo, cv_train.q)  # large files: posterior sd from the subsample (conservative)
     guards = list(check.guards())

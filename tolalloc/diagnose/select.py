@@ -13,7 +13,8 @@ squared held-out error (base model - base + candidate). A candidate is *signific
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
 (:func:`robust_rms`) by at least ``min_gain`` (default 2 %). The significant candidate with the lowest clipped
 held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
-``max_effects``: pairs where the data supports both). ``none`` when nothing is significant.
+``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
+beside the others (backward elimination, :func:`_backward`). ``none`` when nothing is significant.
 """
 
 from __future__ import annotations
@@ -24,10 +25,11 @@ import numpy as np
 from scipy.stats import wilcoxon
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
+from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "choose_variant", "evaluate", "score_test",
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate", "score_test",
            "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
 
 
@@ -118,54 +120,7 @@ class Stage:
     base_rms_mm: float
     candidates: tuple
     selected: str | None
-
-
-CV_SCHEMES = ("blocked", "time", "joint", "random")
-
-
-def make_folds(meas, k: int, scheme: str = "blocked", seed: int = 0) -> list:
-    """Cross-validation folds (sorted index arrays partitioning the poses).
-
-    ``time``: ``k`` contiguous blocks in row (time) order; ``joint``: ``k`` contiguous regions of joint space
-    (k-means on the joint values scaled by their training range, seeded); ``random``: a random partition
-    (only on request: neighbouring poses in time or joint space then sit on both sides of a split and flatter
-    a model that interpolates). ``blocked`` is ``time`` here; :class:`_Context` adds the ``joint`` folds to it.
-    Repeated measurements of one pose always fall in the same fold.
-    """
-    if scheme not in CV_SCHEMES:
-        raise ValueError(f"cv: expected one of {', '.join(CV_SCHEMES)}, got {scheme!r}")
-    groups = meas.pose_groups()
-    G = int(groups.max()) + 1
-    k = max(2, min(k, G))
-    if scheme == "random":
-        label = np.zeros(G, int)
-        label[np.random.default_rng(seed).permutation(G)] = np.arange(G) % k
-    elif scheme == "joint":
-        first = np.unique(groups, return_index=True)[1]
-        q = meas.q[first]
-        z = (q - q.min(0)) / np.maximum(np.ptp(q, axis=0), 1e-12)
-        label = _kmeans(z, k, seed)
-    else:
-        label = np.minimum(np.arange(G) * k // G, k - 1)  # groups are numbered in order of first appearance
-    folds = [np.flatnonzero(label[groups] == i) for i in range(k)]
-    return [f for f in folds if len(f)]
-
-
-def _kmeans(z: np.ndarray, k: int, seed: int, iters: int = 30) -> np.ndarray:
-    """Labels of a small seeded k-means (k-means++ start), shape (N,)."""
-    rng = np.random.default_rng(seed)
-    c = [z[rng.integers(len(z))]]
-    for _ in range(1, k):
-        d = np.min([np.sum((z - ci) ** 2, 1) for ci in c], axis=0)
-        c.append(z[rng.choice(len(z), p=d / d.sum())] if d.sum() > 0 else z[rng.integers(len(z))])
-    c = np.array(c)
-    for _ in range(iters):
-        lab = np.argmin(((z[:, None, :] - c[None]) ** 2).sum(-1), axis=1)
-        c_new = np.array([z[lab == i].mean(0) if np.any(lab == i) else c[i] for i in range(k)])
-        if np.allclose(c_new, c):
-            break
-        c = c_new
-    return lab
+    removed: str | None = None  # backward step (:func:`_backward`): the effect dropped from ``base``, if any
 
 
 def robust_rms(res: np.ndarray, clip_mm: float) -> float:
@@ -185,13 +140,14 @@ class _Context:
     def __init__(self, cal, train, test, folds, seed, test_frame, tol, cv="blocked", gear_ratio=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
         self.cv = cv
-        self.folds = make_folds(train, folds, cv, seed)
-        self.folds_joint = make_folds(train, folds, "joint", seed) if cv == "blocked" else []
+        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
+        k = fold_count(folds, *self.J_fixed.shape)
+        self.folds = make_folds(train, k, cv, seed)
+        self.folds_joint = make_folds(train, k, "joint", seed) if cv == "blocked" else []
         self.bases, self.bases_test, self.reasons = {}, {}, {}
         t = cal.geometric.t_mm
         self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
-        self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         res = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's residual on these poses
         for e in EFFECTS:
             ok, why = applicable(e, train)
@@ -233,7 +189,10 @@ def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.n
 
     Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
     and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
-    outliers do not pick the variant. ``BIC = n log(RSS / n) + M log n`` (``n`` = 3P rows, ``M`` columns).
+    outliers do not pick the variant. ``BIC = n log(RSS / (n - M)) + M log n`` with ``n`` the residual degrees
+    of freedom (3P rows minus the fixed columns) and ``M`` the variant's columns: the noise variance is estimated
+    from the degrees of freedom the variant leaves, so on few poses a many-column variant (e.g. two harmonics on
+    every joint) cannot win by fitting the noise of a nearly interpolated residual.
     ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
     fit was made on those very poses; a subsampled diagnosis passes the subsample's).
     """
@@ -244,14 +203,15 @@ def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.n
     r = r - Q @ (Q.T @ r)
     s = 1.4826 * np.median(np.abs(r - np.median(r)))
     r = np.clip(r, -3 * s, 3 * s)
-    n = len(r)
+    n = len(r) - Q.shape[1]  # residual degrees of freedom left by the fixed columns
     best, best_bic = cands[0], np.inf
     for c in cands:
-        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(n, -1)
+        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
         Jc = Jc - Q @ (Q.T @ Jc)
         beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
         rss = float(np.sum((r - Jc @ beta) ** 2))
-        bic = n * np.log(max(rss, 1e-300) / n) + np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max())) * np.log(n)
+        M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
+        bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
         if bic < best_bic:
             best, best_bic = c, bic
     return best
@@ -372,7 +332,44 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             break
         chosen = (*chosen, best.effect)
         current = cand_evals[best.effect]
+    current = _backward(ctx, current, evals, stages, clip, alpha, min_gain)
     return stages, evals, current
+
+
+def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, min_gain) -> Evaluation:
+    """Backward elimination after the forward steps: drop an effect the others have made redundant.
+
+    Gravity-driven effects overlap (joint compliance ``c_j tau_j``, gravity-held backlash ``b_j sign(tau_j)``,
+    beam sag): the first forward step may pick the one that best explains their *sum* as a proxy, and the
+    true two are added after it. Each selected effect must therefore still pay its way beside the others:
+    the full model has to beat the model without it by the forward rule (Wilcoxon ``p < alpha / m`` over the
+    ``m`` selected effects, clipped gain >= ``min_gain``); else the weakest such effect is dropped (a
+    :class:`Stage` with ``removed`` set), and the test is repeated on what is left. In such a stage each
+    candidate's scores are those of the model *without* it, its gain what keeping it gains.
+    """
+    while len(current.effects) > 1:
+        m, tests = len(current.effects), []
+        for e in current.effects:
+            rest = tuple(x for x in current.effects if x != e)
+            label = "+".join(("geometric", *rest))
+            ev = evals.get(label) or evaluate(ctx, rest)
+            evals[label] = ev
+            r, r_rest = robust_rms(current.selection_mm, clip), robust_rms(ev.selection_mm, clip)
+            p = _pvalue(ev.selection_mm, current.selection_mm, clip)
+            gain = 100.0 * (1.0 - r / r_rest)
+            keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
+            n_e = sum(nm.startswith(e + ":") for nm in current.param_names)
+            why = "backward step: " + ("" if keep else "not ") + "significant beside the others"
+            t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
+            tests.append((gain, Candidate(e, True, why, n_e, ev.heldout_rms_mm, rms(ev.oof_mm), t_rms, p, gain, keep,
+                                          r_rest, ctx.bases[e].variant), ev))
+        gain, cand, ev = min(tests, key=lambda x: x[0])
+        stages.append(Stage(current.effects, current.heldout_rms_mm, tuple(c for _, c, _ in tests), None,
+                            None if cand.significant else cand.effect))
+        if cand.significant:
+            break
+        current = ev
+    return current
 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
