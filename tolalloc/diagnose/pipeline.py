@@ -14,6 +14,7 @@ from tolalloc.diagnose.calibrate import DEFAULT_TOL, Calibration, Fit, calibrate
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
+from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import (Extrapolation, ParameterCheck, PoseUncertainty, cv_fallback,
                                      extrapolation_flags, parameter_checks, prediction_uncertainty)
 from tolalloc.diagnose.measurements import Measurements
@@ -245,6 +246,10 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     check = parameter_checks(geo, cv_train.q)  # large files: posterior sd from the subsample (conservative)
     guards = list(check.guards())
     chosen, msgs = cv_fallback(nominal, geometric, final)
+    if chosen is final and "joint_compliance" in final.effects:
+        Btr = np.concatenate([ctx.bases[e].B for e in final.effects], axis=2)[:, :, final.keep]
+        fit_cv = final.fit if sub is None else replace(final.fit, residual_mm=final.fit.residual_mm[sub])
+        guards.extend(compliance_sign_flags(fit_cv, ctx.train.q, Btr, final.param_names))
     guards.extend(msgs)
     fallback = None
     if chosen is not final:
