@@ -1,7 +1,6 @@
 """Guards of the diagnosis on constructed cases: extrapolation, implausible (prior) parameters, CV fallback."""
 
 import numpy as np
-import pytest
 from scipy.spatial.transform import Rotation
 
 import tolalloc

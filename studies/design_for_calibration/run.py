@@ -32,7 +32,7 @@ import pandas as pd  # noqa: E402
 from tolalloc import load_robot  # noqa: E402
 from tolalloc.allocate.calibrated import allocate_calibrated  # noqa: E402
 from tolalloc.allocate.problem import build_problem  # noqa: E402
-from tolalloc.calibration import make_plan, split_errors  # noqa: E402
+from tolalloc.calibration import split_errors  # noqa: E402
 from tolalloc.calibration.design import candidate_poses, design_plan  # noqa: E402
 from tolalloc.errormodel import build_error_model  # noqa: E402
 from tolalloc.verify.calibrated import verify_calibration  # noqa: E402

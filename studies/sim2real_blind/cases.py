@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 from scipy.spatial.transform import Rotation
 
-from physics import EFFECT_NAMES, _perturbed_ops, describe, gravity_torque, walk
+from physics import _perturbed_ops, describe, gravity_torque, walk
 
 DT_S = 30.0
 
