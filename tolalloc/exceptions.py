@@ -24,7 +24,10 @@ class TolallocError(ValueError):
 
 @contextlib.contextmanager
 def signals_deferred():
-    """Hold SIGINT / SIGTERM back during a native call that would trap the Python handler's exception.
+    """Hold SIGINT / SIGTERM back during the block; they are delivered right after it.
+
+    Used around a native call that would trap the Python handler's exception, and around publishing outputs
+    (an interrupt never lands between a rename and its record).
 
     CasADi turns an exception raised by a signal handler during IPOPT into a solver stop (with a warning on
     stderr) and carries on; held back, the signal is delivered right after the call and interrupts as usual.
@@ -34,7 +37,11 @@ def signals_deferred():
         yield
         return
     sigs = {signal.SIGINT, signal.SIGTERM}
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
+    try:
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
+    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
+        yield
+        return
     try:
         yield
     finally:

@@ -20,13 +20,12 @@ import contextlib
 import json
 import os
 import shutil
-import signal
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError, raise_if_interrupted
+from tolalloc.exceptions import TolallocError, raise_if_interrupted, signals_deferred
 
 __all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
            "directory_lock", "published"]
@@ -132,21 +131,6 @@ def directory_lock(path: Path):
         os.close(fd)
 
 
-@contextlib.contextmanager
-def _signals_held():
-    """Hold SIGINT / SIGTERM back during the block (delivered right after it); main thread only."""
-    sigs = {signal.SIGINT, signal.SIGTERM}
-    try:
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
-    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
-        yield
-        return
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
-
-
 def published(reset: bool = False) -> list:
     """Paths published by :func:`atomic_output` so far (a copy); ``reset`` empties the record first."""
     if reset:
@@ -184,7 +168,7 @@ def _direct_output(path: Path):
         yield tmp
         raise_if_interrupted()
         try:
-            with _signals_held(), open(path, "wb") as dst:
+            with signals_deferred(), open(path, "wb") as dst:
                 dst.write(tmp.read_bytes() if tmp.exists() else b"")
         except OSError as exc:
             raise _cannot_write(path, False, exc) from None
@@ -229,7 +213,7 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
             yield tmp
             raise_if_interrupted()
             try:
-                with _signals_held():  # an interrupt is delivered after the record below, never between
+                with signals_deferred():  # an interrupt is delivered after the record below, never between
                     if directory:
                         os.chmod(tmp, 0o777 & ~_umask())  # mkdtemp makes 0o700
                         _publish_dir(tmp, path)
@@ -269,7 +253,7 @@ def output_group():
     with contextlib.ExitStack() as stack:
         yield _Group(stack)
         raise_if_interrupted()
-        with _signals_held():
+        with signals_deferred():
             stack.close()
 
 
