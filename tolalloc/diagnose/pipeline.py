@@ -20,7 +20,8 @@ from tolalloc.diagnose.guards import (Extrapolation, ParameterCheck, PoseUncerta
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.register import REGISTER_N, RegistrationSplit, register_and_score, register_count
 from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
-from tolalloc.diagnose.select import Evaluation, align_basis, error_stats, evaluate, make_context, score_test, select_effects
+from tolalloc.diagnose.select import (Evaluation, align_basis, error_stats, evaluate, kept_basis, make_context, score_test,
+                                      select_effects)
 from tolalloc.diagnose.where import WhereBreakdown, where_breakdown
 
 __all__ = ["Diagnosis", "diagnose", "MIN_SUBSAMPLE_ROWS"]
@@ -247,7 +248,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     guards = list(check.guards())
     chosen, msgs = cv_fallback(nominal, geometric, final)
     if chosen is final and "joint_compliance" in final.effects:
-        Btr = np.concatenate([ctx.bases[e].B for e in final.effects], axis=2)[:, :, final.keep]
+        Btr = kept_basis(ctx.bases, final)
         fit_cv = final.fit if sub is None else replace(final.fit, residual_mm=final.fit.residual_mm[sub])
         guards.extend(compliance_sign_flags(fit_cv, ctx.train.q, Btr, final.param_names))
     guards.extend(msgs)
@@ -309,10 +310,7 @@ def _all_rows(ctx, train, cal: Calibration, nominal: Evaluation, geometric: Eval
 def _uncertainty(ctx, final: Evaluation) -> tuple:
     """Predicted uncertainty of ``final`` on the test poses and, with ``refit``, the re-registered final fit."""
     fit, test = final.fit, ctx.test
-    Btr = Bte = None
-    if final.effects:
-        Btr = np.concatenate([ctx.bases[e].B for e in final.effects], axis=2)[:, :, final.keep]
-        Bte = np.concatenate([ctx.bases_test[e].B for e in final.effects], axis=2)[:, :, final.keep]
+    Btr, Bte = kept_basis(ctx.bases, final), kept_basis(ctx.bases_test, final)
     if ctx.registration is None:
         return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte), None
     extra = np.zeros((test.n_poses, 3)) if Bte is None else Bte @ fit.beta

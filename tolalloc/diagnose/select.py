@@ -29,8 +29,8 @@ from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
 
-__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate", "score_test",
-           "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
+__all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
+           "kept_basis", "score_test", "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
 
 
 def rms(res: np.ndarray) -> float:
@@ -223,6 +223,13 @@ def _stack(bases: dict, effects) -> tuple:
     B = np.concatenate([bases[e].B for e in effects], axis=2)
     names = tuple(f"{e}:{nm}" for e in effects for nm in bases[e].names)
     return B, names
+
+
+def kept_basis(bases: dict, ev: Evaluation):
+    """The effect columns ``ev`` kept, on the poses of ``bases`` (``ctx.bases`` or ``ctx.bases_test``), shape
+    (P, 3, m) [mm per unit]; None for a model without effects."""
+    B, _ = _stack(bases, ev.effects)
+    return None if B is None else B[:, :, ev.keep]
 
 
 def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evaluation:
