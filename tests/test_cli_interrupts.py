@@ -211,3 +211,23 @@ def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypat
     assert code == 130
     assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
     assert list(tmp_path.iterdir()) == []
+
+
+def test_signals_deferred_holds_a_signal_another_thread_receives():
+    # regression: a thread signal mask held SIGINT back only in the main thread; the kernel delivered it to
+    # another thread (BLAS, solver, here a timer) and Python ran the handler in the main thread inside the
+    # block anyway -- CasADi then printed a KeyboardInterruptException warning from inside IPOPT
+    import threading
+
+    from tolalloc.exceptions import signals_deferred
+
+    seen = []
+    with pytest.raises(KeyboardInterrupt):
+        with signals_deferred():
+            timer = threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT))
+            timer.start()
+            for _ in range(100):  # Python code running in the block, as a solver's callbacks do
+                time.sleep(0.01)
+            seen.append("block finished")
+    assert seen == ["block finished"]  # delivered after the block, not inside it
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

@@ -8,6 +8,7 @@ stderr and a non-zero exit.
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import threading
 from typing import Any
@@ -27,25 +28,40 @@ def signals_deferred():
     """Hold SIGINT / SIGTERM back during the block; they are delivered right after it.
 
     Used around a native call that would trap the Python handler's exception, and around publishing outputs
-    (an interrupt never lands between a rename and its record).
+    (an interrupt never lands between a rename and its record). CasADi turns an exception raised by a signal
+    handler during IPOPT (its callbacks run Python code) into a solver stop with a warning on stderr and carries
+    on; held back, the signal interrupts as usual right after the call.
 
-    CasADi turns an exception raised by a signal handler during IPOPT into a solver stop (with a warning on
-    stderr) and carries on; held back, the signal is delivered right after the call and interrupts as usual.
-    Main thread only (elsewhere a no-op).
+    The Python-level handlers are swapped for one that only records the signal, and the recorded signal is then
+    handed to the previous handler (re-sent to the process if that was the default action). A thread signal
+    mask would not do: the kernel delivers a process signal to any thread that does not block it (BLAS and
+    solver threads), and Python then runs the handler in the main thread inside the call anyway.
+    Main thread only (elsewhere a no-op, as Python runs handlers only there).
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    sigs = {signal.SIGINT, signal.SIGTERM}
-    try:
-        old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
-    except (AttributeError, ValueError, OSError):  # pragma: no cover - not POSIX
-        yield
-        return
+    got: list = []
+
+    def hold(signum, frame):
+        got.append(signum)
+
+    old = {s: signal.signal(s, hold) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        for s, h in old.items():
+            signal.signal(s, h)
+        if got:
+            _deliver(got[0], old[got[0]])
+
+
+def _deliver(signum: int, handler) -> None:
+    """Hand a held signal to ``handler`` as the process would have."""
+    if callable(handler):
+        handler(signum, None)
+    elif handler == signal.SIG_DFL:
+        os.kill(os.getpid(), signum)
 
 
 def interruptible(fn, *args, **kwargs):
