@@ -28,6 +28,23 @@ Effects (each an amplitude vector that enters the walk itself, not a first-order
                       first-order lag (tau 15-45 min) or a motor warm-up ``(1 - exp(-t/tau))`` that the logged
                       (ambient) temperature does not show.
 ``transmission``      ``dq_j = a_j sin(k q_j) + b_j cos(k q_j)``, ``k`` = 1 (once per revolution) or 2.
+
+Physics added for issue 25 (each differs from the diagnosis's bases):
+
+* thermal from the **motion history** (:func:`motion_temperatures`): every joint's motor heats with its own
+  power times the joint speed between poses, through a first-order lag (tau_m); every link's temperature
+  follows the mean of its two motors through a second lag (tau_l); every link its own expansion coefficient.
+  The logged ``temperature_c`` is the ambient only. (The diagnosis has one lag and equal weights per joint.)
+* **telescopic-guide deflection** (``walk(guide=...)``): at the prismatic joint the stage tilts in its guide
+  about the horizontal axis perpendicular to it, by ``theta = M / (k b(s)^2) + c_r tanh(M / M0) / b(s)``: two
+  bearings at spacing ``b(s) = b0 + (s_max - s)`` (the overlap shrinks as the stage extends) with compliance and
+  a gravity-closed radial clearance. ``M``: moment of a downstream weight at the probe's horizontal lever arm.
+  (The diagnosis's guide basis is linear in ``M`` and ``M s``.)
+* **friction-banded backlash**: the gear sits on the gravity flank where ``|tau|`` exceeds a friction torque
+  (5-25 % of its range), on the approach flank below it. (The diagnosis has a fixed 10 % band or a tanh.)
+* **periodic bumps** (:func:`periodic_bumps`): a joint error made of von Mises bumps
+  ``a exp(kappa (cos(q - c) - 1))`` (kappa 20-60) on the arm joints -- periodic per revolution but not a
+  finite harmonic series.
 """
 
 from __future__ import annotations
@@ -132,7 +149,43 @@ def _perturbed_ops(desc: Description, geo: np.ndarray) -> list:
     return ops
 
 
-def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None, gravity=np.array([0, 0, -1.0])):
+def motion_temperatures(q: np.ndarray, time_s: np.ndarray, power: np.ndarray, tau_m_s: float, tau_l_s: float,
+                        link_joints: list) -> np.ndarray:
+    """Link temperature rises (P, L) from the motion history (module docstring); ``link_joints``: per link the
+    joints at its ends."""
+    dt = np.diff(time_s)
+    heat = np.vstack([np.zeros(q.shape[1]), np.abs(np.diff(q, axis=0)) / dt[:, None]]) * power
+    motor = np.zeros_like(heat)
+    for i in range(1, len(q)):
+        motor[i] = motor[i - 1] + (1 - np.exp(-dt[i - 1] / tau_m_s)) * (heat[i] - motor[i - 1])
+    drive = np.column_stack([motor[:, js].mean(axis=1) for js in link_joints])
+    link = np.zeros_like(drive)
+    for i in range(1, len(q)):
+        link[i] = link[i - 1] + (1 - np.exp(-dt[i - 1] / tau_l_s)) * (drive[i] - link[i - 1])
+    return link
+
+
+def periodic_bumps(q: np.ndarray, centres: np.ndarray, kappa: np.ndarray, amps: np.ndarray, joints) -> np.ndarray:
+    """Joint errors (P, n) made of von Mises bumps: for each (joint, centre, kappa, amplitude)."""
+    dq = np.zeros_like(q)
+    for j, c, k, a in zip(joints, centres, kappa, amps):
+        dq[:, j] += a * np.exp(k * (np.cos(q[:, j] - c) - 1.0))
+    return dq
+
+
+def trans_links(ops: list) -> list:
+    """Per "trans" operation of ``ops`` (in order) the number of joint operations before it (its link)."""
+    out, joints = [], 0
+    for op in ops:
+        if op[0] == "trans":
+            out.append(joints)
+        elif op[0] == "joint":
+            joints += 1
+    return out
+
+
+def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None, gravity=np.array([0, 0, -1.0]),
+         guide=None):
     """Forward kinematics by walking the local operations; probe point and joint data in the base frame.
 
     Parameters
@@ -140,8 +193,11 @@ def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None
     ops : list of operations (see :class:`Description`); a joint op may carry a 5th entry, its offset
     q : array, shape (P, n) [rad, mm]
     tool_mm : array, shape (3,), probe offset in the last frame [mm]
-    growth : array, shape (P,), optional   relative length change of every translation (thermal)
+    growth : array, shape (P,) or (P, T), optional   relative length change of every translation (thermal), or of
+        each of the ``T`` translation operations in order
     sag : tuple (c (S,), r), optional      beam sag compliance per segment and tip-load ratio
+    guide : tuple (j, rotvec (P, 3)), optional   tilt of the stage of prismatic joint ``j`` in its guide (base frame
+        rotation vector about the guide point, before the stage extends)
 
     Returns
     -------
@@ -152,7 +208,8 @@ def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None
     R = np.broadcast_to(np.eye(3), (P, 3, 3)).copy()
     p = np.zeros((P, 3))
     joints, segs, seg_start, s_i = [], [], None, 0
-    grow = np.ones(P) if growth is None else 1.0 + growth
+    grow = np.ones((P, 1)) if growth is None else 1.0 + np.asarray(growth, float).reshape(P, -1)
+    t_i = 0
 
     def close_segment(end, end_joint):
         nonlocal R, p, s_i
@@ -174,7 +231,9 @@ def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None
 
     for op in ops:
         if op[0] == "trans":
-            p = p + grow[:, None] * (R @ op[1])
+            g_op = grow[:, min(t_i, grow.shape[1] - 1)]
+            p = p + g_op[:, None] * (R @ op[1])
+            t_i += 1
         elif op[0] == "rot":
             R = R @ op[1]
         else:
@@ -188,6 +247,8 @@ def walk(ops: list, q: np.ndarray, tool_mm: np.ndarray, *, growth=None, sag=None
                 R = R @ _rot(w, q[:, j] + z)
             else:
                 joints.append((p.copy(), R @ w, False))
+                if guide is not None and guide[0] == j:  # the stage tilts about the guide point, then extends
+                    R = Rotation.from_rotvec(guide[1]).as_matrix() @ R
                 p = p + (R @ w) * (q[:, j] + z)[:, None]
     x = p + R @ tool_mm
     if seg_start is not None:

@@ -19,7 +19,17 @@ import numpy as np
 import pandas as pd
 
 JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"]
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "ipa-ur10"
+
+
+def _data_dir() -> Path:
+    """``shared/data/ipa-ur10`` beside the nearest ancestor folder that has one (repository or git worktree)."""
+    for up in Path(__file__).resolve().parents:
+        if (up / "shared" / "data" / "ipa-ur10").is_dir():
+            return up / "shared" / "data" / "ipa-ur10"
+    return Path(__file__).resolve().parents[3] / "shared" / "data" / "ipa-ur10"
+
+
+DATA = _data_dir()
 SERIES = {"A": "Series_A/measurements_grid.csv", "C": "Series_C/measurements_random_poses.csv"}
 
 

@@ -4,16 +4,21 @@ and how far the held-out error shrinks once the effect is added.
 Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.geometry` (the complete, minimal geometric
 calibration model; the paper's error-screw model stays the tolerance model), :mod:`.calibrate` (registration,
 target offset, identifiable geometric errors, MAP), :mod:`.guards` (implausible parameters, extrapolation,
-CV fallback), :mod:`.effects` (candidate effects), :mod:`.select` (held-out scoring and
-selection), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`), :mod:`.synth`
+CV fallback), :mod:`.effects` and :mod:`.thermal` (candidate effects), :mod:`.choice` and :mod:`.evidence`
+(variant choice, fitted priors), :mod:`.select` (held-out scoring and selection on the training file),
+:mod:`.verdict` (effect / none / ambiguous / inconclusive), :mod:`.where` (residual breakdown),
+:mod:`.pipeline` (:func:`diagnose`; the test file is sealed until the model is chosen), :mod:`.synth`
 (synthetic measurement sets with a withheld effect), :mod:`.report` (Markdown report).
 """
 
 from tolalloc.diagnose.calibrate import Calibration, Fit, Identifiability, calibrate
 from tolalloc.diagnose.effects import EFFECTS
 from tolalloc.diagnose.measurements import Measurements, measurements_from_frame, read_measurements
-from tolalloc.diagnose.pipeline import Diagnosis, diagnose
+from tolalloc.diagnose.diagnosis import Diagnosis
+from tolalloc.diagnose.pipeline import diagnose
+from tolalloc.diagnose.verdict import VERDICTS, Verdict
 from tolalloc.diagnose.synth import LABELS, SynthCase, generate
 
 __all__ = ["EFFECTS", "LABELS", "Measurements", "read_measurements", "measurements_from_frame", "calibrate",
-           "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase"]
+           "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase", "Verdict",
+           "VERDICTS"]

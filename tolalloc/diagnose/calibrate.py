@@ -40,10 +40,22 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
-from tolalloc.diagnose.scale import CHUNK_ROWS, Problem, count_fit, point_kinematics, robust_scale, solve, subsample_index
+from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, count_fit, norm_scale, point_kinematics, robust_scale,
+                                     solve, subsample_index)
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
-           "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL"]
+           "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C", "TUKEY_C",
+           "OUTLIER_C", "outlier_rows"]
+
+#: Robust loss of the diagnosis's fits (see :func:`fit_model`).
+DEFAULT_LOSS = "tukey"
+#: Huber threshold in units of the median 3-D residual norm (~3.1 sd per coordinate for Gaussian noise).
+HUBER_C = 2.0
+#: Tukey threshold in units of the median 3-D residual norm (~6.2 sd per coordinate: a Gaussian 3-D error
+#: exceeds it with probability ~1e-7, so only gross errors lose all weight).
+TUKEY_C = 4.0
+#: A pose whose 3-D residual exceeds this many median residual norms is listed as an outlier (any loss).
+OUTLIER_C = TUKEY_C
 
 
 def kabsch(a: np.ndarray, b: np.ndarray):
@@ -70,7 +82,11 @@ class Fit:
     beta_index : array of int    fitted effect parameters
     effect_names : tuple of str
     residual_mm : array, shape (P, 3)  measured - predicted, tracker frame
-    f_scale_mm : float           robust loss scale used
+    f_scale_mm : float           robust loss scale used (Huber / Tukey: the threshold on the 3-D residual norm)
+    loss : str                   robust loss of the last pass (``none``, ``soft_l1``, ``huber``, ``tukey``)
+    weights : array, shape (P,)  final IRLS weight of every pose (0: rejected by Tukey's biweight)
+    t_prior_mm : (mean (3,), sd (3,)) or None   the prior on the target offset the fit used [mm]
+    beta_prior_w : array, shape (M,) or None     ridge weights of the effect parameters the fit used
     """
 
     model: ErrorModel
@@ -84,6 +100,10 @@ class Fit:
     effect_names: tuple = ()
     residual_mm: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     f_scale_mm: float = 0.0
+    loss: str = "none"
+    weights: np.ndarray | None = None
+    t_prior_mm: tuple | None = None
+    beta_prior_w: np.ndarray | None = None
 
     @property
     def rms_mm(self) -> float:
@@ -117,7 +137,8 @@ def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None
 
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
               robust: bool = True, extra: np.ndarray | None = None, prior: bool = True, n_effects: int | None = None,
-              label: str = "fit", chunk_rows: int | None = None) -> Fit:
+              label: str = "fit", chunk_rows: int | None = None, loss: str | None = None, t_prior=None,
+              beta_prior_w=None) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -134,25 +155,62 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     prior : bool
         MAP: after a plain least-squares pass, add a Gaussian prior ``N(0, model.sigma)`` on every fitted
         geometric parameter (parameters with sigma 0 get none), weighted with the robust noise estimate
-        of the plain pass (``1.4826 MAD`` per coordinate). Registration, offset and effects have no prior.
+        of the plain pass (``1.4826 MAD`` per coordinate). Registration and effects have no prior unless given.
+    loss : {"soft_l1", "huber", "tukey"}, optional
+        Robust loss of the measurement rows after the plain pass (default :data:`DEFAULT_LOSS`; see
+        :mod:`.scale`). ``huber``: threshold :data:`HUBER_C` x the median 3-D residual of the plain pass;
+        ``tukey``: Tukey's biweight with threshold :data:`TUKEY_C` x the median 3-D residual of the plain pass (the
+        median is not moved by a few gross errors; they start far beyond the threshold and keep no weight).
+    t_prior : (mean (3,), sd (3,)) [mm], optional
+        Gaussian prior on the target offset (flange frame), weighted like the geometric prior (noise / sd).
+    beta_prior_w : array, shape (M,), optional
+        Fixed ridge weights of the effect parameters (rows ``w_i beta_i``; ``w = noise / prior sd`` from the
+        effect's own hyper-parameter fit, :mod:`.evidence`).
     label : str   name of the fit on its progress bar (large files)
     chunk_rows : int, optional   poses per chunk of the normal equations (default :data:`~.scale.CHUNK_ROWS`)
     """
+    loss = DEFAULT_LOSS if loss is None else loss
+    if loss not in LOSSES[1:]:
+        raise ValueError(f"loss: expected one of {', '.join(LOSSES[1:])}, got {loss!r}")
     geo_index = start.geo_index if geo_index is None else np.asarray(geo_index, int)
     prob = _Problem(start, q, xyz, geo_index, B, extra, n_effects=n_effects, chunk_rows=chunk_rows)
+    t_sd = None if t_prior is None else np.broadcast_to(np.asarray(t_prior[1], float), (3,))
+    noise0 = robust_scale(start.residual_mm.ravel()) / 3.0 if len(start.residual_mm) else 0.05
+    prob.set_priors(None if t_sd is None else (t_prior[0], noise0 / t_sd), beta_prior_w)
     x, raw = solve(prob, prob.x0(), max_iter=60, label=label)
     sig = start.model.sigma[geo_index]
+    noise = robust_scale(raw.ravel()) / 3.0
     if prior and len(geo_index) and np.any(sig > 0):
-        noise = robust_scale(raw.ravel()) / 3.0
         prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
-    if robust:
+    if t_sd is not None:
+        prob.set_priors((t_prior[0], noise / t_sd), beta_prior_w)
+    if robust and loss == "soft_l1":
         prob.f_scale = robust_scale(raw.ravel())
-    if robust or prob.prior_w.any():
+    elif robust:
+        prob.loss = loss
+        prob.f_scale = (HUBER_C if loss == "huber" else TUKEY_C) * norm_scale(raw)
+    if robust or prob.prior_w.any() or t_sd is not None:
         x, raw = solve(prob, x, max_iter=30, label=label + " (robust)")
     R, p, t, delta, beta = prob.unpack(x)
     count_fit()
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), -raw,
-               prob.f_scale)
+               prob.f_scale, prob.loss if robust else "none", prob.pose_weights(raw),
+               None if t_sd is None else (np.asarray(t_prior[0], float), t_sd),
+               None if beta_prior_w is None else np.asarray(beta_prior_w, float))
+
+
+def outlier_rows(fit: Fit, rows: np.ndarray | None = None, factor: float = OUTLIER_C) -> list:
+    """Poses whose 3-D residual exceeds ``factor`` x the median residual norm of ``fit``: dicts with the file
+    ``row`` (``rows``: 1-based file rows of the poses; default pose number + 1), ``error_mm`` and the IRLS
+    ``weight`` of the fit, largest error first."""
+    e = np.linalg.norm(fit.residual_mm, axis=1)
+    if not len(e):
+        return []
+    idx = np.flatnonzero(e > factor * norm_scale(fit.residual_mm))
+    idx = idx[np.argsort(-e[idx])]
+    rows = np.arange(1, len(e) + 1) if rows is None or not len(rows) else np.asarray(rows)
+    w = fit.weights if fit.weights is not None else np.ones(len(e))
+    return [{"row": int(rows[i]), "error_mm": float(e[i]), "weight": float(w[i])} for i in idx]
 
 
 def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
@@ -184,8 +242,10 @@ class Calibration:
 
 
 def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = None, tol: float = DEFAULT_TOL,
-              robust: bool = True) -> Calibration:
+              robust: bool = True, loss: str | None = None, t_prior=None) -> Calibration:
     """Register the tracker frame, the target offset and the identifiable geometric parameters.
+
+    ``loss``, ``t_prior``: robust loss and target-offset prior of the fits (:func:`fit_model`).
 
     Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
     Files of more than :data:`~tolalloc.diagnose.scale.SUBSAMPLE_ROWS` poses: the identifiability analysis
@@ -199,9 +259,10 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     sub = subsample_index(len(q))
     qs, xyzs = (q, xyz) if sub is None else (q[sub], xyz[sub])
     start = initial_fit(model, qs, xyzs)
+    kw = dict(robust=robust, loss=loss, t_prior=t_prior)
     if sub is not None:
-        start = fit_model(start, qs, xyzs, robust=robust)
-    nominal = fit_model(start, q, xyz, robust=robust, label="nominal calibration")
+        start = fit_model(start, qs, xyzs, **kw)
+    nominal = fit_model(start, q, xyz, label="nominal calibration", **kw)
     ident = identifiability(nominal, qs, tol)
     # structural count: the same robot on a rich pose set; tells how many poses a full calibration needs
     rng = np.random.default_rng(0)
@@ -217,6 +278,6 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     geo = np.array([model.index(n) for n in ident.identifiable], int)
     start = replace(nominal, geo_index=geo)
     if sub is not None:
-        start = fit_model(start, qs, xyzs, geo_index=geo, robust=robust)
-    geometric = fit_model(start, q, xyz, geo_index=geo, robust=robust, label="geometric calibration")
+        start = fit_model(start, qs, xyzs, geo_index=geo, **kw)
+    geometric = fit_model(start, q, xyz, geo_index=geo, label="geometric calibration", **kw)
     return Calibration(nominal, geometric, ident, len(qs))

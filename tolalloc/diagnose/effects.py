@@ -22,17 +22,32 @@ those the data can carry.
                       (``h`` horizontal overhang [m]), slope ``1.5 k h^2 / 1000`` [rad]; ``beam``: Euler-Bernoulli
                       cantilever under its own weight and a tip load, ``drop = (w L^4/8 + f L^3/3) cos(phi)``,
                       ``slope = (w L^3/6 + f L^2/2) cos(phi) / 1000`` (``L`` [m], ``phi`` the elevation).
+                      Robots with a prismatic joint also get ``guide``: the telescopic stage tilts in its guide
+                      (bearing compliance or clearance) about the axis perpendicular to the stage and to gravity,
+                      by ``g M`` [rad per N m] with ``M`` the bending moment of the masses beyond the guide about the
+                      guide point (robot masses + logged payload, and a 1 kg tip mass as a second column); the
+                      target moves by ``omega x (p - p_guide)``. ``guide+overlap`` adds the same columns times the
+                      extension ``s / stroke`` (the guide's bearing overlap shortens as the stage extends);
+                      ``beam+guide`` both mechanisms.
 ``backlash``          ``dq_j = b_j s_j`` (half the backlash [rad or mm]); side ``s_j``: ``approach`` (needs
-                      ``dir1..dirN``) or ``gravity`` (the sign of the gravity torque holds the gear on one flank).
-``thermal``           every link length grows by ``alpha dT L``; ``alpha`` [1e-6/K]. ``dT``: ``temperature``
-                      (logged ``temperature_c`` minus the training mean), ``lag_<tau>min`` (the log through a
-                      first-order lag, time constant fitted on the grid :data:`LAG_MIN`; needs ``time_s``) or
-                      ``warmup_<tau>min`` (``1 - exp(-(t - t0)/tau)`` per unit of growth [1e-6], time driven;
-                      needs ``time_s``).
+                      ``dir1..dirN``), ``gravity`` (the sign of the gravity torque holds the gear on one flank),
+                      ``gravity_soft`` (``tanh(tau / (0.1 range))``: a preload that builds up with the torque) or
+                      ``preload`` (gravity side where ``|tau|`` exceeds 10 % of its range, the approach direction
+                      below: friction, not gravity, decides in the dead band; needs ``dir``).
+``thermal``           link growth (:mod:`.thermal`): driven by the logged temperature (``temperature``,
+                      ``lag_<tau>min``), by a warm-up with time (``warmup_<tau>min``, one growth;
+                      ``links_warmup_<tau>min``, one per link) or by the motion history (``activity_<tau>min``:
+                      per link the lagged speed of the joints at its ends). Time-driven variants need a usable
+                      ``time_s`` (:func:`.thermal.time_problem`).
 ``transmission``      joint-side harmonics ``dq_j = sum_k a_jk sin(k q_j) + b_jk cos(k q_j)`` per revolute
-                      joint, orders ``1x`` (once per revolution), ``1x2x``, ``2x3x``; ``motor`` adds the
-                      motor-side once-per-motor-revolution term ``sin(N_j q_j), cos(N_j q_j)`` when the gear
-                      ratios ``N`` are known (``ref["gear_ratio"]``).
+                      joint, orders ``1x`` (once per revolution), ``1x2x``, ``2x3x``, ``series<K>`` (all orders
+                      1..K: the output-side kinematic error of a strain-wave gear -- flexspline / circular-spline
+                      runout and pitch errors -- and encoder eccentricity; only when the file has at least
+                      ``2 K n_rev / 1.5`` poses); ``motor`` adds the once-per-motor-revolution term
+                      ``sin(N_j q_j), cos(N_j q_j)`` when the gear ratios ``N`` are known (``ref["gear_ratio"]``).
+                      Every transmission variant carries a Gaussian prior per joint (``groups``) whose scale is
+                      fitted by marginal likelihood on the training residual (:mod:`.evidence`): a ridge, so a
+                      long series does not fit noise.
 """
 
 from __future__ import annotations
@@ -41,20 +56,24 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Mass, Robot
 from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.thermal import LAG_MIN, lagged, thermal_bases, thermal_variants, time_problem
 
 __all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_bases", "effect_reference", "applicable", "variants", "gravity_torques",
-           "robot_masses", "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian", "lagged"]
+           "robot_masses", "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian", "lagged",
+           "LAG_MIN", "SERIES_ORDERS", "guide_joints"]
 
 EFFECTS = ("joint_compliance", "link_deflection", "backlash", "thermal", "transmission")
 DEFAULT_KG_PER_M = 10.0
 MIN_OVERHANG_MM = 200.0
 G = 9.81
-LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
+#: Highest orders of the ``series<K>`` transmission variants.
+SERIES_ORDERS = (6, 12, 24, 36)
+#: Dead band of the ``preload`` backlash side and width of ``gravity_soft``, as a fraction of the torque's range.
+PRELOAD_BAND = 0.1
 
 
 @dataclass(frozen=True, eq=False)
@@ -68,12 +87,18 @@ class EffectBasis:
         Parameter names with their unit, e.g. ``c_j2 [rad/(N m)]``.
     B : array, shape (P, 3, M) [mm per unit parameter], robot base frame.
     variant : str
+    groups : array of int, shape (M,), or None
+        Columns sharing one prior scale (transmission: per joint); None: no prior.
+    prior_w : array, shape (M,), or None
+        Ridge weights ``noise sd / prior sd`` fitted on the training residual (set by the variant choice).
     """
 
     effect: str
     names: tuple
     B: np.ndarray
     variant: str = ""
+    groups: np.ndarray | None = None
+    prior_w: np.ndarray | None = None
 
 
 def target_points(robot: Robot, q: np.ndarray, t_mm: np.ndarray) -> np.ndarray:
@@ -193,6 +218,40 @@ def _link_deflection(robot: Robot, q, p_t, variant="tip"):
     return np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0)), names
 
 
+def guide_joints(robot: Robot) -> list:
+    """Prismatic joints that are telescopic stages: a revolute joint before them (the stage can swing)."""
+    rev = robot.revolute_mask
+    return [j for j in range(robot.n_joints) if not rev[j] and rev[:j].any()]
+
+
+def _guide_deflection(robot: Robot, q, p_t, payload_kg=None, overlap: bool = False):
+    """Tilt of every telescopic stage in its guide (module docstring), columns (P, 3, m) and names."""
+    Pm = poe_prefix(robot.screws, q)
+    g = np.asarray(robot.gravity, dtype=float)
+    cols, names = [], []
+    masses = robot_masses(robot)
+    for j in guide_joints(robot):
+        pg = _point_at(Pm[:, j], robot.joint_points_mm[j])
+        u = Pm[:, j, :3, :3] @ robot.joints[j].axis
+        loads = np.zeros((len(q), 3))
+        for m in masses:
+            if m.body > j:
+                c = Pm[:, m.body, :3, :3] @ m.com_mm + Pm[:, m.body, :3, 3]
+                loads += np.cross((c - pg) / 1000.0, m.mass_kg * G * g)
+        tip = np.cross((p_t - pg) / 1000.0, G * g)  # per kg at the target
+        if payload_kg is not None:
+            loads = loads + np.asarray(payload_kg, float)[:, None] * tip
+        ext = (q[:, j] - robot.lower[j]) / max(robot.upper[j] - robot.lower[j], 1e-9)
+        terms = [("g", loads, "rad/(N m)"), ("gt", tip, "rad/kg")]
+        if overlap:
+            terms += [("gs", loads * ext[:, None], "rad/(N m)"), ("gts", tip * ext[:, None], "rad/kg")]
+        for lab, M, unit in terms:
+            Mb = M - np.einsum("pi,pi->p", M, u)[:, None] * u  # bending part (torsion about the stage excluded)
+            cols.append(np.cross(Mb, p_t - pg))
+            names.append(f"{lab}_{robot.joints[j].name} [{unit}]")
+    return np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0)), names
+
+
 def _one_joint(P, n, j, values):
     a = np.zeros((P, n))
     a[:, j] = values
@@ -224,13 +283,24 @@ def joint_effect_dq(effect: str, robot: Robot, q, direction=None, *, variant: st
                 names.append(f"d_{robot.joints[j].name} [{unit[j]}/kg]")
     elif effect == "backlash":
         scale = np.abs(tau).max(0, keepdims=True)
-        side = np.where(np.abs(tau) > 1e-6 * scale, np.sign(tau), 0.0) if variant == "gravity" else direction
+        span = np.maximum(np.ptp(tau, axis=0, keepdims=True), 1e-12)
+        if variant == "gravity":
+            side = np.where(np.abs(tau) > 1e-6 * scale, np.sign(tau), 0.0)
+        elif variant == "gravity_soft":
+            side = np.tanh(tau / (PRELOAD_BAND * span))
+        elif variant == "preload":
+            side = np.where(np.abs(tau) > PRELOAD_BAND * span, np.sign(tau), direction)
+        else:
+            side = direction
         for j in range(n):
             if np.any(side[:, j] != side[0, j]):
                 cols.append(_one_joint(P, n, j, side[:, j]))
                 names.append(f"b_{robot.joints[j].name} [{unit[j]}]")
     elif effect == "transmission":
-        orders = HARMONICS.get(variant or "2x3x", (1,))
+        if variant.startswith("series"):
+            orders = tuple(range(1, int(variant[6:]) + 1))
+        else:
+            orders = HARMONICS.get(variant or "2x3x", (1,))
         for j in range(n):
             if not robot.joints[j].is_revolute:
                 continue
@@ -252,66 +322,38 @@ def effect_reference(meas: Measurements, gear_ratio=None) -> dict:
     return {"temperature_c": float(np.mean(T)) if T is not None else None,
             "time0_s": float(np.min(t)) if t is not None else None,
             "history": (t, T) if (t is not None and T is not None) else None,
+            "motion": (t, meas.q) if t is not None else None,
             "gear_ratio": None if gear_ratio is None else np.asarray(gear_ratio, float), "variants": {}}
 
 
-def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
-    """First-order lag of a temperature log (time order), ``dy/dt = (T - y) / tau``, started at ``T[0]``, shape (P,)."""
-    order = np.argsort(time_s, kind="stable")
-    ts, Ts = time_s[order], temp_c[order]
-    y = np.empty_like(Ts)
-    y[0] = Ts[0]
-    a = 1.0 - np.exp(-np.diff(ts) / tau_s)
-    for i in range(1, len(Ts)):
-        y[i] = y[i - 1] + a[i - 1] * (Ts[i] - y[i - 1])
-    out = np.empty_like(y)
-    out[order] = y
-    return out
+def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Robot | None = None) -> tuple:
+    """The variants of ``effect`` the data can carry (first: the default), empty when none.
 
-
-def _temperature_signal(meas: Measurements, ref: dict, variant: str) -> np.ndarray:
-    """The ``dT`` driving thermal growth for ``variant`` on the poses of ``meas``, shape (P,)."""
-    if variant == "temperature":
-        return meas.temperature_c - ref["temperature_c"]
-    tau_s = 60.0 * float(variant.split("_")[1][:-3])
-    t = meas.time_s
-    if variant.startswith("warmup"):
-        return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau_s)
-    # lag: run the filter over the training log and these poses together, in time order
-    ht, hT = ref["history"]
-    allt, allT = np.concatenate([ht, t]), np.concatenate([hT, meas.temperature_c])
-    y = lagged(allt, allT, tau_s)[len(ht):]
-    return y - ref["temperature_c"]
-
-
-def variants(effect: str, meas: Measurements, ref: dict | None = None) -> tuple:
-    """The variants of ``effect`` the data can carry (first: the default), empty when none."""
+    ``robot``: adds the guide variants of ``link_deflection`` for robots with a telescopic stage."""
     ref = ref or {}
-    T, t = meas.temperature_c, meas.time_s
     if effect == "backlash":
         d = meas.direction
         both = d is not None and np.any((d > 0).any(0) & (d < 0).any(0))
-        return ("approach", "gravity") if both else ("gravity",)
+        return ("approach", "gravity", "gravity_soft", "preload") if both else ("gravity", "gravity_soft")
     if effect == "thermal":
-        out = ["temperature"] if T is not None and np.ptp(T) >= 0.05 else []
-        if t is not None and np.ptp(t) > 0:
-            if out:
-                out += [f"lag_{m:g}min" for m in LAG_MIN]
-            out += [f"warmup_{m:g}min" for m in LAG_MIN]
-        return tuple(out)
+        return thermal_variants(meas)
     if effect == "transmission":
-        return ("2x3x", "1x", "1x2x") + (("motor",) if ref.get("gear_ratio") is not None else ())
+        n_rev = int(robot.revolute_mask.sum()) if robot is not None else meas.q.shape[1]
+        series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 1.5 * meas.n_poses)
+        return ("2x3x", "1x", "1x2x") + series + (("motor",) if ref.get("gear_ratio") is not None else ())
     if effect == "joint_compliance":
         return ("masses", "masses+tip")
-    return ("tip", "beam")
+    guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()
+    return ("tip", "beam") + guide
 
 
 def applicable(effect: str, meas: Measurements) -> tuple[bool, str]:
     """Whether the data can carry ``effect`` at all, with the reason when not."""
     if effect == "thermal" and not variants(effect, meas):
+        why_t = time_problem(meas.time_s)
         if meas.temperature_c is None:
-            return False, "no temperature_c or time_s column"
-        return False, f"temperature varies by only {np.ptp(meas.temperature_c):.3g} K and no time_s column"
+            return False, f"no temperature_c column, and {why_t}"
+        return False, f"temperature varies by only {np.ptp(meas.temperature_c):.3g} K, and {why_t}"
     return True, ""
 
 
@@ -325,28 +367,29 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     variant = variant or ref.get("variants", {}).get(effect) or (variants(effect, meas, ref) or ("",))[0]
     q = meas.q
     p_t = target_points(robot, q, t_mm)
+    groups = None
     if effect in ("joint_compliance", "backlash", "transmission"):
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"))
         B = np.einsum("pin,pnm->pim", point_jacobian(robot, q, p_t), A)
+        if effect == "transmission":  # one prior scale per joint
+            groups = np.array([int(np.flatnonzero(np.abs(A[:, :, m]).sum(0))[0]) if np.abs(A[:, :, m]).any() else 0
+                               for m in range(A.shape[2])], int)
     elif effect == "link_deflection":
-        B, names = _link_deflection(robot, q, p_t, variant)
+        parts = []
+        if not variant.startswith("guide"):
+            parts.append(_link_deflection(robot, q, p_t, "tip" if variant == "tip" else "beam"))
+        if "guide" in variant:
+            parts.append(_guide_deflection(robot, q, p_t, meas.payload_kg, overlap=variant == "guide+overlap"))
+        B = np.concatenate([b for b, _ in parts], axis=2)
+        names = [nm for _, nms in parts for nm in nms]
     else:
         return effect_bases("thermal", robot, meas, t_mm, ref, (variant,))[0]
-    return EffectBasis(effect, tuple(names), np.asarray(B, dtype=float), variant)
+    return EffectBasis(effect, tuple(names), np.asarray(B, dtype=float), variant, groups)
 
 
 def effect_bases(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict, names) -> list:
     """:func:`effect_basis` for every variant in ``names`` (thermal: the link-growth field is computed once)."""
     if effect != "thermal":
         return [effect_basis(effect, robot, meas, t_mm, ref, v) for v in names]
-    model = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection"))
-    J = model.jacobian(meas.q)[:, :3, :]  # (P, 3, L) per mm of each link (a translation: same at the target)
-    L = np.array([lk.length_mm for lk in robot.links if lk.length_mm > 0])
-    grow = 1e-6 * (J @ L)  # (P, 3) per unit of relative growth 1e-6
-    out = []
-    for v in names:
-        B = (grow * _temperature_signal(meas, ref, v)[:, None])[:, :, None]
-        label = f"alpha [1e-6/K] ({v})" if not v.startswith("warmup") else f"growth [1e-6] ({v})"
-        out.append(EffectBasis(effect, (label,), np.asarray(B, dtype=float), v))
-    return out
+    return [EffectBasis(effect, labels, B, v) for v, (labels, B) in zip(names, thermal_bases(robot, meas, ref, names))]

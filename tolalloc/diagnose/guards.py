@@ -309,8 +309,9 @@ def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None, *, unr
     """Covariance of the fitted parameters (columns of :func:`point_jacobian`) and the noise per coordinate.
 
     ``noise^2 = RSS / (3 P - n)`` from ``fit.residual_mm``; covariance ``(J^T J / noise^2 + diag(1 / s^2))^-1``
-    with ``s`` the MAP prior standard deviations of the geometric parameters (``fit.model.sigma``; none for
-    registration, offset and effects). ``unresolved``: directions the information matrix does not resolve
+    with ``s`` the MAP prior standard deviations of the geometric parameters (``fit.model.sigma``), of the target
+    offset when the fit had a prior on it (``fit.t_prior_mm``) and of ridge-regularised effect parameters
+    (``fit.beta_prior_w``: precision ``w^2 / noise^2``); none for the registration. ``unresolved``: directions the information matrix does not resolve
     (scaled eigenvalue below 1e-12 of the largest) get variance 0 (``"drop"``, a pseudo-inverse: prediction
     uncertainty) or a variance 1e12 x their scale (``"inflate"``: the parameter is not pinned down).
 
@@ -325,6 +326,12 @@ def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None, *, unr
     prec = np.zeros(n)
     sig = fit.model.sigma[fit.geo_index]
     prec[9:9 + len(sig)] = np.where(sig > 0, 1.0 / np.where(sig > 0, sig, 1.0) ** 2, 0.0)
+    if getattr(fit, "t_prior_mm", None) is not None:  # the target-offset prior the fit used
+        prec[6:9] = 1.0 / np.asarray(fit.t_prior_mm[1], float) ** 2
+    w = getattr(fit, "beta_prior_w", None)
+    m = n - 9 - len(sig)
+    if w is not None and m == len(w):  # ridge rows w beta: precision w^2 / noise^2
+        prec[9 + len(sig):] = np.asarray(w, float) ** 2 / noise2
     info = J.T @ J / noise2 + np.diag(prec)
     d = 1.0 / np.sqrt(np.maximum(np.diag(info), 1e-300))
     if unresolved == "drop":

@@ -139,7 +139,7 @@ class Registered:
 
 
 def register_and_score(fit: Fit, q: np.ndarray, xyz: np.ndarray, extra: np.ndarray,
-                       split: RegistrationSplit) -> Registered:
+                       split: RegistrationSplit, *, t_prior=None, loss: str | None = None) -> Registered:
     """Re-estimate registration and target offset on ``split.register_index`` (model frozen), score the rest.
 
     Parameters
@@ -149,10 +149,13 @@ def register_and_score(fit: Fit, q: np.ndarray, xyz: np.ndarray, extra: np.ndarr
     xyz : array, shape (T, 3) [mm]  measured, test tracker frame
     extra : array, shape (T, 3) [mm]  the trained effects' displacement in the base frame (frozen)
     split : RegistrationSplit
+    t_prior : (mean (3,), sd (3,)) [mm], optional   prior of the target offset (the caller's, as in training)
+    loss : str, optional            robust loss (:func:`tolalloc.diagnose.calibrate.fit_model`)
     """
     r = split.register_index
     R, p = kabsch(fit.base_points(q[r]) + extra[r], xyz[r])
-    f = fit_model(replace(fit, R=R, p_mm=p), q[r], xyz[r], geo_index=np.zeros(0, int), extra=extra[r])
+    f = fit_model(replace(fit, R=R, p_mm=p), q[r], xyz[r], geo_index=np.zeros(0, int), extra=extra[r],
+                  t_prior=t_prior, loss=loss)
     f = replace(fit, R=f.R, p_mm=f.p_mm, t_mm=f.t_mm)
     pred = (f.base_points(q) + extra) @ f.R.T + f.p_mm
     s = split.score_index

@@ -8,11 +8,15 @@ analytic Jacobian of the chunk, and accumulates ``J^T J``, ``J^T r`` and the cos
 the residuals (linear in the poses) and one chunk's Jacobian (constant). Small problems are one chunk;
 the same code fits them, so there is one implementation of the fit.
 
-Robust loss: with ``f_scale > 0`` the data rows use SciPy's ``soft_l1`` loss
-``f^2 rho((r/f)^2)``, ``rho(z) = 2 (sqrt(1 + z) - 1)``, as iteratively reweighted least squares on
-transformed residuals ``r' = sign(r) f sqrt(rho)`` with weights ``d r'/d r`` on the Jacobian rows (the
-normal equations of ``least_squares(loss="soft_l1")``). The MAP prior rows ``prior_w * delta`` are never
-weighted. The rotation is updated on the right, ``R <- R exp([dw])``, so its Jacobian columns
+Robust loss: with ``f_scale > 0`` the data rows are robust. ``loss="soft_l1"`` (per coordinate): SciPy's
+``soft_l1`` loss ``f^2 rho((r/f)^2)``, ``rho(z) = 2 (sqrt(1 + z) - 1)``, on transformed residuals
+``r' = sign(r) f sqrt(rho)`` with weights ``d r'/d r`` on the Jacobian rows (the normal equations of
+``least_squares(loss="soft_l1")``). ``loss="huber"`` / ``"tukey"`` (per pose, on the 3-D residual norm ``s``,
+:func:`m_rho`): M-estimators solved by iteratively reweighted least squares -- every pass weights a pose's three
+rows by ``w(s) = rho'(s) / (2 s)`` (Huber: ``min(1, c / s)``; Tukey's biweight: ``(1 - (s/c)^2)^2`` inside ``c``,
+0 beyond: a gross outlier has no influence at all) and the Levenberg-Marquardt step accepts on ``sum rho(s)``.
+The prior rows (MAP prior on the geometric parameters, optional Gaussian priors on the target offset and on
+effect parameters, :meth:`Problem.set_priors`) are never weighted. The rotation is updated on the right, ``R <- R exp([dw])``, so its Jacobian columns
 ``-R [y]`` are exact at every iterate. The geometric columns use the first-order error Jacobian of the
 nominal model (as :mod:`.calibrate` documents); the fixed point therefore is that of the former
 ``scipy.optimize.least_squares`` fit with the same Jacobian (tests/test_diagnose_scale.py compares them).
@@ -33,10 +37,12 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from tolalloc.engine import resolve_engine
+from tolalloc.diagnose.losses import LOSSES, m_rho, m_weight, norm_scale
 from tolalloc.robot.kinematics import poe_prefix_rp
 
 __all__ = ["CHUNK_ROWS", "SUBSAMPLE_ROWS", "PROGRESS_MIN_ROWS", "Problem", "solve", "point_kinematics",
-           "subsample_index", "progress_scope", "progress_bar", "fit_counter", "count_fit", "robust_scale"]
+           "subsample_index", "progress_scope", "progress_bar", "fit_counter", "count_fit", "robust_scale", "LOSSES",
+           "m_rho", "m_weight", "norm_scale"]
 
 #: Poses per chunk of a pass over the data (one chunk's Jacobian: 3 x CHUNK_ROWS x m floats).
 CHUNK_ROWS = 20_000
@@ -161,7 +167,10 @@ class Problem:
         self.M = (B.shape[-1] if B is not None and not callable(B) else 0) if n_effects is None else n_effects
         self.chunk_rows = max(1, int(chunk_rows))
         self.prior_w = np.zeros(len(self.geo))
+        self.t_prior = None  # (mean (3,), weight (3,)) of the target offset
+        self.beta_prior_w = None  # weight (M,) of a zero-mean prior on the effect parameters
         self.f_scale = 0.0
+        self.loss = "soft_l1"
         self._static = self._static_of(slice(0, len(q))) if len(q) <= self.chunk_rows else None
 
     # --------------------------------------------------------------- parameters
@@ -241,9 +250,41 @@ class Problem:
         """Tracker-frame Jacobian rows of each coordinate, a list of three (rows, m) arrays."""
         return list((R @ A.reshape(3, -1)).reshape(A.shape))  # one GEMM for the whole chunk
 
+    def set_priors(self, t_prior=None, beta_w=None) -> None:
+        """Gaussian prior rows beside the geometric MAP prior ``prior_w``: ``t_prior = (mean (3,), weight (3,))`` on
+        the target offset (weight = noise sd / prior sd), ``beta_w`` (M,) on the effect parameters (mean 0)."""
+        self.t_prior = None if t_prior is None else (np.asarray(t_prior[0], float), np.asarray(t_prior[1], float))
+        self.beta_prior_w = None if beta_w is None or not len(beta_w) else np.asarray(beta_w, float)
+
+    def _prior_terms(self, x):
+        """Prior rows as (parameter index, weight, mean) triples with nonzero weights."""
+        k = len(self.geo)
+        out = []
+        if self.prior_w.any():
+            out.append((np.arange(9, 9 + k), self.prior_w, np.zeros(k)))
+        if self.t_prior is not None and np.any(self.t_prior[1] > 0):
+            out.append((np.arange(6, 9), self.t_prior[1], self.t_prior[0]))
+        if self.beta_prior_w is not None and np.any(self.beta_prior_w > 0):
+            out.append((np.arange(9 + k, 9 + k + self.M), self.beta_prior_w, np.zeros(self.M)))
+        return out
+
+    @property
+    def per_pose(self) -> bool:
+        """True for the M-estimators on the 3-D residual norm (``huber``, ``tukey``)."""
+        return self.f_scale > 0 and self.loss in ("huber", "tukey")
+
+    def pose_weights(self, raw: np.ndarray) -> np.ndarray:
+        """IRLS weight of every pose (P,) for residuals ``raw`` (P, 3) under the current loss."""
+        s = np.linalg.norm(raw, axis=1)
+        if self.per_pose:
+            return m_weight(s, self.loss, self.f_scale)
+        if self.f_scale > 0:  # soft_l1 on the norm (per coordinate in the fit)
+            return 1.0 / np.sqrt(1.0 + (s / self.f_scale) ** 2)
+        return np.ones(len(s))
+
     def _robust(self, r):
         """Transformed residual and its derivative d r' / d r (soft_l1); identity when ``f_scale`` is 0."""
-        if self.f_scale <= 0:
+        if self.f_scale <= 0 or self.loss != "soft_l1":
             return r, np.ones_like(r)
         f = self.f_scale
         root = np.sqrt(1.0 + (r / f) ** 2)
@@ -263,9 +304,16 @@ class Problem:
         return np.concatenate([self.chunk(x, sl, ch, False)[0].ravel() for sl in self.slices()])
 
     def fun(self, x) -> np.ndarray:
-        """Stacked residual (robust data rows, then prior rows when set)."""
-        res = self._robust(self.raw(x))[0]
-        return np.concatenate([res, self.prior_w * x[9:9 + len(self.geo)]]) if self.prior_w.any() else res
+        """Stacked residual (robust data rows, then prior rows when set); ``|fun|^2`` is the cost."""
+        raw = self.raw(x)
+        if self.per_pose:
+            s = np.linalg.norm(raw.reshape(-1, 3), axis=1)
+            f = np.sqrt(m_rho(s, self.loss, self.f_scale) / np.maximum(s * s, 1e-300))
+            res = (raw.reshape(-1, 3) * f[:, None]).ravel()
+        else:
+            res = self._robust(raw)[0]
+        pri = [w * (x[i] - mu) for i, w, mu in self._prior_terms(x)]
+        return np.concatenate([res, *pri]) if pri else res
 
     def jac(self, x) -> np.ndarray:
         """Stacked Jacobian of :meth:`fun` (holds 3P x m numbers: small problems only)."""
@@ -275,14 +323,17 @@ class Problem:
         for sl in self.slices():
             r, A = self.chunk(x, sl, ch)
             J = np.stack(self.tracker_rows(A, R), axis=1).reshape(3 * len(r), -1)
-            parts.append(J * self._robust(r.ravel())[1][:, None])
+            if self.per_pose:
+                w = np.repeat(np.sqrt(self.pose_weights(r)), 3)
+            else:
+                w = self._robust(r.ravel())[1]
+            parts.append(J * w[:, None])
         J = np.concatenate(parts)
-        if not self.prior_w.any():
-            return J
-        k = len(self.geo)
-        Jp = np.zeros((k, J.shape[1]))
-        Jp[:, 9:9 + k] = np.diag(self.prior_w)
-        return np.concatenate([J, Jp])
+        for i, w, _ in self._prior_terms(x):
+            Jp = np.zeros((len(i), J.shape[1]))
+            Jp[np.arange(len(i)), i] = w
+            J = np.concatenate([J, Jp])
+        return J
 
     # --------------------------------------------------------------- normal equations
     def normal(self, x):
@@ -295,19 +346,24 @@ class Problem:
         for sl in self.slices():
             r, A = self.chunk(x, sl, ch)
             raw[sl] = r
+            if self.per_pose:  # IRLS: one weight per pose from its 3-D residual norm
+                nrm = np.linalg.norm(r, axis=1)
+                sw = np.sqrt(m_weight(nrm, self.loss, self.f_scale))
+                cost += float(np.sum(m_rho(nrm, self.loss, self.f_scale)))
             for a, Ja in enumerate(self.tracker_rows(A, R)):
-                rt, s = self._robust(r[:, a])
-                Js = Ja * s[:, None] if self.f_scale > 0 else Ja
+                if self.per_pose:
+                    Js, rt = Ja * sw[:, None], r[:, a] * sw
+                else:
+                    rt, s = self._robust(r[:, a])
+                    Js = Ja * s[:, None] if self.f_scale > 0 and self.loss == "soft_l1" else Ja
+                    cost += float(rt @ rt)
                 H += Js.T @ Js
                 g += Js.T @ rt
-                cost += float(rt @ rt)
-        k = len(self.geo)
-        if self.prior_w.any():
-            d = x[9:9 + k]
-            pw2 = self.prior_w ** 2
-            H[9:9 + k, 9:9 + k] += np.diag(pw2)
-            g[9:9 + k] += pw2 * d
-            cost += float(np.sum(pw2 * d * d))
+        for i, w, mu in self._prior_terms(x):
+            d, w2 = x[i] - mu, w ** 2
+            H[i, i] += w2
+            g[i] += w2 * d
+            cost += float(np.sum(w2 * d * d))
         return cost, H, g, raw
 
 

@@ -1,11 +1,15 @@
-"""Which effect: fit every candidate on training poses only, score it on held-out poses, select.
+"""Which effect: fit every candidate on training poses only, score it on held-out training poses, select.
 
-Held-out poses are the out-of-fold predictions of a *blocked* K-fold cross-validation within the training
-file (every fit, including the registration, sees only the other folds; by default K contiguous blocks in
-row/time order and, scored beside them, K contiguous regions of joint space -- random folds only on request,
-see :func:`make_folds`) plus, when given, the separate test file (model fitted on the whole training file).
+**The test file is sealed.** Variant choice, fold counts, clip level, significance and selection use the training
+file only: held-out poses are the out-of-fold predictions of a *blocked* K-fold cross-validation within the
+training file (every fit, including the registration, sees only the other folds; by default K contiguous
+blocks in row/time order and, scored beside them, K contiguous regions of joint space -- random folds only on
+request, see :func:`make_folds`). The test file is scored once, after the model is chosen
+(:func:`score_test`, called by :mod:`.pipeline` for the nominal, geometric and final models only). Its columns
+(not its values) decide only whether a chosen variant can be evaluated on it at all (``dir`` / temperature /
+time columns): if not, that effect is left out with the reason.
 Each effect's variant (:func:`tolalloc.diagnose.effects.variants`) is chosen first on the training residual
-(:func:`choose_variant`).
+(:func:`tolalloc.diagnose.choice.choose_variant`).
 
 Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model's median held-out error
 (:func:`clip_level`). Significance: one-sided Wilcoxon signed-rank test on the per-pose differences of clipped
@@ -15,135 +19,56 @@ squared held-out error (base model - base + candidate). A candidate is *signific
 held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
 ``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
 beside the others (backward elimination, :func:`_backward`). ``none`` when nothing is significant.
+
+The fits are robust M-estimates (``loss``, :func:`tolalloc.diagnose.calibrate.fit_model`). The target offset is
+a property of the set-up, not of the poses: a prior from the caller (``t_prior``, e.g. the robot's tool
+definition with its sd) enters the full training fits, and every fold's fit borrows the full training fit's
+offset as a prior with the posterior sd the training file (and the caller's prior) give it, capped at the
+robot's as-built position level (:data:`FOLD_T_SD_FLOOR_MM` at least): a fold whose poses hardly turn the
+flange cannot send the offset to tens of mm and predict its held-out block from there (a fold that holds out
+the only block where the wrist turned). Whether the training file itself pins the offset down is the parameter
+check's business (:mod:`.guards`), and a weak offset makes the verdict inconclusive (:mod:`.verdict`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
-from scipy.stats import wilcoxon
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
-from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
+from tolalloc.diagnose.choice import choose_variant
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
+from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
+from tolalloc.diagnose.geometry import as_built_levels
+from tolalloc.diagnose.guards import parameter_covariance
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
+from tolalloc.diagnose.thermal import time_problem
+from tolalloc.diagnose.scores import (Candidate, Evaluation, Stage, clip_level, error_stats, paired_pvalue, rms,
+                                      robust_rms)
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
-           "kept_basis", "score_test", "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES"]
+           "kept_basis", "score_test", "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES",
+           "rows_problem", "FOLD_T_SD_FLOOR_MM", "MIN_SPARE_POSES"]
 
-
-def rms(res: np.ndarray) -> float:
-    """RMS of the 3-D error [mm] of residuals shape (P, 3)."""
-    return float(np.sqrt(np.mean(np.sum(res ** 2, axis=1)))) if len(res) else float("nan")
-
-
-def error_stats(res: np.ndarray) -> dict:
-    """RMS, 95th percentile and max of the 3-D error norm [mm]."""
-    d = np.linalg.norm(res, axis=1)
-    return {"rms_mm": rms(res), "p95_mm": float(np.percentile(d, 95)), "max_mm": float(d.max()),
-            "mean_mm": float(d.mean())}
-
-
-@dataclass(frozen=True, eq=False)
-class Evaluation:
-    """One model (registration + offset [+ geometry] [+ effects]) fitted and scored on held-out poses.
-
-    Attributes
-    ----------
-    label : str                  ``nominal``, ``geometric`` or ``geometric+effect+...``
-    effects : tuple of str
-    fit : Fit                    fitted on all training poses
-    param_names : tuple of str   fitted (identifiable) effect parameters
-    keep : array of int          their columns in the concatenated basis
-    oof_mm : array, shape (P, 3)         out-of-fold residuals of the training poses (measured - predicted)
-    test_mm : array, shape (T, 3) or None  residuals on the test file (``refit``: scored poses only, (T - r, 3))
-    test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
-    oof_joint_mm : array, shape (P, 3) or None  out-of-fold residuals of the joint-space blocks (``cv="blocked"``)
-    """
-
-    label: str
-    effects: tuple
-    fit: Fit
-    param_names: tuple
-    keep: np.ndarray
-    oof_mm: np.ndarray
-    test_mm: np.ndarray | None
-    test_pred_mm: np.ndarray | None
-    oof_joint_mm: np.ndarray | None = None
-
-    @property
-    def selection_mm(self) -> np.ndarray:
-        """Residuals the selection scores: out-of-fold (time blocks, then joint-space blocks), then test."""
-        parts = [self.oof_mm] + [a for a in (self.oof_joint_mm, self.test_mm) if a is not None]
-        return np.concatenate(parts)
-
-    @property
-    def heldout_mm(self) -> np.ndarray:
-        """All held-out residuals: out-of-fold, then test, shape (P + T, 3)."""
-        return self.oof_mm if self.test_mm is None else np.concatenate([self.oof_mm, self.test_mm])
-
-    @property
-    def heldout_rms_mm(self) -> float:
-        return rms(self.heldout_mm)
-
-
-@dataclass(frozen=True, eq=False)
-class Candidate:
-    """Score of one candidate effect on top of a base model."""
-
-    effect: str
-    applicable: bool
-    reason: str
-    n_params: int
-    heldout_rms_mm: float
-    cv_rms_mm: float
-    test_rms_mm: float | None
-    p_value: float
-    gain_pct: float
-    significant: bool
-    robust_rms_mm: float = float("nan")
-    variant: str = ""
-
-    def to_dict(self) -> dict:
-        return {"effect": self.effect, "heldout_rms_mm": self.heldout_rms_mm, "p_value": self.p_value,
-                "cv_rms_mm": self.cv_rms_mm, "test_rms_mm": self.test_rms_mm, "gain_pct": self.gain_pct,
-                "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
-                "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant}
-
-
-@dataclass(frozen=True, eq=False)
-class Stage:
-    """One step of the sequential selection: candidates tested on top of ``base``."""
-
-    base: tuple
-    base_rms_mm: float
-    candidates: tuple
-    selected: str | None
-    removed: str | None = None  # backward step (:func:`_backward`): the effect dropped from ``base``, if any
-
-
-def robust_rms(res: np.ndarray, clip_mm: float) -> float:
-    """RMS of the 3-D error norms clipped at ``clip_mm`` [mm] (a Huber-type statistic outliers cannot dominate)."""
-    d = np.minimum(np.linalg.norm(res, axis=1), clip_mm)
-    return float(np.sqrt(np.mean(d ** 2))) if len(d) else float("nan")
-
-
-def clip_level(res: np.ndarray) -> float:
-    """Clip level of :func:`robust_rms`: 2.5 x the median 3-D error norm (~3.8 sigma for Gaussian noise) [mm]."""
-    return float(max(2.5 * np.median(np.linalg.norm(res, axis=1)), 1e-6))
+#: Smallest sd [mm] of the target-offset prior a fold borrows from the full training fit.
+FOLD_T_SD_FLOOR_MM = 0.05
+#: Poses beyond a model's parameter count (3 coordinates each) the full training fit must keep.
+MIN_SPARE_POSES = 2
 
 
 class _Context:
     """Training / test data, folds, chosen effect variants and effect bases shared by all evaluations."""
 
-    def __init__(self, cal, train, test, folds, seed, test_frame, tol, cv="blocked", gear_ratio=None):
+    def __init__(self, cal, train, test, folds, seed, test_frame, tol, cv="blocked", gear_ratio=None, t_prior=None,
+                 loss=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
-        self.cv = cv
+        self.cv, self.t_prior, self.loss = cv, t_prior, loss
         self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         k = fold_count(folds, *self.J_fixed.shape)
         self.folds = make_folds(train, k, cv, seed)
         self.folds_joint = make_folds(train, k, "joint", seed) if cv == "blocked" else []
+        self.fold_t_sd = _fold_t_sd(cal.geometric, train.q)
         self.bases, self.bases_test, self.reasons = {}, {}, {}
         t = cal.geometric.t_mm
         self.ref = effect_reference(train, gear_ratio)
@@ -151,16 +76,46 @@ class _Context:
         res = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's residual on these poses
         for e in EFFECTS:
             ok, why = applicable(e, train)
-            names = [v for v in variants(e, train, self.ref) if test is None or _test_can_carry(e, v, test)]
-            if ok and not names:
-                ok, why = False, "the test file lacks the columns this effect needs (dir / temperature_c / time_s)"
+            names = variants(e, train, self.ref, robot)
             self.reasons[e] = why
-            if ok:
-                cands = effect_bases(e, robot, train, t, self.ref, names)
-                self.bases[e] = choose_variant(cands, cal.geometric, self.J_fixed, res)
-                self.ref["variants"][e] = self.bases[e].variant
-                if test is not None:
-                    self.bases_test[e] = align_basis(effect_basis(e, robot, test, t, self.ref), self.bases[e].names)
+            if not ok:
+                continue
+            cands = effect_bases(e, robot, train, t, self.ref, names)
+            chosen = choose_variant(cands, cal.geometric, self.J_fixed, res)
+            if test is not None and not _test_can_carry(e, chosen.variant, test):
+                self.reasons[e] = (f"the variant chosen on the training file ({chosen.variant}) needs a column the "
+                                   "test file lacks (dir1..dirN / temperature_c / time_s)")
+                continue
+            self.bases[e] = chosen
+            self.ref["variants"][e] = chosen.variant
+            if test is not None:
+                self.bases_test[e] = align_basis(effect_basis(e, robot, test, t, self.ref), chosen.names)
+
+    def fold_prior(self, full: Fit):
+        """The target-offset prior of the fold fits: the full training fit's offset (module docstring)."""
+        return full.t_mm, self.fold_t_sd
+
+
+def _fold_t_sd(fit: Fit, q: np.ndarray) -> np.ndarray:
+    """Posterior sd of the target offset of ``fit`` on ``q`` (3,), between the floor and the as-built level [mm]."""
+    cov, _ = parameter_covariance(fit, q, unresolved="inflate")
+    sd = np.sqrt(np.maximum(np.diag(cov)[6:9], 0.0))
+    level = as_built_levels(fit.model.robot)[0]
+    return np.clip(sd, FOLD_T_SD_FLOOR_MM, max(level, FOLD_T_SD_FLOOR_MM))
+
+
+def rows_problem(ctx, n_params: int) -> str | None:
+    """Why the training file cannot fit a model of ``n_params`` unregularised parameters, or None."""
+    P = ctx.train.n_poses
+    need = n_params + 3 * MIN_SPARE_POSES
+    if 3 * P < need:
+        return (f"the model has {n_params} parameters; the training file's {P} poses give {3 * P} coordinates, "
+                f"fewer than the {need} it needs ({MIN_SPARE_POSES} spare poses)")
+    smallest = min((P - len(f) for f in [*ctx.folds, *ctx.folds_joint]), default=P)
+    if 3 * smallest < n_params + 3:
+        return (f"the model has {n_params} parameters; the smallest cross-validation fold trains on {smallest} poses "
+                f"({3 * smallest} coordinates), too few to fit it")
+    return None
 
 
 def align_basis(basis, names: tuple):
@@ -175,46 +130,13 @@ def align_basis(basis, names: tuple):
 
 
 def _test_can_carry(effect, variant, test) -> bool:
-    if effect == "backlash" and variant == "approach":
+    if effect == "backlash" and variant in ("approach", "preload"):
         return test.direction is not None
     if effect == "thermal":
-        need_T = not variant.startswith("warmup")
+        need_T = variant == "temperature" or variant.startswith("lag")
         need_t = variant != "temperature"
-        return (not need_T or test.temperature_c is not None) and (not need_t or test.time_s is not None)
+        return (not need_T or test.temperature_c is not None) and (not need_t or time_problem(test.time_s) is None)
     return True
-
-
-def choose_variant(cands: list, fit: Fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
-    """The variant whose columns best explain the geometric fit's training residual (BIC, winsorised residual).
-
-    Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
-    and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
-    outliers do not pick the variant. ``BIC = n log(RSS / (n - M)) + M log n`` with ``n`` the residual degrees
-    of freedom (3P rows minus the fixed columns) and ``M`` the variant's columns: the noise variance is estimated
-    from the degrees of freedom the variant leaves, so on few poses a many-column variant (e.g. two harmonics on
-    every joint) cannot win by fitting the noise of a nearly interpolated residual.
-    ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
-    fit was made on those very poses; a subsampled diagnosis passes the subsample's).
-    """
-    if len(cands) == 1:
-        return cands[0]
-    Q, _ = np.linalg.qr(J_fixed)
-    r = (fit.residual_mm if residual_mm is None else residual_mm).ravel()
-    r = r - Q @ (Q.T @ r)
-    s = 1.4826 * np.median(np.abs(r - np.median(r)))
-    r = np.clip(r, -3 * s, 3 * s)
-    n = len(r) - Q.shape[1]  # residual degrees of freedom left by the fixed columns
-    best, best_bic = cands[0], np.inf
-    for c in cands:
-        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
-        Jc = Jc - Q @ (Q.T @ Jc)
-        beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
-        rss = float(np.sum((r - Jc @ beta) ** 2))
-        M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
-        bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
-        if bic < best_bic:
-            best, best_bic = c, bic
-    return best
 
 
 def _stack(bases: dict, effects) -> tuple:
@@ -225,6 +147,13 @@ def _stack(bases: dict, effects) -> tuple:
     return B, names
 
 
+def _stack_prior(bases: dict, effects) -> np.ndarray:
+    """Ridge weights of the concatenated effect columns (0: no prior), shape (M,)."""
+    parts = [bases[e].prior_w if getattr(bases[e], "prior_w", None) is not None else np.zeros(bases[e].B.shape[-1])
+             for e in effects]
+    return np.concatenate(parts) if parts else np.zeros(0)
+
+
 def kept_basis(bases: dict, ev: Evaluation):
     """The effect columns ``ev`` kept, on the poses of ``bases`` (``ctx.bases`` or ``ctx.bases_test``), shape
     (P, 3, m) [mm per unit]; None for a model without effects."""
@@ -233,25 +162,30 @@ def kept_basis(bases: dict, ev: Evaluation):
 
 
 def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evaluation:
-    """Fit a model on all training poses and on every CV fold; residuals on the held-out poses."""
+    """Fit a model on all training poses and on every CV fold; residuals on the held-out training poses.
+
+    The test file is not touched (:func:`score_test` scores a chosen model)."""
     cal, train = ctx.cal, ctx.train
     q, xyz = train.q, train.xyz_mm
     start = cal.nominal if nominal else cal.geometric
     geo = np.zeros(0, int) if nominal else cal.geometric.geo_index
     B, names = _stack(ctx.bases, effects)
-    keep = np.zeros(0, int)
+    keep, w = np.zeros(0, int), None
     if B is not None:
         Jc = np.einsum("ij,pjm->pim", start.R, B).reshape(3 * len(q), -1)
         keep, *_ = select_columns(ctx.J_fixed, Jc, ctx.tol)
         B = B[:, :, keep]
         names = tuple(names[k] for k in keep)
-    full = fit_model(start, q, xyz, geo_index=geo, B=B, effect_names=names)
+        w = _stack_prior(ctx.bases, effects)[keep]
+        w = w if w.any() else None
+    kw = dict(geo_index=geo, B=B, effect_names=names, loss=ctx.loss, beta_prior_w=w)
+    full = fit_model(start, q, xyz, t_prior=ctx.t_prior, **kw)
     warm = replace(full, beta=np.zeros(0))  # folds start from the full fit (same optimum, fewer iterations)
-    oof = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds)
-    oof_joint = _out_of_fold(warm, q, xyz, geo, B, names, ctx.folds_joint) if ctx.folds_joint else None
-    test_res, test_pred = score_test(ctx, full, effects, keep)
+    prior = ctx.fold_prior(full)
+    oof = _out_of_fold(warm, q, xyz, ctx.folds, prior, kw)
+    oof_joint = _out_of_fold(warm, q, xyz, ctx.folds_joint, prior, kw) if ctx.folds_joint else None
     label = "nominal" if nominal else "+".join(("geometric", *effects))
-    return Evaluation(label, tuple(effects), full, names, keep, oof, test_res, test_pred, oof_joint)
+    return Evaluation(label, tuple(effects), full, names, keep, oof, None, None, oof_joint)
 
 
 def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
@@ -270,41 +204,40 @@ def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
     test_pred = full.predict(test.q, Bt)
     if ctx.test_frame == "refit":
         extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
-        reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration)
+        reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration, t_prior=ctx.t_prior,
+                                 loss=ctx.loss)
         return reg.residual_mm, reg.pred_mm
     return test.xyz_mm - test_pred, test_pred
 
 
-def _out_of_fold(start, q, xyz, geo, B, names, folds) -> np.ndarray:
+def _out_of_fold(start, q, xyz, folds, t_prior, kw) -> np.ndarray:
     """Residuals of every fold's poses under the model fitted on the other folds, shape (P, 3)."""
     oof = np.zeros_like(xyz)
+    B = kw["B"]
     for f in folds:
         tr = np.setdiff1d(np.arange(len(q)), f)
-        ff = fit_model(start, q[tr], xyz[tr], geo_index=geo, B=None if B is None else B[tr], effect_names=names)
+        ff = fit_model(start, q[tr], xyz[tr], t_prior=t_prior, **(kw | {"B": None if B is None else B[tr]}))
         oof[f] = xyz[f] - ff.predict(q[f], None if B is None else B[f])
     return oof
 
 
-def _pvalue(base: np.ndarray, cand: np.ndarray, clip_mm: float) -> float:
-    """One-sided Wilcoxon signed-rank p-value that ``cand`` has smaller clipped 3-D errors than ``base``."""
-    d = np.minimum(np.sum(base ** 2, axis=1), clip_mm ** 2) - np.minimum(np.sum(cand ** 2, axis=1), clip_mm ** 2)
-    if np.allclose(d, 0):
-        return 1.0
-    return float(wilcoxon(d, alternative="greater").pvalue)
-
-
 def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
-    """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation)."""
+    """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation or None)."""
+    B, _ = _stack(ctx.bases, (*chosen, e))
+    w = _stack_prior(ctx.bases, (*chosen, e))
+    n_free = 9 + len(ctx.cal.geometric.geo_index) + int(np.sum(w == 0))  # parameters without a prior
+    why = rows_problem(ctx, n_free)
+    if why is not None:
+        return Candidate(e, False, why, 0, float("nan"), float("nan"), None, 1.0, 0.0, False), None
     ev = evaluate(ctx, (*chosen, e))
     n_new = sum(nm.startswith(e + ":") for nm in ev.param_names)
     base_r = robust_rms(current.selection_mm, clip)
     r = robust_rms(ev.selection_mm, clip)
-    p = _pvalue(current.selection_mm, ev.selection_mm, clip) if n_new else 1.0
+    p = paired_pvalue(current.selection_mm, ev.selection_mm, clip) if n_new else 1.0
     gain = 100.0 * (1.0 - r / base_r)
     sig = bool(n_new and p < alpha / m and gain >= 100.0 * min_gain)
-    t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
     cand = Candidate(e, True, "" if n_new else "not identifiable beside the geometric parameters", n_new,
-                     ev.heldout_rms_mm, rms(ev.oof_mm), t_rms, p, gain, sig, r, ctx.bases[e].variant)
+                     ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, sig, r, ctx.bases[e].variant)
     return cand, ev
 
 
@@ -312,7 +245,7 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
                    max_effects: int = 3):
     """Sequential forward selection; returns (stages, evaluations by label, final evaluation).
 
-    Scores use every held-out residual of :attr:`Evaluation.selection_mm`; the gain and the Wilcoxon test use
+    Scores use the training file's out-of-fold residuals (:attr:`Evaluation.selection_mm`); the gain and the Wilcoxon test use
     3-D errors clipped at :func:`clip_level` of the geometric model's held-out errors (fixed for the whole
     selection), so a few gross outliers neither hide nor fake an effect.
     """
@@ -330,11 +263,12 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
                 cands.append(Candidate(e, False, ctx.reasons[e], 0, float("nan"), float("nan"), None, 1.0, 0.0, False))
                 continue
             cand, ev = _score(ctx, chosen, e, current, clip, m, alpha, min_gain)
-            evals[ev.label] = cand_evals[e] = ev
+            if ev is not None:
+                evals[ev.label] = cand_evals[e] = ev
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         best = next((c for c in cands if c.significant), None)
-        stages.append(Stage(chosen, current.heldout_rms_mm, tuple(cands), best.effect if best else None))
+        stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None))
         if best is None:
             break
         chosen = (*chosen, best.effect)
@@ -362,16 +296,15 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
             ev = evals.get(label) or evaluate(ctx, rest)
             evals[label] = ev
             r, r_rest = robust_rms(current.selection_mm, clip), robust_rms(ev.selection_mm, clip)
-            p = _pvalue(ev.selection_mm, current.selection_mm, clip)
+            p = paired_pvalue(ev.selection_mm, current.selection_mm, clip)
             gain = 100.0 * (1.0 - r / r_rest)
             keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
             n_e = sum(nm.startswith(e + ":") for nm in current.param_names)
             why = "backward step: " + ("" if keep else "not ") + "significant beside the others"
-            t_rms = rms(ev.test_mm) if ev.test_mm is not None else None
-            tests.append((gain, Candidate(e, True, why, n_e, ev.heldout_rms_mm, rms(ev.oof_mm), t_rms, p, gain, keep,
+            tests.append((gain, Candidate(e, True, why, n_e, ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, keep,
                                           r_rest, ctx.bases[e].variant), ev))
         gain, cand, ev = min(tests, key=lambda x: x[0])
-        stages.append(Stage(current.effects, current.heldout_rms_mm, tuple(c for _, c, _ in tests), None,
+        stages.append(Stage(current.effects, current.cv_rms_mm, tuple(c for _, c, _ in tests), None,
                             None if cand.significant else cand.effect))
         if cand.significant:
             break
@@ -381,16 +314,17 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
                  tol: float = 1e-3, register_n: float = REGISTER_N, cv: str = "blocked",
-                 gear_ratio=None) -> _Context:
+                 gear_ratio=None, t_prior=None, loss=None) -> _Context:
     """Shared state of one diagnosis (folds, effect variants and bases; with ``test_frame='refit'`` the
     registration split).
 
     ``cv``: ``blocked`` (default: ``folds`` contiguous time blocks *and* ``folds`` joint-space blocks, both
     scored), ``time``, ``joint`` or ``random`` (see :func:`make_folds`). ``gear_ratio`` (n,): known gear
-    ratios, enabling the motor-side transmission variant.
+    ratios, enabling the motor-side transmission variant. ``t_prior``: (mean (3,), sd (3,)) [mm] of the target
+    offset for every fit (default: folds borrow the full fit's, see the module docstring). ``loss``: robust loss
+    of the fits (:func:`tolalloc.diagnose.calibrate.fit_model`).
     """
-    ctx = _Context(cal, train, test, folds, seed, test_frame, tol, cv, gear_ratio)
+    ctx = _Context(cal, train, test, folds, seed, test_frame, tol, cv, gear_ratio, t_prior, loss)
     ctx.registration = (registration_split(test.q, cal.geometric.model.robot.revolute_mask, register_n, seed)
                         if test is not None and test_frame == "refit" else None)
     return ctx
-

@@ -8,9 +8,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.diagnose.pipeline import Diagnosis
+from tolalloc.diagnose.diagnosis import Diagnosis
 
-__all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions"]
+__all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
 
 
 def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
@@ -59,6 +59,69 @@ def worst_test_poses(d: Diagnosis, n: int = 5) -> pd.DataFrame:
     return out
 
 
+def verdict_lines(d: Diagnosis) -> list:
+    """The verdict block: headline, candidates, reasons, the model safe to use, separating poses, outliers."""
+    v = d.verdict
+    lines = [v.headline()]
+    if v.candidates:
+        lines.append(f"candidates: {', '.join(v.candidates)}")
+    lines.append("reasons:")
+    lines += [f"  - {r}" for r in v.reasons]
+    safe = {"nominal": "registration + probe offset only", "geometric": "registration, probe offset and geometry"}
+    lines.append(f"safe to use: the {v.safe_model} model ({safe.get(v.safe_model, 'geometry and the effects')})")
+    if v.suggestions is not None and len(v.suggestions):
+        lines.append("poses that would separate the ambiguous effects (joints in deg / mm; predicted difference of "
+                     "the two fitted models):")
+        lines += ["  " + ln for ln in v.suggestions.to_string(index=False, float_format="%.3f").splitlines()]
+    if d.outliers:
+        shown = ", ".join(f"{o['row']} ({o['error_mm']:.3g} mm)" for o in d.outliers[:10])
+        more = f" and {len(d.outliers) - 10} more" if len(d.outliers) > 10 else ""
+        lines.append(f"outliers: {len(d.outliers)} training rows with a residual beyond the robust fit's threshold "
+                     f"({d.settings['robust_loss'] if d.settings else 'robust'} loss): rows {shown}{more}")
+    return lines
+
+
+def summary_lines(d: Diagnosis) -> list:
+    """The whole printed summary of a diagnosis, one string per line: the verdict first (:func:`verdict_lines`),
+    then test-file figures, cross-validation, the worst test poses, every guard, the ranking."""
+    cols = ["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]
+    lines = verdict_lines(d) if d.verdict is not None else [f"effect: {d.effect}"]
+    if len(d.effects) > 1:
+        lines.append(f"final model: {d.final.label}")
+    if d.subsample is not None:
+        s = d.subsample
+        lines.append(f"subsample: cross-validation and effect selection on {s['cv_rows']:,} of {s['rows']:,} training "
+                     f"rows (seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; final fits on all rows")
+    if d.test is not None:
+        reg = d.registration
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses registered the "
+               "tracker frame and probe offset and are not scored" if reg is not None
+               else f"{d.test.n_poses} poses, training tracker frame")
+        lines.append(f"test file {d.test.source} ({how}; sealed: scored once, after the choice) [mm]:")
+        lines += d.before_after("test")[cols].to_string(index=False, float_format="%.4f").splitlines()
+    folds = len(d.nominal.oof_mm)
+    lines.append(f"cross-validation on the training file ({d.train.n_poses} poses, {folds} out-of-fold "
+                 "predictions) [mm]:")
+    lines += d.before_after("cv")[cols].to_string(index=False, float_format="%.4f").splitlines()
+    if d.test is not None:
+        lines.append("worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):")
+        lines += worst_test_poses(d).to_string(index=False, float_format="%.3f").splitlines()
+        u = d.uncertainty
+        lines.append(f"predicted uncertainty: median 1-sigma {np.median(u.sigma_mm):.4f} mm (noise {u.noise_mm:.4f} mm "
+                     f"per coordinate); {100 * u.coverage:.0f} % of {len(u.inside)} scored test residuals within the "
+                     "predicted 95 % radius (95 % expected when the model's uncertainty is right)")
+    lines += [f"GUARD: {g}" for g in d.guards] or ["guards: none fired"]
+    lines += [f"note: {f}" for f in d.findings]
+    lines.append("ranking (out-of-fold RMS of the training file; the test file is sealed):")
+    for c in d.ranking:
+        if c.applicable:
+            lines.append(f"  {c.effect:17s} held-out RMS {c.heldout_rms_mm:.4f} mm  p={c.p_value:.2e}  "
+                         f"gain {c.gain_pct:+.1f} %  ({c.variant})")
+        else:
+            lines.append(f"  {c.effect:17s} not testable: {c.reason}")
+    return lines
+
+
 def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", prefix: str = "") -> Path:
     """Write ``{prefix}report.md``, CSV tables and PNG figures of ``d`` into directory ``out``; returns the report path."""
     from tolalloc.report.plots.diagnose import plot_before_after, plot_ranking, plot_where
@@ -81,17 +144,19 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
              f"{d.train.n_skipped} rows with empty cells skipped)"
              + (f"; test file `{d.test.source}` ({d.test.n_poses} poses, frame: {d.test_frame})" if d.test is not None else "")
              + ".", "",
-             f"**Diagnosed effect: `{d.effect}`**" + (f" (sequence: {' -> '.join(d.effects)})" if len(d.effects) > 1 else ""),
+             *_verdict_section(d, out, prefix),
              "", "Calibration model: the complete, minimal geometric model (4 line errors per revolute joint, 2 per "
              "prismatic joint, joint offsets, tracker registration, probe offset; `tolalloc.diagnose.geometry`), MAP "
              "with priors 10x the robot's sigma set. The paper's error-screw model is the tolerance model "
              "(allocation, Monte Carlo), not used here.", ""]
     lines += _figures_section(d, prefix, out)
     lines += ["## Which: candidate effects", "",
-              "Each candidate is fitted on training poses only and scored on held-out poses; p: one-sided Wilcoxon "
-              "signed-rank test of the per-pose squared-error reduction (Bonferroni over the candidates of a step).", ""]
+              "Each candidate is fitted on training poses only and scored on the training file's out-of-fold poses (the "
+              "test file is sealed until the model is chosen); p: one-sided Wilcoxon signed-rank test of the per-pose "
+              "squared-error reduction (Bonferroni over the candidates of a step).", ""]
     seq = d.sequence_frame()
-    cols = ["step", "base", "effect", "heldout_rms_mm", "gain_pct", "p_value", "n_params", "significant", "selected", "reason"]
+    cols = ["step", "base", "effect", "variant", "heldout_rms_mm", "gain_pct", "p_value", "n_params", "significant",
+            "selected", "reason"]
     lines += [markdown_table(seq[cols]), "", f"![ranking]({prefix}ranking.png)", ""]
     lines += ["## Where: residual after geometric calibration (training poses, robot base frame)", "",
               markdown_table(d.where.per_axis), "", "Strongest trends (Spearman of |e|, largest |Pearson| of a component, "
@@ -112,6 +177,30 @@ def write_report(d: Diagnosis, out: Path, title: str = "Sim-to-real diagnosis", 
     path.write_text("\n".join(lines) + "\n")
     (out / f"{prefix}diagnosis.json").write_text(json.dumps(d.to_dict(), indent=2, default=_default) + "\n")
     return path
+
+
+def _verdict_section(d: Diagnosis, out: Path, prefix: str) -> list:
+    """Verdict, candidates, reasons, the safe model, separating poses and outliers (CSV beside the report)."""
+    if d.verdict is None:
+        return [f"**Diagnosed effect: `{d.effect}`**"]
+    v = d.verdict
+    lines = [f"**{v.headline()}**", ""]
+    if v.candidates:
+        lines += [f"Candidates: {', '.join(f'`{c}`' for c in v.candidates)}.", ""]
+    lines += ["Reasons:", "", *[f"- {r}" for r in v.reasons], "",
+              f"Safe to use: the `{v.safe_model}` model (the last of nominal -> geometric -> final that held on "
+              "cross-validation and, with a test file, on the test file).", ""]
+    if v.suggestions is not None and len(v.suggestions):
+        v.suggestions.to_csv(out / f"{prefix}separating_poses.csv", index=False)
+        lines += ["Poses that would separate the ambiguous effects (where the two fitted models' predictions differ "
+                  "most, within the joint limits; joints in deg / mm):", "", markdown_table(v.suggestions), ""]
+    if d.outliers:
+        d.outliers_frame().to_csv(out / f"{prefix}outliers.csv", index=False)
+        lines += [f"Outliers ({len(d.outliers)} training rows beyond the robust fit's threshold; `outliers.csv`):",
+                  "", markdown_table(d.outliers_frame().head(20)), ""]
+    if len(d.effects) > 1:
+        lines += [f"Final model: `{d.final.label}`.", ""]
+    return lines
 
 
 def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:

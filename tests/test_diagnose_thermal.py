@@ -1,0 +1,86 @@
+"""Time-driven thermal variants (diagnose/thermal.py) and the telescopic-guide deflection (effects.py).
+
+Known answers: the lagged joint activity at constant speed is the closed-form step response; per-link warm-up
+growth is recovered from a chain whose links are scaled one by one (independent of the error model's Jacobian);
+the guide tilt of the tool_changer's stage on horizontal poses equals the rigid rotation of the target about the
+guide point by the hand-computed gravity moment of the masses beyond it."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+import tolalloc
+from tolalloc.diagnose.effects import G, effect_basis, effect_reference, target_points, variants
+from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.thermal import activity, time_problem
+from tolalloc.robot.model import Link, Robot
+
+
+def test_time_problems_are_named():
+    t = 30.0 * np.arange(20)
+    assert time_problem(t) is None
+    assert time_problem(None) == "no time_s column"
+    assert "not increasing" in time_problem(np.r_[t[:5], t[3:8]])
+    assert "another unit" in time_problem(1000.0 * t)  # 30 s steps written in ms
+    assert "another unit" in time_problem(3600.0 * 24 * np.arange(5.0))  # one pose a day for 4 days
+
+
+def test_activity_at_constant_speed_is_the_step_response():
+    t = 20.0 * np.arange(200)
+    q = np.column_stack([0.01 * t, np.zeros_like(t)])  # joint 1 at 0.01 rad/s, joint 2 still
+    tau = 600.0
+    act = activity(t, q, tau)
+    np.testing.assert_allclose(act[:, 0], 0.01 * (1 - np.exp(-t / tau)), atol=1e-12)
+    assert np.all(act[:, 1] == 0)
+    perm = np.random.default_rng(0).permutation(len(t))  # row order does not matter, time does
+    np.testing.assert_allclose(activity(t[perm], q[perm], tau), act[perm], atol=1e-12)
+
+
+def _scaled_point(robot, q1, t, eps: dict):
+    chain = tuple(Link(el.name, np.asarray(el.vector_mm) * (1 + eps.get(el.name, 0.0))) if hasattr(el, "vector_mm")
+                  else el for el in robot.chain)
+    grown = Robot(robot.name, chain, tool_offset_mm=robot.tool_offset_mm, tool_rotation=robot.tool_rotation)
+    return target_points(grown, q1[None], t)[0]
+
+
+def test_per_link_warmup_growth_recovered():
+    robot = tolalloc.load_robot("tool_changer")
+    P = 90
+    rng = np.random.default_rng(4)
+    q = rng.uniform(np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi), (P, robot.n_joints))
+    ts = 30.0 * np.arange(P)
+    t = np.array([0.0, 40.0, 60.0])
+    g = {"l3": 30.0, "l6": 50.0}  # per-link growth at full warm-up [1e-6] (l1/l2 and l4/l5 are collinear pairs)
+    w = 1 - np.exp(-ts / 1800.0)
+    d = np.stack([_scaled_point(robot, q[i], t, {k: 1e-6 * v * w[i] for k, v in g.items()}) for i in range(P)]) \
+        - target_points(robot, q, t)
+    meas = Measurements(q, np.zeros((P, 3)), None, None, None, ts)
+    assert "links_warmup_30min" in variants("thermal", meas) and "activity_30min" in variants("thermal", meas)
+    basis = effect_basis("thermal", robot, meas, t, effect_reference(meas), "links_warmup_30min")
+    beta = np.linalg.lstsq(basis.B.reshape(-1, basis.B.shape[-1]), d.ravel(), rcond=None)[0]
+    got = {nm.split(" ")[0][6:]: b for nm, b in zip(basis.names, beta)}
+    for k, v in g.items():
+        assert got[k] == pytest.approx(v, rel=2e-3)
+    assert all(abs(got[k]) < 0.05 for k in got if k not in g)
+
+
+def test_guide_tilt_is_the_rigid_rotation_by_the_gravity_moment():
+    robot = tolalloc.load_robot("tool_changer")
+    strokes = np.array([0.0, 150.0, 300.0, 450.0])
+    q = np.zeros((4, robot.n_joints))
+    q[:, 3] = strokes  # the arm horizontal along +y, the stage extending
+    t = np.array([0.0, 0.0, 0.0])
+    meas = Measurements(q, np.zeros((4, 3)), payload_kg=np.full(4, 2.0))
+    assert "guide" in variants("link_deflection", meas, {}, robot)
+    basis = effect_basis("link_deflection", robot, meas, t, {}, "guide")
+    pg = robot.joint_points_mm[3]
+    c = 2e-8  # rad per N m (tilts of ~3e-5 rad: the first-order basis holds to ~1e-5 of the displacement)
+    for i, s in enumerate(strokes):
+        # moment about the guide of the masses beyond the stage (bodies 4, 5 move with it) and 2 kg at the target
+        p_t = target_points(robot, q[i:i + 1], t)[0]
+        arms = [(m.com_mm + [0.0, s, 0.0], m.mass_kg) for m in robot.masses if m.body > 3] + [(p_t, 2.0)]
+        M = sum(np.cross((a - pg) / 1000.0, [0.0, 0.0, -kg * G]) for a, kg in arms)
+        exact = Rotation.from_rotvec(c * M).apply(p_t - pg) - (p_t - pg)
+        got = basis.B[i, :, basis.names.index("g_j4 [rad/(N m)]")] * c
+        np.testing.assert_allclose(got, exact, atol=1e-4 * np.linalg.norm(exact))  # first order: angle ~1e-4
+        assert exact[2] < 0  # the stage tips down

@@ -1,0 +1,72 @@
+"""Which variant of an effect: chosen on the training residual of the geometric fit, before any held-out scoring.
+
+Linearised at the geometric fit: residual and effect columns are projected off the registration, offset and
+geometric columns; residual components beyond 3 robust sigma are clipped first, so a few outliers do not pick the
+variant. Variants without a prior compete by BIC on the residual degrees of freedom; variants whose columns carry
+a fitted prior (``EffectBasis.groups``, e.g. the transmission's harmonic series) by their marginal likelihood
+with the prior scales fitted (:mod:`.evidence`), and the chosen one keeps its ridge weights (``prior_w``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from tolalloc.diagnose.evidence import ard_evidence
+
+__all__ = ["choose_variant", "projected_residual"]
+
+
+def projected_residual(fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
+    """(Q, r, n): orthonormal basis of ``J_fixed``, the clipped residual projected off it, its degrees of freedom."""
+    Q, _ = np.linalg.qr(J_fixed)
+    r = (fit.residual_mm if residual_mm is None else residual_mm).ravel()
+    r = r - Q @ (Q.T @ r)
+    s = 1.4826 * np.median(np.abs(r - np.median(r)))
+    r = np.clip(r, -3 * s, 3 * s)
+    return Q, r, len(r) - Q.shape[1]
+
+
+def choose_variant(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
+    """The variant whose columns best explain the geometric fit's training residual (BIC, winsorised residual).
+
+    Linearised at the geometric fit: residual and effect columns are projected off the registration, offset
+    and geometric columns ``J_fixed``; residual components beyond 3 robust sigma are clipped first, so a few
+    outliers do not pick the variant. ``BIC = n log(RSS / (n - M)) + M log n`` with ``n`` the residual degrees
+    of freedom (3P rows minus the fixed columns) and ``M`` the variant's columns: the noise variance is estimated
+    from the degrees of freedom the variant leaves, so on few poses a many-column variant (e.g. two harmonics on
+    every joint) cannot win by fitting the noise of a nearly interpolated residual.
+    ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
+    fit was made on those very poses; a subsampled diagnosis passes the subsample's).
+    """
+    if len(cands) == 1 and getattr(cands[0], "groups", None) is None:
+        return cands[0]
+    Q, r, n = projected_residual(fit, J_fixed, residual_mm)  # n: residual degrees of freedom left
+    if all(getattr(c, "groups", None) is not None for c in cands):
+        return _by_evidence(cands, fit, Q, r, n)
+    best, best_bic = cands[0], np.inf
+    for c in cands:
+        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
+        Jc = Jc - Q @ (Q.T @ Jc)
+        beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
+        rss = float(np.sum((r - Jc @ beta) ** 2))
+        M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
+        bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
+        if bic < best_bic:
+            best, best_bic = c, bic
+    return best
+
+
+
+
+def _by_evidence(cands: list, fit, Q, r, n: int):
+    """The variant of largest marginal likelihood, with its fitted ridge weights."""
+    best, best_ml = cands[0], -np.inf
+    for c in cands:
+        Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
+        Jc = Jc - Q @ (Q.T @ Jc)
+        ev = ard_evidence(Jc, r, c.groups, n_eff=n)
+        if ev.log_ml > best_ml:
+            best, best_ml = replace(c, prior_w=ev.prior_w), ev.log_ml
+    return best

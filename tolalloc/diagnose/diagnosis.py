@@ -1,0 +1,186 @@
+"""The result of a diagnosis (:class:`Diagnosis`): models, held-out scores, guards, verdict."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.calibrate import Calibration, Fit
+from tolalloc.diagnose.guards import Extrapolation, ParameterCheck, PoseUncertainty
+from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.register import RegistrationSplit
+from tolalloc.diagnose.scores import Evaluation, error_stats
+from tolalloc.diagnose.verdict import Verdict
+from tolalloc.diagnose.where import WhereBreakdown
+
+__all__ = ["Diagnosis"]
+
+
+@dataclass(frozen=True, eq=False)
+class Diagnosis:
+    """Result of :func:`diagnose`.
+
+    Attributes
+    ----------
+    robot : Robot
+    train, test : Measurements (test may be None)
+    calibration : Calibration      registration + offset (+ identifiable geometry) on all training poses
+    stages : tuple of Stage        sequential selection; ``stages[0].candidates`` is the ranking
+    effects : tuple of str         selected effects in order (empty: ``none``)
+    nominal, geometric, final : Evaluation   held-out evaluations of the three models
+    where : WhereBreakdown         residual breakdown after geometric calibration (training poses)
+    test_frame : {"same", "refit"}
+    guards : tuple of str          guards that fired (implausible or weakly identified parameters, extrapolating
+                                   test poses, fallback)
+    extrapolation : Extrapolation or None   per test pose flags (None without a test file)
+    fallback : str or None         ``nominal`` / ``geometric`` when the fitted model lost on cross-validation
+    registration : RegistrationSplit or None   ``refit``: test poses used to register the frame (never scored)
+    uncertainty : PoseUncertainty or None      per test pose predicted 1-sigma and 95 % radius, coverage check
+    registered : Fit or None       ``refit``: the final fit with the test frame's registration and probe offset
+    subsample : dict or None       large training files: what ran on a seeded subsample (cross-validation,
+                                   effect selection, identifiability) and what on all rows (the final fits)
+    parameter_check : ParameterCheck or None   geometric parameters and probe offset vs the plausibility level
+    findings : tuple of str        well-identified deviations from nominal (informational, not guards)
+    verdict : Verdict or None      ``effect`` / ``none`` / ``ambiguous`` / ``inconclusive``, candidates, reasons,
+                                   the model safe to use, suggested poses (:mod:`.verdict`)
+    outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
+                                   ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
+    settings : dict                robust loss and target-offset prior of the fits
+    """
+
+    robot: Robot
+    train: Measurements
+    test: Measurements | None
+    calibration: Calibration
+    stages: tuple
+    effects: tuple
+    nominal: Evaluation
+    geometric: Evaluation
+    final: Evaluation
+    where: WhereBreakdown
+    test_frame: str = "same"
+    guards: tuple = ()
+    extrapolation: Extrapolation | None = None
+    fallback: str | None = None
+    registration: RegistrationSplit | None = None
+    uncertainty: PoseUncertainty | None = None
+    registered: Fit | None = None
+    subsample: dict | None = None
+    parameter_check: ParameterCheck | None = None
+    findings: tuple = ()
+    verdict: Verdict | None = None
+    outliers: tuple = ()
+    settings: dict | None = None
+
+    @property
+    def scored_index(self) -> np.ndarray:
+        """Test poses (0-based) the test figures are computed on: all, or the non-registration ones."""
+        return self.registration.score_index if self.registration is not None else np.arange(self.test.n_poses)
+
+    @property
+    def effect(self) -> str:
+        """The effect claimed: the first selected one, or ``none`` (also when the verdict is ``inconclusive``:
+        the final model's effects are then not claimed; ``effects`` still lists them)."""
+        if self.verdict is not None and self.verdict.verdict in ("none", "inconclusive"):
+            return "none"
+        return self.effects[0] if self.effects else "none"
+
+    @property
+    def ranking(self) -> tuple:
+        return self.stages[0].candidates
+
+    def before_after(self, which: str = "heldout") -> pd.DataFrame:
+        """RMS / p95 / max / mean error [mm] of nominal, geometric and final models with the shrink in percent.
+
+        ``which``: ``heldout`` (CV + test), ``cv`` (out-of-fold training poses) or ``test``.
+        """
+        rows = []
+        for name, ev in (("nominal", self.nominal), ("geometric", self.geometric), ("final", self.final)):
+            res = {"heldout": ev.heldout_mm, "cv": ev.oof_mm, "test": ev.test_mm}[which]
+            if res is None:
+                raise TolallocError("no test file was given; use which='heldout' or 'cv'.")
+            rows.append({"model": name, "label": ev.label, **error_stats(res)})
+        df = pd.DataFrame(rows)
+        for col in ("rms_mm", "p95_mm", "max_mm"):
+            base = df[col].iloc[0]
+            df[col.replace("_mm", "_shrink_pct")] = 100.0 * (1.0 - df[col] / base)
+        df["rms_shrink_vs_geometric_pct"] = 100.0 * (1.0 - df["rms_mm"] / df["rms_mm"].iloc[1])
+        return df
+
+    def outliers_frame(self) -> pd.DataFrame:
+        """Training poses treated as gross errors: file row, 3-D residual [mm], IRLS weight."""
+        return pd.DataFrame(list(self.outliers), columns=["row", "error_mm", "weight"])
+
+    def ranking_frame(self) -> pd.DataFrame:
+        return pd.DataFrame([c.to_dict() for c in self.ranking])
+
+    def sequence_frame(self) -> pd.DataFrame:
+        rows = []
+        for i, st in enumerate(self.stages):
+            for c in st.candidates:
+                rows.append({"step": i + 1, "base": "+".join(("geometric", *st.base)), "base_rms_mm": st.base_rms_mm,
+                             **c.to_dict(), "selected": c.effect == st.selected, "removed": c.effect == st.removed})
+        return pd.DataFrame(rows)
+
+    def to_dict(self) -> dict:
+        ba = self.before_after()
+        out = {
+            "robot": self.robot.name,
+            **(self.verdict.to_dict() if self.verdict is not None else {}),
+            "effect": self.effect,
+            "effects": list(self.effects),
+            "ranking": [c.to_dict() for c in self.ranking],
+            "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
+                          "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
+            "rms_mm": dict(zip(ba["model"], ba["rms_mm"])),
+            "p95_mm": dict(zip(ba["model"], ba["p95_mm"])),
+            "max_mm": dict(zip(ba["model"], ba["max_mm"])),
+            "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
+                           "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
+                           "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
+            "heldout": {"cv_poses": len(self.nominal.oof_mm), "test_poses": 0 if self.test is None else len(self.scored_index),
+                        "test_frame": self.test_frame,
+                        "sealed_test": "the test file was scored once, after the model was chosen on the training "
+                                       "file alone (variants, folds, thresholds, selection)"},
+            "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
+                      "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
+                                 "final": self.final.fit.rms_mm}},
+            "identifiability": self.calibration.identifiability.to_dict(),
+            "registration": {"rotation": self.calibration.geometric.R, "translation_mm": self.calibration.geometric.p_mm,
+                             "target_offset_mm": self.calibration.geometric.t_mm},
+            "parameters": self.final.fit.parameters_frame().to_dict(orient="records"),
+            "guards": list(self.guards),
+            "findings": list(self.findings),
+            "outliers": list(self.outliers),
+            "settings": self.settings,
+            "fallback": self.fallback,
+            "subsample": self.subsample,
+            "models": {"calibration": "complete minimal geometric model (diagnose.geometry): 4 line errors per "
+                                      "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
+                       "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
+        }
+        out["cv"] = self._block("cv") | {"poses": self.train.n_poses}
+        if self.extrapolation is not None:
+            out["extrapolation"] = self.extrapolation.to_dict()
+        if self.test is not None:
+            bt = self.before_after("test")
+            out["test_rms_mm"] = dict(zip(bt["model"], bt["rms_mm"]))
+            out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source,
+                           "scored_poses": len(self.scored_index), **self._block("test"),
+                           "registration": None if self.registration is None else self.registration.to_dict(self.test.rows)}
+            if self.registered is not None:
+                out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
+                                                "target_offset_mm": self.registered.t_mm}
+        if self.uncertainty is not None:
+            out["uncertainty"] = self.uncertainty.to_dict()
+        if self.parameter_check is not None:
+            out["parameter_check"] = self.parameter_check.to_frame().to_dict(orient="records")
+        return out
+
+    def _block(self, which: str) -> dict:
+        b = self.before_after(which)
+        return {k: dict(zip(b["model"], b[k])) for k in ("rms_mm", "p95_mm", "max_mm")}

@@ -1,0 +1,168 @@
+"""Thermal growth of the links: what drives it (ambient log, warm-up time, motion history) and its basis.
+
+Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by ``J_k L_k alpha_k dT_k``
+(``J_k`` the first-order displacement per mm of link ``k``, :func:`link_growth`). Variants of ``dT``:
+
+``temperature``          the logged ``temperature_c`` minus the training mean; one ``alpha`` for all links.
+``lag_<tau>min``         the log through a first-order lag (time constant ``tau`` on :data:`LAG_MIN`); one ``alpha``.
+``warmup_<tau>min``      ``1 - exp(-(t - t0) / tau)``: a warm-up the ambient log does not show; one growth for all
+                         links [1e-6].
+``links_warmup_<tau>min`` the same warm-up with its own growth per link (motors of different power sit at
+                         different links) [1e-6 per link].
+``activity_<tau>min``    motion history: per joint the joint speed between consecutive poses in time order
+                         (``|q_i - q_(i-1)| / (t_i - t_(i-1))``, rad/s or mm/s) through a first-order lag of time
+                         constant ``tau`` (the heat stored in its motor); link ``k`` grows with the lagged activity
+                         of the joints at its two ends, with its own coefficient [1e-6 per rad/s].
+
+Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
+session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
+is built from the training rows alone; a test file's basis runs the lag filters over the training and test
+rows together in time order (their joint values and times only -- what is known before a pose is measured).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.errormodel import build_error_model
+from tolalloc.robot.model import Robot
+
+__all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
+           "link_joint_matrix", "activity", "MAX_SPAN_S", "MAX_STEP_S"]
+
+LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
+#: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
+MAX_SPAN_S = 2 * 86400.0
+#: A median step between consecutive poses above this [s] (10 min) is taken for another unit (ms).
+MAX_STEP_S = 600.0
+
+
+def time_problem(time_s) -> str | None:
+    """Why ``time_s`` (P,) cannot drive time-dependent effects, or None when it can."""
+    if time_s is None:
+        return "no time_s column"
+    t = np.asarray(time_s, float)
+    if len(t) < 2 or np.ptp(t) <= 0:
+        return "time_s does not advance"
+    step = np.diff(t)
+    if np.any(step < 0):
+        i = int(np.flatnonzero(step < 0)[0])
+        return (f"time_s is not increasing within the session (pose {i + 2}: {t[i + 1]:g} s after {t[i]:g} s); "
+                "expected one session per file with time stamps in measurement order")
+    pos = step[step > 0]
+    med = float(np.median(pos)) if len(pos) else 0.0
+    if np.ptp(t) > MAX_SPAN_S or med > MAX_STEP_S:
+        return (f"time_s looks like another unit than seconds (span {np.ptp(t):.4g}, median step {med:.4g} between "
+                f"poses; expected at most {MAX_SPAN_S:g} s and {MAX_STEP_S:g} s): convert it to seconds (ms / 1000)")
+    return None
+
+
+def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
+    """First-order lag of a signal (time order), ``dy/dt = (T - y) / tau``, started at ``T[0]``, shape (P,)."""
+    order = np.argsort(time_s, kind="stable")
+    ts, Ts = time_s[order], temp_c[order]
+    y = np.empty_like(Ts)
+    y[0] = Ts[0]
+    a = 1.0 - np.exp(-np.diff(ts) / tau_s)
+    for i in range(1, len(Ts)):
+        y[i] = y[i - 1] + a[i - 1] * (Ts[i] - y[i - 1])
+    out = np.empty_like(y)
+    out[order] = y
+    return out
+
+
+def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
+    """Lagged joint activity, shape (P, n): joint speed over the interval before each pose (time order; 0 for the
+    first), through a first-order lag of time constant ``tau_s`` started at 0 (a cold robot)."""
+    order = np.argsort(time_s, kind="stable")
+    ts, qs = time_s[order], q[order]
+    dt = np.diff(ts)
+    speed = np.abs(np.diff(qs, axis=0)) / np.maximum(dt, 1e-9)[:, None]
+    y = np.zeros_like(qs)
+    a = 1.0 - np.exp(-dt / tau_s)
+    for i in range(1, len(ts)):
+        y[i] = y[i - 1] + a[i - 1] * (speed[i - 1] - y[i - 1])
+    out = np.empty_like(y)
+    out[order] = y
+    return out
+
+
+def thermal_variants(meas) -> tuple:
+    """Thermal variants the data can carry (first: the default), empty when none."""
+    T, t = meas.temperature_c, meas.time_s
+    out = ["temperature"] if T is not None and np.ptp(T) >= 0.05 else []
+    if time_problem(t) is None:
+        if out:
+            out += [f"lag_{m:g}min" for m in LAG_MIN]
+        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "activity") for m in LAG_MIN]
+    return tuple(out)
+
+
+def _tau_s(variant: str) -> float:
+    return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
+
+
+def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None) -> np.ndarray:
+    """The driving signal of ``variant`` on the poses of ``meas``: shape (P,) for the one-coefficient variants and
+    ``links_warmup``, (P, L) for ``activity`` (``link_joints`` (L, n): :func:`link_joint_matrix`)."""
+    if variant == "temperature":
+        return meas.temperature_c - ref["temperature_c"]
+    tau, t = _tau_s(variant), meas.time_s
+    if variant.startswith(("warmup", "links_warmup")):
+        return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
+    if variant.startswith("activity"):
+        ht, hq = ref["motion"]
+        own = len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hq, meas.q)
+        if own:  # the training file itself
+            act = activity(t, meas.q, tau)
+        else:  # other poses: the filter runs over the training poses and these together, in time order
+            act = activity(np.concatenate([ht, t]), np.concatenate([hq, meas.q]), tau)[len(ht):]
+        return act @ link_joints.T  # (P, L): lagged activity of the joints at each link's ends
+    ht, hT = ref["history"]  # lag of the temperature log
+    allt, allT = np.concatenate([ht, t]), np.concatenate([hT, meas.temperature_c])
+    y = lagged(allt, allT, tau)[len(ht):]
+    return y - ref["temperature_c"]
+
+
+def link_growth(robot: Robot, q: np.ndarray) -> tuple:
+    """Displacement of the target per unit relative growth (1e-6) of every link of nonzero length, shape (P, 3, L),
+    and the links' names (a translation moves every point downstream equally, so it is the same at the target)."""
+    model = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection"))
+    J = model.jacobian(q)[:, :3, :]  # (P, 3, L) per mm of each link
+    links = [lk for lk in robot.links if lk.length_mm > 0]
+    L = np.array([lk.length_mm for lk in links])
+    return 1e-6 * J * L, tuple(lk.name for lk in links)
+
+
+def link_joint_matrix(robot: Robot) -> np.ndarray:
+    """(L, n) indicator of the joints at the two ends of every link of nonzero length (its motors)."""
+    rows = []
+    for lk, site in zip(robot.links, robot.link_sites):
+        if lk.length_mm <= 0:
+            continue
+        r = np.zeros(robot.n_joints)
+        for j in (site - 1, site):
+            if 0 <= j < robot.n_joints:
+                r[j] = 1.0
+        rows.append(r)
+    return np.array(rows).reshape(-1, robot.n_joints)
+
+
+def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
+    """(names, B (P, 3, M)) of every variant in ``names`` (the link-growth field is computed once)."""
+    grow, links = link_growth(robot, meas.q)
+    total = grow.sum(axis=2)  # (P, 3): every link by the same relative amount
+    lj = link_joint_matrix(robot)
+    out = []
+    for v in names:
+        s = thermal_signal(meas, ref, v, lj)
+        if v.startswith(("links_warmup", "activity")):
+            per = s[:, None] if s.ndim == 1 else s
+            B = grow * (per if per.shape[1] == grow.shape[2] else np.repeat(per, grow.shape[2], axis=1))[:, None, :]
+            unit = "1e-6" if v.startswith("links") else "1e-6 per rad/s"
+            labels = tuple(f"alpha_{nm} [{unit}] ({v})" for nm in links)
+        else:
+            B = (total * s[:, None])[:, :, None]
+            labels = (f"alpha [1e-6/K] ({v})" if not v.startswith("warmup") else f"growth [1e-6] ({v})",)
+        out.append((labels, np.asarray(B, dtype=float)))
+    return out
