@@ -5,7 +5,8 @@
 * its own frame-walking kinematics reproduces ``Robot.fk`` at zero geometric error (two independent
   implementations agree to 1e-9 mm) and every geometric parameter it perturbs moves the probe;
 * a small fixed-seed sample of ``none`` cases (both built-in robots, 60 poses, with outliers forced in one)
-  is diagnosed ``none``.
+  is diagnosed ``none``; a wrist-still session (issue 25) gets no claim;
+* the motion-history thermal physics is the two-stage lag's closed form at constant speed.
 """
 
 import ast
@@ -22,7 +23,7 @@ STUDY = Path(__file__).resolve().parents[1] / "studies" / "sim2real_blind"
 sys.path.insert(0, str(STUDY))
 
 from cases import generate  # noqa: E402
-from physics import _perturbed_ops, describe, walk  # noqa: E402
+from physics import _perturbed_ops, describe, motion_temperatures, walk  # noqa: E402
 
 
 def _imports(path: Path) -> set:
@@ -66,3 +67,25 @@ def test_none_cases_get_no_effect(name, seed):
         frame.loc[[7, 40], "x_mm"] += 2.0
     d = diagnose(robot, measurements_from_frame(frame, robot), folds=2)
     assert d.effect == "none", d.ranking_frame()[["effect", "variant", "gain_pct", "p_value"]]
+
+
+def test_motion_temperatures_two_stage_lag_closed_form():
+    t = 30.0 * np.arange(400)
+    q = np.column_stack([0.002 * t, np.zeros_like(t)])  # joint 1 at constant speed from t = 0
+    tm, tl = 900.0, 2400.0
+    T = motion_temperatures(q, t, np.array([2.0, 1.0]), tm, tl, [[0], [0, 1]])
+    h = 2.0 * 0.002  # heat input of joint 1
+    link0 = h * (1 - (tl * np.exp(-t / tl) - tm * np.exp(-t / tm)) / (tl - tm))  # step through two lags
+    # the sampled second stage holds the motor value over each 30 s step: within a few % of dt / tau of the input
+    np.testing.assert_allclose(T[:, 0], link0, atol=0.03 * h)
+    np.testing.assert_allclose(T[:, 1], 0.5 * T[:, 0], atol=1e-15)  # link 1: mean of joints 1 (moving) and 2
+
+
+def test_wrist_still_session_gets_no_claim():
+    robot = tolalloc.load_robot("ur10")
+    case = generate(robot, "none", 60, np.random.default_rng(21), "wrist_still")
+    n = int(round(0.75 * 60))
+    tr, te = case.frame.iloc[:n].reset_index(drop=True), case.frame.iloc[n:].reset_index(drop=True)
+    d = diagnose(robot, measurements_from_frame(tr, robot), measurements_from_frame(te, robot), folds=2,
+                 max_effects=1)
+    assert d.verdict.verdict in ("none", "inconclusive") and d.effect == "none", d.verdict.reasons

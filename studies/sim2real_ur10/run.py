@@ -11,13 +11,16 @@ then the candidate effects scored on held-out poses, guards) followed by the res
   test session's tracker registration and probe offset are re-estimated on 30 test poses spread in joint space
   (`tolalloc.diagnose.register`) and only the other test poses are scored.
 
-Issue 15's target is checked per run: a final test RMS above the nominal one must come with a guard.
-The residual split's unnamed-systematic part is a Gaussian process on the joint values (ARD length scales and
-noise by maximum marginal likelihood, `tolalloc.diagnose.gp`) trained on the training poses' out-of-fold
-residuals only and scored on the test poses.
-Writes reports/sim2real_ur10/: report.md, summary.csv, gap_split.csv, gap_gp.csv and per-run reports, tables
-and figures
-(prefix = run name). The data are read from ../shared/data and never copied.
+Issue 25's targets are checked per run: no final model worse than nominal on the test file, and no final max
+error above 2x the nominal max, unless the verdict is ``inconclusive``; the test file is sealed (scored once,
+after the choice). The residual split's unnamed-systematic part is a Gaussian process on the joint values (ARD
+length scales and noise by maximum marginal likelihood, `tolalloc.diagnose.gp`) trained on the training poses'
+out-of-fold residuals only and scored on the test poses; a second GP on the *geometric* model's out-of-fold
+residual says what a joint-space regressor removes where the selected effects (e.g. the transmission's harmonic
+series) stand. The joint-angle periodogram (:func:`periodogram`) looks for lines of the joint-periodic residual
+per joint, including the wave-generator orders ``N`` and ``2N`` of a strain-wave gear (``GEAR_RATIO``).
+Writes reports/sim2real_ur10/: report.md, summary.csv, gap_split.csv, gap_gp.csv, periodogram.csv and per-run
+reports, tables and figures (prefix = run name). The data are read from ../shared/data and never copied.
 
     python studies/sim2real_ur10/run.py [--quick]
 """
@@ -33,8 +36,10 @@ import numpy as np
 import pandas as pd
 
 import tolalloc
-from tolalloc.diagnose import diagnose, measurements_from_frame
-from tolalloc.diagnose.gap import diagnosis_gap_split
+from tolalloc.diagnose import calibrate, diagnose, measurements_from_frame
+from tolalloc.diagnose.calibrate import fixed_jacobian
+from tolalloc.diagnose.effects import point_jacobian, target_points
+from tolalloc.diagnose.gap import diagnosis_gap_split, fit_residual_gp
 from tolalloc.diagnose.synth import split_frame
 from tolalloc.report.diagnosis import write_report
 
@@ -45,6 +50,9 @@ OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_ur10"
 TIME_TRAIN = 0.7
 #: A GP length scale below this counts as short (local) in the report [deg].
 SHORT_DEG = 15.0
+#: Strain-wave gear ratio assumed for the wave-generator orders of the periodogram (UR joints: 1:101 harmonic
+#: drives); the periodogram scans every order up to 2.1 N, so the assumption only names two of its rows.
+GEAR_RATIO = 101
 KINDS = {"random": "random 75/25 split", "time": f"first {TIME_TRAIN:.0%} train, later rows test",
          "across": "other session, re-registered on 30 test poses"}
 
@@ -78,13 +86,22 @@ def tracker_std_mm() -> float:
     return float(np.sqrt(np.mean(np.sum(raw.to_numpy(float) ** 2, axis=1))))
 
 
+def _variant(d, e: str) -> str:
+    """The variant of effect ``e`` in the diagnosis (chosen on the training file)."""
+    return next((c.variant for st in d.stages for c in st.candidates if c.effect == e and c.variant), "")
+
+
 def summarise(name: str, kind: str, d, dt: float) -> dict:
-    """One summary row: test and CV figures, guards, target check."""
+    """One summary row: verdict, test and CV figures, guards, the issue-25 target checks."""
     bt, bc = d.before_after("test"), d.before_after("cv")
+    v = d.verdict
     row = {"run": name, "split": KINDS[kind], "train_poses": d.train.n_poses, "test_poses": d.test.n_poses,
            "scored_poses": len(d.scored_index),
            "registration_poses": 0 if d.registration is None else len(d.registration.register_index),
-           "effects": "+".join(d.effects) or "none", "fallback": d.fallback or ""}
+           "verdict": v.verdict, "candidates": "+".join(v.candidates) or "-", "safe_model": v.safe_model,
+           "effects": "+".join(d.effects) or "none",
+           "variants": "; ".join(f"{e}: {_variant(d, e)}" for e in d.effects) or "-",
+           "fallback": d.fallback or "", "outliers": len(d.outliers)}
     for i, m in enumerate(("nominal", "geometric", "final")):
         for k in ("rms_mm", "p95_mm", "max_mm"):
             row[f"test_{k[:-3]}_{m}_mm"] = bt[k].iloc[i]
@@ -96,9 +113,65 @@ def summarise(name: str, kind: str, d, dt: float) -> dict:
     row["guard_kinds"] = "; ".join(sorted({g.split(":")[0] for g in d.guards})) or "none"
     worse = row["test_rms_final_mm"] > row["test_rms_nominal_mm"]
     row["final_worse_than_nominal"] = bool(worse)
-    row["target_ok"] = bool(not worse or d.guards)
+    row["final_max_over_nominal_max"] = row["test_max_final_mm"] / row["test_max_nominal_mm"]
+    row["target_ok"] = bool((not worse and row["final_max_over_nominal_max"] <= 2.0) or v.verdict == "inconclusive")
     row["seconds"] = dt
     return row
+
+
+def effect_vs_gp(d) -> dict:
+    """What the selected effects remove of the geometric model's test mean square, against what a GP on the
+    geometric model's out-of-fold training residual removes of it (both on the scored test poses, base frame)."""
+    R_test = d.registered.R if d.registered is not None else d.final.fit.R
+    e_geo = d.geometric.test_mm @ (R_test if d.registration is not None else d.geometric.fit.R)
+    gp = fit_residual_gp(d.train.q, d.geometric.oof_mm @ d.geometric.fit.R, max_fit=600)
+    ms = (lambda e: float(np.mean(np.sum(e ** 2, axis=1))))
+    ms_g, ms_f = ms(d.geometric.test_mm), ms(d.final.test_mm)
+    return {"effects_remove_pct_of_geometric": 100 * (1 - ms_f / ms_g),
+            "gp_on_geometric_removes_pct": 100 * (1 - ms(e_geo - gp.predict(d.test.q[d.scored_index])) / ms_g)}
+
+
+def periodogram(robot, frames: dict, max_order: int = int(2.1 * GEAR_RATIO)) -> pd.DataFrame:
+    """Share [%] of each session's geometric residual (projected off the registration, offset and geometric
+    columns) that one harmonic ``sin, cos(k q_j)`` of joint ``j`` explains alone, for k = 1..max_order: rows
+    (session, joint, order, share_pct)."""
+    rows = []
+    for sname, df in frames.items():
+        m = measurements_from_frame(df, robot, sname)
+        g = calibrate(robot, m).geometric
+        Q, _ = np.linalg.qr(fixed_jacobian(g, m.q, m.xyz_mm))
+        r = g.residual_mm.ravel()
+        r = r - Q @ (Q.T @ r)
+        Jp = np.einsum("ij,pjn->pin", g.R, point_jacobian(robot, m.q, target_points(robot, m.q, g.t_mm)))
+        for j in range(robot.n_joints):
+            for k in range(1, max_order + 1):
+                A = np.stack([(Jp[:, :, j] * f(k * m.q[:, j])[:, None]).ravel() for f in (np.sin, np.cos)], axis=1)
+                A = A - Q @ (Q.T @ A)
+                b, *_ = np.linalg.lstsq(A, r, rcond=None)
+                rows.append({"session": sname, "joint": f"q{j + 1}", "order": k,
+                             "share_pct": 100 * (1 - np.sum((r - A @ b) ** 2) / np.sum(r ** 2))})
+    return pd.DataFrame(rows)
+
+
+def periodogram_lines(pg: pd.DataFrame) -> list:
+    """Per session and joint: the strongest orders, and the wave-generator orders N and 2N (computed)."""
+    rows = []
+    for (sname, joint), grp in pg.groupby(["session", "joint"], sort=False):
+        top = grp.nlargest(4, "share_pct")
+        at = grp.set_index("order")["share_pct"]
+        high = grp[grp["order"] > 60]
+        rows.append({"session": sname, "joint": joint,
+                     "strongest_orders": ", ".join(f"{int(o)} ({v:.1f} %)" for o, v in zip(top["order"], top["share_pct"])),
+                     f"order_{GEAR_RATIO}_pct": at.get(GEAR_RATIO, np.nan),
+                     f"order_{2 * GEAR_RATIO}_pct": at.get(2 * GEAR_RATIO, np.nan),
+                     "best_order_above_60": f"{int(high.loc[high['share_pct'].idxmax(), 'order'])} "
+                                            f"({high['share_pct'].max():.2f} %)"})
+    return ["## The joint-angle-periodic residual: periodogram per joint", "",
+            "Share of each session's geometric residual (projected off the registration, probe offset and geometric "
+            "columns) that a single harmonic sin/cos(k q_j) of one joint explains, k = 1.."
+            f"{int(pg['order'].max())} (periodogram.csv). Orders {GEAR_RATIO} and {2 * GEAR_RATIO}: a strain-wave gear's "
+            f"wave generator (once and twice per motor revolution at a ratio of 1:{GEAR_RATIO}).", "",
+            pd.DataFrame(rows).to_markdown(index=False, floatfmt=".2f"), ""]
 
 
 def run_section(name: str, row: dict, d, gap) -> list:
@@ -107,8 +180,10 @@ def run_section(name: str, row: dict, d, gap) -> list:
            "(not scored)" if d.registration is not None else "")
     return [f"### {name}", "",
             f"{row['split']}: train {row['train_poses']} poses, test {row['test_poses']} poses, scored "
-            f"{row['scored_poses']}{reg}; {row['seconds']:.0f} s. Selected: **{row['effects']}**"
+            f"{row['scored_poses']}{reg}; {row['seconds']:.0f} s. **{d.verdict.headline()}**; final model "
+            f"`{d.final.label}` ({row['variants']})"
             + (f" (fallback to {d.fallback})" if d.fallback else "") + f". Full report: [{name}_report.md]({name}_report.md).", "",
+            "Reasons:", "", *[f"- {r}" for r in d.verdict.reasons], "",
             bt[["model", "label", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]].to_markdown(index=False, floatfmt=".4g"), "",
             "Guards: " + ("none fired." if not d.guards else ""), *[f"- {g}" for g in d.guards], "",
             f"Predicted uncertainty: {row['coverage95_pct']:.0f} % of the scored test residuals inside the predicted 95 % "
@@ -146,7 +221,8 @@ def main(argv=None) -> int:
         rows.append(summarise(name, kind, d, dt) | {"gap_gp_test_explained_pct": 100 * gap.gp_test_explained,
                                                      "gap_gp_loo_explained_pct": 100 * gap.gp_loo_explained,
                                                      "gap_gp_noise_sd_mm": gap.gp_noise_sd_mm,
-                                                     "gap_noise_source": gap.noise_source})
+                                                     "gap_noise_source": gap.noise_source}
+                    | effect_vs_gp(d))
         gps.append(gp_row(name, gap, [f"q{j + 1}" for j in range(robot.n_joints)]))
         gaps.append(gap.to_frame().assign(run=name))
         sections += run_section(name, rows[-1], d, gap)
@@ -158,8 +234,10 @@ def main(argv=None) -> int:
     gap_all.to_csv(OUT / "gap_split.csv", index=False, float_format="%.5g")
     gp_all = pd.DataFrame(gps)
     gp_all.to_csv(OUT / "gap_gp.csv", index=False, float_format="%.5g")
+    pg = periodogram(robot, {"A": A, "C": C})
+    pg.to_csv(OUT / "periodogram.csv", index=False, float_format="%.4g")
     lines = (report_lines(summary, gap_all, A_all, C_all, step_a, step_c, a.quick) + gp_lines(gp_all, tracker_std_mm())
-             + joint_ranges(A_all, C_all, robot))
+             + periodogram_lines(pg) + joint_ranges(A_all, C_all, robot))
     (OUT / "report.md").write_text("\n".join(lines + ["## Runs", "", *sections]) + "\n")
     print(f"-> {OUT / 'report.md'}")
     return 0
@@ -170,13 +248,17 @@ def report_lines(summary, gap_all, A_all, C_all, step_a, step_c, quick) -> list:
     tA, tC = A_all["temperature_c"], C_all["temperature_c"]
     bad = s[~s["target_ok"]]
     worse = s[s["final_worse_than_nominal"]]
-    verdict = ("met: no run has a final test RMS above nominal without a guard firing" if bad.empty else
-               "NOT met: " + ", ".join(f"{r} (final {v.test_rms_final_mm:.3f} vs nominal {v.test_rms_nominal_mm:.3f} mm, "
-                                       "no guard)" for r, v in bad.iterrows()))
-    cols = ["run", "split", "train_poses", "scored_poses", "effects"] + [
+    verdict = ("met: no run has a final model worse than nominal on the test file or a final max error above 2x "
+               "the nominal max unless its verdict is inconclusive" if bad.empty else
+               "NOT met: " + ", ".join(f"{r} (final {v.test_rms_final_mm:.3f} vs nominal {v.test_rms_nominal_mm:.3f} mm "
+                                       f"RMS, max ratio {v.final_max_over_nominal_max:.2f}, verdict {v.verdict})"
+                                       for r, v in bad.iterrows()))
+    cols = ["run", "split", "train_poses", "scored_poses", "verdict", "effects"] + [
         f"test_{k}_{m}_mm" for k in ("rms", "p95", "max") for m in ("nominal", "geometric", "final")]
-    gcols = ["run", "effects", "fallback", "guards", "guard_kinds", "extrapolating_test_poses", "coverage95_pct",
-             "median_sigma_mm", "final_worse_than_nominal", "target_ok"]
+    vcols = ["run", "verdict", "candidates", "safe_model", "variants", "outliers", "effects_remove_pct_of_geometric",
+             "gp_on_geometric_removes_pct", "gap_gp_test_explained_pct"]
+    gcols = ["run", "verdict", "fallback", "guards", "guard_kinds", "extrapolating_test_poses", "coverage95_pct",
+             "median_sigma_mm", "final_worse_than_nominal", "final_max_over_nominal_max", "target_ok"]
     share = gap_all.pivot(index="run", columns="part", values="share_of_nominal_pct").reindex(s.index)
     lines = ["# Sim-to-real diagnosis of a real UR10 (IPA laser-tracker data)", "",
              f"Generated by `python studies/sim2real_ur10/run.py{' --quick' if quick else ''}`. Data: Series A (grid, "
@@ -190,10 +272,16 @@ def report_lines(summary, gap_all, A_all, C_all, step_a, step_c, quick) -> list:
              "3-D position error on the **scored test poses only** (across sessions: without the 30 poses that "
              "re-registered the tracker frame). Cross-validation figures are in each run's report.", "",
              summary[cols].to_markdown(index=False, floatfmt=".3g"), "",
-             "## Guards and the issue-15 target", "",
-             f"Target (issue 15: UR10 A and C, no run whose final test RMS exceeds nominal without a guard firing): "
-             f"**{verdict}**. Runs whose final test RMS is above nominal: "
-             + (", ".join(worse.index) or "none") + ".", "",
+             "## Verdicts, and what the effects remove against a Gaussian process", "",
+             "`effects_remove_pct_of_geometric`: share of the geometric model's test mean square the final model "
+             "removes; `gp_on_geometric_removes_pct`: share a Gaussian process on the joint values removes, fitted on "
+             "the geometric model's out-of-fold training residual (600 poses) and scored on the same test poses; "
+             "`gap_gp_test_explained_pct`: share of the final model's test mean square a GP on its residual still "
+             "removes. The test file was sealed: scored once, after the choice.", "",
+             summary[vcols].to_markdown(index=False, floatfmt=".3g"), "",
+             "## Guards and the issue-25 targets", "",
+             f"Targets (issue 25, applied here to the A and C runs; the issue states them for withheld sessions): "
+             f"**{verdict}**. Runs whose final test RMS is above nominal: " + (", ".join(worse.index) or "none") + ".", "",
              summary[gcols].to_markdown(index=False, floatfmt=".3g"), "",
              "coverage95_pct: share of scored test residuals inside the predicted 95 % radius (parameter covariance "
              "of the final fit + noise); well below 95 % means error the fitted model does not contain.", "",
@@ -215,7 +303,8 @@ def reading(s: pd.DataFrame, share: pd.DataFrame) -> list:
         return f"{v.min():.3f}-{v.max():.3f} mm"
 
     rnd, tim, acr = ["random_C", "random_A"], ["time_C", "time_A"], ["across_A_to_C", "across_C_to_A"]
-    out = [f"* Random splits within a session: final test RMS {rng(rnd, 'test_rms_final_mm')} (nominal "
+    out = ["* Verdicts: " + ", ".join(f"{r} {v}" for r, v in s["verdict"].items()) + ".",
+           f"* Random splits within a session: final test RMS {rng(rnd, 'test_rms_final_mm')} (nominal "
            f"{rng(rnd, 'test_rms_nominal_mm')}, geometric {rng(rnd, 'test_rms_geometric_mm')}).",
            f"* Time splits (later rows test): final test RMS {rng(tim, 'test_rms_final_mm')} (nominal "
            f"{rng(tim, 'test_rms_nominal_mm')}, geometric {rng(tim, 'test_rms_geometric_mm')}); max error final "

@@ -10,11 +10,12 @@ from threadpoolctl import threadpool_limits
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.calibrate import DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, outlier_rows
+from tolalloc.diagnose.calibrate import (DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, initial_fit,
+                                        outlier_rows)
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
-from tolalloc.diagnose.misfit import MISFIT_MM, check_nominal_misfit
+from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
@@ -196,8 +197,9 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
 
 
 def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation, chosen: Evaluation):
-    """Score the three models on the test file -- once, after the choice; refuse a test file the nominal model
-    misses by more than a robot's manufacturing errors can explain (another robot, other units)."""
+    """Score the three models on the test file -- once, after the choice; refuse a test file the nominal robot,
+    registered on the test file itself, misses by more than manufacturing errors can explain (another robot,
+    other units: :func:`~.misfit.check_nominal_misfit`)."""
     if ctx.test is None:
         return nominal, geometric, final, chosen
 
@@ -207,14 +209,13 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
 
     n2, g2 = scored(nominal), scored(geometric)
     f2 = g2 if final is geometric else scored(final)
-    miss = error_stats(n2.test_mm)["rms_mm"]
-    if miss > MISFIT_MM:
-        raise TolallocError(
-            f"{ctx.test.source}: the nominal model, registered on the training file"
-            + (" and re-registered on test poses" if ctx.registration is not None else "")
-            + f", misses the test file's points by {miss:.4g} mm RMS (limit {MISFIT_MM:g} mm): it is not a "
-            "measurement of this robot in this set-up (another robot, other joint units or order, or another "
-            "tracker frame -- then use test_frame='refit').")
+    test = ctx.test
+    if test.n_poses >= 5:  # the test file against the robot on its own (not the training fit's probe offset)
+        own = fit_model(initial_fit(ctx.cal.nominal.model, test.q, test.xyz_mm), test.q, test.xyz_mm, loss=ctx.loss)
+        try:
+            check_nominal_misfit(ctx.cal.nominal.model.robot, test, own)
+        except TolallocError as exc:
+            raise TolallocError(f"test file: {exc}") from None
     c2 = {id(nominal): n2, id(geometric): g2, id(final): f2}.get(id(chosen), f2)
     return n2, g2, f2, c2
 

@@ -15,7 +15,8 @@
 The model that is safe to use (:func:`safe_model`) is the last of nominal -> geometric -> final that held
 (no worse than the one before it on cross-validation, :data:`~tolalloc.diagnose.guards.FALLBACK_MARGIN`, and --
 with a test file -- no worse than nominal on it by the rules above); an ``inconclusive`` verdict stops at the
-geometric model, since the effects are not claimed.
+geometric model, since the effects are not claimed; ``none`` when even the nominal model does not transfer to the
+test file (its test RMS above :data:`UNSTABLE_RATIO` x its out-of-fold RMS).
 """
 
 from __future__ import annotations
@@ -93,7 +94,9 @@ class Verdict:
         if self.verdict == "ambiguous":
             return f"verdict: ambiguous -- one of {', '.join(self.candidates)}; these poses cannot tell them apart"
         if self.verdict == "inconclusive":
-            return f"verdict: inconclusive -- no effect claimed; safe to use: the {self.safe_model} model"
+            safe = ("no fitted model transfers to the test poses" if self.safe_model == "none"
+                    else f"safe to use: the {self.safe_model} model")
+            return f"verdict: inconclusive -- no effect claimed; {safe}"
         return "verdict: none -- no unmodelled effect lowers the held-out error significantly"
 
     def to_dict(self) -> dict:
@@ -228,7 +231,11 @@ def _held(ev, base, test: dict | None, name: str) -> bool:
 
 
 def safe_model(nominal, geometric, final, test_stats: dict | None, inconclusive: bool) -> str:
-    """Label of the last model of nominal -> geometric -> final that held (module docstring)."""
+    """Label of the last model of nominal -> geometric -> final that held (module docstring); ``none`` when even
+    the nominal model misses the test file by more than :data:`UNSTABLE_RATIO` x its out-of-fold RMS (e.g. a
+    probe offset the training poses could not pin down, used at other flange directions)."""
+    if test_stats is not None and test_stats["nominal"]["rms_mm"] > UNSTABLE_RATIO * rms(nominal.oof_mm):
+        return "none"
     safe = nominal.label
     if not _held(geometric, nominal, test_stats, "geometric"):
         return safe

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose.diagnosis import Diagnosis
+from tolalloc.diagnose.verdict import UNSTABLE_RATIO
 
 __all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
 
@@ -68,7 +69,11 @@ def verdict_lines(d: Diagnosis) -> list:
     lines.append("reasons:")
     lines += [f"  - {r}" for r in v.reasons]
     safe = {"nominal": "registration + probe offset only", "geometric": "registration, probe offset and geometry"}
-    lines.append(f"safe to use: the {v.safe_model} model ({safe.get(v.safe_model, 'geometry and the effects')})")
+    if v.safe_model == "none":
+        lines.append("safe to use: none -- even the nominal model misses the test poses by more than "
+                     f"{UNSTABLE_RATIO:g} x its out-of-fold error")
+    else:
+        lines.append(f"safe to use: the {v.safe_model} model ({safe.get(v.safe_model, 'geometry and the effects')})")
     if v.suggestions is not None and len(v.suggestions):
         lines.append("poses that would separate the ambiguous effects (joints in deg / mm; predicted difference of "
                      "the two fitted models):")
