@@ -62,7 +62,7 @@ def _harmonic_case(orders, amp, seed, P=120):
 def test_series_variant_chosen_by_evidence_for_a_many_order_error():
     robot, meas, fit, J, t = _harmonic_case(range(1, 11), 2e-5, seed=2)
     names = variants("transmission", meas, {}, robot)
-    assert "series12" in names and "series24" not in names  # 120 poses: 2 K 6 <= 1.5 P for K <= 15
+    assert "series12" in names and "series24" not in names  # 120 poses: 2 K 6 <= 2 P for K <= 20
     best = choose_variant(effect_bases("transmission", robot, meas, t, {}, names), fit, J)
     assert best.variant == "series12" and best.prior_w is not None and len(best.prior_w) == best.B.shape[-1]
     # the ridge holds the other joints' columns far more strongly than joint 2's

@@ -185,7 +185,7 @@ def _wrist_still(robot, q, rng):
     """The flange keeps its direction (tool pointing one way; the wrist joints follow the arm), +-0.03 deg."""
     jitter = rng.normal(0, np.deg2rad(0.03), (len(q), 2))
     if robot.name == "ur10":  # wrist 1 cancels shoulder + elbow, wrist 2 at -90 deg: tool down
-        q[:, 3] = -q[:, 1] - q[:, 2] - np.pi / 2 + jitter[:, 0]
+        q[:, 3] = np.angle(np.exp(1j * (-q[:, 1] - q[:, 2] - np.pi / 2))) + jitter[:, 0]  # within one turn
         q[:, 4] = -np.pi / 2 + jitter[:, 1]
     else:  # tool_changer: joints 2, 3 and 5 turn about x; their sum fixes the flange direction
         q[:, 4] = -q[:, 1] - q[:, 2] + jitter[:, 0]

@@ -42,8 +42,9 @@ those the data can carry.
 ``transmission``      joint-side harmonics ``dq_j = sum_k a_jk sin(k q_j) + b_jk cos(k q_j)`` per revolute
                       joint, orders ``1x`` (once per revolution), ``1x2x``, ``2x3x``, ``series<K>`` (all orders
                       1..K: the output-side kinematic error of a strain-wave gear -- flexspline / circular-spline
-                      runout and pitch errors -- and encoder eccentricity; only when the file has at least
-                      ``2 K n_rev / 1.5`` poses); ``motor`` adds the once-per-motor-revolution term
+                      runout and pitch errors -- and encoder eccentricity; only while its ``2 K n_rev`` columns
+                      are at most two thirds of the file's coordinates, ``2 P``: the fitted prior keeps a long
+                      series well-posed, the bound keeps its fits affordable); ``motor`` adds the once-per-motor-revolution term
                       ``sin(N_j q_j), cos(N_j q_j)`` when the gear ratios ``N`` are known (``ref["gear_ratio"]``).
                       Every transmission variant carries a Gaussian prior per joint (``groups``) whose scale is
                       fitted by marginal likelihood on the training residual (:mod:`.evidence`): a ridge, so a
@@ -339,7 +340,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         return thermal_variants(meas)
     if effect == "transmission":
         n_rev = int(robot.revolute_mask.sum()) if robot is not None else meas.q.shape[1]
-        series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 1.5 * meas.n_poses)
+        series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 2 * meas.n_poses)
         return ("2x3x", "1x", "1x2x") + series + (("motor",) if ref.get("gear_ratio") is not None else ())
     if effect == "joint_compliance":
         return ("masses", "masses+tip")

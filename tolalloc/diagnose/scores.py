@@ -62,6 +62,12 @@ class Evaluation:
         return np.concatenate(parts)
 
     @property
+    def selection_stack(self) -> np.ndarray:
+        """:attr:`selection_mm` per CV scheme, shape (S, P, 3): the schemes score the same poses, so a paired test
+        takes one difference per pose (their mean), not one per scheme and pose."""
+        return np.stack([self.oof_mm] + ([self.oof_joint_mm] if self.oof_joint_mm is not None else []))
+
+    @property
     def cv_rms_mm(self) -> float:
         """RMS of :attr:`selection_mm` (the training file's out-of-fold residuals) [mm]."""
         return rms(self.selection_mm)
@@ -128,10 +134,16 @@ def clip_level(res: np.ndarray) -> float:
 
 
 def paired_pvalue(base: np.ndarray, cand: np.ndarray, clip_mm: float) -> float:
-    """One-sided Wilcoxon signed-rank p-value that ``cand`` has smaller clipped 3-D errors than ``base``."""
-    d = np.minimum(np.sum(base ** 2, axis=1), clip_mm ** 2) - np.minimum(np.sum(cand ** 2, axis=1), clip_mm ** 2)
+    """One-sided Wilcoxon signed-rank p-value that ``cand`` has smaller clipped 3-D errors than ``base``.
+
+    ``base``, ``cand``: residuals (P, 3), or (S, P, 3) for S cross-validation schemes on the same P poses
+    (:attr:`Evaluation.selection_stack`): the per-pose differences of clipped squared error are averaged over
+    the schemes, so each pose counts once.
+    """
+    b, c = np.asarray(base), np.asarray(cand)
+    d = np.minimum(np.sum(b ** 2, axis=-1), clip_mm ** 2) - np.minimum(np.sum(c ** 2, axis=-1), clip_mm ** 2)
+    if d.ndim == 2:
+        d = d.mean(axis=0)
     if np.allclose(d, 0):
         return 1.0
     return float(wilcoxon(d, alternative="greater").pvalue)
-
-

@@ -13,7 +13,8 @@ Each effect's variant (:func:`tolalloc.diagnose.effects.variants`) is chosen fir
 
 Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model's median held-out error
 (:func:`clip_level`). Significance: one-sided Wilcoxon signed-rank test on the per-pose differences of clipped
-squared held-out error (base model - base + candidate). A candidate is *significant* when ``p < alpha / m``
+squared held-out error (base model - base + candidate), one difference per pose (the mean over the two CV
+schemes, which score the same poses). A candidate is *significant* when ``p < alpha / m``
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
 (:func:`robust_rms`) by at least ``min_gain`` (default 2 %). The significant candidate with the lowest clipped
 held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
@@ -233,7 +234,7 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
     n_new = sum(nm.startswith(e + ":") for nm in ev.param_names)
     base_r = robust_rms(current.selection_mm, clip)
     r = robust_rms(ev.selection_mm, clip)
-    p = paired_pvalue(current.selection_mm, ev.selection_mm, clip) if n_new else 1.0
+    p = paired_pvalue(current.selection_stack, ev.selection_stack, clip) if n_new else 1.0
     gain = 100.0 * (1.0 - r / base_r)
     sig = bool(n_new and p < alpha / m and gain >= 100.0 * min_gain)
     cand = Candidate(e, True, "" if n_new else "not identifiable beside the geometric parameters", n_new,
@@ -296,7 +297,7 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
             ev = evals.get(label) or evaluate(ctx, rest)
             evals[label] = ev
             r, r_rest = robust_rms(current.selection_mm, clip), robust_rms(ev.selection_mm, clip)
-            p = paired_pvalue(ev.selection_mm, current.selection_mm, clip)
+            p = paired_pvalue(ev.selection_stack, current.selection_stack, clip)
             gain = 100.0 * (1.0 - r / r_rest)
             keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
             n_e = sum(nm.startswith(e + ":") for nm in current.param_names)

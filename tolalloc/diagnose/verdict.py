@@ -123,7 +123,7 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
             label = "+".join(("geometric", *swapped))
             ev = evals.get(label) or evaluate(ctx, swapped)
             evals[label] = ev
-            p = paired_pvalue(ev.selection_mm, final.selection_mm, clip)
+            p = paired_pvalue(ev.selection_stack, final.selection_stack, clip)
             r, r_alt = robust_rms(final.selection_mm, clip), robust_rms(ev.selection_mm, clip)
             gain = 100.0 * (1.0 - r / r_alt)
             out.append(Comparison(e, c.effect, p, gain, rms(final.selection_mm), rms(ev.selection_mm),
