@@ -106,7 +106,8 @@ def _fold_t_sd(fit: Fit, q: np.ndarray) -> np.ndarray:
 
 
 def rows_problem(ctx, n_params: int) -> str | None:
-    """Why the training file cannot fit a model of ``n_params`` unregularised parameters, or None."""
+    """Why the training file cannot fit a model of ``n_params`` parameters without a prior (registration, probe
+    offset and unregularised effect columns; the geometric parameters have the MAP prior), or None."""
     P = ctx.train.n_poses
     need = n_params + 3 * MIN_SPARE_POSES
     if 3 * P < need:
@@ -226,7 +227,7 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
     """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation or None)."""
     B, _ = _stack(ctx.bases, (*chosen, e))
     w = _stack_prior(ctx.bases, (*chosen, e))
-    n_free = 9 + len(ctx.cal.geometric.geo_index) + int(np.sum(w == 0))  # parameters without a prior
+    n_free = 9 + int(np.sum(w == 0))  # parameters without a prior (the geometric ones have the MAP prior)
     why = rows_problem(ctx, n_free)
     if why is not None:
         return Candidate(e, False, why, 0, float("nan"), float("nan"), None, 1.0, 0.0, False), None
