@@ -18,9 +18,11 @@ cost is paid once).
   eigenvectors of the continuous optimum's covariances first, then the top eigenvector of every pose whose
   ``lambda_max`` still exceeds the bound.
 
-Chords and cuts only relax, so every program solved is a relaxation of the discrete problem: the first
-solution that meets the rule with exact variances and costs is its optimum (within HiGHS' gap
-:data:`MIP_REL_GAP`). The programs go to HiGHS through cvxpy (MIT licence, installed with cvxpy >= 1.6;
+Chords and cuts only relax, so every program solved is a relaxation of the discrete problem. The loop
+keeps the cheapest design known to meet the rule (first: the continuous optimum rounded down) and asks the
+program for a design cheaper by more than :data:`MIP_REL_GAP`; one that misses the rule brings its cuts
+and chords, one that meets it becomes the incumbent; when the program has no such design, the incumbent is
+the discrete optimum within that relative gap (a proof: the program is a relaxation). The programs go to HiGHS through cvxpy (MIT licence, installed with cvxpy >= 1.6;
 branch-and-cut for mixed-integer *linear* programs, which is all the outer approximation needs). Rows carry
 a margin of :data:`ROW_MARGIN` (relative budget) so that HiGHS' feasibility tolerance cannot leave a design
 a hair outside the rule; every design is re-checked in numpy.
@@ -39,13 +41,13 @@ from tolalloc.allocate.convex import rule_ratio
 from tolalloc.allocate.problem import AllocationProblem
 from tolalloc.exceptions import interruptible
 
-__all__ = ["MipOutcome", "RuleOutcome", "OuterApproximation", "solve_discrete_rule", "rule_rows", "MIP_REL_GAP",
+__all__ = ["MipOutcome", "RuleOutcome", "OuterApproximation", "solve_discrete_rule", "rule_rows", "repair", "rule_violation", "MIP_REL_GAP",
            "ROW_MARGIN"]
 
 #: Relative optimality gap HiGHS must close (its default is 1e-4).
-MIP_REL_GAP = 1e-4
+MIP_REL_GAP = 1e-3
 #: Gap of the cutting-plane rounds before a design meets the rule (they only place cuts and chords).
-COARSE_GAP = 1e-3
+COARSE_GAP = 5e-3
 #: Margin on every row's right-hand side (rows are relative budgets of order 1).
 ROW_MARGIN = 1e-8
 _HIGHS = {"mip_rel_gap": MIP_REL_GAP, "mip_abs_gap": 1e-6, "primal_feasibility_tolerance": 1e-9,
@@ -254,11 +256,21 @@ def rule_rows(problem: AllocationProblem, rule: str, u_ref: np.ndarray | None = 
             continue
         C = None if u_ref is None else b["C0"] + np.einsum("pkij,k->pij", b["A"], u_ref)
         for i in range(problem.n_poses):
-            W = np.eye(3) if C is None else np.hstack([np.eye(3), np.linalg.eigh(C[i])[1]])
+            W = np.eye(3) if C is None else np.hstack([np.eye(3), _fan(np.linalg.eigh(C[i])[1])])
             a_, s_ = _cuts(b, i, W)
             A.append(a_)
             s.append(s_)
     return np.vstack(A), np.concatenate(s)
+
+
+def _fan(V: np.ndarray) -> np.ndarray:
+    """The eigenvectors ``V`` (3, 3, ascending) and directions tilted from the top one towards the others by
+    0.1, 0.25 and 0.5 rad: where the top eigenvector of a nearby design will lie."""
+    top, out = V[:, 2], [V]
+    for other in (V[:, 1], V[:, 0]):
+        for th in (0.1, 0.25, 0.5):
+            out.append(np.stack([np.cos(th) * top + np.sin(th) * other, np.cos(th) * top - np.sin(th) * other], 1))
+    return np.hstack(out)
 
 
 def _cuts(b: dict, i: int, W: np.ndarray):
@@ -281,6 +293,57 @@ def lmi_cuts(problem: AllocationProblem, u: np.ndarray):
             A.append(a_)
             s.append(s_)
     return (None, None) if not A else (np.vstack(A), np.concatenate(s))
+
+
+def rule_violation(problem: AllocationProblem, rule: str, U) -> np.ndarray:
+    """Largest ``tr Sigma / trace_bound - 1`` (``lambda_max / eig_bound - 1``) over poses and blocks for each row
+    of ``U`` (B, Ka), shape (B,); ``<= 0``: the rule holds."""
+    U = np.atleast_2d(U)
+    out = np.full(len(U), -np.inf)
+    for b in problem.blocks:
+        C = b["C0"][None] + np.einsum("pkij,bk->bpij", b["A"], U)
+        if rule == "trace":
+            r = np.einsum("bpii->bp", C) / b["trace_bound"][None]
+        else:
+            r = np.linalg.eigvalsh(C)[..., -1] / b["eig_bound"][None]
+        out = np.maximum(out, r.max(axis=1) - 1.0)
+    return out
+
+
+def repair(cat: Catalogue, opt, n, violation, max_steps: int = 200):
+    """A design near ``(opt, n)`` with ``violation(U) <= 0`` (vectorised over rows of ``U``), or None.
+
+    Greedy: tighten one parameter a step (or to the next finer grade or class of its process) at a time, the one
+    that removes the most violation per unit of cost. Returns ``(cost, opt, n)``."""
+    opt, n = np.array(opt, int), np.array(n, int)
+    for _ in range(max_steps):
+        v0 = float(violation(cat.u_of(opt, n)[None])[0])
+        if v0 <= 0:
+            return cat.total_cost(opt, n), opt, n
+        moves = []
+        for a in range(cat.n_params):
+            o = int(opt[a])
+            if cat.stepped[o]:
+                if n[a] > cat.n_lo[o]:
+                    moves.append((a, o, n[a] - 1))
+            else:
+                finer = [q for q in range(cat.start[a], cat.start[a + 1]) if not cat.stepped[q]
+                         and cat.group[q] == cat.group[o] and cat.t[q] < cat.t[o]]
+                if finer:
+                    moves.append((a, max(finer, key=lambda q: cat.t[q]), 0))
+        if not moves:
+            return None
+        U = np.repeat(cat.u_of(opt, n)[None], len(moves), axis=0)
+        dc = np.empty(len(moves))
+        base = cat.costs_of(opt, n)
+        for r, (a, o, k) in enumerate(moves):
+            t = k * cat.step[o] if cat.stepped[o] else cat.t[o]
+            U[r, a] = (t / cat.t_ref[a]) ** 2
+            dc[r] = (float(cat.law[o].cost(t)) if cat.stepped[o] else cat.cost[o]) - base[a]
+        gain = (v0 - violation(U)) / np.maximum(dc, 1e-12)
+        a, o, k = moves[int(np.argmax(gain))]
+        opt[a], n[a] = o, k
+    return None
 
 
 def solve_discrete_rule(problem: AllocationProblem, cat: Catalogue, rule: str, continuous=None, *,
@@ -311,22 +374,26 @@ def solve_discrete_rule(problem: AllocationProblem, cat: Catalogue, rule: str, c
                            f"no standard design meets the {rule} rule: even the finest standard values miss it")
     A, s = rule_rows(problem, rule, None if cont_t is None else problem.u_from_t(continuous.t))
     oa = OuterApproximation(cat, A, s, cont_t)
-    bound, mips, msg, gap = -np.inf, 0, "", COARSE_GAP
+    bound, mips, msg = -np.inf, 0, ""
     for _ in range(max_rounds):
-        out = oa.solve(time_limit=time_limit, gap=gap)
+        # only designs cheaper than the incumbent by more than the gap: none left proves it optimal within the gap
+        out = oa.solve(time_limit=time_limit, gap=COARSE_GAP,
+                       cost_cap=None if inc is None else inc[0] * (1 - MIP_REL_GAP))
         mips += 1
+        if out.status == "infeasible" and inc is not None:
+            return RuleOutcome(rule, "optimal", inc[1], inc[2], inc[0], inc[0] * (1 - MIP_REL_GAP), mips,
+                               time.perf_counter() - t0)
         if out.status != "optimal":
             msg = out.message
             break
-        bound = max(bound, out.bound)
         u = cat.u_of(out.opt, out.n)
         ok = rule_ratio(problem, rule, u) <= 1.0
-        cost = cat.total_cost(out.opt, out.n)
-        if ok and (inc is None or cost < inc[0]):
-            inc = (cost, out.opt, out.n)
-        if inc is not None and inc[0] <= bound + MIP_REL_GAP * abs(bound) + 1e-9:
-            return RuleOutcome(rule, "optimal", inc[1], inc[2], inc[0], min(bound, inc[0]), mips,
-                               time.perf_counter() - t0)
+        cand = (cat.total_cost(out.opt, out.n), out.opt, out.n) if ok else repair(
+            cat, out.opt, out.n, lambda U: rule_violation(problem, rule, U))
+        if cand is not None and rule_ratio(problem, rule, cat.u_of(cand[1], cand[2])) > 1.0:
+            cand = None  # the vectorised check and rule_ratio disagree at rounding level: keep only what both accept
+        if cand is not None and (inc is None or cand[0] < inc[0]):
+            inc = cand
         added = oa.tighten(out.opt, out.n, out)
         if not ok:
             A2, s2 = lmi_cuts(problem, u) if rule == "lmi" else (None, None)
@@ -334,8 +401,6 @@ def solve_discrete_rule(problem: AllocationProblem, cat: Catalogue, rule: str, c
                 oa.add_rows(A2, s2)
             elif not added:  # exact values, rows met within HiGHS' tolerance but not in numpy: tighten by the excess
                 oa.s = oa.s - 2 * (rule_ratio(problem, rule, u) - 1.0)
-        elif not added:  # a design with exact values that meets the rule, not yet proven: close the gap
-            gap = MIP_REL_GAP
     else:
         msg = f"{max_rounds} rounds of cuts and chords without closing the gap"
     dt = time.perf_counter() - t0

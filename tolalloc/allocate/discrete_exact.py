@@ -25,7 +25,7 @@ import time
 import numpy as np
 
 from tolalloc.allocate.catalogue import Catalogue
-from tolalloc.allocate.discrete import COARSE_GAP, MIP_REL_GAP, OuterApproximation, RuleOutcome
+from tolalloc.allocate.discrete import COARSE_GAP, MIP_REL_GAP, OuterApproximation, RuleOutcome, repair
 from tolalloc.allocate.problem import AllocationProblem
 from tolalloc.linear.probability import p_within_radius
 
@@ -103,27 +103,22 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
         A, s = np.vstack([A, A2]), np.concatenate([s, s2])
     oa = OuterApproximation(cat, A, s, hint if hint is not None else cat.t_of(opt, n))
     status, mips, msg = "not_converged", 0, f"outer approximation stopped after {max_rounds} rounds"
-    gap = COARSE_GAP
     for _ in range(max_rounds):
-        out = oa.solve(cost_cap=inc[0] * (1 - 1e-9), time_limit=time_limit, gap=gap)
+        out = oa.solve(cost_cap=inc[0] * (1 - MIP_REL_GAP), time_limit=time_limit, gap=COARSE_GAP)
         mips += 1
         if out.status == "infeasible":
-            status, msg = "optimal", "outer approximation converged: no cheaper design"
+            status, msg = "optimal", f"outer approximation converged: no design cheaper by {MIP_REL_GAP:g}"
             break
         if out.status != "optimal":
             msg = out.message
             break
         u = cat.u_of(out.opt, out.n)
         ok = exact_margin(problem, u)[0] >= 0
-        cost = cat.total_cost(out.opt, out.n)
-        if ok and cost < inc[0]:
-            inc = (cost, out.opt, out.n)
+        cand = (cat.total_cost(out.opt, out.n), out.opt, out.n) if ok else repair(
+            cat, out.opt, out.n, lambda U: -exact_margin(problem, U))
+        if cand is not None and cand[0] < inc[0]:
+            inc = cand
         chords = oa.tighten(out.opt, out.n, out)
-        if ok and not chords:
-            if gap == MIP_REL_GAP:
-                status, msg = "optimal", "outer approximation converged: its design meets the requirement"
-                break
-            gap = MIP_REL_GAP  # a design with exact values that meets the requirement: close the gap
         if not ok:
             oa.add_rows(*_linearise(problem, u))
     moves = 0

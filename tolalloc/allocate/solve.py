@@ -16,7 +16,7 @@ from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Solver, 
 from tolalloc.allocate.result import AllocationResult, snap_design
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["allocate"]
+__all__ = ["allocate", "with_standard"]
 
 
 def allocate(problem: AllocationProblem, *, solver: str = "exact", snap: bool = True,
@@ -71,18 +71,33 @@ def allocate(problem: AllocationProblem, *, solver: str = "exact", snap: bool = 
         design = replace(_tightest(problem), status="infeasible", message=msg)
     else:
         design, status, msg = chosen, "optimal", chosen.message
-    std, grades, rounded, disc = None, ("",) * len(problem.costs.names), None, None
-    rgrades = grades
-    if snap and design.t is not None and status == "optimal":
-        rounded, rgrades = snap_design(problem, design, angle_step_deg=angle_step_deg)
-        std, grades = rounded, rgrades
-        if discrete:
-            disc = discretize(problem, design, certified=(cert, other), rounded=rounded, angle_step_deg=angle_step_deg,
-                              certified_first=discrete_certified, time_limit=time_limit_s)
-            std = disc.design
-            if disc.design.fallback_from is None:
-                grades = tuple(g if g.startswith("IT") else "" for g in disc.grade)
-    return AllocationResult(problem, status, solver, design, cert, other, exact, std, grades, diag, msg, rounded, disc, rgrades)
+    res = AllocationResult(problem, status, solver, design, cert, other, exact, None, ("",) * len(problem.costs.names),
+                           diag, msg)
+    if not snap:
+        return res
+    return with_standard(res, angle_step_deg=angle_step_deg, discrete=discrete, discrete_certified=discrete_certified,
+                         time_limit_s=time_limit_s)
+
+
+def with_standard(result: AllocationResult, *, angle_step_deg: float | None = None, discrete: bool = True,
+                  discrete_certified: bool = False, time_limit_s: float = 120.0) -> AllocationResult:
+    """``result`` with its standard design (``standard``, ``rounded``, ``discrete``, ``it_grade``) (re)computed.
+
+    For a result solved with ``snap=False`` (e.g. by the region's cutting planes); a result without an optimal
+    ``design`` is returned unchanged. Keywords as :func:`allocate`.
+    """
+    problem, design = result.problem, result.design
+    if result.status != "optimal" or design.t is None:
+        return result
+    rounded, rgrades = snap_design(problem, design, angle_step_deg=angle_step_deg)
+    std, grades, disc = rounded, rgrades, None
+    if discrete:
+        disc = discretize(problem, design, certified=(result.certified, result.certified_other), rounded=rounded,
+                          angle_step_deg=angle_step_deg, certified_first=discrete_certified, time_limit=time_limit_s)
+        std = disc.design
+        if disc.design.fallback_from is None:
+            grades = tuple(g if g.startswith("IT") else "" for g in disc.grade)
+    return replace(result, standard=std, it_grade=grades, rounded=rounded, discrete=disc, rounded_grade=rgrades)
 
 
 def _tightest(problem: AllocationProblem):
