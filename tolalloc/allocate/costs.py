@@ -50,7 +50,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
-from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, read_processes
+from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, parse_grades, read_processes
 from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
@@ -327,6 +327,11 @@ def _entries(data: dict, model: ErrorModel, source: str):
         _check_entry(v, f"costs {source} [kinds.{k}]")
         if k not in kinds:
             raise TolallocError(f"costs {source}: unknown kind [kinds.{k}]; expected one of {', '.join(kinds)}.")
+        if "grades" in v:  # named at the kind, not at each parameter that inherits it
+            if k != "link_length":
+                raise TolallocError(f"costs {source} [kinds.{k}]: grades (ISO 286) apply to link_length parameters "
+                                    "only; use classes_<unit> or step_<unit> instead.")
+            parse_grades(v["grades"], f"costs {source} [kinds.{k}] grades")
         # a new reference/limit with another unit suffix replaces the default one
         base = {key: val for key, val in kinds[k].items()
                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in v) for b in _UNIT_BASES)}

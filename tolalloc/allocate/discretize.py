@@ -169,6 +169,14 @@ def discretize(problem: AllocationProblem, continuous: Design, *, certified=(), 
         if starts:
             _, opt, n = min(starts, key=lambda x: x[0])
             outcomes.append(solve_discrete_exact(problem, cat, (opt, n), continuous, time_limit=time_limit))
+        else:
+            fin = cat.finest()
+            worst = exact_margin(problem, cat.u_of(*fin))[0]
+            outcomes.append(RuleOutcome("exact", "infeasible", None, None, np.nan, np.nan, 0, time.perf_counter() - t0,
+                                        f"no standard design meets the requirement: even every parameter at its finest "
+                                        f"standard value falls {-worst:.3g} short in probability; allow finer grades, "
+                                        "classes or steps (costs file: grades, classes_<unit>, step_<unit>; "
+                                        "angle_step_deg)"))
     kind = "exact" if exact else None
     pick = [o for o in outcomes if o.opt is not None and (kind is None or o.rule == kind)]
     dt = time.perf_counter() - t0
@@ -208,7 +216,8 @@ def _fallback(problem, continuous, rounded, outcomes, dt, why) -> DiscreteAlloca
     if rounded is not None and rounded.ok:
         d = replace(rounded, fallback_from=kind, message=f"{msg}; kept the rounded design ({rounded.message})")
     else:
-        d = Design(kind, "failed", time_s=dt, message=msg)
+        infeasible = bool(outcomes) and all(o.status == "infeasible" for o in outcomes)
+        d = Design(kind, "infeasible" if infeasible else "failed", time_s=dt, message=msg)
     K = len(problem.costs.names)
     pc = problem.param_costs(d.t) if d.t is not None else np.full(K, np.nan)
     return DiscreteAllocation(d, ("",) * K, ("",) * K, pc, continuous, rounded, tuple(outcomes), float("nan"), False,
