@@ -14,7 +14,8 @@ from tolalloc import TolallocError
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.catalogue import build_catalogue
 from tolalloc.allocate.costs import cost_set
-from tolalloc.allocate.discrete import MIP_REL_GAP, rule_violation, solve_discrete_rule
+from tolalloc.allocate.discrete import MIP_REL_GAP
+from tolalloc.allocate.discrete_rules import rule_violation, solve_discrete_rule
 from tolalloc.allocate.discrete_exact import exact_margin
 from tolalloc.allocate.region import box_region, coverage
 from tolalloc.allocate.region_standard import allocate_region_standard

@@ -5,9 +5,11 @@ cheaper designs. Starting from a catalogue design that meets it (the certified d
 
 1. **Outer approximation** (Duran & Grossmann 1986): the probability is linearised at the continuous exact
    optimum and at every design tried, ``P_i(u_m) + grad P_i(u_m) . (u - u_m) >= p_i``; the MILP of
-   :class:`tolalloc.allocate.discrete.OuterApproximation` (cost capped below the incumbent) proposes a
-   design, which is checked with the exact probability (:func:`tolalloc.linear.probability.p_within_radius`)
-   and linearised in turn if it fails. Where ``P`` is concave in the variances (near ``p = 0.95`` along
+   :class:`tolalloc.allocate.discrete.OuterApproximation` (cost capped :data:`MIP_REL_GAP` below the incumbent)
+   proposes a design, which is checked with the exact probability
+   (:func:`tolalloc.linear.probability.p_within_radius`): it becomes the incumbent if it meets the requirement
+   (else its greedy repair may), and is linearised in turn if it fails; the loop ends when the program has no
+   design left. Where ``P`` is concave in the variances (near ``p = 0.95`` along
    every scaling, ``P(chi2_3 < r^2 / s)`` is concave in ``s`` for ``r^2 / s > 5``) the linearisations are
    outer approximations and the loop ends at the discrete optimum; elsewhere it is a heuristic, so the
    result is called *converged*, never proven.
@@ -86,10 +88,9 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
     Returns
     -------
     RuleOutcome
-        ``rule = "exact"``; ``status`` ``optimal`` when the outer approximation converged (a program found no
-        cheaper design, or its design met the exact requirement with exact values), ``not_converged`` when the
-        rounds ran out (the best design found is kept; it meets the requirement either way). ``bound`` is NaN
-        (no proven bound).
+        ``rule = "exact"``; ``status`` ``optimal`` when the outer approximation converged (the program, capped
+        :data:`MIP_REL_GAP` below the incumbent, has no design left), ``not_converged`` when the rounds ran out
+        (the best design found is kept; it meets the requirement either way). ``bound`` is NaN (no proven bound).
     """
     t0 = time.perf_counter()
     opt, n = (np.asarray(x, int) for x in start)
@@ -118,7 +119,7 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
             cat, out.opt, out.n, lambda U: -exact_margin(problem, U))
         if cand is not None and cand[0] < inc[0]:
             inc = cand
-        chords = oa.tighten(out.opt, out.n, out)
+        oa.tighten(out.opt, out.n, out)
         if not ok:
             oa.add_rows(*_linearise(problem, u))
     moves = 0

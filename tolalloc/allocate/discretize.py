@@ -23,7 +23,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tolalloc.allocate.catalogue import Catalogue, build_catalogue
-from tolalloc.allocate.discrete import MIP_REL_GAP, RuleOutcome, solve_discrete_rule
+from tolalloc.allocate.discrete import MIP_REL_GAP, RuleOutcome
+from tolalloc.allocate.discrete_rules import solve_discrete_rule
 from tolalloc.allocate.discrete_exact import exact_margin, solve_discrete_exact
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, Solver, make_design
 

@@ -10,7 +10,7 @@ on with the design that will be built: choose the standard design on the active 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -22,44 +22,18 @@ __all__ = ["StandardRegionAllocation", "allocate_region_standard"]
 
 
 @dataclass(frozen=True, eq=False)
-class StandardRegionAllocation:
-    """Result of :func:`allocate_region_standard` (the fields of :class:`RegionAllocation`, for the standard design).
+class StandardRegionAllocation(RegionAllocation):
+    """Result of :func:`allocate_region_standard`: the fields of :class:`RegionAllocation` for the standard design
+    (``result.standard`` is the design searched; ``rounds`` counts the standard loop's rounds, ``evaluations`` and
+    ``time_s`` include the continuous loop), and:
 
     Attributes
     ----------
-    result : AllocationResult
-        The allocation on the final active set; ``result.standard`` is the standard design searched.
-    region : Region
-    active_q : array, shape (A, n) [rad, mm]
-    rounds : int
-        Rounds of the standard loop (the continuous rounds are in ``continuous.rounds``).
-    worst_p : float
-        Lowest linear P of the standard design found by the last search.
-    worst_q : array, shape (n,)
-    evaluations : int
-        Probability evaluations of all searches (continuous loop included).
-    static : array of bool, shape (n,)
-    converged : bool
-        The standard design's worst shortfall is below ``tol``.
-    time_s : float
-        Wall time, continuous loop included.
-    history : tuple of (round, standard cost, worst_p)
     continuous : RegionAllocation
         The continuous cutting planes it continued.
     message : str
     """
 
-    result: object
-    region: Region
-    active_q: np.ndarray
-    rounds: int
-    worst_p: float
-    worst_q: np.ndarray
-    evaluations: int
-    static: np.ndarray
-    converged: bool
-    time_s: float
-    history: tuple = field(default=())
     continuous: RegionAllocation | None = None
     message: str = ""
 
