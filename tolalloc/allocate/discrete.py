@@ -41,6 +41,35 @@ COARSE_GAP = 5e-3
 ROW_MARGIN = 1e-8
 _HIGHS = {"mip_rel_gap": MIP_REL_GAP, "mip_abs_gap": 1e-6, "primal_feasibility_tolerance": 1e-9,
           "mip_feasibility_tolerance": 1e-9}
+_QUIET: list = []  # set once HiGHS has written its banner (to /dev/null)
+
+
+def _quiet_highs() -> None:
+    """Create the process's first HiGHS instance with file descriptor 1 on /dev/null: HiGHS writes its copyright
+    banner to stdout once per process, at the first instance (before cvxpy can switch its output off), and the
+    command line's stdout carries tables. Nothing else of this program writes while it runs."""
+    if _QUIET:
+        return
+    import os
+    import sys
+
+    import highspy
+
+    _QUIET.append(True)
+    try:
+        sys.stdout.flush()
+        saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+    except (OSError, ValueError):  # no file descriptor 1 (embedded interpreters): the banner is harmless there
+        return
+    try:
+        os.dup2(null, 1)
+        highspy.Highs()
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(null)
+
+
 _TIGHT = 1e-9  # relative: chords are exact enough at a solution when v >= u(n) (1 - _TIGHT)
 
 
@@ -153,6 +182,7 @@ class OuterApproximation:
         import cvxpy as cp
 
         t0 = time.perf_counter()
+        _quiet_highs()
         prob, y, nv, v, w = self._program(cost_cap)
         try:
             with warnings.catch_warnings():
