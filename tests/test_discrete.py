@@ -128,6 +128,18 @@ def test_rounding_infeasible_where_the_discrete_design_is_not(model):
     assert all(g.startswith("IT") for g in res.grade[:2])
 
 
+@pytest.mark.parametrize("solver", ["certified", "exact"])
+def test_orientation_requirement_is_met_by_the_standard_design(model, solver):
+    pr = build_problem(model, POSES, radius_mm=0.1, costs=SMALL, angle_radius_deg=0.004)
+    res = allocate(pr, solver=solver)
+    std = res.standard
+    assert std.ok and std.solver in (("discrete-lmi", "discrete-trace") if solver == "certified" else ("discrete-exact",))
+    for name, p in std.p_linear.items():
+        assert p.min() >= (pr.prob if name == "position" else pr.angle_prob)
+    assert res.design.p_linear["orientation"].min() < 0.96  # the angle requirement binds
+    assert res.rounded is not None and std.cost <= res.rounded.cost
+
+
 def test_no_standard_design_is_reported_as_such(model):
     pr = build_problem(model, POSES, radius_mm=0.1)
     res = allocate(pr, angle_step_deg=0.02)  # one step already exceeds what the links can make up for

@@ -167,6 +167,9 @@ def discretize(problem: AllocationProblem, continuous: Design, *, certified=(), 
             if cat.coupled(opt) and exact_margin(problem, cat.u_of(opt, n))[0] >= 0:
                 starts.append((cat.total_cost(opt, n), opt, n))
                 break
+        if not starts and cat.groups and not outcomes:  # roundings that mix processes in a part: a certified start
+            outcomes = _rules(problem, cat, certified, time_limit)
+            starts = [(o.cost, o.opt, o.n) for o in outcomes if o.opt is not None]
         if starts:
             _, opt, n = min(starts, key=lambda x: x[0])
             outcomes.append(solve_discrete_exact(problem, cat, (opt, n), continuous, time_limit=time_limit))

@@ -206,12 +206,14 @@ def _pct(x, ref):
 
 def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: float | None = None,
                 length_step_mm: float = 0.001) -> tuple[Design, tuple]:
-    """Snap a design to standard values and re-check the requirement.
+    """Round a design down to the standard values and re-check the requirement.
 
-    Link lengths: ISO 286 IT grade at or below the allocated zone (nominal size: the link length);
-    other lengths: down to a multiple of ``length_step_mm``; angles: down to a multiple of
-    ``angle_step_deg`` (default 1 arcsec). Fixed parameters are kept. A snapped value below ``t_min``
-    is moved up to the nearest standard value at or above it.
+    Every allocatable parameter takes the largest standard value at or below its tolerance, from the same
+    catalogue the discrete allocation chooses from (:mod:`tolalloc.allocate.catalogue`: ISO 286 grades of the
+    link lengths' grade range, standard classes, multiples of the resolution step -- ``angle_step_deg``, default
+    1 arcsec, and ``length_step_mm`` -- within the process limits); where none lies at or below it, the smallest
+    (a loosening, which the re-check judges). Fixed parameters are kept. With processes the cheapest process of
+    each value is taken (its cost includes the set-ups).
 
     Returns
     -------
@@ -219,33 +221,25 @@ def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: f
         ``Design.solver`` is ``standard``; its status is ``optimal`` if every requirement still holds,
         else ``violated`` with the failing poses in ``message``.
     """
-    from tolalloc.allocate.standards import ANGLE_STEP_DEG, snap_angle, snap_length
+    from tolalloc.allocate.catalogue import build_catalogue
 
-    step = ANGLE_STEP_DEG if angle_step_deg is None else angle_step_deg
-    lengths = {lk.name: lk.length_mm for lk in problem.model.robot.links}
-    t = design.t.copy()
-    grades = []
-    for k, p in enumerate(problem.model.params):
-        g = ""
-        if problem.costs.role[k] != "fixed":
-            if p.kind == "link_length" and 0 < lengths.get(p.element, 0) <= 3150:
-                t[k], g = snap_length(t[k], lengths[p.element], problem.t_min[k])
-            elif p.unit == "mm":
-                tt = np.floor(t[k] / length_step_mm * (1 + 1e-12)) * length_step_mm
-                if tt < problem.t_min[k] * (1 - 1e-12) or tt <= 0:
-                    tt = np.ceil(problem.t_min[k] / length_step_mm * (1 - 1e-12)) * length_step_mm
-                t[k] = tt
-            else:
-                t[k] = snap_angle(t[k], step, problem.t_min[k])
-        grades.append(g)
+    cat = build_catalogue(problem, angle_step_deg=angle_step_deg, length_step_mm=length_step_mm)
+    opt, n = cat.round_down(design.t[problem.alloc])
+    t = np.asarray(design.t, float).copy()
+    t[problem.alloc] = cat.t_of(opt, n)
+    grades = [""] * len(t)
+    for a, k in enumerate(problem.alloc):
+        grades[k] = cat.label[opt[a]] if cat.label[opt[a]].startswith("IT") else ""
     d = make_design(problem, "standard", t)
+    if cat.groups:
+        d = replace(d, cost=cat.total_cost(opt, n) + float(problem.param_costs(t)[problem.fixed].sum()))
     bad = []
     for b in problem.blocks:
         p = d.p_linear[b["name"]]
         bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["target"] - 1e-9)]
     if bad:
-        d = replace(d, status="violated", message="after snapping the requirement fails at " + ", ".join(bad)
-                    + "; use the unsnapped tolerances or a finer angle step")
+        d = replace(d, status="violated", message="after rounding to standard values the requirement fails at "
+                    + ", ".join(bad) + "; use the standard design chosen by the optimiser, or finer standard values")
     else:
         d = replace(d, message="requirement re-checked after snapping: met at every pose")
     return d, tuple(grades)
