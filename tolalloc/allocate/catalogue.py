@@ -123,10 +123,6 @@ class Catalogue:
         """Every parameter at its smallest value."""
         return self.round_down(np.zeros(self.n_params))
 
-    def labels(self, opt, n) -> list:
-        """Label per parameter of a choice."""
-        return [self.label[o] for o in opt]
-
 
 def build_catalogue(problem: AllocationProblem, *, angle_step_deg: float | None = None,
                     length_step_mm: float = LENGTH_STEP_MM) -> Catalogue:

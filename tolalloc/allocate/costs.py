@@ -122,16 +122,6 @@ class CostModel:
                 return self.a + self.b / tau**self.k
             return self.a + self.b * np.exp(-tau)
 
-    def dcost(self, t) -> np.ndarray:
-        """Derivative of the cost with respect to the half-width ``t`` [per mm or per rad] (negative)."""
-        tau = np.asarray(t, dtype=float) / self.t_ref
-        with np.errstate(divide="ignore"):
-            if self.model == "reciprocal":
-                return -self.b / tau**2 / self.t_ref
-            if self.model == "reciprocal_power":
-                return -self.k * self.b / tau ** (self.k + 1) / self.t_ref
-            return -self.b * np.exp(-tau) / self.t_ref
-
     def cost_u(self, u, lib):
         """Cost as an expression of the scaled variance ``u = (t/t_ref)**2``.
 

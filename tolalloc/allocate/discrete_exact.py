@@ -124,7 +124,7 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
             oa.add_rows(*_linearise(problem, u))
     moves = 0
     if search:
-        opt, n, moves = local_search(problem, cat, inc[1], inc[2])
+        opt, n, moves = local_search(cat, inc[1], inc[2], lambda U: -exact_margin(problem, U))
         inc = (cat.total_cost(opt, n), opt, n)
     return RuleOutcome("exact", status, inc[1], inc[2], inc[0], np.nan, mips, time.perf_counter() - t0,
                        f"{msg}; local search: {moves} move(s)")
@@ -142,8 +142,17 @@ def _neighbours(cat: Catalogue, opt, n, a: int):
     return [(q, 0) for q in same[max(0, i - 1):i] + same[i + 1:i + 2]]
 
 
-def local_search(problem: AllocationProblem, cat: Catalogue, opt, n, *, max_moves: int = 500, batch: int = 128):
-    """Best-saving-first descent over single and paired moves that keep the exact requirement.
+def local_search(cat: Catalogue, opt, n, violation, *, max_moves: int = 500, batch: int = 128):
+    """Best-saving-first descent over single and paired moves that keep ``violation(U) <= 0``.
+
+    Parameters
+    ----------
+    cat : Catalogue
+    opt, n : arrays of int (Ka,)
+        A choice that meets the requirement.
+    violation : callable
+        ``violation(U)`` for scaled variances ``U`` (B, Ka) -> (B,); ``<= 0``: the requirement holds (e.g. minus
+        :func:`exact_margin`).
 
     Moves keep each part's process, so setups do not change and a move's saving is the sum of its parameters'.
 
@@ -174,7 +183,7 @@ def local_search(problem: AllocationProblem, cat: Catalogue, opt, n, *, max_move
                 for x in moves_i[m]:
                     a, o, k, _ = nb[x]
                     U[r, a] = ((k * cat.step[o]) if cat.stepped[o] else cat.t[o]) ** 2 / cat.t_ref[a] ** 2
-            ok = exact_margin(problem, U) >= 0
+            ok = violation(U) <= 0
             if ok.any():
                 found = moves_i[sel[int(np.argmax(ok))]]
                 break
