@@ -147,13 +147,22 @@ def test_no_standard_design_is_reported_as_such(model):
     assert "even every parameter at its finest standard value" in res.standard.message
 
 
-def test_processes_milp_equals_brute_force(model):
-    costs = {**SMALL, "processes": {
-        "grinding": {"grades": "IT5-IT7", "cost": {"IT5": 4.0, "IT6": 3.0, "IT7": 2.6}, "setup": 0.3},
-        "milling": {"grades": "IT7-IT12", "model": "reciprocal", "a": 1.0, "b": 1.2, "t_ref_mm": 0.1}}}
+LENGTH_PROCESSES = {
+    "grinding": {"grades": "IT5-IT7", "cost": {"IT5": 4.0, "IT6": 3.0, "IT7": 2.6}, "setup": 0.3},
+    "milling": {"grades": "IT7-IT12", "model": "reciprocal", "a": 1.0, "b": 1.2, "t_ref_mm": 0.1}}
+DRIVE_PROCESSES = {  # stepped values: each process a range of step multiples with its own law
+    "precision": {"applies_to": ["joint_drive"], "t_max_deg": 0.005, "model": "reciprocal", "a": 1.5, "b": 1.0,
+                  "t_ref_deg": 0.01, "setup": 0.2},
+    "standard": {"applies_to": ["joint_drive"], "t_min_deg": 0.004, "model": "reciprocal", "a": 1.0, "b": 1.0,
+                 "t_ref_deg": 0.01}}
+
+
+@pytest.mark.parametrize("processes, a", [(LENGTH_PROCESSES, 0), (DRIVE_PROCESSES, 2)])
+def test_processes_milp_equals_brute_force(model, processes, a):
+    costs = {**SMALL, "processes": processes}
     pr = build_problem(model, POSES, radius_mm=0.1, costs=cost_set(model, costs))
     cat = build_catalogue(pr)
-    assert set(cat.process[cat.start[0]:cat.start[1]]) == {"grinding", "milling"}
+    assert set(cat.process[cat.start[a]:cat.start[a + 1]]) == set(processes)
     opt, n, u, cost, ok = enumerate_designs(cat)
     res = allocate(pr, solver="certified")
     rule = str(res.certified.solver).split("-")[1]
@@ -162,8 +171,9 @@ def test_processes_milp_equals_brute_force(model):
     assert out.status == "optimal" and best <= out.cost <= best * (1 + MIP_REL_GAP)
     assert res.standard.cost == pytest.approx(min(o.cost for o in res.discrete.outcomes))
     frame = res.to_frame()
-    assert set(frame.loc[frame.parameter.isin(["dl1", "dl2"]), "process"]) <= {"grinding", "milling"}
-    assert res.summary()["standard"]["processes"]["dl1"] in ("grinding", "milling")
+    name = pr.costs.names[pr.alloc[a]]
+    assert frame.loc[frame.parameter == name, "process"].item() in processes
+    assert res.summary()["standard"]["processes"][name] in processes
 
 
 BAD = [

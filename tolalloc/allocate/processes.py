@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tolalloc.errormodel.model import KINDS
 from tolalloc.exceptions import TolallocError
 from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS
 
@@ -212,7 +213,7 @@ def read_processes(data: dict, model, names, entries: dict, cost_model, source: 
     if not isinstance(procs, dict):
         raise TolallocError(f"costs {source}: processes expected tables [processes.NAME], got {procs!r}.")
     out: dict = {nm: [] for nm in names}
-    kinds = {model.params[model.index(nm)].kind for nm in names} | {"joint_drive_prismatic"}
+    kinds = set(KINDS) | {"joint_drive_prismatic"}
     for pname, entry in procs.items():
         where = f"costs {source} [processes.{pname}]"
         if not isinstance(entry, dict):
@@ -243,7 +244,7 @@ def read_processes(data: dict, model, names, entries: dict, cost_model, source: 
         for nm in names:
             p = model.params[model.index(nm)]
             key = "joint_drive_prismatic" if p.kind == "joint_drive" and p.unit == "mm" else p.kind
-            if nm in targets or key in targets or p.kind in targets:
+            if nm in targets or key in targets:  # joint_drive: the revolute drives (as [kinds.joint_drive])
                 out[nm].append(_option(pname, entry, p, entries[nm], table, float(setup), cost_model, where))
                 used = True
         if not used:
