@@ -256,3 +256,13 @@ def test_standard_design_holds_over_a_region(model):
     cov = coverage(ra.result.problem, std.t, box, n=5000, seed=3)
     assert cov.min_p >= 0.95 - 1e-4
     assert ra.time_s >= ra.continuous.time_s and len(ra.active_q) >= len(ra.continuous.active_q)
+
+
+@pytest.mark.parametrize("solver", ["exact", "certified"])
+def test_a_program_stopped_by_its_time_limit_is_not_called_optimal(model, solver):
+    pr = build_problem(model, POSES, radius_mm=0.1, costs=SMALL)
+    res = allocate(pr, solver=solver, time_limit_s=1e-4)  # HiGHS stops at once
+    std = res.standard
+    assert std.status == "not_converged" and not std.ok and "user_limit" in std.message
+    assert std.p_linear["position"].min() >= pr.prob  # the design kept still meets the requirement
+    assert res.summary()["discrete"]["proven_optimal"] is False

@@ -45,11 +45,7 @@ def allocate(problem: AllocationProblem, *, solver: str = "exact", snap: bool = 
     """
     if solver not in ("exact", "certified"):
         raise TolallocError(f"solver: expected 'exact' or 'certified', got {solver!r}.")
-    for name, v in (("discrete", discrete), ("discrete_certified", discrete_certified), ("snap", snap)):
-        if not isinstance(v, (bool, np.bool_)):
-            raise TolallocError(f"{name}: expected True or False, got {v!r}.")
-    if not (isinstance(time_limit_s, (int, float)) and np.isfinite(time_limit_s) and time_limit_s > 0):
-        raise TolallocError(f"time_limit_s: expected a number of seconds > 0 (e.g. 120), got {time_limit_s!r}.")
+    _check_flags(snap=snap, discrete=discrete, discrete_certified=discrete_certified, time_limit_s=time_limit_s)
     diag = check_process_limits(problem)
     cert, other = solve_certified(problem)
     exact = None
@@ -86,6 +82,7 @@ def with_standard(result: AllocationResult, *, angle_step_deg: float | None = No
     For a result solved with ``snap=False`` (e.g. by the region's cutting planes); a result without an optimal
     ``design`` is returned unchanged. Keywords as :func:`allocate`.
     """
+    _check_flags(discrete=discrete, discrete_certified=discrete_certified, time_limit_s=time_limit_s)
     problem, design = result.problem, result.design
     if result.status != "optimal" or design.t is None:
         return result
@@ -98,6 +95,15 @@ def with_standard(result: AllocationResult, *, angle_step_deg: float | None = No
         if disc.design.fallback_from is None:
             grades = tuple(g if g.startswith("IT") else "" for g in disc.grade)
     return replace(result, standard=std, it_grade=grades, rounded=rounded, discrete=disc, rounded_grade=rgrades)
+
+
+def _check_flags(time_limit_s, **flags) -> None:
+    for name, v in flags.items():
+        if not isinstance(v, (bool, np.bool_)):
+            raise TolallocError(f"{name}: expected True or False, got {v!r}.")
+    if isinstance(time_limit_s, bool) or not (isinstance(time_limit_s, (int, float)) and np.isfinite(time_limit_s)
+                                              and time_limit_s > 0):
+        raise TolallocError(f"time_limit_s: expected a number of seconds > 0 (e.g. 120), got {time_limit_s!r}.")
 
 
 def _tightest(problem: AllocationProblem):
