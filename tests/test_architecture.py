@@ -11,8 +11,8 @@ import tolalloc
 PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
 ORDER = ["foundation", "robot", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
-         "verify", "report", "cli"]
-FOUNDATION = {"exceptions", "engine", "units"}
+         "verify", "report", "workflows", "cli"]
+FOUNDATION = {"exceptions", "engine", "units", "outputs"}
 
 
 def module_name(path: Path) -> str:

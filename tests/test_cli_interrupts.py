@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from tolalloc.cli import main
-from tolalloc.cli.output import atomic_output, directory_lock
+from tolalloc.outputs import atomic_output, directory_lock
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -153,7 +153,7 @@ def test_interrupt_handler_is_restored_after_main():
 
 
 def test_output_group_publishes_all_or_nothing(tmp_path):
-    from tolalloc.cli.output import output_group, published
+    from tolalloc.outputs import output_group, published
 
     with pytest.raises(RuntimeError):
         with output_group() as out:

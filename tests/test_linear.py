@@ -6,7 +6,8 @@ import pandas as pd
 import pytest
 from conftest import random_chain, random_q
 
-from tolalloc import TolallocError, fk_poe, load_robot
+from tolalloc import TolallocError, load_robot
+from tolalloc.robot import fk_poe
 from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import VARIANCE_FACTOR, budget, input_covariance, linear_map
 from tolalloc.robot.lie import rotvec

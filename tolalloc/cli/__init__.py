@@ -44,6 +44,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
     for name in COMMAND_MODULES:
         importlib.import_module(f"{__name__}.{name}").register(sub)
+    from tolalloc.cli.common import flag_map
+
+    for command in sub.choices.values():
+        command.set_defaults(flags=flag_map(command))
     return parser
 
 
@@ -73,9 +77,10 @@ def _interrupt_handlers():
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
-    from tolalloc.cli.output import published
+    from tolalloc.outputs import published
 
     published(reset=True)
+    args = None
     with _interrupt_handlers():
         try:
             args = build_parser().parse_args(argv)
@@ -83,7 +88,9 @@ def main(argv: list[str] | None = None) -> int:
             raise_if_interrupted()  # a signal whose exception a library swallowed (nothing was published since)
             return code
         except TolallocError as exc:
-            print(f"error: {exc}", file=sys.stderr)
+            from tolalloc.cli.common import error_line
+
+            print(f"error: {error_line(exc, args)}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as exc:
             signum = getattr(exc, "signum", signal.SIGINT)

@@ -80,7 +80,7 @@ def cmd_show(args) -> int:
 
 def cmd_fk(args) -> int:
     robot = robot_from_args(args)
-    q = parse_q(args.q, robot)
+    q = robot.check_q(parse_q(args.q), "--q", interface=True)
     T = robot.fk(q)
     if args.json:
         # rounded to 1e-9 deg / mm so that "15" comes back as 15.0, not 14.999999999999998
