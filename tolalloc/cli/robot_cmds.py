@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pandas as pd
 
 from tolalloc.robot.lie import euler_xyz_fixed
 from tolalloc.robot.io import builtin_robots
@@ -50,38 +49,23 @@ def cmd_show(args) -> int:
     print(f"robot: {robot.name}")
     if robot.description:
         print(robot.description.strip())
-    joints = pd.DataFrame({
-        "joint": [j.name for j in robot.joints],
-        "type": [j.kind for j in robot.joints],
-        "axis": [np.array2string(j.axis, precision=4, suppress_small=True) for j in robot.joints],
-        "point_mm": [np.array2string(p, precision=3, suppress_small=True) for p in robot.joint_points_mm],
-        "unit": [j.unit for j in robot.joints],
-        "lower": robot.q_to_interface(robot.lower),
-        "upper": robot.q_to_interface(robot.upper),
-        "nominal": robot.q_to_interface(robot.q_nominal),
-    })
     print("\njoints:")
-    print(joints.to_string(index=False))
-    links = pd.DataFrame({
-        "link": [lk.name for lk in robot.links],
-        "length_mm": [lk.length_mm for lk in robot.links],
-        "vector_mm": [np.array2string(lk.vector_mm, precision=3, suppress_small=True) for lk in robot.links],
-    })
+    print(robot.joints_frame().to_string(index=False))
     print("\nlinks:")
-    print(links.to_string(index=False))
+    print(robot.links_frame().to_string(index=False))
     sets = "".join(f", {k} ({len(v)} pose{'s' if len(v) != 1 else ''})" for k, v in robot.pose_sets.items())
     print(f"\npose sets: nominal (1 pose){sets}")
     if robot.sigma_sets:
         print(f"sigma sets: {', '.join(robot.sigma_sets)}")
     print("\nnominal pose:")
-    print(_pose_text(robot.fk(robot.q_nominal)))
+    print(_pose_text(robot.fk_internal(robot.q_nominal)))
     return 0
 
 
 def cmd_fk(args) -> int:
     robot = robot_from_args(args)
     q = robot.check_q(parse_q(args.q), "--q", interface=True)
-    T = robot.fk(q)
+    T = robot.fk_internal(q)
     if args.json:
         # rounded to 1e-9 deg / mm so that "15" comes back as 15.0, not 14.999999999999998
         print(json.dumps({"robot": robot.name, "q_deg_mm": np.round(robot.q_to_interface(q), 9), "position_mm": T[:3, 3],

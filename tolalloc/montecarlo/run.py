@@ -89,7 +89,7 @@ def pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray, *, chain: 
         raise TolallocError(f"q: expected one pose of shape ({model.robot.n_joints},), got {q.shape}.")
     values = _check_values(model, values)
     chain = chain or FastChain(model)
-    return _errors_from_X(chain.pose(q, values), model.robot.fk(q))
+    return _errors_from_X(chain.pose(q, values), model.robot.fk_internal(q))
 
 
 def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) -> dict[str, np.ndarray]:
@@ -100,7 +100,7 @@ def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) ->
     screws, home, dq = model.perturbed_chain(values)
     T = fk_poe(screws, home, np.asarray(q, float) + dq)
     X = np.moveaxis(T[:, :3, :], 0, -1)
-    return _errors_from_X(X, model.robot.fk(q))
+    return _errors_from_X(X, model.robot.fk_internal(q))
 
 
 # ----------------------------------------------------------------- result

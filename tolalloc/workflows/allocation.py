@@ -16,6 +16,7 @@ from tolalloc.workflows.allocation_result import ToleranceAllocation
 __all__ = ["allocate_tolerances"]
 
 
+@inputs.honours_trust_units
 def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: float = 0.95, region=None,
                         poses: str | None = None, costs=None, z: float | None = None, uniform: bool = False,
                         sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",

@@ -14,6 +14,7 @@ from tolalloc.workflows.base import JobResult
 __all__ = ["plan_calibration", "CalibrationPlanDesign"]
 
 
+@inputs.honours_trust_units
 def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
                      n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
                      noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,

@@ -14,6 +14,7 @@ from tolalloc.workflows.base import JobResult
 __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 
 
+@inputs.honours_trust_units
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
                           progress: bool | None = None, tool: str | None = None,

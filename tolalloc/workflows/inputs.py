@@ -16,9 +16,24 @@ from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
 
-__all__ = ["as_robot", "check_probability", "check_positive", "check_count", "check_seed", "check_choice",
+__all__ = ["honours_trust_units", "as_robot", "check_probability", "check_positive", "check_count", "check_seed", "check_choice",
            "joint_values", "resolve_poses", "error_model", "sigma_overrides", "resolve_region", "trajectory",
            "as_measurements", "default_pose_set"]
+
+
+def honours_trust_units(fn):
+    """Run workflow ``fn`` with the unit-plausibility guards off when it is called with ``trust_units=True``
+    (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
+    import functools
+
+    from tolalloc.units import trusting_units
+
+    @functools.wraps(fn)
+    def run(*args, trust_units: bool = False, **kwargs):
+        with trusting_units(bool(trust_units)):
+            return fn(*args, trust_units=trust_units, **kwargs)
+
+    return run
 
 
 def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Robot:

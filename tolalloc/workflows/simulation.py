@@ -18,6 +18,7 @@ __all__ = ["simulate_errors", "ErrorSimulation"]
 KEEP_SAMPLES = 20_000
 
 
+@inputs.honours_trust_units
 def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_deg_mm=None, poses: str | None = None,
                     radius_mm=(0.15, 0.25), angle_radius_rad=None, angle_radius_deg=None, ci: str = "wilson",
                     sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",

@@ -6,7 +6,7 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import InputFileError, TolallocError
 from tolalloc.robot.io.dh import load_dh_csv, robot_from_dh_dict
 from tolalloc.robot.io.robotfile import robot_from_chain_dict
 from tolalloc.robot.io.urdf import load_urdf
@@ -63,7 +63,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
                                 "(.toml, DH .csv, .urdf).")
         if not path.is_file():
             known = ", ".join(builtin_robots())
-            raise TolallocError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
+            raise InputFileError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
         if path.suffix.lower() == ".urdf":
             return load_urdf(path, tool=tool)
         if path.suffix.lower() == ".csv":
