@@ -24,7 +24,7 @@ the control is poor (variance reduction below 1).
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -155,7 +155,7 @@ class PairedCounts:
         Nonlinear position errors of the first ``keep`` samples at pose 0 [mm].
     """
 
-    n: int
+    n: int | np.ndarray
     seed: int
     counts: np.ndarray
     max_deviation_mm: np.ndarray
@@ -248,6 +248,28 @@ class ProbabilityEstimate:
     level: float = 0.95
     details: dict = field(default_factory=dict, repr=False)
 
+    _ROWS = ("estimator", "n", "p_linear", "p_hat", "ci_low", "ci_high", "p_plain", "plain_low", "plain_high",
+             "n_nonlinear_only", "n_linear_only", "variance_reduction")
+
+    def take(self, idx) -> "ProbabilityEstimate":
+        """The estimate at poses ``idx`` (in that order)."""
+        idx = np.asarray(idx, int)
+        return replace(self, fallback=tuple(self.fallback[i] for i in idx),
+                       **{f: np.asarray(getattr(self, f))[idx] for f in self._ROWS})
+
+    def with_rows(self, idx, other: "ProbabilityEstimate") -> "ProbabilityEstimate":
+        """This estimate with poses ``idx`` replaced by the rows of ``other`` (same order as ``idx``)."""
+        idx = np.asarray(idx, int)
+        arr = {}
+        for f in self._ROWS:
+            a = np.asarray(getattr(self, f)).astype(object)
+            a[idx] = np.asarray(getattr(other, f))
+            arr[f] = a.astype(str if f == "estimator" else int if f == "n" else float)
+        fb = list(self.fallback)
+        for j, i in enumerate(idx):
+            fb[i] = other.fallback[j]
+        return replace(self, fallback=tuple(fb), **arr)
+
     @property
     def n_discordant(self) -> np.ndarray:
         return self.n_nonlinear_only + self.n_linear_only
@@ -305,10 +327,10 @@ def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, q
                          details: dict | None = None) -> ProbabilityEstimate:
     """The estimate of radius column ``j`` of a paired run, with the ``auto`` choice made per pose."""
     c = pc.counts[:, j, :].astype(float)
-    n = np.full(len(c), pc.n)
+    n = np.broadcast_to(np.asarray(pc.n), (len(c),)).astype(float)
     nl, li, both = c[:, 0], c[:, 1], c[:, 2]
     b, cc = nl - both, li - both
-    plain = proportion_ci(nl, pc.n, "wilson", level)
+    plain = proportion_ci(nl, n, "wilson", level)
     d = paired_difference_ci(b, cc, n, level)
     p_lin = np.asarray(p_linear, float)
     paired = np.stack([p_lin + d[:, 0], np.clip(p_lin + d[:, 1], 0, 1), np.clip(p_lin + d[:, 2], 0, 1)], axis=1)
@@ -323,7 +345,7 @@ def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, q
             fallback[i] = f"poor control at pose {i + 1}: variance reduction x{vr[i]:.2g} < 1, so plain Monte Carlo"
     est = np.where(use_plain[:, None], plain, paired)
     return ProbabilityEstimate(quantity, float(radius), estimator, np.where(use_plain, "plain", "paired"),
-                               tuple(fallback), n, p_lin, est[:, 0], est[:, 1], est[:, 2], plain[:, 0], plain[:, 1],
+                               tuple(fallback), n.astype(int), p_lin, est[:, 0], est[:, 1], est[:, 2], plain[:, 0], plain[:, 1],
                                plain[:, 2], b, cc, np.where(use_plain, 1.0, vr), level, dict(details or {}))
 
 
