@@ -38,7 +38,8 @@ from tolalloc.errormodel.sampling import draw_rows
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK
 from tolalloc.montecarlo.intervals import paired_difference_ci
-from tolalloc.montecarlo.paired import ProbabilityEstimate, control_fallback_reason
+from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.paired import control_fallback_reason
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
 
 __all__ = ["importance_probability", "DEFENSIVE_ALPHA", "MIN_DISCORDANT", "proposal_scale"]

@@ -24,10 +24,9 @@ the control is poor (variance reduction below 1).
 from __future__ import annotations
 
 import threading
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import FastChain
@@ -35,12 +34,13 @@ from tolalloc.errormodel.features import N_BUF, ErrorFeatures
 from tolalloc.errormodel.sampling import draw_rows
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK
-from tolalloc.montecarlo.intervals import paired_difference_ci, z_of_level
+from tolalloc.montecarlo.estimate import ProbabilityEstimate, variance_reduction
+from tolalloc.montecarlo.intervals import paired_difference_ci
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
 from tolalloc.montecarlo.streaming import proportion_ci
 
 __all__ = ["ESTIMATORS", "check_estimator", "control_fallback_reason", "ProbabilityEstimate", "paired_counts",
-           "estimate_probabilities", "PairedCounts"]
+           "estimate_probabilities", "estimate_radii", "estimate_from_counts", "PairedCounts"]
 
 #: Estimators of a verified probability.
 ESTIMATORS = ("auto", "plain", "paired", "importance")
@@ -198,130 +198,6 @@ def paired_counts(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_r
 
 
 # ----------------------------------------------------------------- estimate
-@dataclass(frozen=True, eq=False)
-class ProbabilityEstimate:
-    """Estimate of ``P(|error| < radius)`` at ``P`` poses, by the estimator that ran at each pose.
-
-    Attributes
-    ----------
-    quantity : {"position", "orientation"}
-    radius : float
-        [mm] for position, [rad] for orientation.
-    requested : str
-        The ``estimator`` keyword (``auto``, ``plain``, ``paired``, ``importance``).
-    estimator : array of str, shape (P,)
-        What ran at each pose.
-    fallback : tuple of str, shape (P,)
-        Why ``auto`` (or ``paired``) used plain Monte Carlo at a pose ("" otherwise).
-    n : array of int, shape (P,)
-    p_linear : array, shape (P,)
-        Exact linear-Gaussian ``P`` (the control).
-    p_hat, ci_low, ci_high : arrays, shape (P,)
-        The estimate and its interval (``level``).
-    p_plain, plain_low, plain_high : arrays, shape (P,)
-        Plain Monte Carlo (Wilson) of the nonlinear indicator on the same draws (NaN for importance sampling).
-    n_nonlinear_only, n_linear_only : arrays of float, shape (P,)
-        Discordant samples: inside by the nonlinear chain only / by the linear map only (effective counts for
-        importance sampling).
-    variance_reduction : array, shape (P,)
-        Plain-MC variance ``P (1 - P) / n`` over the estimator's variance at the same ``n`` (with no discordant
-        sample, the variance of one discordant sample is used: a lower bound).
-    level : float
-    """
-
-    quantity: str
-    radius: float
-    requested: str
-    estimator: np.ndarray
-    fallback: tuple
-    n: np.ndarray
-    p_linear: np.ndarray
-    p_hat: np.ndarray
-    ci_low: np.ndarray
-    ci_high: np.ndarray
-    p_plain: np.ndarray
-    plain_low: np.ndarray
-    plain_high: np.ndarray
-    n_nonlinear_only: np.ndarray
-    n_linear_only: np.ndarray
-    variance_reduction: np.ndarray
-    level: float = 0.95
-    details: dict = field(default_factory=dict, repr=False)
-
-    _ROWS = ("estimator", "n", "p_linear", "p_hat", "ci_low", "ci_high", "p_plain", "plain_low", "plain_high",
-             "n_nonlinear_only", "n_linear_only", "variance_reduction")
-
-    def take(self, idx) -> "ProbabilityEstimate":
-        """The estimate at poses ``idx`` (in that order)."""
-        idx = np.asarray(idx, int)
-        return replace(self, fallback=tuple(self.fallback[i] for i in idx),
-                       **{f: np.asarray(getattr(self, f))[idx] for f in self._ROWS})
-
-    def with_rows(self, idx, other: "ProbabilityEstimate") -> "ProbabilityEstimate":
-        """This estimate with poses ``idx`` replaced by the rows of ``other`` (same order as ``idx``)."""
-        idx = np.asarray(idx, int)
-        arr = {}
-        for f in self._ROWS:
-            a = np.asarray(getattr(self, f)).astype(object)
-            a[idx] = np.asarray(getattr(other, f))
-            arr[f] = a.astype(str if f == "estimator" else int if f == "n" else float)
-        fb = list(self.fallback)
-        for j, i in enumerate(idx):
-            fb[i] = other.fallback[j]
-        return replace(self, fallback=tuple(fb), **arr)
-
-    @property
-    def n_discordant(self) -> np.ndarray:
-        return self.n_nonlinear_only + self.n_linear_only
-
-    @property
-    def se(self) -> np.ndarray:
-        """Standard error implied by the interval: half its width over the normal quantile."""
-        return (self.ci_high - self.ci_low) / (2 * z_of_level(self.level))
-
-    def to_frame(self) -> pd.DataFrame:
-        """One row per pose (1-based)."""
-        u = "mm" if self.quantity == "position" else "rad"
-        return pd.DataFrame({"pose": np.arange(1, len(self.p_hat) + 1), f"radius_{u}": self.radius,
-                             "estimator": self.estimator, "n": self.n, "p_linear": self.p_linear,
-                             "p_hat": self.p_hat, "ci_low": self.ci_low, "ci_high": self.ci_high,
-                             "p_plain": self.p_plain, "plain_ci_low": self.plain_low, "plain_ci_high": self.plain_high,
-                             "n_nonlinear_only": self.n_nonlinear_only, "n_linear_only": self.n_linear_only,
-                             "variance_reduction": self.variance_reduction, "fallback": list(self.fallback)})
-
-    def summary(self) -> dict:
-        """JSON-ready block (poses 1-based in lists)."""
-        fb = sorted({f for f in self.fallback if f})
-        return {"quantity": self.quantity, "radius": float(self.radius), "estimator_requested": self.requested,
-                "estimator": [str(e) for e in self.estimator], "fallback_reason": "; ".join(fb),
-                "n": [int(x) for x in self.n], "level": self.level,
-                "p_linear": self.p_linear.tolist(), "p_hat": self.p_hat.tolist(),
-                "ci": [[float(a), float(b)] for a, b in zip(self.ci_low, self.ci_high)],
-                "n_discordant": [float(x) for x in self.n_discordant],
-                "n_nonlinear_only": [float(x) for x in self.n_nonlinear_only],
-                "n_linear_only": [float(x) for x in self.n_linear_only],
-                "variance_reduction": [float(x) for x in self.variance_reduction]}
-
-    def message(self) -> str:
-        """One line: estimator(s), discordant samples, variance reduction, fallback reason."""
-        kinds = sorted(set(self.estimator.tolist()))
-        head = f"estimator: {'/'.join(kinds)} (requested {self.requested})"
-        sel = self.estimator != "plain"
-        if np.any(sel):
-            vr = self.variance_reduction[sel]
-            head += (f"; discordant samples {int(np.rint(self.n_discordant[sel].sum()))} of "
-                     f"{int(self.n[sel].sum())}; variance reduction vs plain MC x{np.min(vr):.3g} - x{np.max(vr):.3g}")
-        fb = sorted({f for f in self.fallback if f})
-        return head + (f"; fallback to plain: {'; '.join(fb)}" if fb else "")
-
-
-def _vr(p, n, var_est):
-    """Variance reduction ``P (1 - P) / n / var_est`` (inf where both vanish)."""
-    plain = np.clip(p, 0, 1) * (1 - np.clip(p, 0, 1)) / n
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(var_est > 0, plain / np.maximum(var_est, 1e-300), np.inf)
-
-
 def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, quantity: str = "position",
                          estimator: str = "auto", model_reason: str = "", level: float = 0.95,
                          details: dict | None = None) -> ProbabilityEstimate:
@@ -335,7 +211,7 @@ def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, q
     p_lin = np.asarray(p_linear, float)
     paired = np.stack([p_lin + d[:, 0], np.clip(p_lin + d[:, 1], 0, 1), np.clip(p_lin + d[:, 2], 0, 1)], axis=1)
     var_paired = (np.maximum(b + cc, 1.0) / n - d[:, 0] ** 2) / n
-    vr = _vr(paired[:, 0], n, var_paired)
+    vr = variance_reduction(paired[:, 0], n, var_paired)
     use_plain = np.full(len(c), estimator == "plain" or bool(model_reason))
     fallback = [model_reason if (model_reason and estimator != "plain") else "" for _ in range(len(c))]
     if estimator == "auto" and not model_reason:
@@ -347,6 +223,39 @@ def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, q
     return ProbabilityEstimate(quantity, float(radius), estimator, np.where(use_plain, "plain", "paired"),
                                tuple(fallback), n.astype(int), p_lin, est[:, 0], est[:, 1], est[:, 2], plain[:, 0], plain[:, 1],
                                plain[:, 2], b, cc, np.where(use_plain, 1.0, vr), level, dict(details or {}))
+
+
+def estimate_radii(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_rad=(), estimator: str = "auto",
+                   level: float = 0.95, keep_samples: int = 0, scheduler=None, n_jobs: int | None = None):
+    """Estimates of ``P(|dP| < r)`` and ``P(|rotvec| < a)`` for several radii from one paired run.
+
+    Returns
+    -------
+    position : dict float -> ProbabilityEstimate
+        Radius [mm] -> estimate (``details``: ``kept_mm``, ``max_deviation_mm``).
+    orientation : dict float -> ProbabilityEstimate
+        Angle [rad] -> estimate.
+    """
+    check_estimator(estimator, ("auto", "plain", "paired"))
+    q = np.atleast_2d(model.robot.check_q(q, "q"))
+    reason = control_fallback_reason(model)
+    if estimator == "paired" and reason:
+        raise TolallocError(f"estimator: 'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
+                            "estimator='auto' (plain Monte Carlo for this model) or 'plain'.")
+    radii, aradii = [float(r) for r in radii_mm], [float(a) for a in angle_radii_rad]
+    pc = paired_counts(model, q, n, seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep_samples,
+                       scheduler=scheduler, n_jobs=n_jobs)
+    J = model.jacobian(q)
+    s2 = model.sigma**2
+    cov = {k: np.einsum("pik,k,pjk->pij", J[:, rows], s2, J[:, rows]) for k, rows in (("position", slice(0, 3)),
+                                                                                     ("orientation", slice(3, 6)))}
+    pos, ang = {}, {}
+    for j, (name, rad) in enumerate([("position", r) for r in radii] + [("orientation", a) for a in aradii]):
+        det = {"kept_mm": pc.kept_mm, "max_deviation_mm": pc.max_deviation_mm} if name == "position" else {}
+        e = estimate_from_counts(pc, j, rad, p_within_radius(cov[name], rad), quantity=name, estimator=estimator,
+                                 model_reason=reason, level=level, details=det)
+        (pos if name == "position" else ang)[rad] = e
+    return pos, ang
 
 
 def estimate_probabilities(model, q, n: int, seed: int = 0, *, radius_mm: float | None = None,
@@ -376,23 +285,13 @@ def estimate_probabilities(model, q, n: int, seed: int = 0, *, radius_mm: float 
     -------
     dict with ``"position"`` and/or ``"orientation"`` -> :class:`ProbabilityEstimate`
     """
-    check_estimator(estimator, ("auto", "plain", "paired"))
-    q = np.atleast_2d(model.robot.check_q(q, "q"))
-    reason = control_fallback_reason(model)
-    if estimator == "paired" and reason:
-        raise TolallocError(f"estimator: 'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
-                            "estimator='auto' (plain Monte Carlo for this model) or 'plain'.")
-    radii = [] if radius_mm is None else [float(radius_mm)]
-    aradii = [] if angle_radius_rad is None else [float(angle_radius_rad)]
-    pc = paired_counts(model, q, n, seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep_samples,
-                       scheduler=scheduler, n_jobs=n_jobs)
-    J = model.jacobian(q)
-    S = np.diag(model.sigma**2)
+    pos, ang = estimate_radii(model, q, n, seed, radii_mm=() if radius_mm is None else (radius_mm,),
+                              angle_radii_rad=() if angle_radius_rad is None else (angle_radius_rad,),
+                              estimator=estimator, level=level, keep_samples=keep_samples, scheduler=scheduler,
+                              n_jobs=n_jobs)
     out = {}
-    for j, (name, rad, rows) in enumerate([("position", r, slice(0, 3)) for r in radii]
-                                          + [("orientation", a, slice(3, 6)) for a in aradii]):
-        C = np.einsum("pik,kl,pjl->pij", J[:, rows], S, J[:, rows])
-        det = {"kept_mm": pc.kept_mm, "max_deviation_mm": pc.max_deviation_mm} if name == "position" else {}
-        out[name] = estimate_from_counts(pc, j, rad, p_within_radius(C, rad), quantity=name, estimator=estimator,
-                                         model_reason=reason, level=level, details=det)
+    if pos:
+        out["position"] = next(iter(pos.values()))
+    if ang:
+        out["orientation"] = next(iter(ang.values()))
     return out

@@ -29,7 +29,8 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.linear.covariance import variance_share
 from tolalloc.montecarlo.intervals import z_of_level
-from tolalloc.montecarlo.paired import ProbabilityEstimate, check_estimator, control_fallback_reason
+from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict", "check_resolvable"]
 
