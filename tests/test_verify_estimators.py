@@ -98,3 +98,14 @@ def test_rare_requirement_is_demonstrated_by_importance_sampling():
     assert c.before.verdict != "demonstrated" and c.verification.verdict == "demonstrated"
     assert np.all(c.verification.ci_low >= 0.99999) and np.all(c.verification.estimator == "importance")
     assert np.all(c.targets - 0.99999 < 1e-6) and c.premium_pct > 0
+
+
+def test_estimator_summary_block(res):
+    import json
+
+    v = verify_design(res.problem, res.design, n_mc=20_000, seed=2, keep_samples=0)
+    block = v.estimator_summary()
+    assert block["estimator"] == ["paired", "paired"] and block["estimator_requested"] == "auto"
+    assert len(block["n_discordant"]) == 2 and block["fallback_reason"] == ""
+    assert block["estimator_message"] == v.estimator_message()
+    json.dumps(block)

@@ -87,7 +87,8 @@ class Correction:
                 "cost_of_correction": self.cost_of_correction, "premium_pct": self.premium_pct,
                 "costs_per_round": [float(c) for c in self.costs],
                 "verdict_before": self.before.verdict, "verdicts_before": self.before.verdicts.tolist(),
-                "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "message": self.message()}
+                "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "estimator": [str(e) for e in v.estimator],
+                "message": self.message()}
 
 
 def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:

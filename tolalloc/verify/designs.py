@@ -123,6 +123,14 @@ class Verification:
         """Why plain Monte Carlo ran where a paired estimator was requested ("" if it did not)."""
         return "" if self.estimate is None else "; ".join(sorted({f for f in self.estimate.fallback if f}))
 
+    def estimator_summary(self) -> dict:
+        """JSON-ready estimator block for summary.json's ``verification`` (per-pose lists, poses in order)."""
+        vr = [float(x) if np.isfinite(x) else None for x in self.variance_reduction]
+        return {"estimator_requested": "plain" if self.estimate is None else self.estimate.requested,
+                "estimator": [str(e) for e in self.estimator], "n_discordant": [float(x) for x in self.n_discordant],
+                "variance_reduction": vr, "fallback_reason": self.fallback_reason,
+                "estimator_message": self.estimator_message()}
+
     def estimator_message(self) -> str:
         """One line: the estimator(s), discordant samples, variance reduction, fallback reason."""
         if self.estimate is None:
