@@ -49,7 +49,9 @@ def test_unresolvable_tail_is_refused_with_the_samples_needed(res):
                                             r"or estimator='importance'"):
         verify_design(pr, d, n_mc=1000, estimator="plain")
     with pytest.raises(TolallocError, match="the paired estimator"):
-        verify_design(pr, d, n_mc=1000)
+        verify_design(pr, d, n_mc=1000, estimator="paired")
+    auto = verify_design(pr, d, n_mc=1000, keep_samples=0)  # auto: importance sampling where paired cannot resolve
+    assert np.all(auto.estimator == "importance")
     v = verify_design(pr, d, n_mc=1000, estimator="importance", keep_samples=0)  # importance sampling can
     assert np.all(v.estimator == "importance") and np.all(v.ci_high - v.ci_low < 1e-4)
     with pytest.raises(TolallocError, match="estimator: expected one of"):

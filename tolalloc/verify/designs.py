@@ -192,6 +192,11 @@ class Verification:
         return pd.DataFrame(cols)
 
 
+def resolvable_n(prob: float) -> int:
+    """Smallest sample size whose plain (or zero-discordance paired) 95 % interval can lie above ``prob``."""
+    return int(np.ceil(z_of_level(0.95) ** 2 * prob / (1.0 - prob)))
+
+
 def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc") -> None:
     """Refuse a sample size that cannot resolve the tail ``1 - prob`` with the estimator that would run.
 
@@ -201,8 +206,7 @@ def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_
     """
     if estimator == "importance":
         return
-    z2 = z_of_level(0.95) ** 2
-    need = int(np.ceil(z2 * prob / (1.0 - prob)))
+    need = resolvable_n(prob)
     if n >= need:
         return
     gauss = not control_fallback_reason(model)
@@ -284,7 +288,9 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         the mean difference of the nonlinear and linear indicators on the same draws; ``importance`` the same
         with importance sampling (position requirement; the orientation one is estimated as ``auto``); ``auto``
         is paired where the linear map is an exact control (Gaussian parameters), plain elsewhere (the reason is
-        in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``.
+        in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``
+        and wherever ``n_mc`` is too small for the paired interval to resolve the tail ``1 - p``
+        (:func:`resolvable_n`); a tail that plain sampling cannot resolve is refused with the samples needed.
     """
     if design.t is None:
         raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
@@ -305,8 +311,10 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     model = problem.model_for(design.t)
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
-    check_resolvable(model, p, n_max if crit == "certified" else int(n_mc), estimator,
-                     "n_max" if crit == "certified" and n_max > n_mc else "n_mc")
+    n_res = n_max if crit == "certified" else int(n_mc)
+    if estimator == "auto" and not control_fallback_reason(model) and n_res < resolvable_n(p):
+        estimator = "importance"  # the paired interval could not resolve this tail with n samples
+    check_resolvable(model, p, n_res, estimator, "n_max" if crit == "certified" and n_max > n_mc else "n_mc")
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     P = problem.n_poses
