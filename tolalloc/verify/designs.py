@@ -1,8 +1,11 @@
 """Nonlinear Monte Carlo verification of an allocated design at every pose.
 
 The design's error model (``sigma = t / z``) is sampled and evaluated with the exact perturbed
-kinematics (:func:`tolalloc.montecarlo.run.run_mc`); ``P(|dP| < r)`` is estimated at every pose with a
-95 % Wilson interval and set beside the linear (Gaussian) prediction. Criteria (issue 5):
+kinematics; ``P(|dP| < r)`` is estimated at every pose with a 95 % interval and set beside the linear
+(Gaussian) prediction. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
+one -- the exact linear P plus the mean difference of the nonlinear and linear indicators on the same draws,
+Tango's interval -- where the parameters are Gaussian, plain Monte Carlo (Wilson) elsewhere, importance
+sampling where the tail is too thin for the sample size. Criteria (issue 5):
 
 * a pose is **demonstrated** when the whole interval is at or above ``p`` (lower bound ``>= p``);
 * it is **consistent** when the interval reaches ``p`` (upper bound ``>= p``) but its lower bound is below;
@@ -81,6 +84,9 @@ class Verification:
         The pose of ``samples_mm``: the lowest linear prediction.
     angle : dict or None
         Orientation check (same keys as arrays) when the problem has an orientation requirement.
+    estimate : ProbabilityEstimate or None
+        The position estimate behind ``p_mc`` / ``ci_*``: estimator per pose, discordant counts, variance
+        reduction, plain estimate of the same draws, fallback reasons (:mod:`tolalloc.montecarlo.paired`).
     """
 
     criterion: str
