@@ -40,6 +40,11 @@ def register(sub) -> None:
                    help="also require P(|rotation error| < this) >= --angle-prob [deg]")
     p.add_argument("--angle-prob", type=float, default=None, help="probability of the orientation requirement (default --prob)")
     p.add_argument("--n-mc", type=count, default=10**6, help="Monte Carlo samples per pose for the verification (default 1e6)")
+    p.add_argument("--estimator", default="auto", choices=["auto", "plain", "paired", "importance"],
+                   help="how P(|dP| < r) is estimated in the verification: paired = the exact linear P plus the mean "
+                   "difference of nonlinear and linear indicators on shared draws; importance = that difference by "
+                   "importance sampling (rare events); auto (default) = paired where the parameters are Gaussian, "
+                   "plain Monte Carlo otherwise, importance sampling where the tail is too thin for --n-mc")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--no-correction", action="store_true",
                    help="do not run the correction loop (by default, when a verified pose is not demonstrated - its "
@@ -69,7 +74,8 @@ def cmd_allocate(args) -> int:
         args.robot, radius_mm=args.radius_mm, prob=args.prob, region=args.region, poses=args.poses, costs=args.costs,
         z=args.z, uniform=args.uniform, angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob,
         solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg, calibration=args.calibration,
-        verify=not args.no_verify, n_mc=args.n_mc, seed=args.seed, correction=not args.no_correction,
+        verify=not args.no_verify, n_mc=args.n_mc, seed=args.seed, estimator=args.estimator,
+        correction=not args.no_correction,
         correction_rounds=args.correction_rounds, coverage_n=args.coverage_n, scheduler=args.scheduler,
         **error_model_kwargs(args), **robot_kwargs(args))
     if getattr(res, "infeasible", None) is not None:  # a region no design can cover: nothing to print or write

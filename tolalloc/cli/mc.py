@@ -25,6 +25,10 @@ def register(sub) -> None:
     p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
     p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees; repeatable")
+    p.add_argument("--estimator", default=None, choices=["auto", "plain", "paired", "importance"],
+                   help="also estimate each P(|dp| < r) with this estimator (paired: exact linear P plus the mean "
+                   "difference of nonlinear and linear indicators on the same draws), with its interval, discordant "
+                   "samples and variance reduction against plain Monte Carlo")
     p.add_argument("--ci", default="wilson", choices=["wilson", "exact"], help="95%% interval: Wilson (default) or Clopper-Pearson")
     add_scheduler_arg(p)
     p.add_argument("--jobs", type=count, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
@@ -52,6 +56,7 @@ def cmd_mc(args) -> int:
         angle_radius_rad=args.angle_radius_rad, angle_radius_deg=args.angle_radius_deg, ci=args.ci,
         scheduler=args.scheduler, jobs=args.jobs, chunk_size=args.chunk_size, progress=args.progress,
         hist_bins=args.hist_bins, hist_range_mm=args.hist_range_mm, keep_samples=None if args.out else 0,
+        estimator=args.estimator,
         **error_model_kwargs(args), **robot_kwargs(args))
     res.save(args.out, json=None if args.json == "-" else args.json)
     if args.json == "-":

@@ -89,7 +89,7 @@ class _IsSpec:
                     d = int(np.sum(S > 1e-12 * max(S[0], 1e-300)))
                     s = proposal_scale(A @ A.T, self.radius)
                     per_pose.append((A, np.ascontiguousarray(Vt[:d]), d, s, float(S[0]),
-                                     self.model.robot.fk(qi)[:3, 3].copy()))
+                                     self.model.robot.fk_internal(qi)[:3, 3].copy()))
                 self._kernel = (chain, progs, per_pose)
             return self._kernel
 

@@ -90,7 +90,7 @@ class _PairSpec:
                 chain = FastChain(self.model)
                 mult = draw_rows(self.model, 1, np.random.default_rng(0), np.empty((len(self.model.params), 1)))
                 progs = [chain.program(qi, mult) for qi in self.q]
-                feats = [ErrorFeatures(self.model.robot.fk(qi)) for qi in self.q]
+                feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
                 A = self.model.jacobian(self.q) * mult  # (P, 6, K): linear map of the drawn rows
                 self._kernel = (chain, progs, feats, np.ascontiguousarray(A))
             return self._kernel

@@ -181,7 +181,7 @@ def sobol_indices(model, q, n: int = 2**13, seed: int = 0, *, radius_mm: float |
     Amat, Bmat = model.sample(n, rng), model.sample(n, rng)
     chain = FastChain(model)
     prog = chain.program(q)
-    p0 = model.robot.fk(q)[:3, 3]
+    p0 = model.robot.fk_internal(q)[:3, 3]
     J = model.jacobian(q)[:3]
     outs = [_evaluate(chain, prog, p0, J, Amat), _evaluate(chain, prog, p0, J, Bmat)]
     for g in groups:

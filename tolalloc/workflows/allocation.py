@@ -13,7 +13,10 @@ from tolalloc.exceptions import ArgumentError
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
 
-__all__ = ["allocate_tolerances"]
+__all__ = ["allocate_tolerances", "ESTIMATORS"]
+
+#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
+ESTIMATORS = ("auto", "plain", "paired", "importance")
 
 
 @inputs.honours_trust_units
@@ -23,7 +26,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                         clearance: bool = False, exclude=(), angle_radius_deg: float | None = None,
                         angle_prob: float | None = None, solver: str = "exact", snap: bool = True,
                         angle_step_deg: float | None = None, calibration=None, verify: bool = True,
-                        n_mc: int = 10**6, seed: int = 0, correction: bool = True, correction_rounds: int = 2,
+                        n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool = True,
+                        correction_rounds: int = 2,
                         coverage_n: int = 100_000, scheduler=None, tool: str | None = None,
                         trust_units: bool = False):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
@@ -61,25 +65,30 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     verify : bool
         Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` re-solves with
         raised targets where a pose is not demonstrated (at most ``correction_rounds`` rounds).
+    estimator : {"auto", "plain", "paired", "importance"}
+        How ``P(|dP| < r)`` is estimated in the verification: ``paired`` = the exact linear P plus the mean
+        difference of the nonlinear and linear indicators on shared draws (a control variate); ``importance`` =
+        that difference by importance sampling toward the ball's boundary (rare-event requirements); ``auto`` =
+        paired where the parameters are Gaussian, plain Monte Carlo otherwise, importance sampling where the
+        tail is too thin for ``n_mc``.
     scheduler : str or dask.distributed.Client, optional
         Where the Monte Carlo runs (threads by default); never changes the numbers.
     tool, trust_units
-        URDF tool link; accept robot-file values that look like a unit slip.
+        URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
 
     Returns
     -------
-    ToleranceAllocation
-        (or :class:`CalibratedAllocation` with ``calibration``); ``.ok`` is False when the requirement is not met.
+    ToleranceAllocation or CalibratedToleranceAllocation (with ``calibration``); ``.ok``: the requirement is met.
 
     Examples
     --------
     >>> import tolalloc
-    >>> res = tolalloc.allocate_tolerances("tool_changer", region="working", n_mc=20_000)  # doctest: +SKIP
-    >>> res.verdict  # doctest: +SKIP
-    'demonstrated'
+    >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
+    >>> res.verdict, round(res.cost, 2)
+    ('demonstrated', 44.25)
     """
-    _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, n_mc, verify,
-                  seed, correction_rounds, coverage_n)
+    _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
+           seed, correction_rounds, coverage_n)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
                                clearance=clearance, exclude=exclude)
@@ -89,23 +98,21 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
               angle_prob=angle_prob)
     inputs_record = {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
                      "costs": cost_set.source, "seed": int(seed), "n_mc": int(n_mc) if verify else None,
-                     "solver": solver, "calibration": None if calibration is None else str(calibration)}
+                     "estimator": estimator, "solver": solver,
+                     "calibration": None if calibration is None else str(calibration)}
     if calibration is not None:
         from tolalloc.workflows.calibrated import calibrated_allocation
 
-        if box is not None:
-            if region is not None:
-                raise ArgumentError("calibration", f"the calibration-aware allocation works on a pose set, got the box "
-                                    f"region {label!r}; give `poses` SET (or `region` SET with a pose set).")
-            label, q = inputs.resolve_poses(rob, None, inputs.default_pose_set(rob))
-        return calibrated_allocation(model, q, label, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
-                                     seed=seed, inputs_record=inputs_record, **kw)
+        return calibrated_allocation(model, label, box, q, calibration, region_given=region is not None,
+                                     costs_path=costs, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
+                                     inputs_record=inputs_record, **kw)
     return _allocate(model, label, box, q, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg,
-                     verify=verify, n_mc=n_mc, seed=seed, correction=correction, correction_rounds=correction_rounds,
-                     coverage_n=coverage_n, scheduler=scheduler, inputs_record=inputs_record)
+                     verify=verify, n_mc=n_mc, seed=seed, estimator=estimator, correction=correction,
+                     correction_rounds=correction_rounds, coverage_n=coverage_n, scheduler=scheduler,
+                     inputs_record=inputs_record)
 
 
-def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, correction,
+def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,
               correction_rounds, coverage_n, scheduler, inputs_record) -> ToleranceAllocation:
     from tolalloc.allocate import allocate, build_problem
 
@@ -126,14 +133,14 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
     cov, ver, corr = None, None, None
     if res.status == "optimal":
         res, cov, ver, corr = _verify_and_correct(model, kw, res, box, verify=verify, n_mc=n_mc, seed=seed,
-                                                  correction=correction, rounds=correction_rounds, solver=solver,
+                                                  estimator=estimator, correction=correction, rounds=correction_rounds, solver=solver,
                                                   snap=snap, angle_step_deg=angle_step_deg, coverage_n=coverage_n,
                                                   scheduler=scheduler)
     return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record)
 
 
-def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, correction, rounds, solver, snap, angle_step_deg,
-                        coverage_n, scheduler):
+def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, correction, rounds, solver, snap,
+                        angle_step_deg, coverage_n, scheduler):
     """Coverage of a box region, Monte Carlo verification and the correction loop.
 
     Returns ``(result, coverage, verification, correction)``: the final (corrected) allocation and its checks.
@@ -150,14 +157,14 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, correction, 
         return res, cov, None, None
     from tolalloc.verify.designs import verify_design
 
-    ver = verify_design(vproblem, vdesign, n_mc=n_mc, seed=seed, scheduler=scheduler)
+    ver = verify_design(vproblem, vdesign, n_mc=n_mc, seed=seed, scheduler=scheduler, estimator=estimator)
     if ver.verdict == "demonstrated" or not correction:
         return res, cov, ver, None
     from tolalloc.verify.correct import correct_design
 
     corr = correct_design(model, vproblem.q, solver=solver, n_mc=n_mc, seed=seed, max_rounds=rounds, result=res,
                           verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
-                          keep_samples=4000, **kw)
+                          keep_samples=4000, estimator=estimator, **kw)
     if corr.rounds and box is not None:  # the corrected design, checked over the region again
         cov = coverage(corr.result.problem, corr.result.design.t, box, n=coverage_n, seed=seed + 12345)
     return corr.result, cov, corr.verification, corr
@@ -192,8 +199,8 @@ def _costs(costs, model, z, uniform):
     return load_costs(costs, model, z=z, distribution=dist)
 
 
-def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, n_mc, verify, seed,
-           correction_rounds, coverage_n) -> None:
+def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
+           seed, correction_rounds, coverage_n) -> None:
     """Refuse bad numbers by their argument names before any computation."""
     inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
     inputs.check_probability(prob, "prob")
@@ -212,6 +219,7 @@ def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uni
         if isinstance(z, bool) or not isinstance(z, (int, float, np.integer, np.floating)) or not (np.isfinite(z) and z > 0):
             raise ArgumentError("z", f"expected a number > 0 (sigma = t / z, e.g. 3), got {z!r}.")
     inputs.check_choice(solver, "solver", ("exact", "certified"))
+    inputs.check_choice(estimator, "estimator", ESTIMATORS)
     if isinstance(correction_rounds, bool) or not isinstance(correction_rounds, (int, np.integer)) or correction_rounds < 0:
         raise ArgumentError("correction_rounds", f"expected a whole number >= 0 (rounds of the correction loop, e.g. "
                             f"2), got {correction_rounds!r}; or switch the correction off.")

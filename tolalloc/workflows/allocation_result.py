@@ -41,6 +41,15 @@ class ToleranceAllocation(JobResult):
         The call's inputs that decide the numbers (robot, requirement, region, costs source, seed, n_mc).
     infeasible : str or None
         Set when the region cannot be covered even at the tightest process limits (no design to use).
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
+    >>> res.ok, res.status
+    (True, 'optimal')
+    >>> res.to_frame().loc[0, ["parameter", "unit", "it_grade"]].tolist()
+    ['dl1', 'mm', 'IT9']
     """
 
     result: object
@@ -101,7 +110,7 @@ class ToleranceAllocation(JobResult):
         note = f"{res.design.label}"
         if corr is not None and corr.rounds:
             note += (f", corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
-                     f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.2f}% cost)")
+                     f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.3g}% cost)")
         return note
 
     def requirement(self) -> str:
@@ -118,8 +127,9 @@ class ToleranceAllocation(JobResult):
             return lines + ["status: infeasible over the region (no design): " + self.infeasible]
         lines.append(f"status: {self.status}   design: {self.design.label}   cost: {self.cost:.4f}")
         if self.verification is not None:
-            lines.append(f"verification: {self.verdict} (lowest P_hat {self.verification.p_mc.min():.4f}, "
-                         f"n = {int(self.verification.n.min())} per pose)")
+            v = self.verification
+            lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}, n = {int(v.n.min())} per "
+                         f"pose, {', '.join(sorted(set(map(str, v.estimator))))} estimator)")
         else:
             lines.append("verification: not run")
         return lines

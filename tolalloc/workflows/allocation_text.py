@@ -28,7 +28,7 @@ def summary_dict(job) -> dict:
                                "frac_below": cov.frac_below, "frac_below_upper95": cov.frac_below_upper95}
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
-                                   "n_per_pose": ver.n, "seed": ver.seed}
+                                   "n_per_pose": ver.n, "seed": ver.seed, **ver.estimator_summary()}
         for i, row in enumerate(summary["poses"]):
             row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])]})
             if ver.angle is not None:
@@ -94,6 +94,7 @@ def _design_lines(job) -> list[str]:
     out.append(f"\nlinear P per pose: min {p.min():.4f} (pose {int(np.argmin(p)) + 1}), max {p.max():.4f}")
     if ver is not None:
         out.append(ver.message())
+        out.append(ver.estimator_message())
         out.append("verdict per pose: " + ", ".join(f"{i + 1} {v}" for i, v in enumerate(ver.verdicts))
                    + f"; overall: {ver.verdict}")
     if corr is not None:

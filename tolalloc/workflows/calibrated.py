@@ -25,10 +25,19 @@ def split_from_costs(model, path):
     return split_errors(model, data.get("calibration"))
 
 
-def calibrated_allocation(model, q, label, plan_path, *, costs_path, verify, n_mc, seed, inputs_record, **kw):
+def calibrated_allocation(model, label, box, q, plan_path, *, region_given, costs_path, verify, n_mc, seed, estimator,
+                          inputs_record, **kw):
     """Certified calibration-aware design at the poses ``q`` (P, n) [rad, mm] after the plan in ``plan_path``,
     with the end-to-end Monte Carlo (simulated robots, each calibrated nonlinearly) when ``verify``."""
     from tolalloc.allocate import build_problem
+    from tolalloc.exceptions import ArgumentError
+    from tolalloc.workflows.inputs import default_pose_set, resolve_poses
+
+    if box is not None:
+        if region_given:
+            raise ArgumentError("calibration", f"the calibration-aware allocation works on a pose set, got the box "
+                                f"region {label!r}; give `poses` SET (or `region` SET with a pose set).")
+        label, q = resolve_poses(model.robot, None, default_pose_set(model.robot))
     from tolalloc.allocate.calibrated import allocate_calibrated
     from tolalloc.calibration.plan import read_plan
 
@@ -41,7 +50,10 @@ def calibrated_allocation(model, q, label, plan_path, *, costs_path, verify, n_m
         from tolalloc.verify.calibrated import verify_calibration
 
         n = max(200, min(int(n_mc), 4000))
-        chk = verify_calibration(res.post.split, plan, problem.q, problem.radius_mm, n_robots=n, seed=seed)
+        # the end-to-end check has no importance sampler: its rare tails take the paired estimator
+        est = "paired" if estimator == "importance" else estimator
+        chk = verify_calibration(res.post.split, plan, problem.q, problem.radius_mm, n_robots=n, seed=seed,
+                                 estimator=est)
     return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record)
 
 

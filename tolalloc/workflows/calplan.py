@@ -49,6 +49,13 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     -------
     CalibrationPlanDesign
         ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> d.plan.n_poses, d.design.score_mm2 < d.design.random_score_mm2
+    (8, True)
     """
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     n_cand = inputs.check_count(n_candidates, "n_candidates", example="2000")
@@ -91,6 +98,13 @@ class CalibrationPlanDesign(JobResult):
     n_candidates : int
     unidentifiable : tuple of str
         Parameters the plan cannot identify (they keep their manufacturing tolerance).
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> list(d.to_frame().columns)
+    ['j1_deg', 'j2_deg', 'j3_deg', 'j4_mm', 'j5_deg', 'j6_deg']
     """
 
     design: object

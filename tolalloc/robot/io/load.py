@@ -27,7 +27,14 @@ def _builtin_dir():
 
 
 def builtin_robots() -> dict[str, str]:
-    """Names and one-line descriptions of the built-in robots."""
+    """Names and one-line descriptions of the built-in robots.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> sorted(tolalloc.builtin_robots())
+    ['tool_changer', 'ur10']
+    """
     out = {}
     for f in sorted(_builtin_dir().iterdir(), key=lambda p: p.name):
         if f.name.endswith(".toml"):
@@ -45,7 +52,13 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     Raises
     ------
     TolallocError
-        Naming the file, the field and what was expected.
+        Naming the file, the field and what was expected (a missing file: also a ``FileNotFoundError``).
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> tolalloc.load_robot("ur10")
+    <Robot 'ur10': 6 joints (RRRRRR), 6 links, home tool point 1212 mm from the base; pose sets: working (6)>
     """
     if tool is not None and (isinstance(robot, Robot) or not str(robot).lower().endswith(".urdf")):
         got = f"robot {robot.name!r}" if isinstance(robot, Robot) else repr(str(robot))
