@@ -63,3 +63,11 @@ def test_costs_file_example_loads(tmp_path):
     assert dict(zip(costs.names, costs.role))["dth6"] == "fixed"
     frame = costs.to_frame(model)
     assert len(frame) == len(model.names)
+
+
+def test_python_example_is_the_tested_one():
+    from test_workflows import PYTHON_EXAMPLE
+
+    blocks = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+    assert PYTHON_EXAMPLE in blocks
+    assert len(PYTHON_EXAMPLE.strip().splitlines()) <= 15
