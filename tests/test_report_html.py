@@ -266,6 +266,21 @@ def test_allocation_command_reproduces_the_tables(allocation, tmp_path):
     assert call.keywords and all(k.arg in params for k in call.keywords)
 
 
+@pytest.mark.parametrize("kw, word", [(dict(verify=False), "NOT VERIFIED"), (dict(radius_mm=0.005), "INFEASIBLE")])
+def test_allocation_without_verification_or_design(kw, word, tmp_path):
+    """No Monte Carlo: the pose table holds the linear P only; no design: the verdict says so, nothing verified."""
+    job = allocate_tolerances("tool_changer", region="nominal", n_mc=2000, **kw)
+    job.save(tmp_path / "r", report=True)
+    page = Page((tmp_path / "r" / "report.html").read_text(encoding="utf-8"))
+    assert page.text("verdict").startswith(word)
+    assert job.verification is None and "p_mc" not in page.tables["pose-table"]["keys"]
+    s = job.summary()
+    assert page.column("pose-table", "p_linear") == [f"{row['p_linear']:.4f}" for row in s["poses"]]
+    assert page.column("tolerance-table", "parameter") == list(job.to_frame()["parameter"])
+    assert len(page.images) == 1  # the error budget; no verification figures
+    assert ("--no-verify" in page.text("command-cli")) == (not kw.get("verify", True))
+
+
 # ---------------------------------------------------------------------------------------------- calibrated
 def test_calibrated_report(calibrated):
     job, out, names, page = calibrated
