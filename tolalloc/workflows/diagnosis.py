@@ -107,7 +107,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
                 gap = diagnosis_gap_split(d)
             finally:
                 bar.close()
-    return MeasurementDiagnosis(d, gap, folds)
+    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
+              "register_n": register_n, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
+              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units)}
+    return MeasurementDiagnosis(d, gap, folds, record)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -121,6 +124,8 @@ class MeasurementDiagnosis(JobResult):
     gap : GapSplit or None
         The held-out test error split into geometry / effect / systematic but unnamed / noise floor.
     folds : int
+    inputs : dict
+        The call's inputs that decide the numbers (robot, files, test_frame, folds, alpha, seed, ...).
 
     See :func:`diagnose_measurements` for an example; ``to_frame()`` is the before / after table
     (nominal, geometric, final model; RMS, p95, max [mm]).
@@ -187,7 +192,7 @@ class MeasurementDiagnosis(JobResult):
         return frame.drop(columns="row")
 
     def save(self, report=None, *, json=None, predictions=None) -> list[str]:
-        """Write the report directory (report.md, CSV tables, figures), the JSON result and / or the predictions
+        """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
         CSV; all published together, nothing if any fails. Returns the paths written."""
         self.check_out(report, "report")
         self.check_out(json, "json", directory=False)
@@ -205,9 +210,11 @@ class MeasurementDiagnosis(JobResult):
         return [str(p) for p in (predictions, report, json) if p is not None]
 
     def write_report(self, folder) -> None:
-        """report.md, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
+        """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
         from tolalloc.report.diagnosis import write_report
+        from tolalloc.workflows.html import write_diagnosis_report
 
         write_report(self.diagnosis, folder)
         if self.gap is not None:
             self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
+        write_diagnosis_report(self, folder)
