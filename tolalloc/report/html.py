@@ -229,6 +229,17 @@ def _environment():
     return env
 
 
+def generated_at() -> str:
+    """The report's date: now, or ``SOURCE_DATE_EPOCH`` when set (the reproducible-builds convention, so that two
+    runs of the same job write the same bytes)."""
+    import os
+
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
+    when = (_dt.datetime.fromtimestamp(int(epoch), _dt.timezone.utc) if epoch.isdigit()
+            else _dt.datetime.now(_dt.timezone.utc))
+    return when.strftime("%Y-%m-%d %H:%M UTC")
+
+
 def render_report(template: str, context: dict) -> str:
     """Render ``template`` (``allocation.html.j2``, ``calibrated.html.j2``, ``diagnosis.html.j2``) with ``context``.
 
@@ -238,7 +249,7 @@ def render_report(template: str, context: dict) -> str:
     """
     versions = software_versions()
     ctx = {"versions": versions, "tolalloc_version": dict(versions).get("tolalloc", "unknown"),
-           "generated": _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")} | dict(context)
+           "generated": generated_at()} | dict(context)
     return _environment().get_template(template).render(**ctx)
 
 
