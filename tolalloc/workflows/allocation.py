@@ -98,8 +98,9 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
               angle_prob=angle_prob)
     inputs_record = {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
                      "costs": cost_set.source, "seed": int(seed), "n_mc": int(n_mc) if verify else None,
-                     "estimator": estimator, "solver": solver,
-                     "calibration": None if calibration is None else str(calibration)}
+                     "estimator": estimator, "solver": solver, "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
+                     "correction_rounds": correction_rounds, "angle_step_deg": angle_step_deg, "tool": tool,
+                     "trust_units": bool(trust_units), "calibration": None if calibration is None else str(calibration)}
     if calibration is not None:
         from tolalloc.workflows.calibrated import calibrated_allocation
 
