@@ -292,24 +292,43 @@ def coverage(problem: AllocationProblem, t, region: Region, *, n: int = 100_000,
              k_worst: int = 3, tol: float = 1e-4, chunk: int = 20_000) -> Coverage:
     """Coverage of a design over a region on a fresh seeded sample (uniform random, not the search's Sobol).
 
-    A pose counts as below when ``P < p - tol``(tol: the search's convergence tolerance).
+    A pose counts as below when ``P < p - tol``(tol: the search's convergence tolerance). The sample is drawn and
+    screened ``chunk`` poses at a time (the same stream as one draw of all ``n``), so memory does not grow with
+    ``n``.
     """
+    from tolalloc.exceptions import raise_if_interrupted
+
+    try:
+        n_ok = int(n) == n and n >= 1
+    except (TypeError, ValueError, OverflowError):
+        n_ok = False
+    if not n_ok:
+        raise TolallocError(f"n: expected a whole number of coverage poses >= 1 (e.g. 1e5), got {n!r}.")
+    n, chunk = int(n), max(1, int(chunk))
     rng = np.random.default_rng(seed)
-    Q = region.q_min + rng.random((int(n), len(region.q_min))) * (region.q_max - region.q_min)
-    C = np.concatenate([_position_cov(problem, t, Q[i:i + chunk]) for i in range(0, len(Q), chunk)])
-    # screen: P(|x| < r) >= P(chi2_3 < r^2 / lambda_max) (the ball contains the lambda_max-sphere's ellipsoid);
-    # the exact P is computed in order of this bound until no unevaluated pose can be lower or below p
-    lower = chi2.cdf(problem.radius_mm**2 / np.maximum(np.linalg.eigvalsh(C)[:, -1], 1e-300), 3)
-    order = np.argsort(lower)
-    P = np.full(len(Q), np.nan)
-    done, p_min = 0, np.inf
-    while done < len(Q) and (lower[order[done]] < problem.prob - tol or lower[order[done]] < p_min):
-        idx = order[done:done + 2000]
-        P[idx] = p_within_radius(C[idx], problem.radius_mm)
-        p_min = min(p_min, float(np.nanmin(P[idx])))
-        done += len(idx)
-    below = int(np.sum(P[order[:done]] < problem.prob - tol))
+    below, done, p_min = 0, 0, np.inf
+    worst_p, worst_q = np.empty(0), np.empty((0, len(region.q_min)))
+    for start in range(0, n, chunk):
+        raise_if_interrupted()
+        Q = region.q_min + rng.random((min(chunk, n - start), len(region.q_min))) * (region.q_max - region.q_min)
+        C = _position_cov(problem, t, Q)
+        # screen: P(|x| < r) >= P(chi2_3 < r^2 / lambda_max) (the ball contains the lambda_max-sphere's ellipsoid);
+        # the exact P is computed in order of this bound until no unevaluated pose can be lower or below p
+        lower = chi2.cdf(problem.radius_mm**2 / np.maximum(np.linalg.eigvalsh(C)[:, -1], 1e-300), 3)
+        order = np.argsort(lower)
+        P = np.full(len(Q), np.nan)
+        k = 0
+        while k < len(Q) and (lower[order[k]] < problem.prob - tol or lower[order[k]] < p_min):
+            idx = order[k:k + 2000]
+            P[idx] = p_within_radius(C[idx], problem.radius_mm)
+            p_min = min(p_min, float(np.nanmin(P[idx])))
+            k += len(idx)
+        ev = order[:k]
+        below += int(np.sum(P[ev] < problem.prob - tol))
+        done += k
+        worst_p = np.concatenate([worst_p, P[ev]])
+        worst_q = np.concatenate([worst_q, Q[ev]])
+        keep = np.argsort(worst_p)[:k_worst]
+        worst_p, worst_q = worst_p[keep], worst_q[keep]
     upper = float(beta.ppf(0.95, below + 1, n - below)) if below < n else 1.0
-    ev = order[:done]
-    order = ev[np.argsort(P[ev])][:k_worst]
-    return Coverage(int(n), p_min, Q[order], below, below / n, upper, int(done))
+    return Coverage(n, p_min, worst_q, below, below / n, upper, int(done))
