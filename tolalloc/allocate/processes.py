@@ -22,8 +22,10 @@ Processes (optional)::
     b = 1.0
     t_ref_mm = 0.1
 
-For parameters without grades the attainable range is ``t_min_<unit>`` / ``t_max_<unit>`` (default: the
-parameter's process limits). A parameter that some process applies to chooses among those processes (one per
+``applies_to`` names kinds as the ``[kinds.*]`` tables do (``joint_drive``: the revolute drives,
+``joint_drive_prismatic``: the prismatic ones) or parameters. For parameters without grades the attainable range
+is ``t_min_<unit>`` / ``t_max_<unit>`` (default: the parameter's process limits) and the cost a law (or a
+``cost`` table over the parameter's classes). A parameter that some process applies to chooses among those processes (one per
 part: all parameters of a link or joint under processes share it); its kind's cost law then only drives the
 continuous design.
 """
