@@ -103,14 +103,19 @@ def _verdict(job) -> dict:
 def _cards(job, s: dict) -> list:
     res, ver, cov, corr = job.result, job.verification, job.coverage, job.correction
     c = s["costs"]
-    cards = [{"label": "design cost", "value": _f4(job.cost), "note": f"{res.design.label} design"},
+    cards = [{"label": "cost of the design to build", "value": _f4(job.cost),
+              "note": f"{job.design.label} design" + (" (standard grades)" if job.standard else "")},
              {"label": "certified cost", "value": _f4(c["certified"]), "note": c["certified_rule"]},
              {"label": "exact cost", "value": _f4(c["exact"]),
               "note": f"{c['saving_pct']:.2f} % below certified" if c["saving_pct"] is not None else
               ("not computed" if c["exact_status"] is None else f"none: {c['exact_status']}")}]
-    if c["standard"] is not None:
+    if c["standard"] is not None and not job.standard:
         cards.append({"label": "standard-grade cost", "value": _f4(c["standard"]),
-                      "note": "requirement met after snapping" if s["standard"]["meets"] else "requirement NOT met"})
+                      "note": "meets the requirement" if s["standard"]["meets"] else "requirement NOT met"})
+    if c.get("rounded") is not None:
+        cards.append({"label": "cost if rounded down", "value": _f4(c["rounded"]),
+                      "note": f"what the optimiser's standard grades replace ({c['rounded_premium_pct']:+.2f} %)"
+                      if c.get("rounded_premium_pct") is not None else "what the standard grades replace"})
     if ver is not None:
         k = ver.worst_pose
         cards.append({"label": "lowest P̂ (Monte Carlo)", "value": f"{ver.p_mc[k]:.4f}",
