@@ -96,10 +96,10 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     label, box, q = inputs.resolve_region(rob, region, poses)
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
               angle_prob=angle_prob)
-    inputs_record = {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
-                     "costs": cost_set.source, "seed": int(seed), "n_mc": int(n_mc) if verify else None,
-                     "estimator": estimator, "solver": solver,
-                     "calibration": None if calibration is None else str(calibration)}
+    inputs_record = _record(rob, label, cost_set, radius_mm=radius_mm, prob=prob, seed=seed, estimator=estimator,
+                            n_mc=n_mc if verify else None, solver=solver, exclude=exclude,
+                            correction_rounds=correction_rounds, angle_step_deg=angle_step_deg, tool=tool,
+                            trust_units=trust_units, calibration=calibration)
     if calibration is not None:
         from tolalloc.workflows.calibrated import calibrated_allocation
 
@@ -168,6 +168,16 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     if corr.rounds and box is not None:  # the corrected design, checked over the region again
         cov = coverage(corr.result.problem, corr.result.design.t, box, n=coverage_n, seed=seed + 12345)
     return corr.result, cov, corr.verification, corr
+
+
+def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, exclude, correction_rounds,
+            angle_step_deg, tool, trust_units, calibration) -> dict:
+    """The inputs that decide the numbers (for the report's reproduce command)."""
+    return {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
+            "costs": cost_set.source, "seed": int(seed), "n_mc": None if n_mc is None else int(n_mc),
+            "estimator": estimator, "solver": solver, "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
+            "correction_rounds": correction_rounds, "angle_step_deg": angle_step_deg, "tool": tool,
+            "trust_units": bool(trust_units), "calibration": None if calibration is None else str(calibration)}
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:

@@ -15,8 +15,9 @@ import pandas as pd
 from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
+from tolalloc.units import trusting_units
 
-__all__ = ["honours_trust_units", "as_robot", "check_probability", "check_positive", "check_count", "check_seed", "check_choice",
+__all__ = ["trusting_units", "honours_trust_units", "as_robot", "check_probability", "check_positive", "check_count", "check_seed", "check_choice",
            "joint_values", "resolve_poses", "error_model", "sigma_overrides", "resolve_region", "trajectory",
            "as_measurements", "default_pose_set"]
 
@@ -25,8 +26,6 @@ def honours_trust_units(fn):
     """Run workflow ``fn`` with the unit-plausibility guards off when it is called with ``trust_units=True``
     (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
     import functools
-
-    from tolalloc.units import trusting_units
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
@@ -41,8 +40,6 @@ def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Ro
 
     ``trust_units`` accepts robot-file values that look like a unit slip (see :mod:`tolalloc.units`).
     """
-    from tolalloc.units import trusting_units
-
     if not isinstance(robot, (Robot, str, Path)):
         raise ArgumentError("robot", f"expected a Robot, a built-in robot name or a path to a robot file (.toml, DH "
                             f".csv, .urdf), got {type(robot).__name__} {robot!r}.")
