@@ -30,6 +30,7 @@ extensions = [
     "sphinx-mathjax-offline",   # MathJax served from the site itself: the formulas render offline
     "numpydoc",
     "cli_reference",
+    "api_pages",
 ]
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"

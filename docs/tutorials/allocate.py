@@ -36,15 +36,18 @@ print(res)                         # requirement, status, design, cost, verdict
 
 # %% table
 table = res.to_frame()
-print(table[["parameter", "unit", "tolerance", "tolerance_std", "it_grade", "cost", "variance_share",
-             "at_limit"]].to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+print(table[["parameter", "unit", "tolerance", "variance_share", "at_limit", "tolerance_std", "it_grade",
+             "tolerance_rounded"]].to_string(index=False, float_format=lambda x: f"{x:.4g}"))
 print("the table holds:", table["design"].iloc[0])
 
 # %% solvers
 costs = res.summary()["costs"]
 print(f"certified ({costs['certified_rule']}): {costs['certified']:.4f}   "
       f"other rule ({costs['certified_other_rule']}): {costs['certified_other']:.4f}   "
-      f"exact: {costs['exact']:.4f}   saving {costs['saving_pct']:.2f} %   snapped to grades: {costs['standard']:.4f}")
+      f"exact: {costs['exact']:.4f}   saving {costs['saving_pct']:.2f} %")
+print(f"standard design ({costs['standard_solver']}): {costs['standard']:.4f} (+{costs['standard_premium_pct']:.2f} %)   "
+      f"rounded down instead: {costs['rounded']:.4f} (+{costs['rounded_premium_pct']:.2f} %)")
+print(res.summary()["standard"]["message"])
 
 # %% region
 search = res.region_search
