@@ -170,6 +170,27 @@ def test_tutorial_ur10_real_data(tmp_path, monkeypatch):
     assert not list(tmp_path.rglob("measurements_*.csv"))     # results only, never a copy of the data
 
 
+def test_costs_file_page_examples_load(tmp_path):
+    from tolalloc.allocate.costs import load_costs
+    from tolalloc.errormodel import build_error_model
+    from tolalloc.workflows.calibrated import split_from_costs
+
+    model = build_error_model(tolalloc.load_robot("tool_changer"))
+    blocks = re.findall(r"```toml\n(.*?)```", (DOCS / "howto" / "costs-file.md").read_text(), flags=re.S)
+    assert len(blocks) == 4
+    for i, block in enumerate(blocks):
+        path = tmp_path / f"costs_{i}.toml"
+        path.write_text(block)
+        costs = load_costs(path, model)                 # every block is a valid costs file on its own
+        split = split_from_costs(model, path)
+        if "[processes." in block:
+            assert {p.name for p in costs.spec(model.index("dl1")).processes} == {"grinding", "milling"}
+        if "repeatability_deg = 0.0005" in block:       # the kind's repeatability, a parameter's own, e2y random
+            assert split.random_sigma[model.index("dth2")] == pytest.approx(np.deg2rad(0.0005))
+            assert split.random_sigma[model.index("dth6")] == pytest.approx(np.deg2rad(0.001))
+            assert not split.systematic[model.index("e2y")] and split.systematic[model.index("e2z")]
+
+
 def test_howto_own_robot_python_chain_is_the_toml_example(monkeypatch):
     g = _run_script(DOCS / "howto" / "own_robot.py", ["--quick"], monkeypatch)
     from tolalloc.robot.io import robot_from_dict

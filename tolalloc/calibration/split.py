@@ -16,7 +16,7 @@ Overrides (the costs file's ``[calibration]`` table, or a dict of the same shape
 
     [calibration.kinds.joint_drive]
     repeatability_deg = 0.0005
-    [calibration.parameters.e2x]
+    [calibration.parameters.e2y]
     systematic = false               # treat as random (e.g. thermally drifting)
     [calibration.parameters.dth6]
     repeatability_deg = 0.001
