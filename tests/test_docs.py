@@ -103,6 +103,14 @@ def test_tutorial_allocate(tmp_path, monkeypatch):
                   for k in re.findall(r"`(\w+)`", row)}
     assert len(documented) >= 25
     assert documented <= set(res.summary()), sorted(documented - set(res.summary()))
+    # every kind of line of the printed excerpt is still printed (the numbers are the page's run's)
+    excerpt = re.search(r"```text\n(.*?)```", _section(page, "What the allocation prints"), flags=re.S).group(1)
+    text = res.text()
+    labels = [m.group(1) for m in (re.match(r"([a-zA-Z][a-zA-Z ]*?)(:| \()", line.strip())
+                                   for line in excerpt.splitlines()) if m]
+    assert len(labels) >= 10
+    for label in labels:
+        assert label in text, label
 
 
 def test_tutorial_analyze(tmp_path, monkeypatch):
