@@ -142,7 +142,8 @@ def test_results_have_a_compact_repr_a_table_and_html():
     frame = res.to_frame()
     assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and frame["tolerance"].gt(0).all()
     s = res.summary()
-    assert s["verification"]["verdict"] == res.verdict and s["cost"] == pytest.approx(res.cost)
+    assert s["verification"]["verdict"] == res.verdict and s["built"]["cost"] == pytest.approx(res.cost)
+    assert res.standard and res.cost >= res.continuous_design.cost  # the standard design is the one to build
     with pytest.raises(Exception):
         res.cost = 1.0  # frozen
     fig = res.plot_pose_probabilities()

@@ -118,25 +118,45 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
 
     reg_info = None
     if box is not None:
-        from tolalloc.allocate.region import allocate_region
-
-        rob = model.robot
-        q0 = rob.poses("working") if "working" in rob.pose_sets else None
-        if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
-            q0 = None
-        reg_info = allocate_region(model, box, q0, solver=solver, **kw)
+        reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
         q = reg_info.active_q
-    res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
+    if reg_info is not None and snap and reg_info.result.status == "optimal":
+        res = reg_info.result  # the standard design's loop solved it on the final active set
+    else:
+        res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
     if box is not None and res.status == "infeasible":
         return ToleranceAllocation(res, label, box, reg_info, None, None, None, inputs_record,
-                                   infeasible=_region_infeasible(res, box, reg_info, seed))
+                                   infeasible=_region_infeasible(res, box, reg_info, seed), built=res.design)
     cov, ver, corr = None, None, None
     if res.status == "optimal":
         res, cov, ver, corr = _verify_and_correct(model, kw, res, box, verify=verify, n_mc=n_mc, seed=seed,
                                                   estimator=estimator, correction=correction, rounds=correction_rounds, solver=solver,
                                                   snap=snap, angle_step_deg=angle_step_deg, coverage_n=coverage_n,
                                                   scheduler=scheduler)
-    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record)
+    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=built_design(res, snap))
+
+
+def _region_search(model, box, kw, *, solver, snap, angle_step_deg):
+    """Cutting planes over the box for the continuous design, continued for the standard design (``snap``)."""
+    from tolalloc.allocate.region import allocate_region
+    from tolalloc.allocate.region_standard import allocate_region_standard
+
+    rob = model.robot
+    q0 = rob.poses("working") if "working" in rob.pose_sets else None
+    if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
+        q0 = None
+    reg_info = allocate_region(model, box, q0, solver=solver, **kw)
+    if not snap or reg_info.result.status != "optimal":
+        return reg_info
+    return allocate_region_standard(model, box, solver=solver, angle_step_deg=angle_step_deg, continuous=reg_info,
+                                    **kw)
+
+
+def built_design(res, snap: bool):
+    """The design that will be built: the standard one when it was chosen and meets the requirement, else the
+    continuous one."""
+    std = res.standard
+    return std if snap and std is not None and std.ok else res.design
 
 
 def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, correction, rounds, solver, snap,
@@ -148,11 +168,13 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     from tolalloc.allocate.problem import build_problem, make_design
     from tolalloc.allocate.region import coverage
 
-    cov, vproblem, vdesign = None, res.problem, res.design
+    design = built_design(res, snap)
+    standard = design is not res.design
+    cov, vproblem, vdesign = None, res.problem, design
     if box is not None:
-        cov = coverage(res.problem, res.design.t, box, n=coverage_n, seed=seed + 12345)
+        cov = coverage(res.problem, design.t, box, n=coverage_n, seed=seed + 12345)
         vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
-        vdesign = make_design(vproblem, res.design.solver, res.design.t, fallback_from=res.design.fallback_from)
+        vdesign = make_design(vproblem, design.solver, design.t, fallback_from=design.fallback_from)
     if not verify:
         return res, cov, None, None
     from tolalloc.verify.designs import verify_design
@@ -164,9 +186,9 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
 
     corr = correct_design(model, vproblem.q, solver=solver, n_mc=n_mc, seed=seed, max_rounds=rounds, result=res,
                           verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
-                          keep_samples=4000, estimator=estimator, **kw)
+                          keep_samples=4000, estimator=estimator, standard=standard, **kw)
     if corr.rounds and box is not None:  # the corrected design, checked over the region again
-        cov = coverage(corr.result.problem, corr.result.design.t, box, n=coverage_n, seed=seed + 12345)
+        cov = coverage(corr.result.problem, built_design(corr.result, snap).t, box, n=coverage_n, seed=seed + 12345)
     return corr.result, cov, corr.verification, corr
 
 
