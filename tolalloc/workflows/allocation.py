@@ -61,7 +61,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
     calibration : str or path, optional
         A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration;
-        returns a :class:`CalibratedAllocation`.
+        returns a :class:`CalibratedToleranceAllocation`.
     verify : bool
         Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` re-solves with
         raised targets where a pose is not demonstrated (at most ``correction_rounds`` rounds).

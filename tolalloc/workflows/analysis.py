@@ -89,9 +89,9 @@ class ErrorAnalysis(JobResult):
     Attributes
     ----------
     linear : LinearResult
-        Covariance ``J Sigma J^T`` per pose [mm^2, rad^2], standard deviations, P(|dP| < r).
+        Covariance ``J Sigma J^T`` per pose [mm^2, rad^2], standard deviations, ``P(|dP| < r)``.
     budget : ErrorBudget
-        Each parameter's and kind's share of the variance of x, y, z and |dP|^2.
+        Each parameter's and kind's share of the variance of x, y, z and ``|dP|^2``.
     radii_mm, probs : tuple of float
     clearance : bool
     top : int
