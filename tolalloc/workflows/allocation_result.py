@@ -52,8 +52,8 @@ class ToleranceAllocation(JobResult):
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.ok, res.status
     (True, 'optimal')
-    >>> res.to_frame().loc[0, ["parameter", "unit", "it_grade"]].tolist()
-    ['dl1', 'mm', 'IT9']
+    >>> res.to_frame().loc[0, ["parameter", "unit", "grade"]].tolist()
+    ['dl1', 'mm', 'IT10']
     """
 
     result: object
