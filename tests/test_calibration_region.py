@@ -114,3 +114,23 @@ def test_empty_plan_region_equals_the_uncalibrated_lmi_region(case):
     lmi, s2, _, _ = baseline_region(pr, box, q0, static, exact=False, **kw)
     assert s1.converged and s2.converged
     assert cert.design.cost == pytest.approx(lmi.cost, rel=1e-4)
+
+
+def test_exact_stage_with_grades_and_clearances():
+    """Random-only parts and repeatability grades: the exact stage never loosens them beyond the certified design
+    (its whitening is the certified design's), and its design holds by the recomputed posterior."""
+    robot = load_robot("tool_changer")
+    model = build_error_model(robot, clearance=True)
+    pr = build_problem(model, robot.poses("working")[:3])
+    grade = dict(model="reciprocal", a=0.2, b=0.3, t_ref_deg=0.001, t_min_deg=0.0003, t_max_deg=0.01)
+    split = split_errors(model, {"kinds": {"joint_drive": {"grade": grade}}})
+    rng = np.random.default_rng(0)
+    plan = make_plan(robot, robot.lower + (robot.upper - robot.lower) * rng.random((12, 6)))
+    res = allocate_with_calibration(pr, plan, split=split, baseline=False)
+    assert res.exact_accepted and res.cost_exact <= res.cost_certified
+    rand = ~split.systematic
+    assert np.all(res.exact.design.t[rand] <= res.certified.design.t[rand] * (1 + 1e-9))
+    g = split.graded
+    assert np.all(res.exact.grade_t[g] <= res.certified.grade_t[g] * (1 + 1e-9))
+    p = _fresh_p(res, res.design.t, res.post.split, pr.q)
+    assert p.min() >= pr.prob - FEAS_TOL

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.calibrated import CalibratedAllocation, allocate_calibrated
+from tolalloc.allocate.calibrated import CalibratedAllocation, allocate_calibrated, parameter_status
 from tolalloc.allocate.calibrated_exact import CalibratedExact, post_probabilities, solve_calibrated_exact
 from tolalloc.allocate.calibrated_region import (RegionSearch, baseline_region, certified_region, exact_region,
                                                  problem_at, region_start)
@@ -163,6 +163,7 @@ class CalibratedDesign:
             df.insert(3, "tolerance_exact", self.exact.design.t * f)
             df["sigma_post_calibration_exact"] = self.exact.post.sigma_post * f
             df["cost_exact"] = self.problem.param_costs(self.exact.design.t)
+            df["status_exact"] = parameter_status(self.exact.design, self.exact.post)
         if self.baseline_exact is not None and self.baseline_exact.ok:
             df["tolerance_no_calibration_exact"] = self.baseline_exact.t * f
         return df
