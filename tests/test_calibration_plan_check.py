@@ -108,3 +108,17 @@ def test_other_arguments(tc):
         allocate_with_calibration(pr, plan, split=split_errors(build_error_model(load_robot("ur10"))))
     with pytest.raises(TolallocError, match="estimate = all"):
         allocate_with_calibration(pr, _plan(robot, 12, estimate=["dl3"]))
+
+
+def test_infeasible_requirement_is_a_result_not_an_exception(tc):
+    """A requirement no design meets (radius far below what the process limits allow): status infeasible, one
+    INFEASIBLE line, a summary that is valid JSON (no inf / NaN), no design called certified or exact."""
+    import json
+
+    robot, pr, split = tc
+    tight = build_problem(pr.model, pr.q, radius_mm=0.001)
+    res = allocate_with_calibration(tight, _plan(robot, 12))
+    assert not res.design.ok and not res.ok and res.exact is None and not res.certified.certified
+    assert res.message().count("\n") == 0 and res.message().startswith("status: INFEASIBLE.")
+    s = json.loads(json.dumps(res.summary(), allow_nan=False))
+    assert s["status"] == "infeasible" and s["cost"] is None and s["saving"] is None

@@ -5,6 +5,8 @@ independently computed posterior (tolalloc.calibration.posterior) on fresh poses
 at p and it is cheaper than the certified design; a refused IPOPT point falls back to the certified design, labelled.
 """
 
+import json
+
 import numpy as np
 import pytest
 
@@ -80,8 +82,9 @@ def test_exact_stage_sits_at_p_and_is_cheaper(box_result):
     p = _fresh_p(res, res.design.t, res.post.split, res.problem.q)
     assert p.min() == pytest.approx(res.problem.prob, abs=FEAS_TOL)  # a binding pose at p, none below
     assert res.cost_exact < res.cost_certified
-    s = res.summary()
+    s = json.loads(json.dumps(res.summary(), allow_nan=False))  # valid JSON as it is
     assert s["cost"] == s["cost_exact"] and s["region"]["search_exact"]["converged"]
+    assert s["coverage"]["ok"] and s["worst_p_post"] >= res.problem.prob - 1e-4
     assert "exact" in res.message() and "coverage" in res.message()
     assert res.to_frame()["tolerance_exact"].notna().all()
 

@@ -11,7 +11,7 @@ def _search(s) -> dict | None:
     if s is None:
         return None
     return {"rounds": s.rounds, "active_poses": len(s.active_q), "evaluations": s.evaluations,
-            "worst_p": s.worst_p, "converged": s.converged, "time_s": s.time_s}
+            "worst_p": _finite(s.worst_p), "converged": s.converged, "time_s": s.time_s}
 
 
 def _coverage(c) -> dict | None:
@@ -21,20 +21,30 @@ def _coverage(c) -> dict | None:
             "frac_below_upper95": c.frac_below_upper95, "ok": c.ok}
 
 
+def _finite(x):
+    """``x`` as a float, or None when it is missing or not finite (JSON has no inf / NaN)."""
+    return None if x is None or not np.isfinite(x) else float(x)
+
+
+def _design_cost(d, extra=0.0):
+    """Cost of a design without calibration (None unless it is a converged design of its own solver)."""
+    return None if d is None or not d.ok or d.fallback_from is not None else float(d.cost + extra)
+
+
 def summary(res) -> dict:
     """Keys: costs (chosen, certified, exact, without calibration, saving), verdicts, region, coverage, plan."""
-    base = res.cost_no_calibration
+    ok = res.design.ok
+    base = res.cost_no_calibration if ok else None
     out = {
-        "design": res.design.label, "cost": res.cost, "cost_certified": res.cost_certified,
+        "design": res.design.label, "status": res.design.status, "message": res.design.message,
+        "cost": _finite(res.cost) if ok else None, "cost_certified": _finite(res.cost_certified) if ok else None,
         "cost_exact": res.cost_exact, "exact_message": None if res.exact is None else res.exact.design.message,
-        "certified": res.certified.certified, "ratio_certified": res.certified.ratio,
+        "certified": res.certified.certified, "ratio_certified": _finite(res.certified.ratio),
         "cost_no_calibration": base, "saving": None if base is None else base - res.cost,
         "saving_pct": None if base is None else 100 * (base - res.cost) / base,
-        "cost_no_calibration_certified": None if res.baseline is None or not res.baseline.ok
-        else float(res.baseline.cost + res.certified.grade_cost_loosest),
-        "cost_no_calibration_exact": None if res.baseline_exact is None or not res.baseline_exact.ok
-        else float(res.baseline_exact.cost + res.certified.grade_cost_loosest),
-        "worst_p_post": res.worst_p() if res.design.ok else None,
+        "cost_no_calibration_certified": _design_cost(res.baseline, res.certified.grade_cost_loosest),
+        "cost_no_calibration_exact": _design_cost(res.baseline_exact, res.certified.grade_cost_loosest),
+        "worst_p_post": res.worst_p() if ok else None,
         "ok": res.ok, "region_kind": res.region_kind,
         "unidentifiable": list(res.post.unidentifiable) if res.post is not None else [],
         "plan": {"n_poses": res.plan.n_poses, "measurement": res.plan.measurement, "noise_mm": res.plan.noise_mm,
@@ -68,6 +78,11 @@ def message(res) -> str:
         lines.append(f"coverage (post-calibration P): {what}, min P = {c.min_p:.5f}, {c.n_below} below "
                      f"{pr.prob:g}" + (f" (95% upper bound on the fraction {c.frac_below_upper95:.2e})"
                                         if res.region_kind == "box" else "") + ("; none below p" if c.ok else ""))
+    if not res.certified.design.ok:
+        lines.append(f"status: INFEASIBLE. {res.certified.design.message}"
+                     + (f" (at the active poses of round {res.search.rounds} of the region search)"
+                        if res.search is not None else ""))
+        return "\n".join(lines)
     verdict = "certified" if res.certified.certified else f"NOT certified (ratio {res.certified.ratio:.6f})"
     lines.append(f"certified calibrated design: cost {res.cost_certified:.4f} ({verdict})")
     if res.exact is not None:
