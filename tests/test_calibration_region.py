@@ -36,7 +36,8 @@ def case():
 @pytest.fixture(scope="module")
 def box_result(case):
     robot, plan, pr, box = case
-    return allocate_with_calibration(pr, plan, region=box, baseline=False, coverage_n=2000, seed=1)
+    return allocate_with_calibration(pr, plan, region=box, baseline=False, coverage_n=2000, seed=1, n_seed=128,
+                                     n_starts=3)
 
 
 def _fresh_p(res, design_t, grades_split, q):

@@ -240,7 +240,8 @@ def allocate_with_calibration(problem: AllocationProblem, plan, *, split: ErrorS
                               exact: bool = True, baseline: bool = True, coverage_n: int = 100_000, seed: int = 0,
                               tol: float = 1e-4, max_rounds: int = 30, k_worst: int = 3,
                               measurement: str | None = None, noise_mm: float | None = None,
-                              registration: bool | None = None, design_prob: float | None = None) -> CalibratedDesign:
+                              registration: bool | None = None, design_prob: float | None = None,
+                              n_seed: int = 512, n_starts: int = 6) -> CalibratedDesign:
     """Calibration-aware allocation over poses, a trajectory or a box; certified then exact (module docstring).
 
     Parameters
@@ -270,9 +271,14 @@ def allocate_with_calibration(problem: AllocationProblem, plan, *, split: ErrorS
     design_prob : float, optional
         Solve for this probability at every pose (in ``[problem.prob, 1)``: a margin for the end-to-end
         demonstration); the requirement checked by the coverage and the verification stays ``problem.prob``.
+    n_seed, n_starts : int
+        Box search: Sobol seed poses and local searches per round (:func:`tolalloc.allocate.region.worst_pose`).
     """
     t0 = time.perf_counter()
     split = _check_args(problem, plan, split, coverage_n, seed, k_worst)
+    for name, v in (("n_seed", n_seed), ("n_starts", n_starts)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+            raise TolallocError(f"{name}: expected a whole number >= 1, got {v!r}.")
     robot = problem.model.robot
     check_plan(plan, split, measurement=measurement, noise_mm=noise_mm, registration=registration)
     if design_prob is not None:
@@ -283,7 +289,8 @@ def allocate_with_calibration(problem: AllocationProblem, plan, *, split: ErrorS
         problem = problem_at(problem, problem.q, np.full(problem.n_poses, dp))
     kind, box, traj = resolve_region(robot, region)
     if kind == "box":
-        return _box(problem, plan, split, box, exact, baseline, coverage_n, seed, tol, max_rounds, k_worst, t0)
+        kw = dict(tol=tol, max_rounds=max_rounds, seed=seed, n_seed=n_seed, n_starts=n_starts)
+        return _box(problem, plan, split, box, exact, baseline, coverage_n, k_worst, t0, kw)
     pr = problem if traj is None else problem_at(problem, traj)
     cert = allocate_calibrated(pr, plan, split=split)
     ex = solve_calibrated_exact(cert, plan, split) if exact and cert.design.ok else None
@@ -310,9 +317,9 @@ def _pose_coverage(res: CalibratedDesign, k: int, tol: float) -> Coverage:
     return Coverage(n, float(p.min()), res.problem.q[np.argsort(p)[:k]], below, below / n, upper, n)
 
 
-def _box(problem, plan, split, box, exact, baseline, coverage_n, seed, tol, max_rounds, k, t0):
-    """The box path: certified and exact cutting planes, coverage, baseline."""
-    kw = dict(tol=tol, max_rounds=max_rounds, seed=seed)
+def _box(problem, plan, split, box, exact, baseline, coverage_n, k, t0, kw):
+    """The box path: certified and exact cutting planes (search settings ``kw``), coverage, baseline."""
+    seed, tol = kw["seed"], kw["tol"]
     q0 = region_start(problem, box)
     cert, search, static = certified_region(problem, plan, split, box, q0, **kw)
     ex, search_ex = None, None
