@@ -102,6 +102,10 @@ def test_other_arguments(tc):
     plan = _plan(robot, 12)
     with pytest.raises(TolallocError, match="coverage_n: expected a whole number >= 0"):
         allocate_with_calibration(pr, plan, coverage_n=-1)
+    with pytest.raises(TolallocError, match=r"tol: expected a probability tolerance in \(0, 1 - prob"):
+        allocate_with_calibration(pr, plan, tol=0.2)
+    with pytest.raises(TolallocError, match="max_rounds: expected a whole number >= 1"):
+        allocate_with_calibration(pr, plan, max_rounds=0)
     with pytest.raises(TolallocError, match=r"design_prob: expected a probability in \[prob = 0.95, 1\)"):
         allocate_with_calibration(pr, plan, design_prob=0.9)
     with pytest.raises(TolallocError, match="split: expected the ErrorSplit of the problem's error model"):

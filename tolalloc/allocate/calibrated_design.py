@@ -276,9 +276,12 @@ def allocate_with_calibration(problem: AllocationProblem, plan, *, split: ErrorS
     """
     t0 = time.perf_counter()
     split = _check_args(problem, plan, split, coverage_n, seed, k_worst)
-    for name, v in (("n_seed", n_seed), ("n_starts", n_starts)):
+    for name, v in (("n_seed", n_seed), ("n_starts", n_starts), ("max_rounds", max_rounds)):
         if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
             raise TolallocError(f"{name}: expected a whole number >= 1, got {v!r}.")
+    if isinstance(tol, bool) or not isinstance(tol, (int, float, np.floating)) or not 0 < tol < 1 - problem.prob:
+        raise TolallocError(f"tol: expected a probability tolerance in (0, 1 - prob = {1 - problem.prob:g}), e.g. "
+                            f"1e-4; got {tol!r}.")
     robot = problem.model.robot
     check_plan(plan, split, measurement=measurement, noise_mm=noise_mm, registration=registration)
     if design_prob is not None:
@@ -327,7 +330,7 @@ def _box(problem, plan, split, box, exact, baseline, coverage_n, k, t0, kw):
         ex, search_ex, static = exact_region(problem, plan, split, box, cert, search.active_q, static, **kw)
     b, b_ex = None, None
     if baseline:
-        b, _, b_ex, _ = baseline_region(problem, box, q0, static, exact=exact, **kw)
+        b, _, b_ex, _ = baseline_region(problem, box, q0, None, exact=exact, **kw)  # its own static joints
     pr = problem_at(problem, search_ex.active_q) if ex is not None else cert.problem
     res = CalibratedDesign(pr, plan, split, "box", box, cert, ex, search, search_ex, None, b, b_ex, static, 0.0)
     cov = None
