@@ -141,8 +141,11 @@ def region_markdown(name, r, prob) -> str:
     reg_rows = d[(d.allocated_on == "region") & d.design.str.contains("calibrated")]
     poses, reg = r["poses"], r["reg"]
     p_work = float(poses.exact.p_post.min())
-    gap = ", ".join(f"{row.design} {row.poses_below_p} (min P {row.min_p_region:.4f})" for row in pose_rows.itertuples())
+    gap = "; ".join(f"{row.design}: {row.poses_below_p} poses below p (min P {row.min_p_region:.4f})"
+                    for row in pose_rows.itertuples())
     ok = "none" if reg_rows.none_below_p.all() else "SOME"
+    same = (" The certified design allocated at the working poses already meets p over the region: the search added "
+            "no pose to them." if reg.search.rounds == 1 and len(reg.search.active_q) == len(poses.problem.q) else "")
     robot = reg.problem.model.robot
     span = ", ".join(f"{lo:.4g}..{hi:.4g}" for lo, hi in zip(robot.q_to_interface(r["box"].q_min),
                                                             robot.q_to_interface(r["box"].q_max)))
@@ -150,9 +153,9 @@ def region_markdown(name, r, prob) -> str:
 
 Region `{r['region']}` (q1..q{robot.n_joints} in deg / mm: {span}). Each design's post-calibration P on the same {r['n_cov']} fresh uniform poses of the region
 (`tolalloc.allocate.region.coverage` with the post-calibration covariance; a pose counts as below when
-P < p - 1e-4). Designs allocated at the working poses, with the 12-pose plan `tolalloc calplan` writes, leave
-poses below p = {prob:g}: {gap}. Allocated over the region (cutting planes, `allocate_with_calibration(...,
-region=...)`) with the same plan: {ok} of the fresh poses below p.
+P < p - 1e-4). Designs allocated at the working poses with the 12-pose plan `tolalloc calplan` writes (p =
+{prob:g}): {gap}. Allocated over the region (cutting planes, `allocate_with_calibration(..., region=...)`) with the
+same plan: {ok} of the fresh poses below p.{same}
 
 {_md(d)}
 
@@ -196,7 +199,10 @@ def plan_markdown(plans) -> str:
         verdicts.append(f"{row.n_poses} poses: worst-pose P {'above' if p_ok else 'NOT above'} the 90th percentile of "
                         f"200 random plans ({row.designed_worst_p:.5f} against {row.random_p90:.5f}); exact region cost "
                         f"{'below' if c_ok else 'NOT below'} the 10th percentile of the random plans' costs "
-                        f"({row.cost_designed:.4f} against {row.cost_random_p10:.4f})")
+                        f"({row.cost_designed:.4f} against {row.cost_random_p10:.4f}). Headroom: every candidate "
+                        f"measured reaches {row.all_candidates_worst_p:.5f} at this design, "
+                        f"{row.all_candidates_worst_p - row.random_median:.4f} above the random median; no plan of "
+                        "these candidates can pass it")
     return f"""## Plans designed for the allocation
 
 `design_plan_for_allocation`: start from the A-optimal plan under the robot file's sigmas (what `calplan` writes),
