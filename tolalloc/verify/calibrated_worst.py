@@ -90,7 +90,7 @@ class EndToEnd:
 
 
 def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000, seed: int = 0, k_worst: int = 3,
-                             level: float = 0.95) -> EndToEnd:
+                             level: float = 0.95, estimator: str = "plain") -> EndToEnd:
     """End-to-end Monte Carlo of a calibration-aware design at its worst poses (module docstring).
 
     Parameters
@@ -103,6 +103,8 @@ def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000
         Simulated robots (= trials per pose).
     k_worst : int
         Worst poses per source (see :meth:`CalibratedDesign.check_poses`).
+    estimator : {"plain", "auto", "paired"}
+        Estimator of the end-to-end probability (:func:`tolalloc.verify.calibrated.verify_calibration`).
     """
     if which not in ("chosen", "certified"):
         raise TolallocError(f"which: expected 'chosen' or 'certified', got {which!r}.")
@@ -115,7 +117,7 @@ def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000
         raise TolallocError("verify_calibrated_design: the end-to-end Monte Carlo simulates position measurements; "
                             "the plan measures poses (measurement = pose).")
     kw = res.end_to_end_inputs(k_worst, which)
-    chk = verify_calibration(n_robots=int(n_robots), seed=seed, level=level, **kw)
+    chk = verify_calibration(n_robots=int(n_robots), seed=seed, level=level, estimator=estimator, **kw)
     exact = which == "chosen" and res.exact_accepted
     return EndToEnd(chk, float(res.problem.prob), "exact" if exact else "certified",
                     pose_verdicts(chk.ci_low, chk.ci_high, res.problem.prob))

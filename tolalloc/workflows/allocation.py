@@ -103,8 +103,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     if calibration is not None:
         from tolalloc.workflows.calibrated import calibrated_allocation
 
-        return calibrated_allocation(model, label, box, q, calibration, region_given=region is not None,
-                                     costs_path=costs, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
+        return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
+                                     seed=seed, estimator=estimator, coverage_n=coverage_n,
                                      inputs_record=inputs_record, **kw)
     return _allocate(model, label, box, q, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg,
                      verify=verify, n_mc=n_mc, seed=seed, estimator=estimator, correction=correction,

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
 
 from tolalloc.outputs import atomic_output, write_json
 from tolalloc.workflows.base import JobResult
@@ -25,35 +24,30 @@ def split_from_costs(model, path):
     return split_errors(model, data.get("calibration"))
 
 
-def calibrated_allocation(model, label, box, q, plan_path, *, region_given, costs_path, verify, n_mc, seed, estimator,
+def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify, n_mc, seed, estimator, coverage_n,
                           inputs_record, **kw):
-    """Certified calibration-aware design at the poses ``q`` (P, n) [rad, mm] after the plan in ``plan_path``,
-    with the end-to-end Monte Carlo (simulated robots, each calibrated nonlinearly) when ``verify``."""
+    """Calibration-aware allocation after the plan in ``plan_path``: certified, then exact, at the poses ``q``
+    (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage), with the end-to-end Monte Carlo (simulated
+    robots, each calibrated nonlinearly, at the design's worst poses) when ``verify``."""
     from tolalloc.allocate import build_problem
-    from tolalloc.exceptions import ArgumentError
+    from tolalloc.allocate.calibrated_design import allocate_with_calibration
+    from tolalloc.calibration.plan import read_plan
     from tolalloc.workflows.inputs import default_pose_set, resolve_poses
 
-    if box is not None:
-        if region_given:
-            raise ArgumentError("calibration", f"the calibration-aware allocation works on a pose set, got the box "
-                                f"region {label!r}; give `poses` SET (or `region` SET with a pose set).")
-        label, q = resolve_poses(model.robot, None, default_pose_set(model.robot))
-    from tolalloc.allocate.calibrated import allocate_calibrated
-    from tolalloc.calibration.plan import read_plan
-
+    if box is not None:  # the initial active set: the robot's pose set (the poses inside the box are kept)
+        q = resolve_poses(model.robot, None, default_pose_set(model.robot))[1]
     problem = build_problem(model, q, **kw)
     plan = read_plan(plan_path, model.robot)
     split = split_from_costs(model, costs_path)
-    res = allocate_calibrated(problem, plan, split=split)
+    res = allocate_with_calibration(problem, plan, split=split, region=box, coverage_n=coverage_n, seed=seed)
     chk, n = None, None
     if res.design.ok and verify and plan.measurement == "position":
-        from tolalloc.verify.calibrated import verify_calibration
+        from tolalloc.verify.calibrated_worst import verify_calibrated_design
 
         n = max(200, min(int(n_mc), 4000))
         # the end-to-end check has no importance sampler: its rare tails take the paired estimator
         est = "paired" if estimator == "importance" else estimator
-        chk = verify_calibration(res.post.split, plan, problem.q, problem.radius_mm, n_robots=n, seed=seed,
-                                 estimator=est)
+        chk = verify_calibrated_design(res, n_robots=n, seed=seed, estimator=est)
     return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record)
 
 
@@ -63,14 +57,16 @@ class CalibratedToleranceAllocation(JobResult):
 
     Attributes
     ----------
-    result : tolalloc.allocate.calibrated.CalibratedAllocation
-        The certified calibration-aware design, the design without calibration, the post-calibration statistics.
+    result : tolalloc.allocate.calibrated_design.CalibratedDesign
+        The certified and exact calibration-aware designs (the exact one chosen when accepted), the region search
+        and its coverage, the designs without calibration, the post-calibration statistics.
     plan : CalibrationPlan
     plan_source : str
     label : str
-        The pose set the requirement holds at.
-    end_to_end : CalibrationCheck or None
-        Simulated robots, each calibrated nonlinearly at the plan's poses, then checked at the working poses.
+        Where the requirement holds: the region or pose-set name.
+    end_to_end : EndToEnd or None
+        Simulated robots, each calibrated nonlinearly at the plan's poses, then checked at the design's worst poses
+        (per-pose verdicts demonstrated / consistent / failed).
     n_robots : int or None
     inputs : dict
     """
@@ -93,18 +89,23 @@ class CalibratedToleranceAllocation(JobResult):
 
     @property
     def cost(self) -> float:
-        return float(self.summary()["cost"])
+        return float(self.result.cost)
+
+    @property
+    def region(self):
+        """The box searched (``None`` for a pose set or a trajectory)."""
+        return self.result.region
 
     @property
     def certified(self) -> bool:
-        return bool(self.result.certified)
+        return bool(self.result.certified.certified)
 
     @property
     def ok(self) -> bool:
-        """Feasible, certified, and the end-to-end Monte Carlo agrees with the linear prediction (if run)."""
-        if not self.result.design.ok or not self.certified:
+        """A design meeting the requirement wherever checked, and its end-to-end Monte Carlo passed (if run)."""
+        if not self.result.design.ok or not self.result.ok:
             return False
-        return self.end_to_end is None or bool(np.all(self.end_to_end.agree))
+        return self.end_to_end is None or self.end_to_end.passed
 
     @property
     def writable(self) -> bool:
@@ -114,57 +115,57 @@ class CalibratedToleranceAllocation(JobResult):
     def headline(self) -> list[str]:
         pr = self.problem
         lines = [f"robot: {self.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after "
-                 f"calibration ({self.plan.n_poses}-pose plan) at {pr.n_poses} {self.label} pose(s)"]
+                 f"calibration ({self.plan.n_poses}-pose plan) over {self.label}"]
         if not self.result.design.ok:
             return lines + [f"status: infeasible ({self.result.design.message})"]
         s = self.result.summary()
-        lines.append(f"cost: {s['cost']:.4f} ({'certified' if self.certified else 'NOT certified'})"
-                     + ("" if s["saving_pct"] is None else f", {s['saving_pct']:.1f}% below no calibration"))
+        lines.append(f"cost: {self.cost:.4f} ({s['design']})" + ("" if s.get("saving_pct") is None else
+                                                               f", {s['saving_pct']:.1f}% below no calibration"))
         if self.end_to_end is not None:
-            lines.append(f"end-to-end Monte Carlo: {self.end_to_end.message()}")
+            lines.append(f"end-to-end Monte Carlo: {self.end_to_end.verdict}")
         return lines
 
     def to_frame(self):
-        """Per parameter: tolerance, tolerance without calibration, manufactured / post-calibration / random sigma,
-        status (calibrated away, must be held, loose), cost."""
-        return self.result.to_frame()
+        """Per parameter: ``tolerance``, ``status`` and ``cost`` of the chosen design (exact when accepted, else
+        certified), the certified and exact tolerances, the tolerance without calibration, manufactured /
+        post-calibration / random sigma."""
+        df = self.result.to_frame()
+        exact = self.result.exact_accepted
+        df.insert(2, "tolerance", df["tolerance_exact"] if exact else df["tolerance_certified"])
+        df["cost"] = df["cost_exact"] if exact else df["cost_certified"]
+        if exact:
+            df["status"] = df["status_exact"]
+        return df
 
     def summary(self) -> dict:
         """The content of ``summary.json``."""
-        s = self.result.summary() if self.result.design.ok else {"status": "infeasible",
-                                                                    "message": self.result.design.message}
-        chk = self.end_to_end
-        if chk is not None:
-            s["end_to_end"] = {"n_robots": self.n_robots, "agree": bool(np.all(chk.agree)),
-                               "p_mc_min": float(chk.p_mc.min()), "p_linear_min": float(chk.p_linear.min())}
-        return {**s, "pose_set": self.label, "plan": self.plan_source}
+        s = self.result.summary()
+        cert = self.result.certified
+        if cert.grade_t is not None:  # the repeatability of the parts a calibration cannot remove, priced
+            s.update(cost_parts=float(cert.design.cost), cost_repeatability_grades=float(cert.grade_cost),
+                     cost_repeatability_grades_loosest=float(cert.grade_cost_loosest))
+        if self.end_to_end is not None:
+            s["end_to_end"] = self.end_to_end.to_dict()
+        return {**s, "pose_set": self.label, "plan_file": self.plan_source}
 
     def text(self) -> str:
         """What the command line prints."""
         res, pr, plan = self.result, self.problem, self.plan
         out = [f"robot: {self.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after "
-               f"calibration at {pr.n_poses} {self.label} pose(s); plan {self.plan_source}: {plan.n_poses} "
-               f"{plan.measurement} measurements, noise {plan.noise_mm:g} mm"]
+               f"calibration over {self.label}; plan {self.plan_source}: {plan.n_poses} {plan.measurement} "
+               f"measurements, noise {plan.noise_mm:g} mm", res.message()]
         if not res.design.ok:
-            return "\n".join(out + [f"status: INFEASIBLE. {res.design.message}"])
-        s = res.summary()
-        verdict = "certified" if res.certified else f"NOT certified (lambda_max / bound = {res.ratio:.6f} > 1)"
-        base = "n/a" if s["cost_no_calibration"] is None else f"{s['cost_no_calibration']:.4f}"
-        out.append(f"design: {res.design.solver} ({verdict}; {res.design.message})   cost {s['cost']:.4f}   "
-                   f"without calibration {base}" + ("" if s["saving"] is None else
-                                                    f"   saving {s['saving']:.4f} ({s['saving_pct']:.2f}%)"))
-        if res.grade_t is not None:
-            out.append(f"  of which repeatability grades {s['cost_repeatability_grades']:.4f} (parts "
-                       f"{s['cost_parts']:.4f}); without calibration: the loosest grades, {res.grade_cost_loosest:.4f}")
+            return "\n".join(out)
+        cert = res.certified
+        if cert.grade_t is not None:
+            out.append(f"  certified design: of which repeatability grades {cert.grade_cost:.4f} (parts "
+                       f"{cert.design.cost:.4f}); without calibration: the loosest grades, {cert.grade_cost_loosest:.4f}")
         out += ["", self.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}")]
-        if s["unidentifiable"]:
-            out.append(f"\nnot identifiable by the plan (must be held in manufacturing): {', '.join(s['unidentifiable'])}")
-        chk = self.end_to_end
-        if chk is not None:
-            p_ok = bool(np.all(chk.ci_high >= pr.prob))
-            out.append(f"\nend-to-end Monte Carlo ({self.n_robots} simulated robots, nonlinear calibration each): "
-                       f"{chk.message()}; smallest P_hat {chk.p_mc.min():.4f}"
-                       + ("" if p_ok else f" -- below p = {pr.prob:g} beyond its interval at some pose"))
+        unid = res.summary().get("unidentifiable") or []
+        if unid:
+            out.append(f"\nnot identifiable by the plan (must be held in manufacturing): {', '.join(unid)}")
+        if self.end_to_end is not None:
+            out.append("\n" + self.end_to_end.message())
         return "\n".join(out)
 
     def save(self, out, *, report: bool = False) -> list[str]:

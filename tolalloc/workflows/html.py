@@ -101,7 +101,7 @@ def _verdict(job) -> dict:
 
 
 def _cards(job, s: dict) -> list:
-    res, ver, cov, corr = job.result, job.verification, job.coverage, job.correction
+    ver, cov, corr = job.verification, job.coverage, job.correction
     c = s["costs"]
     cards = [{"label": "cost of the design to build", "value": _f4(job.cost),
               "note": f"{job.design.label} design" + (" (standard grades)" if job.standard else "")},
@@ -321,20 +321,24 @@ def calibrated_context(job) -> dict:
     res, pr, plan, chk = job.result, job.problem, job.plan, job.end_to_end
     s = job.summary()
     requirement = pretty(f"P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after calibration")
-    verdict = {"cls": "ok" if job.ok else ("warn" if res.certified else "fail"),
-               "word": "CERTIFIED" if res.certified else "NOT CERTIFIED",
-               "lead": f"{res.design.solver}: {pretty(res.design.message)}" if res.certified else
-               f"lambda_max / bound = {res.ratio:.6f} > 1 at some pose: the certificate does not hold.",
+    cert = res.certified
+    word = (chk.verdict.upper() if chk is not None else
+            ("CERTIFIED" if cert.certified else "NOT CERTIFIED") if res.design.ok else "INFEASIBLE")
+    verdict = {"cls": "ok" if job.ok else ("warn" if res.design.ok else "fail"), "word": word,
+               "lead": pretty(res.message()).replace("\n", "; "),
                "lines": [] if chk is None else ["End-to-end Monte Carlo: " + pretty(chk.message())]}
-    cards = [{"label": "cost", "value": _f4(s["cost"]), "note": "certified" if res.certified else "NOT certified"},
+    cards = [{"label": "cost", "value": _f4(s["cost"]), "note": f"{s['design']} design"},
+             {"label": "certified design", "value": _f4(s["cost_certified"]),
+              "note": "certified" if cert.certified else "NOT certified"},
+             {"label": "exact design", "value": _f4(s["cost_exact"]), "note": "post-calibration probability"},
              {"label": "without calibration", "value": _f4(s["cost_no_calibration"]), "note": "same requirement"},
              {"label": "saving", "value": "n/a" if s["saving_pct"] is None else f"{s['saving_pct']:.2f} %",
               "note": "" if s["saving"] is None else f"{s['saving']:.4f} cost units"}]
-    if s["cost_repeatability_grades"]:
-        cards.append({"label": "repeatability grades", "value": _f4(s["cost_repeatability_grades"]),
-                      "note": f"parts {s['cost_parts']:.4f}"})
+    if cert.grade_t is not None:
+        cards.append({"label": "repeatability grades", "value": _f4(cert.grade_cost),
+                      "note": f"of the certified design's {s['cost_certified']:.4f}"})
     if chk is not None:
-        cards.append({"label": "lowest P̂ (end to end)", "value": f"{chk.p_mc.min():.4f}",
+        cards.append({"label": "lowest P̂ (end to end)", "value": f"{chk.check.p_mc.min():.4f}",
                       "note": f"{job.n_robots} simulated calibrations"})
     table = job.to_frame()
     classes = ["hl" if st.startswith("must be held") else "" for st in table["status"]]
@@ -348,7 +352,9 @@ def calibrated_context(job) -> dict:
             "meta": [("robot", job.robot.name), ("poses", job.label), ("verdict", verdict["word"].lower()),
                      ("plan", job.plan_source)],
             "sections": SECTIONS, "requirement": requirement, "verdict": verdict, "cards": cards,
-            "where": f"At the {pr.n_poses} pose(s) of the pose set {job.label!r}, after the calibration plan below.",
+            "where": (f"Over the region {job.label!r} (cutting planes and a coverage sample), after the calibration plan "
+                      "below." if res.region is not None else
+                      f"At the {pr.n_poses} pose(s) of {job.label!r}, after the calibration plan below."),
             "plan": [("file", job.plan_source), ("measurement poses", plan.n_poses), ("measurement", plan.measurement),
                      ("tracker noise", f"{plan.noise_mm:g} mm per coordinate")],
             "tolerance_table": tol, "unidentifiable": ", ".join(s["unidentifiable"]),
@@ -362,8 +368,8 @@ def calibrated_context(job) -> dict:
 
 
 def _end_to_end_table(job) -> dict:
-    chk = job.end_to_end
-    frame = with_joints(chk.to_frame(), job.robot, chk.q)
+    chk = job.end_to_end.check
+    frame = with_joints(job.end_to_end.to_frame(), job.robot, chk.q)
     frame["ci"] = list(zip(frame["ci_low"], frame["ci_high"]))
     cols = [Column("pose", "pose", "int"), *joint_columns(job.robot), Column("p_linear", "P linear", "f4"),
             Column("p_mc", "P̂ Monte Carlo", "f4"), Column("ci", "95 % interval", "ci", numeric=True),
@@ -379,7 +385,7 @@ def _calibrated_figures(job) -> list:
 
     figs = [figure_item(plot_calibrated_tolerances(job.to_frame()), figure_id="fig-calibrated",
                         caption="Tolerance per parameter with and without the calibration plan (log scale).")]
-    chk = job.end_to_end
+    chk = None if job.end_to_end is None else job.end_to_end.check
     if chk is not None:
         from types import SimpleNamespace
 
