@@ -240,3 +240,16 @@ def test_analyze_with_sobol_indices_beside_the_linear_budget(tmp_path):
     assert "sobol.csv" in a.save(tmp_path / "out")
     with pytest.raises(tolalloc.ArgumentError, match="sobol_n"):
         tolalloc.analyze_errors("tool_changer", sobol_n=8)
+
+
+def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
+    d = tolalloc.plan_calibration("ur10", 10, n_candidates=100, for_allocation=True, random_plans=20)
+    s = d.summary()
+    fa, rnd = s["for_allocation"], s["random_plans"]
+    assert fa["cost"] <= fa["start_cost"] + 1e-9  # a plan is kept only when the allocation gets cheaper
+    assert rnd["n_random"] == 20 and rnd["designed_worst_p"] >= rnd["random_p90"]
+    assert rnd["designed_worst_p"] <= rnd["all_candidates_worst_p"] + 1e-9  # no plan beats measuring every candidate
+    assert "random 10-pose plans" in d.text()
+    d.save(tmp_path / "plan.csv")
+    res = tolalloc.allocate_tolerances("ur10", calibration=tmp_path / "plan.csv", verify=False)
+    assert res.cost == pytest.approx(fa["cost"], rel=1e-6)

@@ -29,6 +29,15 @@ def register(sub) -> None:
     p.add_argument("--costs", metavar="FILE", help="costs file whose [calibration] table overrides the split")
     p.add_argument("--sigma-set", default=None, help="manufacturing sigma set of the robot file (the prior)")
     p.add_argument("--seed", type=seed, default=0, help="seed of the candidates and the random comparison plan")
+    p.add_argument("--for-allocation", action="store_true",
+                   help="design the plan for the calibration-aware allocation it serves (--radius-mm, --prob, --costs; "
+                   "over the robot's working box if it has one): alternate allocation and a re-design that maximises "
+                   "the worst post-calibration P at the design's binding poses, keep a plan only when the allocation "
+                   "gets cheaper; compare it with --random-plans random plans of the same size")
+    p.add_argument("--radius-mm", type=float, default=0.25, help="with --for-allocation: required radius r [mm]")
+    p.add_argument("--prob", type=float, default=0.95, help="with --for-allocation: required probability p")
+    p.add_argument("--random-plans", type=count, default=100,
+                   help="with --for-allocation: random plans of the same size compared (default 100)")
     p.add_argument("--out", metavar="FILE", required=True, help="plan CSV to write")
     p.set_defaults(func=cmd_calplan)
 
@@ -40,7 +49,9 @@ def cmd_calplan(args) -> int:
     res = plan_calibration(args.robot, args.n_poses, region=args.region, eval_poses=args.eval_poses,
                            n_candidates=args.n_candidates, measurement=args.measurement, noise_mm=args.noise_mm,
                            noise_deg=args.noise_deg, registration=not args.no_registration, costs=args.costs,
-                           sigma_set=args.sigma_set, seed=args.seed, **robot_kwargs(args))
+                           sigma_set=args.sigma_set, seed=args.seed, for_allocation=args.for_allocation,
+                           radius_mm=args.radius_mm, prob=args.prob, random_plans=args.random_plans,
+                           **robot_kwargs(args))
     print(res.text())
     res.save(args.out)
     print(f"wrote {args.out}")

@@ -18,7 +18,8 @@ __all__ = ["plan_calibration", "CalibrationPlanDesign"]
 def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
                      n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
                      noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,
-                     seed: int = 0, tool: str | None = None, trust_units: bool = False) -> "CalibrationPlanDesign":
+                     seed: int = 0, tool: str | None = None, trust_units: bool = False, for_allocation: bool = False,
+                     radius_mm: float = 0.25, prob: float = 0.95, random_plans: int = 100) -> "CalibrationPlanDesign":
     """Choose ``n_poses`` laser-tracker measurement poses that minimise the post-calibration error.
 
     Candidates are scrambled-Sobol poses in the joint limits (``region="limits"``) or in the box of a pose set; the
@@ -44,6 +45,13 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         Costs file whose ``[calibration]`` table overrides the systematic / random split.
     sigma_set : str, optional
         Manufacturing sigma set of the robot file (the prior).
+    for_allocation : bool
+        Design the plan for the calibration-aware allocation it serves: starting from the A-optimal plan, alternate
+        the allocation for ``P(|dP| < radius_mm) >= prob`` (over the robot's ``working`` box if it has one, else at
+        the evaluation poses) and a re-design that maximises the worst post-calibration P at the design's binding
+        poses, keeping a plan only when the allocation gets cheaper; then compare the plan with ``random_plans``
+        random plans of the same size (median, 10th and 90th percentile of their worst-pose P). Position
+        measurements only.
 
     Returns
     -------
@@ -80,8 +88,39 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                     registration=registration, seed=seed)
-    unid = tuple(posterior(split, d.plan).unidentifiable)
-    return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid)
+    alloc, comparison = None, None
+    if for_allocation:
+        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
+                                            prob=prob, random_plans=random_plans, measurement=measurement,
+                                            noise_mm=noise_mm, registration=registration, seed=seed)
+    unid = tuple(posterior(split, d.plan if alloc is None else alloc.plan).unidentifiable)
+    return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison)
+
+
+def _for_allocation(model, split, start, cand, q_eval, *, costs, radius_mm, prob, random_plans, measurement, noise_mm,
+                    registration, seed):
+    """The plan designed for the allocation it serves, and its comparison with random plans of its size."""
+    from tolalloc.allocate import build_problem
+    from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+    from tolalloc.allocate.costs import cost_set, load_costs
+    from tolalloc.allocate.region import box_region
+
+    inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
+    inputs.check_probability(prob, "prob")
+    count = inputs.check_count(random_plans, "random_plans", example="100")
+    if measurement != "position":
+        raise ArgumentError("for_allocation", "needs `measurement` position: the allocation's end-to-end check "
+                            "simulates position measurements.")
+    robot = model.robot
+    box = None
+    if "working" in robot.regions:
+        box = box_region(robot, *robot.regions["working"], "working", "region 'working'")
+    costs_set = cost_set(model, None) if costs is None else load_costs(costs, model)
+    problem = build_problem(model, q_eval, radius_mm=float(radius_mm), prob=float(prob), costs=costs_set)
+    alloc = design_plan_for_allocation(problem, start.n_poses, cand, split=split, region=box, start=start,
+                                       coverage_n=0, baseline=False, seed=seed, noise_mm=noise_mm,
+                                       registration=registration)
+    return alloc, compare_with_random_plans(alloc.result, cand, count=count, seed=seed)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -98,6 +137,10 @@ class CalibrationPlanDesign(JobResult):
     n_candidates : int
     unidentifiable : tuple of str
         Parameters the plan cannot identify (they keep their manufacturing tolerance).
+    for_allocation : PlanForAllocation or None
+        With ``for_allocation=True``: the plan designed for the allocation (the one saved) and that allocation.
+    comparison : PlanComparison or None
+        Its worst-pose post-calibration P against random plans of the same size.
 
     Examples
     --------
@@ -113,11 +156,14 @@ class CalibrationPlanDesign(JobResult):
     eval_poses: str
     n_candidates: int
     unidentifiable: tuple = ()
+    for_allocation: object = None
+    comparison: object = None
     inputs: dict = field(default_factory=dict)
 
     @property
     def plan(self):
-        return self.design.plan
+        """The plan to measure: designed for the allocation when asked, else the A-optimal one."""
+        return self.design.plan if self.for_allocation is None else self.for_allocation.plan
 
     @property
     def ok(self) -> bool:
@@ -140,7 +186,11 @@ class CalibrationPlanDesign(JobResult):
                 "region": self.region, "eval_poses": self.eval_poses, "measurement": d.plan.measurement,
                 "noise_mm": d.plan.noise_mm, "score_mm2": d.score_mm2, "random_score_mm2": d.random_score_mm2,
                 "floor_mm2": d.floor_mm2, "relaxation_bound_mm2": d.relaxation_bound_mm2,
-                "relaxation_method": d.relaxation_method, "unidentifiable": list(self.unidentifiable)}
+                "relaxation_method": d.relaxation_method, "unidentifiable": list(self.unidentifiable),
+                "for_allocation": None if self.for_allocation is None else {
+                    "cost": float(self.for_allocation.result.cost), "start_cost": float(self.for_allocation.start_cost),
+                    "rounds": len(self.for_allocation.history), "message": self.for_allocation.message()},
+                "random_plans": None if self.comparison is None else self.comparison.to_dict()}
 
     def text(self) -> str:
         """What the command line prints."""
@@ -153,6 +203,10 @@ class CalibrationPlanDesign(JobResult):
                f"relaxation: {d.relaxation_method} ({d.relaxation_note}); value {d.relaxation_value_mm2:.6g} mm^2",
                f"above the all-candidates floor: designed {d.score_mm2 - d.floor_mm2:.4g}, random "
                f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2   ({d.time_s:.2f} s)"]
+        if self.for_allocation is not None:
+            out.append(self.for_allocation.message())
+        if self.comparison is not None:
+            out.append(self.comparison.message())
         if self.unidentifiable:
             out.append(f"not identifiable with this plan (keep their manufacturing tolerance): "
                        f"{', '.join(self.unidentifiable)}")
