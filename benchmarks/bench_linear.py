@@ -36,7 +36,7 @@ def main() -> None:
         model = build_error_model(robot, "table2", clearance=clearance)
         t_lin = timeit(lambda: linear_map(model, q))
         t_jac = timeit(lambda: model.jacobian(q))
-        t_space = timeit(lambda: robot.space_jacobian(q))
+        t_space = timeit(lambda: robot.space_jacobian_internal(q))
         t_loop = timeit(lambda: [model.jacobian(qi) for qi in q[:100]], repeat=3) * 10
         rows.append((f"K={len(model.params)}", t_lin, t_jac, t_space, t_loop))
     print("1000 poses                 linear_map   jacobian   space_jacobian(peer)   per-pose loop(peer)")

@@ -77,7 +77,7 @@ def numba_compile_times() -> dict:
 
 
 def pinocchio_model(robot):
-    """A Pinocchio model of the tool_changer (checked against ``robot.fk``)."""
+    """A Pinocchio model of the tool_changer (checked against ``robot.fk_internal``)."""
     import pinocchio as pin
 
     pm = pin.Model()
@@ -89,7 +89,7 @@ def pinocchio_model(robot):
     pdata = pm.createData()
     q = robot.q_nominal
     pin.forwardKinematics(pm, pdata, q)
-    assert np.allclose(pdata.oMi[6].translation, robot.fk(q)[:3, 3]), "pinocchio model mismatch"
+    assert np.allclose(pdata.oMi[6].translation, robot.fk_internal(q)[:3, 3]), "pinocchio model mismatch"
     return pm, pdata
 
 
@@ -136,7 +136,7 @@ def peer_rtb_batched(model, q, Vl) -> float:
 
     ets = (ET.tz(315) * ET.Rz() * ET.tz(210) * ET.Rx() * ET.ty(796) * ET.Rx() * ET.ty(560) * ET.ty() * ET.ty(240)
            * ET.Rx() * ET.ty(165) * ET.Rz())
-    assert np.allclose(np.asarray(ets.fkine(q).A)[:3, 3], model.robot.fk(q)[:3, 3]), "rtb model mismatch"
+    assert np.allclose(np.asarray(ets.fkine(q).A)[:3, 3], model.robot.fk_internal(q)[:3, 3]), "rtb model mismatch"
     idq = [model.index(nm) for nm in ("dth1", "dth2", "dth3", "dd4", "dth5", "dth6")]
     Q = q + Vl[:, idq]
     t = time.perf_counter()

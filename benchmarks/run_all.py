@@ -177,7 +177,7 @@ def bench_jacobian(robot, model):
 
     q = np.random.default_rng(0).uniform(robot.lower, robot.upper, (1000, robot.n_joints))
     eng = resolve_engine(None)
-    robot.space_jacobian(q), model.jacobian(q)  # first call: numba import / compile or disk-cache load
+    robot.space_jacobian_internal(q), model.jacobian(q)  # first call: numba import / compile or disk-cache load
     t_jac = median_time(lambda: model.jacobian(q))
     t_jac_np = median_time(lambda: model.jacobian(q, engine="numpy"))
     t_lin = median_time(lambda: linear_map(model, q), repeat=5)
@@ -188,8 +188,8 @@ def bench_jacobian(robot, model):
         err = float(np.max(np.abs(model.jacobian(q) - model.jacobian(q, engine="numpy"))))
         row("jacobian", f"ErrorModel.jacobian, 1000 poses (6x{K}) [numba]", t_jac, "s", "ours, numpy path", t_jac_np,
             note=f"max |difference| {err:.1e}")
-    t_sj = median_time(lambda: robot.space_jacobian(q))
-    t_sj_np = median_time(lambda: robot.space_jacobian(q, engine="numpy"))
+    t_sj = median_time(lambda: robot.space_jacobian_internal(q))
+    t_sj_np = median_time(lambda: robot.space_jacobian_internal(q, engine="numpy"))
     try:
         import pinocchio as pin
 

@@ -11,8 +11,8 @@ import tolalloc
 PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
 ORDER = ["foundation", "robot", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
-         "verify", "report", "cli"]
-FOUNDATION = {"exceptions", "engine", "units"}
+         "verify", "report", "workflows", "cli"]
+FOUNDATION = {"exceptions", "engine", "units", "outputs"}
 
 
 def module_name(path: Path) -> str:
@@ -160,3 +160,62 @@ def test_size_check_finds_a_long_function(tmp_path):
     (pkg / "big.py").write_text("def f():\n" + "    x = 1\n" * 95 + "\n\ndef g():\n    return 1\n" + "# c\n" * 400)
     found = size_offenders(tmp_path / "tolalloc")
     assert set(found) == {"tolalloc.sub.big", "tolalloc.sub.big:f"} and found["tolalloc.sub.big:f"] == 96
+
+
+#: Robot methods that take joint values in interface units (deg / mm); the stages below the workflows work in
+#: internal units and call the ``*_internal`` twins (``fk_internal``, ``space_jacobian_internal``, ...).
+INTERFACE_METHODS = {"fk", "space_jacobian", "body_jacobian"}
+
+
+def interface_calls(path: Path) -> list[str]:
+    """``robot.fk(q)``-style method calls (one positional argument, no ``engine``) in ``path``: ``line: source``."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    out = []
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr in INTERFACE_METHODS
+                and len(node.args) == 1 and not (isinstance(node.func.value, ast.Name) and node.func.value.id == "nb")):
+            out.append(f"{node.lineno}: {ast.unparse(node)}")
+    return out
+
+
+def test_internal_code_calls_the_internal_unit_kinematics():
+    """Below the workflow layer joint values are [rad, mm]: ``Robot.fk`` (deg / mm) would misread them."""
+    bad = {}
+    for mod, path in MODULES.items():
+        if stage(mod) in ("api", "workflows", "cli") or mod.startswith("tolalloc.robot.model"):
+            continue
+        calls = interface_calls(path)
+        if calls:
+            bad[mod] = calls
+    assert not bad, f"interface-unit Robot methods called with internal joint values: {bad}; use *_internal"
+
+
+def test_interface_call_finder(tmp_path):
+    f = tmp_path / "m.py"
+    f.write_text("robot.fk(q)\nrobot.fk_internal(q)\nnb.space_jacobian(s, q)\nrobot.space_jacobian(q)\n")
+    assert interface_calls(f) == ["1: robot.fk(q)", "4: robot.space_jacobian(q)"]
+
+
+#: what the command line may import: its own modules, the workflow layer, the output and error foundations, and
+#: the error model's constants its help text quotes. Everything else is reached through tolalloc.workflows.
+CLI_MAY_IMPORT = ("tolalloc.cli", "tolalloc.workflows", "tolalloc.outputs", "tolalloc.exceptions",
+                  "tolalloc.errormodel.model")
+
+
+def test_the_cli_is_a_shell_over_the_workflows():
+    """tolalloc/cli/ parses, calls one workflow, prints and saves: it imports no computing stage."""
+    bad = {m: sorted(t for t in EDGES[m] if not t.startswith(CLI_MAY_IMPORT))
+           for m in MODULES if stage(m) == "cli"}
+    bad = {m: t for m, t in bad.items() if t}
+    assert not bad, f"CLI modules importing computing stages directly: {bad}"
+
+
+def test_the_cli_holds_no_numerics():
+    """No numpy / pandas / scipy in tolalloc/cli/: numbers are made and formatted by the library."""
+    for mod, path in MODULES.items():
+        if stage(mod) != "cli":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        names = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+        names |= {(n.module or "").split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+        assert not names & {"numpy", "pandas", "scipy", "cvxpy", "casadi"}, (mod, names)

@@ -21,14 +21,15 @@ def test_calplan_then_allocate(tmp_path, capsys):
     assert "relaxation: cvxpy/Clarabel (" in out  # 256 candidates: the column generation runs
     rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--out", str(tmp_path / "res")])
     out = capsys.readouterr().out
-    assert rc == 0 and "(certified;" in out and "calibrated away" in out
+    assert rc == 0 and "certified calibrated design: cost" in out and "calibrated away" in out
+    assert "coverage (post-calibration P)" in out and "end-to-end Monte Carlo" in out
     assert (tmp_path / "res" / "calibrated_tolerances.csv").is_file()
 
 
 @pytest.mark.parametrize("edit, msg", [
     (("# noise_mm = 0.02", "# noise_mm = -1"), "noise_mm"),
     (("# noise_mm = 0.02", "# noise_mm = nan"), "noise_mm"),
-    (("# estimate = all", "# estimate = dl1 nope"), "unknown parameter 'nope'"),
+    (("# estimate = all", "# estimate = dl1 nope"), "needs a plan that estimates every systematic parameter"),
     (("# registration = true", "# registration = maybe"), "registration"),
 ])
 def test_bad_plan_exit_2_nothing_written(tc, tmp_path, capsys, edit, msg):
@@ -80,6 +81,6 @@ def test_allocate_with_repeatability_grades_from_the_costs_file(tc, tmp_path, ca
     text = capsys.readouterr().out
     assert rc == 0 and "repeatability grades" in text
     summary = json.loads((out / "summary.json").read_text())
-    assert summary["cost"] == pytest.approx(summary["cost_parts"] + summary["cost_repeatability_grades"])
+    assert summary["cost_certified"] == pytest.approx(summary["cost_parts"] + summary["cost_repeatability_grades"])
     assert summary["cost_repeatability_grades"] > 0
     assert "repeatability_grade" in (out / "calibrated_tolerances.csv").read_text().splitlines()[0]

@@ -98,3 +98,31 @@ def test_exact_gauss_newton_reaches_a_stationary_point_of_the_map_objective():
     grad0 = np.array([(phi(h * e) - phi(-h * e)) / (2 * h) for e in np.eye(len(E))])
     assert np.abs(grad).max() < 1e-4 * np.abs(grad0).max()
     assert phi(xn) < 1e-3 * phi(np.zeros(len(E)))
+
+
+def test_paired_estimator_uses_the_linearised_pipeline(small):
+    from tolalloc.verify.calibrated import _linear_pipeline
+
+    robot, split = small
+    rng = np.random.default_rng(3)
+    plan = make_plan(robot, robot.lower + (robot.upper - robot.lower) * rng.random((20, 6)), registration=True)
+    q = robot.poses("working")[:4]
+    # without random parts the simulated MAP fit and the posterior's weighting coincide: the linearised pipeline's
+    # covariance is the posterior tool covariance (an independent computation: GLS with the nuisance projected out)
+    quiet = split.with_random_sigma(np.zeros_like(split.random_sigma))
+    m = quiet.model
+    E = np.array([k for k in quiet.sys_index if m.sigma[k] > 0], dtype=int)
+    var_sys = np.where(quiet.systematic, m.sigma, 0.0) ** 2
+    cov = _linear_pipeline(m, E, np.sqrt(quiet.prior_var_of(E)), plan, q, var_sys, np.zeros(len(m.params)))[-1]
+    np.testing.assert_allclose(cov, posterior(quiet, plan).tool_covariance(q), rtol=1e-6,
+                               atol=1e-9 * np.abs(cov).max())
+    C = posterior(split, plan).tool_covariance(q)
+    radius = float(np.median(radius_for_prob(C, 0.7)))
+    plain = verify_calibration(split, plan, q, radius, n_robots=500, seed=5)
+    paired = verify_calibration(split, plan, q, radius, n_robots=500, seed=5, estimator="auto")
+    assert np.all(paired.estimator == "paired") and np.all(plain.estimator == "plain")
+    assert np.all(paired.ci_high - paired.ci_low < 0.5 * (plain.ci_high - plain.ci_low))
+    assert np.all((paired.ci_low <= plain.ci_high) & (plain.ci_low <= paired.ci_high))
+    assert {"p_linear_pipeline", "n_discordant", "variance_reduction"} <= set(paired.to_frame().columns)
+    with pytest.raises(TolallocError, match="estimator: expected one of"):
+        verify_calibration(split, plan, q, radius, n_robots=10, estimator="importance")

@@ -86,7 +86,7 @@ def numba_chain(model, q, V):
 def numba_features(model, q, V):
     """Per-sample features kept by the numba engine's fused block kernel (``block_stats``) at pose ``q``."""
     chain = FastChain(model)
-    compiled = numba_engine.compile_programs([chain.program(q)], [ErrorFeatures(model.robot.fk(q))], chain.home)
+    compiled = numba_engine.compile_programs([chain.program(q)], [ErrorFeatures(model.robot.fk_internal(q))], chain.home)
     out = numba_engine.block_stats(compiled, np.ascontiguousarray(V.T), 128, [], [], None, len(V))
     assert out is not None
     return features_to_dict(out[2])
@@ -145,7 +145,7 @@ def test_every_consumer_equals_reference(robot, opts):
     X = FastChain(model).pose(q, V)  # numpy engine
     assert np.allclose(np.moveaxis(X, -1, 0), ref[:, :3], rtol=0, atol=ATOL)
     assert np.allclose(numba_chain(model, q, V), ref[:, :3], rtol=0, atol=ATOL)  # numba engine, chain loop
-    want, got = features_of(ref, robot.fk(q)), numba_features(model, q, V)  # numba engine, fused kernel
+    want, got = features_of(ref, robot.fk_internal(q)), numba_features(model, q, V)  # numba engine, fused kernel
     for key in want:
         assert np.allclose(got[key], want[key], rtol=0, atol=ATOL), key
     Jref = fd_jacobian(lambda E: reference_T(model, q, E), K)

@@ -103,7 +103,7 @@ def test_analyze_bad_outputs_and_sigma_units_exit_2(capsys, tmp_path):
     blocker = tmp_path / "f"
     blocker.write_text("x")
     for argv, msg in [(["--out", str(blocker)], "--out"), (["--json", str(tmp_path)], "--json"),
-                      (["--sigma", "dth1=-0.01"], "--sigma dth1: expected a finite sigma >= 0 in deg, got '-0.01'")]:
+                      (["--sigma", "dth1=-0.01"], "--sigma: dth1: expected a finite sigma >= 0 in deg, got -0.01")]:
         code, _, err = run(capsys, "analyze", "tool_changer", *argv)
         assert code == 2 and err.startswith("error:") and msg in err and err.count("\n") == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]

@@ -10,7 +10,9 @@ import pytest
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.cli import main
-from tolalloc.cli.common import atomic_output, check_output, sigma_overrides, write_json
+from tolalloc.cli.common import check_output, sigma_items, write_json
+from tolalloc.outputs import atomic_output
+from tolalloc.workflows.inputs import sigma_overrides
 from tolalloc.errormodel import build_error_model
 
 
@@ -62,11 +64,13 @@ def test_joint_list_starting_with_a_minus_is_a_value(capsys):
 
 def test_sigma_overrides_units_per_parameter():
     model = build_error_model(load_robot("tool_changer"))
-    got = sigma_overrides(model.params, ["joint_drive=0.01", "dd4=0.2", "dl1=0.05"])
+    got = sigma_overrides(model.params, sigma_items(["joint_drive=0.01", "dd4=0.2", "dl1=0.05"]))
     # a kind sets each parameter in its own unit (deg for revolute drives, mm for the prismatic one); names win
     assert got["dth1"] == pytest.approx(np.deg2rad(0.01)) and got["dd4"] == 0.2 and got["dl1"] == 0.05
-    assert sigma_overrides(model.params, ["dd4=0.2", "joint_drive=0.01"])["dd4"] == 0.2
-    with pytest.raises(TolallocError, match=r"--sigma dth1: expected a finite sigma >= 0 in deg, got '-0.01'"):
-        sigma_overrides(model.params, ["dth1=-0.01"])
-    with pytest.raises(TolallocError, match=r"--sigma joint_drive: expected a finite sigma >= 0 in deg / mm"):
-        sigma_overrides(model.params, ["joint_drive=nan"])
+    assert sigma_overrides(model.params, sigma_items(["dd4=0.2", "joint_drive=0.01"]))["dd4"] == 0.2
+    with pytest.raises(TolallocError, match=r"sigma: dth1: expected a finite sigma >= 0 in deg, got -0.01"):
+        sigma_overrides(model.params, sigma_items(["dth1=-0.01"]))
+    with pytest.raises(TolallocError, match=r"sigma: joint_drive: expected a finite sigma >= 0 in deg / mm"):
+        sigma_overrides(model.params, sigma_items(["joint_drive=nan"]))
+    with pytest.raises(TolallocError, match=r"--sigma: expected NAME=VALUE"):
+        sigma_items(["dth1"])

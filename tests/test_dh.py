@@ -60,12 +60,12 @@ def test_ur10_matches_standard_dh_table():
     a = 1000 * np.array(UR10_DH["a"])
     for q in rng.uniform(-np.pi, np.pi, (20, 6)):
         T_dh = standard_dh_fk(q, d, a, UR10_DH["alpha"], np.zeros(6))
-        T = robot.fk(q)
+        T = robot.fk_internal(q)
         np.testing.assert_allclose(T[:3, 3], T_dh[:3, 3], atol=1e-9)
         np.testing.assert_allclose(T[:3, :3], T_dh[:3, :3], atol=1e-12)
     # batched evaluation agrees too
     Q = rng.uniform(-np.pi, np.pi, (5, 6))
-    np.testing.assert_allclose(robot.fk(Q), [standard_dh_fk(q, d, a, UR10_DH["alpha"], np.zeros(6)) for q in Q], atol=1e-9)
+    np.testing.assert_allclose(robot.fk_internal(Q), [standard_dh_fk(q, d, a, UR10_DH["alpha"], np.zeros(6)) for q in Q], atol=1e-9)
 
 
 def test_ur10_home_and_nominal():
@@ -79,8 +79,8 @@ def test_ur10_home_and_nominal():
 def test_ur10_jacobians_match_finite_differences(seed):
     robot = load_robot("ur10")
     q = np.random.default_rng(seed).uniform(-np.pi, np.pi, 6)
-    for frame, J in (("space", robot.space_jacobian(q)), ("body", robot.body_jacobian(q))):
-        np.testing.assert_allclose(J, twist_fd(robot.fk, q, h=1e-6, frame=frame), atol=2e-5 * np.abs(J).max())
+    for frame, J in (("space", robot.space_jacobian_internal(q)), ("body", robot.body_jacobian_internal(q))):
+        np.testing.assert_allclose(J, twist_fd(robot.fk_internal, q, h=1e-6, frame=frame), atol=2e-5 * np.abs(J).max())
 
 
 def random_dh_rows(rng, n, prismatic_every=0):
@@ -105,7 +105,7 @@ def test_random_dh_tables(convention, reference, seed):
     cols = [np.array([r[k] for r in rows]) for k in ("d", "a", "alpha", "theta_offset")]
     pr = [r["type"] == "prismatic" for r in rows]
     for q in rng.uniform(-np.pi, np.pi, (5, n)) * np.where(pr, 100, 1):
-        np.testing.assert_allclose(robot.fk(q), reference(q, *cols, prismatic=pr), atol=1e-9)
+        np.testing.assert_allclose(robot.fk_internal(q), reference(q, *cols, prismatic=pr), atol=1e-9)
 
 
 def _dh_file(convention, rows_toml, tool=""):
@@ -144,7 +144,7 @@ def test_dh_toml_file_with_tool(tmp_path, convention, reference):
     T_tool = transform(rot_z(np.pi / 2), [10, 20, 30])  # the tool is given in the last DH frame
     rng = np.random.default_rng(1)
     for q in np.c_[rng.uniform(-3, 3, (4, 2)), rng.uniform(0, 300, 4)]:
-        np.testing.assert_allclose(robot.fk(q), reference(q, d, a, alpha, th0, prismatic=[0, 0, 1]) @ T_tool, atol=1e-9)
+        np.testing.assert_allclose(robot.fk_internal(q), reference(q, d, a, alpha, th0, prismatic=[0, 0, 1]) @ T_tool, atol=1e-9)
     names = [lk.name for lk in robot.links]
     assert names == (["d1", "a1", "a2", "d3_offset"] if convention == "standard" else ["a0", "d1", "a1", "d3_offset"])
     # the prismatic offset's length error does not clash with the drive error dd3
@@ -188,7 +188,7 @@ def test_dh_csv_modified_prismatic(tmp_path):
     assert robot.upper[2] == 200.0 and robot.upper[0] == pytest.approx(np.deg2rad(170))
     q = np.array([0.3, -0.5, 50.0])
     ref = modified_dh_fk(q, [400, 0, 20], [0, 325, 275], np.deg2rad([0, 0, 180]), np.zeros(3), prismatic=[0, 0, 1])
-    np.testing.assert_allclose(robot.fk(q), ref, atol=1e-9)
+    np.testing.assert_allclose(robot.fk_internal(q), ref, atol=1e-9)
 
 
 @pytest.mark.parametrize("text,match", [

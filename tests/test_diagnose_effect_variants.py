@@ -1,7 +1,7 @@
 """Effect variants (issue 15 item 2) recover known parameters from data made by independent functions.
 
 The data are never built from the basis being fitted: joint-type effects move the joints of the exact forward
-kinematics (``robot.fk`` at ``q + dq``), gravity torques come from finite differences of the potential energy
+kinematics (``robot.fk_internal`` at ``q + dq``), gravity torques come from finite differences of the potential energy
 (not the cross-product formula of ``gravity_torques``), the thermal lag from its closed-form step response, and
 the beam from the textbook cantilever formulas on hand-computed horizontal poses. Tolerances are stated per test
 (first-order bases against exact kinematics: ~1e-3 relative at these amplitudes).

@@ -90,7 +90,7 @@ def _limits(robot):
 
 
 def _measure(robot, q, R, p, t, rng):
-    T = robot.fk(q)
+    T = robot.fk_internal(q)
     x = T[:, :3, 3] + T[:, :3, :3] @ t
     return x @ R.T + p + rng.normal(0.0, NOISE_MM, x.shape)
 
@@ -126,7 +126,7 @@ def test_generator_changes_the_robot():
         lo, hi = _limits(nominal)
         q = rng.uniform(lo, hi, (60, nominal.n_joints))
         t = np.array([100.0, -50.0, 150.0])  # a probe offset, as in the measurements (alpha6 moves only the probe)
-        x_true, x_nom = true.fk(q), nominal.fk(q)
+        x_true, x_nom = true.fk_internal(q), nominal.fk_internal(q)
         dev = np.abs(x_true[:, :3, 3] + x_true[:, :3, :3] @ t - x_nom[:, :3, 3] - x_nom[:, :3, :3] @ t).max()
         assert dev > 2 * NOISE_MM, (robot_name, case, dev)
 

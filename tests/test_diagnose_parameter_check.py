@@ -57,7 +57,7 @@ def _compliant(robot, q, t, rng):
     """Measured points with an unmodelled joint-2 deflection of 1 mm at the tip (dq2 = 1/1200 cos q2)."""
     dq = np.zeros_like(q)
     dq[:, 1] = 1.0 / 1200.0 * np.cos(q[:, 1])
-    T = robot.fk(q + dq)
+    T = robot.fk_internal(q + dq)
     x = T[:, :3, 3] + T[:, :3, :3] @ t
     return Measurements(q, x + rng.normal(0.0, NOISE_MM, x.shape))
 
@@ -103,7 +103,7 @@ def test_flange_axis_that_never_changes_direction_fires_in_the_cli_and_the_json(
     robot = tolalloc.load_robot("ur10")
     rng = np.random.default_rng(3)
     q = _tool_down(robot, 150, rng)
-    assert np.ptp(robot.fk(q)[:, :3, 2], axis=0).max() < 1e-9  # flange z-axis: one direction throughout
+    assert np.ptp(robot.fk_internal(q)[:, :3, 2], axis=0).max() < 1e-9  # flange z-axis: one direction throughout
     meas = _data(robot, _scaled_a2(1.0), q, rng)
     check = parameter_checks(calibrate(robot, meas).geometric, q)
     f = check.to_frame().set_index("parameter")

@@ -28,7 +28,7 @@ def _rms(e):
 
 
 def _points(robot, q, R, p, t):
-    T = robot.fk(q)
+    T = robot.fk_internal(q)
     return (T[:, :3, 3] + T[:, :3, :3] @ t) @ R.T + p
 
 

@@ -48,7 +48,7 @@ def _measure(true, n, R, p, t, rng):
     lo = np.where(rev, np.maximum(robot.lower, -np.pi), robot.lower)
     hi = np.where(rev, np.minimum(robot.upper, np.pi), robot.upper)
     q = rng.uniform(lo, hi, (n, 6))
-    T = true.fk(q)
+    T = true.fk_internal(q)
     x = (T[:, :3, 3] + T[:, :3, :3] @ t) @ R.T + p
     return Measurements(q, x + rng.normal(0.0, NOISE_MM, x.shape))
 

@@ -36,7 +36,7 @@ def exact_pose(model, values, q):
 def fd_error_jacobian(model, q, h=1e-6):
     """Central differences of the exact perturbed chain: rows dp [mm], then space-frame dw [rad]."""
     K = len(model.params)
-    T0 = model.robot.fk(q)
+    T0 = model.robot.fk_internal(q)
     V = np.vstack([np.eye(K) * h, -np.eye(K) * h])
     T = exact_pose(model, V, q)
     Tp, Tm = T[:K], T[K:]
@@ -98,7 +98,7 @@ def test_single_link_error_closed_form_consistent(tc):
     v = np.zeros(len(TC_NAMES))
     v[TC_NAMES.index("dl3")] = delta
     T = exact_pose(model, v[None], q)[0]
-    T0 = tc.fk(q)
+    T0 = tc.fk_internal(q)
     np.testing.assert_allclose(T[:3, 3] - T0[:3, 3], delta * rot_z(D(15)) @ rot_x(D(30)) @ [0, 1, 0], atol=1e-10)
     np.testing.assert_allclose(T[:3, :3], T0[:3, :3], atol=1e-14)
     # dl1 lifts everything by delta, dl6 extends along the arm direction at the tool
@@ -123,7 +123,7 @@ def test_single_link_error_closed_form_axes_only(tc):
     R12 = rot_z(D(15)) @ rot_x(D(30))
     R_B = rot_x(D(-10)) @ rot_x(D(-20)) @ rot_z(D(-5))
     expected = delta * R12 @ (np.eye(3) - R_B) @ [0, 1, 0]
-    np.testing.assert_allclose(T[:3, 3] - tc.fk(q)[:3, 3], expected, atol=1e-10)
+    np.testing.assert_allclose(T[:3, 3] - tc.fk_internal(q)[:3, 3], expected, atol=1e-10)
     # at the zero configuration a link error has no effect at all in this mode
     np.testing.assert_allclose(model.jacobian(np.zeros(6))[:, :6], 0, atol=1e-12)
 
@@ -131,7 +131,7 @@ def test_single_link_error_closed_form_axes_only(tc):
 def test_drive_and_deflection_closed_form(tc):
     model = build_error_model(tc)
     q = tc.q_nominal
-    T0 = tc.fk(q)
+    T0 = tc.fk_internal(q)
     d = 0.01
     v = np.zeros(len(TC_NAMES))
     v[TC_NAMES.index("dth1")] = d  # the whole arm turns by d about z
@@ -145,7 +145,7 @@ def test_drive_and_deflection_closed_form(tc):
     v[TC_NAMES.index("dd4")] = 2.0  # equals moving joint 4 by 2 mm
     q2 = q.copy()
     q2[3] += 2.0
-    np.testing.assert_allclose(exact_pose(model, v[None], q)[0], tc.fk(q2), atol=1e-10)
+    np.testing.assert_allclose(exact_pose(model, v[None], q)[0], tc.fk_internal(q2), atol=1e-10)
 
 
 def test_tilt_deflection_has_no_effect_at_home(tc):

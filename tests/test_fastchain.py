@@ -45,7 +45,7 @@ def test_program_drops_zero_sigma_and_folds_multipliers(model):
 
 def test_features_against_scipy_and_euler(model):
     rng = np.random.default_rng(2)
-    T0 = model.robot.fk(model.robot.poses("working")[5])
+    T0 = model.robot.fk_internal(model.robot.poses("working")[5])
     R = Rotation.from_rotvec(rng.normal(0, 0.3, (200, 3))).as_matrix() @ T0[:3, :3]
     p = T0[:3, 3] + rng.normal(0, 2.0, (200, 3))
     X = np.ascontiguousarray(np.moveaxis(np.concatenate([R, p[:, :, None]], axis=2), 0, -1))

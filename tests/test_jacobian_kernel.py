@@ -44,17 +44,17 @@ def test_space_jacobian_equals_numpy(robot):
     from tolalloc.robot import _jacobian_nb
 
     assert_close(_jacobian_nb.space_jacobian(robot.screws, q), ref)  # the kernel itself, called directly
-    assert_close(robot.space_jacobian(q), ref)  # dispatched (P >= JAC_KERNEL_MIN_POSES)
-    assert_close(robot.space_jacobian(q[:3], engine="numba"), ref[:3])
+    assert_close(robot.space_jacobian_internal(q), ref)  # dispatched (P >= JAC_KERNEL_MIN_POSES)
+    assert_close(robot.space_jacobian_internal(q[:3], engine="numba"), ref[:3])
     # independent check: finite difference of the spatial twist, T(q + h e_j) T(q)^-1 ~ exp([J_j] h)
     h = 1e-6
     for j in range(robot.n_joints):
         dq = np.zeros(robot.n_joints)
         dq[j] = h
-        T0, T1, T2 = robot.fk(q[:5]), robot.fk(q[:5] + dq), robot.fk(q[:5] - dq)
+        T0, T1, T2 = robot.fk_internal(q[:5]), robot.fk_internal(q[:5] + dq), robot.fk_internal(q[:5] - dq)
         dT = (T1 - T2) / (2 * h) @ np.linalg.inv(T0)
         tw = np.stack([dT[:, 2, 1], dT[:, 0, 2], dT[:, 1, 0], dT[:, 0, 3], dT[:, 1, 3], dT[:, 2, 3]], axis=-1)
-        J = robot.space_jacobian(q[:5], engine="numba")[:, :, j]
+        J = robot.space_jacobian_internal(q[:5], engine="numba")[:, :, j]
         assert np.allclose(J, tw, rtol=1e-5, atol=1e-5 * (1 + np.max(np.abs(tw))))
 
 
@@ -81,22 +81,22 @@ def test_dispatch_rules(monkeypatch):
         orig = getattr(_jacobian_nb, name)
         monkeypatch.setattr(_jacobian_nb, name, lambda *a, _f=orig, _n=name: calls.append(_n) or _f(*a))
     q = poses(robot, JAC_KERNEL_MIN_POSES)
-    robot.space_jacobian(q)
+    robot.space_jacobian_internal(q)
     model.jacobian(q)
     assert calls == ["space_jacobian", "error_jacobian"]
     calls.clear()
-    robot.space_jacobian(q[:-1])  # below the threshold
-    robot.space_jacobian(q[0])  # one pose
+    robot.space_jacobian_internal(q[:-1])  # below the threshold
+    robot.space_jacobian_internal(q[0])  # one pose
     model.jacobian(q[0])
     model.jacobian(q[None])  # (1, P, n): not 2-D
     space_jacobian(np.broadcast_to(robot.screws, (len(q),) + robot.screws.shape), q)  # a stack of chains
     space_jacobian(robot.screws * 1.5, q)  # not joint screws: general exponential
     monkeypatch.setenv("TOLALLOC_NUMBA", "0")
-    robot.space_jacobian(q)
+    robot.space_jacobian_internal(q)
     model.jacobian(q)
     assert calls == []
     with pytest.raises(TolallocError, match="engine"):
-        robot.space_jacobian(q, engine="fortran")
+        robot.space_jacobian_internal(q, engine="fortran")
 
 
 def test_numba_absent(monkeypatch):
@@ -107,8 +107,8 @@ def test_numba_absent(monkeypatch):
     monkeypatch.setattr(engine, "NUMBA_AVAILABLE", False)
     assert kinematics_mod._jacobian_kernel(robot.screws, q, None) is None
     with pytest.raises(TolallocError, match="numba"):
-        robot.space_jacobian(q, engine="numba")
-    J, E = robot.space_jacobian(q), model.jacobian(q)
-    assert np.array_equal(J, robot.space_jacobian(q, engine="numpy"))
+        robot.space_jacobian_internal(q, engine="numba")
+    J, E = robot.space_jacobian_internal(q), model.jacobian(q)
+    assert np.array_equal(J, robot.space_jacobian_internal(q, engine="numpy"))
     assert np.array_equal(E, model.jacobian(q, engine="numpy"))
     assert J.shape == (100, 6, robot.n_joints) and E.shape == (100, 6, len(model.params))

@@ -6,7 +6,8 @@ import pandas as pd
 import pytest
 from conftest import random_chain, random_q
 
-from tolalloc import TolallocError, fk_poe, load_robot
+from tolalloc import TolallocError, load_robot
+from tolalloc.robot import fk_poe
 from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import VARIANCE_FACTOR, budget, input_covariance, linear_map
 from tolalloc.robot.lie import rotvec
@@ -21,7 +22,7 @@ def _fd_jacobian(model, q, h=1e-6):
     E = np.vstack([np.eye(K) * h, -np.eye(K) * h])
     screws, home, dq = model.perturbed_chain(E)
     T = fk_poe(screws, home, q + dq)
-    T0 = model.robot.fk(q)
+    T0 = model.robot.fk_internal(q)
     dp = (T[:K, :3, 3] - T[K:, :3, 3]) / (2 * h)
     dw = (rotvec(T[:K, :3, :3] @ T0[:3, :3].T) - rotvec(T[K:, :3, :3] @ T0[:3, :3].T)) / (2 * h)
     return np.vstack([dp.T, dw.T])
@@ -70,7 +71,7 @@ def _ca_jacobian(model, q):
     Jp = ca.jacobian(p, e)
     f = ca.Function("f", [e], [Jp, ca.jacobian(ca.vec(R), e), R, p])
     Jp, dR, R0, p0 = (np.array(a) for a in f(np.zeros(K)))
-    T0 = robot.fk(q)
+    T0 = robot.fk_internal(q)
     np.testing.assert_allclose(p0.ravel(), T0[:3, 3], atol=1e-9)  # the oracle's nominal FK is right
     Jw = np.zeros((3, K))
     for k in range(K):
@@ -141,7 +142,7 @@ def test_truncnormal_second_moment_factor():
 def _mc_errors(model, q, values):
     screws, home, dq = model.perturbed_chain(values)
     T = fk_poe(screws, home, q + dq)
-    return T[:, :3, 3] - model.robot.fk(q)[:3, 3]
+    return T[:, :3, 3] - model.robot.fk_internal(q)[:3, 3]
 
 
 @pytest.mark.parametrize("clearance", [False, True])

@@ -64,7 +64,7 @@ def test_single_link_error_closed_form(model, robot):
     # drive error of joint 1 (axis z through the origin): the tool rotates rigidly about z
     v[:] = 0
     v[0, model.index("dth1")] = 0.01
-    p = robot.fk(q)[:3, 3]
+    p = robot.fk_internal(q)[:3, 3]
     assert np.allclose(pose_errors(model, q, v)["dp_mm"][0], rot_z(0.01) @ p - p, atol=1e-10)
 
 
@@ -73,7 +73,7 @@ def test_axes_only_link_error_closed_form(robot):
     q = robot.q_nominal
     v = np.zeros((1, len(m.params)))
     v[0, m.index("dl1")] = 0.7
-    R = robot.fk(q)[:3, :3]
+    R = robot.fk_internal(q)[:3, :3]
     ez = np.array([0.0, 0.0, 1.0])
     # T' = Tr(d ez) E1..E6 Tr(-d ez) M  =>  dp = d (ez - R ez)
     assert np.allclose(pose_errors(m, q, v)["dp_mm"][0], 0.7 * (ez - R @ ez), atol=1e-12)
@@ -95,7 +95,7 @@ def test_paper_literal_options_change_what_they_should(robot):
     # a tilted axis turned by 0 leaves the chain unchanged; an error screw does not
     assert np.linalg.norm(pose_errors(tilt, q, v)["dp_mm"]) < 1e-12
     # the error screw (home-frame y axis through joint 2, carried by joint 1) turns the downstream chain
-    c, pt, R1 = robot.joint_points_mm[1], robot.fk(q)[:3, 3], rot_z(q[0])
+    c, pt, R1 = robot.joint_points_mm[1], robot.fk_internal(q)[:3, 3], rot_z(q[0])
     from tolalloc.robot.lie import rot_y
     assert np.allclose(pose_errors(screw, q, v)["dp_mm"][0], R1 @ (c + rot_y(0.004) @ (R1.T @ pt - c)) - pt, atol=1e-11)
     # both options leave drive errors untouched

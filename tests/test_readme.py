@@ -1,4 +1,5 @@
-"""The README's promises: two quick-start commands, the CI runs the test one, the robot-file example loads."""
+"""The README's promises: two quick-start commands, the CI runs the test one; the robot-file and costs-file examples
+(in the how-to pages the README links to) load."""
 
 import re
 import tomllib
@@ -13,6 +14,8 @@ from tolalloc.robot.io import robot_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()
+#: the pages that hold the robot-file and costs-file examples (docs/howto, linked from the README)
+EXAMPLE_PAGES = [ROOT / "docs" / "howto" / "own-robot.md", ROOT / "docs" / "howto" / "costs-file.md"]
 
 
 def _quickstart_commands():
@@ -22,7 +25,8 @@ def _quickstart_commands():
 
 
 def _toml_blocks():
-    return re.findall(r"```toml\n(.*?)```", README, flags=re.S)
+    text = README + "".join(page.read_text() for page in EXAMPLE_PAGES)
+    return re.findall(r"```toml\n(.*?)```", text, flags=re.S)
 
 
 def test_quickstart_has_exactly_two_commands_one_main_job_one_tests():
@@ -47,7 +51,7 @@ def test_robot_file_example_loads_and_matches_hand_computation():
     # home: base (0,0,400) + upper arm (600,0,0) + forearm (250,0,0) + tool (0,0,-50)
     np.testing.assert_allclose(robot.home[:3, 3], [850, 0, 350], atol=1e-12)
     # at q = (0 deg, 100 mm) the slide adds 100 mm along x
-    np.testing.assert_allclose(robot.fk(np.array([0.0, 100.0]))[:3, 3], [950, 0, 350], atol=1e-9)
+    np.testing.assert_allclose(robot.fk_internal(np.array([0.0, 100.0]))[:3, 3], [950, 0, 350], atol=1e-9)
     model = build_error_model(robot, "shop")
     assert model.names == ["dbase", "dupper_arm", "dforearm", "dth1", "dd2", "e1x", "e1z"]
     np.testing.assert_allclose(model.sigma[3], np.deg2rad(0.005))
@@ -63,3 +67,16 @@ def test_costs_file_example_loads(tmp_path):
     assert dict(zip(costs.names, costs.role))["dth6"] == "fixed"
     frame = costs.to_frame(model)
     assert len(frame) == len(model.names)
+
+
+def test_python_example_is_the_tested_one():
+    from test_workflows import PYTHON_EXAMPLE
+
+    blocks = re.findall(r"```python\n(.*?)```", README, flags=re.S)
+    assert PYTHON_EXAMPLE in blocks
+    assert len(PYTHON_EXAMPLE.strip().splitlines()) <= 15
+
+
+def test_example_pages_are_linked_from_the_readme():
+    for page in EXAMPLE_PAGES:
+        assert f"]({page.relative_to(ROOT).as_posix()})" in README

@@ -26,7 +26,7 @@ def closed_form_tool_changer():
 def test_tool_changer_nominal_pose_closed_form():
     robot = load_robot("tool_changer")
     np.testing.assert_allclose(robot.q_to_interface(robot.q_nominal), [15, 30, -10, 0, -20, -5], atol=1e-12)
-    T = robot.fk(robot.q_nominal)
+    T = robot.fk_internal(robot.q_nominal)
     p, R = closed_form_tool_changer()
     np.testing.assert_allclose(p, [-415.692, 1551.383, 1196.616], atol=1e-3)
     assert np.linalg.norm(T[:3, 3] - p) <= 1e-9 * np.linalg.norm(p)
@@ -56,9 +56,9 @@ def test_tool_changer_geometry_matches_notes():
 def test_tool_changer_prismatic_moves_along_arm():
     robot = load_robot("tool_changer")
     q = robot.q_nominal.copy()
-    T0 = robot.fk(q)
+    T0 = robot.fk_internal(q)
     q[3] = 100.0
-    T1 = robot.fk(q)
+    T1 = robot.fk_internal(q)
     d = np.deg2rad
     # arm direction after j1 (15 deg about z) and j2+j3 (20 deg about x)
     u = np.array([-np.sin(d(15)) * np.cos(d(20)), np.cos(d(15)) * np.cos(d(20)), np.sin(d(20))])
@@ -80,13 +80,13 @@ def test_fk_and_jacobians_match_pinocchio(seed):
         pin.computeJointJacobians(model, data, qp)
         pin.updateFramePlacements(model, data)
         oMf = data.oMf[fid]
-        T = robot.fk(q)
+        T = robot.fk_internal(q)
         scale = max(1.0, np.linalg.norm(T[:3, 3]))
         assert np.max(np.abs(T[:3, 3] - 1000.0 * oMf.translation)) <= 1e-9 * scale
         assert np.max(np.abs(T[:3, :3] - oMf.rotation)) <= 1e-9
         Js_pin = pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.WORLD)
         Jb_pin = pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.LOCAL)
-        Js, Jb = robot.space_jacobian(q), robot.body_jacobian(q)
+        Js, Jb = robot.space_jacobian_internal(q), robot.body_jacobian_internal(q)
         jscale = max(1.0, np.max(np.abs(Js)))
         assert np.max(np.abs(Js - pin_jacobian_to_ours(robot, Js_pin))) <= 1e-9 * jscale
         assert np.max(np.abs(Jb - pin_jacobian_to_ours(robot, Jb_pin))) <= 1e-9 * max(1.0, np.max(np.abs(Jb)))
@@ -97,8 +97,8 @@ def test_jacobians_match_finite_differences(seed):
     rng = np.random.default_rng(seed)
     robot = random_chain(rng, int(rng.integers(2, 9)))
     q = random_q(rng, robot)
-    for frame, J in (("space", robot.space_jacobian(q)), ("body", robot.body_jacobian(q))):
-        Jfd = twist_fd(robot.fk, q, frame=frame)
+    for frame, J in (("space", robot.space_jacobian_internal(q)), ("body", robot.body_jacobian_internal(q))):
+        Jfd = twist_fd(robot.fk_internal, q, frame=frame)
         np.testing.assert_allclose(J, Jfd, atol=1e-5 * max(1.0, np.max(np.abs(J))))
 
 
@@ -106,17 +106,17 @@ def test_batched_fk_equals_loop():
     rng = np.random.default_rng(3)
     robot = random_chain(rng, 6)
     Q = random_q(rng, robot, 7)
-    T = robot.fk(Q)
+    T = robot.fk_internal(Q)
     assert T.shape == (7, 4, 4)
     for i in range(7):
-        np.testing.assert_allclose(T[i], robot.fk(Q[i]), atol=1e-12)
-    Js, Jb = robot.space_jacobian(Q), robot.body_jacobian(Q)
+        np.testing.assert_allclose(T[i], robot.fk_internal(Q[i]), atol=1e-12)
+    Js, Jb = robot.space_jacobian_internal(Q), robot.body_jacobian_internal(Q)
     assert Js.shape == Jb.shape == (7, 6, 6)
     for i in range(7):
-        np.testing.assert_allclose(Js[i], robot.space_jacobian(Q[i]), atol=1e-10)
-        np.testing.assert_allclose(Jb[i], robot.body_jacobian(Q[i]), atol=1e-10)
+        np.testing.assert_allclose(Js[i], robot.space_jacobian_internal(Q[i]), atol=1e-10)
+        np.testing.assert_allclose(Jb[i], robot.body_jacobian_internal(Q[i]), atol=1e-10)
     # 2-D batch
-    T2 = robot.fk(Q.reshape(7, 1, 6))
+    T2 = robot.fk_internal(Q.reshape(7, 1, 6))
     np.testing.assert_allclose(T2[:, 0], T, atol=1e-12)
 
 
@@ -134,10 +134,10 @@ def test_batched_perturbed_chains():
     Jb = body_jacobian(screws, homes, Q)
     for i, r in enumerate(robots):
         # random_chain draws prismatic joints at random: q is valid for any chain since limits are wide
-        np.testing.assert_allclose(T[i], r.fk(q), atol=1e-10)
-        np.testing.assert_allclose(TQ[i], r.fk(Q[i]), atol=1e-10)
-        np.testing.assert_allclose(Js[i], r.space_jacobian(Q[i]), atol=1e-10)
-        np.testing.assert_allclose(Jb[i], r.body_jacobian(Q[i]), atol=1e-10)
+        np.testing.assert_allclose(T[i], r.fk_internal(q), atol=1e-10)
+        np.testing.assert_allclose(TQ[i], r.fk_internal(Q[i]), atol=1e-10)
+        np.testing.assert_allclose(Js[i], r.space_jacobian_internal(Q[i]), atol=1e-10)
+        np.testing.assert_allclose(Jb[i], r.body_jacobian_internal(Q[i]), atol=1e-10)
 
 
 def test_poe_prefix():
@@ -151,7 +151,7 @@ def test_poe_prefix():
     for j in range(4):
         expected = expected @ exp_se3(robot.screws[j] * q[j])
         np.testing.assert_allclose(P[j + 1], expected, atol=1e-12)
-    np.testing.assert_allclose(P[-1] @ robot.home, robot.fk(q), atol=1e-12)
+    np.testing.assert_allclose(P[-1] @ robot.home, robot.fk_internal(q), atol=1e-12)
 
 
 def test_interface_units_roundtrip():

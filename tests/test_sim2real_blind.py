@@ -2,7 +2,7 @@
 
 * independence: ``physics.py`` / ``cases.py`` import nothing of the diagnosis's effect bases, the synthetic
   generator, the error model or the POE kinematics (checked on their import statements);
-* its own frame-walking kinematics reproduces ``Robot.fk`` at zero geometric error (two independent
+* its own frame-walking kinematics reproduces ``Robot.fk_internal`` at zero geometric error (two independent
   implementations agree to 1e-9 mm) and every geometric parameter it perturbs moves the probe;
 * a small fixed-seed sample of ``none`` cases (both built-in robots, 60 poses, with outliers forced in one)
   is diagnosed ``none``; a wrist-still session (issue 25) gets no claim;
@@ -48,7 +48,7 @@ def test_walk_reproduces_robot_fk_and_every_error_moves_the_probe(name):
     desc = describe(robot)
     q = np.random.default_rng(0).uniform(np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi), (8, robot.n_joints))
     x0 = walk(_perturbed_ops(desc, np.zeros(len(desc.geo_names))), q, desc.tool_mm)[0]
-    np.testing.assert_allclose(x0, robot.fk(q)[:, :3, 3], atol=1e-9)
+    np.testing.assert_allclose(x0, robot.fk_internal(q)[:, :3, 3], atol=1e-9)
     for k in np.flatnonzero(desc.geo_scale > 0):
         geo = np.zeros(len(desc.geo_names))
         geo[k] = desc.geo_scale[k]

@@ -57,11 +57,11 @@ def compare_with_pinocchio(robot, urdf_path, tool, rng, n_q=5):
         pin.computeJointJacobians(model, data, qp)
         pin.updateFramePlacements(model, data)
         oMf = data.oMf[fid]
-        T = robot.fk(q)
+        T = robot.fk_internal(q)
         np.testing.assert_allclose(T[:3, 3], 1000.0 * oMf.translation, atol=1e-9 * max(1.0, np.linalg.norm(T[:3, 3])))
         np.testing.assert_allclose(T[:3, :3], oMf.rotation, atol=1e-9)
         colscale = np.where(robot.revolute_mask, 1.0, 1e-3)
-        for ref, J in ((pin.ReferenceFrame.WORLD, robot.space_jacobian(q)), (pin.ReferenceFrame.LOCAL, robot.body_jacobian(q))):
+        for ref, J in ((pin.ReferenceFrame.WORLD, robot.space_jacobian_internal(q)), (pin.ReferenceFrame.LOCAL, robot.body_jacobian_internal(q))):
             Jp = pin.getFrameJacobian(model, data, fid, ref)[:, cols]
             Jp = np.vstack([Jp[3:], 1000.0 * Jp[:3]]) * colscale
             np.testing.assert_allclose(J, Jp, atol=1e-9 * max(1.0, np.abs(J).max()))

@@ -1,7 +1,21 @@
 """tolalloc: tolerance allocation, verification and sim-to-real diagnosis for serial robots.
 
+One call per job (each returns a frozen result with ``to_frame()``, ``summary()``, ``text()``, ``save()``)::
+
+    import tolalloc
+    res = tolalloc.allocate_tolerances("tool_changer")      # the main job: allocate, verify, correct, grade
+    res.to_frame()                                          # the tolerance table
+    tolalloc.analyze_errors("ur10", poses="working")        # linear variance map and error budget
+    tolalloc.simulate_errors("tool_changer", 100_000)       # nonlinear Monte Carlo
+    tolalloc.plan_calibration("ur10", 30)                   # calibration plan
+    tolalloc.diagnose_measurements("ur10", "train.csv", "test.csv")   # sim-to-real diagnosis
+
+Every stage is also reachable by its sub-package (:mod:`tolalloc.robot`, :mod:`tolalloc.errormodel`,
+:mod:`tolalloc.linear`, :mod:`tolalloc.allocate`, :mod:`tolalloc.montecarlo`, :mod:`tolalloc.verify`,
+:mod:`tolalloc.calibration`, :mod:`tolalloc.diagnose`, :mod:`tolalloc.report`).
+
 Units inside the library: lengths in mm, angles in rad. Joint values at the
-interface (robot files, CLI, CSV) are in degrees (revolute) and mm (prismatic).
+interface (workflow arguments, robot files, CLI, CSV) are in degrees (revolute) and mm (prismatic).
 
 The names below are loaded on first use (PEP 562), so ``import tolalloc`` stays cheap and the command line can
 take over SIGINT / SIGTERM before numpy and the solvers are imported (see :mod:`tolalloc.__main__`).
@@ -14,9 +28,12 @@ import importlib
 __version__ = "0.1.0"
 
 _HOME = {
-    "TolallocError": "tolalloc.exceptions",
-    **{name: "tolalloc.robot" for name in ("Joint", "Link", "Mass", "Robot", "load_robot", "builtin_robots",
-                                           "fk_poe", "space_jacobian", "body_jacobian")},
+    **{name: "tolalloc.workflows" for name in ("allocate_tolerances", "analyze_errors", "simulate_errors",
+                                               "plan_calibration", "diagnose_measurements", "ToleranceAllocation",
+                                               "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
+                                               "CalibrationPlanDesign", "MeasurementDiagnosis")},
+    **{name: "tolalloc.robot" for name in ("Robot", "Joint", "Link", "load_robot", "builtin_robots")},
+    **{name: "tolalloc.exceptions" for name in ("TolallocError", "ArgumentError", "InputFileError")},
 }
 
 __all__ = list(_HOME)

@@ -15,12 +15,44 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "Interrupted", "signals_deferred", "interruptible", "note_interrupt", "clear_interrupt",
+__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible", "note_interrupt", "interrupt_pending", "clear_interrupt",
            "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive"]
 
 
 class TolallocError(ValueError):
     """A user-facing input error (bad robot file, bad joint values, bad sigma ...)."""
+
+
+class ArgumentError(TolallocError):
+    """A bad value of one named argument of a public call.
+
+    ``str(exc)`` is ``"<argument>: <detail>"`` (``"<argument> <detail>"`` when the detail goes on a sentence:
+    ``"angle_prob 0.9 needs ..."``); the command line prints the same text with the argument's flag in place of
+    its Python name (``radius_mm`` -> ``--radius-mm``), and other arguments named in backticks by their flags.
+
+    Attributes
+    ----------
+    argument : str
+        The keyword argument of the public call (``radius_mm``, ``q_deg_mm`` ...).
+    detail : str
+        What was expected, what arrived and what to do.
+    """
+
+    def __init__(self, argument: str, detail: str):
+        self.sep = " " if detail.startswith(("needs ", "and ")) or detail[:1].isdigit() else ": "
+        super().__init__(f"{argument}{self.sep}{detail}")
+        self.argument = argument
+        self.detail = detail
+
+
+class InputFileError(TolallocError, FileNotFoundError):
+    """An input file that does not exist (a robot file, a measurement or plan file, a trajectory)."""
+
+    def __init__(self, message: str):
+        TolallocError.__init__(self, message)
+
+    def __str__(self) -> str:
+        return str(self.args[0]) if self.args else ""
 
 
 @contextlib.contextmanager
@@ -109,6 +141,11 @@ _PENDING: list = []
 def note_interrupt(signum: int) -> None:
     """Record that signal ``signum`` arrived (the CLI's handler, before it raises :class:`Interrupted`)."""
     _PENDING.append(signum)
+
+
+def interrupt_pending() -> bool:
+    """True when a signal was recorded by :func:`note_interrupt` and not cleared."""
+    return bool(_PENDING)
 
 
 def clear_interrupt() -> None:

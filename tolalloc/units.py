@@ -22,7 +22,7 @@ from tolalloc.exceptions import TolallocError
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
            "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
-           "TINY_LINK_RATIO", "TRUST_HINT"]
+           "TINY_LINK_RATIO", "TRUST_HINT", "check_joint_units"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -36,7 +36,14 @@ MIN_PLAUSIBLE_REACH_MM = 10.0
 #: a link shorter than this [mm] and TINY_LINK_RATIO times shorter than the longest one looks like metres
 MAX_TINY_LINK_MM = 2.0
 TINY_LINK_RATIO = 200.0
-TRUST_HINT = "if the values really are meant so, pass --trust-units"
+TRUST_HINT = "if the values really are meant so, pass --trust-units (trust_units=True in Python)"
+#: joint values in deg whose revolute entries all lie within +-2 pi, while a joint's limits span at least this many
+#: degrees and this many times the values' range, read as radians
+MIN_SPAN_FOR_RADIANS_DEG = 90.0
+SPAN_RATIO_FOR_RADIANS = 10.0
+#: prismatic values in mm all within +-this while the stroke spans at least MIN_STROKE_FOR_METRES_MM read as metres
+MAX_METRES_LIKE = 2.0
+MIN_STROKE_FOR_METRES_MM = 100.0
 
 _TRUST = contextvars.ContextVar("tolalloc_trust_units", default=False)
 
@@ -121,6 +128,60 @@ def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
     if unit == "rad" and big > 2 * np.pi + 1e-9:
         raise error(f"{key} = {_shown(raw)} goes beyond +-2 pi rad; that looks like degrees: use the _deg key "
                     f"({key[:-4]}_deg) ({TRUST_HINT}).")
+
+
+def _fractional(v: np.ndarray) -> np.ndarray:
+    """Entries that are neither zero nor whole numbers (degrees are often whole; radians seldom are)."""
+    return (np.abs(v) > 1e-2) & (np.abs(v - np.round(v)) > 1e-9)
+
+
+def check_joint_units(q_deg_mm, revolute, lower_deg_mm, upper_deg_mm, where: str) -> None:
+    """Refuse joint values in interface units (deg / mm) that read as radians (or warn where either reading fits).
+
+    The one rule for every joint-value input (``q_deg_mm`` arguments, trajectories, pose sets, ``--q``):
+
+    * **radians for degrees**: every revolute value within +-2 pi, at least two of them fractional, while some
+      revolute joint's limits span at least :data:`MIN_SPAN_FOR_RADIANS_DEG` and
+      :data:`SPAN_RATIO_FOR_RADIANS` times the values' range: refused with a hint;
+    * **metres for millimetres**: every prismatic value within +-:data:`MAX_METRES_LIKE`, one fractional, while
+      the stroke spans at least :data:`MIN_STROKE_FOR_METRES_MM`: a warning (small strokes are real);
+    * a single fractional revolute value within +-2 pi among zeros: a warning.
+
+    Parameters
+    ----------
+    q_deg_mm : array, shape (n,) or (P, n)
+    revolute : array of bool, shape (n,)
+    lower_deg_mm, upper_deg_mm : array, shape (n,)
+        Joint limits in deg / mm.
+    """
+    import warnings
+
+    if units_trusted():
+        return
+    q = np.atleast_2d(np.asarray(q_deg_mm, dtype=float))
+    rev = np.asarray(revolute, bool)
+    span = np.asarray(upper_deg_mm, float) - np.asarray(lower_deg_mm, float)
+    if rev.any():
+        v = q[:, rev]
+        m = float(np.abs(v).max()) if v.size else 0.0
+        n_frac = int(_fractional(v).sum())
+        wide = float(np.max(np.where(np.isfinite(span[rev]), span[rev], 720.0)))
+        if 0 < m <= 2 * np.pi + 1e-9 and wide >= max(MIN_SPAN_FOR_RADIANS_DEG, SPAN_RATIO_FOR_RADIANS * 2 * m):
+            if n_frac >= 2:
+                raise TolallocError(f"{where}: every revolute joint value lies within +-2 pi (largest {m:.4g}) while "
+                                    f"the joint limits span up to {wide:.4g} deg: these look like radians; expected "
+                                    f"degrees (convert with numpy.degrees) ({TRUST_HINT}).")
+            if n_frac == 1:
+                warnings.warn(f"{where}: the revolute joint values are all small (largest {m:.4g} deg); if they are "
+                              "radians, convert them with numpy.degrees.", UserWarning, stacklevel=3)
+    if (~rev).any():
+        d = q[:, ~rev]
+        stroke = float(np.max(np.where(np.isfinite(span[~rev]), span[~rev], 0.0)))
+        if (d.size and float(np.abs(d).max()) <= MAX_METRES_LIKE and _fractional(d).any()
+                and stroke >= MIN_STROKE_FOR_METRES_MM):
+            warnings.warn(f"{where}: the prismatic joint values are all within +-{MAX_METRES_LIKE:g} mm of a "
+                          f"{stroke:g} mm stroke; if they are metres, multiply them by 1000.", UserWarning,
+                          stacklevel=3)
 
 
 def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True) -> None:

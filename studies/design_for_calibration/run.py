@@ -10,7 +10,10 @@ tool_changer and ur10, requirement P(|dP| < 0.25 mm) >= 0.95 at their working po
 3. per parameter at 12 designed poses: manufactured tolerance, post-calibration sigma, calibrated away / must be held;
 4. end-to-end nonlinear Monte Carlo (manufacture, measure, calibrate, compensate) of that design against the linear
    post-calibration prediction, and of the same plan with manufacturing errors 10x and 100x larger (where the
-   linear story stops holding).
+   linear story stops holding);
+5. over the working region (tool_changer: its working box; ur10: its joint limits; region.py): the pose-set designs
+   against the region designs on a fresh 10^5-pose sample, the cutting-plane search, the exact stage, the end-to-end
+   Monte Carlo at the region's worst poses, and plans designed for the allocation against random plans of their size.
 
 Usage: python studies/design_for_calibration/run.py [--quick] [--out DIR]
 """
@@ -36,6 +39,9 @@ from tolalloc.calibration import split_errors  # noqa: E402
 from tolalloc.calibration.design import candidate_poses, design_plan  # noqa: E402
 from tolalloc.errormodel import build_error_model  # noqa: E402
 from tolalloc.verify.calibrated import verify_calibration  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from region import region_markdown, region_study  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "design_for_calibration"  # --out replaces it
 
@@ -106,11 +112,11 @@ def mc_checks(problem, split, res, plan, work, n_robots, name):
     return pd.DataFrame(rows)
 
 
-WHY = """ Where it is not, a likely reason
-(not tested here) is the objective: `calplan` minimises the post-calibration variance under the robot file's
-manufacturing sigmas (the prior it is given), while the allocation then changes those sigmas (it loosens what the
-calibration removes and tightens what it cannot), so the plan is optimal for a different prior than the one the
-final design has. Designing plan and tolerances jointly (alternating the two) is not implemented."""
+WHY = """ Where it is not, a likely reason is the
+objective: `calplan` minimises the post-calibration variance under the robot file's manufacturing sigmas (the prior
+it is given), while the allocation then changes those sigmas (it loosens what the calibration removes and tightens
+what it cannot), so the plan is optimal for a different prior than the one the final design has. The section "Plans
+designed for the allocation" below designs the plan for the design (alternating plan and tolerances)."""
 
 
 def _fit_note(mc: pd.DataFrame) -> str:
@@ -145,6 +151,7 @@ def study_robot(name: str, quick: bool) -> str:
     mc = mc_checks(problem, split, res, plan12, work, 500 if quick else 4000, name)
     mc.to_csv(OUT / f"{name}_mc_scaling.csv", index=False, float_format="%.6g")
     s = res.summary()
+    reg = region_markdown(name, region_study(name, robot, problem, split, cand, OUT, quick), problem.prob)
     piv = fp.pivot(index="n_poses", columns="plan", values="cost")
     wins = int((piv["designed"] < piv["random"]).sum())
     return f"""# {name}
@@ -182,7 +189,8 @@ met its step tolerance within the iteration cap (`tolalloc/verify/calibrated.py`
 Jacobian at the estimate (the fixed-Jacobian iteration stopped contracting). {_fit_note(mc)}
 
 {md(mc)}
-"""
+
+{reg}"""
 
 
 def main() -> None:
@@ -210,8 +218,10 @@ Requirement P(|dP| < 0.25 mm) >= 0.95 at each robot's working poses; built-in co
 (assumptions of the project); split: link lengths and axis deflections systematic, joint drives systematic zero
 offset plus a 0.0003 deg random repeatability; tracker position measurements with registration and target offset
 estimated (so a base-joint offset and base-axis tilts are indistinguishable from the tracker's pose and stay
-uncalibrated). Designs are certified by the eigenvalue rule on the linear post-calibration covariance (a local
-optimum of a non-convex cost, see `tolalloc/allocate/calibrated.py`).
+uncalibrated). Certified designs meet the eigenvalue rule on the linear post-calibration covariance (a local
+optimum of a non-convex cost, see `tolalloc/allocate/calibrated.py`); exact designs meet the post-calibration
+probability itself (`tolalloc/allocate/calibrated_exact.py`, IPOPT from the certified design). The first sections
+allocate at the working poses; the region sections (issue 26) over the working region.
 
 """
     text = head + "\n".join("#" + sec for sec in sections)

@@ -73,7 +73,7 @@ def main(argv=None) -> int:
     robot = load_robot("tool_changer")
     mrobot = metre_robot(robot)
     q0 = robot.q_nominal
-    T0 = robot.fk(q0)
+    T0 = robot.fk_internal(q0)
     text = []
     w = text.append
 

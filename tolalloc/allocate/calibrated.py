@@ -53,7 +53,7 @@ from tolalloc.allocate.calibrated_step import START_SHARE, StepData, solve_step
 from tolalloc.calibration.posterior import Posterior, estimated_index, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
 
-__all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO"]
+__all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO", "parameter_status"]
 
 #: A systematic part counts as "calibrated away" when its post-calibration sigma is below this share of its prior.
 CALIBRATED_AWAY_RATIO = 0.1
@@ -104,17 +104,9 @@ class CalibratedAllocation:
         """
         pr, m = self.problem, self.problem.model
         f = np.array([p.to_interface for p in m.params])
-        sp = self.post.split
         prior = np.sqrt(self.post.prior_var)
         postsig = self.post.sigma_post
-        status = []
-        for k in range(len(f)):
-            if sp.systematic[k] and postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
-                status.append("calibrated away")
-            elif self.design.at_limit[k] == "t_max":
-                status.append("loose (at t_max)")
-            else:
-                status.append("must be held" + ("" if sp.systematic[k] else " (random)"))
+        status = parameter_status(self.design, self.post)
         df = pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
                            "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
                            if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
@@ -122,7 +114,7 @@ class CalibratedAllocation:
                            "status": status, "cost": pr.param_costs(self.design.t)})
         if self.grade_t is not None:
             df["repeatability_grade"] = self.grade_t * f
-            df["repeatability_grade_cost"] = _grades(pr, sp).costs_full(self.grade_t)
+            df["repeatability_grade_cost"] = _grades(pr, self.post.split).costs_full(self.grade_t)
         return df
 
     def summary(self) -> dict:
@@ -135,6 +127,21 @@ class CalibratedAllocation:
                 "certified": self.certified, "ratio": self.ratio, "iterations": self.iterations,
                 "lmi_poses": [int(p) + 1 for p in self.lmi_poses],
                 "unidentifiable": list(self.post.unidentifiable) if self.post is not None else []}
+
+
+def parameter_status(design: Design, post: Posterior) -> list:
+    """Per parameter: ``calibrated away`` (post-calibration sigma below :data:`CALIBRATED_AWAY_RATIO` of the
+    manufactured one), ``loose (at t_max)``, else ``must be held`` (``(random)`` for random-only parameters)."""
+    sp, prior, postsig = post.split, np.sqrt(post.prior_var), post.sigma_post
+    out = []
+    for k in range(len(prior)):
+        if sp.systematic[k] and postsig[k] <= CALIBRATED_AWAY_RATIO * prior[k]:
+            out.append("calibrated away")
+        elif design.at_limit[k] == "t_max":
+            out.append("loose (at t_max)")
+        else:
+            out.append("must be held" + ("" if sp.systematic[k] else " (random)"))
+    return out
 
 
 def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan) -> np.ndarray:

@@ -100,17 +100,20 @@ def _position_cov(problem: AllocationProblem, t, q) -> np.ndarray:
 
 
 def static_joints(problem: AllocationProblem, region: Region, *, n_probe: int = 8, seed: int = 0,
-                  rtol: float = 1e-9) -> np.ndarray:
+                  rtol: float = 1e-9, pose_cov=None) -> np.ndarray:
     """Joints whose motion never changes the position-error covariance, shape (n,) bool.
 
     Probed at ``n_probe`` Sobol poses: each joint is moved across its range and the position rows of the
     error Jacobian compared (rotation of the Jacobian about the measuring point changes ``J`` but not
-    ``J Σ J^T``, so the covariance with unit sigmas is compared).
+    ``J Σ J^T``, so the covariance with unit sigmas is compared). ``pose_cov`` (a function of poses (M, n) giving
+    covariances (M, 3, 3) [mm^2], e.g. a post-calibration covariance) replaces the unit-sigma covariance.
     """
     Q = region.sample(n_probe, seed)
     s2 = np.ones(problem.model.sigma.shape)
 
     def cov(Qx):
+        if pose_cov is not None:
+            return pose_cov(Qx)
         J = problem.model.jacobian(Qx)[:, :3, :]
         return np.einsum("mik,k,mjk->mij", J, s2, J)
 
@@ -128,8 +131,11 @@ def static_joints(problem: AllocationProblem, region: Region, *, n_probe: int = 
 
 
 def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 512, n_starts: int = 6,
-               seed: int = 0, fixed: np.ndarray | None = None):
+               seed: int = 0, fixed: np.ndarray | None = None, pose_cov=None):
     """Pose of the region with the lowest linear ``P`` for the design ``t``.
+
+    ``pose_cov`` (optional): function of poses (M, n) [rad, mm] giving the position covariance (M, 3, 3) [mm^2]
+    whose ``P`` is searched instead of the design's (e.g. the post-calibration covariance; ``t`` is then unused).
 
     Returns
     -------
@@ -140,11 +146,13 @@ def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 5
         ``2 m + 1`` poses at once: the point and a central difference along each of the ``m`` free joints).
     """
     fixed = np.zeros(len(region.q_min), bool) if fixed is None else fixed
+    prob_at = pose_probability if pose_cov is None else (
+        lambda pr, _t, Qx: np.asarray(p_within_radius(pose_cov(Qx), pr.radius_mm)))
     free = np.flatnonzero(~fixed)
     mid = 0.5 * (region.q_min + region.q_max)
     Q = region.sample(n_seed, seed)
     Q[:, fixed] = mid[fixed]
-    P = pose_probability(problem, t, Q)
+    P = prob_at(problem, t, Q)
     n_eval = len(Q)
     best_q, best_p = Q[int(np.argmin(P))].copy(), float(P.min())
     bounds = list(zip(region.q_min[free], region.q_max[free]))
@@ -155,7 +163,7 @@ def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 5
 
     def f_and_grad(x):  # P and its central-difference gradient in one batched evaluation of 2m + 1 poses
         X[:, free] = x + step
-        p = pose_probability(problem, t, X)
+        p = prob_at(problem, t, X)
         return float(p[0]), (p[1:m + 1] - p[m + 1:]) / 2e-6
 
     for i in np.argsort(P)[:n_starts]:
@@ -289,27 +297,48 @@ class Coverage:
 
 
 def coverage(problem: AllocationProblem, t, region: Region, *, n: int = 100_000, seed: int = 12345,
-             k_worst: int = 3, tol: float = 1e-4, chunk: int = 20_000) -> Coverage:
+             k_worst: int = 3, tol: float = 1e-4, chunk: int = 20_000, pose_cov=None) -> Coverage:
     """Coverage of a design over a region on a fresh seeded sample (uniform random, not the search's Sobol).
 
-    A pose counts as below when ``P < p - tol``(tol: the search's convergence tolerance).
+    A pose counts as below when ``P < p - tol``(tol: the search's convergence tolerance). The sample is drawn and
+    screened ``chunk`` poses at a time (the same stream as one draw of all ``n``), so memory does not grow with
+    ``n``. ``pose_cov`` (optional): function of poses (M, n) giving the position covariance (M, 3, 3) [mm^2] to
+    check instead of the design's (e.g. the post-calibration covariance; ``t`` is then unused).
     """
+    from tolalloc.exceptions import raise_if_interrupted
+
+    try:
+        n_ok = int(n) == n and n >= 1
+    except (TypeError, ValueError, OverflowError):
+        n_ok = False
+    if not n_ok:
+        raise TolallocError(f"n: expected a whole number of coverage poses >= 1 (e.g. 1e5), got {n!r}.")
+    n, chunk = int(n), max(1, int(chunk))
     rng = np.random.default_rng(seed)
-    Q = region.q_min + rng.random((int(n), len(region.q_min))) * (region.q_max - region.q_min)
-    C = np.concatenate([_position_cov(problem, t, Q[i:i + chunk]) for i in range(0, len(Q), chunk)])
-    # screen: P(|x| < r) >= P(chi2_3 < r^2 / lambda_max) (the ball contains the lambda_max-sphere's ellipsoid);
-    # the exact P is computed in order of this bound until no unevaluated pose can be lower or below p
-    lower = chi2.cdf(problem.radius_mm**2 / np.maximum(np.linalg.eigvalsh(C)[:, -1], 1e-300), 3)
-    order = np.argsort(lower)
-    P = np.full(len(Q), np.nan)
-    done, p_min = 0, np.inf
-    while done < len(Q) and (lower[order[done]] < problem.prob - tol or lower[order[done]] < p_min):
-        idx = order[done:done + 2000]
-        P[idx] = p_within_radius(C[idx], problem.radius_mm)
-        p_min = min(p_min, float(np.nanmin(P[idx])))
-        done += len(idx)
-    below = int(np.sum(P[order[:done]] < problem.prob - tol))
+    cov_of = pose_cov if pose_cov is not None else (lambda Qx: _position_cov(problem, t, Qx))
+    below, done, p_min = 0, 0, np.inf
+    worst_p, worst_q = np.empty(0), np.empty((0, len(region.q_min)))
+    for start in range(0, n, chunk):
+        raise_if_interrupted()
+        Q = region.q_min + rng.random((min(chunk, n - start), len(region.q_min))) * (region.q_max - region.q_min)
+        C = cov_of(Q)
+        # screen: P(|x| < r) >= P(chi2_3 < r^2 / lambda_max) (the ball contains the lambda_max-sphere's ellipsoid);
+        # the exact P is computed in order of this bound until no unevaluated pose can be lower or below p
+        lower = chi2.cdf(problem.radius_mm**2 / np.maximum(np.linalg.eigvalsh(C)[:, -1], 1e-300), 3)
+        order = np.argsort(lower)
+        P = np.full(len(Q), np.nan)
+        k = 0
+        while k < len(Q) and (lower[order[k]] < problem.prob - tol or lower[order[k]] < p_min):
+            idx = order[k:k + 2000]
+            P[idx] = p_within_radius(C[idx], problem.radius_mm)
+            p_min = min(p_min, float(np.nanmin(P[idx])))
+            k += len(idx)
+        ev = order[:k]
+        below += int(np.sum(P[ev] < problem.prob - tol))
+        done += k
+        worst_p = np.concatenate([worst_p, P[ev]])
+        worst_q = np.concatenate([worst_q, Q[ev]])
+        keep = np.argsort(worst_p)[:k_worst]
+        worst_p, worst_q = worst_p[keep], worst_q[keep]
     upper = float(beta.ppf(0.95, below + 1, n - below)) if below < n else 1.0
-    ev = order[:done]
-    order = ev[np.argsort(P[ev])][:k_worst]
-    return Coverage(int(n), p_min, Q[order], below, below / n, upper, int(done))
+    return Coverage(n, p_min, worst_q, below, below / n, upper, int(done))

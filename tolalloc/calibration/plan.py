@@ -2,6 +2,8 @@
 
 Plan CSV (what ``tolalloc calplan`` writes and ``tolalloc allocate --calibration`` reads)::
 
+    # robot = ur10                     the robot the plan was written for (checked when read)
+    # n_poses = 12                      the number of pose rows that follow (checked: a truncated file is refused)
     # measurement = position           (or: pose)
     # noise_mm = 0.02                   tracker noise sigma per coordinate [mm]
     # noise_deg = 0.001                 orientation noise sigma [deg] (pose measurements only)
@@ -43,6 +45,8 @@ class CalibrationPlan:
         Parameters estimated; ``None``: every systematic one.
     registration : bool
         Whether the tracker registration (6) and tool offset (3) are estimated too (nuisance, marginalised).
+    robot : str or None
+        Name of the robot the plan was made for (``None``: unknown, e.g. a plan file without the header line).
     """
 
     q: np.ndarray
@@ -51,6 +55,7 @@ class CalibrationPlan:
     noise_rad: float = np.deg2rad(0.001)
     estimate: tuple | None = None
     registration: bool = True
+    robot: str | None = None
 
     @property
     def n_poses(self) -> int:
@@ -100,13 +105,13 @@ def make_plan(robot: Robot, q, *, measurement: str = "position", noise_mm: float
         q = np.atleast_2d(robot.check_q(q, "calibration poses"))
     est = None if estimate is None or estimate == "all" else tuple(estimate)
     return CalibrationPlan(q, measurement, _check_noise(noise_mm, "noise_mm"),
-                           np.deg2rad(_check_noise(noise_deg, "noise_deg")), est, bool(registration))
+                           np.deg2rad(_check_noise(noise_deg, "noise_deg")), est, bool(registration), robot.name)
 
 
 def write_plan(plan: CalibrationPlan, robot: Robot, path) -> None:
     """Write ``plan`` as CSV with its settings in ``#`` header lines."""
     est = "all" if plan.estimate is None else " ".join(plan.estimate)
-    head = (f"# measurement = {plan.measurement}\n# noise_mm = {plan.noise_mm:.12g}\n"
+    head = (f"# robot = {robot.name}\n# n_poses = {plan.n_poses}\n# measurement = {plan.measurement}\n# noise_mm = {plan.noise_mm:.12g}\n"
             f"# noise_deg = {np.rad2deg(plan.noise_rad):.12g}\n# estimate = {est}\n"
             f"# registration = {'true' if plan.registration else 'false'}\n")
     Path(path).write_text(head + plan.to_frame(robot).to_csv(index=False, float_format="%.10g"), encoding="utf-8")
@@ -125,11 +130,15 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
         if line.startswith("#") and "=" in line:
             key, _, val = line[1:].partition("=")
             settings[key.strip()] = val.strip()
-    known = {"measurement", "noise_mm", "noise_deg", "estimate", "registration"}
+    known = {"robot", "n_poses", "measurement", "noise_mm", "noise_deg", "estimate", "registration"}
     bad = set(settings) - known
     if bad:
         raise TolallocError(f"calibration plan {path.name}: unknown setting(s) {', '.join(sorted(bad))}; "
                             f"expected {', '.join(sorted(known))}.")
+    if settings.get("robot", robot.name) != robot.name:
+        raise TolallocError(f"calibration plan {path.name}: written for the robot {settings['robot']!r} (its header), "
+                            f"but the allocation is for {robot.name!r}; design a plan for this robot with "
+                            f"`tolalloc calplan {robot.name} --n-poses N --out PLAN.csv`.")
     cols = [f"{j.name}_{j.unit}" for j in robot.joints]
     try:
         df = pd.read_csv(io.StringIO(text), comment="#")
@@ -143,6 +152,10 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
         qi = df.to_numpy(dtype=float)
     except ValueError:
         raise TolallocError(f"calibration plan {path.name}: joint values must be numbers (deg / mm).") from None
+    if "n_poses" in settings and settings["n_poses"] != str(len(qi)):
+        raise TolallocError(f"calibration plan {path.name}: its header says n_poses = {settings['n_poses']}, but the "
+                            f"file has {len(qi)} pose row(s) (truncated or edited?); write the plan again with "
+                            "`tolalloc calplan`, or correct the n_poses line.")
     q = robot.check_q(qi, f"calibration plan {path.name}", interface=True) if len(qi) else np.zeros((0, len(cols)))
     reg = settings.get("registration", "true").lower()
     if reg not in ("true", "false"):

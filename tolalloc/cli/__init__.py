@@ -44,6 +44,10 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
     for name in COMMAND_MODULES:
         importlib.import_module(f"{__name__}.{name}").register(sub)
+    from tolalloc.cli.common import flag_map
+
+    for command in sub.choices.values():
+        command.set_defaults(flags=flag_map(command))
     return parser
 
 
@@ -55,27 +59,41 @@ def _on_signal(signum, frame):
     raise Interrupted(signum)
 
 
+def _not_after_an_interrupt(record) -> bool:
+    """Logging filter: drop what a library logs about the exception our interrupt raised inside it (cvxpy logs
+    ``Encountered unexpected exception importing solver ...: ImportError('initialization failed')``)."""
+    from tolalloc.exceptions import interrupt_pending
+
+    return not interrupt_pending()
+
+
 @contextlib.contextmanager
 def _interrupt_handlers():
     """Turn SIGINT / SIGTERM into :class:`Interrupted` for the block (main thread only), then restore."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    import logging
+
     clear_interrupt()
+    solver_log = logging.getLogger("__cvxpy__")
+    solver_log.addFilter(_not_after_an_interrupt)
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
+        solver_log.removeFilter(_not_after_an_interrupt)
         clear_interrupt()
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
-    from tolalloc.cli.output import published
+    from tolalloc.outputs import published
 
     published(reset=True)
+    args = None
     with _interrupt_handlers():
         try:
             args = build_parser().parse_args(argv)
@@ -83,7 +101,9 @@ def main(argv: list[str] | None = None) -> int:
             raise_if_interrupted()  # a signal whose exception a library swallowed (nothing was published since)
             return code
         except TolallocError as exc:
-            print(f"error: {exc}", file=sys.stderr)
+            from tolalloc.cli.common import error_line
+
+            print(f"error: {error_line(exc, args)}", file=sys.stderr)
             return 2
         except KeyboardInterrupt as exc:
             signum = getattr(exc, "signum", signal.SIGINT)

@@ -4,15 +4,12 @@ from __future__ import annotations
 
 import re
 
-import numpy as np
+from tolalloc.exceptions import ArgumentError, TolallocError
+from tolalloc.outputs import check_distinct_outputs, check_output, json_default, write_json
 
-from tolalloc.exceptions import TolallocError
-from tolalloc.robot.model import Robot
-from tolalloc.robot.io import load_robot
-from tolalloc.cli.output import atomic_output, check_distinct_outputs, check_output, json_default, write_json
-
-__all__ = ["format_labels", "parse_q", "add_robot_arg", "robot_from_args", "atomic_output", "write_json", "json_default",
-           "check_output", "check_distinct_outputs", "add_error_model_args", "sigma_overrides", "error_model_from_args"]
+__all__ = ["parse_q", "add_robot_arg", "robot_from_args", "write_json", "json_default", "check_output",
+           "check_distinct_outputs", "add_error_model_args", "add_scheduler_arg", "sigma_items", "error_model_kwargs",
+           "robot_kwargs", "flag_map", "flag_text", "error_line"]
 
 #: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value
 _NEGATIVE_VALUE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-\.?\d[\d.eE+-]*([,;]\s*[-+]?[\d.eE+-]*)+$")
@@ -29,25 +26,26 @@ def add_robot_arg(parser) -> None:
                         "robot under 10 mm long, angles beyond one turn)")
 
 
-def robot_from_args(args) -> Robot:
-    from tolalloc.units import trusting_units
+def robot_from_args(args):
+    """The robot of :func:`add_robot_arg`'s options (a built-in name or a robot file)."""
+    from tolalloc.workflows.inputs import as_robot
 
-    with trusting_units(getattr(args, "trust_units", False)):
-        return load_robot(args.robot, tool=getattr(args, "tool", None))
+    return as_robot(args.robot, **robot_kwargs(args))
 
 
-def parse_q(text: str, robot: Robot, flag: str = "--q") -> np.ndarray:
-    """Parse ``"15,30,-10,0,-20,-5"`` (deg / mm) into internal joint values [rad, mm], checking count and limits."""
+def trusting(args):
+    """The unit-plausibility guards off within the block when ``--trust-units`` was given."""
+    from tolalloc.workflows.inputs import trusting_units
+
+    return trusting_units(getattr(args, "trust_units", False))
+
+
+def parse_q(text: str, flag: str = "--q") -> list:
+    """Parse ``"15,30,-10,0,-20,-5"`` into joint values in interface units (deg / mm); the workflow checks them."""
     try:
-        values = [float(x) for x in text.replace(";", ",").split(",") if x.strip()]
+        return [float(x) for x in text.replace(";", ",").split(",") if x.strip()]
     except ValueError:
         raise TolallocError(f"{flag}: expected comma-separated numbers in deg (revolute) / mm (prismatic), got {text!r}.") from None
-    return robot.check_q(values, flag, interface=True)
-
-
-def format_labels(labels: dict) -> str:
-    """Model options for a one-line header: ``sigma_set=table2, link_mode=consistent, ...``."""
-    return ", ".join(f"{k}={v}" for k, v in labels.items() if v is not None)
 
 
 def add_error_model_args(parser, *, allocation: bool = False) -> None:
@@ -87,55 +85,63 @@ def add_scheduler_arg(parser, what: str = "the samples") -> None:
                         "machine), or a Dask scheduler address such as tcp://HOST:8786; never changes the numbers")
 
 
-def sigma_overrides(model_params, items) -> dict:
-    """Parse ``--sigma NAME=VALUE`` items into ``{parameter name: sigma [mm or rad]}``.
-
-    VALUE is in mm for length parameters and in deg for angle parameters. A kind (``joint_drive``)
-    sets every parameter of that kind, each in its own unit (a revolute drive in deg, a prismatic
-    drive in mm); a parameter name given as well wins over its kind, whatever the order.
-
-    Raises
-    ------
-    TolallocError
-        Malformed item, unknown parameter or kind, or a value that is not a finite number >= 0.
-    """
-    by_kind, by_name = {}, {}
+def sigma_items(items) -> dict:
+    """``--sigma NAME=VALUE`` items -> ``{NAME: VALUE}`` (VALUE in mm or deg, checked by the workflow)."""
+    out = {}
     for item in items:
         if "=" not in item:
             raise TolallocError(f"--sigma: expected NAME=VALUE (mm or deg), got {item!r}.")
         name, val = item.split("=", 1)
-        name = name.strip()
-        hits = [p for p in model_params if name in (p.name, p.kind)]
-        if not hits:
-            known = ", ".join(sorted({p.name for p in model_params} | {p.kind for p in model_params}))
-            raise TolallocError(f"--sigma: unknown parameter or kind {name!r}; known: {known}.")
-        units = " / ".join(sorted({p.interface_unit for p in hits}))
         try:
-            v = float(val)
+            out[name.strip()] = float(val)
         except ValueError:
-            v = np.nan
-        if not np.isfinite(v) or v < 0:
-            raise TolallocError(f"--sigma {name}: expected a finite sigma >= 0 in {units}, got {val.strip()!r}.")
-        target = by_name if any(p.name == name for p in hits) else by_kind
-        for p in hits:
-            target[p.name] = v if p.interface_unit == "mm" else np.deg2rad(v)
-    return {**by_kind, **by_name}
+            out[name.strip()] = val.strip()
+    return out
 
 
-def error_model_from_args(robot: Robot, args):
-    """The error model of :func:`add_error_model_args`' options (sigma set, modes, clearance, overrides, exclusions)."""
-    from tolalloc.errormodel import build_error_model
-    from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD
+def error_model_kwargs(args) -> dict:
+    """The workflow keyword arguments of :func:`add_error_model_args`' options."""
+    kw = dict(sigma_set=args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
+              clearance=args.clearance, exclude=tuple(args.exclude))
+    if hasattr(args, "sigma"):
+        kw.update(sigma=sigma_items(args.sigma) or None, clearance_tilt_literal=args.clearance_tilt_literal)
+    return kw
 
-    if not hasattr(args, "sigma"):  # allocation options (add_error_model_args(allocation=True))
-        return build_error_model(robot, args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
-                                 clearance=args.clearance, exclude=tuple(args.exclude))
-    if args.clearance_tilt_literal and not args.clearance:
-        raise TolallocError("--clearance-tilt-literal changes the clearance tilt sigma, but clearance is off; "
-                            "add --clearance (or leave out --clearance-tilt-literal).")
-    opts = dict(link_mode=args.link_mode, deflection_mode=args.deflection_mode, clearance=args.clearance)
-    base = build_error_model(robot, args.sigma_set, **opts)
-    sigma = sigma_overrides(base.params, args.sigma)
-    cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if args.clearance_tilt_literal else None
-    return build_error_model(robot, args.sigma_set, **opts, clearance_sigma=cs, sigma=sigma or None,
-                             exclude=tuple(args.exclude))
+
+def robot_kwargs(args) -> dict:
+    """``tool`` and ``trust_units`` of :func:`add_robot_arg`."""
+    return dict(tool=getattr(args, "tool", None), trust_units=getattr(args, "trust_units", False))
+
+
+#: workflow arguments whose flag is not their name with dashes (the flag switches the argument off, or is shorter)
+_RENAMED = [("verify", "--no-verify"), ("correction", "--no-correction"), ("snap", "--no-snap"),
+            ("registration", "--no-registration"), ("q_deg_mm", "--pose"), ("q_deg_mm", "--q"), ("path", "--out")]
+
+
+def flag_map(parser) -> dict:
+    """``{workflow argument: flag}`` of one command: argparse's ``dest`` names the workflow's keyword argument."""
+    flags = {}
+    for action in parser._actions:
+        longs = [o for o in action.option_strings if o.startswith("--")]
+        if longs and action.dest not in flags:
+            flags[action.dest] = longs[0]
+    if "pose_set" in flags:  # mc: --pose-set is the workflow's ``poses``
+        flags["poses"] = flags["pose_set"]
+    for name, flag in _RENAMED:
+        if flag in {f for a in parser._actions for f in a.option_strings}:
+            flags.setdefault(name, flag)
+    return flags
+
+
+def flag_text(text: str, args) -> str:
+    """A workflow message in command-line terms: `argument` references become their flags."""
+    flags = getattr(args, "flags", {})
+    return re.sub(r"`([A-Za-z_][A-Za-z0-9_]*)`", lambda m: flags.get(m.group(1), m.group(1)), text)
+
+
+def error_line(exc: TolallocError, args) -> str:
+    """The ``error:`` line of a refused input: an :class:`ArgumentError` names its flag."""
+    if isinstance(exc, ArgumentError) and args is not None:
+        flags = getattr(args, "flags", {})
+        return f"{flags.get(exc.argument, exc.argument)}{exc.sep}{flag_text(exc.detail, args)}"
+    return flag_text(str(exc), args)

@@ -4,12 +4,7 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
-import pandas as pd
-
-from tolalloc.robot.lie import euler_xyz_fixed
-from tolalloc.robot.io import builtin_robots
-from tolalloc.cli.common import add_robot_arg, json_default, parse_q, robot_from_args
+from tolalloc.cli.common import add_robot_arg, json_default, parse_q, robot_from_args, trusting
 
 
 def register(sub) -> None:
@@ -32,60 +27,28 @@ def register(sub) -> None:
 
 
 def cmd_robots(args) -> int:
-    for name, desc in builtin_robots().items():
-        print(f"{name:14s} {desc}")
+    from tolalloc.workflows.robot_info import robots_text
+
+    print(robots_text())
     return 0
 
 
-def _pose_text(T) -> str:
-    e = np.rad2deg(euler_xyz_fixed(T[:3, :3]))
-    p = T[:3, 3]
-    rows = "\n".join("  [" + "  ".join(f"{v: .6f}" for v in row) + "]" for row in T[:3, :3])
-    return (f"position_mm: [{p[0]:.6f}, {p[1]:.6f}, {p[2]:.6f}]\n"
-            f"euler_xyz_fixed_deg: [{e[0]:.6f}, {e[1]:.6f}, {e[2]:.6f}]\nrotation:\n{rows}")
-
-
 def cmd_show(args) -> int:
-    robot = robot_from_args(args)
-    print(f"robot: {robot.name}")
-    if robot.description:
-        print(robot.description.strip())
-    joints = pd.DataFrame({
-        "joint": [j.name for j in robot.joints],
-        "type": [j.kind for j in robot.joints],
-        "axis": [np.array2string(j.axis, precision=4, suppress_small=True) for j in robot.joints],
-        "point_mm": [np.array2string(p, precision=3, suppress_small=True) for p in robot.joint_points_mm],
-        "unit": [j.unit for j in robot.joints],
-        "lower": robot.q_to_interface(robot.lower),
-        "upper": robot.q_to_interface(robot.upper),
-        "nominal": robot.q_to_interface(robot.q_nominal),
-    })
-    print("\njoints:")
-    print(joints.to_string(index=False))
-    links = pd.DataFrame({
-        "link": [lk.name for lk in robot.links],
-        "length_mm": [lk.length_mm for lk in robot.links],
-        "vector_mm": [np.array2string(lk.vector_mm, precision=3, suppress_small=True) for lk in robot.links],
-    })
-    print("\nlinks:")
-    print(links.to_string(index=False))
-    sets = "".join(f", {k} ({len(v)} pose{'s' if len(v) != 1 else ''})" for k, v in robot.pose_sets.items())
-    print(f"\npose sets: nominal (1 pose){sets}")
-    if robot.sigma_sets:
-        print(f"sigma sets: {', '.join(robot.sigma_sets)}")
-    print("\nnominal pose:")
-    print(_pose_text(robot.fk(robot.q_nominal)))
+    from tolalloc.workflows.robot_info import robot_text
+
+    with trusting(args):
+        print(robot_text(robot_from_args(args)))
     return 0
 
 
 def cmd_fk(args) -> int:
+    from tolalloc.workflows.robot_info import pose_dict, pose_text
+
     robot = robot_from_args(args)
-    q = parse_q(args.q, robot)
-    T = robot.fk(q)
+    with trusting(args):
+        pose = pose_dict(robot, parse_q(args.q))
     if args.json:
-        # rounded to 1e-9 deg / mm so that "15" comes back as 15.0, not 14.999999999999998
-        print(json.dumps({"robot": robot.name, "q_deg_mm": np.round(robot.q_to_interface(q), 9), "position_mm": T[:3, 3],
-                          "rotation": T[:3, :3]}, default=json_default))
+        print(json.dumps(pose, default=json_default))
     else:
-        print(_pose_text(T))
+        print(pose_text(pose))
     return 0

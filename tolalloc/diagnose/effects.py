@@ -104,13 +104,13 @@ class EffectBasis:
 
 def target_points(robot: Robot, q: np.ndarray, t_mm: np.ndarray) -> np.ndarray:
     """Nominal target position ``T(q) [t; 1]`` in the base frame [mm], shape (P, 3)."""
-    T = robot.fk(q)
+    T = robot.fk_internal(q)
     return T[:, :3, 3] + T[:, :3, :3] @ np.asarray(t_mm, dtype=float)
 
 
 def point_jacobian(robot: Robot, q: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Velocity of the point ``p`` (P, 3) per unit joint rate, ``v_j + omega_j x p``, shape (P, 3, n)."""
-    Js = robot.space_jacobian(q)
+    Js = robot.space_jacobian_internal(q)
     return Js[:, 3:, :] + np.cross(Js[:, :3, :], p[:, :, None], axis=1)
 
 
@@ -189,7 +189,7 @@ def _overhang(robot: Robot, q, j, k):
     P = poe_prefix(robot.screws, q)
     g = np.asarray(robot.gravity, dtype=float)
     start = _point_at(P[:, j], robot.joint_points_mm[j])
-    end = _point_at(P[:, k], robot.joint_points_mm[k]) if k is not None else robot.fk(q)[:, :3, 3]
+    end = _point_at(P[:, k], robot.joint_points_mm[k]) if k is not None else robot.fk_internal(q)[:, :3, 3]
     L = end - start
     Lh = L - (L @ g)[:, None] * g
     h = np.linalg.norm(Lh, axis=1)

@@ -110,7 +110,7 @@ def identifiability(fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identifiabi
     P = len(q)
     J = model.jacobian(q)
     Jp, Jw = J[:, :3, :], J[:, 3:, :]
-    T = model.robot.fk(q)
+    T = model.robot.fk_internal(q)
     arm = T[:, :3, :3] @ fit.t_mm
     y = T[:, :3, 3] + arm
     Jg = (Jp + np.cross(Jw, arm[:, :, None], axis=1)).reshape(3 * P, -1)

@@ -27,7 +27,7 @@ MISFIT_MM = 25.0
 
 def _kabsch_rms(robot: Robot, q: np.ndarray, xyz: np.ndarray) -> float:
     """RMS [mm] of the rigid alignment of the nominal tool points at ``q`` (P, n) to ``xyz`` (P, 3)."""
-    pts = robot.fk(q)[:, :3, 3]
+    pts = robot.fk_internal(q)[:, :3, 3]
     R, p = kabsch(pts, xyz)
     return float(np.sqrt(np.mean(np.sum((pts @ R.T + p - xyz) ** 2, axis=1))))
 

@@ -2,5 +2,10 @@
 
 from tolalloc.montecarlo.run import McResult, run_mc, pose_errors
 from tolalloc.montecarlo.streaming import proportion_ci
+from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.paired import ESTIMATORS, estimate_probabilities, estimate_radii
+from tolalloc.montecarlo.importance import importance_probability
+from tolalloc.montecarlo.sobol import SobolResult, sobol_indices
 
-__all__ = ["McResult", "run_mc", "pose_errors", "proportion_ci"]
+__all__ = ["McResult", "run_mc", "pose_errors", "proportion_ci", "ProbabilityEstimate", "ESTIMATORS",
+           "estimate_probabilities", "estimate_radii", "importance_probability", "SobolResult", "sobol_indices"]

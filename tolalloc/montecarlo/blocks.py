@@ -55,7 +55,7 @@ class McSpec:
                 V = np.empty((len(self.model.params), 1))
                 mult = draw_rows(self.model, 1, np.random.default_rng(0), V)
                 progs = [chain.program(qi, mult) for qi in self.q]
-                feats = [ErrorFeatures(self.model.robot.fk(qi)) for qi in self.q]
+                feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
                 compiled = None
                 if self.engine == "numba" and NUMBA_AVAILABLE:  # a worker without numba: numpy
                     compiled = kernel_mod.compile_programs(progs, feats, chain.home)

@@ -89,7 +89,7 @@ def pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray, *, chain: 
         raise TolallocError(f"q: expected one pose of shape ({model.robot.n_joints},), got {q.shape}.")
     values = _check_values(model, values)
     chain = chain or FastChain(model)
-    return _errors_from_X(chain.pose(q, values), model.robot.fk(q))
+    return _errors_from_X(chain.pose(q, values), model.robot.fk_internal(q))
 
 
 def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) -> dict[str, np.ndarray]:
@@ -100,7 +100,7 @@ def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) ->
     screws, home, dq = model.perturbed_chain(values)
     T = fk_poe(screws, home, np.asarray(q, float) + dq)
     X = np.moveaxis(T[:, :3, :], 0, -1)
-    return _errors_from_X(X, model.robot.fk(q))
+    return _errors_from_X(X, model.robot.fk_internal(q))
 
 
 # ----------------------------------------------------------------- result
@@ -133,6 +133,9 @@ class McResult:
         Interval method (95 %).
     hist : McHistogram or None
         Fixed-range x-y, x-z, y-z histograms of ``p' - p`` over all samples (``hist_bins > 0``).
+    p_estimates, p_estimates_angle : dict float -> ProbabilityEstimate, or None
+        With ``estimator`` given: radius [mm] (angle [rad]) -> the estimate of ``P(|.| < r)`` by that estimator
+        (:mod:`tolalloc.montecarlo.paired`; the plain columns equal ``p_within``).
     """
 
     n: int
@@ -156,6 +159,8 @@ class McResult:
     angle_min_rad: np.ndarray = field(default=None, repr=False)
     ci: str = "wilson"
     hist: McHistogram | None = field(default=None, repr=False)
+    p_estimates: dict | None = field(default=None, repr=False)
+    p_estimates_angle: dict | None = field(default=None, repr=False)
 
     def to_frame(self) -> pd.DataFrame:
         """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
@@ -217,7 +222,8 @@ def _tasks(n: int, scheduler, chunk_size: int):
 
 def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_rad=(), chunk_size: int = 2**17,
            keep_samples: int = 0, ci: str = "wilson", n_jobs: int | None = None, scheduler=None,
-           progress: bool | None = None, hist_bins: int = 0, hist_range_mm=None, engine: str | None = None) -> McResult:
+           progress: bool | None = None, hist_bins: int = 0, hist_range_mm=None, engine: str | None = None,
+           estimator: str | None = None) -> McResult:
     """Nonlinear Monte Carlo of the tool-pose error at one or several poses (streamed, bounded memory).
 
     The same sampled robots (parameter values) are evaluated at every pose.
@@ -255,6 +261,8 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
         Per-block computation: the compiled kernel of :mod:`tolalloc.montecarlo.engines.numba_engine` (default when numba is
         installed and ``TOLALLOC_NUMBA`` is not ``0``) or numpy. Same random numbers; results agree to
         rounding (about 1e-13 relative).
+    estimator : {None, "auto", "plain", "paired", "importance"}
+        Also estimate every probability with this estimator (``McResult.p_estimates``, see :func:`_estimates`).
 
     Returns
     -------
@@ -262,6 +270,7 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     """
     q, n, radii, aradii = _checked_args(model, q, n, radii_mm, angle_radii_rad, ci)
     scheduler = check_scheduler(scheduler)
+    _check_estimator_arg(estimator)
     hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
     spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
     tasks = _tasks(n, scheduler, chunk_size)
@@ -292,7 +301,39 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     finally:
         if bar is not None:
             bar.close()
-    return _result(model, spec, moms, ext, kept, ci)
+    res = _result(model, spec, moms, ext, kept, ci)
+    if estimator is None or not (radii or aradii):
+        return res
+    from dataclasses import replace
+
+    return replace(res, **_estimates(model, q, n, int(seed), radii, aradii, estimator, scheduler, n_jobs))
+
+
+def _check_estimator_arg(estimator) -> None:
+    if estimator is not None:
+        from tolalloc.montecarlo.paired import check_estimator
+
+        check_estimator(estimator)
+
+
+def _estimates(model, q, n, seed, radii, aradii, estimator, scheduler, n_jobs) -> dict:
+    """``p_estimates`` and ``p_estimates_angle`` of :func:`run_mc` with ``estimator``.
+
+    Every ``P(|.| < r)`` of ``radii_mm`` / ``angle_radii_rad`` against the exact linear prediction: a second pass
+    over the same draws (:func:`~tolalloc.montecarlo.paired.estimate_radii`), plus per-pose draws for
+    ``importance`` (position radii; orientation as ``auto``).
+    """
+    from tolalloc.montecarlo.paired import estimate_radii
+
+    other = "auto" if estimator == "importance" else estimator
+    pos, ang = estimate_radii(model, q, n, seed, radii_mm=radii, angle_radii_rad=aradii, estimator=other,
+                              scheduler=scheduler, n_jobs=n_jobs)
+    if estimator == "importance":
+        from tolalloc.montecarlo.importance import importance_probability
+
+        pos = {r: importance_probability(model, q, n, seed, radius_mm=r, scheduler=scheduler, n_jobs=n_jobs)
+               for r in radii}
+    return {"p_estimates": pos, "p_estimates_angle": ang}
 
 
 def _result(model, spec, moms, ext, kept, ci) -> McResult:

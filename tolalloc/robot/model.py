@@ -21,97 +21,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import pandas as pd
 
 from tolalloc.exceptions import TolallocError, check_finite_array
+from tolalloc.units import check_joint_units
+from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
 
 __all__ = ["Link", "Joint", "Mass", "Robot"]
-
-REVOLUTE = "revolute"
-PRISMATIC = "prismatic"
-
-
-@dataclass(frozen=True, eq=False)
-class Link:
-    """A fixed translation of the chain at the zero configuration.
-
-    Attributes
-    ----------
-    name : str
-        Length-parameter name (``l1`` ...).
-    vector_mm : array, shape (3,)
-        Translation in the base frame at home [mm].
-    """
-
-    name: str
-    vector_mm: np.ndarray
-
-    @property
-    def length_mm(self) -> float:
-        """Nominal length [mm]."""
-        return float(np.linalg.norm(self.vector_mm))
-
-    @property
-    def direction(self) -> np.ndarray:
-        """Unit direction of the link (zero vector for a zero-length link), shape (3,)."""
-        n = self.length_mm
-        return self.vector_mm / n if n > 0 else np.zeros(3)
-
-
-@dataclass(frozen=True, eq=False)
-class Joint:
-    """A one-degree-of-freedom joint.
-
-    Attributes
-    ----------
-    name : str
-    kind : {"revolute", "prismatic"}
-    axis : array, shape (3,)
-        Unit axis in the base frame at home.
-    lower, upper : float
-        Joint limits [rad or mm].
-    nominal : float
-        Nominal joint value [rad or mm].
-    """
-
-    name: str
-    kind: str
-    axis: np.ndarray
-    lower: float = -np.pi
-    upper: float = np.pi
-    nominal: float = 0.0
-
-    @property
-    def is_revolute(self) -> bool:
-        return self.kind == REVOLUTE
-
-    @property
-    def unit(self) -> str:
-        """Interface unit of the joint value: ``deg`` or ``mm``."""
-        return "deg" if self.is_revolute else "mm"
-
-
-@dataclass(frozen=True, eq=False)
-class Mass:
-    """A point mass carried by the chain (used by the gravity models of the diagnosis).
-
-    Attributes
-    ----------
-    name : str
-        Label (usually the link it belongs to).
-    body : int
-        Number of joints between the base and the mass (0 = fixed to the base,
-        ``n`` = moves with the last joint).
-    mass_kg : float
-    com_mm : array, shape (3,)
-        Centre of mass in the base frame at home [mm].
-    """
-
-    name: str
-    body: int
-    mass_kg: float
-    com_mm: np.ndarray
-
 
 @dataclass(frozen=True, eq=False)
 class Robot:
@@ -136,14 +53,16 @@ class Robot:
         Named boxes of the working region, ``{name: (q_min (n,), q_max (n,))}`` [rad, mm].
     sigma_sets : dict of str -> dict
         Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
-
-    Derived (read-only)
-    -------------------
     joints, links : tuples of Joint, Link
-    screws : array, shape (n, 6)       space screw axes ``(omega, v)``
+        Derived (read-only): the chain's joints and links.
+    screws : array, shape (n, 6)
+        Derived (read-only): space screw axes ``(omega, v)``.
     joint_points_mm : array, shape (n, 3)
-    home : array, shape (4, 4)         ``M``
-    link_sites : array of int, shape (L,)  joints preceding each link
+        Derived (read-only): a point on each joint axis at home [mm].
+    home : array, shape (4, 4)
+        Derived (read-only): the home pose ``M``.
+    link_sites : array of int, shape (L,)
+        Derived (read-only): joints preceding each link.
     """
 
     name: str
@@ -293,6 +212,9 @@ class Robot:
         except (TypeError, ValueError):
             raise TolallocError(f"{name}: expected numbers ({units}), got {np.asarray(q, dtype=object).tolist()!r}.") from None
         q = check_finite_array(arr, name)
+        if interface:
+            check_joint_units(q, self.revolute_mask, self.q_to_interface(self.lower), self.q_to_interface(self.upper),
+                              name)
         qi = self.q_from_interface(q) if interface else q
         lo, hi = self.lower, self.upper
         bad = (qi < lo - 1e-12) | (qi > hi + 1e-12)
@@ -321,15 +243,146 @@ class Robot:
             raise TolallocError(f"pose set {pose_set!r} is not defined for robot {self.name!r}; known sets: {known}.")
         return np.array(self.pose_sets[pose_set])
 
+    # -------------------------------------------------------------- construction
+    @classmethod
+    def from_dh(cls, table, *, convention: str, name: str = "dh_robot", tool_offset_mm=(0.0, 0.0, 0.0),
+                tool_rpy_deg=(0.0, 0.0, 0.0), description: str = "") -> "Robot":
+        """A robot from a Denavit-Hartenberg table (standard or modified convention).
+
+        Parameters
+        ----------
+        table : DataFrame or list of dict
+            One row per joint with the columns of a DH CSV table: ``name``, ``type`` (optional: revolute or
+            prismatic), ``d_mm`` | ``d_m``, ``a_mm`` | ``a_m``, ``alpha_deg`` | ``alpha_rad``, and optionally
+            ``theta_offset_deg`` | ``theta_offset_rad``, ``lower_deg_mm``, ``upper_deg_mm``, ``nominal_deg_mm``.
+        convention : {"standard", "modified"}
+        name, description : str
+        tool_offset_mm : array-like, shape (3,)
+            Tool point in the last DH frame [mm].
+        tool_rpy_deg : array-like, shape (3,)
+            Tool orientation in the last DH frame, X-Y-Z fixed angles [deg].
+
+        Examples
+        --------
+        >>> import tolalloc
+        >>> rows = [{"name": "shoulder", "d_mm": 400, "a_mm": 0, "alpha_deg": 90},
+        ...         {"name": "elbow", "d_mm": 0, "a_mm": 600, "alpha_deg": 0}]
+        >>> arm = tolalloc.Robot.from_dh(rows, convention="standard", name="two_link")
+        >>> arm.fk([0, 0])[:3, 3]
+        array([600.,   0., 400.])
+        """
+        from tolalloc.robot.dh_rows import CSV_COLUMNS, parse_dh_rows, row_from_cells
+        from tolalloc.robot.lie import exp_so3
+        from tolalloc.units import check_reach
+
+        if convention not in ("standard", "modified"):
+            raise TolallocError(f"convention: expected 'standard' or 'modified', got {convention!r}.")
+        records = table.to_dict(orient="records") if isinstance(table, pd.DataFrame) else list(table)
+        if not records or not all(isinstance(r, dict) for r in records):
+            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint with columns "
+                                f"among {', '.join(CSV_COLUMNS)}, got {type(table).__name__}.")
+        cols = sorted({str(k) for r in records for k in r})
+        unknown = [c for c in cols if c not in CSV_COLUMNS]
+        if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):
+            raise TolallocError(f"table: columns {cols}: expected a 'name' column, an alpha_deg or alpha_rad column and "
+                                f"columns among {', '.join(CSV_COLUMNS)}" + (f"; unknown: {unknown}" if unknown else "") + ".")
+        rows = parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
+        chain, R_last = chain_from_dh(rows, convention)
+        off = np.asarray(tool_offset_mm, dtype=float)
+        rpy = np.deg2rad(np.asarray(tool_rpy_deg, dtype=float))
+        if off.shape != (3,) or rpy.shape != (3,) or not (np.all(np.isfinite(off)) and np.all(np.isfinite(rpy))):
+            raise TolallocError(f"tool_offset_mm / tool_rpy_deg: expected 3 finite numbers each, got {tool_offset_mm!r}, "
+                                f"{tool_rpy_deg!r}.")
+        R_tool = exp_so3([0, 0, rpy[2]]) @ exp_so3([0, rpy[1], 0]) @ exp_so3([rpy[0], 0, 0])
+        check_reach({e.name: e.length_mm for e in chain if isinstance(e, Link)}, "lengths", tiny_links=False)
+        return cls(name, tuple(chain), tool_offset_mm=R_last @ off, tool_rotation=R_last @ R_tool,
+                   description=description)
+
     # -------------------------------------------------------------- kinematics
-    def fk(self, q) -> np.ndarray:
-        """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) [rad, mm]."""
+    def fk(self, q_deg_mm) -> np.ndarray:
+        """End-effector pose ``T(q)`` at joint values in interface units.
+
+        Parameters
+        ----------
+        q_deg_mm : array-like, shape (n,) or (P, n)
+            Joint values [deg for revolute, mm for prismatic joints], inside the joint limits.
+
+        Returns
+        -------
+        array, shape (4, 4) or (P, 4, 4)
+            Homogeneous transform, position in mm.
+
+        Examples
+        --------
+        >>> import tolalloc
+        >>> robot = tolalloc.load_robot("tool_changer")
+        >>> robot.fk([0, 0, 0, 0, 0, 0])[:3, 3]      # the home pose (0, l3+l4+l5+l6, l1+l2) mm
+        array([   0., 1761.,  525.])
+        """
+        return self.fk_internal(self.check_q(q_deg_mm, "q_deg_mm", interface=True))
+
+    def space_jacobian(self, q_deg_mm) -> np.ndarray:
+        """Space Jacobian at joint values in interface units [deg / mm], shape (6, n) or (P, 6, n).
+
+        Rows ``(omega, v)``; columns per unit joint motion in internal units (per rad for revolute joints,
+        per mm for prismatic ones), ``v`` in mm.
+        """
+        return self.space_jacobian_internal(self.check_q(q_deg_mm, "q_deg_mm", interface=True))
+
+    def body_jacobian(self, q_deg_mm) -> np.ndarray:
+        """Body Jacobian at joint values in interface units [deg / mm], shape (6, n) or (P, 6, n) (per rad / mm)."""
+        return self.body_jacobian_internal(self.check_q(q_deg_mm, "q_deg_mm", interface=True))
+
+    def fk_internal(self, q) -> np.ndarray:
+        """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) in internal units [rad, mm]."""
         return fk_poe(self.screws, self.home, q)
 
-    def space_jacobian(self, q, *, engine: str | None = None) -> np.ndarray:
-        """Space Jacobian, shape (..., 6, n); ``engine`` as in :func:`space_jacobian`."""
+    def space_jacobian_internal(self, q, *, engine: str | None = None) -> np.ndarray:
+        """Space Jacobian, shape (..., 6, n), at ``q`` [rad, mm]; ``engine`` as in :func:`space_jacobian`."""
         return space_jacobian(self.screws, q, engine=engine)
 
-    def body_jacobian(self, q) -> np.ndarray:
-        """Body Jacobian, shape (..., 6, n)."""
+    def body_jacobian_internal(self, q) -> np.ndarray:
+        """Body Jacobian, shape (..., 6, n), at ``q`` [rad, mm]."""
         return body_jacobian(self.screws, self.home, q)
+
+    # ------------------------------------------------------------------ display
+    def joints_frame(self) -> pd.DataFrame:
+        """One row per joint: type, axis and point at home [mm], unit, limits and nominal value [deg / mm]."""
+        return pd.DataFrame({
+            "joint": [j.name for j in self.joints],
+            "type": [j.kind for j in self.joints],
+            "axis": [np.array2string(j.axis, precision=4, suppress_small=True) for j in self.joints],
+            "point_mm": [np.array2string(p, precision=3, suppress_small=True) for p in self.joint_points_mm],
+            "unit": [j.unit for j in self.joints],
+            "lower": self.q_to_interface(self.lower),
+            "upper": self.q_to_interface(self.upper),
+            "nominal": self.q_to_interface(self.q_nominal),
+        })
+
+    def links_frame(self) -> pd.DataFrame:
+        """One row per link: name, length [mm] and vector at home [mm]."""
+        return pd.DataFrame({
+            "link": [lk.name for lk in self.links],
+            "length_mm": [lk.length_mm for lk in self.links],
+            "vector_mm": [np.array2string(lk.vector_mm, precision=3, suppress_small=True) for lk in self.links],
+        })
+
+    def _summary_line(self) -> str:
+        kinds = "".join("R" if j.is_revolute else "P" for j in self.joints)
+        reach = float(np.linalg.norm(self.home[:3, 3]))
+        return f"{self.n_joints} joints ({kinds}), {len(self.links)} links, home tool point {reach:.0f} mm from the base"
+
+    def __repr__(self) -> str:
+        sets = ", ".join(f"{k} ({len(v)})" for k, v in self.pose_sets.items()) or "none"
+        extra = [f"pose sets: {sets}"]
+        if self.regions:
+            extra.append(f"regions: {', '.join(self.regions)}")
+        if self.sigma_sets:
+            extra.append(f"sigma sets: {', '.join(self.sigma_sets)}")
+        return f"<Robot {self.name!r}: {self._summary_line()}; " + "; ".join(extra) + ">"
+
+    def _repr_html_(self) -> str:
+        import html
+
+        return (f"<div><strong>Robot {html.escape(self.name)}</strong>: {html.escape(self._summary_line())}</div>"
+                + self.joints_frame().to_html(index=False, border=0))

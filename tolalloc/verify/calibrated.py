@@ -37,6 +37,8 @@ from tolalloc.calibration.split import ErrorSplit
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
+from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.paired import PairedCounts, check_estimator, control_fallback_reason, estimate_from_counts
 from tolalloc.montecarlo.streaming import proportion_ci
 from tolalloc.robot.lie import exp_so3
 
@@ -73,6 +75,10 @@ class CalibrationCheck:
         Fits that left the fixed (nominal) Jacobian for the Jacobian at the estimate (see :func:`_fit`).
     n_converged : int
         Fits whose last normalised step is below the step tolerance.
+    estimate : ProbabilityEstimate or None
+        With ``estimator`` ``paired`` / ``auto``: the paired estimate, whose control is the *linearised pipeline*
+        (linear measurements, the linear MAP fit, linear use; exact Gaussian P in ``estimate.p_linear``), its
+        discordant counts and variance reduction; ``p_mc``/``ci_*`` are then its estimate and interval.
     """
 
     q: np.ndarray
@@ -88,6 +94,12 @@ class CalibrationCheck:
     fit_cpu_s: float
     n_exact: int = 0
     n_converged: int = 0
+    estimate: ProbabilityEstimate | None = None
+
+    @property
+    def estimator(self) -> np.ndarray:
+        """Estimator that ran at each pose (``plain`` or ``paired``), shape (P,)."""
+        return np.full(len(self.q), "plain") if self.estimate is None else self.estimate.estimator
 
     @property
     def converged(self) -> bool:
@@ -105,8 +117,12 @@ class CalibrationCheck:
         return (self.p_linear >= self.ci_low) & (self.p_linear <= self.ci_high)
 
     def to_frame(self) -> pd.DataFrame:
-        return pd.DataFrame({"pose": np.arange(1, len(self.q) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
-                             "ci_low": self.ci_low, "ci_high": self.ci_high, "agree": self.agree})
+        cols = {"pose": np.arange(1, len(self.q) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
+                "ci_low": self.ci_low, "ci_high": self.ci_high, "agree": self.agree, "estimator": self.estimator}
+        if self.estimate is not None:
+            cols.update({"p_linear_pipeline": self.estimate.p_linear, "n_discordant": self.estimate.n_discordant,
+                         "variance_reduction": self.estimate.variance_reduction})
+        return pd.DataFrame(cols)
 
     def fits_note(self) -> str:
         """Convergence of the fits: iteration counts, and how many robots did not converge."""
@@ -241,8 +257,71 @@ def _fit(chains: _PlanChains, model, E, prior_sd, plan: CalibrationPlan, y: np.n
     return x, steps, iters, exact
 
 
+def _linear_pipeline(model, E, prior_sd, plan: CalibrationPlan, q_eval, var_sys, var_rnd):
+    """The linearised calibration story, the paired estimator's control.
+
+    Linear readings ``y = J0 truth + sum_m J_m extra_m + noise`` (``J0`` the fit's nominal Jacobian: error
+    columns ``E`` and, with registration, the nuisance columns), the linear MAP ``x_hat = H y`` (the fixed point
+    of :func:`_fit` on linear residuals, reached in one step), and the linear compensated error at the working
+    poses ``err = J_p (s + fresh_p) - J_p,E x_hat_E``. Every input is an independent Gaussian block, so ``err`` is
+    Gaussian with the covariance returned here (systematic parts, registration, random parts at the measurements,
+    tracker noise, fresh random parts).
+
+    Returns
+    -------
+    H : array, shape (D, 3M)
+    J0 : array, shape (3M, D)
+    Jm : array, shape (M, 3, K)
+    Jp : array, shape (P, 3, K)
+    cov : array, shape (P, 3, 3) [mm^2]
+    """
+    nN = 9 if plan.registration else 0
+    D = len(E) + nN
+    scale = np.r_[prior_sd, np.full(3, 1e-3), np.full(6, 1.0)][:D]
+    Jm = model.jacobian(plan.q)[:, :3, :]
+    J0 = Jm[:, :, E]
+    if nN:
+        J0 = np.concatenate([J0, nuisance_columns(model, plan.q, 3)], axis=2)
+    J0 = J0.reshape(-1, D)
+    Jn = J0 * scale / plan.noise_mm
+    A = Jn.T @ Jn + np.diag(np.r_[np.ones(len(E)), np.zeros(nN)])
+    A += 1e-12 * np.trace(A) / D * np.eye(D)  # as in _fit
+    H = (scale[:, None] * np.linalg.solve(A, Jn.T)) / plan.noise_mm
+    Jp = model.jacobian(np.atleast_2d(q_eval))[:, :3, :]
+    G = Jp[:, :, E] @ H[: len(E)]  # (P, 3, 3M)
+    M = len(plan.q)
+    cs = Jp - G @ Jm.reshape(3 * M, -1)
+    cov = np.einsum("pik,k,pjk->pij", cs, var_sys, cs)
+    if nN:
+        sr, st, so = REGISTRATION_SIGMA
+        cr = -G @ J0[:, len(E):]
+        cov += np.einsum("pik,k,pjk->pij", cr, np.repeat([sr**2, st**2, so**2], 3), cr)
+    ce = np.einsum("pimj,mjk->pimk", G.reshape(len(Jp), 3, M, 3), Jm)
+    cov += np.einsum("pimk,k,pjmk->pij", ce, var_rnd, ce)
+    cov += plan.noise_mm**2 * G @ np.swapaxes(G, 1, 2)
+    cov += np.einsum("pik,k,pjk->pij", Jp, var_rnd, Jp)
+    return H, J0, Jm, Jp, 0.5 * (cov + np.swapaxes(cov, 1, 2))
+
+
+def _paired(err, draws, lin, E, radius_mm, level, seed, estimator, reason):
+    """Paired estimate of ``P(|err| < r)`` per pose with the linearised pipeline on the same draws as control."""
+    s, truth, extra, noise, fresh = draws
+    H, J0, Jm, Jp, cov = lin
+    B = len(s)
+    y = truth @ J0.T + np.einsum("mik,bmk->bmi", Jm, extra).reshape(B, -1) + noise.reshape(B, -1)
+    x_hat = y @ H.T
+    e_lin = (np.einsum("pik,bk->bpi", Jp, s) + np.einsum("pik,bpk->bpi", Jp, fresh)
+             - np.einsum("pie,be->bpi", Jp[:, :, E], x_hat[:, : len(E)]))
+    nl, li = err < radius_mm, np.linalg.norm(e_lin, axis=-1) < radius_mm
+    counts = np.stack([nl.sum(0), li.sum(0), (nl & li).sum(0)], axis=1)[:, None, :].astype(np.int64)
+    dev = np.abs(err - np.linalg.norm(e_lin, axis=-1)).max(axis=0)
+    pc = PairedCounts(B, int(seed), counts, dev)
+    return estimate_from_counts(pc, 0, radius_mm, p_within_radius(cov, radius_mm), estimator=estimator,
+                                model_reason=reason, level=level)
+
+
 def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_mm: float, *, n_robots: int = 400,
-                       seed: int = 0, level: float = 0.95) -> CalibrationCheck:
+                       seed: int = 0, level: float = 0.95, estimator: str = "plain") -> CalibrationCheck:
     """End-to-end Monte Carlo of manufacture -> calibration -> compensated use (see the module docstring).
 
     Parameters
@@ -255,8 +334,19 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     radius_mm : float
     n_robots : int
         Simulated robots (= trials per pose).
+    estimator : {"plain", "auto", "paired"}
+        ``plain``: Wilson intervals of the nonlinear hits. ``paired``: the linearised pipeline on the same draws
+        as control (:func:`_linear_pipeline`; its exact Gaussian P plus the mean difference of the two indicators,
+        Tango's interval); ``auto``: paired for Gaussian parameters, plain elsewhere or where the control is poor.
+        The control's P is the linearised *simulated* pipeline's, which differs from ``p_linear`` (the posterior's
+        prediction) where the random parts make the simulated MAP fit differ from the posterior's weighting.
     """
+    check_estimator(estimator, ("auto", "plain", "paired"))
     model = split.model
+    reason = control_fallback_reason(model)
+    if estimator == "paired" and reason:
+        raise TolallocError(f"estimator: 'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
+                            "estimator='auto' or 'plain'.")
     if plan.measurement != "position" or plan.estimate is not None:
         raise TolallocError("verify_calibration: expected a position plan estimating all systematic parameters "
                             "(measurement = position, estimate = all).")
@@ -280,8 +370,10 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     not_est = np.setdiff1d(np.arange(K), E)
     extra = extra + s[:, None, :] * np.isin(np.arange(K), not_est)  # systematic parts not estimated stay in
     chains = _PlanChains(model, plan.q)
-    y = _measure(chains, truth, E, extra) + rng.normal(0, plan.noise_mm, (n_robots, M, 3))
-    est, steps, iters, exact = _fit(chains, model, E, np.sqrt(split.prior_var_of(E)), plan, y)
+    noise = rng.normal(0, plan.noise_mm, (n_robots, M, 3))
+    y = _measure(chains, truth, E, extra) + noise
+    prior_sd = np.sqrt(split.prior_var_of(E))
+    est, steps, iters, exact = _fit(chains, model, E, prior_sd, plan, y)
     fit_time, fit_cpu = time.perf_counter() - t0, time.process_time() - c0
     # use: fresh random parts at every working pose; the model predicts with the estimated systematic parts
     hat = np.zeros((n_robots, K))
@@ -291,9 +383,15 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     p_true, _ = use.tool(s, fresh)
     p_hat, _ = use.tool(hat)
     err = np.linalg.norm(p_true - p_hat, axis=-1)  # (B, P)
-    k = np.sum(err < radius_mm, axis=0)
-    ci = proportion_ci(k, n_robots, "wilson", 1 - (1 - level) / P)
+    lvl = 1 - (1 - level) / P
     p_lin = p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm)
+    pe = None
+    if estimator == "plain":
+        ci = proportion_ci(np.sum(err < radius_mm, axis=0), n_robots, "wilson", lvl)
+    else:
+        lin = _linear_pipeline(model, E, prior_sd, plan, q_eval, sys_model.sigma**2, split.random_sigma**2)
+        pe = _paired(err, (s, truth, extra, noise, fresh), lin, E, radius_mm, lvl, seed, estimator, reason)
+        ci = np.stack([pe.p_hat, pe.ci_low, pe.ci_high], axis=1)
     return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots,
                             float(steps.max()), n_robots / fit_time, iters, fit_cpu, int(exact.sum()),
-                            int(np.sum(steps < _STEP_TOL)))
+                            int(np.sum(steps < _STEP_TOL)), pe)

@@ -2,7 +2,8 @@
 
 After a design is verified, every pose whose 95 % interval does not lie wholly at or above ``p`` (not
 *demonstrated*) gets a new target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the
-nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (never below its
+nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's:
+paired and importance-sampling estimates resolve the nonlinearity itself, so the margin shrinks to it; never below its
 previous target). The allocation is solved again with these per-pose targets
 (:func:`tolalloc.allocate.problem.build_problem` ``target=``) and re-verified against ``p`` itself (same seed,
 same poses), at most ``max_rounds`` times; then the loop stops and says so.
@@ -73,7 +74,7 @@ class Correction:
         poses = ", ".join(f"{i + 1} ({self.targets[i]:.5f})" for i in self.tightened) or "none"
         head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
                 f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
-                f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.2f}%)")
+                f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.3g}%)")
         return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
 
     def to_dict(self) -> dict:
@@ -86,17 +87,22 @@ class Correction:
                 "cost_of_correction": self.cost_of_correction, "premium_pct": self.premium_pct,
                 "costs_per_round": [float(c) for c in self.costs],
                 "verdict_before": self.before.verdict, "verdicts_before": self.before.verdicts.tolist(),
-                "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "message": self.message()}
+                "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "estimator": [str(e) for e in v.estimator],
+                "message": self.message()}
 
 
 def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
     """Per-pose targets for the next round, shape (P,).
 
     ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses not demonstrated (lower bound < p);
-    unchanged elsewhere. ``se = sqrt(P_hat (1 - P_hat) / n)``.
+    unchanged elsewhere. ``se`` is the standard error implied by the pose's 95 % interval (half its width over
+    1.96): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or importance-sampling
+    one otherwise, so the margin is what the estimator can resolve, not what plain sampling could.
     """
+    from tolalloc.montecarlo.intervals import z_of_level
+
     targets = np.asarray(targets, float)
-    se = np.sqrt(np.maximum(ver.p_mc * (1 - ver.p_mc), 1e-12) / ver.n)
+    se = np.maximum((ver.ci_high - ver.ci_low) / (2 * z_of_level(0.95)), 1e-12)
     need = ver.prob + np.maximum(0.0, ver.p_linear - ver.p_mc) + k_se * se
     short = ver.ci_low < ver.prob
     return np.where(short, np.maximum(targets, need), targets)
@@ -105,7 +111,7 @@ def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
 def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0,
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
                    angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
-                   **problem_kw) -> Correction:
+                   estimator: str = "auto", standard: bool = False, **problem_kw) -> Correction:
     """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten those poses and re-solve.
 
     Parameters
@@ -131,24 +137,36 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         Where the Monte Carlo runs (never changes the numbers).
     keep_samples : int
         Position errors kept at the worst linear pose of each re-verification (for figures).
+    estimator : {"auto", "plain", "paired", "importance"}
+        Estimator of every verification (:func:`~tolalloc.verify.designs.verify_design`); with ``paired`` or
+        ``importance`` the targets carry the estimator's own (much smaller) standard error.
+    standard : bool
+        Verify (and cost) each round's standard design, the one that will be built (needs ``snap=True``), instead of
+        its continuous design.
     problem_kw
         The requirement and costs, as :func:`tolalloc.allocate.problem.build_problem` (``radius_mm``, ``prob``,
         ``costs``, ``angle_radius_deg``, ``angle_prob``).
     """
     from tolalloc.allocate.solve import allocate
+    from tolalloc.montecarlo.paired import check_estimator
+
+    check_estimator(estimator)
 
     def solve(target=None):
         return allocate(build_problem(model, q, target=target, **problem_kw), solver=solver, snap=snap,
                         angle_step_deg=angle_step_deg)
 
+    def built(res):
+        return res.standard if standard and res.standard is not None else res.design
+
     def check(res):  # against p itself (the problem's prob), with the design's own criterion
-        return verify_design(res.problem, res.design, n_mc=n_mc, seed=seed, keep_samples=keep_samples,
-                             scheduler=scheduler)
+        return verify_design(res.problem, built(res), n_mc=n_mc, seed=seed, keep_samples=keep_samples,
+                             scheduler=scheduler, estimator=estimator)
 
     res = result if result is not None else solve()
     ver = verification if verification is not None else check(res)
     before, targets = ver, np.full(len(np.atleast_2d(q)), ver.prob)
-    costs, rounds, reason = [float(res.design.cost)], 0, ""
+    costs, rounds, reason = [float(built(res).cost)], 0, ""
     while ver.verdict != "demonstrated":
         if rounds >= max_rounds:
             reason = f"round limit ({max_rounds}) reached"
@@ -161,10 +179,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
             reason = "no pose short of p can be tightened (orientation requirement failing?)"
             break
         nxt = solve(new)
-        if not nxt.design.ok or nxt.status != "optimal":
-            reason = f"the tightened problem has no design ({nxt.status}: {nxt.message})"
+        if not built(nxt).ok or nxt.status != "optimal":
+            reason = f"the tightened problem has no design ({nxt.status}: {built(nxt).message or nxt.message})"
             break
         res, targets, rounds = nxt, new, rounds + 1
-        costs.append(float(res.design.cost))
+        costs.append(float(built(res).cost))
         ver = check(res)
     return Correction(res, ver, before, rounds, targets, tuple(costs), ver.verdict != "demonstrated", reason)

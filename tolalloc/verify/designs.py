@@ -1,8 +1,11 @@
 """Nonlinear Monte Carlo verification of an allocated design at every pose.
 
 The design's error model (``sigma = t / z``) is sampled and evaluated with the exact perturbed
-kinematics (:func:`tolalloc.montecarlo.run.run_mc`); ``P(|dP| < r)`` is estimated at every pose with a
-95 % Wilson interval and set beside the linear (Gaussian) prediction. Criteria (issue 5):
+kinematics; ``P(|dP| < r)`` is estimated at every pose with a 95 % interval and set beside the linear
+(Gaussian) prediction. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
+one -- the exact linear P plus the mean difference of the nonlinear and linear indicators on the same draws,
+Tango's interval -- where the parameters are Gaussian, plain Monte Carlo (Wilson) elsewhere, importance
+sampling where the tail is too thin for the sample size. Criteria (issue 5):
 
 * a pose is **demonstrated** when the whole interval is at or above ``p`` (lower bound ``>= p``);
 * it is **consistent** when the interval reaches ``p`` (upper bound ``>= p``) but its lower bound is below;
@@ -25,11 +28,14 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.linear.covariance import variance_share
+from tolalloc.montecarlo.intervals import z_of_level
+from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
 
-__all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict"]
+__all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict", "check_resolvable"]
 
 
 def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
@@ -78,6 +84,9 @@ class Verification:
         The pose of ``samples_mm``: the lowest linear prediction.
     angle : dict or None
         Orientation check (same keys as arrays) when the problem has an orientation requirement.
+    estimate : ProbabilityEstimate or None
+        The position estimate behind ``p_mc`` / ``ci_*``: estimator per pose, discordant counts, variance
+        reduction, plain estimate of the same draws, fallback reasons (:mod:`tolalloc.montecarlo.paired`).
     """
 
     criterion: str
@@ -95,6 +104,44 @@ class Verification:
     samples_mm: np.ndarray | None = field(default=None, repr=False)
     samples_pose: int = 0
     angle: dict | None = None
+    estimate: ProbabilityEstimate | None = field(default=None, repr=False)
+
+    @property
+    def estimator(self) -> np.ndarray:
+        """Estimator that ran at each pose (``plain``, ``paired`` or ``importance``), shape (P,)."""
+        return np.full(len(self.p_mc), "plain") if self.estimate is None else self.estimate.estimator
+
+    @property
+    def n_discordant(self) -> np.ndarray:
+        """Samples on which the nonlinear chain and the linear map disagree, shape (P,) (effective counts for
+        importance sampling; 0 where plain Monte Carlo ran)."""
+        if self.estimate is None:
+            return np.zeros(len(self.p_mc))
+        return np.where(self.estimator == "plain", 0.0, self.estimate.n_discordant)
+
+    @property
+    def variance_reduction(self) -> np.ndarray:
+        """Variance of plain Monte Carlo over the estimator's at the same sample size, shape (P,) (1: plain)."""
+        return np.ones(len(self.p_mc)) if self.estimate is None else self.estimate.variance_reduction
+
+    @property
+    def fallback_reason(self) -> str:
+        """Why plain Monte Carlo ran where a paired estimator was requested ("" if it did not)."""
+        return "" if self.estimate is None else "; ".join(sorted({f for f in self.estimate.fallback if f}))
+
+    def estimator_summary(self) -> dict:
+        """JSON-ready estimator block for summary.json's ``verification`` (per-pose lists, poses in order)."""
+        vr = [float(x) if np.isfinite(x) else None for x in self.variance_reduction]
+        return {"estimator_requested": "plain" if self.estimate is None else self.estimate.requested,
+                "estimator": [str(e) for e in self.estimator], "n_discordant": [float(x) for x in self.n_discordant],
+                "variance_reduction": vr, "fallback_reason": self.fallback_reason,
+                "estimator_message": self.estimator_message()}
+
+    def estimator_message(self) -> str:
+        """One line: the estimator(s), discordant samples, variance reduction, fallback reason."""
+        if self.estimate is None:
+            return "estimator: plain"
+        return self.estimate.message()
 
     @property
     def ok(self) -> bool:
@@ -145,28 +192,82 @@ class Verification:
             cols.update({"p_linear_angle": nan if self.angle["p_linear"] is None else self.angle["p_linear"],
                          "p_mc_angle": self.angle["p_mc"], "ci_low_angle": self.angle["ci_low"],
                          "ci_high_angle": self.angle["ci_high"]})
-        cols.update({"n": self.n, "passed": self.passed, "verdict": self.verdicts, "reason": list(self.reason)})
+        cols.update({"n": self.n, "estimator": self.estimator, "n_discordant": self.n_discordant,
+                     "variance_reduction": self.variance_reduction, "passed": self.passed, "verdict": self.verdicts,
+                     "reason": list(self.reason)})
         return pd.DataFrame(cols)
 
 
-def _run(model, q, n, seed, radius, angle, keep, scheduler=None):
-    from tolalloc.montecarlo.run import run_mc
+def resolvable_n(prob: float) -> int:
+    """Smallest sample size whose plain (or zero-discordance paired) 95 % interval can lie above ``prob``."""
+    return int(np.ceil(z_of_level(0.95) ** 2 * prob / (1.0 - prob)))
 
-    res = run_mc(model, q, int(n), seed, radii_mm=(radius,), angle_radii_rad=() if angle is None else (angle,),
-                 keep_samples=keep, scheduler=scheduler)
-    pw = np.asarray(res.p_within[float(radius)] if float(radius) in res.p_within else next(iter(res.p_within.values())))
-    pa = None
-    if angle is not None:
-        pa = np.asarray(next(iter(res.p_within_angle.values())))
-    s = None
-    if keep and res.samples:
-        s = np.asarray(res.samples.get("dp_mm"))[:keep]
-    return pw, pa, s
+
+def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc") -> None:
+    """Refuse a sample size that cannot resolve the tail ``1 - prob`` with the estimator that would run.
+
+    Plain Monte Carlo with no failure at all has a lower 95 % bound ``n / (n + z^2)``: below ``p`` unless
+    ``n >= z^2 p / (1 - p)``. The paired interval with no discordant sample is ``+-z^2 / (n + z^2)``: wider than
+    the whole tail unless ``n >= z^2 p / (1 - p)`` too. Importance sampling is not limited this way.
+    """
+    if estimator == "importance":
+        return
+    need = resolvable_n(prob)
+    if n >= need:
+        return
+    gauss = not control_fallback_reason(model)
+    what = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
+    alt = (" or `estimator` importance (importance sampling of the paired difference)" if gauss else
+           " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)")
+    raise ArgumentError(name, f"{n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {what}: "
+                        f"even with no miss the 95% interval reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
+
+
+def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator):
+    """Position (and orientation) estimates at poses ``q`` by the requested estimator."""
+    from tolalloc.montecarlo.importance import importance_probability
+    from tolalloc.montecarlo.paired import estimate_probabilities
+
+    other = "auto" if estimator == "importance" else estimator
+    est = estimate_probabilities(model, q, int(n), seed, radius_mm=radius, angle_radius_rad=angle, estimator=other,
+                                 keep_samples=keep, scheduler=scheduler)
+    if estimator == "importance":
+        from dataclasses import replace
+
+        kept = est["position"].details.get("kept_mm")
+        isr = importance_probability(model, q, int(n), seed, radius_mm=radius, scheduler=scheduler)
+        est["position"] = replace(isr, details={**isr.details, "kept_mm": kept})
+    return est
+
+
+def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
+    """Re-estimate the poses ``redo`` whose certified interval straddles ``p`` with more samples.
+
+    Plain and paired runs are pooled with ``n_max - n_mc`` fresh samples (seed + 1); ``auto`` on a Gaussian model
+    switches those poses to importance sampling with ``n_max`` samples (its interval is far narrower in the tail).
+    """
+    from tolalloc.montecarlo.importance import importance_probability
+    from tolalloc.montecarlo.paired import PairedCounts, estimate_from_counts, paired_counts
+
+    q, r = problem.q[redo], problem.radius_mm
+    if estimator == "importance" or (estimator == "auto" and not control_fallback_reason(model)):
+        return est.with_rows(redo, importance_probability(model, q, n_max, seed + 1, radius_mm=r, scheduler=scheduler))
+    extra = n_max - int(n_mc)
+    pc = paired_counts(model, q, extra, seed + 1, radii_mm=(r,), scheduler=scheduler)
+    first = est.take(redo)
+    nl = np.rint(first.p_plain * first.n)
+    lin_in = nl - first.n_nonlinear_only + first.n_linear_only
+    both = nl - first.n_nonlinear_only
+    counts = pc.counts + np.stack([nl, lin_in, both], axis=1)[:, None, :].astype(np.int64)
+    pooled = PairedCounts(first.n + extra, pc.seed, counts, pc.max_deviation_mm)
+    new = estimate_from_counts(pooled, 0, r, first.p_linear, estimator=est.requested if est.requested != "importance"
+                               else "auto", model_reason=control_fallback_reason(model))
+    return est.with_rows(redo, new)
 
 
 def verify_design(problem: AllocationProblem, design: Design, *, criterion: str | None = None, n_mc: int = 10**6,
                   n_max: int | None = None, seed: int = 0, keep_samples: int = 4000,
-                  nongauss_share: float = 0.05, scheduler=None) -> Verification:
+                  nongauss_share: float = 0.05, scheduler=None, estimator: str = "auto") -> Verification:
     """Verify a design by nonlinear Monte Carlo at every pose of ``problem``.
 
     Parameters
@@ -180,8 +281,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     n_mc : int
         Samples per pose (the same sampled robots at every pose).
     n_max : int, optional
-        Largest pooled sample size for poses whose interval straddles ``p`` (certified criterion);
-        default ``4 n_mc``.
+        Largest sample size for poses whose interval straddles ``p`` (certified criterion); default ``4 n_mc``.
     seed : int
     keep_samples : int
         Position errors kept at the worst pose for figures.
@@ -189,9 +289,15 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         Variance share of non-normal parameters above which a failure is attributed to them.
     scheduler : str or dask.distributed.Client, optional
         Where the Monte Carlo runs (see :func:`tolalloc.montecarlo.parallel.ordered_map`); never changes the numbers.
+    estimator : {"auto", "plain", "paired", "importance"}
+        How ``P(|dP| < r)`` is estimated (:mod:`tolalloc.montecarlo.paired`): ``paired`` is the exact linear P plus
+        the mean difference of the nonlinear and linear indicators on the same draws; ``importance`` the same
+        with importance sampling (position requirement; the orientation one is estimated as ``auto``); ``auto``
+        is paired where the linear map is an exact control (Gaussian parameters), plain elsewhere (the reason is
+        in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``
+        and wherever ``n_mc`` is too small for the paired interval to resolve the tail ``1 - p``
+        (:func:`resolvable_n`); a tail that plain sampling cannot resolve is refused with the samples needed.
     """
-    from tolalloc.montecarlo.run import proportion_ci
-
     if design.t is None:
         raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
     if design.status == NOT_CONVERGED:
@@ -203,6 +309,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         n_ok = False
     if not n_ok:
         raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
+    check_estimator(estimator)
     crit = criterion or ("certified" if design.solver.certified else "exact")
     if crit not in ("certified", "exact"):
         raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
@@ -210,40 +317,42 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     model = problem.model_for(design.t)
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
+    n_res = n_max if crit == "certified" else int(n_mc)
+    if estimator == "auto" and not control_fallback_reason(model) and n_res < resolvable_n(p):
+        estimator = "importance"  # the paired interval could not resolve this tail with n samples
+    check_resolvable(model, p, n_res, estimator, "n_max" if crit == "certified" and n_max > n_mc else "n_mc")
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     P = problem.n_poses
-    pw, pa, samples = _run(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler)
+    est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator)
     inv = np.argsort(order)
-    pw, pa = pw[inv], None if pa is None else pa[inv]
-    n = np.full(P, int(n_mc))
-    k = np.rint(pw[:, 0] * n_mc)
+    pos = est["position"].take(inv)
+    samples = pos.details.get("kept_mm")
+    pa = None if "orientation" not in est else est["orientation"].take(inv)
 
     def passes(lo, hi):
         return lo >= p if crit == "certified" else hi >= p
 
-    # more samples where a certified interval straddles p
-    if crit == "certified" and n_max > n_mc:
-        redo = np.flatnonzero((pw[:, 1] < p) & (pw[:, 2] >= p))
+    if crit == "certified" and n_max > n_mc:  # more samples where a certified interval straddles p
+        redo = np.flatnonzero((pos.ci_low < p) & (pos.ci_high >= p))
         if redo.size:
-            extra = n_max - int(n_mc)
-            pw2, _, _ = _run(model, problem.q[redo], extra, seed + 1, r, None, 0, scheduler)
-            k[redo] += np.rint(pw2[:, 0] * extra)
-            n[redo] += extra
-    est = np.stack([np.asarray(proportion_ci(k[i], int(n[i]))).reshape(3) for i in range(P)])  # (P, 3)
-    ok = passes(est[:, 1], est[:, 2])
+            pos = _redo(model, problem, pos, redo, n_mc, n_max, seed, scheduler, estimator)
+    est_arr = np.stack([pos.p_hat, pos.ci_low, pos.ci_high], axis=1)
+    n = np.asarray(pos.n, int)
+    ok = passes(est_arr[:, 1], est_arr[:, 2])
     angle = None
     if pa is not None:
         ap = problem.angle_prob
-        a_ok = pa[:, 1] >= ap if crit == "certified" else pa[:, 2] >= ap
-        angle = {"p_linear": design.p_linear.get("orientation"), "p_mc": pa[:, 0], "ci_low": pa[:, 1],
-                 "ci_high": pa[:, 2], "passed": a_ok}
+        a_ok = pa.ci_low >= ap if crit == "certified" else pa.ci_high >= ap
+        angle = {"p_linear": design.p_linear.get("orientation"), "p_mc": pa.p_hat, "ci_low": pa.ci_low,
+                 "ci_high": pa.ci_high, "passed": a_ok, "estimator": pa.estimator}
+        pa_arr = np.stack([pa.p_hat, pa.ci_low, pa.ci_high], axis=1)
     else:
-        a_ok = np.ones(P, bool)
-    reasons = _failure_reasons(problem, model, crit, p_lin, est, n, ok, a_ok, pa, nongauss_share)
-    worst = int(np.argmin(est[:, 0]))
-    return Verification(crit, r, p, n, int(seed), p_lin.copy(), est[:, 0], est[:, 1], est[:, 2], ok & a_ok,
-                        reasons, worst, samples, int(order[0]), angle)
+        a_ok, pa_arr = np.ones(P, bool), None
+    reasons = _failure_reasons(problem, model, crit, p_lin, est_arr, n, ok, a_ok, pa_arr, nongauss_share)
+    worst = int(np.argmin(est_arr[:, 0]))
+    return Verification(crit, r, p, n, int(seed), p_lin.copy(), est_arr[:, 0], est_arr[:, 1], est_arr[:, 2], ok & a_ok,
+                        reasons, worst, samples, int(order[0]), angle, pos)
 
 
 def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.ndarray, est: np.ndarray, n: np.ndarray,
@@ -271,7 +380,7 @@ def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.nda
                             f"P_hat = {est[i, 0]:.4f} vs linear-Gaussian {p_lin[i]:.4f}")
             elif est[i, 1] < p <= est[i, 2]:  # the interval contains p: too few samples to tell, whatever P_hat
                 bits.append(f"inconclusive: interval [{est[i, 1]:.4f}, {est[i, 2]:.4f}] contains {p:g} "
-                            f"at n = {n[i]}; raise --n-mc")
+                            f"at n = {n[i]}; raise n_mc (or use estimator='importance')")
             else:
                 bits.append(f"nonlinearity: exact kinematics give P_hat = {est[i, 0]:.4f} "
                             f"[{est[i, 1]:.4f}, {est[i, 2]:.4f}] vs linear {p_lin[i]:.4f}")

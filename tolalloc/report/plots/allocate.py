@@ -15,15 +15,20 @@ _KIND_COLORS = {"link_length": "#4c72b0", "joint_drive": "#55a868", "axis_deflec
                 "clearance_axial": "#8172b2", "clearance_radial": "#937860", "clearance_tilt": "#da8bc3"}
 
 
-def plot_budget(table, path=None, *, title: str = "", dpi: int = 100):
+def plot_budget(table, path=None, *, title: str = "", dpi: int = 100, axes=None):
     """Error budget of a design: tolerance per parameter and its variance share at the worst pose.
 
     Parameters
     ----------
     table : DataFrame
         :meth:`AllocationResult.to_frame` (columns parameter, kind, unit, tolerance, variance_share, at_limit).
+    axes : pair of matplotlib Axes, optional
+        Draw into these (tolerances, shares); default a new figure.
     """
-    fig, axes = plt.subplots(1, 2, figsize=(10, 0.28 * len(table) + 1.6), sharey=True)
+    if axes is None:
+        fig, axes = plt.subplots(1, 2, figsize=(10, 0.28 * len(table) + 1.6), sharey=True)
+    else:
+        fig = axes[0].figure
     y = np.arange(len(table))[::-1]
     colors = [_KIND_COLORS.get(k, "#777777") for k in table["kind"]]
     ax = axes[0]
@@ -45,20 +50,25 @@ def plot_budget(table, path=None, *, title: str = "", dpi: int = 100):
     return _finish(fig, path, dpi)
 
 
-def plot_cloud(verification, path=None, *, title: str = "", dpi: int = 100):
+def plot_cloud(verification, path=None, *, title: str = "", dpi: int = 100, axes=None):
     """Position errors of the kept Monte Carlo samples at one pose, three projections, with the r-circle.
 
     Parameters
     ----------
     verification : Verification
         With ``samples_mm`` (kept at ``samples_pose``).
+    axes : three matplotlib Axes, optional
+        Draw into these (x-y, x-z, y-z); default a new figure.
     """
     s = verification.samples_mm
     if s is None or len(s) == 0:
         raise ValueError("the verification kept no samples (keep_samples=0)")
     r = verification.radius_mm
     inside = np.linalg.norm(s, axis=1) < r
-    fig, axes = plt.subplots(1, 3, figsize=(11, 3.8))
+    if axes is None:
+        fig, axes = plt.subplots(1, 3, figsize=(11, 3.8))
+    else:
+        fig = axes[0].figure
     th = np.linspace(0, 2 * np.pi, 200)
     for ax, (i, j) in zip(axes, [(0, 1), (0, 2), (1, 2)]):
         ax.scatter(s[inside, i], s[inside, j], s=2, alpha=0.4, color="#4c72b0", label="|dP| < r")
@@ -75,11 +85,17 @@ def plot_cloud(verification, path=None, *, title: str = "", dpi: int = 100):
     return _finish(fig, path, dpi)
 
 
-def plot_pose_probabilities(verification, path=None, *, dpi: int = 100):
-    """Per pose: linear prediction, Monte Carlo estimate with its 95 % interval, and the required p."""
+def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None):
+    """Per pose: linear prediction, Monte Carlo estimate with its 95 % interval, and the required p.
+
+    ``ax``: draw into this matplotlib Axes (default a new figure).
+    """
     v = verification
     x = np.arange(1, len(v.p_mc) + 1)
-    fig, ax = plt.subplots(figsize=(7, 3.5))
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7, 3.5))
+    else:
+        fig = ax.figure
     ax.plot(x, v.p_linear, "o", mfc="none", label="linear (Gaussian)")
     ax.errorbar(x, v.p_mc, yerr=[v.p_mc - v.ci_low, v.ci_high - v.p_mc], fmt="s", ms=3, capsize=3,
                 label="Monte Carlo, 95% CI")

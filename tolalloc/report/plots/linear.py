@@ -12,7 +12,8 @@ __all__ = ["budget_bars", "linearisation_figure"]
 _COLORS = {"x": "#4c72b0", "y": "#55a868", "z": "#c44e52", "norm": "#333333"}
 
 
-def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter", top: int = 12, dpi: int = 110):
+def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter", top: int = 12, dpi: int = 110,
+                ax=None):
     """Grouped horizontal bars: each contributor's share [%] of the variance of x, y, z and of the norm.
 
     Parameters
@@ -24,6 +25,8 @@ def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter
     by : {"parameter", "kind"}
     top : int
         Number of dominant contributors shown (by share of the norm).
+    ax : matplotlib Axes, optional
+        Draw into it (default: a new figure).
 
     Returns
     -------
@@ -34,7 +37,10 @@ def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter
     if by == "parameter":
         label = [f"{p} ({k.replace('_', ' ')})" for p, k in zip(df["parameter"], df["kind"])]
     n = len(df)
-    fig, ax = plt.subplots(figsize=(7.5, 0.42 * n + 1.4))
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7.5, 0.42 * n + 1.4))
+    else:
+        fig = ax.figure
     y = np.arange(n)[::-1]
     h = 0.2
     for i, axn in enumerate(("x", "y", "z", "norm")):

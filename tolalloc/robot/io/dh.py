@@ -31,14 +31,12 @@ from __future__ import annotations
 
 from typing import Literal
 
-import numpy as np
 from pydantic import BaseModel, ConfigDict
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.robot.lie import rot_x, rot_z
-from tolalloc.robot.io.robotfile import _finish_robot, _unit_value, _validate, check_limits, parse_tool
-from tolalloc.units import ALL_UNITS as _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS
-from tolalloc.robot.model import Joint, Link
+from tolalloc.robot.dh_rows import CSV_COLUMNS, parse_dh_rows, row_from_cells
+from tolalloc.robot.io.robotfile import _finish_robot, _validate, parse_tool
+from tolalloc.robot.elements import chain_from_dh
 
 __all__ = ["robot_from_dh_dict", "chain_from_dh", "load_dh_csv"]
 
@@ -56,88 +54,16 @@ class DHFile(BaseModel):
     sigma_sets: dict[str, dict] = {}
 
 
-def chain_from_dh(rows: list[dict], convention: str):
-    """Build chain elements and the final frame rotation from DH rows in internal units.
-
-    Parameters
-    ----------
-    rows : list of dict
-        Keys ``name``, ``type`` (``revolute`` / ``prismatic``), ``d``, ``a`` [mm],
-        ``alpha``, ``theta_offset`` [rad], ``lower``, ``upper``, ``nominal``.
-    convention : {"standard", "modified"}
-
-    Returns
-    -------
-    chain : list of Link and Joint
-    R_tool : array, shape (3, 3)
-        Orientation of the last DH frame at the zero configuration.
-    """
-    R = np.eye(3)
-    chain = []
-    for i, r in enumerate(rows, start=1):
-        if convention == "modified":
-            R = R @ rot_x(r["alpha"])
-            if r["a"] != 0:
-                chain.append(Link(f"a{i - 1}", r["a"] * R[:, 0]))
-            R = R @ rot_z(r["theta_offset"])
-            axis = R[:, 2].copy()
-            chain.append(Joint(r["name"], r["type"], axis, r["lower"], r["upper"], r["nominal"]))
-            if r["d"] != 0:
-                chain.append(Link(f"d{i}_offset" if r["type"] == "prismatic" else f"d{i}", r["d"] * R[:, 2]))
-        else:
-            axis = R[:, 2].copy()
-            chain.append(Joint(r["name"], r["type"], axis, r["lower"], r["upper"], r["nominal"]))
-            if r["d"] != 0:
-                chain.append(Link(f"d{i}_offset" if r["type"] == "prismatic" else f"d{i}", r["d"] * R[:, 2]))
-            R = R @ rot_z(r["theta_offset"])
-            if r["a"] != 0:
-                chain.append(Link(f"a{i}", r["a"] * R[:, 0]))
-            R = R @ rot_x(r["alpha"])
-    return chain, R
-
-
 def robot_from_dh_dict(data: dict, source: str = "<dict>"):
-    """Build a robot from a parsed DH TOML file (see the README)."""
+    """Build a robot from a parsed DH TOML file (see docs/howto/own-robot.md)."""
 
     spec = _validate(DHFile, data, "")
-    rows = []
-    for i, row in enumerate(spec.dh):
-        where = f"dh[{i}]"
-        known = {"name", "type"}
-        try:
-            kind = row.get("type", "revolute")
-            if kind not in ("revolute", "prismatic", "continuous"):
-                raise ValueError(f"type must be 'revolute', 'prismatic' or 'continuous', got {kind!r}")
-            for key in row:
-                if key not in known and not any(key.startswith(b + "_") and key[len(b) + 1:] in _ALL_UNITS
-                                                for b in ("d", "a", "alpha", "theta_offset", "limits", "nominal")):
-                    raise ValueError(f"unknown key {key!r}; expected name, type, d_mm|d_m, a_mm|a_m, alpha_deg|alpha_rad, theta_offset_deg|theta_offset_rad, limits_*, nominal_*")
-            d, _ = _unit_value(row, "d", LENGTH_UNITS, 0.0)
-            a, _ = _unit_value(row, "a", LENGTH_UNITS, 0.0)
-            alpha, _ = _unit_value(row, "alpha", ANGLE_UNITS, 0.0)
-            th0, _ = _unit_value(row, "theta_offset", ANGLE_UNITS, 0.0)
-            rev = kind != "prismatic"
-            units = ANGLE_UNITS if rev else LENGTH_UNITS
-            lim, _ = _unit_value(row, "limits", units, np.array([-2 * np.pi, 2 * np.pi]) if rev else np.array([-1000.0, 1000.0]))
-            nom, _ = _unit_value(row, "nominal", units, 0.0)
-            for key, val in (("d", d), ("a", a), ("alpha", alpha), ("theta_offset", th0)):
-                if np.shape(val) != () or not np.isfinite(val):
-                    raise ValueError(f"{key} must be one finite number, got {np.asarray(val).tolist()}")
-            check_limits(lim, nom, rev)
-        except ValueError as exc:
-            raise TolallocError(f"{where}: {exc}") from None
-        rows.append(dict(name=str(row.get("name", f"j{i + 1}")), type="revolute" if rev else "prismatic",
-                         d=float(d), a=float(a), alpha=float(alpha), theta_offset=float(th0),
-                         lower=float(lim[0]), upper=float(lim[1]), nominal=float(nom)))
+    rows = parse_dh_rows(spec.dh)
     chain, R_last = chain_from_dh(rows, spec.convention)
     offset, R_tool = parse_tool(spec.tool)
     # the tool of a DH robot is given in the last DH frame
     return _finish_robot(spec.name, chain, R_last @ offset, R_last @ R_tool, spec.gravity, spec.masses,
                          spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False)
-
-
-CSV_COLUMNS = ("name", "type", "d_mm", "d_m", "a_mm", "a_m", "alpha_deg", "alpha_rad", "theta_offset_deg",
-               "theta_offset_rad", "lower_deg_mm", "upper_deg_mm", "nominal_deg_mm")
 
 
 def load_dh_csv(path):
@@ -182,25 +108,7 @@ def load_dh_csv(path):
         cells = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
         if None in raw:
             raise TolallocError(f"{source}: dh[{i}]: more cells than header columns ({len(header)}).")
-        row = {"name": cells["name"]}
-        kind = cells.get("type") or "revolute"
-        row["type"] = kind
-        unit = "mm" if kind == "prismatic" else "deg"
-        try:
-            for col, val in cells.items():
-                if col in ("name", "type") or val == "":
-                    continue
-                if col in ("lower_deg_mm", "upper_deg_mm"):
-                    continue
-                key = f"nominal_{unit}" if col == "nominal_deg_mm" else col
-                row[key] = float(val)
-            lo, hi = cells.get("lower_deg_mm", ""), cells.get("upper_deg_mm", "")
-            if (lo == "") != (hi == ""):
-                raise ValueError("give both lower_deg_mm and upper_deg_mm, or neither")
-            if lo != "":
-                row[f"limits_{unit}"] = [float(lo), float(hi)]
-        except ValueError as exc:
-            raise TolallocError(f"{source}: dh[{i}] ({cells['name']}): {exc}; expected numbers in the unit of the column name.") from None
+        row = row_from_cells(cells, i, source)
         rows.append(row)
     data = {"name": meta.get("name", path.stem), "description": meta.get("description", ""),
             "convention": meta["convention"], "dh": rows}

@@ -6,7 +6,7 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import InputFileError, TolallocError
 from tolalloc.robot.io.dh import load_dh_csv, robot_from_dh_dict
 from tolalloc.robot.io.robotfile import robot_from_chain_dict
 from tolalloc.robot.io.urdf import load_urdf
@@ -27,7 +27,14 @@ def _builtin_dir():
 
 
 def builtin_robots() -> dict[str, str]:
-    """Names and one-line descriptions of the built-in robots."""
+    """Names and one-line descriptions of the built-in robots.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> sorted(tolalloc.builtin_robots())
+    ['tool_changer', 'ur10']
+    """
     out = {}
     for f in sorted(_builtin_dir().iterdir(), key=lambda p: p.name):
         if f.name.endswith(".toml"):
@@ -45,7 +52,13 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     Raises
     ------
     TolallocError
-        Naming the file, the field and what was expected.
+        Naming the file, the field and what was expected (a missing file: also a ``FileNotFoundError``).
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> tolalloc.load_robot("ur10")
+    <Robot 'ur10': 6 joints (RRRRRR), 6 links, home tool point 1212 mm from the base; pose sets: working (6)>
     """
     if tool is not None and (isinstance(robot, Robot) or not str(robot).lower().endswith(".urdf")):
         got = f"robot {robot.name!r}" if isinstance(robot, Robot) else repr(str(robot))
@@ -63,7 +76,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
                                 "(.toml, DH .csv, .urdf).")
         if not path.is_file():
             known = ", ".join(builtin_robots())
-            raise TolallocError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
+            raise InputFileError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
         if path.suffix.lower() == ".urdf":
             return load_urdf(path, tool=tool)
         if path.suffix.lower() == ".csv":
@@ -76,7 +89,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise TolallocError(f"{source}: not valid TOML ({exc}); see the README's robot file example.") from None
+        raise TolallocError(f"{source}: not valid TOML ({exc}); see docs/howto/own-robot.md for the robot file format.") from None
     try:
         return robot_from_dict(data, source)
     except TolallocError as exc:

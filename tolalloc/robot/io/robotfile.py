@@ -2,8 +2,8 @@
 
 Two TOML layouts are read, both with the unit in every key name:
 
-* the **chain** layout (``[[chain]]`` entries of links and joints, see the
-  README for a complete example), and
+* the **chain** layout (``[[chain]]`` entries of links and joints, see
+  docs/howto/own-robot.md for a complete example), and
 * the **DH** layout (``convention = "standard" | "modified"`` and
   ``[[dh]]`` rows), converted to a chain by :mod:`tolalloc.robot.io.dh`.
 
@@ -23,6 +23,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
 from tolalloc.robot.model import Joint, Link, Mass, Robot
+from tolalloc.robot.dh_rows import check_limits
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
 
 __all__ = ["robot_from_chain_dict", "parse_tool", "check_limits", "LENGTH_UNITS", "ANGLE_UNITS"]
@@ -137,17 +138,6 @@ class JointEntry(_Strict):
         nom, _ = _unit_value(extra, "nominal", allowed, 0.0, check=self.type != "continuous")
         check_limits(lim, nom, revolute)
         return Joint(self.joint, kind, np.array(self.axis), float(lim[0]), float(lim[1]), float(nom))
-
-
-def check_limits(lim, nom, revolute: bool) -> None:
-    """Joint limits ``[lower, upper]`` and nominal value [rad or mm]: lower < upper, nominal inside (ValueError)."""
-    shown = (lambda x: np.round(np.rad2deg(x), 9).tolist()) if revolute else (lambda x: np.asarray(x).tolist())
-    unit = "deg" if revolute else "mm"
-    if np.shape(lim) != (2,) or not lim[0] < lim[1]:
-        raise ValueError(f"limits must be [lower, upper] with lower < upper, got {shown(lim)} {unit}")
-    if np.shape(nom) != () or not lim[0] - 1e-12 <= float(nom) <= lim[1] + 1e-12:
-        raise ValueError(f"nominal value {shown(nom)} {unit} lies outside the joint limits {shown(lim)} {unit}; "
-                         "expected one number inside the limits")
 
 
 class MassEntry(_Strict):

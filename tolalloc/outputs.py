@@ -1,4 +1,4 @@
-"""All-or-nothing output for the CLI: early path checks, staged writes, one-step publication, a writer lock.
+"""All-or-nothing output: early path checks, staged writes, one-step publication, a writer lock.
 
 Every output is written into a temporary sibling of its target (``.tmp-*`` in the target's parent)
 and published only when the whole command succeeded:

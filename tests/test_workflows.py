@@ -1,0 +1,255 @@
+"""The workflow layer: each job is one Python call, and the command line writes exactly what that call writes.
+
+Every CLI = API test runs the command and the Python call with the same inputs into two folders and compares
+every file byte for byte (``summary.json`` parsed, timings left out).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import tolalloc
+from tolalloc.cli import main
+from tolalloc.diagnose import generate
+from tolalloc.diagnose.synth import split_frame
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: The README's Python example (tests/test_readme.py checks that the README holds it verbatim).
+PYTHON_EXAMPLE = '''\
+import tolalloc
+
+res = tolalloc.allocate_tolerances(
+    "tool_changer",        # built-in robot, a robot file (.toml, DH .csv, .urdf) or a Robot
+    radius_mm=0.25,        # requirement: P(|dP| < 0.25 mm) >= 0.95 ...
+    prob=0.95,
+    region="working",      # ... over the robot's working region
+    n_mc=20_000,           # nonlinear Monte Carlo samples per pose for the verification
+)
+print(res)                 # robot, requirement, cost, verdict
+table = res.to_frame()     # tolerance per parameter (mm or deg), ISO 286 grade, cost, variance share
+res.save("reports/python_quickstart")   # the same files as `tolalloc allocate ... --out DIR`
+'''
+
+
+def _timeless(obj):
+    """``obj`` without the keys that hold wall-clock times (they differ between two runs)."""
+    if isinstance(obj, dict):
+        return {k: _timeless(v) for k, v in obj.items() if k not in ("times_s", "time_s")}
+    if isinstance(obj, list):
+        return [_timeless(v) for v in obj]
+    return obj
+
+
+def assert_same_files(a: Path, b: Path) -> list[str]:
+    names = sorted(p.name for p in a.iterdir())
+    assert names == sorted(p.name for p in b.iterdir())
+    for name in names:
+        if name.endswith(".json"):
+            assert _timeless(json.loads((a / name).read_text())) == _timeless(json.loads((b / name).read_text())), name
+        else:
+            assert (a / name).read_bytes() == (b / name).read_bytes(), name
+    return names
+
+
+def test_python_example_runs_and_prints_the_verdict(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    exec(compile(PYTHON_EXAMPLE, "README example", "exec"), {})
+    out = capsys.readouterr().out
+    assert "verification: demonstrated" in out and "tool_changer" in out and "cost:" in out
+    assert (tmp_path / "reports" / "python_quickstart" / "tolerances.csv").is_file()
+
+
+def test_allocate_cli_equals_api(tmp_path, capsys):
+    argv = ["allocate", "tool_changer", "--poses", "working", "--region", "working", "--n-mc", "4000",
+            "--coverage-n", "2000", "--seed", "3"]
+    assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
+    printed = capsys.readouterr().out
+    res = tolalloc.allocate_tolerances("tool_changer", poses="working", region="working", n_mc=4000, coverage_n=2000,
+                                       seed=3)
+    names = res.save(tmp_path / "api")
+    assert "verification.csv" in names and res.ok
+    assert_same_files(tmp_path / "cli", tmp_path / "api")
+    assert res.text() in printed  # the command prints the result's text, then what it wrote
+
+
+def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
+    plan = tmp_path / "plan.csv"
+    assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "128", "--out", str(plan)]) == 0
+    api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    api_plan.save(tmp_path / "plan_api.csv")
+    assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--n-mc", "200", "--out", str(tmp_path / "cli")])
+    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, n_mc=200)
+    assert isinstance(res, tolalloc.CalibratedToleranceAllocation) and rc == (0 if res.ok else 1)
+    res.save(tmp_path / "api")
+    assert_same_files(tmp_path / "cli", tmp_path / "api")
+
+
+def test_analyze_cli_equals_api(tmp_path):
+    argv = ["analyze", "ur10", "--poses", "working", "--radius-mm", "0.5", "--prob", "0.9", "--clearance"]
+    assert main([*argv, "--out", str(tmp_path / "cli"), "--json", str(tmp_path / "cli.json")]) == 0
+    res = tolalloc.analyze_errors("ur10", poses="working", radius_mm=0.5, prob=0.9, clearance=True)
+    res.save(tmp_path / "api", json=tmp_path / "api.json")
+    assert_same_files(tmp_path / "cli", tmp_path / "api")
+    assert (tmp_path / "cli.json").read_bytes() == (tmp_path / "api.json").read_bytes()
+
+
+def test_mc_cli_equals_api(tmp_path):
+    argv = ["mc", "tool_changer", "--n", "3000", "--seed", "7", "--pose", "15,30,-10,0,-20,-5", "--hist-bins", "20"]
+    assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
+    res = tolalloc.simulate_errors("tool_changer", 3000, seed=7, q_deg_mm=[15, 30, -10, 0, -20, -5], hist_bins=20)
+    assert set(res.save(tmp_path / "api")) == {p.name for p in (tmp_path / "api").iterdir()}
+    assert_same_files(tmp_path / "cli", tmp_path / "api")
+
+
+def test_diagnose_cli_equals_api_with_a_dataframe(tmp_path, monkeypatch):
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1795000000")  # report.html carries its date
+    robot = tolalloc.load_robot("tool_changer")
+    case = generate(robot, "backlash", 120, np.random.default_rng(5))
+    tr, te = split_frame(case.frame, 0.25, np.random.default_rng(0))
+    tr.to_csv(tmp_path / "train.csv", index=False)
+    te.to_csv(tmp_path / "test.csv", index=False)
+    argv = ["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+            "--folds", "3"]
+    assert main([*argv, "--report", str(tmp_path / "cli"), "--json", str(tmp_path / "cli.json"),
+                 "--predictions", str(tmp_path / "cli_pred.csv")]) == 0
+    res = tolalloc.diagnose_measurements("tool_changer", tmp_path / "train.csv", tmp_path / "test.csv", folds=3)
+    res.save(tmp_path / "api", json=tmp_path / "api.json", predictions=tmp_path / "api_pred.csv")
+    assert_same_files(tmp_path / "cli", tmp_path / "api")
+    assert (tmp_path / "cli_pred.csv").read_bytes() == (tmp_path / "api_pred.csv").read_bytes()
+    cli_js, api_js = json.loads((tmp_path / "cli.json").read_text()), json.loads((tmp_path / "api.json").read_text())
+    assert cli_js == api_js
+    # the same measurements as DataFrames give the same diagnosis (the sources are named differently)
+    frames = tolalloc.diagnose_measurements("tool_changer", pd.read_csv(tmp_path / "train.csv"),
+                                            pd.read_csv(tmp_path / "test.csv"), folds=3)
+    assert frames.effect == res.effect
+    np.testing.assert_allclose(frames.to_frame()["rms_mm"], res.to_frame()["rms_mm"], rtol=1e-12)
+
+
+# ---------------------------------------------------------------------------------------------- results
+def test_results_have_a_compact_repr_a_table_and_html():
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
+    text = repr(res)
+    assert len(text.splitlines()) <= 6 and "tool_changer" in text and "cost" in text and res.verdict in text
+    assert "<table" in res._repr_html_() and "dl1" in res._repr_html_()
+    frame = res.to_frame()
+    assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and frame["tolerance"].gt(0).all()
+    s = res.summary()
+    assert s["verification"]["verdict"] == res.verdict and s["built"]["cost"] == pytest.approx(res.cost)
+    assert res.standard and res.cost >= res.continuous_design.cost  # the standard design is the one to build
+    with pytest.raises(Exception):
+        res.cost = 1.0  # frozen
+    fig = res.plot_pose_probabilities()
+    assert len(fig.axes) == 1
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
+    robot_text = repr(tolalloc.load_robot("ur10"))
+    assert len(robot_text.splitlines()) == 1 and "6 joints" in robot_text
+
+
+def test_robot_methods_take_interface_units_and_from_dh_builds_a_chain():
+    tc = tolalloc.load_robot("tool_changer")
+    q = [15, 30, -10, 0, -20, -5]
+    # the seed paper's closed form (NOTES_SEED.md): rho = l3 cos30 + (l4 + l5) cos20 + l6
+    rho = 796 * np.cos(np.deg2rad(30)) + 800 * np.cos(np.deg2rad(20)) + 165
+    z = 525 + 796 * np.sin(np.deg2rad(30)) + 800 * np.sin(np.deg2rad(20))
+    np.testing.assert_allclose(tc.fk(q)[:3, 3], [-rho * np.sin(np.deg2rad(15)), rho * np.cos(np.deg2rad(15)), z],
+                               atol=1e-9)
+    np.testing.assert_allclose(tc.space_jacobian(q), tc.space_jacobian_internal(tc.q_from_interface(q)))
+    with pytest.raises(tolalloc.TolallocError, match="q_deg_mm.*outside its limits"):
+        tc.fk([0.2, 0.5, -0.1, 0, 200, 0])  # q5 = 200 deg
+    table = pd.DataFrame({"name": ["j1", "j2"], "d_mm": [300.0, 0.0], "a_mm": [0.0, 500.0], "alpha_deg": [-90.0, 0.0],
+                          "lower_deg_mm": [-170, -120], "upper_deg_mm": [170, 120]})
+    arm = tolalloc.Robot.from_dh(table, convention="standard", name="arm", tool_offset_mm=(50, 0, 0))
+    # q = (0, 90 deg): the second link points down the first joint's z after the -90 deg twist
+    np.testing.assert_allclose(arm.fk([0, 0])[:3, 3], [550, 0, 300], atol=1e-9)
+    assert arm.joints[1].upper == pytest.approx(np.deg2rad(120))
+    with pytest.raises(tolalloc.TolallocError, match="unknown"):
+        tolalloc.Robot.from_dh([{"name": "j", "d_inch": 3, "alpha_deg": 0}], convention="standard")
+
+
+# ---------------------------------------------------------------------------------------------- bad input
+@pytest.mark.parametrize("call, exc, pattern", [
+    (lambda: tolalloc.allocate_tolerances("no_such_robot"), FileNotFoundError, "not a built-in robot"),
+    (lambda: tolalloc.allocate_tolerances("tool_changer", prob=1.2), ValueError, r"^prob: expected a probability"),
+    (lambda: tolalloc.allocate_tolerances("tool_changer", prob=0), ValueError, r"^prob: expected a probability"),
+    (lambda: tolalloc.allocate_tolerances("tool_changer", radius_mm=-1), ValueError, r"^radius_mm: expected"),
+    (lambda: tolalloc.analyze_errors("tool_changer", q_deg_mm=[1, 2, 3]), ValueError,
+     r"^q_deg_mm: robot 'tool_changer' has 6 joints"),
+    (lambda: tolalloc.analyze_errors("tool_changer", q_deg_mm=[0.2, 0.5, -0.1, 0, 3.5, -0.1]), ValueError,
+     r"^q_deg_mm: .* look like radians; expected degrees .*trust_units=True"),
+    (lambda: tolalloc.analyze_errors("tool_changer", q_deg_mm=[0, 0, 0, 0, 200, 0]), ValueError,
+     r"^q_deg_mm: joint j5 = 200 deg is outside its limits"),
+    (lambda: tolalloc.simulate_errors("tool_changer", 0), ValueError, r"^n: expected a whole number >= 1"),
+    (lambda: tolalloc.simulate_errors("tool_changer", 10, radius_mm=[0.1, -2]), ValueError, r"^radius_mm:"),
+    (lambda: tolalloc.plan_calibration("tool_changer", 10, n_candidates=5), ValueError, r"^n_poses:"),
+    (lambda: tolalloc.diagnose_measurements("tool_changer", pd.DataFrame({"q1": [0.0], "x_mm": [1.0]})), ValueError,
+     r"missing column"),
+    (lambda: tolalloc.diagnose_measurements("tool_changer", "no/such/file.csv"), FileNotFoundError, "does not exist"),
+])
+def test_bad_input_raises_project_errors_naming_the_argument(call, exc, pattern):
+    with pytest.raises(tolalloc.TolallocError, match=pattern) as info:
+        call()
+    assert isinstance(info.value, exc)
+
+
+def test_radians_are_accepted_when_trusted():
+    q = [0.2, 0.5, -0.1, 0, 0.35, -0.1]
+    a = tolalloc.analyze_errors("tool_changer", q_deg_mm=q, trust_units=True)
+    np.testing.assert_allclose(a.linear.q[0], np.deg2rad(q))
+
+
+def test_argument_errors_read_as_flags_on_the_command_line(capsys):
+    assert main(["allocate", "tool_changer", "--prob", "1.5", "--no-verify"]) == 2
+    assert capsys.readouterr().err.startswith("error: --prob: expected a probability strictly between 0 and 1")
+    with pytest.raises(tolalloc.ArgumentError) as info:
+        tolalloc.allocate_tolerances("tool_changer", angle_prob=0.9)
+    assert info.value.argument == "angle_prob" and "`angle_radius_deg`" in str(info.value)
+    assert main(["allocate", "tool_changer", "--angle-prob", "0.9", "--no-verify"]) == 2
+    assert "--angle-prob 0.9 needs an orientation requirement: add --angle-radius-deg" in capsys.readouterr().err
+
+
+def test_public_surface_is_stated_once_and_documented():
+    for name in tolalloc.__all__:
+        obj = getattr(tolalloc, name)
+        assert obj.__doc__ and len(obj.__doc__.strip()) > 20, name
+    for fn in (tolalloc.allocate_tolerances, tolalloc.analyze_errors, tolalloc.simulate_errors,
+               tolalloc.plan_calibration, tolalloc.diagnose_measurements):
+        doc = fn.__doc__
+        assert "Parameters" in doc and "Returns" in doc, fn.__name__
+        assert re.search(r"\[mm\]|_mm|deg", doc), fn.__name__
+    assert not hasattr(tolalloc, "fk_poe")  # the POE kernel lives in tolalloc.robot (its signature is not a robot's)
+
+
+def test_analyze_with_sobol_indices_beside_the_linear_budget(tmp_path):
+    a = tolalloc.analyze_errors("tool_changer", poses="working", sobol_n=256, radius_mm=2.0)
+    frame = a.sobol.to_frame()
+    assert set(frame["parameter"]) <= set(a.model.names) and frame["ST_norm"].between(-0.1, 1.1).all()
+    # dominant linear contributors are the dominant nonlinear ones at these small errors
+    top_lin = set(a.budget_frame().head(3)["parameter"])
+    assert top_lin & set(frame.sort_values("ST_norm", ascending=False).head(4)["parameter"])
+    assert "sobol" in a.summary() and "Sobol' indices" in a.text()
+    assert "sobol.csv" in a.save(tmp_path / "out")
+    with pytest.raises(tolalloc.ArgumentError, match="sobol_n"):
+        tolalloc.analyze_errors("tool_changer", sobol_n=8)
+
+
+def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
+    d = tolalloc.plan_calibration("ur10", 10, n_candidates=100, for_allocation=True, random_plans=20)
+    s = d.summary()
+    fa, rnd = s["for_allocation"], s["random_plans"]
+    assert fa["cost"] <= fa["start_cost"] + 1e-9  # a plan is kept only when the allocation gets cheaper
+    assert rnd["n_random"] == 20 and rnd["designed_worst_p"] >= rnd["random_p90"]
+    assert rnd["designed_worst_p"] <= rnd["all_candidates_worst_p"] + 1e-9  # no plan beats measuring every candidate
+    assert "random 10-pose plans" in d.text()
+    d.save(tmp_path / "plan.csv")
+    res = tolalloc.allocate_tolerances("ur10", calibration=tmp_path / "plan.csv", verify=False)
+    assert res.cost == pytest.approx(fa["cost"], rel=1e-6)

@@ -1,0 +1,265 @@
+"""The main job in one call: :func:`allocate_tolerances`.
+
+Region -> allocation (certified and exact) -> standard grades -> coverage of the region -> nonlinear Monte Carlo
+verification -> correction loop; with ``calibration=PLAN`` the calibration-aware allocation instead
+(:mod:`tolalloc.workflows.calibrated`). The result (:class:`ToleranceAllocation`) holds every stage's object.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.exceptions import ArgumentError
+from tolalloc.workflows import inputs
+from tolalloc.workflows.allocation_result import ToleranceAllocation
+
+__all__ = ["allocate_tolerances", "ESTIMATORS"]
+
+#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
+ESTIMATORS = ("auto", "plain", "paired", "importance")
+
+
+@inputs.honours_trust_units
+def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: float = 0.95, region=None,
+                        poses: str | None = None, costs=None, z: float | None = None, uniform: bool = False,
+                        sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
+                        clearance: bool = False, exclude=(), angle_radius_deg: float | None = None,
+                        angle_prob: float | None = None, solver: str = "exact", snap: bool = True,
+                        angle_step_deg: float | None = None, calibration=None, verify: bool = True,
+                        n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool = True,
+                        correction_rounds: int = 2,
+                        coverage_n: int = 100_000, scheduler=None, tool: str | None = None,
+                        trust_units: bool = False):
+    """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
+
+    Parameters
+    ----------
+    robot : Robot, str or path
+        A :class:`~tolalloc.robot.Robot`, a built-in name (``"tool_changer"``, ``"ur10"``) or a robot file.
+    radius_mm : float
+        Required radius r of the tool-position error [mm].
+    prob : float
+        Required probability p, in (0, 1).
+    region : str, path or array, optional
+        Where the requirement holds: a pose set, ``"limits"``, a box of the robot file, a trajectory CSV (q1..qN
+        per row, deg / mm) or an array / DataFrame of poses (deg / mm). Boxes are searched for their worst pose
+        (cutting planes) and checked on a fresh sample of ``coverage_n`` poses. Default: the robot's ``working``
+        box if it has one, else the pose set ``poses``.
+    poses : str, optional
+        Pose set used when no region applies (default ``working`` if defined, else ``nominal``).
+    costs : str or path, optional
+        Costs file (TOML): cost laws, process limits, fixed / excluded parameters (default: built-in assumptions).
+    z : float, optional
+        sigma = t / z (default 3, or the costs file's ``z``). ``uniform=True``: errors uniform over +-t.
+    sigma_set, link_mode, deflection_mode, clearance, exclude
+        Error-model options (see :func:`tolalloc.errormodel.build_error_model`).
+    angle_radius_deg, angle_prob : float, optional
+        Orientation requirement ``P(|rotation error| < angle_radius_deg) >= angle_prob`` [deg].
+    solver : {"exact", "certified"}
+        Design reported: exact probability (CasADi + IPOPT) or certified (cvxpy + Clarabel).
+    snap : bool
+        Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
+    calibration : str or path, optional
+        A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration;
+        returns a :class:`CalibratedToleranceAllocation`.
+    verify : bool
+        Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` re-solves with
+        raised targets where a pose is not demonstrated (at most ``correction_rounds`` rounds).
+    estimator : {"auto", "plain", "paired", "importance"}
+        How ``P(|dP| < r)`` is estimated in the verification: ``paired`` = the exact linear P plus the mean
+        difference of the nonlinear and linear indicators on shared draws (a control variate); ``importance`` =
+        that difference by importance sampling toward the ball's boundary (rare-event requirements); ``auto`` =
+        paired where the parameters are Gaussian, plain Monte Carlo otherwise, importance sampling where the
+        tail is too thin for ``n_mc``.
+    scheduler : str or dask.distributed.Client, optional
+        Where the Monte Carlo runs (threads by default); never changes the numbers.
+    tool, trust_units
+        URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
+
+    Returns
+    -------
+    ToleranceAllocation or CalibratedToleranceAllocation (with ``calibration``); ``.ok``: the requirement is met.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
+    >>> res.verdict, round(res.cost, 2)
+    ('demonstrated', 44.39)
+    """
+    _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
+           seed, correction_rounds, coverage_n)
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
+                               clearance=clearance, exclude=exclude)
+    cost_set = _costs(costs, model, z, uniform)
+    label, box, q = inputs.resolve_region(rob, region, poses)
+    kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
+              angle_prob=angle_prob)
+    inputs_record = _record(rob, label, cost_set, radius_mm=radius_mm, prob=prob, seed=seed, estimator=estimator,
+                            n_mc=n_mc if verify else None, solver=solver, exclude=exclude,
+                            correction_rounds=correction_rounds, angle_step_deg=angle_step_deg, tool=tool,
+                            trust_units=trust_units, calibration=calibration)
+    if calibration is not None:
+        from tolalloc.workflows.calibrated import calibrated_allocation
+
+        return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
+                                     seed=seed, estimator=estimator, coverage_n=coverage_n,
+                                     inputs_record=inputs_record, **kw)
+    return _allocate(model, label, box, q, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg,
+                     verify=verify, n_mc=n_mc, seed=seed, estimator=estimator, correction=correction,
+                     correction_rounds=correction_rounds, coverage_n=coverage_n, scheduler=scheduler,
+                     inputs_record=inputs_record)
+
+
+def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,
+              correction_rounds, coverage_n, scheduler, inputs_record) -> ToleranceAllocation:
+    from tolalloc.allocate import allocate, build_problem
+
+    reg_info = None
+    if box is not None:
+        reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
+        q = reg_info.active_q
+    if reg_info is not None and snap and reg_info.result.status == "optimal":
+        res = reg_info.result  # the standard design's loop solved it on the final active set
+    else:
+        res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
+    if box is not None and res.status == "infeasible":
+        return ToleranceAllocation(res, label, box, reg_info, None, None, None, inputs_record,
+                                   infeasible=_region_infeasible(res, box, reg_info, seed), built=res.design)
+    cov, ver, corr = None, None, None
+    if res.status == "optimal":
+        res, cov, ver, corr = _verify_and_correct(model, kw, res, box, verify=verify, n_mc=n_mc, seed=seed,
+                                                  estimator=estimator, correction=correction, rounds=correction_rounds, solver=solver,
+                                                  snap=snap, angle_step_deg=angle_step_deg, coverage_n=coverage_n,
+                                                  scheduler=scheduler)
+    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=built_design(res, snap))
+
+
+def _region_search(model, box, kw, *, solver, snap, angle_step_deg):
+    """Cutting planes over the box for the continuous design, continued for the standard design (``snap``)."""
+    from tolalloc.allocate.region import allocate_region
+    from tolalloc.allocate.region_standard import allocate_region_standard
+
+    rob = model.robot
+    q0 = rob.poses("working") if "working" in rob.pose_sets else None
+    if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
+        q0 = None
+    reg_info = allocate_region(model, box, q0, solver=solver, **kw)
+    if not snap or reg_info.result.status != "optimal":
+        return reg_info
+    return allocate_region_standard(model, box, solver=solver, angle_step_deg=angle_step_deg, continuous=reg_info,
+                                    **kw)
+
+
+def built_design(res, snap: bool):
+    """The design that will be built: the standard one when it was chosen and meets the requirement, else the
+    continuous one."""
+    std = res.standard
+    return std if snap and std is not None and std.ok else res.design
+
+
+def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, correction, rounds, solver, snap,
+                        angle_step_deg, coverage_n, scheduler):
+    """Coverage of a box region, Monte Carlo verification and the correction loop.
+
+    Returns ``(result, coverage, verification, correction)``: the final (corrected) allocation and its checks.
+    """
+    from tolalloc.allocate.problem import build_problem, make_design
+    from tolalloc.allocate.region import coverage
+
+    design = built_design(res, snap)
+    standard = design is not res.design
+    cov, vproblem, vdesign = None, res.problem, design
+    if box is not None:
+        cov = coverage(res.problem, design.t, box, n=coverage_n, seed=seed + 12345)
+        vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
+        vdesign = make_design(vproblem, design.solver, design.t, fallback_from=design.fallback_from)
+    if not verify:
+        return res, cov, None, None
+    from tolalloc.verify.designs import verify_design
+
+    ver = verify_design(vproblem, vdesign, n_mc=n_mc, seed=seed, scheduler=scheduler, estimator=estimator)
+    if ver.verdict == "demonstrated" or not correction:
+        return res, cov, ver, None
+    from tolalloc.verify.correct import correct_design
+
+    corr = correct_design(model, vproblem.q, solver=solver, n_mc=n_mc, seed=seed, max_rounds=rounds, result=res,
+                          verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
+                          keep_samples=4000, estimator=estimator, standard=standard, **kw)
+    if corr.rounds and box is not None:  # the corrected design, checked over the region again
+        cov = coverage(corr.result.problem, built_design(corr.result, snap).t, box, n=coverage_n, seed=seed + 12345)
+    return corr.result, cov, corr.verification, corr
+
+
+def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, exclude, correction_rounds,
+            angle_step_deg, tool, trust_units, calibration) -> dict:
+    """The inputs that decide the numbers (for the report's reproduce command)."""
+    return {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
+            "costs": cost_set.source, "seed": int(seed), "n_mc": None if n_mc is None else int(n_mc),
+            "estimator": estimator, "solver": solver, "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
+            "correction_rounds": correction_rounds, "angle_step_deg": angle_step_deg, "tool": tool,
+            "trust_units": bool(trust_units), "calibration": None if calibration is None else str(calibration)}
+
+
+def _region_infeasible(res, box, reg_info, seed) -> str:
+    """Why a region is infeasible even at the tightest process limits, and what would work."""
+    from tolalloc.allocate.region import worst_pose
+
+    pr = res.problem
+    robot = pr.model.robot
+    q, p_best, _ = worst_pose(pr, res.design.t, box, seed=seed, fixed=reg_info.static)
+    p_set = float(res.diagnosis.p_best["position"].min())
+    if p_set < p_best:  # an active pose is worse than what the search found
+        q, p_best = pr.q[int(np.argmin(res.diagnosis.p_best["position"]))], p_set
+    qi = robot.q_to_interface(q)
+    joints = ", ".join(f"{j.name} = {v:.4g} {j.unit}" for j, v in zip(robot.joints, qi))
+    binding = ", ".join(f"{n} ({s:.0%})" for n, s in res.diagnosis.binding[:4])
+    return (f"`region` {box.name}: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} is infeasible over the region even "
+            f"with every tolerance at its tightest process limit: at the worst pose found ({joints}) the best "
+            f"achievable P is {p_best:.4f}" + (f"; limits that bind: {binding}" if binding else "")
+            + ". Lower these t_min in a costs file (`costs`), relax `radius_mm` / `prob`, or use a smaller region; "
+            "nothing written.")
+
+
+def _costs(costs, model, z, uniform):
+    from tolalloc.allocate.costs import cost_set, load_costs
+
+    dist = "uniform" if uniform else None
+    if costs is None:
+        return cost_set(model, None, z=z, distribution=dist)
+    return load_costs(costs, model, z=z, distribution=dist)
+
+
+def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
+           seed, correction_rounds, coverage_n) -> None:
+    """Refuse bad numbers by their argument names before any computation."""
+    inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
+    inputs.check_probability(prob, "prob")
+    if angle_radius_deg is not None:
+        inputs.check_positive(angle_radius_deg, "angle_radius_deg", "deg", "0.02")
+    if angle_prob is not None:
+        inputs.check_probability(angle_prob, "angle_prob")
+        if angle_radius_deg is None:
+            raise ArgumentError("angle_prob", f"{angle_prob:g} needs an orientation requirement: add "
+                                "`angle_radius_deg` A.")
+    if angle_step_deg is not None:
+        inputs.check_positive(angle_step_deg, "angle_step_deg", "deg", "0.001")
+    if uniform and z is not None:
+        raise ArgumentError("uniform", "and `z` both set sigma = t / z; give one of them.")
+    if z is not None:
+        if isinstance(z, bool) or not isinstance(z, (int, float, np.integer, np.floating)) or not (np.isfinite(z) and z > 0):
+            raise ArgumentError("z", f"expected a number > 0 (sigma = t / z, e.g. 3), got {z!r}.")
+    inputs.check_choice(solver, "solver", ("exact", "certified"))
+    inputs.check_choice(estimator, "estimator", ESTIMATORS)
+    if isinstance(correction_rounds, bool) or not isinstance(correction_rounds, (int, np.integer)) or correction_rounds < 0:
+        raise ArgumentError("correction_rounds", f"expected a whole number >= 0 (rounds of the correction loop, e.g. "
+                            f"2), got {correction_rounds!r}; or switch the correction off.")
+    if verify:
+        try:
+            inputs.check_count(n_mc, "n_mc", minimum=100)
+        except ArgumentError:
+            raise ArgumentError("n_mc", f"expected at least 100 samples per pose (a whole number, e.g. 1000000), got "
+                                f"{n_mc!r}; or switch the verification off.") from None
+    inputs.check_seed(seed)
+    inputs.check_count(coverage_n, "coverage_n", example="100000")

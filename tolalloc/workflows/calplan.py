@@ -1,0 +1,222 @@
+"""Calibration-plan design in one call: :func:`plan_calibration`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import pandas as pd
+
+from tolalloc.exceptions import ArgumentError
+from tolalloc.outputs import atomic_output
+from tolalloc.workflows import inputs
+from tolalloc.workflows.base import JobResult
+
+__all__ = ["plan_calibration", "CalibrationPlanDesign"]
+
+
+@inputs.honours_trust_units
+def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
+                     n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
+                     noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,
+                     seed: int = 0, tool: str | None = None, trust_units: bool = False, for_allocation: bool = False,
+                     radius_mm: float = 0.25, prob: float = 0.95, random_plans: int = 100) -> "CalibrationPlanDesign":
+    """Choose ``n_poses`` laser-tracker measurement poses that minimise the post-calibration error.
+
+    Candidates are scrambled-Sobol poses in the joint limits (``region="limits"``) or in the box of a pose set; the
+    plan minimises the mean post-calibration position variance of the systematic errors over the evaluation
+    poses (task-weighted A-optimal design: a convex relaxation solved by Clarabel, then rounding and exchange) and
+    is compared with ``n_poses`` random candidates.
+
+    Parameters
+    ----------
+    robot : Robot, str or path
+    n_poses : int
+        Measurement poses in the plan.
+    region : str
+        ``"limits"`` or a pose set whose box holds the candidates.
+    eval_poses : str, optional
+        Pose set where the accuracy matters (default ``working`` if defined, else nominal).
+    measurement : {"position", "pose"}
+    noise_mm, noise_deg : float
+        Tracker noise sigma per coordinate [mm] and per axis [deg] (pose measurements).
+    registration : bool
+        Estimate the tracker frame and tool offset too (False: they are known).
+    costs : str or path, optional
+        Costs file whose ``[calibration]`` table overrides the systematic / random split.
+    sigma_set : str, optional
+        Manufacturing sigma set of the robot file (the prior).
+    for_allocation : bool
+        Design the plan for the calibration-aware allocation it serves: starting from the A-optimal plan, alternate
+        the allocation for ``P(|dP| < radius_mm) >= prob`` (over the robot's ``working`` box if it has one, else at
+        the evaluation poses) and a re-design that maximises the worst post-calibration P at the design's binding
+        poses, keeping a plan only when the allocation gets cheaper; then compare the plan with ``random_plans``
+        random plans of the same size (median, 10th and 90th percentile of their worst-pose P). Position
+        measurements only.
+
+    Returns
+    -------
+    CalibrationPlanDesign
+        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> d.plan.n_poses, d.design.score_mm2 < d.design.random_score_mm2
+    (8, True)
+    """
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    n_cand = inputs.check_count(n_candidates, "n_candidates", example="2000")
+    n_poses = inputs.check_count(n_poses, "n_poses", example="30")
+    if n_poses > n_cand:
+        raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
+    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02")
+    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001")
+    inputs.check_choice(measurement, "measurement", ("position", "pose"))
+    inputs.check_seed(seed)
+    if region != "limits" and region not in rob.pose_sets:
+        raise ArgumentError("region", f"expected 'limits' or a pose set of robot {rob.name!r} "
+                            f"({', '.join(rob.pose_sets) or 'none defined'}), got {region!r}.")
+    from tolalloc.calibration.design import candidate_poses, design_plan
+    from tolalloc.calibration.posterior import posterior
+    from tolalloc.errormodel import build_error_model
+    from tolalloc.workflows.calibrated import split_from_costs
+
+    model = build_error_model(rob, sigma_set)
+    split = split_from_costs(model, costs)
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    cand = candidate_poses(rob, n_cand, region, seed=seed)
+    d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
+                    registration=registration, seed=seed)
+    alloc, comparison = None, None
+    if for_allocation:
+        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
+                                            prob=prob, random_plans=random_plans, measurement=measurement,
+                                            noise_mm=noise_mm, registration=registration, seed=seed)
+    unid = tuple(posterior(split, d.plan if alloc is None else alloc.plan).unidentifiable)
+    return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison)
+
+
+def _for_allocation(model, split, start, cand, q_eval, *, costs, radius_mm, prob, random_plans, measurement, noise_mm,
+                    registration, seed):
+    """The plan designed for the allocation it serves, and its comparison with random plans of its size."""
+    from tolalloc.allocate import build_problem
+    from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+    from tolalloc.allocate.costs import cost_set, load_costs
+    from tolalloc.allocate.region import box_region
+
+    inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
+    inputs.check_probability(prob, "prob")
+    count = inputs.check_count(random_plans, "random_plans", example="100")
+    if measurement != "position":
+        raise ArgumentError("for_allocation", "needs `measurement` position: the allocation's end-to-end check "
+                            "simulates position measurements.")
+    robot = model.robot
+    box = None
+    if "working" in robot.regions:
+        box = box_region(robot, *robot.regions["working"], "working", "region 'working'")
+    costs_set = cost_set(model, None) if costs is None else load_costs(costs, model)
+    problem = build_problem(model, q_eval, radius_mm=float(radius_mm), prob=float(prob), costs=costs_set)
+    alloc = design_plan_for_allocation(problem, start.n_poses, cand, split=split, region=box, start=start,
+                                       coverage_n=0, baseline=False, seed=seed, noise_mm=noise_mm,
+                                       registration=registration)
+    return alloc, compare_with_random_plans(alloc.result, cand, count=count, seed=seed)
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class CalibrationPlanDesign(JobResult):
+    """A designed calibration plan, compared with a random plan of the same size.
+
+    Attributes
+    ----------
+    design : PlanDesign
+        The plan, its score (mean post-calibration variance of the systematic part [mm^2]), the random plan's,
+        the all-candidates floor and the relaxation's lower bound.
+    robot : Robot
+    region, eval_poses : str
+    n_candidates : int
+    unidentifiable : tuple of str
+        Parameters the plan cannot identify (they keep their manufacturing tolerance).
+    for_allocation : PlanForAllocation or None
+        With ``for_allocation=True``: the plan designed for the allocation (the one saved) and that allocation.
+    comparison : PlanComparison or None
+        Its worst-pose post-calibration P against random plans of the same size.
+
+    Examples
+    --------
+    >>> import tolalloc
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> list(d.to_frame().columns)
+    ['j1_deg', 'j2_deg', 'j3_deg', 'j4_mm', 'j5_deg', 'j6_deg']
+    """
+
+    design: object
+    robot: object
+    region: str
+    eval_poses: str
+    n_candidates: int
+    unidentifiable: tuple = ()
+    for_allocation: object = None
+    comparison: object = None
+    inputs: dict = field(default_factory=dict)
+
+    @property
+    def plan(self):
+        """The plan to measure: designed for the allocation when asked, else the A-optimal one."""
+        return self.design.plan if self.for_allocation is None else self.for_allocation.plan
+
+    @property
+    def ok(self) -> bool:
+        return True
+
+    def headline(self) -> list[str]:
+        d = self.design
+        return [f"robot: {self.robot.name}   {d.plan.n_poses}-pose plan of {self.n_candidates} candidates "
+                f"({self.region}), evaluated at the {self.eval_poses} poses",
+                f"post-calibration variance [mm^2]: designed {d.score_mm2:.6g}, random {d.random_score_mm2:.6g}, "
+                f"floor {d.floor_mm2:.6g}"]
+
+    def to_frame(self) -> pd.DataFrame:
+        """The plan: one row per measurement pose, joint values in deg / mm."""
+        return self.plan.to_frame(self.robot)
+
+    def summary(self) -> dict:
+        d = self.design
+        return {"robot": self.robot.name, "n_poses": d.plan.n_poses, "n_candidates": self.n_candidates,
+                "region": self.region, "eval_poses": self.eval_poses, "measurement": d.plan.measurement,
+                "noise_mm": d.plan.noise_mm, "score_mm2": d.score_mm2, "random_score_mm2": d.random_score_mm2,
+                "floor_mm2": d.floor_mm2, "relaxation_bound_mm2": d.relaxation_bound_mm2,
+                "relaxation_method": d.relaxation_method, "unidentifiable": list(self.unidentifiable),
+                "for_allocation": None if self.for_allocation is None else {
+                    "cost": float(self.for_allocation.result.cost), "start_cost": float(self.for_allocation.start_cost),
+                    "rounds": len(self.for_allocation.history), "message": self.for_allocation.message()},
+                "random_plans": None if self.comparison is None else self.comparison.to_dict()}
+
+    def text(self) -> str:
+        """What the command line prints."""
+        d = self.design
+        out = [f"robot: {self.robot.name}   {d.plan.n_poses} poses of {self.n_candidates} candidates ({self.region}), "
+               f"evaluated at the {self.eval_poses} poses; {d.plan.measurement} measurement, noise {d.plan.noise_mm:g} mm",
+               f"mean post-calibration variance of the systematic part [mm^2]: designed {d.score_mm2:.6g}, "
+               f"random {d.random_score_mm2:.6g}; all {self.n_candidates} candidates {d.floor_mm2:.6g}; "
+               f"relaxation lower bound {d.relaxation_bound_mm2:.6g}",
+               f"relaxation: {d.relaxation_method} ({d.relaxation_note}); value {d.relaxation_value_mm2:.6g} mm^2",
+               f"above the all-candidates floor: designed {d.score_mm2 - d.floor_mm2:.4g}, random "
+               f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2   ({d.time_s:.2f} s)"]
+        if self.for_allocation is not None:
+            out.append(self.for_allocation.message())
+        if self.comparison is not None:
+            out.append(self.comparison.message())
+        if self.unidentifiable:
+            out.append(f"not identifiable with this plan (keep their manufacturing tolerance): "
+                       f"{', '.join(self.unidentifiable)}")
+        return "\n".join(out)
+
+    def save(self, path) -> list[str]:
+        """Write the plan CSV (settings in ``#`` header lines) to file ``path``, atomically."""
+        from tolalloc.calibration.plan import write_plan
+
+        self.check_out(path, "path", directory=False)
+        with atomic_output(path) as tmp:
+            write_plan(self.plan, self.robot, tmp)
+        return [str(path)]

@@ -1,0 +1,234 @@
+"""Sim-to-real diagnosis in one call: :func:`diagnose_measurements`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import pandas as pd
+
+from tolalloc.exceptions import ArgumentError
+from tolalloc.outputs import check_distinct_outputs, output_group, write_json
+from tolalloc.workflows import inputs
+from tolalloc.workflows.base import JobResult
+
+__all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
+
+
+@inputs.honours_trust_units
+def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
+                          alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
+                          progress: bool | None = None, tool: str | None = None,
+                          trust_units: bool = False) -> "MeasurementDiagnosis":
+    """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
+
+    Calibrates the tracker registration, target offset and identifiable geometric errors on ``train``, breaks the
+    residual down, selects the unmodelled effect that lowers the held-out error significantly (or none), and
+    scores the final model on ``test`` (held out, never fitted).
+
+    Parameters
+    ----------
+    robot : Robot, str or path
+    train, test : str, path or DataFrame
+        Measurements: columns q1..qN (deg / mm), x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1 / -1),
+        payload_kg, time_s. Rows with empty cells are skipped and counted.
+    test_frame : {"same", "refit"}
+        ``refit``: the test file is another session in another tracker frame; its registration and target offset
+        are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below 1), which
+        are then not scored.
+    folds : int
+        Cross-validation folds (a minimum: more when the training file has few poses).
+    alpha : float
+        Family-wise significance level of the effect selection.
+    seed : int
+        Seed of the fold assignment and of the cross-validation subsample of large files.
+    cv_rows : int, optional
+        Training files with more rows cross-validate on a seeded subsample of this many rows (default 10000).
+    gap_split : bool
+        Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
+    progress : bool, optional
+        Progress bars on stderr (default: when stderr is a terminal).
+
+    Returns
+    -------
+    MeasurementDiagnosis
+
+    Examples
+    --------
+    Synthetic measurements of a tool_changer with joint backlash, split into training and test poses:
+
+    >>> import numpy as np, tolalloc
+    >>> from tolalloc.diagnose import generate
+    >>> case = generate(tolalloc.load_robot("tool_changer"), "backlash", 120, np.random.default_rng(5))
+    >>> train, test = case.frame.iloc[:90], case.frame.iloc[90:]
+    >>> d = tolalloc.diagnose_measurements("tool_changer", train, test, folds=3)
+    >>> d.effect
+    'backlash'
+    """
+    from tolalloc.diagnose import diagnose
+    from tolalloc.diagnose.measurements import check_train_test
+    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+    from tolalloc.diagnose.register import REGISTER_N
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
+
+    alpha, folds = _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, MIN_SUBSAMPLE_ROWS)
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    tr, te = _read(rob, train, test, progress)
+    if folds > tr.n_poses // 2:
+        raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
+                            f"training poses (at least 2 poses held out per fold), got {folds}.")
+    if te is not None:
+        check_train_test(tr, te, tr.source, te.source)
+    d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
+                 register_n=REGISTER_N if register_n is None else register_n, progress=progress,
+                 **({} if cv_rows is None else {"subsample_rows": cv_rows}))
+    gap = None
+    if gap_split:
+        from tolalloc.diagnose.gap import diagnosis_gap_split
+
+        with progress_scope(progress):
+            bar = progress_bar("residual Gaussian process (gap_split)")
+            try:
+                gap = diagnosis_gap_split(d)
+            finally:
+                bar.close()
+    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
+              "register_n": register_n, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
+              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units)}
+    return MeasurementDiagnosis(d, gap, folds, record)
+
+
+def _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, min_rows):
+    """The arguments of :func:`diagnose_measurements` that need no data; returns ``(alpha, folds)``."""
+    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
+    alpha = inputs.check_probability(alpha, "alpha", example="0.01")
+    folds = inputs.check_count(folds, "folds", minimum=2, example="5")
+    inputs.check_seed(seed)
+    if cv_rows is not None:
+        inputs.check_count(cv_rows, "cv_rows", minimum=min_rows, example="10000")
+    if gap_split and test is None:
+        raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
+    if register_n is not None and test_frame != "refit":
+        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
+    return alpha, folds
+
+
+def _read(robot, train, test, progress):
+    """The training and test measurements (paths or DataFrames), with a progress bar for large files."""
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
+
+    names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
+    with progress_scope(progress):
+        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
+        try:
+            tr = inputs.as_measurements(train, robot, "train")
+            te = None if test is None else inputs.as_measurements(test, robot, "test")
+        finally:
+            bar.close()
+    return tr, te
+
+
+@dataclass(frozen=True, eq=False, repr=False)
+class MeasurementDiagnosis(JobResult):
+    """A sim-to-real diagnosis and, optionally, where the held-out gap lies.
+
+    Attributes
+    ----------
+    diagnosis : Diagnosis
+        Registration, geometric calibration, selected effect(s), ranking, guards, held-out scores.
+    gap : GapSplit or None
+        The held-out test error split into geometry / effect / systematic but unnamed / noise floor.
+    folds : int
+    inputs : dict
+        The call's inputs that decide the numbers (robot, files, test_frame, folds, alpha, seed, ...).
+
+    See :func:`diagnose_measurements` for an example; ``to_frame()`` is the before / after table
+    (nominal, geometric, final model; RMS, p95, max [mm]).
+    """
+
+    diagnosis: object
+    gap: object = None
+    folds: int = 5
+    inputs: dict = field(default_factory=dict)
+
+    @property
+    def robot(self):
+        return self.diagnosis.robot
+
+    @property
+    def effect(self) -> str:
+        return self.diagnosis.effect
+
+    @property
+    def ok(self) -> bool:
+        return True
+
+    def headline(self) -> list[str]:
+        d = self.diagnosis
+        lines = [f"robot: {self.robot.name}   {d.train.n_poses} training poses"
+                 + ("" if d.test is None else f", {d.test.n_poses} test poses"), f"effect: {d.effect}"]
+        block = d.before_after("test" if d.test is not None else "cv")
+        lines.append("RMS [mm]: " + ", ".join(f"{m} {r:.4f}" for m, r in zip(block["model"], block["rms_mm"])))
+        if d.guards:
+            lines.append(f"guards fired: {len(d.guards)}")
+        return lines
+
+    def to_frame(self) -> pd.DataFrame:
+        """Held-out RMS, p95 and max error of the nominal, geometric and final models [mm]."""
+        d = self.diagnosis
+        return d.before_after("test" if d.test is not None else "cv")
+
+    def ranking_frame(self) -> pd.DataFrame:
+        """Candidate effects with their held-out RMS, p-value and gain."""
+        return self.diagnosis.ranking_frame()
+
+    def summary(self) -> dict:
+        """The JSON result (``--json``)."""
+        return self.diagnosis.to_dict() | ({} if self.gap is None else {"gap_split": self.gap.to_dict()})
+
+    def text(self) -> str:
+        """What the command line prints."""
+        from tolalloc.workflows.diagnosis_text import summary_lines
+
+        return "\n".join(summary_lines(self.diagnosis, self.folds, self.gap))
+
+    def predictions_frame(self) -> pd.DataFrame:
+        """The final model's prediction for every test row, in order (skipped rows empty), with its 1-sigma and
+        95 % radius, the registration flag and the extrapolation flag."""
+        from tolalloc.report.diagnosis import test_predictions
+
+        d = self.diagnosis
+        if d.test is None:
+            raise ArgumentError("predictions", "needs `test`: predictions are made for the rows of the test file.")
+        frame = test_predictions(d)
+        if d.test.n_skipped:  # skipped rows get empty predictions, so rows still line up with the test file
+            full = pd.DataFrame({"row": range(1, d.test.n_poses + d.test.n_skipped + 1)})
+            frame = full.merge(frame, on="row", how="left")
+        return frame.drop(columns="row")
+
+    def save(self, report=None, *, json=None, predictions=None) -> list[str]:
+        """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
+        CSV; all published together, nothing if any fails. Returns the paths written."""
+        self.check_out(report, "report")
+        self.check_out(json, "json", directory=False)
+        self.check_out(predictions, "predictions", directory=False)
+        check_distinct_outputs([("json", json), ("predictions", predictions), ("report", report)])
+        if predictions is not None and self.diagnosis.test is None:
+            raise ArgumentError("predictions", "needs `test`: predictions are made for the rows of the test file.")
+        with output_group() as group:
+            if predictions is not None:
+                self.predictions_frame().to_csv(group.file(predictions), index=False, float_format="%.6f")
+            if report is not None:
+                self.write_report(group.directory(report))
+            if json is not None:
+                write_json(self.summary(), group.file(json))
+        return [str(p) for p in (predictions, report, json) if p is not None]
+
+    def write_report(self, folder) -> None:
+        """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
+        from tolalloc.report.diagnosis import write_report
+        from tolalloc.workflows.html import write_diagnosis_report
+
+        write_report(self.diagnosis, folder)
+        if self.gap is not None:
+            self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
+        write_diagnosis_report(self, folder)
