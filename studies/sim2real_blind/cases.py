@@ -198,7 +198,8 @@ def generate(robot, label: str, n_poses: int, rng: np.random.Generator, variant:
     ``variant`` (issue 25): ``motion`` (thermal from the motion history), ``guide`` (telescopic-guide
     deflection), ``preload`` (friction-banded backlash), ``bumps`` (periodic bumps), ``outliers`` (2 % gross
     outliers, always), ``wrist_still`` (the first 75 % of the poses -- the training part, split in time -- keep
-    the flange direction; the rest are random). Without it the draws are those of the issue-15 cases.
+    the flange direction; the rest are random); ``beam``: the issue-15 physics (a tag only). Without a variant
+    the draws are those of the issue-15 cases.
     """
     desc = describe(robot)
     n = robot.n_joints
