@@ -37,7 +37,7 @@ def test_end_to_end(tmp_path, capsys):
     assert np.sqrt(np.mean(err ** 2)) == __import__("pytest").approx(js["test_rms_mm"]["final"], rel=1e-6)
     assert (tmp_path / "rep" / "report.md").exists() and (tmp_path / "rep" / "where.png").exists()
     out = capsys.readouterr().out
-    assert "effect: backlash" in out
+    assert out.startswith("verdict: effect -- backlash")
     # order: test-file figures, then cross-validation, worst test poses, guards, ranking
     heads = ["test file", "cross-validation on the training file", "worst test poses", "predicted uncertainty",
              "ranking"]

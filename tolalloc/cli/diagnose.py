@@ -47,6 +47,15 @@ def register(sub) -> None:
                    help="split the held-out test error into removed by geometry / by the effect / systematic but "
                         "unnamed (a Gaussian process on the joint values) / noise floor (needs --test; adds about a "
                         "minute for 1000 training poses)")
+    p.add_argument("--robust-loss", default="tukey", choices=["tukey", "huber", "soft_l1"],
+                   help="M-estimator of the fits: tukey (default) gives gross outliers no weight and lists them; "
+                   "huber bounds their weight; soft_l1 is the former smooth loss")
+    p.add_argument("--target-offset-mm", type=finite_float, nargs=3, metavar=("X", "Y", "Z"), default=None,
+                   help="prior mean of the probe / target offset in the flange frame, relative to the robot's tool "
+                   "point [mm] (needs --target-offset-sd-mm)")
+    p.add_argument("--target-offset-sd-mm", type=finite_float, default=None, metavar="SD",
+                   help="prior standard deviation of the probe / target offset [mm]; every fit uses it (default: each "
+                   "fold borrows the full training fit's offset)")
     p.set_defaults(func=cmd_diagnose)
 
 
@@ -64,6 +73,8 @@ def cmd_diagnose(args) -> int:
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,
                                 register_n=args.register_n, folds=args.folds, alpha=args.alpha, seed=args.seed,
                                 cv_rows=args.cv_rows, gap_split=args.gap_split, progress=args.progress,
+                                robust_loss=args.robust_loss, target_offset_mm=args.target_offset_mm,
+                                target_offset_sd_mm=args.target_offset_sd_mm,
                                 **robot_kwargs(args))
     res.save(args.report, json=None if args.json == "-" else args.json, predictions=args.predictions)
     if args.json == "-":

@@ -4,13 +4,13 @@ A linear model ``y = Phi beta + e`` with ``beta_i ~ N(0, s_g(i)^2)`` -- one prio
 transmission's harmonics of one joint) -- and ``e ~ N(0, sigma^2 I)``. The scales and the noise maximise the
 marginal likelihood ``p(y | s, sigma)`` (MacKay's fixed-point updates, Bishop, *Pattern Recognition and
 Machine Learning*, eqs. 3.92 and 3.95, per group): with ``A = diag(1 / s^2) + Phi^T Phi / sigma^2``,
-``m = A^-1 Phi^T y / sigma^2`` and ``gamma_i = 1 - (A^-1)_ii / s_i^2``,
+``m = A^-1 Phi^T y / sigma^2`` and ``gamma_i = 1 - (A^-1)_ii / s_i^2``::
 
     s_g^2 = sum_(i in g) m_i^2 / sum_(i in g) gamma_i,      sigma^2 = |y - Phi m|^2 / (n - sum gamma).
 
 The fitted model is a ridge regression whose penalty ``sigma^2 / s_i^2`` is the data's own: a long harmonic series
 on a joint that carries no such error gets a tiny scale (its columns are held near 0) instead of fitting noise.
-``log_ml`` compares variants with different columns (each with its own fitted scales); ``dof = sum gamma``
+``log_ml`` compares variants with different columns (each with its own fitted scales); ``dof = sum(gamma)``
 counts the parameters the data determine.
 """
 

@@ -3,16 +3,16 @@
 Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by ``J_k L_k alpha_k dT_k``
 (``J_k`` the first-order displacement per mm of link ``k``, :func:`link_growth`). Variants of ``dT``:
 
-``temperature``          the logged ``temperature_c`` minus the training mean; one ``alpha`` for all links.
-``lag_<tau>min``         the log through a first-order lag (time constant ``tau`` on :data:`LAG_MIN`); one ``alpha``.
-``warmup_<tau>min``      ``1 - exp(-(t - t0) / tau)``: a warm-up the ambient log does not show; one growth for all
-                         links [1e-6].
-``links_warmup_<tau>min`` the same warm-up with its own growth per link (motors of different power sit at
-                         different links) [1e-6 per link].
-``activity_<tau>min``    motion history: per joint the joint speed between consecutive poses in time order
-                         (``|q_i - q_(i-1)| / (t_i - t_(i-1))``, rad/s or mm/s) through a first-order lag of time
-                         constant ``tau`` (the heat stored in its motor); link ``k`` grows with the lagged activity
-                         of the joints at its two ends, with its own coefficient [1e-6 per rad/s].
+* ``temperature``: the logged ``temperature_c`` minus the training mean; one ``alpha`` for all links.
+* ``lag_<tau>min``: the log through a first-order lag (time constant ``tau`` on :data:`LAG_MIN`); one ``alpha``.
+* ``warmup_<tau>min``: ``1 - exp(-(t - t0) / tau)``, a warm-up the ambient log does not show; one growth for all
+  links [1e-6].
+* ``links_warmup_<tau>min``: the same warm-up with its own growth per link (motors of different power sit at
+  different links) [1e-6 per link].
+* ``activity_<tau>min``: motion history: per joint the joint speed between consecutive poses in time order
+  (``|q_i - q_(i-1)| / (t_i - t_(i-1))``, rad/s or mm/s) through a first-order lag of time constant ``tau`` (the
+  heat stored in its motor); link ``k`` grows with the lagged activity of the joints at its two ends, with its
+  own coefficient [1e-6 per rad/s].
 
 Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
 session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis

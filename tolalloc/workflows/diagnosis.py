@@ -17,7 +17,8 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 @inputs.honours_trust_units
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
-                          progress: bool | None = None, tool: str | None = None,
+                          progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,
+                          target_offset_sd_mm=None, tool: str | None = None,
                           trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
 
@@ -47,6 +48,16 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
         Progress bars on stderr (default: when stderr is a terminal).
+    robust_loss : {"tukey", "huber", "soft_l1"}
+        M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight and
+        lists them.
+    target_offset_mm, target_offset_sd_mm : array (3,) and float, optional
+        Prior mean [mm] (flange frame, relative to the robot's tool point) and sd [mm] of the probe / target offset,
+        used by every fit; without them each fold borrows the full training fit's offset as its prior.
+
+    The test file is sealed: the model is chosen on the training file alone (selection, variants, fold counts,
+    thresholds) and the test file is scored once afterwards. The verdict (``effect``, ``none``, ``ambiguous``,
+    ``inconclusive``) says how far the data decide.
 
     Returns
     -------
@@ -68,9 +79,9 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     from tolalloc.diagnose.measurements import check_train_test
     from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
     from tolalloc.diagnose.register import REGISTER_N
-    from tolalloc.diagnose.scale import progress_bar, progress_scope
 
     alpha, folds = _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, MIN_SUBSAMPLE_ROWS)
+    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
@@ -80,20 +91,14 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         check_train_test(tr, te, tr.source, te.source)
     d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
                  register_n=REGISTER_N if register_n is None else register_n, progress=progress,
+                 robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
                  **({} if cv_rows is None else {"subsample_rows": cv_rows}))
-    gap = None
-    if gap_split:
-        from tolalloc.diagnose.gap import diagnosis_gap_split
-
-        with progress_scope(progress):
-            bar = progress_bar("residual Gaussian process (gap_split)")
-            try:
-                gap = diagnosis_gap_split(d)
-            finally:
-                bar.close()
+    gap = _gap_split(d, progress) if gap_split else None
     record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
               "register_n": register_n, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
-              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units)}
+              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units), "robust_loss": robust_loss,
+              "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
+              "target_offset_sd_mm": target_offset_sd_mm}
     return MeasurementDiagnosis(d, gap, folds, record)
 
 
@@ -110,6 +115,28 @@ def _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
     if register_n is not None and test_frame != "refit":
         raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
     return alpha, folds
+
+
+def _gap_split(d, progress):
+    """Where the held-out gap lies (a Gaussian process on the training residual), with a progress bar."""
+    from tolalloc.diagnose.gap import diagnosis_gap_split
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
+
+    with progress_scope(progress):
+        bar = progress_bar("residual Gaussian process (gap_split)")
+        try:
+            return diagnosis_gap_split(d)
+        finally:
+            bar.close()
+
+
+def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm) -> None:
+    inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
+    if target_offset_mm is not None and target_offset_sd_mm is None:
+        raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
+                            "too (e.g. 5 for a tool drawing good to a few mm).")
+    if target_offset_sd_mm is not None:
+        inputs.check_positive(target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
 
 
 def _read(robot, train, test, progress):
@@ -159,13 +186,22 @@ class MeasurementDiagnosis(JobResult):
         return self.diagnosis.effect
 
     @property
+    def verdict(self) -> str:
+        """``effect``, ``none``, ``ambiguous`` or ``inconclusive``: how far the data decide."""
+        v = self.diagnosis.verdict
+        return "effect" if v is None and self.effect != "none" else ("none" if v is None else v.verdict)
+
+    @property
     def ok(self) -> bool:
         return True
 
     def headline(self) -> list[str]:
         d = self.diagnosis
+        v = d.verdict
         lines = [f"robot: {self.robot.name}   {d.train.n_poses} training poses"
-                 + ("" if d.test is None else f", {d.test.n_poses} test poses"), f"effect: {d.effect}"]
+                 + ("" if d.test is None else f", {d.test.n_poses} test poses"),
+                 f"verdict: {self.verdict}   effect: {d.effect}"
+                 + ("" if v is None or not v.candidates else f"   candidates: {', '.join(v.candidates)}")]
         block = d.before_after("test" if d.test is not None else "cv")
         lines.append("RMS [mm]: " + ", ".join(f"{m} {r:.4f}" for m, r in zip(block["model"], block["rms_mm"])))
         if d.guards:

@@ -20,7 +20,7 @@ _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "po
          "angle_step_deg": "--angle-step-deg", "tool": "--tool", "trust_units": "--trust-units",
          "exclude": "--exclude", "test": "--test", "test_frame": "--test-frame", "register_n": "--register-n",
          "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
-         "train": "--train"}
+         "train": "--train", "robust_loss": "--robust-loss"}
 #: boolean keyword arguments whose command-line flag switches them off
 _NEGATED = {"verify": "--no-verify", "correction": "--no-correction", "snap": "--no-snap"}
 
@@ -170,8 +170,17 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
         kw["gap_split"] = True
     if inp.get("trust_units"):
         kw["trust_units"] = True
+    if inp.get("robust_loss", "tukey") != "tukey":
+        kw["robust_loss"] = inp["robust_loss"]
+    offset = {k: inp[k] for k in ("target_offset_mm", "target_offset_sd_mm") if inp.get(k) is not None}
     train = kw.pop("train")
-    cli = shlex.join(["tolalloc", "diagnose", robot, "--train", train, *_cli_args(kw), "--report", "DIR"])
+    extra = ([] if "target_offset_mm" not in offset else
+             ["--target-offset-mm", *(_cli_value(float(v)) for v in offset["target_offset_mm"])])
+    extra += [] if "target_offset_sd_mm" not in offset else ["--target-offset-sd-mm",
+                                                             _cli_value(float(offset["target_offset_sd_mm"]))]
+    kw.update(offset)
+    cli_kw = {k: v for k, v in kw.items() if k not in offset}
+    cli = shlex.join(["tolalloc", "diagnose", robot, "--train", train, *_cli_args(cli_kw), *extra, "--report", "DIR"])
     args = ",\n    ".join([_py(robot), _py(train)] + [f"{k}={_py(v)}" for k, v in kw.items()])
     python = f"import tolalloc\n\nresult = tolalloc.diagnose_measurements(\n    {args})\nresult.save(report='DIR')"
     return cli, python, notes
