@@ -321,19 +321,16 @@ def calibrated_context(job) -> dict:
     res, pr, plan, chk = job.result, job.problem, job.plan, job.end_to_end
     s = job.summary()
     requirement = pretty(f"P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after calibration")
-    cert = res.certified
-    word = (chk.verdict.upper() if chk is not None else
+    cert, std, built = res.certified, job.standard, job.built
+    word = (chk.verdict.upper() if chk is not None else "NOT VERIFIED" if built is not None else
             ("CERTIFIED" if cert.certified else "NOT CERTIFIED") if res.design.ok else "INFEASIBLE")
-    std, built = job.standard, job.built
     verdict = {"cls": "ok" if job.ok else ("warn" if res.design.ok else "fail"), "word": word,
                "lead": pretty(res.message()).replace("\n", "; "),
                "lines": ([] if std is None else ["Standard grades: " + pretty(std.message_line())])
                + ([] if chk is None else ["End-to-end Monte Carlo: " + pretty(chk.message())])}
-    cards = [] if built is None else [
-        {"label": "cost (to build)", "value": _f4(built.cost),
-         "note": f"standard grades, {built.premium_pct:+.2f} % over the continuous design"},
-        {"label": "rounding down", "value": _f4(built.rounded_cost),
-         "note": f"{built.rounded_premium_pct:+.2f} %, what the standard design replaces"}]
+    cards = [] if built is None else [  # the design to build, and the rounding it replaces
+        {"label": "cost (to build)", "value": _f4(built.cost), "note": f"standard grades, {built.premium_pct:+.2f} %"},
+        {"label": "rounding down", "value": _f4(built.rounded_cost), "note": f"{built.rounded_premium_pct:+.2f} %"}]
     cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(s["cost"]),
                "note": f"{s['design']} design"},
              {"label": "certified design", "value": _f4(s["cost_certified"]),
@@ -374,7 +371,8 @@ def calibrated_context(job) -> dict:
             "grade_note": pretty(job.grade_note()),
             "end_to_end": None if chk is None else {"text": pretty(chk.message()), "table": _end_to_end_table(job)},
             "no_end_to_end": "The end-to-end Monte Carlo did not run (verify=False, or a pose-measurement plan): "
-                             "the design rests on its certificate alone.",
+                             + ("the standard design rests on the linear post-calibration probability alone."
+                                if built is not None else "the design rests on its certificate alone."),
             "figures": _calibrated_figures(job), "inputs": _inputs_pairs(job.inputs, []),
             "reproduce": {"cli": cli, "python": python, "notes": rnotes}}
 
