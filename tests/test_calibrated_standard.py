@@ -171,16 +171,22 @@ def test_local_search_never_breaks_the_requirement_nor_raises_the_cost(poses):
         assert all(b < a for a, b in zip(costs, costs[1:]))
 
 
-def test_small_case_equals_brute_force(tc):
+def _small(tc, grades):
+    """dl1, dl2 on ``grades`` and dth1 on 0.001 deg steps allocatable, every other parameter fixed."""
     robot, plan = tc
     model = build_error_model(robot)
     free = {"dl1", "dl2", "dth1"}
     params = {p.name: {"fixed": True, ("tol_mm" if p.unit == "mm" else "tol_deg"): 0.05 if p.unit == "mm" else 0.003}
               for p in model.params if p.name not in free}
     params["dth1"] = {"t_min_deg": 0.001, "t_max_deg": 0.006, "step_deg": 0.001}
-    costs = {"kinds": {"link_length": {"grades": "IT8-IT12"}}, "parameters": params}
+    costs = {"kinds": {"link_length": {"grades": grades}}, "parameters": params}
     pr = build_problem(model, robot.poses("working")[:6], radius_mm=0.175, costs=costs)
-    res = allocate_with_calibration(pr, plan, baseline=False)
+    return allocate_with_calibration(pr, plan, baseline=False)
+
+
+def test_small_case_equals_brute_force(tc):
+    robot, plan = tc
+    res = _small(tc, "IT8-IT12")
     std = standardize_calibrated(res, relax=False)
     cat = build_catalogue(res.problem)
     per = [[(o, k) for o in range(cat.start[a], cat.start[a + 1])
@@ -196,6 +202,22 @@ def test_small_case_equals_brute_force(tc):
     assert std.rounded_cost > std.cost * (1 + 1e-3)  # and rounding alone would not reach it
     local = standardize_calibrated(res, relax=False, outer_approximation=False)  # the local search alone, here too
     assert local.cost == pytest.approx(cost[ok].min(), rel=1e-12)
+
+
+def test_rounding_up_misses_p_where_the_search_does_not(tc):
+    # IT11 is coarser than the continuous dl1, dl2: "rounding down" goes up to the finest grade and misses p
+    res = _small(tc, "IT11-IT12")
+    std = standardize_calibrated(res, relax=False)
+    assert res.design.ok and not std.rounded_meets and std.rounded_p_min < res.problem.prob
+    assert std.ok and std.p_post.min() >= res.problem.prob - 1e-12
+    assert "misses p" in std.message_line()
+    # IT12 only: no standard design meets p (every tolerance at its finest value fails); said, nothing built
+    res = _small(tc, "IT12-IT12")
+    std = standardize_calibrated(res, relax=False)
+    assert std.design.status == "infeasible" and not std.ok and "standard grades: none" in std.message_line()
+    assert std.to_dict()["cost"] is None
+    with pytest.raises(TolallocError, match="^standard: the standard-grade design has no design to check"):
+        verify_calibrated_design(res, standard=std, n_robots=40)
 
 
 @pytest.fixture(scope="module")

@@ -127,10 +127,11 @@ class CalibratedToleranceAllocation(JobResult):
 
     @property
     def ok(self) -> bool:
-        """A design meeting the requirement wherever checked, and its end-to-end Monte Carlo passed (if run)."""
+        """The design to build (standard when found, else continuous) meets the requirement wherever checked, and its
+        end-to-end Monte Carlo passed (if run)."""
         if not self.result.design.ok or not self.result.ok:
             return False
-        if self.standard is not None and not self.standard.ok:
+        if self.built is not None and not self.standard.ok:  # the standard design to build falls short somewhere
             return False
         return self.end_to_end is None or self.end_to_end.passed
 
