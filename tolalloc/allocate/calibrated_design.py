@@ -311,13 +311,18 @@ def allocate_with_calibration(problem: AllocationProblem, plan, *, split: ErrorS
 
 def _pose_coverage(res: CalibratedDesign, k: int, tol: float) -> Coverage:
     """Every pose of a pose set / trajectory checked exactly, as a :class:`Coverage` (no sampling)."""
+    p, _ = post_probabilities(res.problem, res.post.split, res.plan, res.design.t)
+    return _coverage_of(res.problem.q, p, res.problem.prob, k, tol)
+
+
+def _coverage_of(q: np.ndarray, p: np.ndarray, prob: float, k: int, tol: float) -> Coverage:
+    """A :class:`Coverage` of exact probabilities ``p`` (n,) at every pose ``q`` (n, dof): below when ``P < prob - tol``."""
     from scipy.stats import beta
 
-    p, _ = post_probabilities(res.problem, res.post.split, res.plan, res.design.t)
     n = len(p)
-    below = int(np.sum(p < res.problem.prob - tol))
+    below = int(np.sum(p < prob - tol))
     upper = float(beta.ppf(0.95, below + 1, n - below)) if below < n else 1.0
-    return Coverage(n, float(p.min()), res.problem.q[np.argsort(p)[:k]], below, below / n, upper, n)
+    return Coverage(n, float(p.min()), q[np.argsort(p)[:k]], below, below / n, upper, n)
 
 
 def _box(problem, plan, split, box, exact, baseline, coverage_n, k, t0, kw):

@@ -69,7 +69,8 @@ def _linearise(problem: AllocationProblem, u: np.ndarray, near: float = 0.02):
 
 
 def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, continuous=None, *, max_rounds: int = 25,
-                         time_limit: float = 120.0, search: bool = True) -> RuleOutcome:
+                         time_limit: float = 120.0, search: bool = True, margin=None, linearise=None,
+                         batch: int = 128) -> RuleOutcome:
     """Cheapest catalogue design found under the exact probability, starting from ``start``.
 
     Parameters
@@ -84,6 +85,13 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
         Outer-approximation rounds.
     search : bool
         Run the local search after the outer approximation.
+    margin, linearise : callable, optional
+        Another probability requirement: ``margin(U)`` (B,) the smallest ``P_i - target_i`` of each row of ``U``
+        (B, Ka), and ``linearise(u) -> (A, s)`` its rows ``A u' <= s`` at ``u`` (default :func:`exact_margin` and
+        the Gaussian probability's linearisation on ``problem``; e.g. the post-calibration probability of
+        :mod:`tolalloc.allocate.calibrated_standard`).
+    batch : int
+        Candidate moves evaluated together by the local search.
 
     Returns
     -------
@@ -93,14 +101,16 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
         (the best design found is kept; it meets the requirement either way). ``bound`` is NaN (no proven bound).
     """
     t0 = time.perf_counter()
+    margin = margin or (lambda U: exact_margin(problem, U))
+    linearise = linearise or (lambda u: _linearise(problem, u))
     opt, n = (np.asarray(x, int) for x in start)
-    if exact_margin(problem, cat.u_of(opt, n))[0] < 0:
+    if margin(cat.u_of(opt, n)[None])[0] < 0:
         raise ValueError("solve_discrete_exact: the start design does not meet the exact requirement")
     inc = (cat.total_cost(opt, n), opt, n)
     hint = None if continuous is None or continuous.t is None else continuous.t[problem.alloc]
-    A, s = _linearise(problem, cat.u_of(opt, n))
+    A, s = linearise(cat.u_of(opt, n))
     if hint is not None:
-        A2, s2 = _linearise(problem, problem.u_from_t(continuous.t))
+        A2, s2 = linearise(problem.u_from_t(continuous.t))
         A, s = np.vstack([A, A2]), np.concatenate([s, s2])
     oa = OuterApproximation(cat, A, s, hint if hint is not None else cat.t_of(opt, n))
     status, mips, msg = "not_converged", 0, f"outer approximation stopped after {max_rounds} rounds"
@@ -114,17 +124,17 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
             msg = out.message
             break
         u = cat.u_of(out.opt, out.n)
-        ok = exact_margin(problem, u)[0] >= 0
+        ok = margin(u[None])[0] >= 0
         cand = (cat.total_cost(out.opt, out.n), out.opt, out.n) if ok else repair(
-            cat, out.opt, out.n, lambda U: -exact_margin(problem, U))
+            cat, out.opt, out.n, lambda U: -margin(U))
         if cand is not None and cand[0] < inc[0]:
             inc = cand
         oa.tighten(out.opt, out.n, out)
         if not ok:
-            oa.add_rows(*_linearise(problem, u))
+            oa.add_rows(*linearise(u))
     moves = 0
     if search:
-        opt, n, moves = local_search(cat, inc[1], inc[2], lambda U: -exact_margin(problem, U))
+        opt, n, moves = local_search(cat, inc[1], inc[2], lambda U: -margin(U), batch=batch)
         inc = (cat.total_cost(opt, n), opt, n)
     return RuleOutcome("exact", status, inc[1], inc[2], inc[0], np.nan, mips, time.perf_counter() - t0,
                        f"{msg}; local search: {moves} move(s)")

@@ -8,7 +8,8 @@ with the criteria of :mod:`tolalloc.verify.designs` on the simultaneous interval
 
 * **demonstrated**: the whole interval at or above ``p``; **consistent**: it reaches ``p``; **failed**: wholly below;
 * a certified design passes a pose only when demonstrated, an exact design (which sits at ``p`` at its binding
-  poses by construction) passes a consistent pose; both also need the linear prediction not above the interval (the
+  poses by construction) and a standard-grade design of it (``standard=``, held at ``p`` by the same exact
+  probability) pass a consistent pose; all also need the linear prediction not above the interval (the
   linear post-calibration model the design was allocated on is not optimistic there). Whether the linear prediction
   lies inside the interval (:attr:`CalibrationCheck.agree`) is reported beside it: a Monte Carlo above the linear
   prediction means the design is conservative there, not that it fails.
@@ -38,7 +39,7 @@ class EndToEnd:
     prob : float
         The requirement ``p``.
     design : str
-        ``certified`` or ``exact`` (the design checked).
+        ``certified``, ``exact`` or ``standard`` (the design checked).
     verdicts : array of str, shape (m,)
         Per pose ``demonstrated``, ``consistent`` or ``failed``.
     """
@@ -59,8 +60,8 @@ class EndToEnd:
 
     @property
     def passed(self) -> bool:
-        """Certified: demonstrated at every pose; exact: no pose failed; both: the linear prediction nowhere above the
-        interval."""
+        """Certified: demonstrated at every pose; exact and standard: no pose failed; all: the linear prediction
+        nowhere above the interval."""
         need = ("demonstrated",) if self.design == "certified" else ("demonstrated", "consistent")
         return bool(np.all(np.isin(self.verdicts, need)) and not np.any(self.optimistic))
 
@@ -89,8 +90,8 @@ class EndToEnd:
                 + ("; passed" if self.passed else "; NOT passed"))
 
 
-def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000, seed: int = 0, k_worst: int = 3,
-                             level: float = 0.95, estimator: str = "plain") -> EndToEnd:
+def verify_calibrated_design(res, *, which: str = "chosen", standard=None, n_robots: int = 4000, seed: int = 0,
+                             k_worst: int = 3, level: float = 0.95, estimator: str = "plain") -> EndToEnd:
     """End-to-end Monte Carlo of a calibration-aware design at its worst poses (module docstring).
 
     Parameters
@@ -99,6 +100,12 @@ def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000
         From :func:`tolalloc.allocate.calibrated_design.allocate_with_calibration` (position plan).
     which : {"chosen", "certified"}
         The design checked: the result's chosen design (exact when accepted) or the certified one.
+    standard : CalibratedStandard, optional
+        Check this standard-grade design of ``res`` instead
+        (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`): its tolerances, repeatability grades
+        and worst poses (:meth:`~tolalloc.allocate.calibrated_standard.CalibratedStandard.check_poses`); ``which`` is
+        then unused. Judged like the exact design (a consistent pose passes): it is held at ``p`` by the exact
+        post-calibration probability, not by a certificate.
     n_robots : int
         Simulated robots (= trials per pose).
     k_worst : int
@@ -116,8 +123,20 @@ def verify_calibrated_design(res, *, which: str = "chosen", n_robots: int = 4000
     if res.plan.measurement != "position":
         raise TolallocError("verify_calibrated_design: the end-to-end Monte Carlo simulates position measurements; "
                             "the plan measures poses (measurement = pose).")
-    kw = res.end_to_end_inputs(k_worst, which)
+    if standard is not None:
+        same = (hasattr(standard, "end_to_end_inputs") and standard.plan is res.plan
+                and list(standard.problem.model.names) == list(res.problem.model.names))
+        if not same:
+            raise TolallocError("standard: expected the CalibratedStandard of this allocation (tolalloc.allocate."
+                                "calibrated_standard.standardize_calibrated(res)), got a "
+                                f"{type(standard).__name__}" + (" of another allocation (another plan)."
+                                                                 if hasattr(standard, "end_to_end_inputs") else "."))
+        if not standard.design.ok:
+            raise TolallocError(f"standard: the standard-grade design has no design to check "
+                                f"({standard.design.message}).")
+        kw, label = standard.end_to_end_inputs(k_worst), "standard"
+    else:
+        kw = res.end_to_end_inputs(k_worst, which)
+        label = "exact" if which == "chosen" and res.exact_accepted else "certified"
     chk = verify_calibration(n_robots=int(n_robots), seed=seed, level=level, estimator=estimator, **kw)
-    exact = which == "chosen" and res.exact_accepted
-    return EndToEnd(chk, float(res.problem.prob), "exact" if exact else "certified",
-                    pose_verdicts(chk.ci_low, chk.ci_high, res.problem.prob))
+    return EndToEnd(chk, float(res.problem.prob), label, pose_verdicts(chk.ci_low, chk.ci_high, res.problem.prob))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 
 from tolalloc.outputs import atomic_output, write_json
 from tolalloc.workflows.base import JobResult
@@ -25,10 +26,12 @@ def split_from_costs(model, path):
 
 
 def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify, n_mc, seed, estimator, coverage_n,
-                          inputs_record, **kw):
+                          inputs_record, snap: bool = True, angle_step_deg: float | None = None, **kw):
     """Calibration-aware allocation after the plan in ``plan_path``: certified, then exact, at the poses ``q``
-    (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage), with the end-to-end Monte Carlo (simulated
-    robots, each calibrated nonlinearly, at the design's worst poses) when ``verify``."""
+    (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
+    (ISO 286 grades, classes, ``angle_step_deg`` steps) chosen over the same poses or box
+    (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`), the design to build; the end-to-end Monte
+    Carlo (simulated robots, each calibrated nonlinearly, at the built design's worst poses) when ``verify``."""
     from tolalloc.allocate import build_problem
     from tolalloc.allocate.calibrated_design import allocate_with_calibration
     from tolalloc.calibration.plan import read_plan
@@ -40,6 +43,11 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
     plan = read_plan(plan_path, model.robot)
     split = split_from_costs(model, costs_path)
     res = allocate_with_calibration(problem, plan, split=split, region=box, coverage_n=coverage_n, seed=seed)
+    std = None
+    if res.design.ok and snap:
+        from tolalloc.allocate.calibrated_standard import standardize_calibrated
+
+        std = standardize_calibrated(res, angle_step_deg=angle_step_deg, coverage_n=coverage_n, seed=seed)
     chk, n = None, None
     if res.design.ok and verify and plan.measurement == "position":
         from tolalloc.verify.calibrated_worst import verify_calibrated_design
@@ -47,8 +55,9 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
         n = max(200, min(int(n_mc), 4000))
         # the end-to-end check has no importance sampler: its rare tails take the paired estimator
         est = "paired" if estimator == "importance" else estimator
-        chk = verify_calibrated_design(res, n_robots=n, seed=seed, estimator=est)
-    return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record)
+        built = std if std is not None and std.design.ok else None
+        chk = verify_calibrated_design(res, standard=built, n_robots=n, seed=seed, estimator=est)
+    return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record, std)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -65,10 +74,13 @@ class CalibratedToleranceAllocation(JobResult):
     label : str
         Where the requirement holds: the region or pose-set name.
     end_to_end : EndToEnd or None
-        Simulated robots, each calibrated nonlinearly at the plan's poses, then checked at the design's worst poses
-        (per-pose verdicts demonstrated / consistent / failed).
+        Simulated robots, each calibrated nonlinearly at the plan's poses, then checked at the built design's worst
+        poses (per-pose verdicts demonstrated / consistent / failed).
     n_robots : int or None
     inputs : dict
+    standard : CalibratedStandard or None
+        The standard-grade design (ISO 286 grades, classes, steps) chosen over the same poses or box: the design to
+        build when it was found (``tolerance_std``, ``grade`` in the table); None when not asked for (``snap``).
     """
 
     result: object
@@ -78,6 +90,7 @@ class CalibratedToleranceAllocation(JobResult):
     end_to_end: object
     n_robots: int | None
     inputs: dict = field(default_factory=dict)
+    standard: object = None
 
     @property
     def robot(self):
@@ -88,7 +101,19 @@ class CalibratedToleranceAllocation(JobResult):
         return self.result.problem
 
     @property
+    def built(self):
+        """The standard-grade design when one was found (the design to build, the one checked end to end), else
+        None (the continuous design is built)."""
+        std = self.standard
+        return std if std is not None and std.design.ok else None
+
+    @property
     def cost(self) -> float:
+        """Cost of the design to build: the standard one when found, else the continuous one."""
+        return float(self.built.cost if self.built is not None else self.result.cost)
+
+    @property
+    def continuous_cost(self) -> float:
         return float(self.result.cost)
 
     @property
@@ -102,8 +127,11 @@ class CalibratedToleranceAllocation(JobResult):
 
     @property
     def ok(self) -> bool:
-        """A design meeting the requirement wherever checked, and its end-to-end Monte Carlo passed (if run)."""
+        """The design to build (standard when found, else continuous) meets the requirement wherever checked, and its
+        end-to-end Monte Carlo passed (if run)."""
         if not self.result.design.ok or not self.result.ok:
+            return False
+        if self.built is not None and not self.standard.ok:  # the standard design to build falls short somewhere
             return False
         return self.end_to_end is None or self.end_to_end.passed
 
@@ -119,11 +147,41 @@ class CalibratedToleranceAllocation(JobResult):
         if not self.result.design.ok:
             return lines + [f"status: infeasible ({self.result.design.message})"]
         s = self.result.summary()
-        lines.append(f"cost: {self.cost:.4f} ({s['design']})" + ("" if s.get("saving_pct") is None else
-                                                               f", {s['saving_pct']:.1f}% below no calibration"))
+        lines.append(f"cost: {self.continuous_cost:.4f} ({s['design']})" + (
+            "" if s.get("saving_pct") is None else f", {s['saving_pct']:.1f}% below no calibration"))
+        if self.built is not None:
+            b = self.built
+            lines.append(f"design to build: standard grades, cost {b.cost:.4f} ({b.premium_pct:+.2f} % over the "
+                         f"continuous design; rounding down {b.rounded_premium_pct:+.2f} %)")
         if self.end_to_end is not None:
             lines.append(f"end-to-end Monte Carlo: {self.end_to_end.verdict}")
         return lines
+
+    def grade_note(self) -> str:
+        """What the tolerance table says about standard grades: the design to build, where it holds, its premium."""
+        std, b = self.standard, self.built
+        if std is None:
+            return "The calibration-aware design was not made standard (snap=False): its tolerances are continuous."
+        if b is None:
+            return (f"No standard-grade design was found ({std.design.message}); the continuous design is the one "
+                    "shown and checked.")
+        if std.ok:
+            where = ("holds at p over the region (worst-pose search and coverage on its post-calibration covariance)"
+                     if std.region_kind == "box" else "holds at p at every pose")
+        else:
+            where = f"does NOT hold where checked (worst post-calibration P found {std.worst_p():.5f})"
+        split = ("" if not np.isfinite(b.relaxed_cost) else
+                 f" Within the catalogue's range the continuous design costs {b.relaxed_cost:.4f}: "
+                 f"{b.range_premium_pct:+.2f} % is the range"
+                 + (f" ({', '.join(b.range_limited)} above their coarsest standard value)" if b.range_limited else "")
+                 + f", {b.step_premium_pct:+.2f} % the steps between standard values.")
+        check = " The end-to-end Monte Carlo checks the standard design." if self.end_to_end is not None else ""
+        return (f"The design to build carries standard values (tolerance_std, grade: ISO 286 grades for link lengths), "
+                f"rounded down from the continuous {b.continuous_label} design and improved by a local search under "
+                f"the exact post-calibration probability; it {where}. It costs {b.cost:.4f}, {b.premium_pct:+.2f} % "
+                f"over the continuous design ({b.continuous_cost:.4f}); rounding down alone would cost "
+                f"{b.rounded_cost:.4f} ({b.rounded_premium_pct:+.2f} %).{split} The search ends at a local optimum, "
+                "not a proven one." + check)
 
     def to_frame(self):
         """Per parameter: ``tolerance``, ``status`` and ``cost`` of the chosen design (exact when accepted, else
@@ -135,6 +193,15 @@ class CalibratedToleranceAllocation(JobResult):
         df["cost"] = df["cost_exact"] if exact else df["cost_certified"]
         if exact:
             df["status"] = df["status_exact"]
+        b = self.built
+        if b is not None:
+            f = [p.to_interface for p in self.problem.model.params]
+            df.insert(3, "tolerance_std", b.design.t * f)
+            df.insert(4, "grade", list(b.grade))
+            if any(b.process):
+                df.insert(5, "process", list(b.process))
+            df["cost_std"] = b.param_cost
+            df["sigma_post_calibration_std"] = b.post.sigma_post * f
         return df
 
     def summary(self) -> dict:
@@ -146,6 +213,14 @@ class CalibratedToleranceAllocation(JobResult):
                      cost_repeatability_grades_loosest=float(cert.grade_cost_loosest))
         if self.end_to_end is not None:
             s["end_to_end"] = self.end_to_end.to_dict()
+        std, b = self.standard, self.built
+        s["standard"] = None if std is None else std.to_dict()
+        s.update(cost_continuous=s["cost"], cost_standard=None if b is None else b.cost,
+                 cost_rounded=None if std is None else std.rounded_cost,
+                 standard_premium_pct=None if b is None else b.premium_pct,
+                 rounded_premium_pct=None if std is None else std.rounded_premium_pct)
+        s["built"] = {"design": "standard" if b is not None else s["design"], "cost": self.cost if s["cost"] is not None
+                      else None, "standard": b is not None}
         return {**s, "pose_set": self.label, "plan_file": self.plan_source}
 
     def text(self) -> str:
@@ -160,6 +235,20 @@ class CalibratedToleranceAllocation(JobResult):
         if cert.grade_t is not None:
             out.append(f"  certified design: of which repeatability grades {cert.grade_cost:.4f} (parts "
                        f"{cert.design.cost:.4f}); without calibration: the loosest grades, {cert.grade_cost_loosest:.4f}")
+        if self.standard is not None:
+            out.append(self.standard.message_line())
+            s = self.standard.search
+            if s is not None:
+                out.append(f"region {res.region.name} (standard): {s.rounds} round(s), {len(s.active_q)} active poses, "
+                           f"{s.evaluations} search evaluations, worst post-calibration P found {s.worst_p:.5f}"
+                           + ("" if s.converged else " (NOT converged: round limit reached)"))
+            c = self.standard.coverage
+            if c is not None and res.region_kind == "box":
+                out.append(f"coverage of the standard design (post-calibration P): {c.n} fresh poses of the box, min P = "
+                           f"{c.min_p:.5f}, {c.n_below} below {pr.prob:g}" + ("; none below p" if c.ok else ""))
+            if self.built is not None:
+                out.append("the design to build is the standard one (tolerance_std, grade); the end-to-end Monte Carlo "
+                           "below is its check")
         out += ["", self.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}")]
         unid = res.summary().get("unidentifiable") or []
         if unid:

@@ -321,13 +321,18 @@ def calibrated_context(job) -> dict:
     res, pr, plan, chk = job.result, job.problem, job.plan, job.end_to_end
     s = job.summary()
     requirement = pretty(f"P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after calibration")
-    cert = res.certified
-    word = (chk.verdict.upper() if chk is not None else
+    cert, std, built = res.certified, job.standard, job.built
+    word = (chk.verdict.upper() if chk is not None else "NOT VERIFIED" if built is not None else
             ("CERTIFIED" if cert.certified else "NOT CERTIFIED") if res.design.ok else "INFEASIBLE")
     verdict = {"cls": "ok" if job.ok else ("warn" if res.design.ok else "fail"), "word": word,
                "lead": pretty(res.message()).replace("\n", "; "),
-               "lines": [] if chk is None else ["End-to-end Monte Carlo: " + pretty(chk.message())]}
-    cards = [{"label": "cost", "value": _f4(s["cost"]), "note": f"{s['design']} design"},
+               "lines": ([] if std is None else ["Standard grades: " + pretty(std.message_line())])
+               + ([] if chk is None else ["End-to-end Monte Carlo: " + pretty(chk.message())])}
+    cards = [] if built is None else [  # the design to build, and the rounding it replaces
+        {"label": "cost (to build)", "value": _f4(built.cost), "note": f"standard grades, {built.premium_pct:+.2f} %"},
+        {"label": "rounding down", "value": _f4(built.rounded_cost), "note": f"{built.rounded_premium_pct:+.2f} %"}]
+    cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(s["cost"]),
+               "note": f"{s['design']} design"},
              {"label": "certified design", "value": _f4(s["cost_certified"]),
               "note": "certified" if cert.certified else "NOT certified"},
              {"label": "exact design", "value": _f4(s["cost_exact"]), "note": "post-calibration probability"},
@@ -342,7 +347,12 @@ def calibrated_context(job) -> dict:
                       "note": f"{job.n_robots} simulated calibrations"})
     table = job.to_frame()
     classes = ["hl" if st.startswith("must be held") else "" for st in table["status"]]
-    tol = html_table(table, CALIBRATED_COLUMNS, table_id="tolerance-table", row_classes=classes,
+    columns = CALIBRATED_COLUMNS
+    if built is not None:
+        columns = [*columns[:3], Column("tolerance_std", "standard ±", "pm"), Column("grade", "grade", "text"),
+                   *([Column("process", "process", "text")] if "process" in table else []), *columns[3:],
+                   Column("cost_std", "standard cost", "f3")]
+    tol = html_table(table, columns, table_id="tolerance-table", row_classes=classes,
                      caption=f"Tolerances of {job.robot.name} after the calibration plan",
                      note="Units: the row's unit (mm or deg) for tolerances and σ. Highlighted: must be held in "
                           "manufacturing.")
@@ -358,11 +368,11 @@ def calibrated_context(job) -> dict:
             "plan": [("file", job.plan_source), ("measurement poses", plan.n_poses), ("measurement", plan.measurement),
                      ("tracker noise", f"{plan.noise_mm:g} mm per coordinate")],
             "tolerance_table": tol, "unidentifiable": ", ".join(s["unidentifiable"]),
-            "grade_note": "The calibration-aware design is not snapped to standard (ISO 286) grades; standard grades "
-                          "are in the allocation without calibration (allocate_tolerances without `calibration`).",
+            "grade_note": pretty(job.grade_note()),
             "end_to_end": None if chk is None else {"text": pretty(chk.message()), "table": _end_to_end_table(job)},
             "no_end_to_end": "The end-to-end Monte Carlo did not run (verify=False, or a pose-measurement plan): "
-                             "the design rests on its certificate alone.",
+                             + ("the standard design rests on the linear post-calibration probability alone."
+                                if built is not None else "the design rests on its certificate alone."),
             "figures": _calibrated_figures(job), "inputs": _inputs_pairs(job.inputs, []),
             "reproduce": {"cli": cli, "python": python, "notes": rnotes}}
 
