@@ -104,8 +104,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         from tolalloc.workflows.calibrated import calibrated_allocation
 
         return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
-                                     seed=seed, estimator=estimator, coverage_n=coverage_n,
-                                     inputs_record=inputs_record, **kw)
+                                     seed=seed, estimator=estimator, coverage_n=coverage_n, snap=snap,
+                                     angle_step_deg=angle_step_deg, inputs_record=inputs_record, **kw)
     return _allocate(model, label, box, q, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg,
                      verify=verify, n_mc=n_mc, seed=seed, estimator=estimator, correction=correction,
                      correction_rounds=correction_rounds, coverage_n=coverage_n, scheduler=scheduler,
