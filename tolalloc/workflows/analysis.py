@@ -50,9 +50,13 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     >>> a.linear.std_mm.shape
     (1, 3)
     """
-    radii = [inputs.check_positive(r, "radius_mm", "mm", "0.25") for r in np.atleast_1d(radius_mm).tolist()]
-    probs = [inputs.check_probability(p, "prob") for p in np.atleast_1d(prob).tolist()]
+    radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
+    probs = inputs.check_values(prob, "prob", inputs.check_probability)
     top = inputs.check_count(top, "top", example="10")
+    inputs.check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
+                               clearance=clearance, exclude=exclude, sigma=sigma,
+                               clearance_tilt_literal=clearance_tilt_literal)
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
                                clearance=clearance, exclude=exclude, sigma=sigma,

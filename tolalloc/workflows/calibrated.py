@@ -175,7 +175,11 @@ class CalibratedToleranceAllocation(JobResult):
         if not self.result.design.ok:
             raise TolallocError(f"save: nothing to save, the calibration-aware allocation is infeasible "
                                 f"({self.result.design.message}).")
-        self.check_out(out, "out")
+        self.check_out(out, "out", required=True)
+        if not isinstance(report, (bool, np.bool_)):
+            from tolalloc.exceptions import ArgumentError
+
+            raise ArgumentError("report", f"expected True or False, got {report!r}.")
         with atomic_output(out, directory=True) as tmp:
             names = self.write_files(tmp, report=report)
         return names

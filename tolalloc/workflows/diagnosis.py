@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
@@ -73,9 +74,13 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
     alpha = inputs.check_probability(alpha, "alpha", example="0.01")
     folds = inputs.check_count(folds, "folds", minimum=2, example="5")
-    inputs.check_seed(seed)
+    seed = inputs.check_seed(seed)
     if cv_rows is not None:
-        inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
+        cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
+    inputs.check_flag(gap_split, "gap_split")
+    inputs.check_optional_flag(progress, "progress")
+    if register_n is not None:
+        _check_register_n(register_n)
     if gap_split and test is None:
         raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
     if register_n is not None and test_frame != "refit":
@@ -108,6 +113,17 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
             finally:
                 bar.close()
     return MeasurementDiagnosis(d, gap, folds)
+
+
+def _check_register_n(value) -> float:
+    """A count of registration poses (a whole number >= 5) or a fraction of the test poses (0 < f < 1)."""
+    from tolalloc.diagnose.register import MIN_REGISTER
+
+    x = inputs._number(value, "register_n")
+    if not (np.isfinite(x) and 0 < x and (x < 1 or (x == int(x) and x >= MIN_REGISTER))):
+        raise ArgumentError("register_n", f"expected a count of registration poses (a whole number >= {MIN_REGISTER}, "
+                            f"e.g. 30) or a fraction of the test poses (0 < f < 1, e.g. 0.2), got {inputs.shown(value)}.")
+    return x
 
 
 @dataclass(frozen=True, eq=False, repr=False)
