@@ -73,7 +73,7 @@ def dh_rows(draw, min_joints: int = 1, max_joints: int = 8):
             span = (400.0 if prismatic else 150.0) if limits == "wide" else (300.0 if prismatic else 60.0)
             lo = -span if limits == "wide" else (10.0 if limits == "positive" else -10.0 - span)
             row.update(lower_deg_mm=lo, upper_deg_mm=lo + 2 * span if limits == "wide" else lo + span)
-            if draw(st.integers(0, 5)):  # sometimes no nominal value: 0, outside limits that exclude zero
+            if draw(st.integers(0, 5)) < 5:  # sometimes no nominal value: 0, outside limits that exclude zero
                 row["nominal_deg_mm"] = lo + span * draw(st.floats(0.1, 0.9))
         rows.append(row)
     return rows
@@ -313,14 +313,65 @@ def _json_default(obj):
     return str(obj)
 
 
-def outcome(call, kwargs: dict):
-    """Run ``call(**kwargs)``: the result, or None after a checked refusal (any other exception propagates)."""
+#: faults outside the workflow layer, reported for the integrator, that a valid-run test may meet:
+#: (module, function) of the innermost tolalloc frame -> what goes wrong. Each has a strict xfail reproducer.
+KNOWN_FAULTS = {
+    ("diagnose/select.py", "choose_variant"):
+        "a robot without a link-deflection segment gets an empty link_deflection basis, and choosing among its "
+        "variants takes the maximum of an empty array (test_api_properties.test_known_fault_*)",
+}
+#: generated calls per public call, known faults met, and other exceptions (must stay 0) -- written to the file
+#: named by TOLALLOC_PROPERTY_COUNTS at exit
+COUNTS = {"calls": {}, "refused": {}, "known_faults": {}, "non_project_exceptions": {}, "cli_exit_codes": {}}
+
+
+def _innermost(exc: BaseException):
+    import traceback
+
+    frames = [f for f in traceback.extract_tb(exc.__traceback__) if "/tolalloc/" in f.filename.replace("\\", "/")]
+    if not frames:
+        return None
+    f = frames[-1]
+    return f.filename.replace("\\", "/").split("/tolalloc/")[-1], f.name
+
+
+def count(table: str, name: str) -> None:
+    COUNTS[table][name] = COUNTS[table].get(name, 0) + 1
+
+
+def outcome(call, kwargs: dict, *, tolerate_known: bool = False):
+    """Run ``call(**kwargs)``: the result, or None after a checked refusal (any other exception propagates, unless
+    ``tolerate_known`` and it is one of :data:`KNOWN_FAULTS`: then None as well)."""
     import warnings
 
+    name = getattr(call, "__qualname__", str(call))
+    count("calls", name)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a unit-slip warning is an answer too
         try:
             return call(**kwargs)
         except tolalloc.TolallocError as exc:
+            count("refused", name)
             check_refusal(exc, kwargs)
             return None
+        except Exception as exc:
+            where = _innermost(exc)
+            if tolerate_known and where in KNOWN_FAULTS:
+                count("known_faults", f"{name} {where[0]}:{where[1]}")
+                return None
+            count("non_project_exceptions", f"{name} {type(exc).__name__} at {where}")
+            raise
+
+
+def _write_counts() -> None:
+    import json
+
+    path = os.environ.get("TOLALLOC_PROPERTY_COUNTS")
+    if path:
+        Path(path).write_text(json.dumps({"profile": PROFILE, "long_examples": LONG_EXAMPLES, **COUNTS}, indent=1,
+                                         sort_keys=True))
+
+
+import atexit  # noqa: E402 - the counts are written when the test process ends
+
+atexit.register(_write_counts)

@@ -16,11 +16,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import tolalloc
-from property_strategies import (check_refusal, check_result, costs_texts, counts, examples, generated_robots,
+from property_strategies import (KNOWN_FAULTS, check_refusal, check_result, costs_texts, counts, examples,
+                                 generated_robots,
                                  interface_poses, joint_values, measurement_frame, measurement_frames,
                                  numbers_near_bounds, odd_values, outcome)
 
@@ -42,15 +43,26 @@ def two_link():
 def earlier_results() -> dict:
     """Results of earlier calls (and their parts), which notebooks pass on as inputs."""
     if not _RESULTS:
+        from tolalloc.diagnose import generate
+
+        arm = two_link()
         a = tolalloc.analyze_errors(TC, radius_mm=0.25)
-        al = tolalloc.allocate_tolerances(two_link(), verify=False)
+        al = tolalloc.allocate_tolerances(arm, verify=False)
+        plan = tolalloc.plan_calibration(arm, 3, n_candidates=8)
+        plan.save(SCRATCH / "plan.csv")
+        case = generate(arm, "none", 30, np.random.default_rng(2))
         _RESULTS.update(analysis=a, allocation=al, frame=al.to_frame(), summary=a.summary(),
-                        linear=a.linear, budget=a.budget_frame())
+                        linear=a.linear, budget=a.budget_frame(), plan=plan,
+                        simulation=tolalloc.simulate_errors(arm, 100),
+                        calibrated=tolalloc.allocate_tolerances(arm, calibration=SCRATCH / "plan.csv", n_mc=200),
+                        diagnosis=tolalloc.diagnose_measurements(arm, case.frame.iloc[:22], case.frame.iloc[22:],
+                                                                 folds=2))
     return _RESULTS
 
 
 def results():
-    return st.sampled_from(["analysis", "allocation", "frame", "summary", "linear", "budget"]).map(
+    return st.sampled_from(["analysis", "allocation", "frame", "summary", "linear", "budget", "plan", "simulation",
+                            "calibrated", "diagnosis"]).map(
         lambda k: earlier_results()[k])
 
 
@@ -130,6 +142,8 @@ def test_allocate_tolerances_refuses_or_runs(kwargs):
 
 
 @settings(max_examples=examples(3, 0.02), **SETTINGS)
+@example(robot=two_link(), seed=3, radius_mm=0.5, prob=0.95, verify=True, solver="exact", region="given",
+         clearance=True)
 @given(robot=generated_robots(1, 5), seed=st.integers(0, 1000), radius_mm=st.floats(0.2, 5.0),
        prob=st.floats(0.5, 0.99), verify=st.booleans(), solver=st.sampled_from(["exact", "certified"]),
        region=st.sampled_from([None, "nominal", "given", "limits"]), clearance=st.booleans())
@@ -229,6 +243,35 @@ def test_simulate_errors_refuses_or_runs(kwargs):
         check_result(res)
 
 
+@settings(max_examples=examples(4, 0.05), **SETTINGS)
+@example(robot=UR10, data=None)
+@given(robot=generated_robots(1, 8), data=st.data())
+def test_simulate_errors_valid_runs_are_finite(robot, data):
+    if robot is None:
+        return
+    if data is None:  # the explicit example: every option at once
+        data = _Fixed([100, 7, 5, 2, 0.5, "paired", True, 4])
+    kwargs = dict(robot=robot, n=data.draw(st.sampled_from([1, 2, 100])), seed=data.draw(st.integers(0, 99)),
+                  q_deg_mm=interface_poses(robot, np.random.default_rng(data.draw(st.integers(0, 99))),
+                                           data.draw(st.integers(1, 3))),
+                  radius_mm=data.draw(st.floats(0.01, 10.0)), estimator=data.draw(st.sampled_from([None, "paired"])),
+                  clearance=data.draw(st.booleans()), hist_bins=data.draw(st.sampled_from([0, 4])))
+    res = outcome(tolalloc.simulate_errors, kwargs)
+    if res is not None:
+        check_result(res)
+        assert res.mc.n == kwargs["n"]
+
+
+class _Fixed:
+    """Stands in for ``st.data()`` in an explicit example: ``draw`` returns the given values in order."""
+
+    def __init__(self, values):
+        self.values = list(values)
+
+    def draw(self, strategy):
+        return self.values.pop(0)
+
+
 # ------------------------------------------------------------------------------------------------ calibration plan
 CALPLAN_VALID = {
     "robot": st.builds(two_link), "n_poses": st.sampled_from([2, 3]), "n_candidates": st.sampled_from([8, 12]),
@@ -246,7 +289,7 @@ CALPLAN_WRONG = {
 }
 
 
-@settings(max_examples=examples(20, 0.1), **SETTINGS)
+@settings(max_examples=examples(20, 0.3), **SETTINGS)
 @given(perturbed(CALPLAN_VALID, CALPLAN_WRONG))
 def test_plan_calibration_refuses_or_runs(kwargs):
     if isinstance(kwargs.get("robot"), tolalloc.Robot) and kwargs["robot"].n_joints > 3:
@@ -255,6 +298,26 @@ def test_plan_calibration_refuses_or_runs(kwargs):
     if res is not None:
         check_result(res)
         assert res.design.score_mm2 >= res.design.floor_mm2 - 1e-9
+
+
+@settings(max_examples=examples(2, 0.02), **SETTINGS)
+@example(robot=two_link(), n_poses=3, measurement="position", seed=1)
+@given(robot=generated_robots(1, 4), n_poses=st.integers(1, 4), measurement=st.sampled_from(["position", "pose"]),
+       seed=st.integers(0, 99))
+def test_plan_calibration_valid_runs_feed_the_calibrated_allocation(robot, n_poses, measurement, seed):
+    """A plan is designed, saved, and read back by the calibration-aware allocation (a result passed on)."""
+    if robot is None or not np.all(np.isfinite(robot.lower) & np.isfinite(robot.upper)):
+        return
+    design = outcome(tolalloc.plan_calibration, dict(robot=robot, n_poses=n_poses, n_candidates=12, seed=seed,
+                                                     measurement=measurement))
+    if design is None:
+        return
+    check_result(design)
+    path = Path(tempfile.mkdtemp(dir=SCRATCH)) / "plan.csv"
+    assert design.save(path) == [str(path)] and path.is_file()
+    res = outcome(tolalloc.allocate_tolerances, dict(robot=robot, calibration=path, n_mc=200, seed=seed))
+    if res is not None:
+        check_result(res)
 
 
 # ------------------------------------------------------------------------------------------------ diagnosis
@@ -280,6 +343,38 @@ def test_diagnose_measurements_refuses_or_runs(kwargs):
     if res is not None:
         check_result(res)
         assert isinstance(res.effect, str)
+
+
+@settings(max_examples=examples(1, 0.01), **SETTINGS)
+@example(robot=two_link(), effect="backlash", seed=4, with_test=True)
+@given(robot=generated_robots(2, 6), effect=st.sampled_from(["none", "backlash", "joint_compliance"]),
+       seed=st.integers(0, 99), with_test=st.booleans())
+def test_diagnose_measurements_valid_runs_on_generated_robots(robot, effect, seed, with_test):
+    from tolalloc.diagnose import generate
+
+    if robot is None:
+        return
+    try:
+        frame = generate(robot, effect, 40, np.random.default_rng(seed)).frame
+    except tolalloc.TolallocError:
+        return  # an effect this robot cannot carry (no masses, no revolute joint ...)
+    kwargs = dict(robot=robot, train=frame.iloc[:30], folds=2, seed=seed)
+    if with_test:
+        kwargs["test"] = frame.iloc[30:]
+    res = outcome(tolalloc.diagnose_measurements, kwargs, tolerate_known=True)
+    if res is not None:
+        check_result(res)
+
+
+@pytest.mark.xfail(strict=True, raises=ValueError, reason=KNOWN_FAULTS[("diagnose/select.py", "choose_variant")])
+def test_known_fault_diagnosis_of_a_robot_without_link_deflection():
+    """Reported: diagnose/select.py (not the workflow layer's to fix). Remove the entry of KNOWN_FAULTS with this."""
+    from tolalloc.diagnose import generate
+
+    robot = tolalloc.Robot.from_dh([{"name": "q1", "type": "prismatic", "d_mm": 300, "a_mm": 200, "alpha_deg": 90}],
+                                   convention="standard")
+    frame = generate(robot, "none", 40, np.random.default_rng(1)).frame
+    tolalloc.diagnose_measurements(robot, frame.iloc[:30], frame.iloc[30:], folds=2)
 
 
 # ------------------------------------------------------------------------------------------------ Robot & co
@@ -350,25 +445,36 @@ def test_robot_from_joints_and_links_refuses_or_builds(axis, vector, kind, limit
 
 
 # ------------------------------------------------------------------------------------------------ results
-@settings(max_examples=examples(20), **SETTINGS)
-@given(which=st.sampled_from(["analysis", "allocation"]),
-       path=st.sampled_from(["", "/", "out", "out/sub", "afile", "afile/sub", 5, None, Path("deep/er/dir")]),
+def listing(root: Path) -> dict:
+    """Every file and folder below ``root`` with its bytes (None for a folder)."""
+    return {str(p.relative_to(root)): None if p.is_dir() else p.read_bytes() for p in sorted(root.rglob("*"))}
+
+
+#: the output argument of each result's save()
+SAVE_ARGUMENT = {"analysis": "out", "allocation": "out", "simulation": "out", "calibrated": "out", "plan": "path",
+                 "diagnosis": "report"}
+
+
+@settings(max_examples=examples(24, 0.1), **SETTINGS)
+@given(which=st.sampled_from(sorted(SAVE_ARGUMENT)),
+       path=st.sampled_from(["", "/", "out", "out/sub", "afile", "afile/sub", 5, None, Path("deep/er/dir"), "a\x00b"]),
        pose=st.sampled_from(["worst", 0, 1, -1, 99, 1.5, "x", None]), by=st.sampled_from(["parameter", "kind", "x", 3]))
 def test_result_methods_refuse_or_save_whole(which, path, pose, by):
     """``save`` writes everything or nothing; table and figure methods refuse bad arguments by name."""
     import matplotlib.pyplot as plt
 
     res = earlier_results()[which]
+    check_result(res)
     work = Path(tempfile.mkdtemp(dir=SCRATCH))
     (work / "afile").write_text("keep\n")
-    target = path if not isinstance(path, (str, Path)) or str(path) in ("", "/") else work / path
-    before = sorted(p.relative_to(work) for p in work.rglob("*"))
-    names = outcome(res.save, {"out": target})
-    after = sorted(p.relative_to(work) for p in work.rglob("*"))
+    target = path if not isinstance(path, (str, Path)) or str(path) in ("", "/", "a\x00b") else work / path
+    before = listing(work)
+    names = outcome(res.save, {SAVE_ARGUMENT[which]: target})
+    after = listing(work)
     if names is None or target is None:
-        assert after == before, (target, after)
+        assert after == before, (target, sorted(after))
     else:
-        assert all((Path(target) / n).is_file() for n in names)
+        assert after != before and Path(target).exists()
     if which == "analysis":
         frame = outcome(res.budget_frame, {"pose": pose, "by": by})
         if frame is not None:

@@ -107,7 +107,7 @@ TRIGGERS = {
     ("errormodel/build.py", "_sigma_from_set"): (
         lambda tmp: __import__("tolalloc.errormodel", fromlist=["x"]).build_error_model(_crowded_robot(), "nope"),
         ["generic", "tight", "loose"]),
-    ("workflows/inputs.py", "check_name"): (
+    ("workflows/checks.py", "check_name"): (
         lambda tmp: tolalloc.analyze_errors(_crowded_robot(), sigma_set="nope"), ["generic", "tight", "loose"]),
     ("workflows/inputs.py", "resolve_poses"): (
         lambda tmp: tolalloc.analyze_errors(_crowded_robot(), poses="nope"), ["nominal", "working", "reach"]),

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import signal
 import threading
 from typing import Any
@@ -244,7 +245,7 @@ def describe(value, limit: int = 60) -> str:
     """What arrived, for a message, on one line: a number or string as its repr, anything else with its type."""
     if type(value).__repr__ is object.__repr__:  # a default repr shows only a memory address
         return f"a {type(value).__name__} object"
-    text = " ".join(repr(value).split())
+    text = re.sub(r" at 0x[0-9a-fA-F]+", "", " ".join(repr(value).split()))  # no memory addresses
     if len(text) > limit:
         text = text[:limit - 3] + "..."
     plain = isinstance(value, (str, int, float)) and not isinstance(value, bool)

@@ -12,6 +12,7 @@ import numpy as np
 from tolalloc.exceptions import ArgumentError
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
+from tolalloc.workflows.calibrated import calibrated_allocation
 
 __all__ = ["allocate_tolerances", "ESTIMATORS"]
 
@@ -87,32 +88,21 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     >>> res.verdict, round(res.cost, 2)
     ('demonstrated', 44.25)
     """
-    _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n)
-    seed, coverage_n = int(seed), int(coverage_n)
-    n_mc = int(n_mc) if verify else n_mc
-    for name, flag in (("snap", snap), ("correction", correction)):
-        inputs.check_flag(flag, name)
-    inputs.check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude)
-    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    costs = inputs.check_costs_file(costs)
-    calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
-    scheduler = inputs.check_scheduler(scheduler)
+    seed, n_mc, coverage_n = _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver,
+                                    estimator, n_mc, verify, seed, correction_rounds, coverage_n)
+    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
+                   exclude=exclude)
+    costs, calibration, scheduler = _check_more(snap, correction, poses, costs, calibration, scheduler, options)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude)
+    model = inputs.error_model(rob, **options)
     cost_set = _costs(costs, model, z, uniform)
     label, box, q = inputs.resolve_region(rob, region, poses)
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
               angle_prob=angle_prob)
-    inputs_record = {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
-                     "costs": cost_set.source, "seed": int(seed), "n_mc": int(n_mc) if verify else None,
-                     "estimator": estimator, "solver": solver,
-                     "calibration": None if calibration is None else str(calibration)}
+    inputs_record = {"robot": rob.name, **{k: kw[k] for k in ("radius_mm", "prob")}, "region": label,
+                     "costs": cost_set.source, "seed": seed, "n_mc": n_mc if verify else None, "estimator": estimator,
+                     "solver": solver, "calibration": None if calibration is None else str(calibration)}
     if calibration is not None:
-        from tolalloc.workflows.calibrated import calibrated_allocation
-
         return calibrated_allocation(model, label, box, q, calibration, region_given=region is not None,
                                      costs_path=costs, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
                                      inputs_record=inputs_record, **kw)
@@ -225,9 +215,22 @@ def _costs(costs, model, z, uniform):
 MAX_CORRECTION_ROUNDS = 50
 
 
+def _check_more(snap, correction, poses, costs, calibration, scheduler, model_options) -> tuple:
+    """Refuse bad flags, names, paths and error-model options by their argument names; returns
+    ``(costs, calibration, scheduler)`` checked."""
+    for name, flag in (("snap", snap), ("correction", correction)):
+        inputs.check_flag(flag, name)
+    inputs.check_model_options(**model_options)
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    return (inputs.check_costs_file(costs),
+            inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)"),
+            inputs.check_scheduler(scheduler))
+
+
 def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n) -> None:
-    """Refuse bad numbers by their argument names before any computation."""
+           seed, correction_rounds, coverage_n) -> tuple:
+    """Refuse bad numbers by their argument names before any computation; returns ``(seed, n_mc, coverage_n)`` as
+    ints (``n_mc`` as given when there is no verification)."""
     inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
     inputs.check_probability(prob, "prob")
     if angle_radius_deg is not None:
@@ -258,5 +261,5 @@ def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uni
         except ArgumentError:
             raise ArgumentError("n_mc", f"expected at least 100 samples per pose (a whole number, e.g. 1000000), got "
                                 f"{inputs.shown(n_mc)}; or switch the verification off.") from None
-    inputs.check_seed(seed)
-    inputs.check_count(coverage_n, "coverage_n", example="100000")
+    return (inputs.check_seed(seed), int(n_mc) if verify else n_mc,
+            inputs.check_count(coverage_n, "coverage_n", example="100000"))

@@ -91,6 +91,10 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     model = inputs.error_model(rob, sigma_set=sigma_set)
     split = split_from_costs(model, costs)
     ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    if not np.any(np.abs(model.jacobian(q_eval)[:, :3, :]) > 1e-9):
+        raise ArgumentError("robot", f"{rob.name!r}: no error parameter moves the tool point at the {ev} poses (the "
+                            "tool lies on every joint axis), so a calibration has nothing to reduce; expected a robot "
+                            "whose tool point is off its joint axes (a tool offset or links), or other eval_poses.")
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                     registration=registration, seed=seed)

@@ -67,24 +67,11 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     """
     from tolalloc.diagnose import diagnose
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
     from tolalloc.diagnose.register import REGISTER_N
     from tolalloc.diagnose.scale import progress_bar, progress_scope
 
-    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
-    alpha = inputs.check_probability(alpha, "alpha", example="0.01")
-    folds = inputs.check_count(folds, "folds", minimum=2, example="5")
-    seed = inputs.check_seed(seed)
-    if cv_rows is not None:
-        cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
-    inputs.check_flag(gap_split, "gap_split")
-    inputs.check_optional_flag(progress, "progress")
-    if register_n is not None:
-        _check_register_n(register_n)
-    if gap_split and test is None:
-        raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
-    if register_n is not None and test_frame != "refit":
-        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
+    alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
+                                              progress)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
     with progress_scope(progress):
@@ -115,11 +102,32 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     return MeasurementDiagnosis(d, gap, folds)
 
 
+def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
+    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows)``."""
+    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+
+    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
+    alpha = inputs.check_probability(alpha, "alpha", example="0.01")
+    folds = inputs.check_count(folds, "folds", minimum=2, example="5")
+    seed = inputs.check_seed(seed)
+    if cv_rows is not None:
+        cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
+    inputs.check_flag(gap_split, "gap_split")
+    inputs.check_optional_flag(progress, "progress")
+    if register_n is not None:
+        _check_register_n(register_n)
+    if gap_split and test is None:
+        raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
+    if register_n is not None and test_frame != "refit":
+        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
+    return alpha, folds, seed, cv_rows
+
+
 def _check_register_n(value) -> float:
     """A count of registration poses (a whole number >= 5) or a fraction of the test poses (0 < f < 1)."""
     from tolalloc.diagnose.register import MIN_REGISTER
 
-    x = inputs._number(value, "register_n")
+    x = inputs.number(value, "register_n")
     if not (np.isfinite(x) and 0 < x and (x < 1 or (x == int(x) and x >= MIN_REGISTER))):
         raise ArgumentError("register_n", f"expected a count of registration poses (a whole number >= {MIN_REGISTER}, "
                             f"e.g. 30) or a fraction of the test poses (0 < f < 1, e.g. 0.2), got {inputs.shown(value)}.")

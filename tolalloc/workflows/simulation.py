@@ -73,6 +73,32 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     >>> sim.mc.n
     2000
     """
+    n, seed, radii, arad, hist_bins, keep, scheduler = _checked(
+        n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm, keep_samples,
+        jobs, chunk_size, progress, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
+                                                           deflection_mode=deflection_mode, clearance=clearance,
+                                                           exclude=exclude, sigma=sigma,
+                                                           clearance_tilt_literal=clearance_tilt_literal))
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
+                               clearance=clearance, exclude=exclude, sigma=sigma,
+                               clearance_tilt_literal=clearance_tilt_literal)
+    _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
+    from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
+    from tolalloc.montecarlo.run import run_mc
+
+    res = run_mc(model, q, n, seed, radii_mm=radii, angle_radii_rad=arad or [0.002], keep_samples=keep, ci=ci,
+                 n_jobs=jobs, scheduler=scheduler, chunk_size=chunk_size, progress=progress, hist_bins=hist_bins,
+                 hist_range_mm=hist_range_mm, estimator=estimator)
+    tilt = ((CLEARANCE_TILT_LITERAL_RAD if clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
+            if clearance else None)
+    return ErrorSimulation(res, rob, tilt)
+
+
+def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm,
+             keep_samples, jobs, chunk_size, progress, poses, scheduler, model_options) -> tuple:
+    """Every argument of :func:`simulate_errors` but the robot, checked by name; returns
+    ``(n, seed, radii_mm, angle_radii_rad, hist_bins, keep_samples, scheduler)``."""
     n = inputs.check_count(n, "n", example="100000")
     seed = inputs.check_seed(seed)
     inputs.check_choice(ci, "ci", ("wilson", "exact"))
@@ -101,25 +127,10 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
         inputs.check_count(jobs, "jobs", example="4", maximum=MAX_JOBS)
     inputs.check_count(chunk_size, "chunk_size", example="1048576")
     inputs.check_optional_flag(progress, "progress")
-    inputs.check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
+    inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     scheduler = inputs.check_scheduler(scheduler)
-    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
-    _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
-    from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
-    from tolalloc.montecarlo.run import run_mc
-
-    res = run_mc(model, q, n, seed, radii_mm=radii, angle_radii_rad=arad or [0.002], keep_samples=keep, ci=ci,
-                 n_jobs=jobs, scheduler=scheduler, chunk_size=chunk_size, progress=progress, hist_bins=hist_bins,
-                 hist_range_mm=hist_range_mm, estimator=estimator)
-    tilt = ((CLEARANCE_TILT_LITERAL_RAD if clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
-            if clearance else None)
-    return ErrorSimulation(res, rob, tilt)
+    return n, seed, radii, arad, hist_bins, keep, scheduler
 
 
 @dataclass(frozen=True, eq=False, repr=False)
