@@ -249,6 +249,17 @@ def test_radian_trajectory_is_refused_with_a_hint_and_accepted_with_trust_units(
     # in degrees, the same trajectory runs without --trust-units
     code, out, err, written = run_cli(["allocate", "tool_changer", "--region", "traj.csv", "--no-verify"], work, capsys)
     assert code == 0, err
+    # measurement files follow the same rule, in the same words
+    frame = measurement_frame()
+    for c in ("q1", "q2", "q3", "q5", "q6"):
+        frame[c] = np.deg2rad(frame[c])
+    frame.to_csv(work / "rad.csv", index=False)
+    code, out, err, written = run_cli(["diagnose", "tool_changer", "--train", "rad.csv"], work, capsys)
+    assert code == 2 and err[0].startswith("error: --train: 'rad.csv' (q1..q6): every revolute joint value lies "
+                                           "within +-2 pi"), err
+    code, out, err, written = run_cli(["diagnose", "tool_changer", "--train", "rad.csv", "--trust-units"], work, capsys)
+    # trusted, the radians pass the unit rule and meet the physics: the model's points do not fit the measured ones
+    assert code == 2 and "every revolute joint value" not in err[0] and "joint columns" in err[0], err
 
 
 def test_joint_value_inputs_share_one_unit_rule(tmp_path):
