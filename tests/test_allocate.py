@@ -150,12 +150,26 @@ def test_tool_changer_allocation(result):
 
 
 def test_snapping_tightens_and_rechecks(result):
-    std, d, pr = result.standard, result.design, result.problem
-    assert std.status == "optimal" and "re-checked" in std.message
-    assert np.all(std.t <= d.t * (1 + 1e-12))
+    rnd, d, pr = result.rounded, result.design, result.problem
+    assert rnd.status == "optimal" and "re-checked" in rnd.message
+    assert np.all(rnd.t <= d.t * (1 + 1e-12))
+    assert rnd.p_linear["position"].min() >= pr.prob
+    grades = dict(zip(pr.costs.names, result.rounded_grade))
+    assert grades["dl3"].startswith("IT") and grades["dth1"] == ""
+
+
+def test_standard_design_is_chosen_not_rounded(result):
+    # the standard design meets the requirement (exact Gaussian P, no tolerance) and costs less than the rounding
+    std, rnd, pr = result.standard, result.rounded, result.problem
+    assert std.solver == "discrete-exact" and std.ok and std.fallback_from is None
     assert std.p_linear["position"].min() >= pr.prob
+    assert result.design.cost < std.cost < rnd.cost
     grades = dict(zip(pr.costs.names, result.it_grade))
     assert grades["dl3"].startswith("IT") and grades["dth1"] == ""
+    s = result.summary()
+    assert s["costs"]["standard"] == pytest.approx(std.cost) and s["costs"]["rounded"] == pytest.approx(rnd.cost)
+    assert s["costs"]["standard_premium_pct"] == pytest.approx(100 * (std.cost / result.design.cost - 1))
+    assert s["discrete"]["proven_optimal"] is False and s["standard"]["grades"]["dl3"] == grades["dl3"]
 
 
 def test_guard_falls_back_to_certified(result):
@@ -187,7 +201,7 @@ def test_infeasible_limits_are_stated(robot):
 
 def test_certified_only_and_orientation_requirement(robot):
     pr = build_problem(build_error_model(robot), robot.poses("working")[:4], angle_radius_deg=0.01)
-    res = allocate(pr, solver="certified")
+    res = allocate(pr, solver="certified", snap=False)  # the standard design with an angle requirement: test_discrete
     assert res.design.solver.startswith("certified") and res.exact is None
     assert res.design.p_linear["orientation"].min() >= 0.95 - 1e-9
     assert check_process_limits(pr).feasible
@@ -225,6 +239,7 @@ def test_exact_tolerances_at_t_max_sit_on_it_and_snap_to_it(result):
     at = np.array([a == "t_max" for a in d.at_limit])
     assert at.sum() == 3
     assert np.all(d.t[at] == pr.t_max[at])
+    np.testing.assert_allclose(result.rounded.t[at], pr.t_max[at], rtol=1e-12)
     np.testing.assert_allclose(result.standard.t[at], pr.t_max[at], rtol=1e-12)
 
 

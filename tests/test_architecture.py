@@ -194,3 +194,28 @@ def test_interface_call_finder(tmp_path):
     f = tmp_path / "m.py"
     f.write_text("robot.fk(q)\nrobot.fk_internal(q)\nnb.space_jacobian(s, q)\nrobot.space_jacobian(q)\n")
     assert interface_calls(f) == ["1: robot.fk(q)", "4: robot.space_jacobian(q)"]
+
+
+#: what the command line may import: its own modules, the workflow layer, the output and error foundations, and
+#: the error model's constants its help text quotes. Everything else is reached through tolalloc.workflows.
+CLI_MAY_IMPORT = ("tolalloc.cli", "tolalloc.workflows", "tolalloc.outputs", "tolalloc.exceptions",
+                  "tolalloc.errormodel.model")
+
+
+def test_the_cli_is_a_shell_over_the_workflows():
+    """tolalloc/cli/ parses, calls one workflow, prints and saves: it imports no computing stage."""
+    bad = {m: sorted(t for t in EDGES[m] if not t.startswith(CLI_MAY_IMPORT))
+           for m in MODULES if stage(m) == "cli"}
+    bad = {m: t for m, t in bad.items() if t}
+    assert not bad, f"CLI modules importing computing stages directly: {bad}"
+
+
+def test_the_cli_holds_no_numerics():
+    """No numpy / pandas / scipy in tolalloc/cli/: numbers are made and formatted by the library."""
+    for mod, path in MODULES.items():
+        if stage(mod) != "cli":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        names = {a.name.split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.Import) for a in n.names}
+        names |= {(n.module or "").split(".")[0] for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)}
+        assert not names & {"numpy", "pandas", "scipy", "cvxpy", "casadi"}, (mod, names)

@@ -171,7 +171,16 @@ def test_output_group_publishes_all_or_nothing(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.json", "rep"]
 
 
-def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait():
+@pytest.fixture
+def python_sigint():
+    """Python's default SIGINT handler for the test, whatever the parent shell set (a background or nohup shell
+    starts the suite with SIGINT ignored, which a child inherits)."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
+def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait(python_sigint):
     # regression: Clarabel releases the GIL but the main thread only runs Python's signal handlers when the solve
     # returns, so Ctrl-C during a long solve waited for it (18 s on a loaded machine). A sleep stands in for it.
     import threading
@@ -189,7 +198,7 @@ def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait():
     assert time.monotonic() - t0 < 15.0  # the interrupt ends the wait, not the 30 s call
 
 
-def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypatch, capsys):
+def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypatch, capsys, python_sigint):
     # regression: SIGINT while cvxpy imported its solver interfaces became ImportError('initialization failed')
     # inside a C extension, cvxpy logged and ignored it, and calplan finished and wrote its plan (exit 0) with
     # signals ignored from then on
@@ -213,7 +222,7 @@ def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypat
     assert list(tmp_path.iterdir()) == []
 
 
-def test_signals_deferred_holds_a_signal_another_thread_receives():
+def test_signals_deferred_holds_a_signal_another_thread_receives(python_sigint):
     # regression: a thread signal mask held SIGINT back only in the main thread; the kernel delivered it to
     # another thread (BLAS, solver, here a timer) and Python ran the handler in the main thread inside the
     # block anyway -- CasADi then printed a KeyboardInterruptException warning from inside IPOPT

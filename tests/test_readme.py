@@ -1,4 +1,5 @@
-"""The README's promises: two quick-start commands, the CI runs the test one, the robot-file example loads."""
+"""The README's promises: two quick-start commands, the CI runs the test one; the robot-file and costs-file examples
+(in the how-to pages the README links to) load."""
 
 import re
 import tomllib
@@ -13,6 +14,8 @@ from tolalloc.robot.io import robot_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()
+#: the pages that hold the robot-file and costs-file examples (docs/howto, linked from the README)
+EXAMPLE_PAGES = [ROOT / "docs" / "howto" / "own-robot.md", ROOT / "docs" / "howto" / "costs-file.md"]
 
 
 def _quickstart_commands():
@@ -22,7 +25,8 @@ def _quickstart_commands():
 
 
 def _toml_blocks():
-    return re.findall(r"```toml\n(.*?)```", README, flags=re.S)
+    text = README + "".join(page.read_text() for page in EXAMPLE_PAGES)
+    return re.findall(r"```toml\n(.*?)```", text, flags=re.S)
 
 
 def test_quickstart_has_exactly_two_commands_one_main_job_one_tests():
@@ -71,3 +75,8 @@ def test_python_example_is_the_tested_one():
     blocks = re.findall(r"```python\n(.*?)```", README, flags=re.S)
     assert PYTHON_EXAMPLE in blocks
     assert len(PYTHON_EXAMPLE.strip().splitlines()) <= 15
+
+
+def test_example_pages_are_linked_from_the_readme():
+    for page in EXAMPLE_PAGES:
+        assert f"]({page.relative_to(ROOT).as_posix()})" in README

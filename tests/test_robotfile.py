@@ -130,7 +130,7 @@ BAD_CASES = [
     ('link = "l2"', 'link = "l2"\njoint = "x"', r"chain\[2\]: expected either a 'link' or a 'joint' key"),
     ('name = "two"', 'name = "two"\ncolour = "red"', r"colour: Extra inputs are not permitted"),
     ("vector_mm = [100, 0, 0]", "vector_mm = [100, 0]", r"chain\[2\] \(l2\): vector must be 3 finite numbers"),
-    ('name = "two"', 'name = "two', r"not valid TOML \(.*line 1.*\); see the README's robot file example"),
+    ('name = "two"', 'name = "two', r"not valid TOML \(.*line 1.*\); see docs/howto/own-robot.md for the robot file format"),
     ('name = "two"', 'name = "two"\ngravity = [0, 0, 0]', r"gravity: expected a non-zero direction"),
 ]
 

@@ -14,6 +14,7 @@ def frame():
         "parameter": ["dl3", "dth1"], "kind": ["link_length", "joint_drive"], "element": ["l3", "j1"],
         "unit": ["mm", "deg"], "role": ["allocate", "allocate"], "tolerance": [0.0989718, 0.00432712],
         "sigma": [0.0329906, 0.00144237], "tolerance_std": [0.0625, np.nan], "it_grade": ["IT8", ""],
+        "grade": ["IT8", ""], "process": ["turning", ""],
         "cost": [2.01039, 3.31081], "variance_share": [0.0461, 0.079], "at_limit": ["", "t_min"],
         "t_min": [0.005, 0.0005], "t_max": [1.0, 0.5]})
 

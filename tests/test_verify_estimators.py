@@ -45,8 +45,8 @@ def test_certified_redo_uses_importance_sampling(res):
 def test_unresolvable_tail_is_refused_with_the_samples_needed(res):
     pr = build_problem(res.problem.model, res.problem.q, prob=0.9999)
     d = allocate(pr, snap=False).design
-    with pytest.raises(TolallocError, match=r"n_mc: 1000 samples per pose cannot resolve the tail .* n_mc >= 38411 "
-                                            r"or estimator='importance'"):
+    with pytest.raises(TolallocError, match=r"n_mc 1000 samples per pose cannot resolve the tail .* `n_mc` >= 38411 "
+                                            r"or `estimator` importance"):
         verify_design(pr, d, n_mc=1000, estimator="plain")
     with pytest.raises(TolallocError, match="the paired estimator"):
         verify_design(pr, d, n_mc=1000, estimator="paired")

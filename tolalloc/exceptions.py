@@ -16,9 +16,10 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible", "note_interrupt", "clear_interrupt",
-           "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive", "known_names",
-           "memory_budget_bytes", "check_memory", "describe", "whole_number"]
+__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible",
+           "note_interrupt", "interrupt_pending", "clear_interrupt", "raise_if_interrupted", "check_vector",
+           "check_finite_array", "check_positive", "known_names", "memory_budget_bytes", "check_memory", "describe",
+           "whole_number"]
 
 
 class TolallocError(ValueError):
@@ -143,6 +144,11 @@ _PENDING: list = []
 def note_interrupt(signum: int) -> None:
     """Record that signal ``signum`` arrived (the CLI's handler, before it raises :class:`Interrupted`)."""
     _PENDING.append(signum)
+
+
+def interrupt_pending() -> bool:
+    """True when a signal was recorded by :func:`note_interrupt` and not cleared."""
+    return bool(_PENDING)
 
 
 def clear_interrupt() -> None:

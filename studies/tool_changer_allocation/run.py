@@ -148,8 +148,12 @@ def section_design_card(card, n_mc, robot) -> list:
               f"[{cert_v.ci_low[ic]:.4f}, {cert_v.ci_high[ic]:.4f}] | {cert_v.verdict} |",
               f"| exact (IPOPT) | {s['exact']:.4f} | {ts['exact']:.3f} | {res.exact.p_linear['position'].min():.4f} | "
               f"{ex_v.p_mc[iw]:.4f} [{ex_v.ci_low[iw]:.4f}, {ex_v.ci_high[iw]:.4f}] | {ex_v.verdict} |",
-              f"| exact, snapped to ISO 286 / 1″ | {s['standard'] if s['standard'] is not None else float('nan'):.4f} | – | "
-              f"{res.standard.p_linear['position'].min():.4f} | – | {res.standard.message} |", "",
+              f"| exact, rounded down to ISO 286 / 1″ | {s['rounded'] if s['rounded'] is not None else float('nan'):.4f} | – | "
+              f"{res.rounded.p_linear['position'].min():.4f} | – | {res.rounded.message} |",
+              f"| exact, standard grades chosen by the optimiser ({s['standard_solver']}) | "
+              f"{s['standard'] if s['standard'] is not None else float('nan'):.4f} | "
+              f"{res.standard.time_s:.3f} | {res.standard.p_linear['position'].min():.4f} | – | on the active poses; "
+              "over the box and verified: `reports/standard_grades` |", "",
               f"The exact design saves {s['saving']:.4f} ({s['saving_pct']:.2f} %) against the cheaper certified rule. "
               f"Nonlinear Monte Carlo at the {n_act} active poses and the {len(card['kind']) - n_act} worst sampled "
               f"poses (the certified design passes a pose only when demonstrated, the exact one when consistent): "

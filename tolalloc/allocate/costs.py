@@ -34,12 +34,15 @@ Costs file (TOML, units in the keys)::
     exclude = true                # leave out of the problem entirely
 
 Angles are given with ``_deg`` (or ``_rad``), lengths with ``_mm`` (or ``_m``).
+
+Standard values for the drawing (``grades = "IT5-IT12"`` for link lengths, ``classes_<unit>``, ``step_<unit>``)
+and manufacturing processes (``[processes.NAME]``) are described in :mod:`tolalloc.allocate.processes`.
 """
 
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -47,6 +50,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
+from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, parse_grades, read_processes
 from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
@@ -65,7 +69,8 @@ _ANG = ANGLE_UNITS
 DEFAULT_COSTS = {
     "z": 3.0,
     "kinds": {
-        "link_length": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.1, "t_min_mm": 0.005, "t_max_mm": 1.0},
+        "link_length": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.1, "t_min_mm": 0.005, "t_max_mm": 1.0,
+                        "grades": "IT5-IT12"},
         "joint_drive": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_deg": 0.01, "t_min_deg": 0.0005, "t_max_deg": 0.5},
         "joint_drive_prismatic": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_mm": 0.05, "t_min_mm": 0.002,
                                   "t_max_mm": 1.0},
@@ -78,8 +83,8 @@ DEFAULT_COSTS = {
     },
 }
 
-_ENTRY_KEYS = {"model", "a", "b", "k", "fixed", "exclude"}
-_UNIT_BASES = ("t_ref", "t_min", "t_max", "tol")
+_ENTRY_KEYS = {"model", "a", "b", "k", "fixed", "exclude", *DISCRETE_KEYS}
+_UNIT_BASES = ("t_ref", "t_min", "t_max", "tol", "step", "classes")
 
 
 @dataclass(frozen=True)
@@ -160,6 +165,8 @@ class CostSet:
     distribution : {"normal", "uniform"}
         How a part's error is distributed within its tolerance: ``uniform`` over ``±t`` (``z = sqrt(3)``),
         else normal; the allocation's Monte Carlo verification samples it so.
+    discrete : tuple of DiscreteSpec
+        Standard values (grades, classes or step) and processes per parameter (empty: the defaults).
     """
 
     names: tuple
@@ -170,6 +177,11 @@ class CostSet:
     excluded: tuple = ()
     source: str = "defaults"
     distribution: str = "normal"
+    discrete: tuple = ()
+
+    def spec(self, k: int) -> DiscreteSpec:
+        """The standard values of parameter ``k`` (defaults when the set carries none)."""
+        return self.discrete[k] if self.discrete else DiscreteSpec()
 
     def to_frame(self, model: ErrorModel) -> pd.DataFrame:
         """One row per parameter: law, coefficients and limits in the interface unit."""
@@ -215,7 +227,8 @@ def _check_entry(entry, where: str) -> None:
         base_ok = any(key.startswith(b + "_") and key[len(b) + 1:] in {**_LEN, **_ANG} for b in _UNIT_BASES)
         if key not in _ENTRY_KEYS and not base_ok:
             raise TolallocError(f"{where}: unknown key {key!r}; expected model, a, b, k, fixed, exclude, "
-                                "t_ref_<mm|deg>, t_min_<mm|deg>, t_max_<mm|deg>, tol_<mm|deg>.")
+                                "t_ref_<mm|deg>, t_min_<mm|deg>, t_max_<mm|deg>, tol_<mm|deg>, grades, "
+                                "step_<mm|deg>, classes_<mm|deg>.")
 
 
 def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = None, source: str = "defaults",
@@ -234,11 +247,12 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     """
     data = data or {}
     for key in data:
-        if key not in ("z", "distribution", "kinds", "parameters", "calibration"):  # [calibration]: the calibration split
-            raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], [parameters.*].")
+        if key not in ("z", "distribution", "kinds", "parameters", "processes", "calibration"):  # [calibration]: the split
+            raise TolallocError(f"costs {source}: unknown top-level key {key!r}; expected z, distribution, [kinds.*], "
+                                "[parameters.*], [processes.*].")
     zz, dist = _z_of(data, z, distribution, source)
     kinds, per = _entries(data, model, source)
-    names, role, models, fixed, excluded = [], [], [], [], []
+    names, role, models, fixed, excluded, specs, merged = [], [], [], [], [], [], {}
     for p in model.params:
         where = f"costs {source} [{p.name}]"
         base = kinds[param_kind_key(p)]
@@ -252,6 +266,8 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
         cm = _cost_model(entry, p, where)
         names.append(p.name)
         models.append(cm)
+        specs.append(discrete_spec(entry, p, where))
+        merged[p.name] = entry
         if entry.get("fixed", False):
             tol = _value(entry, "tol", p.unit, where)
             role.append("fixed")
@@ -261,7 +277,10 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
             fixed.append(np.nan)
     if not any(r == "allocate" for r in role):
         raise TolallocError(f"costs {source}: no parameter is left to allocate; un-fix or un-exclude some.")
-    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist)
+    procs = read_processes(data, model, names, merged, _cost_model, source)
+    specs = [replace(s, processes=procs[nm]) for s, nm in zip(specs, names)]
+    return CostSet(tuple(names), tuple(role), tuple(models), tuple(fixed), zz, tuple(excluded), source, dist,
+                   tuple(specs))
 
 
 def _z_of(data: dict, z, distribution, source: str):
@@ -298,6 +317,11 @@ def _entries(data: dict, model: ErrorModel, source: str):
         _check_entry(v, f"costs {source} [kinds.{k}]")
         if k not in kinds:
             raise TolallocError(f"costs {source}: unknown kind [kinds.{k}]; expected one of {', '.join(kinds)}.")
+        if "grades" in v:  # named at the kind, not at each parameter that inherits it
+            if k != "link_length":
+                raise TolallocError(f"costs {source} [kinds.{k}]: grades (ISO 286) apply to link_length parameters "
+                                    "only; use classes_<unit> or step_<unit> instead.")
+            parse_grades(v["grades"], f"costs {source} [kinds.{k}] grades")
         # a new reference/limit with another unit suffix replaces the default one
         base = {key: val for key, val in kinds[k].items()
                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in v) for b in _UNIT_BASES)}

@@ -213,13 +213,16 @@ class Solver(StrEnum):
     CERTIFIED_LMI = "certified-lmi"
     EXACT = "exact"
     STANDARD = "standard"  # snapped to standard grades, re-checked by the linear P
+    DISCRETE_TRACE = "discrete-trace"  # standard values chosen by a mixed-integer program, trace rule
+    DISCRETE_LMI = "discrete-lmi"  # ... eigenvalue rule (cutting planes)
+    DISCRETE_EXACT = "discrete-exact"  # ... improved under the Gaussian probability itself
     CALIBRATED_LMI = "calibrated-lmi"
     PROCESS_LIMITS = "process-limits"  # every tolerance at its tightest limit (reference when infeasible)
 
     @property
     def certified(self) -> bool:
         """Whether a converged design of this solver carries the certified (sufficient) rule."""
-        return self in (Solver.CERTIFIED_TRACE, Solver.CERTIFIED_LMI)
+        return self in (Solver.CERTIFIED_TRACE, Solver.CERTIFIED_LMI, Solver.DISCRETE_TRACE, Solver.DISCRETE_LMI)
 
 
 @dataclass(frozen=True, eq=False)

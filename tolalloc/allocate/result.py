@@ -33,11 +33,19 @@ class AllocationResult:
         The cheaper and the other certified rule.
     exact : Design or None
     standard : Design or None
-        ``design`` snapped to standard grades (ISO 286 for link lengths), re-checked.
+        The standard design, the one to build: grades (ISO 286 for link lengths), classes and resolution steps
+        chosen by the optimiser (:mod:`tolalloc.allocate.discretize`; ``rounded`` if ``allocate(discrete=False)``
+        or if no discrete design was found, then labelled as a fallback).
     it_grade : tuple of str
-        IT grade per parameter (``""`` for non-lengths).
+        IT grade per parameter of ``standard`` (``""`` for parameters without one).
     diagnosis : LimitReport
     message : str
+    rounded : Design or None
+        ``design`` rounded down to standard values and re-checked (what the standard design replaces).
+    rounded_grade : tuple of str
+        IT grade per parameter of ``rounded``.
+    discrete : DiscreteAllocation or None
+        The discrete step: grades and processes, the continuous and rounded costs, the gap, every solve.
     """
 
     problem: AllocationProblem
@@ -51,6 +59,23 @@ class AllocationResult:
     it_grade: tuple
     diagnosis: LimitReport
     message: str = ""
+    rounded: Design | None = None
+    discrete: object = None
+    rounded_grade: tuple = ()
+
+    @property
+    def grade(self) -> tuple:
+        """Standard label per parameter of ``standard``: ``"IT7"``, a class name or ``""`` (a step multiple)."""
+        if self.discrete is not None and self.standard is self.discrete.design and self.standard.fallback_from is None:
+            return self.discrete.grade
+        return self.it_grade
+
+    @property
+    def process(self) -> tuple:
+        """Process per parameter of ``standard`` (``""`` without processes)."""
+        if self.discrete is not None and self.standard is self.discrete.design:
+            return self.discrete.process
+        return ("",) * len(self.problem.costs.names)
 
     @property
     def worst_pose(self) -> int:
@@ -69,7 +94,12 @@ class AllocationResult:
         pr = self.problem
         params = pr.model.params
         f = np.array([p.to_interface for p in params])
-        std = self.standard.t if self.standard is not None and self.standard.t is not None else np.full(len(f), np.nan)
+        nan = np.full(len(f), np.nan)
+        std = self.standard.t if self.standard is not None and self.standard.t is not None else nan
+        rnd = self.rounded.t if self.rounded is not None and self.rounded.t is not None else nan
+        std_cost = pr.param_costs(std) if self.standard is not None and self.standard.t is not None else nan
+        if self.discrete is not None and self.standard is self.discrete.design:
+            std_cost = self.discrete.param_cost
         return pd.DataFrame({
             "parameter": [p.name for p in params],
             "kind": [p.kind for p in params],
@@ -80,6 +110,10 @@ class AllocationResult:
             "sigma": pr.sigma(d.t) * f,
             "tolerance_std": std * f,
             "it_grade": list(self.it_grade),
+            "grade": list(self.grade),
+            "process": list(self.process),
+            "cost_std": std_cost,
+            "tolerance_rounded": rnd * f,
             "cost": pr.param_costs(d.t),
             "variance_share": self.variance_share(d),
             "at_limit": list(d.at_limit),
@@ -124,6 +158,11 @@ class AllocationResult:
                 "saving": None if cert is None or ex is None else cert - ex,
                 "saving_pct": None if cert is None or ex is None else 100 * (cert - ex) / cert,
                 "standard": cost(self.standard),
+                "standard_solver": None if self.standard is None else self.standard.label,
+                "continuous": cost(self.design),
+                "rounded": cost(self.rounded),
+                "standard_premium_pct": _pct(cost(self.standard), cost(self.design)),
+                "rounded_premium_pct": _pct(cost(self.rounded), cost(self.design)),
             },
             "times_s": {"certified": self.certified.time_s, "certified_other": self.certified_other.time_s,
                         "exact": None if self.exact is None else self.exact.time_s},
@@ -135,7 +174,13 @@ class AllocationResult:
                           "binding": [{"parameter": n, "variance_share": s} for n, s in self.diagnosis.binding]},
             "standard": None if self.standard is None else {
                 "meets": self.standard.status == "optimal", "message": self.standard.message,
-                "p_linear_min": {k: float(v.min()) for k, v in self.standard.p_linear.items()}},
+                "solver": str(self.standard.solver), "label": self.standard.label,
+                "p_linear_min": {k: float(v.min()) for k, v in self.standard.p_linear.items()},
+                "grades": dict(zip(pr.costs.names, self.grade)), "processes": dict(zip(pr.costs.names, self.process))},
+            "rounded": None if self.rounded is None else {
+                "meets": self.rounded.status == "optimal", "message": self.rounded.message, "cost": self.rounded.cost,
+                "grades": dict(zip(pr.costs.names, self.rounded_grade or ("",) * len(pr.costs.names)))},
+            "discrete": None if self.discrete is None else self.discrete.to_dict(),
             "worst_pose": self.worst_pose + 1,
         }
         poses = []
@@ -155,14 +200,20 @@ class AllocationResult:
         return out
 
 
+def _pct(x, ref):
+    return None if x is None or ref is None or not ref else 100.0 * (x - ref) / ref
+
+
 def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: float | None = None,
                 length_step_mm: float = 0.001) -> tuple[Design, tuple]:
-    """Snap a design to standard values and re-check the requirement.
+    """Round a design down to the standard values and re-check the requirement.
 
-    Link lengths: ISO 286 IT grade at or below the allocated zone (nominal size: the link length);
-    other lengths: down to a multiple of ``length_step_mm``; angles: down to a multiple of
-    ``angle_step_deg`` (default 1 arcsec). Fixed parameters are kept. A snapped value below ``t_min``
-    is moved up to the nearest standard value at or above it.
+    Every allocatable parameter takes the largest standard value at or below its tolerance, from the same
+    catalogue the discrete allocation chooses from (:mod:`tolalloc.allocate.catalogue`: ISO 286 grades of the
+    link lengths' grade range, standard classes, multiples of the resolution step -- ``angle_step_deg``, default
+    1 arcsec, and ``length_step_mm`` -- within the process limits); where none lies at or below it, the smallest
+    (a loosening, which the re-check judges). Fixed parameters are kept. With processes the cheapest process of
+    each value is taken (its cost includes the set-ups).
 
     Returns
     -------
@@ -170,33 +221,25 @@ def snap_design(problem: AllocationProblem, design: Design, *, angle_step_deg: f
         ``Design.solver`` is ``standard``; its status is ``optimal`` if every requirement still holds,
         else ``violated`` with the failing poses in ``message``.
     """
-    from tolalloc.allocate.standards import ANGLE_STEP_DEG, snap_angle, snap_length
+    from tolalloc.allocate.catalogue import build_catalogue
 
-    step = ANGLE_STEP_DEG if angle_step_deg is None else angle_step_deg
-    lengths = {lk.name: lk.length_mm for lk in problem.model.robot.links}
-    t = design.t.copy()
-    grades = []
-    for k, p in enumerate(problem.model.params):
-        g = ""
-        if problem.costs.role[k] != "fixed":
-            if p.kind == "link_length" and 0 < lengths.get(p.element, 0) <= 3150:
-                t[k], g = snap_length(t[k], lengths[p.element], problem.t_min[k])
-            elif p.unit == "mm":
-                tt = np.floor(t[k] / length_step_mm * (1 + 1e-12)) * length_step_mm
-                if tt < problem.t_min[k] * (1 - 1e-12) or tt <= 0:
-                    tt = np.ceil(problem.t_min[k] / length_step_mm * (1 - 1e-12)) * length_step_mm
-                t[k] = tt
-            else:
-                t[k] = snap_angle(t[k], step, problem.t_min[k])
-        grades.append(g)
+    cat = build_catalogue(problem, angle_step_deg=angle_step_deg, length_step_mm=length_step_mm)
+    opt, n = cat.round_down(design.t[problem.alloc])
+    t = np.asarray(design.t, float).copy()
+    t[problem.alloc] = cat.t_of(opt, n)
+    grades = [""] * len(t)
+    for a, k in enumerate(problem.alloc):
+        grades[k] = cat.label[opt[a]] if cat.label[opt[a]].startswith("IT") else ""
     d = make_design(problem, "standard", t)
+    if cat.groups:
+        d = replace(d, cost=cat.total_cost(opt, n) + float(problem.param_costs(t)[problem.fixed].sum()))
     bad = []
     for b in problem.blocks:
         p = d.p_linear[b["name"]]
         bad += [f"{b['name']} pose {i + 1} (P = {p[i]:.4f})" for i in np.flatnonzero(p < b["target"] - 1e-9)]
     if bad:
-        d = replace(d, status="violated", message="after snapping the requirement fails at " + ", ".join(bad)
-                    + "; use the unsnapped tolerances or a finer angle step")
+        d = replace(d, status="violated", message="after rounding to standard values the requirement fails at "
+                    + ", ".join(bad) + "; use the standard design chosen by the optimiser, or finer standard values")
     else:
         d = replace(d, message="requirement re-checked after snapping: met at every pose")
     return d, tuple(grades)

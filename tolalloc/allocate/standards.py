@@ -19,7 +19,7 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["IT_SIZES_MM", "IT_GRADES", "IT_TABLE_UM", "it_value_mm", "snap_length", "snap_angle", "ANGLE_STEP_DEG"]
+__all__ = ["IT_SIZES_MM", "IT_GRADES", "IT_TABLE_UM", "it_row", "it_value_mm", "snap_length", "snap_angle", "ANGLE_STEP_DEG"]
 
 #: Upper ends of the nominal size ranges [mm] ("over previous, up to and including this").
 IT_SIZES_MM = np.array([3, 6, 10, 18, 30, 50, 80, 120, 180, 250, 315, 400, 500,
@@ -54,7 +54,8 @@ IT_TABLE_UM = np.array([
 ANGLE_STEP_DEG = 1.0 / 3600.0
 
 
-def _row(size_mm: float) -> int:
+def it_row(size_mm: float) -> int:
+    """Row of :data:`IT_TABLE_UM` for nominal size ``size_mm`` [mm] (0 < D <= 3150)."""
     if not np.isfinite(size_mm) or size_mm <= 0 or size_mm > IT_SIZES_MM[-1]:
         raise TolallocError(f"ISO 286 nominal size: expected 0 < D <= 3150 mm, got {size_mm!r} mm; "
                             "give the part a nominal size in range or set it to none (snap to a step).")
@@ -65,7 +66,7 @@ def it_value_mm(size_mm: float, grade: str) -> float:
     """Tolerance zone width of grade ``grade`` (``"IT7"``) at nominal size ``size_mm`` [mm]."""
     if grade not in IT_GRADES:
         raise TolallocError(f"IT grade: expected one of IT1..IT18, got {grade!r}.")
-    return float(IT_TABLE_UM[_row(size_mm), IT_GRADES.index(grade)]) / 1000.0
+    return float(IT_TABLE_UM[it_row(size_mm), IT_GRADES.index(grade)]) / 1000.0
 
 
 def snap_length(t_mm: float, size_mm: float, t_min_mm: float = 0.0) -> tuple[float, str]:
@@ -87,7 +88,7 @@ def snap_length(t_mm: float, size_mm: float, t_min_mm: float = 0.0) -> tuple[flo
     grade : str
         ``"IT7"``; ``"<IT1"`` if even IT1 is wider than ``2 t`` (then ``t`` is kept unsnapped).
     """
-    widths = IT_TABLE_UM[_row(size_mm)] / 1000.0
+    widths = IT_TABLE_UM[it_row(size_mm)] / 1000.0
     ok = np.nonzero(widths <= 2.0 * t_mm * (1 + 1e-12))[0]
     if ok.size == 0:
         return float(t_mm), "<IT1"

@@ -4,19 +4,19 @@ Every error parameter ``e_k`` is split into a *systematic* part ``s_k`` (fixed f
 calibration can estimate and the controller compensate) and a *random* part ``r_k`` (new at every move or
 every day, what no calibration removes): ``e_k = s_k + r_k``, independent.
 
-Defaults per kind -- ASSUMPTIONS of this project, overridable per kind or parameter:
+Defaults per kind -- ASSUMPTIONS of this project, overridable per kind or parameter::
 
-``link_length``, ``axis_deflection``   systematic only (machined / assembled geometry).
-``joint_drive``                        systematic zero offset (sigma of the error model) plus a random
-                                       repeatability term (encoder / transmission repeatability, default
-                                       sigma 0.0003 deg for revolute, 0.001 mm for prismatic drives).
-``clearance_*``                        random only (clearance and backlash take a new value each move).
+    link_length, axis_deflection   systematic only (machined / assembled geometry).
+    joint_drive                    systematic zero offset (sigma of the error model) plus a random
+                                   repeatability term (encoder / transmission repeatability, default
+                                   sigma 0.0003 deg for revolute, 0.001 mm for prismatic drives).
+    clearance_*                    random only (clearance and backlash take a new value each move).
 
 Overrides (the costs file's ``[calibration]`` table, or a dict of the same shape)::
 
     [calibration.kinds.joint_drive]
     repeatability_deg = 0.0005
-    [calibration.parameters.e2x]
+    [calibration.parameters.e2y]
     systematic = false               # treat as random (e.g. thermally drifting)
     [calibration.parameters.dth6]
     repeatability_deg = 0.001

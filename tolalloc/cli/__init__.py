@@ -59,19 +59,32 @@ def _on_signal(signum, frame):
     raise Interrupted(signum)
 
 
+def _not_after_an_interrupt(record) -> bool:
+    """Logging filter: drop what a library logs about the exception our interrupt raised inside it (cvxpy logs
+    ``Encountered unexpected exception importing solver ...: ImportError('initialization failed')``)."""
+    from tolalloc.exceptions import interrupt_pending
+
+    return not interrupt_pending()
+
+
 @contextlib.contextmanager
 def _interrupt_handlers():
     """Turn SIGINT / SIGTERM into :class:`Interrupted` for the block (main thread only), then restore."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    import logging
+
     clear_interrupt()
+    solver_log = logging.getLogger("__cvxpy__")
+    solver_log.addFilter(_not_after_an_interrupt)
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
+        solver_log.removeFilter(_not_after_an_interrupt)
         clear_interrupt()
 
 

@@ -5,8 +5,6 @@ from __future__ import annotations
 import re
 
 from tolalloc.exceptions import ArgumentError, TolallocError
-from tolalloc.robot.model import Robot
-from tolalloc.robot.io import load_robot
 from tolalloc.outputs import check_distinct_outputs, check_output, json_default, write_json
 
 __all__ = ["parse_q", "add_robot_arg", "robot_from_args", "write_json", "json_default", "check_output",
@@ -29,11 +27,18 @@ def add_robot_arg(parser) -> None:
                         "CSVs, pose sets, measurement files: revolute values all within +-2 pi read as radians)")
 
 
-def robot_from_args(args) -> Robot:
-    from tolalloc.units import trusting_units
+def robot_from_args(args):
+    """The robot of :func:`add_robot_arg`'s options (a built-in name or a robot file)."""
+    from tolalloc.workflows.inputs import as_robot
 
-    with trusting_units(getattr(args, "trust_units", False)):
-        return load_robot(args.robot, tool=getattr(args, "tool", None))
+    return as_robot(args.robot, **robot_kwargs(args))
+
+
+def trusting(args):
+    """The unit-plausibility guards off within the block when ``--trust-units`` was given."""
+    from tolalloc.workflows.inputs import trusting_units
+
+    return trusting_units(getattr(args, "trust_units", False))
 
 
 def parse_q(text: str, flag: str = "--q") -> list:
@@ -110,8 +115,8 @@ def robot_kwargs(args) -> dict:
 
 
 #: workflow arguments whose flag is not their name with dashes (the flag switches the argument off, or is shorter)
-_RENAMED = {"verify": "--no-verify", "correction": "--no-correction", "snap": "--no-snap",
-            "registration": "--no-registration", "q_deg_mm": "--pose", "path": "--out"}
+_RENAMED = [("verify", "--no-verify"), ("correction", "--no-correction"), ("snap", "--no-snap"),
+            ("registration", "--no-registration"), ("q_deg_mm", "--pose"), ("q_deg_mm", "--q"), ("path", "--out")]
 
 
 def flag_map(parser) -> dict:
@@ -123,7 +128,7 @@ def flag_map(parser) -> dict:
             flags[action.dest] = longs[0]
     if "pose_set" in flags:  # mc: --pose-set is the workflow's ``poses``
         flags["poses"] = flags["pose_set"]
-    for name, flag in _RENAMED.items():
+    for name, flag in _RENAMED:
         if flag in {f for a in parser._actions for f in a.option_strings}:
             flags.setdefault(name, flag)
     return flags

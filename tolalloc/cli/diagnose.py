@@ -33,7 +33,7 @@ def register(sub) -> None:
                    help="final model's prediction x_mm,y_mm,z_mm for every test row, in order, with its predicted "
                    "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
                    "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
-    p.add_argument("--report", metavar="DIR", help="write report.md, CSV tables and figures into DIR")
+    p.add_argument("--report", metavar="DIR", help="write report.md, report.html (one self-contained file), CSV tables and figures into DIR")
     p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
     p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "

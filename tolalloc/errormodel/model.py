@@ -6,21 +6,21 @@ it; ``xi_k`` is a unit twist in the base frame at home, ``(omega, v)``)::
 
     T = G_0 e^{[S1]q1} G_1 e^{[S2]q2} ... G_{n-1} e^{[Sn]qn} G_n M
 
-Kinds (internal units mm / rad):
+Kinds (internal units mm / rad)::
 
-``link_length``      translation along the link vector, at the link's site
-                     (``consistent``: moves every downstream axis *and* the tool;
-                     ``axes_only``: the paper's Eq. 24, the tool point stays -- an
-                     inverse translation is inserted before ``M``).
-``joint_drive``      joint value offset ``q_j + dq_j`` (twist ``S_j`` at site ``j``).
-``axis_deflection``  rotation about a base axis perpendicular to the joint axis,
-                     through the joint point (``screw``: Eqs. 20-22, before the
-                     joint's exponential; ``tilt``: Eqs. 32/37, the axis direction
-                     itself tilts -- an inverse rotation follows the joint).
-``clearance_axial``  slip along the revolute joint axis (Table 4).
-``clearance_radial`` two components of a radial clearance rod ``s`` of uniform
-                     random direction (Eq. 42): not Gaussian (a ring).
-``clearance_tilt``   clearance deflection angles about the perpendicular axes.
+    link_length       translation along the link vector, at the link's site
+                      (consistent: moves every downstream axis *and* the tool;
+                      axes_only: the paper's Eq. 24, the tool point stays -- an
+                      inverse translation is inserted before M).
+    joint_drive       joint value offset q_j + dq_j (twist S_j at site j).
+    axis_deflection   rotation about a base axis perpendicular to the joint axis,
+                      through the joint point (screw: Eqs. 20-22, before the
+                      joint's exponential; tilt: Eqs. 32/37, the axis direction
+                      itself tilts -- an inverse rotation follows the joint).
+    clearance_axial   slip along the revolute joint axis (Table 4).
+    clearance_radial  two components of a radial clearance rod s of uniform
+                      random direction (Eq. 42): not Gaussian (a ring).
+    clearance_tilt    clearance deflection angles about the perpendicular axes.
 
 The insertion table is built once, as the plain-array :class:`~tolalloc.errormodel.chain.ChainProgram`
 (:attr:`ErrorModel.program`); the exact perturbed chain (per-sample screws, home pose and joint offsets),
@@ -46,7 +46,7 @@ __all__ = ["ErrorParameter", "ErrorModel", "KINDS"]
 
 KINDS = ("link_length", "joint_drive", "axis_deflection", "clearance_axial", "clearance_radial", "clearance_tilt")
 
-#: Defaults for robots without sigma sets (assumed typical values, see README) [mm or rad].
+#: Defaults for robots without sigma sets (assumed typical values, see docs/howto/own-robot.md) [mm or rad].
 GENERIC_SIGMA = {
     "link_length": 0.02,
     "joint_drive_revolute": np.deg2rad(0.005),

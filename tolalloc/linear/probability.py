@@ -1,4 +1,4 @@
-"""P(|x| < r) for a 3-D Gaussian x ~ N(mean, cov) and its inverse (numpy); the CasADi version is in probability_casadi.
+"""``P(|x| < r)`` for a 3-D Gaussian x ~ N(mean, cov) and its inverse (numpy); the CasADi version is in probability_casadi.
 
 Used for the position error ``dp`` [mm] (``cov`` in mm^2, ``r`` in mm) and, with the same
 functions, for the rotation error ``dw`` [rad] (``cov`` in rad^2, angle in rad; aliases

@@ -1,4 +1,4 @@
-"""Differentiable P(|x| < r) for a zero-mean 3-D Gaussian (CasADi, for IPOPT) and its numpy twin for checks.
+"""Differentiable ``P(|x| < r)`` for a zero-mean 3-D Gaussian (CasADi, for IPOPT) and its numpy twin for checks.
 
 **CasADi (differentiable, for IPOPT).** Eigenvectors are not smooth functions of ``cov``, so
 the optimiser path uses the representation ``P = E_u[F_chi2_3(r^2 / u^T cov u)]`` over

@@ -4,7 +4,7 @@ The paired estimator of ``P = P(|dP_nonlinear| < r)`` is ``P_linear + D`` with `
 ``D = P(nonlinear inside) - P(linear inside) = p_10 - p_01`` estimated from the *discordant* samples of the
 shared draws: ``b`` samples inside by the nonlinear chain only, ``c`` inside by the linear map only, out of
 ``n``. ``D`` is a difference of paired proportions, and its interval is Tango's asymptotic score interval
-(Tango 1998, Stat. Med. 17: 891-908): the values ``D0`` with
+(Tango 1998, Stat. Med. 17: 891-908): the values ``D0`` with::
 
     |b - c - n D0| <= z sqrt(n (2 p01~ + D0 (1 - D0)))
 

@@ -19,7 +19,7 @@ from tolalloc.exceptions import TolallocError
 __all__ = ["TABLE_COLUMNS", "display_frame", "write_tables", "format_text"]
 
 #: Columns of the printed / Markdown / LaTeX table (CSV has every column of ``to_frame``).
-TABLE_COLUMNS = ["parameter", "kind", "unit", "tolerance", "sigma", "tolerance_std", "it_grade", "cost",
+TABLE_COLUMNS = ["parameter", "kind", "unit", "tolerance", "sigma", "tolerance_std", "grade", "process", "cost",
                  "variance_share", "at_limit"]
 
 
@@ -31,7 +31,8 @@ def _g(x, digits=4) -> str:
 
 def display_frame(frame: pd.DataFrame, columns=None) -> pd.DataFrame:
     """A string-formatted copy for humans: ``±`` tolerances, 4 significant digits, shares in %."""
-    cols = [c for c in (columns or TABLE_COLUMNS) if c in frame.columns]
+    cols = [c for c in (columns or TABLE_COLUMNS) if c in frame.columns
+            and not (c == "process" and not frame[c].astype(str).str.strip().any())]  # no processes in the costs
     if not cols:
         raise TolallocError(f"table: none of the columns {columns or TABLE_COLUMNS} is in the frame ({list(frame.columns)}).")
     out = pd.DataFrame(index=frame.index)

@@ -71,14 +71,16 @@ class Robot:
         Named boxes of the working region, ``{name: (q_min (n,), q_max (n,))}`` [rad, mm].
     sigma_sets : dict of str -> dict
         Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
-
-    Derived (read-only)
-    -------------------
     joints, links : tuples of Joint, Link
-    screws : array, shape (n, 6)       space screw axes ``(omega, v)``
+        Derived (read-only): the chain's joints and links.
+    screws : array, shape (n, 6)
+        Derived (read-only): space screw axes ``(omega, v)``.
     joint_points_mm : array, shape (n, 3)
-    home : array, shape (4, 4)         ``M``
-    link_sites : array of int, shape (L,)  joints preceding each link
+        Derived (read-only): a point on each joint axis at home [mm].
+    home : array, shape (4, 4)
+        Derived (read-only): the home pose ``M``.
+    link_sites : array of int, shape (L,)
+        Derived (read-only): joints preceding each link.
     """
 
     name: str

@@ -111,7 +111,7 @@ def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
 def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0,
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
                    angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
-                   estimator: str = "auto", **problem_kw) -> Correction:
+                   estimator: str = "auto", standard: bool = False, **problem_kw) -> Correction:
     """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten those poses and re-solve.
 
     Parameters
@@ -140,6 +140,9 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     estimator : {"auto", "plain", "paired", "importance"}
         Estimator of every verification (:func:`~tolalloc.verify.designs.verify_design`); with ``paired`` or
         ``importance`` the targets carry the estimator's own (much smaller) standard error.
+    standard : bool
+        Verify (and cost) each round's standard design, the one that will be built (needs ``snap=True``), instead of
+        its continuous design.
     problem_kw
         The requirement and costs, as :func:`tolalloc.allocate.problem.build_problem` (``radius_mm``, ``prob``,
         ``costs``, ``angle_radius_deg``, ``angle_prob``).
@@ -153,14 +156,17 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         return allocate(build_problem(model, q, target=target, **problem_kw), solver=solver, snap=snap,
                         angle_step_deg=angle_step_deg)
 
+    def built(res):
+        return res.standard if standard and res.standard is not None else res.design
+
     def check(res):  # against p itself (the problem's prob), with the design's own criterion
-        return verify_design(res.problem, res.design, n_mc=n_mc, seed=seed, keep_samples=keep_samples,
+        return verify_design(res.problem, built(res), n_mc=n_mc, seed=seed, keep_samples=keep_samples,
                              scheduler=scheduler, estimator=estimator)
 
     res = result if result is not None else solve()
     ver = verification if verification is not None else check(res)
     before, targets = ver, np.full(len(np.atleast_2d(q)), ver.prob)
-    costs, rounds, reason = [float(res.design.cost)], 0, ""
+    costs, rounds, reason = [float(built(res).cost)], 0, ""
     while ver.verdict != "demonstrated":
         if rounds >= max_rounds:
             reason = f"round limit ({max_rounds}) reached"
@@ -173,10 +179,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
             reason = "no pose short of p can be tightened (orientation requirement failing?)"
             break
         nxt = solve(new)
-        if not nxt.design.ok or nxt.status != "optimal":
-            reason = f"the tightened problem has no design ({nxt.status}: {nxt.message})"
+        if not built(nxt).ok or nxt.status != "optimal":
+            reason = f"the tightened problem has no design ({nxt.status}: {built(nxt).message or nxt.message})"
             break
         res, targets, rounds = nxt, new, rounds + 1
-        costs.append(float(res.design.cost))
+        costs.append(float(built(res).cost))
         ver = check(res)
     return Correction(res, ver, before, rounds, targets, tuple(costs), ver.verdict != "demonstrated", reason)

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.linear.covariance import variance_share
 from tolalloc.montecarlo.intervals import z_of_level
@@ -217,10 +217,10 @@ def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_
         return
     gauss = not control_fallback_reason(model)
     what = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
-    alt = (" or estimator='importance' (importance sampling of the paired difference)" if gauss else
+    alt = (" or `estimator` importance (importance sampling of the paired difference)" if gauss else
            " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)")
-    raise TolallocError(f"{name}: {n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {what}: "
-                        f"even with no miss the 95% interval reaches below p = {prob:g}; give {name} >= {need}{alt}.")
+    raise ArgumentError(name, f"{n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {what}: "
+                        f"even with no miss the 95% interval reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
 
 
 def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator):

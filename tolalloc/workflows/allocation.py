@@ -62,7 +62,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
     calibration : str or path, optional
         A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration;
-        returns a :class:`CalibratedAllocation`.
+        returns a :class:`CalibratedToleranceAllocation`.
     verify : bool
         Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` re-solves with
         raised targets where a pose is not demonstrated (at most ``correction_rounds`` rounds).
@@ -86,7 +86,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     >>> import tolalloc
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.verdict, round(res.cost, 2)
-    ('demonstrated', 44.25)
+    ('demonstrated', 44.39)
     """
     seed, n_mc, coverage_n = _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver,
                                     estimator, n_mc, verify, seed, correction_rounds, coverage_n)
@@ -99,9 +99,10 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     label, box, q = inputs.resolve_region(rob, region, poses)
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
               angle_prob=angle_prob)
-    inputs_record = {"robot": rob.name, **{k: kw[k] for k in ("radius_mm", "prob")}, "region": label,
-                     "costs": cost_set.source, "seed": seed, "n_mc": n_mc if verify else None, "estimator": estimator,
-                     "solver": solver, "calibration": None if calibration is None else str(calibration)}
+    inputs_record = _record(rob, label, cost_set, radius_mm=radius_mm, prob=prob, seed=seed, estimator=estimator,
+                            n_mc=n_mc if verify else None, solver=solver, exclude=exclude,
+                            correction_rounds=correction_rounds, angle_step_deg=angle_step_deg, tool=tool,
+                            trust_units=trust_units, calibration=calibration)
     if calibration is not None:
         return calibrated_allocation(model, label, box, q, calibration, region_given=region is not None,
                                      costs_path=costs, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
@@ -120,25 +121,45 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
     if box is not None and _box_is_one_pose(model, box, kw, seed):
         box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]
     if box is not None:
-        from tolalloc.allocate.region import allocate_region
-
-        rob = model.robot
-        q0 = rob.poses("working") if "working" in rob.pose_sets else None
-        if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
-            q0 = None
-        reg_info = allocate_region(model, box, q0, solver=solver, **kw)
+        reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
         q = reg_info.active_q
-    res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
+    if reg_info is not None and snap and reg_info.result.status == "optimal":
+        res = reg_info.result  # the standard design's loop solved it on the final active set
+    else:
+        res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
     if box is not None and res.status == "infeasible":
         return ToleranceAllocation(res, label, box, reg_info, None, None, None, inputs_record,
-                                   infeasible=_region_infeasible(res, box, reg_info, seed))
+                                   infeasible=_region_infeasible(res, box, reg_info, seed), built=res.design)
     cov, ver, corr = None, None, None
     if res.status == "optimal":
         res, cov, ver, corr = _verify_and_correct(model, kw, res, box, verify=verify, n_mc=n_mc, seed=seed,
                                                   estimator=estimator, correction=correction, rounds=correction_rounds, solver=solver,
                                                   snap=snap, angle_step_deg=angle_step_deg, coverage_n=coverage_n,
                                                   scheduler=scheduler)
-    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record)
+    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=built_design(res, snap))
+
+
+def _region_search(model, box, kw, *, solver, snap, angle_step_deg):
+    """Cutting planes over the box for the continuous design, continued for the standard design (``snap``)."""
+    from tolalloc.allocate.region import allocate_region
+    from tolalloc.allocate.region_standard import allocate_region_standard
+
+    rob = model.robot
+    q0 = rob.poses("working") if "working" in rob.pose_sets else None
+    if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
+        q0 = None
+    reg_info = allocate_region(model, box, q0, solver=solver, **kw)
+    if not snap or reg_info.result.status != "optimal":
+        return reg_info
+    return allocate_region_standard(model, box, solver=solver, angle_step_deg=angle_step_deg, continuous=reg_info,
+                                    **kw)
+
+
+def built_design(res, snap: bool):
+    """The design that will be built: the standard one when it was chosen and meets the requirement, else the
+    continuous one."""
+    std = res.standard
+    return std if snap and std is not None and std.ok else res.design
 
 
 def _box_is_one_pose(model, box, kw, seed) -> bool:
@@ -160,11 +181,13 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     from tolalloc.allocate.problem import build_problem, make_design
     from tolalloc.allocate.region import coverage
 
-    cov, vproblem, vdesign = None, res.problem, res.design
+    design = built_design(res, snap)
+    standard = design is not res.design
+    cov, vproblem, vdesign = None, res.problem, design
     if box is not None:
-        cov = coverage(res.problem, res.design.t, box, n=coverage_n, seed=seed + 12345)
+        cov = coverage(res.problem, design.t, box, n=coverage_n, seed=seed + 12345)
         vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
-        vdesign = make_design(vproblem, res.design.solver, res.design.t, fallback_from=res.design.fallback_from)
+        vdesign = make_design(vproblem, design.solver, design.t, fallback_from=design.fallback_from)
     if not verify:
         return res, cov, None, None
     from tolalloc.verify.designs import verify_design
@@ -176,10 +199,20 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
 
     corr = correct_design(model, vproblem.q, solver=solver, n_mc=n_mc, seed=seed, max_rounds=rounds, result=res,
                           verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
-                          keep_samples=4000, estimator=estimator, **kw)
+                          keep_samples=4000, estimator=estimator, standard=standard, **kw)
     if corr.rounds and box is not None:  # the corrected design, checked over the region again
-        cov = coverage(corr.result.problem, corr.result.design.t, box, n=coverage_n, seed=seed + 12345)
+        cov = coverage(corr.result.problem, built_design(corr.result, snap).t, box, n=coverage_n, seed=seed + 12345)
     return corr.result, cov, corr.verification, corr
+
+
+def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, exclude, correction_rounds,
+            angle_step_deg, tool, trust_units, calibration) -> dict:
+    """The inputs that decide the numbers (for the report's reproduce command)."""
+    return {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
+            "costs": cost_set.source, "seed": int(seed), "n_mc": None if n_mc is None else int(n_mc),
+            "estimator": estimator, "solver": solver, "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
+            "correction_rounds": correction_rounds, "angle_step_deg": angle_step_deg, "tool": tool,
+            "trust_units": bool(trust_units), "calibration": None if calibration is None else str(calibration)}
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:

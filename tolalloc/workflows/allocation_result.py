@@ -41,6 +41,10 @@ class ToleranceAllocation(JobResult):
         The call's inputs that decide the numbers (robot, requirement, region, costs source, seed, n_mc).
     infeasible : str or None
         Set when the region cannot be covered even at the tightest process limits (no design to use).
+    built : Design or None
+        The design that will be built, the one verified and covered: the standard design chosen by the optimiser
+        (grades, classes, resolution steps) when it was asked for and meets the requirement, else the continuous
+        one (``result.design``).
 
     Examples
     --------
@@ -48,8 +52,8 @@ class ToleranceAllocation(JobResult):
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.ok, res.status
     (True, 'optimal')
-    >>> res.to_frame().loc[0, ["parameter", "unit", "it_grade"]].tolist()
-    ['dl1', 'mm', 'IT9']
+    >>> res.to_frame().loc[0, ["parameter", "unit", "grade"]].tolist()
+    ['dl1', 'mm', 'IT10']
     """
 
     result: object
@@ -61,6 +65,7 @@ class ToleranceAllocation(JobResult):
     correction: object
     inputs: dict = field(default_factory=dict)
     infeasible: str | None = None
+    built: object = None
 
     # ------------------------------------------------------------------ the headline numbers
     @property
@@ -73,8 +78,18 @@ class ToleranceAllocation(JobResult):
 
     @property
     def design(self):
-        """The design the tables hold (``result.design``)."""
+        """The design that will be built (verified, covered): the standard one, or the continuous one."""
+        return self.built if self.built is not None else self.result.design
+
+    @property
+    def continuous_design(self):
+        """The continuous optimum (``result.design``; ``tolerance`` in the table)."""
         return self.result.design
+
+    @property
+    def standard(self) -> bool:
+        """Whether the design to build is the standard one (``tolerance_std``, ``grade`` in the table)."""
+        return self.design is not self.result.design
 
     @property
     def status(self) -> str:
@@ -108,6 +123,9 @@ class ToleranceAllocation(JobResult):
         """What the tables hold: the design's label, and whether it is the corrected one."""
         res, corr = self.result, self.correction
         note = f"{res.design.label}"
+        if self.standard:
+            note = (f"standard grades ({self.design.label}) in tolerance_std / grade: verified, to be built; the "
+                    f"continuous {res.design.label} optimum in tolerance")
         if corr is not None and corr.rounds:
             note += (f", corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
                      f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.3g}% cost)")
@@ -125,7 +143,9 @@ class ToleranceAllocation(JobResult):
         lines = [f"robot: {self.robot.name}   requirement: {self.requirement()} over {where}"]
         if self.infeasible is not None:
             return lines + ["status: infeasible over the region (no design): " + self.infeasible]
-        lines.append(f"status: {self.status}   design: {self.design.label}   cost: {self.cost:.4f}")
+        extra = (f" (continuous optimum {self.continuous_design.cost:.4f}, "
+                 f"{100 * (self.cost / self.continuous_design.cost - 1):+.2f} %)" if self.standard else "")
+        lines.append(f"status: {self.status}   design to build: {self.design.label}   cost: {self.cost:.4f}{extra}")
         if self.verification is not None:
             v = self.verification
             lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}, n = {int(v.n.min())} per "

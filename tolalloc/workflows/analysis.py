@@ -7,6 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from tolalloc.exceptions import ArgumentError
 from tolalloc.outputs import output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
@@ -18,7 +19,8 @@ __all__ = ["analyze_errors", "ErrorAnalysis"]
 def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = None, radius_mm=(), prob=(),
                    sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
                    clearance: bool = False, clearance_tilt_literal: bool = False, sigma: dict | None = None,
-                   exclude=(), top: int = 10, tool: str | None = None, trust_units: bool = False) -> "ErrorAnalysis":
+                   exclude=(), top: int = 10, sobol_n: int = 0, seed: int = 0, tool: str | None = None,
+                   trust_units: bool = False) -> "ErrorAnalysis":
     """First-order tool-position error of a robot's error model: covariance, probabilities, error budget.
 
     Parameters
@@ -38,6 +40,11 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         Sigma overrides ``{parameter or kind: sigma}`` in mm (lengths) or deg (angles).
     top : int
         Budget rows in :meth:`ErrorAnalysis.text` and the budget figure.
+    sobol_n : int
+        With ``sobol_n >= 16``: Sobol' first-order and total indices of ``|dP|`` (and of the pass / fail indicator
+        for the first ``radius_mm``) at the worst pose from the nonlinear model (Saltelli sampling, Jansen
+        estimators, ``sobol_n (K + 2)`` chain evaluations, ``seed``), beside the linear variance shares; factors
+        whose nonlinear total index differs from the linear one by more than 0.05 are flagged.
 
     Returns
     -------
@@ -53,6 +60,11 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
     probs = inputs.check_values(prob, "prob", inputs.check_probability)
     top = inputs.check_count(top, "top", example="10")
+    sobol_n = inputs.check_count(sobol_n, "sobol_n", minimum=0, example="4096")
+    if 0 < sobol_n < 16:
+        raise ArgumentError("sobol_n", f"expected 0 (no Sobol' indices) or a base sample size >= 16 (e.g. 4096), got "
+                            f"{sobol_n}.")
+    seed = inputs.check_seed(seed)
     inputs.check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
                                clearance=clearance, exclude=exclude, sigma=sigma,
                                clearance_tilt_literal=clearance_tilt_literal)
@@ -65,7 +77,13 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     from tolalloc.linear.covariance import budget, linear_map
 
     res = linear_map(model, q)
-    return ErrorAnalysis(res, budget(res), tuple(radii), tuple(probs), bool(clearance), top)
+    b = budget(res)
+    sobol = None
+    if sobol_n:
+        from tolalloc.montecarlo.sobol import sobol_indices
+
+        sobol = sobol_indices(model, q[b.worst_pose], sobol_n, seed, radius_mm=radii[0] if radii else None)
+    return ErrorAnalysis(res, b, tuple(radii), tuple(probs), bool(clearance), top, sobol)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -75,12 +93,14 @@ class ErrorAnalysis(JobResult):
     Attributes
     ----------
     linear : LinearResult
-        Covariance ``J Sigma J^T`` per pose [mm^2, rad^2], standard deviations, P(|dP| < r).
+        Covariance ``J Sigma J^T`` per pose [mm^2, rad^2], standard deviations, ``P(|dP| < r)``.
     budget : ErrorBudget
-        Each parameter's and kind's share of the variance of x, y, z and |dP|^2.
+        Each parameter's and kind's share of the variance of x, y, z and ``|dP|^2``.
     radii_mm, probs : tuple of float
     clearance : bool
     top : int
+    sobol : SobolResult or None
+        Nonlinear Sobol' indices at the worst pose beside the linear shares (``sobol_n > 0``).
     """
 
     linear: object
@@ -89,6 +109,7 @@ class ErrorAnalysis(JobResult):
     probs: tuple = ()
     clearance: bool = False
     top: int = 10
+    sobol: object = None
     inputs: dict = field(default_factory=dict)
 
     @property
@@ -125,6 +146,10 @@ class ErrorAnalysis(JobResult):
 
         out = analyze_dict(self.linear, self.budget, list(self.radii_mm), list(self.probs))
         out["labels"] = {**out["labels"], "clearance": self.clearance}
+        if self.sobol is not None:
+            out["sobol"] = {"pose": self.budget.worst_pose + 1, "n": self.sobol.n, "radius_mm": self.sobol.radius_mm,
+                            "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(),
+                            "factors": self.sobol.to_frame().to_dict(orient="records")}
         return out
 
     def text(self) -> str:
@@ -140,6 +165,11 @@ class ErrorAnalysis(JobResult):
             out.append(f"radius for P = {p:g}: " + ", ".join(f"{v:.5g}" for v in res.radius_for(p)) + " mm")
         out.append(f"\nerror budget at the worst pose ({b.worst_pose + 1}), top {self.top}:")
         out.append(b.to_markdown(pose="worst", top=self.top))
+        if self.sobol is not None:
+            out.append(f"\nSobol' indices at the worst pose ({b.worst_pose + 1}), nonlinear model beside the linear "
+                       f"variance share: {self.sobol.message()}")
+            top = self.sobol.to_frame().sort_values("ST_norm", ascending=False).head(self.top)
+            out.append(top.to_string(index=False, float_format=lambda x: f"{x:.4f}"))
         return "\n".join(out)
 
     def plot_budget(self, ax=None, *, pose="worst", by: str = "parameter"):
@@ -178,4 +208,8 @@ class ErrorAnalysis(JobResult):
         fig.savefig(folder / "budget.png", dpi=110)
         plt.close(fig)
         write_json(self.summary(), folder / "analyze.json")
-        return ["linear_table.csv", "budget.csv", "budget_kinds.csv", "budget.md", "budget.png", "analyze.json"]
+        names = ["linear_table.csv", "budget.csv", "budget_kinds.csv", "budget.md", "budget.png", "analyze.json"]
+        if self.sobol is not None:
+            self.sobol.to_frame().to_csv(folder / "sobol.csv", index=False, float_format="%.6g")
+            names.append("sobol.csv")
+        return names

@@ -73,14 +73,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
                                               progress)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
-    with progress_scope(progress):
-        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
-        try:
-            tr = inputs.as_measurements(train, rob, "train")
-            te = None if test is None else inputs.as_measurements(test, rob, "test")
-        finally:
-            bar.close()
+    tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
         raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
                             f"training poses (at least 2 poses held out per fold), got {folds}.")
@@ -99,7 +92,25 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
                 gap = diagnosis_gap_split(d)
             finally:
                 bar.close()
-    return MeasurementDiagnosis(d, gap, folds)
+    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
+              "register_n": register_n, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
+              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units)}
+    return MeasurementDiagnosis(d, gap, folds, record)
+
+
+def _read(robot, train, test, progress):
+    """The training and test measurements (paths or DataFrames), with a progress bar for large files."""
+    from tolalloc.diagnose.scale import progress_bar, progress_scope
+
+    names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
+    with progress_scope(progress):
+        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
+        try:
+            tr = inputs.as_measurements(train, robot, "train")
+            te = None if test is None else inputs.as_measurements(test, robot, "test")
+        finally:
+            bar.close()
+    return tr, te
 
 
 def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
@@ -145,6 +156,8 @@ class MeasurementDiagnosis(JobResult):
     gap : GapSplit or None
         The held-out test error split into geometry / effect / systematic but unnamed / noise floor.
     folds : int
+    inputs : dict
+        The call's inputs that decide the numbers (robot, files, test_frame, folds, alpha, seed, ...).
 
     See :func:`diagnose_measurements` for an example; ``to_frame()`` is the before / after table
     (nominal, geometric, final model; RMS, p95, max [mm]).
@@ -211,7 +224,7 @@ class MeasurementDiagnosis(JobResult):
         return frame.drop(columns="row")
 
     def save(self, report=None, *, json=None, predictions=None) -> list[str]:
-        """Write the report directory (report.md, CSV tables, figures), the JSON result and / or the predictions
+        """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
         CSV; all published together, nothing if any fails. Returns the paths written."""
         self.check_out(report, "report")
         self.check_out(json, "json", directory=False)
@@ -229,9 +242,11 @@ class MeasurementDiagnosis(JobResult):
         return [str(p) for p in (predictions, report, json) if p is not None]
 
     def write_report(self, folder) -> None:
-        """report.md, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
+        """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
         from tolalloc.report.diagnosis import write_report
+        from tolalloc.workflows.html import write_diagnosis_report
 
         write_report(self.diagnosis, folder)
         if self.gap is not None:
             self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
+        write_diagnosis_report(self, folder)

@@ -20,21 +20,20 @@ from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_cost
                                        check_values, check_z, number, shown)
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
+from tolalloc.units import trusting_units
 
 #: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
-__all__ = ["honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model", "sigma_overrides",
-           "resolve_region", "trajectory", "as_measurements", "default_pose_set", "check_choice", "check_costs_file",
-           "check_count", "check_flag", "check_model_options", "check_name", "check_names", "check_optional_flag",
-           "check_path", "check_positive", "check_probability", "check_scheduler", "check_seed", "check_values",
-           "check_z", "number", "shown", "RANGES", "Z_RANGE"]
+__all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model",
+           "sigma_overrides", "resolve_region", "trajectory", "as_measurements", "default_pose_set", "check_choice",
+           "check_costs_file", "check_count", "check_flag", "check_model_options", "check_name", "check_names",
+           "check_optional_flag", "check_path", "check_positive", "check_probability", "check_scheduler",
+           "check_seed", "check_values", "check_z", "number", "shown", "RANGES", "Z_RANGE"]
 
 
 def honours_trust_units(fn):
     """Run workflow ``fn`` with the unit-plausibility guards off when it is called with ``trust_units=True``
     (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
     import functools
-
-    from tolalloc.units import trusting_units
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
@@ -50,8 +49,6 @@ def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Ro
 
     ``trust_units`` accepts robot-file values that look like a unit slip (see :mod:`tolalloc.units`).
     """
-    from tolalloc.units import trusting_units
-
     if not isinstance(robot, (Robot, str, os.PathLike)) or (isinstance(robot, str) and not robot.strip()):
         raise ArgumentError("robot", f"expected a Robot, a built-in robot name or a path to a robot file (.toml, DH "
                             f".csv, .urdf), got {shown(robot)}.")

@@ -140,7 +140,7 @@ class ErrorSimulation(JobResult):
     Attributes
     ----------
     mc : McResult
-        Mean, standard deviation, extremes of dx, dy, dz [mm], |dP|, reach change, Euler-angle errors [rad],
+        Mean, standard deviation, extremes of dx, dy, dz [mm], ``|dP|``, reach change, Euler-angle errors [rad],
         ``P(|dP| < r)`` with 95 % intervals; kept samples and histograms.
     robot : Robot
     clearance_tilt_rad : float or None

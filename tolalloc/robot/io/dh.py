@@ -55,7 +55,7 @@ class DHFile(BaseModel):
 
 
 def robot_from_dh_dict(data: dict, source: str = "<dict>"):
-    """Build a robot from a parsed DH TOML file (see the README)."""
+    """Build a robot from a parsed DH TOML file (see docs/howto/own-robot.md)."""
 
     spec = _validate(DHFile, data, "")
     rows = parse_dh_rows(spec.dh)

@@ -99,7 +99,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise TolallocError(f"{source}: not valid TOML ({exc}); see the README's robot file example.") from None
+        raise TolallocError(f"{source}: not valid TOML ({exc}); see docs/howto/own-robot.md for the robot file format.") from None
     try:
         return robot_from_dict(data, source)
     except TolallocError as exc:

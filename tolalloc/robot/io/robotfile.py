@@ -2,8 +2,8 @@
 
 Two TOML layouts are read, both with the unit in every key name:
 
-* the **chain** layout (``[[chain]]`` entries of links and joints, see the
-  README for a complete example), and
+* the **chain** layout (``[[chain]]`` entries of links and joints, see
+  docs/howto/own-robot.md for a complete example), and
 * the **DH** layout (``convention = "standard" | "modified"`` and
   ``[[dh]]`` rows), converted to a chain by :mod:`tolalloc.robot.io.dh`.
 

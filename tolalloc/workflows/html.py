@@ -1,0 +1,393 @@
+"""``report.html`` of the workflow results: the context of each template, taken from the result objects.
+
+Every number comes from the result (its tables, ``summary()`` and messages); the figures are the result's own plots.
+The templates and the rendering live in :mod:`tolalloc.report.html`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
+
+__all__ = ["write_allocation_report", "write_calibrated_report", "write_diagnosis_report", "allocation_context",
+           "calibrated_context"]
+
+#: the words of the per-pose verdicts, as the verification defines them
+VERDICT_LEGEND = ("demonstrated: the whole 95 % interval of P̂ is at or above p; consistent: the interval reaches p "
+                  "but its lower bound is below; failed: the whole interval lies below p.")
+
+
+def write_allocation_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`ToleranceAllocation` into the existing directory ``folder``."""
+    return write_html(render_report("allocation.html.j2", allocation_context(job, folder)), folder)
+
+
+def write_calibrated_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`CalibratedToleranceAllocation` into the existing directory ``folder``."""
+    return write_html(render_report("calibrated.html.j2", calibrated_context(job)), folder)
+
+
+def write_diagnosis_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`MeasurementDiagnosis` into the existing directory ``folder``."""
+    from tolalloc.workflows.html_diagnosis import diagnosis_context
+
+    return write_html(render_report("diagnosis.html.j2", diagnosis_context(job, folder)), folder)
+
+
+# ---------------------------------------------------------------------------------------------- shared pieces
+SECTIONS = [{"id": "summary", "title": "Requirement and verdict"}, {"id": "tolerances", "title": "Tolerance table"},
+            {"id": "poses", "title": "Verification per pose"}, {"id": "figures", "title": "Figures"},
+            {"id": "reproduce", "title": "Inputs, versions, reproduce"}]
+
+
+def _f4(x) -> str:
+    return "n/a" if x is None or not np.isfinite(x) else f"{x:.4f}"
+
+
+def joint_columns(robot) -> list[Column]:
+    """``q1..qN`` columns with the joint names and units (deg / mm)."""
+    return [Column(f"q{k + 1}", f"{j.name} [{j.unit}]", "f2") for k, j in enumerate(robot.joints)]
+
+
+def with_joints(frame: pd.DataFrame, robot, q) -> pd.DataFrame:
+    """``frame`` with columns ``q1..qN`` (interface units) from ``q`` (P, n) [rad, mm] inserted after ``pose``."""
+    qi = np.atleast_2d(robot.q_to_interface(q))
+    at = list(frame.columns).index("pose") + 1 if "pose" in frame.columns else 0
+    out = frame.copy()
+    for k in range(qi.shape[1]):
+        out.insert(at + k, f"q{k + 1}", qi[:, k])
+    return out
+
+
+def _inputs_pairs(record: dict, extra: list) -> list:
+    shown = []
+    for k, v in list(record.items()) + extra:
+        shown.append((k, "—" if v is None else (", ".join(map(str, v)) if isinstance(v, (list, tuple)) else str(v))))
+    return shown
+
+
+# ---------------------------------------------------------------------------------------------- allocation
+TOLERANCE_COLUMNS = [Column("parameter", "parameter", "text"), Column("kind", "kind", "text"),
+                     Column("unit", "unit", "text"), Column("role", "role", "text"),
+                     Column("tolerance", "tolerance ±", "pm"), Column("sigma", "σ", "g4"),
+                     Column("tolerance_std", "standard ±", "pm", optional=True),
+                     Column("it_grade", "ISO 286 grade", "text", optional=True),
+                     Column("cost", "cost", "f3"), Column("variance_share", "variance share [%]", "pct"),
+                     Column("at_limit", "at limit", "text"), Column("t_min", "t_min", "g4"),
+                     Column("t_max", "t_max", "g4")]
+
+
+def _verdict(job) -> dict:
+    res, ver = job.result, job.verification
+    lines = []
+    if res.status != "optimal":
+        word = "NOT CONVERGED" if res.status == "not_converged" else "INFEASIBLE"
+        return {"cls": "fail", "word": word, "lead": pretty(res.message),
+                "lines": ["The tolerance table holds the design for reference only; it does not meet the requirement."]}
+    if job.coverage is not None:
+        lines.append(pretty(job.coverage.message(job.problem.prob)))
+    if job.correction is not None:
+        lines.append("Correction: " + pretty(job.correction.message()))
+    if ver is None:
+        return {"cls": "warn" if job.ok else "fail", "word": "NOT VERIFIED",
+                "lead": "No nonlinear Monte Carlo verification was run; the linear prediction meets the requirement "
+                        "at every pose of the allocation.", "lines": lines}
+    cls = "ok" if job.ok and ver.verdict == "demonstrated" else ("warn" if job.ok else "fail")
+    return {"cls": cls, "word": ver.verdict.upper(), "lead": pretty(ver.message()), "lines": lines}
+
+
+def _cards(job, s: dict) -> list:
+    res, ver, cov, corr = job.result, job.verification, job.coverage, job.correction
+    c = s["costs"]
+    cards = [{"label": "cost of the design to build", "value": _f4(job.cost),
+              "note": f"{job.design.label} design" + (" (standard grades)" if job.standard else "")},
+             {"label": "certified cost", "value": _f4(c["certified"]), "note": c["certified_rule"]},
+             {"label": "exact cost", "value": _f4(c["exact"]),
+              "note": f"{c['saving_pct']:.2f} % below certified" if c["saving_pct"] is not None else
+              ("not computed" if c["exact_status"] is None else f"none: {c['exact_status']}")}]
+    if c["standard"] is not None and not job.standard:
+        cards.append({"label": "standard-grade cost", "value": _f4(c["standard"]),
+                      "note": "meets the requirement" if s["standard"]["meets"] else "requirement NOT met"})
+    if c.get("rounded") is not None:
+        cards.append({"label": "cost if rounded down", "value": _f4(c["rounded"]),
+                      "note": f"what the optimiser's standard grades replace ({c['rounded_premium_pct']:+.2f} %)"
+                      if c.get("rounded_premium_pct") is not None else "what the standard grades replace"})
+    if ver is not None:
+        k = ver.worst_pose
+        cards.append({"label": "lowest P̂ (Monte Carlo)", "value": f"{ver.p_mc[k]:.4f}",
+                      "note": f"pose {k + 1}, 95 % interval [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"})
+    worst = min(s["poses"], key=lambda row: row["p_linear"])
+    cards.append({"label": "lowest linear P", "value": f"{worst['p_linear']:.4f}", "note": f"pose {worst['pose']}"})
+    if cov is not None:
+        cards.append({"label": "coverage of the region", "value": f"{cov.min_p:.4f}",
+                      "note": f"lowest linear P on {cov.n} fresh poses; {cov.n_below} below p"})
+    if corr is not None and corr.rounds:
+        cards.append({"label": "cost of the correction", "value": f"{corr.premium_pct:+.2f} %",
+                      "note": f"{corr.rounds} round(s)"})
+    return cards
+
+
+def _costs_table(job, s: dict) -> dict:
+    res = job.result
+    c = s["costs"]
+    rows = [("certified, cheaper rule", res.certified, c["certified"], ""),
+            ("certified, other rule", res.certified_other, c["certified_other"], ""),
+            ("exact (IPOPT)", res.exact, c["exact"], "" if c["saving"] is None else
+             f"saving {c['saving']:.4f} ({c['saving_pct']:.2f} %) against certified"),
+            ("standard grades", res.standard, c["standard"], "" if s["standard"] is None else s["standard"]["message"])]
+    rows = [r for r in rows if r[1] is not None]
+    frame = pd.DataFrame({"design": [r[0] for r in rows], "method": [str(r[1].solver) for r in rows],
+                          "status": [r[1].status for r in rows], "cost": [r[2] for r in rows],
+                          "time_s": [r[1].time_s for r in rows],
+                          "note": [pretty(r[3] or r[1].message or "") for r in rows]})
+    chosen = ["chosen" if d is res.design or str(d.solver) == str(res.design.solver) else "" for _, d, _, _ in rows]
+    cols = [Column("design", "design", "text"), Column("method", "method", "text"),
+            Column("status", "status", "text", badge=True), Column("cost", "cost", "f4"),
+            Column("time_s", "time [s]", "f2"), Column("note", "note", "text")]
+    return html_table(frame, cols, table_id="costs", row_classes=chosen,
+                      caption="Costs of the designs (relative cost units of the cost laws)",
+                      note="Certified: convex upper bounds on the variance (cvxpy + Clarabel), a design that meets the "
+                           "requirement by construction; exact: the Gaussian probability itself (CasADi + IPOPT), "
+                           "never dearer. Bold: the design of the tolerance table.")
+
+
+def _pose_frame(job, s: dict):
+    """Per pose: joint values, linear P and (when verified) P̂ with its interval, samples, verdict, reason."""
+    ver, robot, pr, cov = job.verification, job.robot, job.problem, job.coverage
+    if ver is None:
+        frame = pd.DataFrame({"pose": [r["pose"] for r in s["poses"]], "p_linear": [r["p_linear"] for r in s["poses"]]})
+        if "p_linear_angle" in s["poses"][0]:
+            frame["p_linear_angle"] = [r["p_linear_angle"] for r in s["poses"]]
+        return with_joints(frame, robot, pr.q), None
+    frame = ver.to_frame()
+    frame["ci"] = list(zip(frame["ci_low"], frame["ci_high"]))
+    if "ci_low_angle" in frame:
+        frame["ci_angle"] = list(zip(frame["ci_low_angle"], frame["ci_high_angle"]))
+    n = len(frame)
+    q = None
+    if len(pr.q) == n:
+        q = pr.q
+    elif cov is not None and len(pr.q) + len(cov.worst_q) == n:  # the coverage's worst poses were verified too
+        q = np.vstack([pr.q, cov.worst_q])
+    if job.region_search is not None:
+        n_active = len(job.region_search.active_q)
+        frame.insert(1, "origin", ["active" if i < n_active else "coverage" for i in range(n)])
+    return (frame if q is None else with_joints(frame, robot, q)), ["" if ok else "bad" for ok in frame["passed"]]
+
+
+def _pose_table(job, s: dict) -> dict:
+    frame, classes = _pose_frame(job, s)
+    pr = job.problem
+    cols = [Column("pose", "pose", "int"), Column("origin", "origin", "text"), *joint_columns(job.robot),
+            Column("p_linear", "P linear", "f4"), Column("p_mc", "P̂ Monte Carlo", "f4"),
+            Column("ci", "95 % interval", "ci", numeric=True), Column("p_linear_angle", "P linear, angle", "f4"),
+            Column("p_mc_angle", "P̂ angle", "f4"), Column("ci_angle", "95 % interval, angle", "ci", numeric=True),
+            Column("n", "samples", "int"), Column("verdict", "verdict", "text", badge=True),
+            Column("reason", "reason", "text", optional=True)]
+    what = (f"P(|dP| < {pr.radius_mm:g} mm) per pose" + ("" if pr.angle_radius_rad is None else
+                                                         f" and P(|dw| < {np.rad2deg(pr.angle_radius_rad):g} deg)"))
+    return html_table(frame, cols, table_id="pose-table", row_classes=classes,
+                      caption=f"Verification per pose: {what}, required p = {pr.prob:g}",
+                      note="P linear: the Gaussian prediction of the first-order model; P̂: the nonlinear Monte Carlo "
+                           "estimate (exact perturbed kinematics) with its 95 % Wilson interval. Joint values in deg / "
+                           "mm." + ("" if job.region_search is None else " Origin: active, a pose of the region "
+                                    "search the design is allocated at; coverage, one of the lowest-P poses of the "
+                                    "fresh coverage sample.") if job.verification is not None else
+                      "P linear: the Gaussian prediction of the first-order model (no Monte Carlo verification).")
+
+
+def _region(job, s: dict):
+    if job.region_search is None:
+        return None
+    r = s["region"]
+    rounds = f"{r['rounds']} ({'converged' if r['converged'] else 'NOT converged: round limit reached'})"
+    pairs = [("region", r["name"]), ("search rounds", rounds),
+             ("active poses", r["active_poses"]), ("search evaluations", r["search_evaluations"]),
+             ("worst linear P found", f"{r['worst_p_linear']:.5f}"),
+             ("static joints", ", ".join(map(str, r["static_joints"])) or "none"),
+             ("search time", f"{r['time_s']:.1f} s")]
+    frame = pd.DataFrame({"joint": [j.name for j in job.robot.joints], "unit": [j.unit for j in job.robot.joints],
+                          "q_min": r["q_min_deg_mm"], "q_max": r["q_max_deg_mm"]})
+    box = html_table(frame, [Column("joint", "joint", "text"), Column("unit", "unit", "text"),
+                             Column("q_min", "lower", "f2"), Column("q_max", "upper", "f2")],
+                     table_id="region-box", caption=f"Box of region {r['name']!r}", compact=True)
+    return {"pairs": pairs, "box": box}
+
+
+def _correction(job):
+    corr = job.correction
+    if corr is None:
+        return None
+    frame = pd.DataFrame({"round": range(len(corr.costs)), "cost": list(corr.costs)})
+    table = html_table(frame, [Column("round", "round", "int"), Column("cost", "design cost", "f4")],
+                       table_id="correction-rounds", caption="Design cost per correction round (0: uncorrected)",
+                       compact=True)
+    return {"text": pretty(corr.message()), "table": table}
+
+
+def _figures(job, folder=None) -> list:
+    """Budget and pose probabilities as SVG; the point cloud as PNG (the copy saved in ``folder`` when there)."""
+    res, ver = job.result, job.verification
+    figs = [figure_item(job.plot_budget(), figure_id="fig-budget",
+                        caption=f"Error budget of the {res.design.label} design: tolerance per parameter (log scale) "
+                                f"and its share of tr Σ of the position error at the worst pose "
+                                f"(pose {res.worst_pose + 1}); labels: tolerances at a process limit.")]
+    if ver is not None:
+        figs.append(figure_item(job.plot_pose_probabilities(), figure_id="fig-poses",
+                                caption="Linear prediction and Monte Carlo estimate P̂ with its 95 % interval per "
+                                        f"pose, against the required p = {ver.prob:g}."))
+        if ver.samples_mm is not None and len(ver.samples_mm):
+            caption = (f"Position errors of {len(ver.samples_mm)} Monte Carlo samples at pose {ver.samples_pose + 1} "
+                       f"(the lowest linear prediction), three projections, with the r = {ver.radius_mm:g} mm circle.")
+            saved = None if folder is None else Path(folder) / "error_cloud.png"
+            figs.append(file_figure_item(saved, figure_id="fig-cloud", caption=caption) if saved and saved.is_file()
+                        else figure_item(job.plot_cloud(), figure_id="fig-cloud", fmt="png", caption=caption))
+    return figs
+
+
+def allocation_context(job, folder=None) -> dict:
+    """The template context of a :class:`ToleranceAllocation`'s report (``folder``: where its figures were saved)."""
+    from tolalloc.workflows.html_command import allocation_command
+
+    s = job.summary()
+    res, pr = job.result, job.problem
+    where = (f"Over the box region {job.label!r}: its worst poses were found by a cutting-plane search; the design "
+             f"is allocated at {pr.n_poses} poses." if job.region is not None else
+             f"At the {pr.n_poses} pose(s) of the pose set {job.label!r}.")
+    notes = [pretty(x) for x in (res.message, res.design.message) if x and res.status == "optimal"]
+    cli, python, rnotes = allocation_command(job)
+    verdict = _verdict(job)
+    return {"kicker": "tolerance allocation", "title": "Tolerance allocation report",
+            "subtitle": f"{job.robot.name}: {pretty(job.requirement())}",
+            "meta": [("robot", job.robot.name), ("where", job.label), ("verdict", verdict["word"].lower()),
+                     ("costs", pr.costs.source)],
+            "sections": SECTIONS, "requirement": pretty(job.requirement()), "where": where, "verdict": verdict,
+            "cards": _cards(job, s), "costs_table": _costs_table(job, s), "notes": notes,
+            "design_note": job.design_note(), "z_text": f"{pr.costs.z:.4g}"
+            + (" (errors uniform over ±t)" if pr.costs.distribution == "uniform" else ""),
+            "tolerance_table": _tolerance_table(job, s),
+            "standard_note": None if s["standard"] is None else pretty(s["standard"]["message"]),
+            "region": _region(job, s),
+            "coverage_text": None if job.coverage is None else pretty(job.coverage.message(pr.prob)),
+            "verification": None if job.verification is None else {"text": pretty(job.verification.message())},
+            "legend": VERDICT_LEGEND + _pass_rule(job), "pose_table": _pose_table(job, s),
+            "correction": _correction(job), "figures": _figures(job, folder),
+            "inputs": _inputs_pairs(job.inputs, [("sigma_set", s["sigma_set"]), ("z", f"{pr.costs.z:.4g}"),
+                                                 ("distribution", pr.costs.distribution),
+                                                 *[(k, v) for k, v in pr.model.labels.items() if k != "sigma_set"],
+                                                 ("coverage_n", None if job.coverage is None else job.coverage.n)]),
+            "reproduce": {"cli": cli, "python": python, "notes": rnotes}}
+
+
+def _pass_rule(job) -> str:
+    ver = job.verification
+    if ver is None:
+        return ""
+    return (" A certified design passes a pose when demonstrated." if ver.criterion == "certified" else
+            " An exact design passes a pose when demonstrated or consistent (upper bound ≥ p).")
+
+
+def _tolerance_table(job, s: dict) -> dict:
+    table = job.to_frame()
+    cols = [c for c in TOLERANCE_COLUMNS if c.key != "role" or (table["role"] != "allocate").any()]
+    classes = ["hl" if lim else "" for lim in table["at_limit"]]
+    return html_table(table, cols, table_id="tolerance-table", row_classes=classes,
+                      caption=f"Tolerances of {job.robot.name} ({job.design.label} design)",
+                      note=f"Units: the row's unit (mm or deg) for tolerance, σ, standard, t_min and t_max. Variance "
+                           f"share: share of tr Σ of the position error at the worst pose (pose {s['worst_pose']}). "
+                           "At limit (highlighted): the tolerance sits at a process limit of the costs (t_min or "
+                           "t_max). ISO 286 grade: the IT grade of the standard tolerance (link lengths only).")
+
+
+# ---------------------------------------------------------------------------------------------- calibrated allocation
+CALIBRATED_COLUMNS = [Column("parameter", "parameter", "text"), Column("unit", "unit", "text"),
+                      Column("tolerance", "tolerance ±", "pm"),
+                      Column("tolerance_no_calibration", "without calibration ±", "pm"),
+                      Column("sigma_manufactured", "σ manufactured", "g4"),
+                      Column("sigma_post_calibration", "σ after calibration", "g4"),
+                      Column("sigma_random", "σ random", "g4"), Column("status", "status", "text", badge=True),
+                      Column("cost", "cost", "f3"), Column("repeatability_grade", "repeatability grade ±", "pm"),
+                      Column("repeatability_grade_cost", "grade cost", "f3")]
+
+
+def calibrated_context(job) -> dict:
+    """The template context of a :class:`CalibratedToleranceAllocation`'s report."""
+    from tolalloc.workflows.html_command import allocation_command
+
+    res, pr, plan, chk = job.result, job.problem, job.plan, job.end_to_end
+    s = job.summary()
+    requirement = pretty(f"P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after calibration")
+    verdict = {"cls": "ok" if job.ok else ("warn" if res.certified else "fail"),
+               "word": "CERTIFIED" if res.certified else "NOT CERTIFIED",
+               "lead": f"{res.design.solver}: {pretty(res.design.message)}" if res.certified else
+               f"lambda_max / bound = {res.ratio:.6f} > 1 at some pose: the certificate does not hold.",
+               "lines": [] if chk is None else ["End-to-end Monte Carlo: " + pretty(chk.message())]}
+    cards = [{"label": "cost", "value": _f4(s["cost"]), "note": "certified" if res.certified else "NOT certified"},
+             {"label": "without calibration", "value": _f4(s["cost_no_calibration"]), "note": "same requirement"},
+             {"label": "saving", "value": "n/a" if s["saving_pct"] is None else f"{s['saving_pct']:.2f} %",
+              "note": "" if s["saving"] is None else f"{s['saving']:.4f} cost units"}]
+    if s["cost_repeatability_grades"]:
+        cards.append({"label": "repeatability grades", "value": _f4(s["cost_repeatability_grades"]),
+                      "note": f"parts {s['cost_parts']:.4f}"})
+    if chk is not None:
+        cards.append({"label": "lowest P̂ (end to end)", "value": f"{chk.p_mc.min():.4f}",
+                      "note": f"{job.n_robots} simulated calibrations"})
+    table = job.to_frame()
+    classes = ["hl" if st.startswith("must be held") else "" for st in table["status"]]
+    tol = html_table(table, CALIBRATED_COLUMNS, table_id="tolerance-table", row_classes=classes,
+                     caption=f"Tolerances of {job.robot.name} after the calibration plan",
+                     note="Units: the row's unit (mm or deg) for tolerances and σ. Highlighted: must be held in "
+                          "manufacturing.")
+    cli, python, rnotes = allocation_command(job)
+    return {"kicker": "calibration-aware tolerance allocation", "title": "Tolerance allocation report",
+            "subtitle": f"{job.robot.name}: {requirement}",
+            "meta": [("robot", job.robot.name), ("poses", job.label), ("verdict", verdict["word"].lower()),
+                     ("plan", job.plan_source)],
+            "sections": SECTIONS, "requirement": requirement, "verdict": verdict, "cards": cards,
+            "where": f"At the {pr.n_poses} pose(s) of the pose set {job.label!r}, after the calibration plan below.",
+            "plan": [("file", job.plan_source), ("measurement poses", plan.n_poses), ("measurement", plan.measurement),
+                     ("tracker noise", f"{plan.noise_mm:g} mm per coordinate")],
+            "tolerance_table": tol, "unidentifiable": ", ".join(s["unidentifiable"]),
+            "grade_note": "The calibration-aware design is not snapped to standard (ISO 286) grades; standard grades "
+                          "are in the allocation without calibration (allocate_tolerances without `calibration`).",
+            "end_to_end": None if chk is None else {"text": pretty(chk.message()), "table": _end_to_end_table(job)},
+            "no_end_to_end": "The end-to-end Monte Carlo did not run (verify=False, or a pose-measurement plan): "
+                             "the design rests on its certificate alone.",
+            "figures": _calibrated_figures(job), "inputs": _inputs_pairs(job.inputs, []),
+            "reproduce": {"cli": cli, "python": python, "notes": rnotes}}
+
+
+def _end_to_end_table(job) -> dict:
+    chk = job.end_to_end
+    frame = with_joints(chk.to_frame(), job.robot, chk.q)
+    frame["ci"] = list(zip(frame["ci_low"], frame["ci_high"]))
+    cols = [Column("pose", "pose", "int"), *joint_columns(job.robot), Column("p_linear", "P linear", "f4"),
+            Column("p_mc", "P̂ Monte Carlo", "f4"), Column("ci", "95 % interval", "ci", numeric=True),
+            Column("agree", "linear inside the interval", "bool", badge=True)]
+    return html_table(frame, cols, table_id="pose-table", row_classes=["" if a else "bad" for a in frame["agree"]],
+                      caption=f"End-to-end check per pose: P(|dP| < {chk.radius_mm:g} mm) after calibration",
+                      note=f"{job.n_robots} simulated robots, each calibrated nonlinearly at the plan's poses and "
+                           "then checked at the working poses; P linear: the post-calibration Gaussian prediction.")
+
+
+def _calibrated_figures(job) -> list:
+    from tolalloc.report.html import plot_calibrated_tolerances
+
+    figs = [figure_item(plot_calibrated_tolerances(job.to_frame()), figure_id="fig-calibrated",
+                        caption="Tolerance per parameter with and without the calibration plan (log scale).")]
+    chk = job.end_to_end
+    if chk is not None:
+        from types import SimpleNamespace
+
+        from tolalloc.report.plots.allocate import plot_pose_probabilities
+
+        view = SimpleNamespace(p_linear=chk.p_linear, p_mc=chk.p_mc, ci_low=chk.ci_low, ci_high=chk.ci_high,
+                               prob=job.problem.prob, radius_mm=chk.radius_mm)
+        figs.append(figure_item(plot_pose_probabilities(view), figure_id="fig-poses",
+                                caption="Post-calibration linear prediction and end-to-end Monte Carlo estimate with "
+                                        f"its 95 % interval per pose, against the required p = {job.problem.prob:g}."))
+    return figs
