@@ -41,6 +41,7 @@ def test_a_streamed_sample_count_runs_in_bounded_memory():
     (lambda: tolalloc.plan_calibration("tool_changer", 10, n_candidates=HUGE), "n_candidates"),
     (lambda: tolalloc.plan_calibration("tool_changer", HUGE, n_candidates=2000), "n_poses"),
     (lambda: tolalloc.load_robot("tool_changer").random_q(np.random.default_rng(0), HUGE), "n"),
+    (lambda: tolalloc.analyze_errors("tool_changer", sobol_n=HUGE), "sobol_n"),
     (lambda: tolalloc.allocate_tolerances("tool_changer", correction_rounds=HUGE), "correction_rounds"),
 ])
 def test_counts_whose_arrays_cannot_be_streamed_are_refused_by_name(call, argument):

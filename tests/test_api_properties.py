@@ -173,7 +173,7 @@ ANALYZE_VALID = {
     "deflection_mode": omit_or(st.sampled_from(["screw", "tilt"])), "clearance": omit_or(st.booleans()),
     "clearance_tilt_literal": st.just(OMIT), "sigma": omit_or(st.just({"link_length": 0.1})),
     "exclude": omit_or(st.just("clearance_tilt")), "top": omit_or(st.integers(1, 30)), "tool": st.just(OMIT),
-    "trust_units": omit_or(st.booleans()),
+    "trust_units": omit_or(st.booleans()), "sobol_n": omit_or(st.just(0)), "seed": omit_or(st.integers(0, 99)),
 }
 ANALYZE_WRONG = {
     "robot": bad(generated_robots(1, 8)),
@@ -185,7 +185,7 @@ ANALYZE_WRONG = {
                                  odd_values() | numbers_near_bounds(), max_size=3)),
     "sigma_set": bad(st.sampled_from(["table1", "table2", "generic", "nope"])),
     "exclude": bad(st.sampled_from(["dl1", ("dl1", "nope"), ["link_length"]])),
-    "clearance_tilt_literal": bad(st.booleans()),
+    "clearance_tilt_literal": bad(st.booleans()), "sobol_n": bad(counts(), st.just(16)), "seed": bad(counts()),
 }
 
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError
+from tolalloc.exceptions import ArgumentError, check_memory
 from tolalloc.outputs import output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
@@ -65,14 +65,14 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         raise ArgumentError("sobol_n", f"expected 0 (no Sobol' indices) or a base sample size >= 16 (e.g. 4096), got "
                             f"{sobol_n}.")
     seed = inputs.check_seed(seed)
-    inputs.check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
+    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
+                   exclude=exclude, sigma=sigma, clearance_tilt_literal=clearance_tilt_literal)
+    inputs.check_model_options(**options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
+    model = inputs.error_model(rob, **options)
+    if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)
+        check_memory(sobol_n, 16.0 * (5 * len(model.params) + 4), "sobol_n", "Sobol' base samples", "4096")
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.linear.covariance import budget, linear_map
 
