@@ -124,7 +124,8 @@ def command_lines(draw):
         argv += flag_values(draw, {**common, **model, "--pose": st.just(_pose_text(robot, draw)),
                                    "--poses": st.sampled_from(["nominal", "working", "nope"]),
                                    "--radius-mm": numbers(), "--prob": numbers(), "--top": numbers(),
-                                   "--clearance-tilt-literal": None,
+                                   "--clearance-tilt-literal": None, "--sobol-n": numbers("16", "32"),
+                                   "--seed": numbers(),
                                    "--json": st.sampled_from(["-", "out.json", "adir"]),
                                    "--out": st.sampled_from(["res", "afile", ""])})
     elif cmd == "allocate":
@@ -138,7 +139,9 @@ def command_lines(draw):
             "--costs": st.sampled_from([_write("c1.toml", "z = 2\n"), _write("c2.toml", "[kinds.link_length]\nb = -1\n"),
                                         _write("c3.toml", "[parameters.nope]\na = 1\n"), "none.toml"]),
             "--calibration": st.sampled_from(["none.csv", _write("plan.csv", "# measurement = position\nx\n")]),
-            "--out": st.sampled_from(["res", "afile", ""])})
+            "--out": st.sampled_from(["res", "afile", ""]), "--report": st.sampled_from(["rep", "afile", "res"]),
+            "--estimator": st.sampled_from(["auto", "plain", "paired", "importance", "x"]),
+            "--poses": st.sampled_from(["nominal", "working", "nope"])})
         if "--no-verify" not in argv and "--n-mc" not in argv:
             argv += ["--n-mc", "200"]
     elif cmd == "calplan":
@@ -148,7 +151,10 @@ def command_lines(draw):
         argv += flag_values(draw, {**common, "--region": st.sampled_from(["limits", "working", "nope"]),
                                    "--measurement": st.sampled_from(["position", "pose", "x"]),
                                    "--noise-mm": numbers(), "--noise-deg": numbers(), "--no-registration": None,
-                                   "--seed": numbers(), "--sigma-set": st.sampled_from(["table1", "nope"])})
+                                   "--seed": numbers(), "--sigma-set": st.sampled_from(["table1", "nope"]),
+                                   "--eval-poses": st.sampled_from(["nominal", "working", "nope"]),
+                                   "--costs": st.sampled_from([_write("c4.toml", "[calibration.kinds.link_length]\n"
+                                                                                 "systematic = 0.5\n"), "none.toml"])})
     else:
         frame = draw(st.one_of(st.builds(measurement_frame), measurement_frames()))
         train = _write(f"train_{abs(hash(frame.to_csv()))}.csv", frame.iloc[:36].to_csv(index=False))
@@ -157,7 +163,8 @@ def command_lines(draw):
             "--test": st.sampled_from([test, train, "none.csv"]), "--test-frame": st.sampled_from(["same", "refit"]),
             "--register-n": numbers(), "--alpha": numbers(), "--seed": numbers(), "--cv-rows": numbers(),
             "--json": st.sampled_from(["-", "d.json", "adir"]), "--predictions": st.sampled_from(["p.csv", "adir"]),
-            "--report": st.sampled_from(["rep", "afile"]), "--trust-units": None})
+            "--report": st.sampled_from(["rep", "afile"]), "--trust-units": None, "--gap-split": None,
+            "--progress": None, "--no-progress": None})
     return argv
 
 

@@ -20,9 +20,14 @@ def split_from_costs(model, path):
         return split_errors(model)
     from tolalloc.allocate.costs import cost_set, read_costs_file
 
+    from tolalloc.exceptions import ArgumentError, TolallocError
+
     data = read_costs_file(path)
     cost_set(model, data, source=str(path))  # the whole file is checked, not only its [calibration] table
-    return split_errors(model, data.get("calibration"))
+    try:
+        return split_errors(model, data.get("calibration"))
+    except TolallocError as exc:  # its messages name the key; the file is named here
+        raise ArgumentError("costs", f"{path}: {exc}") from None
 
 
 def calibrated_allocation(model, label, box, q, plan_path, *, region_given, costs_path, verify, n_mc, seed, estimator,
