@@ -207,6 +207,8 @@ def check_run(code, out, err, written, argv):
     count("cli_exit_codes", f"{argv[0]} {code}")
     assert code in (0, 1, 2), (code, argv)
     assert not any("Traceback" in line for line in err), err
+    if "--progress" in argv:  # the progress bars asked for go to stderr before the outcome
+        err = [line for line in err if line.startswith("error: ")][-1:] or err
     if code == 2:
         assert len(err) == 1 and err[0].startswith("error: "), (argv, err)
         assert not written, (argv, written)

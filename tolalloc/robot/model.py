@@ -330,9 +330,10 @@ class Robot:
             records = table.to_dict(orient="records")
         else:
             records = list(table) if isinstance(table, (list, tuple)) else None
-        if not records or not all(isinstance(r, dict) and "name" in r for r in records):
-            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint, each with a 'name' "
-                                f"and columns among {', '.join(CSV_COLUMNS)}, got {describe(table)}.")
+        if not records or not all(isinstance(r, dict) and isinstance(r.get("name"), (str, int, np.integer))
+                                  and str(r["name"]).strip() for r in records):
+            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint, each with a name "
+                                f"(a string) and columns among {', '.join(CSV_COLUMNS)}, got {describe(table)}.")
         cols = sorted({str(k) for r in records for k in r})
         unknown = [c for c in cols if c not in CSV_COLUMNS]
         if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):

@@ -147,9 +147,13 @@ class ErrorAnalysis(JobResult):
         out = analyze_dict(self.linear, self.budget, list(self.radii_mm), list(self.probs))
         out["labels"] = {**out["labels"], "clearance": self.clearance}
         if self.sobol is not None:
+            # an index is undefined (null) where its output did not vary over the samples (every sample passed)
+            rows = [{k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in row.items()}
+                    for row in self.sobol.to_frame().to_dict(orient="records")]
             out["sobol"] = {"pose": self.budget.worst_pose + 1, "n": self.sobol.n, "radius_mm": self.sobol.radius_mm,
-                            "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(),
-                            "factors": self.sobol.to_frame().to_dict(orient="records")}
+                            "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(), "factors": rows,
+                            "null": "an index whose output (|dP| or the pass / fail indicator) did not vary over the "
+                                    "samples is undefined"}
         return out
 
     def text(self) -> str:

@@ -17,6 +17,11 @@ __all__ = ["plan_calibration", "CalibrationPlanDesign"]
 #: memory of one candidate pose in the design [bytes]: its information block, the relaxation's share and the
 #: solver's (about 30 kB measured with tracemalloc on the tool_changer, doubled for what it does not see)
 CANDIDATE_BYTES = 65536
+#: tracker noise sigma: 0.1 um .. 1 m and 1e-6 .. 10 deg. Below, the posterior of the candidates is conditioned
+#: beyond what the design's factorizations resolve (the all-candidates floor drifts above a plan's score at
+#: 1e-5 mm); no tracker comes near (typical: 0.005 .. 0.05 mm)
+NOISE_MM_RANGE = (1e-4, 1e3)
+NOISE_DEG_RANGE = (1e-6, 10.0)
 
 
 @inputs.honours_trust_units
@@ -67,8 +72,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     n_poses = inputs.check_count(n_poses, "n_poses", example="30")
     if n_poses > n_cand:
         raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
-    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02")
-    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001")
+    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02", NOISE_MM_RANGE)
+    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
     inputs.check_choice(measurement, "measurement", ("position", "pose"))
     inputs.check_flag(registration, "registration")
     seed = inputs.check_seed(seed)

@@ -59,12 +59,13 @@ def check_probability(value, argument: str, *, example: str = "0.95") -> float:
 RANGES = {"mm": (1e-6, 1e6), "deg": (1e-9, 360.0), "rad": (np.deg2rad(1e-9), 2 * np.pi)}
 
 
-def check_positive(value, argument: str, unit: str, example: str) -> float:
-    """A finite number > 0 in ``unit`` (``mm``, ``deg`` or ``rad``), within that unit's :data:`RANGES`."""
+def check_positive(value, argument: str, unit: str, example: str, bounds: tuple | None = None) -> float:
+    """A finite number > 0 in ``unit`` (``mm``, ``deg`` or ``rad``), within ``bounds`` (default that unit's
+    :data:`RANGES`)."""
     x = number(value, argument)
     if not (np.isfinite(x) and x > 0):
         raise ArgumentError(argument, f"expected a finite number > 0 [{unit}] (e.g. {example}), got {value!r}.")
-    lo, hi = RANGES.get(unit, (0.0, np.inf))
+    lo, hi = bounds or RANGES.get(unit, (0.0, np.inf))
     if not lo <= x <= hi:
         raise ArgumentError(argument, f"expected a number between {lo:.3g} and {hi:.3g} {unit} (e.g. {example}), got "
                             f"{value!r}.")

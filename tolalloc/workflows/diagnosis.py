@@ -145,6 +145,18 @@ def _check_register_n(value) -> float:
     return x
 
 
+def _not_applicable_null(obj):
+    """``obj`` with the NaN scores of entries marked ``applicable: False`` as None (JSON null: not scored)."""
+    if isinstance(obj, dict):
+        out = {k: _not_applicable_null(v) for k, v in obj.items()}
+        if out.get("applicable") is False:
+            out = {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in out.items()}
+        return out
+    if isinstance(obj, list):
+        return [_not_applicable_null(v) for v in obj]
+    return obj
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class MeasurementDiagnosis(JobResult):
     """A sim-to-real diagnosis and, optionally, where the held-out gap lies.
@@ -200,8 +212,9 @@ class MeasurementDiagnosis(JobResult):
         return self.diagnosis.ranking_frame()
 
     def summary(self) -> dict:
-        """The JSON result (``--json``)."""
-        return self.diagnosis.to_dict() | ({} if self.gap is None else {"gap_split": self.gap.to_dict()})
+        """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
+        return _not_applicable_null(self.diagnosis.to_dict() | ({} if self.gap is None else
+                                                                {"gap_split": self.gap.to_dict()}))
 
     def text(self) -> str:
         """What the command line prints."""
