@@ -6,11 +6,25 @@ and also exposed as the fixture ``make_chain``.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, settings
 
 from tolalloc.robot.lie import exp_so3, inv_transform, rotvec
 from tolalloc.robot.model import Joint, Link, Robot
+
+
+# Hypothesis profiles: "ci" (the default: derandomised, so every run of the suite tries the same examples) and
+# "long" (TOLALLOC_HYPOTHESIS_PROFILE=long: fresh random examples, 10^4 per public call in the property tests, see
+# tests/property_strategies.py). Tests that set their own max_examples keep them in both.
+_QUIET = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much,
+          HealthCheck.function_scoped_fixture]
+settings.register_profile("ci", derandomize=True, deadline=None, database=None, suppress_health_check=_QUIET,
+                          print_blob=True)
+settings.register_profile("long", max_examples=10_000, deadline=None, suppress_health_check=_QUIET, print_blob=True)
+settings.load_profile(os.environ.get("TOLALLOC_HYPOTHESIS_PROFILE", "ci"))
 
 
 def random_unit(rng: np.random.Generator) -> np.ndarray:

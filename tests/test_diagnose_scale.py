@@ -113,7 +113,7 @@ def test_cli_says_what_was_subsampled_and_progress_stays_on_stderr(tc_frame, tmp
     assert rc == 0
     cap = capsys.readouterr()
     out = cap.out
-    js = json.loads(out[: out.index("\neffect:") + 1])
+    js, _ = json.JSONDecoder().raw_decode(out)  # the JSON document, then the printed summary
     assert js["subsample"]["cv_rows"] == 250 and js["subsample"]["rows"] == 500
     assert "subsample: cross-validation and effect selection on 250 of 500 training rows (seed 0)" in out
     assert "cross-validation (250 rows)" in cap.err and "fit/s" not in out and "\r" not in out

@@ -9,14 +9,17 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import signal
 import threading
 from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible", "note_interrupt", "interrupt_pending", "clear_interrupt",
-           "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive"]
+__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible",
+           "note_interrupt", "interrupt_pending", "clear_interrupt", "raise_if_interrupted", "check_vector",
+           "check_finite_array", "check_positive", "known_names", "memory_budget_bytes", "check_memory", "describe",
+           "whole_number"]
 
 
 class TolallocError(ValueError):
@@ -180,7 +183,8 @@ def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.
             want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ")"
             raise TolallocError(f"{name}: expected an array of shape {want}, got shape {arr.shape}.")
     if not np.all(np.isfinite(arr)):
-        raise TolallocError(f"{name}: expected finite numbers, got {np.array2string(arr, threshold=12)}.")
+        shown = " ".join(np.array2string(arr, threshold=12).split())
+        raise TolallocError(f"{name}: expected finite numbers, got {shown}.")
     return arr
 
 
@@ -199,3 +203,66 @@ def check_positive(value: Any, name: str, *, allow_zero: bool = False) -> float:
         bound = ">= 0" if allow_zero else "> 0"
         raise TolallocError(f"{name}: expected a finite number {bound}, got {value!r}.")
     return x
+
+
+def known_names(*groups) -> str:
+    """The names a message offers after ``known:``, each once, in the order given (``", "``-joined).
+
+    Pass the groups in the order the user meets them: built-in names first (``limits``, ``nominal``,
+    ``generic``), then the robot file's regions, pose sets or sigma sets; a name in two groups is listed where it
+    first appears (a box region and a pose set both called ``working`` are one name to type).
+    """
+    return ", ".join(dict.fromkeys(str(name) for group in groups for name in group))
+
+
+def memory_budget_bytes() -> int:
+    """Bytes one array of a call may take: half the machine's physical memory (4 GiB where it cannot be read)."""
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        total = 8 * 2**30
+    return int(total) // 2
+
+
+def _bytes_text(n: float) -> str:
+    for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20)):
+        if n >= size:
+            return f"{n / size:,.0f} {unit}" if n >= 1000 * size else f"{n / size:.3g} {unit}"
+    return f"{n:.0f} bytes"
+
+
+def check_memory(count: int, bytes_each: float, argument: str, what: str, example: str) -> int:
+    """Refuse a count whose arrays would not fit in memory (:func:`memory_budget_bytes`); returns ``count``.
+
+    ``bytes_each`` is the memory one item (a sample kept, a candidate pose ...) holds at once; the message names
+    ``argument``, the memory the count would need and the largest count that fits.
+    """
+    budget = memory_budget_bytes()
+    need = float(count) * float(bytes_each)
+    if need > budget:
+        largest = int(budget // max(float(bytes_each), 1.0))
+        raise ArgumentError(argument, f"{count:g} {what} would hold about {_bytes_text(need)} in memory at once, more "
+                            f"than the {_bytes_text(budget)} a call may use on this machine; expected at most "
+                            f"{largest:,} (e.g. {example}).")
+    return count
+
+
+def describe(value, limit: int = 60) -> str:
+    """What arrived, for a message, on one line: a number or string as its repr, anything else with its type."""
+    if type(value).__repr__ is object.__repr__:  # a default repr shows only a memory address
+        return f"a {type(value).__name__} object"
+    text = re.sub(r" at 0x[0-9a-fA-F]+", "", " ".join(repr(value).split()))  # no memory addresses
+    if len(text) > limit:
+        text = text[:limit - 3] + "..."
+    plain = isinstance(value, (str, int, float)) and not isinstance(value, bool)
+    return text if plain else f"{type(value).__name__} {text}"
+
+
+def whole_number(value) -> int | None:
+    """``value`` as an int if it is a whole number (int, numpy integer, or a float such as 1e6), else None."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        return None
+    try:
+        return int(value) if float(value) == int(value) else None
+    except (ValueError, OverflowError):
+        return None

@@ -22,8 +22,9 @@ def add_robot_arg(parser) -> None:
     parser.add_argument("--tool", metavar="LINK", default=None,
                         help="URDF only: the tool link (default: the last link of the chain; required if the URDF branches)")
     parser.add_argument("--trust-units", action="store_true",
-                        help="accept robot-file values that look like a unit slip (lengths under _m above 20 m, a "
-                        "robot under 10 mm long, angles beyond one turn)")
+                        help="accept values that look like a unit slip: in robot files (lengths under _m above 20 m, "
+                        "a robot under 10 mm long, angles beyond one turn) and in joint values (--q, --pose, trajectory "
+                        "CSVs, pose sets, measurement files: revolute values all within +-2 pi read as radians)")
 
 
 def robot_from_args(args):

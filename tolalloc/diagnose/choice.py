@@ -49,15 +49,16 @@ def choose_variant(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarra
     for c in cands:
         Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
         Jc = Jc - Q @ (Q.T @ Jc)
-        beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
-        rss = float(np.sum((r - Jc @ beta) ** 2))
-        M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
+        if Jc.shape[1] == 0:  # a variant with no column on this robot explains nothing
+            rss, M = float(np.sum(r**2)), 0
+        else:
+            beta, *_ = np.linalg.lstsq(Jc, r, rcond=1e-8)
+            rss = float(np.sum((r - Jc @ beta) ** 2))
+            M = np.linalg.matrix_rank(Jc, 1e-8 * max(1.0, np.abs(Jc).max()))
         bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
         if bic < best_bic:
             best, best_bic = c, bic
     return best
-
-
 
 
 def _by_evidence(cands: list, fit, Q, r, n: int):
@@ -66,6 +67,12 @@ def _by_evidence(cands: list, fit, Q, r, n: int):
     for c in cands:
         Jc = np.einsum("ij,pjm->pim", fit.R, c.B).reshape(len(r), -1)
         Jc = Jc - Q @ (Q.T @ Jc)
+        if Jc.shape[1] == 0:  # no column on this robot: the evidence of the noise alone (its ML precision n / |r|^2)
+            rr = max(float(r @ r), 1e-300)
+            log_ml = 0.5 * n * (np.log(max(n, 1) / rr) - 1.0 - np.log(2 * np.pi))
+            if log_ml > best_ml:
+                best, best_ml = c, log_ml
+            continue
         ev = ard_evidence(Jc, r, c.groups, n_eff=n)
         if ev.log_ml > best_ml:
             best, best_ml = replace(c, prior_w=ev.prior_w), ev.log_ml

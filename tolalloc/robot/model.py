@@ -23,12 +23,30 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError, check_finite_array
+from tolalloc.exceptions import TolallocError, check_finite_array, describe, known_names
 from tolalloc.units import check_joint_units
 from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
 
-__all__ = ["Link", "Joint", "Mass", "Robot"]
+__all__ = ["Link", "Joint", "Mass", "Robot", "RESERVED_NAMES", "check_reserved_names"]
+
+#: names the library gives a meaning of its own: the pose set of the nominal joint values, the box of the joint
+#: limits, the generic sigma set; a robot file's set of the same name would never be used
+RESERVED_NAMES = {"pose set": "nominal", "region": "limits", "sigma set": "generic"}
+
+
+def check_reserved_names(who: str, *, pose_sets=(), regions=(), sigma_sets=()) -> None:
+    """Refuse a pose set ``nominal``, a region ``limits`` or a sigma set ``generic`` defined by a robot file."""
+    for what, names, key in (("pose set", pose_sets, "pose_sets"), ("region", regions, "regions"),
+                             ("sigma set", sigma_sets, "sigma_sets")):
+        if RESERVED_NAMES[what] in names:
+            name = RESERVED_NAMES[what]
+            raise TolallocError(f"{who + ': ' if who else ''}{key}.{name}: the {what} name {name!r} is built in ({_MEANING[what]}); "
+                                f"expected another name for this {what}, e.g. {name}_2.")
+
+
+_MEANING = {"pose set": "the nominal joint values", "region": "the box of the joint limits",
+            "sigma set": "the library's generic sigmas"}
 
 @dataclass(frozen=True, eq=False)
 class Robot:
@@ -86,6 +104,8 @@ class Robot:
         if dup:
             raise TolallocError(f"robot {self.name!r}: duplicate element names {dup}; every link and joint needs its own name.")
         self._check_numbers()
+        check_reserved_names(f"robot {self.name!r}", pose_sets=self.pose_sets, regions=self.regions,
+                             sigma_sets=self.sigma_sets)
         point = np.zeros(3)
         screws, points, sites = [], [], []
         for e in self.chain:
@@ -117,30 +137,50 @@ class Robot:
             arr.flags.writeable = False
 
     def _check_numbers(self) -> None:
-        """Refuse NaN / inf in links, limits, nominal values and the tool frame, and zero-length links."""
+        """Refuse non-numbers, NaN / inf in links, axes, limits, nominal values and the tool frame, zero-length
+        links and unnamed elements."""
         who = f"robot {self.name!r}"
+
+        def floats(value, what, shape):
+            try:
+                arr = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                arr = None
+            if arr is None or arr.shape != shape or not np.all(np.isfinite(arr)):
+                count = {(): "one finite number", (3,): "3 finite numbers"}.get(shape, "a 3 x 3 matrix of finite numbers")
+                raise TolallocError(f"{who}, {what}: expected {count}, got {describe(value)}.")
+            return arr
+
         for e in self.chain:
+            if not isinstance(e, (Link, Joint)) or not isinstance(e.name, str) or not e.name:
+                raise TolallocError(f"{who}: chain element {describe(e)}; expected Link and Joint elements with "
+                                    "names.")
             if isinstance(e, Link):
-                v = np.asarray(e.vector_mm, dtype=float)
-                if v.shape != (3,) or not np.all(np.isfinite(v)):
-                    raise TolallocError(f"{who}, link {e.name}: vector {v.tolist()} mm; expected 3 finite numbers.")
+                v = floats(e.vector_mm, f"link {e.name} vector [mm]", (3,))
                 if not np.any(v):
                     raise TolallocError(f"{who}, link {e.name}: zero length; a link needs a length > 0 (its "
                                         "tolerance has a direction); leave the entry out.")
-            elif isinstance(e, Joint):
-                vals = np.array([e.lower, e.upper, e.nominal], dtype=float)
-                if np.isnan(vals).any() or not np.isfinite(e.nominal):
-                    raise TolallocError(f"{who}, joint {e.name}: limits [{e.lower}, {e.upper}] and nominal {e.nominal}; "
-                                        "expected numbers (finite nominal value).")
+            else:
+                try:
+                    np.asarray(e.axis, dtype=float)
+                except (TypeError, ValueError):
+                    raise TolallocError(f"{who}, joint {e.name}: axis {describe(e.axis)} is not a finite unit "
+                                        "3-vector; expected e.g. [0, 0, 1].") from None
+                floats(e.nominal, f"joint {e.name}: the nominal value (a finite nominal value inside the limits)", ())
+                try:
+                    vals = np.array([e.lower, e.upper], dtype=float)
+                except (TypeError, ValueError):
+                    vals = np.array([np.nan, np.nan])
+                if np.isnan(vals).any():
+                    raise TolallocError(f"{who}, joint {e.name}: limits [{e.lower}, {e.upper}]; expected numbers "
+                                        "(+-inf for no limit).")
                 if not e.lower <= e.nominal <= e.upper:
                     raise TolallocError(f"{who}, joint {e.name}: nominal value {e.nominal:g} outside its limits "
                                         f"[{e.lower:g}, {e.upper:g}] [rad / mm]; expected a value inside the limits.")
-        off = np.asarray(self.tool_offset_mm, dtype=float)
-        if off.shape != (3,) or not np.all(np.isfinite(off)):
-            raise TolallocError(f"{who}: tool offset {off.tolist()} mm; expected 3 finite numbers (tool offset_mm).")
-        R = np.asarray(self.tool_rotation, dtype=float)
-        if R.shape != (3, 3) or not np.all(np.isfinite(R)) or not np.allclose(R @ R.T, np.eye(3), atol=1e-6):
-            raise TolallocError(f"{who}: tool rotation is not a finite rotation matrix; expected finite tool rpy angles.")
+        floats(self.tool_offset_mm, "tool offset [mm] (tool offset_mm)", (3,))
+        R = floats(self.tool_rotation, "tool rotation", (3, 3))
+        if not np.allclose(R @ R.T, np.eye(3), atol=1e-6):
+            raise TolallocError(f"{who}: tool rotation is not a rotation matrix; expected finite tool rpy angles.")
 
     def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
@@ -149,6 +189,14 @@ class Robot:
         more than once reaches no other pose beyond); prismatic joints over their whole stroke (an
         unbounded stroke: +-1000 mm).
         """
+        from tolalloc.exceptions import ArgumentError, check_memory, describe, whole_number
+
+        if not isinstance(rng, np.random.Generator):
+            raise ArgumentError("rng", f"expected a numpy Generator (numpy.random.default_rng(seed)), got "
+                                f"{describe(rng)}.")
+        if whole_number(n) is None or whole_number(n) < 0:
+            raise ArgumentError("n", f"expected a whole number of poses >= 0 (e.g. 1000), got {describe(n)}.")
+        n = check_memory(whole_number(n), 8.0 * self.n_joints, "n", "poses", "1000")
         rev = self.revolute_mask
         lo = np.where(rev, np.maximum(self.lower, -np.pi), np.where(np.isfinite(self.lower), self.lower, -1000.0))
         hi = np.where(rev, np.minimum(self.upper, np.pi), np.where(np.isfinite(self.upper), self.upper, 1000.0))
@@ -236,11 +284,12 @@ class Robot:
 
         The set ``nominal`` always exists.
         """
-        if pose_set is None or pose_set == "nominal":
+        if pose_set is None or (isinstance(pose_set, str) and pose_set == "nominal"):
             return self.q_nominal[None, :]
-        if pose_set not in self.pose_sets:
-            known = ", ".join(["nominal", *self.pose_sets])
-            raise TolallocError(f"pose set {pose_set!r} is not defined for robot {self.name!r}; known sets: {known}.")
+        if not isinstance(pose_set, str) or pose_set not in self.pose_sets:
+            known = known_names(["nominal"], self.pose_sets)
+            what = repr(pose_set) if isinstance(pose_set, str) else describe(pose_set)
+            raise TolallocError(f"pose set {what} is not defined for robot {self.name!r}; known sets: {known}.")
         return np.array(self.pose_sets[pose_set])
 
     # -------------------------------------------------------------- construction
@@ -275,18 +324,25 @@ class Robot:
         from tolalloc.robot.lie import exp_so3
         from tolalloc.units import check_reach
 
-        if convention not in ("standard", "modified"):
+        if not isinstance(convention, str) or convention not in ("standard", "modified"):
             raise TolallocError(f"convention: expected 'standard' or 'modified', got {convention!r}.")
-        records = table.to_dict(orient="records") if isinstance(table, pd.DataFrame) else list(table)
-        if not records or not all(isinstance(r, dict) for r in records):
-            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint with columns "
-                                f"among {', '.join(CSV_COLUMNS)}, got {type(table).__name__}.")
+        if isinstance(table, pd.DataFrame):
+            records = table.to_dict(orient="records")
+        else:
+            records = list(table) if isinstance(table, (list, tuple)) else None
+        if not records or not all(isinstance(r, dict) and isinstance(r.get("name"), (str, int, np.integer))
+                                  and str(r["name"]).strip() for r in records):
+            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint, each with a name "
+                                f"(a string) and columns among {', '.join(CSV_COLUMNS)}, got {describe(table)}.")
         cols = sorted({str(k) for r in records for k in r})
         unknown = [c for c in cols if c not in CSV_COLUMNS]
         if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):
             raise TolallocError(f"table: columns {cols}: expected a 'name' column, an alpha_deg or alpha_rad column and "
                                 f"columns among {', '.join(CSV_COLUMNS)}" + (f"; unknown: {unknown}" if unknown else "") + ".")
-        rows = parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
+        try:
+            rows = parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
+        except TolallocError as exc:
+            raise TolallocError(str(exc) if str(exc).startswith("table") else f"table: {exc}") from None
         chain, R_last = chain_from_dh(rows, convention)
         off = np.asarray(tool_offset_mm, dtype=float)
         rpy = np.deg2rad(np.asarray(tool_rpy_deg, dtype=float))

@@ -12,6 +12,7 @@ import numpy as np
 from tolalloc.exceptions import ArgumentError
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
+from tolalloc.workflows.calibrated import calibrated_allocation
 
 __all__ = ["allocate_tolerances", "ESTIMATORS"]
 
@@ -87,11 +88,13 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     >>> res.verdict, round(res.cost, 2)
     ('demonstrated', 44.39)
     """
-    _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n)
+    seed, n_mc, coverage_n = _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver,
+                                    estimator, n_mc, verify, seed, correction_rounds, coverage_n)
+    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
+                   exclude=exclude)
+    costs, calibration, scheduler = _check_more(snap, correction, poses, costs, calibration, scheduler, options)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude)
+    model = inputs.error_model(rob, **options)
     cost_set = _costs(costs, model, z, uniform)
     label, box, q = inputs.resolve_region(rob, region, poses)
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
@@ -101,8 +104,6 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                             correction_rounds=correction_rounds, angle_step_deg=angle_step_deg, tool=tool,
                             trust_units=trust_units, calibration=calibration)
     if calibration is not None:
-        from tolalloc.workflows.calibrated import calibrated_allocation
-
         return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
                                      seed=seed, estimator=estimator, coverage_n=coverage_n, snap=snap,
                                      angle_step_deg=angle_step_deg, inputs_record=inputs_record, **kw)
@@ -117,6 +118,8 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
     from tolalloc.allocate import allocate, build_problem
 
     reg_info = None
+    if box is not None and _box_is_one_pose(model, box, kw, seed):
+        box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]
     if box is not None:
         reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
         q = reg_info.active_q
@@ -157,6 +160,16 @@ def built_design(res, snap: bool):
     continuous one."""
     std = res.standard
     return std if snap and std is not None and std.ok else res.design
+
+
+def _box_is_one_pose(model, box, kw, seed) -> bool:
+    """True if no joint of the box moves the position-error covariance (a single prismatic joint, say): the
+    requirement is then the same at every pose of the box, and its centre stands for all of them."""
+    from tolalloc.allocate import build_problem
+    from tolalloc.allocate.region import static_joints
+
+    centre = 0.5 * (box.q_min + box.q_max)
+    return bool(static_joints(build_problem(model, centre[None, :], **kw), box, seed=seed).all())
 
 
 def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, correction, rounds, solver, snap,
@@ -231,9 +244,26 @@ def _costs(costs, model, z, uniform):
     return load_costs(costs, model, z=z, distribution=dist)
 
 
+#: correction rounds at most (each re-solves the allocation and re-runs the verification)
+MAX_CORRECTION_ROUNDS = 50
+
+
+def _check_more(snap, correction, poses, costs, calibration, scheduler, model_options) -> tuple:
+    """Refuse bad flags, names, paths and error-model options by their argument names; returns
+    ``(costs, calibration, scheduler)`` checked."""
+    for name, flag in (("snap", snap), ("correction", correction)):
+        inputs.check_flag(flag, name)
+    inputs.check_model_options(**model_options)
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    return (inputs.check_costs_file(costs),
+            inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)"),
+            inputs.check_scheduler(scheduler))
+
+
 def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n) -> None:
-    """Refuse bad numbers by their argument names before any computation."""
+           seed, correction_rounds, coverage_n) -> tuple:
+    """Refuse bad numbers by their argument names before any computation; returns ``(seed, n_mc, coverage_n)`` as
+    ints (``n_mc`` as given when there is no verification)."""
     inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
     inputs.check_probability(prob, "prob")
     if angle_radius_deg is not None:
@@ -245,21 +275,24 @@ def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uni
                                 "`angle_radius_deg` A.")
     if angle_step_deg is not None:
         inputs.check_positive(angle_step_deg, "angle_step_deg", "deg", "0.001")
+    inputs.check_flag(uniform, "uniform")
+    inputs.check_flag(verify, "verify")
     if uniform and z is not None:
         raise ArgumentError("uniform", "and `z` both set sigma = t / z; give one of them.")
     if z is not None:
-        if isinstance(z, bool) or not isinstance(z, (int, float, np.integer, np.floating)) or not (np.isfinite(z) and z > 0):
-            raise ArgumentError("z", f"expected a number > 0 (sigma = t / z, e.g. 3), got {z!r}.")
+        inputs.check_z(z)
     inputs.check_choice(solver, "solver", ("exact", "certified"))
     inputs.check_choice(estimator, "estimator", ESTIMATORS)
-    if isinstance(correction_rounds, bool) or not isinstance(correction_rounds, (int, np.integer)) or correction_rounds < 0:
-        raise ArgumentError("correction_rounds", f"expected a whole number >= 0 (rounds of the correction loop, e.g. "
-                            f"2), got {correction_rounds!r}; or switch the correction off.")
+    if (isinstance(correction_rounds, (bool, np.bool_)) or not isinstance(correction_rounds, (int, np.integer))
+            or not 0 <= correction_rounds <= MAX_CORRECTION_ROUNDS):
+        raise ArgumentError("correction_rounds", f"expected a whole number from 0 to {MAX_CORRECTION_ROUNDS} (rounds of "
+                            f"the correction loop, e.g. 2), got {inputs.shown(correction_rounds)}; or switch the "
+                            "correction off.")
     if verify:
         try:
             inputs.check_count(n_mc, "n_mc", minimum=100)
         except ArgumentError:
             raise ArgumentError("n_mc", f"expected at least 100 samples per pose (a whole number, e.g. 1000000), got "
-                                f"{n_mc!r}; or switch the verification off.") from None
-    inputs.check_seed(seed)
-    inputs.check_count(coverage_n, "coverage_n", example="100000")
+                                f"{inputs.shown(n_mc)}; or switch the verification off.") from None
+    return (inputs.check_seed(seed), int(n_mc) if verify else n_mc,
+            inputs.check_count(coverage_n, "coverage_n", example="100000"))

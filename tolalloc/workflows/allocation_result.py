@@ -220,7 +220,11 @@ class ToleranceAllocation(JobResult):
 
         if self.infeasible is not None:
             raise TolallocError(f"save: nothing to save, {self.infeasible}")
-        self.check_out(out, "out")
+        self.check_out(out, "out", required=True)
+        if not isinstance(report, (bool, np.bool_)):
+            from tolalloc.exceptions import ArgumentError
+
+            raise ArgumentError("report", f"expected True or False, got {report!r}.")
         with atomic_output(out, directory=True) as tmp:
             names = self.write_files(tmp, report=report)
         return names

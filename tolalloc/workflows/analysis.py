@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError
+from tolalloc.exceptions import ArgumentError, check_memory
 from tolalloc.outputs import output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
@@ -57,18 +57,22 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     >>> a.linear.std_mm.shape
     (1, 3)
     """
-    radii = [inputs.check_positive(r, "radius_mm", "mm", "0.25") for r in np.atleast_1d(radius_mm).tolist()]
-    probs = [inputs.check_probability(p, "prob") for p in np.atleast_1d(prob).tolist()]
+    radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
+    probs = inputs.check_values(prob, "prob", inputs.check_probability)
     top = inputs.check_count(top, "top", example="10")
     sobol_n = inputs.check_count(sobol_n, "sobol_n", minimum=0, example="4096")
     if 0 < sobol_n < 16:
         raise ArgumentError("sobol_n", f"expected 0 (no Sobol' indices) or a base sample size >= 16 (e.g. 4096), got "
                             f"{sobol_n}.")
-    inputs.check_seed(seed)
+    seed = inputs.check_seed(seed)
+    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
+                   exclude=exclude, sigma=sigma, clearance_tilt_literal=clearance_tilt_literal)
+    inputs.check_model_options(**options)
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
+    model = inputs.error_model(rob, **options)
+    if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)
+        check_memory(sobol_n, 16.0 * (5 * len(model.params) + 4), "sobol_n", "Sobol' base samples", "4096")
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.linear.covariance import budget, linear_map
 
@@ -143,9 +147,13 @@ class ErrorAnalysis(JobResult):
         out = analyze_dict(self.linear, self.budget, list(self.radii_mm), list(self.probs))
         out["labels"] = {**out["labels"], "clearance": self.clearance}
         if self.sobol is not None:
+            # an index is undefined (null) where its output did not vary over the samples (every sample passed)
+            rows = [{k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in row.items()}
+                    for row in self.sobol.to_frame().to_dict(orient="records")]
             out["sobol"] = {"pose": self.budget.worst_pose + 1, "n": self.sobol.n, "radius_mm": self.sobol.radius_mm,
-                            "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(),
-                            "factors": self.sobol.to_frame().to_dict(orient="records")}
+                            "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(), "factors": rows,
+                            "null": "an index whose output (|dP| or the pass / fail indicator) did not vary over the "
+                                    "samples is undefined"}
         return out
 
     def text(self) -> str:

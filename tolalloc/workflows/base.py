@@ -47,8 +47,19 @@ class JobResult:
         return html_card(type(self).__name__, self.headline(), frame)
 
     @staticmethod
-    def check_out(path, argument: str, *, directory: bool = True) -> Path | None:
-        """Refuse an output path that cannot be written, before anything is written (None passes)."""
+    def check_out(path, argument: str, *, directory: bool = True, required: bool = False) -> Path | None:
+        """Refuse an output path that cannot be written, before anything is written (None passes unless
+        ``required``)."""
+        import os
+
+        from tolalloc.exceptions import ArgumentError
+
+        want = "a directory" if directory else "a file"
+        if path is None and required:
+            raise ArgumentError(argument, f"expected {want} path to write to (a str or pathlib.Path), got None.")
+        if path is not None and (not isinstance(path, (str, os.PathLike)) or "\0" in str(path)):
+            raise ArgumentError(argument, f"expected {want} path (a str or pathlib.Path), got "
+                                f"{type(path).__name__} {' '.join(repr(path).split())[:60]}.")
         check_output(path, argument, directory=directory)
         return None if path is None else Path(path)
 

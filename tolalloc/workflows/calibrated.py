@@ -20,9 +20,14 @@ def split_from_costs(model, path):
         return split_errors(model)
     from tolalloc.allocate.costs import cost_set, read_costs_file
 
+    from tolalloc.exceptions import ArgumentError, TolallocError
+
     data = read_costs_file(path)
     cost_set(model, data, source=str(path))  # the whole file is checked, not only its [calibration] table
-    return split_errors(model, data.get("calibration"))
+    try:
+        return split_errors(model, data.get("calibration"))
+    except TolallocError as exc:  # its messages name the key; the file is named here
+        raise ArgumentError("costs", f"{path}: {exc}") from None
 
 
 def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify, n_mc, seed, estimator, coverage_n,
@@ -265,7 +270,11 @@ class CalibratedToleranceAllocation(JobResult):
         if not self.result.design.ok:
             raise TolallocError(f"save: nothing to save, the calibration-aware allocation is infeasible "
                                 f"({self.result.design.message}).")
-        self.check_out(out, "out")
+        self.check_out(out, "out", required=True)
+        if not isinstance(report, (bool, np.bool_)):
+            from tolalloc.exceptions import ArgumentError
+
+            raise ArgumentError("report", f"expected True or False, got {report!r}.")
         with atomic_output(out, directory=True) as tmp:
             names = self.write_files(tmp, report=report)
         return names

@@ -4,14 +4,24 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError
+from tolalloc.exceptions import ArgumentError, check_memory, known_names
 from tolalloc.outputs import atomic_output
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
 __all__ = ["plan_calibration", "CalibrationPlanDesign"]
+
+#: memory of one candidate pose in the design [bytes]: its information block, the relaxation's share and the
+#: solver's (about 30 kB measured with tracemalloc on the tool_changer, doubled for what it does not see)
+CANDIDATE_BYTES = 65536
+#: tracker noise sigma: 0.1 um .. 1 m and 1e-6 .. 10 deg. Below, the posterior of the candidates is conditioned
+#: beyond what the design's factorizations resolve (the all-candidates floor drifts above a plan's score at
+#: 1e-5 mm); no tracker comes near (typical: 0.005 .. 0.05 mm)
+NOISE_MM_RANGE = (1e-4, 1e3)
+NOISE_DEG_RANGE = (1e-6, 10.0)
 
 
 @inputs.honours_trust_units
@@ -65,26 +75,32 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     >>> d.plan.n_poses, d.design.score_mm2 < d.design.random_score_mm2
     (8, True)
     """
-    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     n_cand = inputs.check_count(n_candidates, "n_candidates", example="2000")
+    check_memory(n_cand, CANDIDATE_BYTES, "n_candidates", "candidate poses", "2000")
     n_poses = inputs.check_count(n_poses, "n_poses", example="30")
     if n_poses > n_cand:
         raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
-    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02")
-    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001")
+    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02", NOISE_MM_RANGE)
+    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
     inputs.check_choice(measurement, "measurement", ("position", "pose"))
-    inputs.check_seed(seed)
-    if region != "limits" and region not in rob.pose_sets:
-        raise ArgumentError("region", f"expected 'limits' or a pose set of robot {rob.name!r} "
-                            f"({', '.join(rob.pose_sets) or 'none defined'}), got {region!r}.")
+    inputs.check_flag(registration, "registration")
+    seed = inputs.check_seed(seed)
+    costs = inputs.check_costs_file(costs)
+    inputs.check_name(region, "region", "'limits' or the name of a pose set of the robot")
+    inputs.check_name(eval_poses, "eval_poses", "the name of a pose set of the robot")
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    _check_region(rob, region)
     from tolalloc.calibration.design import candidate_poses, design_plan
     from tolalloc.calibration.posterior import posterior
-    from tolalloc.errormodel import build_error_model
     from tolalloc.workflows.calibrated import split_from_costs
 
-    model = build_error_model(rob, sigma_set)
+    model = inputs.error_model(rob, sigma_set=sigma_set)
     split = split_from_costs(model, costs)
     ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    if not np.any(np.abs(model.jacobian(q_eval)[:, :3, :]) > 1e-9):
+        raise ArgumentError("robot", f"{rob.name!r}: no error parameter moves the tool point at the {ev} poses (the "
+                            "tool lies on every joint axis), so a calibration has nothing to reduce; expected a robot "
+                            "whose tool point is off its joint axes (a tool offset or links), or other eval_poses.")
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                     registration=registration, seed=seed)
@@ -95,6 +111,18 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
                                             noise_mm=noise_mm, registration=registration, seed=seed)
     unid = tuple(posterior(split, d.plan if alloc is None else alloc.plan).unidentifiable)
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison)
+
+
+def _check_region(rob, region: str) -> None:
+    """``region`` is ``'limits'`` (then every joint limit is finite) or a pose set of ``rob``."""
+    if region != "limits" and region not in rob.pose_sets:
+        raise ArgumentError("region", f"expected 'limits' or a pose set of robot {rob.name!r}, got {region!r}; known: "
+                            f"{known_names(['limits'], rob.pose_sets)}.")
+    if region == "limits" and not np.all(np.isfinite(rob.lower) & np.isfinite(rob.upper)):
+        loose = [j.name for j, lo, hi in zip(rob.joints, rob.lower, rob.upper) if not np.isfinite(lo + hi)]
+        raise ArgumentError("region", f"'limits' needs finite joint limits to draw candidates, but joint(s) "
+                            f"{', '.join(loose)} of robot {rob.name!r} have none; give them limits in the robot file or "
+                            "use a pose set's box (region=SET).")
 
 
 def _for_allocation(model, split, start, cand, q_eval, *, costs, radius_mm, prob, random_plans, measurement, noise_mm,
@@ -216,7 +244,7 @@ class CalibrationPlanDesign(JobResult):
         """Write the plan CSV (settings in ``#`` header lines) to file ``path``, atomically."""
         from tolalloc.calibration.plan import write_plan
 
-        self.check_out(path, "path", directory=False)
+        self.check_out(path, "path", directory=False, required=True)
         with atomic_output(path) as tmp:
             write_plan(self.plan, self.robot, tmp)
         return [str(path)]

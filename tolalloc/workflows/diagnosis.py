@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
@@ -77,10 +78,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     """
     from tolalloc.diagnose import diagnose
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
     from tolalloc.diagnose.register import REGISTER_N
 
-    alpha, folds = _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, MIN_SUBSAMPLE_ROWS)
+    alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
+                                              progress)
     _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
@@ -100,21 +101,6 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
               "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
               "target_offset_sd_mm": target_offset_sd_mm}
     return MeasurementDiagnosis(d, gap, folds, record)
-
-
-def _check(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, min_rows):
-    """The arguments of :func:`diagnose_measurements` that need no data; returns ``(alpha, folds)``."""
-    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
-    alpha = inputs.check_probability(alpha, "alpha", example="0.01")
-    folds = inputs.check_count(folds, "folds", minimum=2, example="5")
-    inputs.check_seed(seed)
-    if cv_rows is not None:
-        inputs.check_count(cv_rows, "cv_rows", minimum=min_rows, example="10000")
-    if gap_split and test is None:
-        raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
-    if register_n is not None and test_frame != "refit":
-        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
-    return alpha, folds
 
 
 def _gap_split(d, progress):
@@ -152,6 +138,50 @@ def _read(robot, train, test, progress):
         finally:
             bar.close()
     return tr, te
+
+
+def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
+    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows)``."""
+    from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+
+    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
+    alpha = inputs.check_probability(alpha, "alpha", example="0.01")
+    folds = inputs.check_count(folds, "folds", minimum=2, example="5")
+    seed = inputs.check_seed(seed)
+    if cv_rows is not None:
+        cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
+    inputs.check_flag(gap_split, "gap_split")
+    inputs.check_optional_flag(progress, "progress")
+    if register_n is not None:
+        _check_register_n(register_n)
+    if gap_split and test is None:
+        raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
+    if register_n is not None and test_frame != "refit":
+        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
+    return alpha, folds, seed, cv_rows
+
+
+def _check_register_n(value) -> float:
+    """A count of registration poses (a whole number >= 5) or a fraction of the test poses (0 < f < 1)."""
+    from tolalloc.diagnose.register import MIN_REGISTER
+
+    x = inputs.number(value, "register_n")
+    if not (np.isfinite(x) and 0 < x and (x < 1 or (x == int(x) and x >= MIN_REGISTER))):
+        raise ArgumentError("register_n", f"expected a count of registration poses (a whole number >= {MIN_REGISTER}, "
+                            f"e.g. 30) or a fraction of the test poses (0 < f < 1, e.g. 0.2), got {inputs.shown(value)}.")
+    return x
+
+
+def _not_applicable_null(obj):
+    """``obj`` with the NaN scores of entries marked ``applicable: False`` as None (JSON null: not scored)."""
+    if isinstance(obj, dict):
+        out = {k: _not_applicable_null(v) for k, v in obj.items()}
+        if out.get("applicable") is False:
+            out = {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in out.items()}
+        return out
+    if isinstance(obj, list):
+        return [_not_applicable_null(v) for v in obj]
+    return obj
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -218,8 +248,9 @@ class MeasurementDiagnosis(JobResult):
         return self.diagnosis.ranking_frame()
 
     def summary(self) -> dict:
-        """The JSON result (``--json``)."""
-        return self.diagnosis.to_dict() | ({} if self.gap is None else {"gap_split": self.gap.to_dict()})
+        """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
+        return _not_applicable_null(self.diagnosis.to_dict() | ({} if self.gap is None else
+                                                                {"gap_split": self.gap.to_dict()}))
 
     def text(self) -> str:
         """What the command line prints."""

@@ -7,19 +7,27 @@ Robots come as a :class:`~tolalloc.robot.Robot`, a built-in name or a robot file
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError
+from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, known_names
+from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_costs_file, check_count, check_flag,  # noqa: F401
+                                       check_model_options, check_name, check_names, check_optional_flag,
+                                       check_path, check_positive, check_probability, check_scheduler, check_seed,
+                                       check_values, check_z, number, shown)
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
 from tolalloc.units import trusting_units
 
-__all__ = ["trusting_units", "honours_trust_units", "as_robot", "check_probability", "check_positive", "check_count", "check_seed", "check_choice",
-           "joint_values", "resolve_poses", "error_model", "sigma_overrides", "resolve_region", "trajectory",
-           "as_measurements", "default_pose_set"]
+#: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
+__all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model",
+           "sigma_overrides", "resolve_region", "trajectory", "as_measurements", "default_pose_set", "check_choice",
+           "check_costs_file", "check_count", "check_flag", "check_model_options", "check_name", "check_names",
+           "check_optional_flag", "check_path", "check_positive", "check_probability", "check_scheduler",
+           "check_seed", "check_values", "check_z", "number", "shown", "RANGES", "Z_RANGE"]
 
 
 def honours_trust_units(fn):
@@ -29,6 +37,7 @@ def honours_trust_units(fn):
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
+        check_flag(trust_units, "trust_units")
         with trusting_units(bool(trust_units)):
             return fn(*args, trust_units=trust_units, **kwargs)
 
@@ -40,76 +49,50 @@ def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Ro
 
     ``trust_units`` accepts robot-file values that look like a unit slip (see :mod:`tolalloc.units`).
     """
-    if not isinstance(robot, (Robot, str, Path)):
+    if not isinstance(robot, (Robot, str, os.PathLike)) or (isinstance(robot, str) and not robot.strip()):
         raise ArgumentError("robot", f"expected a Robot, a built-in robot name or a path to a robot file (.toml, DH "
-                            f".csv, .urdf), got {type(robot).__name__} {robot!r}.")
+                            f".csv, .urdf), got {shown(robot)}.")
+    if "\0" in str(robot if not isinstance(robot, Robot) else ""):
+        raise ArgumentError("robot", f"expected a built-in robot name or a path to a robot file, got {shown(robot)} "
+                            "(it holds a NUL character).")
+    check_name(tool, "tool", "the URDF tool link (a link name of the URDF file)")
+    check_flag(trust_units, "trust_units")
     with trusting_units(bool(trust_units)):
         return load_robot(robot, tool=tool)
 
 
-def _number(value, argument: str) -> float:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ArgumentError(argument, f"expected a number, got {type(value).__name__} {value!r}.")
-    return float(value)
-
-
-def check_probability(value, argument: str, *, example: str = "0.95") -> float:
-    """A probability strictly between 0 and 1."""
-    x = _number(value, argument)
-    if not (np.isfinite(x) and 0 < x < 1):
-        raise ArgumentError(argument, f"expected a probability strictly between 0 and 1 (e.g. {example}), got {value!r}.")
-    return x
-
-
-def check_positive(value, argument: str, unit: str, example: str) -> float:
-    """A finite number > 0 in ``unit``."""
-    x = _number(value, argument)
-    if not (np.isfinite(x) and x > 0):
-        raise ArgumentError(argument, f"expected a finite number > 0 [{unit}] (e.g. {example}), got {value!r}.")
-    return x
-
-
-def check_count(value, argument: str, *, minimum: int = 1, example: str = "1000000") -> int:
-    """A whole number >= ``minimum`` (``1e6`` as a float is accepted when it is whole)."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ArgumentError(argument, f"expected a whole number >= {minimum} (e.g. {example}), got {value!r}.")
-    try:
-        whole = float(value) == int(value)
-    except (TypeError, ValueError, OverflowError):
-        whole = False
-    if not whole or int(value) < minimum:
-        raise ArgumentError(argument, f"expected a whole number >= {minimum} (e.g. {example}), got {value!r}.")
-    return int(value)
-
-
-def check_seed(value, argument: str = "seed") -> int:
-    """A random seed: a whole number >= 0."""
-    return check_count(value, argument, minimum=0, example="0 or 42")
-
-
-def check_choice(value, argument: str, choices) -> str:
-    """One of ``choices``."""
-    if value not in choices:
-        raise ArgumentError(argument, f"expected one of {', '.join(repr(c) for c in choices)}, got {value!r}.")
-    return value
-
-
 def joint_values(robot: Robot, q_deg_mm, argument: str = "q_deg_mm") -> np.ndarray:
     """Joint values in interface units (deg / mm), shape (n,) or (P, n) or a DataFrame with columns q1..qN,
-    checked against count, finiteness and the joint limits; returned in internal units [rad, mm], shape (P, n)."""
+    checked against count, finiteness, unit slips (:func:`tolalloc.units.check_joint_units`) and the joint limits;
+    returned in internal units [rad, mm], shape (P, n)."""
+    want = f"{robot.n_joints} per pose, deg / mm"
     if isinstance(q_deg_mm, pd.DataFrame):
         cols = [f"q{j + 1}" for j in range(robot.n_joints)]
-        missing = [c for c in cols if c not in q_deg_mm.columns]
-        if missing:
-            raise ArgumentError(argument, f"expected a DataFrame with columns {', '.join(cols)} (deg / mm), got "
-                                f"columns {list(map(str, q_deg_mm.columns))} (missing {missing}).")
-        q_deg_mm = q_deg_mm[cols].to_numpy()
-    arr = np.asarray(q_deg_mm, dtype=object)
-    if arr.size == 0:
-        raise ArgumentError(argument, f"expected joint values of robot {robot.name!r} ({robot.n_joints} per pose, deg "
-                            "/ mm), got none.")
+        names = [str(c) for c in q_deg_mm.columns]
+        missing = [c for c in cols if c not in names]
+        repeated = sorted({c for c in cols if names.count(c) > 1})
+        if missing or repeated:
+            what = f"missing {missing}" if missing else f"repeated {repeated}"
+            raise ArgumentError(argument, f"expected a DataFrame with columns {', '.join(cols)} (deg / mm), each "
+                                f"once, got columns {names} ({what}).")
+        q_deg_mm = q_deg_mm.set_axis(names, axis=1)[cols].to_numpy()
+    elif isinstance(q_deg_mm, (str, bytes, dict)) or not hasattr(q_deg_mm, "__len__") and not np.isscalar(q_deg_mm) \
+            and not isinstance(q_deg_mm, np.ndarray):
+        raise ArgumentError(argument, f"expected joint values of robot {robot.name!r} ({want}): a list, an array of "
+                            f"shape (n,) or (P, n) or a DataFrame with columns q1..qN, got {shown(q_deg_mm)}.")
     try:
-        q = robot.check_q(q_deg_mm, argument, interface=True)
+        arr = np.asarray(q_deg_mm, dtype=object)
+    except ValueError:
+        arr = None
+    if arr is None or arr.ndim > 2 or any(isinstance(v, (list, tuple, np.ndarray)) for v in np.ravel(arr)):
+        raise ArgumentError(argument, f"expected joint values of robot {robot.name!r} ({want}) as a list or an "
+                            f"array of shape (n,) or (P, n), got {shown(q_deg_mm)} (ragged or nested deeper).")
+    if arr.size == 0:
+        raise ArgumentError(argument, f"expected joint values of robot {robot.name!r} ({want}), got none.")
+    if any(isinstance(v, (bool, np.bool_, str, bytes)) for v in np.ravel(arr)):
+        raise ArgumentError(argument, f"expected numbers ({want}), got {shown(q_deg_mm)}.")
+    try:
+        q = robot.check_q(arr, argument, interface=True)
     except ArgumentError:
         raise
     except TolallocError as exc:
@@ -131,13 +114,14 @@ def resolve_poses(robot: Robot, q_deg_mm=None, poses: str | None = None, *,
         raise ArgumentError(q_argument, f"give joint values or a pose set ({poses_argument}), not both.")
     if q_deg_mm is not None:
         return "given", joint_values(robot, q_deg_mm, q_argument)
+    known = known_names(["nominal"], robot.pose_sets)
+    if poses is not None and (not isinstance(poses, str) or not poses):
+        raise ArgumentError(poses_argument, f"expected the name of a pose set of robot {robot.name!r} ({known}), got "
+                            f"{shown(poses)}.")
     name = poses or "nominal"
-    if not isinstance(name, str):
-        raise ArgumentError(poses_argument, f"expected the name of a pose set of robot {robot.name!r} "
-                            f"({', '.join(['nominal', *robot.pose_sets])}), got {name!r}.")
     if name != "nominal" and name not in robot.pose_sets:
         raise ArgumentError(poses_argument, f"pose set {name!r} is not defined for robot {robot.name!r}; known sets: "
-                            f"{', '.join(['nominal', *robot.pose_sets])}.")
+                            f"{known}.")
     return name, robot.poses(name)
 
 
@@ -150,17 +134,17 @@ def sigma_overrides(params, sigma) -> dict:
     if sigma is None:
         return {}
     if not isinstance(sigma, dict):
-        raise ArgumentError("sigma", f"expected a dict {{parameter or kind: sigma in mm or deg}}, got {sigma!r}.")
+        raise ArgumentError("sigma", f"expected a dict {{parameter or kind: sigma in mm or deg}}, got {shown(sigma)}.")
     by_kind, by_name = {}, {}
     for name, val in sigma.items():
-        hits = [p for p in params if name in (p.name, p.kind)]
+        hits = [p for p in params if isinstance(name, str) and name in (p.name, p.kind)]
         if not hits:
-            known = ", ".join(sorted({p.name for p in params} | {p.kind for p in params}))
+            known = known_names([p.name for p in params], [p.kind for p in params])
             raise ArgumentError("sigma", f"unknown parameter or kind {name!r}; known: {known}.")
         units = " / ".join(sorted({p.interface_unit for p in hits}))
         try:
-            v = float(val)
-        except (TypeError, ValueError):
+            v = np.nan if isinstance(val, (bool, np.bool_, str)) else float(val)
+        except (TypeError, ValueError, OverflowError):
             v = np.nan
         if not np.isfinite(v) or v < 0:
             raise ArgumentError("sigma", f"{name}: expected a finite sigma >= 0 in {units}, got {val!r}.")
@@ -176,20 +160,26 @@ def error_model(robot: Robot, *, sigma_set=None, link_mode="consistent", deflect
     from tolalloc.errormodel import build_error_model
     from tolalloc.errormodel.model import CLEARANCE_TILT_LITERAL_RAD
 
-    check_choice(link_mode, "link_mode", ("consistent", "axes_only"))
-    check_choice(deflection_mode, "deflection_mode", ("screw", "tilt"))
-    if clearance_tilt_literal and not clearance:
-        raise ArgumentError("clearance_tilt_literal", "changes the clearance tilt sigma, but clearance is off; add "
-                            "`clearance` (or leave out `clearance_tilt_literal`).")
-    if isinstance(exclude, str):
-        exclude = (exclude,)
+    exclude = check_model_options(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
+                                  clearance=clearance, exclude=exclude, sigma=sigma,
+                                  clearance_tilt_literal=clearance_tilt_literal)
+    check_name(sigma_set, "sigma_set", f"sigma set of robot {robot.name!r}",
+               known=list(dict.fromkeys(["generic", *robot.sigma_sets])))
     opts = dict(link_mode=link_mode, deflection_mode=deflection_mode, clearance=bool(clearance))
-    if sigma is None and not clearance_tilt_literal:
-        return build_error_model(robot, sigma_set, **opts, exclude=tuple(exclude))
     base = build_error_model(robot, sigma_set, **opts)
+    known = [p.name for p in base.params] + list(dict.fromkeys(p.kind for p in base.params))
+    unknown = [e for e in exclude if e not in known]
+    if unknown:
+        raise ArgumentError("exclude", f"{unknown[0]!r} is neither an error parameter nor a kind of robot "
+                            f"{robot.name!r}; known: {known_names(known)}.")
+    if all(p.name in exclude or p.kind in exclude for p in base.params):
+        raise ArgumentError("exclude", f"{', '.join(exclude)} leaves no error parameter of robot {robot.name!r}; "
+                            "expected at least one left: exclude fewer parameters or kinds.")
+    if sigma is None and not clearance_tilt_literal:
+        return base if not exclude else build_error_model(robot, sigma_set, **opts, exclude=exclude)
     cs = {"tilt_rad": CLEARANCE_TILT_LITERAL_RAD} if clearance_tilt_literal else None
     return build_error_model(robot, sigma_set, **opts, clearance_sigma=cs,
-                             sigma=sigma_overrides(base.params, sigma) or None, exclude=tuple(exclude))
+                             sigma=sigma_overrides(base.params, sigma) or None, exclude=exclude)
 
 
 def resolve_region(robot: Robot, region=None, poses: str | None = None):
@@ -199,8 +189,6 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     trajectory CSV path (q1..qN per row, deg / mm) or an array / DataFrame of joint values (deg / mm). Default:
     the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set ``poses``.
     """
-    from tolalloc.allocate.region import box_region
-
     regions = robot.regions
     if region is None:
         if poses is None and "working" in regions:
@@ -208,21 +196,33 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
         else:
             name = poses if poses is not None else default_pose_set(robot)
             return resolve_poses(robot, None, name)[0], None, resolve_poses(robot, None, name)[1]
-    if not isinstance(region, (str, Path)):
+    if not isinstance(region, (str, os.PathLike)):
         return "trajectory", None, joint_values(robot, region, "region")
     spec = str(region)
     if spec == "limits":
-        return spec, box_region(robot, robot.lower, robot.upper, "limits", "region 'limits'"), None
+        return spec, _box(robot, robot.lower, robot.upper, spec), None
     if spec in regions:
         lo, hi = regions[spec]
-        return spec, box_region(robot, lo, hi, spec, f"region {spec!r}"), None
+        return spec, _box(robot, lo, hi, spec), None
     if spec in robot.pose_sets or spec == "nominal":
         return spec, None, robot.poses(spec)
     if spec.lower().endswith(".csv") or Path(spec).is_file():
         return spec, None, trajectory(robot, spec)
-    known = ", ".join(dict.fromkeys(["limits", *regions, "nominal", *robot.pose_sets]))
+    known = known_names(["limits"], regions, ["nominal"], robot.pose_sets)
     raise ArgumentError("region", f"{spec!r} is neither a region, a pose set nor a trajectory CSV file; known: "
                         f"{known}, or give a path to a .csv file.")
+
+
+def _box(robot: Robot, lo, hi, name: str):
+    """A box region of the robot, its refusal an :class:`ArgumentError` of ``region``."""
+    from tolalloc.allocate.region import box_region
+
+    try:
+        return box_region(robot, lo, hi, name, f"region {name!r}")
+    except ArgumentError:
+        raise
+    except TolallocError as exc:
+        raise ArgumentError("region", str(exc)[len("region "):]) from None
 
 
 def trajectory(robot: Robot, path) -> np.ndarray:
@@ -233,7 +233,7 @@ def trajectory(robot: Robot, path) -> np.ndarray:
                              "deg / mm) per row.")
     try:
         rows = np.genfromtxt(p, delimiter=",", dtype=float, skip_header=0)
-    except ValueError as exc:
+    except (ValueError, OSError, UnicodeDecodeError) as exc:
         raise ArgumentError("region", f"{str(path)!r}: cannot read the trajectory ({exc}); expected "
                             f"{robot.n_joints} comma-separated numbers per row.") from None
     rows = np.atleast_2d(rows)
@@ -246,19 +246,60 @@ def trajectory(robot: Robot, path) -> np.ndarray:
         bad = int(np.flatnonzero(~np.all(np.isfinite(rows), axis=1))[0]) + 1
         raise ArgumentError("region", f"{str(path)!r}: row {bad} has a missing or non-finite value; every joint "
                             "value must be a finite number (deg / mm).")
-    return robot.check_q(rows, f"region {str(path)!r}", interface=True)
+    try:
+        return robot.check_q(rows, f"{str(path)!r}", interface=True)
+    except TolallocError as exc:
+        raise ArgumentError("region", str(exc)) from None
 
 
 def as_measurements(data, robot: Robot, argument: str):
-    """Measurements from a CSV path or a DataFrame (columns q1..qN in deg / mm, x_mm, y_mm, z_mm, optional ones)."""
+    """Measurements from a CSV path or a DataFrame (columns q1..qN in deg / mm, x_mm, y_mm, z_mm, optional ones).
+
+    The joint values are checked for unit slips first (:func:`tolalloc.units.check_joint_units`, the rule of every
+    joint-value input), then read and checked by :mod:`tolalloc.diagnose.measurements`.
+    """
     from tolalloc.diagnose import measurements_from_frame, read_measurements
 
+    want = "a CSV path or a pandas DataFrame with columns q1..qN (deg / mm), x_mm, y_mm, z_mm"
     if isinstance(data, pd.DataFrame):
+        names = [str(c).strip() for c in data.columns]
+        repeated = sorted({c for c in names if names.count(c) > 1})
+        if repeated:
+            raise ArgumentError(argument, f"expected {want}, each column once, got the column(s) {repeated} more "
+                                "than once; drop or rename the copies.")
+        _measured_joint_units(data, robot, argument, "DataFrame")
         return measurements_from_frame(data, robot, f"{argument} (DataFrame)")
-    if isinstance(data, (str, Path)):
+    if isinstance(data, (str, os.PathLike)) and str(data).strip() and "\0" not in str(data):
         if not Path(data).exists():
             raise InputFileError(f"measurement file {str(data)!r} does not exist; expected a CSV with columns "
                                  "q1..qN, x_mm, y_mm, z_mm.")
+        cols = {f"q{j + 1}" for j in range(robot.n_joints)}
+        try:  # the joint columns only; a file that cannot be read gets the reader's message below
+            frame = pd.read_csv(data, usecols=lambda c: str(c).strip() in cols, skipinitialspace=True,
+                                encoding="utf-8-sig")
+        except (ValueError, OSError, UnicodeDecodeError):
+            frame = None
+        if frame is not None:
+            _measured_joint_units(frame, robot, argument, repr(str(data)))
         return read_measurements(data, robot)
-    raise ArgumentError(argument, f"expected a CSV path or a pandas DataFrame with columns q1..qN (deg / mm), x_mm, "
-                        f"y_mm, z_mm, got {type(data).__name__}.")
+    raise ArgumentError(argument, f"expected {want}, got {shown(data)}.")
+
+
+def _measured_joint_units(frame: pd.DataFrame, robot: Robot, argument: str, source: str) -> None:
+    """:func:`~tolalloc.units.check_joint_units` on the rows of q1..qN that are all numbers (others are the
+    reader's to refuse)."""
+    from tolalloc.units import check_joint_units
+
+    cols = [f"q{j + 1}" for j in range(robot.n_joints)]
+    names = [str(c).strip() for c in frame.columns]
+    if not all(c in names for c in cols):
+        return
+    Q = np.column_stack([pd.to_numeric(frame.iloc[:, names.index(c)], errors="coerce").to_numpy(dtype=float)
+                         for c in cols])
+    Q = Q[np.all(np.isfinite(Q), axis=1)]
+    if len(Q):
+        try:
+            check_joint_units(Q, robot.revolute_mask, robot.q_to_interface(robot.lower),
+                              robot.q_to_interface(robot.upper), f"{source} ({cols[0]}..{cols[-1]})")
+        except TolallocError as exc:
+            raise ArgumentError(argument, str(exc)) from None

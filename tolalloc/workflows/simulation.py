@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError
+from tolalloc.exceptions import ArgumentError, check_memory
 from tolalloc.outputs import output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult, format_labels
@@ -16,6 +16,13 @@ __all__ = ["simulate_errors", "ErrorSimulation"]
 
 #: samples kept for the scatter figure
 KEEP_SAMPLES = 20_000
+#: memory of one kept sample [bytes]: its errors at the first pose (11 float64 values, 88 bytes), held twice while the
+#: blocks are joined, with room to spare
+KEPT_BYTES = 256
+#: histogram bins per axis at most (the streaming accumulator's limit)
+MAX_HIST_BINS = 2000
+#: local threads at most
+MAX_JOBS = 1024
 
 
 @inputs.honours_trust_units
@@ -66,23 +73,12 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     >>> sim.mc.n
     2000
     """
-    n = inputs.check_count(n, "n", example="100000")
-    inputs.check_seed(seed)
-    inputs.check_choice(ci, "ci", ("wilson", "exact"))
-    if estimator is not None:
-        inputs.check_choice(estimator, "estimator", ("auto", "plain", "paired", "importance"))
-    radii = [inputs.check_positive(r, "radius_mm", "mm", "0.25") for r in np.atleast_1d(radius_mm).tolist()]
-    arad = [inputs.check_positive(a, "angle_radius_rad", "rad", "0.002")
-            for a in np.atleast_1d([] if angle_radius_rad is None else angle_radius_rad).tolist()]
-    arad += [np.deg2rad(inputs.check_positive(a, "angle_radius_deg", "deg", "0.1"))
-             for a in np.atleast_1d([] if angle_radius_deg is None else angle_radius_deg).tolist()]
-    hist_bins = inputs.check_count(hist_bins, "hist_bins", minimum=0, example="100")
-    if hist_range_mm is not None:
-        if not hist_bins:
-            raise ArgumentError("hist_range_mm", f"{hist_range_mm:g} sets the histogram window, but no histogram is made; "
-                                "give hist_bins (e.g. 100) or leave out hist_range_mm.")
-        inputs.check_positive(hist_range_mm, "hist_range_mm", "mm", "1.0")
-    keep = min(n, KEEP_SAMPLES) if keep_samples is None else inputs.check_count(keep_samples, "keep_samples", minimum=0)
+    n, seed, radii, arad, hist_bins, keep, scheduler = _checked(
+        n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm, keep_samples,
+        jobs, chunk_size, progress, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
+                                                           deflection_mode=deflection_mode, clearance=clearance,
+                                                           exclude=exclude, sigma=sigma,
+                                                           clearance_tilt_literal=clearance_tilt_literal))
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
                                clearance=clearance, exclude=exclude, sigma=sigma,
@@ -97,6 +93,44 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     tilt = ((CLEARANCE_TILT_LITERAL_RAD if clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
             if clearance else None)
     return ErrorSimulation(res, rob, tilt)
+
+
+def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm,
+             keep_samples, jobs, chunk_size, progress, poses, scheduler, model_options) -> tuple:
+    """Every argument of :func:`simulate_errors` but the robot, checked by name; returns
+    ``(n, seed, radii_mm, angle_radii_rad, hist_bins, keep_samples, scheduler)``."""
+    n = inputs.check_count(n, "n", example="100000")
+    seed = inputs.check_seed(seed)
+    inputs.check_choice(ci, "ci", ("wilson", "exact"))
+    if estimator is not None:
+        inputs.check_choice(estimator, "estimator", ("auto", "plain", "paired", "importance"))
+    radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
+    arad = inputs.check_values([] if angle_radius_rad is None else angle_radius_rad, "angle_radius_rad",
+                               inputs.check_positive, "rad", "0.002")
+    arad += [np.deg2rad(a) for a in inputs.check_values([] if angle_radius_deg is None else angle_radius_deg,
+                                                        "angle_radius_deg", inputs.check_positive, "deg", "0.1")]
+    hist_bins = inputs.check_count(hist_bins, "hist_bins", minimum=0, example="100")
+    if hist_bins == 1 or hist_bins > MAX_HIST_BINS:
+        raise ArgumentError("hist_bins", f"expected 0 (no histogram) or a whole number of bins from 2 to "
+                            f"{MAX_HIST_BINS} (e.g. 100), got {hist_bins}.")
+    if hist_range_mm is not None:
+        inputs.check_positive(hist_range_mm, "hist_range_mm", "mm", "1.0")
+        if not hist_bins:
+            raise ArgumentError("hist_range_mm", f"{hist_range_mm:g} sets the histogram window, but no histogram is made; "
+                                "give hist_bins (e.g. 100) or leave out hist_range_mm.")
+    if keep_samples is None:
+        keep = min(n, KEEP_SAMPLES)
+    else:
+        keep = inputs.check_count(keep_samples, "keep_samples", minimum=0, example="20000")
+        check_memory(min(keep, n), KEPT_BYTES, "keep_samples", "kept samples", "20000")
+    if jobs is not None:
+        inputs.check_count(jobs, "jobs", example="4", maximum=MAX_JOBS)
+    inputs.check_count(chunk_size, "chunk_size", example="1048576")
+    inputs.check_optional_flag(progress, "progress")
+    inputs.check_model_options(**model_options)
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    scheduler = inputs.check_scheduler(scheduler)
+    return n, seed, radii, arad, hist_bins, keep, scheduler
 
 
 @dataclass(frozen=True, eq=False, repr=False)

@@ -6,7 +6,7 @@ import tomllib
 from importlib import resources
 from pathlib import Path
 
-from tolalloc.exceptions import InputFileError, TolallocError
+from tolalloc.exceptions import InputFileError, TolallocError, describe, known_names
 from tolalloc.robot.io.dh import load_dh_csv, robot_from_dh_dict
 from tolalloc.robot.io.robotfile import robot_from_chain_dict
 from tolalloc.robot.io.urdf import load_urdf
@@ -60,9 +60,18 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     >>> tolalloc.load_robot("ur10")
     <Robot 'ur10': 6 joints (RRRRRR), 6 links, home tool point 1212 mm from the base; pose sets: working (6)>
     """
+    import os
+
+    if not isinstance(robot, (Robot, str, os.PathLike)) or (not isinstance(robot, Robot) and
+                                                           (not str(robot).strip() or "\0" in str(robot))):
+        raise TolallocError(f"robot: expected a Robot, a built-in robot name ({known_names(builtin_robots())}) or the "
+                            f"path to a robot file (.toml, DH .csv, .urdf), got {describe(robot)}.")
+    if tool is not None and not (isinstance(tool, str) and tool.strip()):
+        raise TolallocError(f"--tool: expected the name of the URDF tool link (a string), got {describe(tool)}.")
     if tool is not None and (isinstance(robot, Robot) or not str(robot).lower().endswith(".urdf")):
         got = f"robot {robot.name!r}" if isinstance(robot, Robot) else repr(str(robot))
-        raise TolallocError(f"--tool {tool!r}: the tool link can only be chosen for a URDF robot file (*.urdf), got {got}.")
+        raise TolallocError(f"--tool {tool!r}: the tool link can only be chosen for a URDF robot file (*.urdf), got {got}; "
+                            "leave out the tool link (--tool) or give a URDF file.")
     if isinstance(robot, Robot):
         return robot
     text_name = str(robot)
@@ -75,8 +84,9 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
             raise TolallocError(f"robot {text_name!r} is a directory; expected a built-in robot name or a robot file "
                                 "(.toml, DH .csv, .urdf).")
         if not path.is_file():
-            known = ", ".join(builtin_robots())
-            raise InputFileError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file.")
+            known = known_names(builtin_robots())
+            raise InputFileError(f"robot {text_name!r}: not a built-in robot ({known}) and no such file; give a "
+                                 "built-in name or the path to a robot file (.toml, DH .csv, .urdf).")
         if path.suffix.lower() == ".urdf":
             return load_urdf(path, tool=tool)
         if path.suffix.lower() == ".csv":

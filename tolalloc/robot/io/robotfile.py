@@ -22,7 +22,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
-from tolalloc.robot.model import Joint, Link, Mass, Robot
+from tolalloc.robot.model import Joint, Link, Mass, Robot, check_reserved_names
 from tolalloc.robot.dh_rows import check_limits
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
 
@@ -256,6 +256,7 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
         if com is None or entry.mass_kg < 0:
             raise TolallocError(f"masses[{i}]: expected mass_kg >= 0 and com_mm (3 numbers), got {m}")
         mass_list.append(Mass(entry.link, body_of[entry.link], float(entry.mass_kg), com))
+    check_reserved_names("", pose_sets=pose_sets, regions=regions or {}, sigma_sets=sigma_sets or {})
     sets = {}
     for set_name, entry in pose_sets.items():
         if set(entry) != {"q_deg_mm"}:

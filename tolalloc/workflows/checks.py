@@ -1,0 +1,202 @@
+"""Checks of single workflow arguments, each refusing a bad value by its keyword argument.
+
+Every refusal is an :class:`~tolalloc.exceptions.ArgumentError` that names the argument, shows what arrived (on
+one line, :func:`~tolalloc.exceptions.describe`) and says what would work; the command line prints it with the
+argument's flag. Values are strict: numbers are numbers (not strings or bools), flags are ``True`` / ``False``,
+names are strings, paths are ``str`` or ``os.PathLike``.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import ArgumentError, TolallocError, describe, known_names, whole_number
+
+__all__ = ["shown", "check_values", "check_probability", "RANGES", "check_positive", "check_count", "check_seed",
+           "check_choice", "check_flag", "check_optional_flag", "check_name", "check_names", "check_path", "Z_RANGE",
+           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "number"]
+
+
+def shown(value, limit: int = 60) -> str:
+    """What arrived, for a message (see :func:`tolalloc.exceptions.describe`)."""
+    return describe(value, limit)
+
+
+def number(value, argument: str) -> float:
+    """A number (int, float or numpy scalar; not a bool or a string) as a float."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ArgumentError(argument, f"expected a number, got {shown(value)}.")
+    try:
+        return float(value)
+    except OverflowError:  # an int beyond the float range
+        return float("inf") if value > 0 else float("-inf")
+
+
+def check_values(value, argument: str, check, *args, **kwargs) -> list:
+    """A number or a flat sequence of numbers, each checked by ``check(x, argument, *args, **kwargs)``."""
+    if isinstance(value, (list, tuple, np.ndarray, pd.Series)):
+        items = list(np.ravel(np.asarray(value, dtype=object))) if not isinstance(value, (list, tuple)) else list(value)
+        if any(isinstance(v, (list, tuple, np.ndarray, pd.Series, dict)) for v in items):
+            raise ArgumentError(argument, f"expected a number or a flat list of numbers, got {shown(value)}.")
+        return [check(v, argument, *args, **kwargs) for v in items]
+    return [check(value, argument, *args, **kwargs)]
+
+
+def check_probability(value, argument: str, *, example: str = "0.95") -> float:
+    """A probability strictly between 0 and 1."""
+    x = number(value, argument)
+    if not (np.isfinite(x) and 0 < x < 1):
+        raise ArgumentError(argument, f"expected a probability strictly between 0 and 1 (e.g. {example}), got {value!r}.")
+    return x
+
+
+#: Ranges of radii, noise levels and steps ``(smallest, largest)`` in each unit: beyond them a tolerance problem
+#: is not physical (a nanometre .. a kilometre, a nano-degree .. one turn) and its squares under- or overflow.
+RANGES = {"mm": (1e-6, 1e6), "deg": (1e-9, 360.0), "rad": (np.deg2rad(1e-9), 2 * np.pi)}
+
+
+def check_positive(value, argument: str, unit: str, example: str, bounds: tuple | None = None) -> float:
+    """A finite number > 0 in ``unit`` (``mm``, ``deg`` or ``rad``), within ``bounds`` (default that unit's
+    :data:`RANGES`)."""
+    x = number(value, argument)
+    if not (np.isfinite(x) and x > 0):
+        raise ArgumentError(argument, f"expected a finite number > 0 [{unit}] (e.g. {example}), got {value!r}.")
+    lo, hi = bounds or RANGES.get(unit, (0.0, np.inf))
+    if not lo <= x <= hi:
+        raise ArgumentError(argument, f"expected a number between {lo:.3g} and {hi:.3g} {unit} (e.g. {example}), got "
+                            f"{value!r}.")
+    return x
+
+
+def check_count(value, argument: str, *, minimum: int = 1, example: str = "1000000", maximum: int | None = None) -> int:
+    """A whole number >= ``minimum`` (and <= ``maximum``); ``1e6`` as a float is accepted when it is whole."""
+    want = f"a whole number >= {minimum}" + ("" if maximum is None else f" and <= {maximum}")
+    n = whole_number(value)
+    if n is None or n < minimum or (maximum is not None and n > maximum):
+        raise ArgumentError(argument, f"expected {want} (e.g. {example}), got {shown(value)}.")
+    return n
+
+
+def check_seed(value, argument: str = "seed") -> int:
+    """A random seed: a whole number >= 0 (numpy takes seeds below 2**128)."""
+    return check_count(value, argument, minimum=0, example="0 or 42", maximum=2**128 - 1)
+
+
+def check_choice(value, argument: str, choices) -> str:
+    """One of ``choices`` (strings)."""
+    if not isinstance(value, str) or value not in choices:
+        raise ArgumentError(argument, f"expected one of {', '.join(repr(c) for c in choices)}, got {shown(value)}.")
+    return str(value)
+
+
+def check_flag(value, argument: str) -> bool:
+    """``True`` or ``False`` (a numpy bool too); anything else is refused rather than read by its truth value."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ArgumentError(argument, f"expected True or False, got {shown(value)}.")
+
+
+def check_optional_flag(value, argument: str) -> bool | None:
+    """``None`` (automatic), ``True`` or ``False``."""
+    return None if value is None else check_flag(value, argument)
+
+
+def check_name(value, argument: str, what: str, known=None) -> str | None:
+    """``None`` or a non-empty string (one of ``known`` if given: a list of names offered in the message)."""
+    if value is None:
+        return None
+    if not isinstance(value, str) or not value.strip():
+        extra = f" ({known_names(known)})" if known else ""
+        raise ArgumentError(argument, f"expected {what}{extra} as a string, got {shown(value)}.")
+    if known is not None and value not in known:
+        raise ArgumentError(argument, f"unknown {what} {value!r}; known: {known_names(known)}.")
+    return str(value)
+
+
+def check_names(value, argument: str, what: str) -> tuple:
+    """A name or a list / tuple of names (strings) -> tuple of str."""
+    if isinstance(value, str):
+        value = (value,)
+    if not isinstance(value, (list, tuple, set, frozenset)) or not all(isinstance(v, str) and v.strip() for v in value):
+        raise ArgumentError(argument, f"expected {what}: a name or a list of names, e.g. ('dl1', 'axis_deflection'), "
+                            f"got {shown(value)}.")
+    return tuple(dict.fromkeys(value))
+
+
+def check_path(value, argument: str, what: str) -> Path | None:
+    """``None`` or a path (str or os.PathLike) to an input file."""
+    if value is None:
+        return None
+    if not isinstance(value, (str, os.PathLike)) or not str(value).strip() or "\0" in str(value):
+        raise ArgumentError(argument, f"expected a path to {what} (a str or pathlib.Path), got {shown(value)}.")
+    return Path(value)
+
+
+#: sigma = t / z: smallest and largest z (a tolerance of 1/100 .. 100 standard deviations)
+Z_RANGE = (1e-2, 1e2)
+
+
+def check_z(value, argument: str = "z") -> float:
+    """``z`` of sigma = t / z, a number within :data:`Z_RANGE`."""
+    x = np.nan if isinstance(value, (bool, np.bool_)) else number(value, argument)
+    if not (np.isfinite(x) and Z_RANGE[0] <= x <= Z_RANGE[1]):
+        raise ArgumentError(argument, f"expected a number > 0 (sigma = t / z, e.g. 3) between {Z_RANGE[0]:g} and "
+                            f"{Z_RANGE[1]:g}, got {shown(value)}.")
+    return x
+
+
+def check_costs_file(path, argument: str = "costs") -> Path | None:
+    """``None`` or the path of a readable TOML costs file whose ``z`` (if any) lies within :data:`Z_RANGE`; its
+    other keys are checked by :func:`tolalloc.allocate.costs.load_costs`."""
+    import tomllib
+
+    path = check_path(path, argument, "a costs file (TOML)")
+    if path is None or not path.is_file():
+        return path  # a missing file or a directory: the costs loader says which
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError, OSError) as exc:
+        raise ArgumentError(argument, f"{path}: not valid TOML ({exc}); expected a costs file with tables such as "
+                            "[kinds.link_length] holding a, b, t_ref_mm, t_min_mm, t_max_mm (see tolalloc.allocate.costs)."
+                            ) from None
+    z = data.get("z")
+    if isinstance(z, (int, float)) and not isinstance(z, bool) and not Z_RANGE[0] <= z <= Z_RANGE[1]:
+        raise ArgumentError(argument, f"{str(path)!r}: z = {z!r} (sigma = t / z) is outside {Z_RANGE[0]:g} .. "
+                            f"{Z_RANGE[1]:g}; expected a number such as z = 3.")
+    return path
+
+
+def check_scheduler(value, argument: str = "scheduler"):
+    """Where Monte Carlo samples run (see :func:`tolalloc.montecarlo.parallel.check_scheduler`)."""
+    if value is not None and not isinstance(value, str) and not hasattr(value, "submit"):
+        raise ArgumentError(argument, f"expected None (local threads), 'threads', 'processes', a Dask scheduler "
+                            f"address such as 'tcp://10.0.0.5:8786' or a distributed.Client, got {shown(value)}.")
+    from tolalloc.montecarlo.parallel import check_scheduler as check
+
+    try:
+        return check(value)
+    except ArgumentError:
+        raise
+    except TolallocError as exc:
+        text = str(exc)
+        raise ArgumentError(argument, text[len(argument) + 2:] if text.startswith(argument + ": ") else text) from None
+
+
+def check_model_options(*, sigma_set=None, link_mode="consistent", deflection_mode="screw", clearance=False,
+                        exclude=(), sigma=None, clearance_tilt_literal=False) -> tuple:
+    """Check the error-model options that need no robot; returns ``exclude`` as a tuple of names."""
+    check_name(sigma_set, "sigma_set", "the name of a sigma set of the robot file (or 'generic')")
+    check_choice(link_mode, "link_mode", ("consistent", "axes_only"))
+    check_choice(deflection_mode, "deflection_mode", ("screw", "tilt"))
+    check_flag(clearance, "clearance")
+    check_flag(clearance_tilt_literal, "clearance_tilt_literal")
+    if clearance_tilt_literal and not clearance:
+        raise ArgumentError("clearance_tilt_literal", "changes the clearance tilt sigma, but clearance is off; add "
+                            "`clearance` (or leave out `clearance_tilt_literal`).")
+    if sigma is not None and not isinstance(sigma, dict):
+        raise ArgumentError("sigma", f"expected a dict {{parameter or kind: sigma in mm or deg}}, got {shown(sigma)}.")
+    return check_names(exclude, "exclude", "parameters or kinds to leave out")
