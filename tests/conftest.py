@@ -8,7 +8,13 @@ from __future__ import annotations
 
 import os
 
-import numpy as np
+# One BLAS thread per test process: the suite runs one pytest-xdist worker per core (pyproject's addopts), and
+# BLAS threads on top of the workers only contend for the same cores. Set before numpy is imported (it reads them
+# when it loads OpenBLAS); subprocesses of the tests inherit them.
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import numpy as np  # noqa: E402
 import pytest
 from hypothesis import HealthCheck, settings
 

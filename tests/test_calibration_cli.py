@@ -19,7 +19,8 @@ def test_calplan_then_allocate(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "designed" in out and plan.is_file()
     assert "relaxation: cvxpy/Clarabel (" in out  # 256 candidates: the column generation runs
-    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--out", str(tmp_path / "res")])
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--n-mc", "500", "--coverage-n", "5000",
+               "--out", str(tmp_path / "res")])
     out = capsys.readouterr().out
     assert rc == 0 and "certified calibrated design: cost" in out and "calibrated away" in out
     assert "coverage (post-calibration P)" in out and "end-to-end Monte Carlo" in out
@@ -77,7 +78,7 @@ def test_allocate_with_repeatability_grades_from_the_costs_file(tc, tmp_path, ca
                      't_ref_deg = 0.001\nt_min_deg = 0.0003\nt_max_deg = 0.01\n', encoding="utf-8")
     out = tmp_path / "res"
     rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--costs", str(costs), "--no-verify",
-               "--out", str(out)])
+               "--coverage-n", "5000", "--out", str(out)])
     text = capsys.readouterr().out
     assert rc == 0 and "repeatability grades" in text
     summary = json.loads((out / "summary.json").read_text())

@@ -23,29 +23,6 @@ def _start(argv, cwd):
                             stderr=subprocess.PIPE, text=True)
 
 
-def _wait_running(proc, seconds):
-    """Give the process time to import and start computing (it must still be running afterwards)."""
-    time.sleep(seconds)
-    assert proc.poll() is None, proc.communicate()
-
-
-@pytest.mark.parametrize("argv, sig, code", [
-    (["mc", "tool_changer", "--n", "1e20", "--out", "out", "--json", "s.json"], signal.SIGINT, 130),
-    (["mc", "tool_changer", "--n", "1e20", "--out", "out"], signal.SIGTERM, 143),
-    (["allocate", "tool_changer", "--n-mc", "1e10", "--out", "out"], signal.SIGTERM, 143),
-    (["allocate", "tool_changer", "--n-mc", "1e10", "--out", "out"], signal.SIGINT, 130),
-])
-def test_interrupt_prints_one_line_and_leaves_nothing(tmp_path, argv, sig, code):
-    proc = _start(argv, tmp_path)
-    _wait_running(proc, 6.0)
-    proc.send_signal(sig)
-    out, err = proc.communicate(timeout=60)
-    assert proc.returncode == code, err
-    assert err.strip() == "interrupted; nothing written"
-    assert "Traceback" not in err
-    assert sorted(p.name for p in tmp_path.iterdir()) == []  # no out/, no .tmp-*, no lock file
-
-
 def _wait_handlers(proc, timeout=60.0):
     """Wait until the process catches SIGINT and SIGTERM (Linux: the SigCgt mask of /proc/PID/status)."""
     want = (1 << (signal.SIGINT - 1)) | (1 << (signal.SIGTERM - 1))
@@ -56,6 +33,29 @@ def _wait_handlers(proc, timeout=60.0):
                 return
         time.sleep(0.002)
     raise AssertionError("the process never installed its signal handlers")
+
+
+def _wait_running(proc, seconds):
+    """Let the process take the signals over, then compute for ``seconds`` (it must still be running after)."""
+    if Path("/proc/self/status").exists():
+        _wait_handlers(proc)
+    time.sleep(seconds)
+    assert proc.poll() is None, proc.communicate()
+
+
+@pytest.mark.parametrize("argv, sig, code", [
+    (["mc", "tool_changer", "--n", "1e20", "--out", "out", "--json", "s.json"], signal.SIGINT, 130),
+    (["allocate", "tool_changer", "--n-mc", "1e10", "--out", "out"], signal.SIGTERM, 143),
+])
+def test_interrupt_prints_one_line_and_leaves_nothing(tmp_path, argv, sig, code):
+    proc = _start(argv, tmp_path)
+    _wait_running(proc, 3.0)
+    proc.send_signal(sig)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == code, err
+    assert err.strip() == "interrupted; nothing written"
+    assert "Traceback" not in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == []  # no out/, no .tmp-*, no lock file
 
 
 @pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs /proc to see when the handlers are in place")

@@ -131,7 +131,7 @@ def calibrated(tmp_path_factory):
     folder = tmp_path_factory.mktemp("calib")
     plan = folder / "plan.csv"
     write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, plan)
-    job = allocate_tolerances("tool_changer", calibration=str(plan), n_mc=200)
+    job = allocate_tolerances("tool_changer", calibration=str(plan), n_mc=200, coverage_n=5000)
     names = job.save(folder / "res", report=True)
     return job, folder / "res", names, Page((folder / "res" / "report.html").read_text(encoding="utf-8"))
 

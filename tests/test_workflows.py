@@ -81,12 +81,13 @@ def test_allocate_cli_equals_api(tmp_path, capsys):
 
 def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     plan = tmp_path / "plan.csv"
-    assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "128", "--out", str(plan)]) == 0
-    api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "64", "--out", str(plan)]) == 0
+    api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
     api_plan.save(tmp_path / "plan_api.csv")
     assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
-    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--n-mc", "200", "--out", str(tmp_path / "cli")])
-    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, n_mc=200)
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--n-mc", "200", "--coverage-n", "5000",
+               "--out", str(tmp_path / "cli")])
+    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, n_mc=200, coverage_n=5000)
     assert isinstance(res, tolalloc.CalibratedToleranceAllocation) and rc == (0 if res.ok else 1)
     res.save(tmp_path / "api")
     assert_same_files(tmp_path / "cli", tmp_path / "api")
@@ -243,7 +244,7 @@ def test_analyze_with_sobol_indices_beside_the_linear_budget(tmp_path):
 
 
 def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
-    d = tolalloc.plan_calibration("ur10", 10, n_candidates=100, for_allocation=True, random_plans=20)
+    d = tolalloc.plan_calibration("ur10", 10, n_candidates=60, for_allocation=True, random_plans=20)
     s = d.summary()
     fa, rnd = s["for_allocation"], s["random_plans"]
     assert fa["cost"] <= fa["start_cost"] + 1e-9  # a plan is kept only when the allocation gets cheaper

@@ -15,6 +15,7 @@ parser.add_argument("--out", default="tutorial_output/calibration", help="folder
 args = parser.parse_args()
 N_CANDIDATES = 128 if args.quick else 2_000      # scrambled-Sobol candidate poses for the plan
 N_MC = 500 if args.quick else 20_000             # simulated calibrations of the end-to-end check
+COVERAGE_N = 5_000 if args.quick else 100_000    # fresh poses of the working box checked after the design
 out = Path(args.out)
 
 # %% plan
@@ -30,7 +31,7 @@ plan.save(plan_file)
 print(plan_file.read_text().splitlines()[:6])               # settings in '#' header lines, then the poses
 
 # %% allocate after calibration
-res = tolalloc.allocate_tolerances("tool_changer", calibration=plan_file, n_mc=N_MC)
+res = tolalloc.allocate_tolerances("tool_changer", calibration=plan_file, n_mc=N_MC, coverage_n=COVERAGE_N)
 print(res)
 
 # %% table

@@ -84,9 +84,15 @@ class ChainProgram:
     def n_factors(self) -> int:
         return len(self.kind)
 
+    @cached_property
+    def _sources(self) -> tuple:
+        """Per factor, ``(k, coef)`` of its nonzero coefficients in parameter order (read once, used per call)."""
+        return tuple(tuple((int(k), float(self.coef[f, k])) for k in np.flatnonzero(self.coef[f]))
+                     for f in range(self.n_factors))
+
     def sources(self, f: int) -> list[tuple[int, float]]:
         """``(k, coef)`` of the parameters that move factor ``f``, in parameter order."""
-        return [(int(k), float(self.coef[f, k])) for k in np.flatnonzero(self.coef[f])]
+        return list(self._sources[f])
 
     def amount(self, f: int, values: np.ndarray) -> np.ndarray:
         """Parameter part of factor ``f``'s amount, ``coef[f] @ values`` summed in parameter order, shape (N,).
@@ -94,7 +100,7 @@ class ChainProgram:
         ``values`` (N, K) [mm, rad]; the joint value of a JOINT factor is not included.
         """
         out = np.zeros(values.shape[0])
-        for k, cf in self.sources(f):
+        for k, cf in self._sources[f]:
             out = out + (values[:, k] if cf == 1.0 else cf * values[:, k])
         return out
 

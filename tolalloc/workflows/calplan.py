@@ -71,7 +71,7 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     Examples
     --------
     >>> import tolalloc
-    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
     >>> d.plan.n_poses, d.design.score_mm2 < d.design.random_score_mm2
     (8, True)
     """
@@ -173,7 +173,7 @@ class CalibrationPlanDesign(JobResult):
     Examples
     --------
     >>> import tolalloc
-    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=128)
+    >>> d = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
     >>> list(d.to_frame().columns)
     ['j1_deg', 'j2_deg', 'j3_deg', 'j4_mm', 'j5_deg', 'j6_deg']
     """
