@@ -1,6 +1,6 @@
 """Blind identification: the diagnosis never sees the label; >= 90 % correct on a small benchmark.
 
-A smaller version of studies/sim2real_blind (2 robots x 6 labels, 150 poses, 3-fold CV).
+A smaller version of studies/sim2real_blind (2 robots x 6 labels, 100 poses, 3-fold CV).
 """
 
 import numpy as np
@@ -17,7 +17,7 @@ def results():
     for name in ("tool_changer", "ur10"):
         robot = tolalloc.load_robot(name)
         for label in LABELS:
-            case = generate(robot, label, 150, rng)
+            case = generate(robot, label, 100, rng)
             d = diagnose(robot, measurements_from_frame(case.frame, robot), folds=3)
             out.append((label, d))
     return out

@@ -85,9 +85,10 @@ def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
     api_plan.save(tmp_path / "plan_api.csv")
     assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
-    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--n-mc", "200", "--coverage-n", "5000",
+    # at the working poses (the region path of the same call is the tutorial's and the report test's)
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--poses", "working", "--n-mc", "200",
                "--out", str(tmp_path / "cli")])
-    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, n_mc=200, coverage_n=5000)
+    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, poses="working", n_mc=200)
     assert isinstance(res, tolalloc.CalibratedToleranceAllocation) and rc == (0 if res.ok else 1)
     res.save(tmp_path / "api")
     assert_same_files(tmp_path / "cli", tmp_path / "api")

@@ -142,9 +142,10 @@ def _g_terms(lam, r):
         y = np.where(pos3, r * np.sqrt(eps / (2 * l3s)), np.inf)
         small = y < 1.0
         ys = np.where(small & (y > 0), y, 1.0)
-        ratio = np.where(y > 1e-8, erf(ys) / ys, 2 / np.sqrt(np.pi))  # erf(y)/y
+        ey = erf(np.where(np.isfinite(y), y, 1e300))  # one erf pass serves both branches
+        ratio = np.where(y > 1e-8, ey / ys, 2 / np.sqrt(np.pi))  # erf(y)/y where small (there ys = y)
         h_small = r / np.sqrt(2 * l3s) * ratio
-        h_big = erf(np.where(np.isfinite(y), y, 1e300)) / np.sqrt(np.where(eps > 0, eps, 1.0))
+        h_big = ey / np.sqrt(np.where(eps > 0, eps, 1.0))
         h = np.where(small, h_small, h_big)  # erf(y)/sqrt(eps)
         e = np.where(a > 0, np.exp(-(r * r) / (2 * a_s)), 0.0)
         first = np.where(pos3, erf(r / np.sqrt(2 * l3s)), 1.0)
