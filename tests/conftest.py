@@ -171,7 +171,12 @@ def warm_numba_kernels():
     See :func:`tolalloc.montecarlo.engines.warmup.warm_numba_kernels` (Monte Carlo kernel via a tiny ``run_mc``,
     Jacobian kernels on 64 poses). The first compile of a fresh environment is paid here instead of inside
     whichever test happens to run first; ``benchmarks/bench_montecarlo.py`` reports first-compile and cached-load times.
+    Under pytest-xdist only the first worker compiles: the others go on with their tests and load the kernels from
+    numba's on-disk cache when they first need one (the compile, about 10 s on a fresh clone, is paid once, not
+    once per core).
     """
+    if os.environ.get("PYTEST_XDIST_WORKER", "gw0") != "gw0":
+        return
     from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as warm
 
     warm()

@@ -222,6 +222,27 @@ def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypat
     assert list(tmp_path.iterdir()) == []
 
 
+def test_an_interrupt_a_library_turns_into_its_own_error_is_still_an_interrupt(tmp_path, monkeypatch, capsys,
+                                                                              python_sigint):
+    # regression: SIGTERM while numba compiled a kernel (a fresh environment) ended the run with numba's
+    # RuntimeError("no compiled object yet ...") and a traceback instead of the one line and exit 143
+    import tolalloc.calibration.design as design
+
+    def converting(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(5.0)  # the handler raises in here
+        except KeyboardInterrupt:
+            raise RuntimeError("no compiled object yet for <Library '_prefix'>") from None  # what the library did
+
+    monkeypatch.setattr(design, "relax", converting)
+    out = tmp_path / "plan.csv"
+    code = main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "200", "--out", str(out)])
+    assert code == 143
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_signals_deferred_holds_a_signal_another_thread_receives(python_sigint):
     # regression: a thread signal mask held SIGINT back only in the main thread; the kernel delivered it to
     # another thread (BLAS, solver, here a timer) and Python ran the handler in the main thread inside the

@@ -88,6 +88,17 @@ def _interrupt_handlers():
         clear_interrupt()
 
 
+def _run(args) -> int:
+    """The command's exit status; an error raised while a signal is pending is the interrupt."""
+    try:
+        return int(args.func(args) or 0)
+    except Exception:
+        # a library can turn the handler's exception into an error of its own (numba, interrupted while it
+        # compiles a kernel, raises "no compiled object yet"): the run was interrupted all the same
+        raise_if_interrupted()
+        raise
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
     from tolalloc.outputs import published
@@ -97,7 +108,7 @@ def main(argv: list[str] | None = None) -> int:
     with _interrupt_handlers():
         try:
             args = build_parser().parse_args(argv)
-            code = int(args.func(args) or 0)
+            code = _run(args)
             raise_if_interrupted()  # a signal whose exception a library swallowed (nothing was published since)
             return code
         except TolallocError as exc:
