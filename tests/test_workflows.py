@@ -114,7 +114,7 @@ def test_mc_cli_equals_api(tmp_path):
 def test_diagnose_cli_equals_api_with_a_dataframe(tmp_path, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1795000000")  # report.html carries its date
     robot = tolalloc.load_robot("tool_changer")
-    case = generate(robot, "backlash", 120, np.random.default_rng(5))
+    case = generate(robot, "backlash", 80, np.random.default_rng(5))
     tr, te = split_frame(case.frame, 0.25, np.random.default_rng(0))
     tr.to_csv(tmp_path / "train.csv", index=False)
     te.to_csv(tmp_path / "test.csv", index=False)

@@ -104,6 +104,31 @@ class ChainProgram:
             out = out + (values[:, k] if cf == 1.0 else cf * values[:, k])
         return out
 
+    @cached_property
+    def _padded_sources(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:attr:`_sources` as arrays ``(k, coef, used)`` of shape (F, L), L the most sources of any factor."""
+        L = max((len(s) for s in self._sources), default=0)
+        F = self.n_factors
+        k, cf, used = np.zeros((F, L), int), np.zeros((F, L)), np.zeros((F, L), bool)
+        for f, src in enumerate(self._sources):
+            for i, (kk, c) in enumerate(src):
+                k[f, i], cf[f, i], used[f, i] = kk, c, True
+        return k, cf, used
+
+    def amounts(self, values: np.ndarray) -> np.ndarray:
+        """:meth:`amount` of every factor at once, shape (N, F): the same sums in the same order (one vectorised
+        step per source position instead of one Python loop per factor).
+
+        ``values`` (N, K) [mm, rad].
+        """
+        k, cf, used = self._padded_sources
+        out = np.zeros((values.shape[0], self.n_factors))
+        for i in range(k.shape[1]):
+            term = values[:, k[:, i]]
+            term = np.where(cf[:, i] == 1.0, term, cf[:, i] * term)
+            out = np.where(used[:, i], out + term, out)
+        return out
+
     def param_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Factors of each parameter (CSR by parameter, factors left to right) for first-order consumers.
 

@@ -217,13 +217,13 @@ class ErrorModel:
         C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
         screws = np.empty((N, n, 6))
         err = [f for f in range(prog.n_factors) if prog.kind[f] != JOINT]
-        E = (exp_se3(np.stack([prog.amount(f, values)[:, None] * prog.twist[f] for f in err], axis=1))
-             if err else None)  # (N, len(err), 4, 4): one call, not one per factor
+        amounts = prog.amounts(values)  # (N, F)
+        E = (exp_se3(amounts[:, err, None] * prog.twist[err]) if err else None)  # (N, len(err), 4, 4): one call
         pos = {f: i for i, f in enumerate(err)}
         for f in range(prog.n_factors):
             if prog.kind[f] == JOINT:  # E_j = exp([S'_j](q_j + dq_j)) with S'_j = Ad_C S_j
                 j = int(prog.joint[f])
-                dq[:, j] += prog.amount(f, values)
+                dq[:, j] += amounts[:, f]
                 screws[:, j, :] = adjoint(C) @ prog.twist[f]
             else:
                 C = C @ E[:, pos[f]]
