@@ -186,7 +186,14 @@ class Problem:
         k = len(self.geo)
         delta = self.delta0.copy()
         delta[self.geo] = x[9:9 + k]
-        return self.R0 @ Rotation.from_rotvec(x[:3]).as_matrix(), x[3:6], x[6:9], delta, x[9 + k:]
+        return self._rotation(x[:3]), x[3:6], x[6:9], delta, x[9 + k:]
+
+    def _rotation(self, w) -> np.ndarray:
+        """``R0 exp([w])``, remembered for the last ``(w, R0)`` (a pass asks for it once per chunk and more)."""
+        key = (np.asarray(w, dtype=float).tobytes(), self.R0.tobytes())
+        if getattr(self, "_rot_key", None) != key:
+            self._rot_key, self._rot = key, self.R0 @ Rotation.from_rotvec(w).as_matrix()
+        return self._rot.copy()
 
     def rebase(self, x) -> np.ndarray:
         """Move the rotation of ``x`` into ``R0``; returns ``x`` with ``w = 0`` (same model)."""
