@@ -180,3 +180,11 @@ def warm_numba_kernels():
     from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as warm
 
     warm()
+
+
+def pytest_collection_modifyitems(config, items):
+    """Files with a test marked ``slow`` first (stable otherwise): pytest-xdist hands out whole files in this order,
+    so the long files start early and the workers finish together instead of one running the last long file
+    alone."""
+    slow = {item.path for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: item.path not in slow)

@@ -13,6 +13,7 @@ def tc():
     return load_robot("tool_changer")
 
 
+@pytest.mark.slow
 def test_calplan_then_allocate(tmp_path, capsys):
     plan = tmp_path / "plan.csv"
     assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "256", "--out", str(plan)]) == 0

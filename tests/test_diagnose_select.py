@@ -23,6 +23,7 @@ def results():
     return out
 
 
+@pytest.mark.slow
 def test_blind_identification_rate(results):
     correct = sum(d.effect == label for label, d in results)
     assert correct / len(results) >= 0.9, [(label, d.effect) for label, d in results]

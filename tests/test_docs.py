@@ -56,6 +56,7 @@ def ur10_data() -> Path | None:
 
 
 # ---------------------------------------------------------------------------------------------- the build
+@pytest.mark.slow
 def test_docs_build_strict_with_no_warning(tmp_path):
     missing = [m for m in DOCS_EXTRA if importlib.util.find_spec(m) is None]
     if missing:
@@ -144,6 +145,7 @@ def test_tutorial_simulate(tmp_path, monkeypatch):
     assert est.plain_low[0] <= est.p_hat[0] <= est.plain_high[0]   # the same draws: paired inside the plain interval
 
 
+@pytest.mark.slow
 def test_tutorial_calibration(tmp_path, monkeypatch):
     g = _run_script(DOCS / "tutorials" / "calibration.py", ["--quick", "--out", str(tmp_path)], monkeypatch)
     plan, res, table = g["plan"], g["res"], g["table"]
@@ -163,6 +165,7 @@ def test_tutorial_diagnose(tmp_path, monkeypatch):
     assert (tmp_path / "report" / "report.md").is_file() and (tmp_path / "predictions.csv").is_file()
 
 
+@pytest.mark.slow
 def test_tutorial_ur10_real_data(tmp_path, monkeypatch):
     data = ur10_data()
     if data is None:

@@ -58,6 +58,7 @@ def assert_same_files(a: Path, b: Path) -> list[str]:
     return names
 
 
+@pytest.mark.slow
 def test_python_example_runs_and_prints_the_verdict(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     exec(compile(PYTHON_EXAMPLE, "README example", "exec"), {})
@@ -66,6 +67,7 @@ def test_python_example_runs_and_prints_the_verdict(tmp_path, monkeypatch, capsy
     assert (tmp_path / "reports" / "python_quickstart" / "tolerances.csv").is_file()
 
 
+@pytest.mark.slow
 def test_allocate_cli_equals_api(tmp_path, capsys):
     argv = ["allocate", "tool_changer", "--poses", "working", "--region", "working", "--n-mc", "4000",
             "--coverage-n", "2000", "--seed", "3"]
@@ -79,6 +81,7 @@ def test_allocate_cli_equals_api(tmp_path, capsys):
     assert res.text() in printed  # the command prints the result's text, then what it wrote
 
 
+@pytest.mark.slow
 def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     plan = tmp_path / "plan.csv"
     assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "64", "--out", str(plan)]) == 0
@@ -111,6 +114,7 @@ def test_mc_cli_equals_api(tmp_path):
     assert_same_files(tmp_path / "cli", tmp_path / "api")
 
 
+@pytest.mark.slow
 def test_diagnose_cli_equals_api_with_a_dataframe(tmp_path, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1795000000")  # report.html carries its date
     robot = tolalloc.load_robot("tool_changer")
@@ -244,6 +248,7 @@ def test_analyze_with_sobol_indices_beside_the_linear_budget(tmp_path):
         tolalloc.analyze_errors("tool_changer", sobol_n=8)
 
 
+@pytest.mark.slow
 def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
     d = tolalloc.plan_calibration("ur10", 10, n_candidates=60, for_allocation=True, random_plans=20)
     s = d.summary()
