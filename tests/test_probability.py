@@ -271,3 +271,20 @@ def test_mean_inverse_roundtrip():
 
     r = radius_for_prob(0.09 * np.eye(3), 0.5, [0.0, 0.0, 0.5])
     np.testing.assert_allclose(r, 0.3 * np.sqrt(ncx2.ppf(0.5, 3, 0.25 / 0.09)), rtol=1e-8)
+
+
+def test_full_rank_path_gives_the_numbers_of_the_guarded_path():
+    """A stack of full-rank covariances takes the unguarded path; with one rank-deficient covariance appended the
+    whole stack takes the guarded one: the full-rank rows (P and dP/dr) must be identical, bit for bit."""
+    from tolalloc.linear.probability import _p_zero_mean
+
+    rng = np.random.default_rng(3)
+    lam = np.sort(rng.random((400, 3)) ** 3, axis=1)[:, ::-1] * 10.0 ** rng.uniform(-6, 1, (400, 1))
+    r = rng.uniform(0.0, 3.0, 400) * np.sqrt(lam[:, 0])
+    r[::9] = 1e-9 * np.sqrt(lam[::9, 2])  # erf(y)/y at tiny y
+    fast = _p_zero_mean(lam, r, with_derivative=True)
+    lam_g = np.vstack([lam, [[1.0, 0.5, 0.0]]])
+    guarded = _p_zero_mean(lam_g, np.append(r, 0.5), with_derivative=True)
+    assert np.all(lam[:, 2] > 0) and lam_g[-1, 2] == 0
+    for a, b in zip(fast, guarded):
+        assert np.array_equal(a, b[:-1])
