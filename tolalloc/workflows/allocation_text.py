@@ -22,7 +22,9 @@ def summary_dict(job) -> dict:
         summary["region"] = {"name": region.name, "q_min_deg_mm": robot.q_to_interface(region.q_min),
                              "q_max_deg_mm": robot.q_to_interface(region.q_max), "rounds": reg_info.rounds,
                              "converged": reg_info.converged, "active_poses": len(reg_info.active_q),
-                             "search_evaluations": reg_info.evaluations, "worst_p_linear": reg_info.worst_p,
+                             "search_evaluations": reg_info.evaluations,
+                             "worst_p_linear": float(reg_info.worst_p) if np.isfinite(reg_info.worst_p) else None,
+                             "why_not_converged": None if reg_info.converged else region_stop(reg_info),
                              "static_joints": [int(j) + 1 for j in np.flatnonzero(reg_info.static)],
                              "time_s": reg_info.time_s}
     if cov is not None:
@@ -53,9 +55,10 @@ def report_text(job) -> str:
     if job.infeasible is not None:
         return ""
     if reg_info is not None:
+        worst = f"{reg_info.worst_p:.5f}" if np.isfinite(reg_info.worst_p) else "none (no design to search with)"
         lines.append(f"region {job.region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
-                     f"{reg_info.evaluations} search evaluations, worst linear P found {reg_info.worst_p:.5f}"
-                     + ("" if reg_info.converged else " (NOT converged: round limit reached)"))
+                     f"{reg_info.evaluations} search evaluations, worst linear P found {worst}"
+                     + ("" if reg_info.converged else f" (NOT converged: {region_stop(reg_info)})"))
     if cov is not None:
         lines.append(cov.message(job.problem.prob))
     lines += _design_lines(job)
@@ -113,3 +116,8 @@ def _design_lines(job) -> list[str]:
         if corr.rounds:
             out.append("the tolerance table above is the corrected design's")
     return out
+
+
+def region_stop(reg_info) -> str:
+    """Why a region search stopped without converging: the search's own message, else the round limit."""
+    return getattr(reg_info, "message", None) or "round limit reached"

@@ -204,10 +204,11 @@ def _region(job, s: dict):
     if job.region_search is None:
         return None
     r = s["region"]
-    rounds = f"{r['rounds']} ({'converged' if r['converged'] else 'NOT converged: round limit reached'})"
+    rounds = f"{r['rounds']} ({'converged' if r['converged'] else 'NOT converged: ' + r['why_not_converged']})"
+    worst = "none (no design to search with)" if r["worst_p_linear"] is None else f"{r['worst_p_linear']:.5f}"
     pairs = [("region", r["name"]), ("search rounds", rounds),
              ("active poses", r["active_poses"]), ("search evaluations", r["search_evaluations"]),
-             ("worst linear P found", f"{r['worst_p_linear']:.5f}"),
+             ("worst linear P found", worst),
              ("static joints", ", ".join(map(str, r["static_joints"])) or "none"),
              ("search time", f"{r['time_s']:.1f} s")]
     frame = pd.DataFrame({"joint": [j.name for j in job.robot.joints], "unit": [j.unit for j in job.robot.joints],
