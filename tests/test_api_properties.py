@@ -413,6 +413,7 @@ def test_robot_methods_take_any_joint_values(robot, data):
                                      max_size=8), max_size=4) | odd_values(),
        convention=st.sampled_from(["standard", "modified", "dh", None]),
        tool=st.sampled_from([(0, 0, 0), (1, 2), (np.nan, 0, 0), "x"]))
+@example(rows=[{"name": 0, "alpha_deg": None}], convention="standard", tool="x")  # the long profile's: ValueError
 def test_robot_from_dh_refuses_or_builds(rows, convention, tool):
     kwargs = {"table": rows, "convention": convention, "tool_offset_mm": tool}
     robot = outcome(tolalloc.Robot.from_dh, kwargs)

@@ -344,11 +344,8 @@ class Robot:
         except TolallocError as exc:
             raise TolallocError(str(exc) if str(exc).startswith("table") else f"table: {exc}") from None
         chain, R_last = chain_from_dh(rows, convention)
-        off = np.asarray(tool_offset_mm, dtype=float)
-        rpy = np.deg2rad(np.asarray(tool_rpy_deg, dtype=float))
-        if off.shape != (3,) or rpy.shape != (3,) or not (np.all(np.isfinite(off)) and np.all(np.isfinite(rpy))):
-            raise TolallocError(f"tool_offset_mm / tool_rpy_deg: expected 3 finite numbers each, got {tool_offset_mm!r}, "
-                                f"{tool_rpy_deg!r}.")
+        off = check_finite_array(tool_offset_mm, "tool_offset_mm", (3,))
+        rpy = np.deg2rad(check_finite_array(tool_rpy_deg, "tool_rpy_deg", (3,)))
         R_tool = exp_so3([0, 0, rpy[2]]) @ exp_so3([0, rpy[1], 0]) @ exp_so3([rpy[0], 0, 0])
         check_reach({e.name: e.length_mm for e in chain if isinstance(e, Link)}, "lengths", tiny_links=False)
         return cls(name, tuple(chain), tool_offset_mm=R_last @ off, tool_rotation=R_last @ R_tool,
