@@ -134,10 +134,12 @@ ALLOCATE_WRONG = {
 
 @settings(max_examples=examples(24), **SETTINGS)
 @example(kwargs={"robot": TC, "radius_mm": 0.0625, "prob": 0.5, "region": "working", "verify": False, "z": 1.0})
+@example(kwargs={"robot": TC, "radius_mm": 0.0546875, "prob": 0.5, "region": "working", "verify": False, "z": 1.0})
 @given(perturbed(ALLOCATE_VALID, ALLOCATE_WRONG))
 def test_allocate_tolerances_refuses_or_runs(kwargs):
-    # the example (found by the long profile): no standard design meets P on the region, so the standard search has
-    # no worst P; the summary said NaN (not JSON) and the text "round limit reached"
+    # the examples (found by the long profile): no standard design meets P on the region, so the standard search has
+    # no worst P (the summary said NaN, not JSON, and the text "round limit reached"); no design at all covers the
+    # region (the text was empty)
     res = outcome(tolalloc.allocate_tolerances, kwargs)
     if res is not None:
         check_result(res)

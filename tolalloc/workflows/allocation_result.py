@@ -173,9 +173,11 @@ class ToleranceAllocation(JobResult):
         return summary_dict(self)
 
     def text(self) -> str:
-        """What the command line prints."""
+        """What the command line prints (for a region no design can cover, why: the command's error line)."""
         from tolalloc.workflows.allocation_text import report_text
 
+        if self.infeasible is not None:
+            return "status: infeasible over the region (no design): " + self.infeasible
         return report_text(self)
 
     # ------------------------------------------------------------------ figures
