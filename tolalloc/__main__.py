@@ -25,6 +25,13 @@ def run() -> None:
     code = main()
     for s in (signal.SIGINT, signal.SIGTERM):  # the run is over; its output is published
         signal.signal(s, signal.SIG_IGN)
+    if code in (128 + signal.SIGINT, 128 + signal.SIGTERM):
+        # interrupted: a solver thread may still be inside C++ (IPOPT, Clarabel), and finalising the interpreter
+        # under it aborts the process ("terminate called without an active exception", status -6); everything
+        # was already cleaned up and the one line printed, so leave without finalising
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
     sys.exit(code)
 
 
