@@ -171,6 +171,7 @@ class Problem:
         self.beta_prior_w = None  # weight (M,) of a zero-mean prior on the effect parameters
         self.f_scale = 0.0
         self.loss = "soft_l1"
+        self._rot_key, self._rot = None, None  # last (w, R0) of _rotation and its matrix
         self._static = self._static_of(slice(0, len(q))) if len(q) <= self.chunk_rows else None
 
     # --------------------------------------------------------------- parameters
@@ -191,7 +192,7 @@ class Problem:
     def _rotation(self, w) -> np.ndarray:
         """``R0 exp([w])``, remembered for the last ``(w, R0)`` (a pass asks for it once per chunk and more)."""
         key = (np.asarray(w, dtype=float).tobytes(), self.R0.tobytes())
-        if getattr(self, "_rot_key", None) != key:
+        if self._rot_key != key:
             self._rot_key, self._rot = key, self.R0 @ Rotation.from_rotvec(w).as_matrix()
         return self._rot.copy()
 

@@ -94,16 +94,6 @@ class ChainProgram:
         """``(k, coef)`` of the parameters that move factor ``f``, in parameter order."""
         return list(self._sources[f])
 
-    def amount(self, f: int, values: np.ndarray) -> np.ndarray:
-        """Parameter part of factor ``f``'s amount, ``coef[f] @ values`` summed in parameter order, shape (N,).
-
-        ``values`` (N, K) [mm, rad]; the joint value of a JOINT factor is not included.
-        """
-        out = np.zeros(values.shape[0])
-        for k, cf in self._sources[f]:
-            out = out + (values[:, k] if cf == 1.0 else cf * values[:, k])
-        return out
-
     @cached_property
     def _padded_sources(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """:attr:`_sources` as arrays ``(k, coef, used)`` of shape (F, L), L the most sources of any factor."""
@@ -116,10 +106,10 @@ class ChainProgram:
         return k, cf, used
 
     def amounts(self, values: np.ndarray) -> np.ndarray:
-        """:meth:`amount` of every factor at once, shape (N, F): the same sums in the same order (one vectorised
-        step per source position instead of one Python loop per factor).
+        """Parameter part of every factor's amount, ``values @ coef.T`` summed in parameter order, shape (N, F).
 
-        ``values`` (N, K) [mm, rad].
+        ``values`` (N, K) [mm, rad]; the joint value of a JOINT factor is not included. One vectorised step per
+        source position, each adding a factor's next source (in parameter order) to its running sum.
         """
         k, cf, used = self._padded_sources
         out = np.zeros((values.shape[0], self.n_factors))

@@ -55,7 +55,7 @@ def report_text(job) -> str:
     if job.infeasible is not None:
         return ""
     if reg_info is not None:
-        worst = f"{reg_info.worst_p:.5f}" if np.isfinite(reg_info.worst_p) else "none (no design to search with)"
+        worst = worst_p_text(reg_info.worst_p if np.isfinite(reg_info.worst_p) else None)
         lines.append(f"region {job.region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
                      f"{reg_info.evaluations} search evaluations, worst linear P found {worst}"
                      + ("" if reg_info.converged else f" (NOT converged: {region_stop(reg_info)})"))
@@ -121,3 +121,8 @@ def _design_lines(job) -> list[str]:
 def region_stop(reg_info) -> str:
     """Why a region search stopped without converging: the search's own message, else the round limit."""
     return getattr(reg_info, "message", None) or "round limit reached"
+
+
+def worst_p_text(worst_p: float | None) -> str:
+    """The region search's worst linear P as printed (None: the search had no design to search with)."""
+    return "none (no design to search with)" if worst_p is None else f"{worst_p:.5f}"

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
+from tolalloc.workflows.allocation_text import worst_p_text
 
 __all__ = ["write_allocation_report", "write_calibrated_report", "write_diagnosis_report", "allocation_context",
            "calibrated_context"]
@@ -205,10 +206,9 @@ def _region(job, s: dict):
         return None
     r = s["region"]
     rounds = f"{r['rounds']} ({'converged' if r['converged'] else 'NOT converged: ' + r['why_not_converged']})"
-    worst = "none (no design to search with)" if r["worst_p_linear"] is None else f"{r['worst_p_linear']:.5f}"
     pairs = [("region", r["name"]), ("search rounds", rounds),
              ("active poses", r["active_poses"]), ("search evaluations", r["search_evaluations"]),
-             ("worst linear P found", worst),
+             ("worst linear P found", worst_p_text(r["worst_p_linear"])),
              ("static joints", ", ".join(map(str, r["static_joints"])) or "none"),
              ("search time", f"{r['time_s']:.1f} s")]
     frame = pd.DataFrame({"joint": [j.name for j in job.robot.joints], "unit": [j.unit for j in job.robot.joints],
