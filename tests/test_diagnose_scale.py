@@ -12,9 +12,10 @@ from scipy.optimize import least_squares
 import tolalloc
 from tolalloc.cli import main
 from tolalloc.diagnose import calibrate, diagnose, generate, measurements_from_frame
-from tolalloc.diagnose.calibrate import _Problem, fit_model
+from tolalloc.diagnose.calibrate import TUKEY_C, _Problem, fit_model
 from tolalloc.diagnose.effects import effect_basis, effect_reference
-from tolalloc.diagnose.scale import point_kinematics, robust_scale
+from tolalloc.diagnose.scale import norm_scale, point_kinematics, robust_scale, solve
+from tolalloc.robot.lie import rotvec
 from tolalloc.robot.kinematics import fk_poe
 
 
@@ -44,7 +45,8 @@ def test_fit_equals_former_least_squares_fit(case):
     robot, m, cal, B = case
     geo = cal.geometric.geo_index
     R, p, t, delta, beta = _scipy_fit(cal.nominal, m.q, m.xyz_mm, geo, B)
-    ours = fit_model(cal.nominal, m.q, m.xyz_mm, geo_index=geo, B=B, loss="soft_l1")  # the former fit's loss
+    # the former fit's loss, iterated to the solver's own tolerances (sd_tol=0)
+    ours = fit_model(cal.nominal, m.q, m.xyz_mm, geo_index=geo, B=B, loss="soft_l1", sd_tol=0.0)
     # stated tolerance: 1e-6 mm on lengths, 1e-9 rad on angles, 1e-5 relative on effect parameters
     np.testing.assert_allclose(ours.p_mm, p, atol=1e-6)
     np.testing.assert_allclose(ours.t_mm, t, atol=1e-6)
@@ -52,6 +54,28 @@ def test_fit_equals_former_least_squares_fit(case):
     to_if = np.array([prm.to_interface for prm in cal.geometric.model.params])
     np.testing.assert_allclose(ours.delta * to_if, delta * to_if, atol=1e-6)
     np.testing.assert_allclose(ours.beta, beta, rtol=1e-5, atol=1e-5 * np.abs(beta).max())
+
+
+@pytest.mark.parametrize("loss", ["tukey", "soft_l1"])
+def test_early_stop_is_within_a_fraction_of_a_standard_error(case, loss):
+    """solve(sd_tol=0.01) stops within about 0.01 standard errors of the optimum it reaches with sd_tol=0: the
+    Mahalanobis distance of the two solutions under the final normal matrix and residual variance."""
+    robot, m, cal, B = case
+    geo = cal.geometric.geo_index
+    probs, xs = [], []
+    for sd_tol in (0.0, 0.01):
+        prob = _Problem(cal.nominal, m.q, m.xyz_mm, geo, B)
+        x, raw = solve(prob, prob.x0(), sd_tol=0.0)
+        prob.loss, prob.f_scale = loss, (TUKEY_C * norm_scale(raw) if loss == "tukey" else robust_scale(raw.ravel()))
+        x, _ = solve(prob, x, max_iter=60, sd_tol=sd_tol)
+        probs.append(prob)
+        xs.append(x)
+    (Ra, *_), (Rb, *_) = probs[0].unpack(xs[0]), probs[1].unpack(xs[1])
+    d = np.concatenate([rotvec(Ra.T @ Rb), xs[1][3:] - xs[0][3:]])
+    cost, H, _, _ = probs[0].normal(xs[0])
+    s2 = cost / (3 * m.n_poses - len(d))
+    assert np.sqrt(d @ H @ d / s2) <= 0.02
+    assert np.abs(d).max() > 0  # the early stop did stop early (else the check above tests nothing)
 
 
 def test_chunked_equals_unchunked(case):

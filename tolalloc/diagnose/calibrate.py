@@ -138,7 +138,7 @@ def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
               robust: bool = True, extra: np.ndarray | None = None, prior: bool = True, n_effects: int | None = None,
               label: str = "fit", chunk_rows: int | None = None, loss: str | None = None, t_prior=None,
-              beta_prior_w=None) -> Fit:
+              beta_prior_w=None, sd_tol: float = 0.01) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -168,6 +168,9 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
         effect's own hyper-parameter fit, :mod:`.evidence`).
     label : str   name of the fit on its progress bar (large files)
     chunk_rows : int, optional   poses per chunk of the normal equations (default :data:`~.scale.CHUNK_ROWS`)
+    sd_tol : float
+        Both passes stop once a step is worth less than ``sd_tol`` standard errors of the parameters
+        (:func:`~.scale.solve`); 0 iterates to the solver's own tolerances.
     """
     loss = DEFAULT_LOSS if loss is None else loss
     if loss not in LOSSES[1:]:
@@ -177,7 +180,7 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     t_sd = None if t_prior is None else np.broadcast_to(np.asarray(t_prior[1], float), (3,))
     noise0 = robust_scale(start.residual_mm.ravel()) / 3.0 if len(start.residual_mm) else 0.05
     prob.set_priors(None if t_sd is None else (t_prior[0], noise0 / t_sd), beta_prior_w)
-    x, raw = solve(prob, prob.x0(), max_iter=60, label=label)
+    x, raw = solve(prob, prob.x0(), max_iter=60, sd_tol=sd_tol, label=label)
     sig = start.model.sigma[geo_index]
     noise = robust_scale(raw.ravel()) / 3.0
     if prior and len(geo_index) and np.any(sig > 0):
@@ -190,7 +193,7 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
         prob.loss = loss
         prob.f_scale = (HUBER_C if loss == "huber" else TUKEY_C) * norm_scale(raw)
     if robust or prob.prior_w.any() or t_sd is not None:
-        x, raw = solve(prob, x, max_iter=30, label=label + " (robust)")
+        x, raw = solve(prob, x, max_iter=30, sd_tol=sd_tol, label=label + " (robust)")
     R, p, t, delta, beta = prob.unpack(x)
     count_fit()
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), -raw,

@@ -388,13 +388,18 @@ def _step(H, g, lam):
 
 
 def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-10, xtol: float = 1e-10,
-          label: str = "fit"):
+          sd_tol: float = 0.01, label: str = "fit"):
     """Minimise ``|prob.fun(x)|^2`` by Levenberg-Marquardt on the chunked normal equations.
 
     Returns ``(x, raw)``: the solution (rotation moved into ``prob.R0``, ``x[:3] = 0``) and its raw data
     residual (P, 3). Stops when an accepted step lowers the cost by less than ``ftol`` of it or moves every
-    parameter by less than ``xtol (xtol + |x|)``, when the next step's predicted decrease (quadratic model) is
-    below ``1e-4 ftol`` of the cost (saves a pass), after ``max_iter`` passes, or when no step lowers the cost.
+    parameter by less than ``xtol (xtol + |x|)``, after ``max_iter`` passes, when no step lowers the cost, or
+    when a step is worth less than ``sd_tol`` standard errors: its decrease (accepted) or the next step's
+    predicted decrease (quadratic model; saves a pass) is below ``sd_tol^2 s^2``, ``s^2 = cost / (3P - m)`` the
+    residual variance. A move of ``d`` standard errors changes the cost by about ``d^2 s^2``, so the stop leaves
+    the parameters within about ``sd_tol`` of their standard error of the optimum; without it, the robust
+    losses' tail (weights that change with the residuals) can spend a dozen rejected passes on decreases of
+    ``1e-8`` of the cost.
     """
     bar = progress_bar(f"{label} ({prob.n_rows:,} rows)", unit="pass") if prob.n_rows >= PROGRESS_MIN_ROWS \
         else _NoBar()
@@ -402,15 +407,16 @@ def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-
     cost, H, g, raw = prob.normal(x)
     bar.update()
     lam = 1e-6
+    per_sd2 = sd_tol ** 2 / max(3 * prob.n_rows - len(x), 1)  # (sd_tol standard errors)^2 / cost
     for _ in range(max_iter):
         dx = _step(H, g, lam)
-        if -(g @ dx + 0.5 * dx @ H @ dx) <= 1e-4 * ftol * cost:  # the model predicts no useful decrease: converged
+        if -(g @ dx + 0.5 * dx @ H @ dx) <= max(1e-4 * ftol, per_sd2) * cost:  # no useful decrease predicted
             break
         trial = prob.normal(x + dx)
         bar.update()
         if trial[0] <= cost:
             small = np.all(np.abs(dx) <= xtol * (xtol + np.abs(x)))
-            done = cost - trial[0] <= ftol * cost or small
+            done = cost - trial[0] <= max(ftol, per_sd2) * cost or small
             x = prob.rebase(x + dx)
             cost, H, g, raw = trial
             bar.set_postfix_str(f"cost {cost:.6g}")
