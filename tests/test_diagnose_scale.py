@@ -15,8 +15,8 @@ from tolalloc.diagnose import calibrate, diagnose, generate, measurements_from_f
 from tolalloc.diagnose.calibrate import TUKEY_C, _Problem, fit_model
 from tolalloc.diagnose.effects import effect_basis, effect_reference
 from tolalloc.diagnose.scale import norm_scale, point_kinematics, robust_scale, solve
-from tolalloc.robot.lie import rotvec
 from tolalloc.robot.kinematics import fk_poe
+from tolalloc.robot.lie import rotvec
 
 
 @pytest.fixture(scope="module")
