@@ -221,8 +221,9 @@ def _extrema_counts(FB, N, mx, mn, radii, aradii, cnt):
     hi, lo = np.empty(8), np.empty(8)
     for i in range(11):
         row = FB[i, :N]
-        hi[:] = mx[i]
-        lo[:] = mn[i]
+        for k in range(8):
+            hi[k] = mx[i]
+            lo[k] = mn[i]
         for n0 in range(0, N - 7, 8):  # 8 lanes, unrolled: vectorised selects
             for k in range(8):
                 v = row[n0 + k]
@@ -270,7 +271,9 @@ def _moments(FB, N, mean, M2):
         mean[i] = mu
         for n in range(N):
             row[n] -= mu
-    M2[:] = 0.0
+    for i in range(11):
+        for j in range(11):
+            M2[i, j] = 0.0
     for t0 in range(0, N, 512):
         t1 = min(N, t0 + 512)
         for i in range(11):
@@ -298,9 +301,11 @@ def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, l
     Y = np.empty((3, 4, CHUNK))
     th, S, C = np.empty(CHUNK), np.empty(CHUNK), np.empty(CHUNK)
     FB = np.empty((12, sub))
-    smean, sM2 = np.empty(11), np.empty((11, 11))
-    mx[:] = -np.inf
-    mn[:] = np.inf
+    smean, sM2, d = np.empty(11), np.empty((11, 11)), np.empty(11)
+    for p in range(P):
+        for i in range(mx.shape[1]):
+            mx[p, i] = -np.inf
+            mn[p, i] = np.inf
     nacc = np.zeros(P, np.int64)
     for s0 in range(0, m, sub):
         N = min(sub, m - s0)
@@ -311,7 +316,8 @@ def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, l
                 if _features(Xf, nc, pose_c[p], Fo) > 0:
                     return False
                 for i in range(12):
-                    FB[i, c0:c0 + nc] = Fo[i * CHUNK:i * CHUNK + nc]
+                    for n in range(nc):
+                        FB[i, c0 + n] = Fo[i * CHUNK + n]
             _extrema_counts(FB, N, mx[p], mn[p], radii, aradii, cnt[p])
             if nb >= 0:
                 _hist(FB, N, lo[p], inv_w[p], nb, H[p])
@@ -321,13 +327,16 @@ def block_kernel(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, l
                         kept[i, s0 + n] = FB[i, n]
             _moments(FB, N, smean, sM2)
             if nacc[p] == 0:
-                mean[p] = smean
-                M2[p] = sM2
+                for i in range(11):
+                    mean[p, i] = smean[i]
+                    for j in range(11):
+                        M2[p, i, j] = sM2[i, j]
                 nacc[p] = N
             else:
                 tot = nacc[p] + N
-                d = smean - mean[p]
-                mean[p] = mean[p] + d * (N / tot)
+                for i in range(11):
+                    d[i] = smean[i] - mean[p, i]
+                    mean[p, i] = mean[p, i] + d[i] * (N / tot)
                 w = nacc[p] * N / tot
                 for i in range(11):
                     for j in range(11):
