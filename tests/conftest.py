@@ -163,28 +163,45 @@ def skew_robot():
     return Robot("skew", chain)
 
 
+_FIRST_TEST_SEEN = []
 
-@pytest.fixture(scope="session", autouse=True)
-def warm_numba_kernels():
-    """Compile (or load from numba's on-disk cache) the numba kernels once per test session.
+
+@pytest.fixture(autouse=True)
+def warm_numba_kernels(request, tmp_path_factory):
+    """Compile (or load from numba's on-disk cache) the numba kernels once per test run.
 
     See :func:`tolalloc.montecarlo.engines.warmup.warm_numba_kernels` (Monte Carlo kernel via a tiny ``run_mc``,
-    Jacobian kernels on 64 poses). The first compile of a fresh environment is paid here instead of inside
-    whichever test happens to run first; ``benchmarks/bench_montecarlo.py`` reports first-compile and cached-load times.
-    Under pytest-xdist only the first worker compiles: the others go on with their tests and load the kernels from
-    numba's on-disk cache when they first need one (the compile, about 10 s on a fresh clone, is paid once, not
-    once per core).
+    Jacobian kernels on 64 poses). The first compile of a fresh environment (about 7 s) is paid here instead of
+    inside whichever test happens to run first; ``benchmarks/bench_montecarlo.py`` reports first-compile and
+    cached-load times. Under pytest-xdist one worker compiles: the first to create a marker file in the run's shared
+    temporary folder, skipping the worker whose first file is the documentation build (it runs Sphinx, no kernel,
+    for longer than the compile takes). The others go on with their tests and load the kernels from numba's on-disk
+    cache when they first need one.
+    Decided at a process's first test (a function-scoped fixture, to see which test that is); a no-op after it.
     """
-    if os.environ.get("PYTEST_XDIST_WORKER", "gw0") != "gw0":
+    if _FIRST_TEST_SEEN:
         return
+    _FIRST_TEST_SEEN.append(request.node.nodeid)
+    if request.node.path.name == FIRST_FILE:
+        return
+    if "PYTEST_XDIST_WORKER" in os.environ:
+        marker = tmp_path_factory.getbasetemp().parent / "numba_warm_up"
+        try:
+            os.close(os.open(marker, os.O_CREAT | os.O_EXCL))
+        except FileExistsError:
+            return
     from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as warm
 
     warm()
 
 
+# The documentation build: the longest single test, and one that needs no numba kernel (see warm_numba_kernels).
+FIRST_FILE = "test_docs.py"
+
+
 def pytest_collection_modifyitems(config, items):
-    """Files with a test marked ``slow`` first (stable otherwise): pytest-xdist hands out whole files in this order,
-    so the long files start early and the workers finish together instead of one running the last long file
-    alone."""
+    """The documentation build's file first, then files with a test marked ``slow`` (stable otherwise):
+    pytest-xdist hands out whole files in this order, alternating between workers, so the long files start early
+    and the workers finish together instead of one running the last long file alone."""
     slow = {item.path for item in items if item.get_closest_marker("slow")}
-    items.sort(key=lambda item: item.path not in slow)
+    items.sort(key=lambda item: (item.path.name != FIRST_FILE, item.path not in slow))
