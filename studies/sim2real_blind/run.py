@@ -253,6 +253,8 @@ def main(argv=None) -> int:
     per = 1 if a.quick else a.per_label
     if a.report_only or a.reference_only:
         df = pd.read_csv(OUT / "cases.csv")
+        text = df.select_dtypes("object").columns
+        df[text] = df[text].fillna("")  # empty text cells (no candidates, no detail) as written, not "nan"
     if a.reference_only:  # recompute the reference column only (deterministic: same cases, splits and calibration)
         todo = _todo(per, a.seed, a.quick, a.folds)
         assert [(j[0], j[2], j[3]) for j in todo] == list(zip(df["robot"], df["true"], df["poses"])), "plan changed"
@@ -336,7 +338,8 @@ def write_report(df: pd.DataFrame, a) -> int:
              f"**Diagnosis settings.** `diagnose(robot, train, test, folds={getattr(a, 'folds', 3)})` with the defaults: "
              "Tukey M-estimates, the test file sealed until the model is chosen, blocked cross-validation (time "
              "blocks and joint-space blocks, both scored), effect variants chosen on the training residual (BIC, "
-             "or the marginal likelihood for the transmission's fitted-prior series), clipped gain and Wilcoxon "
+             "or the marginal likelihood for the transmission's fitted-prior series, whose prior scales every CV fold "
+             "refits on its own training poses), clipped gain and Wilcoxon "
              "test, forward selection then backward elimination, then the verdict (`effect`, `none`, `ambiguous`: "
              "another candidate in place of a selected effect is not beaten by the selection's own rule on the same "
              "out-of-fold poses; `inconclusive`: weak probe offset, unstable out-of-fold registration, or a final "

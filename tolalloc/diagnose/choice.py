@@ -5,6 +5,10 @@ geometric columns; residual components beyond 3 robust sigma are clipped first, 
 variant. Variants without a prior compete by BIC on the residual degrees of freedom; variants whose columns carry
 a fitted prior (``EffectBasis.groups``, e.g. the transmission's harmonic series) by their marginal likelihood
 with the prior scales fitted (:mod:`.evidence`), and the chosen one keeps its ridge weights (``prior_w``).
+
+The prior scales are hyper-parameters fitted to data: a cross-validation fold must fit them on its own training
+poses (:func:`prior_weights`), or the held-out block has helped to set the ridge that predicts it -- and ``M``
+free scales tuned on the held-out noise make a many-column series look better out of fold than it is.
 """
 
 from __future__ import annotations
@@ -15,7 +19,7 @@ import numpy as np
 
 from tolalloc.diagnose.evidence import ard_evidence
 
-__all__ = ["choose_variant", "projected_residual"]
+__all__ = ["choose_variant", "projected_residual", "prior_weights"]
 
 
 def projected_residual(fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
@@ -77,3 +81,15 @@ def _by_evidence(cands: list, fit, Q, r, n: int):
         if ev.log_ml > best_ml:
             best, best_ml = replace(c, prior_w=ev.prior_w), ev.log_ml
     return best
+
+
+def prior_weights(basis, fit, J_fixed: np.ndarray, residual_mm: np.ndarray) -> np.ndarray:
+    """Ridge weights (M,) of ``basis``'s columns with its prior scales fitted on the poses of ``J_fixed`` only.
+
+    ``basis``: an effect basis with ``groups`` on those poses (P, 3, M); ``residual_mm`` (P, 3): the geometric
+    fit's residual on them. Linearised like :func:`choose_variant`: residual and columns projected off ``J_fixed``.
+    """
+    Q, r, n = projected_residual(fit, J_fixed, residual_mm)
+    Jc = np.einsum("ij,pjm->pim", fit.R, basis.B).reshape(len(r), -1)
+    Jc = Jc - Q @ (Q.T @ Jc)
+    return ard_evidence(Jc, r, basis.groups, n_eff=n).prior_w

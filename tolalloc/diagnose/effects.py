@@ -48,7 +48,8 @@ those the data can carry.
                       ``sin(N_j q_j), cos(N_j q_j)`` when the gear ratios ``N`` are known (``ref["gear_ratio"]``).
                       Every transmission variant carries a Gaussian prior per joint (``groups``) whose scale is
                       fitted by marginal likelihood on the training residual (:mod:`.evidence`): a ridge, so a
-                      long series does not fit noise.
+                      long series does not fit noise (each cross-validation fold refits the scales on its own
+                      training poses, :mod:`.select`).
 """
 
 from __future__ import annotations

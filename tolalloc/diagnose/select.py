@@ -9,7 +9,10 @@ request, see :func:`make_folds`). The test file is scored once, after the model 
 (not its values) decide only whether a chosen variant can be evaluated on it at all (``dir`` / temperature /
 time columns): if not, that effect is left out with the reason.
 Each effect's variant (:func:`tolalloc.diagnose.effects.variants`) is chosen first on the training residual
-(:func:`tolalloc.diagnose.choice.choose_variant`).
+(:func:`tolalloc.diagnose.choice.choose_variant`). A variant's fitted prior scales (the transmission's ridge, one
+scale per joint) are hyper-parameters: every fold refits them on its own training poses
+(:func:`tolalloc.diagnose.choice.prior_weights`), so a held-out block never helps to set the ridge that predicts it;
+the full training fit keeps those of the whole training file.
 
 Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model's median held-out error
 (:func:`clip_level`). Significance: one-sided Wilcoxon signed-rank test on the per-pose differences of clipped
@@ -38,7 +41,7 @@ from dataclasses import replace
 import numpy as np
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
-from tolalloc.diagnose.choice import choose_variant
+from tolalloc.diagnose.choice import choose_variant, prior_weights
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
@@ -69,12 +72,12 @@ class _Context:
         k = fold_count(folds, *self.J_fixed.shape)
         self.folds = make_folds(train, k, cv, seed)
         self.folds_joint = make_folds(train, k, "joint", seed) if cv == "blocked" else []
+        self.geo_residual = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's, on these poses
         self.fold_t_sd = _fold_t_sd(cal.geometric, train.q)
         self.bases, self.bases_test, self.reasons = {}, {}, {}
         t = cal.geometric.t_mm
         self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
-        res = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's residual on these poses
         for e in EFFECTS:
             ok, why = applicable(e, train)
             names = variants(e, train, self.ref, robot)
@@ -82,7 +85,7 @@ class _Context:
             if not ok:
                 continue
             cands = effect_bases(e, robot, train, t, self.ref, names)
-            chosen = choose_variant(cands, cal.geometric, self.J_fixed, res)
+            chosen = choose_variant(cands, cal.geometric, self.J_fixed, self.geo_residual)
             if test is not None and not _test_can_carry(e, chosen.variant, test):
                 self.reasons[e] = (f"the variant chosen on the training file ({chosen.variant}) needs a column the "
                                    "test file lacks (dir1..dirN / temperature_c / time_s)")
@@ -184,8 +187,9 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
     full = fit_model(start, q, xyz, t_prior=ctx.t_prior, **kw)
     warm = replace(full, beta=np.zeros(0))  # folds start from the full fit (same optimum, fewer iterations)
     prior = ctx.fold_prior(full)
-    oof = _out_of_fold(warm, q, xyz, ctx.folds, prior, kw)
-    oof_joint = _out_of_fold(warm, q, xyz, ctx.folds_joint, prior, kw) if ctx.folds_joint else None
+    fw = (lambda tr: _fold_prior_w(ctx, effects, keep, tr)) if w is not None else None
+    oof = _out_of_fold(warm, q, xyz, ctx.folds, prior, kw, fw)
+    oof_joint = _out_of_fold(warm, q, xyz, ctx.folds_joint, prior, kw, fw) if ctx.folds_joint else None
     label = "nominal" if nominal else "+".join(("geometric", *effects))
     return Evaluation(label, tuple(effects), full, names, keep, oof, None, None, oof_joint)
 
@@ -212,13 +216,31 @@ def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
     return test.xyz_mm - test_pred, test_pred
 
 
-def _out_of_fold(start, q, xyz, folds, t_prior, kw) -> np.ndarray:
+def _fold_prior_w(ctx, effects, keep, rows):
+    """Ridge weights of the kept effect columns with every fitted prior scale refitted on the poses ``rows`` (a
+    fold's training poses) only (:func:`tolalloc.diagnose.choice.prior_weights`); None without a prior."""
+    J = ctx.J_fixed.reshape(ctx.train.n_poses, 3, -1)[rows].reshape(3 * len(rows), -1)
+    parts = []
+    for e in effects:
+        b = ctx.bases[e]
+        if getattr(b, "prior_w", None) is None:
+            parts.append(np.zeros(b.B.shape[-1]))
+        else:
+            parts.append(prior_weights(replace(b, B=b.B[rows]), ctx.cal.geometric, J, ctx.geo_residual[rows]))
+    w = np.concatenate(parts)[keep]
+    return w if w.any() else None
+
+
+def _out_of_fold(start, q, xyz, folds, t_prior, kw, fold_w=None) -> np.ndarray:
     """Residuals of every fold's poses under the model fitted on the other folds, shape (P, 3)."""
     oof = np.zeros_like(xyz)
     B = kw["B"]
     for f in folds:
         tr = np.setdiff1d(np.arange(len(q)), f)
-        ff = fit_model(start, q[tr], xyz[tr], t_prior=t_prior, **(kw | {"B": None if B is None else B[tr]}))
+        kf = kw | {"B": None if B is None else B[tr]}
+        if fold_w is not None:
+            kf["beta_prior_w"] = fold_w(tr)
+        ff = fit_model(start, q[tr], xyz[tr], t_prior=t_prior, **kf)
         oof[f] = xyz[f] - ff.predict(q[f], None if B is None else B[f])
     return oof
 
