@@ -12,7 +12,8 @@ import pytest
 
 from tolalloc.allocate.calibrated_design import allocate_with_calibration
 from tolalloc.allocate.calibrated_exact import FEAS_TOL
-from tolalloc.allocate.calibrated_region import baseline_region, certified_region, problem_at
+from tolalloc.allocate.calibrated_region import baseline_region, certified_region, cutting_plane, problem_at
+from tolalloc.allocate.calibrated_summary import summary_search_lines
 from tolalloc.allocate.problem import build_problem
 from tolalloc.allocate.region import _position_cov, box_region, worst_pose
 from tolalloc.calibration import make_plan, posterior, split_errors
@@ -61,6 +62,19 @@ def test_pose_cov_callback_defaults_to_the_design(case):
     ref = worst_pose(pr, t, box, n_seed=64, n_starts=2, seed=3)
     cb = worst_pose(pr, None, box, n_seed=64, n_starts=2, seed=3, pose_cov=lambda Q: _position_cov(pr, t, Q))
     assert cb[1] == pytest.approx(ref[1], abs=1e-14) and np.allclose(cb[0], ref[0])
+
+
+def test_search_that_stops_says_why(case):
+    """A search that does not converge names its reason: the round limit, or a round with no design."""
+    robot, plan, pr, box = case
+    loose = lambda Q: _position_cov(pr, pr.t_max, Q)  # noqa: E731 (the loosest design misses p everywhere)
+    _, s, _ = cutting_plane(pr, box, lambda p: ("design", 1.0, loose), pr.q[:1], max_rounds=2, n_seed=32,
+                            n_starts=1)
+    assert not s.converged and s.rounds == 2 and s.stop_reason == "round limit (2) reached"
+    _, s, _ = cutting_plane(pr, box, lambda p: (None, float("nan"), None), pr.q[:3], max_rounds=5)
+    assert not s.converged and s.rounds == 1 and s.stop_reason == "no design over the 3 active pose(s) of round 1"
+    line = summary_search_lines("small", {"certified": s})[0]
+    assert line.endswith("(NOT converged: no design over the 3 active pose(s) of round 1)"), line
 
 
 def test_box_design_meets_p_on_fresh_poses(box_result):

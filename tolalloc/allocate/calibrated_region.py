@@ -51,6 +51,8 @@ class RegionSearch:
         Worst shortfall below ``tol`` within ``max_rounds``.
     time_s : float
     history : tuple of (round, cost, worst_p)
+    stop_reason : str
+        Why a search that did not converge stopped (``""`` when it converged).
     """
 
     active_q: np.ndarray
@@ -61,6 +63,7 @@ class RegionSearch:
     converged: bool
     time_s: float
     history: tuple = field(default=())
+    stop_reason: str = ""
 
 
 def design_prob(problem: AllocationProblem) -> float:
@@ -100,7 +103,8 @@ def cutting_plane(problem: AllocationProblem, region: Region, solve, q0, *, tol:
         state, cost, pose_cov = solve(pr)
         if pose_cov is None:
             return state, RegionSearch(active, rnd, float("nan"), active[-1], evals, False,
-                                       time.perf_counter() - t0, tuple(hist)), static
+                                       time.perf_counter() - t0, tuple(hist),
+                                       f"no design over the {len(active)} active pose(s) of round {rnd}"), static
         if static is None:
             static = static_joints(pr, region, seed=seed, pose_cov=pose_cov)
         q, pw, ne = worst_pose(pr, None, region, n_seed=n_seed, n_starts=n_starts, seed=seed + rnd, fixed=static,
@@ -111,7 +115,7 @@ def cutting_plane(problem: AllocationProblem, region: Region, solve, q0, *, tol:
             return state, RegionSearch(active, rnd, pw, q, evals, True, time.perf_counter() - t0, tuple(hist)), static
         active = np.vstack([active, q])
     return state, RegionSearch(active[:-1], max_rounds, pw, q, evals, False, time.perf_counter() - t0,
-                               tuple(hist)), static
+                               tuple(hist), f"round limit ({max_rounds}) reached"), static
 
 
 def region_start(problem: AllocationProblem, region: Region) -> np.ndarray:

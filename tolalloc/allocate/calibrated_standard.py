@@ -186,8 +186,8 @@ def _region_loop(res, pr, cat, margin, opt, n, oa, tol, max_rounds, seed, n_seed
     split, plan, box = res.post.split, res.plan, res.region
     evals, hist, moves = 0, [], 0
 
-    def record(rnd, pw, q, converged):
-        return RegionSearch(pr.q, rnd, pw, q, evals, converged, time.perf_counter() - t0, tuple(hist))
+    def record(rnd, pw, q, converged, why=""):
+        return RegionSearch(pr.q, rnd, pw, q, evals, converged, time.perf_counter() - t0, tuple(hist), why)
 
     for rnd in range(1, max_rounds + 1):
         t = margin.t_of(cat.u_of(opt, n)[None])[0]
@@ -204,10 +204,11 @@ def _region_loop(res, pr, cat, margin, opt, n, oa, tol, max_rounds, seed, n_seed
         margin.evaluations = done
         out = _descend(cat, margin, opt, n, how)
         if out is None:
-            return pr, margin, None, None, moves, "", record(rnd, pw, q, False)
+            return pr, margin, None, None, moves, "", record(rnd, pw, q, False, f"no standard design meets the "
+                                                                         f"{len(pr.q)} pose(s) of round {rnd}")
         opt, n, mv, oa = out
         moves += mv
-    return pr, margin, opt, n, moves, oa, record(max_rounds, pw, q, False)
+    return pr, margin, opt, n, moves, oa, record(max_rounds, pw, q, False, f"round limit ({max_rounds}) reached")
 
 
 def _result(res, pr, margin, opt, n, search, moves, coverage_n, cov_args, why, *, cat, extra, grade_cost, rounded,

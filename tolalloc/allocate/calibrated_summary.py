@@ -11,7 +11,8 @@ def _search(s) -> dict | None:
     if s is None:
         return None
     return {"rounds": s.rounds, "active_poses": len(s.active_q), "evaluations": s.evaluations,
-            "worst_p": _finite(s.worst_p), "converged": s.converged, "time_s": s.time_s}
+            "worst_p": _finite(s.worst_p), "converged": s.converged,
+            "why_not_converged": None if s.converged else s.stop_reason, "time_s": s.time_s}
 
 
 def _coverage(c) -> dict | None:
@@ -62,15 +63,19 @@ def summary(res) -> dict:
     return out
 
 
+def summary_search_lines(region_name: str, searches: dict) -> list[str]:
+    """One printed line per region search (``{name: RegionSearch or None}``): rounds, poses, worst ``P`` and, for
+    a search that did not converge, why it stopped."""
+    return [f"region {region_name} ({name}): {s.rounds} round(s), {len(s.active_q)} active poses, "
+            f"{s.evaluations} search evaluations, worst post-calibration P found {s.worst_p:.5f}"
+            + ("" if s.converged else f" (NOT converged: {s.stop_reason})")
+            for name, s in searches.items() if s is not None]
+
+
 def message(res) -> str:
     """Printed lines: region search, coverage, designs and costs."""
     pr = res.problem
-    lines = []
-    for name, s in (("certified", res.search), ("exact", res.search_exact)):
-        if s is not None:
-            lines.append(f"region {res.region.name} ({name}): {s.rounds} round(s), {len(s.active_q)} active poses, "
-                         f"{s.evaluations} search evaluations, worst post-calibration P found {s.worst_p:.5f}"
-                         + ("" if s.converged else " (NOT converged: round limit reached)"))
+    lines = summary_search_lines(getattr(res.region, "name", ""), {"certified": res.search, "exact": res.search_exact})
     c = res.coverage
     if c is not None:
         what = (f"{c.n} fresh poses of the box" if res.region_kind == "box"

@@ -242,11 +242,9 @@ class CalibratedToleranceAllocation(JobResult):
                        f"{cert.design.cost:.4f}); without calibration: the loosest grades, {cert.grade_cost_loosest:.4f}")
         if self.standard is not None:
             out.append(self.standard.message_line())
-            s = self.standard.search
-            if s is not None:
-                out.append(f"region {res.region.name} (standard): {s.rounds} round(s), {len(s.active_q)} active poses, "
-                           f"{s.evaluations} search evaluations, worst post-calibration P found {s.worst_p:.5f}"
-                           + ("" if s.converged else " (NOT converged: round limit reached)"))
+            from tolalloc.allocate.calibrated_summary import summary_search_lines
+
+            out += summary_search_lines(getattr(res.region, "name", ""), {"standard": self.standard.search})
             c = self.standard.coverage
             if c is not None and res.region_kind == "box":
                 out.append(f"coverage of the standard design (post-calibration P): {c.n} fresh poses of the box, min P = "
