@@ -12,7 +12,12 @@ import pytest
 
 from tolalloc.allocate.calibrated_design import allocate_with_calibration
 from tolalloc.allocate.calibrated_exact import FEAS_TOL
-from tolalloc.allocate.calibrated_region import baseline_region, certified_region, cutting_plane, problem_at
+from tolalloc.allocate.calibrated_region import (
+    baseline_region,
+    certified_region,
+    cutting_plane,
+    problem_at,
+)
 from tolalloc.allocate.calibrated_summary import summary_search_lines
 from tolalloc.allocate.problem import build_problem
 from tolalloc.allocate.region import _position_cov, box_region, worst_pose
