@@ -381,9 +381,10 @@ def test_diagnosis_of_a_robot_without_link_deflection_answers():
                                    convention="standard")
     frame = generate(robot, "none", 40, np.random.default_rng(1)).frame
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", UserWarning)  # scipy: collinear points leave the rotation about their line free
+        warnings.simplefilter("error")  # collinear points: the free rotation about their line is a guard, no warning
         d = tolalloc.diagnose_measurements(robot, frame.iloc[:30], frame.iloc[30:], folds=2)
     assert d.effect == "none" and d.summary()["verdict"] in ("none", "inconclusive")
+    assert any("on one straight line" in g for g in d.diagnosis.guards)
 
 
 # ------------------------------------------------------------------------------------------------ Robot & co

@@ -148,3 +148,32 @@ def test_cli_prints_guards_and_writes_them_to_json(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "GUARD: extrapolation: 30 of 30 test poses" in out
     assert any(g.startswith("extrapolation") for g in json.loads((tmp_path / "d.json").read_text())["guards"])
+
+
+
+def test_tool_points_on_one_line_are_a_guard_not_a_warning():
+    """A single prismatic slide puts every tool point on one line: the tracker rotation about it is undetermined.
+    The diagnosis says so in a guard (no SciPy warning from the registration's point-set alignment); a robot whose
+    poses span a volume gets no such guard."""
+    import warnings
+
+    import pandas as pd
+
+    from tolalloc.robot.model import Joint, Link, Robot
+
+    robot = Robot("slide", (Link("l1", np.array([0.0, 0.0, 300.0])),
+                            Joint("j1", "prismatic", np.array([1.0, 0.0, 0.0]), -200.0, 200.0),
+                            Link("l2", np.array([0.0, 0.0, 100.0]))))
+    rng = np.random.default_rng(0)
+    q = rng.uniform(-200.0, 200.0, 60)
+    pts = np.array([robot.fk([v])[:3, 3] for v in q]) + rng.normal(0.0, 0.02, (60, 3))
+    frame = pd.DataFrame({"q1": q, "x_mm": pts[:, 0], "y_mm": pts[:, 1], "z_mm": pts[:, 2]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        d = tolalloc.diagnose_measurements(robot, frame, folds=3)
+    assert any(g.startswith("registration: the 60 training poses put the tool point on one straight line")
+               for g in d.diagnosis.guards)
+    tc = tolalloc.load_robot("tool_changer")
+    case = tolalloc.diagnose.generate(tc, "none", 40, np.random.default_rng(2))
+    d = diagnose(tc, tolalloc.diagnose.measurements_from_frame(case.frame, tc), folds=3)
+    assert not any("straight line" in g for g in d.guards)

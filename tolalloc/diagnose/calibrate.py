@@ -28,6 +28,7 @@ identifiable parameters).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -44,7 +45,7 @@ from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, count_fit, nor
                                      solve, subsample_index)
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
-           "fixed_jacobian", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C", "TUKEY_C",
+           "fixed_jacobian", "is_collinear", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C", "TUKEY_C",
            "OUTLIER_C", "outlier_rows"]
 
 #: Robust loss of the diagnosis's fits (see :func:`fit_model`).
@@ -58,10 +59,26 @@ TUKEY_C = 4.0
 OUTLIER_C = TUKEY_C
 
 
+def is_collinear(points: np.ndarray, rtol: float = 1e-9) -> bool:
+    """Whether points (P, 3) lie on one line (or coincide): second singular value of the centred points at most
+    ``rtol`` times the first (always for fewer than 3 points)."""
+    if len(points) < 3:
+        return True
+    s = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(s[1] <= rtol * max(s[0], 1e-300))
+
+
 def kabsch(a: np.ndarray, b: np.ndarray):
-    """Rotation ``R`` and translation ``p`` minimising ``sum |R a_i + p - b_i|^2``; a, b shape (P, 3)."""
+    """Rotation ``R`` and translation ``p`` minimising ``sum |R a_i + p - b_i|^2``; a, b shape (P, 3).
+
+    For points ``a`` on one line the rotation about the line is free: SciPy then returns the smallest rotation, and
+    its warning about that is not passed on (the diagnosis reports it as a guard, :func:`.pipeline.diagnose`).
+    """
     ca, cb = a.mean(0), b.mean(0)
-    rot, _ = Rotation.align_vectors(b - cb, a - ca)
+    with warnings.catch_warnings():
+        if is_collinear(a):
+            warnings.filterwarnings("ignore", message="Optimal rotation is not uniquely", category=UserWarning)
+        rot, _ = Rotation.align_vectors(b - cb, a - ca)
     R = rot.as_matrix()
     return R, cb - R @ ca
 

@@ -11,6 +11,7 @@ from threadpoolctl import threadpool_limits
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import (DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, initial_fit,
+                                        is_collinear,
                                         outlier_rows)
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.effects import effect_basis
@@ -20,7 +21,8 @@ from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.register import REGISTER_N, register_and_score, register_count
-from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, progress_bar, progress_scope, subsample_index
+from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
+                                     progress_scope, subsample_index)
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test, select_effects
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
@@ -37,6 +39,17 @@ MIN_SUBSAMPLE_ROWS = 200
 BASIS_CACHE_BYTES = 256 * 2**20
 #: Robust losses ``robust_loss`` accepts.
 LOSS_CHOICES = ("tukey", "huber", "soft_l1")
+
+
+def _line_guard(robot: Robot, train: Measurements) -> str | None:
+    """A guard when the training poses put the nominal tool point on one line: the tracker frame's rotation about
+    that line is then not determined by the data (the registration takes the smallest rotation)."""
+    pts, _ = point_kinematics(robot.screws, robot.home, train.q, np.zeros(3))
+    if not is_collinear(pts):
+        return None
+    return (f"registration: the {train.n_poses} training poses put the tool point on one straight line, so the "
+            "tracker frame's rotation about that line is not determined by them (the smallest rotation is used): "
+            "predictions for poses off that line are not supported; measure poses that span a plane or a volume")
 
 
 def _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss, target_offset_mm,
@@ -174,6 +187,9 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     geo = cal.geometric if sub is None else replace(cal.geometric, residual_mm=cal.geometric.residual_mm[sub])
     check = parameter_checks(geo, cv_train.q)  # large files: posterior sd from the subsample (conservative)
     guards = list(check.guards())
+    line = _line_guard(robot, train)
+    if line is not None:
+        guards.append(line)
     if chosen is final and "joint_compliance" in final.effects:
         Btr = kept_basis(ctx.bases, final)
         fit_cv = final.fit if sub is None else replace(final.fit, residual_mm=final.fit.residual_mm[sub])
