@@ -2,6 +2,7 @@
 
 import numpy as np
 from scipy.spatial.transform import Rotation
+from test_diagnose_geometry import _limits, _measure
 
 import tolalloc
 from tolalloc.diagnose import diagnose
@@ -10,8 +11,6 @@ from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, prior_flags
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import Evaluation
-
-from test_diagnose_geometry import _limits, _measure
 
 
 def _poses(robot, n, rng, q6_deg=None):
@@ -76,6 +75,7 @@ def _scaled_a2(err_mm):
     import copy
     import tomllib
     from importlib.resources import files
+
     from tolalloc.robot.io.dh import robot_from_dh_dict
     data = copy.deepcopy(tomllib.loads((files("tolalloc") / "data/robots/ur10.toml").read_text()))
     data["dh"][1]["a_m"] += err_mm * 1e-3
