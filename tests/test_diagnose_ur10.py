@@ -8,6 +8,7 @@ import importlib.util
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import tolalloc
@@ -72,3 +73,17 @@ def test_issue15_target_no_final_worse_than_nominal_without_a_guard(run):
         assert np.intersect1d(d.registration.register_index, d.scored_index).size == 0
         assert len(d.scored_index) == te.shape[0] - 30
     assert 0.0 <= d.uncertainty.coverage <= 1.0 and np.all(d.uncertainty.sigma_mm > 0)
+
+
+def test_session_coverage_is_mod_360():
+    """The study's joint-angle coverage counts an angle and the same angle 360 deg away as one, and disjoint
+    ranges as 0 %."""
+    spec_s = importlib.util.spec_from_file_location("ur10_sessions", ROOT / "studies" / "sim2real_ur10" / "sessions.py")
+    sessions = importlib.util.module_from_spec(spec_s)
+    spec_s.loader.exec_module(sessions)
+    a = pd.DataFrame({"q1": np.linspace(-170, 40, 50), "q2": np.linspace(-300, -200, 50)})
+    c = pd.DataFrame({"q1": np.linspace(52, 180, 50), "q2": np.linspace(60, 160, 50)})
+    cov = sessions.coverage(a, c, 2).set_index("poses")
+    assert cov.loc["C poses covered by A", "q1_pct"] == 0.0
+    assert cov.loc["C poses covered by A", "q2_pct"] == 100.0
+    assert cov.loc["A poses covered by C", "q2_pct"] == 100.0

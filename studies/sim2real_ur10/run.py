@@ -19,7 +19,9 @@ out-of-fold residuals only and scored on the test poses; a second GP on the *geo
 residual says what a joint-space regressor removes where the selected effects (e.g. the transmission's harmonic
 series) stand. The joint-angle periodogram (:func:`periodogram`) looks for lines of the joint-periodic residual
 per joint, including the wave-generator orders ``N`` and ``2N`` of a strain-wave gear (``GEAR_RATIO``).
-Writes reports/sim2real_ur10/: report.md, summary.csv, gap_split.csv, gap_gp.csv, periodogram.csv and per-run
+What differs between the sessions (joint-angle coverage, one model fitted to both sessions, registration on 30 vs
+every test pose, temperature) is measured by `sessions.py`. Writes reports/sim2real_ur10/: report.md, summary.csv,
+gap_split.csv, gap_gp.csv, periodogram.csv, sessions_*.csv and per-run
 reports, tables and figures (prefix = run name). The data are read from ../shared/data and never copied.
 
     python studies/sim2real_ur10/run.py [--quick]
@@ -45,6 +47,7 @@ from tolalloc.report.diagnosis import write_report
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from convert_ur10 import DATA, SERIES, series  # noqa: E402
+from sessions import registration_rows, section as sessions_section  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_ur10"
 TIME_TRAIN = 0.7
@@ -210,12 +213,13 @@ def main(argv=None) -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     for old in OUT.glob("within_*"):  # files of an earlier version of this study (runs renamed)
         old.unlink()
-    rows, gaps, gps, sections = [], [], [], []
+    rows, gaps, gps, sections, reg_rows = [], [], [], [], []
     for name, (tr, te, frame, kind) in make_runs(A, C).items():
         t0 = time.perf_counter()
         d = diagnose(robot, measurements_from_frame(tr, robot, f"{name}:train"),
                      measurements_from_frame(te, robot, f"{name}:test"), test_frame=frame)
         gap = diagnosis_gap_split(d)
+        reg_rows += registration_rows(name, d) if frame == "refit" else []
         dt = time.perf_counter() - t0
         write_report(d, OUT, title=f"UR10 {name}", prefix=f"{name}_")
         rows.append(summarise(name, kind, d, dt) | {"gap_gp_test_explained_pct": 100 * gap.gp_test_explained,
@@ -237,7 +241,9 @@ def main(argv=None) -> int:
     pg = periodogram(robot, {"A": A, "C": C})
     pg.to_csv(OUT / "periodogram.csv", index=False, float_format="%.4g")
     lines = (report_lines(summary, gap_all, A_all, C_all, step_a, step_c, a.quick) + gp_lines(gp_all, tracker_std_mm())
-             + periodogram_lines(pg) + joint_ranges(A_all, C_all, robot))
+             + periodogram_lines(pg) + joint_ranges(A_all, C_all, robot)
+             + sessions_section(robot, A_all, C_all, {"A": measurements_from_frame(A, robot, "A"),
+                                                      "C": measurements_from_frame(C, robot, "C")}, reg_rows, OUT))
     (OUT / "report.md").write_text("\n".join(lines + ["## Runs", "", *sections]) + "\n")
     print(f"-> {OUT / 'report.md'}")
     return 0
