@@ -177,3 +177,20 @@ def test_tool_points_on_one_line_are_a_guard_not_a_warning():
     case = tolalloc.diagnose.generate(tc, "none", 40, np.random.default_rng(2))
     d = diagnose(tc, tolalloc.diagnose.measurements_from_frame(case.frame, tc), folds=3)
     assert not any("straight line" in g for g in d.guards)
+
+
+def test_extrapolation_counts_revolute_angles_modulo_a_turn():
+    """A test angle one turn away from the training angles is the same joint position for every fitted model:
+    no range flag and no distance flag; a training range across +-180 deg is one short arc, not 360 deg."""
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(3)
+    q_train = _poses(robot, 200, rng, (-30, 30))
+    q_test = q_train[:50] + rng.normal(0.0, 0.01, (50, robot.n_joints))
+    q_test[:, 5] += 2 * np.pi * rng.choice([-1, 1], 50)  # wrist 3 one turn away (its limits are +-360 deg)
+    ex = extrapolation_flags(robot, q_train, q_test)
+    assert not ex.outside_range.any() and not ex.far.any()
+    q_train[:, 0] = np.deg2rad(rng.uniform(160.0, 200.0, 200))  # base angles across 180 deg: a 40 deg arc
+    q_test = q_train[:20].copy()
+    q_test[:, 0] = np.deg2rad(rng.uniform(-60.0, 60.0, 20))  # inside the linear range -160..200, outside the arc
+    ex = extrapolation_flags(robot, np.where(q_train > np.pi, q_train - 2 * np.pi, q_train), q_test)
+    assert ex.outside_range.all() and ex.joints_outside == ("shoulder_pan_joint",)

@@ -11,8 +11,8 @@
   position level (the flange axis hardly changed direction). A well-identified deviation (``|v| >= 3 s`` and
   ``|v| >= b / 2``) is a **finding**, reported but not a guard: a real UR10's 1 mm elbow offset is as built.
 * :func:`extrapolation_flags` -- per test pose: a joint value outside the training range by more than a
-  margin (5 deg / 5 mm), or a joint-space distance to the nearest training pose (each joint divided by its
-  training standard deviation) beyond ``far_factor`` x the 95th percentile of the training poses'
+  margin (5 deg / 5 mm; revolute angles modulo 360 deg), or a joint-space distance to the nearest training pose
+  (each joint divided by its training standard deviation; revolute ones wrapping around) beyond ``far_factor`` x the 95th percentile of the training poses'
   leave-one-out nearest-neighbour distances. Such predictions are extrapolations.
 * :func:`cv_fallback` -- a fitted model that does worse than a simpler one on cross-validation (out-of-fold RMS
   larger by more than ``FALLBACK_MARGIN``, 1 %) is not used: final worse than nominal -> nominal; final (with
@@ -98,8 +98,24 @@ class Extrapolation:
                 "distance": self.distance.tolist(), "threshold": self.threshold, "joints_outside": list(self.joints_outside)}
 
 
+def _outside_arc(a_train: np.ndarray, a_test: np.ndarray, margin: float) -> np.ndarray:
+    """Test angles (T,) [rad] farther than ``margin`` from the shortest arc holding every training angle (P,):
+    the circle minus its largest gap between training angles (angles modulo 2 pi)."""
+    two_pi = 2.0 * np.pi
+    a = np.sort(np.mod(a_train, two_pi))
+    gaps = np.diff(np.append(a, a[0] + two_pi))
+    i = int(np.argmax(gaps))
+    start, length = a[(i + 1) % len(a)], two_pi - gaps[i]
+    fwd = np.mod(a_test - start, two_pi)  # 0 .. 2 pi past the arc's start
+    dist = np.where(fwd <= length, 0.0, np.minimum(fwd - length, two_pi - fwd))
+    return dist > margin
+
+
 def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *, far_factor: float = FAR_FACTOR) -> Extrapolation:
     """Flag test poses that extrapolate from the training poses (see the module docstring).
+
+    Revolute joint values count modulo 360 deg (every fitted model is periodic in them): the range check uses the
+    shortest arc holding the training angles, and joint-space distances wrap around.
 
     Parameters
     ----------
@@ -111,12 +127,19 @@ def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *
     margin = np.where(rev, np.deg2rad(RANGE_MARGIN_DEG), RANGE_MARGIN_MM)
     lo, hi = q_train.min(0), q_train.max(0)
     out_j = (q_test < lo - margin) | (q_test > hi + margin)
+    for k in np.flatnonzero(rev):
+        out_j[:, k] = _outside_arc(q_train[:, k], q_test[:, k], margin[k])
     floor = np.where(rev, np.deg2rad(1.0), 1.0)  # a joint held still in training: 1 deg / 1 mm scale
     scale = np.maximum(q_train.std(0), floor)
-    tree = cKDTree(q_train / scale)
-    loo = tree.query(q_train / scale, k=2)[0][:, 1] if len(q_train) > 1 else np.zeros(1)
+    # a torus in the revolute coordinates (period 2 pi / scale); prismatic ones in a box too long to wrap
+    both = np.vstack([q_train, q_test])
+    base = np.where(rev, 0.0, both.min(0))
+    span = np.where(rev, 2.0 * np.pi, 3.0 * (both.max(0) - both.min(0)) + 1.0) / scale
+    wrap = lambda q: np.mod((q - base) / scale, span)  # noqa: E731
+    tree = cKDTree(wrap(q_train), boxsize=span)
+    loo = tree.query(wrap(q_train), k=2)[0][:, 1] if len(q_train) > 1 else np.zeros(1)
     threshold = float(far_factor * np.percentile(loo, 95))
-    dist = tree.query(q_test / scale, k=1)[0]
+    dist = tree.query(wrap(q_test), k=1)[0]
     joints = tuple(j.name for k, j in enumerate(robot.joints) if out_j[:, k].any())
     return Extrapolation(out_j.any(1), dist > threshold, dist, threshold, joints)
 
