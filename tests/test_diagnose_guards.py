@@ -194,3 +194,7 @@ def test_extrapolation_counts_revolute_angles_modulo_a_turn():
     q_test[:, 0] = np.deg2rad(rng.uniform(-60.0, 60.0, 20))  # inside the linear range -160..200, outside the arc
     ex = extrapolation_flags(robot, np.where(q_train > np.pi, q_train - 2 * np.pi, q_train), q_test)
     assert ex.outside_range.all() and ex.joints_outside == ("shoulder_pan_joint",)
+    q_edge = np.zeros((3, robot.n_joints))
+    q_edge[1], q_edge[2] = -1e-17, 2 * np.pi  # -1e-17 wraps to the period itself in floating point
+    d = extrapolation_flags(robot, np.vstack([q_train, q_edge[1]]), q_edge).distance  # one position three times
+    np.testing.assert_allclose(d[1:], d[0], rtol=1e-12)

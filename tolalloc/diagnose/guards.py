@@ -135,7 +135,11 @@ def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *
     both = np.vstack([q_train, q_test])
     base = np.where(rev, 0.0, both.min(0))
     span = np.where(rev, 2.0 * np.pi, 3.0 * (both.max(0) - both.min(0)) + 1.0) / scale
-    wrap = lambda q: np.mod((q - base) / scale, span)  # noqa: E731
+
+    def wrap(q):
+        w = np.mod((q - base) / scale, span)
+        return np.where(w < span, w, 0.0)  # np.mod of a tiny negative value can round up to the period itself
+
     tree = cKDTree(wrap(q_train), boxsize=span)
     loo = tree.query(wrap(q_train), k=2)[0][:, 1] if len(q_train) > 1 else np.zeros(1)
     threshold = float(far_factor * np.percentile(loo, 95))
