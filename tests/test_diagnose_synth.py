@@ -35,3 +35,19 @@ def test_noise_and_effect_size():
     assert len(tr) == 45 and len(te) == 15
     with pytest.raises(TolallocError, match="one of"):
         generate(robot, "gravity", 10)
+
+
+def test_an_effect_the_robot_cannot_show_is_refused_not_nan():
+    """A single prismatic joint has no revolute joint for a transmission error and no link a load can bend: the
+    generator says so (it used to scale by 1/0 and write NaN into the table)."""
+    import warnings
+
+    robot = tolalloc.Robot.from_dh([{"name": "q1", "type": "prismatic", "d_mm": 300, "a_mm": 200, "alpha_deg": 90}],
+                                   convention="standard")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for effect in ("transmission", "link_deflection"):
+            with pytest.raises(TolallocError, match=f"'{effect}' moves no target point of robot 'dh_robot'"):
+                generate(robot, effect, 20, np.random.default_rng(0))
+        frame = generate(robot, "backlash", 20, np.random.default_rng(0)).frame
+    assert np.isfinite(frame.select_dtypes("number").to_numpy()).all()

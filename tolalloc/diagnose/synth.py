@@ -109,7 +109,12 @@ def generate(robot: Robot, effect: str, n_poses: int = 200, rng: np.random.Gener
         # equalise the columns' typical contributions so no single one dominates by units alone
         col_rms = np.sqrt(np.mean(np.sum(basis.B ** 2, axis=1), axis=0))
         beta = beta / np.where(col_rms > 0, col_rms, 1.0)
-        scale = mag / np.sqrt(np.mean(np.sum((basis.B @ beta) ** 2, axis=1)))
+        rms = float(np.sqrt(np.mean(np.sum((basis.B @ beta) ** 2, axis=1))))
+        if not rms > 0:
+            raise TolallocError(f"effect: {effect!r} moves no target point of robot {robot.name!r} at these poses "
+                                f"(its basis is zero, e.g. no link it can bend or no joint it can act on); "
+                                f"generate another effect (one of {', '.join(LABELS)}).")
+        scale = mag / rms
         beta = beta * scale
         if effect in ("joint_compliance", "backlash", "transmission"):
             A, _ = joint_effect_dq(effect, robot, q, direction)
