@@ -198,6 +198,14 @@ def test_interruptible_returns_raises_and_lets_a_signal_stop_the_wait(python_sig
     assert time.monotonic() - t0 < 15.0  # the interrupt ends the wait, not the 30 s call
 
 
+def _calplan_is_interrupted(tmp_path, capsys, code):
+    """Run ``calplan`` (its relaxation patched to meet a signal) and check: exit ``code``, the one line, no file."""
+    out = tmp_path / "plan.csv"
+    assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "200", "--out", str(out)]) == code
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypatch, capsys, python_sigint):
     # regression: SIGINT while cvxpy imported its solver interfaces became ImportError('initialization failed')
     # inside a C extension, cvxpy logged and ignored it, and calplan finished and wrote its plan (exit 0) with
@@ -215,11 +223,7 @@ def test_an_interrupt_a_library_swallows_still_stops_the_run(tmp_path, monkeypat
         return orig(*args, **kwargs)
 
     monkeypatch.setattr(design, "relax", swallowing)
-    out = tmp_path / "plan.csv"
-    code = main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "200", "--out", str(out)])
-    assert code == 130
-    assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
-    assert list(tmp_path.iterdir()) == []
+    _calplan_is_interrupted(tmp_path, capsys, 130)
 
 
 def test_an_interrupt_a_library_turns_into_its_own_error_is_still_an_interrupt(tmp_path, monkeypatch, capsys,
@@ -236,11 +240,7 @@ def test_an_interrupt_a_library_turns_into_its_own_error_is_still_an_interrupt(t
             raise RuntimeError("no compiled object yet for <Library '_prefix'>") from None  # what the library did
 
     monkeypatch.setattr(design, "relax", converting)
-    out = tmp_path / "plan.csv"
-    code = main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "200", "--out", str(out)])
-    assert code == 143
-    assert capsys.readouterr().err.strip().splitlines()[-1] == "interrupted; nothing written"
-    assert list(tmp_path.iterdir()) == []
+    _calplan_is_interrupted(tmp_path, capsys, 143)
 
 
 def test_signals_deferred_holds_a_signal_another_thread_receives(python_sigint):

@@ -45,8 +45,8 @@ from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, count_fit, nor
                                      solve, subsample_index)
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
-           "fixed_jacobian", "is_collinear", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C", "TUKEY_C",
-           "OUTLIER_C", "outlier_rows"]
+           "fixed_jacobian", "is_collinear", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C",
+           "TUKEY_C", "OUTLIER_C", "outlier_rows"]
 
 #: Robust loss of the diagnosis's fits (see :func:`fit_model`).
 DEFAULT_LOSS = "tukey"

@@ -12,8 +12,8 @@
   ``|v| >= b / 2``) is a **finding**, reported but not a guard: a real UR10's 1 mm elbow offset is as built.
 * :func:`extrapolation_flags` -- per test pose: a joint value outside the training range by more than a
   margin (5 deg / 5 mm; revolute angles modulo 360 deg), or a joint-space distance to the nearest training pose
-  (each joint divided by its training standard deviation; revolute ones wrapping around) beyond ``far_factor`` x the 95th percentile of the training poses'
-  leave-one-out nearest-neighbour distances. Such predictions are extrapolations.
+  (each joint divided by its training standard deviation; revolute ones wrapping around) beyond ``far_factor``
+  x the 95th percentile of the training poses' leave-one-out nearest-neighbour distances. Such predictions are extrapolations.
 * :func:`cv_fallback` -- a fitted model that does worse than a simpler one on cross-validation (out-of-fold RMS
   larger by more than ``FALLBACK_MARGIN``, 1 %) is not used: final worse than nominal -> nominal; final (with
   effects) worse than geometric -> geometric. Geometry alone worse than nominal while the final model wins

@@ -11,8 +11,7 @@ from threadpoolctl import threadpool_limits
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import (DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, initial_fit,
-                                        is_collinear,
-                                        outlier_rows)
+                                        is_collinear, outlier_rows)
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
