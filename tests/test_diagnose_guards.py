@@ -1,5 +1,7 @@
 """Guards of the diagnosis on constructed cases: extrapolation, implausible (prior) parameters, CV fallback."""
 
+import re
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 from test_diagnose_geometry import _limits, _measure
@@ -8,7 +10,8 @@ import tolalloc
 from tolalloc.diagnose import diagnose
 from tolalloc.diagnose.calibrate import calibrate, fit_model, initial_fit
 from tolalloc.diagnose.geometry import build_geometry_model
-from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, prior_flags
+from tolalloc.diagnose.guards import (RANGE_MARGIN_DEG, Extrapolation, cv_fallback, extrapolation_flags,
+                                      prior_flags)
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import Evaluation
 
@@ -198,3 +201,35 @@ def test_extrapolation_counts_revolute_angles_modulo_a_turn():
     q_edge[1], q_edge[2] = -1e-17, 2 * np.pi  # -1e-17 wraps to the period itself in floating point
     d = extrapolation_flags(robot, np.vstack([q_train, q_edge[1]]), q_edge).distance  # one position three times
     np.testing.assert_allclose(d[1:], d[0], rtol=1e-12)
+
+
+def test_training_angles_round_the_whole_turn_leave_no_outside():
+    """Wrist angles spread over the full turn: the largest gap between them is a gap inside the range like the
+    others, so a test angle in it is not outside the range; a clearly larger gap still is."""
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(8)
+    q_train = _poses(robot, 90, rng, (-30, 30))
+    q_train[:, 5] = rng.uniform(-np.pi, np.pi, 90)
+    a = np.sort(np.mod(q_train[:, 5], 2 * np.pi))
+    gaps = np.diff(np.append(a, a[0] + 2 * np.pi))
+    k = int(np.argmax(gaps))
+    assert np.rad2deg(gaps[k]) > 2 * RANGE_MARGIN_DEG  # a test angle in its middle is beyond the margin
+    q_test = q_train[:5].copy()
+    q_test[:, 5] = a[k] + gaps[k] / 2  # the middle of the largest gap
+    ex = extrapolation_flags(robot, q_train, q_test)
+    assert not ex.outside_range.any()
+    q_train[:, 5] = rng.uniform(-np.pi, np.pi / 2, 90)  # a 90 deg quarter never visited: that gap is the outside
+    q_test[:, 5] = 3 * np.pi / 4
+    ex = extrapolation_flags(robot, q_train, q_test)
+    assert ex.outside_range.all() and ex.joints_outside == ("wrist_3_joint",)
+    assert re.search(r"5 outside the training range of wrist_3_joint", ex.message())
+
+
+def test_extrapolation_message_names_only_the_criteria_that_fired():
+    far_only = Extrapolation(np.zeros(4, bool), np.array([True, False, True, False]), np.ones(4), 0.5, ())
+    msg = far_only.message()
+    assert msg.startswith("extrapolation: 2 of 4 test poses") and "outside the training range" not in msg
+    assert "2 farther from every training pose than 0.5" in msg
+    range_only = Extrapolation(np.array([True, False]), np.zeros(2, bool), np.zeros(2), 0.5, ("elbow_joint",))
+    assert "1 outside the training range of elbow_joint" in range_only.message()
+    assert "farther" not in range_only.message()

@@ -9,6 +9,7 @@
 * bad input: a test file of another robot, time stamps in ms or decreasing, arguments out of range.
 """
 
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -141,6 +142,7 @@ def test_too_few_rows_for_a_model_is_a_reason_not_a_fit():
     ctx = SimpleNamespace(train=SimpleNamespace(n_poses=20), folds=[np.arange(10), np.arange(10, 20)], folds_joint=[])
     assert "fewer than the" in rows_problem(ctx, 60)
     assert "smallest cross-validation fold trains on 10 poses" in rows_problem(ctx, 40)
+    assert rows_problem(ctx, 40, 20) is None  # the folds' fits lean on the geometric prior: only 20 without one
     assert rows_problem(ctx, 20) is None
 
 
@@ -153,3 +155,36 @@ def test_too_few_rows_for_a_model_is_a_reason_not_a_fit():
 def test_argument_errors_name_the_argument(backlash_case, kw, words):
     with pytest.raises(TolallocError, match=words):
         diagnose(ROBOT, backlash_case[0], **kw)
+
+
+def test_an_effect_the_test_file_cannot_carry_is_still_chosen_on_the_training_file(backlash_case):
+    """Approach-direction backlash without dir columns in the test file: the choice is the training file's alone
+    (the same as with the columns), the test figures leave the effect out, and the reasons say so."""
+    train, te = backlash_case
+    full = diagnose(ROBOT, train, measurements_from_frame(te, ROBOT), folds=2, max_effects=1)
+    bare = te.drop(columns=[c for c in te.columns if c.startswith("dir")])
+    d = diagnose(ROBOT, train, measurements_from_frame(bare, ROBOT), folds=2, max_effects=1)
+    assert d.effects == full.effects == ("backlash",)
+    pd.testing.assert_frame_equal(d.sequence_frame(), full.sequence_frame())
+    assert any("judged on the training file only: the test file has no dir1..dirN columns" in r
+               for r in d.verdict.reasons), d.verdict.reasons
+    assert d.verdict.verdict in ("effect", "ambiguous") and "backlash" in d.verdict.candidates
+
+
+@pytest.mark.parametrize("poses, testable", [(16, False), (18, True)])
+def test_too_few_training_poses_for_geometry_and_effect_are_not_fitted(poses, testable):
+    """12 training poses (36 coordinates) against 9 + 18 geometric parameters: joint compliance (6 more) would leave
+    fewer than two spare poses, so it is not fitted (the reason says why) and not claimed; with 14 poses it is
+    tested and named."""
+    case = generate(ROBOT, "joint_compliance", poses, np.random.default_rng(3))
+    tr, te = split_frame(case.frame, 0.22, np.random.default_rng(2))
+    d = diagnose(ROBOT, measurements_from_frame(tr, ROBOT), measurements_from_frame(te, ROBOT), folds=2)
+    assert len(d.calibration.geometric.geo_index) == 18
+    comp = next(c for c in d.ranking if c.effect == "joint_compliance")
+    assert comp.applicable is testable
+    if testable:
+        assert d.verdict.verdict == "effect" and d.effects == ("joint_compliance",)
+    else:
+        assert re.search(r"the model has \d+ parameters; the training file's 12 poses give 36 coordinates, fewer "
+                         r"than the \d+ it needs", comp.reason)
+        assert "joint_compliance" not in d.verdict.candidates

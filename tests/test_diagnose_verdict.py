@@ -4,6 +4,7 @@ the printed summary (report/diagnosis.py summary_lines).
 Constructed evaluations (known out-of-fold residuals) test the decision rules without fitting; one small
 synthetic diagnosis checks the whole printed summary and the JSON keys."""
 
+import re
 from types import SimpleNamespace
 
 import numpy as np
@@ -55,28 +56,72 @@ def test_alternative_in_place_of_the_selected_effect(alt_scale, separable):
     assert v.verdict in VERDICTS and v.headline().startswith(f"verdict: {v.verdict}")
 
 
+def _models(base, geo_scale=0.5, final_scale=0.5, test=None):
+    """nominal / geometric / final evaluations whose out-of-fold residuals are multiples of ``base``."""
+    nominal = _ev((), base, None if test is None else test["nominal"])
+    geometric = _ev((), geo_scale * base, None if test is None else test["geometric"])
+    final = _ev(("a",), final_scale * base, None if test is None else test["final"])
+    return {"nominal": nominal, "geometric": geometric, "final": final}
+
+
+def _cal(base, geo_scale=0.5):
+    r = float(np.sqrt(np.mean(np.sum(base ** 2, 1))))
+    return SimpleNamespace(nominal=SimpleNamespace(rms_mm=r), geometric=SimpleNamespace(rms_mm=geo_scale * r))
+
+
 def test_inconclusive_reasons_and_precedence():
     rng = np.random.default_rng(1)
     base = rng.normal(0, 0.1, (60, 3))
-    nominal = _ev((), base)
-    cal_nominal = SimpleNamespace(rms_mm=float(np.sqrt(np.mean(np.sum(base ** 2, 1)))))
-    assert inconclusive_reasons(None, nominal, cal_nominal, None) == []
-    wild = _ev((), (UNSTABLE_RATIO + 1) * base)  # out-of-fold four times the training RMS
-    assert "unstable out of fold" in inconclusive_reasons(None, wild, cal_nominal, None)[0]
-    n, f = error_stats(base), error_stats(1.1 * base)
-    msgs = inconclusive_reasons(None, nominal, cal_nominal, {"nominal": n, "final": f})
+    evals, cal = _models(base), _cal(base)
+    assert inconclusive_reasons(None, evals, cal, None) == []
+    wild = dict(evals, nominal=_ev((), (UNSTABLE_RATIO + 1) * base))  # out-of-fold four times the training RMS
+    assert "unstable out of fold" in inconclusive_reasons(None, wild, cal, None)[0]
+    n = error_stats(base)
+    test = {"nominal": base, "geometric": 1.1 * base, "final": 1.1 * base}
+    msgs = inconclusive_reasons(None, _models(base, test=test), cal, {k: error_stats(v) for k, v in test.items()})
     assert len(msgs) == 1 and "does not transfer" in msgs[0]
     spike = 0.5 * base
     spike[0] = [0, 0, (MAX_ERROR_RATIO + 0.5) * n["max_mm"]]
-    msgs = inconclusive_reasons(None, nominal, cal_nominal, {"nominal": n, "final": error_stats(spike)})
+    test = {"nominal": base, "geometric": spike, "final": spike}
+    msgs = inconclusive_reasons(None, _models(base, test=test), cal, {k: error_stats(v) for k, v in test.items()})
     assert len(msgs) == 1 and "largest test error" in msgs[0]
     check = SimpleNamespace(names=("probe_offset_z",), status=("weak",), value=np.array([73.0]),
                             sd=np.array([54.0]), level=np.array([1.2]))
-    assert "probe offset is weakly identified" in inconclusive_reasons(check, nominal, cal_nominal, None)[0]
+    assert "probe offset is weakly identified" in inconclusive_reasons(check, evals, cal, None)[0]
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
     final = _ev(("a",), 0.5 * base)
     v = verdict_of(ctx, [Stage((), 0.1, (_cand("a"),), "a")], final, None, (), msgs, (), "geometric", None)
     assert v.verdict == "inconclusive" and v.candidates == () and "not claimed" in v.reasons[-1]
+    assert v.selected == ("a",)
+
+
+def test_geometric_model_that_interpolates_is_inconclusive():
+    """Too few poses for the geometric parameters: the fits interpolate (training RMS far below out of fold)."""
+    base = np.random.default_rng(3).normal(0, 0.1, (40, 3))
+    msgs = inconclusive_reasons(None, _models(base), _cal(base, geo_scale=0.5 / (UNSTABLE_RATIO + 1)), None)
+    assert len(msgs) == 1
+    assert re.search(r"geometric model does not hold out of fold .* 4 x its training RMS", msgs[0])
+
+
+@pytest.mark.parametrize("final_scale, fires", [(1.3, True), (1.005, False), (0.8, False)])
+def test_effects_that_do_not_transfer_to_the_test_file(final_scale, fires):
+    """The final model significantly worse than the geometric one on the sealed test poses: nothing is claimed."""
+    rng = np.random.default_rng(4)
+    base, t = rng.normal(0, 0.1, (60, 3)), rng.normal(0, 0.1, (120, 3))
+    test = {"nominal": 2 * t, "geometric": t, "final": final_scale * t + rng.normal(0, 0.002, t.shape)}
+    evals = _models(base, test=test)
+    stats = {k: error_stats(v) for k, v in test.items()}
+    msgs = inconclusive_reasons(None, evals, _cal(base), stats)
+    assert any("do not transfer to the test file" in m for m in msgs) is fires
+    assert inconclusive_reasons(None, evals, _cal(base), stats, untestable=("a",)) == []  # the test cannot judge a
+
+
+def test_a_test_file_every_model_misses_is_named():
+    rng = np.random.default_rng(6)
+    base, t = rng.normal(0, 0.1, (60, 3)), rng.normal(0, 60.0, (30, 3))  # 60 mm: another robot or set-up
+    test = {"nominal": t, "geometric": t, "final": t}
+    msgs = inconclusive_reasons(None, _models(base, test=test), _cal(base), {k: error_stats(v) for k, v in test.items()})
+    assert re.search(r"every model misses the test file: .* another robot, tool or set-up", msgs[0])
 
 
 def test_safe_model_is_the_last_that_held():
@@ -103,8 +148,89 @@ def test_summary_lines_state_the_verdict_first_and_the_json_keys():
     lines = summary_lines(d)
     assert lines[0] == d.verdict.headline() and lines[0].startswith("verdict: ")
     assert "reasons:" in lines and any(ln.startswith("safe to use: the ") for ln in lines)
-    assert any(ln.startswith("ranking (out-of-fold RMS of the training file") for ln in lines)
+    assert any(ln.startswith("ranking (by the clipped out-of-fold RMS of the training file") for ln in lines)
     js = d.to_dict()
     assert js["verdict"] in VERDICTS and isinstance(js["reasons"], list) and js["safe_model"]
     assert all(c["test_rms_mm"] is None for c in js["ranking"])  # candidates never see the test file
     assert js["settings"]["robust_loss"] == "tukey" and "outliers" in js
+
+
+def test_alternative_is_judged_at_the_level_of_the_step_that_selected_it(monkeypatch):
+    """p = 0.004 beats an alternative at alpha = 0.01 but not at alpha / 4, the level of a step with four tests."""
+    import tolalloc.diagnose.verdict as verdict
+
+    evals, stages = _world(0.8)
+    monkeypatch.setattr(verdict, "paired_pvalue", lambda *a: 0.004)
+    clip = clip_level(evals["geometric"].oof_mm)
+    for n_tests, separable in ((1, True), (4, False)):
+        st = [Stage((), 0.2, stages[0].candidates, "a", n_tests=n_tests)]
+        out = compare_alternatives(None, evals["geometric+a"], st, evals, None, clip, 0.01, 0.02)
+        assert out[0].separable is separable
+
+
+def test_ambiguous_headline_keeps_the_model_structure():
+    from tolalloc.diagnose.verdict import Comparison, Verdict
+
+    amb = Comparison("backlash", "link_deflection", 0.2, 1.0, 0.1, 0.1, False)
+    v = Verdict("ambiguous", ("joint_compliance", "backlash", "link_deflection"), (), "x", (amb,),
+                selected=("joint_compliance", "backlash"))
+    assert v.headline() == ("verdict: ambiguous -- joint_compliance + (backlash or link_deflection); these poses "
+                            "cannot tell them apart")
+    one = Verdict("ambiguous", ("backlash", "link_deflection"), (), "x", (amb,), selected=("backlash",))
+    assert one.headline().startswith("verdict: ambiguous -- backlash or link_deflection;")
+
+
+def test_none_says_which_effects_were_not_tested():
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    skipped = Candidate("thermal", False, "no temperature_c column, and no time_s column", 0, np.nan, np.nan, None,
+                        1.0, 0.0, False)
+    st = [Stage((), 0.1, (_cand("a", sig=False), skipped), None)]
+    v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
+    assert v.verdict == "none" and v.untested == ("thermal",)
+    assert v.headline().startswith("verdict: none -- none of the tested effects") and "not tested: thermal" in v.headline()
+    assert "thermal not tested: no temperature_c column" in v.reasons[-1]
+
+
+def test_reason_lines_do_not_quote_a_model_the_backward_step_removed():
+    """Forward: a, then b on top of a; backward: a removed. b's line compares with the geometric model, not a."""
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    back = Candidate("a", True, "backward step: not significant beside the others", 1, 0.15, 0.15, None, 0.3, 0.5,
+                     False, 0.15, "v")  # heldout: the model without a, i.e. geometric+b
+    stages = [Stage((), 0.30, (_cand("a"), _cand("b")), "a"), Stage(("a",), 0.20, (_cand("b"),), "b"),
+              Stage(("a", "b"), 0.149, (back, _cand("b")), None, "a")]
+    v = verdict_of(ctx, stages, _ev(("b",), np.zeros((5, 3))), None, (), [], (), "geometric+b", None)
+    assert v.verdict == "effect" and v.candidates == ("b",)
+    assert v.reasons[0].startswith("b (v) lowers the out-of-fold RMS of the training file from 0.3 (geometric) to 0.15 mm")
+    assert "removed a" in v.reasons[0] and "geometric+a" not in v.reasons[0]
+
+
+@pytest.mark.parametrize("variant, ambiguous", [("gravity_soft", True), ("gravity", True), ("approach", False)])
+def test_gravity_held_backlash_is_not_told_from_a_torque_dependent_stiffness(variant, ambiguous):
+    """Backlash whose side the gravity torque sets is a function of that torque, like a stiffness that changes with
+    torque: the verdict names both; backlash set by the approach direction is not."""
+    from tolalloc.diagnose.verdict import stiffness_alternative
+
+    final = _ev(("joint_compliance", "backlash"), np.full((5, 3), 0.01))
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None,
+                          bases={"backlash": SimpleNamespace(variant=variant)})
+    comps = stiffness_alternative(ctx, final)
+    assert bool(comps) is ambiguous
+    st = [Stage((), 0.3, (_cand("joint_compliance"), _cand("backlash")), "joint_compliance"),
+          Stage(("joint_compliance",), 0.2, (_cand("backlash"),), "backlash")]
+    v = verdict_of(ctx, st, final, None, comps, [], (), "geometric+joint_compliance+backlash", None)
+    if ambiguous:
+        assert v.verdict == "ambiguous" and v.candidates == ("joint_compliance", "backlash")
+        assert v.headline().startswith("verdict: ambiguous -- joint_compliance + (backlash or a torque-dependent "
+                                       "joint stiffness)")
+        assert "approached from both directions at the same torque" in v.reasons[0]
+    else:
+        assert v.verdict == "effect"
+
+
+def test_no_testable_candidate_is_inconclusive_not_none():
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    why = "the model has 40 parameters; the training file's 12 poses give 36 coordinates, fewer than the 46 it needs"
+    st = [Stage((), 0.1, tuple(Candidate(e, False, why, 0, np.nan, np.nan, None, 1.0, 0.0, False) for e in "ab"), None)]
+    v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
+    assert v.verdict == "inconclusive" and v.untested == ("a", "b")
+    assert v.reasons[0].startswith("no candidate effect could be tested") and f"a not tested: {why}" in v.reasons

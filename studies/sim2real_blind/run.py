@@ -113,7 +113,7 @@ def score_case(robot, case, rng, folds: int = 5) -> dict:
             "inconclusive": v.verdict == "inconclusive",
             "false_claim": case.label == "none" and v.verdict in ("effect", "ambiguous"),
             "top2": (case.label == "none" and d.effect == "none") or bool(truth & set(top2[:2])),
-            "ambiguous_gain_pct": min((c.gain_pct for c in alt), default=np.nan),
+            "ambiguous_gain_pct": min((c.gain_pct for c in alt if c.gain_pct is not None), default=np.nan),
             "detail": case.detail, "poses": P, "outliers": case.outliers, "outliers_found": len(d.outliers),
             "magnitude_mm": case.magnitude_mm, "noise_mm": case.noise_mm,
             "noise_floor_mm": float(np.sqrt(3) * case.noise_mm), "test_rms_nominal_mm": ba["rms_mm"].iloc[0],

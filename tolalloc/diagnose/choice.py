@@ -79,7 +79,7 @@ def _by_evidence(cands: list, fit, Q, r, n: int):
             continue
         ev = ard_evidence(Jc, r, c.groups, n_eff=n)
         if ev.log_ml > best_ml:
-            best, best_ml = replace(c, prior_w=ev.prior_w), ev.log_ml
+            best, best_ml = replace(c, prior_w=ev.prior_w, prior_dof=ev.dof), ev.log_ml
     return best
 
 

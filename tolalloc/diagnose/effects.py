@@ -93,6 +93,9 @@ class EffectBasis:
         Columns sharing one prior scale (transmission: per joint); None: no prior.
     prior_w : array, shape (M,), or None
         Ridge weights ``noise sd / prior sd`` fitted on the training residual (set by the variant choice).
+    prior_dof : float or None
+        Parameters the training data determine under that prior (``sum gamma`` of :mod:`.evidence`), set with
+        ``prior_w``: what the columns cost in degrees of freedom.
     """
 
     effect: str
@@ -101,6 +104,7 @@ class EffectBasis:
     variant: str = ""
     groups: np.ndarray | None = None
     prior_w: np.ndarray | None = None
+    prior_dof: float | None = None
 
 
 def target_points(robot: Robot, q: np.ndarray, t_mm: np.ndarray) -> np.ndarray:

@@ -11,7 +11,8 @@
   position level (the flange axis hardly changed direction). A well-identified deviation (``|v| >= 3 s`` and
   ``|v| >= b / 2``) is a **finding**, reported but not a guard: a real UR10's 1 mm elbow offset is as built.
 * :func:`extrapolation_flags` -- per test pose: a joint value outside the training range by more than a
-  margin (5 deg / 5 mm; revolute angles modulo 360 deg), or a joint-space distance to the nearest training pose
+  margin (5 deg / 5 mm; revolute angles modulo 360 deg, and a joint whose training angles go round the turn has no
+  outside), or a joint-space distance to the nearest training pose
   (each joint divided by its training standard deviation; revolute ones wrapping around) beyond ``far_factor``
   x the 95th percentile of the training poses' leave-one-out nearest-neighbour distances. Such predictions are extrapolations.
 * :func:`cv_fallback` -- a fitted model that does worse than a simpler one on cross-validation (out-of-fold RMS
@@ -49,6 +50,9 @@ __all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "ParameterChec
 
 RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
+#: The largest gap between training angles of a revolute joint is its outside only when it is more than this many
+#: times the second largest; otherwise the training angles go round the turn (:func:`_outside_arc`).
+GAP_DISTINCT = 2.0
 FAR_FACTOR = 1.5
 PRIOR_N_SIGMA = 3.0
 #: A well-identified deviation of at least this fraction of the plausibility level is reported as a finding.
@@ -88,10 +92,15 @@ class Extrapolation:
         n = int(self.flagged.sum())
         if n == 0:
             return None
+        parts = []
+        if self.outside_range.any():
+            parts.append(f"{int(self.outside_range.sum())} outside the training range of {', '.join(self.joints_outside)} "
+                         f"by more than {RANGE_MARGIN_DEG:g} deg / {RANGE_MARGIN_MM:g} mm")
+        if self.far.any():
+            parts.append(f"{int(self.far.sum())} farther from every training pose than {self.threshold:.3g} "
+                         "(normalised joint space)")
         return (f"extrapolation: {n} of {len(self.flagged)} test poses lie outside the training data "
-                f"({int(self.outside_range.sum())} outside the training range of {', '.join(self.joints_outside) or '-'} "
-                f"by more than {RANGE_MARGIN_DEG:g} deg / {RANGE_MARGIN_MM:g} mm; {int(self.far.sum())} farther from every "
-                f"training pose than {self.threshold:.3g} (normalised joint space)); their predictions are extrapolations")
+                f"({'; '.join(parts)}); their predictions are extrapolations")
 
     def to_dict(self) -> dict:
         return {"flagged": self.flagged.tolist(), "outside_range": self.outside_range.tolist(), "far": self.far.tolist(),
@@ -100,11 +109,17 @@ class Extrapolation:
 
 def _outside_arc(a_train: np.ndarray, a_test: np.ndarray, margin: float) -> np.ndarray:
     """Test angles (T,) [rad] farther than ``margin`` from the shortest arc holding every training angle (P,):
-    the circle minus its largest gap between training angles (angles modulo 2 pi)."""
+    the circle minus its largest gap between training angles (angles modulo 2 pi).
+
+    Training angles that go round the whole turn have no outside: when the largest gap is not clearly the largest
+    (at most :data:`GAP_DISTINCT` x the second largest, as among angles spread over the turn), it is a gap inside
+    the range like the others, and no test angle is outside."""
     two_pi = 2.0 * np.pi
     a = np.sort(np.mod(a_train, two_pi))
     gaps = np.diff(np.append(a, a[0] + two_pi))
     i = int(np.argmax(gaps))
+    if len(gaps) > 1 and gaps[i] <= GAP_DISTINCT * np.partition(gaps, -2)[-2]:
+        return np.zeros(len(a_test), bool)
     start, length = a[(i + 1) % len(a)], two_pi - gaps[i]
     fwd = np.mod(a_test - start, two_pi)  # 0 .. 2 pi past the arc's start
     dist = np.where(fwd <= length, 0.0, np.minimum(fwd - length, two_pi - fwd))

@@ -25,7 +25,7 @@ from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, po
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test, select_effects
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
-                                       separating_poses)
+                                       separating_poses, stiffness_alternative)
 from tolalloc.diagnose.verdict_text import verdict_of
 from tolalloc.diagnose.where import where_breakdown
 
@@ -159,7 +159,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         bar.close()
         scored = _score_sealed_test(ctx, sel["nominal"], sel["geometric"], sel["final"], sel["chosen"])
         sel["nominal"], sel["geometric"], sel["final"], sel["chosen"] = scored
-    return _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, robust_loss)
+    return _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, robust_loss,
+                     alpha, min_gain)
 
 
 def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
@@ -170,16 +171,17 @@ def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
         stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
         clip = clip_level(geometric.selection_mm)
         chosen, msgs = cv_fallback(nominal, geometric, final)
-        comparisons = (compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain)
-                       if chosen is final and final.effects else ())
+        comparisons = ((*compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain),
+                        *stiffness_alternative(ctx, final)) if chosen is final and final.effects else ())
     swap = (lambda c: "+".join(("geometric", *(c.alternative if x == c.effect else x for x in final.effects))))
-    pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in comparisons if not c.separable]
+    pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in comparisons if not c.separable and not c.note]
     return {"nominal": nominal, "geometric": geometric, "final": final, "chosen": chosen, "stages": stages,
             "messages": msgs, "comparisons": comparisons,
             "suggestions": separating_poses(ctx, pairs, evals, seed=seed) if pairs else None}
 
 
-def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, loss) -> Diagnosis:
+def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, loss,
+              alpha, min_gain) -> Diagnosis:
     """Guards, the CV fallback, the verdict and the result."""
     nominal, geometric, final, chosen = sel["nominal"], sel["geometric"], sel["final"], sel["chosen"]
     effects = final.effects  # forward selection, then backward elimination (select._backward)
@@ -199,7 +201,9 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
         fallback, final, effects = chosen.label, chosen, ()
     extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
     tstats = scored_test_stats(nominal, geometric, final)
-    inconc = inconclusive_reasons(check, nominal, cal.nominal, tstats)
+    untestable = tuple(e for e in final.effects if e in ctx.untestable)
+    inconc = inconclusive_reasons(check, {"nominal": nominal, "geometric": geometric, "final": final}, cal, tstats,
+                                  alpha=alpha, min_gain=min_gain, untestable=untestable)
     verdict = verdict_of(ctx, sel["stages"], final, fallback, sel["comparisons"], inconc, sel["messages"],
                          safe_model(nominal, geometric, final, tstats, bool(inconc)), sel["suggestions"])
     settings = {"robust_loss": loss,

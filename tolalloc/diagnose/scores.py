@@ -120,6 +120,7 @@ class Stage:
     candidates: tuple
     selected: str | None
     removed: str | None = None  # backward step (:func:`_backward`): the effect dropped from ``base``, if any
+    n_tests: int = 1  # candidates tested at this step: the Bonferroni divisor of its significance level
 
 
 def robust_rms(res: np.ndarray, clip_mm: float) -> float:

@@ -5,9 +5,10 @@ file only: held-out poses are the out-of-fold predictions of a *blocked* K-fold 
 training file (every fit, including the registration, sees only the other folds; by default K contiguous
 blocks in row/time order and, scored beside them, K contiguous regions of joint space -- random folds only on
 request, see :func:`make_folds`). The test file is scored once, after the model is chosen
-(:func:`score_test`, called by :mod:`.pipeline` for the nominal, geometric and final models only). Its columns
-(not its values) decide only whether a chosen variant can be evaluated on it at all (``dir`` / temperature /
-time columns): if not, that effect is left out with the reason.
+(:func:`score_test`, called by :mod:`.pipeline` for the nominal, geometric and final models only). An effect whose
+chosen variant the test file cannot carry (no ``dir`` / temperature columns, an unusable ``time_s``,
+:func:`carry_problem`) is still selected or not on the training file alone; on the test poses its displacement is
+taken as 0 (``_Context.untestable`` holds the reason, and the verdict says the test file cannot judge it).
 Each effect's variant (:func:`tolalloc.diagnose.effects.variants`) is chosen first on the training residual
 (:func:`tolalloc.diagnose.choice.choose_variant`). A variant's fitted prior scales (the transmission's ridge, one
 scale per joint) are hyper-parameters: every fold refits them on its own training poses
@@ -19,7 +20,8 @@ Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model'
 squared held-out error (base model - base + candidate), one difference per pose (the mean over the two CV
 schemes, which score the same poses). A candidate is *significant* when ``p < alpha / m``
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
-(:func:`robust_rms`) by at least ``min_gain`` (default 2 %). The significant candidate with the lowest clipped
+(:func:`robust_rms`) by at least ``min_gain`` (default 2 %), and its unclipped out-of-fold RMS stays within
+:data:`BLOWUP_RATIO` x the base model's (clipping must not hide held-out predictions that blow up). The significant candidate with the lowest clipped
 held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
 ``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
 beside the others (backward elimination, :func:`_backward`). ``none`` when nothing is significant.
@@ -53,12 +55,15 @@ from tolalloc.diagnose.scores import (Candidate, Evaluation, Stage, clip_level, 
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
            "kept_basis", "score_test", "select_effects", "rms", "robust_rms", "clip_level", "error_stats", "CV_SCHEMES",
-           "rows_problem", "FOLD_T_SD_FLOOR_MM", "MIN_SPARE_POSES"]
+           "rows_problem", "carry_problem", "FOLD_T_SD_FLOOR_MM", "MIN_SPARE_POSES", "BLOWUP_RATIO"]
 
 #: Smallest sd [mm] of the target-offset prior a fold borrows from the full training fit.
 FOLD_T_SD_FLOOR_MM = 0.05
 #: Poses beyond a model's parameter count (3 coordinates each) the full training fit must keep.
 MIN_SPARE_POSES = 2
+#: A candidate whose unclipped out-of-fold RMS exceeds this multiple of the base model's is not significant, whatever
+#: its clipped score: the clipping that keeps gross measurement errors from deciding would hide predictions that blow up.
+BLOWUP_RATIO = 1.5
 
 
 class _Context:
@@ -74,7 +79,7 @@ class _Context:
         self.folds_joint = make_folds(train, k, "joint", seed) if cv == "blocked" else []
         self.geo_residual = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's, on these poses
         self.fold_t_sd = _fold_t_sd(cal.geometric, train.q)
-        self.bases, self.bases_test, self.reasons = {}, {}, {}
+        self.bases, self.bases_test, self.reasons, self.untestable = {}, {}, {}, {}
         t = cal.geometric.t_mm
         self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
@@ -86,14 +91,16 @@ class _Context:
                 continue
             cands = effect_bases(e, robot, train, t, self.ref, names)
             chosen = choose_variant(cands, cal.geometric, self.J_fixed, self.geo_residual)
-            if test is not None and not _test_can_carry(e, chosen.variant, test):
-                self.reasons[e] = (f"the variant chosen on the training file ({chosen.variant}) needs a column the "
-                                   "test file lacks (dir1..dirN / temperature_c / time_s)")
-                continue
             self.bases[e] = chosen
             self.ref["variants"][e] = chosen.variant
-            if test is not None:
+            if test is None:
+                continue
+            why = carry_problem(e, chosen.variant, test)
+            if why is None:
                 self.bases_test[e] = align_basis(effect_basis(e, robot, test, t, self.ref), chosen.names)
+            else:  # selected on the training file alone; on the test poses its displacement is taken as 0
+                self.untestable[e] = why
+                self.bases_test[e] = replace(chosen, B=np.zeros((test.n_poses, 3, len(chosen.names))))
 
     def fold_prior(self, full: Fit):
         """The target-offset prior of the fold fits: the full training fit's offset (module docstring)."""
@@ -108,18 +115,27 @@ def _fold_t_sd(fit: Fit, q: np.ndarray) -> np.ndarray:
     return np.clip(sd, FOLD_T_SD_FLOOR_MM, max(level, FOLD_T_SD_FLOOR_MM))
 
 
-def rows_problem(ctx, n_params: int) -> str | None:
-    """Why the training file cannot fit a model of ``n_params`` parameters without a prior (registration, probe
-    offset and unregularised effect columns; the geometric parameters have the MAP prior), or None."""
+def rows_problem(ctx, n_params: int, n_fold_params: int | None = None) -> str | None:
+    """Why the training file cannot fit a model of ``n_params`` parameters, or None.
+
+    The full training fit must determine ``n_params`` with :data:`MIN_SPARE_POSES` poses to spare: registration and
+    probe offset (9), the fitted geometric parameters, the effect columns without a prior and the degrees of
+    freedom of the ridge-regularised columns (:attr:`~tolalloc.diagnose.effects.EffectBasis.prior_dof`) -- a model
+    with as many parameters as coordinates interpolates its training file. Each cross-validation fold's fit must
+    determine ``n_fold_params`` (default ``n_params``) with one pose to spare: the parameters without any prior
+    (registration, offset, unregularised effect columns); its geometric parameters lean on the MAP prior, which
+    holds on a fold as it does on the full file.
+    """
+    n_fold_params = n_params if n_fold_params is None else n_fold_params
     P = ctx.train.n_poses
     need = n_params + 3 * MIN_SPARE_POSES
     if 3 * P < need:
         return (f"the model has {n_params} parameters; the training file's {P} poses give {3 * P} coordinates, "
                 f"fewer than the {need} it needs ({MIN_SPARE_POSES} spare poses)")
     smallest = min((P - len(f) for f in [*ctx.folds, *ctx.folds_joint]), default=P)
-    if 3 * smallest < n_params + 3:
-        return (f"the model has {n_params} parameters; the smallest cross-validation fold trains on {smallest} poses "
-                f"({3 * smallest} coordinates), too few to fit it")
+    if 3 * smallest < n_fold_params + 3:
+        return (f"the model has {n_fold_params} parameters without a prior; the smallest cross-validation fold trains "
+                f"on {smallest} poses ({3 * smallest} coordinates), too few to fit it")
     return None
 
 
@@ -134,14 +150,17 @@ def align_basis(basis, names: tuple):
     return replace(basis, names=tuple(names), B=B)
 
 
-def _test_can_carry(effect, variant, test) -> bool:
-    if effect == "backlash" and variant in ("approach", "preload"):
-        return test.direction is not None
+def carry_problem(effect: str, variant: str, test) -> str | None:
+    """Why the test file cannot carry ``effect`` in ``variant`` (a column its basis needs is missing or unusable),
+    or None when it can."""
+    if effect == "backlash" and variant in ("approach", "preload") and test.direction is None:
+        return "the test file has no dir1..dirN columns (the approach direction of each joint)"
     if effect == "thermal":
-        need_T = variant == "temperature" or variant.startswith("lag")
-        need_t = variant != "temperature"
-        return (not need_T or test.temperature_c is not None) and (not need_t or time_problem(test.time_s) is None)
-    return True
+        if (variant == "temperature" or variant.startswith("lag")) and test.temperature_c is None:
+            return "the test file has no temperature_c column"
+        if variant != "temperature" and time_problem(test.time_s) is not None:
+            return f"test file: {time_problem(test.time_s)}"
+    return None
 
 
 def _stack(bases: dict, effects) -> tuple:
@@ -245,12 +264,22 @@ def _out_of_fold(start, q, xyz, folds, t_prior, kw, fold_w=None) -> np.ndarray:
     return oof
 
 
+def _n_params(ctx, effects) -> tuple[int, int]:
+    """Parameters a model with ``effects`` asks of the training data: (full fit, each fold's fit without the
+    geometric and ridge-regularised ones) -- see :func:`rows_problem`."""
+    free = 9
+    ridge = 0
+    for e in effects:
+        b = ctx.bases[e]
+        w = np.zeros(b.B.shape[2]) if getattr(b, "prior_w", None) is None else np.asarray(b.prior_w)
+        free += int(np.sum(w == 0))
+        ridge += int(np.ceil(b.prior_dof or 0.0)) if w.any() else 0
+    return free + len(ctx.cal.geometric.geo_index) + ridge, free
+
+
 def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
     """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation or None)."""
-    B, _ = _stack(ctx.bases, (*chosen, e))
-    w = _stack_prior(ctx.bases, (*chosen, e))
-    n_free = 9 + int(np.sum(w == 0))  # parameters without a prior (the geometric ones have the MAP prior)
-    why = rows_problem(ctx, n_free)
+    why = rows_problem(ctx, *_n_params(ctx, (*chosen, e)))
     if why is not None:
         return Candidate(e, False, why, 0, float("nan"), float("nan"), None, 1.0, 0.0, False), None
     ev = evaluate(ctx, (*chosen, e))
@@ -259,9 +288,14 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
     r = robust_rms(ev.selection_mm, clip)
     p = paired_pvalue(current.selection_stack, ev.selection_stack, clip) if n_new else 1.0
     gain = 100.0 * (1.0 - r / base_r)
-    sig = bool(n_new and p < alpha / m and gain >= 100.0 * min_gain)
-    cand = Candidate(e, True, "" if n_new else "not identifiable beside the geometric parameters", n_new,
-                     ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, sig, r, ctx.bases[e].variant)
+    plain, base_plain = rms(ev.selection_mm), rms(current.selection_mm)
+    reason = "" if n_new else "not identifiable beside the geometric parameters"
+    if plain > BLOWUP_RATIO * base_plain:
+        reason = (f"its unclipped out-of-fold RMS {plain:.4g} mm is {plain / base_plain:.3g} x the base model's "
+                  f"{base_plain:.4g} mm: some held-out predictions blow up (a fit the poses do not hold)")
+    sig = bool(n_new and not reason and p < alpha / m and gain >= 100.0 * min_gain)
+    cand = Candidate(e, True, reason, n_new, ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, sig, r,
+                     ctx.bases[e].variant)
     return cand, ev
 
 
@@ -292,7 +326,7 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         best = next((c for c in cands if c.significant), None)
-        stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None))
+        stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None, n_tests=m))
         if best is None:
             break
         chosen = (*chosen, best.effect)
@@ -329,7 +363,7 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
                                           r_rest, ctx.bases[e].variant), ev))
         gain, cand, ev = min(tests, key=lambda x: x[0])
         stages.append(Stage(current.effects, current.cv_rms_mm, tuple(c for _, c, _ in tests), None,
-                            None if cand.significant else cand.effect))
+                            None if cand.significant else cand.effect, n_tests=m))
         if cand.significant:
             break
         current = ev

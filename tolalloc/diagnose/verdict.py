@@ -2,14 +2,18 @@
 
 * ``ambiguous`` -- a selected effect ``e`` and another candidate ``a`` that was significant at the step ``e`` was
   selected in explain the training file equally well: the model with ``a`` in place of ``e`` is not beaten by the
-  selection's own rule (one-sided Wilcoxon signed-rank test on the same out-of-fold poses, ``p < alpha``, and a
-  clipped-RMS gain of at least ``min_gain``) -- :func:`compare_alternatives`. Both are named, and
-  :func:`separating_poses` suggests poses where the two fitted models' predictions differ most.
+  selection's own rule (one-sided Wilcoxon signed-rank test on the same out-of-fold poses, ``p < alpha / m`` with
+  ``m`` the candidates tested at that step, and a clipped-RMS gain of at least ``min_gain``) --
+  :func:`compare_alternatives`. Both are named, and :func:`separating_poses` suggests poses where the two fitted
+  models' predictions differ most.
 * ``inconclusive`` -- no effect is claimed when the data cannot support one (:func:`inconclusive_reasons`): the
-  probe offset is only weakly identified (the parameter check), the out-of-fold registration is unstable (the
-  nominal model's out-of-fold RMS above :data:`UNSTABLE_RATIO` x its training RMS), or the final model does not
-  transfer to the sealed test file (its RMS above the nominal model's, or its largest error above
-  :data:`MAX_ERROR_RATIO` x the nominal model's).
+  probe offset is only weakly identified (the parameter check); the out-of-fold registration is unstable (the
+  nominal model's out-of-fold RMS above :data:`UNSTABLE_RATIO` x its training RMS); the geometric model itself does
+  not hold out of fold (the same ratio: too few poses for its parameters, the fits interpolate); the final model
+  does not transfer to the sealed test file (its RMS above the nominal model's, or its largest error above
+  :data:`MAX_ERROR_RATIO` x the nominal model's); or the selected effects do not transfer (the final model
+  significantly worse than the geometric model on the test poses: Wilcoxon ``p < alpha`` and a clipped-RMS loss of
+  at least ``min_gain``).
 * otherwise ``effect`` (one or more effects selected) or ``none``.
 
 The model that is safe to use (:func:`safe_model`) is the last of nominal -> geometric -> final that held
@@ -30,9 +34,10 @@ from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.guards import FALLBACK_MARGIN
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import align_basis
-from tolalloc.diagnose.scores import error_stats, paired_pvalue, rms, robust_rms
+from tolalloc.diagnose.scores import clip_level, error_stats, paired_pvalue, rms, robust_rms
 
 __all__ = ["Verdict", "Comparison", "compare_alternatives", "separating_poses", "inconclusive_reasons", "safe_model",
+           "stiffness_alternative", "GRAVITY_SIDES",
            "VERDICTS", "UNSTABLE_RATIO", "MAX_ERROR_RATIO", "N_SUGGESTED", "N_SAMPLED", "scored_test_stats"]
 
 VERDICTS = ("effect", "none", "ambiguous", "inconclusive")
@@ -55,11 +60,17 @@ class Comparison:
 
     effect: str
     alternative: str
-    p_value: float
-    gain_pct: float
+    p_value: float | None
+    gain_pct: float | None
     rms_mm: float
     alternative_rms_mm: float
     separable: bool
+    note: str = ""  # set when no fit decides: the two have the same signature on any such data (the note says why)
+
+    @property
+    def alternative_label(self) -> str:
+        """How the headline names the alternative."""
+        return "a torque-dependent joint stiffness" if self.note else self.alternative
 
     def to_dict(self) -> dict:
         return dict(self.__dict__)
@@ -78,6 +89,8 @@ class Verdict:
     safe_model : str        label of the model that is safe to use (:func:`safe_model`)
     comparisons : tuple of Comparison
     suggestions : DataFrame or None   poses separating the ambiguous pairs (interface units)
+    selected : tuple of str the effects of the final model (also for ``inconclusive``, where they are not claimed)
+    untested : tuple of str effects (or variants) the data could not test, each with its reason in ``reasons``
     """
 
     verdict: str
@@ -86,22 +99,38 @@ class Verdict:
     safe_model: str
     comparisons: tuple = ()
     suggestions: pd.DataFrame | None = field(default=None)
+    selected: tuple = ()
+    untested: tuple = ()
 
     def headline(self) -> str:
         """The first printed line."""
         if self.verdict == "effect":
             return f"verdict: effect -- {' + '.join(self.candidates)}"
         if self.verdict == "ambiguous":
-            return f"verdict: ambiguous -- one of {', '.join(self.candidates)}; these poses cannot tell them apart"
+            return f"verdict: ambiguous -- {self._ambiguous_terms()}; these poses cannot tell them apart"
         if self.verdict == "inconclusive":
             safe = ("no fitted model transfers to the test poses" if self.safe_model == "none"
                     else f"safe to use: the {self.safe_model} model")
             return f"verdict: inconclusive -- no effect claimed; {safe}"
+        if self.untested:
+            return ("verdict: none -- none of the tested effects lowers the held-out error significantly; not "
+                    f"tested: {', '.join(self.untested)} (see the reasons)")
         return "verdict: none -- no unmodelled effect lowers the held-out error significantly"
+
+    def _ambiguous_terms(self) -> str:
+        """The selected effects with their indistinguishable alternatives, e.g. ``a + (b or c)``."""
+        alts = {}
+        for c in self.comparisons:
+            if not c.separable:
+                alts.setdefault(c.effect, []).append(c.alternative_label)
+        selected = self.selected or tuple(e for e in self.candidates if e in alts)
+        terms = [f"({' or '.join((e, *alts[e]))})" if e in alts else e for e in selected]
+        return " + ".join(terms) if len(terms) > 1 else terms[0][1:-1] if terms[0].startswith("(") else terms[0]
 
     def to_dict(self) -> dict:
         return {"verdict": self.verdict, "candidates": list(self.candidates), "reasons": list(self.reasons),
-                "safe_model": self.safe_model, "comparisons": [c.to_dict() for c in self.comparisons],
+                "safe_model": self.safe_model, "selected": list(self.selected), "untested": list(self.untested),
+                "comparisons": [c.to_dict() for c in self.comparisons],
                 "suggested_poses": None if self.suggestions is None else self.suggestions.to_dict(orient="records")}
 
 
@@ -109,7 +138,9 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
                          min_gain: float) -> tuple:
     """:class:`Comparison` of every selected effect of ``final`` with every candidate significant at its step.
 
-    ``evaluate(ctx, effects)`` fits a model not yet in ``evals`` (keys: evaluation labels).
+    ``evaluate(ctx, effects)`` fits a model not yet in ``evals`` (keys: evaluation labels). An alternative is beaten
+    (``separable``) by the selection's own rule at that step: ``p < alpha / Stage.n_tests`` and a clipped gain of at
+    least ``min_gain``.
     """
     out = []
     for i, e in enumerate(final.effects):
@@ -126,9 +157,28 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
             p = paired_pvalue(ev.selection_stack, final.selection_stack, clip)
             r, r_alt = robust_rms(final.selection_mm, clip), robust_rms(ev.selection_mm, clip)
             gain = 100.0 * (1.0 - r / r_alt)
+            level = alpha / max(1, step.n_tests)  # the level the selection itself used at this step
             out.append(Comparison(e, c.effect, p, gain, rms(final.selection_mm), rms(ev.selection_mm),
-                                  bool(p < alpha and gain >= 100.0 * min_gain)))
+                                  bool(p < level and gain >= 100.0 * min_gain)))
     return tuple(out)
+
+
+#: Backlash sides set by the gravity torque alone.
+GRAVITY_SIDES = ("gravity", "gravity_soft")
+
+
+def stiffness_alternative(ctx, final) -> tuple:
+    """A :class:`Comparison` no fit can decide: backlash whose side the gravity torque sets moves each joint by a
+    function of that torque, as a joint stiffness that changes with torque does (a harmonic drive's soft zone at low
+    torque). Static gravity-loaded poses cannot tell them apart; only the approach direction can."""
+    if "backlash" not in final.effects or ctx.bases["backlash"].variant not in GRAVITY_SIDES:
+        return ()
+    r = rms(final.selection_mm)
+    note = (f"backlash ({ctx.bases['backlash'].variant}: the gear held on one flank by gravity) moves each joint by a "
+            "function of its gravity torque, as a joint stiffness that changes with torque (a soft zone at low "
+            "torque) does: no set of static gravity-loaded poses tells lost motion from such a stiffness; measure "
+            "poses approached from both directions at the same torque (with dir1..dirN) to separate them")
+    return (Comparison("backlash", "joint_compliance", None, None, r, r, False, note),)
 
 
 def _sample_poses(robot, q_train, n: int, seed: int) -> np.ndarray:
@@ -195,30 +245,68 @@ def separating_poses(ctx, pairs: list, evals: dict, *, n: int = N_SUGGESTED, n_s
     return pd.DataFrame(rows)
 
 
-def inconclusive_reasons(parameter_check, nominal, cal_nominal, test_stats: dict | None) -> list:
-    """Reasons to claim no effect (module docstring); ``test_stats``: ``{"nominal": stats, "final": stats}`` of
-    :func:`~tolalloc.diagnose.scores.error_stats` on the scored test poses, or None."""
-    out = []
-    if parameter_check is not None:
-        for name, st, v, sd, lev in zip(parameter_check.names, parameter_check.status, parameter_check.value,
-                                        parameter_check.sd, parameter_check.level):
-            if name.startswith("probe_offset") and st == "weak":
-                out.append(f"the probe offset is weakly identified ({name} = {v:.3g} +- {sd:.2g} mm, more than the "
-                           f"as-built level {lev:.3g} mm): the flange hardly changed direction; pass "
-                           "target_offset_mm / target_offset_sd_mm from the tool definition, or turn the wrist more")
-    oof, train = rms(nominal.oof_mm), cal_nominal.rms_mm
-    if oof > UNSTABLE_RATIO * train:
-        out.append(f"the registration is unstable out of fold: the nominal model's out-of-fold RMS {oof:.4g} mm is "
-                   f"{oof / train:.1f} x its training RMS {train:.4g} mm (limit {UNSTABLE_RATIO:g} x)")
-    if test_stats is not None:
-        n, f = test_stats["nominal"], test_stats["final"]
-        if f["rms_mm"] > n["rms_mm"]:
-            out.append(f"the final model does not transfer to the test file: RMS {f['rms_mm']:.4g} mm against the "
-                       f"nominal model's {n['rms_mm']:.4g} mm")
-        if f["max_mm"] > MAX_ERROR_RATIO * n["max_mm"]:
-            out.append(f"the final model's largest test error {f['max_mm']:.4g} mm exceeds {MAX_ERROR_RATIO:g} x the "
-                       f"nominal model's {n['max_mm']:.4g} mm")
+def inconclusive_reasons(parameter_check, evals: dict, cal, test_stats: dict | None, *, alpha: float = 0.01,
+                         min_gain: float = 0.02, untestable: tuple = ()) -> list:
+    """Reasons to claim no effect (module docstring).
+
+    ``evals``: the ``nominal``, ``geometric`` and ``final`` :class:`~tolalloc.diagnose.scores.Evaluation` (test
+    residuals set when there is a test file); ``cal``: the :class:`~tolalloc.diagnose.calibrate.Calibration` (training
+    fits); ``test_stats``: ``{"nominal": stats, "geometric": stats, "final": stats}`` of
+    :func:`~tolalloc.diagnose.scores.error_stats` on the scored test poses, or None; ``untestable``: selected effects
+    the test file cannot carry (their displacement is left out of its predictions, so it cannot judge them).
+    """
+    out = _probe_offset_reasons(parameter_check)
+    nominal, geometric, final = evals["nominal"], evals["geometric"], evals["final"]
+    for ev, fit, what in ((nominal, cal.nominal, "the registration is unstable out of fold: the nominal model's"),
+                          (geometric, cal.geometric, "the geometric model does not hold out of fold (too few poses "
+                                                     "for its parameters: the fits interpolate): its")):
+        oof, train = rms(ev.oof_mm), fit.rms_mm
+        if oof > UNSTABLE_RATIO * train:
+            out.append(f"{what} out-of-fold RMS {oof:.4g} mm is {oof / max(train, 1e-300):.3g} x its training RMS "
+                       f"{train:.4g} mm (limit {UNSTABLE_RATIO:g} x)")
+    if test_stats is None:
+        return out
+    n, f = test_stats["nominal"], test_stats["final"]
+    probe = any(r.startswith("the probe offset") for r in out)  # explains a miss at other flange directions
+    if n["rms_mm"] > UNSTABLE_RATIO * rms(nominal.oof_mm) and not probe:
+        out.append(f"every model misses the test file: the nominal model's test RMS {n['rms_mm']:.4g} mm is "
+                   f"{n['rms_mm'] / rms(nominal.oof_mm):.3g} x its out-of-fold RMS on the training file "
+                   f"{rms(nominal.oof_mm):.4g} mm -- is the test file of another robot, tool or set-up, or another "
+                   "session's tracker frame (test_frame='refit')?")
+    if f["rms_mm"] > n["rms_mm"]:
+        out.append(f"the final model does not transfer to the test file: RMS {f['rms_mm']:.4g} mm against the "
+                   f"nominal model's {n['rms_mm']:.4g} mm")
+    if f["max_mm"] > MAX_ERROR_RATIO * n["max_mm"]:
+        out.append(f"the final model's largest test error {f['max_mm']:.4g} mm exceeds {MAX_ERROR_RATIO:g} x the "
+                   f"nominal model's {n['max_mm']:.4g} mm")
+    if final.effects and final is not geometric and not untestable:
+        out += _effects_transfer(geometric, final, alpha, min_gain)
     return out
+
+
+def _probe_offset_reasons(parameter_check) -> list:
+    if parameter_check is None:
+        return []
+    return [f"the probe offset is weakly identified ({name} = {v:.3g} +- {sd:.2g} mm, more than the as-built level "
+            f"{lev:.3g} mm): the flange hardly changed direction; pass target_offset_mm / target_offset_sd_mm from the "
+            "tool definition, or turn the wrist more"
+            for name, st, v, sd, lev in zip(parameter_check.names, parameter_check.status, parameter_check.value,
+                                            parameter_check.sd, parameter_check.level)
+            if name.startswith("probe_offset") and st == "weak"]
+
+
+def _effects_transfer(geometric, final, alpha: float, min_gain: float) -> list:
+    """A reason when the final model is significantly worse than the geometric one on the test poses: one-sided
+    Wilcoxon on the clipped squared errors (clip level of the geometric model's test errors), ``p < alpha``, and a
+    clipped-RMS loss of at least ``min_gain``."""
+    clip = clip_level(geometric.test_mm)
+    p = paired_pvalue(final.test_mm, geometric.test_mm, clip)
+    loss = 1.0 - robust_rms(geometric.test_mm, clip) / max(robust_rms(final.test_mm, clip), 1e-300)
+    if p < alpha and loss >= min_gain:
+        return [f"the selected effect(s) do not transfer to the test file: the final model's test RMS "
+                f"{rms(final.test_mm):.4g} mm is worse than the geometric model's {rms(geometric.test_mm):.4g} mm "
+                f"(clipped loss {100 * loss:.1f} %, p = {p:.2g})"]
+    return []
 
 
 def _held(ev, base, test: dict | None, name: str) -> bool:

@@ -9,28 +9,55 @@ from tolalloc.diagnose.verdict import Verdict
 __all__ = ["verdict_of", "input_notes"]
 
 
-def input_notes(ctx, stages: list) -> list:
-    """What could not be tested and why (bad or missing columns, too few rows), as reason lines."""
-    out = []
+def input_notes(ctx, stages: list) -> tuple[list, list]:
+    """What could not be tested and why: (reason lines, names of the effects or variants not tested).
+
+    Bad or missing columns, too few rows, and selected effects the test file cannot carry (their displacement is
+    left out of its predictions, so its figures do not judge them)."""
+    out, untested = [], []
     why_t = time_problem(ctx.train.time_s)
     if why_t is not None and "thermal" in ctx.bases:
         out.append(f"thermal: only the temperature-driven variant was tested; the time-driven ones (warm-up, motion "
                    f"history, lag of the temperature log) were skipped: {why_t}")
+        untested.append("thermal (time-driven)")
     if ctx.test is not None and ctx.test.time_s is not None and time_problem(ctx.test.time_s) is not None:
         out.append(f"test file: {time_problem(ctx.test.time_s)}")
     if stages:
-        out += [f"{c.effect} not tested: {c.reason}" for c in stages[0].candidates if not c.applicable]
-    return out
+        skipped = [c for c in stages[0].candidates if not c.applicable]
+        out += [f"{c.effect} not tested: {c.reason}" for c in skipped]
+        untested += [c.effect for c in skipped]
+    for e, why in getattr(ctx, "untestable", {}).items():
+        out.append(f"{e} ({ctx.bases[e].variant}) was judged on the training file only: {why}; on the test poses its "
+                   "displacement is taken as 0, so the test figures do not judge it")
+    return out, untested
 
 
-def _selected_line(stages: list, e: str) -> str:
-    for st in stages:
-        if st.selected == e:
-            c = next(c for c in st.candidates if c.effect == e)
-            base = "+".join(("geometric", *st.base))
-            return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {st.base_rms_mm:.4g} "
-                    f"({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, p = {c.p_value:.2g})")
-    return f"{e} was selected"
+def _selected_line(stages: list, e: str, effects: tuple) -> str:
+    """Why ``e`` is in the final model ``effects``: its forward step or, when that step's base holds an effect the
+    backward elimination removed since, the backward test of keeping it beside the others (or, for the last effect
+    left, its out-of-fold RMS against the geometric model's)."""
+    fwd = next((st for st in stages if st.selected == e), None)
+    if fwd is None:
+        return f"{e} was selected"
+    c = next(c for c in fwd.candidates if c.effect == e)
+    if set(fwd.base) <= set(effects):
+        base = "+".join(("geometric", *fwd.base))
+        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {fwd.base_rms_mm:.4g} "
+                f"({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, p = {c.p_value:.2g})")
+    back = [st for st in stages if st.selected is None and st.removed is None and tuple(st.base) == tuple(effects)]
+    if back and len(effects) > 1:
+        st = back[-1]
+        k = next(k for k in st.candidates if k.effect == e)
+        rest = "+".join(("geometric", *(x for x in effects if x != e)))
+        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {k.heldout_rms_mm:.4g} "
+                f"({rest}) to {st.base_rms_mm:.4g} mm beside the others (clipped gain {k.gain_pct:+.1f} %, "
+                f"p = {k.p_value:.2g})")
+    removed = [st for st in stages if st.removed is not None]
+    last = removed[-1]
+    final_rms = next(k.heldout_rms_mm for k in last.candidates if k.effect == last.removed)
+    return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {stages[0].base_rms_mm:.4g} "
+            f"(geometric) to {final_rms:.4g} mm; the backward elimination removed "
+            f"{', '.join(st.removed for st in removed)} (not significant beside it)")
 
 
 def _best_line(stages: list) -> str:
@@ -45,6 +72,8 @@ def _best_line(stages: list) -> str:
 
 
 def _pair_line(c) -> str:
+    if c.note:
+        return c.note
     return (f"{c.effect} and {c.alternative} explain the training file about equally well: out-of-fold RMS "
             f"{c.rms_mm:.4g} vs {c.alternative_rms_mm:.4g} mm, clipped gain {c.gain_pct:+.1f} % (p = {c.p_value:.2g}), "
             "below the selection's thresholds")
@@ -53,16 +82,21 @@ def _pair_line(c) -> str:
 def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclusive: list, fallback_msgs,
                safe: str, suggestions) -> Verdict:
     """The :class:`~tolalloc.diagnose.verdict.Verdict` (precedence: inconclusive, none, ambiguous, effect)."""
-    notes = input_notes(ctx, stages)
+    notes, untested = input_notes(ctx, stages)
+    kw = dict(selected=tuple(final.effects), untested=tuple(untested))
     if inconclusive:
         picked = [f"the selection on the training file chose {'+'.join(final.effects)}; not claimed"] \
             if final.effects else []
-        return Verdict("inconclusive", (), tuple(inconclusive + picked + notes), safe, comparisons)
+        return Verdict("inconclusive", (), tuple(inconclusive + picked + notes), safe, comparisons, **kw)
+    if not final.effects and stages and not any(c.applicable for c in stages[0].candidates):
+        first = ["no candidate effect could be tested on this training file (reasons below): the data cannot tell "
+                 "whether an unmodelled effect is present", *fallback_msgs]
+        return Verdict("inconclusive", (), tuple(first + notes), safe, comparisons, **kw)
     if not final.effects:
         first = list(fallback_msgs) if fallback else [_best_line(stages)]
-        return Verdict("none", (), tuple(first + notes), safe, comparisons)
+        return Verdict("none", (), tuple(first + notes), safe, comparisons, **kw)
     amb = [c for c in comparisons if not c.separable]
-    sel = [_selected_line(stages, e) for e in final.effects]
+    sel = [_selected_line(stages, e, final.effects) for e in final.effects]
     if amb:
         names = []
         for e in final.effects:
@@ -71,7 +105,7 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
         if suggestions is not None and len(suggestions):
             lines.append("poses that would separate them: suggested_poses (where the two fitted models' predictions "
                          f"differ most, up to {suggestions['predicted_difference_mm'].max():.3g} mm)")
-        return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions)
+        return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions, **kw)
     sep = [f"{c.effect} beats {c.alternative} in its place (clipped gain {c.gain_pct:+.1f} %, p = {c.p_value:.2g})"
            for c in comparisons]
-    return Verdict("effect", tuple(final.effects), tuple(sel + sep + notes), safe, comparisons)
+    return Verdict("effect", tuple(final.effects), tuple(sel + sep + notes), safe, comparisons, **kw)

@@ -117,11 +117,13 @@ def summary_lines(d: Diagnosis) -> list:
                      "predicted 95 % radius (95 % expected when the model's uncertainty is right)")
     lines += [f"GUARD: {g}" for g in d.guards] or ["guards: none fired"]
     lines += [f"note: {f}" for f in d.findings]
-    lines.append("ranking (out-of-fold RMS of the training file; the test file is sealed):")
+    lines.append("ranking (by the clipped out-of-fold RMS of the training file, the selection's score; unclipped "
+                 "beside it; the test file is sealed):")
     for c in d.ranking:
         if c.applicable:
-            lines.append(f"  {c.effect:17s} held-out RMS {c.heldout_rms_mm:.4f} mm  p={c.p_value:.2e}  "
-                         f"gain {c.gain_pct:+.1f} %  ({c.variant})")
+            flag = "" if c.significant else "  not significant" + (f": {c.reason}" if c.reason else "")
+            lines.append(f"  {c.effect:17s} clipped RMS {c.robust_rms_mm:.4f} mm (unclipped {c.heldout_rms_mm:.4f})  "
+                         f"p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
         else:
             lines.append(f"  {c.effect:17s} not testable: {c.reason}")
     return lines

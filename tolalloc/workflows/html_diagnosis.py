@@ -19,7 +19,9 @@ BEFORE_AFTER_COLUMNS = [Column("model", "model", "text"), Column("label", "what 
                         Column("max_mm", "max [mm]", "f4"), Column("rms_shrink_pct", "RMS shrink vs nominal [%]", "f1")]
 
 RANKING_COLUMNS = [Column("step", "step", "int"), Column("base", "on top of", "text"),
-                   Column("effect", "candidate effect", "text"), Column("heldout_rms_mm", "held-out RMS [mm]", "f4"),
+                   Column("effect", "candidate effect", "text"),
+                   Column("robust_rms_mm", "clipped held-out RMS [mm] (ranked by)", "f4"),
+                   Column("heldout_rms_mm", "unclipped held-out RMS [mm]", "f4"),
                    Column("gain_pct", "gain [%]", "f1"), Column("p_value", "p-value", "sci"),
                    Column("n_params", "parameters", "int"), Column("significant", "significant", "bool"),
                    Column("selected", "selected", "bool"), Column("reason", "reason", "text", optional=True)]

@@ -56,17 +56,20 @@ def plot_where(where, path, n_features: int = 6, dpi: int = 72, max_points: int 
 
 
 def plot_ranking(diagnosis, path, dpi: int = 90) -> None:
-    """Held-out RMS of every candidate effect against the geometric model (first selection step)."""
+    """Clipped held-out RMS (the selection's score) of every candidate effect against the geometric model (first
+    selection step)."""
     ranking = [c for c in diagnosis.ranking if c.applicable]
     fig, ax = plt.subplots(figsize=(6.5, 3.2))
     names = ["geometric only"] + [c.effect for c in ranking]
-    vals = [diagnosis.stages[0].base_rms_mm] + [c.heldout_rms_mm for c in ranking]
+    base = next((c.robust_rms_mm * 100.0 / (100.0 - c.gain_pct) for c in ranking if c.gain_pct < 100.0),
+                diagnosis.stages[0].base_rms_mm)  # the geometric model's clipped RMS, from any candidate's gain
+    vals = [base] + [c.robust_rms_mm for c in ranking]
     colors = ["grey"] + ["tab:green" if c.significant else "tab:blue" for c in ranking]
     ax.barh(names, vals, color=colors)
     for i, c in enumerate(ranking, start=1):
         ax.text(vals[i], i, f"  p={c.p_value:.1e}", va="center", fontsize=8)
     ax.invert_yaxis()
-    ax.set_xlabel("held-out RMS [mm]")
+    ax.set_xlabel("clipped out-of-fold RMS of the training file [mm]")
     ax.set_title("Candidate effects on top of the geometric calibration (green: significant)", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=dpi)
