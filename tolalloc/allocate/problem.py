@@ -132,7 +132,7 @@ class AllocationProblem:
 def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: float = 0.95,
                   costs: CostSet | dict | None = None, pose_set: str | None = None,
                   angle_radius_deg: float | None = None, angle_prob: float | None = None,
-                  target=None) -> AllocationProblem:
+                  target=None, angle_target=None) -> AllocationProblem:
     """Set up an allocation problem.
 
     Parameters
@@ -150,6 +150,9 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
         Per-pose probability the position requirement is solved for, each in ``[prob, 1)`` (default ``prob``):
         the correction loop (:mod:`tolalloc.verify.correct`) tightens the poses where the nonlinear Monte Carlo
         falls short of the linear prediction. ``prob`` stays the requirement that is verified.
+    angle_target : array, shape (P,), optional
+        The same for the orientation requirement: each in ``[angle_prob, 1)`` (default ``angle_prob``); needs
+        ``angle_radius_deg``.
     """
     radius_mm = check_positive(radius_mm, "radius_mm")
     prob = float(prob)
@@ -175,20 +178,31 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     sub = sub.with_sigma(sig)
     t_ref = np.array([m.t_ref for m in cs.models])
     J = sub.jacobian(q)
-    tgt = np.full(len(q), prob) if target is None else np.asarray(target, float).reshape(-1)
-    if tgt.shape != (len(q),) or not np.all((tgt >= prob) & (tgt < 1)):
-        raise TolallocError(f"target: expected {len(q)} per-pose probabilities in [prob = {prob:g}, 1), got {target!r}.")
+    tgt = _targets(target, "target", "prob", prob, len(q))
     blocks = [_block("position", slice(0, 3), radius_mm, prob, tgt, J, alloc, fixed, t_ref, sig, cs.z)]
     if angle_radius_deg is not None:
         ar = np.deg2rad(check_positive(angle_radius_deg, "angle_radius_deg"))
         ap = prob if angle_prob is None else float(angle_prob)
         if not np.isfinite(ap) or not 0 < ap < 1:
             raise TolallocError(f"angle_prob: expected a probability strictly between 0 and 1, got {angle_prob!r}.")
-        blocks.append(_block("orientation", slice(3, 6), ar, ap, np.full(len(q), ap), J, alloc, fixed, t_ref, sig, cs.z))
+        atgt = _targets(angle_target, "angle_target", "angle_prob", ap, len(q))
+        blocks.append(_block("orientation", slice(3, 6), ar, ap, atgt, J, alloc, fixed, t_ref, sig, cs.z))
+    elif angle_target is not None:
+        raise TolallocError("angle_target: per-pose orientation targets need an orientation requirement; give "
+                            "angle_radius_deg too, or drop angle_target.")
     else:
         ar, ap = None, prob
     return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
                              np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks)
+
+
+def _targets(target, name: str, prob_name: str, prob: float, n_poses: int) -> np.ndarray:
+    """Per-pose probability targets (default ``prob`` at every pose), each in ``[prob, 1)``."""
+    tgt = np.full(n_poses, prob) if target is None else np.asarray(target, float).reshape(-1)
+    if tgt.shape != (n_poses,) or not np.all((tgt >= prob) & (tgt < 1)):
+        raise TolallocError(f"{name}: expected {n_poses} per-pose probabilities in [{prob_name} = {prob:g}, 1), "
+                            f"got {target!r}.")
+    return tgt
 
 
 def _block(name, rows, radius, prob, target, J, alloc, fixed, t_ref, sig, z) -> dict:

@@ -1,12 +1,13 @@
-"""Correction loop: tighten the target where the nonlinear Monte Carlo falls short of the linear P (issue 13).
+"""Correction loop: tighten the targets where the nonlinear Monte Carlo does not demonstrate a requirement.
 
-After a design is verified, every pose whose 95 % interval does not lie wholly at or above ``p`` (not
-*demonstrated*) gets a new target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the
-nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's:
-paired and importance-sampling estimates resolve the nonlinearity itself, so the margin shrinks to it; never below its
-previous target). The allocation is solved again with these per-pose targets
-(:func:`tolalloc.allocate.problem.build_problem` ``target=``) and re-verified against ``p`` itself (same seed,
-same poses), at most ``max_rounds`` times; then the loop stops and says so.
+After a design is verified, every requirement -- the position one and, when stated, the orientation one -- gets,
+at every pose where its 95 % interval does not lie wholly at or above its ``p`` (not *demonstrated*), a new
+target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the nonlinear estimate below the linear
+prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's: paired and importance-sampling estimates
+resolve the nonlinearity itself, so the margin shrinks to it; never below its previous target). The allocation is
+solved again with these per-pose targets (:func:`tolalloc.allocate.problem.build_problem` ``target=`` and
+``angle_target=``) and re-verified against the requirements themselves (same seed, same poses), at most
+``max_rounds`` times; then the loop stops and says so.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 
 from tolalloc.allocate.problem import build_problem
 from tolalloc.verify.designs import Verification, verify_design
+from tolalloc.verify.verdicts import shortfall_text
 
 __all__ = ["Correction", "correct_design"]
 
@@ -36,13 +38,15 @@ class Correction:
     rounds : int
         Correction rounds whose design was kept (0: nothing was re-solved).
     targets : array, shape (P,)
-        The per-pose probability target of the final design (``p`` where no pose was tightened).
+        The per-pose position probability target of the final design (``p`` where no pose was tightened).
     costs : tuple of float
         The design cost of each kept solve (first: the uncorrected design).
     stopped : bool
         True when the final design is still not demonstrated (round limit, or no further tightening possible).
     reason : str
         Why the loop ended.
+    angle_targets : array, shape (P,) or None
+        The same for the orientation requirement (``angle_prob`` where no pose was tightened); None without one.
     """
 
     result: object
@@ -53,6 +57,7 @@ class Correction:
     costs: tuple
     stopped: bool
     reason: str = ""
+    angle_targets: np.ndarray | None = None
 
     @property
     def cost_of_correction(self) -> float:
@@ -66,12 +71,25 @@ class Correction:
 
     @property
     def tightened(self) -> np.ndarray:
-        """Pose indices (0-based) whose target was raised above ``p``."""
+        """Pose indices (0-based) whose position target was raised above ``p``."""
         return np.flatnonzero(self.targets > self.verification.prob)
+
+    @property
+    def tightened_angle(self) -> np.ndarray:
+        """Pose indices (0-based) whose orientation target was raised above ``angle_prob`` (empty without one)."""
+        if self.angle_targets is None:
+            return np.zeros(0, int)
+        return np.flatnonzero(self.angle_targets > self.verification.angle["prob"])
 
     def message(self) -> str:
         v = self.verification
-        poses = ", ".join(f"{i + 1} ({self.targets[i]:.5f})" for i in self.tightened) or "none"
+
+        def listed(idx, tgt):
+            return ", ".join(f"{i + 1} ({tgt[i]:.5f})" for i in idx) or "none"
+
+        poses = listed(self.tightened, self.targets)
+        if self.angle_targets is not None:
+            poses += f"; orientation poses tightened (target): {listed(self.tightened_angle, self.angle_targets)}"
         head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
                 f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
                 f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.3g}%)")
@@ -80,9 +98,12 @@ class Correction:
     def to_dict(self) -> dict:
         """JSON-ready ``correction`` block of summary.json (poses 1-based)."""
         v = self.verification
+        ang = self.angle_targets
         return {"rounds": self.rounds, "stopped": self.stopped, "reason": self.reason,
                 "poses_tightened": [int(i) + 1 for i in self.tightened],
                 "target_per_pose": [float(x) for x in self.targets],
+                "poses_tightened_angle": [int(i) + 1 for i in self.tightened_angle],
+                "angle_target_per_pose": None if ang is None else [float(x) for x in ang],
                 "cost_before": float(self.costs[0]), "cost_after": float(self.costs[-1]),
                 "cost_of_correction": self.cost_of_correction, "premium_pct": self.premium_pct,
                 "costs_per_round": [float(c) for c in self.costs],
@@ -91,20 +112,30 @@ class Correction:
                 "message": self.message()}
 
 
-def needed_targets(ver: Verification, targets, k_se: float = 3.0) -> np.ndarray:
-    """Per-pose targets for the next round, shape (P,).
+def needed_targets(check, targets, k_se: float = 3.0) -> np.ndarray:
+    """Per-pose targets of one requirement for the next round, shape (P,).
 
-    ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses not demonstrated (lower bound < p);
-    unchanged elsewhere. ``se`` is the standard error implied by the pose's 95 % interval (half its width over
-    1.96): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or importance-sampling
-    one otherwise, so the margin is what the estimator can resolve, not what plain sampling could.
+    ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses where the requirement is not demonstrated
+    (lower bound < p); unchanged elsewhere. ``se`` is the standard error implied by the pose's 95 % interval (half
+    its width over 1.96): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or
+    importance-sampling one otherwise, so the margin is what the estimator can resolve, not what plain sampling
+    could. An unknown linear prediction (NaN) counts as no shortfall.
+
+    Parameters
+    ----------
+    check : RequirementCheck or Verification
+        One requirement's ``prob``, ``p_linear``, ``p_mc``, ``ci_low``, ``ci_high`` (a
+        :class:`~tolalloc.verify.verdicts.RequirementCheck` of :meth:`Verification.requirements`; a
+        :class:`~tolalloc.verify.designs.Verification` stands for its position requirement).
+    targets : array, shape (P,)
+        This requirement's current targets.
     """
     from tolalloc.montecarlo.intervals import z_of_level
 
     targets = np.asarray(targets, float)
-    se = np.maximum((ver.ci_high - ver.ci_low) / (2 * z_of_level(0.95)), 1e-12)
-    need = ver.prob + np.maximum(0.0, ver.p_linear - ver.p_mc) + k_se * se
-    short = ver.ci_low < ver.prob
+    se = np.maximum((check.ci_high - check.ci_low) / (2 * z_of_level(0.95)), 1e-12)
+    need = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0) + k_se * se
+    short = check.ci_low < check.prob
     return np.where(short, np.maximum(targets, need), targets)
 
 
@@ -112,7 +143,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
                    angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
                    estimator: str = "auto", standard: bool = False, **problem_kw) -> Correction:
-    """Allocate, verify and, where the Monte Carlo falls short of the linear P, tighten those poses and re-solve.
+    """Allocate, verify and, where the Monte Carlo falls short of a requirement, tighten those poses and re-solve.
+
+    Every stated requirement (position, and orientation when ``angle_radius_deg`` is given) is tightened by the
+    same rule (:func:`needed_targets`) at the poses where its lower 95 % bound is below its ``p``.
 
     Parameters
     ----------
@@ -152,9 +186,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
     check_estimator(estimator)
 
-    def solve(target=None):
-        return allocate(build_problem(model, q, target=target, **problem_kw), solver=solver, snap=snap,
-                        angle_step_deg=angle_step_deg)
+    def solve(targets=None):
+        t = targets or {}
+        problem = build_problem(model, q, target=t.get("position"), angle_target=t.get("orientation"), **problem_kw)
+        return allocate(problem, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
 
     def built(res):
         return res.standard if standard and res.standard is not None else res.design
@@ -165,18 +200,16 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
     res = result if result is not None else solve()
     ver = verification if verification is not None else check(res)
-    before, targets = ver, np.full(len(np.atleast_2d(q)), ver.prob)
+    before = ver
+    targets = {c.name: np.full(len(c.p_mc), c.prob) for c in ver.requirements()}
     costs, rounds, reason = [float(built(res).cost)], 0, ""
     while ver.verdict != "demonstrated":
         if rounds >= max_rounds:
-            reason = f"round limit ({max_rounds}) reached"
+            reason = f"round limit ({max_rounds}) reached; still short: {shortfall_text(ver.requirements())}"
             break
-        new = needed_targets(ver, targets, k_se)
-        if np.any(new >= 1.0):
-            reason = "a pose would need a target of 1 or more"
-            break
-        if np.all(new <= targets):
-            reason = "no pose short of p can be tightened (orientation requirement failing?)"
+        new = {c.name: needed_targets(c, targets[c.name], k_se) for c in ver.requirements()}
+        reason = _cannot_tighten(new, targets)
+        if reason:
             break
         nxt = solve(new)
         if not built(nxt).ok or nxt.status != "optimal":
@@ -185,4 +218,17 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         res, targets, rounds = nxt, new, rounds + 1
         costs.append(float(built(res).cost))
         ver = check(res)
-    return Correction(res, ver, before, rounds, targets, tuple(costs), ver.verdict != "demonstrated", reason)
+    return Correction(res, ver, before, rounds, targets["position"], tuple(costs), ver.verdict != "demonstrated",
+                      reason, targets.get("orientation"))
+
+
+def _cannot_tighten(new: dict, targets: dict) -> str:
+    """Why the next round cannot be solved ("" when it can): a target of 1 or more, or nothing raised."""
+    for name, tgt in new.items():
+        if np.any(tgt >= 1.0):
+            i = int(np.argmax(tgt))
+            return f"{name} pose {i + 1} would need a target of 1 or more ({tgt[i]:.6g})"
+    if all(np.all(new[k] <= targets[k]) for k in new):
+        return ("no pose short of p can be tightened further: every such target already covers the measured "
+                "shortfall and margin")
+    return ""

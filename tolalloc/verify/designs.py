@@ -5,20 +5,25 @@ kinematics; ``P(|dP| < r)`` is estimated at every pose with a 95 % interval and 
 (Gaussian) prediction. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
 one -- the exact linear P plus the mean difference of the nonlinear and linear indicators on the same draws,
 Tango's interval -- where the parameters are Gaussian, plain Monte Carlo (Wilson) elsewhere, importance
-sampling where the tail is too thin for the sample size. Criteria (issue 5):
+sampling where the tail is too thin for the sample size. With an orientation requirement ``P(|dw| < a) >= p_a``
+its probability is estimated on the same draws. Criteria (:mod:`tolalloc.verify.verdicts`), for each requirement
+against its own ``p``:
 
-* a pose is **demonstrated** when the whole interval is at or above ``p`` (lower bound ``>= p``);
-* it is **consistent** when the interval reaches ``p`` (upper bound ``>= p``) but its lower bound is below;
-* it **failed** when the whole interval lies below ``p``.
+* a pose is **demonstrated** when the whole interval of every requirement is at or above its ``p`` (lower bounds
+  ``>= p``);
+* it **failed** when the whole interval of any requirement lies below its ``p``;
+* it is **consistent** otherwise (every interval reaches its ``p``, some lower bound is below).
 
-A **certified** design passes a pose only when demonstrated; an **exact** design passes a consistent pose
-(no fixed allowance: a design whose interval lies below ``p`` fails, issue 13).
+A **certified** design passes a pose only when every requirement is demonstrated there; an **exact** design passes
+a consistent pose (no fixed allowance: a design whose interval lies below ``p`` fails).
 
-A certified pose whose interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled).
+A certified pose whose position interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled).
 Failing poses are named with the reason: *under-specified* (the linear prediction itself is below
 ``p``), *non-Gaussian* parameters (ring clearances, uniform) carrying a sizeable share of the variance,
 *inconclusive* (the interval contains ``p`` at the largest sample size: more samples are needed, whatever
-``P_hat``) or *nonlinearity* (the whole interval lies below ``p`` although the linear prediction meets it).
+``P_hat``) or *nonlinearity* (the whole interval lies below ``p`` although the linear prediction meets it); the
+orientation requirement's as *orientation under-specified*, *orientation inconclusive* or below ``p_a``
+(:func:`tolalloc.verify.verdicts.failure_reasons`).
 """
 
 from __future__ import annotations
@@ -30,35 +35,13 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
-from tolalloc.linear.covariance import variance_share
 from tolalloc.montecarlo.intervals import z_of_level
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
+from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, limiting, orientation_check,
+                                      overall_verdict, pose_verdicts, shortfall_text, weakest)
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict", "check_resolvable"]
-
-
-def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
-    """Per-pose verdict from the 95 % interval of ``P_hat``.
-
-    Parameters
-    ----------
-    ci_low, ci_high : array, shape (P,)
-    prob : float
-
-    Returns
-    -------
-    array of str, shape (P,)
-        ``"demonstrated"`` (lower bound >= p), ``"consistent"`` (upper bound >= p) or ``"failed"``.
-    """
-    lo, hi = np.asarray(ci_low, float), np.asarray(ci_high, float)
-    return np.where(lo >= prob, "demonstrated", np.where(hi >= prob, "consistent", "failed"))
-
-
-def overall_verdict(verdicts) -> str:
-    """The weakest per-pose verdict: ``failed`` < ``consistent`` < ``demonstrated``."""
-    v = set(np.asarray(verdicts).tolist())
-    return "failed" if "failed" in v else ("consistent" if "consistent" in v else "demonstrated")
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,7 +66,8 @@ class Verification:
     samples_pose : int
         The pose of ``samples_mm``: the lowest linear prediction.
     angle : dict or None
-        Orientation check (same keys as arrays) when the problem has an orientation requirement.
+        Orientation check when the problem has an orientation requirement: ``prob`` (its ``p``), ``p_linear``,
+        ``p_mc``, ``ci_low``, ``ci_high``, ``passed`` and ``estimator`` (arrays, shape (P,)).
     estimate : ProbabilityEstimate or None
         The position estimate behind ``p_mc`` / ``ci_*``: estimator per pose, discordant counts, variance
         reduction, plain estimate of the same draws, fallback reasons (:mod:`tolalloc.montecarlo.paired`).
@@ -147,13 +131,26 @@ class Verification:
     def ok(self) -> bool:
         return bool(np.all(self.passed))
 
+    def requirements(self) -> tuple:
+        """The stated requirements' intervals: position, then orientation when the problem has one.
+
+        Returns
+        -------
+        tuple of :class:`~tolalloc.verify.verdicts.RequirementCheck`
+        """
+        out = [RequirementCheck("position", self.prob, self.p_linear, self.p_mc, self.ci_low, self.ci_high)]
+        if self.angle is not None:
+            out.append(orientation_check(self.angle, len(self.p_mc)))
+        return tuple(out)
+
     @property
     def verdicts(self) -> np.ndarray:
-        """Per-pose ``demonstrated | consistent | failed`` (position requirement), shape (P,)."""
-        v = pose_verdicts(self.ci_low, self.ci_high, self.prob)
-        if self.angle is not None:
-            v = np.where(np.asarray(self.angle["passed"], bool), v, "failed")
-        return v
+        """Per-pose ``demonstrated | consistent | failed`` over every stated requirement, shape (P,).
+
+        Demonstrated only where every requirement's lower 95 % bound is at or above its ``p``; failed where any
+        requirement's upper bound is below its ``p``; consistent otherwise (:mod:`tolalloc.verify.verdicts`).
+        """
+        return weakest(*(c.verdicts for c in self.requirements()))
 
     @property
     def verdict(self) -> str:
@@ -161,29 +158,43 @@ class Verification:
         return overall_verdict(self.verdicts)
 
     @property
+    def limited_by(self) -> str:
+        """The requirement (``position`` or ``orientation``) that sets the overall verdict (least margin)."""
+        return limiting(self.requirements()).name
+
+    def requirements_summary(self) -> dict:
+        """JSON-ready ``limited_by`` and, per requirement, its verdict and the margin of its deciding bound."""
+        return {"limited_by": self.limited_by, "requirements": [c.to_dict() for c in self.requirements()]}
+
+    @property
     def failing(self) -> list:
         """``[(pose number (1-based), reason), ...]``."""
         return [(i + 1, self.reason[i]) for i in np.flatnonzero(~self.passed)]
 
     def message(self) -> str:
+        """One line: the verdict, the criterion, the requirement that limits it and by how much, the failing poses."""
         rule = ("pass: whole 95% interval >= p" if self.criterion == "certified" else "pass: upper 95% bound >= p")
+        checks = self.requirements()
+        short = shortfall_text(checks)
         if self.ok:
             angle = ("" if self.angle is None else
                      f"; orientation: lowest P_hat = {self.angle['p_mc'].min():.4f} at pose "
                      f"{int(np.argmin(self.angle['p_mc'])) + 1}")
-            meaning = ("lower 95% bound >= p at every pose" if self.verdict == "demonstrated" else
-                       f"{rule}; at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s) the interval also extends "
-                       "below p")
+            both = "" if len(checks) == 1 else " for position and orientation"
+            meaning = (f"lower 95% bound >= p at every pose{both}" if self.verdict == "demonstrated" else
+                       f"{rule}; not demonstrated at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s): {short}")
+            least = "" if short else f"; least margin: {limiting(checks).margin_text()}"
             return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({meaning}); "
-                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}")
+                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}{least}")
         head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
-        return f"verified: {head} ({rule}) at " + "; ".join(f"pose {i}: {r}" for i, r in self.failing)
+        return (f"verified: {head} ({rule}" + (f"; {short}" if short else "") + ") at "
+                + "; ".join(f"pose {i}: {r}" for i, r in self.failing))
 
     def to_frame(self) -> pd.DataFrame:
         """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason.
 
-        With an orientation requirement also ``p_linear_angle, p_mc_angle, ci_low_angle, ci_high_angle`` and
-        ``passed`` covers both requirements.
+        With an orientation requirement also ``p_linear_angle, p_mc_angle, ci_low_angle, ci_high_angle``;
+        ``passed`` and ``verdict`` cover both requirements.
         """
         cols = {"pose": np.arange(1, len(self.p_mc) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
                 "ci_low": self.ci_low, "ci_high": self.ci_high}
@@ -340,51 +351,14 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     est_arr = np.stack([pos.p_hat, pos.ci_low, pos.ci_high], axis=1)
     n = np.asarray(pos.n, int)
     ok = passes(est_arr[:, 1], est_arr[:, 2])
-    angle = None
+    angle, a_ok, a_check, a_n = None, np.ones(P, bool), None, None
     if pa is not None:
         ap = problem.angle_prob
         a_ok = pa.ci_low >= ap if crit == "certified" else pa.ci_high >= ap
-        angle = {"p_linear": design.p_linear.get("orientation"), "p_mc": pa.p_hat, "ci_low": pa.ci_low,
-                 "ci_high": pa.ci_high, "passed": a_ok, "estimator": pa.estimator}
-        pa_arr = np.stack([pa.p_hat, pa.ci_low, pa.ci_high], axis=1)
-    else:
-        a_ok, pa_arr = np.ones(P, bool), None
-    reasons = _failure_reasons(problem, model, crit, p_lin, est_arr, n, ok, a_ok, pa_arr, nongauss_share)
+        angle = {"prob": float(ap), "p_linear": design.p_linear.get("orientation"), "p_mc": pa.p_hat,
+                 "ci_low": pa.ci_low, "ci_high": pa.ci_high, "passed": a_ok, "estimator": pa.estimator}
+        a_check, a_n = orientation_check(angle, P), np.asarray(pa.n, int)
+    reasons = failure_reasons(problem, model, p_lin, est_arr, n, ok, a_ok, a_check, a_n, nongauss_share)
     worst = int(np.argmin(est_arr[:, 0]))
     return Verification(crit, r, p, n, int(seed), p_lin.copy(), est_arr[:, 0], est_arr[:, 1], est_arr[:, 2], ok & a_ok,
                         reasons, worst, samples, int(order[0]), angle, pos)
-
-
-def _failure_reasons(problem: AllocationProblem, model, crit: str, p_lin: np.ndarray, est: np.ndarray, n: np.ndarray,
-                     ok: np.ndarray, a_ok: np.ndarray, pa, nongauss_share: float) -> tuple:
-    """Per pose, why it failed ("" when it passed): under-specified, non-Gaussian, inconclusive or nonlinear.
-
-    ``p_lin`` (P,): linear position probabilities; ``est`` (P, 3): position estimate and interval; ``n`` (P,) samples; ``ok`` / ``a_ok`` (P,) position /
-    orientation verdicts; ``pa`` (P, 3) orientation estimate and interval or None.
-    """
-    p = problem.prob
-    nongauss = np.array([prm.distribution != "normal" for prm in model.params])
-    reasons = []
-    for i in range(len(est)):
-        if ok[i] and a_ok[i]:
-            reasons.append("")
-            continue
-        share = float(variance_share(problem.J[i, :3, :], model.sigma**2)[nongauss].sum())
-        bits = []
-        if not ok[i]:
-            if p_lin[i] < p - 1e-6:
-                bits.append(f"under-specified: even the linear prediction P = {p_lin[i]:.4f} < {p:g}")
-            elif share >= nongauss_share:
-                kinds = sorted({prm.distribution for prm, g in zip(model.params, nongauss) if g})
-                bits.append(f"non-Gaussian parameters ({', '.join(kinds)}) carry {share:.0%} of the variance: "
-                            f"P_hat = {est[i, 0]:.4f} vs linear-Gaussian {p_lin[i]:.4f}")
-            elif est[i, 1] < p <= est[i, 2]:  # the interval contains p: too few samples to tell, whatever P_hat
-                bits.append(f"inconclusive: interval [{est[i, 1]:.4f}, {est[i, 2]:.4f}] contains {p:g} "
-                            f"at n = {n[i]}; raise n_mc (or use estimator='importance')")
-            else:
-                bits.append(f"nonlinearity: exact kinematics give P_hat = {est[i, 0]:.4f} "
-                            f"[{est[i, 1]:.4f}, {est[i, 2]:.4f}] vs linear {p_lin[i]:.4f}")
-        if not a_ok[i]:
-            bits.append(f"orientation P_hat = {pa[i, 0]:.4f} below {problem.angle_prob:g}")
-        reasons.append("; ".join(bits))
-    return tuple(reasons)

@@ -45,6 +45,7 @@ def summary_dict(job) -> dict:
                         "reason": ver.reason[i]})
         summary["verification"]["verdict"] = ver.verdict
         summary["verification"]["verdicts"] = ver.verdicts.tolist()
+        summary["verification"].update(ver.requirements_summary())
     return summary
 
 
