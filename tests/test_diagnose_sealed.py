@@ -102,6 +102,7 @@ def test_flange_that_never_turns_is_inconclusive_unless_the_offset_prior_is_give
     assert any("probe offset is weakly identified" in r for r in d.verdict.reasons)
     # the offset is off along the flange axis: even the nominal model misses the turned test poses
     assert d.verdict.safe_model == "none" and "no fitted model transfers" in d.verdict.headline()
+    assert not any(r.startswith("every model misses the test file") for r in d.verdict.reasons)  # the offset explains it
     told = diagnose(ROBOT, train, test, folds=2, max_effects=1, target_offset_mm=(0.3, -0.2, 93.0),
                     target_offset_sd_mm=0.05)
     assert not any("probe offset" in r for r in told.verdict.reasons) and told.verdict.safe_model != "none"

@@ -247,7 +247,9 @@ def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, thre
     with threadpool_limits(threads):
         unc, reg = _uncertainty(ctx, final)
     if unc.message():
-        guards.append(unc.message())
+        weak_probe = any(g.startswith("weakly identified probe offset") for g in guards)
+        guards.append(unc.message() + ("; or the weakly identified probe offset, whose uncertainty the predicted radius "
+                                       "leaves out, used at other flange directions" if weak_probe else ""))
     extrap = extrapolation_flags(robot, train.q, test.q)
     if extrap.message():
         guards.append(extrap.message())
