@@ -13,6 +13,7 @@ from tolalloc.cli import main
 from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import budget, linear_map
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
+from tolalloc.outputs import MANIFEST
 
 
 def run(capsys, *argv):
@@ -61,7 +62,8 @@ def test_analyze_pose_set_worst_and_out_dir(capsys, tmp_path):
     kinds = {row["kind"] for row in d["budget"]["kinds"]}
     assert {"clearance_radial", "clearance_axial", "clearance_tilt"} <= kinds
     files = sorted(p.name for p in (tmp_path / "o").iterdir())
-    assert files == ["analyze.json", "budget.csv", "budget.md", "budget.png", "budget_kinds.csv", "linear_table.csv"]
+    assert files == [MANIFEST, "analyze.json", "budget.csv", "budget.md", "budget.png", "budget_kinds.csv",
+                     "linear_table.csv"]
     tab = pd.read_csv(tmp_path / "o" / "budget.csv")
     assert len(tab) == res.n_poses * len(res.model.params)
     assert (tmp_path / "o" / "budget.png").stat().st_size > 5000

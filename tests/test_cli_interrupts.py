@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from tolalloc.cli import main
-from tolalloc.outputs import atomic_output, directory_lock
+from tolalloc.outputs import MANIFEST, atomic_output, directory_lock
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -88,11 +88,13 @@ def test_new_directory_is_published_whole_and_existing_one_keeps_other_files(tmp
         (tmp / "a.txt").write_text("1")
         (tmp / "sub").mkdir()
         assert not target.exists()  # nothing visible before the end of the block
-    assert sorted(p.name for p in target.iterdir()) == ["a.txt", "sub"]
+    assert sorted(p.name for p in target.iterdir()) == [MANIFEST, "a.txt", "sub"]
     (target / "mine.txt").write_text("keep")
     with atomic_output(target, directory=True) as tmp:
         (tmp / "a.txt").write_text("2")
     assert (target / "a.txt").read_text() == "2" and (target / "mine.txt").read_text() == "keep"
+    assert not (target / "sub").exists()  # the earlier publication's, not written again: another job's leftover
+    assert (target / MANIFEST).read_text() == "a.txt\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out"]  # no staging folder, no lock left
     umask = os.umask(0)
     os.umask(umask)

@@ -18,6 +18,7 @@ import tolalloc
 from tolalloc.cli import main
 from tolalloc.diagnose import generate
 from tolalloc.diagnose.synth import split_frame
+from tolalloc.outputs import MANIFEST
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -110,7 +111,7 @@ def test_mc_cli_equals_api(tmp_path):
     argv = ["mc", "tool_changer", "--n", "3000", "--seed", "7", "--pose", "15,30,-10,0,-20,-5", "--hist-bins", "20"]
     assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
     res = tolalloc.simulate_errors("tool_changer", 3000, seed=7, q_deg_mm=[15, 30, -10, 0, -20, -5], hist_bins=20)
-    assert set(res.save(tmp_path / "api")) == {p.name for p in (tmp_path / "api").iterdir()}
+    assert set(res.save(tmp_path / "api")) | {MANIFEST} == {p.name for p in (tmp_path / "api").iterdir()}
     assert_same_files(tmp_path / "cli", tmp_path / "api")
 
 

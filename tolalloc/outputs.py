@@ -5,8 +5,9 @@ and published only when the whole command succeeded:
 
 * a file by one :func:`os.replace`;
 * a new directory by one :func:`os.rename` of the staged folder;
-* an existing directory by replacing its files of the same name (other files are kept), with
-  SIGINT / SIGTERM held back until the last file is in place.
+* an existing directory by replacing its files of the same name, with SIGINT / SIGTERM held back until the
+  last file is in place; files an earlier publication wrote there and this one does not are removed (the
+  directory's :data:`MANIFEST` lists them), other files are kept.
 
 A directory output is locked (``.NAME.lock`` next to it, :func:`fcntl.flock`, released by the
 kernel if the process dies) from staging to publication; a second run writing the same directory at
@@ -138,8 +139,25 @@ def published(reset: bool = False) -> list:
     return list(_PUBLISHED)
 
 
+#: List of the files the last publication wrote into a directory (one name per line), kept in that directory.
+MANIFEST = ".tolalloc-files"
+
+
 def _publish_dir(tmp: Path, path: Path) -> None:
-    """Move staged folder ``tmp`` to ``path`` (the caller holds the signals back)."""
+    """Move staged folder ``tmp`` to ``path`` (the caller holds the signals back).
+
+    The directory keeps a list of the files published into it (:data:`MANIFEST`); a later publication removes the
+    files of that list it does not write again (another job's report, say), so the folder never hands over one
+    job's files beside another's. Files the list does not name (the user's own) are kept."""
+    new = sorted(item.name for item in tmp.iterdir())
+    (tmp / MANIFEST).write_text("".join(f"{name}\n" for name in new))
+    if path.is_dir() and (path / MANIFEST).is_file():
+        for name in set((path / MANIFEST).read_text().splitlines()) - set(new) - {"", MANIFEST}:
+            old = path / Path(name).name  # a bare name: never a path outside the folder
+            if old.is_dir() and not old.is_symlink():
+                shutil.rmtree(old, ignore_errors=True)
+            elif old.exists() or old.is_symlink():
+                old.unlink()
     if not path.exists():
         try:
             os.rename(tmp, path)  # one step: the directory appears complete

@@ -133,6 +133,12 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     return n, seed, radii, arad, hist_bins, keep, scheduler
 
 
+def _angle_lines(res, max_poses: int | None = None) -> list[str]:
+    """``P(|rotation error| < r)`` per pose with its 95 % interval, the radius in deg (as the user gives it)."""
+    return [f"P(|dw| < {np.rad2deg(r):.4g} deg) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v[:max_poses])
+            for r, v in res.p_within_angle.items()]
+
+
 @dataclass(frozen=True, eq=False, repr=False)
 class ErrorSimulation(JobResult):
     """Nonlinear Monte Carlo of the tool-pose error.
@@ -160,6 +166,7 @@ class ErrorSimulation(JobResult):
         lines = [f"robot: {self.robot.name}   n = {r.n}, seed = {r.seed}, {r.q.shape[0]} pose(s)"]
         for rad, v in r.p_within.items():
             lines.append(f"P(|dP| < {rad:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v[:4]))
+        lines += _angle_lines(r, 4)
         return lines
 
     def to_frame(self) -> pd.DataFrame:
@@ -186,7 +193,9 @@ class ErrorSimulation(JobResult):
             "norm_mm": f(res.norm_mm), "reach_mm": f(res.reach_mm),
             "angle_mean_rad": f(res.angle_mean_rad), "angle_std_rad": f(res.angle_std_rad),
             "rotvec_std_rad": f(res.rotvec_std_rad),
-            "p_within": pw(res.p_within, "radius_mm"), "p_within_angle": pw(res.p_within_angle, "radius_rad"),
+            "p_within": pw(res.p_within, "radius_mm"),
+            "p_within_angle": {k: {**v, "radius_deg": float(np.rad2deg(v["radius_rad"]))}
+                               for k, v in pw(res.p_within_angle, "radius_rad").items()},
             "stats_order": "norm_mm and reach_mm are [mean, std, max, min]; angles are X-Y-Z fixed [alpha, beta, gamma]",
         }
         if res.hist is not None:
@@ -203,6 +212,7 @@ class ErrorSimulation(JobResult):
                res.to_frame().to_string(index=False, float_format=lambda x: f"{x:.6g}")]
         for r, v in res.p_within.items():
             out.append(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v))
+        out += _angle_lines(res)
         for r, e in (res.p_estimates or {}).items():
             out.append(f"P(|dp| < {r:g} mm), {e.message()}: " + ", ".join(
                 f"{a:.6f} [{b:.6f}, {c:.6f}]" for a, b, c in zip(e.p_hat, e.ci_low, e.ci_high)))
