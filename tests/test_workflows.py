@@ -145,7 +145,8 @@ def test_results_have_a_compact_repr_a_table_and_html():
     text = repr(res)
     assert len(text.splitlines()) <= 6 and "tool_changer" in text and "cost" in text and res.verdict in text
     assert "<table" in res._repr_html_() and "dl1" in res._repr_html_()
-    assert res.design_note() not in res._repr_html_()  # the note is the table's caption, not a column
+    card = res._repr_html_()  # the note is the table's caption, once, not a column repeated on every row
+    assert card.count("the design to build;") == 1 and "tol_continuous_mm" not in card and "<th>tol_deg</th>" in card
     frame = res.to_frame()
     tol = frame["tol_mm"].fillna(frame["tol_deg"])
     assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and tol.gt(0).all() and "design" not in frame

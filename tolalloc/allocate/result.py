@@ -134,8 +134,9 @@ class AllocationResult:
         cols.update({"cost": np.asarray(cost, float), "variance_share_pct": 100.0 * self.variance_share(d),
                      "at_limit": list(d.at_limit)})
         cols.update({**_split("t_min", pr.t_min * f, is_mm), **_split("t_max", pr.t_max * f, is_mm)})
-        cols.update(_split("tol_continuous", self.design.t * f, is_mm))
-        cols["cost_continuous"] = pr.param_costs(self.design.t)
+        cont = self.design.t if self.design.t is not None else nan
+        cols.update(_split("tol_continuous", cont * f, is_mm))
+        cols["cost_continuous"] = pr.param_costs(cont) if self.design.t is not None else nan
         cols.update(_split("tol_rounded", rnd * f, is_mm))
         return pd.DataFrame(cols)
 

@@ -222,6 +222,14 @@ class ToleranceAllocation(JobResult):
         what was checked: :meth:`design_note`."""
         return self.result.to_frame(self.design)
 
+    def _repr_html_(self) -> str:
+        from tolalloc.report.tables import TABLE_COLUMNS
+        from tolalloc.workflows.base import html_card
+
+        frame = self.to_frame()
+        return html_card(type(self).__name__, self.headline() + [f"table: {self.design_note()}"],
+                         frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
+
     def verification_frame(self) -> pd.DataFrame | None:
         """Per pose: linear P, Monte Carlo P_hat with its 95 % interval, samples, verdict, reason."""
         return None if self.verification is None else self.verification.to_frame()
