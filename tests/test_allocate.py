@@ -141,7 +141,8 @@ def test_tool_changer_allocation(result):
     # the paper's sigma (table2) misses the requirement by far; the design tightens the dominant ones
     assert (result.design.t / 3)[pr.model.index("dth2")] < pr.model.with_sigma(build_error_model(pr.model.robot).sigma).sigma[pr.model.index("dth2")] / 3
     frame = result.to_frame(result.design)
-    assert list(frame.columns[:8]) == ["parameter", "kind", "element", "role", "unit", "nominal_mm", "tol_mm", "tol_deg"]
+    assert list(frame.columns[:8]) == ["parameter", "kind", "element", "role", "unit", "nominal_mm", "tol_mm",
+                                       "tol_deg"]
     assert frame["variance_share_pct"].sum() == pytest.approx(100.0)
     assert set(frame.loc[frame.parameter.isin(["dth6", "e6x", "e6y"]), "at_limit"]) == {"t_max"}
     # one unit per column: lengths in tol_mm (nothing in tol_deg), angles in tol_deg, with the right factor

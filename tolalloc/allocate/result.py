@@ -214,8 +214,15 @@ class AllocationResult:
             "discrete": None if self.discrete is None else self.discrete.to_dict(),
             "worst_pose": self.worst_pose + 1,
         }
+        out["poses"] = self._pose_rows(built, exact_ok)
+        return out
+
+    def _pose_rows(self, built: Design, exact_ok: bool) -> list:
+        """summary.json's ``poses``: joint values, linear P of the design to build (and of the continuous one),
+        pose duals."""
+        pr = self.problem
         poses = []
-        qi = np.round(robot.q_to_interface(pr.q), 9)
+        qi = np.round(pr.model.robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
             # "q" is the issue's contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
             row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
@@ -229,8 +236,7 @@ class AllocationResult:
             if exact_ok and self.exact.ok and self.exact.pose_dual is not None:
                 row["pose_dual_exact"] = float(self.exact.pose_dual[i])
             poses.append(row)
-        out["poses"] = poses
-        return out
+        return poses
 
 
 def _split(name: str, values, is_mm) -> dict:

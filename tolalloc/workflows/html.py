@@ -212,9 +212,9 @@ def _pose_note(job) -> str:
     design = f"the design to build ({job.design.label})"
     if job.verification is None:
         return f"P linear: the Gaussian prediction of the first-order model for {design} (no Monte Carlo verification)."
-    used = [e for e in INTERVALS if e in set(map(str, job.verification.estimator))]
+    used = "; ".join(INTERVALS[e] for e in INTERVALS if e in set(map(str, job.verification.estimator)))
     return (f"All of {design}. P linear: the Gaussian prediction of the first-order model; P̂: the nonlinear Monte "
-            f"Carlo estimate (exact perturbed kinematics) with its 95 % interval ({'; '.join(INTERVALS[e] for e in used)}). "
+            f"Carlo estimate (exact perturbed kinematics) with its 95 % interval ({used}). "
             "Joint values in deg / mm." + ("" if job.region_search is None else " Origin: active, a pose of the region "
                                             "search the design is allocated at; coverage, one of the lowest-P poses of "
                                             "the fresh coverage sample."))
@@ -355,8 +355,9 @@ def calibrated_context(job) -> dict:
     cards = [] if built is None else [  # the design to build, and the rounding it replaces
         {"label": "cost (to build)", "value": _f4(built.cost), "note": f"standard grades, {built.premium_pct:+.2f} %"},
         {"label": "rounding down", "value": _f4(built.rounded_cost), "note": f"{built.rounded_premium_pct:+.2f} %"}]
-    cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(s["cost"]),
-               "note": f"{s['design']} design"},
+    cont = res.summary()  # the continuous calibration-aware design's own numbers, whatever the job's summary leads with
+    cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(cont["cost"]),
+               "note": f"{cont['design']} design"},
              {"label": "certified design", "value": _f4(s["cost_certified"]),
               "note": "certified" if cert.certified else "NOT certified"},
              {"label": "exact design", "value": _f4(s["cost_exact"]), "note": "post-calibration probability"},
