@@ -205,13 +205,16 @@ class ToleranceAllocation(JobResult):
             return lines + ["status: infeasible over the region (no design): " + self.infeasible]
         extra = (f" (continuous optimum {self.continuous_design.cost:.4f}, "
                  f"{100 * (self.cost / self.continuous_design.cost - 1):+.2f} %)" if self.standard else "")
-        lines.append(f"status: {self.status}   design to build: {self.design.label}   cost: {self.cost:.4f}{extra}")
+        role = "design to build" if self.status == "optimal" else "design (for reference only, not to build)"
+        lines.append(f"status: {self.status}   {role}: {self.design.label}   cost: {self.cost:.4f}{extra}")
         if self.verification is not None:
             v = self.verification
             lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}, n = {int(v.n.min())} per "
                          f"pose, {', '.join(sorted(set(map(str, v.estimator))))} estimator)")
-        else:
+        elif self.status == "optimal":
             lines.append("verification: not run (NOT verified; linear prediction only)")
+        else:
+            lines.append("verification: not run (no design that meets the requirement)")
         return lines
 
     # ------------------------------------------------------------------ tables
