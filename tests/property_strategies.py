@@ -300,8 +300,16 @@ def check_result(res) -> None:
     summary = res.summary()
     json.dumps(summary, default=_json_default, allow_nan=False)
     finite_json(summary)
-    # the standard and rounded designs' columns are empty where there is none (snap off, an infeasible requirement)
-    finite_frame(res.to_frame(), allow_missing=("tolerance_std", "cost_std", "tolerance_rounded"))
+    # the standard and rounded designs' columns are empty where there is none (snap off, an infeasible requirement);
+    # a quantity in mm or deg has its value in the row's unit column and nothing in the other one
+    frame = res.to_frame()
+    split = tuple(c for c in frame.columns if c.endswith(("_mm", "_deg")))
+    finite_frame(frame, allow_missing=("tolerance_std", "cost_std", "tolerance_rounded", *split))
+    if "tol_mm" in frame:
+        mm = (frame["unit"] == "mm").to_numpy()
+        for name in ("tol", "sigma", "t_min", "t_max", "tol_continuous"):
+            a, b = frame[f"{name}_mm"].to_numpy(float), frame[f"{name}_deg"].to_numpy(float)
+            assert np.isfinite(np.where(mm, a, b)).all() and np.isnan(np.where(mm, b, a)).all(), name
     assert res.text().strip() and repr(res).startswith("<")
 
 

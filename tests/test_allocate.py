@@ -140,10 +140,21 @@ def test_tool_changer_allocation(result):
     assert min(_quad_p_within(c, 0.25) for c in C) >= 0.95 - 1e-5  # meets the requirement within FEAS_TOL
     # the paper's sigma (table2) misses the requirement by far; the design tightens the dominant ones
     assert (result.design.t / 3)[pr.model.index("dth2")] < pr.model.with_sigma(build_error_model(pr.model.robot).sigma).sigma[pr.model.index("dth2")] / 3
-    frame = result.to_frame()
-    assert list(frame.columns[:6]) == ["parameter", "kind", "element", "unit", "role", "tolerance"]
-    assert frame["variance_share"].sum() == pytest.approx(1.0)
+    frame = result.to_frame(result.design)
+    assert list(frame.columns[:8]) == ["parameter", "kind", "element", "role", "unit", "nominal_mm", "tol_mm",
+                                       "tol_deg"]
+    assert frame["variance_share_pct"].sum() == pytest.approx(100.0)
     assert set(frame.loc[frame.parameter.isin(["dth6", "e6x", "e6y"]), "at_limit"]) == {"t_max"}
+    # one unit per column: lengths in tol_mm (nothing in tol_deg), angles in tol_deg, with the right factor
+    mm = (frame["unit"] == "mm").to_numpy()
+    np.testing.assert_allclose(frame["tol_mm"][mm], result.design.t[mm], rtol=1e-12)
+    np.testing.assert_allclose(frame["tol_deg"][~mm], np.rad2deg(result.design.t[~mm]), rtol=1e-12)
+    assert frame["tol_deg"][mm].isna().all() and frame["tol_mm"][~mm].isna().all()
+    assert (frame["grade"] == "").all()  # the continuous design carries no standard value
+    lengths = {lk.name: lk.length_mm for lk in pr.model.robot.links}
+    links = frame["kind"] == "link_length"
+    assert frame.loc[links, "nominal_mm"].tolist() == [lengths[e] for e in frame.loc[links, "element"]]
+    assert frame.loc[~links, "nominal_mm"].isna().all()
     s = result.summary()
     assert s["costs"]["saving"] == pytest.approx(result.certified.cost - result.exact.cost)
     assert len(s["poses"]) == 12 and s["poses"][0]["q_deg_mm"][0] == pytest.approx(15.0)
@@ -168,6 +179,22 @@ def test_standard_design_is_chosen_not_rounded(result):
     assert grades["dl3"].startswith("IT") and grades["dth1"] == ""
     s = result.summary()
     assert s["costs"]["standard"] == pytest.approx(std.cost) and s["costs"]["rounded"] == pytest.approx(rnd.cost)
+    # the standard design is the one to build: the table, the summary's cost, solver and worst pose are its own
+    assert result.built is std and s["standard_built"] and s["cost"] == pytest.approx(std.cost)
+    assert s["solver"] == "discrete-exact" and s["cost_continuous"] == pytest.approx(result.design.cost)
+    assert s["worst_pose"] == int(np.argmin(std.p_linear["position"])) + 1
+    assert [r["p_linear"] for r in s["poses"]] == pytest.approx(std.p_linear["position"].tolist())
+    assert [r["p_linear_continuous"] for r in s["poses"]] == pytest.approx(result.design.p_linear["position"].tolist())
+    frame = result.to_frame()
+    mm = (frame["unit"] == "mm").to_numpy()
+    np.testing.assert_allclose(np.where(mm, frame["tol_mm"], frame["tol_deg"]), std.t * [p.to_interface for p in
+                                                                                           pr.model.params])
+    np.testing.assert_allclose(np.where(mm, frame["tol_continuous_mm"], frame["tol_continuous_deg"]),
+                               result.design.t * [p.to_interface for p in pr.model.params])
+    assert frame["cost"].sum() == pytest.approx(std.cost) and frame["cost_continuous"].sum() == pytest.approx(
+        result.design.cost)
+    assert frame["grade"].tolist() == list(result.grade) and "it_grade" not in frame
+    assert frame["variance_share_pct"].tolist() == pytest.approx((100 * result.variance_share(std)).tolist())
     assert s["costs"]["standard_premium_pct"] == pytest.approx(100 * (std.cost / result.design.cost - 1))
     assert s["discrete"]["proven_optimal"] is False and s["standard"]["grades"]["dl3"] == grades["dl3"]
 

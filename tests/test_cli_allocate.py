@@ -18,7 +18,10 @@ def test_allocate_writes_everything(tmp_path, capsys):
     assert {"tolerances.csv", "tolerances.md", "tolerances.tex", "summary.json", "error_budget.png",
             "error_cloud.png", "verification.csv", "pose_probabilities.png"} <= names
     s = json.loads((out / "summary.json").read_text())
-    assert s["status"] == "optimal" and s["solver"] == "exact" and s["pose_set"] == "nominal"
+    # the summary's cost, solver and per-pose linear P are the design to build's; the continuous one's are named so
+    assert s["status"] == "optimal" and s["solver"] == "discrete-exact" and s["pose_set"] == "nominal"
+    assert s["solver_continuous"] == "exact" and s["cost"] == s["built"]["cost"] == s["costs"]["standard"]
+    assert s["cost_continuous"] == s["costs"]["continuous"] < s["cost"] and s["standard_built"] and s["verified"]
     assert s["costs"]["exact"] <= s["costs"]["certified"]
     pose = s["poses"][0]
     for key in ("q", "q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
@@ -27,17 +30,26 @@ def test_allocate_writes_everything(tmp_path, capsys):
     # the exact design sits on P = 0.95, so its interval straddles p: the correction loop raises the target
     corr = s["correction"]
     assert corr["verdict_before"] == "consistent" and corr["rounds"] >= 1 and corr["poses_tightened"] == [1]
-    assert pose["p_linear"] == pytest.approx(corr["target_per_pose"][0], abs=1e-5)
+    assert pose["p_linear_continuous"] == pytest.approx(corr["target_per_pose"][0], abs=1e-5)
+    assert pose["p_linear"] >= corr["target_per_pose"][0] - 1e-9  # the standard design to build meets it too
     assert corr["cost_after"] > corr["cost_before"] and s["built"]["cost"] == pytest.approx(corr["cost_after"])
     assert s["verification"]["verdict"] == corr["verdict"] == pose["verdict"] == "demonstrated"
     assert "correction: verified: demonstrated after" in text and "verdict per pose: 1 demonstrated" in text
-    first = (out / "tolerances.md").read_text().splitlines()[0]
-    assert first.startswith("design: standard grades") and "corrected for the nonlinear Monte Carlo" in first
+    md = (out / "tolerances.md").read_text().splitlines()
+    assert md[0].startswith("design: standard grades (discrete-exact), the design to build; verified by nonlinear")
+    assert "corrected for the nonlinear Monte Carlo" in md[0] and md[0] == f"design: {s['tables_design']}"
+    assert md[2] == "**Tolerances of tool_changer: P(|dP| < 0.25 mm) >= 0.95 at the 1 pose(s) of 'nominal'**"
+    assert f"table: {s['tables_design']}" in text
     tab = pd.read_csv(out / "tolerances.csv")
-    for col in ("parameter", "kind", "unit", "tolerance", "sigma", "it_grade", "cost", "variance_share"):
+    for col in ("parameter", "kind", "unit", "role", "nominal_mm", "tol_mm", "tol_deg", "sigma_mm", "sigma_deg",
+                "grade", "cost", "variance_share_pct", "tol_continuous_mm", "tol_continuous_deg"):
         assert col in tab.columns
+    assert not {"design", "tolerance", "it_grade", "variance_share"} & set(tab.columns)
     assert set(tab["unit"]) == {"mm", "deg"} and len(tab) == 22
-    assert tab.loc[tab.parameter == "dl3", "it_grade"].item().startswith("IT")
+    assert tab.loc[tab.parameter == "dl3", "grade"].item().startswith("IT")
+    assert tab["cost"].sum() == pytest.approx(s["cost"]) and tab["variance_share_pct"].sum() == pytest.approx(100)
+    ver = pd.read_csv(out / "verification.csv")  # one meaning of p_linear: the design to build
+    assert ver["p_linear"].tolist() == pytest.approx([row["p_linear"] for row in s["poses"]])
 
 
 def test_certified_solver_no_verify(capsys):
@@ -111,6 +123,10 @@ def test_orientation_verification_and_uniform_errors_are_reported(tmp_path, caps
     ver = pd.read_csv(out / "verification.csv")
     assert {"p_linear_angle", "p_mc_angle", "ci_low_angle", "ci_high_angle"} <= set(ver.columns)
     assert ver["p_mc_angle"].iloc[0] == pytest.approx(pose["p_mc_angle"])
+    # the hand-over tables state both requirements; the legend says sigma for uniform errors
+    md, tex = (out / "tolerances.md").read_text(), (out / "tolerances.tex").read_text()
+    assert "P(|dP| < 0.25 mm) >= 0.95, P(|dw| < 0.02 deg) >= 0.95 at the 1 pose(s) of 'nominal'" in md
+    assert r"P($|$dw$|$ $<$ 0.02 deg) $\geq$ 0.95" in tex and "errors uniform over" in md
 
 
 def test_region_default_and_trajectory(tmp_path, capsys):
@@ -124,6 +140,8 @@ def test_region_default_and_trajectory(tmp_path, capsys):
     assert "region working:" in text and "none below p" in text
     s = json.loads((out / "summary.json").read_text())
     assert s["region"]["converged"] and s["region"]["static_joints"] == [6] and s["coverage"]["n_below"] == 0
+    tex = (out / "tolerances.tex").read_text()
+    assert "over the box region 'working'" in tex and "working poses" not in tex
 
 
 @pytest.mark.parametrize("rows,match", [

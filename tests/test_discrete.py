@@ -234,9 +234,10 @@ def test_discrete_off_keeps_the_rounding_and_flags_are_checked(model):
 def test_table_and_summary_carry_grades_processes_and_costs(small):
     pr, res, cat, _ = small
     frame = res.to_frame()
-    for col in ("tolerance_std", "grade", "process", "cost_std", "tolerance_rounded", "it_grade"):
+    for col in ("tol_mm", "tol_deg", "grade", "process", "cost", "tol_continuous_mm", "cost_continuous",
+                "tol_rounded_mm", "tol_rounded_deg"):
         assert col in frame.columns
-    assert frame["cost_std"].sum() == pytest.approx(res.standard.cost)
+    assert frame["cost"].sum() == pytest.approx(res.standard.cost)  # the standard design, set-ups included
     assert frame.loc[frame.parameter == "dl1", "grade"].item().startswith("IT")
     c = res.summary()["costs"]
     assert c["continuous"] == pytest.approx(res.design.cost) and c["rounded"] == pytest.approx(res.rounded.cost)

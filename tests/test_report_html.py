@@ -198,16 +198,40 @@ def test_allocation_tolerance_table(allocation):
     job, _, _, page = allocation
     frame = job.to_frame()
     t = page.tables["tolerance-table"]
-    assert {"parameter", "kind", "unit", "tolerance", "sigma", "tolerance_std", "it_grade", "cost", "variance_share",
-            "at_limit", "t_min", "t_max"} <= set(t["keys"])
-    assert "ISO 286 grade" in t["labels"]
+    assert {"parameter", "kind", "role", "nominal_mm", "tol_mm", "tol_deg", "grade", "sigma_mm", "sigma_deg", "cost",
+            "variance_share_pct", "at_limit", "tol_continuous_mm", "tol_continuous_deg"} <= set(t["keys"])
+    assert {"tolerance ± [mm]", "tolerance ± [deg]", "σ [mm]", "σ [deg]", "nominal [mm]"} <= set(t["labels"])
+    assert t["keys"].index("tol_mm") < t["keys"].index("tol_continuous_mm")  # the design to build leads
     assert len(t["rows"]) == len(frame) == len(job.problem.model.params)
     assert page.column("tolerance-table", "parameter") == list(frame["parameter"])
-    assert page.column("tolerance-table", "tolerance") == [f"±{x:.4g}" for x in frame["tolerance"]]
-    assert page.column("tolerance-table", "tolerance_std") == [f"±{x:.4g}" for x in frame["tolerance_std"]]
-    assert page.column("tolerance-table", "it_grade") == list(frame["it_grade"])
-    assert any(g.startswith("IT") for g in frame["it_grade"])
-    assert page.column("tolerance-table", "variance_share") == [f"{100 * x:.1f}" for x in frame["variance_share"]]
+    for key in ("tol_mm", "tol_deg", "tol_continuous_mm"):
+        assert page.column("tolerance-table", key) == ["" if np.isnan(x) else f"±{x:.4g}" for x in frame[key]]
+    assert page.column("tolerance-table", "grade") == list(frame["grade"])
+    assert any(g.startswith("IT") for g in frame["grade"])
+    assert page.column("tolerance-table", "variance_share_pct") == [f"{x:.1f}" for x in frame["variance_share_pct"]]
+    # the table, the design note and the costs' bold row are the design to build: the standard one
+    assert job.standard and page.text("design-note").startswith("Design: standard grades (discrete-exact), the design "
+                                                                "to build; verified by nonlinear Monte Carlo")
+    assert f"at the worst pose (pose {job.worst_pose + 1})" in page.text("tolerances")
+
+
+def test_allocation_report_names_one_design_one_worst_pose(allocation):
+    from tolalloc.workflows.html import allocation_context
+
+    job, _, _, page = allocation
+    ctx = allocation_context(job)
+    rows = ctx["costs_table"]["rows"]
+    bold = [r["cells"][0]["text"] for r in rows if r["cls"] == "chosen"]
+    assert bold == ["standard grades"]
+    s = job.summary()
+    cards = {c["label"]: c for c in ctx["cards"]}
+    assert cards["lowest linear P"]["note"].startswith(f"pose {s['worst_pose']},")
+    assert s["worst_pose"] == job.worst_pose + 1 == int(np.argmin(job.design.p_linear["position"])) + 1
+    assert f"(pose {job.worst_pose + 1})" in ctx["figures"][0]["caption"]
+    # the pose table's legend names the interval of the estimator that ran (paired here: Tango's, not Wilson's)
+    assert set(job.verification.estimator) == {"paired"}
+    assert "Tango's score interval of the paired difference" in ctx["pose_table"]["note"]
+    assert "Wilson" not in ctx["pose_table"]["note"]
 
 
 def test_allocation_costs_and_poses(allocation):
@@ -279,6 +303,9 @@ def test_allocation_without_verification_or_design(kw, word, tmp_path):
     assert page.column("tolerance-table", "parameter") == list(job.to_frame()["parameter"])
     assert len(page.images) == 1  # the error budget; no verification figures
     assert ("--no-verify" in page.text("command-cli")) == (not kw.get("verify", True))
+    assert "verified" not in page.text("design-note").replace("NOT verified", "")  # nothing verified, nothing said so
+    if word == "NOT VERIFIED":
+        assert job.ok and not job.verified and not s["verified"] and "NOT verified by Monte Carlo" in s["tables_design"]
 
 
 # ---------------------------------------------------------------------------------------------- calibrated

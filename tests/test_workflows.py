@@ -146,11 +146,16 @@ def test_results_have_a_compact_repr_a_table_and_html():
     text = repr(res)
     assert len(text.splitlines()) <= 6 and "tool_changer" in text and "cost" in text and res.verdict in text
     assert "<table" in res._repr_html_() and "dl1" in res._repr_html_()
+    card = res._repr_html_()  # the note is the table's caption, once, not a column repeated on every row
+    assert card.count("the design to build;") == 1 and "tol_continuous_mm" not in card and "<th>tol_deg</th>" in card
     frame = res.to_frame()
-    assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and frame["tolerance"].gt(0).all()
+    tol = frame["tol_mm"].fillna(frame["tol_deg"])
+    assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and tol.gt(0).all() and "design" not in frame
     s = res.summary()
     assert s["verification"]["verdict"] == res.verdict and s["built"]["cost"] == pytest.approx(res.cost)
     assert res.standard and res.cost >= res.continuous_design.cost  # the standard design is the one to build
+    assert s["cost"] == pytest.approx(res.cost) and s["cost_continuous"] == pytest.approx(res.continuous_design.cost)
+    assert res.ok and res.verified and s["tables_design"] == res.design_note()
     with pytest.raises(Exception):
         res.cost = 1.0  # frozen
     fig = res.plot_pose_probabilities()
@@ -160,6 +165,29 @@ def test_results_have_a_compact_repr_a_table_and_html():
     plt.close("all")
     robot_text = repr(tolalloc.load_robot("ur10"))
     assert len(robot_text.splitlines()) == 1 and "6 joints" in robot_text
+
+
+def test_an_unverified_allocation_never_says_verified(tmp_path):
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False)
+    assert res.ok and not res.verified  # ok: nothing that was checked failed; verified: nothing was run
+    note = res.design_note()
+    assert note.startswith("standard grades (discrete-exact), the design to build; NOT verified by Monte Carlo")
+    assert "verified" not in note.replace("NOT verified", "")
+    res.save(tmp_path / "o")
+    assert (tmp_path / "o" / "tolerances.md").read_text().splitlines()[0] == f"design: {note}"
+    assert r"NOT verified by Monte Carlo" in (tmp_path / "o" / "tolerances.tex").read_text()
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert s["tables_design"] == note and s["verified"] is False and "verification" not in s
+    assert "verification: not run" in repr(res)
+    # the budget figure draws the table of the design to build, the one its title names
+    import matplotlib.pyplot as plt
+
+    fig = res.plot_budget()
+    frame = res.to_frame()
+    widths = [bar.get_width() for bar in fig.axes[0].patches]
+    assert widths == pytest.approx(frame["tol_mm"].fillna(frame["tol_deg"]).tolist())
+    assert f"{res.design.label} design, worst pose {res.worst_pose + 1}" in fig._suptitle.get_text()
+    plt.close(fig)
 
 
 def test_robot_methods_take_interface_units_and_from_dh_builds_a_chain():

@@ -35,10 +35,11 @@ res = tolalloc.allocate_tolerances(
 print(res)                         # requirement, status, design, cost, verdict
 
 # %% table
-table = res.to_frame()
-print(table[["parameter", "unit", "tolerance", "variance_share", "at_limit", "tolerance_std", "it_grade",
-             "tolerance_rounded"]].to_string(index=False, float_format=lambda x: f"{x:.4g}"))
-print("the table holds:", table["design"].iloc[0])
+table = res.to_frame()                           # the design to build: lengths in *_mm, angles in *_deg
+print(table.round({"variance_share_pct": 1})[["parameter", "nominal_mm", "tol_mm", "tol_deg", "grade",
+      "variance_share_pct", "at_limit", "tol_continuous_mm", "tol_continuous_deg"]]
+      .to_string(index=False, na_rep="", float_format=lambda x: f"{x:.4g}"))
+print("the table holds:", res.design_note())
 
 # %% solvers
 costs = res.summary()["costs"]

@@ -40,7 +40,7 @@ for r in (0.5, 1.0):
 
 # %% paired
 design = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False).to_frame()
-sigma = dict(zip(design["parameter"], design["sigma"]))      # the allocated sigma = t / 3, in mm or deg
+sigma = dict(zip(design["parameter"], design["sigma_mm"].fillna(design["sigma_deg"])))  # sigma = t / 3, mm or deg
 tight = tolalloc.simulate_errors("tool_changer", N, seed=2, sigma=sigma, radius_mm=0.25, estimator="paired")
 est = tight.mc.p_estimates[0.25]
 print(f"plain:  {est.p_plain[0]:.6f} [{est.plain_low[0]:.6f}, {est.plain_high[0]:.6f}]")

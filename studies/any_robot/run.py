@@ -61,7 +61,8 @@ def run_robot(key, path, tool, n_mc):
     problem = build_problem(model, q, radius_mm=RADIUS_MM, prob=PROB)
     result = allocate(problem, solver="exact", discrete=False)  # this study checks the rounded standard grades
     t_alloc = time.perf_counter() - t0
-    table = result.to_frame()
+    table = result.to_frame(result.design)  # the allocated (continuous) design; its rounded grades beside
+    table.insert(table.columns.get_loc("grade") + 1, "rounded_grade", list(result.it_grade))
     table.to_csv(OUT / f"tolerances_{key}.csv", index=False, float_format="%.6g")
     rows = []
     designs = [("allocated", result.design)]
@@ -142,9 +143,9 @@ def main(argv=None):
         std = ver[ver.design == "standard grades"]
         if len(std):
             lines += [f"Snapped to standard grades: MC probability from {std.p_mc.min():.4f} to {std.p_mc.max():.4f}.", ""]
-        cols = ["parameter", "kind", "unit", "tolerance", "it_grade", "variance_share", "at_limit"]
+        cols = ["parameter", "kind", "tol_mm", "tol_deg", "rounded_grade", "variance_share_pct", "at_limit"]
         lines += ["Tolerance table (± half-widths; `tolerances_{0}.csv` has every column):".format(key), "",
-                  fmt_table(table[cols]), "", f"![Monte Carlo error cloud]({f'mc_{key}.png'})", ""]
+                  fmt_table(table[cols].fillna("")), "", f"![Monte Carlo error cloud]({f'mc_{key}.png'})", ""]
     ver = pd.DataFrame(all_rows)
     ver.to_csv(OUT / "verification.csv", index=False, float_format="%.6g")
     lines += ["## Verification per pose", "", fmt_table(ver.drop(columns=["q_deg_mm", "n_mc"])), "",

@@ -94,8 +94,8 @@ def section1(n_mc: int) -> tuple[list, list]:
             "time_s": dt, "mc_poses": len(q), "mc_verdict": ver.verdict,
             "corrected_cost": res2.standard.cost if res2 is not None else np.nan,
             "corrected_verdict": ver2.verdict if ver2 is not None else ""})
-        table = res.to_frame()[["parameter", "unit", "tolerance", "tolerance_std", "grade", "tolerance_rounded",
-                                "cost", "cost_std"]]
+        table = _grades_table(res)[["parameter", "unit", "tolerance", "tolerance_std", "grade", "tolerance_rounded",
+                                    "cost", "cost_std"]]
         table.insert(6, "grade_rounded", [g for g in res.rounded_grade])
         tag = f"{name}_{where.replace(' ', '_')}"
         table.to_csv(OUT / f"grades_{tag}.csv", index=False, float_format="%.6g")
@@ -147,9 +147,23 @@ def section3():
     costs = cost_set(model, read_costs_file(HERE / "processes.toml"), source="studies/standard_grades/processes.toml")
     res = allocate(build_problem(model, robot.poses("working"), radius_mm=RADIUS_MM, prob=PROB, costs=costs),
                    discrete_certified=True)
-    f = res.to_frame()
+    f = _grades_table(res)
     return res, f.loc[f.kind == "link_length", ["parameter", "tolerance", "tolerance_std", "grade", "process",
                                                  "cost_std"]]
+
+
+def _grades_table(res) -> pd.DataFrame:
+    """The study's table: continuous (``tolerance``, ``cost``), standard (``tolerance_std``, ``cost_std``) and rounded
+    tolerances in the row's own unit (``unit``), from ``AllocationResult.to_frame()`` of the standard design."""
+    f = res.to_frame(res.standard)
+
+    def own(name):
+        return f[f"{name}_mm"].fillna(f[f"{name}_deg"])
+
+    return pd.DataFrame({"parameter": f["parameter"], "kind": f["kind"], "unit": f["unit"],
+                         "tolerance": own("tol_continuous"), "tolerance_std": own("tol"), "grade": f["grade"],
+                         "process": f["process"], "tolerance_rounded": own("tol_rounded"),
+                         "cost": f["cost_continuous"], "cost_std": f["cost"]})
 
 
 def main() -> None:

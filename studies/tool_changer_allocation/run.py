@@ -102,10 +102,12 @@ def design_card(model, robot, n_mc, n_cov):
 def section_design_card(card, n_mc, robot) -> list:
     """Section 1: allocation over the working region (tables written to OUT)."""
     res, cert_v, ex_v, ra = card["res"], card["cert_v"], card["ex_v"], card["ra"]
-    table = res.to_frame()
-    write_tables(table, OUT, "tolerances", caption="tool_changer tolerances, P(|dP| < 0.25 mm) >= 0.95 (exact)")
+    table = res.to_frame(res.design)  # this section is about the continuous exact design (standard grades: section 3)
+    write_tables(table, OUT, "tolerances", caption="tool_changer tolerances, P(|dP| < 0.25 mm) >= 0.95",
+                 note="design: the continuous exact optimum (its standard grades: reports/standard_grades)")
     res.to_frame(res.certified).to_csv(OUT / "tolerances_certified.csv", index=False, float_format="%.8g")
-    plot_budget(table, OUT / "error_budget.png", title=f"exact design, worst active pose {res.worst_pose + 1}")
+    worst = int(np.argmin(res.design.p_linear["position"]))
+    plot_budget(table, OUT / "error_budget.png", title=f"exact design, worst active pose {worst + 1}")
     plot_cloud(ex_v, OUT / "error_cloud.png", dpi=80)
     plot_pose_probabilities(ex_v, OUT / "pose_probabilities_exact.png")
     n_act = len(card["q"])
@@ -243,7 +245,8 @@ def main(argv=None) -> int:
              "poses alone (and the same for the UR10) is in `reports/workspace_allocation/report.md`.", ""]
     lines += section_design_card(card, n_mc, robot)
     lines += section_correction(model, card, n_mc, n_cov)
-    table = res.to_frame()
+    table = res.to_frame(res.design)
+    sigma = table["sigma_mm"].fillna(table["sigma_deg"]).to_numpy()  # in the row's own unit
     # 2. the paper's sigma against the allocated ones --------------------------------------
     J = pr.model.jacobian(W)[:, :3]
     C_paper = np.einsum("pik,k,pjk->pij", J, model.sigma**2, J)
@@ -251,8 +254,8 @@ def main(argv=None) -> int:
     r_paper = radius_for_prob(C_paper, 0.95)
     f = np.array([p.to_interface for p in model.params])
     comp = pd.DataFrame({"parameter": model.names, "unit": [p.interface_unit for p in model.params],
-                         "sigma_paper": model.sigma * f, "sigma_allocated": table["sigma"].to_numpy(),
-                         "ratio_paper_over_allocated": model.sigma * f / table["sigma"].to_numpy()})
+                         "sigma_paper": model.sigma * f, "sigma_allocated": sigma,
+                         "ratio_paper_over_allocated": model.sigma * f / sigma})
     comp.to_csv(OUT / "paper_vs_allocated.csv", index=False, float_format="%.6g")
     lines += ["## 2. The paper's σ (Table 2) against the allocated σ", "",
               f"With the paper's σ the linear-Gaussian P(|ΔP| < 0.25 mm) is at most {p_paper.max():.2e} over the "

@@ -53,11 +53,15 @@ def deg_mm(robot, q) -> str:
 
 def tolerance_rows(study) -> pd.DataFrame:
     """Both designs' tolerance and sigma per parameter (interface units), from ``AllocationResult.to_frame()``."""
-    a, b = (d.result.to_frame() for d in study.designs)
+    a, b = (d.result.to_frame(d.result.design) for d in study.designs)
+
+    def own(f, name):  # the value in the row's own unit (the table splits mm and deg into two columns)
+        return f[f"{name}_mm"].fillna(f[f"{name}_deg"])
+
     return pd.DataFrame({"robot": study.name, "parameter": a["parameter"], "unit": a["unit"],
-                         "tolerance_pose_set": a["tolerance"], "tolerance_region": b["tolerance"],
-                         "sigma_pose_set": a["sigma"], "sigma_region": b["sigma"],
-                         "ratio_pose_set_over_region": a["tolerance"] / b["tolerance"],
+                         "tolerance_pose_set": own(a, "tol"), "tolerance_region": own(b, "tol"),
+                         "sigma_pose_set": own(a, "sigma"), "sigma_region": own(b, "sigma"),
+                         "ratio_pose_set_over_region": own(a, "tol") / own(b, "tol"),
                          "at_limit_region": b["at_limit"]})
 
 

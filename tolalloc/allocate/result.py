@@ -28,7 +28,8 @@ class AllocationResult:
     solver : {"exact", "certified"}
         The solver asked for.
     design : Design
-        The chosen design (if infeasible: the tightest design the limits allow, status ``infeasible``).
+        The chosen continuous design (if infeasible: the tightest design the limits allow, status ``infeasible``).
+        The design to build is :attr:`built`: ``standard`` when it meets the requirement, else this one.
     certified, certified_other : Design
         The cheaper and the other certified rule.
     exact : Design or None
@@ -78,53 +79,78 @@ class AllocationResult:
         return ("",) * len(self.problem.costs.names)
 
     @property
+    def built(self) -> Design:
+        """The design to build: ``standard`` when it meets the requirement, else ``design`` (the continuous one)."""
+        std = self.standard
+        return std if std is not None and std.ok else self.design
+
+    @property
     def worst_pose(self) -> int:
-        """Pose index with the lowest position probability of ``design``."""
-        return int(np.argmin(self.design.p_linear["position"]))
+        """Pose index with the lowest position probability of the design to build (``built``)."""
+        return int(np.argmin(self.built.p_linear["position"]))
 
     def variance_share(self, design: Design | None = None, pose: int | None = None) -> np.ndarray:
-        """Share of each parameter in ``tr Sigma`` of the position error at ``pose`` (default: the worst), (K,)."""
-        d = design or self.design
-        i = self.worst_pose if pose is None else pose
+        """Share of each parameter in ``tr Sigma`` of the position error of ``design`` (default: ``built``) at
+        ``pose`` (default: that design's worst pose), (K,), a fraction."""
+        d = design or self.built
+        i = int(np.argmin(d.p_linear["position"])) if pose is None else pose
         return variance_share(self.problem.J[i, :3, :], self.problem.sigma(d.t) ** 2)
 
     def to_frame(self, design: Design | None = None) -> pd.DataFrame:
-        """Tolerance table: one row per parameter, tolerance and sigma in the interface unit (mm or deg)."""
-        d = design or self.design
+        """Tolerance table of ``design`` (default: the design to build, ``built``): one row per parameter.
+
+        Every quantity in mm or deg has two columns, ``<name>_mm`` (length rows) and ``<name>_deg`` (angle rows),
+        the other one empty; ``unit`` names the row's unit. Columns: ``parameter, kind, element, role, unit,
+        nominal_mm`` (a link length's nominal size, the size its ISO 286 grade applies to), ``tol_mm, tol_deg``
+        (± half-width), ``grade`` (ISO 286 IT grade of a link length, a class name, or empty: a multiple of the
+        resolution step, or no standard value), ``process``, ``sigma_mm, sigma_deg`` (t / z), ``cost``,
+        ``variance_share_pct`` (share of ``tr Sigma`` of the position error at the design's worst pose, in %),
+        ``at_limit`` (``t_min``, ``t_max`` or ``fixed``), ``t_min_mm .. t_max_deg`` (process limits), then for
+        comparison ``tol_continuous_mm, tol_continuous_deg, cost_continuous`` (the continuous optimum,
+        ``design``) and ``tol_rounded_mm, tol_rounded_deg`` (it rounded down to standard values).
+        ``grade`` and ``process`` are empty unless ``design`` is the standard design.
+        """
+        d = design or self.built
         pr = self.problem
         params = pr.model.params
         f = np.array([p.to_interface for p in params])
+        is_mm = np.array([p.interface_unit == "mm" for p in params])
+        lengths = {lk.name: lk.length_mm for lk in pr.model.robot.links}
+        nominal = [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan for p in params]
         nan = np.full(len(f), np.nan)
-        std = self.standard.t if self.standard is not None and self.standard.t is not None else nan
         rnd = self.rounded.t if self.rounded is not None and self.rounded.t is not None else nan
-        std_cost = pr.param_costs(std) if self.standard is not None and self.standard.t is not None else nan
-        if self.discrete is not None and self.standard is self.discrete.design:
-            std_cost = self.discrete.param_cost
-        return pd.DataFrame({
-            "parameter": [p.name for p in params],
-            "kind": [p.kind for p in params],
-            "element": [p.element for p in params],
-            "unit": [p.interface_unit for p in params],
-            "role": list(pr.costs.role),
-            "tolerance": d.t * f,
-            "sigma": pr.sigma(d.t) * f,
-            "tolerance_std": std * f,
-            "it_grade": list(self.it_grade),
-            "grade": list(self.grade),
-            "process": list(self.process),
-            "cost_std": std_cost,
-            "tolerance_rounded": rnd * f,
-            "cost": pr.param_costs(d.t),
-            "variance_share": self.variance_share(d),
-            "at_limit": list(d.at_limit),
-            "t_min": pr.t_min * f,
-            "t_max": pr.t_max * f,
-        })
+        is_std = d is self.standard and d is not None
+        cost = pr.param_costs(d.t)
+        if is_std and self.discrete is not None and d is self.discrete.design:
+            cost = self.discrete.param_cost  # per part, its process's set-up included
+        blank = ("",) * len(params)
+        cols = {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
+                "element": [p.element for p in params], "role": list(pr.costs.role),
+                "unit": [p.interface_unit for p in params], "nominal_mm": nominal}
+        cols.update(_split("tol", d.t * f, is_mm))
+        cols.update({"grade": list(self.grade) if is_std else list(blank),
+                     "process": list(self.process) if is_std else list(blank)})
+        cols.update(_split("sigma", pr.sigma(d.t) * f, is_mm))
+        cols.update({"cost": np.asarray(cost, float), "variance_share_pct": 100.0 * self.variance_share(d),
+                     "at_limit": list(d.at_limit)})
+        cols.update({**_split("t_min", pr.t_min * f, is_mm), **_split("t_max", pr.t_max * f, is_mm)})
+        cont = self.design.t if self.design.t is not None else nan
+        cols.update(_split("tol_continuous", cont * f, is_mm))
+        cols["cost_continuous"] = pr.param_costs(cont) if self.design.t is not None else nan
+        cols.update(_split("tol_rounded", rnd * f, is_mm))
+        return pd.DataFrame(cols)
 
     def summary(self) -> dict:
-        """JSON-ready summary (the ``summary.json`` content without the Monte Carlo verification)."""
+        """JSON-ready summary (the ``summary.json`` content without the Monte Carlo verification).
+
+        ``solver``, ``design_label``, ``design_status``, ``fallback_from``, ``cost``, ``worst_pose`` and the
+        per-pose ``p_linear`` describe the design to build (``built``; ``standard_built``: whether it is the
+        standard design); the continuous optimum is in ``cost_continuous``, ``solver_continuous``,
+        ``design_label_continuous``, the per-pose ``p_linear_continuous`` (when it differs) and ``costs``.
+        """
         pr = self.problem
         robot = pr.model.robot
+        built = self.built
 
         def cost(d):
             return None if d is None or not d.ok else d.cost
@@ -138,12 +164,16 @@ class AllocationResult:
                             "angle_radius_deg": None if pr.angle_radius_rad is None else float(np.rad2deg(pr.angle_radius_rad)),
                             "angle_prob": pr.angle_prob if pr.angle_radius_rad is not None else None},
             "status": self.status,
-            "solver": str(self.design.solver),
+            "solver": str(built.solver),
             "solver_requested": self.solver,
-            "fallback_from": None if self.design.fallback_from is None else str(self.design.fallback_from),
-            "design_status": self.design.status,
-            "design_label": self.design.label,
-            "cost": self.design.cost,
+            "fallback_from": None if built.fallback_from is None else str(built.fallback_from),
+            "design_status": built.status,
+            "design_label": built.label,
+            "cost": built.cost,
+            "standard_built": built is self.standard,
+            "cost_continuous": self.design.cost,
+            "solver_continuous": str(self.design.solver),
+            "design_label_continuous": self.design.label,
             "z": pr.costs.z,
             "distribution": pr.costs.distribution,
             "costs_source": pr.costs.source,
@@ -171,7 +201,8 @@ class AllocationResult:
                           "radius_best_max": {f"{k}_{'mm' if k == 'position' else 'deg'}":
                                               float(v.max() if k == "position" else np.rad2deg(v.max()))
                                               for k, v in self.diagnosis.radius_best.items()},
-                          "binding": [{"parameter": n, "variance_share": s} for n, s in self.diagnosis.binding]},
+                          "binding": [{"parameter": n, "variance_share_pct": 100.0 * s}
+                                      for n, s in self.diagnosis.binding]},
             "standard": None if self.standard is None else {
                 "meets": self.standard.status == "optimal", "message": self.standard.message,
                 "solver": str(self.standard.solver), "label": self.standard.label,
@@ -183,21 +214,35 @@ class AllocationResult:
             "discrete": None if self.discrete is None else self.discrete.to_dict(),
             "worst_pose": self.worst_pose + 1,
         }
+        out["poses"] = self._pose_rows(built, exact_ok)
+        return out
+
+    def _pose_rows(self, built: Design, exact_ok: bool) -> list:
+        """summary.json's ``poses``: joint values, linear P of the design to build (and of the continuous one),
+        pose duals."""
+        pr = self.problem
         poses = []
-        qi = np.round(robot.q_to_interface(pr.q), 9)
+        qi = np.round(pr.model.robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
             # "q" is the issue's contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
-            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(self.design.p_linear["position"][i])}
-            if "orientation" in self.design.p_linear:
-                row["p_linear_angle"] = float(self.design.p_linear["orientation"][i])
+            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
+            if "orientation" in built.p_linear:
+                row["p_linear_angle"] = float(built.p_linear["orientation"][i])
+            if built is not self.design:
+                row["p_linear_continuous"] = float(self.design.p_linear["position"][i])
             if self.certified.ok:
                 row["p_linear_certified"] = float(self.certified.p_linear["position"][i])
                 row["pose_dual_certified"] = float(self.certified.pose_dual[i]) if self.certified.pose_dual is not None else None
             if exact_ok and self.exact.ok and self.exact.pose_dual is not None:
                 row["pose_dual_exact"] = float(self.exact.pose_dual[i])
             poses.append(row)
-        out["poses"] = poses
-        return out
+        return poses
+
+
+def _split(name: str, values, is_mm) -> dict:
+    """``{name_mm: values on length rows, name_deg: values on angle rows}`` (NaN on the other rows)."""
+    v = np.asarray(values, float)
+    return {f"{name}_mm": np.where(is_mm, v, np.nan), f"{name}_deg": np.where(is_mm, np.nan, v)}
 
 
 def _pct(x, ref):

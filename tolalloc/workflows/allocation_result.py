@@ -52,8 +52,8 @@ class ToleranceAllocation(JobResult):
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.ok, res.status
     (True, 'optimal')
-    >>> res.to_frame().loc[0, ["parameter", "unit", "grade"]].tolist()
-    ['dl1', 'mm', 'IT10']
+    >>> res.to_frame().loc[0, ["parameter", "unit", "grade"]].tolist(), float(res.to_frame().loc[0, "nominal_mm"])
+    (['dl1', 'mm', 'IT10'], 315.0)
     """
 
     result: object
@@ -83,12 +83,12 @@ class ToleranceAllocation(JobResult):
 
     @property
     def continuous_design(self):
-        """The continuous optimum (``result.design``; ``tolerance`` in the table)."""
+        """The continuous optimum (``result.design``; ``tol_continuous_mm`` / ``tol_continuous_deg`` in the table)."""
         return self.result.design
 
     @property
     def standard(self) -> bool:
-        """Whether the design to build is the standard one (``tolerance_std``, ``grade`` in the table)."""
+        """Whether the design to build is the standard one (the table's ``tol_mm`` / ``tol_deg`` and ``grade``)."""
         return self.design is not self.result.design
 
     @property
@@ -107,7 +107,9 @@ class ToleranceAllocation(JobResult):
 
     @property
     def ok(self) -> bool:
-        """An optimal design, covering the region, that passed its verification (if one ran)."""
+        """Whether the design to build meets the requirement as far as it was checked: an optimal design that covers
+        the region (a box region) and passed its Monte Carlo verification -- or had none (``verify=False``: then
+        only the linear prediction was checked, and :attr:`verified` is False)."""
         if self.infeasible is not None or self.status != "optimal":
             return False
         if self.coverage is not None and not self.coverage.ok:
@@ -115,21 +117,79 @@ class ToleranceAllocation(JobResult):
         return self.verification is None or bool(self.verification.ok)
 
     @property
+    def verified(self) -> bool:
+        """Whether the design to build passed a nonlinear Monte Carlo verification (False when none ran)."""
+        return self.verification is not None and self.ok
+
+    @property
+    def worst_pose(self) -> int:
+        """Pose index (0-based) of the allocation's poses with the lowest linear P of the design to build."""
+        return int(np.argmin(self.design.p_linear["position"]))
+
+    @property
     def writable(self) -> bool:
         """Whether :meth:`save` has something to write (a region no design can cover has not)."""
         return self.infeasible is None
 
     def design_note(self) -> str:
-        """What the tables hold: the design's label, and whether it is the corrected one."""
-        res, corr = self.result, self.correction
-        note = f"{res.design.label}"
+        """Which design the tables hold and what was checked, in one sentence: the ``.md`` first line, the ``.tex``
+        caption, ``tables_design`` in summary.json and a line of :meth:`text`."""
+        res, d = self.result, self.design
+        if res.status != "optimal":
+            return (f"{d.label}: for reference only, it does not meet the requirement (status {res.status}); "
+                    "not a design to build")
         if self.standard:
-            note = (f"standard grades ({self.design.label}) in tolerance_std / grade: verified, to be built; the "
-                    f"continuous {res.design.label} optimum in tolerance")
+            what = f"standard grades ({d.label})"
+        elif res.standard is None:
+            what = f"the continuous {d.label} design (no standard values asked for)"
+        else:
+            what = f"the continuous {d.label} design (the standard design does not meet the requirement)"
+        parts = [what + (", the design to build" if self.ok else ", NOT ready to build")] + self._checks()
+        corr = self.correction
         if corr is not None and corr.rounds:
-            note += (f", corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
-                     f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.3g}% cost)")
-        return note
+            parts.append(f"corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
+                         f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.3g} % cost)")
+        if self.standard:
+            c = res.design.cost
+            parts.append(f"cost {d.cost:.4f}, {100 * (d.cost / c - 1):+.2f} % over the continuous {res.design.label} "
+                         f"optimum ({c:.4f})")
+        return "; ".join(parts)
+
+    def _checks(self) -> list[str]:
+        """What the coverage and the verification found for the design to build, in words."""
+        cov, ver, out = self.coverage, self.verification, []
+        if cov is not None:
+            out.append(f"covers the region (lowest linear P {cov.min_p:.4f} on {cov.n} fresh poses)" if cov.ok else
+                       f"does NOT cover the region ({cov.n_below} of {cov.n} fresh poses below p, lowest linear P "
+                       f"{cov.min_p:.4f})")
+        if ver is None:
+            out.append("NOT verified by Monte Carlo (verification not run; the linear prediction meets the "
+                       "requirement at every pose of the allocation)")
+        elif ver.ok:
+            out.append(f"verified by nonlinear Monte Carlo: {ver.verdict} at all {len(ver.passed)} poses")
+        else:
+            out.append(f"NOT verified: the nonlinear Monte Carlo is {ver.verdict} at pose(s) "
+                       + ", ".join(str(i) for i, _ in ver.failing))
+        return out
+
+    def where(self) -> str:
+        """Where the requirement holds, for captions: the box region or the pose set."""
+        if self.region is not None:
+            return f"over the box region {self.label!r}"
+        return f"at the {self.problem.n_poses} pose(s) of {self.label!r}"
+
+    def table_legend(self) -> str:
+        """What the columns of the tolerance table hold, with their units (below the ``.md`` / ``.tex`` table)."""
+        pr = self.problem
+        dist = " (errors uniform over ±t)" if pr.costs.distribution == "uniform" else ""
+        return ("Tolerances are symmetric ± half-widths. Columns ending in _mm hold the length rows (mm), those "
+                "ending in _deg the angle rows (deg); the other one of each pair is empty. nominal_mm: the link's "
+                "nominal length, the size its ISO 286 grade applies to. grade: the ISO 286 IT grade of a link length, "
+                "a class name, or empty (a multiple of the resolution step). "
+                f"sigma = tol / {pr.costs.z:.4g}{dist}. cost: relative cost units of the cost laws. "
+                "variance_share_pct: share of tr(Sigma) of the position error at the worst pose (pose "
+                f"{self.worst_pose + 1}), in %. role: allocate, or fixed by the costs file. at_limit: t_min or t_max "
+                "when the tolerance sits at a process limit (fixed: set by the costs file).")
 
     def requirement(self) -> str:
         pr = self.problem
@@ -145,22 +205,33 @@ class ToleranceAllocation(JobResult):
             return lines + ["status: infeasible over the region (no design): " + self.infeasible]
         extra = (f" (continuous optimum {self.continuous_design.cost:.4f}, "
                  f"{100 * (self.cost / self.continuous_design.cost - 1):+.2f} %)" if self.standard else "")
-        lines.append(f"status: {self.status}   design to build: {self.design.label}   cost: {self.cost:.4f}{extra}")
+        role = "design to build" if self.status == "optimal" else "design (for reference only, not to build)"
+        lines.append(f"status: {self.status}   {role}: {self.design.label}   cost: {self.cost:.4f}{extra}")
         if self.verification is not None:
             v = self.verification
             lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}, n = {int(v.n.min())} per "
                          f"pose, {', '.join(sorted(set(map(str, v.estimator))))} estimator)")
+        elif self.status == "optimal":
+            lines.append("verification: not run (NOT verified; linear prediction only)")
         else:
-            lines.append("verification: not run")
+            lines.append("verification: not run (no design that meets the requirement)")
         return lines
 
     # ------------------------------------------------------------------ tables
     def to_frame(self) -> pd.DataFrame:
-        """The tolerance table: one row per parameter (tolerance and sigma in mm or deg, standard grade, cost,
-        variance share at the worst pose, process limits) and the ``design`` it holds."""
-        table = self.result.to_frame()
-        table["design"] = self.design_note()
-        return table
+        """The tolerance table of the design to build: one row per parameter, tolerance and sigma in ``*_mm`` /
+        ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
+        optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
+        what was checked: :meth:`design_note`."""
+        return self.result.to_frame(self.design)
+
+    def _repr_html_(self) -> str:
+        from tolalloc.report.tables import TABLE_COLUMNS
+        from tolalloc.workflows.base import html_card
+
+        frame = self.to_frame()
+        return html_card(type(self).__name__, self.headline() + [f"table: {self.design_note()}"],
+                         frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
 
     def verification_frame(self) -> pd.DataFrame | None:
         """Per pose: linear P, Monte Carlo P_hat with its 95 % interval, samples, verdict, reason."""
@@ -185,7 +256,7 @@ class ToleranceAllocation(JobResult):
         """Tolerance and variance share per parameter at the worst pose; returns the figure."""
         from tolalloc.report.plots.allocate import plot_budget
 
-        t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.result.worst_pose + 1}"
+        t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.worst_pose + 1}"
              if title is None else title)
         fig = plot_budget(self.to_frame(), None, title=t, axes=axes)
         return fig
@@ -235,9 +306,8 @@ class ToleranceAllocation(JobResult):
         """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
         from tolalloc.report.tables import write_tables
 
-        robot, pr = self.robot, self.problem
-        write_tables(self.to_frame(), folder, caption=f"Tolerances of {robot.name}: P(|dP| < {pr.radius_mm:g} mm) >= "
-                     f"{pr.prob:g} at the {self.label} poses", note=f"design: {self.design_note()}")
+        write_tables(self.to_frame(), folder, caption=f"Tolerances of {self.robot.name}: {self.requirement()} "
+                     f"{self.where()}", note=f"design: {self.design_note()}", legend=self.table_legend())
         write_json(self.summary(), folder / "summary.json")
         names = list(ALLOCATION_FILES)
         _save_figure(self.plot_budget(), folder / "error_budget.png")

@@ -14,6 +14,7 @@ def summary_dict(job) -> dict:
     summary = res.summary()
     summary["pose_set"] = job.label
     summary["tables_design"] = job.design_note()
+    summary["verified"] = job.verified
     summary["built"] = {"solver": str(job.design.solver), "label": job.design.label, "cost": float(job.design.cost),
                         "standard": job.standard}
     summary["correction"] = None if corr is None else corr.to_dict()
@@ -30,9 +31,6 @@ def summary_dict(job) -> dict:
     if cov is not None:
         summary["coverage"] = {"n": cov.n, "min_p": cov.min_p, "n_below": cov.n_below,
                                "frac_below": cov.frac_below, "frac_below_upper95": cov.frac_below_upper95}
-    if job.standard:
-        for i, row in enumerate(summary["poses"]):
-            row["p_linear_built"] = float(job.design.p_linear["position"][i])
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
                                    "n_per_pose": ver.n, "seed": ver.seed, **ver.estimator_summary()}
@@ -90,17 +88,24 @@ def _design_lines(job) -> list[str]:
             return f"{x:.4f}"
         return "n/a" if d is None or not d.message else f"n/a, {d.status}: {d.message}"
 
-    out.append(f"status: optimal   continuous design: {res.design.label}   cost: {res.design.cost:.4f}")
-    out.append(f"cost: certified {c(s['certified'], res.certified)} ({s['certified_rule']}; {s['certified_other_rule']}: "
-               f"{c(s['certified_other'], res.certified_other)})   exact {c(s['exact'])}"
+    d, cont = job.design, f"continuous design: {res.design.label}"
+    if job.standard:
+        out.append(f"status: optimal   design to build: {d.label} (standard grades)   cost: {d.cost:.4f}   {cont}, "
+                   f"cost {res.design.cost:.4f} ({100 * (d.cost / res.design.cost - 1):+.2f} %)")
+    else:
+        why = ("no standard values asked for" if res.standard is None else
+               "the standard design does not meet the requirement")
+        out.append(f"status: optimal   design to build: the {cont} ({why})   cost: {d.cost:.4f}")
+    out.append(f"continuous designs: certified {c(s['certified'], res.certified)} ({s['certified_rule']}; "
+               f"{s['certified_other_rule']}: {c(s['certified_other'], res.certified_other)})   exact {c(s['exact'])}"
                + ("" if s["saving"] is None else f"   saving {s['saving']:.4f} ({s['saving_pct']:.2f}%)"))
     if res.design.message:
         out.append(f"note: {res.design.message}")
-    out += ["", format_text(table)]
+    out += ["", f"table: {job.design_note()}", format_text(table)]
     if res.discrete is not None:
         out.append("\n" + res.discrete.message_line())
     elif res.standard is not None:
-        out.append(f"\nstandard grades (tolerance_std, grade): cost {res.standard.cost:.4f}; {res.standard.message}")
+        out.append(f"\nstandard grades: cost {res.standard.cost:.4f}; {res.standard.message}")
     if job.standard:
         out.append("the Monte Carlo verification and the coverage check below are the standard design's: the design "
                    "that will be built")

@@ -73,13 +73,22 @@ def _inputs_pairs(record: dict, extra: list) -> list:
 
 # ---------------------------------------------------------------------------------------------- allocation
 TOLERANCE_COLUMNS = [Column("parameter", "parameter", "text"), Column("kind", "kind", "text"),
-                     Column("unit", "unit", "text"), Column("role", "role", "text"),
-                     Column("tolerance", "tolerance ±", "pm"), Column("sigma", "σ", "g4"),
-                     Column("tolerance_std", "standard ±", "pm", optional=True),
-                     Column("it_grade", "ISO 286 grade", "text", optional=True),
-                     Column("cost", "cost", "f3"), Column("variance_share", "variance share [%]", "pct"),
-                     Column("at_limit", "at limit", "text"), Column("t_min", "t_min", "g4"),
-                     Column("t_max", "t_max", "g4")]
+                     Column("role", "role", "text"), Column("nominal_mm", "nominal [mm]", "g4", optional=True),
+                     Column("tol_mm", "tolerance ± [mm]", "pm"), Column("tol_deg", "tolerance ± [deg]", "pm"),
+                     Column("grade", "grade", "text", optional=True),
+                     Column("process", "process", "text", optional=True),
+                     Column("sigma_mm", "σ [mm]", "g4"), Column("sigma_deg", "σ [deg]", "g4"),
+                     Column("cost", "cost", "f3"), Column("variance_share_pct", "variance share [%]", "pct1"),
+                     Column("at_limit", "at limit", "text")]
+
+#: the continuous optimum beside the standard design to build (only when they differ)
+CONTINUOUS_COLUMNS = [Column("tol_continuous_mm", "continuous optimum ± [mm]", "pm"),
+                      Column("tol_continuous_deg", "continuous optimum ± [deg]", "pm")]
+
+#: the 95 % interval of each estimator of the verification (:mod:`tolalloc.montecarlo`)
+INTERVALS = {"plain": "plain Monte Carlo: Wilson score interval",
+             "paired": "paired: Tango's score interval of the paired difference",
+             "importance": "importance sampling: Tango's score interval of the weighted discordant counts"}
 
 
 def _verdict(job) -> dict:
@@ -106,8 +115,8 @@ def _cards(job, s: dict) -> list:
     c = s["costs"]
     cards = [{"label": "cost of the design to build", "value": _f4(job.cost),
               "note": f"{job.design.label} design" + (" (standard grades)" if job.standard else "")},
-             {"label": "certified cost", "value": _f4(c["certified"]), "note": c["certified_rule"]},
-             {"label": "exact cost", "value": _f4(c["exact"]),
+             {"label": "certified cost (continuous)", "value": _f4(c["certified"]), "note": c["certified_rule"]},
+             {"label": "exact cost (continuous)", "value": _f4(c["exact"]),
               "note": f"{c['saving_pct']:.2f} % below certified" if c["saving_pct"] is not None else
               ("not computed" if c["exact_status"] is None else f"none: {c['exact_status']}")}]
     if c["standard"] is not None and not job.standard:
@@ -121,8 +130,9 @@ def _cards(job, s: dict) -> list:
         k = ver.worst_pose
         cards.append({"label": "lowest P̂ (Monte Carlo)", "value": f"{ver.p_mc[k]:.4f}",
                       "note": f"pose {k + 1}, 95 % interval [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"})
-    worst = min(s["poses"], key=lambda row: row["p_linear"])
-    cards.append({"label": "lowest linear P", "value": f"{worst['p_linear']:.4f}", "note": f"pose {worst['pose']}"})
+    worst = s["poses"][s["worst_pose"] - 1]
+    cards.append({"label": "lowest linear P", "value": f"{worst['p_linear']:.4f}",
+                  "note": f"pose {worst['pose']}, the design to build"})
     if cov is not None:
         cards.append({"label": "coverage of the region", "value": f"{cov.min_p:.4f}",
                       "note": f"lowest linear P on {cov.n} fresh poses; {cov.n_below} below p"})
@@ -145,7 +155,7 @@ def _costs_table(job, s: dict) -> dict:
                           "status": [r[1].status for r in rows], "cost": [r[2] for r in rows],
                           "time_s": [r[1].time_s for r in rows],
                           "note": [pretty(r[3] or r[1].message or "") for r in rows]})
-    chosen = ["chosen" if d is res.design or str(d.solver) == str(res.design.solver) else "" for _, d, _, _ in rows]
+    chosen = ["chosen" if d is job.design else "" for _, d, _, _ in rows]
     cols = [Column("design", "design", "text"), Column("method", "method", "text"),
             Column("status", "status", "text", badge=True), Column("cost", "cost", "f4"),
             Column("time_s", "time [s]", "f2"), Column("note", "note", "text")]
@@ -153,7 +163,8 @@ def _costs_table(job, s: dict) -> dict:
                       caption="Costs of the designs (relative cost units of the cost laws)",
                       note="Certified: convex upper bounds on the variance (cvxpy + Clarabel), a design that meets the "
                            "requirement by construction; exact: the Gaussian probability itself (CasADi + IPOPT), "
-                           "never dearer. Bold: the design of the tolerance table.")
+                           "never dearer; standard grades: the standard values chosen by the optimiser. Bold: the "
+                           "design to build, the one of the tolerance table.")
 
 
 def _pose_frame(job, s: dict):
@@ -193,12 +204,20 @@ def _pose_table(job, s: dict) -> dict:
                                                          f" and P(|dw| < {np.rad2deg(pr.angle_radius_rad):g} deg)"))
     return html_table(frame, cols, table_id="pose-table", row_classes=classes,
                       caption=f"Verification per pose: {what}, required p = {pr.prob:g}",
-                      note="P linear: the Gaussian prediction of the first-order model; P̂: the nonlinear Monte Carlo "
-                           "estimate (exact perturbed kinematics) with its 95 % Wilson interval. Joint values in deg / "
-                           "mm." + ("" if job.region_search is None else " Origin: active, a pose of the region "
-                                    "search the design is allocated at; coverage, one of the lowest-P poses of the "
-                                    "fresh coverage sample.") if job.verification is not None else
-                      "P linear: the Gaussian prediction of the first-order model (no Monte Carlo verification).")
+                      note=_pose_note(job))
+
+
+def _pose_note(job) -> str:
+    """The pose table's legend: what P linear and P̂ are (the interval of the estimator that ran), the origins."""
+    design = f"the design to build ({job.design.label})"
+    if job.verification is None:
+        return f"P linear: the Gaussian prediction of the first-order model for {design} (no Monte Carlo verification)."
+    used = "; ".join(INTERVALS[e] for e in INTERVALS if e in set(map(str, job.verification.estimator)))
+    return (f"All of {design}. P linear: the Gaussian prediction of the first-order model; P̂: the nonlinear Monte "
+            f"Carlo estimate (exact perturbed kinematics) with its 95 % interval ({used}). "
+            "Joint values in deg / mm." + ("" if job.region_search is None else " Origin: active, a pose of the region "
+                                            "search the design is allocated at; coverage, one of the lowest-P poses of "
+                                            "the fresh coverage sample."))
 
 
 def _region(job, s: dict):
@@ -232,11 +251,11 @@ def _correction(job):
 
 def _figures(job, folder=None) -> list:
     """Budget and pose probabilities as SVG; the point cloud as PNG (the copy saved in ``folder`` when there)."""
-    res, ver = job.result, job.verification
+    ver = job.verification
     figs = [figure_item(job.plot_budget(), figure_id="fig-budget",
-                        caption=f"Error budget of the {res.design.label} design: tolerance per parameter (log scale) "
-                                f"and its share of tr Σ of the position error at the worst pose "
-                                f"(pose {res.worst_pose + 1}); labels: tolerances at a process limit.")]
+                        caption=f"Error budget of the design to build ({job.design.label}): tolerance per parameter "
+                                f"(log scale) and its share of tr Σ of the position error at its worst pose "
+                                f"(pose {job.worst_pose + 1}); labels: tolerances at a process limit.")]
     if ver is not None:
         figs.append(figure_item(job.plot_pose_probabilities(), figure_id="fig-poses",
                                 caption="Linear prediction and Monte Carlo estimate P̂ with its 95 % interval per "
@@ -294,14 +313,18 @@ def _pass_rule(job) -> str:
 
 def _tolerance_table(job, s: dict) -> dict:
     table = job.to_frame()
-    cols = [c for c in TOLERANCE_COLUMNS if c.key != "role" or (table["role"] != "allocate").any()]
+    cols = TOLERANCE_COLUMNS + (CONTINUOUS_COLUMNS if job.standard else [])
     classes = ["hl" if lim else "" for lim in table["at_limit"]]
     return html_table(table, cols, table_id="tolerance-table", row_classes=classes,
-                      caption=f"Tolerances of {job.robot.name} ({job.design.label} design)",
-                      note=f"Units: the row's unit (mm or deg) for tolerance, σ, standard, t_min and t_max. Variance "
-                           f"share: share of tr Σ of the position error at the worst pose (pose {s['worst_pose']}). "
-                           "At limit (highlighted): the tolerance sits at a process limit of the costs (t_min or "
-                           "t_max). ISO 286 grade: the IT grade of the standard tolerance (link lengths only).")
+                      caption=f"Tolerances of {job.robot.name}: the design to build ({job.design.label})",
+                      note="Units in the headers: a length row has its values in the [mm] columns, an angle row in "
+                           "the [deg] columns. Grade: the ISO 286 IT grade of a link length at its nominal size, a "
+                           "class name, or empty (a multiple of the resolution step). Variance share: share of tr Σ "
+                           f"of the position error at the worst pose (pose {s['worst_pose']}). At limit (highlighted): "
+                           "the tolerance sits at a process limit of the costs (t_min or t_max; the limits are in "
+                           "tolerances.csv) or is fixed by the costs file."
+                           + (" Continuous optimum: the continuous design the standard values were chosen from, for "
+                              "comparison only." if job.standard else ""))
 
 
 # ---------------------------------------------------------------------------------------------- calibrated allocation
@@ -332,8 +355,9 @@ def calibrated_context(job) -> dict:
     cards = [] if built is None else [  # the design to build, and the rounding it replaces
         {"label": "cost (to build)", "value": _f4(built.cost), "note": f"standard grades, {built.premium_pct:+.2f} %"},
         {"label": "rounding down", "value": _f4(built.rounded_cost), "note": f"{built.rounded_premium_pct:+.2f} %"}]
-    cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(s["cost"]),
-               "note": f"{s['design']} design"},
+    cont = res.summary()  # the continuous calibration-aware design's own numbers, whatever the job's summary leads with
+    cards += [{"label": "cost" if built is None else "continuous design", "value": _f4(cont["cost"]),
+               "note": f"{cont['design']} design"},
              {"label": "certified design", "value": _f4(s["cost_certified"]),
               "note": "certified" if cert.certified else "NOT certified"},
              {"label": "exact design", "value": _f4(s["cost_exact"]), "note": "post-calibration probability"},
@@ -349,10 +373,12 @@ def calibrated_context(job) -> dict:
     table = job.to_frame()
     classes = ["hl" if st.startswith("must be held") else "" for st in table["status"]]
     columns = CALIBRATED_COLUMNS
-    if built is not None:
-        columns = [*columns[:3], Column("tolerance_std", "standard ±", "pm"), Column("grade", "grade", "text"),
-                   *([Column("process", "process", "text")] if "process" in table else []), *columns[3:],
-                   Column("cost_std", "standard cost", "f3")]
+    if built is not None:  # the standard design to build leads; the continuous optimum follows for comparison
+        rest = [Column(c.key, f"{c.label} (continuous)", c.how) if c.key == "cost" else c for c in columns[3:]]
+        columns = [*columns[:2], Column("tolerance_std", "tolerance to build ± (standard)", "pm"),
+                   Column("grade", "grade", "text"), *([Column("process", "process", "text")] if "process" in table
+                                                       else []),
+                   Column("cost_std", "cost to build", "f3"), Column("tolerance", "continuous optimum ±", "pm"), *rest]
     tol = html_table(table, columns, table_id="tolerance-table", row_classes=classes,
                      caption=f"Tolerances of {job.robot.name} after the calibration plan",
                      note="Units: the row's unit (mm or deg) for tolerances and σ. Highlighted: must be held in "

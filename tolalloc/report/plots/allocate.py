@@ -16,12 +16,13 @@ _KIND_COLORS = {"link_length": "#4c72b0", "joint_drive": "#55a868", "axis_deflec
 
 
 def plot_budget(table, path=None, *, title: str = "", dpi: int = 100, axes=None):
-    """Error budget of a design: tolerance per parameter and its variance share at the worst pose.
+    """Error budget of a design: tolerance per parameter and its variance share at the design's worst pose.
 
     Parameters
     ----------
     table : DataFrame
-        :meth:`AllocationResult.to_frame` (columns parameter, kind, unit, tolerance, variance_share, at_limit).
+        :meth:`AllocationResult.to_frame` of the design (columns parameter, kind, unit, tol_mm, tol_deg,
+        variance_share_pct, at_limit): the figure shows that table's design and nothing else.
     axes : pair of matplotlib Axes, optional
         Draw into these (tolerances, shares); default a new figure.
     """
@@ -31,16 +32,17 @@ def plot_budget(table, path=None, *, title: str = "", dpi: int = 100, axes=None)
         fig = axes[0].figure
     y = np.arange(len(table))[::-1]
     colors = [_KIND_COLORS.get(k, "#777777") for k in table["kind"]]
+    tol = table["tol_mm"].where(table["unit"] == "mm", table["tol_deg"]).to_numpy(float)
     ax = axes[0]
-    ax.barh(y, table["tolerance"], color=colors)
+    ax.barh(y, tol, color=colors)
     ax.set_xscale("log")
     ax.set_yticks(y, [f"{p} [{u}]" for p, u in zip(table["parameter"], table["unit"])], fontsize=8)
-    ax.set_xlabel("tolerance ± (mm or deg, log scale)")
-    for yi, (t, lim) in enumerate(zip(table["tolerance"], table["at_limit"])):
+    ax.set_xlabel("tolerance ± [mm for lengths, deg for angles] (log scale)")
+    for yi, (t, lim) in enumerate(zip(tol, table["at_limit"])):
         if lim:
             ax.text(t, y[yi], f" {lim}", va="center", fontsize=7)
     ax = axes[1]
-    ax.barh(y, 100 * table["variance_share"], color=colors)
+    ax.barh(y, table["variance_share_pct"], color=colors)
     ax.set_xlabel("share of tr Σ at the worst pose [%]")
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for k, c in _KIND_COLORS.items() if k in set(table["kind"])]
     ax.legend(handles, [k for k in _KIND_COLORS if k in set(table["kind"])], fontsize=7, loc="lower right")
