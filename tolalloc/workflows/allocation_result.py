@@ -147,8 +147,11 @@ class ToleranceAllocation(JobResult):
         parts = [what + (", the design to build" if self.ok else ", NOT ready to build")] + self._checks()
         corr = self.correction
         if corr is not None and corr.rounds:
-            parts.append(f"corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), poses "
-                         f"{', '.join(str(i + 1) for i in corr.tightened)} tightened, {corr.premium_pct:+.3g} % cost)")
+            which = [f"{what} at pose(s) {', '.join(str(i + 1) for i in idx)}" for what, idx in
+                     (("position", corr.tightened), ("orientation", getattr(corr, "tightened_angle", ())))
+                     if len(idx)]
+            parts.append(f"corrected for the nonlinear Monte Carlo ({corr.rounds} round(s), {'; '.join(which)} "
+                         f"tightened, {corr.premium_pct:+.3g} % cost)")
         if self.standard:
             c = res.design.cost
             parts.append(f"cost {d.cost:.4f}, {100 * (d.cost / c - 1):+.2f} % over the continuous {res.design.label} "
@@ -209,8 +212,9 @@ class ToleranceAllocation(JobResult):
         lines.append(f"status: {self.status}   {role}: {self.design.label}   cost: {self.cost:.4f}{extra}")
         if self.verification is not None:
             v = self.verification
-            lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}, n = {int(v.n.min())} per "
-                         f"pose, {', '.join(sorted(set(map(str, v.estimator))))} estimator)")
+            angle = (f", orientation {v.angle['p_mc'].min():.5f}" if getattr(v, "angle", None) is not None else "")
+            lines.append(f"verification: {self.verdict} (lowest P_hat {v.p_mc.min():.5f}{angle}, n = {int(v.n.min())} "
+                         f"per pose, {', '.join(sorted(set(map(str, v.estimator))))} estimator)")
         elif self.status == "optimal":
             lines.append("verification: not run (NOT verified; linear prediction only)")
         else:
