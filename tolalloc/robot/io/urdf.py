@@ -309,5 +309,6 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
     name = urdf.robot.name or path.stem
     desc = (f"Imported from URDF {path.name} (robot {name!r}): base link {root!r}, tool link {tool!r}, "
             f"{sum(j.type in MOVABLE for j in path_joints)} joints; lengths converted from m to mm.")
+    # URDF's unit rules (metres, _check_units) replace the guards of a chain built from objects
     return Robot(name, tuple(chain), tool_offset_mm=np.zeros(3), tool_rotation=home[tool][:3, :3].copy(),
-                 masses=tuple(masses), description=desc)
+                 masses=tuple(masses), description=desc, trust_units=True)
