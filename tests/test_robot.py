@@ -243,10 +243,10 @@ def test_robot_from_objects_refuses_degrees_and_metres_like_the_files():
         _arm(Joint("shoulder", "revolute", y, -np.inf, np.inf, 20))
     ok = Joint("shoulder", "revolute", y, np.deg2rad(-90), np.deg2rad(90), np.deg2rad(20))
     with pytest.raises(TolallocError, match=r"robot 'demo_arm': the link lengths add up to 1 mm; that looks like metres: "
-                                            r"Link vectors are in mm: multiply them by 1000 \(.*trust_units=True\)"):
+                                            r"Link vectors are in mm, multiply them by 1000 \(.*trust_units=True\)"):
         _arm(ok, upper_arm=(0.6, 0.0, 0.0), base=(0.0, 0.0, 0.4))
     with pytest.raises(TolallocError, match=r"link upper_arm is 0.6 mm long while link base is 400 mm; that looks like "
-                                            r"a length in metres: Link vectors are in mm"):
+                                            r"a length in metres: Link vectors are in mm, multiply it by 1000"):
         _arm(ok, upper_arm=(0.6, 0.0, 0.0))
     # kept as given when meant so
     assert _arm(Joint("shoulder", "revolute", y, -90, 90, 20), trust_units=True).joints[0].upper == 90

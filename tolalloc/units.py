@@ -175,8 +175,7 @@ def check_chain_units(lengths_mm: dict, revolute_joints: list, where: str) -> No
                 "revolute joint (mm for a prismatic one) and these look like degrees: convert them with "
                 "numpy.deg2rad, or build the joint with Joint.from_interface(name, kind, axis, lower_deg_mm, "
                 f"upper_deg_mm, nominal_deg_mm) ({PYTHON_TRUST_HINT}).")
-    check_reach(lengths_mm, where, slip="metres: Link vectors are in mm", fix="multiply them by 1000",
-                hint=PYTHON_TRUST_HINT)
+    check_reach(lengths_mm, where, objects=True)
 
 
 def _fractional(v: np.ndarray) -> np.ndarray:
@@ -233,8 +232,7 @@ def check_joint_units(q_deg_mm, revolute, lower_deg_mm, upper_deg_mm, where: str
                           stacklevel=3)
 
 
-def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True, slip: str = "metres given under _mm keys",
-                fix: str = "multiply by 1000 or use the _m keys", hint: str = TRUST_HINT) -> None:
+def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True, objects: bool = False) -> None:
     """Refuse link lengths [mm] that look like metres: all together under :data:`MIN_PLAUSIBLE_REACH_MM`, or
     one link under :data:`MAX_TINY_LINK_MM` that is over :data:`TINY_LINK_RATIO` times shorter than the longest.
 
@@ -246,24 +244,27 @@ def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True, slip: 
         Prefix of the message.
     tiny_links : bool
         Also apply the one-tiny-link rule (off for DH tables, whose small calibrated offsets are real).
-    slip, fix, hint : str
-        What the lengths look like, how to correct them and how to keep them, in the terms of the input
-        (file keys by default; ``Link`` objects for a robot built in Python).
+    objects : bool
+        The lengths are ``Link`` objects' vectors (a robot built in Python), not file keys: the messages say so.
     """
     if units_trusted() or not lengths_mm:
         return
     total = float(sum(abs(v) for v in lengths_mm.values()))
     if 0 < total < MIN_PLAUSIBLE_REACH_MM:
-        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like {slip}: {fix} "
-                            f"({hint}).")
+        fix = ("metres: Link vectors are in mm, multiply them by 1000" if objects else
+               "metres given under _mm keys: multiply by 1000 or use the _m keys")
+        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like {fix} "
+                            f"({PYTHON_TRUST_HINT if objects else TRUST_HINT}).")
     if not tiny_links:
         return
     longest = max(lengths_mm, key=lambda k: abs(lengths_mm[k]))
     for name, v in lengths_mm.items():
         if 0 < abs(v) < MAX_TINY_LINK_MM and abs(v) * TINY_LINK_RATIO < abs(lengths_mm[longest]):
+            fix = ("metres: Link vectors are in mm, multiply it by 1000" if objects else
+                   "metres under a _mm key: multiply it by 1000 or use the _m key")
             raise TolallocError(f"{where}: link {name} is {abs(v):g} mm long while link {longest} is "
-                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in {slip}: {fix} "
-                                f"({hint}).")
+                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in {fix} "
+                                f"({PYTHON_TRUST_HINT if objects else TRUST_HINT}).")
 
 
 def _shown(raw):
