@@ -126,6 +126,26 @@ def _interrupt_handlers():
         clear_interrupt()
 
 
+@contextlib.contextmanager
+def _warnings_as_lines():
+    """The library's own warnings as one ``warning: ...`` line each on stderr (other warnings as Python shows them)."""
+    import os
+    import warnings
+
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    with warnings.catch_warnings():
+        python_show = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if os.path.abspath(str(filename)).startswith(package + os.sep):
+                print(f"warning: {message}", file=sys.stderr)
+            else:
+                python_show(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show
+        yield
+
+
 def _run(args) -> int:
     """The command's exit status; an error raised while a signal is pending is the interrupt."""
     try:
@@ -143,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
 
     published(reset=True)
     args = None
-    with _interrupt_handlers():
+    with _interrupt_handlers(), _warnings_as_lines():
         try:
             args = build_parser().parse_args(argv)
             code = _run(args)

@@ -188,7 +188,8 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     ``region``: a pose set of the robot, ``"limits"``, a box of the robot file (``[regions.NAME]``), a
     trajectory CSV path (a pose per row, deg / mm: :func:`trajectory`) or an array / DataFrame of joint values
     (deg / mm). Default: the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set
-    ``poses``.
+    ``poses`` (default: ``working``, else the nominal pose, with a ``UserWarning`` that the requirement is then
+    checked at one pose only).
     """
     regions = robot.regions
     if region is None:
@@ -196,6 +197,8 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
             region = "working"
         else:
             name = poses if poses is not None else default_pose_set(robot)
+            if poses is None and name == "nominal":
+                _warn_nominal_only(robot)
             return resolve_poses(robot, None, name)[0], None, resolve_poses(robot, None, name)[1]
     if not isinstance(region, (str, os.PathLike)):
         return "trajectory", None, joint_values(robot, region, "region")
@@ -212,6 +215,16 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     known = known_names(["limits"], regions, ["nominal"], robot.pose_sets)
     raise ArgumentError("region", f"{spec!r} is neither a region, a pose set nor a trajectory CSV file; known: "
                         f"{known}, or give a path to a .csv file.")
+
+
+def _warn_nominal_only(robot: Robot) -> None:
+    """Warn that a robot without a working region or pose set is allocated at its nominal pose alone."""
+    import warnings
+
+    warnings.warn(f"robot {robot.name!r} has no working region or pose set: allocated at the nominal pose only "
+                  "(1 pose); for the working region pass region='limits' (--region limits: the box of the joint "
+                  "limits), a pose set or a trajectory, or add a [regions.working] box to the robot file.",
+                  UserWarning, stacklevel=4)
 
 
 def _box(robot: Robot, lo, hi, name: str):
