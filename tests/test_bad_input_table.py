@@ -166,7 +166,7 @@ def _rows():
                                                    "{F}/metres_under_m.toml", "{F}/deg_under_rad.toml"):
                 add([cmd, robot, *extra], pattern)
     add(["show", TC, "--tool", "tool0"], "--tool 'tool0': the tool link can only be chosen for a URDF")
-    add(["show", "{F}/branch.urdf", "--tool", "nope"], "--tool 'nope' is not a link of the URDF")
+    add(["show", "{F}/branch.urdf", "--tool", "nope"], r"the tool link 'nope' \(--tool\) is not a link of the URDF")
     add(["robots", "extra"], "unrecognized arguments: extra")
     add(["nocommand"], "invalid choice: 'nocommand'")
     add([], "required: COMMAND")
@@ -256,7 +256,7 @@ def _rows():
         ([*al, "--costs", "{F}/nope.toml"], "costs file .*nope.toml' not found"),
         ([*al, "--costs", "{F}/adir"], "costs file .*adir' is a directory"),
         ([*al, "--costs", "{F}/z_text.toml"], r"z_text.toml: z \(sigma = t / z\) expected a finite number > 0.*'three'.*not a number"),
-        ([*al, "--costs", "{F}/neg_a.toml"], r"neg_a.toml \[dl\d\]: expected a finite fixed cost a >= 0"),
+        ([*al, "--costs", "{F}/neg_a.toml"], r"neg_a.toml \[kinds.link_length\] \(dl\d\): expected a finite fixed cost a >= 0"),
         ([*al, "--costs", "{F}/bad_unit.toml"], "bad_unit.toml .*t_min_deg.*wrong unit"),
         ([*al, "--costs", "{F}/unknown.toml"], "unknown.toml: unknown top-level key 'foo'"),
         ([*al, "--costs", "{F}/not_toml_costs.toml"], "not_toml_costs.toml: not valid TOML"),

@@ -179,8 +179,8 @@ def _check_poses(Q: np.ndarray, X: np.ndarray, rows: np.ndarray, source: str) ->
 def check_train_test(train: Measurements, test: Measurements, train_name: str, test_name: str) -> None:
     """Refuse a test set that shares poses with the training set (its error would not be held out)."""
     if Path(train_name).resolve() == Path(test_name).resolve():
-        raise TolallocError(f"--test {test_name!r} is the training file; expected held-out measurements in another file "
-                            "(or leave out --test: cross-validation still scores held-out rows).")
+        raise TolallocError(f"`test` {test_name!r} is the training file; expected held-out measurements in another "
+                            "file (or leave out `test`: cross-validation still scores held-out rows).")
     keys, first = np.unique(_row_hash(train.q), return_index=True)
     h_test = _row_hash(test.q)
     at = np.minimum(np.searchsorted(keys, h_test), len(keys) - 1)
@@ -189,7 +189,7 @@ def check_train_test(train: Measurements, test: Measurements, train_name: str, t
     if shared.any():
         j = int(np.flatnonzero(shared)[0])
         i = int(np.flatnonzero((train.q == test.q[j]).all(axis=1))[0])
-        raise TolallocError(f"--test {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in --train "
+        raise TolallocError(f"`test` {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in `train` "
                             f"{train_name!r} (e.g. test row {test.rows[j]} = train row {train.rows[i]}); expected "
                             "held-out poses; remove them from one of the files.")
 
