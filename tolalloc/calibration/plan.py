@@ -130,7 +130,7 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise TolallocError(f"calibration plan {str(path)!r}: cannot read it ({exc.strerror}); give an existing CSV "
-                            "written by `tolalloc calplan`.") from None
+                            "written by tolalloc calplan / tolalloc.plan_calibration.") from None
     settings = {}
     for line in text.splitlines():
         if line.startswith("#") and "=" in line:
@@ -159,8 +159,8 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
         raise TolallocError(f"calibration plan {path.name}: joint values must be numbers (deg / mm).") from None
     if "n_poses" in settings and settings["n_poses"] != str(len(qi)):
         raise TolallocError(f"calibration plan {path.name}: its header says n_poses = {settings['n_poses']}, but the "
-                            f"file has {len(qi)} pose row(s) (truncated or edited?); write the plan again with "
-                            "`tolalloc calplan`, or correct the n_poses line.")
+                            f"file has {len(qi)} pose row(s) (truncated or edited?); write the plan again (tolalloc "
+                            "calplan / tolalloc.plan_calibration), or correct the n_poses line.")
     q = robot.check_q(qi, f"calibration plan {path.name}", interface=True) if len(qi) else np.zeros((0, len(cols)))
     reg = settings.get("registration", "true").lower()
     if reg not in ("true", "false"):

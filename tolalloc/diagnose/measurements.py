@@ -2,15 +2,15 @@
 
 Columns (other columns are ignored):
 
-``q1_deg ...``      joint values in interface units (deg for revolute, mm for prismatic joints), one column per
-                    joint named by the rule of :mod:`tolalloc.robot.columns`: ``q<k>_deg`` / ``q<k>_mm``, the
-                    calibration plan's ``<joint name>_deg`` / ``_mm``, or plain ``q1..qN``
+``q1_deg ...``      joint values in interface units (deg for revolute, mm for prismatic joints), see below
 ``x_mm,y_mm,z_mm``  measured target position in the tracker's fixed frame [mm]
 ``temperature_c``   optional, ambient temperature [degC]
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
 ``payload_kg``      optional
 ``time_s``          optional, time stamp [s]
 
+The joint columns are named by the rule of :mod:`tolalloc.robot.columns`: ``q<k>_deg`` / ``q<k>_mm``, the
+calibration plan's ``<joint name>_deg`` / ``_mm``, or plain ``q1..qN``.
 Lines starting with ``#`` before the header are skipped (a calibration plan filled in with tracker readings is
 a measurement file).
 
