@@ -224,7 +224,7 @@ def _warn_nominal_only(robot: Robot) -> None:
     warnings.warn(f"robot {robot.name!r} has no working region or pose set: allocated at the nominal pose only "
                   "(1 pose); for the working region pass region='limits' (--region limits: the box of the joint "
                   "limits), a pose set or a trajectory, or add a [regions.working] box to the robot file.",
-                  UserWarning, stacklevel=4)
+                  UserWarning, stacklevel=5)  # the caller of allocate_tolerances
 
 
 def _box(robot: Robot, lo, hi, name: str):
