@@ -111,6 +111,8 @@ def files(tmp_path_factory) -> Path:
     metres.to_csv(F / "metres.csv", index=False)
     frame.iloc[:40].rename(columns={"q6": "joint6"}).to_csv(F / "no_q6.csv", index=False)
     frame.iloc[:40].drop(columns=["q6"]).to_csv(F / "five_joints.csv", index=False)
+    frame.iloc[:40].assign(q7=0.0).to_csv(F / "seven_joints.csv", index=False)
+    frame.iloc[:40].rename(columns={"q1": "q1_mm"}).to_csv(F / "q1_mm.csv", index=False)
     text = frame.iloc[:40].astype(object)
     text.iloc[2, 0] = "abc"
     text.to_csv(F / "text_cell.csv", index=False)
@@ -164,7 +166,7 @@ def _rows():
                                                    "{F}/metres_under_m.toml", "{F}/deg_under_rad.toml"):
                 add([cmd, robot, *extra], pattern)
     add(["show", TC, "--tool", "tool0"], "--tool 'tool0': the tool link can only be chosen for a URDF")
-    add(["show", "{F}/branch.urdf", "--tool", "nope"], "--tool 'nope' is not a link of the URDF")
+    add(["show", "{F}/branch.urdf", "--tool", "nope"], r"the tool link 'nope' \(--tool\) is not a link of the URDF")
     add(["robots", "extra"], "unrecognized arguments: extra")
     add(["nocommand"], "invalid choice: 'nocommand'")
     add([], "required: COMMAND")
@@ -254,7 +256,7 @@ def _rows():
         ([*al, "--costs", "{F}/nope.toml"], "costs file .*nope.toml' not found"),
         ([*al, "--costs", "{F}/adir"], "costs file .*adir' is a directory"),
         ([*al, "--costs", "{F}/z_text.toml"], r"z_text.toml: z \(sigma = t / z\) expected a finite number > 0.*'three'.*not a number"),
-        ([*al, "--costs", "{F}/neg_a.toml"], r"neg_a.toml \[dl\d\]: expected a finite fixed cost a >= 0"),
+        ([*al, "--costs", "{F}/neg_a.toml"], r"neg_a.toml \[kinds.link_length\] \(dl\d\): expected a finite fixed cost a >= 0"),
         ([*al, "--costs", "{F}/bad_unit.toml"], "bad_unit.toml .*t_min_deg.*wrong unit"),
         ([*al, "--costs", "{F}/unknown.toml"], "unknown.toml: unknown top-level key 'foo'"),
         ([*al, "--costs", "{F}/not_toml_costs.toml"], "not_toml_costs.toml: not valid TOML"),
@@ -274,8 +276,13 @@ def _rows():
         (["diagnose", TC, "--train", "{F}/identical.csv"], "identical.csv: row 2 repeats row 1 exactly"),
         (["diagnose", TC, "--train", "{F}/dup_row.csv"], "dup_row.csv: row 41 repeats row 6 exactly"),
         (["diagnose", TC, "--train", "{F}/metres.csv"], "metres.csv: the measured positions look like metres"),
-        (["diagnose", TC, "--train", "{F}/no_q6.csv"], r"no_q6.csv: missing column\(s\) \['q6'\]"),
-        (["diagnose", TC, "--train", "{F}/five_joints.csv"], "five_joints.csv: missing column.*wrong robot\\?"),
+        (["diagnose", TC, "--train", "{F}/no_q6.csv"], r"no_q6.csv: missing column\(s\) for joint\(s\) q6_deg \(j6\)"),
+        (["diagnose", TC, "--train", "{F}/five_joints.csv"], "five_joints.csv: missing column.*The file has joint "
+         "columns q1..q5 but robot 'tool_changer' has 6 joints: is it a file of another robot\\?"),
+        (["diagnose", TC, "--train", "{F}/seven_joints.csv"], "seven_joints.csv: the file has joint columns q1..q7 but "
+         "robot 'tool_changer' has 6 joints"),
+        (["diagnose", TC, "--train", "{F}/q1_mm.csv"], "q1_mm.csv: column 'q1_mm': joint 1 \\(j1\\) is revolute, its "
+         "values are read in deg, not mm: name the column q1_deg"),
         (["diagnose", TC, "--train", "{F}/text_cell.csv"], "text_cell.csv: column 'q1', row 3: expected a number"),
         (["diagnose", TC, "--train", "{F}/semicolon.csv"], "semicolon.csv: looks ';'-separated"),
         (["diagnose", TC, "--train", "{F}/header_only.csv"], "header_only.csv: no data rows"),

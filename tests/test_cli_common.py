@@ -74,3 +74,43 @@ def test_sigma_overrides_units_per_parameter():
         sigma_overrides(model.params, sigma_items(["joint_drive=nan"]))
     with pytest.raises(TolallocError, match=r"--sigma: expected NAME=VALUE"):
         sigma_items(["dth1"])
+
+
+@pytest.mark.parametrize("argv, near", [
+    (["allocate", "tool_changer", "--radius", "0.25"], "--radius-mm"),
+    (["allocate", "tool_changer", "--angle-radius", "0.1"], "--angle-radius-deg"),
+    (["mc", "tool_changer", "--n", "10", "--angle-radius=0.1"], "--angle-radius-deg or --angle-radius-rad"),
+])
+def test_abbreviated_flags_are_refused_with_the_full_flag(tmp_path, capsys, argv, near):
+    out = tmp_path / "o"
+    assert main([*argv, "--out", str(out)]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 1 and not out.exists(), err
+    flag = argv[-2] if "=" not in argv[-1] else argv[-1].split("=")[0]
+    assert err[0].startswith(f"error: tolalloc {argv[0]}: unrecognized arguments: {flag}"), err
+    assert err[0].endswith(f"; did you mean {near}? Flags are written in full, with their unit "
+                           f"(see 'tolalloc {argv[0]} --help')."), err
+
+
+def test_no_parser_abbreviates():
+    import argparse
+
+    from tolalloc.cli import build_parser
+
+    top = build_parser()
+    subs = next(a for a in top._actions if isinstance(a, argparse._SubParsersAction)).choices
+    assert not top.allow_abbrev and subs and all(not p.allow_abbrev for p in subs.values())
+
+
+def test_json_flag_takes_an_output_in_every_command_and_joint_values_both_spellings(tmp_path, capsys):
+    import json
+
+    q = "15,30,-10,0,-20,-5"
+    assert main(["fk", "tool_changer", "--q", q, "--json", "-"]) == 0  # the documented form
+    first = json.loads(capsys.readouterr().out)
+    assert main(["fk", "tool_changer", "--pose", q, "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == first
+    assert main(["fk", "tool_changer", "--q", q, "--json", str(tmp_path / "p.json")]) == 0
+    assert json.loads((tmp_path / "p.json").read_text()) == first and capsys.readouterr().out == ""
+    assert main(["analyze", "tool_changer", "--q", q, "--json", "-"]) == 0
+    assert json.loads(capsys.readouterr().out)["std_mm"]

@@ -130,3 +130,23 @@ def test_uniform_distribution_sets_z_and_is_recorded(model):
     explicit = cost_set(model, {"distribution": "uniform"}, z=3.0)  # an explicit z means normal errors
     assert explicit.distribution == "normal" and explicit.z == 3.0
     assert cost_set(model, None).distribution == "normal"
+
+
+@pytest.mark.parametrize("text, match", [
+    ("[kinds.joint_drive]\nt_min_mm = 0.001\n",
+     r"^costs .*bad.toml \[kinds.joint_drive\]: t_min_mm has the wrong unit: joint_drive tolerances are in deg; use "
+     r"t_min_deg \(or t_min_rad\)\.$"),
+    ("[parameters.dl2]\ntol_deg = 0.1\nfixed = true\n",
+     r"^costs .*bad.toml \[parameters.dl2\]: tol_deg has the wrong unit: dl2's tolerances are in mm; use tol_mm"),
+    ("[kinds.joint_drive]\nt_ref_deg = 'x'\n", r"^costs .*bad.toml \[kinds.joint_drive\]: t_ref_deg expected numbers, "
+                                              r"got 'x'\.$"),
+    ("[parameters.dth1]\nt_max_deg = 400\n", r"^costs .*bad.toml \[parameters.dth1\]: t_max_deg = 400(\.0)? goes beyond "
+                                            r"\+-360 deg; expected angles within one turn each way \(if .*\)\.$"),
+    ("[kinds.link_length]\nt_min_mm = 2\nt_max_mm = 1\n",
+     r"^costs .*bad.toml \[kinds.link_length\] \(dl1\): process limits t_min > t_max \(2 > 1 mm\); swap them\.$"),
+])
+def test_costs_errors_name_the_section_written_and_its_unit(tmp_path, model, text, match):
+    f = tmp_path / "bad.toml"
+    f.write_text(text)
+    with pytest.raises(TolallocError, match=match):
+        load_costs(f, model)

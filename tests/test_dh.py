@@ -90,7 +90,7 @@ def random_dh_rows(rng, n, prismatic_every=0):
         rows.append(dict(name=f"j{i + 1}", type="prismatic" if pr else "revolute",
                          d=float(rng.uniform(-300, 300)), a=float(rng.uniform(-300, 300)),
                          alpha=float(rng.uniform(-np.pi, np.pi)), theta_offset=float(rng.uniform(-np.pi, np.pi)),
-                         lower=-1e4, upper=1e4, nominal=0.0))
+                         lower=-np.inf, upper=np.inf, nominal=0.0))  # no limits
     return rows
 
 

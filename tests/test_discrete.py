@@ -178,7 +178,7 @@ def test_processes_milp_equals_brute_force(model, processes, a):
 
 BAD = [
     ({"kinds": {"link_length": {"grades": "IT5-IT20"}}}, r"\[kinds.link_length\].*grades: unknown grade 'IT20'"),
-    ({"parameters": {"dl1": {"grades": "IT9-IT7"}}}, r"\[dl1\] grades: the grade range 'IT9-IT7' is empty"),
+    ({"parameters": {"dl1": {"grades": "IT9-IT7"}}}, r"\[parameters.dl1\] grades: the grade range 'IT9-IT7' is empty"),
     ({"kinds": {"joint_drive": {"grades": "IT7"}}}, r"grades \(ISO 286\) apply to link_length parameters only"),
     ({"kinds": {"joint_drive": {"step_deg": -0.001}}}, r"step_deg expected a finite number > 0"),
     ({"kinds": {"joint_drive": {"classes_deg": {}}}}, r"classes_deg is empty"),

@@ -121,7 +121,7 @@ def test_train_and_test_sharing_poses_is_refused(tmp_path):
     test = measurements_from_frame(frame.iloc[20:], robot, "test")
     check_train_test(train, test, str(tmp_path / "a.csv"), str(tmp_path / "b.csv"))  # disjoint: fine
     shared = measurements_from_frame(pd.concat([frame.iloc[20:], frame.iloc[[4, 7]]]), robot, "test")
-    with pytest.raises(TolallocError, match=r"2 of its 12 poses are also in --train"):
+    with pytest.raises(TolallocError, match=r"^`test` '.*b.csv': 2 of its 12 poses are also in `train`"):
         check_train_test(train, shared, str(tmp_path / "a.csv"), str(tmp_path / "b.csv"))
 
 

@@ -225,3 +225,59 @@ def test_check_q_non_numeric_is_a_tolalloc_error():
     robot = load_robot("tool_changer")
     with pytest.raises(TolallocError, match=r"joints: expected numbers \(deg, deg, deg, mm, deg, deg\)"):
         robot.check_q([15, "a", -10, 0, -20, -5], "joints", interface=True)
+
+
+def _arm(shoulder, upper_arm=(600.0, 0.0, 0.0), base=(0.0, 0.0, 400.0), **kwargs):
+    return Robot("demo_arm", (Link("base", np.array(base)), shoulder, Link("upper_arm", np.array(upper_arm))), **kwargs)
+
+
+def test_robot_from_objects_refuses_degrees_and_metres_like_the_files():
+    """Joint takes rad / mm and Link mm: degrees and metres are refused with the files' rule and a hint."""
+    y = np.array([0.0, 1.0, 0.0])
+    with pytest.raises(TolallocError, match=r"robot 'demo_arm', joint shoulder: limits \[-90, 90\] rad and nominal value "
+                                            r"20 rad go beyond 2 turns .* look like degrees: convert them with "
+                                            r"numpy.deg2rad, or build the joint with Joint.from_interface\(.*\) \(if the "
+                                            r"values really are meant so, pass trust_units=True\)\.$"):
+        _arm(Joint("shoulder", "revolute", y, -90, 90, 20))
+    with pytest.raises(TolallocError, match=r"joint shoulder: .* nominal value 20 rad"):  # the nominal value alone
+        _arm(Joint("shoulder", "revolute", y, -np.inf, np.inf, 20))
+    ok = Joint("shoulder", "revolute", y, np.deg2rad(-90), np.deg2rad(90), np.deg2rad(20))
+    with pytest.raises(TolallocError, match=r"robot 'demo_arm': the link lengths add up to 1 mm; that looks like metres: "
+                                            r"Link vectors are in mm, multiply them by 1000 \(.*trust_units=True\)"):
+        _arm(ok, upper_arm=(0.6, 0.0, 0.0), base=(0.0, 0.0, 0.4))
+    with pytest.raises(TolallocError, match=r"link upper_arm is 0.6 mm long while link base is 400 mm; that looks like "
+                                            r"a length in metres: Link vectors are in mm, multiply it by 1000"):
+        _arm(ok, upper_arm=(0.6, 0.0, 0.0))
+    # kept as given when meant so
+    assert _arm(Joint("shoulder", "revolute", y, -90, 90, 20), trust_units=True).joints[0].upper == 90
+    with tolalloc.units.trusting_units():
+        assert _arm(ok, upper_arm=(0.6, 0.0, 0.0)).links[1].length_mm == 0.6
+    with pytest.raises(TolallocError, match="trust_units expected True or False, got 'yes'"):
+        _arm(ok, trust_units="yes")
+    # a continuous joint's two turns each way (the files' default) and no limits are fine
+    assert _arm(Joint("shoulder", "revolute", y, -4 * np.pi, 4 * np.pi, 0.0)).n_joints == 1
+    assert _arm(Joint("shoulder", "revolute", y, -np.inf, np.inf, 0.0)).n_joints == 1
+
+
+def test_joint_from_interface_takes_deg_mm():
+    y = np.array([0.0, 1.0, 0.0])
+    j = Joint.from_interface("shoulder", "revolute", y, -90, 90, 20)
+    np.testing.assert_allclose([j.lower, j.upper, j.nominal], np.deg2rad([-90, 90, 20]))
+    s = Joint.from_interface("slide", "prismatic", np.array([1.0, 0.0, 0.0]), 0, 300, 100)
+    assert (s.lower, s.upper, s.nominal) == (0.0, 300.0, 100.0)
+    frame = _arm(j).joints_frame()
+    assert list(frame.columns[-4:]) == ["unit", "lower_deg_mm", "upper_deg_mm", "nominal_deg_mm"]
+    np.testing.assert_allclose(frame.loc[0, ["lower_deg_mm", "upper_deg_mm", "nominal_deg_mm"]].to_numpy(float),
+                               [-90, 90, 20])
+
+
+def test_from_dh_accepts_the_trust_units_its_message_names():
+    rows = [{"name": "shoulder", "d_m": 400, "a_m": 0, "alpha_deg": 90},   # millimetres under a metre key
+            {"name": "elbow", "d_m": 0, "a_m": 0.6, "alpha_deg": 0}]
+    with pytest.raises(TolallocError, match=r"d_m = 400.0 is 400 m; that looks like millimetres.*trust_units=True in "
+                                            r"Python"):
+        Robot.from_dh(rows, convention="standard")
+    arm = Robot.from_dh(rows, convention="standard", trust_units=True)
+    assert arm.links[0].length_mm == 400_000.0
+    with pytest.raises(TolallocError, match="trust_units: expected True or False"):
+        Robot.from_dh(rows, convention="standard", trust_units=1.5)

@@ -176,7 +176,7 @@ def test_unreadable_file(tmp_path):
 
 
 def test_tool_option_only_for_urdf(tmp_path):
-    with pytest.raises(TolallocError, match=r"--tool 'x': the tool link can only be chosen for a URDF robot file"):
+    with pytest.raises(TolallocError, match=r"^`tool` 'x': the tool link can only be chosen for a URDF robot file"):
         load_robot("tool_changer", tool="x")
     with pytest.raises(TolallocError, match=r"got robot 'tool_changer'"):
         load_robot(load_robot("tool_changer"), tool="x")

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import re
 from pathlib import Path
+import warnings
 
 import numpy as np
 import pandas as pd
@@ -289,3 +290,27 @@ def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
     d.save(tmp_path / "plan.csv")
     res = tolalloc.allocate_tolerances("ur10", calibration=tmp_path / "plan.csv", verify=False)
     assert res.continuous_cost == pytest.approx(fa["cost"], rel=1e-6) and res.cost >= res.continuous_cost
+
+
+def test_a_robot_without_a_working_set_is_allocated_at_the_nominal_pose_with_a_warning(tmp_path, capsys):
+    arm = tolalloc.Robot.from_dh([{"name": "j1", "d_mm": 400, "a_mm": 0, "alpha_deg": 90},
+                                  {"name": "j2", "d_mm": 0, "a_mm": 600, "alpha_deg": 0}], convention="standard",
+                                 name="arm")
+    with pytest.warns(UserWarning, match=r"^robot 'arm' has no working region or pose set: allocated at the nominal "
+                                         r"pose only \(1 pose\); for the working region pass region='limits' "
+                                         r"\(--region limits"):
+        res = tolalloc.allocate_tolerances(arm, verify=False)
+    assert res.problem.n_poses == 1
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # asked for, or a robot with a working set: no warning
+        from tolalloc.workflows.inputs import resolve_region
+
+        assert resolve_region(arm, "nominal")[0] == "nominal" and resolve_region(arm, None, "nominal")[0] == "nominal"
+        assert resolve_region(tolalloc.load_robot("ur10"))[0] == "working"
+    path = tmp_path / "arm.csv"
+    path.write_text("# convention: standard\nname,d_mm,a_mm,alpha_deg\nj1,400,0,90\nj2,0,600,0\n")
+    assert main(["allocate", str(path), "--no-verify"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert err == ["warning: robot 'arm' has no working region or pose set: allocated at the nominal pose only (1 pose); "
+                   "for the working region pass region='limits' (--region limits: the box of the joint limits), a pose "
+                   "set or a trajectory, or add a [regions.working] box to the robot file."], err

@@ -7,8 +7,11 @@ Plausibility guards catch the common unit slips and say how to proceed: a length
 above :data:`MAX_PLAUSIBLE_M` (millimetres under a metre key), a robot whose lengths given in mm
 all together are under :data:`MIN_PLAUSIBLE_REACH_MM` or one of which is tiny next to the longest
 (metres under a mm key), an angle under
-``_deg`` beyond +-360 deg or under ``_rad`` beyond +-2 pi (degrees under a radian key). A file
-that really is that way is accepted inside :func:`trusting_units` (the CLI's ``--trust-units``).
+``_deg`` beyond +-360 deg or under ``_rad`` beyond +-2 pi (degrees under a radian key). A robot built in
+Python from ``Link`` / ``Joint`` objects (internal units mm / rad) gets the same rules
+(:func:`check_chain_units`): lengths that look like metres, and revolute limits beyond two turns or a nominal
+value beyond one turn each way (degrees given for radians). A file or robot that really is that way is accepted
+inside :func:`trusting_units` (the CLI's ``--trust-units``, ``trust_units=True`` in Python).
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ from tolalloc.exceptions import TolallocError
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
            "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
-           "TINY_LINK_RATIO", "TRUST_HINT", "check_joint_units"]
+           "TINY_LINK_RATIO", "TRUST_HINT", "PYTHON_TRUST_HINT", "check_joint_units", "check_chain_units",
+           "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -37,6 +41,14 @@ MIN_PLAUSIBLE_REACH_MM = 10.0
 MAX_TINY_LINK_MM = 2.0
 TINY_LINK_RATIO = 200.0
 TRUST_HINT = "if the values really are meant so, pass --trust-units (trust_units=True in Python)"
+#: the same, for what only Python can give (a Robot built from Link / Joint objects)
+PYTHON_TRUST_HINT = "if the values really are meant so, pass trust_units=True"
+#: largest plausible magnitude of a value under each unit suffix: a length under ``_m`` (millimetres beyond),
+#: an angle under ``_deg`` or ``_rad`` (one turn each way; degrees under a radian key beyond)
+PLAUSIBLE_MAX = {"m": MAX_PLAUSIBLE_M, "deg": 360.0, "rad": 2 * np.pi}
+#: turns each way a revolute joint's limits may span (a continuous joint: +-720 deg, the robot files' and
+#: URDF's default); its nominal value stays within one turn
+MAX_LIMIT_TURNS = 2
 #: joint values in deg whose revolute entries all lie within +-2 pi, while a joint's limits span at least this many
 #: degrees and this many times the values' range, read as radians
 MIN_SPAN_FOR_RADIANS_DEG = 90.0
@@ -115,19 +127,55 @@ def check_plausible(raw, key: str, unit: str, *, error=ValueError) -> None:
     """Refuse a value that looks like it is in another unit than its suffix says (see the module docstring)."""
     if units_trusted():
         return
-    a = np.abs(np.asarray(raw, dtype=float))
-    a = a[np.isfinite(a)]
-    if a.size == 0:
+    big = _beyond(raw, PLAUSIBLE_MAX.get(unit, np.inf))
+    if big is None:
         return
-    big = float(a.max())
-    if unit == "m" and big > MAX_PLAUSIBLE_M:
+    if unit == "m":
         raise error(f"{key} = {_shown(raw)} is {big:g} m; that looks like millimetres: use the _mm key "
                     f"({key[:-2]}_mm) or divide by 1000 ({TRUST_HINT}).")
-    if unit == "deg" and big > 360.0 + 1e-9:
+    if unit == "deg":
         raise error(f"{key} = {_shown(raw)} goes beyond +-360 deg; expected angles within one turn each way ({TRUST_HINT}).")
-    if unit == "rad" and big > 2 * np.pi + 1e-9:
-        raise error(f"{key} = {_shown(raw)} goes beyond +-2 pi rad; that looks like degrees: use the _deg key "
-                    f"({key[:-4]}_deg) ({TRUST_HINT}).")
+    raise error(f"{key} = {_shown(raw)} goes beyond +-2 pi rad; that looks like degrees: use the _deg key "
+                f"({key[:-4]}_deg) ({TRUST_HINT}).")
+
+
+def _beyond(raw, limit: float) -> float | None:
+    """The largest finite magnitude in ``raw`` if it exceeds ``limit``, else None."""
+    a = np.abs(np.asarray(raw, dtype=float))
+    a = a[np.isfinite(a)]
+    if a.size == 0 or float(a.max()) <= limit + 1e-9:
+        return None
+    return float(a.max())
+
+
+def check_chain_units(lengths_mm: dict, revolute_joints: list, where: str) -> None:
+    """The unit guards of a robot built in Python from ``Link`` / ``Joint`` objects (internal units mm / rad).
+
+    The rules of the robot files (:data:`PLAUSIBLE_MAX`, :func:`check_reach`): a revolute joint whose limits go
+    beyond :data:`MAX_LIMIT_TURNS` turns each way, or whose nominal value goes beyond one turn, was given in
+    degrees; link lengths that look like metres (:func:`check_reach`, one-tiny-link rule included).
+
+    Parameters
+    ----------
+    lengths_mm : dict
+        Link name -> length [mm].
+    revolute_joints : list of tuple
+        ``(name, lower, upper, nominal)`` [rad] of each revolute joint.
+    where : str
+        Prefix of the message (``robot 'arm'``).
+    """
+    if units_trusted():
+        return
+    turn = PLAUSIBLE_MAX["rad"]
+    for name, lower, upper, nominal in revolute_joints:
+        if _beyond([lower, upper], MAX_LIMIT_TURNS * turn) is not None or _beyond(nominal, turn) is not None:
+            raise TolallocError(
+                f"{where}, joint {name}: limits [{lower:g}, {upper:g}] rad and nominal value {nominal:g} rad go beyond "
+                f"{MAX_LIMIT_TURNS} turns (limits) or one turn (nominal value) each way; Joint takes rad for a "
+                "revolute joint (mm for a prismatic one) and these look like degrees: convert them with "
+                "numpy.deg2rad, or build the joint with Joint.from_interface(name, kind, axis, lower_deg_mm, "
+                f"upper_deg_mm, nominal_deg_mm) ({PYTHON_TRUST_HINT}).")
+    check_reach(lengths_mm, where, objects=True)
 
 
 def _fractional(v: np.ndarray) -> np.ndarray:
@@ -184,7 +232,7 @@ def check_joint_units(q_deg_mm, revolute, lower_deg_mm, upper_deg_mm, where: str
                           stacklevel=3)
 
 
-def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True) -> None:
+def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True, objects: bool = False) -> None:
     """Refuse link lengths [mm] that look like metres: all together under :data:`MIN_PLAUSIBLE_REACH_MM`, or
     one link under :data:`MAX_TINY_LINK_MM` that is over :data:`TINY_LINK_RATIO` times shorter than the longest.
 
@@ -196,21 +244,27 @@ def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True) -> Non
         Prefix of the message.
     tiny_links : bool
         Also apply the one-tiny-link rule (off for DH tables, whose small calibrated offsets are real).
+    objects : bool
+        The lengths are ``Link`` objects' vectors (a robot built in Python), not file keys: the messages say so.
     """
     if units_trusted() or not lengths_mm:
         return
     total = float(sum(abs(v) for v in lengths_mm.values()))
     if 0 < total < MIN_PLAUSIBLE_REACH_MM:
-        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like metres given under _mm "
-                            f"keys: multiply by 1000 or use the _m keys ({TRUST_HINT}).")
+        fix = ("metres: Link vectors are in mm, multiply them by 1000" if objects else
+               "metres given under _mm keys: multiply by 1000 or use the _m keys")
+        raise TolallocError(f"{where}: the link lengths add up to {total:g} mm; that looks like {fix} "
+                            f"({PYTHON_TRUST_HINT if objects else TRUST_HINT}).")
     if not tiny_links:
         return
     longest = max(lengths_mm, key=lambda k: abs(lengths_mm[k]))
     for name, v in lengths_mm.items():
         if 0 < abs(v) < MAX_TINY_LINK_MM and abs(v) * TINY_LINK_RATIO < abs(lengths_mm[longest]):
+            fix = ("metres: Link vectors are in mm, multiply it by 1000" if objects else
+                   "metres under a _mm key: multiply it by 1000 or use the _m key")
             raise TolallocError(f"{where}: link {name} is {abs(v):g} mm long while link {longest} is "
-                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in metres under a _mm key: "
-                                f"multiply it by 1000 or use the _m key ({TRUST_HINT}).")
+                                f"{abs(lengths_mm[longest]):g} mm; that looks like a length in {fix} "
+                                f"({PYTHON_TRUST_HINT if objects else TRUST_HINT}).")
 
 
 def _shown(raw):

@@ -34,14 +34,13 @@ print(arm.fk([0, -90, 0, -90, 0, 0])[:3, 3].round(3))   # tool position [mm] at 
 # %% built in Python
 from tolalloc import Joint, Link, Robot
 
-deg = np.deg2rad                                   # inside the library joint limits are rad / mm
-chain = (
+chain = (                                          # link vectors in mm; joint limits and nominal value in deg / mm
     Link("base", np.array([0.0, 0.0, 400.0])),
-    Joint("shoulder", "revolute", np.array([0.0, 1.0, 0.0]), deg(-90), deg(90), deg(20)),
+    Joint.from_interface("shoulder", "revolute", np.array([0.0, 1.0, 0.0]), -90, 90, 20),
     Link("upper_arm", np.array([600.0, 0.0, 0.0])),
-    Joint("slide", "prismatic", np.array([1.0, 0.0, 0.0]), 0.0, 300.0, 100.0),
+    Joint.from_interface("slide", "prismatic", np.array([1.0, 0.0, 0.0]), 0, 300, 100),
     Link("forearm", np.array([250.0, 0.0, 0.0])),
-)
+)                                                  # Joint(...) itself takes rad / mm: np.deg2rad(-90), ...
 demo = Robot("demo_arm", chain, tool_offset_mm=np.array([0.0, 0.0, -50.0]))
 print(demo)
 print(demo.fk([0, 100])[:3, 3])                    # (950, 0, 350) mm: the slide adds 100 mm along x

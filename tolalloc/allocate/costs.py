@@ -202,13 +202,32 @@ def param_kind_key(p) -> str:
     return p.kind
 
 
-def _value(entry: dict, base: str, unit: str, where: str):
-    """Value of ``base_<unit suffix>`` in internal units (None if absent); the suffix must fit ``unit``."""
-    table = _LEN if unit == "mm" else _ANG
+def _kind_unit(kind: str) -> str:
+    """The interface unit (mm or deg) of the parameters of a costs-file kind."""
+    return "mm" if any(k.endswith("_mm") for k in DEFAULT_COSTS["kinds"][kind]) else "deg"
+
+
+def _check_units(entry: dict, unit: str, what: str, where: str, bases=_UNIT_BASES) -> None:
+    """Refuse a ``base_<suffix>`` key whose unit is not ``unit`` (the parameters' interface unit, mm or deg)."""
+    table, other = (_LEN, "m") if unit == "mm" else (_ANG, "rad")
+    for key in entry:
+        for b in bases:
+            suffix = key[len(b) + 1:] if key.startswith(b + "_") else None
+            if suffix in {**_LEN, **_ANG} and suffix not in table:
+                raise TolallocError(f"{where}: {key} has the wrong unit: {what} are in {unit}; use {b}_{unit} (or "
+                                    f"{b}_{other}).")
+
+
+def _value(entry: dict, base: str, unit: str, where: str, what: str = "the parameter's tolerances"):
+    """Value of ``base_<unit suffix>`` in internal units (None if absent); the suffix must fit ``unit`` (the
+    parameter's unit: mm, or rad / deg for angles)."""
+    unit = "mm" if unit == "mm" else "deg"
+    _check_units(entry, unit, what, where, (base,))
     try:
-        value, suffix = unit_value({k: v for k, v in entry.items() if k != base}, base, table)
+        value, suffix = unit_value({k: v for k, v in entry.items() if k != base}, base, _LEN if unit == "mm" else _ANG)
     except ValueError as exc:
-        raise TolallocError(f"{where}: {exc} (the wrong unit for a parameter in {unit}).") from None
+        text = str(exc)
+        raise TolallocError(f"{where}: {text}{'' if text.endswith('.') else '.'}") from None
     if suffix is None:
         return None
     key = f"{base}_{suffix}"
@@ -254,7 +273,9 @@ def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = N
     kinds, per = _entries(data, model, source)
     names, role, models, fixed, excluded, specs, merged = [], [], [], [], [], [], {}
     for p in model.params:
-        where = f"costs {source} [{p.name}]"
+        # the section the parameter's entry comes from: its own, or its kind's
+        where = (f"costs {source} [parameters.{p.name}]" if p.name in per else
+                 f"costs {source} [kinds.{param_kind_key(p)}] ({p.name})")
         base = kinds[param_kind_key(p)]
         own = per.get(p.name, {})
         entry = {key: val for key, val in base.items()
@@ -325,6 +346,7 @@ def _entries(data: dict, model: ErrorModel, source: str):
         # a new reference/limit with another unit suffix replaces the default one
         base = {key: val for key, val in kinds[k].items()
                 if not any(key.startswith(b + "_") and any(x.startswith(b + "_") for x in v) for b in _UNIT_BASES)}
+        _check_values(v, _kind_unit(k), f"{k} tolerances", f"costs {source} [kinds.{k}]")
         kinds[k] = {**base, **v}
     per = data.get("parameters") or {}
     for nm, v in per.items():
@@ -332,7 +354,16 @@ def _entries(data: dict, model: ErrorModel, source: str):
         if nm not in model.names:
             raise TolallocError(f"costs {source} [parameters.{nm}]: unknown error parameter {nm!r}; "
                                 f"known: {', '.join(model.names)}.")
+        p = model.params[model.index(nm)]
+        _check_values(v, p.interface_unit, f"{nm}'s tolerances", f"costs {source} [parameters.{nm}]")
     return kinds, per
+
+
+def _check_values(entry: dict, unit: str, what: str, where: str) -> None:
+    """The unit suffixes and the reference / limit / fixed values of one section, in the section's terms."""
+    _check_units(entry, unit, what, where)
+    for b in ("t_ref", "t_min", "t_max", "tol"):
+        _value(entry, b, unit, where, what)
 
 
 def _cost_model(entry: dict, p, where: str) -> CostModel:
@@ -368,9 +399,10 @@ def read_costs_file(path) -> dict:
     """The parsed TOML of a costs file (a byte-order mark is fine); clear errors for a missing or bad file."""
     path = Path(path)
     if path.is_dir():
-        raise TolallocError(f"costs file {str(path)!r} is a directory; give a TOML file (see `tolalloc allocate --help`).")
+        raise TolallocError(f"costs file {str(path)!r} is a directory; give a TOML file (its format: "
+                            "docs/howto/costs-file.md).")
     if not path.is_file():
-        raise TolallocError(f"costs file {str(path)!r} not found; give a TOML file (see `tolalloc allocate --help`).")
+        raise TolallocError(f"costs file {str(path)!r} not found; give a TOML file (its format: docs/howto/costs-file.md).")
     try:
         data = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark is fine
     except UnicodeDecodeError as exc:

@@ -9,8 +9,13 @@ Plan CSV (what ``tolalloc calplan`` writes and ``tolalloc allocate --calibration
     # noise_deg = 0.001                 orientation noise sigma [deg] (pose measurements only)
     # estimate = all                    or a space-separated list of parameter names
     # registration = true               estimate the tracker registration (6) and tool offset (3)
-    J1_deg,J2_deg,...                   one row per measurement pose, interface units (deg / mm)
+    j1_deg,j2_deg,...                   one row per measurement pose, interface units (deg / mm)
     10.0,-20.0,...
+
+The pose columns are written ``<joint name>_deg`` / ``_mm`` and read by the joint-column rule of every reader
+(:mod:`tolalloc.robot.columns`: ``q1_deg`` / ``q4_mm``, ``<joint name>_deg`` / ``_mm`` or plain ``q1..qN``), so a
+plan filled in with tracker readings (``x_mm, y_mm, z_mm``) is also a measurement file for the diagnosis, and
+still a plan (columns other than the joints' are not read).
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.robot.columns import find_joint_columns
 from tolalloc.robot.model import Robot
 
 __all__ = ["CalibrationPlan", "make_plan", "read_plan", "write_plan"]
@@ -124,7 +130,7 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise TolallocError(f"calibration plan {str(path)!r}: cannot read it ({exc.strerror}); give an existing CSV "
-                            "written by `tolalloc calplan`.") from None
+                            "written by tolalloc calplan / tolalloc.plan_calibration.") from None
     settings = {}
     for line in text.splitlines():
         if line.startswith("#") and "=" in line:
@@ -137,25 +143,24 @@ def read_plan(path, robot: Robot) -> CalibrationPlan:
                             f"expected {', '.join(sorted(known))}.")
     if settings.get("robot", robot.name) != robot.name:
         raise TolallocError(f"calibration plan {path.name}: written for the robot {settings['robot']!r} (its header), "
-                            f"but the allocation is for {robot.name!r}; design a plan for this robot with "
-                            f"`tolalloc calplan {robot.name} --n-poses N --out PLAN.csv`.")
+                            f"but the allocation is for {robot.name!r}; design a plan for this robot "
+                            f"(tolalloc calplan {robot.name} / tolalloc.plan_calibration({robot.name!r}, n_poses)).")
     cols = [f"{j.name}_{j.unit}" for j in robot.joints]
     try:
-        df = pd.read_csv(io.StringIO(text), comment="#")
+        df = pd.read_csv(io.StringIO(text), comment="#", skipinitialspace=True)
     except (pd.errors.EmptyDataError, pd.errors.ParserError) as exc:
         raise TolallocError(f"calibration plan {path.name}: cannot be read as CSV ({str(exc).strip()}); expected the "
-                            f"columns {', '.join(cols)} (write one with `tolalloc calplan`).") from None
-    if list(df.columns) != cols:
-        raise TolallocError(f"calibration plan {path.name}: expected the columns {', '.join(cols)}, "
-                            f"got {', '.join(map(str, df.columns))}.")
+                            f"columns {', '.join(cols)} (a plan written by tolalloc calplan / "
+                            "tolalloc.plan_calibration).") from None
+    qcols = find_joint_columns(robot, df.columns, f"calibration plan {path.name}")  # other columns: not read
     try:
-        qi = df.to_numpy(dtype=float)
+        qi = df.set_axis([str(c).strip() for c in df.columns], axis=1)[qcols].to_numpy(dtype=float)
     except ValueError:
         raise TolallocError(f"calibration plan {path.name}: joint values must be numbers (deg / mm).") from None
     if "n_poses" in settings and settings["n_poses"] != str(len(qi)):
         raise TolallocError(f"calibration plan {path.name}: its header says n_poses = {settings['n_poses']}, but the "
-                            f"file has {len(qi)} pose row(s) (truncated or edited?); write the plan again with "
-                            "`tolalloc calplan`, or correct the n_poses line.")
+                            f"file has {len(qi)} pose row(s) (truncated or edited?); write the plan again (tolalloc "
+                            "calplan / tolalloc.plan_calibration), or correct the n_poses line.")
     q = robot.check_q(qi, f"calibration plan {path.name}", interface=True) if len(qi) else np.zeros((0, len(cols)))
     reg = settings.get("registration", "true").lower()
     if reg not in ("true", "false"):

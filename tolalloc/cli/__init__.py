@@ -28,10 +28,48 @@ class _UsageError(TolallocError):
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors: ``error: tolalloc mc: argument --n: ... (see tolalloc mc --help)``."""
+    """argparse with one-line errors: ``error: tolalloc mc: argument --n: ... (see tolalloc mc --help)``.
+
+    Flags are never abbreviated (``allow_abbrev=False``, for the subcommands too): a unit-less ``--radius`` must not
+    stand for ``--radius-mm``; an unknown flag is refused with the full flags it may mean.
+    """
+
+    def __init__(self, *args, **kwargs):
+        kwargs["allow_abbrev"] = False
+        super().__init__(*args, **kwargs)
 
     def error(self, message):  # noqa: D102 - argparse API
         raise _UsageError(f"{self.prog}: {message} (see '{self.prog} --help').")
+
+    def parse_args(self, args=None, namespace=None):  # noqa: D102 - argparse API
+        namespace, extras = self.parse_known_args(args, namespace)
+        if extras:
+            command = self._command_parser(namespace)
+            command.error(_unrecognized(command, extras))
+        return namespace
+
+    def _command_parser(self, namespace) -> argparse.ArgumentParser:
+        """The subcommand's parser that collected the unrecognized arguments (this one if none)."""
+        for action in self._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                return action.choices.get(getattr(namespace, action.dest, None), self)
+        return self
+
+
+def _unrecognized(parser: argparse.ArgumentParser, extras: list) -> str:
+    """argparse's message for unrecognized arguments, naming the full flags an unknown ``--flag`` may mean."""
+    import difflib
+
+    text = f"unrecognized arguments: {' '.join(extras)}"
+    known = sorted(o for o in parser._option_string_actions if o.startswith("--"))
+    for arg in extras:
+        flag = arg.split("=", 1)[0]
+        if not flag.startswith("--"):
+            continue
+        near = [o for o in known if o.startswith(flag)] or difflib.get_close_matches(flag, known, n=3, cutoff=0.6)
+        if near:
+            return f"{text}; did you mean {' or '.join(near)}? Flags are written in full, with their unit"
+    return text
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -88,6 +126,26 @@ def _interrupt_handlers():
         clear_interrupt()
 
 
+@contextlib.contextmanager
+def _warnings_as_lines():
+    """The library's own warnings as one ``warning: ...`` line each on stderr (other warnings as Python shows them)."""
+    import os
+    import warnings
+
+    package = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    with warnings.catch_warnings():
+        python_show = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if os.path.abspath(str(filename)).startswith(package + os.sep):
+                print(f"warning: {message}", file=sys.stderr)
+            else:
+                python_show(message, category, filename, lineno, file, line)
+
+        warnings.showwarning = show
+        yield
+
+
 def _run(args) -> int:
     """The command's exit status; an error raised while a signal is pending is the interrupt."""
     try:
@@ -105,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
 
     published(reset=True)
     args = None
-    with _interrupt_handlers():
+    with _interrupt_handlers(), _warnings_as_lines():
         try:
             args = build_parser().parse_args(argv)
             code = _run(args)

@@ -25,7 +25,8 @@ def register(sub) -> None:
                    help="pose set of the robot file (default: 'working' if the robot has it, else nominal)")
     p.add_argument("--region", default=None, metavar="SPEC",
                    help="where the requirement must hold: a pose set of the robot file, 'limits' (the joint limits), "
-                   "a region (box) of the robot file, or a trajectory CSV (q1..qN per row, deg / mm). Boxes are "
+                   "a region (box) of the robot file, or a trajectory CSV (a pose per row, deg / mm; with a header, "
+                   "joint columns q1_deg / q4_mm ... or q1..qN). Boxes are "
                    "searched for their worst pose (cutting planes) and checked on a fresh sample. Default: the "
                    "robot's 'working' region if it has one, else the pose set (--poses)")
     p.add_argument("--coverage-n", type=count, default=100_000,

@@ -18,7 +18,9 @@ def register(sub) -> None:
     add_robot_arg(p)
     add_error_model_args(p)
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
+    g.add_argument("--pose", "--q", dest="pose", metavar="Q_DEG_MM",
+                   help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal; --q is the same flag, '
+                   "as in fk)")
     g.add_argument("--poses", "--pose-set", dest="poses", metavar="SET",
                    help="a pose set of the robot file (e.g. working), or 'nominal'")
     p.add_argument("--radius-mm", type=float, action="append", default=[], metavar="R",

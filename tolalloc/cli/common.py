@@ -20,7 +20,9 @@ def add_robot_arg(parser) -> None:
     parser.add_argument("robot", metavar="ROBOT",
                         help="built-in robot name (see `tolalloc robots`) or path to a robot file (.toml, DH .csv, .urdf)")
     parser.add_argument("--tool", metavar="LINK", default=None,
-                        help="URDF only: the tool link (default: the last link of the chain; required if the URDF branches)")
+                        help="URDF only: the tool link (default: the leaf link with the most movable joints above it; "
+                        "required where that is ambiguous: a tree that branches near its end, or a chain ending in a "
+                        "gripper-like joint)")
     parser.add_argument("--trust-units", action="store_true",
                         help="accept values that look like a unit slip: in robot files (lengths under _m above 20 m, "
                         "a robot under 10 mm long, angles beyond one turn) and in joint values (--q, --pose, trajectory "
@@ -114,9 +116,10 @@ def robot_kwargs(args) -> dict:
     return dict(tool=getattr(args, "tool", None), trust_units=getattr(args, "trust_units", False))
 
 
-#: workflow arguments whose flag is not their name with dashes (the flag switches the argument off, or is shorter)
-_RENAMED = [("verify", "--no-verify"), ("correction", "--no-correction"), ("snap", "--no-snap"),
-            ("registration", "--no-registration"), ("q_deg_mm", "--pose"), ("q_deg_mm", "--q"), ("path", "--out")]
+#: workflow arguments whose flag is not their name with dashes (the flag switches the argument off, or is shorter):
+#: (workflow argument, argparse dest); the flag shown is the dest's first spelling
+_RENAMED = [("verify", "no_verify"), ("correction", "no_correction"), ("snap", "no_snap"),
+            ("registration", "no_registration"), ("q_deg_mm", "pose"), ("q_deg_mm", "q"), ("path", "out")]
 
 
 def flag_map(parser) -> dict:
@@ -128,9 +131,9 @@ def flag_map(parser) -> dict:
             flags[action.dest] = longs[0]
     if "pose_set" in flags:  # mc: --pose-set is the workflow's ``poses``
         flags["poses"] = flags["pose_set"]
-    for name, flag in _RENAMED:
-        if flag in {f for a in parser._actions for f in a.option_strings}:
-            flags.setdefault(name, flag)
+    for name, dest in _RENAMED:
+        if dest in flags:
+            flags.setdefault(name, flags[dest])
     return flags
 
 

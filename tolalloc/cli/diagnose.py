@@ -14,9 +14,10 @@ def register(sub) -> None:
         "diagnose", help="sim-to-real diagnosis from laser-tracker measurements",
         description="Calibrate the tracker registration, target offset and identifiable geometric errors on "
         "the training measurements, break the residual down, select the unmodelled effect that lowers the "
-        "held-out error (cross-validation + test file) significantly, or 'none'. CSV columns: q1..qN (deg / mm), "
-        "x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1/-1), payload_kg, time_s. Rows with empty "
-        "cells are skipped and counted.")
+        "held-out error (cross-validation + test file) significantly, or 'none'. CSV columns: one per joint, "
+        "q1_deg / q4_mm ... (deg / mm; a calibration plan's joint names and plain q1..qN are read too), x_mm, y_mm, "
+        "z_mm; optional temperature_c, dir1..dirN (+1/-1), payload_kg, time_s. Rows with empty cells are skipped "
+        "and counted.")
     add_robot_arg(p)
     p.add_argument("--train", required=True, metavar="TRAIN.csv", help="measurements to fit (and cross-validate)")
     p.add_argument("--test", metavar="TEST.csv", help="held-out measurements, scored only")

@@ -20,7 +20,9 @@ def register(sub) -> None:
     p.add_argument("--n", type=count, required=True, help="number of samples (>= 1; 1e6 and 1_000_000 accepted)")
     p.add_argument("--seed", type=seed, default=0, help="random seed (same seed, same numbers)")
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--pose", metavar="Q_DEG_MM", help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal)')
+    g.add_argument("--pose", "--q", dest="pose", metavar="Q_DEG_MM",
+                   help='joint values in deg / mm, e.g. "15,30,-10,0,-20,-5" (default: nominal; --q is the same flag, '
+                   "as in fk)")
     g.add_argument("--pose-set", "--poses", dest="pose_set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
     p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")

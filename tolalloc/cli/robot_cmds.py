@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import json
-
-from tolalloc.cli.common import add_robot_arg, json_default, parse_q, robot_from_args, trusting
+from tolalloc.cli.common import add_robot_arg, check_output, parse_q, robot_from_args, trusting, write_json
 
 
 def register(sub) -> None:
@@ -20,9 +18,12 @@ def register(sub) -> None:
     p = sub.add_parser("fk", help="forward kinematics at given joint values",
                        description="End-effector pose T(q) by the product of exponentials.")
     add_robot_arg(p)
-    p.add_argument("--q", required=True, metavar="Q_DEG_MM",
-                   help='joint values, comma-separated, deg (revolute) / mm (prismatic), e.g. "15,30,-10,0,-20,-5"')
-    p.add_argument("--json", action="store_true", help="print JSON with position_mm and rotation (3x3)")
+    p.add_argument("--q", "--pose", dest="q", required=True, metavar="Q_DEG_MM",
+                   help='joint values, comma-separated, deg (revolute) / mm (prismatic), e.g. "15,30,-10,0,-20,-5" '
+                   "(--pose is the same flag, as in analyze and mc)")
+    p.add_argument("--json", nargs="?", const="-", default=None, metavar="OUT",
+                   help="write JSON with position_mm and rotation (3x3) to OUT ('-', or no OUT: standard output) "
+                   "instead of the text")
     p.set_defaults(func=cmd_fk)
 
 
@@ -44,11 +45,12 @@ def cmd_show(args) -> int:
 def cmd_fk(args) -> int:
     from tolalloc.workflows.robot_info import pose_dict, pose_text
 
+    check_output(args.json, "--json")
     robot = robot_from_args(args)
     with trusting(args):
         pose = pose_dict(robot, parse_q(args.q))
-    if args.json:
-        print(json.dumps(pose, default=json_default))
+    if args.json is not None:
+        write_json(pose, args.json)
     else:
         print(pose_text(pose))
     return 0

@@ -1,15 +1,20 @@
 """Laser-tracker measurement sets: reading and validating the measurement CSV.
 
-Columns (extra columns are ignored):
+Columns (other columns are ignored):
 
-``q1..qN``          joint values in interface units (deg for revolute, mm for prismatic joints)
+``q1_deg ...``      joint values in interface units (deg for revolute, mm for prismatic joints), see below
 ``x_mm,y_mm,z_mm``  measured target position in the tracker's fixed frame [mm]
 ``temperature_c``   optional, ambient temperature [degC]
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
 ``payload_kg``      optional
 ``time_s``          optional, time stamp [s]
 
-NaN policy: a row with an empty / NaN cell in a required column (``q*``, ``x_mm..z_mm``) is
+The joint columns are named by the rule of :mod:`tolalloc.robot.columns`: ``q<k>_deg`` / ``q<k>_mm``, the
+calibration plan's ``<joint name>_deg`` / ``_mm``, or plain ``q1..qN``.
+Lines starting with ``#`` before the header are skipped (a calibration plan filled in with tracker readings is
+a measurement file).
+
+NaN policy: a row with an empty / NaN cell in a required column (joints, ``x_mm..z_mm``) is
 **skipped and counted** (``Measurements.n_skipped``); a cell holding text that is not a number is an
 **error** naming the row and column. Optional covariates with NaN are an error (fill or drop them).
 """
@@ -23,10 +28,12 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.scale import point_kinematics
 
-__all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "POSITION_COLUMNS"]
+__all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "comment_lines",
+           "POSITION_COLUMNS"]
 
 #: fewer distinct poses than this cannot fix the tracker registration and target offset (9 unknowns, 3 per pose)
 MIN_DISTINCT_POSES = 3
@@ -172,8 +179,8 @@ def _check_poses(Q: np.ndarray, X: np.ndarray, rows: np.ndarray, source: str) ->
 def check_train_test(train: Measurements, test: Measurements, train_name: str, test_name: str) -> None:
     """Refuse a test set that shares poses with the training set (its error would not be held out)."""
     if Path(train_name).resolve() == Path(test_name).resolve():
-        raise TolallocError(f"--test {test_name!r} is the training file; expected held-out measurements in another file "
-                            "(or leave out --test: cross-validation still scores held-out rows).")
+        raise TolallocError(f"`test` {test_name!r} is the training file; expected held-out measurements in another "
+                            "file (or leave out `test`: cross-validation still scores held-out rows).")
     keys, first = np.unique(_row_hash(train.q), return_index=True)
     h_test = _row_hash(test.q)
     at = np.minimum(np.searchsorted(keys, h_test), len(keys) - 1)
@@ -182,7 +189,7 @@ def check_train_test(train: Measurements, test: Measurements, train_name: str, t
     if shared.any():
         j = int(np.flatnonzero(shared)[0])
         i = int(np.flatnonzero((train.q == test.q[j]).all(axis=1))[0])
-        raise TolallocError(f"--test {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in --train "
+        raise TolallocError(f"`test` {test_name!r}: {int(shared.sum())} of its {test.n_poses} poses are also in `train` "
                             f"{train_name!r} (e.g. test row {test.rows[j]} = train row {train.rows[i]}); expected "
                             "held-out poses; remove them from one of the files.")
 
@@ -190,22 +197,17 @@ def check_train_test(train: Measurements, test: Measurements, train_name: str, t
 def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<frame>") -> Measurements:
     """Validate a measurement table (see the module docstring) and return :class:`Measurements`."""
     n = robot.n_joints
-    qcols = [f"q{j + 1}" for j in range(n)]
     cols = [str(c).strip() for c in df.columns]
     df = df.copy()
     df.columns = cols
-    missing = [c for c in (*qcols, *POSITION_COLUMNS) if c not in cols]
+    qcols = find_joint_columns(robot, cols, source)
+    missing = [c for c in POSITION_COLUMNS if c not in cols]
     if missing:
         lower = {c.lower(): c for c in cols}
         hints = [f"{lower[m.lower()]!r} -> {m!r}" for m in missing if m.lower() in lower]
         hint = f" Rename: {', '.join(hints)}." if hints else ""
-        extra_q = [c for c in cols if c.startswith("q") and c[1:].isdigit() and c not in qcols]
-        if extra_q:
-            hint += f" The file has joint columns {extra_q} beyond the robot's {n} joints; is it the right robot?"
-        elif any(m in qcols for m in missing) and any(c in cols for c in qcols):
-            hint += f" The file has fewer joint columns than the robot's {n} joints; wrong robot?"
         raise TolallocError(
-            f"{source}: missing column(s) {missing}; expected {', '.join(qcols)} (deg / mm) and "
+            f"{source}: missing column(s) {missing}; expected the joint columns ({', '.join(qcols)}) and "
             f"{', '.join(POSITION_COLUMNS)}, got columns {cols}.{hint}")
     if len(df) == 0:
         raise TolallocError(f"{source}: no data rows; expected one row per measured pose.")
@@ -217,7 +219,8 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
     keep = ~(np.isnan(Q).any(1) | np.isnan(X).any(1))
     n_skipped = int((~keep).sum())
     if not keep.any():
-        raise TolallocError(f"{source}: every row has an empty or NaN cell in q1..q{n} / x_mm,y_mm,z_mm; no pose left.")
+        raise TolallocError(f"{source}: every row has an empty or NaN cell in {qcols[0]}..{qcols[-1]} / x_mm,y_mm,z_mm; "
+                            "no pose left.")
     rows = np.flatnonzero(keep) + 1
     Q, X = Q[keep], X[keep]
     qi = robot.q_from_interface(Q)
@@ -264,19 +267,36 @@ def read_measurements(path, robot: Robot) -> Measurements:
     """Read and validate a measurement CSV (comma-separated, '.' decimals); see the module docstring."""
     path = Path(path)
     if path.is_dir():
-        raise TolallocError(f"measurement file {str(path)!r} is a directory; expected a CSV file with columns q1..qN, "
-                            "x_mm, y_mm, z_mm.")
+        raise TolallocError(f"measurement file {str(path)!r} is a directory; expected a CSV file with "
+                            f"{JOINT_COLUMNS_TEXT} and x_mm, y_mm, z_mm.")
     if not path.is_file():
-        raise TolallocError(f"measurement file {str(path)!r} does not exist; expected a CSV with columns q1..qN, x_mm, y_mm, z_mm.")
+        raise TolallocError(f"measurement file {str(path)!r} does not exist; expected a CSV with {JOINT_COLUMNS_TEXT} "
+                            "and x_mm, y_mm, z_mm.")
     try:
         # numbers straight to float64 (8 bytes a cell); any column that is not all numbers: read as text
         # again, so every cell gets the usual checks and messages
-        df = pd.read_csv(path, skipinitialspace=True, encoding="utf-8-sig")
+        opts = dict(skipinitialspace=True, encoding="utf-8-sig", skiprows=comment_lines(path))
+        df = pd.read_csv(path, **opts)
         if not all(pd.api.types.is_float_dtype(t) or pd.api.types.is_integer_dtype(t) for t in df.dtypes):
-            df = pd.read_csv(path, dtype=str, skipinitialspace=True, encoding="utf-8-sig")
+            df = pd.read_csv(path, dtype=str, **opts)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        raise TolallocError(f"{path}: cannot be read as CSV ({exc}); expected comma-separated columns q1..qN, x_mm, y_mm, z_mm.") from None
+        raise TolallocError(f"{path}: cannot be read as CSV ({exc}); expected comma-separated columns: "
+                            f"{JOINT_COLUMNS_TEXT} and x_mm, y_mm, z_mm.") from None
     if df.shape[1] == 1 and ";" in str(df.columns[0]):
         raise TolallocError(f"{path}: looks ';'-separated; expected a comma-separated CSV with '.' decimals "
                             "(convert it, e.g. with studies/sim2real_ur10/convert_ur10.py for the UR10 data).")
     return measurements_from_frame(df, robot, str(path))
+
+
+def comment_lines(path) -> int:
+    """The number of ``#`` lines before the header (a calibration plan's settings), skipped by the reader."""
+    k = 0
+    try:
+        with open(path, encoding="utf-8-sig") as f:
+            for line in f:
+                if not line.lstrip().startswith("#"):
+                    break
+                k += 1
+    except (OSError, UnicodeDecodeError):
+        return 0  # the reader says what is wrong with the file
+    return k

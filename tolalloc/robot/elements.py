@@ -43,7 +43,12 @@ class Link:
 
 @dataclass(frozen=True, eq=False)
 class Joint:
-    """A one-degree-of-freedom joint.
+    """A one-degree-of-freedom joint, in the library's internal units.
+
+    ``Joint(name, kind, axis, lower, upper, nominal)`` takes its limits and nominal value in **rad** for a
+    revolute joint and mm for a prismatic one; :meth:`from_interface` takes them in deg / mm, like the robot
+    files. A :class:`~tolalloc.robot.model.Robot` refuses revolute limits beyond two turns or a nominal value
+    beyond one turn each way (degrees given for radians) unless built with ``trust_units=True``.
 
     Attributes
     ----------
@@ -55,6 +60,14 @@ class Joint:
         Joint limits [rad or mm].
     nominal : float
         Nominal joint value [rad or mm].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from tolalloc import Joint
+    >>> j = Joint.from_interface("shoulder", "revolute", np.array([0.0, 1.0, 0.0]), -90, 90, 20)
+    >>> round(j.upper, 6), round(j.nominal, 6)      # stored in rad
+    (1.570796, 0.349066)
     """
 
     name: str
@@ -63,6 +76,18 @@ class Joint:
     lower: float = -np.pi
     upper: float = np.pi
     nominal: float = 0.0
+
+    @classmethod
+    def from_interface(cls, name: str, kind: str, axis, lower_deg_mm: float, upper_deg_mm: float,
+                       nominal_deg_mm: float = 0.0) -> "Joint":
+        """A joint from limits and nominal value in interface units: deg for a revolute joint, mm for a
+        prismatic one (converted to rad / mm)."""
+        f = (np.pi / 180.0) if kind == REVOLUTE else 1.0
+        try:
+            vals = [float(v) * f for v in (lower_deg_mm, upper_deg_mm, nominal_deg_mm)]
+        except (TypeError, ValueError):
+            vals = [lower_deg_mm, upper_deg_mm, nominal_deg_mm]  # refused with the robot's message
+        return cls(name, kind, axis, *vals)
 
     @property
     def is_revolute(self) -> bool:

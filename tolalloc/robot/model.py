@@ -18,13 +18,14 @@ interface (files, CLI) are in degrees (revolute) and mm (prismatic); use
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError, check_finite_array, describe, known_names
-from tolalloc.units import check_joint_units
+from tolalloc.units import check_joint_units, trusting_units, units_trusted
+from tolalloc.robot.checks import check_chain
 from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
 
@@ -71,6 +72,11 @@ class Robot:
         Named boxes of the working region, ``{name: (q_min (n,), q_max (n,))}`` [rad, mm].
     sigma_sets : dict of str -> dict
         Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
+    trust_units : bool
+        Construction only (not stored): accept a chain whose values look like a unit slip. By default a chain
+        built from ``Link`` / ``Joint`` objects is refused, with a hint, when its link lengths look like metres
+        or a revolute joint's limits go beyond two turns or its nominal value beyond one turn each way (degrees
+        given for radians; :func:`tolalloc.units.check_chain_units`), the rules of the robot files.
     joints, links : tuples of Joint, Link
         Derived (read-only): the chain's joints and links.
     screws : array, shape (n, 6)
@@ -93,8 +99,9 @@ class Robot:
     description: str = ""
     sigma_sets: dict = field(default_factory=dict)
     regions: dict = field(default_factory=dict)
+    trust_units: InitVar[bool] = False
 
-    def __post_init__(self):
+    def __post_init__(self, trust_units: bool = False):
         joints = tuple(e for e in self.chain if isinstance(e, Joint))
         links = tuple(e for e in self.chain if isinstance(e, Link))
         if not joints:
@@ -103,7 +110,10 @@ class Robot:
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             raise TolallocError(f"robot {self.name!r}: duplicate element names {dup}; every link and joint needs its own name.")
-        self._check_numbers()
+        if not isinstance(trust_units, (bool, np.bool_)):
+            raise TolallocError(f"robot {self.name!r}: trust_units expected True or False, got {describe(trust_units)}.")
+        check_chain(self.chain, self.tool_offset_mm, self.tool_rotation, f"robot {self.name!r}",
+                    units=not (trust_units or units_trusted()))
         check_reserved_names(f"robot {self.name!r}", pose_sets=self.pose_sets, regions=self.regions,
                              sigma_sets=self.sigma_sets)
         point = np.zeros(3)
@@ -135,52 +145,6 @@ class Robot:
         object.__setattr__(self, "link_sites", np.array(sites, dtype=int))
         for arr in (self.screws, self.joint_points_mm, self.home, self.link_sites):
             arr.flags.writeable = False
-
-    def _check_numbers(self) -> None:
-        """Refuse non-numbers, NaN / inf in links, axes, limits, nominal values and the tool frame, zero-length
-        links and unnamed elements."""
-        who = f"robot {self.name!r}"
-
-        def floats(value, what, shape):
-            try:
-                arr = np.asarray(value, dtype=float)
-            except (TypeError, ValueError):
-                arr = None
-            if arr is None or arr.shape != shape or not np.all(np.isfinite(arr)):
-                count = {(): "one finite number", (3,): "3 finite numbers"}.get(shape, "a 3 x 3 matrix of finite numbers")
-                raise TolallocError(f"{who}, {what}: expected {count}, got {describe(value)}.")
-            return arr
-
-        for e in self.chain:
-            if not isinstance(e, (Link, Joint)) or not isinstance(e.name, str) or not e.name:
-                raise TolallocError(f"{who}: chain element {describe(e)}; expected Link and Joint elements with "
-                                    "names.")
-            if isinstance(e, Link):
-                v = floats(e.vector_mm, f"link {e.name} vector [mm]", (3,))
-                if not np.any(v):
-                    raise TolallocError(f"{who}, link {e.name}: zero length; a link needs a length > 0 (its "
-                                        "tolerance has a direction); leave the entry out.")
-            else:
-                try:
-                    np.asarray(e.axis, dtype=float)
-                except (TypeError, ValueError):
-                    raise TolallocError(f"{who}, joint {e.name}: axis {describe(e.axis)} is not a finite unit "
-                                        "3-vector; expected e.g. [0, 0, 1].") from None
-                floats(e.nominal, f"joint {e.name}: the nominal value (a finite nominal value inside the limits)", ())
-                try:
-                    vals = np.array([e.lower, e.upper], dtype=float)
-                except (TypeError, ValueError):
-                    vals = np.array([np.nan, np.nan])
-                if np.isnan(vals).any():
-                    raise TolallocError(f"{who}, joint {e.name}: limits [{e.lower}, {e.upper}]; expected numbers "
-                                        "(+-inf for no limit).")
-                if not e.lower <= e.nominal <= e.upper:
-                    raise TolallocError(f"{who}, joint {e.name}: nominal value {e.nominal:g} outside its limits "
-                                        f"[{e.lower:g}, {e.upper:g}] [rad / mm]; expected a value inside the limits.")
-        floats(self.tool_offset_mm, "tool offset [mm] (tool offset_mm)", (3,))
-        R = floats(self.tool_rotation, "tool rotation", (3, 3))
-        if not np.allclose(R @ R.T, np.eye(3), atol=1e-6):
-            raise TolallocError(f"{who}: tool rotation is not a rotation matrix; expected finite tool rpy angles.")
 
     def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
@@ -295,7 +259,7 @@ class Robot:
     # -------------------------------------------------------------- construction
     @classmethod
     def from_dh(cls, table, *, convention: str, name: str = "dh_robot", tool_offset_mm=(0.0, 0.0, 0.0),
-                tool_rpy_deg=(0.0, 0.0, 0.0), description: str = "") -> "Robot":
+                tool_rpy_deg=(0.0, 0.0, 0.0), description: str = "", trust_units: bool = False) -> "Robot":
         """A robot from a Denavit-Hartenberg table (standard or modified convention).
 
         Parameters
@@ -310,6 +274,9 @@ class Robot:
             Tool point in the last DH frame [mm].
         tool_rpy_deg : array-like, shape (3,)
             Tool orientation in the last DH frame, X-Y-Z fixed angles [deg].
+        trust_units : bool
+            Accept values that look like a unit slip (a length under ``_m`` above 20 m, an angle beyond one turn,
+            a robot under 10 mm long; :mod:`tolalloc.units`).
 
         Examples
         --------
@@ -320,6 +287,13 @@ class Robot:
         >>> arm.fk([0, 0])[:3, 3]
         array([600.,   0., 400.])
         """
+        if not isinstance(trust_units, (bool, np.bool_)):
+            raise TolallocError(f"trust_units: expected True or False, got {describe(trust_units)}.")
+        with trusting_units(bool(trust_units) or units_trusted()):
+            return cls._from_dh(table, convention, name, tool_offset_mm, tool_rpy_deg, description)
+
+    @classmethod
+    def _from_dh(cls, table, convention, name, tool_offset_mm, tool_rpy_deg, description) -> "Robot":
         from tolalloc.robot.dh_rows import CSV_COLUMNS, parse_dh_rows, row_from_cells
         from tolalloc.robot.lie import exp_so3
         from tolalloc.units import check_reach
@@ -348,8 +322,9 @@ class Robot:
         rpy = np.deg2rad(check_finite_array(tool_rpy_deg, "tool_rpy_deg", (3,)))
         R_tool = exp_so3([0, 0, rpy[2]]) @ exp_so3([0, rpy[1], 0]) @ exp_so3([rpy[0], 0, 0])
         check_reach({e.name: e.length_mm for e in chain if isinstance(e, Link)}, "lengths", tiny_links=False)
+        # the DH rules above (unit keys, reach) replace the guards of a chain built from objects
         return cls(name, tuple(chain), tool_offset_mm=R_last @ off, tool_rotation=R_last @ R_tool,
-                   description=description)
+                   description=description, trust_units=True)
 
     # -------------------------------------------------------------- kinematics
     def fk(self, q_deg_mm) -> np.ndarray:
@@ -400,16 +375,18 @@ class Robot:
 
     # ------------------------------------------------------------------ display
     def joints_frame(self) -> pd.DataFrame:
-        """One row per joint: type, axis and point at home [mm], unit, limits and nominal value [deg / mm]."""
+        """One row per joint: type, axis and point at home [mm], unit, limits and nominal value [deg / mm]
+        (``lower_deg_mm``, ``upper_deg_mm``, ``nominal_deg_mm``: deg for a revolute joint, mm for a prismatic one,
+        the ``unit`` column says which)."""
         return pd.DataFrame({
             "joint": [j.name for j in self.joints],
             "type": [j.kind for j in self.joints],
             "axis": [np.array2string(j.axis, precision=4, suppress_small=True) for j in self.joints],
             "point_mm": [np.array2string(p, precision=3, suppress_small=True) for p in self.joint_points_mm],
             "unit": [j.unit for j in self.joints],
-            "lower": self.q_to_interface(self.lower),
-            "upper": self.q_to_interface(self.upper),
-            "nominal": self.q_to_interface(self.q_nominal),
+            "lower_deg_mm": self.q_to_interface(self.lower),
+            "upper_deg_mm": self.q_to_interface(self.upper),
+            "nominal_deg_mm": self.q_to_interface(self.q_nominal),
         })
 
     def links_frame(self) -> pd.DataFrame:

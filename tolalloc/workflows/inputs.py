@@ -18,6 +18,7 @@ from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_cost
                                        check_model_options, check_name, check_names, check_optional_flag,
                                        check_path, check_positive, check_probability, check_scheduler, check_seed,
                                        check_values, check_z, number, shown)
+from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
 from tolalloc.units import trusting_units
@@ -62,24 +63,23 @@ def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Ro
 
 
 def joint_values(robot: Robot, q_deg_mm, argument: str = "q_deg_mm") -> np.ndarray:
-    """Joint values in interface units (deg / mm), shape (n,) or (P, n) or a DataFrame with columns q1..qN,
-    checked against count, finiteness, unit slips (:func:`tolalloc.units.check_joint_units`) and the joint limits;
-    returned in internal units [rad, mm], shape (P, n)."""
+    """Joint values in interface units (deg / mm), shape (n,) or (P, n) or a DataFrame with one column per joint
+    (:mod:`tolalloc.robot.columns`: ``q1_deg`` / ``q4_mm``, ``<joint name>_deg`` or ``q1..qN``), checked against
+    count, finiteness, unit slips (:func:`tolalloc.units.check_joint_units`) and the joint limits; returned in
+    internal units [rad, mm], shape (P, n)."""
     want = f"{robot.n_joints} per pose, deg / mm"
     if isinstance(q_deg_mm, pd.DataFrame):
-        cols = [f"q{j + 1}" for j in range(robot.n_joints)]
-        names = [str(c) for c in q_deg_mm.columns]
-        missing = [c for c in cols if c not in names]
-        repeated = sorted({c for c in cols if names.count(c) > 1})
-        if missing or repeated:
-            what = f"missing {missing}" if missing else f"repeated {repeated}"
-            raise ArgumentError(argument, f"expected a DataFrame with columns {', '.join(cols)} (deg / mm), each "
-                                f"once, got columns {names} ({what}).")
+        names = [str(c).strip() for c in q_deg_mm.columns]
+        try:
+            cols = find_joint_columns(robot, names, "DataFrame")
+        except TolallocError as exc:
+            raise ArgumentError(argument, str(exc)) from None
         q_deg_mm = q_deg_mm.set_axis(names, axis=1)[cols].to_numpy()
     elif isinstance(q_deg_mm, (str, bytes, dict)) or not hasattr(q_deg_mm, "__len__") and not np.isscalar(q_deg_mm) \
             and not isinstance(q_deg_mm, np.ndarray):
         raise ArgumentError(argument, f"expected joint values of robot {robot.name!r} ({want}): a list, an array of "
-                            f"shape (n,) or (P, n) or a DataFrame with columns q1..qN, got {shown(q_deg_mm)}.")
+                            f"shape (n,) or (P, n) or a DataFrame with one column per joint (q1_deg ...), got "
+                            f"{shown(q_deg_mm)}.")
     try:
         arr = np.asarray(q_deg_mm, dtype=object)
     except ValueError:
@@ -186,8 +186,10 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     """Where an allocation's requirement must hold: ``(label, box Region or None, q (P, n) or None)``.
 
     ``region``: a pose set of the robot, ``"limits"``, a box of the robot file (``[regions.NAME]``), a
-    trajectory CSV path (q1..qN per row, deg / mm) or an array / DataFrame of joint values (deg / mm). Default:
-    the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set ``poses``.
+    trajectory CSV path (a pose per row, deg / mm: :func:`trajectory`) or an array / DataFrame of joint values
+    (deg / mm). Default: the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set
+    ``poses`` (default: ``working``, else the nominal pose, with a ``UserWarning`` that the requirement is then
+    checked at one pose only).
     """
     regions = robot.regions
     if region is None:
@@ -195,6 +197,8 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
             region = "working"
         else:
             name = poses if poses is not None else default_pose_set(robot)
+            if poses is None and name == "nominal":
+                _warn_nominal_only(robot)
             return resolve_poses(robot, None, name)[0], None, resolve_poses(robot, None, name)[1]
     if not isinstance(region, (str, os.PathLike)):
         return "trajectory", None, joint_values(robot, region, "region")
@@ -213,6 +217,16 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
                         f"{known}, or give a path to a .csv file.")
 
 
+def _warn_nominal_only(robot: Robot) -> None:
+    """Warn that a robot without a working region or pose set is allocated at its nominal pose alone."""
+    import warnings
+
+    warnings.warn(f"robot {robot.name!r} has no working region or pose set: allocated at the nominal pose only "
+                  "(1 pose); for the working region pass region='limits' (--region limits: the box of the joint "
+                  "limits), a pose set or a trajectory, or add a [regions.working] box to the robot file.",
+                  UserWarning, stacklevel=5)  # the caller of allocate_tolerances
+
+
 def _box(robot: Robot, lo, hi, name: str):
     """A box region of the robot, its refusal an :class:`ArgumentError` of ``region``."""
     from tolalloc.allocate.region import box_region
@@ -226,41 +240,64 @@ def _box(robot: Robot, lo, hi, name: str):
 
 
 def trajectory(robot: Robot, path) -> np.ndarray:
-    """Rows q1..qN [deg / mm] of a CSV file (header line optional) -> (P, n) [rad, mm]."""
+    """Rows of joint values [deg / mm] of a CSV file -> (P, n) [rad, mm].
+
+    With a header line, the joint columns are found by their names (:mod:`tolalloc.robot.columns`: ``q1_deg`` /
+    ``q4_mm``, ``<joint name>_deg`` or ``q1..qN``; other columns are not read); without one, every row holds the
+    ``n`` joint values in joint order.
+    """
     p = Path(path)
+    where = repr(str(path))
     if not p.is_file():
-        raise InputFileError(f"region {str(path)!r}: no such trajectory file; give a CSV with one pose (q1..qN, "
-                             "deg / mm) per row.")
+        raise InputFileError(f"region {where}: no such trajectory file; give a CSV with one pose per row ("
+                             f"{JOINT_COLUMNS_TEXT}, or {robot.n_joints} values without a header).")
     try:
-        rows = np.genfromtxt(p, delimiter=",", dtype=float, skip_header=0)
-    except (ValueError, OSError, UnicodeDecodeError) as exc:
-        raise ArgumentError("region", f"{str(path)!r}: cannot read the trajectory ({exc}); expected "
+        frame = pd.read_csv(p, header=None, dtype=str, skipinitialspace=True, encoding="utf-8-sig",
+                            skip_blank_lines=True)
+    except (ValueError, OSError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+        raise ArgumentError("region", f"{where}: cannot read the trajectory ({exc}); expected "
                             f"{robot.n_joints} comma-separated numbers per row.") from None
-    rows = np.atleast_2d(rows)
-    if rows.size and np.all(np.isnan(rows[0])):  # a header line
-        rows = rows[1:]
-    if rows.ndim != 2 or rows.shape[0] == 0 or rows.shape[1] != robot.n_joints:
-        raise ArgumentError("region", f"{str(path)!r}: expected rows of {robot.n_joints} joint values (deg / mm), "
+    cells = frame.fillna("").to_numpy(dtype=str)
+    if len(cells) and not any(_is_number(c) for c in cells[0]):  # a header line
+        try:
+            cols = find_joint_columns(robot, cells[0], where)
+        except TolallocError as exc:
+            raise ArgumentError("region", str(exc)) from None
+        names = [str(c).strip() for c in cells[0]]
+        cells = cells[1:, [names.index(c) for c in cols]]
+    rows = np.array([[float(c) if _is_number(c) else np.nan for c in row] for row in cells]).reshape(len(cells), -1)
+    if rows.shape[0] == 0 or rows.shape[1] != robot.n_joints:
+        raise ArgumentError("region", f"{where}: expected rows of {robot.n_joints} joint values (deg / mm), "
                             f"got shape {rows.shape}.")
     if not np.all(np.isfinite(rows)):
         bad = int(np.flatnonzero(~np.all(np.isfinite(rows), axis=1))[0]) + 1
-        raise ArgumentError("region", f"{str(path)!r}: row {bad} has a missing or non-finite value; every joint "
+        raise ArgumentError("region", f"{where}: row {bad} has a missing or non-finite value; every joint "
                             "value must be a finite number (deg / mm).")
     try:
-        return robot.check_q(rows, f"{str(path)!r}", interface=True)
+        return robot.check_q(rows, where, interface=True)
     except TolallocError as exc:
         raise ArgumentError("region", str(exc)) from None
 
 
+def _is_number(text) -> bool:
+    try:
+        float(text)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
 def as_measurements(data, robot: Robot, argument: str):
-    """Measurements from a CSV path or a DataFrame (columns q1..qN in deg / mm, x_mm, y_mm, z_mm, optional ones).
+    """Measurements from a CSV path or a DataFrame (a column per joint in deg / mm, x_mm, y_mm, z_mm, optional
+    ones; :mod:`tolalloc.diagnose.measurements`).
 
     The joint values are checked for unit slips first (:func:`tolalloc.units.check_joint_units`, the rule of every
     joint-value input), then read and checked by :mod:`tolalloc.diagnose.measurements`.
     """
     from tolalloc.diagnose import measurements_from_frame, read_measurements
+    from tolalloc.diagnose.measurements import comment_lines
 
-    want = "a CSV path or a pandas DataFrame with columns q1..qN (deg / mm), x_mm, y_mm, z_mm"
+    want = f"a CSV path or a pandas DataFrame with {JOINT_COLUMNS_TEXT} and x_mm, y_mm, z_mm"
     if isinstance(data, pd.DataFrame):
         names = [str(c).strip() for c in data.columns]
         repeated = sorted({c for c in names if names.count(c) > 1})
@@ -271,13 +308,13 @@ def as_measurements(data, robot: Robot, argument: str):
         return measurements_from_frame(data, robot, f"{argument} (DataFrame)")
     if isinstance(data, (str, os.PathLike)) and str(data).strip() and "\0" not in str(data):
         if not Path(data).exists():
-            raise InputFileError(f"measurement file {str(data)!r} does not exist; expected a CSV with columns "
-                                 "q1..qN, x_mm, y_mm, z_mm.")
-        cols = {f"q{j + 1}" for j in range(robot.n_joints)}
-        try:  # the joint columns only; a file that cannot be read gets the reader's message below
-            frame = pd.read_csv(data, usecols=lambda c: str(c).strip() in cols, skipinitialspace=True,
-                                encoding="utf-8-sig")
-        except (ValueError, OSError, UnicodeDecodeError):
+            raise InputFileError(f"measurement file {str(data)!r} does not exist; expected a CSV with "
+                                 f"{JOINT_COLUMNS_TEXT} and x_mm, y_mm, z_mm.")
+        opts = dict(skipinitialspace=True, encoding="utf-8-sig", skiprows=comment_lines(data))
+        try:  # the joint columns only; a file that cannot be read or named gets the reader's message below
+            cols = find_joint_columns(robot, pd.read_csv(data, nrows=0, **opts).columns, "")
+            frame = pd.read_csv(data, usecols=lambda c: str(c).strip() in cols, **opts)
+        except (ValueError, OSError, UnicodeDecodeError):  # TolallocError and pandas' errors are ValueErrors
             frame = None
         if frame is not None:
             _measured_joint_units(frame, robot, argument, repr(str(data)))
@@ -286,14 +323,15 @@ def as_measurements(data, robot: Robot, argument: str):
 
 
 def _measured_joint_units(frame: pd.DataFrame, robot: Robot, argument: str, source: str) -> None:
-    """:func:`~tolalloc.units.check_joint_units` on the rows of q1..qN that are all numbers (others are the
-    reader's to refuse)."""
+    """:func:`~tolalloc.units.check_joint_units` on the rows of the joint columns that are all numbers (others
+    are the reader's to refuse)."""
     from tolalloc.units import check_joint_units
 
-    cols = [f"q{j + 1}" for j in range(robot.n_joints)]
     names = [str(c).strip() for c in frame.columns]
-    if not all(c in names for c in cols):
-        return
+    try:
+        cols = find_joint_columns(robot, names, source)
+    except TolallocError:
+        return  # the reader refuses the columns with its own message
     Q = np.column_stack([pd.to_numeric(frame.iloc[:, names.index(c)], errors="coerce").to_numpy(dtype=float)
                          for c in cols])
     Q = Q[np.all(np.isfinite(Q), axis=1)]

@@ -67,11 +67,11 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
         raise TolallocError(f"robot: expected a Robot, a built-in robot name ({known_names(builtin_robots())}) or the "
                             f"path to a robot file (.toml, DH .csv, .urdf), got {describe(robot)}.")
     if tool is not None and not (isinstance(tool, str) and tool.strip()):
-        raise TolallocError(f"--tool: expected the name of the URDF tool link (a string), got {describe(tool)}.")
+        raise TolallocError(f"`tool`: expected the name of the URDF tool link (a string), got {describe(tool)}.")
     if tool is not None and (isinstance(robot, Robot) or not str(robot).lower().endswith(".urdf")):
         got = f"robot {robot.name!r}" if isinstance(robot, Robot) else repr(str(robot))
-        raise TolallocError(f"--tool {tool!r}: the tool link can only be chosen for a URDF robot file (*.urdf), got {got}; "
-                            "leave out the tool link (--tool) or give a URDF file.")
+        raise TolallocError(f"`tool` {tool!r}: the tool link can only be chosen for a URDF robot file (*.urdf), got "
+                            f"{got}; leave out the tool link (`tool`) or give a URDF file.")
     if isinstance(robot, Robot):
         return robot
     text_name = str(robot)

@@ -238,8 +238,9 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
         raise TolallocError(f"gravity: expected a non-zero direction such as [0, 0, -1], got {list(gravity)}")
     check_reach({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)}, "lengths",
                 tiny_links=tiny_links_suspect)
+    # the file's unit rules above (unit keys, reach) replace the guards of a chain built from objects
     robot = Robot(name, tuple(chain), tool_offset_mm=np.asarray(offset, float), tool_rotation=np.asarray(R_tool),
-                  gravity=g / np.linalg.norm(g), description=description)
+                  gravity=g / np.linalg.norm(g), description=description, trust_units=True)
     body_of = {}
     for e in chain:
         if isinstance(e, Link):

@@ -41,7 +41,7 @@ from tolalloc.robot.model import Joint, Link, Mass, Robot
 __all__ = ["load_urdf"]
 
 MOVABLE = ("revolute", "continuous", "prismatic")
-#: Names of end-effector joints that must not be taken as arm joints without --tool (matched on joint and child link).
+#: Names of end-effector joints that must not be taken as arm joints without a tool link given (matched on joint and child link).
 GRIPPER_WORDS = re.compile(r"grip|finger|jaw|hand", re.IGNORECASE)
 MAX_ORIGIN_M = 5.0
 MAX_REACH_M = 20.0
@@ -130,7 +130,8 @@ def _path(parent_joint, root, link):
 def _choose_tool(parent_joint, children, root, tool, source):
     if tool is not None:
         if tool not in children:
-            raise TolallocError(f"{source}: --tool {tool!r} is not a link of the URDF; links: {', '.join(children)}.")
+            raise TolallocError(f"{source}: the tool link {tool!r} (`tool`) is not a link of the URDF; links: "
+                                f"{', '.join(children)}.")
         return tool
     leaves = [name for name, js in children.items() if not js]
     depth = {leaf: sum(j.type in MOVABLE for j in _path(parent_joint, root, leaf)) for leaf in leaves}
@@ -154,7 +155,7 @@ def _choose_tool(parent_joint, children, root, tool, source):
         common = [names[0] for names in zip(*paths) if len(set(names)) == 1]
         raise TolallocError(f"{source}: the URDF branches at link {common[-1]!r}, so the tool link is ambiguous: leaf links "
                             f"{cands} end chains of {', '.join(str(depth[c]) for c in cands)} movable joints; choose "
-                            f"the tool link with --tool LINK (e.g. --tool {common[-1]} or --tool {cands[0]}).")
+                            f"the tool link with `tool` (e.g. {common[-1]} or {cands[0]}).")
     return cands[0]
 
 
@@ -170,8 +171,8 @@ def _refuse_end_effector_joint(path, source):
         return
     raise TolallocError(f"{source}: the longest chain ends with joint {last.name!r} (child link {last.child!r}), "
                         "which is named like a gripper or hand joint, not an arm joint; choose the tool link with "
-                        f"--tool LINK (e.g. --tool {last.parent} for the arm without the gripper, or --tool "
-                        f"{last.child} if that joint is meant to be part of the arm).")
+                        f"`tool` (e.g. {last.parent} for the arm without the gripper, or {last.child} if that joint "
+                        "is meant to be part of the arm).")
 
 
 def _check_units(urdf, path_joints, source):
@@ -194,7 +195,7 @@ def _check_units(urdf, path_joints, source):
 def _joint(j, axis_base, source) -> Joint:
     if j.mimic is not None:
         raise TolallocError(f"{source}: joint {j.name!r} mimics joint {j.mimic.joint!r}; mimic joints on the tool chain "
-                            "are not supported (each joint needs its own value): choose another --tool or remove <mimic>.")
+                            "are not supported (each joint needs its own value): choose another tool link (`tool`) or remove <mimic>.")
     kind = "prismatic" if j.type == "prismatic" else "revolute"
     scale = 1000.0 if kind == "prismatic" else 1.0
     unit = "m" if kind == "prismatic" else "rad"
@@ -283,7 +284,7 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
             raise TolallocError(f"{source}: joint {j.name!r} has type {j.type!r}; expected revolute, continuous, prismatic or fixed.")
     if not any(j.type in MOVABLE for j in path_joints):
         raise TolallocError(f"{source}: no movable joint between the root link {root!r} and the tool link {tool!r}; "
-                            "choose another --tool.")
+                            "choose another tool link (`tool`).")
     _check_units(urdf, path_joints, source)
 
     home, body = _home_frames(children, root, {j.name for j in path_joints})
@@ -309,5 +310,6 @@ def load_urdf(path: str | Path, tool: str | None = None) -> Robot:
     name = urdf.robot.name or path.stem
     desc = (f"Imported from URDF {path.name} (robot {name!r}): base link {root!r}, tool link {tool!r}, "
             f"{sum(j.type in MOVABLE for j in path_joints)} joints; lengths converted from m to mm.")
+    # URDF's unit rules (metres, _check_units) replace the guards of a chain built from objects
     return Robot(name, tuple(chain), tool_offset_mm=np.zeros(3), tool_rotation=home[tool][:3, :3].copy(),
-                 masses=tuple(masses), description=desc)
+                 masses=tuple(masses), description=desc, trust_units=True)
