@@ -46,14 +46,15 @@ def earlier_results() -> dict:
 
         arm = two_link()
         a = tolalloc.analyze_errors(TC, radius_mm=0.25)
-        al = tolalloc.allocate_tolerances(arm, verify=False)
+        al = tolalloc.allocate_tolerances(arm, region="nominal", verify=False)
         plan = tolalloc.plan_calibration(arm, 4, n_candidates=8)
         plan.save(SCRATCH / "plan.csv")
         case = generate(arm, "none", 30, np.random.default_rng(2))
         _RESULTS.update(analysis=a, allocation=al, frame=al.to_frame(), summary=a.summary(),
                         linear=a.linear, budget=a.budget_frame(), plan=plan,
                         simulation=tolalloc.simulate_errors(arm, 100),
-                        calibrated=tolalloc.allocate_tolerances(arm, calibration=SCRATCH / "plan.csv", n_mc=200),
+                        calibrated=tolalloc.allocate_tolerances(arm, region="nominal", calibration=SCRATCH / "plan.csv",
+                                                                n_mc=200),
                         diagnosis=tolalloc.diagnose_measurements(arm, case.frame.iloc[:22], case.frame.iloc[22:],
                                                                  folds=2))
     return _RESULTS

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from tolalloc.cli import main
+from tolalloc.outputs import MANIFEST
 
 
 def _run_json(tmp_path, *extra):
@@ -40,7 +41,7 @@ def test_options_and_pose_set(tmp_path):
 def test_out_directory(tmp_path, capsys):
     out = tmp_path / "run"
     assert main(["mc", "tool_changer", "--n", "2000", "--seed", "1", "--out", str(out), "--pose", "0,20,0,200,-20,0"]) == 0
-    assert {p.name for p in out.iterdir()} == {"mc_table.csv", "mc_summary.json", "mc_scatter.png"}
+    assert {p.name for p in out.iterdir()} == {"mc_table.csv", "mc_summary.json", "mc_scatter.png", MANIFEST}
     text = capsys.readouterr().out
     assert "dp_reach_mm" in text and "P(|dp| < 0.25 mm)" in text
 
