@@ -29,6 +29,7 @@ import numpy as np
 from tolalloc.exceptions import TolallocError, raise_if_interrupted, signals_deferred
 
 __all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
+           "json_native",
            "directory_lock", "published"]
 
 #: paths published by this process since the last :func:`published` reset (read by the interrupt message)
@@ -42,7 +43,21 @@ def json_default(obj):
         return obj.item()
     if isinstance(obj, np.bool_):
         return bool(obj)
+    if isinstance(obj, np.str_):
+        return str(obj)
     raise TypeError(f"not JSON serialisable: {type(obj)}")
+
+
+def json_native(obj):
+    """``obj`` with numpy arrays and scalars turned into lists and Python numbers, recursively (what ``json.dumps``
+    takes as it is); dict keys and other values unchanged."""
+    if isinstance(obj, dict):
+        return {k: json_native(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_native(v) for v in obj]
+    if isinstance(obj, (np.ndarray, np.generic)):
+        return json_native(json_default(obj))
+    return obj
 
 
 def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:

@@ -243,9 +243,10 @@ class ToleranceAllocation(JobResult):
 
     def summary(self) -> dict:
         """The content of ``summary.json``: allocation, region search, coverage, verification, correction."""
+        from tolalloc.outputs import json_native
         from tolalloc.workflows.allocation_text import summary_dict
 
-        return summary_dict(self)
+        return json_native(summary_dict(self))
 
     def text(self) -> str:
         """What the command line prints (for a region no design can cover, why: the command's error line)."""

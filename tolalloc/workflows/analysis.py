@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, check_memory
-from tolalloc.outputs import output_group, write_json
+from tolalloc.outputs import json_native, output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -154,7 +154,7 @@ class ErrorAnalysis(JobResult):
                             "flag_diff": self.sobol.flag_diff, "message": self.sobol.message(), "factors": rows,
                             "null": "an index whose output (|dP| or the pass / fail indicator) did not vary over the "
                                     "samples is undefined"}
-        return out
+        return json_native(out)
 
     def text(self) -> str:
         """What the command line prints."""

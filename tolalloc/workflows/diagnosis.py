@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
-from tolalloc.outputs import check_distinct_outputs, output_group, write_json
+from tolalloc.outputs import check_distinct_outputs, json_native, output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -249,8 +249,8 @@ class MeasurementDiagnosis(JobResult):
 
     def summary(self) -> dict:
         """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
-        return _not_applicable_null(self.diagnosis.to_dict() | ({} if self.gap is None else
-                                                                {"gap_split": self.gap.to_dict()}))
+        return json_native(_not_applicable_null(self.diagnosis.to_dict() | ({} if self.gap is None else
+                                                                            {"gap_split": self.gap.to_dict()})))
 
     def text(self) -> str:
         """What the command line prints."""

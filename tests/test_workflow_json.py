@@ -1,0 +1,34 @@
+"""Every job's summary() is plain JSON data (lists and Python numbers), as summary.json holds it: a notebook can
+pass it to json.dumps as it is."""
+
+import json
+
+import numpy as np
+import pytest
+
+import tolalloc
+from tolalloc.diagnose import generate
+from tolalloc.diagnose.synth import split_frame
+from tolalloc.outputs import json_native
+
+
+def test_json_native_turns_numpy_into_python():
+    out = json_native({"a": np.arange(3), "b": (np.float32(1.5), [np.int64(2), {"c": np.array([[1.0]])}]),
+                       "d": np.bool_(True), "e": "x"})
+    assert out == {"a": [0, 1, 2], "b": [1.5, [2, {"c": [[1.0]]}]], "d": True, "e": "x"}
+    assert type(out["b"][1][0]) is int and type(out["d"]) is bool
+
+
+@pytest.mark.parametrize("job", ["analysis", "allocation", "diagnosis"])
+def test_summary_is_json_as_it_is(job):
+    if job == "analysis":
+        res = tolalloc.analyze_errors("tool_changer", radius_mm=0.25)
+    elif job == "allocation":
+        res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False)
+    else:
+        robot = tolalloc.load_robot("ur10")
+        case = generate(robot, "none", 40, np.random.default_rng(1))
+        tr, te = split_frame(case.frame, 0.25, np.random.default_rng(0))
+        res = tolalloc.diagnose_measurements(robot, tr, te, folds=2)
+    s = res.summary()
+    assert json.loads(json.dumps(s)) == s
