@@ -30,7 +30,8 @@ def test_end_to_end(tmp_path, capsys):
     assert js["effect"] == "backlash"
     assert js["rms_mm"]["final"] < js["rms_mm"]["geometric"] < js["rms_mm"]["nominal"]
     pred = pd.read_csv(tmp_path / "pred.csv")
-    assert list(pred.columns) == ["x_mm", "y_mm", "z_mm", "sigma_mm", "radius95_mm", "registration", "extrapolation"]
+    assert list(pred.columns) == ["row", "x_mm", "y_mm", "z_mm", "sigma_mm", "radius95_mm", "registration",
+                                  "extrapolation"]
     assert len(pred) == len(te) and (pred["sigma_mm"] > 0).all() and (pred["registration"] == 0).all()
     assert (pred["radius95_mm"] > pred["sigma_mm"]).all()  # the radius adds the measurement noise
     err = np.linalg.norm(pred[["x_mm", "y_mm", "z_mm"]].to_numpy() - te[["x_mm", "y_mm", "z_mm"]].to_numpy(), axis=1)

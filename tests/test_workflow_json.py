@@ -32,3 +32,14 @@ def test_summary_is_json_as_it_is(job):
         res = tolalloc.diagnose_measurements(robot, tr, te, folds=2)
     s = res.summary()
     assert json.loads(json.dumps(s)) == s
+
+
+def test_predictions_carry_the_test_row_to_join_on():
+    robot = tolalloc.load_robot("ur10")
+    case = generate(robot, "none", 40, np.random.default_rng(1))
+    tr, te = split_frame(case.frame, 0.25, np.random.default_rng(0))
+    te = te.copy()
+    te.loc[2, "x_mm"] = np.nan  # a skipped row keeps its place, with empty predictions
+    pred = tolalloc.diagnose_measurements(robot, tr, te, folds=2).predictions_frame()
+    assert pred["row"].tolist() == list(range(1, len(te) + 1))
+    assert pred.loc[2, ["x_mm", "y_mm", "z_mm"]].isna().all() and pred.drop(index=2)["x_mm"].notna().all()

@@ -31,7 +31,8 @@ def register(sub) -> None:
                    "used for the registration only and never scored")
     p.add_argument("--json", metavar="OUT.json", help="write the result as JSON ('-' for stdout)")
     p.add_argument("--predictions", metavar="PRED.csv",
-                   help="final model's prediction x_mm,y_mm,z_mm for every test row, in order, with its predicted "
+                   help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (row: its data row in "
+                   "the test file, from 1), with its predicted "
                    "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
                    "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, report.html (one self-contained file), CSV tables and figures into DIR")

@@ -259,8 +259,9 @@ class MeasurementDiagnosis(JobResult):
         return "\n".join(summary_lines(self.diagnosis, self.folds, self.gap))
 
     def predictions_frame(self) -> pd.DataFrame:
-        """The final model's prediction for every test row, in order (skipped rows empty), with its 1-sigma and
-        95 % radius, the registration flag and the extrapolation flag."""
+        """The final model's prediction for every test row, in order (skipped rows empty; ``row``: the data row of the
+        test file, from 1, to join on), with its 1-sigma and 95 % radius, the registration flag and the extrapolation
+        flag."""
         from tolalloc.report.diagnosis import test_predictions
 
         d = self.diagnosis
@@ -270,7 +271,7 @@ class MeasurementDiagnosis(JobResult):
         if d.test.n_skipped:  # skipped rows get empty predictions, so rows still line up with the test file
             full = pd.DataFrame({"row": range(1, d.test.n_poses + d.test.n_skipped + 1)})
             frame = full.merge(frame, on="row", how="left")
-        return frame.drop(columns="row")
+        return frame
 
     def save(self, report=None, *, json=None, predictions=None) -> list[str]:
         """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
