@@ -43,3 +43,10 @@ def test_predictions_carry_the_test_row_to_join_on():
     pred = tolalloc.diagnose_measurements(robot, tr, te, folds=2).predictions_frame()
     assert pred["row"].tolist() == list(range(1, len(te) + 1))
     assert pred.loc[2, ["x_mm", "y_mm", "z_mm"]].isna().all() and pred.drop(index=2)["x_mm"].notna().all()
+
+
+def test_analysis_text_labels_each_pose_value():
+    a = tolalloc.analyze_errors("tool_changer", radius_mm=0.25, poses="working", prob=0.95)
+    line = next(ln for ln in a.text().splitlines() if ln.startswith("P(|dp| < 0.25 mm) = "))
+    p = a.linear.p_within(0.25)
+    assert line == "P(|dp| < 0.25 mm) = per pose " + ", ".join(f"{i + 1}: {v:.6g}" for i, v in enumerate(p))

@@ -163,10 +163,15 @@ class ErrorAnalysis(JobResult):
         res, b = self.linear, self.budget
         out = [f"robot {self.robot.name}, {format_labels(self.model.labels)}, clearance={self.clearance}; linear "
                "map, Gaussian approximation", res.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}")]
+        def per_pose(values, fmt, unit=""):
+            if len(values) == 1:
+                return f"{values[0]:{fmt}}{unit}"
+            return "per pose " + ", ".join(f"{i + 1}: {v:{fmt}}{unit}" for i, v in enumerate(values))
+
         for r in self.radii_mm:
-            out.append(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{v:.6g}" for v in res.p_within(r)))
+            out.append(f"P(|dp| < {r:g} mm) = " + per_pose(res.p_within(r), ".6g"))
         for p in self.probs:
-            out.append(f"radius for P = {p:g}: " + ", ".join(f"{v:.5g}" for v in res.radius_for(p)) + " mm")
+            out.append(f"radius for P = {p:g}: " + per_pose(res.radius_for(p), ".5g", " mm"))
         out.append(f"\nerror budget at the worst pose ({b.worst_pose + 1}), top {self.top}:")
         out.append(b.to_markdown(pose="worst", top=self.top))
         if self.sobol is not None:
