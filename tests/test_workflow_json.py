@@ -50,3 +50,11 @@ def test_analysis_text_labels_each_pose_value():
     line = next(ln for ln in a.text().splitlines() if ln.startswith("P(|dp| < 0.25 mm) = "))
     p = a.linear.p_within(0.25)
     assert line == "P(|dp| < 0.25 mm) = per pose " + ", ".join(f"{i + 1}: {v:.6g}" for i, v in enumerate(p))
+
+
+def test_plan_headline_compares_plans_above_the_floor():
+    plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, random_plans=2)
+    d = plan.design
+    assert plan.headline()[1] == ("post-calibration variance above the all-candidates floor [mm^2]: designed "
+                                  f"{d.score_mm2 - d.floor_mm2:.4g}, random {d.random_score_mm2 - d.floor_mm2:.4g} "
+                                  f"(floor {d.floor_mm2:.6g})")

@@ -201,8 +201,8 @@ class CalibrationPlanDesign(JobResult):
         d = self.design
         return [f"robot: {self.robot.name}   {d.plan.n_poses}-pose plan of {self.n_candidates} candidates "
                 f"({self.region}), evaluated at the {self.eval_poses} poses",
-                f"post-calibration variance [mm^2]: designed {d.score_mm2:.6g}, random {d.random_score_mm2:.6g}, "
-                f"floor {d.floor_mm2:.6g}"]
+                f"post-calibration variance above the all-candidates floor [mm^2]: designed "
+                f"{d.score_mm2 - d.floor_mm2:.4g}, random {d.random_score_mm2 - d.floor_mm2:.4g} (floor {d.floor_mm2:.6g})"]
 
     def to_frame(self) -> pd.DataFrame:
         """The plan: one row per measurement pose, joint values in deg / mm."""
