@@ -304,7 +304,7 @@ def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
                "--out", str(out)])
     text = capsys.readouterr().out
     assert rc == 0 and "standard grades (discrete-exact): cost" in text and "rounding down would cost" in text
-    frame = pd.read_csv(out / "calibrated_tolerances.csv", keep_default_na=False)
+    frame = pd.read_csv(out / "tolerances.csv", keep_default_na=False)
     assert {"tolerance", "tolerance_std", "grade", "cost_std"} <= set(frame.columns)
     assert frame.loc[frame.parameter == "dl1", "grade"].item().startswith("IT")
     s = json.loads((out / "summary.json").read_text())

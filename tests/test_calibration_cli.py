@@ -25,7 +25,7 @@ def test_calplan_then_allocate(tmp_path, capsys):
     out = capsys.readouterr().out
     assert rc == 0 and "certified calibrated design: cost" in out and "calibrated away" in out
     assert "coverage (post-calibration P)" in out and "end-to-end Monte Carlo" in out
-    assert (tmp_path / "res" / "calibrated_tolerances.csv").is_file()
+    assert (tmp_path / "res" / "tolerances.csv").is_file() and (tmp_path / "res" / "verification.csv").is_file()
 
 
 @pytest.mark.parametrize("edit, msg", [
@@ -85,4 +85,4 @@ def test_allocate_with_repeatability_grades_from_the_costs_file(tc, tmp_path, ca
     summary = json.loads((out / "summary.json").read_text())
     assert summary["cost_certified"] == pytest.approx(summary["cost_parts"] + summary["cost_repeatability_grades"])
     assert summary["cost_repeatability_grades"] > 0
-    assert "repeatability_grade" in (out / "calibrated_tolerances.csv").read_text().splitlines()[0]
+    assert "repeatability_grade" in (out / "tolerances.csv").read_text().splitlines()[0]

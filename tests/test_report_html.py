@@ -329,6 +329,19 @@ def test_calibrated_report(calibrated):
     assert f"{job.summary()['cost']:.4f}" in page.text("summary")
     args = shlex.split(page.text("command-cli"))
     assert "--calibration" in args and args[args.index("--region") + 1] == job.label
+    # the plan cannot identify some parameters: the page does not call them all "must be held"
+    unid = page.text("unidentifiable")
+    assert "(must be held in manufacturing)" not in unid and ", ".join(job.summary()["unidentifiable"]) in unid
+
+
+def test_calibrated_command_gives_back_the_call(calibrated, monkeypatch, tmp_path):
+    """The box region's coverage sample size (coverage_n) is part of the command, with every other option."""
+    from test_reproduce_command import assert_reproduced
+
+    job = calibrated[0]
+    assert job.region is not None and job.inputs["coverage_n"] == 5000
+    assert_reproduced(job, dict(robot="tool_changer", calibration=job.plan_source, n_mc=200, coverage_n=5000),
+                      monkeypatch, tmp_path)
 
 
 # ---------------------------------------------------------------------------------------------- diagnosis

@@ -76,10 +76,12 @@ def catalogue_range(cat: Catalogue) -> tuple[np.ndarray, np.ndarray]:
     return lo, hi
 
 
-def range_relaxation(pr: AllocationProblem, cat: Catalogue, plan, split) -> tuple[float, str, np.ndarray | None]:
+def range_relaxation(pr: AllocationProblem, cat: Catalogue, plan, split, *,
+                     exact: bool = True) -> tuple[float, str, np.ndarray | None]:
     """``(cost, label, t)`` of the continuous calibration-aware design on ``pr``'s poses with every tolerance confined
-    to its catalogue's range (certified, then exact; ``(nan, "", None)`` when infeasible). ``split``: unresolved
-    grades. ``t`` (K,) [mm or rad]: its half-widths."""
+    to its catalogue's range (certified, then with ``exact`` exact: the stages of the continuous design it is compared
+    with; ``(nan, "", None)`` when infeasible). ``split``: unresolved grades. ``t`` (K,) [mm or rad]: its
+    half-widths."""
     from tolalloc.allocate.calibrated import allocate_calibrated
     from tolalloc.allocate.calibrated_exact import solve_calibrated_exact
 
@@ -90,7 +92,7 @@ def range_relaxation(pr: AllocationProblem, cat: Catalogue, plan, split) -> tupl
     cert = allocate_calibrated(replace(pr, t_min=t_min, t_max=t_max), plan, split=split)
     if not cert.design.ok:
         return float("nan"), "", None
-    ex = solve_calibrated_exact(cert, plan, split)
-    if ex.accepted:
+    ex = solve_calibrated_exact(cert, plan, split) if exact else None
+    if ex is not None and ex.accepted:
         return ex.cost, "exact", ex.design.t
     return float(cert.design.cost + cert.grade_cost), "certified", cert.design.t

@@ -124,8 +124,9 @@ def standardize_calibrated(res, *, angle_step_deg: float | None = None, tol: flo
         HiGHS time limit per mixed-integer program [s].
     relax : bool
         Also solve the continuous design confined to the catalogue's range on the continuous design's poses
-        (:func:`tolalloc.allocate.calibrated_rounding.range_relaxation`): it splits the premium into range and
-        steps, and its rounding is a second start of the search (the cheaper result is kept).
+        (:func:`tolalloc.allocate.calibrated_rounding.range_relaxation`, with the stages ``res`` ran: certified, then
+        exact unless its exact stage was skipped): it splits the premium into range and steps, and its rounding is a
+        second start of the search (the cheaper result is kept).
     """
     t0 = time.perf_counter()
     _check(res, tol, max_rounds, n_seed, n_starts, coverage_n, k_worst, max_moves, time_limit_s)
@@ -143,7 +144,9 @@ def standardize_calibrated(res, *, angle_step_deg: float | None = None, tol: flo
     rounded = replace(make_design(pr, Solver.STANDARD, r_t, message="the continuous design rounded down"),
                       cost=cat.total_cost(ropt, rn) + extra - (res.cost - d.cost))
     limited = tuple(pr.model.names[k] for k, hi in zip(alloc, catalogue_range(cat)[1]) if d.t[k] > hi * (1 + 1e-9))
-    relaxed = range_relaxation(pr, cat, plan, res.split) if relax else (float("nan"), "", None)
+    # the range-confined design runs the stages the continuous one ran (no exact stage after solver='certified')
+    relaxed = (range_relaxation(pr, cat, plan, res.split, exact=res.exact is not None) if relax else
+               (float("nan"), "", None))
     common = dict(cat=cat, extra=extra, grade_cost=float(res.cost - d.cost), rounded=rounded,
                   rounded_cost=cat.total_cost(ropt, rn) + extra, rounded_p_min=float(r_p.min()), t0=t0,
                   relaxed=relaxed[:2], limited=limited)

@@ -2,7 +2,8 @@
 
 Region -> allocation (certified and exact) -> standard grades -> coverage of the region -> nonlinear Monte Carlo
 verification -> correction loop; with ``calibration=PLAN`` the calibration-aware allocation instead
-(:mod:`tolalloc.workflows.calibrated`). The result (:class:`ToleranceAllocation`) holds every stage's object.
+(:mod:`tolalloc.workflows.calibrated`: certified stage -> exact stage -> standard grades -> end-to-end Monte Carlo,
+no correction loop). The result (:class:`ToleranceAllocation`) holds every stage's object.
 """
 
 from __future__ import annotations
@@ -14,10 +15,14 @@ from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
 from tolalloc.workflows.calibrated import calibrated_allocation
 
-__all__ = ["allocate_tolerances", "ESTIMATORS"]
+__all__ = ["allocate_tolerances", "ESTIMATORS", "CALIBRATED_ESTIMATORS", "DEFAULT_CORRECTION_ROUNDS"]
 
 #: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
 ESTIMATORS = ("auto", "plain", "paired", "importance")
+#: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
+CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
+#: correction rounds at most when ``correction_rounds`` is not given
+DEFAULT_CORRECTION_ROUNDS = 2
 
 
 @inputs.honours_trust_units
@@ -27,20 +32,17 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                         clearance: bool = False, exclude=(), angle_radius_deg: float | None = None,
                         angle_prob: float | None = None, solver: str = "exact", snap: bool = True,
                         angle_step_deg: float | None = None, calibration=None, verify: bool = True,
-                        n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool = True,
-                        correction_rounds: int = 2,
-                        coverage_n: int = 100_000, scheduler=None, tool: str | None = None,
-                        trust_units: bool = False):
+                        n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool | None = None,
+                        correction_rounds: int | None = None, coverage_n: int = 100_000, scheduler=None,
+                        tool: str | None = None, trust_units: bool = False):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
 
     Parameters
     ----------
     robot : Robot, str or path
         A :class:`~tolalloc.robot.Robot`, a built-in name (``"tool_changer"``, ``"ur10"``) or a robot file.
-    radius_mm : float
-        Required radius r of the tool-position error [mm].
-    prob : float
-        Required probability p, in (0, 1).
+    radius_mm, prob : float
+        Required radius r of the tool-position error [mm] and probability p, in (0, 1).
     region : str, path or array, optional
         Where the requirement holds: a pose set, ``"limits"``, a box of the robot file, a trajectory CSV (q1..qN
         per row, deg / mm) or an array / DataFrame of poses (deg / mm). Boxes are searched for their worst pose
@@ -57,15 +59,17 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     angle_radius_deg, angle_prob : float, optional
         Orientation requirement ``P(|rotation error| < angle_radius_deg) >= angle_prob`` [deg].
     solver : {"exact", "certified"}
-        Design reported: exact probability (CasADi + IPOPT) or certified (cvxpy + Clarabel).
+        Design reported: exact probability (CasADi + IPOPT) or certified (cvxpy + Clarabel; with ``calibration``: no
+        exact stage).
     snap : bool
         Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
     calibration : str or path, optional
-        A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration;
-        returns a :class:`CalibratedToleranceAllocation`.
-    verify : bool
-        Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` re-solves with
-        raised targets where a pose is not demonstrated (at most ``correction_rounds`` rounds).
+        A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration (what
+        runs and the options refused: :mod:`tolalloc.workflows.calibrated`); returns a
+        :class:`CalibratedToleranceAllocation`.
+    verify, correction : bool
+        Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` (default on)
+        re-solves with raised targets where a pose is not demonstrated (at most ``correction_rounds``, default 2).
     estimator : {"auto", "plain", "paired", "importance"}
         How ``P(|dP| < r)`` is estimated in the verification: ``paired`` = the exact linear P plus the mean
         difference of the nonlinear and linear indicators on shared draws (a control variate); ``importance`` =
@@ -92,7 +96,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                                     estimator, n_mc, verify, seed, correction_rounds, coverage_n)
     options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
                    exclude=exclude)
-    costs, calibration, scheduler = _check_more(snap, correction, poses, costs, calibration, scheduler, options)
+    costs, calibration, scheduler, correction, correction_rounds = _check_more(
+        snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator, angle_radius_deg, options)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, **options)
     cost_set = _costs(costs, model, z, uniform)
@@ -100,17 +105,17 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
               angle_prob=angle_prob)
     inputs_record = _record(rob, label, cost_set, radius_mm=radius_mm, prob=prob, seed=seed, estimator=estimator,
-                            n_mc=n_mc if verify else None, solver=solver, exclude=exclude,
-                            correction_rounds=correction_rounds, angle_step_deg=angle_step_deg, tool=tool,
-                            trust_units=trust_units, calibration=calibration)
+                            n_mc=n_mc if verify else None, solver=solver, snap=snap, exclude=exclude, tool=tool,
+                            correction=correction, correction_rounds=correction_rounds, trust_units=trust_units,
+                            coverage_n=coverage_n if box is not None else None, angle_step_deg=angle_step_deg,
+                            calibration=calibration)
+    run = dict(snap=snap, angle_step_deg=angle_step_deg, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
+               coverage_n=coverage_n, inputs_record=inputs_record)
     if calibration is not None:
-        return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, verify=verify, n_mc=n_mc,
-                                     seed=seed, estimator=estimator, coverage_n=coverage_n, snap=snap,
-                                     angle_step_deg=angle_step_deg, inputs_record=inputs_record, **kw)
-    return _allocate(model, label, box, q, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg,
-                     verify=verify, n_mc=n_mc, seed=seed, estimator=estimator, correction=correction,
-                     correction_rounds=correction_rounds, coverage_n=coverage_n, scheduler=scheduler,
-                     inputs_record=inputs_record)
+        return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, exact=solver == "exact",
+                                     **run, **kw)
+    return _allocate(model, label, box, q, kw, solver=solver, correction=correction,
+                     correction_rounds=correction_rounds, scheduler=scheduler, **run)
 
 
 def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,
@@ -205,14 +210,22 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     return corr.result, cov, corr.verification, corr
 
 
-def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, exclude, correction_rounds,
-            angle_step_deg, tool, trust_units, calibration) -> dict:
-    """The inputs that decide the numbers (for the report's reproduce command)."""
+def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, snap, exclude, correction,
+            correction_rounds, coverage_n, angle_step_deg, tool, trust_units, calibration) -> dict:
+    """The inputs that decide the numbers (for the report's reproduce command; the requirement's angle part, the
+    costs' z and distribution and the error-model options are read back from the problem). ``n_mc`` None: no
+    verification; ``correction`` / ``correction_rounds`` None: no correction loop (calibration-aware);
+    ``coverage_n`` None: no box region, so no coverage sample. ``scheduler`` is left out: it never changes a
+    number."""
     return {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
             "costs": cost_set.source, "seed": int(seed), "n_mc": None if n_mc is None else int(n_mc),
-            "estimator": estimator, "solver": solver, "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
-            "correction_rounds": correction_rounds, "angle_step_deg": angle_step_deg, "tool": tool,
-            "trust_units": bool(trust_units), "calibration": None if calibration is None else str(calibration)}
+            "estimator": estimator, "solver": solver, "snap": bool(snap),
+            "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
+            "correction": None if correction is None else bool(correction),
+            "correction_rounds": None if correction_rounds is None else int(correction_rounds),
+            "coverage_n": None if coverage_n is None else int(coverage_n), "angle_step_deg": angle_step_deg,
+            "tool": tool, "trust_units": bool(trust_units),
+            "calibration": None if calibration is None else str(calibration)}
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:
@@ -248,16 +261,20 @@ def _costs(costs, model, z, uniform):
 MAX_CORRECTION_ROUNDS = 50
 
 
-def _check_more(snap, correction, poses, costs, calibration, scheduler, model_options) -> tuple:
-    """Refuse bad flags, names, paths and error-model options by their argument names; returns
-    ``(costs, calibration, scheduler)`` checked."""
-    for name, flag in (("snap", snap), ("correction", correction)):
-        inputs.check_flag(flag, name)
+def _check_more(snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator,
+                angle_radius_deg, model_options) -> tuple:
+    """Refuse bad flags, names, paths, error-model options and options the calibration-aware allocation cannot
+    honour, by their argument names; returns ``(costs, calibration, scheduler, correction, correction_rounds)``
+    checked, with their defaults."""
+    inputs.check_flag(snap, "snap")
+    inputs.check_optional_flag(correction, "correction")
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    return (inputs.check_costs_file(costs),
-            inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)"),
-            inputs.check_scheduler(scheduler))
+    costs = inputs.check_costs_file(costs)
+    calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
+    scheduler = inputs.check_scheduler(scheduler)
+    return (costs, calibration, scheduler,
+            *_correction_options(calibration, correction, correction_rounds, scheduler, estimator, angle_radius_deg))
 
 
 def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
@@ -283,7 +300,8 @@ def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uni
         inputs.check_z(z)
     inputs.check_choice(solver, "solver", ("exact", "certified"))
     inputs.check_choice(estimator, "estimator", ESTIMATORS)
-    if (isinstance(correction_rounds, (bool, np.bool_)) or not isinstance(correction_rounds, (int, np.integer))
+    if correction_rounds is not None and (
+            isinstance(correction_rounds, (bool, np.bool_)) or not isinstance(correction_rounds, (int, np.integer))
             or not 0 <= correction_rounds <= MAX_CORRECTION_ROUNDS):
         raise ArgumentError("correction_rounds", f"expected a whole number from 0 to {MAX_CORRECTION_ROUNDS} (rounds of "
                             f"the correction loop, e.g. 2), got {inputs.shown(correction_rounds)}; or switch the "
@@ -296,3 +314,33 @@ def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uni
                                 f"{inputs.shown(n_mc)}; or switch the verification off.") from None
     return (inputs.check_seed(seed), int(n_mc) if verify else n_mc,
             inputs.check_count(coverage_n, "coverage_n", example="100000"))
+
+
+def _correction_options(calibration, correction, correction_rounds, scheduler, estimator, angle_radius_deg) -> tuple:
+    """``(correction, correction_rounds)`` with their defaults (after calibration: no loop, so ``correction`` None or
+    False as given and no round limit); refuses, by their argument names, the options the calibration-aware
+    allocation cannot honour."""
+    if calibration is None:
+        return (True if correction is None else correction,
+                DEFAULT_CORRECTION_ROUNDS if correction_rounds is None else correction_rounds)
+    no_loop = ("the calibration-aware allocation (`calibration`) has no correction loop: its end-to-end Monte Carlo "
+               "states per pose whether the design to build passed, and nothing is re-solved")
+    if correction:
+        raise ArgumentError("correction", f"expected False or nothing with `calibration` ({no_loop}), got True; "
+                            "leave out `correction`.")
+    if correction_rounds is not None:
+        raise ArgumentError("correction_rounds", f"expected nothing with `calibration` ({no_loop}), got "
+                            f"{inputs.shown(correction_rounds)}; leave out `correction_rounds`.")
+    if scheduler is not None:
+        raise ArgumentError("scheduler", "expected nothing with `calibration` (the end-to-end Monte Carlo of the "
+                            "calibration-aware allocation runs in this process, vectorised over the simulated robots, "
+                            f"and takes no scheduler), got {inputs.shown(scheduler)}; leave out `scheduler`.")
+    if estimator not in CALIBRATED_ESTIMATORS:
+        raise ArgumentError("estimator", f"expected one of {', '.join(map(repr, CALIBRATED_ESTIMATORS))} with "
+                            "`calibration` (the end-to-end Monte Carlo of the calibration-aware allocation has no "
+                            f"importance sampler), got {estimator!r}; use 'paired' for a rare-event requirement.")
+    if angle_radius_deg is not None:
+        raise ArgumentError("angle_radius_deg", f"expected nothing with `calibration` (the calibration-aware "
+                            f"allocation handles the position requirement only), got {angle_radius_deg!r}; leave "
+                            "out `angle_radius_deg` and `angle_prob`, or allocate without `calibration`.")
+    return correction, None

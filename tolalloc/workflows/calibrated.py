@@ -1,4 +1,13 @@
-"""Calibration-aware allocation (``allocate_tolerances(..., calibration=PLAN)``) and its result."""
+"""Calibration-aware allocation (``allocate_tolerances(..., calibration=PLAN)``) and its result.
+
+What runs: the certified calibration-aware design (eigenvalue rule on the post-calibration covariance), then the
+exact stage on the post-calibration probability (``solver="exact"``; skipped with ``"certified"``), over the pose set
+or the box; then the standard grades (``snap``); then the end-to-end Monte Carlo of the design to build (``verify``,
+position plans; ``n_mc`` simulated calibrations clipped to :data:`N_ROBOTS_RANGE`, estimator ``auto``, ``plain`` or
+``paired``). Position requirement only. There is no correction loop and the end-to-end Monte Carlo runs in this
+process, so :func:`~tolalloc.workflows.allocate_tolerances` refuses ``correction=True``, ``correction_rounds``,
+``scheduler``, ``estimator="importance"`` and ``angle_radius_deg`` with ``calibration``.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +18,10 @@ import numpy as np
 from tolalloc.outputs import atomic_output, write_json
 from tolalloc.workflows.base import JobResult
 
-__all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs"]
+__all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs", "N_ROBOTS_RANGE"]
+
+#: simulated calibrations of the end-to-end Monte Carlo: ``n_mc`` clipped to this range (each is a nonlinear fit)
+N_ROBOTS_RANGE = (200, 4000)
 
 
 def split_from_costs(model, path):
@@ -31,12 +43,14 @@ def split_from_costs(model, path):
 
 
 def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify, n_mc, seed, estimator, coverage_n,
-                          inputs_record, snap: bool = True, angle_step_deg: float | None = None, **kw):
-    """Calibration-aware allocation after the plan in ``plan_path``: certified, then exact, at the poses ``q``
-    (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
+                          inputs_record, exact: bool = True, snap: bool = True, angle_step_deg: float | None = None,
+                          **kw):
+    """Calibration-aware allocation after the plan in ``plan_path``: certified, then (``exact``) exact, at the poses
+    ``q`` (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
     (ISO 286 grades, classes, ``angle_step_deg`` steps) chosen over the same poses or box
     (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`), the design to build; the end-to-end Monte
-    Carlo (simulated robots, each calibrated nonlinearly, at the built design's worst poses) when ``verify``."""
+    Carlo (``n_mc`` simulated robots within :data:`N_ROBOTS_RANGE`, each calibrated nonlinearly, at the built design's
+    worst poses; ``estimator`` auto, plain or paired) when ``verify`` and the plan measures positions."""
     from tolalloc.allocate import build_problem
     from tolalloc.allocate.calibrated_design import allocate_with_calibration
     from tolalloc.calibration.plan import read_plan
@@ -47,7 +61,8 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
     problem = build_problem(model, q, **kw)
     plan = read_plan(plan_path, model.robot)
     split = split_from_costs(model, costs_path)
-    res = allocate_with_calibration(problem, plan, split=split, region=box, coverage_n=coverage_n, seed=seed)
+    res = allocate_with_calibration(problem, plan, split=split, region=box, exact=exact, coverage_n=coverage_n,
+                                    seed=seed)
     std = None
     if res.design.ok and snap:
         from tolalloc.allocate.calibrated_standard import standardize_calibrated
@@ -57,23 +72,26 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
     if res.design.ok and verify and plan.measurement == "position":
         from tolalloc.verify.calibrated_worst import verify_calibrated_design
 
-        n = max(200, min(int(n_mc), 4000))
-        # the end-to-end check has no importance sampler: its rare tails take the paired estimator
-        est = "paired" if estimator == "importance" else estimator
+        n = int(np.clip(int(n_mc), *N_ROBOTS_RANGE))
         built = std if std is not None and std.design.ok else None
-        chk = verify_calibrated_design(res, standard=built, n_robots=n, seed=seed, estimator=est)
+        chk = verify_calibrated_design(res, standard=built, n_robots=n, seed=seed, estimator=estimator)
     return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record, std)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
 class CalibratedToleranceAllocation(JobResult):
-    """Tolerances for the accuracy after a calibration plan: per parameter 'calibrated away' or 'must be held'.
+    """Tolerances for the accuracy after a calibration plan: per parameter 'calibrated away', 'loose (at t_max)' or
+    'must be held'.
+
+    The same interface as :class:`ToleranceAllocation` where it applies: ``ok``, ``status``, ``cost``,
+    :meth:`to_frame` (the same core columns), :meth:`verification_frame`, :meth:`summary`, :meth:`text` and
+    :meth:`save` (``tolerances.csv``/``.md``/``.tex``, ``summary.json``, ``verification.csv``, ``report.html``).
 
     Attributes
     ----------
     result : tolalloc.allocate.calibrated_design.CalibratedDesign
-        The certified and exact calibration-aware designs (the exact one chosen when accepted), the region search
-        and its coverage, the designs without calibration, the post-calibration statistics.
+        The certified and (``solver="exact"``) exact calibration-aware designs (the exact one chosen when accepted),
+        the region search and its coverage, the designs without calibration, the post-calibration statistics.
     plan : CalibrationPlan
     plan_source : str
     label : str
@@ -131,6 +149,12 @@ class CalibratedToleranceAllocation(JobResult):
         return bool(self.result.certified.certified)
 
     @property
+    def status(self) -> str:
+        """``optimal``, ``infeasible`` or ``not_converged``: the status of the continuous calibration-aware design
+        (exact when accepted, else certified)."""
+        return str(self.result.design.status)
+
+    @property
     def ok(self) -> bool:
         """The design to build (standard when found, else continuous) meets the requirement wherever checked, and its
         end-to-end Monte Carlo passed (if run)."""
@@ -145,22 +169,40 @@ class CalibratedToleranceAllocation(JobResult):
         """Whether :meth:`save` has something to write (an infeasible calibration-aware problem has not)."""
         return bool(self.result.design.ok)
 
+    def stages(self) -> str:
+        """The stages that ran, in order: ``certified -> exact -> standard grades``, with ``exact (not run:
+        solver='certified')`` or ``exact (not used)`` where the exact stage gave no design."""
+        res = self.result
+        ex = ("exact" if res.exact_accepted else "exact (not run: solver='certified')" if res.exact is None
+              else "exact (not used)")
+        std = [] if self.standard is None else ["standard grades" + ("" if self.built is not None else " (none found)")]
+        return " -> ".join(["certified", ex, *std])
+
     def headline(self) -> list[str]:
         pr = self.problem
         lines = [f"robot: {self.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after "
                  f"calibration ({self.plan.n_poses}-pose plan) over {self.label}"]
         if not self.result.design.ok:
-            return lines + [f"status: infeasible ({self.result.design.message})"]
+            return lines + [f"status: {self.status} ({self.result.design.message})"]
         s = self.result.summary()
+        lines.append(f"status: {self.status}   stages: {self.stages()}")
         lines.append(f"cost: {self.continuous_cost:.4f} ({s['design']})" + (
             "" if s.get("saving_pct") is None else f", {s['saving_pct']:.1f}% below no calibration"))
         if self.built is not None:
             b = self.built
             lines.append(f"design to build: standard grades, cost {b.cost:.4f} ({b.premium_pct:+.2f} % over the "
                          f"continuous design; rounding down {b.rounded_premium_pct:+.2f} %)")
-        if self.end_to_end is not None:
-            lines.append(f"end-to-end Monte Carlo: {self.end_to_end.verdict}")
+        lines.append(f"end-to-end Monte Carlo: {self.end_to_end.verdict}" if self.end_to_end is not None else
+                     f"end-to-end Monte Carlo: not run ({self._no_end_to_end()})")
         return lines
+
+    def _no_end_to_end(self) -> str:
+        """Why the end-to-end Monte Carlo did not run."""
+        if self.inputs.get("n_mc", 0) is None:
+            return "verify=False"
+        if self.plan.measurement != "position":
+            return "the plan measures poses; the end-to-end simulation handles position measurements only"
+        return "no design to check"
 
     def grade_note(self) -> str:
         """What the tolerance table says about standard grades: the design to build, where it holds, its premium."""
@@ -189,35 +231,51 @@ class CalibratedToleranceAllocation(JobResult):
                 "not a proven one." + check)
 
     def to_frame(self):
-        """Per parameter: ``tolerance``, ``status`` and ``cost`` of the chosen design (exact when accepted, else
-        certified), the certified and exact tolerances, the tolerance without calibration, manufactured /
-        post-calibration / random sigma."""
-        df = self.result.to_frame()
-        exact = self.result.exact_accepted
-        df.insert(2, "tolerance", df["tolerance_exact"] if exact else df["tolerance_certified"])
-        df["cost"] = df["cost_exact"] if exact else df["cost_certified"]
-        if exact:
-            df["status"] = df["status_exact"]
+        """The tolerance table: the core columns of :meth:`ToleranceAllocation.to_frame` (``tolerance`` the
+        continuous design, exact when accepted, else certified; ``tolerance_std``, ``grade`` the standard design to
+        build; cost, variance share of the post-calibration ``tr Sigma`` at the worst pose, process limits), then
+        ``status``, ``tolerance_no_calibration``, ``sigma_post_calibration``, ``sigma_random`` (see
+        :mod:`tolalloc.workflows.calibrated_table`)."""
+        from tolalloc.workflows.calibrated_table import calibrated_frame
+
+        return calibrated_frame(self)
+
+    def verification_frame(self):
+        """Per pose of the end-to-end Monte Carlo: the joint values (deg / mm), the linear post-calibration P, the
+        Monte Carlo P_hat with its simultaneous interval, the simulated robots ``n``, the estimator, whether the linear
+        prediction lies in the interval (``agree``) and the verdict; None when it did not run."""
+        if self.end_to_end is None:
+            return None
+        chk = self.end_to_end.check
+        frame = self.end_to_end.to_frame()
+        qi = np.atleast_2d(self.robot.q_to_interface(chk.q))
+        for k, j in enumerate(self.robot.joints):
+            frame.insert(1 + k, f"{j.name}_{j.unit}", qi[:, k])
+        frame.insert(list(frame.columns).index("ci_high") + 1, "n", chk.n_robots)
+        return frame
+
+    def _table_note(self, frame) -> str:
+        """What the tolerance table holds, and which parameters the calibration removes (the .md / .tex line)."""
+        from tolalloc.workflows.calibrated_table import status_groups
+
         b = self.built
+        note = (f"design: the continuous {self.result.design.label} calibration-aware design in tolerance (stages: "
+                f"{self.stages()})")
         if b is not None:
-            f = [p.to_interface for p in self.problem.model.params]
-            df.insert(3, "tolerance_std", b.design.t * f)
-            df.insert(4, "grade", list(b.grade))
-            if any(b.process):
-                df.insert(5, "process", list(b.process))
-            df["cost_std"] = b.param_cost
-            df["sigma_post_calibration_std"] = b.post.sigma_post * f
-        return df
+            note += f"; standard grades ({b.design.label}) in tolerance_std / grade: the design to build"
+        groups = "; ".join(f"{status}: {', '.join(names)}" for status, names in status_groups(frame).items())
+        return f"{note}. Status after the plan -- {groups}."
 
     def summary(self) -> dict:
         """The content of ``summary.json``."""
+        from tolalloc.workflows.calibrated_table import unidentifiable_groups
+
         s = self.result.summary()
         cert = self.result.certified
         if cert.grade_t is not None:  # the repeatability of the parts a calibration cannot remove, priced
             s.update(cost_parts=float(cert.design.cost), cost_repeatability_grades=float(cert.grade_cost),
                      cost_repeatability_grades_loosest=float(cert.grade_cost_loosest))
-        if self.end_to_end is not None:
-            s["end_to_end"] = self.end_to_end.to_dict()
+        s["end_to_end"] = None if self.end_to_end is None else self.end_to_end.to_dict()
         std, b = self.standard, self.built
         s["standard"] = None if std is None else std.to_dict()
         s.update(cost_continuous=s["cost"], cost_standard=None if b is None else b.cost,
@@ -226,43 +284,81 @@ class CalibratedToleranceAllocation(JobResult):
                  rounded_premium_pct=None if std is None else std.rounded_premium_pct)
         s["built"] = {"design": "standard" if b is not None else s["design"], "cost": self.cost if s["cost"] is not None
                       else None, "standard": b is not None}
-        return {**s, "pose_set": self.label, "plan_file": self.plan_source}
+        held, loose = [], []
+        if self.result.design.ok and s["unidentifiable"]:
+            held, loose, _ = unidentifiable_groups(self.to_frame(), s["unidentifiable"])
+        s.update(unidentifiable_held=held, unidentifiable_loose=loose, continuous_ok=s["ok"], ok=self.ok)
+        return {**s, "solver_requested": self.inputs.get("solver", "exact"), "pose_set": self.label,
+                "plan_file": self.plan_source}
 
     def text(self) -> str:
         """What the command line prints."""
+        from tolalloc.report.tables import TABLE_COLUMNS, format_text
+        from tolalloc.workflows.calibrated_table import CALIBRATED_TEXT_COLUMNS
+
         res, pr, plan = self.result, self.problem, self.plan
         out = [f"robot: {self.robot.name}   requirement: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after "
                f"calibration over {self.label}; plan {self.plan_source}: {plan.n_poses} {plan.measurement} "
                f"measurements, noise {plan.noise_mm:g} mm", res.message()]
         if not res.design.ok:
             return "\n".join(out)
+        if res.exact is None:
+            out.append("exact stage: not run (solver='certified'): the certified design is the continuous design")
         cert = res.certified
         if cert.grade_t is not None:
             out.append(f"  certified design: of which repeatability grades {cert.grade_cost:.4f} (parts "
                        f"{cert.design.cost:.4f}); without calibration: the loosest grades, {cert.grade_cost_loosest:.4f}")
-        if self.standard is not None:
-            out.append(self.standard.message_line())
-            from tolalloc.allocate.calibrated_summary import summary_search_lines
-
-            out += summary_search_lines(getattr(res.region, "name", ""), {"standard": self.standard.search})
-            c = self.standard.coverage
-            if c is not None and res.region_kind == "box":
-                out.append(f"coverage of the standard design (post-calibration P): {c.n} fresh poses of the box, min P = "
-                           f"{c.min_p:.5f}, {c.n_below} below {pr.prob:g}" + ("; none below p" if c.ok else ""))
-            if self.built is not None:
-                out.append("the design to build is the standard one (tolerance_std, grade); the end-to-end Monte Carlo "
-                           "below is its check")
-        out += ["", self.to_frame().to_string(index=False, float_format=lambda x: f"{x:.5g}")]
-        unid = res.summary().get("unidentifiable") or []
-        if unid:
-            out.append(f"\nnot identifiable by the plan (must be held in manufacturing): {', '.join(unid)}")
-        if self.end_to_end is not None:
-            out.append("\n" + self.end_to_end.message())
+        out += self._standard_lines()
+        frame = self.to_frame()
+        out += ["", format_text(frame, [*TABLE_COLUMNS, *CALIBRATED_TEXT_COLUMNS])]
+        out += self._unidentifiable_lines(frame)
+        out.append("\n" + (self.end_to_end.message() if self.end_to_end is not None else
+                           f"end-to-end Monte Carlo: not run ({self._no_end_to_end()})"))
         return "\n".join(out)
 
+    def _standard_lines(self) -> list[str]:
+        """The standard design's lines: cost and premium, its region search and coverage, what is built."""
+        from tolalloc.allocate.calibrated_summary import summary_search_lines
+
+        res, pr, std = self.result, self.problem, self.standard
+        if std is None:
+            return []
+        out = [std.message_line()]
+        out += summary_search_lines(getattr(res.region, "name", ""), {"standard": std.search})
+        c = std.coverage
+        if c is not None and res.region_kind == "box":
+            out.append(f"coverage of the standard design (post-calibration P): {c.n} fresh poses of the box, min P = "
+                       f"{c.min_p:.5f}, {c.n_below} below {pr.prob:g}" + ("; none below p" if c.ok else ""))
+        if self.built is not None:
+            out.append("the design to build is the standard one (tolerance_std, grade); the end-to-end Monte Carlo "
+                       "below is its check")
+            if res.exact is None:
+                out.append("solver='certified' covers the continuous design only: the standard grades are chosen "
+                           "under the exact post-calibration probability, so the design to build is not certified")
+        return out
+
+    def _unidentifiable_lines(self, frame) -> list[str]:
+        """The parameters the plan cannot identify, by what the allocation did with them."""
+        from tolalloc.workflows.calibrated_table import unidentifiable_groups
+
+        unid = self.result.summary().get("unidentifiable") or []
+        if not unid:
+            return []
+        held, loose, other = unidentifiable_groups(frame, unid)
+        out = ["", "not identifiable by the plan (the calibration leaves them as manufactured):"]
+        if held:
+            out.append(f"  allocated tight, must be held in manufacturing: {', '.join(held)}")
+        if loose:
+            out.append(f"  loose at the process limit t_max, which suffices: {', '.join(loose)}")
+        if other:
+            named = zip(frame["parameter"], frame["status"])
+            out.append(f"  other: {', '.join(f'{n} ({s})' for n, s in named if n in other)}")
+        return out
+
     def save(self, out, *, report: bool = False) -> list[str]:
-        """Write ``calibrated_tolerances.csv``, ``summary.json`` and ``end_to_end.csv`` into directory ``out``
-        (all together or none); ``report=True`` adds ``report.html``. Returns the file names."""
+        """Write ``tolerances.csv``, ``.md``, ``.tex``, ``summary.json`` and (after an end-to-end Monte Carlo)
+        ``verification.csv`` into directory ``out`` (all together or none); ``report=True`` adds ``report.html``.
+        Returns the file names."""
         from tolalloc.exceptions import TolallocError
 
         if not self.result.design.ok:
@@ -279,12 +375,18 @@ class CalibratedToleranceAllocation(JobResult):
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
         """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
-        self.to_frame().to_csv(folder / "calibrated_tolerances.csv", index=False, float_format="%.8g")
-        names = ["calibrated_tolerances.csv", "summary.json"]
-        if self.end_to_end is not None:
-            self.end_to_end.to_frame().to_csv(folder / "end_to_end.csv", index=False, float_format="%.8g")
-            names.append("end_to_end.csv")
+        from tolalloc.report.tables import write_tables
+
+        pr, frame = self.problem, self.to_frame()
+        write_tables(frame, folder, caption=f"Tolerances of {self.robot.name}: P(|dP| < {pr.radius_mm:g} mm) >= "
+                     f"{pr.prob:g} after the {self.plan.n_poses}-pose calibration plan, over {self.label}",
+                     note=self._table_note(frame))
         write_json(self.summary(), folder / "summary.json")
+        names = ["tolerances.csv", "tolerances.md", "tolerances.tex", "summary.json"]
+        ver = self.verification_frame()
+        if ver is not None:
+            ver.to_csv(folder / "verification.csv", index=False, float_format="%.8g")
+            names.append("verification.csv")
         if report:
             from tolalloc.workflows.html import write_calibrated_report
 

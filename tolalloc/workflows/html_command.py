@@ -16,7 +16,8 @@ _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "po
          "z": "--z", "uniform": "--uniform", "sigma_set": "--sigma-set", "link_mode": "--link-mode",
          "deflection_mode": "--deflection-mode", "clearance": "--clearance", "angle_radius_deg": "--angle-radius-deg",
          "angle_prob": "--angle-prob", "solver": "--solver", "calibration": "--calibration", "n_mc": "--n-mc",
-         "seed": "--seed", "coverage_n": "--coverage-n", "correction_rounds": "--correction-rounds",
+         "seed": "--seed", "estimator": "--estimator", "coverage_n": "--coverage-n",
+         "correction_rounds": "--correction-rounds",
          "angle_step_deg": "--angle-step-deg", "tool": "--tool", "trust_units": "--trust-units",
          "exclude": "--exclude", "test": "--test", "test_frame": "--test-frame", "register_n": "--register-n",
          "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
@@ -115,34 +116,51 @@ def allocation_command(job) -> tuple[str, str, list[str]]:
 
 
 def _allocation_checks(job, inp: dict, notes: list) -> dict:
-    """Solver, snapping, calibration plan, verification, correction and coverage options."""
+    """Solver, snapping, calibration plan, verification, estimator, correction and coverage options (from the inputs
+    record; what the result shows where a record lacks one)."""
     kw = {}
     if inp.get("solver", "exact") != "exact":
         kw["solver"] = inp["solver"]
     calibration = inp.get("calibration")
     if calibration is not None:
         kw["calibration"] = str(calibration)
-    result = job.result
-    if getattr(result, "standard", "n/a") is None:
+    snap = inp.get("snap", getattr(job.result, "standard", "n/a") is not None)
+    if not snap:
         kw["snap"] = False
-    if inp.get("n_mc") is None:
+    verified = inp.get("n_mc") is not None
+    if not verified:
         kw["verify"] = False
     else:
         kw["n_mc"] = int(inp["n_mc"])
+        kw["estimator"] = str(inp.get("estimator", "auto"))
     kw["seed"] = int(inp.get("seed", 0))
-    ver, corr = getattr(job, "verification", None), getattr(job, "correction", None)
-    if ver is not None and corr is None and ver.verdict != "demonstrated":
-        kw["correction"] = False
-    if corr is not None and "correction_rounds" in inp:
-        kw["correction_rounds"] = int(inp["correction_rounds"])
-    elif corr is not None:
-        notes.append(f"The round limit of the correction loop is not recorded; {corr.rounds} round(s) ran "
-                     "(the default limit is 2).")
-    if getattr(job, "coverage", None) is not None:
+    _correction(job, inp, verified, kw, notes)
+    if inp.get("coverage_n") is not None:
+        kw["coverage_n"] = int(inp["coverage_n"])
+    elif "coverage_n" not in inp and getattr(job, "coverage", None) is not None:
         kw["coverage_n"] = int(job.coverage.n)
     if inp.get("angle_step_deg") is not None:
         kw["angle_step_deg"] = float(inp["angle_step_deg"])
     return kw
+
+
+def _correction(job, inp: dict, verified: bool, kw: dict, notes: list) -> None:
+    """``correction`` / ``correction_rounds`` into ``kw``: none for a calibration-aware allocation (no loop), the
+    round limit whenever a verification with the loop on could use it."""
+    ver, corr = getattr(job, "verification", None), getattr(job, "correction", None)
+    if "correction" in inp:
+        on = inp["correction"]
+        if on is False:
+            kw["correction"] = False
+    else:  # a record without it: the loop was off if a pose was not demonstrated and nothing was corrected
+        on = not (ver is not None and corr is None and ver.verdict != "demonstrated")
+        if not on:
+            kw["correction"] = False
+    if on and verified and inp.get("correction_rounds") is not None:
+        kw["correction_rounds"] = int(inp["correction_rounds"])
+    elif on and corr is not None and "correction_rounds" not in inp:
+        notes.append(f"The round limit of the correction loop is not recorded; {corr.rounds} round(s) ran "
+                     "(the default limit is 2).")
 
 
 def diagnosis_command(job) -> tuple[str, str, list[str]]:

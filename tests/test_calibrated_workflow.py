@@ -1,0 +1,140 @@
+"""allocate_tolerances(..., calibration=PLAN): every option honoured or refused, the result shaped like the plain one.
+
+solver="certified" stops after the certified stage; the options the calibration-aware allocation has no use for
+(the correction loop, a scheduler, the importance sampler, an orientation requirement) are refused by name, in
+Python and on the command line; the result has status, ok, verification_frame and the plain table's core columns,
+writes the plain file names, and says truthfully what became of the parameters the plan cannot identify.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import tolalloc
+from tolalloc.calibration import make_plan, write_plan
+from tolalloc.cli import main
+from tolalloc.workflows import allocate_tolerances
+
+
+@pytest.fixture(scope="module")
+def plan_path(tmp_path_factory):
+    tc = tolalloc.load_robot("tool_changer")
+    rng = np.random.default_rng(0)
+    path = tmp_path_factory.mktemp("plan") / "plan.csv"
+    write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def certified(plan_path):
+    """Certified stage only, no standard grades, a small end-to-end Monte Carlo; correction=False is honoured."""
+    return allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", solver="certified", snap=False,
+                               n_mc=200, seed=4, estimator="plain", correction=False)
+
+
+@pytest.fixture(scope="module")
+def plain():
+    return allocate_tolerances("tool_changer", poses="nominal", snap=False, verify=False)
+
+
+def test_solver_certified_stops_after_the_certified_stage(certified):
+    res = certified.result
+    assert res.exact is None and res.design is res.certified.design
+    s = certified.summary()
+    assert s["design"] == "calibrated-lmi" and s["solver_requested"] == "certified" and s["cost_exact"] is None
+    assert s["end_to_end"]["design"] == "certified"  # judged as a certified design: demonstrated at every pose
+    assert certified.stages() == "certified -> exact (not run: solver='certified')"
+    text = certified.text()
+    assert "exact stage: not run (solver='certified')" in text and "design: exact" not in text
+    assert "stages: certified -> exact (not run: solver='certified')" in repr(certified)
+
+
+def test_solver_exact_runs_both_stages(plan_path):
+    job = allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", snap=False, verify=False)
+    assert job.result.exact_accepted and job.summary()["design"] == "exact"
+    assert job.stages() == "certified -> exact" and "exact stage: not run" not in job.text()
+    assert "end-to-end Monte Carlo: not run (verify=False)" in job.text()
+    frame = job.to_frame()
+    f = np.array([p.to_interface for p in job.problem.model.params])
+    np.testing.assert_allclose(frame["tolerance_certified"], job.result.certified.design.t * f)
+    np.testing.assert_allclose(frame["tolerance"], job.result.exact.design.t * f)
+
+
+@pytest.mark.parametrize("kw, match", [
+    (dict(correction=True), r"^correction: expected False or nothing with `calibration` \(the calibration-aware "
+                            r"allocation \(`calibration`\) has no correction loop"),
+    (dict(correction_rounds=3), r"^correction_rounds: expected nothing with `calibration` .*, got 3; leave out "
+                                r"`correction_rounds`\.$"),
+    (dict(scheduler="threads"), r"^scheduler: expected nothing with `calibration` .*takes no scheduler\), got "
+                                r"'threads'; leave out `scheduler`\.$"),
+    (dict(estimator="importance"), r"^estimator: expected one of 'auto', 'plain', 'paired' with `calibration` .*no "
+                                   r"importance sampler\), got 'importance'"),
+    (dict(angle_radius_deg=0.02), r"^angle_radius_deg: expected nothing with `calibration` \(the calibration-aware "
+                                  r"allocation handles the position requirement only\), got 0.02"),
+])
+def test_options_the_calibrated_path_cannot_honour_are_refused(plan_path, kw, match):
+    with pytest.raises(tolalloc.ArgumentError, match=match):
+        allocate_tolerances("tool_changer", calibration=plan_path, **kw)
+
+
+@pytest.mark.parametrize("argv, flag", [(["--correction-rounds", "3"], "--correction-rounds"),
+                                        (["--scheduler", "threads"], "--scheduler"),
+                                        (["--estimator", "importance"], "--estimator")])
+def test_cli_refuses_them_with_one_line(plan_path, tmp_path, capsys, argv, flag):
+    out = tmp_path / "res"
+    rc = main(["allocate", "tool_changer", "--calibration", str(plan_path), *argv, "--out", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith(f"error: {flag}: expected") and "with --calibration" in err
+    assert err.count("\n") == 1 and not out.exists()
+
+
+def test_same_interface_as_the_plain_allocation(certified, plain):
+    assert certified.status == "optimal" and certified.ok
+    core = [c for c in plain.to_frame().columns if c != "design"]
+    frame = certified.to_frame()
+    assert list(frame.columns[:len(core)]) == core  # the plain table's columns, in its order, then the calibrated
+    assert {"status", "tolerance_no_calibration", "sigma_post_calibration", "sigma_random"} <= set(frame.columns)
+    for col in ("parameter", "kind", "element", "unit", "role"):
+        assert list(frame[col]) == list(plain.to_frame()[col])
+    z = certified.problem.costs.z
+    np.testing.assert_allclose(frame["sigma"], frame["tolerance"] / z)
+    assert frame["variance_share"].sum() == pytest.approx(1.0)
+    loose = frame["status"] == "loose (at t_max)"
+    assert loose.any() and (frame.loc[loose, "at_limit"] == "t_max").all()
+    ver = certified.verification_frame()
+    chk = certified.end_to_end.check
+    joints = [f"{j.name}_{j.unit}" for j in certified.robot.joints]
+    assert list(ver.columns[:1 + len(joints)]) == ["pose", *joints] and len(ver) == len(chk.p_mc)
+    assert {"p_linear", "p_mc", "ci_low", "ci_high", "n", "verdict"} <= set(ver.columns)
+    assert (ver["n"] == certified.n_robots).all()
+    np.testing.assert_allclose(ver[joints].to_numpy(), certified.robot.q_to_interface(chk.q))
+
+
+def test_save_writes_the_plain_file_names(certified, tmp_path):
+    names = certified.save(tmp_path / "res")
+    assert names == ["tolerances.csv", "tolerances.md", "tolerances.tex", "summary.json", "verification.csv"]
+    frame = pd.read_csv(tmp_path / "res" / "tolerances.csv", keep_default_na=False)
+    assert list(frame.columns) == list(certified.to_frame().columns)
+    md = (tmp_path / "res" / "tolerances.md").read_text().splitlines()[0]
+    assert md.startswith("design: the continuous calibrated-lmi calibration-aware design in tolerance")
+    assert "Status after the plan -- " in md and "calibrated away: " in md
+    ver = pd.read_csv(tmp_path / "res" / "verification.csv")
+    assert list(ver.columns) == list(certified.verification_frame().columns)
+    s = json.loads((tmp_path / "res" / "summary.json").read_text())
+    assert s["end_to_end"]["n_robots"] == 200 and s["solver_requested"] == "certified"
+
+
+def test_unidentifiable_parameters_are_split_by_what_the_allocation_did(certified):
+    s, frame = certified.summary(), certified.to_frame()
+    status = dict(zip(frame["parameter"], frame["status"]))
+    held, loose = s["unidentifiable_held"], s["unidentifiable_loose"]
+    assert held and loose and sorted(held + loose) == sorted(s["unidentifiable"])
+    assert {status[n] for n in held} == {"must be held"} and {status[n] for n in loose} == {"loose (at t_max)"}
+    text = certified.text()
+    assert f"allocated tight, must be held in manufacturing: {', '.join(held)}" in text
+    assert f"loose at the process limit t_max, which suffices: {', '.join(loose)}" in text
+    assert "(must be held in manufacturing):" not in text
