@@ -305,7 +305,7 @@ def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
     text = capsys.readouterr().out
     assert rc == 0 and "standard grades (discrete-exact): cost" in text and "rounding down would cost" in text
     frame = pd.read_csv(out / "tolerances.csv", keep_default_na=False)
-    assert {"tolerance", "tolerance_std", "grade", "cost_std"} <= set(frame.columns)
+    assert {"tol_mm", "tol_deg", "tol_continuous_mm", "grade", "cost", "cost_continuous"} <= set(frame.columns)
     assert frame.loc[frame.parameter == "dl1", "grade"].item().startswith("IT")
     s = json.loads((out / "summary.json").read_text())
     assert s["built"]["standard"] and s["cost_standard"] == pytest.approx(s["standard"]["cost"])

@@ -60,8 +60,10 @@ def test_solver_exact_runs_both_stages(plan_path):
     assert "end-to-end Monte Carlo: not run (verify=False)" in job.text()
     frame = job.to_frame()
     f = np.array([p.to_interface for p in job.problem.model.params])
-    np.testing.assert_allclose(frame["tolerance_certified"], job.result.certified.design.t * f)
-    np.testing.assert_allclose(frame["tolerance"], job.result.exact.design.t * f)
+    np.testing.assert_allclose(_in_unit(frame, "tol_certified"), job.result.certified.design.t * f)
+    np.testing.assert_allclose(_in_unit(frame, "tol_continuous"), job.result.exact.design.t * f)
+    np.testing.assert_allclose(_in_unit(frame, "tol"), job.result.exact.design.t * f)  # snap=False: built = exact
+
 
 
 @pytest.mark.parametrize("kw, match", [
@@ -92,17 +94,22 @@ def test_cli_refuses_them_with_one_line(plan_path, tmp_path, capsys, argv, flag)
     assert err.count("\n") == 1 and not out.exists()
 
 
+def _in_unit(frame, name):
+    """Each row's value of the ``<name>_mm`` / ``<name>_deg`` pair, in the row's unit."""
+    return np.where(frame["unit"] == "mm", frame[f"{name}_mm"], frame[f"{name}_deg"])
+
+
 def test_same_interface_as_the_plain_allocation(certified, plain):
     assert certified.status == "optimal" and certified.ok
     core = [c for c in plain.to_frame().columns if c != "design"]
     frame = certified.to_frame()
     assert list(frame.columns[:len(core)]) == core  # the plain table's columns, in its order, then the calibrated
-    assert {"status", "tolerance_no_calibration", "sigma_post_calibration", "sigma_random"} <= set(frame.columns)
+    assert {"status", "tol_no_calibration_mm", "sigma_post_calibration_deg", "sigma_random_mm"} <= set(frame.columns)
     for col in ("parameter", "kind", "element", "unit", "role"):
         assert list(frame[col]) == list(plain.to_frame()[col])
     z = certified.problem.costs.z
-    np.testing.assert_allclose(frame["sigma"], frame["tolerance"] / z)
-    assert frame["variance_share"].sum() == pytest.approx(1.0)
+    np.testing.assert_allclose(_in_unit(frame, "sigma"), _in_unit(frame, "tol") / z)
+    assert frame["variance_share_pct"].sum() == pytest.approx(100.0)
     loose = frame["status"] == "loose (at t_max)"
     assert loose.any() and (frame.loc[loose, "at_limit"] == "t_max").all()
     ver = certified.verification_frame()
@@ -120,7 +127,7 @@ def test_save_writes_the_plain_file_names(certified, tmp_path):
     frame = pd.read_csv(tmp_path / "res" / "tolerances.csv", keep_default_na=False)
     assert list(frame.columns) == list(certified.to_frame().columns)
     md = (tmp_path / "res" / "tolerances.md").read_text().splitlines()[0]
-    assert md.startswith("design: the continuous calibrated-lmi calibration-aware design in tolerance")
+    assert md.startswith("design to build: the continuous calibrated-lmi calibration-aware design in tol_mm / tol_deg")
     assert "Status after the plan -- " in md and "calibrated away: " in md
     ver = pd.read_csv(tmp_path / "res" / "verification.csv")
     assert list(ver.columns) == list(certified.verification_frame().columns)

@@ -314,11 +314,12 @@ def test_calibrated_report(calibrated):
     assert "report.html" in names
     frame = job.to_frame()
     t = page.tables["tolerance-table"]
-    assert {"parameter", "unit", "tolerance", "tolerance_no_calibration", "sigma_post_calibration", "status",
+    assert {"parameter", "unit", "tol_mm", "tol_deg", "tol_no_calibration_mm", "sigma_post_calibration_deg", "status",
             "cost"} <= set(t["keys"])
     assert page.column("tolerance-table", "parameter") == list(frame["parameter"])
     assert page.column("tolerance-table", "status") == list(frame["status"])
-    assert page.column("tolerance-table", "tolerance") == [f"±{x:.4g}" for x in frame["tolerance"]]
+    for key in ("tol_mm", "tol_deg"):
+        assert page.column("tolerance-table", key) == ["" if np.isnan(x) else f"±{x:.4g}" for x in frame[key]]
     e2e = job.end_to_end
     chk = e2e.check
     assert len(page.tables["pose-table"]["rows"]) == len(chk.p_mc) >= 1  # the design's worst poses

@@ -36,8 +36,9 @@ print(res)
 
 # %% table
 table = res.to_frame()
-print(table[["parameter", "unit", "tolerance", "tolerance_no_calibration", "sigma_post_calibration",
-             "status"]].to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+print(table[["parameter", "unit", "tol_mm", "tol_deg", "tol_no_calibration_mm", "tol_no_calibration_deg",
+             "sigma_post_calibration_mm", "sigma_post_calibration_deg", "status"]].to_string(
+    index=False, float_format=lambda x: f"{x:.4g}", na_rep=""))
 print(table["status"].value_counts().to_string())
 
 # %% save

@@ -82,7 +82,11 @@ def run_case(robot: str, region: str, grades: str, plan_path: Path, costs, n_mc:
            "end_to_end_p_mc_min": None if e2e is None else float(e2e.check.p_mc.min()),
            "end_to_end_ci_low_min": None if e2e is None else float(e2e.check.ci_low.min()),
            "time_standard_s": std.time_s, "time_continuous_s": res.time_s, "time_wall_s": wall, "job_ok": job.ok}
-    table = job.to_frame()[["parameter", "unit", "tolerance", "tolerance_std", "grade", "cost", "cost_std", "status"]]
+    f = job.to_frame()
+    own = (lambda name: f[f"{name}_mm"].where(f["unit"] == "mm", f[f"{name}_deg"]))  # the row's unit
+    table = pd.DataFrame({"parameter": f["parameter"], "unit": f["unit"], "tolerance": own("tol_continuous"),
+                          "tolerance_std": own("tol"), "grade": f["grade"], "cost": f["cost_continuous"],
+                          "cost_std": f["cost"], "status": f["status"]})
     return row, table
 
 

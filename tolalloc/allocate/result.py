@@ -13,7 +13,7 @@ import pandas as pd
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
 from tolalloc.linear.covariance import variance_share
 
-__all__ = ["AllocationResult", "snap_design"]
+__all__ = ["AllocationResult", "snap_design", "unit_columns"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -127,17 +127,17 @@ class AllocationResult:
         cols = {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
                 "element": [p.element for p in params], "role": list(pr.costs.role),
                 "unit": [p.interface_unit for p in params], "nominal_mm": nominal}
-        cols.update(_split("tol", d.t * f, is_mm))
+        cols.update(unit_columns("tol", d.t * f, is_mm))
         cols.update({"grade": list(self.grade) if is_std else list(blank),
                      "process": list(self.process) if is_std else list(blank)})
-        cols.update(_split("sigma", pr.sigma(d.t) * f, is_mm))
+        cols.update(unit_columns("sigma", pr.sigma(d.t) * f, is_mm))
         cols.update({"cost": np.asarray(cost, float), "variance_share_pct": 100.0 * self.variance_share(d),
                      "at_limit": list(d.at_limit)})
-        cols.update({**_split("t_min", pr.t_min * f, is_mm), **_split("t_max", pr.t_max * f, is_mm)})
+        cols.update({**unit_columns("t_min", pr.t_min * f, is_mm), **unit_columns("t_max", pr.t_max * f, is_mm)})
         cont = self.design.t if self.design.t is not None else nan
-        cols.update(_split("tol_continuous", cont * f, is_mm))
+        cols.update(unit_columns("tol_continuous", cont * f, is_mm))
         cols["cost_continuous"] = pr.param_costs(cont) if self.design.t is not None else nan
-        cols.update(_split("tol_rounded", rnd * f, is_mm))
+        cols.update(unit_columns("tol_rounded", rnd * f, is_mm))
         return pd.DataFrame(cols)
 
     def summary(self) -> dict:
@@ -239,7 +239,7 @@ class AllocationResult:
         return poses
 
 
-def _split(name: str, values, is_mm) -> dict:
+def unit_columns(name: str, values, is_mm) -> dict:
     """``{name_mm: values on length rows, name_deg: values on angle rows}`` (NaN on the other rows)."""
     v = np.asarray(values, float)
     return {f"{name}_mm": np.where(is_mm, v, np.nan), f"{name}_deg": np.where(is_mm, np.nan, v)}

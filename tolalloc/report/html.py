@@ -263,16 +263,19 @@ def write_html(text: str, folder) -> Path:
 def plot_calibrated_tolerances(table: pd.DataFrame):
     """Tolerance per parameter with and without calibration (log scale); returns the figure.
 
-    ``table``: :meth:`CalibratedAllocation.to_frame` (columns parameter, unit, tolerance, tolerance_no_calibration,
-    status).
+    ``table``: :meth:`CalibratedToleranceAllocation.to_frame` (columns parameter, unit, tol_mm / tol_deg,
+    tol_no_calibration_mm / _deg, status).
     """
     import matplotlib.pyplot as plt
+
+    def in_unit(name):  # each row's value from the column pair of its unit
+        return np.where(table["unit"] == "mm", table[f"{name}_mm"], table[f"{name}_deg"])
 
     y = np.arange(len(table))[::-1]
     fig, ax = plt.subplots(figsize=(8, 0.26 * len(table) + 1.4))
     held = table["status"].str.startswith("must be held").to_numpy()
-    ax.barh(y + 0.2, table["tolerance_no_calibration"], height=0.4, color="#9aa7b4", label="without calibration")
-    ax.barh(y - 0.2, table["tolerance"], height=0.4, color=np.where(held, "#c44e52", "#4c72b0"),
+    ax.barh(y + 0.2, in_unit("tol_no_calibration"), height=0.4, color="#9aa7b4", label="without calibration")
+    ax.barh(y - 0.2, in_unit("tol"), height=0.4, color=np.where(held, "#c44e52", "#4c72b0"),
             label="with the plan (red: must be held)")
     ax.set_xscale("log")
     ax.set_yticks(y, [f"{p} [{u}]" for p, u in zip(table["parameter"], table["unit"])], fontsize=8)

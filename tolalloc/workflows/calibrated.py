@@ -103,7 +103,8 @@ class CalibratedToleranceAllocation(JobResult):
     inputs : dict
     standard : CalibratedStandard or None
         The standard-grade design (ISO 286 grades, classes, steps) chosen over the same poses or box: the design to
-        build when it was found (``tolerance_std``, ``grade`` in the table); None when not asked for (``snap``).
+        build when it was found (``tol_mm`` / ``tol_deg``, ``grade`` in the table); None when not asked for
+        (``snap``).
     """
 
     result: object
@@ -223,7 +224,7 @@ class CalibratedToleranceAllocation(JobResult):
                  + (f" ({', '.join(b.range_limited)} above their coarsest standard value)" if b.range_limited else "")
                  + f", {b.step_premium_pct:+.2f} % the steps between standard values.")
         check = " The end-to-end Monte Carlo checks the standard design." if self.end_to_end is not None else ""
-        return (f"The design to build carries standard values (tolerance_std, grade: ISO 286 grades for link lengths), "
+        return (f"The design to build carries standard values (tol_mm / tol_deg, grade: ISO 286 grades for link lengths), "
                 f"rounded down from the continuous {b.continuous_label} design and improved by a local search under "
                 f"the exact post-calibration probability; it {where}. It costs {b.cost:.4f}, {b.premium_pct:+.2f} % "
                 f"over the continuous design ({b.continuous_cost:.4f}); rounding down alone would cost "
@@ -231,10 +232,10 @@ class CalibratedToleranceAllocation(JobResult):
                 "not a proven one." + check)
 
     def to_frame(self):
-        """The tolerance table: the core columns of :meth:`ToleranceAllocation.to_frame` (``tolerance`` the
-        continuous design, exact when accepted, else certified; ``tolerance_std``, ``grade`` the standard design to
-        build; cost, variance share of the post-calibration ``tr Sigma`` at the worst pose, process limits), then
-        ``status``, ``tolerance_no_calibration``, ``sigma_post_calibration``, ``sigma_random`` (see
+        """The tolerance table: the core columns of :meth:`ToleranceAllocation.to_frame` for the design to build
+        (``tol_mm`` / ``tol_deg``, ``grade``, cost, variance share of the post-calibration ``tr Sigma`` at the worst
+        pose, process limits; ``tol_continuous_*`` the continuous design, exact when accepted, else certified), then
+        ``status``, ``tol_no_calibration_*``, ``sigma_post_calibration_*``, ``sigma_random_*`` (see
         :mod:`tolalloc.workflows.calibrated_table`)."""
         from tolalloc.workflows.calibrated_table import calibrated_frame
 
@@ -259,10 +260,13 @@ class CalibratedToleranceAllocation(JobResult):
         from tolalloc.workflows.calibrated_table import status_groups
 
         b = self.built
-        note = (f"design: the continuous {self.result.design.label} calibration-aware design in tolerance (stages: "
-                f"{self.stages()})")
         if b is not None:
-            note += f"; standard grades ({b.design.label}) in tolerance_std / grade: the design to build"
+            note = (f"design to build: standard grades ({b.design.label}) in tol_mm / tol_deg and grade; the continuous "
+                    f"{self.result.design.label} calibration-aware design in tol_continuous_mm / _deg (stages: "
+                    f"{self.stages()})")
+        else:
+            note = (f"design to build: the continuous {self.result.design.label} calibration-aware design in tol_mm / "
+                    f"tol_deg (stages: {self.stages()})")
         groups = "; ".join(f"{status}: {', '.join(names)}" for status, names in status_groups(frame).items())
         return f"{note}. Status after the plan -- {groups}."
 
@@ -330,7 +334,7 @@ class CalibratedToleranceAllocation(JobResult):
             out.append(f"coverage of the standard design (post-calibration P): {c.n} fresh poses of the box, min P = "
                        f"{c.min_p:.5f}, {c.n_below} below {pr.prob:g}" + ("; none below p" if c.ok else ""))
         if self.built is not None:
-            out.append("the design to build is the standard one (tolerance_std, grade); the end-to-end Monte Carlo "
+            out.append("the design to build is the standard one (tol_mm / tol_deg, grade); the end-to-end Monte Carlo "
                        "below is its check")
             if res.exact is None:
                 out.append("solver='certified' covers the continuous design only: the standard grades are chosen "

@@ -1,12 +1,13 @@
 """The tolerance table of a calibration-aware allocation, in the columns of the allocation without calibration.
 
 :func:`calibrated_frame` gives one row per parameter with the core columns of
-:meth:`tolalloc.workflows.ToleranceAllocation.to_frame` (same names, same meaning: ``tolerance`` is the continuous
-design, exact when its stage was run and accepted, else certified; ``tolerance_std`` / ``grade`` the standard design
-to build), then the columns only a calibration has: ``status``, ``tolerance_no_calibration``,
-``sigma_post_calibration``, ``sigma_random`` (and the certified stage's tolerance when the exact one is shown, the
-standard design's post-calibration sigma, the repeatability grades). Every tolerance and sigma is in the row's
-``unit`` (mm or deg). The files go through the same writer as the plain table
+:meth:`tolalloc.workflows.ToleranceAllocation.to_frame` (same names, same meaning: the core describes the design
+to build -- the standard design when there is one, else the continuous calibration-aware design, exact when its
+stage was run and accepted, else certified -- every quantity in mm or deg in a ``<name>_mm`` / ``<name>_deg`` pair;
+``tol_continuous_*`` / ``cost_continuous`` the continuous design for comparison), then the columns only a
+calibration has, for the design to build: ``status``, ``tol_no_calibration_*`` (the design without calibration),
+``sigma_post_calibration_*``, ``sigma_random_*`` (and ``tol_certified_*`` when the exact stage's design is shown,
+the repeatability grades ``repeatability_grade_*``). The files go through the same writer as the plain table
 (:func:`tolalloc.report.tables.write_tables`).
 """
 
@@ -15,12 +16,14 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from tolalloc.allocate.result import unit_columns
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
 
 #: columns printed after the core ones (:data:`tolalloc.report.tables.TABLE_COLUMNS`)
-CALIBRATED_TEXT_COLUMNS = ["tolerance_no_calibration", "sigma_post_calibration", "status"]
+CALIBRATED_TEXT_COLUMNS = ["tol_no_calibration_mm", "tol_no_calibration_deg", "sigma_post_calibration_mm",
+                           "sigma_post_calibration_deg", "status"]
 
 
 def _baseline(res):
@@ -31,12 +34,11 @@ def _baseline(res):
     return b
 
 
-def _worst_pose(res) -> int:
-    """Index of the pose of the chosen design's problem with the lowest post-calibration ``P``."""
+def _worst_pose(pr, post) -> int:
+    """Index of the pose of ``pr`` with the lowest post-calibration ``P`` under ``post``."""
     from tolalloc.linear.probability import p_within_radius
 
-    pr = res.problem
-    return int(np.argmin(p_within_radius(res.post.tool_covariance(pr.q), pr.radius_mm)))
+    return int(np.argmin(p_within_radius(post.tool_covariance(pr.q), pr.radius_mm)))
 
 
 def calibrated_frame(job) -> pd.DataFrame:
@@ -52,44 +54,41 @@ def calibrated_frame(job) -> pd.DataFrame:
     params = pr.model.params
     K = len(params)
     f = np.array([p.to_interface for p in params])
+    is_mm = np.array([p.interface_unit == "mm" for p in params])
     nan = np.full(K, np.nan)
     b, std = job.built, job.standard
-    grade = list(b.grade) if b is not None else [""] * K
+    build, build_post = (b.design, b.post) if b is not None and b.post is not None else (d, post)
     rounded = std.rounded if std is not None else None
     base = _baseline(res)
-    frame = pd.DataFrame({
-        "parameter": [p.name for p in params],
-        "kind": [p.kind for p in params],
-        "element": [p.element for p in params],
-        "unit": [p.interface_unit for p in params],
-        "role": list(pr.costs.role),
-        "tolerance": d.t * f,
-        "sigma": pr.sigma(d.t) * f,
-        "tolerance_std": b.design.t * f if b is not None else nan,
-        "it_grade": [g if g.startswith("IT") else "" for g in grade],
-        "grade": grade,
-        "process": list(b.process) if b is not None else [""] * K,
-        "cost_std": b.param_cost if b is not None else nan,
-        "tolerance_rounded": rounded.t * f if rounded is not None and rounded.t is not None else nan,
-        "cost": pr.param_costs(d.t),
-        "variance_share": variance_share(pr.J[_worst_pose(res), :3, :], post.cov_total),
-        "at_limit": list(d.at_limit),
-        "t_min": pr.t_min * f,
-        "t_max": pr.t_max * f,
-        "status": parameter_status(d, post),
-    })
+    lengths = {lk.name: lk.length_mm for lk in pr.model.robot.links}
+    cols = {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
+            "element": [p.element for p in params], "role": list(pr.costs.role),
+            "unit": [p.interface_unit for p in params],
+            "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
+                           for p in params]}
+    cols.update(unit_columns("tol", build.t * f, is_mm))
+    cols.update({"grade": list(b.grade) if b is not None else [""] * K,
+                 "process": list(b.process) if b is not None else [""] * K})
+    cols.update(unit_columns("sigma", pr.sigma(build.t) * f, is_mm))
+    share = variance_share(pr.J[_worst_pose(pr, build_post), :3, :], build_post.cov_total)
+    cols.update({"cost": b.param_cost if b is not None else pr.param_costs(d.t), "variance_share_pct": 100.0 * share,
+                 "at_limit": list(build.at_limit)})
+    cols.update({**unit_columns("t_min", pr.t_min * f, is_mm), **unit_columns("t_max", pr.t_max * f, is_mm)})
+    cols.update(unit_columns("tol_continuous", d.t * f, is_mm))
+    cols["cost_continuous"] = pr.param_costs(d.t)
+    rnd = rounded.t if rounded is not None and rounded.t is not None else nan
+    cols.update(unit_columns("tol_rounded", rnd * f, is_mm))
+    cols["status"] = parameter_status(build, build_post)
     if res.exact_accepted:
-        frame["tolerance_certified"] = res.certified.design.t * f
-    frame["tolerance_no_calibration"] = base.t * f if base is not None else nan
-    frame["sigma_post_calibration"] = post.sigma_post * f
-    frame["sigma_random"] = np.sqrt(post.random_var) * f
-    if b is not None:
-        frame["sigma_post_calibration_std"] = b.post.sigma_post * f
+        cols.update(unit_columns("tol_certified", res.certified.design.t * f, is_mm))
+    cols.update(unit_columns("tol_no_calibration", (base.t if base is not None else nan) * f, is_mm))
+    cols.update(unit_columns("sigma_post_calibration", build_post.sigma_post * f, is_mm))
+    cols.update(unit_columns("sigma_random", np.sqrt(build_post.random_var) * f, is_mm))
     cert = res.certified.to_frame()
-    for col in ("repeatability_grade", "repeatability_grade_cost"):
-        if col in cert:
-            frame[col] = cert[col].to_numpy()
-    return frame
+    if "repeatability_grade" in cert:
+        cols.update(unit_columns("repeatability_grade", cert["repeatability_grade"].to_numpy(), is_mm))
+        cols["repeatability_grade_cost"] = cert["repeatability_grade_cost"].to_numpy()
+    return pd.DataFrame(cols)
 
 
 def status_groups(frame: pd.DataFrame, names=None) -> dict:

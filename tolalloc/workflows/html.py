@@ -329,13 +329,20 @@ def _tolerance_table(job, s: dict) -> dict:
 
 # ---------------------------------------------------------------------------------------------- calibrated allocation
 CALIBRATED_COLUMNS = [Column("parameter", "parameter", "text"), Column("unit", "unit", "text"),
-                      Column("tolerance", "tolerance ±", "pm"),
-                      Column("tolerance_no_calibration", "without calibration ±", "pm"),
-                      Column("sigma_manufactured", "σ manufactured", "g4"),
-                      Column("sigma_post_calibration", "σ after calibration", "g4"),
-                      Column("sigma_random", "σ random", "g4"), Column("status", "status", "text", badge=True),
-                      Column("cost", "cost", "f3"), Column("repeatability_grade", "repeatability grade ±", "pm"),
-                      Column("repeatability_grade_cost", "grade cost", "f3")]
+                      Column("tol_mm", "tolerance ± [mm]", "pm"), Column("tol_deg", "tolerance ± [deg]", "pm"),
+                      Column("grade", "grade", "text"), Column("process", "process", "text", optional=True),
+                      Column("tol_no_calibration_mm", "without calibration ± [mm]", "pm"),
+                      Column("tol_no_calibration_deg", "without calibration ± [deg]", "pm"),
+                      Column("sigma_mm", "σ manufactured [mm]", "g4"), Column("sigma_deg", "σ manufactured [deg]", "g4"),
+                      Column("sigma_post_calibration_mm", "σ after calibration [mm]", "g4"),
+                      Column("sigma_post_calibration_deg", "σ after calibration [deg]", "g4"),
+                      Column("sigma_random_mm", "σ random [mm]", "g4"), Column("sigma_random_deg", "σ random [deg]", "g4"),
+                      Column("status", "status", "text", badge=True), Column("cost", "cost", "f3"),
+                      Column("tol_continuous_mm", "continuous optimum ± [mm]", "pm", optional=True),
+                      Column("tol_continuous_deg", "continuous optimum ± [deg]", "pm", optional=True),
+                      Column("repeatability_grade_mm", "repeatability grade ± [mm]", "pm", optional=True),
+                      Column("repeatability_grade_deg", "repeatability grade ± [deg]", "pm", optional=True),
+                      Column("repeatability_grade_cost", "grade cost", "f3", optional=True)]
 
 
 def calibrated_context(job) -> dict:
@@ -372,17 +379,12 @@ def calibrated_context(job) -> dict:
                       "note": f"{job.n_robots} simulated calibrations"})
     table = job.to_frame()
     classes = ["hl" if st.startswith("must be held") else "" for st in table["status"]]
-    columns = CALIBRATED_COLUMNS
-    if built is not None:  # the standard design to build leads; the continuous optimum follows for comparison
-        rest = [Column(c.key, f"{c.label} (continuous)", c.how) if c.key == "cost" else c for c in columns[3:]]
-        columns = [*columns[:2], Column("tolerance_std", "tolerance to build ± (standard)", "pm"),
-                   Column("grade", "grade", "text"), *([Column("process", "process", "text")] if "process" in table
-                                                       else []),
-                   Column("cost_std", "cost to build", "f3"), Column("tolerance", "continuous optimum ±", "pm"), *rest]
+    columns = [c for c in CALIBRATED_COLUMNS if built is not None or not c.key.startswith("tol_continuous")]
     tol = html_table(table, columns, table_id="tolerance-table", row_classes=classes,
-                     caption=f"Tolerances of {job.robot.name} after the calibration plan",
-                     note="Units: the row's unit (mm or deg) for tolerances and σ. Highlighted: must be held in "
-                          "manufacturing.")
+                     caption=f"Tolerances of {job.robot.name} after the calibration plan: the design to build",
+                     note="Tolerances, σ and status are those of the design to build"
+                          + (" (standard grades); the continuous optimum for comparison." if built is not None else ".")
+                          + " Highlighted: must be held in manufacturing.")
     cli, python, rnotes = allocation_command(job)
     return {"kicker": "calibration-aware tolerance allocation", "title": "Tolerance allocation report",
             "subtitle": f"{job.robot.name}: {requirement}",
