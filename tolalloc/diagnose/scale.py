@@ -37,6 +37,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from tolalloc.engine import resolve_engine
+from tolalloc.progress import show_progress
 from tolalloc.diagnose.losses import LOSSES, m_rho, m_weight, norm_scale
 from tolalloc.robot.kinematics import poe_prefix_rp
 
@@ -56,8 +57,9 @@ _PROGRESS = contextvars.ContextVar("tolalloc_diagnose_progress", default=False)
 
 @contextlib.contextmanager
 def progress_scope(enabled: bool | None):
-    """Turn progress bars on (True), off (False) or on when stderr is a terminal (None) inside the block."""
-    token = _PROGRESS.set(bool(sys.stderr.isatty()) if enabled is None else bool(enabled))
+    """Turn progress bars on (True), off (False) or on when a person is watching (None: a terminal or a notebook,
+    :func:`tolalloc.progress.show_progress`) inside the block."""
+    token = _PROGRESS.set(show_progress(enabled))
     try:
         yield
     finally:

@@ -32,6 +32,7 @@ from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
 from tolalloc.engine import resolve_engine
+from tolalloc.progress import show_progress
 from tolalloc.errormodel.sampling import sample_values
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
@@ -274,7 +275,7 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
     spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
     tasks = _tasks(n, scheduler, chunk_size)
-    show = progress if progress is not None else (n >= PROGRESS_MIN_N and sys.stderr.isatty())
+    show = progress if progress is not None else (n >= PROGRESS_MIN_N and show_progress(None))
     bar = None
     if show:
         from tqdm import tqdm

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
+from tolalloc.progress import StageBar, show_progress
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
 from tolalloc.workflows.calibrated import calibrated_allocation
@@ -34,7 +35,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                         angle_step_deg: float | None = None, calibration=None, verify: bool = True,
                         n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool | None = None,
                         correction_rounds: int | None = None, coverage_n: int = 100_000, scheduler=None,
-                        tool: str | None = None, trust_units: bool = False):
+                        tool: str | None = None, trust_units: bool = False, progress: bool | None = None):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
 
     Parameters
@@ -44,10 +45,9 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     radius_mm, prob : float
         Required radius r of the tool-position error [mm] and probability p, in (0, 1).
     region : str, path or array, optional
-        Where the requirement holds: a pose set, ``"limits"``, a box of the robot file, a trajectory CSV (q1..qN
-        per row, deg / mm) or an array / DataFrame of poses (deg / mm). Boxes are searched for their worst pose
-        (cutting planes) and checked on a fresh sample of ``coverage_n`` poses. Default: the robot's ``working``
-        box if it has one, else the pose set ``poses``.
+        Where the requirement holds: a pose set, ``"limits"``, a box of the robot file, a trajectory CSV or an array /
+        DataFrame of poses (deg / mm). Boxes are searched for their worst pose (cutting planes) and checked on a
+        fresh sample of ``coverage_n`` poses. Default: the robot's ``working`` box, else the pose set ``poses``.
     poses : str, optional
         Pose set used when no region applies (default ``working`` if defined, else ``nominal``).
     costs : str or path, optional
@@ -64,22 +64,21 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     snap : bool
         Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
     calibration : str or path, optional
-        A calibration plan CSV (from :func:`plan_calibration`): allocate for the accuracy after calibration (what
-        runs and the options refused: :mod:`tolalloc.workflows.calibrated`); returns a
-        :class:`CalibratedToleranceAllocation`.
+        A calibration plan CSV (:func:`plan_calibration`): allocate for the accuracy after calibration (what runs,
+        options refused: :mod:`tolalloc.workflows.calibrated`); returns a :class:`CalibratedToleranceAllocation`.
     verify, correction : bool
         Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` (default on)
         re-solves with raised targets where a pose is not demonstrated (at most ``correction_rounds``, default 2).
     estimator : {"auto", "plain", "paired", "importance"}
-        How ``P(|dP| < r)`` is estimated in the verification: ``paired`` = the exact linear P plus the mean
-        difference of the nonlinear and linear indicators on shared draws (a control variate); ``importance`` =
-        that difference by importance sampling toward the ball's boundary (rare-event requirements); ``auto`` =
-        paired where the parameters are Gaussian, plain Monte Carlo otherwise, importance sampling where the
-        tail is too thin for ``n_mc``.
+        How the verification estimates ``P(|dP| < r)``: ``paired`` = exact linear P + mean difference of nonlinear and
+        linear indicators on shared draws; ``importance`` = that difference by importance sampling (rare events);
+        ``auto`` = paired for Gaussian parameters, else plain, importance where the tail is too thin for ``n_mc``.
     scheduler : str or dask.distributed.Client, optional
         Where the Monte Carlo runs (threads by default); never changes the numbers.
     tool, trust_units
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
+    progress : bool, optional
+        The job's stage on stderr (region search, coverage, verification ...); default: in a terminal or notebook.
 
     Returns
     -------
@@ -93,7 +92,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     ('demonstrated', 44.39)
     """
     seed, n_mc, coverage_n = _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver,
-                                    estimator, n_mc, verify, seed, correction_rounds, coverage_n)
+                                    estimator, n_mc, verify, seed, correction_rounds, coverage_n, progress)
     options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
                    exclude=exclude)
     costs, calibration, scheduler, correction, correction_rounds = _check_more(
@@ -111,26 +110,29 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                             calibration=calibration)
     run = dict(snap=snap, angle_step_deg=angle_step_deg, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
                coverage_n=coverage_n, inputs_record=inputs_record)
-    if calibration is not None:
-        return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, exact=solver == "exact",
-                                     **run, **kw)
-    return _allocate(model, label, box, q, kw, solver=solver, correction=correction,
-                     correction_rounds=correction_rounds, scheduler=scheduler, **run)
+    with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
+        if calibration is not None:
+            bar.stage("calibration-aware allocation")
+            return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, exact=solver == "exact",
+                                         **run, **kw)
+        return _allocate(model, label, box, q, kw, solver=solver, correction=correction,
+                         correction_rounds=correction_rounds, scheduler=scheduler, bar=bar, **run)
 
 
 def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,
-              correction_rounds, coverage_n, scheduler, inputs_record) -> ToleranceAllocation:
+              correction_rounds, coverage_n, scheduler, inputs_record, bar) -> ToleranceAllocation:
     from tolalloc.allocate import allocate, build_problem
 
     reg_info = None
     if box is not None and _box_is_one_pose(model, box, kw, seed):
         box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]
     if box is not None:
-        reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
+        reg_info = _region_search(model, box, kw, solver=solver, snap=snap, angle_step_deg=angle_step_deg, bar=bar)
         q = reg_info.active_q
     if reg_info is not None and snap and reg_info.result.status == "optimal":
         res = reg_info.result  # the standard design's loop solved it on the final active set
     else:
+        bar.stage(f"{solver} design" + (" and standard grades" if snap else ""))
         res = allocate(build_problem(model, q, **kw), solver=solver, snap=snap, angle_step_deg=angle_step_deg)
     if box is not None and res.status == "infeasible":
         return ToleranceAllocation(res, label, box, reg_info, None, None, None, inputs_record,
@@ -138,13 +140,13 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
     cov, ver, corr = None, None, None
     if res.status == "optimal":
         res, cov, ver, corr = _verify_and_correct(model, kw, res, box, verify=verify, n_mc=n_mc, seed=seed,
-                                                  estimator=estimator, correction=correction, rounds=correction_rounds, solver=solver,
-                                                  snap=snap, angle_step_deg=angle_step_deg, coverage_n=coverage_n,
-                                                  scheduler=scheduler)
+                                                  estimator=estimator, correction=correction, rounds=correction_rounds,
+                                                  solver=solver, snap=snap, angle_step_deg=angle_step_deg,
+                                                  coverage_n=coverage_n, scheduler=scheduler, bar=bar)
     return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=built_design(res, snap))
 
 
-def _region_search(model, box, kw, *, solver, snap, angle_step_deg):
+def _region_search(model, box, kw, *, solver, snap, angle_step_deg, bar):
     """Cutting planes over the box for the continuous design, continued for the standard design (``snap``)."""
     from tolalloc.allocate.region import allocate_region
     from tolalloc.allocate.region_standard import allocate_region_standard
@@ -153,9 +155,11 @@ def _region_search(model, box, kw, *, solver, snap, angle_step_deg):
     q0 = rob.poses("working") if "working" in rob.pose_sets else None
     if q0 is not None and not np.all((q0 >= box.q_min - 1e-12) & (q0 <= box.q_max + 1e-12)):
         q0 = None
+    bar.stage(f"region search ({solver} design)")
     reg_info = allocate_region(model, box, q0, solver=solver, **kw)
     if not snap or reg_info.result.status != "optimal":
         return reg_info
+    bar.stage("region search (standard grades)")
     return allocate_region_standard(model, box, solver=solver, angle_step_deg=angle_step_deg, continuous=reg_info,
                                     **kw)
 
@@ -178,7 +182,7 @@ def _box_is_one_pose(model, box, kw, seed) -> bool:
 
 
 def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, correction, rounds, solver, snap,
-                        angle_step_deg, coverage_n, scheduler):
+                        angle_step_deg, coverage_n, scheduler, bar):
     """Coverage of a box region, Monte Carlo verification and the correction loop.
 
     Returns ``(result, coverage, verification, correction)``: the final (corrected) allocation and its checks.
@@ -190,6 +194,7 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     standard = design is not res.design
     cov, vproblem, vdesign = None, res.problem, design
     if box is not None:
+        bar.stage(f"coverage ({coverage_n:,} fresh poses)")
         cov = coverage(res.problem, design.t, box, n=coverage_n, seed=seed + 12345)
         vproblem = build_problem(model, np.vstack([res.problem.q, cov.worst_q]), **kw)
         vdesign = make_design(vproblem, design.solver, design.t, fallback_from=design.fallback_from)
@@ -197,11 +202,13 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
         return res, cov, None, None
     from tolalloc.verify.designs import verify_design
 
+    bar.stage(f"Monte Carlo verification ({n_mc:,} samples per pose)")
     ver = verify_design(vproblem, vdesign, n_mc=n_mc, seed=seed, scheduler=scheduler, estimator=estimator)
     if ver.verdict == "demonstrated" or not correction:
         return res, cov, ver, None
     from tolalloc.verify.correct import correct_design
 
+    bar.stage("correction (re-solve and verify)")
     corr = correct_design(model, vproblem.q, solver=solver, n_mc=n_mc, seed=seed, max_rounds=rounds, result=res,
                           verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
                           keep_samples=4000, estimator=estimator, standard=standard, **kw)
@@ -278,9 +285,10 @@ def _check_more(snap, correction, correction_rounds, poses, costs, calibration, 
 
 
 def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n) -> tuple:
+           seed, correction_rounds, coverage_n, progress) -> tuple:
     """Refuse bad numbers by their argument names before any computation; returns ``(seed, n_mc, coverage_n)`` as
     ints (``n_mc`` as given when there is no verification)."""
+    inputs.check_optional_flag(progress, "progress")
     inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
     inputs.check_probability(prob, "prob")
     if angle_radius_deg is not None:
