@@ -35,7 +35,7 @@ res = tolalloc.allocate_tolerances(
     n_mc=20_000,           # nonlinear Monte Carlo samples per pose for the verification
 )
 print(res)                 # robot, requirement, cost, verdict
-table = res.to_frame()     # tolerance per parameter (mm or deg), ISO 286 grade, cost, variance share
+table = res.to_frame()     # the design to build: tol_mm / tol_deg per parameter, ISO 286 grade, cost, variance share
 res.save("reports/python_quickstart")   # the same files as `tolalloc allocate ... --out DIR`
 '''
 
