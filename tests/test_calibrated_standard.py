@@ -294,7 +294,7 @@ def test_processes_round_to_one_process_per_part(tc):
 def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
     from tolalloc.report.html import pretty
     from tolalloc.workflows import allocate_tolerances
-    from tolalloc.workflows.html import calibrated_context
+    from tolalloc.workflows.html_calibrated import calibrated_context
 
     robot, plan = tc
     path = tmp_path / "plan.csv"
