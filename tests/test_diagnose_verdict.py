@@ -134,8 +134,11 @@ def test_safe_model_is_the_last_that_held():
     assert safe_model(nominal, geometric, final, st, inconclusive=True) == "geometric"  # effects not claimed
     st["final"] = error_stats(1.2 * e)  # the final model does not transfer to the test file
     assert safe_model(nominal, geometric, final, st, inconclusive=False) == "geometric"
-    st["geometric"] = error_stats(1.1 * e)
-    assert safe_model(nominal, geometric, final, st, inconclusive=False) == "nominal"
+    st["geometric"] = error_stats(1.1 * e)  # geometry alone does not hold on the test file ...
+    assert safe_model(nominal, geometric, final, st, inconclusive=False) == "nominal"  # ... and the final does not
+    st["final"] = error_stats(0.3 * e)
+    assert safe_model(nominal, geometric, final, st, inconclusive=False) == "geometric+a"  # judged against nominal
+    assert safe_model(nominal, geometric, final, st, inconclusive=True) == "nominal"
     assert safe_model(nominal, geometric, final, None, inconclusive=False) == "geometric+a"  # CV only
 
 

@@ -405,3 +405,21 @@ def test_screenshot_of_the_report(allocation, tmp_path):
     assert len(colours) > 50
     band = rgb[20:120, 200:1000].mean(axis=(0, 1))  # the header band is the accent blue (#1f4e79)
     assert band[2] > band[0] + 0.15
+
+
+def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagnosis, tmp_path):
+    """A test file every model misses (shifted by 30 mm): the banner says INCONCLUSIVE, gives the verdict's reasons
+    and the model that is safe to use, as the text and the JSON do."""
+    job, out, _ = diagnosis
+    folder = out.parent
+    te = pd.read_csv(folder / "test.csv")
+    te["x_mm"] += 30.0
+    te.to_csv(tmp_path / "shifted.csv", index=False)
+    shifted = diagnose_measurements("tool_changer", folder / "train.csv", tmp_path / "shifted.csv", folds=3, seed=1)
+    v = shifted.diagnosis.verdict
+    assert v.verdict == "inconclusive"
+    shifted.save(report=tmp_path / "rep")
+    page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
+    banner = page.text("verdict")
+    assert banner.startswith("INCONCLUSIVE") and "NO EFFECT FOUND" not in banner
+    assert "every model misses the test file" in banner.lower() and "Safe to use: " in banner

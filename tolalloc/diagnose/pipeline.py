@@ -206,7 +206,7 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                                   alpha=alpha, min_gain=min_gain, untestable=untestable)
     verdict = verdict_of(ctx, sel["stages"], final, fallback, sel["comparisons"], inconc, sel["messages"],
                          safe_model(nominal, geometric, final, tstats, bool(inconc)), sel["suggestions"])
-    settings = {"robust_loss": loss,
+    settings = {"robust_loss": loss, "cv": ctx.cv, "folds_per_scheme": len(ctx.folds),
                 "target_offset_prior_mm": None if t_prior is None else {"mean": t_prior[0].tolist(),
                                                                         "sd": t_prior[1].tolist()},
                 "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist()}

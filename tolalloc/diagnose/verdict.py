@@ -16,11 +16,12 @@
   at least ``min_gain``).
 * otherwise ``effect`` (one or more effects selected) or ``none``.
 
-The model that is safe to use (:func:`safe_model`) is the last of nominal -> geometric -> final that held
-(no worse than the one before it on cross-validation, :data:`~tolalloc.diagnose.guards.FALLBACK_MARGIN`, and --
-with a test file -- no worse than nominal on it by the rules above); an ``inconclusive`` verdict stops at the
-geometric model, since the effects are not claimed; ``none`` when even the nominal model does not transfer to the
-test file (its test RMS above :data:`UNSTABLE_RATIO` x its out-of-fold RMS).
+The model that is safe to use (:func:`safe_model`) is the last of nominal -> geometric -> final that held (no
+worse on cross-validation than the last model before it that held, :data:`~tolalloc.diagnose.guards.FALLBACK_MARGIN`,
+and -- with a test file -- no worse than nominal on it by the rules above): a geometric model that does not hold is
+skipped, and the final model is then judged against the nominal one; an ``inconclusive`` verdict stops before the
+final model, since the effects are not claimed; ``none`` when even the nominal model does not transfer to the test
+file (its test RMS above :data:`UNSTABLE_RATIO` x its out-of-fold RMS).
 """
 
 from __future__ import annotations
@@ -324,13 +325,10 @@ def safe_model(nominal, geometric, final, test_stats: dict | None, inconclusive:
     probe offset the training poses could not pin down, used at other flange directions)."""
     if test_stats is not None and test_stats["nominal"]["rms_mm"] > UNSTABLE_RATIO * rms(nominal.oof_mm):
         return "none"
-    safe = nominal.label
-    if not _held(geometric, nominal, test_stats, "geometric"):
-        return safe
-    safe = geometric.label
+    base = geometric if _held(geometric, nominal, test_stats, "geometric") else nominal
     if inconclusive or final is geometric or not final.effects:
-        return safe
-    return final.label if _held(final, geometric, test_stats, "final") else safe
+        return base.label
+    return final.label if _held(final, base, test_stats, "final") else base.label
 
 
 def scored_test_stats(nominal, geometric, final) -> dict | None:

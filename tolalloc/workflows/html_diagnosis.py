@@ -32,18 +32,25 @@ GAP_COLUMNS = [Column("part", "part", "text"), Column("ms_mm2", "mean square [mm
 
 
 def _verdict(d, block, which: str) -> dict:
-    effect = d.effect + (f" (sequence: {' → '.join(d.effects)})" if len(d.effects) > 1 else "")
+    """The banner: the verdict word (``effect``, ``none``, ``ambiguous``, ``inconclusive``) with the effects it names,
+    the held-out figures, the reasons and the model that is safe to use -- as the verdict states them."""
+    v = d.verdict
     rms = dict(zip(block["model"], block["rms_mm"]))
     shrink = float(block["rms_shrink_pct"].iloc[2])
     where = "on the held-out test file" if which == "test" else "out-of-fold on the training file (cross-validation)"
     lead = (f"Held-out RMS error {where}: nominal {rms['nominal']:.4f} mm → geometric calibration "
             f"{rms['geometric']:.4f} mm → final model {rms['final']:.4f} mm ({shrink:.1f} % below nominal).")
-    lines = []
+    head = v.headline().split(" -- ", 1)
+    lines = [f"Verdict: {head[-1]}."] + [f"{r[0].upper()}{r[1:]}." for r in v.reasons]
+    lines.append(f"Safe to use: the {v.safe_model} model." if v.safe_model != "none"
+                 else "Safe to use: no fitted model transfers to the test poses.")
     if d.fallback is not None:
         lines.append(f"The fitted model lost on cross-validation; the final model falls back to {d.fallback}.")
     lines.append(f"{len(d.guards)} guard(s) fired: see 'Guards and findings'." if d.guards else "No guard fired.")
-    word = "NO EFFECT FOUND" if d.effect == "none" else f"EFFECT: {effect}"
-    return {"cls": "warn" if d.guards or d.fallback is not None else "ok", "word": word, "lead": lead, "lines": lines}
+    word = {"effect": f"EFFECT: {' + '.join(v.candidates)}", "none": "NO EFFECT FOUND",
+            "ambiguous": "AMBIGUOUS: " + head[-1].split(";")[0], "inconclusive": "INCONCLUSIVE"}[v.verdict]
+    cls = "ok" if v.verdict in ("effect", "none") and not d.guards and d.fallback is None else "warn"
+    return {"cls": cls, "word": word, "lead": lead, "lines": lines}
 
 
 def _cards(d, block, which: str) -> list:
@@ -152,7 +159,8 @@ def diagnosis_context(job, folder=None) -> dict:
             "subsample": subsample, **_test_part(d),
             "cv_table": html_table(d.before_after("cv"), BEFORE_AFTER_COLUMNS, table_id="cv-table",
                                    caption=f"Cross-validation on the training file ({d.train.n_poses} poses, "
-                                           f"{job.folds} folds, out-of-fold): error of the 3-D position"),
+                                           f"{d.settings.get('folds_per_scheme', job.folds)} folds per scheme, "
+                                           "out-of-fold): error of the 3-D position"),
             "gap": _gap(job.gap), "guards": [pretty(g) for g in d.guards], "findings": [pretty(f) for f in d.findings],
             "identifiability": [("rank", f"{ident.rank} (9 registration / offset + {len(ident.identifiable)} geometric)"),
                                 ("condition number", f"{ident.condition_number:.3g}"),
