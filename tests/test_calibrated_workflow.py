@@ -143,5 +143,5 @@ def test_unidentifiable_parameters_are_split_by_what_the_allocation_did(certifie
     assert {status[n] for n in held} == {"must be held"} and {status[n] for n in loose} == {"loose (at t_max)"}
     text = certified.text()
     assert f"allocated tight, must be held in manufacturing: {', '.join(held)}" in text
-    assert f"loose at the process limit t_max, which suffices: {', '.join(loose)}" in text
+    assert f"loose (at the process limit t_max or the coarsest standard grade), which suffices: {', '.join(loose)}" in text
     assert "(must be held in manufacturing):" not in text

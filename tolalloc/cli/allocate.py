@@ -71,7 +71,8 @@ def register(sub) -> None:
                    help="allocate for the accuracy after this calibration plan (from `tolalloc calplan`): the "
                    "certified calibration-aware design (eigenvalue rule on the post-calibration covariance), then "
                    "the exact stage on the post-calibration probability (skipped with --solver certified), then "
-                   "standard grades; per parameter 'calibrated away', 'loose (at t_max)' or 'must be held'. Position "
+                   "standard grades; per parameter 'calibrated away', 'loose (at t_max)', 'loose (coarsest grade)' or 'must "
+                   "be held'. Position "
                    "requirement only; refuses --correction-rounds, --scheduler and --estimator importance")
     p.add_argument("--out", metavar="DIR", help="write tables, summary.json and figures to DIR")
     p.add_argument("--report", metavar="DIR", help="write the same files and a self-contained report.html to DIR")

@@ -353,7 +353,8 @@ class CalibratedToleranceAllocation(JobResult):
         if held:
             out.append(f"  allocated tight, must be held in manufacturing: {', '.join(held)}")
         if loose:
-            out.append(f"  loose at the process limit t_max, which suffices: {', '.join(loose)}")
+            out.append(f"  loose (at the process limit t_max or the coarsest standard grade), which suffices: "
+                       f"{', '.join(loose)}")
         if other:
             named = zip(frame["parameter"], frame["status"])
             out.append(f"  other: {', '.join(f'{n} ({s})' for n, s in named if n in other)}")

@@ -41,6 +41,17 @@ def _worst_pose(pr, post) -> int:
     return int(np.argmin(p_within_radius(post.tool_covariance(pr.q), pr.radius_mm)))
 
 
+def _coarsest_grade(status: list, params, b, std) -> list:
+    """``loose (coarsest grade)`` for a part of the standard design ``b`` left at the coarsest standard value its
+    catalogue offers (its continuous tolerance lies above it): the grade range, not manufacturing, holds it there."""
+    if b is None or std is None or std.rounded is None or std.rounded.t is None:
+        return status
+    capped = set(getattr(std, "range_limited", ()))
+    return ["loose (coarsest grade)" if st == "must be held" and p.name in capped
+            and b.design.t[k] >= std.rounded.t[k] * (1 - 1e-9) else st
+            for k, (st, p) in enumerate(zip(status, params))]
+
+
 def calibrated_frame(job) -> pd.DataFrame:
     """Tolerance table of a :class:`~tolalloc.workflows.CalibratedToleranceAllocation` (module docstring)."""
     from tolalloc.allocate.calibrated import parameter_status
@@ -78,7 +89,7 @@ def calibrated_frame(job) -> pd.DataFrame:
     cols["cost_continuous"] = pr.param_costs(d.t)
     rnd = rounded.t if rounded is not None and rounded.t is not None else nan
     cols.update(unit_columns("tol_rounded", rnd * f, is_mm))
-    cols["status"] = parameter_status(build, build_post)
+    cols["status"] = _coarsest_grade(parameter_status(build, build_post), params, b, std)
     if res.exact_accepted:
         cols.update(unit_columns("tol_certified", res.certified.design.t * f, is_mm))
     cols.update(unit_columns("tol_no_calibration", (base.t if base is not None else nan) * f, is_mm))
@@ -102,10 +113,10 @@ def status_groups(frame: pd.DataFrame, names=None) -> dict:
 
 def unidentifiable_groups(frame: pd.DataFrame, names) -> tuple[list, list, list]:
     """The parameters the plan cannot identify, split by what the allocation did with them:
-    ``(held, loose, other)`` -- allocated tight (must be held), left at the process's loosest tolerance (loose
-    (at t_max)), and any other status."""
+    ``(held, loose, other)`` -- allocated tight (must be held), left loose (at the process's loosest tolerance,
+    ``loose (at t_max)``, or at the coarsest standard grade, ``loose (coarsest grade)``), and any other status."""
     groups = status_groups(frame, names)
     held = [n for s, ns in groups.items() if s.startswith("must be held") for n in ns]
-    loose = groups.get("loose (at t_max)", [])
-    other = [n for s, ns in groups.items() if not s.startswith("must be held") and s != "loose (at t_max)" for n in ns]
+    loose = [n for s, ns in groups.items() if s.startswith("loose") for n in ns]
+    other = [n for s, ns in groups.items() if not s.startswith(("must be held", "loose")) for n in ns]
     return held, loose, other
