@@ -309,8 +309,8 @@ def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
     assert frame.loc[frame.parameter == "dl1", "grade"].item().startswith("IT")
     s = json.loads((out / "summary.json").read_text())
     assert s["built"]["standard"] and s["cost_standard"] == pytest.approx(s["standard"]["cost"])
-    assert s["cost_continuous"] == s["cost"] and s["cost_rounded"] >= s["cost_standard"]
-    assert s["standard_premium_pct"] == pytest.approx(100 * (s["cost_standard"] / s["cost"] - 1))
+    assert s["cost"] == s["cost_standard"] == s["built"]["cost"] and s["cost_rounded"] >= s["cost_standard"]
+    assert s["standard_premium_pct"] == pytest.approx(100 * (s["cost_standard"] / s["cost_continuous"] - 1))
     job = allocate_tolerances("tool_changer", calibration=str(path), region="nominal", verify=False)
     assert job.cost == pytest.approx(s["cost_standard"]) and job.built is job.standard
     note = job.grade_note()

@@ -129,6 +129,8 @@ def test_save_writes_the_plain_file_names(certified, tmp_path):
     md = (tmp_path / "res" / "tolerances.md").read_text().splitlines()[0]
     assert md.startswith("design to build: the continuous calibrated-lmi calibration-aware design in tol_mm / tol_deg")
     assert "Status after the plan -- " in md and "calibrated away: " in md
+    legend = (tmp_path / "res" / "tolerances.md").read_text().rstrip().splitlines()[-1]
+    assert legend.startswith("Tolerances are symmetric ± half-widths of the design to build.") and "status:" in legend
     ver = pd.read_csv(tmp_path / "res" / "verification.csv")
     assert list(ver.columns) == list(certified.verification_frame().columns)
     s = json.loads((tmp_path / "res" / "summary.json").read_text())

@@ -262,13 +262,24 @@ class CalibratedToleranceAllocation(JobResult):
         b = self.built
         if b is not None:
             note = (f"design to build: standard grades ({b.design.label}) in tol_mm / tol_deg and grade; the continuous "
-                    f"{self.result.design.label} calibration-aware design in tol_continuous_mm / _deg (stages: "
-                    f"{self.stages()})")
+                    f"{self.result.design.label} calibration-aware design in tol_continuous_mm / _deg of tolerances.csv "
+                    f"(stages: {self.stages()})")
         else:
             note = (f"design to build: the continuous {self.result.design.label} calibration-aware design in tol_mm / "
                     f"tol_deg (stages: {self.stages()})")
         groups = "; ".join(f"{status}: {', '.join(names)}" for status, names in status_groups(frame).items())
         return f"{note}. Status after the plan -- {groups}."
+
+    def _table_legend(self) -> str:
+        """What the columns of the tolerance table hold (below the ``.md`` / ``.tex`` table)."""
+        return ("Tolerances are symmetric ± half-widths of the design to build. Columns ending in _mm hold the length "
+                "rows (mm), those ending in _deg the angle rows (deg); the other one of each pair is empty. nominal_mm: "
+                "the link's nominal length, the size its ISO 286 grade applies to. sigma: the manufactured standard "
+                f"deviation, tol / {self.problem.costs.z:.4g}. cost: relative cost units. variance_share_pct: share of "
+                "tr(Sigma) of the position error after calibration at the worst pose, in % (slightly negative where the "
+                "calibration leaves estimates correlated). status: calibrated away (the plan's calibration removes the "
+                "error), loose (at t_max: the process's loosest tolerance suffices; coarsest grade: the coarsest "
+                "standard grade suffices) or must be held (allocated tight; random: a part no calibration removes).")
 
     def summary(self) -> dict:
         """The content of ``summary.json``."""
@@ -288,6 +299,7 @@ class CalibratedToleranceAllocation(JobResult):
                  rounded_premium_pct=None if std is None else std.rounded_premium_pct)
         s["built"] = {"design": "standard" if b is not None else s["design"], "cost": self.cost if s["cost"] is not None
                       else None, "standard": b is not None}
+        s["cost"] = s["built"]["cost"]  # as in the plain allocation's summary: the cost of the design to build
         held, loose = [], []
         if self.result.design.ok and s["unidentifiable"]:
             held, loose, _ = unidentifiable_groups(self.to_frame(), s["unidentifiable"])
@@ -385,7 +397,7 @@ class CalibratedToleranceAllocation(JobResult):
         pr, frame = self.problem, self.to_frame()
         write_tables(frame, folder, caption=f"Tolerances of {self.robot.name}: P(|dP| < {pr.radius_mm:g} mm) >= "
                      f"{pr.prob:g} after the {self.plan.n_poses}-pose calibration plan, over {self.label}",
-                     note=self._table_note(frame))
+                     note=self._table_note(frame), legend=self._table_legend())
         write_json(self.summary(), folder / "summary.json")
         names = ["tolerances.csv", "tolerances.md", "tolerances.tex", "summary.json"]
         ver = self.verification_frame()
@@ -393,7 +405,7 @@ class CalibratedToleranceAllocation(JobResult):
             ver.to_csv(folder / "verification.csv", index=False, float_format="%.8g")
             names.append("verification.csv")
         if report:
-            from tolalloc.workflows.html import write_calibrated_report
+            from tolalloc.workflows.html_calibrated import write_calibrated_report
 
             write_calibrated_report(self, folder)
             names.append("report.html")

@@ -14,7 +14,7 @@ import pandas as pd
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
 from tolalloc.workflows.allocation_text import worst_p_text
 
-__all__ = ["write_allocation_report", "write_calibrated_report", "write_diagnosis_report", "allocation_context"]
+__all__ = ["write_allocation_report", "write_diagnosis_report", "allocation_context"]
 
 #: the words of the per-pose verdicts, as the verification defines them
 VERDICT_LEGEND = ("demonstrated: the whole 95 % interval of P̂ is at or above p; consistent: the interval reaches p "
@@ -24,13 +24,6 @@ VERDICT_LEGEND = ("demonstrated: the whole 95 % interval of P̂ is at or above p
 def write_allocation_report(job, folder) -> Path:
     """Write ``report.html`` of a :class:`ToleranceAllocation` into the existing directory ``folder``."""
     return write_html(render_report("allocation.html.j2", allocation_context(job, folder)), folder)
-
-
-def write_calibrated_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`CalibratedToleranceAllocation` into the existing directory ``folder``."""
-    from tolalloc.workflows.html_calibrated import calibrated_context
-
-    return write_html(render_report("calibrated.html.j2", calibrated_context(job)), folder)
 
 
 def write_diagnosis_report(job, folder) -> Path:

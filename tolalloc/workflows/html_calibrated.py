@@ -3,10 +3,17 @@ plan, end-to-end check and figures of a :class:`~tolalloc.workflows.CalibratedTo
 
 from __future__ import annotations
 
-from tolalloc.report.html import Column, figure_item, html_table, pretty
+from pathlib import Path
+
+from tolalloc.report.html import Column, figure_item, html_table, pretty, render_report, write_html
 from tolalloc.workflows.html import SECTIONS, _f4, _inputs_pairs, joint_columns, with_joints
 
-__all__ = ["calibrated_context", "CALIBRATED_COLUMNS"]
+__all__ = ["write_calibrated_report", "calibrated_context", "CALIBRATED_COLUMNS"]
+
+
+def write_calibrated_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`CalibratedToleranceAllocation` into the existing directory ``folder``."""
+    return write_html(render_report("calibrated.html.j2", calibrated_context(job)), folder)
 
 
 CALIBRATED_COLUMNS = [Column("parameter", "parameter", "text"), Column("unit", "unit", "text"),
