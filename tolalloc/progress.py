@@ -29,7 +29,7 @@ class StageBar:
             from tqdm import tqdm
 
             self._bar = tqdm(desc=job, unit="stage", file=sys.stderr, leave=False, dynamic_ncols=True,
-                             bar_format="{desc} (stage {n}, {elapsed} so far)")
+                             bar_format="{desc} ({elapsed} so far)")
 
     def stage(self, name: str) -> None:
         """Start stage ``name`` (the previous one is done)."""

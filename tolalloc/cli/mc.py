@@ -14,7 +14,7 @@ def register(sub) -> None:
         "mc", help="nonlinear Monte Carlo of the tool-pose error",
         description="Sample N robots with random errors (error screws, optional joint clearance), compute their exact "
         "tool poses and summarise the error: mean/std/max/min of dx, dy, dz [mm], |dp| [mm], the reach change "
-        "|p'|-|p| (the paper's Table-3 'Δp'), X-Y-Z fixed Euler-angle errors [rad], and P(|dp| < r) with 95%% CIs.")
+        "|p'|-|p| (the paper's Table-3 'Δp'), X-Y-Z fixed Euler-angle errors [rad], and P(|dp| < r) with 95 % CIs.")
     add_robot_arg(p)
     add_error_model_args(p)
     p.add_argument("--n", type=count, required=True, help="number of samples (>= 1; 1e6 and 1_000_000 accepted)")

@@ -107,8 +107,10 @@ def _design_lines(job) -> list[str]:
     elif res.standard is not None:
         out.append(f"\nstandard grades: cost {res.standard.cost:.4f}; {res.standard.message}")
     if job.standard:
-        out.append("the Monte Carlo verification and the coverage check below are the standard design's: the design "
-                   "that will be built")
+        checks = [c for c, done in (("the coverage check", job.coverage is not None),
+                                    ("the Monte Carlo verification", job.verification is not None)) if done]
+        out.append((f"{' and '.join(checks)} below {'are' if len(checks) > 1 else 'is'} the standard design's: "
+                    if checks else "no check below: ") + "the standard design is the design that will be built")
     p = job.design.p_linear["position"]
     out.append(f"\nlinear P per pose ({job.design.label}): min {p.min():.4f} (pose {int(np.argmin(p)) + 1}), "
                f"max {p.max():.4f}")
