@@ -1,16 +1,23 @@
 """Allocation over a joint-space region: worst-pose search and cutting planes (issue 13).
 
-The requirement ``P(|dP| < r) >= p`` is imposed on a finite *active set* of poses; the region (a box
-in joint space) is then searched for the pose where the linear probability falls furthest below ``p``
-(multistart bounded L-BFGS-B seeded from a scrambled Sobol sample); that pose joins the active set
-and the allocation is solved again, until the worst shortfall found is below ``tol`` (default 1e-4).
+The requirement ``P(|dP| < r) >= p`` (and, when the problem has one, the orientation requirement
+``P(|dw| < a) >= p_a``) is imposed on a finite *active set* of poses; the region (a box in joint space) is then
+searched, per requirement, for the pose where the linear probability falls furthest below its ``p`` (multistart
+bounded L-BFGS-B seeded from a scrambled Sobol sample); the worst pose of every requirement that falls more than
+``tol`` (default 1e-4) below its ``p`` joins the active set and the allocation is solved again, until every
+requirement's worst shortfall found is below ``tol``.
 
-Joints that cannot change the position error (e.g. the last joint about the tool axis) are detected
-from the error Jacobian (the position block of the covariance does not move when the joint moves) and
-held at their mid-range: they cost nothing to search.
+Each requirement is searched on its own: each objective is smooth, whereas the smaller of the two shortfalls
+is not, and a round that cuts at the worst pose of each requirement saves the rounds in which one requirement
+would wait for the other.
 
-A coverage statement that can fail (:func:`coverage`) evaluates the linear ``P`` on a fresh seeded
-sample of the region and bounds the fraction below ``p`` from above (one-sided 95 % Clopper-Pearson).
+Joints that cannot change the error covariance (e.g. the last joint about the tool axis) are detected from the
+error Jacobian (the position block -- and, with an orientation requirement, the rotation block -- of the
+covariance does not move when the joint moves) and held at their mid-range: they cost nothing to search.
+
+A coverage statement that can fail (:func:`coverage`, :mod:`tolalloc.allocate.region_coverage`) evaluates the
+linear ``P`` of every requirement on a fresh seeded sample of the region and bounds the fraction below ``p`` from
+above (one-sided 95 % Clopper-Pearson).
 """
 
 from __future__ import annotations
@@ -20,14 +27,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import minimize
-from scipy.stats import beta, chi2, qmc
+from scipy.stats import qmc
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.problem import AllocationProblem, build_problem
-from tolalloc.linear.probability import p_within_radius
+from tolalloc.allocate.region_coverage import Coverage, _position_cov, _rotation_cov, coverage
+from tolalloc.linear.probability import p_within_angle, p_within_radius
 
-__all__ = ["Region", "box_region", "pose_probability", "static_joints", "worst_pose", "allocate_region",
-           "RegionAllocation", "Coverage", "coverage"]
+__all__ = ["Region", "box_region", "pose_probability", "pose_angle_probability", "static_joints", "worst_pose",
+           "WorstPoses", "search_region", "region_static", "allocate_region", "RegionAllocation", "Coverage", "coverage"]
 
 
 @dataclass(frozen=True)
@@ -95,28 +103,51 @@ def pose_probability(problem: AllocationProblem, t, q) -> np.ndarray:
     return np.asarray(p_within_radius(_position_cov(problem, t, q), problem.radius_mm))
 
 
-def _position_cov(problem: AllocationProblem, t, q) -> np.ndarray:
-    """Position covariance of design ``t`` at poses ``q`` (M, n), shape (M, 3, 3) [mm^2]."""
-    J = problem.model.jacobian(np.atleast_2d(q))[:, :3, :]
-    return np.einsum("mik,k,mjk->mij", J, problem.sigma(t) ** 2, J)
+def pose_angle_probability(problem: AllocationProblem, t, q) -> np.ndarray:
+    """Linear ``P(|dw| < a)`` of the design ``t`` at arbitrary poses (batched), for a problem with an orientation
+    requirement (``a = problem.angle_radius_rad``).
+
+    Parameters
+    ----------
+    problem : AllocationProblem
+    t : array, shape (K,) [mm, rad]
+    q : array, shape (M, n) [rad, mm]
+
+    Returns
+    -------
+    array, shape (M,)
+    """
+    if problem.angle_radius_rad is None:
+        raise TolallocError("pose_angle_probability: the problem has no orientation requirement; build it with "
+                            "angle_radius_deg, or use pose_probability for the position requirement.")
+    return np.asarray(p_within_angle(_rotation_cov(problem, t, q), problem.angle_radius_rad))
 
 
 def static_joints(problem: AllocationProblem, region: Region, *, n_probe: int = 8, seed: int = 0,
-                  rtol: float = 1e-9, pose_cov=None) -> np.ndarray:
-    """Joints whose motion never changes the position-error covariance, shape (n,) bool.
+                  rtol: float = 1e-9, pose_cov=None, requirement: str = "position") -> np.ndarray:
+    """Joints whose motion never changes the position-error (or rotation-error) covariance, shape (n,) bool.
 
     Probed at ``n_probe`` Sobol poses: each joint is moved across its range and the position rows of the
     error Jacobian compared (rotation of the Jacobian about the measuring point changes ``J`` but not
     ``J Σ J^T``, so the covariance with unit sigmas is compared). ``pose_cov`` (a function of poses (M, n) giving
     covariances (M, 3, 3) [mm^2], e.g. a post-calibration covariance) replaces the unit-sigma covariance.
+
+    ``requirement="orientation"`` compares the rotation rows instead, weighted by seeded random variances in
+    [0.5, 2]: with unit sigmas a joint's drive error and its two axis deflections add up to an isotropic rotation
+    covariance, which any joint motion turns without changing, so every joint would look static.
     """
+    if requirement not in ("position", "orientation"):
+        raise TolallocError(f"requirement: expected 'position' or 'orientation', got {requirement!r}.")
     Q = region.sample(n_probe, seed)
-    s2 = np.ones(problem.model.sigma.shape)
+    angle = requirement == "orientation"
+    rows = slice(3, 6) if angle else slice(0, 3)
+    s2 = (np.random.default_rng(seed).uniform(0.5, 2.0, problem.model.sigma.shape) if angle
+          else np.ones(problem.model.sigma.shape))
 
     def cov(Qx):
-        if pose_cov is not None:
+        if pose_cov is not None and not angle:
             return pose_cov(Qx)
-        J = problem.model.jacobian(Qx)[:, :3, :]
+        J = problem.model.jacobian(Qx)[:, rows, :]
         return np.einsum("mik,k,mjk->mij", J, s2, J)
 
     base = cov(Q)
@@ -133,11 +164,13 @@ def static_joints(problem: AllocationProblem, region: Region, *, n_probe: int = 
 
 
 def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 512, n_starts: int = 6,
-               seed: int = 0, fixed: np.ndarray | None = None, pose_cov=None):
+               seed: int = 0, fixed: np.ndarray | None = None, pose_cov=None, requirement: str = "position"):
     """Pose of the region with the lowest linear ``P`` for the design ``t``.
 
     ``pose_cov`` (optional): function of poses (M, n) [rad, mm] giving the position covariance (M, 3, 3) [mm^2]
     whose ``P`` is searched instead of the design's (e.g. the post-calibration covariance; ``t`` is then unused).
+    ``requirement="orientation"`` searches the orientation ``P(|dw| < a)`` of a problem with an orientation
+    requirement instead of the position ``P`` (not with ``pose_cov``).
 
     Returns
     -------
@@ -147,9 +180,17 @@ def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 5
         Poses whose probability was evaluated (seed sample plus local searches; each local step evaluates
         ``2 m + 1`` poses at once: the point and a central difference along each of the ``m`` free joints).
     """
+    if requirement == "orientation":
+        if pose_cov is not None:
+            raise TolallocError("worst_pose: pose_cov is a position covariance; search the orientation requirement "
+                                "without it, or search requirement='position'.")
+        prob_at = pose_angle_probability
+    elif requirement == "position":
+        prob_at = pose_probability if pose_cov is None else (
+            lambda pr, _t, Qx: np.asarray(p_within_radius(pose_cov(Qx), pr.radius_mm)))
+    else:
+        raise TolallocError(f"requirement: expected 'position' or 'orientation', got {requirement!r}.")
     fixed = np.zeros(len(region.q_min), bool) if fixed is None else fixed
-    prob_at = pose_probability if pose_cov is None else (
-        lambda pr, _t, Qx: np.asarray(p_within_radius(pose_cov(Qx), pr.radius_mm)))
     free = np.flatnonzero(~fixed)
     mid = 0.5 * (region.q_min + region.q_max)
     Q = region.sample(n_seed, seed)
@@ -179,6 +220,67 @@ def worst_pose(problem: AllocationProblem, t, region: Region, *, n_seed: int = 5
 
 
 @dataclass(frozen=True, eq=False)
+class WorstPoses:
+    """The worst pose of each requirement found by one search of the region (:func:`search_region`).
+
+    Attributes
+    ----------
+    q : array, shape (n,) [rad, mm]
+        Lowest position ``P(|dP| < r)`` found, and ``p`` its value.
+    p : float
+    evaluations : int
+        Probability evaluations of the searches (both requirements).
+    q_angle : array, shape (n,) or None
+        Lowest orientation ``P(|dw| < a)`` found, and ``p_angle`` its value (None without an orientation
+        requirement).
+    p_angle : float or None
+    """
+
+    q: np.ndarray
+    p: float
+    evaluations: int
+    q_angle: np.ndarray | None = None
+    p_angle: float | None = None
+
+    def cuts(self, problem: AllocationProblem, tol: float) -> np.ndarray:
+        """The poses to add, shape (c, n): the worst pose of each requirement not within ``tol`` of its ``p``
+        (position first; none when every requirement holds at its worst pose found)."""
+        out = [] if problem.prob - self.p < tol else [self.q]
+        if self.p_angle is not None and not problem.angle_prob - self.p_angle < tol:
+            if not (out and np.array_equal(out[0], self.q_angle)):
+                out.append(self.q_angle)
+        return np.reshape(out, (len(out), len(self.q)))
+
+    def history_row(self, rnd: int, cost: float) -> tuple:
+        """``(round, cost, worst_p)``, with ``worst_p_angle`` appended when there is an orientation requirement."""
+        return (rnd, cost, self.p) if self.p_angle is None else (rnd, cost, self.p, self.p_angle)
+
+
+def search_region(problem: AllocationProblem, t, region: Region, *, n_seed: int = 512, n_starts: int = 6,
+                  seed: int = 0, fixed: np.ndarray | None = None) -> WorstPoses:
+    """Search the region for the worst pose of each requirement of ``problem`` for the design ``t``.
+
+    The position requirement is searched by :func:`worst_pose`; with an orientation requirement the orientation
+    probability is searched the same way, on its own (same seed poses and starts).
+    """
+    q, p, ne = worst_pose(problem, t, region, n_seed=n_seed, n_starts=n_starts, seed=seed, fixed=fixed)
+    if problem.angle_radius_rad is None:
+        return WorstPoses(q, p, ne)
+    qa, pa, na = worst_pose(problem, t, region, n_seed=n_seed, n_starts=n_starts, seed=seed, fixed=fixed,
+                            requirement="orientation")
+    return WorstPoses(q, p, ne + na, qa, pa)
+
+
+def region_static(problem: AllocationProblem, region: Region, seed: int = 0) -> np.ndarray:
+    """Joints held fixed in every search of the region, shape (n,) bool: they change neither the position-error
+    covariance nor, with an orientation requirement, the rotation-error covariance (:func:`static_joints`)."""
+    static = static_joints(problem, region, seed=seed)
+    if problem.angle_radius_rad is not None:
+        static &= static_joints(problem, region, seed=seed, requirement="orientation")
+    return static
+
+
+@dataclass(frozen=True, eq=False)
 class RegionAllocation:
     """Result of :func:`allocate_region`.
 
@@ -190,16 +292,21 @@ class RegionAllocation:
     active_q : array, shape (A, n) [rad, mm]
     rounds : int
     worst_p : float
-        Lowest linear P found by the last search.
+        Lowest linear position P found by the last search.
     worst_q : array, shape (n,)
     evaluations : int
         Probability evaluations of all searches.
     static : array of bool, shape (n,)
-        Joints held fixed (cannot change the position error).
+        Joints held fixed (change neither the position error nor, with an orientation requirement, the rotation
+        error covariance).
     converged : bool
-        Worst shortfall below ``tol`` within ``max_rounds``.
+        Every requirement's worst shortfall below ``tol`` within ``max_rounds``.
     time_s : float
-    history : tuple of (round, cost, worst_p)
+    history : tuple of (round, cost, worst_p), or (round, cost, worst_p, worst_p_angle) with an orientation
+        requirement
+    worst_p_angle : float or None
+        Lowest linear orientation P found by the last search (None without an orientation requirement).
+    worst_q_angle : array, shape (n,) or None
     """
 
     result: object
@@ -213,12 +320,18 @@ class RegionAllocation:
     converged: bool
     time_s: float
     history: tuple = field(default=())
+    worst_p_angle: float | None = None
+    worst_q_angle: np.ndarray | None = None
 
 
 def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", tol: float = 1e-4,
                     max_rounds: int = 30, seed: int = 0, n_seed: int = 512, n_starts: int = 6,
                     **problem_kw) -> RegionAllocation:
     """Cutting-plane allocation over a box: solve on the active set, add the worst pose, repeat.
+
+    With an orientation requirement (``angle_radius_deg`` in ``problem_kw``) each round searches both
+    requirements (:func:`search_region`) and adds the worst pose of each one that falls short (so up to two poses
+    a round); the loop stops when both hold within ``tol`` at the worst poses found.
 
     Parameters
     ----------
@@ -230,9 +343,9 @@ def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", to
         The design whose worst pose is searched (the certified design is re-solved on every active set,
         so it is certified at every pose the search has added).
     tol : float
-        Stop when ``p - worst P < tol``.
+        Stop when ``p - worst P < tol`` (and ``p_a - worst orientation P < tol``).
     problem_kw
-        Passed to :func:`build_problem` (radius_mm, prob, costs, ...).
+        Passed to :func:`build_problem` (radius_mm, prob, angle_radius_deg, angle_prob, costs, ...).
     """
     from tolalloc.allocate.solve import allocate
 
@@ -248,99 +361,14 @@ def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", to
             return RegionAllocation(res, region, active, rnd, float("nan"), active[-1], evals,
                                     np.zeros(len(region.q_min), bool), False, time.perf_counter() - t0, tuple(hist))
         if static is None:
-            static = static_joints(pr, region, seed=seed)
-        q, pw, ne = worst_pose(pr, d.t, region, n_seed=n_seed, n_starts=n_starts, seed=seed + rnd,
-                               fixed=static)
-        evals += ne
-        hist.append((rnd, float(d.cost), pw))
-        if pr.prob - pw < tol:
-            return RegionAllocation(res, region, active, rnd, pw, q, evals, static, True,
-                                    time.perf_counter() - t0, tuple(hist))
-        active = np.vstack([active, q])
-    return RegionAllocation(res, region, active[:-1], max_rounds, pw, q, evals, static, False,
-                            time.perf_counter() - t0, tuple(hist))
-
-
-@dataclass(frozen=True)
-class Coverage:
-    """Linear P of a design on a fresh seeded sample of the region.
-
-    Attributes
-    ----------
-    n : int
-    min_p : float
-    worst_q : array, shape (k, n)
-        The ``k`` lowest-P poses (for nonlinear Monte Carlo).
-    n_below : int
-    frac_below : float
-    frac_below_upper95 : float
-        One-sided 95 % Clopper-Pearson upper bound on the fraction of the region below ``p``.
-    n_exact : int
-        Poses whose exact P was computed; the others are proven above ``p`` and above ``min_p`` by the
-        largest-eigenvalue bound ``P >= P(chi2_3 < r^2 / lambda_max)``.
-    """
-
-    n: int
-    min_p: float
-    worst_q: np.ndarray
-    n_below: int
-    frac_below: float
-    frac_below_upper95: float
-    n_exact: int = 0
-
-    @property
-    def ok(self) -> bool:
-        return self.n_below == 0
-
-    def message(self, prob: float) -> str:
-        head = (f"coverage: {self.n} fresh poses, min P = {self.min_p:.5f}, {self.n_below} below {prob:g} "
-                f"(fraction {self.frac_below:.2e}, 95% upper bound {self.frac_below_upper95:.2e})")
-        return head if not self.ok else head + "; none below p"
-
-
-def coverage(problem: AllocationProblem, t, region: Region, *, n: int = 100_000, seed: int = 12345,
-             k_worst: int = 3, tol: float = 1e-4, chunk: int = 20_000, pose_cov=None) -> Coverage:
-    """Coverage of a design over a region on a fresh seeded sample (uniform random, not the search's Sobol).
-
-    A pose counts as below when ``P < p - tol``(tol: the search's convergence tolerance). The sample is drawn and
-    screened ``chunk`` poses at a time (the same stream as one draw of all ``n``), so memory does not grow with
-    ``n``. ``pose_cov`` (optional): function of poses (M, n) giving the position covariance (M, 3, 3) [mm^2] to
-    check instead of the design's (e.g. the post-calibration covariance; ``t`` is then unused).
-    """
-    from tolalloc.exceptions import raise_if_interrupted
-
-    try:
-        n_ok = int(n) == n and n >= 1
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
-        raise TolallocError(f"n: expected a whole number of coverage poses >= 1 (e.g. 1e5), got {n!r}.")
-    n, chunk = int(n), max(1, int(chunk))
-    rng = np.random.default_rng(seed)
-    cov_of = pose_cov if pose_cov is not None else (lambda Qx: _position_cov(problem, t, Qx))
-    below, done, p_min = 0, 0, np.inf
-    worst_p, worst_q = np.empty(0), np.empty((0, len(region.q_min)))
-    for start in range(0, n, chunk):
-        raise_if_interrupted()
-        Q = region.q_min + rng.random((min(chunk, n - start), len(region.q_min))) * (region.q_max - region.q_min)
-        C = cov_of(Q)
-        # screen: P(|x| < r) >= P(chi2_3 < r^2 / lambda_max) (the ball contains the lambda_max-sphere's ellipsoid);
-        # the exact P is computed in order of this bound until no unevaluated pose can be lower or below p
-        lower = chi2.cdf(problem.radius_mm**2 / np.maximum(np.linalg.eigvalsh(C)[:, -1], 1e-300), 3)
-        order = np.argsort(lower)
-        P = np.full(len(Q), np.nan)
-        k = 0
-        while k < len(Q) and (lower[order[k]] < problem.prob - tol or lower[order[k]] < p_min):
-            idx = order[k:k + 2000]
-            P[idx] = p_within_radius(C[idx], problem.radius_mm)
-            p_min = min(p_min, float(np.nanmin(P[idx])))
-            k += len(idx)
-        ev = order[:k]
-        below += int(np.sum(P[ev] < problem.prob - tol))
-        done += k
-        worst_p = np.concatenate([worst_p, P[ev]])
-        worst_q = np.concatenate([worst_q, Q[ev]])
-        keep = np.argsort(worst_p)[:k_worst]
-        worst_p, worst_q = worst_p[keep], worst_q[keep]
-    upper = float(beta.ppf(0.95, below + 1, n - below)) if below < n else 1.0
-    return Coverage(n, p_min, worst_q, below, below / n, upper, int(done))
+            static = region_static(pr, region, seed=seed)
+        w = search_region(pr, d.t, region, n_seed=n_seed, n_starts=n_starts, seed=seed + rnd, fixed=static)
+        evals += w.evaluations
+        hist.append(w.history_row(rnd, float(d.cost)))
+        cuts = w.cuts(pr, tol)
+        if not len(cuts):
+            return RegionAllocation(res, region, active, rnd, w.p, w.q, evals, static, True,
+                                    time.perf_counter() - t0, tuple(hist), w.p_angle, w.q_angle)
+        solved, active = active, np.vstack([active, cuts])
+    return RegionAllocation(res, region, solved, max_rounds, w.p, w.q, evals, static, False,
+                            time.perf_counter() - t0, tuple(hist), w.p_angle, w.q_angle)

@@ -4,7 +4,9 @@
 design chosen on those poses has other slack and may fall short elsewhere in the region, so the loop goes
 on with the design that will be built: choose the standard design on the active set
 (:func:`tolalloc.allocate.solve.with_standard`), search the region for its worst pose
-(:func:`tolalloc.allocate.region.worst_pose`), add that pose if it falls more than ``tol`` below ``p``, repeat.
+(:func:`tolalloc.allocate.region.search_region`), add that pose if it falls more than ``tol`` below ``p``, repeat.
+With an orientation requirement both requirements are searched and the worst pose of each one that falls short is
+added, as in the continuous loop.
 """
 
 from __future__ import annotations
@@ -15,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tolalloc.allocate.problem import build_problem
-from tolalloc.allocate.region import Region, RegionAllocation, allocate_region, worst_pose
+from tolalloc.allocate.region import Region, RegionAllocation, allocate_region, search_region
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["StandardRegionAllocation", "allocate_region_standard"]
@@ -53,7 +55,7 @@ def allocate_region_standard(model, region: Region, q0=None, *, solver: str = "e
         Initial active poses of the continuous loop (default: the box centre).
     solver : {"exact", "certified"}
     tol : float
-        Stop when ``p - worst P`` of the standard design is below ``tol``.
+        Stop when ``p - worst P`` of the standard design is below ``tol`` (for every requirement).
     max_rounds : int
         Rounds of each loop (continuous, then standard).
     angle_step_deg, discrete_certified, time_limit_s
@@ -76,7 +78,8 @@ def allocate_region_standard(model, region: Region, q0=None, *, solver: str = "e
     d = res.design if solver == "exact" else res.certified
     if not d.ok:  # infeasible (or not converged) on the active set: nothing to make standard
         return _out(ra, res, ra.active_q, 0, ra.worst_p, ra.worst_q, ra.evaluations, False, t0, (),
-                    "the continuous region allocation has no design; no standard design")
+                    "the continuous region allocation has no design; no standard design",
+                    ra.worst_p_angle, ra.worst_q_angle)
     active, evals, hist = ra.active_q, ra.evaluations, []
     res = with_standard(res, **kw)
     for rnd in range(1, max_rounds + 1):
@@ -84,22 +87,34 @@ def allocate_region_standard(model, region: Region, q0=None, *, solver: str = "e
         if std is None or not std.ok:
             return _out(ra, res, active, rnd, np.nan, active[-1], evals, False, t0, tuple(hist),
                         f"no standard design on the active set: {'' if std is None else std.message}")
-        q, pw, ne = worst_pose(res.problem, std.t, region, n_seed=n_seed, n_starts=n_starts, seed=seed + 1000 + rnd,
-                               fixed=ra.static)
-        evals += ne
-        hist.append((rnd, float(std.cost), pw))
-        if res.problem.prob - pw < tol:
-            return _out(ra, res, active, rnd, pw, q, evals, True, t0, tuple(hist),
-                        f"standard design holds over the region: worst linear P found {pw:.5f}")
-        active = np.vstack([active, q])
+        w = search_region(res.problem, std.t, region, n_seed=n_seed, n_starts=n_starts, seed=seed + 1000 + rnd,
+                          fixed=ra.static)
+        evals += w.evaluations
+        hist.append(w.history_row(rnd, float(std.cost)))
+        cuts = w.cuts(res.problem, tol)
+        if not len(cuts):
+            return _out(ra, res, active, rnd, w.p, w.q, evals, True, t0, tuple(hist),
+                        f"standard design holds over the region: worst linear P found {_found(w)}", w.p_angle,
+                        w.q_angle)
+        active = np.vstack([active, cuts])
         res = allocate(build_problem(model, active, **problem_kw), solver=solver, snap=True, discrete=True, **kw)
         if res.status != "optimal":
-            return _out(ra, res, active, rnd, pw, q, evals, False, t0, tuple(hist),
-                        f"the allocation on the grown active set is {res.status}: {res.message}")
-    return _out(ra, res, active, max_rounds, pw, q, evals, False, t0, tuple(hist),
-                f"round limit reached: the standard design falls to P = {pw:.5f} in the region")
+            return _out(ra, res, active, rnd, w.p, w.q, evals, False, t0, tuple(hist),
+                        f"the allocation on the grown active set is {res.status}: {res.message}", w.p_angle, w.q_angle)
+    return _out(ra, res, active, max_rounds, w.p, w.q, evals, False, t0, tuple(hist),
+                f"round limit reached: the standard design falls to {_found(w, 'P = ')} in the region", w.p_angle,
+                w.q_angle)
 
 
-def _out(ra, res, active, rounds, pw, q, evals, converged, t0, hist, msg) -> StandardRegionAllocation:
+def _found(w, prefix: str = "") -> str:
+    """The worst linear P found, per requirement when there is an orientation requirement."""
+    if w.p_angle is None:
+        return f"{prefix}{w.p:.5f}"
+    return f"{prefix}{w.p:.5f} (position), {prefix}{w.p_angle:.5f} (orientation)"
+
+
+def _out(ra, res, active, rounds, pw, q, evals, converged, t0, hist, msg, pa=None, qa=None) -> StandardRegionAllocation:
     return StandardRegionAllocation(res, ra.region, active, rounds, float(pw), np.asarray(q), int(evals), ra.static,
-                                    bool(converged), time.perf_counter() - t0, hist, ra, msg)
+                                    bool(converged), time.perf_counter() - t0, hist,
+                                    None if pa is None else float(pa), None if qa is None else np.asarray(qa),
+                                    continuous=ra, message=msg)
