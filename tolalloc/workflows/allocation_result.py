@@ -161,10 +161,16 @@ class ToleranceAllocation(JobResult):
     def _checks(self) -> list[str]:
         """What the coverage and the verification found for the design to build, in words."""
         cov, ver, out = self.coverage, self.verification, []
-        if cov is not None:
+        if cov is not None and cov.angle_prob is None:
             out.append(f"covers the region (lowest linear P {cov.min_p:.4f} on {cov.n} fresh poses)" if cov.ok else
                        f"does NOT cover the region ({cov.n_below} of {cov.n} fresh poses below p, lowest linear P "
                        f"{cov.min_p:.4f})")
+        elif cov is not None:
+            low = (f"lowest linear P {cov.min_p:.4f} (position), {cov.min_p_angle:.4f} (orientation) on {cov.n} fresh "
+                   "poses")
+            out.append(f"covers the region ({low})" if cov.ok else
+                       f"does NOT cover the region ({cov.n_below} position and {cov.n_below_angle} orientation "
+                       f"pose(s) of {cov.n} fresh poses below p, {low})")
         if ver is None:
             out.append("NOT verified by Monte Carlo (verification not run; the linear prediction meets the "
                        "requirement at every pose of the allocation)")

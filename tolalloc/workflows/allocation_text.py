@@ -25,12 +25,16 @@ def summary_dict(job) -> dict:
                              "converged": reg_info.converged, "active_poses": len(reg_info.active_q),
                              "search_evaluations": reg_info.evaluations,
                              "worst_p_linear": float(reg_info.worst_p) if np.isfinite(reg_info.worst_p) else None,
+                             "worst_p_angle_linear": _finite(reg_info.worst_p_angle),
                              "why_not_converged": None if reg_info.converged else region_stop(reg_info),
                              "static_joints": [int(j) + 1 for j in np.flatnonzero(reg_info.static)],
                              "time_s": reg_info.time_s}
     if cov is not None:
         summary["coverage"] = {"n": cov.n, "min_p": cov.min_p, "n_below": cov.n_below,
-                               "frac_below": cov.frac_below, "frac_below_upper95": cov.frac_below_upper95}
+                               "frac_below": cov.frac_below, "frac_below_upper95": cov.frac_below_upper95,
+                               "min_p_angle": cov.min_p_angle, "n_below_angle": cov.n_below_angle,
+                               "frac_below_angle": cov.frac_below_angle,
+                               "frac_below_upper95_angle": cov.frac_below_upper95_angle}
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
                                    "n_per_pose": ver.n, "seed": ver.seed, **ver.estimator_summary()}
@@ -55,6 +59,8 @@ def report_text(job) -> str:
         return ""
     if reg_info is not None:
         worst = worst_p_text(reg_info.worst_p if np.isfinite(reg_info.worst_p) else None)
+        if reg_info.worst_p_angle is not None:
+            worst += f" (position), {worst_p_text(_finite(reg_info.worst_p_angle))} (orientation)"
         lines.append(f"region {job.region.name}: {reg_info.rounds} round(s), {len(reg_info.active_q)} active poses, "
                      f"{reg_info.evaluations} search evaluations, worst linear P found {worst}"
                      + ("" if reg_info.converged else f" (NOT converged: {region_stop(reg_info)})"))
@@ -129,6 +135,10 @@ def _design_lines(job) -> list[str]:
 def region_stop(reg_info) -> str:
     """Why a region search stopped without converging: the search's own message, else the round limit."""
     return getattr(reg_info, "message", None) or "round limit reached"
+
+
+def _finite(x) -> float | None:
+    return None if x is None or not np.isfinite(x) else float(x)
 
 
 def worst_p_text(worst_p: float | None) -> str:
