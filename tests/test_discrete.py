@@ -267,3 +267,17 @@ def test_a_program_stopped_by_its_time_limit_is_not_called_optimal(model, solver
     assert std.status == "not_converged" and not std.ok and "user_limit" in std.message
     assert std.p_linear["position"].min() >= pr.prob  # the design kept still meets the requirement
     assert res.summary()["discrete"]["proven_optimal"] is False
+
+
+def test_a_part_the_costs_file_fixes_is_in_the_standard_design_cost(tmp_path):
+    """The standard design's cost counts the fixed part's cost as the continuous design's does: the premium over
+    the continuous optimum is then the few tenths of a percent of the grade steps, not minus the fixed part."""
+    import tolalloc
+
+    path = tmp_path / "costs.toml"
+    path.write_text("[parameters.e1x]\nfixed = true\ntol_deg = 0.002\n")
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", costs=path, verify=False)
+    frame = res.to_frame()
+    assert frame.loc[frame.parameter == "e1x", "role"].item() == "fixed"
+    assert res.cost == pytest.approx(frame["cost"].sum(), rel=1e-12)
+    assert 0.0 <= res.summary()["discrete"]["gap_pct"] < 2.0

@@ -194,11 +194,12 @@ def discretize(problem: AllocationProblem, continuous: Design, *, certified=(), 
     status = "optimal" if best.status == "optimal" else NOT_CONVERGED
     msg = _message(best, proven)
     d = make_design(problem, _SOLVER[best.rule], t, time_s=dt, message=msg, status=status)
-    d = replace(d, cost=cat.total_cost(best.opt, best.n))  # setups of the processes included
+    fixed = float(problem.param_costs(t)[problem.fixed].sum())  # parts the costs file fixes cost as they are
+    d = replace(d, cost=cat.total_cost(best.opt, best.n) + fixed)  # setups of the processes included
     grade, proc = _labels(problem, cat, best.opt)
     pc = problem.param_costs(t)
     pc[problem.alloc] = cat.costs_of(best.opt, best.n)
-    bound = max(best.bound, continuous.cost if continuous.solver.certified and not cat.groups else -np.inf) \
+    bound = max(best.bound + fixed, continuous.cost if continuous.solver.certified and not cat.groups else -np.inf) \
         if best.rule != "exact" else float("nan")
     return DiscreteAllocation(d, grade, proc, pc, continuous, rounded, tuple(outcomes), float(bound), proven, dt, msg)
 
