@@ -115,3 +115,14 @@ def test_allocation_summary_and_text_state_both_requirements(tmp_path):
     text = res.text()
     assert " (position), " in text.splitlines()[0] and "(orientation)" in text.splitlines()[0]
     assert "; orientation: min P = " in text and "(orientation) on 1000 fresh poses)" in res.design_note()
+
+
+def test_report_card_gives_the_orientation_coverage(tmp_path):
+    import tolalloc
+    from test_report_html import Page
+
+    res = tolalloc.allocate_tolerances("ur10", radius_mm=0.5, angle_radius_deg=0.05, region="limits", n_mc=500,
+                                       coverage_n=500, snap=False, correction=False)
+    res.save(tmp_path / "rep", report=True)
+    page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
+    assert "coverage, orientation" in page.text("summary")

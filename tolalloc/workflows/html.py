@@ -130,6 +130,10 @@ def _cards(job, s: dict) -> list:
     if cov is not None:
         cards.append({"label": "coverage of the region", "value": f"{cov.min_p:.4f}",
                       "note": f"lowest linear P on {cov.n} fresh poses; {cov.n_below} below p"})
+        if getattr(cov, "min_p_angle", None) is not None:
+            cards.append({"label": "coverage, orientation", "value": f"{cov.min_p_angle:.4f}",
+                          "note": f"lowest linear P of the orientation on the same poses; {cov.n_below_angle} below "
+                                  "its p"})
     if corr is not None and corr.rounds:
         cards.append({"label": "cost of the correction", "value": f"{corr.premium_pct:+.2f} %",
                       "note": f"{corr.rounds} round(s)"})
