@@ -205,3 +205,16 @@ def pytest_collection_modifyitems(config, items):
     and the workers finish together instead of one running the last long file alone."""
     slow = {item.path for item in items if item.get_closest_marker("slow")}
     items.sort(key=lambda item: (item.path.name != FIRST_FILE, item.path not in slow))
+
+
+@pytest.fixture(scope="module")
+def plan_path(tmp_path_factory):
+    """A 12-pose calibration plan of the tool_changer at seeded random poses within its limits (a CSV path)."""
+    import tolalloc
+    from tolalloc.calibration import make_plan, write_plan
+
+    tc = tolalloc.load_robot("tool_changer")
+    rng = np.random.default_rng(0)
+    path = tmp_path_factory.mktemp("plan") / "plan.csv"
+    write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, path)
+    return path

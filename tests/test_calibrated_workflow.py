@@ -15,18 +15,9 @@ import pandas as pd
 import pytest
 
 import tolalloc
-from tolalloc.calibration import make_plan, write_plan
+from tolalloc.allocate.result import in_row_unit
 from tolalloc.cli import main
 from tolalloc.workflows import allocate_tolerances
-
-
-@pytest.fixture(scope="module")
-def plan_path(tmp_path_factory):
-    tc = tolalloc.load_robot("tool_changer")
-    rng = np.random.default_rng(0)
-    path = tmp_path_factory.mktemp("plan") / "plan.csv"
-    write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, path)
-    return path
 
 
 @pytest.fixture(scope="module")
@@ -60,9 +51,9 @@ def test_solver_exact_runs_both_stages(plan_path):
     assert "end-to-end Monte Carlo: not run (verify=False)" in job.text()
     frame = job.to_frame()
     f = np.array([p.to_interface for p in job.problem.model.params])
-    np.testing.assert_allclose(_in_unit(frame, "tol_certified"), job.result.certified.design.t * f)
-    np.testing.assert_allclose(_in_unit(frame, "tol_continuous"), job.result.exact.design.t * f)
-    np.testing.assert_allclose(_in_unit(frame, "tol"), job.result.exact.design.t * f)  # snap=False: built = exact
+    np.testing.assert_allclose(in_row_unit(frame, "tol_certified"), job.result.certified.design.t * f)
+    np.testing.assert_allclose(in_row_unit(frame, "tol_continuous"), job.result.exact.design.t * f)
+    np.testing.assert_allclose(in_row_unit(frame, "tol"), job.result.exact.design.t * f)  # snap=False: built = exact
 
 
 
@@ -94,11 +85,6 @@ def test_cli_refuses_them_with_one_line(plan_path, tmp_path, capsys, argv, flag)
     assert err.count("\n") == 1 and not out.exists()
 
 
-def _in_unit(frame, name):
-    """Each row's value of the ``<name>_mm`` / ``<name>_deg`` pair, in the row's unit."""
-    return np.where(frame["unit"] == "mm", frame[f"{name}_mm"], frame[f"{name}_deg"])
-
-
 def test_same_interface_as_the_plain_allocation(certified, plain):
     assert certified.status == "optimal" and certified.ok
     core = [c for c in plain.to_frame().columns if c != "design"]
@@ -108,7 +94,7 @@ def test_same_interface_as_the_plain_allocation(certified, plain):
     for col in ("parameter", "kind", "element", "unit", "role"):
         assert list(frame[col]) == list(plain.to_frame()[col])
     z = certified.problem.costs.z
-    np.testing.assert_allclose(_in_unit(frame, "sigma"), _in_unit(frame, "tol") / z)
+    np.testing.assert_allclose(in_row_unit(frame, "sigma"), in_row_unit(frame, "tol") / z)
     assert frame["variance_share_pct"].sum() == pytest.approx(100.0)
     loose = frame["status"] == "loose (at t_max)"
     assert loose.any() and (frame.loc[loose, "at_limit"] == "t_max").all()

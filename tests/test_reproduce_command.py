@@ -11,12 +11,10 @@ import ast
 import inspect
 import shlex
 
-import numpy as np
 import pytest
 
 import tolalloc
 import tolalloc.workflows
-from tolalloc.calibration import make_plan, write_plan
 from tolalloc.cli import build_parser
 from tolalloc.workflows import allocate_tolerances
 from tolalloc.workflows.html_command import allocation_command
@@ -75,15 +73,6 @@ def assert_reproduced(job, original: dict, monkeypatch, tmp_path) -> None:
     want = effective(original, job)
     assert effective(cli, job) == want
     assert effective(py, job) == want
-
-
-@pytest.fixture(scope="module")
-def plan_path(tmp_path_factory):
-    tc = tolalloc.load_robot("tool_changer")
-    rng = np.random.default_rng(0)
-    path = tmp_path_factory.mktemp("plan") / "plan.csv"
-    write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, path)
-    return path
 
 
 def test_allocation_options_are_reproduced(monkeypatch, tmp_path):

@@ -16,6 +16,7 @@ import pandas as pd
 import pytest
 
 import tolalloc
+from tolalloc.allocate.result import in_row_unit
 from tolalloc.cli import main
 from tolalloc.diagnose import generate
 from tolalloc.diagnose.synth import split_frame
@@ -151,7 +152,7 @@ def test_results_have_a_compact_repr_a_table_and_html():
     card = res._repr_html_()  # the note is the table's caption, once, not a column repeated on every row
     assert card.count("the design to build;") == 1 and "tol_continuous_mm" not in card and "<th>tol_deg</th>" in card
     frame = res.to_frame()
-    tol = frame["tol_mm"].fillna(frame["tol_deg"])
+    tol = in_row_unit(frame, "tol")
     assert list(frame["parameter"])[:3] == ["dl1", "dl2", "dl3"] and tol.gt(0).all() and "design" not in frame
     s = res.summary()
     assert s["verification"]["verdict"] == res.verdict and s["built"]["cost"] == pytest.approx(res.cost)
@@ -187,7 +188,7 @@ def test_an_unverified_allocation_never_says_verified(tmp_path):
     fig = res.plot_budget()
     frame = res.to_frame()
     widths = [bar.get_width() for bar in fig.axes[0].patches]
-    assert widths == pytest.approx(frame["tol_mm"].fillna(frame["tol_deg"]).tolist())
+    assert widths == pytest.approx(in_row_unit(frame, "tol").tolist())
     assert f"{res.design.label} design, worst pose {res.worst_pose + 1}" in fig._suptitle.get_text()
     plt.close(fig)
 

@@ -29,6 +29,7 @@ import pandas as pd
 import tolalloc
 from tolalloc.allocate.calibrated_rounding import catalogue_range
 from tolalloc.allocate.calibrated_standard import standardize_calibrated
+from tolalloc.allocate.result import in_row_unit
 from tolalloc.allocate.catalogue import build_catalogue
 
 #: (robot, region, grades of the link lengths); "IT5-IT16" is a what-if costs file (written beside the report): the
@@ -83,9 +84,8 @@ def run_case(robot: str, region: str, grades: str, plan_path: Path, costs, n_mc:
            "end_to_end_ci_low_min": None if e2e is None else float(e2e.check.ci_low.min()),
            "time_standard_s": std.time_s, "time_continuous_s": res.time_s, "time_wall_s": wall, "job_ok": job.ok}
     f = job.to_frame()
-    own = (lambda name: f[f"{name}_mm"].where(f["unit"] == "mm", f[f"{name}_deg"]))  # the row's unit
-    table = pd.DataFrame({"parameter": f["parameter"], "unit": f["unit"], "tolerance": own("tol_continuous"),
-                          "tolerance_std": own("tol"), "grade": f["grade"], "cost": f["cost_continuous"],
+    table = pd.DataFrame({"parameter": f["parameter"], "unit": f["unit"], "tolerance": in_row_unit(f, "tol_continuous"),
+                          "tolerance_std": in_row_unit(f, "tol"), "grade": f["grade"], "cost": f["cost_continuous"],
                           "cost_std": f["cost"], "status": f["status"]})
     return row, table
 

@@ -27,6 +27,7 @@ import pandas as pd
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.costs import cost_set, read_costs_file
+from tolalloc.allocate.result import in_row_unit
 from tolalloc.allocate.problem import make_design
 from tolalloc.allocate.region import box_region, coverage
 from tolalloc.allocate.region_standard import allocate_region_standard
@@ -157,12 +158,9 @@ def _grades_table(res) -> pd.DataFrame:
     tolerances in the row's own unit (``unit``), from ``AllocationResult.to_frame()`` of the standard design."""
     f = res.to_frame(res.standard)
 
-    def own(name):
-        return f[f"{name}_mm"].fillna(f[f"{name}_deg"])
-
     return pd.DataFrame({"parameter": f["parameter"], "kind": f["kind"], "unit": f["unit"],
-                         "tolerance": own("tol_continuous"), "tolerance_std": own("tol"), "grade": f["grade"],
-                         "process": f["process"], "tolerance_rounded": own("tol_rounded"),
+                         "tolerance": in_row_unit(f, "tol_continuous"), "tolerance_std": in_row_unit(f, "tol"), "grade": f["grade"],
+                         "process": f["process"], "tolerance_rounded": in_row_unit(f, "tol_rounded"),
                          "cost": f["cost_continuous"], "cost_std": f["cost"]})
 
 

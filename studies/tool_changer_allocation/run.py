@@ -31,6 +31,7 @@ import pandas as pd
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.problem import check_process_limits, make_design
+from tolalloc.allocate.result import in_row_unit
 from tolalloc.allocate.region import allocate_region, box_region, coverage
 from tolalloc.errormodel import build_error_model
 from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pareto, plot_pose_probabilities
@@ -246,7 +247,7 @@ def main(argv=None) -> int:
     lines += section_design_card(card, n_mc, robot)
     lines += section_correction(model, card, n_mc, n_cov)
     table = res.to_frame(res.design)
-    sigma = table["sigma_mm"].fillna(table["sigma_deg"]).to_numpy()  # in the row's own unit
+    sigma = in_row_unit(table, "sigma").to_numpy()
     # 2. the paper's sigma against the allocated ones --------------------------------------
     J = pr.model.jacobian(W)[:, :3]
     C_paper = np.einsum("pik,k,pjk->pij", J, model.sigma**2, J)

@@ -29,6 +29,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from tolalloc.allocate.result import in_row_unit
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from compute import history_rows, p_slice, run_robot, slice_joints, summary_rows, verification_rows  # noqa: E402
 from figures import plot_slices  # noqa: E402
@@ -55,13 +57,10 @@ def tolerance_rows(study) -> pd.DataFrame:
     """Both designs' tolerance and sigma per parameter (interface units), from ``AllocationResult.to_frame()``."""
     a, b = (d.result.to_frame(d.result.design) for d in study.designs)
 
-    def own(f, name):  # the value in the row's own unit (the table splits mm and deg into two columns)
-        return f[f"{name}_mm"].fillna(f[f"{name}_deg"])
-
     return pd.DataFrame({"robot": study.name, "parameter": a["parameter"], "unit": a["unit"],
-                         "tolerance_pose_set": own(a, "tol"), "tolerance_region": own(b, "tol"),
-                         "sigma_pose_set": own(a, "sigma"), "sigma_region": own(b, "sigma"),
-                         "ratio_pose_set_over_region": own(a, "tol") / own(b, "tol"),
+                         "tolerance_pose_set": in_row_unit(a, "tol"), "tolerance_region": in_row_unit(b, "tol"),
+                         "sigma_pose_set": in_row_unit(a, "sigma"), "sigma_region": in_row_unit(b, "sigma"),
+                         "ratio_pose_set_over_region": in_row_unit(a, "tol") / in_row_unit(b, "tol"),
                          "at_limit_region": b["at_limit"]})
 
 

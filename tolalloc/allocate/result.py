@@ -13,7 +13,7 @@ import pandas as pd
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
 from tolalloc.linear.covariance import variance_share
 
-__all__ = ["AllocationResult", "snap_design", "unit_columns"]
+__all__ = ["AllocationResult", "snap_design", "parameter_columns", "unit_columns", "in_row_unit"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,8 +115,6 @@ class AllocationResult:
         params = pr.model.params
         f = np.array([p.to_interface for p in params])
         is_mm = np.array([p.interface_unit == "mm" for p in params])
-        lengths = {lk.name: lk.length_mm for lk in pr.model.robot.links}
-        nominal = [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan for p in params]
         nan = np.full(len(f), np.nan)
         rnd = self.rounded.t if self.rounded is not None and self.rounded.t is not None else nan
         is_std = d is self.standard and d is not None
@@ -124,9 +122,7 @@ class AllocationResult:
         if is_std and self.discrete is not None and d is self.discrete.design:
             cost = self.discrete.param_cost  # per part, its process's set-up included
         blank = ("",) * len(params)
-        cols = {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
-                "element": [p.element for p in params], "role": list(pr.costs.role),
-                "unit": [p.interface_unit for p in params], "nominal_mm": nominal}
+        cols = parameter_columns(pr)
         cols.update(unit_columns("tol", d.t * f, is_mm))
         cols.update({"grade": list(self.grade) if is_std else list(blank),
                      "process": list(self.process) if is_std else list(blank)})
@@ -239,10 +235,28 @@ class AllocationResult:
         return poses
 
 
+def parameter_columns(problem: AllocationProblem) -> dict:
+    """The first columns of a tolerance table: ``parameter, kind, element, role, unit, nominal_mm`` (a link
+    length's nominal size, the size its ISO 286 grade applies to; NaN on the other rows)."""
+    params = problem.model.params
+    lengths = {lk.name: lk.length_mm for lk in problem.model.robot.links}
+    return {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
+            "element": [p.element for p in params], "role": list(problem.costs.role),
+            "unit": [p.interface_unit for p in params],
+            "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
+                           for p in params]}
+
+
 def unit_columns(name: str, values, is_mm) -> dict:
     """``{name_mm: values on length rows, name_deg: values on angle rows}`` (NaN on the other rows)."""
     v = np.asarray(values, float)
     return {f"{name}_mm": np.where(is_mm, v, np.nan), f"{name}_deg": np.where(is_mm, np.nan, v)}
+
+
+def in_row_unit(frame: pd.DataFrame, name: str) -> pd.Series:
+    """The ``<name>_mm`` / ``<name>_deg`` pair of :func:`unit_columns` as one column: each row's value in its own
+    unit (the frame's ``unit``, mm or deg)."""
+    return frame[f"{name}_mm"].where(frame["unit"] == "mm", frame[f"{name}_deg"])
 
 
 def _pct(x, ref):

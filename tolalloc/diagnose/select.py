@@ -21,9 +21,9 @@ squared held-out error (base model - base + candidate), one difference per pose 
 schemes, which score the same poses). A candidate is *significant* when ``p < alpha / m``
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
 (:func:`robust_rms`) by at least ``min_gain`` (default 2 %), and its unclipped out-of-fold RMS stays within
-:data:`BLOWUP_RATIO` x the base model's (clipping must not hide held-out predictions that blow up). The significant candidate with the lowest clipped
-held-out RMS is selected; the others are then tested on top of it (sequential forward selection, at most
-``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
+:data:`BLOWUP_RATIO` x the base model's (clipping must not hide held-out predictions that blow up). The significant
+candidate with the lowest clipped held-out RMS is selected; the others are then tested on top of it (sequential
+forward selection, at most ``max_effects``: pairs where the data supports both), and every selected effect must finally still be significant
 beside the others (backward elimination, :func:`_backward`). ``none`` when nothing is significant.
 
 The fits are robust M-estimates (``loss``, :func:`tolalloc.diagnose.calibrate.fit_model`). The target offset is
@@ -158,8 +158,8 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
     if effect == "thermal":
         if (variant == "temperature" or variant.startswith("lag")) and test.temperature_c is None:
             return "the test file has no temperature_c column"
-        if variant != "temperature" and time_problem(test.time_s) is not None:
-            return f"test file: {time_problem(test.time_s)}"
+        if variant != "temperature" and (why := time_problem(test.time_s)) is not None:
+            return f"test file: {why}"
     return None
 
 

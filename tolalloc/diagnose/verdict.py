@@ -125,8 +125,10 @@ class Verdict:
             if not c.separable:
                 alts.setdefault(c.effect, []).append(c.alternative_label)
         selected = self.selected or tuple(e for e in self.candidates if e in alts)
-        terms = [f"({' or '.join((e, *alts[e]))})" if e in alts else e for e in selected]
-        return " + ".join(terms) if len(terms) > 1 else terms[0][1:-1] if terms[0].startswith("(") else terms[0]
+        terms = [" or ".join((e, *alts.get(e, ()))) for e in selected]
+        if len(terms) == 1:
+            return terms[0]
+        return " + ".join(f"({t})" if e in alts else t for e, t in zip(selected, terms))
 
     def to_dict(self) -> dict:
         return {"verdict": self.verdict, "candidates": list(self.candidates), "reasons": list(self.reasons),

@@ -10,6 +10,7 @@ import pandas as pd
 
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.verdict import UNSTABLE_RATIO
+from tolalloc.robot.columns import joint_column_names
 
 __all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
 
@@ -17,10 +18,6 @@ __all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictio
 def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
     """A DataFrame as a Markdown table."""
     return df.to_markdown(index=False, floatfmt=floatfmt)
-
-
-def _joint_columns(robot) -> list:
-    return [f"q{k + 1}_{'deg' if j.is_revolute else 'mm'}" for k, j in enumerate(robot.joints)]
 
 
 def test_predictions(d: Diagnosis) -> pd.DataFrame:
@@ -50,7 +47,7 @@ def worst_test_poses(d: Diagnosis, n: int = 5) -> pd.DataFrame:
     err_n = np.linalg.norm(d.nominal.test_mm, axis=1)
     order = np.argsort(err_f)[::-1][:n]
     rows = test_predictions(d).iloc[idx[order]].reset_index(drop=True)
-    q = pd.DataFrame(d.robot.q_to_interface(d.test.q[idx[order]]), columns=_joint_columns(d.robot))
+    q = pd.DataFrame(d.robot.q_to_interface(d.test.q[idx[order]]), columns=joint_column_names(d.robot))
     out = pd.concat([rows[["row"]], q], axis=1)
     out["error_nominal_mm"] = err_n[order]
     out["error_final_mm"] = err_f[order]

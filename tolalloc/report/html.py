@@ -268,14 +268,13 @@ def plot_calibrated_tolerances(table: pd.DataFrame):
     """
     import matplotlib.pyplot as plt
 
-    def in_unit(name):  # each row's value from the column pair of its unit
-        return np.where(table["unit"] == "mm", table[f"{name}_mm"], table[f"{name}_deg"])
+    from tolalloc.allocate.result import in_row_unit
 
     y = np.arange(len(table))[::-1]
     fig, ax = plt.subplots(figsize=(8, 0.26 * len(table) + 1.4))
     held = table["status"].str.startswith("must be held").to_numpy()
-    ax.barh(y + 0.2, in_unit("tol_no_calibration"), height=0.4, color="#9aa7b4", label="without calibration")
-    ax.barh(y - 0.2, in_unit("tol"), height=0.4, color=np.where(held, "#c44e52", "#4c72b0"),
+    ax.barh(y + 0.2, in_row_unit(table, "tol_no_calibration"), height=0.4, color="#9aa7b4", label="without calibration")
+    ax.barh(y - 0.2, in_row_unit(table, "tol"), height=0.4, color=np.where(held, "#c44e52", "#4c72b0"),
             label="with the plan (red: must be held)")
     ax.set_xscale("log")
     ax.set_yticks(y, [f"{p} [{u}]" for p, u in zip(table["parameter"], table["unit"])], fontsize=8)

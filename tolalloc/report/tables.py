@@ -19,11 +19,16 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["TABLE_COLUMNS", "display_frame", "write_tables", "format_text", "tex_text"]
+__all__ = ["TABLE_COLUMNS", "UNIT_PAIRS_LEGEND", "display_frame", "write_tables", "format_text", "tex_text"]
 
 #: Columns of the printed / Markdown / LaTeX table (CSV has every column of ``to_frame``).
 TABLE_COLUMNS = ["parameter", "kind", "role", "nominal_mm", "tol_mm", "tol_deg", "grade", "process", "sigma_mm",
                  "sigma_deg", "cost", "variance_share_pct", "at_limit"]
+
+#: The legend's sentence on the column pairs, shared by every tolerance table.
+UNIT_PAIRS_LEGEND = ("Columns ending in _mm hold the length rows (mm), those ending in _deg the angle rows (deg); the "
+                     "other one of each pair is empty. nominal_mm: the link's nominal length, the size its ISO 286 "
+                     "grade applies to.")
 
 #: Columns left out of the printed tables when no row has a value (no processes, no link lengths, no grades).
 OPTIONAL_COLUMNS = ("nominal_mm", "grade", "process")

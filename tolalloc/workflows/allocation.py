@@ -143,7 +143,7 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
                                                   estimator=estimator, correction=correction, rounds=correction_rounds,
                                                   solver=solver, snap=snap, angle_step_deg=angle_step_deg,
                                                   coverage_n=coverage_n, scheduler=scheduler, bar=bar)
-    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=built_design(res, snap))
+    return ToleranceAllocation(res, label, box, reg_info, cov, ver, corr, inputs_record, built=res.built)
 
 
 def _region_search(model, box, kw, *, solver, snap, angle_step_deg, bar):
@@ -162,13 +162,6 @@ def _region_search(model, box, kw, *, solver, snap, angle_step_deg, bar):
     bar.stage("region search (standard grades)")
     return allocate_region_standard(model, box, solver=solver, angle_step_deg=angle_step_deg, continuous=reg_info,
                                     **kw)
-
-
-def built_design(res, snap: bool):
-    """The design that will be built: the standard one when it was chosen and meets the requirement, else the
-    continuous one."""
-    std = res.standard
-    return std if snap and std is not None and std.ok else res.design
 
 
 def _box_is_one_pose(model, box, kw, seed) -> bool:
@@ -190,7 +183,7 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     from tolalloc.allocate.problem import build_problem, make_design
     from tolalloc.allocate.region import coverage
 
-    design = built_design(res, snap)
+    design = res.built
     standard = design is not res.design
     cov, vproblem, vdesign = None, res.problem, design
     if box is not None:
@@ -213,7 +206,7 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
                           verification=ver, snap=snap, angle_step_deg=angle_step_deg, scheduler=scheduler,
                           keep_samples=4000, estimator=estimator, standard=standard, **kw)
     if corr.rounds and box is not None:  # the corrected design, checked over the region again
-        cov = coverage(corr.result.problem, built_design(corr.result, snap).t, box, n=coverage_n, seed=seed + 12345)
+        cov = coverage(corr.result.problem, corr.result.built.t, box, n=coverage_n, seed=seed + 12345)
     return corr.result, cov, corr.verification, corr
 
 

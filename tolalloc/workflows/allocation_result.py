@@ -191,10 +191,10 @@ class ToleranceAllocation(JobResult):
         """What the columns of the tolerance table hold, with their units (below the ``.md`` / ``.tex`` table)."""
         pr = self.problem
         dist = " (errors uniform over ±t)" if pr.costs.distribution == "uniform" else ""
-        return ("Tolerances are symmetric ± half-widths. Columns ending in _mm hold the length rows (mm), those "
-                "ending in _deg the angle rows (deg); the other one of each pair is empty. nominal_mm: the link's "
-                "nominal length, the size its ISO 286 grade applies to. grade: the ISO 286 IT grade of a link length, "
-                "a class name, or empty (a multiple of the resolution step). "
+        from tolalloc.report.tables import UNIT_PAIRS_LEGEND
+
+        return (f"Tolerances are symmetric ± half-widths. {UNIT_PAIRS_LEGEND} grade: the ISO 286 IT grade of a link "
+                "length, a class name, or empty (a multiple of the resolution step). "
                 f"sigma = tol / {pr.costs.z:.4g}{dist}. cost: relative cost units of the cost laws. "
                 "variance_share_pct: share of tr(Sigma) of the position error at the worst pose (pose "
                 f"{self.worst_pose + 1}), in %. role: allocate, or fixed by the costs file. at_limit: t_min or t_max "

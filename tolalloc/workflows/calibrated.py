@@ -272,10 +272,10 @@ class CalibratedToleranceAllocation(JobResult):
 
     def _table_legend(self) -> str:
         """What the columns of the tolerance table hold (below the ``.md`` / ``.tex`` table)."""
-        return ("Tolerances are symmetric ± half-widths of the design to build. Columns ending in _mm hold the length "
-                "rows (mm), those ending in _deg the angle rows (deg); the other one of each pair is empty. nominal_mm: "
-                "the link's nominal length, the size its ISO 286 grade applies to. sigma: the manufactured standard "
-                f"deviation, tol / {self.problem.costs.z:.4g}. cost: relative cost units. variance_share_pct: share of "
+        from tolalloc.report.tables import UNIT_PAIRS_LEGEND
+
+        return (f"Tolerances are symmetric ± half-widths of the design to build. {UNIT_PAIRS_LEGEND} sigma: the "
+                f"manufactured standard deviation, tol / {self.problem.costs.z:.4g}. cost: relative cost units. variance_share_pct: share of "
                 "tr(Sigma) of the position error after calibration at the worst pose, in % (slightly negative where the "
                 "calibration leaves estimates correlated). status: calibrated away (the plan's calibration removes the "
                 "error), loose (at t_max: the process's loosest tolerance suffices; coarsest grade: the coarsest "

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.result import unit_columns
+from tolalloc.allocate.result import parameter_columns, unit_columns
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
@@ -71,12 +71,7 @@ def calibrated_frame(job) -> pd.DataFrame:
     build, build_post = (b.design, b.post) if b is not None and b.post is not None else (d, post)
     rounded = std.rounded if std is not None else None
     base = _baseline(res)
-    lengths = {lk.name: lk.length_mm for lk in pr.model.robot.links}
-    cols = {"parameter": [p.name for p in params], "kind": [p.kind for p in params],
-            "element": [p.element for p in params], "role": list(pr.costs.role),
-            "unit": [p.interface_unit for p in params],
-            "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
-                           for p in params]}
+    cols = parameter_columns(pr)
     cols.update(unit_columns("tol", build.t * f, is_mm))
     cols.update({"grade": list(b.grade) if b is not None else [""] * K,
                  "process": list(b.process) if b is not None else [""] * K})

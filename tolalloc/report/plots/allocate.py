@@ -9,6 +9,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tolalloc.allocate.result import in_row_unit  # noqa: E402
+
 __all__ = ["plot_budget", "plot_cloud", "plot_pareto", "plot_pose_probabilities"]
 
 _KIND_COLORS = {"link_length": "#4c72b0", "joint_drive": "#55a868", "axis_deflection": "#c44e52",
@@ -32,7 +34,7 @@ def plot_budget(table, path=None, *, title: str = "", dpi: int = 100, axes=None)
         fig = axes[0].figure
     y = np.arange(len(table))[::-1]
     colors = [_KIND_COLORS.get(k, "#777777") for k in table["kind"]]
-    tol = table["tol_mm"].where(table["unit"] == "mm", table["tol_deg"]).to_numpy(float)
+    tol = in_row_unit(table, "tol").to_numpy(float)
     ax = axes[0]
     ax.barh(y, tol, color=colors)
     ax.set_xscale("log")
