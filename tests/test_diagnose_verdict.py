@@ -237,3 +237,14 @@ def test_no_testable_candidate_is_inconclusive_not_none():
     v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
     assert v.verdict == "inconclusive" and v.untested == ("a", "b")
     assert v.reasons[0].startswith("no candidate effect could be tested") and f"a not tested: {why}" in v.reasons
+
+
+def test_an_alternative_a_fit_names_is_not_named_again_by_the_stiffness_note():
+    from tolalloc.diagnose.verdict import Comparison, Verdict
+
+    fit = Comparison("backlash", "joint_compliance", 0.2, 1.0, 0.1, 0.1, False)
+    note = Comparison("backlash", "joint_compliance", None, None, 0.1, 0.1, False, "same signature")
+    v = Verdict("ambiguous", ("backlash", "joint_compliance"), (), "x", (fit, note), selected=("backlash",))
+    assert v.headline() == ("verdict: ambiguous -- backlash or joint_compliance; these poses cannot tell them apart")
+    alone = Verdict("ambiguous", ("backlash", "joint_compliance"), (), "x", (note,), selected=("backlash",))
+    assert alone.headline().startswith("verdict: ambiguous -- backlash or a torque-dependent joint stiffness;")

@@ -120,9 +120,10 @@ class Verdict:
 
     def _ambiguous_terms(self) -> str:
         """The selected effects with their indistinguishable alternatives, e.g. ``a + (b or c)``."""
-        alts = {}
-        for c in self.comparisons:
-            if not c.separable:
+        alts, named = {}, set()
+        for c in self.comparisons:  # an alternative named by a fit is not named again by a note
+            if not c.separable and (c.effect, c.alternative) not in named:
+                named.add((c.effect, c.alternative))
                 alts.setdefault(c.effect, []).append(c.alternative_label)
         selected = self.selected or tuple(e for e in self.candidates if e in alts)
         terms = [" or ".join((e, *alts.get(e, ()))) for e in selected]
