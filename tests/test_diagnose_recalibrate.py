@@ -5,8 +5,8 @@ offsets. The calibration is trained on the first; the second is re-registered on
 the rest.
 
 * The second session differs by a small geometric change (0.3 mm of one link's length): the frame-only
-  re-registration cannot absorb it, the calibration update recovers it (scored RMS at the noise level, the change
-  found within 20 %).
+  re-registration cannot absorb it, the calibration update recovers it (scored RMS within 2.5 x the noise level, the
+  change found within 25 %).
 * The second session is the same robot: the update must not move -- scored RMS and every parameter as the
   frame-only re-registration gives them, to within the noise.
 """
@@ -25,7 +25,7 @@ from tolalloc.exceptions import TolallocError
 
 NOISE_MM = 0.01
 #: Prior inflation of the tests: the training posterior widened to about the registration poses' information.
-INFLATION = 4.0
+INFLATION = 20.0
 
 
 def _rms(e):
@@ -76,9 +76,9 @@ def test_update_recovers_a_small_geometric_change(sessions):
     prior = calibration_prior(fit, train.q, None, INFLATION)
     upd = register_update(fit, q, xyz, None, split, prior)
     noise_3d = np.sqrt(3) * NOISE_MM
-    assert _rms(only_frame.residual_mm) > 3 * noise_3d
-    assert _rms(upd.residual_mm) < 1.5 * noise_3d
-    assert upd.fit.delta[k] - fit.delta[k] == pytest.approx(0.3, rel=0.2)
+    assert _rms(only_frame.residual_mm) > 10 * noise_3d
+    assert _rms(upd.residual_mm) < 2.5 * noise_3d
+    assert upd.fit.delta[k] - fit.delta[k] == pytest.approx(0.3, rel=0.25)
 
 
 def test_update_does_not_move_the_same_robot(sessions):
