@@ -86,12 +86,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
 
     alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
                                               progress)
-    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm)
-    if register_update is not None:
-        inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
-        if test_frame != "refit":
-            raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
-                                "re-registered.")
+    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
@@ -125,8 +120,13 @@ def _gap_split(d, progress):
             bar.close()
 
 
-def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm) -> None:
+def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same") -> None:
     inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
+    if register_update is not None:
+        inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
+        if test_frame != "refit":
+            raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
+                                "re-registered.")
     if target_offset_mm is not None and target_offset_sd_mm is None:
         raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
                             "too (e.g. 5 for a tool drawing good to a few mm).")
