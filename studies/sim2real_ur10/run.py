@@ -1,6 +1,6 @@
 """Sim-to-real diagnosis of the real UR10 laser-tracker data (IPA, ../shared/data/ipa-ur10).
 
-Six runs, each a full `diagnose` (registration + probe offset + the complete, minimal geometric model, MAP,
+Eight runs, each a full `diagnose` (registration + probe offset + the complete, minimal geometric model, MAP,
 then the candidate effects scored on held-out poses, guards) followed by the residual split of
 `tolalloc.diagnose.gap` on the test poses:
 
@@ -9,7 +9,10 @@ then the candidate effects scored on held-out poses, guards) followed by the res
   test (row order is measurement order);
 * ``across_A_to_C``, ``across_C_to_A``: train on one session, test on the other (``test_frame='refit'``): the
   test session's tracker registration and probe offset are re-estimated on 30 test poses spread in joint space
-  (`tolalloc.diagnose.register`) and only the other test poses are scored.
+  (`tolalloc.diagnose.register`) and only the other test poses are scored;
+* ``across_A_to_C_update``, ``across_C_to_A_update``: the same with ``register_update='calibration'``: the
+  registration poses also update the trained parameters, their training posterior as the prior
+  (`tolalloc.diagnose.recalibrate`).
 
 Issue 25's targets are checked per run: no final model worse than nominal on the test file, and no final max
 error above 2x the nominal max, unless the verdict is ``inconclusive``; the test file is sealed (scored once,
@@ -57,7 +60,8 @@ SHORT_DEG = 15.0
 #: drives); the periodogram scans every order up to 2.1 N, so the assumption only names two of its rows.
 GEAR_RATIO = 101
 KINDS = {"random": "random 75/25 split", "time": f"first {TIME_TRAIN:.0%} train, later rows test",
-         "across": "other session, re-registered on 30 test poses"}
+         "across": "other session, re-registered on 30 test poses",
+         "across_update": "other session, re-registered with a calibration update on 30 test poses"}
 
 
 def make_runs(A: pd.DataFrame, C: pd.DataFrame) -> dict:
@@ -71,6 +75,8 @@ def make_runs(A: pd.DataFrame, C: pd.DataFrame) -> dict:
         runs[f"time_{s}"] = (df.iloc[:n].reset_index(drop=True), df.iloc[n:].reset_index(drop=True), "same", "time")
     runs["across_A_to_C"] = (A, C, "refit", "across")
     runs["across_C_to_A"] = (C, A, "refit", "across")
+    runs["across_A_to_C_update"] = (A, C, "refit", "across_update")
+    runs["across_C_to_A_update"] = (C, A, "refit", "across_update")
     return runs
 
 
@@ -217,7 +223,8 @@ def main(argv=None) -> int:
     for name, (tr, te, frame, kind) in make_runs(A, C).items():
         t0 = time.perf_counter()
         d = diagnose(robot, measurements_from_frame(tr, robot, f"{name}:train"),
-                     measurements_from_frame(te, robot, f"{name}:test"), test_frame=frame)
+                     measurements_from_frame(te, robot, f"{name}:test"), test_frame=frame,
+                     register_update="calibration" if kind == "across_update" else "frame")
         gap = diagnosis_gap_split(d)
         reg_rows += registration_rows(name, d) if frame == "refit" else []
         dt = time.perf_counter() - t0

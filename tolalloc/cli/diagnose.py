@@ -29,6 +29,11 @@ def register(sub) -> None:
                    help="with --test-frame refit: how many test poses register the frame -- a count (>= 5, default 30) "
                    "or, below 1, a fraction of the test file; chosen spread in joint space (seeded by --seed), "
                    "used for the registration only and never scored")
+    p.add_argument("--register-update", choices=("frame", "calibration"), default=None,
+                   help="with --test-frame refit: what the registration poses re-fit -- 'frame' (default): the tracker "
+                   "frame and probe offset, the trained model frozen; 'calibration': also a correction of the trained "
+                   "geometric and effect parameters, with their training posterior as the prior (the same robot, "
+                   "re-measured)")
     p.add_argument("--json", metavar="OUT.json", help="write the result as JSON ('-' for stdout)")
     p.add_argument("--predictions", metavar="PRED.csv",
                    help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (row: its data row in "
@@ -73,7 +78,7 @@ def cmd_diagnose(args) -> int:
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,
-                                register_n=args.register_n, folds=args.folds, alpha=args.alpha, seed=args.seed,
+                                register_n=args.register_n, register_update=args.register_update, folds=args.folds, alpha=args.alpha, seed=args.seed,
                                 cv_rows=args.cv_rows, gap_split=args.gap_split, progress=args.progress,
                                 robust_loss=args.robust_loss, target_offset_mm=args.target_offset_mm,
                                 target_offset_sd_mm=args.target_offset_sd_mm,

@@ -19,7 +19,8 @@ from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.register import REGISTER_N, register_and_score, register_count
+from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, reregister
+from tolalloc.diagnose.register import REGISTER_N, register_count
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
                                      progress_scope, subsample_index)
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
@@ -52,10 +53,12 @@ def _line_guard(robot: Robot, train: Measurements) -> str | None:
 
 
 def _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss, target_offset_mm,
-                target_offset_sd_mm):
+                target_offset_sd_mm, register_update="frame"):
     """Validate the arguments of :func:`diagnose`; returns the target-offset prior (mean, sd) or None."""
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
+    if register_update not in REGISTER_UPDATES:
+        raise TolallocError(f"register_update: expected one of {', '.join(REGISTER_UPDATES)}, got {register_update!r}.")
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
     if folds > train.n_poses // 2:
@@ -93,7 +96,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
              test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
              register_n: float = REGISTER_N, cv: str = "blocked", progress: bool | None = False,
              subsample_rows: int = SUBSAMPLE_ROWS, robust_loss: str = DEFAULT_LOSS,
-             target_offset_mm=None, target_offset_sd_mm=None) -> Diagnosis:
+             target_offset_mm=None, target_offset_sd_mm=None, register_update: str = "frame") -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     The **test file is sealed**: the variants, fold counts, clip level, significance tests, effect selection and
@@ -114,6 +117,11 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         target offset are re-estimated on ``register_n`` test poses spread in joint space
         (:mod:`.register`), and only the other test poses are scored.
     register_n : float          ``refit``: registration poses, a count (>= 1, default 30) or a fraction (< 1)
+    register_update : {"frame", "calibration"}
+        ``refit``: what the registration poses re-fit. ``frame`` (default): the tracker frame and the probe offset,
+        the trained model frozen. ``calibration``: also a correction of the trained geometric and effect
+        parameters, with the training fit's posterior (inflated by the out-of-fold / in-sample residual ratio) as
+        the prior (:mod:`.recalibrate`). No effect without ``refit``.
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
     progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
@@ -132,7 +140,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         it the training fits leave the offset free and the folds borrow the training fit's (:mod:`.select`).
     """
     t_prior = _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss,
-                          target_offset_mm, target_offset_sd_mm)
+                          target_offset_mm, target_offset_sd_mm, register_update)
     with threadpool_limits(threads), progress_scope(progress):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol, loss=robust_loss, t_prior=t_prior)
@@ -140,7 +148,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         sub = subsample_index(train.n_poses, subsample_rows, seed)
         cv_train = train if sub is None else train.subset(sub)
         ctx = make_context(cal, cv_train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
-                           register_n=register_n, cv=cv, t_prior=t_prior, loss=robust_loss)
+                           register_n=register_n, cv=cv, t_prior=t_prior, loss=robust_loss,
+                           register_update=register_update)
         sel = _select(ctx, alpha, min_gain, max_effects, seed)
         subsample = None
         if sub is not None:
@@ -209,7 +218,8 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     settings = {"robust_loss": loss, "cv": ctx.cv, "folds_per_scheme": len(ctx.folds),
                 "target_offset_prior_mm": None if t_prior is None else {"mean": t_prior[0].tolist(),
                                                                         "sd": t_prior[1].tolist()},
-                "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist()}
+                "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist(),
+                "register_update": ctx.register_update if ctx.registration is not None else None}
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
                      check.findings(), verdict, tuple(outlier_rows(final.fit, train.rows)), settings)
@@ -223,7 +233,7 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
         return nominal, geometric, final, chosen
 
     def scored(ev):
-        res, pred = score_test(ctx, ev.fit, ev.effects, ev.keep)
+        res, pred = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
         return replace(ev, test_mm=res, test_pred_mm=pred)
 
     n2, g2 = scored(nominal), scored(geometric)
@@ -295,8 +305,8 @@ def _uncertainty(ctx, final: Evaluation) -> tuple:
     Btr, Bte = kept_basis(ctx.bases, final), kept_basis(ctx.bases_test, final)
     if ctx.registration is None:
         return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte), None
-    extra = np.zeros((test.n_poses, 3)) if Bte is None else Bte @ fit.beta
-    reg = register_and_score(fit, test.q, test.xyz_mm, extra, ctx.registration, t_prior=ctx.t_prior, loss=ctx.loss)
+    reg = reregister(fit, test.q, test.xyz_mm, Bte, ctx.registration, update=ctx.register_update, q_train=ctx.train.q,
+                     B_train=Btr, oof_mm=final.oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
     unc = prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte,
                                  registered=reg.fit, split=ctx.registration)
     return unc, reg.fit

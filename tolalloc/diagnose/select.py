@@ -48,7 +48,8 @@ from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_
 from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
 from tolalloc.diagnose.guards import parameter_covariance
-from tolalloc.diagnose.register import REGISTER_N, register_and_score, registration_split
+from tolalloc.diagnose.recalibrate import reregister
+from tolalloc.diagnose.register import REGISTER_N, registration_split
 from tolalloc.diagnose.thermal import time_problem
 from tolalloc.diagnose.scores import (Candidate, Evaluation, Stage, clip_level, error_stats, paired_pvalue, rms,
                                       robust_rms)
@@ -73,6 +74,7 @@ class _Context:
                  loss=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
         self.cv, self.t_prior, self.loss = cv, t_prior, loss
+        self.register_update = "frame"  # ``refit``: frame-only re-registration, or "calibration" (.recalibrate)
         self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         k = fold_count(folds, *self.J_fixed.shape)
         self.folds = make_folds(train, k, cv, seed)
@@ -213,11 +215,13 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
     return Evaluation(label, tuple(effects), full, names, keep, oof, None, None, oof_joint)
 
 
-def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
+def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray, oof_mm: np.ndarray | None = None):
     """Residuals and predictions of ``full`` on the test file (None, None without one).
 
-    ``refit``: registered on ``ctx.registration.register_index`` and scored on the rest (residuals (T - r, 3),
-    predictions in the re-registered frame); else residuals and predictions (T, 3) in the measurement frame.
+    ``refit``: registered on ``ctx.registration.register_index`` (with ``ctx.register_update == "calibration"`` also
+    the calibration update, :mod:`.recalibrate`, its prior inflated by the out-of-fold residuals ``oof_mm``) and
+    scored on the rest (residuals (T - r, 3), predictions in the re-registered frame); else residuals and
+    predictions (T, 3) in the measurement frame.
     """
     test = ctx.test
     if test is None:
@@ -228,9 +232,9 @@ def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray):
         Bt = Bt[:, :, keep]
     test_pred = full.predict(test.q, Bt)
     if ctx.test_frame == "refit":
-        extra = np.zeros((test.n_poses, 3)) if Bt is None else Bt @ full.beta
-        reg = register_and_score(full, test.q, test.xyz_mm, extra, ctx.registration, t_prior=ctx.t_prior,
-                                 loss=ctx.loss)
+        Btr = _stack(ctx.bases, effects)[0][:, :, keep] if effects else None
+        reg = reregister(full, test.q, test.xyz_mm, Bt, ctx.registration, update=ctx.register_update,
+                         q_train=ctx.train.q, B_train=Btr, oof_mm=oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
         return reg.residual_mm, reg.pred_mm
     return test.xyz_mm - test_pred, test_pred
 
@@ -372,7 +376,7 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
                  tol: float = 1e-3, register_n: float = REGISTER_N, cv: str = "blocked",
-                 gear_ratio=None, t_prior=None, loss=None) -> _Context:
+                 gear_ratio=None, t_prior=None, loss=None, register_update: str = "frame") -> _Context:
     """Shared state of one diagnosis (folds, effect variants and bases; with ``test_frame='refit'`` the
     registration split).
 
@@ -383,6 +387,7 @@ def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_f
     of the fits (:func:`tolalloc.diagnose.calibrate.fit_model`).
     """
     ctx = _Context(cal, train, test, folds, seed, test_frame, tol, cv, gear_ratio, t_prior, loss)
+    ctx.register_update = register_update
     ctx.registration = (registration_split(test.q, cal.geometric.model.robot.revolute_mask, register_n, seed)
                         if test is not None and test_frame == "refit" else None)
     return ctx

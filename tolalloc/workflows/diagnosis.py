@@ -19,7 +19,7 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
                           progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,
-                          target_offset_sd_mm=None, tool: str | None = None,
+                          target_offset_sd_mm=None, register_update: str | None = None, tool: str | None = None,
                           trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
 
@@ -37,6 +37,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         ``refit``: the test file is another session in another tracker frame; its registration and target offset
         are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below 1), which
         are then not scored.
+    register_update : {"frame", "calibration"}, optional
+        With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
+        the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
+        parameters, their training posterior as the prior (:mod:`tolalloc.diagnose.recalibrate`).
     folds : int
         Cross-validation folds (a minimum: more when the training file has few poses).
     alpha : float
@@ -82,7 +86,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
 
     alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
                                               progress)
-    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm)
+    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
@@ -93,10 +97,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
                  register_n=REGISTER_N if register_n is None else register_n, progress=progress,
                  robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
-                 **({} if cv_rows is None else {"subsample_rows": cv_rows}))
+                 register_update=register_update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
     gap = _gap_split(d, progress) if gap_split else None
     record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
-              "register_n": register_n, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
+              "register_n": register_n, "register_update": register_update, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
               "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units), "robust_loss": robust_loss,
               "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
               "target_offset_sd_mm": target_offset_sd_mm}
@@ -116,8 +120,13 @@ def _gap_split(d, progress):
             bar.close()
 
 
-def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm) -> None:
+def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same") -> None:
     inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
+    if register_update is not None:
+        inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
+        if test_frame != "refit":
+            raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
+                                "re-registered.")
     if target_offset_mm is not None and target_offset_sd_mm is None:
         raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
                             "too (e.g. 5 for a tool drawing good to a few mm).")

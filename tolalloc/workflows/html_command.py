@@ -20,7 +20,7 @@ _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "po
          "correction_rounds": "--correction-rounds",
          "angle_step_deg": "--angle-step-deg", "tool": "--tool", "trust_units": "--trust-units",
          "exclude": "--exclude", "test": "--test", "test_frame": "--test-frame", "register_n": "--register-n",
-         "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
+         "register_update": "--register-update", "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
          "train": "--train", "robust_loss": "--robust-loss"}
 #: boolean keyword arguments whose command-line flag switches them off
 _NEGATED = {"verify": "--no-verify", "correction": "--no-correction", "snap": "--no-snap"}
@@ -175,6 +175,8 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
         kw["test_frame"] = d.test_frame
         if inp.get("register_n") is not None:
             kw["register_n"] = inp["register_n"]
+        if inp.get("register_update") is not None:
+            kw["register_update"] = inp["register_update"]
     kw["folds"] = int(inp.get("folds", job.folds))
     for key, default in (("alpha", 0.01), ("seed", 0)):
         if key in inp:

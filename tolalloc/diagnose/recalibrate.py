@@ -1,0 +1,176 @@
+"""Cross-session re-registration with a calibration update (``register_update="calibration"``).
+
+The frame-only re-registration (:func:`tolalloc.diagnose.register.register_and_score`) re-fits the test file's
+tracker frame (6) and probe offset (3) on the registration poses with the trained model frozen. The calibration
+update fits, on the same registration poses, the frame, the probe offset **and** a correction of the trained
+geometric and effect parameters ``theta``, with the training fit's posterior as the prior: the same robot,
+re-measured, whose parameters move only as far as the training data allow.
+
+Prior of ``theta``: mean the trained values; precision the training fit's information, marginalised over the
+training registration and probe offset (Schur complement: that frame is not the test file's),
+
+    P = (J_tt - J_tf J_ff^-1 J_ft) / noise^2 + diag(prior precisions of the training fit),
+
+with ``J`` the training Jacobian (:func:`tolalloc.diagnose.guards.point_jacobian`), ``noise^2`` the training
+residual variance per coordinate, the MAP prior of the geometric parameters and the ridge weights of the effect
+columns (as in :func:`tolalloc.diagnose.guards.parameter_covariance`). The posterior is divided by an inflation
+factor ``k`` taken from the training file only: the ratio of the model's out-of-fold (time blocks) to its
+in-sample mean square residual, at least 1 -- the factor by which the training fit's own residual understates
+its error on poses it did not see. The update then minimises ``|r_reg|^2 + noise^2 (theta - mu)^T P (theta -
+mu) / k`` (the registration rows weighted by the training noise) with a robust loss: Huber's (``huber`` or
+``soft_l1`` when the diagnosis uses it) -- Tukey's biweight, beside a strong prior, can reject the registration
+poses that disagree with the trained parameters instead of moving the parameters.
+
+On the real UR10 across sessions (train on one session, test on the other, 30 registration poses) the update
+lowered the scored test RMS of the final model from 0.563 to 0.441 mm (A -> C) and from 0.732 to 0.542 mm
+(C -> A); a model without parameters beyond the frame (nominal) is re-registered as before. The predicted
+uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) is still that of the
+frame-only re-registration: it does not include the update.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
+from tolalloc.diagnose.guards import point_jacobian
+from tolalloc.diagnose.register import Registered, RegistrationSplit, register_and_score
+from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
+
+__all__ = ["REGISTER_UPDATES", "CalibrationPrior", "calibration_prior", "inflation_factor", "register_update", "reregister"]
+
+#: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
+REGISTER_UPDATES = ("frame", "calibration")
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationPrior:
+    """Gaussian prior of the trained parameters ``theta = [delta[geo_index], beta]`` for the update.
+
+    Attributes
+    ----------
+    mean : array, shape (m,)          trained values [mm, rad; effect units]
+    precision : array, shape (m, m)   posterior precision in data units (``noise^2 P / k``, module docstring)
+    noise_mm : float                  training residual sd per coordinate [mm]
+    inflation : float                 ``k`` (>= 1)
+    """
+
+    mean: np.ndarray
+    precision: np.ndarray
+    noise_mm: float
+    inflation: float
+
+
+def inflation_factor(oof_mm: np.ndarray, residual_mm: np.ndarray) -> float:
+    """Out-of-fold over in-sample mean square 3-D residual of a training fit, at least 1."""
+    ms = lambda e: float(np.mean(np.sum(np.asarray(e) ** 2, axis=1)))  # noqa: E731
+    insample = ms(residual_mm)
+    return max(1.0, ms(oof_mm) / insample) if insample > 0 else 1.0
+
+
+def calibration_prior(fit: Fit, q: np.ndarray, B: np.ndarray | None, inflation: float = 1.0) -> CalibrationPrior:
+    """The training posterior of ``fit``'s geometric and effect parameters (marginal over its registration).
+
+    Parameters
+    ----------
+    fit : Fit                          the training fit
+    q : array, shape (P, n) [rad, mm]  training poses (a subsample of them gives a wider, conservative prior)
+    B : array, shape (P, 3, m), optional  the effect columns of ``fit.beta`` on ``q``
+    inflation : float                  ``k`` (:func:`inflation_factor`)
+    """
+    J = point_jacobian(fit, q, B).reshape(3 * len(q), -1)
+    n = J.shape[1]
+    res = np.asarray(fit.residual_mm)
+    noise2 = float(np.mean(res ** 2)) * res.size / max(res.size - n, 1) if res.size else 0.05 ** 2
+    prec = np.zeros(n)
+    sig = fit.model.sigma[fit.geo_index]
+    prec[9:9 + len(sig)] = np.where(sig > 0, 1.0 / np.where(sig > 0, sig, 1.0) ** 2, 0.0)
+    if fit.t_prior_mm is not None:
+        prec[6:9] = 1.0 / np.asarray(fit.t_prior_mm[1], float) ** 2
+    if fit.beta_prior_w is not None and len(fit.beta_prior_w) == n - 9 - len(sig):
+        prec[9 + len(sig):] = np.asarray(fit.beta_prior_w, float) ** 2 / noise2
+    info = J.T @ J / noise2 + np.diag(prec)
+    Aff, Aft, Att = info[:9, :9], info[:9, 9:], info[9:, 9:]
+    S = Att - Aft.T @ np.linalg.lstsq(Aff, Aft, rcond=None)[0]
+    k = max(float(inflation), 1.0)
+    mean = np.concatenate([fit.delta[fit.geo_index], fit.beta])
+    return CalibrationPrior(mean, noise2 * 0.5 * (S + S.T) / k, float(np.sqrt(noise2)), k)
+
+
+class _PriorProblem(Problem):
+    """The measurement model with a full Gaussian prior ``(x[9:] - mean)^T precision (x[9:] - mean)``."""
+
+    def set_full_prior(self, mean: np.ndarray, precision: np.ndarray) -> None:
+        self._mean, self._prec = mean, precision
+
+    def normal(self, x):
+        cost, H, g, raw = super().normal(x)
+        d = x[9:] - self._mean
+        Pd = self._prec @ d
+        H[9:, 9:] += self._prec
+        g[9:] += Pd
+        return cost + float(d @ Pd), H, g, raw
+
+
+def register_update(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, split: RegistrationSplit,
+                    prior: CalibrationPrior, *, t_prior=None, loss: str | None = None) -> Registered:
+    """Re-register the test file's frame and probe offset and update ``theta`` on ``split.register_index``.
+
+    Parameters
+    ----------
+    fit : Fit                        trained model
+    q : array, shape (T, n) [rad, mm]; xyz : array, shape (T, 3) [mm]   test poses, test tracker frame
+    B : array, shape (T, 3, m), optional   the effect columns of ``fit.beta`` on the test poses
+    split : RegistrationSplit
+    prior : CalibrationPrior         :func:`calibration_prior` of ``fit``
+    t_prior, loss                    as :func:`tolalloc.diagnose.register.register_and_score`
+
+    Starts from the frame-only re-registration; returns the updated fit (test frame), its predictions of every
+    test pose and the residuals of the scored poses.
+    """
+    no_b = B is None or not B.shape[-1]
+    extra = np.zeros((len(q), 3)) if no_b else B @ fit.beta
+    start = register_and_score(fit, q, xyz, extra, split, t_prior=t_prior, loss=loss)
+    if not len(prior.mean):
+        return start
+    r, s0 = split.register_index, start.fit
+    Br = None if no_b else B[r]
+    prob = _PriorProblem(fit.model, s0.R, s0.p_mm, s0.t_mm, fit.delta, q[r], xyz[r], fit.geo_index, Br)
+    prob.set_full_prior(prior.mean, prior.precision)
+    if t_prior is not None:
+        prob.set_priors((t_prior[0], prior.noise_mm / np.broadcast_to(np.asarray(t_prior[1], float), (3,))))
+    x0 = np.concatenate([np.zeros(3), s0.p_mm, s0.t_mm, prior.mean])
+    x, raw = solve(prob, x0, max_iter=60, label="calibration update")
+    # Tukey's biweight is not used here: beside a strong prior it can reject the registration poses that disagree
+    # with the trained parameters (bounded loss) instead of moving them; Huber's convex loss cannot.
+    loss = "huber" if loss in (None, "tukey") else loss
+    if loss == "soft_l1":
+        prob.f_scale = robust_scale(raw.ravel())
+    else:
+        prob.loss = loss
+        prob.f_scale = (HUBER_C if loss == "huber" else TUKEY_C) * norm_scale(raw)
+    x, raw = solve(prob, x, max_iter=30, label="calibration update (robust)")
+    R, p, t, delta, beta = prob.unpack(x)
+    f = replace(fit, R=R, p_mm=p, t_mm=t, delta=delta, beta=beta if not no_b else fit.beta)
+    pred = (f.base_points(q) + (np.zeros((len(q), 3)) if no_b else B @ f.beta)) @ R.T + p
+    s = split.score_index
+    return Registered(f, pred, xyz[s] - pred[s])
+
+
+def reregister(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, split: RegistrationSplit, *,
+               update: str = "frame", q_train: np.ndarray | None = None, B_train: np.ndarray | None = None,
+               oof_mm: np.ndarray | None = None, t_prior=None, loss: str | None = None) -> Registered:
+    """The test file re-registered for scoring: frame-only, or with the calibration update (``update``).
+
+    ``q_train``, ``B_train`` (training poses and the effect columns of ``fit.beta`` on them) and ``oof_mm`` (the
+    model's out-of-fold training residuals, for :func:`inflation_factor`) are needed for ``"calibration"``.
+    """
+    no_b = B is None or not B.shape[-1]
+    if update == "frame" or (not len(fit.geo_index) and no_b):
+        extra = np.zeros((len(q), 3)) if no_b else B @ fit.beta
+        return register_and_score(fit, q, xyz, extra, split, t_prior=t_prior, loss=loss)
+    k = 1.0 if oof_mm is None else inflation_factor(oof_mm, fit.residual_mm)
+    prior = calibration_prior(fit, q_train, None if no_b else B_train, k)
+    return register_update(fit, q, xyz, None if no_b else B, split, prior, t_prior=t_prior, loss=loss)
