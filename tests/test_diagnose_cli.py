@@ -70,6 +70,9 @@ def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
                  "--register-n", "10", *args]) == 2
     assert "--register-n needs --test-frame refit" in capsys.readouterr().err
     assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
+                 "--register-update", "calibration", *args]) == 2
+    assert "--register-update needs --test-frame refit" in capsys.readouterr().err
+    assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
                  "--test-frame", "refit", "--register-n", "38", *args]) == 2  # the test file has 40 poses
     assert "gives 38 registration and 2 scored poses" in capsys.readouterr().err
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists() and not (tmp_path / "p.csv").exists()
@@ -99,3 +102,20 @@ def test_gap_split_needs_a_test_file(tmp_path, capsys):
                "--json", str(tmp_path / "o.json")])
     assert rc == 2 and "--gap-split needs --test" in capsys.readouterr().err
     assert not (tmp_path / "o.json").exists()
+
+
+def test_register_update_reaches_the_fit_and_the_json(tmp_path, capsys):
+    _files(tmp_path)
+    runs = {}
+    for update in ("frame", "calibration"):
+        out = tmp_path / f"{update}.json"
+        assert main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test",
+                     str(tmp_path / "test.csv"), "--test-frame", "refit", "--register-n", "12",
+                     "--register-update", update, "--folds", "3", "--json", str(out)]) == 0
+        runs[update] = json.loads(out.read_text())
+    capsys.readouterr()
+    assert runs["calibration"]["settings"]["register_update"] == "calibration"
+    assert runs["frame"]["settings"]["register_update"] == "frame"
+    frame, upd = (runs[k]["test"]["rms_mm"]["final"] for k in ("frame", "calibration"))
+    # one session on both sides: the update has nothing to correct and stays at the frame-only figure
+    assert upd == __import__("pytest").approx(frame, rel=0.15)
