@@ -18,7 +18,8 @@ For each of ``n_robots`` simulated robots:
 
 ``P_hat(|dP| < r)`` per pose (one draw per robot and pose, so robots are independent trials) with a Wilson
 interval is reported beside the linear post-calibration prediction of :mod:`tolalloc.calibration.posterior`.
-The intervals are simultaneous over the poses (Bonferroni, level ``1 - (1 - level) / P``). The diagnosis's
+The intervals are simultaneous over the poses (Bonferroni, level ``1 - (1 - level) / P`` each:
+:func:`tolalloc.montecarlo.intervals.simultaneous_level`). The diagnosis's
 calibrator (:mod:`tolalloc.diagnose.calibrate`) is not used: it fits one robot at a time with its own parameter
 selection, and it is being rewritten; the fit here is the plan's Bayesian estimator itself.
 """
@@ -38,6 +39,7 @@ from tolalloc.errormodel.chain import FastChain
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.paired import PairedCounts, check_estimator, control_fallback_reason, estimate_from_counts
 from tolalloc.montecarlo.streaming import proportion_ci
 from tolalloc.robot.lie import exp_so3
@@ -383,7 +385,7 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     p_true, _ = use.tool(s, fresh)
     p_hat, _ = use.tool(hat)
     err = np.linalg.norm(p_true - p_hat, axis=-1)  # (B, P)
-    lvl = 1 - (1 - level) / P
+    lvl = simultaneous_level(level, P)
     p_lin = p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm)
     pe = None
     if estimator == "plain":
