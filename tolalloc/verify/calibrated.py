@@ -81,6 +81,8 @@ class CalibrationCheck:
         With ``estimator`` ``paired`` / ``auto``: the paired estimate, whose control is the *linearised pipeline*
         (linear measurements, the linear MAP fit, linear use; exact Gaussian P in ``estimate.p_linear``), its
         discordant counts and variance reduction; ``p_mc``/``ci_*`` are then its estimate and interval.
+    family_level : float
+        Level at which the intervals of all ``P`` poses hold together (each at ``1 - (1 - family_level) / P``).
     """
 
     q: np.ndarray
@@ -97,6 +99,7 @@ class CalibrationCheck:
     n_exact: int = 0
     n_converged: int = 0
     estimate: ProbabilityEstimate | None = None
+    family_level: float = 0.95
 
     @property
     def estimator(self) -> np.ndarray:
@@ -396,4 +399,4 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
         ci = np.stack([pe.p_hat, pe.ci_low, pe.ci_high], axis=1)
     return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots,
                             float(steps.max()), n_robots / fit_time, iters, fit_cpu, int(exact.sum()),
-                            int(np.sum(steps < _STEP_TOL)), pe)
+                            int(np.sum(steps < _STEP_TOL)), pe, float(level))

@@ -105,6 +105,10 @@ class Verification:
         """Level of each interval (Bonferroni): ``1 - (1 - family_level) / n_intervals``."""
         return simultaneous_level(self.family_level, self.n_intervals)
 
+    def interval_label(self) -> str:
+        """The intervals' name for tables and figures: ``simultaneous 95% interval`` (``95% interval`` when single)."""
+        return f"{interval_words(self.family_level, self.n_intervals)} interval"
+
     def interval_text(self) -> str:
         """What the intervals are, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
         each)``."""
