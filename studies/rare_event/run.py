@@ -210,8 +210,8 @@ def report(cost, demo, agree, cov, args, wall):
             "(Bonferroni: level 1 - 0.05 / poses each). Plain: `n = z^2 P (1 - P) / (P_hat - p)^2`. Paired: the "
             "`n` at which the score interval's half-width `z sqrt(d / n) + z^2 / n` equals the margin `P_hat - p` "
             "(`d` = discordant samples per sample, measured with 2^20 samples; the `z^2 / n` term is the "
-            "interval's width with no discordant sample, which rules when discordance is rarer than 1/n). Importance sampling: the same law in effective samples "
-            "(`n_eff = n / w_bar`). Times: `n` x the measured time per sample (plain counts come from the paired "
+            "interval's width with no discordant sample, which rules when discordance is rarer than 1/n). "
+            "Importance sampling: the same law in effective samples (`n_eff = n / w_bar`). Times: `n` x the measured time per sample (plain counts come from the paired "
             "pass, so plain's time per sample is the paired pass's). The margin is that of the demonstrated design "
             "at its least-margin pose.\n", md(demo),
             f"\n## Paired against plain Monte Carlo, {args.big_n:.0e} samples\n",
