@@ -211,9 +211,9 @@ def report(cost, demo, agree, cov, args, wall):
             "`n` at which the score interval's half-width `z sqrt(d / n) + z^2 / n` equals the margin `P_hat - p` "
             "(`d` = discordant samples per sample, measured with 2^20 samples; the `z^2 / n` term is the "
             "interval's width with no discordant sample, which rules when discordance is rarer than 1/n). "
-            "Importance sampling: the same law in effective samples (`n_eff = n / w_bar`). Times: `n` x the measured time per sample (plain counts come from the paired "
-            "pass, so plain's time per sample is the paired pass's). The margin is that of the demonstrated design "
-            "at its least-margin pose.\n", md(demo),
+            "Importance sampling: the same law in effective samples (`n_eff = n / w_bar`). Times: `n` x the "
+            "measured time per sample (plain counts come from the paired pass, so plain's time per sample is the "
+            "paired pass's). The margin is that of the demonstrated design at its least-margin pose.\n", md(demo),
             f"\n## Paired against plain Monte Carlo, {args.big_n:.0e} samples\n",
             "The same draws give both: the paired estimate should lie in the plain interval (`paired_in_plain_ci`); "
             "the plain estimate lies in the far narrower paired interval only by chance (`plain_in_paired_ci`).\n",
