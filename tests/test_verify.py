@@ -135,3 +135,21 @@ def test_interval_containing_p_with_few_samples_is_inconclusive(res):
         assert v.verdicts[i] == "consistent"
     assert "nonlinearity" not in v.message() and not v.message().startswith("verified: failed")
     assert v.message().startswith("verified: consistent, criterion not met")
+
+
+def test_intervals_are_simultaneous_over_the_poses(res):
+    # 3 poses, position only: each interval at 1 - 0.05 / 3, and every output says so
+    v = verify_design(res.problem, res.design, n_mc=20_000, seed=8, keep_samples=0)
+    per = 1 - 0.05 / 3
+    assert (v.family_level, v.n_intervals) == (0.95, 3) and v.level_per_interval == pytest.approx(per)
+    assert v.estimate.level == pytest.approx(per)
+    frame = v.to_frame()
+    assert np.allclose(frame.level_per_interval, per) and np.all(frame.family_level == 0.95)
+    assert v.message().endswith("; intervals: 95% simultaneous over the 3 poses (Bonferroni: 3 intervals at 98.33% "
+                                "each)")
+    assert "simultaneous 95% bound" in v.message() and v.interval_label() == "simultaneous 95% interval"
+    # a wider family level gives narrower intervals on the same draws
+    w = verify_design(res.problem, res.design, n_mc=20_000, seed=8, keep_samples=0, level=0.8)
+    assert np.all(w.ci_high - w.ci_low < v.ci_high - v.ci_low) and np.array_equal(w.p_mc, v.p_mc)
+    with pytest.raises(TolallocError, match=r"level: expected a confidence level in \[0.5, 1\) .* got 1.5"):
+        verify_design(res.problem, res.design, n_mc=20_000, level=1.5)

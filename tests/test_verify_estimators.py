@@ -45,7 +45,9 @@ def test_certified_redo_uses_importance_sampling(res):
 def test_unresolvable_tail_is_refused_with_the_samples_needed(res):
     pr = build_problem(res.problem.model, res.problem.q, prob=0.9999)
     d = allocate(pr, snap=False).design
-    with pytest.raises(TolallocError, match=r"n_mc 1000 samples per pose cannot resolve the tail .* `n_mc` >= 38411 "
+    # two poses: each interval at 97.5 % (simultaneous 95 %), z = 2.2414, n >= z^2 p / (1 - p) = 50234
+    with pytest.raises(TolallocError, match=r"n_mc 1000 samples per pose cannot resolve the tail .* the simultaneous "
+                                            r"95% interval \(one of 2, each at 97.5%\) .* `n_mc` >= 50234 "
                                             r"or `estimator` importance"):
         verify_design(pr, d, n_mc=1000, estimator="plain")
     with pytest.raises(TolallocError, match="the paired estimator"):
@@ -92,7 +94,8 @@ def test_coverage_in_chunks_is_the_same_as_in_one_piece(res):
 def test_rare_requirement_is_demonstrated_by_importance_sampling():
     # p = 0.99999 on two ur10 poses: the exact design sits on P_lin = p, so no estimator can demonstrate it; one
     # correction round with importance-sampling verification raises the targets by what the estimator resolves
-    # (about 4e-7 at 2^14 samples) and the corrected design is demonstrated (lower 95 % bound >= p) at both poses
+    # (about 4e-7 at 2^14 samples) and the corrected design is demonstrated (lower simultaneous 95 % bound >= p) at
+    # both poses
     robot = load_robot("ur10")
     model, q = build_error_model(robot), robot.poses("working")[[0, 2]]
     c = correct_design(model, q, estimator="importance", n_mc=2**14, radius_mm=0.25, prob=0.99999, seed=1,

@@ -1,5 +1,7 @@
 """The verdict counts the orientation requirement as it counts the position one; the correction loop tightens both."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -74,8 +76,14 @@ def test_orientation_target_rule_and_problem_target():
     v = _verification([ABOVE, ABOVE], [ABOVE, STRADDLE])
     pos, ang = v.requirements()
     np.testing.assert_array_equal(needed_targets(pos, np.full(2, P)), [P, P])
-    se = 0.004 / (2 * 1.959963984540054)
-    np.testing.assert_allclose(needed_targets(ang, np.full(2, P)), [P, P + 3 * se])
+    z = 1.959963984540054  # a single 95 % interval: the default margin is z + 1 standard errors
+    se = 0.004 / (2 * z)
+    np.testing.assert_allclose(needed_targets(ang, np.full(2, P)), [P, P + (z + 1) * se])
+    np.testing.assert_allclose(needed_targets(ang, np.full(2, P), k_se=3.0), [P, P + 3 * se])
+    # simultaneous over 2 poses x 2 requirements: each interval at 1 - 0.05 / 4, z = 2.4977; se from that z
+    sim = replace(v, n_intervals=4).requirements()[1]
+    z4 = 2.4977054744123865
+    np.testing.assert_allclose(needed_targets(sim, np.full(2, P)), [P, P + (z4 + 1) * 0.004 / (2 * z4)])
     model = build_error_model(load_robot("ur10"))
     q = model.robot.poses("working")[[0, 2]]
     pr = build_problem(model, q, radius_mm=0.5, angle_radius_deg=0.05, angle_target=[0.95, 0.96])
@@ -100,7 +108,7 @@ def test_allocation_with_orientation_below_p_is_not_demonstrated(ur10_orientatio
     assert res.verdict != "demonstrated" and (v.verdict[v.ci_low_angle < 0.95] != "demonstrated").all()
     s = res.summary()["verification"]
     assert s["requirements"][1]["requirement"] == "orientation" and s["requirements"][1]["verdict"] == "consistent"
-    assert "orientation: lower 95% bound below p = 0.95" in s["message"]
+    assert "orientation: lower simultaneous 95% bound below p = 0.95" in s["message"]
 
 
 def test_correction_raises_the_orientation_target(ur10_orientation):
@@ -122,7 +130,7 @@ def test_round_limit_names_the_orientation_shortfall(ur10_orientation):
     c = correct_design(build_error_model(load_robot("ur10")), res.problem.q, n_mc=2000, result=res.result,
                        verification=res.verification, max_rounds=0, radius_mm=0.5, angle_radius_deg=0.05)
     assert c.stopped and c.reason.startswith("round limit (0) reached; still short: ")
-    assert "orientation: lower 95% bound below p = 0.95" in c.reason and "not demonstrated" in c.message()
+    assert "orientation: lower simultaneous 95% bound below p = 0.95" in c.reason and "not demonstrated" in c.message()
 
 
 def test_certified_criterion_names_the_orientation_reason():
@@ -136,6 +144,9 @@ def test_certified_criterion_names_the_orientation_reason():
     assert np.all(v.ci_low >= 0.95)  # the position requirement is demonstrated: r = 2 mm is loose
     for i in np.flatnonzero(~v.passed):
         assert v.reason[i].startswith("orientation inconclusive: P_hat = ")
-        assert "contains 0.95 at n = 2000, lower bound 0.0019 below" in v.reason[i]
-    assert v.message().startswith("verified: consistent, criterion not met (pass: whole 95% interval >= p; "
-                                  "orientation: lower 95% bound below p = 0.95")
+        assert "contains 0.95 at n = 2000, lower bound 0.0031 below" in v.reason[i]
+    assert v.message().startswith("verified: consistent, criterion not met (pass: whole simultaneous 95% interval "
+                                  ">= p; orientation: lower simultaneous 95% bound below p = 0.95")
+    assert v.message().endswith("; intervals: 95% simultaneous over the 2 poses and 2 requirements (Bonferroni: 4 "
+                                "intervals at 98.75% each)")
+    assert (v.n_intervals, v.level_per_interval) == (4, pytest.approx(0.9875))

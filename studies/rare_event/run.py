@@ -5,11 +5,13 @@ pose set; the robot file has no region), at r = 0.25 mm and p in 0.9 ... 0.99999
 
 1. allocate (exact design, no snapping) and record the cost;
 2. run the correction loop with importance-sampling verification (:func:`tolalloc.verify.correct.correct_design`,
-   ``estimator="importance"``) until every active pose is *demonstrated* (lower 95 % bound >= p), and record the
+   ``estimator="importance"``) until every active pose is *demonstrated* (lower bound of the 95 % simultaneous
+   intervals over the active poses >= p), and record the
    premium and the wall time;
 3. at the demonstrated design's pose with the least margin ``P_hat - p``, measure each estimator's per-sample
    variance and throughput (plain and paired from one paired run, importance sampling from its own run) and give
-   the samples ``n = z^2 v / (P_hat - p)^2`` and the wall time each would need to demonstrate that pose.
+   the samples ``n = z^2 v / (P_hat - p)^2`` and the wall time each would need to demonstrate that pose (``z`` of
+   each interval of the verification, simultaneous over the active poses: Bonferroni).
 
 Then two checks of the estimators themselves:
 
@@ -42,14 +44,19 @@ from tolalloc.allocate.costs import DEFAULT_COSTS
 from tolalloc.allocate.region import allocate_region, box_region
 from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.importance import importance_probability
-from tolalloc.montecarlo.intervals import z_of_level
+from tolalloc.montecarlo.intervals import simultaneous_level, z_of_level
 from tolalloc.montecarlo.paired import estimate_probabilities
 from tolalloc.verify.correct import correct_design
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "rare_event"
 PROBS = (0.9, 0.95, 0.99, 0.999, 0.9999, 0.99999)
 R_MM = 0.25
-Z = z_of_level(0.95)
+LEVEL = 0.95  # family level of the verification's simultaneous intervals
+
+
+def z_of_poses(n_poses: int) -> float:
+    """Normal quantile of each of the verification's intervals, simultaneous over ``n_poses`` poses."""
+    return z_of_level(simultaneous_level(LEVEL, n_poses))
 
 
 def poses_of(robot):
@@ -73,11 +80,12 @@ def allocate_at(model, robot, region, p):
     return res, q, conv, time.perf_counter() - t0
 
 
-def n_for_half_width(rate_d: float, margin: float) -> float:
+def n_for_half_width(rate_d: float, margin: float, Z: float) -> float:
     """Samples at which a paired interval's half-width ``z sqrt(rate_d / n) + z^2 / n`` equals ``margin``.
 
     ``rate_d``: discordant samples per sample (variance of the indicator difference); the ``z^2 / n`` term is the
-    score interval's width with no discordant sample, which dominates when the discordance is rarer than ``1/n``.
+    score interval's width with no discordant sample, which dominates when the discordance is rarer than ``1/n``;
+    ``Z`` the normal quantile of the interval.
     """
     if margin <= 0:
         return np.inf
@@ -85,8 +93,8 @@ def n_for_half_width(rate_d: float, margin: float) -> float:
     return float(1.0 / u**2)
 
 
-def needed(model, q, p, n_paired, n_is):
-    """Samples and wall time each estimator needs to demonstrate the pose (lower bound >= p)."""
+def needed(model, q, p, n_paired, n_is, Z):
+    """Samples and wall time each estimator needs to demonstrate the pose (lower bound >= p), intervals at ``Z``."""
     t0 = time.perf_counter()
     e = estimate_probabilities(model, q[None], n_paired, 7, radius_mm=R_MM)["position"]
     t_paired = (time.perf_counter() - t0) / n_paired
@@ -101,8 +109,8 @@ def needed(model, q, p, n_paired, n_is):
     rate = {"plain": P * (1 - P), "paired": float(e.n_discordant[0]) / n_paired,
             "importance": float(s.n_discordant[0]) * w_bar / n_is}
     n_need = {"plain": Z**2 * rate["plain"] / margin**2 if margin > 0 else np.inf,
-              "paired": n_for_half_width(rate["paired"], margin),
-              "importance": n_for_half_width(rate["importance"], margin) * w_bar}
+              "paired": n_for_half_width(rate["paired"], margin, Z),
+              "importance": n_for_half_width(rate["importance"], margin, Z) * w_bar}
     t = {"plain": t_paired, "paired": t_paired, "importance": t_is}  # plain counts come from the paired pass
     rows = []
     for k in ("plain", "paired", "importance"):
@@ -131,7 +139,7 @@ def rare_rows(quick):
                           "alloc_s": t_alloc, "demonstrate_s": t_demo})
             i = int(np.argmin(v.ci_low - p))
             m = corr.result.problem.model_for(corr.result.design.t)
-            for row in needed(m, q[i], p, 2**18 if quick else 2**20, 2**15 if quick else 2**17):
+            for row in needed(m, q[i], p, 2**18 if quick else 2**20, 2**15 if quick else 2**17, z_of_poses(len(q))):
                 demo.append({"robot": name, "p": p, "pose": i + 1, **row})
             print(costs[-1])
     return pd.DataFrame(costs), pd.DataFrame(demo)
@@ -195,15 +203,17 @@ def report(cost, demo, agree, cov, args, wall):
                else "") + ".\n",
             "## Cost against p (r = 0.25 mm; tool_changer over its working region, ur10 over its working poses)\n",
             "Each design is allocated (exact, unsnapped), then corrected until every active pose is demonstrated by "
-            "importance-sampling verification (lower 95 % bound >= p).\n", md(cost),
+            "importance-sampling verification (lower bound of the 95 % simultaneous intervals over the active poses "
+            ">= p).\n", md(cost),
             "\n## Samples and wall time to demonstrate the least-margin pose\n",
-            "Plain: `n = z^2 P (1 - P) / (P_hat - p)^2`. Paired: the `n` at which the score interval's half-width "
-            "`z sqrt(d / n) + z^2 / n` equals the margin `P_hat - p` (`d` = discordant samples per sample, measured "
-            "with 2^20 samples; the `z^2 / n` term is the interval's width with no discordant sample, which rules "
-            "when discordance is rarer than 1/n). Importance sampling: the same law in effective samples "
-            "(`n_eff = n / w_bar`). Times: `n` x the measured time per sample (plain counts come from the paired "
-            "pass, so plain's time per sample is the paired pass's). The margin is that of the demonstrated design "
-            "at its least-margin pose.\n", md(demo),
+            "`z`: the normal quantile of each of the verification's intervals, simultaneous over the active poses "
+            "(Bonferroni: level 1 - 0.05 / poses each). Plain: `n = z^2 P (1 - P) / (P_hat - p)^2`. Paired: the "
+            "`n` at which the score interval's half-width `z sqrt(d / n) + z^2 / n` equals the margin `P_hat - p` "
+            "(`d` = discordant samples per sample, measured with 2^20 samples; the `z^2 / n` term is the "
+            "interval's width with no discordant sample, which rules when discordance is rarer than 1/n). "
+            "Importance sampling: the same law in effective samples (`n_eff = n / w_bar`). Times: `n` x the "
+            "measured time per sample (plain counts come from the paired pass, so plain's time per sample is the "
+            "paired pass's). The margin is that of the demonstrated design at its least-margin pose.\n", md(demo),
             f"\n## Paired against plain Monte Carlo, {args.big_n:.0e} samples\n",
             "The same draws give both: the paired estimate should lie in the plain interval (`paired_in_plain_ci`); "
             "the plain estimate lies in the far narrower paired interval only by chance (`plain_in_paired_ci`).\n",

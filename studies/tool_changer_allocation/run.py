@@ -193,7 +193,8 @@ def poses_effect(model, W, card) -> pd.DataFrame:
 
 def section_correction(model, card, n_mc, n_cov) -> list:
     """The correction loop (tolalloc.verify.correct) on the exact design when its Monte Carlo verdict is not
-    demonstrated: tighten the target by the measured shortfall + 3 standard errors, re-solve, re-verify."""
+    demonstrated: tighten the target by the measured shortfall + z + 1 standard errors (z of each simultaneous
+    interval), re-solve, re-verify."""
     from tolalloc.verify.correct import correct_design
 
     ex_v = card["ex_v"]
@@ -201,12 +202,13 @@ def section_correction(model, card, n_mc, n_cov) -> list:
     if ex_v.verdict == "demonstrated":
         return head + ["The exact design is demonstrated at every checked pose; no correction needed.", ""]
     q_check = np.vstack([card["q"], card["cov"].worst_q]) if card["cov"] is not None else card["q"]
-    corr = correct_design(model, q_check, solver="exact", n_mc=n_mc, seed=12, k_se=3.0, max_rounds=2)
+    corr = correct_design(model, q_check, solver="exact", n_mc=n_mc, seed=12, max_rounds=2)
     v = corr.verification
     lines = head + [f"The exact design's Monte Carlo verdict is **{ex_v.verdict}** (above). The correction loop of "
                     f"`tolalloc.verify.correct` (at the same {len(q_check)} poses, {n_mc:.0e} samples per pose, a pose "
                     "passes only when demonstrated; the target is raised by the measured shortfall of P̂ below the "
-                    "linear P plus 3 standard errors, at most 2 rounds): " + corr.message() + ".",
+                    "linear P plus z + 1 standard errors, z of each interval simultaneous over the poses, at most 2 "
+                    "rounds): " + corr.message() + ".",
                     f"Per-pose verdicts after correction: {int(np.sum(v.verdicts == 'demonstrated'))} demonstrated, "
                     f"{int(np.sum(v.verdicts == 'consistent'))} consistent, {int(np.sum(v.verdicts == 'failed'))} failed; "
                     f"lowest P̂ = {v.p_mc.min():.4f} [{v.ci_low[np.argmin(v.p_mc)]:.4f}, "

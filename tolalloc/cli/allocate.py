@@ -57,9 +57,10 @@ def register(sub) -> None:
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--no-correction", action="store_true",
                    help="do not run the correction loop (by default, when a verified pose is not demonstrated - its "
-                   "95%% interval of P_hat not wholly >= p - its probability target is raised by the shortfall of "
-                   "P_hat below the linear P plus 3 standard errors and the allocation re-solved; --calibration has "
-                   "no correction loop)")
+                   "interval of P_hat (95%% simultaneous over the verified poses and requirements) not wholly >= p "
+                   "- its probability target is raised by the shortfall of P_hat below the linear P plus z + 1 "
+                   "standard errors (z of each simultaneous interval) and the allocation re-solved; --calibration "
+                   "has no correction loop)")
     p.add_argument("--correction-rounds", type=int, default=None, metavar="N",
                    help="largest number of correction rounds before the loop stops and says so (default 2; not with "
                    "--calibration)")

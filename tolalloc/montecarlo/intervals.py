@@ -12,6 +12,10 @@ where ``p01~`` is the maximum-likelihood ``p_01`` restricted to ``p_10 - p_01 = 
 positive root of ``2n p^2 + B p + C = 0``, ``B = -b - c + (2n - b + c) D0``, ``C = -c D0 (1 - D0)``). With no
 discordant sample it is ``+-z^2 / (n + z^2)``, so a run always states how far the nonlinear P may lie from the
 linear one. Counts may be non-integer (effective counts of an importance-sampling run).
+
+Intervals judged together -- every pose (and every requirement) of a verification -- are made simultaneous by
+Bonferroni's rule (:func:`simultaneous_level`): ``m`` intervals each at level ``1 - (1 - level) / m`` all cover
+their true values with probability at least ``level``.
 """
 
 from __future__ import annotations
@@ -20,12 +24,27 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import norm
 
-__all__ = ["paired_difference_ci", "z_of_level"]
+__all__ = ["paired_difference_ci", "z_of_level", "simultaneous_level"]
 
 
 def z_of_level(level: float) -> float:
     """Two-sided standard-normal quantile of a confidence level (1.959964 for 0.95)."""
     return float(norm.ppf(0.5 + level / 2))
+
+
+def simultaneous_level(level: float, m: int) -> float:
+    """Level of each of ``m`` intervals that hold together with probability at least ``level`` (Bonferroni).
+
+    ``1 - (1 - level) / m``: 0.95 over 18 intervals gives 0.997222 each (``z`` 2.99 instead of 1.96).
+
+    Parameters
+    ----------
+    level : float
+        Family (simultaneous) confidence level, in (0, 1).
+    m : int
+        Intervals judged together (>= 1), e.g. poses x requirements.
+    """
+    return 1.0 - (1.0 - float(level)) / int(m)
 
 
 def _score(d0: float, b: float, c: float, n: float) -> float:

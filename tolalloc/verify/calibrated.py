@@ -18,7 +18,8 @@ For each of ``n_robots`` simulated robots:
 
 ``P_hat(|dP| < r)`` per pose (one draw per robot and pose, so robots are independent trials) with a Wilson
 interval is reported beside the linear post-calibration prediction of :mod:`tolalloc.calibration.posterior`.
-The intervals are simultaneous over the poses (Bonferroni, level ``1 - (1 - level) / P``). The diagnosis's
+The intervals are simultaneous over the poses (Bonferroni, level ``1 - (1 - level) / P`` each:
+:func:`tolalloc.montecarlo.intervals.simultaneous_level`). The diagnosis's
 calibrator (:mod:`tolalloc.diagnose.calibrate`) is not used: it fits one robot at a time with its own parameter
 selection, and it is being rewritten; the fit here is the plan's Bayesian estimator itself.
 """
@@ -38,6 +39,7 @@ from tolalloc.errormodel.chain import FastChain
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
+from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.paired import PairedCounts, check_estimator, control_fallback_reason, estimate_from_counts
 from tolalloc.montecarlo.streaming import proportion_ci
 from tolalloc.robot.lie import exp_so3
@@ -79,6 +81,8 @@ class CalibrationCheck:
         With ``estimator`` ``paired`` / ``auto``: the paired estimate, whose control is the *linearised pipeline*
         (linear measurements, the linear MAP fit, linear use; exact Gaussian P in ``estimate.p_linear``), its
         discordant counts and variance reduction; ``p_mc``/``ci_*`` are then its estimate and interval.
+    family_level : float
+        Level at which the intervals of all ``P`` poses hold together (each at ``1 - (1 - family_level) / P``).
     """
 
     q: np.ndarray
@@ -95,6 +99,7 @@ class CalibrationCheck:
     n_exact: int = 0
     n_converged: int = 0
     estimate: ProbabilityEstimate | None = None
+    family_level: float = 0.95
 
     @property
     def estimator(self) -> np.ndarray:
@@ -383,7 +388,7 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     p_true, _ = use.tool(s, fresh)
     p_hat, _ = use.tool(hat)
     err = np.linalg.norm(p_true - p_hat, axis=-1)  # (B, P)
-    lvl = 1 - (1 - level) / P
+    lvl = simultaneous_level(level, P)
     p_lin = p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm)
     pe = None
     if estimator == "plain":
@@ -394,4 +399,4 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
         ci = np.stack([pe.p_hat, pe.ci_low, pe.ci_high], axis=1)
     return CalibrationCheck(q_eval, float(radius_mm), p_lin, ci[:, 0], ci[:, 1], ci[:, 2], n_robots,
                             float(steps.max()), n_robots / fit_time, iters, fit_cpu, int(exact.sum()),
-                            int(np.sum(steps < _STEP_TOL)), pe)
+                            int(np.sum(steps < _STEP_TOL)), pe, float(level))

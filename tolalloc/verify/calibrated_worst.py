@@ -4,7 +4,7 @@
 design's sigmas, simulate the plan's measurements, calibrate each robot by nonlinear least squares, compensate, use)
 at the lowest-``P`` poses of a :class:`~tolalloc.allocate.calibrated_design.CalibratedDesign` -- for a box the last
 search's worst pose, the worst poses of the fresh coverage sample and the lowest active poses -- and states per pose,
-with the criteria of :mod:`tolalloc.verify.designs` on the simultaneous interval:
+with the criteria of :mod:`tolalloc.verify.designs` on the interval simultaneous over those poses (Bonferroni):
 
 * **demonstrated**: the whole interval at or above ``p``; **consistent**: it reaches ``p``; **failed**: wholly below;
 * a certified design passes a pose only when demonstrated, an exact design (which sits at ``p`` at its binding
@@ -25,6 +25,7 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.verify.calibrated import CalibrationCheck, verify_calibration
 from tolalloc.verify.designs import overall_verdict, pose_verdicts
+from tolalloc.verify.verdicts import interval_words
 
 __all__ = ["EndToEnd", "verify_calibrated_design"]
 
@@ -70,11 +71,18 @@ class EndToEnd:
         df["verdict"] = self.verdicts
         return df
 
+    def interval_label(self) -> str:
+        """The intervals' name: ``simultaneous 95% interval over the 7 poses`` (``95% interval`` at one pose)."""
+        c = self.check
+        return interval_words(c.family_level, len(c.q)) + " interval" + (f" over the {len(c.q)} poses"
+                                                                         if len(c.q) > 1 else "")
+
     def to_dict(self) -> dict:
         c = self.check
         return {"design": self.design, "n_robots": c.n_robots, "poses": len(c.q), "verdict": self.verdict,
                 "passed": self.passed, "agree": bool(np.all(c.agree)), "linear_optimistic": bool(np.any(self.optimistic)), "p_mc_min": float(c.p_mc.min()),
-                "ci_low_min": float(c.ci_low.min()), "p_linear_min": float(c.p_linear.min()),
+                "ci_low_min": float(c.ci_low.min()), "family_level": c.family_level, "intervals": self.interval_label(),
+                "p_linear_min": float(c.p_linear.min()),
                 "fits_converged": c.converged_share}
 
     def message(self) -> str:
@@ -82,7 +90,7 @@ class EndToEnd:
         i = int(np.argmin(c.p_mc))
         return (f"end-to-end Monte Carlo of the {self.design} design at its {len(c.q)} worst poses ({c.n_robots} "
                 f"simulated calibrations): {self.verdict}; lowest P_hat {c.p_mc[i]:.4f} [{c.ci_low[i]:.4f}, "
-                f"{c.ci_high[i]:.4f}] against linear {c.p_linear[i]:.4f}; "
+                f"{c.ci_high[i]:.4f}] ({self.interval_label()}) against linear {c.p_linear[i]:.4f}; "
                 + ("linear prediction inside every interval" if np.all(c.agree) else
                    f"linear prediction outside the interval at {int(np.sum(~c.agree))} pose(s), above it at "
                    f"{int(np.sum(self.optimistic))}")

@@ -1,10 +1,13 @@
 """Correction loop: tighten the targets where the nonlinear Monte Carlo does not demonstrate a requirement.
 
 After a design is verified, every requirement -- the position one and, when stated, the orientation one -- gets,
-at every pose where its 95 % interval does not lie wholly at or above its ``p`` (not *demonstrated*), a new
-target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the nonlinear estimate below the linear
-prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's: paired and importance-sampling estimates
-resolve the nonlinearity itself, so the margin shrinks to it; never below its previous target). The allocation is
+at every pose where its interval (simultaneous over the poses and requirements) does not lie wholly at or above its
+``p`` (not *demonstrated*), a new target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall of the
+nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's: paired
+and importance-sampling estimates resolve the nonlinearity itself, so the margin shrinks to it; never below its
+previous target). By default ``k_se = z + 1``, ``z`` the normal quantile of each simultaneous interval (2.96 for a
+single 95 % interval, 3.99 for 18 poses): a re-solved pose sits about ``z + 1`` standard errors above ``p``, so its
+re-verified lower bound clears ``p`` by about one standard error. The allocation is
 solved again with these per-pose targets (:func:`tolalloc.allocate.problem.build_problem` ``target=`` and
 ``angle_target=``) and re-verified against the requirements themselves (same seed, same poses), at most
 ``max_rounds`` times; then the loop stops and says so.
@@ -112,41 +115,48 @@ class Correction:
                 "message": self.message()}
 
 
-def needed_targets(check, targets, k_se: float = 3.0) -> np.ndarray:
+def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
     """Per-pose targets of one requirement for the next round, shape (P,).
 
     ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses where the requirement is not demonstrated
-    (lower bound < p); unchanged elsewhere. ``se`` is the standard error implied by the pose's 95 % interval (half
-    its width over 1.96): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or
-    importance-sampling one otherwise, so the margin is what the estimator can resolve, not what plain sampling
-    could. An unknown linear prediction (NaN) counts as no shortfall.
+    (lower bound < p); unchanged elsewhere. ``se`` is the standard error implied by the pose's interval (half its
+    width over ``z``, the normal quantile of the interval's own level -- for simultaneous intervals the Bonferroni
+    one): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or importance-sampling one
+    otherwise, so the margin is what the estimator can resolve, not what plain sampling could. ``k_se`` None:
+    ``z + 1``. An unknown linear prediction (NaN) counts as no shortfall.
 
     Parameters
     ----------
     check : RequirementCheck or Verification
         One requirement's ``prob``, ``p_linear``, ``p_mc``, ``ci_low``, ``ci_high`` (a
         :class:`~tolalloc.verify.verdicts.RequirementCheck` of :meth:`Verification.requirements`; a
-        :class:`~tolalloc.verify.designs.Verification` stands for its position requirement).
+        :class:`~tolalloc.verify.designs.Verification` stands for its position requirement), with the level of its
+        intervals.
     targets : array, shape (P,)
         This requirement's current targets.
     """
     from tolalloc.montecarlo.intervals import z_of_level
 
+    if isinstance(check, Verification):
+        check = check.requirements()[0]
     targets = np.asarray(targets, float)
-    se = np.maximum((check.ci_high - check.ci_low) / (2 * z_of_level(0.95)), 1e-12)
+    z = z_of_level(check.level)
+    k_se = z + 1.0 if k_se is None else k_se
+    se = np.maximum((check.ci_high - check.ci_low) / (2 * z), 1e-12)
     need = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0) + k_se * se
     short = check.ci_low < check.prob
     return np.where(short, np.maximum(targets, need), targets)
 
 
-def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float = 3.0,
+def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float | None = None,
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
                    angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
                    estimator: str = "auto", standard: bool = False, **problem_kw) -> Correction:
     """Allocate, verify and, where the Monte Carlo falls short of a requirement, tighten those poses and re-solve.
 
     Every stated requirement (position, and orientation when ``angle_radius_deg`` is given) is tightened by the
-    same rule (:func:`needed_targets`) at the poses where its lower 95 % bound is below its ``p``.
+    same rule (:func:`needed_targets`) at the poses where its lower bound (of the intervals simultaneous over the
+    poses and requirements) is below its ``p``.
 
     Parameters
     ----------
@@ -157,8 +167,9 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     n_mc : int
         Monte Carlo samples per pose.
     seed : int
-    k_se : float
-        Margin in standard errors added to the measured shortfall.
+    k_se : float, optional
+        Margin in standard errors added to the measured shortfall; default ``z + 1``, ``z`` the normal quantile of
+        each simultaneous interval of the verification (so the margin outgrows the intervals' half-width).
     max_rounds : int
         Correction rounds before the loop stops.
     result : AllocationResult, optional

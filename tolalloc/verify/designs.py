@@ -1,8 +1,10 @@
 """Nonlinear Monte Carlo verification of an allocated design at every pose.
 
 The design's error model (``sigma = t / z``) is sampled and evaluated with the exact perturbed
-kinematics; ``P(|dP| < r)`` is estimated at every pose with a 95 % interval and set beside the linear
-(Gaussian) prediction. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
+kinematics; ``P(|dP| < r)`` is estimated at every pose with an interval and set beside the linear (Gaussian)
+prediction. The intervals of all poses and requirements are simultaneous: ``m`` = poses x requirements intervals,
+each at level ``1 - (1 - level) / m`` (Bonferroni), hold together with probability at least ``level`` (0.95), so
+the verdict over all poses is a joint claim at that level. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
 one -- the exact linear P plus the mean difference of the nonlinear and linear indicators on the same draws,
 Tango's interval -- where the parameters are Gaussian, plain Monte Carlo (Wilson) elsewhere, importance
 sampling where the tail is too thin for the sample size. With an orientation requirement ``P(|dw| < a) >= p_a``
@@ -35,11 +37,11 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
-from tolalloc.montecarlo.intervals import z_of_level
+from tolalloc.montecarlo.intervals import simultaneous_level, z_of_level
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
-from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, limiting, orientation_check,
-                                      overall_verdict, pose_verdicts, shortfall_text, weakest)
+from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, family_text, interval_words, limiting,
+                                      orientation_check, overall_verdict, pose_verdicts, shortfall_text, weakest)
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict", "check_resolvable"]
 
@@ -56,6 +58,8 @@ class Verification:
         Samples used per pose.
     seed : int
     p_linear, p_mc, ci_low, ci_high : arrays, shape (P,)
+        Linear prediction, Monte Carlo estimate and its interval (one of ``n_intervals`` simultaneous intervals,
+        each at :attr:`level_per_interval`).
     passed : array of bool, shape (P,)
     reason : tuple of str
         Empty for passing poses.
@@ -71,6 +75,10 @@ class Verification:
     estimate : ProbabilityEstimate or None
         The position estimate behind ``p_mc`` / ``ci_*``: estimator per pose, discordant counts, variance
         reduction, plain estimate of the same draws, fallback reasons (:mod:`tolalloc.montecarlo.paired`).
+    family_level : float
+        Level at which all the intervals (every pose, every requirement) hold together (0.95).
+    n_intervals : int
+        Intervals judged together: poses x requirements (1: a single interval at ``family_level``).
     """
 
     criterion: str
@@ -89,6 +97,22 @@ class Verification:
     samples_pose: int = 0
     angle: dict | None = None
     estimate: ProbabilityEstimate | None = field(default=None, repr=False)
+    family_level: float = 0.95
+    n_intervals: int = 1
+
+    @property
+    def level_per_interval(self) -> float:
+        """Level of each interval (Bonferroni): ``1 - (1 - family_level) / n_intervals``."""
+        return simultaneous_level(self.family_level, self.n_intervals)
+
+    def interval_label(self) -> str:
+        """The intervals' name for tables and figures: ``simultaneous 95% interval`` (``95% interval`` when single)."""
+        return f"{interval_words(self.family_level, self.n_intervals)} interval"
+
+    def interval_text(self) -> str:
+        """What the intervals are, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
+        each)``."""
+        return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None))
 
     @property
     def estimator(self) -> np.ndarray:
@@ -138,16 +162,17 @@ class Verification:
         -------
         tuple of :class:`~tolalloc.verify.verdicts.RequirementCheck`
         """
-        out = [RequirementCheck("position", self.prob, self.p_linear, self.p_mc, self.ci_low, self.ci_high)]
+        fam = (self.family_level, self.n_intervals)
+        out = [RequirementCheck("position", self.prob, self.p_linear, self.p_mc, self.ci_low, self.ci_high, *fam)]
         if self.angle is not None:
-            out.append(orientation_check(self.angle, len(self.p_mc)))
+            out.append(orientation_check(self.angle, len(self.p_mc), *fam))
         return tuple(out)
 
     @property
     def verdicts(self) -> np.ndarray:
         """Per-pose ``demonstrated | consistent | failed`` over every stated requirement, shape (P,).
 
-        Demonstrated only where every requirement's lower 95 % bound is at or above its ``p``; failed where any
+        Demonstrated only where every requirement's lower (simultaneous) bound is at or above its ``p``; failed where any
         requirement's upper bound is below its ``p``; consistent otherwise (:mod:`tolalloc.verify.verdicts`).
         """
         return weakest(*(c.verdicts for c in self.requirements()))
@@ -172,8 +197,12 @@ class Verification:
         return [(i + 1, self.reason[i]) for i in np.flatnonzero(~self.passed)]
 
     def message(self) -> str:
-        """One line: the verdict, the criterion, the requirement that limits it and by how much, the failing poses."""
-        rule = ("pass: whole 95% interval >= p" if self.criterion == "certified" else "pass: upper 95% bound >= p")
+        """One line: the verdict, the criterion, the requirement that limits it and by how much, the failing poses,
+        what the intervals are (simultaneous over the poses and requirements)."""
+        words = interval_words(self.family_level, self.n_intervals)
+        rule = (f"pass: whole {words} interval >= p" if self.criterion == "certified" else
+                f"pass: upper {words} bound >= p")
+        family = "" if self.n_intervals <= 1 else f"; intervals: {self.interval_text()}"
         checks = self.requirements()
         short = shortfall_text(checks)
         if self.ok:
@@ -181,20 +210,21 @@ class Verification:
                      f"; orientation: lowest P_hat = {self.angle['p_mc'].min():.4f} at pose "
                      f"{int(np.argmin(self.angle['p_mc'])) + 1}")
             both = "" if len(checks) == 1 else " for position and orientation"
-            meaning = (f"lower 95% bound >= p at every pose{both}" if self.verdict == "demonstrated" else
+            meaning = (f"lower {words} bound >= p at every pose{both}" if self.verdict == "demonstrated" else
                        f"{rule}; not demonstrated at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s): {short}")
             least = "" if short else f"; least margin: {limiting(checks).margin_text()}"
             return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({meaning}); "
-                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}{least}")
+                    f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}{least}{family}")
         head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
         return (f"verified: {head} ({rule}" + (f"; {short}" if short else "") + ") at "
-                + "; ".join(f"pose {i}: {r}" for i, r in self.failing))
+                + "; ".join(f"pose {i}: {r}" for i, r in self.failing) + family)
 
     def to_frame(self) -> pd.DataFrame:
         """One row per pose: p_linear, p_mc, ci_low, ci_high, n, passed, reason.
 
         With an orientation requirement also ``p_linear_angle, p_mc_angle, ci_low_angle, ci_high_angle``;
-        ``passed`` and ``verdict`` cover both requirements.
+        ``passed`` and ``verdict`` cover both requirements. ``level_per_interval`` is the level of each interval and
+        ``family_level`` the level at which all of them (every pose and requirement) hold together.
         """
         cols = {"pose": np.arange(1, len(self.p_mc) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
                 "ci_low": self.ci_low, "ci_high": self.ci_high}
@@ -203,56 +233,65 @@ class Verification:
             cols.update({"p_linear_angle": nan if self.angle["p_linear"] is None else self.angle["p_linear"],
                          "p_mc_angle": self.angle["p_mc"], "ci_low_angle": self.angle["ci_low"],
                          "ci_high_angle": self.angle["ci_high"]})
+        cols.update({"level_per_interval": self.level_per_interval, "family_level": self.family_level})
         cols.update({"n": self.n, "estimator": self.estimator, "n_discordant": self.n_discordant,
                      "variance_reduction": self.variance_reduction, "passed": self.passed, "verdict": self.verdicts,
                      "reason": list(self.reason)})
         return pd.DataFrame(cols)
 
 
-def resolvable_n(prob: float) -> int:
-    """Smallest sample size whose plain (or zero-discordance paired) 95 % interval can lie above ``prob``."""
-    return int(np.ceil(z_of_level(0.95) ** 2 * prob / (1.0 - prob)))
+def resolvable_n(prob: float, level: float = 0.95) -> int:
+    """Smallest sample size whose plain (or zero-discordance paired) interval at ``level`` can lie above ``prob``.
+
+    ``level`` is the level of each interval: for ``m`` simultaneous intervals ``1 - (1 - family level) / m``
+    (:func:`tolalloc.montecarlo.intervals.simultaneous_level`), whose larger ``z`` needs more samples.
+    """
+    return int(np.ceil(z_of_level(level) ** 2 * prob / (1.0 - prob)))
 
 
-def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc") -> None:
+def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc", level: float = 0.95,
+                     what: str = "95% interval") -> None:
     """Refuse a sample size that cannot resolve the tail ``1 - prob`` with the estimator that would run.
 
-    Plain Monte Carlo with no failure at all has a lower 95 % bound ``n / (n + z^2)``: below ``p`` unless
+    Plain Monte Carlo with no failure at all has a lower bound ``n / (n + z^2)``: below ``p`` unless
     ``n >= z^2 p / (1 - p)``. The paired interval with no discordant sample is ``+-z^2 / (n + z^2)``: wider than
-    the whole tail unless ``n >= z^2 p / (1 - p)`` too. Importance sampling is not limited this way.
+    the whole tail unless ``n >= z^2 p / (1 - p)`` too. ``z`` is the normal quantile of ``level``, the level of
+    each interval (for simultaneous intervals the Bonferroni one); ``what`` names the interval in the message.
+    Importance sampling is not limited this way.
     """
     if estimator == "importance":
         return
-    need = resolvable_n(prob)
+    need = resolvable_n(prob, level)
     if n >= need:
         return
     gauss = not control_fallback_reason(model)
-    what = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
+    how = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
     alt = (" or `estimator` importance (importance sampling of the paired difference)" if gauss else
            " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)")
-    raise ArgumentError(name, f"{n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {what}: "
-                        f"even with no miss the 95% interval reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
+    raise ArgumentError(name, f"{n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {how}: "
+                        f"even with no miss the {what} reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
 
 
-def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator):
-    """Position (and orientation) estimates at poses ``q`` by the requested estimator."""
+def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator, level):
+    """Position (and orientation) estimates at poses ``q`` by the requested estimator, intervals at ``level``."""
     from tolalloc.montecarlo.importance import importance_probability
     from tolalloc.montecarlo.paired import estimate_probabilities
 
     other = "auto" if estimator == "importance" else estimator
     est = estimate_probabilities(model, q, int(n), seed, radius_mm=radius, angle_radius_rad=angle, estimator=other,
-                                 keep_samples=keep, scheduler=scheduler)
+                                 level=level, keep_samples=keep, scheduler=scheduler)
     if estimator == "importance":
         from dataclasses import replace
 
         kept = est["position"].details.get("kept_mm")
-        isr = importance_probability(model, q, int(n), seed, radius_mm=radius, scheduler=scheduler)
+        isr = importance_probability(model, q, int(n), seed, radius_mm=radius, level=level, scheduler=scheduler)
         est["position"] = replace(isr, details={**isr.details, "kept_mm": kept})
     return est
 
 
 def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
-    """Re-estimate the poses ``redo`` whose certified interval straddles ``p`` with more samples.
+    """Re-estimate the poses ``redo`` whose certified interval straddles ``p`` with more samples (intervals at the
+    level of ``est``).
 
     Plain and paired runs are pooled with ``n_max - n_mc`` fresh samples (seed + 1); ``auto`` on a Gaussian model
     switches those poses to importance sampling with ``n_max`` samples (its interval is far narrower in the tail).
@@ -262,7 +301,8 @@ def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
 
     q, r = problem.q[redo], problem.radius_mm
     if estimator == "importance" or (estimator == "auto" and not control_fallback_reason(model)):
-        return est.with_rows(redo, importance_probability(model, q, n_max, seed + 1, radius_mm=r, scheduler=scheduler))
+        return est.with_rows(redo, importance_probability(model, q, n_max, seed + 1, radius_mm=r, level=est.level,
+                                                          scheduler=scheduler))
     extra = n_max - int(n_mc)
     pc = paired_counts(model, q, extra, seed + 1, radii_mm=(r,), scheduler=scheduler)
     first = est.take(redo)
@@ -272,13 +312,14 @@ def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
     counts = pc.counts + np.stack([nl, lin_in, both], axis=1)[:, None, :].astype(np.int64)
     pooled = PairedCounts(first.n + extra, pc.seed, counts, pc.max_deviation_mm)
     new = estimate_from_counts(pooled, 0, r, first.p_linear, estimator=est.requested if est.requested != "importance"
-                               else "auto", model_reason=control_fallback_reason(model))
+                               else "auto", model_reason=control_fallback_reason(model), level=est.level)
     return est.with_rows(redo, new)
 
 
 def verify_design(problem: AllocationProblem, design: Design, *, criterion: str | None = None, n_mc: int = 10**6,
                   n_max: int | None = None, seed: int = 0, keep_samples: int = 4000,
-                  nongauss_share: float = 0.05, scheduler=None, estimator: str = "auto") -> Verification:
+                  nongauss_share: float = 0.05, scheduler=None, estimator: str = "auto",
+                  level: float = 0.95) -> Verification:
     """Verify a design by nonlinear Monte Carlo at every pose of ``problem``.
 
     Parameters
@@ -307,35 +348,30 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         is paired where the linear map is an exact control (Gaussian parameters), plain elsewhere (the reason is
         in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``
         and wherever ``n_mc`` is too small for the paired interval to resolve the tail ``1 - p``
-        (:func:`resolvable_n`); a tail that plain sampling cannot resolve is refused with the samples needed.
+        (:func:`resolvable_n`, at the level of each simultaneous interval); a tail that plain sampling cannot
+        resolve is refused with the samples needed.
+    level : float
+        Level at which the intervals of all poses and requirements hold together: each of the ``m`` = poses x
+        requirements intervals is at ``1 - (1 - level) / m`` (Bonferroni), so the verdict over all poses is a
+        joint claim at ``level``.
     """
-    if design.t is None:
-        raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
-    if design.status == NOT_CONVERGED:
-        raise TolallocError(f"verify: the design {design.label} did not converge ({design.message}); re-solve it "
-                            "(or verify its tolerances as a design of their own) before calling it verified.")
-    try:
-        n_ok = int(n_mc) == n_mc and n_mc >= 100
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
-        raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
-    check_estimator(estimator)
-    crit = criterion or ("certified" if design.solver.certified else "exact")
-    if crit not in ("certified", "exact"):
-        raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
+    crit = _check_args(design, n_mc, estimator, criterion, level)
     n_max = 4 * int(n_mc) if n_max is None else int(n_max)
     model = problem.model_for(design.t)
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
+    P = problem.n_poses
+    m = P * (1 if ang is None else 2)
+    lvl = simultaneous_level(level, m)
     n_res = n_max if crit == "certified" else int(n_mc)
-    if estimator == "auto" and not control_fallback_reason(model) and n_res < resolvable_n(p):
+    if estimator == "auto" and not control_fallback_reason(model) and n_res < resolvable_n(p, lvl):
         estimator = "importance"  # the paired interval could not resolve this tail with n samples
-    check_resolvable(model, p, n_res, estimator, "n_max" if crit == "certified" and n_max > n_mc else "n_mc")
+    what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%)")
+    check_resolvable(model, p, n_res, estimator, "n_max" if crit == "certified" and n_max > n_mc else "n_mc", lvl,
+                     what)
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
-    P = problem.n_poses
-    est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator)
+    est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator, lvl)
     inv = np.argsort(order)
     pos = est["position"].take(inv)
     samples = pos.details.get("kept_mm")
@@ -357,8 +393,31 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         a_ok = pa.ci_low >= ap if crit == "certified" else pa.ci_high >= ap
         angle = {"prob": float(ap), "p_linear": design.p_linear.get("orientation"), "p_mc": pa.p_hat,
                  "ci_low": pa.ci_low, "ci_high": pa.ci_high, "passed": a_ok, "estimator": pa.estimator}
-        a_check, a_n = orientation_check(angle, P), np.asarray(pa.n, int)
+        a_check, a_n = orientation_check(angle, P, level, m), np.asarray(pa.n, int)
     reasons = failure_reasons(problem, model, p_lin, est_arr, n, ok, a_ok, a_check, a_n, nongauss_share)
     worst = int(np.argmin(est_arr[:, 0]))
     return Verification(crit, r, p, n, int(seed), p_lin.copy(), est_arr[:, 0], est_arr[:, 1], est_arr[:, 2], ok & a_ok,
-                        reasons, worst, samples, int(order[0]), angle, pos)
+                        reasons, worst, samples, int(order[0]), angle, pos, float(level), m)
+
+
+def _check_args(design, n_mc, estimator, criterion, level) -> str:
+    """Refuse what :func:`verify_design` cannot verify; returns the criterion."""
+    if design.t is None:
+        raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
+    if design.status == NOT_CONVERGED:
+        raise TolallocError(f"verify: the design {design.label} did not converge ({design.message}); re-solve it "
+                            "(or verify its tolerances as a design of their own) before calling it verified.")
+    try:
+        n_ok = int(n_mc) == n_mc and n_mc >= 100
+    except (TypeError, ValueError, OverflowError):
+        n_ok = False
+    if not n_ok:
+        raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
+    if isinstance(level, bool) or not isinstance(level, (int, float, np.floating)) or not 0.5 <= level < 1:
+        raise TolallocError(f"level: expected a confidence level in [0.5, 1) for the simultaneous intervals "
+                            f"(e.g. 0.95), got {level!r}.")
+    check_estimator(estimator)
+    crit = criterion or ("certified" if design.solver.certified else "exact")
+    if crit not in ("certified", "exact"):
+        raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
+    return crit

@@ -1,7 +1,11 @@
 """The verdict rule of the Monte Carlo verification, applied to every stated requirement.
 
 Each requirement -- the position one and, when stated, the orientation one -- is judged at each pose from the
-95 % interval of its own ``P_hat`` against its own ``p``:
+interval of its own ``P_hat`` against its own ``p``. The intervals of all poses and requirements judged together
+are simultaneous: with ``m`` = poses x requirements, each is at level ``1 - (1 - level) / m`` (Bonferroni,
+:func:`tolalloc.montecarlo.intervals.simultaneous_level`), so that all of them cover their true probabilities with
+probability at least ``level`` (0.95) -- a design exactly at ``p`` everywhere is called *failed* (or a design
+below ``p`` somewhere *demonstrated*) with probability at most ``1 - level``, however many poses are verified.
 
 * **demonstrated** when the lower bound is ``>= p``;
 * **consistent** when the upper bound is ``>= p`` but the lower bound is below;
@@ -22,14 +26,34 @@ import numpy as np
 from tolalloc.linear.covariance import variance_share
 
 __all__ = ["RequirementCheck", "pose_verdicts", "overall_verdict", "weakest", "limiting", "shortfall_text",
-           "orientation_check", "failure_reasons"]
+           "orientation_check", "failure_reasons", "interval_words", "family_text"]
 
 #: verdicts from the weakest to the strongest
 ORDER = ("failed", "consistent", "demonstrated")
 
 
+def interval_words(family_level: float, m: int) -> str:
+    """What an interval is, for printed lines: ``95%`` for a single interval, ``simultaneous 95%`` for one of ``m > 1``
+    intervals judged together (each at the Bonferroni level, :func:`family_text`)."""
+    lvl = f"{100 * family_level:.4g}%"
+    return lvl if m <= 1 else f"simultaneous {lvl}"
+
+
+def family_text(family_level: float, m: int, n_poses: int, n_requirements: int = 1) -> str:
+    """The intervals' family in words, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
+    each)`` (with two requirements ``over the 18 poses and 2 requirements (... 36 intervals ...)``)."""
+    from tolalloc.montecarlo.intervals import simultaneous_level
+
+    if m <= 1:
+        return f"{100 * family_level:.4g}% (a single interval)"
+    what = f"the {n_poses} poses" + ("" if n_requirements == 1 else f" and {n_requirements} requirements")
+    return (f"{100 * family_level:.4g}% simultaneous over {what} (Bonferroni: {m} intervals at "
+            f"{100 * simultaneous_level(family_level, m):.4g}% each)")
+
+
 def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
-    """Per-pose verdict of one requirement from the 95 % interval of its ``P_hat``.
+    """Per-pose verdict of one requirement from the interval of its ``P_hat`` (simultaneous over the poses when the
+    intervals are: the rule is the same).
 
     Parameters
     ----------
@@ -78,7 +102,11 @@ class RequirementCheck:
     prob : float
         The required probability ``p`` of this requirement.
     p_linear, p_mc, ci_low, ci_high : arrays, shape (P,)
-        Linear (Gaussian) prediction (NaN where unknown), Monte Carlo estimate and its 95 % interval.
+        Linear (Gaussian) prediction (NaN where unknown), Monte Carlo estimate and its interval.
+    family_level : float
+        Level at which all ``n_intervals`` intervals of the verification hold together (0.95).
+    n_intervals : int
+        Intervals judged together (poses x requirements); each is at :attr:`level`. 1: a single 95 % interval.
     """
 
     name: str
@@ -87,6 +115,19 @@ class RequirementCheck:
     p_mc: np.ndarray
     ci_low: np.ndarray
     ci_high: np.ndarray
+    family_level: float = 0.95
+    n_intervals: int = 1
+
+    @property
+    def level(self) -> float:
+        """Level of each interval: ``1 - (1 - family_level) / n_intervals``."""
+        from tolalloc.montecarlo.intervals import simultaneous_level
+
+        return simultaneous_level(self.family_level, self.n_intervals)
+
+    @property
+    def _words(self) -> str:
+        return interval_words(self.family_level, self.n_intervals)
 
     @property
     def verdicts(self) -> np.ndarray:
@@ -113,10 +154,10 @@ class RequirementCheck:
 
     def margin_text(self) -> str:
         """How far the deciding bound lies from ``p`` at the weakest pose, e.g.
-        ``orientation lower 95% bound 0.9511 at pose 3, 0.0011 above p = 0.95``."""
+        ``orientation lower simultaneous 95% bound 0.9511 at pose 3, 0.0011 above p = 0.95``."""
         i, bound, m = self.worst()
         value = fmt_prob((self.ci_high if bound == "upper" else self.ci_low)[i], self.prob)
-        return (f"{self.name} {bound} 95% bound {value} at pose {i + 1}, {fmt_margin(abs(m))} "
+        return (f"{self.name} {bound} {self._words} bound {value} at pose {i + 1}, {fmt_margin(abs(m))} "
                 f"{'above' if m >= 0 else 'below'} p = {self.prob:g}")
 
     def clause(self) -> str:
@@ -124,10 +165,11 @@ class RequirementCheck:
         i, bound, m = self.worst()
         value = fmt_prob((self.ci_high if bound == "upper" else self.ci_low)[i], self.prob)
         if m >= 0:
-            return f"{self.name}: lower 95% bound >= p = {self.prob:g} at every pose (least: {value} at pose {i + 1})"
+            return (f"{self.name}: lower {self._words} bound >= p = {self.prob:g} at every pose (least: {value} at "
+                    f"pose {i + 1})")
         n = int(np.sum(self.verdicts == "failed")) if bound == "upper" else int(np.sum(self.ci_low < self.prob))
-        return (f"{self.name}: {bound} 95% bound below p = {self.prob:g} at {n} pose(s), by up to {fmt_margin(-m)} "
-                f"at pose {i + 1} ({value})")
+        return (f"{self.name}: {bound} {self._words} bound below p = {self.prob:g} at {n} pose(s), by up to "
+                f"{fmt_margin(-m)} at pose {i + 1} ({value})")
 
     def to_dict(self) -> dict:
         """JSON-ready: verdict, the poses (1-based) not demonstrated / failed, the deciding bound and its margin."""
@@ -137,15 +179,18 @@ class RequirementCheck:
                 "poses_not_demonstrated": [int(k) + 1 for k in np.flatnonzero(v != "demonstrated")],
                 "poses_failed": [int(k) + 1 for k in np.flatnonzero(v == "failed")],
                 "worst_pose": i + 1, "bound": bound, "ci_low": float(self.ci_low[i]), "ci_high": float(self.ci_high[i]),
-                "margin": m, "message": self.clause()}
+                "family_level": float(self.family_level), "level_per_interval": self.level, "margin": m,
+                "message": self.clause()}
 
 
-def orientation_check(angle: dict, n_poses: int) -> RequirementCheck:
+def orientation_check(angle: dict, n_poses: int, family_level: float = 0.95, n_intervals: int = 1) -> RequirementCheck:
     """The orientation requirement's :class:`RequirementCheck` from a verification's ``angle`` dict (``prob``,
-    ``p_linear`` (None: unknown), ``p_mc``, ``ci_low``, ``ci_high``)."""
+    ``p_linear`` (None: unknown), ``p_mc``, ``ci_low``, ``ci_high``), its intervals one of ``n_intervals`` that
+    hold together at ``family_level``."""
     lin = np.full(n_poses, np.nan) if angle.get("p_linear") is None else np.asarray(angle["p_linear"], float)
     return RequirementCheck("orientation", float(angle["prob"]), lin, np.asarray(angle["p_mc"], float),
-                            np.asarray(angle["ci_low"], float), np.asarray(angle["ci_high"], float))
+                            np.asarray(angle["ci_low"], float), np.asarray(angle["ci_high"], float), family_level,
+                            n_intervals)
 
 
 def limiting(checks) -> RequirementCheck:

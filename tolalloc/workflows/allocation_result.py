@@ -244,7 +244,8 @@ class ToleranceAllocation(JobResult):
                          frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
 
     def verification_frame(self) -> pd.DataFrame | None:
-        """Per pose: linear P, Monte Carlo P_hat with its 95 % interval, samples, verdict, reason."""
+        """Per pose: linear P, Monte Carlo P_hat with its interval (95 % simultaneous over the poses and requirements;
+        ``level_per_interval``, ``family_level``), samples, verdict, reason."""
         return None if self.verification is None else self.verification.to_frame()
 
     def summary(self) -> dict:
@@ -273,7 +274,7 @@ class ToleranceAllocation(JobResult):
         return fig
 
     def plot_pose_probabilities(self, ax=None):
-        """Linear P and Monte Carlo P_hat (95 % interval) per pose against p; returns the figure."""
+        """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the figure."""
         from tolalloc.report.plots.allocate import plot_pose_probabilities
 
         self._need_verification("plot_pose_probabilities")

@@ -37,7 +37,9 @@ def summary_dict(job) -> dict:
                                "frac_below_upper95_angle": cov.frac_below_upper95_angle}
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
-                                   "n_per_pose": ver.n, "seed": ver.seed, **ver.estimator_summary()}
+                                   "n_per_pose": ver.n, "seed": ver.seed, "family_level": ver.family_level,
+                                   "n_intervals": ver.n_intervals, "level_per_interval": ver.level_per_interval,
+                                   "intervals": ver.interval_text(), **ver.estimator_summary()}
         for i, row in enumerate(summary["poses"]):
             row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])]})
             if ver.angle is not None:

@@ -14,11 +14,21 @@ import pandas as pd
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
 from tolalloc.workflows.allocation_text import worst_p_text
 
-__all__ = ["write_allocation_report", "write_diagnosis_report", "allocation_context"]
+__all__ = ["write_allocation_report", "write_diagnosis_report", "allocation_context", "verdict_legend"]
 
-#: the words of the per-pose verdicts, as the verification defines them
-VERDICT_LEGEND = ("demonstrated: the whole 95 % interval of P̂ is at or above p; consistent: the interval reaches p "
-                  "but its lower bound is below; failed: the whole interval lies below p.")
+
+
+def _label(ver) -> str:
+    """The verification's intervals named for the report (``simultaneous 95 % interval``)."""
+    return "95 % interval" if ver is None else ver.interval_label().replace("%", " %")
+
+
+def verdict_legend(ver) -> str:
+    """The words of the per-pose verdicts, as the verification defines them, on its intervals (``ver`` None: none)."""
+    label = _label(ver)
+    family = "" if ver is None or ver.n_intervals <= 1 else f" Intervals: {ver.interval_text()}."
+    return (f"demonstrated: the whole {label} of P̂ is at or above p; consistent: the interval reaches p but its "
+            f"lower bound is below; failed: the whole interval lies below p.{family}")
 
 
 def write_allocation_report(job, folder) -> Path:
@@ -79,7 +89,7 @@ TOLERANCE_COLUMNS = [Column("parameter", "parameter", "text"), Column("kind", "k
 CONTINUOUS_COLUMNS = [Column("tol_continuous_mm", "continuous optimum ± [mm]", "pm"),
                       Column("tol_continuous_deg", "continuous optimum ± [deg]", "pm")]
 
-#: the 95 % interval of each estimator of the verification (:mod:`tolalloc.montecarlo`)
+#: the interval of each estimator of the verification (:mod:`tolalloc.montecarlo`)
 INTERVALS = {"plain": "plain Monte Carlo: Wilson score interval",
              "paired": "paired: Tango's score interval of the paired difference",
              "importance": "importance sampling: Tango's score interval of the weighted discordant counts"}
@@ -123,7 +133,7 @@ def _cards(job, s: dict) -> list:
     if ver is not None:
         k = ver.worst_pose
         cards.append({"label": "lowest P̂ (Monte Carlo)", "value": f"{ver.p_mc[k]:.4f}",
-                      "note": f"pose {k + 1}, 95 % interval [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"})
+                      "note": f"pose {k + 1}, {_label(ver)} [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"})
     worst = s["poses"][s["worst_pose"] - 1]
     cards.append({"label": "lowest linear P", "value": f"{worst['p_linear']:.4f}",
                   "note": f"pose {worst['pose']}, the design to build"})
@@ -192,10 +202,11 @@ def _pose_frame(job, s: dict):
 def _pose_table(job, s: dict) -> dict:
     frame, classes = _pose_frame(job, s)
     pr = job.problem
+    label = _label(job.verification)
     cols = [Column("pose", "pose", "int"), Column("origin", "origin", "text"), *joint_columns(job.robot),
             Column("p_linear", "P linear", "f4"), Column("p_mc", "P̂ Monte Carlo", "f4"),
-            Column("ci", "95 % interval", "ci", numeric=True), Column("p_linear_angle", "P linear, angle", "f4"),
-            Column("p_mc_angle", "P̂ angle", "f4"), Column("ci_angle", "95 % interval, angle", "ci", numeric=True),
+            Column("ci", label, "ci", numeric=True), Column("p_linear_angle", "P linear, angle", "f4"),
+            Column("p_mc_angle", "P̂ angle", "f4"), Column("ci_angle", f"{label}, angle", "ci", numeric=True),
             Column("n", "samples", "int"), Column("verdict", "verdict", "text", badge=True),
             Column("reason", "reason", "text", optional=True)]
     what = (f"P(|dP| < {pr.radius_mm:g} mm) per pose" + ("" if pr.angle_radius_rad is None else
@@ -210,9 +221,11 @@ def _pose_note(job) -> str:
     design = f"the design to build ({job.design.label})"
     if job.verification is None:
         return f"P linear: the Gaussian prediction of the first-order model for {design} (no Monte Carlo verification)."
-    used = "; ".join(INTERVALS[e] for e in INTERVALS if e in set(map(str, job.verification.estimator)))
+    ver = job.verification
+    used = "; ".join(INTERVALS[e] for e in INTERVALS if e in set(map(str, ver.estimator)))
+    family = "" if ver.n_intervals <= 1 else f"; {ver.interval_text()}"
     return (f"All of {design}. P linear: the Gaussian prediction of the first-order model; P̂: the nonlinear Monte "
-            f"Carlo estimate (exact perturbed kinematics) with its 95 % interval ({used}). "
+            f"Carlo estimate (exact perturbed kinematics) with its {_label(ver)} ({used}{family}). "
             "Joint values in deg / mm." + ("" if job.region_search is None else " Origin: active, a pose of the region "
                                             "search the design is allocated at; coverage, one of the lowest-P poses of "
                                             "the fresh coverage sample."))
@@ -256,7 +269,7 @@ def _figures(job, folder=None) -> list:
                                 f"(pose {job.worst_pose + 1}); labels: tolerances at a process limit.")]
     if ver is not None:
         figs.append(figure_item(job.plot_pose_probabilities(), figure_id="fig-poses",
-                                caption="Linear prediction and Monte Carlo estimate P̂ with its 95 % interval per "
+                                caption=f"Linear prediction and Monte Carlo estimate P̂ with its {_label(ver)} per "
                                         f"pose, against the required p = {ver.prob:g}."))
         if ver.samples_mm is not None and len(ver.samples_mm):
             caption = (f"Position errors of {len(ver.samples_mm)} Monte Carlo samples at pose {ver.samples_pose + 1} "
@@ -292,7 +305,7 @@ def allocation_context(job, folder=None) -> dict:
             "region": _region(job, s),
             "coverage_text": None if job.coverage is None else pretty(job.coverage.message(pr.prob)),
             "verification": None if job.verification is None else {"text": pretty(job.verification.message())},
-            "legend": VERDICT_LEGEND + _pass_rule(job), "pose_table": _pose_table(job, s),
+            "legend": verdict_legend(job.verification) + _pass_rule(job), "pose_table": _pose_table(job, s),
             "correction": _correction(job), "figures": _figures(job, folder),
             "inputs": _inputs_pairs(job.inputs, [("sigma_set", s["sigma_set"]), ("z", f"{pr.costs.z:.4g}"),
                                                  ("distribution", pr.costs.distribution),

@@ -99,7 +99,7 @@ def _end_to_end_table(job) -> dict:
     frame = with_joints(job.end_to_end.to_frame(), job.robot, chk.q)
     frame["ci"] = list(zip(frame["ci_low"], frame["ci_high"]))
     cols = [Column("pose", "pose", "int"), *joint_columns(job.robot), Column("p_linear", "P linear", "f4"),
-            Column("p_mc", "P̂ Monte Carlo", "f4"), Column("ci", "95 % interval", "ci", numeric=True),
+            Column("p_mc", "P̂ Monte Carlo", "f4"), Column("ci", job.end_to_end.interval_label(), "ci", numeric=True),
             Column("agree", "linear inside the interval", "bool", badge=True)]
     return html_table(frame, cols, table_id="pose-table", row_classes=["" if a else "bad" for a in frame["agree"]],
                       caption=f"End-to-end check per pose: P(|dP| < {chk.radius_mm:g} mm) after calibration",
@@ -120,7 +120,8 @@ def _calibrated_figures(job) -> list:
 
         view = SimpleNamespace(p_linear=chk.p_linear, p_mc=chk.p_mc, ci_low=chk.ci_low, ci_high=chk.ci_high,
                                prob=job.problem.prob, radius_mm=chk.radius_mm)
-        figs.append(figure_item(plot_pose_probabilities(view), figure_id="fig-poses",
+        label = job.end_to_end.interval_label()
+        figs.append(figure_item(plot_pose_probabilities(view, interval=label), figure_id="fig-poses",
                                 caption="Post-calibration linear prediction and end-to-end Monte Carlo estimate with "
-                                        f"its 95 % interval per pose, against the required p = {job.problem.prob:g}."))
+                                        f"its {label} per pose, against the required p = {job.problem.prob:g}."))
     return figs

@@ -89,12 +89,16 @@ def plot_cloud(verification, path=None, *, title: str = "", dpi: int = 100, axes
     return _finish(fig, path, dpi)
 
 
-def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None):
-    """Per pose: linear prediction, Monte Carlo estimate with its 95 % interval, and the required p.
+def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None, interval: str | None = None):
+    """Per pose: linear prediction, Monte Carlo estimate with its interval, and the required p.
 
-    ``ax``: draw into this matplotlib Axes (default a new figure).
+    ``ax``: draw into this matplotlib Axes (default a new figure). ``interval``: what the intervals are, for the
+    legend (default the verification's ``interval_label()``, e.g. ``simultaneous 95% interval``; else
+    ``95% interval``).
     """
     v = verification
+    if interval is None:
+        interval = v.interval_label() if hasattr(v, "interval_label") else "95% interval"
     x = np.arange(1, len(v.p_mc) + 1)
     if ax is None:
         fig, ax = plt.subplots(figsize=(7, 3.5))
@@ -102,7 +106,7 @@ def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None)
         fig = ax.figure
     ax.plot(x, v.p_linear, "o", mfc="none", label="linear (Gaussian)")
     ax.errorbar(x, v.p_mc, yerr=[v.p_mc - v.ci_low, v.ci_high - v.p_mc], fmt="s", ms=3, capsize=3,
-                label="Monte Carlo, 95% CI")
+                label=f"Monte Carlo, {interval}")
     ax.axhline(v.prob, color="k", lw=0.8, ls="--", label=f"p = {v.prob:g}")
     ax.set_xlabel("pose")
     ax.set_ylabel(f"P(|dP| < {v.radius_mm:g} mm)")
