@@ -16,7 +16,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.result import parameter_columns, unit_columns
+from tolalloc.allocate.result import parameter_columns
+from tolalloc.units import unit_columns
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
