@@ -215,14 +215,13 @@ class AllocationResult:
         return out
 
     def _pose_rows(self, built: Design, exact_ok: bool) -> list:
-        """summary.json's ``poses``: joint values, linear P of the design to build (and of the continuous one),
-        pose duals."""
+        """summary.json's ``poses``: joint values ``q_deg_mm`` (deg revolute, mm prismatic), linear P of the design
+        to build (and of the continuous one), pose duals."""
         pr = self.problem
         poses = []
         qi = np.round(pr.model.robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
-            # "q" is the issue's contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
-            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
+            row = {"pose": i + 1, "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
             if "orientation" in built.p_linear:
                 row["p_linear_angle"] = float(built.p_linear["orientation"][i])
             if built is not self.design:
