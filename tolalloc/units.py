@@ -12,6 +12,10 @@ Python from ``Link`` / ``Joint`` objects (internal units mm / rad) gets the same
 (:func:`check_chain_units`): lengths that look like metres, and revolute limits beyond two turns or a nominal
 value beyond one turn each way (degrees given for radians). A file or robot that really is that way is accepted
 inside :func:`trusting_units` (the CLI's ``--trust-units``, ``trust_units=True`` in Python).
+
+A table whose rows mix lengths and angles (tolerances, sigmas) shows each such quantity in a ``<name>_mm`` /
+``<name>_deg`` column pair, the row's own unit filled and the other one empty (:func:`unit_columns`,
+:func:`in_row_unit`).
 """
 
 from __future__ import annotations
