@@ -158,6 +158,7 @@ def test_tool_changer_allocation(result):
     s = result.summary()
     assert s["costs"]["saving"] == pytest.approx(result.certified.cost - result.exact.cost)
     assert len(s["poses"]) == 12 and s["poses"][0]["q_deg_mm"][0] == pytest.approx(15.0)
+    assert "q" not in s["poses"][0]  # joint values only under their unit-carrying key
 
 
 def test_snapping_tightens_and_rechecks(result):

@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 
 import tolalloc
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 from tolalloc.cli import main
 from tolalloc.workflows import allocate_tolerances
 

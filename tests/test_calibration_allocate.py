@@ -9,6 +9,7 @@ from tolalloc.calibration import make_plan, split_errors
 from tolalloc.errormodel import build_error_model
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.io import load_robot
+from tolalloc.units import in_row_unit
 
 
 @pytest.fixture(scope="module")
@@ -36,6 +37,15 @@ def test_plan_design_is_certified_and_cheaper(tc_problem):
     assert res.certified and ratio <= 1.0
     assert res.design.cost < res.baseline.cost
     table = res.to_frame()
+    # every column carries one unit: each quantity in a _mm / _deg pair, the row's unit filled, the other empty
+    assert not {"tolerance", "tolerance_no_calibration", "sigma_manufactured"} & set(table.columns)
+    mm = (table["unit"] == "mm").to_numpy()
+    f = np.array([p.to_interface for p in pr.model.params])
+    for name, values in (("tol", res.design.t), ("tol_no_calibration", res.baseline.t),
+                         ("sigma_manufactured", np.sqrt(res.post.prior_var)), ("sigma_post_calibration", res.post.sigma_post),
+                         ("sigma_random", np.sqrt(res.post.random_var))):
+        assert table[f"{name}_mm"][~mm].isna().all() and table[f"{name}_deg"][mm].isna().all(), name
+        np.testing.assert_allclose(in_row_unit(table, name), values * f, rtol=1e-12, err_msg=name)
     away = table.loc[table.status == "calibrated away", "parameter"]
     assert len(away) > 0 and not set(away) & set(post.unidentifiable)
     # a calibrated-away parameter is not held tighter than without calibration

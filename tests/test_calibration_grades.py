@@ -63,7 +63,10 @@ def test_free_grades_are_certified_and_no_dearer_than_any_uniform_fixed_grade(ca
         totals.append(r.summary()["cost"])
     assert res.summary()["cost"] <= min(totals) * (1 + 1e-3)
     frame = res.to_frame()
-    assert {"repeatability_grade", "repeatability_grade_cost"} <= set(frame.columns)
+    assert {"repeatability_grade_mm", "repeatability_grade_deg", "repeatability_grade_cost"} <= set(frame.columns)
+    drives = frame["parameter"].isin(["dth1", "dth2", "dth3", "dth5", "dth6"])  # revolute drives: deg
+    assert frame.loc[drives, "repeatability_grade_deg"].notna().all()
+    assert frame.loc[drives, "repeatability_grade_mm"].isna().all()
 
 
 @pytest.mark.parametrize("over, match", [

@@ -106,7 +106,9 @@ def test_exact_stage_sits_at_p_and_is_cheaper(box_result):
     assert s["cost"] == s["cost_exact"] and s["region"]["search_exact"]["converged"]
     assert s["coverage"]["ok"] and s["worst_p_post"] >= res.problem.prob - 1e-4
     assert "exact" in res.message() and "coverage" in res.message()
-    assert res.to_frame()["tolerance_exact"].notna().all()
+    frame = res.to_frame()
+    assert (frame["tol_exact_mm"].notna() | frame["tol_exact_deg"].notna()).all()
+    assert list(frame.columns[2:6]) == ["tol_certified_mm", "tol_certified_deg", "tol_exact_mm", "tol_exact_deg"]
 
 
 def test_guard_keeps_the_certified_design_when_ipopt_fails(case, monkeypatch):

@@ -24,8 +24,9 @@ def test_allocate_writes_everything(tmp_path, capsys):
     assert s["cost_continuous"] == s["costs"]["continuous"] < s["cost"] and s["standard_built"] and s["verified"]
     assert s["costs"]["exact"] <= s["costs"]["certified"]
     pose = s["poses"][0]
-    for key in ("q", "q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
+    for key in ("q_deg_mm", "p_linear", "p_mc", "p_mc_ci"):
         assert key in pose
+    assert "q" not in pose  # joint values only under their unit-carrying key
     assert pose["p_mc_ci"][0] <= pose["p_mc"] <= pose["p_mc_ci"][1]
     # the exact design sits on P = 0.95, so its interval straddles p: the correction loop raises the target
     corr = s["correction"]

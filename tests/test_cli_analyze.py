@@ -66,6 +66,12 @@ def test_analyze_pose_set_worst_and_out_dir(capsys, tmp_path):
                      "linear_table.csv"]
     tab = pd.read_csv(tmp_path / "o" / "budget.csv")
     assert len(tab) == res.n_poses * len(res.model.params)
+    # every column carries one unit: sigma in a mm / deg pair, blank where not the row's unit
+    assert "sigma" not in tab and {"sigma_mm", "sigma_deg"} <= set(tab.columns)
+    assert (tab["sigma_mm"].notna() == (tab["unit"] == "mm")).all()
+    assert (tab["sigma_deg"].notna() == (tab["unit"] == "deg")).all()
+    row = d["budget"]["parameters"][0]
+    assert (row["sigma_mm"] is None) != (row["sigma_deg"] is None) and "sigma" not in row
     assert (tmp_path / "o" / "budget.png").stat().st_size > 5000
 
 

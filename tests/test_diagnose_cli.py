@@ -28,7 +28,9 @@ def test_end_to_end(tmp_path, capsys):
     assert rc == 0
     js = json.loads((tmp_path / "out.json").read_text())
     assert js["effect"] == "backlash"
-    assert js["rms_mm"]["final"] < js["rms_mm"]["geometric"] < js["rms_mm"]["nominal"]
+    # each figure under its own key: the test file's and the cross-validation's; no pooled one
+    assert js["test_rms_mm"]["final"] < js["test_rms_mm"]["geometric"] < js["test_rms_mm"]["nominal"]
+    assert not {"rms_mm", "p95_mm", "max_mm", "shrink_pct"} & set(js)
     pred = pd.read_csv(tmp_path / "pred.csv")
     assert list(pred.columns) == ["row", "x_mm", "y_mm", "z_mm", "sigma_mm", "radius95_mm", "registration",
                                   "extrapolation"]
@@ -48,6 +50,11 @@ def test_end_to_end(tmp_path, capsys):
     final_rms = float(test_block.split("final")[1].split()[0])
     assert final_rms == __import__("pytest").approx(js["test"]["rms_mm"]["final"], abs=1e-4)
     assert js["test"]["rms_mm"] == js["test_rms_mm"] and set(js["cv"]["rms_mm"]) == {"nominal", "geometric", "final"}
+    assert js["cv"]["rms_mm"] == js["cv_rms_mm"] != js["test_rms_mm"]
+    cv_block = out[pos[1]:pos[2]]
+    assert float(cv_block.split("final")[1].split()[0]) == __import__("pytest").approx(js["cv_rms_mm"]["final"], abs=1e-4)
+    shrink = js["test"]["shrink_pct"]["final_vs_nominal"]
+    assert shrink == __import__("pytest").approx(100 * (1 - js["test_rms_mm"]["final"] / js["test_rms_mm"]["nominal"]))
     assert 0 <= js["uncertainty"]["coverage95"] <= 1 and len(js["uncertainty"]["sigma_mm"]) == len(te)
 
 

@@ -44,6 +44,6 @@ def test_json_summary_keys(results):
     label, d = results[0]
     js = d.to_dict()
     assert js["effect"] in (*LABELS,)
-    assert set(js["rms_mm"]) == {"nominal", "geometric", "final"}
+    assert set(js["cv_rms_mm"]) == {"nominal", "geometric", "final"} and "rms_mm" not in js
     assert {"effect", "heldout_rms_mm", "p_value"} <= set(js["ranking"][0])
     assert len(js["ranking"]) == 5

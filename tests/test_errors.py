@@ -55,8 +55,13 @@ def test_tool_changer_parameter_names_and_order(tc):
     assert [p.site for p in model.params[:6]] == [0, 1, 2, 3, 4, 5]
     assert model.sigma_set == "table2"  # the file's first set is the default
     df = model.to_frame()
-    assert list(df.columns) == ["parameter", "kind", "element", "unit", "sigma", "distribution"]
+    assert list(df.columns) == ["parameter", "kind", "element", "unit", "sigma_mm", "sigma_deg", "distribution"]
     assert df["parameter"].tolist() == TC_NAMES and df["unit"].tolist()[6:10] == ["deg", "deg", "deg", "mm"]
+    # each sigma in its own unit's column, the other one empty
+    mm = (df["unit"] == "mm").to_numpy()
+    assert df["sigma_mm"][mm].notna().all() and df["sigma_mm"][~mm].isna().all()
+    assert df["sigma_deg"][~mm].notna().all() and df["sigma_deg"][mm].isna().all()
+    np.testing.assert_allclose(df.loc[6, "sigma_deg"], np.rad2deg(model.params[6].sigma))
 
 
 def test_sigma_sets_table1_table2(tc):
@@ -68,7 +73,7 @@ def test_sigma_sets_table1_table2(tc):
     expected1 = [0.2] * 6 + [0.0087] * 3 + [0.3] + [0.0087] * 2 + [0.00435] * 10
     np.testing.assert_allclose(t1, expected1, rtol=1e-12)
     df = build_error_model(tc, "table2").to_frame()
-    assert df.loc[df.parameter == "dth3", "sigma"].item() == pytest.approx(0.1548)
+    assert df.loc[df.parameter == "dth3", "sigma_deg"].item() == pytest.approx(0.1548)
 
 
 def test_generic_sigma_for_robots_without_sets(ur10):

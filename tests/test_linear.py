@@ -201,9 +201,17 @@ def test_budget_sums_order_and_kinds(tmp_path):
     b.write_csv(tmp_path / "b.csv")
     back = pd.read_csv(tmp_path / "b.csv")
     assert len(back) == res.n_poses * len(model.params)
+    # sigma in a unit pair: mm on length rows, deg on angle rows, the other one blank
+    assert "sigma" not in back and list(back.columns[3:6]) == ["unit", "sigma_mm", "sigma_deg"]
+    mm = (back["unit"] == "mm").to_numpy()
+    assert back["sigma_mm"][mm].notna().all() and back["sigma_mm"][~mm].isna().all()
+    assert back["sigma_deg"][~mm].notna().all() and back["sigma_deg"][mm].isna().all()
+    row = back[(back["pose"] == 1) & (back["parameter"] == "dth2")].iloc[0]
+    assert row["sigma_deg"] == pytest.approx(np.rad2deg(model.sigma[k]), rel=1e-5)
     b.write_markdown(tmp_path / "b.md", top=5)
     text = (tmp_path / "b.md").read_text()
     assert "share_norm_pct" in text and text.count("\n") == 5 + 2
+    assert "sigma_mm" in text and "sigma_deg" in text and "nan" not in text  # the empty one of each pair is blank
     rot = budget(res, "rotation")
     np.testing.assert_allclose(rot.total[:, 3], np.trace(res.cov_rot_rad2, axis1=1, axis2=2), rtol=1e-12)
 

@@ -1,5 +1,7 @@
 """An orientation requirement over a box: searched and cut by the region loop, stated by the coverage check."""
 
+import re
+
 import numpy as np
 import pytest
 from scipy.stats import beta
@@ -9,7 +11,7 @@ from tolalloc import TolallocError
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.region import allocate_region, box_region, coverage, static_joints, worst_pose
 from tolalloc.errormodel import build_error_model
-from tolalloc.linear.probability import p_within_angle
+from tolalloc.linear.probability import p_within_angle, radius_for_prob
 from tolalloc.robot.io.robotfile import robot_from_chain_dict
 
 # a yaw joint then a pitch joint: the space-frame rotation error is joint 1's tilts plus joint 2's drive and tilts
@@ -126,3 +128,27 @@ def test_report_card_gives_the_orientation_coverage(tmp_path):
     res.save(tmp_path / "rep", report=True)
     page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
     assert "coverage, orientation" in page.text("summary")
+
+
+def test_region_infeasible_by_its_orientation_requirement_names_it_in_deg(tmp_path):
+    # joint 1's tilt fixed at 0.2 deg: the loose position requirement holds everywhere, the orientation one nowhere
+    # near the end of joint 1's range; the message names the orientation requirement with its own numbers
+    (tmp_path / "costs.toml").write_text("[parameters.e1x]\nfixed = true\ntol_deg = 0.2\n")
+    robot = robot_from_chain_dict(YAW_PITCH)
+    res = tolalloc.allocate_tolerances(robot, region="working", radius_mm=5.0, angle_radius_deg=0.05,
+                                       costs=tmp_path / "costs.toml", verify=False, snap=False, progress=False)
+    msg = res.infeasible
+    m = re.fullmatch(r"`region` working: even with every tolerance at its tightest process limit, the orientation "
+                     r"requirement P\(\|dw\| < 0\.05 deg\) >= 0\.95 cannot be met \(at the worst pose found for it, "
+                     r"j1 = (\S+) deg, j2 = (\S+) deg, the best achievable P is (\S+) and P = 0\.95 holds only within "
+                     r"(\S+) deg; limits that bind: e1x \(100%\)\)\. Lower these t_min in a costs file \(`costs`\), "
+                     r"relax `angle_radius_deg` / `angle_prob`, or use a smaller region; nothing written\.", msg)
+    assert m, msg
+    q_deg, p, reach_deg = [float(m.group(1)), float(m.group(2))], float(m.group(3)), float(m.group(4))
+    # the numbers, recomputed at the printed pose from the fixed tilt alone (sigma = t / z)
+    model = build_error_model(robot)
+    J = model.jacobian(robot.q_from_interface(q_deg))[3:6, model.index("e1x")]
+    C = np.outer(J, J) * (np.deg2rad(0.2) / 3.0) ** 2
+    assert p == pytest.approx(float(p_within_angle(C, np.deg2rad(0.05))), abs=2e-3) and p < 0.95
+    assert reach_deg == pytest.approx(np.rad2deg(float(radius_for_prob(C, 0.95))), rel=1e-3) and reach_deg > 0.05
+    assert q_deg[0] == pytest.approx(80.0, abs=1.0)  # joint 1 at the end of its range, as the search above finds

@@ -256,6 +256,8 @@ def test_robot_from_objects_refuses_degrees_and_metres_like_the_files():
         _arm(ok, trust_units="yes")
     # a continuous joint's two turns each way (the files' default) and no limits are fine
     assert _arm(Joint("shoulder", "revolute", y, -4 * np.pi, 4 * np.pi, 0.0)).n_joints == 1
+    # so is any range within two turns: +-10 read as rad (a multi-turn joint) cannot be told from +-10 deg
+    assert _arm(Joint("shoulder", "revolute", y, -10, 10, 0.0)).joints[0].upper == 10
     assert _arm(Joint("shoulder", "revolute", y, -np.inf, np.inf, 0.0)).n_joints == 1
 
 

@@ -16,7 +16,7 @@ import pandas as pd
 import pytest
 
 import tolalloc
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 from tolalloc.cli import main
 from tolalloc.diagnose import generate
 from tolalloc.diagnose.synth import split_frame
@@ -136,6 +136,10 @@ def test_diagnose_cli_equals_api_with_a_dataframe(tmp_path, monkeypatch):
     assert (tmp_path / "cli_pred.csv").read_bytes() == (tmp_path / "api_pred.csv").read_bytes()
     cli_js, api_js = json.loads((tmp_path / "cli.json").read_text()), json.loads((tmp_path / "api.json").read_text())
     assert cli_js == api_js
+    # the headline's RMS is the JSON's test_rms_mm (the test file's, not the cross-validation's)
+    rms = api_js["test_rms_mm"]
+    assert res.headline()[2] == f"test RMS [mm]: nominal {rms['nominal']:.4f}, geometric {rms['geometric']:.4f}, " \
+                                f"final {rms['final']:.4f}"
     # the same measurements as DataFrames give the same diagnosis (the sources are named differently)
     frames = tolalloc.diagnose_measurements("tool_changer", pd.read_csv(tmp_path / "train.csv"),
                                             pd.read_csv(tmp_path / "test.csv"), folds=3)

@@ -12,6 +12,10 @@ Python from ``Link`` / ``Joint`` objects (internal units mm / rad) gets the same
 (:func:`check_chain_units`): lengths that look like metres, and revolute limits beyond two turns or a nominal
 value beyond one turn each way (degrees given for radians). A file or robot that really is that way is accepted
 inside :func:`trusting_units` (the CLI's ``--trust-units``, ``trust_units=True`` in Python).
+
+A table whose rows mix lengths and angles (tolerances, sigmas) shows each such quantity in a ``<name>_mm`` /
+``<name>_deg`` column pair, the row's own unit filled and the other one empty (:func:`unit_columns`,
+:func:`in_row_unit`).
 """
 
 from __future__ import annotations
@@ -26,7 +30,7 @@ from tolalloc.exceptions import TolallocError
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
            "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
            "TINY_LINK_RATIO", "TRUST_HINT", "PYTHON_TRUST_HINT", "check_joint_units", "check_chain_units",
-           "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS"]
+           "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS", "unit_columns", "in_row_unit"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -265,6 +269,31 @@ def check_reach(lengths_mm: dict, where: str, *, tiny_links: bool = True, object
             raise TolallocError(f"{where}: link {name} is {abs(v):g} mm long while link {longest} is "
                                 f"{abs(lengths_mm[longest]):g} mm; that looks like a length in {fix} "
                                 f"({PYTHON_TRUST_HINT if objects else TRUST_HINT}).")
+
+
+def unit_columns(name: str, values, is_mm) -> dict:
+    """``{name_mm: values on length rows, name_deg: values on angle rows}`` (NaN on the other rows).
+
+    The one way a table shows a quantity whose rows mix lengths and angles (a tolerance, a sigma): each column
+    carries one unit, the other column of the pair is empty on that row.
+
+    Parameters
+    ----------
+    name : str
+        Column stem (``tol``, ``sigma``).
+    values : array, shape (K,)
+        Each row's value in its interface unit (mm or deg).
+    is_mm : array of bool, shape (K,)
+        Rows in mm (the others in deg).
+    """
+    v = np.asarray(values, float)
+    return {f"{name}_mm": np.where(is_mm, v, np.nan), f"{name}_deg": np.where(is_mm, np.nan, v)}
+
+
+def in_row_unit(frame, name: str):
+    """The ``<name>_mm`` / ``<name>_deg`` pair of :func:`unit_columns` as one column (a ``pandas.Series``): each
+    row's value in its own unit (the frame's ``unit``, mm or deg)."""
+    return frame[f"{name}_mm"].where(frame["unit"] == "mm", frame[f"{name}_deg"])
 
 
 def _shown(raw):

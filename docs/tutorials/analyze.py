@@ -43,7 +43,7 @@ print(c.budget_frame(by="kind")[["kind", "share_norm"]].to_string(index=False, f
 # %% ur10
 u = tolalloc.analyze_errors("ur10", poses="working", radius_mm=0.25)
 print(u)
-print(u.model.to_frame().groupby("kind")["sigma"].first())
+print(u.model.to_frame().groupby("kind")[["sigma_mm", "sigma_deg"]].first())
 
 # %% save
 files = a.save(args.out)

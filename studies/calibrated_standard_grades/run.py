@@ -29,7 +29,7 @@ import pandas as pd
 import tolalloc
 from tolalloc.allocate.calibrated_rounding import catalogue_range
 from tolalloc.allocate.calibrated_standard import standardize_calibrated
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 from tolalloc.allocate.catalogue import build_catalogue
 
 #: (robot, region, grades of the link lengths); "IT5-IT16" is a what-if costs file (written beside the report): the

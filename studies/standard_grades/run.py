@@ -27,7 +27,7 @@ import pandas as pd
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.costs import cost_set, read_costs_file
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 from tolalloc.allocate.problem import make_design
 from tolalloc.allocate.region import box_region, coverage
 from tolalloc.allocate.region_standard import allocate_region_standard

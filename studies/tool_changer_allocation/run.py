@@ -31,7 +31,7 @@ import pandas as pd
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
 from tolalloc.allocate.problem import check_process_limits, make_design
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 from tolalloc.allocate.region import allocate_region, box_region, coverage
 from tolalloc.errormodel import build_error_model
 from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pareto, plot_pose_probabilities

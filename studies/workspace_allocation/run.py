@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.result import in_row_unit
+from tolalloc.units import in_row_unit
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from compute import history_rows, p_slice, run_robot, slice_joints, summary_rows, verification_rows  # noqa: E402

@@ -52,6 +52,7 @@ from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.allocate.calibrated_step import START_SHARE, StepData, solve_step
 from tolalloc.calibration.posterior import Posterior, estimated_index, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
+from tolalloc.units import unit_columns
 
 __all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO", "parameter_status"]
 
@@ -96,7 +97,14 @@ class CalibratedAllocation:
         return self.design.ok and self.ratio <= 1.0
 
     def to_frame(self) -> pd.DataFrame:
-        """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance (interface units).
+        """Per parameter: manufactured tolerance, post-calibration sigma, status; baseline tolerance.
+
+        Every quantity in mm or deg has two columns, ``<name>_mm`` (length rows) and ``<name>_deg`` (angle rows),
+        the other one empty (:func:`tolalloc.units.unit_columns`, as the workflow's tolerance table); ``unit``
+        names the row's unit. Columns: ``parameter, unit, tol_*`` (the manufactured ± half-width),
+        ``tol_no_calibration_*`` (the baseline without calibration), ``sigma_manufactured_*``,
+        ``sigma_post_calibration_*``, ``sigma_random_*``, ``status``, ``cost`` and, with repeatability grades,
+        ``repeatability_grade_*`` and ``repeatability_grade_cost``.
 
         Status: ``calibrated away`` (post-calibration sigma below :data:`CALIBRATED_AWAY_RATIO` of the manufactured
         one), ``loose (at t_max)`` (not calibrated, but the process's loosest tolerance suffices), else ``must be held`` (``(random)`` for
@@ -104,18 +112,19 @@ class CalibratedAllocation:
         """
         pr, m = self.problem, self.problem.model
         f = np.array([p.to_interface for p in m.params])
-        prior = np.sqrt(self.post.prior_var)
-        postsig = self.post.sigma_post
-        status = parameter_status(self.design, self.post)
-        df = pd.DataFrame({"parameter": m.names, "unit": [p.interface_unit for p in m.params],
-                           "tolerance": self.design.t * f, "tolerance_no_calibration": self.baseline.t * f
-                           if self.baseline.ok else np.nan, "sigma_manufactured": prior * f,
-                           "sigma_post_calibration": postsig * f, "sigma_random": np.sqrt(self.post.random_var) * f,
-                           "status": status, "cost": pr.param_costs(self.design.t)})
+        is_mm = np.array([p.interface_unit == "mm" for p in m.params])
+        base = self.baseline.t if self.baseline.ok else np.full(len(f), np.nan)
+        cols = {"parameter": m.names, "unit": [p.interface_unit for p in m.params],
+                **unit_columns("tol", self.design.t * f, is_mm),
+                **unit_columns("tol_no_calibration", base * f, is_mm),
+                **unit_columns("sigma_manufactured", np.sqrt(self.post.prior_var) * f, is_mm),
+                **unit_columns("sigma_post_calibration", self.post.sigma_post * f, is_mm),
+                **unit_columns("sigma_random", np.sqrt(self.post.random_var) * f, is_mm),
+                "status": parameter_status(self.design, self.post), "cost": pr.param_costs(self.design.t)}
         if self.grade_t is not None:
-            df["repeatability_grade"] = self.grade_t * f
-            df["repeatability_grade_cost"] = _grades(pr, self.post.split).costs_full(self.grade_t)
-        return df
+            cols.update(unit_columns("repeatability_grade", self.grade_t * f, is_mm))
+            cols["repeatability_grade_cost"] = _grades(pr, self.post.split).costs_full(self.grade_t)
+        return pd.DataFrame(cols)
 
     def summary(self) -> dict:
         base = self.baseline.cost + self.grade_cost_loosest if self.baseline.ok else None

@@ -31,6 +31,7 @@ from tolalloc.allocate.region import Coverage, Region, box_region, coverage
 from tolalloc.calibration.check import check_plan
 from tolalloc.calibration.split import ErrorSplit, split_errors
 from tolalloc.exceptions import TolallocError
+from tolalloc.units import unit_columns
 
 __all__ = ["CalibratedDesign", "allocate_with_calibration", "resolve_region"]
 
@@ -156,16 +157,25 @@ class CalibratedDesign:
         return float(min(vals + [float(p.min())]))
 
     def to_frame(self) -> pd.DataFrame:
-        """Per parameter: the certified table of :class:`CalibratedAllocation` and the exact tolerances."""
-        df = self.certified.to_frame().rename(columns={"tolerance": "tolerance_certified", "cost": "cost_certified"})
-        f = np.array([p.to_interface for p in self.problem.model.params])
+        """Per parameter: the certified table of :class:`CalibratedAllocation` (``tol_*`` renamed
+        ``tol_certified_*``, ``cost`` ``cost_certified``) and, when the exact stage was accepted, ``tol_exact_*``
+        (after ``tol_certified_*``), ``sigma_post_calibration_exact_*``, ``cost_exact``, ``status_exact``;
+        ``tol_no_calibration_exact_*`` with an exact baseline. Quantities in mm or deg in ``_mm`` / ``_deg`` pairs
+        (:func:`tolalloc.units.unit_columns`)."""
+        df = self.certified.to_frame().rename(columns={"tol_mm": "tol_certified_mm", "tol_deg": "tol_certified_deg",
+                                                       "cost": "cost_certified"})
+        params = self.problem.model.params
+        f = np.array([p.to_interface for p in params])
+        is_mm = np.array([p.interface_unit == "mm" for p in params])
         if self.exact_accepted:
-            df.insert(3, "tolerance_exact", self.exact.design.t * f)
-            df["sigma_post_calibration_exact"] = self.exact.post.sigma_post * f
+            at = df.columns.get_loc("tol_certified_deg") + 1
+            for k, (name, values) in enumerate(unit_columns("tol_exact", self.exact.design.t * f, is_mm).items()):
+                df.insert(at + k, name, values)
+            df = df.assign(**unit_columns("sigma_post_calibration_exact", self.exact.post.sigma_post * f, is_mm))
             df["cost_exact"] = self.problem.param_costs(self.exact.design.t)
             df["status_exact"] = parameter_status(self.exact.design, self.exact.post)
         if self.baseline_exact is not None and self.baseline_exact.ok:
-            df["tolerance_no_calibration_exact"] = self.baseline_exact.t * f
+            df = df.assign(**unit_columns("tol_no_calibration_exact", self.baseline_exact.t * f, is_mm))
         return df
 
     def summary(self) -> dict:

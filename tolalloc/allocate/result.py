@@ -12,8 +12,9 @@ import pandas as pd
 
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
 from tolalloc.linear.covariance import variance_share
+from tolalloc.units import unit_columns
 
-__all__ = ["AllocationResult", "snap_design", "parameter_columns", "unit_columns", "in_row_unit"]
+__all__ = ["AllocationResult", "snap_design", "parameter_columns"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -214,14 +215,13 @@ class AllocationResult:
         return out
 
     def _pose_rows(self, built: Design, exact_ok: bool) -> list:
-        """summary.json's ``poses``: joint values, linear P of the design to build (and of the continuous one),
-        pose duals."""
+        """summary.json's ``poses``: joint values ``q_deg_mm`` (deg revolute, mm prismatic), linear P of the design
+        to build (and of the continuous one), pose duals."""
         pr = self.problem
         poses = []
         qi = np.round(pr.model.robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
-            # "q" is the issue's contract name; "q_deg_mm" says the units (deg revolute, mm prismatic)
-            row = {"pose": i + 1, "q": qi[i], "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
+            row = {"pose": i + 1, "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
             if "orientation" in built.p_linear:
                 row["p_linear_angle"] = float(built.p_linear["orientation"][i])
             if built is not self.design:
@@ -245,18 +245,6 @@ def parameter_columns(problem: AllocationProblem) -> dict:
             "unit": [p.interface_unit for p in params],
             "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
                            for p in params]}
-
-
-def unit_columns(name: str, values, is_mm) -> dict:
-    """``{name_mm: values on length rows, name_deg: values on angle rows}`` (NaN on the other rows)."""
-    v = np.asarray(values, float)
-    return {f"{name}_mm": np.where(is_mm, v, np.nan), f"{name}_deg": np.where(is_mm, np.nan, v)}
-
-
-def in_row_unit(frame: pd.DataFrame, name: str) -> pd.Series:
-    """The ``<name>_mm`` / ``<name>_deg`` pair of :func:`unit_columns` as one column: each row's value in its own
-    unit (the frame's ``unit``, mm or deg)."""
-    return frame[f"{name}_mm"].where(frame["unit"] == "mm", frame[f"{name}_deg"])
 
 
 def _pct(x, ref):

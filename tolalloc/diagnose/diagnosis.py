@@ -127,7 +127,10 @@ class Diagnosis:
         return pd.DataFrame(rows)
 
     def to_dict(self) -> dict:
-        ba = self.before_after()
+        """JSON-ready result. The error figures of each set of poses under their own key: ``cv_rms_mm`` and the
+        ``cv`` block (out-of-fold predictions of the training file), ``test_rms_mm`` and the ``test`` block (the
+        test file's scored poses, with a test file) -- the figures the summary prints."""
+        cv, test = self._block("cv"), None if self.test is None else self._block("test")
         out = {
             "robot": self.robot.name,
             **(self.verdict.to_dict() if self.verdict is not None else {}),
@@ -136,12 +139,8 @@ class Diagnosis:
             "ranking": [c.to_dict() for c in self.ranking],
             "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
                           "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
-            "rms_mm": dict(zip(ba["model"], ba["rms_mm"])),
-            "p95_mm": dict(zip(ba["model"], ba["p95_mm"])),
-            "max_mm": dict(zip(ba["model"], ba["max_mm"])),
-            "shrink_pct": {"final_vs_nominal": float(ba["rms_shrink_pct"].iloc[2]),
-                           "final_vs_geometric": float(ba["rms_shrink_vs_geometric_pct"].iloc[2]),
-                           "geometric_vs_nominal": float(ba["rms_shrink_pct"].iloc[1])},
+            "cv_rms_mm": cv["rms_mm"],
+            **({} if test is None else {"test_rms_mm": test["rms_mm"]}),
             "heldout": {"cv_poses": len(self.nominal.oof_mm), "test_poses": 0 if self.test is None else len(self.scored_index),
                         "test_frame": self.test_frame,
                         "sealed_test": "the test file was scored once, after the model was chosen on the training "
@@ -163,14 +162,12 @@ class Diagnosis:
                                       "revolute joint, 2 per prismatic joint, joint offsets, registration, probe offset",
                        "tolerance": "the paper's error-screw model (errormodel.model), not used by the diagnosis"},
         }
-        out["cv"] = self._block("cv") | {"poses": self.train.n_poses}
+        out["cv"] = cv | {"poses": self.train.n_poses}
         if self.extrapolation is not None:
             out["extrapolation"] = self.extrapolation.to_dict()
         if self.test is not None:
-            bt = self.before_after("test")
-            out["test_rms_mm"] = dict(zip(bt["model"], bt["rms_mm"]))
             out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source,
-                           "scored_poses": len(self.scored_index), **self._block("test"),
+                           "scored_poses": len(self.scored_index), **test,
                            "registration": None if self.registration is None else self.registration.to_dict(self.test.rows)}
             if self.registered is not None:
                 out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
@@ -182,5 +179,10 @@ class Diagnosis:
         return out
 
     def _block(self, which: str) -> dict:
+        """RMS, p95 and max error [mm] of the nominal, geometric and final models on the poses ``which`` and the
+        RMS shrink in percent."""
         b = self.before_after(which)
-        return {k: dict(zip(b["model"], b[k])) for k in ("rms_mm", "p95_mm", "max_mm")}
+        return {**{k: dict(zip(b["model"], b[k])) for k in ("rms_mm", "p95_mm", "max_mm")},
+                "shrink_pct": {"final_vs_nominal": float(b["rms_shrink_pct"].iloc[2]),
+                               "final_vs_geometric": float(b["rms_shrink_vs_geometric_pct"].iloc[2]),
+                               "geometric_vs_nominal": float(b["rms_shrink_pct"].iloc[1])}}

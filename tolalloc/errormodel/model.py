@@ -40,6 +40,7 @@ from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.kinematics import _jacobian_kernel, _prefix_lists
 from tolalloc.robot.model import Robot
+from tolalloc.units import unit_columns
 from tolalloc.errormodel.sampling import sample_values  # the one sampler, shared with the Monte Carlo engine
 
 __all__ = ["ErrorParameter", "ErrorModel", "KINDS"]
@@ -173,13 +174,15 @@ class ErrorModel:
         return replace(self, params=tuple(replace(p, sigma=float(s)) for p, s in zip(self.params, sigma)))
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per parameter: name, kind, element, unit, sigma in the interface unit, distribution."""
+        """One row per parameter: ``parameter, kind, element, unit, sigma_mm, sigma_deg, distribution``; the sigma
+        in ``sigma_mm`` on length rows, in ``sigma_deg`` on angle rows, the other one NaN."""
+        is_mm = np.array([p.interface_unit == "mm" for p in self.params], bool)
         return pd.DataFrame({
             "parameter": self.names,
             "kind": self.kinds,
             "element": [p.element for p in self.params],
             "unit": [p.interface_unit for p in self.params],
-            "sigma": [p.sigma * p.to_interface for p in self.params],
+            **unit_columns("sigma", [p.sigma * p.to_interface for p in self.params], is_mm),
             "distribution": [p.distribution for p in self.params],
         })
 

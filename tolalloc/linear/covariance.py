@@ -35,6 +35,7 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
+from tolalloc.units import unit_columns
 
 __all__ = ["LinearResult", "ErrorBudget", "linear_map", "input_covariance", "budget", "variance_contributions",
            "variance_share", "VARIANCE_FACTOR"]
@@ -249,8 +250,9 @@ class ErrorBudget:
         pose : int, sequence of int, "worst" or None (all poses)
         by : {"parameter", "kind"}
 
-        Columns: ``pose, parameter|kind, [kind, sigma, unit,] var_x_<u> .. var_norm_<u>,
-        share_x .. share_norm`` (``<u>`` is ``mm2`` or ``rad2``; shares are fractions).
+        Columns: ``pose, parameter|kind, [kind, unit, sigma_mm, sigma_deg,] var_x_<u> .. var_norm_<u>,
+        share_x .. share_norm`` (``<u>`` is ``mm2`` or ``rad2``; shares are fractions). A parameter's sigma is in
+        ``sigma_mm`` (lengths) or ``sigma_deg`` (angles), the other one NaN (:func:`tolalloc.units.unit_columns`).
         """
         if by not in ("parameter", "kind"):
             raise TolallocError(f"by: expected 'parameter' or 'kind', got {by!r}.")
@@ -264,8 +266,9 @@ class ErrorBudget:
                 var, share = mask @ var, mask @ share
                 df = pd.DataFrame({"pose": i + 1, "kind": kinds})
             else:
+                is_mm = np.array([un == "mm" for un in self.units], bool)
                 df = pd.DataFrame({"pose": i + 1, "parameter": list(self.names), "kind": list(self.kinds),
-                                   "sigma": self.sigma_interface, "unit": list(self.units)})
+                                   "unit": list(self.units), **unit_columns("sigma", self.sigma_interface, is_mm)})
             for a, ax in enumerate(_AXES):
                 df[f"var_{ax}_{u}"] = var[:, a]
             for a, ax in enumerate(_AXES):
@@ -274,7 +277,8 @@ class ErrorBudget:
         return pd.concat(frames, ignore_index=True)
 
     def to_markdown(self, pose="worst", by: str = "parameter", top: int | None = None, digits: int = 4) -> str:
-        """Markdown table of :meth:`to_frame` (shares in percent), optionally the ``top`` rows per pose."""
+        """Markdown table of :meth:`to_frame` (shares in percent, the empty one of each unit pair blank),
+        optionally the ``top`` rows per pose."""
         df = self.to_frame(pose, by)
         if top is not None:
             df = df.groupby("pose", sort=False).head(top)
@@ -282,7 +286,8 @@ class ErrorBudget:
         for ax in _AXES:
             df[f"share_{ax}"] = 100 * df[f"share_{ax}"]
         df = df.rename(columns={f"share_{ax}": f"share_{ax}_pct" for ax in _AXES})
-        return df.to_markdown(index=False, floatfmt=f".{digits}g")
+        df = df.astype(object).where(df.notna(), None)
+        return df.to_markdown(index=False, floatfmt=f".{digits}g", missingval="")
 
     def write_csv(self, path, pose=None, by: str = "parameter") -> None:
         """Write :meth:`to_frame` to ``path`` (CSV)."""

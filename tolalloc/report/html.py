@@ -268,7 +268,7 @@ def plot_calibrated_tolerances(table: pd.DataFrame):
     """
     import matplotlib.pyplot as plt
 
-    from tolalloc.allocate.result import in_row_unit
+    from tolalloc.units import in_row_unit
 
     y = np.arange(len(table))[::-1]
     fig, ax = plt.subplots(figsize=(8, 0.26 * len(table) + 1.4))

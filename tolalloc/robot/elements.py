@@ -48,7 +48,9 @@ class Joint:
     ``Joint(name, kind, axis, lower, upper, nominal)`` takes its limits and nominal value in **rad** for a
     revolute joint and mm for a prismatic one; :meth:`from_interface` takes them in deg / mm, like the robot
     files. A :class:`~tolalloc.robot.model.Robot` refuses revolute limits beyond two turns or a nominal value
-    beyond one turn each way (degrees given for radians) unless built with ``trust_units=True``.
+    beyond one turn each way (degrees given for radians) unless built with ``trust_units=True``. Degrees that also
+    read as radians within those bounds (``lower=-10, upper=10`` meant as deg is a +-10 rad joint, a valid multi-turn
+    range) cannot be told apart and pass: give degree values through :meth:`from_interface`.
 
     Attributes
     ----------

@@ -229,23 +229,45 @@ def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, sol
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:
-    """Why a region is infeasible even at the tightest process limits, and what would work."""
+    """Why a region is infeasible even at the tightest process limits: each requirement that cannot be met (position
+    in mm, orientation in deg), at the worst pose found for it, with the limits that bind there; what would work."""
     from tolalloc.allocate.region import worst_pose
 
     pr = res.problem
+    found = [_requirement_at_worst(res, b, worst_pose(pr, res.design.t, box, seed=seed, fixed=reg_info.static,
+                                                       requirement=b["name"])[:2]) for b in pr.blocks]
+    unmet = [f for f in found if f[0]] or found
+    relax = " and ".join(f[2] for f in unmet)
+    return (f"`region` {box.name}: even with every tolerance at its tightest process limit, " + "; ".join(
+        f[1] for f in unmet) + f". Lower these t_min in a costs file (`costs`), relax {relax}, or use a smaller "
+        "region; nothing written.")
+
+
+def _requirement_at_worst(res, block, searched) -> tuple:
+    """``(unmet, text, arguments to relax)`` of one requirement (a block of the problem) at its worst pose: the
+    search's ``(q, p)`` or an active pose of the allocation when that one is worse."""
+    from tolalloc.linear.covariance import variance_share
+    from tolalloc.linear.probability import radius_for_prob
+
+    pr, name = res.problem, block["name"]
     robot = pr.model.robot
-    q, p_best, _ = worst_pose(pr, res.design.t, box, seed=seed, fixed=reg_info.static)
-    p_set = float(res.diagnosis.p_best["position"].min())
-    if p_set < p_best:  # an active pose is worse than what the search found
-        q, p_best = pr.q[int(np.argmin(res.diagnosis.p_best["position"]))], p_set
-    qi = robot.q_to_interface(q)
-    joints = ", ".join(f"{j.name} = {v:.4g} {j.unit}" for j, v in zip(robot.joints, qi))
-    binding = ", ".join(f"{n} ({s:.0%})" for n, s in res.diagnosis.binding[:4])
-    return (f"`region` {box.name}: P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} is infeasible over the region even "
-            f"with every tolerance at its tightest process limit: at the worst pose found ({joints}) the best "
-            f"achievable P is {p_best:.4f}" + (f"; limits that bind: {binding}" if binding else "")
-            + ". Lower these t_min in a costs file (`costs`), relax `radius_mm` / `prob`, or use a smaller region; "
-            "nothing written.")
+    q, p_best = searched
+    p_set = res.diagnosis.p_best[name]
+    if float(p_set.min()) < p_best:  # an active pose is worse than what the search found
+        q, p_best = pr.q[int(np.argmin(p_set))], float(p_set.min())
+    J, var = pr.model.jacobian(q)[block["rows"]], pr.sigma(res.design.t) ** 2
+    share = variance_share(J, var)
+    names = pr.costs.names
+    binding = ", ".join(f"{names[k]} ({share[k]:.0%})" for k in np.argsort(share)[::-1][:4] if share[k] >= 0.02)
+    angle = name == "orientation"
+    unit, f, sym = ("deg", 180.0 / np.pi, "dw") if angle else ("mm", 1.0, "dP")
+    reach = float(radius_for_prob(J @ (var[:, None] * J.T), block["prob"])) * f
+    joints = ", ".join(f"{j.name} = {v:.4g} {j.unit}" for j, v in zip(robot.joints, robot.q_to_interface(q)))
+    text = (f"the {name} requirement P(|{sym}| < {block['radius'] * f:g} {unit}) >= {block['prob']:g} cannot be met "
+            f"(at the worst pose found for it, {joints}, the best achievable P is {p_best:.4f} and P = "
+            f"{block['prob']:g} holds only within {reach:.4g} {unit}" + (f"; limits that bind: {binding}" if binding
+                                                                          else "") + ")")
+    return (p_best < block["prob"], text, "`angle_radius_deg` / `angle_prob`" if angle else "`radius_mm` / `prob`")
 
 
 def _costs(costs, model, z, uniform):

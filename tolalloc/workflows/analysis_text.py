@@ -25,7 +25,9 @@ def _pose_dict(res, b, i, radii, probs, robot) -> dict:
     if probs:
         d["radius_mm_for_prob"] = {f"{p:g}": float(res.radius_for(p)[i]) for p in probs}
     d["budget"] = {
-        "parameters": frame[keep].to_dict(orient="records"),
+        # sigma_mm / sigma_deg: the pair's other entry is null on each row
+        "parameters": [{k: None if isinstance(v, float) and np.isnan(v) else v for k, v in row.items()}
+                       for row in frame[keep].to_dict(orient="records")],
         "kinds": kinds[[c for c in kinds.columns if c != "pose"]].to_dict(orient="records"),
     }
     return d
@@ -37,7 +39,9 @@ def analyze_dict(res, b, radii, probs) -> dict:
     worst = b.worst_pose
     out = {"robot": robot.name, "labels": res.model.labels, "method": "linear (first order), Gaussian approximation",
            "n_poses": res.n_poses, "worst_pose": worst + 1, "pose_numbering": "1-based, in the order of the pose set",
-           "budget_columns": "var_*_mm2: contribution to the variance [mm^2]; share_*: fraction of it; norm = trace",
+           "budget_columns": "sigma_mm / sigma_deg: the parameter's sigma on length / angle rows (null on the "
+                             "others); var_*_mm2: contribution to the variance [mm^2]; share_*: fraction of it; "
+                             "norm = trace",
            **_pose_dict(res, b, worst, radii, probs, robot)}
     if res.n_poses > 1:
         out["poses"] = [_pose_dict(res, b, i, radii, probs, robot) for i in range(res.n_poses)]

@@ -16,7 +16,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.result import parameter_columns, unit_columns
+from tolalloc.allocate.result import parameter_columns
+from tolalloc.units import unit_columns
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
@@ -91,9 +92,9 @@ def calibrated_frame(job) -> pd.DataFrame:
     cols.update(unit_columns("sigma_post_calibration", build_post.sigma_post * f, is_mm))
     cols.update(unit_columns("sigma_random", np.sqrt(build_post.random_var) * f, is_mm))
     cert = res.certified.to_frame()
-    if "repeatability_grade" in cert:
-        cols.update(unit_columns("repeatability_grade", cert["repeatability_grade"].to_numpy(), is_mm))
-        cols["repeatability_grade_cost"] = cert["repeatability_grade_cost"].to_numpy()
+    if "repeatability_grade_cost" in cert:
+        for col in ("repeatability_grade_mm", "repeatability_grade_deg", "repeatability_grade_cost"):
+            cols[col] = cert[col].to_numpy()
     return pd.DataFrame(cols)
 
 

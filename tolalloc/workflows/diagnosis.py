@@ -241,8 +241,10 @@ class MeasurementDiagnosis(JobResult):
                  + ("" if d.test is None else f", {d.test.n_poses} test poses"),
                  f"verdict: {self.verdict}   effect: {d.effect}"
                  + ("" if v is None or not v.candidates else f"   candidates: {', '.join(v.candidates)}")]
+        # the JSON's test_rms_mm with a test file, else its cv_rms_mm
         block = d.before_after("test" if d.test is not None else "cv")
-        lines.append("RMS [mm]: " + ", ".join(f"{m} {r:.4f}" for m, r in zip(block["model"], block["rms_mm"])))
+        lines.append(("test" if d.test is not None else "cross-validation") + " RMS [mm]: "
+                     + ", ".join(f"{m} {r:.4f}" for m, r in zip(block["model"], block["rms_mm"])))
         if d.guards:
             lines.append(f"guards fired: {len(d.guards)}")
         return lines

@@ -9,7 +9,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tolalloc.allocate.result import in_row_unit  # noqa: E402
+from tolalloc.units import in_row_unit  # noqa: E402
 
 __all__ = ["plot_budget", "plot_cloud", "plot_pareto", "plot_pose_probabilities"]
 
