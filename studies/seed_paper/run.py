@@ -38,7 +38,7 @@ GEO = ("link_length", "joint_drive", "axis_deflection")
 def metre_robot(robot):
     """Unit-mix hypothesis: link lengths in metres, every error value (mm numbers) unchanged."""
     chain = tuple(Link(e.name, e.vector_mm / 1000.0) if isinstance(e, Link) else e for e in robot.chain)
-    return dataclasses.replace(robot, chain=chain, masses=(), pose_sets={})
+    return dataclasses.replace(robot, chain=chain, masses=(), pose_sets={}, trust_units=True)
 
 
 def stats_rows(res, keys):
