@@ -51,7 +51,7 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, parse_grades, read_processes
-from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
+from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_columns, unit_value
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
 
@@ -184,15 +184,22 @@ class CostSet:
         return self.discrete[k] if self.discrete else DiscreteSpec()
 
     def to_frame(self, model: ErrorModel) -> pd.DataFrame:
-        """One row per parameter: law, coefficients and limits in the interface unit."""
-        rows = []
-        for nm, role, cm, ft in zip(self.names, self.role, self.models, self.fixed_tol):
-            p = model.params[model.index(nm)]
-            f = p.to_interface
-            rows.append({"parameter": nm, "kind": p.kind, "unit": p.interface_unit, "role": role, "model": cm.model,
-                         "a": cm.a, "b": cm.b, "k": cm.k, "t_ref": cm.t_ref * f, "t_min": cm.t_min * f,
-                         "t_max": cm.t_max * f, "fixed_tol": ft * f})
-        return pd.DataFrame(rows)
+        """One row per parameter: law, coefficients, and the reference tolerance, process limits and fixed
+        tolerance (NaN for allocatable parameters) each as a ``<name>_mm`` / ``<name>_deg`` pair in the row's
+        interface unit (:func:`tolalloc.units.unit_columns`)."""
+        params = [model.params[model.index(nm)] for nm in self.names]
+        f = np.array([p.to_interface for p in params])
+        units = [p.interface_unit for p in params]
+        is_mm = np.array([u == "mm" for u in units], bool)
+        law = {}
+        for name in ("t_ref", "t_min", "t_max"):
+            law.update(unit_columns(name, np.array([getattr(cm, name) for cm in self.models], float) * f, is_mm))
+        return pd.DataFrame({"parameter": list(self.names), "kind": [p.kind for p in params], "unit": units,
+                             "role": list(self.role), "model": [cm.model for cm in self.models],
+                             "a": [cm.a for cm in self.models], "b": [cm.b for cm in self.models],
+                             "k": [cm.k for cm in self.models],
+                             **law,
+                             **unit_columns("fixed_tol", np.array(self.fixed_tol, float) * f, is_mm)})
 
 
 def param_kind_key(p) -> str:
