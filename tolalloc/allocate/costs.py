@@ -188,18 +188,13 @@ class CostSet:
         tolerance (NaN for allocatable parameters) each as a ``<name>_mm`` / ``<name>_deg`` pair in the row's
         interface unit (:func:`tolalloc.units.unit_columns`)."""
         params = [model.params[model.index(nm)] for nm in self.names]
-        f = np.array([p.to_interface for p in params])
-        units = [p.interface_unit for p in params]
-        is_mm = np.array([u == "mm" for u in units], bool)
-        law = {}
+        f, is_mm = np.array([p.to_interface for p in params]), np.array([p.interface_unit == "mm" for p in params])
+        frame = pd.DataFrame({"parameter": list(self.names), "kind": [p.kind for p in params],
+                              "unit": [p.interface_unit for p in params], "role": list(self.role),
+                              **{c: [getattr(cm, c) for cm in self.models] for c in ("model", "a", "b", "k")}})
         for name in ("t_ref", "t_min", "t_max"):
-            law.update(unit_columns(name, np.array([getattr(cm, name) for cm in self.models], float) * f, is_mm))
-        return pd.DataFrame({"parameter": list(self.names), "kind": [p.kind for p in params], "unit": units,
-                             "role": list(self.role), "model": [cm.model for cm in self.models],
-                             "a": [cm.a for cm in self.models], "b": [cm.b for cm in self.models],
-                             "k": [cm.k for cm in self.models],
-                             **law,
-                             **unit_columns("fixed_tol", np.array(self.fixed_tol, float) * f, is_mm)})
+            frame = frame.assign(**unit_columns(name, np.array([getattr(cm, name) for cm in self.models]) * f, is_mm))
+        return frame.assign(**unit_columns("fixed_tol", np.array(self.fixed_tol, float) * f, is_mm))
 
 
 def param_kind_key(p) -> str:
