@@ -125,6 +125,28 @@ def test_few_measurements_name_the_unidentifiable(tc):
     assert np.all(post.sigma_post <= model.sigma * (1 + 1e-12))
 
 
+def test_split_and_posterior_frames_give_each_sigma_in_its_rows_unit(tc):
+    model = build_error_model(tc, clearance=True)
+    split = split_errors(model)
+    post = posterior(split, make_plan(tc, random_poses(tc, 12, 6)))
+    for frame, names in ((split.to_frame(), ("sigma_sys", "sigma_random")),
+                         (post.to_frame(), ("sigma_prior", "sigma_post", "sigma_random"))):
+        mm = frame["unit"] == "mm"
+        for name in names:
+            assert name not in frame and frame[f"{name}_mm"][~mm].isna().all() and frame[f"{name}_deg"][mm].isna().all()
+        row = frame.set_index("parameter")
+        # a length (link, mm) and an angle (joint drive, deg; repeatability 0.0003 deg by default)
+        assert row.loc["dl3", "sigma_random_mm"] == 0.0 and row.loc["dth2", "sigma_random_deg"] == pytest.approx(0.0003)
+        assert row.loc["ca1", "sigma_random_mm"] == pytest.approx(model.sigma[model.index("ca1")])  # random only
+    s, p = split.to_frame().set_index("parameter"), post.to_frame().set_index("parameter")
+    assert s.loc["dl3", "sigma_sys_mm"] == pytest.approx(model.sigma[model.index("dl3")])
+    assert s.loc["dth2", "sigma_sys_deg"] == pytest.approx(np.rad2deg(model.sigma[model.index("dth2")]))
+    k, j = model.index("dl3"), model.index("dth2")
+    assert p.loc["dl3", "sigma_post_mm"] == pytest.approx(post.sigma_post[k])
+    assert p.loc["dth2", "sigma_post_deg"] == pytest.approx(np.rad2deg(post.sigma_post[j]))
+    assert p.loc["dth2", "sigma_prior_deg"] == pytest.approx(np.rad2deg(np.sqrt(post.prior_var[j])))
+
+
 def test_bad_input(tc, tmp_path):
     model = build_error_model(tc, clearance=True)
     q = random_poses(tc, 5, 6)

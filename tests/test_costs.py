@@ -49,7 +49,22 @@ def test_defaults_resolve_for_the_tool_changer(model):
     dth1 = cs.models[cs.names.index("dth1")]
     assert dd4.t_ref == pytest.approx(0.05)
     assert dth1.t_ref == pytest.approx(np.deg2rad(0.01))
-    assert cs.to_frame(model).loc[lambda f: f.parameter == "dth1", "t_min"].item() == pytest.approx(0.0005)
+    frame = cs.to_frame(model)
+    assert frame.loc[lambda f: f.parameter == "dth1", "t_min_deg"].item() == pytest.approx(0.0005)
+
+
+def test_cost_frame_gives_each_tolerance_in_its_rows_unit(tmp_path, model):
+    f = tmp_path / "c.toml"
+    f.write_text('[parameters.e6x]\nfixed = true\ntol_deg = 0.02\n[parameters.dl3]\nfixed = true\ntol_mm = 0.04\n')
+    frame = load_costs(f, model).to_frame(model).set_index("parameter")
+    mm = frame["unit"] == "mm"
+    for name in ("t_ref", "t_min", "t_max", "fixed_tol"):
+        assert name not in frame and frame[f"{name}_mm"][~mm].isna().all() and frame[f"{name}_deg"][mm].isna().all()
+    # a length and an angle, in mm and deg as the defaults and the file give them
+    assert frame.loc["dd4", ["t_ref_mm", "t_min_mm", "t_max_mm"]].tolist() == pytest.approx([0.05, 0.002, 1.0])
+    assert frame.loc["dth1", ["t_ref_deg", "t_min_deg", "t_max_deg"]].tolist() == pytest.approx([0.01, 0.0005, 0.5])
+    assert frame.loc["dl3", "fixed_tol_mm"] == pytest.approx(0.04) and frame.loc["e6x", "fixed_tol_deg"] == pytest.approx(0.02)
+    assert frame.loc["dth1", ["fixed_tol_mm", "fixed_tol_deg"]].isna().all()  # allocatable: no fixed tolerance
 
 
 def test_costs_file_overrides_units_roles(tmp_path, model):

@@ -48,6 +48,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
+from tolalloc.units import unit_columns
 
 __all__ = ["ErrorSplit", "split_errors", "DEFAULT_SPLIT"]
 
@@ -128,12 +129,15 @@ class ErrorSplit:
         return ErrorSplit(self.model, self.systematic.copy(), np.asarray(random_sigma, float).copy(), self.grade)
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per parameter: kind, systematic?, prior sigma and random sigma in the interface unit."""
+        """One row per parameter: kind, systematic?, prior sigma of the systematic part and random sigma, each as a
+        ``<name>_mm`` / ``<name>_deg`` pair in the row's interface unit (:func:`tolalloc.units.unit_columns`)."""
         m = self.model
         f = np.array([p.to_interface for p in m.params])
-        return pd.DataFrame({"parameter": m.names, "kind": m.kinds, "unit": [p.interface_unit for p in m.params],
-                             "systematic": self.systematic, "sigma_sys": np.where(self.systematic, m.sigma, 0) * f,
-                             "sigma_random": self.random_sigma * f})
+        units = [p.interface_unit for p in m.params]
+        is_mm = np.array([u == "mm" for u in units])
+        return pd.DataFrame({"parameter": m.names, "kind": m.kinds, "unit": units, "systematic": self.systematic,
+                             **unit_columns("sigma_sys", np.where(self.systematic, m.sigma, 0) * f, is_mm),
+                             **unit_columns("sigma_random", self.random_sigma * f, is_mm)})
 
 
 def _kind_key(p) -> str:
