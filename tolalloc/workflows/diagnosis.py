@@ -87,6 +87,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
                                               progress)
     _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame)
+    for name, value in (("register_n", register_n), ("register_update", register_update)):
+        if value is not None and test is None:
+            raise ArgumentError(name, "needs `test`: only a test file in another frame is re-registered, and none was "
+                                "given; pass the test file or leave this option out.")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
