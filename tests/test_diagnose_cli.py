@@ -111,6 +111,17 @@ def test_gap_split_needs_a_test_file(tmp_path, capsys):
     assert not (tmp_path / "o.json").exists()
 
 
+def test_refit_options_need_a_test_file(tmp_path, capsys):
+    _files(tmp_path)
+    for option in (["--register-update", "calibration"], ["--register-n", "10"]):
+        rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test-frame", "refit",
+                   *option, "--json", str(tmp_path / "o.json"), "--report", str(tmp_path / "r")])
+        err = capsys.readouterr().err
+        assert rc == 2 and err.startswith(f"error: {option[0]} needs --test: only a test file in another frame")
+        assert len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists()
+
+
 def test_register_update_reaches_the_fit_and_the_json(tmp_path, capsys):
     _files(tmp_path)
     runs = {}
@@ -123,6 +134,9 @@ def test_register_update_reaches_the_fit_and_the_json(tmp_path, capsys):
     capsys.readouterr()
     assert runs["calibration"]["settings"]["register_update"] == "calibration"
     assert runs["frame"]["settings"]["register_update"] == "frame"
+    reg = runs["calibration"]["test"]["registration"]
+    assert reg["update"] == "calibration" and reg["robust_loss"] == "huber" and reg["inflation_k"]["geometric"] >= 1
+    assert runs["calibration"]["settings"]["register_update_robust_loss"] == "huber"
     frame, upd = (runs[k]["test"]["rms_mm"]["final"] for k in ("frame", "calibration"))
     # one session on both sides: the update has nothing to correct and stays at the frame-only figure
     assert upd == __import__("pytest").approx(frame, rel=0.15)

@@ -12,6 +12,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import Calibration, Fit
 from tolalloc.diagnose.guards import Extrapolation, ParameterCheck, PoseUncertainty
 from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.recalibrate import UNCERTAINTY_SCOPE, CalibrationUpdate
 from tolalloc.diagnose.register import RegistrationSplit
 from tolalloc.diagnose.scores import Evaluation, error_stats
 from tolalloc.diagnose.verdict import Verdict
@@ -50,6 +51,8 @@ class Diagnosis:
     outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
                                    ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
+    calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the prior inflation of
+                                   each updated model and the update's robust loss (:mod:`.recalibrate`)
     """
 
     robot: Robot
@@ -75,11 +78,22 @@ class Diagnosis:
     verdict: Verdict | None = None
     outliers: tuple = ()
     settings: dict | None = None
+    calibration_update: CalibrationUpdate | None = None
 
     @property
     def scored_index(self) -> np.ndarray:
         """Test poses (0-based) the test figures are computed on: all, or the non-registration ones."""
         return self.registration.score_index if self.registration is not None else np.arange(self.test.n_poses)
+
+    def registration_fitted(self) -> str:
+        """What the registration poses of a ``refit`` test file fitted, in words."""
+        u = self.calibration_update
+        return "the tracker frame and probe offset" if u is None else u.fitted()
+
+    def uncertainty_scope(self) -> str:
+        """Empty, or (calibration update) that the predicted uncertainty leaves the update out; said beside every
+        coverage figure."""
+        return "" if self.calibration_update is None else UNCERTAINTY_SCOPE
 
     @property
     def effect(self) -> str:
@@ -172,8 +186,14 @@ class Diagnosis:
             if self.registered is not None:
                 out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
                                                 "target_offset_mm": self.registered.t_mm}
+            if self.calibration_update is not None and self.registration is not None:
+                out["test"]["registration"] |= {
+                    "method": self.registration.to_dict(self.test.rows, self.registration_fitted())["method"],
+                    **self.calibration_update.to_dict()}
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
+            if self.uncertainty_scope():
+                out["uncertainty"]["method"] += "; " + self.uncertainty_scope()
         if self.parameter_check is not None:
             out["parameter_check"] = self.parameter_check.to_frame().to_dict(orient="records")
         return out

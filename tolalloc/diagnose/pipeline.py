@@ -19,7 +19,8 @@ from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, reregister
+from tolalloc.diagnose.recalibrate import (REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, inflation_factor, reregister,
+                                           update_loss)
 from tolalloc.diagnose.register import REGISTER_N, register_count
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
                                      progress_scope, subsample_index)
@@ -59,6 +60,10 @@ def _check_args(robot, train, test, test_frame, folds, register_n, subsample_row
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
     if register_update not in REGISTER_UPDATES:
         raise TolallocError(f"register_update: expected one of {', '.join(REGISTER_UPDATES)}, got {register_update!r}.")
+    if register_update != "frame" and (test is None or test_frame != "refit"):
+        raise TolallocError(f"register_update={register_update!r} needs a test file with test_frame='refit' (got "
+                            f"{'no test file' if test is None else 'test_frame=' + repr(test_frame)}): only a test "
+                            "file in another frame is re-registered; pass one, or leave register_update='frame'.")
     if folds < 2:
         raise TolallocError(f"folds: expected at least 2 cross-validation folds, got {folds}.")
     if folds > train.n_poses // 2:
@@ -208,7 +213,8 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     fallback = None
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
-    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
+    update = _calibration_update(ctx, nominal, geometric, final)
+    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards, update)
     tstats = scored_test_stats(nominal, geometric, final)
     untestable = tuple(e for e in final.effects if e in ctx.untestable)
     inconc = inconclusive_reasons(check, {"nominal": nominal, "geometric": geometric, "final": final}, cal, tstats,
@@ -219,10 +225,22 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                 "target_offset_prior_mm": None if t_prior is None else {"mean": t_prior[0].tolist(),
                                                                         "sd": t_prior[1].tolist()},
                 "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist(),
-                "register_update": ctx.register_update if ctx.registration is not None else None}
+                "register_update": ctx.register_update if ctx.registration is not None else None,
+                "register_update_robust_loss": None if update is None else update.robust_loss}
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
-                     check.findings(), verdict, tuple(outlier_rows(final.fit, train.rows)), settings)
+                     check.findings(), verdict, tuple(outlier_rows(final.fit, train.rows)), settings, update)
+
+
+def _calibration_update(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation):
+    """The record of a ``register_update="calibration"`` re-registration (None otherwise): the prior inflation
+    of each model it updated (a model with parameters beyond the frame) and its robust loss."""
+    if ctx.registration is None or ctx.register_update != "calibration":
+        return None
+    ks = {label: inflation_factor(ev.oof_mm, ev.fit.residual_mm)
+          for label, ev in (("nominal", nominal), ("geometric", geometric), ("final", final))
+          if len(ev.fit.geo_index) or len(ev.fit.beta)}
+    return CalibrationUpdate(ks, update_loss(ctx.loss))
 
 
 def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation, chosen: Evaluation):
@@ -249,7 +267,8 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
     return n2, g2, f2, c2
 
 
-def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list) -> tuple:
+def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list,
+                 update: CalibrationUpdate | None = None) -> tuple:
     """Test-file guards (appended to ``guards``): predicted uncertainty, extrapolation, final worse than nominal."""
     test = ctx.test
     if test is None:
@@ -259,7 +278,8 @@ def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, thre
     if unc.message():
         weak_probe = any(g.startswith("weakly identified probe offset") for g in guards)
         guards.append(unc.message() + ("; or the weakly identified probe offset, whose uncertainty the predicted radius "
-                                       "leaves out, used at other flange directions" if weak_probe else ""))
+                                       "leaves out, used at other flange directions" if weak_probe else "")
+                      + ("" if update is None else f" ({UNCERTAINTY_SCOPE})"))
     extrap = extrapolation_flags(robot, train.q, test.q)
     if extrap.message():
         guards.append(extrap.message())

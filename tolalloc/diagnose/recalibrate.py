@@ -34,15 +34,50 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
 from tolalloc.diagnose.guards import point_jacobian
 from tolalloc.diagnose.register import Registered, RegistrationSplit, register_and_score
 from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
-__all__ = ["REGISTER_UPDATES", "CalibrationPrior", "calibration_prior", "inflation_factor", "register_update", "reregister"]
+__all__ = ["REGISTER_UPDATES", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate", "calibration_prior", "inflation_factor",
+           "register_update", "reregister", "update_loss"]
 
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
 REGISTER_UPDATES = ("frame", "calibration")
+#: What the predicted uncertainty of a calibration-update run is, said beside each of its coverage figures.
+UNCERTAINTY_SCOPE = ("predicted uncertainty of the frame-only re-registration: it does not include the calibration "
+                     "update")
+
+
+def update_loss(loss: str | None) -> str:
+    """The robust loss of the calibration update for the diagnosis loss ``loss``: Huber's in place of Tukey's."""
+    return "huber" if loss in (None, "tukey") else loss
+
+
+@dataclass(frozen=True, eq=False)
+class CalibrationUpdate:
+    """What a ``register_update="calibration"`` re-registration fitted, for the reports.
+
+    Attributes
+    ----------
+    inflation_k : dict            model label -> inflation ``k`` of its prior (models the update changed)
+    robust_loss : str             loss of the update (:func:`update_loss`)
+    """
+
+    inflation_k: dict
+    robust_loss: str
+
+    def fitted(self) -> str:
+        """What the registration poses fitted, in words."""
+        ks = ", ".join(f"{m} {k:.2f}" for m, k in self.inflation_k.items()) or "none"
+        return ("the tracker frame, the probe offset and a correction of the trained geometric and effect parameters "
+                f"(training posterior as prior, inflation k = {ks}; {self.robust_loss} loss)")
+
+    def to_dict(self) -> dict:
+        return {"update": "calibration", "prior": "training posterior of the geometric and effect parameters, "
+                "divided by the inflation k (out-of-fold / in-sample mean square residual of the training file, >= 1)",
+                "inflation_k": dict(self.inflation_k), "robust_loss": self.robust_loss}
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,7 +180,7 @@ def register_update(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     x, raw = solve(prob, x0, max_iter=60, label="calibration update")
     # Tukey's biweight is not used here: beside a strong prior it can reject the registration poses that disagree
     # with the trained parameters (bounded loss) instead of moving them; Huber's convex loss cannot.
-    loss = "huber" if loss in (None, "tukey") else loss
+    loss = update_loss(loss)
     if loss == "soft_l1":
         prob.f_scale = robust_scale(raw.ravel())
     else:
@@ -167,7 +202,13 @@ def reregister(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, s
     ``q_train``, ``B_train`` (training poses and the effect columns of ``fit.beta`` on them) and ``oof_mm`` (the
     model's out-of-fold training residuals, for :func:`inflation_factor`) are needed for ``"calibration"``.
     """
+    if update not in REGISTER_UPDATES:
+        raise TolallocError(f"update: expected one of {', '.join(REGISTER_UPDATES)}, got {update!r}.")
     no_b = B is None or not B.shape[-1]
+    if update == "calibration" and (q_train is None or (not no_b and B_train is None)):
+        raise TolallocError("update='calibration' needs the training poses `q_train` (and `B_train`, the effect "
+                            "columns on them, when `B` is given): the prior is the training fit's posterior; pass "
+                            "them, or use update='frame'.")
     if update == "frame" or (not len(fit.geo_index) and no_b):
         extra = np.zeros((len(q), 3)) if no_b else B @ fit.beta
         return register_and_score(fit, q, xyz, extra, split, t_prior=t_prior, loss=loss)

@@ -60,13 +60,14 @@ class RegistrationSplit:
     def n_poses(self) -> int:
         return len(self.register_index) + len(self.score_index)
 
-    def to_dict(self, rows: np.ndarray | None = None) -> dict:
-        """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``)."""
+    def to_dict(self, rows: np.ndarray | None = None, fitted: str = "tracker frame (6) and probe offset (3)") -> dict:
+        """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``); ``fitted``: what the
+        registration poses fitted."""
         pick = (lambda idx: (idx + 1).tolist()) if rows is None or not len(rows) else (lambda idx: rows[idx].tolist())
         return {"register_n_requested": self.requested, "registration_poses": len(self.register_index),
                 "scored_poses": len(self.score_index), "registration_rows": pick(self.register_index),
                 "method": "pose nearest each k-means centre in joint space (seeded), representative of the test series; "
-                          "tracker frame (6) and probe offset (3) re-registered on these rows only, the other rows scored"}
+                          f"{fitted} re-fitted on these rows only, the other rows scored"}
 
 
 def register_count(n_test: int, register_n: float) -> int:

@@ -96,8 +96,8 @@ def summary_lines(d: Diagnosis) -> list:
                      f"rows (seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; final fits on all rows")
     if d.test is not None:
         reg = d.registration
-        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses registered the "
-               "tracker frame and probe offset and are not scored" if reg is not None
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses fitted "
+               f"{d.registration_fitted()} and are not scored" if reg is not None
                else f"{d.test.n_poses} poses, training tracker frame")
         lines.append(f"test file {d.test.source} ({how}; sealed: scored once, after the choice) [mm]:")
         lines += d.before_after("test")[cols].to_string(index=False, float_format="%.4f").splitlines()
@@ -111,7 +111,8 @@ def summary_lines(d: Diagnosis) -> list:
         u = d.uncertainty
         lines.append(f"predicted uncertainty: median 1-sigma {np.median(u.sigma_mm):.4f} mm (noise {u.noise_mm:.4f} mm "
                      f"per coordinate); {100 * u.coverage:.0f} % of {len(u.inside)} scored test residuals within the "
-                     "predicted 95 % radius (95 % expected when the model's uncertainty is right)")
+                     "predicted 95 % radius (95 % expected when the model's uncertainty is right)"
+                     + (f"; {d.uncertainty_scope()}" if d.uncertainty_scope() else ""))
     lines += [f"GUARD: {g}" for g in d.guards] or ["guards: none fired"]
     lines += [f"note: {f}" for f in d.findings]
     lines.append("ranking (by the clipped out-of-fold RMS of the training file, the selection's score; unclipped "
@@ -214,7 +215,7 @@ def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
     if d.test is not None:
         reg = d.registration
         how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} test poses spread in joint space "
-               "re-registered the tracker frame and probe offset and are **not** scored (rows in the JSON, "
+               f"fitted {d.registration_fitted()} and are **not** scored (rows in the JSON, "
                "`registration` column of the predictions)" if reg is not None else
                f"{d.test.n_poses} poses in the training tracker frame")
         worst = worst_test_poses(d)
@@ -228,7 +229,8 @@ def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
                   f"Predicted uncertainty (parameter covariance of the final fit): median 1-sigma "
                   f"{np.median(u.sigma_mm):.4f} mm, noise {u.noise_mm:.4f} mm per coordinate; "
                   f"{100 * u.coverage:.1f} % of the {len(u.inside)} scored test residuals lie within the predicted "
-                  "95 % radius (95 % when the model's uncertainty is right).", ""]
+                  "95 % radius (95 % when the model's uncertainty is right)"
+                  + (f"; {d.uncertainty_scope()}." if d.uncertainty_scope() else "."), ""]
     lines += ["## Cross-validation on the training file (out-of-fold)", "",
               markdown_table(d.before_after("cv")[cols]), "",
               *([f"![before/after]({prefix}before_after.png)", ""] if d.test is None else [])]

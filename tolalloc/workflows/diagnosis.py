@@ -86,7 +86,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
 
     alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
                                               progress)
-    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame)
+    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame, test)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress)
     if folds > tr.n_poses // 2:
@@ -120,8 +120,12 @@ def _gap_split(d, progress):
             bar.close()
 
 
-def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same") -> None:
+def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same",
+               test=None) -> None:
     inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
+    if register_update is not None and test_frame == "refit" and test is None:
+        raise ArgumentError("register_update", "needs `test`: only a test file in another frame is re-registered, "
+                            "and none was given; pass the test file or leave this option out.")
     if register_update is not None:
         inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
         if test_frame != "refit":
@@ -167,6 +171,9 @@ def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_s
         raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
     if register_n is not None and test_frame != "refit":
         raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
+    if register_n is not None and test is None:
+        raise ArgumentError("register_n", "needs `test`: only a test file in another frame is re-registered, and none "
+                            "was given; pass the test file or leave this option out.")
     return alpha, folds, seed, cv_rows
 
 

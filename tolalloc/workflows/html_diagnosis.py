@@ -66,7 +66,8 @@ def _cards(d, block, which: str) -> list:
     if d.uncertainty is not None:
         u = d.uncertainty
         cards.append({"label": "inside predicted 95 % radius", "value": f"{100 * u.coverage:.0f} %",
-                      "note": f"of {len(u.inside)} scored test residuals"})
+                      "note": f"of {len(u.inside)} scored test residuals"
+                              + (f"; {d.uncertainty_scope()}" if d.uncertainty_scope() else "")})
     cards.append({"label": "guards fired", "value": str(len(d.guards)), "note": "see below" if d.guards else "none"})
     return cards
 
@@ -79,7 +80,7 @@ def _test_part(d) -> dict:
         return {"test_table": None, "test_how": "", "worst_table": None, "uncertainty": None}
     reg = d.registration
     how = (f"Test file {d.test.source}: {len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses "
-           "re-registered the tracker frame and probe offset and are not scored." if reg is not None else
+           f"fitted {d.registration_fitted()} and are not scored." if reg is not None else
            f"Test file {d.test.source}: {d.test.n_poses} poses in the training tracker frame, all scored.")
     test = html_table(d.before_after("test"), BEFORE_AFTER_COLUMNS, table_id="test-table",
                       caption="Test file (held out, never fitted): error of the 3-D position")
@@ -96,7 +97,8 @@ def _test_part(d) -> dict:
     unc = None if u is None else (
         f"median predicted 1σ {np.median(u.sigma_mm):.4f} mm (measurement noise {u.noise_mm:.4f} mm per coordinate); "
         f"{100 * u.coverage:.0f} % of the {len(u.inside)} scored test residuals lie within the predicted 95 % radius "
-        "(95 % expected when the model's uncertainty is right).")
+        "(95 % expected when the model's uncertainty is right)"
+        + (f"; {d.uncertainty_scope()}." if d.uncertainty_scope() else "."))
     return {"test_table": test, "test_how": how, "worst_table": worst_t, "uncertainty": unc}
 
 
