@@ -51,6 +51,7 @@ from tolalloc.report.diagnosis import write_report
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from convert_ur10 import DATA, SERIES, series  # noqa: E402
 from sessions import registration_rows, section as sessions_section  # noqa: E402
+from protocol import COUNTS, registration_table, section as registration_section  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_ur10"
 TIME_TRAIN = 0.7
@@ -242,6 +243,8 @@ def main(argv=None) -> int:
               f"{rows[-1]['test_rms_final_mm']:.3f} mm, {len(d.guards)} guards ({dt:.0f} s)", flush=True)
     summary = pd.DataFrame(rows)
     summary.to_csv(OUT / "summary.csv", index=False, float_format="%.5g")
+    reg_table = registration_table(robot, A, C, summary, counts=(60,) if a.quick else COUNTS)
+    reg_table.to_csv(OUT / "registration_poses.csv", index=False, float_format="%.5g")
     gap_all = pd.concat(gaps, ignore_index=True)[["run", "part", "ms_mm2", "rms_equiv_mm", "share_of_nominal_pct"]]
     gap_all.to_csv(OUT / "gap_split.csv", index=False, float_format="%.5g")
     gp_all = pd.DataFrame(gps)
@@ -252,7 +255,8 @@ def main(argv=None) -> int:
              + periodogram_lines(pg) + joint_ranges(A_all, C_all, robot)
              + sessions_section(robot, A_all, C_all, {"A": measurements_from_frame(A, robot, "A"),
                                                       "C": measurements_from_frame(C, robot, "C")}, reg_rows, OUT))
-    (OUT / "report.md").write_text("\n".join(lines + ["## Runs", "", *sections]) + "\n")
+    (OUT / "report.md").write_text("\n".join(lines + registration_section(reg_table) + ["## Runs", "", *sections])
+                                   + "\n")
     print(f"-> {OUT / 'report.md'}")
     return 0
 
