@@ -164,3 +164,14 @@ def test_orientation_tail_too_thin_for_the_samples_is_refused_with_the_samples_n
                                                 r"1 - p = 0.001 .* give `n_mc` >= 6233 \(importance sampling "
                                                 r"estimates the position requirement only"):
             verify_design(pr, d, n_mc=2000, estimator=estimator, keep_samples=0)
+
+
+def test_one_pose_wording_and_a_cheaper_correction_signed():
+    from tolalloc.verify.correct import Correction
+
+    v = replace(_verification([[0.97, 0.96, 0.98]], [[0.97, 0.96, 0.98]]), n_intervals=2)
+    msg = v.message()
+    assert "demonstrated by nonlinear Monte Carlo at the 1 pose (" in msg
+    assert "95% simultaneous over 1 pose and 2 requirements (Bonferroni: 2 intervals at 97.5% each)" in msg
+    c = Correction(None, v, v, 1, np.array([0.951]), (48.0, 47.9992), False, angle_targets=np.array([0.95]))
+    assert c.message().endswith("cost 48.0000 -> 47.9992 (-0.0008, -0.00167 %)")

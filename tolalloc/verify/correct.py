@@ -96,7 +96,7 @@ class Correction:
             poses += f"; orientation poses tightened (target): {listed(self.tightened_angle, self.angle_targets)}"
         head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
                 f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
-                f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.3g}%)")
+                f"({self.cost_of_correction:+.4f}, {self.premium_pct:+.3g} %)")
         return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
 
     def to_dict(self) -> dict:

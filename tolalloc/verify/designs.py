@@ -115,6 +115,11 @@ class Verification:
         each)``."""
         return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None))
 
+    def all_poses_text(self) -> str:
+        """``all 18 poses`` (``the 1 pose`` for a single pose)."""
+        P = len(self.p_mc)
+        return "the 1 pose" if P == 1 else f"all {P} poses"
+
     @property
     def estimator(self) -> np.ndarray:
         """Estimator that ran at each pose (``plain``, ``paired`` or ``importance``), shape (P,)."""
@@ -214,7 +219,7 @@ class Verification:
             meaning = (f"lower {words} bound >= p at every pose{both}" if self.verdict == "demonstrated" else
                        f"{rule}; not demonstrated at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s): {short}")
             least = "" if short else f"; least margin: {limiting(checks).margin_text()}"
-            return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({meaning}); "
+            return (f"verified: {self.verdict} by nonlinear Monte Carlo at {self.all_poses_text()} ({meaning}); "
                     f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}{least}{family}")
         head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
         return (f"verified: {head} ({rule}" + (f"; {short}" if short else "") + ") at "
