@@ -46,15 +46,10 @@ def family_text(family_level: float, m: int, n_poses: int, n_requirements: int =
 
     if m <= 1:
         return f"{100 * family_level:.4g}% (a single interval)"
-    what = (f"the {n_poses} poses" if n_requirements == 1 else
-            f"{poses_text(n_poses)} and {n_requirements} requirements")
+    what = ("1 pose" if n_poses == 1 else f"the {n_poses} poses") + (
+        "" if n_requirements == 1 else f" and {n_requirements} requirements")
     return (f"{100 * family_level:.4g}% simultaneous over {what} (Bonferroni: {m} intervals at "
             f"{100 * simultaneous_level(family_level, m):.4g}% each)")
-
-
-def poses_text(n: int) -> str:
-    """``1 pose``, ``18 poses``."""
-    return f"{n} pose" if n == 1 else f"{n} poses"
 
 
 def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
