@@ -104,6 +104,11 @@ def test_same_interface_as_the_plain_allocation(certified, plain):
     assert list(ver.columns[:1 + len(joints)]) == ["pose", *joints] and len(ver) == len(chk.p_mc)
     assert {"p_linear", "p_mc", "ci_low", "ci_high", "n", "verdict"} <= set(ver.columns)
     assert (ver["n"] == certified.n_robots).all()
+    # the intervals' level, as in the plain verification.csv: each one's and the family's, then the sample count
+    cols = list(ver.columns)
+    assert cols[cols.index("ci_high") + 1:cols.index("n") + 1] == ["level_per_interval", "family_level", "n"]
+    assert (ver["family_level"] == 0.95).all()
+    np.testing.assert_allclose(ver["level_per_interval"], 1 - 0.05 / len(chk.p_mc))
     np.testing.assert_allclose(ver[joints].to_numpy(), certified.robot.q_to_interface(chk.q))
 
 
@@ -121,6 +126,9 @@ def test_save_writes_the_plain_file_names(certified, tmp_path):
     assert list(ver.columns) == list(certified.verification_frame().columns)
     s = json.loads((tmp_path / "res" / "summary.json").read_text())
     assert s["end_to_end"]["n_robots"] == 200 and s["solver_requested"] == "certified"
+    e2e = s["end_to_end"]
+    assert e2e["n_intervals"] == e2e["poses"] and e2e["family_level"] == 0.95
+    assert e2e["level_per_interval"] == pytest.approx(1 - 0.05 / e2e["poses"])
 
 
 def test_unidentifiable_parameters_are_split_by_what_the_allocation_did(certified):

@@ -28,6 +28,7 @@ def test_allocate_writes_everything(tmp_path, capsys):
         assert key in pose
     assert "q" not in pose  # joint values only under their unit-carrying key
     assert pose["p_mc_ci"][0] <= pose["p_mc"] <= pose["p_mc_ci"][1]
+    assert pose["p_mc_ci_level"] == s["verification"]["level_per_interval"]  # the interval names its level
     # the exact design sits on P = 0.95, so its interval straddles p: the correction loop raises the target
     corr = s["correction"]
     assert corr["verdict_before"] == "consistent" and corr["rounds"] >= 1 and corr["poses_tightened"] == [1]

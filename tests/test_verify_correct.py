@@ -44,3 +44,21 @@ def test_without_rounds_the_loop_stops_and_says_so(case):
     c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=N, seed=1, max_rounds=0)
     assert c.rounds == 0 and c.stopped and c.verification.verdict != "demonstrated"
     assert "not demonstrated" in c.message() and "round limit" in c.reason and c.cost_of_correction == 0
+
+
+def test_the_given_verifications_family_level_carries_through_the_rounds(case):
+    from tolalloc import TolallocError
+    from tolalloc.allocate import allocate, build_problem
+    from tolalloc.verify.designs import verify_design
+
+    model, q, costs = case
+    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs), solver="exact")
+    v = verify_design(res.problem, res.design, n_mc=2000, seed=1, level=0.8, keep_samples=0)
+    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, seed=1, max_rounds=1, result=res,
+                       verification=v)
+    assert c.before.family_level == 0.8 and c.verification.family_level == 0.8 and c.rounds == 1
+    with pytest.raises(TolallocError, match=r"level 0.95 differs from the family level 0.8 of the given "
+                                            r"`verification`"):
+        correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, result=res, verification=v, level=0.95)
+    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, seed=1, max_rounds=0, level=0.9)
+    assert c.verification.family_level == 0.9

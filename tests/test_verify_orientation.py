@@ -150,3 +150,28 @@ def test_certified_criterion_names_the_orientation_reason():
     assert v.message().endswith("; intervals: 95% simultaneous over the 2 poses and 2 requirements (Bonferroni: 4 "
                                 "intervals at 98.75% each)")
     assert (v.n_intervals, v.level_per_interval) == (4, pytest.approx(0.9875))
+
+
+def test_orientation_tail_too_thin_for_the_samples_is_refused_with_the_samples_needed():
+    # 2 poses x 2 requirements: each interval at 1 - 0.05 / 4 = 98.75 %, z = 2.4977; the orientation tail
+    # 1 - 0.999 needs n >= z^2 p / (1 - p) = 6233 -- importance sampling (position only) cannot stand in for it
+    model = build_error_model(load_robot("ur10"))
+    pr = build_problem(model, model.robot.poses("working")[:2], radius_mm=0.5, angle_radius_deg=0.05,
+                       angle_prob=0.999)
+    d = allocate(pr, snap=False).design
+    for estimator in ("auto", "paired", "importance"):
+        with pytest.raises(TolallocError, match=r"n_mc 2000 samples per pose cannot resolve the orientation tail "
+                                                r"1 - p = 0.001 .* give `n_mc` >= 6233 \(importance sampling "
+                                                r"estimates the position requirement only"):
+            verify_design(pr, d, n_mc=2000, estimator=estimator, keep_samples=0)
+
+
+def test_one_pose_wording_and_a_cheaper_correction_signed():
+    from tolalloc.verify.correct import Correction
+
+    v = replace(_verification([[0.97, 0.96, 0.98]], [[0.97, 0.96, 0.98]]), n_intervals=2)
+    msg = v.message()
+    assert "demonstrated by nonlinear Monte Carlo at the 1 pose (" in msg
+    assert "95% simultaneous over 1 pose and 2 requirements (Bonferroni: 2 intervals at 97.5% each)" in msg
+    c = Correction(None, v, v, 1, np.array([0.951]), (48.0, 47.9992), False, angle_targets=np.array([0.95]))
+    assert c.message().endswith("cost 48.0000 -> 47.9992 (-0.0008, -0.00167 %)")

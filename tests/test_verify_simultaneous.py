@@ -6,7 +6,7 @@ import pytest
 
 from tolalloc.montecarlo.intervals import simultaneous_level, z_of_level
 from tolalloc.montecarlo.streaming import proportion_ci
-from tolalloc.verify.designs import resolvable_n
+from tolalloc.verify.resolution import resolvable_n
 from tolalloc.verify.verdicts import family_text, interval_words, overall_verdict, pose_verdicts
 
 P_REQ, POSES, N, RUNS = 0.95, 18, 2000, 4000
@@ -41,3 +41,14 @@ def test_family_wise_rate_of_a_false_failed_verdict():
     per_pose = _false_failed_rate(0.95)
     assert simultaneous <= 0.061, simultaneous
     assert per_pose > 0.30, per_pose
+
+
+@pytest.mark.parametrize("level, m, match", [(0.95, 0, "m >= 1 .* got m = 0"), (0.95, 2.7, "got m = 2.7"),
+                                             (0.95, True, "got m = True"), (1.0, 3, "in \\(0, 1\\) .* level = 1.0"),
+                                             (0.0, 3, "level = 0.0"), ("0.95", 3, "level = '0.95'")])
+def test_bonferroni_level_refuses_a_bad_count_or_level(level, m, match):
+    from tolalloc import TolallocError
+
+    with pytest.raises(TolallocError, match=f"simultaneous_level: expected .*{match}"):
+        simultaneous_level(level, m)
+    assert simultaneous_level(0.9, 4.0) == pytest.approx(0.975)

@@ -102,6 +102,16 @@ class CalibrationCheck:
     family_level: float = 0.95
 
     @property
+    def n_intervals(self) -> int:
+        """Intervals judged together: one per pose (the position requirement only)."""
+        return len(self.q)
+
+    @property
+    def level_per_interval(self) -> float:
+        """Level of each interval (Bonferroni): ``1 - (1 - family_level) / n_intervals``."""
+        return simultaneous_level(self.family_level, self.n_intervals)
+
+    @property
     def estimator(self) -> np.ndarray:
         """Estimator that ran at each pose (``plain`` or ``paired``), shape (P,)."""
         return np.full(len(self.q), "plain") if self.estimate is None else self.estimate.estimator
@@ -122,8 +132,12 @@ class CalibrationCheck:
         return (self.p_linear >= self.ci_low) & (self.p_linear <= self.ci_high)
 
     def to_frame(self) -> pd.DataFrame:
+        """One row per pose: p_linear, p_mc, ci_low, ci_high, ``level_per_interval`` (the level of each interval),
+        ``family_level`` (the level at which all of them hold together), agree, estimator (and the paired
+        estimate's columns)."""
         cols = {"pose": np.arange(1, len(self.q) + 1), "p_linear": self.p_linear, "p_mc": self.p_mc,
-                "ci_low": self.ci_low, "ci_high": self.ci_high, "agree": self.agree, "estimator": self.estimator}
+                "ci_low": self.ci_low, "ci_high": self.ci_high, "level_per_interval": self.level_per_interval,
+                "family_level": self.family_level, "agree": self.agree, "estimator": self.estimator}
         if self.estimate is not None:
             cols.update({"p_linear_pipeline": self.estimate.p_linear, "n_discordant": self.estimate.n_discordant,
                          "variance_reduction": self.estimate.variance_reduction})

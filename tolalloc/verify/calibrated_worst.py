@@ -81,7 +81,8 @@ class EndToEnd:
         c = self.check
         return {"design": self.design, "n_robots": c.n_robots, "poses": len(c.q), "verdict": self.verdict,
                 "passed": self.passed, "agree": bool(np.all(c.agree)), "linear_optimistic": bool(np.any(self.optimistic)), "p_mc_min": float(c.p_mc.min()),
-                "ci_low_min": float(c.ci_low.min()), "family_level": c.family_level, "intervals": self.interval_label(),
+                "ci_low_min": float(c.ci_low.min()), "family_level": c.family_level, "n_intervals": c.n_intervals,
+                "level_per_interval": c.level_per_interval, "intervals": self.interval_label(),
                 "p_linear_min": float(c.p_linear.min()),
                 "fits_converged": c.converged_share}
 

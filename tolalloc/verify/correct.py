@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tolalloc.allocate.problem import build_problem
+from tolalloc.exceptions import ArgumentError
 from tolalloc.verify.designs import Verification, verify_design
 from tolalloc.verify.verdicts import shortfall_text
 
@@ -95,7 +96,7 @@ class Correction:
             poses += f"; orientation poses tightened (target): {listed(self.tightened_angle, self.angle_targets)}"
         head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
                 f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
-                f"(+{self.cost_of_correction:.4f}, {self.premium_pct:+.3g}%)")
+                f"({self.cost_of_correction:+.4f}, {self.premium_pct:+.3g} %)")
         return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
 
     def to_dict(self) -> dict:
@@ -151,7 +152,8 @@ def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
 def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float | None = None,
                    max_rounds: int = 2, result=None, verification: Verification | None = None, snap: bool = False,
                    angle_step_deg: float | None = None, scheduler=None, keep_samples: int = 0,
-                   estimator: str = "auto", standard: bool = False, **problem_kw) -> Correction:
+                   estimator: str = "auto", standard: bool = False, level: float | None = None,
+                   **problem_kw) -> Correction:
     """Allocate, verify and, where the Monte Carlo falls short of a requirement, tighten those poses and re-solve.
 
     Every stated requirement (position, and orientation when ``angle_radius_deg`` is given) is tightened by the
@@ -188,6 +190,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     standard : bool
         Verify (and cost) each round's standard design, the one that will be built (needs ``snap=True``), instead of
         its continuous design.
+    level : float, optional
+        Family level of every verification (the intervals of all poses and requirements hold together at it,
+        :func:`~tolalloc.verify.designs.verify_design`); default: the given ``verification``'s
+        ``family_level``, else 0.95. A ``level`` that differs from the given verification's is refused.
     problem_kw
         The requirement and costs, as :func:`tolalloc.allocate.problem.build_problem` (``radius_mm``, ``prob``,
         ``costs``, ``angle_radius_deg``, ``angle_prob``).
@@ -196,6 +202,7 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     from tolalloc.montecarlo.paired import check_estimator
 
     check_estimator(estimator)
+    level = _family_level(level, verification)
 
     def solve(targets=None):
         t = targets or {}
@@ -207,7 +214,7 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
     def check(res):  # against p itself (the problem's prob), with the design's own criterion
         return verify_design(res.problem, built(res), n_mc=n_mc, seed=seed, keep_samples=keep_samples,
-                             scheduler=scheduler, estimator=estimator)
+                             scheduler=scheduler, estimator=estimator, level=level)
 
     res = result if result is not None else solve()
     ver = verification if verification is not None else check(res)
@@ -231,6 +238,17 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         ver = check(res)
     return Correction(res, ver, before, rounds, targets["position"], tuple(costs), ver.verdict != "demonstrated",
                       reason, targets.get("orientation"))
+
+
+def _family_level(level, verification) -> float:
+    """The family level of the loop's verifications: ``level``, else the given verification's, else 0.95."""
+    if verification is None:
+        return 0.95 if level is None else level
+    if level is not None and level != verification.family_level:
+        raise ArgumentError("level", f"{level!r} differs from the family level {verification.family_level:g} of the "
+                            "given `verification`; leave `level` out (the verification's is used) or verify again "
+                            "at the level wanted.")
+    return verification.family_level
 
 
 def _cannot_tighten(new: dict, targets: dict) -> str:

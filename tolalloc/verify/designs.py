@@ -35,11 +35,12 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, TolallocError
+from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
-from tolalloc.montecarlo.intervals import simultaneous_level, z_of_level
+from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
+from tolalloc.verify.resolution import check_resolvable, choose_estimator
 from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, family_text, interval_words, limiting,
                                       orientation_check, overall_verdict, pose_verdicts, shortfall_text, weakest)
 
@@ -113,6 +114,11 @@ class Verification:
         """What the intervals are, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
         each)``."""
         return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None))
+
+    def all_poses_text(self) -> str:
+        """``all 18 poses`` (``the 1 pose`` for a single pose)."""
+        P = len(self.p_mc)
+        return "the 1 pose" if P == 1 else f"all {P} poses"
 
     @property
     def estimator(self) -> np.ndarray:
@@ -213,7 +219,7 @@ class Verification:
             meaning = (f"lower {words} bound >= p at every pose{both}" if self.verdict == "demonstrated" else
                        f"{rule}; not demonstrated at {int(np.sum(self.verdicts != 'demonstrated'))} pose(s): {short}")
             least = "" if short else f"; least margin: {limiting(checks).margin_text()}"
-            return (f"verified: {self.verdict} by nonlinear Monte Carlo at all {len(self.passed)} poses ({meaning}); "
+            return (f"verified: {self.verdict} by nonlinear Monte Carlo at {self.all_poses_text()} ({meaning}); "
                     f"lowest P_hat = {self.p_mc.min():.4f} at pose {self.worst_pose + 1}{angle}{least}{family}")
         head = "failed" if self.verdict == "failed" else f"{self.verdict}, criterion not met"
         return (f"verified: {head} ({rule}" + (f"; {short}" if short else "") + ") at "
@@ -238,38 +244,6 @@ class Verification:
                      "variance_reduction": self.variance_reduction, "passed": self.passed, "verdict": self.verdicts,
                      "reason": list(self.reason)})
         return pd.DataFrame(cols)
-
-
-def resolvable_n(prob: float, level: float = 0.95) -> int:
-    """Smallest sample size whose plain (or zero-discordance paired) interval at ``level`` can lie above ``prob``.
-
-    ``level`` is the level of each interval: for ``m`` simultaneous intervals ``1 - (1 - family level) / m``
-    (:func:`tolalloc.montecarlo.intervals.simultaneous_level`), whose larger ``z`` needs more samples.
-    """
-    return int(np.ceil(z_of_level(level) ** 2 * prob / (1.0 - prob)))
-
-
-def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc", level: float = 0.95,
-                     what: str = "95% interval") -> None:
-    """Refuse a sample size that cannot resolve the tail ``1 - prob`` with the estimator that would run.
-
-    Plain Monte Carlo with no failure at all has a lower bound ``n / (n + z^2)``: below ``p`` unless
-    ``n >= z^2 p / (1 - p)``. The paired interval with no discordant sample is ``+-z^2 / (n + z^2)``: wider than
-    the whole tail unless ``n >= z^2 p / (1 - p)`` too. ``z`` is the normal quantile of ``level``, the level of
-    each interval (for simultaneous intervals the Bonferroni one); ``what`` names the interval in the message.
-    Importance sampling is not limited this way.
-    """
-    if estimator == "importance":
-        return
-    need = resolvable_n(prob, level)
-    if n >= need:
-        return
-    gauss = not control_fallback_reason(model)
-    how = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
-    alt = (" or `estimator` importance (importance sampling of the paired difference)" if gauss else
-           " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)")
-    raise ArgumentError(name, f"{n} samples per pose cannot resolve the tail 1 - p = {1 - prob:.3g} with {how}: "
-                        f"even with no miss the {what} reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
 
 
 def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator, level):
@@ -348,8 +322,10 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         is paired where the linear map is an exact control (Gaussian parameters), plain elsewhere (the reason is
         in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``
         and wherever ``n_mc`` is too small for the paired interval to resolve the tail ``1 - p``
-        (:func:`resolvable_n`, at the level of each simultaneous interval); a tail that plain sampling cannot
-        resolve is refused with the samples needed.
+        (:func:`~tolalloc.verify.resolution.resolvable_n`, at the level of each simultaneous interval); a tail
+        that the estimator cannot resolve is refused with the samples needed -- the orientation requirement's
+        included, by the same rule (:func:`~tolalloc.verify.resolution.choose_estimator`; importance sampling
+        estimates the position requirement only).
     level : float
         Level at which the intervals of all poses and requirements hold together: each of the ``m`` = poses x
         requirements intervals is at ``1 - (1 - level) / m`` (Bonferroni), so the verdict over all poses is a
@@ -363,12 +339,9 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     P = problem.n_poses
     m = P * (1 if ang is None else 2)
     lvl = simultaneous_level(level, m)
-    n_res = n_max if crit == "certified" else int(n_mc)
-    if estimator == "auto" and not control_fallback_reason(model) and n_res < resolvable_n(p, lvl):
-        estimator = "importance"  # the paired interval could not resolve this tail with n samples
     what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%)")
-    check_resolvable(model, p, n_res, estimator, "n_max" if crit == "certified" and n_max > n_mc else "n_mc", lvl,
-                     what)
+    reqs = [("position", p)] + ([] if ang is None else [("orientation", problem.angle_prob)])
+    estimator = choose_estimator(model, reqs, n_mc, n_max, crit, estimator, lvl, what)
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator, lvl)

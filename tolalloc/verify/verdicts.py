@@ -46,7 +46,8 @@ def family_text(family_level: float, m: int, n_poses: int, n_requirements: int =
 
     if m <= 1:
         return f"{100 * family_level:.4g}% (a single interval)"
-    what = f"the {n_poses} poses" + ("" if n_requirements == 1 else f" and {n_requirements} requirements")
+    what = ("1 pose" if n_poses == 1 else f"the {n_poses} poses") + (
+        "" if n_requirements == 1 else f" and {n_requirements} requirements")
     return (f"{100 * family_level:.4g}% simultaneous over {what} (Bonferroni: {m} intervals at "
             f"{100 * simultaneous_level(family_level, m):.4g}% each)")
 

@@ -175,7 +175,7 @@ class ToleranceAllocation(JobResult):
             out.append("NOT verified by Monte Carlo (verification not run; the linear prediction meets the "
                        "requirement at every pose of the allocation)")
         elif ver.ok:
-            out.append(f"verified by nonlinear Monte Carlo: {ver.verdict} at all {len(ver.passed)} poses")
+            out.append(f"verified by nonlinear Monte Carlo: {ver.verdict} at {ver.all_poses_text()}")
         else:
             out.append(f"NOT verified: the nonlinear Monte Carlo is {ver.verdict} at pose(s) "
                        + ", ".join(str(i) for i, _ in ver.failing))

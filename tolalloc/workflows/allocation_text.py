@@ -41,7 +41,8 @@ def summary_dict(job) -> dict:
                                    "n_intervals": ver.n_intervals, "level_per_interval": ver.level_per_interval,
                                    "intervals": ver.interval_text(), **ver.estimator_summary()}
         for i, row in enumerate(summary["poses"]):
-            row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])]})
+            row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])],
+                        "p_mc_ci_level": ver.level_per_interval})
             if ver.angle is not None:
                 row.update({"p_mc_angle": float(ver.angle["p_mc"][i]),
                             "p_mc_angle_ci": [float(ver.angle["ci_low"][i]), float(ver.angle["ci_high"][i])]})

@@ -252,7 +252,7 @@ class CalibratedToleranceAllocation(JobResult):
         qi = np.atleast_2d(self.robot.q_to_interface(chk.q))
         for k, j in enumerate(self.robot.joints):
             frame.insert(1 + k, f"{j.name}_{j.unit}", qi[:, k])
-        frame.insert(list(frame.columns).index("ci_high") + 1, "n", chk.n_robots)
+        frame.insert(list(frame.columns).index("family_level") + 1, "n", chk.n_robots)
         return frame
 
     def _table_note(self, frame) -> str:

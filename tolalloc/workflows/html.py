@@ -145,7 +145,7 @@ def _cards(job, s: dict) -> list:
                           "note": f"lowest linear P of the orientation on the same poses; {cov.n_below_angle} below "
                                   "its p"})
     if corr is not None and corr.rounds:
-        cards.append({"label": "cost of the correction", "value": f"{corr.premium_pct:+.2f} %",
+        cards.append({"label": "cost of the correction", "value": f"{corr.premium_pct:+.3g} %",
                       "note": f"{corr.rounds} round(s)"})
     return cards
 

@@ -1,0 +1,84 @@
+"""How many Monte Carlo samples a verification needs to resolve each requirement's tail, and which estimator runs.
+
+An interval at level ``1 - alpha`` can lie wholly above ``p`` only when the samples can tell ``P`` from ``p``:
+plain Monte Carlo and the paired estimator with no discordant sample need ``n >= z^2 p / (1 - p)``
+(:func:`resolvable_n`). Every requirement of a verification -- the position one and, when stated, the orientation
+one -- goes through the same rule (:func:`choose_estimator`): switch to importance sampling where it applies, or
+refuse with the samples needed (:func:`check_resolvable`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.exceptions import ArgumentError
+from tolalloc.montecarlo.intervals import z_of_level
+from tolalloc.montecarlo.paired import control_fallback_reason
+
+__all__ = ["resolvable_n", "check_resolvable", "choose_estimator", "IMPORTANCE_REQUIREMENTS"]
+
+
+#: requirements that importance sampling can estimate (the others run as ``auto`` when it is requested)
+IMPORTANCE_REQUIREMENTS = ("position",)
+
+
+def resolvable_n(prob: float, level: float = 0.95) -> int:
+    """Smallest sample size whose plain (or zero-discordance paired) interval at ``level`` can lie above ``prob``.
+
+    ``level`` is the level of each interval: for ``m`` simultaneous intervals ``1 - (1 - family level) / m``
+    (:func:`tolalloc.montecarlo.intervals.simultaneous_level`), whose larger ``z`` needs more samples.
+    """
+    return int(np.ceil(z_of_level(level) ** 2 * prob / (1.0 - prob)))
+
+
+def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_mc", level: float = 0.95,
+                     what: str = "95% interval", requirement: str = "position") -> None:
+    """Refuse a sample size that cannot resolve the tail ``1 - prob`` with the estimator that would run.
+
+    Plain Monte Carlo with no failure at all has a lower bound ``n / (n + z^2)``: below ``p`` unless
+    ``n >= z^2 p / (1 - p)``. The paired interval with no discordant sample is ``+-z^2 / (n + z^2)``: wider than
+    the whole tail unless ``n >= z^2 p / (1 - p)`` too. ``z`` is the normal quantile of ``level``, the level of
+    each interval (for simultaneous intervals the Bonferroni one); ``what`` names the interval in the message.
+    Importance sampling is not limited this way; it estimates the position requirement only (``requirement``).
+    """
+    importance_applies = requirement in IMPORTANCE_REQUIREMENTS
+    if estimator == "importance" and importance_applies:
+        return
+    need = resolvable_n(prob, level)
+    if n >= need:
+        return
+    gauss = not control_fallback_reason(model)
+    how = "plain Monte Carlo" if (estimator == "plain" or not gauss) else "the paired estimator"
+    if not importance_applies:
+        alt = f" (importance sampling estimates the position requirement only, not the {requirement} one)"
+    elif gauss:
+        alt = " or `estimator` importance (importance sampling of the paired difference)"
+    else:
+        alt = " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)"
+    tail = "tail" if requirement == "position" else f"{requirement} tail"
+    raise ArgumentError(name, f"{n} samples per pose cannot resolve the {tail} 1 - p = {1 - prob:.3g} with {how}: "
+                        f"even with no miss the {what} reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
+
+
+def choose_estimator(model, requirements, n_mc: int, n_max: int, criterion: str, estimator: str, level: float,
+                     what: str) -> str:
+    """The estimator of a verification, every requirement checked against its tail by one rule.
+
+    For each requirement ``(name, p)`` (position first): with ``auto`` on a Gaussian model a sample size too small
+    for the paired interval to resolve ``1 - p`` (:func:`resolvable_n` at ``level``, the level of each interval)
+    switches to importance sampling where it applies (:data:`IMPORTANCE_REQUIREMENTS`); anything else still
+    unresolvable is refused with the samples needed (:func:`check_resolvable`). The position requirement of a
+    certified design is judged at ``n_max`` (its straddling poses are re-run with that many samples), every other
+    at ``n_mc``.
+    """
+    gauss = not control_fallback_reason(model)
+    for req, prob in requirements:
+        redo = criterion == "certified" and req == "position"
+        n = n_max if redo else int(n_mc)
+        name = "n_max" if redo and n_max > n_mc else "n_mc"
+        applies = req in IMPORTANCE_REQUIREMENTS
+        if estimator == "auto" and gauss and applies and n < resolvable_n(prob, level):
+            estimator = "importance"  # the paired interval could not resolve this tail with n samples
+        runs = estimator if applies or estimator != "importance" else "auto"
+        check_resolvable(model, prob, n, runs, name, level, what, req)
+    return estimator
