@@ -61,3 +61,13 @@ def test_empty_optional_columns_are_left_out(frame):
 def test_tex_text_escapes_and_typesets():
     assert tex_text("a_b 5 % & #1 ±0.1 |x| <= 2 >= 1 tr Σ") == (
         r"a\_b 5 \% \& \#1 $\pm$0.1 $|$x$|$ $\leq$ 2 $\geq$ 1 tr $\Sigma$")
+
+
+def test_markdown_table_leaves_the_other_unit_of_a_pair_blank():
+    from tolalloc.report.tables import markdown_table
+
+    df = pd.DataFrame({"parameter": ["dl1", "dth1"], "tol_mm": [0.1114, np.nan], "tol_deg": [np.nan, 0.004679]})
+    rows = markdown_table(df).splitlines()
+    assert "nan" not in "\n".join(rows)
+    cells = [[c.strip() for c in r.strip("|").split("|")] for r in rows[2:]]
+    assert cells == [["dl1", "0.1114", ""], ["dth1", "", "0.004679"]]

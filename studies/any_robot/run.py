@@ -30,6 +30,7 @@ from tolalloc.errormodel import build_error_model
 from tolalloc.montecarlo.run import run_mc
 from tolalloc.report.plots.mc import scatter_density
 from tolalloc.robot.io.urdf import load_urdf
+from tolalloc.report.tables import markdown_table
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "any_robot"
 ROBOTS = {"ur5": ("ur_description/urdf/ur5_robot.urdf", "tool0"),
@@ -104,7 +105,7 @@ def active_poses_text(ver):
 
 
 def fmt_table(df):
-    return df.to_markdown(index=False, floatfmt=".4g")
+    return markdown_table(df, ".4g")
 
 
 def main(argv=None):

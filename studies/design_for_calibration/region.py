@@ -14,6 +14,7 @@ from tolalloc.allocate.region import coverage
 from tolalloc.calibration import make_plan
 from tolalloc.calibration.design import design_plan
 from tolalloc.verify.calibrated_worst import verify_calibrated_design
+from tolalloc.report.tables import markdown_table
 
 #: Margin of the design probability over p for the strictly demonstrated variant.
 MARGIN = 0.008
@@ -131,7 +132,7 @@ def region_study(name, robot, pr, split, cand, out, quick, seed=0) -> dict:
 
 
 def _md(df, floatfmt=".4g"):
-    return df.to_markdown(index=False, floatfmt=floatfmt)
+    return markdown_table(df, floatfmt)
 
 
 def region_markdown(name, r, prob) -> str:

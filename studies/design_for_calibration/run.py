@@ -39,6 +39,7 @@ from tolalloc.calibration import split_errors  # noqa: E402
 from tolalloc.calibration.design import candidate_poses, design_plan  # noqa: E402
 from tolalloc.errormodel import build_error_model  # noqa: E402
 from tolalloc.verify.calibrated import verify_calibration  # noqa: E402
+from tolalloc.report.tables import markdown_table  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from region import region_markdown, region_study  # noqa: E402
@@ -47,7 +48,7 @@ OUT = Path(__file__).resolve().parents[2] / "reports" / "design_for_calibration"
 
 
 def md(df: pd.DataFrame, floatfmt=".4g") -> str:
-    return df.to_markdown(index=False, floatfmt=floatfmt)
+    return markdown_table(df, floatfmt)
 
 
 def plans(split, n, cand, work, noise_mm):

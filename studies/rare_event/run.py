@@ -47,6 +47,7 @@ from tolalloc.montecarlo.importance import importance_probability
 from tolalloc.montecarlo.intervals import simultaneous_level, z_of_level
 from tolalloc.montecarlo.paired import estimate_probabilities
 from tolalloc.verify.correct import correct_design
+from tolalloc.report.tables import markdown_table
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "rare_event"
 PROBS = (0.9, 0.95, 0.99, 0.999, 0.9999, 0.99999)
@@ -193,7 +194,7 @@ def coverage_rows(seeds, n_ref, n_run):
 
 def report(cost, demo, agree, cov, args, wall):
     def md(df):
-        return df.to_markdown(index=False, floatfmt=".6g")
+        return markdown_table(df, ".6g")
 
     load = os.getloadavg()
     text = [f"# Rare-event requirements: cost against p, and demonstrating p with plain, paired and importance "

@@ -28,6 +28,7 @@ from tolalloc.report.plots import mc as mcplots  # noqa: E402
 from tolalloc.robot.model import Link  # noqa: E402
 from tolalloc.montecarlo.sensitivity import (PAPER_JOINT_GRID_DEG, PAPER_LINK_GRID_MM, quintic_trajectory, sensitivity,  # noqa: E402
                                   trajectory_errors)
+from tolalloc.report.tables import markdown_table  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 OUT = ROOT / "reports" / "seed_paper"
@@ -59,7 +60,7 @@ def compare_table(variants: dict, ref: dict) -> pd.DataFrame:
 
 
 def md(df: pd.DataFrame, fmt=".4g") -> str:
-    return df.to_markdown(index=False, floatfmt=fmt)
+    return markdown_table(df, fmt)
 
 
 def main(argv=None) -> int:

@@ -34,6 +34,7 @@ from tolalloc.allocate.region_standard import allocate_region_standard
 from tolalloc.errormodel import build_error_model
 from tolalloc.verify.correct import needed_targets
 from tolalloc.verify.designs import verify_design
+from tolalloc.report.tables import markdown_table
 
 HERE = Path(__file__).resolve().parent
 OUT = HERE.parents[1] / "reports" / "standard_grades"
@@ -41,7 +42,7 @@ RADIUS_MM, PROB, SEED = 0.25, 0.95, 2024
 
 
 def md(df: pd.DataFrame, floatfmt=".4g") -> str:
-    return df.to_markdown(index=False, floatfmt=floatfmt)
+    return markdown_table(df, floatfmt)
 
 
 def case(name: str, robot, model, where: str):

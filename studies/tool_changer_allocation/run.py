@@ -38,12 +38,13 @@ from tolalloc.report.plots.allocate import plot_budget, plot_cloud, plot_pareto,
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.report.tables import display_frame, write_tables
 from tolalloc.verify.designs import verify_design
+from tolalloc.report.tables import markdown_table
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "tool_changer_allocation"
 
 
 def md(df: pd.DataFrame, floatfmt=".4g") -> str:
-    return df.to_markdown(index=False, floatfmt=floatfmt)
+    return markdown_table(df, floatfmt)
 
 
 def pareto(model, q, values, key):

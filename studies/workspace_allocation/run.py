@@ -30,6 +30,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.units import in_row_unit
+from tolalloc.report.tables import markdown_table
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from compute import history_rows, p_slice, run_robot, slice_joints, summary_rows, verification_rows  # noqa: E402
@@ -46,7 +47,7 @@ WHY = {"working": "the robot file's `working` box (an assumption of the project:
 
 
 def md(df: pd.DataFrame, floatfmt=".4g") -> str:
-    return df.to_markdown(index=False, floatfmt=floatfmt)
+    return markdown_table(df, floatfmt)
 
 
 def deg_mm(robot, q) -> str:

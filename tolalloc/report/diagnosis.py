@@ -10,14 +10,10 @@ import pandas as pd
 
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.verdict import UNSTABLE_RATIO
+from tolalloc.report.tables import markdown_table
 from tolalloc.robot.columns import joint_column_names
 
 __all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
-
-
-def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
-    """A DataFrame as a Markdown table."""
-    return df.to_markdown(index=False, floatfmt=floatfmt)
 
 
 def test_predictions(d: Diagnosis) -> pd.DataFrame:

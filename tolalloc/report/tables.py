@@ -19,7 +19,8 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["TABLE_COLUMNS", "UNIT_PAIRS_LEGEND", "display_frame", "write_tables", "format_text", "tex_text"]
+__all__ = ["TABLE_COLUMNS", "UNIT_PAIRS_LEGEND", "display_frame", "write_tables", "format_text", "tex_text",
+           "markdown_table"]
 
 #: Columns of the printed / Markdown / LaTeX table (CSV has every column of ``to_frame``).
 TABLE_COLUMNS = ["parameter", "kind", "role", "nominal_mm", "tol_mm", "tol_deg", "grade", "process", "sigma_mm",
@@ -34,6 +35,12 @@ UNIT_PAIRS_LEGEND = ("Columns ending in _mm hold the length rows (mm), those end
 OPTIONAL_COLUMNS = ("nominal_mm", "grade", "process")
 
 _TOLERANCE_PREFIXES = ("tol_",)
+
+
+def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
+    """A DataFrame as a Markdown table; a missing value (a row of the other unit of a ``_mm`` / ``_deg`` pair, a figure
+    that does not apply) is a blank cell."""
+    return df.astype(object).where(df.notna(), None).to_markdown(index=False, floatfmt=floatfmt, missingval="")
 
 
 def _g(x, digits=4) -> str:
