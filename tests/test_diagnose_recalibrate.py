@@ -108,18 +108,20 @@ def test_update_run_says_what_was_fitted_and_that_the_uncertainty_leaves_it_out(
     assert "other test poses fitted the tracker frame, the probe offset and a correction of the trained" in text
     assert "inflation k = geometric 1." in text and "huber loss" in text
     line = next(ln for ln in text.splitlines() if ln.startswith("predicted uncertainty:"))
-    assert line.endswith("predicted uncertainty of the frame-only re-registration: it does not include the "
-                         "calibration update")
+    assert line.endswith("it does not include the calibration update (how far the registration poses narrowed or "
+                         "shifted the parameters), so this coverage does not test the updated model's own uncertainty")
     js = upd.to_dict()
     reg = js["test"]["registration"]
     assert reg["update"] == "calibration" and reg["robust_loss"] == "huber"
     assert reg["inflation_k"] == upd.calibration_update.inflation_k
     assert "a correction of the trained geometric and effect parameters" in reg["method"]
-    assert js["uncertainty"]["method"].endswith("it does not include the calibration update")
+    assert js["uncertainty"]["method"].endswith("so this coverage does not test the updated model's own uncertainty")
+    assert js["heldout"]["sealed_test"].endswith("also fitted a correction of the trained parameters "
+                                                 "(register_update='calibration')")
     assert js["settings"]["robust_loss"] == "tukey" and js["settings"]["register_update_robust_loss"] == "huber"
     plain = "\n".join(summary_lines(frame))
     assert "other test poses fitted the tracker frame and probe offset and are not scored" in plain
-    assert "frame-only" not in plain and "inflation_k" not in frame.to_dict()["test"]["registration"]
+    assert "calibration update" not in plain and "inflation_k" not in frame.to_dict()["test"]["registration"]
 
 
 def test_wide_prior_recovers_nearly_all_of_a_small_geometric_change(sessions):

@@ -74,7 +74,9 @@ def section(table: pd.DataFrame) -> list:
              "registration poses are never scored, so each count scores its own rest of the test file; the effect "
              "selection is made on the training file and is the same at every count). `frame`: tracker frame and "
              "probe offset re-fitted, the trained model frozen; `calibration`: also a correction of the trained "
-             "parameters with the training posterior as the prior (`register_update=\"calibration\"`). "
+             "parameters with the training posterior as the prior (`register_update=\"calibration\"`). The "
+             "registration poses are chosen in joint space, so they are spread over the whole test session in time "
+             "(a real new session would be re-measured at its start); one registration split per count, no interval. "
              "(registration_poses.csv)", "", table.to_markdown(index=False, floatfmt=".3f"), ""]
     for update, g in table.groupby("register_update"):
         ok = g[g["test_rms_final_mm"] <= TARGET_MM].groupby("register_n")["direction"].nunique()

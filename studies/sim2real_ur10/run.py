@@ -186,8 +186,8 @@ def periodogram_lines(pg: pd.DataFrame) -> list:
 
 def run_section(name: str, row: dict, d, gap) -> list:
     bt = d.before_after("test")
-    reg = (f"; the tracker frame and probe offset were re-registered on {row['registration_poses']} test poses "
-           "(not scored)" if d.registration is not None else "")
+    reg = (f"; {row['registration_poses']} test poses (not scored) fitted {d.registration_fitted()}"
+           if d.registration is not None else "")
     return [f"### {name}", "",
             f"{row['split']}: train {row['train_poses']} poses, test {row['test_poses']} poses, scored "
             f"{row['scored_poses']}{reg}; {row['seconds']:.0f} s. **{d.verdict.headline()}**; final model "

@@ -158,7 +158,10 @@ class Diagnosis:
             "heldout": {"cv_poses": len(self.nominal.oof_mm), "test_poses": 0 if self.test is None else len(self.scored_index),
                         "test_frame": self.test_frame,
                         "sealed_test": "the test file was scored once, after the model was chosen on the training "
-                                       "file alone (variants, folds, thresholds, selection)"},
+                                       "file alone (variants, folds, thresholds, selection)"
+                                       + ("" if self.calibration_update is None or self.registration is None else
+                                          "; its registration poses (never scored) also fitted a correction of the "
+                                          "trained parameters (register_update='calibration')")},
             "train": {"poses": self.train.n_poses, "skipped_rows": self.train.n_skipped, "source": self.train.source,
                       "rms_mm": {"nominal": self.calibration.nominal.rms_mm, "geometric": self.calibration.geometric.rms_mm,
                                  "final": self.final.fit.rms_mm}},

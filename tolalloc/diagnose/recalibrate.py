@@ -24,8 +24,8 @@ poses that disagree with the trained parameters instead of moving the parameters
 On the real UR10 across sessions (train on one session, test on the other, 30 registration poses) the update
 lowered the scored test RMS of the final model from 0.563 to 0.441 mm (A -> C) and from 0.732 to 0.542 mm
 (C -> A); a model without parameters beyond the frame (nominal) is re-registered as before. The predicted
-uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) is still that of the
-frame-only re-registration: it does not include the update.
+uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the training
+fit's parameter covariance at the updated parameters: it does not include the update (:data:`UNCERTAINTY_SCOPE`).
 """
 
 from __future__ import annotations
@@ -46,8 +46,9 @@ __all__ = ["REGISTER_UPDATES", "UNCERTAINTY_SCOPE", "CalibrationPrior", "Calibra
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
 REGISTER_UPDATES = ("frame", "calibration")
 #: What the predicted uncertainty of a calibration-update run is, said beside each of its coverage figures.
-UNCERTAINTY_SCOPE = ("predicted uncertainty of the frame-only re-registration: it does not include the calibration "
-                     "update")
+UNCERTAINTY_SCOPE = ("predicted uncertainty from the training fit's parameter covariance, propagated at the updated "
+                     "parameters: it does not include the calibration update (how far the registration poses narrowed "
+                     "or shifted the parameters), so this coverage does not test the updated model's own uncertainty")
 
 
 def update_loss(loss: str | None) -> str:
