@@ -16,7 +16,7 @@ import numpy as np
 from scipy.stats import beta, chi2
 
 from tolalloc.allocate.problem import AllocationProblem
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.linear.probability import p_within_angle, p_within_radius
 
 __all__ = ["Coverage", "coverage"]
@@ -151,11 +151,8 @@ def coverage(problem: AllocationProblem, t, region, *, n: int = 100_000, seed: i
     """
     from tolalloc.exceptions import raise_if_interrupted
 
-    try:
-        n_ok = int(n) == n and n >= 1
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
+    whole = whole_number(n)
+    if whole is None or whole < 1:
         raise TolallocError(f"n: expected a whole number of coverage poses >= 1 (e.g. 1e5), got {n!r}.")
     n, chunk = int(n), max(1, int(chunk))
     rng = np.random.default_rng(seed)

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError, raise_if_interrupted
+from tolalloc.exceptions import TolallocError, raise_if_interrupted, whole_number
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
@@ -193,11 +193,8 @@ def _hist_spec(model, q, bins, hist_range_mm, hist_sigmas=6.0):
 def _checked_args(model: ErrorModel, q, n, radii_mm, angle_radii_rad, ci):
     """Validated ``(q (P, n_joints), n, radii, angle radii)`` of :func:`run_mc` (TolallocError naming the argument)."""
     q = np.atleast_2d(model.robot.check_q(q, "q"))
-    try:
-        n_ok = int(n) == n and n >= 1
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
+    whole = whole_number(n)
+    if whole is None or whole < 1:
         raise TolallocError(f"n: expected an integer number of samples >= 1, got {n!r}.")
     n = int(n)
     sig = model.sigma

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.linear.covariance import input_covariance, variance_share
 
@@ -165,11 +165,8 @@ def sobol_indices(model, q, n: int = 2**13, seed: int = 0, *, radius_mm: float |
     q = np.asarray(model.robot.check_q(q, "q"), float)
     if q.ndim != 1:
         raise TolallocError(f"q: expected one pose of shape ({model.robot.n_joints},), got {q.shape}.")
-    try:
-        n_ok = int(n) == n and n >= 16
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
+    whole = whole_number(n)
+    if whole is None or whole < 16:
         raise TolallocError(f"n: expected a whole number of base samples >= 16 (e.g. 8192), got {n!r}.")
     if radius_mm is not None and not (np.isfinite(radius_mm) and radius_mm > 0):
         raise TolallocError(f"radius_mm: expected a finite radius > 0 [mm], got {radius_mm!r}.")

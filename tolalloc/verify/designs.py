@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
@@ -380,11 +380,8 @@ def _check_args(design, n_mc, estimator, criterion, level) -> str:
     if design.status == NOT_CONVERGED:
         raise TolallocError(f"verify: the design {design.label} did not converge ({design.message}); re-solve it "
                             "(or verify its tolerances as a design of their own) before calling it verified.")
-    try:
-        n_ok = int(n_mc) == n_mc and n_mc >= 100
-    except (TypeError, ValueError, OverflowError):
-        n_ok = False
-    if not n_ok:
+    whole = whole_number(n_mc)
+    if whole is None or whole < 100:
         raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
     if isinstance(level, bool) or not isinstance(level, (int, float, np.floating)) or not 0.5 <= level < 1:
         raise TolallocError(f"level: expected a confidence level in [0.5, 1) for the simultaneous intervals "
