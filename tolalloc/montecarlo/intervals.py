@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import brentq
 from scipy.stats import norm
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, whole_number
 
 __all__ = ["paired_difference_ci", "z_of_level", "simultaneous_level"]
 
@@ -51,15 +51,15 @@ def simultaneous_level(level: float, m: int) -> float:
     TolallocError
         ``m`` not a whole number >= 1, or ``level`` not in (0, 1).
     """
-    whole = not isinstance(m, bool) and isinstance(m, (int, np.integer, float, np.floating)) and float(m).is_integer()
-    if not whole or m < 1:
+    whole = whole_number(m)
+    if whole is None or whole < 1:
         raise TolallocError(f"simultaneous_level: expected a whole number of intervals m >= 1 (poses x requirements), "
                             f"got m = {m!r}; count the intervals judged together.")
     ok = not isinstance(level, bool) and isinstance(level, (int, float, np.floating)) and 0.0 < float(level) < 1.0
     if not ok:
         raise TolallocError(f"simultaneous_level: expected a family confidence level in (0, 1) (e.g. 0.95), got "
                             f"level = {level!r}.")
-    return 1.0 - (1.0 - float(level)) / int(m)
+    return 1.0 - (1.0 - float(level)) / whole
 
 
 def _score(d0: float, b: float, c: float, n: float) -> float:
