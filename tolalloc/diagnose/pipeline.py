@@ -19,7 +19,7 @@ from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.recalibrate import (REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, inflation_factor, reregister,
+from tolalloc.diagnose.recalibrate import (REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, inflation_factor,
                                            update_loss)
 from tolalloc.diagnose.register import REGISTER_N, register_count
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
@@ -251,8 +251,8 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
         return nominal, geometric, final, chosen
 
     def scored(ev):
-        res, pred = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
-        return replace(ev, test_mm=res, test_pred_mm=pred)
+        res, pred, registered = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
+        return replace(ev, test_mm=res, test_pred_mm=pred, test_fit=registered)
 
     n2, g2 = scored(nominal), scored(geometric)
     f2 = g2 if final is geometric else scored(final)
@@ -321,14 +321,9 @@ def _all_rows(ctx, train, cal: Calibration, nominal: Evaluation, geometric: Eval
 
 def _uncertainty(ctx, final: Evaluation) -> tuple:
     """Predicted uncertainty of ``final`` on the test poses and, with ``refit``, the re-registered final fit."""
-    fit, test = final.fit, ctx.test
     Btr, Bte = kept_basis(ctx.bases, final), kept_basis(ctx.bases_test, final)
-    if ctx.registration is None:
-        return prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte), None
-    reg = reregister(fit, test.q, test.xyz_mm, Bte, ctx.registration, update=ctx.register_update, q_train=ctx.train.q,
-                     B_train=Btr, oof_mm=final.oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
-    unc = prediction_uncertainty(fit, ctx.train.q, test.q, final.test_mm, B_train=Btr, B_test=Bte,
-                                 registered=reg.fit, split=ctx.registration)
-    return unc, reg.fit
+    unc = prediction_uncertainty(final.fit, ctx.train.q, ctx.test.q, final.test_mm, B_train=Btr, B_test=Bte,
+                                 registered=final.test_fit, split=ctx.registration)
+    return unc, final.test_fit
 
 

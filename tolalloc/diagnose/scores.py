@@ -42,6 +42,7 @@ class Evaluation:
                                  set only for the nominal, geometric and final models, after the selection
     test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
     oof_joint_mm : array, shape (P, 3) or None  out-of-fold residuals of the joint-space blocks (``cv="blocked"``)
+    test_fit : Fit or None       ``refit``: the fit re-registered to the test file's frame when it was scored
     """
 
     label: str
@@ -53,6 +54,7 @@ class Evaluation:
     test_mm: np.ndarray | None
     test_pred_mm: np.ndarray | None
     oof_joint_mm: np.ndarray | None = None
+    test_fit: object | None = None
 
     @property
     def selection_mm(self) -> np.ndarray:
