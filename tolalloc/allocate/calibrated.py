@@ -52,7 +52,6 @@ from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.allocate.calibrated_step import START_SHARE, StepData, solve_step
 from tolalloc.calibration.posterior import Posterior, estimated_index, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
-from tolalloc.units import unit_columns
 
 __all__ = ["CalibratedAllocation", "allocate_calibrated", "CALIBRATED_AWAY_RATIO", "parameter_status"]
 
@@ -111,18 +110,16 @@ class CalibratedAllocation:
         random-only parameters).
         """
         pr, m = self.problem, self.problem.model
-        f = np.array([p.to_interface for p in m.params])
-        is_mm = np.array([p.interface_unit == "mm" for p in m.params])
-        base = self.baseline.t if self.baseline.ok else np.full(len(f), np.nan)
+        base = self.baseline.t if self.baseline.ok else np.full(len(m.params), np.nan)
         cols = {"parameter": m.names, "unit": [p.interface_unit for p in m.params],
-                **unit_columns("tol", self.design.t * f, is_mm),
-                **unit_columns("tol_no_calibration", base * f, is_mm),
-                **unit_columns("sigma_manufactured", np.sqrt(self.post.prior_var) * f, is_mm),
-                **unit_columns("sigma_post_calibration", self.post.sigma_post * f, is_mm),
-                **unit_columns("sigma_random", np.sqrt(self.post.random_var) * f, is_mm),
+                **m.interface_columns("tol", self.design.t),
+                **m.interface_columns("tol_no_calibration", base),
+                **m.interface_columns("sigma_manufactured", np.sqrt(self.post.prior_var)),
+                **m.interface_columns("sigma_post_calibration", self.post.sigma_post),
+                **m.interface_columns("sigma_random", np.sqrt(self.post.random_var)),
                 "status": parameter_status(self.design, self.post), "cost": pr.param_costs(self.design.t)}
         if self.grade_t is not None:
-            cols.update(unit_columns("repeatability_grade", self.grade_t * f, is_mm))
+            cols.update(m.interface_columns("repeatability_grade", self.grade_t))
             cols["repeatability_grade_cost"] = _grades(pr, self.post.split).costs_full(self.grade_t)
         return pd.DataFrame(cols)
 

@@ -31,7 +31,6 @@ from tolalloc.allocate.region import Coverage, Region, box_region, coverage
 from tolalloc.calibration.check import check_plan
 from tolalloc.calibration.split import ErrorSplit, split_errors
 from tolalloc.exceptions import TolallocError
-from tolalloc.units import unit_columns
 
 __all__ = ["CalibratedDesign", "allocate_with_calibration", "resolve_region"]
 
@@ -164,18 +163,16 @@ class CalibratedDesign:
         (:func:`tolalloc.units.unit_columns`)."""
         df = self.certified.to_frame().rename(columns={"tol_mm": "tol_certified_mm", "tol_deg": "tol_certified_deg",
                                                        "cost": "cost_certified"})
-        params = self.problem.model.params
-        f = np.array([p.to_interface for p in params])
-        is_mm = np.array([p.interface_unit == "mm" for p in params])
+        model = self.problem.model
         if self.exact_accepted:
             at = df.columns.get_loc("tol_certified_deg") + 1
-            for k, (name, values) in enumerate(unit_columns("tol_exact", self.exact.design.t * f, is_mm).items()):
+            for k, (name, values) in enumerate(model.interface_columns("tol_exact", self.exact.design.t).items()):
                 df.insert(at + k, name, values)
-            df = df.assign(**unit_columns("sigma_post_calibration_exact", self.exact.post.sigma_post * f, is_mm))
+            df = df.assign(**model.interface_columns("sigma_post_calibration_exact", self.exact.post.sigma_post))
             df["cost_exact"] = self.problem.param_costs(self.exact.design.t)
             df["status_exact"] = parameter_status(self.exact.design, self.exact.post)
         if self.baseline_exact is not None and self.baseline_exact.ok:
-            df = df.assign(**unit_columns("tol_no_calibration_exact", self.baseline_exact.t * f, is_mm))
+            df = df.assign(**model.interface_columns("tol_no_calibration_exact", self.baseline_exact.t))
         return df
 
     def summary(self) -> dict:

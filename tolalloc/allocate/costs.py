@@ -51,7 +51,7 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, parse_grades, read_processes
-from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_columns, unit_value
+from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
 
@@ -188,13 +188,13 @@ class CostSet:
         tolerance (NaN for allocatable parameters) each as a ``<name>_mm`` / ``<name>_deg`` pair in the row's
         interface unit (:func:`tolalloc.units.unit_columns`)."""
         params = [model.params[model.index(nm)] for nm in self.names]
-        f, is_mm = np.array([p.to_interface for p in params]), np.array([p.interface_unit == "mm" for p in params])
         frame = pd.DataFrame({"parameter": list(self.names), "kind": [p.kind for p in params],
                               "unit": [p.interface_unit for p in params], "role": list(self.role),
                               **{c: [getattr(cm, c) for cm in self.models] for c in ("model", "a", "b", "k")}})
         for name in ("t_ref", "t_min", "t_max"):
-            frame = frame.assign(**unit_columns(name, np.array([getattr(cm, name) for cm in self.models]) * f, is_mm))
-        return frame.assign(**unit_columns("fixed_tol", np.array(self.fixed_tol, float) * f, is_mm))
+            values = [getattr(cm, name) for cm in self.models]
+            frame = frame.assign(**model.interface_columns(name, values, self.names))
+        return frame.assign(**model.interface_columns("fixed_tol", np.array(self.fixed_tol, float), self.names))
 
 
 def param_kind_key(p) -> str:

@@ -12,7 +12,6 @@ import pandas as pd
 
 from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
 from tolalloc.linear.covariance import variance_share
-from tolalloc.units import unit_columns
 
 __all__ = ["AllocationResult", "snap_design", "parameter_columns"]
 
@@ -114,9 +113,7 @@ class AllocationResult:
         d = design or self.built
         pr = self.problem
         params = pr.model.params
-        f = np.array([p.to_interface for p in params])
-        is_mm = np.array([p.interface_unit == "mm" for p in params])
-        nan = np.full(len(f), np.nan)
+        nan = np.full(len(params), np.nan)
         rnd = self.rounded.t if self.rounded is not None and self.rounded.t is not None else nan
         is_std = d is self.standard and d is not None
         cost = pr.param_costs(d.t)
@@ -124,17 +121,17 @@ class AllocationResult:
             cost = self.discrete.param_cost  # per part, its process's set-up included
         blank = ("",) * len(params)
         cols = parameter_columns(pr)
-        cols.update(unit_columns("tol", d.t * f, is_mm))
+        cols.update(pr.model.interface_columns("tol", d.t))
         cols.update({"grade": list(self.grade) if is_std else list(blank),
                      "process": list(self.process) if is_std else list(blank)})
-        cols.update(unit_columns("sigma", pr.sigma(d.t) * f, is_mm))
+        cols.update(pr.model.interface_columns("sigma", pr.sigma(d.t)))
         cols.update({"cost": np.asarray(cost, float), "variance_share_pct": 100.0 * self.variance_share(d),
                      "at_limit": list(d.at_limit)})
-        cols.update({**unit_columns("t_min", pr.t_min * f, is_mm), **unit_columns("t_max", pr.t_max * f, is_mm)})
+        cols.update({**pr.model.interface_columns("t_min", pr.t_min), **pr.model.interface_columns("t_max", pr.t_max)})
         cont = self.design.t if self.design.t is not None else nan
-        cols.update(unit_columns("tol_continuous", cont * f, is_mm))
+        cols.update(pr.model.interface_columns("tol_continuous", cont))
         cols["cost_continuous"] = pr.param_costs(cont) if self.design.t is not None else nan
-        cols.update(unit_columns("tol_rounded", rnd * f, is_mm))
+        cols.update(pr.model.interface_columns("tol_rounded", rnd))
         return pd.DataFrame(cols)
 
     def summary(self) -> dict:

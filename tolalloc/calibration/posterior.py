@@ -30,7 +30,6 @@ from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.split import ErrorSplit
 from tolalloc.linear.covariance import VARIANCE_FACTOR
 from tolalloc.robot.kinematics import fk_poe
-from tolalloc.units import unit_columns
 
 __all__ = ["Posterior", "posterior", "identification_matrix", "nuisance_columns", "estimated_index", "ID_TOL"]
 
@@ -85,15 +84,13 @@ class Posterior:
         """One row per parameter: prior and posterior sigma of the systematic part, random sigma, each as a
         ``<name>_mm`` / ``<name>_deg`` pair in the row's interface unit (:func:`tolalloc.units.unit_columns`)."""
         m = self.split.model
-        f = np.array([p.to_interface for p in m.params])
         units = [p.interface_unit for p in m.params]
-        is_mm = np.array([u == "mm" for u in units])
-        est = np.zeros(len(f), bool)
+        est = np.zeros(len(units), bool)
         est[self.estimated] = True
         return pd.DataFrame({"parameter": m.names, "unit": units, "systematic": self.split.systematic,
-                             "estimated": est, **unit_columns("sigma_prior", np.sqrt(self.prior_var) * f, is_mm),
-                             **unit_columns("sigma_post", self.sigma_post * f, is_mm),
-                             **unit_columns("sigma_random", np.sqrt(self.random_var) * f, is_mm),
+                             "estimated": est, **m.interface_columns("sigma_prior", np.sqrt(self.prior_var)),
+                             **m.interface_columns("sigma_post", self.sigma_post),
+                             **m.interface_columns("sigma_random", np.sqrt(self.random_var)),
                              "identifiable": [est[k] and nm not in self.unidentifiable for k, nm in enumerate(m.names)]})
 
 

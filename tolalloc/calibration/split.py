@@ -48,7 +48,6 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
-from tolalloc.units import unit_columns
 
 __all__ = ["ErrorSplit", "split_errors", "DEFAULT_SPLIT"]
 
@@ -132,12 +131,10 @@ class ErrorSplit:
         """One row per parameter: kind, systematic?, prior sigma of the systematic part and random sigma, each as a
         ``<name>_mm`` / ``<name>_deg`` pair in the row's interface unit (:func:`tolalloc.units.unit_columns`)."""
         m = self.model
-        f = np.array([p.to_interface for p in m.params])
         units = [p.interface_unit for p in m.params]
-        is_mm = np.array([u == "mm" for u in units])
         return pd.DataFrame({"parameter": m.names, "kind": m.kinds, "unit": units, "systematic": self.systematic,
-                             **unit_columns("sigma_sys", np.where(self.systematic, m.sigma, 0) * f, is_mm),
-                             **unit_columns("sigma_random", self.random_sigma * f, is_mm)})
+                             **m.interface_columns("sigma_sys", np.where(self.systematic, m.sigma, 0)),
+                             **m.interface_columns("sigma_random", self.random_sigma)})
 
 
 def _kind_key(p) -> str:

@@ -173,16 +173,31 @@ class ErrorModel:
             raise TolallocError(f"sigma: expected {len(self.params)} finite values >= 0, got {np.array2string(sigma, threshold=8)}")
         return replace(self, params=tuple(replace(p, sigma=float(s)) for p, s in zip(self.params, sigma)))
 
+    def interface_columns(self, name: str, values, names=None) -> dict:
+        """Per-parameter values in internal units (mm, rad) as a ``<name>_mm`` / ``<name>_deg`` column pair in the
+        interface units (:func:`tolalloc.units.unit_columns`).
+
+        Parameters
+        ----------
+        name : str
+            Column stem (``tol``, ``sigma``).
+        values : array, shape (K,) [mm or rad]
+            One value per parameter of ``names`` (default: every parameter, in model order).
+        names : sequence of str, optional
+        """
+        params = self.params if names is None else [self.params[self.index(nm)] for nm in names]
+        f = np.array([p.to_interface for p in params])
+        return unit_columns(name, np.asarray(values, float) * f, np.array([p.interface_unit == "mm" for p in params]))
+
     def to_frame(self) -> pd.DataFrame:
         """One row per parameter: ``parameter, kind, element, unit, sigma_mm, sigma_deg, distribution``; the sigma
         in ``sigma_mm`` on length rows, in ``sigma_deg`` on angle rows, the other one NaN."""
-        is_mm = np.array([p.interface_unit == "mm" for p in self.params], bool)
         return pd.DataFrame({
             "parameter": self.names,
             "kind": self.kinds,
             "element": [p.element for p in self.params],
             "unit": [p.interface_unit for p in self.params],
-            **unit_columns("sigma", [p.sigma * p.to_interface for p in self.params], is_mm),
+            **self.interface_columns("sigma", self.sigma),
             "distribution": [p.distribution for p in self.params],
         })
 

@@ -17,7 +17,6 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate.result import parameter_columns
-from tolalloc.units import unit_columns
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
@@ -65,32 +64,30 @@ def calibrated_frame(job) -> pd.DataFrame:
     pr = res.problem
     params = pr.model.params
     K = len(params)
-    f = np.array([p.to_interface for p in params])
-    is_mm = np.array([p.interface_unit == "mm" for p in params])
     nan = np.full(K, np.nan)
     b, std = job.built, job.standard
     build, build_post = (b.design, b.post) if b is not None and b.post is not None else (d, post)
     rounded = std.rounded if std is not None else None
     base = _baseline(res)
     cols = parameter_columns(pr)
-    cols.update(unit_columns("tol", build.t * f, is_mm))
+    cols.update(pr.model.interface_columns("tol", build.t))
     cols.update({"grade": list(b.grade) if b is not None else [""] * K,
                  "process": list(b.process) if b is not None else [""] * K})
-    cols.update(unit_columns("sigma", pr.sigma(build.t) * f, is_mm))
+    cols.update(pr.model.interface_columns("sigma", pr.sigma(build.t)))
     share = variance_share(pr.J[_worst_pose(pr, build_post), :3, :], build_post.cov_total)
     cols.update({"cost": b.param_cost if b is not None else pr.param_costs(d.t), "variance_share_pct": 100.0 * share,
                  "at_limit": list(build.at_limit)})
-    cols.update({**unit_columns("t_min", pr.t_min * f, is_mm), **unit_columns("t_max", pr.t_max * f, is_mm)})
-    cols.update(unit_columns("tol_continuous", d.t * f, is_mm))
+    cols.update({**pr.model.interface_columns("t_min", pr.t_min), **pr.model.interface_columns("t_max", pr.t_max)})
+    cols.update(pr.model.interface_columns("tol_continuous", d.t))
     cols["cost_continuous"] = pr.param_costs(d.t)
     rnd = rounded.t if rounded is not None and rounded.t is not None else nan
-    cols.update(unit_columns("tol_rounded", rnd * f, is_mm))
+    cols.update(pr.model.interface_columns("tol_rounded", rnd))
     cols["status"] = _coarsest_grade(parameter_status(build, build_post), params, b, std)
     if res.exact_accepted:
-        cols.update(unit_columns("tol_certified", res.certified.design.t * f, is_mm))
-    cols.update(unit_columns("tol_no_calibration", (base.t if base is not None else nan) * f, is_mm))
-    cols.update(unit_columns("sigma_post_calibration", build_post.sigma_post * f, is_mm))
-    cols.update(unit_columns("sigma_random", np.sqrt(build_post.random_var) * f, is_mm))
+        cols.update(pr.model.interface_columns("tol_certified", res.certified.design.t))
+    cols.update(pr.model.interface_columns("tol_no_calibration", (base.t if base is not None else nan)))
+    cols.update(pr.model.interface_columns("sigma_post_calibration", build_post.sigma_post))
+    cols.update(pr.model.interface_columns("sigma_random", np.sqrt(build_post.random_var)))
     cert = res.certified.to_frame()
     if "repeatability_grade_cost" in cert:
         for col in ("repeatability_grade_mm", "repeatability_grade_deg", "repeatability_grade_cost"):
