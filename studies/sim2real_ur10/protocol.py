@@ -10,20 +10,17 @@ scored), so each row is its own held-out figure.
 
 from __future__ import annotations
 
-import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose import diagnose, measurements_from_frame
 from tolalloc.diagnose.register import registration_split
+from tolalloc.diagnose.scores import rms
 
 #: registration counts run here besides the study's own 30
 COUNTS = (60, 100)
 #: the across-session target of issue 25 [mm]
 TARGET_MM = 0.50
 
-
-def _rms(e: np.ndarray) -> float:
-    return float(np.sqrt(np.mean(np.sum(np.asarray(e) ** 2, axis=1))))
 
 
 def fresh_calibration(robot, te: pd.DataFrame, n: int, name: str) -> dict:
@@ -35,7 +32,7 @@ def fresh_calibration(robot, te: pd.DataFrame, n: int, name: str) -> dict:
                                                 f"{name}:registration poses"),
                  measurements_from_frame(te.iloc[split.score_index].reset_index(drop=True), robot, f"{name}:scored"),
                  folds=3)
-    return {"fresh_test_rms_geometric_mm": _rms(d.geometric.test_mm), "fresh_test_rms_final_mm": _rms(d.final.test_mm),
+    return {"fresh_test_rms_geometric_mm": rms(d.geometric.test_mm), "fresh_test_rms_final_mm": rms(d.final.test_mm),
             "fresh_verdict": d.verdict.verdict}
 
 
@@ -57,8 +54,8 @@ def registration_table(robot, A: pd.DataFrame, C: pd.DataFrame, summary: pd.Data
                              measurements_from_frame(te, robot, f"{direction}:test"), test_frame="refit",
                              register_n=n, register_update=update)
                 rows.append({"direction": direction, "register_update": update, "register_n": n,
-                             "scored_poses": len(d.final.test_mm), "test_rms_geometric_mm": _rms(d.geometric.test_mm),
-                             "test_rms_final_mm": _rms(d.final.test_mm)} | fresh[n])
+                             "scored_poses": len(d.final.test_mm), "test_rms_geometric_mm": rms(d.geometric.test_mm),
+                             "test_rms_final_mm": rms(d.final.test_mm)} | fresh[n])
                 print(f"  registration {direction} {update} n={n}: final {rows[-1]['test_rms_final_mm']:.3f} mm",
                       flush=True)
     return pd.DataFrame(rows).sort_values(["direction", "register_update", "register_n"], ignore_index=True)

@@ -36,6 +36,7 @@ from tolalloc.diagnose.effects import effect_basis, effect_reference
 from tolalloc.diagnose.evidence import ard_evidence
 from tolalloc.diagnose.guards import parameter_checks
 from tolalloc.diagnose.register import REGISTER_N, RegistrationSplit, register_and_score, registration_split
+from tolalloc.diagnose.scores import rms
 from tolalloc.diagnose.select import align_basis
 
 #: A pose counts as covered when the other session visited an angle within this of it [deg].
@@ -46,9 +47,6 @@ ALPHA_AL = 23e-6
 TRIM = 5.0
 EFFECTS = (("transmission", "series36"), ("joint_compliance", "masses"))
 
-
-def _rms(e) -> float:
-    return float(np.sqrt(np.mean(np.sum(np.asarray(e) ** 2, axis=1))))
 
 
 def coverage(A: pd.DataFrame, C: pd.DataFrame, n_joints: int) -> pd.DataFrame:
@@ -172,9 +170,9 @@ def one_robot(robot, ms: dict) -> tuple[pd.DataFrame, pd.DataFrame]:
         both = joint_fit(fits, list(ms.values()), Bs, g, geo)
         offs = joint_fit(fits, list(ms.values()), Bs, g, geo, offsets)
         for i, s in enumerate(ms):
-            rows.append({"model": label, "session": s, "alone_rms_mm": _rms(alone[i].residual(alone[i].x, 0)),
-                         "joint_rms_mm": _rms(both.residual(both.x, i)),
-                         "joint_with_own_offsets_rms_mm": _rms(offs.residual(offs.x, i)),
+            rows.append({"model": label, "session": s, "alone_rms_mm": rms(alone[i].residual(alone[i].x, 0)),
+                         "joint_rms_mm": rms(both.residual(both.x, i)),
+                         "joint_with_own_offsets_rms_mm": rms(offs.residual(offs.x, i)),
                          "joint_model_reg30_rms_mm": _reg30(both, i, robot.revolute_mask)})
     pa, pc = (parameter_checks(cals[s].geometric, ms[s].q).to_frame() for s in ms)
     par = pa.merge(pc, on=["parameter", "unit"], suffixes=(f"_{a}", f"_{c}"))
@@ -190,7 +188,7 @@ def _reg30(J, s, revolute, n=REGISTER_N) -> float:
     f, beta = J.fit_of(J.x, s)
     m = J.ms[s]
     split = registration_split(m.q, revolute, n)
-    return _rms(register_and_score(f, m.q, m.xyz_mm, J.Bs[s] @ beta, split).residual_mm)
+    return rms(register_and_score(f, m.q, m.xyz_mm, J.Bs[s] @ beta, split).residual_mm)
 
 
 def registration_rows(name: str, d) -> list:
@@ -202,8 +200,8 @@ def registration_rows(name: str, d) -> list:
     rows = []
     for label, ev, extra in (("geometric", d.geometric, np.zeros((test.n_poses, 3))), ("final", d.final, extra_final)):
         all_reg = register_and_score(ev.fit, test.q, test.xyz_mm, extra, every, t_prior=None)
-        rows.append({"run": name, "model": label, "registered_on_30_rms_mm": _rms(ev.test_mm),
-                     "registered_on_all_test_poses_rms_mm": _rms(all_reg.residual_mm)})
+        rows.append({"run": name, "model": label, "registered_on_30_rms_mm": rms(ev.test_mm),
+                     "registered_on_all_test_poses_rms_mm": rms(all_reg.residual_mm)})
     return rows
 
 
