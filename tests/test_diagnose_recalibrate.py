@@ -13,6 +13,9 @@ the rest.
   all of the change (scored RMS within 2.5 x the noise level, the change found within 25 %).
 * The second session is the same robot: even with the wide prior the update must not move -- scored RMS and
   every parameter as the frame-only re-registration gives them, to within the noise.
+* The predicted uncertainty of an update run is the update's posterior: narrower than the prior and than the
+  frame-only run's, holding about 95 % of the same robot's scored residuals, and failing its coverage check (the
+  guard fires) where the prior holds back half of a real change.
 """
 
 import numpy as np
@@ -100,7 +103,7 @@ def test_shipped_update_recovers_part_of_a_small_geometric_change(changed_runs):
     assert 1.0 < ks["geometric"] < 3.0
 
 
-def test_update_run_says_what_was_fitted_and_that_the_uncertainty_leaves_it_out(changed_runs):
+def test_update_run_says_what_was_fitted_and_whose_uncertainty_is_predicted(changed_runs):
     from tolalloc.report.diagnosis import summary_lines
 
     frame, upd = changed_runs[1]["frame"], changed_runs[1]["calibration"]
@@ -108,14 +111,15 @@ def test_update_run_says_what_was_fitted_and_that_the_uncertainty_leaves_it_out(
     assert "other test poses fitted the tracker frame, the probe offset and a correction of the trained" in text
     assert "inflation k = geometric 1." in text and "huber loss" in text
     line = next(ln for ln in text.splitlines() if ln.startswith("predicted uncertainty:"))
-    assert line.endswith("it does not include the calibration update (how far the registration poses narrowed or "
-                         "shifted the parameters), so this coverage does not test the updated model's own uncertainty")
+    assert line.endswith("predicted uncertainty of the updated model: the calibration update's posterior covariance "
+                         "(its prior, the training posterior widened by k, and the registration poses), so this "
+                         "coverage checks the updated model's own uncertainty")
     js = upd.to_dict()
     reg = js["test"]["registration"]
     assert reg["update"] == "calibration" and reg["robust_loss"] == "huber"
     assert reg["inflation_k"] == upd.calibration_update.inflation_k
     assert "a correction of the trained geometric and effect parameters" in reg["method"]
-    assert js["uncertainty"]["method"].endswith("so this coverage does not test the updated model's own uncertainty")
+    assert js["uncertainty"]["method"].endswith("so this coverage checks the updated model's own uncertainty")
     assert js["heldout"]["sealed_test"].endswith("also fitted a correction of the trained parameters "
                                                  "(register_update='calibration')")
     assert js["settings"]["robust_loss"] == "tukey" and js["settings"]["register_update_robust_loss"] == "huber"
@@ -192,3 +196,47 @@ def test_calibration_update_without_a_test_file_is_refused():
     with pytest.raises(TolallocError, match="register_update='calibration' needs a test file with "
                                             "test_frame='refit' \\(got no test file\\)"):
         diagnose(robot, m, None, test_frame="refit", register_update="calibration")
+
+
+@pytest.fixture(scope="module")
+def same_robot_runs(sessions):
+    """The second session of the same robot through ``diagnose``, frame-only and with the calibration update."""
+    robot, model, delta, truth, train, cal, q, noise, frame, split = sessions
+    test = Measurements(*_test_session(truth, q, noise, frame, delta))
+    return {u: diagnose(robot, train, test, test_frame="refit", register_n=40, register_update=u, folds=3)
+            for u in ("frame", "calibration")}
+
+
+def test_update_posterior_narrows_the_prior_and_is_a_covariance(sessions):
+    robot, model, delta, truth, train, cal, q, noise, frame, split = sessions
+    fit = cal.geometric
+    q, xyz = _test_session(truth, q, noise, frame, delta)
+    prior = calibration_prior(fit, train.q, None, 1.5)
+    upd = register_update(fit, q, xyz, None, split, prior)
+    cov = upd.posterior_cov
+    m = 9 + len(fit.geo_index)
+    assert cov.shape == (m, m)
+    np.testing.assert_allclose(cov, cov.T, atol=1e-15)
+    assert np.linalg.eigvalsh(cov).min() > 0
+    # the registration poses add information: every parameter's posterior sd is at most its prior sd
+    prior_sd = np.sqrt(np.diag(np.linalg.inv(prior.precision))) * prior.noise_mm
+    assert np.all(np.sqrt(np.diag(cov))[9:] <= prior_sd * (1 + 1e-9))
+    assert np.sqrt(np.diag(cov))[9:].mean() < 0.9 * prior_sd.mean()
+
+
+def test_update_run_predicts_its_posterior_uncertainty_and_covers_the_same_robot(same_robot_runs):
+    frame, upd = same_robot_runs["frame"], same_robot_runs["calibration"]
+    assert frame.final.test_cov is None and frame.uncertainty_scope() == ""
+    assert upd.final.test_cov is not None
+    # the same robot: the updated model's 95 % radius holds about 95 % of the scored residuals
+    assert upd.uncertainty.inside.mean() >= 0.88
+    # and it is the narrower posterior, not the training covariance
+    assert np.median(upd.uncertainty.sigma_mm[upd.scored_index]) < np.median(frame.uncertainty.sigma_mm[frame.scored_index])
+
+
+def test_update_run_whose_change_the_prior_holds_back_fails_its_coverage_check(changed_runs):
+    from tolalloc.diagnose.recalibrate import UNCERTAINTY_SCOPE
+
+    upd = changed_runs[1]["calibration"]
+    assert upd.uncertainty.inside.mean() < 0.5  # half the change is left: systematic error the posterior does not know
+    assert any(g.startswith("uncertainty: only ") and g.endswith(f"({UNCERTAINTY_SCOPE})") for g in upd.guards)

@@ -91,9 +91,9 @@ class Diagnosis:
         return "the tracker frame and probe offset" if u is None else u.fitted()
 
     def uncertainty_scope(self) -> str:
-        """Empty, or (calibration update) that the predicted uncertainty leaves the update out; said beside every
+        """Empty, or (calibration update) that the predicted uncertainty is the update's posterior; said beside every
         coverage figure."""
-        return "" if self.calibration_update is None else UNCERTAINTY_SCOPE
+        return UNCERTAINTY_SCOPE if self.final.test_cov is not None else ""
 
     @property
     def effect(self) -> str:

@@ -21,7 +21,8 @@
   is reported as a note, without fallback.
 * :func:`prediction_uncertainty` -- per test pose the predicted 1-sigma of the final model's prediction from the
   parameter covariance of its fit (Gauss-Newton ``sigma^2 (J^T J)^-1`` over the fitted parameters, with the MAP
-  prior's precision added), and the 95 % radius of measured - predicted (prediction + measurement noise). The
+  prior's precision added; after a calibration update on a new session's registration poses, the update's
+  posterior), and the 95 % radius of measured - predicted (prediction + measurement noise). The
   fraction of scored test residuals inside that radius is the calibration check; below 85 % (and beyond 3
   binomial standard deviations below 95 %) it fires: the model misses systematic error its covariance does not
   know of.
@@ -386,7 +387,7 @@ def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None, *, unr
 
 
 def prediction_uncertainty(fit, q_train, q_test, residual_test, *, B_train=None, B_test=None, registered=None,
-                           split=None) -> PoseUncertainty:
+                           split=None, posterior_cov=None) -> PoseUncertainty:
     """Predicted uncertainty of the test predictions of ``fit`` (see the module docstring).
 
     Parameters
@@ -402,9 +403,16 @@ def prediction_uncertainty(fit, q_train, q_test, residual_test, *, B_train=None,
     registration poses, so the prediction error is ``(J_theta - J_phi G A_theta) d_theta + J_phi G n_reg``
     (``theta`` geometry and effects with the training covariance, ``phi`` the 9 registration parameters,
     ``A`` the Jacobian at the registration poses, ``G`` its least-squares inverse in ``phi``, ``n_reg`` their noise).
+    With ``posterior_cov`` (the calibration update's covariance of the frame, probe offset and updated parameters,
+    :class:`~tolalloc.diagnose.register.Registered`) the prediction covariance is ``J cov J^T`` at ``registered``:
+    the updated model's own uncertainty.
     """
     cov, noise = parameter_covariance(fit, q_train, B_train)
-    if registered is None:
+    if registered is not None and posterior_cov is not None:
+        Jt = point_jacobian(registered, q_test, B_test)
+        C = np.einsum("tik,kl,tjl->tij", Jt, posterior_cov, Jt)
+        scored = split.score_index
+    elif registered is None:
         Jt = point_jacobian(fit, q_test, B_test)
         C = np.einsum("tik,kl,tjl->tij", Jt, cov, Jt)
         scored = np.arange(len(q_test))

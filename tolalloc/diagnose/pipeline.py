@@ -214,7 +214,7 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
     update = _calibration_update(ctx, nominal, geometric, final)
-    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards, update)
+    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
     tstats = scored_test_stats(nominal, geometric, final)
     untestable = tuple(e for e in final.effects if e in ctx.untestable)
     inconc = inconclusive_reasons(check, {"nominal": nominal, "geometric": geometric, "final": final}, cal, tstats,
@@ -251,8 +251,8 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
         return nominal, geometric, final, chosen
 
     def scored(ev):
-        res, pred, registered = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
-        return replace(ev, test_mm=res, test_pred_mm=pred, test_fit=registered)
+        res, pred, registered, cov = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
+        return replace(ev, test_mm=res, test_pred_mm=pred, test_fit=registered, test_cov=cov)
 
     n2, g2 = scored(nominal), scored(geometric)
     f2 = g2 if final is geometric else scored(final)
@@ -267,8 +267,7 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
     return n2, g2, f2, c2
 
 
-def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list,
-                 update: CalibrationUpdate | None = None) -> tuple:
+def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list) -> tuple:
     """Test-file guards (appended to ``guards``): predicted uncertainty, extrapolation, final worse than nominal."""
     test = ctx.test
     if test is None:
@@ -279,7 +278,7 @@ def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, thre
         weak_probe = any(g.startswith("weakly identified probe offset") for g in guards)
         guards.append(unc.message() + ("; or the weakly identified probe offset, whose uncertainty the predicted radius "
                                        "leaves out, used at other flange directions" if weak_probe else "")
-                      + ("" if update is None else f" ({UNCERTAINTY_SCOPE})"))
+                      + ("" if final.test_cov is None else f" ({UNCERTAINTY_SCOPE})"))
     extrap = extrapolation_flags(robot, train.q, test.q)
     if extrap.message():
         guards.append(extrap.message())
@@ -323,7 +322,7 @@ def _uncertainty(ctx, final: Evaluation) -> tuple:
     """Predicted uncertainty of ``final`` on the test poses and, with ``refit``, the re-registered final fit."""
     Btr, Bte = kept_basis(ctx.bases, final), kept_basis(ctx.bases_test, final)
     unc = prediction_uncertainty(final.fit, ctx.train.q, ctx.test.q, final.test_mm, B_train=Btr, B_test=Bte,
-                                 registered=final.test_fit, split=ctx.registration)
+                                 registered=final.test_fit, split=ctx.registration, posterior_cov=final.test_cov)
     return unc, final.test_fit
 
 

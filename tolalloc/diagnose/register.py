@@ -132,11 +132,17 @@ class Registered:
     fit : Fit                      the trained fit with the test frame's ``R, p_mm, t_mm``
     pred_mm : array, shape (T, 3)  predictions of every test pose in the test frame [mm]
     residual_mm : array, shape (T - r, 3)  measured - predicted on the scored poses only [mm]
+    posterior_cov : array, shape (9 + k + m, 9 + k + m) or None   with the calibration update
+                                   (:mod:`.recalibrate`): covariance of the frame, probe offset and updated
+                                   parameters (columns of :func:`tolalloc.diagnose.guards.point_jacobian`) given
+                                   the registration poses and the prior [parameter units squared]; None for a
+                                   frame-only re-registration
     """
 
     fit: Fit
     pred_mm: np.ndarray
     residual_mm: np.ndarray
+    posterior_cov: np.ndarray | None = None
 
 
 def register_and_score(fit: Fit, q: np.ndarray, xyz: np.ndarray, extra: np.ndarray,

@@ -43,6 +43,8 @@ class Evaluation:
     test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
     oof_joint_mm : array, shape (P, 3) or None  out-of-fold residuals of the joint-space blocks (``cv="blocked"``)
     test_fit : Fit or None       ``refit``: the fit re-registered to the test file's frame when it was scored
+    test_cov : array or None     ``refit`` with the calibration update: the posterior covariance of ``test_fit``'s
+                                 frame and parameters (:class:`~tolalloc.diagnose.register.Registered`)
     """
 
     label: str
@@ -55,6 +57,7 @@ class Evaluation:
     test_pred_mm: np.ndarray | None
     oof_joint_mm: np.ndarray | None = None
     test_fit: object | None = None
+    test_cov: np.ndarray | None = None
 
     @property
     def selection_mm(self) -> np.ndarray:

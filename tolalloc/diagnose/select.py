@@ -216,16 +216,17 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
 
 
 def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray, oof_mm: np.ndarray | None = None):
-    """Residuals, predictions and the re-registered fit of ``full`` on the test file (None, None, None without one).
+    """Residuals, predictions, the re-registered fit of ``full`` on the test file and that fit's posterior
+    covariance (four Nones without a test file).
 
     ``refit``: registered on ``ctx.registration.register_index`` (with ``ctx.register_update == "calibration"`` also
-    the calibration update, :mod:`.recalibrate`, its prior inflated by the out-of-fold residuals ``oof_mm``) and
-    scored on the rest (residuals (T - r, 3), predictions in the re-registered frame, the fit in that frame); else
-    residuals and predictions (T, 3) in the measurement frame and no re-registered fit.
+    the calibration update, :mod:`.recalibrate`, its prior inflated by the out-of-fold residuals ``oof_mm``, and its
+    posterior covariance) and scored on the rest (residuals (T - r, 3), predictions in the re-registered frame, the
+    fit in that frame); else residuals and predictions (T, 3) in the measurement frame and no re-registered fit.
     """
     test = ctx.test
     if test is None:
-        return None, None, None
+        return None, None, None, None
     Bt = None
     if effects:
         Bt, _ = _stack(ctx.bases_test, effects)
@@ -235,8 +236,8 @@ def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray, oof_m
         Btr = _stack(ctx.bases, effects)[0][:, :, keep] if effects else None
         reg = reregister(full, test.q, test.xyz_mm, Bt, ctx.registration, update=ctx.register_update,
                          q_train=ctx.train.q, B_train=Btr, oof_mm=oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
-        return reg.residual_mm, reg.pred_mm, reg.fit
-    return test.xyz_mm - test_pred, test_pred, None
+        return reg.residual_mm, reg.pred_mm, reg.fit, reg.posterior_cov
+    return test.xyz_mm - test_pred, test_pred, None, None
 
 
 def _fold_prior_w(ctx, effects, keep, rows):
