@@ -27,7 +27,7 @@ def _ev(effects, oof, test=None):
 
 
 def _cand(e, sig=True):
-    return Candidate(e, True, "", 1, 0.1, 0.1, None, 1e-9 if sig else 0.5, 30.0 if sig else 0.0, sig, 0.1, "v")
+    return Candidate(e, True, "", 1, 0.1, 0.1, 1e-9 if sig else 0.5, 30.0 if sig else 0.0, sig, 0.1, "v")
 
 
 def _world(alt_scale, P=200, seed=0):
@@ -154,7 +154,7 @@ def test_summary_lines_state_the_verdict_first_and_the_json_keys():
     assert any(ln.startswith("ranking (by the clipped out-of-fold RMS of the training file") for ln in lines)
     js = d.to_dict()
     assert js["verdict"] in VERDICTS and isinstance(js["reasons"], list) and js["safe_model"]
-    assert all(c["test_rms_mm"] is None for c in js["ranking"])  # candidates never see the test file
+    assert all("test_rms_mm" not in c for c in js["ranking"])  # candidates never see the test file
     assert js["settings"]["robust_loss"] == "tukey" and "outliers" in js
 
 
@@ -185,7 +185,7 @@ def test_ambiguous_headline_keeps_the_model_structure():
 
 def test_none_says_which_effects_were_not_tested():
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
-    skipped = Candidate("thermal", False, "no temperature_c column, and no time_s column", 0, np.nan, np.nan, None,
+    skipped = Candidate("thermal", False, "no temperature_c column, and no time_s column", 0, np.nan, np.nan,
                         1.0, 0.0, False)
     st = [Stage((), 0.1, (_cand("a", sig=False), skipped), None)]
     v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
@@ -197,7 +197,7 @@ def test_none_says_which_effects_were_not_tested():
 def test_reason_lines_do_not_quote_a_model_the_backward_step_removed():
     """Forward: a, then b on top of a; backward: a removed. b's line compares with the geometric model, not a."""
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
-    back = Candidate("a", True, "backward step: not significant beside the others", 1, 0.15, 0.15, None, 0.3, 0.5,
+    back = Candidate("a", True, "backward step: not significant beside the others", 1, 0.15, 0.15, 0.3, 0.5,
                      False, 0.15, "v")  # heldout: the model without a, i.e. geometric+b
     stages = [Stage((), 0.30, (_cand("a"), _cand("b")), "a"), Stage(("a",), 0.20, (_cand("b"),), "b"),
               Stage(("a", "b"), 0.149, (back, _cand("b")), None, "a")]
@@ -233,7 +233,7 @@ def test_gravity_held_backlash_is_not_told_from_a_torque_dependent_stiffness(var
 def test_no_testable_candidate_is_inconclusive_not_none():
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
     why = "the model has 40 parameters; the training file's 12 poses give 36 coordinates, fewer than the 46 it needs"
-    st = [Stage((), 0.1, tuple(Candidate(e, False, why, 0, np.nan, np.nan, None, 1.0, 0.0, False) for e in "ab"), None)]
+    st = [Stage((), 0.1, tuple(Candidate(e, False, why, 0, np.nan, np.nan, 1.0, 0.0, False) for e in "ab"), None)]
     v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
     assert v.verdict == "inconclusive" and v.untested == ("a", "b")
     assert v.reasons[0].startswith("no candidate effect could be tested") and f"a not tested: {why}" in v.reasons

@@ -92,8 +92,8 @@ class Candidate:
     """Score of one candidate effect on top of a base model.
 
     ``heldout_rms_mm``: RMS of the training file's out-of-fold residuals, both CV schemes
-    (:attr:`Evaluation.selection_mm`); ``cv_rms_mm``: of the first scheme only; ``test_rms_mm``: always None
-    (candidates are never scored on the sealed test file).
+    (:attr:`Evaluation.selection_mm`); ``cv_rms_mm``: of the first scheme only. Candidates are never scored on the
+    sealed test file.
     """
 
     effect: str
@@ -102,7 +102,6 @@ class Candidate:
     n_params: int
     heldout_rms_mm: float
     cv_rms_mm: float
-    test_rms_mm: float | None  # always None: candidates are never scored on the sealed test file
     p_value: float
     gain_pct: float
     significant: bool
@@ -111,7 +110,7 @@ class Candidate:
 
     def to_dict(self) -> dict:
         return {"effect": self.effect, "heldout_rms_mm": self.heldout_rms_mm, "p_value": self.p_value,
-                "cv_rms_mm": self.cv_rms_mm, "test_rms_mm": self.test_rms_mm, "gain_pct": self.gain_pct,
+                "cv_rms_mm": self.cv_rms_mm, "gain_pct": self.gain_pct,
                 "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
                 "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant}
 

@@ -286,7 +286,7 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
     """Evaluate candidate ``e`` on top of ``chosen``; returns (Candidate, Evaluation or None)."""
     why = rows_problem(ctx, *_n_params(ctx, (*chosen, e)))
     if why is not None:
-        return Candidate(e, False, why, 0, float("nan"), float("nan"), None, 1.0, 0.0, False), None
+        return Candidate(e, False, why, 0, float("nan"), float("nan"), 1.0, 0.0, False), None
     ev = evaluate(ctx, (*chosen, e))
     n_new = sum(nm.startswith(e + ":") for nm in ev.param_names)
     base_r = robust_rms(current.selection_mm, clip)
@@ -299,7 +299,7 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
         reason = (f"its unclipped out-of-fold RMS {plain:.4g} mm is {plain / base_plain:.3g} x the base model's "
                   f"{base_plain:.4g} mm: some held-out predictions blow up (a fit the poses do not hold)")
     sig = bool(n_new and not reason and p < alpha / m and gain >= 100.0 * min_gain)
-    cand = Candidate(e, True, reason, n_new, ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, sig, r,
+    cand = Candidate(e, True, reason, n_new, ev.cv_rms_mm, rms(ev.oof_mm), p, gain, sig, r,
                      ctx.bases[e].variant)
     return cand, ev
 
@@ -323,7 +323,7 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
         m = max(1, sum(e in ctx.bases for e in pool))
         for e in pool:
             if e not in ctx.bases:
-                cands.append(Candidate(e, False, ctx.reasons[e], 0, float("nan"), float("nan"), None, 1.0, 0.0, False))
+                cands.append(Candidate(e, False, ctx.reasons[e], 0, float("nan"), float("nan"), 1.0, 0.0, False))
                 continue
             cand, ev = _score(ctx, chosen, e, current, clip, m, alpha, min_gain)
             if ev is not None:
@@ -364,7 +364,7 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
             keep = bool(p < alpha / m and gain >= 100.0 * min_gain)
             n_e = sum(nm.startswith(e + ":") for nm in current.param_names)
             why = "backward step: " + ("" if keep else "not ") + "significant beside the others"
-            tests.append((gain, Candidate(e, True, why, n_e, ev.cv_rms_mm, rms(ev.oof_mm), None, p, gain, keep,
+            tests.append((gain, Candidate(e, True, why, n_e, ev.cv_rms_mm, rms(ev.oof_mm), p, gain, keep,
                                           r_rest, ctx.bases[e].variant), ev))
         gain, cand, ev = min(tests, key=lambda x: x[0])
         stages.append(Stage(current.effects, current.cv_rms_mm, tuple(c for _, c, _ in tests), None,
