@@ -38,10 +38,9 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below 1), which
         are then not scored.
     register_rows : sequence of int, optional
-        With ``refit``, instead of ``register_n``: the rows of the test file that register the frame (e.g. a
-        registration set measured at the start of the session, ``range(1, 61)``); every other test row is scored.
-        Rows are the test file's data rows from 1 (header and ``#`` lines not counted; a DataFrame's rows by
-        position), the numbers its error messages and the JSON's ``test.registration.registration_rows`` use.
+        With ``refit``, instead of ``register_n``: the test file's rows that register the frame (e.g. a registration
+        set measured first, ``range(1, 61)``), its data rows from 1 as its error messages and the JSON's
+        ``registration_rows`` number them (a DataFrame's by position); every other test row is scored.
     register_update : {"frame", "calibration"}, optional
         With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
         the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
@@ -86,18 +85,12 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     'backlash'
     """
     from tolalloc.diagnose import diagnose
-    from tolalloc.diagnose.measurements import check_train_test
 
     alpha, folds, seed, cv_rows, rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows,
                                                     gap_split, progress, register_rows)
     _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame, test)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    tr, te = _read(rob, train, test, progress)
-    if folds > tr.n_poses // 2:
-        raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
-                            f"training poses (at least 2 poses held out per fold), got {folds}.")
-    if te is not None:
-        check_train_test(tr, te, tr.source, te.source)
+    tr, te = _read(rob, train, test, progress, folds)
     d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
                  register_n=register_n, register_rows=rows, progress=progress,
                  robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
@@ -143,8 +136,10 @@ def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_upda
         inputs.check_positive(target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
 
 
-def _read(robot, train, test, progress):
-    """The training and test measurements (paths or DataFrames), with a progress bar for large files."""
+def _read(robot, train, test, progress, folds):
+    """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
+    ``folds`` than the training file holds and a test file that shares poses with it."""
+    from tolalloc.diagnose.measurements import check_train_test
     from tolalloc.diagnose.scale import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
@@ -155,6 +150,11 @@ def _read(robot, train, test, progress):
             te = None if test is None else inputs.as_measurements(test, robot, "test")
         finally:
             bar.close()
+    if folds > tr.n_poses // 2:
+        raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
+                            f"training poses (at least 2 poses held out per fold), got {folds}.")
+    if te is not None:
+        check_train_test(tr, te, tr.source, te.source)
     return tr, te
 
 
