@@ -110,9 +110,9 @@ def test_split_from_rows_numbers_rows_as_measurements_do():
                                     r"at least 5 registration and 5 scored poses -- give more rows"),
     (dict(register_rows=range(1, 37)), r"the 36 rows given leave 4 of the 40 test poses to score; .* -- give fewer "
                                        r"rows or use a larger test file"),
-    (dict(register_rows=[1, 2.5, 3]), r"expected data rows of the test file, whole numbers from 1 .* got 2.5 among "
+    (dict(register_rows=[1, 2.5, 3]), r"expected data rows of the test file, numbered from 1 .*: whole numbers .* got 2.5 among "
                                       r"the 3 rows given"),
-    (dict(register_rows=[0, 1, 2, 3, 4]), r"whole numbers from 1 .* got 0 among the 5 rows given"),
+    (dict(register_rows=[0, 1, 2, 3, 4]), r"numbered from 1 .*: whole numbers .* got 0 among the 5 rows given"),
     (dict(register_rows="1-10"), r"expected a list of data rows of the test file, .* got '1-10'"),
     (dict(register_rows=range(1, 11), test_frame="same"), r"register_rows needs `test_frame` refit"),
 ])

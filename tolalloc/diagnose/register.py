@@ -143,8 +143,9 @@ def registration_split(q: np.ndarray, revolute: np.ndarray, register_n: float = 
 
 
 #: What a ``register_rows`` value is, for the messages that refuse one.
-_ROWS_WANTED = ("data rows of the test file, whole numbers from 1 as its error messages and the JSON's "
-                "registration_rows number them (e.g. list(range(1, 61)) for its first 60 rows)")
+_ROWS_WANTED = "data rows of the test file, numbered from 1 as in its error messages and the JSON's registration_rows"
+#: ... and as a Python value.
+_ROWS_VALUE = f"{_ROWS_WANTED}: whole numbers (e.g. list(range(1, 61)) for its first 60 rows)"
 
 
 def check_register_rows(register_rows, register_n=None, *, test_given: bool, test_frame: str):
@@ -157,9 +158,11 @@ def check_register_rows(register_rows, register_n=None, *, test_given: bool, tes
     if register_rows is None:
         return None
     if register_n is not None:
+        number = isinstance(register_n, (int, float, np.number)) and not isinstance(register_n, (bool, np.bool_))
+        n = f"{register_n:g}" if number else describe(register_n)
         raise ArgumentError("register_rows", f"and `register_n` are exclusive: expected either the rows that register "
-                            f"the frame or how many test poses to choose in joint space, got both (`register_n` "
-                            f"{describe(register_n)}); leave one of them out.")
+                            f"the frame or how many test poses to choose in joint space, got both (`register_n` {n}); "
+                            "leave one of them out.")
     if test_frame != "refit":
         raise ArgumentError("register_rows", "needs `test_frame` refit: only a test file in another frame is "
                             "re-registered.")
@@ -173,12 +176,12 @@ def register_row_numbers(register_rows) -> list:
     """``register_rows`` as a list of int (the order given): whole numbers >= 1, each once; else
     :class:`ArgumentError`. Needs no test file."""
     if isinstance(register_rows, (str, bytes, dict)) or not np.iterable(register_rows):
-        raise ArgumentError("register_rows", f"expected a list of {_ROWS_WANTED}, got {describe(register_rows)}.")
+        raise ArgumentError("register_rows", f"expected a list of {_ROWS_VALUE}, got {describe(register_rows)}.")
     items = list(register_rows)
     nums = [whole_number(v) for v in items]
     bad = [v for v, n in zip(items, nums) if n is None or n < 1]
     if bad:
-        raise ArgumentError("register_rows", f"expected {_ROWS_WANTED}, got {describe(bad[0])} among the "
+        raise ArgumentError("register_rows", f"expected {_ROWS_VALUE}, got {describe(bad[0])} among the "
                             f"{len(items)} rows given; give the row numbers of the test file.")
     counts: dict = {}
     for n in nums:
