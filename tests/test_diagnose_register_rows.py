@@ -69,7 +69,8 @@ def test_rows_of_a_previous_run_reproduce_its_split_and_figures(files):
     again = _run(files, test="gap.csv", register_rows=rows)
     a, b = first.summary(), again.summary()
     assert b["test"]["registration"]["registration_rows"] == rows
-    np.testing.assert_array_equal(again.diagnosis.registration.register_index, first.diagnosis.registration.register_index)
+    np.testing.assert_array_equal(again.diagnosis.registration.register_index,
+                                  first.diagnosis.registration.register_index)
     for block in ("rms_mm", "p95_mm", "max_mm"):
         assert b["test"][block] == a["test"][block]
     for key in ("rotation", "translation_mm", "target_offset_mm"):
@@ -104,14 +105,15 @@ def test_split_from_rows_numbers_rows_as_measurements_do():
      r"register_rows and `register_n` are exclusive: expected either the rows .* got both \(`register_n` 10\)"),
     (dict(register_rows=[1, 2, 3, 4, 5, 5, 6, 6]), r"expected each registration row once, got row 5 2 times "
                                                    r"\(2 rows repeated: 5, 6\); remove the repeats"),
-    (dict(register_rows=[*range(1, 8), 41, 99]), r"register_rows: row 41 is not a data row of .*test.csv \(2 of the "
-                                                 r"rows given are not: 41, 99\): its 40 poses are rows 1..40; expected"),
+    (dict(register_rows=[*range(1, 8), 41, 99]),
+     r"register_rows: row 41 is not a data row of .*test.csv \(2 of the rows given are not: 41, 99\): its 40 poses "
+     r"are rows 1..40; expected"),
     (dict(register_rows=[1, 2, 3]), r"the 3 rows given leave 37 of the 40 test poses to score; re-registering needs "
                                     r"at least 5 registration and 5 scored poses -- give more rows"),
     (dict(register_rows=range(1, 37)), r"the 36 rows given leave 4 of the 40 test poses to score; .* -- give fewer "
                                        r"rows or use a larger test file"),
-    (dict(register_rows=[1, 2.5, 3]), r"expected data rows of the test file, numbered from 1 .*: whole numbers .* got 2.5 among "
-                                      r"the 3 rows given"),
+    (dict(register_rows=[1, 2.5, 3]),
+     r"expected data rows of the test file, numbered from 1 .*: whole numbers .* got 2.5 among the 3 rows given"),
     (dict(register_rows=[0, 1, 2, 3, 4]), r"numbered from 1 .*: whole numbers .* got 0 among the 5 rows given"),
     (dict(register_rows="1-10"), r"expected a list of data rows of the test file, .* got '1-10'"),
     (dict(register_rows=range(1, 11), test_frame="same"), r"register_rows needs `test_frame` refit"),
@@ -140,7 +142,8 @@ def test_row_ranges_syntax():
     assert row_ranges_text([10, 9, 1, 2, 3, 7]) == "1-3,7,9-10"
     assert row_ranges(row_ranges_text([5, 1, 2, 40])) == [1, 2, 5, 40]
     for bad, extra in (("1-a", ""), ("", ""), ("1,,2", ""), ("1-2-3", ""), ("0-4", "; rows count from 1"),
-                       ("9-5", r"; a range runs upwards \(5-9, not 9-5\)"), ("1-99999999999", "; a range spans at most")):
+                       ("9-5", r"; a range runs upwards \(5-9, not 9-5\)"),
+                       ("1-99999999999", "; a range spans at most")):
         with pytest.raises(argparse.ArgumentTypeError, match="expected data rows of the test file from 1 as numbers "
                                                              "and inclusive ranges separated by commas, e.g. "
                                                              f"1-60,75,80-90, got '{bad}'{extra}"):
@@ -151,8 +154,8 @@ def test_cli_register_rows(files, capsys, tmp_path):
     base = ["diagnose", "tool_changer", "--train", str(files / "train.csv"), "--test", str(files / "test.csv"),
             "--folds", "3", "--json", str(tmp_path / "o.json"), "--predictions", str(tmp_path / "p.csv")]
     for extra, said in ((["--test-frame", "refit", "--register-rows", "1-x"],
-                         "argument --register-rows: expected data rows of the test file from 1 as numbers and inclusive "
-                         "ranges separated by commas, e.g. 1-60,75,80-90, got '1-x'"),
+                         "argument --register-rows: expected data rows of the test file from 1 as numbers and "
+                         "inclusive ranges separated by commas, e.g. 1-60,75,80-90, got '1-x'"),
                         (["--test-frame", "refit", "--register-rows", "1-10", "--register-n", "10"],
                          "error: --register-rows and --register-n are exclusive"),
                         (["--register-rows", "1-10"], "error: --register-rows needs --test-frame refit"),
