@@ -330,14 +330,15 @@ DIAGNOSE_VALID = {
     "robot": st.just(TC), "train": st.builds(lambda: measurement_frame().iloc[:36]),
     "test": omit_or(st.builds(lambda: measurement_frame().iloc[36:])), "folds": st.just(2),
     "alpha": omit_or(st.sampled_from([0.01, 0.05])), "seed": omit_or(st.integers(0, 100)),
-    "test_frame": st.just(OMIT), "register_n": st.just(OMIT), "cv_rows": st.just(OMIT), "gap_split": st.just(OMIT),
-    "progress": omit_or(st.just(False)), "trust_units": omit_or(st.booleans()),
+    "test_frame": st.just(OMIT), "register_n": st.just(OMIT), "register_rows": st.just(OMIT), "cv_rows": st.just(OMIT),
+    "gap_split": st.just(OMIT), "progress": omit_or(st.just(False)), "trust_units": omit_or(st.booleans()),
 }
 DIAGNOSE_WRONG = {
     "robot": bad(st.just(UR10), generated_robots(1, 6)), "train": bad(measurement_frames()),
     "test": bad(measurement_frames()), "folds": bad(counts()), "alpha": bad(numbers_near_bounds()),
     "seed": bad(counts()), "test_frame": bad(st.sampled_from(["refit", "other"])),
-    "register_n": bad(numbers_near_bounds()), "cv_rows": bad(counts()), "gap_split": bad(st.booleans()),
+    "register_n": bad(numbers_near_bounds()), "register_rows": bad(st.lists(st.integers(-1, 40), max_size=12)),
+    "cv_rows": bad(counts()), "gap_split": bad(st.booleans()),
 }
 
 

@@ -161,7 +161,8 @@ def command_lines(draw):
         test = _write("test.csv", measurement_frame().iloc[36:].to_csv(index=False))
         argv += ["--train", train, "--folds", "2"] + flag_values(draw, {
             "--test": st.sampled_from([test, train, "none.csv"]), "--test-frame": st.sampled_from(["same", "refit"]),
-            "--register-n": numbers(), "--alpha": numbers(), "--seed": numbers(), "--cv-rows": numbers(),
+            "--register-n": numbers(), "--register-rows": st.sampled_from(["1-10", "1-5,5", "3-1", "x", "30-99"]),
+            "--alpha": numbers(), "--seed": numbers(), "--cv-rows": numbers(),
             "--json": st.sampled_from(["-", "d.json", "adir"]), "--predictions": st.sampled_from(["p.csv", "adir"]),
             "--report": st.sampled_from(["rep", "afile"]), "--trust-units": None, "--gap-split": None,
             "--progress": None, "--no-progress": None})

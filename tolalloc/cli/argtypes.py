@@ -9,7 +9,10 @@ from __future__ import annotations
 import argparse
 import math
 
-__all__ = ["count", "seed", "positive_float", "finite_float", "nonnegative_int"]
+__all__ = ["count", "seed", "positive_float", "finite_float", "nonnegative_int", "row_ranges", "MAX_RANGE_ROWS"]
+
+#: Most rows one ``row_ranges`` range may span (a slip such as ``1-10000000000`` is refused, not expanded).
+MAX_RANGE_ROWS = 10_000_000
 
 
 def _number(text: str) -> float:
@@ -70,3 +73,23 @@ def positive_float(text: str) -> float:
     if not (math.isfinite(x) and x > 0):
         raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text!r}")
     return x
+
+
+def row_ranges(text: str) -> list:
+    """Row numbers from 1 as comma-separated numbers and inclusive ranges, ``1-60,75,80-90`` -> [1, ..., 60, 75,
+    80, ..., 90], in the order written (a row written twice is kept twice: the command refuses it by name)."""
+    want = ("expected data rows of the test file from 1 as numbers and inclusive ranges separated by commas, "
+            f"e.g. 1-60,75,80-90, got {text!r}")
+    rows = []
+    for part in str(text).split(","):
+        ends = [e.strip() for e in part.split("-")]
+        if not 1 <= len(ends) <= 2 or not all(e.isascii() and e.isdigit() for e in ends):
+            raise argparse.ArgumentTypeError(want)
+        lo, hi = int(ends[0]), int(ends[-1])
+        if lo < 1 or hi < lo:
+            raise argparse.ArgumentTypeError(want + ("; rows count from 1" if lo < 1 else
+                                                     f"; a range runs upwards ({hi}-{lo}, not {lo}-{hi})"))
+        if hi - lo + 1 > MAX_RANGE_ROWS:
+            raise argparse.ArgumentTypeError(want + f"; a range spans at most {MAX_RANGE_ROWS:,} rows")
+        rows.extend(range(lo, hi + 1))
+    return rows

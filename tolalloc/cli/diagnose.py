@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.cli.argtypes import count, finite_float, seed
+from tolalloc.cli.argtypes import count, finite_float, row_ranges, seed
 from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_kwargs, write_json
 
 
@@ -23,12 +23,17 @@ def register(sub) -> None:
     p.add_argument("--test", metavar="TEST.csv", help="held-out measurements, scored only")
     p.add_argument("--test-frame", choices=("same", "refit"), default="same",
                    help="'refit': the test file is another session in another tracker frame; its registration "
-                   "and target offset are re-estimated on --register-n test poses, and only the other test poses "
-                   "are scored (default: same)")
+                   "and target offset are re-estimated on --register-n test poses (or the --register-rows), and only "
+                   "the other test poses are scored (default: same)")
     p.add_argument("--register-n", type=finite_float, metavar="N",
                    help="with --test-frame refit: how many test poses register the frame -- a count (>= 5, default 30) "
                    "or, below 1, a fraction of the test file; chosen spread in joint space (seeded by --seed), "
                    "used for the registration only and never scored")
+    p.add_argument("--register-rows", type=row_ranges, metavar="SPEC",
+                   help="with --test-frame refit, instead of --register-n: the rows of the test file that register the "
+                   "frame, e.g. 1-60 for a registration set measured at the start of the session, or 1-60,75,80-90 "
+                   "(data rows from 1, header not counted, ranges inclusive; the numbers the JSON's "
+                   "registration_rows reports); every other test row is scored")
     p.add_argument("--register-update", choices=("frame", "calibration"), default=None,
                    help="with --test-frame refit: what the registration poses re-fit -- 'frame' (default): the tracker "
                    "frame and probe offset, the trained model frozen; 'calibration': also a correction of the trained "
@@ -78,7 +83,8 @@ def cmd_diagnose(args) -> int:
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,
-                                register_n=args.register_n, register_update=args.register_update, folds=args.folds, alpha=args.alpha, seed=args.seed,
+                                register_n=args.register_n, register_rows=args.register_rows,
+                                register_update=args.register_update, folds=args.folds, alpha=args.alpha, seed=args.seed,
                                 cv_rows=args.cv_rows, gap_split=args.gap_split, progress=args.progress,
                                 robust_loss=args.robust_loss, target_offset_mm=args.target_offset_mm,
                                 target_offset_sd_mm=args.target_offset_sd_mm,

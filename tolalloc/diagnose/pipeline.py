@@ -21,7 +21,7 @@ from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.recalibrate import (REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, inflation_factor,
                                            update_loss)
-from tolalloc.diagnose.register import REGISTER_N, register_count
+from tolalloc.diagnose.register import REGISTER_N, check_register_rows, register_count, split_from_rows
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
                                      progress_scope, subsample_index)
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
@@ -54,7 +54,7 @@ def _line_guard(robot: Robot, train: Measurements) -> str | None:
 
 
 def _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss, target_offset_mm,
-                target_offset_sd_mm, register_update="frame"):
+                target_offset_sd_mm, register_update="frame", register_rows=None):
     """Validate the arguments of :func:`diagnose`; returns the target-offset prior (mean, sd) or None."""
     if test_frame not in ("same", "refit"):
         raise TolallocError(f"test_frame: expected 'same' or 'refit', got {test_frame!r}.")
@@ -73,8 +73,12 @@ def _check_args(robot, train, test, test_frame, folds, register_n, subsample_row
         if m is not None and m.q.shape[1] != robot.n_joints:
             raise TolallocError(f"{name}: the measurements have {m.q.shape[1]} joint columns but robot "
                                 f"{robot.name!r} has {robot.n_joints} joints; is it a file of another robot?")
-    if test is not None and test_frame == "refit":
-        register_count(test.n_poses, register_n)  # a bad --register-n fails before any fit
+    check_register_rows(register_rows, register_n, test_given=test is not None, test_frame=test_frame)
+    if test is not None and test_frame == "refit":  # a bad --register-n or --register-rows fails before any fit
+        if register_rows is None:
+            register_count(test.n_poses, REGISTER_N if register_n is None else register_n)
+        else:
+            split_from_rows(register_rows, test.n_poses, test.rows, test.source)
     if subsample_rows < MIN_SUBSAMPLE_ROWS:
         raise TolallocError(f"subsample_rows: expected at least {MIN_SUBSAMPLE_ROWS} rows for the cross-validation "
                             f"subsample, got {subsample_rows}.")
@@ -99,9 +103,10 @@ def _check_args(robot, train, test, test_frame, folds, register_n, subsample_row
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
              test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
-             register_n: float = REGISTER_N, cv: str = "blocked", progress: bool | None = False,
+             register_n: float | None = None, cv: str = "blocked", progress: bool | None = False,
              subsample_rows: int = SUBSAMPLE_ROWS, robust_loss: str = DEFAULT_LOSS,
-             target_offset_mm=None, target_offset_sd_mm=None, register_update: str = "frame") -> Diagnosis:
+             target_offset_mm=None, target_offset_sd_mm=None, register_update: str = "frame",
+             register_rows=None) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     The **test file is sealed**: the variants, fold counts, clip level, significance tests, effect selection and
@@ -120,8 +125,12 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     test_frame : {"same", "refit"}
         ``refit``: the test file is in another tracker frame (another session); its registration and
         target offset are re-estimated on ``register_n`` test poses spread in joint space
-        (:mod:`.register`), and only the other test poses are scored.
-    register_n : float          ``refit``: registration poses, a count (>= 1, default 30) or a fraction (< 1)
+        (:mod:`.register`), or on the ``register_rows``, and only the other test poses are scored.
+    register_n : float, optional  ``refit``: registration poses, a count (>= 1, None: 30) or a fraction (< 1)
+    register_rows : sequence of int, optional
+        ``refit``, instead of ``register_n``: the test rows that register the frame (and fit the update), numbered
+        as ``test.rows`` and the JSON's ``registration_rows`` number them (:func:`.register.split_from_rows`);
+        every other test row is scored.
     register_update : {"frame", "calibration"}
         ``refit``: what the registration poses re-fit. ``frame`` (default): the tracker frame and the probe offset,
         the trained model frozen. ``calibration``: also a correction of the trained geometric and effect
@@ -145,7 +154,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         it the training fits leave the offset free and the folds borrow the training fit's (:mod:`.select`).
     """
     t_prior = _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss,
-                          target_offset_mm, target_offset_sd_mm, register_update)
+                          target_offset_mm, target_offset_sd_mm, register_update, register_rows)
     with threadpool_limits(threads), progress_scope(progress):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol, loss=robust_loss, t_prior=t_prior)
@@ -154,7 +163,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         cv_train = train if sub is None else train.subset(sub)
         ctx = make_context(cal, cv_train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
                            register_n=register_n, cv=cv, t_prior=t_prior, loss=robust_loss,
-                           register_update=register_update)
+                           register_update=register_update, register_rows=register_rows)
         sel = _select(ctx, alpha, min_gain, max_effects, seed)
         subsample = None
         if sub is not None:

@@ -16,6 +16,12 @@ error at the registration poses. The error of a model trained on another session
 extrapolates most -- at the extremes of the test series -- so registering there tilts the frame towards
 the worst poses and adds that error to every scored pose (on the real UR10 across sessions, farthest-point
 sampling made the re-registered geometric model score worse than the nominal one).
+
+A session that starts by measuring a designed registration set names those rows instead (``register_rows``,
+:func:`split_from_rows`): they register the frame and every other test row is scored. Rows are numbered as
+:attr:`~tolalloc.diagnose.measurements.Measurements.rows` numbers them -- the 1-based data rows of the test file
+(header and ``#`` lines excluded, rows skipped for empty cells keep their numbers; a DataFrame's rows by position),
+the numbers the JSON key ``registration_rows`` reports -- and 1-based positions for a set built without ``rows``.
 """
 
 from __future__ import annotations
@@ -26,12 +32,13 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.cluster.vq import kmeans2
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError, describe, whole_number
 from tolalloc.diagnose.calibrate import Fit, fit_model, kabsch
 from tolalloc.diagnose.gap import joint_features
 
-__all__ = ["REGISTER_N", "MIN_REGISTER", "MIN_SCORED", "RegistrationSplit", "registration_split", "register_count",
-           "Registered", "register_and_score"]
+__all__ = ["REGISTER_N", "MIN_REGISTER", "MIN_SCORED", "CHOSEN_BY", "RegistrationSplit", "registration_split",
+           "register_count", "register_row_numbers", "check_register_rows", "split_from_rows", "Registered",
+           "register_and_score"]
 
 #: Default number of test poses the registration is estimated on.
 REGISTER_N = 30
@@ -39,6 +46,8 @@ REGISTER_N = 30
 MIN_REGISTER = 5
 #: Fewer scored poses than this give no usable test figure.
 MIN_SCORED = 5
+#: How the registration poses were chosen: k-means in joint space (``register_n``), or named (``register_rows``).
+CHOSEN_BY = ("kmeans", "given rows")
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,12 +58,17 @@ class RegistrationSplit:
     ----------
     register_index : array of int, shape (r,)   test poses (0-based, sorted) the registration is fitted on
     score_index : array of int, shape (T - r,)  the other test poses, the only ones scored
-    requested : float                           ``--register-n`` as given (count >= 1 or fraction < 1)
+    requested : float or None                   ``--register-n`` as given (count >= 1 or fraction < 1); None when
+                                                the rows were given (``register_rows``)
+    chosen_by : str                             one of :data:`CHOSEN_BY`: ``kmeans`` (nearest each k-means
+                                                centre, :func:`registration_split`) or ``given rows``
+                                                (:func:`split_from_rows`)
     """
 
     register_index: np.ndarray
     score_index: np.ndarray
-    requested: float
+    requested: float | None
+    chosen_by: str = "kmeans"
 
     @property
     def n_poses(self) -> int:
@@ -64,10 +78,15 @@ class RegistrationSplit:
         """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``); ``fitted``: what the
         registration poses fitted."""
         pick = (lambda idx: (idx + 1).tolist()) if rows is None or not len(rows) else (lambda idx: rows[idx].tolist())
+        how = ("pose nearest each k-means centre in joint space (seeded), representative of the test series"
+               if self.chosen_by == "kmeans" else "the rows given as registration rows (register_rows)")
         return {"register_n_requested": self.requested, "registration_poses": len(self.register_index),
                 "scored_poses": len(self.score_index), "registration_rows": pick(self.register_index),
-                "method": "pose nearest each k-means centre in joint space (seeded), representative of the test series; "
-                          f"{fitted} re-fitted on these rows only, the other rows scored"}
+                "method": f"{how}; {fitted} re-fitted on these rows only, the other rows scored"}
+
+    def chosen_text(self) -> str:
+        """How the registration poses were chosen, for a sentence about them (``... test poses <text> fitted``)."""
+        return "spread in joint space" if self.chosen_by == "kmeans" else "given as registration rows"
 
 
 def register_count(n_test: int, register_n: float) -> int:
@@ -121,6 +140,106 @@ def registration_split(q: np.ndarray, revolute: np.ndarray, register_n: float = 
         chosen = np.concatenate([chosen, rng.choice(rest, n - len(chosen), replace=False)])
     reg = np.sort(chosen.astype(int))
     return RegistrationSplit(reg, np.setdiff1d(np.arange(T), reg), float(register_n))
+
+
+#: What a ``register_rows`` value is, for the messages that refuse one.
+_ROWS_WANTED = "data rows of the test file, numbered from 1 as in its error messages and the JSON's registration_rows"
+#: ... and as a Python value.
+_ROWS_VALUE = f"{_ROWS_WANTED}: whole numbers (e.g. list(range(1, 61)) for its first 60 rows)"
+
+
+def check_register_rows(register_rows, register_n=None, *, test_given: bool, test_frame: str):
+    """The rules of ``register_rows`` that need no test file's content; returns its row numbers (a list of int in
+    the order given) or None when it is None.
+
+    ``register_rows`` and ``register_n`` are exclusive; the rows need a test file and ``test_frame='refit'``; they
+    must be whole numbers from 1, each given once (:func:`register_row_numbers`). Raises :class:`ArgumentError`.
+    """
+    if register_rows is None:
+        return None
+    if register_n is not None:
+        number = isinstance(register_n, (int, float, np.number)) and not isinstance(register_n, (bool, np.bool_))
+        n = f"{register_n:g}" if number else describe(register_n)
+        raise ArgumentError("register_rows", f"and `register_n` are exclusive: expected either the rows that register "
+                            f"the frame or how many test poses to choose in joint space, got both (`register_n` {n}); "
+                            "leave one of them out.")
+    if test_frame != "refit":
+        raise ArgumentError("register_rows", "needs `test_frame` refit: only a test file in another frame is "
+                            "re-registered.")
+    if not test_given:
+        raise ArgumentError("register_rows", "needs `test`: only a test file in another frame is re-registered, and "
+                            "none was given; pass the test file or leave this option out.")
+    return register_row_numbers(register_rows)
+
+
+def register_row_numbers(register_rows) -> list:
+    """``register_rows`` as a list of int (the order given): whole numbers >= 1, each once; else
+    :class:`ArgumentError`. Needs no test file."""
+    if isinstance(register_rows, (str, bytes, dict)) or not np.iterable(register_rows):
+        raise ArgumentError("register_rows", f"expected a list of {_ROWS_VALUE}, got {describe(register_rows)}.")
+    items = list(register_rows)
+    nums = [whole_number(v) for v in items]
+    bad = [v for v, n in zip(items, nums) if n is None or n < 1]
+    if bad:
+        raise ArgumentError("register_rows", f"expected {_ROWS_VALUE}, got {describe(bad[0])} among the "
+                            f"{len(items)} rows given; give the row numbers of the test file.")
+    counts: dict = {}
+    for n in nums:
+        counts[n] = counts.get(n, 0) + 1
+    twice = sorted(n for n, c in counts.items() if c > 1)
+    if twice:
+        more = f" ({len(twice)} rows repeated: {_listed(twice)})" if len(twice) > 1 else ""
+        raise ArgumentError("register_rows", f"expected each registration row once, got row {twice[0]} "
+                            f"{counts[twice[0]]} times{more}; remove the repeats.")
+    return nums
+
+
+def _listed(values, limit: int = 8) -> str:
+    """``values`` (ints) for a message: the first ``limit`` of them, then how many more."""
+    values = list(values)
+    text = ", ".join(str(v) for v in values[:limit])
+    return text + (f" and {len(values) - limit} more" if len(values) > limit else "")
+
+
+def split_from_rows(register_rows, n_test: int, rows: np.ndarray | None = None,
+                    source: str = "the test file") -> RegistrationSplit:
+    """The split that registers the frame on the given test rows and scores every other test pose.
+
+    Parameters
+    ----------
+    register_rows : sequence of int   test rows of the registration, numbered as ``rows`` numbers the poses
+    n_test : int                      test poses
+    rows : array of int, shape (n_test,), optional  file row of every test pose (``Measurements.rows``); empty or
+                                      None: 1-based positions
+    source : str                      the test file, for the messages
+
+    Raises :class:`ArgumentError` for a row that is not a whole number >= 1, a row given twice, a row that is not
+    among ``rows``, or fewer than :data:`MIN_REGISTER` registration or :data:`MIN_SCORED` scored poses. A split's
+    ``to_dict(rows)["registration_rows"]`` given back as ``register_rows`` gives the same split.
+    """
+    nums = register_row_numbers(register_rows)
+    file_rows = np.arange(1, n_test + 1) if rows is None or not len(rows) else np.asarray(rows, dtype=np.int64)
+    order = np.argsort(file_rows, kind="stable")
+    have = file_rows[order]
+    top = int(have[-1]) if len(have) else 0
+    want = np.array([n if n <= top else top + 1 for n in nums], dtype=np.int64)  # beyond the last row: not found
+    at = np.minimum(np.searchsorted(have, want), max(len(have) - 1, 0))
+    found = (have[at] == want) if len(have) else np.zeros(len(want), bool)
+    if not found.all():
+        lost = [n for n, ok in zip(nums, found) if not ok]
+        gaps = np.setdiff1d(np.arange(int(have[0]), top + 1), have) if len(have) else np.zeros(0, int)
+        within = f"{have[0]}..{top}" + (f" without {_listed(gaps.tolist())}" if len(gaps) else "")
+        more = f" ({len(lost)} of the rows given are not: {_listed(lost)})" if len(lost) > 1 else ""
+        raise ArgumentError("register_rows", f"row {lost[0]} is not a data row of {source}{more}: its {n_test} poses "
+                            f"are rows {within}; expected {_ROWS_WANTED}; check the row numbers or the test file.")
+    r = len(nums)
+    if r < MIN_REGISTER or n_test - r < MIN_SCORED:
+        advice = "give more rows" if r < MIN_REGISTER else "give fewer rows or use a larger test file"
+        raise ArgumentError("register_rows", f"the {r} rows given leave {n_test - r} of the {n_test} test poses "
+                            f"to score; re-registering needs at least {MIN_REGISTER} registration and {MIN_SCORED} "
+                            f"scored poses -- {advice}.")
+    reg = np.sort(order[at])
+    return RegistrationSplit(reg, np.setdiff1d(np.arange(n_test), reg), None, "given rows")
 
 
 @dataclass(frozen=True, eq=False)

@@ -49,7 +49,7 @@ from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
 from tolalloc.diagnose.guards import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
-from tolalloc.diagnose.register import REGISTER_N, registration_split
+from tolalloc.diagnose.register import REGISTER_N, registration_split, split_from_rows
 from tolalloc.diagnose.thermal import time_problem
 from tolalloc.diagnose.scores import (Candidate, Evaluation, Stage, clip_level, error_stats, paired_pvalue, rms,
                                       robust_rms)
@@ -376,8 +376,9 @@ def _backward(ctx, current: Evaluation, evals: dict, stages: list, clip, alpha, 
 
 
 def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_frame: str = "same",
-                 tol: float = 1e-3, register_n: float = REGISTER_N, cv: str = "blocked",
-                 gear_ratio=None, t_prior=None, loss=None, register_update: str = "frame") -> _Context:
+                 tol: float = 1e-3, register_n: float | None = None, cv: str = "blocked",
+                 gear_ratio=None, t_prior=None, loss=None, register_update: str = "frame",
+                 register_rows=None) -> _Context:
     """Shared state of one diagnosis (folds, effect variants and bases; with ``test_frame='refit'`` the
     registration split).
 
@@ -385,10 +386,16 @@ def make_context(cal, train, test=None, *, folds: int = 5, seed: int = 0, test_f
     scored), ``time``, ``joint`` or ``random`` (see :func:`make_folds`). ``gear_ratio`` (n,): known gear
     ratios, enabling the motor-side transmission variant. ``t_prior``: (mean (3,), sd (3,)) [mm] of the target
     offset for every fit (default: folds borrow the full fit's, see the module docstring). ``loss``: robust loss
-    of the fits (:func:`tolalloc.diagnose.calibrate.fit_model`).
+    of the fits (:func:`tolalloc.diagnose.calibrate.fit_model`). ``register_rows``: the test rows that register
+    the frame (:func:`~tolalloc.diagnose.register.split_from_rows`); else ``register_n`` poses (None:
+    :data:`~tolalloc.diagnose.register.REGISTER_N`) chosen by k-means (:func:`~tolalloc.diagnose.register.registration_split`).
     """
     ctx = _Context(cal, train, test, folds, seed, test_frame, tol, cv, gear_ratio, t_prior, loss)
     ctx.register_update = register_update
-    ctx.registration = (registration_split(test.q, cal.geometric.model.robot.revolute_mask, register_n, seed)
-                        if test is not None and test_frame == "refit" else None)
+    ctx.registration = None
+    if test is not None and test_frame == "refit":
+        ctx.registration = (split_from_rows(register_rows, test.n_poses, test.rows, test.source)
+                            if register_rows is not None else
+                            registration_split(test.q, cal.geometric.model.robot.revolute_mask,
+                                               REGISTER_N if register_n is None else register_n, seed))
     return ctx

@@ -92,7 +92,8 @@ def summary_lines(d: Diagnosis) -> list:
                      f"rows (seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; final fits on all rows")
     if d.test is not None:
         reg = d.registration
-        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses fitted "
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses"
+               f"{' (the given registration rows)' if reg.chosen_by == 'given rows' else ''} fitted "
                f"{d.registration_fitted()} and are not scored" if reg is not None
                else f"{d.test.n_poses} poses, training tracker frame")
         lines.append(f"test file {d.test.source} ({how}; sealed: scored once, after the choice) [mm]:")
@@ -210,7 +211,7 @@ def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
     lines = []
     if d.test is not None:
         reg = d.registration
-        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} test poses spread in joint space "
+        how = (f"{len(reg.score_index)} scored poses; {len(reg.register_index)} test poses {reg.chosen_text()} "
                f"fitted {d.registration_fitted()} and are **not** scored (rows in the JSON, "
                "`registration` column of the predictions)" if reg is not None else
                f"{d.test.n_poses} poses in the training tracker frame")

@@ -19,8 +19,8 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
                           progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,
-                          target_offset_sd_mm=None, register_update: str | None = None, tool: str | None = None,
-                          trust_units: bool = False) -> "MeasurementDiagnosis":
+                          target_offset_sd_mm=None, register_update: str | None = None, register_rows=None,
+                          tool: str | None = None, trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
 
     Calibrates the tracker registration, target offset and identifiable geometric errors on ``train``, breaks the
@@ -37,6 +37,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         ``refit``: the test file is another session in another tracker frame; its registration and target offset
         are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below 1), which
         are then not scored.
+    register_rows : sequence of int, optional
+        With ``refit``, instead of ``register_n``: the test file's rows that register the frame (e.g. a registration
+        set measured first, ``range(1, 61)``), its data rows from 1 as its error messages and the JSON's
+        ``registration_rows`` number them (a DataFrame's by position); every other test row is scored.
     register_update : {"frame", "calibration"}, optional
         With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
         the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
@@ -81,26 +85,20 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     'backlash'
     """
     from tolalloc.diagnose import diagnose
-    from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.register import REGISTER_N
 
-    alpha, folds, seed, cv_rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split,
-                                              progress)
+    alpha, folds, seed, cv_rows, rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows,
+                                                    gap_split, progress, register_rows)
     _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame, test)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    tr, te = _read(rob, train, test, progress)
-    if folds > tr.n_poses // 2:
-        raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
-                            f"training poses (at least 2 poses held out per fold), got {folds}.")
-    if te is not None:
-        check_train_test(tr, te, tr.source, te.source)
+    tr, te = _read(rob, train, test, progress, folds)
     d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
-                 register_n=REGISTER_N if register_n is None else register_n, progress=progress,
+                 register_n=register_n, register_rows=rows, progress=progress,
                  robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
                  register_update=register_update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
     gap = _gap_split(d, progress) if gap_split else None
     record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
-              "register_n": register_n, "register_update": register_update, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
+              "register_n": register_n, **({} if rows is None else {"register_rows": rows}),
+              "register_update": register_update, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
               "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units), "robust_loss": robust_loss,
               "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
               "target_offset_sd_mm": target_offset_sd_mm}
@@ -138,8 +136,10 @@ def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_upda
         inputs.check_positive(target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
 
 
-def _read(robot, train, test, progress):
-    """The training and test measurements (paths or DataFrames), with a progress bar for large files."""
+def _read(robot, train, test, progress, folds):
+    """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
+    ``folds`` than the training file holds and a test file that shares poses with it."""
+    from tolalloc.diagnose.measurements import check_train_test
     from tolalloc.diagnose.scale import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
@@ -150,12 +150,21 @@ def _read(robot, train, test, progress):
             te = None if test is None else inputs.as_measurements(test, robot, "test")
         finally:
             bar.close()
+    if folds > tr.n_poses // 2:
+        raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
+                            f"training poses (at least 2 poses held out per fold), got {folds}.")
+    if te is not None:
+        check_train_test(tr, te, tr.source, te.source)
     return tr, te
 
 
-def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
-    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows)``."""
+def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress,
+                register_rows=None) -> tuple:
+    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows,
+    register_rows)``, the rows as a list of int or None (whether the test file has them is checked once it is
+    read)."""
     from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
+    from tolalloc.diagnose.register import check_register_rows
 
     inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
     alpha = inputs.check_probability(alpha, "alpha", example="0.01")
@@ -167,6 +176,7 @@ def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_s
     inputs.check_optional_flag(progress, "progress")
     if register_n is not None:
         _check_register_n(register_n)
+    rows = check_register_rows(register_rows, register_n, test_given=test is not None, test_frame=test_frame)
     if gap_split and test is None:
         raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
     if register_n is not None and test_frame != "refit":
@@ -174,7 +184,7 @@ def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_s
     if register_n is not None and test is None:
         raise ArgumentError("register_n", "needs `test`: only a test file in another frame is re-registered, and none "
                             "was given; pass the test file or leave this option out.")
-    return alpha, folds, seed, cv_rows
+    return alpha, folds, seed, cv_rows, rows
 
 
 def _check_register_n(value) -> float:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import shlex
 
-__all__ = ["allocation_command", "diagnosis_command"]
+__all__ = ["allocation_command", "diagnosis_command", "row_ranges_text"]
 
 #: keyword argument -> command-line flag, for the options whose names differ only in spelling
 _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "poses": "--poses", "costs": "--costs",
@@ -20,6 +20,7 @@ _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "po
          "correction_rounds": "--correction-rounds",
          "angle_step_deg": "--angle-step-deg", "tool": "--tool", "trust_units": "--trust-units",
          "exclude": "--exclude", "test": "--test", "test_frame": "--test-frame", "register_n": "--register-n",
+         "register_rows": "--register-rows",
          "register_update": "--register-update", "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
          "train": "--train", "robust_loss": "--robust-loss"}
 #: boolean keyword arguments whose command-line flag switches them off
@@ -175,6 +176,8 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
         kw["test_frame"] = d.test_frame
         if inp.get("register_n") is not None:
             kw["register_n"] = inp["register_n"]
+        if inp.get("register_rows") is not None:
+            kw["register_rows"] = [int(r) for r in inp["register_rows"]]
         if inp.get("register_update") is not None:
             kw["register_update"] = inp["register_update"]
     kw["folds"] = int(inp.get("folds", job.folds))
@@ -200,10 +203,25 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
                                                              _cli_value(float(offset["target_offset_sd_mm"]))]
     kw.update(offset)
     cli_kw = {k: v for k, v in kw.items() if k not in offset}
+    if "register_rows" in cli_kw:
+        cli_kw["register_rows"] = row_ranges_text(cli_kw["register_rows"])
     cli = shlex.join(["tolalloc", "diagnose", robot, "--train", train, *_cli_args(cli_kw), *extra, "--report", "DIR"])
     args = ",\n    ".join([_py(robot), _py(train)] + [f"{k}={_py(v)}" for k, v in kw.items()])
     python = f"import tolalloc\n\nresult = tolalloc.diagnose_measurements(\n    {args})\nresult.save(report='DIR')"
     return cli, python, notes
+
+
+def row_ranges_text(rows) -> str:
+    """Row numbers as ``--register-rows`` reads them: sorted, runs of consecutive rows as inclusive ranges
+    (``[1, 2, 3, 7, 9, 10]`` -> ``"1-3,7,9-10"``)."""
+    rows = sorted({int(r) for r in rows})
+    runs, start = [], None
+    for i, r in enumerate(rows):
+        start = r if start is None else start
+        if i + 1 == len(rows) or rows[i + 1] != r + 1:
+            runs.append(str(r) if r == start else f"{start}-{r}")
+            start = None
+    return ",".join(runs)
 
 
 def _measurement_path(source: str, placeholder: str, notes: list) -> str:

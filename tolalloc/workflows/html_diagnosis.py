@@ -79,8 +79,9 @@ def _test_part(d) -> dict:
     if d.test is None:
         return {"test_table": None, "test_how": "", "worst_table": None, "uncertainty": None}
     reg = d.registration
+    given = "(the given registration rows) " if reg is not None and reg.chosen_by == "given rows" else ""
     how = (f"Test file {d.test.source}: {len(reg.score_index)} scored poses; {len(reg.register_index)} other test poses "
-           f"fitted {d.registration_fitted()} and are not scored." if reg is not None else
+           f"{given}fitted {d.registration_fitted()} and are not scored." if reg is not None else
            f"Test file {d.test.source}: {d.test.n_poses} poses in the training tracker frame, all scored.")
     test = html_table(d.before_after("test"), BEFORE_AFTER_COLUMNS, table_id="test-table",
                       caption="Test file (held out, never fitted): error of the 3-D position")
@@ -180,8 +181,10 @@ def diagnosis_context(job, folder=None) -> dict:
 
 
 def _inputs(job) -> list:
+    from tolalloc.workflows.html_command import row_ranges_text
+
     d, inp = job.diagnosis, job.inputs
     pairs = [("robot", d.robot.name), ("train", d.train.source), ("test", None if d.test is None else d.test.source),
              ("test_frame", d.test_frame), ("folds", job.folds)]
     pairs += [(k, v) for k, v in inp.items() if k not in {"robot", "train", "test", "test_frame", "folds"}]
-    return [(k, "—" if v is None else str(v)) for k, v in pairs]
+    return [(k, "—" if v is None else row_ranges_text(v) if k == "register_rows" else str(v)) for k, v in pairs]
