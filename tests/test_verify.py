@@ -153,3 +153,30 @@ def test_intervals_are_simultaneous_over_the_poses(res):
     assert np.all(w.ci_high - w.ci_low < v.ci_high - v.ci_low) and np.array_equal(w.p_mc, v.p_mc)
     with pytest.raises(TolallocError, match=r"level: expected a confidence level in \[0.5, 1\) .* got 1.5"):
         verify_design(res.problem, res.design, n_mc=20_000, level=1.5)
+
+
+def test_a_possible_second_look_is_counted_in_the_family(res):
+    # certified with n_max > n_mc: each of the 3 position intervals may be re-run, so 6 intervals at 1 - 0.05 / 6;
+    # with n_max = n_mc (no second look) or the exact criterion, 3 at 1 - 0.05 / 3
+    v = verify_design(res.problem, res.design, criterion="certified", n_mc=2000, n_max=8000, seed=7, keep_samples=0)
+    per = 1 - 0.05 / 6
+    assert (v.n_intervals, v.second_looks) == (6, 3) and v.level_per_interval == pytest.approx(per)
+    assert v.estimate.level == pytest.approx(per) and np.allclose(v.to_frame().level_per_interval, per)
+    assert v.n.max() == 8000  # the design sits on p at a pose: its interval straddled p and was looked at again
+    assert v.message().endswith("; intervals: 95% simultaneous over the 3 poses (Bonferroni: 6 intervals at 99.17% "
+                                "each, a possible second look at each position interval counted)")
+    # the correction loop's margin, z + 1 standard errors, takes z of the same per-interval level
+    from tolalloc.montecarlo.intervals import z_of_level
+    from tolalloc.verify.correct import needed_targets
+
+    chk = v.requirements()[0]
+    se = (chk.ci_high - chk.ci_low) / (2 * z_of_level(per))
+    short = chk.ci_low < 0.95
+    want = 0.95 + np.maximum(0, chk.p_linear - chk.p_mc) + (z_of_level(per) + 1) * se
+    np.testing.assert_allclose(needed_targets(chk, np.full(3, 0.95))[short], want[short])
+    once = verify_design(res.problem, res.design, criterion="certified", n_mc=2000, n_max=2000, seed=7,
+                         keep_samples=0)
+    exact = verify_design(res.problem, res.design, criterion="exact", n_mc=2000, n_max=8000, seed=7, keep_samples=0)
+    for w in (once, exact):
+        assert (w.n_intervals, w.second_looks) == (3, 0) and w.level_per_interval == pytest.approx(1 - 0.05 / 3)
+        assert "second look" not in w.message() and w.n.max() == 2000

@@ -174,6 +174,19 @@ def test_results_have_a_compact_repr_a_table_and_html():
     assert len(robot_text.splitlines()) == 1 and "6 joints" in robot_text
 
 
+def test_a_certified_verification_says_its_second_looks_are_counted_everywhere():
+    from tolalloc.workflows.html import verdict_legend
+
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", solver="certified", n_mc=2000)
+    v = res.summary()["verification"]
+    words = ("95% simultaneous over 1 pose (Bonferroni: 2 intervals at 97.5% each, a possible second look at each "
+             "position interval counted)")
+    assert v["criterion"] == "certified" and (v["n_intervals"], v["second_looks"]) == (2, 1)
+    assert v["level_per_interval"] == pytest.approx(0.975) and v["intervals"] == words
+    assert v["message"].endswith(f"; intervals: {words}") and f"intervals: {words}" in res.text()
+    assert verdict_legend(res.verification).endswith(f" Intervals: {words}.")  # the HTML report's legend
+
+
 def test_an_unverified_allocation_never_says_verified(tmp_path):
     res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False)
     assert res.ok and not res.verified  # ok: nothing that was checked failed; verified: nothing was run

@@ -15,7 +15,9 @@ linear one. Counts may be non-integer (effective counts of an importance-samplin
 
 Intervals judged together -- every pose (and every requirement) of a verification -- are made simultaneous by
 Bonferroni's rule (:func:`simultaneous_level`): ``m`` intervals each at level ``1 - (1 - level) / m`` all cover
-their true values with probability at least ``level``.
+their true values with probability at least ``level``. A quantity that may be estimated twice (a second look with
+more samples, where the first interval could not decide) is judged by either interval, so the family counts both
+(:func:`family_size`).
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from scipy.stats import norm
 
 from tolalloc.exceptions import TolallocError, whole_number
 
-__all__ = ["paired_difference_ci", "z_of_level", "simultaneous_level"]
+__all__ = ["paired_difference_ci", "z_of_level", "simultaneous_level", "family_size"]
 
 
 def z_of_level(level: float) -> float:
@@ -60,6 +62,38 @@ def simultaneous_level(level: float, m: int) -> float:
         raise TolallocError(f"simultaneous_level: expected a family confidence level in (0, 1) (e.g. 0.95), got "
                             f"level = {level!r}.")
     return 1.0 - (1.0 - float(level)) / whole
+
+
+def family_size(n_intervals: int, second_looks: int = 0) -> int:
+    """Intervals in a Bonferroni family: ``n_intervals`` judged once plus ``second_looks`` possible second looks.
+
+    A quantity whose first interval may be followed by a second one (more samples, the same level) is passed by
+    either, so by the union bound its chance of a wrong verdict is up to twice the level's ``alpha``: each
+    possible second look is one more interval of the family, counted whether or not it runs (which quantities get
+    one depends on the data). ``simultaneous_level(level, family_size(m, k))`` is then the level of every interval,
+    first and second looks alike: 18 poses with a possible second look at each, 36 intervals at 99.86 %.
+
+    Parameters
+    ----------
+    n_intervals : int
+        Intervals judged at the first look (>= 1), e.g. poses x requirements.
+    second_looks : int
+        Intervals that may be re-estimated (>= 0), e.g. one per pose for the certified criterion's re-run of a
+        straddling position interval; 0 where nothing is re-run.
+
+    Raises
+    ------
+    TolallocError
+        A count that is not a whole number (``n_intervals`` >= 1, ``second_looks`` >= 0).
+    """
+    m, k = whole_number(n_intervals), whole_number(second_looks)
+    if m is None or m < 1:
+        raise TolallocError(f"family_size: expected a whole number of intervals n_intervals >= 1 (poses x "
+                            f"requirements), got n_intervals = {n_intervals!r}; count the intervals judged together.")
+    if k is None or k < 0:
+        raise TolallocError(f"family_size: expected a whole number of possible second looks >= 0 (one per interval "
+                            f"that may be re-run, 0 for none), got second_looks = {second_looks!r}.")
+    return m + k
 
 
 def _score(d0: float, b: float, c: float, n: float) -> float:

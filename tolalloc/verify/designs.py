@@ -19,7 +19,9 @@ against its own ``p``:
 A **certified** design passes a pose only when every requirement is demonstrated there; an **exact** design passes
 a consistent pose (no fixed allowance: a design whose interval lies below ``p`` fails).
 
-A certified pose whose position interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled).
+A certified pose whose position interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled) and
+passes on either look, so with ``n_max > n_mc`` every position interval has a possible second look, counted in the
+family: ``m`` = poses x requirements + poses (:func:`tolalloc.verify.verdicts.verification_family`).
 Failing poses are named with the reason: *under-specified* (the linear prediction itself is below
 ``p``), *non-Gaussian* parameters (ring clearances, uniform) carrying a sizeable share of the variance,
 *inconclusive* (the interval contains ``p`` at the largest sample size: more samples are needed, whatever
@@ -42,7 +44,8 @@ from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
 from tolalloc.verify.resolution import check_resolvable, choose_estimator
 from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, family_text, interval_words, limiting,
-                                      orientation_check, overall_verdict, pose_verdicts, shortfall_text, weakest)
+                                      orientation_check, overall_verdict, pose_verdicts, shortfall_text,
+                                      verification_family, weakest)
 
 __all__ = ["Verification", "verify_design", "pose_verdicts", "overall_verdict", "check_resolvable"]
 
@@ -79,7 +82,10 @@ class Verification:
     family_level : float
         Level at which all the intervals (every pose, every requirement) hold together (0.95).
     n_intervals : int
-        Intervals judged together: poses x requirements (1: a single interval at ``family_level``).
+        Intervals in the Bonferroni family: poses x requirements, plus :attr:`second_looks` (1: a single interval at
+        ``family_level``).
+    second_looks : int
+        Possible second looks in ``n_intervals``: one per pose when certified with ``n_max > n_mc``, else 0.
     """
 
     criterion: str
@@ -100,6 +106,7 @@ class Verification:
     estimate: ProbabilityEstimate | None = field(default=None, repr=False)
     family_level: float = 0.95
     n_intervals: int = 1
+    second_looks: int = 0
 
     @property
     def level_per_interval(self) -> float:
@@ -112,8 +119,10 @@ class Verification:
 
     def interval_text(self) -> str:
         """What the intervals are, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
-        each)``."""
-        return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None))
+        each)`` (``36 intervals at 99.86% each, a possible second look at each position interval counted`` when
+        certified poses may be re-run)."""
+        return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None),
+                           self.second_looks)
 
     def all_poses_text(self) -> str:
         """``all 18 poses`` (``the 1 pose`` for a single pose)."""
@@ -327,9 +336,10 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         included, by the same rule (:func:`~tolalloc.verify.resolution.choose_estimator`; importance sampling
         estimates the position requirement only).
     level : float
-        Level at which the intervals of all poses and requirements hold together: each of the ``m`` = poses x
-        requirements intervals is at ``1 - (1 - level) / m`` (Bonferroni), so the verdict over all poses is a
-        joint claim at ``level``.
+        Level at which the intervals of all poses and requirements hold together: each of the ``m`` intervals is at
+        ``1 - (1 - level) / m`` (Bonferroni), so the verdict over all poses is a joint claim at ``level``. ``m`` =
+        poses x requirements, plus one per pose for the certified criterion with ``n_max > n_mc`` (the possible
+        second look at each position interval; :func:`~tolalloc.verify.verdicts.verification_family`).
     """
     crit = _check_args(design, n_mc, estimator, criterion, level)
     n_max = 4 * int(n_mc) if n_max is None else int(n_max)
@@ -337,7 +347,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
     P = problem.n_poses
-    m = P * (1 if ang is None else 2)
+    m, looks = verification_family(P, 1 if ang is None else 2, crit, n_mc, n_max)
     lvl = simultaneous_level(level, m)
     what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%)")
     reqs = [("position", p)] + ([] if ang is None else [("orientation", problem.angle_prob)])
@@ -353,7 +363,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     def passes(lo, hi):
         return lo >= p if crit == "certified" else hi >= p
 
-    if crit == "certified" and n_max > n_mc:  # more samples where a certified interval straddles p
+    if looks:  # the second look, counted in the family: more samples where a certified interval straddles p
         redo = np.flatnonzero((pos.ci_low < p) & (pos.ci_high >= p))
         if redo.size:
             pos = _redo(model, problem, pos, redo, n_mc, n_max, seed, scheduler, estimator)
@@ -370,7 +380,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     reasons = failure_reasons(problem, model, p_lin, est_arr, n, ok, a_ok, a_check, a_n, nongauss_share)
     worst = int(np.argmin(est_arr[:, 0]))
     return Verification(crit, r, p, n, int(seed), p_lin.copy(), est_arr[:, 0], est_arr[:, 1], est_arr[:, 2], ok & a_ok,
-                        reasons, worst, samples, int(order[0]), angle, pos, float(level), m)
+                        reasons, worst, samples, int(order[0]), angle, pos, float(level), m, looks)
 
 
 def _check_args(design, n_mc, estimator, criterion, level) -> str:

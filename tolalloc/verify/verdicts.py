@@ -6,6 +6,9 @@ are simultaneous: with ``m`` = poses x requirements, each is at level ``1 - (1 -
 :func:`tolalloc.montecarlo.intervals.simultaneous_level`), so that all of them cover their true probabilities with
 probability at least ``level`` (0.95) -- a design exactly at ``p`` everywhere is called *failed* (or a design
 below ``p`` somewhere *demonstrated*) with probability at most ``1 - level``, however many poses are verified.
+Where a pose may be judged twice -- the certified criterion re-runs a straddling position interval with more
+samples -- each possible second look is one more interval of the family (:func:`verification_family`): ``m`` =
+poses x requirements + poses.
 
 * **demonstrated** when the lower bound is ``>= p``;
 * **consistent** when the upper bound is ``>= p`` but the lower bound is below;
@@ -26,7 +29,7 @@ import numpy as np
 from tolalloc.linear.covariance import variance_share
 
 __all__ = ["RequirementCheck", "pose_verdicts", "overall_verdict", "weakest", "limiting", "shortfall_text",
-           "orientation_check", "failure_reasons", "interval_words", "family_text"]
+           "orientation_check", "failure_reasons", "interval_words", "family_text", "verification_family"]
 
 #: verdicts from the weakest to the strongest
 ORDER = ("failed", "consistent", "demonstrated")
@@ -39,17 +42,40 @@ def interval_words(family_level: float, m: int) -> str:
     return lvl if m <= 1 else f"simultaneous {lvl}"
 
 
-def family_text(family_level: float, m: int, n_poses: int, n_requirements: int = 1) -> str:
+def verification_family(n_poses: int, n_requirements: int, criterion: str, n_mc: int, n_max: int) -> tuple:
+    """``(n_intervals, second_looks)``: the Bonferroni family of a verification and its possible second looks.
+
+    Every pose has one interval per requirement. The certified criterion with ``n_max > n_mc`` re-runs a pose whose
+    position interval straddles ``p`` and passes it on either look, so every position interval has a possible
+    second look (one per pose, counted whether or not it runs: which poses get one depends on the data); the
+    exact criterion, or ``n_max <= n_mc``, has none. All the family's intervals, first and second looks alike,
+    are at ``simultaneous_level(level, n_intervals)``.
+
+    >>> verification_family(18, 1, "certified", 10**6, 4 * 10**6)
+    (36, 18)
+    >>> verification_family(18, 2, "certified", 10**6, 10**6), verification_family(18, 2, "exact", 10**6, 4 * 10**6)
+    ((36, 0), (36, 0))
+    """
+    from tolalloc.montecarlo.intervals import family_size
+
+    looks = int(n_poses) if criterion == "certified" and n_max > n_mc else 0
+    return family_size(int(n_poses) * int(n_requirements), looks), looks
+
+
+def family_text(family_level: float, m: int, n_poses: int, n_requirements: int = 1, second_looks: int = 0) -> str:
     """The intervals' family in words, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
-    each)`` (with two requirements ``over the 18 poses and 2 requirements (... 36 intervals ...)``)."""
+    each)`` (with two requirements ``over the 18 poses and 2 requirements (... 36 intervals ...)``; with a possible
+    second look at each position interval ``(Bonferroni: 36 intervals at 99.86% each, a possible second look at
+    each position interval counted)``, ``m`` counting them)."""
     from tolalloc.montecarlo.intervals import simultaneous_level
 
     if m <= 1:
         return f"{100 * family_level:.4g}% (a single interval)"
     what = ("1 pose" if n_poses == 1 else f"the {n_poses} poses") + (
         "" if n_requirements == 1 else f" and {n_requirements} requirements")
+    looks = ", a possible second look at each position interval counted" if second_looks else ""
     return (f"{100 * family_level:.4g}% simultaneous over {what} (Bonferroni: {m} intervals at "
-            f"{100 * simultaneous_level(family_level, m):.4g}% each)")
+            f"{100 * simultaneous_level(family_level, m):.4g}% each{looks})")
 
 
 def pose_verdicts(ci_low, ci_high, prob) -> np.ndarray:
@@ -107,7 +133,8 @@ class RequirementCheck:
     family_level : float
         Level at which all ``n_intervals`` intervals of the verification hold together (0.95).
     n_intervals : int
-        Intervals judged together (poses x requirements); each is at :attr:`level`. 1: a single 95 % interval.
+        Intervals in the Bonferroni family (poses x requirements, plus the possible second looks:
+        :func:`verification_family`); each is at :attr:`level`. 1: a single 95 % interval.
     """
 
     name: str

@@ -38,7 +38,8 @@ def summary_dict(job) -> dict:
     if ver is not None:
         summary["verification"] = {"criterion": ver.criterion, "ok": ver.ok, "message": ver.message(),
                                    "n_per_pose": ver.n, "seed": ver.seed, "family_level": ver.family_level,
-                                   "n_intervals": ver.n_intervals, "level_per_interval": ver.level_per_interval,
+                                   "n_intervals": ver.n_intervals, "second_looks": ver.second_looks,
+                                   "level_per_interval": ver.level_per_interval,
                                    "intervals": ver.interval_text(), **ver.estimator_summary()}
         for i, row in enumerate(summary["poses"]):
             row.update({"p_mc": float(ver.p_mc[i]), "p_mc_ci": [float(ver.ci_low[i]), float(ver.ci_high[i])],
