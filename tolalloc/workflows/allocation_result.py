@@ -244,8 +244,9 @@ class ToleranceAllocation(JobResult):
                          frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
 
     def verification_frame(self) -> pd.DataFrame | None:
-        """Per pose: linear P, Monte Carlo P_hat with its interval (95 % simultaneous over the poses and requirements;
-        ``level_per_interval``, ``family_level``), samples, verdict, reason."""
+        """Per pose: linear P, Monte Carlo P_hat with its interval (95 % simultaneous over the poses and requirements,
+        a certified pose's possible second look counted; ``level_per_interval``, ``family_level``), samples, verdict,
+        reason."""
         return None if self.verification is None else self.verification.to_frame()
 
     def summary(self) -> dict:
