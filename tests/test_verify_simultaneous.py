@@ -68,8 +68,9 @@ def test_family_counts_a_possible_second_look_at_each_certified_position_interva
     assert verification_family(1, 1, "certified", 2000, 8000) == (2, 1)
     assert simultaneous_level(0.95, family_size(18, 18)) == pytest.approx(1 - 0.05 / 36)
     assert simultaneous_level(0.95, family_size(18)) == simultaneous_level(0.95, 18)
-    assert family_text(0.95, 36, 18, 1, 18) == ("95% simultaneous over the 18 poses (Bonferroni: 36 intervals at 99.86% "
-                                                "each, a possible second look at each position interval counted)")
+    assert family_text(0.95, 36, 18, 1, 18) == ("95% simultaneous over the 18 poses (Bonferroni: 36 intervals at "
+                                                "99.86% each, a possible second look at each position interval "
+                                                "counted)")
     assert family_text(0.95, 54, 18, 2, 18).startswith("95% simultaneous over the 18 poses and 2 requirements "
                                                        "(Bonferroni: 54 intervals at 99.91% each, a possible second")
     assert family_text(0.95, 36, 18, 2) == ("95% simultaneous over the 18 poses and 2 requirements (Bonferroni: 36 "
