@@ -41,6 +41,13 @@ def fresh_calibration(robot, te: pd.DataFrame, register_index: np.ndarray, name:
             "fresh_verdict": d.verdict.verdict}
 
 
+def span_pct(q_deg: np.ndarray, index: np.ndarray) -> float:
+    """Joint range the poses ``index`` span, as a share of the whole session's range, mean over joints [%]."""
+    full = np.ptp(q_deg, axis=0)
+    part = np.ptp(q_deg[index], axis=0)
+    return float(100.0 * np.mean(part[full > 0] / full[full > 0]))
+
+
 def _record(d) -> dict:
     """Verdict, guards and coverage of one run, as in the study's summary."""
     unc = d.uncertainty
@@ -75,11 +82,13 @@ def registration_table(robot, A: pd.DataFrame, C: pd.DataFrame, summary: pd.Data
     for direction, (tr, te) in {"A_to_C": (A, C), "C_to_A": (C, A)}.items():
         m = measurements_from_frame(te, robot, f"{direction}:test")
         kmeans = {n: registration_split(m.q, robot.revolute_mask, n).register_index for n in (30, *counts)}
+        q_deg = te[[f"q{j + 1}" for j in range(robot.n_joints)]].to_numpy(float)
         fresh = {("kmeans", n): fresh_calibration(robot, te, idx, direction) for n, idx in kmeans.items()}
         for update in ("frame", "calibration"):
             run = s.loc[f"across_{direction}" + ("_update" if update == "calibration" else "")]
             rows.append({"direction": direction, "registration_from": "kmeans", "register_update": update,
-                         "register_n": 30, "scored_poses": int(run["scored_poses"]),
+                         "register_n": 30, "span_pct": span_pct(q_deg, kmeans[30]),
+                         "scored_poses": int(run["scored_poses"]),
                          "test_rms_geometric_mm": float(run["test_rms_geometric_mm"]),
                          "test_rms_final_mm": float(run["test_rms_final_mm"]), "verdict": run["verdict"],
                          "guard_kinds": run["guard_kinds"], "coverage95_pct": float(run["coverage95_pct"])}
@@ -88,7 +97,7 @@ def registration_table(robot, A: pd.DataFrame, C: pd.DataFrame, summary: pd.Data
             if (how, n) not in fresh:
                 fresh[(how, n)] = fresh_calibration(robot, te, reg, direction)
             rows.append({"direction": direction, "registration_from": how, "register_update": update,
-                         "register_n": n, "scored_poses": len(d.final.test_mm),
+                         "register_n": n, "span_pct": span_pct(q_deg, reg), "scored_poses": len(d.final.test_mm),
                          "test_rms_geometric_mm": rms(d.geometric.test_mm), "test_rms_final_mm": rms(d.final.test_mm)}
                         | _record(d) | fresh[(how, n)])
             print(f"  registration {direction} {how} {update} n={n}: final {rows[-1]['test_rms_final_mm']:.3f} mm",
@@ -123,11 +132,24 @@ def section(table: pd.DataFrame) -> list:
              "`registration_from`: `kmeans` -- the poses nearest k-means centres in joint space, spread over the "
              "whole test session in time; `first rows` -- the first rows of the test session (`register_rows`), as "
              "a new session measured at its start would give them: the other rows are then a forward prediction "
-             "in time. `coverage95_pct`: scored residuals inside the predicted 95 % radius (for `calibration`, the "
+             "in time. `span_pct`: the joint range the registration poses span, as a share of the test session's "
+             "range (mean over the joints). `coverage95_pct`: scored residuals inside the predicted 95 % radius (for "
+             "`calibration`, the "
              "update's posterior). One registration split per row, no interval. (registration_poses.csv)", "",
              table.to_markdown(index=False, floatfmt=".3f"), ""]
     for (how, update), g in table.groupby(["registration_from", "register_update"]):
         lines.append(_target_line(g, f"`{update}`, `{how}`"))
+    lines.append("* Joint range spanned by the registration poses (`span_pct`, by count): "
+                 + "; ".join(f"{d} {how} " + ", ".join(f"{int(r.register_n)}: {r.span_pct:.0f} %"
+                                                    for r in g.drop_duplicates("register_n").itertuples())
+                             for (d, how), g in table.groupby(["direction", "registration_from"])) + ".")
+    fires = table["guard_kinds"].str.contains("uncertainty")
+    lines.append("* Coverage of the predicted 95 % radius on the scored poses: "
+                 + "; ".join(f"`{u}` {g['coverage95_pct'].min():.0f}-{g['coverage95_pct'].max():.0f} %"
+                             for u, g in table.groupby("register_update"))
+                 + f"; the `uncertainty` guard fires in {int(fires.sum())} of {len(table)} rows. The update's "
+                 "posterior is narrower than the training covariance, and neither holds the error of carrying the "
+                 "trained effects into joint ranges the training session never visited.")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows: "
