@@ -24,6 +24,7 @@ from scipy.spatial.transform import Rotation
 
 import tolalloc
 from tolalloc.diagnose.calibrate import Fit, calibrate
+from tolalloc.diagnose.guards import point_jacobian
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.pipeline import diagnose
@@ -119,7 +120,9 @@ def test_update_run_says_what_was_fitted_and_whose_uncertainty_is_predicted(chan
     assert reg["update"] == "calibration" and reg["robust_loss"] == "huber"
     assert reg["inflation_k"] == upd.calibration_update.inflation_k
     assert "a correction of the trained geometric and effect parameters" in reg["method"]
-    assert js["uncertainty"]["method"].endswith("so this coverage checks the updated model's own uncertainty")
+    assert js["uncertainty"]["method"].startswith("posterior covariance sigma^2 H^-1 of the calibration update")
+    assert frame.to_dict()["uncertainty"]["method"].startswith("Gauss-Newton parameter covariance")
+    assert "registration and probe offset re-estimated" in frame.to_dict()["uncertainty"]["method"]
     assert js["heldout"]["sealed_test"].endswith("also fitted a correction of the trained parameters "
                                                  "(register_update='calibration')")
     assert js["settings"]["robust_loss"] == "tukey" and js["settings"]["register_update_robust_loss"] == "huber"
@@ -222,6 +225,16 @@ def test_update_posterior_narrows_the_prior_and_is_a_covariance(sessions):
     prior_sd = np.sqrt(np.diag(np.linalg.inv(prior.precision))) * prior.noise_mm
     assert np.all(np.sqrt(np.diag(cov))[9:] <= prior_sd * (1 + 1e-9))
     assert np.sqrt(np.diag(cov))[9:].mean() < 0.9 * prior_sd.mean()
+    # against the linear-Gaussian posterior built here from the point Jacobian at the registration poses (columns:
+    # frame, probe offset, geometric parameters) and the prior precision: Huber's weights (<= 1, a few poses) may
+    # only widen it, and only a little at noise-level residuals
+    r = split.register_index
+    A = point_jacobian(upd.fit, q[r]).reshape(3 * len(r), -1)
+    H = A.T @ A
+    H[9:, 9:] += prior.precision
+    independent = prior.noise_mm ** 2 * np.linalg.inv(H)
+    ratio = np.sqrt(np.diag(cov) / np.diag(independent))
+    assert ratio.min() >= 1 - 1e-6 and ratio.max() < 1.02
 
 
 def test_update_run_predicts_its_posterior_uncertainty_and_covers_the_same_robot(same_robot_runs):

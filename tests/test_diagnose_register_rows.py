@@ -106,8 +106,8 @@ def test_split_from_rows_numbers_rows_as_measurements_do():
     (dict(register_rows=[1, 2, 3, 4, 5, 5, 6, 6]), r"expected each registration row once, got row 5 2 times "
                                                    r"\(2 rows repeated: 5, 6\); remove the repeats"),
     (dict(register_rows=[*range(1, 8), 41, 99]),
-     r"register_rows: row 41 is not a data row of .*test.csv \(2 of the rows given are not: 41, 99\): its 40 poses "
-     r"are rows 1..40; expected"),
+     r"register_rows: row 41 is not among the test poses of .*test.csv \(2 of the rows given are not: 41, 99\): "
+     r"its 40 poses are rows 1..40 \(rows with empty cells are skipped\); expected"),
     (dict(register_rows=[1, 2, 3]), r"the 3 rows given leave 37 of the 40 test poses to score; re-registering needs "
                                     r"at least 5 registration and 5 scored poses -- give more rows"),
     (dict(register_rows=range(1, 37)), r"the 36 rows given leave 4 of the 40 test poses to score; .* -- give fewer "
@@ -130,10 +130,10 @@ def test_library_refusals_before_any_fit(files):
         diagnose(robot, m, None, test_frame="refit", register_rows=range(1, 6))
     with pytest.raises(TolallocError, match=r"register_rows and `register_n` are exclusive"):
         diagnose(robot, m, m, test_frame="refit", register_n=30, register_rows=range(1, 6))
-    with pytest.raises(TolallocError, match=r"row 21 is not a data row of <frame>: its 20 poses are rows 1..20"):
+    with pytest.raises(TolallocError, match=r"row 21 is not among the test poses of <frame>: its 20 poses are rows 1..20"):
         diagnose(robot, m, m, test_frame="refit", register_rows=range(17, 22))
     skipped = Measurements(np.zeros((20, 6)), np.zeros((20, 3)), rows=np.r_[1:3, 4:22], source="s.csv")
-    with pytest.raises(TolallocError, match=r"row 3 is not a data row of s.csv: its 20 poses are rows 1..21 without 3"):
+    with pytest.raises(TolallocError, match=r"row 3 is not among the test poses of s.csv: its 20 poses are rows 1..21 without 3"):
         diagnose(robot, m, skipped, test_frame="refit", register_rows=range(1, 6))
 
 
@@ -161,7 +161,7 @@ def test_cli_register_rows(files, capsys, tmp_path):
                         (["--register-rows", "1-10"], "error: --register-rows needs --test-frame refit"),
                         (["--test-frame", "refit", "--register-rows", "5,1-10"], "got row 5 2 times"),
                         (["--test-frame", "refit", "--register-rows", "1-10,41"],
-                         "error: --register-rows: row 41 is not a data row of")):
+                         "error: --register-rows: row 41 is not among the test poses of")):
         assert main(base + extra) == 2
         err = capsys.readouterr().err
         assert said in err and len(err.strip().splitlines()) == 1

@@ -53,7 +53,9 @@ def _record(d) -> dict:
     unc = d.uncertainty
     return {"verdict": d.verdict.verdict,
             "guard_kinds": "; ".join(sorted({g.split(":")[0] for g in d.guards})) or "none",
-            "coverage95_pct": 100.0 * float(np.mean(unc.inside)) if unc is not None else float("nan")}
+            "coverage95_pct": 100.0 * float(np.mean(unc.inside)),
+            "median_sigma_mm": float(np.median(unc.sigma_mm)),
+            "extrapolating_pct": 100.0 * float(np.mean(d.extrapolation.flagged))}
 
 
 def _runs(robot, tr, te, direction: str, counts) -> list:
@@ -91,7 +93,9 @@ def registration_table(robot, A: pd.DataFrame, C: pd.DataFrame, summary: pd.Data
                          "scored_poses": int(run["scored_poses"]),
                          "test_rms_geometric_mm": float(run["test_rms_geometric_mm"]),
                          "test_rms_final_mm": float(run["test_rms_final_mm"]), "verdict": run["verdict"],
-                         "guard_kinds": run["guard_kinds"], "coverage95_pct": float(run["coverage95_pct"])}
+                         "guard_kinds": run["guard_kinds"], "coverage95_pct": float(run["coverage95_pct"]),
+                         "median_sigma_mm": float(run["median_sigma_mm"]),
+                         "extrapolating_pct": 100.0 * run["extrapolating_test_poses"] / run["test_poses"]}
                         | fresh[("kmeans", 30)])
         for how, update, n, d, reg in _runs(robot, tr, te, direction, counts):
             if (how, n) not in fresh:
@@ -134,8 +138,9 @@ def section(table: pd.DataFrame) -> list:
              "a new session measured at its start would give them: the other rows are then a forward prediction "
              "in time. `span_pct`: the joint range the registration poses span, as a share of the test session's "
              "range (mean over the joints). `coverage95_pct`: scored residuals inside the predicted 95 % radius (for "
-             "`calibration`, the "
-             "update's posterior). One registration split per row, no interval. (registration_poses.csv)", "",
+             "`calibration`, the update's posterior); `median_sigma_mm`: median predicted 1-sigma of the test "
+             "poses; `extrapolating_pct`: test poses flagged as extrapolations. One registration split per row, no "
+             "interval. (registration_poses.csv)", "",
              table.to_markdown(index=False, floatfmt=".3f"), ""]
     for (how, update), g in table.groupby(["registration_from", "register_update"]):
         lines.append(_target_line(g, f"`{update}`, `{how}`"))
@@ -147,9 +152,12 @@ def section(table: pd.DataFrame) -> list:
     lines.append("* Coverage of the predicted 95 % radius on the scored poses: "
                  + "; ".join(f"`{u}` {g['coverage95_pct'].min():.0f}-{g['coverage95_pct'].max():.0f} %"
                              for u, g in table.groupby("register_update"))
-                 + f"; the `uncertainty` guard fires in {int(fires.sum())} of {len(table)} rows. The update's "
-                 "posterior is narrower than the training covariance, and neither holds the error of carrying the "
-                 "trained effects into joint ranges the training session never visited.")
+                 + f"; the `uncertainty` guard fires in {int(fires.sum())} of {len(table)} rows. Median predicted "
+                 "1-sigma of the test poses (`median_sigma_mm`): "
+                 + "; ".join(f"`{u}` {g['median_sigma_mm'].min():.3f}-{g['median_sigma_mm'].max():.3f} mm"
+                             for u, g in table.groupby("register_update"))
+                 + f". Test poses flagged as extrapolations from the training session (`extrapolating_pct`): "
+                 f"{table['extrapolating_pct'].min():.0f}-{table['extrapolating_pct'].max():.0f} %.")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows: "

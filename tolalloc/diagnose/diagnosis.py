@@ -195,8 +195,6 @@ class Diagnosis:
                     **self.calibration_update.to_dict()}
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
-            if self.uncertainty_scope():
-                out["uncertainty"]["method"] += "; " + self.uncertainty_scope()
         if self.parameter_check is not None:
             out["parameter_check"] = self.parameter_check.to_frame().to_dict(orient="records")
         return out

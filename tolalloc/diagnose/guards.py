@@ -47,7 +47,8 @@ from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 __all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "ParameterCheck", "parameter_checks",
            "FINDING_FRACTION", "cv_fallback", "RANGE_MARGIN_DEG",
            "RANGE_MARGIN_MM", "FAR_FACTOR", "PRIOR_N_SIGMA", "FALLBACK_MARGIN",
-           "PoseUncertainty", "point_jacobian", "parameter_covariance", "prediction_uncertainty", "COVERAGE_P", "COVERAGE_LOW"]
+           "PoseUncertainty", "point_jacobian", "parameter_covariance", "prediction_uncertainty", "COVERAGE_P", "COVERAGE_LOW",
+           "UNCERTAINTY_METHODS"]
 
 RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
@@ -289,6 +290,19 @@ def cv_fallback(nominal, geometric, final, margin: float = FALLBACK_MARGIN) -> t
     return final, ()
 
 
+#: How the prediction covariance of :func:`prediction_uncertainty` is obtained, per case.
+UNCERTAINTY_METHODS = {
+    "same": "Gauss-Newton parameter covariance sigma^2 (J^T J + prior)^-1 of the final fit, propagated "
+            "J_pose Sigma J_pose^T",
+    "refit": "Gauss-Newton parameter covariance sigma^2 (J^T J + prior)^-1 of the final fit for the geometric and "
+             "effect parameters, with the registration and probe offset re-estimated on the registration poses "
+             "(their noise propagated), propagated to each test pose",
+    "update": "posterior covariance sigma^2 H^-1 of the calibration update (registration rows with their robust "
+              "weights plus the update's prior), frame, probe offset and updated parameters together, propagated "
+              "J_pose Sigma J_pose^T",
+}
+
+
 @dataclass(frozen=True, eq=False)
 class PoseUncertainty:
     """Predicted uncertainty of the final model's test predictions and its calibration check.
@@ -303,6 +317,7 @@ class PoseUncertainty:
     scored : array of int, shape (S,)  test poses the check uses (all, or the non-registration poses)
     inside : array of bool, shape (S,) scored residual norm within ``radius95_mm``
     n_params : int                     parameters in the covariance
+    method : str                       how ``cov_mm2`` was obtained (:data:`UNCERTAINTY_METHODS`)
     """
 
     cov_mm2: np.ndarray
@@ -312,6 +327,7 @@ class PoseUncertainty:
     scored: np.ndarray
     inside: np.ndarray
     n_params: int
+    method: str = ""
 
     @property
     def coverage(self) -> float:
@@ -331,8 +347,7 @@ class PoseUncertainty:
     def to_dict(self) -> dict:
         return {"sigma_mm": self.sigma_mm.tolist(), "radius95_mm": self.radius95_mm.tolist(), "noise_mm": self.noise_mm,
                 "coverage95": self.coverage, "scored_poses": len(self.inside), "n_params": self.n_params,
-                "method": "Gauss-Newton parameter covariance sigma^2 (J^T J + prior)^-1 of the final fit, "
-                          "propagated J_pose Sigma J_pose^T; radius95 includes the measurement noise"}
+                "method": self.method + "; radius95 includes the measurement noise"}
 
 
 def point_jacobian(fit, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarray:
@@ -365,7 +380,8 @@ def parameter_covariance(fit, q: np.ndarray, B: np.ndarray | None = None, *, unr
     """
     J = point_jacobian(fit, q, B).reshape(3 * len(q), -1)
     n = J.shape[1]
-    noise2 = float(np.sum(fit.residual_mm ** 2)) / max(J.shape[0] - n, 1)
+    res = np.asarray(fit.residual_mm)  # all rows of the fit (``q`` may be a subsample of them)
+    noise2 = float(np.sum(res ** 2)) / max(res.size - n, 1)
     prec = np.zeros(n)
     sig = fit.model.sigma[fit.geo_index]
     prec[9:9 + len(sig)] = np.where(sig > 0, 1.0 / np.where(sig > 0, sig, 1.0) ** 2, 0.0)
@@ -411,12 +427,13 @@ def prediction_uncertainty(fit, q_train, q_test, residual_test, *, B_train=None,
     if registered is not None and posterior_cov is not None:
         Jt = point_jacobian(registered, q_test, B_test)
         C = np.einsum("tik,kl,tjl->tij", Jt, posterior_cov, Jt)
-        scored = split.score_index
+        scored, method = split.score_index, "update"
     elif registered is None:
         Jt = point_jacobian(fit, q_test, B_test)
         C = np.einsum("tik,kl,tjl->tij", Jt, cov, Jt)
-        scored = np.arange(len(q_test))
+        scored, method = np.arange(len(q_test)), "same"
     else:
+        method = "refit"
         Jt = point_jacobian(registered, q_test, B_test)
         A = Jt[split.register_index].reshape(-1, Jt.shape[2])
         G = np.linalg.pinv(A[:, :9])
@@ -427,4 +444,6 @@ def prediction_uncertainty(fit, q_train, q_test, residual_test, *, B_train=None,
     C = 0.5 * (C + np.swapaxes(C, 1, 2))
     r95 = radius_for_prob(C + noise ** 2 * np.eye(3), COVERAGE_P)
     inside = np.linalg.norm(residual_test, axis=1) <= r95[scored]
-    return PoseUncertainty(C, np.sqrt(np.trace(C, axis1=1, axis2=2)), r95, noise, scored, inside, cov.shape[0])
+    n_par = posterior_cov.shape[0] if method == "update" else cov.shape[0]
+    return PoseUncertainty(C, np.sqrt(np.trace(C, axis1=1, axis2=2)), r95, noise, scored, inside, n_par,
+                           UNCERTAINTY_METHODS[method])

@@ -230,8 +230,9 @@ def split_from_rows(register_rows, n_test: int, rows: np.ndarray | None = None,
         gaps = np.setdiff1d(np.arange(int(have[0]), top + 1), have) if len(have) else np.zeros(0, int)
         within = f"{have[0]}..{top}" + (f" without {_listed(gaps.tolist())}" if len(gaps) else "")
         more = f" ({len(lost)} of the rows given are not: {_listed(lost)})" if len(lost) > 1 else ""
-        raise ArgumentError("register_rows", f"row {lost[0]} is not a data row of {source}{more}: its {n_test} poses "
-                            f"are rows {within}; expected {_ROWS_WANTED}; check the row numbers or the test file.")
+        raise ArgumentError("register_rows", f"row {lost[0]} is not among the test poses of {source}{more}: its "
+                            f"{n_test} poses are rows {within} (rows with empty cells are skipped); expected "
+                            f"{_ROWS_WANTED}; check the row numbers or the test file.")
     r = len(nums)
     if r < MIN_REGISTER or n_test - r < MIN_SCORED:
         advice = "give more rows" if r < MIN_REGISTER else "give fewer rows or use a larger test file"

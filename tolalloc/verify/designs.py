@@ -2,8 +2,9 @@
 
 The design's error model (``sigma = t / z``) is sampled and evaluated with the exact perturbed
 kinematics; ``P(|dP| < r)`` is estimated at every pose with an interval and set beside the linear (Gaussian)
-prediction. The intervals of all poses and requirements are simultaneous: ``m`` = poses x requirements intervals,
-each at level ``1 - (1 - level) / m`` (Bonferroni), hold together with probability at least ``level`` (0.95), so
+prediction. The intervals of all poses and requirements are simultaneous: ``m`` = poses x requirements intervals
+(plus the possible second looks, :func:`~tolalloc.verify.verdicts.verification_family`), each at level
+``1 - (1 - level) / m`` (Bonferroni), hold together with probability at least ``level`` (0.95), so
 the verdict over all poses is a joint claim at that level. The estimator (``estimator=``, :mod:`tolalloc.montecarlo.paired`): by default the paired
 one -- the exact linear P plus the mean difference of the nonlinear and linear indicators on the same draws,
 Tango's interval -- where the parameters are Gaussian, plain Monte Carlo (Wilson) elsewhere, importance
@@ -349,7 +350,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     P = problem.n_poses
     m, looks = verification_family(P, 1 if ang is None else 2, crit, n_mc, n_max)
     lvl = simultaneous_level(level, m)
-    what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%)")
+    what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%"
+                                                      + (", a possible second look counted)" if looks else ")"))
     reqs = [("position", p)] + ([] if ang is None else [("orientation", problem.angle_prob)])
     estimator = choose_estimator(model, reqs, n_mc, n_max, crit, estimator, lvl, what)
     p_lin = design.p_linear["position"]

@@ -2,7 +2,8 @@
 
 Each requirement -- the position one and, when stated, the orientation one -- is judged at each pose from the
 interval of its own ``P_hat`` against its own ``p``. The intervals of all poses and requirements judged together
-are simultaneous: with ``m`` = poses x requirements, each is at level ``1 - (1 - level) / m`` (Bonferroni,
+are simultaneous: with ``m`` = poses x requirements (plus the possible second looks, :func:`verification_family`),
+each is at level ``1 - (1 - level) / m`` (Bonferroni,
 :func:`tolalloc.montecarlo.intervals.simultaneous_level`), so that all of them cover their true probabilities with
 probability at least ``level`` (0.95) -- a design exactly at ``p`` everywhere is called *failed* (or a design
 below ``p`` somewhere *demonstrated*) with probability at most ``1 - level``, however many poses are verified.
