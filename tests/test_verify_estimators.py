@@ -52,6 +52,11 @@ def test_unresolvable_tail_is_refused_with_the_samples_needed(res):
         verify_design(pr, d, n_mc=1000, estimator="plain")
     with pytest.raises(TolallocError, match="the paired estimator"):
         verify_design(pr, d, n_mc=1000, estimator="paired")
+    # certified: the position requirement is judged at n_max (default 4 n_mc), which the message says how to reach;
+    # 2 poses + 2 possible second looks: 4 intervals at 98.75 %, z = 2.4977, n >= 62380
+    with pytest.raises(TolallocError, match=r"n_max 4000 samples per pose cannot resolve the tail .* `n_max` >= 62380 "
+                                            r"\(`n_max` defaults to 4 x `n_mc`, .*: `n_mc` >= 15595 gives it\)"):
+        verify_design(pr, d, n_mc=1000, estimator="plain", criterion="certified")
     auto = verify_design(pr, d, n_mc=1000, keep_samples=0)  # auto: importance sampling where paired cannot resolve
     assert np.all(auto.estimator == "importance")
     v = verify_design(pr, d, n_mc=1000, estimator="importance", keep_samples=0)  # importance sampling can

@@ -58,8 +58,11 @@ def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_
     else:
         alt = " (the model has non-Gaussian parameters, so neither the paired estimator nor importance sampling applies)"
     tail = "tail" if requirement == "position" else f"{requirement} tail"
+    default = (f" (`n_max` defaults to 4 x `n_mc`, as in allocate_tolerances and the command line: `n_mc` >= "
+               f"{int(np.ceil(need / 4))} gives it)" if name == "n_max" else "")
     raise ArgumentError(name, f"{n} samples per pose cannot resolve the {tail} 1 - p = {1 - prob:.3g} with {how}: "
-                        f"even with no miss the {what} reaches below p = {prob:g}; give `{name}` >= {need}{alt}.")
+                        f"even with no miss the {what} reaches below p = {prob:g}; give `{name}` >= {need}{default}"
+                        f"{alt}.")
 
 
 def choose_estimator(model, requirements, n_mc: int, n_max: int, criterion: str, estimator: str, level: float,
