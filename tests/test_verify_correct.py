@@ -8,7 +8,7 @@ import pytest
 from tolalloc import load_robot
 from tolalloc.allocate.costs import DEFAULT_COSTS
 from tolalloc.errormodel import build_error_model
-from tolalloc.verify.correct import correct_design
+from tolalloc.verify.correct import CONFIRM_SEED_OFFSET, correct_design
 
 N = 100_000
 
@@ -37,6 +37,43 @@ def test_correction_ends_demonstrated_and_costs_more(case):
     assert "verified: demonstrated after" in c.message()
     block = c.to_dict()
     assert block["verdict"] == "demonstrated" and block["poses_tightened"] == [1] and block["premium_pct"] > 0
+    # the corrected design was tuned on seed 1's draws: the result is its verification on fresh draws
+    assert c.confirm_seed == 1 + CONFIRM_SEED_OFFSET and c.verification.seed == c.confirm_seed
+    assert c.tuned.seed == 1 and c.tuned.verdict == "demonstrated" and c.before.seed == 1
+    assert not np.array_equal(c.verification.p_mc, c.tuned.p_mc)
+    assert (f"after {c.rounds} correction round(s), judged on fresh draws (seed {c.confirm_seed}; on the draws the "
+            "rounds were tuned on, seed 1, it was demonstrated)") in c.message()
+    assert block["confirm_seed"] == c.confirm_seed and block["verdict_tuned"] == "demonstrated"
+
+
+def test_a_corrected_design_that_fresh_draws_do_not_demonstrate_is_stopped(case, monkeypatch):
+    from dataclasses import replace
+
+    import tolalloc.verify.correct as correct
+
+    model, q, costs = case
+    real = correct.verify_design
+
+    def fresh_draws_fall_short(problem, design, **kw):  # the same design, a fresh sample just below p
+        v = real(problem, design, **kw)
+        if kw["seed"] != 1 + CONFIRM_SEED_OFFSET:
+            return v
+        low = np.full_like(v.ci_low, 0.949)
+        return replace(v, ci_low=low, passed=np.zeros_like(v.passed), estimate=replace(v.estimate, ci_low=low))
+
+    monkeypatch.setattr(correct, "verify_design", fresh_draws_fall_short)
+    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=N, seed=1, max_rounds=2)
+    assert c.rounds >= 1 and c.tuned.verdict == "demonstrated" and c.verification.verdict != "demonstrated"
+    assert c.stopped and c.reason.startswith("demonstrated on the draws the rounds were tuned on (seed 1), not on "
+                                             f"fresh draws (seed {1 + CONFIRM_SEED_OFFSET}): ")
+    assert "stopped, not demonstrated: demonstrated on the draws the rounds were tuned on" in c.message()
+
+
+def test_a_design_demonstrated_at_once_is_not_run_again(case):
+    model, q, costs = case
+    c = correct_design(model, q, solver="certified", radius_mm=30.0, costs=costs, n_mc=20_000, seed=1, max_rounds=2)
+    assert c.rounds == 0 and c.verification.verdict == "demonstrated"
+    assert c.confirm_seed is None and c.tuned is None and c.verification is c.before
 
 
 def test_without_rounds_the_loop_stops_and_says_so(case):

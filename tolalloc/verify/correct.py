@@ -12,6 +12,13 @@ errors above ``p``, so its re-verified lower bound clears ``p`` by about one sta
 solved again with these per-pose targets (:func:`tolalloc.allocate.problem.build_problem` ``target=`` and
 ``angle_target=``) and re-verified against the requirements themselves (same seed, same poses), at most
 ``max_rounds`` times; then the loop stops and says so.
+
+The rounds re-use the draws that measured the shortfall (common random numbers: a round's change is not lost in
+sampling noise), so a corrected design that they call *demonstrated* was tuned on those draws; the 95 % claim of a
+verification holds for draws the design did not depend on. A corrected design is therefore judged once more on
+fresh draws (seed ``seed +`` :data:`CONFIRM_SEED_OFFSET`), and that verification is the result: demonstrated
+there, or stopped with what fell short. A design demonstrated at the first verification (no round) needs no
+second run: nothing was tuned on its draws.
 """
 
 from __future__ import annotations
@@ -25,7 +32,11 @@ from tolalloc.exceptions import ArgumentError
 from tolalloc.verify.designs import Verification, verify_design
 from tolalloc.verify.verdicts import shortfall_text
 
-__all__ = ["Correction", "correct_design"]
+__all__ = ["Correction", "correct_design", "CONFIRM_SEED_OFFSET"]
+
+#: Seed offset of the fresh draws a corrected design is judged on (apart from ``seed`` and ``seed + 1``, which a
+#: verification's own second look uses).
+CONFIRM_SEED_OFFSET = 1_000_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,7 +48,8 @@ class Correction:
     result : AllocationResult
         The final allocation (the input one if no round was needed or none succeeded).
     verification : Verification
-        Its verification against ``p`` (verdict per pose and overall).
+        Its verification against ``p`` (verdict per pose and overall); after a correction round, the one on fresh
+        draws (:attr:`confirm_seed`).
     before : Verification
         The verification of the uncorrected design.
     rounds : int
@@ -52,6 +64,11 @@ class Correction:
         Why the loop ended.
     angle_targets : array, shape (P,) or None
         The same for the orientation requirement (``angle_prob`` where no pose was tightened); None without one.
+    tuned : Verification or None
+        The final design's verification on the draws the rounds were tuned on (None: no round, or the loop stopped
+        before a demonstrated round).
+    confirm_seed : int or None
+        Seed of the fresh draws of :attr:`verification` (None when no fresh run was made).
     """
 
     result: object
@@ -63,6 +80,8 @@ class Correction:
     stopped: bool
     reason: str = ""
     angle_targets: np.ndarray | None = None
+    tuned: Verification | None = None
+    confirm_seed: int | None = None
 
     @property
     def cost_of_correction(self) -> float:
@@ -95,7 +114,10 @@ class Correction:
         poses = listed(self.tightened, self.targets)
         if self.angle_targets is not None:
             poses += f"; orientation poses tightened (target): {listed(self.tightened_angle, self.angle_targets)}"
-        head = (f"verified: {v.verdict} after {self.rounds} correction round(s) (before: {self.before.verdict}); "
+        fresh = ("" if self.confirm_seed is None else
+                 f", judged on fresh draws (seed {self.confirm_seed}; on the draws the rounds were tuned on, seed "
+                 f"{self.tuned.seed}, it was {self.tuned.verdict})")
+        head = (f"verified: {v.verdict} after {self.rounds} correction round(s){fresh} (before: {self.before.verdict}); "
                 f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
                 f"({self.cost_of_correction:+.4f}, {self.premium_pct:+.3g} %)")
         return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
@@ -114,6 +136,7 @@ class Correction:
                 "costs_per_round": [float(c) for c in self.costs],
                 "verdict_before": self.before.verdict, "verdicts_before": self.before.verdicts.tolist(),
                 "verdict": v.verdict, "verdicts": v.verdicts.tolist(), "estimator": [str(e) for e in v.estimator],
+                "confirm_seed": self.confirm_seed, "verdict_tuned": None if self.tuned is None else self.tuned.verdict,
                 "message": self.message()}
 
 
@@ -213,13 +236,12 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     def built(res):
         return res.standard if standard and res.standard is not None else res.design
 
-    def check(res):  # against p itself (the problem's prob), with the design's own criterion
-        return verify_design(res.problem, built(res), n_mc=n_mc, seed=seed, keep_samples=keep_samples,
+    def check(res, draws=seed):  # against p itself (the problem's prob), with the design's own criterion
+        return verify_design(res.problem, built(res), n_mc=n_mc, seed=draws, keep_samples=keep_samples,
                              scheduler=scheduler, estimator=estimator, level=level)
 
     res = result if result is not None else solve()
-    ver = verification if verification is not None else check(res)
-    before = ver
+    before = ver = verification if verification is not None else check(res)
     targets = {c.name: np.full(len(c.p_mc), c.prob) for c in ver.requirements()}
     costs, rounds, reason = [float(built(res).cost)], 0, ""
     while ver.verdict != "demonstrated":
@@ -237,8 +259,23 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
         res, targets, rounds = nxt, new, rounds + 1
         costs.append(float(built(res).cost))
         ver = check(res)
+    ver, tuned, confirm_seed, reason = _on_fresh_draws(ver, rounds, lambda s: check(res, s), int(seed), reason)
     return Correction(res, ver, before, rounds, targets["position"], tuple(costs), ver.verdict != "demonstrated",
-                      reason, targets.get("orientation"))
+                      reason, targets.get("orientation"), tuned, confirm_seed)
+
+
+def _on_fresh_draws(ver: Verification, rounds: int, check, seed: int, reason: str) -> tuple:
+    """``(verification, tuned, confirm_seed, reason)`` of the loop's result: a design corrected in ``rounds`` > 0
+    and demonstrated on the tuning draws (``ver``) is verified again on fresh draws (``check(seed + offset)``),
+    which decide; otherwise ``ver`` stands (``tuned``, ``confirm_seed`` None) with the loop's ``reason``."""
+    if not rounds or ver.verdict != "demonstrated":
+        return ver, None, None, reason
+    confirm_seed = seed + CONFIRM_SEED_OFFSET
+    fresh = check(confirm_seed)
+    reason = "" if fresh.verdict == "demonstrated" else (
+        f"demonstrated on the draws the rounds were tuned on (seed {seed}), not on fresh draws (seed {confirm_seed}): "
+        f"{shortfall_text(fresh.requirements())}")
+    return fresh, ver, confirm_seed, reason
 
 
 def _family_level(level, verification) -> float:
