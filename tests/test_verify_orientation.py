@@ -75,15 +75,21 @@ def test_orientation_wholly_below_p_fails_and_certified_needs_both_demonstrated(
 def test_orientation_target_rule_and_problem_target():
     v = _verification([ABOVE, ABOVE], [ABOVE, STRADDLE])
     pos, ang = v.requirements()
-    np.testing.assert_array_equal(needed_targets(pos, np.full(2, P)), [P, P])
-    z = 1.959963984540054  # a single 95 % interval: the default margin is z + 1 standard errors
+    z = 1.959963984540054  # a single 95 % interval: the default margin is z + 3 standard errors
+    # ABOVE clears p (lower bound 0.955) by 1.96 standard errors of its interval, less than the 3 that fresh draws
+    # need: it is tightened too, to p + (z + 3) se (no shortfall: its P_hat lies above its linear P)
+    se_above = 0.01 / (2 * z)
+    np.testing.assert_allclose(needed_targets(pos, np.full(2, P)), [P + (z + 3) * se_above] * 2)
+    wide = replace(v, ci_low=np.array([0.99, 0.99]), ci_high=np.array([0.991, 0.991]))  # 0.99: far above p
+    np.testing.assert_array_equal(needed_targets(wide.requirements()[0], np.full(2, P)), [P, P])
     se = 0.004 / (2 * z)
-    np.testing.assert_allclose(needed_targets(ang, np.full(2, P)), [P, P + (z + 1) * se])
-    np.testing.assert_allclose(needed_targets(ang, np.full(2, P), k_se=3.0), [P, P + 3 * se])
+    np.testing.assert_allclose(needed_targets(ang, np.full(2, P)), [P + (z + 3) * se_above, P + (z + 3) * se])
+    np.testing.assert_allclose(needed_targets(ang, np.full(2, P), k_se=3.0), [P + 3 * se_above, P + 3 * se])
     # simultaneous over 2 poses x 2 requirements: each interval at 1 - 0.05 / 4, z = 2.4977; se from that z
     sim = replace(v, n_intervals=4).requirements()[1]
     z4 = 2.4977054744123865
-    np.testing.assert_allclose(needed_targets(sim, np.full(2, P)), [P, P + (z4 + 1) * 0.004 / (2 * z4)])
+    np.testing.assert_allclose(needed_targets(sim, np.full(2, P)),
+                               [P + (z4 + 3) * 0.01 / (2 * z4), P + (z4 + 3) * 0.004 / (2 * z4)])
     model = build_error_model(load_robot("ur10"))
     q = model.robot.poses("working")[[0, 2]]
     pr = build_problem(model, q, radius_mm=0.5, angle_radius_deg=0.05, angle_target=[0.95, 0.96])

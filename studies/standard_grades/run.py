@@ -114,7 +114,7 @@ def section1(n_mc: int) -> tuple[list, list]:
         lines += [f"Nonlinear Monte Carlo of the standard design ({n_mc:.0e} samples per pose, {len(q)} poses: the "
                   "active ones and, for a box, the 3 lowest of the fresh sample): " + ver.message() + ".", ""]
         if res2 is not None:
-            lines += [f"One correction round (targets raised by the measured shortfall + z + 1 standard errors, the "
+            lines += [f"One correction round (targets raised by the measured shortfall + z + 3 standard errors, the "
                       f"standard design re-chosen, then judged on fresh draws, seed {SEED + CONFIRM_SEED_OFFSET}): "
                       f"cost {res.standard.cost:.4f} -> {res2.standard.cost:.4f} "
                       f"({100 * (res2.standard.cost / res.standard.cost - 1):+.2f} %); " + ver2.message() + ".", ""]

@@ -194,7 +194,7 @@ def poses_effect(model, W, card) -> pd.DataFrame:
 
 def section_correction(model, card, n_mc, n_cov) -> list:
     """The correction loop (tolalloc.verify.correct) on the exact design when its Monte Carlo verdict is not
-    demonstrated: tighten the target by the measured shortfall + z + 1 standard errors (z of each simultaneous
+    demonstrated: tighten the target by the measured shortfall + z + 3 standard errors (z of each simultaneous
     interval), re-solve, re-verify."""
     from tolalloc.verify.correct import correct_design
 
@@ -208,7 +208,7 @@ def section_correction(model, card, n_mc, n_cov) -> list:
     lines = head + [f"The exact design's Monte Carlo verdict is **{ex_v.verdict}** (above). The correction loop of "
                     f"`tolalloc.verify.correct` (at the same {len(q_check)} poses, {n_mc:.0e} samples per pose, a pose "
                     "passes only when demonstrated; the target is raised by the measured shortfall of P̂ below the "
-                    "linear P plus z + 1 standard errors, z of each interval simultaneous over the poses, at most 2 "
+                    "linear P plus z + 3 standard errors, z of each interval simultaneous over the poses, at most 2 "
                     "rounds): " + corr.message() + ".",
                     f"Per-pose verdicts after correction: {int(np.sum(v.verdicts == 'demonstrated'))} demonstrated, "
                     f"{int(np.sum(v.verdicts == 'consistent'))} consistent, {int(np.sum(v.verdicts == 'failed'))} failed; "

@@ -58,7 +58,7 @@ def register(sub) -> None:
     p.add_argument("--no-correction", action="store_true",
                    help="do not run the correction loop (by default, when a verified pose is not demonstrated - its "
                    "interval of P_hat (95%% simultaneous over the verified poses and requirements) not wholly >= p "
-                   "- its probability target is raised by the shortfall of P_hat below the linear P plus z + 1 "
+                   "- its probability target is raised by the shortfall of P_hat below the linear P plus z + 3 "
                    "standard errors (z of each simultaneous interval) and the allocation re-solved; --calibration "
                    "has no correction loop)")
     p.add_argument("--correction-rounds", type=int, default=None, metavar="N",
