@@ -36,6 +36,8 @@ def test_allocate_writes_everything(tmp_path, capsys):
     assert pose["p_linear"] >= corr["target_per_pose"][0] - 1e-9  # the standard design to build meets it too
     assert corr["cost_after"] > corr["cost_before"] and s["built"]["cost"] == pytest.approx(corr["cost_after"])
     assert s["verification"]["verdict"] == corr["verdict"] == pose["verdict"] == "demonstrated"
+    # the corrected design is judged on fresh draws, not on the seed-3 draws its target was raised from
+    assert corr["confirm_seed"] == s["verification"]["seed"] == 3 + 1_000_000 and corr["verdict_tuned"] == "demonstrated"
     assert "correction: verified: demonstrated after" in text and "verdict per pose: 1 demonstrated" in text
     md = (out / "tolerances.md").read_text().splitlines()
     assert md[0].startswith("design: standard grades (discrete-exact), the design to build; verified by nonlinear")

@@ -99,3 +99,29 @@ def test_the_given_verifications_family_level_carries_through_the_rounds(case):
         correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, result=res, verification=v, level=0.95)
     c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, seed=1, max_rounds=0, level=0.9)
     assert c.verification.family_level == 0.9
+
+
+def test_a_loop_stopped_after_a_round_is_judged_on_fresh_draws_too(case):
+    model, q, costs = case
+    # no margin and one round: the re-solved design is still short on the draws it was tuned on
+    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=20_000, seed=1, max_rounds=1, k_se=0.0)
+    assert c.rounds == 1 and c.tuned is not None and c.tuned.seed == 1 and c.tuned.verdict != "demonstrated"
+    assert c.confirm_seed == 1 + CONFIRM_SEED_OFFSET and c.verification.seed == c.confirm_seed
+    assert c.stopped == (c.verification.verdict != "demonstrated")
+    if c.stopped:
+        assert c.reason.startswith("round limit (1) reached; on fresh draws (seed 1000001) still short: ")
+    assert c.to_dict()["confirm_seed"] == c.confirm_seed and c.to_dict()["verdict_tuned"] == c.tuned.verdict
+
+
+def test_a_given_verification_of_other_draws_is_refused(case):
+    from tolalloc.allocate.problem import build_problem
+    from tolalloc.allocate.solve import allocate
+    from tolalloc.exceptions import TolallocError
+    from tolalloc.verify.designs import verify_design
+
+    model, q, costs = case
+    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs))
+    v = verify_design(res.problem, res.design, n_mc=2000, seed=5, keep_samples=0)
+    with pytest.raises(TolallocError, match=r"seed 1 differs from the seed 5 of the given `verification`, whose "
+                                            r"draws the rounds are tuned on; pass seed=5"):
+        correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, seed=1, result=res, verification=v)

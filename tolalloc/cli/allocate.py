@@ -58,9 +58,10 @@ def register(sub) -> None:
     p.add_argument("--no-correction", action="store_true",
                    help="do not run the correction loop (by default, when a verified pose is not demonstrated - its "
                    "interval of P_hat (95%% simultaneous over the verified poses and requirements) not wholly >= p "
-                   "- its probability target is raised by the shortfall of P_hat below the linear P plus z + 3 "
-                   "standard errors (z of each simultaneous interval) and the allocation re-solved; --calibration "
-                   "has no correction loop)")
+                   "- or demonstrated by less than 3 standard errors - its probability target is raised by the "
+                   "shortfall of P_hat below the linear P plus z + 3 standard errors (z of each simultaneous "
+                   "interval) and the allocation re-solved; the corrected design is then judged on fresh draws; "
+                   "--calibration has no correction loop)")
     p.add_argument("--correction-rounds", type=int, default=None, metavar="N",
                    help="largest number of correction rounds before the loop stops and says so (default 2; not with "
                    "--calibration)")

@@ -54,8 +54,8 @@ class Correction:
     result : AllocationResult
         The final allocation (the input one if no round was needed or none succeeded).
     verification : Verification
-        Its verification against ``p`` (verdict per pose and overall); after a correction round, the one on fresh
-        draws (:attr:`confirm_seed`).
+        Its verification against ``p`` (verdict per pose and overall); after a correction round (demonstrated or
+        stopped), the one on fresh draws (:attr:`confirm_seed`).
     before : Verification
         The verification of the uncorrected design.
     rounds : int
@@ -71,8 +71,7 @@ class Correction:
     angle_targets : array, shape (P,) or None
         The same for the orientation requirement (``angle_prob`` where no pose was tightened); None without one.
     tuned : Verification or None
-        The final design's verification on the draws the rounds were tuned on (None: no round, or the loop stopped
-        before a demonstrated round).
+        The final design's verification on the draws the rounds were tuned on (None: no round ran).
     confirm_seed : int or None
         Seed of the fresh draws of :attr:`verification` (None when no fresh run was made).
     """
@@ -150,7 +149,8 @@ def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
     """Per-pose targets of one requirement for the next round, shape (P,).
 
     ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses whose lower bound lies below
-    ``p + MARGIN_SE se`` (not demonstrated, or by less than :data:`MARGIN_SE` standard errors); unchanged elsewhere. ``se`` is the standard error implied by the pose's interval (half its
+    ``p + (k_se - z) se`` (not demonstrated, or by less than the margin beyond ``z``, :data:`MARGIN_SE` by
+    default); unchanged elsewhere. ``se`` is the standard error implied by the pose's interval (half its
     width over ``z``, the normal quantile of the interval's own level -- for simultaneous intervals the Bonferroni
     one): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or importance-sampling one
     otherwise, so the margin is what the estimator can resolve, not what plain sampling could. ``k_se`` None:
@@ -175,9 +175,9 @@ def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
     k_se = z + MARGIN_SE if k_se is None else k_se
     se = np.maximum((check.ci_high - check.ci_low) / (2 * z), 1e-12)
     need = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0) + k_se * se
-    # not demonstrated by MARGIN_SE standard errors: fresh draws could still fail it (a pose on p whose nonlinear
-    # estimate cleared it on these draws only)
-    short = check.ci_low < check.prob + MARGIN_SE * se
+    # not demonstrated by the margin beyond z (MARGIN_SE by default): fresh draws could still fail it (a pose on p
+    # whose nonlinear estimate cleared it on these draws only)
+    short = check.ci_low < check.prob + max(0.0, k_se - z) * se
     return np.where(short, np.maximum(targets, need), targets)
 
 
@@ -190,7 +190,8 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
     Every stated requirement (position, and orientation when ``angle_radius_deg`` is given) is tightened by the
     same rule (:func:`needed_targets`) at the poses where its lower bound (of the intervals simultaneous over the
-    poses and requirements) is below its ``p``.
+    poses and requirements) is below its ``p`` plus :data:`MARGIN_SE` standard errors. A corrected design is judged
+    on fresh draws (seed ``seed +`` :data:`CONFIRM_SEED_OFFSET`), whose verification is the result.
 
     Parameters
     ----------
@@ -235,6 +236,10 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
     check_estimator(estimator)
     level = _family_level(level, verification)
+    if verification is not None and verification.seed != seed:  # the rounds are tuned on the given one's draws
+        raise ArgumentError("seed", f"{seed!r} differs from the seed {verification.seed} of the given "
+                            "`verification`, whose draws the rounds are tuned on; pass seed="
+                            f"{verification.seed}, or verify again with seed={seed!r}.")
 
     def solve(targets=None):
         t = targets or {}
@@ -273,16 +278,21 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
 
 
 def _on_fresh_draws(ver: Verification, rounds: int, check, seed: int, reason: str) -> tuple:
-    """``(verification, tuned, confirm_seed, reason)`` of the loop's result: a design corrected in ``rounds`` > 0
-    and demonstrated on the tuning draws (``ver``) is verified again on fresh draws (``check(seed + offset)``),
-    which decide; otherwise ``ver`` stands (``tuned``, ``confirm_seed`` None) with the loop's ``reason``."""
-    if not rounds or ver.verdict != "demonstrated":
+    """``(verification, tuned, confirm_seed, reason)`` of the loop's result: a design corrected in ``rounds`` > 0 is
+    verified again on fresh draws (``check(seed + offset)``), which decide -- its verification on the tuning draws
+    (``ver``) set its targets; with no round ``ver`` stands (``tuned``, ``confirm_seed`` None)."""
+    if not rounds:
         return ver, None, None, reason
     confirm_seed = seed + CONFIRM_SEED_OFFSET
     fresh = check(confirm_seed)
-    reason = "" if fresh.verdict == "demonstrated" else (
-        f"demonstrated on the draws the rounds were tuned on (seed {seed}), not on fresh draws (seed {confirm_seed}): "
-        f"{shortfall_text(fresh.requirements())}")
+    if fresh.verdict == "demonstrated":
+        reason = ""
+    elif ver.verdict == "demonstrated":
+        reason = (f"demonstrated on the draws the rounds were tuned on (seed {seed}), not on fresh draws (seed "
+                  f"{confirm_seed}): {shortfall_text(fresh.requirements())}")
+    else:  # the loop stopped short: its reason, with the shortfall the fresh draws measure
+        reason = reason.split("; still short: ")[0] + f"; on fresh draws (seed {confirm_seed}) still short: " \
+            f"{shortfall_text(fresh.requirements())}"
     return fresh, ver, confirm_seed, reason
 
 
