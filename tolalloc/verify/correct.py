@@ -235,11 +235,7 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     from tolalloc.montecarlo.paired import check_estimator
 
     check_estimator(estimator)
-    level = _family_level(level, verification)
-    if verification is not None and verification.seed != seed:  # the rounds are tuned on the given one's draws
-        raise ArgumentError("seed", f"{seed!r} differs from the seed {verification.seed} of the given "
-                            "`verification`, whose draws the rounds are tuned on; pass seed="
-                            f"{verification.seed}, or verify again with seed={seed!r}.")
+    level = _family_level(level, verification, seed)
 
     def solve(targets=None):
         t = targets or {}
@@ -296,14 +292,19 @@ def _on_fresh_draws(ver: Verification, rounds: int, check, seed: int, reason: st
     return fresh, ver, confirm_seed, reason
 
 
-def _family_level(level, verification) -> float:
-    """The family level of the loop's verifications: ``level``, else the given verification's, else 0.95."""
+def _family_level(level, verification, seed: int) -> float:
+    """The family level of the loop's verifications: ``level``, else the given verification's, else 0.95; a given
+    verification of other draws than ``seed``'s is refused (the rounds are tuned on its draws)."""
     if verification is None:
         return 0.95 if level is None else level
     if level is not None and level != verification.family_level:
         raise ArgumentError("level", f"{level!r} differs from the family level {verification.family_level:g} of the "
                             "given `verification`; leave `level` out (the verification's is used) or verify again "
                             "at the level wanted.")
+    if verification.seed != seed:
+        raise ArgumentError("seed", f"{seed!r} differs from the seed {verification.seed} of the given "
+                            "`verification`, whose draws the rounds are tuned on; pass seed="
+                            f"{verification.seed}, or verify again with seed={seed!r}.")
     return verification.family_level
 
 
