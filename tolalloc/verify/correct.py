@@ -122,8 +122,8 @@ class Correction:
         fresh = ("" if self.confirm_seed is None else
                  f", judged on fresh draws (seed {self.confirm_seed}; on the draws the rounds were tuned on, seed "
                  f"{self.tuned.seed}, it was {self.tuned.verdict})")
-        head = (f"verified: {v.verdict} after {self.rounds} correction round(s){fresh} (before: {self.before.verdict}); "
-                f"poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
+        head = (f"verified: {v.verdict} after {self.rounds} correction round(s){fresh} "
+                f"(before: {self.before.verdict}); poses tightened (target): {poses}; cost {self.costs[0]:.4f} -> {self.costs[-1]:.4f} "
                 f"({self.cost_of_correction:+.4f}, {self.premium_pct:+.3g} %)")
         return head + (f"; stopped, not demonstrated: {self.reason}" if self.stopped else "")
 
@@ -252,43 +252,45 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
     res = result if result is not None else solve()
     before = ver = verification if verification is not None else check(res)
     targets = {c.name: np.full(len(c.p_mc), c.prob) for c in ver.requirements()}
-    costs, rounds, reason = [float(built(res).cost)], 0, ""
+    costs, rounds, cause = [float(built(res).cost)], 0, ""
     while ver.verdict != "demonstrated":
         if rounds >= max_rounds:
-            reason = f"round limit ({max_rounds}) reached; still short: {shortfall_text(ver.requirements())}"
+            cause = f"round limit ({max_rounds}) reached"
             break
         new = {c.name: needed_targets(c, targets[c.name], k_se) for c in ver.requirements()}
-        reason = _cannot_tighten(new, targets)
-        if reason:
+        cause = _cannot_tighten(new, targets)
+        if cause:
             break
         nxt = solve(new)
         if not built(nxt).ok or nxt.status != "optimal":
-            reason = f"the tightened problem has no design ({nxt.status}: {built(nxt).message or nxt.message})"
+            cause = f"the tightened problem has no design ({nxt.status}: {built(nxt).message or nxt.message})"
             break
         res, targets, rounds = nxt, new, rounds + 1
         costs.append(float(built(res).cost))
         ver = check(res)
-    ver, tuned, confirm_seed, reason = _on_fresh_draws(ver, rounds, lambda s: check(res, s), int(seed), reason)
+    ver, tuned, confirm_seed, reason = _on_fresh_draws(ver, rounds, max_rounds, lambda s: check(res, s), seed, cause)
     return Correction(res, ver, before, rounds, targets["position"], tuple(costs), ver.verdict != "demonstrated",
                       reason, targets.get("orientation"), tuned, confirm_seed)
 
 
-def _on_fresh_draws(ver: Verification, rounds: int, check, seed: int, reason: str) -> tuple:
+def _on_fresh_draws(ver: Verification, rounds: int, max_rounds: int, check, seed: int, cause: str) -> tuple:
     """``(verification, tuned, confirm_seed, reason)`` of the loop's result: a design corrected in ``rounds`` > 0 is
     verified again on fresh draws (``check(seed + offset)``), which decide -- its verification on the tuning draws
-    (``ver``) set its targets; with no round ``ver`` stands (``tuned``, ``confirm_seed`` None)."""
+    (``ver``) set its targets; with no round ``ver`` stands (``tuned``, ``confirm_seed`` None). ``cause``: why the
+    loop stopped ("" when it ended demonstrated); stopped by the round limit ``max_rounds``, the reason also says
+    what is still short."""
+    at_limit = rounds >= max_rounds and ver.verdict != "demonstrated"  # the loop checks the limit first in a round
     if not rounds:
-        return ver, None, None, reason
-    confirm_seed = seed + CONFIRM_SEED_OFFSET
+        return ver, None, None, cause + (f"; still short: {shortfall_text(ver.requirements())}" if at_limit else "")
+    confirm_seed = int(seed) + CONFIRM_SEED_OFFSET
     fresh = check(confirm_seed)
     if fresh.verdict == "demonstrated":
         reason = ""
     elif ver.verdict == "demonstrated":
         reason = (f"demonstrated on the draws the rounds were tuned on (seed {seed}), not on fresh draws (seed "
                   f"{confirm_seed}): {shortfall_text(fresh.requirements())}")
-    else:  # the loop stopped short: its reason, with the shortfall the fresh draws measure
-        reason = reason.split("; still short: ")[0] + f"; on fresh draws (seed {confirm_seed}) still short: " \
-            f"{shortfall_text(fresh.requirements())}"
+    else:  # the loop stopped short: why, with the shortfall the fresh draws measure
+        reason = f"{cause}; on fresh draws (seed {confirm_seed}) still short: {shortfall_text(fresh.requirements())}"
     return fresh, ver, confirm_seed, reason
 
 
