@@ -183,16 +183,16 @@ class Diagnosis:
         if self.extrapolation is not None:
             out["extrapolation"] = self.extrapolation.to_dict()
         if self.test is not None:
+            fitted = {} if self.calibration_update is None else {"fitted": self.registration_fitted()}
             out["test"] = {"poses": self.test.n_poses, "skipped_rows": self.test.n_skipped, "source": self.test.source,
                            "scored_poses": len(self.scored_index), **test,
-                           "registration": None if self.registration is None else self.registration.to_dict(self.test.rows)}
+                           "registration": None if self.registration is None else
+                           self.registration.to_dict(self.test.rows, **fitted)}
             if self.registered is not None:
                 out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
                                                 "target_offset_mm": self.registered.t_mm}
             if self.calibration_update is not None and self.registration is not None:
-                out["test"]["registration"] |= {
-                    "method": self.registration.to_dict(self.test.rows, self.registration_fitted())["method"],
-                    **self.calibration_update.to_dict()}
+                out["test"]["registration"] |= self.calibration_update.to_dict()
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
         if self.parameter_check is not None:

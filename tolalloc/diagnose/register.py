@@ -27,6 +27,7 @@ the numbers the JSON key ``registration_rows`` reports -- and 1-based positions 
 from __future__ import annotations
 
 import warnings
+from collections import Counter
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -183,9 +184,7 @@ def register_row_numbers(register_rows) -> list:
     if bad:
         raise ArgumentError("register_rows", f"expected {_ROWS_VALUE}, got {describe(bad[0])} among the "
                             f"{len(items)} rows given; give the row numbers of the test file.")
-    counts: dict = {}
-    for n in nums:
-        counts[n] = counts.get(n, 0) + 1
+    counts = Counter(nums)
     twice = sorted(n for n, c in counts.items() if c > 1)
     if twice:
         more = f" ({len(twice)} rows repeated: {_listed(twice)})" if len(twice) > 1 else ""
@@ -219,16 +218,13 @@ def split_from_rows(register_rows, n_test: int, rows: np.ndarray | None = None,
     """
     nums = register_row_numbers(register_rows)
     file_rows = np.arange(1, n_test + 1) if rows is None or not len(rows) else np.asarray(rows, dtype=np.int64)
-    order = np.argsort(file_rows, kind="stable")
-    have = file_rows[order]
-    top = int(have[-1]) if len(have) else 0
-    want = np.array([n if n <= top else top + 1 for n in nums], dtype=np.int64)  # beyond the last row: not found
-    at = np.minimum(np.searchsorted(have, want), max(len(have) - 1, 0))
-    found = (have[at] == want) if len(have) else np.zeros(len(want), bool)
-    if not found.all():
-        lost = [n for n, ok in zip(nums, found) if not ok]
+    index = {int(r): i for i, r in enumerate(file_rows)}  # file row -> test pose
+    lost = [n for n in nums if n not in index]
+    if lost:
+        have = np.sort(file_rows)
+        top = int(have[-1]) if len(have) else 0
         gaps = np.setdiff1d(np.arange(int(have[0]), top + 1), have) if len(have) else np.zeros(0, int)
-        within = f"{have[0]}..{top}" + (f" without {_listed(gaps.tolist())}" if len(gaps) else "")
+        within = f"{have[0] if len(have) else 0}..{top}" + (f" without {_listed(gaps.tolist())}" if len(gaps) else "")
         more = f" ({len(lost)} of the rows given are not: {_listed(lost)})" if len(lost) > 1 else ""
         raise ArgumentError("register_rows", f"row {lost[0]} is not among the test poses of {source}{more}: its "
                             f"{n_test} poses are rows {within} (rows with empty cells are skipped); expected "
@@ -239,7 +235,7 @@ def split_from_rows(register_rows, n_test: int, rows: np.ndarray | None = None,
         raise ArgumentError("register_rows", f"the {r} rows given leave {n_test - r} of the {n_test} test poses "
                             f"to score; re-registering needs at least {MIN_REGISTER} registration and {MIN_SCORED} "
                             f"scored poses -- {advice}.")
-    reg = np.sort(order[at])
+    reg = np.sort([index[n] for n in nums])
     return RegistrationSplit(reg, np.setdiff1d(np.arange(n_test), reg), None, "given rows")
 
 
