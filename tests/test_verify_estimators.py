@@ -65,6 +65,21 @@ def test_unresolvable_tail_is_refused_with_the_samples_needed(res):
         verify_design(pr, d, n_mc=1000, estimator="best")
 
 
+def test_n_max_below_n_mc_is_refused_and_n_max_equal_to_n_mc_means_no_second_look(res):
+    pr = build_problem(res.problem.model, res.problem.q, prob=0.9999)
+    d = allocate(pr, snap=False).design
+    for bad in (500, 1500.5):
+        with pytest.raises(TolallocError, match=r"n_max: expected a whole number n_max >= n_mc \(the second look of a "
+                                                rf"certified pose uses more samples\), got n_max={bad}, n_mc=1000; "
+                                                r"give n_max >= n_mc .* or leave it out \(default 4 x n_mc\)"):
+            verify_design(pr, d, n_mc=1000, n_max=bad, criterion="certified")
+    # n_max = n_mc: the family counts no second look, and the position requirement is judged at n_mc (2 intervals
+    # at 97.5 %, n >= 50234), not at n_max with a second look counted (4 at 98.75 %, n >= 62380)
+    with pytest.raises(TolallocError, match=r"^n_mc 1000 samples per pose cannot resolve the tail .* \(one of 2, each "
+                                            r"at 97.5%\) reaches below p = 0.9999; give `n_mc` >= 50234 or"):
+        verify_design(pr, d, n_mc=1000, n_max=1000, estimator="plain", criterion="certified")
+
+
 def test_correction_with_the_paired_interval_costs_less_than_with_plain():
     import copy
 

@@ -318,6 +318,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         Samples per pose (the same sampled robots at every pose).
     n_max : int, optional
         Largest sample size for poses whose interval straddles ``p`` (certified criterion); default ``4 n_mc``.
+        Must be at least ``n_mc``; ``n_max = n_mc`` means no second look (each pose judged once, at ``n_mc``).
     seed : int
     keep_samples : int
         Position errors kept at the worst pose for figures.
@@ -342,8 +343,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         poses x requirements, plus one per pose for the certified criterion with ``n_max > n_mc`` (the possible
         second look at each position interval; :func:`~tolalloc.verify.verdicts.verification_family`).
     """
-    crit = _check_args(design, n_mc, estimator, criterion, level)
-    n_max = 4 * int(n_mc) if n_max is None else int(n_max)
+    crit, n_max = _check_args(design, n_mc, n_max, estimator, criterion, level)
     model = problem.model_for(design.t)
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
@@ -353,7 +353,7 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%"
                                                       + (", a possible second look counted)" if looks else ")"))
     reqs = [("position", p)] + ([] if ang is None else [("orientation", problem.angle_prob)])
-    estimator = choose_estimator(model, reqs, n_mc, n_max, crit, estimator, lvl, what)
+    estimator = choose_estimator(model, reqs, n_mc, n_max, looks > 0, estimator, lvl, what)
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator, lvl)
@@ -385,8 +385,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
                         reasons, worst, samples, int(order[0]), angle, pos, float(level), m, looks)
 
 
-def _check_args(design, n_mc, estimator, criterion, level) -> str:
-    """Refuse what :func:`verify_design` cannot verify; returns the criterion."""
+def _check_args(design, n_mc, n_max, estimator, criterion, level) -> tuple:
+    """Refuse what :func:`verify_design` cannot verify; returns the criterion and ``n_max`` (default ``4 n_mc``)."""
     if design.t is None:
         raise TolallocError(f"verify: the design ({design.solver}) has no tolerances ({design.status}); nothing to verify.")
     if design.status == NOT_CONVERGED:
@@ -395,6 +395,11 @@ def _check_args(design, n_mc, estimator, criterion, level) -> str:
     whole = whole_number(n_mc)
     if whole is None or whole < 100:
         raise TolallocError(f"n_mc: expected an integer number of samples >= 100, got {n_mc!r}.")
+    most = 4 * whole if n_max is None else whole_number(n_max)
+    if most is None or most < whole:
+        raise TolallocError(f"n_max: expected a whole number n_max >= n_mc (the second look of a certified pose uses "
+                            f"more samples), got n_max={n_max!r}, n_mc={whole}; give n_max >= n_mc (n_max = n_mc: no "
+                            "second look), or leave it out (default 4 x n_mc).")
     if isinstance(level, bool) or not isinstance(level, (int, float, np.floating)) or not 0.5 <= level < 1:
         raise TolallocError(f"level: expected a confidence level in [0.5, 1) for the simultaneous intervals "
                             f"(e.g. 0.95), got {level!r}.")
@@ -402,4 +407,4 @@ def _check_args(design, n_mc, estimator, criterion, level) -> str:
     crit = criterion or ("certified" if design.solver.certified else "exact")
     if crit not in ("certified", "exact"):
         raise TolallocError(f"criterion: expected 'certified' or 'exact', got {crit!r}.")
-    return crit
+    return crit, most

@@ -65,22 +65,22 @@ def check_resolvable(model, prob: float, n: int, estimator: str, name: str = "n_
                         f"{alt}.")
 
 
-def choose_estimator(model, requirements, n_mc: int, n_max: int, criterion: str, estimator: str, level: float,
+def choose_estimator(model, requirements, n_mc: int, n_max: int, second_look: bool, estimator: str, level: float,
                      what: str) -> str:
     """The estimator of a verification, every requirement checked against its tail by one rule.
 
     For each requirement ``(name, p)`` (position first): with ``auto`` on a Gaussian model a sample size too small
     for the paired interval to resolve ``1 - p`` (:func:`resolvable_n` at ``level``, the level of each interval)
     switches to importance sampling where it applies (:data:`IMPORTANCE_REQUIREMENTS`); anything else still
-    unresolvable is refused with the samples needed (:func:`check_resolvable`). The position requirement of a
-    certified design is judged at ``n_max`` (its straddling poses are re-run with that many samples), every other
-    at ``n_mc``.
+    unresolvable is refused with the samples needed (:func:`check_resolvable`). ``second_look`` is the family's
+    decision (:func:`tolalloc.verify.verdicts.verification_family`: ``second_looks > 0``): with it the position
+    requirement is judged at ``n_max`` (its straddling poses are re-run with that many samples), every other
+    requirement, and the position one without it, at ``n_mc``.
     """
     gauss = not control_fallback_reason(model)
     for req, prob in requirements:
-        redo = criterion == "certified" and req == "position"
-        n = n_max if redo else int(n_mc)
-        name = "n_max" if redo and n_max > n_mc else "n_mc"
+        redo = second_look and req == "position"
+        n, name = (int(n_max), "n_max") if redo else (int(n_mc), "n_mc")
         applies = req in IMPORTANCE_REQUIREMENTS
         if estimator == "auto" and gauss and applies and n < resolvable_n(prob, level):
             estimator = "importance"  # the paired interval could not resolve this tail with n samples

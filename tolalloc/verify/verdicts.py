@@ -49,8 +49,9 @@ def verification_family(n_poses: int, n_requirements: int, criterion: str, n_mc:
     Every pose has one interval per requirement. The certified criterion with ``n_max > n_mc`` re-runs a pose whose
     position interval straddles ``p`` and passes it on either look, so every position interval has a possible
     second look (one per pose, counted whether or not it runs: which poses get one depends on the data); the
-    exact criterion, or ``n_max <= n_mc``, has none. All the family's intervals, first and second looks alike,
-    are at ``simultaneous_level(level, n_intervals)``.
+    exact criterion, or ``n_max = n_mc``, has none (:func:`~tolalloc.verify.designs.verify_design` refuses
+    ``n_max < n_mc``). All the family's intervals, first and second looks alike, are at
+    ``simultaneous_level(level, n_intervals)``.
 
     >>> verification_family(18, 1, "certified", 10**6, 4 * 10**6)
     (36, 18)
