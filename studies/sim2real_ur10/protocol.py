@@ -48,10 +48,16 @@ def span_pct(q_deg: np.ndarray, index: np.ndarray) -> float:
     return float(100.0 * np.mean(part[full > 0] / full[full > 0]))
 
 
+def update_k(d) -> float:
+    """The prior widening ``k`` the registration poses chose for the final model (NaN without the update)."""
+    cu = d.calibration_update
+    return float("nan") if cu is None else float(cu.inflation_k.get("final", float("nan")))
+
+
 def _record(d) -> dict:
     """Verdict, guards and coverage of one run, as in the study's summary."""
     unc = d.uncertainty
-    return {"verdict": d.verdict.verdict,
+    return {"verdict": d.verdict.verdict, "update_k_final": update_k(d),
             "guard_kinds": "; ".join(sorted({g.split(":")[0] for g in d.guards})) or "none",
             "coverage95_pct": 100.0 * float(np.mean(unc.inside)),
             "median_sigma_mm": float(np.median(unc.sigma_mm)),
@@ -93,6 +99,7 @@ def registration_table(robot, A: pd.DataFrame, C: pd.DataFrame, summary: pd.Data
                          "scored_poses": int(run["scored_poses"]),
                          "test_rms_geometric_mm": float(run["test_rms_geometric_mm"]),
                          "test_rms_final_mm": float(run["test_rms_final_mm"]), "verdict": run["verdict"],
+                         "update_k_final": float(run["update_k_final"]),
                          "guard_kinds": run["guard_kinds"], "coverage95_pct": float(run["coverage95_pct"]),
                          "median_sigma_mm": float(run["median_sigma_mm"]),
                          "extrapolating_pct": 100.0 * run["extrapolating_test_poses"] / run["test_poses"]}
@@ -122,6 +129,12 @@ def _target_line(g: pd.DataFrame, label: str) -> str:
                         for dname, dg in g.groupby("direction")) + " mm.")
 
 
+def _range(v: pd.Series, fmt: str = ".0f") -> str:
+    """``min-max`` of ``v``, one number where they agree."""
+    lo, hi = format(v.min(), fmt), format(v.max(), fmt)
+    return lo if lo == hi else f"{lo}-{hi}"
+
+
 def section(table: pd.DataFrame) -> list:
     """The report section (statements computed from ``table``)."""
     lines = ["## Registration poses a new session needs", "",
@@ -138,7 +151,8 @@ def section(table: pd.DataFrame) -> list:
              "a new session measured at its start would give them: the other rows are then a forward prediction "
              "in time. `span_pct`: the joint range the registration poses span, as a share of the test session's "
              "range (mean over the joints). `coverage95_pct`: scored residuals inside the predicted 95 % radius (for "
-             "`calibration`, the update's posterior); `median_sigma_mm`: median predicted 1-sigma of the test "
+             "`calibration`, the update's posterior); `update_k_final`: how far the registration poses' marginal "
+             "likelihood widened the final model's training posterior for the update; `median_sigma_mm`: median predicted 1-sigma of the test "
              "poses; `extrapolating_pct`: test poses flagged as extrapolations. One registration split per row, no "
              "interval. (registration_poses.csv)", "",
              table.to_markdown(index=False, floatfmt=".3f"), ""]
@@ -150,14 +164,15 @@ def section(table: pd.DataFrame) -> list:
                              for (d, how), g in table.groupby(["direction", "registration_from"])) + ".")
     fires = table["guard_kinds"].str.contains("uncertainty")
     lines.append("* Coverage of the predicted 95 % radius on the scored poses: "
-                 + "; ".join(f"`{u}` {g['coverage95_pct'].min():.0f}-{g['coverage95_pct'].max():.0f} %"
+                 + "; ".join(f"`{u}` {_range(g['coverage95_pct'])} %"
                              for u, g in table.groupby("register_update"))
                  + f"; the `uncertainty` guard fires in {int(fires.sum())} of {len(table)} rows. Median predicted "
                  "1-sigma of the test poses (`median_sigma_mm`): "
-                 + "; ".join(f"`{u}` {g['median_sigma_mm'].min():.3f}-{g['median_sigma_mm'].max():.3f} mm"
+                 + "; ".join(f"`{u}` {_range(g['median_sigma_mm'], '.3f')} mm"
                              for u, g in table.groupby("register_update"))
                  + f". Test poses flagged as extrapolations from the training session (`extrapolating_pct`): "
-                 f"{table['extrapolating_pct'].min():.0f}-{table['extrapolating_pct'].max():.0f} %.")
+                 f"{_range(table['extrapolating_pct'])} %. Prior widening the registration poses chose for the final "
+                 "model (`update_k_final`): " + _range(table["update_k_final"].dropna(), ".3g") + ".")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows: "

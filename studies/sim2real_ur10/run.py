@@ -51,7 +51,7 @@ from tolalloc.report.diagnosis import write_report
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from convert_ur10 import DATA, SERIES, series  # noqa: E402
 from sessions import registration_rows, section as sessions_section  # noqa: E402
-from protocol import COUNTS, registration_table, section as registration_section  # noqa: E402
+from protocol import COUNTS, registration_table, section as registration_section, update_k  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_ur10"
 TIME_TRAIN = 0.7
@@ -116,6 +116,7 @@ def summarise(name: str, kind: str, d, dt: float) -> dict:
         for k in ("rms_mm", "p95_mm", "max_mm"):
             row[f"test_{k[:-3]}_{m}_mm"] = bt[k].iloc[i]
         row[f"cv_rms_{m}_mm"] = bc["rms_mm"].iloc[i]
+    row["update_k_final"] = update_k(d)
     row["coverage95_pct"] = 100 * d.uncertainty.coverage
     row["median_sigma_mm"] = float(np.median(d.uncertainty.sigma_mm))
     row["extrapolating_test_poses"] = int(d.extrapolation.flagged.sum())
@@ -339,7 +340,8 @@ def reading(s: pd.DataFrame, share: pd.DataFrame) -> list:
            + ", ".join(f"{r} {v:.0f} %" for r, v in s["gap_gp_test_explained_pct"].items()) + ".",
            "* Predicted-uncertainty coverage (95 % expected): "
            + ", ".join(f"{r} {v:.0f} %" for r, v in s["coverage95_pct"].items())
-           + " (the update runs' predicted uncertainty is the frame-only one: it does not include the update)."]
+           + " (the update runs' predicted uncertainty is the update's posterior, its prior widened by the k the "
+             "registration poses chose: " + ", ".join(f"{r} {s.loc[r, 'update_k_final']:.3g}" for r in upd) + ")."]
     return out
 
 

@@ -19,8 +19,7 @@ from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.recalibrate import (REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, inflation_factor,
-                                           update_loss)
+from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import REGISTER_N, check_register_rows, register_count, split_from_rows
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
                                      progress_scope, subsample_index)
@@ -242,14 +241,14 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
 
 
 def _calibration_update(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation):
-    """The record of a ``register_update="calibration"`` re-registration (None otherwise): the prior inflation
-    of each model it updated (a model with parameters beyond the frame) and its robust loss."""
+    """The record of a ``register_update="calibration"`` re-registration (None otherwise): the prior of each model
+    it updated (a model with parameters beyond the frame) and its robust loss."""
     if ctx.registration is None or ctx.register_update != "calibration":
         return None
-    ks = {label: inflation_factor(ev.oof_mm, ev.fit.residual_mm)
-          for label, ev in (("nominal", nominal), ("geometric", geometric), ("final", final))
-          if len(ev.fit.geo_index) or len(ev.fit.beta)}
-    return CalibrationUpdate(ks, update_loss(ctx.loss))
+    priors = {label: ev.test_prior for label, ev in (("nominal", nominal), ("geometric", geometric), ("final", final))
+              if ev.test_prior is not None}
+    return CalibrationUpdate({m: pr.inflation for m, pr in priors.items()},
+                             {m: pr.inflation_floor for m, pr in priors.items()}, update_loss(ctx.loss))
 
 
 def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation, chosen: Evaluation):
@@ -260,8 +259,10 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
         return nominal, geometric, final, chosen
 
     def scored(ev):
-        res, pred, registered, cov = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
-        return replace(ev, test_mm=res, test_pred_mm=pred, test_fit=registered, test_cov=cov)
+        reg = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
+        refit = ctx.test_frame == "refit"
+        return replace(ev, test_mm=reg.residual_mm, test_pred_mm=reg.pred_mm, test_fit=reg.fit if refit else None,
+                       test_cov=reg.posterior_cov, test_prior=reg.prior)
 
     n2, g2 = scored(nominal), scored(geometric)
     f2 = g2 if final is geometric else scored(final)

@@ -253,12 +253,15 @@ class Registered:
                                    parameters (columns of :func:`tolalloc.diagnose.guards.point_jacobian`) given
                                    the registration poses and the prior [parameter units squared]; None for a
                                    frame-only re-registration
+    prior : CalibrationPrior or None   with the calibration update: the prior it used
+                                   (:class:`tolalloc.diagnose.recalibrate.CalibrationPrior`, its ``k`` and ``c``)
     """
 
     fit: Fit
     pred_mm: np.ndarray
     residual_mm: np.ndarray
     posterior_cov: np.ndarray | None = None
+    prior: object | None = None
 
 
 def register_and_score(fit: Fit, q: np.ndarray, xyz: np.ndarray, extra: np.ndarray,

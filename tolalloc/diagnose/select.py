@@ -49,7 +49,7 @@ from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
 from tolalloc.diagnose.guards import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
-from tolalloc.diagnose.register import REGISTER_N, registration_split, split_from_rows
+from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
 from tolalloc.diagnose.thermal import time_problem
 from tolalloc.diagnose.scores import (Candidate, Evaluation, Stage, clip_level, error_stats, paired_pvalue, rms,
                                       robust_rms)
@@ -215,29 +215,29 @@ def evaluate(ctx: _Context, effects: tuple = (), nominal: bool = False) -> Evalu
     return Evaluation(label, tuple(effects), full, names, keep, oof, None, None, oof_joint)
 
 
-def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray, oof_mm: np.ndarray | None = None):
-    """Residuals, predictions, the re-registered fit of ``full`` on the test file and that fit's posterior
-    covariance (four Nones without a test file).
+def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray,
+               oof_mm: np.ndarray | None = None) -> Registered | None:
+    """``full`` scored on the test file (None without a test file).
 
     ``refit``: registered on ``ctx.registration.register_index`` (with ``ctx.register_update == "calibration"`` also
-    the calibration update, :mod:`.recalibrate`, its prior inflated by the out-of-fold residuals ``oof_mm``, and its
-    posterior covariance) and scored on the rest (residuals (T - r, 3), predictions in the re-registered frame, the
-    fit in that frame); else residuals and predictions (T, 3) in the measurement frame and no re-registered fit.
+    the calibration update, :mod:`.recalibrate`, ``k`` at least the out-of-fold factor of ``oof_mm``, with its
+    posterior covariance and prior) and scored on the rest (residuals (T - r, 3), predictions in the re-registered
+    frame, the fit in that frame); else residuals and predictions (T, 3) in the measurement frame and the trained
+    fit.
     """
     test = ctx.test
     if test is None:
-        return None, None, None, None
+        return None
     Bt = None
     if effects:
         Bt, _ = _stack(ctx.bases_test, effects)
         Bt = Bt[:, :, keep]
-    test_pred = full.predict(test.q, Bt)
     if ctx.test_frame == "refit":
         Btr = _stack(ctx.bases, effects)[0][:, :, keep] if effects else None
-        reg = reregister(full, test.q, test.xyz_mm, Bt, ctx.registration, update=ctx.register_update,
-                         q_train=ctx.train.q, B_train=Btr, oof_mm=oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
-        return reg.residual_mm, reg.pred_mm, reg.fit, reg.posterior_cov
-    return test.xyz_mm - test_pred, test_pred, None, None
+        return reregister(full, test.q, test.xyz_mm, Bt, ctx.registration, update=ctx.register_update,
+                          q_train=ctx.train.q, B_train=Btr, oof_mm=oof_mm, t_prior=ctx.t_prior, loss=ctx.loss)
+    test_pred = full.predict(test.q, Bt)
+    return Registered(full, test_pred, test.xyz_mm - test_pred)
 
 
 def _fold_prior_w(ctx, effects, keep, rows):
