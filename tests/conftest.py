@@ -202,7 +202,9 @@ FIRST_FILE = "test_docs.py"
 def pytest_collection_modifyitems(config, items):
     """The documentation build's file first, then files with a test marked ``slow`` (stable otherwise):
     pytest-xdist hands out whole files in this order, alternating between workers, so the long files start early
-    and the workers finish together instead of one running the last long file alone."""
+    and the workers finish together instead of one running the last long file alone. The order holds because
+    pyproject's addopts pass ``--no-loadscope-reorder``: without it pytest-xdist (>= 3.5) hands out the files with
+    the most tests first and this order is lost."""
     slow = {item.path for item in items if item.get_closest_marker("slow")}
     items.sort(key=lambda item: (item.path.name != FIRST_FILE, item.path not in slow))
 

@@ -2,6 +2,7 @@
 -> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
 
 import ast
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -54,7 +55,13 @@ def imports_of(path: Path) -> set[str]:
 
 
 MODULES = {module_name(p): p for p in PKG.rglob("*.py")}
-EDGES = {m: {i for i in imports_of(p) if i != m} for m, p in MODULES.items()}
+
+
+@cache
+def import_edges() -> dict[str, set[str]]:
+    """Module -> the tolalloc modules it imports; parsed once, by the worker that runs these tests (not at
+    collection, which every pytest-xdist worker pays)."""
+    return {m: {i for i in imports_of(p) if i != m} for m, p in MODULES.items()}
 
 
 @pytest.mark.parametrize("module", sorted(MODULES))
@@ -63,7 +70,7 @@ def test_imports_run_one_way(module):
     if src == "api":
         return  # the pipeline API and the entry point sit above every stage
     bad = []
-    for target in sorted(EDGES[module]):
+    for target in sorted(import_edges()[module]):
         dst = stage(target)
         assert dst != "api", f"{module} imports the top-level package ({target}); import the stage instead"
         if ORDER.index(dst) > ORDER.index(src):
@@ -99,14 +106,14 @@ def find_cycle(edges: dict[str, set[str]]) -> list[str] | None:
 def test_no_import_cycle_between_modules():
     """Module graph, lazy imports inside functions included; a package's ``__init__`` only re-exports."""
     edges = {m: {t for t in ts if t in MODULES and MODULES[t].name != "__init__.py"}
-             for m, ts in EDGES.items() if MODULES[m].name != "__init__.py"}
+             for m, ts in import_edges().items() if MODULES[m].name != "__init__.py"}
     cycle = find_cycle(edges)
     assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
 
 
 def test_no_import_cycle_between_stages():
     stages = {}
-    for m, ts in EDGES.items():
+    for m, ts in import_edges().items():
         stages.setdefault(stage(m), set()).update(stage(t) for t in ts if stage(t) != stage(m))
     stages.pop("api", None)
     for v in stages.values():
@@ -204,7 +211,7 @@ CLI_MAY_IMPORT = ("tolalloc.cli", "tolalloc.workflows", "tolalloc.outputs", "tol
 
 def test_the_cli_is_a_shell_over_the_workflows():
     """tolalloc/cli/ parses, calls one workflow, prints and saves: it imports no computing stage."""
-    bad = {m: sorted(t for t in EDGES[m] if not t.startswith(CLI_MAY_IMPORT))
+    bad = {m: sorted(t for t in import_edges()[m] if not t.startswith(CLI_MAY_IMPORT))
            for m in MODULES if stage(m) == "cli"}
     bad = {m: t for m, t in bad.items() if t}
     assert not bad, f"CLI modules importing computing stages directly: {bad}"
