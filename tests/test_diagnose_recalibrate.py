@@ -263,7 +263,10 @@ def test_update_run_covers_a_change_the_frame_only_run_fails_to_cover(changed_ru
 
 def test_same_robot_keeps_the_prior_at_its_floor(same_robot_runs):
     cu = same_robot_runs["calibration"].calibration_update
-    assert cu.inflation_k["geometric"] < 1.5 * cu.inflation_floor_k["geometric"]
+    assert set(cu.inflation_k) >= {"geometric"}
+    for m, k in cu.inflation_k.items():  # every updated model
+        assert cu.inflation_floor_k[m] <= k < 1.5 * cu.inflation_floor_k[m]
+        assert cu.set_aside_poses[m] == 0
 
 
 @pytest.mark.parametrize("k_true", [1.0, 30.0, 1000.0])
@@ -279,4 +282,91 @@ def test_marginal_likelihood_recovers_a_known_prior_scale(k_true):
         y = A @ t + rng.normal(0.0, np.sqrt(noise2), n)
         ks.append(evidence_inflation(y, A, C, noise2)[0])
     assert np.median(ks) == pytest.approx(k_true, rel=0.25)
-    assert evidence_inflation(y, A, C, noise2, k_min=2 * k_true)[0] >= 2 * k_true * (1 - 1e-9)  # the floor holds
+    assert evidence_inflation(y, A, C, noise2, k_min=2 * k_true)[0] >= 2 * k_true  # the floor holds exactly
+
+
+def _changed_session(sessions):
+    robot, model, delta, truth, train, cal, q, noise, frame, split = sessions
+    k = _changed_parameter(model, cal.geometric.geo_index)
+    changed = delta.copy()
+    changed[k] += CHANGE_MM
+    return _test_session(truth, q, noise, frame, changed)
+
+
+def test_chosen_k_matches_a_brute_force_evidence_with_a_wide_prior_on_the_frame(sessions):
+    """The frame and probe offset are marginalised by projection (flat prior); a very wide Gaussian prior on them,
+    evaluated by brute force over a k grid, must pick the same k."""
+    robot, model, delta, truth, train, cal, q0, noise, frame, split = sessions
+    fit = cal.geometric
+    q, xyz = _changed_session(sessions)
+    reg = reregister(fit, q, xyz, None, split, update="calibration", q_train=train.q,
+                     oof_mm=cal.geometric.residual_mm)
+    r = split.register_index
+    start = register_and_score(fit, q, xyz, np.zeros((len(q), 3)), split).fit
+    J = point_jacobian(start, q[r]).reshape(3 * len(r), -1)
+    y = (xyz[r] - start.predict(q[r])).ravel()
+    prior1 = calibration_prior(fit, train.q, None)
+    C = prior1.noise_mm ** 2 * np.linalg.inv(prior1.precision)
+    s = np.linalg.norm(J[:, :9], axis=0)
+    W = np.diag((1e4 / s) ** 2)  # the frame's prior sd: 1e4 mm of effect per column
+    ks = np.geomspace(100, 1e4, 400)
+
+    def logev(k):
+        S = prior1.noise_mm ** 2 * np.eye(len(y)) + J[:, :9] @ W @ J[:, :9].T + k * J[:, 9:] @ C @ J[:, 9:].T
+        return -0.5 * (np.linalg.slogdet(S)[1] + y @ np.linalg.solve(S, y))
+
+    brute = ks[np.argmax([logev(k) for k in ks])]
+    assert reg.prior.inflation == pytest.approx(brute, rel=0.03)
+
+
+def test_scored_rows_do_not_change_k(sessions):
+    robot, model, delta, truth, train, cal, q0, noise, frame, split = sessions
+    q, xyz = _changed_session(sessions)
+    other = xyz.copy()
+    other[split.score_index] += np.random.default_rng(5).normal(0.0, 5.0, (len(split.score_index), 3))
+    a, b = (reregister(cal.geometric, q, x, None, split, update="calibration", q_train=train.q) for x in (xyz, other))
+    assert a.prior.inflation == b.prior.inflation
+
+
+def test_a_gross_registration_error_is_set_aside_and_does_not_widen_the_prior(sessions):
+    robot, model, delta, truth, train, cal, q0, noise, frame, split = sessions
+    q, xyz = _test_session(truth, q0, noise, frame, delta)  # the same robot
+    bad = xyz.copy()
+    bad[split.register_index[3]] += [10.0, 0.0, 0.0]
+    clean, dirty = (reregister(cal.geometric, q, x, None, split, update="calibration", q_train=train.q,
+                               loss="tukey") for x in (xyz, bad))
+    assert dirty.prior.set_aside == 1 and clean.prior.set_aside == 0
+    assert dirty.prior.inflation < 1.5  # at its floor, 1 here (no out-of-fold residuals given)
+    assert _rms(dirty.residual_mm) < 1.5 * np.sqrt(3) * NOISE_MM
+    np.testing.assert_allclose(dirty.residual_mm, clean.residual_mm, atol=0.2 * NOISE_MM)
+
+
+def test_evidence_without_information_keeps_the_floor_and_the_floor_may_exceed_the_cap():
+    from tolalloc.diagnose.recalibrate import INFLATION_MAX
+
+    rng = np.random.default_rng(2)
+    y, C = rng.normal(0.0, 0.01, 30), 1e-6 * np.eye(4)
+    assert evidence_inflation(y, np.zeros((30, 4)), C, 1e-4, k_min=3.0)[0] == 3.0  # flat evidence
+    assert evidence_inflation(y, rng.normal(size=(30, 4)), C, 0.0, k_min=3.0)[0] == 3.0  # no noise variance
+    assert np.isnan(evidence_inflation(y * np.nan, rng.normal(size=(30, 4)), C, 1e-4, k_min=3.0)[1])
+    big = evidence_inflation(100 * y, rng.normal(size=(30, 4)), C, 1e-4, k_min=2 * INFLATION_MAX)[0]
+    assert big == 2 * INFLATION_MAX
+    assert evidence_inflation(100 * y, rng.normal(size=(30, 4)), C, 1e-4)[0] <= INFLATION_MAX
+
+
+@pytest.fixture(scope="module")
+def unmodelled_run(sessions):
+    """A second session with an error no trained parameter can represent: 0.15 mm along x, periodic in q1."""
+    robot, model, delta, truth, train, cal, q, noise, frame, split = sessions
+    q, xyz = _test_session(truth, q, noise, frame, delta)
+    xyz = xyz + 0.15 * np.sin(3 * q[:, :1]) * np.array([1.0, 0.0, 0.0])
+    return diagnose(robot, train, Measurements(q, xyz), test_frame="refit", register_n=40,
+                    register_update="calibration", folds=3)
+
+
+def test_update_run_with_an_unmodelled_error_fails_its_coverage_check_and_says_whose_uncertainty(unmodelled_run):
+    from tolalloc.diagnose.recalibrate import UNCERTAINTY_SCOPE
+
+    upd = unmodelled_run
+    assert upd.uncertainty.inside.mean() < 0.5
+    assert any(g.startswith("uncertainty: only ") and g.endswith(f"({UNCERTAINTY_SCOPE})") for g in upd.guards)

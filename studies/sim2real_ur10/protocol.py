@@ -152,7 +152,8 @@ def section(table: pd.DataFrame) -> list:
              "in time. `span_pct`: the joint range the registration poses span, as a share of the test session's "
              "range (mean over the joints). `coverage95_pct`: scored residuals inside the predicted 95 % radius (for "
              "`calibration`, the update's posterior); `update_k_final`: how far the registration poses' marginal "
-             "likelihood widened the final model's training posterior for the update; `median_sigma_mm`: median predicted 1-sigma of the test "
+             "likelihood widened the final model's training posterior for the update (`nan` in the `frame` rows: no "
+             "update); `median_sigma_mm`: median predicted 1-sigma of the test "
              "poses; `extrapolating_pct`: test poses flagged as extrapolations. One registration split per row, no "
              "interval. (registration_poses.csv)", "",
              table.to_markdown(index=False, floatfmt=".3f"), ""]

@@ -133,8 +133,9 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     register_update : {"frame", "calibration"}
         ``refit``: what the registration poses re-fit. ``frame`` (default): the tracker frame and the probe offset,
         the trained model frozen. ``calibration``: also a correction of the trained geometric and effect
-        parameters, with the training fit's posterior (inflated by the out-of-fold / in-sample residual ratio) as
-        the prior (:mod:`.recalibrate`). No effect without ``refit``.
+        parameters, with the training fit's posterior as the prior, widened by the factor the registration poses'
+        marginal likelihood chooses (at least the out-of-fold / in-sample residual ratio of the training file;
+        :mod:`.recalibrate`). No effect without ``refit``.
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
     progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
@@ -248,7 +249,8 @@ def _calibration_update(ctx, nominal: Evaluation, geometric: Evaluation, final: 
     priors = {label: ev.test_prior for label, ev in (("nominal", nominal), ("geometric", geometric), ("final", final))
               if ev.test_prior is not None}
     return CalibrationUpdate({m: pr.inflation for m, pr in priors.items()},
-                             {m: pr.inflation_floor for m, pr in priors.items()}, update_loss(ctx.loss))
+                             {m: pr.inflation_floor for m, pr in priors.items()},
+                             {m: pr.set_aside for m, pr in priors.items()}, update_loss(ctx.loss))
 
 
 def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation, chosen: Evaluation):

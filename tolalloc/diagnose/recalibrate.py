@@ -47,14 +47,17 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
 from tolalloc.diagnose.guards import point_jacobian
-from tolalloc.diagnose.register import Registered, RegistrationSplit, register_and_score
+from tolalloc.diagnose.register import MIN_REGISTER, Registered, RegistrationSplit, register_and_score
 from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
-__all__ = ["REGISTER_UPDATES", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate", "calibration_prior",
-           "evidence_inflation", "inflation_factor", "posterior_covariance", "registration_prior", "register_update", "reregister", "update_loss"]
+__all__ = ["REGISTER_UPDATES", "INFLATION_MAX", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate",
+           "calibration_prior", "evidence_inflation", "gross_errors", "inflation_factor", "posterior_covariance",
+           "registration_prior", "register_update", "reregister", "update_loss"]
 
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
 REGISTER_UPDATES = ("frame", "calibration")
+#: Largest prior widening ``k`` the registration poses may choose.
+INFLATION_MAX = 1e4
 #: What the predicted uncertainty of a calibration-update run is, said beside each of its coverage figures.
 UNCERTAINTY_SCOPE = ("predicted uncertainty of the updated model: the calibration update's posterior covariance (its "
                      "prior, the training posterior widened by k, and the registration poses), so this coverage "
@@ -75,16 +78,23 @@ class CalibrationUpdate:
     inflation_k : dict            model label -> inflation ``k`` of its prior (models the update changed), chosen
                                   by the registration poses' marginal likelihood (:func:`registration_prior`)
     inflation_floor_k : dict      model label -> the floor of ``k``: the training file's :func:`inflation_factor`
+    set_aside_poses : dict        model label -> registration poses set aside as gross errors (:func:`gross_errors`)
     robust_loss : str             loss of the update (:func:`update_loss`)
     """
 
     inflation_k: dict
     inflation_floor_k: dict
+    set_aside_poses: dict
     robust_loss: str
 
     def fitted(self) -> str:
         """What the registration poses fitted, in words."""
-        ks = ", ".join(f"{m} {k:.3g}" for m, k in self.inflation_k.items()) or "none"
+        def one(m, k):
+            cap = " (the largest allowed)" if k >= INFLATION_MAX else ""
+            n = self.set_aside_poses.get(m, 0)
+            return f"{m} {k:.3g}{cap}" + (f", {n} registration poses set aside as gross errors" if n else "")
+
+        ks = "; ".join(one(m, k) for m, k in self.inflation_k.items()) or "none"
         return ("the tracker frame, the probe offset and a correction of the trained geometric and effect parameters "
                 "(training posterior as prior, widened by the k the registration poses' marginal likelihood chose: "
                 f"k = {ks}; {self.robust_loss} loss)")
@@ -93,9 +103,11 @@ class CalibrationUpdate:
         return {"update": "calibration", "prior": "training posterior of the geometric and effect parameters, "
                 "widened by the inflation k that maximises the registration poses' marginal likelihood (frame and "
                 "probe offset marginalised, noise at the training residual level), at least inflation_floor_k "
-                "(out-of-fold / in-sample mean square residual of the training file, >= 1)",
-                "inflation_k": dict(self.inflation_k),
-                "inflation_floor_k": dict(self.inflation_floor_k), "robust_loss": self.robust_loss}
+                "(out-of-fold / in-sample mean square residual of the training file, >= 1), at most inflation_k_max; "
+                "registration poses with a gross error (set_aside_poses) are left out of the choice and the update",
+                "inflation_k": dict(self.inflation_k), "inflation_floor_k": dict(self.inflation_floor_k),
+                "inflation_k_max": INFLATION_MAX, "set_aside_poses": dict(self.set_aside_poses),
+                "robust_loss": self.robust_loss}
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,6 +122,8 @@ class CalibrationPrior:
     inflation : float                 ``k`` (>= 1)
     inflation_floor : float or None   the smallest ``k`` allowed when ``k`` was chosen by the registration poses
                                       (:func:`inflation_factor`); None when ``k`` was given
+    set_aside : int                   registration poses left out of that choice and of the update as gross errors
+                                      (:func:`gross_errors`)
     """
 
     mean: np.ndarray
@@ -117,10 +131,12 @@ class CalibrationPrior:
     noise_mm: float
     inflation: float
     inflation_floor: float | None = None
+    set_aside: int = 0
 
-    def widened(self, k: float, floor: float | None = None) -> "CalibrationPrior":
-        """This prior (at ``k = 1``) widened by ``k``."""
-        return CalibrationPrior(self.mean, self.precision / k, self.noise_mm, float(k), floor)
+    def widened(self, k: float, floor: float | None = None, set_aside: int = 0) -> "CalibrationPrior":
+        """This prior with its widening set to ``k`` (the precision scaled by ``inflation / k``)."""
+        return CalibrationPrior(self.mean, self.precision * (self.inflation / k), self.noise_mm, float(k), floor,
+                                int(set_aside))
 
 
 def inflation_factor(oof_mm: np.ndarray, residual_mm: np.ndarray) -> float:
@@ -159,60 +175,85 @@ def calibration_prior(fit: Fit, q: np.ndarray, B: np.ndarray | None, inflation: 
     return CalibrationPrior(mean, noise2 * 0.5 * (S + S.T) / k, float(np.sqrt(noise2)), k)
 
 
-#: Largest prior widening ``k`` the registration poses may choose.
-INFLATION_MAX = 1e4
-
-
-def evidence_inflation(y: np.ndarray, A: np.ndarray, C: np.ndarray, noise2: float, k_min: float = 1.0) -> tuple:
+def evidence_inflation(y: np.ndarray, A: np.ndarray, C: np.ndarray, noise2: float, k_min: float = 1.0,
+                       n_eff: int | None = None) -> tuple:
     """Type-II maximum likelihood ``(k, log_evidence)`` of ``y ~ N(0, noise2 I + k A C A^T)``, ``k >= k_min``.
 
     Parameters
     ----------
     y : array, shape (n,)          residuals with the nuisance directions projected out
-    A : array, shape (n, m)        their Jacobian in the parameters
+    A : array, shape (n, m)        their Jacobian in the parameters (projected the same way)
     C : array, shape (m, m)        prior covariance of the parameters at ``k = 1``
     noise2 : float                 noise variance
-    k_min : float                  smallest ``k`` (largest ``k``: :data:`INFLATION_MAX`)
+    k_min : float                  smallest ``k`` (largest: :data:`INFLATION_MAX`, or ``k_min`` if that is larger)
+    n_eff : int, optional          dimension of the space ``y`` and ``A``'s columns lie in (``n`` minus the nuisance
+                                   rank when they were projected in the original coordinates); default ``n``
 
     The log evidence is maximised over ``log k`` (the singular values of ``A C^1/2`` once, a grid, then a bounded
-    scalar refinement); ``n - min(n, m)`` directions of ``y`` carry noise only.
+    scalar refinement); ``n_eff - min(n, m)`` directions of ``y`` carry noise only. Without information about ``k``
+    (no noise variance, no rows, non-finite input, a flat evidence) ``k = k_min``.
     """
     from scipy.optimize import minimize_scalar
 
-    w, V = np.linalg.eigh(0.5 * (C + C.T))
-    U, sv, _ = np.linalg.svd(A @ (V * np.sqrt(np.clip(w, 0.0, None))), full_matrices=False)
+    n_eff = len(y) if n_eff is None else int(n_eff)
+    k_lo = max(float(k_min), 1.0)
+    k_hi = max(INFLATION_MAX, k_lo)
+    if not (noise2 > 0 and n_eff > 0 and np.all(np.isfinite(y)) and np.all(np.isfinite(A))
+            and np.all(np.isfinite(C))):
+        return k_lo, float("nan")
+    d = np.sqrt(np.clip(np.diag(C), 0.0, None))
+    d = np.where(d > 0, d, 1.0)
+    w, V = np.linalg.eigh(0.5 * (C + C.T) / np.outer(d, d))  # scaled: the parameters mix mm, rad and effect units
+    U, sv, _ = np.linalg.svd((A * d) @ (V * np.sqrt(np.clip(w, 0.0, None))), full_matrices=False)
     lam, uy = sv ** 2, U.T @ y
-    z2, rest, n_rest = uy ** 2, max(float(y @ y - uy @ uy), 0.0), len(y) - len(sv)
+    z2, rest, n_rest = uy ** 2, max(float(y @ y - uy @ uy), 0.0), n_eff - len(sv)
 
     def nll(x):
         v = noise2 + np.exp(x) * lam
         return 0.5 * float(np.sum(np.log(v) + z2 / v) + n_rest * np.log(noise2) + rest / noise2)
 
-    lo, hi = np.log(max(k_min, 1.0)), np.log(INFLATION_MAX)
-    grid = np.linspace(lo, hi, 41)
+    grid = np.linspace(np.log(k_lo), np.log(k_hi), 41)
     i = int(np.argmin([nll(x) for x in grid]))
     a, b = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
     x = minimize_scalar(nll, bounds=(a, b), method="bounded").x if b > a else grid[i]
-    x = x if nll(x) <= nll(grid[i]) else grid[i]
-    return float(np.exp(x)), -nll(x) - 0.5 * len(y) * np.log(2 * np.pi)
+    x = x if nll(x) < nll(grid[i]) else grid[i]  # a tie (flat evidence) keeps the grid point: k_min when flat
+    k = k_lo * float(np.exp(x - grid[0]))  # exactly k_lo at the floor
+    return float(np.clip(k, k_lo, k_hi)), -nll(x) - 0.5 * n_eff * np.log(2 * np.pi)
+
+
+def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
+    """Registration poses whose frame-only residual is a gross error (boolean, shape (r,)): 3-D norm above
+    ``TUKEY_C`` x the median norm, where Tukey's biweight gives no weight; none for ``loss="none"``."""
+    e = np.linalg.norm(residual_mm, axis=1)
+    if loss == "none" or not len(e):
+        return np.zeros(len(e), bool)
+    return e > TUKEY_C * norm_scale(residual_mm)
 
 
 def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, prior: CalibrationPrior,
-                       k_min: float) -> CalibrationPrior:
+                       k_min: float, set_aside: int = 0) -> CalibrationPrior:
     """``prior`` (the training posterior at ``k = 1``) widened by the ``k`` the registration poses choose.
 
     ``start`` is the frame-only re-registration (its frame and probe offset linearise the model); ``q, xyz, B``
-    are the registration poses, their measurements (test frame) and effect columns. The frame and probe offset are
-    marginalised by projecting the residuals onto the complement of their Jacobian columns
-    (:func:`evidence_inflation`).
+    are the registration poses (gross errors already set aside, ``set_aside`` of them), their measurements (test
+    frame) and effect columns. The frame and probe offset are marginalised (a flat prior: with a probe-offset
+    prior given, the choice of ``k`` ignores it, the conservative side) by projecting the residuals and the
+    parameter columns onto the complement of their Jacobian columns (:func:`evidence_inflation`).
     """
     J = point_jacobian(start, q, B).reshape(3 * len(q), -1)
     r = (xyz - start.predict(q, B)).ravel()
-    U, sv, _ = np.linalg.svd(J[:, :9], full_matrices=True)
-    N = U[:, int(np.sum(sv > 1e-9 * sv[0])):]
-    C = np.linalg.pinv(prior.precision, hermitian=True) * prior.noise_mm ** 2
-    k, _ = evidence_inflation(N.T @ r, N.T @ J[:, 9:], C, prior.noise_mm ** 2, k_min)
-    return prior.widened(k, float(k_min))
+    Q, R = np.linalg.qr(J[:, :9])
+    Q = Q[:, np.abs(np.diag(R)) > 1e-9 * np.abs(np.diag(R)).max()]
+
+    def out(M):
+        return M - Q @ (Q.T @ M)
+
+    P1 = prior.precision * prior.inflation  # at k = 1; inverted scaled (the parameters mix mm, rad, effect units)
+    d = np.sqrt(np.clip(np.diag(P1), 0.0, None))
+    d = np.where(d > 0, d, 1.0)
+    C = prior.noise_mm ** 2 * np.linalg.pinv(P1 / np.outer(d, d), hermitian=True) / np.outer(d, d)
+    k, _ = evidence_inflation(out(r), out(J[:, 9:]), C, prior.noise_mm ** 2, k_min, n_eff=len(r) - Q.shape[1])
+    return prior.widened(k, float(k_min), set_aside)
 
 
 class _PriorProblem(Problem):
@@ -255,9 +296,12 @@ def register_update(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     if not len(prior.mean):
         return start
     r, s0 = split.register_index, start.fit
+    gross = gross_errors(xyz[r] - start.pred_mm[r], update_loss(loss))
+    r = r[~gross] if gross.sum() <= len(r) - MIN_REGISTER else r
     Br = None if no_b else B[r]
-    if k_min is not None:
-        prior = registration_prior(s0, q[r], xyz[r], Br, prior, k_min)
+    aside = len(split.register_index) - len(r)
+    prior = (replace(prior, set_aside=aside) if k_min is None
+             else registration_prior(s0, q[r], xyz[r], Br, prior, k_min, aside))
     prob = _PriorProblem(fit.model, s0.R, s0.p_mm, s0.t_mm, fit.delta, q[r], xyz[r], fit.geo_index, Br)
     prob.set_full_prior(prior.mean, prior.precision)
     if t_prior is not None:

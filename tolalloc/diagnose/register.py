@@ -254,7 +254,7 @@ class Registered:
                                    the registration poses and the prior [parameter units squared]; None for a
                                    frame-only re-registration
     prior : CalibrationPrior or None   with the calibration update: the prior it used
-                                   (:class:`tolalloc.diagnose.recalibrate.CalibrationPrior`, its ``k`` and ``c``)
+                                   (:class:`tolalloc.diagnose.recalibrate.CalibrationPrior`: its ``inflation`` k and floor)
     """
 
     fit: Fit

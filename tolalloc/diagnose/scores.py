@@ -45,7 +45,7 @@ class Evaluation:
     test_fit : Fit or None       ``refit``: the fit re-registered to the test file's frame when it was scored
     test_cov : array or None     ``refit`` with the calibration update: the posterior covariance of ``test_fit``'s
                                  frame and parameters (:class:`~tolalloc.diagnose.register.Registered`)
-    test_prior : CalibrationPrior or None  ``refit`` with the calibration update: the prior it used (``k``, ``c``)
+    test_prior : CalibrationPrior or None  ``refit`` with the calibration update: the prior it used (its ``inflation`` k and floor)
     """
 
     label: str
