@@ -176,7 +176,7 @@ def section(table: pd.DataFrame) -> list:
                  "model (`update_k_final`): " + _range(table["update_k_final"].dropna(), ".3g") + ".")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
-                 f"in {int(beats.sum())} of {len(table)} rows: "
+                 f"in {int(beats.sum())} of {len(table)} rows (final test RMS, this model vs the fresh one, every row): "
                  + "; ".join(f"{r.direction} {r.registration_from} {r.register_update} {int(r.register_n)}: "
                              f"{r.test_rms_final_mm:.3f} vs {r.fresh_test_rms_final_mm:.3f}"
                              for r in table.itertuples()) + " mm.")

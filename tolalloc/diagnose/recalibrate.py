@@ -30,8 +30,9 @@ sessions a free noise scale takes the misfit the trained model's parameters cann
 the largest value allowed, 16 x the training variance), which holds the update back and lowered nothing.
 
 On the real UR10 across sessions (train on one session, test on the other; ``studies/sim2real_ur10``) the
-registration poses chose ``k`` of 20-200 -- the new session moved the parameters far more than the training
-posterior allowed. A model without parameters beyond the frame (nominal) is re-registered as before. The predicted
+registration poses chose ``k`` of 19-1,084 for the final model (91 and 129 with 30 poses spread over the session)
+-- the new session moved the parameters far more than the training posterior allowed -- and the update lowered the
+scored final test RMS from 0.563 to 0.409 mm (A -> C) and from 0.732 to 0.501 mm (C -> A). A model without parameters beyond the frame (nominal) is re-registered as before. The predicted
 uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's
 posterior covariance (:func:`posterior_covariance`: the registration rows, with their robust weights, and the
 inflated prior), so the coverage of the scored poses checks the updated model's own uncertainty
