@@ -305,7 +305,7 @@ def report_lines(summary, gap_all, A_all, C_all, step_a, step_c, quick) -> list:
              "coverage95_pct: share of scored test residuals inside the predicted 95 % radius (parameter covariance "
              "of the final fit + noise; for the `_update` runs the calibration update's posterior + noise); well "
              "below 95 % means error the fitted model does not contain. update_k_final: the widening of the final "
-             "model's training posterior the registration poses chose for the update (empty without it).", "",
+             "model's training posterior the registration poses chose for the update (nan without it).", "",
              "## Where the test error goes (share of the nominal mean square, %)", "",
              "`tolalloc.diagnose.gap`: removed by geometry, removed by the selected effect(s), systematic but unnamed "
              "(what a Gaussian process on the joint values, trained on the training poses' out-of-fold residual "

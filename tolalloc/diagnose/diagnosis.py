@@ -193,7 +193,7 @@ class Diagnosis:
                 out["test"]["registration"] |= {"rotation": self.registered.R, "translation_mm": self.registered.p_mm,
                                                 "target_offset_mm": self.registered.t_mm}
             if self.calibration_update is not None and self.registration is not None:
-                out["test"]["registration"] |= self.calibration_update.to_dict()
+                out["test"]["registration"] |= self.calibration_update.to_dict(self.test.rows)
         if self.uncertainty is not None:
             out["uncertainty"] = self.uncertainty.to_dict()
         if self.parameter_check is not None:

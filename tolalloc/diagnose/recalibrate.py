@@ -23,17 +23,18 @@ file's own factor (:func:`inflation_factor`: the ratio of the model's out-of-fol
 mean square residual, at least 1), so the prior is never narrower than the training fit's error on poses it did
 not see. The update then minimises ``|r_reg|^2 + noise^2 (theta - mu)^T P (theta - mu) / k`` with a robust loss:
 Huber's (``huber`` or ``soft_l1`` when the diagnosis uses it) -- Tukey's biweight, beside a strong prior, can
-reject the registration poses that disagree with the trained parameters instead of moving the parameters. The
-marginal likelihood is computed on every registration row (no robust weights): gross outliers among them widen
-the prior, and the robust update then down-weights them. The noise is not estimated with ``k``: across the UR10
+reject the registration poses that disagree with the trained parameters instead of moving the parameters.
+Registration poses whose frame-only residual exceeds ``TUKEY_C`` x the median norm are set aside from the choice of
+``k`` and from the update (:func:`gross_errors`; none when fewer than ``MIN_REGISTER`` poses would remain); the rest
+enter the marginal likelihood without robust weights. The noise is not estimated with ``k``: across the UR10
 sessions a free noise scale takes the misfit the trained model's parameters cannot explain as noise (it went to
 the largest value allowed, 16 x the training variance), which holds the update back and lowered nothing.
 
 On the real UR10 across sessions (train on one session, test on the other; ``studies/sim2real_ur10``) the
 registration poses chose ``k`` of 19-1,084 for the final model (91 and 129 with 30 poses spread over the session)
 -- the new session moved the parameters far more than the training posterior allowed -- and the update lowered the
-scored final test RMS from 0.563 to 0.409 mm (A -> C) and from 0.732 to 0.501 mm (C -> A). A model without parameters beyond the frame (nominal) is re-registered as before. The predicted
-uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's
+scored final test RMS from 0.563 to 0.409 mm (A -> C) and from 0.732 to 0.501 mm (C -> A). A model without
+parameters beyond the frame (nominal) is re-registered as before. The predicted uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's
 posterior covariance (:func:`posterior_covariance`: the registration rows, with their robust weights, and the
 inflated prior), so the coverage of the scored poses checks the updated model's own uncertainty
 (:data:`UNCERTAINTY_SCOPE`).
@@ -53,6 +54,7 @@ from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
 __all__ = ["REGISTER_UPDATES", "INFLATION_MAX", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate",
            "calibration_prior", "evidence_inflation", "gross_errors", "inflation_factor", "posterior_covariance",
+           "project_out",
            "registration_prior", "register_update", "reregister", "update_loss"]
 
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
@@ -79,7 +81,8 @@ class CalibrationUpdate:
     inflation_k : dict            model label -> inflation ``k`` of its prior (models the update changed), chosen
                                   by the registration poses' marginal likelihood (:func:`registration_prior`)
     inflation_floor_k : dict      model label -> the floor of ``k``: the training file's :func:`inflation_factor`
-    set_aside_poses : dict        model label -> registration poses set aside as gross errors (:func:`gross_errors`)
+    set_aside_poses : dict        model label -> test poses (0-based) among the registration poses set aside as
+                                  gross errors (:func:`gross_errors`), a tuple
     robust_loss : str             loss of the update (:func:`update_loss`)
     """
 
@@ -91,23 +94,32 @@ class CalibrationUpdate:
     def fitted(self) -> str:
         """What the registration poses fitted, in words."""
         def one(m, k):
-            cap = " (the largest allowed)" if k >= INFLATION_MAX else ""
-            n = self.set_aside_poses.get(m, 0)
-            return f"{m} {k:.3g}{cap}" + (f", {n} registration poses set aside as gross errors" if n else "")
+            floor = self.inflation_floor_k.get(m)
+            at = (" (its floor)" if floor is not None and k <= floor
+                  else " (the largest allowed)" if k >= INFLATION_MAX else "")
+            n = len(self.set_aside_poses.get(m, ()))
+            aside = f", {n} registration pose{'s' if n > 1 else ''} set aside as gross error{'s' if n > 1 else ''}"
+            return f"{m} {f'{k:,.0f}' if k >= 100 else f'{k:.3g}'}{at}" + (aside if n else "")
 
         ks = "; ".join(one(m, k) for m, k in self.inflation_k.items()) or "none"
         return ("the tracker frame, the probe offset and a correction of the trained geometric and effect parameters "
                 "(training posterior as prior, widened by the k the registration poses' marginal likelihood chose: "
                 f"k = {ks}; {self.robust_loss} loss)")
 
-    def to_dict(self) -> dict:
+    def to_dict(self, rows: np.ndarray | None = None) -> dict:
+        """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``; default position + 1)."""
+        def file_rows(index):
+            return [int(rows[i]) if rows is not None and len(rows) else int(i) + 1 for i in index]
+
         return {"update": "calibration", "prior": "training posterior of the geometric and effect parameters, "
                 "widened by the inflation k that maximises the registration poses' marginal likelihood (frame and "
                 "probe offset marginalised, noise at the training residual level), at least inflation_floor_k "
-                "(out-of-fold / in-sample mean square residual of the training file, >= 1), at most inflation_k_max; "
-                "registration poses with a gross error (set_aside_poses) are left out of the choice and the update",
+                "(out-of-fold / in-sample mean square residual of the training file, >= 1), at most inflation_k_max "
+                "unless the floor is higher; registration rows with a gross error (set_aside_rows) are left out of the "
+                "choice and the update",
                 "inflation_k": dict(self.inflation_k), "inflation_floor_k": dict(self.inflation_floor_k),
-                "inflation_k_max": INFLATION_MAX, "set_aside_poses": dict(self.set_aside_poses),
+                "inflation_k_max": INFLATION_MAX,
+                "set_aside_rows": {m: file_rows(ix) for m, ix in self.set_aside_poses.items()},
                 "robust_loss": self.robust_loss}
 
 
@@ -123,8 +135,8 @@ class CalibrationPrior:
     inflation : float                 ``k`` (>= 1)
     inflation_floor : float or None   the smallest ``k`` allowed when ``k`` was chosen by the registration poses
                                       (:func:`inflation_factor`); None when ``k`` was given
-    set_aside : int                   registration poses left out of that choice and of the update as gross errors
-                                      (:func:`gross_errors`)
+    set_aside : tuple of int          test poses (0-based) among the registration poses left out of that choice and
+                                      of the update as gross errors (:func:`gross_errors`)
     """
 
     mean: np.ndarray
@@ -132,12 +144,12 @@ class CalibrationPrior:
     noise_mm: float
     inflation: float
     inflation_floor: float | None = None
-    set_aside: int = 0
+    set_aside: tuple = ()
 
-    def widened(self, k: float, floor: float | None = None, set_aside: int = 0) -> "CalibrationPrior":
+    def widened(self, k: float, floor: float | None = None, set_aside: tuple = ()) -> "CalibrationPrior":
         """This prior with its widening set to ``k`` (the precision scaled by ``inflation / k``)."""
         return CalibrationPrior(self.mean, self.precision * (self.inflation / k), self.noise_mm, float(k), floor,
-                                int(set_aside))
+                                tuple(int(i) for i in set_aside))
 
 
 def inflation_factor(oof_mm: np.ndarray, residual_mm: np.ndarray) -> float:
@@ -218,8 +230,19 @@ def evidence_inflation(y: np.ndarray, A: np.ndarray, C: np.ndarray, noise2: floa
     a, b = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
     x = minimize_scalar(nll, bounds=(a, b), method="bounded").x if b > a else grid[i]
     x = x if nll(x) < nll(grid[i]) else grid[i]  # a tie (flat evidence) keeps the grid point: k_min when flat
-    k = k_lo * float(np.exp(x - grid[0]))  # exactly k_lo at the floor
-    return float(np.clip(k, k_lo, k_hi)), -nll(x) - 0.5 * n_eff * np.log(2 * np.pi)
+    k = k_lo if x == grid[0] else k_hi if x == grid[-1] else float(np.clip(np.exp(x), k_lo, k_hi))
+    return k, -nll(x) - 0.5 * n_eff * np.log(2 * np.pi)
+
+
+def project_out(N: np.ndarray, *arrays: np.ndarray) -> tuple:
+    """``arrays`` with the column space of ``N`` (n, p) removed, and the dimension left, ``n - rank(N)``.
+
+    The basis is the thin SVD of ``N`` (rank-revealing also where a column depends on earlier ones); memory is
+    ``n p``. Returns ``([array - Q Q^T array, ...], n_eff)``.
+    """
+    U, sv, _ = np.linalg.svd(N, full_matrices=False)
+    Q = U[:, sv > 1e-9 * sv[0]] if len(sv) and sv[0] > 0 else U[:, :0]
+    return [a - Q @ (Q.T @ a) for a in arrays], N.shape[0] - Q.shape[1]
 
 
 def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
@@ -232,28 +255,23 @@ def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
 
 
 def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, prior: CalibrationPrior,
-                       k_min: float, set_aside: int = 0) -> CalibrationPrior:
+                       k_min: float, set_aside: tuple = ()) -> CalibrationPrior:
     """``prior`` (the training posterior at ``k = 1``) widened by the ``k`` the registration poses choose.
 
     ``start`` is the frame-only re-registration (its frame and probe offset linearise the model); ``q, xyz, B``
-    are the registration poses (gross errors already set aside, ``set_aside`` of them), their measurements (test
+    are the registration poses (gross errors already set aside: ``set_aside``, recorded), their measurements (test
     frame) and effect columns. The frame and probe offset are marginalised (a flat prior: with a probe-offset
     prior given, the choice of ``k`` ignores it, the conservative side) by projecting the residuals and the
     parameter columns onto the complement of their Jacobian columns (:func:`evidence_inflation`).
     """
     J = point_jacobian(start, q, B).reshape(3 * len(q), -1)
     r = (xyz - start.predict(q, B)).ravel()
-    Q, R = np.linalg.qr(J[:, :9])
-    Q = Q[:, np.abs(np.diag(R)) > 1e-9 * np.abs(np.diag(R)).max()]
-
-    def out(M):
-        return M - Q @ (Q.T @ M)
-
+    (y, A), n_eff = project_out(J[:, :9], r, J[:, 9:])
     P1 = prior.precision * prior.inflation  # at k = 1; inverted scaled (the parameters mix mm, rad, effect units)
     d = np.sqrt(np.clip(np.diag(P1), 0.0, None))
     d = np.where(d > 0, d, 1.0)
     C = prior.noise_mm ** 2 * np.linalg.pinv(P1 / np.outer(d, d), hermitian=True) / np.outer(d, d)
-    k, _ = evidence_inflation(out(r), out(J[:, 9:]), C, prior.noise_mm ** 2, k_min, n_eff=len(r) - Q.shape[1])
+    k, _ = evidence_inflation(y, A, C, prior.noise_mm ** 2, k_min, n_eff=n_eff)
     return prior.widened(k, float(k_min), set_aside)
 
 
@@ -300,7 +318,7 @@ def register_update(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     gross = gross_errors(xyz[r] - start.pred_mm[r], update_loss(loss))
     r = r[~gross] if gross.sum() <= len(r) - MIN_REGISTER else r
     Br = None if no_b else B[r]
-    aside = len(split.register_index) - len(r)
+    aside = tuple(int(i) for i in np.setdiff1d(split.register_index, r))
     prior = (replace(prior, set_aside=aside) if k_min is None
              else registration_prior(s0, q[r], xyz[r], Br, prior, k_min, aside))
     prob = _PriorProblem(fit.model, s0.R, s0.p_mm, s0.t_mm, fit.delta, q[r], xyz[r], fit.geo_index, Br)
