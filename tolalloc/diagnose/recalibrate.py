@@ -28,16 +28,16 @@ Registration poses whose frame-only residual exceeds ``TUKEY_C`` x the median no
 ``k`` and from the update (:func:`gross_errors`; none when fewer than ``MIN_REGISTER`` poses would remain); the rest
 enter the marginal likelihood without robust weights. The noise is not estimated with ``k``: across the UR10
 sessions a free noise scale takes the misfit the trained model's parameters cannot explain as noise (it went to
-the largest value allowed, 16 x the training variance), which holds the update back and lowered nothing.
+the largest value allowed, 16 x the training variance), which held the update back (a scratch run, not kept).
 
 On the real UR10 across sessions (train on one session, test on the other; ``studies/sim2real_ur10``) the
 registration poses chose ``k`` of 19-1,084 for the final model (91 and 129 with 30 poses spread over the session)
 -- the new session moved the parameters far more than the training posterior allowed -- and the update lowered the
 scored final test RMS from 0.563 to 0.409 mm (A -> C) and from 0.732 to 0.501 mm (C -> A). A model without
-parameters beyond the frame (nominal) is re-registered as before. The predicted uncertainty of the test poses (:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's
-posterior covariance (:func:`posterior_covariance`: the registration rows, with their robust weights, and the
-inflated prior), so the coverage of the scored poses checks the updated model's own uncertainty
-(:data:`UNCERTAINTY_SCOPE`).
+parameters beyond the frame (nominal) is re-registered as before. The predicted uncertainty of the test poses
+(:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's posterior covariance
+(:func:`posterior_covariance`: the registration rows, with their robust weights, and the widened prior), so the
+coverage of the scored poses checks the updated model's own uncertainty (:data:`UNCERTAINTY_SCOPE`).
 """
 
 from __future__ import annotations
@@ -54,8 +54,7 @@ from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
 __all__ = ["REGISTER_UPDATES", "INFLATION_MAX", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate",
            "calibration_prior", "evidence_inflation", "gross_errors", "inflation_factor", "posterior_covariance",
-           "project_out",
-           "registration_prior", "register_update", "reregister", "update_loss"]
+           "project_out", "registration_prior", "register_update", "reregister", "update_loss"]
 
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
 REGISTER_UPDATES = ("frame", "calibration")
@@ -256,7 +255,7 @@ def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
 
 def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, prior: CalibrationPrior,
                        k_min: float, set_aside: tuple = ()) -> CalibrationPrior:
-    """``prior`` (the training posterior at ``k = 1``) widened by the ``k`` the registration poses choose.
+    """``prior`` (the training posterior, at any widening) widened instead by the ``k`` the registration poses choose.
 
     ``start`` is the frame-only re-registration (its frame and probe offset linearise the model); ``q, xyz, B``
     are the registration poses (gross errors already set aside: ``set_aside``, recorded), their measurements (test
