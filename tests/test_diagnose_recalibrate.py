@@ -388,7 +388,13 @@ def test_too_few_registration_poses_left_keeps_them_all(sessions):
     bad = xyz.copy()
     bad[few.register_index[2]] += [10.0, 0.0, 0.0]  # setting it aside would leave 4 < MIN_REGISTER = 5 poses
     upd = reregister(cal.geometric, q, bad, None, few, update="calibration", q_train=train.q, loss="tukey")
-    assert upd.prior.set_aside == ()
+    assert upd.prior.set_aside == () and upd.prior.gross_kept == (few.register_index[2],)
+    d = diagnose(robot, train, Measurements(q, bad), test_frame="refit", register_n=5, register_update="calibration",
+                 folds=3)
+    np.testing.assert_array_equal(d.registration.register_index, few.register_index)
+    row = few.register_index[2] + 1
+    assert any(g.startswith(f"registration: 1 registration pose(s) with a gross error (test rows {row}) kept in the "
+                            "calibration update: setting them aside would leave fewer than 5") for g in d.guards)
 
 
 def test_update_text_and_json_name_the_floor_the_cap_and_the_rows_set_aside():

@@ -20,7 +20,7 @@ from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
-from tolalloc.diagnose.register import REGISTER_N, check_register_rows, register_count, split_from_rows
+from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
                                      progress_scope, subsample_index)
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
@@ -223,6 +223,7 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     if chosen is not final:
         fallback, final, effects = chosen.label, chosen, ()
     update = _calibration_update(ctx, nominal, geometric, final)
+    guards.extend(_kept_gross_errors(ctx, final))
     extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
     tstats = scored_test_stats(nominal, geometric, final)
     untestable = tuple(e for e in final.effects if e in ctx.untestable)
@@ -251,6 +252,17 @@ def _calibration_update(ctx, nominal: Evaluation, geometric: Evaluation, final: 
     return CalibrationUpdate({m: pr.inflation for m, pr in priors.items()},
                              {m: pr.inflation_floor for m, pr in priors.items()},
                              {m: pr.set_aside for m, pr in priors.items()}, update_loss(ctx.loss))
+
+
+def _kept_gross_errors(ctx, final: Evaluation) -> list:
+    """A guard when the calibration update kept gross registration errors (too few poses to set them aside)."""
+    kept = () if final.test_prior is None else final.test_prior.gross_kept
+    if not kept:
+        return []
+    rows = ctx.test.rows if ctx.test.rows is not None and len(ctx.test.rows) else np.arange(1, ctx.test.n_poses + 1)
+    return [f"registration: {len(kept)} registration pose(s) with a gross error (test rows "
+            f"{', '.join(str(int(rows[i])) for i in kept)}) kept in the calibration update: setting them aside would "
+            f"leave fewer than {MIN_REGISTER} registration poses; measure more registration poses or check these rows"]
 
 
 def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation, chosen: Evaluation):

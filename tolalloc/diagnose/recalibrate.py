@@ -136,6 +136,8 @@ class CalibrationPrior:
                                       (:func:`inflation_factor`); None when ``k`` was given
     set_aside : tuple of int          test poses (0-based) among the registration poses left out of that choice and
                                       of the update as gross errors (:func:`gross_errors`)
+    gross_kept : tuple of int         gross errors kept because setting them aside would leave fewer than
+                                      ``MIN_REGISTER`` registration poses
     """
 
     mean: np.ndarray
@@ -144,11 +146,11 @@ class CalibrationPrior:
     inflation: float
     inflation_floor: float | None = None
     set_aside: tuple = ()
+    gross_kept: tuple = ()
 
-    def widened(self, k: float, floor: float | None = None, set_aside: tuple = ()) -> "CalibrationPrior":
+    def widened(self, k: float, floor: float | None = None) -> "CalibrationPrior":
         """This prior with its widening set to ``k`` (the precision scaled by ``inflation / k``)."""
-        return CalibrationPrior(self.mean, self.precision * (self.inflation / k), self.noise_mm, float(k), floor,
-                                tuple(int(i) for i in set_aside))
+        return replace(self, precision=self.precision * (self.inflation / k), inflation=float(k), inflation_floor=floor)
 
 
 def inflation_factor(oof_mm: np.ndarray, residual_mm: np.ndarray) -> float:
@@ -254,11 +256,11 @@ def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
 
 
 def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, prior: CalibrationPrior,
-                       k_min: float, set_aside: tuple = ()) -> CalibrationPrior:
+                       k_min: float) -> CalibrationPrior:
     """``prior`` (the training posterior, at any widening) widened instead by the ``k`` the registration poses choose.
 
     ``start`` is the frame-only re-registration (its frame and probe offset linearise the model); ``q, xyz, B``
-    are the registration poses (gross errors already set aside: ``set_aside``, recorded), their measurements (test
+    are the registration poses (gross errors already set aside, :func:`gross_errors`), their measurements (test
     frame) and effect columns. The frame and probe offset are marginalised (a flat prior: with a probe-offset
     prior given, the choice of ``k`` ignores it, the conservative side) by projecting the residuals and the
     parameter columns onto the complement of their Jacobian columns (:func:`evidence_inflation`).
@@ -271,7 +273,7 @@ def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     d = np.where(d > 0, d, 1.0)
     C = prior.noise_mm ** 2 * np.linalg.pinv(P1 / np.outer(d, d), hermitian=True) / np.outer(d, d)
     k, _ = evidence_inflation(y, A, C, prior.noise_mm ** 2, k_min, n_eff=n_eff)
-    return prior.widened(k, float(k_min), set_aside)
+    return prior.widened(k, float(k_min))
 
 
 class _PriorProblem(Problem):
@@ -315,11 +317,12 @@ def register_update(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
         return start
     r, s0 = split.register_index, start.fit
     gross = gross_errors(xyz[r] - start.pred_mm[r], update_loss(loss))
-    r = r[~gross] if gross.sum() <= len(r) - MIN_REGISTER else r
+    kept = tuple(int(i) for i in r[gross]) if gross.sum() > len(r) - MIN_REGISTER else ()
+    r = r if kept else r[~gross]
     Br = None if no_b else B[r]
     aside = tuple(int(i) for i in np.setdiff1d(split.register_index, r))
-    prior = (replace(prior, set_aside=aside) if k_min is None
-             else registration_prior(s0, q[r], xyz[r], Br, prior, k_min, aside))
+    prior = replace(prior if k_min is None else registration_prior(s0, q[r], xyz[r], Br, prior, k_min),
+                    set_aside=aside, gross_kept=kept)
     prob = _PriorProblem(fit.model, s0.R, s0.p_mm, s0.t_mm, fit.delta, q[r], xyz[r], fit.geo_index, Br)
     prob.set_full_prior(prior.mean, prior.precision)
     if t_prior is not None:
