@@ -38,7 +38,7 @@ from scipy.spatial.transform import Rotation
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.robot.model import Robot
-from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
 from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, count_fit, norm_scale, point_kinematics, robust_scale,
@@ -228,7 +228,7 @@ def outlier_rows(fit: Fit, rows: np.ndarray | None = None, factor: float = OUTLI
         return []
     idx = np.flatnonzero(e > factor * norm_scale(fit.residual_mm))
     idx = idx[np.argsort(-e[idx])]
-    rows = np.arange(1, len(e) + 1) if rows is None or not len(rows) else np.asarray(rows)
+    rows = file_rows(rows, len(e))
     w = fit.weights if fit.weights is not None else np.ones(len(e))
     return [{"row": int(rows[i]), "error_mm": float(e[i]), "weight": float(w[i])} for i in idx]
 

@@ -33,12 +33,18 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.scale import point_kinematics
 
 __all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "comment_lines",
-           "POSITION_COLUMNS"]
+           "file_rows", "POSITION_COLUMNS"]
 
 #: fewer distinct poses than this cannot fix the tracker registration and target offset (9 unknowns, 3 per pose)
 MIN_DISTINCT_POSES = 3
 
 POSITION_COLUMNS = ("x_mm", "y_mm", "z_mm")
+
+
+def file_rows(rows: np.ndarray | None, n: int) -> np.ndarray:
+    """1-based file rows of ``n`` poses, shape (n,): ``rows`` (:attr:`Measurements.rows`) when given, else the
+    positions + 1 (a set built without rows)."""
+    return np.arange(1, n + 1) if rows is None or not len(rows) else np.asarray(rows, dtype=np.int64)
 
 
 @dataclass(frozen=True, eq=False)

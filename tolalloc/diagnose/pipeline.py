@@ -18,7 +18,7 @@ from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
 from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
-from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
 from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
@@ -259,7 +259,7 @@ def _kept_gross_errors(ctx, final: Evaluation) -> list:
     kept = () if final.test_prior is None else final.test_prior.gross_kept
     if not kept:
         return []
-    rows = ctx.test.rows if ctx.test.rows is not None and len(ctx.test.rows) else np.arange(1, ctx.test.n_poses + 1)
+    rows = file_rows(ctx.test.rows, ctx.test.n_poses)
     return [f"registration: {len(kept)} registration pose(s) with a gross error (test rows "
             f"{', '.join(str(int(rows[i])) for i in kept)}) kept in the calibration update: setting them aside would "
             f"leave fewer than {MIN_REGISTER} registration poses; measure more registration poses or check these rows"]

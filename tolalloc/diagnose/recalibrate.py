@@ -49,6 +49,7 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
 from tolalloc.diagnose.guards import point_jacobian
+from tolalloc.diagnose.measurements import file_rows
 from tolalloc.diagnose.register import MIN_REGISTER, Registered, RegistrationSplit, register_and_score
 from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
@@ -107,8 +108,7 @@ class CalibrationUpdate:
 
     def to_dict(self, rows: np.ndarray | None = None) -> dict:
         """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``; default position + 1)."""
-        def file_rows(index):
-            return [int(rows[i]) if rows is not None and len(rows) else int(i) + 1 for i in index]
+        numbers = file_rows(rows, 1 + max((i for ix in self.set_aside_poses.values() for i in ix), default=-1))
 
         return {"update": "calibration", "prior": "training posterior of the geometric and effect parameters, "
                 "widened by the inflation k that maximises the registration poses' marginal likelihood (frame and "
@@ -118,7 +118,7 @@ class CalibrationUpdate:
                 "choice and the update",
                 "inflation_k": dict(self.inflation_k), "inflation_floor_k": dict(self.inflation_floor_k),
                 "inflation_k_max": INFLATION_MAX,
-                "set_aside_rows": {m: file_rows(ix) for m, ix in self.set_aside_poses.items()},
+                "set_aside_rows": {m: [int(numbers[i]) for i in ix] for m, ix in self.set_aside_poses.items()},
                 "robust_loss": self.robust_loss}
 
 

@@ -36,6 +36,7 @@ from scipy.cluster.vq import kmeans2
 from tolalloc.exceptions import ArgumentError, TolallocError, describe, whole_number
 from tolalloc.diagnose.calibrate import Fit, fit_model, kabsch
 from tolalloc.diagnose.gap import joint_features
+from tolalloc.diagnose.measurements import file_rows
 
 __all__ = ["REGISTER_N", "MIN_REGISTER", "MIN_SCORED", "CHOSEN_BY", "RegistrationSplit", "registration_split",
            "register_count", "register_row_numbers", "check_register_rows", "split_from_rows", "Registered",
@@ -78,7 +79,8 @@ class RegistrationSplit:
     def to_dict(self, rows: np.ndarray | None = None, fitted: str = "tracker frame (6) and probe offset (3)") -> dict:
         """JSON block; ``rows``: 1-based file rows of the test poses (``Measurements.rows``); ``fitted``: what the
         registration poses fitted."""
-        pick = (lambda idx: (idx + 1).tolist()) if rows is None or not len(rows) else (lambda idx: rows[idx].tolist())
+        numbers = file_rows(rows, self.n_poses)
+        pick = (lambda idx: numbers[idx].tolist())  # noqa: E731
         how = ("pose nearest each k-means centre in joint space (seeded), representative of the test series"
                if self.chosen_by == "kmeans" else "the rows given as registration rows (register_rows)")
         return {"register_n_requested": self.requested, "registration_poses": len(self.register_index),
@@ -217,11 +219,11 @@ def split_from_rows(register_rows, n_test: int, rows: np.ndarray | None = None,
     ``to_dict(rows)["registration_rows"]`` given back as ``register_rows`` gives the same split.
     """
     nums = register_row_numbers(register_rows)
-    file_rows = np.arange(1, n_test + 1) if rows is None or not len(rows) else np.asarray(rows, dtype=np.int64)
-    index = {int(r): i for i, r in enumerate(file_rows)}  # file row -> test pose
+    numbers = file_rows(rows, n_test)
+    index = {int(r): i for i, r in enumerate(numbers)}  # file row -> test pose
     lost = [n for n in nums if n not in index]
     if lost:
-        have = np.sort(file_rows)
+        have = np.sort(numbers)
         top = int(have[-1]) if len(have) else 0
         gaps = np.setdiff1d(np.arange(int(have[0]), top + 1), have) if len(have) else np.zeros(0, int)
         within = f"{have[0] if len(have) else 0}..{top}" + (f" without {_listed(gaps.tolist())}" if len(gaps) else "")
