@@ -28,7 +28,7 @@ from scipy.spatial.transform import Rotation
 
 import tolalloc
 from tolalloc.diagnose.calibrate import Fit, calibrate
-from tolalloc.diagnose.guards import point_jacobian
+from tolalloc.diagnose.uncertainty import point_jacobian
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.pipeline import diagnose

@@ -1,4 +1,4 @@
-"""Per-test-pose predicted uncertainty (guards.prediction_uncertainty) against known answers.
+"""Per-test-pose predicted uncertainty (uncertainty.prediction_uncertainty) against known answers.
 
 * the point Jacobian agrees with central finite differences of ``Fit.predict`` (registration columns to
   1e-5; probe-offset and geometric columns, first-order at the nominal model as in calibrate.py, to 2 %);
@@ -22,7 +22,7 @@ from scipy.spatial.transform import Rotation
 
 import tolalloc
 from tolalloc.diagnose.calibrate import calibrate
-from tolalloc.diagnose.guards import point_jacobian, prediction_uncertainty
+from tolalloc.diagnose.uncertainty import point_jacobian, prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.register import register_and_score, registration_split
 from tolalloc.robot.io.dh import robot_from_dh_dict

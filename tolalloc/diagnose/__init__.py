@@ -4,7 +4,7 @@ and how far the held-out error shrinks once the effect is added.
 Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.geometry` (the complete, minimal geometric
 calibration model; the paper's error-screw model stays the tolerance model), :mod:`.calibrate` (registration,
 target offset, identifiable geometric errors, MAP), :mod:`.guards` (implausible parameters, extrapolation,
-CV fallback), :mod:`.effects` and :mod:`.thermal` (candidate effects), :mod:`.choice` and :mod:`.evidence`
+CV fallback), :mod:`.uncertainty` (parameter covariance, predicted test uncertainty), :mod:`.effects` and :mod:`.thermal` (candidate effects), :mod:`.choice` and :mod:`.evidence`
 (variant choice, fitted priors), :mod:`.select` (held-out scoring and selection on the training file),
 :mod:`.verdict` (effect / none / ambiguous / inconclusive), :mod:`.where` (residual breakdown),
 :mod:`.pipeline` (:func:`diagnose`; the test file is sealed until the model is chosen), :mod:`.synth`

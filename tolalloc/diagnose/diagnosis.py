@@ -10,7 +10,8 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import Calibration, Fit
-from tolalloc.diagnose.guards import Extrapolation, ParameterCheck, PoseUncertainty
+from tolalloc.diagnose.guards import Extrapolation, ParameterCheck
+from tolalloc.diagnose.uncertainty import PoseUncertainty
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.recalibrate import UNCERTAINTY_SCOPE, CalibrationUpdate
 from tolalloc.diagnose.register import RegistrationSplit

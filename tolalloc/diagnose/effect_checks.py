@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.diagnose.guards import parameter_covariance
+from tolalloc.diagnose.uncertainty import parameter_covariance
 
 __all__ = ["compliance_sign_flags", "N_SD"]
 

@@ -17,7 +17,8 @@ from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
-from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks, prediction_uncertainty
+from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks
+from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows

@@ -11,9 +11,9 @@ training registration and probe offset (Schur complement: that frame is not the 
 
     P = (J_tt - J_tf J_ff^-1 J_ft) / noise^2 + diag(prior precisions of the training fit),
 
-with ``J`` the training Jacobian (:func:`tolalloc.diagnose.guards.point_jacobian`), ``noise^2`` the training
+with ``J`` the training Jacobian (:func:`tolalloc.diagnose.uncertainty.point_jacobian`), ``noise^2`` the training
 residual variance per coordinate, the MAP prior of the geometric parameters and the ridge weights of the effect
-columns (as in :func:`tolalloc.diagnose.guards.parameter_covariance`). How far the parameters may have moved
+columns (:func:`tolalloc.diagnose.uncertainty.information`). How far the parameters may have moved
 since the training session is not known from the training file: the prior is widened by a factor ``k`` chosen
 by the **registration poses' marginal likelihood** (type-II maximum likelihood, :func:`evidence_inflation`): the
 linearised model ``r = J_f d_f + J_t d_t + e`` at the frame-only re-registration, the frame and probe offset
@@ -35,7 +35,7 @@ registration poses chose ``k`` of 19-1,084 for the final model (91 and 129 with 
 -- the new session moved the parameters far more than the training posterior allowed -- and the update lowered the
 scored final test RMS from 0.563 to 0.409 mm (A -> C) and from 0.732 to 0.501 mm (C -> A). A model without
 parameters beyond the frame (nominal) is re-registered as before. The predicted uncertainty of the test poses
-(:func:`tolalloc.diagnose.guards.prediction_uncertainty`) propagates the update's posterior covariance
+(:func:`tolalloc.diagnose.uncertainty.prediction_uncertainty`) propagates the update's posterior covariance
 (:func:`posterior_covariance`: the registration rows, with their robust weights, and the widened prior), so the
 coverage of the scored poses checks the updated model's own uncertainty (:data:`UNCERTAINTY_SCOPE`).
 """
@@ -48,7 +48,7 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
-from tolalloc.diagnose.guards import point_jacobian
+from tolalloc.diagnose.uncertainty import information, point_jacobian, scaled_pinv
 from tolalloc.diagnose.measurements import file_rows
 from tolalloc.diagnose.register import MIN_REGISTER, Registered, RegistrationSplit, register_and_score
 from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
@@ -170,18 +170,7 @@ def calibration_prior(fit: Fit, q: np.ndarray, B: np.ndarray | None, inflation: 
     B : array, shape (P, 3, m), optional  the effect columns of ``fit.beta`` on ``q``
     inflation : float                  ``k`` (:func:`inflation_factor`)
     """
-    J = point_jacobian(fit, q, B).reshape(3 * len(q), -1)
-    n = J.shape[1]
-    res = np.asarray(fit.residual_mm)
-    noise2 = float(np.mean(res ** 2)) * res.size / max(res.size - n, 1) if res.size else 0.05 ** 2
-    prec = np.zeros(n)
-    sig = fit.model.sigma[fit.geo_index]
-    prec[9:9 + len(sig)] = np.where(sig > 0, 1.0 / np.where(sig > 0, sig, 1.0) ** 2, 0.0)
-    if fit.t_prior_mm is not None:
-        prec[6:9] = 1.0 / np.asarray(fit.t_prior_mm[1], float) ** 2
-    if fit.beta_prior_w is not None and len(fit.beta_prior_w) == n - 9 - len(sig):
-        prec[9 + len(sig):] = np.asarray(fit.beta_prior_w, float) ** 2 / noise2
-    info = J.T @ J / noise2 + np.diag(prec)
+    info, noise2 = information(fit, q, B)
     Aff, Aft, Att = info[:9, :9], info[:9, 9:], info[9:, 9:]
     S = Att - Aft.T @ np.linalg.lstsq(Aff, Aft, rcond=None)[0]
     k = max(float(inflation), 1.0)
@@ -268,10 +257,7 @@ def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     J = point_jacobian(start, q, B).reshape(3 * len(q), -1)
     r = (xyz - start.predict(q, B)).ravel()
     (y, A), n_eff = project_out(J[:, :9], r, J[:, 9:])
-    P1 = prior.precision * prior.inflation  # at k = 1; inverted scaled (the parameters mix mm, rad, effect units)
-    d = np.sqrt(np.clip(np.diag(P1), 0.0, None))
-    d = np.where(d > 0, d, 1.0)
-    C = prior.noise_mm ** 2 * np.linalg.pinv(P1 / np.outer(d, d), hermitian=True) / np.outer(d, d)
+    C = prior.noise_mm ** 2 * scaled_pinv(prior.precision * prior.inflation)  # the prior covariance at k = 1
     k, _ = evidence_inflation(y, A, C, prior.noise_mm ** 2, k_min, n_eff=n_eff)
     return prior.widened(k, float(k_min))
 
@@ -350,7 +336,7 @@ def posterior_covariance(prob: Problem, x: np.ndarray, noise_mm: float) -> np.nd
     matrix of the registration rows (robust weights at ``x``) plus the prior, shape (9 + k + m, 9 + k + m).
 
     The rotation is re-based at ``x`` so that its three columns are local rotations about the updated frame,
-    as in :func:`tolalloc.diagnose.guards.point_jacobian`.
+    as in :func:`tolalloc.diagnose.uncertainty.point_jacobian`.
     """
     _, H, _, _ = prob.normal(prob.rebase(x))
     H = 0.5 * (H + H.T)

@@ -252,7 +252,7 @@ class Registered:
     residual_mm : array, shape (T - r, 3)  measured - predicted on the scored poses only [mm]
     posterior_cov : array, shape (9 + k + m, 9 + k + m) or None   with the calibration update
                                    (:mod:`.recalibrate`): covariance of the frame, probe offset and updated
-                                   parameters (columns of :func:`tolalloc.diagnose.guards.point_jacobian`) given
+                                   parameters (columns of :func:`tolalloc.diagnose.uncertainty.point_jacobian`) given
                                    the registration poses and the prior [parameter units squared]; None for a
                                    frame-only re-registration
     prior : CalibrationPrior or None   with the calibration update: the prior it used

@@ -47,7 +47,7 @@ from tolalloc.diagnose.choice import choose_variant, prior_weights
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
-from tolalloc.diagnose.guards import parameter_covariance
+from tolalloc.diagnose.uncertainty import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
 from tolalloc.diagnose.thermal import time_problem
