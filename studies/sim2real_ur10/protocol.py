@@ -129,7 +129,7 @@ def _target_line(g: pd.DataFrame, label: str) -> str:
                         for dname, dg in g.groupby("direction")) + " mm.")
 
 
-def _range(v: pd.Series, fmt: str = ".0f") -> str:
+def value_range(v: pd.Series, fmt: str = ".0f") -> str:
     """``min-max`` of ``v``, one number where they agree."""
     lo, hi = format(v.min(), fmt), format(v.max(), fmt)
     return lo if lo == hi else f"{lo}-{hi}"
@@ -165,15 +165,15 @@ def section(table: pd.DataFrame) -> list:
                              for (d, how), g in table.groupby(["direction", "registration_from"])) + ".")
     fires = table["guard_kinds"].str.contains("uncertainty")
     lines.append("* Coverage of the predicted 95 % radius on the scored poses: "
-                 + "; ".join(f"`{u}` {_range(g['coverage95_pct'])} %"
+                 + "; ".join(f"`{u}` {value_range(g['coverage95_pct'])} %"
                              for u, g in table.groupby("register_update"))
                  + f"; the `uncertainty` guard fires in {int(fires.sum())} of {len(table)} rows. Median predicted "
                  "1-sigma of the test poses (`median_sigma_mm`): "
-                 + "; ".join(f"`{u}` {_range(g['median_sigma_mm'], '.3f')} mm"
+                 + "; ".join(f"`{u}` {value_range(g['median_sigma_mm'], '.3f')} mm"
                              for u, g in table.groupby("register_update"))
                  + f". Test poses flagged as extrapolations from the training session (`extrapolating_pct`): "
-                 f"{_range(table['extrapolating_pct'])} %. Prior widening the registration poses chose for the final "
-                 "model (`update_k_final`): " + _range(table["update_k_final"].dropna(), ".3g") + ".")
+                 f"{value_range(table['extrapolating_pct'])} %. Prior widening the registration poses chose for the final "
+                 "model (`update_k_final`): " + value_range(table["update_k_final"].dropna(), ".3g") + ".")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows (final test RMS, this model vs the fresh one, every row): "

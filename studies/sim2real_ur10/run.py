@@ -51,7 +51,7 @@ from tolalloc.report.diagnosis import write_report
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from convert_ur10 import DATA, SERIES, series  # noqa: E402
 from sessions import registration_rows, section as sessions_section  # noqa: E402
-from protocol import COUNTS, registration_table, section as registration_section, update_k  # noqa: E402
+from protocol import COUNTS, registration_table, section as registration_section, update_k, value_range  # noqa: E402
 
 OUT = Path(__file__).resolve().parents[2] / "reports" / "sim2real_ur10"
 TIME_TRAIN = 0.7
@@ -320,8 +320,7 @@ def report_lines(summary, gap_all, A_all, C_all, step_a, step_c, quick) -> list:
 def reading(s: pd.DataFrame, share: pd.DataFrame) -> list:
     """Statements computed from the summary (no number typed by hand)."""
     def rng(runs, col):
-        v = s.loc[runs, col]
-        return f"{v.min():.3f}-{v.max():.3f} mm"
+        return f"{value_range(s.loc[runs, col], '.3f')} mm"
 
     rnd, tim, acr = ["random_C", "random_A"], ["time_C", "time_A"], ["across_A_to_C", "across_C_to_A"]
     upd = [f"{r}_update" for r in acr]

@@ -276,8 +276,7 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
     def scored(ev):
         reg = score_test(ctx, ev.fit, ev.effects, ev.keep, ev.oof_mm)
         refit = ctx.test_frame == "refit"
-        return replace(ev, test_mm=reg.residual_mm, test_pred_mm=reg.pred_mm, test_fit=reg.fit if refit else None,
-                       test_cov=reg.posterior_cov, test_prior=reg.prior)
+        return replace(ev, test_mm=reg.residual_mm, test_pred_mm=reg.pred_mm, registered=reg if refit else None)
 
     n2, g2 = scored(nominal), scored(geometric)
     f2 = g2 if final is geometric else scored(final)

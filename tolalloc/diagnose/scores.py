@@ -42,10 +42,9 @@ class Evaluation:
                                  set only for the nominal, geometric and final models, after the selection
     test_pred_mm : array, shape (T, 3) or None  predictions on the test file (``refit``: in the re-registered frame)
     oof_joint_mm : array, shape (P, 3) or None  out-of-fold residuals of the joint-space blocks (``cv="blocked"``)
-    test_fit : Fit or None       ``refit``: the fit re-registered to the test file's frame when it was scored
-    test_cov : array or None     ``refit`` with the calibration update: the posterior covariance of ``test_fit``'s
-                                 frame and parameters (:class:`~tolalloc.diagnose.register.Registered`)
-    test_prior : CalibrationPrior or None  ``refit`` with the calibration update: the prior it used (its ``inflation`` k and floor)
+    registered : Registered or None  ``refit``: the test-file registration the model was scored with
+                                 (:class:`~tolalloc.diagnose.register.Registered`: the fit in the test file's
+                                 frame; with the calibration update also its posterior covariance and prior)
     """
 
     label: str
@@ -57,9 +56,22 @@ class Evaluation:
     test_mm: np.ndarray | None
     test_pred_mm: np.ndarray | None
     oof_joint_mm: np.ndarray | None = None
-    test_fit: object | None = None
-    test_cov: np.ndarray | None = None
-    test_prior: object | None = None
+    registered: object | None = None
+
+    @property
+    def test_fit(self):
+        """``refit``: the fit in the test file's frame it was scored with (None otherwise)."""
+        return None if self.registered is None else self.registered.fit
+
+    @property
+    def test_cov(self) -> np.ndarray | None:
+        """The calibration update's posterior covariance of :attr:`test_fit`'s frame and parameters (None without)."""
+        return None if self.registered is None else self.registered.posterior_cov
+
+    @property
+    def test_prior(self):
+        """The calibration update's prior (:class:`~tolalloc.diagnose.recalibrate.CalibrationPrior`; None without)."""
+        return None if self.registered is None else self.registered.prior
 
     @property
     def selection_mm(self) -> np.ndarray:
