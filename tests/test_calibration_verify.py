@@ -49,7 +49,7 @@ def test_refuses_pose_plans(small):
 def test_plan_chains_match_the_generic_perturbed_chain(robot_name):
     """The FastChain evaluation the Monte Carlo uses equals the generic perturbed_chain + fk_poe path."""
     from tolalloc.robot.kinematics import fk_poe
-    from tolalloc.verify.calibrated import _PlanChains
+    from tolalloc.verify.calibrated_fit import _PlanChains
 
     robot = load_robot(robot_name)
     model = build_error_model(robot, clearance=True)
@@ -71,7 +71,7 @@ def test_plan_chains_match_the_generic_perturbed_chain(robot_name):
 def test_exact_gauss_newton_reaches_a_stationary_point_of_the_map_objective():
     """Jacobian-at-the-estimate steps (the large-error fallback of the fit) end where the gradient of the MAP
     objective |r(x)|^2 + |x|^2_prior, by independent central differences, vanishes (tool_changer, 3x errors)."""
-    from tolalloc.verify.calibrated import _PlanChains, _exact_step, _measure
+    from tolalloc.verify.calibrated_fit import _PlanChains, _exact_step, _measure
 
     robot = load_robot("tool_changer")
     model = build_error_model(robot)

@@ -208,7 +208,8 @@ class _Grades:
 
 def _grades(problem: AllocationProblem, split: ErrorSplit) -> _Grades:
     """Resolve the split's grade tables into cost models (costs-file syntax and checks)."""
-    from tolalloc.allocate.costs import _check_entry, _cost_model
+    from tolalloc.allocate.costs import _cost_model
+    from tolalloc.allocate.costs_entries import _check_entry
 
     idx = split.graded
     models = []

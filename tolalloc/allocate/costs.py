@@ -37,6 +37,10 @@ Angles are given with ``_deg`` (or ``_rad``), lengths with ``_mm`` (or ``_m``).
 
 Standard values for the drawing (``grades = "IT5-IT12"`` for link lengths, ``classes_<unit>``, ``step_<unit>``)
 and manufacturing processes (``[processes.NAME]``) are described in :mod:`tolalloc.allocate.processes`.
+
+This module holds the cost laws (:class:`CostModel`), the defaults (:data:`DEFAULT_COSTS`), the resolved set
+(:class:`CostSet`, :func:`cost_set`) and the file reader (:func:`load_costs`, :func:`read_costs_file`); the checks of
+one section's keys, unit suffixes and values are in :mod:`tolalloc.allocate.costs_entries`.
 """
 
 from __future__ import annotations
@@ -50,14 +54,12 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.model import ErrorModel
-from tolalloc.allocate.processes import DISCRETE_KEYS, DiscreteSpec, discrete_spec, parse_grades, read_processes
-from tolalloc.units import ANGLE_UNITS, LENGTH_UNITS, unit_value
+from tolalloc.allocate.costs_entries import _UNIT_BASES, _check_entry, _check_values, _value
+from tolalloc.allocate.processes import DiscreteSpec, discrete_spec, parse_grades, read_processes
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
 
 MODELS = ("reciprocal", "reciprocal_power", "exponential")
-_LEN = LENGTH_UNITS
-_ANG = ANGLE_UNITS
 
 #: Default cost-tolerance data for the tool_changer (and any robot without a costs file).
 #: ASSUMPTIONS of this project, not measured data: relative cost 2 (= a + b) at the reference
@@ -82,9 +84,6 @@ DEFAULT_COSTS = {
         "clearance_tilt": {"model": "reciprocal", "a": 1.0, "b": 1.0, "t_ref_deg": 0.01, "t_min_deg": 0.001, "t_max_deg": 1.0},
     },
 }
-
-_ENTRY_KEYS = {"model", "a", "b", "k", "fixed", "exclude", *DISCRETE_KEYS}
-_UNIT_BASES = ("t_ref", "t_min", "t_max", "tol", "step", "classes")
 
 
 @dataclass(frozen=True)
@@ -209,49 +208,6 @@ def _kind_unit(kind: str) -> str:
     return "mm" if any(k.endswith("_mm") for k in DEFAULT_COSTS["kinds"][kind]) else "deg"
 
 
-def _check_units(entry: dict, unit: str, what: str, where: str, bases=_UNIT_BASES) -> None:
-    """Refuse a ``base_<suffix>`` key whose unit is not ``unit`` (the parameters' interface unit, mm or deg)."""
-    table, other = (_LEN, "m") if unit == "mm" else (_ANG, "rad")
-    for key in entry:
-        for b in bases:
-            suffix = key[len(b) + 1:] if key.startswith(b + "_") else None
-            if suffix in {**_LEN, **_ANG} and suffix not in table:
-                raise TolallocError(f"{where}: {key} has the wrong unit: {what} are in {unit}; use {b}_{unit} (or "
-                                    f"{b}_{other}).")
-
-
-def _value(entry: dict, base: str, unit: str, where: str, what: str = "the parameter's tolerances"):
-    """Value of ``base_<unit suffix>`` in internal units (None if absent); the suffix must fit ``unit`` (the
-    parameter's unit: mm, or rad / deg for angles)."""
-    unit = "mm" if unit == "mm" else "deg"
-    _check_units(entry, unit, what, where, (base,))
-    try:
-        value, suffix = unit_value({k: v for k, v in entry.items() if k != base}, base, _LEN if unit == "mm" else _ANG)
-    except ValueError as exc:
-        text = str(exc)
-        raise TolallocError(f"{where}: {text}{'' if text.endswith('.') else '.'}") from None
-    if suffix is None:
-        return None
-    key = f"{base}_{suffix}"
-    if np.shape(value) != () or not np.isfinite(value) or value <= 0:
-        raise TolallocError(f"{where}: {key} expected a finite number > 0, got {entry[key]!r}.")
-    return float(value)
-
-
-def _check_entry(entry, where: str) -> None:
-    if not isinstance(entry, dict):
-        raise TolallocError(f"{where}: expected a table of keys, got {entry!r}.")
-    for key in ("fixed", "exclude"):
-        if key in entry and not isinstance(entry[key], bool):
-            raise TolallocError(f"{where}: {key} expected true or false, got {entry[key]!r}.")
-    for key in entry:
-        base_ok = any(key.startswith(b + "_") and key[len(b) + 1:] in {**_LEN, **_ANG} for b in _UNIT_BASES)
-        if key not in _ENTRY_KEYS and not base_ok:
-            raise TolallocError(f"{where}: unknown key {key!r}; expected model, a, b, k, fixed, exclude, "
-                                "t_ref_<mm|deg>, t_min_<mm|deg>, t_max_<mm|deg>, tol_<mm|deg>, grades, "
-                                "step_<mm|deg>, classes_<mm|deg>.")
-
-
 def cost_set(model: ErrorModel, data: dict | None = None, *, z: float | None = None, source: str = "defaults",
              distribution: str | None = None) -> CostSet:
     """Resolve the cost model and role of every parameter of ``model``.
@@ -359,13 +315,6 @@ def _entries(data: dict, model: ErrorModel, source: str):
         p = model.params[model.index(nm)]
         _check_values(v, p.interface_unit, f"{nm}'s tolerances", f"costs {source} [parameters.{nm}]")
     return kinds, per
-
-
-def _check_values(entry: dict, unit: str, what: str, where: str) -> None:
-    """The unit suffixes and the reference / limit / fixed values of one section, in the section's terms."""
-    _check_units(entry, unit, what, where)
-    for b in ("t_ref", "t_min", "t_max", "tol"):
-        _value(entry, b, unit, where, what)
 
 
 def _cost_model(entry: dict, p, where: str) -> CostModel:

@@ -15,26 +15,30 @@ plain arrays (``F`` factors, ``K`` parameters)::
     home  (4, 4)  M
 
 so the factor is ``exp([twist_f] (q_joint + coef_f . e))``. A parameter appears with coefficient +1 at its
-insertion site and, for ``axes_only`` links and ``tilt`` deflections, with -1 at its undo site (undos first
-among a site's insertions); a joint drive is a +1 in its joint's row. Every consumer reads these arrays and
-nothing else of the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; used by the
-calibration simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the
-compiled kernel of :mod:`tolalloc.robot._jacobian_nb` through :meth:`ChainProgram.param_entries`), the numpy
-Monte Carlo engine :class:`FastChain` and the numba engine (through :class:`PoseProgram`). A change to the
-error model's insertion rules is a change to :func:`chain_program` and reaches all of them.
+insertion site and, for ``axes_only`` links and ``tilt`` deflections, with -1 at its undo site (undos first among a
+site's insertions); a joint drive is a +1 in its joint's row. Every consumer reads these arrays and nothing else of
+the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; used by the calibration
+simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the compiled kernel of
+:mod:`tolalloc.robot._jacobian_nb` through :meth:`ChainProgram.param_entries`), the numpy Monte Carlo engine
+:class:`FastChain` and the numba engine (through :class:`~tolalloc.errormodel.pose_program.PoseProgram`). A change
+to the error model's insertion rules is a change to :func:`chain_program` and reaches all of them.
 
 The pose program and the numpy engine
 -------------------------------------
-:meth:`FastChain.program` specialises the chain program to one pose ``q`` (and optional per-parameter
-multipliers, e.g. sigma for standard-normal draws) as a :class:`PoseProgram`: the factors right to left with
-their constant amounts folded in, identity factors dropped, and per factor ``fi = (type, n_coefs, a, b)``,
-coefficient indices/values ``fk, fcf`` and the floats ``fd`` (layout in :class:`PoseProgram`). The numpy
-evaluator :meth:`FastChain.run` and the numba kernel (:mod:`tolalloc.montecarlo.engines`) both run these
-same arrays on a structure-of-arrays ``(3, 4, N)`` block (rows of ``[R | p]``) with closed-form
-exponentials: a rotation about a base axis mixes only the two rows it touches, a pure translation only adds
-to ``p``, ``p`` is shifted lazily to the rotation axis' point. In :meth:`FastChain.run` ``cos`` is taken as
-``sqrt(1 - sin^2)`` when every angle of the block lies in ``[-1, 1]`` rad (exact to rounding, a third of the
-cost). Both equal the generic ``fk_poe`` path to rounding (tested to 1e-9, ``tests/test_chain_program.py``).
+:meth:`FastChain.program` specialises the chain program to one pose ``q`` (and optional per-parameter multipliers,
+e.g. sigma for standard-normal draws) as a :class:`~tolalloc.errormodel.pose_program.PoseProgram`
+(:mod:`tolalloc.errormodel.pose_program`): the factors right to left with their constant amounts folded in,
+identity factors dropped, and per factor ``fi = (type, n_coefs, a, b)``, coefficient indices/values ``fk, fcf`` and
+the floats ``fd`` (layout in :class:`~tolalloc.errormodel.pose_program.PoseProgram`). The numpy evaluator
+:meth:`FastChain.run` and the numba kernel (:mod:`tolalloc.montecarlo.engines`) both run these same arrays on a
+structure-of-arrays ``(3, 4, N)`` block (rows of ``[R | p]``) with closed-form exponentials: a rotation about a
+base axis mixes only the two rows it touches, a pure translation only adds to ``p``, ``p`` is shifted lazily to the
+rotation axis' point. In :meth:`FastChain.run` ``cos`` is taken as ``sqrt(1 - sin^2)`` when every angle of the
+block lies in ``[-1, 1]`` rad (exact to rounding, a third of the cost). Both equal the generic ``fk_poe`` path to
+rounding (tested to 1e-9, ``tests/test_chain_program.py``).
+
+This module holds the chain program (:class:`ChainProgram`, :func:`chain_program`) and the numpy engine
+(:class:`FastChain`); the pose program's arrays are built in :mod:`tolalloc.errormodel.pose_program`.
 """
 
 from __future__ import annotations
@@ -44,13 +48,12 @@ from functools import cached_property
 
 import numpy as np
 
+from tolalloc.errormodel.pose_program import PoseProgram, _pose_program
 from tolalloc.robot.lie import hat
 
-__all__ = ["ChainProgram", "PoseProgram", "chain_program", "FastChain", "ERROR", "JOINT", "FD"]
+__all__ = ["ChainProgram", "chain_program", "FastChain", "ERROR", "JOINT"]
 
 ERROR, JOINT = 0, 1
-#: Floats per factor in :attr:`PoseProgram.fd`.
-FD = 32
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,84 +180,6 @@ def chain_program(model) -> ChainProgram:
     return ChainProgram(np.array(kind, np.int64), np.array(twist, float).reshape(-1, 6), np.array(joint, np.int64),
                         np.array(site, np.int64), np.array(coef, float).reshape(-1, K),
                         np.asarray(robot.home, float).copy())
-
-
-@dataclass(frozen=True, eq=False)
-class PoseProgram:
-    """A :class:`ChainProgram` at one pose, right to left, as the arrays both Monte Carlo engines run.
-
-    Attributes
-    ----------
-    fi : array of int, shape (F', 4)
-        ``(type, n_coefs, a, b)``: type 0 translation, 1 rotation about a base axis mixing rows ``a, b``,
-        2 general rotation.
-    fk, fcf : array of int / float, shape (F', C)
-        Parameter indices and coefficients of the amount ``const + sum_j fcf[f, j] V[fk[f, j]]``.
-    fd : array, shape (F', FD)
-        ``[const, sign of the base axis, shift of p (3), h*w (3), has_h, v or r0 (3), sin/cos of const (2),
-        A (9), A^2 (9)]`` (``A = [w]``; ``shift`` is the lazy move of ``p`` to the axis point before the factor).
-    endoff : array, shape (3,)
-        Lazy shift of ``p`` left after the last factor.
-    """
-
-    fi: np.ndarray
-    fk: np.ndarray
-    fcf: np.ndarray
-    fd: np.ndarray
-    endoff: np.ndarray
-
-    def __len__(self) -> int:
-        return len(self.fi)
-
-    @cached_property
-    def steps(self) -> list:
-        """Per factor ``(type, coefs ((k, cf), ...), a, b, fd as floats)`` for the numpy evaluator."""
-        out = []
-        for (typ, ncf, a, b), ks, cfs, d in zip(self.fi.tolist(), self.fk.tolist(), self.fcf.tolist(), self.fd.tolist()):
-            out.append((typ, tuple(zip(ks[:ncf], cfs[:ncf])), a, b, d))
-        return out
-
-
-def _pose_program(rows: list) -> PoseProgram:
-    """Flatten ``(prepared factor, const, coefs)`` rows (right to left) into a :class:`PoseProgram`."""
-    nf = len(rows)
-    nc = max([1] + [len(c) for _, _, c in rows])
-    fi = np.zeros((nf, 4), np.int64)
-    fk = np.zeros((nf, nc), np.int64)
-    fcf = np.zeros((nf, nc))
-    fd = np.zeros((nf, FD))
-    off = [0.0, 0.0, 0.0]
-    for i, (f, const, coefs) in enumerate(rows):
-        d = fd[i]
-        d[0] = const
-        for j, (k, cf) in enumerate(coefs):
-            fk[i, j], fcf[i, j] = k, cf
-        a = b = 0
-        if f["kind"] == "trans":
-            typ = 0
-            d[9:12] = f["v"]
-        else:
-            d[12], d[13] = np.sin(const), np.cos(const)
-            if f["h"] != 0.0:
-                d[8] = 1.0
-                d[5:8] = [(f["h"] * f["w"][r]) if f["w"][r] != 0.0 else 0.0 for r in range(3)]
-            r0 = f["r0"]
-            if f["axis"] is not None:
-                typ = 1
-                a, b, d[1] = f["axis"]
-                for r in (a, b):
-                    if off[r] != r0[r]:
-                        d[2 + r] = off[r] - r0[r]
-                        off[r] = r0[r]
-            else:
-                typ = 2
-                for r in range(3):
-                    d[2 + r] = off[r] - r0[r]
-                    off[r] = 0.0
-                d[9:12] = r0
-                d[14:23], d[23:32] = f["A"].ravel(), (f["A"] @ f["A"]).ravel()
-        fi[i] = (typ, len(coefs), a, b)
-    return PoseProgram(fi, fk, fcf, fd, np.array(off))
 
 
 class FastChain:

@@ -1,8 +1,9 @@
-"""Checks of a robot's chain at construction: numbers, names, and the unit guards of a chain built in Python.
+"""Checks of a robot at construction: numbers, names, the unit guards of a chain built in Python, reserved names.
 
 :class:`~tolalloc.robot.model.Robot` runs :func:`check_chain` on every construction; the loaders of robot files,
 DH tables and URDF files have checked the units in their own terms (keys with unit suffixes, metres) and build
-the robot with the unit guards of :func:`check_chain` off.
+the robot with the unit guards of :func:`check_chain` off. :func:`check_reserved_names` refuses a pose set, region
+or sigma set named like one of the library's own (:data:`RESERVED_NAMES`), for the robot and the robot files.
 """
 
 from __future__ import annotations
@@ -13,7 +14,11 @@ from tolalloc.exceptions import TolallocError, describe
 from tolalloc.robot.elements import REVOLUTE, Joint, Link
 from tolalloc.units import check_chain_units
 
-__all__ = ["check_chain"]
+__all__ = ["check_chain", "check_reserved_names", "RESERVED_NAMES"]
+
+#: names the library gives a meaning of its own: the pose set of the nominal joint values, the box of the joint
+#: limits, the generic sigma set; a robot file's set of the same name would never be used
+RESERVED_NAMES = {"pose set": "nominal", "region": "limits", "sigma set": "generic"}
 
 
 def _floats(value, what: str, shape: tuple, who: str) -> np.ndarray:
@@ -80,3 +85,17 @@ def check_chain(chain, tool_offset_mm, tool_rotation, who: str, *, units: bool =
         check_chain_units({e.name: float(np.linalg.norm(e.vector_mm)) for e in chain if isinstance(e, Link)},
                           [(e.name, float(e.lower), float(e.upper), float(e.nominal)) for e in chain
                            if isinstance(e, Joint) and e.kind == REVOLUTE], who)
+
+
+def check_reserved_names(who: str, *, pose_sets=(), regions=(), sigma_sets=()) -> None:
+    """Refuse a pose set ``nominal``, a region ``limits`` or a sigma set ``generic`` defined by a robot file."""
+    for what, names, key in (("pose set", pose_sets, "pose_sets"), ("region", regions, "regions"),
+                             ("sigma set", sigma_sets, "sigma_sets")):
+        if RESERVED_NAMES[what] in names:
+            name = RESERVED_NAMES[what]
+            raise TolallocError(f"{who + ': ' if who else ''}{key}.{name}: the {what} name {name!r} is built in ({_MEANING[what]}); "
+                                f"expected another name for this {what}, e.g. {name}_2.")
+
+
+_MEANING = {"pose set": "the nominal joint values", "region": "the box of the joint limits",
+            "sigma set": "the library's generic sigmas"}

@@ -1,17 +1,19 @@
 """Denavit-Hartenberg rows with units in their keys, read into internal units (mm, rad).
 
 Shared by the DH loaders (:mod:`tolalloc.robot.io.dh`: TOML and CSV) and :meth:`Robot.from_dh
-<tolalloc.robot.model.Robot.from_dh>`; imports nothing of the robot model, so the model can use it.
+<tolalloc.robot.model.Robot.from_dh>` (a table given in Python, checked by :func:`rows_from_table`); imports nothing
+of the robot model, so the model can use it.
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, describe
 from tolalloc.units import ALL_UNITS as _ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, unit_value
 
-__all__ = ["check_limits", "parse_dh_rows", "row_from_cells", "CSV_COLUMNS"]
+__all__ = ["check_limits", "parse_dh_rows", "row_from_cells", "rows_from_table", "CSV_COLUMNS"]
 
 #: columns of a DH table (CSV file or DataFrame)
 CSV_COLUMNS = ("name", "type", "d_mm", "d_m", "a_mm", "a_m", "alpha_deg", "alpha_rad", "theta_offset_deg",
@@ -40,7 +42,7 @@ def parse_dh_rows(dh: list[dict]) -> list[dict]:
     -------
     list of dict
         Keys ``name``, ``type``, ``d``, ``a`` [mm], ``alpha``, ``theta_offset`` [rad], ``lower``, ``upper``,
-        ``nominal`` [rad or mm] (the input of :func:`tolalloc.robot.model.chain_from_dh`).
+        ``nominal`` [rad or mm] (the input of :func:`tolalloc.robot.elements.chain_from_dh`).
     """
     rows = []
     for i, row in enumerate(dh):
@@ -98,3 +100,37 @@ def row_from_cells(cells: dict, i: int, source: str) -> dict:
     except ValueError as exc:
         raise TolallocError(f"{source}: dh[{i}] ({cells['name']}): {exc}; expected numbers in the unit of the column name.") from None
     return row
+
+
+def rows_from_table(table) -> list[dict]:
+    """The rows of a DH table given in Python (:meth:`Robot.from_dh <tolalloc.robot.model.Robot.from_dh>`) in
+    internal units (:func:`parse_dh_rows`); messages start with ``table``.
+
+    Parameters
+    ----------
+    table : DataFrame or list of dict
+        One row per joint with a ``name``, an ``alpha_deg`` or ``alpha_rad`` column and columns among
+        :data:`CSV_COLUMNS`.
+
+    Returns
+    -------
+    list of dict
+        As :func:`parse_dh_rows`.
+    """
+    if isinstance(table, pd.DataFrame):
+        records = table.to_dict(orient="records")
+    else:
+        records = list(table) if isinstance(table, (list, tuple)) else None
+    if not records or not all(isinstance(r, dict) and isinstance(r.get("name"), (str, int, np.integer))
+                              and str(r["name"]).strip() for r in records):
+        raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint, each with a name "
+                            f"(a string) and columns among {', '.join(CSV_COLUMNS)}, got {describe(table)}.")
+    cols = sorted({str(k) for r in records for k in r})
+    unknown = [c for c in cols if c not in CSV_COLUMNS]
+    if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):
+        raise TolallocError(f"table: columns {cols}: expected a 'name' column, an alpha_deg or alpha_rad column and "
+                            f"columns among {', '.join(CSV_COLUMNS)}" + (f"; unknown: {unknown}" if unknown else "") + ".")
+    try:
+        return parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
+    except TolallocError as exc:
+        raise TolallocError(str(exc) if str(exc).startswith("table") else f"table: {exc}") from None

@@ -14,6 +14,9 @@ forward kinematics is ``T(q) = exp([S1] q1) ... exp([Sn] qn) M``.
 Units inside the library: lengths in mm, angles in rad. Joint values at the
 interface (files, CLI) are in degrees (revolute) and mm (prismatic); use
 :meth:`Robot.q_from_interface` / :meth:`Robot.q_to_interface` to convert.
+
+This module holds :class:`Robot`; its elements are in :mod:`tolalloc.robot.elements`, its checks at construction
+(reserved set names included) in :mod:`tolalloc.robot.checks`, DH rows in :mod:`tolalloc.robot.dh_rows`.
 """
 
 from __future__ import annotations
@@ -25,29 +28,12 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError, check_finite_array, describe, known_names
 from tolalloc.units import check_joint_units, trusting_units, units_trusted
-from tolalloc.robot.checks import check_chain
+from tolalloc.robot.checks import check_chain, check_reserved_names
 from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
 
-__all__ = ["Link", "Joint", "Mass", "Robot", "RESERVED_NAMES", "check_reserved_names"]
+__all__ = ["Link", "Joint", "Mass", "Robot"]
 
-#: names the library gives a meaning of its own: the pose set of the nominal joint values, the box of the joint
-#: limits, the generic sigma set; a robot file's set of the same name would never be used
-RESERVED_NAMES = {"pose set": "nominal", "region": "limits", "sigma set": "generic"}
-
-
-def check_reserved_names(who: str, *, pose_sets=(), regions=(), sigma_sets=()) -> None:
-    """Refuse a pose set ``nominal``, a region ``limits`` or a sigma set ``generic`` defined by a robot file."""
-    for what, names, key in (("pose set", pose_sets, "pose_sets"), ("region", regions, "regions"),
-                             ("sigma set", sigma_sets, "sigma_sets")):
-        if RESERVED_NAMES[what] in names:
-            name = RESERVED_NAMES[what]
-            raise TolallocError(f"{who + ': ' if who else ''}{key}.{name}: the {what} name {name!r} is built in ({_MEANING[what]}); "
-                                f"expected another name for this {what}, e.g. {name}_2.")
-
-
-_MEANING = {"pose set": "the nominal joint values", "region": "the box of the joint limits",
-            "sigma set": "the library's generic sigmas"}
 
 @dataclass(frozen=True, eq=False)
 class Robot:
@@ -294,29 +280,13 @@ class Robot:
 
     @classmethod
     def _from_dh(cls, table, convention, name, tool_offset_mm, tool_rpy_deg, description) -> "Robot":
-        from tolalloc.robot.dh_rows import CSV_COLUMNS, parse_dh_rows, row_from_cells
+        from tolalloc.robot.dh_rows import rows_from_table
         from tolalloc.robot.lie import exp_so3
         from tolalloc.units import check_reach
 
         if not isinstance(convention, str) or convention not in ("standard", "modified"):
             raise TolallocError(f"convention: expected 'standard' or 'modified', got {convention!r}.")
-        if isinstance(table, pd.DataFrame):
-            records = table.to_dict(orient="records")
-        else:
-            records = list(table) if isinstance(table, (list, tuple)) else None
-        if not records or not all(isinstance(r, dict) and isinstance(r.get("name"), (str, int, np.integer))
-                                  and str(r["name"]).strip() for r in records):
-            raise TolallocError("table: expected a DataFrame or a list of dicts, one row per joint, each with a name "
-                                f"(a string) and columns among {', '.join(CSV_COLUMNS)}, got {describe(table)}.")
-        cols = sorted({str(k) for r in records for k in r})
-        unknown = [c for c in cols if c not in CSV_COLUMNS]
-        if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):
-            raise TolallocError(f"table: columns {cols}: expected a 'name' column, an alpha_deg or alpha_rad column and "
-                                f"columns among {', '.join(CSV_COLUMNS)}" + (f"; unknown: {unknown}" if unknown else "") + ".")
-        try:
-            rows = parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
-        except TolallocError as exc:
-            raise TolallocError(str(exc) if str(exc).startswith("table") else f"table: {exc}") from None
+        rows = rows_from_table(table)
         chain, R_last = chain_from_dh(rows, convention)
         off = check_finite_array(tool_offset_mm, "tool_offset_mm", (3,))
         rpy = np.deg2rad(check_finite_array(tool_rpy_deg, "tool_rpy_deg", (3,)))

@@ -11,8 +11,8 @@ For each of ``n_robots`` simulated robots:
 3. a nonlinear least-squares calibration (Gauss-Newton on the exact residuals with the nominal Jacobian, MAP with
    the manufacturing prior on the estimated parameters, registration and target offset free; all robots solved
    together, each started at the nominal model and iterated to convergence; a fit whose step grows restarts with
-   the Jacobian at the estimate; see :func:`_fit`; iteration counts and non-converged fits are in the result and
-   its message) estimates ``s_E``;
+   the Jacobian at the estimate; see :func:`~tolalloc.verify.calibrated_fit._fit`; iteration counts and
+   non-converged fits are in the result and its message) estimates ``s_E``;
 4. the controller compensates with ``s_E_hat``; at every working pose a fresh random part is drawn and
    ``dP = p_true(q) - p_model(s_E_hat, q)`` is evaluated exactly.
 
@@ -22,6 +22,10 @@ The intervals are simultaneous over the poses (Bonferroni, level ``1 - (1 - leve
 :func:`tolalloc.montecarlo.intervals.simultaneous_level`). The diagnosis's
 calibrator (:mod:`tolalloc.diagnose.calibrate`) is not used: it fits one robot at a time with its own parameter
 selection, and it is being rewritten; the fit here is the plan's Bayesian estimator itself.
+
+This module holds the result, :class:`CalibrationCheck`, the driver, :func:`verify_calibration`, and the linearised
+pipeline that is the paired estimator's control; the simulated measurements and the fits of steps 2 and 3 are in
+:mod:`tolalloc.verify.calibrated_fit`.
 """
 
 from __future__ import annotations
@@ -35,21 +39,18 @@ import pandas as pd
 from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.posterior import nuisance_columns, posterior
 from tolalloc.calibration.split import ErrorSplit
-from tolalloc.errormodel.chain import FastChain
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.paired import PairedCounts, check_estimator, control_fallback_reason, estimate_from_counts
 from tolalloc.montecarlo.streaming import proportion_ci
-from tolalloc.robot.lie import exp_so3
+from tolalloc.verify.calibrated_fit import _STEP_TOL, _PlanChains, _fit, _measure
 
 __all__ = ["CalibrationCheck", "verify_calibration", "REGISTRATION_SIGMA"]
 
 #: Sigmas of the simulated registration rotation [rad], translation [mm] and target offset [mm].
 REGISTRATION_SIGMA = (1e-3, 1.0, 1.0)
-#: Gauss-Newton iteration cap and step tolerance (normalised units) of the simulated calibrations.
-_MAX_ITER, _STEP_TOL = 30, 1e-8
 
 
 @dataclass(frozen=True, eq=False)
@@ -74,7 +75,8 @@ class CalibrationCheck:
     fit_cpu_s : float
         CPU time of the same part [s] (all threads of the process).
     n_exact : int
-        Fits that left the fixed (nominal) Jacobian for the Jacobian at the estimate (see :func:`_fit`).
+        Fits that left the fixed (nominal) Jacobian for the Jacobian at the estimate (see
+        :func:`~tolalloc.verify.calibrated_fit._fit`).
     n_converged : int
         Fits whose last normalised step is below the step tolerance.
     estimate : ProbabilityEstimate or None
@@ -163,128 +165,15 @@ class CalibrationCheck:
                 f"[{self.ci_low[worst]:.4f}, {self.ci_high[worst]:.4f}] ({self.fits_note()})")
 
 
-class _PlanChains:
-    """The chain program at fixed poses ``q`` (M, n), evaluated by :class:`FastChain` for many parameter sets.
-
-    The pose programs are built once; each evaluation runs them on a structure-of-arrays block of samples.
-    """
-
-    def __init__(self, model, q: np.ndarray):
-        self.chain = FastChain(model)
-        self.progs = [self.chain.program(qm) for qm in np.asarray(q, float)]
-        self.K = self.chain.K
-
-    def tool(self, values: np.ndarray, extra: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Exact tool positions (B, M, 3) and rotations (B, M, 3, 3).
-
-        ``values`` (B, K) [mm, rad] are the same at every pose; ``extra`` (B, M, K), if given, is added per pose.
-        """
-        B, M = len(values), len(self.progs)
-        p, R = np.empty((B, M, 3)), np.empty((B, M, 3, 3))
-        X = np.empty((3, 4, B))
-        work = FastChain.workspace(B)
-        V = np.ascontiguousarray(values.T)
-        for m, prog in enumerate(self.progs):
-            Vm = V if extra is None else np.ascontiguousarray((values + extra[:, m]).T)
-            self.chain.run(prog, Vm, X, work)
-            p[:, m] = X[:, 3].T
-            R[:, m] = np.moveaxis(X[:, :3], 2, 0)
-        return p, R
-
-
-def _measure(chains: _PlanChains, x: np.ndarray, E: np.ndarray, extra: np.ndarray | None = None) -> np.ndarray:
-    """Tracker readings (B, M, 3) predicted from unknowns x (B, Ke + 9) (random parts ``extra`` (B, M, K) optional)."""
-    vals = np.zeros((len(x), chains.K))
-    vals[:, E] = x[:, : len(E)]
-    p, R = chains.tool(vals, extra)
-    reg = x[:, len(E):]
-    if reg.shape[1] == 0:  # registration known (not estimated)
-        return p
-    p = p + np.einsum("bmij,bj->bmi", R, reg[:, 6:9])
-    Rr = exp_so3(reg[:, 0:3])
-    return np.einsum("bij,bmj->bmi", Rr, p) + reg[:, None, 3:6]
-
-
-def _exact_step(chains, E, xa, r, y, scale, prior_prec, noise_mm, h: float = 1e-6) -> np.ndarray:
-    """Gauss-Newton step (normalised, (b, D)) with the Jacobian at ``xa`` (forward differences of the exact
-    residuals ``r`` (b, 3M), step ``h`` prior sigmas): ``(J^T J + Lambda0) dx = -(J^T r + Lambda0 x)``."""
-    b, D = xa.shape
-    xp = (xa[:, None, :] + np.diag(h * scale)[None]).reshape(b * D, D)  # all D perturbations in one batch
-    rp = (_measure(chains, xp, E).reshape(b, D, -1) - y.reshape(b, 1, -1)) / noise_mm
-    J = np.swapaxes(rp - r[:, None, :], 1, 2) / h  # (b, 3M, D)
-    H = np.einsum("bmi,bmj->bij", J, J) + np.diag(prior_prec)
-    H += 1e-12 * np.trace(H, axis1=1, axis2=2)[:, None, None] / D * np.eye(D)
-    g = np.einsum("bmi,bm->bi", J, r) + prior_prec * (xa / scale)
-    return -np.linalg.solve(H, g[..., None])[..., 0]
-
-
-def _fit(chains: _PlanChains, model, E, prior_sd, plan: CalibrationPlan, y: np.ndarray, *, max_iter: int = _MAX_ITER,
-         tol: float = _STEP_TOL):
-    """Batched MAP fit of the unknowns (B, Ke + 9) to the readings ``y`` (B, M, 3).
-
-    Gauss-Newton on the exact residuals (evaluated by :class:`FastChain`), every robot started at the nominal model
-    and iterated until its normalised step is below ``tol`` (converged robots leave the batch). First with the
-    Jacobian fixed at the nominal model (error Jacobian and registration/target columns, the same for every robot,
-    factorised once): its fixed point solves ``J0^T r(x) + Lambda0 x = 0``, the exact MAP ``J(x)^T r(x) + Lambda0 x
-    = 0``; they differ by ``O(|x| sigma_m)`` -- second order. A robot whose step stops contracting (large errors:
-    the fixed-Jacobian iteration converges slowly or diverges) restarts from the nominal model with the Jacobian
-    at the current estimate (forward differences, :func:`_exact_step`), which solves the exact MAP equations.
-
-    Returns
-    -------
-    x : array, shape (B, Ke + 9)
-    steps : array, shape (B,)
-        Last normalised step of each robot (converged: below ``tol``).
-    iters : array of int, shape (B,)
-        Gauss-Newton iterations per robot, both phases (``max_iter`` where it did not converge).
-    exact : array of bool, shape (B,)
-        Robots fitted with the Jacobian at the estimate.
-    """
-    nN = 9 if plan.registration else 0
-    B, D = len(y), len(E) + nN
-    scale = np.r_[prior_sd, np.full(3, 1e-3), np.full(6, 1.0)][:D]
-    J0 = model.jacobian(plan.q)[:, :3, E]
-    if nN:
-        J0 = np.concatenate([J0, nuisance_columns(model, plan.q, 3)], axis=2)
-    J0 = J0.reshape(-1, D) * scale / plan.noise_mm  # (3M, D) per normalised unit
-    prior_prec = np.r_[np.ones(len(E)), np.zeros(nN)]  # normalised by the prior sigma
-    A = J0.T @ J0 + np.diag(prior_prec)
-    A += 1e-12 * np.trace(A) / D * np.eye(D)
-    Ainv = np.linalg.inv(A)  # D x D, symmetric positive definite; one small product per step
-    x = np.zeros((B, D))
-    iters = np.full(B, max_iter)
-    steps = np.full(B, np.inf)
-    exact = np.zeros(B, bool)
-    live = np.arange(B)
-    for it in range(1, max_iter + 1):
-        xa = x[live]
-        r = (_measure(chains, xa, E) - y[live]).reshape(len(live), -1) / plan.noise_mm  # (b, 3M)
-        dxn = -(r @ J0 + prior_prec * (xa / scale)) @ Ainv
-        ex = exact[live]
-        if ex.any():
-            dxn[ex] = _exact_step(chains, E, xa[ex], r[ex], y[live[ex]], scale, prior_prec, plan.noise_mm)
-        x[live] = xa + dxn * scale
-        prev, steps[live] = steps[live], np.abs(dxn).max(axis=1)
-        done = steps[live] < tol
-        iters[live[done]] = it
-        stall = ~done & ~ex & (steps[live] > prev) & (steps[live] > 100 * tol)
-        x[live[stall]] = 0.0  # restart from the nominal model with the exact Jacobian
-        exact[live[stall]] = True
-        live = live[~done]
-        if not len(live):
-            break
-    return x, steps, iters, exact
-
-
 def _linear_pipeline(model, E, prior_sd, plan: CalibrationPlan, q_eval, var_sys, var_rnd):
     """The linearised calibration story, the paired estimator's control.
 
     Linear readings ``y = J0 truth + sum_m J_m extra_m + noise`` (``J0`` the fit's nominal Jacobian: error
     columns ``E`` and, with registration, the nuisance columns), the linear MAP ``x_hat = H y`` (the fixed point
-    of :func:`_fit` on linear residuals, reached in one step), and the linear compensated error at the working
-    poses ``err = J_p (s + fresh_p) - J_p,E x_hat_E``. Every input is an independent Gaussian block, so ``err`` is
-    Gaussian with the covariance returned here (systematic parts, registration, random parts at the measurements,
-    tracker noise, fresh random parts).
+    of :func:`~tolalloc.verify.calibrated_fit._fit` on linear residuals, reached in one step), and the linear
+    compensated error at the working poses ``err = J_p (s + fresh_p) - J_p,E x_hat_E``. Every input is an
+    independent Gaussian block, so ``err`` is Gaussian with the covariance returned here (systematic parts,
+    registration, random parts at the measurements, tracker noise, fresh random parts).
 
     Returns
     -------
@@ -304,7 +193,7 @@ def _linear_pipeline(model, E, prior_sd, plan: CalibrationPlan, q_eval, var_sys,
     J0 = J0.reshape(-1, D)
     Jn = J0 * scale / plan.noise_mm
     A = Jn.T @ Jn + np.diag(np.r_[np.ones(len(E)), np.zeros(nN)])
-    A += 1e-12 * np.trace(A) / D * np.eye(D)  # as in _fit
+    A += 1e-12 * np.trace(A) / D * np.eye(D)  # as in calibrated_fit._fit
     H = (scale[:, None] * np.linalg.solve(A, Jn.T)) / plan.noise_mm
     Jp = model.jacobian(np.atleast_2d(q_eval))[:, :3, :]
     G = Jp[:, :, E] @ H[: len(E)]  # (P, 3, 3M)

@@ -29,6 +29,10 @@ Failing poses are named with the reason: *under-specified* (the linear predictio
 ``P_hat``) or *nonlinearity* (the whole interval lies below ``p`` although the linear prediction meets it); the
 orientation requirement's as *orientation under-specified*, *orientation inconclusive* or below ``p_a``
 (:func:`tolalloc.verify.verdicts.failure_reasons`).
+
+This module holds the result, :class:`Verification`, and the driver, :func:`verify_design`; the Monte Carlo runs at
+the poses (first look, and the second look of straddling certified poses) are in
+:mod:`tolalloc.verify.pose_estimates`.
 """
 
 from __future__ import annotations
@@ -42,7 +46,8 @@ from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.montecarlo.intervals import simultaneous_level
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
-from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
+from tolalloc.montecarlo.paired import check_estimator
+from tolalloc.verify.pose_estimates import _estimate, _redo
 from tolalloc.verify.resolution import check_resolvable, choose_estimator
 from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, family_text, interval_words, limiting,
                                       orientation_check, overall_verdict, pose_verdicts, shortfall_text,
@@ -254,50 +259,6 @@ class Verification:
                      "variance_reduction": self.variance_reduction, "passed": self.passed, "verdict": self.verdicts,
                      "reason": list(self.reason)})
         return pd.DataFrame(cols)
-
-
-def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator, level):
-    """Position (and orientation) estimates at poses ``q`` by the requested estimator, intervals at ``level``."""
-    from tolalloc.montecarlo.importance import importance_probability
-    from tolalloc.montecarlo.paired import estimate_probabilities
-
-    other = "auto" if estimator == "importance" else estimator
-    est = estimate_probabilities(model, q, int(n), seed, radius_mm=radius, angle_radius_rad=angle, estimator=other,
-                                 level=level, keep_samples=keep, scheduler=scheduler)
-    if estimator == "importance":
-        from dataclasses import replace
-
-        kept = est["position"].details.get("kept_mm")
-        isr = importance_probability(model, q, int(n), seed, radius_mm=radius, level=level, scheduler=scheduler)
-        est["position"] = replace(isr, details={**isr.details, "kept_mm": kept})
-    return est
-
-
-def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
-    """Re-estimate the poses ``redo`` whose certified interval straddles ``p`` with more samples (intervals at the
-    level of ``est``).
-
-    Plain and paired runs are pooled with ``n_max - n_mc`` fresh samples (seed + 1); ``auto`` on a Gaussian model
-    switches those poses to importance sampling with ``n_max`` samples (its interval is far narrower in the tail).
-    """
-    from tolalloc.montecarlo.importance import importance_probability
-    from tolalloc.montecarlo.paired import PairedCounts, estimate_from_counts, paired_counts
-
-    q, r = problem.q[redo], problem.radius_mm
-    if estimator == "importance" or (estimator == "auto" and not control_fallback_reason(model)):
-        return est.with_rows(redo, importance_probability(model, q, n_max, seed + 1, radius_mm=r, level=est.level,
-                                                          scheduler=scheduler))
-    extra = n_max - int(n_mc)
-    pc = paired_counts(model, q, extra, seed + 1, radii_mm=(r,), scheduler=scheduler)
-    first = est.take(redo)
-    nl = np.rint(first.p_plain * first.n)
-    lin_in = nl - first.n_nonlinear_only + first.n_linear_only
-    both = nl - first.n_nonlinear_only
-    counts = pc.counts + np.stack([nl, lin_in, both], axis=1)[:, None, :].astype(np.int64)
-    pooled = PairedCounts(first.n + extra, pc.seed, counts, pc.max_deviation_mm)
-    new = estimate_from_counts(pooled, 0, r, first.p_linear, estimator=est.requested if est.requested != "importance"
-                               else "auto", model_reason=control_fallback_reason(model), level=est.level)
-    return est.with_rows(redo, new)
 
 
 def verify_design(problem: AllocationProblem, design: Design, *, criterion: str | None = None, n_mc: int = 10**6,

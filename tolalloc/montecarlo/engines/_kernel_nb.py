@@ -70,7 +70,7 @@ def _atan2(y, x):
 
 @njit(nogil=True, cache=True, error_model="numpy")
 def _chain(V, base, nc, fi, fk, fcf, fd, endoff, home, X, Y, th, S, C):
-    """The PoseProgram (tolalloc.errormodel.chain) of one pose on samples ``base .. base + nc`` into X (3, 4, CHUNK)."""
+    """The PoseProgram (errormodel.pose_program) of one pose on samples ``base .. base + nc`` into X (3, 4, CHUNK)."""
     for i in range(3):
         for j in range(4):
             h = home[i, j]

@@ -3,7 +3,7 @@
 :func:`block_stats` evaluates the *same* parameter draws as the numpy path of :mod:`tolalloc.montecarlo.blocks`
 (same random stream, same blocks and sub-blocks, sub-block statistics merged in the same order) with a
 fused, vectorised loop: per sub-block of :data:`~tolalloc.montecarlo.blocks.SUB_BLOCK` samples and per pose, the
-chain's :class:`~tolalloc.errormodel.chain.PoseProgram` (the arrays :class:`~tolalloc.errormodel.chain.FastChain`
+chain's :class:`~tolalloc.errormodel.pose_program.PoseProgram` (the arrays :class:`~tolalloc.errormodel.chain.FastChain`
 runs, built from the model's one :class:`~tolalloc.errormodel.chain.ChainProgram`) runs on L1-sized chunks, the
 features of :class:`~tolalloc.errormodel.features.ErrorFeatures` are written to a buffer, and the buffer's moments (two-pass),
 extrema, threshold counts and histogram cells are accumulated. ``sin``/``cos``/``atan2`` are inlined
@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.errormodel.chain import FD
+from tolalloc.errormodel.pose_program import FD
 
 __all__ = ["compile_programs", "block_stats", "fill_standard_normal"]
 
@@ -31,7 +31,7 @@ _jit = None
 
 
 def compile_programs(progs: list, feats: list, home: np.ndarray) -> tuple:
-    """Stack the :class:`~tolalloc.errormodel.chain.PoseProgram` arrays (one per pose) and the
+    """Stack the :class:`~tolalloc.errormodel.pose_program.PoseProgram` arrays (one per pose) and the
     :meth:`ErrorFeatures.constants <tolalloc.errormodel.features.ErrorFeatures.constants>` into the kernel's arrays.
 
     Returns ``(fi, fk, fcf, fd, endoff, pose_c, home)``: per pose ``p`` the pose program's ``fi, fk, fcf, fd``

@@ -22,7 +22,8 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
-from tolalloc.robot.model import Joint, Link, Mass, Robot, check_reserved_names
+from tolalloc.robot.checks import check_reserved_names
+from tolalloc.robot.model import Joint, Link, Mass, Robot
 from tolalloc.robot.dh_rows import check_limits
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
 
