@@ -186,7 +186,7 @@ Manufacture (the design's sigmas, scaled), measure the 12-pose plan with noise, 
 squares, compensate, and measure the error at the working poses with fresh random parts; radius scaled with the
 manufacturing errors (the 0.0003 deg repeatability is not scaled). Per-pose intervals are simultaneous 95 % Wilson
 intervals (Bonferroni over the poses). `fits_converged`: share of the simulated calibrations whose Gauss-Newton fit
-met its step tolerance within the iteration cap (`tolalloc/verify/calibrated.py`); `fits_exact_jacobian`: share restarted with the
+met its step tolerance within the iteration cap (`tolalloc/verify/calibrated_fit.py`); `fits_exact_jacobian`: share restarted with the
 Jacobian at the estimate (the fixed-Jacobian iteration stopped contracting). {_fit_note(mc)}
 
 {md(mc)}
