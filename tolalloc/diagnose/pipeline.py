@@ -22,8 +22,8 @@ from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
-from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
-                                     progress_scope, subsample_index)
+from tolalloc.diagnose.progress_bars import fit_counter, progress_bar, progress_scope
+from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics, subsample_index
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test, select_effects
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
