@@ -14,9 +14,9 @@ import pytest
 
 import tolalloc
 from tolalloc.diagnose.calibrate import fixed_jacobian, initial_fit
-from tolalloc.diagnose.effects import (G, effect_basis, effect_reference, gravity_torques, lagged, robot_masses,
-                                       target_points, variants)
+from tolalloc.diagnose.effects import effect_basis, effect_reference, lagged, target_points, variants
 from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.gravity_loads import G, gravity_torques, robot_masses
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import choose_variant
 from tolalloc.robot.kinematics import poe_prefix

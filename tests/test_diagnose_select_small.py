@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from tolalloc.diagnose.folds import fold_count
-from tolalloc.diagnose.select import Evaluation, _backward, choose_variant, clip_level
+from tolalloc.diagnose.select import Evaluation, choose_variant, clip_level
+from tolalloc.diagnose.stepwise import _backward
 
 
 @pytest.mark.parametrize("folds, rows, fixed, expected", [

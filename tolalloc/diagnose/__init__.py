@@ -4,11 +4,13 @@ and how far the held-out error shrinks once the effect is added.
 Modules: :mod:`.measurements` (CSV reading and checks), :mod:`.geometry` (the complete, minimal geometric
 calibration model; the paper's error-screw model stays the tolerance model), :mod:`.calibrate` (registration,
 target offset, identifiable geometric errors, MAP), :mod:`.guards` (implausible parameters, extrapolation,
-CV fallback), :mod:`.uncertainty` (parameter covariance, predicted test uncertainty), :mod:`.effects` and :mod:`.thermal` (candidate effects), :mod:`.choice` and :mod:`.evidence`
-(variant choice, fitted priors), :mod:`.select` (held-out scoring and selection on the training file),
-:mod:`.verdict` (effect / none / ambiguous / inconclusive), :mod:`.where` (residual breakdown),
-:mod:`.pipeline` (:func:`diagnose`; the test file is sealed until the model is chosen), :mod:`.synth`
-(synthetic measurement sets with a withheld effect), :mod:`.report` (Markdown report).
+CV fallback), :mod:`.uncertainty` (parameter covariance, predicted test uncertainty), :mod:`.effects` and
+:mod:`.thermal` (candidate effects), :mod:`.gravity_loads` (mass model, gravity torques), :mod:`.choice` and
+:mod:`.evidence` (variant choice, fitted priors), :mod:`.select` (held-out scoring on the training file),
+:mod:`.stepwise` (forward selection, backward elimination), :mod:`.verdict` (effect / none / ambiguous /
+inconclusive), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`; the test file is sealed
+until the model is chosen), :mod:`.synth` (synthetic measurement sets with a withheld effect), :mod:`.report`
+(Markdown report), :mod:`.progress_bars` (progress bars of the fits and stages).
 """
 
 from tolalloc.diagnose.calibrate import Calibration, Fit, Identifiability, calibrate

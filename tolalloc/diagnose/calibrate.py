@@ -41,8 +41,9 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
-from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, count_fit, norm_scale, point_kinematics, robust_scale,
-                                     solve, subsample_index)
+from tolalloc.diagnose.progress_bars import count_fit
+from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, norm_scale, point_kinematics, robust_scale, solve,
+                                     subsample_index)
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "is_collinear", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C",

@@ -8,12 +8,13 @@ built to first order at the nominal geometry (effects are sub-millimetre; the se
 ~1e-3 mm). Joint-type effects move joint ``j`` by ``dq_j`` and displace the target by
 ``(v_j + omega_j x p) dq_j`` (space-Jacobian column ``j`` at the target point ``p``). Which variant an
 effect uses is chosen on the training poses (:mod:`tolalloc.diagnose.select`); :func:`variants` lists
-those the data can carry.
+those the data can carry. The gravity loads behind the gravity-driven effects (mass model, gravity torques) are
+in :mod:`.gravity_loads`.
 
 ``joint_compliance``  ``dq_j = c_j tau_j(q)``, per-joint stiffness; ``tau_j`` the gravity torque [N m]
                       (force [N] for a prismatic joint) of the robot's masses, or of the default mass model
-                      (:data:`DEFAULT_KG_PER_M` kg per metre of link at the link midpoints) when the robot
-                      file has none, plus the logged ``payload_kg`` at the target point. Variants ``masses``
+                      (:data:`.gravity_loads.DEFAULT_KG_PER_M` kg per metre of link at the link midpoints) when the
+                      robot file has none, plus the logged ``payload_kg`` at the target point. Variants ``masses``
                       (``c_j``) and ``masses+tip`` (also ``d_j`` [rad/(N m)] per unit of a 1 kg point mass at
                       the target: an unknown tool mass or a mass distribution unlike the model's).
 ``link_deflection``   bending of each arm segment between consecutive revolute joints (spanning prismatic
@@ -59,18 +60,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
-from tolalloc.robot.model import Mass, Robot
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.gravity_loads import G, _tip_load, gravity_torques, robot_masses
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.thermal import LAG_MIN, lagged, thermal_bases, thermal_variants, time_problem
 
-__all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_bases", "effect_reference", "applicable", "variants", "gravity_torques",
-           "robot_masses", "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian", "lagged",
-           "LAG_MIN", "SERIES_ORDERS", "guide_joints"]
+__all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_bases", "effect_reference", "applicable", "variants",
+           "deflection_segments", "joint_effect_dq", "target_points", "point_jacobian", "lagged", "LAG_MIN",
+           "SERIES_ORDERS", "guide_joints"]
 
 EFFECTS = ("joint_compliance", "link_deflection", "backlash", "thermal", "transmission")
-DEFAULT_KG_PER_M = 10.0
 MIN_OVERHANG_MM = 200.0
-G = 9.81
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
 #: Highest orders of the ``series<K>`` transmission variants.
 SERIES_ORDERS = (6, 12, 24, 36)
@@ -117,55 +117,6 @@ def point_jacobian(robot: Robot, q: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Velocity of the point ``p`` (P, 3) per unit joint rate, ``v_j + omega_j x p``, shape (P, 3, n)."""
     Js = robot.space_jacobian_internal(q)
     return Js[:, 3:, :] + np.cross(Js[:, :3, :], p[:, :, None], axis=1)
-
-
-def robot_masses(robot: Robot) -> tuple:
-    """The robot file's masses, or the default model (10 kg per metre of link, at link midpoints)."""
-    if robot.masses:
-        return robot.masses
-    out, point = [], np.zeros(3)
-    for link, site in zip(robot.links, robot.link_sites):
-        if link.length_mm > 0:
-            out.append(Mass(link.name, int(site), DEFAULT_KG_PER_M * link.length_mm / 1000.0, point + link.vector_mm / 2))
-        point = point + link.vector_mm
-    return tuple(out)
-
-
-def _point_load(robot: Robot, P, c, F, below: int) -> np.ndarray:
-    """Load of forces ``F`` (P, 3) [N] at points ``c`` (P, 3) [mm] on the joints ``j < below``, shape (P, n)."""
-    tau = np.zeros((len(c), robot.n_joints))
-    for j in range(min(below, robot.n_joints)):
-        w = P[:, j, :3, :3] @ robot.joints[j].axis
-        if robot.joints[j].is_revolute:
-            pj = P[:, j, :3, :3] @ robot.joint_points_mm[j] + P[:, j, :3, 3]
-            tau[:, j] = np.einsum("pi,pi->p", w, np.cross(c - pj, F)) / 1000.0
-        else:
-            tau[:, j] = np.einsum("pi,pi->p", w, F)
-    return tau
-
-
-def _tip_load(robot: Robot, q, tip_mm) -> np.ndarray:
-    """Gravity load of a 1 kg point mass at ``tip_mm`` (P, 3) [mm] on every joint, shape (P, n) [N m / kg, N / kg]."""
-    F = np.broadcast_to(G * np.asarray(robot.gravity, dtype=float), tip_mm.shape)
-    return _point_load(robot, poe_prefix(robot.screws, np.atleast_2d(q)), tip_mm, F, robot.n_joints)
-
-
-def gravity_torques(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
-                    tip_kg: np.ndarray | float = 0.0) -> np.ndarray:
-    """Gravity load at every joint, shape (P, n): torque about the axis [N m] (revolute), force [N] (prismatic).
-
-    ``tip_mm`` (P, 3) [mm, base frame] and ``tip_kg`` (P,) or float: an extra point mass (the payload) at the target.
-    """
-    q = np.atleast_2d(q)
-    P = poe_prefix(robot.screws, q)  # (P, n+1, 4, 4)
-    g = np.asarray(robot.gravity, dtype=float)
-    tau = np.zeros((q.shape[0], robot.n_joints))
-    for m in robot_masses(robot):
-        c = P[:, m.body, :3, :3] @ m.com_mm + P[:, m.body, :3, 3]
-        tau += _point_load(robot, P, c, np.broadcast_to(m.mass_kg * G * g, c.shape), m.body)
-    if tip_mm is not None:
-        tau += np.broadcast_to(np.asarray(tip_kg, float), (len(q),))[:, None] * _tip_load(robot, q, tip_mm)
-    return tau
 
 
 def deflection_segments(robot: Robot) -> list:

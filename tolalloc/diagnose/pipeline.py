@@ -22,10 +22,11 @@ from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
-from tolalloc.diagnose.scale import (CHUNK_ROWS, SUBSAMPLE_ROWS, fit_counter, point_kinematics, progress_bar,
-                                     progress_scope, subsample_index)
+from tolalloc.diagnose.progress_bars import fit_counter, progress_bar, progress_scope
+from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics, subsample_index
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
-from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test, select_effects
+from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test
+from tolalloc.diagnose.stepwise import select_effects
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
                                        separating_poses, stiffness_alternative)
 from tolalloc.diagnose.verdict_text import verdict_of
@@ -208,7 +209,7 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
               alpha, min_gain) -> Diagnosis:
     """Guards, the CV fallback, the verdict and the result."""
     nominal, geometric, final, chosen = sel["nominal"], sel["geometric"], sel["final"], sel["chosen"]
-    effects = final.effects  # forward selection, then backward elimination (select._backward)
+    effects = final.effects  # forward selection, then backward elimination (stepwise._backward)
     geo = cal.geometric if sub is None else replace(cal.geometric, residual_mm=cal.geometric.residual_mm[sub])
     check = parameter_checks(geo, cv_train.q)  # large files: posterior sd from the subsample (conservative)
     guards = list(check.guards())

@@ -1,4 +1,4 @@
-"""The calibration fit at scale: chunked normal equations, vectorised kinematics, subsampling, progress.
+"""The calibration fit at scale: chunked normal equations, vectorised kinematics, subsampling.
 
 The measurement model of :mod:`.calibrate` (``x_i = R (T(q_i + dq; delta) [t; 1] + B_i beta + extra_i) + p``)
 is fitted by a Levenberg-Marquardt iteration on the stacked residuals that never holds the ``3P x m``
@@ -24,26 +24,22 @@ nominal model (as :mod:`.calibrate` documents); the fixed point therefore is tha
 Large training files: cross-validation, effect selection and the identifiability analysis run on a seeded
 random subsample of at most :data:`SUBSAMPLE_ROWS` rows (:func:`subsample_index`); the final fits use every
 row. Progress bars (tqdm, on stderr) are shown for fits of at least :data:`PROGRESS_MIN_ROWS` rows and for
-the pipeline's stages when enabled with :func:`progress_scope` (default: when stderr is a terminal).
+the pipeline's stages when enabled with :func:`.progress_bars.progress_scope` (default: when stderr is a terminal);
+the bars themselves are in :mod:`.progress_bars`.
 """
 
 from __future__ import annotations
-
-import contextlib
-import contextvars
-import sys
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from tolalloc.engine import resolve_engine
-from tolalloc.progress import show_progress
 from tolalloc.diagnose.losses import LOSSES, m_rho, m_weight, norm_scale
+from tolalloc.diagnose.progress_bars import _NoBar, progress_bar
 from tolalloc.robot.kinematics import poe_prefix_rp
 
 __all__ = ["CHUNK_ROWS", "SUBSAMPLE_ROWS", "PROGRESS_MIN_ROWS", "Problem", "solve", "point_kinematics",
-           "subsample_index", "progress_scope", "progress_bar", "fit_counter", "count_fit", "robust_scale", "LOSSES",
-           "m_rho", "m_weight", "norm_scale"]
+           "subsample_index", "robust_scale", "LOSSES", "m_rho", "m_weight", "norm_scale"]
 
 #: Poses per chunk of a pass over the data (one chunk's Jacobian: 3 x CHUNK_ROWS x m floats).
 CHUNK_ROWS = 20_000
@@ -51,61 +47,6 @@ CHUNK_ROWS = 20_000
 SUBSAMPLE_ROWS = 10_000
 #: Fits on at least this many rows show their own progress bar (when progress is on).
 PROGRESS_MIN_ROWS = 50_000
-
-_PROGRESS = contextvars.ContextVar("tolalloc_diagnose_progress", default=False)
-
-
-@contextlib.contextmanager
-def progress_scope(enabled: bool | None):
-    """Turn progress bars on (True), off (False) or on when a person is watching (None: a terminal or a notebook,
-    :func:`tolalloc.progress.show_progress`) inside the block."""
-    token = _PROGRESS.set(show_progress(enabled))
-    try:
-        yield
-    finally:
-        _PROGRESS.reset(token)
-
-
-def progress_bar(desc: str, total: int | None = None, unit: str = "it"):
-    """A tqdm bar on stderr when progress is on (see :func:`progress_scope`), else a silent stand-in."""
-    if not _PROGRESS.get():
-        return _NoBar()
-    from tqdm import tqdm
-
-    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True)
-
-
-_FITS = contextvars.ContextVar("tolalloc_diagnose_fit_bar", default=None)
-
-
-@contextlib.contextmanager
-def fit_counter(desc: str, total: int | None = None):
-    """Count the fits (:func:`count_fit`) done inside the block on one progress bar."""
-    bar = progress_bar(desc, total, unit="fit")
-    token = _FITS.set(bar)
-    try:
-        yield bar
-    finally:
-        _FITS.reset(token)
-        bar.close()
-
-
-def count_fit() -> None:
-    """One fit done (advances the bar of the enclosing :func:`fit_counter`, if any)."""
-    bar = _FITS.get()
-    if bar is not None:
-        bar.update()
-
-
-class _NoBar:
-    def update(self, n=1):
-        pass
-
-    def set_postfix_str(self, s):
-        pass
-
-    def close(self):
-        pass
 
 
 def subsample_index(n: int, max_rows: int = SUBSAMPLE_ROWS, seed: int = 0) -> np.ndarray | None:

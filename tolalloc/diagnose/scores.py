@@ -137,7 +137,7 @@ class Stage:
     base_rms_mm: float
     candidates: tuple
     selected: str | None
-    removed: str | None = None  # backward step (:func:`_backward`): the effect dropped from ``base``, if any
+    removed: str | None = None  # backward step (:func:`.stepwise._backward`): the effect dropped from ``base``, if any
     n_tests: int = 1  # candidates tested at this step: the Bonferroni divisor of its significance level
 
 

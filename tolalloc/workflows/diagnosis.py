@@ -109,7 +109,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
 def _gap_split(d, progress):
     """Where the held-out gap lies (a Gaussian process on the training residual), with a progress bar."""
     from tolalloc.diagnose.gap import diagnosis_gap_split
-    from tolalloc.diagnose.scale import progress_bar, progress_scope
+    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
 
     with progress_scope(progress):
         bar = progress_bar("residual Gaussian process (gap_split)")
@@ -141,7 +141,7 @@ def _read(robot, train, test, progress, folds):
     """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
     ``folds`` than the training file holds and a test file that shares poses with it."""
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.scale import progress_bar, progress_scope
+    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
     with progress_scope(progress):
