@@ -8,6 +8,7 @@ import re
 from types import SimpleNamespace
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import tolalloc
@@ -248,3 +249,39 @@ def test_an_alternative_a_fit_names_is_not_named_again_by_the_stiffness_note():
     assert v.headline() == ("verdict: ambiguous -- backlash or joint_compliance; these poses cannot tell them apart")
     alone = Verdict("ambiguous", ("backlash", "joint_compliance"), (), "x", (note,), selected=("backlash",))
     assert alone.headline().startswith("verdict: ambiguous -- backlash or a torque-dependent joint stiffness;")
+
+
+def test_printed_final_model_is_marked_not_claimed_when_inconclusive():
+    """An inconclusive verdict claims no effect: the printed summary and report name the selected model as not
+    claimed (the safe model is printed with the verdict); otherwise it is the final model."""
+    from types import SimpleNamespace
+
+    from tolalloc.report.diagnosis import _final_name
+
+    def diag(verdict, effects):
+        return SimpleNamespace(verdict=SimpleNamespace(verdict=verdict), effects=effects)
+
+    assert "not claimed" in _final_name(diag("inconclusive", ("joint_compliance",)))
+    assert _final_name(diag("inconclusive", ())) == "final model"  # nothing selected: the final model is geometric
+    assert _final_name(diag("effect", ("joint_compliance",))) == "final model"
+    assert _final_name(diag("ambiguous", ("a", "b"))) == "final model"
+
+
+def test_safe_model_with_a_larger_largest_error_than_nominal_says_so():
+    """A safe model held (RMS no higher, largest error within MAX_ERROR_RATIO x nominal's) but its largest test error
+    is above the nominal model's: the 'safe to use' line says so with both figures; no note when it is not."""
+    from types import SimpleNamespace
+
+    from tolalloc.report.diagnosis import safe_max_note
+
+    def diag(safe, final_max):
+        t = pd.DataFrame({"model": ["nominal", "geometric", "final"], "label": ["nominal", "geometric", "geometric+a"],
+                          "max_mm": [1.671, 1.5, final_max]})
+        return SimpleNamespace(test=object(), verdict=SimpleNamespace(safe_model=safe), before_after=lambda which: t)
+
+    note = safe_max_note(diag("geometric+a", 2.303))
+    assert "2.303 mm" in note and "1.671 mm" in note and f"{MAX_ERROR_RATIO:g} x" in note
+    assert safe_max_note(diag("geometric+a", 1.2)) == ""
+    assert safe_max_note(diag("geometric", 2.303)) == ""  # the safe geometric model's largest error is below nominal's
+    assert safe_max_note(diag("nominal", 2.303)) == ""
+    assert safe_max_note(SimpleNamespace(test=None)) == ""

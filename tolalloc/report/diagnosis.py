@@ -9,11 +9,11 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose.diagnosis import Diagnosis
-from tolalloc.diagnose.verdict import UNSTABLE_RATIO
+from tolalloc.diagnose.verdict import MAX_ERROR_RATIO, UNSTABLE_RATIO
 from tolalloc.report.tables import markdown_table
 from tolalloc.robot.columns import joint_column_names
 
-__all__ = ["write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
+__all__ = ["safe_max_note", "write_report", "markdown_table", "worst_test_poses", "test_predictions", "summary_lines", "verdict_lines"]
 
 
 def test_predictions(d: Diagnosis) -> pd.DataFrame:
@@ -53,6 +53,23 @@ def worst_test_poses(d: Diagnosis, n: int = 5) -> pd.DataFrame:
     return out
 
 
+def safe_max_note(d: Diagnosis) -> str:
+    """A note when the safe model's largest test error exceeds the nominal model's (it held: within
+    :data:`~tolalloc.diagnose.verdict.MAX_ERROR_RATIO` x, and its RMS no worse); empty otherwise."""
+    if d.test is None:
+        return ""
+    t = d.before_after("test")
+    rows = t[t["label"] == d.verdict.safe_model]
+    if not len(rows) or d.verdict.safe_model == "nominal":
+        return ""
+    m, n = float(rows["max_mm"].iloc[-1]), float(t["max_mm"].iloc[0])
+    if not m > n:
+        return ""
+    return (f"; its largest test error, {m:.4g} mm, is above the nominal model's {n:.4g} mm (it held: at most "
+            f"{MAX_ERROR_RATIO:g} x the nominal model's, with an RMS no higher) -- check the worst test poses before relying "
+            "on it at single poses")
+
+
 def verdict_lines(d: Diagnosis) -> list:
     """The verdict block: headline, candidates, reasons, the model safe to use, separating poses, outliers."""
     v = d.verdict
@@ -66,7 +83,8 @@ def verdict_lines(d: Diagnosis) -> list:
         lines.append("safe to use: none -- even the nominal model misses the test poses by more than "
                      f"{UNSTABLE_RATIO:g} x its out-of-fold error")
     else:
-        lines.append(f"safe to use: the {v.safe_model} model ({safe.get(v.safe_model, 'geometry and the effects')})")
+        lines.append(f"safe to use: the {v.safe_model} model ({safe.get(v.safe_model, 'geometry and the effects')})"
+                     + safe_max_note(d))
     if v.suggestions is not None and len(v.suggestions):
         lines.append("poses that would separate the ambiguous effects (joints in deg / mm; predicted difference of "
                      "the two fitted models):")
@@ -79,13 +97,20 @@ def verdict_lines(d: Diagnosis) -> list:
     return lines
 
 
+def _final_name(d: Diagnosis) -> str:
+    """``final model``, marked as not claimed when the verdict is ``inconclusive`` (its effects do not hold)."""
+    if d.verdict is not None and d.verdict.verdict == "inconclusive" and d.effects:
+        return "final model, selected on the training file but not claimed"
+    return "final model"
+
+
 def summary_lines(d: Diagnosis) -> list:
     """The whole printed summary of a diagnosis, one string per line: the verdict first (:func:`verdict_lines`),
     then test-file figures, cross-validation, the worst test poses, every guard, the ranking."""
     cols = ["model", "rms_mm", "p95_mm", "max_mm", "rms_shrink_pct"]
     lines = verdict_lines(d) if d.verdict is not None else [f"effect: {d.effect}"]
-    if len(d.effects) > 1:
-        lines.append(f"final model: {d.final.label}")
+    if len(d.effects) > 1 or _final_name(d) != "final model":
+        lines.append(f"{_final_name(d)}: {d.final.label}")
     if d.subsample is not None:
         s = d.subsample
         lines.append(f"subsample: cross-validation and effect selection on {s['cv_rows']:,} of {s['rows']:,} training "
@@ -103,7 +128,8 @@ def summary_lines(d: Diagnosis) -> list:
                  "predictions) [mm]:")
     lines += d.before_after("cv")[cols].to_string(index=False, float_format="%.4f").splitlines()
     if d.test is not None:
-        lines.append("worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):")
+        lines.append(f"worst test poses ({_final_name(d)}; joints in deg / mm; extrapolation 1: outside the training "
+                     "data):")
         lines += worst_test_poses(d).to_string(index=False, float_format="%.3f").splitlines()
         u = d.uncertainty
         lines.append(f"predicted uncertainty: median 1-sigma {np.median(u.sigma_mm):.4f} mm (noise {u.noise_mm:.4f} mm "
@@ -191,7 +217,7 @@ def _verdict_section(d: Diagnosis, out: Path, prefix: str) -> list:
         lines += [f"Candidates: {', '.join(f'`{c}`' for c in v.candidates)}.", ""]
     lines += ["Reasons:", "", *[f"- {r}" for r in v.reasons], "",
               f"Safe to use: the `{v.safe_model}` model (the last of nominal -> geometric -> final that held on "
-              "cross-validation and, with a test file, on the test file).", ""]
+              f"cross-validation and, with a test file, on the test file){safe_max_note(d)}.", ""]
     if v.suggestions is not None and len(v.suggestions):
         v.suggestions.to_csv(out / f"{prefix}separating_poses.csv", index=False)
         lines += ["Poses that would separate the ambiguous effects (where the two fitted models' predictions differ "
@@ -221,7 +247,8 @@ def _figures_section(d: Diagnosis, prefix: str, out: Path) -> list:
         u = d.uncertainty
         lines += ["## Test file", "", f"{how}. Error [mm] of the 3-D position:", "",
                   markdown_table(d.before_after("test")[cols]), "", f"![before/after]({prefix}before_after.png)", "",
-                  "Worst test poses (final model; joints in deg / mm; extrapolation 1: outside the training data):", "",
+                  f"Worst test poses ({_final_name(d)}; joints in deg / mm; extrapolation 1: outside the training "
+                  "data):", "",
                   markdown_table(worst, ".4g"), "",
                   f"Predicted uncertainty (parameter covariance of the final fit): median 1-sigma "
                   f"{np.median(u.sigma_mm):.4f} mm, noise {u.noise_mm:.4f} mm per coordinate; "

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from tolalloc.report.html import Column, file_figure_item, html_table, pretty, writer_figure_item
+from tolalloc.report.diagnosis import safe_max_note
 
 __all__ = ["diagnosis_context"]
 
@@ -42,7 +43,7 @@ def _verdict(d, block, which: str) -> dict:
             f"{rms['geometric']:.4f} mm → final model {rms['final']:.4f} mm ({shrink:.1f} % below nominal).")
     head = v.headline().split(" -- ", 1)
     lines = [f"Verdict: {head[-1]}."] + [f"{r[0].upper()}{r[1:]}." for r in v.reasons]
-    lines.append(f"Safe to use: the {v.safe_model} model." if v.safe_model != "none"
+    lines.append(f"Safe to use: the {v.safe_model} model{safe_max_note(d)}." if v.safe_model != "none"
                  else "Safe to use: no fitted model transfers to the test poses.")
     if d.fallback is not None:
         lines.append(f"The fitted model lost on cross-validation; the final model falls back to {d.fallback}.")
