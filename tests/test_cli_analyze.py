@@ -37,8 +37,8 @@ def test_analyze_nominal_json_matches_library(capsys, tmp_path):
     assert d["p_within_radius"]["25"] == pytest.approx(float(p_within_radius(C, 25.0)), abs=1e-12)
     r95 = d["radius_mm_for_prob"]["0.95"]
     assert p_within_radius(C, r95) == pytest.approx(0.95, abs=1e-9)
-    shares = [row["share_norm"] for row in d["budget"]["parameters"]]
-    assert shares == sorted(shares, reverse=True) and sum(shares) == pytest.approx(1.0)
+    shares = [row["share_norm_pct"] for row in d["budget"]["parameters"]]
+    assert shares == sorted(shares, reverse=True) and sum(shares) == pytest.approx(100.0)
     assert {row["kind"] for row in d["budget"]["kinds"]} == {"link_length", "joint_drive", "axis_deflection"}
     assert "poses" not in d and d["n_poses"] == 1
     assert "error budget" in text and "P(|dp| < 25 mm)" in text

@@ -123,7 +123,7 @@ def test_tutorial_analyze(tmp_path, monkeypatch):
     r95 = a.linear.radius_for(0.95)
     assert r95.min() == pytest.approx(30.7, abs=0.05) and r95.max() == pytest.approx(38.3, abs=0.05)
     kinds = a.budget_frame(by="kind")
-    assert kinds["share_norm"].sum() == pytest.approx(1.0)
+    assert kinds["share_norm_pct"].sum() == pytest.approx(100.0)
     assert set(kinds["kind"].iloc[:2]) == {"joint_drive", "axis_deflection"}   # what the page says dominates
     assert (tmp_path / "analyze.json").is_file()
 

@@ -192,9 +192,9 @@ def test_budget_sums_order_and_kinds(tmp_path):
     df = b.to_frame(pose="worst")
     # tables number poses from 1; the library index is 0-based
     assert df["pose"].unique().tolist() == [b.worst_pose + 1] == [int(np.argmax(res.rms_mm)) + 1]
-    assert df["share_norm"].is_monotonic_decreasing
+    assert df["share_norm_pct"].is_monotonic_decreasing
     kinds = b.to_frame(by="kind", pose=0)
-    assert kinds["share_norm"].sum() == pytest.approx(1.0)
+    assert kinds["share_norm_pct"].sum() == pytest.approx(100.0)
     assert set(kinds["kind"]) == set(model.kinds)
     jd = kinds.set_index("kind").loc["joint_drive", "var_x_mm2"]
     assert jd == pytest.approx(b.var[0, model.kinds == "joint_drive", 0].sum())

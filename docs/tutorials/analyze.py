@@ -34,11 +34,11 @@ print("radius for P = 0.95 [mm]:  ", lin.radius_for(0.95).round(2))
 # %% budget
 print(a.budget_frame(by="kind").to_string(index=False, float_format=lambda x: f"{x:.4g}"))
 top = a.budget_frame().head(6)
-print(top[["parameter", "kind", "share_norm"]].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+print(top[["parameter", "kind", "share_norm_pct"]].to_string(index=False, float_format=lambda x: f"{x:.1f}"))
 
 # %% clearance
 c = tolalloc.analyze_errors("tool_changer", poses="working", clearance=True)
-print(c.budget_frame(by="kind")[["kind", "share_norm"]].to_string(index=False, float_format=lambda x: f"{x:.3f}"))
+print(c.budget_frame(by="kind")[["kind", "share_norm_pct"]].to_string(index=False, float_format=lambda x: f"{x:.1f}"))
 
 # %% ur10
 u = tolalloc.analyze_errors("ur10", poses="working", radius_mm=0.25)

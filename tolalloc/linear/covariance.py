@@ -251,7 +251,7 @@ class ErrorBudget:
         by : {"parameter", "kind"}
 
         Columns: ``pose, parameter|kind, [kind, unit, sigma_mm, sigma_deg,] var_x_<u> .. var_norm_<u>,
-        share_x .. share_norm`` (``<u>`` is ``mm2`` or ``rad2``; shares are fractions). A parameter's sigma is in
+        share_x_pct .. share_norm_pct`` (``<u>`` is ``mm2`` or ``rad2``; shares in percent). A parameter's sigma is in
         ``sigma_mm`` (lengths) or ``sigma_deg`` (angles), the other one NaN (:func:`tolalloc.units.unit_columns`).
         """
         if by not in ("parameter", "kind"):
@@ -272,20 +272,16 @@ class ErrorBudget:
             for a, ax in enumerate(_AXES):
                 df[f"var_{ax}_{u}"] = var[:, a]
             for a, ax in enumerate(_AXES):
-                df[f"share_{ax}"] = share[:, a]
-            frames.append(df.sort_values("share_norm", ascending=False, kind="stable"))
+                df[f"share_{ax}_pct"] = 100.0 * share[:, a]
+            frames.append(df.sort_values("share_norm_pct", ascending=False, kind="stable"))
         return pd.concat(frames, ignore_index=True)
 
     def to_markdown(self, pose="worst", by: str = "parameter", top: int | None = None, digits: int = 4) -> str:
-        """Markdown table of :meth:`to_frame` (shares in percent, the empty one of each unit pair blank),
+        """Markdown table of :meth:`to_frame` (the empty one of each unit pair blank),
         optionally the ``top`` rows per pose."""
         df = self.to_frame(pose, by)
         if top is not None:
             df = df.groupby("pose", sort=False).head(top)
-        df = df.copy()
-        for ax in _AXES:
-            df[f"share_{ax}"] = 100 * df[f"share_{ax}"]
-        df = df.rename(columns={f"share_{ax}": f"share_{ax}_pct" for ax in _AXES})
         df = df.astype(object).where(df.notna(), None)
         return df.to_markdown(index=False, floatfmt=f".{digits}g", missingval="")
 

@@ -40,7 +40,7 @@ def analyze_dict(res, b, radii, probs) -> dict:
     out = {"robot": robot.name, "labels": res.model.labels, "method": "linear (first order), Gaussian approximation",
            "n_poses": res.n_poses, "worst_pose": worst + 1, "pose_numbering": "1-based, in the order of the pose set",
            "budget_columns": "sigma_mm / sigma_deg: the parameter's sigma on length / angle rows (null on the "
-                             "others); var_*_mm2: contribution to the variance [mm^2]; share_*: fraction of it; "
+                             "others); var_*_mm2: contribution to the variance [mm^2]; share_*_pct: its share [%]; "
                              "norm = trace",
            **_pose_dict(res, b, worst, radii, probs, robot)}
     if res.n_poses > 1:

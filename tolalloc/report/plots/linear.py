@@ -44,7 +44,7 @@ def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter
     y = np.arange(n)[::-1]
     h = 0.2
     for i, axn in enumerate(("x", "y", "z", "norm")):
-        ax.barh(y + (1.5 - i) * h, 100 * df[f"share_{axn}"], height=h, color=_COLORS[axn],
+        ax.barh(y + (1.5 - i) * h, df[f"share_{axn}_pct"], height=h, color=_COLORS[axn],
                 label=f"{axn} (var {b.total[int(df['pose'].iloc[0]) - 1, i]:.3g} {b.unit.replace('2', '²')})")
     ax.set_yticks(y)
     ax.set_yticklabels(label, fontsize=8)
