@@ -48,7 +48,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     radius_mm : float or sequence
         Radii for ``P(|dP| < r)`` [mm] (95 % intervals by ``ci``: ``wilson`` or ``exact``).
     angle_radius_rad, angle_radius_deg : float or sequence, optional
-        Radii for ``P(|rotation error| < r)``; default 0.002 rad.
+        Radii for ``P(|rotation error| < r)``, in rad or in deg (one of the two); default 0.002 rad.
     sigma_set, link_mode, deflection_mode, clearance, clearance_tilt_literal, sigma, exclude
         Error-model options (``sigma``: overrides in mm or deg).
     scheduler, jobs, chunk_size, progress
@@ -75,7 +75,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     """
     n, seed, radii, arad, hist_bins, keep, scheduler = _checked(
         n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm, keep_samples,
-        jobs, chunk_size, progress, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
+        jobs, chunk_size, progress, q_deg_mm, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
                                                            deflection_mode=deflection_mode, clearance=clearance,
                                                            exclude=exclude, sigma=sigma,
                                                            clearance_tilt_literal=clearance_tilt_literal))
@@ -96,7 +96,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
 
 
 def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm,
-             keep_samples, jobs, chunk_size, progress, poses, scheduler, model_options) -> tuple:
+             keep_samples, jobs, chunk_size, progress, q_deg_mm, poses, scheduler, model_options) -> tuple:
     """Every argument of :func:`simulate_errors` but the robot, checked by name; returns
     ``(n, seed, radii_mm, angle_radii_rad, hist_bins, keep_samples, scheduler)``."""
     n = inputs.check_count(n, "n", example="100000")
@@ -105,6 +105,8 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     if estimator is not None:
         inputs.check_choice(estimator, "estimator", ("auto", "plain", "paired", "importance"))
     radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
+    inputs.check_not_both(angle_radius_deg, "angle_radius_deg", angle_radius_rad, "angle_radius_rad",
+                          "give the radii of the rotation error", " (a list gives several radii)")
     arad = inputs.check_values([] if angle_radius_rad is None else angle_radius_rad, "angle_radius_rad",
                                inputs.check_positive, "rad", "0.002")
     arad += [np.deg2rad(a) for a in inputs.check_values([] if angle_radius_deg is None else angle_radius_deg,
@@ -129,6 +131,8 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     inputs.check_optional_flag(progress, "progress")
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    inputs.check_not_both(q_deg_mm, "q_deg_mm", poses, "poses", "give the poses",
+                          " (joint values in deg / mm, or the name of a pose set)")
     scheduler = inputs.check_scheduler(scheduler)
     return n, seed, radii, arad, hist_bins, keep, scheduler
 
