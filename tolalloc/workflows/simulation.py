@@ -151,7 +151,8 @@ class ErrorSimulation(JobResult):
     ----------
     mc : McResult
         Mean, standard deviation, extremes of dx, dy, dz [mm], ``|dP|``, reach change, Euler-angle errors [rad],
-        ``P(|dP| < r)`` with 95 % intervals; kept samples and histograms.
+        ``P(|dP| < r)`` with 95 % intervals (``mc.p_within[r]``, ``r`` one of the simulated radii [mm]; all of them:
+        :meth:`probability_frame`); kept samples and histograms.
     robot : Robot
     clearance_tilt_rad : float or None
     """
@@ -176,6 +177,14 @@ class ErrorSimulation(JobResult):
     def to_frame(self) -> pd.DataFrame:
         """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
         return self.mc.to_frame()
+
+    def probability_frame(self) -> pd.DataFrame:
+        """``P(|dP| < r)`` and ``P(|rotation error| < r)`` with their 95 % intervals, one row per pose and radius:
+        ``pose`` (from 1), ``error``, ``radius_mm`` / ``radius_deg``, ``p``, ``ci_low``, ``ci_high``
+        (:func:`tolalloc.montecarlo.radii.probability_frame`). Other radii: ``simulate_errors(radius_mm=[...])``."""
+        from tolalloc.montecarlo.radii import probability_frame
+
+        return probability_frame(self.mc)
 
     def summary(self) -> dict:
         """The content of ``mc_summary.json``; per-pose arrays are flattened when there is one pose."""
