@@ -49,8 +49,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         DataFrame of poses (deg / mm). Boxes are searched for their worst pose (cutting planes) and checked on a
         fresh sample of ``coverage_n`` poses. Default: the robot's ``working`` box, else the pose set ``poses``.
     poses : str, optional
-        Pose set used when ``region`` is not given (default ``working`` if defined, else ``nominal``); not together
-        with ``region``.
+        Pose set used without ``region`` (not with it; default ``working`` if defined, else ``nominal``).
     costs : str or path, optional
         Costs file (TOML): cost laws, process limits, fixed / excluded parameters (default: built-in assumptions).
     z : float, optional
@@ -97,8 +96,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
                    exclude=exclude)
     costs, calibration, scheduler, correction, correction_rounds = _check_more(
-        snap, correction, correction_rounds, region, poses, costs, calibration, scheduler, estimator, angle_radius_deg,
-        options)
+        snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator, angle_radius_deg, options)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, **options)
     cost_set = _costs(costs, model, z, uniform)
@@ -285,7 +283,7 @@ def _costs(costs, model, z, uniform):
 MAX_CORRECTION_ROUNDS = 50
 
 
-def _check_more(snap, correction, correction_rounds, region, poses, costs, calibration, scheduler, estimator,
+def _check_more(snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator,
                 angle_radius_deg, model_options) -> tuple:
     """Refuse bad flags, names, paths, error-model options and options the calibration-aware allocation cannot
     honour, by their argument names; returns ``(costs, calibration, scheduler, correction, correction_rounds)``
@@ -294,8 +292,6 @@ def _check_more(snap, correction, correction_rounds, region, poses, costs, calib
     inputs.check_optional_flag(correction, "correction")
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    inputs.check_not_both(region, "region", poses, "poses", "say where the requirement holds",
-                          " (`region` also takes a pose set name)")
     costs = inputs.check_costs_file(costs)
     calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
     scheduler = inputs.check_scheduler(scheduler)

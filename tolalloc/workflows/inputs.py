@@ -190,8 +190,10 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     trajectory CSV path (a pose per row, deg / mm: :func:`trajectory`) or an array / DataFrame of joint values
     (deg / mm). Default: the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set
     ``poses`` (default: ``working``, else the nominal pose, with a ``UserWarning`` that the requirement is then
-    checked at one pose only).
+    checked at one pose only). ``region`` and ``poses`` together are refused.
     """
+    check_not_both(region, "region", poses, "poses", "say where the requirement holds",
+                   " (`region` also takes a pose set name)")
     regions = robot.regions
     if region is None:
         if poses is None and "working" in regions:
