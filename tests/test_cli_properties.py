@@ -251,7 +251,7 @@ def test_radian_trajectory_is_refused_with_a_hint_and_accepted_with_trust_units(
                                       capsys)
     assert code == 2 and len(err) == 1 and not written, err
     assert err[0].startswith("error: --region: 'traj_rad.csv': every revolute joint value lies within +-2 pi"), err
-    assert "look like radians" in err[0] and "numpy.degrees" in err[0] and "--trust-units" in err[0], err
+    assert "look like radians" in err[0] and "robot.q_to_interface(q)" in err[0] and "--trust-units" in err[0], err
     code, out, err, written = run_cli(["allocate", "tool_changer", "--region", "traj_rad.csv", "--no-verify",
                                        "--trust-units"], work, capsys)
     assert code == 0, err
@@ -275,7 +275,7 @@ def test_radian_trajectory_is_refused_with_a_hint_and_accepted_with_trust_units(
 def test_joint_value_inputs_share_one_unit_rule(tmp_path):
     """The same radians are refused with the same words as q_deg_mm, region (array or CSV), measurement frame
     or file, and a robot file's pose set; trust_units=True accepts them."""
-    from tolalloc.units import TRUST_HINT
+    from tolalloc.units import TRUST_HINT, radians_fix
 
     robot = tolalloc.load_robot("tool_changer")
     q = robot.q_to_interface(robot.poses("working"))
@@ -298,7 +298,7 @@ def test_joint_value_inputs_share_one_unit_rule(tmp_path):
         assert info.value.argument == argument.strip()
         text = str(info.value)
         assert "every revolute joint value lies within +-2 pi" in text and "look like radians" in text, text
-        assert text.endswith(f"(convert with numpy.degrees) ({TRUST_HINT}).") , text
+        assert text.endswith(f"{radians_fix(robot.revolute_mask)} ({TRUST_HINT}).") , text
     calls["q_deg_mm"](trust_units=True)
     calls["region"](trust_units=True)
     # the diagnosis, trusted, then fails on the physics (the radians do not fit the measured points), not on units

@@ -134,6 +134,10 @@ def test_tutorial_simulate(tmp_path, monkeypatch):
     for r in (25.0, 35.0):  # the linear-Gaussian P lies in the seeded Monte Carlo's 95 % interval
         _, low, high = sim.mc.p_within[r][0]
         assert low <= lin.p_within(r)[0] <= high
+    assert g["probs"]["radius_mm"].dropna().tolist() == [25.0, 35.0]   # the page's table: one row per radius
+    with pytest.raises(tolalloc.TolallocError, match=r"^radius 0.3 mm was not simulated; simulated radii: 25 mm, 35 mm\. "
+                                                     r"Simulate it with radius_mm=\[25, 35, 0.3\]"):  # as the page quotes
+        sim.mc.p_within[0.3]
     ring, ring_lin = g["ring"], g["ring_lin"]
     for r in (0.5, 1.0):  # the ring: the linear-Gaussian P is far outside the Monte Carlo interval
         p, low, high = ring.mc.p_within[r][0]

@@ -164,6 +164,24 @@ def test_interface_units_roundtrip():
     assert [j.unit for j in robot.joints] == ["deg"] * 3 + ["mm"] + ["deg"] * 2
 
 
+def test_radians_hint_names_q_to_interface_for_a_robot_with_a_slide():
+    """Internal values (rad, mm) given to fk are refused with the conversion that keeps the slide in mm; the hint
+    names numpy.degrees only for an all-revolute robot."""
+    robot = load_robot("tool_changer")
+    slide_5mm = robot.q_from_interface([15, 30, -10, 5, -20, -5])
+    for q in (robot.poses("working"), robot.q_nominal, robot.random_q(np.random.default_rng(0), 3), slide_5mm):
+        with pytest.raises(TolallocError, match=r"look like radians; expected degrees for the revolute joints and mm "
+                                                r"for the prismatic q4: convert with robot\.q_to_interface\(q\)") as info:
+            robot.fk(q)
+        assert "numpy.degrees would also multiply q4 by 57.3" in str(info.value)
+        np.testing.assert_allclose(robot.fk(robot.q_to_interface(q)), robot.fk_internal(q), atol=1e-9)
+    slip = robot.fk(np.degrees(slide_5mm))[:3, 3] - robot.fk(robot.q_to_interface(slide_5mm))[:3, 3]
+    assert np.linalg.norm(slip) == pytest.approx(np.degrees(5) - 5)  # numpy.degrees moves the slide 5 -> 286 mm
+    ur10 = load_robot("ur10")
+    with pytest.raises(TolallocError, match=r"look like radians; expected degrees: convert with numpy\.degrees or "
+                                            r"robot\.q_to_interface\(q\)"):
+        ur10.fk(ur10.random_q(np.random.default_rng(1), 2))
+
 def test_check_q_count_limits_and_finiteness():
     robot = load_robot("tool_changer")
     np.testing.assert_allclose(robot.check_q([15, 30, -10, 0, -20, -5], interface=True), robot.q_nominal)

@@ -53,7 +53,7 @@ def test_analysis_text_labels_each_pose_value():
 
 
 def test_plan_headline_compares_plans_above_the_floor():
-    plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=24, random_plans=2)
+    plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=24)
     d = plan.design
     assert plan.headline()[1] == ("post-calibration variance above the all-candidates floor [mm^2]: designed "
                                   f"{d.score_mm2 - d.floor_mm2:.4g}, random {d.random_score_mm2 - d.floor_mm2:.4g} "

@@ -72,11 +72,11 @@ def test_python_example_runs_and_prints_the_verdict(tmp_path, monkeypatch, capsy
 
 @pytest.mark.slow
 def test_allocate_cli_equals_api(tmp_path, capsys):
-    argv = ["allocate", "tool_changer", "--poses", "working", "--region", "working", "--n-mc", "2000",
+    argv = ["allocate", "tool_changer", "--region", "working", "--n-mc", "2000",
             "--coverage-n", "1000", "--seed", "3"]
     assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
     printed = capsys.readouterr().out
-    res = tolalloc.allocate_tolerances("tool_changer", poses="working", region="working", n_mc=2000, coverage_n=1000,
+    res = tolalloc.allocate_tolerances("tool_changer", region="working", n_mc=2000, coverage_n=1000,
                                        seed=3)
     names = res.save(tmp_path / "api")
     assert "verification.csv" in names and res.ok
@@ -255,6 +255,40 @@ def test_bad_input_raises_project_errors_naming_the_argument(call, exc, pattern)
         call()
     assert isinstance(info.value, exc)
 
+
+Q1 = [15, 30, -10, 0, -20, -5]
+
+
+@pytest.mark.parametrize("call, argument, pattern", [
+    (lambda: tolalloc.allocate_tolerances("tool_changer", poses="working", region="working", verify=False), "region",
+     r"^region: 'working' and `poses` 'working' both say where the requirement holds; give one of them"),
+    (lambda: tolalloc.analyze_errors("tool_changer", poses="working", q_deg_mm=Q1), "q_deg_mm",
+     r"^q_deg_mm: list \[15, .*\] and `poses` 'working' both give the poses; give one of them"),
+    (lambda: tolalloc.simulate_errors("tool_changer", 10, poses="working", q_deg_mm=Q1), "q_deg_mm",
+     r"^q_deg_mm: .* and `poses` 'working' both give the poses; give one of them"),
+    (lambda: tolalloc.simulate_errors("tool_changer", 10, angle_radius_deg=0.1, angle_radius_rad=0.002),
+     "angle_radius_deg", r"^angle_radius_deg 0.1 and `angle_radius_rad` 0.002 both give the radii .*; give one of them"),
+    (lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, radius_mm=0.1), "radius_mm",
+     r"^radius_mm 0.1 is read only for a plan designed for an allocation, but `for_allocation` is off"),
+    (lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, random_plans=5), "random_plans",
+     r"^random_plans 5 is read only .* add `for_allocation`"),
+    (lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, noise_deg=0.01), "noise_deg",
+     r"^noise_deg 0.01 is the orientation noise of pose measurements, but `measurement` is position"),
+    (lambda: tolalloc.diagnose_measurements("tool_changer", pd.DataFrame(), test_frame="refit"), "test_frame",
+     r"^test_frame needs `test`: 'refit' re-registers a test file"),
+])
+def test_arguments_one_of_which_would_be_ignored_are_refused(call, argument, pattern):
+    """Two arguments that say the same thing, or an option nothing reads, are refused before any computation."""
+    with pytest.raises(tolalloc.ArgumentError, match=pattern) as info:
+        call()
+    assert info.value.argument == argument and "\n" not in str(info.value)
+
+
+def test_region_and_poses_together_read_as_flags(capsys):
+    assert main(["allocate", "tool_changer", "--region", "working", "--poses", "working", "--no-verify"]) == 2
+    assert capsys.readouterr().err.strip() == ("error: --region: 'working' and --poses 'working' both say where the "
+                                               "requirement holds; give one of them (--region also takes a pose set "
+                                               "name).")
 
 def test_radians_are_accepted_when_trusted():
     q = [0.2, 0.5, -0.1, 0, 0.35, -0.1]

@@ -29,8 +29,8 @@ from tolalloc.exceptions import TolallocError
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
            "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
-           "TINY_LINK_RATIO", "TRUST_HINT", "PYTHON_TRUST_HINT", "check_joint_units", "check_chain_units",
-           "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS", "unit_columns", "in_row_unit"]
+           "TINY_LINK_RATIO", "TRUST_HINT", "PYTHON_TRUST_HINT", "radians_fix", "check_joint_units",
+           "check_chain_units", "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS", "unit_columns", "in_row_unit"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -187,6 +187,24 @@ def _fractional(v: np.ndarray) -> np.ndarray:
     return (np.abs(v) > 1e-2) & (np.abs(v - np.round(v)) > 1e-9)
 
 
+def radians_fix(revolute) -> str:
+    """What joint values in interface units are and how to get them from radians (the end of a message after
+    ``expected``): ``numpy.degrees`` only when every joint is revolute (it would multiply a prismatic joint's mm
+    by 57.3), else ``Robot.q_to_interface``.
+
+    Parameters
+    ----------
+    revolute : array of bool, shape (n,)
+    """
+    rev = np.asarray(revolute, bool)
+    if rev.all():
+        return "degrees: convert with numpy.degrees or robot.q_to_interface(q)"
+    prismatic = ", ".join(f"q{k + 1}" for k in np.flatnonzero(~rev))
+    return (f"degrees for the revolute joints and mm for the prismatic {prismatic}: convert with "
+            f"robot.q_to_interface(q) (rad to deg, {prismatic} left in mm; numpy.degrees would also multiply "
+            f"{prismatic} by 57.3)")
+
+
 def check_joint_units(q_deg_mm, revolute, lower_deg_mm, upper_deg_mm, where: str) -> None:
     """Refuse joint values in interface units (deg / mm) that read as radians (or warn where either reading fits).
 
@@ -222,10 +240,10 @@ def check_joint_units(q_deg_mm, revolute, lower_deg_mm, upper_deg_mm, where: str
             if n_frac >= 2:
                 raise TolallocError(f"{where}: every revolute joint value lies within +-2 pi (largest {m:.4g}) while "
                                     f"the joint limits span up to {wide:.4g} deg: these look like radians; expected "
-                                    f"degrees (convert with numpy.degrees) ({TRUST_HINT}).")
+                                    f"{radians_fix(rev)} ({TRUST_HINT}).")
             if n_frac == 1:
                 warnings.warn(f"{where}: the revolute joint values are all small (largest {m:.4g} deg); if they are "
-                              "radians, convert them with numpy.degrees.", UserWarning, stacklevel=3)
+                              f"radians, expected {radians_fix(rev)}.", UserWarning, stacklevel=3)
     if (~rev).any():
         d = q[:, ~rev]
         stroke = float(np.max(np.where(np.isfinite(span[~rev]), span[~rev], 0.0)))

@@ -25,7 +25,8 @@ def register(sub) -> None:
     p.add_argument("--radius-mm", type=float, default=0.25, help="required radius r [mm] (default 0.25)")
     p.add_argument("--prob", type=float, default=0.95, help="required probability p (default 0.95)")
     p.add_argument("--poses", "--pose-set", dest="poses", default=None, metavar="SET",
-                   help="pose set of the robot file (default: 'working' if the robot has it, else nominal)")
+                   help="pose set of the robot file, used without --region (default: 'working' if the robot has it, "
+                   "else nominal); --region takes pose sets too")
     p.add_argument("--region", default=None, metavar="SPEC",
                    help="where the requirement must hold: a pose set of the robot file, 'limits' (the joint limits), "
                    "a region (box) of the robot file, or a trajectory CSV (a pose per row, deg / mm; with a header, "

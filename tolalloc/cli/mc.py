@@ -26,7 +26,7 @@ def register(sub) -> None:
     g.add_argument("--pose-set", "--poses", dest="pose_set", metavar="NAME", help="a pose set of the robot file (e.g. working)")
     p.add_argument("--radius-mm", type=float, action="append", default=None, help="radius for P(|dp| < r) [mm]; repeatable (default 0.15, 0.25)")
     p.add_argument("--angle-radius-rad", type=float, action="append", default=None, help="radius for P(|rotation error| < r) [rad]; repeatable (default 0.002)")
-    p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees; repeatable")
+    p.add_argument("--angle-radius-deg", type=float, action="append", default=None, help="the same in degrees, not with --angle-radius-rad; repeatable")
     p.add_argument("--estimator", default=None, choices=["auto", "plain", "paired", "importance"],
                    help="also estimate each P(|dp| < r) with this estimator (paired: exact linear P plus the mean "
                    "difference of nonlinear and linear indicators on the same draws), with its interval, discordant "

@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.units import radians_fix
 from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.scale import point_kinematics
@@ -237,8 +238,7 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
         j = robot.joints[k]
         lim = robot.q_to_interface(np.array([lo, hi]))[:, k]
         rad_like = all(np.abs(Q[:, c]).max() <= 2 * np.pi for c, jt in enumerate(robot.joints) if jt.kind == "revolute")
-        advice = ("joint values must be in deg (revolute) / mm (prismatic) -- these look like radians: convert them "
-                  "with degrees()" if rad_like else
+        advice = (f"these look like radians; expected {radians_fix(robot.revolute_mask)}" if rad_like else
                   f"the values do not fit robot {robot.name!r} -- wrong robot? (or check the robot file's limits)")
         raise TolallocError(
             f"{source}: row {rows[i]}: {qcols[k]} ({j.name}) = {Q[i, k]:g} {j.unit} is outside the joint limits "

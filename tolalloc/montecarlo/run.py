@@ -37,6 +37,7 @@ from tolalloc.errormodel.sampling import sample_values
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
 from tolalloc.montecarlo.streaming import HistSpec, McHistogram, Moments, proportion_ci
+from tolalloc.montecarlo.radii import RadiusTable
 
 __all__ = ["BLOCK_SIZE", "SUB_BLOCK", "FastChain", "pose_errors", "McResult", "run_mc", "proportion_ci",
            "sample_values", "generic_pose_errors", "McHistogram"]
@@ -123,9 +124,11 @@ class McResult:
     angle_mean_rad, angle_std_rad : array, shape (P, 3)
         X-Y-Z fixed Euler-angle errors ``(alpha, beta, gamma)``.
     rotvec_std_rad : array, shape (P, 3)
-    p_within : dict float -> array, shape (P, 3)
-        Radius [mm] -> ``P(|p' - p| < r)``, CI low, CI high.
-    p_within_angle : dict float -> array, shape (P, 3)
+    p_within : RadiusTable, float -> array, shape (P, 3)
+        Radius [mm] -> ``P(|p' - p| < r)``, CI low, CI high; a radius not simulated raises
+        :class:`~tolalloc.montecarlo.radii.RadiusNotSimulated` naming the simulated ones
+        (:func:`~tolalloc.montecarlo.radii.probability_frame`: all of them as a table).
+    p_within_angle : RadiusTable, float -> array, shape (P, 3)
         Angle [rad] -> ``P(|rotvec| < r)`` with CI.
     samples : dict or None
         The first ``keep_samples`` per-sample arrays (keys of :func:`pose_errors`) at pose 0.
@@ -331,7 +334,7 @@ def _estimates(model, q, n, seed, radii, aradii, estimator, scheduler, n_jobs) -
 
         pos = {r: importance_probability(model, q, n, seed, radius_mm=r, scheduler=scheduler, n_jobs=n_jobs)
                for r in radii}
-    return {"p_estimates": pos, "p_estimates_angle": ang}
+    return {"p_estimates": RadiusTable(pos), "p_estimates_angle": RadiusTable(ang, angle=True)}
 
 
 def _result(model, spec, moms, ext, kept, ci) -> McResult:
@@ -363,8 +366,8 @@ def _result(model, spec, moms, ext, kept, ci) -> McResult:
         mean_mm=mean[:, 0:3], std_mm=std[:, 0:3], cov_mm2=cov[:, 0:3, 0:3],
         norm_mm=four(6), reach_mm=four(7),
         angle_mean_rad=mean[:, 8:11], angle_std_rad=std[:, 8:11], rotvec_std_rad=std[:, 3:6],
-        p_within={r: pci[:, j] for j, r in enumerate(radii)},
-        p_within_angle={r: pci[:, len(radii) + j] for j, r in enumerate(aradii)},
+        p_within=RadiusTable({r: pci[:, j] for j, r in enumerate(radii)}),
+        p_within_angle=RadiusTable({r: pci[:, len(radii) + j] for j, r in enumerate(aradii)}, angle=True),
         samples=samples, dp_max_mm=mx[:, 0:3], dp_min_mm=mn[:, 0:3], angle_max_rad=mx[:, 8:11],
         angle_min_rad=mn[:, 8:11], ci="exact" if ci == "clopper-pearson" else ci, hist=hist,
     )

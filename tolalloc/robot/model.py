@@ -135,6 +135,8 @@ class Robot:
     def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
 
+        Internal units, as ``fk_internal`` takes them; ``fk`` takes deg / mm: ``robot.fk(robot.q_to_interface(q))``.
+
         Revolute joints are drawn within their limits intersected with [-pi, pi] (a joint that may turn
         more than once reaches no other pose beyond); prismatic joints over their whole stroke (an
         unbounded stroke: +-1000 mm).
@@ -159,15 +161,20 @@ class Robot:
 
     @property
     def q_nominal(self) -> np.ndarray:
-        """Nominal joint values [rad, mm], shape (n,)."""
+        """Nominal joint values, internal units [rad, mm], shape (n,); in deg / mm (``fk``'s units):
+        ``robot.q_to_interface(robot.q_nominal)``."""
         return np.array([j.nominal for j in self.joints])
 
     @property
     def lower(self) -> np.ndarray:
+        """Lower joint limits, internal units [rad, mm], shape (n,); in deg / mm:
+        ``robot.q_to_interface(robot.lower)``."""
         return np.array([j.lower for j in self.joints])
 
     @property
     def upper(self) -> np.ndarray:
+        """Upper joint limits, internal units [rad, mm], shape (n,); in deg / mm:
+        ``robot.q_to_interface(robot.upper)``."""
         return np.array([j.upper for j in self.joints])
 
     @property
@@ -181,7 +188,10 @@ class Robot:
         return np.where(self.revolute_mask, np.deg2rad(q), q)
 
     def q_to_interface(self, q) -> np.ndarray:
-        """Convert joint values from internal (rad / mm) to interface units (deg / mm), shape (..., n)."""
+        """Convert joint values from internal (rad / mm) to interface units (deg / mm), shape (..., n).
+
+        Revolute joints rad -> deg, prismatic ones left in mm (``numpy.degrees`` would scale those too).
+        """
         q = np.asarray(q, dtype=float)
         return np.where(self.revolute_mask, np.rad2deg(q), q)
 
@@ -230,9 +240,11 @@ class Robot:
         return qi
 
     def poses(self, pose_set: str | None = None) -> np.ndarray:
-        """Joint values of a named pose set [rad, mm], shape (P, n); the nominal pose if ``None``.
+        """Joint values of a named pose set, internal units [rad, mm], shape (P, n); the nominal pose if ``None``.
 
-        The set ``nominal`` always exists.
+        The set ``nominal`` always exists. ``fk`` and the ``q_deg_mm`` arguments take deg / mm:
+        ``robot.fk(robot.q_to_interface(robot.poses("working")))`` (``numpy.degrees`` would also scale a
+        prismatic joint's mm); or pass the set by name (``poses="working"``).
         """
         if pose_set is None or (isinstance(pose_set, str) and pose_set == "nominal"):
             return self.q_nominal[None, :]
@@ -303,7 +315,8 @@ class Robot:
         Parameters
         ----------
         q_deg_mm : array-like, shape (n,) or (P, n)
-            Joint values [deg for revolute, mm for prismatic joints], inside the joint limits.
+            Joint values [deg for revolute, mm for prismatic joints], inside the joint limits. From internal
+            units (``poses``, ``q_nominal``, ``random_q``): ``robot.fk(robot.q_to_interface(q))``.
 
         Returns
         -------

@@ -49,7 +49,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         DataFrame of poses (deg / mm). Boxes are searched for their worst pose (cutting planes) and checked on a
         fresh sample of ``coverage_n`` poses. Default: the robot's ``working`` box, else the pose set ``poses``.
     poses : str, optional
-        Pose set used when no region applies (default ``working`` if defined, else ``nominal``).
+        Pose set used without ``region`` (not with it; default ``working`` if defined, else ``nominal``).
     costs : str or path, optional
         Costs file (TOML): cost laws, process limits, fixed / excluded parameters (default: built-in assumptions).
     z : float, optional

@@ -48,7 +48,7 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         Pose set where the accuracy matters (default ``working`` if defined, else nominal).
     measurement : {"position", "pose"}
     noise_mm, noise_deg : float
-        Tracker noise sigma per coordinate [mm] and per axis [deg] (pose measurements).
+        Tracker noise sigma per coordinate [mm] and per axis [deg] (``noise_deg``: pose measurements only).
     registration : bool
         Estimate the tracker frame and tool offset too (False: they are known).
     costs : str or path, optional
@@ -61,7 +61,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         the evaluation poses) and a re-design that maximises the worst post-calibration P at the design's binding
         poses, keeping a plan only when the allocation gets cheaper; then compare the plan with ``random_plans``
         random plans of the same size (median, 10th and 90th percentile of their worst-pose P). Position
-        measurements only.
+        measurements only; ``radius_mm``, ``prob`` and ``random_plans`` are read only here (refused, away from their
+        defaults, without it).
 
     Returns
     -------
@@ -84,6 +85,9 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
     inputs.check_choice(measurement, "measurement", ("position", "pose"))
     inputs.check_flag(registration, "registration")
+    inputs.check_flag(for_allocation, "for_allocation")
+    _check_unused(for_allocation, measurement, radius_mm=radius_mm, prob=prob, random_plans=random_plans,
+                  noise_deg=noise_deg)
     seed = inputs.check_seed(seed)
     costs = inputs.check_costs_file(costs)
     inputs.check_name(region, "region", "'limits' or the name of a pose set of the robot")
@@ -111,6 +115,23 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
                                             noise_mm=noise_mm, registration=registration, seed=seed)
     unid = tuple(posterior(split, d.plan if alloc is None else alloc.plan).unidentifiable)
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison)
+
+
+def _check_unused(for_allocation: bool, measurement: str, **given) -> None:
+    """Refuse an option set away from its default where nothing reads it: the allocation's requirement and random
+    plans without ``for_allocation``, an orientation noise with position measurements."""
+    import inspect
+
+    defaults = inspect.signature(plan_calibration).parameters
+    for name, value in given.items():
+        if np.ndim(value) == 0 and value == defaults[name].default:
+            continue
+        if name == "noise_deg" and measurement == "position":
+            raise ArgumentError(name, f"{inputs.shown(value)} is the orientation noise of pose measurements, but "
+                                "`measurement` is position; add `measurement` pose (or leave out `noise_deg`).")
+        if name != "noise_deg" and not for_allocation:
+            raise ArgumentError(name, f"{inputs.shown(value)} is read only for a plan designed for an allocation, but "
+                                "`for_allocation` is off; add `for_allocation` (or leave out this option).")
 
 
 def _check_region(rob, region: str) -> None:

@@ -18,12 +18,22 @@ from tolalloc.exceptions import ArgumentError, TolallocError, describe, known_na
 
 __all__ = ["shown", "check_values", "check_probability", "RANGES", "check_positive", "check_count", "check_seed",
            "check_choice", "check_flag", "check_optional_flag", "check_name", "check_names", "check_path", "Z_RANGE",
-           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "number"]
+           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "check_not_both", "number"]
 
 
 def shown(value, limit: int = 60) -> str:
     """What arrived, for a message (see :func:`tolalloc.exceptions.describe`)."""
     return describe(value, limit)
+
+
+def check_not_both(first, first_argument: str, second, second_argument: str, what: str, hint: str = "") -> None:
+    """Refuse two arguments given together (not None) when one would silently override the other.
+
+    The message reads ``"<first>: <value> and `<second>` <value> both <what>; give one of them<hint>."``.
+    """
+    if first is not None and second is not None:
+        raise ArgumentError(first_argument, f"{shown(first)} and `{second_argument}` {shown(second)} both {what}; "
+                            f"give one of them{hint}.")
 
 
 def number(value, argument: str) -> float:

@@ -34,9 +34,9 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         Measurements: columns q1..qN (deg / mm), x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1 / -1),
         payload_kg, time_s. Rows with empty cells are skipped and counted.
     test_frame : {"same", "refit"}
-        ``refit``: the test file is another session in another tracker frame; its registration and target offset
-        are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below 1), which
-        are then not scored.
+        ``refit`` (needs ``test``): the test file is another session in another tracker frame; its registration and
+        target offset are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below
+        1), which are then not scored.
     register_rows : sequence of int, optional
         With ``refit``, instead of ``register_n``: the test file's rows that register the frame (e.g. a registration
         set measured first, ``range(1, 61)``), its data rows from 1 as its error messages and the JSON's
@@ -130,6 +130,9 @@ def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_upda
         if test_frame != "refit":
             raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
                                 "re-registered.")
+    if test_frame == "refit" and test is None:
+        raise ArgumentError("test_frame", "needs `test`: 'refit' re-registers a test file measured in another tracker "
+                            "frame, and none was given; pass the test file or leave this option out.")
     if target_offset_mm is not None and target_offset_sd_mm is None:
         raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
                             "too (e.g. 5 for a tool drawing good to a few mm).")

@@ -16,8 +16,8 @@ import pandas as pd
 from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, known_names
 from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_costs_file, check_count, check_flag,  # noqa: F401
                                        check_model_options, check_name, check_names, check_optional_flag,
-                                       check_path, check_positive, check_probability, check_scheduler, check_seed,
-                                       check_values, check_z, number, shown)
+                                       check_not_both, check_path, check_positive, check_probability, check_scheduler,
+                                       check_seed, check_values, check_z, number, shown)
 from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
@@ -27,6 +27,7 @@ from tolalloc.units import trusting_units
 __all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model",
            "sigma_overrides", "resolve_region", "trajectory", "as_measurements", "default_pose_set", "check_choice",
            "check_costs_file", "check_count", "check_flag", "check_model_options", "check_name", "check_names",
+           "check_not_both",
            "check_optional_flag", "check_path", "check_positive", "check_probability", "check_scheduler",
            "check_seed", "check_values", "check_z", "number", "shown", "RANGES", "Z_RANGE"]
 
@@ -110,8 +111,8 @@ def default_pose_set(robot: Robot) -> str:
 def resolve_poses(robot: Robot, q_deg_mm=None, poses: str | None = None, *,
                   q_argument: str = "q_deg_mm", poses_argument: str = "poses") -> tuple[str, np.ndarray]:
     """``(label, q (P, n) [rad, mm])`` from explicit joint values or a pose-set name (default: nominal)."""
-    if q_deg_mm is not None and poses is not None:
-        raise ArgumentError(q_argument, f"give joint values or a pose set ({poses_argument}), not both.")
+    check_not_both(q_deg_mm, q_argument, poses, poses_argument, "give the poses",
+                   " (joint values in deg / mm, or the name of a pose set)")
     if q_deg_mm is not None:
         return "given", joint_values(robot, q_deg_mm, q_argument)
     known = known_names(["nominal"], robot.pose_sets)
@@ -189,8 +190,10 @@ def resolve_region(robot: Robot, region=None, poses: str | None = None):
     trajectory CSV path (a pose per row, deg / mm: :func:`trajectory`) or an array / DataFrame of joint values
     (deg / mm). Default: the robot's ``working`` box if it has one and no ``poses`` are given, else the pose set
     ``poses`` (default: ``working``, else the nominal pose, with a ``UserWarning`` that the requirement is then
-    checked at one pose only).
+    checked at one pose only). ``region`` and ``poses`` together are refused.
     """
+    check_not_both(region, "region", poses, "poses", "say where the requirement holds",
+                   " (`region` also takes a pose set name)")
     regions = robot.regions
     if region is None:
         if poses is None and "working" in regions:

@@ -48,7 +48,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     radius_mm : float or sequence
         Radii for ``P(|dP| < r)`` [mm] (95 % intervals by ``ci``: ``wilson`` or ``exact``).
     angle_radius_rad, angle_radius_deg : float or sequence, optional
-        Radii for ``P(|rotation error| < r)``; default 0.002 rad.
+        Radii for ``P(|rotation error| < r)``, in rad or in deg (one of the two); default 0.002 rad.
     sigma_set, link_mode, deflection_mode, clearance, clearance_tilt_literal, sigma, exclude
         Error-model options (``sigma``: overrides in mm or deg).
     scheduler, jobs, chunk_size, progress
@@ -75,7 +75,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     """
     n, seed, radii, arad, hist_bins, keep, scheduler = _checked(
         n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm, keep_samples,
-        jobs, chunk_size, progress, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
+        jobs, chunk_size, progress, q_deg_mm, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
                                                            deflection_mode=deflection_mode, clearance=clearance,
                                                            exclude=exclude, sigma=sigma,
                                                            clearance_tilt_literal=clearance_tilt_literal))
@@ -96,7 +96,7 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
 
 
 def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm,
-             keep_samples, jobs, chunk_size, progress, poses, scheduler, model_options) -> tuple:
+             keep_samples, jobs, chunk_size, progress, q_deg_mm, poses, scheduler, model_options) -> tuple:
     """Every argument of :func:`simulate_errors` but the robot, checked by name; returns
     ``(n, seed, radii_mm, angle_radii_rad, hist_bins, keep_samples, scheduler)``."""
     n = inputs.check_count(n, "n", example="100000")
@@ -105,6 +105,8 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     if estimator is not None:
         inputs.check_choice(estimator, "estimator", ("auto", "plain", "paired", "importance"))
     radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
+    inputs.check_not_both(angle_radius_deg, "angle_radius_deg", angle_radius_rad, "angle_radius_rad",
+                          "give the radii of the rotation error", " (a list gives several radii)")
     arad = inputs.check_values([] if angle_radius_rad is None else angle_radius_rad, "angle_radius_rad",
                                inputs.check_positive, "rad", "0.002")
     arad += [np.deg2rad(a) for a in inputs.check_values([] if angle_radius_deg is None else angle_radius_deg,
@@ -129,6 +131,8 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     inputs.check_optional_flag(progress, "progress")
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    inputs.check_not_both(q_deg_mm, "q_deg_mm", poses, "poses", "give the poses",
+                          " (joint values in deg / mm, or the name of a pose set)")
     scheduler = inputs.check_scheduler(scheduler)
     return n, seed, radii, arad, hist_bins, keep, scheduler
 
@@ -147,7 +151,8 @@ class ErrorSimulation(JobResult):
     ----------
     mc : McResult
         Mean, standard deviation, extremes of dx, dy, dz [mm], ``|dP|``, reach change, Euler-angle errors [rad],
-        ``P(|dP| < r)`` with 95 % intervals; kept samples and histograms.
+        ``P(|dP| < r)`` with 95 % intervals (``mc.p_within[r]``, ``r`` one of the simulated radii [mm]; all of them:
+        :meth:`probability_frame`); kept samples and histograms.
     robot : Robot
     clearance_tilt_rad : float or None
     """
@@ -172,6 +177,14 @@ class ErrorSimulation(JobResult):
     def to_frame(self) -> pd.DataFrame:
         """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
         return self.mc.to_frame()
+
+    def probability_frame(self) -> pd.DataFrame:
+        """``P(|dP| < r)`` and ``P(|rotation error| < r)`` with their 95 % intervals, one row per pose and radius:
+        ``pose`` (from 1), ``error``, ``radius_mm`` / ``radius_deg``, ``p``, ``ci_low``, ``ci_high``
+        (:func:`tolalloc.montecarlo.radii.probability_frame`). Other radii: ``simulate_errors(radius_mm=[...])``."""
+        from tolalloc.montecarlo.radii import probability_frame
+
+        return probability_frame(self.mc)
 
     def summary(self) -> dict:
         """The content of ``mc_summary.json``; per-pose arrays are flattened when there is one pose."""
