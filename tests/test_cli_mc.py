@@ -43,7 +43,12 @@ def test_out_directory(tmp_path, capsys):
     assert main(["mc", "tool_changer", "--n", "2000", "--seed", "1", "--out", str(out), "--pose", "0,20,0,200,-20,0"]) == 0
     assert {p.name for p in out.iterdir()} == {"mc_table.csv", "mc_summary.json", "mc_scatter.png", MANIFEST}
     text = capsys.readouterr().out
-    assert "dp_reach_mm" in text and "P(|dp| < 0.25 mm)" in text
+    assert "dp_reach" in text and "mean_mm" in text and "std_deg" in text and "P(|dp| < 0.25 mm)" in text
+    import pandas as pd
+
+    table = pd.read_csv(out / "mc_table.csv")  # angles in their own deg columns, never beside mm values
+    assert set(table.loc[table["unit"] == "deg", "quantity"]) == {"dalpha", "dbeta", "dgamma"}
+    assert table.loc[table["unit"] == "deg", "mean_mm"].isna().all()
 
 
 @pytest.mark.parametrize("args", [

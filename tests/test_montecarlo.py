@@ -247,10 +247,15 @@ def test_proportion_ci_matches_scipy():
 def test_to_frame_table3_layout(model, robot):
     res = run_mc(model, robot.poses("working")[:2], 500, seed=0)
     df = res.to_frame()
-    assert list(df.columns) == ["pose", "quantity", "mean", "std", "max", "min"]
+    assert list(df.columns) == ["pose", "quantity", "unit", "mean_mm", "std_mm", "max_mm", "min_mm", "mean_deg",
+                                "std_deg", "max_deg", "min_deg"]
     assert len(df) == 2 * 8
-    row = df[(df.pose == 2) & (df.quantity == "dy_mm")].iloc[0]  # tables number poses from 1
-    assert row["std"] == res.std_mm[1, 1] and row["max"] == res.dp_max_mm[1, 1]
+    row = df[(df.pose == 2) & (df.quantity == "dy")].iloc[0]  # tables number poses from 1
+    assert row["unit"] == "mm" and np.isnan(row["std_deg"])
+    assert row["std_mm"] == res.std_mm[1, 1] and row["max_mm"] == res.dp_max_mm[1, 1]
+    ang = df[(df.pose == 1) & (df.quantity == "dbeta")].iloc[0]  # angles in deg, never in a mm column
+    assert ang["unit"] == "deg" and np.isnan(ang["std_mm"])
+    assert ang["std_deg"] == pytest.approx(np.rad2deg(res.angle_std_rad[0, 1]), rel=1e-12)
     assert res.labels["clearance"] is False and res.labels["sigma_set"] == "table2"
 
 

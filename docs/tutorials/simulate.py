@@ -19,7 +19,7 @@ import tolalloc
 
 sim = tolalloc.simulate_errors("tool_changer", N, seed=1, radius_mm=[25.0, 35.0])
 print(sim)                                          # P(|dP| < r) with 95 % intervals at the nominal pose
-print(sim.to_frame().to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+print(sim.to_frame().to_string(index=False, na_rep="", float_format=lambda x: f"{x:.4g}"))
 probs = sim.probability_frame()                    # pose x radius: radius_mm / radius_deg, p, ci_low, ci_high
 print(probs.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
 

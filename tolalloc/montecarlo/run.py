@@ -38,6 +38,7 @@ from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
 from tolalloc.montecarlo.streaming import HistSpec, McHistogram, Moments, proportion_ci
 from tolalloc.montecarlo.radii import RadiusTable
+from tolalloc.units import unit_columns
 
 __all__ = ["BLOCK_SIZE", "SUB_BLOCK", "FastChain", "pose_errors", "McResult", "run_mc", "proportion_ci",
            "sample_values", "generic_pose_errors", "McHistogram"]
@@ -167,17 +168,27 @@ class McResult:
     p_estimates_angle: dict | None = field(default=None, repr=False)
 
     def to_frame(self) -> pd.DataFrame:
-        """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
-        rows = []
+        """Table-3-style table: one row per pose (from 1) and quantity (``dp_reach``, ``dp_norm``, ``dx``, ``dy``,
+        ``dz``, then the X-Y-Z fixed Euler-angle errors ``dalpha``, ``dbeta``, ``dgamma``) with its ``unit`` and
+        mean, std, max, min in the ``_mm`` / ``_deg`` column pair (:func:`tolalloc.units.unit_columns`: position
+        rows in mm, angle rows in deg, the other column empty)."""
+        stats = ("mean", "std", "max", "min")
+        rows, length = [], []
         for i in range(self.q.shape[0]):
-            items = [("dp_reach_mm", *self.reach_mm[i]), ("dp_norm_mm", *self.norm_mm[i])]
-            for a, nm in enumerate(("dx_mm", "dy_mm", "dz_mm")):
+            items = [("dp_reach", *self.reach_mm[i]), ("dp_norm", *self.norm_mm[i])]
+            for a, nm in enumerate(("dx", "dy", "dz")):
                 items.append((nm, self.mean_mm[i, a], self.std_mm[i, a], self.dp_max_mm[i, a], self.dp_min_mm[i, a]))
-            for a, nm in enumerate(("dalpha_rad", "dbeta_rad", "dgamma_rad")):
-                items.append((nm, self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
-                              self.angle_max_rad[i, a], self.angle_min_rad[i, a]))
-            rows += [{"pose": i + 1, "quantity": it[0], "mean": it[1], "std": it[2], "max": it[3], "min": it[4]} for it in items]
-        return pd.DataFrame(rows)
+            for a, nm in enumerate(("dalpha", "dbeta", "dgamma")):
+                items.append((nm, *np.rad2deg([self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
+                                               self.angle_max_rad[i, a], self.angle_min_rad[i, a]])))
+            rows += [{"pose": i + 1, "quantity": it[0], "values": it[1:]} for it in items]
+            length += [nm not in ("dalpha", "dbeta", "dgamma") for nm, *_ in items]
+        values = np.array([r.pop("values") for r in rows], float).reshape(-1, len(stats))
+        df = pd.DataFrame(rows)
+        df["unit"] = np.where(length, "mm", "deg")
+        for k, st in enumerate(stats):
+            df = df.assign(**unit_columns(st, values[:, k], np.array(length, bool)))
+        return df[["pose", "quantity", "unit"] + [f"{st}_{u}" for u in ("mm", "deg") for st in stats]]
 
 
 # ----------------------------------------------------------------- driver

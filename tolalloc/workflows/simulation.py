@@ -222,7 +222,7 @@ class ErrorSimulation(JobResult):
         """What the command line prints."""
         res = self.mc
         out = [f"robot {self.robot.name}, n={res.n}, seed={res.seed}, {format_labels(res.labels)}",
-               res.to_frame().to_string(index=False, float_format=lambda x: f"{x:.6g}")]
+               res.to_frame().to_string(index=False, na_rep="", float_format=lambda x: f"{x:.6g}")]
         for r, v in res.p_within.items():
             out.append(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v))
         out += _angle_lines(res)
