@@ -66,7 +66,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     Returns
     -------
     CalibrationPlanDesign
-        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads.
+        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads;
+        ``allocate_tolerances(calibration=result)`` takes the result itself.
 
     Examples
     --------
