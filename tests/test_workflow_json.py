@@ -71,3 +71,5 @@ def test_plan_headline_gives_absolute_figures_and_says_what_the_floor_is():
     assert s["no_calibration_mm2"] == d.no_calibration_mm2
     assert list(s["unidentifiable_sigma_fraction"]) == list(plan.unidentifiable)
     assert json.loads(json.dumps(s)) == s
+    few = tolalloc.plan_calibration("tool_changer", 2, n_candidates=24)  # 6 rows < 9 registration unknowns
+    assert "(the same); no calibration" in few.headline()[1]

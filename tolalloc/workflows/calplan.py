@@ -228,7 +228,9 @@ class CalibrationPlanDesign(JobResult):
         """How much lower the designed plan's score is than the random plan's, in % of the random one's."""
         d = self.design
         pct = 100.0 * (d.random_score_mm2 - d.score_mm2) / d.random_score_mm2
-        return f"designed {pct:.2g} % lower" if pct >= 0 else f"designed {-pct:.2g} % higher"
+        if abs(pct) < 1e-6:  # rounding level: e.g. too few poses to see past the registration, both plans see nothing
+            return "the same"
+        return f"designed {pct:.2g} % lower" if pct > 0 else f"designed {-pct:.2g} % higher"
 
     def _floor_words(self) -> str:
         """The floor, what it is, and the two plans above it [mm^2]."""
