@@ -137,7 +137,58 @@ def test_unidentifiable_parameters_are_split_by_what_the_allocation_did(certifie
     held, loose = s["unidentifiable_held"], s["unidentifiable_loose"]
     assert held and loose and sorted(held + loose) == sorted(s["unidentifiable"])
     assert {status[n] for n in held} == {"must be held"} and {status[n] for n in loose} == {"loose (at t_max)"}
+    # not identifiable individually: each with its post-calibration sigma as a fraction of the manufactured one
+    frac = s["unidentifiable_sigma_fraction"]
+    assert list(frac) == s["unidentifiable"]
+    ratio = in_row_unit(frame, "sigma_post_calibration") / in_row_unit(frame, "sigma")  # Gaussian: prior = sigma
+    for name, f in frac.items():
+        assert f == pytest.approx(ratio[list(frame["parameter"]).index(name)], rel=1e-9) and 0 < f <= 1 + 1e-9
+    words = lambda names: ", ".join(f"{n} ({frac[n]:.2f})" for n in names)  # noqa: E731
     text = certified.text()
-    assert f"allocated tight, must be held in manufacturing: {', '.join(held)}" in text
-    assert f"loose (at the process limit t_max or the coarsest standard grade), which suffices: {', '.join(loose)}" in text
-    assert "(must be held in manufacturing):" not in text
+    assert "not identifiable individually by the plan (each enters a combination" in text
+    assert "as manufactured):" not in text  # the old heading, untrue for parameters reduced in combination
+    assert f"allocated tight, must be held in manufacturing: {words(held)}" in text
+    assert f"loose (at the process limit t_max or the coarsest standard grade), which suffices: {words(loose)}" in text
+
+
+def test_verified_means_the_end_to_end_monte_carlo_ran_and_passed(certified, plan_path):
+    assert certified.end_to_end is not None and certified.end_to_end.passed
+    assert certified.verified is True and certified.ok
+    unverified = allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", solver="certified",
+                                     snap=False, verify=False)
+    assert unverified.ok and unverified.verified is False  # as ToleranceAllocation.verified: False when none ran
+
+
+@pytest.fixture(scope="module")
+def designed():
+    return tolalloc.plan_calibration("tool_changer", 8, n_candidates=48)
+
+
+def test_the_plan_calibration_result_is_a_calibration(designed, tmp_path):
+    """The CalibrationPlanDesign itself is taken (its plan, no file), with the same result as its saved CSV."""
+    from tolalloc.workflows.calibrated import PLAN_IN_MEMORY
+    from tolalloc.workflows.html_command import allocation_command
+
+    kw = dict(poses="nominal", solver="certified", snap=False, verify=False)
+    job = allocate_tolerances("tool_changer", calibration=designed, **kw)
+    assert job.plan is designed.plan and job.plan_source == PLAN_IN_MEMORY and job.plan_file is None
+    assert job.summary()["plan_file"] is None and PLAN_IN_MEMORY in job.text()
+    designed.save(tmp_path / "plan.csv")
+    from_file = allocate_tolerances("tool_changer", calibration=tmp_path / "plan.csv", **kw)
+    assert from_file.plan_file == str(tmp_path / "plan.csv")
+    assert job.cost == pytest.approx(from_file.cost, rel=1e-9)
+    cli, python, notes = allocation_command(job)  # the reproduce command asks for the plan saved to a file
+    assert "--calibration PLAN.csv" in cli and "calibration='PLAN.csv'" in python
+    assert any("plan.save('PLAN.csv')" in n for n in notes)
+
+
+def test_a_plan_designed_for_another_robot_is_refused_in_one_line(designed):
+    from dataclasses import replace
+
+    other = replace(designed, robot=tolalloc.load_robot("ur10"))
+    with pytest.raises(tolalloc.TolallocError, match="designed for the robot 'ur10', but the allocation is for "
+                                                     "'tool_changer'") as err:
+        allocate_tolerances("tool_changer", calibration=other, poses="nominal", verify=False)
+    assert "\n" not in str(err.value)
+    with pytest.raises(tolalloc.TolallocError, match="expected the CalibrationPlanDesign plan_calibration returns"):
+        allocate_tolerances("tool_changer", calibration=3, poses="nominal", verify=False)

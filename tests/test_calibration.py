@@ -188,3 +188,28 @@ def test_planar_2r_designed_plan_is_the_closed_form_optimum(planar):
     post = posterior(split, d.plan)
     assert np.trace(post.cov_sys) == pytest.approx(2 / (1 / 0.04**2 + 2 / 0.01**2), rel=1e-10)
     assert d.relaxation_bound_mm2 <= d.score_mm2 * (1 + 1e-9)
+
+
+def test_floor_splits_into_the_unidentifiable_part_and_noise(planar):
+    """Candidates all at t2 = 0: dl1 and dl2 push the tool along the same line, so only dl1 + dl2 is identifiable.
+    With equal priors s0 the part of the floor no candidate identifies is ``s0^2 mean |J n|^2`` over the evaluation
+    poses, n = (1, -1) / sqrt(2); it does not depend on the noise, and the floor falls to it as the noise goes."""
+    from tolalloc.calibration.design import design_plan
+
+    s0 = 0.04
+    model = build_error_model(planar, sigma={"dl1": s0, "dl2": s0}, exclude=("joint_drive", "axis_deflection"))
+    split = split_errors(model, {"kinds": {"joint_drive": {"repeatability_deg": 0.0}}})
+    cand = np.column_stack([np.deg2rad(np.linspace(-60, 60, 9)), np.zeros(9)])
+    q_eval = np.deg2rad([[0.0, 90.0], [30.0, -45.0]])
+    n = np.array([1.0, -1.0]) / np.sqrt(2)
+    J = model.jacobian(q_eval)[:, :3, :]
+    null_floor = s0**2 * np.mean(np.sum((J @ n) ** 2, axis=1))
+    no_cal = s0**2 * np.mean(np.sum(J**2, axis=(1, 2)))
+    floors = []
+    for noise in (0.01, 1e-3):
+        d = design_plan(split, 2, cand, q_eval, noise_mm=noise, registration=False)
+        assert d.floor_unidentifiable_mm2 == pytest.approx(null_floor, rel=1e-9)
+        assert d.no_calibration_mm2 == pytest.approx(no_cal, rel=1e-12)
+        assert null_floor < d.floor_mm2 <= d.score_mm2 < no_cal
+        floors.append(d.floor_mm2 - null_floor)
+    assert floors[1] < 0.02 * floors[0]  # the noise part shrinks with the noise variance (x 0.01)

@@ -64,7 +64,7 @@ def test_few_poses_name_unidentifiable(tmp_path, capsys):
     out = tmp_path / "p.csv"
     assert main(["calplan", "tool_changer", "--n-poses", "2", "--n-candidates", "64", "--out", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "not identifiable with this plan" in text and "dth1" in text
+    assert "not identifiable individually by the plan" in text and "dth1 (1.00)" in text
 
 
 def test_allocate_with_repeatability_grades_from_the_costs_file(tc, tmp_path, capsys):

@@ -52,9 +52,24 @@ def test_analysis_text_labels_each_pose_value():
     assert line == "P(|dp| < 0.25 mm) = per pose " + ", ".join(f"{i + 1}: {v:.6g}" for i, v in enumerate(p))
 
 
-def test_plan_headline_compares_plans_above_the_floor():
+def test_plan_headline_gives_absolute_figures_and_says_what_the_floor_is():
     plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=24)
     d = plan.design
-    assert plan.headline()[1] == ("post-calibration variance above the all-candidates floor [mm^2]: designed "
-                                  f"{d.score_mm2 - d.floor_mm2:.4g}, random {d.random_score_mm2 - d.floor_mm2:.4g} "
-                                  f"(floor {d.floor_mm2:.6g})")
+    pct = 100 * (d.random_score_mm2 - d.score_mm2) / d.random_score_mm2
+    assert plan.headline()[1] == ("mean post-calibration position variance (systematic part) [mm^2]: designed "
+                                  f"{d.score_mm2:.6g}, random {d.random_score_mm2:.6g} (designed {pct:.2g} % lower); "
+                                  f"no calibration {d.no_calibration_mm2:.6g}")
+    assert plan.headline()[2] == (f"floor (all 24 candidates measured) {d.floor_mm2:#.6g} mm^2, of which "
+                                  f"{d.floor_unidentifiable_mm2:#.6g} in parameter combinations no candidate "
+                                  "identifies (the rest: noise and repeatability); above the floor: designed "
+                                  f"{d.score_mm2 - d.floor_mm2:.4g}, random "
+                                  f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2")
+    assert plan.headline()[2] in plan.text()
+    assert 0 < d.floor_unidentifiable_mm2 <= d.floor_mm2 <= d.score_mm2 < d.no_calibration_mm2
+    s = plan.summary()
+    assert s["floor_unidentifiable_mm2"] == d.floor_unidentifiable_mm2
+    assert s["no_calibration_mm2"] == d.no_calibration_mm2
+    assert list(s["unidentifiable_sigma_fraction"]) == list(plan.unidentifiable)
+    assert json.loads(json.dumps(s)) == s
+    few = tolalloc.plan_calibration("tool_changer", 2, n_candidates=24)  # 6 rows < 9 registration unknowns
+    assert "(the same); no calibration" in few.headline()[1]

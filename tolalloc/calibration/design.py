@@ -27,7 +27,7 @@ from scipy.stats import qmc
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.calibration.plan import CalibrationPlan, make_plan
-from tolalloc.calibration.posterior import nuisance_columns, posterior
+from tolalloc.calibration.posterior import ID_TOL, nuisance_columns, posterior
 from tolalloc.calibration.relax import METHODS, relax
 from tolalloc.calibration.split import ErrorSplit
 
@@ -62,6 +62,13 @@ class PlanDesign:
         ``"cvxpy/Clarabel"`` or ``"Frank-Wolfe"`` (the fallback).
     relaxation_note : str
         How the relaxation ended (rounds, iterations, gap; for the fallback, what failed in cvxpy).
+    floor_unidentifiable_mm2 : float
+        The part of ``floor_mm2`` along the parameter combinations no candidate identifies (the null space of the
+        candidates' information, relative threshold :data:`~tolalloc.calibration.posterior.ID_TOL`): what a plan
+        of any number of these poses, measured without noise, would leave [mm^2]. The rest of the floor is
+        measurement noise and random parts.
+    no_calibration_mm2 : float
+        The same score without calibration (the prior) [mm^2].
     """
 
     plan: CalibrationPlan
@@ -74,6 +81,8 @@ class PlanDesign:
     relaxation_value_mm2: float = float("nan")
     relaxation_method: str = ""
     relaxation_note: str = ""
+    floor_unidentifiable_mm2: float = float("nan")
+    no_calibration_mm2: float = float("nan")
 
 
 def candidate_poses(robot, n: int, region: str = "limits", *, seed: int = 0) -> np.ndarray:
@@ -179,6 +188,19 @@ def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval:
                                noise_deg=noise_deg, registration=registration)
     plan = mk(chosen)
     rnd = mk(np.random.default_rng(seed).choice(C, n_poses, replace=False))
-    floor = _score_info(np.diag(prior) + np.einsum("cri,crj->ij", G, G) + 1e-10 * np.eye(len(prior)), B)
+    GtG = np.einsum("cri,crj->ij", G, G)
+    floor = _score_info(np.diag(prior) + GtG + 1e-10 * np.eye(len(prior)), B)
     return PlanDesign(plan, plan_score(split, plan, q_eval), rnd, plan_score(split, rnd, q_eval), floor, rel.bound,
-                      time.perf_counter() - t0, rel.value, rel.method, rel.note)
+                      time.perf_counter() - t0, rel.value, rel.method, rel.note, _null_floor(GtG, prior, B),
+                      float(np.sum(B**2)))
+
+
+def _null_floor(info: np.ndarray, prior: np.ndarray, B: np.ndarray) -> float:
+    """The score left along the null space N of the candidates' information ``info`` (D, D), the limit of the floor
+    as the information on its range grows without bound: ``tr(B^T N (N^T P N)^+ N^T B)``, P = diag(``prior``)."""
+    lam, V = np.linalg.eigh(info)
+    N = V[:, lam <= ID_TOL * max(lam.max(initial=0.0), 1e-300)]
+    if not N.shape[1]:
+        return 0.0
+    NB = N.T @ B
+    return float(np.trace(NB.T @ np.linalg.lstsq(N.T @ (prior[:, None] * N), NB, rcond=None)[0]))

@@ -54,7 +54,9 @@ class Posterior:
     estimated : array of int
         Indices of the estimated parameters.
     unidentifiable : tuple of str
-        Estimated parameters involved in a direction the plan cannot see (they keep (part of) their prior).
+        Estimated parameters involved in a direction the plan cannot see: not identifiable individually (only in
+        combinations, or not at all); each keeps its prior along that direction, so its post-calibration sigma lies
+        between a fraction of its prior and all of it (:attr:`sigma_fraction`).
     """
 
     split: ErrorSplit
@@ -74,6 +76,13 @@ class Posterior:
     def sigma_post(self) -> np.ndarray:
         """Post-calibration sigma of the systematic part per parameter, shape (K,) [mm or rad]."""
         return np.sqrt(np.maximum(np.diag(self.cov_sys), 0.0))
+
+    @property
+    def sigma_fraction(self) -> np.ndarray:
+        """Per parameter: post-calibration sigma of the systematic part over its prior (manufactured) sigma, shape
+        (K,); 1 where the calibration leaves it as manufactured, nan without a systematic part."""
+        prior = np.sqrt(self.prior_var)
+        return np.divide(self.sigma_post, prior, out=np.full(len(prior), np.nan), where=prior > 0)
 
     def tool_covariance(self, q, rows=slice(0, 3)) -> np.ndarray:
         """Linear post-calibration covariance of the tool error at poses ``q`` (P, n) -> (P, 3, 3)."""

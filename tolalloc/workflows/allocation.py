@@ -8,13 +8,16 @@ no correction loop). The result (:class:`ToleranceAllocation`) holds every stage
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.progress import StageBar, show_progress
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
-from tolalloc.workflows.calibrated import calibrated_allocation
+from tolalloc.workflows.calibrated import PLAN_IN_MEMORY, calibrated_allocation
+from tolalloc.workflows.calplan import CalibrationPlanDesign
 
 __all__ = ["allocate_tolerances", "ESTIMATORS", "CALIBRATED_ESTIMATORS", "DEFAULT_CORRECTION_ROUNDS"]
 
@@ -63,9 +66,9 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         exact stage).
     snap : bool
         Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
-    calibration : str or path, optional
-        A calibration plan CSV (:func:`plan_calibration`): allocate for the accuracy after calibration (what runs,
-        options refused: :mod:`tolalloc.workflows.calibrated`); returns a :class:`CalibratedToleranceAllocation`.
+    calibration : str, path or CalibrationPlanDesign, optional
+        A :func:`plan_calibration` result or the plan CSV it saved: allocate for the accuracy after calibration (what
+        runs, options refused: :mod:`tolalloc.workflows.calibrated`); returns a :class:`CalibratedToleranceAllocation`.
     verify, correction : bool
         Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` (default on)
         re-solves with raised targets where a pose is not demonstrated (at most ``correction_rounds``, default 2).
@@ -113,8 +116,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
         if calibration is not None:
             bar.stage("calibration-aware allocation")
-            return calibrated_allocation(model, label, box, q, calibration, costs_path=costs, exact=solver == "exact",
-                                         **run, **kw)
+            return calibrated_allocation(model, label, box, q, *_calibration_plan(calibration, rob), costs_path=costs,
+                                         exact=solver == "exact", **run, **kw)
         return _allocate(model, label, box, q, kw, solver=solver, correction=correction,
                          correction_rounds=correction_rounds, scheduler=scheduler, bar=bar, **run)
 
@@ -225,7 +228,7 @@ def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, sol
             "correction_rounds": None if correction_rounds is None else int(correction_rounds),
             "coverage_n": None if coverage_n is None else int(coverage_n), "angle_step_deg": angle_step_deg,
             "tool": tool, "trust_units": bool(trust_units),
-            "calibration": None if calibration is None else str(calibration)}
+            "calibration": None if calibration is None else _plan_source(calibration)}
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:
@@ -279,6 +282,21 @@ def _costs(costs, model, z, uniform):
     return load_costs(costs, model, z=z, distribution=dist)
 
 
+def _plan_source(calibration) -> str:
+    """Where a calibration plan comes from: its file, or :data:`PLAN_IN_MEMORY` for a plan_calibration result."""
+    return PLAN_IN_MEMORY if isinstance(calibration, CalibrationPlanDesign) else str(calibration)
+
+
+def _calibration_plan(calibration, robot) -> tuple:
+    """``(plan, source)``: the plan of a :class:`CalibrationPlanDesign` (checked against ``robot``) or the plan read
+    from a plan CSV, and where it comes from (:func:`_plan_source`)."""
+    from tolalloc.calibration.plan import read_plan
+
+    if isinstance(calibration, CalibrationPlanDesign):
+        return calibration.plan_for(robot), PLAN_IN_MEMORY
+    return read_plan(calibration, robot), _plan_source(calibration)
+
+
 #: correction rounds at most (each re-solves the allocation and re-runs the verification)
 MAX_CORRECTION_ROUNDS = 50
 
@@ -293,7 +311,11 @@ def _check_more(snap, correction, correction_rounds, poses, costs, calibration, 
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     costs = inputs.check_costs_file(costs)
-    calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
+    if not isinstance(calibration, (CalibrationPlanDesign, str, os.PathLike, type(None))):
+        raise ArgumentError("calibration", "expected the CalibrationPlanDesign plan_calibration returns, or the path "
+                            f"of a calibration plan CSV (a str or pathlib.Path), got {inputs.shown(calibration)}.")
+    if not isinstance(calibration, CalibrationPlanDesign):
+        calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
     scheduler = inputs.check_scheduler(scheduler)
     return (costs, calibration, scheduler,
             *_correction_options(calibration, correction, correction_rounds, scheduler, estimator, angle_radius_deg))

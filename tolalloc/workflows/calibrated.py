@@ -20,10 +20,13 @@ import numpy as np
 from tolalloc.outputs import atomic_output, write_json
 from tolalloc.workflows.base import JobResult
 
-__all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs", "N_ROBOTS_RANGE"]
+__all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs", "N_ROBOTS_RANGE",
+           "PLAN_IN_MEMORY"]
 
 #: simulated calibrations of the end-to-end Monte Carlo: ``n_mc`` clipped to this range (each is a nonlinear fit)
 N_ROBOTS_RANGE = (200, 4000)
+#: ``plan_source`` of a plan given as the result of :func:`~tolalloc.workflows.plan_calibration` (not a file)
+PLAN_IN_MEMORY = "plan_calibration result (not saved)"
 
 
 def split_from_costs(model, path):
@@ -44,10 +47,11 @@ def split_from_costs(model, path):
         raise ArgumentError("costs", f"{path}: {exc}") from None
 
 
-def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify, n_mc, seed, estimator, coverage_n,
-                          inputs_record, exact: bool = True, snap: bool = True, angle_step_deg: float | None = None,
-                          **kw):
-    """Calibration-aware allocation after the plan in ``plan_path``: certified, then (``exact``) exact, at the poses
+def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs_path, verify, n_mc, seed, estimator,
+                          coverage_n, inputs_record, exact: bool = True, snap: bool = True,
+                          angle_step_deg: float | None = None, **kw):
+    """Calibration-aware allocation after the :class:`~tolalloc.calibration.plan.CalibrationPlan` ``plan`` (for
+    ``model.robot``; ``plan_source``: its file, or :data:`PLAN_IN_MEMORY`): certified, then (``exact``) exact, at the poses
     ``q`` (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
     (ISO 286 grades, classes, ``angle_step_deg`` steps) chosen over the same poses or box
     (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`), the design to build; the end-to-end Monte
@@ -55,13 +59,11 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
     worst poses; ``estimator`` auto, plain or paired) when ``verify`` and the plan measures positions."""
     from tolalloc.allocate import build_problem
     from tolalloc.allocate.calibrated_design import allocate_with_calibration
-    from tolalloc.calibration.plan import read_plan
     from tolalloc.workflows.inputs import default_pose_set, resolve_poses
 
     if box is not None:  # the initial active set: the robot's pose set (the poses inside the box are kept)
         q = resolve_poses(model.robot, None, default_pose_set(model.robot))[1]
     problem = build_problem(model, q, **kw)
-    plan = read_plan(plan_path, model.robot)
     split = split_from_costs(model, costs_path)
     res = allocate_with_calibration(problem, plan, split=split, region=box, exact=exact, coverage_n=coverage_n,
                                     seed=seed)
@@ -77,7 +79,7 @@ def calibrated_allocation(model, label, box, q, plan_path, *, costs_path, verify
         n = int(np.clip(int(n_mc), *N_ROBOTS_RANGE))
         built = std if std is not None and std.design.ok else None
         chk = verify_calibrated_design(res, standard=built, n_robots=n, seed=seed, estimator=estimator)
-    return CalibratedToleranceAllocation(res, plan, str(plan_path), label, chk, n, inputs_record, std)
+    return CalibratedToleranceAllocation(res, plan, plan_source, label, chk, n, inputs_record, std)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -96,6 +98,7 @@ class CalibratedToleranceAllocation(JobResult):
         the region search and its coverage, the designs without calibration, the post-calibration statistics.
     plan : CalibrationPlan
     plan_source : str
+        The plan's file, or :data:`PLAN_IN_MEMORY` for a plan given as a :func:`plan_calibration` result.
     label : str
         Where the requirement holds: the region or pose-set name.
     end_to_end : EndToEnd or None
@@ -125,6 +128,11 @@ class CalibratedToleranceAllocation(JobResult):
     @property
     def problem(self):
         return self.result.problem
+
+    @property
+    def plan_file(self) -> str | None:
+        """The plan's file; None for a plan given as a :func:`plan_calibration` result."""
+        return None if self.plan_source == PLAN_IN_MEMORY else self.plan_source
 
     @property
     def built(self):
@@ -166,6 +174,20 @@ class CalibratedToleranceAllocation(JobResult):
         if self.built is not None and not self.standard.ok:  # the standard design to build falls short somewhere
             return False
         return self.end_to_end is None or self.end_to_end.passed
+
+    @property
+    def verified(self) -> bool:
+        """Whether the design to build passed the end-to-end Monte Carlo (simulated robots, each calibrated at the
+        plan's poses): it ran and :attr:`ok`, as :attr:`ToleranceAllocation.verified`; False when it did not run
+        (``verify=False``, a pose-measurement plan or no design).
+
+        Passed (:attr:`~tolalloc.verify.calibrated_worst.EndToEnd.passed`) means: for the exact or standard design
+        every checked pose is ``demonstrated`` (the interval of ``P_hat`` lies at or above p) or ``consistent``
+        (the interval reaches p: the Monte Carlo cannot tell the design from one that meets p exactly, which is
+        what an exact design, built to meet p with equality at its worst poses, is expected to show); the certified
+        design needs ``demonstrated`` at every pose. In both cases the linear prediction must lie nowhere above the
+        interval."""
+        return self.end_to_end is not None and self.ok
 
     @property
     def writable(self) -> bool:
@@ -285,7 +307,7 @@ class CalibratedToleranceAllocation(JobResult):
 
     def summary(self) -> dict:
         """The content of ``summary.json``."""
-        from tolalloc.workflows.calibrated_table import unidentifiable_groups
+        from tolalloc.workflows.calibrated_table import unidentifiable_fractions, unidentifiable_groups
 
         s = self.result.summary()
         cert = self.result.certified
@@ -302,12 +324,14 @@ class CalibratedToleranceAllocation(JobResult):
         s["built"] = {"design": "standard" if b is not None else s["design"], "cost": self.cost if s["cost"] is not None
                       else None, "standard": b is not None}
         s["cost"] = s["built"]["cost"]  # as in the plain allocation's summary: the cost of the design to build
-        held, loose = [], []
+        held, loose, frac = [], [], {}
         if self.result.design.ok and s["unidentifiable"]:
             held, loose, _ = unidentifiable_groups(self.to_frame(), s["unidentifiable"])
-        s.update(unidentifiable_held=held, unidentifiable_loose=loose, continuous_ok=s["ok"], ok=self.ok)
+            frac = unidentifiable_fractions(self)
+        s.update(unidentifiable_held=held, unidentifiable_loose=loose, unidentifiable_sigma_fraction=frac,
+                 continuous_ok=s["ok"], ok=self.ok)
         return {**s, "solver_requested": self.inputs.get("solver", "exact"), "pose_set": self.label,
-                "plan_file": self.plan_source}
+                "plan_file": self.plan_file}
 
     def text(self) -> str:
         """What the command line prints (:func:`tolalloc.workflows.calibrated_text.report_text`)."""

@@ -19,11 +19,17 @@ import pandas as pd
 from tolalloc.allocate.result import parameter_columns
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups"]
+__all__ = ["calibrated_frame", "CALIBRATED_TEXT_COLUMNS", "status_groups", "unidentifiable_groups",
+           "unidentifiable_fractions", "with_fractions", "UNIDENTIFIABLE_NOTE"]
 
 #: columns printed after the core ones (:data:`tolalloc.report.tables.TABLE_COLUMNS`)
 CALIBRATED_TEXT_COLUMNS = ["tol_no_calibration_mm", "tol_no_calibration_deg", "sigma_post_calibration_mm",
                            "sigma_post_calibration_deg", "status"]
+
+#: what "not identifiable" means, and what the number after each name is (the printed texts' heading)
+UNIDENTIFIABLE_NOTE = ("not identifiable individually by the plan (each enters a combination of parameters the plan "
+                       "cannot see, or no measurement sees it); in brackets its post-calibration sigma as a fraction "
+                       "of the manufactured one, 1.00 = left as manufactured")
 
 
 def _baseline(res):
@@ -52,6 +58,28 @@ def _coarsest_grade(status: list, params, b, std) -> list:
             for k, (st, p) in enumerate(zip(status, params))]
 
 
+def _built(job) -> tuple:
+    """``(design, posterior)`` of the design to build: the standard one when found, else the continuous one."""
+    b, res = job.built, job.result
+    return (b.design, b.post) if b is not None and b.post is not None else (res.design, res.post)
+
+
+def unidentifiable_fractions(job) -> dict:
+    """``{parameter: post-calibration sigma / manufactured sigma}`` of the design to build, for the parameters the
+    plan cannot identify (:attr:`tolalloc.calibration.posterior.Posterior.sigma_fraction`)."""
+    names = job.result.summary().get("unidentifiable") or []
+    post = _built(job)[1]
+    if post is None:
+        return {}
+    frac = dict(zip(job.problem.model.names, post.sigma_fraction))
+    return {n: float(frac[n]) for n in names}
+
+
+def with_fractions(names, fractions: dict) -> str:
+    """``dl1 (1.00), dd4 (0.39)``: the names, each with its sigma fraction."""
+    return ", ".join(f"{n} ({fractions[n]:.2f})" if n in fractions else n for n in names)
+
+
 def calibrated_frame(job) -> pd.DataFrame:
     """Tolerance table of a :class:`~tolalloc.workflows.CalibratedToleranceAllocation` (module docstring)."""
     from tolalloc.allocate.calibrated import parameter_status
@@ -66,7 +94,7 @@ def calibrated_frame(job) -> pd.DataFrame:
     K = len(params)
     nan = np.full(K, np.nan)
     b, std = job.built, job.standard
-    build, build_post = (b.design, b.post) if b is not None and b.post is not None else (d, post)
+    build, build_post = _built(job)
     rounded = std.rounded if std is not None else None
     base = _baseline(res)
     cols = parameter_columns(pr)

@@ -59,20 +59,23 @@ def _standard_lines(job) -> list[str]:
 
 
 def _unidentifiable_lines(job, frame) -> list[str]:
-    """The parameters the plan cannot identify, by what the allocation did with them."""
-    from tolalloc.workflows.calibrated_table import unidentifiable_groups
+    """The parameters the plan cannot identify, by what the allocation did with them, each with its post-calibration
+    sigma as a fraction of the manufactured one."""
+    from tolalloc.workflows.calibrated_table import (UNIDENTIFIABLE_NOTE, unidentifiable_fractions,
+                                                     unidentifiable_groups, with_fractions)
 
     unid = job.result.summary().get("unidentifiable") or []
     if not unid:
         return []
     held, loose, other = unidentifiable_groups(frame, unid)
-    out = ["", "not identifiable by the plan (the calibration leaves them as manufactured):"]
+    frac = unidentifiable_fractions(job)
+    out = ["", f"{UNIDENTIFIABLE_NOTE}:"]
     if held:
-        out.append(f"  allocated tight, must be held in manufacturing: {', '.join(held)}")
+        out.append(f"  allocated tight, must be held in manufacturing: {with_fractions(held, frac)}")
     if loose:
         out.append(f"  loose (at the process limit t_max or the coarsest standard grade), which suffices: "
-                   f"{', '.join(loose)}")
+                   f"{with_fractions(loose, frac)}")
     if other:
         named = zip(frame["parameter"], frame["status"])
-        out.append(f"  other: {', '.join(f'{n} ({s})' for n, s in named if n in other)}")
+        out.append(f"  other: {', '.join(f'{n} ({s}, {frac[n]:.2f})' if n in frac else f'{n} ({s})' for n, s in named if n in other)}")
     return out

@@ -24,6 +24,14 @@ NOISE_MM_RANGE = (1e-4, 1e3)
 NOISE_DEG_RANGE = (1e-6, 10.0)
 
 
+def _check_tool_moves(model, q_eval, rob, ev: str) -> None:
+    """Refuse a robot whose tool point no error parameter moves at the evaluation poses (nothing to calibrate)."""
+    if not np.any(np.abs(model.jacobian(q_eval)[:, :3, :]) > 1e-9):
+        raise ArgumentError("robot", f"{rob.name!r}: no error parameter moves the tool point at the {ev} poses (the "
+                            "tool lies on every joint axis), so a calibration has nothing to reduce; expected a robot "
+                            "whose tool point is off its joint axes (a tool offset or links), or other eval_poses.")
+
+
 @inputs.honours_trust_units
 def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
                      n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
@@ -67,7 +75,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     Returns
     -------
     CalibrationPlanDesign
-        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads.
+        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads;
+        ``allocate_tolerances(calibration=result)`` takes the result itself.
 
     Examples
     --------
@@ -101,10 +110,7 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     model = inputs.error_model(rob, sigma_set=sigma_set)
     split = split_from_costs(model, costs)
     ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
-    if not np.any(np.abs(model.jacobian(q_eval)[:, :3, :]) > 1e-9):
-        raise ArgumentError("robot", f"{rob.name!r}: no error parameter moves the tool point at the {ev} poses (the "
-                            "tool lies on every joint axis), so a calibration has nothing to reduce; expected a robot "
-                            "whose tool point is off its joint axes (a tool offset or links), or other eval_poses.")
+    _check_tool_moves(model, q_eval, rob, ev)
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                     registration=registration, seed=seed)
@@ -113,8 +119,10 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
                                             prob=prob, random_plans=random_plans, measurement=measurement,
                                             noise_mm=noise_mm, registration=registration, seed=seed)
-    unid = tuple(posterior(split, d.plan if alloc is None else alloc.plan).unidentifiable)
-    return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison)
+    post = posterior(split, d.plan if alloc is None else alloc.plan)
+    unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
+    return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
+                                 unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))
 
 
 def _check_unused(for_allocation: bool, measurement: str, **given) -> None:
@@ -185,11 +193,15 @@ class CalibrationPlanDesign(JobResult):
     region, eval_poses : str
     n_candidates : int
     unidentifiable : tuple of str
-        Parameters the plan cannot identify (they keep their manufacturing tolerance).
+        Parameters the plan cannot identify individually (each enters a combination of parameters the plan cannot
+        see, or no measurement sees it).
     for_allocation : PlanForAllocation or None
         With ``for_allocation=True``: the plan designed for the allocation (the one saved) and that allocation.
     comparison : PlanComparison or None
         Its worst-pose post-calibration P against random plans of the same size.
+    unidentifiable_sigma_fraction : tuple of float
+        Per parameter of ``unidentifiable``: its post-calibration sigma as a fraction of the manufactured one (1: the
+        calibration leaves it as manufactured; below 1: reduced through the combinations the plan does see).
 
     Examples
     --------
@@ -208,6 +220,7 @@ class CalibrationPlanDesign(JobResult):
     for_allocation: object = None
     comparison: object = None
     inputs: dict = field(default_factory=dict)
+    unidentifiable_sigma_fraction: tuple = ()
 
     @property
     def plan(self):
@@ -218,12 +231,39 @@ class CalibrationPlanDesign(JobResult):
     def ok(self) -> bool:
         return True
 
+    def plan_for(self, robot):
+        """The plan, checked for an allocation on ``robot``: designed for a robot of its name and joints, poses
+        within its limits (``allocate_tolerances(calibration=design)``)."""
+        if self.robot.name != robot.name or self.robot.n_joints != robot.n_joints:
+            raise ArgumentError("calibration", f"the plan was designed for the robot {self.robot.name!r}, but the "
+                                f"allocation is for {robot.name!r}; design a plan for this robot "
+                                f"(tolalloc.plan_calibration({robot.name!r}, n_poses)) and give it as calibration.")
+        robot.check_q(self.plan.q, "calibration plan poses")
+        return self.plan
+
     def headline(self) -> list[str]:
         d = self.design
         return [f"robot: {self.robot.name}   {d.plan.n_poses}-pose plan of {self.n_candidates} candidates "
                 f"({self.region}), evaluated at the {self.eval_poses} poses",
-                f"post-calibration variance above the all-candidates floor [mm^2]: designed "
-                f"{d.score_mm2 - d.floor_mm2:.4g}, random {d.random_score_mm2 - d.floor_mm2:.4g} (floor {d.floor_mm2:.6g})"]
+                f"mean post-calibration position variance (systematic part) [mm^2]: designed {d.score_mm2:.6g}, random "
+                f"{d.random_score_mm2:.6g} ({self._lower_pct()}); no calibration {d.no_calibration_mm2:.6g}",
+                self._floor_words()]
+
+    def _lower_pct(self) -> str:
+        """How much lower the designed plan's score is than the random plan's, in % of the random one's."""
+        d = self.design
+        pct = 100.0 * (d.random_score_mm2 - d.score_mm2) / d.random_score_mm2
+        if abs(pct) < 1e-6:  # rounding level: e.g. too few poses to see past the registration, both plans see nothing
+            return "the same"
+        return f"designed {pct:.2g} % lower" if pct > 0 else f"designed {-pct:.2g} % higher"
+
+    def _floor_words(self) -> str:
+        """The floor, what it is, and the two plans above it [mm^2]."""
+        d = self.design
+        return (f"floor (all {self.n_candidates} candidates measured) {d.floor_mm2:#.6g} mm^2, of which "
+                f"{d.floor_unidentifiable_mm2:#.6g} in parameter combinations no candidate identifies (the rest: "
+                f"noise and repeatability); above the floor: designed {d.score_mm2 - d.floor_mm2:.4g}, random "
+                f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2")
 
     def to_frame(self) -> pd.DataFrame:
         """The plan: one row per measurement pose, joint values in deg / mm."""
@@ -235,7 +275,9 @@ class CalibrationPlanDesign(JobResult):
                 "region": self.region, "eval_poses": self.eval_poses, "measurement": d.plan.measurement,
                 "noise_mm": d.plan.noise_mm, "score_mm2": d.score_mm2, "random_score_mm2": d.random_score_mm2,
                 "floor_mm2": d.floor_mm2, "relaxation_bound_mm2": d.relaxation_bound_mm2,
+                "floor_unidentifiable_mm2": d.floor_unidentifiable_mm2, "no_calibration_mm2": d.no_calibration_mm2,
                 "relaxation_method": d.relaxation_method, "unidentifiable": list(self.unidentifiable),
+                "unidentifiable_sigma_fraction": dict(zip(self.unidentifiable, self.unidentifiable_sigma_fraction)),
                 "for_allocation": None if self.for_allocation is None else {
                     "cost": float(self.for_allocation.result.cost), "start_cost": float(self.for_allocation.start_cost),
                     "rounds": len(self.for_allocation.history), "message": self.for_allocation.message()},
@@ -246,19 +288,20 @@ class CalibrationPlanDesign(JobResult):
         d = self.design
         out = [f"robot: {self.robot.name}   {d.plan.n_poses} poses of {self.n_candidates} candidates ({self.region}), "
                f"evaluated at the {self.eval_poses} poses; {d.plan.measurement} measurement, noise {d.plan.noise_mm:g} mm",
-               f"mean post-calibration variance of the systematic part [mm^2]: designed {d.score_mm2:.6g}, "
-               f"random {d.random_score_mm2:.6g}; all {self.n_candidates} candidates {d.floor_mm2:.6g}; "
+               f"mean post-calibration position variance of the systematic part [mm^2]: designed {d.score_mm2:.6g}, "
+               f"random {d.random_score_mm2:.6g} ({self._lower_pct()}); no calibration {d.no_calibration_mm2:.6g}; "
                f"relaxation lower bound {d.relaxation_bound_mm2:.6g}",
                f"relaxation: {d.relaxation_method} ({d.relaxation_note}); value {d.relaxation_value_mm2:.6g} mm^2",
-               f"above the all-candidates floor: designed {d.score_mm2 - d.floor_mm2:.4g}, random "
-               f"{d.random_score_mm2 - d.floor_mm2:.4g} mm^2   ({d.time_s:.2f} s)"]
+               f"{self._floor_words()}   ({d.time_s:.2f} s)"]
         if self.for_allocation is not None:
             out.append(self.for_allocation.message())
         if self.comparison is not None:
             out.append(self.comparison.message())
         if self.unidentifiable:
-            out.append(f"not identifiable with this plan (keep their manufacturing tolerance): "
-                       f"{', '.join(self.unidentifiable)}")
+            from tolalloc.workflows.calibrated_table import UNIDENTIFIABLE_NOTE, with_fractions
+
+            frac = dict(zip(self.unidentifiable, self.unidentifiable_sigma_fraction))
+            out.append(f"{UNIDENTIFIABLE_NOTE}: {with_fractions(self.unidentifiable, frac)}")
         return "\n".join(out)
 
     def save(self, path) -> list[str]:
