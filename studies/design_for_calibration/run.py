@@ -176,7 +176,7 @@ The designed plan is cheaper than the random one at {wins} of {len(piv)} pose co
 
 Cost {s['cost']:.4f} against {s['cost_no_calibration']:.4f} without calibration (saving {s['saving_pct']:.1f} %);
 design {'certified' if res.certified else 'NOT certified'} (largest lambda_max / bound {s['ratio']:.6f}).
-Not identifiable by the plan: {', '.join(s['unidentifiable'])}.
+Not identifiable individually by the plan (only in combinations, or not seen at all): {', '.join(s['unidentifiable'])}.
 
 {md(table)}
 
