@@ -423,3 +423,12 @@ def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagno
     banner = page.text("verdict")
     assert banner.startswith("INCONCLUSIVE") and "NO EFFECT FOUND" not in banner
     assert "every model misses the test file" in banner.lower() and "Safe to use: " in banner
+
+
+def test_an_input_named_in_the_record_and_by_the_run_is_listed_once():
+    """coverage_n is in the call's record and in what the run used: the Inputs list shows it once, as used."""
+    from tolalloc.workflows.html import _inputs_pairs
+
+    pairs = _inputs_pairs({"robot": "tool_changer", "coverage_n": 100000, "seed": 0}, [("coverage_n", 5000), ("z", "2")])
+    assert [k for k, _ in pairs] == ["robot", "coverage_n", "seed", "z"]
+    assert dict(pairs)["coverage_n"] == "5000"

@@ -69,10 +69,12 @@ def with_joints(frame: pd.DataFrame, robot, q) -> pd.DataFrame:
 
 
 def _inputs_pairs(record: dict, extra: list) -> list:
-    shown = []
-    for k, v in list(record.items()) + extra:
-        shown.append((k, "—" if v is None else (", ".join(map(str, v)) if isinstance(v, (list, tuple)) else str(v))))
-    return shown
+    """The inputs as (name, text) pairs: the call's record, then ``extra`` (what the run used); a name in both is
+    shown once, in the record's place, with the value the run used."""
+    merged = dict(record)
+    merged.update(extra)
+    return [(k, "—" if v is None else (", ".join(map(str, v)) if isinstance(v, (list, tuple)) else str(v)))
+            for k, v in merged.items()]
 
 
 # ---------------------------------------------------------------------------------------------- allocation
