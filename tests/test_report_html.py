@@ -432,3 +432,15 @@ def test_an_input_named_in_the_record_and_by_the_run_is_listed_once():
     pairs = _inputs_pairs({"robot": "tool_changer", "coverage_n": 100000, "seed": 0}, [("coverage_n", 5000), ("z", "2")])
     assert [k for k, _ in pairs] == ["robot", "coverage_n", "seed", "z"]
     assert dict(pairs)["coverage_n"] == "5000"
+
+
+def test_the_monte_carlo_card_says_how_a_paired_estimate_relates_to_the_linear_p():
+    """A paired estimate equal to the linear P is not a missing Monte Carlo: the card gives the disagreeing samples."""
+    from types import SimpleNamespace
+
+    from tolalloc.workflows.html import _paired_note
+
+    ver = SimpleNamespace(estimator=np.array(["paired", "plain"]), n=np.array([10**6, 10**6]),
+                          p_mc=np.array([0.96, 0.97]), n_discordant=np.array([3.0, 0.0]))
+    assert "disagree on 3 of 1,000,000 samples" in _paired_note(ver, 0)
+    assert _paired_note(ver, 1) == ""

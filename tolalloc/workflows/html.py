@@ -135,7 +135,8 @@ def _cards(job, s: dict) -> list:
     if ver is not None:
         k = ver.worst_pose
         cards.append({"label": "lowest P̂ (Monte Carlo)", "value": f"{ver.p_mc[k]:.4f}",
-                      "note": f"pose {k + 1}, {_label(ver)} [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"})
+                      "note": f"pose {k + 1}, {_label(ver)} [{ver.ci_low[k]:.4f}, {ver.ci_high[k]:.4f}]"
+                      + _paired_note(ver, k)})
     worst = s["poses"][s["worst_pose"] - 1]
     cards.append({"label": "lowest linear P", "value": f"{worst['p_linear']:.4f}",
                   "note": f"pose {worst['pose']}, the design to build"})
@@ -314,6 +315,16 @@ def allocation_context(job, folder=None) -> dict:
                                                  *[(k, v) for k, v in pr.model.labels.items() if k != "sigma_set"],
                                                  ("coverage_n", None if job.coverage is None else job.coverage.n)]),
             "reproduce": {"cli": cli, "python": python, "notes": rnotes}}
+
+
+def _paired_note(ver, k: int) -> str:
+    """Why a paired estimate can equal the linear P: the samples on which the nonlinear chain and the linear map
+    disagree at pose ``k`` (empty for the other estimators)."""
+    if str(ver.estimator[k]) != "paired":
+        return ""
+    n = np.broadcast_to(np.asarray(ver.n), np.shape(ver.p_mc))[k]
+    return (f"; paired estimator: the nonlinear chain and the linear map disagree on {ver.n_discordant[k]:,.0f} of "
+            f"{n:,.0f} samples here (P̂ = linear P + their balance)")
 
 
 def _pass_rule(job) -> str:
