@@ -69,8 +69,7 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
                    exclude=exclude, sigma=sigma, clearance_tilt_literal=clearance_tilt_literal)
     inputs.check_model_options(**options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    inputs.check_not_both(q_deg_mm, "q_deg_mm", poses, "poses", "give the poses",
-                          " (joint values in deg / mm, or the name of a pose set)")
+    inputs.check_one_pose_source(q_deg_mm, poses)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, **options)
     if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)

@@ -25,7 +25,7 @@ from tolalloc.units import trusting_units
 
 #: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
 __all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model",
-           "sigma_overrides", "resolve_region", "trajectory", "as_measurements", "default_pose_set", "check_choice",
+           "sigma_overrides", "resolve_region", "check_one_pose_source", "trajectory", "as_measurements", "default_pose_set", "check_choice",
            "check_costs_file", "check_count", "check_flag", "check_model_options", "check_name", "check_names",
            "check_not_both",
            "check_optional_flag", "check_path", "check_positive", "check_probability", "check_scheduler",
@@ -108,11 +108,16 @@ def default_pose_set(robot: Robot) -> str:
     return "working" if "working" in robot.pose_sets else "nominal"
 
 
+def check_one_pose_source(q_deg_mm, poses, q_argument: str = "q_deg_mm", poses_argument: str = "poses") -> None:
+    """Refuse joint values and a pose-set name given together (one would override the other); needs no robot."""
+    check_not_both(q_deg_mm, q_argument, poses, poses_argument, "give the poses",
+                   " (joint values in deg / mm, or the name of a pose set)")
+
+
 def resolve_poses(robot: Robot, q_deg_mm=None, poses: str | None = None, *,
                   q_argument: str = "q_deg_mm", poses_argument: str = "poses") -> tuple[str, np.ndarray]:
     """``(label, q (P, n) [rad, mm])`` from explicit joint values or a pose-set name (default: nominal)."""
-    check_not_both(q_deg_mm, q_argument, poses, poses_argument, "give the poses",
-                   " (joint values in deg / mm, or the name of a pose set)")
+    check_one_pose_source(q_deg_mm, poses, q_argument, poses_argument)
     if q_deg_mm is not None:
         return "given", joint_values(robot, q_deg_mm, q_argument)
     known = known_names(["nominal"], robot.pose_sets)

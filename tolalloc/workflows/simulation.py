@@ -131,8 +131,7 @@ def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_d
     inputs.check_optional_flag(progress, "progress")
     inputs.check_model_options(**model_options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    inputs.check_not_both(q_deg_mm, "q_deg_mm", poses, "poses", "give the poses",
-                          " (joint values in deg / mm, or the name of a pose set)")
+    inputs.check_one_pose_source(q_deg_mm, poses)
     scheduler = inputs.check_scheduler(scheduler)
     return n, seed, radii, arad, hist_bins, keep, scheduler
 
