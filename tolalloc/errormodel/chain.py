@@ -139,7 +139,12 @@ class ChainProgram:
 
     def site_groups(self) -> list[tuple[int, list, float, np.ndarray]]:
         """``(site, parameter indices, coef, twists (6, k))`` of the entries with coefficient +1 first, then -1,
-        then any other coefficient, each by increasing site (at most one entry per parameter and group)."""
+        then any other coefficient, each by increasing site (at most one entry per parameter and group).
+        Built once per program (the first-order Jacobian reads it at every call); callers must not modify it."""
+        return self._site_groups
+
+    @cached_property
+    def _site_groups(self) -> list[tuple[int, list, float, np.ndarray]]:
         ptr, site, coef, twist = self.param_entries()
         k_of = np.repeat(np.arange(len(ptr) - 1), np.diff(ptr))
         out = []
