@@ -29,6 +29,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "sphinx-mathjax-offline",   # MathJax served from the site itself: the formulas render offline
     "numpydoc",
+    "numpydoc_template_once",   # after numpydoc: its docstring template compiled once, not once per object
     "cli_reference",
     "api_pages",
 ]
@@ -41,6 +42,9 @@ myst_heading_anchors = 3
 myst_dmath_double_inline = True
 
 autodoc_member_order = "bysource"
+# The pages' own contents list their headings (one per module on the API pages), not every documented function and
+# class: those lists made each page's navigation copy thousands of entries (a sixth of the build).
+toc_object_entries = False
 autodoc_typehints = "none"
 autodoc_default_options = {"members": True, "show-inheritance": False}
 numpydoc_show_class_members = False
