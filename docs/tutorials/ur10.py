@@ -35,11 +35,10 @@ def find_data(given):
 DATA = find_data(args.data)
 
 # %% convert
-sys.path.insert(0, str(REPO / "studies" / "sim2real_ur10"))
-from convert_ur10 import read_ur10  # noqa: E402  (';'-separated, decimal commas, joints in rad -> deg / mm)
+from tolalloc.diagnose import read_ipa_ur10  # noqa: E402  (';'-separated, decimal commas, joints in rad -> deg / mm)
 
-C = read_ur10(DATA / "Series_C" / "measurements_random_poses.csv").iloc[::STEP_C].reset_index(drop=True)
-A = read_ur10(DATA / "Series_A" / "measurements_grid.csv").iloc[::STEP_A].reset_index(drop=True)
+C = read_ipa_ur10(DATA / "Series_C" / "measurements_random_poses.csv").iloc[::STEP_C].reset_index(drop=True)
+A = read_ipa_ur10(DATA / "Series_A" / "measurements_grid.csv").iloc[::STEP_A].reset_index(drop=True)
 print(f"series C: {len(C)} rows, series A: {len(A)} rows")
 print(C.head(3).round(3).to_string(index=False))
 

@@ -9,18 +9,20 @@ CV fallback), :mod:`.uncertainty` (parameter covariance, predicted test uncertai
 :mod:`.evidence` (variant choice, fitted priors), :mod:`.select` (held-out scoring on the training file),
 :mod:`.stepwise` (forward selection, backward elimination), :mod:`.verdict` (effect / none / ambiguous /
 inconclusive), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`; the test file is sealed
-until the model is chosen), :mod:`.synth` (synthetic measurement sets with a withheld effect), :mod:`.report`
-(Markdown report), :mod:`.progress_bars` (progress bars of the fits and stages).
+until the model is chosen), :mod:`.synth` (synthetic measurement sets with a withheld effect),
+:mod:`.ipa_ur10` (reader of the public IPA UR10 laser-tracker files), :mod:`.progress_bars` (progress bars of the
+fits and stages). The Markdown report of a diagnosis is written by :mod:`tolalloc.report.diagnosis`.
 """
 
 from tolalloc.diagnose.calibrate import Calibration, Fit, Identifiability, calibrate
 from tolalloc.diagnose.effects import EFFECTS
+from tolalloc.diagnose.ipa_ur10 import read_ipa_ur10
 from tolalloc.diagnose.measurements import Measurements, measurements_from_frame, read_measurements
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.pipeline import diagnose
 from tolalloc.diagnose.verdict import VERDICTS, Verdict
 from tolalloc.diagnose.synth import LABELS, SynthCase, generate
 
-__all__ = ["EFFECTS", "LABELS", "Measurements", "read_measurements", "measurements_from_frame", "calibrate",
-           "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase", "Verdict",
-           "VERDICTS"]
+__all__ = ["EFFECTS", "LABELS", "Measurements", "read_measurements", "measurements_from_frame", "read_ipa_ur10",
+           "calibrate", "Calibration", "Fit", "Identifiability", "diagnose", "Diagnosis", "generate", "SynthCase",
+           "Verdict", "VERDICTS"]
