@@ -44,9 +44,9 @@ def tc():
 
 @pytest.fixture(scope="module")
 def poses(tc):
-    """Calibration-aware design at the 12 working poses and its standard design."""
+    """Calibration-aware design at 6 of the working poses and its standard design."""
     robot, plan = tc
-    pr = build_problem(build_error_model(robot), robot.poses("working"))
+    pr = build_problem(build_error_model(robot), robot.poses("working")[:6])
     res = allocate_with_calibration(pr, plan, baseline=False)
     return res, standardize_calibrated(res)
 

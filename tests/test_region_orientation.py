@@ -123,8 +123,10 @@ def test_report_card_gives_the_orientation_coverage(tmp_path):
     import tolalloc
     from test_report_html import Page
 
-    res = tolalloc.allocate_tolerances("ur10", radius_mm=0.5, angle_radius_deg=0.05, region="limits", n_mc=500,
-                                       coverage_n=500, snap=False, correction=False)
+    # the two-joint robot of this file over the box of its limits (the card does not depend on the robot's size)
+    res = tolalloc.allocate_tolerances(robot_from_chain_dict(YAW_PITCH), radius_mm=0.3, angle_radius_deg=0.05,
+                                       region="limits", n_mc=500, coverage_n=500, snap=False, correction=False)
+    assert res.summary()["coverage"]["min_p_angle"] is not None
     res.save(tmp_path / "rep", report=True)
     page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
     assert "coverage, orientation" in page.text("summary")

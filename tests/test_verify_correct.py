@@ -89,7 +89,8 @@ def test_the_given_verifications_family_level_carries_through_the_rounds(case):
     from tolalloc.verify.designs import verify_design
 
     model, q, costs = case
-    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs), solver="exact")
+    # snap=False: the loop reads the continuous design only (and re-solves with snap=False), never the standard one
+    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs), solver="exact", snap=False)
     v = verify_design(res.problem, res.design, n_mc=2000, seed=1, level=0.8, keep_samples=0)
     c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=2000, seed=1, max_rounds=1, result=res,
                        verification=v)
@@ -120,7 +121,7 @@ def test_a_given_verification_of_other_draws_is_refused(case):
     from tolalloc.verify.designs import verify_design
 
     model, q, costs = case
-    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs))
+    res = allocate(build_problem(model, q, radius_mm=10.0, costs=costs), snap=False)  # the standard design: unread
     v = verify_design(res.problem, res.design, n_mc=2000, seed=5, keep_samples=0)
     with pytest.raises(TolallocError, match=r"seed 1 differs from the seed 5 of the given `verification`, whose "
                                             r"draws the rounds are tuned on; pass seed=5"):
