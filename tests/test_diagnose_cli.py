@@ -1,9 +1,12 @@
 """`tolalloc diagnose`: outputs, bad input -> exit 2 and nothing written."""
 
+import contextlib
+import io
 import json
 
 import numpy as np
 import pandas as pd
+import pytest
 
 import tolalloc
 from tolalloc.cli import main
@@ -20,11 +23,21 @@ def _files(tmp_path, effect="backlash", seed=5):
     return te
 
 
-def test_end_to_end(tmp_path, capsys):
+@pytest.fixture(scope="module")
+def full_run(tmp_path_factory):
+    """One ``tolalloc diagnose`` with every output (JSON, predictions, report, gap split): the folder, the test frame,
+    the return code and what it printed (two tests read its outputs)."""
+    tmp_path = tmp_path_factory.mktemp("diagnose_cli")
     te = _files(tmp_path)
-    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
-               "--json", str(tmp_path / "out.json"), "--predictions", str(tmp_path / "pred.csv"),
-               "--report", str(tmp_path / "rep"), "--folds", "3"])
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test",
+                   str(tmp_path / "test.csv"), "--json", str(tmp_path / "out.json"), "--predictions",
+                   str(tmp_path / "pred.csv"), "--report", str(tmp_path / "rep"), "--folds", "3", "--gap-split"])
+    return tmp_path, te, rc, out.getvalue()
+
+
+def test_end_to_end(full_run):
+    tmp_path, te, rc, out = full_run
     assert rc == 0
     js = json.loads((tmp_path / "out.json").read_text())
     assert js["effect"] == "backlash"
@@ -39,7 +52,6 @@ def test_end_to_end(tmp_path, capsys):
     err = np.linalg.norm(pred[["x_mm", "y_mm", "z_mm"]].to_numpy() - te[["x_mm", "y_mm", "z_mm"]].to_numpy(), axis=1)
     assert np.sqrt(np.mean(err ** 2)) == __import__("pytest").approx(js["test_rms_mm"]["final"], rel=1e-6)
     assert (tmp_path / "rep" / "report.md").exists() and (tmp_path / "rep" / "where.png").exists()
-    out = capsys.readouterr().out
     assert out.startswith("verdict: effect -- backlash")
     # order: test-file figures, then cross-validation, worst test poses, guards, ranking
     heads = ["test file", "cross-validation on the training file", "worst test poses", "predicted uncertainty",
@@ -85,10 +97,8 @@ def test_bad_input_exit_2_nothing_written(tmp_path, capsys):
     assert not (tmp_path / "o.json").exists() and not (tmp_path / "r").exists() and not (tmp_path / "p.csv").exists()
 
 
-def test_gap_split_adds_up_to_the_test_errors(tmp_path, capsys):
-    _files(tmp_path)
-    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--test", str(tmp_path / "test.csv"),
-               "--json", str(tmp_path / "out.json"), "--report", str(tmp_path / "rep"), "--folds", "3", "--gap-split"])
+def test_gap_split_adds_up_to_the_test_errors(full_run):
+    tmp_path, _, rc, out = full_run
     assert rc == 0
     js = json.loads((tmp_path / "out.json").read_text())
     g, rms = js["gap_split"], js["test"]["rms_mm"]
@@ -100,7 +110,7 @@ def test_gap_split_adds_up_to_the_test_errors(tmp_path, capsys):
     assert g["removed_by_effect"] == __import__("pytest").approx(rms["geometric"] ** 2 - rms["final"] ** 2, rel=1e-6)
     assert 0 <= g["systematic_unnamed"] <= rms["final"] ** 2 and g["noise_floor"] > 0
     assert pd.read_csv(tmp_path / "rep" / "gap_split.csv")["part"].tolist() == parts
-    assert "where the test error lies" in capsys.readouterr().out
+    assert "where the test error lies" in out
 
 
 def test_gap_split_needs_a_test_file(tmp_path, capsys):

@@ -39,12 +39,19 @@ def backlash_case():
     return measurements_from_frame(tr, ROBOT), te
 
 
-def test_test_file_never_enters_the_choice(backlash_case):
+@pytest.fixture(scope="module")
+def backlash_runs(backlash_case):
+    """The diagnosis of the backlash case with no test file, with its test file, and with a test file carrying a
+    large systematic error of its own (computed once: two tests read them)."""
     train, te = backlash_case
     bad = te.copy()
-    bad["x_mm"] += 1.5 * np.sin(np.deg2rad(bad["q1"]))  # a test file with a large systematic error of its own
-    runs = [diagnose(ROBOT, train, t, folds=2, max_effects=1)
+    bad["x_mm"] += 1.5 * np.sin(np.deg2rad(bad["q1"]))
+    return [diagnose(ROBOT, train, t, folds=2, max_effects=1)
             for t in (None, measurements_from_frame(te, ROBOT), measurements_from_frame(bad, ROBOT))]
+
+
+def test_test_file_never_enters_the_choice(backlash_runs):
+    runs = backlash_runs
     frames = [d.sequence_frame()[["effect", "variant", "heldout_rms_mm", "p_value", "gain_pct", "selected"]] for d in runs]
     for f in frames[1:]:
         pd.testing.assert_frame_equal(f, frames[0])
@@ -158,11 +165,11 @@ def test_argument_errors_name_the_argument(backlash_case, kw, words):
         diagnose(ROBOT, backlash_case[0], **kw)
 
 
-def test_an_effect_the_test_file_cannot_carry_is_still_chosen_on_the_training_file(backlash_case):
+def test_an_effect_the_test_file_cannot_carry_is_still_chosen_on_the_training_file(backlash_case, backlash_runs):
     """Approach-direction backlash without dir columns in the test file: the choice is the training file's alone
     (the same as with the columns), the test figures leave the effect out, and the reasons say so."""
     train, te = backlash_case
-    full = diagnose(ROBOT, train, measurements_from_frame(te, ROBOT), folds=2, max_effects=1)
+    full = backlash_runs[1]  # the same diagnosis with the test file's dir columns
     bare = te.drop(columns=[c for c in te.columns if c.startswith("dir")])
     d = diagnose(ROBOT, train, measurements_from_frame(bare, ROBOT), folds=2, max_effects=1)
     assert d.effects == full.effects == ("backlash",)

@@ -24,8 +24,14 @@ pytestmark = pytest.mark.skipif(not convert_ur10.DATA.is_dir(),
                                 reason=f"UR10 data folder {convert_ur10.DATA} is absent (read-only shared data)")
 
 
-def test_converter_columns_and_units():
-    df = convert_ur10.series("C")
+@pytest.fixture(scope="module")
+def series():
+    """Sessions A and C, converted once for the module (the tests only read them)."""
+    return {name: convert_ur10.series(name) for name in ("A", "C")}
+
+
+def test_converter_columns_and_units(series):
+    df = series["C"]
     assert len(df) >= 2772
     assert list(df.columns[:9]) == ["q1", "q2", "q3", "q4", "q5", "q6", "x_mm", "y_mm", "z_mm"]
     # first row of Series C: shoulder_pan_joint = -3.14159 rad, measurement_x = 383.97123 mm
@@ -34,9 +40,9 @@ def test_converter_columns_and_units():
     assert set(np.unique(df[[f"dir{j}" for j in range(1, 7)]].to_numpy())) <= {-1.0, 1.0}
 
 
-def test_within_session_matches_known_figures():
+def test_within_session_matches_known_figures(series):
     robot = tolalloc.load_robot("ur10")
-    df = convert_ur10.series("C").iloc[::6].reset_index(drop=True)
+    df = series["C"].iloc[::6].reset_index(drop=True)
     tr, te = split_frame(df, 0.25, np.random.default_rng(0))
     d = diagnose(robot, measurements_from_frame(tr, robot), measurements_from_frame(te, robot), folds=3,
                  max_effects=1)
@@ -52,12 +58,12 @@ def _time_split(df, train_fraction=0.7):
 
 
 @pytest.mark.parametrize("run", ["time_A", "time_C", "across_A_to_C"])
-def test_issue15_target_no_final_worse_than_nominal_without_a_guard(run):
+def test_issue15_target_no_final_worse_than_nominal_without_a_guard(run, series):
     """Issue 15: on UR10 A and C no run's final test RMS exceeds nominal without a guard (time split: first
     70 % of the rows train, the later rows test; across sessions: re-registered on 30 held-out test poses)."""
     robot = tolalloc.load_robot("ur10")
-    A = convert_ur10.series("A").iloc[::24].reset_index(drop=True)
-    C = convert_ur10.series("C").iloc[::4].reset_index(drop=True)
+    A = series["A"].iloc[::24].reset_index(drop=True)
+    C = series["C"].iloc[::4].reset_index(drop=True)
     if run == "across_A_to_C":
         tr, te, frame = A, C.iloc[::2].reset_index(drop=True), "refit"
     else:

@@ -72,8 +72,15 @@ def test_loopback_dask_cluster_equals_local_run():
     local = run_mc(model, q, n, seed=21, **kw)
     threads = run_mc(model, q, n, seed=21, scheduler="threads", n_jobs=2, chunk_size=1, **kw)
     _assert_same(local, threads)
-    with distributed.LocalCluster(host="127.0.0.1", n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster:
+    import dask
+
+    # Worker processes forked, not spawned: a spawned worker imports Python, dask and distributed from scratch
+    # (about 10 s for the two on this suite's machine); a forked one starts in well under a second. Either way the
+    # workers are separate processes that get the model and the tasks pickled over loopback TCP, which is what
+    # this test compares with the local run.
+    with dask.config.set({"distributed.worker.multiprocessing-method": "fork"}), \
+            distributed.LocalCluster(host="127.0.0.1", n_workers=2, threads_per_worker=1, processes=True,
+                                     dashboard_address=None) as cluster:
         remote = run_mc(model, q, n, seed=21, scheduler=cluster.scheduler_address, chunk_size=2 * BLOCK_SIZE, **kw)
         with distributed.Client(cluster) as client:
             via_client = run_mc(model, q, n, seed=21, scheduler=client, **kw)
@@ -87,7 +94,7 @@ def test_unreachable_cluster_is_a_clear_error():
     model = build_error_model(load_robot("tool_changer"), "table2")
     import dask
 
-    with dask.config.set({"distributed.comm.timeouts.connect": "2s"}), pytest.raises(TolallocError, match="could not connect"):
+    with dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}), pytest.raises(TolallocError, match="could not connect"):
         run_mc(model, model.robot.q_nominal, 10, scheduler="tcp://127.0.0.1:9")
 
 
