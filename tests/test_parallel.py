@@ -72,15 +72,9 @@ def test_loopback_dask_cluster_equals_local_run():
     local = run_mc(model, q, n, seed=21, **kw)
     threads = run_mc(model, q, n, seed=21, scheduler="threads", n_jobs=2, chunk_size=1, **kw)
     _assert_same(local, threads)
-    import dask
-
-    # Worker processes forked, not spawned: a spawned worker imports Python, dask and distributed from scratch
-    # (about 10 s for the two on this suite's machine); a forked one starts in well under a second. Either way the
-    # workers are separate processes that get the model and the tasks pickled over loopback TCP, which is what
-    # this test compares with the local run.
-    with dask.config.set({"distributed.worker.multiprocessing-method": "fork"}), \
-            distributed.LocalCluster(host="127.0.0.1", n_workers=2, threads_per_worker=1, processes=True,
-                                     dashboard_address=None) as cluster:
+    # spawned workers (the default), not forked: like a remote cluster they hold nothing of this process's state
+    with distributed.LocalCluster(host="127.0.0.1", n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
         remote = run_mc(model, q, n, seed=21, scheduler=cluster.scheduler_address, chunk_size=2 * BLOCK_SIZE, **kw)
         with distributed.Client(cluster) as client:
             via_client = run_mc(model, q, n, seed=21, scheduler=client, **kw)
