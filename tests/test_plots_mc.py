@@ -1,6 +1,7 @@
 """Monte Carlo figures are produced without a display."""
 
 import matplotlib
+import numpy as np
 import matplotlib.pyplot as plt
 import pytest
 
@@ -47,3 +48,18 @@ def test_scatter_needs_samples(model):
     with pytest.raises(TolallocError):
         mcplots.sensitivity_curves(sens, ("speed",))
     plt.close("all")
+
+
+def test_pose_probabilities_with_an_estimate_of_one_and_a_rounded_interval_end(tmp_path):
+    """An estimate of exactly 1 whose interval's upper end is 1 - 2.2e-16 (floating point) still plots."""
+    from types import SimpleNamespace
+
+    from tolalloc.report.plots.allocate import plot_pose_probabilities
+
+    one_below = 1.0 - np.finfo(float).eps
+    v = SimpleNamespace(p_mc=np.array([1.0, 0.97]), ci_low=np.array([0.998, 0.96]),
+                        ci_high=np.array([one_below, 0.98]), p_linear=np.array([0.9999, 0.97]), prob=0.95,
+                        radius_mm=0.25)
+    path = tmp_path / "p.png"
+    plot_pose_probabilities(v, path)
+    assert path.stat().st_size > 0

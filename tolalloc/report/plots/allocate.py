@@ -105,7 +105,11 @@ def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None,
     else:
         fig = ax.figure
     ax.plot(x, v.p_linear, "o", mfc="none", label="linear (Gaussian)")
-    ax.errorbar(x, v.p_mc, yerr=[v.p_mc - v.ci_low, v.ci_high - v.p_mc], fmt="s", ms=3, capsize=3,
+    # an interval end computed a rounding error inside the estimate (an estimate of exactly 1 whose upper end
+    # comes out as 1 - 2e-16) is drawn as a zero-length bar: matplotlib refuses negative lengths
+    below = np.maximum(np.asarray(v.p_mc) - v.ci_low, 0.0)
+    above = np.maximum(np.asarray(v.ci_high) - v.p_mc, 0.0)
+    ax.errorbar(x, v.p_mc, yerr=[below, above], fmt="s", ms=3, capsize=3,
                 label=f"Monte Carlo, {interval}")
     ax.axhline(v.prob, color="k", lw=0.8, ls="--", label=f"p = {v.prob:g}")
     ax.set_xlabel("pose")
