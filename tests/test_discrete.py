@@ -16,7 +16,7 @@ from tolalloc.allocate.catalogue import build_catalogue
 from tolalloc.allocate.costs import cost_set
 from tolalloc.allocate.discrete import MIP_REL_GAP
 from tolalloc.allocate.discrete_rules import rule_violation, solve_discrete_rule
-from tolalloc.allocate.discrete_exact import exact_margin
+from tolalloc.allocate.discrete_exact import exact_margin, screened_violation
 from tolalloc.allocate.region import box_region, coverage
 from tolalloc.allocate.region_standard import allocate_region_standard
 from tolalloc.allocate.standards import IT_TABLE_UM
@@ -113,6 +113,23 @@ def test_exact_search_equals_brute_force_and_beats_rounding(small):
     d = res.discrete
     assert d.gap_pct == pytest.approx(100 * (std.cost / res.design.cost - 1))
     assert [o.rule for o in d.outcomes] == ["trace", "lmi", "exact"] or [o.rule for o in d.outcomes] == ["lmi", "exact"]
+
+
+@pytest.mark.parametrize("n_screen", [1, 3])
+def test_screened_violation_accepts_exactly_the_designs_that_meet_the_requirement(model, n_screen):
+    """The local search's screen (a few binding poses first) accepts the same designs as the full check, on 12
+    poses and 2,000 catalogue designs, the first row setting the screen's poses."""
+    rng = np.random.default_rng(5)
+    poses = np.deg2rad(rng.uniform(-90, 90, (12, 2)))
+    pr = build_problem(model, poses, radius_mm=0.1, costs=SMALL)
+    _, _, u, _, _ = enumerate_designs(build_catalogue(pr))
+    U = u[rng.choice(len(u), 2000, replace=False)]
+    full = -exact_margin(pr, U)
+    screened = screened_violation(pr, U, n_screen)
+    assert 100 < np.sum(full <= 0) < 1900                        # both outcomes are well represented
+    np.testing.assert_array_equal(screened <= 0, full <= 0)
+    np.testing.assert_array_equal(screened[full <= 0], full[full <= 0])   # the accepted rows' values are the full ones
+    assert np.all(screened[full > 0] <= full[full > 0])          # elsewhere a bound from fewer poses
 
 
 def test_rounding_infeasible_where_the_discrete_design_is_not(model):
