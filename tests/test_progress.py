@@ -5,7 +5,7 @@ import sys
 import pytest
 
 import tolalloc
-from tolalloc.progress import StageBar, show_progress
+from tolalloc.progress import show_progress
 
 
 def test_show_progress_follows_the_flag_then_the_terminal_or_notebook(monkeypatch):
