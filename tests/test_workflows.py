@@ -367,3 +367,25 @@ def test_a_robot_without_a_working_set_is_allocated_at_the_nominal_pose_with_a_w
     assert err == ["warning: robot 'arm' has no working region or pose set: allocated at the nominal pose only (1 pose); "
                    "for the working region pass region='limits' (--region limits: the box of the joint limits), a pose "
                    "set or a trajectory, or add a [regions.working] box to the robot file."], err
+
+
+@pytest.mark.parametrize("call, name, suggestion", [
+    (lambda: tolalloc.allocate_tolerances("tool_changer", radius=0.25), "radius", "radius_mm"),
+    (lambda: tolalloc.simulate_errors("tool_changer", n_mc=100), "n_mc", "n"),
+    (lambda: tolalloc.analyze_errors("tool_changer", q_deg=[0] * 6), "q_deg", "q_deg_mm"),
+    (lambda: tolalloc.diagnose_measurements("ur10", "absent.csv", fold=3), "fold", "folds"),
+    (lambda: tolalloc.plan_calibration("tool_changer", n_pose=3), "n_pose", "n_poses"),
+])
+def test_a_keyword_the_call_does_not_have_names_the_closest(call, name, suggestion):
+    with pytest.raises(tolalloc.exceptions.UnknownArgumentError) as info:
+        call()
+    err = info.value
+    assert isinstance(err, TypeError) and isinstance(err, tolalloc.TolallocError) and err.argument == name
+    assert f"has no argument {name!r}; did you mean {suggestion}? help(tolalloc." in str(err)
+    assert "\n" not in str(err)
+
+
+def test_an_unknown_keyword_with_nothing_close_lists_no_guess():
+    with pytest.raises(TypeError, match=r"^xyz: allocate_tolerances\(\) has no argument 'xyz'; "
+                                        r"help\(tolalloc.allocate_tolerances\) lists them all\.$"):
+        tolalloc.allocate_tolerances("tool_changer", xyz=1)

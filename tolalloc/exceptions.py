@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TolallocError", "ArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible",
+__all__ = ["TolallocError", "ArgumentError", "UnknownArgumentError", "InputFileError", "Interrupted", "signals_deferred", "interruptible",
            "note_interrupt", "interrupt_pending", "clear_interrupt", "raise_if_interrupted", "check_vector",
            "check_finite_array", "check_positive", "known_names", "memory_budget_bytes", "check_memory", "describe",
            "whole_number"]
@@ -46,6 +46,11 @@ class ArgumentError(TolallocError):
         super().__init__(f"{argument}{self.sep}{detail}")
         self.argument = argument
         self.detail = detail
+
+
+class UnknownArgumentError(ArgumentError, TypeError):
+    """A keyword argument a public call does not have: a :class:`TypeError` as Python's own, whose text names the
+    call's arguments closest to the one given (``radius`` -> ``radius_mm``) and where the full list is."""
 
 
 class InputFileError(TolallocError, FileNotFoundError):

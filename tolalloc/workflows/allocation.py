@@ -29,7 +29,7 @@ CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
 DEFAULT_CORRECTION_ROUNDS = 2
 
 
-@inputs.honours_trust_units
+@inputs.job_entry
 def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: float = 0.95, region=None,
                         poses: str | None = None, costs=None, z: float | None = None, uniform: bool = False,
                         sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",

@@ -15,7 +15,7 @@ from tolalloc.workflows.base import JobResult
 __all__ = ["analyze_errors", "ErrorAnalysis"]
 
 
-@inputs.honours_trust_units
+@inputs.job_entry
 def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = None, radius_mm=(), prob=(),
                    sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
                    clearance: bool = False, clearance_tilt_literal: bool = False, sigma: dict | None = None,

@@ -32,7 +32,7 @@ def _check_tool_moves(model, q_eval, rob, ev: str) -> None:
                             "whose tool point is off its joint axes (a tool offset or links), or other eval_poses.")
 
 
-@inputs.honours_trust_units
+@inputs.job_entry
 def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
                      n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
                      noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,

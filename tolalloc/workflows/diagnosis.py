@@ -15,7 +15,7 @@ from tolalloc.workflows.base import JobResult
 __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 
 
-@inputs.honours_trust_units
+@inputs.job_entry
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
                           progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,

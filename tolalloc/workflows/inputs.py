@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, known_names
+from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, UnknownArgumentError, known_names
 from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_costs_file, check_count, check_flag,  # noqa: F401
                                        check_model_options, check_name, check_names, check_optional_flag,
                                        check_not_both, check_path, check_positive, check_probability, check_scheduler,
@@ -24,7 +24,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.units import trusting_units
 
 #: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
-__all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", "resolve_poses", "error_model",
+__all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_poses", "error_model",
            "sigma_overrides", "resolve_region", "check_one_pose_source", "trajectory", "as_measurements", "default_pose_set", "check_choice",
            "check_costs_file", "check_count", "check_flag", "check_model_options", "check_name", "check_names",
            "check_not_both",
@@ -32,13 +32,28 @@ __all__ = ["trusting_units", "honours_trust_units", "as_robot", "joint_values", 
            "check_seed", "check_values", "check_z", "number", "shown", "RANGES", "Z_RANGE"]
 
 
-def honours_trust_units(fn):
-    """Run workflow ``fn`` with the unit-plausibility guards off when it is called with ``trust_units=True``
-    (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
+def job_entry(fn):
+    """The entry point of workflow ``fn``: a keyword ``fn`` does not have is refused with the closest names
+    (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), and with ``trust_units=True`` the
+    unit-plausibility guards are off during the call (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
+    import difflib
     import functools
+    import inspect
+
+    keywords = [name for name, p in inspect.signature(fn).parameters.items()
+                if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
+        for name in kwargs:
+            if name not in keywords:
+                close = difflib.get_close_matches(name, keywords, n=3, cutoff=0.7)
+                # the name without its unit (radius for radius_mm), or with one the call's name has not (n_mc for n)
+                close += [k for k in keywords if (k.startswith(name + "_") or name.startswith(k + "_"))
+                          and k not in close][:3 - len(close)]
+                hint = f"did you mean {' or '.join(close)}? " if close else ""
+                raise UnknownArgumentError(name, f"{fn.__name__}() has no argument {name!r}; {hint}"
+                                                 f"help(tolalloc.{fn.__name__}) lists them all.")
         check_flag(trust_units, "trust_units")
         with trusting_units(bool(trust_units)):
             return fn(*args, trust_units=trust_units, **kwargs)

@@ -25,7 +25,7 @@ MAX_HIST_BINS = 2000
 MAX_JOBS = 1024
 
 
-@inputs.honours_trust_units
+@inputs.job_entry
 def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_deg_mm=None, poses: str | None = None,
                     radius_mm=(0.15, 0.25), angle_radius_rad=None, angle_radius_deg=None, ci: str = "wilson",
                     sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
