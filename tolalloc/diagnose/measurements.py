@@ -290,7 +290,8 @@ def read_measurements(path, robot: Robot) -> Measurements:
                             f"{JOINT_COLUMNS_TEXT} and x_mm, y_mm, z_mm.") from None
     if df.shape[1] == 1 and ";" in str(df.columns[0]):
         raise TolallocError(f"{path}: looks ';'-separated; expected a comma-separated CSV with '.' decimals "
-                            "(convert it; for the IPA UR10 files: tolalloc.diagnose.read_ipa_ur10(path).to_csv(out, index=False)).")
+                            "(convert it; for the IPA UR10 files: "
+                            "tolalloc.diagnose.read_ipa_ur10(path).to_csv(out, index=False)).")
     return measurements_from_frame(df, robot, str(path))
 
 
