@@ -377,7 +377,7 @@ def test_a_robot_without_a_working_set_is_allocated_at_the_nominal_pose_with_a_w
     (lambda: tolalloc.plan_calibration("tool_changer", n_pose=3), "n_pose", "n_poses"),
 ])
 def test_a_keyword_the_call_does_not_have_names_the_closest(call, name, suggestion):
-    with pytest.raises(tolalloc.exceptions.UnknownArgumentError) as info:
+    with pytest.raises(tolalloc.UnknownArgumentError) as info:
         call()
     err = info.value
     assert isinstance(err, TypeError) and isinstance(err, tolalloc.TolallocError) and err.argument == name

@@ -33,7 +33,8 @@ _HOME = {
                                                "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
                                                "CalibrationPlanDesign", "MeasurementDiagnosis")},
     **{name: "tolalloc.robot" for name in ("Robot", "Joint", "Link", "load_robot", "builtin_robots")},
-    **{name: "tolalloc.exceptions" for name in ("TolallocError", "ArgumentError", "InputFileError")},
+    **{name: "tolalloc.exceptions" for name in ("TolallocError", "ArgumentError", "UnknownArgumentError",
+                                                "InputFileError")},
 }
 
 __all__ = list(_HOME)
