@@ -18,8 +18,8 @@ import numpy as np
 
 __all__ = ["TolallocError", "ArgumentError", "UnknownArgumentError", "InputFileError", "Interrupted",
            "signals_deferred", "interruptible", "note_interrupt", "interrupt_pending", "clear_interrupt",
-           "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive", "known_names", "memory_budget_bytes", "check_memory", "describe",
-           "whole_number"]
+           "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive", "known_names",
+           "memory_budget_bytes", "check_memory", "describe", "whole_number"]
 
 
 class TolallocError(ValueError):

@@ -173,21 +173,21 @@ class McResult:
         mean, std, max, min in the ``_mm`` / ``_deg`` column pair (:func:`tolalloc.units.unit_columns`: position
         rows in mm, angle rows in deg, the other column empty)."""
         stats = ("mean", "std", "max", "min")
-        rows, length = [], []
+        angles = ("dalpha", "dbeta", "dgamma")
+        rows = []
         for i in range(self.q.shape[0]):
-            items = [("dp_reach", *self.reach_mm[i]), ("dp_norm", *self.norm_mm[i])]
+            rows += [(i + 1, "dp_reach", *self.reach_mm[i]), (i + 1, "dp_norm", *self.norm_mm[i])]
             for a, nm in enumerate(("dx", "dy", "dz")):
-                items.append((nm, self.mean_mm[i, a], self.std_mm[i, a], self.dp_max_mm[i, a], self.dp_min_mm[i, a]))
-            for a, nm in enumerate(("dalpha", "dbeta", "dgamma")):
-                items.append((nm, *np.rad2deg([self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
-                                               self.angle_max_rad[i, a], self.angle_min_rad[i, a]])))
-            rows += [{"pose": i + 1, "quantity": it[0], "values": it[1:]} for it in items]
-            length += [nm not in ("dalpha", "dbeta", "dgamma") for nm, *_ in items]
-        values = np.array([r.pop("values") for r in rows], float).reshape(-1, len(stats))
-        df = pd.DataFrame(rows)
+                rows.append((i + 1, nm, self.mean_mm[i, a], self.std_mm[i, a], self.dp_max_mm[i, a],
+                             self.dp_min_mm[i, a]))
+            for a, nm in enumerate(angles):
+                rows.append((i + 1, nm, *np.rad2deg([self.angle_mean_rad[i, a], self.angle_std_rad[i, a],
+                                                     self.angle_max_rad[i, a], self.angle_min_rad[i, a]])))
+        df = pd.DataFrame(rows, columns=["pose", "quantity", *stats])
+        length = ~df["quantity"].isin(angles).to_numpy()
         df["unit"] = np.where(length, "mm", "deg")
-        for k, st in enumerate(stats):
-            df = df.assign(**unit_columns(st, values[:, k], np.array(length, bool)))
+        for st in stats:
+            df = df.assign(**unit_columns(st, df.pop(st).to_numpy(float), length))
         return df[["pose", "quantity", "unit"] + [f"{st}_{u}" for u in ("mm", "deg") for st in stats]]
 
 
