@@ -1,7 +1,7 @@
 """One perturbed-chain program for every consumer (issue 11, item 2).
 
 The program of each model is built once (``ErrorModel.program``); every consumer -- the generic path
-(``perturbed_chain`` + ``fk_poe``), the numpy engine (``FastChain``), the numba engine (the compiled chain
+(``perturbed_chain`` + ``fk_poe``, its numpy and compiled walks), the numpy engine (``FastChain``), the numba engine (the compiled chain
 loop and the fused statistics kernel), the error Jacobian (numpy and numba) -- is checked on the same random
 samples against a reference written here from the parameters' insertion rules with ``exp_se3`` alone
 (exact consumers to 1e-9 mm / rad; Jacobians against central differences of the reference to 1e-6 relative).
@@ -140,8 +140,9 @@ def test_every_consumer_equals_reference(robot, opts):
     q = pose_of(robot)
     V = model.sample(200, np.random.default_rng(3)) * 30.0  # errors of order 0.5 mm / 0.003 rad and more
     ref = reference_T(model, q, V)
-    screws, home, dq = model.perturbed_chain(V)
-    assert np.allclose(fk_poe(screws, home, q + dq), ref, rtol=0, atol=ATOL)  # generic path
+    for engine in ("numpy", "numba"):  # generic path, both walks over the program
+        screws, home, dq = model.perturbed_chain(V, engine=engine)
+        assert np.allclose(fk_poe(screws, home, q + dq), ref, rtol=0, atol=ATOL), engine
     X = FastChain(model).pose(q, V)  # numpy engine
     assert np.allclose(np.moveaxis(X, -1, 0), ref[:, :3], rtol=0, atol=ATOL)
     assert np.allclose(numba_chain(model, q, V), ref[:, :3], rtol=0, atol=ATOL)  # numba engine, chain loop
@@ -168,9 +169,12 @@ def test_every_consumer_follows_an_edited_program():
     assert model.program is edited
     q = robot.poses("working")[3]
     V = model.sample(100, np.random.default_rng(4)) * 30.0
-    screws, home, dq = model.perturbed_chain(V)
+    screws, home, dq = model.perturbed_chain(V, engine="numpy")
     T = fk_poe(screws, home, q + dq)
     assert np.allclose(dq[:, 4], 0.5 * V[:, model.index("dth3")] + V[:, model.index("dth5")], rtol=0, atol=1e-15)
+    s_nb, h_nb, dq_nb = model.perturbed_chain(V, engine="numba")
+    assert np.allclose(dq_nb, dq, rtol=0, atol=1e-15)
+    assert np.allclose(fk_poe(s_nb, h_nb, q + dq_nb), T, rtol=0, atol=ATOL)
     assert not np.allclose(T, reference_T(model, q, V), rtol=0, atol=1e-6)  # the edit is visible
     assert np.allclose(np.moveaxis(FastChain(model).pose(q, V), -1, 0), T[:, :3], rtol=0, atol=ATOL)
     assert np.allclose(numba_chain(model, q, V), T[:, :3], rtol=0, atol=ATOL)

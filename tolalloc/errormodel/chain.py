@@ -122,6 +122,16 @@ class ChainProgram:
             out = np.where(used[:, i], out + term, out)
         return out
 
+    @cached_property
+    def _kernel_arrays(self) -> tuple:
+        f = np.ascontiguousarray
+        return (f(self.kind, dtype=np.int64), f(self.twist, dtype=float), f(self.joint, dtype=np.int64),
+                f(self.home, dtype=float))
+
+    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``kind, twist, joint, home`` as contiguous int64 / float arrays (the compiled kernels' arguments)."""
+        return self._kernel_arrays
+
     def param_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Factors of each parameter (CSR by parameter, factors left to right) for first-order consumers.
 

@@ -35,6 +35,7 @@ from functools import cached_property
 import numpy as np
 import pandas as pd
 
+from tolalloc.engine import resolve_engine
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program
 from tolalloc.robot.lie import adjoint, exp_se3
@@ -213,12 +214,15 @@ class ErrorModel:
         """The perturbed chain as the plain-array program every evaluator reads (:mod:`tolalloc.errormodel.chain`)."""
         return chain_program(self)
 
-    def perturbed_chain(self, values: np.ndarray):
+    def perturbed_chain(self, values: np.ndarray, *, engine: str | None = None):
         """Exact perturbed chains for sampled parameter values (the generic path, from :attr:`program`).
 
         Parameters
         ----------
         values : array, shape (N, K) [mm or rad]
+        engine : {None, "auto", "numba", "numpy"}
+            As :func:`tolalloc.engine.resolve_engine`: the compiled walk over the program
+            (:mod:`tolalloc.errormodel._chain_nb`) or the numpy one; equal to rounding.
 
         Returns
         -------
@@ -232,10 +236,16 @@ class ErrorModel:
         prog = self.program
         n = self.robot.n_joints
         dq = np.zeros((N, n))
-        C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
         screws = np.empty((N, n, 6))
-        err = [f for f in range(prog.n_factors) if prog.kind[f] != JOINT]
         amounts = prog.amounts(values)  # (N, F)
+        if resolve_engine(engine) == "numba":
+            from tolalloc.errormodel import _chain_nb
+
+            home = np.empty((N, 4, 4))
+            _chain_nb.perturbed_chain(*prog.kernel_arrays(), amounts, screws, home, dq)
+            return screws, home, dq
+        C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
+        err = [f for f in range(prog.n_factors) if prog.kind[f] != JOINT]
         E = (exp_se3(amounts[:, err, None] * prog.twist[err]) if err else None)  # (N, len(err), 4, 4): one call
         pos = {f: i for i, f in enumerate(err)}
         for f in range(prog.n_factors):

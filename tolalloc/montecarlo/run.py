@@ -96,11 +96,12 @@ def pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray, *, chain: 
 
 
 def generic_pose_errors(model: ErrorModel, q: np.ndarray, values: np.ndarray) -> dict[str, np.ndarray]:
-    """Reference implementation of :func:`pose_errors` through ``perturbed_chain`` + ``fk_poe`` (slow)."""
+    """Reference implementation of :func:`pose_errors` through ``perturbed_chain`` + ``fk_poe`` (slow; the numpy walk
+    over the chain program, so that no compiled code is on the reference's side)."""
     from tolalloc.robot.kinematics import fk_poe
 
     values = _check_values(model, values)
-    screws, home, dq = model.perturbed_chain(values)
+    screws, home, dq = model.perturbed_chain(values, engine="numpy")
     T = fk_poe(screws, home, np.asarray(q, float) + dq)
     X = np.moveaxis(T[:, :3, :], 0, -1)
     return _errors_from_X(X, model.robot.fk_internal(q))
