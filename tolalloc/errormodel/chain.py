@@ -142,7 +142,13 @@ class ChainProgram:
         site : array of int, shape (E,)
         coef : array, shape (E,)
         twist : array, shape (E, 6)
+
+        Built once per program (the Jacobian kernel reads them at every call); callers must not modify them.
         """
+        return self._param_entries
+
+    @cached_property
+    def _param_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         f, k = np.nonzero(self.coef.T)[::-1]  # sorted by parameter, then factor
         ptr = np.searchsorted(k, np.arange(self.coef.shape[1] + 1))
         return ptr, self.site[f], self.coef[f, k], np.ascontiguousarray(self.twist[f])
