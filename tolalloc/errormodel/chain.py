@@ -17,8 +17,8 @@ plain arrays (``F`` factors, ``K`` parameters)::
 so the factor is ``exp([twist_f] (q_joint + coef_f . e))``. A parameter appears with coefficient +1 at its
 insertion site and, for ``axes_only`` links and ``tilt`` deflections, with -1 at its undo site (undos first among a
 site's insertions); a joint drive is a +1 in its joint's row. Every consumer reads these arrays and nothing else of
-the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; used by the calibration
-simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the compiled kernel of
+the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; numpy, or the same walk compiled
+in :mod:`tolalloc.errormodel._chain_nb`; used by the calibration simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the compiled kernel of
 :mod:`tolalloc.robot._jacobian_nb` through :meth:`ChainProgram.param_entries`), the numpy Monte Carlo engine
 :class:`FastChain` and the numba engine (through :class:`~tolalloc.errormodel.pose_program.PoseProgram`). A change
 to the error model's insertion rules is a change to :func:`chain_program` and reaches all of them.
