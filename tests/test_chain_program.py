@@ -1,10 +1,11 @@
 """One perturbed-chain program for every consumer (issue 11, item 2).
 
 The program of each model is built once (``ErrorModel.program``); every consumer -- the generic path
-(``perturbed_chain`` + ``fk_poe``, its numpy and compiled walks), the numpy engine (``FastChain``), the numba engine (the compiled chain
-loop and the fused statistics kernel), the error Jacobian (numpy and numba) -- is checked on the same random
-samples against a reference written here from the parameters' insertion rules with ``exp_se3`` alone
-(exact consumers to 1e-9 mm / rad; Jacobians against central differences of the reference to 1e-6 relative).
+(``perturbed_chain`` + ``fk_poe``, its numpy and compiled walks), the numpy engine (``FastChain``), the numba
+engine (the compiled chain loop and the fused statistics kernel), the error Jacobian (numpy and numba) -- is
+checked on the same random samples against a reference written here from the parameters' insertion rules with
+``exp_se3`` alone (exact consumers to 1e-9 mm / rad; Jacobians against central differences of the reference to 1e-6
+relative).
 A second test edits a program and checks that every consumer follows the edit.
 """
 

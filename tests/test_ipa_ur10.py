@@ -41,7 +41,8 @@ def test_units_and_derived_columns(tmp_path):
     np.testing.assert_array_equal(df["time_s"], [0.0, 1.0, 2.0])
     # the table is what the diagnosis reads (no temperature column is fine too)
     robot = tolalloc.load_robot("ur10")
-    p_robot = robot.fk(robot.q_to_interface(q))[:, :3, 3] + [500.0, -200.0, 50.0]   # a probe position per pose, tracker frame shifted
+    # a probe position per pose, tracker frame shifted
+    p_robot = robot.fk(robot.q_to_interface(q))[:, :3, 3] + [500.0, -200.0, 50.0]
     no_temp = read_ipa_ur10(_write_ipa(tmp_path / "n.csv", q, p_robot))
     assert "temperature_c" not in no_temp.columns
     m = tolalloc.diagnose.measurements_from_frame(no_temp, robot, "n.csv")
@@ -75,7 +76,8 @@ def _data():
     return None
 
 
-@pytest.mark.skipif(_data() is None, reason="the UR10 data folder shared/data/ipa-ur10 is absent (read-only shared data)")
+@pytest.mark.skipif(_data() is None,
+                    reason="the UR10 data folder shared/data/ipa-ur10 is absent (read-only shared data)")
 def test_real_series_c_reads_inside_the_ur10_limits():
     df = read_ipa_ur10(_data() / "Series_C" / "measurements_random_poses.csv")
     assert len(df) == 2773 and not df.isna().any().any()

@@ -88,7 +88,8 @@ def test_unreachable_cluster_is_a_clear_error():
     model = build_error_model(load_robot("tool_changer"), "table2")
     import dask
 
-    with dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}), pytest.raises(TolallocError, match="could not connect"):
+    with (dask.config.set({"distributed.comm.timeouts.connect": "0.5s"}),
+          pytest.raises(TolallocError, match="could not connect")):
         run_mc(model, model.robot.q_nominal, 10, scheduler="tcp://127.0.0.1:9")
 
 

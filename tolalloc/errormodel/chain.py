@@ -18,10 +18,11 @@ so the factor is ``exp([twist_f] (q_joint + coef_f . e))``. A parameter appears 
 insertion site and, for ``axes_only`` links and ``tilt`` deflections, with -1 at its undo site (undos first among a
 site's insertions); a joint drive is a +1 in its joint's row. Every consumer reads these arrays and nothing else of
 the parameters: the generic path :meth:`ErrorModel.perturbed_chain` (+ ``fk_poe``; numpy, or the same walk compiled
-in :mod:`tolalloc.errormodel._chain_nb`; used by the calibration simulations and the diagnosis), the first-order :meth:`ErrorModel.jacobian` (numpy, and the compiled kernel of
-:mod:`tolalloc.robot._jacobian_nb` through :meth:`ChainProgram.param_entries`), the numpy Monte Carlo engine
-:class:`FastChain` and the numba engine (through :class:`~tolalloc.errormodel.pose_program.PoseProgram`). A change
-to the error model's insertion rules is a change to :func:`chain_program` and reaches all of them.
+in :mod:`tolalloc.errormodel._chain_nb`; used by the calibration simulations and the diagnosis), the first-order
+:meth:`ErrorModel.jacobian` (numpy, and the compiled kernel of :mod:`tolalloc.robot._jacobian_nb` through
+:meth:`ChainProgram.param_entries`), the numpy Monte Carlo engine :class:`FastChain` and the numba engine (through
+:class:`~tolalloc.errormodel.pose_program.PoseProgram`). A change to the error model's insertion rules is a change
+to :func:`chain_program` and reaches all of them.
 
 The pose program and the numpy engine
 -------------------------------------
@@ -123,14 +124,12 @@ class ChainProgram:
         return out
 
     @cached_property
-    def _kernel_arrays(self) -> tuple:
+    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """``kind, twist, joint, home`` as contiguous int64 / float arrays (the compiled walk's arguments), built
+        once per program."""
         f = np.ascontiguousarray
         return (f(self.kind, dtype=np.int64), f(self.twist, dtype=float), f(self.joint, dtype=np.int64),
                 f(self.home, dtype=float))
-
-    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """``kind, twist, joint, home`` as contiguous int64 / float arrays (the compiled kernels' arguments)."""
-        return self._kernel_arrays
 
     def param_entries(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Factors of each parameter (CSR by parameter, factors left to right) for first-order consumers.

@@ -242,7 +242,7 @@ class ErrorModel:
             from tolalloc.errormodel import _chain_nb
 
             home = np.empty((N, 4, 4))
-            _chain_nb.perturbed_chain(*prog.kernel_arrays(), amounts, screws, home, dq)
+            _chain_nb.perturbed_chain(*prog.kernel_arrays, amounts, screws, home, dq)
             return screws, home, dq
         C = np.broadcast_to(np.eye(4), (N, 4, 4)).copy()
         err = [f for f in range(prog.n_factors) if prog.kind[f] != JOINT]
