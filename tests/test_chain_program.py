@@ -21,6 +21,7 @@ from tolalloc import load_robot
 from tolalloc.errormodel import build_error_model
 from tolalloc.errormodel.chain import ERROR, JOINT, FastChain, chain_program
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
+from tolalloc.exceptions import TolallocError
 from tolalloc.montecarlo.engines import numba_engine
 from tolalloc.robot.kinematics import fk_poe
 from tolalloc.robot.lie import exp_se3, rotvec
@@ -187,3 +188,18 @@ def test_every_consumer_follows_an_edited_program():
     Jref = fd_jacobian(generic, len(model.params))
     assert_jacobian(model.jacobian(q, engine="numpy"), Jref)
     assert_jacobian(model.jacobian(q[None], engine="numba")[0], Jref)
+
+
+@pytest.mark.parametrize("engine", ["numpy", "numba"])
+def test_values_of_another_width_are_refused(engine):
+    """One column too many or too few is refused with the expected shape (it used to be ignored or a numpy
+    IndexError); a single row given as a 1-D array is accepted."""
+    model = build_error_model(load_robot("ur10"), "generic")
+    K = len(model.params)
+    V = model.sample(3, np.random.default_rng(5))
+    for bad in (np.hstack([V, V[:, :1]]), V[:, :-1], V[..., None]):
+        with pytest.raises(TolallocError, match=rf"expected shape \(N, {K}\).*got shape"):
+            model.perturbed_chain(bad, engine=engine)
+    s1, h1, d1 = model.perturbed_chain(V[0], engine=engine)
+    s3, h3, d3 = model.perturbed_chain(V, engine=engine)
+    assert s1.shape == (1, 6, 6) and np.array_equal(h1[0], h3[0]) and np.array_equal(d1[0], d3[0])

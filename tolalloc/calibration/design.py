@@ -6,10 +6,10 @@ weights ``lambda`` (``0 <= lambda_c <= 1``, ``sum lambda = N``) on the candidate
 
     Sigma_post(lambda)^-1 = Lambda_0 + sum_c lambda_c F_c,     F_c = G_c^T G_c   (whitened 3- or 6-row block)
 
--- the classic convex relaxation, solved in cvxpy as the Schur-complement SDP ``cp.matrix_frac`` with
-Clarabel, well scaled (congruence by the uniform design) and by column generation over the candidates, with
-Frank-Wolfe as the documented fallback (:mod:`tolalloc.calibration.relax`; :attr:`PlanDesign.relaxation_method`
-says which ran), then rounding to the N largest weights followed by greedy exchange passes on the exact
+-- the classic convex relaxation, solved by SciPy's interior-point method with the exact Hessian (the cvxpy
+Schur-complement SDP ``cp.matrix_frac`` with Clarabel if it fails), well scaled (congruence by the uniform design)
+and by column generation over the candidates, with Frank-Wolfe as the documented last fallback
+(:mod:`tolalloc.calibration.relax`; :attr:`PlanDesign.relaxation_method` says which ran), then rounding to the N largest weights followed by greedy exchange passes on the exact
 (rounded) objective. The nuisance parameters
 (registration, tool offset) enter the information matrix with a zero (flat) prior and are marginalised exactly by
 the Schur form (a generalised inverse); the design's reported quality is always recomputed with
@@ -59,9 +59,9 @@ class PlanDesign:
     relaxation_value_mm2 : float
         The relaxation's objective at its (fractional) weights [mm^2].
     relaxation_method : str
-        ``"cvxpy/Clarabel"`` or ``"Frank-Wolfe"`` (the fallback).
+        ``"SciPy trust-constr"``, ``"cvxpy/Clarabel"`` or ``"Frank-Wolfe"`` (the fallbacks, in that order).
     relaxation_note : str
-        How the relaxation ended (rounds, iterations, gap; for the fallback, what failed in cvxpy).
+        How the relaxation ended (rounds, iterations, gap; for a fallback, what failed before it).
     floor_unidentifiable_mm2 : float
         The part of ``floor_mm2`` along the parameter combinations no candidate identifies (the null space of the
         candidates' information, relative threshold :data:`~tolalloc.calibration.posterior.ID_TOL`): what a plan
@@ -162,7 +162,8 @@ def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval:
                 registration: bool = True, seed: int = 0, relaxation: str = "auto") -> PlanDesign:
     """Choose ``n_poses`` of ``candidates`` (C, n) [rad, mm] minimising the post-calibration error at ``q_eval``.
 
-    ``relaxation``: ``auto`` (cvxpy/Clarabel, Frank-Wolfe if it fails), ``cvxpy`` or ``frank-wolfe``.
+    ``relaxation``: ``auto`` (SciPy's interior point, cvxpy/Clarabel if it fails, then Frank-Wolfe),
+    ``interior-point``, ``cvxpy`` or ``frank-wolfe``.
 
     Returns
     -------

@@ -11,8 +11,8 @@ def register(sub) -> None:
         "calplan", help="calibration-plan design: N measurement poses minimising the post-calibration error",
         description="Choose N laser-tracker measurement poses among scrambled-Sobol candidates (in the joint limits "
         "or in the box of a pose set) that minimise the mean post-calibration position variance of the systematic "
-        "errors over the evaluation poses (task-weighted A-optimal design: convex relaxation as a cvxpy SDP solved "
-        "by Clarabel, Frank-Wolfe if that fails; rounding, greedy exchange), compared with N random candidates. "
+        "errors over the evaluation poses (task-weighted A-optimal design: convex relaxation solved by SciPy's "
+        "interior-point method, the cvxpy SDP with Clarabel or Frank-Wolfe if that fails; rounding, greedy exchange), compared with N random candidates. "
         "Writes the plan CSV that "
         "`tolalloc allocate --calibration` reads.")
     add_robot_arg(p)

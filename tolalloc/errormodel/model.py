@@ -220,6 +220,7 @@ class ErrorModel:
         Parameters
         ----------
         values : array, shape (N, K) [mm or rad]
+            One column per parameter, in the order of :attr:`names`; another width is refused.
         engine : {None, "auto", "numba", "numpy"}
             As :func:`tolalloc.engine.resolve_engine`: the compiled walk over the program
             (:mod:`tolalloc.errormodel._chain_nb`) or the numpy one; equal to rounding.
@@ -232,6 +233,10 @@ class ErrorModel:
             Joint offsets; evaluate ``fk_poe(screws, home, q + dq)``.
         """
         values = np.atleast_2d(np.asarray(values, dtype=float))
+        if values.ndim != 2 or values.shape[1] != len(self.params):
+            raise TolallocError(
+                f"values: expected shape (N, {len(self.params)}) — one column per error parameter in model order "
+                f"(ErrorModel.names), got shape {values.shape}; sample them with ErrorModel.sample(n, rng)")
         N = values.shape[0]
         prog = self.program
         n = self.robot.n_joints

@@ -42,8 +42,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
 
     Candidates are scrambled-Sobol poses in the joint limits (``region="limits"``) or in the box of a pose set; the
     plan minimises the mean post-calibration position variance of the systematic errors over the evaluation
-    poses (task-weighted A-optimal design: a convex relaxation solved by Clarabel, then rounding and exchange) and
-    is compared with ``n_poses`` random candidates.
+    poses (task-weighted A-optimal design: a convex relaxation solved by SciPy's interior-point method, then
+    rounding and exchange) and is compared with ``n_poses`` random candidates.
 
     Parameters
     ----------
