@@ -78,6 +78,42 @@ def test_imports_run_one_way(module):
     assert not bad, "imports against the pipeline order: " + "; ".join(bad)
 
 
+def private_imports(path: Path, own: str) -> list[str]:
+    """Imports in ``path`` of a private name (``_x``) or a private module from a stage other than ``own``."""
+    def private(parts):
+        return any(p.startswith("_") and not p.startswith("__") for p in parts)
+
+    bad = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom) and not node.level and (node.module or "").startswith("tolalloc."):
+            names = [a.name for a in node.names]
+            if stage(node.module) != own and (private(node.module.split(".")[2:]) or private(names)):
+                bad.append(f"line {node.lineno}: from {node.module} import {', '.join(names)}")
+        elif isinstance(node, ast.Import):
+            bad += [f"line {node.lineno}: import {a.name}" for a in node.names
+                    if a.name.startswith("tolalloc.") and stage(a.name) != own and private(a.name.split(".")[2:])]
+    return bad
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_private_names_stay_in_their_stage(module):
+    own = stage(module)
+    bad = private_imports(MODULES[module], own)
+    assert not bad, f"{module} ({own}) imports private names of another stage: " + "; ".join(bad)
+
+
+def test_private_import_finder(tmp_path):
+    path = tmp_path / "m.py"
+    path.write_text("from tolalloc.robot.kinematics import fk_poe, _joint_exp_rp\n"
+                    "from tolalloc.robot._jacobian_nb import kernel\n"
+                    "import tolalloc.robot._jacobian_nb as nb\n"
+                    "from tolalloc.errormodel.model import ErrorModel\n"
+                    "from tolalloc.diagnose.scale import _private_here\n")
+    bad = private_imports(path, "diagnose")
+    assert [b.split(":")[0] for b in bad] == ["line 1", "line 2", "line 3"], bad
+    assert private_imports(path, "robot") == ["line 5: from tolalloc.diagnose.scale import _private_here"]
+
+
 def find_cycle(edges: dict[str, set[str]]) -> list[str] | None:
     """A cycle in ``edges`` (depth-first search) or None."""
     state: dict[str, int] = {}

@@ -23,7 +23,7 @@ import tolalloc
 from tolalloc.diagnose.calibrate import calibrate
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.errormodel.model import _perpendicular_axes
+from tolalloc.errormodel.model import perpendicular_axes
 from tolalloc.robot.io.dh import robot_from_dh_dict
 from tolalloc.robot.model import Joint, Link
 
@@ -52,10 +52,10 @@ def tool_changer_perturbed(kind: str, name: str, which: int):
     tool = robot.tool_offset_mm.copy()
     if kind == "link":  # which 0: along the link, 1-2: sideways
         d = el.vector_mm / np.linalg.norm(el.vector_mm)
-        e = d if which == 0 else _perpendicular_axes(d)[which - 1][1]
+        e = d if which == 0 else perpendicular_axes(d)[which - 1][1]
         chain[idx] = replace(el, vector_mm=el.vector_mm + LEN_MM * e)
     else:
-        e = _perpendicular_axes(np.asarray(el.axis, float))[which][1]
+        e = perpendicular_axes(np.asarray(el.axis, float))[which][1]
         if kind == "axis_direction":
             chain[idx] = replace(el, axis=Rotation.from_rotvec(ANG_RAD * e).apply(el.axis))
         else:  # axis position: the joint's line moves sideways, the links before/after absorb it

@@ -104,7 +104,7 @@ class _NLP:
     def __init__(self, data: StepData, info: np.ndarray, live: np.ndarray, poses, u_rand_max, v_max):
         import casadi as ca
 
-        from tolalloc.linear.probability_casadi import _casadi_function
+        from tolalloc.linear.probability_casadi import casadi_function
 
         pr, gr, E = data.pr, data.gr, data.E
         Ka, G, L = len(pr.alloc), len(gr.idx), len(live)
@@ -120,7 +120,7 @@ class _NLP:
         s = float(np.max(data.b))  # covariances scaled so the probability function sees O(1) numbers
         B = data.JEs[np.asarray(poses, int)][:, :, live] / np.sqrt(s)  # (m, 3, L)
         X = ca.solve(lam, ca.DM(B.reshape(-1, L).T))  # (L, 3m)
-        F = _casadi_function(LEBEDEV_ORDER)
+        F = casadi_function(LEBEDEV_ORDER)
         g = []
         for j, p in enumerate(poses):
             S = ca.mtimes(ca.DM(B[j]), X[:, 3 * j:3 * j + 3]) + ca.DM(data.C_fixed[p] / s)

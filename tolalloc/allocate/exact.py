@@ -42,7 +42,7 @@ def _build(problem: AllocationProblem, active: dict):
     """IPOPT solver over the poses in ``active`` (block name -> pose indices); returns (solver, lbg)."""
     import casadi as ca
 
-    from tolalloc.linear.probability_casadi import _casadi_function
+    from tolalloc.linear.probability_casadi import casadi_function
 
     Ka = len(problem.alloc)
     u = ca.MX.sym("u", Ka)
@@ -51,7 +51,7 @@ def _build(problem: AllocationProblem, active: dict):
         f = f + problem.costs.models[k].cost_u(u[i], "casadi")
     # LEBEDEV_ORDER (41) inside the NLP: cheaper derivatives; every design is re-checked with the accurate
     # p_within_radius below (FEAS_TOL), issue 11
-    F = _casadi_function(LEBEDEV_ORDER)
+    F = casadi_function(LEBEDEV_ORDER)
     g, lbg = [], []
     for b in problem.blocks:
         idx = active[b["name"]]

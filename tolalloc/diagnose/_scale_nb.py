@@ -1,14 +1,16 @@
 """numba kernel of :func:`tolalloc.diagnose.scale.point_kinematics` (imported only when the compiled engine is used).
 
-Per pose the prefix products of :func:`tolalloc.robot._jacobian_nb._prefix` (the closed form of
-:func:`tolalloc.robot.kinematics._joint_exp_rp`, same operations), then the flange rotation ``R_n home_R`` and the
+Per pose the prefix products of :func:`tolalloc.robot.kinematics.compiled_prefix` (the closed form of the numpy
+path, same operations), then the flange rotation ``R_n home_R`` and the
 target point ``R_n home_p + p_n + R_f t``. Equal to the numpy path to rounding (tests/test_diagnose_scale.py).
 """
 
 import numpy as np
 from numba import njit
 
-from tolalloc.robot._jacobian_nb import _prefix
+from tolalloc.robot.kinematics import compiled_prefix
+
+_prefix = compiled_prefix()
 
 __all__ = ["point_kinematics"]
 

@@ -47,7 +47,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.errormodel import build_error_model
-from tolalloc.errormodel.model import ErrorModel, ErrorParameter, _perpendicular_axes
+from tolalloc.errormodel.model import ErrorModel, ErrorParameter, perpendicular_axes
 from tolalloc.robot.model import Robot
 
 __all__ = ["build_geometry_model", "as_built_levels", "plausibility_levels", "robot_size_mm", "PRIOR_SCALE",
@@ -120,12 +120,12 @@ def build_geometry_model(robot: Robot, sigma_set: str | None = None, prior_scale
     for j, joint in enumerate(robot.joints):
         w = robot.screws[j, :3] if joint.is_revolute else robot.screws[j, 3:]
         r = robot.joint_points_mm[j]
-        for letter, e in _perpendicular_axes(w):
+        for letter, e in perpendicular_axes(w):
             twist = np.concatenate([e, np.cross(r, e)])
             params.append(ErrorParameter(f"{joint.name}_tilt_{letter}", "axis_deflection", joint.name, "rad", j, twist,
                                          sigma=prior_scale * tilt_s.get(joint.name, fallback_tilt)))
         if joint.is_revolute:
-            for letter, e in _perpendicular_axes(w):
+            for letter, e in perpendicular_axes(w):
                 params.append(ErrorParameter(f"{joint.name}_shift_{letter}", "link_length", joint.name, "mm", j,
                                              np.concatenate([np.zeros(3), e]), sigma=prior_scale * link_s))
         params.append(ErrorParameter(f"{joint.name}_offset", "joint_drive", joint.name,

@@ -10,7 +10,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.units import ALL_UNITS, LENGTH_UNITS
 from tolalloc.robot.model import Robot
 from tolalloc.errormodel.model import (CLEARANCE_SIGMA, GENERIC_SIGMA, KINDS, ErrorModel, ErrorParameter,
-                                       _perpendicular_axes)
+                                       perpendicular_axes)
 
 __all__ = ["build_error_model"]
 
@@ -99,7 +99,7 @@ def _geometric_params(robot: Robot, link_mode: str, deflection_mode: str) -> lis
         if not joint.is_revolute:
             continue
         pt = robot.joint_points_mm[j]
-        for letter, e in _perpendicular_axes(joint.axis):
+        for letter, e in perpendicular_axes(joint.axis):
             twist = np.concatenate([e, -np.cross(e, pt)])
             undo = j + 1 if deflection_mode == "tilt" else None
             params.append(ErrorParameter(f"e{j + 1}{letter}", "axis_deflection", joint.name, "rad", j, twist, undo))
@@ -116,7 +116,7 @@ def _clearance_params(robot: Robot, cs: dict) -> list[ErrorParameter]:
         w = joint.axis
         params.append(ErrorParameter(f"ca{j + 1}", "clearance_axial", joint.name, "mm", j,
                                      np.concatenate([np.zeros(3), w]), sigma=cs["axial_mm"]))
-        perp = _perpendicular_axes(w)
+        perp = perpendicular_axes(w)
         for letter, e in perp:
             params.append(ErrorParameter(f"cr{j + 1}{letter}", "clearance_radial", joint.name, "mm", j,
                                          np.concatenate([np.zeros(3), e]), sigma=cs["radial_mm"] / np.sqrt(2),

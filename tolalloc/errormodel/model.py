@@ -39,12 +39,12 @@ from tolalloc.engine import resolve_engine
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program
 from tolalloc.robot.lie import adjoint, exp_se3
-from tolalloc.robot.kinematics import _jacobian_kernel, _prefix_lists
+from tolalloc.robot.kinematics import jacobian_kernel, prefix_lists
 from tolalloc.robot.model import Robot
 from tolalloc.units import unit_columns
 from tolalloc.errormodel.sampling import sample_values  # the one sampler, shared with the Monte Carlo engine
 
-__all__ = ["ErrorParameter", "ErrorModel", "KINDS"]
+__all__ = ["ErrorParameter", "ErrorModel", "KINDS", "perpendicular_axes"]
 
 KINDS = ("link_length", "joint_drive", "axis_deflection", "clearance_axial", "clearance_radial", "clearance_tilt")
 
@@ -112,7 +112,7 @@ class ErrorParameter:
         return 1.0 if self.unit == "mm" else 180.0 / np.pi
 
 
-def _perpendicular_axes(axis: np.ndarray):
+def perpendicular_axes(axis: np.ndarray):
     """The two base axes most perpendicular to ``axis`` (Gram-Schmidt against it), with their letters."""
     order = [i for i in range(3) if i != int(np.argmax(np.abs(axis)))]
     out = []
@@ -281,10 +281,10 @@ class ErrorModel:
             factors ``f`` of ``coef_f Ad_{P_site(f)} twist_f`` (``P_s`` the nominal prefix product).
         """
         q = np.asarray(q, dtype=float)
-        nb = _jacobian_kernel(self.robot.screws, q, engine)
+        nb = jacobian_kernel(self.robot.screws, q, engine)
         if nb is not None:
             return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, *self.program.param_entries())
-        R, p = _prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
+        R, p = prefix_lists(self.robot.screws, q)  # lists over sites 0..n of (..., 3, 3), (..., 3)
         batch = q.shape[:-1]
         K = len(self.params)
         # spatial twist Ad_{P_site} xi = (R w, R v + p x R w) per entry, grouped by insertion site and coefficient

@@ -24,7 +24,8 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import _check_cov, _check_r, chi2_3_cdf, p_within_radius
 
-__all__ = ["p_within_radius_casadi", "p_within_radius_lebedev", "p_within_angle_casadi", "casadi_rule_error"]
+__all__ = ["p_within_radius_casadi", "p_within_radius_lebedev", "p_within_angle_casadi", "casadi_rule_error",
+           "casadi_function"]
 
 
 @lru_cache(maxsize=8)
@@ -62,7 +63,9 @@ def casadi_rule_error(cov, r, order: int = 65) -> np.ndarray:
 
 
 @lru_cache(maxsize=8)
-def _casadi_function(order: int):
+def casadi_function(order: int):
+    """The fixed Lebedev rule of ``order`` as a CasADi function ``P(cov (3, 3), r)`` (symbolic, differentiable;
+    cached), for exact-probability programs that embed it."""
     import casadi as ca
 
     u, w = _lebedev_half(order)
@@ -94,7 +97,7 @@ def p_within_radius_casadi(cov, r, order: int = 65):
     -------
     casadi scalar (a call of a cached ``casadi.Function``; exact AD gradients).
     """
-    return _casadi_function(int(order))(cov, r)
+    return casadi_function(int(order))(cov, r)
 
 
 def p_within_angle_casadi(cov_rad2, angle_rad, order: int = 65):

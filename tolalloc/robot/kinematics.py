@@ -20,6 +20,9 @@ __all__ = [
     "space_jacobian",
     "body_jacobian",
     "JAC_KERNEL_MIN_POSES",
+    "prefix_lists",
+    "jacobian_kernel",
+    "compiled_prefix",
 ]
 
 
@@ -44,7 +47,7 @@ def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
     return R, p
 
 
-def _prefix_lists(screws, q):
+def prefix_lists(screws, q):
     """Cumulative products as lists of contiguous arrays: ``R[j]`` (..., 3, 3), ``p[j]`` (..., 3), j = 0..n."""
     screws = np.asarray(screws, dtype=float)
     q = np.asarray(q, dtype=float)
@@ -66,7 +69,7 @@ def poe_prefix_rp(screws, q) -> tuple[np.ndarray, np.ndarray]:
     R : array, shape (..., n + 1, 3, 3)
     p : array, shape (..., n + 1, 3)  [mm]
     """
-    R, p = _prefix_lists(screws, q)
+    R, p = prefix_lists(screws, q)
     return np.stack(R, axis=-3), np.stack(p, axis=-2)
 
 
@@ -120,7 +123,16 @@ def fk_poe(screws, home, q) -> np.ndarray:
 JAC_KERNEL_MIN_POSES = 64
 
 
-def _jacobian_kernel(screws: np.ndarray, q: np.ndarray, engine: str | None):
+def compiled_prefix():
+    """The compiled (numba) prefix products, for other compiled kernels to call (imports numba):
+    ``prefix(S (n, 6), q (n,), R (n + 1, 3, 3), p (n + 1, 3))`` fills ``R[j]``, ``p[j]`` of :func:`poe_prefix_rp`
+    at one pose, for screws with unit or zero angular parts (the closed form of the numpy path, same operations)."""
+    from tolalloc.robot import _jacobian_nb
+
+    return _jacobian_nb._prefix
+
+
+def jacobian_kernel(screws: np.ndarray, q: np.ndarray, engine: str | None):
     """:mod:`tolalloc.robot._jacobian_nb` when ``engine`` resolves to numba, ``screws`` is one chain (n, 6) with unit
     or zero angular parts and ``q`` is (P, n) with P >= :data:`JAC_KERNEL_MIN_POSES` (any P for
     ``engine="numba"``); else ``None`` (numpy path)."""
@@ -153,10 +165,10 @@ def space_jacobian(screws, q, *, engine: str | None = None) -> np.ndarray:
     """
     screws = np.asarray(screws, dtype=float)
     q = np.asarray(q, dtype=float)
-    nb = _jacobian_kernel(screws, q, engine)
+    nb = jacobian_kernel(screws, q, engine)
     if nb is not None:
         return nb.space_jacobian(screws, q)
-    R, p = _prefix_lists(screws, q)
+    R, p = prefix_lists(screws, q)
     cols = []
     for j in range(screws.shape[-2]):  # Ad_{P_j} S_j = (R w, R v + p x R w)
         rw = (R[j] @ screws[..., j, :3, None])[..., 0]
