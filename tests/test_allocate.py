@@ -261,6 +261,34 @@ def test_certified_rules_hold_exactly(robot, z):
         assert rule_ratio(pr, rule, pr.u_from_t(d.t)) > 1 - 1e-6  # active: nothing left on the table
 
 
+def test_a_requirement_the_loosest_design_meets_is_answered_without_a_solve(robot, monkeypatch):
+    """Every cost law decreases in its tolerance: when the design with every tolerance at t_max meets the rule, it
+    is the optimum. It is returned as certified without a conic solve (Clarabel ended ``optimal_inaccurate`` on such
+    slack problems); a requirement one step tighter than that corner still goes to the solver."""
+    import cvxpy as cp
+
+    from tolalloc.allocate.convex import rule_ratio
+
+    model = build_error_model(robot)
+    q = robot.poses("working")
+    calls = []
+    solve = cp.Problem.solve
+    monkeypatch.setattr(cp.Problem, "solve", lambda self, *a, **k: calls.append(1) or solve(self, *a, **k))
+    pr = build_problem(model, q, radius_mm=30.0)
+    for rule in ("trace", "lmi"):
+        d = solve_rule(pr, rule)
+        assert d.status == "optimal" and d.ok and calls == []
+        assert np.array_equal(d.t, pr.t_max) and rule_ratio(pr, rule, pr.u_max) <= 1.0
+        assert d.message == f"every tolerance at its process limit t_max meets the {rule} rule"
+        assert d.cost == pytest.approx(sum(m.cost(t) for m, t in zip(pr.costs.models, pr.t_max)), rel=1e-12)
+    # the radius at which the corner's trace ratio is 1.01: the rule is not met there, so the solver decides
+    corner = rule_ratio(pr, "trace", pr.u_max)
+    tight = build_problem(model, q, radius_mm=30.0 * np.sqrt(corner / 1.01))  # ratios scale with 1 / r^2
+    d = solve_rule(tight, "trace")
+    assert calls and d.status == "optimal" and rule_ratio(tight, "trace", tight.u_from_t(d.t)) <= 1.0
+    assert np.any(d.t < tight.t_max * (1 - 1e-6))
+
+
 def test_exact_tolerances_at_t_max_sit_on_it_and_snap_to_it(result):
     # regression: IPOPT left dth6, e6x, e6y a hair below t_max = 0.5 deg and snapping took 0.4997 deg (1799")
     pr, d = result.problem, result.exact

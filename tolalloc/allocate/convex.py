@@ -53,6 +53,9 @@ def _cost_expr(problem: AllocationProblem, u):
 def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) -> Design:
     """Solve the certified problem with one rule (``"trace"`` or ``"lmi"``).
 
+    Where the design with every tolerance at its process limit ``t_max`` meets the rule, that design is the optimum
+    (every cost law decreases in its tolerance) and is returned without a conic solve.
+
     Returns
     -------
     Design
@@ -67,32 +70,20 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     solver = Solver(f"certified-{rule}")
     if rule == "trace" and min(b["prob"] for b in problem.blocks) < TRACE_RULE_MIN_P:
         return Design(solver, "not_applicable", message=f"the trace rule is valid only for p >= {TRACE_RULE_MIN_P}")
+    if rule_ratio(problem, rule, problem.u_max) <= 1.0:
+        # Every cost law decreases in its tolerance, so a design with every tolerance at its process limit that meets
+        # the rule is the optimum: no solve, and none of the solver's accuracy limits on such a slack problem.
+        return make_design(problem, solver, problem.t_from_u(problem.u_max), pose_dual=np.zeros(problem.n_poses),
+                           time_s=time.perf_counter() - t0,
+                           message=f"every tolerance at its process limit t_max meets the {rule} rule")
     Ka = len(problem.alloc)
     u_min, u_max = problem.u_min, problem.u_max
     u = cp.Variable(Ka)
     lo, hi = u >= u_min, u <= u_max
     cons = [lo, hi]
-    pose_cons = []  # (block, constraint or list)
-    for b in problem.blocks:
-        A, C0 = b["A"], b["C0"]
-        P = A.shape[0]
-        if rule == "trace":
-            bound = b["trace_bound"]
-            G = np.einsum("pkii->pk", A) / bound[:, None]
-            h = 1.0 - np.einsum("pii->p", C0) / bound
-            c = G @ u <= h
-            cons.append(c)
-            pose_cons.append(("vector", c))
-        else:
-            bound = b["eig_bound"]
-            lst = []
-            for p in range(P):
-                M = A[p].reshape(Ka, 9).T / bound[p]
-                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound[p]
-                c = np.eye(3) - S >> 0
-                lst.append(c)
-            cons += lst
-            pose_cons.append(("psd", lst))
+    pose_cons = _pose_constraints(problem, rule, u)
+    for kind, c in pose_cons:
+        cons += [c] if kind == "vector" else c
     prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
     # tight tolerances; Clarabel's defaults (1e-8) if they end inaccurate, given explicitly: without them a re-solve
     # keeps the previous call's settings and ends inaccurate again
@@ -132,6 +123,29 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
                                              f"is exceeded by a factor {rho:.6g}")
     return make_design(problem, solver, problem.t_from_u(uv), pose_dual=pose_dual, bound_dual=bound_dual,
                        time_s=dt, message=msg, status=status)
+
+
+def _pose_constraints(problem: AllocationProblem, rule: str, u) -> list:
+    """The rule's pose constraints per block: ``("vector", c)`` (trace) or ``("psd", [c per pose])`` (lmi)."""
+    import cvxpy as cp
+
+    out = []
+    for b in problem.blocks:
+        A, C0 = b["A"], b["C0"]
+        if rule == "trace":
+            bound = b["trace_bound"]
+            G = np.einsum("pkii->pk", A) / bound[:, None]
+            h = 1.0 - np.einsum("pii->p", C0) / bound
+            out.append(("vector", G @ u <= h))
+        else:
+            bound = b["eig_bound"]
+            lst = []
+            for p in range(A.shape[0]):
+                M = A[p].reshape(A.shape[1], 9).T / bound[p]
+                S = cp.reshape(M @ u, (3, 3), order="C") + C0[p] / bound[p]
+                lst.append(np.eye(3) - S >> 0)
+            out.append(("psd", lst))
+    return out
 
 
 def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
