@@ -45,7 +45,7 @@ __all__ = ["Relaxation", "relax", "frank_wolfe", "interior_point_relaxation", "c
 METHODS = ("auto", "interior-point", "cvxpy", "frank-wolfe")
 #: Relative optimality gap at which a relaxation counts as solved.
 GAP_TOL = 1e-4
-#: Working-set size of the cvxpy column generation (whole problem when C is at most this).
+#: Working-set size of the column generation (whole problem when C is at most this).
 WORKING_SET = 240
 
 
