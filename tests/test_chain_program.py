@@ -192,14 +192,25 @@ def test_every_consumer_follows_an_edited_program():
 
 @pytest.mark.parametrize("engine", ["numpy", "numba"])
 def test_values_of_another_width_are_refused(engine):
-    """One column too many or too few is refused with the expected shape (it used to be ignored or a numpy
-    IndexError); a single row given as a 1-D array is accepted."""
+    """Parameter values or joint values of another shape, and sample counts that are not whole numbers, are refused
+    with the expected shape (they were ignored or ended in a numpy error); a single row as a 1-D array is accepted."""
     model = build_error_model(load_robot("ur10"), "generic")
     K = len(model.params)
     V = model.sample(3, np.random.default_rng(5))
     for bad in (np.hstack([V, V[:, :1]]), V[:, :-1], V[..., None]):
         with pytest.raises(TolallocError, match=rf"expected shape \(N, {K}\).*got shape"):
             model.perturbed_chain(bad, engine=engine)
+    with pytest.raises(TolallocError, match=rf"values: expected shape \({K}, N\) with transposed=True, got shape"):
+        FastChain(model).pose(np.zeros(6), V[:, :-1].T, transposed=True)
+    with pytest.raises(TolallocError, match=rf"values: expected shape \(N, {K}\), got shape \(3, {K + 1}\)"):
+        FastChain(model).pose(np.zeros(6), np.hstack([V, V[:, :1]]))
+    with pytest.raises(TolallocError, match=r"q: expected shape \(6,\), got shape \(2, 6\); one value per joint"):
+        FastChain(model).pose(np.zeros((2, 6)), V)
+    with pytest.raises(TolallocError, match=r"q: expected shape \(6,\) or \(\.\.\., 6\), got shape \(4, 5\)"):
+        model.jacobian(np.zeros((4, 5)), engine=engine)
+    for n in (-1, 2.5, True):
+        with pytest.raises(TolallocError, match=r"n: expected a whole number of samples >= 0"):
+            model.sample(n, np.random.default_rng(0))
     s1, h1, d1 = model.perturbed_chain(V[0], engine=engine)
     s3, h3, d3 = model.perturbed_chain(V, engine=engine)
     assert s1.shape == (1, 6, 6) and np.array_equal(h1[0], h3[0]) and np.array_equal(d1[0], d3[0])

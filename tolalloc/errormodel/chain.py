@@ -50,6 +50,7 @@ from functools import cached_property
 import numpy as np
 
 from tolalloc.errormodel.pose_program import PoseProgram, _pose_program
+from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import hat
 
 __all__ = ["ChainProgram", "chain_program", "FastChain", "ERROR", "JOINT"]
@@ -200,6 +201,24 @@ def chain_program(model) -> ChainProgram:
     return ChainProgram(np.array(kind, np.int64), np.array(twist, float).reshape(-1, 6), np.array(joint, np.int64),
                         np.array(site, np.int64), np.array(coef, float).reshape(-1, K),
                         np.asarray(robot.home, float).copy())
+
+
+def check_joint_values(model, q: np.ndarray, *, batch: bool = True) -> None:
+    """Refuse joint values ``q`` [rad, mm] unless shaped (n,) (or (..., n) with ``batch``), n the robot's joints."""
+    n = model.robot.n_joints
+    if q.ndim == 0 or q.shape[-1] != n or (not batch and q.ndim != 1):
+        raise TolallocError(f"q: expected shape ({n},)" + (f" or (..., {n})" if batch else "") + f", got shape "
+                            f"{q.shape}; one value per joint of robot {model.robot.name!r}, in rad and mm")
+
+
+def check_parameter_values(model, values: np.ndarray, *, transposed: bool = False) -> None:
+    """Refuse parameter values unless shaped (N, K) (or (K, N) with ``transposed``), K the model's parameters."""
+    K = len(model.params)
+    if values.ndim != 2 or values.shape[0 if transposed else 1] != K:
+        raise TolallocError("values: expected shape " + (f"({K}, N) with transposed=True" if transposed else
+                                                         f"(N, {K})") + f", got shape {values.shape}; one "
+                            "value per error parameter in model order (ErrorModel.names): draw them with "
+                            "ErrorModel.sample(n, rng)")
 
 
 class FastChain:
@@ -362,7 +381,10 @@ class FastChain:
         -------
         X : array, shape (3, 4, N); ``X[i, j, m]`` is ``T'[i, j]`` of sample ``m``.
         """
+        q, values = np.asarray(q, float), np.asarray(values, float)
+        check_joint_values(self.model, q, batch=False)
+        check_parameter_values(self.model, values, transposed=transposed)
         V = values if transposed else np.ascontiguousarray(values.T)
         N = V.shape[1]
         X = np.empty((3, 4, N))
-        return self.run(self.program(np.asarray(q, float)), V, X, self.workspace(N))
+        return self.run(self.program(q), V, X, self.workspace(N))

@@ -37,7 +37,7 @@ import pandas as pd
 
 from tolalloc.engine import resolve_engine
 from tolalloc.exceptions import TolallocError
-from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program
+from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program, check_joint_values, check_parameter_values
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.kinematics import jacobian_kernel, prefix_lists
 from tolalloc.robot.model import Robot
@@ -205,6 +205,8 @@ class ErrorModel:
     # ------------------------------------------------------------- sampling
     def sample(self, n: int, rng: np.random.Generator) -> np.ndarray:
         """Draw ``n`` samples of all parameter values, shape (n, K) [mm or rad]."""
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise TolallocError(f"n: expected a whole number of samples >= 0, got {n!r}")
 
         return sample_values(self, n, rng).T
 
@@ -233,10 +235,7 @@ class ErrorModel:
             Joint offsets; evaluate ``fk_poe(screws, home, q + dq)``.
         """
         values = np.atleast_2d(np.asarray(values, dtype=float))
-        if values.ndim != 2 or values.shape[1] != len(self.params):
-            raise TolallocError(
-                f"values: expected shape (N, {len(self.params)}) — one column per error parameter in model order "
-                f"(ErrorModel.names), got shape {values.shape}; sample them with ErrorModel.sample(n, rng)")
+        check_parameter_values(self, values)
         N = values.shape[0]
         prog = self.program
         n = self.robot.n_joints
@@ -281,6 +280,7 @@ class ErrorModel:
             factors ``f`` of ``coef_f Ad_{P_site(f)} twist_f`` (``P_s`` the nominal prefix product).
         """
         q = np.asarray(q, dtype=float)
+        check_joint_values(self, q)
         nb = jacobian_kernel(self.robot.screws, q, engine)
         if nb is not None:
             return nb.error_jacobian(self.robot.screws, self.robot.home[:3, 3], q, *self.program.param_entries())
