@@ -187,6 +187,8 @@ def test_check_q_count_limits_and_finiteness():
     np.testing.assert_allclose(robot.check_q([15, 30, -10, 0, -20, -5], interface=True), robot.q_nominal)
     with pytest.raises(TolallocError, match=r"has 6 joints .*expected 6 values \(deg, deg, deg, mm, deg, deg\), got 5"):
         robot.check_q([1, 2, 3, 4, 5], interface=True)
+    with pytest.raises(TolallocError, match=r"expected 6 values \(rad, rad, rad, mm, rad, rad\), got 5"):
+        robot.check_q([1, 2, 3, 4, 5])  # internal units: the message names them
     with pytest.raises(TolallocError, match=r"joint j4 = 600 mm is outside its limits \[0, 500\] mm"):
         robot.check_q([15, 30, -10, 600, -20, -5], interface=True)
     with pytest.raises(TolallocError, match=r"\(pose 2\): joint j2 = 70 deg is outside its limits \[-10, 60\] deg"):
@@ -301,3 +303,18 @@ def test_from_dh_accepts_the_trust_units_its_message_names():
     assert arm.links[0].length_mm == 400_000.0
     with pytest.raises(TolallocError, match="trust_units: expected True or False"):
         Robot.from_dh(rows, convention="standard", trust_units=1.5)
+
+
+def test_kinematics_refuse_joint_values_that_do_not_match_the_screws():
+    """fk_poe, the Jacobians and the prefix products name the shapes they expected when q and the screws disagree
+    (they were numpy broadcasting errors); batched screws with one q still broadcast."""
+    robot = load_robot("ur10")
+    S, M = robot.screws, robot.home
+    for call in (lambda q: fk_poe(S, M, q), lambda q: space_jacobian(S, q), lambda q: body_jacobian(S, M, q),
+                 lambda q: poe_prefix(S, q), lambda q: space_jacobian(S, q, engine="numba")):
+        for q in (np.zeros(5), np.zeros((3, 7)), 0.0):
+            with pytest.raises(TolallocError, match=r"q: expected shape \(\.\.\., 6\) with joint screws of shape "
+                                                    r"\(\.\.\., 6, 6\), got q of shape"):
+                call(q)
+    assert fk_poe(np.broadcast_to(S, (4, 6, 6)), M, np.zeros(6)).shape == (4, 4, 4)
+    np.testing.assert_allclose(fk_poe(S, M, np.zeros((2, 6)))[1], M, atol=1e-12)

@@ -124,7 +124,7 @@ def _check_r(r, name):
     except (TypeError, ValueError):
         raise TolallocError(f"{name}: expected a number or array of numbers, got {r!r}.") from None
     if not np.all(np.isfinite(r)) or np.any(r < 0):
-        raise TolallocError(f"{name}: expected finite values >= 0, got {np.array2string(r, threshold=8)}.")
+        raise TolallocError(f"{name}: expected finite values >= 0, got {np.array2string(r, threshold=8).rstrip('.')}.")
     return r
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.engine import resolve_engine
+from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import _rodrigues, adjoint, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
@@ -24,6 +25,16 @@ __all__ = [
     "jacobian_kernel",
     "compiled_prefix",
 ]
+
+
+def _screws_and_q(screws, q) -> tuple[np.ndarray, np.ndarray]:
+    """``screws`` (..., n, 6) and ``q`` (..., n) as float arrays; other shapes are refused with what was expected."""
+    screws, q = np.asarray(screws, dtype=float), np.asarray(q, dtype=float)
+    if screws.ndim < 2 or screws.shape[-1] != 6 or q.ndim == 0 or q.shape[-1] != screws.shape[-2]:
+        n = screws.shape[-2] if screws.ndim >= 2 else "n"
+        raise TolallocError(f"q: expected shape (..., {n}) with joint screws of shape (..., {n}, 6), got q of shape "
+                            f"{q.shape} and screws of shape {screws.shape}; one joint value per screw, in rad and mm")
+    return screws, q
 
 
 def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
@@ -49,8 +60,7 @@ def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
 
 def prefix_lists(screws, q):
     """Cumulative products as lists of contiguous arrays: ``R[j]`` (..., 3, 3), ``p[j]`` (..., 3), j = 0..n."""
-    screws = np.asarray(screws, dtype=float)
-    q = np.asarray(q, dtype=float)
+    screws, q = _screws_and_q(screws, q)
     ER, Ep = _joint_exp_rp(screws, q)  # (..., n, 3, 3), (..., n, 3)
     batch = ER.shape[:-3]
     R = [np.broadcast_to(np.eye(3), batch + (3, 3))]
@@ -110,8 +120,7 @@ def fk_poe(screws, home, q) -> np.ndarray:
     -------
     T : array, shape (..., 4, 4)
     """
-    screws = np.asarray(screws, dtype=float)
-    q = np.asarray(q, dtype=float)
+    screws, q = _screws_and_q(screws, q)
     E = exp_se3(screws * q[..., None])
     T = E[..., 0, :, :]
     for j in range(1, E.shape[-3]):
@@ -163,8 +172,7 @@ def space_jacobian(screws, q, *, engine: str | None = None) -> np.ndarray:
     -------
     J : array, shape (..., 6, n); the spatial twist of the end effector is ``J @ qdot``.
     """
-    screws = np.asarray(screws, dtype=float)
-    q = np.asarray(q, dtype=float)
+    screws, q = _screws_and_q(screws, q)
     nb = jacobian_kernel(screws, q, engine)
     if nb is not None:
         return nb.space_jacobian(screws, q)

@@ -208,7 +208,7 @@ class Robot:
         q : array, internal units [rad, mm], same shape.
         """
         n = self.n_joints
-        units = ", ".join(j.unit for j in self.joints)
+        units = ", ".join(j.unit if interface else "rad" if j.is_revolute else "mm" for j in self.joints)
         arr = np.atleast_1d(np.asarray(q, dtype=object))
         if arr.shape[-1] != n or arr.ndim > 2:
             raise TolallocError(
