@@ -213,3 +213,18 @@ def test_floor_splits_into_the_unidentifiable_part_and_noise(planar):
         assert null_floor < d.floor_mm2 <= d.score_mm2 < no_cal
         floors.append(d.floor_mm2 - null_floor)
     assert floors[1] < 0.02 * floors[0]  # the noise part shrinks with the noise variance (x 0.01)
+
+
+def test_plan_poses_of_another_width_and_plans_of_another_robot_are_refused():
+    """make_plan names the joint count (it was a numpy reshape error); posterior refuses a plan made for another
+    robot (it computed a posterior at that robot's poses without a word)."""
+    ur10, tc = load_robot("ur10"), load_robot("tool_changer")
+    with pytest.raises(TolallocError, match=r"calibration poses: robot 'ur10' has 6 joints .*\(rad, rad, rad, rad, "
+                                            r"rad, rad\), got 5"):
+        make_plan(ur10, np.zeros((4, 5)))
+    assert make_plan(ur10, np.zeros(6)).q.shape == (1, 6) and make_plan(ur10, []).q.shape == (0, 6)
+    split = split_errors(build_error_model(ur10))
+    with pytest.raises(TolallocError, match=r"plan: made for the robot 'tool_changer' \(6 joints\), but the error "
+                                            r"split is of 'ur10'"):
+        posterior(split, make_plan(tc, tc.poses("working")))
+    assert posterior(split, make_plan(ur10, ur10.poses("working"))).cov_sys.shape[0] == len(split.model.params)

@@ -106,9 +106,8 @@ def make_plan(robot: Robot, q, *, measurement: str = "position", noise_mm: float
     """
     if measurement not in ("position", "pose"):
         raise TolallocError(f"measurement: expected 'position' or 'pose', got {measurement!r}.")
-    q = np.asarray(q, dtype=float).reshape(-1, robot.n_joints) if np.size(q) else np.zeros((0, robot.n_joints))
-    if q.shape[0]:
-        q = np.atleast_2d(robot.check_q(q, "calibration poses"))
+    q = (np.atleast_2d(robot.check_q(q, "calibration poses")) if np.size(q) else
+         np.zeros((0, robot.n_joints)))
     est = None if estimate is None or estimate == "all" else tuple(estimate)
     return CalibrationPlan(q, measurement, _check_noise(noise_mm, "noise_mm"),
                            np.deg2rad(_check_noise(noise_deg, "noise_deg")), est, bool(registration), robot.name)

@@ -185,6 +185,10 @@ def posterior(split: ErrorSplit, plan: CalibrationPlan, *, random_noise: bool = 
     Posterior
     """
     model = split.model
+    if (plan.robot is not None and plan.robot != model.robot.name) or plan.q.shape[-1] != model.robot.n_joints:
+        raise TolallocError(f"plan: made for the robot {plan.robot!r} ({plan.q.shape[-1]} joints), but the error split "
+                            f"is of {model.robot.name!r} ({model.robot.n_joints} joints); make the plan for this robot "
+                            "(make_plan(robot, q) or plan_calibration).")
     fac = np.array([VARIANCE_FACTOR[p.distribution] for p in model.params])
     prior_var = np.where(split.systematic, fac * model.sigma**2, 0.0)
     rand_var = split.random_variance()
