@@ -51,3 +51,10 @@ def test_an_effect_the_robot_cannot_show_is_refused_not_nan():
                 generate(robot, effect, 20, np.random.default_rng(0))
         frame = generate(robot, "backlash", 20, np.random.default_rng(0)).frame
     assert np.isfinite(frame.select_dtypes("number").to_numpy()).all()
+
+
+@pytest.mark.parametrize("n_poses", [0, 1, -5, 2.5, True])
+def test_a_pose_count_that_is_not_a_whole_number_of_at_least_two_is_refused(n_poses):
+    # regression: 0 ended in a numpy IndexError, -5 in "negative dimensions are not allowed"
+    with pytest.raises(TolallocError, match=r"n_poses: expected a whole number of poses >= 2"):
+        generate(tolalloc.load_robot("tool_changer"), "backlash", n_poses, np.random.default_rng(0))

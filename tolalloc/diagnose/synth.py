@@ -79,6 +79,9 @@ def generate(robot: Robot, effect: str, n_poses: int = 200, rng: np.random.Gener
     """
     if effect not in LABELS:
         raise TolallocError(f"effect: expected one of {', '.join(LABELS)}, got {effect!r}.")
+    if isinstance(n_poses, bool) or not isinstance(n_poses, (int, np.integer)) or n_poses < 2:
+        raise TolallocError(f"n_poses: expected a whole number of poses >= 2 (a measurement set to split into "
+                            f"training and test rows), got {n_poses!r}.")
     rng = rng or np.random.default_rng()
     n = robot.n_joints
     noise = float(rng.uniform(0.01, 0.03) if noise_mm is None else noise_mm)
