@@ -255,3 +255,11 @@ def test_bad_input():
         b.to_frame(by="joint")
     with pytest.raises(TolallocError, match="quantity"):
         budget(linear_map(model, robot.q_nominal), "speed")
+
+
+def test_budget_refuses_what_is_not_a_linear_result():
+    # regression: budget(model, q) ended in a numpy "truth value of an array is ambiguous" error
+    model = build_error_model(load_robot("tool_changer"))
+    with pytest.raises(TolallocError, match=r"result: expected a LinearResult \(from linear_map\(model, q\)\), got "
+                                            r"ErrorModel"):
+        budget(model, np.zeros(6))

@@ -275,3 +275,12 @@ def test_to_frame_table3_layout(model, robot):
 def test_bad_input_raises(model, robot, call):
     with pytest.raises(TolallocError):
         call(model, robot)
+
+
+@pytest.mark.parametrize("k, n, level", [(12, 10, 0.95), (-1, 10, 0.95), (3, 0, 0.95), (np.nan, 10, 0.95),
+                                         (5, 10, 1.5), (5, 10, 0.0)])
+def test_proportion_ci_refuses_counts_and_levels_that_are_not_a_proportion(k, n, level):
+    # regression: k > n gave NaN bounds and a RuntimeWarning
+    with pytest.raises(TolallocError, match=r"^(k, n: expected 0 <= k <= n|level: expected a confidence level)"):
+        proportion_ci(k, n, "wilson", level)
+    assert proportion_ci(np.array([0, 10]), 10).shape == (2, 3)

@@ -341,6 +341,9 @@ def budget(result: LinearResult, quantity: str = "position") -> ErrorBudget:
     -------
     ErrorBudget
     """
+    if not isinstance(result, LinearResult):
+        raise TolallocError(f"result: expected a LinearResult (from linear_map(model, q)), got "
+                            f"{type(result).__name__}.")
     if quantity not in ("position", "rotation"):
         raise TolallocError(f"quantity: expected 'position' or 'rotation', got {quantity!r}.")
     rows = slice(0, 3) if quantity == "position" else slice(3, 6)

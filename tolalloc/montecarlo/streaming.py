@@ -184,7 +184,7 @@ def proportion_ci(k, n, ci: str = "wilson", level: float = 0.95) -> np.ndarray:
     ----------
     k : array of int
         Successes.
-    n : int
+    n : int or array of int (broadcast with ``k``)
         Trials.
     ci : {"wilson", "exact"}
         Wilson score interval or Clopper-Pearson.
@@ -195,7 +195,12 @@ def proportion_ci(k, n, ci: str = "wilson", level: float = 0.95) -> np.ndarray:
     """
     from scipy import stats
 
-    k = np.asarray(k, dtype=float)
+    k, nn = np.asarray(k, dtype=float), np.asarray(n, dtype=float)
+    if not (np.all(np.isfinite(nn)) and np.all(nn >= 1) and np.all(np.isfinite(k)) and np.all((k >= 0) & (k <= nn))):
+        raise TolallocError(f"k, n: expected 0 <= k <= n successes of n >= 1 trials, got k = "
+                            f"{np.array2string(k, threshold=6)}, n = {np.array2string(nn, threshold=6)}.")
+    if not 0.0 < level < 1.0:
+        raise TolallocError(f"level: expected a confidence level strictly between 0 and 1, got {level!r}.")
     p = k / n
     if ci == "wilson":
         z = stats.norm.ppf(0.5 + level / 2)
