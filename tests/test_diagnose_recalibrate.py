@@ -12,7 +12,9 @@ the rest.
 * The second session is the same robot: the marginal likelihood keeps ``k`` at its floor (the training file's
   out-of-fold factor, about 1.5 here) and the update does not move -- scored RMS and every parameter as the
   frame-only re-registration gives them, to within the noise; also with a wide prior given (``WIDE_PRIOR_K``).
-* The marginal likelihood itself (:func:`evidence_inflation`) recovers a known prior scale on a linear-Gaussian
+* The prior is a power prior (:class:`CalibrationPrior`): the training posterior at ``k = 1``, the fit's own prior
+  as ``k`` grows, never wider than it; its moments against a dense computation.
+* The marginal likelihood itself (:func:`evidence_discount`) recovers a known discount on a linear-Gaussian
   problem, keeps its floor and cap exactly, and agrees with a brute-force evidence that puts a wide Gaussian prior on
   the frame instead of projecting it out (:func:`project_out`, also checked on a rank-deficient frame Jacobian);
   the scored rows never change ``k``.
@@ -32,7 +34,8 @@ from tolalloc.diagnose.uncertainty import point_jacobian
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.pipeline import diagnose
-from tolalloc.diagnose.recalibrate import (INFLATION_MAX, CalibrationUpdate, calibration_prior, evidence_inflation,
+from tolalloc.diagnose.recalibrate import (INFLATION_MAX, CalibrationPrior, CalibrationUpdate, calibration_prior,
+                                          evidence_discount,
                                           inflation_factor, project_out, register_update, reregister)
 from tolalloc.diagnose.register import register_and_score, registration_split
 from tolalloc.exceptions import TolallocError
@@ -119,10 +122,10 @@ def test_update_run_says_what_was_fitted_and_whose_uncertainty_is_predicted(chan
     assert "other test poses fitted the tracker frame, the probe offset and a correction of the trained" in text
     cu = upd.calibration_update
     ks = f"geometric {cu.inflation_k['geometric']:,.0f}"
-    assert f"marginal likelihood chose: k = {ks}" in text and "huber loss" in text
+    assert f"marginal likelihood chose it: k = {ks}" in text and "huber loss" in text
     line = next(ln for ln in text.splitlines() if ln.startswith("predicted uncertainty:"))
     assert line.endswith("predicted uncertainty of the updated model: the calibration update's posterior covariance "
-                         "(its prior, the training posterior widened by k, and the registration poses), so this "
+                         "(its prior, the power prior of the training fit at k, and the registration poses), so this "
                          "coverage checks the updated model's own uncertainty")
     js = upd.to_dict()
     reg = js["test"]["registration"]
@@ -274,20 +277,58 @@ def test_same_robot_keeps_the_prior_at_its_floor(same_robot_runs):
         assert cu.set_aside_poses[m] == ()
 
 
+def _linear_prior(rng, m=40, noise_mm=0.01):
+    """A power prior with informative training data (``S``) and a weak own prior (``Lambda``), trained values off 0."""
+    L = rng.normal(size=(m, m))
+    S = 1e6 * (L @ L.T / m + 0.1 * np.eye(m))  # training information [1 / units^2]
+    lam = np.full(m, 1e2)  # the fit's own prior: sd 0.1 units
+    return CalibrationPrior(rng.normal(0.0, 0.05, m), S, lam, noise_mm)
+
+
 @pytest.mark.parametrize("k_true", [1.0, 30.0, 1000.0])
-def test_marginal_likelihood_recovers_a_known_prior_scale(k_true):
+def test_marginal_likelihood_recovers_a_known_discount(k_true):
     rng = np.random.default_rng(11)
-    n, m, noise2 = 3000, 40, 0.01 ** 2
+    n, m = 3000, 40
+    prior = _linear_prior(rng, m)
     A = rng.normal(size=(n, m))
-    L = rng.normal(size=(m, m)) / np.sqrt(m)
-    C = 1e-7 * (L @ L.T + 0.1 * np.eye(m))  # prior covariance at k = 1 [parameter units^2]
-    theta = rng.multivariate_normal(np.zeros(m), k_true * C, size=60)
+    mean, C = prior.moments(k_true)
     ks = []
-    for t in theta:  # many draws of the parameters: k is estimated from the m = 40 of one draw
-        y = A @ t + rng.normal(0.0, np.sqrt(noise2), n)
-        ks.append(evidence_inflation(y, A, C, noise2)[0])
+    for t in rng.multivariate_normal(mean, C, size=60):  # k is estimated from the m = 40 parameters of one draw
+        y = A @ (t - prior.trained) + rng.normal(0.0, prior.noise_mm, n)  # residuals at the trained values
+        ks.append(evidence_discount(y, A, prior)[0])
     assert np.median(ks) == pytest.approx(k_true, rel=0.25)
-    assert evidence_inflation(y, A, C, noise2, k_min=2 * k_true)[0] >= 2 * k_true  # the floor holds exactly
+    assert evidence_discount(y, A, prior, k_min=2 * k_true)[0] >= 2 * k_true  # the floor holds exactly
+
+
+def test_power_prior_moves_from_the_training_posterior_to_the_fits_own_prior():
+    rng = np.random.default_rng(12)
+    prior = _linear_prior(rng, 6)
+    S, lam, theta = prior.information, np.diag(prior.prior_precision), prior.trained
+    # k = 1: the training posterior (mean the trained values, precision S + Lambda)
+    mean1, C1 = prior.moments(1.0)
+    np.testing.assert_allclose(mean1, theta, rtol=1e-12)
+    np.testing.assert_allclose(C1, np.linalg.inv(S + lam), rtol=1e-8)
+    np.testing.assert_allclose(prior.precision, prior.noise_mm ** 2 * (S + lam), rtol=1e-12)
+    # any k: the Gaussian likelihood raised to 1/k times the own prior, by completing the square densely
+    for k in (3.0, 300.0):
+        P = S / k + lam
+        theta_ml = np.linalg.solve(S, (S + lam) @ theta)  # the training data's own estimate
+        mean, C = prior.moments(k)
+        np.testing.assert_allclose(C, np.linalg.inv(P), rtol=1e-8)
+        np.testing.assert_allclose(mean, np.linalg.solve(P, S @ theta_ml / k), rtol=1e-6, atol=1e-12)
+        assert np.all(np.diag(C) <= 1.0 / prior.prior_precision)  # never wider than the fit's own prior
+    mean_far, C_far = prior.moments(1e9)
+    np.testing.assert_allclose(np.diag(C_far), 1.0 / prior.prior_precision, rtol=1e-4)
+    np.testing.assert_allclose(mean_far, 0.0, atol=1e-4 * np.abs(theta).max())
+    # a parameter the training data never pinned keeps its own prior at every k
+    S0 = S.copy()
+    S0[0, :] = S0[:, 0] = 0.0
+    unpinned = CalibrationPrior(theta, S0, prior.prior_precision, prior.noise_mm)
+    for k in (1.0, 50.0, 5e3):
+        assert unpinned.moments(k)[1][0, 0] == pytest.approx(1.0 / prior.prior_precision[0], rel=1e-9)
+    w = prior.widened(50.0, 2.0)
+    assert (w.inflation, w.inflation_floor) == (50.0, 2.0)
+    np.testing.assert_allclose(w.mean, prior.moments(50.0)[0])
 
 
 def _changed_session(sessions):
@@ -311,14 +352,15 @@ def test_chosen_k_matches_a_brute_force_evidence_with_a_wide_prior_on_the_frame(
     J = point_jacobian(start, q[r]).reshape(3 * len(r), -1)
     y = (xyz[r] - start.predict(q[r])).ravel()
     prior1 = calibration_prior(fit, train.q, None)
-    C = prior1.noise_mm ** 2 * np.linalg.inv(prior1.precision)
     s = np.linalg.norm(J[:, :9], axis=0)
     W = np.diag((1e4 / s) ** 2)  # the frame's prior sd: 1e4 mm of effect per column
     ks = np.geomspace(100, 1e4, 400)
 
     def logev(k):
-        S = prior1.noise_mm ** 2 * np.eye(len(y)) + J[:, :9] @ W @ J[:, :9].T + k * J[:, 9:] @ C @ J[:, 9:].T
-        return -0.5 * (np.linalg.slogdet(S)[1] + y @ np.linalg.solve(S, y))
+        mean, C = prior1.moments(k)
+        e = y - J[:, 9:] @ (mean - prior1.trained)
+        S = prior1.noise_mm ** 2 * np.eye(len(y)) + J[:, :9] @ W @ J[:, :9].T + J[:, 9:] @ C @ J[:, 9:].T
+        return -0.5 * (np.linalg.slogdet(S)[1] + e @ np.linalg.solve(S, e))
 
     brute = ks[np.argmax([logev(k) for k in ks])]
     assert reg.prior.inflation == pytest.approx(brute, rel=0.03)
@@ -351,16 +393,18 @@ def test_a_gross_registration_error_is_set_aside_and_does_not_widen_the_prior(se
 
 def test_evidence_without_information_keeps_the_floor_and_the_floor_may_exceed_the_cap():
     rng = np.random.default_rng(2)
-    y, C = rng.normal(0.0, 0.01, 30), 1e-6 * np.eye(4)
-    assert evidence_inflation(y, np.zeros((30, 4)), C, 1e-4, k_min=3.0)[0] == 3.0  # flat evidence
-    assert evidence_inflation(y, rng.normal(size=(30, 4)), C, 0.0, k_min=3.0)[0] == 3.0  # no noise variance
-    k, ev = evidence_inflation(y * np.nan, rng.normal(size=(30, 4)), C, 1e-4, k_min=3.0)
+    y = rng.normal(0.0, 0.01, 30)
+    prior = CalibrationPrior(np.full(4, 0.01), 1e8 * np.eye(4), np.full(4, 1e6), 0.01)  # sd 1e-4 at k = 1
+    assert evidence_discount(y, np.zeros((30, 4)), prior, k_min=3.0)[0] == 3.0  # flat evidence
+    silent = CalibrationPrior(prior.trained, prior.information, prior.prior_precision, 0.0)
+    assert evidence_discount(y, rng.normal(size=(30, 4)), silent, k_min=3.0)[0] == 3.0  # no noise variance
+    k, ev = evidence_discount(y * np.nan, rng.normal(size=(30, 4)), prior, k_min=3.0)
     assert k == 3.0 and np.isnan(ev)
-    big = evidence_inflation(100 * y, rng.normal(size=(30, 4)), C, 1e-4, k_min=2 * INFLATION_MAX)[0]
+    big = evidence_discount(100 * y, rng.normal(size=(30, 4)), prior, k_min=2 * INFLATION_MAX)[0]
     assert big == 2 * INFLATION_MAX
     A = rng.normal(size=(30, 4))
-    far = A @ np.full(4, 10.0)  # 10 units where the prior sd is 1e-3: k of about 1e8 wanted
-    assert evidence_inflation(far, A, C, 1e-4)[0] == INFLATION_MAX  # at the cap exactly
+    far = A @ np.full(4, -0.01)  # parameters at the own prior's mean, 100 training sd from the trained values
+    assert evidence_discount(far, A, prior)[0] == INFLATION_MAX  # at the cap exactly
 
 
 @pytest.fixture(scope="module")

@@ -81,6 +81,25 @@ def test_issue15_target_no_final_worse_than_nominal_without_a_guard(run, series)
     assert 0.0 <= d.uncertainty.coverage <= 1.0 and np.all(d.uncertainty.sigma_mm > 0)
 
 
+@pytest.mark.parametrize("direction", ["A_to_C", "C_to_A"])
+def test_calibration_update_carries_the_effects_into_the_other_session(direction, series):
+    """Across sessions with the calibration update (power prior, k by the registration poses' marginal likelihood):
+    the final model, trained on one session, beats the geometric one on the other session's scored poses, and both
+    beat the re-registered nominal model. (The frame and probe offset alone cannot carry the effects over: the
+    sessions share no shoulder-pan angle; reports/sim2real_ur10.)"""
+    robot = tolalloc.load_robot("ur10")
+    A = series["A"].iloc[::24].reset_index(drop=True)
+    C = series["C"].iloc[::4].reset_index(drop=True)
+    tr, te = (A, C) if direction == "A_to_C" else (C, A)
+    d = diagnose(robot, measurements_from_frame(tr, robot), measurements_from_frame(te, robot), folds=3,
+                 max_effects=1, test_frame="refit", register_update="calibration")
+    rms = d.before_after("test")["rms_mm"].to_numpy()  # nominal, geometric, final on the scored poses
+    assert d.final.effects and rms[2] < rms[1] < rms[0]
+    cu = d.calibration_update
+    for m, k in cu.inflation_k.items():
+        assert cu.inflation_floor_k[m] <= k <= max(1e4, cu.inflation_floor_k[m])
+
+
 def test_session_coverage_is_mod_360():
     """The study's joint-angle coverage counts an angle and the same angle 360 deg away as one, and disjoint
     ranges as 0 %."""

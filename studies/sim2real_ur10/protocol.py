@@ -151,9 +151,9 @@ def section(table: pd.DataFrame) -> list:
              "a new session measured at its start would give them: the other rows are then a forward prediction "
              "in time. `span_pct`: the joint range the registration poses span, as a share of the test session's "
              "range (mean over the joints). `coverage95_pct`: scored residuals inside the predicted 95 % radius (for "
-             "`calibration`, the update's posterior); `update_k_final`: how far the registration poses' marginal "
-             "likelihood widened the final model's training posterior for the update (`nan` in the `frame` rows: no "
-             "update); `median_sigma_mm`: median predicted 1-sigma of the test "
+             "`calibration`, the update's posterior); `update_k_final`: the k the registration poses' marginal "
+             "likelihood chose for the final model's update, its training data counting 1/k in the prior (`nan` in "
+             "the `frame` rows: no update); `median_sigma_mm`: median predicted 1-sigma of the test "
              "poses; `extrapolating_pct`: test poses flagged as extrapolations. One registration split per row, no "
              "interval. (registration_poses.csv)", "",
              table.to_markdown(index=False, floatfmt=".3f"), ""]
@@ -172,8 +172,8 @@ def section(table: pd.DataFrame) -> list:
                  + "; ".join(f"`{u}` {value_range(g['median_sigma_mm'], '.3f')} mm"
                              for u, g in table.groupby("register_update"))
                  + f". Test poses flagged as extrapolations from the training session (`extrapolating_pct`): "
-                 f"{value_range(table['extrapolating_pct'])} %. Prior widening the registration poses chose for the final "
-                 "model (`update_k_final`): " + value_range(table["update_k_final"].dropna(), ".3g") + ".")
+                 f"{value_range(table['extrapolating_pct'])} %. The k the registration poses chose for the final "
+                 "model (`update_k_final`; its training data count 1/k in the prior): " + value_range(table["update_k_final"].dropna(), ".3g") + ".")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows (final test RMS, this model vs the fresh one, every row): "

@@ -263,5 +263,6 @@ def section(robot, A_all, C_all, ms: dict, reg_rows: list, out) -> list:
             f"{q1.iloc[1]:.1f} % of A's one C visited (the q1 ranges do not overlap mod 360 deg), and shoulder-lift and "
             "elbow angles of A lie mostly outside C's. The joint-angle-dependent error (the transmission's harmonics, "
             "the geometric fit's compensation of them) at those angles is in neither training session, so no model "
-            "trained on one session can predict it; the issue's 0.50 mm across sessions needs training poses that "
-            "cover the test session's joint angles, not another model.", ""]
+            "trained on one session can predict it with the frame and probe offset alone: the registration poses "
+            "of the new session must also correct the trained parameters (the `calibration` update, section "
+            "\"Registration poses a new session needs\").", ""]

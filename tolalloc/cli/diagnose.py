@@ -37,8 +37,9 @@ def register(sub) -> None:
     p.add_argument("--register-update", choices=("frame", "calibration"), default=None,
                    help="with --test-frame refit: what the registration poses re-fit -- 'frame' (default): the tracker "
                    "frame and probe offset, the trained model frozen; 'calibration': also a correction of the trained "
-                   "geometric and effect parameters, with their training posterior as the prior (the same robot, "
-                   "re-measured), widened as far as the registration poses' marginal likelihood says they moved")
+                   "geometric and effect parameters, with the training fit as the prior (the same robot, re-measured), "
+                   "its training data discounted as far as the registration poses' marginal likelihood says they "
+                   "moved")
     p.add_argument("--json", metavar="OUT.json", help="write the result as JSON ('-' for stdout)")
     p.add_argument("--predictions", metavar="PRED.csv",
                    help="final model's prediction x_mm,y_mm,z_mm for every test row, in order (row: its data row in "

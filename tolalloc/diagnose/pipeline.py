@@ -135,9 +135,9 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     register_update : {"frame", "calibration"}
         ``refit``: what the registration poses re-fit. ``frame`` (default): the tracker frame and the probe offset,
         the trained model frozen. ``calibration``: also a correction of the trained geometric and effect
-        parameters, with the training fit's posterior as the prior, widened by the factor the registration poses'
-        marginal likelihood chooses (at least the out-of-fold / in-sample residual ratio of the training file;
-        :mod:`.recalibrate`). No effect without ``refit``.
+        parameters, with the training fit as the prior (a power prior: its training data counting 1/k, k as the
+        registration poses' marginal likelihood chooses it, at least the out-of-fold / in-sample residual ratio of
+        the training file; :mod:`.recalibrate`). No effect without ``refit``.
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
     progress : bool or None     progress bars on stderr (None: when stderr is a terminal)

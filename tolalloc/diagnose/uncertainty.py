@@ -2,7 +2,7 @@
 
 * :func:`information` -- the Gauss-Newton information matrix of a fit's parameters (columns of
   :func:`point_jacobian`: registration, probe offset, geometric parameters, effect columns) with the fit's prior
-  precisions, and the noise variance per coordinate; :func:`parameter_covariance` inverts it (scaled
+  precisions, and the noise variance per coordinate (the data and prior parts apart: :func:`information_parts`); :func:`parameter_covariance` inverts it (scaled
   pseudo-inverse, :func:`scaled_pinv`); :func:`tolalloc.diagnose.recalibrate.calibration_prior` marginalises it over
   the registration.
 * :func:`prediction_uncertainty` -- per test pose the predicted 1-sigma of the final model's prediction from the
@@ -25,7 +25,7 @@ from tolalloc.robot.lie import hat
 from tolalloc.diagnose.calibrate import fixed_jacobian
 
 __all__ = ["COVERAGE_P", "COVERAGE_LOW", "UNCERTAINTY_METHODS", "PoseUncertainty", "point_jacobian", "information",
-           "scaled_pinv", "parameter_covariance", "prediction_uncertainty"]
+           "information_parts", "scaled_pinv", "parameter_covariance", "prediction_uncertainty"]
 
 #: Noise variance per coordinate [mm^2] assumed for a fit without residuals.
 NOISE2_NO_RESIDUAL = 0.05 ** 2
@@ -108,19 +108,13 @@ def point_jacobian(fit, q: np.ndarray, B: np.ndarray | None = None) -> np.ndarra
     return J
 
 
-def information(fit, q: np.ndarray, B: np.ndarray | None = None) -> tuple:
-    """Gauss-Newton information matrix of ``fit``'s parameters on the poses ``q`` with the fit's prior precisions,
-    and the noise variance per coordinate.
-
-    ``noise^2 = RSS / (3 P - n)`` from ``fit.residual_mm`` (all rows of the fit; ``q`` may be a subsample of
-    them); information ``J^T J / noise^2 + diag(1 / s^2)`` with ``J`` the columns of :func:`point_jacobian` and
-    ``s`` the MAP prior standard deviations of the geometric parameters (``fit.model.sigma``), of the target offset
-    when the fit had a prior on it (``fit.t_prior_mm``) and of ridge-regularised effect parameters
-    (``fit.beta_prior_w``: precision ``w^2 / noise^2``); none for the registration.
+def information_parts(fit, q: np.ndarray, B: np.ndarray | None = None) -> tuple:
+    """The two parts of :func:`information`: the data's ``J^T J / noise^2`` and the prior precisions (diagonal).
 
     Returns
     -------
-    info : array, shape (n, n) [1 / units of the parameters squared]
+    data : array, shape (n, n) [1 / units of the parameters squared]
+    prior : array, shape (n,) [1 / units squared]   0 where a parameter has no prior
     noise2 : float [mm^2]
     """
     J = point_jacobian(fit, q, B).reshape(3 * len(q), -1)
@@ -135,7 +129,26 @@ def information(fit, q: np.ndarray, B: np.ndarray | None = None) -> tuple:
     w = getattr(fit, "beta_prior_w", None)
     if w is not None and n - 9 - len(sig) == len(w):  # ridge rows w beta: precision w^2 / noise^2
         prec[9 + len(sig):] = np.asarray(w, float) ** 2 / noise2
-    return J.T @ J / noise2 + np.diag(prec), noise2
+    return J.T @ J / noise2, prec, noise2
+
+
+def information(fit, q: np.ndarray, B: np.ndarray | None = None) -> tuple:
+    """Gauss-Newton information matrix of ``fit``'s parameters on the poses ``q`` with the fit's prior precisions,
+    and the noise variance per coordinate.
+
+    ``noise^2 = RSS / (3 P - n)`` from ``fit.residual_mm`` (all rows of the fit; ``q`` may be a subsample of
+    them); information ``J^T J / noise^2 + diag(1 / s^2)`` with ``J`` the columns of :func:`point_jacobian` and
+    ``s`` the MAP prior standard deviations of the geometric parameters (``fit.model.sigma``), of the target offset
+    when the fit had a prior on it (``fit.t_prior_mm``) and of ridge-regularised effect parameters
+    (``fit.beta_prior_w``: precision ``w^2 / noise^2``); none for the registration (:func:`information_parts`).
+
+    Returns
+    -------
+    info : array, shape (n, n) [1 / units of the parameters squared]
+    noise2 : float [mm^2]
+    """
+    data, prec, noise2 = information_parts(fit, q, B)
+    return data + np.diag(prec), noise2
 
 
 def _diag_scale(M: np.ndarray) -> np.ndarray:

@@ -44,8 +44,8 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     register_update : {"frame", "calibration"}, optional
         With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
         the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
-        parameters, their training posterior as the prior, widened as far as the registration poses' marginal
-        likelihood says they moved (:mod:`tolalloc.diagnose.recalibrate`).
+        parameters, the training fit as the prior, its training data discounted as far as the registration
+        poses' marginal likelihood says they moved (:mod:`tolalloc.diagnose.recalibrate`).
     folds : int
         Cross-validation folds (a minimum: more when the training file has few poses).
     alpha : float
