@@ -34,9 +34,9 @@ from tolalloc.diagnose.uncertainty import point_jacobian
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.pipeline import diagnose
-from tolalloc.diagnose.recalibrate import (INFLATION_MAX, CalibrationPrior, CalibrationUpdate, calibration_prior,
-                                          evidence_discount,
-                                          inflation_factor, project_out, register_update, reregister)
+from tolalloc.diagnose.power_prior import (INFLATION_MAX, CalibrationPrior, calibration_prior, evidence_discount,
+                                          inflation_factor, project_out)
+from tolalloc.diagnose.recalibrate import CalibrationUpdate, register_update, reregister
 from tolalloc.diagnose.register import register_and_score, registration_split
 from tolalloc.exceptions import TolallocError
 

@@ -3,41 +3,20 @@
 The frame-only re-registration (:func:`tolalloc.diagnose.register.register_and_score`) re-fits the test file's
 tracker frame (6) and probe offset (3) on the registration poses with the trained model frozen. The calibration
 update fits, on the same registration poses, the frame, the probe offset **and** a correction of the trained
-geometric and effect parameters ``theta``, with the training fit's posterior as the prior: the same robot,
+geometric and effect parameters ``theta``, with the training fit as the prior: the same robot,
 re-measured, whose parameters move only as far as the training data allow.
 
-Prior of ``theta``: a **power prior** -- the training data's likelihood raised to ``1/k`` times the training fit's
-own prior (the MAP prior of the geometric parameters, the ridge weights of the effect columns), ``k >= 1``. With the
-training data's information marginalised over the training registration and probe offset (Schur complement: that
-frame is not the test file's),
-
-    S = (J_tt - J_tf J_ff^-1 J_ft) / noise^2,    Lambda = diag(prior precisions of the training fit),
-
-(``J`` the training Jacobian, :func:`tolalloc.diagnose.uncertainty.point_jacobian`; ``noise^2`` the training
-residual variance per coordinate; :func:`tolalloc.diagnose.uncertainty.information_parts`) the prior is Gaussian
-with precision ``P_k = S / k + Lambda`` and mean ``m_k = P_k^-1 (S + Lambda) theta_trained / k``: at ``k = 1`` the
-training posterior; as ``k`` grows the training data count less and the prior tends to the fit's own prior -- never
-wider than it, so parameters the training poses never pinned (harmonics of a joint at angles the training session
-did not visit) stay where the physical prior keeps them while the pinned ones are free to move. How far the
-parameters may have moved since the training session is not known from the training file: ``k`` is chosen by the
-**registration poses' marginal likelihood** (type-II maximum likelihood, :func:`evidence_discount`): the linearised
-model ``r = J_f d_f + J_t d_t + e`` at the frame-only re-registration, the frame and probe offset ``d_f``
-marginalised (a flat prior, restricted likelihood), ``theta ~ N(m_k, P_k^-1)`` and ``e ~ N(0, noise^2 I)``, the
-noise at the training residual level. ``k`` is at least the training file's own factor (:func:`inflation_factor`:
-the ratio of the model's out-of-fold, time blocks, to its in-sample mean square residual, at least 1), so the
-training data never count more than their error on poses they did not see allows. The update then minimises
-``|r_reg|^2 + noise^2 (theta - m_k)^T P_k (theta - m_k)`` with a robust loss:
-Huber's (``huber`` or ``soft_l1`` when the diagnosis uses it) -- Tukey's biweight, beside a strong prior, can
-reject the registration poses that disagree with the trained parameters instead of moving the parameters.
+Prior of ``theta``: a **power prior** (:mod:`tolalloc.diagnose.power_prior`) -- the training data's likelihood
+raised to ``1/k`` times the training fit's own prior; ``k`` chosen by the registration poses' marginal likelihood,
+at least the training file's own factor (:func:`~tolalloc.diagnose.power_prior.inflation_factor`). The update then
+minimises ``|r_reg|^2 + noise^2 (theta - m_k)^T P_k (theta - m_k)`` with a robust loss: Huber's (``huber`` or
+``soft_l1`` when the diagnosis uses it) -- Tukey's biweight, beside a strong prior, can reject the registration
+poses that disagree with the trained parameters instead of moving the parameters.
 Registration poses whose frame-only residual exceeds ``TUKEY_C`` x the median norm are set aside from the choice of
 ``k`` and from the update (:func:`gross_errors`; none when fewer than ``MIN_REGISTER`` poses would remain); the rest
 enter the marginal likelihood without robust weights. The noise is not estimated with ``k``: across the UR10
 sessions a free noise scale takes the misfit the trained model's parameters cannot explain as noise (it went to
 the largest value allowed, 16 x the training variance), which held the update back (a scratch run, not kept).
-An earlier form widened the whole training posterior by ``k`` (``P_1 / k``, mean the trained values): it lets
-parameters the training poses never pinned grow ``sqrt(k)`` times beyond their physical prior; on the real UR10 its
-scored final RMS was higher in all 12 calibration-update rows of the study's registration table (its report at
-commit ``bde2bd7``: 0.409 and 0.501 mm where the power prior gives 0.266 and 0.460 mm).
 
 On the real UR10 across sessions (train on one session, test on the other; ``studies/sim2real_ur10``) the
 registration poses chose ``k`` of 328-10,000 for the final model -- the new session moved the parameters far more
@@ -53,25 +32,23 @@ parameters beyond the frame (nominal) is re-registered as before. The predicted 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from functools import cached_property
 
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.calibrate import TUKEY_C, HUBER_C, Fit
-from tolalloc.diagnose.uncertainty import information_parts, point_jacobian, scaled_pinv
+from tolalloc.diagnose.uncertainty import point_jacobian
+from tolalloc.diagnose.power_prior import (INFLATION_MAX, CalibrationPrior, calibration_prior,
+                                          evidence_discount, inflation_factor, project_out)
 from tolalloc.diagnose.measurements import file_rows
 from tolalloc.diagnose.register import MIN_REGISTER, Registered, RegistrationSplit, register_and_score
 from tolalloc.diagnose.scale import Problem, norm_scale, robust_scale, solve
 
-__all__ = ["REGISTER_UPDATES", "INFLATION_MAX", "UNCERTAINTY_SCOPE", "CalibrationPrior", "CalibrationUpdate",
-           "calibration_prior", "evidence_discount", "gross_errors", "inflation_factor", "posterior_covariance",
-           "project_out", "registration_prior", "register_update", "reregister", "update_loss"]
+__all__ = ["REGISTER_UPDATES", "UNCERTAINTY_SCOPE", "CalibrationUpdate", "gross_errors", "posterior_covariance",
+           "registration_prior", "register_update", "reregister", "update_loss"]
 
 #: ``register_update`` choices: re-fit the frame and probe offset only, or also update the calibration.
 REGISTER_UPDATES = ("frame", "calibration")
-#: Largest prior widening ``k`` the registration poses may choose.
-INFLATION_MAX = 1e4
 #: What the predicted uncertainty of a calibration-update run is, said beside each of its coverage figures.
 UNCERTAINTY_SCOPE = ("predicted uncertainty of the updated model: the calibration update's posterior covariance (its "
                      "prior, the power prior of the training fit at k, and the registration poses), so this coverage "
@@ -91,7 +68,8 @@ class CalibrationUpdate:
     ----------
     inflation_k : dict            model label -> inflation ``k`` of its prior (models the update changed), chosen
                                   by the registration poses' marginal likelihood (:func:`registration_prior`)
-    inflation_floor_k : dict      model label -> the floor of ``k``: the training file's :func:`inflation_factor`
+    inflation_floor_k : dict      model label -> the floor of ``k``: the training file's
+                                  :func:`~tolalloc.diagnose.power_prior.inflation_factor`
     set_aside_poses : dict        model label -> test poses (0-based) among the registration poses set aside as
                                   gross errors (:func:`gross_errors`), a tuple
     robust_loss : str             loss of the update (:func:`update_loss`)
@@ -135,145 +113,6 @@ class CalibrationUpdate:
                 "robust_loss": self.robust_loss}
 
 
-@dataclass(frozen=True, eq=False)
-class CalibrationPrior:
-    """Power prior of the trained parameters ``theta = [delta[geo_index], beta]`` for the update (module docstring).
-
-    Attributes
-    ----------
-    trained : array, shape (m,)       trained values [mm, rad; effect units]
-    information : array, shape (m, m) training data's information ``S``, marginal over the training registration
-                                      [1 / units squared]
-    prior_precision : array, shape (m,)  the training fit's own prior precisions ``Lambda`` (0: none)
-    noise_mm : float                  training residual sd per coordinate [mm]
-    inflation : float                 ``k`` (>= 1): the training data count ``1/k``
-    inflation_floor : float or None   the smallest ``k`` allowed when ``k`` was chosen by the registration poses
-                                      (:func:`inflation_factor`); None when ``k`` was given
-    set_aside : tuple of int          test poses (0-based) among the registration poses left out of that choice and
-                                      of the update as gross errors (:func:`gross_errors`)
-    gross_kept : tuple of int         gross errors kept because setting them aside would leave fewer than
-                                      ``MIN_REGISTER`` registration poses
-    """
-
-    trained: np.ndarray
-    information: np.ndarray
-    prior_precision: np.ndarray
-    noise_mm: float
-    inflation: float = 1.0
-    inflation_floor: float | None = None
-    set_aside: tuple = ()
-    gross_kept: tuple = ()
-
-    def moments(self, k: float) -> tuple:
-        """Mean, shape (m,), and covariance, shape (m, m), of the prior at ``k`` [units, units squared]."""
-        P = self.information / k + np.diag(self.prior_precision)
-        C = scaled_pinv(0.5 * (P + P.T))
-        return self.trained - (1.0 - 1.0 / k) * C @ (self.prior_precision * self.trained), C
-
-    @cached_property
-    def mean(self) -> np.ndarray:
-        """Prior mean at :attr:`inflation`, shape (m,)."""
-        return self.moments(self.inflation)[0]
-
-    @property
-    def precision(self) -> np.ndarray:
-        """Prior precision at :attr:`inflation` in data units (``noise^2 P_k``), shape (m, m)."""
-        P = self.information / self.inflation + np.diag(self.prior_precision)
-        return self.noise_mm ** 2 * 0.5 * (P + P.T)
-
-    def widened(self, k: float, floor: float | None = None) -> "CalibrationPrior":
-        """This prior with the training data counting ``1/k`` instead."""
-        return CalibrationPrior(self.trained, self.information, self.prior_precision, self.noise_mm, float(k), floor,
-                                self.set_aside, self.gross_kept)
-
-
-def inflation_factor(oof_mm: np.ndarray, residual_mm: np.ndarray) -> float:
-    """Out-of-fold over in-sample mean square 3-D residual of a training fit, at least 1."""
-    ms = lambda e: float(np.mean(np.sum(np.asarray(e) ** 2, axis=1)))  # noqa: E731
-    insample = ms(residual_mm)
-    return max(1.0, ms(oof_mm) / insample) if insample > 0 else 1.0
-
-
-def calibration_prior(fit: Fit, q: np.ndarray, B: np.ndarray | None, inflation: float = 1.0) -> CalibrationPrior:
-    """The power prior of ``fit``'s geometric and effect parameters (marginal over its registration) at ``inflation``.
-
-    Parameters
-    ----------
-    fit : Fit                          the training fit
-    q : array, shape (P, n) [rad, mm]  training poses (a subsample of them gives a wider, conservative prior)
-    B : array, shape (P, 3, m), optional  the effect columns of ``fit.beta`` on ``q``
-    inflation : float                  ``k`` (:func:`inflation_factor`)
-    """
-    data, prec, noise2 = information_parts(fit, q, B)
-    Aff, Aft = data[:9, :9] + np.diag(prec[:9]), data[:9, 9:]
-    S = data[9:, 9:] - Aft.T @ np.linalg.lstsq(Aff, Aft, rcond=None)[0]
-    trained = np.concatenate([fit.delta[fit.geo_index], fit.beta])
-    return CalibrationPrior(trained, 0.5 * (S + S.T), prec[9:], float(np.sqrt(noise2)), max(float(inflation), 1.0))
-
-
-def evidence_discount(y: np.ndarray, A: np.ndarray, prior: CalibrationPrior, k_min: float = 1.0,
-                      n_eff: int | None = None) -> tuple:
-    """Type-II maximum likelihood ``(k, log_evidence)`` of ``y ~ N(A (m_k - m_1), noise^2 I + A C_k A^T)``.
-
-    Parameters
-    ----------
-    y : array, shape (n,)          residuals at the trained values ``m_1``, the nuisance directions projected out
-    A : array, shape (n, m)        their Jacobian in the parameters (projected the same way)
-    prior : CalibrationPrior       gives ``m_k`` and ``C_k`` (:meth:`CalibrationPrior.moments`) and the noise
-    k_min : float                  smallest ``k`` (largest: :data:`INFLATION_MAX`, or ``k_min`` if that is larger)
-    n_eff : int, optional          dimension of the space ``y`` and ``A``'s columns lie in (``n`` minus the nuisance
-                                   rank when they were projected in the original coordinates); default ``n``
-
-    The log evidence is maximised over ``log k`` (a grid, then a bounded scalar refinement), each value in the
-    parameter space (``A^T A`` and ``A^T y`` once; Woodbury and Sylvester's determinant identity), so the cost does
-    not grow with the rows. Without information about ``k`` (no noise variance, no rows, non-finite input, a flat
-    evidence) ``k = k_min``.
-    """
-    from scipy.optimize import minimize_scalar
-
-    n_eff = len(y) if n_eff is None else int(n_eff)
-    noise2 = prior.noise_mm ** 2
-    k_lo = max(float(k_min), 1.0)
-    k_hi = max(INFLATION_MAX, k_lo)
-    if not (noise2 > 0 and n_eff > 0 and np.all(np.isfinite(y)) and np.all(np.isfinite(A))):
-        return k_lo, float("nan")
-    G, b, yy = A.T @ A, A.T @ y, float(y @ y)
-
-    def nll(x):
-        mean, C = prior.moments(np.exp(x))
-        s = mean - prior.trained
-        d = np.sqrt(np.clip(np.diag(C), 0.0, None))
-        d = np.where(d > 0, d, 1.0)
-        w, V = np.linalg.eigh(C / np.outer(d, d))  # scaled: the parameters mix mm, rad and effect units
-        L = (d[:, None] * V) * np.sqrt(np.clip(w, 0.0, None))  # C = L L^T
-        h = L.T @ (b - G @ s)
-        M = noise2 * np.eye(len(w)) + L.T @ G @ L
-        c = np.linalg.cholesky(0.5 * (M + M.T))
-        z = np.linalg.solve(c, h)
-        r2 = yy - 2.0 * s @ b + s @ G @ s
-        logdet = (n_eff - len(w)) * np.log(noise2) + 2.0 * np.sum(np.log(np.diag(c)))
-        return 0.5 * (logdet + (r2 - z @ z) / noise2)
-
-    grid = np.linspace(np.log(k_lo), np.log(k_hi), 41)
-    i = int(np.argmin([nll(x) for x in grid]))
-    a, c = grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)]
-    x = minimize_scalar(nll, bounds=(a, c), method="bounded").x if c > a else grid[i]
-    x = x if nll(x) < nll(grid[i]) else grid[i]  # a tie (flat evidence) keeps the grid point: k_min when flat
-    k = k_lo if x == grid[0] else k_hi if x == grid[-1] else float(np.clip(np.exp(x), k_lo, k_hi))
-    return k, -nll(x) - 0.5 * n_eff * np.log(2 * np.pi)
-
-
-def project_out(N: np.ndarray, *arrays: np.ndarray) -> tuple:
-    """``arrays`` with the column space of ``N`` (n, p) removed, and the dimension left, ``n - rank(N)``.
-
-    The basis is the thin SVD of ``N`` (rank-revealing also where a column depends on earlier ones); memory is
-    ``n p``. Returns ``([array - Q Q^T array, ...], n_eff)``.
-    """
-    U, sv, _ = np.linalg.svd(N, full_matrices=False)
-    Q = U[:, sv > 1e-9 * sv[0]] if len(sv) and sv[0] > 0 else U[:, :0]
-    return [a - Q @ (Q.T @ a) for a in arrays], N.shape[0] - Q.shape[1]
-
-
 def gross_errors(residual_mm: np.ndarray, loss: str | None) -> np.ndarray:
     """Registration poses whose frame-only residual is a gross error (boolean, shape (r,)): 3-D norm above
     ``TUKEY_C`` x the median norm, where Tukey's biweight gives no weight; none for ``loss="none"``."""
@@ -291,7 +130,8 @@ def registration_prior(start, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | No
     are the registration poses (gross errors already set aside, :func:`gross_errors`), their measurements (test
     frame) and effect columns. The frame and probe offset are marginalised (a flat prior: with a probe-offset
     prior given, the choice of ``k`` ignores it, the conservative side) by projecting the residuals and the
-    parameter columns onto the complement of their Jacobian columns (:func:`evidence_discount`).
+    parameter columns onto the complement of their Jacobian columns
+    (:func:`~tolalloc.diagnose.power_prior.evidence_discount`).
     """
     J = point_jacobian(start, q, B).reshape(3 * len(q), -1)
     r = (xyz - start.predict(q, B)).ravel()
@@ -391,8 +231,8 @@ def reregister(fit: Fit, q: np.ndarray, xyz: np.ndarray, B: np.ndarray | None, s
     """The test file re-registered for scoring: frame-only, or with the calibration update (``update``).
 
     ``q_train``, ``B_train`` (training poses and the effect columns of ``fit.beta`` on them) and ``oof_mm`` (the
-    model's out-of-fold training residuals: :func:`inflation_factor`, the floor of ``k``) are needed for
-    ``"calibration"``; its ``k`` is chosen by the registration poses (:func:`registration_prior`).
+    model's out-of-fold training residuals: :func:`~tolalloc.diagnose.power_prior.inflation_factor`, the floor of
+    ``k``) are needed for ``"calibration"``; its ``k`` is chosen by the registration poses (:func:`registration_prior`).
     """
     if update not in REGISTER_UPDATES:
         raise TolallocError(f"update: expected one of {', '.join(REGISTER_UPDATES)}, got {update!r}.")

@@ -70,7 +70,7 @@ class Evaluation:
 
     @property
     def test_prior(self):
-        """The calibration update's prior (:class:`~tolalloc.diagnose.recalibrate.CalibrationPrior`; None without)."""
+        """The calibration update's prior (:class:`~tolalloc.diagnose.power_prior.CalibrationPrior`; None without)."""
         return None if self.registered is None else self.registered.prior
 
     @property
