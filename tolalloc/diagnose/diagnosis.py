@@ -52,8 +52,8 @@ class Diagnosis:
     outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
                                    ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
-    calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the prior widening k of
-                                   each updated model, its floor, the registration poses set aside as gross errors
+    calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of
+                                   each updated model (its training data count 1/k in the prior), its floor, the registration poses set aside as gross errors
                                    and the update's robust loss (:mod:`.recalibrate`)
     """
 
