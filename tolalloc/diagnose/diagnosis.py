@@ -52,9 +52,9 @@ class Diagnosis:
     outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
                                    ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
-    calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of
-                                   each updated model (its training data count 1/k in the prior), its floor, the registration poses set aside as gross errors
-                                   and the update's robust loss (:mod:`.recalibrate`)
+    calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of each updated
+                                   model (its training data count 1/k in the prior), its floor, the registration
+                                   poses set aside as gross errors and the update's robust loss (:mod:`.recalibrate`)
     """
 
     robot: Robot
