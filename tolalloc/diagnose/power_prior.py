@@ -60,7 +60,8 @@ class CalibrationPrior:
     inflation_floor : float or None   the smallest ``k`` allowed when ``k`` was chosen by the registration poses
                                       (:func:`inflation_factor`); None when ``k`` was given
     set_aside : tuple of int          test poses (0-based) among the registration poses left out of that choice and
-                                      of the update as gross errors (:func:`gross_errors`)
+                                      of the update as gross errors
+                                      (:func:`tolalloc.diagnose.recalibrate.gross_errors`)
     gross_kept : tuple of int         gross errors kept because setting them aside would leave fewer than
                                       ``MIN_REGISTER`` registration poses
     """
