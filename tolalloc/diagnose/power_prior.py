@@ -36,7 +36,7 @@ from functools import cached_property
 import numpy as np
 
 from tolalloc.diagnose.calibrate import Fit
-from tolalloc.diagnose.uncertainty import information_parts
+from tolalloc.diagnose.uncertainty import _diag_scale, information_parts
 
 __all__ = ["INFLATION_MAX", "CalibrationPrior", "calibration_prior", "evidence_discount", "inflation_factor",
            "project_out"]
@@ -75,16 +75,20 @@ class CalibrationPrior:
     set_aside: tuple = ()
     gross_kept: tuple = ()
 
+    def precision_at(self, k: float) -> np.ndarray:
+        """``P_k = S / k + Lambda`` (symmetric), shape (m, m) [1 / units squared]."""
+        P = self.information / k + np.diag(self.prior_precision)
+        return 0.5 * (P + P.T)
+
     def factor(self, k: float) -> tuple:
         """Mean, shape (m,), and a factor ``L``, shape (m, r), of the covariance ``C = L L^T`` of the prior at ``k``.
 
         ``C`` is the pseudo-inverse of ``P_k`` scaled to unit diagonal (the parameters mix mm, rad and effect units),
         as :func:`tolalloc.diagnose.uncertainty.scaled_pinv`: a direction with no precision gets no variance.
         """
-        P = self.information / k + np.diag(self.prior_precision)
-        d = np.sqrt(np.clip(np.diag(P), 0.0, None))
-        d = np.where(d > 0, d, 1.0)
-        w, V = np.linalg.eigh(0.5 * (P + P.T) / np.outer(d, d))
+        P = self.precision_at(k)
+        d = _diag_scale(P)
+        w, V = np.linalg.eigh(P / np.outer(d, d))
         keep = w > len(w) * np.finfo(float).eps * max(float(w.max(initial=0.0)), 0.0)
         L = V[:, keep] / np.sqrt(w[keep]) / d[:, None]
         return self.trained - (1.0 - 1.0 / k) * L @ (L.T @ (self.prior_precision * self.trained)), L
@@ -97,13 +101,12 @@ class CalibrationPrior:
     @cached_property
     def mean(self) -> np.ndarray:
         """Prior mean at :attr:`inflation`, shape (m,)."""
-        return self.moments(self.inflation)[0]
+        return self.factor(self.inflation)[0]
 
     @property
     def precision(self) -> np.ndarray:
         """Prior precision at :attr:`inflation` in data units (``noise^2 P_k``), shape (m, m)."""
-        P = self.information / self.inflation + np.diag(self.prior_precision)
-        return self.noise_mm ** 2 * 0.5 * (P + P.T)
+        return self.noise_mm ** 2 * self.precision_at(self.inflation)
 
     def widened(self, k: float, floor: float | None = None) -> "CalibrationPrior":
         """This prior with the training data counting ``1/k`` instead."""
