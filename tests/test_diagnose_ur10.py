@@ -13,6 +13,7 @@ import pytest
 
 import tolalloc
 from tolalloc.diagnose import diagnose, measurements_from_frame
+from tolalloc.diagnose.power_prior import INFLATION_MAX
 from tolalloc.diagnose.synth import split_frame
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -97,7 +98,7 @@ def test_calibration_update_carries_the_effects_into_the_other_session(direction
     assert d.final.effects and rms[2] < rms[1] < rms[0]
     cu = d.calibration_update
     for m, k in cu.inflation_k.items():
-        assert cu.inflation_floor_k[m] <= k <= max(1e4, cu.inflation_floor_k[m])
+        assert cu.inflation_floor_k[m] <= k <= max(INFLATION_MAX, cu.inflation_floor_k[m])
 
 
 def test_session_coverage_is_mod_360():

@@ -173,7 +173,8 @@ def section(table: pd.DataFrame) -> list:
                              for u, g in table.groupby("register_update"))
                  + f". Test poses flagged as extrapolations from the training session (`extrapolating_pct`): "
                  f"{value_range(table['extrapolating_pct'])} %. The k the registration poses chose for the final "
-                 "model (`update_k_final`; its training data count 1/k in the prior): " + value_range(table["update_k_final"].dropna(), ".3g") + ".")
+                 "model (`update_k_final`; its training data count 1/k in the prior): "
+                 + value_range(table["update_k_final"].dropna(), ".3g") + ".")
     beats = table["test_rms_final_mm"] < table["fresh_test_rms_final_mm"]
     lines.append("* The model trained on the other session beats a fresh calibration on the same registration poses "
                  f"in {int(beats.sum())} of {len(table)} rows (final test RMS, this model vs the fresh one, every row): "

@@ -342,7 +342,8 @@ def reading(s: pd.DataFrame, share: pd.DataFrame) -> list:
            "* Predicted-uncertainty coverage (95 % expected): "
            + ", ".join(f"{r} {v:.0f} %" for r, v in s["coverage95_pct"].items())
            + " (the update runs' predicted uncertainty is the update's posterior, its prior the training data counting "
-             "1/k beside the fit's own prior, k as the registration poses chose it: " + ", ".join(f"{r} {s.loc[r, 'update_k_final']:.3g}" for r in upd) + ")."]
+             "1/k beside the fit's own prior, k as the registration poses chose it: "
+           + ", ".join(f"{r} {s.loc[r, 'update_k_final']:.3g}" for r in upd) + ")."]
     return out
 
 

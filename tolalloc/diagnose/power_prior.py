@@ -2,9 +2,8 @@
 
 The prior of ``theta = [delta[geo_index], beta]`` is a **power prior** -- the training data's likelihood raised to
 ``1/k`` times the training fit's own prior (the MAP prior of the geometric parameters, the ridge weights of the
-effect columns), ``k >= 1``. With the
-training data's information marginalised over the training registration and probe offset (Schur complement: that
-frame is not the test file's),
+effect columns), ``k >= 1``. With the training data's information marginalised over the training registration and
+probe offset (Schur complement: that frame is not the test file's),
 
     S = (J_tt - J_tf J_ff^-1 J_ft) / noise^2,    Lambda = diag(prior precisions of the training fit),
 

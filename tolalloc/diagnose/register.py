@@ -256,7 +256,8 @@ class Registered:
                                    the registration poses and the prior [parameter units squared]; None for a
                                    frame-only re-registration
     prior : CalibrationPrior or None   with the calibration update: the prior it used
-                                   (:class:`tolalloc.diagnose.power_prior.CalibrationPrior`: its ``inflation`` k and floor)
+                                   (:class:`tolalloc.diagnose.power_prior.CalibrationPrior`: its ``inflation`` k
+                                   and floor)
     """
 
     fit: Fit

@@ -2,9 +2,9 @@
 
 * :func:`information` -- the Gauss-Newton information matrix of a fit's parameters (columns of
   :func:`point_jacobian`: registration, probe offset, geometric parameters, effect columns) with the fit's prior
-  precisions, and the noise variance per coordinate (the data and prior parts apart: :func:`information_parts`); :func:`parameter_covariance` inverts it (scaled
-  pseudo-inverse, :func:`scaled_pinv`); :func:`tolalloc.diagnose.power_prior.calibration_prior` marginalises it over
-  the registration.
+  precisions, and the noise variance per coordinate (the data and prior parts apart: :func:`information_parts`);
+  :func:`parameter_covariance` inverts it (scaled pseudo-inverse, :func:`scaled_pinv`);
+  :func:`tolalloc.diagnose.power_prior.calibration_prior` marginalises it over the registration.
 * :func:`prediction_uncertainty` -- per test pose the predicted 1-sigma of the final model's prediction from the
   parameter covariance of its fit (Gauss-Newton ``sigma^2 (J^T J)^-1`` over the fitted parameters, with the MAP
   prior's precision added; after a calibration update on a new session's registration poses, the update's
