@@ -1,4 +1,4 @@
-"""The package's imports run one way: foundation -> robot -> errormodel -> linear -> diagnose -> allocate
+"""The package's imports run one way: foundation -> robot -> physics -> errormodel -> linear -> diagnose -> allocate
 -> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
 
 import ast
@@ -11,7 +11,7 @@ import tolalloc
 
 PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
-ORDER = ["foundation", "robot", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
+ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
          "verify", "report", "workflows", "cli"]
 FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress"}
 

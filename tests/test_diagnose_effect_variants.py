@@ -14,9 +14,10 @@ import pytest
 
 import tolalloc
 from tolalloc.diagnose.calibrate import fixed_jacobian, initial_fit
-from tolalloc.diagnose.effects import effect_basis, effect_reference, lagged, target_points, variants
+from tolalloc.diagnose.effects import effect_basis, effect_reference, target_points, variants
+from tolalloc.physics.thermal import lagged
 from tolalloc.diagnose.geometry import build_geometry_model
-from tolalloc.diagnose.gravity_loads import G, gravity_torques, robot_masses
+from tolalloc.physics.loads import G, gravity_torques, robot_masses
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import choose_variant
 from tolalloc.robot.kinematics import poe_prefix
@@ -80,7 +81,7 @@ def test_transmission_once_per_revolution_recovered():
     assert np.abs(np.delete(beta, k)).max() < 1e-3 * abs(a)
 
 
-def test_transmission_motor_side_with_gear_ratio():
+def test_transmission_gear_orders_with_gear_ratio():
     robot = tolalloc.load_robot("ur10")
     q = _q(robot, 200, 2)
     t = np.array([0.0, 0.0, 100.0])
@@ -90,10 +91,11 @@ def test_transmission_motor_side_with_gear_ratio():
     d = target_points(robot, q + dq, t) - target_points(robot, q, t)
     meas = Measurements(q, np.zeros((200, 3)))
     ref = effect_reference(meas, gear_ratio=N)
-    assert "motor" in variants("transmission", meas, ref)
-    basis = effect_basis("transmission", robot, meas, t, ref, "motor")
+    assert "gear" in variants("transmission", meas, ref)
+    basis = effect_basis("transmission", robot, meas, t, ref, "gear")
     beta = _lsq(basis, d)
-    assert beta[basis.names.index("sm_shoulder_lift_joint [rad]")] == pytest.approx(1e-5, rel=1e-3)
+    assert beta[basis.names.index("sN_shoulder_lift_joint [rad]")] == pytest.approx(1e-5, rel=1e-3)
+    assert "s2N_shoulder_lift_joint [rad]" in basis.names and "s1x_shoulder_lift_joint [rad]" in basis.names
 
 
 def test_lag_filter_step_response_closed_form():

@@ -5,7 +5,7 @@ import pytest
 
 import tolalloc
 from tolalloc.diagnose.effects import effect_basis, joint_effect_dq, point_jacobian, target_points
-from tolalloc.diagnose.gravity_loads import gravity_torques
+from tolalloc.physics.loads import gravity_torques
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.errormodel import build_error_model
 from tolalloc.robot.kinematics import fk_poe

@@ -11,9 +11,9 @@ from scipy.spatial.transform import Rotation
 
 import tolalloc
 from tolalloc.diagnose.effects import effect_basis, effect_reference, target_points, variants
-from tolalloc.diagnose.gravity_loads import G
+from tolalloc.physics.loads import G
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.diagnose.thermal import activity, time_problem
+from tolalloc.physics.thermal import activity, time_problem
 from tolalloc.robot.model import Link, Robot
 
 

@@ -1,7 +1,7 @@
 """Guard on the fitted effect parameters: a joint compliance must not be negative.
 
 A passive joint yields *along* its gravity load (``dq = c tau`` with ``c >= 0``, ``tau`` the load torque of
-:func:`tolalloc.diagnose.gravity_loads.gravity_torques`). A compliance clearly below zero (more than ``N_SD`` standard
+:func:`tolalloc.physics.loads.gravity_torques`). A compliance clearly below zero (more than ``N_SD`` standard
 deviations) is a joint that leans into gravity: the named effect then stands in for something else (the mass
 model, unmodelled geometry, another gravity-driven effect), and its name is not a physical diagnosis even if
 it lowers the held-out error. Columns ``c_<joint>`` (per N m or N) and ``d_<joint>`` (per kg of payload at the

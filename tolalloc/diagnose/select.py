@@ -42,7 +42,7 @@ from tolalloc.diagnose.geometry import as_built_levels
 from tolalloc.diagnose.uncertainty import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
-from tolalloc.diagnose.thermal import time_problem
+from tolalloc.physics.thermal import time_problem
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
@@ -71,8 +71,10 @@ class _Context:
         self.fold_t_sd = _fold_t_sd(cal.geometric, train.q)
         self.bases, self.bases_test, self.reasons, self.untestable = {}, {}, {}, {}
         t = cal.geometric.t_mm
-        self.ref = effect_reference(train, gear_ratio)
         robot = cal.geometric.model.robot
+        if gear_ratio is None:
+            gear_ratio = robot.components.gear_ratios([jt.name for jt in robot.joints])
+        self.ref = effect_reference(train, gear_ratio, robot)
         for e in EFFECTS:
             ok, why = applicable(e, train)
             names = variants(e, train, self.ref, robot)

@@ -32,6 +32,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose.effects import effect_basis
+from tolalloc.physics.lost_motion import GRAVITY_SIDES
 from tolalloc.diagnose.guards import FALLBACK_MARGIN
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import align_basis
@@ -165,10 +166,6 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
             out.append(Comparison(e, c.effect, p, gain, rms(final.selection_mm), rms(ev.selection_mm),
                                   bool(p < level and gain >= 100.0 * min_gain)))
     return tuple(out)
-
-
-#: Backlash sides set by the gravity torque alone.
-GRAVITY_SIDES = ("gravity", "gravity_soft")
 
 
 def stiffness_alternative(ctx, final) -> tuple:

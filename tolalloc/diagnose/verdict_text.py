@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from tolalloc.diagnose.thermal import time_problem
+from tolalloc.physics.thermal import time_problem
 from tolalloc.diagnose.verdict import Verdict
 
 __all__ = ["verdict_of", "input_notes"]

@@ -18,7 +18,7 @@ from scipy.stats import spearmanr
 
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import Fit
-from tolalloc.diagnose.gravity_loads import gravity_torques
+from tolalloc.physics.loads import gravity_torques
 from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["WhereBreakdown", "where_breakdown", "pose_features"]

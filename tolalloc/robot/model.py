@@ -29,6 +29,7 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError, check_finite_array, describe, known_names
 from tolalloc.units import check_joint_units, trusting_units, units_trusted
 from tolalloc.robot.checks import check_chain, check_reserved_names
+from tolalloc.robot.components import Components
 from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
 
@@ -58,6 +59,9 @@ class Robot:
         Named boxes of the working region, ``{name: (q_min (n,), q_max (n,))}`` [rad, mm].
     sigma_sets : dict of str -> dict
         Named error-sigma sets as written in the robot file (read by :mod:`tolalloc.errormodel.model`).
+    components : Components
+        The bought parts of each joint, the links' sections, the mount and the payload
+        (:mod:`tolalloc.robot.components`; empty when the robot file has no ``[components]`` section).
     trust_units : bool
         Construction only (not stored): accept a chain whose values look like a unit slip. By default a chain
         built from ``Link`` / ``Joint`` objects is refused, with a hint, when its link lengths look like metres
@@ -85,6 +89,7 @@ class Robot:
     description: str = ""
     sigma_sets: dict = field(default_factory=dict)
     regions: dict = field(default_factory=dict)
+    components: Components = field(default_factory=Components)
     trust_units: InitVar[bool] = False
 
     def __post_init__(self, trust_units: bool = False):

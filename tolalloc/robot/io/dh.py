@@ -52,6 +52,7 @@ class DHFile(BaseModel):
     masses: list[dict] = []
     pose_sets: dict[str, dict] = {}
     sigma_sets: dict[str, dict] = {}
+    components: dict = {}
 
 
 def robot_from_dh_dict(data: dict, source: str = "<dict>"):
@@ -63,7 +64,8 @@ def robot_from_dh_dict(data: dict, source: str = "<dict>"):
     offset, R_tool = parse_tool(spec.tool)
     # the tool of a DH robot is given in the last DH frame
     return _finish_robot(spec.name, chain, R_last @ offset, R_last @ R_tool, spec.gravity, spec.masses,
-                         spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False)
+                         spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False,
+                         components=spec.components)
 
 
 def load_dh_csv(path):

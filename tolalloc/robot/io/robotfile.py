@@ -23,6 +23,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
 from tolalloc.robot.checks import check_reserved_names
+from tolalloc.robot.components import parse_components
 from tolalloc.robot.model import Joint, Link, Mass, Robot
 from tolalloc.robot.dh_rows import check_limits
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
@@ -165,6 +166,7 @@ class ChainFile(BaseModel):
     pose_sets: dict[str, dict] = {}
     sigma_sets: dict[str, dict] = {}
     regions: dict[str, dict] = {}
+    components: dict = {}
 
 
 def _loc(err) -> str:
@@ -209,7 +211,7 @@ def robot_from_chain_dict(data: dict, source: str = "<dict>") -> Robot:
             raise TolallocError(f"{where} ({item.link if model is LinkEntry else item.joint}): {exc}") from None
     offset, R_tool = parse_tool(spec.tool)
     return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets,
-                         regions=spec.regions)
+                         regions=spec.regions, components=spec.components)
 
 
 def parse_tool(tool: dict):
@@ -227,7 +229,7 @@ def parse_tool(tool: dict):
 
 
 def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None, *,
-                  regions=None, tiny_links_suspect: bool = True) -> Robot:
+                  regions=None, tiny_links_suspect: bool = True, components=None) -> Robot:
     """Shared tail of the chain and DH loaders: gravity, masses, pose sets.
 
     ``tiny_links_suspect``: a sub-millimetre link among long ones is taken for a length in metres (chain
@@ -274,6 +276,12 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     object.__setattr__(robot, "pose_sets", sets)
     object.__setattr__(robot, "sigma_sets", dict(sigma_sets or {}))
     object.__setattr__(robot, "regions", _parse_regions(robot, regions or {}))
+    try:
+        parts = parse_components(components, {j.name: j.is_revolute for j in robot.joints},
+                                 [lk.name for lk in robot.links])
+    except ValueError as exc:
+        raise TolallocError(str(exc)) from None
+    object.__setattr__(robot, "components", parts)
     return robot
 
 

@@ -13,6 +13,11 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   (``|q_i - q_(i-1)| / (t_i - t_(i-1))``, rad/s or mm/s) through a first-order lag of time constant ``tau`` (the
   heat stored in its motor); link ``k`` grows with the lagged activity of the joints at its two ends, with its
   own coefficient [1e-6 per rad/s].
+* ``motor_<tau>min``: the motors' losses as heat sources: per joint the friction losses of its motion (its speed)
+  and the copper losses of the torque it holds (``I^2 R``, with the current proportional to the gravity load: the
+  load squared, held over the interval before each pose), each through the first-order lag of heating and cooling
+  (time constant ``tau``); the heat of joint ``j`` warms the links at its two ends, which grow along themselves --
+  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. A pause (no motion, little load) cools them.
 
 Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
 session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
@@ -24,11 +29,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.errormodel import build_error_model
+from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
+from tolalloc.physics.loads import gravity_torques
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
-           "link_joint_matrix", "activity", "MAX_SPAN_S", "MAX_STEP_S"]
+           "link_joint_matrix", "activity", "lag_filter", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -71,20 +77,45 @@ def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
     return out
 
 
-def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
-    """Lagged joint activity, shape (P, n): joint speed over the interval before each pose (time order; 0 for the
-    first), through a first-order lag of time constant ``tau_s`` started at 0 (a cold robot)."""
+def lag_filter(time_s: np.ndarray, inputs: np.ndarray, tau_s: float) -> np.ndarray:
+    """First-order lag (heating and cooling) of interval inputs, shape (P, m): ``inputs[i]`` (P, m) acts over the
+    interval before pose ``i`` (time order; the first pose's is ignored), the state starts at 0 (a cold robot)."""
     order = np.argsort(time_s, kind="stable")
-    ts, qs = time_s[order], q[order]
-    dt = np.diff(ts)
-    speed = np.abs(np.diff(qs, axis=0)) / np.maximum(dt, 1e-9)[:, None]
-    y = np.zeros_like(qs)
-    a = 1.0 - np.exp(-dt / tau_s)
+    ts, u = time_s[order], np.asarray(inputs, float)[order]
+    a = 1.0 - np.exp(-np.diff(ts) / tau_s)
+    y = np.zeros_like(u)
     for i in range(1, len(ts)):
-        y[i] = y[i - 1] + a[i - 1] * (speed[i - 1] - y[i - 1])
+        y[i] = y[i - 1] + a[i - 1] * (u[i] - y[i - 1])
     out = np.empty_like(y)
     out[order] = y
     return out
+
+
+def _speed(time_s: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Joint speed over the interval before each pose in time order (0 for the first), shape (P, n)."""
+    order = np.argsort(time_s, kind="stable")
+    ts, qs = time_s[order], q[order]
+    sp = np.zeros_like(qs)
+    sp[1:] = np.abs(np.diff(qs, axis=0)) / np.maximum(np.diff(ts), 1e-9)[:, None]
+    out = np.empty_like(sp)
+    out[order] = sp
+    return out
+
+
+def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
+    """Lagged joint activity, shape (P, n): joint speed over the interval before each pose (time order; 0 for the
+    first), through a first-order lag of time constant ``tau_s`` started at 0 (a cold robot)."""
+    return lag_filter(time_s, _speed(time_s, q), tau_s)
+
+
+def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float) -> np.ndarray:
+    """Lagged motor losses per joint, shape (P, 2n): the speed (friction losses) and the squared load held over the
+    interval before each pose (copper losses; the load of the previous pose in time order), each through the
+    first-order lag of time constant ``tau_s`` (heating while the inputs last, cooling after)."""
+    order = np.argsort(time_s, kind="stable")
+    held = np.zeros_like(load, dtype=float)
+    held[order[1:]] = np.asarray(load, float)[order[:-1]] ** 2
+    return lag_filter(time_s, np.concatenate([_speed(time_s, q), held], axis=1), tau_s)
 
 
 def thermal_variants(meas) -> tuple:
@@ -94,7 +125,7 @@ def thermal_variants(meas) -> tuple:
     if time_problem(t) is None:
         if out:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
-        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "activity") for m in LAG_MIN]
+        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "activity", "motor") for m in LAG_MIN]
     return tuple(out)
 
 
@@ -102,22 +133,30 @@ def _tau_s(variant: str) -> float:
     return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
 
 
-def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None) -> np.ndarray:
+def _history(meas, ref: dict, fn):
+    """``fn(time_s, q)`` over the training poses (``ref["motion"]``) and then these, in time order, on these poses:
+    what is known before a pose is measured (the training file itself: over its own poses)."""
+    ht, hq = ref["motion"]
+    t = meas.time_s
+    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hq, meas.q):
+        return fn(t, meas.q)
+    return fn(np.concatenate([ht, t]), np.concatenate([hq, meas.q]))[len(ht):]
+
+
+def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None,
+                   robot: Robot | None = None) -> np.ndarray:
     """The driving signal of ``variant`` on the poses of ``meas``: shape (P,) for the one-coefficient variants and
-    ``links_warmup``, (P, L) for ``activity`` (``link_joints`` (L, n): :func:`link_joint_matrix`)."""
+    ``links_warmup``, (P, L) for ``activity`` (``link_joints`` (L, n): :func:`link_joint_matrix`), (P, 2n) for
+    ``motor`` (speeds, then squared loads; needs ``robot``)."""
     if variant == "temperature":
         return meas.temperature_c - ref["temperature_c"]
     tau, t = _tau_s(variant), meas.time_s
     if variant.startswith(("warmup", "links_warmup")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
     if variant.startswith("activity"):
-        ht, hq = ref["motion"]
-        own = len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hq, meas.q)
-        if own:  # the training file itself
-            act = activity(t, meas.q, tau)
-        else:  # other poses: the filter runs over the training poses and these together, in time order
-            act = activity(np.concatenate([ht, t]), np.concatenate([hq, meas.q]), tau)[len(ht):]
-        return act @ link_joints.T  # (P, L): lagged activity of the joints at each link's ends
+        return _history(meas, ref, lambda ts, qs: activity(ts, qs, tau)) @ link_joints.T
+    if variant.startswith("motor"):
+        return _history(meas, ref, lambda ts, qs: motor_heat(ts, qs, gravity_torques(robot, qs), tau))
     ht, hT = ref["history"]  # lag of the temperature log
     allt, allT = np.concatenate([ht, t]), np.concatenate([hT, meas.temperature_c])
     y = lagged(allt, allT, tau)[len(ht):]
@@ -126,12 +165,15 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
 
 def link_growth(robot: Robot, q: np.ndarray) -> tuple:
     """Displacement of the target per unit relative growth (1e-6) of every link of nonzero length, shape (P, 3, L),
-    and the links' names (a translation moves every point downstream equally, so it is the same at the target)."""
-    model = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection"))
-    J = model.jacobian(q)[:, :3, :]  # (P, 3, L) per mm of each link
-    links = [lk for lk in robot.links if lk.length_mm > 0]
-    L = np.array([lk.length_mm for lk in links])
-    return 1e-6 * J * L, tuple(lk.name for lk in links)
+    and the links' names: link ``k`` grows along its own vector, turned by the joints before it, and the
+    translation moves every point downstream equally (so it is the same at the target)."""
+    prefix = poe_prefix(robot.screws, np.atleast_2d(q))
+    cols, names = [], []
+    for lk, site in zip(robot.links, robot.link_sites):
+        if lk.length_mm > 0:
+            cols.append(prefix[:, site, :3, :3] @ lk.vector_mm)
+            names.append(lk.name)
+    return 1e-6 * np.stack(cols, axis=-1), tuple(names)
 
 
 def link_joint_matrix(robot: Robot) -> np.ndarray:
@@ -155,7 +197,10 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
     lj = link_joint_matrix(robot)
     out = []
     for v in names:
-        s = thermal_signal(meas, ref, v, lj)
+        s = thermal_signal(meas, ref, v, lj, robot)
+        if v.startswith("motor"):
+            out.append(_motor_basis(robot, grow, lj, s, v))
+            continue
         if v.startswith(("links_warmup", "activity")):
             per = s[:, None] if s.ndim == 1 else s
             B = grow * (per if per.shape[1] == grow.shape[2] else np.repeat(per, grow.shape[2], axis=1))[:, None, :]
@@ -166,3 +211,19 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
             labels = (f"alpha [1e-6/K] ({v})" if not v.startswith("warmup") else f"growth [1e-6] ({v})",)
         out.append((labels, np.asarray(B, dtype=float)))
     return out
+
+
+def _motor_basis(robot: Robot, grow: np.ndarray, lj: np.ndarray, heat: np.ndarray, variant: str) -> tuple:
+    """(names, B (P, 3, M)) of ``motor``: joint ``j``'s lagged losses ``heat`` (P, 2n) grow the links at its ends."""
+    n = robot.n_joints
+    cols, labels = [], []
+    for part, unit in ((0, "1e-6 per rad/s"), (1, "1e-6 per (N m)^2")):
+        for j in range(n):
+            h = heat[:, part * n + j]
+            links = np.flatnonzero(lj[:, j])
+            if np.ptp(h) <= 0 or not len(links):
+                continue
+            cols.append(grow[:, :, links].sum(axis=2) * h[:, None])
+            labels.append(f"{'h' if part == 0 else 'hl'}_{robot.joints[j].name} [{unit}] ({variant})")
+    B = np.stack(cols, axis=-1) if cols else np.zeros((grow.shape[0], 3, 0))
+    return tuple(labels), B

@@ -1,0 +1,27 @@
+"""Physical effect models in physical units, fed by the robot's component data: one implementation each, used by
+the diagnosis (fitted to measurements) and by the design (sampled from catalogue figures).
+
+* :mod:`.loads` -- the mass model, gravity loads on the joints and on the base mount, a payload at the target;
+* :mod:`.compliance` -- joint wind-up (linear, the catalogue's K1/K2/K3 bands, a smooth hardening law) and the
+  tilt of a compliant mount;
+* :mod:`.beams` -- arm segments bending and shearing as cantilevers; a telescopic stage tilting in its guide;
+* :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
+* :mod:`.lost_motion` -- backlash and hysteresis loss: the flank a joint rests on;
+* :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history or the motors'
+  losses, with first-order heating and cooling.
+"""
+
+from tolalloc.physics.beams import beam_columns, beam_sag, deflection_segments, guide_columns, guide_joints
+from tolalloc.physics.compliance import (COMPLIANCE_LAWS, compliance_columns, joint_loads, joint_windup,
+                                         mount_columns, mount_tilt)
+from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacobian, robot_masses, target_points,
+                                    tip_load)
+from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_columns
+from tolalloc.physics.thermal import lag_filter, link_growth, motor_heat, time_problem
+from tolalloc.physics.transmission import gear_orders, transmission_columns, transmission_error
+
+__all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "guide_joints", "COMPLIANCE_LAWS",
+           "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "G", "base_moment",
+           "gravity_torques", "point_jacobian", "robot_masses", "target_points", "tip_load", "SIDES", "flank",
+           "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem", "gear_orders",
+           "transmission_columns", "transmission_error"]

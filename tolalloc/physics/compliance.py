@@ -1,0 +1,156 @@
+"""Compliance under gravity and payload: the joints' torsional stiffness (linear or hardening) and the base mount.
+
+**Joint compliance.** A joint under the gravity load ``tau_j`` (:func:`~.loads.gravity_torques`, robot masses plus
+the payload at the target) winds up by ``dq_j = phi_j(tau_j)`` [rad, or mm for a prismatic joint]. Laws:
+
+* ``linear``: ``phi = c tau`` (``c = 1/K`` [rad/(N m)]);
+* ``catalogue``: the strain-wave / cycloid catalogue's piecewise-linear curve ``T/K1`` up to ``T1``, slope ``1/K2``
+  up to ``T2``, ``1/K3`` beyond (:meth:`~tolalloc.robot.components.Reducer.deflection`), linear in
+  ``(1/K1, 1/K2, 1/K3)`` once the bands ``T1, T2`` are known (from the robot file's reducer);
+* ``hardening``: a smooth law for a gear whose bands are not known, ``phi = c tau + s T0 tanh(tau / T0)``: slope
+  ``c + s`` near zero torque (the soft zone), ``c`` beyond ``T0`` -- a stiffness that rises with torque for
+  ``s > 0``. ``T0`` is a shape parameter chosen from the data (:data:`HARDENING_FRACTIONS` of the joint's largest
+  gravity load).
+
+**Mount compliance.** A robot on a compliant base (a floor plate, a pedestal, a mobile platform) tilts as a whole under
+the gravity moment of its moving masses and payload about the base (:func:`~.loads.base_moment`): the rotation
+``omega = (c_x M_x, c_y M_y, 0)`` [rad] about the base origin moves the target by ``omega x p``. ``isotropic`` (one
+``c``) or ``axes`` (``c_x``, ``c_y``).
+
+Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
+the catalogue's stiffness figures.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.robot.model import Robot
+from tolalloc.physics.loads import base_moment, gravity_torques, tip_load
+
+__all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
+           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt"]
+
+#: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
+COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
+#: Shape parameters of the ``hardening`` law: T0 as a fraction of the joint's largest load.
+HARDENING_FRACTIONS = (0.1, 0.25, 0.5)
+MOUNT_VARIANTS = ("isotropic", "axes")
+
+
+def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None) -> tuple:
+    """Gravity loads (P, n) of the robot's masses plus the payload at the target points ``tip_mm`` (P, 3), and the
+    load of 1 kg at the target (P, n) [N m or N per kg] (zeros without ``tip_mm``)."""
+    tau = gravity_torques(robot, q)
+    tip = np.zeros_like(tau) if tip_mm is None else tip_load(robot, q, tip_mm)
+    if payload_kg is not None:
+        tau = tau + np.asarray(payload_kg, float)[:, None] * tip
+    return tau, tip
+
+
+def _unit(robot: Robot, j: int) -> tuple:
+    rev = robot.joints[j].is_revolute
+    return ("rad", "N m") if rev else ("mm", "N")
+
+
+def catalogue_bands(robot: Robot) -> dict:
+    """``{joint index: (T1, T2)}`` of the joints whose reducer gives the catalogue's three-band stiffness curve."""
+    out = {}
+    for j, jt in enumerate(robot.joints):
+        red = robot.components.joint(jt.name).reducer
+        if red is not None and len(red.stiffness) == 3:
+            out[j] = red.torque_bands
+    return out
+
+
+def _law_columns(t: np.ndarray, law: str, bands=None, scale: float | None = None) -> list:
+    """Columns ``(label, values (P,))`` of one joint's law, linear in its compliances."""
+    if law == "catalogue" and bands:
+        a, s = np.abs(t), np.sign(t)
+        t1, t2 = bands
+        return [("c1", s * np.minimum(a, t1)), ("c2", s * np.clip(a - t1, 0.0, t2 - t1)),
+                ("c3", s * np.maximum(a - t2, 0.0))]
+    cols = [("c", t)]
+    if law.startswith("hardening") and scale:
+        frac = float(law.split("_")[1]) if "_" in law else HARDENING_FRACTIONS[1]
+        t0 = frac * scale
+        cols.append(("s", t0 * np.tanh(t / t0)))
+    return cols
+
+
+def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str = "linear",
+                       tip_mass: bool = False, scale: np.ndarray | None = None) -> tuple:
+    """Joint-offset basis of joint compliance: ``dq = A @ beta``, ``A`` shape (P, n, M), and the column names.
+
+    Parameters
+    ----------
+    tau, tip : arrays, shape (P, n)     gravity loads and the load of 1 kg at the target (:func:`joint_loads`)
+    law : str                           ``linear``, ``catalogue`` (bands from the robot's reducers; joints without
+                                        them stay linear) or ``hardening_<f>``
+    tip_mass : bool                     also a column per joint for an unknown mass at the target (``d_j``)
+    scale : array, shape (n,), optional the torque scale of ``hardening`` (default: the largest ``|tau_j|``)
+    """
+    P, n = tau.shape
+    bands = catalogue_bands(robot) if law == "catalogue" else {}
+    scale = np.abs(tau).max(0) if scale is None else scale
+    cols, names = [], []
+    for j in range(n):
+        dq, load = _unit(robot, j)
+        nm = robot.joints[j].name
+        if np.abs(tau[:, j]).max() > 1e-9:
+            for lab, v in _law_columns(tau[:, j], law, bands.get(j), float(scale[j])):
+                a = np.zeros((P, n))
+                a[:, j] = v
+                cols.append(a)
+                names.append(f"{lab}_{nm} [{dq}/({load})]")
+        if tip_mass and np.abs(tip[:, j]).max() > 1e-9:
+            a = np.zeros((P, n))
+            a[:, j] = tip[:, j]
+            cols.append(a)
+            names.append(f"d_{nm} [{dq}/kg]")
+    return (np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))), names
+
+
+def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
+                  variant: str = "isotropic") -> tuple:
+    """Target-displacement basis of a compliant mount, ``B`` shape (P, 3, M) [mm per rad/(N m)], and names.
+
+    ``p`` (P, 3): the target points [mm]; the payload ``payload_kg`` (P,) sits at ``tip_mm`` (P, 3).
+    """
+    M = base_moment(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg)
+    g = np.asarray(robot.gravity, dtype=float)
+    Mh = M - (M @ g)[:, None] * g  # the moment about the vertical does not tilt the base
+    if variant == "isotropic":
+        return np.cross(Mh, p)[:, :, None], ["c_mount [rad/(N m)]"]
+    cols, names = [], []
+    for i, ax in enumerate("xyz"):
+        if abs(g[i]) > 0.99:
+            continue
+        om = np.zeros_like(Mh)
+        om[:, i] = Mh[:, i]
+        cols.append(np.cross(om, p))
+        names.append(f"c_mount_{ax} [rad/(N m)]")
+    return np.stack(cols, axis=-1), names
+
+
+def joint_windup(robot: Robot, tau: np.ndarray, stiffness_scale: np.ndarray | float = 1.0) -> np.ndarray:
+    """Wind-up of every joint under ``tau`` (P, n) from the robot's reducer figures [rad or mm], shape (P, n);
+    ``stiffness_scale``: a factor (n,) on each joint's stiffness (the spread of built parts). Joints whose reducer
+    gives no stiffness do not wind up."""
+    out = np.zeros_like(tau, dtype=float)
+    k = np.broadcast_to(np.asarray(stiffness_scale, float), (tau.shape[1],))
+    for j, jt in enumerate(robot.joints):
+        red = robot.components.joint(jt.name).reducer
+        if red is not None and red.stiffness:
+            out[:, j] = red.deflection(tau[:, j]) / k[j]
+    return out
+
+
+def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None) -> np.ndarray:
+    """Target displacement [mm] (P, 3) of the mount tilting under its load with the robot file's mount stiffness
+    (zeros when the file gives none)."""
+    k = robot.components.mount.tilt_stiffness
+    if k is None:
+        return np.zeros_like(p)
+    B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes")
+    return B @ (1.0 / np.asarray(k, float)[:B.shape[2]])

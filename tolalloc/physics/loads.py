@@ -1,0 +1,116 @@
+"""Gravity loads: the robot's mass model, the loads of point masses on the joints and on the base mount.
+
+:func:`robot_masses`: the robot file's masses, or :data:`DEFAULT_KG_PER_M` kg per metre of link at the link
+midpoints. :func:`gravity_torques`: the gravity load of every joint [N m about a revolute axis, N along a prismatic
+one], from the robot's masses and a payload at the target point. :func:`base_moment`: the overturning moment of
+all of them about the base origin [N m, base frame] -- what tilts a compliant mount. Every gravity-driven effect
+(joint compliance, gravity-held lost motion, beam sag, the mount) is built on these.
+
+Kinematic helpers shared by the effect models: :func:`target_points` (the measured point at a pose) and
+:func:`point_jacobian` (its velocity per unit joint rate).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.robot.kinematics import poe_prefix
+from tolalloc.robot.model import Mass, Robot
+
+__all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "point_at",
+           "target_points", "point_jacobian", "mass_points"]
+
+#: Standard gravity [m/s^2].
+G = 9.81
+#: Mass per metre of link [kg/m] of the default mass model (robots whose file gives no masses).
+DEFAULT_KG_PER_M = 10.0
+
+
+def robot_masses(robot: Robot) -> tuple:
+    """The robot file's masses, or the default model (10 kg per metre of link, at link midpoints)."""
+    if robot.masses:
+        return robot.masses
+    out, point = [], np.zeros(3)
+    for link, site in zip(robot.links, robot.link_sites):
+        if link.length_mm > 0:
+            out.append(Mass(link.name, int(site), DEFAULT_KG_PER_M * link.length_mm / 1000.0, point + link.vector_mm / 2))
+        point = point + link.vector_mm
+    return tuple(out)
+
+
+def target_points(robot: Robot, q: np.ndarray, t_mm: np.ndarray) -> np.ndarray:
+    """Nominal target position ``T(q) [t; 1]`` in the base frame [mm], shape (P, 3); ``t_mm`` (3,) on the flange."""
+    T = robot.fk_internal(q)
+    return T[:, :3, 3] + T[:, :3, :3] @ np.asarray(t_mm, dtype=float)
+
+
+def point_jacobian(robot: Robot, q: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Velocity of the point ``p`` (P, 3) per unit joint rate, ``v_j + omega_j x p``, shape (P, 3, n)."""
+    Js = robot.space_jacobian_internal(q)
+    return Js[:, 3:, :] + np.cross(Js[:, :3, :], p[:, :, None], axis=1)
+
+
+def point_at(prefix: np.ndarray, p_home: np.ndarray) -> np.ndarray:
+    """Where a point ``p_home`` (3,) of a body moves under the prefix transforms ``prefix`` (P, 4, 4), shape (P, 3)."""
+    return prefix[:, :3, :3] @ p_home + prefix[:, :3, 3]
+
+
+def mass_points(robot: Robot, q: np.ndarray, prefix: np.ndarray | None = None) -> list:
+    """``[(Mass, centre of mass at each pose (P, 3) [mm])]`` of :func:`robot_masses`."""
+    P = poe_prefix(robot.screws, np.atleast_2d(q)) if prefix is None else prefix
+    return [(m, point_at(P[:, m.body], m.com_mm)) for m in robot_masses(robot)]
+
+
+def _point_load(robot: Robot, P, c, F, below: int) -> np.ndarray:
+    """Load of forces ``F`` (P, 3) [N] at points ``c`` (P, 3) [mm] on the joints ``j < below``, shape (P, n)."""
+    tau = np.zeros((len(c), robot.n_joints))
+    for j in range(min(below, robot.n_joints)):
+        w = P[:, j, :3, :3] @ robot.joints[j].axis
+        if robot.joints[j].is_revolute:
+            pj = point_at(P[:, j], robot.joint_points_mm[j])
+            tau[:, j] = np.einsum("pi,pi->p", w, np.cross(c - pj, F)) / 1000.0
+        else:
+            tau[:, j] = np.einsum("pi,pi->p", w, F)
+    return tau
+
+
+def tip_load(robot: Robot, q, tip_mm) -> np.ndarray:
+    """Gravity load of a 1 kg point mass at ``tip_mm`` (P, 3) [mm] on every joint, shape (P, n) [N m / kg, N / kg]."""
+    F = np.broadcast_to(G * np.asarray(robot.gravity, dtype=float), tip_mm.shape)
+    return _point_load(robot, poe_prefix(robot.screws, np.atleast_2d(q)), tip_mm, F, robot.n_joints)
+
+
+def gravity_torques(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
+                    tip_kg: np.ndarray | float = 0.0) -> np.ndarray:
+    """Gravity load at every joint, shape (P, n): torque about the axis [N m] (revolute), force [N] (prismatic).
+
+    ``tip_mm`` (P, 3) [mm, base frame] and ``tip_kg`` (P,) or float: an extra point mass (the payload) at the target.
+    """
+    q = np.atleast_2d(q)
+    P = poe_prefix(robot.screws, q)  # (P, n+1, 4, 4)
+    g = np.asarray(robot.gravity, dtype=float)
+    tau = np.zeros((q.shape[0], robot.n_joints))
+    for m, c in mass_points(robot, q, P):
+        tau += _point_load(robot, P, c, np.broadcast_to(m.mass_kg * G * g, c.shape), m.body)
+    if tip_mm is not None:
+        tau += np.broadcast_to(np.asarray(tip_kg, float), (len(q),))[:, None] * tip_load(robot, q, tip_mm)
+    return tau
+
+
+def base_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
+                tip_kg: np.ndarray | float = 0.0) -> np.ndarray:
+    """Gravity moment of every moving mass (and a payload ``tip_kg`` at ``tip_mm``) about the base origin [N m],
+    base frame, shape (P, 3): what the mount carries beside the robot's weight (its horizontal part tilts it).
+
+    Masses fixed to the base (``body == 0``) are left out: their moment does not change with the pose.
+    """
+    q = np.atleast_2d(q)
+    g = G * np.asarray(robot.gravity, dtype=float)
+    M = np.zeros((len(q), 3))
+    for m, c in mass_points(robot, q):
+        if m.body > 0:
+            M += np.cross(c / 1000.0, m.mass_kg * g)
+    if tip_mm is not None:
+        kg = np.broadcast_to(np.asarray(tip_kg, float), (len(q),))
+        M += kg[:, None] * np.cross(np.asarray(tip_mm, float) / 1000.0, g)
+    return M

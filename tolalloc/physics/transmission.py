@@ -1,0 +1,92 @@
+"""Transmission error: the kinematic error of a joint's gear and encoder, periodic in the joint angle.
+
+A revolute joint's output lags or leads its commanded angle ``q`` by ``dq(q) = sum_k a_k sin(k q) + b_k cos(k q)``
+[rad], ``k`` the *order* (cycles per output turn):
+
+* ``1``, ``2``, ``3`` ...: once per output turn and its low harmonics -- the output bearing's and the circular
+  spline's runout, the output-side encoder's eccentricity (once per turn: an encoder disc mounted off centre by
+  ``e`` on a radius ``r`` reads ``e / r sin(q + phi)``), cumulative pitch errors;
+* ``N`` and ``2N`` (``N`` the gear ratio): a strain-wave gear's wave generator turns ``N`` times per output turn and
+  deforms the flexspline twice per turn of its own, so its tooth-meshing error repeats at ``N`` and ``2N`` cycles per
+  output turn (its catalogue figure, the *transmission accuracy*, is the peak-to-peak of the whole error over one
+  output turn); a motor-side encoder's eccentricity repeats at ``N`` too.
+
+:func:`transmission_columns` is the basis the diagnosis fits (one Gaussian prior scale per joint: a ridge). Where the
+robot file gives no ratio, :data:`PLAUSIBLE_RATIOS` are the candidates of a frequency search
+(:func:`ratio_columns`), which the diagnosis runs on its training residual and claims only when the poses resolve
+the frequency. :func:`transmission_error` is the forward model the design samples.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.robot.model import Robot
+
+__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "gear_orders", "variant_orders",
+           "transmission_columns", "ratio_columns", "transmission_error"]
+
+HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
+#: Highest orders of the ``series<K>`` variants (all orders 1..K).
+SERIES_ORDERS = (6, 12, 24, 36)
+#: Gear ratios a frequency search tries where the robot file gives none: strain-wave and cycloid reducers of robot
+#: joints are built from 30:1 to 200:1 (integer ratios: tooth counts).
+PLAUSIBLE_RATIOS = tuple(range(30, 201))
+
+
+def gear_orders(ratio: float) -> tuple:
+    """Orders of a strain-wave gear of ratio ``N``: once per output turn, ``N`` and ``2N``."""
+    return (1.0, float(ratio), 2.0 * float(ratio))
+
+
+def variant_orders(variant: str, ratio: float | None = None) -> tuple:
+    """Orders of a transmission variant (``1x``, ``1x2x``, ``2x3x``, ``series<K>``; ``gear``: :func:`gear_orders`
+    of ``ratio``, or once per turn where it is unknown; ``motor``: the low orders plus ``N``)."""
+    if variant.startswith("series"):
+        return tuple(float(k) for k in range(1, int(variant[6:]) + 1))
+    if variant == "gear":
+        return gear_orders(ratio) if ratio is not None and np.isfinite(ratio) else (1.0,)
+    base = tuple(float(k) for k in HARMONICS.get("2x3x" if variant == "motor" else (variant or "2x3x"), (1,)))
+    if variant == "motor" and ratio is not None and np.isfinite(ratio):
+        return base + (float(ratio),)
+    return base
+
+
+def _order_label(k: float, ratio: float | None) -> str:
+    if ratio is not None and np.isfinite(ratio) and k in (ratio, 2 * ratio) and k > 3:
+        return "N" if k == ratio else "2N"
+    return f"{k:g}x"
+
+
+def transmission_columns(robot: Robot, q: np.ndarray, variant: str, ratios: np.ndarray | None = None) -> tuple:
+    """Joint-offset basis ``A`` (P, n, M) [rad per unit amplitude], column names and the joint of each column (M,)
+    (one prior scale per joint). ``ratios`` (n,): gear ratios (NaN where unknown)."""
+    P, n = q.shape
+    cols, names, groups = [], [], []
+    for j in range(n):
+        if not robot.joints[j].is_revolute:
+            continue
+        N = None if ratios is None else float(ratios[j])
+        for k in variant_orders(variant, N):
+            lab = _order_label(k, N)
+            for fn, f in (("s", np.sin), ("c", np.cos)):
+                a = np.zeros((P, n))
+                a[:, j] = f(k * q[:, j])
+                cols.append(a)
+                names.append(f"{fn}{lab}_{robot.joints[j].name} [rad]")
+                groups.append(j)
+    A = np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))
+    return A, names, np.array(groups, int)
+
+
+def ratio_columns(qj: np.ndarray, ratio: float) -> np.ndarray:
+    """The ``N`` and ``2N`` columns of one joint's angles ``qj`` (P,) for a candidate ratio, shape (P, 4)."""
+    return np.stack([np.sin(ratio * qj), np.cos(ratio * qj), np.sin(2 * ratio * qj), np.cos(2 * ratio * qj)], axis=1)
+
+
+def transmission_error(q: np.ndarray, orders, amplitudes, phases) -> np.ndarray:
+    """Kinematic error [rad] of one joint at angles ``q`` (P,): ``sum_k A_k sin(k q + phi_k)`` over ``orders``,
+    ``amplitudes`` [rad] and ``phases`` [rad] (each shape (K,)), shape (P,)."""
+    q = np.asarray(q, float)[:, None]
+    return np.sum(np.asarray(amplitudes, float) * np.sin(np.asarray(orders, float) * q + np.asarray(phases, float)),
+                  axis=1)
