@@ -60,9 +60,10 @@ def register(sub) -> None:
                    help="split the held-out test error into removed by geometry / by the effect / systematic but "
                         "unnamed (a Gaussian process on the joint values) / noise floor (needs --test; adds about a "
                         "minute for 1000 training poses)")
-    p.add_argument("--robust-loss", default="tukey", choices=["tukey", "huber", "soft_l1"],
-                   help="M-estimator of the fits: tukey (default) gives gross outliers no weight and lists them; "
-                   "huber bounds their weight; soft_l1 is the former smooth loss")
+    p.add_argument("--robust-loss", default="auto", choices=["auto", "tukey", "huber", "soft_l1"],
+                   help="M-estimator of the fits: auto (default) is tukey, or huber on a small training file (fewer "
+                   "than 10 poses per fitted parameter); tukey gives gross outliers no weight; huber bounds their "
+                   "weight; soft_l1 is the former smooth loss; down-weighted rows are listed per stage")
     p.add_argument("--target-offset-mm", type=finite_float, nargs=3, metavar=("X", "Y", "Z"), default=None,
                    help="prior mean of the probe / target offset in the flange frame, relative to the robot's tool "
                    "point [mm] (needs --target-offset-sd-mm)")

@@ -49,8 +49,9 @@ class Diagnosis:
     findings : tuple of str        well-identified deviations from nominal (informational, not guards)
     verdict : Verdict or None      ``effect`` / ``none`` / ``ambiguous`` / ``inconclusive``, candidates, reasons,
                                    the model safe to use, suggested poses (:mod:`.verdict`)
-    outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
-                                   ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
+    outliers : tuple of dict       training rows each stage's fit (nominal, geometric, final) down-weighted or left
+                                   far out (``stage``, ``row``, ``error_mm``, ``weight``;
+                                   :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
     calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of each updated
                                    model (its training data count 1/k in the prior), its floor, the registration
@@ -129,7 +130,7 @@ class Diagnosis:
 
     def outliers_frame(self) -> pd.DataFrame:
         """Training poses treated as gross errors: file row, 3-D residual [mm], IRLS weight."""
-        return pd.DataFrame(list(self.outliers), columns=["row", "error_mm", "weight"])
+        return pd.DataFrame(list(self.outliers), columns=["stage", "row", "error_mm", "weight"])
 
     def ranking_frame(self) -> pd.DataFrame:
         return pd.DataFrame([c.to_dict() for c in self.ranking])

@@ -114,6 +114,7 @@ class Problem:
         self.beta_prior_w = None  # weight (M,) of a zero-mean prior on the effect parameters
         self.f_scale = 0.0
         self.loss = "soft_l1"
+        self.fixed_w = None  # (P,) pose weights held fixed (loss "fixed": weighted least squares)
         self._rot_key, self._rot = None, None  # last (w, R0) of _rotation and its matrix
         self._static = self._static_of(slice(0, len(q))) if len(q) <= self.chunk_rows else None
 
@@ -221,14 +222,26 @@ class Problem:
 
     @property
     def per_pose(self) -> bool:
-        """True for the M-estimators on the 3-D residual norm (``huber``, ``tukey``)."""
-        return self.f_scale > 0 and self.loss in ("huber", "tukey")
+        """True for the M-estimators on the 3-D residual norm (``huber``, ``tukey``) and fixed pose weights."""
+        return (self.f_scale > 0 and self.loss in ("huber", "tukey")) or self.loss == "fixed"
 
-    def pose_weights(self, raw: np.ndarray) -> np.ndarray:
-        """IRLS weight of every pose (P,) for residuals ``raw`` (P, 3) under the current loss."""
+    def _weights(self, s: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        """Per-pose weights of the residual norms ``s`` of the poses ``sl`` (all poses when None)."""
+        if self.loss == "fixed":
+            return self.fixed_w if sl is None else self.fixed_w[sl]
+        return m_weight(s, self.loss, self.f_scale)
+
+    def _rho(self, s: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        if self.loss == "fixed":
+            return self._weights(s, sl) * s * s
+        return m_rho(s, self.loss, self.f_scale)
+
+    def pose_weights(self, raw: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        """IRLS weight of every pose (P,) for residuals ``raw`` (P, 3) under the current loss (``sl``: the poses of a
+        chunk, for fixed weights)."""
         s = np.linalg.norm(raw, axis=1)
         if self.per_pose:
-            return m_weight(s, self.loss, self.f_scale)
+            return self._weights(s, sl)
         if self.f_scale > 0:  # soft_l1 on the norm (per coordinate in the fit)
             return 1.0 / np.sqrt(1.0 + (s / self.f_scale) ** 2)
         return np.ones(len(s))
@@ -259,7 +272,7 @@ class Problem:
         raw = self.raw(x)
         if self.per_pose:
             s = np.linalg.norm(raw.reshape(-1, 3), axis=1)
-            f = np.sqrt(m_rho(s, self.loss, self.f_scale) / np.maximum(s * s, 1e-300))
+            f = np.sqrt(self._rho(s) / np.maximum(s * s, 1e-300))
             res = (raw.reshape(-1, 3) * f[:, None]).ravel()
         else:
             res = self._robust(raw)[0]
@@ -275,7 +288,7 @@ class Problem:
             r, A = self.chunk(x, sl, ch)
             J = np.stack(self.tracker_rows(A, R), axis=1).reshape(3 * len(r), -1)
             if self.per_pose:
-                w = np.repeat(np.sqrt(self.pose_weights(r)), 3)
+                w = np.repeat(np.sqrt(self.pose_weights(r, sl)), 3)
             else:
                 w = self._robust(r.ravel())[1]
             parts.append(J * w[:, None])
@@ -299,8 +312,8 @@ class Problem:
             raw[sl] = r
             if self.per_pose:  # IRLS: one weight per pose from its 3-D residual norm
                 nrm = np.linalg.norm(r, axis=1)
-                sw = np.sqrt(m_weight(nrm, self.loss, self.f_scale))
-                cost += float(np.sum(m_rho(nrm, self.loss, self.f_scale)))
+                sw = np.sqrt(self._weights(nrm, sl))
+                cost += float(np.sum(self._rho(nrm, sl)))
             for a, Ja in enumerate(self.tracker_rows(A, R)):
                 if self.per_pose:
                     Js, rt = Ja * sw[:, None], r[:, a] * sw

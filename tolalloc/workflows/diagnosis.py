@@ -18,7 +18,7 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 @inputs.job_entry
 def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
                           alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
-                          progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,
+                          progress: bool | None = None, robust_loss: str = "auto", target_offset_mm=None,
                           target_offset_sd_mm=None, register_update: str | None = None, register_rows=None,
                           tool: str | None = None, trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
@@ -58,9 +58,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
         Progress bars on stderr (default: when stderr is a terminal).
-    robust_loss : {"tukey", "huber", "soft_l1"}
-        M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight and
-        lists them.
+    robust_loss : {"auto", "tukey", "huber", "soft_l1"}
+        M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight;
+        ``auto`` (default) is ``tukey``, or ``huber`` (bounded influence, no zero weight) on a small training file
+        (fewer than 10 poses per fitted parameter). Down-weighted rows are listed per stage.
     target_offset_mm, target_offset_sd_mm : array (3,) and float, optional
         Prior mean [mm] (flange frame, relative to the robot's tool point) and sd [mm] of the probe / target offset,
         used by every fit; without them each fold borrows the full training fit's offset as its prior.
@@ -121,7 +122,7 @@ def _gap_split(d, progress):
 
 def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same",
                test=None) -> None:
-    inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
+    inputs.check_choice(robust_loss, "robust_loss", ("auto", "tukey", "huber", "soft_l1"))
     if register_update is not None and test_frame == "refit" and test is None:
         raise ArgumentError("register_update", "needs `test`: only a test file in another frame is re-registered, "
                             "and none was given; pass the test file or leave this option out.")

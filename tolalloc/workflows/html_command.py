@@ -197,7 +197,7 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
         kw["gap_split"] = True
     if inp.get("trust_units"):
         kw["trust_units"] = True
-    if inp.get("robust_loss", "tukey") != "tukey":
+    if inp.get("robust_loss", "auto") != "auto":
         kw["robust_loss"] = inp["robust_loss"]
     offset = {k: inp[k] for k in ("target_offset_mm", "target_offset_sd_mm") if inp.get(k) is not None}
     train = kw.pop("train")
