@@ -107,6 +107,12 @@ class Diagnosis:
         return self.effects[0] if self.effects else "none"
 
     @property
+    def family_probability_none(self) -> float | None:
+        """Posterior probability of no effect beside the ranked families (:mod:`.families`); None when not stated."""
+        p = [c.probability for c in self.ranking if np.isfinite(c.probability)]
+        return None if not p else max(0.0, 1.0 - float(sum(p)))
+
+    @property
     def ranking(self) -> tuple:
         return self.stages[0].candidates
 
@@ -154,6 +160,7 @@ class Diagnosis:
             "effect": self.effect,
             "effects": list(self.effects),
             "ranking": [c.to_dict() for c in self.ranking],
+            "probability_no_effect": self.family_probability_none,
             "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
                           "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
             "cv_rms_mm": cv["rms_mm"],

@@ -225,22 +225,21 @@ class ParameterCheck:
                 out.append(f"{head} (well identified; {tail})")
                 continue
             combo = " + ".join([self.names[i]] + [f"{c:.3g} x {n}" for n, c in alias])
-            readings = "; or ".join(reading(n) for n in (self.names[i], *(n for n, _ in alias)))
-            out.append(f"{head} is one combination, {combo}, well identified as such ({tail}): the poses cannot tell "
-                       f"{reading(self.names[i])} from the other readings -- {readings}")
+            readings = ", or ".join(reading(n) for n in (self.names[i], *(n for n, _ in alias)))
+            out.append(f"{head} is one combination, {combo}, well identified as such ({tail}); the poses cannot tell "
+                       f"its readings apart: {readings}")
         return tuple(out)
 
 
 def reading(name: str) -> str:
     """The physical reading (and repair) of a geometric calibration parameter, from its name."""
-    joint, _, kind = name.rpartition("_offset") if name.endswith("_offset") else (None, None, None)
-    if joint:
-        return f"{name}: joint {joint}'s zero is off (re-master the joint)"
-    for key, what in (("_tilt_", "joint {j}'s axis is tilted (a misaligned axis: bearing seat or housing)"),
+    for key, what in (("_offset", "joint {j}'s zero is off (re-master the joint)"),
+                      ("_tilt_", "joint {j}'s axis is tilted (bearing seat or housing misaligned)"),
                       ("_shift_", "joint {j}'s axis is displaced (a link length or axis position off)")):
         if key in name:
-            return f"{name}: " + what.format(j=name.split(key)[0])
+            return what.format(j=name.split(key)[0])
     return name
+
 
 
 def parameter_checks(fit, q: np.ndarray, *, level: np.ndarray | None = None,

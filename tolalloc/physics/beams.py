@@ -10,7 +10,8 @@ of gravity (``cos(phi)`` of the weight, ``phi`` the segment's elevation) an Eule
 
 and the slope turns everything beyond it: the target moves by ``drop g + slope (axis x (p - end))``, ``axis`` the
 horizontal bending axis. With the section and material of the robot file (:class:`~tolalloc.robot.components.LinkSection`)
-:func:`beam_sag` gives the displacement in mm with no free parameter (the design's model). Without them the
+:func:`beam_sag` gives the displacement in mm with no free parameter (the design's model), every mass as a point load
+where it sits. Without them the
 diagnosis fits the coefficients of the load shapes (:func:`beam_columns`): ``tip`` (one ``k h^3`` drop per
 segment, ``h`` its horizontal overhang [m]), ``beam`` (own weight ``w`` and end load ``f`` columns, plus ``fp``:
 the end load of a logged payload that changes between poses).
@@ -137,33 +138,44 @@ def segment_section(robot: Robot, j: int, k: int | None):
     return best
 
 
-def _segment_loads(j: int, k: int | None, masses, payload_kg) -> tuple:
-    """Mass [kg] on the segment (the robot's masses between its joints) and beyond its end (with the payload)."""
-    own = sum(m.mass_kg for m, _ in masses if m.body > j and (k is None or m.body <= k))
-    distal = sum(m.mass_kg for m, _ in masses if k is not None and m.body > k)
-    pay = 0.0 if payload_kg is None else np.asarray(payload_kg, float)
-    return own, distal + pay
+def _point_loads(masses, start, e, L, j: int, kg_at_target, p_t):
+    """Transverse point loads on the segment from joint ``j``: ``(force [N] (P,), distance along it a [mm] (P,),
+    lever beyond its end [mm] (P,))`` of every mass carried after joint ``j`` and of the payload at the target."""
+    loads = [(m.mass_kg * G, c) for m, c in masses if m.body > j]
+    if kg_at_target is not None:
+        loads.append((np.asarray(kg_at_target, float) * G, p_t))
+    for F, c in loads:
+        along = np.einsum("pi,pi->p", c - start, e)
+        yield F, np.clip(along, 0.0, L), np.maximum(along - L, 0.0)
 
 
 def beam_sag(robot: Robot, q, p_t, payload_kg=None) -> np.ndarray:
-    """Target displacement [mm] (P, 3) of the segments with a section in the robot file, bending and shear under
-    their own masses (spread along the segment), the distal masses and the payload at the target (module
-    docstring). Segments without a section do not bend here."""
+    """Target displacement [mm] (P, 3) of the segments with a section in the robot file (module docstring), bending
+    and shear under every mass the segment carries as a point load where it sits (a mass at distance ``a`` along a
+    cantilever of length ``L``: end drop ``F a^2 (3L - a) / 6EI + F a / (kappa G A)``, slope ``F a^2 / 2EI``; a mass
+    beyond the end adds its moment ``F d``: ``F d L^2 / 2EI``, slope ``F d L / EI``), the payload at the target, and
+    the section's own weight where the robot file puts no mass on the segment. Loads are the transverse part of
+    gravity (``cos(phi)``). Segments without a section do not bend here."""
     g = np.asarray(robot.gravity, dtype=float)
     masses = mass_points(robot, q)
+    Pm = poe_prefix(robot.screws, q)
     out = np.zeros((len(q), 3))
     for j, k, _ in deflection_segments(robot):
         sec = segment_section(robot, j, k)
         if sec is None:
             continue
         end, h, u, L = segment_geometry(robot, q, j, k)
-        own_kg, end_kg = _segment_loads(j, k, masses, payload_kg)
-        # [N/mm]: the robot's masses on the segment spread along it, or the section's own weight without them
-        w = own_kg * G / np.maximum(L, 1e-9) if own_kg > 0 else sec.area_mm2 * sec.density_kg_per_mm3 * G
-        F = end_kg * G
-        cphi = h / np.maximum(L, 1e-9)
-        drop = ((w * L ** 4 / 8 + F * L ** 3 / 3) / sec.EI_Nmm2
-                + (w * L ** 2 / 2 + F * L) / sec.shear_stiffness_N) * cphi
-        slope = (w * L ** 3 / 6 + F * L ** 2 / 2) / sec.EI_Nmm2 * cphi
+        start = point_at(Pm[:, j], robot.joint_points_mm[j])
+        e = (end - start) / np.maximum(L, 1e-9)[:, None]
+        cphi, EI, GA = h / np.maximum(L, 1e-9), sec.EI_Nmm2, sec.shear_stiffness_N
+        drop, slope = np.zeros(len(q)), np.zeros(len(q))
+        for F, a, d in _point_loads(masses, start, e, L, j, payload_kg, p_t):
+            Ft = F * cphi
+            drop += Ft * a ** 2 * (3 * L - a) / (6 * EI) + Ft * a / GA + Ft * d * L ** 2 / (2 * EI)
+            slope += Ft * a ** 2 / (2 * EI) + Ft * d * L / EI
+        if not any(m.body > j and (k is None or m.body <= k) for m, _ in masses):
+            w = sec.area_mm2 * sec.density_kg_per_mm3 * G * cphi  # [N/mm]
+            drop += w * L ** 4 / (8 * EI) + w * L ** 2 / (2 * GA)
+            slope += w * L ** 3 / (6 * EI)
         out += _move(drop, slope, g, np.cross(np.cross(u, g), p_t - end))
     return out

@@ -152,6 +152,9 @@ def summary_lines(d: Diagnosis) -> list:
                          f"P={c.probability:.2f}  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
         else:
             lines.append(f"  {c.effect:17s} not testable: {c.reason}")
+    p_none = d.family_probability_none
+    if p_none is not None:
+        lines.append(f"  {'(no effect)':17s} P={p_none:.2f}")
     return lines
 
 
