@@ -5,10 +5,17 @@ For every revolute joint without a known ratio and every candidate ``N`` of
 :data:`~tolalloc.physics.transmission.PLAUSIBLE_RATIOS`, the four columns ``sin/cos(N q_j)``, ``sin/cos(2N q_j)``
 (mapped to the target point, turned into the tracker frame and projected off the registration, offset and geometric
 columns, as :mod:`.choice` does) are fitted to the geometric fit's training residual; the drop of the residual sum
-of squares, scaled by the robust noise variance, is ``chi^2_4`` for a ratio the data do not carry. A joint's ratio is
+of squares, scaled by the noise variance, is ``chi^2_4`` for a ratio the data do not carry. The noise variance is the
+robust (MAD) estimate of the residual's, raised where the bulk of the candidates says it is larger (their median drop
+above the ``chi^2_4`` median: a residual with structure the noise estimate misses, which would inflate every
+candidate's drop). A joint's ratio is
 **found** when its best candidate exceeds the ``1 - alpha / m`` quantile of ``chi^2_4`` (Bonferroni over the ``m``
-candidates of all searched joints) **and** the poses resolve it: no other candidate (other than ``N/2`` and ``2N``,
-which share a column with it) comes within ``2 log(20)`` (a likelihood ratio of 20) of its fit. Otherwise the joint
+candidates of all searched joints), the poses resolve it -- no other candidate (other than ``N/2`` and ``2N``,
+which share a column with it) comes within ``2 log(20)`` (a likelihood ratio of 20) of its fit -- **and** it
+replicates: fitted on each half of the training poses alone, its drop exceeds the single-test ``1 - alpha``
+quantile in both (the search picks the best of many frequencies on the whole file; a frequency the noise favoured
+there does not come back in both halves, and the selection's cross-validation, which sees the chosen frequency, could
+not tell). Otherwise the joint
 gets no gear term, with the reason -- no claim at a frequency the poses cannot tell. Files with fewer than
 :data:`MIN_DOF` residual degrees of freedom are not searched.
 """
@@ -71,16 +78,27 @@ def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: n
     limit = chi2.isf(alpha / (len(cand) * len(todo)), 4)
     Jp = point_jacobian(robot, q, target_points(robot, q, fit.t_mm))  # (P, 3, n)
     step = max(1, int(2e6 // (12 * len(q))))  # candidates per block: at most ~16 MB of columns
+    order = np.random.default_rng(0).permutation(len(q))  # two halves of the poses (rows of 3 coordinates each)
+    halves_of = [np.concatenate([3 * i + np.arange(3) for i in np.sort(h)]) for h in np.array_split(order, 2)]
+    replicate = chi2.isf(alpha, 4)
     notes = []
     for j in todo:
         stat = np.concatenate([_drops(_columns(fit, Jp[:, :, j], q[:, j], cand[a:a + step], Q), r)
                                for a in range(0, len(cand), step)]) / s2
+        s2j = s2 * max(1.0, float(np.median(stat)) / chi2.median(4))  # the bulk of candidates calibrates the null
+        stat = stat * s2 / s2j
         b = int(np.argmax(stat))
         N = cand[b]
         related = np.isin(cand, (N, 2 * N, N / 2))
         other = np.max(np.where(related, -np.inf, stat))
         name = robot.joints[j].name
-        if stat[b] >= limit and stat[b] - other >= 2 * np.log(RESOLVE_LR):
+        X = _columns(fit, Jp[:, :, j], q[:, j], np.array([N]), Q)[0]
+        halves = min(_drops(X[None, rows], r[rows])[0] / s2j for rows in halves_of)
+        if stat[b] >= limit and stat[b] - other >= 2 * np.log(RESOLVE_LR) and halves < replicate:
+            notes.append(f"gear ratio of {name}: N = {N:g} stands out in the training residual (chi2 = {stat[b]:.3g}, "
+                         f"limit {limit:.3g}) but does not replicate in both halves of the training poses (chi2 "
+                         f"{halves:.3g} < {replicate:.3g} in one); no gear term")
+        elif stat[b] >= limit and stat[b] - other >= 2 * np.log(RESOLVE_LR):
             out[j] = N
             notes.append(f"gear ratio of {name}: N = {N:g} found in the training residual (chi2 = {stat[b]:.3g}, "
                          f"limit {limit:.3g}; the next unrelated frequency {other:.3g})")
