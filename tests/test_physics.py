@@ -142,3 +142,23 @@ def test_joint_loads_add_the_payload_at_the_target():
     tau0, tip = joint_loads(robot, q, p)
     tau5, _ = joint_loads(robot, q, p, np.full(4, 5.0))
     np.testing.assert_allclose(tau5 - tau0, 5.0 * tip, atol=1e-9)
+
+
+def test_a_mass_beside_the_beam_axis_twists_it():
+    """A 1 m steel tube along x carries, through a rigid 300 mm arm, 20 kg beside its axis: the end drops by
+    P L^3 / 3EI + P L / kGA and the torque P d twists it by P d L / GJ, lowering the mass by a further d times that;
+    the tube (no robot mass on it) also sags under its own weight, w L^4 / 8EI + w L^2 / 2kGA."""
+    sec = parse_components({"links": {"l1": {"section": "tube", "outer_diameter_mm": 100, "wall_mm": 5,
+                                              "material": "steel"}}}, {"j1": True, "j2": True}, ["l1", "l2"]).links["l1"]
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([1000.0, 0.0, 0.0])),
+             Joint("j2", "revolute", np.array([1.0, 0.0, 0.0])), Link("l2", np.array([0.0, 300.0, 0.0])))
+    robot = Robot("arm", chain)
+    object.__setattr__(robot, "masses", (tolalloc.robot.Mass("m", 2, 20.0, np.array([1000.0, 300.0, 0.0])),))
+    object.__setattr__(robot, "components", Components(links={"l1": sec}))
+    P, L, d = 20 * G, 1000.0, 300.0
+    GJ = sec.shear_modulus_MPa * 2 * sec.inertia_mm4
+    w = sec.area_mm2 * sec.density_kg_per_mm3 * G  # [N/mm]
+    drop = (P * L**3 / (3 * sec.EI_Nmm2) + P * L / sec.shear_stiffness_N + P * d * L / GJ * d
+            + w * L**4 / (8 * sec.EI_Nmm2) + w * L**2 / (2 * sec.shear_stiffness_N))
+    np.testing.assert_allclose(beam_sag(robot, np.zeros((1, 2)), np.array([[1000.0, 300.0, 0.0]])),
+                               [[0.0, 0.0, -drop]], rtol=1e-9, atol=1e-12)

@@ -139,7 +139,7 @@ class Candidate:
                 "cv_rms_mm": self.cv_rms_mm, "gain_pct": self.gain_pct,
                 "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
                 "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant,
-                "probability": self.probability}
+                "probability": self.probability if np.isfinite(self.probability) else None}
 
 
 @dataclass(frozen=True, eq=False)
