@@ -107,6 +107,11 @@ def _final_name(d: Diagnosis) -> str:
     return "final model"
 
 
+def _prob(p: float) -> str:
+    """A family's posterior probability as printed (``n/a`` when the residual cannot weigh the families)."""
+    return f"{p:.2f}" if np.isfinite(p) else "n/a"
+
+
 def summary_lines(d: Diagnosis) -> list:
     """The whole printed summary of a diagnosis, one string per line: the verdict first (:func:`verdict_lines`),
     then test-file figures, cross-validation, the worst test poses, every guard, the ranking."""
@@ -149,7 +154,7 @@ def summary_lines(d: Diagnosis) -> list:
         if c.applicable:
             flag = "" if c.significant else "  not significant" + (f": {c.reason}" if c.reason else "")
             lines.append(f"  {c.effect:17s} clipped RMS {c.robust_rms_mm:.4f} mm (unclipped {c.heldout_rms_mm:.4f})  "
-                         f"P={c.probability:.2f}  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
+                         f"P={_prob(c.probability)}  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
         else:
             lines.append(f"  {c.effect:17s} not testable: {c.reason}")
     p_none = d.family_probability_none
