@@ -161,7 +161,8 @@ def test_link_expansion_feature_is_the_derivative():
     assert ctx.link_scale_feature(mask) == pytest.approx(fd, abs=1e-5)
     # the mount's tilt moves every point perpendicular to its lever about the pivot
     parts = eb.mount_parts(ctx, {"height_mm": 0.0, "plate_axis_rad": 0.3})
-    cos = np.einsum("kpi,pi->kp", parts, ctx.target) / (np.linalg.norm(parts, axis=2) * np.linalg.norm(ctx.target, axis=1))
+    norms = np.linalg.norm(parts, axis=2) * np.linalg.norm(ctx.target, axis=1)
+    cos = np.einsum("kpi,pi->kp", parts, ctx.target) / norms
     assert np.abs(cos).max() < 1e-12
 
 

@@ -34,6 +34,10 @@ def _powers(ctx, hw, rng_extra):
 
 
 def heat_draw(ctx, hw, rng):
+    """Per link body: heated by its proximal and distal drives (weights U(0.3, 1)) through a first-order lag of
+    10-60 min, rising 10-30 K at its drives' rated copper loss (assumption: joint housings of robots in continuous
+    service run 10-30 K above the shop); exercise loads = the session's mean square load x U(1.2, 2)
+    (acceleration). Cold start at the first pose."""
     n = ctx.chain.n
     bodies = sorted(set(int(b) for b in ctx.chain.link_body if b >= 1))
     w = {b: (rng.uniform(0.3, 1.0), rng.uniform(0.3, 1.0) if b < n else 0.0) for b in bodies}

@@ -78,11 +78,11 @@ def encoder_features(params, ctx, hw):
 
 
 # ---------------------------------------------------------------------------------------------- stiffness
-def _stiff_draw(ctx, hw, rng):
+def stiffness_draw(ctx, hw, rng):
     return {}
 
 
-def _stiff_apply(hardening):
+def stiffness_apply(hardening):
     def apply(params, ctx, hw):
         dq = np.zeros_like(ctx.q)
         for j, d in enumerate(hw["drives"]):

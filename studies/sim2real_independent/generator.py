@@ -40,8 +40,8 @@ ROBOT_FILES = {"ur10": "ur10", "tool_changer": "tool_changer", "kr16_like": str(
 EFFECTS = {
     "gear": (ej.gear_draw, ej.gear_apply, ej.gear_features),
     "encoder": (ej.encoder_draw, ej.encoder_apply, ej.encoder_features),
-    "compliance": (ej._stiff_draw, ej._stiff_apply(False), ej.compliance_features),
-    "hardening": (ej._stiff_draw, ej._stiff_apply(True), ej.hardening_features),
+    "compliance": (ej.stiffness_draw, ej.stiffness_apply(False), ej.compliance_features),
+    "hardening": (ej.stiffness_draw, ej.stiffness_apply(True), ej.hardening_features),
     "backlash": (ej.backlash_draw, ej.backlash_apply, ej.backlash_features),
     "heat": (eb.heat_draw, eb.heat_apply, eb.heat_features),
     "ambient": (eb.ambient_draw, eb.ambient_apply, eb.ambient_features),
@@ -152,7 +152,8 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     hw = {"drives": hwm.size_drives(robot_key, np.abs(ctx.loads).max(axis=0) * 1.0, rated, rng),
           "tubes": hwm.draw_tubes(robot_key, rng), "mount": hwm.draw_mount(robot_key, rng),
           "material": hwm.ROBOTS[robot_key]["material"]}
-    params, dq, strain, disp = {}, np.zeros_like(session.q), np.zeros((n_poses, len(nominal.links))), np.zeros((n_poses, 3))
+    params, dq = {}, np.zeros_like(session.q)
+    strain, disp = np.zeros((n_poses, len(nominal.links))), np.zeros((n_poses, 3))
     for kind in physics:
         draw, apply, _ = EFFECTS[kind]
         params[kind] = draw(ctx, hw, rng)

@@ -10,7 +10,8 @@ Sources of the ranges (the study's README / report repeats them):
 * cycloid gears (main axes of kr16_like and tool_changer): Nabtesco RV-E-like sizes, rated torque 167-3136 N m,
   torsional rigidity 49-980 N m/arcmin, lost motion 1 arcmin at +-3 % rated torque (values as recalled from the
   RV-E catalogue table: 20E 167 / 49, 40E 412 / 108, 80E 784 / 196, 110E 1078 / 294, 160E 1568 / 392,
-  320E 3136 / 980).
+  320E 3136 / 980); a load past the largest gets a size rated for it with the table's rigidity per rated torque.
+  The size covers 1.3x the session's largest static load (the base axis: half the largest load of the arm).
 * joint stiffness of the assembled joint: the gear's in series with bearings, shafts and housing: compliance x
   U(1, 2) (assumption; assembled robot joints are softer than their gears, e.g. Dumas et al., "Joint stiffness
   identification of six-revolute industrial serial robots", RCIM 27, 2011).
@@ -62,7 +63,11 @@ def hd_gear(size):
             "K3": 1.2e5 * s, "T_rated": 1.27 * 108 * s}
 
 
-def rv_gear(i):
+def rv_gear(i, need=None):
+    """RV size ``i``; past the largest listed size (``need`` above its rating): a size rated for ``need`` with the
+    table's rigidity per rated torque (0.25-0.31 arcmin^-1 across the table; 0.27 taken)."""
+    if need is not None:
+        return {"kind": "RV", "size": -1, "T_rated": need, "K": 0.27 * need / ph.ARCMIN, "lost_motion": 1.0 * ph.ARCMIN}
     return {"kind": "RV", "size": int(i), "T_rated": RV_RATED[i], "K": RV_RIGIDITY_NM_ARCMIN[i] / ph.ARCMIN,
             "lost_motion": 1.0 * ph.ARCMIN}
 
@@ -71,13 +76,14 @@ def size_drives(robot_key, max_load, rated_speed, rng):
     """Gear, stiffness and loss data per joint, sized for ``max_load`` (n,) [N m or N]."""
     drives = []
     for j, kind in enumerate(ROBOTS[robot_key]["gears"]):
-        need = 1.3 * max(max_load[j], 5.0)
+        # the base axis carries no gravity load: sized for half the largest load (its inertial torque)
+        need = 1.3 * max(max_load[j], 5.0, 0.5 * max(max_load) if j == 0 else 0.0)
         if kind == "HD":
             ok = [s for s in HD_SIZES if hd_gear(s)["T_rated"] >= need]
             d = hd_gear(ok[0] if ok else HD_SIZES[-1])
         elif kind == "RV":
             ok = np.flatnonzero(RV_RATED >= need)
-            d = rv_gear(ok[0] if len(ok) else len(RV_RATED) - 1)
+            d = rv_gear(ok[0]) if len(ok) else rv_gear(-1, need)
         else:
             d = {"kind": "screw", "T_rated": 5 * need, "K_axial_N_per_mm": rng.uniform(200, 800) * 1e3}
         d["soften"] = rng.uniform(1.0, 2.0)  # assembled joint softer than the gear

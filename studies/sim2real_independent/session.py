@@ -16,8 +16,8 @@ import numpy as np
 
 import kinematics as kin
 
-#: Joint sampling boxes of the measured workspace [deg / mm]; poses whose target or any joint point from joint 3 on lies below
-#: FLOOR_MM (base frame z) are redrawn.
+#: Joint sampling boxes of the measured workspace [deg / mm]; poses whose target or any joint point from joint 3 on
+#: lies below FLOOR_MM (base frame z) are redrawn.
 BOXES = {
     "ur10": ([-170, -170, -150, -250, -160, -180], [170, -10, 150, 70, 160, 180]),
     "tool_changer": ([-60, -10, -45, 0, -90, -180], [60, 60, 30, 500, 90, 180]),
@@ -33,7 +33,8 @@ class Session:
     """Poses in visiting order and everything logged or needed about them (P poses, n joints).
 
     q : (P, n) [rad, mm]; time_s : (P,); direction : (P, n) +-1; payload_kg : (P,); air_c : (P,) logged air
-    temperature; air : the air temperature law (see :func:`air_temperature`); speed : (P, n) [rad/s or mm/s] mean joint speed of the move into each pose; move_s, dwell_s :
+    temperature; air : the air temperature law (see :func:`air_temperature`); speed : (P, n) [rad/s or mm/s] mean
+    joint speed of the move into each pose; move_s, dwell_s :
     (P,) durations of that move and of the dwell; gap_s : (P,) exercise (>0) or pause (<0) time before the pose
     [s]; exercise_speed : (n,) mean |speed| of the exercise cycle.
     """
@@ -75,9 +76,10 @@ def make_session(chain: kin.Chain, robot_key: str, n: int, rng, *, blocks: int =
     """A session of ``n`` poses in ``blocks`` measurement blocks.
 
     gap_kind : "none" | "exercise" | "pause" | "mixed" -- what happens between blocks (exercise 10-30 min,
-    pause ``pause_min`` [min], default 10-40). payload_steps : payload masses [kg], one per equal share of the blocks (the payload is
-    changed between blocks and logged). air : {"drift_K": total change, "cycle_K": amplitude of an HVAC cycle,
-    "period_min": its period} -- the air temperature (logged) follows it; None: a still shop (+-0.05 K).
+    pause ``pause_min`` [min], default 10-40). payload_steps : payload masses [kg], one per equal share of the
+    blocks (the payload is changed between blocks and logged). air : {"drift_K": total change, "cycle_K":
+    amplitude of an HVAC cycle, "period_min": its period} -- the air temperature (logged) follows it; None: a still
+    shop (+-0.05 K).
     """
     q = sample_poses(chain, robot_key, n, rng)
     scale = np.where(chain.revolute, np.pi / 180, 1.0)
@@ -121,4 +123,5 @@ def air_temperature(session: Session, t_s) -> np.ndarray:
     a = session.air
     t_h = (np.asarray(t_s, float) - session.time_s[0]) / 3600
     span = max((session.time_s[-1] - session.time_s[0]) / 3600, 1e-9)
-    return (a["T0"] + a["drift_K"] * t_h / span + a["cycle_K"] * np.sin(2 * np.pi * t_h * 60 / a["period_min"] + a["phase"]))
+    cycle = a["cycle_K"] * np.sin(2 * np.pi * t_h * 60 / a["period_min"] + a["phase"])
+    return a["T0"] + a["drift_K"] * t_h / span + cycle
