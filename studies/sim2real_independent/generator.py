@@ -27,12 +27,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-import effects_body as eb
-import effects_joint as ej
-import hardware as hwm
-import kinematics as kin
-from context import FAMILY, Ctx
-from session import RATED_SPEED_DEG_S, make_session
+from sim2real_indep import effects_body as eb
+from sim2real_indep import effects_joint as ej
+from sim2real_indep import hardware as hwm
+from sim2real_indep import kinematics as kin
+from sim2real_indep.context import FAMILY, Ctx
+from sim2real_indep.session import RATED_SPEED_DEG_S, make_session
 
 HERE = Path(__file__).resolve().parent
 ROBOT_FILES = {"ur10": "ur10", "tool_changer": "tool_changer", "kr16_like": str(HERE / "kr16_like.toml")}

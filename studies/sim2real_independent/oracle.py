@@ -25,11 +25,10 @@ from functools import lru_cache
 import numpy as np
 from scipy.optimize import least_squares
 
-import families
-import kinematics as kin
-from context import FAMILY
+from sim2real_indep import families
+from sim2real_indep import kinematics as kin
+from sim2real_indep.context import FAMILIES, FAMILY
 
-FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 GAIN_MIN, AMBIG = 0.05, 1.05
 
 

@@ -27,11 +27,11 @@ import pandas as pd  # noqa: E402
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-import cases as cs  # noqa: E402
+from sim2real_indep import cases as cs  # noqa: E402
 import generator as gen  # noqa: E402
 import oracle as orc  # noqa: E402
-from scoring import score  # noqa: E402
-from report_text import write_report  # noqa: E402
+from sim2real_indep.scoring import score  # noqa: E402
+from sim2real_indep.report_text import write_report  # noqa: E402
 
 OUT = HERE.parents[1] / "reports" / "sim2real_independent"
 

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-import effects_body as eb
-import physics as ph
+from sim2real_indep import effects_body as eb
+from sim2real_indep import physics as ph
 
 
 def _stack(cols, P):

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 G = 9.80665  # standard gravity [m/s^2]
-BUILTIN = Path(__file__).resolve().parents[2] / "tolalloc" / "data" / "robots"
+BUILTIN = Path(__file__).resolve().parents[3] / "tolalloc" / "data" / "robots"
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-import physics as ph
+from sim2real_indep import physics as ph
 
 HD_SIZES = np.array([14, 17, 20, 25, 32, 40, 45, 50, 58, 65])
 RV_RATED = np.array([167, 412, 784, 1078, 1568, 3136.0])

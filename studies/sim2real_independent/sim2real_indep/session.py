@@ -14,7 +14,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-import kinematics as kin
+from sim2real_indep import kinematics as kin
 
 #: Joint sampling boxes of the measured workspace [deg / mm]; poses whose target or any joint point from joint 3 on
 #: lies below FLOOR_MM (base frame z) are redrawn.

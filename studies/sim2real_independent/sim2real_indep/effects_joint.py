@@ -8,9 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 
-import hardware as hwm
-import physics as ph
-from context import Contribution
+from sim2real_indep import hardware as hwm
+from sim2real_indep import physics as ph
+from sim2real_indep.context import Contribution
 
 
 def _joints(ctx, rng, lo, hi, revolute_only=True):

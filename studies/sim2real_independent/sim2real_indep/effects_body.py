@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
-import hardware as hwm
-import kinematics as kin
-import physics as ph
-from context import Contribution
-from session import air_temperature
+from sim2real_indep import hardware as hwm
+from sim2real_indep import kinematics as kin
+from sim2real_indep import physics as ph
+from sim2real_indep.context import Contribution
+from sim2real_indep.session import air_temperature
 
 GRAVITY_N = kin.G * np.array([0.0, 0.0, -1.0])  # force per kg [N/kg]
 

@@ -7,12 +7,14 @@ from functools import cached_property
 
 import numpy as np
 
-import kinematics as kin
-from session import Session
+from sim2real_indep import kinematics as kin
+from sim2real_indep.session import Session
 
 FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", "ambient": "thermal",
           "hardening": "joint_compliance", "compliance": "joint_compliance", "mount": "mount_compliance",
           "sag": "link_deflection", "backlash": "backlash", "none": "none"}
+#: the families the diagnosis names (issue 40), in the report's column order
+FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
 
 @dataclass

@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pandas as pd
 
-from oracle import FAMILIES
+from sim2real_indep.context import FAMILIES
 
 SHORT = {"joint_compliance": "joint", "mount_compliance": "mount", "link_deflection": "link",
          "backlash": "backl", "thermal": "therm", "transmission": "trans"}
@@ -168,7 +168,8 @@ def write_report(frame: pd.DataFrame, path, *, wall: float, jobs: int, quick: bo
     n_test = float(np.median(np.ceil(0.25 * frame.poses)))
     spread = 100 / np.sqrt(2 * 3 * n_test)
     noise_note = (f"With the median {n_test:.0f} test poses a test RMS of pure noise scatters by about {spread:.0f} % "
-                  f"(1 / sqrt(2 x 3 x n_test)), {'more' if spread > 5 else 'less'} than the 5 % threshold itself.")
+                  f"from split to split (1 / sqrt(2 x 3 x n_test)), {'more' if spread > 5 else 'less'} than the 5 % "
+                  "threshold; two models scored on the same poses differ by less, as their errors are correlated.")
     out += [NOTES.format(noise_note=noise_note), PHYSICS, LABELS]
     tmp = str(path) + ".tmp"
     with open(tmp, "w", encoding="utf-8") as fh:
