@@ -100,3 +100,27 @@ def test_a_finding_that_stands_for_another_parameter_is_reported_as_the_combinat
     (line,) = check.findings({"j3_offset": (("j4_tilt_y", 9.8),)})
     assert "is one combination, j3_offset + 9.8 x j4_tilt_y, well identified as such" in line
     assert "joint j3's zero is off (re-master the joint), or joint j4's axis is tilted" in line
+
+
+def test_separating_poses_outside_the_training_data_are_flagged_with_the_joints_to_move():
+    """Training poses with joint 2 held within -60..-40 deg: poses that would separate two fitted families mostly need
+    joint 2 elsewhere; each is flagged as outside the training data (both fits extrapolate there), with the joints
+    that must move beyond their training range."""
+    from tolalloc.diagnose.calibrate import calibrate
+    from tolalloc.diagnose.select import evaluate, make_context
+    from tolalloc.diagnose.verdict import separating_poses
+
+    rng = np.random.default_rng(4)
+    q = rng.uniform(-np.pi, np.pi, (60, 6))
+    q[:, 1] = np.radians(rng.uniform(-60, -40, 60))
+    x = target_points(UR10, q, np.array([0.0, 0.0, 50.0])) + rng.normal(0, 0.02, (60, 3))
+    df = pd.DataFrame(np.degrees(q), columns=[f"q{i + 1}_deg" for i in range(6)])
+    df[["x_mm", "y_mm", "z_mm"]] = x
+    train = measurements_from_frame(df, UR10)
+    ctx = make_context(calibrate(UR10, train), train, folds=2)
+    a, b = evaluate(ctx, ("joint_compliance",)), evaluate(ctx, ("mount_compliance",))
+    sug = separating_poses(ctx, [(a, b, "joint_compliance", "mount_compliance")], {}, n=4, n_sampled=300)
+    assert len(sug) == 4 and sug["outside_training"].dtype == bool
+    out_q2 = (sug["q2_deg"] < -65) | (sug["q2_deg"] > -35)
+    assert sug["outside_training"][out_q2].all()
+    assert all("shoulder_lift_joint" in j for j in sug["joints_outside_training_range"][out_q2])
