@@ -51,8 +51,9 @@ def test_given_cube_checked_and_too_large_refused(ur10):
     small = place_cube(ur10, lo, hi, centre_mm=c.centre_mm, edge_mm=0.5 * c.edge_mm)
     assert not small.searched and small.cube.edge_mm == pytest.approx(0.5 * c.edge_mm)
     with pytest.raises(TolallocError, match=r"cube_edge_mm: a cube of edge 10000 mm at .* does not fit the working "
-                                            r"region .*; the largest that fits there has an edge of [0-9.]+ mm\. Give "
-                                            r"cube_edge_mm <= "):
+                                            r"region .*; the largest that fits there has an edge of [0-9.]+ mm with "
+                                            r"the tool orientation held; [0-9.]+ mm with the tool orientation free\. "
+                                            r"Give cube_edge_mm <= "):
         place_cube(ur10, lo, hi, centre_mm=c.centre_mm, edge_mm=1e4)
 
 

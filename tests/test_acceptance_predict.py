@@ -19,7 +19,7 @@ D = np.array([127.3, 0, 0, 163.941, 115.7, 92.2])
 A = np.array([0, -612.0, -572.3, 0, 0, 0])
 ALPHA = np.array([np.pi / 2, 0, 0, np.pi / 2, -np.pi / 2, 0])
 SIG_SYS, SIG_RAND = np.deg2rad(0.01), np.deg2rad(0.002)  # joint offsets: per robot, per move
-N = 1200
+N = 800
 
 
 def dh_fk(q):
@@ -38,14 +38,16 @@ def dh_fk(q):
 
 
 def kabsch(a, b):
-    """Per robot: R, t with R a + t ~ b (own SVD solution)."""
-    out = []
-    for ai, bi in zip(a, b):
-        H = (ai - ai.mean(0)).T @ (bi - bi.mean(0))
-        U, _, Vt = np.linalg.svd(H)
-        R = Vt.T @ np.diag([1, 1, np.linalg.det(Vt.T @ U.T)]) @ U.T
-        out.append((R, bi.mean(0) - R @ ai.mean(0)))
-    return out
+    """Per robot: R (N, 3, 3), t (N, 3) with R a + t ~ b, a and b (N, R, 3) (own SVD solution)."""
+    ca, cb = a.mean(1), b.mean(1)
+    H = np.einsum("nri,nrj->nij", a - ca[:, None], b - cb[:, None])
+    U, _, Vt = np.linalg.svd(H)
+    V, Ut = np.swapaxes(Vt, 1, 2), np.swapaxes(U, 1, 2)
+    D = np.zeros_like(H)
+    D[:, 0, 0] = D[:, 1, 1] = 1
+    D[:, 2, 2] = np.linalg.det(V @ Ut)
+    R = V @ D @ Ut
+    return R, cb - np.einsum("nij,nj->ni", R, ca)
 
 
 @pytest.fixture(scope="module")
@@ -58,8 +60,9 @@ def setup():
     return robot, test, model, split
 
 
-def own_test(test, rng, sig_rand=SIG_RAND):
-    """The test on N robots: statistics (robot, measured) per pose, by the standard's formulas."""
+def own_test(test, rng, sig_rand=SIG_RAND, angles=True):
+    """The test on N robots: statistics (robot, measured) per pose, by the standard's formulas (``angles``: the
+    orientation ones too)."""
     tr = test.tracker
     s = rng.normal(0, SIG_SYS, (N, 6))
 
@@ -67,39 +70,41 @@ def own_test(test, rng, sig_rand=SIG_RAND):
         return dh_fk(q + s + rng.normal(0, sig_rand, (N, 6)))
 
     corners = test.placement.q_corners
-    cmd_c = dh_fk(corners)[:, :3, 3]
+    cmd_c = np.broadcast_to(dh_fk(corners)[:, :3, 3], (N, len(corners), 3))
     att_c = np.stack([visit(q)[:, :3, 3] for q in corners], 1)
-    reg_t = kabsch(att_c, np.broadcast_to(cmd_c, att_c.shape))
-    reg_m = kabsch(att_c + rng.normal(0, tr.sigma_mm, att_c.shape), np.broadcast_to(cmd_c, att_c.shape))
+    regs = (kabsch(att_c, cmd_c), kabsch(att_c + rng.normal(0, tr.sigma_mm, att_c.shape), cmd_c))
     out = {k: np.zeros((2, N, 5)) for k in ("AP_P", "RP_l", "AP_a", "RP_c")}
-    P = {}
+    P = {0: {}, 1: {}}
     for i, q in enumerate(test.q_test):
         cmd = dh_fk(q[None])[0]
         T = np.stack([visit(q) for _ in range(test.cycles)], 1)  # (N, n, 4, 4)
-        for k, reg in enumerate((reg_t, reg_m)):
-            noise = (k == 1)
-            p = T[..., :3, 3] + noise * rng.normal(0, tr.sigma_mm, T[..., :3, 3].shape)
-            p = np.stack([p[r] @ reg[r][0].T + reg[r][1] for r in range(N)])
-            R = np.stack([reg[r][0] @ T[r, :, :3, :3] for r in range(N)]) @ cmd[:3, :3].T
-            w = Rotation.from_matrix(R.reshape(-1, 3, 3)).as_rotvec().reshape(N, -1, 3)
-            w = w + noise * rng.normal(0, tr.sigma_rad, w.shape)
+        for k, (Rr, tt) in enumerate(regs):
+            p = T[..., :3, 3] + k * rng.normal(0, tr.sigma_mm, T[..., :3, 3].shape)
+            p = np.einsum("nab,njb->nja", Rr, p) + tt[:, None]
+            if angles:
+                R = np.einsum("nab,njbc,dc->njad", Rr, T[..., :3, :3], cmd[:3, :3])
+                w = Rotation.from_matrix(R.reshape(-1, 3, 3)).as_rotvec().reshape(N, -1, 3)
+                w = w + k * rng.normal(0, tr.sigma_rad, w.shape)
+            else:
+                w = np.zeros_like(p)
             bary = p.mean(1)
             l_ = np.linalg.norm(p - bary[:, None], axis=2)
             out["AP_P"][k, :, i] = np.linalg.norm(bary - cmd[:3, 3], axis=1)
             out["RP_l"][k, :, i] = l_.mean(1) + 3 * l_.std(1, ddof=1)
             out["AP_a"][k, :, i] = np.abs(w[..., 0].mean(1))
             out["RP_c"][k, :, i] = 3 * w[..., 2].std(1, ddof=1)
-            P.setdefault(k, {})[i] = p
+            P[k][i] = p
     ad = [np.abs(np.linalg.norm(P[k][1] - P[k][3], axis=2).mean(1) - np.linalg.norm(
         test.commanded(test.q_test[1]) - test.commanded(test.q_test[3]))) for k in (0, 1)]
     return out, ad
 
 
-def _within(pred, x, p, widen=0.03):
-    """``pred`` inside the distribution-free 95 % interval of the ``p``-quantile of ``x``, widened by ``widen``."""
+def _within(pred, x, p, widen=0.03, level=0.999):
+    """``pred`` inside the distribution-free ``level`` interval of the ``p``-quantile of ``x``, widened by ``widen``
+    (0.999: some 40 intervals per test hold together with about 96 % probability)."""
     from tolalloc.acceptance.simulate import quantile_interval
 
-    _, lo, hi = quantile_interval(x, p)
+    _, lo, hi = quantile_interval(x, p, level)
     return lo * (1 - widen) <= pred <= hi * (1 + widen), (pred, lo, hi)
 
 
@@ -109,8 +114,9 @@ def test_own_kinematics_match(setup):
 
 
 def test_prediction_agrees_with_independent_simulation(setup):
-    """At the share (0.95) and the median, per pose, robot and measured: within the simulation's interval
-    (widened by 3 % for the first-order model and the approximate law of RP_l)."""
+    """At the share (0.95), per pose, robot and measured: within the simulation's interval (widened by 3 % for the
+    first-order model and the approximate law of RP_l). With 800 robots the check fails a prediction whose sigmas
+    are 10 % off (repeatability) or 15 % off (accuracy)."""
     robot, test, model, split = setup
     reqs = [PoseAccuracy(limit_mm=0.5), PoseRepeatability(limit_mm=0.05), OrientationAccuracy(limit_deg=0.05),
             OrientationRepeatability(limit_deg=0.01), DistanceAccuracy(limit_mm=0.2)]
@@ -133,7 +139,7 @@ def test_library_simulation_agrees_with_prediction(setup):
     robot, test, model, split = setup
     reqs = [PoseAccuracy(limit_mm=0.5), PoseRepeatability(limit_mm=0.05)]
     pr = {s.model.name: s for s in predict_acceptance(test, reqs, model, split).statistics}
-    sim = simulate_acceptance(test, reqs, model, split, n_robots=N, seed=5)
+    sim = simulate_acceptance(test, reqs, model, split, n_robots=600, seed=5)
     for name in ("AP_P", "RP_l"):
         for i in range(5):
             assert _within(pr[name].robot[i], sim.robot[name][:, i], 0.95)[0]
@@ -147,6 +153,6 @@ def test_rp_without_random_parts_is_the_instruments(setup):
     np.testing.assert_allclose(s.robot, 0.0)
     inst = np.eye(3) * test.tracker.sigma_mm**2
     np.testing.assert_allclose(s.measured, rp_quantile(inst, 0.95, test.cycles), rtol=1e-12)
-    sim, _ = own_test(test, np.random.default_rng(2), sig_rand=0.0)
+    sim, _ = own_test(test, np.random.default_rng(2), sig_rand=0.0, angles=False)
     assert _within(s.measured[0], sim["RP_l"][1, :, 0], 0.95)[0]
     assert np.allclose(sim["RP_l"][0], 0.0, atol=1e-9)

@@ -17,13 +17,12 @@ def _simulate(C, n, N, rng):
     return pose_repeatability(y)
 
 
-@pytest.mark.parametrize("name", list(COVS))
-@pytest.mark.parametrize("n", [30, 10])
+@pytest.mark.parametrize("name, n", [("isotropic", 30), ("anisotropic", 30), ("rank one", 30), ("rank one", 10)])
 def test_rp_quantiles_against_simulation(name, n):
-    """Quantiles 0.5 and 0.95 within 1 %, 0.99 within 2.5 % of 40,000 simulated tests (the law's own error is below
+    """Quantiles 0.5 and 0.95 within 1 %, 0.99 within 2.5 % of 20,000 simulated tests (the law's own error is below
     0.4 % and 1.5 %, measured with 200,000; the rest is the simulation's sampling error)."""
     C = COVS[name] * 0.01
-    rp = _simulate(C, n, 40_000, np.random.default_rng(7))
+    rp = _simulate(C, n, 20_000, np.random.default_rng(7))
     for p, tol in ((0.5, 0.01), (0.95, 0.01), (0.99, 0.025)):
         assert rp_quantile(C, p, n) == pytest.approx(np.quantile(rp, p), rel=tol)
     mean, sd = rp_moments(C, n)
@@ -51,11 +50,11 @@ def test_rp_casadi_matches_numpy():
 
 def test_sd3_is_exact_chi_square():
     rng = np.random.default_rng(3)
-    a = rng.standard_normal((40_000, 30, 3)) * [0.1, 0.2, 0.3]
+    a = rng.standard_normal((20_000, 30, 3)) * [0.1, 0.2, 0.3]
     r = orientation_repeatability(a)
     for j, s in enumerate((0.1, 0.2, 0.3)):
         q = sd3_quantile(s**2, 0.95, 30)
-        assert np.mean(r[:, j] <= q) == pytest.approx(0.95, abs=0.005)
+        assert np.mean(r[:, j] <= q) == pytest.approx(0.95, abs=0.006)  # 4 standard errors
     import casadi as ca
 
     v = ca.SX.sym("v")

@@ -260,74 +260,62 @@ def place_cube(robot, q_min, q_max, *, centre_mm=None, edge_mm=None, plane: int 
         raise TolallocError(f"plane: expected a diagonal plane 1, 2, 3 or 4, got {plane!r}.")
     if orientation not in ("auto", "fixed", "free"):
         raise TolallocError(f"orientation: expected 'auto', 'fixed' or 'free', got {orientation!r}.")
-    if orientation == "auto":
-        try:
-            pl = place_cube(robot, q_min, q_max, centre_mm=centre_mm, edge_mm=edge_mm, plane=plane,
-                            orientation="fixed", candidates=candidates, seed=seed)
-            if pl.cube.edge_mm >= MIN_FIXED_EDGE_MM:
-                return pl
-        except TolallocError:
-            pass
-        return place_cube(robot, q_min, q_max, centre_mm=centre_mm, edge_mm=edge_mm, plane=plane, orientation="free",
-                          candidates=candidates, seed=seed)
-    fixed = orientation == "fixed"
     q_min, q_max = np.asarray(q_min, float), np.asarray(q_max, float)
+    centre = None if centre_mm is None else np.asarray(centre_mm, float).reshape(3)
+    largest = {}
+    for mode in (("fixed", "free") if orientation == "auto" else (orientation,)):
+        pl, largest[mode] = _place(robot, q_min, q_max, centre, edge_mm, plane, mode == "fixed", candidates, seed)
+        if pl is not None and (orientation != "auto" or mode == "free" or pl.cube.edge_mm >= MIN_FIXED_EDGE_MM):
+            return pl
+    found = "; ".join(f"{e:.4g} mm with the tool orientation {'held' if m == 'fixed' else 'free'}"
+                      for m, e in largest.items())
+    where = (f"at {np.round(centre, 3).tolist()} mm" if centre is not None else
+             f"in the working region (joint box {np.round(robot.q_to_interface(q_min), 3).tolist()} .. "
+             f"{np.round(robot.q_to_interface(q_max), 3).tolist()} deg / mm, {candidates + 1} candidate centres)")
+    if edge_mm is not None:
+        best = max(largest.values())
+        raise TolallocError(f"cube_edge_mm: a cube of edge {edge_mm:g} mm {where} does not fit the working region (a "
+                            f"lattice point or test pose is not reached inside the joint box); the largest that fits "
+                            f"there has an edge of {found}. Give cube_edge_mm <= {np.floor(best * 100) / 100:g}, or "
+                            "leave it out for the largest.")
+    raise TolallocError(f"cube: no cube fits {where} (largest found: {found}); "
+                        + ("give another cube_centre_mm, or leave it out to search" if centre is not None else
+                           "widen the region, or give more candidate centres"))
+
+
+def _place(robot, q_min, q_max, centre, edge_mm, plane, fixed, candidates, seed):
+    """``(placement or None, largest edge found)`` with the orientation held (``fixed``) or free: the cube given
+    (None if it does not fit) or the largest found."""
     mid = 0.5 * (q_min + q_max)
     corners = q_min + np.array([[i >> j & 1 for j in range(len(mid))] for i in range(2 ** min(len(mid), 8))]) * (
         q_max - q_min)[None, :]
     edge_max = 2.0 * float(np.linalg.norm(robot.fk_internal(corners)[:, :3, 3], axis=1).max()) + 2.0
-    if centre_mm is not None:
-        return _given_centre(robot, np.asarray(centre_mm, float).reshape(3), edge_mm, plane, fixed, mid, q_min,
-                             q_max, edge_max)
-    seeds = [mid]
-    if candidates:
-        s = qmc.Sobol(len(mid), scramble=True, seed=seed).random(int(candidates))
-        seeds += list(q_min + s * (q_max - q_min))
-    best = (0.0, None, None)
-    for qs in seeds:
-        T = robot.fk_internal(qs)
-        cube = TestCube(T[:3, 3].copy(), 0.0, T[:3, :3].copy(), plane, fixed)
-        if edge_mm is not None:
+    if centre is not None:
+        R = robot.fk_internal(mid)[:3, :3]
+        q_c, ok = solve_ik(robot, TestCube(centre, 0.0, R, plane).frames(centre), mid, q_min, q_max,
+                           position_only=not fixed)
+        if not ok[0]:
+            return None, 0.0
+        starts = [(TestCube(centre, 0.0, R if fixed else robot.fk_internal(q_c[0])[:3, :3], plane, fixed), q_c[0])]
+    else:
+        seeds = [mid]
+        if candidates:
+            s = qmc.Sobol(len(mid), scramble=True, seed=seed).random(int(candidates))
+            seeds += list(q_min + s * (q_max - q_min))
+        starts = []
+        for qs in seeds:
+            T = robot.fk_internal(qs)
+            starts.append((TestCube(T[:3, 3].copy(), 0.0, T[:3, :3].copy(), plane, fixed), qs))
+    if edge_mm is not None:
+        for cube, qs in starts:
             q = _reach(robot, cube.with_edge(edge_mm), qs, q_min, q_max)
             if q is not None:
-                return _placement(cube.with_edge(edge_mm), q, q_min, q_max, True)
-            continue
+                return _placement(cube.with_edge(edge_mm), q, q_min, q_max, centre is None), float(edge_mm)
+    best = (0.0, None, None)
+    for cube, qs in starts:
         e, q = _largest_at(robot, cube, qs, q_min, q_max, edge_max)
-        if e > best[0]:
+        if e > best[0] and q is not None:
             best = (e, cube.with_edge(e), q)
     if edge_mm is not None or best[1] is None:
-        raise TolallocError(
-            f"cube: no cube{'' if edge_mm is None else f' of edge {edge_mm:g} mm'} fits the working region "
-            f"(joint box {np.round(robot.q_to_interface(q_min), 3).tolist()} .. "
-            f"{np.round(robot.q_to_interface(q_max), 3).tolist()} deg / mm) at the {len(seeds)} candidate centres"
-            + ("" if edge_mm is None else "; give a smaller edge_mm, or leave it out for the largest that fits")
-            + ("" if edge_mm is not None else "; widen the region"))
-    return _placement(best[1], best[2], q_min, q_max, True)
-
-
-def _given_centre(robot, centre, edge_mm, plane, fixed, mid, q_min, q_max, edge_max) -> CubePlacement:
-    """The cube at a given centre (the tool orientation of the box's middle): the edge given, or the largest."""
-    R = robot.fk_internal(mid)[:3, :3]
-    q_c, ok = solve_ik(robot, TestCube(centre, 0.0, R, plane).frames(centre), mid, q_min, q_max,
-                       position_only=not fixed)
-    if not ok[0]:
-        raise TolallocError(f"cube_centre_mm: the centre {np.round(centre, 3).tolist()} mm is not reached inside the "
-                            "working region at the tool orientation of the region's middle pose; give a centre inside "
-                            "the region, or leave it out to search for the largest cube.")
-    cube = TestCube(centre, 0.0, R if fixed else robot.fk_internal(q_c[0])[:3, :3], plane, fixed)
-    if edge_mm is not None:
-        q = _reach(robot, cube.with_edge(edge_mm), q_c[0], q_min, q_max)
-        if q is not None:
-            return _placement(cube.with_edge(edge_mm), q, q_min, q_max, False)
-    e, q = _largest_at(robot, cube, q_c[0], q_min, q_max, edge_max)
-    where = f"at {np.round(centre, 3).tolist()} mm"
-    if q is None:
-        raise TolallocError(f"cube_centre_mm: no cube {where} fits the working region (a lattice point or test pose "
-                            "is not reached inside the joint box at the tool orientation of the region's middle pose); "
-                            "give another centre, or leave cube_centre_mm out to search for the largest cube.")
-    if edge_mm is not None:
-        raise TolallocError(f"cube_edge_mm: a cube of edge {edge_mm:g} mm {where} does not fit the working region (a "
-                            f"lattice point or test pose is not reached inside the joint box); the largest that fits "
-                            f"there has an edge of {e:.4g} mm. Give cube_edge_mm <= {np.floor(e * 100) / 100:g}, or "
-                            "leave it out for the largest.")
-    return _placement(cube.with_edge(e), q, q_min, q_max, False)
+        return None, best[0]
+    return _placement(best[1], best[2], q_min, q_max, centre is None), best[0]

@@ -28,8 +28,10 @@ from tolalloc.acceptance.measures import expanded_uncertainty, measure_cdf, meas
 from tolalloc.acceptance.model import StatisticModel, design_variances, evaluation_poses, statistic_models
 from tolalloc.acceptance.requirements import IsoRequirement, check_requirements
 
-__all__ = ["StatisticPrediction", "AcceptancePrediction", "predict_acceptance", "NO_SYSTEMATIC_SHARE"]
+__all__ = ["StatisticPrediction", "AcceptancePrediction", "predict_acceptance", "NO_SYSTEMATIC_SHARE", "MET_TOL"]
 
+#: a share short of its target by no more than this counts as met (the exact allocation's accuracy, FEAS_TOL)
+MET_TOL = 1e-5
 #: an accuracy statistic whose systematic share of variance is below this has "no systematic part left"
 NO_SYSTEMATIC_SHARE = 1e-3
 
@@ -68,8 +70,8 @@ class StatisticPrediction:
 
     @property
     def met(self) -> bool:
-        """Whether every row's robot statistic meets the limit at its target share."""
-        return bool(np.all(self.p_robot >= self.model.target - 1e-9))
+        """Whether every row's robot statistic meets the limit at its target share (within :data:`MET_TOL`)."""
+        return bool(np.all(self.p_robot >= self.model.target - MET_TOL))
 
     @property
     def demonstrated(self) -> bool:

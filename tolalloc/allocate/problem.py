@@ -34,10 +34,10 @@ import numpy as np
 from scipy.stats import chi2
 
 from tolalloc.exceptions import TolallocError, check_positive
+from tolalloc.allocate.blocks import acceptance_blocks, block_covariances, block_probability, block_radius
 from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.covariance import variance_share
-from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
 __all__ = ["AllocationProblem", "Design", "Solver", "NOT_CONVERGED", "LimitReport", "build_problem", "make_design",
            "check_process_limits", "TRACE_RULE_MIN_P", "block_covariances", "block_probability", "block_radius"]
@@ -216,7 +216,7 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float | None = 0.25, 
     else:
         ar, ap = None, prob
     if acceptance is not None:
-        blocks += _acceptance_blocks(acceptance, sub, alloc, fixed, t_ref, sig, cs.z)
+        blocks += acceptance_blocks(acceptance, sub, alloc, fixed, t_ref, sig, cs.z)
     return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
                              np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks,
                              acceptance)
@@ -239,54 +239,6 @@ def _block(name, rows, radius, prob, target, J, alloc, fixed, t_ref, sig, z) -> 
     C0 = np.einsum("pik,k,pjk->pij", Jf, sig[fixed] ** 2, Jf)
     return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "target": target, "A": A,
             "C0": C0, "trace_bound": radius**2 / chi2.ppf(target, 1), "eig_bound": radius**2 / chi2.ppf(target, 3)}
-
-
-def _acceptance_blocks(spec, sub, alloc, fixed, t_ref, sig, z) -> list:
-    """One block per ISO 9283 statistic (:func:`tolalloc.acceptance.terms.statistic_terms`), at its own poses."""
-    from tolalloc.acceptance.measures import measure_bounds
-    from tolalloc.acceptance.terms import AcceptanceSpec, statistic_terms
-
-    if not isinstance(spec, AcceptanceSpec):
-        raise TolallocError(f"acceptance: expected tolalloc.acceptance.terms.AcceptanceSpec(requirements, test), got "
-                            f"{spec!r}.")
-    if spec.test.robot is not sub.robot and spec.test.robot.name != sub.robot.name:
-        raise TolallocError(f"acceptance: the test was laid out for robot {spec.test.robot.name!r}, the model is of "
-                            f"{sub.robot.name!r}; lay the test out for this robot.")
-    out = []
-    for tm in statistic_terms(spec, sub):
-        A = tm.per_tolerance[:, alloc] * ((t_ref[alloc] / z) ** 2)[None, :, None, None]
-        C0 = tm.const + tm.repeatability + np.einsum("pkij,k->pij", tm.per_tolerance[:, fixed], sig[fixed] ** 2)
-        tb, eb = measure_bounds(tm.measure, tm.radius, tm.target, tm.cycles)
-        out.append({"name": tm.name, "rows": None, "radius": tm.radius, "prob": tm.requirement.share,
-                    "target": np.asarray(tm.target, float), "A": A, "C0": C0, "trace_bound": np.asarray(tb, float),
-                    "eig_bound": np.asarray(eb, float), "measure": tm.measure, "cycles": tm.cycles, "q": tm.q,
-                    "labels": tm.labels, "requirement": tm.requirement})
-    return out
-
-
-def block_covariances(problem: AllocationProblem, b: dict, t) -> np.ndarray:
-    """Covariance of a block's error vector at each of its poses for half-widths ``t`` (K,), shape (P_b, 3, 3)."""
-    if b.get("measure") is None:
-        return problem.covariances(t, b["rows"])
-    return b["C0"] + np.einsum("pkij,k->pij", b["A"], problem.u_from_t(t))
-
-
-def block_probability(b: dict, C) -> np.ndarray:
-    """The probability a block's requirement holds, per pose, for covariances ``C`` (P_b, 3, 3)."""
-    if b.get("measure") is None:
-        return p_within_radius(C, b["radius"])
-    from tolalloc.acceptance.measures import measure_cdf
-
-    return measure_cdf(b["measure"], C, b["radius"], b["cycles"])
-
-
-def block_radius(b: dict, C, p) -> np.ndarray:
-    """The radius (an ISO block: the statistic) reached with probability ``p`` per pose, shape (P_b,)."""
-    if b.get("measure") is None:
-        return radius_for_prob(C, p)
-    from tolalloc.acceptance.measures import measure_quantile
-
-    return measure_quantile(b["measure"], C, p, b["cycles"])
 
 
 def _where(problem: AllocationProblem, b: dict, i: int) -> str:
