@@ -19,11 +19,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError, TolallocError
-from tolalloc.acceptance.cube import CubePlacement, place_cube, solve_ik
+from tolalloc.acceptance.cube import CubePlacement, TestCube, place_cube, solve_ik
 from tolalloc.acceptance.instrument import REGISTRATIONS, Tracker
 from tolalloc.acceptance.statistics import check_cycles
 
-__all__ = ["AcceptanceTest", "acceptance_test", "default_region", "TestPath"]
+__all__ = ["AcceptanceTest", "acceptance_test", "acceptance_test_at", "default_region", "TestPath"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -176,3 +176,31 @@ def acceptance_test(robot, region=None, *, cube_edge_mm=None, cube_centre_mm=Non
     pl = place_cube(robot, lo, hi, centre_mm=cube_centre_mm, edge_mm=cube_edge_mm, plane=plane,
                     orientation=orientation, candidates=candidates, seed=seed)
     return AcceptanceTest(robot, pl, cycles, path_cycles, tracker, registration, int(registration_visits))
+
+
+def acceptance_test_at(robot, q_test, q_registration=None, *, cycles: int = 30, tracker: Tracker | None = None,
+                  registration_visits: int = 1) -> AcceptanceTest:
+    """A test at given poses rather than the cube's P1-P5 (e.g. the poses a data set repeats), registered on
+    ``q_registration`` (none: a base frame known beforehand). Its cube is nominal only: centre the mean command
+    position, edge 0.
+
+    Parameters
+    ----------
+    robot : Robot
+    q_test : array, shape (P, n) [rad, mm]
+    q_registration : array, shape (R, n) [rad, mm], optional
+        At least 3 poses.
+    """
+    q_test = np.atleast_2d(robot.check_q(q_test, "q_test"))
+    reg = "none" if q_registration is None else "corners"
+    q_reg = np.zeros((0, robot.n_joints)) if q_registration is None else np.atleast_2d(
+        robot.check_q(q_registration, "q_registration"))
+    if reg != "none" and len(q_reg) < 3:
+        raise ArgumentError("q_registration", f"expected at least 3 registration poses to fit the base frame, got "
+                            f"{len(q_reg)}.")
+    T = robot.fk_internal(q_test)
+    cube = TestCube(T[:, :3, 3].mean(axis=0), 0.0, T[0, :3, :3], 1, False)
+    lo, hi = np.minimum(q_test.min(0), q_reg.min(0, initial=np.inf)), np.maximum(q_test.max(0), q_reg.max(0, initial=-np.inf))
+    pl = CubePlacement(cube, q_test, q_reg, lo, hi, searched=False)
+    return AcceptanceTest(robot, pl, check_cycles(cycles, "cycles"), 10, Tracker() if tracker is None else tracker, reg,
+                          int(registration_visits))

@@ -270,12 +270,13 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
     if ev is None:
         ev = evaluation_poses(test, path_req.points if path_req is not None else 0)
     n, visits = test.cycles, test.registration_visits
-    P1_5 = tuple(f"P{i}" for i in range(1, 6))
+    nt = len(ev.test)
+    P1_5 = tuple(f"P{i}" for i in range(1, nt + 1))
     out = []
     for req in reqs:
         if not isinstance(req, IsoRequirement):
             raise TolallocError(f"requirements: expected ISO 9283 requirements, got {req!r}.")
-        tgt = np.full(5, req.share)
+        tgt = np.full(nt, req.share)
         k = req.kind
         if k == "pose_accuracy":
             L, W = _registered(ev, ev.test, visits, n)
@@ -286,7 +287,7 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
                     for j, a in enumerate(ANGLES)]
         elif k in ("pose_repeatability", "orientation_repeatability"):
             M = len(ev.q)
-            L, W = np.zeros((5, 3, M, 6)), np.zeros((5, M))
+            L, W = np.zeros((nt, 3, M, 6)), np.zeros((nt, M))
             off = 0 if k == "pose_repeatability" else 3
             for i, m in enumerate(ev.test):
                 L[i, :, m, off:off + 3] = np.eye(3)

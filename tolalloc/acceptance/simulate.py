@@ -235,7 +235,7 @@ class _Lab:
     def statistics(self, req) -> dict:
         """name -> (robot (n, P), measured (n, P), labels) of one requirement."""
         ev, n_c = self.ev, self.test.cycles
-        P1_5 = tuple(f"P{i}" for i in range(1, 6))
+        P1_5 = tuple(f"P{i}" for i in range(1, len(ev.test) + 1))
         if req.kind in ("pose_accuracy", "pose_repeatability", "orientation_accuracy",
                         "orientation_repeatability", "distance_accuracy"):
             if not hasattr(self, "_test_cycles"):
