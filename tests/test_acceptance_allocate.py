@@ -68,11 +68,16 @@ def test_bad_acceptance_input(case):
     with pytest.raises(TolallocError, match=r"pose_accuracy: no systematic part is left to allocate for AP_P .* State "
                                             r"a repeatability requirement instead"):
         build_problem(model, radius_mm=None, acceptance=AcceptanceSpec(REQS, test, split=random_only))
-    with pytest.raises(TolallocError, match=r"pose_repeatability: with guard_band the limit 0.05 mm is reduced by the "
-                                            r"expanded uncertainty of its measurement, U = .* nothing is left"):
+    with pytest.raises(TolallocError, match=r"pose_repeatability: with guard_band the limit 0.05 mm less the expanded "
+                                            r"uncertainty of the measurement, U = .* nothing is left for the robot"):
         build_problem(model, radius_mm=None, acceptance=AcceptanceSpec(
             (PoseRepeatability(limit_mm=0.05, guard_band=True),),
             AcceptanceTest(robot, test.placement, tracker=Tracker(mpe_a_mm=0.2))))
+    with pytest.raises(TolallocError, match=r"the measured RP_l of a robot without errors of its own is already "
+                                            r"0\.0638\d* mm at the share 0\.95, above that .* conformance can never be "
+                                            r"demonstrated"):
+        build_problem(model, radius_mm=None, acceptance=AcceptanceSpec(
+            (PoseRepeatability(limit_mm=0.05, guard_band=True),), test))
     with pytest.raises(TolallocError, match=r"radius_mm: without a position requirement the problem needs ISO 9283"):
         build_problem(model, radius_mm=None)
     assert split_errors(model).systematic.all()  # the defaults: every parameter here has a systematic part

@@ -34,7 +34,8 @@ def test_units_convert():
                     for k in ("position", "orientation_repeatability", "pose_repeatability"))
     assert rp.limit_mm == pytest.approx(0.04) and rp.conditions.load_pct == 10
     assert orr.limit_deg == pytest.approx(0.01) and pos.radius_mm == pytest.approx(0.25)
-    assert f.test["tracker"].mpe_a_mm == pytest.approx(0.01) and f.test["tracker"].mpe_b_mm_per_m == pytest.approx(0.002)
+    tracker = f.test["tracker"]
+    assert tracker.mpe_a_mm == pytest.approx(0.01) and tracker.mpe_b_mm_per_m == pytest.approx(0.002)
 
 
 @pytest.mark.parametrize("data, match", [
@@ -82,3 +83,4 @@ def test_job_writes_the_datasheet(tmp_path):
     assert list(ds.statistic.unique()) == ["AP_P", "RP_l"] and (ds.p_meets >= 0.95 - 1e-5).all()
     s = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert s["met"] and s["inputs"]["test"]["cycles"] == 30 and len(s["simulated_share_meeting"]["AP_P"]) == 5
+    assert set(s["allocation"]["diagnosis"]["radius_best_max"]) == {"AP_P_mm", "RP_l_mm"}  # units of the blocks

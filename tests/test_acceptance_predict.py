@@ -156,3 +156,16 @@ def test_rp_without_random_parts_is_the_instruments(setup):
     sim, _ = own_test(test, np.random.default_rng(2), sig_rand=0.0, angles=False)
     assert _within(s.measured[0], sim["RP_l"][1, :, 0], 0.95)[0]
     assert np.allclose(sim["RP_l"][0], 0.0, atol=1e-9)
+
+
+def test_accuracy_with_everything_calibrated_away_says_so(setup):
+    """A calibration that leaves no systematic error (its posterior covariance zero): AP_P is the mean of the random
+    parts and the registration alone, and the prediction says so."""
+    from types import SimpleNamespace
+
+    robot, test, model, split = setup
+    post = SimpleNamespace(cov_sys=np.zeros((6, 6)), random_var=split.random_variance())
+    pr = predict_acceptance(test, [PoseAccuracy(limit_mm=0.5)], model, split, posterior=post)
+    assert pr.notes == ("AP_P: no systematic part left (every systematic error calibrated away or zero); the accuracy "
+                        "is set by the mean of the random parts over 30 cycles and the registration alone",)
+    assert np.all(pr.statistics[0].systematic_share == 0)

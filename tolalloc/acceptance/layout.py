@@ -200,7 +200,8 @@ def acceptance_test_at(robot, q_test, q_registration=None, *, cycles: int = 30, 
                             f"{len(q_reg)}.")
     T = robot.fk_internal(q_test)
     cube = TestCube(T[:, :3, 3].mean(axis=0), 0.0, T[0, :3, :3], 1, False)
-    lo, hi = np.minimum(q_test.min(0), q_reg.min(0, initial=np.inf)), np.maximum(q_test.max(0), q_reg.max(0, initial=-np.inf))
+    both = np.vstack([q_test, q_reg])
+    lo, hi = both.min(axis=0), both.max(axis=0)
     pl = CubePlacement(cube, q_test, q_reg, lo, hi, searched=False)
     return AcceptanceTest(robot, pl, check_cycles(cycles, "cycles"), 10, Tracker() if tracker is None else tracker, reg,
                           int(registration_visits))

@@ -96,9 +96,9 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
     if not len(rep):
         raise TolallocError(f"measurements {meas.source}: no command pose is measured at least {MIN_CYCLES} times "
                             f"({meas.n_poses} rows, {len(counts)} distinct poses, each once); the pose accuracy and "
-                            f"repeatability of ISO 9283 need {MIN_CYCLES} or more attained positions of one command pose "
-                            "(the standard uses 30 cycles) -- measure the test poses repeatedly, with the same joint "
-                            "values.")
+                            f"repeatability of ISO 9283 need {MIN_CYCLES} or more attained positions of one command "
+                            "pose (the standard uses 30 cycles) -- measure the test poses repeatedly, with the same "
+                            "joint values.")
     once = np.flatnonzero(counts[groups] == 1)
     if len(once) >= MIN_REGISTRATION_POSES:
         q_reg, x_reg, reg_rows = meas.q[once], meas.xyz_mm[once], meas.rows[once] if len(meas.rows) else once + 1
@@ -108,11 +108,12 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
         x_reg = np.stack([meas.xyz_mm[groups == g].mean(axis=0) for g in range(len(counts))])
         reg_rows = np.arange(1, meas.n_poses + 1) if not len(meas.rows) else meas.rows
         note = (f"frame fitted on the barycentres of the {len(counts)} poses themselves (fewer than "
-                f"{MIN_REGISTRATION_POSES} poses measured once): the rigid-body part of the robot's errors is absorbed, "
-                "so AP_P is smaller than a test registered elsewhere would find (ISO 9283 6.4)")
+                f"{MIN_REGISTRATION_POSES} poses measured once): the rigid-body part of the robot's errors is "
+                "absorbed, so AP_P is smaller than a test registered elsewhere would find (ISO 9283 6.4)")
     if len(q_reg) < 3:
         raise TolallocError(f"measurements {meas.source}: {len(q_reg)} distinct poses cannot fix the tracker frame "
-                            "and the target offset; measure at least 3 (ISO 9283 6.4: other poses than the test poses).")
+                            "and the target offset; measure at least 3 (ISO 9283 6.4: other poses than the test "
+                            "poses).")
     model = build_error_model(robot, exclude=())
     if target_offset_mm is None:
         fit = fit_model(initial_fit(model, q_reg, x_reg), q_reg, x_reg, geo_index=np.zeros(0, int), prior=False,

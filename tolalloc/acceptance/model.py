@@ -226,7 +226,8 @@ def design_variances(split, posterior=None) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _registered(ev: EvaluationPoses, rows_idx, visits: int, n: int, project=None, rotation: bool = False):
-    """L and W of the registered barycentre (position, or rotation with ``rotation``) at evaluation rows ``rows_idx``."""
+    """L and W of the registered barycentre (position, or rotation with ``rotation``) at evaluation rows
+    ``rows_idx``."""
     M, P = len(ev.q), len(rows_idx)
     L = np.zeros((P, 3, M, 6))
     W = np.zeros((P, M))

@@ -77,6 +77,9 @@ class SimulatedAcceptance:
     labels : dict name -> tuple of str
     requirements : dict name -> IsoRequirement
     n_robots, seed : int
+    targets : dict name -> array
+        The share each row is judged at: the requirement's, and for the path points of ``AT_P`` the prediction's
+        ``1 - (1 - share) / m`` (the largest over the points is then held at the share).
     """
 
     test: object
@@ -86,19 +89,21 @@ class SimulatedAcceptance:
     requirements: dict
     n_robots: int
     seed: int
+    targets: dict = None
 
     def to_frame(self, level: float = 0.95) -> pd.DataFrame:
-        """Per statistic and row: the quantile at the requirement's share (robot and measured) with its ``level``
-        interval, the measured median, and the share of simulated robots meeting the limit. Values in mm or deg
-        (``unit``)."""
+        """Per statistic and row: the quantile at the row's share (:attr:`targets`; robot and measured) with its
+        ``level`` interval, the measured median, and the share of simulated robots meeting the limit. Values in mm or
+        deg (``unit``)."""
         rows = []
         for name, meas in self.measured.items():
             req = self.requirements[name]
             f, unit = (180 / np.pi, "deg") if req.unit == "deg" else (1.0, "mm")
             for i, lab in enumerate(self.labels[name]):
-                r = quantile_interval(self.robot[name][:, i], req.share, level)
-                m = quantile_interval(meas[:, i], req.share, level)
-                rows.append({"statistic": name, "where": lab, "unit": unit, "share": req.share,
+                share = float(self.targets[name][i])
+                r = quantile_interval(self.robot[name][:, i], share, level)
+                m = quantile_interval(meas[:, i], share, level)
+                rows.append({"statistic": name, "where": lab, "unit": unit, "share": share,
                              "robot": r[0] * f, "robot_low": r[1] * f, "robot_high": r[2] * f,
                              "measured": m[0] * f, "measured_low": m[1] * f, "measured_high": m[2] * f,
                              "median_measured": float(np.median(meas[:, i])) * f,
@@ -153,11 +158,13 @@ def simulate_acceptance(test, requirements, model, split=None, *, posterior=None
     path_req = next((r for r in reqs if r.kind == "path_accuracy"), None)
     ev = evaluation_poses(test, path_req.points if path_req is not None else 0)
     sim = _Lab(test, model, split, posterior, effects, ev, reqs[0].conditions, n_robots, rng)
-    robot, measured, labels, byname = {}, {}, {}, {}
+    robot, measured, labels, byname, targets = {}, {}, {}, {}, {}
     for req in reqs:
         for name, (r_vals, m_vals, lab) in sim.statistics(req).items():
             robot[name], measured[name], labels[name], byname[name] = r_vals, m_vals, lab, req
-    return SimulatedAcceptance(test, robot, measured, labels, byname, n_robots, seed)
+            m = len(lab)
+            targets[name] = np.full(m, 1 - (1 - req.share) / m if name == "AT_P" else req.share)
+    return SimulatedAcceptance(test, robot, measured, labels, byname, n_robots, seed, targets)
 
 
 class _Lab:

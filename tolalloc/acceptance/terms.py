@@ -145,18 +145,31 @@ def statistic_terms(spec: AcceptanceSpec, model) -> list[StatisticTerms]:
         if sm.requirement.guard_band:
             const = const + C_inst
             radius = sm.limit - float(U.max())
-            if radius <= 0:
-                f, u = (180 / np.pi, "deg") if sm.unit == "deg" else (1.0, "mm")
-                raise TolallocError(
-                    f"{sm.requirement.kind}: with guard_band the limit {sm.limit * f:g} {u} is reduced by the expanded "
-                    f"uncertainty of its measurement, U = {U.max() * f:.4g} {u} ({spec.test.tracker.text()}): nothing "
-                    "is left for the robot. Use a more accurate instrument (a smaller MPE, a shorter tracker "
-                    "distance), a larger limit, or guard_band=False.")
+            _check_guard_band(sm, radius, U, const, spec.test.tracker)
         rows_q = ev.q[_row_poses(sm, ev)]
         rep = np.einsum("pkab,k->pab", R, rep_var)
         out.append(StatisticTerms(sm.name, sm.measure, sm.cycles, sm.labels, float(radius), sm.requirement,
                                   sm.target, rows_q, per_tol, rep, const, U))
     return out
+
+
+def _check_guard_band(sm, radius, U, const, tracker) -> None:
+    """Refuse a guard band the instrument fills: the limit less U is used up, or the measured statistic of a robot
+    with no error of its own (the tracker and the bought-part effects alone) exceeds it already."""
+    from tolalloc.acceptance.measures import measure_quantile
+
+    f, u = (180 / np.pi, "deg") if sm.unit == "deg" else (1.0, "mm")
+    alone = float(measure_quantile(sm.measure, const, sm.target, sm.cycles).max()) if radius > 0 else np.inf
+    if radius > 0 and alone < radius:
+        return
+    what = ("nothing is left for the robot" if radius <= 0 else
+            f"the measured {sm.name} of a robot without errors of its own is already {alone * f:.4g} {u} at the share "
+            f"{sm.requirement.share:g}, above that")
+    raise TolallocError(
+        f"{sm.requirement.kind}: with guard_band the limit {sm.limit * f:g} {u} less the expanded uncertainty of the "
+        f"measurement, U = {U.max() * f:.4g} {u}, leaves {max(radius, 0.0) * f:.4g} {u}, and {what} "
+        f"({tracker.text()}): conformance can never be demonstrated. Use a more accurate instrument (a smaller MPE, "
+        "a shorter tracker distance, the tracker's noise rather than its MPE), a larger limit, or guard_band=False.")
 
 
 def _row_poses(sm, ev) -> np.ndarray:

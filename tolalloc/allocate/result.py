@@ -193,8 +193,8 @@ class AllocationResult:
                         "exact": None if self.exact is None else self.exact.time_s},
             "diagnosis": {"feasible": self.diagnosis.feasible, "message": self.diagnosis.message,
                           "p_best_min": {k: float(v.min()) for k, v in self.diagnosis.p_best.items()},
-                          "radius_best_max": {f"{k}_{'mm' if k == 'position' else 'deg'}":
-                                              float(v.max() if k == "position" else np.rad2deg(v.max()))
+                          "radius_best_max": {f"{k}_{_unit(pr, k)}":
+                                              float(v.max() if _unit(pr, k) == "mm" else np.rad2deg(v.max()))
                                               for k, v in self.diagnosis.radius_best.items()},
                           "binding": [{"parameter": n, "variance_share_pct": 100.0 * s}
                                       for n, s in self.diagnosis.binding]},
@@ -244,6 +244,14 @@ def parameter_columns(problem: AllocationProblem) -> dict:
             "unit": [p.interface_unit for p in params],
             "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
                            for p in params]}
+
+
+def _unit(problem: AllocationProblem, name: str) -> str:
+    """The unit a block's radius is reported in: mm (position, ISO length statistics) or deg."""
+    b = next(b for b in problem.blocks if b["name"] == name)
+    if b.get("requirement") is not None:
+        return b["requirement"].unit
+    return "mm" if name == "position" else "deg"
 
 
 def _pose_score(problem: AllocationProblem, d: Design) -> np.ndarray:

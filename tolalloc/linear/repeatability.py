@@ -18,9 +18,10 @@ The raw moments of ``l`` are direction integrals: writing ``d = C'^(1/2) rho u``
 ``u`` uniform on the sphere), ``E l^k = E rho^k * mean_u (u^T C' u)^(k/2)`` -- linear in ``C`` inside a smooth
 function, exact for rank-deficient ``C`` too; the mean over directions is a Lebedev rule (order
 :data:`LEBEDEV_ORDER`; its error in ``E l`` is below 0.12 % for the worst case, rank one). Against 200,000 simulated
-tests the 0.5, 0.9 and 0.95 quantiles agree within 0.4 % at ``n = 30`` and ``n = 10`` for isotropic, anisotropic,
-rank-two and rank-one ``C``; the 0.99 quantile within 0.8 % at ``n = 30`` and 1.5 % at ``n = 10`` (rank one, the
-worst case; the law errs high there). ``tests/test_repeatability_law.py`` repeats the check with 40,000.
+tests per covariance (isotropic, anisotropic, rank two, rank one; 30 and 10 cycles; ``reports/iso9283/rp_law.csv``,
+``studies/iso9283/run.py``) the 0.5, 0.9 and 0.95 quantiles agree within 0.45 %, the 0.99 quantile within 0.7 %
+except rank one at 10 cycles (1.7 %, the law errs high). ``tests/test_repeatability_law.py`` repeats the check with
+20,000.
 
 **Angle and distance repeatability** ``3 S`` of a scalar (``RP_a``, ``RD``): ``(n-1) S^2 / var ~ chi2_{n-1}``
 exactly, so ``P(3 S <= b) = F_chi2_{n-1}((n-1) b^2 / (9 var))`` (numpy: the exact law; CasADi: its
@@ -190,7 +191,8 @@ def p_sd3_within_casadi(var, b, n: int):
 
 
 def rp_bounds(b, p, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Certified budgets of ``RP_l <= b`` at probability ``p``: ``(trace_bound, eig_bound)`` [mm^2] (module docstring)."""
+    """Certified budgets of ``RP_l <= b`` at probability ``p``: ``(trace_bound, eig_bound)`` [mm^2] (module
+    docstring)."""
     n = _check_n(n)
     c = 9.0 + (n - 1) / n
     b2 = np.asarray(b, float) ** 2
