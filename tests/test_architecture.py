@@ -1,5 +1,5 @@
-"""The package's imports run one way: foundation -> robot -> physics -> errormodel -> linear -> diagnose -> allocate
--> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
+"""The package's imports run one way: foundation -> robot -> physics -> errormodel -> linear -> diagnose -> calibration
+-> acceptance -> allocate -> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
 
 import ast
 from functools import cache
@@ -11,8 +11,8 @@ import tolalloc
 
 PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
-ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
-         "verify", "report", "workflows", "cli"]
+ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "acceptance", "allocate",
+         "montecarlo", "verify", "report", "workflows", "cli"]
 FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress"}
 
 

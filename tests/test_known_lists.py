@@ -145,6 +145,9 @@ TRIGGERS = {
     ("diagnose/effects.py", "effect_basis"): (
         lambda tmp: __import__("tolalloc.diagnose.effects", fromlist=["x"]).effect_basis(
             "nope", tolalloc.load_robot("tool_changer"), None, np.zeros(3), {}), ["joint_compliance"]),
+    ("acceptance/requirement_file.py", "_requirement"): (
+        lambda tmp: __import__("tolalloc.acceptance.requirement_file", fromlist=["x"]).parse_requirements(
+            {"requirement": [{"kind": "nope"}]}), ["position", "orientation", "pose_accuracy"]),
 }
 
 

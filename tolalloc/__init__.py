@@ -9,6 +9,7 @@ One call per job (each returns a frozen result with ``to_frame()``, ``summary()`
     tolalloc.simulate_errors("tool_changer", 100_000)       # nonlinear Monte Carlo
     tolalloc.plan_calibration("ur10", 30)                   # calibration plan
     tolalloc.diagnose_measurements("ur10", "train.csv", "test.csv")   # sim-to-real diagnosis
+    tolalloc.allocate_acceptance("ur10", "examples/requirements_iso9283.toml")  # ISO 9283 AP / RP, test simulated
 
 Every stage is also reachable by its sub-package (:mod:`tolalloc.robot`, :mod:`tolalloc.errormodel`,
 :mod:`tolalloc.linear`, :mod:`tolalloc.allocate`, :mod:`tolalloc.montecarlo`, :mod:`tolalloc.verify`,
@@ -32,6 +33,7 @@ _HOME = {
                                                "plan_calibration", "diagnose_measurements", "ToleranceAllocation",
                                                "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
                                                "CalibrationPlanDesign", "MeasurementDiagnosis")},
+    **{name: "tolalloc.workflows.acceptance" for name in ("allocate_acceptance", "AcceptanceAllocation")},
     **{name: "tolalloc.robot" for name in ("Robot", "Joint", "Link", "load_robot", "builtin_robots")},
     **{name: "tolalloc.exceptions" for name in ("TolallocError", "ArgumentError", "UnknownArgumentError",
                                                 "InputFileError")},

@@ -152,6 +152,10 @@ def parameter_status(design: Design, post: Posterior) -> list:
 
 def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan) -> np.ndarray:
     estimated_index(split, plan)  # unknown names first
+    if problem.acceptance is not None:
+        raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only, "
+                            "not ISO 9283 requirements; predict their acceptance test after a calibration with "
+                            "tolalloc.acceptance.predict_acceptance(..., posterior=...).")
     if len(problem.blocks) != 1:
         raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only; "
                             "drop --angle-radius-deg.")

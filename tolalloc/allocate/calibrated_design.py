@@ -230,9 +230,9 @@ def _check_args(problem, plan, split, coverage_n, seed, k):
     if not isinstance(problem, AllocationProblem):
         raise TolallocError(f"problem: expected an AllocationProblem (tolalloc.allocate.build_problem), got "
                             f"{type(problem).__name__}.")
-    if len(problem.blocks) != 1:
+    if len(problem.blocks) != 1 or problem.acceptance is not None:
         raise TolallocError("problem: the calibration-aware allocation handles the position requirement only; build "
-                            "the problem without angle_radius_deg.")
+                            "the problem without angle_radius_deg and without ISO 9283 requirements (acceptance).")
     split = split_errors(problem.model) if split is None else split
     if not isinstance(split, ErrorSplit) or list(split.model.names) != list(problem.model.names):
         raise TolallocError("split: expected the ErrorSplit of the problem's error model (tolalloc.calibration."

@@ -21,7 +21,8 @@ import warnings
 
 import numpy as np
 
-from tolalloc.allocate.problem import NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver, make_design
+from tolalloc.allocate.problem import (NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver,
+                                       block_covariances, make_design)
 from tolalloc.exceptions import interruptible
 
 __all__ = ["solve_certified", "solve_rule"]
@@ -104,13 +105,14 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
         return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
     uv, rho = _repair(problem, rule, np.clip(u.value, u_min, u_max))
-    duals = []
-    for kind, c in pose_cons:
+    pose_dual = np.zeros(problem.n_poses)  # the working poses' (blocks of the acceptance test have their own poses)
+    for b, (kind, c) in zip(problem.blocks, pose_cons):
+        if b.get("q") is not None:
+            continue
         if kind == "vector":
-            duals.append(np.maximum(np.asarray(c.dual_value, float).reshape(-1), 0.0))
+            pose_dual += np.maximum(np.asarray(c.dual_value, float).reshape(-1), 0.0)
         else:
-            duals.append(np.array([max(float(np.trace(ci.dual_value)), 0.0) for ci in c]))
-    pose_dual = np.sum(duals, axis=0)
+            pose_dual += np.array([max(float(np.trace(ci.dual_value)), 0.0) for ci in c])
     K = len(problem.costs.names)
     bound_dual = np.zeros(K)
     bound_dual[problem.alloc] = np.asarray(lo.dual_value, float) - np.asarray(hi.dual_value, float)
@@ -153,7 +155,7 @@ def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
     t = problem.t_from_u(u)
     out = 0.0
     for b in problem.blocks:
-        C = problem.covariances(t, b["rows"])
+        C = block_covariances(problem, b, t)
         if rule == "trace":
             out = max(out, float((np.einsum("pii->p", C) / b["trace_bound"]).max()))
         else:

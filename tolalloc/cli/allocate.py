@@ -22,8 +22,21 @@ def register(sub) -> None:
         "(not with --solver certified), then standard grades (not with --no-snap), then an end-to-end Monte Carlo of "
         "simulated calibrations (not with --no-verify); no correction loop.")
     add_robot_arg(p)
-    p.add_argument("--radius-mm", type=float, default=0.25, help="required radius r [mm] (default 0.25)")
-    p.add_argument("--prob", type=float, default=0.95, help="required probability p (default 0.95)")
+    p.add_argument("--radius-mm", type=float, default=None, help="required radius r [mm] (default 0.25)")
+    p.add_argument("--prob", type=float, default=None, help="required probability p (default 0.95)")
+    p.add_argument("--requirement", metavar="FILE", default=None,
+                   help="requirements from a TOML file (schema: tolalloc.acceptance.requirement_file; example: "
+                   "examples/requirements_iso9283.toml): ISO 9283 pose accuracy and repeatability (AP, RP, position "
+                   "and orientation), distance and path accuracy, each for a share of the built robots at a load and "
+                   "velocity, beside the error balls; its [test] table lays out the acceptance test (cube in the "
+                   "working region --region, P1-P5, cycles, laser tracker, registration). The design is allocated for "
+                   "all of them, the acceptance test predicted (datasheet with ISO 14253-1 verdicts) and simulated on "
+                   "--n-robots robots (not with --no-verify); --out writes tolerances, datasheet.csv/.md, "
+                   "simulation.csv, summary.json and acceptance.png. Not with --radius-mm / --prob / --angle-* (the "
+                   "file states the balls), --calibration or --report; --n-mc, --estimator, --coverage-n, "
+                   "--correction-rounds, --no-correction and --scheduler do not apply")
+    p.add_argument("--n-robots", type=count, default=2000,
+                   help="with --requirement: robots of the simulated acceptance test (default 2000)")
     p.add_argument("--poses", "--pose-set", dest="poses", default=None, metavar="SET",
                    help="pose set of the robot file, used without --region (default: 'working' if the robot has it, "
                    "else nominal); --region takes pose sets too")
@@ -88,8 +101,11 @@ def cmd_allocate(args) -> int:
     check_output(args.out, "--out", directory=True)
     check_output(args.report, "--report", directory=True)
     check_distinct_outputs([("--out", args.out), ("--report", args.report)])
+    if args.requirement is not None:
+        return _cmd_requirement_file(args)
     res = allocate_tolerances(
-        args.robot, radius_mm=args.radius_mm, prob=args.prob, region=args.region, poses=args.poses, costs=args.costs,
+        args.robot, radius_mm=0.25 if args.radius_mm is None else args.radius_mm,
+        prob=0.95 if args.prob is None else args.prob, region=args.region, poses=args.poses, costs=args.costs,
         z=args.z, uniform=args.uniform, angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob,
         solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg, calibration=args.calibration,
         verify=not args.no_verify, n_mc=args.n_mc, seed=args.seed, estimator=args.estimator,
@@ -106,4 +122,28 @@ def cmd_allocate(args) -> int:
         if folder is not None:
             names = res.save(folder, report=report)
             print(f"\nwrote {folder}/: {', '.join(names)}")
+    return 0 if res.ok else 1
+
+
+def _cmd_requirement_file(args) -> int:
+    """``allocate --requirement FILE``: the ISO 9283 job (:func:`tolalloc.workflows.acceptance.allocate_acceptance`)."""
+    from tolalloc.exceptions import ArgumentError
+    from tolalloc.workflows.acceptance import allocate_acceptance
+
+    given = [f for f, v in (("--radius-mm", args.radius_mm), ("--prob", args.prob),
+                            ("--angle-radius-deg", args.angle_radius_deg), ("--angle-prob", args.angle_prob),
+                            ("--calibration", args.calibration), ("--report", args.report)) if v is not None]
+    if given:
+        raise ArgumentError("requirement", f"not with {', '.join(given)}: the requirement file states every "
+                            "requirement (add a [[requirement]] kind = \"position\" table for the ball), and its job "
+                            "writes --out only.")
+    res = allocate_acceptance(
+        args.robot, args.requirement, region=args.region, poses=args.poses, costs=args.costs, z=args.z,
+        uniform=args.uniform, solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg,
+        verify=not args.no_verify, n_robots=args.n_robots, seed=args.seed, **error_model_kwargs(args),
+        **robot_kwargs(args))
+    print(res.text())
+    if args.out is not None and res.prediction is not None:
+        names = res.save(args.out)
+        print(f"\nwrote {args.out}/: {', '.join(names)}")
     return 0 if res.ok else 1
