@@ -361,7 +361,7 @@ def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distri
     for k in ks:
         p = model.params[k]
         letter = p.name[-1]
-        out.append(Callout(f"{feature} (tilt about {letter}: zone along the other base axis)", char, span * t[k],
+        out.append(Callout(f"{feature}, tilt about {letter}", char, span * t[k],
                            False, letter, datum, span, "", (p.name,), span, src))
     return out
 

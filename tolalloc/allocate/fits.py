@@ -81,6 +81,11 @@ class ToleranceClass:
         return self.name[0].isupper()
 
     @property
+    def grade(self) -> int:
+        """The standard tolerance grade (7 for H7)."""
+        return int(re.sub(r"\D", "", self.name))
+
+    @property
     def width_um(self) -> float:
         """Width of the zone (the IT value) [um]."""
         return self.upper_um - self.lower_um

@@ -35,8 +35,8 @@ def callout_process(c, table=PROCESSES):
     """``(label, holds)``: the cheapest process of ``table`` that holds callout ``c`` (a fit: hole / shaft)."""
     if c.characteristic == "fit":
         fit = parse_fit(c.grade, c.length_mm, where=c.feature)
-        hole = choose_process(table, grade=int(fit.hole.name[1:]))
-        shaft = choose_process(table, grade=int(fit.shaft.name[1:]))
+        hole = choose_process(table, grade=fit.hole.grade)
+        shaft = choose_process(table, grade=fit.shaft.grade)
         return f"{hole.label} / {shaft.label}", hole.holds and shaft.holds
     if c.grade.startswith("IT"):
         ch = choose_process(table, grade=int(c.grade[2:]))
