@@ -194,6 +194,8 @@ class FeatureMap:
     settings : HandoverSettings
     defaults_used : tuple of str
         The stated defaults this map relied on (for the assumptions).
+    warnings : tuple of str
+        Callouts looser than the design (a radial clearance finer than every candidate fit, with ``strict=False``).
     """
 
     callouts: tuple
@@ -202,6 +204,7 @@ class FeatureMap:
     distribution: str
     settings: HandoverSettings = field(default_factory=HandoverSettings)
     defaults_used: tuple = ()
+    warnings: tuple = ()
 
 
 def diameter_factor(z: float, distribution: str = "normal") -> float:
@@ -273,7 +276,7 @@ class _Frame:
 
 
 def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
-                settings: HandoverSettings | None = None) -> FeatureMap:
+                settings: HandoverSettings | None = None, strict: bool = True) -> FeatureMap:
     """Drawing callouts and purchased parts of design ``t`` of ``model``.
 
     Parameters
@@ -288,6 +291,8 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         ``sigma = t / z``.
     distribution : {"normal", "uniform"}
     settings : HandoverSettings, optional
+    strict : bool
+        Refuse a radial clearance finer than every candidate fit (False: the finest fit, listed in ``warnings``).
     """
     settings = settings or HandoverSettings()
     t = np.asarray(t, float)
@@ -296,6 +301,7 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
                             f"{t.shape}.")
     labels = list(labels) or [""] * len(t)
     fr = _Frame(model.robot, settings)
+    fr.strict, fr.warnings = strict, []
     by_joint: dict = {}
     callouts, parts = [], []
     for k, p in enumerate(model.params):
@@ -317,7 +323,8 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
             callouts.append(Callout(f"{joint} axial stack (bearing spacer)", "size", 2 * t[ks[0]], False, "",
                                     fr.datum[joint],
                                     span, _grade_within(span, 2 * t[ks[0]]), (p.name,), 2.0, src))
-    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used))
+    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
+                      tuple(fr.warnings))
 
 
 def _grade_within(size_mm: float, width_mm: float) -> str:
@@ -375,10 +382,13 @@ def _fit_callout(model, j: int, ks, t, fr: _Frame, z: float) -> Callout:
     ok = [f for f in fits if f.radial_play_max_mm <= allowed * (1 + 1e-9)]
     if not ok:
         fine = fits[0]
-        raise TolallocError(f"{jt.name} bearing seats (Ø{d:g} mm): the radial clearance allows a play of at most "
-                            f"{allowed * 1000:.3g} um, finer than every candidate fit; the finest, {fine.name}, has up "
-                            f"to {fine.radial_play_max_mm * 1000:.3g} um. Give a finer fit (fits=...) or widen the "
-                            "clearance tolerance.")
+        text = (f"{jt.name} bearing seats (Ø{d:g} mm): the radial clearance allows a play of at most "
+                f"{allowed * 1000:.3g} um, finer than every candidate fit; the finest, {fine.name}, has up to "
+                f"{fine.radial_play_max_mm * 1000:.3g} um")
+        if fr.strict:
+            raise TolallocError(f"{text}. Give a finer fit (fits=...) or widen the clearance tolerance.")
+        fr.warnings.append(f"{text}: the drawing carries {fine.name}, looser than the design")
+        ok = [fine]
     fit = ok[-1]
     return Callout(f"{jt.name} bearing seats Ø{d:g} mm", "fit", fit.clearance_max_um / 1000.0, False, "",
                    fr.datum[jt.name], d, fit.name, names, 2.0 * sqrt(2.0), src)

@@ -21,7 +21,7 @@ from tolalloc.allocate.process_table import (COST_LAW_SURVEYS, PROCESS_TABLE_SOU
                                              cost_law_text)
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["Handover", "handover", "callout_process", "QIF_TYPES"]
+__all__ = ["Handover", "handover", "callout_process", "callout_text", "QIF_TYPES"]
 
 _ARCSEC = np.pi / 648000.0
 #: The QIF 3 characteristic type each callout maps to (the export's ``qif_characteristic`` column).
@@ -43,6 +43,24 @@ def callout_process(c, table=PROCESSES):
     else:
         ch = choose_process(table, zone_mm=c.zone_mm, length_mm=c.length_mm)
     return ch.label, ch.holds
+
+
+def _mm(x: float) -> str:
+    """A zone as the drawing shows it, rounded down (never looser): 0.001 mm from 0.1 mm up, else 0.0001 mm."""
+    d = 3 if x >= 0.1 else 4
+    return f"{np.floor(x * 10**d * (1 + 1e-9)) / 10**d:.{d}f}"
+
+
+def callout_text(c) -> str:
+    """The callout as a drawing shows it: ``⊥ Ø0.0078 | A`` over its length, ``315 ±0.105 (IT10)``, ``Ø50 H7/g6``."""
+    if c.characteristic == "fit":
+        return f"Ø{c.length_mm:g} {c.grade}"
+    if c.characteristic == "size":
+        return f"{c.length_mm:g} ±{_mm(c.zone_mm / 2)}" + (f" ({c.grade})" if c.grade else "")
+    head = f"{c.symbol} {'Ø' if c.diameter else ''}{_mm(c.zone_mm)}" + (f" | {c.datum}" if c.datum else "")
+    if c.characteristic == "position":
+        return f"{head} (TED {c.length_mm:g}" + (f", {c.grade}" if c.grade else "") + ")"
+    return f"{head} over {c.length_mm:g}" + (f", tilt about {c.direction}" if c.direction else "")
 
 
 @dataclass(frozen=True, eq=False)
@@ -89,11 +107,12 @@ class Handover:
         return out
 
     def drawing_frame(self) -> pd.DataFrame:
-        """One row per callout: ``feature, characteristic, symbol, zone_mm, zone_um, diameter_zone, direction,
+        """One row per callout: ``feature, callout`` (as on the drawing), ``characteristic, symbol, zone_mm, zone_um, diameter_zone, direction,
         datum, length_mm, grade, process, process_source, cost, cost_source, parameters, span_source``."""
         cs = self.callouts
         return pd.DataFrame({
-            "feature": [c.feature for c in cs], "characteristic": [c.characteristic for c in cs],
+            "feature": [c.feature for c in cs], "callout": [callout_text(c) for c in cs],
+            "characteristic": [c.characteristic for c in cs],
             "symbol": [c.symbol for c in cs], "zone_mm": [c.zone_mm for c in cs],
             "zone_um": [c.zone_mm * 1000.0 for c in cs], "diameter_zone": [c.diameter for c in cs],
             "direction": [c.direction for c in cs], "datum": [c.datum for c in cs],
@@ -151,7 +170,7 @@ def handover(result, design=None, *, settings: HandoverSettings | None = None) -
     model, costs = pr.model, pr.costs
     is_std = result.standard is not None and d is result.standard
     labels = list(result.grade) if is_std else [""] * len(d.t)
-    fm = feature_map(model, d.t, labels, z=costs.z, distribution=costs.distribution, settings=settings)
+    fm = feature_map(model, d.t, labels, z=costs.z, distribution=costs.distribution, settings=settings, strict=False)
     names = list(model.names)
     idx = {nm: i for i, nm in enumerate(names)}
     pcost = result.to_frame(d)["cost"].to_numpy(float)
@@ -206,6 +225,7 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
         out.append(f"Costs: from the costs file {costs.source}; each row names its law's published form and source.")
     out.append("Processes: " + PROCESS_TABLE_SOURCE + ".")
     out += [f"{u[0].upper()}{u[1:]}." for u in fm.defaults_used]
+    out += [f"LOOSER THAN THE DESIGN: {w}." for w in fm.warnings]
     if unheld:
         out.append("Some callouts are finer than any process of the table holds: their process names the finest "
                    "one (see the drawing table).")

@@ -232,8 +232,25 @@ class ToleranceAllocation(JobResult):
         """The tolerance table of the design to build: one row per parameter, tolerance and sigma in ``*_mm`` /
         ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
         optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
-        what was checked: :meth:`design_note`."""
-        return self.result.to_frame(self.design)
+        what was checked: :meth:`design_note`. An empty ``process`` is filled from :meth:`handover` (the built-in
+        table's process, ``purchased part`` for a joint drive)."""
+        frame = self.result.to_frame(self.design)
+        if self.infeasible is None and self.design.t is not None:
+            fill = self.handover().process_of()
+            frame["process"] = [p or fill.get(n, "") for p, n in zip(frame["process"], frame["parameter"])]
+        return frame
+
+    def handover(self, settings=None):
+        """The drawing callouts, purchase list and assumptions of the design to build
+        (:func:`tolalloc.allocate.handover.handover`; ``settings``: a
+        :class:`~tolalloc.allocate.drawing.HandoverSettings`, default its stated defaults)."""
+        from tolalloc.allocate.handover import handover
+
+        if settings is not None:
+            return handover(self.result, self.design, settings=settings)
+        if "_handover" not in self.__dict__:
+            object.__setattr__(self, "_handover", handover(self.result, self.design))
+        return self.__dict__["_handover"]
 
     def _repr_html_(self) -> str:
         from tolalloc.report.tables import TABLE_COLUMNS
@@ -323,6 +340,10 @@ class ToleranceAllocation(JobResult):
                      f"{self.where()}", note=f"design: {self.design_note()}", legend=self.table_legend())
         write_json(self.summary(), folder / "summary.json")
         names = list(ALLOCATION_FILES)
+        from tolalloc.report.handover import write_handover
+
+        names += write_handover(self.handover(), folder, f"Handover of {self.robot.name}: {self.requirement()} "
+                                f"{self.where()}")
         _save_figure(self.plot_budget(), folder / "error_budget.png")
         ver = self.verification
         if ver is not None:
