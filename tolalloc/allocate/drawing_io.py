@@ -42,7 +42,7 @@ from tolalloc.allocate.process_table import require_process
 from tolalloc.allocate.standards import it_value_mm
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["DRAWING_COLUMNS", "export_frame", "read_drawing", "NEEDS_DATUM"]
+__all__ = ["DRAWING_COLUMNS", "export_frame", "read_drawing", "read_rows", "NEEDS_DATUM"]
 
 DRAWING_COLUMNS = ("id", "feature", "characteristic", "qif_characteristic", "symbol", "zone_mm", "diameter_zone",
                    "direction", "datum", "length_mm", "grade", "tol_arcsec", "tol_um", "process", "cost",
@@ -81,6 +81,21 @@ def export_frame(h) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=list(DRAWING_COLUMNS))
 
 
+def read_rows(path) -> pd.DataFrame:
+    """The rows of a drawing exchange CSV as text (a byte-order mark is fine); clear errors for a missing or
+    unreadable file."""
+    from tolalloc.exceptions import InputFileError
+
+    path = Path(path)
+    if not path.is_file():
+        raise InputFileError(f"drawing file {str(path)!r} not found; expected a CSV with the columns "
+                             f"{', '.join(DRAWING_COLUMNS)} (the drawing.csv an allocation writes).")
+    try:
+        return pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
+    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
+        raise TolallocError(f"drawing file {path}: cannot be read as CSV ({exc}).") from None
+
+
 def _num(row, key: str, where: str, positive: bool = True) -> float:
     v = row.get(key)
     try:
@@ -106,18 +121,7 @@ def read_drawing(source, model, *, z: float = 3.0, distribution: str = "normal",
     Raises TolallocError naming the row for a missing or bad value, a span of zero, a fit that is not ISO 286 or
     a parameter the model does not have.
     """
-    if isinstance(source, pd.DataFrame):
-        frame, name = source, "drawing"
-    else:
-        path = Path(source)
-        if not path.is_file():
-            raise TolallocError(f"drawing file {str(path)!r} not found; expected a CSV with the columns "
-                                f"{', '.join(DRAWING_COLUMNS)} (tolalloc.allocate.drawing_io).")
-        try:
-            frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig")
-        except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
-            raise TolallocError(f"drawing file {path}: cannot be read as CSV ({exc}).") from None
-        name = str(path)
+    frame, name = (source, "drawing") if isinstance(source, pd.DataFrame) else (read_rows(source), str(source))
     missing = [c for c in ("characteristic", "parameters") if c not in frame.columns]
     if missing:
         raise TolallocError(f"{name}: missing column(s) {', '.join(missing)}; expected {', '.join(DRAWING_COLUMNS)}.")
