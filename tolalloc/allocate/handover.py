@@ -106,6 +106,17 @@ class Handover:
             out.update({p: proc for p in c.parameters})
         return out
 
+    def callout_of(self) -> dict:
+        """Error parameter -> its callout as the drawing shows it, or ``purchased part: <grade>`` (joint drives)."""
+        out = {}
+        for part in self.parts:
+            tol = (f"±{part.required / _ARCSEC:.4g} arcsec" if part.unit == "rad" else
+                   f"±{part.required * 1000:.4g} um")
+            out.update({p: f"purchased part, {tol}" for p in part.parameters})
+        for c in self.callouts:
+            out.update({p: callout_text(c) for p in c.parameters})
+        return out
+
     def drawing_frame(self) -> pd.DataFrame:
         """One row per callout: ``feature, callout`` (as on the drawing), ``characteristic, symbol, zone_mm, zone_um, diameter_zone, direction,
         datum, length_mm, grade, process, process_source, cost, cost_source, parameters, span_source``."""

@@ -198,7 +198,10 @@ class ToleranceAllocation(JobResult):
                 f"sigma = tol / {pr.costs.z:.4g}{dist}. cost: relative cost units of the cost laws. "
                 "variance_share_pct: share of tr(Sigma) of the position error at the worst pose (pose "
                 f"{self.worst_pose + 1}), in %. role: allocate, or fixed by the costs file. at_limit: t_min or t_max "
-                "when the tolerance sits at a process limit (fixed: set by the costs file).")
+                "when the tolerance sits at a process limit (fixed: set by the costs file). process: the optimiser's "
+                "(costs file [processes.*]) or the cheapest of the built-in table (assumed). callout: the row's drawing "
+                "callout (ISO 1101 zone in mm | datum, over its length) or bought part (handover.md: sources and "
+                "assumptions).")
 
     def requirement(self) -> str:
         pr = self.problem
@@ -233,11 +236,14 @@ class ToleranceAllocation(JobResult):
         ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
         optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
         what was checked: :meth:`design_note`. An empty ``process`` is filled from :meth:`handover` (the built-in
-        table's process, ``purchased part`` for a joint drive)."""
+        table's process, ``purchased part`` for a joint drive); ``callout`` (last) is the row's drawing callout or
+        bought part."""
         frame = self.result.to_frame(self.design)
         if self.infeasible is None and self.design.t is not None:
-            fill = self.handover().process_of()
+            h = self.handover()
+            fill, callout = h.process_of(), h.callout_of()
             frame["process"] = [p or fill.get(n, "") for p, n in zip(frame["process"], frame["parameter"])]
+            frame["callout"] = [callout.get(n, "") for n in frame["parameter"]]
         return frame
 
     def handover(self, settings=None):
