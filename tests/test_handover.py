@@ -60,6 +60,7 @@ def test_every_row_has_a_callout_or_a_part_and_a_process(job):
     drives = frame["kind"] == "joint_drive"
     assert (frame.loc[drives, "process"] == "purchased part").all()
     assert (frame.loc[~drives, "process"] != "").all()
+    assert frame["callout"].str.len().gt(0).all() and frame["cost_source"].str.contains("assumed").all()
     assert all(h.holds)
     draw = h.drawing_frame()
     # the tool_changer's geometry: j1 axis perpendicular to the base face A, j3 parallel to j2 (datum C)
@@ -116,8 +117,8 @@ def test_review_command(capsys, drawing_csv, tmp_path):
                  str(tmp_path / "r")])
     out = capsys.readouterr().out
     assert code == 0 and "meets it at 1 of 1 pose(s)" in out and "purchased_part" in out
-    assert sorted(p.name for p in (tmp_path / "r").iterdir() if p.name[0] != ".") == ["review.json", "review_features.csv",
-                                                                   "review_poses.csv"]
+    written = sorted(p.name for p in (tmp_path / "r").iterdir() if p.name[0] != ".")
+    assert written == ["review.json", "review_features.csv", "review_poses.csv"]
     code = main(["review", "tool_changer", "--drawing", str(tmp_path / "none.csv")])
     assert code == 2 and "drawing file" in capsys.readouterr().err
 

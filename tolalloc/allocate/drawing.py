@@ -26,7 +26,8 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     A *size* ``±t`` of the axial stack (spacer or shim) of the bearing arrangement.
 ``joint_drive``
     A *purchased part*: the joint's reducer and encoder with their accuracy grade and catalogue source
-    (:class:`PurchasedPart`; the robot file's ``[components]``, or a chooser given in :class:`HandoverSettings`).
+    (:class:`~tolalloc.allocate.purchase.PurchasedPart`; the robot file's ``[components]``, or the chooser of
+    :class:`HandoverSettings`).
 
 Spans, datums and seat diameters come from the robot file's ``[components.joints.<joint>.bearing]`` (``span_mm``,
 ``datum``, ``seat_diameter_mm``); where it gives none, the stated defaults of :class:`HandoverSettings`, labelled
@@ -41,17 +42,17 @@ from math import erf, log, sqrt
 import numpy as np
 
 from tolalloc.allocate.fits import PREFERRED_CLEARANCE_FITS, clearance_fits
+from tolalloc.allocate.purchase import drive_part
 from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, it_row
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["Callout", "PurchasedPart", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor",
+__all__ = ["Callout", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor",
            "SYMBOLS", "TILT_ZONES"]
 
 #: ISO 1101 symbols (and the drawing's sign for a size and a fit).
 SYMBOLS = {"perpendicularity": "⊥", "parallelism": "∥", "angularity": "∠", "coaxiality": "◎", "position": "⌖",
            "size": "±", "fit": "fit"}
 TILT_ZONES = ("auto", "diameter", "directions")
-_ARCSEC = np.pi / 648000.0
 
 
 @dataclass(frozen=True)
@@ -75,8 +76,8 @@ class HandoverSettings:
     fits : tuple of str
         Candidate fits of the radial clearance, ISO 286 classes (default: the preferred clearance fits).
     part_chooser : callable or None
-        ``part_chooser(joint_name, joint_components, t, unit) -> PurchasedPart or None``: the bought part of a joint
-        drive of half-width ``t`` [rad or mm]; None or a None answer: the robot file's ``[components]``.
+        The per-joint choice of the bought part (:func:`tolalloc.allocate.purchase.drive_part`); None: the robot
+        file's ``[components]``.
     """
 
     default_span_mm: float | None = 100.0
@@ -143,51 +144,13 @@ class Callout:
 
 
 @dataclass(frozen=True)
-class PurchasedPart:
-    """A bought part that bounds a joint-drive error.
-
-    Attributes
-    ----------
-    part : str
-        Part name (catalogue designation, or what to buy).
-    joint : str
-    parameters : tuple of str
-    grade : str
-        The accuracy the order must name.
-    required : float
-        Allowed half-width [rad or mm].
-    unit : {"rad", "mm"}
-    source : str
-        Catalogue source, or ``""`` (none given: the part is to be chosen).
-    part_halfwidth : float
-        The part's own figure as a half-width [rad or mm] (NaN where unknown).
-    """
-
-    part: str
-    joint: str
-    parameters: tuple
-    grade: str
-    required: float
-    unit: str
-    source: str = ""
-    part_halfwidth: float = float("nan")
-
-    @property
-    def meets(self) -> str:
-        """``"yes"``, ``"no"`` or ``""`` (the part's figure is unknown)."""
-        if not np.isfinite(self.part_halfwidth):
-            return ""
-        return "yes" if self.part_halfwidth <= self.required * (1 + 1e-9) else "no"
-
-
-@dataclass(frozen=True)
 class FeatureMap:
     """The drawing callouts and purchased parts of one design (:func:`feature_map`).
 
     Attributes
     ----------
     callouts : tuple of Callout
-    parts : tuple of PurchasedPart
+    parts : tuple of tolalloc.allocate.purchase.PurchasedPart
     z : float
         ``sigma = t / z``.
     distribution : {"normal", "uniform"}
@@ -308,7 +271,7 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         if p.kind == "link_length":
             callouts.append(_link_callout(model.robot, p, t[k], labels[k], fr))
         elif p.kind == "joint_drive":
-            parts.append(_drive_part(model.robot, p, t[k], settings))
+            parts.append(drive_part(model.robot, p, t[k], settings.part_chooser))
         else:
             by_joint.setdefault((p.element, p.kind), []).append(k)
     for (joint, kind), ks in by_joint.items():
@@ -392,30 +355,3 @@ def _fit_callout(model, j: int, ks, t, fr: _Frame, z: float) -> Callout:
     fit = ok[-1]
     return Callout(f"{jt.name} bearing seats Ø{d:g} mm", "fit", fit.clearance_max_um / 1000.0, False, "",
                    fr.datum[jt.name], d, fit.name, names, 2.0 * sqrt(2.0), src)
-
-
-def _drive_part(robot, p, t: float, settings: HandoverSettings) -> PurchasedPart:
-    jt = robot.joints[p.joint_index]
-    comps = robot.components.joint(jt.name)
-    if settings.part_chooser is not None:
-        chosen = settings.part_chooser(jt.name, comps, t, p.unit)
-        if chosen is not None:
-            return chosen
-    rev = p.unit == "rad"
-    need = (f"transmission error + encoder error within ±{t / _ARCSEC:.4g} arcsec ({2 * t / _ARCSEC:.4g} arcsec "
-            "peak-to-peak) at the joint output") if rev else f"positioning error within ±{t * 1000:.4g} um"
-    red, enc = comps.reducer, comps.encoder
-    names, srcs, half = [], [], 0.0
-    if red is not None:
-        names.append(f"{red.type.replace('_', ' ')} reducer" + (f" 1:{red.ratio:g}" if red.ratio else ""))
-        srcs.append(red.source)
-        half = half + red.transmission_accuracy / 2 if red.transmission_accuracy is not None else np.nan
-    if enc is not None:
-        names.append(f"{enc.side}-side encoder")
-        srcs.append(enc.source)
-        half = half + enc.accuracy / 2 if enc.accuracy is not None else np.nan
-    if not names:
-        return PurchasedPart(f"{jt.name} drive (reducer and encoder, to be chosen)", jt.name, (p.name,), need, t,
-                             p.unit)
-    return PurchasedPart(f"{jt.name} " + " + ".join(names), jt.name, (p.name,), need, t, p.unit,
-                         "; ".join(s for s in srcs if s) or "robot file [components] (no source given)", float(half))

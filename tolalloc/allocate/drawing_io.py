@@ -36,7 +36,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, PurchasedPart, diameter_factor
+from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, diameter_factor
+from tolalloc.allocate.purchase import PurchasedPart
 from tolalloc.allocate.fits import parse_fit
 from tolalloc.allocate.process_table import require_process
 from tolalloc.allocate.standards import it_value_mm

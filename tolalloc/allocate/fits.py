@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, it_row
+from tolalloc.allocate.standards import IT_TABLE_UM, it_row
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["ToleranceClass", "Fit", "tolerance_class", "parse_fit", "clearance_fits", "SHAFT_LETTERS", "HOLE_LETTERS",

@@ -52,7 +52,7 @@ def _mm(x: float) -> str:
 
 
 def callout_text(c) -> str:
-    """The callout as a drawing shows it: ``⊥ Ø0.0078 | A`` over its length, ``315 ±0.105 (IT10)``, ``Ø50 H7/g6``."""
+    """The callout as a drawing shows it: ``⊥ Ø0.0078 | A over 100``, ``315 ±0.105 (IT10)``, ``Ø50 H7/g6``."""
     if c.characteristic == "fit":
         return f"Ø{c.length_mm:g} {c.grade}"
     if c.characteristic == "size":
@@ -106,6 +106,11 @@ class Handover:
             out.update({p: proc for p in c.parameters})
         return out
 
+    def cost_source_of(self) -> dict:
+        """Error parameter -> where its cost comes from (the cost law, its source, assumed or the costs file)."""
+        groups = [c.parameters for c in self.callouts] + [p.parameters for p in self.parts]
+        return {p: src for g, src in zip(groups, self.cost_source) for p in g}
+
     def callout_of(self) -> dict:
         """Error parameter -> its callout as the drawing shows it, or ``purchased part: <grade>`` (joint drives)."""
         out = {}
@@ -118,8 +123,9 @@ class Handover:
         return out
 
     def drawing_frame(self) -> pd.DataFrame:
-        """One row per callout: ``feature, callout`` (as on the drawing), ``characteristic, symbol, zone_mm, zone_um, diameter_zone, direction,
-        datum, length_mm, grade, process, process_source, cost, cost_source, parameters, span_source``."""
+        """One row per callout: ``feature, callout`` (as on the drawing), ``characteristic, symbol, zone_mm,
+        zone_um, diameter_zone, direction, datum, length_mm, grade, process, process_source, cost, cost_source,
+        parameters, span_source``."""
         cs = self.callouts
         return pd.DataFrame({
             "feature": [c.feature for c in cs], "callout": [callout_text(c) for c in cs],
@@ -222,7 +228,8 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
         "The allocation uses the first-order (linear) map of the errors to the tool; the nonlinear Monte Carlo "
         "verification, where run, checks it.",
         f"Two tilts bounded by one diameter zone: the zone is set at the two-dimensional coverage of the tolerance "
-        f"(Rayleigh-distributed tilt magnitude for normal tilts): Ø = L x {diameter_factor(fm.z, fm.distribution):.4f} "
+        "(Rayleigh-distributed tilt magnitude for normal tilts): "
+        f"Ø = L x {diameter_factor(fm.z, fm.distribution):.4f} "
         "x t, not z per component.",
         "A radial clearance becomes the loosest preferred ISO 286 clearance fit whose largest radial play is at most "
         "sqrt(2) t (the ring's magnitude at the tolerance's coverage); back from a fit, sigma = c_max / (2 sqrt(2) z).",

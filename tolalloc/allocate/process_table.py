@@ -88,8 +88,8 @@ COST_LAW_SOURCES = {
                         "problem with optimal tolerance assignment and full acceptance, J. Mech. Des. "
                         "103(4):842-848"),
 }
-COST_LAW_SURVEYS = ("forms as tabulated by Chase, Greenwood, Loosli & Hauglund (1990), Manufacturing Review 3(1):49-59, "
-            "and Dong, Hu & Xue (1994), J. Eng. Ind. 116(2):199-206")
+COST_LAW_SURVEYS = ("forms as tabulated by Chase, Greenwood, Loosli & Hauglund (1990), Manufacturing Review "
+                    "3(1):49-59, and Dong, Hu & Xue (1994), J. Eng. Ind. 116(2):199-206")
 
 
 def cost_law_text(model: str) -> str:

@@ -236,14 +236,15 @@ class ToleranceAllocation(JobResult):
         ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
         optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
         what was checked: :meth:`design_note`. An empty ``process`` is filled from :meth:`handover` (the built-in
-        table's process, ``purchased part`` for a joint drive); ``callout`` (last) is the row's drawing callout or
-        bought part."""
+        table's process, ``purchased part`` for a joint drive); ``callout`` is the row's drawing callout or bought
+        part and ``cost_source`` (last) where its cost comes from."""
         frame = self.result.to_frame(self.design)
         if self.infeasible is None and self.design.t is not None:
             h = self.handover()
-            fill, callout = h.process_of(), h.callout_of()
+            fill, callout, source = h.process_of(), h.callout_of(), h.cost_source_of()
             frame["process"] = [p or fill.get(n, "") for p, n in zip(frame["process"], frame["parameter"])]
             frame["callout"] = [callout.get(n, "") for n in frame["parameter"]]
+            frame["cost_source"] = [source.get(n, "") for n in frame["parameter"]]
         return frame
 
     def handover(self, settings=None):
