@@ -165,8 +165,8 @@ def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan)
     E = split.sys_index
     for k in E:
         cm = problem.costs.models[k]
-        if problem.costs.role[k] == "allocate" and cm.model == "exponential":
-            raise TolallocError(f"--calibration: {problem.model.names[k]} has the exponential cost law, which the "
+        if problem.costs.role[k] == "allocate" and cm.model in ("exponential", "michael_siddall"):
+            raise TolallocError(f"--calibration: {problem.model.names[k]} has the {cm.model} cost law, which the "
                                 "calibration-aware allocation does not support for systematic parameters; use "
                                 "reciprocal or reciprocal_power in the costs file.")
     return E

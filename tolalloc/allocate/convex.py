@@ -37,7 +37,7 @@ def _cost_expr(problem: AllocationProblem, u):
     terms = []
     groups: dict = {}
     for i, m in enumerate(models):
-        key = (m.model, m.k if m.model == "reciprocal_power" else None)
+        key = (m.model, m.k if m.model in ("reciprocal_power", "michael_siddall") else None)
         groups.setdefault(key, []).append(i)
     for (form, k), idx in groups.items():
         b = np.array([models[i].b for i in idx])
@@ -46,6 +46,8 @@ def _cost_expr(problem: AllocationProblem, u):
             terms.append(b @ cp.power(ui, -0.5))
         elif form == "reciprocal_power":
             terms.append(b @ cp.power(ui, -k / 2.0))
+        elif form == "michael_siddall":
+            terms.append(b @ cp.exp(-k / 2.0 * cp.log(ui) - cp.sqrt(ui)))
         else:
             terms.append(b @ cp.exp(-cp.sqrt(ui)))
     return const + cp.sum(cp.hstack(terms)) if len(terms) > 1 else const + terms[0]

@@ -33,6 +33,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     precision_class = "P5"           # ISO 492 class of the joint's bearings
     span_mm = 80                     # axial distance between the two bearing seats
     datum = "A"                      # datum feature of the seat axis on the drawing
+    seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6
 
     [components.joints.shoulder_lift_joint.motor]
@@ -139,13 +140,14 @@ class Encoder:
 @dataclass(frozen=True)
 class Bearing:
     """The joint's bearing arrangement: ISO 492 ``precision_class``, seat ``span_mm``, drawing ``datum``,
-    ``tilt_stiffness`` [N m/rad], source."""
+    ``tilt_stiffness`` [N m/rad], source, nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit)."""
 
     precision_class: str | None = None
     span_mm: float | None = None
     datum: str | None = None
     tilt_stiffness: float | None = None
     source: str = ""
+    seat_diameter_mm: float | None = None
 
 
 @dataclass(frozen=True)
@@ -390,10 +392,11 @@ def _joint_parts(table: dict, where: str, revolute: bool) -> JointComponents:
                       _positive(v["accuracy"], "accuracy", w, True), _text(t, "source", w, ""))
     if "bearing" in table:
         t, w = table["bearing"], f"{where}.bearing"
-        v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),))}, w,
-                       text=("precision_class", "datum", "source"))
+        v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)),
+                           "seat_diameter": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source"))
         bear = Bearing(_text(t, "precision_class", w), _positive(v["span"], "span", w), _text(t, "datum", w),
-                       _positive(v["tilt_stiffness"], "tilt_stiffness", w), _text(t, "source", w, ""))
+                       _positive(v["tilt_stiffness"], "tilt_stiffness", w), _text(t, "source", w, ""),
+                       _positive(v["seat_diameter"], "seat_diameter", w))
     if "motor" in table:
         t, w = table["motor"], f"{where}.motor"
         v = read_table(t, {"winding_resistance": ({"ohm": 1.0}, ((),)), "torque_constant": ({"Nm_per_A": 1.0}, ((),)),

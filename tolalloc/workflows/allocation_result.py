@@ -198,7 +198,10 @@ class ToleranceAllocation(JobResult):
                 f"sigma = tol / {pr.costs.z:.4g}{dist}. cost: relative cost units of the cost laws. "
                 "variance_share_pct: share of tr(Sigma) of the position error at the worst pose (pose "
                 f"{self.worst_pose + 1}), in %. role: allocate, or fixed by the costs file. at_limit: t_min or t_max "
-                "when the tolerance sits at a process limit (fixed: set by the costs file).")
+                "when the tolerance sits at a process limit (fixed: set by the costs file). process: the optimiser's "
+                "(costs file [processes.*]) or the cheapest of the built-in table (assumed). callout: the row's drawing "
+                "callout (ISO 1101 zone in mm | datum, over its length) or bought part (handover.md: sources and "
+                "assumptions).")
 
     def requirement(self) -> str:
         pr = self.problem
@@ -232,8 +235,29 @@ class ToleranceAllocation(JobResult):
         """The tolerance table of the design to build: one row per parameter, tolerance and sigma in ``*_mm`` /
         ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
         optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
-        what was checked: :meth:`design_note`."""
-        return self.result.to_frame(self.design)
+        what was checked: :meth:`design_note`. An empty ``process`` is filled from :meth:`handover` (the built-in
+        table's process, ``purchased part`` for a joint drive); ``callout`` is the row's drawing callout or bought
+        part and ``cost_source`` (last) where its cost comes from."""
+        frame = self.result.to_frame(self.design)
+        if self.infeasible is None and self.design.t is not None:
+            h = self.handover()
+            fill, callout, source = h.process_of(), h.callout_of(), h.cost_source_of()
+            frame["process"] = [p or fill.get(n, "") for p, n in zip(frame["process"], frame["parameter"])]
+            frame["callout"] = [callout.get(n, "") for n in frame["parameter"]]
+            frame["cost_source"] = [source.get(n, "") for n in frame["parameter"]]
+        return frame
+
+    def handover(self, settings=None):
+        """The drawing callouts, purchase list and assumptions of the design to build
+        (:func:`tolalloc.allocate.handover.handover`; ``settings``: a
+        :class:`~tolalloc.allocate.drawing.HandoverSettings`, default its stated defaults)."""
+        from tolalloc.allocate.handover import handover
+
+        if settings is not None:
+            return handover(self.result, self.design, settings=settings)
+        if "_handover" not in self.__dict__:
+            object.__setattr__(self, "_handover", handover(self.result, self.design))
+        return self.__dict__["_handover"]
 
     def _repr_html_(self) -> str:
         from tolalloc.report.tables import TABLE_COLUMNS
@@ -323,6 +347,10 @@ class ToleranceAllocation(JobResult):
                      f"{self.where()}", note=f"design: {self.design_note()}", legend=self.table_legend())
         write_json(self.summary(), folder / "summary.json")
         names = list(ALLOCATION_FILES)
+        from tolalloc.report.handover import write_handover
+
+        names += write_handover(self.handover(), folder, f"Handover of {self.robot.name}: {self.requirement()} "
+                                f"{self.where()}")
         _save_figure(self.plot_budget(), folder / "error_budget.png")
         ver = self.verification
         if ver is not None:

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from tolalloc.report.handover import handover_html
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
 from tolalloc.workflows.allocation_text import worst_p_text
 
@@ -299,11 +300,13 @@ def allocation_context(job, folder=None) -> dict:
             "subtitle": f"{job.robot.name}: {pretty(job.requirement())}",
             "meta": [("robot", job.robot.name), ("where", job.label), ("verdict", verdict["word"].lower()),
                      ("costs", pr.costs.source)],
-            "sections": SECTIONS, "requirement": pretty(job.requirement()), "where": where, "verdict": verdict,
+            "sections": SECTIONS[:2] + [{"id": "handover", "title": "Drawing and purchase list"},
+                                        {"id": "assumptions", "title": "Assumptions"}] + SECTIONS[2:],
+            "requirement": pretty(job.requirement()), "where": where, "verdict": verdict,
             "cards": _cards(job, s), "costs_table": _costs_table(job, s), "notes": notes,
             "design_note": job.design_note(), "z_text": f"{pr.costs.z:.4g}"
             + (" (errors uniform over ±t)" if pr.costs.distribution == "uniform" else ""),
-            "tolerance_table": _tolerance_table(job, s),
+            "tolerance_table": _tolerance_table(job, s), "handover": handover_html(job.handover()),
             "standard_note": None if s["standard"] is None else pretty(s["standard"]["message"]),
             "region": _region(job, s),
             "coverage_text": None if job.coverage is None else pretty(job.coverage.message(pr.prob)),
