@@ -81,10 +81,10 @@ def test_frame(args):
 
     given = [(n, v) for n, v in (("register_n", args.register_n), ("register_rows", args.register_rows),
                                  ("register_update", args.register_update)) if v is not None]
+    if given and args.test is None:
+        raise ArgumentError(given[0][0], "needs `test`: only a test file in another frame is re-registered, and none "
+                            "was given; pass the test file or leave this option out.")
     if args.test_frame == "same":
-        if given and args.test is None:
-            raise ArgumentError(given[0][0], "needs `test`: only a test file in another frame is re-registered, and "
-                                "none was given; pass the test file or leave this option out.")
         if given:
             raise ArgumentError(given[0][0], "needs `test_frame` refit: only a test file in another frame is "
                                 "re-registered.")

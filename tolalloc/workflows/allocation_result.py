@@ -235,6 +235,10 @@ class ToleranceAllocation(JobResult):
         what was checked: :meth:`design_note`."""
         return self.result.to_frame(self.design)
 
+    def card_lines(self) -> list[str]:
+        """The headline and which design the table holds (the table's caption)."""
+        return self.headline() + ([] if self.infeasible is not None else [f"table: {self.design_note()}"])
+
     def card_frame(self) -> pd.DataFrame | None:
         """The key columns of the tolerance table (the card of a notebook); None for a region no design covers."""
         from tolalloc.report.tables import TABLE_COLUMNS

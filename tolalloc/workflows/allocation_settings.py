@@ -244,10 +244,9 @@ def _verification(verification, n_mc) -> Verification:
 
 
 def _calibration(calibration):
-    """None, a CalibrationPlanDesign, or the path of a plan CSV (checked as a path)."""
-    from tolalloc.workflows.calplan import CalibrationPlanDesign
-
-    if isinstance(calibration, CalibrationPlanDesign) or calibration is None:
+    """None, a CalibrationPlanDesign (anything with its ``plan_for``), or the path of a plan CSV (checked as a
+    path)."""
+    if calibration is None or callable(getattr(calibration, "plan_for", None)):
         return calibration
     if not isinstance(calibration, (str, os.PathLike)):
         raise ArgumentError("calibration", "expected the CalibrationPlanDesign plan_calibration returns, or the path "

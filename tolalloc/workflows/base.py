@@ -111,12 +111,16 @@ class JobResult:
         """The key table of the HTML card (default :meth:`to_frame`)."""
         return self.to_frame()
 
+    def card_lines(self) -> list[str]:
+        """The lines above the card's table (default :meth:`headline`)."""
+        return self.headline()
+
     def _repr_html_(self) -> str:
         try:
             frame = compact_frame(self.card_frame())
         except TolallocError:  # a result without a table still shows its headline
             frame = None
-        return html_card(type(self).__name__, self.headline(), frame)
+        return html_card(type(self).__name__, self.card_lines(), frame)
 
     # ------------------------------------------------------------------ saving
     def check_savable(self) -> None:

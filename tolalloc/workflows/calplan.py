@@ -109,27 +109,31 @@ def plan_calibration(robot="tool_changer", n_poses: int = D.N_POSES, *, region: 
     inputs.check_name(eval_poses, "eval_poses", "the name of a pose set of the robot")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     _check_region(rob, region)
+    with StageBar(show_progress(progress), f"plan_calibration {rob.name}") as bar:
+        return _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, target, random_plans, seed, bar)
+
+
+def _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, target, random_plans, seed, bar):
+    """The plan of :func:`plan_calibration`, its inputs checked; ``bar`` names the stage."""
     from tolalloc.calibration.design import candidate_poses, design_plan
     from tolalloc.calibration.posterior import posterior
     from tolalloc.workflows.calibrated import split_from_costs
 
-    with StageBar(show_progress(progress), f"plan_calibration {rob.name}") as bar:
-        model = inputs.error_model(rob, sigma_set=options.sigma_set)
-        split = split_from_costs(model, cost.file)
-        ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob),
-                                          poses_argument="eval_poses")
-        _check_tool_moves(model, q_eval, rob, ev)
-        bar.stage(f"{n_cand} candidate poses")
-        cand = candidate_poses(rob, n_cand, region, seed=seed)
-        bar.stage(f"A-optimal {n_poses}-pose plan")
-        d = design_plan(split, n_poses, cand, q_eval, measurement=meas.kind, noise_mm=meas.noise_mm,
-                        noise_deg=meas.noise_deg, registration=meas.registration, seed=seed)
-        alloc, comparison = None, None
-        if target is not None:
-            bar.stage(f"plan for the allocation ({target.text()}) and {random_plans} random plans")
-            alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=cost.file, target=target,
-                                                random_plans=random_plans, measurement=meas, seed=seed)
-        post = posterior(split, d.plan if alloc is None else alloc.plan)
+    model = inputs.error_model(rob, sigma_set=options.sigma_set)
+    split = split_from_costs(model, cost.file)
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    _check_tool_moves(model, q_eval, rob, ev)
+    bar.stage(f"{n_cand} candidate poses")
+    cand = candidate_poses(rob, n_cand, region, seed=seed)
+    bar.stage(f"A-optimal {n_poses}-pose plan")
+    d = design_plan(split, n_poses, cand, q_eval, measurement=meas.kind, noise_mm=meas.noise_mm,
+                    noise_deg=meas.noise_deg, registration=meas.registration, seed=seed)
+    alloc, comparison = None, None
+    if target is not None:
+        bar.stage(f"plan for the allocation ({target.text()}) and {random_plans} random plans")
+        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=cost.file, target=target,
+                                            random_plans=random_plans, measurement=meas, seed=seed)
+    post = posterior(split, d.plan if alloc is None else alloc.plan)
     unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
                                  unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))

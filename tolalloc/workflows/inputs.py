@@ -44,7 +44,8 @@ def job_entry(fn):
 
     from tolalloc.workflows.keywords import MOVED, fold_moved
 
-    keywords = [name for name, p in inspect.signature(fn).parameters.items()
+    signature = inspect.signature(fn)
+    keywords = [name for name, p in signature.parameters.items()
                 if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
     moved = MOVED.get(fn.__name__, {})
 
@@ -59,7 +60,10 @@ def job_entry(fn):
                 hint = f"did you mean {' or '.join(close)}? " if close else ""
                 raise UnknownArgumentError(name, f"{fn.__name__}() has no argument {name!r}; {hint}"
                                                  f"help(tolalloc.{fn.__name__}) lists them all.")
-        kwargs = fold_moved(fn.__name__, kwargs)
+        if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
+            old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
+            kwargs = fold_moved(fn.__name__, {**signature.bind_partial(*args, **kwargs).arguments, **old})
+            args = ()
         check_flag(trust_units, "trust_units")
         with trusting_units(bool(trust_units)):
             return fn(*args, trust_units=trust_units, **kwargs)

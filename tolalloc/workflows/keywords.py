@@ -76,8 +76,10 @@ def fold_moved(job: str, kwargs: dict) -> dict:
         value = kwargs.pop(k)
         if field is None:
             if kwargs.get(target) is not None:
-                raise ArgumentError(k, f"{shown(value)} and `{target}` {shown(kwargs[target])} both given ({k} is the "
-                                    f"old name of {target}); give {target} only.")
+                what = ("both give the radii of the rotation error" if k == "angle_radius_rad" else
+                        f"both given ({k} is the old name of {target})")
+                raise ArgumentError(k, f"{shown(value)} and `{target}` {shown(kwargs[target])} {what}; give {target} "
+                                    "only.")
             kwargs[target] = _angle_deg(value) if k == "angle_radius_rad" else value
         else:
             groups.setdefault(target, {})[field] = (k, value)
