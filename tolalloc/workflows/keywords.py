@@ -210,8 +210,8 @@ def _py(v) -> str:
     return repr(float(v)) if isinstance(v, float) else repr(v)
 
 
-def grouped_call(job: str, robot, kw: dict) -> str:
-    """The call ``tolalloc.job(robot, **kw)`` written with the settings objects: ``kw`` in the old flat keywords
+def grouped_call(job: str, positional: list, kw: dict) -> str:
+    """The call ``tolalloc.job(*positional, **kw)`` written with the settings objects: ``kw`` in the old flat keywords
     (``seed=3, snap=False``) becomes ``verification=tolalloc.Verification(seed=3), solver=tolalloc.Solver(...)``."""
     moved = MOVED.get(job, {})
     kw = dict(kw)
@@ -219,7 +219,7 @@ def grouped_call(job: str, robot, kw: dict) -> str:
     for k in [k for k in kw if k in moved]:
         target, field = moved[k]
         groups.setdefault(target, {})[field] = kw.pop(k)
-    args = [_py(robot)]
+    args = [_py(v) for v in positional]
     if "requirement" in groups:
         o = groups.pop("requirement")
         req = [f"tolalloc.PositionRequirement(radius_mm={_py(kw.pop('radius_mm', D.RADIUS_MM))}, "
@@ -235,6 +235,8 @@ def grouped_call(job: str, robot, kw: dict) -> str:
     for target in list(groups):
         if target in SHORT_FIELD and target in kw:
             groups[target] = {SHORT_FIELD[target]: kw.pop(target), **groups[target]}
+        elif target in kw:  # the object implies its short form (test_frame="refit" for a Refit)
+            kw.pop(target)
     for k, v in kw.items():
         args.append(f"{k}={_py(v)}")
     for target, fields in groups.items():
