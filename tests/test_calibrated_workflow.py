@@ -48,7 +48,7 @@ def test_solver_exact_runs_both_stages(plan_path):
     job = allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", snap=False, verify=False)
     assert job.result.exact_accepted and job.summary()["design"] == "exact"
     assert job.stages() == "certified -> exact" and "exact stage: not run" not in job.text()
-    assert "end-to-end Monte Carlo: not run (verify=False)" in job.text()
+    assert "end-to-end Monte Carlo: not run (verification=False)" in job.text()
     frame = job.to_frame()
     f = np.array([p.to_interface for p in job.problem.model.params])
     np.testing.assert_allclose(in_row_unit(frame, "tol_certified"), job.result.certified.design.t * f)

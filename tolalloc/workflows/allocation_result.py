@@ -108,7 +108,7 @@ class ToleranceAllocation(JobResult):
     @property
     def ok(self) -> bool:
         """Whether the design to build meets the requirement as far as it was checked: an optimal design that covers
-        the region (a box region) and passed its Monte Carlo verification -- or had none (``verify=False``: then
+        the region (a box region) and passed its Monte Carlo verification -- or had none (``verification=False``: then
         only the linear prediction was checked, and :attr:`verified` is False)."""
         if self.infeasible is not None or self.status != "optimal":
             return False

@@ -2,11 +2,12 @@
 
 What runs: the certified calibration-aware design (eigenvalue rule on the post-calibration covariance), then the
 exact stage on the post-calibration probability (``solver="exact"``; skipped with ``"certified"``), over the pose set
-or the box; then the standard grades (``snap``); then the end-to-end Monte Carlo of the design to build (``verify``,
-position plans; ``n_mc`` simulated calibrations clipped to :data:`N_ROBOTS_RANGE`, estimator ``auto``, ``plain`` or
-``paired``). Position requirement only. There is no correction loop and the end-to-end Monte Carlo runs in this
-process, so :func:`~tolalloc.workflows.allocate_tolerances` refuses ``correction=True``, ``correction_rounds``,
-``scheduler``, ``estimator="importance"`` and ``angle_radius_deg`` with ``calibration``.
+or the box; then the standard grades (``Solver.snap``); then the end-to-end Monte Carlo of the design to build
+(unless ``verification=False``; position plans; ``Verification.n_mc`` simulated calibrations clipped to
+:data:`N_ROBOTS_RANGE`, estimator ``auto``, ``plain`` or ``paired``). Position requirement only. There is no correction
+loop and the end-to-end Monte Carlo runs in this process, so :func:`~tolalloc.workflows.allocate_tolerances` refuses
+a ``Verification`` with ``correction=True``, ``correction_rounds``, ``scheduler`` or ``estimator="importance"``, and
+an ``OrientationRequirement``, with ``calibration``.
 
 The result's tolerance table is built in :mod:`.calibrated_table`, its printed text in :mod:`.calibrated_text`.
 """
@@ -179,7 +180,7 @@ class CalibratedToleranceAllocation(JobResult):
     def verified(self) -> bool:
         """Whether the design to build passed the end-to-end Monte Carlo (simulated robots, each calibrated at the
         plan's poses): it ran and :attr:`ok`, as :attr:`ToleranceAllocation.verified`; False when it did not run
-        (``verify=False``, a pose-measurement plan or no design).
+        (``verification=False``, a pose-measurement plan or no design).
 
         Passed (:attr:`~tolalloc.verify.calibrated_worst.EndToEnd.passed`) means: for the exact or standard design
         every checked pose is ``demonstrated`` (the interval of ``P_hat`` lies at or above p) or ``consistent``
@@ -224,7 +225,7 @@ class CalibratedToleranceAllocation(JobResult):
     def _no_end_to_end(self) -> str:
         """Why the end-to-end Monte Carlo did not run."""
         if self.inputs.get("n_mc", 0) is None:
-            return "verify=False"
+            return "verification=False"
         if self.plan.measurement != "position":
             return "the plan measures poses; the end-to-end simulation handles position measurements only"
         return "no design to check"
