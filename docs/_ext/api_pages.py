@@ -42,14 +42,17 @@ def expand(names: str) -> str:
     lines = []
     for root in names.split():
         package = importlib.import_module(root)
+        modules = public_modules(root)
         exported = set(getattr(package, "__all__", ())) if hasattr(package, "__path__") else set()
-        for name in public_modules(root):
+        # a name that is also a submodule's (tolalloc.allocate.discretize) is documented in that module
+        at_package = exported - top - {m.rsplit(".", 1)[-1] for m in modules}
+        for name in modules:
             if name == root and hasattr(package, "__path__"):
-                lines += ["```{eval-rst}", f".. automodule:: {name}", *(["   :members:", *_excluded(exported & top)]
-                                                                       if exported - top else ["   :no-members:"]),
+                lines += ["```{eval-rst}", f".. automodule:: {name}",
+                          *(["   :members:", *_excluded(exported - at_package)] if at_package else ["   :no-members:"]),
                           "```", ""]
             else:
-                lines += [f"## `{name}`", "", "```{eval-rst}", f".. automodule:: {name}", *_excluded(exported | top),
+                lines += [f"## `{name}`", "", "```{eval-rst}", f".. automodule:: {name}", *_excluded(at_package | top),
                           "```", ""]
     return "\n".join(lines)
 
