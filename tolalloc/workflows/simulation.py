@@ -231,11 +231,16 @@ class ErrorSimulation(JobResult):
     def plot_scatter(self, ax=None):
         """Kept samples' position errors: a 3-D cloud and the x-y, x-z, y-z densities; draws into ``ax`` (four Axes,
         the first a 3-D one) or a new figure and returns the four."""
+        import matplotlib.pyplot as plt
+
         from tolalloc.report.plots.mc import scatter_density
         from tolalloc.workflows.base import axes_of
 
-        fig = scatter_density(self.mc, None, axes=ax)
-        return axes_of(fig) if ax is None else axes_of(list(ax))
+        if ax is None:  # the four panels (their colorbars are axes of the figure too, not panels)
+            fig = plt.figure(figsize=(13, 3.6))
+            ax = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
+        scatter_density(self.mc, None, axes=ax)
+        return axes_of(list(ax))
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
         """Write ``mc_table.csv``, ``mc_summary.json``, ``mc_scatter.png`` (and the histograms) into an existing
