@@ -14,7 +14,7 @@ import numpy as np
 from tolalloc.progress import StageBar, show_progress
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
-from tolalloc.workflows.allocation_settings import MAX_CORRECTION_ROUNDS, allocation_settings  # noqa: F401
+from tolalloc.workflows.allocation_settings import allocation_settings
 from tolalloc.workflows.calibrated import PLAN_IN_MEMORY, calibrated_allocation
 from tolalloc.workflows.calplan import CalibrationPlanDesign
 from tolalloc.workflows.defaults import CORRECTION_ROUNDS as DEFAULT_CORRECTION_ROUNDS

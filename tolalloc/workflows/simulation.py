@@ -12,8 +12,7 @@ from tolalloc.outputs import write_json
 from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult, format_labels
-from tolalloc.workflows.settings import (KEEP_SAMPLES, KEPT_BYTES, MAX_HIST_BINS, MAX_JOBS,  # noqa: F401
-                                         ErrorModelOptions, MonteCarlo, as_settings, named_fields)
+from tolalloc.workflows.settings import ErrorModelOptions, MonteCarlo, as_settings, named_fields
 
 __all__ = ["simulate_errors", "ErrorSimulation"]
 
