@@ -60,13 +60,20 @@ def job_entry(fn):
                 hint = f"did you mean {' or '.join(close)}? " if close else ""
                 raise UnknownArgumentError(name, f"{fn.__name__}() has no argument {name!r}; {hint}"
                                                  f"help(tolalloc.{fn.__name__}) lists them all.")
-        if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
-            old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
-            kwargs = fold_moved(fn.__name__, {**signature.bind_partial(*args, **kwargs).arguments, **old})
-            args = ()
-        check_flag(trust_units, "trust_units")
-        with trusting_units(bool(trust_units)):
-            return fn(*args, trust_units=trust_units, **kwargs)
+        # an old keyword renamed (simulate_errors' n is n_mc now): an error of its value names it as it was given
+        renamed = {moved[k][0]: k for k in kwargs if k in moved and moved[k][1] is None}
+        try:
+            if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
+                old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
+                kwargs = fold_moved(fn.__name__, {**signature.bind_partial(*args, **kwargs).arguments, **old})
+                args = ()
+            check_flag(trust_units, "trust_units")
+            with trusting_units(bool(trust_units)):
+                return fn(*args, trust_units=trust_units, **kwargs)
+        except ArgumentError as exc:
+            if exc.argument not in renamed:
+                raise
+            raise ArgumentError(renamed[exc.argument], exc.detail) from None
 
     return run
 
