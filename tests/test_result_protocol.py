@@ -37,13 +37,14 @@ def results(plan_path):
     case = generate(tolalloc.load_robot("tool_changer"), "backlash", 60, np.random.default_rng(5))
     train, test = split_frame(case.frame, 0.25, np.random.default_rng(0))
     out = {
-        "ToleranceAllocation": tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=500),
+        "ToleranceAllocation": tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=500,
+                                                            solver=tolalloc.Solver(snap=False)),
         "CalibratedToleranceAllocation": tolalloc.allocate_tolerances(
             "tool_changer", calibration=plan_path, region=tolalloc.Region(poses="nominal"),
             solver=tolalloc.Solver(method="certified", snap=False), n_mc=200),
         "ErrorAnalysis": tolalloc.analyze_errors("tool_changer", radius_mm=25.0),
         "ErrorSimulation": tolalloc.simulate_errors("tool_changer", 500, seed=1),
-        "CalibrationPlanDesign": tolalloc.plan_calibration("tool_changer", 8, n_candidates=64),
+        "CalibrationPlanDesign": tolalloc.plan_calibration("tool_changer", 6, n_candidates=24),
         "MeasurementDiagnosis": tolalloc.diagnose_measurements("tool_changer", train, test, folds=2),
     }
     assert sorted(out) == sorted(CLASSES) and all(type(v).__name__ == k for k, v in out.items())
