@@ -319,7 +319,7 @@ def test_plan_calibration_valid_runs_feed_the_calibrated_allocation(robot, n_pos
         return
     check_result(design)
     path = Path(tempfile.mkdtemp(dir=SCRATCH)) / "plan.csv"
-    assert design.save(path) == [str(path)] and path.is_file()
+    assert design.save_plan(path) == [path] and path.is_file()
     res = outcome(tolalloc.allocate_tolerances, dict(robot=robot, calibration=path, n_mc=200, seed=seed))
     if res is not None:
         check_result(res)
@@ -464,8 +464,9 @@ def listing(root: Path) -> dict:
 
 
 #: the output argument of each result's save()
-SAVE_ARGUMENT = {"analysis": "out", "allocation": "out", "simulation": "out", "calibrated": "out", "plan": "path",
-                 "diagnosis": "report"}
+#: every result saves as save(directory, *, report=False, json=None)
+SAVE_ARGUMENT = {name: "directory" for name in ("analysis", "allocation", "simulation", "calibrated", "plan",
+                                                 "diagnosis")}
 
 
 @settings(max_examples=examples(24, 0.1), **SETTINGS)

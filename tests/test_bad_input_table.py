@@ -181,12 +181,11 @@ def _rows():
     # ----------------------------------------------------------- mc
     mc = ["mc", TC, "--n", "100"]
     for argv, pattern in [
-        (["mc", TC, "--n", "0"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "-5"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "x"], "argument --n: expected a number, got 'x'"),
-        (["mc", TC, "--n", "1.5"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "nan"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC], "the following arguments are required: --n"),
+        (["mc", TC, "--n-mc", "0"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n", "-5"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n-mc", "x"], "argument --n-mc/--n: expected a number, got 'x'"),
+        (["mc", TC, "--n", "1.5"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n-mc", "nan"], "argument --n-mc/--n: expected a whole number >= 1"),
         ([*mc, "--seed", "-1"], "argument --seed: expected a whole number >= 0"),
         ([*mc, "--seed", "1.5"], "argument --seed: expected a whole number >= 0"),
         ([*mc, "--out", ""], "--out: expected a directory path, got an empty string"),

@@ -118,7 +118,7 @@ class Page(HTMLParser):
 def allocation(tmp_path_factory):
     job = allocate_tolerances("tool_changer", region="nominal", n_mc=2000, seed=3)
     out = tmp_path_factory.mktemp("alloc") / "res"
-    names = job.save(out, report=True)
+    names = [p.name for p in job.save(out, report=True)]
     return job, out, names, Page((out / "report.html").read_text(encoding="utf-8"))
 
 
@@ -132,7 +132,7 @@ def calibrated(tmp_path_factory):
     plan = folder / "plan.csv"
     write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, plan)
     job = allocate_tolerances("tool_changer", calibration=str(plan), n_mc=200, coverage_n=5000)
-    names = job.save(folder / "res", report=True)
+    names = [p.name for p in job.save(folder / "res", report=True)]
     return job, folder / "res", names, Page((folder / "res" / "report.html").read_text(encoding="utf-8"))
 
 
@@ -148,7 +148,7 @@ def diagnosis(tmp_path_factory):
     tr.to_csv(folder / "train.csv", index=False)
     te.to_csv(folder / "test.csv", index=False)
     job = diagnose_measurements(tc, folder / "train.csv", folder / "test.csv", folds=3, gap_split=True, seed=1)
-    job.save(report=folder / "rep")
+    job.save(folder / "rep", report=True)
     return job, folder / "rep", Page((folder / "rep" / "report.html").read_text(encoding="utf-8"))
 
 
@@ -418,7 +418,7 @@ def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagno
     shifted = diagnose_measurements("tool_changer", folder / "train.csv", tmp_path / "shifted.csv", folds=3, seed=1)
     v = shifted.diagnosis.verdict
     assert v.verdict == "inconclusive"
-    shifted.save(report=tmp_path / "rep")
+    shifted.save(tmp_path / "rep", report=True)
     page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
     banner = page.text("verdict")
     assert banner.startswith("INCONCLUSIVE") and "NO EFFECT FOUND" not in banner

@@ -6,12 +6,14 @@ One call per job (each returns a frozen result with ``to_frame()``, ``summary()`
     res = tolalloc.allocate_tolerances("tool_changer")      # the main job: allocate, verify, correct, grade
     res.to_frame()                                          # the tolerance table
     tolalloc.analyze_errors("ur10", poses="working")        # linear variance map and error budget
-    tolalloc.simulate_errors("tool_changer", 100_000)       # nonlinear Monte Carlo
+    tolalloc.simulate_errors("tool_changer", n_mc=100_000)  # nonlinear Monte Carlo
     tolalloc.plan_calibration("ur10", 30)                   # calibration plan
     tolalloc.diagnose_measurements("ur10", "train.csv", "test.csv")   # sim-to-real diagnosis
     tolalloc.allocate_acceptance("ur10", "examples/requirements_iso9283.toml")  # ISO 9283 AP / RP, test simulated
 
-Every stage is also reachable by its sub-package (:mod:`tolalloc.robot`, :mod:`tolalloc.errormodel`,
+Settings go in small objects built once and reused (``tolalloc.PositionRequirement(radius_mm=0.25, prob=0.95)``,
+``tolalloc.Verification(n_mc=200_000, seed=1)``, ``tolalloc.ErrorModelOptions(clearance=True)`` ...); the simple
+case keeps short keywords (``radius_mm=``, ``prob=``, ``n_mc=``). Every stage is also reachable by its sub-package (:mod:`tolalloc.robot`, :mod:`tolalloc.errormodel`,
 :mod:`tolalloc.linear`, :mod:`tolalloc.allocate`, :mod:`tolalloc.montecarlo`, :mod:`tolalloc.verify`,
 :mod:`tolalloc.calibration`, :mod:`tolalloc.diagnose`, :mod:`tolalloc.report`).
 
@@ -33,7 +35,10 @@ _HOME = {
                                                "plan_calibration", "diagnose_measurements", "ToleranceAllocation",
                                                "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
                                                "CalibrationPlanDesign", "MeasurementDiagnosis", "review_drawing",
-                                               "DrawingReview")},
+                                               "DrawingReview", "Requirement",
+                                               "PositionRequirement", "OrientationRequirement", "ErrorModelOptions",
+                                               "Costs", "Region", "Solver", "Verification", "MonteCarlo",
+                                               "Measurement", "Refit", "FitOptions")},
     **{name: "tolalloc.workflows.acceptance" for name in ("allocate_acceptance", "AcceptanceAllocation")},
     **{name: "tolalloc.robot" for name in ("Robot", "Joint", "Link", "load_robot", "builtin_robots")},
     **{name: "tolalloc.exceptions" for name in ("TolallocError", "ArgumentError", "UnknownArgumentError",

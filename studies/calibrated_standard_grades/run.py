@@ -51,8 +51,8 @@ grades = "IT5-IT16"
 def run_case(robot: str, region: str, grades: str, plan_path: Path, costs, n_mc: int,
              coverage_n: int) -> tuple[dict, pd.DataFrame]:
     t0 = time.perf_counter()
-    job = tolalloc.allocate_tolerances(robot, calibration=str(plan_path), region=region, n_mc=n_mc,
-                                       coverage_n=coverage_n, costs=costs)
+    job = tolalloc.allocate_tolerances(robot, calibration=str(plan_path), n_mc=n_mc, costs=costs,
+                                       region=tolalloc.Region(region, coverage_n=coverage_n))
     wall = time.perf_counter() - t0
     res, std = job.result, job.standard
     local = standardize_calibrated(res, outer_approximation=False, relax=False, coverage_n=0)
@@ -175,7 +175,7 @@ def main(argv=None) -> int:
     for robot, region, grades in CASES:
         plan_path = out / f"{robot}_plan_12.csv"
         if not plan_path.exists():
-            tolalloc.plan_calibration(robot, 12).save(plan_path)
+            tolalloc.plan_calibration(robot, 12).save_plan(plan_path)
         row, table = run_case(robot, region, grades, plan_path, None if grades == "IT5-IT12" else str(wide), n_mc,
                               coverage_n)
         rows.append(row)

@@ -49,6 +49,15 @@ __all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequi
 POPULATIONS = ("fleet", "robot")
 
 
+#: the requirement when none is given: ``P(|dP| < 0.25 mm) >= 0.95`` (the command line's defaults too)
+DEFAULT_RADIUS_MM = 0.25
+DEFAULT_PROB = 0.95
+#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
+ESTIMATORS = ("auto", "plain", "paired", "importance")
+#: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
+CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
+
+
 def _positive(value, name: str, unit: str, example: str) -> float:
     try:
         v = float(value)
@@ -84,6 +93,7 @@ class Requirement:
 
     kind: ClassVar[str] = ""
     clause: ClassVar[str] = ""
+    calibration_aware: ClassVar[bool] = False
 
     def __post_init__(self):
         self.check()
@@ -94,6 +104,19 @@ class Requirement:
     def text(self) -> str:  # pragma: no cover
         """The requirement as a formula with its units."""
         raise NotImplementedError
+
+    def problem_arguments(self) -> dict:  # pragma: no cover
+        """Keyword arguments of :func:`tolalloc.allocate.build_problem` that state this requirement."""
+        raise NotImplementedError
+
+    def cli_arguments(self) -> list[str]:  # pragma: no cover
+        """The command-line flags that state this requirement (``["--radius-mm", "0.25", ...]``)."""
+        raise NotImplementedError
+
+    def estimators(self, calibrated: bool = False) -> tuple[str, ...]:
+        """Verification estimators that can judge this requirement (``calibrated``: in the calibration-aware
+        allocation's end-to-end Monte Carlo)."""
+        return CALIBRATED_ESTIMATORS if calibrated else ESTIMATORS
 
     def to_dict(self) -> dict:
         """The fields (units in their names) and the kind, for JSON records and requirement files."""
@@ -124,9 +147,10 @@ class PositionRequirement(Requirement):
     'P(|dP| < 0.1 mm) >= 0.99'
     """
 
-    radius_mm: float = 0.25
-    prob: float = 0.95
+    radius_mm: float = DEFAULT_RADIUS_MM
+    prob: float = DEFAULT_PROB
     kind: ClassVar[str] = "position"
+    calibration_aware: ClassVar[bool] = True
 
     def check(self) -> None:
         _positive(self.radius_mm, self._field("radius_mm"), "mm", "0.25")
@@ -138,6 +162,9 @@ class PositionRequirement(Requirement):
     def problem_arguments(self) -> dict:
         """Keywords of :func:`tolalloc.allocate.build_problem` stating this requirement."""
         return {"radius_mm": float(self.radius_mm), "prob": float(self.prob)}
+
+    def cli_arguments(self) -> list[str]:
+        return ["--radius-mm", f"{self.radius_mm:g}", "--prob", f"{self.prob:g}"]
 
 
 @dataclass(frozen=True)
@@ -166,6 +193,10 @@ class OrientationRequirement(Requirement):
     def problem_arguments(self) -> dict:
         return {"angle_radius_deg": float(self.radius_deg),
                 "angle_prob": None if self.prob is None else float(self.prob)}
+
+    def cli_arguments(self) -> list[str]:
+        return ["--angle-radius-deg", f"{self.radius_deg:g}"] + ([] if self.prob is None else
+                                                                  ["--angle-prob", f"{self.prob:g}"])
 
 
 @dataclass(frozen=True)

@@ -27,11 +27,8 @@ __all__ = ["allocate_acceptance", "AcceptanceAllocation"]
 
 
 @inputs.job_entry
-def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, poses: str | None = None, costs=None,
-                        z: float | None = None, uniform: bool = False, sigma_set: str | None = None,
-                        link_mode: str = "consistent", deflection_mode: str = "screw", clearance: bool = False,
-                        exclude=(), solver: str = "exact", snap: bool = True, angle_step_deg: float | None = None,
-                        test=None, verify: bool = True, n_robots: int = 2000, seed: int = 0, tool: str | None = None,
+def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, costs=None, error_model=None,
+                        solver=None, test=None, verification=None, n_robots: int = 2000, tool: str | None = None,
                         trust_units: bool = False) -> "AcceptanceAllocation":
     """Cheapest tolerances meeting ISO 9283 requirements (``AP``, ``RP``, ...), with the acceptance test simulated.
 
@@ -42,24 +39,41 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
         :mod:`tolalloc.acceptance.requirements` objects (at least one ISO 9283 one; the error balls may join them),
         or a requirement file (TOML, :mod:`tolalloc.acceptance.requirement_file`), whose ``[test]`` table sets the
         test unless ``test`` is given.
-    region : str or (q_min, q_max), optional
+    region : str, (q_min, q_max) or Region, optional
         The working region the test cube is placed in: a box of the robot file, ``"limits"``, a pose set (its
-        spanning box) or a box [rad, mm]; default :func:`tolalloc.acceptance.layout.default_region`.
-    poses : str, optional
-        Pose set where the error balls hold (default ``working``, else nominal).
-    costs, z, uniform, sigma_set, link_mode, deflection_mode, clearance, exclude, solver, snap, angle_step_deg
-        As :func:`tolalloc.allocate_tolerances`; the costs file's ``[calibration]`` table sets the systematic /
-        random split (:mod:`tolalloc.calibration.split`).
+        spanning box) or a box [rad, mm]; default :func:`tolalloc.acceptance.layout.default_region`. A
+        :class:`~tolalloc.workflows.Region`'s ``poses`` names the pose set where the error balls hold (default
+        ``working``, else nominal).
+    costs, error_model, solver
+        As :func:`tolalloc.allocate_tolerances` (:class:`~tolalloc.workflows.Costs`,
+        :class:`~tolalloc.workflows.ErrorModelOptions`, :class:`~tolalloc.workflows.Solver`); the costs file's
+        ``[calibration]`` table sets the systematic / random split (:mod:`tolalloc.calibration.split`).
     test : dict or AcceptanceTest, optional
         Keywords of :func:`tolalloc.acceptance.acceptance_test` (``cycles``, ``cube_edge_mm``, ``tracker`` ...), or
         a test laid out already.
-    verify : bool
-        Simulate the test on ``n_robots`` robots (``seed``) as the check of the prediction.
+    verification : Verification or bool, optional
+        ``False``: no simulated test; else the test is simulated on ``n_robots`` robots as the check of the prediction
+        (the :class:`~tolalloc.workflows.Verification`'s ``seed``).
+    n_robots : int
+        Robots of the simulated acceptance test (default 2000).
 
     Returns
     -------
     AcceptanceAllocation
     """
+    from tolalloc.workflows.allocation_settings import Region, Solver, Verification
+    from tolalloc.workflows.settings import Costs, ErrorModelOptions, as_settings
+
+    reg = region if isinstance(region, Region) else Region(poses=None)
+    region = reg.where if isinstance(region, Region) else region
+    poses = reg.poses
+    cost = as_settings(costs, Costs, "costs", lambda v: Costs(file=v))
+    em = as_settings(error_model, ErrorModelOptions, "error_model")
+    sol = as_settings(solver, Solver, "solver", lambda v: Solver(method=v))
+    verify = verification is not False
+    ver = as_settings(None if verification in (True, False) else verification, Verification, "verification")
+    costs, z, uniform = cost.file, cost.z, cost.uniform
+    solver, snap, angle_step_deg, seed = sol.method, sol.snap, sol.angle_step_deg, ver.seed
     from tolalloc.acceptance import acceptance_test
     from tolalloc.acceptance.layout import AcceptanceTest
     from tolalloc.acceptance.predict import predict_acceptance
@@ -75,8 +89,8 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     if solver not in ("exact", "certified"):
         raise ArgumentError("solver", f"expected 'exact' or 'certified', got {solver!r}.")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude)
+    model = inputs.error_model(rob, sigma_set=em.sigma_set, link_mode=em.link_mode, deflection_mode=em.deflection_mode,
+                               clearance=em.clearance, exclude=em.exclude)
     cost_set = _costs(costs, model, z, uniform)
     split = split_from_costs(model, costs)
     times = {}

@@ -7,8 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.outputs import atomic_output, write_json
-from tolalloc.workflows.base import JobResult
+from tolalloc.outputs import write_json
+from tolalloc.workflows.base import JobResult, _old_axes, axes_of
 
 __all__ = ["ToleranceAllocation"]
 
@@ -108,7 +108,7 @@ class ToleranceAllocation(JobResult):
     @property
     def ok(self) -> bool:
         """Whether the design to build meets the requirement as far as it was checked: an optimal design that covers
-        the region (a box region) and passed its Monte Carlo verification -- or had none (``verify=False``: then
+        the region (a box region) and passed its Monte Carlo verification -- or had none (``verification=False``: then
         only the linear prediction was checked, and :attr:`verified` is False)."""
         if self.infeasible is not None or self.status != "optimal":
             return False
@@ -259,13 +259,34 @@ class ToleranceAllocation(JobResult):
             object.__setattr__(self, "_handover", handover(self.result, self.design))
         return self.__dict__["_handover"]
 
-    def _repr_html_(self) -> str:
-        from tolalloc.report.tables import TABLE_COLUMNS
-        from tolalloc.workflows.base import html_card
+    def card_lines(self) -> list[str]:
+        """The headline and which design the table holds (the table's caption)."""
+        return self.headline() + ([] if self.infeasible is not None else [f"table: {self.design_note()}"])
 
+    def card_frame(self) -> pd.DataFrame | None:
+        """The key columns of the tolerance table (the card of a notebook); None for a region no design covers."""
+        from tolalloc.report.tables import TABLE_COLUMNS
+
+        if self.infeasible is not None:
+            return None
         frame = self.to_frame()
-        return html_card(type(self).__name__, self.headline() + [f"table: {self.design_note()}"],
-                         frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
+        cols = [c for c in TABLE_COLUMNS if c in frame.columns]
+        return frame[cols[:2] + ["unit"] + cols[2:]]
+
+    def error_model_options(self):
+        """The design to build as an :class:`~tolalloc.workflows.ErrorModelOptions`: every parameter's sigma (mm or
+        deg) overridden by the design's, the same link and deflection model and clearance, the parameters left out of
+        the allocation left out; for ``simulate_errors(robot, error_model=res.error_model_options())``. The
+        simulation draws Gaussian errors of these sigmas (``Costs(uniform=True)`` designs: same sigma, not uniform)."""
+        from tolalloc.workflows.settings import ErrorModelOptions
+
+        frame, model = self.to_frame(), self.problem.model
+        sigma = dict(zip(frame["parameter"], frame["sigma_mm"].fillna(frame["sigma_deg"]).astype(float)))
+        labels = model.labels
+        return ErrorModelOptions(sigma_set=labels["sigma_set"], link_mode=labels["link_mode"],
+                                 deflection_mode=labels["deflection_mode"],
+                                 clearance=any(str(k).startswith("clearance") for k in model.kinds), sigma=sigma,
+                                 exclude=tuple(self.inputs.get("exclude", [])) + tuple(self.problem.costs.excluded))
 
     def verification_frame(self) -> pd.DataFrame | None:
         """Per pose: linear P, Monte Carlo P_hat with its interval (95 % simultaneous over the poses and requirements,
@@ -289,60 +310,59 @@ class ToleranceAllocation(JobResult):
         return report_text(self)
 
     # ------------------------------------------------------------------ figures
-    def plot_budget(self, axes=None, *, title: str | None = None):
-        """Tolerance and variance share per parameter at the worst pose; returns the figure."""
+    def plot_budget(self, ax=None, *, title: str | None = None, axes=None):
+        """Tolerance and variance share per parameter at the worst pose, side by side; draws into ``ax`` (a pair of
+        Axes) or a new figure and returns the pair."""
         from tolalloc.report.plots.allocate import plot_budget
 
+        ax = _old_axes("plot_budget", ax, axes)
         t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.worst_pose + 1}"
              if title is None else title)
-        fig = plot_budget(self.to_frame(), None, title=t, axes=axes)
-        return fig
+        fig = plot_budget(self.to_frame(), None, title=t, axes=ax)
+        return axes_of(fig) if ax is None else axes_of(list(ax))
 
     def plot_pose_probabilities(self, ax=None):
-        """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the figure."""
+        """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the Axes."""
         from tolalloc.report.plots.allocate import plot_pose_probabilities
 
         self._need_verification("plot_pose_probabilities")
-        return plot_pose_probabilities(self.verification, None, ax=ax)
+        fig = plot_pose_probabilities(self.verification, None, ax=ax)
+        return axes_of(fig) if ax is None else ax
 
-    def plot_cloud(self, axes=None):
-        """Kept Monte Carlo position errors at the worst linear pose, three projections; returns the figure."""
+    def plot_cloud(self, ax=None, *, axes=None):
+        """Kept Monte Carlo position errors at the worst linear pose, three projections; draws into ``ax`` (three
+        Axes) or a new figure and returns the three."""
         from tolalloc.report.plots.allocate import plot_cloud
 
+        ax = _old_axes("plot_cloud", ax, axes)
         self._need_verification("plot_cloud")
-        return plot_cloud(self.verification, None, axes=axes)
+        fig = plot_cloud(self.verification, None, axes=ax)
+        return axes_of(fig) if ax is None else axes_of(list(ax))
 
     def _need_verification(self, what: str) -> None:
         from tolalloc.exceptions import TolallocError
 
         if self.verification is None:
-            raise TolallocError(f"{what}: this allocation was not verified (verify=False or no design); run "
-                                "allocate_tolerances(..., verify=True).")
+            raise TolallocError(f"{what}: this allocation was not verified (verification=False or no design); run "
+                                "allocate_tolerances(...) with its verification on.")
 
     # ------------------------------------------------------------------ files
-    def save(self, out, *, report: bool = False) -> list[str]:
-        """Write the tables, ``summary.json``, ``verification.csv`` and the figures into directory ``out``.
+    has_report = True
 
-        All files appear together or none (staged, then published in one step). ``report=True`` also writes
-        ``report.html``. Returns the names of the files written.
-        """
+    def check_savable(self) -> None:
         from tolalloc.exceptions import TolallocError
 
         if self.infeasible is not None:
             raise TolallocError(f"save: nothing to save, {self.infeasible}")
-        self.check_out(out, "out", required=True)
-        if not isinstance(report, (bool, np.bool_)):
-            from tolalloc.exceptions import ArgumentError
-
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
-        with atomic_output(out, directory=True) as tmp:
-            names = self.write_files(tmp, report=report)
-        return names
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
-        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
+        """Write the tables, ``summary.json``, ``verification.csv``, the figures and (``report``) ``report.html``
+        into an existing ``folder`` (not atomic; :meth:`save` stages through this); returns the file names."""
+        from pathlib import Path
+
         from tolalloc.report.tables import write_tables
 
+        folder = Path(folder)
         write_tables(self.to_frame(), folder, caption=f"Tolerances of {self.robot.name}: {self.requirement()} "
                      f"{self.where()}", note=f"design: {self.design_note()}", legend=self.table_legend())
         write_json(self.summary(), folder / "summary.json")
@@ -368,8 +388,10 @@ class ToleranceAllocation(JobResult):
         return names
 
 
-def _save_figure(fig, path, dpi: int = 100) -> None:
+def _save_figure(axes, path, dpi: int = 100) -> None:
+    """Save the figure of ``axes`` (what a ``plot_*`` method returns) and close it."""
     import matplotlib.pyplot as plt
 
+    fig = np.ravel(np.asarray(axes, dtype=object))[0].figure
     fig.savefig(path, dpi=dpi)
     plt.close(fig)

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import os
+
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
-from tolalloc.outputs import check_distinct_outputs, json_native, output_group, write_json
+from tolalloc.outputs import json_native
+from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -16,11 +19,10 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 
 
 @inputs.job_entry
-def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
-                          alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
-                          progress: bool | None = None, robust_loss: str = "auto", target_offset_mm=None,
-                          target_offset_sd_mm=None, register_update: str | None = None, register_rows=None,
-                          tool: str | None = None, trust_units: bool = False) -> "MeasurementDiagnosis":
+def diagnose_measurements(robot, train, test=None, *, test_frame="same", folds: int = D.FOLDS, alpha: float = D.ALPHA,
+                          seed: int = D.SEED, cv_rows: int | None = None, gap_split: bool = False, fit=None,
+                          progress: bool | None = None, tool: str | None = None,
+                          trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
 
     Calibrates the tracker registration, target offset and identifiable geometric errors on ``train``, breaks the
@@ -33,19 +35,12 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     train, test : str, path or DataFrame
         Measurements: columns q1..qN (deg / mm), x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1 / -1),
         payload_kg, time_s. Rows with empty cells are skipped and counted.
-    test_frame : {"same", "refit"}
-        ``refit`` (needs ``test``): the test file is another session in another tracker frame; its registration and
-        target offset are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below
-        1), which are then not scored.
-    register_rows : sequence of int, optional
-        With ``refit``, instead of ``register_n``: the test file's rows that register the frame (e.g. a registration
-        set measured first, ``range(1, 61)``), its data rows from 1 as its error messages and the JSON's
-        ``registration_rows`` number them (a DataFrame's by position); every other test row is scored.
-    register_update : {"frame", "calibration"}, optional
-        With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
-        the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
-        parameters, the training fit as the prior, its training data discounted as far as the registration
-        poses' marginal likelihood says they moved (:mod:`tolalloc.diagnose.recalibrate`).
+    test_frame : {"same", "refit"} or Refit
+        ``"same"``: the test file shares the training file's tracker frame. ``"refit"`` or a
+        :class:`~tolalloc.workflows.Refit` (needs ``test``): the test file is another session in another tracker
+        frame; its registration and target offset are re-estimated on some of its poses (``Refit.register_n``, a
+        count >= 5, default 30, or a fraction below 1; or the rows ``Refit.register_rows``), which are then not
+        scored; ``Refit.update="calibration"`` also corrects the trained geometric and effect parameters.
     folds : int
         Cross-validation folds (a minimum: more when the training file has few poses).
     alpha : float
@@ -58,13 +53,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
         Progress bars on stderr (default: when stderr is a terminal).
-    robust_loss : {"auto", "tukey", "huber", "soft_l1"}
-        M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight;
-        ``auto`` (default) is ``tukey``, or ``huber`` (bounded influence, no zero weight) on a small training file
-        (fewer than 10 poses per fitted parameter). Down-weighted rows are listed per stage.
-    target_offset_mm, target_offset_sd_mm : array (3,) and float, optional
-        Prior mean [mm] (flange frame, relative to the robot's tool point) and sd [mm] of the probe / target offset,
-        used by every fit; without them each fold borrows the full training fit's offset as its prior.
+    fit : FitOptions, optional
+        The fits' M-estimator (``auto`` by default: Tukey's biweight, which gives gross outliers no weight, or Huber's
+        bounded-influence loss on a small training file -- fewer than 10 poses per fitted parameter; down-weighted
+        rows are listed per stage) and the prior of the probe / target offset (:class:`~tolalloc.workflows.FitOptions`).
 
     The test file is sealed: the model is chosen on the training file alone (selection, variants, fold counts,
     thresholds) and the test file is scored once afterwards. The verdict (``effect``, ``none``, ``ambiguous``,
@@ -88,23 +80,41 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     """
     from tolalloc.diagnose import diagnose
 
-    alpha, folds, seed, cv_rows, rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows,
-                                                    gap_split, progress, register_rows)
-    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame, test)
+    refit, fit = _settings(test_frame, fit, test)
+    alpha, folds, seed, cv_rows = _check_args(test, folds, alpha, seed, cv_rows, gap_split, progress)
+    frame = "same" if refit is None else "refit"
+    register_n = None if refit is None else refit.register_n
+    rows = None if refit is None or refit.register_rows is None else list(refit.register_rows)
+    update = None if refit is None else refit.update
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress, folds)
-    d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
-                 register_n=register_n, register_rows=rows, progress=progress,
-                 robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
-                 register_update=register_update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
+    d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=frame, register_n=register_n,
+                 register_rows=rows, progress=progress, robust_loss=fit.robust_loss,
+                 target_offset_mm=fit.target_offset_mm, target_offset_sd_mm=fit.target_offset_sd_mm,
+                 register_update=update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
     gap = _gap_split(d, progress) if gap_split else None
-    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
+    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": frame,
               "register_n": register_n, **({} if rows is None else {"register_rows": rows}),
-              "register_update": register_update, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
-              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units), "robust_loss": robust_loss,
-              "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
-              "target_offset_sd_mm": target_offset_sd_mm}
+              "register_update": None if refit is None or update == "frame" else update, "folds": folds,
+              "alpha": alpha, "seed": seed, "cv_rows": cv_rows, "gap_split": bool(gap_split), "tool": tool,
+              "trust_units": bool(trust_units), **fit.to_dict()}
     return MeasurementDiagnosis(d, gap, folds, record)
+
+
+def _settings(test_frame, fit, test) -> tuple:
+    """``(Refit or None, FitOptions)`` of the call; a refit needs a test file."""
+    from tolalloc.workflows.diagnosis_settings import FitOptions, Refit
+    from tolalloc.workflows.settings import as_settings
+
+    if isinstance(test_frame, Refit):
+        refit = test_frame
+    else:
+        inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
+        refit = Refit() if test_frame == "refit" else None
+    if refit is not None and test is None:
+        raise ArgumentError("test_frame", "needs `test`: 'refit' re-registers a test file measured in another tracker "
+                            "frame, and none was given; pass the test file or leave this option out.")
+    return refit, as_settings(fit, FitOptions, "fit")
 
 
 def _gap_split(d, progress):
@@ -118,27 +128,6 @@ def _gap_split(d, progress):
             return diagnosis_gap_split(d)
         finally:
             bar.close()
-
-
-def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same",
-               test=None) -> None:
-    inputs.check_choice(robust_loss, "robust_loss", ("auto", "tukey", "huber", "soft_l1"))
-    if register_update is not None and test_frame == "refit" and test is None:
-        raise ArgumentError("register_update", "needs `test`: only a test file in another frame is re-registered, "
-                            "and none was given; pass the test file or leave this option out.")
-    if register_update is not None:
-        inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
-        if test_frame != "refit":
-            raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
-                                "re-registered.")
-    if test_frame == "refit" and test is None:
-        raise ArgumentError("test_frame", "needs `test`: 'refit' re-registers a test file measured in another tracker "
-                            "frame, and none was given; pass the test file or leave this option out.")
-    if target_offset_mm is not None and target_offset_sd_mm is None:
-        raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
-                            "too (e.g. 5 for a tool drawing good to a few mm).")
-    if target_offset_sd_mm is not None:
-        inputs.check_positive(target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
 
 
 def _read(robot, train, test, progress, folds):
@@ -163,15 +152,10 @@ def _read(robot, train, test, progress, folds):
     return tr, te
 
 
-def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress,
-                register_rows=None) -> tuple:
-    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows,
-    register_rows)``, the rows as a list of int or None (whether the test file has them is checked once it is
-    read)."""
+def _check_args(test, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
+    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows)``."""
     from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
-    from tolalloc.diagnose.register import check_register_rows
 
-    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
     alpha = inputs.check_probability(alpha, "alpha", example="0.01")
     folds = inputs.check_count(folds, "folds", minimum=2, example="5")
     seed = inputs.check_seed(seed)
@@ -179,28 +163,9 @@ def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_s
         cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
     inputs.check_flag(gap_split, "gap_split")
     inputs.check_optional_flag(progress, "progress")
-    if register_n is not None:
-        _check_register_n(register_n)
-    rows = check_register_rows(register_rows, register_n, test_given=test is not None, test_frame=test_frame)
     if gap_split and test is None:
         raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
-    if register_n is not None and test_frame != "refit":
-        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
-    if register_n is not None and test is None:
-        raise ArgumentError("register_n", "needs `test`: only a test file in another frame is re-registered, and none "
-                            "was given; pass the test file or leave this option out.")
-    return alpha, folds, seed, cv_rows, rows
-
-
-def _check_register_n(value) -> float:
-    """A count of registration poses (a whole number >= 5) or a fraction of the test poses (0 < f < 1)."""
-    from tolalloc.diagnose.register import MIN_REGISTER
-
-    x = inputs.number(value, "register_n")
-    if not (np.isfinite(x) and 0 < x and (x < 1 or (x == int(x) and x >= MIN_REGISTER))):
-        raise ArgumentError("register_n", f"expected a count of registration poses (a whole number >= {MIN_REGISTER}, "
-                            f"e.g. 30) or a fraction of the test poses (0 < f < 1, e.g. 0.2), got {inputs.shown(value)}.")
-    return x
+    return alpha, folds, seed, cv_rows
 
 
 def _not_applicable_null(obj):
@@ -306,30 +271,67 @@ class MeasurementDiagnosis(JobResult):
             frame = full.merge(frame, on="row", how="left")
         return frame
 
-    def save(self, report=None, *, json=None, predictions=None) -> list[str]:
-        """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
-        CSV; all published together, nothing if any fails. Returns the paths written."""
-        self.check_out(report, "report")
-        self.check_out(json, "json", directory=False)
+    def plot_before_after(self, ax=None):
+        """Held-out RMS, p95 and max error of the nominal, geometric and final models [mm]; draws into ``ax`` or a new
+        figure and returns the Axes."""
+        from tolalloc.report.plots.diagnose import plot_before_after
+
+        return plot_before_after(self.to_frame(), None, ax=ax)
+
+    def plot_ranking(self, ax=None):
+        """Clipped out-of-fold RMS of every candidate effect against the geometric model; draws into ``ax`` or a new
+        figure and returns the Axes."""
+        from tolalloc.report.plots.diagnose import plot_ranking
+
+        return plot_ranking(self.diagnosis, None, ax=ax)
+
+    has_report = True
+
+    def save(self, directory=None, *, report: bool = False, json=None, predictions=None, **old) -> list:
+        """Write the report files (``report.md``, CSV tables, figures, ``diagnosis.json``; ``report=True`` adds the
+        self-contained ``report.html``) into ``directory``, the JSON result to ``json`` (``"-"``: standard output)
+        and / or the test predictions CSV to ``predictions``; all published together, nothing if any fails. Returns
+        the paths written. ``save(report=DIR)``, the former form (the folder was called ``report``), still writes
+        the folder with ``report.html``, with a DeprecationWarning."""
+        import warnings
+
+        if isinstance(report, (str, os.PathLike)):
+            warnings.warn("MeasurementDiagnosis.save(report=DIR) is deprecated: use save(DIR, report=True) (every "
+                          "result saves as save(directory, *, report=False, json=None)).", DeprecationWarning,
+                          stacklevel=2)
+            if directory is not None:
+                raise ArgumentError("report", "a folder and `directory` both given; give save(directory, report=True).")
+            directory, report = report, True
+        directory, report = self._old_save_keywords(directory, report, old)
         self.check_out(predictions, "predictions", directory=False)
-        check_distinct_outputs([("json", json), ("predictions", predictions), ("report", report)])
         if predictions is not None and self.diagnosis.test is None:
             raise ArgumentError("predictions", "needs `test`: predictions are made for the rows of the test file.")
-        with output_group() as group:
-            if predictions is not None:
-                self.predictions_frame().to_csv(group.file(predictions), index=False, float_format="%.6f")
-            if report is not None:
-                self.write_report(group.directory(report))
-            if json is not None:
-                write_json(self.summary(), group.file(json))
-        return [str(p) for p in (predictions, report, json) if p is not None]
+        extra = [("predictions", predictions,
+                  lambda path: self.predictions_frame().to_csv(path, index=False, float_format="%.6f"))]
+        return self._save(directory, report=report, json=json, extra=extra)
 
-    def write_report(self, folder) -> None:
-        """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """report.md, the CSV tables, the figures, diagnosis.json (and ``report``: report.html) into an existing
+        ``folder`` (not atomic; :meth:`save` stages through this); returns the file names."""
+        from pathlib import Path
+
+        folder = Path(folder)
+        before = {p.name for p in folder.iterdir()}
+        self.write_report(folder, html=report)
+        return sorted(p.name for p in folder.iterdir() if p.name not in before)
+
+    def write_report(self, folder, *, html: bool = True) -> None:
+        """report.md, the CSV tables and the figures (and ``html``: report.html) into an existing ``folder`` (a
+        ``str`` or ``os.PathLike``; not atomic)."""
+        from pathlib import Path
+
         from tolalloc.report.diagnosis import write_report
-        from tolalloc.workflows.html import write_diagnosis_report
 
+        folder = Path(folder)
         write_report(self.diagnosis, folder)
         if self.gap is not None:
             self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
-        write_diagnosis_report(self, folder)
+        if html:
+            from tolalloc.workflows.html import write_diagnosis_report
+
+            write_diagnosis_report(self, folder)

@@ -87,7 +87,7 @@ def calibrated_context(job) -> dict:
             "tolerance_table": tol, "unidentifiable": ", ".join(s["unidentifiable"]),
             "grade_note": pretty(job.grade_note()),
             "end_to_end": None if chk is None else {"text": pretty(chk.message()), "table": _end_to_end_table(job)},
-            "no_end_to_end": "The end-to-end Monte Carlo did not run (verify=False, or a pose-measurement plan): "
+            "no_end_to_end": "The end-to-end Monte Carlo did not run (verification=False, or a pose-measurement plan): "
                              + ("the standard design rests on the linear post-calibration probability alone."
                                 if built is not None else "the design rests on its certificate alone."),
             "figures": _calibrated_figures(job), "inputs": _inputs_pairs(job.inputs, []),

@@ -63,9 +63,10 @@ def _py(v) -> str:
 
 
 def _render(command: str, function: str, robot: str, kw: dict, out_flags: list[str], save: str) -> tuple[str, str]:
+    from tolalloc.workflows.keywords import grouped_call
+
     cli = shlex.join(["tolalloc", command, robot, *_cli_args(kw), *out_flags])
-    args = ",\n    ".join([_py(robot)] + [f"{k}={_py(v)}" for k, v in kw.items()])
-    return cli, f"import tolalloc\n\nresult = tolalloc.{function}(\n    {args})\n{save}"
+    return cli, f"import tolalloc\n\nresult = {grouped_call(function, [robot], kw)}\n{save}"
 
 
 def _where(job, notes: list) -> dict:
@@ -210,8 +211,10 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
     if "register_rows" in cli_kw:
         cli_kw["register_rows"] = row_ranges_text(cli_kw["register_rows"])
     cli = shlex.join(["tolalloc", "diagnose", robot, "--train", train, *_cli_args(cli_kw), *extra, "--report", "DIR"])
-    args = ",\n    ".join([_py(robot), _py(train)] + [f"{k}={_py(v)}" for k, v in kw.items()])
-    python = f"import tolalloc\n\nresult = tolalloc.diagnose_measurements(\n    {args})\nresult.save(report='DIR')"
+    from tolalloc.workflows.keywords import grouped_call
+
+    python = (f"import tolalloc\n\nresult = {grouped_call('diagnose_measurements', [robot, train], kw)}\n"
+              "result.save('DIR', report=True)")
     return cli, python, notes
 
 

@@ -34,19 +34,25 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
 
 def job_entry(fn):
     """The entry point of workflow ``fn``: a keyword ``fn`` does not have is refused with the closest names
-    (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), and with ``trust_units=True`` the
-    unit-plausibility guards are off during the call (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
+    (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), a keyword it had before its settings objects
+    is folded into them with a ``DeprecationWarning`` (:mod:`tolalloc.workflows.keywords`), and with
+    ``trust_units=True`` the unit-plausibility guards are off during the call (robot files, joint values, costs
+    files: :mod:`tolalloc.units`)."""
     import difflib
     import functools
     import inspect
 
-    keywords = [name for name, p in inspect.signature(fn).parameters.items()
+    from tolalloc.workflows.keywords import MOVED, fold_moved
+
+    signature = inspect.signature(fn)
+    keywords = [name for name, p in signature.parameters.items()
                 if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+    moved = MOVED.get(fn.__name__, {})
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
         for name in kwargs:
-            if name not in keywords:
+            if name not in keywords and name not in moved:
                 close = difflib.get_close_matches(name, keywords, n=3, cutoff=0.7)
                 # the name without its unit (radius for radius_mm), or with one the call's name has not (n_mc for n)
                 close += [k for k in keywords if (k.startswith(name + "_") or name.startswith(k + "_"))
@@ -54,9 +60,20 @@ def job_entry(fn):
                 hint = f"did you mean {' or '.join(close)}? " if close else ""
                 raise UnknownArgumentError(name, f"{fn.__name__}() has no argument {name!r}; {hint}"
                                                  f"help(tolalloc.{fn.__name__}) lists them all.")
-        check_flag(trust_units, "trust_units")
-        with trusting_units(bool(trust_units)):
-            return fn(*args, trust_units=trust_units, **kwargs)
+        # an old keyword renamed (simulate_errors' n is n_mc now): an error of its value names it as it was given
+        renamed = {moved[k][0]: k for k in kwargs if k in moved and moved[k][1] is None}
+        try:
+            if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
+                old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
+                kwargs = fold_moved(fn.__name__, {**signature.bind_partial(*args, **kwargs).arguments, **old})
+                args = ()
+            check_flag(trust_units, "trust_units")
+            with trusting_units(bool(trust_units)):
+                return fn(*args, trust_units=trust_units, **kwargs)
+        except ArgumentError as exc:
+            if exc.argument not in renamed:
+                raise
+            raise ArgumentError(renamed[exc.argument], exc.detail) from None
 
     return run
 

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import sys
+
 import matplotlib
 
-matplotlib.use("Agg")
+if "ipykernel" not in sys.modules:  # files only; a notebook keeps its inline backend and shows the figures
+    matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -55,11 +58,11 @@ def plot_where(where, path, n_features: int = 6, dpi: int = 72, max_points: int 
     plt.close(fig)
 
 
-def plot_ranking(diagnosis, path, dpi: int = 90) -> None:
+def plot_ranking(diagnosis, path=None, dpi: int = 90, ax=None):
     """Clipped held-out RMS (the selection's score) of every candidate effect against the geometric model (first
-    selection step)."""
+    selection step). ``path``: saved there and closed; else drawn into ``ax`` (or a new figure), which is returned."""
     ranking = [c for c in diagnosis.ranking if c.applicable]
-    fig, ax = plt.subplots(figsize=(6.5, 3.2))
+    fig, ax = plt.subplots(figsize=(6.5, 3.2)) if ax is None else (ax.figure, ax)
     names = ["geometric only"] + [c.effect for c in ranking]
     base = next((c.robust_rms_mm * 100.0 / (100.0 - c.gain_pct) for c in ranking if c.gain_pct < 100.0),
                 diagnosis.stages[0].base_rms_mm)  # the geometric model's clipped RMS, from any candidate's gain
@@ -71,14 +74,13 @@ def plot_ranking(diagnosis, path, dpi: int = 90) -> None:
     ax.invert_yaxis()
     ax.set_xlabel("clipped out-of-fold RMS of the training file [mm]")
     ax.set_title("Candidate effects on top of the geometric calibration (green: significant)", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
+    return _done(fig, ax, path, dpi)
 
 
-def plot_before_after(table, path, dpi: int = 90) -> None:
-    """Bars of RMS / p95 / max held-out error for nominal, geometric and final models (``before_after()`` table)."""
-    fig, ax = plt.subplots(figsize=(6, 3.2))
+def plot_before_after(table, path=None, dpi: int = 90, ax=None):
+    """Bars of RMS / p95 / max held-out error for nominal, geometric and final models (``before_after()`` table).
+    ``path``: saved there and closed; else drawn into ``ax`` (or a new figure), which is returned."""
+    fig, ax = plt.subplots(figsize=(6, 3.2)) if ax is None else (ax.figure, ax)
     x = np.arange(len(table))
     for i, col in enumerate(("rms_mm", "p95_mm", "max_mm")):
         ax.bar(x + (i - 1) * 0.27, table[col], width=0.27, label=col.replace("_mm", ""))
@@ -86,9 +88,17 @@ def plot_before_after(table, path, dpi: int = 90) -> None:
     ax.set_yscale("log")
     ax.set_ylabel("held-out error [mm]")
     ax.legend(fontsize=8)
+    return _done(fig, ax, path, dpi)
+
+
+def _done(fig, ax, path, dpi):
+    """Save and close the figure (``path``), or return the Axes drawn on."""
     fig.tight_layout()
+    if path is None:
+        return ax
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
+    return None
 
 
 def plot_confusion(matrix, labels, path, title: str = "", dpi: int = 90) -> None:
