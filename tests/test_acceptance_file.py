@@ -75,10 +75,11 @@ def test_job_writes_the_datasheet(tmp_path):
     robot, test = ur10_test()
     others = tuple(p.name for p in build_error_model(robot).params if p.kind != "joint_drive")
     reqs = [PoseAccuracy(limit_mm=0.05), PoseRepeatability(limit_mm=0.05)]
-    res = tolalloc.allocate_acceptance(robot, reqs, exclude=others, test=test, snap=False, n_robots=300)
+    res = tolalloc.allocate_acceptance(robot, reqs, error_model=tolalloc.ErrorModelOptions(exclude=others), test=test,
+                                       solver=tolalloc.Solver(snap=False), n_robots=300)
     assert res.ok and not res.demonstrated  # RP_l: the tracker's noise alone is of the order of the limit
-    names = res.save(tmp_path / "out")
-    assert {"datasheet.csv", "summary.json", "acceptance.png", "tolerances.csv"} <= set(names)
+    names = {p.name for p in res.save(tmp_path / "out")}
+    assert {"datasheet.csv", "summary.json", "acceptance.png", "tolerances.csv"} <= names
     ds = pd.read_csv(tmp_path / "out" / "datasheet.csv")
     assert list(ds.statistic.unique()) == ["AP_P", "RP_l"] and (ds.p_meets >= 0.95 - 1e-5).all()
     s = json.loads((tmp_path / "out" / "summary.json").read_text())

@@ -25,11 +25,11 @@ import tolalloc  # noqa: E402
 from tolalloc.outputs import MANIFEST  # noqa: E402
 
 CLASSES = ["ToleranceAllocation", "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
-           "CalibrationPlanDesign", "MeasurementDiagnosis"]
+           "CalibrationPlanDesign", "MeasurementDiagnosis", "AcceptanceAllocation", "DrawingReview"]
 
 
 @pytest.fixture(scope="module")
-def results(plan_path):
+def results(plan_path, tmp_path_factory):
     """One result of each class, small."""
     from tolalloc.diagnose import generate
     from tolalloc.diagnose.synth import split_frame
@@ -47,8 +47,25 @@ def results(plan_path):
         "CalibrationPlanDesign": tolalloc.plan_calibration("tool_changer", 6, n_candidates=24),
         "MeasurementDiagnosis": tolalloc.diagnose_measurements("tool_changer", train, test, folds=2),
     }
+    out["AcceptanceAllocation"] = _acceptance()
+    drawing = tmp_path_factory.mktemp("drawing")
+    out["ToleranceAllocation"].save(drawing)
+    out["DrawingReview"] = tolalloc.review_drawing("tool_changer", drawing / "drawing.csv", region="nominal")
     assert sorted(out) == sorted(CLASSES) and all(type(v).__name__ == k for k, v in out.items())
     return out
+
+
+def _acceptance():
+    """A small ISO 9283 allocation: the UR10's drives only, its test laid out once, 100 simulated robots."""
+    from iso_setup import ur10_test
+    from tolalloc.acceptance import PoseAccuracy, PoseRepeatability
+    from tolalloc.errormodel import build_error_model
+
+    robot, test = ur10_test()
+    others = tuple(p.name for p in build_error_model(robot).params if p.kind != "joint_drive")
+    return tolalloc.allocate_acceptance(robot, [PoseAccuracy(limit_mm=0.05), PoseRepeatability(limit_mm=0.05)],
+                                        error_model=tolalloc.ErrorModelOptions(exclude=others), test=test,
+                                        solver=tolalloc.Solver(snap=False), n_robots=100)
 
 
 def _files(folder: Path) -> set[Path]:

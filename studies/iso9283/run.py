@@ -65,7 +65,8 @@ def part1(n_robots: int) -> dict:
     out = {}
     for name in ROBOTS:
         t0, c0 = time.perf_counter(), time.process_time()
-        res = tolalloc.allocate_acceptance(name, str(EXAMPLE), n_robots=n_robots, seed=SEED)
+        res = tolalloc.allocate_acceptance(name, str(EXAMPLE), n_robots=n_robots,
+                                           verification=tolalloc.Verification(seed=SEED))
         wall, cpu = time.perf_counter() - t0, time.process_time() - c0
         ds = res.datasheet()
         ds.to_csv(OUT / f"datasheet_{name}.csv", index=False, float_format="%.6g")

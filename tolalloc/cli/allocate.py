@@ -164,6 +164,6 @@ def _cmd_requirement_file(args) -> int:
         **robot_kwargs(args))
     print(res.text())
     if args.out is not None and res.prediction is not None:
-        names = res.save(args.out)
-        print(f"\nwrote {args.out}/: {', '.join(names)}")
+        paths = res.save(args.out)
+        print(f"\nwrote {args.out}/: {', '.join(p.name for p in paths)}")
     return 0 if res.ok else 1

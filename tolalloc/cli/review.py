@@ -39,8 +39,11 @@ def cmd_review(args) -> int:
 
     check_output(args.out, "--out", directory=True)
     check_output(args.json, "--json")
+    from tolalloc.workflows import Costs, ErrorModelOptions
+
     res = review_drawing(args.robot, args.drawing, radius_mm=args.radius_mm, prob=args.prob, region=args.region,
-                         z=args.z, uniform=args.uniform, sigma_set=args.sigma_set, others=args.others,
+                         costs=Costs(z=args.z, uniform=args.uniform),
+                         error_model=ErrorModelOptions(sigma_set=args.sigma_set), others=args.others,
                          seed=args.seed, **robot_kwargs(args))
     if args.out:
         res.save(args.out)

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
-from tolalloc.outputs import atomic_output, write_json
+from tolalloc.outputs import json_native, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -72,7 +72,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     sol = as_settings(solver, Solver, "solver", lambda v: Solver(method=v))
     verify = verification is not False
     ver = as_settings(None if verification in (True, False) else verification, Verification, "verification")
-    costs, z, uniform = cost.file, cost.z, cost.uniform
+    costs = cost.file
     solver, snap, angle_step_deg, seed = sol.method, sol.snap, sol.angle_step_deg, ver.seed
     from tolalloc.acceptance import acceptance_test
     from tolalloc.acceptance.layout import AcceptanceTest
@@ -91,7 +91,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, sigma_set=em.sigma_set, link_mode=em.link_mode, deflection_mode=em.deflection_mode,
                                clearance=em.clearance, exclude=em.exclude)
-    cost_set = _costs(costs, model, z, uniform)
+    cost_set = _costs(cost, model)
     split = split_from_costs(model, costs)
     times = {}
     t0 = time.perf_counter()
@@ -173,7 +173,7 @@ def _region(robot, region):
     return q.min(axis=0), q.max(axis=0)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class AcceptanceAllocation(JobResult):
     """Tolerances for ISO 9283 requirements and their acceptance test, predicted and simulated.
 
@@ -247,35 +247,43 @@ class AcceptanceAllocation(JobResult):
             out["notes"] = list(self.prediction.notes)
         if self.simulation is not None:
             out["simulated_share_meeting"] = {k: v.tolist() for k, v in self._sim_share().items()}
-        return out
+        return json_native(out)
 
-    def save(self, out) -> list[str]:
-        """Write ``tolerances.csv/.md/.tex``, ``datasheet.csv/.md``, ``simulation.csv``, ``summary.json`` and
-        ``acceptance.png`` into directory ``out`` (all or nothing)."""
+    def plot_acceptance(self, ax=None):
+        """The predicted statistics beside the simulated robots, per test pose (one panel per statistic); returns the
+        axes (:func:`tolalloc.report.plots.acceptance.plot_acceptance`)."""
+        from tolalloc.report.plots.acceptance import plot_acceptance
+
+        if self.prediction is None:
+            raise ArgumentError("prediction", f"no design was found ({self.result.message}): nothing to plot.")
+        return plot_acceptance(self.prediction, self.simulation, ax=ax)
+
+    def check_savable(self) -> None:
+        if self.prediction is None:
+            raise ArgumentError("directory", f"nothing to save: no design was found ({self.result.message}).")
+
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """``tolerances.csv/.md/.tex``, ``datasheet.csv/.md``, ``simulation.csv``, ``summary.json`` and
+        ``acceptance.png`` into an existing ``folder`` (not atomic: :meth:`save` publishes them together)."""
         import matplotlib.pyplot as plt
 
         from tolalloc.report.plots.acceptance import plot_acceptance
         from tolalloc.report.tables import write_tables
 
-        self.check_out(out, "out", required=True)
-        if self.prediction is None:
-            raise ArgumentError("out", f"nothing to save: no design was found ({self.result.message}).")
-        with atomic_output(out, directory=True) as tmp:
-            tmp = Path(tmp)
-            write_tables(self.to_frame(), tmp, caption=f"Tolerances of {self.test.robot.name}: " + "; ".join(
-                r.text() for r in self.requirements), note=f"design: {self.result.built.label}")
-            ds = self.datasheet()
-            ds.to_csv(tmp / "datasheet.csv", index=False, float_format="%.6g")
-            (tmp / "datasheet.md").write_text(self.prediction.text() + "\n\n" + ds.to_markdown(index=False) + "\n")
-            names = ["tolerances.csv", "tolerances.md", "tolerances.tex", "datasheet.csv", "datasheet.md"]
-            if self.simulation is not None:
-                self.simulation.to_frame().to_csv(tmp / "simulation.csv", index=False, float_format="%.6g")
-                names.append("simulation.csv")
-            write_json(self.summary(), tmp / "summary.json")
-            axes = plot_acceptance(self.prediction, self.simulation)
-            fig = np.atleast_1d(axes)[0].figure
-            fig.tight_layout()
-            fig.savefig(tmp / "acceptance.png", dpi=100)
-            plt.close(fig)
-            names += ["summary.json", "acceptance.png"]
-        return names
+        tmp = Path(folder)
+        write_tables(self.to_frame(), tmp, caption=f"Tolerances of {self.test.robot.name}: " + "; ".join(
+            r.text() for r in self.requirements), note=f"design: {self.result.built.label}")
+        ds = self.datasheet()
+        ds.to_csv(tmp / "datasheet.csv", index=False, float_format="%.6g")
+        (tmp / "datasheet.md").write_text(self.prediction.text() + "\n\n" + ds.to_markdown(index=False) + "\n")
+        names = ["tolerances.csv", "tolerances.md", "tolerances.tex", "datasheet.csv", "datasheet.md"]
+        if self.simulation is not None:
+            self.simulation.to_frame().to_csv(tmp / "simulation.csv", index=False, float_format="%.6g")
+            names.append("simulation.csv")
+        write_json(self.summary(), tmp / "summary.json")
+        axes = plot_acceptance(self.prediction, self.simulation)
+        fig = np.atleast_1d(axes)[0].figure
+        fig.tight_layout()
+        fig.savefig(tmp / "acceptance.png", dpi=100)
+        plt.close(fig)
+        return names + ["summary.json", "acceptance.png"]

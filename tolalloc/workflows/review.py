@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 
-from tolalloc.outputs import atomic_output, write_json
+from tolalloc.outputs import write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -21,9 +23,8 @@ __all__ = ["review_drawing", "DrawingReview"]
 
 @inputs.job_entry
 def review_drawing(robot="tool_changer", drawing=None, *, radius_mm: float = 0.25, prob: float = 0.95, region=None,
-                   poses: str | None = None, z: float | None = None, uniform: bool = False,
-                   sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
-                   others: str = "error", seed: int = 0, tool: str | None = None, trust_units: bool = False):
+                   costs=None, error_model=None, others: str = "error", seed: int = 0, tool: str | None = None,
+                   trust_units: bool = False):
     """``P(|dP| < radius_mm)`` that an existing drawing gives, at the worst pose of the region, with each
     feature's share.
 
@@ -34,17 +35,26 @@ def review_drawing(robot="tool_changer", drawing=None, *, radius_mm: float = 0.2
         The drawing exchange CSV (the ``drawing.csv`` an allocation writes, or one made by hand in its schema).
     radius_mm, prob : float
         The requirement the drawing is reviewed against.
-    region, poses : optional
+    region : str, array or Region, optional
         Where: as in :func:`tolalloc.allocate_tolerances` (a box is searched for its worst pose).
-    z : float, optional
-        sigma = t / z (default 3); ``uniform=True``: errors uniform over ±t (z = sqrt(3)).
-    sigma_set, link_mode, deflection_mode
-        The error model (clearance parameters are included when the drawing bounds any).
+    costs : Costs, optional
+        Only its ``z`` (sigma = t / z, default 3) or ``uniform`` (errors uniform over ±t) are read.
+    error_model : ErrorModelOptions, optional
+        Sigma set, link and deflection model (clearance parameters are included when the drawing bounds any).
     others : {"error", "model"}
         A parameter no row bounds: an error, or the error model's own sigma.
     seed : int
         Seed of the region's worst-pose search.
     """
+    from tolalloc.workflows.allocation_settings import Region
+    from tolalloc.workflows.settings import Costs, ErrorModelOptions, as_settings
+
+    reg = region if isinstance(region, Region) else Region(where=region)
+    region, poses = reg.where, reg.poses
+    cost = as_settings(costs, Costs, "costs")
+    em = as_settings(error_model, ErrorModelOptions, "error_model")
+    z, uniform = cost.z, cost.uniform
+    sigma_set, link_mode, deflection_mode = em.sigma_set, em.link_mode, em.deflection_mode
     from tolalloc.allocate.drawing_io import read_drawing, read_rows
     from tolalloc.allocate.tolerance_analysis import analyze_drawing
     from tolalloc.exceptions import ArgumentError
@@ -121,11 +131,17 @@ class DrawingReview(JobResult):
     def text(self) -> str:
         return "\n".join(self.headline()) + "\n" + self.analysis.text()
 
-    def save(self, out) -> list[str]:
-        """Write ``review_features.csv``, ``review_poses.csv`` and ``review.json`` into directory ``out``."""
-        self.check_out(out, "out", required=True)
-        with atomic_output(out, directory=True) as tmp:
-            self.to_frame().to_csv(tmp / "review_features.csv", index=False, float_format="%.8g")
-            self.pose_frame().to_csv(tmp / "review_poses.csv", index=False, float_format="%.10g")
-            write_json(self.summary(), tmp / "review.json")
+    def plot_shares(self, ax=None):
+        """Each feature's share of the variance at the worst pose (bars, largest first); returns the axes."""
+        from tolalloc.report.plots.acceptance import plot_feature_shares
+
+        return plot_feature_shares(self.to_frame(), ax=ax)
+
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """``review_features.csv``, ``review_poses.csv`` and ``review.json`` into an existing ``folder`` (not atomic:
+        :meth:`save` publishes them together)."""
+        folder = Path(folder)
+        self.to_frame().to_csv(folder / "review_features.csv", index=False, float_format="%.8g")
+        self.pose_frame().to_csv(folder / "review_poses.csv", index=False, float_format="%.10g")
+        write_json(self.summary(), folder / "review.json")
         return ["review_features.csv", "review_poses.csv", "review.json"]

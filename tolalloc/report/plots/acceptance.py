@@ -6,7 +6,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-__all__ = ["plot_acceptance"]
+__all__ = ["plot_acceptance", "plot_feature_shares"]
 
 
 def plot_acceptance(prediction, simulation=None, *, names=None, ax=None):
@@ -48,4 +48,17 @@ def plot_acceptance(prediction, simulation=None, *, names=None, ax=None):
         a.set_ylabel(f"{m.name} [{unit}]")
         a.set_ylim(bottom=0)
     np.atleast_1d(ax)[0].legend(fontsize=7, loc="lower right")
+    return ax
+
+
+def plot_feature_shares(frame, *, top: int = 12, ax=None):
+    """Horizontal bars of the drawing features' share of the position-error variance at the worst pose, largest
+    first (``frame``: :meth:`~tolalloc.allocate.tolerance_analysis.DrawingAnalysis.feature_frame`). Returns the axes."""
+    rows = frame.head(top).iloc[::-1]
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 0.3 * len(rows) + 1.2))
+    ax.barh([f"{f} ({c})" for f, c in zip(rows["feature"], rows["characteristic"])], rows["variance_share_pct"],
+            color="C0")
+    ax.set_xlabel("share of the variance at the worst pose [%]")
+    ax.tick_params(axis="y", labelsize=7)
     return ax
