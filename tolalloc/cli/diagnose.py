@@ -47,6 +47,9 @@ def register(sub) -> None:
                    "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
                    "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, report.html (one self-contained file), CSV tables and figures into DIR")
+    p.add_argument("--export-model", metavar="DIR", help="write the identified model into DIR: identified.toml (chain "
+                   "layout with an [identified] section of the fitted parameters and effects, what `tolalloc compensate` "
+                   "reads) and identified.urdf")
     p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
     p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
     p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "
@@ -81,7 +84,9 @@ def cmd_diagnose(args) -> int:
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
     check_output(args.report, "--report", directory=True)
-    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
+    check_output(args.export_model, "--export-model", directory=True)
+    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
+                            ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,
                                 register_n=args.register_n, register_rows=args.register_rows,
@@ -91,6 +96,8 @@ def cmd_diagnose(args) -> int:
                                 target_offset_sd_mm=args.target_offset_sd_mm,
                                 **robot_kwargs(args))
     res.save(args.report, json=None if args.json == "-" else args.json, predictions=args.predictions)
+    if args.export_model is not None:
+        res.export_model(args.export_model)
     if args.json == "-":
         write_json(res.summary(), "-")
     print(res.text())
