@@ -29,9 +29,9 @@ from tolalloc.diagnose.calibrate import Fit
 from tolalloc.diagnose.effects import effect_basis, effect_reference
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import align_basis, carry_problem
-from tolalloc.diagnose.uncertainty import parameter_covariance, point_jacobian
+from tolalloc.diagnose.uncertainty import information_parts, parameter_covariance, point_jacobian
 
-__all__ = ["IdentifiedModel", "identified_model", "FRAMES", "REBUILD_TOL_MM", "LOAD_EFFECTS"]
+__all__ = ["IdentifiedModel", "identified_model", "calibrated_model", "FRAMES", "REBUILD_TOL_MM", "LOAD_EFFECTS"]
 
 #: Frames of predictions and targets.
 FRAMES = ("base", "tracker")
@@ -59,6 +59,9 @@ class IdentifiedModel:
     cov : array, shape (N, N) or None   parameter covariance (columns of :func:`~.uncertainty.point_jacobian`)
     noise_mm : float              measurement noise per coordinate of the training fit [mm]
     payload_in_training : bool    the training file logged a non-zero payload
+    train : Measurements or None  the training poses (None for a model rebuilt from a file)
+    unidentifiable : dict         geometric parameters the training poses could not separate -> why
+    verdict : str or None         the diagnosis's verdict (``effect``, ``none``, ``ambiguous``, ``inconclusive``)
     """
 
     robot: Robot
@@ -72,6 +75,9 @@ class IdentifiedModel:
     cov: np.ndarray | None = None
     noise_mm: float = float("nan")
     payload_in_training: bool = False
+    train: Measurements | None = None
+    unidentifiable: dict | None = None
+    verdict: str | None = None
 
     @property
     def param_names(self) -> tuple:
@@ -113,7 +119,8 @@ class IdentifiedModel:
             why = carry_problem(e, self.variants[e], meas)
             if why is not None:
                 raise TolallocError(f"the identified model's {e} effect (variant {self.variants[e]}) cannot be "
-                                    f"evaluated at these poses: {why.replace('the test file', 'the poses given')}; pass the "
+                                    "evaluated at these poses: " + why.replace("the test file", "the poses given")
+                                    + "; pass the "
                                     "column (the training file had it).")
         if meas.payload_kg is None and self.payload_in_training and set(self.effects) & set(LOAD_EFFECTS):
             raise TolallocError("payload_kg: the identified model's load effects ("
@@ -173,6 +180,16 @@ class IdentifiedModel:
         S = np.einsum("pik,kl,pjl->pij", J, C, J)
         return 0.5 * (S + np.swapaxes(S, 1, 2))
 
+    def information(self) -> tuple:
+        """The training data's information about the fitted parameters and the fit's prior precisions
+        (:func:`~tolalloc.diagnose.uncertainty.information_parts`: ``data (N, N)``, ``prior (N,)``, ``noise2``),
+        columns of :func:`~tolalloc.diagnose.uncertainty.point_jacobian`: registration (6), probe offset (3),
+        geometric parameters ``fit.geo_index``, effect columns."""
+        if self.train is None:
+            raise TolallocError("this identified model has no training poses (it was rebuilt from a file); use the "
+                                "diagnosis itself.")
+        return information_parts(self.fit, self.train.q, self.basis(self.train))
+
     def nominal(self) -> "IdentifiedModel":
         """The nominal robot with this model's probe offset and registration (no geometric errors, no effects)."""
         fit = replace(self.fit, delta=np.zeros_like(self.fit.delta), geo_index=np.zeros(0, int), beta=np.zeros(0),
@@ -220,8 +237,10 @@ def identified_model(diagnosis, *, covariance: bool = True) -> IdentifiedModel:
         names += [f"{e}:{nm}" for nm in b.names]
     keep = np.asarray(d.final.keep, int) if effects else np.zeros(0, int)
     pay = train.payload_kg is not None and bool(np.any(train.payload_kg != 0))
+    v = d.verdict.verdict if d.verdict is not None else None
     model = IdentifiedModel(robot, fit, effects, variants, columns, keep, ref, np.asarray(t, float),
-                            payload_in_training=pay)
+                            payload_in_training=pay, train=train, verdict=v,
+                            unidentifiable=dict(d.calibration.identifiability.reasons))
     if effects and tuple(names[k] for k in keep) != tuple(fit.effect_names):
         raise TolallocError("the identified model's effect columns could not be rebuilt from the diagnosis (the "
                             "rebuilt names differ from the final fit's); this is a defect -- please report it.")
@@ -233,5 +252,20 @@ def identified_model(diagnosis, *, covariance: bool = True) -> IdentifiedModel:
                             "defect -- please report it.")
     if covariance:
         cov, noise = parameter_covariance(fit, train.q, B)
+        model = replace(model, cov=cov, noise_mm=noise)
+    return model
+
+
+def calibrated_model(calibration, train: Measurements, *, covariance: bool = True) -> IdentifiedModel:
+    """The geometric model of a calibration (:func:`~tolalloc.diagnose.calibrate.calibrate` on ``train``) as an
+    :class:`IdentifiedModel`: no effects, no verdict (a calibrated robot, not a diagnosed one)."""
+    fit = calibration.geometric
+    if len(fit.residual_mm) != train.n_poses:
+        raise TolallocError(f"calibrated_model: the calibration was fitted on {len(fit.residual_mm)} poses, the "
+                            f"measurements given hold {train.n_poses}; give the set it was calibrated on.")
+    model = IdentifiedModel(fit.model.robot, fit, (), {}, {}, np.zeros(0, int), {}, np.asarray(fit.t_mm, float),
+                            train=train, unidentifiable=dict(calibration.identifiability.reasons))
+    if covariance:
+        cov, noise = parameter_covariance(fit, train.q)
         model = replace(model, cov=cov, noise_mm=noise)
     return model
