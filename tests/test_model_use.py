@@ -188,6 +188,10 @@ def test_workflow_predict_compensate_and_plots(backlash, tmp_path):
     res = md.compensate(prog)
     assert res.ok and list(res.to_frame().columns[:7]) == ["row", *prog.columns[:6]]
     assert res.save(tmp_path / "c") == [tmp_path / "c" / "compensated.csv"]
+    only = pd.DataFrame(res.compensation.targets_mm, columns=["x_mm", "y_mm", "z_mm"])  # targets without joints
+    only[[f"dir{j}" for j in range(1, 7)]] = d.test.direction[:4]
+    free = md.compensate(only)
+    assert free.ok and free.compensation.error_mm.max() < 1e-6
     assert len(md.plot_where()) >= 3 and res.plot_corrections() is not None
     with pytest.raises(TolallocError, match="frame: expected one of 'base', 'tracker', got 'world'"):
         md.predict(q_deg, dir=d.test.direction, frame="world")

@@ -20,13 +20,20 @@ lower quantile, give the interval ``{0}``). The between-robot covariance of all 
 parameterisations) is the moment estimate ``cov(theta_ML) - mean(v_r)``, projected onto the positive semi-definite
 matrices.
 
-Bad input (:func:`pool_fleet`): fewer than two robots, robots of different models (refused), robots whose
-verdict was ``inconclusive`` or whose fitted parameters differ from the fleet's (left out, each with its reason).
+**One parameter set.** The fleet's identifiable geometric parameters are the set most robots fitted. A robot whose
+poses chose other representatives of the same combinations (column pivoting near a tie) is re-expressed in the
+fleet's set (:func:`in_parameters`: the values that move its target points as its own do, the registration and probe
+offset absorbing what they can, the covariance carried along); one whose poses identify other combinations is left
+out. Effect columns are pooled where every robot fitted them; the others are listed (``FleetPool.unpooled``).
+
+Bad input (:func:`pool_fleet`): fewer than two robots, duplicate names, robots of different models (refused);
+robots whose verdict was ``inconclusive`` or whose poses identify other combinations (left out, each with its
+reason; refused when fewer than two remain).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -37,7 +44,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.diagnose.model_use import IdentifiedModel
 from tolalloc.diagnose.uncertainty import point_jacobian, scaled_pinv
 
-__all__ = ["RobotEstimate", "robot_estimate", "random_effects", "FleetPool", "pool_fleet", "LEVEL"]
+__all__ = ["RobotEstimate", "robot_estimate", "random_effects", "FleetPool", "pool_fleet", "in_parameters", "LEVEL"]
 
 #: Default two-sided confidence level of the intervals.
 LEVEL = 0.95
@@ -224,17 +231,15 @@ def in_parameters(est: RobotEstimate, geometric: tuple) -> RobotEstimate:
     move the target points at its own poses as its own parameters do, the registration and probe offset absorbing
     what they can (least squares), with the covariance carried along; refused (TolallocError) when its parameters
     move the points in a way the other set cannot (another identifiable subspace)."""
-    from dataclasses import replace as _replace
-
     m = est.model
     model_names = list(m.fit.model.names)
     own = [model_names.index(nm) for nm in est.names[:est.n_geometric]]
-    try:
-        other = [model_names.index(nm) for nm in geometric]
-    except ValueError as exc:
-        raise TolallocError(f"{est.name}: {exc}") from None
+    unknown = [nm for nm in geometric if nm not in model_names]
+    if unknown:
+        raise TolallocError(f"{est.name}: {', '.join(unknown[:3])} not among the geometric parameters of its model")
+    other = [model_names.index(nm) for nm in geometric]
     union = sorted(set(own) | set(other))
-    J = point_jacobian(_replace(m.fit, geo_index=np.array(union, int)), m.train.q).reshape(3 * len(m.train.q), -1)
+    J = point_jacobian(replace(m.fit, geo_index=np.array(union, int)), m.train.q).reshape(3 * len(m.train.q), -1)
     col = {k: NUISANCE + i for i, k in enumerate(union)}
     A = J[:, list(range(NUISANCE)) + [col[k] for k in other]]
     B = J[:, [col[k] for k in own]]
@@ -254,7 +259,7 @@ def in_parameters(est: RobotEstimate, geometric: tuple) -> RobotEstimate:
     full[:len(geometric), :g] = Tg
     full[len(geometric):, g:] = np.eye(n_eff)
     cov = full @ est.cov @ full.T
-    return _replace(est, names=tuple(geometric) + est.names[g:],
+    return replace(est, names=tuple(geometric) + est.names[g:],
                     units=tuple(m.fit.model.params[k].unit for k in other) + est.units[g:],
                     values=full @ est.values, cov=0.5 * (cov + cov.T), map_values=full @ est.map_values,
                     n_geometric=len(geometric))

@@ -84,8 +84,9 @@ def read_program(robot, program, argument: str = "program") -> dict:
     """Joint values, optional targets and covariates of a program.
 
     ``program``: a CSV path or DataFrame (a column per joint in deg / mm, optional ``x_mm, y_mm, z_mm`` targets,
-    ``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``), or joint values (P, n) [deg / mm]. Returns
-    ``{"q": (P, n) [rad, mm], "targets_mm": (P, 3) or None, "covariates": {name: (P,)}, "direction": (P, n) or None,
+    ``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``; a table of ``x_mm, y_mm, z_mm`` alone: targets
+    without joint values), or joint values (P, n) [deg / mm]. Returns
+    ``{"q": (P, n) [rad, mm] or None, "targets_mm": (P, 3) or None, "covariates": {name: (P,)}, "direction": (P, n) or None,
     "columns": joint column names or None}``.
     """
     frame = _frame_of(program, argument)
@@ -94,13 +95,18 @@ def read_program(robot, program, argument: str = "program") -> dict:
                 "direction": None, "columns": None}
     if not len(frame):
         raise ArgumentError(argument, "expected at least one row (pose), got none.")
-    q = inputs.joint_values(robot, frame, argument)
     from tolalloc.robot.columns import find_joint_columns
 
-    cols = find_joint_columns(robot, frame.columns, argument)
     xyz = [c for c in ("x_mm", "y_mm", "z_mm") if c in frame.columns]
     if xyz and len(xyz) < 3:
         raise ArgumentError(argument, f"targets need all of x_mm, y_mm, z_mm; got only {', '.join(xyz)}.")
+    try:
+        cols = find_joint_columns(robot, frame.columns, argument)
+    except TolallocError:
+        if len(xyz) < 3 or any(str(c).startswith("q") for c in frame.columns):
+            raise
+        cols = None  # targets only: the seeds come from the nominal robot's inverse kinematics
+    q = None if cols is None else inputs.joint_values(robot, frame, argument)
     targets = np.column_stack([_numeric(frame, c, argument) for c in xyz]) if xyz else None
     cov = {c: _numeric(frame, c, argument) for c in COVARIATES if c in frame.columns}
     dirs = [f"dir{j + 1}" for j in range(robot.n_joints)]
@@ -112,10 +118,10 @@ def read_program(robot, program, argument: str = "program") -> dict:
     return {"q": q, "targets_mm": targets, "covariates": cov, "direction": direction, "columns": cols}
 
 
-def _meas(model, prog: dict):
-    """The model's measurement set of a program's poses and covariates."""
+def _meas(model, prog: dict, q=None):
+    """The model's measurement set of a program's poses (or ``q``) and covariates."""
     c = prog["covariates"]
-    return model.measurements(prog["q"], payload_kg=c.get("payload_kg"), temperature_c=c.get("temperature_c"),
+    return model.measurements(prog["q"] if q is None else q, payload_kg=c.get("payload_kg"), temperature_c=c.get("temperature_c"),
                               time_s=c.get("time_s"), direction=prog["direction"])
 
 
@@ -249,7 +255,9 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
     program : str, path, DataFrame or array
         One row per pose: the program's joint values (deg / mm; the seeds), optional ``x_mm, y_mm, z_mm`` targets
         (default: where the nominal robot puts the target point at those joint values) and the covariates the model's
-        effects read (``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``).
+        effects read (``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``). Targets without joint values
+        are seeded by the nominal robot's inverse kinematics (a position has many joint solutions: give the
+        program's joint values where there are some).
     robot : str, path or Robot, optional
         The nominal robot of an exported model file (default: the built-in robot it names).
     frame : {"base", "tracker"}
@@ -278,7 +286,8 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
                             f"identified.toml, got {inputs.shown(model)}.")
     prog = read_program(ident.robot, program)
     try:
-        comp = compensate(ident, prog["q"], prog["targets_mm"], _meas(ident, prog), frame=frame, tol_mm=tol_mm)
+        q0 = prog["q"] if prog["q"] is not None else np.zeros((len(prog["targets_mm"]), ident.robot.n_joints))
+        comp = compensate(ident, prog["q"], prog["targets_mm"], _meas(ident, prog, q0), frame=frame, tol_mm=tol_mm)
     except TolallocError as exc:
         raise ArgumentError("program", str(exc)) from None
     shown = program if isinstance(program, (str, os.PathLike)) else type(program).__name__
