@@ -8,6 +8,8 @@ DH kinematics, finite differences) to within a few of their standard errors; the
 tolerance columns to rounding.
 """
 
+import contextlib
+import io
 import sys
 from dataclasses import replace
 from pathlib import Path
@@ -19,6 +21,7 @@ from scipy.stats import chi2, t as student_t
 
 import tolalloc
 from tolalloc.allocate.convex import solve_rule
+from tolalloc.cli import main
 from tolalloc.allocate.problem import build_problem
 from tolalloc.diagnose import calibrate, measurements_from_frame
 from tolalloc.diagnose.fleet_map import allocated_sd, combination_map
@@ -137,3 +140,8 @@ def test_map_to_the_tolerance_model_and_the_fleet_job(calibrated_fleet, tmp_path
         tolalloc.fleet([ests[0].model])
     with pytest.raises(TolallocError, match="item 2 is a measurement set: give the robot"):
         tolalloc.fleet([ests[0].model, fl["frames"][1]])
+    fl["frames"][0].to_csv(tmp_path / "one.csv", index=False)
+    with contextlib.redirect_stderr(io.StringIO()) as err:
+        rc = main(["fleet", "ur10", str(tmp_path / "one.csv"), "--out", str(tmp_path / "out")])
+    assert rc == 2 and "a fleet needs at least two robots to estimate a spread; got 1" in err.getvalue()
+    assert not (tmp_path / "out").exists()

@@ -203,7 +203,15 @@ def test_workflow_predict_compensate_and_plots(backlash, tmp_path):
 
 def test_cli_compensate(backlash, tmp_path):
     d, m = backlash
-    MeasurementDiagnosis(d).export_model(tmp_path / "exp")
+    train = pd.DataFrame(ROBOT.q_to_interface(d.train.q), columns=[f"q{j}_deg" for j in range(1, 7)])
+    train[["x_mm", "y_mm", "z_mm"]] = d.train.xyz_mm
+    train[[f"dir{j}" for j in range(1, 7)]] = d.train.direction
+    train.to_csv(tmp_path / "train.csv", index=False)
+    with contextlib.redirect_stdout(io.StringIO()):  # the same diagnosis from the command line, its model exported
+        assert main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--folds", "2", "--export-model",
+                     str(tmp_path / "exp")]) == 0
+    section = tomllib.loads((tmp_path / "exp" / "identified.toml").read_text())["identified"]
+    assert section["nominal_robot"] == "ur10" and section["geometry"]
     q_deg = ROBOT.q_to_interface(d.test.q[:5])
     prog = pd.DataFrame(q_deg, columns=[f"q{j}_deg" for j in range(1, 7)])
     for j in range(6):
