@@ -25,13 +25,17 @@ from tolalloc.allocate.problem import (NOT_CONVERGED, TRACE_RULE_MIN_P, Allocati
                                        block_covariances, make_design)
 from tolalloc.exceptions import interruptible
 
-__all__ = ["solve_certified", "solve_rule"]
+__all__ = ["solve_certified", "solve_rule", "cost_expression"]
 
 
-def _cost_expr(problem: AllocationProblem, u):
-    """Total cost of the allocatable parameters as a DCP expression of ``u`` (grouped by law)."""
+def cost_expression(problem: AllocationProblem, x, variable: str = "u"):
+    """Total cost of the allocatable parameters as a DCP expression of the scaled variances ``x = u`` or of the
+    scaled tolerances ``x = v = sqrt(u) = t / t_ref`` (``variable="v"``), grouped by law: ``b u^-1/2 = b v^-1``,
+    ``b u^-k/2 = b v^-k``, ``b exp(-sqrt(u)) = b exp(-v)`` -- convex in either."""
     import cvxpy as cp
 
+    u = x
+    half = 1.0 if variable == "v" else 0.5  # the exponent of the variable per unit of t / t_ref
     models = [problem.costs.models[k] for k in problem.alloc]
     const = sum(m.a for m in models)
     terms = []
@@ -43,13 +47,13 @@ def _cost_expr(problem: AllocationProblem, u):
         b = np.array([models[i].b for i in idx])
         ui = u[idx] if len(idx) < len(models) else u
         if form == "reciprocal":
-            terms.append(b @ cp.power(ui, -0.5))
+            terms.append(b @ cp.power(ui, -half))
         elif form == "reciprocal_power":
-            terms.append(b @ cp.power(ui, -k / 2.0))
+            terms.append(b @ cp.power(ui, -k * half))
         elif form == "michael_siddall":
-            terms.append(b @ cp.exp(-k / 2.0 * cp.log(ui) - cp.sqrt(ui)))
+            terms.append(b @ cp.exp(-k * half * cp.log(ui) - (ui if variable == "v" else cp.sqrt(ui))))
         else:
-            terms.append(b @ cp.exp(-cp.sqrt(ui)))
+            terms.append(b @ cp.exp(-(ui if variable == "v" else cp.sqrt(ui))))
     return const + cp.sum(cp.hstack(terms)) if len(terms) > 1 else const + terms[0]
 
 
@@ -87,7 +91,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     pose_cons = _pose_constraints(problem, rule, u)
     for kind, c in pose_cons:
         cons += [c] if kind == "vector" else c
-    prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
+    prob = cp.Problem(cp.Minimize(cost_expression(problem, u)), cons)
     # tight tolerances; Clarabel's defaults (1e-8) if they end inaccurate, given explicitly: without them a re-solve
     # keeps the previous call's settings and ends inaccurate again
     for tol in (1e-10, 1e-8):

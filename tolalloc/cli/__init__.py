@@ -20,7 +20,7 @@ import threading
 from tolalloc.exceptions import Interrupted, TolallocError, clear_interrupt, note_interrupt, raise_if_interrupted
 
 #: command modules, in the order shown by --help
-COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan", "review"]
+COMMAND_MODULES = ["robot_cmds", "diagnose", "compensate", "fleet", "mc", "analyze", "allocate", "calplan", "review"]
 
 
 class _UsageError(TolallocError):

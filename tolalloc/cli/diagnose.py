@@ -48,6 +48,9 @@ def register(sub) -> None:
                    "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
                    "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, report.html (one self-contained file), CSV tables and figures into DIR")
+    p.add_argument("--export-model", metavar="DIR", help="write the identified model into DIR: identified.toml (chain "
+                   "layout with an [identified] section of the fitted parameters and effects, what `tolalloc compensate` "
+                   "reads) and identified.urdf")
     p.add_argument("--folds", type=count, default=D.FOLDS, help=f"cross-validation folds (default {D.FOLDS})")
     p.add_argument("--alpha", type=float, default=D.ALPHA,
                    help=f"family-wise significance level (default {D.ALPHA:g})")
@@ -102,7 +105,9 @@ def cmd_diagnose(args) -> int:
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
     check_output(args.report, "--report", directory=True)
-    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
+    check_output(args.export_model, "--export-model", directory=True)
+    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
+                            ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     fit = FitOptions(args.robust_loss, args.target_offset_mm, args.target_offset_sd_mm)
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=test_frame(args), folds=args.folds,
@@ -110,5 +115,7 @@ def cmd_diagnose(args) -> int:
                                 fit=fit, progress=args.progress, **robot_kwargs(args))
     if args.report or args.json or args.predictions:
         res.save(args.report, report=args.report is not None, json=args.json, predictions=args.predictions)
+    if args.export_model is not None:
+        res.export_model(args.export_model)
     print(res.text())
     return 0

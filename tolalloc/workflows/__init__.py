@@ -10,6 +10,8 @@ nonlinear Monte Carlo      :func:`simulate_errors`                     :class:`E
 calibration plan           :func:`plan_calibration`                    :class:`CalibrationPlanDesign`
 sim-to-real diagnosis      :func:`diagnose_measurements`               :class:`MeasurementDiagnosis`
 drawing review             :func:`review_drawing`                      :class:`DrawingReview`
+compensation               :func:`compensate_program`                  :class:`CompensationResult`
+fleet of diagnosed robots  :func:`fleet`                               :class:`FleetAnalysis`
 =========================  ==========================================  ==============================
 
 Every result follows one protocol (:mod:`tolalloc.workflows.base`): ``save(directory, *, report=False, json=None)``
@@ -34,11 +36,14 @@ from tolalloc.workflows.calibrated import CalibratedToleranceAllocation
 from tolalloc.workflows.calplan import CalibrationPlanDesign, plan_calibration
 from tolalloc.workflows.diagnosis import MeasurementDiagnosis, diagnose_measurements
 from tolalloc.workflows.review import DrawingReview, review_drawing
+from tolalloc.workflows.fleet import FleetAnalysis, fleet
+from tolalloc.workflows.model_use import CompensationResult, compensate_program
 from tolalloc.workflows.simulation import ErrorSimulation, simulate_errors
 
 __all__ = ["allocate_tolerances", "ToleranceAllocation", "CalibratedToleranceAllocation", "analyze_errors",
            "ErrorAnalysis", "simulate_errors", "ErrorSimulation", "plan_calibration", "CalibrationPlanDesign",
-           "diagnose_measurements", "MeasurementDiagnosis", "review_drawing", "DrawingReview", "Requirement", "PositionRequirement",
+           "diagnose_measurements", "MeasurementDiagnosis", "review_drawing", "DrawingReview", "fleet", "FleetAnalysis",
+           "compensate_program", "CompensationResult", "Requirement", "PositionRequirement",
            "OrientationRequirement", "ErrorModelOptions", "Costs", "Region", "Solver", "Verification", "MonteCarlo",
            "Measurement", "Refit", "FitOptions"]
 SETTINGS = ["Requirement", "PositionRequirement", "OrientationRequirement", "ErrorModelOptions", "Costs", "Region",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
@@ -244,6 +245,64 @@ class MeasurementDiagnosis(JobResult):
     def ranking_frame(self) -> pd.DataFrame:
         """Candidate effects with their held-out RMS, p-value and gain."""
         return self.diagnosis.ranking_frame()
+
+    @cached_property
+    def _identified(self):
+        from tolalloc.diagnose.model_use import identified_model
+
+        return identified_model(self.diagnosis)
+
+    def identified_model(self):
+        """The final model, ready to evaluate at new poses (:class:`~tolalloc.diagnose.model_use.IdentifiedModel`)."""
+        return self._identified
+
+    def predict(self, q, *, payload_kg=None, temperature_c=None, time_s=None, dir=None,
+                frame: str = "base") -> pd.DataFrame:
+        """The final model's target points at joint values ``q`` [deg / mm] (an array (P, n), or a CSV path /
+        DataFrame with a column per joint and the covariate columns), with the covariates its effects read.
+
+        Returns one row per pose: ``x_mm, y_mm, z_mm`` in ``frame`` (``base``: the robot's base frame; ``tracker``: the
+        training file's measurement frame), ``sigma_mm`` (1-sigma of the 3-D prediction error from the parameter
+        covariance) and ``radius95_mm`` (the radius holding a measured point with 95 % probability)."""
+        from tolalloc.diagnose.model_use import FRAMES
+        from tolalloc.workflows.model_use import predict_frame
+
+        inputs.check_choice(frame, "frame", FRAMES)
+        return predict_frame(self.identified_model(), q, frame=frame, payload_kg=payload_kg,
+                             temperature_c=temperature_c, time_s=time_s, dir=dir)
+
+    def compensate(self, program, *, frame: str = "base", tol_mm: float = 1e-6):
+        """Joint values that put the target point where the nominal robot would (or on the program's ``x_mm, y_mm,
+        z_mm``) under the final model: :func:`~tolalloc.workflows.model_use.compensate_program`."""
+        from tolalloc.workflows.model_use import compensate_program
+
+        return compensate_program(self, program, frame=frame, tol_mm=tol_mm)
+
+    def export_model(self, directory, *, name: str | None = None) -> list:
+        """Write ``identified.toml`` (chain layout: the identified geometry, and the ``[identified]`` section with the
+        fitted parameters and effects) and ``identified.urdf`` into ``directory`` (created; both or neither);
+        the paths written (:mod:`tolalloc.diagnose.model_export`)."""
+        from tolalloc.workflows.model_use import export_files
+
+        directory = self.check_out(directory, "directory", required=True)
+        with output_group() as group:
+            names = export_files(self.identified_model(), group.directory(directory), name)
+        return [directory / nm for nm in names]
+
+    def plot_where(self, ax=None):
+        """Where the geometric model's training residual lies (the strongest features, per axis, per region); draws
+        into ``ax`` (a sequence of Axes, one per panel) or a new figure and returns the Axes (an array)."""
+        from tolalloc.report.plots.diagnose import draw_where, where_figure, where_panels
+
+        where = self.diagnosis.where
+        if ax is None:
+            fig, ax = where_figure(where)
+            fig.suptitle("Residual after geometric calibration: where")
+        axes = np.ravel(np.asarray(ax, dtype=object))
+        if len(axes) < where_panels(where):
+            raise ArgumentError("ax", f"expected at least {where_panels(where)} Axes (one per panel), got {len(axes)}.")
+        draw_where(where, axes)
+        return axes
 
     def summary(self) -> dict:
         """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
