@@ -53,6 +53,10 @@ class Diagnosis:
                                    far out (``stage``, ``row``, ``error_mm``, ``weight``;
                                    :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
+    effect_ref : dict or None      the effect reference the bases were built with (:func:`~.effects.effect_reference`:
+                                   the training file's temperature and time origin, the gear ratios -- given or found
+                                   by the search -- and the chosen variants), so a model rebuilt from the diagnosis
+                                   predicts with the very same columns
     calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of each updated
                                    model (its training data count 1/k in the prior), its floor, the registration
                                    poses set aside as gross errors and the update's robust loss (:mod:`.recalibrate`)
@@ -82,6 +86,7 @@ class Diagnosis:
     outliers: tuple = ()
     settings: dict | None = None
     calibration_update: CalibrationUpdate | None = None
+    effect_ref: dict | None = None
 
     @property
     def scored_index(self) -> np.ndarray:

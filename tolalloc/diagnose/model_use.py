@@ -227,9 +227,12 @@ def identified_model(diagnosis, *, covariance: bool = True) -> IdentifiedModel:
     fit, train, robot = d.final.fit, d.train, d.robot
     effects = tuple(d.final.effects)
     t = d.calibration.geometric.t_mm
-    ref = effect_reference(train, robot.components.gear_ratios([jt.name for jt in robot.joints]), robot)
     variants = _variants(d, effects) if effects else {}
-    ref["variants"] = dict(variants)
+    if getattr(d, "effect_ref", None) is not None:  # the diagnosis's own reference: its searched gear ratios too
+        ref = dict(d.effect_ref, variants=dict(variants))
+    else:
+        ref = effect_reference(train, robot.components.gear_ratios([jt.name for jt in robot.joints]), robot)
+        ref["variants"] = dict(variants)
     columns, names = {}, []
     for e in effects:
         b = effect_basis(e, robot, train, t, ref)

@@ -251,7 +251,8 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                 "register_update_robust_loss": None if update is None else update.robust_loss}
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
-                     check.findings(cal.identifiability.aliases), verdict, _downweighted(train, nominal, geometric, final), settings, update)
+                     check.findings(cal.identifiability.aliases), verdict, _downweighted(train, nominal, geometric, final), settings, update,
+                     ctx.ref)
 
 
 def _downweighted(train, nominal: Evaluation, geometric: Evaluation, final: Evaluation) -> tuple:

@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
-from tolalloc.outputs import json_native
+from tolalloc.outputs import json_native, output_group
 from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
@@ -302,7 +302,7 @@ class MeasurementDiagnosis(JobResult):
         if len(axes) < where_panels(where):
             raise ArgumentError("ax", f"expected at least {where_panels(where)} Axes (one per panel), got {len(axes)}.")
         draw_where(where, axes)
-        return axes
+        return axes[:where_panels(where)]  # the panels drawn (a new figure's spare cells are switched off)
 
     def summary(self) -> dict:
         """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
