@@ -26,7 +26,7 @@ def test_records_round_trip():
 
 
 @pytest.mark.parametrize("make, match", [
-    (lambda: PoseAccuracy(limit_mm=-1), r"PoseAccuracy\.limit_mm: expected a number > 0 \[mm\]"),
+    (lambda: PoseAccuracy(limit_mm=-1), r"PoseAccuracy\.limit_mm: expected a finite number > 0 \[mm\]"),
     (lambda: PoseRepeatability(limit_mm=0.05, share=1.0), r"PoseRepeatability\.share: expected a probability"),
     (lambda: PoseAccuracy(limit_mm=0.5, population="all"), r"PoseAccuracy\.population: expected one of fleet, robot"),
     (lambda: Conditions(load_pct=150), r"Conditions\.load_pct: expected a percentage of the rated value in \[0, 100\]"),

@@ -40,6 +40,7 @@ from typing import ClassVar
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
+from tolalloc.units import check_positive, check_probability
 
 __all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement",
            "PoseAccuracy", "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability",
@@ -56,26 +57,6 @@ DEFAULT_PROB = 0.95
 ESTIMATORS = ("auto", "plain", "paired", "importance")
 #: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
 CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
-
-
-def _positive(value, name: str, unit: str, example: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = float("nan")
-    if isinstance(value, bool) or not np.isfinite(v) or v <= 0:
-        raise ArgumentError(name, f"expected a number > 0 [{unit}] (e.g. {example}), got {value!r}.")
-    return v
-
-
-def _probability(value, name: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = float("nan")
-    if isinstance(value, bool) or not np.isfinite(v) or not 0 < v < 1:
-        raise ArgumentError(name, f"expected a probability strictly between 0 and 1 (e.g. 0.95), got {value!r}.")
-    return v
 
 
 class Requirement:
@@ -153,8 +134,8 @@ class PositionRequirement(Requirement):
     calibration_aware: ClassVar[bool] = True
 
     def check(self) -> None:
-        _positive(self.radius_mm, self._field("radius_mm"), "mm", "0.25")
-        _probability(self.prob, self._field("prob"))
+        check_positive(self.radius_mm, self._field("radius_mm"), "mm", "0.25")
+        check_probability(self.prob, self._field("prob"))
 
     def text(self) -> str:
         return f"P(|dP| < {self.radius_mm:g} mm) >= {self.prob:g}"
@@ -182,9 +163,9 @@ class OrientationRequirement(Requirement):
     kind: ClassVar[str] = "orientation"
 
     def check(self) -> None:
-        _positive(self.radius_deg, self._field("radius_deg"), "deg", "0.02")
+        check_positive(self.radius_deg, self._field("radius_deg"), "deg", "0.02")
         if self.prob is not None:
-            _probability(self.prob, self._field("prob"))
+            check_probability(self.prob, self._field("prob"))
 
     def text(self) -> str:
         p = "p of the position requirement" if self.prob is None else f"{self.prob:g}"
@@ -259,9 +240,9 @@ class IsoRequirement(Requirement):
         return float(np.deg2rad(v)) if self.unit == "deg" else float(v)
 
     def check(self) -> None:
-        _positive(getattr(self, f"limit_{self.unit}"), self._field(f"limit_{self.unit}"), self.unit,
+        check_positive(getattr(self, f"limit_{self.unit}"), self._field(f"limit_{self.unit}"), self.unit,
                   "0.05" if self.unit == "mm" else "0.01")
-        _probability(self.share, self._field("share"))
+        check_probability(self.share, self._field("share"))
         if self.population not in POPULATIONS:
             raise ArgumentError(self._field("population"), f"expected one of {', '.join(POPULATIONS)} (a share of "
                                 f"the built robots, or the robot at hand), got {self.population!r}.")

@@ -61,23 +61,11 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     -------
     AcceptanceAllocation
     """
-    from tolalloc.workflows.allocation_settings import Region, Solver, Verification
-    from tolalloc.workflows.settings import Costs, ErrorModelOptions, as_settings
-
-    reg = region if isinstance(region, Region) else Region(poses=None)
-    region = reg.where if isinstance(region, Region) else region
-    poses = reg.poses
-    cost = as_settings(costs, Costs, "costs", lambda v: Costs(file=v))
-    em = as_settings(error_model, ErrorModelOptions, "error_model")
-    sol = as_settings(solver, Solver, "solver", lambda v: Solver(method=v))
-    verify = verification is not False
-    ver = as_settings(None if verification in (True, False) else verification, Verification, "verification")
+    region, poses, cost, em, sol, verify, seed = _settings(region, costs, error_model, solver, verification)
     costs = cost.file
-    solver, snap, angle_step_deg, seed = sol.method, sol.snap, sol.angle_step_deg, ver.seed
+    solver, snap, angle_step_deg = sol.method, sol.snap, sol.angle_step_deg
     from tolalloc.acceptance import acceptance_test
     from tolalloc.acceptance.layout import AcceptanceTest
-    from tolalloc.acceptance.predict import predict_acceptance
-    from tolalloc.acceptance.simulate import simulate_acceptance
     from tolalloc.acceptance.terms import AcceptanceSpec
     from tolalloc.allocate import allocate, build_problem
     from tolalloc.workflows.allocation import _costs
@@ -113,21 +101,46 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
                             angle_prob=None if ori is None else ori.prob, acceptance=spec)
     res = allocate(problem, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
     times["allocation_s"] = time.perf_counter() - t0
-    pred = sim = None
-    if res.status == "optimal":
-        t0 = time.perf_counter()
-        design_model = problem.model_for(res.built.t)
-        pred = predict_acceptance(lay, iso, design_model, spec_split(split, problem.model))
-        times["prediction_s"] = time.perf_counter() - t0
-        if verify:
-            t0 = time.perf_counter()
-            sim = simulate_acceptance(lay, iso, design_model, spec_split(split, problem.model), n_robots=n_robots,
-                                      seed=seed)
-            times["simulation_s"] = time.perf_counter() - t0
+    pred, sim = _predicted(res, problem, lay, iso, split, verify, n_robots, seed, times)
     record = {"robot": rob.name, "requirements": [r.to_dict() for r in reqs], "requirement_source": source,
               "test": lay.summary(), "solver": solver, "snap": snap, "n_robots": n_robots if verify else None,
               "seed": seed, "costs_source": cost_set.source}
     return AcceptanceAllocation(res, lay, reqs, pred, sim, record, times)
+
+
+def _predicted(res, problem, lay, iso, split, verify: bool, n_robots: int, seed: int, times: dict) -> tuple:
+    """The acceptance test predicted for the design of ``res`` and, with ``verify``, simulated on ``n_robots``
+    robots: ``(prediction, simulation)`` (None where not made); their durations into ``times``."""
+    from tolalloc.acceptance.predict import predict_acceptance
+    from tolalloc.acceptance.simulate import simulate_acceptance
+
+    if res.status != "optimal":
+        return None, None
+    t0 = time.perf_counter()
+    design_model = problem.model_for(res.built.t)
+    pred = predict_acceptance(lay, iso, design_model, spec_split(split, problem.model))
+    times["prediction_s"] = time.perf_counter() - t0
+    if not verify:
+        return pred, None
+    t0 = time.perf_counter()
+    sim = simulate_acceptance(lay, iso, design_model, spec_split(split, problem.model), n_robots=n_robots, seed=seed)
+    times["simulation_s"] = time.perf_counter() - t0
+    return pred, sim
+
+
+def _settings(region, costs, error_model, solver, verification) -> tuple:
+    """The settings objects of :func:`allocate_acceptance` (or their short forms): ``(region, poses, Costs,
+    ErrorModelOptions, Solver, verify, seed)``."""
+    from tolalloc.workflows.allocation_settings import Region, Solver, Verification
+    from tolalloc.workflows.settings import Costs, ErrorModelOptions, as_settings
+
+    poses = region.poses if isinstance(region, Region) else None
+    region = region.where if isinstance(region, Region) else region
+    cost = as_settings(costs, Costs, "costs", lambda v: Costs(file=v))
+    em = as_settings(error_model, ErrorModelOptions, "error_model")
+    sol = as_settings(solver, Solver, "solver", lambda v: Solver(method=v))
+    ver = as_settings(None if verification in (True, False) else verification, Verification, "verification")
+    return region, poses, cost, em, sol, verification is not False, ver.seed
 
 
 def spec_split(split, model):
