@@ -14,6 +14,7 @@ import numpy as np
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.progress import StageBar, show_progress
+from tolalloc.verify.cost import check_allocation_budgets
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
 from tolalloc.workflows.calibrated import PLAN_IN_MEMORY, calibrated_allocation
@@ -126,6 +127,8 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
               correction_rounds, coverage_n, scheduler, inputs_record, bar) -> ToleranceAllocation:
     from tolalloc.allocate import allocate, build_problem
 
+    check_allocation_budgets(model, box is not None, q, n_mc=n_mc if verify else None, estimator=estimator,
+                             coverage_n=coverage_n, rounds=correction_rounds if correction and verify else 0)
     reg_info = None
     if box is not None and _box_is_one_pose(model, box, kw, seed):
         box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]

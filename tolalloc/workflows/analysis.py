@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, check_memory
+from tolalloc.exceptions import ArgumentError
 from tolalloc.outputs import json_native, output_group, write_json
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
@@ -72,8 +72,10 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     inputs.check_one_pose_source(q_deg_mm, poses)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, **options)
-    if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)
-        check_memory(sobol_n, 16.0 * (5 * len(model.params) + 4), "sobol_n", "Sobol' base samples", "4096")
+    if sobol_n:  # its memory (the samples are held) and time, before any work
+        from tolalloc.montecarlo.sobol import check_sobol_budget
+
+        check_sobol_budget(model, sobol_n, argument="sobol_n", announce=True)
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.linear.covariance import budget, linear_map
 

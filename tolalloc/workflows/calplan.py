@@ -109,8 +109,7 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
 
     model = inputs.error_model(rob, sigma_set=sigma_set)
     split = split_from_costs(model, costs)
-    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
-    _check_tool_moves(model, q_eval, rob, ev)
+    ev, q_eval = _eval_poses(model, eval_poses, random_plans if for_allocation else None)
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                     registration=registration, seed=seed)
@@ -123,6 +122,20 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
                                  unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))
+
+
+def _eval_poses(model, eval_poses, random_plans) -> tuple:
+    """``(name, q (P, n))`` of the evaluation poses, where the tool moves with the errors; the count of random plans
+    compared at them (None: no comparison) checked against the time budget before any work (it runs last)."""
+    rob = model.robot
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    _check_tool_moves(model, q_eval, rob, ev)
+    if random_plans is not None:
+        from tolalloc.calibration.design_worst import check_random_plans_budget
+
+        check_random_plans_budget(inputs.check_count(random_plans, "random_plans", example="100"), len(q_eval),
+                                  announce=True)
+    return ev, q_eval
 
 
 def _check_unused(for_allocation: bool, measurement: str, **given) -> None:
