@@ -296,7 +296,10 @@ def _calibration_plan(calibration, robot) -> tuple:
     from tolalloc.calibration.plan import read_plan
 
     if isinstance(calibration, CalibrationPlanDesign):
-        return calibration.plan_for(robot), PLAN_IN_MEMORY
+        try:
+            return calibration.plan_for(robot), PLAN_IN_MEMORY
+        except ArgumentError as exc:  # the plan's robot is the allocation's argument `calibration` here
+            raise ArgumentError("calibration", exc.detail) from None
     return read_plan(calibration, robot), _plan_source(calibration)
 
 

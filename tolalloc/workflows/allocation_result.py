@@ -268,7 +268,10 @@ class ToleranceAllocation(JobResult):
     def plot_budget(self, axes=None, *, title: str | None = None):
         """Tolerance and variance share per parameter at the worst pose; returns the figure."""
         from tolalloc.report.plots.allocate import plot_budget
+        from tolalloc.workflows.checks import check_axes, check_text
 
+        check_axes(axes, "axes", 2)
+        check_text(title, "title", "the figure's title")
         t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.worst_pose + 1}"
              if title is None else title)
         fig = plot_budget(self.to_frame(), None, title=t, axes=axes)
@@ -277,14 +280,18 @@ class ToleranceAllocation(JobResult):
     def plot_pose_probabilities(self, ax=None):
         """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the figure."""
         from tolalloc.report.plots.allocate import plot_pose_probabilities
+        from tolalloc.workflows.checks import check_axes
 
+        check_axes(ax, "ax")
         self._need_verification("plot_pose_probabilities")
         return plot_pose_probabilities(self.verification, None, ax=ax)
 
     def plot_cloud(self, axes=None):
         """Kept Monte Carlo position errors at the worst linear pose, three projections; returns the figure."""
         from tolalloc.report.plots.allocate import plot_cloud
+        from tolalloc.workflows.checks import check_axes
 
+        check_axes(axes, "axes", 3)
         self._need_verification("plot_cloud")
         return plot_cloud(self.verification, None, axes=axes)
 
@@ -292,8 +299,8 @@ class ToleranceAllocation(JobResult):
         from tolalloc.exceptions import TolallocError
 
         if self.verification is None:
-            raise TolallocError(f"{what}: this allocation was not verified (verify=False or no design); run "
-                                "allocate_tolerances(..., verify=True).")
+            raise TolallocError(f"{what}: this allocation was not verified (verify=False or no design); expected a "
+                                "verified allocation: run allocate_tolerances(..., verify=True).")
 
     # ------------------------------------------------------------------ files
     def save(self, out, *, report: bool = False) -> list[str]:

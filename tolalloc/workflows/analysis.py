@@ -141,7 +141,7 @@ class ErrorAnalysis(JobResult):
 
     def budget_frame(self, pose="worst", by: str = "parameter") -> pd.DataFrame:
         """The error budget at a pose (``"worst"`` or a 0-based index), per ``parameter`` or ``kind``."""
-        return self.budget.to_frame(pose=self.budget.worst_pose if pose == "worst" else pose, by=by)
+        return self.budget.to_frame(pose="worst" if isinstance(pose, str) and pose == "worst" else pose, by=by)
 
     def summary(self) -> dict:
         """The content of ``analyze.json``: the worst pose's values at top level, every pose under ``poses``."""
@@ -188,6 +188,7 @@ class ErrorAnalysis(JobResult):
         """Bar chart of the variance shares at a pose; returns the figure."""
         from tolalloc.report.plots.linear import budget_bars
 
+        inputs.check_axes(ax, "ax")
         return budget_bars(self.budget, None, pose=pose, by=by, top=self.top, ax=ax)
 
     def save(self, out=None, *, json=None) -> list[str]:

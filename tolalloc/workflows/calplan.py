@@ -246,9 +246,11 @@ class CalibrationPlanDesign(JobResult):
 
     def plan_for(self, robot):
         """The plan, checked for an allocation on ``robot``: designed for a robot of its name and joints, poses
-        within its limits (``allocate_tolerances(calibration=design)``)."""
+        within its limits (``allocate_tolerances(calibration=design)``); ``robot``: a Robot, a built-in name or a
+        robot file."""
+        robot = inputs.as_robot(robot)
         if self.robot.name != robot.name or self.robot.n_joints != robot.n_joints:
-            raise ArgumentError("calibration", f"the plan was designed for the robot {self.robot.name!r}, but the "
+            raise ArgumentError("robot", f"the plan was designed for the robot {self.robot.name!r}, but the "
                                 f"allocation is for {robot.name!r}; design a plan for this robot "
                                 f"(tolalloc.plan_calibration({robot.name!r}, n_poses)) and give it as calibration.")
         robot.check_q(self.plan.q, "calibration plan poses")
