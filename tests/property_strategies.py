@@ -386,8 +386,10 @@ def some_of(draw, optional=(), **strategies):
 def _no_nan_array(label: str, out, kwargs) -> None:
     arr = np.asarray(out, dtype=float)
     n = kwargs.get("n")
-    empty_asked = label.endswith("random_q") and isinstance(n, (int, np.integer)) and not isinstance(n, bool) \
-        and n == 0
+    q = kwargs.get("q")
+    empty_asked = (label.endswith("random_q") and isinstance(n, (int, np.integer)) and not isinstance(n, bool)
+                   and n == 0) or (label in ("fk_poe", "space_jacobian", "body_jacobian", "poe_prefix")
+                                   and np.size(q) == 0)  # an empty stack of poses: the stack of their answers
     assert arr.size > 0 or empty_asked, f"{label}: an empty answer to {sorted(kwargs)}"
     assert not np.isnan(arr).any(), f"{label}: NaN in the answer"
     if not label.endswith(("q_to_interface", "q_from_interface", "joint_array")):  # they convert open limits (inf)

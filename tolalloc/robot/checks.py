@@ -103,7 +103,7 @@ _MEANING = {"pose set": "the nominal joint values", "region": "the box of the jo
 
 def check_fields(name, chain, description, masses, gravity, named: dict) -> tuple:
     """The plain fields of a robot, before its chain is read: ``(chain, masses, gravity)`` as a tuple of elements, a
-    tuple of :class:`~tolalloc.robot.elements.Mass` and a unit 3-vector (read-only); ``named``: the fields
+    tuple of :class:`~tolalloc.robot.elements.Mass` and a unit 3-vector; ``named``: the fields
     ``pose_sets``, ``regions`` and ``sigma_sets``, each a dict keyed by names (their entries: :func:`check_named_sets`).
     """
     from tolalloc.robot.elements import Mass
@@ -125,23 +125,18 @@ def check_fields(name, chain, description, masses, gravity, named: dict) -> tupl
     norm = float(np.linalg.norm(g))
     if norm == 0:
         raise TolallocError(f"{who}: gravity [0, 0, 0] has no direction; expected e.g. [0, 0, -1].")
-    g = g / norm
-    g.flags.writeable = False
-    return tuple(chain), tuple(masses), g
+    return tuple(chain), tuple(masses), g / norm
 
 
 def check_named_sets(robot) -> None:
     """The pose sets (finite joint values inside the limits, shape (P, n) [rad, mm]), regions (``(q_min, q_max)``,
     one value per joint each, ``q_min <= q_max``) and sigma sets (dicts) of ``robot``; masses carried by joints it
-    has. The pose sets are stored as read-only float arrays."""
+    has. The pose sets are stored as float arrays (P, n)."""
     who, n = f"robot {robot.name!r}", robot.n_joints
     sets = {}
     for key, q in robot.pose_sets.items():
         arr = robot.check_q(q, f"{who}, pose set {key!r}")
-        if np.ndim(arr) != 2:
-            arr = np.atleast_2d(arr)
-        arr.flags.writeable = False
-        sets[key] = arr
+        sets[key] = np.atleast_2d(arr)
     object.__setattr__(robot, "pose_sets", sets)
     for key, box in robot.regions.items():
         try:

@@ -22,7 +22,7 @@ def _name(value, what: str) -> str:
 
 
 def _vector(value, who: str, what: str, *, unit: bool = False) -> np.ndarray:
-    """A finite 3-vector (a copy, read-only); ``unit``: of norm 1 within 1e-6."""
+    """A finite 3-vector (a float copy); ``unit``: of norm 1 within 1e-6."""
     try:
         v = np.array(value, dtype=float)
     except (TypeError, ValueError, OverflowError):
@@ -32,7 +32,6 @@ def _vector(value, who: str, what: str, *, unit: bool = False) -> np.ndarray:
         shown = v.tolist() if v is not None and v.size <= 6 else describe(value)
         raise TolallocError(f"{who}: {what} {shown} is not {kind}; expected e.g. [0, 0, 1]"
                             + (" (norm 1 within 1e-6)." if unit else " [mm]."))
-    v.flags.writeable = False
     return v
 
 

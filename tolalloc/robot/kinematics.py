@@ -49,7 +49,7 @@ def _screws_and_q(screws, q) -> tuple[np.ndarray, np.ndarray]:
     n = S.shape[-2] if S is not None and S.ndim >= 2 else "n"
     shapes = f"q of shape {None if Q is None else Q.shape} and screws of shape {None if S is None else S.shape}"
     if S is None or Q is None or S.ndim < 2 or S.shape[-1] != 6 or Q.ndim == 0 or Q.shape[-1] != S.shape[-2] \
-            or S.size == 0 or Q.size == 0 or not _broadcast(S.shape[:-2], Q.shape[:-1]):
+            or not _broadcast(S.shape[:-2], Q.shape[:-1]):
         raise TolallocError(f"q: expected shape (..., {n}) with joint screws of shape (..., {n}, 6), got {shapes}; one "
                             "joint value per screw, in rad and mm (numbers; the stacks must broadcast)")
     if not (np.all(np.isfinite(S)) and np.all(np.isfinite(Q))):
