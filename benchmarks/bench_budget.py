@@ -13,6 +13,10 @@ default error model), and the table prints
 
 The machine may be shared: the load average is printed, and the probe (timed in the same run) carries the load into
 the estimate.
+
+``--flags`` times instead every count flag of the command line given a count far too large (refused) or large but
+within the budget (started with its estimate: the ``warning:`` line), in a fresh process each: the seconds until the
+refusal or the estimate, and what the command said (the goal: within 5 s, imports included).
 """
 
 from __future__ import annotations
@@ -67,10 +71,84 @@ def runs(quick: bool) -> dict:
     }
 
 
+#: (argv, what the count does): every count flag, too large and (where a count can be) large but within the budget
+FLAGS = [
+    (["mc", "tool_changer", "--n", "1e20"], "refused"), (["mc", "tool_changer", "--n", "1e10"], "estimate"),
+    (["mc", "tool_changer", "--n", "1000", "--jobs", "1e15"], "refused"),
+    (["mc", "tool_changer", "--n", "1000", "--chunk-size", "1e15"], "runs"),
+    (["mc", "tool_changer", "--n", "1000", "--hist-bins", "1000000000000000"], "refused"),
+    (["allocate", "tool_changer", "--n-mc", "1e15"], "refused"),
+    (["allocate", "tool_changer", "--n-mc", "1e9"], "estimate"),
+    (["allocate", "tool_changer", "--coverage-n", "1e15"], "refused"),
+    (["allocate", "tool_changer", "--coverage-n", "1e8", "--no-verify"], "estimate"),
+    (["allocate", "tool_changer", "--correction-rounds", "1000000000"], "refused"),
+    (["analyze", "tool_changer", "--sobol-n", "1000000000000000"], "refused"),
+    (["analyze", "tool_changer", "--sobol-n", "20000000"], "estimate"),
+    (["analyze", "tool_changer", "--top", "1e15"], "runs"),
+    (["calplan", "ur10", "--n-poses", "1e15", "--out", "{tmp}/p.csv"], "refused"),
+    (["calplan", "ur10", "--n-poses", "30", "--n-candidates", "1e15", "--out", "{tmp}/p.csv"], "refused"),
+    (["calplan", "ur10", "--n-poses", "30", "--n-candidates", "150000", "--out", "{tmp}/p.csv"], "estimate"),
+    (["calplan", "tool_changer", "--n-poses", "30", "--for-allocation", "--random-plans", "1e15", "--out",
+      "{tmp}/p.csv"], "refused"),
+    (["calplan", "tool_changer", "--n-poses", "30", "--for-allocation", "--random-plans", "1e7", "--out",
+      "{tmp}/p.csv"], "estimate"),
+    (["diagnose", "tool_changer", "--train", "{tmp}/train.csv", "--folds", "1e15"], "refused"),
+    (["diagnose", "tool_changer", "--train", "{tmp}/train.csv", "--cv-rows", "1e15"], "runs"),
+    (["diagnose", "tool_changer", "--train", "{tmp}/train.csv", "--test", "{tmp}/test.csv", "--test-frame", "refit",
+      "--register-n", "1e15"], "refused"),
+]
+
+
+def time_flags() -> pd.DataFrame:
+    """Seconds from the start of a fresh ``tolalloc`` process to its refusal, its estimate line, or its first
+    second of work (``runs``: the flag needs no budget; stopped after 20 s)."""
+    import subprocess
+    import sys
+    import tempfile
+    from pathlib import Path
+
+    from tolalloc.diagnose import generate
+
+    tmp = Path(tempfile.mkdtemp(prefix="bench_flags_"))
+    frame = generate(tolalloc.load_robot("tool_changer"), "none", 60, np.random.default_rng(0)).frame
+    frame.iloc[:40].to_csv(tmp / "train.csv", index=False)
+    frame.iloc[40:].to_csv(tmp / "test.csv", index=False)
+    rows = []
+    for argv, expect in FLAGS:
+        argv = [a.format(tmp=tmp) for a in argv]
+        t0 = time.perf_counter()
+        proc = subprocess.Popen([sys.executable, "-m", "tolalloc", *argv], stdout=subprocess.DEVNULL,
+                                stderr=subprocess.PIPE, text=True)
+        first = ""
+        for line in proc.stderr:  # the refusal or the estimate is the first line on stderr
+            first = line.strip()
+            break
+        seconds = time.perf_counter() - t0
+        try:
+            proc.wait(timeout=0 if first.startswith("warning:") else 20)
+        except subprocess.TimeoutExpired:
+            pass
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+        said = "refused" if first.startswith("error:") else "estimate" if first.startswith("warning:") else "runs"
+        rows.append({"flags": " ".join(argv[2:]).replace(str(tmp) + "/", ""), "command": argv[0], "expected": expect,
+                     "outcome": said, "seconds": seconds if said != "runs" else float("nan"),
+                     "first_line": first[:110]})
+    return pd.DataFrame(rows)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="smaller runs")
+    ap.add_argument("--flags", action="store_true", help="time the refusal or estimate of every count flag instead")
     args = ap.parse_args()
+    if args.flags:
+        pd.set_option("display.width", 250)
+        pd.set_option("display.max_colwidth", 110)
+        print(time_flags().to_string(index=False, float_format=lambda x: f"{x:.2f}"))
+        print(f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} CPUs")
+        return
     rows = []
     for kind, (fn, sizes, per_count, scale) in runs(args.quick).items():
         fn(sizes[0])  # compiled kernels, caches and thread pools outside the timing

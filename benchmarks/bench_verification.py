@@ -121,7 +121,8 @@ def main():
           f"[bar: demonstrated in <= 60 s: {'met' if b['verdict'] == 'demonstrated' and b['verify_and_correct_s'] <= 60 else 'NOT met'}]")
     if not args.skip_cli:
         c = default_cli_rare()
-        print(f"`tolalloc allocate tool_changer --prob 0.99999` (defaults): {c['verdict']} in {c['wall_s']:.1f} s wall, "
+        print(f"`tolalloc allocate tool_changer --prob 0.99999` (defaults): {c['verdict']} in {c['wall_s']:.1f} s "
+              "wall, "
               f"{c['cpu_s']:.1f} s CPU, exit {c['exit']} [bar: demonstrated in <= 120 s: "
               f"{'met' if c['verdict'] == 'demonstrated' and c['wall_s'] <= 120 else 'NOT met'}]")
     print(f"load average at the end {os.getloadavg()[0]:.2f}")

@@ -78,7 +78,8 @@ def test_the_count_must_be_a_whole_number(fixed_probe):
 
 
 @pytest.mark.parametrize("seconds, text", [(3.14, "3.1 s"), (45, "45 s"), (600, "10 min"), (7200, "2 h"),
-                                           (3 * 86400, "3 days"), (1e9, "32 years"), (1e12, "31,688 years"), (1e14, "3.2e+06 years"),
+                                           (3 * 86400, "3 days"), (1e9, "32 years"), (1e12, "31,688 years"),
+                                           (1e14, "3.2e+06 years"),
                                            (1e20, "3.2e+12 years")])
 def test_durations_read_as_words(seconds, text):
     assert duration_text(seconds) == text
@@ -131,3 +132,25 @@ def test_the_command_line_refuses_by_the_flag(fixed_probe, capsys):
     assert err.startswith("error: --n 1e+20 samples at 1 pose would take about ") and "--n" in err
     assert main(["allocate", "tool_changer", "--coverage-n", "1e15", "--no-verify"]) == 2
     assert capsys.readouterr().err.startswith("error: --coverage-n 1e+15 coverage poses would take about ")
+
+
+def test_a_registration_count_beyond_the_test_file_says_what_fits():
+    from tolalloc.diagnose.register import register_count
+
+    with pytest.raises(TolallocError, match=r"^--register-n 1e\+15 asks for 1,000,000,000,000,000 registration poses, "
+                                            r"but the 20 test poses leave at most \d+ after the \d+ scored ones; "
+                                            r"expected a count from 5 to \d+ or a fraction below 1"):
+        register_count(20, 1e15)
+
+
+def test_the_estimators_refuse_counts_that_cannot_finish(fixed_probe):
+    from tolalloc.errormodel import build_error_model
+    from tolalloc.montecarlo.importance import importance_probability
+    from tolalloc.montecarlo.paired import paired_counts
+
+    model = build_error_model(tolalloc.load_robot("ur10"))
+    q = model.robot.q_nominal
+    with pytest.raises(tolalloc.ArgumentError, match=r"^n 1e\+20 samples at 1 pose would take about [\d,.e+]+ years"):
+        paired_counts(model, q, 10**20, radii_mm=(0.25,))
+    with pytest.raises(tolalloc.ArgumentError, match=r"\(.* s per sample at one pose \(importance sampling\) "):
+        importance_probability(model, q, 10**20, radius_mm=0.25)

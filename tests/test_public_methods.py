@@ -106,7 +106,8 @@ def _robot(**kw):
 CONSTRUCTORS = [
     ("Joint", Joint, some_of(name=st.sampled_from(["j1", ""]) | odd_values(),
                              kind=st.sampled_from(["revolute", "prismatic", "rotary"]) | odd_values(), axis=vectors(),
-                             lower=numbers(), upper=numbers(), nominal=numbers(), optional=("lower", "upper", "nominal"))),
+                             lower=numbers(), upper=numbers(), nominal=numbers(),
+                             optional=("lower", "upper", "nominal"))),
     ("Joint.from_interface", Joint.from_interface,
      some_of(name=st.just("j1"), kind=st.sampled_from(["revolute", "prismatic"]) | odd_values(), axis=vectors(),
              lower_deg_mm=numbers(), upper_deg_mm=numbers(), nominal_deg_mm=numbers(),
@@ -118,7 +119,8 @@ CONSTRUCTORS = [
         name=st.sampled_from(["r", ""]) | odd_values(),
         chain=st.sampled_from([(_joint(),), [_joint(), Link("l", np.ones(3))], (), (Link("l", np.ones(3)),),
                                (_joint(), _joint())]) | odd_values(),
-        tool_offset_mm=vectors(), tool_rotation=st.sampled_from([np.eye(3), -np.eye(3), np.ones((3, 3))]) | odd_values(),
+        tool_offset_mm=vectors(),
+        tool_rotation=st.sampled_from([np.eye(3), -np.eye(3), np.ones((3, 3))]) | odd_values(),
         masses=st.sampled_from([(), (Mass("m", 1, 2.0, np.zeros(3)),), (Mass("m", 5, 2.0, np.zeros(3)),)])
         | odd_values(),
         gravity=vectors(), pose_sets=st.sampled_from([{}, {"working": [[0.5]]}, {"working": [[5.0]]}, {"": [[0.0]]},

@@ -204,7 +204,7 @@ def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise TolallocError(f"{name}: expected numbers, got {value!r}.") from None
+        raise TolallocError(f"{name}: expected numbers, got {describe(value)}.") from None
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == a for s, a in zip(shape, arr.shape))
         if not ok:
@@ -226,10 +226,10 @@ def check_positive(value: Any, name: str, *, allow_zero: bool = False) -> float:
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise TolallocError(f"{name}: expected a number, got {value!r}.") from None
+        raise TolallocError(f"{name}: expected a number, got {describe(value)}.") from None
     if not np.isfinite(x) or x < 0 or (x == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
-        raise TolallocError(f"{name}: expected a finite number {bound}, got {value!r}.")
+        raise TolallocError(f"{name}: expected a finite number {bound}, got {describe(value)}.")
     return x
 
 

@@ -182,6 +182,7 @@ def paired_counts(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_r
     from tolalloc.exceptions import raise_if_interrupted
 
     q = np.atleast_2d(model.robot.check_q(q, "q"))
+    _check_budget(model, len(q), n, "paired", n_jobs)
     spec = _PairSpec(model, q, n, seed, radii_mm, angle_radii_rad, keep_samples)
     n_blocks = -(-int(n) // BLOCK_SIZE)
     tasks = ((b, b + 1) for b in range(n_blocks))
@@ -195,6 +196,19 @@ def paired_counts(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_r
             np.maximum(dev, d, out=dev)
             kept += k
     return PairedCounts(int(n), int(seed), counts, dev, np.concatenate(kept) if kept else None)
+
+
+def _check_budget(model, n_poses: int, n, kind: str, n_jobs) -> None:
+    """Refuse ``n`` samples at ``n_poses`` poses that cannot run within the time budget (:mod:`tolalloc.budget`)."""
+    from tolalloc.budget import chain_scale, check_count
+    from tolalloc.exceptions import whole_number
+
+    count = whole_number(n)
+    if count is None or count < 1:
+        raise TolallocError(f"n: expected a whole number of samples >= 1, got {n!r}.")
+    check_count(count, "n", f"samples at {n_poses} pose{'s' if n_poses != 1 else ''}", {kind: n_poses},
+                scale=chain_scale(len(model.params), model.robot.n_joints), threads=n_jobs or default_jobs(),
+                example="1000000", announce=False)
 
 
 # ----------------------------------------------------------------- estimate

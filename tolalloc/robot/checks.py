@@ -112,8 +112,8 @@ def check_fields(name, chain, description, masses, gravity, named: dict) -> tupl
         raise TolallocError(f"robot name: expected a non-empty string, got {describe(name)}.")
     who = f"robot {name!r}"
     if not isinstance(chain, (tuple, list)) or not chain:
-        raise TolallocError(f"{who}: chain {describe(chain)}; expected a tuple of Link and Joint elements from the base "
-                            "(at least one joint).")
+        raise TolallocError(f"{who}: chain {describe(chain)}; expected a tuple of Link and Joint elements from the "
+                            "base (at least one joint).")
     if not isinstance(description, str):
         raise TolallocError(f"{who}: description: expected a string, got {describe(description)}.")
     for field, value in named.items():  # pose_sets, regions, sigma_sets
@@ -144,8 +144,8 @@ def check_named_sets(robot) -> None:
         except (TypeError, ValueError):
             lo_hi = None
         if lo_hi is None or lo_hi.shape != (2, n) or np.isnan(lo_hi).any() or np.any(lo_hi[0] > lo_hi[1]):
-            raise TolallocError(f"{who}, region {key!r}: {describe(box)}; expected (q_min, q_max) with {n} joint values "
-                                "each [rad, mm], q_min <= q_max.")
+            raise TolallocError(f"{who}, region {key!r}: {describe(box)}; expected (q_min, q_max) with {n} joint "
+                                "values each [rad, mm], q_min <= q_max.")
     for key, entry in robot.sigma_sets.items():
         if not isinstance(entry, dict):
             raise TolallocError(f"{who}, sigma set {key!r}: {describe(entry)}; expected a dict (as a robot file's "

@@ -159,7 +159,10 @@ def fk_poe(screws, home, q) -> np.ndarray:
     T : array, shape (..., 4, 4)
     """
     screws, q = _screws_and_q(screws, q)
-    home = _home(home, np.broadcast_shapes(screws.shape[:-2], q.shape[:-1]))
+    batch = np.broadcast_shapes(screws.shape[:-2], q.shape[:-1])
+    home = _home(home, batch)
+    if screws.shape[-2] == 0:  # a chain without joints: the home pose
+        return np.array(np.broadcast_to(home, np.broadcast_shapes(batch, home.shape[:-2]) + (4, 4)))
     E = exp_se3(screws * q[..., None])
     T = E[..., 0, :, :]
     for j in range(1, E.shape[-3]):
@@ -216,6 +219,8 @@ def space_jacobian(screws, q, *, engine: str | None = None) -> np.ndarray:
     if nb is not None:
         return nb.space_jacobian(screws, q)
     R, p = prefix_lists(screws, q)
+    if screws.shape[-2] == 0:  # a chain without joints: no column
+        return np.zeros(np.broadcast_shapes(screws.shape[:-2], q.shape[:-1]) + (6, 0))
     cols = []
     for j in range(screws.shape[-2]):  # Ad_{P_j} S_j = (R w, R v + p x R w)
         rw = (R[j] @ screws[..., j, :3, None])[..., 0]

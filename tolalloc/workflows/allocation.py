@@ -76,7 +76,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     estimator : {"auto", "plain", "paired", "importance"}
         How the verification estimates ``P(|dP| < r)``: ``paired`` = exact linear P + mean difference of nonlinear and
         linear indicators on shared draws; ``importance`` = that difference by importance sampling (rare events);
-        ``auto`` = paired for Gaussian parameters, else plain, importance where the tail is too thin for ``n_mc``.
+        ``auto`` = paired if Gaussian, else plain; importance for 1 - p <= 0.001, thin tails, undecided poses.
     scheduler : str or dask.distributed.Client, optional
         Where the Monte Carlo runs (threads by default); never changes the numbers.
     tool, trust_units

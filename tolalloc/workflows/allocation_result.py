@@ -315,9 +315,9 @@ class ToleranceAllocation(JobResult):
             raise TolallocError(f"save: nothing to save, {self.infeasible}")
         self.check_out(out, "out", required=True)
         if not isinstance(report, (bool, np.bool_)):
-            from tolalloc.exceptions import ArgumentError
+            from tolalloc.exceptions import ArgumentError, describe
 
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
+            raise ArgumentError("report", f"expected True or False, got {describe(report)}.")
         with atomic_output(out, directory=True) as tmp:
             names = self.write_files(tmp, report=report)
         return names

@@ -353,9 +353,9 @@ class CalibratedToleranceAllocation(JobResult):
                                 f"({self.result.design.message}).")
         self.check_out(out, "out", required=True)
         if not isinstance(report, (bool, np.bool_)):
-            from tolalloc.exceptions import ArgumentError
+            from tolalloc.exceptions import ArgumentError, describe
 
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
+            raise ArgumentError("report", f"expected True or False, got {describe(report)}.")
         with atomic_output(out, directory=True) as tmp:
             names = self.write_files(tmp, report=report)
         return names

@@ -128,7 +128,8 @@ def _eval_poses(model, eval_poses, random_plans) -> tuple:
     """``(name, q (P, n))`` of the evaluation poses, where the tool moves with the errors; the count of random plans
     compared at them (None: no comparison) checked against the time budget before any work (it runs last)."""
     rob = model.robot
-    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob),
+                                      poses_argument="eval_poses")
     _check_tool_moves(model, q_eval, rob, ev)
     if random_plans is not None:
         from tolalloc.calibration.design_worst import check_random_plans_budget

@@ -17,8 +17,8 @@ from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, Un
 from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_axes, check_choice, check_costs_file,  # noqa: F401
                                        check_count, check_flag, check_model_options, check_name, check_names,
                                        check_optional_flag, check_not_both, check_path, check_positive,
-                                       check_probability, check_scheduler, check_seed, check_text, check_values, check_z,
-                                       number, shown)
+                                       check_probability, check_scheduler, check_seed, check_text, check_values,
+                                       check_z, number, shown)
 from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
