@@ -79,6 +79,9 @@ class UnknownArgumentError(ArgumentError, TypeError):
 class InputFileError(TolallocError, FileNotFoundError):
     """An input file that does not exist (a robot file, a measurement or plan file, a trajectory)."""
 
+    def __new__(cls, *args, **kwargs):  # OSError's layout, whoever asks (pickling helpers call cls.__new__ bare)
+        return OSError.__new__(cls, *args)
+
     def __init__(self, message="", *more):
         TolallocError.__init__(self, message, *more)
 

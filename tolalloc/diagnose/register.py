@@ -105,7 +105,7 @@ def register_count(n_test: int, register_n: float) -> int:
     if register_n >= 1 and n != register_n:
         raise TolallocError(f"--register-n: a count must be a whole number, got {register_n!r}; "
                             "use a value below 1 for a fraction.")
-    if n_test - n < MIN_SCORED and n >= MIN_REGISTER:  # more registration poses than the test file can give
+    if n > n_test:  # more registration poses than the test file has
         raise TolallocError(f"--register-n {register_n:g} asks for {n:,} registration poses, but the {n_test} test "
                             f"poses leave at most {max(0, n_test - MIN_SCORED)} after the {MIN_SCORED} scored ones; expected "
                             f"a count from {MIN_REGISTER} to {max(MIN_REGISTER, n_test - MIN_SCORED)} or a fraction "
