@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -507,3 +508,113 @@ def test_error_classes_carry_their_argument():
     missing = tolalloc.InputFileError("robot 'x.toml': no such file.")
     assert isinstance(missing, FileNotFoundError) and str(missing) == "robot 'x.toml': no such file."
     check_refusal(exc, {"radius_mm": -1})
+
+
+# ------------------------------------------------------------------------------------------------ every result method
+def _axes(count):
+    """Matplotlib axes to draw into: the right number, too few, or not axes at all."""
+    import matplotlib.pyplot as plt
+
+    def make(k):
+        fig, ax = plt.subplots(1, k)
+        return ax if k == 1 else list(ax)
+
+    return st.sampled_from([count, 1, 2, 3, 4]).map(make) | st.sampled_from([None, 0, "ax", [None, None]])
+
+
+def _out_paths():
+    return st.sampled_from(["dir", "dir/sub", "afile", "afile/sub", "file.json", "", "/", "a\x00b", None, 5,
+                            Path("x")])
+
+
+def result_calls(which: str) -> list:
+    """(method name, keyword arguments strategy) of every public method of an earlier result ``which``."""
+    from property_strategies import some_of
+
+    pose = st.sampled_from(["worst", 0, 1, -1, 99, 1.5, -np.inf, np.nan, np.inf, "x", None, [0, 1], np.array([0]),
+                            10**30, True]) | odd_values()
+    by = st.sampled_from(["parameter", "kind", "x", 3, None])
+    common = [("to_frame", st.just({})), ("summary", st.just({})), ("text", st.just({})),
+              ("_repr_html_", st.just({})), ("__repr__", st.just({}))]
+    return common + {
+        "analysis": [("budget_frame", some_of(pose=pose, by=by, optional=("pose", "by"))),
+                     ("plot_budget", some_of(ax=_axes(1), pose=pose, by=by, optional=("ax", "pose", "by"))),
+                     ("save", some_of(out=_out_paths(), json=_out_paths(), optional=("out", "json")))],
+        "allocation": [("verification_frame", st.just({})),
+                       ("plot_budget", some_of(axes=_axes(2), title=st.sampled_from(["t", None, 3, b"x"]),
+                                               optional=("axes", "title"))),
+                       ("plot_pose_probabilities", some_of(ax=_axes(1), optional=("ax",))),
+                       ("plot_cloud", some_of(axes=_axes(3), optional=("axes",))),
+                       ("save", some_of(out=_out_paths(), report=st.booleans() | odd_values(), optional=("report",)))],
+        "simulation": [("probability_frame", st.just({})), ("plot_scatter", st.just({})),
+                       ("save", some_of(out=_out_paths(), json=_out_paths(), optional=("out", "json")))],
+        "plan": [("plan_for", some_of(robot=st.sampled_from(["ur10", "tool_changer", "nope"]) | st.builds(two_link)
+                                      | odd_values())),
+                 ("save", some_of(path=_out_paths()))],
+        "calibrated": [("verification_frame", st.just({})),
+                       ("save", some_of(out=_out_paths(), report=st.booleans() | odd_values(), optional=("report",)))],
+        "diagnosis": [("ranking_frame", st.just({})), ("predictions_frame", st.just({})),
+                      ("save", some_of(report=_out_paths(), json=_out_paths(), predictions=_out_paths(),
+                                       optional=("report", "json", "predictions")))],
+    }[which]
+
+
+def _overlapping(kwargs: dict) -> bool:
+    """Two output paths of a save() call that are the same or one inside the other."""
+    paths = [Path(v).resolve() for v in kwargs.values() if isinstance(v, (str, Path)) and str(v) not in ("", "a\x00b")]
+    return any(a == b or a in b.parents for i, a in enumerate(paths) for b in paths[i + 1:]) or \
+        any(b in a.parents for i, a in enumerate(paths) for b in paths[i + 1:])
+
+
+@pytest.mark.xfail(strict=True, reason="issue 46, output staging (another change): outputs of one save() that "
+                                       "overlap are refused only after part of them was published")
+def test_a_save_whose_outputs_overlap_leaves_nothing(tmp_path):
+    res = earlier_results()["analysis"]
+    with pytest.raises(tolalloc.TolallocError):
+        res.save(tmp_path / "dir", json=tmp_path / "dir")
+    assert list(tmp_path.iterdir()) == []
+
+
+def _in_scratch(kwargs: dict, work: Path) -> dict:
+    """Relative output paths of a save() call placed in the scratch folder ``work``."""
+    return {k: work / v if isinstance(v, (str, Path)) and str(v) not in ("", "/", "a\x00b") and k in
+            ("out", "json", "path", "report", "predictions") else v for k, v in kwargs.items()}
+
+
+@settings(max_examples=examples(40, deep=2500), **SETTINGS)
+@given(which=st.sampled_from(["analysis", "allocation", "simulation", "plan", "calibrated", "diagnosis"]),
+       data=st.data())
+def test_every_result_method_answers_or_refuses(which, data):
+    """Any arguments to any public method of a result: a finite answer, a figure, files written whole, or a refusal
+    by name that leaves no file behind."""
+    import json
+
+    import matplotlib.pyplot as plt
+    from property_strategies import _json_default, check_method_output, finite_json
+
+    res = earlier_results()[which]
+    name, kwargs = data.draw(st.sampled_from(result_calls(which)).flatmap(lambda t: st.tuples(st.just(t[0]), t[1])))
+    work = Path(tempfile.mkdtemp(dir=SCRATCH))
+    (work / "afile").write_text("keep\n")
+    kwargs = _in_scratch(kwargs, work) if name == "save" else kwargs
+    before = listing(work)
+    try:
+        out = outcome(getattr(res, name), kwargs, label=f"{type(res).__name__}.{name}")
+    finally:
+        plt.close("all")
+    if name == "save":
+        if out is None and _overlapping(kwargs):  # a known fault of the output staging (see its reproducer below)
+            from property_strategies import count
+
+            count("known_faults", f"{type(res).__name__}.save overlapping outputs")
+            return
+        assert (out is None) == (listing(work) == before) or not any(v is not None for v in kwargs.values())
+    elif name == "summary" and out is not None:
+        json.dumps(out, default=_json_default, allow_nan=False)
+        finite_json(out)
+    elif name.startswith("plot_") and out is not None:
+        from matplotlib.figure import Figure
+
+        assert isinstance(out, Figure)
+    elif name not in ("verification_frame", "to_frame", "predictions_frame"):  # their NaN cells mean 'none'
+        check_method_output(name, out, kwargs)

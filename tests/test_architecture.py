@@ -13,7 +13,7 @@ PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
 ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "acceptance", "allocate",
          "montecarlo", "verify", "report", "workflows", "cli"]
-FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress"}
+FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress", "budget"}
 
 
 def module_name(path: Path) -> str:

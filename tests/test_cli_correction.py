@@ -88,8 +88,9 @@ def test_correction_round_limit_is_said(tmp_path, capsys):
     s = json.loads((out / "summary.json").read_text())
     corr = s["correction"]
     assert corr["rounds"] == 0 and corr["stopped"]
-    assert corr["reason"].startswith("round limit (0) reached; still short: position: lower 95% bound below p = 0.95 "
-                                     "at 1 pose(s), by up to ")
+    # one pose with its possible second look (importance sampling under auto): 2 intervals, simultaneous
+    assert corr["reason"].startswith("round limit (0) reached; still short: position: lower simultaneous 95% bound "
+                                     "below p = 0.95 at 1 pose(s), by up to ")
     assert corr["verdict"] == corr["verdict_before"] == "consistent" and corr["premium_pct"] == 0
     assert "stopped, not demonstrated: round limit (0) reached" in text and "verdict per pose: 1 consistent" in text
     assert (out / "tolerances.md").read_text().splitlines()[0].startswith("design: standard grades") and rc == 0

@@ -18,7 +18,8 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _start(argv, cwd):
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    # runs that would go on for days: no time budget refuses them, and no estimate is announced before they start
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "TOLALLOC_TIME_BUDGET_S": "inf", "TOLALLOC_ANNOUNCE_S": "inf"}
     return subprocess.Popen([sys.executable, "-m", "tolalloc", *argv], cwd=cwd, env=env, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
 
@@ -130,6 +131,8 @@ def test_mc_tasks_are_generated_lazily(monkeypatch):
         raise KeyboardInterrupt  # stop at once: the caller must not have built the task list
 
     monkeypatch.setattr(run_mod, "ordered_map", fake_map)
+    monkeypatch.setenv("TOLALLOC_TIME_BUDGET_S", "inf")  # a run that would never end: not refused here
+    monkeypatch.setenv("TOLALLOC_ANNOUNCE_S", "inf")
     model = build_error_model(load_robot("tool_changer"))
     t0 = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):

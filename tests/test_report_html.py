@@ -228,9 +228,10 @@ def test_allocation_report_names_one_design_one_worst_pose(allocation):
     assert cards["lowest linear P"]["note"].startswith(f"pose {s['worst_pose']},")
     assert s["worst_pose"] == job.worst_pose + 1 == int(np.argmin(job.design.p_linear["position"])) + 1
     assert f"(pose {job.worst_pose + 1})" in ctx["figures"][0]["caption"]
-    # the pose table's legend names the interval of the estimator that ran (paired here: Tango's, not Wilson's)
-    assert set(job.verification.estimator) == {"paired"}
-    assert "Tango's score interval of the paired difference" in ctx["pose_table"]["note"]
+    # the pose table's legend names the interval of the estimator that ran: the nominal pose sits on p, so its paired
+    # interval straddled p and the second look was importance sampling (Tango's interval, not Wilson's)
+    assert set(job.verification.estimator) == {"importance"} and job.verification.second_looks == 1
+    assert "importance sampling: Tango's score interval of the weighted discordant counts" in ctx["pose_table"]["note"]
     assert "Wilson" not in ctx["pose_table"]["note"]
 
 

@@ -68,7 +68,8 @@ def register(sub) -> None:
                    help="how P(|dP| < r) is estimated in the verification: paired = the exact linear P plus the mean "
                    "difference of nonlinear and linear indicators on shared draws; importance = that difference by "
                    "importance sampling (rare events); auto (default) = paired where the parameters are Gaussian, "
-                   "plain Monte Carlo otherwise, importance sampling where the tail is too thin for --n-mc; "
+                   "plain Monte Carlo otherwise, importance sampling for a rare tail (1 - p <= 0.001), where the "
+                   "tail is too thin for --n-mc, and as the second look at a pose whose interval straddles p; "
                    "with --calibration auto, plain or paired")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--no-correction", action="store_true",

@@ -41,7 +41,7 @@ from tolalloc.montecarlo.radii import RadiusTable
 from tolalloc.units import unit_columns
 
 __all__ = ["BLOCK_SIZE", "SUB_BLOCK", "FastChain", "pose_errors", "McResult", "run_mc", "proportion_ci",
-           "sample_values", "generic_pose_errors", "McHistogram"]
+           "sample_values", "generic_pose_errors", "McHistogram", "sample_work", "check_samples_budget"]
 
 #: Runs of at least this many samples show a progress bar when stderr is a terminal.
 PROGRESS_MIN_N = 10**7
@@ -284,6 +284,7 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     q, n, radii, aradii = _checked_args(model, q, n, radii_mm, angle_radii_rad, ci)
     scheduler = check_scheduler(scheduler)
     _check_estimator_arg(estimator)
+    check_samples_budget(model, len(q), n, estimator if (radii or aradii) else None, n_jobs)
     hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
     spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
     tasks = _tasks(n, scheduler, chunk_size)
@@ -320,6 +321,31 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     from dataclasses import replace
 
     return replace(res, **_estimates(model, q, n, int(seed), radii, aradii, estimator, scheduler, n_jobs))
+
+
+def sample_work(model: ErrorModel, n_poses: int, estimator: str | None = None) -> tuple:
+    """``(kinds, scale)`` of one sampled robot of :func:`run_mc` at ``n_poses`` poses for :mod:`tolalloc.budget`:
+    the plain pass, plus the paired pass over the same draws and the importance-sampling draws of ``estimator``."""
+    from tolalloc.budget import chain_scale
+
+    kinds = {"mc": n_poses}
+    if estimator is not None:
+        kinds["paired"] = n_poses
+    if estimator == "importance":
+        kinds["importance"] = n_poses
+    return kinds, chain_scale(len(model.params), model.robot.n_joints)
+
+
+def check_samples_budget(model: ErrorModel, n_poses: int, n: int, estimator: str | None = None,
+                         n_jobs: int | None = None, *, argument: str = "n", announce: bool = True):
+    """Refuse ``n`` samples at ``n_poses`` poses that cannot finish within the time budget, announce a long run
+    (:func:`tolalloc.budget.check_count`); returns the estimate."""
+    from tolalloc.budget import check_count
+
+    kinds, scale = sample_work(model, n_poses, estimator)
+    what = f"samples at {n_poses} pose{'s' if n_poses != 1 else ''}"
+    return check_count(n, argument, what, kinds, scale=scale, threads=n_jobs or default_jobs(), example="1000000",
+                       announce=announce)
 
 
 def _check_estimator_arg(estimator) -> None:

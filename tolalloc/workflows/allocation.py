@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.progress import StageBar, show_progress
+from tolalloc.verify.cost import check_allocation_budgets
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
 from tolalloc.workflows.allocation_settings import allocation_settings
@@ -81,7 +82,7 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
     >>> import tolalloc
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.verdict, round(res.cost, 2)
-    ('demonstrated', 44.52)
+    ('demonstrated', 44.26)
     """
     s = allocation_settings(requirement, radius_mm=radius_mm, prob=prob, region=region, costs=costs,
                             error_model=error_model, solver=solver, verification=verification, n_mc=n_mc,
@@ -109,6 +110,8 @@ def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify,
               correction_rounds, coverage_n, scheduler, inputs_record, bar) -> ToleranceAllocation:
     from tolalloc.allocate import allocate, build_problem
 
+    check_allocation_budgets(model, box is not None, q, n_mc=n_mc if verify else None, estimator=estimator,
+                             coverage_n=coverage_n, rounds=correction_rounds if correction and verify else 0)
     reg_info = None
     if box is not None and _box_is_one_pose(model, box, kw, seed):
         box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]
@@ -275,5 +278,8 @@ def _calibration_plan(calibration, robot) -> tuple:
     from tolalloc.calibration.plan import read_plan
 
     if isinstance(calibration, CalibrationPlanDesign):
-        return calibration.plan_for(robot), PLAN_IN_MEMORY
+        try:
+            return calibration.plan_for(robot), PLAN_IN_MEMORY
+        except ArgumentError as exc:  # the plan's robot is the allocation's argument `calibration` here
+            raise ArgumentError("calibration", exc.detail) from None
     return read_plan(calibration, robot), _plan_source(calibration)

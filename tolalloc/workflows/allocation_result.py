@@ -314,8 +314,11 @@ class ToleranceAllocation(JobResult):
         """Tolerance and variance share per parameter at the worst pose, side by side; draws into ``ax`` (a pair of
         Axes) or a new figure and returns the pair."""
         from tolalloc.report.plots.allocate import plot_budget
+        from tolalloc.workflows.checks import check_axes, check_text
 
         ax = _old_axes("plot_budget", ax, axes)
+        check_axes(ax, "ax", 2)
+        check_text(title, "title", "the figure's title")
         t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.worst_pose + 1}"
              if title is None else title)
         fig = plot_budget(self.to_frame(), None, title=t, axes=ax)
@@ -324,7 +327,9 @@ class ToleranceAllocation(JobResult):
     def plot_pose_probabilities(self, ax=None):
         """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the Axes."""
         from tolalloc.report.plots.allocate import plot_pose_probabilities
+        from tolalloc.workflows.checks import check_axes
 
+        check_axes(ax, "ax")
         self._need_verification("plot_pose_probabilities")
         fig = plot_pose_probabilities(self.verification, None, ax=ax)
         return axes_of(fig) if ax is None else ax
@@ -333,8 +338,10 @@ class ToleranceAllocation(JobResult):
         """Kept Monte Carlo position errors at the worst linear pose, three projections; draws into ``ax`` (three
         Axes) or a new figure and returns the three."""
         from tolalloc.report.plots.allocate import plot_cloud
+        from tolalloc.workflows.checks import check_axes
 
         ax = _old_axes("plot_cloud", ax, axes)
+        check_axes(ax, "ax", 3)
         self._need_verification("plot_cloud")
         fig = plot_cloud(self.verification, None, axes=ax)
         return axes_of(fig) if ax is None else axes_of(list(ax))

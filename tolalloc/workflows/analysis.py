@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, check_memory
+from tolalloc.exceptions import ArgumentError
 from tolalloc.outputs import json_native, write_json
 from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
@@ -71,8 +71,10 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     inputs.check_one_pose_source(q_deg_mm, poses)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     model = inputs.error_model(rob, **model_options.keywords())
-    if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)
-        check_memory(sobol_n, 16.0 * (5 * len(model.params) + 4), "sobol_n", "Sobol' base samples", "4096")
+    if sobol_n:  # its memory (the samples are held) and time, before any work
+        from tolalloc.montecarlo.sobol import check_sobol_budget
+
+        check_sobol_budget(model, sobol_n, argument="sobol_n", announce=True)
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.linear.covariance import budget, linear_map
 
@@ -138,7 +140,7 @@ class ErrorAnalysis(JobResult):
 
     def budget_frame(self, pose="worst", by: str = "parameter") -> pd.DataFrame:
         """The error budget at a pose (``"worst"`` or a 0-based index), per ``parameter`` or ``kind``."""
-        return self.budget.to_frame(pose=self.budget.worst_pose if pose == "worst" else pose, by=by)
+        return self.budget.to_frame(pose="worst" if isinstance(pose, str) and pose == "worst" else pose, by=by)
 
     def summary(self) -> dict:
         """The content of ``analyze.json``: the worst pose's values at top level, every pose under ``poses``."""
@@ -186,6 +188,7 @@ class ErrorAnalysis(JobResult):
         from tolalloc.report.plots.linear import budget_bars
         from tolalloc.workflows.base import axes_of
 
+        inputs.check_axes(ax, "ax")
         fig = budget_bars(self.budget, None, pose=pose, by=by, top=self.top, ax=ax)
         return axes_of(fig) if ax is None else ax
 

@@ -60,8 +60,11 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
     worst poses; ``estimator`` auto, plain or paired) when ``verify`` and the plan measures positions."""
     from tolalloc.allocate import build_problem
     from tolalloc.allocate.calibrated_design import allocate_with_calibration
+    from tolalloc.verify.cost import check_allocation_budgets
     from tolalloc.workflows.inputs import default_pose_set, resolve_poses
 
+    check_allocation_budgets(model, box is not None, q, n_mc=None, estimator=estimator, coverage_n=coverage_n,
+                             rounds=1 if snap else 0)  # coverage of the continuous and the standard design
     if box is not None:  # the initial active set: the robot's pose set (the poses inside the box are kept)
         q = resolve_poses(model.robot, None, default_pose_set(model.robot))[1]
     problem = build_problem(model, q, **kw)

@@ -121,8 +121,7 @@ def _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, targe
 
     model = inputs.error_model(rob, sigma_set=options.sigma_set)
     split = split_from_costs(model, cost.file)
-    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
-    _check_tool_moves(model, q_eval, rob, ev)
+    ev, q_eval = _eval_poses(model, eval_poses, random_plans if target is not None else None)
     bar.stage(f"{n_cand} candidate poses")
     cand = candidate_poses(rob, n_cand, region, seed=seed)
     bar.stage(f"A-optimal {n_poses}-pose plan")
@@ -137,6 +136,21 @@ def _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, targe
     unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
                                  unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))
+
+
+def _eval_poses(model, eval_poses, random_plans) -> tuple:
+    """``(name, q (P, n))`` of the evaluation poses, where the tool moves with the errors; the count of random plans
+    compared at them (None: no comparison) checked against the time budget before any work (it runs last)."""
+    rob = model.robot
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob),
+                                      poses_argument="eval_poses")
+    _check_tool_moves(model, q_eval, rob, ev)
+    if random_plans is not None:
+        from tolalloc.calibration.design_worst import check_random_plans_budget
+
+        check_random_plans_budget(inputs.check_count(random_plans, "random_plans", example="100"), len(q_eval),
+                                  announce=True)
+    return ev, q_eval
 
 
 def _target(for_allocation, random_plans, meas, cost, options):
@@ -251,9 +265,11 @@ class CalibrationPlanDesign(JobResult):
 
     def plan_for(self, robot):
         """The plan, checked for an allocation on ``robot``: designed for a robot of its name and joints, poses
-        within its limits (``allocate_tolerances(calibration=design)``)."""
+        within its limits (``allocate_tolerances(calibration=design)``); ``robot``: a Robot, a built-in name or a
+        robot file."""
+        robot = inputs.as_robot(robot)
         if self.robot.name != robot.name or self.robot.n_joints != robot.n_joints:
-            raise ArgumentError("calibration", f"the plan was designed for the robot {self.robot.name!r}, but the "
+            raise ArgumentError("robot", f"the plan was designed for the robot {self.robot.name!r}, but the "
                                 f"allocation is for {robot.name!r}; design a plan for this robot "
                                 f"(tolalloc.plan_calibration({robot.name!r}, n_poses)) and give it as calibration.")
         robot.check_q(self.plan.q, "calibration plan poses")

@@ -19,7 +19,8 @@ from tolalloc.exceptions import ArgumentError, TolallocError, describe, known_na
 
 __all__ = ["shown", "check_values", "check_probability", "RANGES", "check_positive", "check_count", "check_seed",
            "check_choice", "check_flag", "check_optional_flag", "check_name", "check_names", "check_path", "Z_RANGE",
-           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "check_not_both", "number"]
+           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "check_not_both", "number",
+           "check_axes", "check_text"]
 
 
 def shown(value, limit: int = 60) -> str:
@@ -175,3 +176,26 @@ def check_model_options(*, sigma_set=None, link_mode="consistent", deflection_mo
     if sigma is not None and not isinstance(sigma, dict):
         raise ArgumentError("sigma", f"expected a dict {{parameter or kind: sigma in mm or deg}}, got {shown(sigma)}.")
     return check_names(exclude, "exclude", "parameters or kinds to leave out")
+
+
+def check_axes(value, argument: str, count: int = 1):
+    """``None`` (a new figure) or where a plot draws: a matplotlib ``Axes`` (``count`` 1) or a sequence of ``count``
+    of them (a figure's ``axes`` array); returns it unchanged."""
+    if value is None:
+        return None
+    from matplotlib.axes import Axes
+
+    items = [value] if count == 1 else (list(np.ravel(np.asarray(value, dtype=object)))
+                                        if isinstance(value, (list, tuple, np.ndarray)) else None)
+    if items is None or len(items) != count or not all(isinstance(a, Axes) for a in items):
+        want = "a matplotlib Axes (e.g. fig, ax = plt.subplots())" if count == 1 else \
+            f"{count} matplotlib Axes side by side (e.g. fig, axes = plt.subplots(1, {count}))"
+        raise ArgumentError(argument, f"expected None (a new figure) or {want}, got {shown(value)}.")
+    return value
+
+
+def check_text(value, argument: str, what: str) -> str | None:
+    """``None`` or a string (a title, a label)."""
+    if value is not None and not isinstance(value, str):
+        raise ArgumentError(argument, f"expected {what} as a string (or None), got {shown(value)}.")
+    return value

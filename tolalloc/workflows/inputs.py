@@ -14,10 +14,11 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, UnknownArgumentError, known_names
-from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_costs_file, check_count, check_flag,  # noqa: F401
-                                       check_model_options, check_name, check_names, check_optional_flag,
-                                       check_not_both, check_path, check_positive, check_probability, check_scheduler,
-                                       check_seed, check_values, check_z, number, shown)
+from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_axes, check_choice, check_costs_file,  # noqa: F401
+                                       check_count, check_flag, check_model_options, check_name, check_names,
+                                       check_optional_flag, check_not_both, check_path, check_positive,
+                                       check_probability, check_scheduler, check_seed, check_text, check_values,
+                                       check_z, number, shown)
 from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
@@ -29,7 +30,7 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
            "default_pose_set", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
            "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path", "check_positive",
            "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number", "shown",
-           "RANGES", "Z_RANGE"]
+           "check_axes", "check_text", "RANGES", "Z_RANGE"]
 
 
 def job_entry(fn):
