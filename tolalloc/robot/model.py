@@ -95,8 +95,11 @@ class Robot:
     def __post_init__(self, trust_units: bool = False):
         chain, masses, gravity = check_fields(self.name, self.chain, self.description, self.masses, self.gravity,
                                               {f: getattr(self, f) for f in ("pose_sets", "regions", "sigma_sets")})
-        for field, value in (("chain", chain), ("masses", masses), ("gravity", gravity)):
-            object.__setattr__(self, field, value)
+        for name, value in (("chain", chain), ("masses", masses), ("gravity", gravity)):
+            object.__setattr__(self, name, value)
+        if not isinstance(self.components, Components):
+            raise TolallocError(f"robot {self.name!r}: components expected a tolalloc.robot.components.Components "
+                                f"(the robot file's [components] section), got {describe(self.components)}.")
         joints = tuple(e for e in self.chain if isinstance(e, Joint))
         links = tuple(e for e in self.chain if isinstance(e, Link))
         if not joints:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from tolalloc.exceptions import ArgumentError
 from tolalloc.progress import StageBar, show_progress
 from tolalloc.verify.cost import check_allocation_budgets
 from tolalloc.workflows import inputs
