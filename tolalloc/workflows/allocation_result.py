@@ -350,8 +350,8 @@ class ToleranceAllocation(JobResult):
         from tolalloc.exceptions import TolallocError
 
         if self.verification is None:
-            raise TolallocError(f"{what}: this allocation was not verified (verification=False or no design); run "
-                                "allocate_tolerances(...) with its verification on.")
+            raise TolallocError(f"{what}: this allocation was not verified (verification=False or no design); expected "
+                                "a verified allocation: run allocate_tolerances(...) with its verification on.")
 
     # ------------------------------------------------------------------ files
     has_report = True
