@@ -1,5 +1,6 @@
-"""The package's imports run one way: foundation -> robot -> errormodel -> linear -> diagnose -> allocate
--> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
+"""The package's imports run one way: foundation -> robot -> errormodel -> linear -> diagnose -> calibration ->
+allocate -> montecarlo -> verify -> report -> workflows -> cli. Walks every module's imports (top-level and inside
+functions)."""
 
 import ast
 from functools import cache

@@ -23,7 +23,7 @@ from tolalloc.diagnose.register import registration_split, split_from_rows
 from tolalloc.diagnose.synth import split_frame
 from tolalloc.exceptions import TolallocError
 from tolalloc.workflows import diagnose_measurements
-from tolalloc.workflows.html_command import diagnosis_command, row_ranges_text
+from tolalloc.report.html_command import diagnosis_command, row_ranges_text
 
 
 @pytest.fixture(scope="module")

@@ -17,7 +17,7 @@ import tolalloc
 import tolalloc.workflows
 from tolalloc.cli import build_parser
 from tolalloc.workflows import allocate_tolerances
-from tolalloc.workflows.html_command import allocation_command
+from tolalloc.report.html_command import allocation_command
 
 PARAMS = inspect.signature(allocate_tolerances).parameters
 

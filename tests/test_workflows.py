@@ -175,7 +175,7 @@ def test_results_have_a_compact_repr_a_table_and_html():
 
 
 def test_a_certified_verification_says_its_second_looks_are_counted_everywhere():
-    from tolalloc.workflows.html import verdict_legend
+    from tolalloc.report.html_allocation import verdict_legend
 
     res = tolalloc.allocate_tolerances("tool_changer", region="nominal", solver="certified", n_mc=2000)
     v = res.summary()["verification"]

@@ -333,7 +333,7 @@ class ToleranceAllocation(JobResult):
                 _save_figure(self.plot_cloud(), folder / "error_cloud.png")
                 names.append("error_cloud.png")
         if report:
-            from tolalloc.workflows.html import write_allocation_report
+            from tolalloc.report.html_allocation import write_allocation_report
 
             write_allocation_report(self, folder)
             names.append("report.html")

@@ -326,7 +326,7 @@ class MeasurementDiagnosis(JobResult):
     def write_report(self, folder) -> None:
         """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
         from tolalloc.report.diagnosis import write_report
-        from tolalloc.workflows.html import write_diagnosis_report
+        from tolalloc.report.html_diagnosis import write_diagnosis_report
 
         write_report(self.diagnosis, folder)
         if self.gap is not None:

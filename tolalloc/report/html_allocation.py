@@ -12,9 +12,13 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
-from tolalloc.workflows.allocation_text import worst_p_text
 
-__all__ = ["write_allocation_report", "write_diagnosis_report", "allocation_context", "verdict_legend"]
+__all__ = ["write_allocation_report", "allocation_context", "verdict_legend", "worst_p_text"]
+
+
+def worst_p_text(worst_p: float | None) -> str:
+    """The region search's worst linear P as printed (None: the search had no design to search with)."""
+    return "none (no design to search with)" if worst_p is None else f"{worst_p:.5f}"
 
 
 
@@ -32,15 +36,9 @@ def verdict_legend(ver) -> str:
 
 
 def write_allocation_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`ToleranceAllocation` into the existing directory ``folder``."""
+    """Write ``report.html`` of a :class:`~tolalloc.workflows.allocation_result.ToleranceAllocation` into the
+    existing directory ``folder``."""
     return write_html(render_report("allocation.html.j2", allocation_context(job, folder)), folder)
-
-
-def write_diagnosis_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`MeasurementDiagnosis` into the existing directory ``folder``."""
-    from tolalloc.workflows.html_diagnosis import diagnosis_context
-
-    return write_html(render_report("diagnosis.html.j2", diagnosis_context(job, folder)), folder)
 
 
 # ---------------------------------------------------------------------------------------------- shared pieces
@@ -284,8 +282,8 @@ def _figures(job, folder=None) -> list:
 
 
 def allocation_context(job, folder=None) -> dict:
-    """The template context of a :class:`ToleranceAllocation`'s report (``folder``: where its figures were saved)."""
-    from tolalloc.workflows.html_command import allocation_command
+    """The template context of a :class:`~tolalloc.workflows.allocation_result.ToleranceAllocation`'s report (``folder``: where its figures were saved)."""
+    from tolalloc.report.html_command import allocation_command
 
     s = job.summary()
     res, pr = job.result, job.problem

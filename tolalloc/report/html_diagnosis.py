@@ -6,10 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
-from tolalloc.report.html import Column, file_figure_item, html_table, pretty, writer_figure_item
+from tolalloc.report.html import (Column, file_figure_item, html_table, pretty, render_report, write_html,
+                                  writer_figure_item)
 from tolalloc.report.diagnosis import safe_max_note
 
-__all__ = ["diagnosis_context"]
+__all__ = ["diagnosis_context", "write_diagnosis_report"]
 
 SECTIONS = [{"id": "summary", "title": "Diagnosis and verdict"}, {"id": "before-after", "title": "Before and after"},
             {"id": "guards", "title": "Guards and findings"}, {"id": "ranking", "title": "Candidate effects"},
@@ -30,6 +31,12 @@ RANKING_COLUMNS = [Column("step", "step", "int"), Column("base", "on top of", "t
 GAP_COLUMNS = [Column("part", "part", "text"), Column("ms_mm2", "mean square [mm²]", "f4"),
                Column("rms_equiv_mm", "RMS equivalent [mm]", "f4"),
                Column("share_of_nominal_pct", "share of the nominal error [%]", "f2")]
+
+
+def write_diagnosis_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`~tolalloc.workflows.diagnosis.MeasurementDiagnosis` into the existing
+    directory ``folder``."""
+    return write_html(render_report("diagnosis.html.j2", diagnosis_context(job, folder)), folder)
 
 
 def _verdict(d, block, which: str) -> dict:
@@ -138,7 +145,7 @@ def _figures(d, folder=None) -> list:
 
 def diagnosis_context(job, folder=None) -> dict:
     """The template context of a :class:`MeasurementDiagnosis`'s report (``folder``: where its figures were saved)."""
-    from tolalloc.workflows.html_command import diagnosis_command
+    from tolalloc.report.html_command import diagnosis_command
 
     d = job.diagnosis
     which = "test" if d.test is not None else "cv"
@@ -182,7 +189,7 @@ def diagnosis_context(job, folder=None) -> dict:
 
 
 def _inputs(job) -> list:
-    from tolalloc.workflows.html_command import row_ranges_text
+    from tolalloc.report.html_command import row_ranges_text
 
     d, inp = job.diagnosis, job.inputs
     pairs = [("robot", d.robot.name), ("train", d.train.source), ("test", None if d.test is None else d.test.source),
