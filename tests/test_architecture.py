@@ -14,7 +14,7 @@ PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
 ORDER = ["foundation", "robot", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
          "verify", "report", "workflows", "cli"]
-FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress"}
+FOUNDATION = {"exceptions", "engine", "units", "outputs", "output_lock", "progress"}
 
 
 def module_name(path: Path) -> str:

@@ -6,7 +6,8 @@ import argparse
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.cli.argtypes import count, finite_float, row_ranges, seed
-from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_kwargs, write_json
+from tolalloc.cli.common import (add_robot_arg, check_distinct_outputs, check_output, reserve_directory, robot_kwargs,
+                                 write_json)
 
 
 def register(sub) -> None:
@@ -80,7 +81,7 @@ def cmd_diagnose(args) -> int:
     # every output path is checked before any computation, so a late failure cannot leave some written
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
-    check_output(args.report, "--report", directory=True)
+    reserve_directory(args.report, "--report")
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,

@@ -6,7 +6,8 @@ import argparse
 
 from tolalloc.cli.argtypes import count, nonnegative_int, positive_float, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs,
-                                 check_output, error_model_kwargs, parse_q, robot_kwargs, write_json)
+                                 check_output, error_model_kwargs, parse_q, reserve_directory, robot_kwargs,
+                                 write_json)
 
 
 def register(sub) -> None:
@@ -49,7 +50,7 @@ def register(sub) -> None:
 def cmd_mc(args) -> int:
     from tolalloc.workflows import simulate_errors
 
-    check_output(args.out, "--out", directory=True)
+    reserve_directory(args.out, "--out")
     check_output(args.json, "--json")
     check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     res = simulate_errors(
