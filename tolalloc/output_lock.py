@@ -22,8 +22,8 @@ from pathlib import Path
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["directory_lock", "reservations", "reserve", "is_reserved", "lock_path", "make_parents", "remove_empty",
-           "cannot_write", "ADVICE"]
+__all__ = ["directory_lock", "reservations", "in_reservations", "reserve", "is_reserved", "lock_path", "make_parents",
+           "remove_empty", "cannot_write", "ADVICE"]
 
 #: what to do about an operating-system error, by errno (otherwise: choose another path)
 ADVICE = {errno.ENOSPC: "free some space or choose another place",
@@ -122,6 +122,11 @@ def reservations():
             yield
         finally:
             _scopes().remove(scope)
+
+
+def in_reservations() -> bool:
+    """True inside a :func:`reservations` block (this thread)."""
+    return bool(_scopes())
 
 
 def is_reserved(path) -> bool:

@@ -34,8 +34,8 @@ import numpy as np
 
 from tolalloc.exceptions import (ArgumentError, TolallocError, interrupts_as_exceptions, raise_if_interrupted,
                                  signals_deferred)
-from tolalloc.output_lock import (ADVICE, cannot_write, directory_lock, is_reserved, make_parents, remove_empty,
-                                  reservations, reserve)
+from tolalloc.output_lock import (ADVICE, cannot_write, directory_lock, in_reservations, is_reserved, make_parents,
+                                  remove_empty, reservations, reserve)
 
 __all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
            "json_native", "directory_lock", "reservations", "reserve_directory", "published"]
@@ -183,10 +183,11 @@ def check_distinct_outputs(outputs, inputs=()) -> None:
 
 
 def reserve_directory(path, flag: str) -> None:
-    """Check output directory ``path`` (:func:`check_output`) and take its lock now, until the enclosing
-    :func:`reservations` ends; the staging of that directory later in the block uses this lock. ``None`` passes."""
+    """Check output directory ``path`` (:func:`check_output`) and, inside :func:`reservations`, take its lock now,
+    until that block ends; the staging of that directory later in the block uses this lock. ``None`` passes;
+    outside :func:`reservations` only the check is made (the staging takes the lock)."""
     check_output(path, flag, directory=True)
-    if path is not None:
+    if path is not None and in_reservations():
         reserve(Path(path))
 
 

@@ -53,7 +53,8 @@ def register(sub) -> None:
     p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "
                    "subsample of large files (default 0)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bars on stderr (default: when stderr is a terminal)")
+                   help="progress on stderr: bars on a terminal, one line per finished stage with its duration in a "
+                   "pipe or log (default: on)")
     p.add_argument("--cv-rows", type=count, default=None, metavar="N",
                    help="training files with more rows cross-validate and select effects on a seeded random "
                    "subsample of N rows; the final fits use all rows (default 10000)")

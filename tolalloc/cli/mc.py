@@ -37,7 +37,8 @@ def register(sub) -> None:
     p.add_argument("--jobs", type=count, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
     p.add_argument("--chunk-size", type=count, default=2**20, help="samples per Dask task (default 1048576); never changes the numbers")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar on stderr (default: for runs of 10^7 samples or more when stderr is a terminal)")
+                   help="progress on stderr: a bar on a terminal, one line when done in a pipe or log (default: for "
+                   "runs of 10^7 samples or more)")
     p.add_argument("--hist-bins", type=nonnegative_int, default=0,
                    help="accumulate BINSxBINS x-y, x-z, y-z histograms of the position error over all samples "
                    "(with --out: mc_density.png and mc_hist.npz)")

@@ -81,7 +81,7 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     tool, trust_units
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
     progress : bool, optional
-        The job's stage on stderr (region search, coverage, verification ...); default: in a terminal or notebook.
+        The job's stages on stderr (:mod:`tolalloc.progress`: a status line on a terminal, a line per stage in a log).
 
     Returns
     -------

@@ -9,6 +9,7 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, check_memory, known_names
 from tolalloc.outputs import atomic_output
+from tolalloc.progress import StageBar, show_progress
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -37,7 +38,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
                      n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
                      noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,
                      seed: int = 0, tool: str | None = None, trust_units: bool = False, for_allocation: bool = False,
-                     radius_mm: float = 0.25, prob: float = 0.95, random_plans: int = 100) -> "CalibrationPlanDesign":
+                     radius_mm: float = 0.25, prob: float = 0.95, random_plans: int = 100,
+                     progress: bool | None = None) -> "CalibrationPlanDesign":
     """Choose ``n_poses`` laser-tracker measurement poses that minimise the post-calibration error.
 
     Candidates are scrambled-Sobol poses in the joint limits (``region="limits"``) or in the box of a pose set; the
@@ -71,6 +73,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         random plans of the same size (median, 10th and 90th percentile of their worst-pose P). Position
         measurements only; ``radius_mm``, ``prob`` and ``random_plans`` are read only here (refused, away from their
         defaults, without it).
+    progress : bool, optional
+        The job's stages on stderr (:mod:`tolalloc.progress`: a status line on a terminal, a line per stage in a log).
 
     Returns
     -------
@@ -85,16 +89,8 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     >>> d.plan.n_poses, d.design.score_mm2 < d.design.random_score_mm2
     (8, True)
     """
-    n_cand = inputs.check_count(n_candidates, "n_candidates", example="2000")
-    check_memory(n_cand, CANDIDATE_BYTES, "n_candidates", "candidate poses", "2000")
-    n_poses = inputs.check_count(n_poses, "n_poses", example="30")
-    if n_poses > n_cand:
-        raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
-    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02", NOISE_MM_RANGE)
-    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
-    inputs.check_choice(measurement, "measurement", ("position", "pose"))
-    inputs.check_flag(registration, "registration")
-    inputs.check_flag(for_allocation, "for_allocation")
+    n_cand, n_poses = _check_design_args(n_candidates, n_poses, noise_mm, noise_deg, measurement, registration,
+                                         for_allocation, progress)
     _check_unused(for_allocation, measurement, radius_mm=radius_mm, prob=prob, random_plans=random_plans,
                   noise_deg=noise_deg)
     seed = inputs.check_seed(seed)
@@ -111,18 +107,39 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     split = split_from_costs(model, costs)
     ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
     _check_tool_moves(model, q_eval, rob, ev)
-    cand = candidate_poses(rob, n_cand, region, seed=seed)
-    d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
-                    registration=registration, seed=seed)
-    alloc, comparison = None, None
-    if for_allocation:
-        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
-                                            prob=prob, random_plans=random_plans, measurement=measurement,
-                                            noise_mm=noise_mm, registration=registration, seed=seed)
+    with StageBar(show_progress(progress), f"calplan {rob.name}") as bar:
+        bar.stage(f"{n_cand:,} candidate poses")
+        cand = candidate_poses(rob, n_cand, region, seed=seed)
+        bar.stage(f"A-optimal design of {n_poses} poses")
+        d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
+                        registration=registration, seed=seed)
+        alloc, comparison = None, None
+        if for_allocation:
+            bar.stage(f"plan for the allocation, compared with {random_plans} random plans")
+            alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
+                                                prob=prob, random_plans=random_plans, measurement=measurement,
+                                                noise_mm=noise_mm, registration=registration, seed=seed)
     post = posterior(split, d.plan if alloc is None else alloc.plan)
     unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
                                  unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))
+
+
+def _check_design_args(n_candidates, n_poses, noise_mm, noise_deg, measurement, registration, for_allocation,
+                       progress) -> tuple[int, int]:
+    """The counts ``(n_candidates, n_poses)``, checked with the noises and flags of :func:`plan_calibration`."""
+    n_cand = inputs.check_count(n_candidates, "n_candidates", example="2000")
+    check_memory(n_cand, CANDIDATE_BYTES, "n_candidates", "candidate poses", "2000")
+    n_poses = inputs.check_count(n_poses, "n_poses", example="30")
+    if n_poses > n_cand:
+        raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
+    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02", NOISE_MM_RANGE)
+    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
+    inputs.check_choice(measurement, "measurement", ("position", "pose"))
+    inputs.check_flag(registration, "registration")
+    inputs.check_flag(for_allocation, "for_allocation")
+    inputs.check_optional_flag(progress, "progress")
+    return n_cand, n_poses
 
 
 def _check_unused(for_allocation: bool, measurement: str, **given) -> None:

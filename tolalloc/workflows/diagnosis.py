@@ -57,7 +57,8 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     gap_split : bool
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
-        Progress bars on stderr (default: when stderr is a terminal).
+        Progress on stderr: bars on a terminal or in a notebook, one line per finished stage with its duration in
+        a pipe or log (:mod:`tolalloc.progress`); default on, False: off.
     robust_loss : {"tukey", "huber", "soft_l1"}
         M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight and
         lists them.
@@ -109,14 +110,10 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
 def _gap_split(d, progress):
     """Where the held-out gap lies (a Gaussian process on the training residual), with a progress bar."""
     from tolalloc.diagnose.gap import diagnosis_gap_split
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
-    with progress_scope(progress):
-        bar = progress_bar("residual Gaussian process (gap_split)")
-        try:
-            return diagnosis_gap_split(d)
-        finally:
-            bar.close()
+    with progress_scope(progress), progress_bar("residual Gaussian process (gap_split)"):
+        return diagnosis_gap_split(d)
 
 
 def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same",
@@ -144,16 +141,13 @@ def _read(robot, train, test, progress, folds):
     """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
     ``folds`` than the training file holds and a test file that shares poses with it."""
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
-    with progress_scope(progress):
-        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
-        try:
-            tr = inputs.as_measurements(train, robot, "train")
-            te = None if test is None else inputs.as_measurements(test, robot, "test")
-        finally:
-            bar.close()
+    with progress_scope(progress), progress_bar("reading " + " and ".join(names) if names else
+                                                "reading the measurements"):
+        tr = inputs.as_measurements(train, robot, "train")
+        te = None if test is None else inputs.as_measurements(test, robot, "test")
     if folds > tr.n_poses // 2:
         raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
                             f"training poses (at least 2 poses held out per fold), got {folds}.")
