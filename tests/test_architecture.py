@@ -14,7 +14,7 @@ PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
 ORDER = ["foundation", "robot", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
          "verify", "report", "workflows", "cli"]
-FOUNDATION = {"exceptions", "engine", "units", "outputs", "output_lock", "progress"}
+FOUNDATION = {"exceptions", "engine", "units", "outputs", "output_lock", "progress", "version"}
 
 
 def module_name(path: Path) -> str:
@@ -243,7 +243,7 @@ def test_interface_call_finder(tmp_path):
 #: what the command line may import: its own modules, the workflow layer, the output and error foundations, and
 #: the error model's constants its help text quotes. Everything else is reached through tolalloc.workflows.
 CLI_MAY_IMPORT = ("tolalloc.cli", "tolalloc.workflows", "tolalloc.outputs", "tolalloc.exceptions",
-                  "tolalloc.errormodel.model")
+                  "tolalloc.errormodel.model", "tolalloc.version")
 
 
 def test_the_cli_is_a_shell_over_the_workflows():

@@ -39,7 +39,7 @@ def cannot_write(path, directory: bool, exc: OSError, shown=str) -> TolallocErro
     why = exc.strerror or type(exc).__name__
     where = shown(os.fspath(exc.filename)) if isinstance(exc.filename, (str, os.PathLike)) else shown(str(path))
     return TolallocError(f"cannot write {what} at {shown(str(path))!r} ({why}: {where}); expected {what} path in "
-                         f"a writable place; {ADVICE.get(exc.errno, 'choose another path')}.")
+                         f"a writable place; {ADVICE.get(exc.errno or 0, 'choose another path')}.")
 
 
 def make_parents(folder: Path) -> list[Path]:

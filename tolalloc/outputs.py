@@ -94,7 +94,7 @@ def _write_failed(exc: OSError, targets: list) -> TolallocError:
         where = " and ".join(repr(_shown(str(t))) for t in targets)
     why = exc.strerror or str(exc) or type(exc).__name__
     return TolallocError(f"cannot write {where} ({why}); nothing was written; "
-                         f"{ADVICE.get(exc.errno, 'choose another path')}.")
+                         f"{ADVICE.get(exc.errno or 0, 'choose another path')}.")
 
 
 def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:
@@ -135,7 +135,7 @@ def check_output(path, flag: str, *, directory: bool = False) -> None:
     except OSError as exc:  # a name too long, a loop of symbolic links ...
         why = exc.strerror or type(exc).__name__
         raise TolallocError(f"{flag} {_short(path)!r}: cannot be used as an output path ({why}); "
-                            f"{ADVICE.get(exc.errno, 'choose another path')}.") from None
+                            f"{ADVICE.get(exc.errno or 0, 'choose another path')}.") from None
 
 
 def _short(text: str, n: int = 120) -> str:

@@ -152,7 +152,8 @@ class StageBar:
     duration (a log); a no-op when ``show`` is false."""
 
     def __init__(self, show: bool, job: str):
-        self.job, self._bar, self._name, self._t0 = job, None, None, 0.0
+        self.job, self._bar, self._t0 = job, None, 0.0
+        self._name: str | None = None
         self._mode = progress_mode(True) if show else None
         if self._mode in ("bars", "notebook"):
             self._bar = new_bar(job, unit="stage", mode=self._mode)
@@ -184,7 +185,7 @@ class StageBar:
         return False
 
 
-_MODE = contextvars.ContextVar("tolalloc_progress_mode", default=None)
+_MODE: contextvars.ContextVar[str | None] = contextvars.ContextVar("tolalloc_progress_mode", default=None)
 
 
 @contextlib.contextmanager

@@ -78,6 +78,10 @@ def build_parser() -> argparse.ArgumentParser:
         description="Tolerance allocation, verification and sim-to-real diagnosis for serial robots. "
         "Units: lengths in mm, joint values in deg (revolute) and mm (prismatic).",
     )
+    from tolalloc.version import package_version
+
+    parser.add_argument("--version", action="version", version=f"tolalloc {package_version()}",
+                        help="print the installed version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in COMMAND_MODULES:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any, Callable, TypeVar
 
 import numpy as np
 import pandas as pd
@@ -32,7 +33,10 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
            "RANGES", "Z_RANGE"]
 
 
-def job_entry(fn):
+_Job = TypeVar("_Job", bound=Callable[..., Any])  # job_entry keeps the job's signature for type checkers
+
+
+def job_entry(fn: _Job) -> _Job:
     """The entry point of workflow ``fn``: a keyword ``fn`` does not have is refused with the closest names
     (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), and with ``trust_units=True`` the
     unit-plausibility guards are off during the call (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
@@ -58,7 +62,7 @@ def job_entry(fn):
         with trusting_units(bool(trust_units)):
             return fn(*args, trust_units=trust_units, **kwargs)
 
-    return run
+    return run  # type: ignore[return-value]  # the same signature as ``fn``
 
 
 def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Robot:
