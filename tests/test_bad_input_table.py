@@ -18,6 +18,7 @@ import pytest
 
 import tolalloc
 from tolalloc.cli import main
+from tolalloc.progress import PROGRESS_LINE
 
 TC = "tool_changer"
 
@@ -345,7 +346,7 @@ def test_bad_input(files, tmp_path, monkeypatch, capsys, argv, pattern):
     code = main([a.replace("{F}", str(files)) for a in argv])
     out, err = capsys.readouterr()
     assert code == 2, (code, out, err)
-    lines = err.strip().splitlines()
+    lines = [line for line in err.strip().splitlines() if not PROGRESS_LINE.match(line)]  # stderr is no terminal
     assert len(lines) == 1 and lines[0].startswith("error: "), err
     assert "Traceback" not in err and "Warning" not in err
     assert re.search(pattern, lines[0]), lines[0]

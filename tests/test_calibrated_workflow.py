@@ -173,7 +173,7 @@ def designed():
 def test_the_plan_calibration_result_is_a_calibration(designed, tmp_path):
     """The CalibrationPlanDesign itself is taken (its plan, no file), with the same result as its saved CSV."""
     from tolalloc.workflows.calibrated import PLAN_IN_MEMORY
-    from tolalloc.workflows.html_command import allocation_command
+    from tolalloc.workflows.reproduce import allocation_command
 
     kw = dict(poses="nominal", solver="certified", snap=False, verify=False)
     job = allocate_tolerances("tool_changer", calibration=designed, **kw)

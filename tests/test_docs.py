@@ -322,11 +322,18 @@ def test_getting_started_repeats_the_readme():
 
 
 def test_readme_is_a_front_page():
+    """Short, and every link and figure works on a package index page too: absolute URLs into the repository
+    (pyproject's ``Source``), each naming a file that exists here."""
+    from test_readme import REPO_FILES, repo_file
+
     assert len(README.splitlines()) <= 150
     assert docs_build_command()
-    for target in re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README):
-        if not target.startswith(("http://", "https://")):
-            assert (ROOT / target).exists(), target
+    targets = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", README)
+    assert len(targets) > 30
+    for target in targets:
+        assert target.startswith(("http://", "https://")), f"relative link {target!r}: use {REPO_FILES}{target}"
+        path = repo_file(target)
+        assert path is None or path.exists(), target
 
 
 def test_every_public_module_is_in_the_api_reference():

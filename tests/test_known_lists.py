@@ -128,8 +128,8 @@ TRIGGERS = {
     ("workflows/inputs.py", "resolve_region"): (
         lambda tmp: tolalloc.allocate_tolerances(_crowded_robot(), region="nope", verify=False),
         ["limits", "working", "reach", "nominal"]),
-    ("allocate/calibrated_design.py", "resolve_region"): (
-        lambda tmp: __import__("tolalloc.allocate.calibrated_design", fromlist=["x"]).resolve_region(
+    ("allocate/calibrated/design.py", "resolve_region"): (
+        lambda tmp: __import__("tolalloc.allocate.calibrated.design", fromlist=["x"]).resolve_region(
             _crowded_robot(), "nope"), ["limits", "working", "reach"]),
     ("workflows/calplan.py", "_check_region"): (
         lambda tmp: tolalloc.plan_calibration(_crowded_robot(), 4, region="nope"), ["limits", "working", "reach"]),

@@ -216,7 +216,7 @@ def test_allocation_tolerance_table(allocation):
 
 
 def test_allocation_report_names_one_design_one_worst_pose(allocation):
-    from tolalloc.workflows.html import allocation_context
+    from tolalloc.report.html_allocation import allocation_context
 
     job, _, _, page = allocation
     ctx = allocation_context(job)
@@ -428,7 +428,7 @@ def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagno
 
 def test_an_input_named_in_the_record_and_by_the_run_is_listed_once():
     """coverage_n is in the call's record and in what the run used: the Inputs list shows it once, as used."""
-    from tolalloc.workflows.html import _inputs_pairs
+    from tolalloc.report.html_allocation import _inputs_pairs
 
     pairs = _inputs_pairs({"robot": "tool_changer", "coverage_n": 100000, "seed": 0}, [("coverage_n", 5000), ("z", "2")])
     assert [k for k, _ in pairs] == ["robot", "coverage_n", "seed", "z"]
@@ -439,7 +439,7 @@ def test_the_monte_carlo_card_says_how_a_paired_estimate_relates_to_the_linear_p
     """A paired estimate equal to the linear P is not a missing Monte Carlo: the card gives the disagreeing samples."""
     from types import SimpleNamespace
 
-    from tolalloc.workflows.html import _paired_note
+    from tolalloc.report.html_allocation import _paired_note
 
     ver = SimpleNamespace(estimator=np.array(["paired", "plain"]), n=np.array([10**6, 10**6]),
                           p_mc=np.array([0.96, 0.97]), n_discordant=np.array([3.0, 0.0]))

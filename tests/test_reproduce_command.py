@@ -18,7 +18,7 @@ import tolalloc.workflows
 from tolalloc.cli import build_parser
 from tolalloc.workflows import allocate_tolerances
 from tolalloc.workflows.allocation_settings import allocation_settings
-from tolalloc.workflows.html_command import allocation_command
+from tolalloc.workflows.reproduce import allocation_command
 from tolalloc.workflows.keywords import fold_moved
 
 

@@ -18,6 +18,7 @@ import pytest
 import tolalloc
 from tolalloc.units import in_row_unit
 from tolalloc.cli import main
+from tolalloc.progress import PROGRESS_LINE
 from tolalloc.diagnose import generate
 from tolalloc.diagnose.synth import split_frame
 from tolalloc.outputs import MANIFEST
@@ -96,7 +97,10 @@ def test_allocate_cli_equals_api(tmp_path, capsys):
 def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     plan = tmp_path / "plan.csv"
     assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "64", "--out", str(plan)]) == 0
+    capsys.readouterr()
     api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
+    stages = re.findall(r"^calplan tool_changer: (.+): \d+\.\d+ s$", capsys.readouterr().err, re.M)
+    assert stages == ["64 candidate poses", "A-optimal design of 8 poses"]  # stderr is no terminal: one line each
     api_plan.save(tmp_path / "plan_api.csv")
     assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
     # at the working poses without the standard-grade search (the region path and the standard grades of the same call
@@ -184,7 +188,7 @@ def test_results_have_a_compact_repr_a_table_and_html():
 
 
 def test_a_certified_verification_says_its_second_looks_are_counted_everywhere():
-    from tolalloc.workflows.html import verdict_legend
+    from tolalloc.report.html_allocation import verdict_legend
 
     res = tolalloc.allocate_tolerances("tool_changer", region="nominal", solver="certified", n_mc=2000)
     v = res.summary()["verification"]
@@ -374,7 +378,7 @@ def test_a_robot_without_a_working_set_is_allocated_at_the_nominal_pose_with_a_w
     path = tmp_path / "arm.csv"
     path.write_text("# convention: standard\nname,d_mm,a_mm,alpha_deg\nj1,400,0,90\nj2,0,600,0\n")
     assert main(["allocate", str(path), "--no-verify"]) == 0
-    err = capsys.readouterr().err.splitlines()
+    err = [line for line in capsys.readouterr().err.splitlines() if not PROGRESS_LINE.match(line)]  # no terminal
     assert err == ["warning: robot 'arm' has no working region or pose set: allocated at the nominal pose only (1 pose); "
                    "for the working region pass region='limits' (--region limits: the box of the joint limits), a pose "
                    "set or a trajectory, or add a [regions.working] box to the robot file."], err

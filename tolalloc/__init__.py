@@ -21,14 +21,24 @@ Units inside the library: lengths in mm, angles in rad. Joint values at the
 interface (workflow arguments, robot files, CLI, CSV) are in degrees (revolute) and mm (prismatic).
 
 The names below are loaded on first use (PEP 562), so ``import tolalloc`` stays cheap and the command line can
-take over SIGINT / SIGTERM before numpy and the solvers are imported (see :mod:`tolalloc.__main__`).
+take over SIGINT / SIGTERM before numpy and the solvers are imported (see :mod:`tolalloc.__main__`); type checkers and
+IDEs read them from the ``TYPE_CHECKING`` imports. ``__version__`` is the installed package's version
+(:mod:`tolalloc.version`).
 """
 
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING
 
-__version__ = "0.1.0"
+if TYPE_CHECKING:  # what the names below resolve to, for type checkers and IDEs; never run
+    from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, UnknownArgumentError
+    from tolalloc.robot import Joint, Link, Robot, builtin_robots, load_robot
+    from tolalloc.workflows import (CalibratedToleranceAllocation, CalibrationPlanDesign, ErrorAnalysis,
+                                    ErrorSimulation, MeasurementDiagnosis, ToleranceAllocation, allocate_tolerances,
+                                    analyze_errors, diagnose_measurements, plan_calibration, simulate_errors)
+
+    __version__: str
 
 _HOME = {
     **{name: "tolalloc.workflows" for name in ("allocate_tolerances", "analyze_errors", "simulate_errors",
@@ -50,6 +60,10 @@ __all__ = list(_HOME)
 
 
 def __getattr__(name: str):
+    if name == "__version__":
+        from tolalloc.version import package_version
+
+        return package_version()
     if name in _HOME:
         value = getattr(importlib.import_module(_HOME[name]), name)
         globals()[name] = value
@@ -58,4 +72,4 @@ def __getattr__(name: str):
 
 
 def __dir__():
-    return sorted(list(globals()) + __all__)
+    return sorted(list(globals()) + __all__ + ["__version__"])

@@ -17,7 +17,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["TolallocError", "ArgumentError", "UnknownArgumentError", "InputFileError", "Interrupted",
-           "signals_deferred", "interruptible", "note_interrupt", "interrupt_pending", "clear_interrupt",
+           "signals_deferred", "interrupts_as_exceptions", "interruptible", "note_interrupt", "interrupt_pending",
+           "clear_interrupt",
            "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive", "known_names",
            "memory_budget_bytes", "check_memory", "describe", "whole_number"]
 
@@ -120,6 +121,48 @@ def signals_deferred():
             signal.signal(s, h)
         if got:
             _deliver(got[0], old[got[0]])
+
+
+_GUARD_DEPTH = [0]
+
+
+@contextlib.contextmanager
+def interrupts_as_exceptions():
+    """SIGINT and SIGTERM, where Python's defaults are in place, raise :class:`Interrupted` inside the block.
+
+    So the block's clean-up (``finally``, ``with``) runs on SIGTERM too, whose default ends the process on the spot;
+    after the block, SIGTERM then ends the process as it would have. An error a library raises while a signal is
+    pending (an interrupt inside an import can come out as an ``ImportError`` or a ``RuntimeError``) becomes the
+    :class:`Interrupted` it stands for. Handlers a program installed itself (the command line's) are left alone.
+    Main thread only (elsewhere a no-op); a nested block is a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread() or _GUARD_DEPTH[0]:
+        yield
+        return
+    got: list = []
+
+    def on_signal(signum, frame):
+        got.append(signum)
+        raise Interrupted(signum)
+
+    swapped = {s: signal.signal(s, on_signal) for s, default in ((signal.SIGINT, signal.default_int_handler),
+                                                                 (signal.SIGTERM, signal.SIG_DFL))
+               if signal.getsignal(s) is default}
+    _GUARD_DEPTH[0] += 1
+    try:
+        yield
+        if got:  # the handler's exception was swallowed and the block finished
+            raise Interrupted(got[0])
+    except BaseException as exc:
+        if got and not isinstance(exc, Interrupted):
+            raise Interrupted(got[0]) from exc
+        raise
+    finally:
+        _GUARD_DEPTH[0] -= 1
+        for s, h in swapped.items():
+            signal.signal(s, h)
+        if got and got[0] == signal.SIGTERM:
+            os.kill(os.getpid(), signal.SIGTERM)  # the default action, now that the block has cleaned up
 
 
 def _deliver(signum: int, handler) -> None:

@@ -7,7 +7,7 @@ table (<robot>_<region>_<grades>_tolerances.csv). Every number comes from the li
   --n-poses 12``), written to the report folder;
 * ``tolalloc.allocate_tolerances(robot, calibration=PLAN, region=..., n_mc=...)`` (the command ``tolalloc allocate
   ROBOT --calibration PLAN --region ...``): continuous calibration-aware design (certified, then exact, cutting
-  planes over a box), its standard-grade design (``tolalloc.allocate.calibrated_standard``) over the same poses or
+  planes over a box), its standard-grade design (``tolalloc.allocate.calibrated.standard``) over the same poses or
   box, and the end-to-end Monte Carlo (simulated robots, each calibrated nonlinearly) of the standard design;
 * the same standard step without the outer approximation (local search only) for comparison.
 
@@ -27,8 +27,8 @@ from pathlib import Path
 import pandas as pd
 
 import tolalloc
-from tolalloc.allocate.calibrated_rounding import catalogue_range
-from tolalloc.allocate.calibrated_standard import standardize_calibrated
+from tolalloc.allocate.calibrated.rounding import catalogue_range
+from tolalloc.allocate.calibrated.standard import standardize_calibrated
 from tolalloc.units import in_row_unit
 from tolalloc.allocate.catalogue import build_catalogue
 

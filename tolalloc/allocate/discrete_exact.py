@@ -115,7 +115,7 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
         Another probability requirement: ``margin(U)`` (B,) the smallest ``P_i - target_i`` of each row of ``U``
         (B, Ka), and ``linearise(u) -> (A, s)`` its rows ``A u' <= s`` at ``u`` (default :func:`exact_margin` and
         the Gaussian probability's linearisation on ``problem``; e.g. the post-calibration probability of
-        :mod:`tolalloc.allocate.calibrated_standard`).
+        :mod:`tolalloc.allocate.calibrated.standard`).
     batch : int
         Candidate moves evaluated together by the local search.
 

@@ -6,7 +6,7 @@ import sys
 
 from tolalloc.cli.argtypes import count, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs,
-                                 check_output, error_model_options, flag_text, robot_kwargs)
+                                 error_model_options, flag_text, reserve_directory, robot_kwargs)
 from tolalloc.workflows import defaults as D
 
 
@@ -124,8 +124,8 @@ def settings(args) -> dict:
 def cmd_allocate(args) -> int:
     from tolalloc.workflows import allocate_tolerances
 
-    check_output(args.out, "--out", directory=True)
-    check_output(args.report, "--report", directory=True)
+    reserve_directory(args.out, "--out")
+    reserve_directory(args.report, "--report")
     check_distinct_outputs([("--out", args.out), ("--report", args.report)])
     if args.requirement is not None:
         return _cmd_requirement_file(args)

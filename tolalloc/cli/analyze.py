@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from tolalloc.cli.argtypes import count, nonnegative_int, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, check_distinct_outputs, check_output,
-                                 error_model_options, parse_q, robot_kwargs)
+                                 error_model_options, parse_q, reserve_directory, robot_kwargs)
 from tolalloc.workflows import defaults as D
 
 
@@ -43,7 +43,7 @@ def register(sub) -> None:
 def cmd_analyze(args) -> int:
     from tolalloc.workflows import analyze_errors
 
-    check_output(args.out, "--out", directory=True)
+    reserve_directory(args.out, "--out")
     check_output(args.json, "--json")
     check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     res = analyze_errors(args.robot, q_deg_mm=parse_q(args.pose, "--pose") if args.pose else None, poses=args.poses,

@@ -5,10 +5,12 @@ from __future__ import annotations
 import re
 
 from tolalloc.exceptions import ArgumentError, TolallocError
-from tolalloc.outputs import check_distinct_outputs, check_output, json_default, write_json
+from tolalloc.outputs import (check_distinct_outputs, check_output, json_default, reserve_directory,
+                              write_json)
 
 __all__ = ["parse_q", "add_robot_arg", "robot_from_args", "write_json", "json_default", "check_output",
-           "check_distinct_outputs", "add_error_model_args", "add_scheduler_arg", "sigma_items", "error_model_options",
+           "reserve_directory", "check_distinct_outputs", "add_error_model_args", "add_scheduler_arg", "sigma_items",
+           "error_model_options",
            "robot_kwargs", "flag_map", "flag_text", "error_line"]
 
 #: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value

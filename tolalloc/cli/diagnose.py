@@ -6,7 +6,7 @@ import argparse
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.cli.argtypes import count, finite_float, row_ranges, seed
-from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_kwargs
+from tolalloc.cli.common import (add_robot_arg, check_distinct_outputs, check_output, reserve_directory, robot_kwargs)
 from tolalloc.workflows import defaults as D
 
 
@@ -57,7 +57,8 @@ def register(sub) -> None:
     p.add_argument("--seed", type=seed, default=D.SEED, help="seed of the fold assignment and of the cross-validation "
                    "subsample of large files (default 0)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bars on stderr (default: when stderr is a terminal)")
+                   help="progress on stderr: bars on a terminal, one line per finished stage with its duration in a "
+                   "pipe or log (default: on)")
     p.add_argument("--cv-rows", type=count, default=None, metavar="N",
                    help="training files with more rows cross-validate and select effects on a seeded random "
                    "subsample of N rows; the final fits use all rows (default 10000)")
@@ -104,8 +105,8 @@ def cmd_diagnose(args) -> int:
     # every output path is checked before any computation, so a late failure cannot leave some written
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
-    check_output(args.report, "--report", directory=True)
-    check_output(args.export_model, "--export-model", directory=True)
+    reserve_directory(args.report, "--report")
+    reserve_directory(args.export_model, "--export-model")
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
                             ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])

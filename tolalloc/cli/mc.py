@@ -6,7 +6,7 @@ import argparse
 
 from tolalloc.cli.argtypes import count, nonnegative_int, positive_float, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs,
-                                 check_output, error_model_options, parse_q, robot_kwargs)
+                                 check_output, error_model_options, parse_q, reserve_directory, robot_kwargs)
 from tolalloc.workflows import defaults as D
 
 
@@ -40,7 +40,8 @@ def register(sub) -> None:
     p.add_argument("--jobs", type=count, default=None, help="local threads / Dask local workers (default: usable CPUs, at most 8)")
     p.add_argument("--chunk-size", type=count, default=D.CHUNK_SIZE, help="samples per Dask task (default 1048576); never changes the numbers")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bar on stderr (default: for runs of 10^7 samples or more when stderr is a terminal)")
+                   help="progress on stderr: a bar on a terminal, one line when done in a pipe or log (default: for "
+                   "runs of 10^7 samples or more)")
     p.add_argument("--hist-bins", type=nonnegative_int, default=0,
                    help="accumulate BINSxBINS x-y, x-z, y-z histograms of the position error over all samples "
                    "(with --out: mc_density.png and mc_hist.npz)")
@@ -56,7 +57,7 @@ def cmd_mc(args) -> int:
     from tolalloc.exceptions import ArgumentError
     from tolalloc.workflows import MonteCarlo, simulate_errors
 
-    check_output(args.out, "--out", directory=True)
+    reserve_directory(args.out, "--out")
     check_output(args.json, "--json")
     check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     if args.angle_radius_rad and args.angle_radius_deg:

@@ -41,7 +41,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
-from tolalloc.diagnose.progress_bars import count_fit
+from tolalloc.progress import count_fit
 from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, norm_scale, point_kinematics, robust_scale, solve,
                                      subsample_index)
 

@@ -22,7 +22,7 @@ from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
-from tolalloc.diagnose.progress_bars import fit_counter, progress_bar, progress_scope
+from tolalloc.progress import fit_counter, progress_bar, progress_scope
 from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics, subsample_index
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats, rms
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test
@@ -141,7 +141,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         the training file; :mod:`.recalibrate`). No effect without ``refit``.
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
-    progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
+    progress : bool or None     progress on stderr (:func:`tolalloc.progress.progress_scope`; None: on)
     subsample_rows : int
         Training files with more rows cross-validate and select effects on a seeded random subsample (``seed``)
         of this many rows; the nominal, geometric and final models are then fitted on all rows
@@ -183,9 +183,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                          "subsampled": "cross-validation (out-of-fold errors, p-values), effect selection, "
                                        "identifiability of geometric and effect parameters",
                          "all_rows": "nominal, geometric and final fits (parameters, training RMS, test-file scores)"}
-        bar = progress_bar("residual breakdown")
-        where = where_breakdown(robot, train, cal.geometric)
-        bar.close()
+        with progress_bar("residual breakdown"):
+            where = where_breakdown(robot, train, cal.geometric)
         scored = _score_sealed_test(ctx, sel["nominal"], sel["geometric"], sel["final"], sel["chosen"])
         sel["nominal"], sel["geometric"], sel["final"], sel["chosen"] = scored
     return _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, robust_loss,

@@ -23,9 +23,8 @@ nominal model (as :mod:`.calibrate` documents); the fixed point therefore is tha
 
 Large training files: cross-validation, effect selection and the identifiability analysis run on a seeded
 random subsample of at most :data:`SUBSAMPLE_ROWS` rows (:func:`subsample_index`); the final fits use every
-row. Progress bars (tqdm, on stderr) are shown for fits of at least :data:`PROGRESS_MIN_ROWS` rows and for
-the pipeline's stages when enabled with :func:`.progress_bars.progress_scope` (default: when stderr is a terminal);
-the bars themselves are in :mod:`.progress_bars`.
+row. Fits of at least :data:`PROGRESS_MIN_ROWS` rows show their passes on a bar (in a log: one line each, with
+the passes and the time) when progress is on (:func:`tolalloc.progress.progress_scope`, which the pipeline opens).
 """
 
 from __future__ import annotations
@@ -35,7 +34,7 @@ from scipy.spatial.transform import Rotation
 
 from tolalloc.engine import resolve_engine
 from tolalloc.diagnose.losses import LOSSES, m_rho, m_weight, norm_scale
-from tolalloc.diagnose.progress_bars import _NoBar, progress_bar
+from tolalloc.progress import NoBar, progress_bar
 from tolalloc.robot.kinematics import poe_prefix_rp
 
 __all__ = ["CHUNK_ROWS", "SUBSAMPLE_ROWS", "PROGRESS_MIN_ROWS", "Problem", "solve", "point_kinematics",
@@ -358,7 +357,7 @@ def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-
     ``1e-8`` of the cost.
     """
     bar = progress_bar(f"{label} ({prob.n_rows:,} rows)", unit="pass") if prob.n_rows >= PROGRESS_MIN_ROWS \
-        else _NoBar()
+        else NoBar()
     x = prob.rebase(x)
     cost, H, g, raw = prob.normal(x)
     bar.update()

@@ -63,7 +63,7 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
         A :func:`plan_calibration` result or the plan CSV it saved: allocate for the accuracy after calibration (what
         runs, options refused: :mod:`tolalloc.workflows.calibrated`); returns a :class:`CalibratedToleranceAllocation`.
     progress : bool, optional
-        The job's stage on stderr (region search, coverage, verification ...); default: in a terminal or notebook.
+        The job's stages on stderr (:mod:`tolalloc.progress`: a status line on a terminal, a line per stage in a log).
     tool, trust_units
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
 

@@ -69,6 +69,13 @@ class ToleranceAllocation(JobResult):
 
     # ------------------------------------------------------------------ the headline numbers
     @property
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import allocation_command
+
+        return allocation_command(self)
+
     def robot(self):
         return self.result.problem.model.robot
 
@@ -388,7 +395,7 @@ class ToleranceAllocation(JobResult):
                 _save_figure(self.plot_cloud(), folder / "error_cloud.png")
                 names.append("error_cloud.png")
         if report:
-            from tolalloc.workflows.html import write_allocation_report
+            from tolalloc.report.html_allocation import write_allocation_report
 
             write_allocation_report(self, folder)
             names.append("report.html")

@@ -55,11 +55,11 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
     ``model.robot``; ``plan_source``: its file, or :data:`PLAN_IN_MEMORY`): certified, then (``exact``) exact, at the poses
     ``q`` (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
     (ISO 286 grades, classes, ``angle_step_deg`` steps) chosen over the same poses or box
-    (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`), the design to build; the end-to-end Monte
+    (:func:`tolalloc.allocate.calibrated.standard.standardize_calibrated`), the design to build; the end-to-end Monte
     Carlo (``n_mc`` simulated robots within :data:`N_ROBOTS_RANGE`, each calibrated nonlinearly, at the built design's
     worst poses; ``estimator`` auto, plain or paired) when ``verify`` and the plan measures positions."""
     from tolalloc.allocate import build_problem
-    from tolalloc.allocate.calibrated_design import allocate_with_calibration
+    from tolalloc.allocate.calibrated.design import allocate_with_calibration
     from tolalloc.verify.cost import check_allocation_budgets
     from tolalloc.workflows.inputs import default_pose_set, resolve_poses
 
@@ -73,7 +73,7 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
                                     seed=seed)
     std = None
     if res.design.ok and snap:
-        from tolalloc.allocate.calibrated_standard import standardize_calibrated
+        from tolalloc.allocate.calibrated.standard import standardize_calibrated
 
         std = standardize_calibrated(res, angle_step_deg=angle_step_deg, coverage_n=coverage_n, seed=seed)
     chk, n = None, None
@@ -97,7 +97,7 @@ class CalibratedToleranceAllocation(JobResult):
 
     Attributes
     ----------
-    result : tolalloc.allocate.calibrated_design.CalibratedDesign
+    result : tolalloc.allocate.calibrated.design.CalibratedDesign
         The certified and (``solver="exact"``) exact calibration-aware designs (the exact one chosen when accepted),
         the region search and its coverage, the designs without calibration, the post-calibration statistics.
     plan : CalibrationPlan
@@ -126,6 +126,13 @@ class CalibratedToleranceAllocation(JobResult):
     standard: object = None
 
     @property
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import allocation_command
+
+        return allocation_command(self)
+
     def robot(self):
         return self.result.problem.model.robot
 
@@ -390,7 +397,7 @@ class CalibratedToleranceAllocation(JobResult):
             ver.to_csv(folder / "verification.csv", index=False, float_format="%.8g")
             names.append("verification.csv")
         if report:
-            from tolalloc.workflows.html_calibrated import write_calibrated_report
+            from tolalloc.report.html_calibrated import write_calibrated_report
 
             write_calibrated_report(self, folder)
             names.append("report.html")

@@ -195,7 +195,7 @@ def _check_region(rob, region: str) -> None:
 def _for_allocation(model, split, start, cand, q_eval, *, costs, target, random_plans, measurement, seed):
     """The plan designed for the allocation it serves, and its comparison with random plans of its size."""
     from tolalloc.allocate import build_problem
-    from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+    from tolalloc.allocate.calibrated.plan import compare_with_random_plans, design_plan_for_allocation
     from tolalloc.allocate.costs import cost_set, load_costs
     from tolalloc.allocate.region import box_region
 

@@ -53,7 +53,8 @@ def diagnose_measurements(robot, train, test=None, *, test_frame="same", folds: 
     gap_split : bool
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
-        Progress bars on stderr (default: when stderr is a terminal).
+        Progress on stderr: bars on a terminal or in a notebook, one line per finished stage with its duration in
+        a pipe or log (:mod:`tolalloc.progress`); default on, False: off.
     fit : FitOptions, optional
         The fits' M-estimator (``auto`` by default: Tukey's biweight, which gives gross outliers no weight, or Huber's
         bounded-influence loss on a small training file -- fewer than 10 poses per fitted parameter; down-weighted
@@ -121,30 +122,23 @@ def _settings(test_frame, fit, test) -> tuple:
 def _gap_split(d, progress):
     """Where the held-out gap lies (a Gaussian process on the training residual), with a progress bar."""
     from tolalloc.diagnose.gap import diagnosis_gap_split
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
-    with progress_scope(progress):
-        bar = progress_bar("residual Gaussian process (gap_split)")
-        try:
-            return diagnosis_gap_split(d)
-        finally:
-            bar.close()
+    with progress_scope(progress), progress_bar("residual Gaussian process (gap_split)"):
+        return diagnosis_gap_split(d)
 
 
 def _read(robot, train, test, progress, folds):
     """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
     ``folds`` than the training file holds and a test file that shares poses with it."""
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
-    with progress_scope(progress):
-        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
-        try:
-            tr = inputs.as_measurements(train, robot, "train")
-            te = None if test is None else inputs.as_measurements(test, robot, "test")
-        finally:
-            bar.close()
+    with progress_scope(progress), progress_bar("reading " + " and ".join(names) if names else
+                                                "reading the measurements"):
+        tr = inputs.as_measurements(train, robot, "train")
+        te = None if test is None else inputs.as_measurements(test, robot, "test")
     if folds > tr.n_poses // 2:
         raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
                             f"training poses (at least 2 poses held out per fold), got {folds}.")
@@ -205,6 +199,13 @@ class MeasurementDiagnosis(JobResult):
     inputs: dict = field(default_factory=dict)
 
     @property
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import diagnosis_command
+
+        return diagnosis_command(self)
+
     def robot(self):
         return self.diagnosis.robot
 
@@ -391,6 +392,6 @@ class MeasurementDiagnosis(JobResult):
         if self.gap is not None:
             self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
         if html:
-            from tolalloc.workflows.html import write_diagnosis_report
+            from tolalloc.report.html_diagnosis import write_diagnosis_report
 
             write_diagnosis_report(self, folder)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any, Callable, TypeVar
 
 import numpy as np
 import pandas as pd
@@ -33,7 +34,10 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
            "check_axes", "check_text", "RANGES", "Z_RANGE"]
 
 
-def job_entry(fn):
+_Job = TypeVar("_Job", bound=Callable[..., Any])  # job_entry keeps the job's signature for type checkers
+
+
+def job_entry(fn: _Job) -> _Job:
     """The entry point of workflow ``fn``: a keyword ``fn`` does not have is refused with the closest names
     (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), a keyword it had before its settings objects
     is folded into them with a ``DeprecationWarning`` (:mod:`tolalloc.workflows.keywords`), and with
@@ -76,7 +80,7 @@ def job_entry(fn):
                 raise
             raise ArgumentError(renamed[exc.argument], exc.detail) from None
 
-    return run
+    return run  # type: ignore[return-value]  # the same signature as ``fn``
 
 
 def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Robot:

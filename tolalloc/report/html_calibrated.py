@@ -6,13 +6,14 @@ from __future__ import annotations
 from pathlib import Path
 
 from tolalloc.report.html import Column, figure_item, html_table, pretty, render_report, write_html
-from tolalloc.workflows.html import SECTIONS, _f4, _inputs_pairs, joint_columns, with_joints
+from tolalloc.report.html_allocation import SECTIONS, _f4, _inputs_pairs, joint_columns, with_joints
 
 __all__ = ["write_calibrated_report", "calibrated_context", "CALIBRATED_COLUMNS"]
 
 
 def write_calibrated_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`CalibratedToleranceAllocation` into the existing directory ``folder``."""
+    """Write ``report.html`` of a :class:`~tolalloc.workflows.calibrated.CalibratedToleranceAllocation` into the
+    existing directory ``folder``."""
     return write_html(render_report("calibrated.html.j2", calibrated_context(job)), folder)
 
 
@@ -34,9 +35,7 @@ CALIBRATED_COLUMNS = [Column("parameter", "parameter", "text"), Column("unit", "
 
 
 def calibrated_context(job) -> dict:
-    """The template context of a :class:`CalibratedToleranceAllocation`'s report."""
-    from tolalloc.workflows.html_command import allocation_command
-
+    """The template context of a :class:`~tolalloc.workflows.calibrated.CalibratedToleranceAllocation`'s report."""
     res, pr, plan, chk = job.result, job.problem, job.plan, job.end_to_end
     s = job.summary()
     requirement = pretty(f"P(|dP| < {pr.radius_mm:g} mm) >= {pr.prob:g} after calibration")
@@ -73,7 +72,7 @@ def calibrated_context(job) -> dict:
                      note="Tolerances, σ and status are those of the design to build"
                           + (" (standard grades); the continuous optimum for comparison." if built is not None else ".")
                           + " Highlighted: must be held in manufacturing.")
-    cli, python, rnotes = allocation_command(job)
+    cli, python, rnotes = job.reproduce_command()
     return {"kicker": "calibration-aware tolerance allocation", "title": "Tolerance allocation report",
             "subtitle": f"{job.robot.name}: {requirement}",
             "meta": [("robot", job.robot.name), ("poses", job.label), ("verdict", verdict["word"].lower()),

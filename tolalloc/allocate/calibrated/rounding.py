@@ -82,8 +82,8 @@ def range_relaxation(pr: AllocationProblem, cat: Catalogue, plan, split, *,
     to its catalogue's range (certified, then with ``exact`` exact: the stages of the continuous design it is compared
     with; ``(nan, "", None)`` when infeasible). ``split``: unresolved grades. ``t`` (K,) [mm or rad]: its
     half-widths."""
-    from tolalloc.allocate.calibrated import allocate_calibrated
-    from tolalloc.allocate.calibrated_exact import solve_calibrated_exact
+    from tolalloc.allocate.calibrated.certified import allocate_calibrated
+    from tolalloc.allocate.calibrated.exact import solve_calibrated_exact
 
     lo, hi = catalogue_range(cat)
     t_min, t_max = pr.t_min.copy(), pr.t_max.copy()

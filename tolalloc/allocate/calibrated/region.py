@@ -10,7 +10,7 @@ worst shortfall found is below ``tol`` -- with the calibrated solvers in the sol
 
 1. **certified**: :func:`tolalloc.allocate.calibrated.allocate_calibrated` (eigenvalue rule on the active set,
    re-solved on every active set);
-2. **exact**: :func:`tolalloc.allocate.calibrated_exact.solve_calibrated_exact` from the final active set of (1),
+2. **exact**: :func:`tolalloc.allocate.calibrated.exact.solve_calibrated_exact` from the final active set of (1),
    started at the previous exact point, with the region's certified design as the guard's fallback (it meets the
    requirement at every pose the search can find);
 3. optionally the same two stages without calibration (the baseline of the saving), with
@@ -24,8 +24,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from tolalloc.allocate.calibrated import CalibratedAllocation, allocate_calibrated
-from tolalloc.allocate.calibrated_exact import CalibratedExact, solve_calibrated_exact
+from tolalloc.allocate.calibrated.certified import CalibratedAllocation, allocate_calibrated
+from tolalloc.allocate.calibrated.exact import CalibratedExact, solve_calibrated_exact
 from tolalloc.allocate.problem import AllocationProblem, Solver, _block, make_design
 from tolalloc.allocate.region import Region, static_joints, worst_pose
 

@@ -5,8 +5,8 @@ joint limits), then
 
 * on a pose set or a trajectory (finite poses): the certified calibrated design
   (:func:`tolalloc.allocate.calibrated.allocate_calibrated`) and the exact stage from it
-  (:func:`tolalloc.allocate.calibrated_exact.solve_calibrated_exact`); every pose is checked exactly;
-* on a box: both stages by cutting planes over the box (:mod:`tolalloc.allocate.calibrated_region`) and a coverage
+  (:func:`tolalloc.allocate.calibrated.exact.solve_calibrated_exact`); every pose is checked exactly;
+* on a box: both stages by cutting planes over the box (:mod:`tolalloc.allocate.calibrated.region`) and a coverage
   statement on a fresh sample (:func:`tolalloc.allocate.region.coverage` on the post-calibration covariance);
 
 and the same without calibration as the baseline of the saving. The result carries both costs, the region record
@@ -22,9 +22,9 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.calibrated import CalibratedAllocation, allocate_calibrated, parameter_status
-from tolalloc.allocate.calibrated_exact import CalibratedExact, post_probabilities, solve_calibrated_exact
-from tolalloc.allocate.calibrated_region import (RegionSearch, baseline_region, certified_region, exact_region,
+from tolalloc.allocate.calibrated.certified import CalibratedAllocation, allocate_calibrated, parameter_status
+from tolalloc.allocate.calibrated.exact import CalibratedExact, post_probabilities, solve_calibrated_exact
+from tolalloc.allocate.calibrated.region import (RegionSearch, baseline_region, certified_region, exact_region,
                                                  problem_at, region_start)
 from tolalloc.allocate.problem import AllocationProblem, Design
 from tolalloc.allocate.region import Coverage, Region, box_region, coverage
@@ -177,13 +177,13 @@ class CalibratedDesign:
 
     def summary(self) -> dict:
         """JSON-ready summary (see the integration notes of the module)."""
-        from tolalloc.allocate.calibrated_summary import summary
+        from tolalloc.allocate.calibrated.summary import summary
 
         return summary(self)
 
     def message(self) -> str:
         """The lines a command line prints: region, coverage, designs and costs."""
-        from tolalloc.allocate.calibrated_summary import message
+        from tolalloc.allocate.calibrated.summary import message
 
         return message(self)
 

@@ -1,4 +1,4 @@
-"""Result of :func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`: the standard-grade design of a
+"""Result of :func:`tolalloc.allocate.calibrated.standard.standardize_calibrated`: the standard-grade design of a
 calibration-aware allocation, its costs against the continuous and the rounded design, where it was checked."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.allocate.calibrated_region import RegionSearch
+from tolalloc.allocate.calibrated.region import RegionSearch
 from tolalloc.allocate.problem import AllocationProblem, Design
 from tolalloc.allocate.region import Coverage, Region
 
@@ -140,7 +140,7 @@ class CalibratedStandard:
     def check_poses(self, k: int = 3) -> np.ndarray:
         """Poses for the end-to-end Monte Carlo (m, n) [rad, mm]: for a box the search's worst pose, the coverage's
         ``k`` worst and the ``k`` active poses of lowest ``P``; else the ``k`` poses of lowest ``P``."""
-        from tolalloc.allocate.calibrated_design import _unique_rows
+        from tolalloc.allocate.calibrated.design import _unique_rows
 
         low = self.problem.q[np.argsort(self.p_post)[:k]]
         if self.region_kind != "box":

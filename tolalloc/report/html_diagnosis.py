@@ -6,10 +6,11 @@ from pathlib import Path
 
 import numpy as np
 
-from tolalloc.report.html import Column, file_figure_item, html_table, pretty, writer_figure_item
+from tolalloc.report.html import (Column, file_figure_item, html_table, pretty, render_report, write_html,
+                                  writer_figure_item)
 from tolalloc.report.diagnosis import safe_max_note
 
-__all__ = ["diagnosis_context"]
+__all__ = ["diagnosis_context", "write_diagnosis_report"]
 
 SECTIONS = [{"id": "summary", "title": "Diagnosis and verdict"}, {"id": "before-after", "title": "Before and after"},
             {"id": "guards", "title": "Guards and findings"}, {"id": "ranking", "title": "Candidate effects"},
@@ -30,6 +31,12 @@ RANKING_COLUMNS = [Column("step", "step", "int"), Column("base", "on top of", "t
 GAP_COLUMNS = [Column("part", "part", "text"), Column("ms_mm2", "mean square [mm²]", "f4"),
                Column("rms_equiv_mm", "RMS equivalent [mm]", "f4"),
                Column("share_of_nominal_pct", "share of the nominal error [%]", "f2")]
+
+
+def write_diagnosis_report(job, folder) -> Path:
+    """Write ``report.html`` of a :class:`~tolalloc.workflows.diagnosis.MeasurementDiagnosis` into the existing
+    directory ``folder``."""
+    return write_html(render_report("diagnosis.html.j2", diagnosis_context(job, folder)), folder)
 
 
 def _verdict(d, block, which: str) -> dict:
@@ -138,8 +145,6 @@ def _figures(d, folder=None) -> list:
 
 def diagnosis_context(job, folder=None) -> dict:
     """The template context of a :class:`MeasurementDiagnosis`'s report (``folder``: where its figures were saved)."""
-    from tolalloc.workflows.html_command import diagnosis_command
-
     d = job.diagnosis
     which = "test" if d.test is not None else "cv"
     block = d.before_after(which)
@@ -153,7 +158,7 @@ def diagnosis_context(job, folder=None) -> dict:
         subsample = (f"Cross-validation and effect selection ran on {s['cv_rows']:,} of {s['rows']:,} training rows "
                      f"(seed {s['seed']}), identifiability on {s['identifiability_rows']:,}; the final fits use all rows.")
     seq = d.sequence_frame()
-    cli, python, notes = diagnosis_command(job)
+    cli, python, notes = job.reproduce_command()
     verdict = _verdict(d, block, which)
     return {"kicker": "sim-to-real diagnosis", "title": "Sim-to-real diagnosis report",
             "subtitle": f"{d.robot.name}: {verdict['word'].lower()}",
@@ -182,10 +187,21 @@ def diagnosis_context(job, folder=None) -> dict:
 
 
 def _inputs(job) -> list:
-    from tolalloc.workflows.html_command import row_ranges_text
-
     d, inp = job.diagnosis, job.inputs
     pairs = [("robot", d.robot.name), ("train", d.train.source), ("test", None if d.test is None else d.test.source),
              ("test_frame", d.test_frame), ("folds", job.folds)]
     pairs += [(k, v) for k, v in inp.items() if k not in {"robot", "train", "test", "test_frame", "folds"}]
     return [(k, "—" if v is None else row_ranges_text(v) if k == "register_rows" else str(v)) for k, v in pairs]
+
+
+def row_ranges_text(rows) -> str:
+    """Row numbers as ``--register-rows`` reads them: sorted, runs of consecutive rows as inclusive ranges
+    (``[1, 2, 3, 7, 9, 10]`` -> ``"1-3,7,9-10"``)."""
+    rows = sorted({int(r) for r in rows})
+    runs, start = [], None
+    for i, r in enumerate(rows):
+        start = r if start is None else start
+        if i + 1 == len(rows) or rows[i + 1] != r + 1:
+            runs.append(str(r) if r == start else f"{start}-{r}")
+            start = None
+    return ",".join(runs)

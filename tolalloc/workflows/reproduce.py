@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import shlex
 
-__all__ = ["allocation_command", "diagnosis_command", "row_ranges_text"]
+from tolalloc.report.html_diagnosis import row_ranges_text
+
+__all__ = ["allocation_command", "diagnosis_command"]
 
 #: keyword argument -> command-line flag, for the options whose names differ only in spelling
 _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "poses": "--poses", "costs": "--costs",
@@ -216,19 +218,6 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
     python = (f"import tolalloc\n\nresult = {grouped_call('diagnose_measurements', [robot, train], kw)}\n"
               "result.save('DIR', report=True)")
     return cli, python, notes
-
-
-def row_ranges_text(rows) -> str:
-    """Row numbers as ``--register-rows`` reads them: sorted, runs of consecutive rows as inclusive ranges
-    (``[1, 2, 3, 7, 9, 10]`` -> ``"1-3,7,9-10"``)."""
-    rows = sorted({int(r) for r in rows})
-    runs, start = [], None
-    for i, r in enumerate(rows):
-        start = r if start is None else start
-        if i + 1 == len(rows) or rows[i + 1] != r + 1:
-            runs.append(str(r) if r == start else f"{start}-{r}")
-            start = None
-    return ",".join(runs)
 
 
 def _measurement_path(source: str, placeholder: str, notes: list) -> str:

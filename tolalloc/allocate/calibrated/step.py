@@ -1,4 +1,5 @@
-"""The convex step of the calibration-aware allocation (:mod:`tolalloc.allocate.calibrated`), built once and re-solved.
+"""The convex step of the calibration-aware allocation (:mod:`tolalloc.allocate.calibrated.certified`), built once
+and re-solved.
 
 One majorisation-minimisation step minimises the (tangent-majorised) cost subject to the per-pose Schur LMIs::
 

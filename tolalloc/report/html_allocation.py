@@ -13,9 +13,13 @@ import pandas as pd
 
 from tolalloc.report.handover import handover_html
 from tolalloc.report.html import Column, figure_item, file_figure_item, html_table, pretty, render_report, write_html
-from tolalloc.workflows.allocation_text import worst_p_text
 
-__all__ = ["write_allocation_report", "write_diagnosis_report", "allocation_context", "verdict_legend"]
+__all__ = ["write_allocation_report", "allocation_context", "verdict_legend", "worst_p_text"]
+
+
+def worst_p_text(worst_p: float | None) -> str:
+    """The region search's worst linear P as printed (None: the search had no design to search with)."""
+    return "none (no design to search with)" if worst_p is None else f"{worst_p:.5f}"
 
 
 
@@ -33,15 +37,9 @@ def verdict_legend(ver) -> str:
 
 
 def write_allocation_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`ToleranceAllocation` into the existing directory ``folder``."""
+    """Write ``report.html`` of a :class:`~tolalloc.workflows.allocation_result.ToleranceAllocation` into the
+    existing directory ``folder``."""
     return write_html(render_report("allocation.html.j2", allocation_context(job, folder)), folder)
-
-
-def write_diagnosis_report(job, folder) -> Path:
-    """Write ``report.html`` of a :class:`MeasurementDiagnosis` into the existing directory ``folder``."""
-    from tolalloc.workflows.html_diagnosis import diagnosis_context
-
-    return write_html(render_report("diagnosis.html.j2", diagnosis_context(job, folder)), folder)
 
 
 # ---------------------------------------------------------------------------------------------- shared pieces
@@ -285,16 +283,14 @@ def _figures(job, folder=None) -> list:
 
 
 def allocation_context(job, folder=None) -> dict:
-    """The template context of a :class:`ToleranceAllocation`'s report (``folder``: where its figures were saved)."""
-    from tolalloc.workflows.html_command import allocation_command
-
+    """The template context of a :class:`~tolalloc.workflows.allocation_result.ToleranceAllocation`'s report (``folder``: where its figures were saved)."""
     s = job.summary()
     res, pr = job.result, job.problem
     where = (f"Over the box region {job.label!r}: its worst poses were found by a cutting-plane search; the design "
              f"is allocated at {pr.n_poses} poses." if job.region is not None else
              f"At the {pr.n_poses} pose(s) of the pose set {job.label!r}.")
     notes = [pretty(x) for x in (res.message, res.design.message) if x and res.status == "optimal"]
-    cli, python, rnotes = allocation_command(job)
+    cli, python, rnotes = job.reproduce_command()
     verdict = _verdict(job)
     return {"kicker": "tolerance allocation", "title": "Tolerance allocation report",
             "subtitle": f"{job.robot.name}: {pretty(job.requirement())}",

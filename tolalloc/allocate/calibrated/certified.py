@@ -24,7 +24,7 @@ previous iterate (the first: the process upper limits) and the random variances 
 them, so the posterior used is never optimistic. The final design is re-checked with
 :func:`tolalloc.calibration.posterior.posterior` at the design's own sigmas.
 
-The convex step is :mod:`tolalloc.allocate.calibrated_step`: one cvxpy problem compiled once and re-solved with new
+The convex step is :mod:`tolalloc.allocate.calibrated.step`: one cvxpy problem compiled once and re-solved with new
 parameters (DPP), its pose LMIs on a working set of poses grown until the requirement holds exactly at every
 working pose (the same step solution as with all pose LMIs, at a fraction of the interior-point cost).
 
@@ -49,7 +49,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, make_design
 from tolalloc.calibration.plan import CalibrationPlan
-from tolalloc.allocate.calibrated_step import START_SHARE, StepData, solve_step
+from tolalloc.allocate.calibrated.step import START_SHARE, StepData, solve_step
 from tolalloc.calibration.posterior import Posterior, estimated_index, posterior
 from tolalloc.calibration.split import ErrorSplit, split_errors
 
@@ -77,7 +77,7 @@ class CalibratedAllocation:
     iterations : int
     lmi_poses : tuple of int
         Working poses whose Schur LMIs the last step imposed (the others were checked exactly and hold there; see
-        :mod:`tolalloc.allocate.calibrated_step`).
+        :mod:`tolalloc.allocate.calibrated.step`).
     """
 
     problem: AllocationProblem

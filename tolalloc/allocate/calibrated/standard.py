@@ -1,7 +1,7 @@
 """Standard grades for the calibration-aware design: ISO 286 grades, classes and steps that hold after calibration.
 
 :func:`standardize_calibrated` turns the continuous calibration-aware design of
-:func:`tolalloc.allocate.calibrated_design.allocate_with_calibration` (exact when accepted, else certified) into
+:func:`tolalloc.allocate.calibrated.design.allocate_with_calibration` (exact when accepted, else certified) into
 the standard values of the same catalogue as the allocation without calibration
 (:func:`tolalloc.allocate.catalogue.build_catalogue`), over the same poses, trajectory or box:
 
@@ -15,7 +15,7 @@ the standard values of the same catalogue as the allocation without calibration
    tightening, :func:`tolalloc.allocate.discrete.repair`).
 2. **Local search** (:func:`tolalloc.allocate.discrete_exact.local_search`): moves to neighbouring grade vectors
    (one parameter a grade or one or two steps looser; or one looser and another tighter) that are cheaper and keep
-   the exact post-calibration probability (:class:`tolalloc.allocate.calibrated_margin.PostMargin`) at or above
+   the exact post-calibration probability (:class:`tolalloc.allocate.calibrated.margin.PostMargin`) at or above
    its target at every pose of the set, best saving first, until no move is left.
 3. **Outer approximation** (:func:`tolalloc.allocate.discrete_exact.solve_discrete_exact` with the post-calibration
    margin): the probability linearised at the designs tried (central differences), a mixed-integer program
@@ -24,7 +24,7 @@ the standard values of the same catalogue as the allocation without calibration
    post-calibration probability is not shown concave in the variances, so its linearisations need not bound it:
    the result meets ``p`` at every pose and is a local optimum of the neighbourhood, not a proven optimum.
    Steps 2-3 also run from the rounding of the continuous design confined to the catalogue's range
-   (:func:`tolalloc.allocate.calibrated_rounding.range_relaxation`); the cheaper result is kept.
+   (:func:`tolalloc.allocate.calibrated.rounding.range_relaxation`); the cheaper result is kept.
 4. **Region** (box only): worst-pose search over the box on the standard design's post-calibration covariance
    (:func:`tolalloc.allocate.region.worst_pose`); a pose more than ``tol`` below ``p`` joins the set, the design
    is repaired there and the local search runs again, until the worst pose found is within ``tol``; then the
@@ -42,10 +42,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from tolalloc.allocate.calibrated_margin import PostMargin
-from tolalloc.allocate.calibrated_rounding import catalogue_range, coupled_round_down, range_relaxation
-from tolalloc.allocate.calibrated_standard_result import RECHECK_TOL, CalibratedStandard
-from tolalloc.allocate.calibrated_region import RegionSearch, design_prob, problem_at
+from tolalloc.allocate.calibrated.margin import PostMargin
+from tolalloc.allocate.calibrated.rounding import catalogue_range, coupled_round_down, range_relaxation
+from tolalloc.allocate.calibrated.standard_result import RECHECK_TOL, CalibratedStandard
+from tolalloc.allocate.calibrated.region import RegionSearch, design_prob, problem_at
 from tolalloc.allocate.catalogue import Catalogue, build_catalogue
 from tolalloc.allocate.discrete import MIP_REL_GAP, repair
 from tolalloc.allocate.discrete_exact import local_search, solve_discrete_exact
@@ -77,10 +77,10 @@ def _descend(cat: Catalogue, margin: PostMargin, opt, n, how: dict):
 
 
 def _check(res, tol, max_rounds, n_seed, n_starts, coverage_n, k_worst, max_moves, time_limit_s):
-    from tolalloc.allocate.calibrated_design import CalibratedDesign
+    from tolalloc.allocate.calibrated.design import CalibratedDesign
 
     if not isinstance(res, CalibratedDesign):
-        raise TolallocError(f"res: expected the CalibratedDesign of tolalloc.allocate.calibrated_design."
+        raise TolallocError(f"res: expected the CalibratedDesign of tolalloc.allocate.calibrated.design."
                             f"allocate_with_calibration, got {type(res).__name__}.")
     for name, v, lo in (("max_rounds", max_rounds, 1), ("n_seed", n_seed, 1), ("n_starts", n_starts, 1),
                         ("coverage_n", coverage_n, 0), ("k_worst", k_worst, 1), ("max_moves", max_moves, 0)):
@@ -103,7 +103,7 @@ def standardize_calibrated(res, *, angle_step_deg: float | None = None, tol: flo
     Parameters
     ----------
     res : CalibratedDesign
-        From :func:`tolalloc.allocate.calibrated_design.allocate_with_calibration`; its chosen design (exact when
+        From :func:`tolalloc.allocate.calibrated.design.allocate_with_calibration`; its chosen design (exact when
         accepted, else certified) is made standard.
     angle_step_deg : float, optional
         Resolution of angle tolerances without classes [deg] (default the costs file's, else 1 arcsec).
@@ -124,7 +124,7 @@ def standardize_calibrated(res, *, angle_step_deg: float | None = None, tol: flo
         HiGHS time limit per mixed-integer program [s].
     relax : bool
         Also solve the continuous design confined to the catalogue's range on the continuous design's poses
-        (:func:`tolalloc.allocate.calibrated_rounding.range_relaxation`, with the stages ``res`` ran: certified, then
+        (:func:`tolalloc.allocate.calibrated.rounding.range_relaxation`, with the stages ``res`` ran: certified, then
         exact unless its exact stage was skipped): it splits the premium into range and steps, and its rounding is a
         second start of the search (the cheaper result is kept).
     """
@@ -183,7 +183,7 @@ def _region_loop(res, pr, cat, margin, opt, n, oa, tol, max_rounds, seed, n_seed
 
     Returns ``(problem, margin, opt, n, moves, outer approximation status, RegionSearch)``; ``opt`` None when no
     standard design meets the grown pose set."""
-    from tolalloc.allocate.calibrated_exact import post_probabilities
+    from tolalloc.allocate.calibrated.exact import post_probabilities
 
     t0 = time.perf_counter()
     split, plan, box = res.post.split, res.plan, res.region
@@ -216,8 +216,8 @@ def _region_loop(res, pr, cat, margin, opt, n, oa, tol, max_rounds, seed, n_seed
 
 def _result(res, pr, margin, opt, n, search, moves, coverage_n, cov_args, why, *, cat, extra, grade_cost, rounded,
             rounded_cost, rounded_p_min, t0, relaxed, limited, start="", oa="") -> CalibratedStandard:
-    from tolalloc.allocate.calibrated_design import _coverage_of
-    from tolalloc.allocate.calibrated_exact import post_probabilities
+    from tolalloc.allocate.calibrated.design import _coverage_of
+    from tolalloc.allocate.calibrated.exact import post_probabilities
 
     K = len(pr.model.names)
     label = res.design.label

@@ -6,7 +6,7 @@
     subject to u_min <= u <= u_max,  v_min <= v <= v_start,  u_j <= u_start,j (random-only parts),
                P(|x_i| < r) >= target_i  at every pose i,   x_i ~ N(0, Sigma_i(u, v))
 
-with the post-calibration covariance of :mod:`tolalloc.allocate.calibrated` (normalised coordinates,
+with the post-calibration covariance of :mod:`tolalloc.allocate.calibrated.certified` (normalised coordinates,
 ``omega_k = 1 / u_k`` for the allocatable systematic parts)::
 
     Sigma_i = B_i (diag(omega) + I_w)^-1 B_i^T + J_R,i V(u, v) J_R,i^T + C_fixed,i,     B_i = D J_E,i
@@ -31,8 +31,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from tolalloc.allocate.calibrated import CalibratedAllocation, _grades
-from tolalloc.allocate.calibrated_step import StepData, information
+from tolalloc.allocate.calibrated.certified import CalibratedAllocation, _grades
+from tolalloc.allocate.calibrated.step import StepData, information
 from tolalloc.allocate.exact import FEAS_TOL, LEBEDEV_ORDER
 from tolalloc.allocate.problem import NOT_CONVERGED, Design, Solver, make_design
 from tolalloc.calibration.posterior import Posterior, posterior

@@ -2,7 +2,7 @@
 
 :func:`design_plan_for_allocation` alternates
 
-1. allocate with the current plan (:func:`tolalloc.allocate.calibrated_design.allocate_with_calibration`, over the
+1. allocate with the current plan (:func:`tolalloc.allocate.calibrated.design.allocate_with_calibration`, over the
    poses or the region);
 2. re-design the plan for that design: prior = the design's sigmas, evaluation poses = where its requirement binds
    (the allocation's final poses: the pose set, or the region's active set), criterion = the worst post-calibration
@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.allocate.calibrated_design import CalibratedDesign, allocate_with_calibration
+from tolalloc.allocate.calibrated.design import CalibratedDesign, allocate_with_calibration
 from tolalloc.calibration.check import min_plan_poses
 from tolalloc.calibration.design import design_plan
 from tolalloc.calibration.design_worst import design_plan_worst, plan_worst_p, random_plan_worst_p
@@ -81,7 +81,7 @@ def design_plan_for_allocation(problem, n_poses: int, candidates, *, split=None,
     candidates : array, shape (C, n) [rad, mm]
         Candidate measurement poses (e.g. :func:`tolalloc.calibration.design.candidate_poses`).
     region, exact, baseline, coverage_n, seed
-        As :func:`tolalloc.allocate.calibrated_design.allocate_with_calibration` (the intermediate allocations skip
+        As :func:`tolalloc.allocate.calibrated.design.allocate_with_calibration` (the intermediate allocations skip
         the coverage check and the baseline).
     start : CalibrationPlan, optional
         Default: the A-optimal plan at the problem's poses under the file's sigmas.

@@ -1,4 +1,4 @@
-"""Summary (JSON-ready dict) and printed lines of a :class:`~tolalloc.allocate.calibrated_design.CalibratedDesign`."""
+"""Summary (JSON-ready dict) and printed lines of a :class:`~tolalloc.allocate.calibrated.design.CalibratedDesign`."""
 
 from __future__ import annotations
 
