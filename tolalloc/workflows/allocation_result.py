@@ -68,14 +68,13 @@ class ToleranceAllocation(JobResult):
     built: object = None
 
     # ------------------------------------------------------------------ the headline numbers
-    @property
-
     def reproduce_command(self) -> tuple:
         """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
         from tolalloc.workflows.reproduce import allocation_command
 
         return allocation_command(self)
 
+    @property
     def robot(self):
         return self.result.problem.model.robot
 

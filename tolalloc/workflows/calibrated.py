@@ -125,14 +125,13 @@ class CalibratedToleranceAllocation(JobResult):
     inputs: dict = field(default_factory=dict)
     standard: object = None
 
-    @property
-
     def reproduce_command(self) -> tuple:
         """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
         from tolalloc.workflows.reproduce import allocation_command
 
         return allocation_command(self)
 
+    @property
     def robot(self):
         return self.result.problem.model.robot
 

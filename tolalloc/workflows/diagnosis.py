@@ -198,14 +198,13 @@ class MeasurementDiagnosis(JobResult):
     folds: int = 5
     inputs: dict = field(default_factory=dict)
 
-    @property
-
     def reproduce_command(self) -> tuple:
         """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
         from tolalloc.workflows.reproduce import diagnosis_command
 
         return diagnosis_command(self)
 
+    @property
     def robot(self):
         return self.diagnosis.robot
 
