@@ -27,7 +27,7 @@ def test_the_version_is_written_once_and_shown_everywhere(capsys):
     with pytest.raises(SystemExit) as stop:
         main(["--version"])
     assert stop.value.code == 0 and capsys.readouterr().out == f"tolalloc {version}\n"
-    literal = re.compile(r"""__version__\s*=\s*["']|version\s*=\s*["']\d""")
+    literal = re.compile(r"""__version__\s*=\s*["']|^\s*version\s*=\s*["']\d""", re.M)  # not <?xml version="1.0"?>
     assert not [p for p in (ROOT / "tolalloc").rglob("*.py") if literal.search(p.read_text())]
 
 

@@ -99,8 +99,8 @@ def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     assert main(["calplan", "tool_changer", "--n-poses", "8", "--n-candidates", "64", "--out", str(plan)]) == 0
     capsys.readouterr()
     api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
-    stages = re.findall(r"^calplan tool_changer: (.+): \d+\.\d+ s$", capsys.readouterr().err, re.M)
-    assert stages == ["64 candidate poses", "A-optimal design of 8 poses"]  # stderr is no terminal: one line each
+    stages = re.findall(r"^plan_calibration tool_changer: (.+): \d+\.\d+ s$", capsys.readouterr().err, re.M)
+    assert stages == ["64 candidate poses", "A-optimal 8-pose plan"]  # stderr is no terminal: one line each
     api_plan.save(tmp_path / "plan_api.csv")
     assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
     # at the working poses without the standard-grade search (the region path and the standard grades of the same call

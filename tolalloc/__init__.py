@@ -34,9 +34,14 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:  # what the names below resolve to, for type checkers and IDEs; never run
     from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, UnknownArgumentError
     from tolalloc.robot import Joint, Link, Robot, builtin_robots, load_robot
-    from tolalloc.workflows import (CalibratedToleranceAllocation, CalibrationPlanDesign, ErrorAnalysis,
-                                    ErrorSimulation, MeasurementDiagnosis, ToleranceAllocation, allocate_tolerances,
-                                    analyze_errors, diagnose_measurements, plan_calibration, simulate_errors)
+    from tolalloc.workflows import (CalibratedToleranceAllocation, CalibrationPlanDesign, CompensationResult, Costs,
+                                    DrawingReview, ErrorAnalysis, ErrorModelOptions, ErrorSimulation, FitOptions,
+                                    FleetAnalysis, Measurement, MeasurementDiagnosis, MonteCarlo,
+                                    OrientationRequirement, PositionRequirement, Refit, Region, Requirement, Solver,
+                                    ToleranceAllocation, Verification, allocate_tolerances, analyze_errors,
+                                    compensate_program, diagnose_measurements, fleet, plan_calibration, review_drawing,
+                                    simulate_errors)
+    from tolalloc.workflows.acceptance import AcceptanceAllocation, allocate_acceptance
 
     __version__: str
 
