@@ -123,7 +123,14 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
             raise TolallocError(f"no design meets P(|dP| < {radius_mm:g} mm) >= {prob:g} with these parts and "
                                 f"process limits: {why}")
         out, ob, pr, cat, first = best
-        if region is None:
+        if region is None:  # the poses only: the worst of the active points
+            ratio = PointRatio(with_parts(robot, ob.choice(out.part)),
+                               pr.model_for(pr.t_from_u(cat.u_of(out.opt, out.n))), cond, kw["radius_mm"], kw["prob"],
+                               out.rule, after, kw["residual"])
+            r = ratio(points)
+            i = int(np.argmax(r))
+            worst = WorstPoint(Points(points.q[i:i + 1], points.payload_kg[i:i + 1], points.ambient_c[i:i + 1]),
+                               float(r[i]), len(points), np.zeros(robot.n_joints + 2, bool))
             break
         choice = ob.choice(out.part)
         ratio = PointRatio(with_parts(robot, choice), pr.model_for(pr.t_from_u(cat.u_of(out.opt, out.n))), cond,
@@ -134,7 +141,7 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
         if worst.ratio <= 1.0 + tol:
             break
         points = points.stack(worst.point)
-    converged = region is None or worst.ratio <= 1.0 + tol
+    converged = worst.ratio <= 1.0 + tol
     return _finish(robot, model, out, ob, pr, cat, points, worst, cond, kw, rounds, converged, tried, history,
                    exact, region, seed, t0)
 

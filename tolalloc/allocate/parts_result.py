@@ -88,7 +88,8 @@ class PartsAllocation:
     labels : tuple of str            machining standard value per allocatable parameter (``IT7``, a class, "")
     shares : OptionBlocks            the chosen parts' terms at the worst point
     points : Points                  active points
-    worst : WorstPoint or None       the region's worst point found for the design (None without a region)
+    worst : WorstPoint               the worst point found for the design (the region's; without a region, the worst
+                                     active point)
     conditions : Conditions
     after : str
     residual : float
@@ -157,7 +158,7 @@ class PartsAllocation:
 
     @property
     def worst_point(self):
-        """The worst point found (the first active point without a region)."""
+        """The worst point found (:attr:`worst`'s point)."""
         from tolalloc.allocate.parts_problem import Points
 
         if self.worst is not None:
