@@ -28,7 +28,7 @@ import numpy as np
 
 from tolalloc.allocate.catalogue import build_catalogue
 from tolalloc.allocate.costs import CostSet, cost_set
-from tolalloc.allocate.parts_discrete import PartsOutcome, solve_parts_rule
+from tolalloc.allocate.parts_discrete import PartsOutcome, parts_ratio, solve_parts_rule
 from tolalloc.allocate.parts_problem import Points, option_blocks, parts_problem, signature_combos
 from tolalloc.allocate.parts_region import PointRatio, WorstPoint, worst_point
 from tolalloc.allocate.parts_result import PartsAllocation, check_rated_options
@@ -60,6 +60,34 @@ def _solve_points(model, robot, points, cond, kw, first: int = 0) -> tuple:
             if out.opt is not None and (best is None or out.cost < best[0].cost):
                 best = (out, ob, pr, cat, c)
     return best, notes, tried
+
+
+def _best_reachable(model, robot, points, cond, kw) -> str:
+    """Why no design exists: the smallest certified ratio with every machining tolerance at its lower limit and the
+    finest part of every slot, and the share of the variance the parts carry there."""
+    from tolalloc.allocate.parts_discrete import _finest_parts, _scaled
+
+    best = None
+    for combo in signature_combos(robot):
+        ob = option_blocks(robot, model, points, combo, cond, kw["after"], kw["residual"])
+        pr = parts_problem(model, points, ob.fixed_cov, ob.bias_mm, radius_mm=kw["radius_mm"], prob=kw["prob"],
+                           costs=kw["costs"])
+        part = _finest_parts(ob, _scaled(pr, ob))
+        for rule in kw["rules"]:
+            r = float(parts_ratio(pr, ob, rule, pr.u_min, part)[0])
+            if best is None or r < best[0]:
+                best = (r, rule, ob, pr, part)
+    r, rule, ob, pr, part = best
+    parts_cov = ob.fixed_cov + ob.cov[part].sum(axis=0)
+    total = pr.covariances(pr.t_from_u(pr.u_min)) / pr.scale[:, None, None] - ob.fixed_cov + parts_cov
+    i = int(np.argmax(np.einsum("pii->p", total)))
+    share = 100 * np.trace(parts_cov[i]) / np.trace(total[i])
+    return (f"with every machining tolerance at its lower limit and the finest part of every slot the {rule} rule is "
+            f"exceeded by a factor {r:.4g}; at point {i + 1} (payload {points.payload_kg[i]:g} kg, ambient "
+            f"{points.ambient_c[i]:g} degC) the bought parts carry {share:.0f} % of the variance and their mean error is "
+            f"{np.linalg.norm(ob.bias_mm[i]):.3g} mm: relax the radius, "
+            + ("compensate (after='compensation')" if kw["after"] == "none" else "compensate more (a smaller residual)")
+            + ", or offer finer parts in the slots")
 
 
 def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Conditions(), radius_mm: float = 0.25,
@@ -119,7 +147,7 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
         best, notes, n_tried = _solve_points(model, robot, points, cond, kw, first)
         tried += n_tried
         if best is None:
-            why = "; ".join(notes) or "no combination of standard values and parts meets the rule"
+            why = "; ".join(notes) or _best_reachable(model, robot, points, cond, kw)
             raise TolallocError(f"no design meets P(|dP| < {radius_mm:g} mm) >= {prob:g} with these parts and "
                                 f"process limits: {why}")
         out, ob, pr, cat, first = best

@@ -129,7 +129,8 @@ def _point(fx, i, mm, chain, n, n_control, rng, r, level, kw) -> tuple:
 
 
 def verify_parts(res, *, which: str = "certified", points: str = "worst", n_mc: int = 20000,
-                 n_control: int | None = None, seed: int = 0, level: float = 0.95) -> PartsVerification:
+                 n_control: int | None = None, seed: int = 0, level: float = 0.95,
+                 machining: bool = True) -> PartsVerification:
     """Verify a :class:`~tolalloc.allocate.parts_result.PartsAllocation` by the nonlinear Monte Carlo.
 
     Parameters
@@ -145,6 +146,9 @@ def verify_parts(res, *, which: str = "certified", points: str = "worst", n_mc: 
     seed : int
     level : float
         Confidence level of each point's interval.
+    machining : bool
+        Draw the machining errors (default); False: the bought parts' effects alone (to compare with a simulation of
+        the parts only).
     """
     import time
 
@@ -161,7 +165,7 @@ def verify_parts(res, *, which: str = "certified", points: str = "worst", n_mc: 
                             "exact=True)")
     n_control = 10 * int(n_mc) if n_control is None else int(n_control)
     pr = res.problem
-    mm = pr.model_for(design.t)
+    mm = pr.model_for(design.t if machining else np.zeros_like(design.t))
     robot = with_parts(mm.robot, res.choice)
     pts = res.worst_point if points == "worst" else res.worst_point.stack(res.points)
     fx = PartEffects(robot, pts.q, pts.payload_kg, pts.ambient_c, res.conditions, pm=parts_error_model(mm, robot))
