@@ -33,7 +33,7 @@ from tolalloc.allocate.parts_problem import Points, option_blocks, parts_problem
 from tolalloc.allocate.parts_region import PointRatio, WorstPoint, worst_point
 from tolalloc.allocate.parts_result import PartsAllocation, check_rated_options
 from tolalloc.allocate.problem import Solver, make_design
-from tolalloc.errormodel.parts import COMPENSATION_RESIDUAL, Conditions, with_parts
+from tolalloc.errormodel.parts import COMPENSATION_RESIDUAL, Conditions, residual_factors, with_parts
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["allocate_parts", "PartsAllocation"]
@@ -92,7 +92,7 @@ def _best_reachable(model, robot, points, cond, kw) -> str:
 
 def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Conditions(), radius_mm: float = 0.25,
                    prob: float = 0.95, costs: CostSet | dict | None = None, after: str = "none",
-                   residual: float = COMPENSATION_RESIDUAL, rules=("trace", "lmi"), tol: float = 1e-3,
+                   residual=COMPENSATION_RESIDUAL, rules=("trace", "lmi"), tol: float = 1e-3,
                    max_rounds: int = 12, seed: int = 0, n_seed: int = 256, n_starts: int = 3,
                    time_limit_s: float = 60.0, exact: bool = True) -> PartsAllocation:
     """Cheapest machining standard values and catalogue parts meeting the requirement (module docstring).
@@ -112,8 +112,9 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
     costs : CostSet or dict, optional
         Machining costs (the costs file); parts are priced by the catalogue.
     after : {"none", "compensation"}
-    residual : float
-        Share of every systematic part the compensation models leave (``after="compensation"``).
+    residual : float or dict
+        Share of every systematic part the compensation models leave (``after="compensation"``); a dict gives it
+        per effect, 1 for the effects it omits (:func:`tolalloc.errormodel.parts.residual_factors`).
     rules : tuple of {"trace", "lmi"}
     tol : float
         Stop when the worst ratio found is at most ``1 + tol``.
@@ -125,11 +126,10 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
     exact : bool
         Step 4: the machining allocation with the parts fixed.
     """
-    t0 = time.perf_counter()
+    t0 = time.perf_counter(), time.process_time()
     robot = model.robot
     cond = conditions.check(robot)
-    if after not in ("none", "compensation"):
-        raise TolallocError(f"after: expected 'none' or 'compensation', got {after!r}")
+    residual_factors(after, residual)  # checks both
     bad = [r for r in rules if r not in ("trace", "lmi")]
     if bad or not rules:
         raise TolallocError(f"rules: expected 'trace' and/or 'lmi', got {rules!r}")
@@ -139,7 +139,7 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
             "working" if "working" in robot.pose_sets else None)
     q = np.atleast_2d(robot.check_q(q, "q"))
     check_rated_options(robot, model, region, q, cond, seed)
-    kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cs, after=after, residual=float(residual),
+    kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cs, after=after, residual=residual,
               rules=tuple(rules), time_limit_s=time_limit_s)
     points = Points.grid(q, cond.corners())
     rounds, worst, tried, history, first = 0, None, 0, [], 0
@@ -166,7 +166,7 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
         worst = worst_point(ratio, region.q_min, region.q_max, n_seed=n_seed, n_starts=n_starts, seed=seed + rounds,
                             static=None if worst is None else worst.static)
         history.append((rounds, out.cost, worst.ratio))
-        if worst.ratio <= 1.0 + tol:
+        if worst.ratio <= 1.0 + tol or rounds == max_rounds:
             break
         points = points.stack(worst.point)
     converged = worst.ratio <= 1.0 + tol
@@ -195,4 +195,4 @@ def _finish(robot, model, out: PartsOutcome, ob, pr, cat, points, worst: WorstPo
                            kw["residual"])
     return PartsAllocation(final, design, out, choice, labels, shares, points, worst, cond, kw["after"],
                            kw["residual"], rounds, converged, tried, tuple(history), machining, region,
-                           time.perf_counter() - t0)
+                           time.perf_counter() - t0[0], time.process_time() - t0[1])

@@ -176,7 +176,7 @@ def _option_terms(fx: PartEffects, robot, key, name) -> EffectTerms:
 
 
 def option_blocks(robot, model, points: Points, combo: dict, conditions: Conditions, after: str = "none",
-                  residual: float | None = None) -> OptionBlocks:
+                  residual=None) -> OptionBlocks:
     """The fixed terms and the options' covariances of one signature combination at ``points``."""
     from tolalloc.errormodel.parts import COMPENSATION_RESIDUAL
 

@@ -38,7 +38,7 @@ class PointRatio:
     prob: float
     rule: str
     after: str = "none"
-    residual: float = 0.1
+    residual: object = 0.1
 
     @cached_property
     def _pm(self):
@@ -59,7 +59,8 @@ class PointRatio:
             v, c = np.einsum("pii->p", C), chi2.ppf(self.prob, 1)
         else:
             v, c = np.linalg.eigvalsh(C)[:, -1], chi2.ppf(self.prob, 3)
-        return np.where(room > 0, v * c / np.maximum(room, 1e-300) ** 2, 1e6 * (1 - room / self.radius_mm))
+        safe = np.where(room > 0, room, 1.0)
+        return np.where(room > 0, v * c / safe ** 2, 1e6 * (1 - room / self.radius_mm))
 
 
 @dataclass(frozen=True, eq=False)

@@ -92,13 +92,13 @@ class PartsAllocation:
                                      active point)
     conditions : Conditions
     after : str
-    residual : float
+    residual : float or dict
     rounds, programs : int
     converged : bool                 the worst ratio found is within ``1 + tol``
     history : tuple of (round, cost, worst ratio)
     machining : AllocationResult or None   step 4: the machining allocation with these parts
     region : Region or None
-    time_s : float
+    time_s, cpu_s : float            wall time and the process's CPU time (all threads) [s]
     """
 
     problem: object
@@ -111,7 +111,7 @@ class PartsAllocation:
     worst: object
     conditions: object
     after: str
-    residual: float
+    residual: object
     rounds: int
     converged: bool
     programs: int
@@ -119,6 +119,7 @@ class PartsAllocation:
     machining: object
     region: object
     time_s: float
+    cpu_s: float = float("nan")
 
     @property
     def ok(self) -> bool:
@@ -206,4 +207,4 @@ class PartsAllocation:
                 "worst_q_deg_mm": robot.q_to_interface(w.q[0]).tolist(),
                 "worst_payload_kg": float(w.payload_kg[0]), "worst_ambient_c": float(w.ambient_c[0]),
                 "worst_ratio": None if self.worst is None else float(self.worst.ratio),
-                "time_s": self.time_s}
+                "time_s": self.time_s, "cpu_s": self.cpu_s}

@@ -48,7 +48,8 @@ from tolalloc.physics.thermal import link_cte, link_temperature, motor_rise
 from tolalloc.physics.transmission import catalogue_amplitudes
 from tolalloc.robot.model import Robot
 
-__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "Conditions", "PartsModel",
+__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "Conditions",
+           "PartsModel",
            "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side"]
 
 EFFECTS = ("compliance", "lost_motion", "transmission", "encoder", "bearing", "thermal", "beam", "mount")
@@ -60,6 +61,26 @@ BEAM_SD = 0.1
 MOUNT_SD = 0.2
 #: Share of a mean and of a systematic part a compensation model leaves (``after="compensation"``; ASSUMED).
 COMPENSATION_RESIDUAL = 0.1
+
+
+def residual_factors(after: str, residual=COMPENSATION_RESIDUAL) -> dict:
+    """Per effect, the share of its mean and systematic part left: 1 everywhere for ``after="none"``; for
+    ``"compensation"`` the number ``residual``, or ``residual[effect]`` (1 where a dict omits the effect: no model
+    for it)."""
+    if after not in ("none", "compensation"):
+        raise TolallocError(f"after: expected 'none' or 'compensation', got {after!r}")
+    if after == "none":
+        return dict.fromkeys(EFFECTS, 1.0)
+    if isinstance(residual, dict):
+        bad = [k for k in residual if k not in EFFECTS]
+        if bad:
+            raise TolallocError(f"residual: unknown effect {bad[0]!r}; effects: {', '.join(EFFECTS)}")
+        out = {e: float(residual.get(e, 1.0)) for e in EFFECTS}
+    else:
+        out = dict.fromkeys(EFFECTS, float(residual))
+    if not all(0.0 <= v <= 1.0 for v in out.values()):
+        raise TolallocError(f"residual: expected shares in [0, 1], got {residual!r}")
+    return out
 
 
 @dataclass(frozen=True)
@@ -209,13 +230,14 @@ class EffectTerms:
         """Covariance [mm^2] (P, 3, 3) of the random parts: move to move (what repeatability sees)."""
         return self._cov(self.rnd_sd)
 
-    def moments(self, after: str = "none", residual: float = COMPENSATION_RESIDUAL) -> tuple:
+    def moments(self, after: str = "none", residual=COMPENSATION_RESIDUAL) -> tuple:
         """``(mean (P, 3), covariance (P, 3, 3))`` of the tool error the effects add: ``after="none"`` all parts;
-        ``"compensation"``: the compensation models leave ``residual`` of every mean and systematic sd."""
-        if after not in ("none", "compensation"):
-            raise TolallocError(f"after: expected 'none' or 'compensation', got {after!r}")
-        f = 1.0 if after == "none" else float(residual)
-        return f * self.mean_mm(), f ** 2 * self.systematic_covariance() + self.random_covariance()
+        ``"compensation"``: the compensation models leave ``residual`` of every mean and systematic sd (a number, or
+        ``{effect: share}`` with 1 for the effects it omits: :func:`residual_factors`)."""
+        f = residual_factors(after, residual)
+        ft = np.array([f[e] for e in self.effect])
+        return (np.einsum("pit,pt->pi", self.columns, self.mean * ft),
+                self._cov(self.sys_sd * ft) + self.random_covariance())
 
     def to_frame(self, point: int = 0) -> pd.DataFrame:
         """One row per term at one point: effect, term, joint, mean displacement and the two standard deviations of

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD, THERMAL_SD, PartEffects,
-                                       motor_side)
+                                       motor_side, residual_factors)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
@@ -32,8 +32,8 @@ def _sines(qj: float, orders, amps, rng, n: int) -> np.ndarray:
     return transmission_error(np.full(n, qj), orders, amps, phases)
 
 
-def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: float) -> tuple:
-    """Joint ``j``'s offset (systematic, random), each shape (n,) [rad or mm]."""
+def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple:
+    """Joint ``j``'s offset (systematic parts scaled by their effect's residual ``f``, random), shape (n,) each."""
     parts = fx.robot.components.joint(fx.robot.joints[j].name)
     red, enc = parts.reducer, parts.encoder
     qj, sys, rnd = fx.q[i, j], np.zeros(n), np.zeros(n)
@@ -41,28 +41,29 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: float) -> tupl
     if red is not None and motor_side(fx.robot, j):
         if red.stiffness:
             k = np.maximum(1.0 + (red.stiffness_sd or 0.0) * rng.standard_normal(n), 0.5)
-            sys += red.deflection(np.full(n, fx.tau[i, j])) / k
+            sys += f["compliance"] * red.deflection(np.full(n, fx.tau[i, j])) / k
         if red.lost_motion:
             side = flank(np.zeros((n, 1)), rng.choice([-1.0, 1.0], (n, 1)), "approach")[:, 0]
             rnd += side * red.lost_motion / 2.0
         if red.transmission_accuracy:
             orders, amps = catalogue_amplitudes(red.transmission_accuracy, red.ratio if rev else None)
-            sys += _sines(qj, orders, amps, rng, n)
+            sys += f["transmission"] * _sines(qj, orders, amps, rng, n)
         if red.repeatability:
             rnd += rng.uniform(-red.repeatability, red.repeatability, n)
     if enc is not None and (enc.accuracy or enc.eccentricity):
-        ratio = getattr(red, "ratio", None)
+        ratio, e = getattr(red, "ratio", None), np.zeros(n)
         if enc.side == "motor" and ratio and rev:
-            sys += _sines(qj, np.array([ratio]), np.array([(enc.accuracy or 0.0) / 2 / ratio]), rng, n)
+            e += _sines(qj, np.array([ratio]), np.array([(enc.accuracy or 0.0) / 2 / ratio]), rng, n)
         else:
-            sys += _sines(qj, np.array([1.0]), np.array([(enc.accuracy or 0.0) / 2]), rng, n)
+            e += _sines(qj, np.array([1.0]), np.array([(enc.accuracy or 0.0) / 2]), rng, n)
             if enc.eccentricity and enc.scale_radius_mm and rev:
-                sys += _sines(qj, np.array([1.0]), np.array([enc.eccentricity / enc.scale_radius_mm]), rng, n)
-    return f * sys, rnd
+                e += _sines(qj, np.array([1.0]), np.array([enc.eccentricity / enc.scale_radius_mm]), rng, n)
+        sys += f["encoder"] * e
+    return sys, rnd
 
 
 def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *, after: str = "none",
-                   residual: float = COMPENSATION_RESIDUAL) -> tuple:
+                   residual=COMPENSATION_RESIDUAL) -> tuple:
     """``n`` physical draws of every effect at point ``i`` of ``fx``.
 
     Parameters
@@ -73,7 +74,9 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     n : int
     rng : numpy Generator
     after : {"none", "compensation"}
-        ``compensation``: the compensation models leave ``residual`` of every systematic part (as
+    residual : float or dict
+        ``compensation``: the compensation models leave this share of every systematic part (per effect with a dict;
+        :func:`~tolalloc.errormodel.parts.residual_factors`, as
         :meth:`~tolalloc.errormodel.parts.EffectTerms.moments`).
 
     Returns
@@ -83,7 +86,7 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     direct : array, shape (n, 3)
         Tool displacement beside the chain (beam sag, mount tilt) [mm].
     """
-    f = 1.0 if after == "none" else float(residual)
+    f = residual_factors(after, residual)
     r, pm = fx.robot, fx.pm
     values, direct = np.zeros((n, len(pm.model.params))), np.zeros((n, 3))
     for j in range(r.n_joints):
@@ -91,16 +94,16 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
         values[:, pm.drive[j]] += sys + rnd
         bearing = r.components.joint(r.joints[j].name).bearing
         if bearing is not None and j in pm.bearing:
-            values[:, pm.bearing[j]] += f * runout_values(bearing, rng.uniform(0.0, 2 * np.pi, (n, 2)))
+            values[:, pm.bearing[j]] += f["bearing"] * runout_values(bearing, rng.uniform(0.0, 2 * np.pi, (n, 2)))
     cte, dT = link_cte(r), fx.link_temperatures()[i]
     lengths = np.array([lk.length_mm for lk in r.links if lk.length_mm > 0])
     grow = cte * dT * lengths
-    values[:, pm.link] += f * grow[None, :] * (1.0 + THERMAL_SD * rng.standard_normal((n, len(grow))))
+    values[:, pm.link] += f["thermal"] * grow[None, :] * (1.0 + THERMAL_SD * rng.standard_normal((n, len(grow))))
     q1, p1 = fx.q[i:i + 1], fx.tool[i:i + 1]
     if r.components.links:
         sag = beam_sag(r, q1, p1, fx.payload[i:i + 1])[0]
-        direct += f * sag[None, :] * (1.0 + BEAM_SD * rng.standard_normal((n, 1)))
+        direct += f["beam"] * sag[None, :] * (1.0 + BEAM_SD * rng.standard_normal((n, 1)))
     if r.components.mount.tilt_stiffness is not None:
         tilt = mount_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1])[0]
-        direct += f * tilt[None, :] * (1.0 + MOUNT_SD * rng.standard_normal((n, 1)))
+        direct += f["mount"] * tilt[None, :] * (1.0 + MOUNT_SD * rng.standard_normal((n, 1)))
     return values, direct

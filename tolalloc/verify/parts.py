@@ -102,7 +102,7 @@ def _values(fx: PartEffects, i: int, mm, n: int, rng, kw) -> tuple:
     return values, direct
 
 
-def draw_errors(fx: PartEffects, i: int, mm, chain: FastChain, n: int, rng, *, after: str, residual: float) -> tuple:
+def draw_errors(fx: PartEffects, i: int, mm, chain: FastChain, n: int, rng, *, after: str, residual) -> tuple:
     """``n`` draws at point ``i``: the nonlinear tool-position errors (n, 3) [mm] and the linear ones on the same
     draws. ``mm``: the machining error model at the design's sigmas (its parameters lead ``fx.pm.model``'s)."""
     values, direct = _values(fx, i, mm, n, rng, dict(after=after, residual=residual))
