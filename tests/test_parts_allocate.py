@@ -91,3 +91,21 @@ def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
                                                      r"0.9\d+ mm at point \d \(payload 1 kg, ambient 15 degC\), at or "
                                                      r"above the radius 0.01 mm: compensate it \(after="):
         allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.01, exact=False)
+
+
+def test_calibration_aware_allocation_sees_the_parts(setup):
+    from tolalloc.allocate.calibrated import allocate_calibrated, post_ratio
+    from tolalloc.calibration import make_plan, split_errors
+
+    robot, model, points = setup[0], setup[1], setup[2]
+    res = allocate_parts(model, q=points.q[:1], conditions=COND, radius_mm=0.4, after="compensation", rules=("lmi",),
+                         costs=CLASSES, exact=False)
+    rng = np.random.default_rng(0)
+    plan = make_plan(robot, robot.lower + (robot.upper - robot.lower) * rng.random((8, 3)))
+    with_parts = allocate_calibrated(res.problem, plan)
+    without = allocate_calibrated(replace(res.problem, extra_cov=0 * res.problem.extra_cov,
+                                          scale=np.ones_like(res.problem.scale)), plan)
+    assert with_parts.certified and without.certified
+    assert with_parts.design.cost > without.design.cost  # what calibration cannot remove of the parts costs tolerance
+    ratio, _ = post_ratio(res.problem, split_errors(res.problem.model), plan, with_parts.design.t)
+    assert ratio <= 1.0

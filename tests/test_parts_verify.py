@@ -32,3 +32,18 @@ def test_paired_estimate_agrees_with_plain_and_demonstrates(res):
     assert np.all(v.p_certified <= v.p_linear + 1e-9) and np.all(v.p_certified >= res.problem.prob - 1e-6)
     with pytest.raises(Exception, match=r"which='standard': the allocation has no standard machining design"):
         verify_parts(res, which="standard")
+
+
+def test_job_options_are_checked(tmp_path):
+    import tolalloc
+    from parts_robot import ARM
+
+    with pytest.raises(tolalloc.TolallocError, match=r"parts: unknown option 'payload'; expected payload_kg, ambient_c"):
+        tolalloc.allocate_tolerances("ur10", parts={"payload": 3})
+    with pytest.raises(tolalloc.TolallocError, match=r"parts: the design with bought parts has the position "
+                                                     r"requirement without a calibration plan"):
+        tolalloc.allocate_tolerances("ur10", parts=True, angle_radius_deg=0.1)
+    bare = tmp_path / "bare.toml"
+    bare.write_text(ARM.split("[components.payload]")[0])  # the arm without its [components] section
+    with pytest.raises(tolalloc.TolallocError, match=r"parts: robot 'arm3' names no catalogue slots"):
+        tolalloc.allocate_tolerances(str(bare), parts=True)

@@ -16,6 +16,7 @@ counterpart.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +27,8 @@ from tolalloc.diagnose.ipa_ur10 import read_ipa_ur10
 from tolalloc.physics.loads import gravity_torques, point_jacobian, target_points, tip_load
 
 ROOT = Path(__file__).resolve().parents[2]
-DATA = ROOT.parent / "shared" / "data" / "ipa-ur10"
+sys.path.insert(0, str(ROOT / "studies" / "sim2real_ur10"))
+from convert_ur10 import DATA  # noqa: E402  (the sim-to-real study's data folder: ../shared/data/ipa-ur10)
 SESSIONS = {"C": "Series_C/measurements_random_poses.csv", "A": "Series_A/measurements_grid.csv"}
 LOADED_QUANTILE = 0.75
 

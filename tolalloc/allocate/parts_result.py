@@ -99,6 +99,7 @@ class PartsAllocation:
     machining : AllocationResult or None   step 4: the machining allocation with these parts
     region : Region or None
     time_s, cpu_s : float            wall time and the process's CPU time (all threads) [s]
+    verification : PartsVerification or None    the nonlinear Monte Carlo, when a job ran it
     """
 
     problem: object
@@ -120,6 +121,7 @@ class PartsAllocation:
     region: object
     time_s: float
     cpu_s: float = float("nan")
+    verification: object = None
 
     @property
     def ok(self) -> bool:

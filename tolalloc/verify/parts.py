@@ -36,7 +36,7 @@ from tolalloc.montecarlo.intervals import paired_difference_ci
 from tolalloc.montecarlo.run import pose_errors
 from tolalloc.montecarlo.streaming import proportion_ci
 
-__all__ = ["PartsVerification", "verify_parts", "draw_errors"]
+__all__ = ["PartsVerification", "verify_parts", "draw_errors", "verified_parts", "BLOCK"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,21 +110,24 @@ def draw_errors(fx: PartEffects, i: int, mm, chain: FastChain, n: int, rng, *, a
     return nl, values @ fx.J[i].T + direct
 
 
+#: Draws evaluated at once (memory: about 60 parameter values each).
+BLOCK = 50_000
+
+
 def _point(fx, i, mm, chain, n, n_control, rng, r, level, kw) -> tuple:
     """Paired estimate, its interval, the plain estimate and the control's mean at point ``i``."""
-    nl, lin = draw_errors(fx, i, mm, chain, n, rng, **kw)
-    a, b_ = np.linalg.norm(nl, axis=1) < r, np.linalg.norm(lin, axis=1) < r
-    b, c = int(np.sum(a & ~b_)), int(np.sum(~a & b_))
-    kc, done = 0, 0
-    while done < n_control:  # the control's mean from the linear map alone, in blocks of n
-        m = min(n, n_control - done)
-        values, direct = _values(fx, i, mm, m, rng, kw)
+    b = c = inside = kc = 0
+    for start in range(0, n, BLOCK):
+        nl, lin = draw_errors(fx, i, mm, chain, min(BLOCK, n - start), rng, **kw)
+        a, b_ = np.linalg.norm(nl, axis=1) < r, np.linalg.norm(lin, axis=1) < r
+        b, c, inside = b + int(np.sum(a & ~b_)), c + int(np.sum(~a & b_)), inside + int(a.sum())
+    for start in range(0, n_control, BLOCK):  # the control's mean from the linear map alone
+        values, direct = _values(fx, i, mm, min(BLOCK, n_control - start), rng, kw)
         kc += int(np.sum(np.linalg.norm(values @ fx.J[i].T + direct, axis=1) < r))
-        done += m
     half = 1 - (1 - level) / 2
     d = paired_difference_ci(b, c, n, half)
     mu = proportion_ci(kc, n_control, "wilson", half)
-    plain = proportion_ci(int(a.sum()), n, "wilson", level)
+    plain = proportion_ci(inside, n, "wilson", level)
     return mu[0] + d[0], max(mu[1] + d[1], 0.0), min(mu[2] + d[2], 1.0), plain, mu[0]
 
 
@@ -186,3 +189,44 @@ def verify_parts(res, *, which: str = "certified", points: str = "worst", n_mc: 
     return PartsVerification(robot.name, pts.q, pts.payload_kg, pts.ambient_c, p_hat, low, high, plain[:, 0],
                              plain[:, 1], plain[:, 2], control, p_cert, p_lin, verdicts, int(n_mc), n_control, level,
                              pr.prob, pr.radius_mm, seed, time.perf_counter() - t0, robot.q_to_interface(pts.q))
+
+
+_OPTIONS = ("payload_kg", "ambient_c", "duty", "reference_c", "after", "residual", "rules")
+
+
+def verified_parts(model, region, q, options, *, radius_mm: float, prob: float, costs=None, verify: bool = True,
+                   n_mc: int = 20000, seed: int = 0):
+    """The joint allocation with the bought parts (:func:`tolalloc.allocate.parts.allocate_parts`) and, with
+    ``verify``, its nonlinear Monte Carlo at the worst point (:func:`verify_parts`), in the result's
+    ``verification``.
+
+    ``options``: True, or a dict of ``payload_kg`` (low, high) [kg] (default 0 to the robot's rated payload),
+    ``ambient_c`` (low, high) [degC] (default the reference), ``duty``, ``reference_c`` (default 20), ``after``,
+    ``residual`` and ``rules``.
+    """
+    from dataclasses import replace
+
+    from tolalloc.allocate.parts import allocate_parts
+    from tolalloc.errormodel.parts import Conditions
+
+    opts = {} if options is True else options
+    if not isinstance(opts, dict):
+        raise TolallocError(f"parts: expected True or a dict of options ({', '.join(_OPTIONS)}), got {options!r}")
+    bad = [k for k in opts if k not in _OPTIONS]
+    if bad:
+        raise TolallocError(f"parts: unknown option {bad[0]!r}; expected {', '.join(_OPTIONS)}")
+    robot = model.robot
+    if not robot.components.slots:
+        raise TolallocError(f"parts: robot {robot.name!r} names no catalogue slots; give its joints parts in the "
+                            "robot file's [components] section (reducer = { family = ... }, see "
+                            "tolalloc.robot.part_catalogue)")
+    ref = float(opts.get("reference_c", 20.0))
+    rated = robot.components.payload.rated_kg or 0.0
+    cond = Conditions(tuple(opts.get("payload_kg", (0.0, rated))), tuple(opts.get("ambient_c", (ref, ref))), ref,
+                      float(opts.get("duty", 0.5)))
+    kw = {k: opts[k] for k in ("after", "residual", "rules") if k in opts}
+    res = allocate_parts(model, region, q, conditions=cond, radius_mm=radius_mm, prob=prob, costs=costs, seed=seed,
+                         **kw)
+    if verify and res.design.ok:
+        res = replace(res, verification=verify_parts(res, n_mc=n_mc, seed=seed))
+    return res

@@ -38,7 +38,8 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                         angle_step_deg: float | None = None, calibration=None, verify: bool = True,
                         n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool | None = None,
                         correction_rounds: int | None = None, coverage_n: int = 100_000, scheduler=None,
-                        tool: str | None = None, trust_units: bool = False, progress: bool | None = None):
+                        tool: str | None = None, trust_units: bool = False, progress: bool | None = None,
+                        parts=None):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
 
     Parameters
@@ -82,6 +83,12 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
     progress : bool, optional
         The job's stage on stderr (region search, coverage, verification ...); default: in a terminal or notebook.
+    parts : bool or dict, optional
+        Design with the bought parts too: the robot file's catalogue slots are chosen with the machining standard
+        values over the region, a payload and an ambient range (:func:`tolalloc.verify.parts.verified_parts`: True,
+        or its options ``payload_kg``, ``ambient_c``, ``duty``, ``after`` ...); returns a
+        :class:`~tolalloc.allocate.parts_result.PartsAllocation` (its ``verification``: the nonlinear Monte Carlo at
+        the worst point, ``n_mc`` draws). Default: the machining tolerances alone.
 
     Returns
     -------
@@ -113,6 +120,14 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
                             calibration=calibration)
     run = dict(snap=snap, angle_step_deg=angle_step_deg, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
                coverage_n=coverage_n, inputs_record=inputs_record)
+    if parts:
+        if calibration is not None or angle_radius_deg is not None:
+            raise ArgumentError("parts", "the design with bought parts has the position requirement without a "
+                                "calibration plan; drop `calibration` / `angle_radius_deg`, or `parts`")
+        from tolalloc.verify.parts import verified_parts
+
+        return verified_parts(model, box, q, parts, radius_mm=float(radius_mm), prob=float(prob), costs=cost_set,
+                              verify=verify, n_mc=n_mc, seed=seed)
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
         if calibration is not None:
             bar.stage("calibration-aware allocation")
