@@ -46,4 +46,4 @@ def test_job_options_are_checked(tmp_path):
     bare = tmp_path / "bare.toml"
     bare.write_text(ARM.split("[components.payload]")[0])  # the arm without its [components] section
     with pytest.raises(tolalloc.TolallocError, match=r"parts: robot 'arm3' names no catalogue slots"):
-        tolalloc.allocate_tolerances(str(bare), parts=True)
+        tolalloc.allocate_tolerances(str(bare), region="limits", parts=True)

@@ -90,6 +90,23 @@ def _best_reachable(model, robot, points, cond, kw) -> str:
             + ", or offer finer parts in the slots")
 
 
+def _checked(model, region, q, conditions, costs, after, residual, rules, seed) -> tuple:
+    """The checked conditions, the cost set and the first poses; refuses parts the load exceeds."""
+    robot = model.robot
+    cond = conditions.check(robot)
+    residual_factors(after, residual)  # checks both
+    bad = [r for r in rules if r not in ("trace", "lmi")]
+    if bad or not rules:
+        raise TolallocError(f"rules: expected 'trace' and/or 'lmi', got {rules!r}")
+    cs = costs if isinstance(costs, CostSet) else cost_set(model, costs)
+    if q is None:
+        q = (0.5 * (region.q_min + region.q_max))[None] if region is not None else robot.poses(
+            "working" if "working" in robot.pose_sets else None)
+    q = np.atleast_2d(robot.check_q(q, "q"))
+    check_rated_options(robot, model, region, q, cond, seed)
+    return cond, cs, q
+
+
 def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Conditions(), radius_mm: float = 0.25,
                    prob: float = 0.95, costs: CostSet | dict | None = None, after: str = "none",
                    residual=COMPENSATION_RESIDUAL, rules=("trace", "lmi"), tol: float = 1e-3,
@@ -128,17 +145,7 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
     """
     t0 = time.perf_counter(), time.process_time()
     robot = model.robot
-    cond = conditions.check(robot)
-    residual_factors(after, residual)  # checks both
-    bad = [r for r in rules if r not in ("trace", "lmi")]
-    if bad or not rules:
-        raise TolallocError(f"rules: expected 'trace' and/or 'lmi', got {rules!r}")
-    cs = costs if isinstance(costs, CostSet) else cost_set(model, costs)
-    if q is None:
-        q = (0.5 * (region.q_min + region.q_max))[None] if region is not None else robot.poses(
-            "working" if "working" in robot.pose_sets else None)
-    q = np.atleast_2d(robot.check_q(q, "q"))
-    check_rated_options(robot, model, region, q, cond, seed)
+    cond, cs, q = _checked(model, region, q, conditions, costs, after, residual, rules, seed)
     kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cs, after=after, residual=residual,
               rules=tuple(rules), time_limit_s=time_limit_s)
     points = Points.grid(q, cond.corners())
@@ -151,18 +158,12 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
             raise TolallocError(f"no design meets P(|dP| < {radius_mm:g} mm) >= {prob:g} with these parts and "
                                 f"process limits: {why}")
         out, ob, pr, cat, first = best
+        ratio = PointRatio(with_parts(robot, ob.choice(out.part)),
+                           pr.model_for(pr.t_from_u(cat.u_of(out.opt, out.n))), cond, kw["radius_mm"], kw["prob"],
+                           out.rule, after, kw["residual"])
         if region is None:  # the poses only: the worst of the active points
-            ratio = PointRatio(with_parts(robot, ob.choice(out.part)),
-                               pr.model_for(pr.t_from_u(cat.u_of(out.opt, out.n))), cond, kw["radius_mm"], kw["prob"],
-                               out.rule, after, kw["residual"])
-            r = ratio(points)
-            i = int(np.argmax(r))
-            worst = WorstPoint(Points(points.q[i:i + 1], points.payload_kg[i:i + 1], points.ambient_c[i:i + 1]),
-                               float(r[i]), len(points), np.zeros(robot.n_joints + 2, bool))
+            worst = _worst_active(ratio, points)
             break
-        choice = ob.choice(out.part)
-        ratio = PointRatio(with_parts(robot, choice), pr.model_for(pr.t_from_u(cat.u_of(out.opt, out.n))), cond,
-                           kw["radius_mm"], kw["prob"], out.rule, after, kw["residual"])
         worst = worst_point(ratio, region.q_min, region.q_max, n_seed=n_seed, n_starts=n_starts, seed=seed + rounds,
                             static=None if worst is None else worst.static)
         history.append((rounds, out.cost, worst.ratio))
@@ -172,6 +173,14 @@ def allocate_parts(model, region=None, q=None, *, conditions: Conditions = Condi
     converged = worst.ratio <= 1.0 + tol
     return _finish(robot, model, out, ob, pr, cat, points, worst, cond, kw, rounds, converged, tried, history,
                    exact, region, seed, t0)
+
+
+def _worst_active(ratio: PointRatio, points: Points) -> WorstPoint:
+    """The active point of the largest ratio."""
+    r = ratio(points)
+    i = int(np.argmax(r))
+    return WorstPoint(Points(points.q[i:i + 1], points.payload_kg[i:i + 1], points.ambient_c[i:i + 1]), float(r[i]),
+                      len(points), np.zeros(points.q.shape[1] + 2, bool))
 
 
 def _finish(robot, model, out: PartsOutcome, ob, pr, cat, points, worst: WorstPoint | None, cond, kw, rounds,
