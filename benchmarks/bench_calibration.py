@@ -75,7 +75,7 @@ def naive_vs_scaled(robot, split, n_cand=200, n=12):
 def region_rows(name: str, region: str) -> None:
     """Calibration-aware allocation over a box (certified + exact stages, 10^5-pose coverage) against the uncalibrated
     region allocation (``allocate_region``, exact) on the same box, measured in the same run."""
-    from tolalloc.allocate.calibrated_design import allocate_with_calibration
+    from tolalloc.allocate.calibrated.design import allocate_with_calibration
     from tolalloc.allocate.problem import build_problem
     from tolalloc.allocate.region import allocate_region, box_region, coverage
 
@@ -117,7 +117,7 @@ def main() -> None:
     tp, _, _ = median_time(peer, 9)
     print(f"{'case':44s} {'wall [s]':>9s} {'CPU [s]':>9s} {'goal':>8s} {'peer wall [s]':>14s} {'ratio':>6s}")
     row("posterior 22 par, 50-pose plan, 1000 poses", t, c, 0.1, f"{tp:.4f}", f"{t / tp:.2f}")
-    from tolalloc.allocate.calibrated import allocate_calibrated
+    from tolalloc.allocate.calibrated.certified import allocate_calibrated
     from tolalloc.allocate.problem import build_problem
     from tolalloc.calibration.design import candidate_poses, design_plan
     from tolalloc.verify.calibrated import verify_calibration

@@ -30,6 +30,8 @@ _QUIET = [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_t
 settings.register_profile("ci", derandomize=True, deadline=None, database=None, suppress_health_check=_QUIET,
                           print_blob=True)
 settings.register_profile("long", max_examples=10_000, deadline=None, suppress_health_check=_QUIET, print_blob=True)
+# "deep" (TOLALLOC_HYPOTHESIS_PROFILE=deep): fresh random examples, the deep counts of the method tests (issue 46)
+settings.register_profile("deep", deadline=None, suppress_health_check=_QUIET, print_blob=True, database=None)
 settings.load_profile(os.environ.get("TOLALLOC_HYPOTHESIS_PROFILE", "ci"))
 
 

@@ -3,9 +3,10 @@
 Every generated call must either return a valid result or raise a :class:`tolalloc.TolallocError` whose message
 names the argument and says what would work (:func:`check_refusal`); any other exception fails the test.
 
-Profiles (``tests/conftest.py``): ``ci`` (default, derandomised, the example counts given per test) and ``long``
+Profiles (``tests/conftest.py``): ``ci`` (default, derandomised, the example counts given per test), ``long``
 (``TOLALLOC_HYPOTHESIS_PROFILE=long``: 10^4 examples per public call; the runs that do real work are scaled,
-see :func:`examples`).
+see :func:`examples`) and ``deep`` (``TOLALLOC_HYPOTHESIS_PROFILE=deep``: fresh random examples, the ``deep`` counts
+of the method and constructor tests, together over 10^4 generated calls; ``TOLALLOC_DEEP_SCALE`` scales them).
 """
 
 from __future__ import annotations
@@ -26,9 +27,12 @@ PROFILE = os.environ.get("TOLALLOC_HYPOTHESIS_PROFILE", "ci")
 LONG_EXAMPLES = int(os.environ.get("TOLALLOC_LONG_EXAMPLES", "10000"))
 
 
-def examples(ci: int, long_fraction: float = 1.0) -> int:
+def examples(ci: int, long_fraction: float = 1.0, *, deep: int | None = None) -> int:
     """Examples of a test: ``ci`` in the ci profile; in the long profile ``LONG_EXAMPLES`` times ``long_fraction``
-    (below 1 for tests whose every example runs a full job)."""
+    (below 1 for tests whose every example runs a full job); in the deep profile ``deep`` (times
+    ``TOLALLOC_DEEP_SCALE``), or ``ci`` for a test without a deep count."""
+    if PROFILE == "deep":
+        return ci if deep is None else max(ci, int(deep * float(os.environ.get("TOLALLOC_DEEP_SCALE", "1"))))
     return ci if PROFILE != "long" else max(ci, int(LONG_EXAMPLES * long_fraction))
 
 
@@ -257,15 +261,17 @@ def _mentions(message: str, kwargs: dict) -> bool:
                                    "calibration", "region", "sigma", "chain", "link", "table"))
 
 
-def check_refusal(exc: BaseException, kwargs: dict) -> None:
-    """A refusal names an argument (or the file or robot at fault), says what arrived and what would work."""
+def check_refusal(exc: BaseException, kwargs: dict, call: str = "") -> None:
+    """A refusal names an argument (or the file or robot at fault, or the method ``call`` refused when no argument is:
+    ``plot_cloud`` of a result that has no Monte Carlo samples), says what arrived and what would work."""
     assert isinstance(exc, tolalloc.TolallocError), f"{type(exc).__name__}: {exc}"
     message = str(exc)
     assert message.strip() and "\n" not in message.strip(), repr(message)
     assert "Traceback" not in message and "object at 0x" not in message, message
     if isinstance(exc, tolalloc.ArgumentError):
         assert exc.argument in kwargs, (exc.argument, sorted(kwargs), message)
-    assert _mentions(message, kwargs), message
+    method = call.rsplit(".", 1)[-1]
+    assert _mentions(message, kwargs) or (method and message.startswith(f"{method}:")), message
     assert _REMEDY.search(message), message
 
 
@@ -343,12 +349,13 @@ def count(table: str, name: str) -> None:
     COUNTS[table][name] = COUNTS[table].get(name, 0) + 1
 
 
-def outcome(call, kwargs: dict, *, tolerate_known: bool = False):
+def outcome(call, kwargs: dict, *, tolerate_known: bool = False, label: str | None = None):
     """Run ``call(**kwargs)``: the result, or None after a checked refusal (any other exception propagates, unless
-    ``tolerate_known`` and it is one of :data:`KNOWN_FAULTS`: then None as well)."""
+    ``tolerate_known`` and it is one of :data:`KNOWN_FAULTS`: then None as well). ``label`` names the call in the
+    counts (default its qualified name)."""
     import warnings
 
-    name = getattr(call, "__qualname__", str(call))
+    name = label or getattr(call, "__qualname__", str(call))
     count("calls", name)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # a unit-slip warning is an answer too
@@ -356,7 +363,7 @@ def outcome(call, kwargs: dict, *, tolerate_known: bool = False):
             return call(**kwargs)
         except tolalloc.TolallocError as exc:
             count("refused", name)
-            check_refusal(exc, kwargs)
+            check_refusal(exc, kwargs, name)
             return None
         except Exception as exc:
             where = _innermost(exc)
@@ -365,6 +372,63 @@ def outcome(call, kwargs: dict, *, tolerate_known: bool = False):
                 return None
             count("non_project_exceptions", f"{name} {type(exc).__name__} at {where}")
             raise
+
+
+# ------------------------------------------------------------------------------------------------ methods
+@st.composite
+def some_of(draw, optional=(), **strategies):
+    """Keyword arguments: each of ``strategies`` drawn (valid or odd, as its strategy offers); the ``optional`` ones
+    sometimes left out (their defaults)."""
+    return {name: draw(strategy) for name, strategy in strategies.items()
+            if name not in optional or draw(st.integers(0, 4)) > 0}
+
+
+def _no_nan_array(label: str, out, kwargs) -> None:
+    arr = np.asarray(out, dtype=float)
+    n = kwargs.get("n")
+    q = kwargs.get("q")
+    empty_asked = (label.endswith("random_q") and isinstance(n, (int, np.integer)) and not isinstance(n, bool)
+                   and n == 0) or (label in ("fk_poe", "space_jacobian", "body_jacobian", "poe_prefix")
+                                   and np.size(q) == 0)  # an empty stack of poses: the stack of their answers
+    assert arr.size > 0 or empty_asked, f"{label}: an empty answer to {sorted(kwargs)}"
+    assert not np.isnan(arr).any(), f"{label}: NaN in the answer"
+    if not label.endswith(("q_to_interface", "q_from_interface", "joint_array")):  # they convert open limits (inf)
+        assert np.all(np.isfinite(arr)), f"{label}: inf in the answer"
+
+
+def check_method_output(label: str, out, kwargs: dict) -> None:
+    """A method's answer: no NaN, not empty (unless asked for none), its objects usable (0 silent NaN or empty
+    results). ``None`` (a refusal, checked by :func:`outcome`) passes."""
+    from tolalloc.robot import Joint, Link, Mass, Robot
+
+    if out is None:
+        return
+    if isinstance(out, np.ndarray):
+        _no_nan_array(label, out, kwargs)
+    elif isinstance(out, pd.DataFrame):
+        # a robot without links (DH rows of zero length) has an empty table of links
+        assert (len(out) or label.endswith("links_frame")) and len(out.columns), f"{label}: an empty table"
+        numeric = out.select_dtypes("number")
+        # a quantity in mm or deg has its value in one column of the pair (the row's unit), NaN in the other
+        pairs = [(c, c[:-3] + "_deg") for c in numeric.columns if c.endswith("_mm") and c[:-3] + "_deg" in numeric]
+        for a, b in pairs:
+            assert (numeric[[a, b]].notna().sum(axis=1) == 1).all(), f"{label}: {a} / {b} not one per row"
+        rest = numeric.drop(columns=[c for pair in pairs for c in pair])
+        assert not np.isnan(rest.to_numpy(dtype=float)).any(), f"{label}: NaN in the table"
+    elif isinstance(out, Robot):
+        assert np.all(np.isfinite(out.screws)) and np.all(np.isfinite(out.home)) and out.n_joints >= 1
+        assert np.all(np.isfinite(out.fk_internal(out.q_nominal))) and repr(out) and out._repr_html_()
+        assert np.all(np.isfinite(out.gravity)) and abs(np.linalg.norm(out.gravity) - 1) < 1e-9
+        for name, q in out.pose_sets.items():
+            assert np.all(np.isfinite(q)) and q.shape[1] == out.n_joints, name
+    elif isinstance(out, (Joint, Link, Mass)):
+        for value in vars(out).values():
+            if not isinstance(value, str):
+                assert not np.isnan(np.asarray(value, dtype=float)).any(), f"{label}: NaN in {out}"
+    elif isinstance(out, str):
+        assert out.strip(), f"{label}: empty text"
+    elif isinstance(out, (list, tuple)):
+        assert len(out), f"{label}: an empty list"
 
 
 def _write_counts() -> None:

@@ -16,9 +16,11 @@ from tolalloc.exceptions import Interrupted, clear_interrupt, memory_budget_byte
 HUGE = 10**12
 
 
-def test_a_streamed_sample_count_runs_in_bounded_memory():
+def test_a_streamed_sample_count_runs_in_bounded_memory(monkeypatch):
     """simulate_errors(n=1e12) streams its samples: stopped after a moment (the CLI's interrupt checkpoint), it
     has held well under 300 MB -- a dense draw of 1e12 samples would need 10^5 GB."""
+    monkeypatch.setenv("TOLALLOC_TIME_BUDGET_S", "inf")  # hours of work: the time budget would refuse it
+    monkeypatch.setenv("TOLALLOC_ANNOUNCE_S", "inf")
     clear_interrupt()
     timer = threading.Timer(0.5, note_interrupt, [signal.SIGINT])
     tracemalloc.start()

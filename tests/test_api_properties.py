@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
@@ -319,7 +320,7 @@ def test_plan_calibration_valid_runs_feed_the_calibrated_allocation(robot, n_pos
         return
     check_result(design)
     path = Path(tempfile.mkdtemp(dir=SCRATCH)) / "plan.csv"
-    assert design.save(path) == [str(path)] and path.is_file()
+    assert design.save_plan(path) == [path] and path.is_file()
     res = outcome(tolalloc.allocate_tolerances, dict(robot=robot, calibration=path, n_mc=200, seed=seed))
     if res is not None:
         check_result(res)
@@ -464,8 +465,9 @@ def listing(root: Path) -> dict:
 
 
 #: the output argument of each result's save()
-SAVE_ARGUMENT = {"analysis": "out", "allocation": "out", "simulation": "out", "calibrated": "out", "plan": "path",
-                 "diagnosis": "report"}
+#: every result saves as save(directory, *, report=False, json=None)
+SAVE_ARGUMENT = {name: "directory" for name in ("analysis", "allocation", "simulation", "calibrated", "plan",
+                                                 "diagnosis")}
 
 
 @settings(max_examples=examples(24, 0.1), **SETTINGS)
@@ -506,3 +508,99 @@ def test_error_classes_carry_their_argument():
     missing = tolalloc.InputFileError("robot 'x.toml': no such file.")
     assert isinstance(missing, FileNotFoundError) and str(missing) == "robot 'x.toml': no such file."
     check_refusal(exc, {"radius_mm": -1})
+
+
+# ------------------------------------------------------------------------------------------------ every result method
+def _axes(count):
+    """Matplotlib axes to draw into: the right number, too few, or not axes at all."""
+    import matplotlib.pyplot as plt
+
+    def make(k):
+        fig, ax = plt.subplots(1, k)
+        return ax if k == 1 else list(ax)
+
+    return st.sampled_from([count, 1, 2, 3, 4]).map(make) | st.sampled_from([None, 0, "ax", [None, None]])
+
+
+def _out_paths():
+    return st.sampled_from(["dir", "dir/sub", "afile", "afile/sub", "file.json", "", "/", "a\x00b", None, 5,
+                            Path("x")])
+
+
+def result_calls(which: str) -> list:
+    """(method name, keyword arguments strategy) of every public method of an earlier result ``which``."""
+    from property_strategies import some_of
+
+    pose = st.sampled_from(["worst", 0, 1, -1, 99, 1.5, -np.inf, np.nan, np.inf, "x", None, [0, 1], np.array([0]),
+                            10**30, True]) | odd_values()
+    by = st.sampled_from(["parameter", "kind", "x", 3, None])
+    common = [("to_frame", st.just({})), ("summary", st.just({})), ("text", st.just({})),
+              ("_repr_html_", st.just({})), ("__repr__", st.just({}))]
+    save = ("save", some_of(directory=_out_paths(), json=_out_paths(), report=st.booleans() | odd_values(),
+                            optional=("json", "report")))
+    return common + {
+        "analysis": [("budget_frame", some_of(pose=pose, by=by, optional=("pose", "by"))),
+                     ("plot_budget", some_of(ax=_axes(1), pose=pose, by=by, optional=("ax", "pose", "by"))), save],
+        "allocation": [("verification_frame", st.just({})),
+                       ("plot_budget", some_of(ax=_axes(2), title=st.sampled_from(["t", None, 3, b"x"]),
+                                               optional=("ax", "title"))),
+                       ("plot_pose_probabilities", some_of(ax=_axes(1), optional=("ax",))),
+                       ("plot_cloud", some_of(ax=_axes(3), optional=("ax",))), save],
+        "simulation": [("probability_frame", st.just({})), ("plot_scatter", some_of(ax=_axes(1), optional=("ax",))),
+                       save],
+        "plan": [("plan_for", some_of(robot=st.sampled_from(["ur10", "tool_changer", "nope"]) | st.builds(two_link)
+                                      | odd_values())),
+                 ("save_plan", some_of(path=_out_paths())), save],
+        "calibrated": [("verification_frame", st.just({})), save],
+        "diagnosis": [("ranking_frame", st.just({})), ("predictions_frame", st.just({})),
+                      ("save", some_of(directory=_out_paths(), json=_out_paths(), predictions=_out_paths(),
+                                       report=st.booleans() | odd_values(),
+                                       optional=("json", "predictions", "report")))],
+    }[which]
+
+
+def test_a_save_whose_outputs_overlap_leaves_nothing(tmp_path):
+    res = earlier_results()["analysis"]
+    with pytest.raises(tolalloc.TolallocError):
+        res.save(tmp_path / "dir", json=tmp_path / "dir")
+    assert list(tmp_path.iterdir()) == []
+
+
+def _in_scratch(kwargs: dict, work: Path) -> dict:
+    """Relative output paths of a save() call placed in the scratch folder ``work``."""
+    return {k: work / v if isinstance(v, (str, Path)) and str(v) not in ("", "/", "a\x00b") and k in
+            ("out", "json", "path", "report", "predictions") else v for k, v in kwargs.items()}
+
+
+@settings(max_examples=examples(40, deep=2500), **SETTINGS)
+@given(which=st.sampled_from(["analysis", "allocation", "simulation", "plan", "calibrated", "diagnosis"]),
+       data=st.data())
+def test_every_result_method_answers_or_refuses(which, data):
+    """Any arguments to any public method of a result: a finite answer, a figure, files written whole, or a refusal
+    by name that leaves no file behind."""
+    import json
+
+    import matplotlib.pyplot as plt
+    from property_strategies import _json_default, check_method_output, finite_json
+
+    res = earlier_results()[which]
+    name, kwargs = data.draw(st.sampled_from(result_calls(which)).flatmap(lambda t: st.tuples(st.just(t[0]), t[1])))
+    work = Path(tempfile.mkdtemp(dir=SCRATCH))
+    (work / "afile").write_text("keep\n")
+    kwargs = _in_scratch(kwargs, work) if name == "save" else kwargs
+    before = listing(work)
+    try:
+        out = outcome(getattr(res, name), kwargs, label=f"{type(res).__name__}.{name}")
+    finally:
+        plt.close("all")
+    if name == "save":
+        assert (out is None) == (listing(work) == before) or not any(v is not None for v in kwargs.values())
+    elif name == "summary" and out is not None:
+        json.dumps(out, default=_json_default, allow_nan=False)
+        finite_json(out)
+    elif name.startswith("plot_") and out is not None:
+        from matplotlib.axes import Axes
+
+        assert all(isinstance(a, Axes) for a in np.ravel(np.asarray(out, dtype=object)))  # the protocol: the axes
+    elif name not in ("verification_frame", "to_frame", "predictions_frame"):  # their NaN cells mean 'none'
+        check_method_output(name, out, kwargs)

@@ -1,5 +1,6 @@
-"""The package's imports run one way: foundation -> robot -> physics -> errormodel -> linear -> diagnose -> allocate
--> montecarlo -> verify -> report -> cli. Walks every module's imports (top-level and inside functions)."""
+"""The package's imports run one way: foundation -> robot -> physics -> errormodel -> linear -> diagnose -> calibration
+-> acceptance -> allocate -> montecarlo -> verify -> report -> workflows -> cli. Walks every module's imports (top-level
+and inside functions)."""
 
 import ast
 from functools import cache
@@ -11,9 +12,9 @@ import tolalloc
 
 PKG = Path(tolalloc.__file__).parent
 #: Stages in pipeline order; a module may import only from its own stage or an earlier one.
-ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "allocate", "montecarlo",
-         "verify", "report", "workflows", "cli"]
-FOUNDATION = {"exceptions", "engine", "units", "outputs", "progress"}
+ORDER = ["foundation", "robot", "physics", "errormodel", "linear", "diagnose", "calibration", "acceptance", "allocate",
+         "montecarlo", "verify", "report", "workflows", "cli"]
+FOUNDATION = {"exceptions", "engine", "units", "outputs", "output_lock", "progress", "budget", "version"}
 
 
 def module_name(path: Path) -> str:
@@ -242,7 +243,7 @@ def test_interface_call_finder(tmp_path):
 #: what the command line may import: its own modules, the workflow layer, the output and error foundations, and
 #: the error model's constants its help text quotes. Everything else is reached through tolalloc.workflows.
 CLI_MAY_IMPORT = ("tolalloc.cli", "tolalloc.workflows", "tolalloc.outputs", "tolalloc.exceptions",
-                  "tolalloc.errormodel.model")
+                  "tolalloc.errormodel.model", "tolalloc.version")
 
 
 def test_the_cli_is_a_shell_over_the_workflows():

@@ -18,6 +18,7 @@ import pytest
 
 import tolalloc
 from tolalloc.cli import main
+from tolalloc.progress import PROGRESS_LINE
 
 TC = "tool_changer"
 
@@ -181,12 +182,11 @@ def _rows():
     # ----------------------------------------------------------- mc
     mc = ["mc", TC, "--n", "100"]
     for argv, pattern in [
-        (["mc", TC, "--n", "0"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "-5"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "x"], "argument --n: expected a number, got 'x'"),
-        (["mc", TC, "--n", "1.5"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC, "--n", "nan"], "argument --n: expected a whole number >= 1"),
-        (["mc", TC], "the following arguments are required: --n"),
+        (["mc", TC, "--n-mc", "0"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n", "-5"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n-mc", "x"], "argument --n-mc/--n: expected a number, got 'x'"),
+        (["mc", TC, "--n", "1.5"], "argument --n-mc/--n: expected a whole number >= 1"),
+        (["mc", TC, "--n-mc", "nan"], "argument --n-mc/--n: expected a whole number >= 1"),
         ([*mc, "--seed", "-1"], "argument --seed: expected a whole number >= 0"),
         ([*mc, "--seed", "1.5"], "argument --seed: expected a whole number >= 0"),
         ([*mc, "--out", ""], "--out: expected a directory path, got an empty string"),
@@ -346,7 +346,7 @@ def test_bad_input(files, tmp_path, monkeypatch, capsys, argv, pattern):
     code = main([a.replace("{F}", str(files)) for a in argv])
     out, err = capsys.readouterr()
     assert code == 2, (code, out, err)
-    lines = err.strip().splitlines()
+    lines = [line for line in err.strip().splitlines() if not PROGRESS_LINE.match(line)]  # stderr is no terminal
     assert len(lines) == 1 and lines[0].startswith("error: "), err
     assert "Traceback" not in err and "Warning" not in err
     assert re.search(pattern, lines[0]), lines[0]

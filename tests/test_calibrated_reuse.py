@@ -1,12 +1,12 @@
-"""The calibration-aware allocation's convex step (tolalloc.allocate.calibrated_step): the compiled, re-solved (DPP)
+"""The calibration-aware allocation's convex step (tolalloc.allocate.calibrated.step): the compiled, re-solved (DPP)
 problem gives the same step as a freshly built one; the exact per-pose check agrees with the posterior module; the
 working set of poses gives the design of the full set of pose LMIs."""
 
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated import _grades, allocate_calibrated
-from tolalloc.allocate.calibrated_step import StepData, information, pose_ratios, solve_step
+from tolalloc.allocate.calibrated.certified import _grades, allocate_calibrated
+from tolalloc.allocate.calibrated.step import StepData, information, pose_ratios, solve_step
 from tolalloc.allocate.problem import build_problem
 from tolalloc.calibration import make_plan, posterior, split_errors
 from tolalloc.errormodel import build_error_model

@@ -1,4 +1,4 @@
-"""Standard grades for the calibration-aware design (tolalloc.allocate.calibrated_standard / _margin / _rounding).
+"""Standard grades for the calibration-aware design (tolalloc.allocate.calibrated.standard / _margin / _rounding).
 
 Known answers: the fast post-calibration margin equals the reference posterior (tolalloc.calibration.posterior);
 rounding down lowers the post-calibration covariance in the Loewner order at every pose (so P cannot fall), with
@@ -17,11 +17,11 @@ import pytest
 
 from tolalloc import TolallocError
 from tolalloc.allocate import build_problem
-from tolalloc.allocate.calibrated_design import allocate_with_calibration
-from tolalloc.allocate.calibrated_exact import post_probabilities
-from tolalloc.allocate.calibrated_margin import PostMargin
-from tolalloc.allocate.calibrated_rounding import catalogue_range, coupled_round_down
-from tolalloc.allocate.calibrated_standard import standardize_calibrated
+from tolalloc.allocate.calibrated.design import allocate_with_calibration
+from tolalloc.allocate.calibrated.exact import post_probabilities
+from tolalloc.allocate.calibrated.margin import PostMargin
+from tolalloc.allocate.calibrated.rounding import catalogue_range, coupled_round_down
+from tolalloc.allocate.calibrated.standard import standardize_calibrated
 from tolalloc.allocate.catalogue import build_catalogue
 from tolalloc.allocate.discrete_exact import local_search
 from tolalloc.allocate.region import box_region
@@ -294,7 +294,7 @@ def test_processes_round_to_one_process_per_part(tc):
 def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
     from tolalloc.report.html import pretty
     from tolalloc.workflows import allocate_tolerances
-    from tolalloc.workflows.html_calibrated import calibrated_context
+    from tolalloc.report.html_calibrated import calibrated_context
 
     robot, plan = tc
     path = tmp_path / "plan.csv"

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated import allocate_calibrated, post_ratio
+from tolalloc.allocate.calibrated.certified import allocate_calibrated, post_ratio
 from tolalloc.allocate.problem import build_problem
 from tolalloc.calibration import make_plan, split_errors
 from tolalloc.errormodel import build_error_model

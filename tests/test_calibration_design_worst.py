@@ -1,4 +1,4 @@
-"""Plans for the allocation (tolalloc.calibration.design_worst, tolalloc.allocate.calibrated_plan).
+"""Plans for the allocation (tolalloc.calibration.design_worst, tolalloc.allocate.calibrated.plan).
 
 Known answers: the exchange's rank-3 (Woodbury) update of the posterior equals the posterior module's square-root
 form for the same plan; the designed plan is at least as good as its start and beats random plans of its size; the
@@ -8,8 +8,8 @@ all-candidates plan bounds every plan from above; the alternation never keeps a 
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated import allocate_calibrated
-from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+from tolalloc.allocate.calibrated.certified import allocate_calibrated
+from tolalloc.allocate.calibrated.plan import compare_with_random_plans, design_plan_for_allocation
 from tolalloc.allocate.problem import build_problem
 from tolalloc.calibration import make_plan, posterior
 from tolalloc.calibration.design import candidate_poses

@@ -8,7 +8,7 @@ an independent route (nuisance projected out, as the posterior does it).
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated_design import allocate_with_calibration
+from tolalloc.allocate.calibrated.design import allocate_with_calibration
 from tolalloc.allocate.problem import build_problem
 from tolalloc.allocate.region import Region
 from tolalloc.calibration import make_plan, read_plan, split_errors, write_plan

@@ -1,4 +1,4 @@
-"""Calibration-aware allocation over a box and the exact stage (tolalloc.allocate.calibrated_region / _exact / _design).
+"""Calibration-aware allocation over a box and the exact stage (tolalloc.allocate.calibrated.region / _exact / _design).
 
 Known answers: the problem rebuilt at other poses equals build_problem there; every probability is re-derived from an
 independently computed posterior (tolalloc.calibration.posterior) on fresh poses; the exact stage's binding poses sit
@@ -10,15 +10,15 @@ import json
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated_design import allocate_with_calibration
-from tolalloc.allocate.calibrated_exact import FEAS_TOL
-from tolalloc.allocate.calibrated_region import (
+from tolalloc.allocate.calibrated.design import allocate_with_calibration
+from tolalloc.allocate.calibrated.exact import FEAS_TOL
+from tolalloc.allocate.calibrated.region import (
     baseline_region,
     certified_region,
     cutting_plane,
     problem_at,
 )
-from tolalloc.allocate.calibrated_summary import summary_search_lines
+from tolalloc.allocate.calibrated.summary import summary_search_lines
 from tolalloc.allocate.problem import build_problem
 from tolalloc.allocate.region import _position_cov, box_region, worst_pose
 from tolalloc.calibration import make_plan, posterior, split_errors
@@ -112,7 +112,7 @@ def test_exact_stage_sits_at_p_and_is_cheaper(box_result):
 
 
 def test_guard_keeps_the_certified_design_when_ipopt_fails(case, monkeypatch):
-    from tolalloc.allocate import calibrated_exact
+    from tolalloc.allocate.calibrated import exact as calibrated_exact
 
     robot, plan, pr, box = case
 

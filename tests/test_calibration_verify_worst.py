@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tolalloc.allocate.calibrated_design import allocate_with_calibration
+from tolalloc.allocate.calibrated.design import allocate_with_calibration
 from tolalloc.allocate.problem import build_problem
 from tolalloc.calibration import make_plan
 from tolalloc.calibration.design import candidate_poses
@@ -22,7 +22,7 @@ def res():
 
 
 def test_worst_poses_of_each_design(res):
-    from tolalloc.allocate.calibrated_exact import post_probabilities
+    from tolalloc.allocate.calibrated.exact import post_probabilities
 
     for which, design in (("chosen", res.design), ("certified", res.certified.design)):
         split = res.end_to_end_inputs(2, which)["split"]

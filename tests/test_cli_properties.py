@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 import tolalloc
 from property_strategies import count, dh_rows, examples, measurement_frame, measurement_frames
 from tolalloc.cli import main
+from tolalloc.progress import PROGRESS_LINE
 
 SCRATCH = Path(tempfile.mkdtemp(prefix="tolalloc_cli_props_"))
 SETTINGS = dict(deadline=None)
@@ -179,7 +180,7 @@ def _listing(root: Path) -> dict:
 
 
 def run_cli(argv, workdir: Path, capsys):
-    """Run ``argv`` in ``workdir``: ``(exit code, stdout, stderr lines, written)``."""
+    """Run ``argv`` in ``workdir``: ``(exit code, stdout, stderr lines but the progress lines, written)``."""
     old = Path.cwd()
     os.chdir(workdir)
     try:
@@ -190,7 +191,7 @@ def run_cli(argv, workdir: Path, capsys):
         os.chdir(old)
     out, err = capsys.readouterr()
     written = {k for k in after if before.get(k, 0) != after[k]}
-    return code, out, err.strip().splitlines(), written
+    return code, out, [line for line in err.strip().splitlines() if not PROGRESS_LINE.match(line)], written
 
 
 def _workdir() -> Path:

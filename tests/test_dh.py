@@ -195,7 +195,7 @@ def test_dh_csv_modified_prismatic(tmp_path):
     ("name,d_mm\nq1,100\n", r"expected a comment line '# convention: standard'"),
     ("# convention: craig\nname,d_mm\nq1,100\n", r"got convention 'craig'"),
     ("# convention: standard\nname,d_in\nq1,100\n", r"header \['name', 'd_in'\].*unknown: \['d_in'\]"),
-    ("# convention: standard\nname,d_mm,alpha_deg\nq1,abc,0\n", r"dh\[0\] \(q1\): could not convert string to float"),
+    ("# convention: standard\nname,d_mm,alpha_deg\nq1,abc,0\n", r"dh\[0\] \(q1\): d_mm: expected a number, got 'abc'; expected numbers in the unit of the column name"),
     ("# convention: standard\nname,d_mm,lower_deg_mm,alpha_deg\nq1,1,5,0\n", r"dh\[0\] \(q1\): give both lower_deg_mm and upper_deg_mm"),
     ("# convention: standard\nname,type,alpha_deg\nq1,ball,0\n", r"dh\[0\]: type must be 'revolute', 'prismatic' or 'continuous'"),
 ])

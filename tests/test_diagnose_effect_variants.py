@@ -181,17 +181,25 @@ def test_compliance_with_payload_and_with_unknown_tip_mass():
 
 
 def test_beam_deflection_telescopic_lever_arm():
+    """The tool changer's telescopic segment j3 -> j5 (560 + 240 mm + stroke), horizontal: the bending column of its
+    mass model is the textbook superposition -- l4 (45 kg) 280 mm out and l5 (30 kg) 680 mm + stroke out on the
+    segment, P a^2 (3L - a) / 6 at the end and P a^2 / 2 of slope each; l6 (120 kg) 165 mm beyond the end as a force
+    and a moment at the end, P L^3 / 3 + P d L^2 / 2 and P L^2 / 2 + P d L -- and the tool point, 165 mm beyond the
+    end, drops by the end's drop plus 165 mm of its slope."""
     robot = tolalloc.load_robot("tool_changer")
     strokes = np.array([0.0, 100.0, 200.0, 300.0])
     q = np.zeros((4, robot.n_joints))
     q[:, 3] = strokes  # the arm stays horizontal; only the telescopic stage extends
     basis = effect_basis("link_deflection", robot, Measurements(q, np.zeros((4, 3))), np.zeros(3), {}, "beam")
-    w, f = 2.0, 5.0  # mm/m^4, mm/m^3 of the telescopic segment j3 -> j5 (560 + 240 mm + stroke, 165 mm beyond)
-    L = 0.8 + strokes / 1000.0
-    drop = w * L ** 4 / 8 + f * L ** 3 / 3 + 165.0 * 1e-3 * (w * L ** 3 / 6 + f * L ** 2 / 2)
-    d = np.zeros((4, 3))
-    d[:, 2] = -drop
-    k = [basis.names.index("w_j3 [mm/m^4]"), basis.names.index("f_j3 [mm/m^3]")]
-    np.testing.assert_allclose(basis.B[:, :, k] @ np.array([w, f]), d, atol=1e-12)
-    beta = np.linalg.lstsq(basis.B[:, :, k].reshape(-1, 2), d.ravel(), rcond=None)[0]
-    np.testing.assert_allclose(beta, [w, f], rtol=1e-9)
+    G = 9.81
+    L, d = 800.0 + strokes, 165.0
+    drop, slope = np.zeros(4), np.zeros(4)
+    for kg, a in ((45.0, np.full(4, 280.0)), (30.0, 680.0 + strokes)):
+        drop += kg * G * a ** 2 * (3 * L - a) / 6
+        slope += kg * G * a ** 2 / 2
+    P6 = 120.0 * G
+    drop += P6 * L ** 3 / 3 + P6 * d * L ** 2 / 2
+    slope += P6 * L ** 2 / 2 + P6 * d * L
+    expect = np.zeros((4, 3))
+    expect[:, 2] = -1e-12 * (drop + d * slope)  # per unit 1/EI in 1/(MN m^2)
+    np.testing.assert_allclose(basis.B[:, :, basis.names.index("e_j3 [1/(MN m^2)]")], expect, rtol=1e-9, atol=1e-15)

@@ -1,6 +1,7 @@
 """Reading and validating measurement CSVs: every bad input gives a TolallocError saying what to do."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import tolalloc
@@ -91,3 +92,14 @@ def test_semicolon_file(tmp_path, robot, frame):
         read_measurements(path, robot)
     with pytest.raises(TolallocError, match="does not exist"):
         read_measurements(tmp_path / "nope.csv", robot)
+
+
+@pytest.mark.parametrize("col, want", [("payload_g", "payload_kg"), ("time_ms", "time_s"),
+                                       ("temperature_k", "temperature_c")])
+def test_a_covariate_in_another_unit_is_refused_not_ignored(col, want):
+    robot = tolalloc.load_robot("ur10")
+    df = pd.DataFrame(np.zeros((5, 6)), columns=[f"q{i}_deg" for i in range(1, 7)])
+    df[["x_mm", "y_mm", "z_mm"]] = np.arange(15.0).reshape(5, 3)
+    df[col] = 1.0
+    with pytest.raises(TolallocError, match=f"column '{col}': expected '{want}' .* rename it {want}"):
+        measurements_from_frame(df, robot)

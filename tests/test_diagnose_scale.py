@@ -3,6 +3,7 @@ memory. Known answers: SciPy's least_squares on the same residual and Jacobian (
 fit, forward kinematics of robot.kinematics; peak memory by tracemalloc (not timed)."""
 
 import json
+import re
 import tracemalloc
 
 import numpy as np
@@ -141,8 +142,11 @@ def test_cli_says_what_was_subsampled_and_progress_stays_on_stderr(tc_frame, tmp
     assert js["subsample"]["cv_rows"] == 250 and js["subsample"]["rows"] == 500
     assert "subsample: cross-validation and effect selection on 250 of 500 training rows (seed 0)" in out
     assert "cross-validation (250 rows)" in cap.err and "fit/s" not in out and "\r" not in out
-    # without --progress and with stderr not a terminal: no bar at all
-    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--folds", "3", "--cv-rows", "250"])
+    stage = re.compile(r".+: ([\d,]+ \w+, )?\d+\.\d+ s")  # stderr is no terminal: a line per stage, no bar
+    assert all(stage.fullmatch(line) for line in cap.err.splitlines()), cap.err
+    # --no-progress: nothing on stderr
+    rc = main(["diagnose", "tool_changer", "--train", str(tmp_path / "train.csv"), "--folds", "3", "--cv-rows", "250",
+               "--no-progress"])
     assert rc == 0 and capsys.readouterr().err == ""
 
 

@@ -94,9 +94,9 @@ def test_robot_refuses_nan_tool_and_nominal():
     chain = (Joint("j1", "revolute", np.array([0.0, 0, 1])), Link("l1", np.array([100.0, 0, 0])))
     with pytest.raises(TolallocError, match="tool offset .* expected 3 finite numbers"):
         Robot("r", chain, tool_offset_mm=np.array([np.nan, 0, 0]))
-    bad = (Joint("j1", "revolute", np.array([0.0, 0, 1]), nominal=np.nan), Link("l1", np.array([100.0, 0, 0])))
-    with pytest.raises(TolallocError, match="joint j1: .*finite nominal"):
-        Robot("r", bad)
+    with pytest.raises(TolallocError, match=r"^joint j1: expected a finite nominal value inside the limits \[rad\], "
+                                            r"got nan\.$"):
+        Joint("j1", "revolute", np.array([0.0, 0, 1]), nominal=np.nan)  # refused by the joint itself
 
 
 def test_random_q_stays_within_limits_per_joint_type():

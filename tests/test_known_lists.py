@@ -128,8 +128,8 @@ TRIGGERS = {
     ("workflows/inputs.py", "resolve_region"): (
         lambda tmp: tolalloc.allocate_tolerances(_crowded_robot(), region="nope", verify=False),
         ["limits", "working", "reach", "nominal"]),
-    ("allocate/calibrated_design.py", "resolve_region"): (
-        lambda tmp: __import__("tolalloc.allocate.calibrated_design", fromlist=["x"]).resolve_region(
+    ("allocate/calibrated/design.py", "resolve_region"): (
+        lambda tmp: __import__("tolalloc.allocate.calibrated.design", fromlist=["x"]).resolve_region(
             _crowded_robot(), "nope"), ["limits", "working", "reach"]),
     ("workflows/calplan.py", "_check_region"): (
         lambda tmp: tolalloc.plan_calibration(_crowded_robot(), 4, region="nope"), ["limits", "working", "reach"]),
@@ -145,6 +145,9 @@ TRIGGERS = {
     ("diagnose/effects.py", "effect_basis"): (
         lambda tmp: __import__("tolalloc.diagnose.effects", fromlist=["x"]).effect_basis(
             "nope", tolalloc.load_robot("tool_changer"), None, np.zeros(3), {}), ["joint_compliance"]),
+    ("acceptance/requirement_file.py", "_requirement"): (
+        lambda tmp: __import__("tolalloc.acceptance.requirement_file", fromlist=["x"]).parse_requirements(
+            {"requirement": [{"kind": "nope"}]}), ["position", "orientation", "pose_accuracy"]),
 }
 
 

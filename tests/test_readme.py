@@ -14,6 +14,18 @@ from tolalloc.robot.io import robot_from_dict
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text()
+#: the repository (pyproject's Source URL); the README links its files by absolute URLs, which work on a package index
+REPO = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["urls"]["Source"]
+REPO_FILES = f"{REPO}/blob/main/"
+REPO_RAW = REPO.replace("https://github.com/", "https://raw.githubusercontent.com/") + "/main/"
+
+
+def repo_file(url: str) -> Path | None:
+    """The file of this checkout that a README link into the repository names (None: a link elsewhere)."""
+    for prefix in (REPO_FILES, REPO_RAW):
+        if url.startswith(prefix):
+            return ROOT / url[len(prefix):]
+    return None
 #: the pages that hold the robot-file and costs-file examples (docs/howto, linked from the README)
 EXAMPLE_PAGES = [ROOT / "docs" / "howto" / "own-robot.md", ROOT / "docs" / "howto" / "costs-file.md"]
 
@@ -79,4 +91,9 @@ def test_python_example_is_the_tested_one():
 
 def test_example_pages_are_linked_from_the_readme():
     for page in EXAMPLE_PAGES:
-        assert f"]({page.relative_to(ROOT).as_posix()})" in README
+        assert f"]({REPO_FILES}{page.relative_to(ROOT).as_posix()})" in README
+
+
+def test_the_figure_is_shown_from_the_repository():
+    figures = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", README)
+    assert figures and all(f.startswith(REPO_RAW) and repo_file(f).is_file() for f in figures), figures

@@ -118,7 +118,7 @@ class Page(HTMLParser):
 def allocation(tmp_path_factory):
     job = allocate_tolerances("tool_changer", region="nominal", n_mc=2000, seed=3)
     out = tmp_path_factory.mktemp("alloc") / "res"
-    names = job.save(out, report=True)
+    names = [p.name for p in job.save(out, report=True)]
     return job, out, names, Page((out / "report.html").read_text(encoding="utf-8"))
 
 
@@ -132,7 +132,7 @@ def calibrated(tmp_path_factory):
     plan = folder / "plan.csv"
     write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, plan)
     job = allocate_tolerances("tool_changer", calibration=str(plan), n_mc=200, coverage_n=5000)
-    names = job.save(folder / "res", report=True)
+    names = [p.name for p in job.save(folder / "res", report=True)]
     return job, folder / "res", names, Page((folder / "res" / "report.html").read_text(encoding="utf-8"))
 
 
@@ -148,7 +148,7 @@ def diagnosis(tmp_path_factory):
     tr.to_csv(folder / "train.csv", index=False)
     te.to_csv(folder / "test.csv", index=False)
     job = diagnose_measurements(tc, folder / "train.csv", folder / "test.csv", folds=3, gap_split=True, seed=1)
-    job.save(report=folder / "rep")
+    job.save(folder / "rep", report=True)
     return job, folder / "rep", Page((folder / "rep" / "report.html").read_text(encoding="utf-8"))
 
 
@@ -216,7 +216,7 @@ def test_allocation_tolerance_table(allocation):
 
 
 def test_allocation_report_names_one_design_one_worst_pose(allocation):
-    from tolalloc.workflows.html import allocation_context
+    from tolalloc.report.html_allocation import allocation_context
 
     job, _, _, page = allocation
     ctx = allocation_context(job)
@@ -228,9 +228,10 @@ def test_allocation_report_names_one_design_one_worst_pose(allocation):
     assert cards["lowest linear P"]["note"].startswith(f"pose {s['worst_pose']},")
     assert s["worst_pose"] == job.worst_pose + 1 == int(np.argmin(job.design.p_linear["position"])) + 1
     assert f"(pose {job.worst_pose + 1})" in ctx["figures"][0]["caption"]
-    # the pose table's legend names the interval of the estimator that ran (paired here: Tango's, not Wilson's)
-    assert set(job.verification.estimator) == {"paired"}
-    assert "Tango's score interval of the paired difference" in ctx["pose_table"]["note"]
+    # the pose table's legend names the interval of the estimator that ran: the nominal pose sits on p, so its paired
+    # interval straddled p and the second look was importance sampling (Tango's interval, not Wilson's)
+    assert set(job.verification.estimator) == {"importance"} and job.verification.second_looks == 1
+    assert "importance sampling: Tango's score interval of the weighted discordant counts" in ctx["pose_table"]["note"]
     assert "Wilson" not in ctx["pose_table"]["note"]
 
 
@@ -418,7 +419,7 @@ def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagno
     shifted = diagnose_measurements("tool_changer", folder / "train.csv", tmp_path / "shifted.csv", folds=3, seed=1)
     v = shifted.diagnosis.verdict
     assert v.verdict == "inconclusive"
-    shifted.save(report=tmp_path / "rep")
+    shifted.save(tmp_path / "rep", report=True)
     page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
     banner = page.text("verdict")
     assert banner.startswith("INCONCLUSIVE") and "NO EFFECT FOUND" not in banner
@@ -427,7 +428,7 @@ def test_diagnosis_report_states_an_inconclusive_verdict_with_its_reasons(diagno
 
 def test_an_input_named_in_the_record_and_by_the_run_is_listed_once():
     """coverage_n is in the call's record and in what the run used: the Inputs list shows it once, as used."""
-    from tolalloc.workflows.html import _inputs_pairs
+    from tolalloc.report.html_allocation import _inputs_pairs
 
     pairs = _inputs_pairs({"robot": "tool_changer", "coverage_n": 100000, "seed": 0}, [("coverage_n", 5000), ("z", "2")])
     assert [k for k, _ in pairs] == ["robot", "coverage_n", "seed", "z"]
@@ -438,7 +439,7 @@ def test_the_monte_carlo_card_says_how_a_paired_estimate_relates_to_the_linear_p
     """A paired estimate equal to the linear P is not a missing Monte Carlo: the card gives the disagreeing samples."""
     from types import SimpleNamespace
 
-    from tolalloc.workflows.html import _paired_note
+    from tolalloc.report.html_allocation import _paired_note
 
     ver = SimpleNamespace(estimator=np.array(["paired", "plain"]), n=np.array([10**6, 10**6]),
                           p_mc=np.array([0.96, 0.97]), n_discordant=np.array([3.0, 0.0]))

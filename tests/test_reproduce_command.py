@@ -1,15 +1,15 @@
 """The report's "command to reproduce" gives back the call that made the result.
 
 The command line is parsed by the real parser and handed to the real `allocate` command, which is stopped where
-it calls :func:`allocate_tolerances`; the Python call is parsed with :mod:`ast`. Both must give the same arguments
-as the original call (its defaults filled in), every option that decides a number included.
+it calls :func:`allocate_tolerances`; the Python call is run with a stand-in for it. Both must give the same settings
+as the original call (its defaults filled in: :func:`allocation_settings`), every option that decides a number
+included.
 """
 
 from __future__ import annotations
 
-import ast
-import inspect
 import shlex
+import warnings
 
 import pytest
 
@@ -17,9 +17,9 @@ import tolalloc
 import tolalloc.workflows
 from tolalloc.cli import build_parser
 from tolalloc.workflows import allocate_tolerances
-from tolalloc.workflows.html_command import allocation_command
-
-PARAMS = inspect.signature(allocate_tolerances).parameters
+from tolalloc.workflows.allocation_settings import allocation_settings
+from tolalloc.workflows.reproduce import allocation_command
+from tolalloc.workflows.keywords import fold_moved
 
 
 class _Called(Exception):
@@ -27,8 +27,8 @@ class _Called(Exception):
 
 
 def reproduced_arguments(job, monkeypatch, tmp_path) -> tuple[dict, dict]:
-    """``(command line, Python call)`` of ``job``'s reproduce command, each as the keyword arguments (and
-    ``robot``) it passes to :func:`allocate_tolerances`."""
+    """``(command line, Python call)`` of ``job``'s reproduce command, each as the arguments it passes to
+    :func:`allocate_tolerances`."""
     cli, python, _ = allocation_command(job)
     argv = shlex.split(cli)
     assert argv[:2] == ["tolalloc", "allocate"] and argv[-2:] == ["--report", "DIR"]
@@ -36,6 +36,7 @@ def reproduced_arguments(job, monkeypatch, tmp_path) -> tuple[dict, dict]:
     seen = {}
 
     def called(robot, **kwargs):
+        seen.clear()
         seen.update(kwargs, robot=robot)
         raise _Called
 
@@ -43,28 +44,36 @@ def reproduced_arguments(job, monkeypatch, tmp_path) -> tuple[dict, dict]:
     args = build_parser().parse_args(argv[1:])
     with pytest.raises(_Called):
         args.func(args)
-    call = next(n for n in ast.walk(ast.parse(python)) if isinstance(n, ast.Call)
-                and getattr(n.func, "attr", "") == "allocate_tolerances")
-    py = {k.arg: ast.literal_eval(k.value) for k in call.keywords}
-    py["robot"] = ast.literal_eval(call.args[0])
-    return seen, py
+    cli_seen = dict(seen)
+    monkeypatch.setattr(tolalloc, "allocate_tolerances", called, raising=False)
+    with warnings.catch_warnings(), pytest.raises(_Called):
+        warnings.simplefilter("error", DeprecationWarning)  # the report's call is written without old keywords
+        exec(python, {})
+    return cli_seen, dict(seen)
 
 
 def effective(kwargs: dict, job) -> dict:
-    """The arguments of a call with every default filled in, in comparable form. ``scheduler`` never changes a
-    number and is not reproduced; ``coverage_n`` is compared only where a box region made a coverage sample; the
-    default sigma set and region are the ones the call resolved to."""
-    out = {k: p.default for k, p in PARAMS.items() if p.default is not inspect.Parameter.empty}
-    out.update(kwargs)
-    out.pop("scheduler")
-    out["exclude"] = tuple(out["exclude"] or ())
-    out["sigma_set"] = out["sigma_set"] or job.problem.model.sigma_set
-    if out["region"] is None and out["poses"] is None:
-        out["region"] = job.label
-    if out["calibration"] is not None:
-        out["calibration"] = str(out["calibration"])
+    """The settings of a call with every default filled in, in comparable form (:func:`allocation_settings`).
+    ``scheduler`` never changes a number and is not reproduced; ``coverage_n`` is compared only where a box region
+    made a coverage sample; the default sigma set and region are the ones the call resolved to."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        kw = fold_moved("allocate_tolerances", {k: v for k, v in kwargs.items()
+                                                if k not in ("robot", "tool", "trust_units", "progress")})
+    s = allocation_settings(**kw)
+    out = {"requirements": [r.to_dict() for r in s.requirements], "costs": s.costs.to_dict(),
+           "error_model": {**s.error_model.to_dict(), "sigma_set": s.error_model.sigma_set or job.problem.model.sigma_set},
+           "solver": s.solver.to_dict(), "verification": s.verification.to_dict(),
+           "correction": s.correction, "correction_rounds": s.correction_rounds,
+           "calibration": None if s.calibration is None else str(s.calibration), "robot": kwargs["robot"]}
+    region = s.region.to_dict()
+    if region["where"] is None and region["poses"] is None:
+        region["where" if job.region is not None else "poses"] = job.label
     if job.region is None:
-        out.pop("coverage_n")
+        region.pop("coverage_n")
+    out["region"] = region
+    if out["requirements"][-1]["kind"] == "orientation" and out["requirements"][-1]["prob"] is None:
+        out["requirements"][-1]["prob"] = out["requirements"][0]["prob"]
     return out
 
 

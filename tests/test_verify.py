@@ -139,7 +139,7 @@ def test_interval_containing_p_with_few_samples_is_inconclusive(res):
 
 def test_intervals_are_simultaneous_over_the_poses(res):
     # 3 poses, position only: each interval at 1 - 0.05 / 3, and every output says so
-    v = verify_design(res.problem, res.design, n_mc=20_000, seed=8, keep_samples=0)
+    v = verify_design(res.problem, res.design, n_mc=20_000, n_max=20_000, seed=8, keep_samples=0)
     per = 1 - 0.05 / 3
     assert (v.family_level, v.n_intervals) == (0.95, 3) and v.level_per_interval == pytest.approx(per)
     assert v.estimate.level == pytest.approx(per)
@@ -149,7 +149,7 @@ def test_intervals_are_simultaneous_over_the_poses(res):
                                 "each)")
     assert "simultaneous 95% bound" in v.message() and v.interval_label() == "simultaneous 95% interval"
     # a wider family level gives narrower intervals on the same draws
-    w = verify_design(res.problem, res.design, n_mc=20_000, seed=8, keep_samples=0, level=0.8)
+    w = verify_design(res.problem, res.design, n_mc=20_000, n_max=20_000, seed=8, keep_samples=0, level=0.8)
     assert np.all(w.ci_high - w.ci_low < v.ci_high - v.ci_low) and np.array_equal(w.p_mc, v.p_mc)
     with pytest.raises(TolallocError, match=r"level: expected a confidence level in \[0.5, 1\) .* got 1.5"):
         verify_design(res.problem, res.design, n_mc=20_000, level=1.5)
@@ -157,7 +157,8 @@ def test_intervals_are_simultaneous_over_the_poses(res):
 
 def test_a_possible_second_look_is_counted_in_the_family(res):
     # certified with n_max > n_mc: each of the 3 position intervals may be re-run, so 6 intervals at 1 - 0.05 / 6;
-    # with n_max = n_mc (no second look) or the exact criterion, 3 at 1 - 0.05 / 3
+    # so with the exact criterion and auto on a Gaussian model (the second look is importance sampling); with
+    # n_max = n_mc (no second look) or the exact criterion with another estimator, 3 at 1 - 0.05 / 3
     v = verify_design(res.problem, res.design, criterion="certified", n_mc=2000, n_max=8000, seed=7, keep_samples=0)
     per = 1 - 0.05 / 6
     assert (v.n_intervals, v.second_looks) == (6, 3) and v.level_per_interval == pytest.approx(per)
@@ -177,7 +178,13 @@ def test_a_possible_second_look_is_counted_in_the_family(res):
     np.testing.assert_allclose(needed_targets(chk, np.full(3, 0.95))[short], want[short])
     once = verify_design(res.problem, res.design, criterion="certified", n_mc=2000, n_max=2000, seed=7,
                          keep_samples=0)
-    exact = verify_design(res.problem, res.design, criterion="exact", n_mc=2000, n_max=8000, seed=7, keep_samples=0)
+    exact = verify_design(res.problem, res.design, criterion="exact", n_mc=2000, n_max=8000, seed=7, keep_samples=0,
+                          estimator="paired")
     for w in (once, exact):
         assert (w.n_intervals, w.second_looks) == (3, 0) and w.level_per_interval == pytest.approx(1 - 0.05 / 3)
         assert "second look" not in w.message() and w.n.max() == 2000
+    auto = verify_design(res.problem, res.design, criterion="exact", n_mc=2000, n_max=8000, seed=7, keep_samples=0)
+    assert (auto.n_intervals, auto.second_looks) == (6, 3)
+    tight = int(np.argmin(res.design.p_linear["position"]))  # on p: its paired interval straddled p
+    assert auto.estimator[tight] == "importance" and auto.n[tight] == 8000
+    assert auto.estimate.requested == "auto" and "(requested auto)" in auto.estimator_message()

@@ -105,7 +105,8 @@ def test_the_given_verifications_family_level_carries_through_the_rounds(case):
 def test_a_loop_stopped_after_a_round_is_judged_on_fresh_draws_too(case):
     model, q, costs = case
     # no margin and one round: the re-solved design is still short on the draws it was tuned on
-    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=20_000, seed=1, max_rounds=1, k_se=0.0)
+    c = correct_design(model, q, radius_mm=10.0, costs=costs, n_mc=20_000, seed=1, max_rounds=1, k_se=0.0,
+                       estimator="paired")
     assert c.rounds == 1 and c.tuned is not None and c.tuned.seed == 1 and c.tuned.verdict != "demonstrated"
     assert c.confirm_seed == 1 + CONFIRM_SEED_OFFSET and c.verification.seed == c.confirm_seed
     assert c.stopped == (c.verification.verdict != "demonstrated")

@@ -19,7 +19,8 @@ def res():
 
 
 def test_paired_verification_records_the_estimator(res):
-    v = verify_design(res.problem, res.design, n_mc=50_000, seed=1, keep_samples=100)
+    # n_max = n_mc: no second look, every pose judged by the first (paired) one
+    v = verify_design(res.problem, res.design, n_mc=50_000, n_max=50_000, seed=1, keep_samples=100)
     plain = verify_design(res.problem, res.design, n_mc=50_000, seed=1, keep_samples=100, estimator="plain")
     assert np.all(v.estimator == "paired") and np.all(plain.estimator == "plain")
     assert np.all(v.variance_reduction > 100) and v.fallback_reason == ""
@@ -92,7 +93,7 @@ def test_correction_with_the_paired_interval_costs_less_than_with_plain():
             kind[key] *= 40
     model, q = build_error_model(robot), robot.poses("working")[[11]]
     kw = dict(radius_mm=10.0, costs=costs, n_mc=50_000, seed=1, max_rounds=2)
-    paired = correct_design(model, q, **kw)
+    paired = correct_design(model, q, estimator="paired", **kw)
     plain = correct_design(model, q, estimator="plain", **kw)
     assert paired.verification.verdict == "demonstrated" and plain.verification.verdict == "demonstrated"
     assert np.all(paired.verification.estimator == "paired")
@@ -128,7 +129,7 @@ def test_rare_requirement_is_demonstrated_by_importance_sampling():
 def test_estimator_summary_block(res):
     import json
 
-    v = verify_design(res.problem, res.design, n_mc=20_000, seed=2, keep_samples=0)
+    v = verify_design(res.problem, res.design, n_mc=20_000, n_max=20_000, seed=2, keep_samples=0)
     block = v.estimator_summary()
     assert block["estimator"] == ["paired", "paired"] and block["estimator_requested"] == "auto"
     assert len(block["n_discordant"]) == 2 and block["fallback_reason"] == ""

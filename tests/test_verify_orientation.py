@@ -166,9 +166,11 @@ def test_orientation_tail_too_thin_for_the_samples_is_refused_with_the_samples_n
     pr = build_problem(model, model.robot.poses("working")[:2], radius_mm=0.5, angle_radius_deg=0.05,
                        angle_prob=0.999)
     d = allocate(pr, snap=False).design
-    for estimator in ("auto", "paired", "importance"):
+    # auto on this Gaussian model may give each position interval a second look (importance sampling): 6 intervals
+    # at 99.17 %, z = 2.6383, n >= 6954
+    for estimator, need in (("auto", 6954), ("paired", 6233), ("importance", 6233)):
         with pytest.raises(TolallocError, match=r"n_mc 2000 samples per pose cannot resolve the orientation tail "
-                                                r"1 - p = 0.001 .* give `n_mc` >= 6233 \(importance sampling "
+                                                rf"1 - p = 0.001 .* give `n_mc` >= {need} \(importance sampling "
                                                 r"estimates the position requirement only"):
             verify_design(pr, d, n_mc=2000, estimator=estimator, keep_samples=0)
 

@@ -20,8 +20,10 @@ ENGINES = (None, "auto", "numba", "numpy")
 
 def resolve_engine(engine: str | None = None) -> str:
     """``"numba"`` or ``"numpy"``: ``engine`` if given, else numba when importable and ``TOLALLOC_NUMBA`` != 0."""
-    if engine not in ENGINES:
-        raise TolallocError(f"engine: expected None, 'auto', 'numba' or 'numpy', got {engine!r}.")
+    if not (engine is None or (isinstance(engine, str) and engine in ENGINES)):
+        from tolalloc.exceptions import describe
+
+        raise TolallocError(f"engine: expected None, 'auto', 'numba' or 'numpy', got {describe(engine)}.")
     if engine == "numpy":
         return "numpy"
     if engine == "numba":

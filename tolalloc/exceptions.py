@@ -17,13 +17,32 @@ from typing import Any
 import numpy as np
 
 __all__ = ["TolallocError", "ArgumentError", "UnknownArgumentError", "InputFileError", "Interrupted",
-           "signals_deferred", "interruptible", "note_interrupt", "interrupt_pending", "clear_interrupt",
+           "signals_deferred", "interrupts_as_exceptions", "interruptible", "note_interrupt", "interrupt_pending",
+           "clear_interrupt",
            "raise_if_interrupted", "check_vector", "check_finite_array", "check_positive", "known_names",
            "memory_budget_bytes", "check_memory", "describe", "whole_number"]
 
 
 class TolallocError(ValueError):
     """A user-facing input error (bad robot file, bad joint values, bad sigma ...)."""
+
+    def __str__(self) -> str:
+        if not self.args:
+            return ""
+        return _text(self.args[0]) if len(self.args) == 1 else "; ".join(_text(a) for a in self.args)
+
+
+def _text(value) -> str:
+    """``value`` as message text: a string as it is, bytes decoded, anything else by its ``str`` (or ``repr`` when that
+    fails): formatting a message never raises."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (bytes, bytearray)):
+        return bytes(value).decode("utf-8", "replace")
+    try:
+        return str(value)
+    except Exception:  # a value whose __str__ fails still leaves a message
+        return object.__repr__(value)
 
 
 class ArgumentError(TolallocError):
@@ -32,6 +51,7 @@ class ArgumentError(TolallocError):
     ``str(exc)`` is ``"<argument>: <detail>"`` (``"<argument> <detail>"`` when the detail goes on a sentence:
     ``"angle_prob 0.9 needs ..."``); the command line prints the same text with the argument's flag in place of
     its Python name (``radius_mm`` -> ``--radius-mm``), and other arguments named in backticks by their flags.
+    Any values are taken (as text), so that raising one never fails.
 
     Attributes
     ----------
@@ -41,11 +61,15 @@ class ArgumentError(TolallocError):
         What was expected, what arrived and what to do.
     """
 
-    def __init__(self, argument: str, detail: str):
+    def __init__(self, argument="", detail="", *more):
+        argument, detail = _text(argument), " ".join(_text(d) for d in (detail, *more))
         self.sep = " " if detail.startswith(("needs ", "and ")) or detail[:1].isdigit() else ": "
-        super().__init__(f"{argument}{self.sep}{detail}")
+        super().__init__(f"{argument}{self.sep}{detail}" if argument else detail)
         self.argument = argument
         self.detail = detail
+
+    def __reduce__(self):  # pickled across processes (Dask workers) with its two parts
+        return type(self), (self.argument, self.detail)
 
 
 class UnknownArgumentError(ArgumentError, TypeError):
@@ -56,11 +80,14 @@ class UnknownArgumentError(ArgumentError, TypeError):
 class InputFileError(TolallocError, FileNotFoundError):
     """An input file that does not exist (a robot file, a measurement or plan file, a trajectory)."""
 
-    def __init__(self, message: str):
-        TolallocError.__init__(self, message)
+    def __new__(cls, *args, **kwargs):  # OSError's layout, whoever asks (pickling helpers call cls.__new__ bare)
+        return OSError.__new__(cls, *args)
+
+    def __init__(self, message="", *more):
+        TolallocError.__init__(self, message, *more)
 
     def __str__(self) -> str:
-        return str(self.args[0]) if self.args else ""
+        return TolallocError.__str__(self)
 
 
 @contextlib.contextmanager
@@ -94,6 +121,48 @@ def signals_deferred():
             signal.signal(s, h)
         if got:
             _deliver(got[0], old[got[0]])
+
+
+_GUARD_DEPTH = [0]
+
+
+@contextlib.contextmanager
+def interrupts_as_exceptions():
+    """SIGINT and SIGTERM, where Python's defaults are in place, raise :class:`Interrupted` inside the block.
+
+    So the block's clean-up (``finally``, ``with``) runs on SIGTERM too, whose default ends the process on the spot;
+    after the block, SIGTERM then ends the process as it would have. An error a library raises while a signal is
+    pending (an interrupt inside an import can come out as an ``ImportError`` or a ``RuntimeError``) becomes the
+    :class:`Interrupted` it stands for. Handlers a program installed itself (the command line's) are left alone.
+    Main thread only (elsewhere a no-op); a nested block is a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread() or _GUARD_DEPTH[0]:
+        yield
+        return
+    got: list = []
+
+    def on_signal(signum, frame):
+        got.append(signum)
+        raise Interrupted(signum)
+
+    swapped = {s: signal.signal(s, on_signal) for s, default in ((signal.SIGINT, signal.default_int_handler),
+                                                                 (signal.SIGTERM, signal.SIG_DFL))
+               if signal.getsignal(s) is default}
+    _GUARD_DEPTH[0] += 1
+    try:
+        yield
+        if got:  # the handler's exception was swallowed and the block finished
+            raise Interrupted(got[0])
+    except BaseException as exc:
+        if got and not isinstance(exc, Interrupted):
+            raise Interrupted(got[0]) from exc
+        raise
+    finally:
+        _GUARD_DEPTH[0] -= 1
+        for s, h in swapped.items():
+            signal.signal(s, h)
+        if got and got[0] == signal.SIGTERM:
+            os.kill(os.getpid(), signal.SIGTERM)  # the default action, now that the block has cleaned up
 
 
 def _deliver(signum: int, handler) -> None:
@@ -135,9 +204,9 @@ def interruptible(fn, *args, **kwargs):
 
 
 class Interrupted(KeyboardInterrupt):
-    """SIGINT or SIGTERM arrived; ``signum`` says which."""
+    """SIGINT or SIGTERM arrived; ``signum`` says which (SIGINT when not given)."""
 
-    def __init__(self, signum: int):
+    def __init__(self, signum: int = signal.SIGINT):
         super().__init__(signum)
         self.signum = signum
 
@@ -181,7 +250,7 @@ def check_finite_array(value: Any, name: str, shape: tuple | None = None) -> np.
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise TolallocError(f"{name}: expected numbers, got {value!r}.") from None
+        raise TolallocError(f"{name}: expected numbers, got {describe(value)}.") from None
     if shape is not None:
         ok = arr.ndim == len(shape) and all(s is None or s == a for s, a in zip(shape, arr.shape))
         if not ok:
@@ -203,10 +272,10 @@ def check_positive(value: Any, name: str, *, allow_zero: bool = False) -> float:
     try:
         x = float(value)
     except (TypeError, ValueError):
-        raise TolallocError(f"{name}: expected a number, got {value!r}.") from None
+        raise TolallocError(f"{name}: expected a number, got {describe(value)}.") from None
     if not np.isfinite(x) or x < 0 or (x == 0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
-        raise TolallocError(f"{name}: expected a finite number {bound}, got {value!r}.")
+        raise TolallocError(f"{name}: expected a finite number {bound}, got {describe(value)}.")
     return x
 
 

@@ -9,10 +9,16 @@ and published only when the whole command succeeded:
   last file is in place; files an earlier publication wrote there and this one does not are removed (the
   directory's :data:`MANIFEST` lists them), other files are kept.
 
-A directory output is locked (``.NAME.lock`` next to it, :func:`fcntl.flock`, released by the
-kernel if the process dies) from staging to publication; a second run writing the same directory at
-the same time gets ``DIR is being written by another run``. An error or an interrupt removes the
-staged folder, so nothing half-written stays on disk.
+A directory output is locked (``.NAME.lock`` next to it, see :mod:`tolalloc.output_lock`) from staging to
+publication; a second run writing the same directory at the same time gets ``DIR is being written by another run``.
+The command line takes the lock of its output directories before it computes (:func:`reserve_directory` inside
+:func:`reservations`), so the conflict is reported at the start.
+
+An error or an interrupt removes the staged folder, the lock and the parent folders the output created, so nothing
+half-written stays on disk. An :class:`OSError` while staging or publishing (no space left, a quota, permission
+denied, a path too long) becomes one :class:`~tolalloc.exceptions.TolallocError` naming the path and the cause.
+Outside the command line (whose handlers turn SIGTERM into an exception), a SIGTERM while an output is staged is
+held as an exception until the staged output is removed, then ends the process as SIGTERM does.
 """
 
 from __future__ import annotations
@@ -26,11 +32,13 @@ from pathlib import Path
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError, raise_if_interrupted, signals_deferred
+from tolalloc.exceptions import (ArgumentError, TolallocError, interrupts_as_exceptions, raise_if_interrupted,
+                                 signals_deferred)
+from tolalloc.output_lock import (ADVICE, cannot_write, directory_lock, in_reservations, is_reserved, make_parents,
+                                  remove_empty, reservations, reserve)
 
 __all__ = ["atomic_output", "output_group", "check_output", "check_distinct_outputs", "write_json", "json_default",
-           "json_native",
-           "directory_lock", "published"]
+           "json_native", "directory_lock", "reservations", "reserve_directory", "published"]
 
 #: paths published by this process since the last :func:`published` reset (read by the interrupt message)
 _PUBLISHED: list = []
@@ -60,11 +68,47 @@ def json_native(obj):
     return obj
 
 
+
+#: staging path -> the output it stands for, while staged (error messages name the output, not the staging path)
+_STAGED: dict = {}
+
+
+def _shown(name: str) -> str:
+    """``name`` with a staging path replaced by the output it stands for (innermost staging first)."""
+    for _ in range(8):  # staged outputs nest (a JSON file staged inside a staged directory)
+        for tmp, target in _STAGED.items():
+            if name == tmp or name.startswith(tmp + os.sep):
+                name = target + name[len(tmp):]
+                break
+        else:
+            return name
+    return name
+
+
+def _write_failed(exc: OSError, targets: list) -> TolallocError:
+    """An :class:`OSError` raised while staged outputs ``targets`` were written, as one line: the file it names
+    (where it was going, not its staging path), or the outputs, the cause and what to do."""
+    if isinstance(exc.filename, (str, os.PathLike)):
+        where = repr(_shown(os.fspath(exc.filename)))
+    else:
+        where = " and ".join(repr(_shown(str(t))) for t in targets)
+    why = exc.strerror or str(exc) or type(exc).__name__
+    return TolallocError(f"cannot write {where} ({why}); nothing was written; "
+                         f"{ADVICE.get(exc.errno or 0, 'choose another path')}.")
+
+
 def _cannot_write(path: Path, directory: bool, exc: OSError) -> TolallocError:
-    what = "an output directory" if directory else "an output file"
-    why = exc.strerror or type(exc).__name__
-    return TolallocError(f"cannot write {what} at {str(path)!r} ({why}: {exc.filename or path}); expected {what} "
-                         "path in a writable place; choose another path.")
+    return cannot_write(path, directory, exc, shown=_shown)
+
+
+def _path_text(path, name: str) -> str:
+    """``path`` (a str or :class:`os.PathLike`) as its text; anything else is refused naming ``name``."""
+    value = os.fspath(path) if isinstance(path, os.PathLike) else path
+    if not isinstance(value, str) or "\0" in value:
+        shown = " ".join(repr(path).split())[:60]
+        raise ArgumentError(name, f"expected a path (a str or os.PathLike such as pathlib.Path), got "
+                            f"{type(path).__name__} {shown}; give a file or directory path.")
+    return value
 
 
 def check_output(path, flag: str, *, directory: bool = False) -> None:
@@ -78,12 +122,28 @@ def check_output(path, flag: str, *, directory: bool = False) -> None:
         Naming ``flag`` and the path: empty, a directory where a file is expected (or the reverse),
         below a file, or in a place that is not writable.
     """
-    if path is None or (str(path) == "-" and not directory):
+    if path is None:
         return
-    if not str(path).strip():
+    path = _path_text(path, flag)
+    if path == "-" and not directory:
+        return
+    if not path.strip():
         want = "a directory" if directory else "a file"
         raise TolallocError(f"{flag}: expected {want} path, got an empty string; give a path or leave out {flag}.")
-    p = Path(path)
+    try:
+        _check_place(Path(path), flag, directory)
+    except OSError as exc:  # a name too long, a loop of symbolic links ...
+        why = exc.strerror or type(exc).__name__
+        raise TolallocError(f"{flag} {_short(path)!r}: cannot be used as an output path ({why}); "
+                            f"{ADVICE.get(exc.errno or 0, 'choose another path')}.") from None
+
+
+def _short(text: str, n: int = 120) -> str:
+    """``text`` shortened in the middle to about ``n`` characters."""
+    return text if len(text) <= n else f"{text[:n // 2]}...{text[-n // 2:]}"
+
+
+def _check_place(p: Path, flag: str, directory: bool) -> None:
     if directory and p.resolve().parent == p.resolve():
         raise TolallocError(f"{flag} {str(p)!r}: refusing to write results into the filesystem root; give a "
                             f"directory of their own, e.g. {flag} results.")
@@ -122,29 +182,13 @@ def check_distinct_outputs(outputs, inputs=()) -> None:
         seen[key] = ("output", flag)
 
 
-@contextlib.contextmanager
-def directory_lock(path: Path):
-    """Hold ``.NAME.lock`` next to directory ``path`` (non-blocking ``flock``) for the block."""
-    import fcntl
-
-    lock = path.parent / f".{path.name}.lock"
-    try:
-        fd = os.open(lock, os.O_CREAT | os.O_RDWR, 0o666)
-    except OSError as exc:
-        raise _cannot_write(path, True, exc) from None
-    try:
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            raise TolallocError(f"{str(path)!r} is being written by another run (lock {str(lock)!r}); wait for it "
-                                "to finish or choose another output directory.") from None
-        try:
-            yield
-        finally:
-            with contextlib.suppress(OSError):
-                os.unlink(lock)
-    finally:
-        os.close(fd)
+def reserve_directory(path, flag: str) -> None:
+    """Check output directory ``path`` (:func:`check_output`) and, inside :func:`reservations`, take its lock now,
+    until that block ends; the staging of that directory later in the block uses this lock. ``None`` passes;
+    outside :func:`reservations` only the check is made (the staging takes the lock)."""
+    check_output(path, flag, directory=True)
+    if path is not None and in_reservations():
+        reserve(Path(path))
 
 
 def published(reset: bool = False) -> list:
@@ -210,18 +254,17 @@ def _direct_output(path: Path):
         shutil.rmtree(folder, ignore_errors=True)
 
 
-@contextlib.contextmanager
-def atomic_output(path: str | os.PathLike, *, directory: bool = False):
-    """Yield a temporary path; publish it at ``path`` only if the block finishes without error.
+def _load_plotting() -> None:
+    """Import matplotlib's pyplot before anything is staged: an interrupt inside that import (a second or more on a
+    cold start) must not land among staged files, where a library can turn it into an error of its own."""
+    with contextlib.suppress(ImportError):
+        import matplotlib.pyplot  # noqa: F401
 
-    For ``directory=True`` the temporary path is a fresh directory; a new ``path`` is created from it
-    by one rename, an existing one gets its files of the same name replaced (other files are kept).
-    The directory is locked against other runs meanwhile (see the module docstring). A file gets the
-    usual permissions (``0o666`` less the umask). An operating-system error (unwritable place, a file
-    where a directory is expected ...) raises :class:`TolallocError`; an error or interrupt in the
-    block removes the temporary path.
-    """
-    path = Path(path)
+
+@contextlib.contextmanager
+def _stage(path: Path, directory: bool):
+    """Yield the staging path of output ``path``; publish it if the block finishes without error. Whatever
+    happens, the staging path, the lock and the parent folders made for it (when left empty) are removed."""
     if not directory and _special(path):
         with _direct_output(path) as tmp:
             yield tmp
@@ -229,19 +272,19 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
     tmp = None
     with contextlib.ExitStack() as stack:
         try:
-            path.parent.mkdir(parents=True, exist_ok=True)
+            stack.callback(remove_empty, make_parents(path.parent))
             if directory:
-                stack.enter_context(directory_lock(path))
+                if not is_reserved(path):
+                    stack.enter_context(directory_lock(path))
                 tmp = Path(tempfile.mkdtemp(prefix=".tmp-", dir=path.parent))
             else:
                 fd, tmp_name = tempfile.mkstemp(prefix=".tmp-", dir=path.parent)
                 os.close(fd)
                 tmp = Path(tmp_name)
-                umask = os.umask(0)
-                os.umask(umask)
-                os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0o600
+                os.chmod(tmp, 0o666 & ~_umask())  # mkstemp makes 0o600
         except OSError as exc:
             raise _cannot_write(path, directory, exc) from None
+        _STAGED[str(tmp)] = str(path)
         try:
             yield tmp
             raise_if_interrupted()
@@ -252,28 +295,63 @@ def atomic_output(path: str | os.PathLike, *, directory: bool = False):
                         _publish_dir(tmp, path)
                     else:
                         os.replace(tmp, path)
-                    if not any(part.startswith(".tmp-") for part in path.parts):  # not a write into a staging path
+                    if _shown(str(path)) == str(path):  # not a write into a staging path
                         _PUBLISHED.append(str(path))
             except OSError as exc:
                 raise _cannot_write(path, directory, exc) from None
         finally:
-            if directory:
-                shutil.rmtree(tmp, ignore_errors=True)
-            elif tmp.exists():
-                tmp.unlink()
+            with signals_deferred():  # the clean-up is not cut short by a second signal
+                _STAGED.pop(str(tmp), None)
+                if directory:
+                    shutil.rmtree(tmp, ignore_errors=True)
+                elif tmp.exists():
+                    tmp.unlink()
+
+
+@contextlib.contextmanager
+def atomic_output(path: str | os.PathLike, *, directory: bool = False, name: str = "path"):
+    """Yield a temporary path; publish it at ``path`` only if the block finishes without error.
+
+    For ``directory=True`` the temporary path is a fresh directory; a new ``path`` is created from it
+    by one rename, an existing one gets its files of the same name replaced (other files are kept).
+    The directory is locked against other runs meanwhile (see the module docstring). A file gets the
+    usual permissions (``0o666`` less the umask).
+
+    Raises
+    ------
+    TolallocError
+        ``path`` neither a str nor an :class:`os.PathLike` (naming argument ``name``), or an operating-system
+        error while staging, writing or publishing (an unwritable place, no space left, a quota, a path too long):
+        one line naming the path and the cause. An error or interrupt in the block removes the temporary path,
+        the lock and the parent folders made for it; nothing is published.
+    """
+    path = Path(_path_text(path, name))
+    if directory:
+        _load_plotting()
+    with interrupts_as_exceptions(), _stage(path, directory) as tmp:
+        try:
+            yield tmp
+        except OSError as exc:
+            raise _write_failed(exc, [path]) from None
 
 
 class _Group:
     def __init__(self, stack: contextlib.ExitStack):
         self._stack = stack
+        self.targets: list = []
 
     def file(self, path) -> Path:
         """Staging path of output file ``path``."""
-        return self._stack.enter_context(atomic_output(path))
+        path = Path(_path_text(path, "path"))
+        self.targets.append(path)
+        return self._stack.enter_context(_stage(path, False))
 
     def directory(self, path) -> Path:
         """Staging folder of output directory ``path``."""
-        return self._stack.enter_context(atomic_output(path, directory=True))
+        path = Path(_path_text(path, "path"))
+        _load_plotting()
+        self.targets.append(path)
+        return self._stack.enter_context(_stage(path, True))
 
 
 @contextlib.contextmanager
@@ -281,10 +359,15 @@ def output_group():
     """Several outputs staged together and published together (SIGINT / SIGTERM held back meanwhile).
 
     Yields an object with ``file(path)`` and ``directory(path)``, each returning a staging path
-    (see :func:`atomic_output`). An error or interrupt in the block removes every staged output.
+    (see :func:`atomic_output`). An error or interrupt in the block removes every staged output; an
+    operating-system error raises one :class:`TolallocError` naming the file and the cause.
     """
-    with contextlib.ExitStack() as stack:
-        yield _Group(stack)
+    with interrupts_as_exceptions(), contextlib.ExitStack() as stack:
+        group = _Group(stack)
+        try:
+            yield group
+        except OSError as exc:
+            raise _write_failed(exc, group.targets) from None
         raise_if_interrupted()
         with signals_deferred():
             stack.close()

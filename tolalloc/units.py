@@ -25,12 +25,13 @@ import contextvars
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError, describe
 
 __all__ = ["LENGTH_UNITS", "ANGLE_UNITS", "ALL_UNITS", "unit_key", "unit_value", "check_plausible", "trusting_units",
            "units_trusted", "check_reach", "MAX_PLAUSIBLE_M", "MIN_PLAUSIBLE_REACH_MM", "MAX_TINY_LINK_MM",
            "TINY_LINK_RATIO", "TRUST_HINT", "PYTHON_TRUST_HINT", "radians_fix", "check_joint_units",
-           "check_chain_units", "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS", "unit_columns", "in_row_unit"]
+           "check_chain_units", "PLAUSIBLE_MAX", "MAX_LIMIT_TURNS", "unit_columns", "in_row_unit", "number",
+           "check_positive", "check_probability", "RANGES"]
 
 #: factor from the suffix to the internal unit
 LENGTH_UNITS = {"mm": 1.0, "m": 1000.0}
@@ -317,3 +318,43 @@ def in_row_unit(frame, name: str):
 def _shown(raw):
     a = np.asarray(raw, dtype=float)
     return a.tolist() if a.ndim else float(a)
+
+
+# ---- numbers at the public entry points (re-exported by tolalloc.workflows.checks) -----------------------------
+
+def number(value, argument: str) -> float:
+    """A number (int, float or numpy scalar; not a bool or a string) as a float."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ArgumentError(argument, f"expected a number, got {describe(value)}.")
+    try:
+        return float(value)
+    except OverflowError:  # an int beyond the float range
+        return float("inf") if value > 0 else float("-inf")
+
+
+def check_probability(value, argument: str, *, example: str = "0.95") -> float:
+    """A probability strictly between 0 and 1."""
+    x = number(value, argument)
+    if not (np.isfinite(x) and 0 < x < 1):
+        raise ArgumentError(argument, f"expected a probability strictly between 0 and 1 (e.g. {example}), got {value!r}.")
+    return x
+
+
+#: Ranges of radii, noise levels and steps ``(smallest, largest)`` in each unit: beyond them a tolerance problem
+#: is not physical (a nanometre .. a kilometre, a nano-degree .. one turn) and its squares under- or overflow.
+RANGES = {"mm": (1e-6, 1e6), "deg": (1e-9, 360.0), "rad": (np.deg2rad(1e-9), 2 * np.pi)}
+
+
+def check_positive(value, argument: str, unit: str, example: str, bounds: tuple | None = None) -> float:
+    """A finite number > 0 in ``unit`` (``mm``, ``deg`` or ``rad``), within ``bounds`` (default that unit's
+    :data:`RANGES`)."""
+    x = number(value, argument)
+    if not (np.isfinite(x) and x > 0):
+        raise ArgumentError(argument, f"expected a finite number > 0 [{unit}] (e.g. {example}), got {value!r}.")
+    lo, hi = bounds or RANGES.get(unit, (0.0, np.inf))
+    if not lo <= x <= hi:
+        raise ArgumentError(argument, f"expected a number between {lo:.3g} and {hi:.3g} {unit} (e.g. {example}), got "
+                            f"{value!r}.")
+    return x
+
+

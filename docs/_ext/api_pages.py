@@ -1,9 +1,12 @@
 """Sphinx extension: the API pages list every public module of a package, found when the documentation is built.
 
 A page holds a marker ``<!-- api-modules: tolalloc.allocate -->`` (one or more package or module names); before
-the page is parsed the marker is replaced by an ``automodule`` block for the package's own docstring and, for every
-public submodule (no ``_`` in its name), a section with its ``automodule``. A module added to a stage appears in the
-reference without editing any page; ``tests/test_docs.py`` checks that the markers cover every public module.
+the page is parsed the marker is replaced by an ``automodule`` block for the package, documenting the names it
+exports (its ``__all__``) under the package's name (``tolalloc.allocate.build_problem``), and, for every public
+submodule (no ``_`` in its name), a section with its ``automodule`` and the members the package does not export.
+Names the top-level package exports (``tolalloc.allocate_tolerances``, the results and settings objects) are left out
+here: the job pages document them under those names. A module added to a stage appears in the reference without
+editing any page; ``tests/test_docs.py`` checks that the markers cover every public module.
 """
 
 from __future__ import annotations
@@ -27,16 +30,30 @@ def public_modules(name: str) -> list[str]:
     return out
 
 
+def _excluded(names) -> list[str]:
+    return ["   :exclude-members: " + ", ".join(sorted(names))] if names else []
+
+
 def expand(names: str) -> str:
     """The MyST text that replaces one marker."""
+    import tolalloc
+
+    top = set(tolalloc.__all__)
     lines = []
     for root in names.split():
-        is_package = hasattr(importlib.import_module(root), "__path__")
-        for name in public_modules(root):
-            if name == root and is_package:
-                lines += ["```{eval-rst}", f".. automodule:: {name}", "   :no-members:", "```", ""]
+        package = importlib.import_module(root)
+        modules = public_modules(root)
+        exported = set(getattr(package, "__all__", ())) if hasattr(package, "__path__") else set()
+        # a name that is also a submodule's (tolalloc.allocate.discretize) is documented in that module
+        at_package = exported - top - {m.rsplit(".", 1)[-1] for m in modules}
+        for name in modules:
+            if name == root and hasattr(package, "__path__"):
+                lines += ["```{eval-rst}", f".. automodule:: {name}",
+                          *(["   :members:", *_excluded(exported - at_package)] if at_package else ["   :no-members:"]),
+                          "```", ""]
             else:
-                lines += [f"## `{name}`", "", "```{eval-rst}", f".. automodule:: {name}", "```", ""]
+                lines += [f"## `{name}`", "", "```{eval-rst}", f".. automodule:: {name}", *_excluded(at_package | top),
+                          "```", ""]
     return "\n".join(lines)
 
 

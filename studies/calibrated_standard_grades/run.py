@@ -7,7 +7,7 @@ table (<robot>_<region>_<grades>_tolerances.csv). Every number comes from the li
   --n-poses 12``), written to the report folder;
 * ``tolalloc.allocate_tolerances(robot, calibration=PLAN, region=..., n_mc=...)`` (the command ``tolalloc allocate
   ROBOT --calibration PLAN --region ...``): continuous calibration-aware design (certified, then exact, cutting
-  planes over a box), its standard-grade design (``tolalloc.allocate.calibrated_standard``) over the same poses or
+  planes over a box), its standard-grade design (``tolalloc.allocate.calibrated.standard``) over the same poses or
   box, and the end-to-end Monte Carlo (simulated robots, each calibrated nonlinearly) of the standard design;
 * the same standard step without the outer approximation (local search only) for comparison.
 
@@ -27,8 +27,8 @@ from pathlib import Path
 import pandas as pd
 
 import tolalloc
-from tolalloc.allocate.calibrated_rounding import catalogue_range
-from tolalloc.allocate.calibrated_standard import standardize_calibrated
+from tolalloc.allocate.calibrated.rounding import catalogue_range
+from tolalloc.allocate.calibrated.standard import standardize_calibrated
 from tolalloc.units import in_row_unit
 from tolalloc.allocate.catalogue import build_catalogue
 
@@ -51,8 +51,8 @@ grades = "IT5-IT16"
 def run_case(robot: str, region: str, grades: str, plan_path: Path, costs, n_mc: int,
              coverage_n: int) -> tuple[dict, pd.DataFrame]:
     t0 = time.perf_counter()
-    job = tolalloc.allocate_tolerances(robot, calibration=str(plan_path), region=region, n_mc=n_mc,
-                                       coverage_n=coverage_n, costs=costs)
+    job = tolalloc.allocate_tolerances(robot, calibration=str(plan_path), n_mc=n_mc, costs=costs,
+                                       region=tolalloc.Region(region, coverage_n=coverage_n))
     wall = time.perf_counter() - t0
     res, std = job.result, job.standard
     local = standardize_calibrated(res, outer_approximation=False, relax=False, coverage_n=0)
@@ -175,7 +175,7 @@ def main(argv=None) -> int:
     for robot, region, grades in CASES:
         plan_path = out / f"{robot}_plan_12.csv"
         if not plan_path.exists():
-            tolalloc.plan_calibration(robot, 12).save(plan_path)
+            tolalloc.plan_calibration(robot, 12).save_plan(plan_path)
         row, table = run_case(robot, region, grades, plan_path, None if grades == "IT5-IT12" else str(wide), n_mc,
                               coverage_n)
         rows.append(row)

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.calibrated_design import allocate_with_calibration, resolve_region
-from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+from tolalloc.allocate.calibrated.design import allocate_with_calibration, resolve_region
+from tolalloc.allocate.calibrated.plan import compare_with_random_plans, design_plan_for_allocation
 from tolalloc.allocate.region import coverage
 from tolalloc.calibration import make_plan
 from tolalloc.calibration.design import design_plan

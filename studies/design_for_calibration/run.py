@@ -33,7 +33,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from tolalloc import load_robot  # noqa: E402
-from tolalloc.allocate.calibrated import allocate_calibrated  # noqa: E402
+from tolalloc.allocate.calibrated.certified import allocate_calibrated  # noqa: E402
 from tolalloc.allocate.problem import build_problem  # noqa: E402
 from tolalloc.calibration import split_errors  # noqa: E402
 from tolalloc.calibration.design import candidate_poses, design_plan  # noqa: E402
@@ -220,8 +220,8 @@ Requirement P(|dP| < 0.25 mm) >= 0.95 at each robot's working poses; built-in co
 offset plus a 0.0003 deg random repeatability; tracker position measurements with registration and target offset
 estimated (so a base-joint offset and base-axis tilts are indistinguishable from the tracker's pose and stay
 uncalibrated). Certified designs meet the eigenvalue rule on the linear post-calibration covariance (a local
-optimum of a non-convex cost, see `tolalloc/allocate/calibrated.py`); exact designs meet the post-calibration
-probability itself (`tolalloc/allocate/calibrated_exact.py`, IPOPT from the certified design). The first sections
+optimum of a non-convex cost, see `tolalloc/allocate/calibrated/certified.py`); exact designs meet the post-calibration
+probability itself (`tolalloc/allocate/calibrated/exact.py`, IPOPT from the certified design). The first sections
 allocate at the working poses; the region sections (issue 26) over the working region.
 
 """

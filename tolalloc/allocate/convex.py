@@ -21,32 +21,39 @@ import warnings
 
 import numpy as np
 
-from tolalloc.allocate.problem import NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver, make_design
+from tolalloc.allocate.problem import (NOT_CONVERGED, TRACE_RULE_MIN_P, AllocationProblem, Design, Solver,
+                                       block_covariances, make_design)
 from tolalloc.exceptions import interruptible
 
-__all__ = ["solve_certified", "solve_rule"]
+__all__ = ["solve_certified", "solve_rule", "cost_expression"]
 
 
-def _cost_expr(problem: AllocationProblem, u):
-    """Total cost of the allocatable parameters as a DCP expression of ``u`` (grouped by law)."""
+def cost_expression(problem: AllocationProblem, x, variable: str = "u"):
+    """Total cost of the allocatable parameters as a DCP expression of the scaled variances ``x = u`` or of the
+    scaled tolerances ``x = v = sqrt(u) = t / t_ref`` (``variable="v"``), grouped by law: ``b u^-1/2 = b v^-1``,
+    ``b u^-k/2 = b v^-k``, ``b exp(-sqrt(u)) = b exp(-v)`` -- convex in either."""
     import cvxpy as cp
 
+    u = x
+    half = 1.0 if variable == "v" else 0.5  # the exponent of the variable per unit of t / t_ref
     models = [problem.costs.models[k] for k in problem.alloc]
     const = sum(m.a for m in models)
     terms = []
     groups: dict = {}
     for i, m in enumerate(models):
-        key = (m.model, m.k if m.model == "reciprocal_power" else None)
+        key = (m.model, m.k if m.model in ("reciprocal_power", "michael_siddall") else None)
         groups.setdefault(key, []).append(i)
     for (form, k), idx in groups.items():
         b = np.array([models[i].b for i in idx])
         ui = u[idx] if len(idx) < len(models) else u
         if form == "reciprocal":
-            terms.append(b @ cp.power(ui, -0.5))
+            terms.append(b @ cp.power(ui, -half))
         elif form == "reciprocal_power":
-            terms.append(b @ cp.power(ui, -k / 2.0))
+            terms.append(b @ cp.power(ui, -k * half))
+        elif form == "michael_siddall":
+            terms.append(b @ cp.exp(-k * half * cp.log(ui) - (ui if variable == "v" else cp.sqrt(ui))))
         else:
-            terms.append(b @ cp.exp(-cp.sqrt(ui)))
+            terms.append(b @ cp.exp(-(ui if variable == "v" else cp.sqrt(ui))))
     return const + cp.sum(cp.hstack(terms)) if len(terms) > 1 else const + terms[0]
 
 
@@ -84,7 +91,7 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     pose_cons = _pose_constraints(problem, rule, u)
     for kind, c in pose_cons:
         cons += [c] if kind == "vector" else c
-    prob = cp.Problem(cp.Minimize(_cost_expr(problem, u)), cons)
+    prob = cp.Problem(cp.Minimize(cost_expression(problem, u)), cons)
     # tight tolerances; Clarabel's defaults (1e-8) if they end inaccurate, given explicitly: without them a re-solve
     # keeps the previous call's settings and ends inaccurate again
     for tol in (1e-10, 1e-8):
@@ -104,13 +111,14 @@ def solve_rule(problem: AllocationProblem, rule: str, *, verbose: bool = False) 
     if prob.status not in ("optimal", "optimal_inaccurate") or u.value is None:
         return Design(solver, "failed", time_s=dt, message=f"Clarabel status {prob.status}")
     uv, rho = _repair(problem, rule, np.clip(u.value, u_min, u_max))
-    duals = []
-    for kind, c in pose_cons:
+    pose_dual = np.zeros(problem.n_poses)  # the working poses' (blocks of the acceptance test have their own poses)
+    for b, (kind, c) in zip(problem.blocks, pose_cons):
+        if b.get("q") is not None:
+            continue
         if kind == "vector":
-            duals.append(np.maximum(np.asarray(c.dual_value, float).reshape(-1), 0.0))
+            pose_dual += np.maximum(np.asarray(c.dual_value, float).reshape(-1), 0.0)
         else:
-            duals.append(np.array([max(float(np.trace(ci.dual_value)), 0.0) for ci in c]))
-    pose_dual = np.sum(duals, axis=0)
+            pose_dual += np.array([max(float(np.trace(ci.dual_value)), 0.0) for ci in c])
     K = len(problem.costs.names)
     bound_dual = np.zeros(K)
     bound_dual[problem.alloc] = np.asarray(lo.dual_value, float) - np.asarray(hi.dual_value, float)
@@ -153,7 +161,7 @@ def rule_ratio(problem: AllocationProblem, rule: str, u) -> float:
     t = problem.t_from_u(u)
     out = 0.0
     for b in problem.blocks:
-        C = problem.covariances(t, b["rows"])
+        C = block_covariances(problem, b, t)
         if rule == "trace":
             out = max(out, float((np.einsum("pii->p", C) / b["trace_bound"]).max()))
         else:

@@ -8,10 +8,13 @@ carries the unit, mm or deg at the interface) and two cost coefficients ``a`` an
 ``reciprocal``        ``c = a + b / tau``           (``A + B/t`` with ``A = a``, ``B = b t_ref``)
 ``reciprocal_power``  ``c = a + b / tau**k``        (``A + B t^-k``)
 ``exponential``       ``c = a + b exp(-tau)``       (``A' + A e^(-B t)`` with ``B = 1/t_ref``)
+``michael_siddall``   ``c = a + b tau**-k exp(-tau)`` (``A' + A t^-k e^(-B t)``)
+
+The published source of each form: :data:`tolalloc.allocate.process_table.COST_LAW_SOURCES`.
 
 With ``sigma = t / z`` the allocation works in the scaled variance
 ``u = (t / t_ref)**2 = tau**2``; every model above is convex in ``u`` (``u**-1/2``,
-``u**-k/2`` and ``exp(-sqrt(u))``), which is what the certified conic solver needs.
+``u**-k/2``, ``exp(-sqrt(u))`` and ``exp(-k/2 log u - sqrt(u))``), which is what the certified conic solver needs.
 
 Costs file (TOML, units in the keys)::
 
@@ -59,7 +62,7 @@ from tolalloc.allocate.processes import DiscreteSpec, discrete_spec, parse_grade
 
 __all__ = ["CostModel", "CostSet", "DEFAULT_COSTS", "cost_set", "load_costs", "read_costs_file", "param_kind_key", "MODELS"]
 
-MODELS = ("reciprocal", "reciprocal_power", "exponential")
+MODELS = ("reciprocal", "reciprocal_power", "exponential", "michael_siddall")
 
 #: Default cost-tolerance data for the tool_changer (and any robot without a costs file).
 #: ASSUMPTIONS of this project, not measured data: relative cost 2 (= a + b) at the reference
@@ -92,7 +95,7 @@ class CostModel:
 
     Attributes
     ----------
-    model : {"reciprocal", "reciprocal_power", "exponential"}
+    model : {"reciprocal", "reciprocal_power", "exponential", "michael_siddall"}
     a, b : float
         Cost coefficients [relative cost units], ``b > 0``.
     t_ref : float
@@ -100,7 +103,7 @@ class CostModel:
     t_min, t_max : float
         Process limits on the half-width ``t`` [mm or rad], ``0 < t_min <= t_max``.
     k : float
-        Exponent of ``reciprocal_power``.
+        Exponent of ``reciprocal_power`` and ``michael_siddall``.
     """
 
     model: str
@@ -119,6 +122,8 @@ class CostModel:
                 return self.a + self.b / tau
             if self.model == "reciprocal_power":
                 return self.a + self.b / tau**self.k
+            if self.model == "michael_siddall":
+                return self.a + self.b * np.exp(-tau) / tau**self.k
             return self.a + self.b * np.exp(-tau)
 
     def cost_u(self, u, lib):
@@ -133,6 +138,8 @@ class CostModel:
                 return self.a + self.b * cp.power(u, -0.5)
             if self.model == "reciprocal_power":
                 return self.a + self.b * cp.power(u, -self.k / 2.0)
+            if self.model == "michael_siddall":
+                return self.a + self.b * cp.exp(-self.k / 2.0 * cp.log(u) - cp.sqrt(u))
             return self.a + self.b * cp.exp(-cp.sqrt(u))
         import casadi as ca
 
@@ -140,6 +147,8 @@ class CostModel:
             return self.a + self.b * u ** (-0.5)
         if self.model == "reciprocal_power":
             return self.a + self.b * u ** (-self.k / 2.0)
+        if self.model == "michael_siddall":
+            return self.a + self.b * u ** (-self.k / 2.0) * ca.exp(-ca.sqrt(u))
         return self.a + self.b * ca.exp(-ca.sqrt(u))
 
 

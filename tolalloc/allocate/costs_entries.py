@@ -4,7 +4,7 @@
 ``t_ref`` / ``t_min`` / ``t_max`` / ``tol`` / ``step`` / ``classes`` key whose unit suffix does not fit the
 parameters' interface unit (mm or deg); :func:`_value` reads one such value in internal units (mm or rad);
 :func:`_check_values` checks all the values of a section. :func:`tolalloc.allocate.costs.cost_set` runs them on
-every section of a costs file, :mod:`tolalloc.allocate.calibrated` on the calibration grades.
+every section of a costs file, :mod:`tolalloc.allocate.calibrated.certified` on the calibration grades.
 """
 
 from __future__ import annotations

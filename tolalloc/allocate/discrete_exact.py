@@ -28,8 +28,7 @@ import numpy as np
 
 from tolalloc.allocate.catalogue import Catalogue
 from tolalloc.allocate.discrete import COARSE_GAP, MIP_REL_GAP, OuterApproximation, RuleOutcome, repair
-from tolalloc.allocate.problem import AllocationProblem
-from tolalloc.linear.probability import p_within_radius
+from tolalloc.allocate.problem import AllocationProblem, block_probability
 
 __all__ = ["exact_margin", "screened_violation", "solve_discrete_exact", "local_search"]
 
@@ -47,7 +46,7 @@ def exact_margin(problem: AllocationProblem, U: np.ndarray, poses: list | None =
         if poses is not None and len(sel) == 0:
             continue
         C = b["C0"][sel][None] + np.einsum("pkij,bk->bpij", b["A"][sel], U)
-        p = np.asarray(p_within_radius(C.reshape(-1, 3, 3), b["radius"])).reshape(len(U), -1)
+        p = np.asarray(block_probability(b, C.reshape(-1, 3, 3))).reshape(len(U), -1)
         out = np.minimum(out, (p - b["target"][sel][None]).min(axis=1))
     return out
 
@@ -62,7 +61,7 @@ def screened_violation(problem: AllocationProblem, U: np.ndarray, n_screen: int 
     of :func:`exact_margin`. Returns shape (B,).
     """
     U = np.atleast_2d(U)
-    first = [np.asarray(p_within_radius(b["C0"] + np.einsum("pkij,k->pij", b["A"], U[0]), b["radius"]))
+    first = [np.asarray(block_probability(b, b["C0"] + np.einsum("pkij,k->pij", b["A"], U[0])))
              - b["target"] for b in problem.blocks]
     screen = [np.argsort(m)[:n_screen] for m in first]
     out = -exact_margin(problem, U, screen)
@@ -79,14 +78,14 @@ def _linearise(problem: AllocationProblem, u: np.ndarray, near: float = 0.02):
     h = 1e-4 * np.maximum(u, 1e-300)
     for b in problem.blocks:
         C = b["C0"] + np.einsum("pkij,k->pij", b["A"], u)
-        p = np.asarray(p_within_radius(C, b["radius"]))
+        p = np.asarray(block_probability(b, C))
         idx = np.flatnonzero(p - b["target"] < near)
         if not idx.size:
             continue
         dC = b["A"][idx] * h[None, :, None, None]  # (m, Ka, 3, 3)
         Cp = (C[idx][:, None] + dC).reshape(-1, 3, 3)
         Cm = (C[idx][:, None] - dC).reshape(-1, 3, 3)
-        pp = np.asarray(p_within_radius(np.concatenate([Cp, Cm]), b["radius"])).reshape(2, len(idx), Ka)
+        pp = np.asarray(block_probability(b, np.concatenate([Cp, Cm]))).reshape(2, len(idx), Ka)
         g = (pp[0] - pp[1]) / (2 * h[None, :])
         A.append(-g)
         s.append(p[idx] - b["target"][idx] - g @ u)
@@ -116,7 +115,7 @@ def solve_discrete_exact(problem: AllocationProblem, cat: Catalogue, start, cont
         Another probability requirement: ``margin(U)`` (B,) the smallest ``P_i - target_i`` of each row of ``U``
         (B, Ka), and ``linearise(u) -> (A, s)`` its rows ``A u' <= s`` at ``u`` (default :func:`exact_margin` and
         the Gaussian probability's linearisation on ``problem``; e.g. the post-calibration probability of
-        :mod:`tolalloc.allocate.calibrated_standard`).
+        :mod:`tolalloc.allocate.calibrated.standard`).
     batch : int
         Candidate moves evaluated together by the local search.
 

@@ -38,7 +38,7 @@ def rule_rows(problem: AllocationProblem, rule: str, u_ref: np.ndarray | None = 
             s.append(1.0 - np.einsum("pii->p", b["C0"]) / b["trace_bound"])
             continue
         C = None if u_ref is None else b["C0"] + np.einsum("pkij,k->pij", b["A"], u_ref)
-        for i in range(problem.n_poses):
+        for i in range(len(b["target"])):
             W = np.eye(3) if C is None else np.hstack([np.eye(3), _fan(np.linalg.eigh(C[i])[1])])
             a_, s_ = _cuts(b, i, W)
             A.append(a_)

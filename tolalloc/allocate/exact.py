@@ -51,6 +51,8 @@ def _build(problem: AllocationProblem, active: dict):
         f = f + problem.costs.models[k].cost_u(u[i], "casadi")
     # LEBEDEV_ORDER (41) inside the NLP: cheaper derivatives; every design is re-checked with the accurate
     # p_within_radius below (FEAS_TOL), issue 11
+    from tolalloc.acceptance.measures import measure_casadi
+
     F = casadi_function(LEBEDEV_ORDER)
     g, lbg = [], []
     for b in problem.blocks:
@@ -62,8 +64,12 @@ def _build(problem: AllocationProblem, active: dict):
         M = np.concatenate([b["A"][p].reshape(Ka, 9).T for p in idx], 0) / s  # (9m, Ka)
         c0 = np.concatenate([b["C0"][p].reshape(9) for p in idx]) / s
         V = ca.mtimes(ca.DM(M), u) + ca.DM(c0)  # stacked symmetric 3x3 blocks
-        rr = b["radius"] / np.sqrt(s)
-        g += [F(ca.reshape(V[9 * j:9 * j + 9], 3, 3), rr) for j in range(len(idx))]
+        rr = b["radius"] / np.sqrt(s)  # every law is of degree one in the standard deviations
+        if b.get("measure") is None:
+            g += [F(ca.reshape(V[9 * j:9 * j + 9], 3, 3), rr) for j in range(len(idx))]
+        else:
+            g += [measure_casadi(b["measure"], ca.reshape(V[9 * j:9 * j + 9], 3, 3), rr, b["cycles"], F)
+                  for j in range(len(idx))]
         lbg += list(b["target"][idx])
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes", "ipopt.tol": 1e-9,
             "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 300}
@@ -84,7 +90,7 @@ def _initial_active(problem: AllocationProblem, start: Design | None, n0: int = 
             if start.pose_dual is not None and len(problem.blocks) == 1:
                 idx |= set(np.flatnonzero(start.pose_dual > 1e-6 * max(start.pose_dual.max(), 1e-300)).tolist())
         else:
-            idx = set(range(problem.n_poses))
+            idx = set(range(len(b["target"])))
         out[b["name"]] = np.array(sorted(idx), dtype=int)
     return out
 
@@ -135,7 +141,8 @@ def solve_exact(problem: AllocationProblem, start: Design | None = None, *, max_
         added, pos, lam_full = False, 0, np.zeros(problem.n_poses)
         for b in problem.blocks:
             idx = active[b["name"]]
-            lam_full[idx] += np.maximum(-lam[pos:pos + len(idx)], 0.0)
+            if b.get("q") is None:  # the working poses' multipliers (acceptance-test blocks have their own poses)
+                lam_full[idx] += np.maximum(-lam[pos:pos + len(idx)], 0.0)
             pos += len(idx)
             viol = np.setdiff1d(np.flatnonzero(probs[b["name"]] < b["target"] - FEAS_TOL), idx)
             if viol.size:

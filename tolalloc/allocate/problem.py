@@ -16,6 +16,11 @@ cost law of :mod:`tolalloc.allocate.costs` is convex. Two solvers (see :mod:`tol
 * **exact** (CasADi + IPOPT): the Gaussian probability itself per pose, warm-started from the
   certified design, never dearer than it (falls back to it otherwise).
 
+ISO 9283 requirements (``acceptance=``, :mod:`tolalloc.acceptance.terms`) add one block per statistic (``AP_P``,
+``RP_l``, ...) at the poses of the acceptance test, of the same affine form; a block's ``measure`` names the law
+its probability follows (``ball``: ``P(|x| < r)``; ``rp`` and ``sd3``: the repeatabilities,
+:mod:`tolalloc.acceptance.measures`), and its certified budgets are that law's.
+
 :func:`allocate` runs both, diagnoses infeasibility (best probability at ``r`` and radius at ``p``
 with every tolerance at its process limit, and the limits that bind) and snaps to standard grades.
 """
@@ -29,13 +34,13 @@ import numpy as np
 from scipy.stats import chi2
 
 from tolalloc.exceptions import TolallocError, check_positive
+from tolalloc.allocate.blocks import acceptance_blocks, block_covariances, block_probability, block_radius
 from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.covariance import variance_share
-from tolalloc.linear.probability import p_within_radius, radius_for_prob
 
 __all__ = ["AllocationProblem", "Design", "Solver", "NOT_CONVERGED", "LimitReport", "build_problem", "make_design",
-           "check_process_limits", "TRACE_RULE_MIN_P"]
+           "check_process_limits", "TRACE_RULE_MIN_P", "block_covariances", "block_probability", "block_radius"]
 
 #: The trace rule is a valid sufficient condition only for p at or above this (Szekely & Bakirov 2003).
 TRACE_RULE_MIN_P = 0.785
@@ -53,7 +58,8 @@ class AllocationProblem:
         Aligned with ``model.params``.
     q : array, shape (P, n) [rad, mm]
     radius_mm, prob : float
-        Requirement ``P(|dP| < radius_mm) >= prob`` at every pose.
+        Requirement ``P(|dP| < radius_mm) >= prob`` at every pose (``radius_mm`` None: no position requirement, only
+        ISO 9283 ones).
     angle_radius_rad : float or None
         Optional orientation requirement ``P(|dw| < angle_radius_rad) >= angle_prob``.
     angle_prob : float
@@ -65,7 +71,11 @@ class AllocationProblem:
     blocks : list of dict
         One per requirement: ``name``, ``rows``, ``radius``, ``prob`` (the requirement), ``target`` (P,) (the
         probability each pose is solved for: ``prob`` unless tightened by the correction loop), ``A`` (P, Ka, 3, 3),
-        ``C0`` (P, 3, 3), ``trace_bound`` and ``eig_bound`` (P,) (the certified rules' budgets at ``target``).
+        ``C0`` (P, 3, 3), ``trace_bound`` and ``eig_bound`` (P,) (the certified rules' budgets at ``target``). A
+        block of an ISO 9283 requirement has its own poses: ``measure``, ``cycles``, ``q`` (its poses), ``labels``
+        and ``rows`` None; its arrays run over its own poses.
+    acceptance : AcceptanceSpec or None
+        The ISO 9283 requirements and their test.
     """
 
     model: ErrorModel
@@ -82,6 +92,7 @@ class AllocationProblem:
     t_min: np.ndarray = field(default=None, repr=False)
     t_max: np.ndarray = field(default=None, repr=False)
     blocks: list = field(default=None, repr=False)
+    acceptance: object = field(default=None, repr=False)
 
     @property
     def n_poses(self) -> int:
@@ -121,26 +132,29 @@ class AllocationProblem:
         return np.einsum("pik,k,pjk->pij", J, self.sigma(t) ** 2, J)
 
     def probabilities(self, t) -> dict:
-        """Gaussian ``P(|x| < radius)`` per requirement block at every pose: name -> (P,)."""
-        return {b["name"]: p_within_radius(self.covariances(t, b["rows"]), b["radius"]) for b in self.blocks}
+        """Gaussian ``P(|x| < radius)`` (an ISO block: its statistic's law) per requirement block at each of its
+        poses: name -> (P,)."""
+        return {b["name"]: block_probability(b, block_covariances(self, b, t)) for b in self.blocks}
 
     def model_for(self, t) -> ErrorModel:
         """The error model of a design (``sigma = t / z``) for the nonlinear Monte Carlo."""
         return self.model.with_sigma(self.sigma(t))
 
 
-def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: float = 0.95,
+def build_problem(model: ErrorModel, q=None, *, radius_mm: float | None = 0.25, prob: float = 0.95,
                   costs: CostSet | dict | None = None, pose_set: str | None = None,
                   angle_radius_deg: float | None = None, angle_prob: float | None = None,
-                  target=None, angle_target=None) -> AllocationProblem:
+                  target=None, angle_target=None, acceptance=None) -> AllocationProblem:
     """Set up an allocation problem.
 
     Parameters
     ----------
     model : ErrorModel
     q : array, shape (P, n) [rad, mm], optional
-        Working poses; default: the robot's ``pose_set`` (``working`` if it has one, else nominal).
-    radius_mm : float
+        Working poses; default: the robot's ``pose_set`` (``working`` if it has one, else nominal); with ISO 9283
+        requirements only, the test's poses P1-P5.
+    radius_mm : float or None
+        None: no position requirement (then ``acceptance`` states what the design must meet).
     prob : float in (0, 1)
     costs : CostSet or dict, optional
         Resolved costs (:func:`tolalloc.allocate.costs.load_costs`) or a parsed costs dict; default the built-in defaults.
@@ -153,12 +167,20 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     angle_target : array, shape (P,), optional
         The same for the orientation requirement: each in ``[angle_prob, 1)`` (default ``angle_prob``); needs
         ``angle_radius_deg``.
+    acceptance : AcceptanceSpec, optional
+        ISO 9283 requirements and their acceptance test (:class:`tolalloc.acceptance.terms.AcceptanceSpec`): one
+        block per statistic at the test's poses.
     """
-    radius_mm = check_positive(radius_mm, "radius_mm")
+    if radius_mm is None and acceptance is None:
+        raise TolallocError("radius_mm: without a position requirement the problem needs ISO 9283 requirements "
+                            "(acceptance=AcceptanceSpec(...)); give radius_mm or acceptance.")
+    radius_mm = None if radius_mm is None else check_positive(radius_mm, "radius_mm")
     prob = float(prob)
     if not np.isfinite(prob) or not 0 < prob < 1:
         raise TolallocError(f"prob: expected a probability strictly between 0 and 1, got {prob!r}.")
     robot = model.robot
+    if q is None and radius_mm is None and hasattr(acceptance, "test"):
+        q = acceptance.test.q_test  # only ISO 9283 requirements: the test's poses P1-P5
     if q is None:
         q = robot.poses(pose_set if pose_set is not None else ("working" if "working" in robot.pose_sets else None))
     q = np.atleast_2d(robot.check_q(q, "poses"))
@@ -179,7 +201,8 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
     t_ref = np.array([m.t_ref for m in cs.models])
     J = sub.jacobian(q)
     tgt = _targets(target, "target", "prob", prob, len(q))
-    blocks = [_block("position", slice(0, 3), radius_mm, prob, tgt, J, alloc, fixed, t_ref, sig, cs.z)]
+    blocks = [] if radius_mm is None else [_block("position", slice(0, 3), radius_mm, prob, tgt, J, alloc, fixed,
+                                                  t_ref, sig, cs.z)]
     if angle_radius_deg is not None:
         ar = np.deg2rad(check_positive(angle_radius_deg, "angle_radius_deg"))
         ap = prob if angle_prob is None else float(angle_prob)
@@ -192,8 +215,11 @@ def build_problem(model: ErrorModel, q=None, *, radius_mm: float = 0.25, prob: f
                             "angle_radius_deg too, or drop angle_target.")
     else:
         ar, ap = None, prob
+    if acceptance is not None:
+        blocks += acceptance_blocks(acceptance, sub, alloc, fixed, t_ref, sig, cs.z)
     return AllocationProblem(sub, cs, q, radius_mm, prob, ar, ap, J, alloc, fixed, t_ref,
-                             np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks)
+                             np.array([m.t_min for m in cs.models]), np.array([m.t_max for m in cs.models]), blocks,
+                             acceptance)
 
 
 def _targets(target, name: str, prob_name: str, prob: float, n_poses: int) -> np.ndarray:
@@ -213,6 +239,11 @@ def _block(name, rows, radius, prob, target, J, alloc, fixed, t_ref, sig, z) -> 
     C0 = np.einsum("pik,k,pjk->pij", Jf, sig[fixed] ** 2, Jf)
     return {"name": name, "rows": rows, "radius": float(radius), "prob": float(prob), "target": target, "A": A,
             "C0": C0, "trace_bound": radius**2 / chi2.ppf(target, 1), "eig_bound": radius**2 / chi2.ppf(target, 3)}
+
+
+def _where(problem: AllocationProblem, b: dict, i: int) -> str:
+    """Pose ``i`` of block ``b`` as the user reads it."""
+    return f"pose {i + 1} of {problem.n_poses}" if b.get("labels") is None else b["labels"][i]
 
 
 # ------------------------------------------------------------------------ results
@@ -352,6 +383,19 @@ class LimitReport:
     message: str
 
 
+def _binding(problem: AllocationProblem, b: dict, i: int, t) -> list:
+    """The parameters whose variance shares at pose ``i`` of block ``b`` reach 2 %, largest first (at most 8)."""
+    names = problem.costs.names
+    if b.get("measure") is None:
+        share = variance_share(problem.J[i, b["rows"], :], problem.sigma(t) ** 2)
+    else:
+        share = np.zeros(len(names))  # allocatable parameters only: the fixed ones are held in C0 together
+        share[problem.alloc] = np.einsum("kii->k", b["A"][i]) * problem.u_from_t(t)
+        share /= max(np.trace(b["C0"][i]) + share.sum(), 1e-300)
+    order = np.argsort(share)[::-1]
+    return [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
+
+
 def check_process_limits(problem: AllocationProblem) -> LimitReport:
     """Best achievable probability and radius within the process limits, and the limits that bind."""
     t = problem.t_min.copy()
@@ -359,27 +403,28 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
     names = problem.costs.names
     feasible, p_best, r_best, worst, binding, lines = True, {}, {}, {}, [], []
     for b in problem.blocks:
-        C = problem.covariances(t, b["rows"])
-        p = p_within_radius(C, b["radius"])
-        r = radius_for_prob(C, b["prob"])
+        C = block_covariances(problem, b, t)
+        p = block_probability(b, C)
+        r = block_radius(b, C, b["prob"])
         i = int(np.argmin(p - b["target"]))
         p_best[b["name"]], r_best[b["name"]], worst[b["name"]] = p, r, i
         if p[i] < b["target"][i]:
             feasible = False
-            share = variance_share(problem.J[i, b["rows"], :], problem.sigma(t) ** 2)
-            order = np.argsort(share)[::-1]
-            top = [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
+            top = _binding(problem, b, i, t)
             binding += top
-            unit, f = ("mm", 1.0) if b["name"] == "position" else ("deg", 180 / np.pi)
+            angle = b["name"] == "orientation" or (b.get("requirement") is not None and b["requirement"].unit == "deg")
+            unit, f = ("deg", 180 / np.pi) if angle else ("mm", 1.0)
+            stat = {"position": "|dP|", "orientation": "|dw|"}.get(b["name"], b["name"])
             lim = ", ".join(
                 f"{nm} {'fixed at' if problem.costs.role[names.index(nm)] == 'fixed' else 't_min ='} "
                 f"{t[names.index(nm)] * problem.model.params[names.index(nm)].to_interface:.4g} "
                 f"{problem.model.params[names.index(nm)].interface_unit} ({s:.0%})" for nm, s in top)
             lines.append(
                 f"infeasible within the process limits: with every tolerance at its lower limit the worst pose "
-                f"({i + 1} of {problem.n_poses}) reaches P(|{'dP' if b['name'] == 'position' else 'dw'}| < "
+                f"({_where(problem, b, i)}) reaches P({stat} {'<' if b.get('measure') is None else '<='} "
                 f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
-                f"< {b['target'][i]:g}; the {b['name']} radius achievable at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
+                f"< {b['target'][i]:g}; the {b['name']} {'radius' if b.get('measure') is None else 'value'} achievable "
+                f"at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
                 f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
                 f"tolerances) in a costs file (--costs) or relax the requirement.")
     return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

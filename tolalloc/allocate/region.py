@@ -75,9 +75,10 @@ def box_region(robot, q_min, q_max, name: str = "box", where: str = "--region") 
         raise TolallocError(f"{where}: expected q_min and q_max with {n} joint values each, got {lo.size} and "
                             f"{hi.size}; give one value per joint.")
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
-        raise TolallocError(f"{where}: the box bounds must be finite numbers; got q_min={robot.q_to_interface(lo)}, "
-                            f"q_max={robot.q_to_interface(hi)} (deg / mm); give the joints finite limits in the robot "
-                            "file, or a region of finite bounds (a box of the robot file, a pose set or a trajectory).")
+        open_ = ", ".join(j.name for j, a, b in zip(robot.joints, lo, hi) if not np.isfinite(a + b))
+        raise TolallocError(f"{where}: the box bounds must be finite numbers; joint(s) {open_} have none (NaN or "
+                            "inf); give the joints finite limits in the robot file, or a region of finite bounds (a "
+                            "box of the robot file, a pose set or a trajectory).")
     bad = np.flatnonzero(hi < lo)
     if bad.size:
         raise TolallocError(f"{where}: the box is inverted or empty at joint(s) {[int(j) + 1 for j in bad]} "

@@ -19,7 +19,7 @@ from tolalloc.allocate.problem import AllocationProblem
 from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.linear.probability import p_within_angle, p_within_radius
 
-__all__ = ["Coverage", "coverage"]
+__all__ = ["Coverage", "coverage", "check_coverage_budget"]
 
 
 def _position_cov(problem: AllocationProblem, t, q) -> np.ndarray:
@@ -130,6 +130,16 @@ class _Tally:
         return float(beta.ppf(0.95, self.below + 1, n - self.below)) if self.below < n else 1.0
 
 
+def check_coverage_budget(n: int, *, runs: int = 1, argument: str = "n", announce: bool = False):
+    """Refuse ``n`` coverage poses that cannot be screened within the time budget (``runs`` coverage checks of
+    ``n`` poses; :func:`tolalloc.budget.check_count`); returns the estimate."""
+    from tolalloc.budget import check_count
+
+    note = f"{runs} coverage checks" if runs > 1 else ""
+    return check_count(int(n), argument, "coverage poses", "coverage", per_count=runs, example="100000",
+                       announce=announce, note=note)
+
+
 def coverage(problem: AllocationProblem, t, region, *, n: int = 100_000, seed: int = 12345,
              k_worst: int = 3, tol: float = 1e-4, chunk: int = 20_000, pose_cov=None) -> Coverage:
     """Coverage of a design over a region on a fresh seeded sample (uniform random, not the search's Sobol).
@@ -155,6 +165,7 @@ def coverage(problem: AllocationProblem, t, region, *, n: int = 100_000, seed: i
     if whole is None or whole < 1:
         raise TolallocError(f"n: expected a whole number of coverage poses >= 1 (e.g. 1e5), got {n!r}.")
     n, chunk = int(n), max(1, int(chunk))
+    check_coverage_budget(n)
     rng = np.random.default_rng(seed)
     dof = len(region.q_min)
     angle = pose_cov is None and problem.angle_radius_rad is not None

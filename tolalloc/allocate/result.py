@@ -86,14 +86,15 @@ class AllocationResult:
 
     @property
     def worst_pose(self) -> int:
-        """Pose index with the lowest position probability of the design to build (``built``)."""
-        return int(np.argmin(self.built.p_linear["position"]))
+        """Pose index with the lowest position probability of the design to build (``built``); without a position
+        requirement, the pose where an ISO 9283 statistic of the test's poses has the least margin."""
+        return int(np.argmin(_pose_score(self.problem, self.built)))
 
     def variance_share(self, design: Design | None = None, pose: int | None = None) -> np.ndarray:
         """Share of each parameter in ``tr Sigma`` of the position error of ``design`` (default: ``built``) at
         ``pose`` (default: that design's worst pose), (K,), a fraction."""
         d = design or self.built
-        i = int(np.argmin(d.p_linear["position"])) if pose is None else pose
+        i = int(np.argmin(_pose_score(self.problem, d))) if pose is None else pose
         return variance_share(self.problem.J[i, :3, :], self.problem.sigma(d.t) ** 2)
 
     def to_frame(self, design: Design | None = None) -> pd.DataFrame:
@@ -192,8 +193,8 @@ class AllocationResult:
                         "exact": None if self.exact is None else self.exact.time_s},
             "diagnosis": {"feasible": self.diagnosis.feasible, "message": self.diagnosis.message,
                           "p_best_min": {k: float(v.min()) for k, v in self.diagnosis.p_best.items()},
-                          "radius_best_max": {f"{k}_{'mm' if k == 'position' else 'deg'}":
-                                              float(v.max() if k == "position" else np.rad2deg(v.max()))
+                          "radius_best_max": {f"{k}_{_unit(pr, k)}":
+                                              float(v.max() if _unit(pr, k) == "mm" else np.rad2deg(v.max()))
                                               for k, v in self.diagnosis.radius_best.items()},
                           "binding": [{"parameter": n, "variance_share_pct": 100.0 * s}
                                       for n, s in self.diagnosis.binding]},
@@ -218,12 +219,13 @@ class AllocationResult:
         poses = []
         qi = np.round(pr.model.robot.q_to_interface(pr.q), 9)
         for i in range(pr.n_poses):
-            row = {"pose": i + 1, "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i])}
+            pos = "position" in built.p_linear
+            row = {"pose": i + 1, "q_deg_mm": qi[i], "p_linear": float(built.p_linear["position"][i]) if pos else None}
             if "orientation" in built.p_linear:
                 row["p_linear_angle"] = float(built.p_linear["orientation"][i])
-            if built is not self.design:
+            if built is not self.design and pos:
                 row["p_linear_continuous"] = float(self.design.p_linear["position"][i])
-            if self.certified.ok:
+            if self.certified.ok and pos:
                 row["p_linear_certified"] = float(self.certified.p_linear["position"][i])
                 row["pose_dual_certified"] = float(self.certified.pose_dual[i]) if self.certified.pose_dual is not None else None
             if exact_ok and self.exact.ok and self.exact.pose_dual is not None:
@@ -242,6 +244,23 @@ def parameter_columns(problem: AllocationProblem) -> dict:
             "unit": [p.interface_unit for p in params],
             "nominal_mm": [float(lengths.get(p.element, np.nan)) if p.kind == "link_length" else np.nan
                            for p in params]}
+
+
+def _unit(problem: AllocationProblem, name: str) -> str:
+    """The unit a block's radius is reported in: mm (position, ISO length statistics) or deg."""
+    b = next(b for b in problem.blocks if b["name"] == name)
+    if b.get("requirement") is not None:
+        return b["requirement"].unit
+    return "mm" if name == "position" else "deg"
+
+
+def _pose_score(problem: AllocationProblem, d: Design) -> np.ndarray:
+    """Per working pose: the position probability, or without a position requirement the least margin
+    ``P - target`` of the ISO 9283 statistics held at those poses (zeros if none is)."""
+    if "position" in d.p_linear:
+        return d.p_linear["position"]
+    rows = [d.p_linear[b["name"]] - b["target"] for b in problem.blocks if len(b["target"]) == problem.n_poses]
+    return np.min(rows, axis=0) if rows else np.zeros(problem.n_poses)
 
 
 def _pct(x, ref):

@@ -14,7 +14,7 @@ from tolalloc.allocate.discretize import discretize
 from tolalloc.allocate.exact import solve_exact
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Solver, check_process_limits, make_design
 from tolalloc.allocate.result import AllocationResult, snap_design
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, describe
 
 __all__ = ["allocate", "with_standard"]
 
@@ -100,7 +100,7 @@ def with_standard(result: AllocationResult, *, angle_step_deg: float | None = No
 def _check_flags(time_limit_s, **flags) -> None:
     for name, v in flags.items():
         if not isinstance(v, (bool, np.bool_)):
-            raise TolallocError(f"{name}: expected True or False, got {v!r}.")
+            raise TolallocError(f"{name}: expected True or False, got {describe(v)}.")
     if isinstance(time_limit_s, bool) or not (isinstance(time_limit_s, (int, float)) and np.isfinite(time_limit_s)
                                               and time_limit_s > 0):
         raise TolallocError(f"time_limit_s: expected a number of seconds > 0 (e.g. 120), got {time_limit_s!r}.")

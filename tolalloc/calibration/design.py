@@ -31,7 +31,7 @@ from tolalloc.calibration.posterior import ID_TOL, nuisance_columns, posterior
 from tolalloc.calibration.relax import METHODS, relax
 from tolalloc.calibration.split import ErrorSplit
 
-__all__ = ["PlanDesign", "design_plan", "candidate_poses", "plan_score", "NUISANCE_PRIOR"]
+__all__ = ["PlanDesign", "design_plan", "candidate_poses", "plan_score", "NUISANCE_PRIOR", "check_design_budget"]
 
 #: Column scales of the nuisance parameters (rotation [rad], translation [mm], tool [mm]); conditioning only.
 NUISANCE_PRIOR = np.r_[np.full(3, 1e-3), np.full(3, 1.0), np.full(3, 1.0)]
@@ -157,6 +157,16 @@ def _exchange(F, B, chosen, prior, passes: int = 2):
     return chosen, best
 
 
+def check_design_budget(n_candidates: int, n_poses: int, *, argument: str = "n_candidates", announce: bool = False):
+    """Refuse a design over ``n_candidates`` candidates that cannot finish within the time budget, announce a long
+    one (:func:`tolalloc.budget.check_count`; the work grows with the candidates, and with the poses chosen beyond 30);
+    returns the estimate."""
+    from tolalloc.budget import check_count
+
+    return check_count(int(n_candidates), argument, f"candidate poses for {n_poses} measurement poses", "candidate",
+                       per_count=max(1.0, n_poses / 30), example="2000", announce=announce)
+
+
 def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval: np.ndarray, *,
                 measurement: str = "position", noise_mm: float = 0.02, noise_deg: float = 0.001,
                 registration: bool = True, seed: int = 0, relaxation: str = "auto") -> PlanDesign:
@@ -176,6 +186,7 @@ def design_plan(split: ErrorSplit, n_poses: int, candidates: np.ndarray, q_eval:
         raise TolallocError(f"--n-poses: expected a whole number between 1 and the {C} candidates, got {n_poses!r}.")
     if relaxation not in METHODS:
         raise TolallocError(f"relaxation: expected one of {', '.join(METHODS)}, got {relaxation!r}.")
+    check_design_budget(C, int(n_poses), announce=True)
     like = make_plan(robot, candidates[:1], measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
                      registration=registration)
     G = _blocks(split, like, candidates)

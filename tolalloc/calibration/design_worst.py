@@ -34,7 +34,8 @@ from tolalloc.calibration.split import ErrorSplit
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.probability import p_within_radius
 
-__all__ = ["WorstPlanDesign", "design_plan_worst", "plan_worst_p", "random_plan_worst_p"]
+__all__ = ["WorstPlanDesign", "design_plan_worst", "plan_worst_p", "random_plan_worst_p",
+           "check_random_plans_budget"]
 
 #: Candidates per slot whose exact probability is evaluated after the eigenvalue screening.
 SCREEN = 48
@@ -73,6 +74,16 @@ def plan_worst_p(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_mm: fl
     return np.asarray(p_within_radius(posterior(split, plan).tool_covariance(q_eval), radius_mm))
 
 
+def check_random_plans_budget(count: int, n_eval_poses: int, *, argument: str = "random_plans",
+                              announce: bool = False):
+    """Refuse ``count`` random plans (each evaluated at ``n_eval_poses`` poses) that cannot be compared within the
+    time budget, announce a long comparison (:func:`tolalloc.budget.check_count`); returns the estimate."""
+    from tolalloc.budget import check_count
+
+    return check_count(int(count), argument, "random plans", "random_plan", per_count=max(1, n_eval_poses),
+                       bytes_each=8.0, example="100", announce=announce)
+
+
 def random_plan_worst_p(split: ErrorSplit, candidates, n_poses: int, q_eval, radius_mm: float, *, count: int = 200,
                         seed: int = 0, like: CalibrationPlan | None = None) -> np.ndarray:
     """Worst-pose post-calibration ``P`` of ``count`` random ``n_poses``-subsets of ``candidates``, shape (count,).
@@ -80,6 +91,7 @@ def random_plan_worst_p(split: ErrorSplit, candidates, n_poses: int, q_eval, rad
     ``like`` gives the measurement settings (default: position, 0.02 mm, registration).
     """
     robot = split.model.robot
+    check_random_plans_budget(int(count), len(np.atleast_2d(q_eval)), argument="count")
     rng = np.random.default_rng(seed)
     out = np.empty(count)
     for i in range(count):

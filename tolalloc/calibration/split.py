@@ -78,7 +78,7 @@ class ErrorSplit:
         Standard deviation of the random part.
     grade : tuple of (dict or None), length K, optional
         Per parameter, the raw cost-law table of an allocatable repeatability grade (``None``: the random part is
-        fixed at ``random_sigma``); resolved into a cost model by :mod:`tolalloc.allocate.calibrated`.
+        fixed at ``random_sigma``); resolved into a cost model by :mod:`tolalloc.allocate.calibrated.certified`.
     """
 
     model: ErrorModel

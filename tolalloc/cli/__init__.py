@@ -3,7 +3,7 @@
 Each command lives in its own module exposing ``register(subparsers)``; the
 module list below is the whole command set. Every :class:`TolallocError` and every
 malformed argument is printed as one ``error:`` line with exit status 2; nothing
-half-written stays on disk (outputs go through :func:`tolalloc.cli.output.atomic_output`).
+half-written stays on disk (outputs go through :func:`tolalloc.outputs.atomic_output`).
 Ctrl-C (SIGINT) and SIGTERM print ``interrupted; nothing written`` and exit with
 130 / 143; staged output is removed, no traceback.
 """
@@ -20,7 +20,7 @@ import threading
 from tolalloc.exceptions import Interrupted, TolallocError, clear_interrupt, note_interrupt, raise_if_interrupted
 
 #: command modules, in the order shown by --help
-COMMAND_MODULES = ["robot_cmds", "diagnose", "mc", "analyze", "allocate", "calplan"]
+COMMAND_MODULES = ["robot_cmds", "diagnose", "compensate", "fleet", "mc", "analyze", "allocate", "calplan", "review"]
 
 
 class _UsageError(TolallocError):
@@ -78,6 +78,10 @@ def build_parser() -> argparse.ArgumentParser:
         description="Tolerance allocation, verification and sim-to-real diagnosis for serial robots. "
         "Units: lengths in mm, joint values in deg (revolute) and mm (prismatic).",
     )
+    from tolalloc.version import package_version
+
+    parser.add_argument("--version", action="version", version=f"tolalloc {package_version()}",
+                        help="print the installed version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
     for name in COMMAND_MODULES:
@@ -159,14 +163,15 @@ def _run(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
-    from tolalloc.outputs import published
+    from tolalloc.outputs import published, reservations
 
     published(reset=True)
     args = None
     with _interrupt_handlers(), _warnings_as_lines():
         try:
             args = build_parser().parse_args(argv)
-            code = _run(args)
+            with reservations():  # output directories are locked before the command computes, until it ends
+                code = _run(args)
             raise_if_interrupted()  # a signal whose exception a library swallowed (nothing was published since)
             return code
         except TolallocError as exc:

@@ -6,7 +6,8 @@ import sys
 
 from tolalloc.cli.argtypes import count, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, add_scheduler_arg, check_distinct_outputs,
-                                 check_output, error_model_kwargs, flag_text, robot_kwargs)
+                                 error_model_options, flag_text, reserve_directory, robot_kwargs)
+from tolalloc.workflows import defaults as D
 
 
 def register(sub) -> None:
@@ -22,8 +23,21 @@ def register(sub) -> None:
         "(not with --solver certified), then standard grades (not with --no-snap), then an end-to-end Monte Carlo of "
         "simulated calibrations (not with --no-verify); no correction loop.")
     add_robot_arg(p)
-    p.add_argument("--radius-mm", type=float, default=0.25, help="required radius r [mm] (default 0.25)")
-    p.add_argument("--prob", type=float, default=0.95, help="required probability p (default 0.95)")
+    p.add_argument("--radius-mm", type=float, default=None, help=f"required radius r [mm] (default {D.RADIUS_MM:g})")
+    p.add_argument("--prob", type=float, default=None, help=f"required probability p (default {D.PROB:g})")
+    p.add_argument("--requirement", metavar="FILE", default=None,
+                   help="requirements from a TOML file (schema: tolalloc.acceptance.requirement_file; example: "
+                   "examples/requirements_iso9283.toml): ISO 9283 pose accuracy and repeatability (AP, RP, position "
+                   "and orientation), distance and path accuracy, each for a share of the built robots at a load and "
+                   "velocity, beside the error balls; its [test] table lays out the acceptance test (cube in the "
+                   "working region --region, P1-P5, cycles, laser tracker, registration). The design is allocated for "
+                   "all of them, the acceptance test predicted (datasheet with ISO 14253-1 verdicts) and simulated on "
+                   "--n-robots robots (not with --no-verify); --out writes tolerances, datasheet.csv/.md, "
+                   "simulation.csv, summary.json and acceptance.png. Not with --radius-mm / --prob / --angle-* (the "
+                   "file states the balls), --calibration or --report; --n-mc, --estimator, --coverage-n, "
+                   "--correction-rounds, --no-correction and --scheduler do not apply")
+    p.add_argument("--n-robots", type=count, default=2000,
+                   help="with --requirement: robots of the simulated acceptance test (default 2000)")
     p.add_argument("--poses", "--pose-set", dest="poses", default=None, metavar="SET",
                    help="pose set of the robot file, used without --region (default: 'working' if the robot has it, "
                    "else nominal); --region takes pose sets too")
@@ -33,10 +47,10 @@ def register(sub) -> None:
                    "joint columns q1_deg / q4_mm ... or q1..qN). Boxes are "
                    "searched for their worst pose (cutting planes) and checked on a fresh sample. Default: the "
                    "robot's 'working' region if it has one, else the pose set (--poses)")
-    p.add_argument("--coverage-n", type=count, default=100_000,
+    p.add_argument("--coverage-n", type=count, default=D.COVERAGE_N,
                    help="fresh poses for the coverage check of a box region, of the continuous and (with "
                    "--calibration) the standard design (default 1e5)")
-    p.add_argument("--solver", default="exact", choices=["exact", "certified"],
+    p.add_argument("--solver", default=D.SOLVER, choices=["exact", "certified"],
                    help="design to report: exact (IPOPT, default) or certified (cvxpy + Clarabel); with "
                    "--calibration, certified stops after the certified stage (no exact stage)")
     p.add_argument("--costs", metavar="FILE", help="costs file (TOML): cost laws, process limits, fixed/excluded parameters")
@@ -46,14 +60,16 @@ def register(sub) -> None:
     p.add_argument("--angle-radius-deg", type=float, default=None,
                    help="also require P(|rotation error| < this) >= --angle-prob [deg]")
     p.add_argument("--angle-prob", type=float, default=None, help="probability of the orientation requirement (default --prob)")
-    p.add_argument("--n-mc", type=count, default=10**6,
-                   help="Monte Carlo samples per pose for the verification (default 1e6); with --calibration the "
+    p.add_argument("--n-mc", type=count, default=D.N_MC,
+                   help=f"Monte Carlo samples per pose for the verification (default {D.N_MC:.0e}, as in Python); "
+                   "with --calibration the "
                    "simulated calibrations of the end-to-end check, clipped to 200 .. 4000")
-    p.add_argument("--estimator", default="auto", choices=["auto", "plain", "paired", "importance"],
+    p.add_argument("--estimator", default=D.ESTIMATOR, choices=["auto", "plain", "paired", "importance"],
                    help="how P(|dP| < r) is estimated in the verification: paired = the exact linear P plus the mean "
                    "difference of nonlinear and linear indicators on shared draws; importance = that difference by "
                    "importance sampling (rare events); auto (default) = paired where the parameters are Gaussian, "
-                   "plain Monte Carlo otherwise, importance sampling where the tail is too thin for --n-mc; "
+                   "plain Monte Carlo otherwise, importance sampling for a rare tail (1 - p <= 0.001), where the "
+                   "tail is too thin for --n-mc, and as the second look at a pose whose interval straddles p; "
                    "with --calibration auto, plain or paired")
     p.add_argument("--no-verify", action="store_true", help="skip the Monte Carlo verification")
     p.add_argument("--no-correction", action="store_true",
@@ -66,7 +82,8 @@ def register(sub) -> None:
     p.add_argument("--correction-rounds", type=int, default=None, metavar="N",
                    help="largest number of correction rounds before the loop stops and says so (default 2; not with "
                    "--calibration)")
-    p.add_argument("--seed", type=seed, default=0, help="random seed of the verification")
+    p.add_argument("--seed", type=seed, default=D.SEED, help="random seed of the verification, the coverage sample "
+                   "and the region search")
     add_scheduler_arg(p, "the verification's Monte Carlo samples (not with --calibration)")
     p.add_argument("--angle-step-deg", type=float, default=None, help="snapping step for angles [deg] (default 1 arcsec)")
     p.add_argument("--no-snap", action="store_true", help="do not snap to ISO 286 grades / angle steps")
@@ -82,20 +99,37 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_allocate)
 
 
+def settings(args) -> dict:
+    """The settings objects of the command's flags (the keyword arguments of ``allocate_tolerances``)."""
+    from tolalloc.exceptions import ArgumentError
+    from tolalloc.workflows import (Costs, OrientationRequirement, PositionRequirement, Region, Solver,
+                                    Verification)
+
+    if args.angle_prob is not None and args.angle_radius_deg is None:
+        raise ArgumentError("angle_prob", f"{args.angle_prob:g} needs an orientation requirement: add "
+                            "`angle_radius_deg` A.")
+    requirement = [PositionRequirement(D.RADIUS_MM if args.radius_mm is None else args.radius_mm,
+                                       D.PROB if args.prob is None else args.prob)]
+    if args.angle_radius_deg is not None:
+        requirement.append(OrientationRequirement(args.angle_radius_deg, args.angle_prob))
+    return dict(requirement=requirement, region=Region(args.region, args.poses, args.coverage_n),
+                costs=Costs(args.costs, args.z, args.uniform), error_model=error_model_options(args),
+                solver=Solver(args.solver, not args.no_snap, args.angle_step_deg),
+                verification=Verification(None if args.no_verify else args.n_mc, args.seed, args.estimator,
+                                          False if args.no_correction else None, args.correction_rounds,
+                                          args.scheduler),
+                calibration=args.calibration)
+
+
 def cmd_allocate(args) -> int:
     from tolalloc.workflows import allocate_tolerances
 
-    check_output(args.out, "--out", directory=True)
-    check_output(args.report, "--report", directory=True)
+    reserve_directory(args.out, "--out")
+    reserve_directory(args.report, "--report")
     check_distinct_outputs([("--out", args.out), ("--report", args.report)])
-    res = allocate_tolerances(
-        args.robot, radius_mm=args.radius_mm, prob=args.prob, region=args.region, poses=args.poses, costs=args.costs,
-        z=args.z, uniform=args.uniform, angle_radius_deg=args.angle_radius_deg, angle_prob=args.angle_prob,
-        solver=args.solver, snap=not args.no_snap, angle_step_deg=args.angle_step_deg, calibration=args.calibration,
-        verify=not args.no_verify, n_mc=args.n_mc, seed=args.seed, estimator=args.estimator,
-        correction=False if args.no_correction else None, correction_rounds=args.correction_rounds,
-        coverage_n=args.coverage_n, scheduler=args.scheduler,
-        **error_model_kwargs(args), **robot_kwargs(args))
+    if args.requirement is not None:
+        return _cmd_requirement_file(args)
+    res = allocate_tolerances(args.robot, **settings(args), **robot_kwargs(args))
     if getattr(res, "infeasible", None) is not None:  # a region no design can cover: nothing to print or write
         print(f"error: {flag_text(res.infeasible, args)}", file=sys.stderr)
         return 1
@@ -104,6 +138,33 @@ def cmd_allocate(args) -> int:
         return 1
     for folder, report in ((args.out, False), (args.report, True)):
         if folder is not None:
-            names = res.save(folder, report=report)
-            print(f"\nwrote {folder}/: {', '.join(names)}")
+            paths = res.save(folder, report=report)
+            print(f"\nwrote {folder}/: {', '.join(p.name for p in paths)}")
+    return 0 if res.ok else 1
+
+
+def _cmd_requirement_file(args) -> int:
+    """``allocate --requirement FILE``: the ISO 9283 job (:func:`tolalloc.workflows.acceptance.allocate_acceptance`)."""
+    from tolalloc.exceptions import ArgumentError
+    from tolalloc.workflows.acceptance import allocate_acceptance
+
+    given = [f for f, v in (("--radius-mm", args.radius_mm), ("--prob", args.prob),
+                            ("--angle-radius-deg", args.angle_radius_deg), ("--angle-prob", args.angle_prob),
+                            ("--calibration", args.calibration), ("--report", args.report)) if v is not None]
+    if given:
+        raise ArgumentError("requirement", f"not with {', '.join(given)}: the requirement file states every "
+                            "requirement (add a [[requirement]] kind = \"position\" table for the ball), and its job "
+                            "writes --out only.")
+    from tolalloc.workflows import Costs, Region, Solver, Verification
+
+    res = allocate_acceptance(
+        args.robot, args.requirement, region=Region(args.region, args.poses) if args.region is None or args.poses is None
+        else Region(args.region), costs=Costs(args.costs, args.z, args.uniform), error_model=error_model_options(args),
+        solver=Solver(args.solver, not args.no_snap, args.angle_step_deg),
+        verification=False if args.no_verify else Verification(seed=args.seed), n_robots=args.n_robots,
+        **robot_kwargs(args))
+    print(res.text())
+    if args.out is not None and res.prediction is not None:
+        paths = res.save(args.out)
+        print(f"\nwrote {args.out}/: {', '.join(p.name for p in paths)}")
     return 0 if res.ok else 1

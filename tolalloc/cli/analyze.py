@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from tolalloc.cli.argtypes import count, nonnegative_int, seed
 from tolalloc.cli.common import (add_error_model_args, add_robot_arg, check_distinct_outputs, check_output,
-                                 error_model_kwargs, parse_q, robot_kwargs, write_json)
+                                 error_model_options, parse_q, reserve_directory, robot_kwargs)
+from tolalloc.workflows import defaults as D
 
 
 def register(sub) -> None:
@@ -27,12 +28,12 @@ def register(sub) -> None:
                    help="radius for P(|dp| < r) [mm]; repeatable")
     p.add_argument("--prob", type=float, action="append", default=[], metavar="P",
                    help="probability in (0, 1) for the radius with P(|dp| < r) = P [mm]; repeatable")
-    p.add_argument("--top", type=count, default=10, help="budget rows printed (default 10)")
+    p.add_argument("--top", type=count, default=D.TOP, help=f"budget rows printed (default {D.TOP})")
     p.add_argument("--sobol-n", type=nonnegative_int, default=0, metavar="N",
                    help="also Sobol' first-order and total indices of |dp| (and of the pass/fail indicator for the "
                    "first --radius-mm) at the worst pose from the nonlinear model, N base samples (N (K + 2) chain "
                    "evaluations; e.g. 4096), beside the linear variance shares; default 0: none")
-    p.add_argument("--seed", type=seed, default=0, help="seed of the Sobol' samples (default 0)")
+    p.add_argument("--seed", type=seed, default=D.SEED, help=f"seed of the Sobol' samples (default {D.SEED})")
     p.add_argument("--json", metavar="OUT", help="write the results as JSON to OUT ('-' for stdout)")
     p.add_argument("--out", metavar="DIR", help="write linear_table.csv, budget.csv, budget_kinds.csv, budget.md, "
                    "budget.png and analyze.json to DIR")
@@ -42,16 +43,14 @@ def register(sub) -> None:
 def cmd_analyze(args) -> int:
     from tolalloc.workflows import analyze_errors
 
-    check_output(args.out, "--out", directory=True)
+    reserve_directory(args.out, "--out")
     check_output(args.json, "--json")
     check_distinct_outputs([("--out", args.out), ("--json", args.json)])
     res = analyze_errors(args.robot, q_deg_mm=parse_q(args.pose, "--pose") if args.pose else None, poses=args.poses,
                          radius_mm=args.radius_mm, prob=args.prob, top=args.top, sobol_n=args.sobol_n,
-                         seed=args.seed, **error_model_kwargs(args),
-                         **robot_kwargs(args))
-    res.save(args.out, json=None if args.json == "-" else args.json)
-    if args.json == "-":
-        write_json(res.summary(), "-")
-    else:
+                         seed=args.seed, error_model=error_model_options(args), **robot_kwargs(args))
+    if args.out or args.json:
+        res.save(args.out, json=args.json)
+    if args.json != "-":
         print(res.text())
     return 0

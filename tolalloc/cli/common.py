@@ -5,10 +5,12 @@ from __future__ import annotations
 import re
 
 from tolalloc.exceptions import ArgumentError, TolallocError
-from tolalloc.outputs import check_distinct_outputs, check_output, json_default, write_json
+from tolalloc.outputs import (check_distinct_outputs, check_output, json_default, reserve_directory,
+                              write_json)
 
 __all__ = ["parse_q", "add_robot_arg", "robot_from_args", "write_json", "json_default", "check_output",
-           "check_distinct_outputs", "add_error_model_args", "add_scheduler_arg", "sigma_items", "error_model_kwargs",
+           "reserve_directory", "check_distinct_outputs", "add_error_model_args", "add_scheduler_arg", "sigma_items",
+           "error_model_options",
            "robot_kwargs", "flag_map", "flag_text", "error_line"]
 
 #: argparse (Python < 3.13) takes "-15,30,..." for an option; a joint list starting with a minus is a value
@@ -63,9 +65,11 @@ def add_error_model_args(parser, *, allocation: bool = False) -> None:
                         help="sigma set used for fixed parameters without tol_mm/tol_deg (default: the robot file's "
                         "first)" if allocation else
                         "sigma set of the robot file (tool_changer: table2 (default), table1) or 'generic'")
-    parser.add_argument("--link-mode", default="consistent", choices=["consistent", "axes_only"],
+    from tolalloc.workflows import defaults as D
+
+    parser.add_argument("--link-mode", default=D.LINK_MODE, choices=["consistent", "axes_only"],
                         help="link errors move axes and tool (consistent, default) or axes only (paper-literal Eq. 24)")
-    parser.add_argument("--deflection-mode", default="screw", choices=["screw", "tilt"],
+    parser.add_argument("--deflection-mode", default=D.DEFLECTION_MODE, choices=["screw", "tilt"],
                         help="axis deflection as error screws (default) or as a tilt of the axis (Eqs. 32/37)")
     parser.add_argument("--clearance", action="store_true",
                         help="add joint clearance (axial slip, radial ring, tilt) to every revolute joint"
@@ -102,13 +106,15 @@ def sigma_items(items) -> dict:
     return out
 
 
-def error_model_kwargs(args) -> dict:
-    """The workflow keyword arguments of :func:`add_error_model_args`' options."""
+def error_model_options(args):
+    """The :class:`~tolalloc.workflows.ErrorModelOptions` of :func:`add_error_model_args`' options."""
+    from tolalloc.workflows import ErrorModelOptions
+
     kw = dict(sigma_set=args.sigma_set, link_mode=args.link_mode, deflection_mode=args.deflection_mode,
               clearance=args.clearance, exclude=tuple(args.exclude))
     if hasattr(args, "sigma"):
         kw.update(sigma=sigma_items(args.sigma) or None, clearance_tilt_literal=args.clearance_tilt_literal)
-    return kw
+    return ErrorModelOptions(**kw)
 
 
 def robot_kwargs(args) -> dict:
@@ -119,7 +125,12 @@ def robot_kwargs(args) -> dict:
 #: workflow arguments whose flag is not their name with dashes (the flag switches the argument off, or is shorter):
 #: (workflow argument, argparse dest); the flag shown is the dest's first spelling
 _RENAMED = [("verify", "no_verify"), ("correction", "no_correction"), ("snap", "no_snap"),
-            ("registration", "no_registration"), ("q_deg_mm", "pose"), ("q_deg_mm", "q"), ("path", "out")]
+            ("registration", "no_registration"), ("q_deg_mm", "pose"), ("q_deg_mm", "q"), ("path", "out"),
+            ("directory", "out"), ("file", "costs"), ("where", "region"), ("method", "solver"),
+            ("kind", "measurement"), ("update", "register_update"), ("n", "n_mc")]
+#: settings fields whose flag is not the field's name (``OrientationRequirement.prob`` is ``--angle-prob``)
+_FIELD_FLAGS = {"OrientationRequirement.prob": "angle_prob", "OrientationRequirement.radius_deg": "angle_radius_deg",
+                "OrientationRequirement": "angle_radius_deg"}
 
 
 def flag_map(parser) -> dict:
@@ -134,18 +145,26 @@ def flag_map(parser) -> dict:
     for name, dest in _RENAMED:
         if dest in flags:
             flags.setdefault(name, flags[dest])
+    for name, dest in _FIELD_FLAGS.items():
+        if dest in flags:
+            flags.setdefault(name, flags[dest])
     return flags
+
+
+def _flag(flags: dict, name: str) -> str:
+    """The flag of a workflow argument or a settings field (``Verification.n_mc`` -> ``--n-mc``), else the name."""
+    return flags.get(name) or flags.get(name.rsplit(".", 1)[-1], name)
 
 
 def flag_text(text: str, args) -> str:
     """A workflow message in command-line terms: `argument` references become their flags."""
     flags = getattr(args, "flags", {})
-    return re.sub(r"`([A-Za-z_][A-Za-z0-9_]*)`", lambda m: flags.get(m.group(1), m.group(1)), text)
+    return re.sub(r"`([A-Za-z_][A-Za-z0-9_.]*)`", lambda m: _flag(flags, m.group(1)), text)
 
 
 def error_line(exc: TolallocError, args) -> str:
     """The ``error:`` line of a refused input: an :class:`ArgumentError` names its flag."""
     if isinstance(exc, ArgumentError) and args is not None:
         flags = getattr(args, "flags", {})
-        return f"{flags.get(exc.argument, exc.argument)}{exc.sep}{flag_text(exc.detail, args)}"
+        return f"{_flag(flags, exc.argument)}{exc.sep}{flag_text(exc.detail, args)}"
     return flag_text(str(exc), args)

@@ -6,7 +6,8 @@ import argparse
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.cli.argtypes import count, finite_float, row_ranges, seed
-from tolalloc.cli.common import add_robot_arg, check_distinct_outputs, check_output, robot_kwargs, write_json
+from tolalloc.cli.common import (add_robot_arg, check_distinct_outputs, check_output, reserve_directory, robot_kwargs)
+from tolalloc.workflows import defaults as D
 
 
 def register(sub) -> None:
@@ -47,12 +48,17 @@ def register(sub) -> None:
                    "1-sigma sigma_mm and 95 %% radius radius95_mm (noise included), registration (1: row used to "
                    "register the frame, not scored) and extrapolation (1: outside the training data) (needs --test)")
     p.add_argument("--report", metavar="DIR", help="write report.md, report.html (one self-contained file), CSV tables and figures into DIR")
-    p.add_argument("--folds", type=count, default=5, help="cross-validation folds (default 5)")
-    p.add_argument("--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)")
-    p.add_argument("--seed", type=seed, default=0, help="seed of the fold assignment and of the cross-validation "
+    p.add_argument("--export-model", metavar="DIR", help="write the identified model into DIR: identified.toml (chain "
+                   "layout with an [identified] section of the fitted parameters and effects, what `tolalloc compensate` "
+                   "reads) and identified.urdf")
+    p.add_argument("--folds", type=count, default=D.FOLDS, help=f"cross-validation folds (default {D.FOLDS})")
+    p.add_argument("--alpha", type=float, default=D.ALPHA,
+                   help=f"family-wise significance level (default {D.ALPHA:g})")
+    p.add_argument("--seed", type=seed, default=D.SEED, help="seed of the fold assignment and of the cross-validation "
                    "subsample of large files (default 0)")
     p.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress bars on stderr (default: when stderr is a terminal)")
+                   help="progress on stderr: bars on a terminal, one line per finished stage with its duration in a "
+                   "pipe or log (default: on)")
     p.add_argument("--cv-rows", type=count, default=None, metavar="N",
                    help="training files with more rows cross-validate and select effects on a seeded random "
                    "subsample of N rows; the final fits use all rows (default 10000)")
@@ -60,9 +66,10 @@ def register(sub) -> None:
                    help="split the held-out test error into removed by geometry / by the effect / systematic but "
                         "unnamed (a Gaussian process on the joint values) / noise floor (needs --test; adds about a "
                         "minute for 1000 training poses)")
-    p.add_argument("--robust-loss", default="tukey", choices=["tukey", "huber", "soft_l1"],
-                   help="M-estimator of the fits: tukey (default) gives gross outliers no weight and lists them; "
-                   "huber bounds their weight; soft_l1 is the former smooth loss")
+    p.add_argument("--robust-loss", default=D.ROBUST_LOSS, choices=["auto", "tukey", "huber", "soft_l1"],
+                   help="M-estimator of the fits: auto (default) is tukey, or huber on a small training file (fewer "
+                   "than 10 poses per fitted parameter); tukey gives gross outliers no weight; huber bounds their "
+                   "weight; soft_l1 is the former smooth loss; down-weighted rows are listed per stage")
     p.add_argument("--target-offset-mm", type=finite_float, nargs=3, metavar=("X", "Y", "Z"), default=None,
                    help="prior mean of the probe / target offset in the flange frame, relative to the robot's tool "
                    "point [mm] (needs --target-offset-sd-mm)")
@@ -72,26 +79,44 @@ def register(sub) -> None:
     p.set_defaults(func=cmd_diagnose)
 
 
+def test_frame(args):
+    """``"same"``, or the :class:`~tolalloc.workflows.Refit` of the registration flags."""
+    from tolalloc.exceptions import ArgumentError
+    from tolalloc.workflows import Refit
+
+    given = [(n, v) for n, v in (("register_n", args.register_n), ("register_rows", args.register_rows),
+                                 ("register_update", args.register_update)) if v is not None]
+    if given and args.test is None:
+        raise ArgumentError(given[0][0], "needs `test`: only a test file in another frame is re-registered, and none "
+                            "was given; pass the test file or leave this option out.")
+    if args.test_frame == "same":
+        if given:
+            raise ArgumentError(given[0][0], "needs `test_frame` refit: only a test file in another frame is "
+                                "re-registered.")
+        return "same"
+    return Refit(args.register_n, args.register_rows, args.register_update or "frame")
+
+
 def cmd_diagnose(args) -> int:
-    from tolalloc.workflows import diagnose_measurements
+    from tolalloc.workflows import FitOptions, diagnose_measurements
 
     if args.predictions is not None and not args.test:
         raise TolallocError("--predictions needs --test: predictions are written for the rows of the test file.")
     # every output path is checked before any computation, so a late failure cannot leave some written
     check_output(args.json, "--json")
     check_output(args.predictions, "--predictions")
-    check_output(args.report, "--report", directory=True)
-    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report)],
+    reserve_directory(args.report, "--report")
+    reserve_directory(args.export_model, "--export-model")
+    check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
+                            ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])
-    res = diagnose_measurements(args.robot, args.train, args.test, test_frame=args.test_frame,
-                                register_n=args.register_n, register_rows=args.register_rows,
-                                register_update=args.register_update, folds=args.folds, alpha=args.alpha, seed=args.seed,
-                                cv_rows=args.cv_rows, gap_split=args.gap_split, progress=args.progress,
-                                robust_loss=args.robust_loss, target_offset_mm=args.target_offset_mm,
-                                target_offset_sd_mm=args.target_offset_sd_mm,
-                                **robot_kwargs(args))
-    res.save(args.report, json=None if args.json == "-" else args.json, predictions=args.predictions)
-    if args.json == "-":
-        write_json(res.summary(), "-")
+    fit = FitOptions(args.robust_loss, args.target_offset_mm, args.target_offset_sd_mm)
+    res = diagnose_measurements(args.robot, args.train, args.test, test_frame=test_frame(args), folds=args.folds,
+                                alpha=args.alpha, seed=args.seed, cv_rows=args.cv_rows, gap_split=args.gap_split,
+                                fit=fit, progress=args.progress, **robot_kwargs(args))
+    if args.report or args.json or args.predictions:
+        res.save(args.report, report=args.report is not None, json=args.json, predictions=args.predictions)
+    if args.export_model is not None:
+        res.export_model(args.export_model)
     print(res.text())
     return 0

@@ -10,8 +10,8 @@ CV fallback), :mod:`.uncertainty` (parameter covariance, predicted test uncertai
 :mod:`.stepwise` (forward selection, backward elimination), :mod:`.verdict` (effect / none / ambiguous /
 inconclusive), :mod:`.where` (residual breakdown), :mod:`.pipeline` (:func:`diagnose`; the test file is sealed
 until the model is chosen), :mod:`.synth` (synthetic measurement sets with a withheld effect),
-:mod:`.ipa_ur10` (reader of the public IPA UR10 laser-tracker files), :mod:`.progress_bars` (progress bars of the
-fits and stages). The Markdown report of a diagnosis is written by :mod:`tolalloc.report.diagnosis`.
+:mod:`.ipa_ur10` (reader of the public IPA UR10 laser-tracker files); progress bars of the fits and stages come
+from :mod:`tolalloc.progress`. The Markdown report of a diagnosis is written by :mod:`tolalloc.report.diagnosis`.
 """
 
 from tolalloc.diagnose.calibrate import Calibration, Fit, Identifiability, calibrate

@@ -41,7 +41,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.identify import DEFAULT_TOL, Identifiability, identifiability, select_columns  # re-exported
-from tolalloc.diagnose.progress_bars import count_fit
+from tolalloc.progress import count_fit
 from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, norm_scale, point_kinematics, robust_scale, solve,
                                      subsample_index)
 
@@ -58,6 +58,8 @@ HUBER_C = 2.0
 TUKEY_C = 4.0
 #: A pose whose 3-D residual exceeds this many median residual norms is listed as an outlier (any loss).
 OUTLIER_C = TUKEY_C
+#: A pose whose robust weight falls below this is listed as down-weighted.
+DOWN_WEIGHT = 0.5
 
 
 def is_collinear(points: np.ndarray, rtol: float = 1e-9) -> bool:
@@ -101,7 +103,8 @@ class Fit:
     effect_names : tuple of str
     residual_mm : array, shape (P, 3)  measured - predicted, tracker frame
     f_scale_mm : float           robust loss scale used (Huber / Tukey: the threshold on the 3-D residual norm)
-    loss : str                   robust loss of the last pass (``none``, ``soft_l1``, ``huber``, ``tukey``)
+    loss : str                   robust loss of the last pass (``none``, ``soft_l1``, ``huber``, ``tukey``; ``fixed``:
+                                 another fit's pose weights)
     weights : array, shape (P,)  final IRLS weight of every pose (0: rejected by Tukey's biweight)
     t_prior_mm : (mean (3,), sd (3,)) or None   the prior on the target offset the fit used [mm]
     beta_prior_w : array, shape (M,) or None     ridge weights of the effect parameters the fit used
@@ -156,7 +159,7 @@ def _Problem(fit0: Fit, q, xyz, geo_index, B=None, extra=None, *, n_effects=None
 def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=None, effect_names=(),
               robust: bool = True, extra: np.ndarray | None = None, prior: bool = True, n_effects: int | None = None,
               label: str = "fit", chunk_rows: int | None = None, loss: str | None = None, t_prior=None,
-              beta_prior_w=None, sd_tol: float = 0.01) -> Fit:
+              beta_prior_w=None, sd_tol: float = 0.01, weights: np.ndarray | None = None) -> Fit:
     """Fit registration, offset, the geometric parameters ``geo_index`` and effect columns ``B``.
 
     Parameters
@@ -189,6 +192,11 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
     sd_tol : float
         Both passes stop once a step is worth less than ``sd_tol`` standard errors of the parameters
         (:func:`~.scale.solve`); 0 iterates to the solver's own tolerances.
+    weights : array, shape (P,), optional
+        Pose weights held fixed in the second pass instead of the robust loss (weighted least squares): the
+        weights another model's robust fit gave these poses (:func:`calibrate` fits the nominal model with the
+        geometric fit's weights, so that a pose counts as an outlier by its misfit under the model that can
+        explain smooth errors, not under the misfit of the nominal one).
     """
     loss = DEFAULT_LOSS if loss is None else loss
     if loss not in LOSSES[1:]:
@@ -205,33 +213,37 @@ def fit_model(start: Fit, q: np.ndarray, xyz: np.ndarray, *, geo_index=None, B=N
         prob.prior_w = np.where(sig > 0, noise / np.where(sig > 0, sig, 1.0), 0.0)
     if t_sd is not None:
         prob.set_priors((t_prior[0], noise / t_sd), beta_prior_w)
-    if robust and loss == "soft_l1":
+    if weights is not None:
+        prob.loss, prob.fixed_w = "fixed", np.asarray(weights, float)
+    elif robust and loss == "soft_l1":
         prob.f_scale = robust_scale(raw.ravel())
     elif robust:
         prob.loss = loss
         prob.f_scale = (HUBER_C if loss == "huber" else TUKEY_C) * norm_scale(raw)
-    if robust or prob.prior_w.any() or t_sd is not None:
+    if robust or weights is not None or prob.prior_w.any() or t_sd is not None:
         x, raw = solve(prob, x, max_iter=30, sd_tol=sd_tol, label=label + " (robust)")
     R, p, t, delta, beta = prob.unpack(x)
     count_fit()
     return Fit(start.model, R, p, t, delta, geo_index, beta, np.arange(len(beta)), tuple(effect_names), -raw,
-               prob.f_scale, prob.loss if robust else "none", prob.pose_weights(raw),
+               prob.f_scale, prob.loss if (robust or weights is not None) else "none", prob.pose_weights(raw),
                None if t_sd is None else (np.asarray(t_prior[0], float), t_sd),
                None if beta_prior_w is None else np.asarray(beta_prior_w, float))
 
 
-def outlier_rows(fit: Fit, rows: np.ndarray | None = None, factor: float = OUTLIER_C) -> list:
-    """Poses whose 3-D residual exceeds ``factor`` x the median residual norm of ``fit``: dicts with the file
-    ``row`` (``rows``: 1-based file rows of the poses; default pose number + 1), ``error_mm`` and the IRLS
-    ``weight`` of the fit, largest error first."""
+def outlier_rows(fit: Fit, rows: np.ndarray | None = None, factor: float = OUTLIER_C, stage: str | None = None,
+                 below: float = DOWN_WEIGHT) -> list:
+    """Poses ``fit`` down-weighted (IRLS weight below ``below``) or whose 3-D residual exceeds ``factor`` x its median
+    residual norm: dicts with the file ``row`` (``rows``: 1-based file rows of the poses; default pose number + 1),
+    ``error_mm`` and the ``weight`` of the fit (and ``stage`` when given), largest error first."""
     e = np.linalg.norm(fit.residual_mm, axis=1)
     if not len(e):
         return []
-    idx = np.flatnonzero(e > factor * norm_scale(fit.residual_mm))
+    w = fit.weights if fit.weights is not None else np.ones(len(e))
+    idx = np.flatnonzero((e > factor * norm_scale(fit.residual_mm)) | (w < below))
     idx = idx[np.argsort(-e[idx])]
     rows = file_rows(rows, len(e))
-    w = fit.weights if fit.weights is not None else np.ones(len(e))
-    return [{"row": int(rows[i]), "error_mm": float(e[i]), "weight": float(w[i])} for i in idx]
+    extra = {} if stage is None else {"stage": stage}
+    return [{**extra, "row": int(rows[i]), "error_mm": float(e[i]), "weight": float(w[i])} for i in idx]
 
 
 def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
@@ -254,12 +266,16 @@ class Calibration:
 
     ``identifiability_rows``: the poses the identifiability analysis used (all, or a seeded subsample of
     :data:`~tolalloc.diagnose.scale.SUBSAMPLE_ROWS` for larger files; the fits always use every pose).
+    ``loss``: the robust loss the fits used (Tukey falls back to Huber on a small file, :func:`calibrate`);
+    ``loss_note``: why it differs from the one asked for (empty when it does not).
     """
 
     nominal: Fit
     geometric: Fit
     identifiability: Identifiability
     identifiability_rows: int = 0
+    loss: str = DEFAULT_LOSS
+    loss_note: str = ""
 
 
 def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = None, tol: float = DEFAULT_TOL,
@@ -267,6 +283,13 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     """Register the tracker frame, the target offset and the identifiable geometric parameters.
 
     ``loss``, ``t_prior``: robust loss and target-offset prior of the fits (:func:`fit_model`).
+
+    Robust fits keep the corners of the data: a pose is down-weighted for being inconsistent with the others under
+    the geometric model, not for the misfit of the nominal one -- the nominal model is refitted with the geometric
+    fit's pose weights. On a small file (fewer than :data:`POSES_PER_PARAMETER` poses per fitted parameter) Tukey's
+    biweight, which gives a pose no weight at all, falls back to Huber's bounded-influence loss, whose weights never
+    reach zero, with ``loss="auto"`` (the diagnosis's default; ``Calibration.loss_note`` says so). The nominal fit
+    before the identifiability analysis uses Tukey's biweight for ``auto``.
 
     Raises :class:`TolallocError` when the file has fewer poses than the identifiable parameters need.
     Files of more than :data:`~tolalloc.diagnose.scale.SUBSAMPLE_ROWS` poses: the identifiability analysis
@@ -280,7 +303,7 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
     sub = subsample_index(len(q))
     qs, xyzs = (q, xyz) if sub is None else (q[sub], xyz[sub])
     start = initial_fit(model, qs, xyzs)
-    kw = dict(robust=robust, loss=loss, t_prior=t_prior)
+    kw = dict(robust=robust, loss="tukey" if loss == "auto" else loss, t_prior=t_prior)
     if sub is not None:
         start = fit_model(start, qs, xyzs, **kw)
     nominal = fit_model(start, q, xyz, label="nominal calibration", **kw)
@@ -297,8 +320,28 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
             f"(registration 6, target offset 3, geometric {len(rich.identifiable)}); need at least {rich.min_poses} poses "
             "(3 coordinates each, 2 spare) -- measure more poses spread over the workspace.")
     geo = np.array([model.index(n) for n in ident.identifiable], int)
+    used, note = _loss_for_size(len(q), 9 + len(geo)) if robust and loss == "auto" else (loss, "")
+    kw["loss"] = used
     start = replace(nominal, geo_index=geo)
     if sub is not None:
         start = fit_model(start, qs, xyzs, geo_index=geo, **kw)
     geometric = fit_model(start, q, xyz, geo_index=geo, label="geometric calibration", **kw)
-    return Calibration(nominal, geometric, ident, len(qs))
+    if robust and geometric.weights is not None:  # outliers by the geometric model's judgement (docstring)
+        nominal = fit_model(nominal, q, xyz, label="nominal calibration", t_prior=t_prior,
+                            weights=geometric.weights)
+    return Calibration(nominal, geometric, ident, len(qs), used or DEFAULT_LOSS, note)
+
+
+#: Fewer poses than this per fitted parameter (registration, offset, geometry) make a training file small.
+POSES_PER_PARAMETER = 10
+
+
+def _loss_for_size(n_poses: int, n_params: int) -> tuple:
+    """(loss, note) of ``loss="auto"``: Tukey's biweight, or Huber on a small file (fewer than POSES_PER_PARAMETER
+    poses per parameter)."""
+    if n_poses >= POSES_PER_PARAMETER * n_params:
+        return "tukey", ""
+    return "huber", (f"robust loss: Huber in place of Tukey's biweight: {n_poses} training poses for {n_params} "
+                     f"parameters (fewer than {POSES_PER_PARAMETER} per parameter), where a zero weight would drop "
+                     "poses that carry the calibration (the ends of the joint ranges); Huber bounds their influence "
+                     "without dropping them")

@@ -49,9 +49,14 @@ class Diagnosis:
     findings : tuple of str        well-identified deviations from nominal (informational, not guards)
     verdict : Verdict or None      ``effect`` / ``none`` / ``ambiguous`` / ``inconclusive``, candidates, reasons,
                                    the model safe to use, suggested poses (:mod:`.verdict`)
-    outliers : tuple of dict       training poses the final fit treats as gross errors (``row``, ``error_mm``,
-                                   ``weight``; :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
+    outliers : tuple of dict       training rows each stage's fit (nominal, geometric, final) down-weighted or left
+                                   far out (``stage``, ``row``, ``error_mm``, ``weight``;
+                                   :func:`~tolalloc.diagnose.calibrate.outlier_rows`)
     settings : dict                robust loss and target-offset prior of the fits
+    effect_ref : dict or None      the effect reference the bases were built with (:func:`~.effects.effect_reference`:
+                                   the training file's temperature and time origin, the gear ratios -- given or found
+                                   by the search -- and the chosen variants), so a model rebuilt from the diagnosis
+                                   predicts with the very same columns
     calibration_update : CalibrationUpdate or None   ``register_update="calibration"``: the k of each updated
                                    model (its training data count 1/k in the prior), its floor, the registration
                                    poses set aside as gross errors and the update's robust loss (:mod:`.recalibrate`)
@@ -81,6 +86,7 @@ class Diagnosis:
     outliers: tuple = ()
     settings: dict | None = None
     calibration_update: CalibrationUpdate | None = None
+    effect_ref: dict | None = None
 
     @property
     def scored_index(self) -> np.ndarray:
@@ -106,6 +112,12 @@ class Diagnosis:
         return self.effects[0] if self.effects else "none"
 
     @property
+    def family_probability_none(self) -> float | None:
+        """Posterior probability of no effect beside the ranked families (:mod:`.families`); None when not stated."""
+        p = [c.probability for c in self.ranking if np.isfinite(c.probability)]
+        return None if not p else max(0.0, 1.0 - float(sum(p)))
+
+    @property
     def ranking(self) -> tuple:
         return self.stages[0].candidates
 
@@ -129,7 +141,7 @@ class Diagnosis:
 
     def outliers_frame(self) -> pd.DataFrame:
         """Training poses treated as gross errors: file row, 3-D residual [mm], IRLS weight."""
-        return pd.DataFrame(list(self.outliers), columns=["row", "error_mm", "weight"])
+        return pd.DataFrame(list(self.outliers), columns=["stage", "row", "error_mm", "weight"])
 
     def ranking_frame(self) -> pd.DataFrame:
         return pd.DataFrame([c.to_dict() for c in self.ranking])
@@ -153,6 +165,7 @@ class Diagnosis:
             "effect": self.effect,
             "effects": list(self.effects),
             "ranking": [c.to_dict() for c in self.ranking],
+            "probability_no_effect": self.family_probability_none,
             "sequence": [{"base": list(st.base), "base_rms_mm": st.base_rms_mm, "selected": st.selected or "none", "removed": st.removed,
                           "candidates": [c.to_dict() for c in st.candidates]} for st in self.stages],
             "cv_rms_mm": cv["rms_mm"],

@@ -18,9 +18,11 @@ signature:
                       robot file).
 ``mount_compliance``  the whole robot tilts on a compliant base under the gravity moment of its masses and payload
                       (``isotropic``: one compliance; ``axes``: about base x and y) [rad/(N m)].
-``link_deflection``   arm segments bend as beams under own weight, distal load and a logged payload
-                      (:mod:`tolalloc.physics.beams`): ``tip``, ``beam``; robots with a telescopic stage also
-                      ``guide``, ``guide+overlap``, ``beam+guide``.
+``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
+                      beyond by their moment), a logged payload and an own weight (:mod:`tolalloc.physics.beams`):
+                      ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
+                      stage also ``guide``,
+                      ``guide+overlap``, ``beam+guide``.
 ``backlash``          lost motion ``dq_j = b_j s_j`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
                       ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``.
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
@@ -147,7 +149,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
     if effect == "mount_compliance":
         return ("isotropic", "axes")
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()
-    return ("tip", "beam") + guide
+    return ("tip", "beam", "beam+w", "beam+tip") + guide
 
 
 def applicable(effect: str, meas: Measurements) -> tuple[bool, str]:
@@ -184,7 +186,8 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     elif effect == "link_deflection":
         parts = []
         if not variant.startswith("guide"):
-            parts.append(beam_columns(robot, q, p_t, "tip" if variant == "tip" else "beam", meas.payload_kg))
+            parts.append(beam_columns(robot, q, p_t, "tip" if variant == "tip" else variant.replace("+guide", ""),
+                                      meas.payload_kg))
         if "guide" in variant:
             parts.append(guide_columns(robot, q, p_t, meas.payload_kg, overlap=variant == "guide+overlap"))
         B = np.concatenate([b for b, _ in parts], axis=2)

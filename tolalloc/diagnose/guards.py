@@ -37,7 +37,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 from tolalloc.diagnose.uncertainty import parameter_covariance
 
-__all__ = ["Extrapolation", "extrapolation_flags", "prior_flags", "ParameterCheck", "parameter_checks",
+__all__ = ["Extrapolation", "extrapolation_flags", "outside_range", "prior_flags", "ParameterCheck", "parameter_checks", "reading",
            "FINDING_FRACTION", "cv_fallback", "RANGE_MARGIN_DEG", "RANGE_MARGIN_MM", "FAR_FACTOR", "PRIOR_N_SIGMA",
            "FALLBACK_MARGIN"]
 
@@ -115,6 +115,17 @@ def _outside_arc(a_train: np.ndarray, a_test: np.ndarray, margin: float) -> np.n
     return dist > margin
 
 
+def outside_range(robot: Robot, q_train: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """(T, n) bool: joint ``k`` of pose ``q[t]`` lies outside the training range by more than the margin (revolute
+    angles on the shortest arc holding the training angles)."""
+    rev = robot.revolute_mask
+    margin = np.where(rev, np.deg2rad(RANGE_MARGIN_DEG), RANGE_MARGIN_MM)
+    out_j = (q < q_train.min(0) - margin) | (q > q_train.max(0) + margin)
+    for k in np.flatnonzero(rev):
+        out_j[:, k] = _outside_arc(q_train[:, k], q[:, k], margin[k])
+    return out_j
+
+
 def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *, far_factor: float = FAR_FACTOR) -> Extrapolation:
     """Flag test poses that extrapolate from the training poses (see the module docstring).
 
@@ -128,11 +139,7 @@ def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *
     q_test : array, shape (T, n) [rad, mm]
     """
     rev = robot.revolute_mask
-    margin = np.where(rev, np.deg2rad(RANGE_MARGIN_DEG), RANGE_MARGIN_MM)
-    lo, hi = q_train.min(0), q_train.max(0)
-    out_j = (q_test < lo - margin) | (q_test > hi + margin)
-    for k in np.flatnonzero(rev):
-        out_j[:, k] = _outside_arc(q_train[:, k], q_test[:, k], margin[k])
+    out_j = outside_range(robot, q_train, q_test)
     floor = np.where(rev, np.deg2rad(1.0), 1.0)  # a joint held still in training: 1 deg / 1 mm scale
     scale = np.maximum(q_train.std(0), floor)
     # a torus in the revolute coordinates (period 2 pi / scale); prismatic ones in a box too long to wrap
@@ -201,11 +208,38 @@ class ParameterCheck:
                            "poses of the joints involved")
         return tuple(out)
 
-    def findings(self) -> tuple:
-        """Informational lines: well-identified deviations of at least half the plausibility level (not guards)."""
-        return tuple(f"finding: {self._line(i)} (well identified; {abs(self.value[i]) / self.level[i]:.2g} x the "
-                     f"plausibility level {self.level[i]:.3g} {self.units[i]})"
-                     for i, st in enumerate(self.status) if st == "finding")
+    def findings(self, aliases: dict | None = None) -> tuple:
+        """Informational lines: well-identified deviations of at least half the plausibility level (not guards).
+
+        ``aliases`` (:attr:`~tolalloc.diagnose.identify.Identifiability.aliases`): a fitted parameter that also stands
+        for dropped ones is reported as the combination, with every physical reading (they mean different repairs).
+        """
+        out = []
+        for i, st in enumerate(self.status):
+            if st != "finding":
+                continue
+            head = f"finding: {self._line(i)}"
+            tail = f"{abs(self.value[i]) / self.level[i]:.2g} x the plausibility level {self.level[i]:.3g} {self.units[i]}"
+            alias = (aliases or {}).get(self.names[i], ())
+            if not alias:
+                out.append(f"{head} (well identified; {tail})")
+                continue
+            combo = " + ".join([self.names[i]] + [f"{c:.3g} x {n}" for n, c in alias])
+            readings = ", or ".join(reading(n) for n in (self.names[i], *(n for n, _ in alias)))
+            out.append(f"{head} is one combination, {combo}, well identified as such ({tail}); the poses cannot tell "
+                       f"its readings apart: {readings}")
+        return tuple(out)
+
+
+def reading(name: str) -> str:
+    """The physical reading (and repair) of a geometric calibration parameter, from its name."""
+    for key, what in (("_offset", "joint {j}'s zero is off (re-master the joint)"),
+                      ("_tilt_", "joint {j}'s axis is tilted (bearing seat or housing misaligned)"),
+                      ("_shift_", "joint {j}'s axis is displaced (a link length or axis position off)")):
+        if key in name:
+            return what.format(j=name.split(key)[0])
+    return name
+
 
 
 def parameter_checks(fit, q: np.ndarray, *, level: np.ndarray | None = None,

@@ -73,6 +73,9 @@ class Identifiability:
     null_combinations : tuple of str  parameter combinations the data cannot separate
     min_poses : int                 poses needed for the fitted parameters (3 coordinates per pose, 2 spare)
     reasons : dict                  why each unidentifiable parameter was dropped (name -> text)
+    aliases : dict                  fitted parameter -> ((dropped parameter, c), ...): the dropped parameters it also
+                                    stands for (its fitted value carries ``c`` x theirs, each in its own unit,
+                                    :data:`ALIAS_MIN` or more in normalised columns)
     """
 
     names: tuple
@@ -85,6 +88,7 @@ class Identifiability:
     null_combinations: tuple
     min_poses: int
     reasons: dict = field(default_factory=dict)
+    aliases: dict = field(default_factory=dict)
 
     def to_frame(self) -> pd.DataFrame:
         return pd.DataFrame({"parameter": self.names, "identifiable": [n in self.identifiable for n in self.names],
@@ -94,7 +98,8 @@ class Identifiability:
         return {"rank": self.rank, "condition_number": self.condition_number,
                 "observability_index": self.observability_index, "identifiable": list(self.identifiable),
                 "unidentifiable": list(self.unidentifiable), "null_combinations": list(self.null_combinations),
-                "min_poses": self.min_poses, "dropped": dict(self.reasons)}
+                "min_poses": self.min_poses, "dropped": dict(self.reasons),
+                "aliases": {k: [{"parameter": n, "coefficient": c} for n, c in v] for k, v in self.aliases.items()}}
 
 
 def identifiability(fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identifiability:
@@ -136,17 +141,24 @@ def identifiability(fit, q: np.ndarray, tol: float = DEFAULT_TOL) -> Identifiabi
     L = 9 + len(keep)
     min_poses = int(np.ceil(L / 3)) + 2
     return Identifiability(names, tuple(names[k] for k in keep), tuple(n for k, n in enumerate(names) if k not in set(keep)),
-                           share, rank, cond, o1, tuple(null), min_poses, _drop_reasons(Jf, Jg, keep, names, tol))
+                           share, rank, cond, o1, tuple(null), min_poses, *_drop_reasons(Jf, Jg, keep, names, tol))
 
 
-def _drop_reasons(Jf: np.ndarray, Jg: np.ndarray, keep: np.ndarray, names: tuple, tol: float) -> dict:
-    """Why each geometric column not in ``keep`` was dropped: absorbed by registration/offset, or redundant."""
+#: A dropped parameter whose normalised column takes at least this share of a fitted one's is that one's alias.
+ALIAS_MIN = 0.3
+
+
+def _drop_reasons(Jf: np.ndarray, Jg: np.ndarray, keep: np.ndarray, names: tuple, tol: float) -> tuple:
+    """Why each geometric column not in ``keep`` was dropped (absorbed by registration/offset, or redundant), and the
+    aliases: per fitted parameter, the redundant dropped ones its value also carries (``Identifiability.aliases``;
+    a dropped ``delta_k`` moves the points as ``c x delta_k`` of the fitted one, ``c = c_normalised x |J_k| / |J_i|``
+    in the parameters' own units)."""
     norms = np.linalg.norm(Jg, axis=0)
     Jn = Jg / np.where(norms > 0, norms, 1.0)
     Qf, _ = np.linalg.qr(Jf / np.linalg.norm(Jf, axis=0))
     proj = Jn - Qf @ (Qf.T @ Jn)
     free = np.linalg.norm(proj, axis=0)
-    out = {}
+    out, aliases = {}, {}
     for k in sorted(set(range(Jg.shape[1])) - set(keep.tolist())):
         if norms[k] == 0:
             out[names[k]] = "no effect on the measured points at these poses"
@@ -159,4 +171,8 @@ def _drop_reasons(Jf: np.ndarray, Jg: np.ndarray, keep: np.ndarray, names: tuple
             combo = " ".join(f"{c[i] / free[k]:+.2f} {names[keep[i]]}" for i in top if abs(c[i]) > 1e-3 * free[k])
             out[names[k]] = (f"redundant with the identifiable parameters (independent share {left / free[k]:.1e} "
                              f"of what registration/offset leave; ~ {combo})")
-    return out
+            for i in top:
+                if abs(c[i]) >= ALIAS_MIN * free[k]:
+                    coef = float(norms[k] / norms[keep[i]] * c[i])
+                    aliases.setdefault(names[keep[i]], []).append((names[k], coef))
+    return out, {a: tuple(v) for a, v in aliases.items()}

@@ -42,6 +42,21 @@ MIN_DISTINCT_POSES = 3
 POSITION_COLUMNS = ("x_mm", "y_mm", "z_mm")
 
 
+#: The optional covariates and their one accepted unit: a column of the same quantity in another unit is refused.
+COVARIATE_UNITS = {"payload": "payload_kg", "time": "time_s", "temperature": "temperature_c"}
+
+
+def _check_covariate_units(cols, source: str) -> None:
+    """Refuse a covariate column in another unit (``payload_g``, ``time_ms``, ``temperature_k``): it would be ignored
+    silently, and an effect fitted without it."""
+    for c in cols:
+        base, _, unit = str(c).partition("_")
+        want = COVARIATE_UNITS.get(base)
+        if want is not None and unit and c != want:
+            raise TolallocError(f"{source}: column {c!r}: expected {want!r} (the one unit the diagnosis reads); "
+                                f"convert the column to {want.split('_')[1]} and rename it {want}.")
+
+
 def file_rows(rows: np.ndarray | None, n: int) -> np.ndarray:
     """1-based file rows of ``n`` poses, shape (n,): ``rows`` (:attr:`Measurements.rows`) when given, else the
     positions + 1 (a set built without rows)."""
@@ -253,6 +268,7 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
                                 "fill them or drop the column.")
         return v
 
+    _check_covariate_units(cols, source)
     dcols = [f"dir{j + 1}" for j in range(n)]
     direction = None
     present = [c for c in dcols if c in cols]

@@ -22,13 +22,14 @@ from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
 from tolalloc.diagnose.register import MIN_REGISTER, REGISTER_N, check_register_rows, register_count, split_from_rows
-from tolalloc.diagnose.progress_bars import fit_counter, progress_bar, progress_scope
+from tolalloc.progress import fit_counter, progress_bar, progress_scope
 from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics, subsample_index
-from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats
+from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats, rms
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test
 from tolalloc.diagnose.stepwise import select_effects
+from tolalloc.diagnose.families import family_probabilities
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
-                                       separating_poses, stiffness_alternative)
+                                       separating_poses, tied)
 from tolalloc.diagnose.verdict_text import verdict_of
 from tolalloc.diagnose.where import where_breakdown
 
@@ -40,7 +41,7 @@ MIN_SUBSAMPLE_ROWS = 200
 #: else it recomputes it chunk by chunk on every pass.
 BASIS_CACHE_BYTES = 256 * 2**20
 #: Robust losses ``robust_loss`` accepts.
-LOSS_CHOICES = ("tukey", "huber", "soft_l1")
+LOSS_CHOICES = ("auto", "tukey", "huber", "soft_l1")
 
 
 def _line_guard(robot: Robot, train: Measurements) -> str | None:
@@ -105,7 +106,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
              alpha: float = 0.01, min_gain: float = 0.02, max_effects: int = 3, seed: int = 0,
              test_frame: str = "same", tol: float = DEFAULT_TOL, threads: int | None = 1,
              register_n: float | None = None, cv: str = "blocked", progress: bool | None = False,
-             subsample_rows: int = SUBSAMPLE_ROWS, robust_loss: str = DEFAULT_LOSS,
+             subsample_rows: int = SUBSAMPLE_ROWS, robust_loss: str = "auto",
              target_offset_mm=None, target_offset_sd_mm=None, register_update: str = "frame",
              register_rows=None) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
@@ -140,14 +141,16 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         the training file; :mod:`.recalibrate`). No effect without ``refit``.
     threads : int or None       BLAS threads during the fits (1 is fastest for these small problems)
     cv : {"blocked", "time", "joint", "random"}  cross-validation folds (see :func:`select.make_folds`)
-    progress : bool or None     progress bars on stderr (None: when stderr is a terminal)
+    progress : bool or None     progress on stderr (:func:`tolalloc.progress.progress_scope`; None: on)
     subsample_rows : int
         Training files with more rows cross-validate and select effects on a seeded random subsample (``seed``)
         of this many rows; the nominal, geometric and final models are then fitted on all rows
         (``Diagnosis.subsample`` says so).
-    robust_loss : {"tukey", "huber", "soft_l1"}
+    robust_loss : {"auto", "tukey", "huber", "soft_l1"}
         M-estimator of every fit (registration, geometry, effects; :func:`~.calibrate.fit_model`). Tukey's
-        biweight (default) gives gross outliers no weight; they are listed in ``Diagnosis.outliers``.
+        biweight gives gross outliers no weight; ``auto`` (default) is Tukey's, or Huber's bounded-influence loss on a
+        small training file (fewer than 10 poses per fitted parameter, :func:`~.calibrate.calibrate`). Down-weighted
+        rows are listed per stage in ``Diagnosis.outliers``.
     target_offset_mm : array (3,) [mm], optional
         Prior mean of the target (probe) offset in the flange frame, relative to the robot's tool point
         (default 0: the robot's tool definition). Needs ``target_offset_sd_mm``.
@@ -160,6 +163,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     with threadpool_limits(threads), progress_scope(progress):
         model = build_geometry_model(robot)
         cal = calibrate(robot, train, model=model, tol=tol, loss=robust_loss, t_prior=t_prior)
+        robust_loss = cal.loss  # Huber in place of Tukey on a small file (Calibration.loss_note)
         check_nominal_misfit(robot, train, cal.nominal)
         sub = subsample_index(train.n_poses, subsample_rows, seed)
         cv_train = train if sub is None else train.subset(sub)
@@ -179,9 +183,8 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                          "subsampled": "cross-validation (out-of-fold errors, p-values), effect selection, "
                                        "identifiability of geometric and effect parameters",
                          "all_rows": "nominal, geometric and final fits (parameters, training RMS, test-file scores)"}
-        bar = progress_bar("residual breakdown")
-        where = where_breakdown(robot, train, cal.geometric)
-        bar.close()
+        with progress_bar("residual breakdown"):
+            where = where_breakdown(robot, train, cal.geometric)
         scored = _score_sealed_test(ctx, sel["nominal"], sel["geometric"], sel["final"], sel["chosen"])
         sel["nominal"], sel["geometric"], sel["final"], sel["chosen"] = scored
     return _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, robust_loss,
@@ -196,10 +199,14 @@ def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
         stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
         clip = clip_level(geometric.selection_mm)
         chosen, msgs = cv_fallback(nominal, geometric, final)
-        comparisons = ((*compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain),
-                        *stiffness_alternative(ctx, final)) if chosen is final and final.effects else ())
+        comparisons = (compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain)
+                       if chosen is final and final.effects else ())
+    probs = family_probabilities(ctx)
+    if stages:
+        stages[0] = replace(stages[0], candidates=tuple(replace(c, probability=probs.get(c.effect, float("nan")))
+                                                        for c in stages[0].candidates))
     swap = (lambda c: "+".join(("geometric", *(c.alternative if x == c.effect else x for x in final.effects))))
-    pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in comparisons if not c.separable and not c.note]
+    pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in tied(comparisons)]
     return {"nominal": nominal, "geometric": geometric, "final": final, "chosen": chosen, "stages": stages,
             "messages": msgs, "comparisons": comparisons,
             "suggestions": separating_poses(ctx, pairs, evals, seed=seed) if pairs else None}
@@ -226,13 +233,15 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
         fallback, final, effects = chosen.label, chosen, ()
     update = _calibration_update(ctx, nominal, geometric, final)
     guards.extend(_kept_gross_errors(ctx, final))
-    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, final, threads, guards)
+    extrap, unc, reg = _test_guards(ctx, robot, train, nominal, geometric, final, threads, guards)
+    ctx.robust_notes = _robust_baseline(ctx, cal, nominal, t_prior)
     tstats = scored_test_stats(nominal, geometric, final)
     untestable = tuple(e for e in final.effects if e in ctx.untestable)
     inconc = inconclusive_reasons(check, {"nominal": nominal, "geometric": geometric, "final": final}, cal, tstats,
                                   alpha=alpha, min_gain=min_gain, untestable=untestable)
     verdict = verdict_of(ctx, sel["stages"], final, fallback, sel["comparisons"], inconc, sel["messages"],
-                         safe_model(nominal, geometric, final, tstats, bool(inconc)), sel["suggestions"])
+                         safe_model(nominal, geometric, final, tstats, bool(inconc)), sel["suggestions"], alpha,
+                         min_gain)
     settings = {"robust_loss": loss, "cv": ctx.cv, "folds_per_scheme": len(ctx.folds),
                 "target_offset_prior_mm": None if t_prior is None else {"mean": t_prior[0].tolist(),
                                                                         "sd": t_prior[1].tolist()},
@@ -241,7 +250,35 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                 "register_update_robust_loss": None if update is None else update.robust_loss}
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
-                     check.findings(), verdict, tuple(outlier_rows(final.fit, train.rows)), settings, update)
+                     check.findings(cal.identifiability.aliases), verdict, _downweighted(train, nominal, geometric, final), settings, update,
+                     ctx.ref)
+
+
+def _downweighted(train, nominal: Evaluation, geometric: Evaluation, final: Evaluation) -> tuple:
+    """The training rows every stage's fit down-weighted or left far out (:func:`~.calibrate.outlier_rows`)."""
+    stages = [("nominal", nominal), ("geometric", geometric)] + ([("final", final)] if final is not geometric else [])
+    return tuple(o for name, ev in stages for o in outlier_rows(ev.fit, train.rows, stage=name))
+
+
+#: Robust weighting that moves the nominal model's test RMS by more than this fraction is reported.
+BASELINE_MOVE = 0.10
+
+
+def _robust_baseline(ctx, cal, nominal: Evaluation, t_prior) -> list:
+    """A guard when robust weighting moved the nominal baseline's test RMS by more than :data:`BASELINE_MOVE`
+    against plain least squares (the improvements the summary prints are measured from that baseline), and the
+    note of a robust loss that fell back on a small file."""
+    out = [cal.loss_note] if cal.loss_note else []
+    if ctx.test is None or cal.nominal.loss == "none":
+        return out
+    plain = fit_model(cal.nominal, ctx.train.q, ctx.train.xyz_mm, robust=False, t_prior=t_prior)
+    r_ls, r = rms(score_test(ctx, plain, (), np.zeros(0, int)).residual_mm), rms(nominal.test_mm)
+    if abs(r - r_ls) > BASELINE_MOVE * r_ls:
+        out.append(f"robust weighting moved the nominal baseline: its test RMS is {r:.4g} mm with the robust fit and "
+                   f"{r_ls:.4g} mm by least squares ({100 * (r / r_ls - 1):+.0f} %, more than "
+                   f"{100 * BASELINE_MOVE:g} %); the improvements over nominal are measured from the robust baseline "
+                   "-- see the down-weighted rows")
+    return out
 
 
 def _calibration_update(ctx, nominal: Evaluation, geometric: Evaluation, final: Evaluation):
@@ -292,8 +329,10 @@ def _score_sealed_test(ctx, nominal: Evaluation, geometric: Evaluation, final: E
     return n2, g2, f2, c2
 
 
-def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, threads, guards: list) -> tuple:
-    """Test-file guards (appended to ``guards``): predicted uncertainty, extrapolation, final worse than nominal."""
+def _test_guards(ctx, robot, train, nominal: Evaluation, geometric: Evaluation, final: Evaluation, threads,
+                 guards: list) -> tuple:
+    """Test-file guards (appended to ``guards``): predicted uncertainty, extrapolation, a geometric or final model
+    worse than nominal."""
     test = ctx.test
     if test is None:
         return None, None, None
@@ -307,11 +346,13 @@ def _test_guards(ctx, robot, train, nominal: Evaluation, final: Evaluation, thre
     extrap = extrapolation_flags(robot, train.q, test.q)
     if extrap.message():
         guards.append(extrap.message())
-    worse = {k: (error_stats(final.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
-    for k, (f, nmn) in worse.items():
-        if f > nmn:
-            guards.append(f"test file: the final model's {k[:-3]} error is larger than the nominal model's "
-                          f"({f:.4g} vs {nmn:.4g} mm)")
+    models = [("geometric", geometric), ("final", final)] if final is not geometric else [("geometric", geometric)]
+    for name, ev in models:
+        worse = {k: (error_stats(ev.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
+        for k, (f, nmn) in worse.items():
+            if f > nmn:
+                guards.append(f"test file: the {name} model's {k[:-3]} error is larger than the nominal model's "
+                              f"({f:.4g} vs {nmn:.4g} mm); the safe model (see the verdict) does not use it")
     return extrap, unc, reg
 
 

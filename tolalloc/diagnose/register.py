@@ -105,6 +105,11 @@ def register_count(n_test: int, register_n: float) -> int:
     if register_n >= 1 and n != register_n:
         raise TolallocError(f"--register-n: a count must be a whole number, got {register_n!r}; "
                             "use a value below 1 for a fraction.")
+    if n > n_test:  # more registration poses than the test file has
+        raise TolallocError(f"--register-n {register_n:g} asks for {n:,} registration poses, but the {n_test} test "
+                            f"poses leave at most {max(0, n_test - MIN_SCORED)} after the {MIN_SCORED} scored ones; expected "
+                            f"a count from {MIN_REGISTER} to {max(MIN_REGISTER, n_test - MIN_SCORED)} or a fraction "
+                            "below 1 -- choose another --register-n or a larger test file.")
     if n < MIN_REGISTER or n_test - n < MIN_SCORED:
         raise TolallocError(
             f"--register-n {register_n:g} gives {n} registration and {n_test - n} scored poses of the {n_test} test poses; "

@@ -23,9 +23,8 @@ nominal model (as :mod:`.calibrate` documents); the fixed point therefore is tha
 
 Large training files: cross-validation, effect selection and the identifiability analysis run on a seeded
 random subsample of at most :data:`SUBSAMPLE_ROWS` rows (:func:`subsample_index`); the final fits use every
-row. Progress bars (tqdm, on stderr) are shown for fits of at least :data:`PROGRESS_MIN_ROWS` rows and for
-the pipeline's stages when enabled with :func:`.progress_bars.progress_scope` (default: when stderr is a terminal);
-the bars themselves are in :mod:`.progress_bars`.
+row. Fits of at least :data:`PROGRESS_MIN_ROWS` rows show their passes on a bar (in a log: one line each, with
+the passes and the time) when progress is on (:func:`tolalloc.progress.progress_scope`, which the pipeline opens).
 """
 
 from __future__ import annotations
@@ -35,7 +34,7 @@ from scipy.spatial.transform import Rotation
 
 from tolalloc.engine import resolve_engine
 from tolalloc.diagnose.losses import LOSSES, m_rho, m_weight, norm_scale
-from tolalloc.diagnose.progress_bars import _NoBar, progress_bar
+from tolalloc.progress import NoBar, progress_bar
 from tolalloc.robot.kinematics import poe_prefix_rp
 
 __all__ = ["CHUNK_ROWS", "SUBSAMPLE_ROWS", "PROGRESS_MIN_ROWS", "Problem", "solve", "point_kinematics",
@@ -114,6 +113,7 @@ class Problem:
         self.beta_prior_w = None  # weight (M,) of a zero-mean prior on the effect parameters
         self.f_scale = 0.0
         self.loss = "soft_l1"
+        self.fixed_w = None  # (P,) pose weights held fixed (loss "fixed": weighted least squares)
         self._rot_key, self._rot = None, None  # last (w, R0) of _rotation and its matrix
         self._static = self._static_of(slice(0, len(q))) if len(q) <= self.chunk_rows else None
 
@@ -221,14 +221,26 @@ class Problem:
 
     @property
     def per_pose(self) -> bool:
-        """True for the M-estimators on the 3-D residual norm (``huber``, ``tukey``)."""
-        return self.f_scale > 0 and self.loss in ("huber", "tukey")
+        """True for the M-estimators on the 3-D residual norm (``huber``, ``tukey``) and fixed pose weights."""
+        return (self.f_scale > 0 and self.loss in ("huber", "tukey")) or self.loss == "fixed"
 
-    def pose_weights(self, raw: np.ndarray) -> np.ndarray:
-        """IRLS weight of every pose (P,) for residuals ``raw`` (P, 3) under the current loss."""
+    def _weights(self, s: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        """Per-pose weights of the residual norms ``s`` of the poses ``sl`` (all poses when None)."""
+        if self.loss == "fixed":
+            return self.fixed_w if sl is None else self.fixed_w[sl]
+        return m_weight(s, self.loss, self.f_scale)
+
+    def _rho(self, s: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        if self.loss == "fixed":
+            return self._weights(s, sl) * s * s
+        return m_rho(s, self.loss, self.f_scale)
+
+    def pose_weights(self, raw: np.ndarray, sl: slice | None = None) -> np.ndarray:
+        """IRLS weight of every pose (P,) for residuals ``raw`` (P, 3) under the current loss (``sl``: the poses of a
+        chunk, for fixed weights)."""
         s = np.linalg.norm(raw, axis=1)
         if self.per_pose:
-            return m_weight(s, self.loss, self.f_scale)
+            return self._weights(s, sl)
         if self.f_scale > 0:  # soft_l1 on the norm (per coordinate in the fit)
             return 1.0 / np.sqrt(1.0 + (s / self.f_scale) ** 2)
         return np.ones(len(s))
@@ -259,7 +271,7 @@ class Problem:
         raw = self.raw(x)
         if self.per_pose:
             s = np.linalg.norm(raw.reshape(-1, 3), axis=1)
-            f = np.sqrt(m_rho(s, self.loss, self.f_scale) / np.maximum(s * s, 1e-300))
+            f = np.sqrt(self._rho(s) / np.maximum(s * s, 1e-300))
             res = (raw.reshape(-1, 3) * f[:, None]).ravel()
         else:
             res = self._robust(raw)[0]
@@ -275,7 +287,7 @@ class Problem:
             r, A = self.chunk(x, sl, ch)
             J = np.stack(self.tracker_rows(A, R), axis=1).reshape(3 * len(r), -1)
             if self.per_pose:
-                w = np.repeat(np.sqrt(self.pose_weights(r)), 3)
+                w = np.repeat(np.sqrt(self.pose_weights(r, sl)), 3)
             else:
                 w = self._robust(r.ravel())[1]
             parts.append(J * w[:, None])
@@ -299,8 +311,8 @@ class Problem:
             raw[sl] = r
             if self.per_pose:  # IRLS: one weight per pose from its 3-D residual norm
                 nrm = np.linalg.norm(r, axis=1)
-                sw = np.sqrt(m_weight(nrm, self.loss, self.f_scale))
-                cost += float(np.sum(m_rho(nrm, self.loss, self.f_scale)))
+                sw = np.sqrt(self._weights(nrm, sl))
+                cost += float(np.sum(self._rho(nrm, sl)))
             for a, Ja in enumerate(self.tracker_rows(A, R)):
                 if self.per_pose:
                     Js, rt = Ja * sw[:, None], r[:, a] * sw
@@ -345,7 +357,7 @@ def solve(prob: Problem, x: np.ndarray, *, max_iter: int = 60, ftol: float = 1e-
     ``1e-8`` of the cost.
     """
     bar = progress_bar(f"{label} ({prob.n_rows:,} rows)", unit="pass") if prob.n_rows >= PROGRESS_MIN_ROWS \
-        else _NoBar()
+        else NoBar()
     x = prob.rebase(x)
     cost, H, g, raw = prob.normal(x)
     bar.update()

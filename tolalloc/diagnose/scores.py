@@ -11,7 +11,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import wilcoxon
 
-__all__ = ["rms", "error_stats", "robust_rms", "clip_level", "paired_pvalue", "Evaluation", "Candidate", "Stage"]
+__all__ = ["rms", "error_stats", "robust_rms", "clip_level", "paired_pvalue", "Evaluation", "Candidate", "Stage",
+           "scheme_text"]
+
+
+def scheme_text(cv: str, selection: bool = True) -> str:
+    """The cross-validation scheme behind an out-of-fold figure: ``selection`` -- the selection's score
+    (:attr:`Evaluation.selection_mm`: with ``blocked``, the time blocks and the joint-space blocks), else the
+    first scheme alone (:attr:`Evaluation.oof_mm`)."""
+    if cv == "blocked":
+        return "time and joint-space blocks" if selection else "time blocks"
+    return {"time": "time blocks", "joint": "joint-space blocks", "random": "random folds"}.get(cv, cv)
 
 
 def rms(res: np.ndarray) -> float:
@@ -107,7 +117,8 @@ class Candidate:
 
     ``heldout_rms_mm``: RMS of the training file's out-of-fold residuals, both CV schemes
     (:attr:`Evaluation.selection_mm`); ``cv_rms_mm``: of the first scheme only. Candidates are never scored on the
-    sealed test file.
+    sealed test file. ``probability``: the family's posterior probability from its marginal likelihood on the
+    training residual (:mod:`.families`; first step only, NaN elsewhere).
     """
 
     effect: str
@@ -121,12 +132,14 @@ class Candidate:
     significant: bool
     robust_rms_mm: float = float("nan")
     variant: str = ""
+    probability: float = float("nan")
 
     def to_dict(self) -> dict:
         return {"effect": self.effect, "heldout_rms_mm": self.heldout_rms_mm, "p_value": self.p_value,
                 "cv_rms_mm": self.cv_rms_mm, "gain_pct": self.gain_pct,
                 "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
-                "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant}
+                "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant,
+                "probability": self.probability if np.isfinite(self.probability) else None}
 
 
 @dataclass(frozen=True, eq=False)

@@ -41,6 +41,7 @@ from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
 from tolalloc.diagnose.uncertainty import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
+from tolalloc.diagnose.ratio_search import search_ratios
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
 from tolalloc.physics.thermal import time_problem
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
@@ -72,9 +73,9 @@ class _Context:
         self.bases, self.bases_test, self.reasons, self.untestable = {}, {}, {}, {}
         t = cal.geometric.t_mm
         robot = cal.geometric.model.robot
-        if gear_ratio is None:
-            gear_ratio = robot.components.gear_ratios([jt.name for jt in robot.joints])
-        self.ref = effect_reference(train, gear_ratio, robot)
+        known = robot.components.gear_ratios([jt.name for jt in robot.joints]) if gear_ratio is None else gear_ratio
+        ratios, self.ratio_notes = search_ratios(robot, train.q, cal.geometric, self.J_fixed, self.geo_residual, known)
+        self.ref = effect_reference(train, ratios if np.any(np.isfinite(ratios)) else None, robot)
         for e in EFFECTS:
             ok, why = applicable(e, train)
             names = variants(e, train, self.ref, robot)

@@ -1,16 +1,19 @@
 """The verdict of a diagnosis: ``effect``, ``none``, ``ambiguous`` or ``inconclusive``, with its reasons.
 
-* ``ambiguous`` -- a selected effect ``e`` and another candidate ``a`` that was significant at the step ``e`` was
-  selected in explain the training file equally well: the model with ``a`` in place of ``e`` is not beaten by the
-  selection's own rule (one-sided Wilcoxon signed-rank test on the same out-of-fold poses, ``p < alpha / m`` with
-  ``m`` the candidates tested at that step, and a clipped-RMS gain of at least ``min_gain``) --
-  :func:`compare_alternatives`. Both are named, and :func:`separating_poses` suggests poses where the two fitted
-  models' predictions differ most.
+* ``ambiguous`` -- verdicts follow the *size* of the evidence. Every candidate family that explains part of the
+  training residual at the step a selected effect ``e`` was chosen (clipped out-of-fold gain of at least ``min_gain``
+  over that step's base) is fitted in place of ``e`` on the same out-of-fold poses (:func:`compare_alternatives`).
+  An alternative whose clipped out-of-fold RMS is within the practical margin :data:`PRACTICAL_MARGIN` (5 %) of the
+  selected model's is *tied*: the data cannot separate the two physics by what they predict. ``ambiguous`` names the
+  selected effect and its (at most :data:`MAX_TIED` closest) tied alternatives, with the margin; an alternative
+  worse by more than the margin is beaten, whatever its p-value, and the verdict stays ``effect``. The Wilcoxon
+  p-value of each comparison is reported, not used. :func:`separating_poses` suggests poses where two tied models'
+  predictions differ most.
 * ``inconclusive`` -- no effect is claimed when the data cannot support one (:func:`inconclusive_reasons`): the
   probe offset is only weakly identified (the parameter check); the out-of-fold registration is unstable (the
-  nominal model's out-of-fold RMS above :data:`UNSTABLE_RATIO` x its training RMS); the geometric model itself does
-  not hold out of fold (the same ratio: too few poses for its parameters, the fits interpolate); the final model
-  does not transfer to the sealed test file (its RMS above the nominal model's, or its largest error above
+  nominal model's out-of-fold RMS above :data:`UNSTABLE_RATIO` x its training RMS); the geometric model or the final
+  model does not hold out of fold (the same ratio: too few poses for its parameters, the fits interpolate); the
+  selected effects do not lower the out-of-fold RMS by ``min_gain``; the final model does not transfer to the sealed test file (its RMS above the nominal model's, or its largest error above
   :data:`MAX_ERROR_RATIO` x the nominal model's); or the selected effects do not transfer (the final model
   significantly worse than the geometric model on the test poses: Wilcoxon ``p < alpha`` and a clipped-RMS loss of
   at least ``min_gain``).
@@ -32,21 +35,23 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose.effects import effect_basis
-from tolalloc.physics.lost_motion import GRAVITY_SIDES
-from tolalloc.diagnose.guards import FALLBACK_MARGIN
+from tolalloc.diagnose.guards import FALLBACK_MARGIN, extrapolation_flags, outside_range
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import align_basis
 from tolalloc.diagnose.scores import clip_level, error_stats, paired_pvalue, rms, robust_rms
 
 __all__ = ["Verdict", "Comparison", "compare_alternatives", "separating_poses", "inconclusive_reasons", "safe_model",
-           "stiffness_alternative", "GRAVITY_SIDES",
-           "VERDICTS", "UNSTABLE_RATIO", "MAX_ERROR_RATIO", "N_SUGGESTED", "N_SAMPLED", "scored_test_stats"]
+           "PRACTICAL_MARGIN", "MAX_TIED", "VERDICTS", "UNSTABLE_RATIO", "MAX_ERROR_RATIO", "N_SUGGESTED", "N_SAMPLED", "scored_test_stats"]
 
 VERDICTS = ("effect", "none", "ambiguous", "inconclusive")
 #: Out-of-fold nominal RMS beyond this multiple of the training RMS: the registration does not hold across folds.
 UNSTABLE_RATIO = 3.0
 #: A final model whose largest test error exceeds this multiple of the nominal model's does not transfer.
 MAX_ERROR_RATIO = 2.0
+#: Two families whose clipped out-of-fold RMS differ by less than this fraction of the better one's are tied.
+PRACTICAL_MARGIN = 0.05
+#: Tied alternatives named beside a selected effect (the closest first).
+MAX_TIED = 2
 #: Poses suggested per ambiguous pair, and random poses searched for them.
 N_SUGGESTED = 8
 N_SAMPLED = 2000
@@ -56,8 +61,10 @@ N_SAMPLED = 2000
 class Comparison:
     """A selected effect against an alternative in its place, on the same out-of-fold training poses.
 
-    ``p_value``: one-sided Wilcoxon that the selected model has smaller clipped errors; ``gain_pct``: its clipped
-    out-of-fold RMS gain over the swapped model; ``separable``: both beyond the selection's thresholds.
+    ``excess_pct``: how much larger the alternative model's clipped out-of-fold RMS is than the selected model's
+    (``100 (r_alt / r - 1)``); ``separable``: the excess beyond the practical margin; ``p_value``: one-sided Wilcoxon
+    that the selected model has smaller clipped errors (reported, not used); ``gain_pct``: the selected model's clipped
+    gain over the swapped one.
     """
 
     effect: str
@@ -67,12 +74,13 @@ class Comparison:
     rms_mm: float
     alternative_rms_mm: float
     separable: bool
-    note: str = ""  # set when no fit decides: the two have the same signature on any such data (the note says why)
+    excess_pct: float = float("nan")
+    margin_pct: float = 100.0 * PRACTICAL_MARGIN
 
     @property
     def alternative_label(self) -> str:
         """How the headline names the alternative."""
-        return "a torque-dependent joint stiffness" if self.note else self.alternative
+        return self.alternative
 
     def to_dict(self) -> dict:
         return dict(self.__dict__)
@@ -121,11 +129,9 @@ class Verdict:
 
     def _ambiguous_terms(self) -> str:
         """The selected effects with their indistinguishable alternatives, e.g. ``a + (b or c)``."""
-        alts, named = {}, set()
-        for c in self.comparisons:  # an alternative named by a fit is not named again by a note
-            if not c.separable and (c.effect, c.alternative) not in named:
-                named.add((c.effect, c.alternative))
-                alts.setdefault(c.effect, []).append(c.alternative_label)
+        alts = {}
+        for c in tied(self.comparisons):
+            alts.setdefault(c.effect, []).append(c.alternative_label)
         selected = self.selected or tuple(e for e in self.candidates if e in alts)
         terms = [" or ".join((e, *alts.get(e, ()))) for e in selected]
         if len(terms) == 1:
@@ -139,21 +145,32 @@ class Verdict:
                 "suggested_poses": None if self.suggestions is None else self.suggestions.to_dict(orient="records")}
 
 
-def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: float, alpha: float,
-                         min_gain: float) -> tuple:
-    """:class:`Comparison` of every selected effect of ``final`` with every candidate significant at its step.
+def tied(comparisons) -> list:
+    """The tied comparisons that are named: per selected effect its :data:`MAX_TIED` closest tied alternatives."""
+    out, count = [], {}
+    for c in sorted((c for c in comparisons if not c.separable), key=lambda c: c.excess_pct):
+        if count.get(c.effect, 0) < MAX_TIED:
+            out.append(c)
+            count[c.effect] = count.get(c.effect, 0) + 1
+    return out
 
-    ``evaluate(ctx, effects)`` fits a model not yet in ``evals`` (keys: evaluation labels). An alternative is beaten
-    (``separable``) by the selection's own rule at that step: ``p < alpha / Stage.n_tests`` and a clipped gain of at
-    least ``min_gain``.
+
+def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: float, alpha: float,
+                         min_gain: float, margin: float = PRACTICAL_MARGIN) -> tuple:
+    """:class:`Comparison` of every selected effect of ``final`` with every candidate that explains part of the residual
+    at its step (clipped gain over the step's base of at least ``min_gain``), fitted in its place.
+
+    ``evaluate(ctx, effects)`` fits a model not yet in ``evals`` (keys: evaluation labels). The alternative is tied
+    (``separable`` False) when its clipped out-of-fold RMS exceeds the selected model's by at most ``margin``
+    (:data:`PRACTICAL_MARGIN`); ``alpha`` is kept for the reported p-value's context only.
     """
     out = []
-    for i, e in enumerate(final.effects):
+    for e in final.effects:
         step = next((st for st in stages if st.selected == e), None)
         if step is None:
             continue
         for c in step.candidates:
-            if c.effect == e or c.effect in final.effects or not c.significant:
+            if c.effect == e or c.effect in final.effects or not c.applicable or not c.gain_pct >= 100.0 * min_gain:
                 continue
             swapped = tuple(c.effect if x == e else x for x in final.effects)
             label = "+".join(("geometric", *swapped))
@@ -161,25 +178,10 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
             evals[label] = ev
             p = paired_pvalue(ev.selection_stack, final.selection_stack, clip)
             r, r_alt = robust_rms(final.selection_mm, clip), robust_rms(ev.selection_mm, clip)
-            gain = 100.0 * (1.0 - r / r_alt)
-            level = alpha / max(1, step.n_tests)  # the level the selection itself used at this step
-            out.append(Comparison(e, c.effect, p, gain, rms(final.selection_mm), rms(ev.selection_mm),
-                                  bool(p < level and gain >= 100.0 * min_gain)))
+            excess = 100.0 * (r_alt / max(r, 1e-300) - 1.0)
+            out.append(Comparison(e, c.effect, p, 100.0 * (1.0 - r / r_alt), rms(final.selection_mm),
+                                  rms(ev.selection_mm), bool(excess > 100.0 * margin), excess, 100.0 * margin))
     return tuple(out)
-
-
-def stiffness_alternative(ctx, final) -> tuple:
-    """A :class:`Comparison` no fit can decide: backlash whose side the gravity torque sets moves each joint by a
-    function of that torque, as a joint stiffness that changes with torque does (a harmonic drive's soft zone at low
-    torque). Static gravity-loaded poses cannot tell them apart; only the approach direction can."""
-    if "backlash" not in final.effects or ctx.bases["backlash"].variant not in GRAVITY_SIDES:
-        return ()
-    r = rms(final.selection_mm)
-    note = (f"backlash ({ctx.bases['backlash'].variant}: the gear held on one flank by gravity) moves each joint by a "
-            "function of its gravity torque, as a joint stiffness that changes with torque (a soft zone at low "
-            "torque) does: no set of static gravity-loaded poses tells lost motion from such a stiffness; measure "
-            "poses approached from both directions at the same torque (with dir1..dirN) to separate them")
-    return (Comparison("backlash", "joint_compliance", None, None, r, r, False, note),)
 
 
 def _sample_poses(robot, q_train, n: int, seed: int) -> np.ndarray:
@@ -239,10 +241,14 @@ def separating_poses(ctx, pairs: list, evals: dict, *, n: int = N_SUGGESTED, n_s
             if len(picked) == n:
                 break
         qi = robot.q_to_interface(q[picked])
+        flags = extrapolation_flags(robot, ctx.train.q, q[picked])
+        out_j = outside_range(robot, ctx.train.q, q[picked])
         for k, i in enumerate(picked):
+            move = ", ".join(robot.joints[j].name for j in np.flatnonzero(out_j[k]))
             rows.append({"effect": e, "alternative": a,
                          **{f"q{j + 1}_{robot.joints[j].unit}": qi[k, j] for j in range(robot.n_joints)},
-                         "predicted_difference_mm": float(diff[i])})
+                         "predicted_difference_mm": float(diff[i]), "outside_training": bool(flags.flagged[k]),
+                         "joints_outside_training_range": move})
     return pd.DataFrame(rows)
 
 
@@ -258,13 +264,22 @@ def inconclusive_reasons(parameter_check, evals: dict, cal, test_stats: dict | N
     """
     out = _probe_offset_reasons(parameter_check)
     nominal, geometric, final = evals["nominal"], evals["geometric"], evals["final"]
-    for ev, fit, what in ((nominal, cal.nominal, "the registration is unstable out of fold: the nominal model's"),
-                          (geometric, cal.geometric, "the geometric model does not hold out of fold (too few poses "
-                                                     "for its parameters: the fits interpolate): its")):
+    checks = [(nominal, cal.nominal, "the registration is unstable out of fold: the nominal model's"),
+              (geometric, cal.geometric, "the geometric model does not hold out of fold (too few poses for its "
+                                         "parameters: the fits interpolate): its")]
+    if final.effects and final is not geometric:
+        checks.append((final, final.fit, f"the final model ({final.label}) does not hold out of fold (too few poses "
+                                         f"for its {len(final.param_names)} effect parameters beside the geometry: the "
+                                         "fits interpolate): its"))
+    for ev, fit, what in checks:
         oof, train = rms(ev.oof_mm), fit.rms_mm
         if oof > UNSTABLE_RATIO * train:
             out.append(f"{what} out-of-fold RMS {oof:.4g} mm is {oof / max(train, 1e-300):.3g} x its training RMS "
                        f"{train:.4g} mm (limit {UNSTABLE_RATIO:g} x)")
+    if final.effects and final is not geometric and rms(final.oof_mm) > (1 - min_gain) * rms(geometric.oof_mm):
+        out.append(f"the selected effect(s) do not lower the out-of-fold RMS of the training file by {100 * min_gain:g} "
+                   f"%: {rms(final.oof_mm):.4g} mm against the geometric model's {rms(geometric.oof_mm):.4g} mm (time "
+                   "blocks)")
     if test_stats is None:
         return out
     n, f = test_stats["nominal"], test_stats["final"]

@@ -4,7 +4,8 @@
 from __future__ import annotations
 
 from tolalloc.physics.thermal import time_problem
-from tolalloc.diagnose.verdict import Verdict
+from tolalloc.diagnose.scores import scheme_text
+from tolalloc.diagnose.verdict import Verdict, tied
 
 __all__ = ["verdict_of", "input_notes"]
 
@@ -15,6 +16,8 @@ def input_notes(ctx, stages: list) -> tuple[list, list]:
     Bad or missing columns, too few rows, and selected effects the test file cannot carry (their displacement is
     left out of its predictions, so its figures do not judge them)."""
     out, untested = [], []
+    out += list(getattr(ctx, "robust_notes", ()))
+    out += [n for n in getattr(ctx, "ratio_notes", ()) if "no frequency" not in n]
     why_t = time_problem(ctx.train.time_s)
     if why_t is not None and "thermal" in ctx.bases:
         out.append(f"thermal: only the temperature-driven variant was tested; the time-driven ones (warm-up, motion "
@@ -32,7 +35,7 @@ def input_notes(ctx, stages: list) -> tuple[list, list]:
     return out, untested
 
 
-def _selected_line(stages: list, e: str, effects: tuple) -> str:
+def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and joint-space blocks") -> str:
     """Why ``e`` is in the final model ``effects``: its forward step or, when that step's base holds an effect the
     backward elimination removed since, the backward test of keeping it beside the others (or, for the last effect
     left, its out-of-fold RMS against the geometric model's)."""
@@ -42,45 +45,53 @@ def _selected_line(stages: list, e: str, effects: tuple) -> str:
     c = next(c for c in fwd.candidates if c.effect == e)
     if set(fwd.base) <= set(effects):
         base = "+".join(("geometric", *fwd.base))
-        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {fwd.base_rms_mm:.4g} "
-                f"({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, p = {c.p_value:.2g})")
+        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
+                f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
+                f"p = {c.p_value:.2g})")
     back = [st for st in stages if st.selected is None and st.removed is None and tuple(st.base) == tuple(effects)]
     if back and len(effects) > 1:
         st = back[-1]
         k = next(k for k in st.candidates if k.effect == e)
         rest = "+".join(("geometric", *(x for x in effects if x != e)))
-        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {k.heldout_rms_mm:.4g} "
-                f"({rest}) to {st.base_rms_mm:.4g} mm beside the others (clipped gain {k.gain_pct:+.1f} %, "
-                f"p = {k.p_value:.2g})")
+        return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
+                f"{k.heldout_rms_mm:.4g} ({rest}) to {st.base_rms_mm:.4g} mm beside the others (clipped gain "
+                f"{k.gain_pct:+.1f} %, p = {k.p_value:.2g})")
     removed = [st for st in stages if st.removed is not None]
     last = removed[-1]
     final_rms = next(k.heldout_rms_mm for k in last.candidates if k.effect == last.removed)
-    return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file from {stages[0].base_rms_mm:.4g} "
-            f"(geometric) to {final_rms:.4g} mm; the backward elimination removed "
+    return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
+            f"{stages[0].base_rms_mm:.4g} (geometric) to {final_rms:.4g} mm; the backward elimination removed "
             f"{', '.join(st.removed for st in removed)} (not significant beside it)")
 
 
-def _best_line(stages: list) -> str:
+def _best_line(stages: list, alpha: float, min_gain: float) -> str:
+    """Why no candidate was selected, naming the criterion the best one failed."""
     if not stages:
         return "no candidate was tested"
     cands = [c for c in stages[0].candidates if c.applicable]
     if not cands:
         return "no candidate effect could be tested"
-    c = cands[0]
-    return (f"no candidate lowers the out-of-fold RMS significantly; the best, {c.effect}, changes it by "
-            f"{c.gain_pct:+.1f} % (p = {c.p_value:.2g})")
+    c, level = cands[0], alpha / max(1, stages[0].n_tests)
+    failed = []
+    if c.reason:
+        failed.append(c.reason)
+    if not c.gain_pct >= 100.0 * min_gain:
+        failed.append(f"its clipped gain {c.gain_pct:+.1f} % is below the minimum {100.0 * min_gain:g} %")
+    if not c.p_value < level:
+        failed.append(f"its p-value {c.p_value:.2g} is not below the level {level:.2g} (alpha {alpha:g} over "
+                      f"{stages[0].n_tests} candidates)")
+    return (f"no candidate effect is selected; the best, {c.effect} ({c.variant}), fails: " + "; ".join(failed)
+            if failed else f"no candidate effect is selected; the best is {c.effect}")
 
 
 def _pair_line(c) -> str:
-    if c.note:
-        return c.note
-    return (f"{c.effect} and {c.alternative} explain the training file about equally well: out-of-fold RMS "
-            f"{c.rms_mm:.4g} vs {c.alternative_rms_mm:.4g} mm, clipped gain {c.gain_pct:+.1f} % (p = {c.p_value:.2g}), "
-            "below the selection's thresholds")
+    return (f"{c.effect} and {c.alternative} in its place explain the training file within the practical margin: "
+            f"clipped out-of-fold RMS of {c.alternative} {c.excess_pct:+.1f} % against {c.effect} (margin "
+            f"{c.margin_pct:g} %; unclipped {c.rms_mm:.4g} vs {c.alternative_rms_mm:.4g} mm)")
 
 
 def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclusive: list, fallback_msgs,
-               safe: str, suggestions) -> Verdict:
+               safe: str, suggestions, alpha: float = 0.01, min_gain: float = 0.02) -> Verdict:
     """The :class:`~tolalloc.diagnose.verdict.Verdict` (precedence: inconclusive, none, ambiguous, effect)."""
     notes, untested = input_notes(ctx, stages)
     kw = dict(selected=tuple(final.effects), untested=tuple(untested))
@@ -93,19 +104,24 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
                  "whether an unmodelled effect is present", *fallback_msgs]
         return Verdict("inconclusive", (), tuple(first + notes), safe, comparisons, **kw)
     if not final.effects:
-        first = list(fallback_msgs) if fallback else [_best_line(stages)]
+        first = list(fallback_msgs) if fallback else [_best_line(stages, alpha, min_gain)]
         return Verdict("none", (), tuple(first + notes), safe, comparisons, **kw)
-    amb = [c for c in comparisons if not c.separable]
-    sel = [_selected_line(stages, e, final.effects) for e in final.effects]
+    amb = tied(comparisons)
+    scheme = scheme_text(getattr(ctx, "cv", "blocked"))
+    sel = [_selected_line(stages, e, final.effects, scheme) for e in final.effects]
     if amb:
         names = []
         for e in final.effects:
             names += [x for x in (e, *[c.alternative for c in amb if c.effect == e]) if x not in names]
         lines = [_pair_line(c) for c in amb] + sel
         if suggestions is not None and len(suggestions):
+            out_n = int(suggestions["outside_training"].sum())
             lines.append("poses that would separate them: suggested_poses (where the two fitted models' predictions "
-                         f"differ most, up to {suggestions['predicted_difference_mm'].max():.3g} mm)")
+                         f"differ most, up to {suggestions['predicted_difference_mm'].max():.3g} mm)"
+                         + (f"; {out_n} of {len(suggestions)} lie outside the training data, where both fits "
+                            "extrapolate (column joints_outside_training_range: the joints to move beyond their "
+                            "training range)" if out_n else ""))
         return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions, **kw)
-    sep = [f"{c.effect} beats {c.alternative} in its place (clipped gain {c.gain_pct:+.1f} %, p = {c.p_value:.2g})"
-           for c in comparisons]
+    sep = [f"{c.effect} beats {c.alternative} in its place: {c.alternative}'s clipped out-of-fold RMS is "
+           f"{c.excess_pct:+.1f} % larger, beyond the practical margin of {c.margin_pct:g} %" for c in comparisons]
     return Verdict("effect", tuple(final.effects), tuple(sel + sep + notes), safe, comparisons, **kw)

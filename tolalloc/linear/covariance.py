@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, describe, whole_number
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.units import unit_columns
@@ -232,14 +232,13 @@ class ErrorBudget:
         P = self.total.shape[0]
         if pose is None:
             return list(range(P))
-        if pose == "worst":
+        if isinstance(pose, str) and pose == "worst":
             return [self.worst_pose]
-        try:
-            idx = [int(p) for p in np.atleast_1d(pose)]
-        except (TypeError, ValueError):
-            raise TolallocError(f"pose: expected an index 0..{P - 1}, 'worst' or None, got {pose!r}.") from None
-        if any(i < 0 or i >= P for i in idx):
-            raise TolallocError(f"pose: expected indices 0..{P - 1}, got {pose!r}.")
+        items = list(np.ravel(np.asarray(pose, dtype=object))) if not isinstance(pose, (str, bytes, dict)) else None
+        idx = None if items is None or not items else [whole_number(p) for p in items]
+        if idx is None or any(i is None or i < 0 or i >= P for i in idx):
+            raise TolallocError(f"pose: expected a pose index 0..{P - 1} (whole numbers, 0-based), 'worst' or None, "
+                                f"got {describe(pose)}.")
         return idx
 
     def to_frame(self, pose=None, by: str = "parameter") -> pd.DataFrame:

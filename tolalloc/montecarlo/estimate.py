@@ -9,7 +9,7 @@ import pandas as pd
 
 from tolalloc.montecarlo.intervals import z_of_level
 
-__all__ = ["ProbabilityEstimate", "variance_reduction"]
+__all__ = ["ProbabilityEstimate", "variance_reduction", "fallback_text"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -105,9 +105,8 @@ class ProbabilityEstimate:
 
     def summary(self) -> dict:
         """JSON-ready block (poses 1-based in lists)."""
-        fb = sorted({f for f in self.fallback if f})
         return {"quantity": self.quantity, "radius": float(self.radius), "estimator_requested": self.requested,
-                "estimator": [str(e) for e in self.estimator], "fallback_reason": "; ".join(fb),
+                "estimator": [str(e) for e in self.estimator], "fallback_reason": fallback_text(self.fallback),
                 "n": [int(x) for x in self.n], "level": self.level,
                 "p_linear": self.p_linear.tolist(), "p_hat": self.p_hat.tolist(),
                 "ci": [[float(a), float(b)] for a, b in zip(self.ci_low, self.ci_high)],
@@ -125,8 +124,20 @@ class ProbabilityEstimate:
             vr = self.variance_reduction[sel]
             head += (f"; discordant samples {int(np.rint(self.n_discordant[sel].sum()))} of "
                      f"{int(self.n[sel].sum())}; variance reduction vs plain MC x{np.min(vr):.3g} - x{np.max(vr):.3g}")
-        fb = sorted({f for f in self.fallback if f})
-        return head + (f"; fallback to plain: {'; '.join(fb)}" if fb else "")
+        fb = fallback_text(self.fallback)
+        return head + (f"; fallback to plain: {fb}" if fb else "")
+
+
+def fallback_text(fallback) -> str:
+    """The reasons of a per-pose ``fallback`` tuple, each once, with the poses (from 1) it holds at when not at all
+    of them: ``"poor control: variance reduction x0.48 < 1, so plain Monte Carlo (pose 10)"``; "" when none."""
+    poses: dict = {}
+    for i, reason in enumerate(fallback):
+        if reason:
+            poses.setdefault(reason, []).append(i + 1)
+    every = len(fallback)
+    return "; ".join(reason if len(at) == every else f"{reason} (pose{'s' if len(at) > 1 else ''} "
+                     f"{', '.join(map(str, at))})" for reason, at in poses.items())
 
 
 def variance_reduction(p, n, var_est):

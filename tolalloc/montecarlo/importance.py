@@ -39,7 +39,7 @@ from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK
 from tolalloc.montecarlo.intervals import paired_difference_ci
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
-from tolalloc.montecarlo.paired import control_fallback_reason
+from tolalloc.montecarlo.paired import _check_budget, control_fallback_reason
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
 
 __all__ = ["importance_probability", "DEFENSIVE_ALPHA", "MIN_DISCORDANT", "proposal_scale"]
@@ -169,6 +169,7 @@ def importance_probability(model, q, n: int, seed: int = 0, *, radius_mm: float,
         raise TolallocError(f"alpha: expected the defensive weight strictly between 0 and 1 (e.g. 0.1), got {alpha!r}.")
     q = np.atleast_2d(model.robot.check_q(q, "q"))
     P = len(q)
+    _check_budget(model, P, n, "importance", n_jobs)
     spec = _IsSpec(model, q, n, seed, float(radius_mm), float(alpha))
     n_blocks = -(-int(n) // BLOCK_SIZE)
     tasks = ((i, b) for i in range(P) for b in range(n_blocks))

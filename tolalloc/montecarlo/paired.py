@@ -18,7 +18,7 @@ estimate carried alongside equals ``run_mc``'s for the same seed. Memory is boun
 When the linear probability is not the exact mean of the linear indicator -- a non-normal parameter with
 non-zero sigma (ring clearances, uniform or truncated errors) -- the paired estimator would be biased and
 ``estimator="auto"`` falls back to plain Monte Carlo of the same draws, saying why; so it does at a pose where
-the control is poor (variance reduction below 1).
+the control is poor (variance reduction below 1, with discordant draws to show it).
 """
 
 from __future__ import annotations
@@ -182,6 +182,7 @@ def paired_counts(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_r
     from tolalloc.exceptions import raise_if_interrupted
 
     q = np.atleast_2d(model.robot.check_q(q, "q"))
+    _check_budget(model, len(q), n, "paired", n_jobs)
     spec = _PairSpec(model, q, n, seed, radii_mm, angle_radii_rad, keep_samples)
     n_blocks = -(-int(n) // BLOCK_SIZE)
     tasks = ((b, b + 1) for b in range(n_blocks))
@@ -195,6 +196,19 @@ def paired_counts(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_r
             np.maximum(dev, d, out=dev)
             kept += k
     return PairedCounts(int(n), int(seed), counts, dev, np.concatenate(kept) if kept else None)
+
+
+def _check_budget(model, n_poses: int, n, kind: str, n_jobs) -> None:
+    """Refuse ``n`` samples at ``n_poses`` poses that cannot run within the time budget (:mod:`tolalloc.budget`)."""
+    from tolalloc.budget import chain_scale, check_count
+    from tolalloc.exceptions import whole_number
+
+    count = whole_number(n)
+    if count is None or count < 1:
+        raise TolallocError(f"n: expected a whole number of samples >= 1, got {n!r}.")
+    check_count(count, "n", f"samples at {n_poses} pose{'s' if n_poses != 1 else ''}", {kind: n_poses},
+                scale=chain_scale(len(model.params), model.robot.n_joints), threads=n_jobs or default_jobs(),
+                example="1000000", announce=False)
 
 
 # ----------------------------------------------------------------- estimate
@@ -215,10 +229,11 @@ def estimate_from_counts(pc: PairedCounts, j: int, radius: float, p_linear, *, q
     use_plain = np.full(len(c), estimator == "plain" or bool(model_reason))
     fallback = [model_reason if (model_reason and estimator != "plain") else "" for _ in range(len(c))]
     if estimator == "auto" and not model_reason:
-        poor = vr < 1.0
+        # a poor control shows in its discordant draws; with none, both intervals are the zero-count one (+-z^2 / n)
+        poor = (vr < 1.0) & (b + cc > 0)
         use_plain |= poor
         for i in np.flatnonzero(poor):
-            fallback[i] = f"poor control at pose {i + 1}: variance reduction x{vr[i]:.2g} < 1, so plain Monte Carlo"
+            fallback[i] = f"poor control: variance reduction x{vr[i]:.2g} < 1, so plain Monte Carlo"
     est = np.where(use_plain[:, None], plain, paired)
     return ProbabilityEstimate(quantity, float(radius), estimator, np.where(use_plain, "plain", "paired"),
                                tuple(fallback), n.astype(int), p_lin, est[:, 0], est[:, 1], est[:, 2], plain[:, 0], plain[:, 1],

@@ -21,7 +21,6 @@ few blocks per worker plus ``keep_samples`` (10^8 samples run in well under 1 GB
 from __future__ import annotations
 
 import contextlib
-import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,7 +31,7 @@ from tolalloc.errormodel.model import ErrorModel
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
 from tolalloc.engine import resolve_engine
-from tolalloc.progress import show_progress
+from tolalloc.progress import new_bar, show_progress
 from tolalloc.errormodel.sampling import sample_values
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, McSpec, run_blocks
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
@@ -41,9 +40,9 @@ from tolalloc.montecarlo.radii import RadiusTable
 from tolalloc.units import unit_columns
 
 __all__ = ["BLOCK_SIZE", "SUB_BLOCK", "FastChain", "pose_errors", "McResult", "run_mc", "proportion_ci",
-           "sample_values", "generic_pose_errors", "McHistogram"]
+           "sample_values", "generic_pose_errors", "McHistogram", "sample_work", "check_samples_budget"]
 
-#: Runs of at least this many samples show a progress bar when stderr is a terminal.
+#: Runs of at least this many samples show their progress by default (progress=None).
 PROGRESS_MIN_N = 10**7
 
 
@@ -264,7 +263,8 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
         ``distributed.Client``
         Where blocks run (:mod:`tolalloc.montecarlo.parallel`); never changes the numbers.
     progress : bool, optional
-        Progress bar on stderr; default: when ``n >= PROGRESS_MIN_N`` and stderr is a terminal.
+        Progress on stderr (:mod:`tolalloc.progress`: a bar on a terminal, one line when done in a log); default:
+        when ``n >= PROGRESS_MIN_N``.
     hist_bins : int
         If > 0, accumulate fixed-range ``hist_bins x hist_bins`` histograms of ``p' - p`` on the x-y,
         x-z and y-z planes over all samples (``McResult.hist``).
@@ -284,15 +284,12 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     q, n, radii, aradii = _checked_args(model, q, n, radii_mm, angle_radii_rad, ci)
     scheduler = check_scheduler(scheduler)
     _check_estimator_arg(estimator)
+    check_samples_budget(model, len(q), n, estimator if (radii or aradii) else None, n_jobs)
     hist = _hist_spec(model, q, hist_bins, hist_range_mm) if hist_bins else None
     spec = McSpec(model, q, n, int(seed), radii, aradii, hist, int(keep_samples), resolve_engine(engine))
     tasks = _tasks(n, scheduler, chunk_size)
-    show = progress if progress is not None else (n >= PROGRESS_MIN_N and show_progress(None))
-    bar = None
-    if show:
-        from tqdm import tqdm
-
-        bar = tqdm(total=n, unit="sample", unit_scale=True, file=sys.stderr, desc="Monte Carlo", leave=False)
+    show = show_progress(progress) and (progress is not None or n >= PROGRESS_MIN_N)
+    bar = new_bar("Monte Carlo", total=n, unit="sample", unit_scale=True) if show else None
     P = len(q)
     moms = [Moments() for _ in range(P)]
     ext, kept = None, []
@@ -320,6 +317,31 @@ def run_mc(model: ErrorModel, q, n: int, seed: int = 0, *, radii_mm=(), angle_ra
     from dataclasses import replace
 
     return replace(res, **_estimates(model, q, n, int(seed), radii, aradii, estimator, scheduler, n_jobs))
+
+
+def sample_work(model: ErrorModel, n_poses: int, estimator: str | None = None) -> tuple:
+    """``(kinds, scale)`` of one sampled robot of :func:`run_mc` at ``n_poses`` poses for :mod:`tolalloc.budget`:
+    the plain pass, plus the paired pass over the same draws and the importance-sampling draws of ``estimator``."""
+    from tolalloc.budget import chain_scale
+
+    kinds = {"mc": n_poses}
+    if estimator is not None:
+        kinds["paired"] = n_poses
+    if estimator == "importance":
+        kinds["importance"] = n_poses
+    return kinds, chain_scale(len(model.params), model.robot.n_joints)
+
+
+def check_samples_budget(model: ErrorModel, n_poses: int, n: int, estimator: str | None = None,
+                         n_jobs: int | None = None, *, argument: str = "n", announce: bool = True):
+    """Refuse ``n`` samples at ``n_poses`` poses that cannot finish within the time budget, announce a long run
+    (:func:`tolalloc.budget.check_count`); returns the estimate."""
+    from tolalloc.budget import check_count
+
+    kinds, scale = sample_work(model, n_poses, estimator)
+    what = f"samples at {n_poses} pose{'s' if n_poses != 1 else ''}"
+    return check_count(n, argument, what, kinds, scale=scale, threads=n_jobs or default_jobs(), example="1000000",
+                       announce=announce)
 
 
 def _check_estimator_arg(estimator) -> None:

@@ -28,7 +28,7 @@ from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.linear.covariance import input_covariance, variance_share
 
-__all__ = ["jansen_indices", "factor_groups", "SobolResult", "sobol_indices"]
+__all__ = ["jansen_indices", "factor_groups", "SobolResult", "sobol_indices", "check_sobol_budget"]
 
 
 def jansen_indices(fA: np.ndarray, fB: np.ndarray, fAB: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -146,6 +146,23 @@ def _evaluate(chain, prog, p0, A, vals: np.ndarray, chunk: int = 8192):
     return nl, li
 
 
+def _bytes_per_sample(model) -> float:
+    """Memory of one base sample [bytes]: A, B, one A_B per factor and the outputs (5 K + 4 numbers, 16 bytes each)."""
+    return 16.0 * (5 * len(model.params) + 4)
+
+
+def check_sobol_budget(model, n: int, *, argument: str = "n", announce: bool = False):
+    """Refuse ``n`` base samples whose chain evaluations (``n (F + 2)``, ``F`` the factor groups) cannot run within
+    the time budget or whose samples do not fit in memory (:func:`tolalloc.budget.check_count`); returns the
+    estimate."""
+    from tolalloc.budget import chain_scale, check_count
+
+    evals = len(factor_groups(model)) + 2
+    return check_count(int(n), argument, "Sobol' base samples", {"sobol": evals},
+                       scale=chain_scale(len(model.params), model.robot.n_joints),
+                       bytes_each=_bytes_per_sample(model), example="4096", announce=announce)
+
+
 def sobol_indices(model, q, n: int = 2**13, seed: int = 0, *, radius_mm: float | None = None,
                   flag_diff: float = 0.05) -> SobolResult:
     """Sobol' indices of the position error at one pose from the nonlinear model (see the module docstring).
@@ -173,8 +190,9 @@ def sobol_indices(model, q, n: int = 2**13, seed: int = 0, *, radius_mm: float |
     groups = factor_groups(model)
     if not groups:
         raise TolallocError("model: every error parameter has sigma 0; nothing varies, no Sobol' indices.")
-    rng = np.random.default_rng(seed)
     n = int(n)
+    check_sobol_budget(model, n)
+    rng = np.random.default_rng(seed)
     Amat, Bmat = model.sample(n, rng), model.sample(n, rng)
     chain = FastChain(model)
     prog = chain.program(q)

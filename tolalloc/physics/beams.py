@@ -1,19 +1,17 @@
-"""Link deflection: the arm segments bend as cantilevers under their own weight, the distal masses and the payload.
+"""Link deflection: the arm segments bend and twist as cantilevers under the masses they carry and the payload.
 
 A *segment* runs from a revolute joint to the next revolute joint (spanning prismatic strokes, so a telescopic
-stage's lever arm grows with its joint) or to the flange (:func:`deflection_segments`). Under the transverse part
-of gravity (``cos(phi)`` of the weight, ``phi`` the segment's elevation) an Euler-Bernoulli cantilever of length
-``L`` with a distributed load ``w`` and an end load ``F`` drops at its end by::
-
-    drop = (w L^4 / 8 + F L^3 / 3) cos(phi) / (E I)  +  (w L^2 / 2 + F L) cos(phi) / (kappa G A)   (shear)
-    slope = (w L^3 / 6 + F L^2 / 2) cos(phi) / (E I)
-
-and the slope turns everything beyond it: the target moves by ``drop g + slope (axis x (p - end))``, ``axis`` the
-horizontal bending axis. With the section and material of the robot file (:class:`~tolalloc.robot.components.LinkSection`)
-:func:`beam_sag` gives the displacement in mm with no free parameter (the design's model). Without them the
-diagnosis fits the coefficients of the load shapes (:func:`beam_columns`): ``tip`` (one ``k h^3`` drop per
-segment, ``h`` its horizontal overhang [m]), ``beam`` (own weight ``w`` and end load ``f`` columns, plus ``fp``:
-the end load of a logged payload that changes between poses).
+stage's lever arm grows with its joint) or to the flange (:func:`deflection_segments`). Every mass carried after
+its first joint (the robot's mass model) and the payload at the target is a point load where it sits; the internal
+moment ``M(s)`` at each section (its bending part about the axes across the segment, its torsion part about the
+segment axis) turns the section by ``C M(s) ds``, ``C = (I - e e^T) / EI + e e^T / GJ``, and the turn of every
+section moves all points beyond it (:func:`_load_integrals`, integrated in closed form). A load ``F`` at the end of
+a horizontal cantilever gives the textbook ``F L^3 / 3EI``, a mass beyond the end its moment, a mass beside the axis
+a twist. With the section and material of the robot file (:class:`~tolalloc.robot.components.LinkSection`)
+:func:`beam_sag` gives the displacement in mm with no free parameter (the design's model, shear ``F / kGA``
+included). Without them the diagnosis fits the compliances of the same load shapes (:func:`beam_columns`): ``tip``
+(one ``k h^3`` drop per segment, ``h`` its horizontal overhang [m]), ``beam`` (``1/EI`` and ``1/GJ`` per segment),
+``beam+w`` (also a distributed own weight the mass model lacks), ``beam+tip`` (also an unknown mass at the target).
 
 A telescopic stage also tilts in its guide (:func:`guide_columns`): bearing compliance or clearance, by ``g M``
 [rad per N m] with ``M`` the bending moment of the masses beyond the guide about the guide point.
@@ -30,7 +28,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import G, mass_points, point_at
 
 __all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_columns", "guide_joints",
-           "guide_columns", "segment_section", "beam_sag"]
+           "guide_columns", "segment_section", "segment_loads", "beam_sag"]
 
 #: Segments whose horizontal overhang never reaches this [mm] do not bend measurably.
 MIN_OVERHANG_MM = 200.0
@@ -69,30 +67,82 @@ def segment_geometry(robot: Robot, q, j: int, k: int | None):
     return end, h, Lh / np.maximum(h, 1e-9)[:, None], np.linalg.norm(L, axis=1)
 
 
-def _move(drop, slope, g, arm):
-    """Target displacement (P, 3) of a segment end dropping by ``drop`` [mm] and turning by ``slope`` [rad]."""
-    return drop[:, None] * g + slope[:, None] * arm
+def _load_integrals(start, e, L, loads, p) -> dict:
+    """End-displacement integrals of a cantilever segment (start (P, 3) [mm], unit axis ``e`` (P, 3), length ``L``
+    (P,) [mm]) under point forces ``loads = [(F (P, 3) [N], at (P, 3) [mm])]``, at the points ``p`` (P, 3) beyond it.
+
+    The internal moment at station ``s`` is ``M(s) = sum (c - x(s)) x F`` over the loads whose projection ``a`` lies
+    beyond ``s`` (``x(s) = start + s e``); the section turns by ``C M(s) ds`` with the compliance
+    ``C = b (I - e e^T) + t e e^T`` (bending ``b = 1/EI``, torsion ``t = 1/GJ``), which moves ``p`` by
+    ``C M(s) ds x (p - x(s))``; shear moves everything beyond ``s`` by ``F_perp ds / kGA``. Integrated in closed form
+    (``M`` linear in ``s``): ``{"bend": (P, 3) [N mm^3], "twist": ..., "shear": (P, 3) [N mm]}`` per unit
+    ``b``, ``t`` and ``1/kGA``."""
+    out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
+    p0 = p - start
+    along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
+    for F, c in loads:
+        r = c - start
+        a = np.clip(np.einsum("pi,pi->p", r, e), 0.0, L)[:, None]
+        m0, m1 = np.cross(r, F), np.cross(e, F)
+        for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
+            c0, c1 = C(m0), C(m1)
+            out[key] += (a * np.cross(c0, p0) - a ** 2 / 2 * (np.cross(c0, e) + np.cross(c1, p0))
+                         + a ** 3 / 3 * np.cross(c1, e))
+        out["shear"] += a * (F - along_e(F))
+    return out
+
+
+def segment_loads(robot: Robot, masses, j: int, p_t, kg_at_target=None) -> list:
+    """Gravity point loads ``[(F (P, 3) [N], at (P, 3) [mm])]`` a segment from joint ``j`` carries: every mass after
+    joint ``j`` and ``kg_at_target`` (P,) at the target points ``p_t``."""
+    g = G * np.asarray(robot.gravity, dtype=float)
+    loads = [(np.broadcast_to(m.mass_kg * g, c.shape), c) for m, c in masses if m.body > j]
+    if kg_at_target is not None:
+        loads.append((np.asarray(kg_at_target, float).reshape(-1, 1) * g, p_t))
+    return loads
+
+
+def _weight_loads(robot: Robot, start, e, L) -> list:
+    """A distributed weight of 1 kg/m along the segment as point loads at Gauss-Legendre nodes: the end displacement
+    of a load at distance ``a`` is a cubic in ``a``, so the 2-node rule integrates it exactly."""
+    g = G * np.asarray(robot.gravity, dtype=float)
+    x, w = np.polynomial.legendre.leggauss(2)
+    return [(np.broadcast_to(g, start.shape) * (L * wi / 2 / 1000.0)[:, None],
+             start + e * (L * (1 + xi) / 2)[:, None]) for xi, wi in zip(x, w)]
 
 
 def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) -> tuple:
-    """Target-displacement basis of link deflection, ``B`` (P, 3, M) per unit coefficient, and names (module doc)."""
+    """Target-displacement basis of link deflection, ``B`` (P, 3, M) per unit coefficient, and names.
+
+    ``tip``: one ``k h^3`` drop per segment. ``beam``: per segment the bending ``e`` and torsion ``r`` of the robot's
+    mass model and the logged payload (:func:`_load_integrals`: each mass a point load where it sits, its moment
+    about every section), coefficients ``1/EI`` and ``1/GJ`` [1/(MN m^2)]; ``beam+w`` also the bending of a
+    distributed own weight the mass model lacks (``w``, [1/(MN m^2)] per kg/m); ``beam+tip`` also the bending of an
+    unknown mass at the target (``t``, [1/(MN m^2)] per kg)."""
     g = np.asarray(robot.gravity, dtype=float)
-    pay = None if payload_kg is None or np.ptp(payload_kg) <= 0 else np.asarray(payload_kg, float)
     cols, names = [], []
+    masses = mass_points(robot, q)
+    Pm = poe_prefix(robot.screws, q)
     for j, k, _ in deflection_segments(robot):
         end, h, u, L = segment_geometry(robot, q, j, k)
-        arm = np.cross(np.cross(u, g), p_t - end)
-        hm, Lm, cphi = h / 1000.0, L / 1000.0, h / np.maximum(L, 1e-9)
+        nm = robot.joints[j].name
         if variant == "tip":
-            terms = [("k", hm ** 3, 1.5e-3 * hm ** 2, "mm/m^3")]
-        else:  # own weight (w) and end load (f); a logged payload's end load (fp) when it varies
-            terms = [("w", Lm ** 4 / 8 * cphi, 1e-3 * Lm ** 3 / 6 * cphi, "mm/m^4"),
-                     ("f", Lm ** 3 / 3 * cphi, 1e-3 * Lm ** 2 / 2 * cphi, "mm/m^3")]
-            if pay is not None:
-                terms.append(("fp", pay * Lm ** 3 / 3 * cphi, pay * 1e-3 * Lm ** 2 / 2 * cphi, "mm/(kg m^3)"))
-        for lab, drop, slope, unit in terms:
-            cols.append(_move(drop, slope, g, arm))
-            names.append(f"{lab}_{robot.joints[j].name} [{unit}]")
+            hm = h / 1000.0
+            cols.append(hm[:, None] ** 3 * g + (1.5e-3 * hm ** 2)[:, None] * np.cross(np.cross(u, g), p_t - end))
+            names.append(f"k_{nm} [mm/m^3]")
+            continue
+        start = point_at(Pm[:, j], robot.joint_points_mm[j])
+        e = (end - start) / np.maximum(L, 1e-9)[:, None]
+        I = _load_integrals(start, e, L, segment_loads(robot, masses, j, p_t, payload_kg), p_t)
+        terms = [("e", I["bend"]), ("r", I["twist"])]
+        if variant == "beam+w":
+            terms.append(("w", _load_integrals(start, e, L, _weight_loads(robot, start, e, L), p_t)["bend"]))
+        if variant == "beam+tip":
+            tip = [(G * np.broadcast_to(g, p_t.shape), p_t)]
+            terms.append(("t", _load_integrals(start, e, L, tip, p_t)["bend"]))
+        for lab, B in terms:
+            cols.append(1e-12 * B)  # [N mm^3] x 1/(MN m^2) = 1e-12 / (N mm^2)
+            names.append(f"{lab}_{nm} [1/(MN m^2)]")
     return (np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))), names
 
 
@@ -140,33 +190,27 @@ def segment_section(robot: Robot, j: int, k: int | None):
     return best
 
 
-def _segment_loads(j: int, k: int | None, masses, payload_kg) -> tuple:
-    """Mass [kg] on the segment (the robot's masses between its joints) and beyond its end (with the payload)."""
-    own = sum(m.mass_kg for m, _ in masses if m.body > j and (k is None or m.body <= k))
-    distal = sum(m.mass_kg for m, _ in masses if k is not None and m.body > k)
-    pay = 0.0 if payload_kg is None else np.asarray(payload_kg, float)
-    return own, distal + pay
-
-
 def beam_sag(robot: Robot, q, p_t, payload_kg=None) -> np.ndarray:
-    """Target displacement [mm] (P, 3) of the segments with a section in the robot file, bending and shear under
-    their own masses (spread along the segment), the distal masses and the payload at the target (module
-    docstring). Segments without a section do not bend here."""
-    g = np.asarray(robot.gravity, dtype=float)
+    """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``), torsion
+    (``GJ``, ``J = 2 I``: exact for round tubes and bars, an approximation for a box) and shear (``kGA``) under every
+    mass the segment carries as a point load where it sits and the payload at the target (:func:`_load_integrals`),
+    plus the section's own weight where the robot file puts no mass on the segment. Segments without a section do not
+    bend here."""
     masses = mass_points(robot, q)
+    Pm = poe_prefix(robot.screws, q)
     out = np.zeros((len(q), 3))
     for j, k, _ in deflection_segments(robot):
         sec = segment_section(robot, j, k)
         if sec is None:
             continue
-        end, h, u, L = segment_geometry(robot, q, j, k)
-        own_kg, end_kg = _segment_loads(j, k, masses, payload_kg)
-        # [N/mm]: the robot's masses on the segment spread along it, or the section's own weight without them
-        w = own_kg * G / np.maximum(L, 1e-9) if own_kg > 0 else sec.area_mm2 * sec.density_kg_per_mm3 * G
-        F = end_kg * G
-        cphi = h / np.maximum(L, 1e-9)
-        drop = ((w * L ** 4 / 8 + F * L ** 3 / 3) / sec.EI_Nmm2
-                + (w * L ** 2 / 2 + F * L) / sec.shear_stiffness_N) * cphi
-        slope = (w * L ** 3 / 6 + F * L ** 2 / 2) / sec.EI_Nmm2 * cphi
-        out += _move(drop, slope, g, np.cross(np.cross(u, g), p_t - end))
+        end, _, _, L = segment_geometry(robot, q, j, k)
+        start = point_at(Pm[:, j], robot.joint_points_mm[j])
+        e = (end - start) / np.maximum(L, 1e-9)[:, None]
+        loads = segment_loads(robot, masses, j, p_t, payload_kg)
+        if not any(m.body > j and (k is None or m.body <= k) for m, _ in masses):
+            per_kg_m = sec.area_mm2 * sec.density_kg_per_mm3 * 1e3  # [kg/m]
+            loads += [(F * per_kg_m, c) for F, c in _weight_loads(robot, start, e, L)]
+        I = _load_integrals(start, e, L, loads, p_t)
+        out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / (sec.shear_modulus_MPa * 2 * sec.inertia_mm4)
+                + I["shear"] / sec.shear_stiffness_N)
     return out

@@ -34,7 +34,7 @@ __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_lo
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
 #: Shape parameters of the ``hardening`` law: T0 as a fraction of the joint's largest load.
-HARDENING_FRACTIONS = (0.1, 0.25, 0.5)
+HARDENING_FRACTIONS = (0.2, 0.4)
 MOUNT_VARIANTS = ("isotropic", "axes")
 
 

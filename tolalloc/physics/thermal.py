@@ -174,7 +174,8 @@ def link_growth(robot: Robot, q: np.ndarray) -> tuple:
         if lk.length_mm > 0:
             cols.append(prefix[:, site, :3, :3] @ lk.vector_mm)
             names.append(lk.name)
-    return 1e-6 * np.stack(cols, axis=-1), tuple(names)
+    grow = np.stack(cols, axis=-1) if cols else np.zeros((len(prefix), 3, 0))
+    return 1e-6 * grow, tuple(names)
 
 
 def link_joint_matrix(robot: Robot) -> np.ndarray:

@@ -10,6 +10,7 @@ import pandas as pd
 
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.verdict import MAX_ERROR_RATIO, UNSTABLE_RATIO
+from tolalloc.diagnose.scores import scheme_text
 from tolalloc.report.tables import markdown_table
 from tolalloc.robot.columns import joint_column_names
 
@@ -89,11 +90,13 @@ def verdict_lines(d: Diagnosis) -> list:
         lines.append("poses that would separate the ambiguous effects (joints in deg / mm; predicted difference of "
                      "the two fitted models):")
         lines += ["  " + ln for ln in v.suggestions.to_string(index=False, float_format="%.3f").splitlines()]
-    if d.outliers:
-        shown = ", ".join(f"{o['row']} ({o['error_mm']:.3g} mm)" for o in d.outliers[:10])
-        more = f" and {len(d.outliers) - 10} more" if len(d.outliers) > 10 else ""
-        lines.append(f"outliers: {len(d.outliers)} training rows with a residual beyond the robust fit's threshold "
-                     f"({d.settings['robust_loss'] if d.settings else 'robust'} loss): rows {shown}{more}")
+    loss = d.settings['robust_loss'] if d.settings else 'robust'
+    for stage in ("nominal", "geometric", "final"):
+        rows = [o for o in d.outliers if o.get("stage") == stage]
+        if rows:
+            shown = ", ".join(f"{o['row']} ({o['error_mm']:.3g} mm, weight {o['weight']:.2f})" for o in rows[:10])
+            more = f" and {len(rows) - 10} more" if len(rows) > 10 else ""
+            lines.append(f"down-weighted by the {stage} fit ({loss} loss): {len(rows)} training rows: {shown}{more}")
     return lines
 
 
@@ -102,6 +105,11 @@ def _final_name(d: Diagnosis) -> str:
     if d.verdict is not None and d.verdict.verdict == "inconclusive" and d.effects:
         return "final model, selected on the training file but not claimed"
     return "final model"
+
+
+def _prob(p: float) -> str:
+    """A family's posterior probability as printed (``n/a`` when the residual cannot weigh the families)."""
+    return f"{p:.2f}" if np.isfinite(p) else "n/a"
 
 
 def summary_lines(d: Diagnosis) -> list:
@@ -125,7 +133,8 @@ def summary_lines(d: Diagnosis) -> list:
         lines += d.before_after("test")[cols].to_string(index=False, float_format="%.4f").splitlines()
     folds = len(d.nominal.oof_mm)
     lines.append(f"cross-validation on the training file ({d.train.n_poses} poses, {folds} out-of-fold "
-                 "predictions) [mm]:")
+                 f"predictions, {scheme_text(d.settings.get('cv', 'blocked') if d.settings else 'blocked', False)}) "
+                 "[mm]:")
     lines += d.before_after("cv")[cols].to_string(index=False, float_format="%.4f").splitlines()
     if d.test is not None:
         lines.append(f"worst test poses ({_final_name(d)}; joints in deg / mm; extrapolation 1: outside the training "
@@ -138,15 +147,19 @@ def summary_lines(d: Diagnosis) -> list:
                      + (f"; {d.uncertainty_scope()}" if d.uncertainty_scope() else ""))
     lines += [f"GUARD: {g}" for g in d.guards] or ["guards: none fired"]
     lines += [f"note: {f}" for f in d.findings]
-    lines.append("ranking (by the clipped out-of-fold RMS of the training file, the selection's score; unclipped "
-                 "beside it; the test file is sealed):")
+    cv = scheme_text(d.settings.get("cv", "blocked") if d.settings else "blocked")
+    lines.append(f"ranking (by the clipped out-of-fold RMS of the training file over {cv}, the selection's score; unclipped "
+                 "beside it; posterior probability from the marginal likelihood; the test file is sealed):")
     for c in d.ranking:
         if c.applicable:
             flag = "" if c.significant else "  not significant" + (f": {c.reason}" if c.reason else "")
             lines.append(f"  {c.effect:17s} clipped RMS {c.robust_rms_mm:.4f} mm (unclipped {c.heldout_rms_mm:.4f})  "
-                         f"p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
+                         f"P={_prob(c.probability)}  p={c.p_value:.2e}  gain {c.gain_pct:+.1f} %  ({c.variant}){flag}")
         else:
             lines.append(f"  {c.effect:17s} not testable: {c.reason}")
+    p_none = d.family_probability_none
+    if p_none is not None:
+        lines.append(f"  {'(no effect)':17s} P={p_none:.2f}")
     return lines
 
 
@@ -224,7 +237,8 @@ def _verdict_section(d: Diagnosis, out: Path, prefix: str) -> list:
                   "most, within the joint limits; joints in deg / mm):", "", markdown_table(v.suggestions), ""]
     if d.outliers:
         d.outliers_frame().to_csv(out / f"{prefix}outliers.csv", index=False)
-        lines += [f"Outliers ({len(d.outliers)} training rows beyond the robust fit's threshold; `outliers.csv`):",
+        lines += [f"Down-weighted training rows ({len(d.outliers)} rows over the nominal, geometric and final fits, "
+                  "each with its error and robust weight; `outliers.csv`):",
                   "", markdown_table(d.outliers_frame().head(20)), ""]
     if len(d.effects) > 1:
         lines += [f"Final model: `{d.final.label}`.", ""]

@@ -168,6 +168,10 @@ def figure_uri(fig, fmt: str = "svg", dpi: int = 110) -> str:
     import matplotlib
     import matplotlib.pyplot as plt
 
+    if not hasattr(fig, "savefig"):  # the Axes (or array of Axes) a result's plot_* method returns
+        import numpy as np
+
+        fig = np.ravel(np.asarray(fig, dtype=object))[0].figure
     rc, kw = _savefig_options(fmt)
     buf = io.BytesIO()
     try:

@@ -24,7 +24,7 @@ __all__ = ["TABLE_COLUMNS", "UNIT_PAIRS_LEGEND", "display_frame", "write_tables"
 
 #: Columns of the printed / Markdown / LaTeX table (CSV has every column of ``to_frame``).
 TABLE_COLUMNS = ["parameter", "kind", "role", "nominal_mm", "tol_mm", "tol_deg", "grade", "process", "sigma_mm",
-                 "sigma_deg", "cost", "variance_share_pct", "at_limit"]
+                 "sigma_deg", "cost", "variance_share_pct", "at_limit", "callout"]
 
 #: The legend's sentence on the column pairs, shared by every tolerance table.
 UNIT_PAIRS_LEGEND = ("Columns ending in _mm hold the length rows (mm), those ending in _deg the angle rows (deg); the "
@@ -32,7 +32,7 @@ UNIT_PAIRS_LEGEND = ("Columns ending in _mm hold the length rows (mm), those end
                      "grade applies to.")
 
 #: Columns left out of the printed tables when no row has a value (no processes, no link lengths, no grades).
-OPTIONAL_COLUMNS = ("nominal_mm", "grade", "process")
+OPTIONAL_COLUMNS = ("nominal_mm", "grade", "process", "callout")
 
 _TOLERANCE_PREFIXES = ("tol_",)
 

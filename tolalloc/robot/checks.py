@@ -14,7 +14,7 @@ from tolalloc.exceptions import TolallocError, describe
 from tolalloc.robot.elements import REVOLUTE, Joint, Link
 from tolalloc.units import check_chain_units
 
-__all__ = ["check_chain", "check_reserved_names", "RESERVED_NAMES"]
+__all__ = ["check_chain", "check_reserved_names", "check_fields", "check_named_sets", "joint_array", "RESERVED_NAMES"]
 
 #: names the library gives a meaning of its own: the pose set of the nominal joint values, the box of the joint
 #: limits, the generic sigma set; a robot file's set of the same name would never be used
@@ -99,3 +99,79 @@ def check_reserved_names(who: str, *, pose_sets=(), regions=(), sigma_sets=()) -
 
 _MEANING = {"pose set": "the nominal joint values", "region": "the box of the joint limits",
             "sigma set": "the library's generic sigmas"}
+
+
+def check_fields(name, chain, description, masses, gravity, named: dict) -> tuple:
+    """The plain fields of a robot, before its chain is read: ``(chain, masses, gravity)`` as a tuple of elements, a
+    tuple of :class:`~tolalloc.robot.elements.Mass` and a unit 3-vector; ``named``: the fields
+    ``pose_sets``, ``regions`` and ``sigma_sets``, each a dict keyed by names (their entries: :func:`check_named_sets`).
+    """
+    from tolalloc.robot.elements import Mass
+
+    if not isinstance(name, str) or not name.strip():
+        raise TolallocError(f"robot name: expected a non-empty string, got {describe(name)}.")
+    who = f"robot {name!r}"
+    if not isinstance(chain, (tuple, list)) or not chain:
+        raise TolallocError(f"{who}: chain {describe(chain)}; expected a tuple of Link and Joint elements from the "
+                            "base (at least one joint).")
+    if not isinstance(description, str):
+        raise TolallocError(f"{who}: description: expected a string, got {describe(description)}.")
+    for field, value in named.items():  # pose_sets, regions, sigma_sets
+        if not isinstance(value, dict) or not all(isinstance(k, str) and k.strip() for k in value):
+            raise TolallocError(f"{who}: {field} {describe(value)}; expected a dict with names (strings) as keys.")
+    if not isinstance(masses, (tuple, list)) or not all(isinstance(m, Mass) for m in masses):
+        raise TolallocError(f"{who}: masses {describe(masses)}; expected a tuple of Mass elements (or none).")
+    g = _floats(gravity, "gravity (a direction in the base frame)", (3,), who)
+    norm = float(np.linalg.norm(g))
+    if norm == 0:
+        raise TolallocError(f"{who}: gravity [0, 0, 0] has no direction; expected e.g. [0, 0, -1].")
+    return tuple(chain), tuple(masses), g / norm
+
+
+def check_named_sets(robot) -> None:
+    """The pose sets (finite joint values inside the limits, shape (P, n) [rad, mm]), regions (``(q_min, q_max)``,
+    one value per joint each, ``q_min <= q_max``) and sigma sets (dicts) of ``robot``; masses carried by joints it
+    has. The pose sets are stored as float arrays (P, n)."""
+    who, n = f"robot {robot.name!r}", robot.n_joints
+    sets = {}
+    for key, q in robot.pose_sets.items():
+        arr = robot.check_q(q, f"{who}, pose set {key!r}")
+        sets[key] = np.atleast_2d(arr)
+    object.__setattr__(robot, "pose_sets", sets)
+    for key, box in robot.regions.items():
+        try:
+            lo_hi = np.array(box, dtype=float)
+        except (TypeError, ValueError):
+            lo_hi = None
+        if lo_hi is None or lo_hi.shape != (2, n) or np.isnan(lo_hi).any() or np.any(lo_hi[0] > lo_hi[1]):
+            raise TolallocError(f"{who}, region {key!r}: {describe(box)}; expected (q_min, q_max) with {n} joint "
+                                "values each [rad, mm], q_min <= q_max.")
+    for key, entry in robot.sigma_sets.items():
+        if not isinstance(entry, dict):
+            raise TolallocError(f"{who}, sigma set {key!r}: {describe(entry)}; expected a dict (as a robot file's "
+                                "[sigma_sets.NAME] table).")
+    for m in robot.masses:
+        if m.body > n:
+            raise TolallocError(f"{who}, mass {m.name}: body {m.body}; expected at most the robot's {n} joints.")
+
+
+def joint_array(q, n: int, robot: str, name: str = "q", units: str = "rad / mm", finite: bool = True) -> np.ndarray:
+    """``q`` as a float array of shape (..., n) for robot ``robot`` (its name): numbers (no bools or strings), one
+    per joint in the last axis, no NaN (and, with ``finite``, no +-inf); refused by ``name`` with what was expected.
+    No limits checked (:meth:`Robot.check_q <tolalloc.robot.model.Robot.check_q>` does)."""
+    want = f"{n} joint value{'s' if n > 1 else ''} [{units}] in the last axis, shape ({n},) or (P, {n})"
+    arr = None
+    if not isinstance(q, (str, bytes, dict)) and q is not None:
+        try:
+            arr = np.asarray(q, dtype=float)
+        except (TypeError, ValueError, OverflowError):
+            arr = None
+    kinds = np.asarray(q, dtype=object).ravel() if arr is not None and 0 < arr.size < 10**5 else ()
+    if arr is None or any(isinstance(v, (bool, np.bool_, str, bytes)) for v in kinds):
+        raise TolallocError(f"{name}: expected numbers, {want}, got {describe(q)}.")
+    if arr.ndim == 0 or arr.shape[-1] != n or arr.size == 0:
+        raise TolallocError(f"{name}: expected {want}, got shape {arr.shape} for robot {robot!r}.")
+    if np.isnan(arr).any() or (finite and np.isinf(arr).any()):
+        raise TolallocError(f"{name}: expected {'finite ' if finite else ''}numbers (no NaN), {want}, got "
+                            f"{describe(q)}.")
+    return arr

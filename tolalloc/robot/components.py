@@ -39,6 +39,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     bore_mm = 60                     # bore of the bearings (selects the ISO 492 runout row)
     radial_runout_um = 5             # Kia, radial runout of the assembled inner ring (full indicator reading)
     datum = "A"                      # datum feature of the seat axis on the drawing
+    seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6
 
     [components.joints.shoulder_lift_joint.motor]
@@ -162,7 +163,7 @@ class Encoder:
 class Bearing:
     """The joint's bearing arrangement: ISO 492 ``precision_class``, seat ``span_mm``, drawing ``datum``,
     ``tilt_stiffness`` [N m/rad], source, ``bore_mm`` and ``radial_runout`` [mm] (Kia: the full indicator reading of
-    the assembled inner ring's radial runout)."""
+    the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit)."""
 
     precision_class: str | None = None
     span_mm: float | None = None
@@ -171,6 +172,7 @@ class Bearing:
     source: str = ""
     bore_mm: float | None = None
     radial_runout: float | None = None
+    seat_diameter_mm: float | None = None
 
 
 @dataclass(frozen=True)

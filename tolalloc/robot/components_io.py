@@ -160,10 +160,11 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
 def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
     """A :class:`Bearing` from its table."""
     v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)), "bore": (_LENGTH, ((),)),
-                       "radial_runout": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
+                       "radial_runout": (_LENGTH, ((),)), "seat_diameter": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
     return Bearing(_text(t, "precision_class", w), _positive(v["span"], "span", w), _text(t, "datum", w),
                    _positive(v["tilt_stiffness"], "tilt_stiffness", w), _text(t, "source", w, ""),
-                   _positive(v["bore"], "bore", w), _positive(v["radial_runout"], "radial_runout", w, True))
+                   _positive(v["bore"], "bore", w), _positive(v["radial_runout"], "radial_runout", w, True),
+                   _positive(v["seat_diameter"], "seat_diameter", w))
 
 
 def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:

@@ -79,8 +79,16 @@ def parse_dh_rows(dh: list[dict]) -> list[dict]:
 def row_from_cells(cells: dict, i: int, source: str) -> dict:
     """One row of a DH table (CSV columns, values as text or numbers) -> a row with unit keys (see
     :func:`parse_dh_rows`); ``lower_deg_mm`` / ``upper_deg_mm`` / ``nominal_deg_mm`` take the joint's unit."""
+    given = dict(cells)
     cells = {k: ("" if v is None or (isinstance(v, float) and np.isnan(v)) else str(v).strip()) for k, v in cells.items()}
     row = {"name": cells["name"]}
+
+    def number(col: str, text: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            raise ValueError(f"{col}: expected a number, got {describe(given[col])}") from None
+
     kind = cells.get("type") or "revolute"
     row["type"] = kind
     unit = "mm" if kind == "prismatic" else "deg"
@@ -91,15 +99,29 @@ def row_from_cells(cells: dict, i: int, source: str) -> dict:
             if col in ("lower_deg_mm", "upper_deg_mm"):
                 continue
             key = f"nominal_{unit}" if col == "nominal_deg_mm" else col
-            row[key] = float(val)
+            row[key] = number(col, val)
         lo, hi = cells.get("lower_deg_mm", ""), cells.get("upper_deg_mm", "")
         if (lo == "") != (hi == ""):
             raise ValueError("give both lower_deg_mm and upper_deg_mm, or neither")
         if lo != "":
-            row[f"limits_{unit}"] = [float(lo), float(hi)]
+            row[f"limits_{unit}"] = [number("lower_deg_mm", lo), number("upper_deg_mm", hi)]
     except ValueError as exc:
         raise TolallocError(f"{source}: dh[{i}] ({cells['name']}): {exc}; expected numbers in the unit of the column name.") from None
     return row
+
+
+def _check_cells(records: list, frame: bool) -> None:
+    """No NaN or inf given as a value (a DataFrame's NaN is an empty cell: its column's default), and no empty alpha
+    in a DataFrame."""
+    for i, r in enumerate(records):
+        where = f"table: row {i + 1} ({r.get('name')})"
+        for key, v in r.items():
+            if isinstance(v, (float, np.floating)) and (np.isinf(v) or (np.isnan(v) and not frame)):
+                raise TolallocError(f"{where}: {key} = {v}; expected a finite number in the unit of the column name "
+                                    "(leave the key out for its default).")
+        alpha = [r[k] for k in ("alpha_deg", "alpha_rad") if k in r]
+        if frame and alpha and all(isinstance(v, float) and np.isnan(v) for v in alpha):
+            raise TolallocError(f"{where}: alpha_deg / alpha_rad is empty; expected the twist of every row.")
 
 
 def rows_from_table(table) -> list[dict]:
@@ -130,6 +152,7 @@ def rows_from_table(table) -> list[dict]:
     if "name" not in cols or unknown or not ({"alpha_deg", "alpha_rad"} & set(cols)):
         raise TolallocError(f"table: columns {cols}: expected a 'name' column, an alpha_deg or alpha_rad column and "
                             f"columns among {', '.join(CSV_COLUMNS)}" + (f"; unknown: {unknown}" if unknown else "") + ".")
+    _check_cells(records, isinstance(table, pd.DataFrame))
     try:
         return parse_dh_rows([row_from_cells(r, i, "table") for i, r in enumerate(records)])
     except TolallocError as exc:

@@ -6,12 +6,47 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tolalloc.exceptions import TolallocError, describe, whole_number
 from tolalloc.robot.lie import rot_x, rot_z
 
 __all__ = ["Link", "Joint", "Mass", "REVOLUTE", "PRISMATIC", "chain_from_dh"]
 
 REVOLUTE = "revolute"
 PRISMATIC = "prismatic"
+
+
+def _name(value, what: str) -> str:
+    if not isinstance(value, str) or not value.strip():
+        raise TolallocError(f"{what} name: expected a non-empty string, got {describe(value)}.")
+    return value
+
+
+def _vector(value, who: str, what: str, *, unit: bool = False) -> np.ndarray:
+    """A finite 3-vector (a float copy); ``unit``: of norm 1 within 1e-6."""
+    try:
+        v = np.array(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        v = None
+    if v is None or v.shape != (3,) or not np.all(np.isfinite(v)) or (unit and abs(np.linalg.norm(v) - 1) > 1e-6):
+        kind = "a finite unit 3-vector" if unit else "a finite 3-vector"
+        shown = v.tolist() if v is not None and v.size <= 6 else describe(value)
+        raise TolallocError(f"{who}: {what} {shown} is not {kind}; expected e.g. [0, 0, 1]"
+                            + (" (norm 1 within 1e-6)." if unit else " [mm]."))
+    return v
+
+
+def _number(value, who: str, what: str, *, finite: bool = True) -> float:
+    """A real number (not a bool or a string); ``finite``: not +-inf either (NaN never); ``what`` is what the message
+    says was expected."""
+    x = float("nan")
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_)):
+        try:
+            x = float(value)
+        except OverflowError:  # an int beyond the float range
+            x = float("nan")
+    if np.isnan(x) or (finite and np.isinf(x)):
+        raise TolallocError(f"{who}: expected {what}, got {describe(value)}.")
+    return x
 
 
 @dataclass(frozen=True, eq=False)
@@ -28,6 +63,10 @@ class Link:
 
     name: str
     vector_mm: np.ndarray
+
+    def __post_init__(self):
+        _name(self.name, "link")
+        object.__setattr__(self, "vector_mm", _vector(self.vector_mm, f"link {self.name}", "vector"))
 
     @property
     def length_mm(self) -> float:
@@ -79,16 +118,34 @@ class Joint:
     upper: float = np.pi
     nominal: float = 0.0
 
+    def __post_init__(self):
+        who = f"joint {_name(self.name, 'joint')}"
+        if not isinstance(self.kind, str) or self.kind not in (REVOLUTE, PRISMATIC):
+            raise TolallocError(f"{who}: kind {describe(self.kind)}; expected 'revolute' or 'prismatic'.")
+        axis = _vector(self.axis, who, "axis", unit=True)
+        unit = "rad" if self.kind == REVOLUTE else "mm"
+        lo = _number(self.lower, who, f"a number as the lower limit [{unit}] (-inf for none)", finite=False)
+        hi = _number(self.upper, who, f"a number as the upper limit [{unit}] (inf for none)", finite=False)
+        nominal = _number(self.nominal, who, f"a finite nominal value inside the limits [{unit}]")
+        if not lo < hi:
+            raise TolallocError(f"{who}: limits [{lo:g}, {hi:g}] {unit}; expected lower < upper.")
+        if not lo <= nominal <= hi:
+            raise TolallocError(f"{who}: nominal value {nominal:g} outside its limits [{lo:g}, {hi:g}] {unit}; "
+                                "expected a value inside the limits.")
+        for field, value in (("axis", axis), ("lower", lo), ("upper", hi), ("nominal", nominal)):
+            object.__setattr__(self, field, value)
+
     @classmethod
     def from_interface(cls, name: str, kind: str, axis, lower_deg_mm: float, upper_deg_mm: float,
                        nominal_deg_mm: float = 0.0) -> "Joint":
         """A joint from limits and nominal value in interface units: deg for a revolute joint, mm for a
         prismatic one (converted to rad / mm)."""
-        f = (np.pi / 180.0) if kind == REVOLUTE else 1.0
-        try:
-            vals = [float(v) * f for v in (lower_deg_mm, upper_deg_mm, nominal_deg_mm)]
-        except (TypeError, ValueError):
-            vals = [lower_deg_mm, upper_deg_mm, nominal_deg_mm]  # refused with the robot's message
+        revolute = isinstance(kind, str) and kind == REVOLUTE
+        f = (np.pi / 180.0) if revolute else 1.0
+        who, unit = f"joint {describe(name)}", "deg" if revolute else "mm"
+        vals = [_number(v, who, f"{what} [{unit}]", finite=what.startswith("a finite")) * f
+                for v, what in ((lower_deg_mm, "a number as the lower limit"), (upper_deg_mm, "a number as the upper "
+                                "limit"), (nominal_deg_mm, "a finite nominal value inside the limits"))]
         return cls(name, kind, axis, *vals)
 
     @property
@@ -121,6 +178,19 @@ class Mass:
     body: int
     mass_kg: float
     com_mm: np.ndarray
+
+    def __post_init__(self):
+        who = f"mass {_name(self.name, 'mass')}"
+        body = whole_number(self.body)
+        if body is None or body < 0:
+            raise TolallocError(f"{who}: body {describe(self.body)}; expected the number of joints between the base "
+                                "and the mass, a whole number >= 0.")
+        kg = _number(self.mass_kg, who, "a finite mass >= 0 [kg]")
+        if kg < 0:
+            raise TolallocError(f"{who}: mass {kg:g} kg; expected a mass >= 0 [kg].")
+        object.__setattr__(self, "body", body)
+        object.__setattr__(self, "mass_kg", kg)
+        object.__setattr__(self, "com_mm", _vector(self.com_mm, who, "centre of mass"))
 
 
 def chain_from_dh(rows: list[dict], convention: str):

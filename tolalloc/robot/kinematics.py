@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.engine import resolve_engine
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, describe
 from tolalloc.robot.lie import _rodrigues, adjoint, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
@@ -27,14 +27,52 @@ __all__ = [
 ]
 
 
+def _floats(value):
+    """``value`` as a float array, or None when it is not numbers (bools and strings are not)."""
+    if value is None or isinstance(value, (str, bytes, dict)):
+        return None
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    kind = np.asarray(value).dtype.kind if not isinstance(value, np.ndarray) else value.dtype.kind
+    if kind in "bSU" or (kind == "O" and any(isinstance(v, (bool, np.bool_, str, bytes))
+                                             for v in np.asarray(value, dtype=object).ravel()[:10**5])):
+        return None
+    return arr
+
+
 def _screws_and_q(screws, q) -> tuple[np.ndarray, np.ndarray]:
-    """``screws`` (..., n, 6) and ``q`` (..., n) as float arrays; other shapes are refused with what was expected."""
-    screws, q = np.asarray(screws, dtype=float), np.asarray(q, dtype=float)
-    if screws.ndim < 2 or screws.shape[-1] != 6 or q.ndim == 0 or q.shape[-1] != screws.shape[-2]:
-        n = screws.shape[-2] if screws.ndim >= 2 else "n"
-        raise TolallocError(f"q: expected shape (..., {n}) with joint screws of shape (..., {n}, 6), got q of shape "
-                            f"{q.shape} and screws of shape {screws.shape}; one joint value per screw, in rad and mm")
-    return screws, q
+    """``screws`` (..., n, 6) and ``q`` (..., n) as finite float arrays whose stacks broadcast; anything else is
+    refused with what was expected."""
+    S, Q = _floats(screws), _floats(q)
+    n = S.shape[-2] if S is not None and S.ndim >= 2 else "n"
+    shapes = f"q of shape {None if Q is None else Q.shape} and screws of shape {None if S is None else S.shape}"
+    if S is None or Q is None or S.ndim < 2 or S.shape[-1] != 6 or Q.ndim == 0 or Q.shape[-1] != S.shape[-2] \
+            or not _broadcast(S.shape[:-2], Q.shape[:-1]):
+        raise TolallocError(f"q: expected shape (..., {n}) with joint screws of shape (..., {n}, 6), got {shapes}; one "
+                            "joint value per screw, in rad and mm (numbers; the stacks must broadcast)")
+    if not (np.all(np.isfinite(S)) and np.all(np.isfinite(Q))):
+        raise TolallocError(f"q: expected finite joint values and screws, got NaN or inf in {shapes}.")
+    return S, Q
+
+
+def _broadcast(*shapes) -> bool:
+    try:
+        np.broadcast_shapes(*shapes)
+    except ValueError:
+        return False
+    return True
+
+
+def _home(home, batch: tuple) -> np.ndarray:
+    """``home`` (..., 4, 4): a finite homogeneous transform (stack) whose stack broadcasts with ``batch``."""
+    M = _floats(home)
+    if M is None or M.ndim < 2 or M.shape[-2:] != (4, 4) or not np.all(np.isfinite(M)) \
+            or not _broadcast(M.shape[:-2], batch):
+        raise TolallocError(f"home: expected a finite homogeneous transform of shape (..., 4, 4) whose stack "
+                            f"broadcasts with the joint values' {batch}, got {describe(home)}.")
+    return M
 
 
 def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
@@ -121,11 +159,15 @@ def fk_poe(screws, home, q) -> np.ndarray:
     T : array, shape (..., 4, 4)
     """
     screws, q = _screws_and_q(screws, q)
+    batch = np.broadcast_shapes(screws.shape[:-2], q.shape[:-1])
+    home = _home(home, batch)
+    if screws.shape[-2] == 0:  # a chain without joints: the home pose
+        return np.array(np.broadcast_to(home, np.broadcast_shapes(batch, home.shape[:-2]) + (4, 4)))
     E = exp_se3(screws * q[..., None])
     T = E[..., 0, :, :]
     for j in range(1, E.shape[-3]):
         T = T @ E[..., j, :, :]
-    return T @ np.asarray(home, dtype=float)
+    return T @ home
 
 
 #: Poses from which the default engine uses the compiled Jacobian kernels (below: numpy, no JIT-call overhead).
@@ -177,6 +219,8 @@ def space_jacobian(screws, q, *, engine: str | None = None) -> np.ndarray:
     if nb is not None:
         return nb.space_jacobian(screws, q)
     R, p = prefix_lists(screws, q)
+    if screws.shape[-2] == 0:  # a chain without joints: no column
+        return np.zeros(np.broadcast_shapes(screws.shape[:-2], q.shape[:-1]) + (6, 0))
     cols = []
     for j in range(screws.shape[-2]):  # Ad_{P_j} S_j = (R w, R v + p x R w)
         rw = (R[j] @ screws[..., j, :3, None])[..., 0]

@@ -28,7 +28,7 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError, check_finite_array, describe, known_names
 from tolalloc.units import check_joint_units, trusting_units, units_trusted
-from tolalloc.robot.checks import check_chain, check_reserved_names
+from tolalloc.robot.checks import check_chain, check_fields, check_named_sets, check_reserved_names, joint_array
 from tolalloc.robot.components import Components
 from tolalloc.robot.elements import PRISMATIC, REVOLUTE, Joint, Link, Mass, chain_from_dh
 from tolalloc.robot.kinematics import body_jacobian, fk_poe, space_jacobian
@@ -93,6 +93,13 @@ class Robot:
     trust_units: InitVar[bool] = False
 
     def __post_init__(self, trust_units: bool = False):
+        chain, masses, gravity = check_fields(self.name, self.chain, self.description, self.masses, self.gravity,
+                                              {f: getattr(self, f) for f in ("pose_sets", "regions", "sigma_sets")})
+        for name, value in (("chain", chain), ("masses", masses), ("gravity", gravity)):
+            object.__setattr__(self, name, value)
+        if not isinstance(self.components, Components):
+            raise TolallocError(f"robot {self.name!r}: components expected a tolalloc.robot.components.Components "
+                                f"(the robot file's [components] section), got {describe(self.components)}.")
         joints = tuple(e for e in self.chain if isinstance(e, Joint))
         links = tuple(e for e in self.chain if isinstance(e, Link))
         if not joints:
@@ -136,6 +143,7 @@ class Robot:
         object.__setattr__(self, "link_sites", np.array(sites, dtype=int))
         for arr in (self.screws, self.joint_points_mm, self.home, self.link_sites):
             arr.flags.writeable = False
+        check_named_sets(self)
 
     def random_q(self, rng: np.random.Generator, n: int) -> np.ndarray:
         """``n`` joint configurations drawn uniformly within the joint limits [rad, mm], shape (n, n_joints).
@@ -188,17 +196,27 @@ class Robot:
         return np.array([j.is_revolute for j in self.joints])
 
     def q_from_interface(self, q_deg_mm) -> np.ndarray:
-        """Convert joint values from interface units (deg / mm) to internal (rad / mm), shape (..., n)."""
-        q = np.asarray(q_deg_mm, dtype=float)
+        """Convert joint values from interface units (deg / mm) to internal (rad / mm), shape (..., n).
+
+        Numbers with one value per joint in the last axis; +-inf (an open limit) is converted, NaN refused.
+        """
+        q = self.joint_array(q_deg_mm, "q_deg_mm", units="deg / mm", finite=False)
         return np.where(self.revolute_mask, np.deg2rad(q), q)
 
     def q_to_interface(self, q) -> np.ndarray:
         """Convert joint values from internal (rad / mm) to interface units (deg / mm), shape (..., n).
 
-        Revolute joints rad -> deg, prismatic ones left in mm (``numpy.degrees`` would scale those too).
+        Revolute joints rad -> deg, prismatic ones left in mm (``numpy.degrees`` would scale those too); +-inf (an
+        open limit) is converted, NaN refused.
         """
-        q = np.asarray(q, dtype=float)
+        q = self.joint_array(q, "q", units="rad / mm", finite=False)
         return np.where(self.revolute_mask, np.rad2deg(q), q)
+
+    def joint_array(self, q, name: str = "q", *, units: str = "rad / mm", finite: bool = True) -> np.ndarray:
+        """``q`` as a float array of shape (..., n): numbers (no bools or strings), one per joint in the last axis,
+        no NaN (and, with ``finite``, no +-inf); refused by ``name`` with what was expected. No limits checked
+        (:meth:`check_q` does)."""
+        return joint_array(q, self.n_joints, self.name, name, units, finite)
 
     def check_q(self, q, name: str = "joint values", *, interface: bool = False) -> np.ndarray:
         """Validate joint values (shape (n,) or (P, n)) against count, finiteness and limits.
@@ -212,18 +230,22 @@ class Robot:
         -------
         q : array, internal units [rad, mm], same shape.
         """
+        if not isinstance(name, str) or not isinstance(interface, (bool, np.bool_)):
+            bad, what = ("name", "a string naming the values in messages") if not isinstance(name, str) else \
+                ("interface", "True (deg / mm) or False (rad / mm)")
+            raise TolallocError(f"{bad}: expected {what}, got {describe(name if bad == 'name' else interface)}.")
         n = self.n_joints
         units = ", ".join(j.unit if interface else "rad" if j.is_revolute else "mm" for j in self.joints)
         arr = np.atleast_1d(np.asarray(q, dtype=object))
-        if arr.shape[-1] != n or arr.ndim > 2:
+        if arr.shape[-1] != n or arr.ndim > 2 or arr.size == 0:
             raise TolallocError(
                 f"{name}: robot {self.name!r} has {n} joints ({', '.join(j.name for j in self.joints)}); "
-                f"expected {n} values ({units}), got {arr.shape[-1] if arr.ndim else 0}."
+                f"expected {n} values ({units}), got {arr.shape[-1] if arr.size else 'none'}."
             )
         try:
             arr = arr.astype(float)
-        except (TypeError, ValueError):
-            raise TolallocError(f"{name}: expected numbers ({units}), got {np.asarray(q, dtype=object).tolist()!r}.") from None
+        except (TypeError, ValueError, OverflowError):
+            raise TolallocError(f"{name}: expected numbers ({units}), got {describe(q, 200)}.") from None
         q = check_finite_array(arr, name)
         if interface:
             check_joint_units(q, self.revolute_mask, self.q_to_interface(self.lower), self.q_to_interface(self.upper),
@@ -302,7 +324,7 @@ class Robot:
         from tolalloc.units import check_reach
 
         if not isinstance(convention, str) or convention not in ("standard", "modified"):
-            raise TolallocError(f"convention: expected 'standard' or 'modified', got {convention!r}.")
+            raise TolallocError(f"convention: expected 'standard' or 'modified', got {describe(convention)}.")
         rows = rows_from_table(table)
         chain, R_last = chain_from_dh(rows, convention)
         off = check_finite_array(tool_offset_mm, "tool_offset_mm", (3,))
@@ -350,16 +372,17 @@ class Robot:
         return self.body_jacobian_internal(self.check_q(q_deg_mm, "q_deg_mm", interface=True))
 
     def fk_internal(self, q) -> np.ndarray:
-        """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) in internal units [rad, mm]."""
-        return fk_poe(self.screws, self.home, q)
+        """End-effector pose ``T(q)``, shape (..., 4, 4), for ``q`` of shape (..., n) in internal units [rad, mm]
+        (finite; the limits are not checked)."""
+        return fk_poe(self.screws, self.home, self.joint_array(q))
 
     def space_jacobian_internal(self, q, *, engine: str | None = None) -> np.ndarray:
         """Space Jacobian, shape (..., 6, n), at ``q`` [rad, mm]; ``engine`` as in :func:`space_jacobian`."""
-        return space_jacobian(self.screws, q, engine=engine)
+        return space_jacobian(self.screws, self.joint_array(q), engine=engine)
 
     def body_jacobian_internal(self, q) -> np.ndarray:
         """Body Jacobian, shape (..., 6, n), at ``q`` [rad, mm]."""
-        return body_jacobian(self.screws, self.home, q)
+        return body_jacobian(self.screws, self.home, self.joint_array(q))
 
     # ------------------------------------------------------------------ display
     def joints_frame(self) -> pd.DataFrame:

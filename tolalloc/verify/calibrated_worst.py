@@ -2,7 +2,7 @@
 
 :func:`verify_calibrated_design` runs :func:`tolalloc.verify.calibrated.verify_calibration` (manufacture with the
 design's sigmas, simulate the plan's measurements, calibrate each robot by nonlinear least squares, compensate, use)
-at the lowest-``P`` poses of a :class:`~tolalloc.allocate.calibrated_design.CalibratedDesign` -- for a box the last
+at the lowest-``P`` poses of a :class:`~tolalloc.allocate.calibrated.design.CalibratedDesign` -- for a box the last
 search's worst pose, the worst poses of the fresh coverage sample and the lowest active poses -- and states per pose,
 with the criteria of :mod:`tolalloc.verify.designs` on the interval simultaneous over those poses (Bonferroni):
 
@@ -106,13 +106,13 @@ def verify_calibrated_design(res, *, which: str = "chosen", standard=None, n_rob
     Parameters
     ----------
     res : CalibratedDesign
-        From :func:`tolalloc.allocate.calibrated_design.allocate_with_calibration` (position plan).
+        From :func:`tolalloc.allocate.calibrated.design.allocate_with_calibration` (position plan).
     which : {"chosen", "certified"}
         The design checked: the result's chosen design (exact when accepted) or the certified one.
     standard : CalibratedStandard, optional
         Check this standard-grade design of ``res`` instead
-        (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`): its tolerances, repeatability grades
-        and worst poses (:meth:`~tolalloc.allocate.calibrated_standard.CalibratedStandard.check_poses`); ``which`` is
+        (:func:`tolalloc.allocate.calibrated.standard.standardize_calibrated`): its tolerances, repeatability grades
+        and worst poses (:meth:`~tolalloc.allocate.calibrated.standard.CalibratedStandard.check_poses`); ``which`` is
         then unused. Judged like the exact design (a consistent pose passes): it is held at ``p`` by the exact
         post-calibration probability, not by a certificate.
     n_robots : int
@@ -137,7 +137,7 @@ def verify_calibrated_design(res, *, which: str = "chosen", standard=None, n_rob
                 and list(standard.problem.model.names) == list(res.problem.model.names))
         if not same:
             raise TolallocError("standard: expected the CalibratedStandard of this allocation (tolalloc.allocate."
-                                "calibrated_standard.standardize_calibrated(res)), got a "
+                                "calibrated.standard.standardize_calibrated(res)), got a "
                                 f"{type(standard).__name__}" + (" of another allocation (another plan)."
                                                                  if hasattr(standard, "end_to_end_inputs") else "."))
         if not standard.design.ok:

@@ -4,7 +4,9 @@ After a design is verified, every requirement -- the position one and, when stat
 at every pose that lacks the margin, a new target ``p + max(0, P_lin - P_hat) + k_se se``: the measured shortfall
 of the nonlinear estimate below the linear prediction plus ``k_se`` standard errors of ``P_hat`` (the estimator's:
 paired and importance-sampling estimates resolve the nonlinearity itself, so the margin shrinks to it; never below
-its previous target). A pose lacks the margin where the lower bound of its interval (simultaneous over the poses
+its previous target; never 1 or more: where the interval is too wide for any target below 1 to carry the margin, only
+an estimate below ``p`` is tightened, and a pose whose estimate clears ``p`` is left to more samples,
+:func:`needed_targets`). A pose lacks the margin where the lower bound of its interval (simultaneous over the poses
 and requirements) lies below ``p +`` :data:`MARGIN_SE` standard errors: not *demonstrated*, or demonstrated on
 these draws by too little to hold on fresh ones (a pose on ``p`` whose nonlinear estimate cleared it by chance). By default ``k_se = z +`` :data:`MARGIN_SE`
 (3), ``z`` the normal quantile of each simultaneous interval (1.96 for a single 95 % interval, 2.99 for 18 poses,
@@ -35,7 +37,7 @@ from tolalloc.exceptions import ArgumentError
 from tolalloc.verify.designs import Verification, verify_design
 from tolalloc.verify.verdicts import shortfall_text
 
-__all__ = ["Correction", "correct_design", "CONFIRM_SEED_OFFSET", "MARGIN_SE"]
+__all__ = ["Correction", "correct_design", "needed_targets", "imprecise_poses", "CONFIRM_SEED_OFFSET", "MARGIN_SE"]
 
 #: Standard errors beyond the interval's half-width ``z`` that a tightened pose's target carries (``k_se = z + 3``).
 MARGIN_SE = 3.0
@@ -146,7 +148,7 @@ class Correction:
 
 
 def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
-    """Per-pose targets of one requirement for the next round, shape (P,).
+    """Per-pose targets of one requirement for the next round, shape (P,); never 1 or more.
 
     ``max(target, p + max(0, P_lin - P_hat) + k_se se)`` at the poses whose lower bound lies below
     ``p + (k_se - z) se`` (not demonstrated, or by less than the margin beyond ``z``, :data:`MARGIN_SE` by
@@ -155,6 +157,11 @@ def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
     one): ``sqrt(P_hat (1 - P_hat) / n)`` for plain Monte Carlo, the far smaller paired or importance-sampling one
     otherwise, so the margin is what the estimator can resolve, not what plain sampling could. ``k_se`` None:
     ``z +`` :data:`MARGIN_SE`. An unknown linear prediction (NaN) counts as no shortfall.
+
+    Where that target would be 1 or more, the interval is too wide for any design to clear ``p`` by it (the
+    imprecision, not the design, is short): such a pose is tightened only when its estimate itself is below ``p``,
+    to the target halfway between ``p + max(0, P_lin - P_hat)`` and 1; a pose whose estimate is at or above ``p``
+    keeps its target (more samples decide it: :func:`imprecise_poses`).
 
     Parameters
     ----------
@@ -166,19 +173,38 @@ def needed_targets(check, targets, k_se: float | None = None) -> np.ndarray:
     targets : array, shape (P,)
         This requirement's current targets.
     """
+    check, targets, z, k_se, se = _margin_terms(check, targets, k_se)
+    base = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0)
+    need = base + k_se * se
+    # not demonstrated by the margin beyond z (MARGIN_SE by default): fresh draws could still fail it (a pose on p
+    # whose nonlinear estimate cleared it on these draws only)
+    short = check.ci_low < check.prob + max(0.0, k_se - z) * se
+    too_wide = need >= 1.0
+    halfway = np.where(base < 1.0, 0.5 * (base + 1.0), targets)
+    need = np.where(too_wide, np.where(check.p_mc < check.prob, halfway, targets), need)
+    return np.where(short, np.maximum(targets, need), targets)
+
+
+def imprecise_poses(check, targets, k_se: float | None = None) -> np.ndarray:
+    """Poses (0-based) of one requirement that are short of the margin only for the imprecision of their interval:
+    the estimate is at or above ``p``, but a target carrying ``k_se`` standard errors would be 1 or more
+    (:func:`needed_targets` leaves them)."""
+    check, targets, z, k_se, se = _margin_terms(check, targets, k_se)
+    need = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0) + k_se * se
+    short = check.ci_low < check.prob + max(0.0, k_se - z) * se
+    return np.flatnonzero(short & (need >= 1.0) & (check.p_mc >= check.prob))
+
+
+def _margin_terms(check, targets, k_se) -> tuple:
+    """``(check, targets, z, k_se, se)`` of :func:`needed_targets`."""
     from tolalloc.montecarlo.intervals import z_of_level
 
     if isinstance(check, Verification):
         check = check.requirements()[0]
-    targets = np.asarray(targets, float)
     z = z_of_level(check.level)
     k_se = z + MARGIN_SE if k_se is None else k_se
     se = np.maximum((check.ci_high - check.ci_low) / (2 * z), 1e-12)
-    need = check.prob + np.nan_to_num(np.maximum(0.0, check.p_linear - check.p_mc), nan=0.0) + k_se * se
-    # not demonstrated by the margin beyond z (MARGIN_SE by default): fresh draws could still fail it (a pose on p
-    # whose nonlinear estimate cleared it on these draws only)
-    short = check.ci_low < check.prob + max(0.0, k_se - z) * se
-    return np.where(short, np.maximum(targets, need), targets)
+    return check, np.asarray(targets, float), z, k_se, se
 
 
 def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: int = 0, k_se: float | None = None,
@@ -258,7 +284,7 @@ def correct_design(model, q, *, solver: str = "exact", n_mc: int = 10**5, seed: 
             cause = f"round limit ({max_rounds}) reached"
             break
         new = {c.name: needed_targets(c, targets[c.name], k_se) for c in ver.requirements()}
-        cause = _cannot_tighten(new, targets)
+        cause = _cannot_tighten(new, targets, ver, k_se)
         if cause:
             break
         nxt = solve(new)
@@ -310,13 +336,19 @@ def _family_level(level, verification, seed: int) -> float:
     return verification.family_level
 
 
-def _cannot_tighten(new: dict, targets: dict) -> str:
-    """Why the next round cannot be solved ("" when it can): a target of 1 or more, or nothing raised."""
-    for name, tgt in new.items():
-        if np.any(tgt >= 1.0):
-            i = int(np.argmax(tgt))
-            return f"{name} pose {i + 1} would need a target of 1 or more ({tgt[i]:.6g})"
-    if all(np.all(new[k] <= targets[k]) for k in new):
-        return ("no pose short of p can be tightened further: every such target already covers the measured "
-                "shortfall and margin")
-    return ""
+def _cannot_tighten(new: dict, targets: dict, ver: Verification, k_se) -> str:
+    """Why the next round cannot be solved ("" when it can): nothing raised -- every pose short of ``p`` already
+    carries its measured shortfall and margin, or is short only for the imprecision of its interval."""
+    if any(np.any(new[k] > targets[k]) for k in new):
+        return ""
+    wide = [(c, i) for c in ver.requirements() for i in imprecise_poses(c, targets[c.name], k_se)]
+    if wide:
+        c, i = wide[0]
+        half = 0.5 * (c.ci_high[i] - c.ci_low[i])
+        more = f" (and {len(wide) - 1} more)" if len(wide) > 1 else ""
+        return (f"{c.name} pose {i + 1}{more}: the estimate {c.p_mc[i]:.8g} is at or above p = {c.prob:g}, but its "
+                f"interval (half-width {half:.2g}) is too wide to demonstrate it, and a target carrying that "
+                "imprecision would be 1 or more; more samples (`n_mc`) or importance sampling (`estimator`) would "
+                "decide it, tightening cannot")
+    return ("no pose short of p can be tightened further: every such target already covers the measured "
+            "shortfall and margin")

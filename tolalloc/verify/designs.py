@@ -20,9 +20,13 @@ against its own ``p``:
 A **certified** design passes a pose only when every requirement is demonstrated there; an **exact** design passes
 a consistent pose (no fixed allowance: a design whose interval lies below ``p`` fails).
 
-A certified pose whose position interval straddles ``p`` is re-run with more samples (up to ``n_max``, pooled) and
-passes on either look, so with ``n_max > n_mc`` every position interval has a possible second look, counted in the
-family: ``m`` = poses x requirements + poses (:func:`tolalloc.verify.verdicts.verification_family`).
+A pose whose position interval straddles ``p`` (undecided) is looked at again with ``n_max`` samples -- for a
+certified design by any estimator (pooled with the first look, or importance sampling under ``auto``), and under
+``estimator="auto"`` on a Gaussian model whatever the criterion, by importance sampling, which resolves the thin shell
+where the nonlinear and linear indicators disagree that the paired estimator's few discordant draws cannot -- and is
+judged on that look. So with ``n_max > n_mc`` every position interval has a possible second look, counted in the
+family (Bonferroni: the family's alpha spent equally on every possible look): ``m`` = poses x requirements + poses
+(:func:`tolalloc.verify.verdicts.verification_family`).
 Failing poses are named with the reason: *under-specified* (the linear prediction itself is below
 ``p``), *non-Gaussian* parameters (ring clearances, uniform) carrying a sizeable share of the variance,
 *inconclusive* (the interval contains ``p`` at the largest sample size: more samples are needed, whatever
@@ -31,13 +35,13 @@ orientation requirement's as *orientation under-specified*, *orientation inconcl
 (:func:`tolalloc.verify.verdicts.failure_reasons`).
 
 This module holds the result, :class:`Verification`, and the driver, :func:`verify_design`; the Monte Carlo runs at
-the poses (first look, and the second look of straddling certified poses) are in
+the poses (first look, and the second look of undecided poses) are in
 :mod:`tolalloc.verify.pose_estimates`.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pandas as pd
@@ -45,8 +49,8 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError, whole_number
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design
 from tolalloc.montecarlo.intervals import simultaneous_level
-from tolalloc.montecarlo.estimate import ProbabilityEstimate
-from tolalloc.montecarlo.paired import check_estimator
+from tolalloc.montecarlo.estimate import ProbabilityEstimate, fallback_text
+from tolalloc.montecarlo.paired import check_estimator, control_fallback_reason
 from tolalloc.verify.pose_estimates import _estimate, _redo
 from tolalloc.verify.resolution import check_resolvable, choose_estimator
 from tolalloc.verify.verdicts import (RequirementCheck, failure_reasons, family_text, interval_words, limiting,
@@ -91,7 +95,8 @@ class Verification:
         Intervals in the Bonferroni family: poses x requirements, plus :attr:`second_looks` (1: a single interval at
         ``family_level``).
     second_looks : int
-        Possible second looks in ``n_intervals``: one per pose when certified with ``n_max > n_mc``, else 0.
+        Possible second looks in ``n_intervals``: one per pose when ``n_max > n_mc`` and the design is certified or
+        ``auto`` runs on a Gaussian model, else 0.
     """
 
     criterion: str
@@ -126,7 +131,7 @@ class Verification:
     def interval_text(self) -> str:
         """What the intervals are, e.g. ``95% simultaneous over the 18 poses (Bonferroni: 18 intervals at 99.72%
         each)`` (``36 intervals at 99.86% each, a possible second look at each position interval counted`` when
-        certified poses may be re-run)."""
+        undecided poses may be re-run)."""
         return family_text(self.family_level, self.n_intervals, len(self.p_mc), 1 + (self.angle is not None),
                            self.second_looks)
 
@@ -156,7 +161,7 @@ class Verification:
     @property
     def fallback_reason(self) -> str:
         """Why plain Monte Carlo ran where a paired estimator was requested ("" if it did not)."""
-        return "" if self.estimate is None else "; ".join(sorted({f for f in self.estimate.fallback if f}))
+        return "" if self.estimate is None else fallback_text(self.estimate.fallback)
 
     def estimator_summary(self) -> dict:
         """JSON-ready estimator block for summary.json's ``verification`` (per-pose lists, poses in order)."""
@@ -278,8 +283,9 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     n_mc : int
         Samples per pose (the same sampled robots at every pose).
     n_max : int, optional
-        Largest sample size for poses whose interval straddles ``p`` (certified criterion); default ``4 n_mc``.
-        Must be at least ``n_mc``; ``n_max = n_mc`` means no second look (each pose judged once, at ``n_mc``).
+        Sample size of the second look at poses whose position interval straddles ``p`` (certified criterion, or
+        ``estimator="auto"`` on a Gaussian model); default ``4 n_mc``. Must be at least ``n_mc``; ``n_max = n_mc``
+        means no second look (each pose judged once, at ``n_mc``).
     seed : int
     keep_samples : int
         Position errors kept at the worst pose for figures.
@@ -292,7 +298,8 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
         the mean difference of the nonlinear and linear indicators on the same draws; ``importance`` the same
         with importance sampling (position requirement; the orientation one is estimated as ``auto``); ``auto``
         is paired where the linear map is an exact control (Gaussian parameters), plain elsewhere (the reason is
-        in ``Verification.fallback_reason``), and importance sampling for certified poses re-run with ``n_max``
+        in ``Verification.fallback_reason``), and importance sampling for the second look at undecided poses
+        (``n_max`` samples), for a rare-event tail (``1 - p <=`` :data:`~tolalloc.verify.resolution.RARE_TAIL`)
         and wherever ``n_mc`` is too small for the paired interval to resolve the tail ``1 - p``
         (:func:`~tolalloc.verify.resolution.resolvable_n`, at the level of each simultaneous interval); a tail
         that the estimator cannot resolve is refused with the samples needed -- the orientation requirement's
@@ -309,24 +316,26 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     r, p = problem.radius_mm, problem.prob
     ang = problem.angle_radius_rad
     P = problem.n_poses
-    m, looks = verification_family(P, 1 if ang is None else 2, crit, n_mc, n_max)
+    looks_by_is = estimator == "auto" and not control_fallback_reason(model)
+    m, looks = verification_family(P, 1 if ang is None else 2, crit, n_mc, n_max, importance_look=looks_by_is)
+    _check_budget(model, P, n_mc, n_max, looks, estimator)
     lvl = simultaneous_level(level, m)
     what = f"{interval_words(level, m)} interval" + ("" if m == 1 else f" (one of {m}, each at {100 * lvl:.4g}%"
                                                       + (", a possible second look counted)" if looks else ")"))
     reqs = [("position", p)] + ([] if ang is None else [("orientation", problem.angle_prob)])
-    estimator = choose_estimator(model, reqs, n_mc, n_max, looks > 0, estimator, lvl, what)
+    asked, estimator = estimator, choose_estimator(model, reqs, n_mc, n_max, looks > 0, estimator, lvl, what)
     p_lin = design.p_linear["position"]
     order = np.argsort(p_lin)  # worst linear pose first: its samples are kept
     est = _estimate(model, problem.q[order], n_mc, seed, r, ang, keep_samples, scheduler, estimator, lvl)
     inv = np.argsort(order)
-    pos = est["position"].take(inv)
+    pos = replace(est["position"].take(inv), requested=asked)
     samples = pos.details.get("kept_mm")
     pa = None if "orientation" not in est else est["orientation"].take(inv)
 
     def passes(lo, hi):
         return lo >= p if crit == "certified" else hi >= p
 
-    if looks:  # the second look, counted in the family: more samples where a certified interval straddles p
+    if looks:  # the second look, counted in the family: more samples where an interval straddles p
         redo = np.flatnonzero((pos.ci_low < p) & (pos.ci_high >= p))
         if redo.size:
             pos = _redo(model, problem, pos, redo, n_mc, n_max, seed, scheduler, estimator)
@@ -344,6 +353,18 @@ def verify_design(problem: AllocationProblem, design: Design, *, criterion: str 
     worst = int(np.argmin(est_arr[:, 0]))
     return Verification(crit, r, p, n, int(seed), p_lin.copy(), est_arr[:, 0], est_arr[:, 1], est_arr[:, 2], ok & a_ok,
                         reasons, worst, samples, int(order[0]), angle, pos, float(level), m, looks)
+
+
+def _check_budget(model, n_poses: int, n_mc: int, n_max: int, looks: int, estimator: str) -> None:
+    """Refuse sample sizes the verification cannot run within the time budget (:mod:`tolalloc.budget`): ``n_mc`` at
+    every pose, and ``n_max`` at every pose when second looks are possible (importance sampling or pooled)."""
+    from tolalloc.verify.cost import check_verification_budget
+
+    check_verification_budget(model, n_poses, n_mc, estimator=estimator, announce=False)
+    if looks:
+        second = "importance" if estimator in ("auto", "importance") and not control_fallback_reason(model) \
+            else estimator
+        check_verification_budget(model, n_poses, n_max, estimator=second, argument="n_max", announce=False)
 
 
 def _check_args(design, n_mc, n_max, estimator, criterion, level) -> tuple:

@@ -2,7 +2,7 @@
 
 :func:`_estimate` runs the requested estimator (plain, paired or importance sampling,
 :mod:`tolalloc.montecarlo.paired`) at all poses with the intervals at the level of each simultaneous interval;
-:func:`_redo` gives the certified poses whose position interval straddles ``p`` their second look with more samples
+:func:`_redo` gives the poses whose position interval straddles ``p`` their second look with more samples
 (pooled with the first, or importance sampling). :func:`tolalloc.verify.designs.verify_design` calls both and
 judges the result.
 """
@@ -34,7 +34,7 @@ def _estimate(model, q, n, seed, radius, angle, keep, scheduler, estimator, leve
 
 
 def _redo(model, problem, est, redo, n_mc, n_max, seed, scheduler, estimator):
-    """Re-estimate the poses ``redo`` whose certified interval straddles ``p`` with more samples (intervals at the
+    """Re-estimate the poses ``redo`` whose interval straddles ``p`` with more samples (intervals at the
     level of ``est``).
 
     Plain and paired runs are pooled with ``n_max - n_mc`` fresh samples (seed + 1); ``auto`` on a Gaussian model

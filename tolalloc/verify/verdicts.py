@@ -43,24 +43,30 @@ def interval_words(family_level: float, m: int) -> str:
     return lvl if m <= 1 else f"simultaneous {lvl}"
 
 
-def verification_family(n_poses: int, n_requirements: int, criterion: str, n_mc: int, n_max: int) -> tuple:
+def verification_family(n_poses: int, n_requirements: int, criterion: str, n_mc: int, n_max: int,
+                        importance_look: bool = False) -> tuple:
     """``(n_intervals, second_looks)``: the Bonferroni family of a verification and its possible second looks.
 
-    Every pose has one interval per requirement. The certified criterion with ``n_max > n_mc`` re-runs a pose whose
-    position interval straddles ``p`` and passes it on either look, so every position interval has a possible
-    second look (one per pose, counted whether or not it runs: which poses get one depends on the data); the
-    exact criterion, or ``n_max = n_mc``, has none (:func:`~tolalloc.verify.designs.verify_design` refuses
+    Every pose has one interval per requirement. A pose whose position interval straddles ``p`` is re-run with
+    ``n_max`` samples and judged on that second look when ``n_max > n_mc`` and either the criterion is certified or
+    ``importance_look`` (``estimator="auto"`` on a Gaussian model: the second look is importance sampling, which
+    resolves a thin tail that the paired estimator's few discordant draws cannot); every position interval then
+    has a possible second look (one per pose, counted whether or not it runs: which poses get one depends on the
+    data). ``n_max = n_mc`` means no second look (:func:`~tolalloc.verify.designs.verify_design` refuses
     ``n_max < n_mc``). All the family's intervals, first and second looks alike, are at
-    ``simultaneous_level(level, n_intervals)``.
+    ``simultaneous_level(level, n_intervals)`` (Bonferroni: the family's alpha spent equally on every look).
 
     >>> verification_family(18, 1, "certified", 10**6, 4 * 10**6)
     (36, 18)
     >>> verification_family(18, 2, "certified", 10**6, 10**6), verification_family(18, 2, "exact", 10**6, 4 * 10**6)
     ((36, 0), (36, 0))
+    >>> verification_family(18, 2, "exact", 10**6, 4 * 10**6, importance_look=True)
+    (54, 18)
     """
     from tolalloc.montecarlo.intervals import family_size
 
-    looks = int(n_poses) if criterion == "certified" and n_max > n_mc else 0
+    again = criterion == "certified" or bool(importance_look)
+    looks = int(n_poses) if again and n_max > n_mc else 0
     return family_size(int(n_poses) * int(n_requirements), looks), looks
 
 

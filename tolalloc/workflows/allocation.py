@@ -8,37 +8,28 @@ no correction loop). The result (:class:`ToleranceAllocation`) holds every stage
 
 from __future__ import annotations
 
-import os
 
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.progress import StageBar, show_progress
+from tolalloc.verify.cost import check_allocation_budgets
 from tolalloc.workflows import inputs
 from tolalloc.workflows.allocation_result import ToleranceAllocation
+from tolalloc.workflows.allocation_settings import allocation_settings
 from tolalloc.workflows.calibrated import PLAN_IN_MEMORY, calibrated_allocation
 from tolalloc.workflows.calplan import CalibrationPlanDesign
+from tolalloc.workflows.defaults import CORRECTION_ROUNDS as DEFAULT_CORRECTION_ROUNDS
+from tolalloc.workflows.requirements import CALIBRATED_ESTIMATORS, ESTIMATORS
 
 __all__ = ["allocate_tolerances", "ESTIMATORS", "CALIBRATED_ESTIMATORS", "DEFAULT_CORRECTION_ROUNDS"]
 
-#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
-ESTIMATORS = ("auto", "plain", "paired", "importance")
-#: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
-CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
-#: correction rounds at most when ``correction_rounds`` is not given
-DEFAULT_CORRECTION_ROUNDS = 2
-
 
 @inputs.job_entry
-def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: float = 0.95, region=None,
-                        poses: str | None = None, costs=None, z: float | None = None, uniform: bool = False,
-                        sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
-                        clearance: bool = False, exclude=(), angle_radius_deg: float | None = None,
-                        angle_prob: float | None = None, solver: str = "exact", snap: bool = True,
-                        angle_step_deg: float | None = None, calibration=None, verify: bool = True,
-                        n_mc: int = 10**6, seed: int = 0, estimator: str = "auto", correction: bool | None = None,
-                        correction_rounds: int | None = None, coverage_n: int = 100_000, scheduler=None,
-                        tool: str | None = None, trust_units: bool = False, progress: bool | None = None,
+def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: float | None = None,
+                        prob: float | None = None, region=None, costs=None, error_model=None, solver=None,
+                        verification=None, n_mc: int | None = None, calibration=None, progress: bool | None = None,
+                        tool: str | None = None, trust_units: bool = False,
                         parts=None):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
 
@@ -46,43 +37,36 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     ----------
     robot : Robot, str or path
         A :class:`~tolalloc.robot.Robot`, a built-in name (``"tool_changer"``, ``"ur10"``) or a robot file.
-    radius_mm, prob : float
-        Required radius r of the tool-position error [mm] and probability p, in (0, 1).
-    region : str, path or array, optional
-        Where the requirement holds: a pose set, ``"limits"``, a box of the robot file, a trajectory CSV or an array /
-        DataFrame of poses (deg / mm). Boxes are searched for their worst pose (cutting planes) and checked on a
-        fresh sample of ``coverage_n`` poses. Default: the robot's ``working`` box, else the pose set ``poses``.
-    poses : str, optional
-        Pose set used without ``region`` (not with it; default ``working`` if defined, else ``nominal``).
-    costs : str or path, optional
-        Costs file (TOML): cost laws, process limits, fixed / excluded parameters (default: built-in assumptions).
-    z : float, optional
-        sigma = t / z (default 3, or the costs file's ``z``). ``uniform=True``: errors uniform over +-t.
-    sigma_set, link_mode, deflection_mode, clearance, exclude
-        Error-model options (see :func:`tolalloc.errormodel.build_error_model`).
-    angle_radius_deg, angle_prob : float, optional
-        Orientation requirement ``P(|rotation error| < angle_radius_deg) >= angle_prob`` [deg].
-    solver : {"exact", "certified"}
-        Design reported: exact probability (CasADi + IPOPT) or certified (cvxpy + Clarabel; with ``calibration``: no
-        exact stage).
-    snap : bool
-        Standard grades (ISO 286 for link lengths, ``angle_step_deg`` for angles, default 1 arcsec).
+    requirement : Requirement or list of Requirement, optional
+        What must hold: a :class:`~tolalloc.workflows.PositionRequirement` and optionally an
+        :class:`~tolalloc.workflows.OrientationRequirement` (one of each kind). Default: ``P(|dP| < 0.25 mm) >=
+        0.95``.
+    radius_mm, prob : float, optional
+        Short form of ``requirement=PositionRequirement(radius_mm, prob)`` (not with ``requirement``).
+    region : str, path, array or Region, optional
+        Where the requirement holds (:class:`~tolalloc.workflows.Region`, or its ``where``: a pose set,
+        ``"limits"``, a box of the robot file, a trajectory CSV or an array / DataFrame of poses in deg / mm).
+        Default: the robot's ``working`` box, else its ``working`` pose set, else the nominal pose.
+    costs : str, path or Costs, optional
+        Cost laws and process limits: a costs file (TOML) or :class:`~tolalloc.workflows.Costs` (with ``z`` of
+        sigma = t / z, or uniform errors); default the built-in assumptions.
+    error_model : ErrorModelOptions, optional
+        Sigma set of the fixed parameters, link and deflection model, clearance, excluded parameters
+        (:class:`~tolalloc.workflows.ErrorModelOptions`).
+    solver : {"exact", "certified"} or Solver, optional
+        The design reported and its standard values (:class:`~tolalloc.workflows.Solver`).
+    verification : Verification or bool, optional
+        The nonlinear Monte Carlo verification and the correction loop (:class:`~tolalloc.workflows.Verification`:
+        samples, seed, estimator, correction, scheduler); ``False``: none (linear prediction and coverage only).
+    n_mc : int, optional
+        Short form of ``verification=Verification(n_mc=...)``: samples per verified pose (default 1 000 000).
     calibration : str, path or CalibrationPlanDesign, optional
         A :func:`plan_calibration` result or the plan CSV it saved: allocate for the accuracy after calibration (what
         runs, options refused: :mod:`tolalloc.workflows.calibrated`); returns a :class:`CalibratedToleranceAllocation`.
-    verify, correction : bool
-        Nonlinear Monte Carlo verification (``n_mc`` samples per pose, ``seed``); ``correction`` (default on)
-        re-solves with raised targets where a pose is not demonstrated (at most ``correction_rounds``, default 2).
-    estimator : {"auto", "plain", "paired", "importance"}
-        How the verification estimates ``P(|dP| < r)``: ``paired`` = exact linear P + mean difference of nonlinear and
-        linear indicators on shared draws; ``importance`` = that difference by importance sampling (rare events);
-        ``auto`` = paired for Gaussian parameters, else plain, importance where the tail is too thin for ``n_mc``.
-    scheduler : str or dask.distributed.Client, optional
-        Where the Monte Carlo runs (threads by default); never changes the numbers.
+    progress : bool, optional
+        The job's stages on stderr (:mod:`tolalloc.progress`: a status line on a terminal, a line per stage in a log).
     tool, trust_units
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
-    progress : bool, optional
-        The job's stage on stderr (region search, coverage, verification ...); default: in a terminal or notebook.
     parts : bool or dict, optional
         Design with the bought parts too: the robot file's catalogue slots are chosen with the machining standard
         values over the region, a payload and an ambient range (:func:`tolalloc.verify.parts.verified_parts`: True,
@@ -94,53 +78,62 @@ def allocate_tolerances(robot="tool_changer", *, radius_mm: float = 0.25, prob: 
     -------
     ToleranceAllocation or CalibratedToleranceAllocation (with ``calibration``); ``.ok``: the requirement is met.
 
+    Notes
+    -----
+    Every default is the command line's (:mod:`tolalloc.workflows.defaults`): the same call and ``tolalloc allocate``
+    with the same inputs write the same files. The keywords this call took before its settings objects (``seed``,
+    ``poses``, ``sigma_set``, ``snap``, ``verify`` ...) still work for one release, with a ``DeprecationWarning``
+    naming the object that holds each now.
+
     Examples
     --------
     >>> import tolalloc
     >>> res = tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=2000)
     >>> res.verdict, round(res.cost, 2)
-    ('demonstrated', 44.52)
+    ('demonstrated', 44.26)
     """
-    seed, n_mc, coverage_n = _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver,
-                                    estimator, n_mc, verify, seed, correction_rounds, coverage_n, progress)
-    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
-                   exclude=exclude)
-    costs, calibration, scheduler, correction, correction_rounds = _check_more(
-        snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator, angle_radius_deg, options)
-    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, **options)
-    cost_set = _costs(costs, model, z, uniform)
-    label, box, q = inputs.resolve_region(rob, region, poses)
-    kw = dict(radius_mm=float(radius_mm), prob=float(prob), costs=cost_set, angle_radius_deg=angle_radius_deg,
-              angle_prob=angle_prob)
-    inputs_record = _record(rob, label, cost_set, radius_mm=radius_mm, prob=prob, seed=seed, estimator=estimator,
-                            n_mc=n_mc if verify else None, solver=solver, snap=snap, exclude=exclude, tool=tool,
-                            correction=correction, correction_rounds=correction_rounds, trust_units=trust_units,
-                            coverage_n=coverage_n if box is not None else None, angle_step_deg=angle_step_deg,
+    s = allocation_settings(requirement, radius_mm=radius_mm, prob=prob, region=region, costs=costs,
+                            error_model=error_model, solver=solver, verification=verification, n_mc=n_mc,
                             calibration=calibration)
-    run = dict(snap=snap, angle_step_deg=angle_step_deg, verify=verify, n_mc=n_mc, seed=seed, estimator=estimator,
-               coverage_n=coverage_n, inputs_record=inputs_record)
+    inputs.check_optional_flag(progress, "progress")
+    rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    model = inputs.error_model(rob, **s.error_model.keywords())
+    cost_set = _costs(s.costs, model)
+    label, box, q = inputs.resolve_region(rob, s.region.where, s.region.poses)
+    kw = dict(**s.problem_arguments(), costs=cost_set)
+    ver, sol = s.verification, s.solver
+    inputs_record = _record(rob, label, cost_set, s, box is not None, tool=tool, trust_units=trust_units)
+    run = dict(snap=sol.snap, angle_step_deg=sol.angle_step_deg, verify=ver.monte_carlo, n_mc=ver.n_mc, seed=ver.seed,
+               estimator=ver.estimator, coverage_n=s.region.coverage_n, inputs_record=inputs_record)
     if parts:
-        if calibration is not None or angle_radius_deg is not None:
-            raise ArgumentError("parts", "the design with bought parts has the position requirement without a "
-                                "calibration plan; drop `calibration` / `angle_radius_deg`, or `parts`")
-        from tolalloc.verify.parts import verified_parts
-
-        return verified_parts(model, box, q, parts, radius_mm=float(radius_mm), prob=float(prob), costs=cost_set,
-                              verify=verify, n_mc=n_mc, seed=seed)
+        return _allocate_parts(model, box, q, parts, s, cost_set)
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
-        if calibration is not None:
+        if s.calibration is not None:
             bar.stage("calibration-aware allocation")
-            return calibrated_allocation(model, label, box, q, *_calibration_plan(calibration, rob), costs_path=costs,
-                                         exact=solver == "exact", **run, **kw)
-        return _allocate(model, label, box, q, kw, solver=solver, correction=correction,
-                         correction_rounds=correction_rounds, scheduler=scheduler, bar=bar, **run)
+            return calibrated_allocation(model, label, box, q, *_calibration_plan(s.calibration, rob),
+                                         costs_path=s.costs.file, exact=sol.method == "exact", **run, **kw)
+        return _allocate(model, label, box, q, kw, solver=sol.method, correction=s.correction,
+                         correction_rounds=s.correction_rounds, scheduler=ver.scheduler, bar=bar, **run)
+
+
+def _allocate_parts(model, box, q, parts, s, cost_set):
+    """The joint allocation with the robot file's catalogue parts (:func:`tolalloc.verify.parts.verified_parts`)."""
+    if s.calibration is not None or len(s.requirements) > 1:
+        raise ArgumentError("parts", "the design with bought parts takes the position requirement alone, without a "
+                            "calibration plan; drop `calibration` / the orientation requirement, or `parts`")
+    from tolalloc.verify.parts import verified_parts
+
+    req, ver = s.position, s.verification
+    return verified_parts(model, box, q, parts, radius_mm=float(req.radius_mm), prob=float(req.prob), costs=cost_set,
+                          verify=ver.monte_carlo, n_mc=ver.n_mc or 20000, seed=ver.seed)
 
 
 def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,
               correction_rounds, coverage_n, scheduler, inputs_record, bar) -> ToleranceAllocation:
     from tolalloc.allocate import allocate, build_problem
 
+    check_allocation_budgets(model, box is not None, q, n_mc=n_mc if verify else None, estimator=estimator,
+                             coverage_n=coverage_n, rounds=correction_rounds if correction and verify else 0)
     reg_info = None
     if box is not None and _box_is_one_pose(model, box, kw, seed):
         box, q = None, 0.5 * (box.q_min + box.q_max)[None, :]
@@ -228,22 +221,21 @@ def _verify_and_correct(model, kw, res, box, *, verify, n_mc, seed, estimator, c
     return corr.result, cov, corr.verification, corr
 
 
-def _record(rob, label, cost_set, *, radius_mm, prob, seed, estimator, n_mc, solver, snap, exclude, correction,
-            correction_rounds, coverage_n, angle_step_deg, tool, trust_units, calibration) -> dict:
+def _record(rob, label, cost_set, s, is_box: bool, *, tool, trust_units) -> dict:
     """The inputs that decide the numbers (for the report's reproduce command; the requirement's angle part, the
     costs' z and distribution and the error-model options are read back from the problem). ``n_mc`` None: no
     verification; ``correction`` / ``correction_rounds`` None: no correction loop (calibration-aware);
     ``coverage_n`` None: no box region, so no coverage sample. ``scheduler`` is left out: it never changes a
     number."""
-    return {"robot": rob.name, "radius_mm": float(radius_mm), "prob": float(prob), "region": label,
-            "costs": cost_set.source, "seed": int(seed), "n_mc": None if n_mc is None else int(n_mc),
-            "estimator": estimator, "solver": solver, "snap": bool(snap),
-            "exclude": [exclude] if isinstance(exclude, str) else list(exclude),
-            "correction": None if correction is None else bool(correction),
-            "correction_rounds": None if correction_rounds is None else int(correction_rounds),
-            "coverage_n": None if coverage_n is None else int(coverage_n), "angle_step_deg": angle_step_deg,
-            "tool": tool, "trust_units": bool(trust_units),
-            "calibration": None if calibration is None else _plan_source(calibration)}
+    ver, sol, exclude = s.verification, s.solver, s.error_model.exclude
+    return {"robot": rob.name, "radius_mm": float(s.position.radius_mm), "prob": float(s.position.prob),
+            "region": label, "costs": cost_set.source, "seed": int(ver.seed), "n_mc": ver.n_mc,
+            "estimator": ver.estimator, "solver": sol.method, "snap": bool(sol.snap), "exclude": list(exclude),
+            "correction": None if s.correction is None else bool(s.correction),
+            "correction_rounds": s.correction_rounds, "coverage_n": s.region.coverage_n if is_box else None,
+            "angle_step_deg": sol.angle_step_deg, "tool": tool, "trust_units": bool(trust_units),
+            "calibration": None if s.calibration is None else _plan_source(s.calibration),
+            "requirements": [r.to_dict() for r in s.requirements]}
 
 
 def _region_infeasible(res, box, reg_info, seed) -> str:
@@ -288,13 +280,13 @@ def _requirement_at_worst(res, block, searched) -> tuple:
     return (p_best < block["prob"], text, "`angle_radius_deg` / `angle_prob`" if angle else "`radius_mm` / `prob`")
 
 
-def _costs(costs, model, z, uniform):
+def _costs(costs, model):
+    """The cost set of a :class:`~tolalloc.workflows.Costs` for ``model``."""
     from tolalloc.allocate.costs import cost_set, load_costs
 
-    dist = "uniform" if uniform else None
-    if costs is None:
-        return cost_set(model, None, z=z, distribution=dist)
-    return load_costs(costs, model, z=z, distribution=dist)
+    if costs.file is None:
+        return cost_set(model, None, z=costs.z, distribution=costs.distribution)
+    return load_costs(costs.file, model, z=costs.z, distribution=costs.distribution)
 
 
 def _plan_source(calibration) -> str:
@@ -308,99 +300,8 @@ def _calibration_plan(calibration, robot) -> tuple:
     from tolalloc.calibration.plan import read_plan
 
     if isinstance(calibration, CalibrationPlanDesign):
-        return calibration.plan_for(robot), PLAN_IN_MEMORY
-    return read_plan(calibration, robot), _plan_source(calibration)
-
-
-#: correction rounds at most (each re-solves the allocation and re-runs the verification)
-MAX_CORRECTION_ROUNDS = 50
-
-
-def _check_more(snap, correction, correction_rounds, poses, costs, calibration, scheduler, estimator,
-                angle_radius_deg, model_options) -> tuple:
-    """Refuse bad flags, names, paths, error-model options and options the calibration-aware allocation cannot
-    honour, by their argument names; returns ``(costs, calibration, scheduler, correction, correction_rounds)``
-    checked, with their defaults."""
-    inputs.check_flag(snap, "snap")
-    inputs.check_optional_flag(correction, "correction")
-    inputs.check_model_options(**model_options)
-    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    costs = inputs.check_costs_file(costs)
-    if not isinstance(calibration, (CalibrationPlanDesign, str, os.PathLike, type(None))):
-        raise ArgumentError("calibration", "expected the CalibrationPlanDesign plan_calibration returns, or the path "
-                            f"of a calibration plan CSV (a str or pathlib.Path), got {inputs.shown(calibration)}.")
-    if not isinstance(calibration, CalibrationPlanDesign):
-        calibration = inputs.check_path(calibration, "calibration", "a calibration plan CSV (from plan_calibration)")
-    scheduler = inputs.check_scheduler(scheduler)
-    return (costs, calibration, scheduler,
-            *_correction_options(calibration, correction, correction_rounds, scheduler, estimator, angle_radius_deg))
-
-
-def _check(radius_mm, prob, angle_radius_deg, angle_prob, angle_step_deg, z, uniform, solver, estimator, n_mc, verify,
-           seed, correction_rounds, coverage_n, progress) -> tuple:
-    """Refuse bad numbers by their argument names before any computation; returns ``(seed, n_mc, coverage_n)`` as
-    ints (``n_mc`` as given when there is no verification)."""
-    inputs.check_optional_flag(progress, "progress")
-    inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
-    inputs.check_probability(prob, "prob")
-    if angle_radius_deg is not None:
-        inputs.check_positive(angle_radius_deg, "angle_radius_deg", "deg", "0.02")
-    if angle_prob is not None:
-        inputs.check_probability(angle_prob, "angle_prob")
-        if angle_radius_deg is None:
-            raise ArgumentError("angle_prob", f"{angle_prob:g} needs an orientation requirement: add "
-                                "`angle_radius_deg` A.")
-    if angle_step_deg is not None:
-        inputs.check_positive(angle_step_deg, "angle_step_deg", "deg", "0.001")
-    inputs.check_flag(uniform, "uniform")
-    inputs.check_flag(verify, "verify")
-    if uniform and z is not None:
-        raise ArgumentError("uniform", "and `z` both set sigma = t / z; give one of them.")
-    if z is not None:
-        inputs.check_z(z)
-    inputs.check_choice(solver, "solver", ("exact", "certified"))
-    inputs.check_choice(estimator, "estimator", ESTIMATORS)
-    if correction_rounds is not None and (
-            isinstance(correction_rounds, (bool, np.bool_)) or not isinstance(correction_rounds, (int, np.integer))
-            or not 0 <= correction_rounds <= MAX_CORRECTION_ROUNDS):
-        raise ArgumentError("correction_rounds", f"expected a whole number from 0 to {MAX_CORRECTION_ROUNDS} (rounds of "
-                            f"the correction loop, e.g. 2), got {inputs.shown(correction_rounds)}; or switch the "
-                            "correction off.")
-    if verify:
         try:
-            inputs.check_count(n_mc, "n_mc", minimum=100)
-        except ArgumentError:
-            raise ArgumentError("n_mc", f"expected at least 100 samples per pose (a whole number, e.g. 1000000), got "
-                                f"{inputs.shown(n_mc)}; or switch the verification off.") from None
-    return (inputs.check_seed(seed), int(n_mc) if verify else n_mc,
-            inputs.check_count(coverage_n, "coverage_n", example="100000"))
-
-
-def _correction_options(calibration, correction, correction_rounds, scheduler, estimator, angle_radius_deg) -> tuple:
-    """``(correction, correction_rounds)`` with their defaults (after calibration: no loop, so ``correction`` None or
-    False as given and no round limit); refuses, by their argument names, the options the calibration-aware
-    allocation cannot honour."""
-    if calibration is None:
-        return (True if correction is None else correction,
-                DEFAULT_CORRECTION_ROUNDS if correction_rounds is None else correction_rounds)
-    no_loop = ("the calibration-aware allocation (`calibration`) has no correction loop: its end-to-end Monte Carlo "
-               "states per pose whether the design to build passed, and nothing is re-solved")
-    if correction:
-        raise ArgumentError("correction", f"expected False or nothing with `calibration` ({no_loop}), got True; "
-                            "leave out `correction`.")
-    if correction_rounds is not None:
-        raise ArgumentError("correction_rounds", f"expected nothing with `calibration` ({no_loop}), got "
-                            f"{inputs.shown(correction_rounds)}; leave out `correction_rounds`.")
-    if scheduler is not None:
-        raise ArgumentError("scheduler", "expected nothing with `calibration` (the end-to-end Monte Carlo of the "
-                            "calibration-aware allocation runs in this process, vectorised over the simulated robots, "
-                            f"and takes no scheduler), got {inputs.shown(scheduler)}; leave out `scheduler`.")
-    if estimator not in CALIBRATED_ESTIMATORS:
-        raise ArgumentError("estimator", f"expected one of {', '.join(map(repr, CALIBRATED_ESTIMATORS))} with "
-                            "`calibration` (the end-to-end Monte Carlo of the calibration-aware allocation has no "
-                            f"importance sampler), got {estimator!r}; use 'paired' for a rare-event requirement.")
-    if angle_radius_deg is not None:
-        raise ArgumentError("angle_radius_deg", f"expected nothing with `calibration` (the calibration-aware "
-                            f"allocation handles the position requirement only), got {angle_radius_deg!r}; leave "
-                            "out `angle_radius_deg` and `angle_prob`, or allocate without `calibration`.")
-    return correction, None
+            return calibration.plan_for(robot), PLAN_IN_MEMORY
+        except ArgumentError as exc:  # the plan's robot is the allocation's argument `calibration` here
+            raise ArgumentError("calibration", exc.detail) from None
+    return read_plan(calibration, robot), _plan_source(calibration)

@@ -7,8 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.outputs import atomic_output, write_json
-from tolalloc.workflows.base import JobResult
+from tolalloc.outputs import write_json
+from tolalloc.workflows.base import JobResult, _old_axes, axes_of
 
 __all__ = ["ToleranceAllocation"]
 
@@ -68,6 +68,12 @@ class ToleranceAllocation(JobResult):
     built: object = None
 
     # ------------------------------------------------------------------ the headline numbers
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import allocation_command
+
+        return allocation_command(self)
+
     @property
     def robot(self):
         return self.result.problem.model.robot
@@ -108,7 +114,7 @@ class ToleranceAllocation(JobResult):
     @property
     def ok(self) -> bool:
         """Whether the design to build meets the requirement as far as it was checked: an optimal design that covers
-        the region (a box region) and passed its Monte Carlo verification -- or had none (``verify=False``: then
+        the region (a box region) and passed its Monte Carlo verification -- or had none (``verification=False``: then
         only the linear prediction was checked, and :attr:`verified` is False)."""
         if self.infeasible is not None or self.status != "optimal":
             return False
@@ -198,7 +204,10 @@ class ToleranceAllocation(JobResult):
                 f"sigma = tol / {pr.costs.z:.4g}{dist}. cost: relative cost units of the cost laws. "
                 "variance_share_pct: share of tr(Sigma) of the position error at the worst pose (pose "
                 f"{self.worst_pose + 1}), in %. role: allocate, or fixed by the costs file. at_limit: t_min or t_max "
-                "when the tolerance sits at a process limit (fixed: set by the costs file).")
+                "when the tolerance sits at a process limit (fixed: set by the costs file). process: the optimiser's "
+                "(costs file [processes.*]) or the cheapest of the built-in table (assumed). callout: the row's drawing "
+                "callout (ISO 1101 zone in mm | datum, over its length) or bought part (handover.md: sources and "
+                "assumptions).")
 
     def requirement(self) -> str:
         pr = self.problem
@@ -232,16 +241,58 @@ class ToleranceAllocation(JobResult):
         """The tolerance table of the design to build: one row per parameter, tolerance and sigma in ``*_mm`` /
         ``*_deg`` columns, standard grade, cost, variance share at its worst pose, process limits, and the continuous
         optimum for comparison (:meth:`tolalloc.allocate.result.AllocationResult.to_frame`). Which design it is and
-        what was checked: :meth:`design_note`."""
-        return self.result.to_frame(self.design)
+        what was checked: :meth:`design_note`. An empty ``process`` is filled from :meth:`handover` (the built-in
+        table's process, ``purchased part`` for a joint drive); ``callout`` is the row's drawing callout or bought
+        part and ``cost_source`` (last) where its cost comes from."""
+        frame = self.result.to_frame(self.design)
+        if self.infeasible is None and self.design.t is not None:
+            h = self.handover()
+            fill, callout, source = h.process_of(), h.callout_of(), h.cost_source_of()
+            frame["process"] = [p or fill.get(n, "") for p, n in zip(frame["process"], frame["parameter"])]
+            frame["callout"] = [callout.get(n, "") for n in frame["parameter"]]
+            frame["cost_source"] = [source.get(n, "") for n in frame["parameter"]]
+        return frame
 
-    def _repr_html_(self) -> str:
+    def handover(self, settings=None):
+        """The drawing callouts, purchase list and assumptions of the design to build
+        (:func:`tolalloc.allocate.handover.handover`; ``settings``: a
+        :class:`~tolalloc.allocate.drawing.HandoverSettings`, default its stated defaults)."""
+        from tolalloc.allocate.handover import handover
+
+        if settings is not None:
+            return handover(self.result, self.design, settings=settings)
+        if "_handover" not in self.__dict__:
+            object.__setattr__(self, "_handover", handover(self.result, self.design))
+        return self.__dict__["_handover"]
+
+    def card_lines(self) -> list[str]:
+        """The headline and which design the table holds (the table's caption)."""
+        return self.headline() + ([] if self.infeasible is not None else [f"table: {self.design_note()}"])
+
+    def card_frame(self) -> pd.DataFrame | None:
+        """The key columns of the tolerance table (the card of a notebook); None for a region no design covers."""
         from tolalloc.report.tables import TABLE_COLUMNS
-        from tolalloc.workflows.base import html_card
 
+        if self.infeasible is not None:
+            return None
         frame = self.to_frame()
-        return html_card(type(self).__name__, self.headline() + [f"table: {self.design_note()}"],
-                         frame[[c for c in TABLE_COLUMNS if c in frame.columns]])
+        cols = [c for c in TABLE_COLUMNS if c in frame.columns]
+        return frame[cols[:2] + ["unit"] + cols[2:]]
+
+    def error_model_options(self):
+        """The design to build as an :class:`~tolalloc.workflows.ErrorModelOptions`: every parameter's sigma (mm or
+        deg) overridden by the design's, the same link and deflection model and clearance, the parameters left out of
+        the allocation left out; for ``simulate_errors(robot, error_model=res.error_model_options())``. The
+        simulation draws Gaussian errors of these sigmas (``Costs(uniform=True)`` designs: same sigma, not uniform)."""
+        from tolalloc.workflows.settings import ErrorModelOptions
+
+        frame, model = self.to_frame(), self.problem.model
+        sigma = dict(zip(frame["parameter"], frame["sigma_mm"].fillna(frame["sigma_deg"]).astype(float)))
+        labels = model.labels
+        return ErrorModelOptions(sigma_set=labels["sigma_set"], link_mode=labels["link_mode"],
+                                 deflection_mode=labels["deflection_mode"],
+                                 clearance=any(str(k).startswith("clearance") for k in model.kinds), sigma=sigma,
+                                 exclude=tuple(self.inputs.get("exclude", [])) + tuple(self.problem.costs.excluded))
 
     def verification_frame(self) -> pd.DataFrame | None:
         """Per pose: linear P, Monte Carlo P_hat with its interval (95 % simultaneous over the poses and requirements,
@@ -265,64 +316,74 @@ class ToleranceAllocation(JobResult):
         return report_text(self)
 
     # ------------------------------------------------------------------ figures
-    def plot_budget(self, axes=None, *, title: str | None = None):
-        """Tolerance and variance share per parameter at the worst pose; returns the figure."""
+    def plot_budget(self, ax=None, *, title: str | None = None, axes=None):
+        """Tolerance and variance share per parameter at the worst pose, side by side; draws into ``ax`` (a pair of
+        Axes) or a new figure and returns the pair."""
         from tolalloc.report.plots.allocate import plot_budget
+        from tolalloc.workflows.checks import check_axes, check_text
 
+        ax = _old_axes("plot_budget", ax, axes)
+        check_axes(ax, "ax", 2)
+        check_text(title, "title", "the figure's title")
         t = (f"{self.robot.name}: {self.design.label} design, worst pose {self.worst_pose + 1}"
              if title is None else title)
-        fig = plot_budget(self.to_frame(), None, title=t, axes=axes)
-        return fig
+        fig = plot_budget(self.to_frame(), None, title=t, axes=ax)
+        return axes_of(fig) if ax is None else axes_of(list(ax))
 
     def plot_pose_probabilities(self, ax=None):
-        """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the figure."""
+        """Linear P and Monte Carlo P_hat (95 % simultaneous interval) per pose against p; returns the Axes."""
         from tolalloc.report.plots.allocate import plot_pose_probabilities
+        from tolalloc.workflows.checks import check_axes
 
+        check_axes(ax, "ax")
         self._need_verification("plot_pose_probabilities")
-        return plot_pose_probabilities(self.verification, None, ax=ax)
+        fig = plot_pose_probabilities(self.verification, None, ax=ax)
+        return axes_of(fig) if ax is None else ax
 
-    def plot_cloud(self, axes=None):
-        """Kept Monte Carlo position errors at the worst linear pose, three projections; returns the figure."""
+    def plot_cloud(self, ax=None, *, axes=None):
+        """Kept Monte Carlo position errors at the worst linear pose, three projections; draws into ``ax`` (three
+        Axes) or a new figure and returns the three."""
         from tolalloc.report.plots.allocate import plot_cloud
+        from tolalloc.workflows.checks import check_axes
 
+        ax = _old_axes("plot_cloud", ax, axes)
+        check_axes(ax, "ax", 3)
         self._need_verification("plot_cloud")
-        return plot_cloud(self.verification, None, axes=axes)
+        fig = plot_cloud(self.verification, None, axes=ax)
+        return axes_of(fig) if ax is None else axes_of(list(ax))
 
     def _need_verification(self, what: str) -> None:
         from tolalloc.exceptions import TolallocError
 
         if self.verification is None:
-            raise TolallocError(f"{what}: this allocation was not verified (verify=False or no design); run "
-                                "allocate_tolerances(..., verify=True).")
+            raise TolallocError(f"{what}: this allocation was not verified (verification=False or no design); expected "
+                                "a verified allocation: run allocate_tolerances(...) with its verification on.")
 
     # ------------------------------------------------------------------ files
-    def save(self, out, *, report: bool = False) -> list[str]:
-        """Write the tables, ``summary.json``, ``verification.csv`` and the figures into directory ``out``.
+    has_report = True
 
-        All files appear together or none (staged, then published in one step). ``report=True`` also writes
-        ``report.html``. Returns the names of the files written.
-        """
+    def check_savable(self) -> None:
         from tolalloc.exceptions import TolallocError
 
         if self.infeasible is not None:
             raise TolallocError(f"save: nothing to save, {self.infeasible}")
-        self.check_out(out, "out", required=True)
-        if not isinstance(report, (bool, np.bool_)):
-            from tolalloc.exceptions import ArgumentError
-
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
-        with atomic_output(out, directory=True) as tmp:
-            names = self.write_files(tmp, report=report)
-        return names
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
-        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
+        """Write the tables, ``summary.json``, ``verification.csv``, the figures and (``report``) ``report.html``
+        into an existing ``folder`` (not atomic; :meth:`save` stages through this); returns the file names."""
+        from pathlib import Path
+
         from tolalloc.report.tables import write_tables
 
+        folder = Path(folder)
         write_tables(self.to_frame(), folder, caption=f"Tolerances of {self.robot.name}: {self.requirement()} "
                      f"{self.where()}", note=f"design: {self.design_note()}", legend=self.table_legend())
         write_json(self.summary(), folder / "summary.json")
         names = list(ALLOCATION_FILES)
+        from tolalloc.report.handover import write_handover
+
+        names += write_handover(self.handover(), folder, f"Handover of {self.robot.name}: {self.requirement()} "
+                                f"{self.where()}")
         _save_figure(self.plot_budget(), folder / "error_budget.png")
         ver = self.verification
         if ver is not None:
@@ -333,15 +394,17 @@ class ToleranceAllocation(JobResult):
                 _save_figure(self.plot_cloud(), folder / "error_cloud.png")
                 names.append("error_cloud.png")
         if report:
-            from tolalloc.workflows.html import write_allocation_report
+            from tolalloc.report.html_allocation import write_allocation_report
 
             write_allocation_report(self, folder)
             names.append("report.html")
         return names
 
 
-def _save_figure(fig, path, dpi: int = 100) -> None:
+def _save_figure(axes, path, dpi: int = 100) -> None:
+    """Save the figure of ``axes`` (what a ``plot_*`` method returns) and close it."""
     import matplotlib.pyplot as plt
 
+    fig = np.ravel(np.asarray(axes, dtype=object))[0].figure
     fig.savefig(path, dpi=dpi)
     plt.close(fig)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from tolalloc.report.html_allocation import worst_p_text
+
 __all__ = ["summary_dict", "report_text"]
 
 
@@ -143,8 +145,3 @@ def region_stop(reg_info) -> str:
 
 def _finite(x) -> float | None:
     return None if x is None or not np.isfinite(x) else float(x)
-
-
-def worst_p_text(worst_p: float | None) -> str:
-    """The region search's worst linear P as printed (None: the search had no design to search with)."""
-    return "none (no design to search with)" if worst_p is None else f"{worst_p:.5f}"

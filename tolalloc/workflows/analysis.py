@@ -7,19 +7,19 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, check_memory
-from tolalloc.outputs import json_native, output_group, write_json
+from tolalloc.exceptions import ArgumentError
+from tolalloc.outputs import json_native, write_json
+from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
+from tolalloc.workflows.settings import ErrorModelOptions, as_settings
 
 __all__ = ["analyze_errors", "ErrorAnalysis"]
 
 
 @inputs.job_entry
 def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = None, radius_mm=(), prob=(),
-                   sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
-                   clearance: bool = False, clearance_tilt_literal: bool = False, sigma: dict | None = None,
-                   exclude=(), top: int = 10, sobol_n: int = 0, seed: int = 0, tool: str | None = None,
+                   error_model=None, top: int = D.TOP, sobol_n: int = 0, seed: int = D.SEED, tool: str | None = None,
                    trust_units: bool = False) -> "ErrorAnalysis":
     """First-order tool-position error of a robot's error model: covariance, probabilities, error budget.
 
@@ -34,10 +34,9 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         Radii r for ``P(|dP| < r)`` [mm].
     prob : float or sequence of float
         Probabilities in (0, 1) for the radius with ``P(|dP| < r) = p`` [mm].
-    sigma_set, link_mode, deflection_mode, clearance, clearance_tilt_literal, exclude
-        Error-model options (see :func:`tolalloc.errormodel.build_error_model`).
-    sigma : dict, optional
-        Sigma overrides ``{parameter or kind: sigma}`` in mm (lengths) or deg (angles).
+    error_model : ErrorModelOptions, optional
+        Sigma set, sigma overrides (mm or deg), link / deflection model, clearance, exclusions
+        (:class:`~tolalloc.workflows.ErrorModelOptions`; default: the robot file's first sigma set).
     top : int
         Budget rows in :meth:`ErrorAnalysis.text` and the budget figure.
     sobol_n : int
@@ -45,6 +44,8 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         for the first ``radius_mm``) at the worst pose from the nonlinear model (Saltelli sampling, Jansen
         estimators, ``sobol_n (K + 2)`` chain evaluations, ``seed``), beside the linear variance shares; factors
         whose nonlinear total index differs from the linear one by more than 0.05 are flagged.
+    seed : int
+        Seed of the Sobol' samples.
 
     Returns
     -------
@@ -57,6 +58,7 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
     >>> a.linear.std_mm.shape
     (1, 3)
     """
+    model_options = as_settings(error_model, ErrorModelOptions, "error_model")
     radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
     probs = inputs.check_values(prob, "prob", inputs.check_probability)
     top = inputs.check_count(top, "top", example="10")
@@ -65,15 +67,14 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         raise ArgumentError("sobol_n", f"expected 0 (no Sobol' indices) or a base sample size >= 16 (e.g. 4096), got "
                             f"{sobol_n}.")
     seed = inputs.check_seed(seed)
-    options = dict(sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode, clearance=clearance,
-                   exclude=exclude, sigma=sigma, clearance_tilt_literal=clearance_tilt_literal)
-    inputs.check_model_options(**options)
     inputs.check_name(poses, "poses", "the name of a pose set of the robot")
     inputs.check_one_pose_source(q_deg_mm, poses)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, **options)
-    if sobol_n:  # the Sobol' estimator holds its samples: A, B, one A_B per factor, and the outputs (5 K + 4 numbers)
-        check_memory(sobol_n, 16.0 * (5 * len(model.params) + 4), "sobol_n", "Sobol' base samples", "4096")
+    model = inputs.error_model(rob, **model_options.keywords())
+    if sobol_n:  # its memory (the samples are held) and time, before any work
+        from tolalloc.montecarlo.sobol import check_sobol_budget
+
+        check_sobol_budget(model, sobol_n, argument="sobol_n", announce=True)
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.linear.covariance import budget, linear_map
 
@@ -84,7 +85,7 @@ def analyze_errors(robot="tool_changer", *, q_deg_mm=None, poses: str | None = N
         from tolalloc.montecarlo.sobol import sobol_indices
 
         sobol = sobol_indices(model, q[b.worst_pose], sobol_n, seed, radius_mm=radii[0] if radii else None)
-    return ErrorAnalysis(res, b, tuple(radii), tuple(probs), bool(clearance), top, sobol)
+    return ErrorAnalysis(res, b, tuple(radii), tuple(probs), bool(model_options.clearance), top, sobol)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -139,7 +140,7 @@ class ErrorAnalysis(JobResult):
 
     def budget_frame(self, pose="worst", by: str = "parameter") -> pd.DataFrame:
         """The error budget at a pose (``"worst"`` or a 0-based index), per ``parameter`` or ``kind``."""
-        return self.budget.to_frame(pose=self.budget.worst_pose if pose == "worst" else pose, by=by)
+        return self.budget.to_frame(pose="worst" if isinstance(pose, str) and pose == "worst" else pose, by=by)
 
     def summary(self) -> dict:
         """The content of ``analyze.json``: the worst pose's values at top level, every pose under ``poses``."""
@@ -183,30 +184,25 @@ class ErrorAnalysis(JobResult):
         return "\n".join(out)
 
     def plot_budget(self, ax=None, *, pose="worst", by: str = "parameter"):
-        """Bar chart of the variance shares at a pose; returns the figure."""
+        """Bar chart of the variance shares at a pose; draws into ``ax`` or a new figure and returns the Axes."""
         from tolalloc.report.plots.linear import budget_bars
+        from tolalloc.workflows.base import axes_of
 
-        return budget_bars(self.budget, None, pose=pose, by=by, top=self.top, ax=ax)
+        inputs.check_axes(ax, "ax")
+        fig = budget_bars(self.budget, None, pose=pose, by=by, top=self.top, ax=ax)
+        return axes_of(fig) if ax is None else ax
 
-    def save(self, out=None, *, json=None) -> list[str]:
-        """Write ``linear_table.csv``, ``budget.csv``, ``budget_kinds.csv``, ``budget.md``, ``budget.png`` and
-        ``analyze.json`` into directory ``out``, and/or the JSON summary to file ``json``; all published together."""
-        self.check_out(out, "out")
-        self.check_out(json, "json", directory=False)
-        names = []
-        with output_group() as group:
-            if out is not None:
-                names = self.write_files(group.directory(out))
-            if json is not None:
-                write_json(self.summary(), group.file(json))
-        return names
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """Write ``linear_table.csv``, ``budget.csv``, ``budget_kinds.csv``, ``budget.md``, ``budget.png``,
+        ``analyze.json`` (and ``sobol.csv``) into an existing ``folder`` (not atomic; :meth:`save` stages through
+        this); returns the file names."""
+        from pathlib import Path
 
-    def write_files(self, folder) -> list[str]:
-        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
         import matplotlib.pyplot as plt
 
         from tolalloc.workflows.base import format_labels
 
+        folder = Path(folder)
         b, robot = self.budget, self.robot
         self.linear.to_frame().to_csv(folder / "linear_table.csv", index=False, float_format="%.6g")
         b.write_csv(folder / "budget.csv")
@@ -214,7 +210,7 @@ class ErrorAnalysis(JobResult):
         with open(folder / "budget.md", "w") as fh:
             fh.write(f"# Error budget of {robot.name} (worst pose {b.worst_pose + 1}), {format_labels(self.model.labels)}\n\n")
             fh.write(b.to_markdown(pose="worst", by="kind") + "\n\n" + b.to_markdown(pose="worst") + "\n")
-        fig = self.plot_budget()
+        fig = self.plot_budget().figure
         fig.savefig(folder / "budget.png", dpi=110)
         plt.close(fig)
         write_json(self.summary(), folder / "analyze.json")

@@ -2,11 +2,12 @@
 
 What runs: the certified calibration-aware design (eigenvalue rule on the post-calibration covariance), then the
 exact stage on the post-calibration probability (``solver="exact"``; skipped with ``"certified"``), over the pose set
-or the box; then the standard grades (``snap``); then the end-to-end Monte Carlo of the design to build (``verify``,
-position plans; ``n_mc`` simulated calibrations clipped to :data:`N_ROBOTS_RANGE`, estimator ``auto``, ``plain`` or
-``paired``). Position requirement only. There is no correction loop and the end-to-end Monte Carlo runs in this
-process, so :func:`~tolalloc.workflows.allocate_tolerances` refuses ``correction=True``, ``correction_rounds``,
-``scheduler``, ``estimator="importance"`` and ``angle_radius_deg`` with ``calibration``.
+or the box; then the standard grades (``Solver.snap``); then the end-to-end Monte Carlo of the design to build
+(unless ``verification=False``; position plans; ``Verification.n_mc`` simulated calibrations clipped to
+:data:`N_ROBOTS_RANGE`, estimator ``auto``, ``plain`` or ``paired``). Position requirement only. There is no correction
+loop and the end-to-end Monte Carlo runs in this process, so :func:`~tolalloc.workflows.allocate_tolerances` refuses
+a ``Verification`` with ``correction=True``, ``correction_rounds``, ``scheduler`` or ``estimator="importance"``, and
+an ``OrientationRequirement``, with ``calibration``.
 
 The result's tolerance table is built in :mod:`.calibrated_table`, its printed text in :mod:`.calibrated_text`.
 """
@@ -17,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tolalloc.outputs import atomic_output, write_json
+from tolalloc.outputs import write_json
 from tolalloc.workflows.base import JobResult
 
 __all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs", "N_ROBOTS_RANGE",
@@ -54,13 +55,16 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
     ``model.robot``; ``plan_source``: its file, or :data:`PLAN_IN_MEMORY`): certified, then (``exact``) exact, at the poses
     ``q`` (P, n) [rad, mm] or over the box ``box`` (cutting planes, coverage); with ``snap`` the standard-grade design
     (ISO 286 grades, classes, ``angle_step_deg`` steps) chosen over the same poses or box
-    (:func:`tolalloc.allocate.calibrated_standard.standardize_calibrated`), the design to build; the end-to-end Monte
+    (:func:`tolalloc.allocate.calibrated.standard.standardize_calibrated`), the design to build; the end-to-end Monte
     Carlo (``n_mc`` simulated robots within :data:`N_ROBOTS_RANGE`, each calibrated nonlinearly, at the built design's
     worst poses; ``estimator`` auto, plain or paired) when ``verify`` and the plan measures positions."""
     from tolalloc.allocate import build_problem
-    from tolalloc.allocate.calibrated_design import allocate_with_calibration
+    from tolalloc.allocate.calibrated.design import allocate_with_calibration
+    from tolalloc.verify.cost import check_allocation_budgets
     from tolalloc.workflows.inputs import default_pose_set, resolve_poses
 
+    check_allocation_budgets(model, box is not None, q, n_mc=None, estimator=estimator, coverage_n=coverage_n,
+                             rounds=1 if snap else 0)  # coverage of the continuous and the standard design
     if box is not None:  # the initial active set: the robot's pose set (the poses inside the box are kept)
         q = resolve_poses(model.robot, None, default_pose_set(model.robot))[1]
     problem = build_problem(model, q, **kw)
@@ -69,7 +73,7 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
                                     seed=seed)
     std = None
     if res.design.ok and snap:
-        from tolalloc.allocate.calibrated_standard import standardize_calibrated
+        from tolalloc.allocate.calibrated.standard import standardize_calibrated
 
         std = standardize_calibrated(res, angle_step_deg=angle_step_deg, coverage_n=coverage_n, seed=seed)
     chk, n = None, None
@@ -93,7 +97,7 @@ class CalibratedToleranceAllocation(JobResult):
 
     Attributes
     ----------
-    result : tolalloc.allocate.calibrated_design.CalibratedDesign
+    result : tolalloc.allocate.calibrated.design.CalibratedDesign
         The certified and (``solver="exact"``) exact calibration-aware designs (the exact one chosen when accepted),
         the region search and its coverage, the designs without calibration, the post-calibration statistics.
     plan : CalibrationPlan
@@ -120,6 +124,12 @@ class CalibratedToleranceAllocation(JobResult):
     n_robots: int | None
     inputs: dict = field(default_factory=dict)
     standard: object = None
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import allocation_command
+
+        return allocation_command(self)
 
     @property
     def robot(self):
@@ -179,7 +189,7 @@ class CalibratedToleranceAllocation(JobResult):
     def verified(self) -> bool:
         """Whether the design to build passed the end-to-end Monte Carlo (simulated robots, each calibrated at the
         plan's poses): it ran and :attr:`ok`, as :attr:`ToleranceAllocation.verified`; False when it did not run
-        (``verify=False``, a pose-measurement plan or no design).
+        (``verification=False``, a pose-measurement plan or no design).
 
         Passed (:attr:`~tolalloc.verify.calibrated_worst.EndToEnd.passed`) means: for the exact or standard design
         every checked pose is ``demonstrated`` (the interval of ``P_hat`` lies at or above p) or ``consistent``
@@ -224,7 +234,7 @@ class CalibratedToleranceAllocation(JobResult):
     def _no_end_to_end(self) -> str:
         """Why the end-to-end Monte Carlo did not run."""
         if self.inputs.get("n_mc", 0) is None:
-            return "verify=False"
+            return "verification=False"
         if self.plan.measurement != "position":
             return "the plan measures poses; the end-to-end simulation handles position measurements only"
         return "no design to check"
@@ -339,28 +349,42 @@ class CalibratedToleranceAllocation(JobResult):
 
         return report_text(self)
 
-    def save(self, out, *, report: bool = False) -> list[str]:
-        """Write ``tolerances.csv``, ``.md``, ``.tex``, ``summary.json`` and (after an end-to-end Monte Carlo)
-        ``verification.csv`` into directory ``out`` (all together or none); ``report=True`` adds ``report.html``.
-        Returns the file names."""
+    has_report = True
+
+    def check_savable(self) -> None:
         from tolalloc.exceptions import TolallocError
 
         if not self.result.design.ok:
             raise TolallocError(f"save: nothing to save, the calibration-aware allocation is infeasible "
                                 f"({self.result.design.message}).")
-        self.check_out(out, "out", required=True)
-        if not isinstance(report, (bool, np.bool_)):
-            from tolalloc.exceptions import ArgumentError
 
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
-        with atomic_output(out, directory=True) as tmp:
-            names = self.write_files(tmp, report=report)
-        return names
+    def card_frame(self):
+        """The key columns of the tolerance table (the card of a notebook); None when infeasible."""
+        if not self.result.design.ok:
+            return None
+        frame = self.to_frame()
+        keep = ["parameter", "kind", "unit", "status", "tol_mm", "tol_deg", "grade", "cost", "variance_share_pct"]
+        return frame[[c for c in keep if c in frame.columns]]
+
+    def plot_budget(self, ax=None, *, title: str | None = None):
+        """Tolerance and post-calibration variance share per parameter of the design to build, side by side; draws
+        into ``ax`` (a pair of Axes) or a new figure and returns the pair."""
+        from tolalloc.report.plots.allocate import plot_budget
+        from tolalloc.workflows.base import axes_of
+
+        self.check_savable()
+        t = f"{self.robot.name}: after the {self.plan.n_poses}-pose calibration plan" if title is None else title
+        fig = plot_budget(self.to_frame(), None, title=t, axes=ax)
+        return axes_of(fig) if ax is None else axes_of(list(ax))
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
-        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
+        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this); returns
+        the file names."""
+        from pathlib import Path
+
         from tolalloc.report.tables import write_tables
 
+        folder = Path(folder)
         pr, frame = self.problem, self.to_frame()
         write_tables(frame, folder, caption=f"Tolerances of {self.robot.name}: P(|dP| < {pr.radius_mm:g} mm) >= "
                      f"{pr.prob:g} after the {self.plan.n_poses}-pose calibration plan, over {self.label}",
@@ -372,7 +396,7 @@ class CalibratedToleranceAllocation(JobResult):
             ver.to_csv(folder / "verification.csv", index=False, float_format="%.8g")
             names.append("verification.csv")
         if report:
-            from tolalloc.workflows.html_calibrated import write_calibrated_report
+            from tolalloc.report.html_calibrated import write_calibrated_report
 
             write_calibrated_report(self, folder)
             names.append("report.html")

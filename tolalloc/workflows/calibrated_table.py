@@ -82,7 +82,7 @@ def with_fractions(names, fractions: dict) -> str:
 
 def calibrated_frame(job) -> pd.DataFrame:
     """Tolerance table of a :class:`~tolalloc.workflows.CalibratedToleranceAllocation` (module docstring)."""
-    from tolalloc.allocate.calibrated import parameter_status
+    from tolalloc.allocate.calibrated.certified import parameter_status
     from tolalloc.linear.covariance import variance_share
 
     res = job.result

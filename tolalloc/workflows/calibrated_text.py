@@ -38,7 +38,7 @@ def report_text(job) -> str:
 
 def _standard_lines(job) -> list[str]:
     """The standard design's lines: cost and premium, its region search and coverage, what is built."""
-    from tolalloc.allocate.calibrated_summary import summary_search_lines
+    from tolalloc.allocate.calibrated.summary import summary_search_lines
 
     res, pr, std = job.result, job.problem, job.standard
     if std is None:

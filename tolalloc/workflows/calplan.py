@@ -9,8 +9,11 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, check_memory, known_names
 from tolalloc.outputs import atomic_output
+from tolalloc.progress import StageBar, show_progress
+from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
+from tolalloc.workflows.settings import Costs, ErrorModelOptions, Measurement, as_settings
 
 __all__ = ["plan_calibration", "CalibrationPlanDesign"]
 
@@ -20,8 +23,8 @@ CANDIDATE_BYTES = 65536
 #: tracker noise sigma: 0.1 um .. 1 m and 1e-6 .. 10 deg. Below, the posterior of the candidates is conditioned
 #: beyond what the design's factorizations resolve (the all-candidates floor drifts above a plan's score at
 #: 1e-5 mm); no tracker comes near (typical: 0.005 .. 0.05 mm)
-NOISE_MM_RANGE = (1e-4, 1e3)
-NOISE_DEG_RANGE = (1e-6, 10.0)
+NOISE_MM_RANGE = Measurement.NOISE_MM_RANGE
+NOISE_DEG_RANGE = Measurement.NOISE_DEG_RANGE
 
 
 def _check_tool_moves(model, q_eval, rob, ev: str) -> None:
@@ -33,11 +36,11 @@ def _check_tool_moves(model, q_eval, rob, ev: str) -> None:
 
 
 @inputs.job_entry
-def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "limits", eval_poses: str | None = None,
-                     n_candidates: int = 2000, measurement: str = "position", noise_mm: float = 0.02,
-                     noise_deg: float = 0.001, registration: bool = True, costs=None, sigma_set: str | None = None,
-                     seed: int = 0, tool: str | None = None, trust_units: bool = False, for_allocation: bool = False,
-                     radius_mm: float = 0.25, prob: float = 0.95, random_plans: int = 100) -> "CalibrationPlanDesign":
+def plan_calibration(robot="tool_changer", n_poses: int = D.N_POSES, *, region: str = "limits",
+                     eval_poses: str | None = None, n_candidates: int = D.N_CANDIDATES, measurement="position",
+                     costs=None, error_model=None, seed: int = D.SEED, for_allocation=False,
+                     random_plans: int = D.RANDOM_PLANS, progress: bool | None = None, tool: str | None = None,
+                     trust_units: bool = False) -> "CalibrationPlanDesign":
     """Choose ``n_poses`` laser-tracker measurement poses that minimise the post-calibration error.
 
     Candidates are scrambled-Sobol poses in the joint limits (``region="limits"``) or in the box of a pose set; the
@@ -54,29 +57,35 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
         ``"limits"`` or a pose set whose box holds the candidates.
     eval_poses : str, optional
         Pose set where the accuracy matters (default ``working`` if defined, else nominal).
-    measurement : {"position", "pose"}
-    noise_mm, noise_deg : float
-        Tracker noise sigma per coordinate [mm] and per axis [deg] (``noise_deg``: pose measurements only).
-    registration : bool
-        Estimate the tracker frame and tool offset too (False: they are known).
-    costs : str or path, optional
-        Costs file whose ``[calibration]`` table overrides the systematic / random split.
-    sigma_set : str, optional
-        Manufacturing sigma set of the robot file (the prior).
-    for_allocation : bool
-        Design the plan for the calibration-aware allocation it serves: starting from the A-optimal plan, alternate
-        the allocation for ``P(|dP| < radius_mm) >= prob`` (over the robot's ``working`` box if it has one, else at
-        the evaluation poses) and a re-design that maximises the worst post-calibration P at the design's binding
-        poses, keeping a plan only when the allocation gets cheaper; then compare the plan with ``random_plans``
-        random plans of the same size (median, 10th and 90th percentile of their worst-pose P). Position
-        measurements only; ``radius_mm``, ``prob`` and ``random_plans`` are read only here (refused, away from their
-        defaults, without it).
+    n_candidates : int
+        Candidate poses (default 2000).
+    measurement : {"position", "pose"} or Measurement
+        What the tracker measures, with its noise and whether the registration is estimated
+        (:class:`~tolalloc.workflows.Measurement`; a string is its ``kind``).
+    costs : str, path or Costs, optional
+        Costs file whose ``[calibration]`` table overrides the systematic / random split (and, with
+        ``for_allocation``, the cost laws of the allocation).
+    error_model : ErrorModelOptions, optional
+        Its ``sigma_set``: the manufacturing sigma set of the robot file (the prior); the other options are not read.
+    seed : int
+        Seed of the candidates and the random comparison plans.
+    for_allocation : bool or PositionRequirement
+        Design the plan for the calibration-aware allocation it serves (``True``: for ``P(|dP| < 0.25 mm) >= 0.95``;
+        a :class:`~tolalloc.workflows.PositionRequirement`: for that): starting from the A-optimal plan, alternate the
+        allocation (over the robot's ``working`` box if it has one, else at the evaluation poses) and a re-design
+        that maximises the worst post-calibration P at the design's binding poses, keeping a plan only when the
+        allocation gets cheaper; then compare the plan with ``random_plans`` random plans of the same size (median,
+        10th and 90th percentile of their worst-pose P). Position measurements only.
+    random_plans : int
+        Random plans compared with a plan designed for an allocation (read only with ``for_allocation``).
+    progress : bool, optional
+        The job's stage on stderr (candidates, design, allocation rounds); default: in a terminal or notebook.
 
     Returns
     -------
     CalibrationPlanDesign
-        ``.save(path)`` writes the plan CSV that ``allocate_tolerances(calibration=path)`` reads;
-        ``allocate_tolerances(calibration=result)`` takes the result itself.
+        ``.save(directory)`` writes ``plan.csv`` (the file ``allocate_tolerances(calibration=...)`` reads) and
+        ``summary.json``; ``allocate_tolerances(calibration=result)`` takes the result itself.
 
     Examples
     --------
@@ -90,56 +99,85 @@ def plan_calibration(robot="tool_changer", n_poses: int = 30, *, region: str = "
     n_poses = inputs.check_count(n_poses, "n_poses", example="30")
     if n_poses > n_cand:
         raise ArgumentError("n_poses", f"expected a whole number between 1 and the {n_cand} candidates, got {n_poses}.")
-    inputs.check_positive(noise_mm, "noise_mm", "mm", "0.02", NOISE_MM_RANGE)
-    inputs.check_positive(noise_deg, "noise_deg", "deg", "0.001", NOISE_DEG_RANGE)
-    inputs.check_choice(measurement, "measurement", ("position", "pose"))
-    inputs.check_flag(registration, "registration")
-    inputs.check_flag(for_allocation, "for_allocation")
-    _check_unused(for_allocation, measurement, radius_mm=radius_mm, prob=prob, random_plans=random_plans,
-                  noise_deg=noise_deg)
+    meas = as_settings(measurement, Measurement, "measurement", lambda v: Measurement(kind=v))
+    cost = as_settings(costs, Costs, "costs", lambda v: Costs(file=v))
+    options = as_settings(error_model, ErrorModelOptions, "error_model")
+    target = _target(for_allocation, random_plans, meas, cost, options)
+    inputs.check_optional_flag(progress, "progress")
     seed = inputs.check_seed(seed)
-    costs = inputs.check_costs_file(costs)
     inputs.check_name(region, "region", "'limits' or the name of a pose set of the robot")
     inputs.check_name(eval_poses, "eval_poses", "the name of a pose set of the robot")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     _check_region(rob, region)
+    with StageBar(show_progress(progress), f"plan_calibration {rob.name}") as bar:
+        return _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, target, random_plans, seed, bar)
+
+
+def _design(rob, n_poses, n_cand, region, eval_poses, meas, cost, options, target, random_plans, seed, bar):
+    """The plan of :func:`plan_calibration`, its inputs checked; ``bar`` names the stage."""
     from tolalloc.calibration.design import candidate_poses, design_plan
     from tolalloc.calibration.posterior import posterior
     from tolalloc.workflows.calibrated import split_from_costs
 
-    model = inputs.error_model(rob, sigma_set=sigma_set)
-    split = split_from_costs(model, costs)
-    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob), poses_argument="eval_poses")
-    _check_tool_moves(model, q_eval, rob, ev)
+    model = inputs.error_model(rob, sigma_set=options.sigma_set)
+    split = split_from_costs(model, cost.file)
+    ev, q_eval = _eval_poses(model, eval_poses, random_plans if target is not None else None)
+    bar.stage(f"{n_cand} candidate poses")
     cand = candidate_poses(rob, n_cand, region, seed=seed)
-    d = design_plan(split, n_poses, cand, q_eval, measurement=measurement, noise_mm=noise_mm, noise_deg=noise_deg,
-                    registration=registration, seed=seed)
+    bar.stage(f"A-optimal {n_poses}-pose plan")
+    d = design_plan(split, n_poses, cand, q_eval, measurement=meas.kind, noise_mm=meas.noise_mm,
+                    noise_deg=meas.noise_deg, registration=meas.registration, seed=seed)
     alloc, comparison = None, None
-    if for_allocation:
-        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=costs, radius_mm=radius_mm,
-                                            prob=prob, random_plans=random_plans, measurement=measurement,
-                                            noise_mm=noise_mm, registration=registration, seed=seed)
+    if target is not None:
+        bar.stage(f"plan for the allocation ({target.text()}) and {random_plans} random plans")
+        alloc, comparison = _for_allocation(model, split, d.plan, cand, q_eval, costs=cost.file, target=target,
+                                            random_plans=random_plans, measurement=meas, seed=seed)
     post = posterior(split, d.plan if alloc is None else alloc.plan)
     unid, frac = tuple(post.unidentifiable), dict(zip(model.names, post.sigma_fraction))
     return CalibrationPlanDesign(d, rob, region, ev, len(cand), unid, alloc, comparison,
                                  unidentifiable_sigma_fraction=tuple(float(frac[n]) for n in unid))
 
 
-def _check_unused(for_allocation: bool, measurement: str, **given) -> None:
-    """Refuse an option set away from its default where nothing reads it: the allocation's requirement and random
-    plans without ``for_allocation``, an orientation noise with position measurements."""
-    import inspect
+def _eval_poses(model, eval_poses, random_plans) -> tuple:
+    """``(name, q (P, n))`` of the evaluation poses, where the tool moves with the errors; the count of random plans
+    compared at them (None: no comparison) checked against the time budget before any work (it runs last)."""
+    rob = model.robot
+    ev, q_eval = inputs.resolve_poses(rob, None, eval_poses or inputs.default_pose_set(rob),
+                                      poses_argument="eval_poses")
+    _check_tool_moves(model, q_eval, rob, ev)
+    if random_plans is not None:
+        from tolalloc.calibration.design_worst import check_random_plans_budget
 
-    defaults = inspect.signature(plan_calibration).parameters
-    for name, value in given.items():
-        if np.ndim(value) == 0 and value == defaults[name].default:
-            continue
-        if name == "noise_deg" and measurement == "position":
-            raise ArgumentError(name, f"{inputs.shown(value)} is the orientation noise of pose measurements, but "
-                                "`measurement` is position; add `measurement` pose (or leave out `noise_deg`).")
-        if name != "noise_deg" and not for_allocation:
-            raise ArgumentError(name, f"{inputs.shown(value)} is read only for a plan designed for an allocation, but "
-                                "`for_allocation` is off; add `for_allocation` (or leave out this option).")
+        check_random_plans_budget(inputs.check_count(random_plans, "random_plans", example="100"), len(q_eval),
+                                  announce=True)
+    return ev, q_eval
+
+
+def _target(for_allocation, random_plans, meas, cost, options):
+    """The requirement the plan serves (None: a plan for the A-optimal criterion alone); refuses options nothing
+    would read."""
+    from tolalloc.workflows.requirements import PositionRequirement
+
+    if isinstance(for_allocation, PositionRequirement):
+        target = for_allocation
+    else:
+        target = PositionRequirement() if inputs.check_flag(for_allocation, "for_allocation") else None
+    if target is None and random_plans != D.RANDOM_PLANS:
+        raise ArgumentError("random_plans", f"{inputs.shown(random_plans)} is read only for a plan designed for an "
+                            "allocation, but `for_allocation` is off; add `for_allocation` (or leave out this option).")
+    if target is not None:
+        inputs.check_count(random_plans, "random_plans", example="100")
+        if meas.kind != "position":
+            raise ArgumentError("for_allocation", "needs `measurement` position: the allocation's end-to-end check "
+                                "simulates position measurements.")
+    if cost.z is not None or cost.uniform:
+        raise ArgumentError("costs", "a plan reads the costs file only (its [calibration] split and, for an "
+                            "allocation, its cost laws); leave out Costs.z and Costs.uniform.")
+    unread = [f for f in options.changed() if f != "sigma_set"]
+    if unread:
+        raise ArgumentError("error_model", f"a plan reads only ErrorModelOptions.sigma_set (the prior), got "
+                            f"{', '.join(unread)} too; leave them out.")
+    return target
 
 
 def _check_region(rob, region: str) -> None:
@@ -154,29 +192,23 @@ def _check_region(rob, region: str) -> None:
                             "use a pose set's box (region=SET).")
 
 
-def _for_allocation(model, split, start, cand, q_eval, *, costs, radius_mm, prob, random_plans, measurement, noise_mm,
-                    registration, seed):
+def _for_allocation(model, split, start, cand, q_eval, *, costs, target, random_plans, measurement, seed):
     """The plan designed for the allocation it serves, and its comparison with random plans of its size."""
     from tolalloc.allocate import build_problem
-    from tolalloc.allocate.calibrated_plan import compare_with_random_plans, design_plan_for_allocation
+    from tolalloc.allocate.calibrated.plan import compare_with_random_plans, design_plan_for_allocation
     from tolalloc.allocate.costs import cost_set, load_costs
     from tolalloc.allocate.region import box_region
 
-    inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
-    inputs.check_probability(prob, "prob")
     count = inputs.check_count(random_plans, "random_plans", example="100")
-    if measurement != "position":
-        raise ArgumentError("for_allocation", "needs `measurement` position: the allocation's end-to-end check "
-                            "simulates position measurements.")
     robot = model.robot
     box = None
     if "working" in robot.regions:
         box = box_region(robot, *robot.regions["working"], "working", "region 'working'")
     costs_set = cost_set(model, None) if costs is None else load_costs(costs, model)
-    problem = build_problem(model, q_eval, radius_mm=float(radius_mm), prob=float(prob), costs=costs_set)
+    problem = build_problem(model, q_eval, **target.problem_arguments(), costs=costs_set)
     alloc = design_plan_for_allocation(problem, start.n_poses, cand, split=split, region=box, start=start,
-                                       coverage_n=0, baseline=False, seed=seed, noise_mm=noise_mm,
-                                       registration=registration)
+                                       coverage_n=0, baseline=False, seed=seed, noise_mm=measurement.noise_mm,
+                                       registration=measurement.registration)
     return alloc, compare_with_random_plans(alloc.result, cand, count=count, seed=seed)
 
 
@@ -233,9 +265,11 @@ class CalibrationPlanDesign(JobResult):
 
     def plan_for(self, robot):
         """The plan, checked for an allocation on ``robot``: designed for a robot of its name and joints, poses
-        within its limits (``allocate_tolerances(calibration=design)``)."""
+        within its limits (``allocate_tolerances(calibration=design)``); ``robot``: a Robot, a built-in name or a
+        robot file."""
+        robot = inputs.as_robot(robot)
         if self.robot.name != robot.name or self.robot.n_joints != robot.n_joints:
-            raise ArgumentError("calibration", f"the plan was designed for the robot {self.robot.name!r}, but the "
+            raise ArgumentError("robot", f"the plan was designed for the robot {self.robot.name!r}, but the "
                                 f"allocation is for {robot.name!r}; design a plan for this robot "
                                 f"(tolalloc.plan_calibration({robot.name!r}, n_poses)) and give it as calibration.")
         robot.check_q(self.plan.q, "calibration plan poses")
@@ -304,11 +338,59 @@ class CalibrationPlanDesign(JobResult):
             out.append(f"{UNIDENTIFIABLE_NOTE}: {with_fractions(self.unidentifiable, frac)}")
         return "\n".join(out)
 
-    def save(self, path) -> list[str]:
-        """Write the plan CSV (settings in ``#`` header lines) to file ``path``, atomically."""
+    def plot_scores(self, ax=None):
+        """Mean post-calibration position variance of the systematic part [mm^2]: no calibration, the random plan,
+        the designed plan and the floor of measuring every candidate; draws into ``ax`` or a new figure and returns
+        the Axes."""
+        import matplotlib.pyplot as plt
+
+        d = self.design
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 2.6))
+        names = ["no calibration", f"random {d.plan.n_poses}-pose plan", f"designed {d.plan.n_poses}-pose plan",
+                 f"all {self.n_candidates} candidates (floor)"]
+        values = [d.no_calibration_mm2, d.random_score_mm2, d.score_mm2, d.floor_mm2]
+        ax.barh(names[::-1], values[::-1], color=["#999999", "#4c72b0", "#c44e52", "#dddddd"][::-1])
+        ax.set_xscale("log")
+        ax.set_xlabel("mean post-calibration position variance (systematic part) [mm²]")
+        ax.set_title(f"{self.robot.name}: calibration plan at the {self.eval_poses} poses", fontsize=9)
+        ax.figure.tight_layout()
+        return ax
+
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """Write ``plan.csv`` (settings in ``#`` header lines: the file ``allocate_tolerances(calibration=...)``
+        reads) and ``summary.json`` into an existing ``folder`` (not atomic); returns the file names."""
+        from pathlib import Path
+
+        from tolalloc.calibration.plan import write_plan
+        from tolalloc.outputs import json_native, write_json
+
+        folder = Path(folder)
+        write_plan(self.plan, self.robot, folder / "plan.csv")
+        write_json(json_native(self.summary()), folder / "summary.json")
+        return ["plan.csv", "summary.json"]
+
+    def save_plan(self, path) -> list:
+        """Write the plan CSV alone to file ``path`` (``str`` or ``os.PathLike``), atomically, as ``tolalloc calplan
+        --out FILE`` does; returns ``[Path(path)]``."""
+        from pathlib import Path
+
         from tolalloc.calibration.plan import write_plan
 
-        self.check_out(path, "path", directory=False, required=True)
+        path = self.check_out(path, "path", directory=False, required=True)
         with atomic_output(path) as tmp:
             write_plan(self.plan, self.robot, tmp)
-        return [str(path)]
+        return [Path(path)]
+
+    def save(self, directory=None, *, report: bool = False, json=None, **old) -> list:
+        """Write ``plan.csv`` and ``summary.json`` into ``directory`` (the result protocol,
+        :mod:`tolalloc.workflows.base`); ``save("plan.csv")`` (a path ending in ``.csv``), the former form, writes the
+        plan file alone, with a DeprecationWarning (use :meth:`save_plan`)."""
+        import warnings
+
+        if directory is not None and str(directory).lower().endswith(".csv") and not old and json is None:
+            warnings.warn("CalibrationPlanDesign.save(FILE.csv) is deprecated: save(directory) writes plan.csv and "
+                          "summary.json into a directory, save_plan(FILE.csv) the plan file alone.",
+                          DeprecationWarning, stacklevel=2)
+            return self.save_plan(directory)
+        return super().save(directory, report=report, json=json, **old)

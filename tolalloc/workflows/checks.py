@@ -14,11 +14,13 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from tolalloc.units import RANGES, check_positive, check_probability, number  # noqa: F401 (re-exported)
 from tolalloc.exceptions import ArgumentError, TolallocError, describe, known_names, whole_number
 
 __all__ = ["shown", "check_values", "check_probability", "RANGES", "check_positive", "check_count", "check_seed",
            "check_choice", "check_flag", "check_optional_flag", "check_name", "check_names", "check_path", "Z_RANGE",
-           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "check_not_both", "number"]
+           "check_z", "check_costs_file", "check_scheduler", "check_model_options", "check_not_both", "number",
+           "check_axes", "check_text"]
 
 
 def shown(value, limit: int = 60) -> str:
@@ -36,16 +38,6 @@ def check_not_both(first, first_argument: str, second, second_argument: str, wha
                             f"give one of them{hint}.")
 
 
-def number(value, argument: str) -> float:
-    """A number (int, float or numpy scalar; not a bool or a string) as a float."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ArgumentError(argument, f"expected a number, got {shown(value)}.")
-    try:
-        return float(value)
-    except OverflowError:  # an int beyond the float range
-        return float("inf") if value > 0 else float("-inf")
-
-
 def check_values(value, argument: str, check, *args, **kwargs) -> list:
     """A number or a flat sequence of numbers, each checked by ``check(x, argument, *args, **kwargs)``."""
     if isinstance(value, (list, tuple, np.ndarray, pd.Series)):
@@ -54,32 +46,6 @@ def check_values(value, argument: str, check, *args, **kwargs) -> list:
             raise ArgumentError(argument, f"expected a number or a flat list of numbers, got {shown(value)}.")
         return [check(v, argument, *args, **kwargs) for v in items]
     return [check(value, argument, *args, **kwargs)]
-
-
-def check_probability(value, argument: str, *, example: str = "0.95") -> float:
-    """A probability strictly between 0 and 1."""
-    x = number(value, argument)
-    if not (np.isfinite(x) and 0 < x < 1):
-        raise ArgumentError(argument, f"expected a probability strictly between 0 and 1 (e.g. {example}), got {value!r}.")
-    return x
-
-
-#: Ranges of radii, noise levels and steps ``(smallest, largest)`` in each unit: beyond them a tolerance problem
-#: is not physical (a nanometre .. a kilometre, a nano-degree .. one turn) and its squares under- or overflow.
-RANGES = {"mm": (1e-6, 1e6), "deg": (1e-9, 360.0), "rad": (np.deg2rad(1e-9), 2 * np.pi)}
-
-
-def check_positive(value, argument: str, unit: str, example: str, bounds: tuple | None = None) -> float:
-    """A finite number > 0 in ``unit`` (``mm``, ``deg`` or ``rad``), within ``bounds`` (default that unit's
-    :data:`RANGES`)."""
-    x = number(value, argument)
-    if not (np.isfinite(x) and x > 0):
-        raise ArgumentError(argument, f"expected a finite number > 0 [{unit}] (e.g. {example}), got {value!r}.")
-    lo, hi = bounds or RANGES.get(unit, (0.0, np.inf))
-    if not lo <= x <= hi:
-        raise ArgumentError(argument, f"expected a number between {lo:.3g} and {hi:.3g} {unit} (e.g. {example}), got "
-                            f"{value!r}.")
-    return x
 
 
 def check_count(value, argument: str, *, minimum: int = 1, example: str = "1000000", maximum: int | None = None) -> int:
@@ -210,3 +176,26 @@ def check_model_options(*, sigma_set=None, link_mode="consistent", deflection_mo
     if sigma is not None and not isinstance(sigma, dict):
         raise ArgumentError("sigma", f"expected a dict {{parameter or kind: sigma in mm or deg}}, got {shown(sigma)}.")
     return check_names(exclude, "exclude", "parameters or kinds to leave out")
+
+
+def check_axes(value, argument: str, count: int = 1):
+    """``None`` (a new figure) or where a plot draws: a matplotlib ``Axes`` (``count`` 1) or a sequence of ``count``
+    of them (a figure's ``axes`` array); returns it unchanged."""
+    if value is None:
+        return None
+    from matplotlib.axes import Axes
+
+    items = [value] if count == 1 else (list(np.ravel(np.asarray(value, dtype=object)))
+                                        if isinstance(value, (list, tuple, np.ndarray)) else None)
+    if items is None or len(items) != count or not all(isinstance(a, Axes) for a in items):
+        want = "a matplotlib Axes (e.g. fig, ax = plt.subplots())" if count == 1 else \
+            f"{count} matplotlib Axes side by side (e.g. fig, axes = plt.subplots(1, {count}))"
+        raise ArgumentError(argument, f"expected None (a new figure) or {want}, got {shown(value)}.")
+    return value
+
+
+def check_text(value, argument: str, what: str) -> str | None:
+    """``None`` or a string (a title, a label)."""
+    if value is not None and not isinstance(value, str):
+        raise ArgumentError(argument, f"expected {what} as a string (or None), got {shown(value)}.")
+    return value

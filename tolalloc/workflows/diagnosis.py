@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import os
+
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
-from tolalloc.outputs import check_distinct_outputs, json_native, output_group, write_json
+from tolalloc.outputs import json_native, output_group
+from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
@@ -16,11 +20,10 @@ __all__ = ["diagnose_measurements", "MeasurementDiagnosis"]
 
 
 @inputs.job_entry
-def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", register_n=None, folds: int = 5,
-                          alpha: float = 0.01, seed: int = 0, cv_rows: int | None = None, gap_split: bool = False,
-                          progress: bool | None = None, robust_loss: str = "tukey", target_offset_mm=None,
-                          target_offset_sd_mm=None, register_update: str | None = None, register_rows=None,
-                          tool: str | None = None, trust_units: bool = False) -> "MeasurementDiagnosis":
+def diagnose_measurements(robot, train, test=None, *, test_frame="same", folds: int = D.FOLDS, alpha: float = D.ALPHA,
+                          seed: int = D.SEED, cv_rows: int | None = None, gap_split: bool = False, fit=None,
+                          progress: bool | None = None, tool: str | None = None,
+                          trust_units: bool = False) -> "MeasurementDiagnosis":
     """Where a measured robot misses its model, which unmodelled effect explains it, how far the error shrinks.
 
     Calibrates the tracker registration, target offset and identifiable geometric errors on ``train``, breaks the
@@ -33,19 +36,12 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     train, test : str, path or DataFrame
         Measurements: columns q1..qN (deg / mm), x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1 / -1),
         payload_kg, time_s. Rows with empty cells are skipped and counted.
-    test_frame : {"same", "refit"}
-        ``refit`` (needs ``test``): the test file is another session in another tracker frame; its registration and
-        target offset are re-estimated on ``register_n`` test poses (a count >= 5, default 30, or a fraction below
-        1), which are then not scored.
-    register_rows : sequence of int, optional
-        With ``refit``, instead of ``register_n``: the test file's rows that register the frame (e.g. a registration
-        set measured first, ``range(1, 61)``), its data rows from 1 as its error messages and the JSON's
-        ``registration_rows`` number them (a DataFrame's by position); every other test row is scored.
-    register_update : {"frame", "calibration"}, optional
-        With ``refit``: what the registration poses re-fit -- ``frame`` (default): tracker frame and probe offset,
-        the trained model frozen; ``calibration``: also a correction of the trained geometric and effect
-        parameters, the training fit as the prior, its training data discounted as far as the registration
-        poses' marginal likelihood says they moved (:mod:`tolalloc.diagnose.recalibrate`).
+    test_frame : {"same", "refit"} or Refit
+        ``"same"``: the test file shares the training file's tracker frame. ``"refit"`` or a
+        :class:`~tolalloc.workflows.Refit` (needs ``test``): the test file is another session in another tracker
+        frame; its registration and target offset are re-estimated on some of its poses (``Refit.register_n``, a
+        count >= 5, default 30, or a fraction below 1; or the rows ``Refit.register_rows``), which are then not
+        scored; ``Refit.update="calibration"`` also corrects the trained geometric and effect parameters.
     folds : int
         Cross-validation folds (a minimum: more when the training file has few poses).
     alpha : float
@@ -57,13 +53,12 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     gap_split : bool
         Split the held-out test error into geometry / effect / systematic but unnamed / noise floor (needs ``test``).
     progress : bool, optional
-        Progress bars on stderr (default: when stderr is a terminal).
-    robust_loss : {"tukey", "huber", "soft_l1"}
-        M-estimator of the fits (IRLS on each pose's 3-D residual); ``tukey`` gives gross outliers no weight and
-        lists them.
-    target_offset_mm, target_offset_sd_mm : array (3,) and float, optional
-        Prior mean [mm] (flange frame, relative to the robot's tool point) and sd [mm] of the probe / target offset,
-        used by every fit; without them each fold borrows the full training fit's offset as its prior.
+        Progress on stderr: bars on a terminal or in a notebook, one line per finished stage with its duration in
+        a pipe or log (:mod:`tolalloc.progress`); default on, False: off.
+    fit : FitOptions, optional
+        The fits' M-estimator (``auto`` by default: Tukey's biweight, which gives gross outliers no weight, or Huber's
+        bounded-influence loss on a small training file -- fewer than 10 poses per fitted parameter; down-weighted
+        rows are listed per stage) and the prior of the probe / target offset (:class:`~tolalloc.workflows.FitOptions`).
 
     The test file is sealed: the model is chosen on the training file alone (selection, variants, fold counts,
     thresholds) and the test file is scored once afterwards. The verdict (``effect``, ``none``, ``ambiguous``,
@@ -87,73 +82,63 @@ def diagnose_measurements(robot, train, test=None, *, test_frame: str = "same", 
     """
     from tolalloc.diagnose import diagnose
 
-    alpha, folds, seed, cv_rows, rows = _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows,
-                                                    gap_split, progress, register_rows)
-    _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update, test_frame, test)
+    refit, fit = _settings(test_frame, fit, test)
+    alpha, folds, seed, cv_rows = _check_args(test, folds, alpha, seed, cv_rows, gap_split, progress)
+    frame = "same" if refit is None else "refit"
+    register_n = None if refit is None else refit.register_n
+    rows = None if refit is None or refit.register_rows is None else list(refit.register_rows)
+    update = None if refit is None else refit.update
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
     tr, te = _read(rob, train, test, progress, folds)
-    d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=test_frame,
-                 register_n=register_n, register_rows=rows, progress=progress,
-                 robust_loss=robust_loss, target_offset_mm=target_offset_mm, target_offset_sd_mm=target_offset_sd_mm,
-                 register_update=register_update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
+    d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=frame, register_n=register_n,
+                 register_rows=rows, progress=progress, robust_loss=fit.robust_loss,
+                 target_offset_mm=fit.target_offset_mm, target_offset_sd_mm=fit.target_offset_sd_mm,
+                 register_update=update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
     gap = _gap_split(d, progress) if gap_split else None
-    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": test_frame,
+    record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": frame,
               "register_n": register_n, **({} if rows is None else {"register_rows": rows}),
-              "register_update": register_update, "folds": folds, "alpha": alpha, "seed": seed, "cv_rows": cv_rows,
-              "gap_split": bool(gap_split), "tool": tool, "trust_units": bool(trust_units), "robust_loss": robust_loss,
-              "target_offset_mm": None if target_offset_mm is None else [float(v) for v in target_offset_mm],
-              "target_offset_sd_mm": target_offset_sd_mm}
+              "register_update": None if refit is None or update == "frame" else update, "folds": folds,
+              "alpha": alpha, "seed": seed, "cv_rows": cv_rows, "gap_split": bool(gap_split), "tool": tool,
+              "trust_units": bool(trust_units), **fit.to_dict()}
     return MeasurementDiagnosis(d, gap, folds, record)
+
+
+def _settings(test_frame, fit, test) -> tuple:
+    """``(Refit or None, FitOptions)`` of the call; a refit needs a test file."""
+    from tolalloc.workflows.diagnosis_settings import FitOptions, Refit
+    from tolalloc.workflows.settings import as_settings
+
+    if isinstance(test_frame, Refit):
+        refit = test_frame
+    else:
+        inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
+        refit = Refit() if test_frame == "refit" else None
+    if refit is not None and test is None:
+        raise ArgumentError("test_frame", "needs `test`: 'refit' re-registers a test file measured in another tracker "
+                            "frame, and none was given; pass the test file or leave this option out.")
+    return refit, as_settings(fit, FitOptions, "fit")
 
 
 def _gap_split(d, progress):
     """Where the held-out gap lies (a Gaussian process on the training residual), with a progress bar."""
     from tolalloc.diagnose.gap import diagnosis_gap_split
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
-    with progress_scope(progress):
-        bar = progress_bar("residual Gaussian process (gap_split)")
-        try:
-            return diagnosis_gap_split(d)
-        finally:
-            bar.close()
-
-
-def _check_fit(robust_loss, target_offset_mm, target_offset_sd_mm, register_update=None, test_frame="same",
-               test=None) -> None:
-    inputs.check_choice(robust_loss, "robust_loss", ("tukey", "huber", "soft_l1"))
-    if register_update is not None and test_frame == "refit" and test is None:
-        raise ArgumentError("register_update", "needs `test`: only a test file in another frame is re-registered, "
-                            "and none was given; pass the test file or leave this option out.")
-    if register_update is not None:
-        inputs.check_choice(register_update, "register_update", ("frame", "calibration"))
-        if test_frame != "refit":
-            raise ArgumentError("register_update", "needs `test_frame` refit: only a test file in another frame is "
-                                "re-registered.")
-    if test_frame == "refit" and test is None:
-        raise ArgumentError("test_frame", "needs `test`: 'refit' re-registers a test file measured in another tracker "
-                            "frame, and none was given; pass the test file or leave this option out.")
-    if target_offset_mm is not None and target_offset_sd_mm is None:
-        raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give `target_offset_sd_mm` "
-                            "too (e.g. 5 for a tool drawing good to a few mm).")
-    if target_offset_sd_mm is not None:
-        inputs.check_positive(target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
+    with progress_scope(progress), progress_bar("residual Gaussian process (gap_split)"):
+        return diagnosis_gap_split(d)
 
 
 def _read(robot, train, test, progress, folds):
     """The training and test measurements (paths or DataFrames), with a progress bar for large files; refuses more
     ``folds`` than the training file holds and a test file that shares poses with it."""
     from tolalloc.diagnose.measurements import check_train_test
-    from tolalloc.diagnose.progress_bars import progress_bar, progress_scope
+    from tolalloc.progress import progress_bar, progress_scope
 
     names = [str(x) for x in (train, test) if isinstance(x, (str, bytes)) or hasattr(x, "__fspath__")]
-    with progress_scope(progress):
-        bar = progress_bar("reading " + " and ".join(names) if names else "reading the measurements")
-        try:
-            tr = inputs.as_measurements(train, robot, "train")
-            te = None if test is None else inputs.as_measurements(test, robot, "test")
-        finally:
-            bar.close()
+    with progress_scope(progress), progress_bar("reading " + " and ".join(names) if names else
+                                                "reading the measurements"):
+        tr = inputs.as_measurements(train, robot, "train")
+        te = None if test is None else inputs.as_measurements(test, robot, "test")
     if folds > tr.n_poses // 2:
         raise ArgumentError("folds", f"expected at most {tr.n_poses // 2} cross-validation folds for {tr.n_poses} "
                             f"training poses (at least 2 poses held out per fold), got {folds}.")
@@ -162,15 +147,10 @@ def _read(robot, train, test, progress, folds):
     return tr, te
 
 
-def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_split, progress,
-                register_rows=None) -> tuple:
-    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows,
-    register_rows)``, the rows as a list of int or None (whether the test file has them is checked once it is
-    read)."""
+def _check_args(test, folds, alpha, seed, cv_rows, gap_split, progress) -> tuple:
+    """The options of :func:`diagnose_measurements` checked by name; returns ``(alpha, folds, seed, cv_rows)``."""
     from tolalloc.diagnose.pipeline import MIN_SUBSAMPLE_ROWS
-    from tolalloc.diagnose.register import check_register_rows
 
-    inputs.check_choice(test_frame, "test_frame", ("same", "refit"))
     alpha = inputs.check_probability(alpha, "alpha", example="0.01")
     folds = inputs.check_count(folds, "folds", minimum=2, example="5")
     seed = inputs.check_seed(seed)
@@ -178,28 +158,9 @@ def _check_args(test, test_frame, register_n, folds, alpha, seed, cv_rows, gap_s
         cv_rows = inputs.check_count(cv_rows, "cv_rows", minimum=MIN_SUBSAMPLE_ROWS, example="10000")
     inputs.check_flag(gap_split, "gap_split")
     inputs.check_optional_flag(progress, "progress")
-    if register_n is not None:
-        _check_register_n(register_n)
-    rows = check_register_rows(register_rows, register_n, test_given=test is not None, test_frame=test_frame)
     if gap_split and test is None:
         raise ArgumentError("gap_split", "needs `test`: it splits the error on the held-out test poses.")
-    if register_n is not None and test_frame != "refit":
-        raise ArgumentError("register_n", "needs `test_frame` refit: only a test file in another frame is re-registered.")
-    if register_n is not None and test is None:
-        raise ArgumentError("register_n", "needs `test`: only a test file in another frame is re-registered, and none "
-                            "was given; pass the test file or leave this option out.")
-    return alpha, folds, seed, cv_rows, rows
-
-
-def _check_register_n(value) -> float:
-    """A count of registration poses (a whole number >= 5) or a fraction of the test poses (0 < f < 1)."""
-    from tolalloc.diagnose.register import MIN_REGISTER
-
-    x = inputs.number(value, "register_n")
-    if not (np.isfinite(x) and 0 < x and (x < 1 or (x == int(x) and x >= MIN_REGISTER))):
-        raise ArgumentError("register_n", f"expected a count of registration poses (a whole number >= {MIN_REGISTER}, "
-                            f"e.g. 30) or a fraction of the test poses (0 < f < 1, e.g. 0.2), got {inputs.shown(value)}.")
-    return x
+    return alpha, folds, seed, cv_rows
 
 
 def _not_applicable_null(obj):
@@ -236,6 +197,12 @@ class MeasurementDiagnosis(JobResult):
     gap: object = None
     folds: int = 5
     inputs: dict = field(default_factory=dict)
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import diagnosis_command
+
+        return diagnosis_command(self)
 
     @property
     def robot(self):
@@ -279,6 +246,64 @@ class MeasurementDiagnosis(JobResult):
         """Candidate effects with their held-out RMS, p-value and gain."""
         return self.diagnosis.ranking_frame()
 
+    @cached_property
+    def _identified(self):
+        from tolalloc.diagnose.model_use import identified_model
+
+        return identified_model(self.diagnosis)
+
+    def identified_model(self):
+        """The final model, ready to evaluate at new poses (:class:`~tolalloc.diagnose.model_use.IdentifiedModel`)."""
+        return self._identified
+
+    def predict(self, q, *, payload_kg=None, temperature_c=None, time_s=None, dir=None,
+                frame: str = "base") -> pd.DataFrame:
+        """The final model's target points at joint values ``q`` [deg / mm] (an array (P, n), or a CSV path /
+        DataFrame with a column per joint and the covariate columns), with the covariates its effects read.
+
+        Returns one row per pose: ``x_mm, y_mm, z_mm`` in ``frame`` (``base``: the robot's base frame; ``tracker``: the
+        training file's measurement frame), ``sigma_mm`` (1-sigma of the 3-D prediction error from the parameter
+        covariance) and ``radius95_mm`` (the radius holding a measured point with 95 % probability)."""
+        from tolalloc.diagnose.model_use import FRAMES
+        from tolalloc.workflows.model_use import predict_frame
+
+        inputs.check_choice(frame, "frame", FRAMES)
+        return predict_frame(self.identified_model(), q, frame=frame, payload_kg=payload_kg,
+                             temperature_c=temperature_c, time_s=time_s, dir=dir)
+
+    def compensate(self, program, *, frame: str = "base", tol_mm: float = 1e-6):
+        """Joint values that put the target point where the nominal robot would (or on the program's ``x_mm, y_mm,
+        z_mm``) under the final model: :func:`~tolalloc.workflows.model_use.compensate_program`."""
+        from tolalloc.workflows.model_use import compensate_program
+
+        return compensate_program(self, program, frame=frame, tol_mm=tol_mm)
+
+    def export_model(self, directory, *, name: str | None = None) -> list:
+        """Write ``identified.toml`` (chain layout: the identified geometry, and the ``[identified]`` section with the
+        fitted parameters and effects) and ``identified.urdf`` into ``directory`` (created; both or neither);
+        the paths written (:mod:`tolalloc.diagnose.model_export`)."""
+        from tolalloc.workflows.model_use import export_files
+
+        directory = self.check_out(directory, "directory", required=True)
+        with output_group() as group:
+            names = export_files(self.identified_model(), group.directory(directory), name)
+        return [directory / nm for nm in names]
+
+    def plot_where(self, ax=None):
+        """Where the geometric model's training residual lies (the strongest features, per axis, per region); draws
+        into ``ax`` (a sequence of Axes, one per panel) or a new figure and returns the Axes (an array)."""
+        from tolalloc.report.plots.diagnose import draw_where, where_figure, where_panels
+
+        where = self.diagnosis.where
+        if ax is None:
+            fig, ax = where_figure(where)
+            fig.suptitle("Residual after geometric calibration: where")
+        axes = np.ravel(np.asarray(ax, dtype=object))
+        if len(axes) < where_panels(where):
+            raise ArgumentError("ax", f"expected at least {where_panels(where)} Axes (one per panel), got {len(axes)}.")
+        draw_where(where, axes)
+        return axes[:where_panels(where)]  # the panels drawn (a new figure's spare cells are switched off)
+
     def summary(self) -> dict:
         """The JSON result (``--json``); the scores of an effect the data cannot carry (``applicable`` false) are null."""
         return json_native(_not_applicable_null(self.diagnosis.to_dict() | ({} if self.gap is None else
@@ -305,30 +330,67 @@ class MeasurementDiagnosis(JobResult):
             frame = full.merge(frame, on="row", how="left")
         return frame
 
-    def save(self, report=None, *, json=None, predictions=None) -> list[str]:
-        """Write the report directory (report.md, report.html, CSV tables, figures), the JSON result and / or the predictions
-        CSV; all published together, nothing if any fails. Returns the paths written."""
-        self.check_out(report, "report")
-        self.check_out(json, "json", directory=False)
+    def plot_before_after(self, ax=None):
+        """Held-out RMS, p95 and max error of the nominal, geometric and final models [mm]; draws into ``ax`` or a new
+        figure and returns the Axes."""
+        from tolalloc.report.plots.diagnose import plot_before_after
+
+        return plot_before_after(self.to_frame(), None, ax=ax)
+
+    def plot_ranking(self, ax=None):
+        """Clipped out-of-fold RMS of every candidate effect against the geometric model; draws into ``ax`` or a new
+        figure and returns the Axes."""
+        from tolalloc.report.plots.diagnose import plot_ranking
+
+        return plot_ranking(self.diagnosis, None, ax=ax)
+
+    has_report = True
+
+    def save(self, directory=None, *, report: bool = False, json=None, predictions=None, **old) -> list:
+        """Write the report files (``report.md``, CSV tables, figures, ``diagnosis.json``; ``report=True`` adds the
+        self-contained ``report.html``) into ``directory``, the JSON result to ``json`` (``"-"``: standard output)
+        and / or the test predictions CSV to ``predictions``; all published together, nothing if any fails. Returns
+        the paths written. ``save(report=DIR)``, the former form (the folder was called ``report``), still writes
+        the folder with ``report.html``, with a DeprecationWarning."""
+        import warnings
+
+        if isinstance(report, (str, os.PathLike)):
+            warnings.warn("MeasurementDiagnosis.save(report=DIR) is deprecated: use save(DIR, report=True) (every "
+                          "result saves as save(directory, *, report=False, json=None)).", DeprecationWarning,
+                          stacklevel=2)
+            if directory is not None:
+                raise ArgumentError("report", "a folder and `directory` both given; give save(directory, report=True).")
+            directory, report = report, True
+        directory, report = self._old_save_keywords(directory, report, old)
         self.check_out(predictions, "predictions", directory=False)
-        check_distinct_outputs([("json", json), ("predictions", predictions), ("report", report)])
         if predictions is not None and self.diagnosis.test is None:
             raise ArgumentError("predictions", "needs `test`: predictions are made for the rows of the test file.")
-        with output_group() as group:
-            if predictions is not None:
-                self.predictions_frame().to_csv(group.file(predictions), index=False, float_format="%.6f")
-            if report is not None:
-                self.write_report(group.directory(report))
-            if json is not None:
-                write_json(self.summary(), group.file(json))
-        return [str(p) for p in (predictions, report, json) if p is not None]
+        extra = [("predictions", predictions,
+                  lambda path: self.predictions_frame().to_csv(path, index=False, float_format="%.6f"))]
+        return self._save(directory, report=report, json=json, extra=extra)
 
-    def write_report(self, folder) -> None:
-        """report.md, report.html, the CSV tables and the figures into an existing ``folder`` (not atomic)."""
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """report.md, the CSV tables, the figures, diagnosis.json (and ``report``: report.html) into an existing
+        ``folder`` (not atomic; :meth:`save` stages through this); returns the file names."""
+        from pathlib import Path
+
+        folder = Path(folder)
+        before = {p.name for p in folder.iterdir()}
+        self.write_report(folder, html=report)
+        return sorted(p.name for p in folder.iterdir() if p.name not in before)
+
+    def write_report(self, folder, *, html: bool = True) -> None:
+        """report.md, the CSV tables and the figures (and ``html``: report.html) into an existing ``folder`` (a
+        ``str`` or ``os.PathLike``; not atomic)."""
+        from pathlib import Path
+
         from tolalloc.report.diagnosis import write_report
-        from tolalloc.workflows.html import write_diagnosis_report
 
+        folder = Path(folder)
         write_report(self.diagnosis, folder)
         if self.gap is not None:
             self.gap.to_frame().to_csv(folder / "gap_split.csv", index=False, float_format="%.6g")
-        write_diagnosis_report(self, folder)
+        if html:
+            from tolalloc.report.html_diagnosis import write_diagnosis_report
+
+            write_diagnosis_report(self, folder)

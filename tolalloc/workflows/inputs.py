@@ -9,15 +9,17 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import Any, Callable, TypeVar
 
 import numpy as np
 import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError, UnknownArgumentError, known_names
-from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_choice, check_costs_file, check_count, check_flag,  # noqa: F401
-                                       check_model_options, check_name, check_names, check_optional_flag,
-                                       check_not_both, check_path, check_positive, check_probability, check_scheduler,
-                                       check_seed, check_values, check_z, number, shown)
+from tolalloc.workflows.checks import (RANGES, Z_RANGE, check_axes, check_choice, check_costs_file,  # noqa: F401
+                                       check_count, check_flag, check_model_options, check_name, check_names,
+                                       check_optional_flag, check_not_both, check_path, check_positive,
+                                       check_probability, check_scheduler, check_seed, check_text, check_values,
+                                       check_z, number, shown)
 from tolalloc.robot.columns import JOINT_COLUMNS_TEXT, find_joint_columns
 from tolalloc.robot.io import load_robot
 from tolalloc.robot.model import Robot
@@ -29,24 +31,33 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
            "default_pose_set", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
            "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path", "check_positive",
            "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number", "shown",
-           "RANGES", "Z_RANGE"]
+           "check_axes", "check_text", "RANGES", "Z_RANGE"]
 
 
-def job_entry(fn):
+_Job = TypeVar("_Job", bound=Callable[..., Any])  # job_entry keeps the job's signature for type checkers
+
+
+def job_entry(fn: _Job) -> _Job:
     """The entry point of workflow ``fn``: a keyword ``fn`` does not have is refused with the closest names
-    (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), and with ``trust_units=True`` the
-    unit-plausibility guards are off during the call (robot files, joint values, costs files: :mod:`tolalloc.units`)."""
+    (:class:`~tolalloc.exceptions.UnknownArgumentError`, a TypeError), a keyword it had before its settings objects
+    is folded into them with a ``DeprecationWarning`` (:mod:`tolalloc.workflows.keywords`), and with
+    ``trust_units=True`` the unit-plausibility guards are off during the call (robot files, joint values, costs
+    files: :mod:`tolalloc.units`)."""
     import difflib
     import functools
     import inspect
 
-    keywords = [name for name, p in inspect.signature(fn).parameters.items()
+    from tolalloc.workflows.keywords import MOVED, fold_moved
+
+    signature = inspect.signature(fn)
+    keywords = [name for name, p in signature.parameters.items()
                 if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+    moved = MOVED.get(fn.__name__, {})
 
     @functools.wraps(fn)
     def run(*args, trust_units: bool = False, **kwargs):
         for name in kwargs:
-            if name not in keywords:
+            if name not in keywords and name not in moved:
                 close = difflib.get_close_matches(name, keywords, n=3, cutoff=0.7)
                 # the name without its unit (radius for radius_mm), or with one the call's name has not (n_mc for n)
                 close += [k for k in keywords if (k.startswith(name + "_") or name.startswith(k + "_"))
@@ -54,11 +65,22 @@ def job_entry(fn):
                 hint = f"did you mean {' or '.join(close)}? " if close else ""
                 raise UnknownArgumentError(name, f"{fn.__name__}() has no argument {name!r}; {hint}"
                                                  f"help(tolalloc.{fn.__name__}) lists them all.")
-        check_flag(trust_units, "trust_units")
-        with trusting_units(bool(trust_units)):
-            return fn(*args, trust_units=trust_units, **kwargs)
+        # an old keyword renamed (simulate_errors' n is n_mc now): an error of its value names it as it was given
+        renamed = {moved[k][0]: k for k in kwargs if k in moved and moved[k][1] is None}
+        try:
+            if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
+                old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
+                kwargs = fold_moved(fn.__name__, {**signature.bind_partial(*args, **kwargs).arguments, **old})
+                args = ()
+            check_flag(trust_units, "trust_units")
+            with trusting_units(bool(trust_units)):
+                return fn(*args, trust_units=trust_units, **kwargs)
+        except ArgumentError as exc:
+            if exc.argument not in renamed:
+                raise
+            raise ArgumentError(renamed[exc.argument], exc.detail) from None
 
-    return run
+    return run  # type: ignore[return-value]  # the same signature as ``fn``
 
 
 def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Robot:

@@ -7,60 +7,56 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import ArgumentError, check_memory
-from tolalloc.outputs import output_group, write_json
+from tolalloc.exceptions import ArgumentError
+from tolalloc.outputs import write_json
+from tolalloc.workflows import defaults as D
 from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult, format_labels
+from tolalloc.workflows.settings import ErrorModelOptions, MonteCarlo, as_settings, named_fields
 
 __all__ = ["simulate_errors", "ErrorSimulation"]
 
-#: samples kept for the scatter figure
-KEEP_SAMPLES = 20_000
-#: memory of one kept sample [bytes]: its errors at the first pose (11 float64 values, 88 bytes), held twice while the
-#: blocks are joined, with room to spare
-KEPT_BYTES = 256
-#: histogram bins per axis at most (the streaming accumulator's limit)
-MAX_HIST_BINS = 2000
-#: local threads at most
-MAX_JOBS = 1024
+#: the rotation-error radius when none is given [rad] (0.1146 deg)
+ANGLE_RADIUS_RAD = 0.002
+#: below this, every ``P(|dP| < r)`` of a simulation is "about zero": the printout says why
+P_ABOUT_ZERO = 1e-3
 
 
 @inputs.job_entry
-def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_deg_mm=None, poses: str | None = None,
-                    radius_mm=(0.15, 0.25), angle_radius_rad=None, angle_radius_deg=None, ci: str = "wilson",
-                    sigma_set: str | None = None, link_mode: str = "consistent", deflection_mode: str = "screw",
-                    clearance: bool = False, clearance_tilt_literal: bool = False, sigma: dict | None = None,
-                    exclude=(), scheduler=None, jobs: int | None = None, chunk_size: int = 2**20,
-                    progress: bool | None = None, hist_bins: int = 0, hist_range_mm: float | None = None,
-                    keep_samples: int | None = None, estimator: str | None = None, tool: str | None = None,
+def simulate_errors(robot="tool_changer", n_mc: int | None = None, *, seed: int | None = None, q_deg_mm=None,
+                    poses: str | None = None, radius_mm=D.SIMULATION_RADII_MM, angle_radius_deg=None,
+                    error_model=None, monte_carlo=None, progress: bool | None = None, tool: str | None = None,
                     trust_units: bool = False) -> "ErrorSimulation":
-    """Sample ``n`` robots with random errors and evaluate their exact tool poses (streamed, bounded memory).
+    """Sample ``n_mc`` robots with random errors and evaluate their exact tool poses (streamed, bounded memory).
+
+    The errors are those of the error model (``error_model``: by default the robot file's first sigma set, e.g. the
+    seed paper's Table 2 for ``tool_changer``: manufacturing errors of millimetres at the tool, not an allocated
+    design; the printout names the sigma set). To simulate a design, pass its sigmas
+    (``error_model=allocation.error_model_options()``).
 
     Parameters
     ----------
     robot : Robot, str or path
-    n : int
-        Number of sampled robots (>= 1); the same robots are evaluated at every pose.
-    seed : int
-        Same seed, same numbers (whatever ``scheduler``, ``jobs`` and ``chunk_size``).
+    n_mc : int, optional
+        Number of sampled robots (>= 1; default 100 000); the same robots are evaluated at every pose. Short form
+        of ``monte_carlo=MonteCarlo(n_mc=...)``.
+    seed : int, optional
+        Same seed, same numbers (default 0; short form of ``MonteCarlo(seed=...)``).
     q_deg_mm : array, shape (n_joints,) or (P, n_joints), optional
         Joint values [deg / mm]; default the pose set ``poses`` (or the nominal pose).
+    poses : str, optional
+        A pose set of the robot (not with ``q_deg_mm``).
     radius_mm : float or sequence
-        Radii for ``P(|dP| < r)`` [mm] (95 % intervals by ``ci``: ``wilson`` or ``exact``).
-    angle_radius_rad, angle_radius_deg : float or sequence, optional
-        Radii for ``P(|rotation error| < r)``, in rad or in deg (one of the two); default 0.002 rad.
-    sigma_set, link_mode, deflection_mode, clearance, clearance_tilt_literal, sigma, exclude
-        Error-model options (``sigma``: overrides in mm or deg).
-    scheduler, jobs, chunk_size, progress
-        Where and how the samples run; never change the numbers.
-    hist_bins, hist_range_mm
-        x-y, x-z, y-z histograms of the position error over all samples.
-    keep_samples : int, optional
-        Per-sample errors kept at the first pose for figures (default ``min(n, 20000)``).
-    estimator : {None, "auto", "plain", "paired", "importance"}
-        Also estimate each ``P(|dP| < r)`` with this estimator (``paired``: exact linear P plus the mean
-        difference of nonlinear and linear indicators on the same draws), with its interval, discordant samples
-        and variance reduction against plain Monte Carlo.
+        Radii for ``P(|dP| < r)`` [mm] (95 % intervals: ``MonteCarlo.ci``; default 0.15 and 0.25).
+    angle_radius_deg : float or sequence, optional
+        Radii for ``P(|rotation error| < r)`` [deg]; default 0.002 rad (0.1146 deg).
+    error_model : ErrorModelOptions, optional
+        Sigma set, sigma overrides (mm or deg), link / deflection model, clearance, exclusions.
+    monte_carlo : MonteCarlo, optional
+        Samples, seed, interval, estimator, kept samples, histograms, and where the samples run
+        (:class:`~tolalloc.workflows.MonteCarlo`).
+    progress : bool, optional
+        Progress bar on stderr (default: for runs of 10^7 samples or more in a terminal); never changes a number.
 
     Returns
     -------
@@ -73,67 +69,45 @@ def simulate_errors(robot="tool_changer", n: int = 100_000, *, seed: int = 0, q_
     >>> sim.mc.n
     2000
     """
-    n, seed, radii, arad, hist_bins, keep, scheduler = _checked(
-        n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm, keep_samples,
-        jobs, chunk_size, progress, q_deg_mm, poses, scheduler, dict(sigma_set=sigma_set, link_mode=link_mode,
-                                                           deflection_mode=deflection_mode, clearance=clearance,
-                                                           exclude=exclude, sigma=sigma,
-                                                           clearance_tilt_literal=clearance_tilt_literal))
+    mc = _monte_carlo(monte_carlo, n_mc, seed)
+    model_options = as_settings(error_model, ErrorModelOptions, "error_model")
+    radii, arad = _radii(radius_mm, angle_radius_deg)
+    inputs.check_optional_flag(progress, "progress")
+    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
+    inputs.check_one_pose_source(q_deg_mm, poses)
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    model = inputs.error_model(rob, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
-                               clearance=clearance, exclude=exclude, sigma=sigma,
-                               clearance_tilt_literal=clearance_tilt_literal)
+    model = inputs.error_model(rob, **model_options.keywords())
     _, q = inputs.resolve_poses(rob, q_deg_mm, poses)
     from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
     from tolalloc.montecarlo.run import run_mc
 
-    res = run_mc(model, q, n, seed, radii_mm=radii, angle_radii_rad=arad or [0.002], keep_samples=keep, ci=ci,
-                 n_jobs=jobs, scheduler=scheduler, chunk_size=chunk_size, progress=progress, hist_bins=hist_bins,
-                 hist_range_mm=hist_range_mm, estimator=estimator)
-    tilt = ((CLEARANCE_TILT_LITERAL_RAD if clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
-            if clearance else None)
-    return ErrorSimulation(res, rob, tilt)
+    res = run_mc(model, q, mc.n_mc, mc.seed, radii_mm=radii, angle_radii_rad=arad or [ANGLE_RADIUS_RAD],
+                 keep_samples=mc.kept, ci=mc.ci, n_jobs=mc.jobs, scheduler=mc.scheduler, chunk_size=mc.chunk_size,
+                 progress=progress, hist_bins=mc.hist_bins, hist_range_mm=mc.hist_range_mm, estimator=mc.estimator)
+    tilt = ((CLEARANCE_TILT_LITERAL_RAD if model_options.clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
+            if model_options.clearance else None)
+    return ErrorSimulation(res, rob, tilt, {"sigma_overrides": sorted(model_options.sigma or {})})
 
 
-def _checked(n, seed, ci, estimator, radius_mm, angle_radius_rad, angle_radius_deg, hist_bins, hist_range_mm,
-             keep_samples, jobs, chunk_size, progress, q_deg_mm, poses, scheduler, model_options) -> tuple:
-    """Every argument of :func:`simulate_errors` but the robot, checked by name; returns
-    ``(n, seed, radii_mm, angle_radii_rad, hist_bins, keep_samples, scheduler)``."""
-    n = inputs.check_count(n, "n", example="100000")
-    seed = inputs.check_seed(seed)
-    inputs.check_choice(ci, "ci", ("wilson", "exact"))
-    if estimator is not None:
-        inputs.check_choice(estimator, "estimator", ("auto", "plain", "paired", "importance"))
+def _monte_carlo(monte_carlo, n_mc, seed) -> MonteCarlo:
+    """The :class:`MonteCarlo` of the call: the object, or the short forms ``n_mc`` / ``seed`` (not both)."""
+    given = {k: v for k, v in (("n_mc", n_mc), ("seed", seed)) if v is not None}
+    if monte_carlo is not None and given:
+        name = next(iter(given))
+        raise ArgumentError(name, f"{inputs.shown(given[name])} and `monte_carlo` both set it; give one of them "
+                            f"(MonteCarlo({name}=...)).")
+    if monte_carlo is not None:
+        return as_settings(monte_carlo, MonteCarlo, "monte_carlo")
+    with named_fields("", {"n_mc": "n_mc", "seed": "seed"}):
+        return MonteCarlo(**given)
+
+
+def _radii(radius_mm, angle_radius_deg) -> tuple[list, list]:
+    """``(radii [mm], angle radii [rad])`` checked by their argument names."""
     radii = inputs.check_values(radius_mm, "radius_mm", inputs.check_positive, "mm", "0.25")
-    inputs.check_not_both(angle_radius_deg, "angle_radius_deg", angle_radius_rad, "angle_radius_rad",
-                          "give the radii of the rotation error", " (a list gives several radii)")
-    arad = inputs.check_values([] if angle_radius_rad is None else angle_radius_rad, "angle_radius_rad",
-                               inputs.check_positive, "rad", "0.002")
-    arad += [np.deg2rad(a) for a in inputs.check_values([] if angle_radius_deg is None else angle_radius_deg,
-                                                        "angle_radius_deg", inputs.check_positive, "deg", "0.1")]
-    hist_bins = inputs.check_count(hist_bins, "hist_bins", minimum=0, example="100")
-    if hist_bins == 1 or hist_bins > MAX_HIST_BINS:
-        raise ArgumentError("hist_bins", f"expected 0 (no histogram) or a whole number of bins from 2 to "
-                            f"{MAX_HIST_BINS} (e.g. 100), got {hist_bins}.")
-    if hist_range_mm is not None:
-        inputs.check_positive(hist_range_mm, "hist_range_mm", "mm", "1.0")
-        if not hist_bins:
-            raise ArgumentError("hist_range_mm", f"{hist_range_mm:g} sets the histogram window, but no histogram is made; "
-                                "give hist_bins (e.g. 100) or leave out hist_range_mm.")
-    if keep_samples is None:
-        keep = min(n, KEEP_SAMPLES)
-    else:
-        keep = inputs.check_count(keep_samples, "keep_samples", minimum=0, example="20000")
-        check_memory(min(keep, n), KEPT_BYTES, "keep_samples", "kept samples", "20000")
-    if jobs is not None:
-        inputs.check_count(jobs, "jobs", example="4", maximum=MAX_JOBS)
-    inputs.check_count(chunk_size, "chunk_size", example="1048576")
-    inputs.check_optional_flag(progress, "progress")
-    inputs.check_model_options(**model_options)
-    inputs.check_name(poses, "poses", "the name of a pose set of the robot")
-    inputs.check_one_pose_source(q_deg_mm, poses)
-    scheduler = inputs.check_scheduler(scheduler)
-    return n, seed, radii, arad, hist_bins, keep, scheduler
+    arad = [np.deg2rad(a) for a in inputs.check_values([] if angle_radius_deg is None else angle_radius_deg,
+                                                       "angle_radius_deg", inputs.check_positive, "deg", "0.1")]
+    return radii, arad
 
 
 def _angle_lines(res, max_poses: int | None = None) -> list[str]:
@@ -165,13 +139,35 @@ class ErrorSimulation(JobResult):
     def ok(self) -> bool:
         return True
 
+    def sigma_line(self) -> str:
+        """Which errors were sampled: the sigma set (with its description from the robot file) and any overrides."""
+        name = self.mc.labels.get("sigma_set")
+        desc = (self.robot.sigma_sets.get(name) or {}).get("description") if name else None
+        over = self.inputs.get("sigma_overrides") or []
+        return (f"errors sampled: sigma set {name!r} of {self.robot.name}" + (f" ({desc})" if desc else "")
+                + (f", sigma overridden for {', '.join(over) if len(over) <= 6 else f'{len(over)} parameters'}"
+                   if over else "")
+                + ("" if over else "; the sigma set's manufacturing errors, not an allocated design"))
+
+    def scale_note(self) -> str | None:
+        """Why every ``P(|dP| < r)`` is about zero, when it is: the errors are far larger than the radii."""
+        r = self.mc
+        best = max(float(np.max(v[:, 0])) for v in r.p_within.values()) if r.p_within else 1.0
+        if best >= P_ABOUT_ZERO:
+            return None
+        mean = float(np.max(np.asarray(r.norm_mm)[:, 0]))
+        return (f"note: every P(|dP| < r) is below {P_ABOUT_ZERO:g}: the sampled errors (mean |dP| up to {mean:.3g} mm) "
+                "are far larger than the radii asked for. Give larger radius_mm, or simulate a design's tolerances "
+                "(error_model=allocation.error_model_options() of an allocate_tolerances result).")
+
     def headline(self) -> list[str]:
         r = self.mc
-        lines = [f"robot: {self.robot.name}   n = {r.n}, seed = {r.seed}, {r.q.shape[0]} pose(s)"]
+        lines = [f"robot: {self.robot.name}   n_mc = {r.n}, seed = {r.seed}, {r.q.shape[0]} pose(s)", self.sigma_line()]
         for rad, v in r.p_within.items():
             lines.append(f"P(|dP| < {rad:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v[:4]))
         lines += _angle_lines(r, 4)
-        return lines
+        note = self.scale_note()
+        return lines + ([note] if note else [])
 
     def to_frame(self) -> pd.DataFrame:
         """Table-3-style table: one row per pose and quantity with mean, std, max, min."""
@@ -220,7 +216,7 @@ class ErrorSimulation(JobResult):
     def text(self) -> str:
         """What the command line prints."""
         res = self.mc
-        out = [f"robot {self.robot.name}, n={res.n}, seed={res.seed}, {format_labels(res.labels)}",
+        out = [self.sigma_line(), f"robot {self.robot.name}, n_mc={res.n}, seed={res.seed}, {format_labels(res.labels)}",
                res.to_frame().to_string(index=False, na_rep="", float_format=lambda x: f"{x:.6g}")]
         for r, v in res.p_within.items():
             out.append(f"P(|dp| < {r:g} mm) = " + ", ".join(f"{a:.4f} [{b:.4f}, {c:.4f}]" for a, b, c in v))
@@ -228,34 +224,33 @@ class ErrorSimulation(JobResult):
         for r, e in (res.p_estimates or {}).items():
             out.append(f"P(|dp| < {r:g} mm), {e.message()}: " + ", ".join(
                 f"{a:.6f} [{b:.6f}, {c:.6f}]" for a, b, c in zip(e.p_hat, e.ci_low, e.ci_high)))
-        return "\n".join(out)
+        note = self.scale_note()
+        return "\n".join(out + ([note] if note else []))
 
-    def plot_scatter(self):
-        """Kept samples' position errors with density contours; returns the figure."""
+    def plot_scatter(self, ax=None):
+        """Kept samples' position errors: a 3-D cloud and the x-y, x-z, y-z densities; draws into ``ax`` (four Axes,
+        the first a 3-D one) or a new figure and returns the four."""
+        import matplotlib.pyplot as plt
+
         from tolalloc.report.plots.mc import scatter_density
+        from tolalloc.workflows.base import axes_of
 
-        return scatter_density(self.mc, None)
+        if ax is None:  # the four panels (their colorbars are axes of the figure too, not panels)
+            fig = plt.figure(figsize=(13, 3.6))
+            ax = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
+        scatter_density(self.mc, None, axes=ax)
+        return axes_of(list(ax))
 
-    def save(self, out=None, *, json=None) -> list[str]:
-        """Write ``mc_table.csv``, ``mc_summary.json``, ``mc_scatter.png`` (and histograms) into directory ``out``,
-        and/or the JSON summary to file ``json``; all published together. Returns the file names in ``out``."""
-        self.check_out(out, "out")
-        self.check_out(json, "json", directory=False)
-        names = []
-        with output_group() as group:
-            if out is not None:
-                names = self.write_files(group.directory(out))
-            if json is not None:
-                write_json(self.summary(), group.file(json))
-        return names
+    def write_files(self, folder, *, report: bool = False) -> list[str]:
+        """Write ``mc_table.csv``, ``mc_summary.json``, ``mc_scatter.png`` (and the histograms) into an existing
+        ``folder`` (not atomic; :meth:`save` stages through this); returns the file names."""
+        from pathlib import Path
 
-    def write_files(self, folder) -> list[str]:
-        """Write the output files into an existing ``folder`` (not atomic; :meth:`save` stages through this)."""
         import matplotlib.pyplot as plt
 
         from tolalloc.report.plots.mc import hist_density, scatter_density
 
-        res = self.mc
+        folder, res = Path(folder), self.mc
         res.to_frame().to_csv(folder / "mc_table.csv", index=False)
         write_json(self.summary(), folder / "mc_summary.json")
         plt.close(scatter_density(res, folder / "mc_scatter.png"))

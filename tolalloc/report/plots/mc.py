@@ -23,23 +23,28 @@ def _save(fig, path, dpi):
     return fig
 
 
-def scatter_density(result, path=None, *, title: str = "", max_points: int = 20000, dpi: int = 90):
+def scatter_density(result, path=None, *, title: str = "", max_points: int = 20000, dpi: int = 90, axes=None):
     """3-D scatter of ``p' - p`` and x-y, x-z, y-z projection densities (the paper's Figs. 6 and 12).
 
-    Needs ``result.samples`` (run :func:`run_mc` with ``keep_samples > 0``).
+    Needs ``result.samples`` (run :func:`run_mc` with ``keep_samples > 0``). ``axes``: draw into these four Axes
+    (the first with ``projection="3d"``); default a new figure.
     """
     if not result.samples:
         raise TolallocError("scatter_density: the result has no samples; run the Monte Carlo with keep_samples > 0.")
     dp = result.samples["dp_mm"][:max_points]
-    fig = plt.figure(figsize=(13, 3.6))
-    ax = fig.add_subplot(1, 4, 1, projection="3d")
+    if axes is None:
+        fig = plt.figure(figsize=(13, 3.6))
+        axes = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
+    else:
+        fig = axes[0].figure
+    ax = axes[0]
     ax.scatter(dp[:, 0], dp[:, 1], dp[:, 2], s=0.5, alpha=0.3)
     ax.set_xlabel("Δx [mm]")
     ax.set_ylabel("Δy [mm]")
     ax.set_zlabel("Δz [mm]")
     ax.set_title("error cloud")
     for k, (i, j, name) in enumerate([(0, 1, "x-y"), (0, 2, "x-z"), (1, 2, "y-z")]):
-        a = fig.add_subplot(1, 4, k + 2)
+        a = axes[k + 1]
         h = a.hist2d(dp[:, i], dp[:, j], bins=60, density=True, cmap="viridis")
         fig.colorbar(h[3], ax=a, fraction=0.046)
         a.set_xlabel(f"Δ{'xyz'[i]} [mm]")

@@ -167,6 +167,8 @@ class ChainFile(BaseModel):
     sigma_sets: dict[str, dict] = {}
     regions: dict[str, dict] = {}
     components: dict = {}
+    #: the record of an identified model (tolalloc.diagnose.model_export); not read by the kinematics
+    identified: dict = {}
 
 
 def _loc(err) -> str:

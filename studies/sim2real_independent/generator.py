@@ -1,0 +1,191 @@
+"""Independent generator of laser-tracker measurement cases (issue 40, part 7).
+
+Physics written from the literature (see :mod:`physics`, :mod:`hardware`, :mod:`session`), kinematics and mass
+model of its own (:mod:`kinematics`, parsing the robot files with tomllib). **Imports nothing of tolalloc.**
+
+A case: one robot, one measurement session (poses in visiting order with time stamps, approach directions,
+payload and air temperature), a true robot that differs from its file by
+
+* geometric errors on every kinematic parameter: link-vector components N(0, s_L), s_L ~ U(0.1, 0.5) mm;
+  joint-axis tilts and joint zero offsets N(0, s_A), s_A ~ U(0.01, 0.05) deg (typical of calibrated-before
+  industrial arms: Mooring, Roth & Driels, *Fundamentals of Manipulator Calibration*, 1991; Nubiola & Bonev,
+  RCIM 29, 2013, ABB IRB 1600: link-length errors of tenths of a mm);
+* a mass model off the file's by U(0.85, 1.15) per mass and N(0, 20 mm) per centre-of-mass coordinate (the files'
+  centres of mass are approximations);
+* the physical effects of the case (``physics``: a tuple of kinds, see :data:`EFFECTS`);
+
+measured by a laser tracker in its own frame (yaw U(0, 360) deg, tilt U(-3, 3) deg about two axes -- a levelled
+tracker -- at 1.5-5 m), on a target at an unknown offset of 5-100 mm from the tool point, with Gaussian noise of
+s_T ~ U(0.01, 0.05) mm per coordinate (Leica AT960 MPE +-(15 um + 6 um/m): 0.01-0.05 mm at these distances).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from sim2real_indep import effects_body as eb
+from sim2real_indep import effects_joint as ej
+from sim2real_indep import hardware as hwm
+from sim2real_indep import kinematics as kin
+from sim2real_indep.context import FAMILY, Ctx
+from sim2real_indep.session import RATED_SPEED_DEG_S, make_session
+
+HERE = Path(__file__).resolve().parent
+ROBOT_FILES = {"ur10": "ur10", "tool_changer": "tool_changer", "kr16_like": str(HERE / "kr16_like.toml")}
+#: kind -> (draw, apply, true-structure features)
+EFFECTS = {
+    "gear": (ej.gear_draw, ej.gear_apply, ej.gear_features),
+    "encoder": (ej.encoder_draw, ej.encoder_apply, ej.encoder_features),
+    "compliance": (ej.stiffness_draw, ej.stiffness_apply(False), ej.compliance_features),
+    "hardening": (ej.stiffness_draw, ej.stiffness_apply(True), ej.hardening_features),
+    "backlash": (ej.backlash_draw, ej.backlash_apply, ej.backlash_features),
+    "heat": (eb.heat_draw, eb.heat_apply, eb.heat_features),
+    "ambient": (eb.ambient_draw, eb.ambient_apply, eb.ambient_features),
+    "sag": (eb.sag_draw, eb.sag_apply, eb.sag_features),
+    "mount": (eb.mount_draw, eb.mount_apply, eb.mount_features),
+}
+PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
+GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
+
+
+@dataclass(frozen=True)
+class Case:
+    """A generated case: the measurement table, its split and the truth (for the oracle only)."""
+
+    case_id: str
+    robot_key: str
+    physics: tuple
+    frame: pd.DataFrame
+    train: np.ndarray      # row indices
+    test: np.ndarray
+    split: str
+    nominal: kin.Chain     # the robot file
+    truth: dict            # true chain, masses, probe, frame, noise, hardware, effect parameters
+
+    @property
+    def label_truth(self) -> str:
+        fams = sorted({FAMILY[k] for k in self.physics}) or ["none"]
+        return "+".join(fams)
+
+    def model_ctx(self, probe_mm, true_masses: bool = True) -> Ctx:
+        """The nominal robot at this session's poses with the true (or the file's) mass model and payload placement."""
+        ch, t = self.nominal, self.truth
+        return Ctx(ch, t["session"], t["masses"] if true_masses else ch.masses,
+                   t["com"] if true_masses else ch.mass_com, ch.mass_link,
+                   t["payload_com_mm"] if true_masses else np.zeros(3), np.asarray(probe_mm, float))
+
+    def true_features_of(self, kind, probe_mm) -> np.ndarray:
+        """The true structure of effect ``kind`` as feature columns (m, P, 3) at the nominal geometry (shape
+        parameters known, amplitudes free)."""
+        return EFFECTS[kind][2](self.truth["params"][kind], self.model_ctx(probe_mm), self.truth["hw"])
+
+    def true_features(self, probe_mm) -> np.ndarray:
+        """All true structures of the case, (m, P, 3)."""
+        cols = [self.true_features_of(k, probe_mm) for k in self.physics]
+        return np.concatenate(cols) if cols else np.zeros((0, len(self.frame), 3))
+
+
+def _perturb(chain: kin.Chain, rng):
+    """The true geometry: every link vector, joint axis, joint zero and the tool point off the file's."""
+    s_L, s_A = rng.uniform(0.1, 0.5), np.deg2rad(rng.uniform(0.01, 0.05))
+    axes = []
+    for w in chain.axes:
+        u = np.cross(w, [1.0, 0, 0] if abs(w[0]) < 0.9 else [0, 1.0, 0])
+        u /= np.linalg.norm(u)
+        tilt = rng.normal(0, s_A, 2) @ np.array([u, np.cross(w, u)])
+        axes.append(kin._rot(tilt / max(np.linalg.norm(tilt), 1e-15), np.linalg.norm(tilt)) @ w)
+    off = np.where(chain.revolute, rng.normal(0, s_A, chain.n), rng.normal(0, s_L, chain.n))
+    return replace(chain, links=chain.links + rng.normal(0, s_L, chain.links.shape), axes=np.array(axes),
+                   tool=chain.tool + rng.normal(0, s_L, 3), q_offset=off), {"s_L_mm": s_L, "s_A_deg": np.rad2deg(s_A)}
+
+
+def _session_options(robot_key, physics, rng):
+    kinds = set(physics)
+    opts = {"blocks": int(rng.integers(1, 4)), "gap_kind": str(rng.choice(["none", "pause"]))}
+    if "heat" in kinds:
+        opts.update(blocks=int(rng.integers(4, 7)), gap_kind="mixed")
+    if "ambient" in kinds:
+        drift = rng.choice([-1, 1]) * rng.uniform(2.0, 6.0)
+        # a working day: blocks with pauses of 30-90 min, the shop's air drifting by 2-6 K
+        opts.update(blocks=int(rng.integers(5, 9)), gap_kind="pause", pause_min=(30.0, 90.0),
+                    air={"drift_K": drift, "cycle_K": rng.uniform(0.0, 1.0), "period_min": rng.uniform(60, 180)})
+    pmax = PAYLOAD_MAX_KG[robot_key]
+    if "sag" in kinds or (kinds & GRAVITY_KINDS and rng.random() < 0.5):
+        steps = np.round(rng.uniform(0, pmax, int(rng.integers(2, 4))), 1)
+        opts.update(blocks=max(opts["blocks"], len(steps)), payload_steps=tuple(steps))
+    else:
+        opts["payload_steps"] = (float(np.round(rng.uniform(0, pmax) * (rng.random() < 0.5), 1)),)
+    return opts
+
+
+def _tracker(rng):
+    yaw, a, b = rng.uniform(0, 2 * np.pi), *np.deg2rad(rng.uniform(-3, 3, 2))
+    R = kin._rot([0, 0, 1.0], yaw) @ kin._rot([1.0, 0, 0], a) @ kin._rot([0, 1.0, 0], b)
+    d = rng.uniform(1500, 5000)
+    phi = rng.uniform(0, 2 * np.pi)
+    return R, np.array([d * np.cos(phi), d * np.sin(phi), rng.uniform(-500, 500)])
+
+
+def _unit(rng):
+    v = rng.normal(size=3)
+    return v / np.linalg.norm(v)
+
+
+def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case:
+    """One measurement case of ``n_poses`` poses of ``robot_key`` with the effects ``physics`` (kinds of
+    :data:`EFFECTS`; empty for geometry and noise only)."""
+    rng = np.random.default_rng(seed)
+    nominal = kin.load_chain(ROBOT_FILES[robot_key])
+    true_chain, geo = _perturb(nominal, rng)
+    masses = nominal.masses * rng.uniform(0.85, 1.15, len(nominal.masses))
+    com = nominal.mass_com + rng.normal(0, 20.0, nominal.mass_com.shape)
+    session = make_session(nominal, robot_key, n_poses, rng, **_session_options(robot_key, physics, rng))
+    probe = _unit(rng) * rng.uniform(5, 100)
+    payload_com = _unit(rng) * rng.uniform(0, 80)
+    ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
+    scale = np.where(nominal.revolute, np.pi / 180, 1.0)
+    rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale
+    hw = {"drives": hwm.size_drives(robot_key, np.abs(ctx.loads).max(axis=0) * 1.0, rated, rng),
+          "tubes": hwm.draw_tubes(robot_key, rng), "mount": hwm.draw_mount(robot_key, rng),
+          "material": hwm.ROBOTS[robot_key]["material"]}
+    params, dq = {}, np.zeros_like(session.q)
+    strain, disp = np.zeros((n_poses, len(nominal.links))), np.zeros((n_poses, 3))
+    for kind in physics:
+        draw, apply, _ = EFFECTS[kind]
+        params[kind] = draw(ctx, hw, rng)
+        c = apply(params[kind], ctx, hw)
+        dq += 0 if c.dq is None else c.dq
+        strain += 0 if c.strain is None else c.strain
+        disp += 0 if c.displace is None else c.displace
+    links = true_chain.links[None] * (1 + strain[..., None])
+    pos = kin.target(true_chain, session.q + dq, probe, links=links) + disp
+    R_f, t_f = _tracker(rng)
+    noise = rng.uniform(0.01, 0.05)
+    meas = pos @ R_f.T + t_f + rng.normal(0, noise, pos.shape)
+    frame = _frame(nominal, session, meas)
+    if split == "time":
+        train, test = np.arange(int(round(0.75 * n_poses))), np.arange(int(round(0.75 * n_poses)), n_poses)
+    else:
+        perm = rng.permutation(n_poses)
+        train, test = np.sort(perm[:int(round(0.75 * n_poses))]), np.sort(perm[int(round(0.75 * n_poses)):])
+    truth = {"chain": true_chain, "geometry": geo, "masses": masses, "com": com, "payload_com_mm": payload_com,
+             "probe_mm": probe, "R_frame": R_f, "t_frame": t_f, "noise_mm": noise, "hw": hw, "params": params,
+             "session": session, "effect_mm": pos - kin.target(true_chain, session.q, probe)}
+    return Case(case_id, robot_key, tuple(physics), frame, train, test, split, nominal, truth)
+
+
+def _frame(chain, session, meas) -> pd.DataFrame:
+    cols = {}
+    for j in range(chain.n):
+        if chain.revolute[j]:
+            cols[f"q{j + 1}_deg"] = np.rad2deg(session.q[:, j])
+        else:
+            cols[f"q{j + 1}_mm"] = session.q[:, j]
+    cols.update(x_mm=meas[:, 0], y_mm=meas[:, 1], z_mm=meas[:, 2], temperature_c=np.round(session.air_c, 3))
+    cols.update({f"dir{j + 1}": session.direction[:, j].astype(int) for j in range(chain.n)})
+    cols.update(payload_kg=session.payload_kg, time_s=np.round(session.time_s, 1))
+    return pd.DataFrame(cols)

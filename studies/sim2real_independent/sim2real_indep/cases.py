@@ -1,0 +1,64 @@
+"""The benchmark's two case sets (seeded; the measurement tables are regenerated, never stored).
+
+Set A (24 cases, 8 per arm) emphasises the physics the project's own benchmark lacks; set B (25 cases) is a
+held-out draw of another mix with another seed. A case: (id, robot, physics kinds, poses, split).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+SEED_A, SEED_B = 40_7001, 40_7002
+KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
+ROBOTS = ["ur10", "tool_changer", "kr16_like"]
+
+SET_A = [
+    ("A01", "ur10", ("gear",), 150, "random"),
+    ("A02", "ur10", ("encoder",), 100, "random"),
+    ("A03", "ur10", ("heat",), 160, "time"),
+    ("A04", "ur10", ("hardening",), 120, "random"),
+    ("A05", "ur10", ("mount",), 80, "random"),
+    ("A06", "ur10", ("sag",), 120, "random"),
+    ("A07", "ur10", ("backlash",), 30, "random"),
+    ("A08", "ur10", (), 60, "random"),
+    ("A09", "tool_changer", ("compliance",), 90, "random"),
+    ("A10", "tool_changer", ("ambient",), 180, "time"),
+    ("A11", "tool_changer", ("sag",), 140, "random"),
+    ("A12", "tool_changer", ("backlash",), 100, "random"),
+    ("A13", "tool_changer", ("mount",), 60, "random"),
+    ("A14", "tool_changer", ("gear",), 200, "random"),
+    ("A15", "tool_changer", ("hardening",), 30, "random"),
+    ("A16", "tool_changer", ("compliance", "heat"), 150, "time"),
+    ("A17", "kr16_like", ("hardening",), 100, "random"),
+    ("A18", "kr16_like", ("heat",), 180, "random"),
+    ("A19", "kr16_like", ("ambient",), 150, "random"),
+    ("A20", "kr16_like", ("encoder",), 60, "random"),
+    ("A21", "kr16_like", ("mount",), 120, "time"),
+    ("A22", "kr16_like", (), 120, "random"),
+    ("A23", "kr16_like", ("backlash", "sag"), 160, "random"),
+    ("A24", "kr16_like", ("gear", "ambient"), 200, "random"),
+]
+
+
+def set_b():
+    """25 cases drawn with SEED_B: two of each kind, one extra kind, three geometry-only and three mixtures, on a
+    random arm each, 30 or 60-200 poses, a quarter split by time."""
+    rng = np.random.default_rng(SEED_B)
+    physics = [(k,) for k in KINDS for _ in range(2)] + [(str(rng.choice(KINDS)),)] + [()] * 3
+    for _ in range(3):
+        a, b = rng.choice(len(KINDS), 2, replace=False)
+        physics.append((KINDS[a], KINDS[b]))
+    order = rng.permutation(len(physics))
+    out = []
+    for i, k in enumerate(order):
+        n = 30 if rng.random() < 0.1 else int(rng.integers(6, 21)) * 10
+        out.append((f"B{i + 1:02d}", str(rng.choice(ROBOTS)), physics[k], n,
+                    "time" if rng.random() < 0.25 else "random"))
+    return out
+
+
+SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B)}
+
+
+def case_seed(set_name: str, index: int) -> int:
+    return SETS[set_name][1] * 1000 + index

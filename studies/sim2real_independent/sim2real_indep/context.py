@@ -1,0 +1,85 @@
+"""The model of a robot at a session's poses, shared by the effects and the oracle. Imports nothing of tolalloc."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from sim2real_indep import kinematics as kin
+from sim2real_indep.session import Session
+
+FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", "ambient": "thermal",
+          "hardening": "joint_compliance", "compliance": "joint_compliance", "mount": "mount_compliance",
+          "sag": "link_deflection", "backlash": "backlash", "none": "none"}
+#: the families the diagnosis names (issue 40), in the report's column order
+FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
+
+
+@dataclass
+class Ctx:
+    """A robot model at the session's poses: chain, mass model, payload placement and probe."""
+
+    chain: kin.Chain
+    session: Session
+    masses: np.ndarray
+    com: np.ndarray
+    mass_link: tuple
+    payload_com_mm: np.ndarray  # payload centre of mass in the tool frame
+    probe_mm: np.ndarray
+
+    @property
+    def q(self):
+        return self.session.q
+
+    @cached_property
+    def mass_index(self):
+        """Chain link index of each mass (payload: past the last link)."""
+        idx = [self.chain.link_names.index(n) for n in self.mass_link]
+        return np.array(idx + [len(self.chain.link_names)])
+
+    @cached_property
+    def mass_state(self):
+        """Masses (P, B+1) [kg] with the payload last, their positions (P, B+1, 3) [mm] and bodies (B+1,)."""
+        ch, P = self.chain, len(self.q)
+        body = np.r_[np.array([ch.link_body[i] for i in self.mass_index[:-1]], int), ch.n]
+        pos = kin.mass_positions(ch, self.q, com=self.com, body=body[:-1])
+        p, Rt = kin.flange(ch, self.q)
+        pay = p + Rt @ self.payload_com_mm
+        m = np.hstack([np.broadcast_to(self.masses, (P, len(self.masses))), self.session.payload_kg[:, None]])
+        return m, np.concatenate([pos, pay[:, None]], axis=1), body
+
+    @cached_property
+    def loads(self):
+        """Static gravity load on each joint (P, n) [N m / N]."""
+        m, pos, body = self.mass_state
+        return kin.gravity_loads(self.chain, self.q, m, pos, body)
+
+    @cached_property
+    def target(self):
+        return kin.target(self.chain, self.q, self.probe_mm)
+
+    @cached_property
+    def jac(self):
+        return kin.position_jacobian(self.chain, self.q, self.target)
+
+    def joint_feature(self, j, signal):
+        """Displacement (P, 3) of the target for a joint offset ``signal`` (P,) on joint j."""
+        return self.jac[:, :, j] * signal[:, None]
+
+    def link_scale_feature(self, link_mask):
+        """Displacement (P, 3) [mm] of the target when the links in ``link_mask`` (L,) stretch by a unit strain."""
+        R, _ = kin.body_transforms(self.chain, self.q)
+        ch = self.chain
+        out = np.zeros((len(self.q), 3))
+        for li in np.flatnonzero(link_mask):
+            out += R[:, ch.link_body[li]] @ ch.links[li]
+        return out
+
+
+@dataclass
+class Contribution:
+    dq: np.ndarray | None = None          # joint offsets (P, n)
+    strain: np.ndarray | None = None      # link strains (P, L)
+    displace: np.ndarray | None = None    # target displacements (P, 3) [mm], base frame

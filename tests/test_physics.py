@@ -1,0 +1,164 @@
+"""The physical effect models (tolalloc/physics) against closed forms: the catalogue's torque-torsion curve, the
+hardening law, the mount's tilt, a cantilever's deflection, the strain-wave orders, lags, link growth."""
+
+import numpy as np
+import pytest
+
+import tolalloc
+from tolalloc.errormodel import build_error_model
+from tolalloc.physics import (base_moment, beam_sag, compliance_columns, flank, gear_orders, joint_loads, lag_filter,
+                              link_growth, motor_heat, mount_columns, transmission_error)
+from tolalloc.physics.loads import G
+from tolalloc.robot import Joint, Link, Robot
+from tolalloc.robot.components import Components, LinkSection, Reducer, parse_components
+
+
+def test_catalogue_curve_and_its_columns():
+    """Harmonic Drive's three-band curve: T/K1 to T1, then 1/K2 to T2, then 1/K3; the catalogue columns with
+    (1/K1, 1/K2, 1/K3) reproduce it, odd in the torque."""
+    red = Reducer(stiffness=(5.0e4, 7.0e4, 1.0e5), torque_bands=(30.0, 100.0))
+    tau = np.array([-150.0, -20.0, 0.0, 20.0, 60.0, 150.0])
+    phi = red.deflection(tau)
+    expect = lambda t: min(t, 30) / 5e4 + np.clip(t - 30, 0, 70) / 7e4 + max(t - 100, 0) / 1e5  # noqa: E731
+    np.testing.assert_allclose(phi, [np.sign(t) * expect(abs(t)) for t in tau], rtol=1e-12)
+    robot = tolalloc.load_robot("ur10")
+    parts = parse_components({"joints": {"elbow_joint": {"reducer": {"stiffness_Nm_per_rad": [5e4, 7e4, 1e5],
+                                                                      "torque_bands_Nm": [30, 100]}}}},
+                             {j.name: True for j in robot.joints}, [lk.name for lk in robot.links])
+    object.__setattr__(robot, "components", parts)
+    T = np.zeros((len(tau), 6))
+    T[:, 2] = tau
+    A, names = compliance_columns(robot, T, np.zeros_like(T), "catalogue")
+    assert names == ["c1_elbow_joint [rad/(N m)]", "c2_elbow_joint [rad/(N m)]", "c3_elbow_joint [rad/(N m)]"]
+    np.testing.assert_allclose(A[:, 2, :] @ [1 / 5e4, 1 / 7e4, 1 / 1e5], phi, rtol=1e-12)
+
+
+def test_hardening_law_is_soft_near_zero_and_stiff_beyond_t0():
+    robot = tolalloc.load_robot("ur10")
+    tau = np.zeros((5, 6))
+    tau[:, 1] = [-200.0, -1e-3, 0.0, 1e-3, 200.0]
+    A, names = compliance_columns(robot, tau, np.zeros_like(tau), "hardening_0.25")
+    assert names == ["c_shoulder_lift_joint [rad/(N m)]", "s_shoulder_lift_joint [rad/(N m)]"]
+    c, s = 1e-5, 3e-5
+    dq = A[:, 1, :] @ [c, s]
+    assert (dq[3] - dq[1]) / 2e-3 == pytest.approx(c + s, rel=1e-6)  # the soft zone's slope at zero torque
+    t0 = 0.25 * 200.0
+    assert dq[4] == pytest.approx(c * 200 + s * t0 * np.tanh(4.0), rel=1e-12)  # stiff beyond T0, offset s T0
+
+
+def test_mount_tilts_about_the_base_under_the_moment_of_a_point_mass():
+    """One 10 kg mass 1 m out along x: the base carries M = r x m g = (0, 98.1, 0) N m; an isotropic mount of
+    compliance c turns by c M and moves a point p by (c M) x p."""
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([1000.0, 0.0, 0.0])))
+    robot = Robot("arm", chain)
+    object.__setattr__(robot, "masses", (tolalloc.robot.Mass("m", 1, 10.0, np.array([1000.0, 0.0, 0.0])),))
+    q = np.array([[0.0]])
+    M = base_moment(robot, q)
+    np.testing.assert_allclose(M, [[0.0, 10 * G, 0.0]], atol=1e-12)
+    p = np.array([[1000.0, 0.0, 500.0]])
+    B, names = mount_columns(robot, q, p, variant="isotropic")
+    np.testing.assert_allclose(B[:, :, 0], np.cross(M, p), atol=1e-9)
+    assert names == ["c_mount [rad/(N m)]"]
+
+
+def _cantilever(section):
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([1000.0, 0.0, 0.0])))
+    robot = Robot("beam", chain)
+    object.__setattr__(robot, "masses", (tolalloc.robot.Mass("tip", 1, 20.0, np.array([1000.0, 0.0, 0.0])),))
+    object.__setattr__(robot, "components", Components(links={"l1": section}))
+    return robot
+
+
+def test_cantilever_end_drop_from_bending_and_shear():
+    """A horizontal 1 m steel tube (D 100, t 5 mm) with 20 kg at its end and a 5 kg payload there:
+    drop = F L^3 / 3EI + F L / (kappa G A), straight down."""
+    sec = parse_components({"links": {"l1": {"section": "tube", "outer_diameter_mm": 100, "wall_mm": 5,
+                                              "material": "steel"}}}, {"j1": True}, ["l1"]).links["l1"]
+    assert isinstance(sec, LinkSection) and sec.inertia_mm4 == pytest.approx(np.pi / 64 * (100**4 - 90**4))
+    robot = _cantilever(sec)
+    q = np.zeros((1, 1))
+    p = np.array([[1000.0, 0.0, 0.0]])
+    F, L = 25 * G, 1000.0
+    expect = F * L**3 / (3 * sec.EI_Nmm2) + F * L / sec.shear_stiffness_N
+    np.testing.assert_allclose(beam_sag(robot, q, p, payload_kg=np.array([5.0])), [[0.0, 0.0, -expect]], rtol=1e-9)
+    q90 = np.array([[np.pi / 2]])  # turned about the vertical axis: the same drop
+    np.testing.assert_allclose(beam_sag(robot, q90, np.array([[0.0, 1000.0, 0.0]]), np.array([5.0])),
+                               [[0.0, 0.0, -expect]], rtol=1e-9, atol=1e-12)
+
+
+def test_strain_wave_error_repeats_at_n_and_2n_per_output_turn():
+    N = 101.0
+    orders = gear_orders(N)
+    assert orders == (1.0, 101.0, 202.0)
+    q = np.linspace(0, 0.3, 50)
+    amps, phases = [0.0, 2e-4, 1e-4], [0.0, 0.3, 1.1]
+    e = transmission_error(q, orders, amps, phases)
+    np.testing.assert_allclose(transmission_error(q + 2 * np.pi / N, orders, amps, phases), e, atol=1e-15)
+    assert np.ptp(e) <= 2 * sum(amps) + 1e-12
+
+
+def test_lag_heats_and_cools_as_a_first_order_system():
+    t = np.arange(0.0, 7200.0, 60.0)
+    u = np.where((t > 0) & (t <= 3600.0), 1.0, 0.0)  # heat input for an hour, then a pause
+    y = lag_filter(t, u[:, None], 900.0)[:, 0]
+    on = t <= 3600.0
+    np.testing.assert_allclose(y[on], 1 - np.exp(-t[on] / 900.0), atol=1e-12)
+    np.testing.assert_allclose(y[~on], y[t == 3600.0] * np.exp(-(t[~on] - 3600.0) / 900.0), atol=1e-12)
+
+
+def test_motor_heat_holds_the_previous_pose_load_squared():
+    t = np.array([0.0, 60.0, 120.0])
+    q = np.array([[0.0], [0.6], [0.6]])
+    load = np.array([[2.0], [3.0], [5.0]])
+    h = motor_heat(t, q, load, 1e-9)  # a lag much faster than the poses: the inputs themselves
+    np.testing.assert_allclose(h[:, 0], [0.0, 0.01, 0.0], atol=1e-12)  # speed over the interval before each pose
+    np.testing.assert_allclose(h[:, 1], [0.0, 4.0, 9.0], atol=1e-12)  # the load held before it, squared
+
+
+def test_link_growth_agrees_with_the_error_models_link_length_jacobian():
+    robot = tolalloc.load_robot("tool_changer")
+    q = robot.random_q(np.random.default_rng(0), 20)
+    grow, names = link_growth(robot, q)
+    J = build_error_model(robot, "generic", exclude=("joint_drive", "axis_deflection")).jacobian(q)[:, :3, :]
+    L = np.array([lk.length_mm for lk in robot.links])
+    np.testing.assert_allclose(grow, 1e-6 * J * L, atol=1e-12)
+    assert names == tuple(lk.name for lk in robot.links)
+
+
+def test_lost_motion_flanks():
+    tau = np.array([[5.0], [-5.0], [0.1], [-0.1]])
+    d = np.array([[1.0], [1.0], [-1.0], [1.0]])
+    np.testing.assert_array_equal(flank(tau, d, "approach"), d)
+    np.testing.assert_array_equal(flank(tau, d, "gravity"), np.sign(tau))
+    np.testing.assert_array_equal(flank(tau, d, "preload"), [[1.0], [-1.0], [-1.0], [1.0]])
+    with pytest.raises(ValueError, match="needs the approach directions"):
+        flank(tau, None, "preload")
+
+
+def test_joint_loads_add_the_payload_at_the_target():
+    robot = tolalloc.load_robot("ur10")
+    q = robot.random_q(np.random.default_rng(1), 4)
+    p = robot.fk_internal(q)[:, :3, 3]
+    tau0, tip = joint_loads(robot, q, p)
+    tau5, _ = joint_loads(robot, q, p, np.full(4, 5.0))
+    np.testing.assert_allclose(tau5 - tau0, 5.0 * tip, atol=1e-9)
+
+
+def test_a_mass_beside_the_beam_axis_twists_it():
+    """A 1 m steel tube along x carries, through a rigid 300 mm arm, 20 kg beside its axis: the end drops by
+    P L^3 / 3EI + P L / kGA and the torque P d twists it by P d L / GJ, lowering the mass by a further d times that;
+    the tube (no robot mass on it) also sags under its own weight, w L^4 / 8EI + w L^2 / 2kGA."""
+    sec = parse_components({"links": {"l1": {"section": "tube", "outer_diameter_mm": 100, "wall_mm": 5,
+                                              "material": "steel"}}}, {"j1": True, "j2": True}, ["l1", "l2"]).links["l1"]
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([1000.0, 0.0, 0.0])),
+             Joint("j2", "revolute", np.array([1.0, 0.0, 0.0])), Link("l2", np.array([0.0, 300.0, 0.0])))
+    robot = Robot("arm", chain)
+    object.__setattr__(robot, "masses", (tolalloc.robot.Mass("m", 2, 20.0, np.array([1000.0, 300.0, 0.0])),))
+    object.__setattr__(robot, "components", Components(links={"l1": sec}))
+    P, L, d = 20 * G, 1000.0, 300.0
+    GJ = sec.shear_modulus_MPa * 2 * sec.inertia_mm4
+    w = sec.area_mm2 * sec.density_kg_per_mm3 * G  # [N/mm]
+    drop = (P * L**3 / (3 * sec.EI_Nmm2) + P * L / sec.shear_stiffness_N + P * d * L / GJ * d
+            + w * L**4 / (8 * sec.EI_Nmm2) + w * L**2 / (2 * sec.shear_stiffness_N))
+    np.testing.assert_allclose(beam_sag(robot, np.zeros((1, 2)), np.array([[1000.0, 300.0, 0.0]])),
+                               [[0.0, 0.0, -drop]], rtol=1e-9, atol=1e-12)

@@ -1,0 +1,404 @@
+"""Requirement objects: today's error balls and the characteristics robot makers state (ISO 9283).
+
+Each requirement is a frozen dataclass, checked at construction (a bad field is a
+:class:`~tolalloc.exceptions.ArgumentError` naming ``ClassName.field``), with one kind of error it bounds
+(:attr:`Requirement.kind`: a job takes one requirement of each kind), its statement as a formula
+(:meth:`Requirement.text`) and a JSON record (:meth:`Requirement.to_dict`).
+
+* :class:`PositionRequirement` (kind ``position``): ``P(|dP| < r) >= p`` at every working pose (the ball);
+* :class:`OrientationRequirement` (``orientation``): ``P(|dw| < a) >= p`` at every working pose;
+* :class:`PoseAccuracy` (``pose_accuracy``): ``AP_P`` at P1-P5 (ISO 9283:1998 7.2.1);
+* :class:`PoseRepeatability` (``pose_repeatability``): ``RP_l`` at P1-P5 (7.2.2);
+* :class:`OrientationAccuracy` (``orientation_accuracy``): ``AP_a, AP_b, AP_c`` at P1-P5 (7.2.1);
+* :class:`OrientationRepeatability` (``orientation_repeatability``): ``RP_a, RP_b, RP_c`` at P1-P5 (7.2.2);
+* :class:`DistanceAccuracy` (``distance_accuracy``): ``AD_P`` between two of P1-P5 (7.3);
+* :class:`PathAccuracy` (``path_accuracy``): ``AT_P`` along a command path (8.2).
+
+An ISO 9283 requirement states a **limit** on its statistic (``AP_P <= limit_mm``; the repeatabilities, which
+datasheets write ``+-0.05 mm``, by their half-width), the **population** it holds for and the **test conditions**:
+
+* ``population="fleet"``: a share ``share`` of the robots built meet it ("95 % of built robots meet
+  ``AP_P <= 0.5 mm``"); ``population="robot"``: the robot at hand meets it with probability ``share``. For a robot
+  not yet built, made like every other, the two are the same number (each robot is one draw of the manufacturing
+  errors and of its test); they differ in what the report says, and for a robot whose own errors are known.
+* :class:`Conditions`: load (ISO 9283 6.6: 100 % of the rated load, also 10 %) and velocity (6.7: 100 %, 50 %,
+  10 % of the rated velocity). They select the state in which bought-part effects (compliance under load, ...)
+  are evaluated; the geometric error model does not depend on them.
+* ``guard_band``: allocate so that the acceptance test *demonstrates* conformance (ISO 14253-1: the predicted
+  measured statistic plus the expanded uncertainty of its measurement within the limit), not only that the
+  robots meet the limit.
+
+The statistic is evaluated at the poses of the acceptance test (:class:`tolalloc.acceptance.layout.AcceptanceTest`):
+P1-P5 of the test cube, ``cycles`` cycles each approached from the same side.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import ClassVar
+
+import numpy as np
+
+from tolalloc.exceptions import ArgumentError
+from tolalloc.units import check_positive, check_probability
+
+__all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement",
+           "PoseAccuracy", "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability",
+           "DistanceAccuracy", "PathAccuracy", "check_requirements", "split_requirements", "REQUIREMENT_KINDS",
+           "POPULATIONS"]
+
+POPULATIONS = ("fleet", "robot")
+
+
+#: the requirement when none is given: ``P(|dP| < 0.25 mm) >= 0.95`` (the command line's defaults too)
+DEFAULT_RADIUS_MM = 0.25
+DEFAULT_PROB = 0.95
+#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
+ESTIMATORS = ("auto", "plain", "paired", "importance")
+#: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
+CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
+
+
+class Requirement:
+    """Base of the requirements on the tool-pose error; subclasses are frozen dataclasses.
+
+    Class attributes
+    ----------------
+    kind : str
+        What the requirement bounds; a job takes one requirement of each kind at most.
+    clause : str
+        Where the statistic is defined (``""`` for the balls).
+
+    A subclass checks its fields in :meth:`check` (called at construction) and implements :meth:`text`.
+    """
+
+    kind: ClassVar[str] = ""
+    clause: ClassVar[str] = ""
+    calibration_aware: ClassVar[bool] = False
+
+    def __post_init__(self):
+        self.check()
+
+    def check(self) -> None:  # pragma: no cover - every subclass overrides it
+        raise NotImplementedError
+
+    def text(self) -> str:  # pragma: no cover
+        """The requirement as a formula with its units."""
+        raise NotImplementedError
+
+    def problem_arguments(self) -> dict:  # pragma: no cover
+        """Keyword arguments of :func:`tolalloc.allocate.build_problem` that state this requirement."""
+        raise NotImplementedError
+
+    def cli_arguments(self) -> list[str]:  # pragma: no cover
+        """The command-line flags that state this requirement (``["--radius-mm", "0.25", ...]``)."""
+        raise NotImplementedError
+
+    def estimators(self, calibrated: bool = False) -> tuple[str, ...]:
+        """Verification estimators that can judge this requirement (``calibrated``: in the calibration-aware
+        allocation's end-to-end Monte Carlo)."""
+        return CALIBRATED_ESTIMATORS if calibrated else ESTIMATORS
+
+    def to_dict(self) -> dict:
+        """The fields (units in their names) and the kind, for JSON records and requirement files."""
+        out = {"kind": self.kind}
+        for k, v in asdict(self).items():
+            if isinstance(v, dict):  # the test conditions, flattened as in a requirement file
+                out.update(v)
+            elif isinstance(v, np.ndarray):
+                out[k] = v.tolist()
+            elif v is not None:
+                out[k] = list(v) if isinstance(v, tuple) else v
+        return out
+
+    def _field(self, name: str) -> str:
+        return f"{type(self).__name__}.{name}"
+
+    def __str__(self) -> str:
+        return self.text()
+
+
+@dataclass(frozen=True)
+class PositionRequirement(Requirement):
+    """``P(|dP| < radius_mm) >= prob`` at every working pose: the tool-position error within a ball.
+
+    Examples
+    --------
+    >>> PositionRequirement(radius_mm=0.1, prob=0.99).text()
+    'P(|dP| < 0.1 mm) >= 0.99'
+    """
+
+    radius_mm: float = DEFAULT_RADIUS_MM
+    prob: float = DEFAULT_PROB
+    kind: ClassVar[str] = "position"
+    calibration_aware: ClassVar[bool] = True
+
+    def check(self) -> None:
+        check_positive(self.radius_mm, self._field("radius_mm"), "mm", "0.25")
+        check_probability(self.prob, self._field("prob"))
+
+    def text(self) -> str:
+        return f"P(|dP| < {self.radius_mm:g} mm) >= {self.prob:g}"
+
+    def problem_arguments(self) -> dict:
+        """Keywords of :func:`tolalloc.allocate.build_problem` stating this requirement."""
+        return {"radius_mm": float(self.radius_mm), "prob": float(self.prob)}
+
+    def cli_arguments(self) -> list[str]:
+        return ["--radius-mm", f"{self.radius_mm:g}", "--prob", f"{self.prob:g}"]
+
+
+@dataclass(frozen=True)
+class OrientationRequirement(Requirement):
+    """``P(|dw| < radius_deg) >= prob`` at every working pose (default ``prob``: the position requirement's).
+
+    Examples
+    --------
+    >>> OrientationRequirement(radius_deg=0.02, prob=0.95).text()
+    'P(|dw| < 0.02 deg) >= 0.95'
+    """
+
+    radius_deg: float = 0.02
+    prob: float | None = None
+    kind: ClassVar[str] = "orientation"
+
+    def check(self) -> None:
+        check_positive(self.radius_deg, self._field("radius_deg"), "deg", "0.02")
+        if self.prob is not None:
+            check_probability(self.prob, self._field("prob"))
+
+    def text(self) -> str:
+        p = "p of the position requirement" if self.prob is None else f"{self.prob:g}"
+        return f"P(|dw| < {self.radius_deg:g} deg) >= {p}"
+
+    def problem_arguments(self) -> dict:
+        return {"angle_radius_deg": float(self.radius_deg),
+                "angle_prob": None if self.prob is None else float(self.prob)}
+
+    def cli_arguments(self) -> list[str]:
+        return ["--angle-radius-deg", f"{self.radius_deg:g}"] + ([] if self.prob is None else
+                                                                  ["--angle-prob", f"{self.prob:g}"])
+
+
+@dataclass(frozen=True)
+class Conditions:
+    """Test conditions of ISO 9283: load (6.6) and velocity (6.7), in percent of the rated values.
+
+    Attributes
+    ----------
+    load_pct : float
+        Load on the mechanical interface, % of the rated load (the standard tests at 100 %, and optionally at
+        10 %); 0 to 100.
+    speed_pct : float
+        Velocity, % of the rated velocity (100, 50 or 10 in the standard); > 0 to 100.
+    """
+
+    load_pct: float = 100.0
+    speed_pct: float = 100.0
+
+    def __post_init__(self):
+        for name, lo in (("load_pct", 0.0), ("speed_pct", 0.0)):
+            v = getattr(self, name)
+            ok = not isinstance(v, bool) and isinstance(v, (int, float, np.floating)) and np.isfinite(v)
+            if not ok or not (lo <= v <= 100) or (name == "speed_pct" and v == 0):
+                raise ArgumentError(f"Conditions.{name}", f"expected a percentage of the rated value in "
+                                    f"{'[0, 100]' if name == 'load_pct' else '(0, 100]'} (ISO 9283 tests at 100 "
+                                    f"and {'10' if name == 'load_pct' else '50, 10'}), got {v!r}.")
+            object.__setattr__(self, name, float(v))
+
+    def text(self) -> str:
+        return f"{self.load_pct:g} % rated load, {self.speed_pct:g} % rated velocity"
+
+
+@dataclass(frozen=True, kw_only=True)
+class IsoRequirement(Requirement):
+    """Common fields of the ISO 9283 requirements (a base class; use its subclasses).
+
+    Attributes
+    ----------
+    share : float
+        Share of the built robots that meet the limit (``population="fleet"``), or the probability that the robot
+        at hand meets it (``"robot"``); in (0, 1).
+    population : {"fleet", "robot"}
+    conditions : Conditions
+    guard_band : bool
+        Allocate for conformance *demonstrated* by the acceptance test (ISO 14253-1), not only met.
+    """
+
+    share: float = 0.95
+    population: str = "fleet"
+    conditions: Conditions = field(default_factory=Conditions)
+    guard_band: bool = False
+    #: statistic symbol, unit of the limit, whether the limit bounds a signed value's magnitude
+    symbol: ClassVar[str] = ""
+    unit: ClassVar[str] = "mm"
+
+    @property
+    def limit(self) -> float:
+        """The limit in internal units [mm or rad]."""
+        v = getattr(self, f"limit_{self.unit}")
+        return float(np.deg2rad(v)) if self.unit == "deg" else float(v)
+
+    def check(self) -> None:
+        check_positive(getattr(self, f"limit_{self.unit}"), self._field(f"limit_{self.unit}"), self.unit,
+                  "0.05" if self.unit == "mm" else "0.01")
+        check_probability(self.share, self._field("share"))
+        if self.population not in POPULATIONS:
+            raise ArgumentError(self._field("population"), f"expected one of {', '.join(POPULATIONS)} (a share of "
+                                f"the built robots, or the robot at hand), got {self.population!r}.")
+        if not isinstance(self.conditions, Conditions):
+            raise ArgumentError(self._field("conditions"), "expected tolalloc.acceptance.Conditions(load_pct=..., "
+                                f"speed_pct=...), got {self.conditions!r}.")
+        if not isinstance(self.guard_band, (bool, np.bool_)):
+            raise ArgumentError(self._field("guard_band"), f"expected True or False, got {self.guard_band!r}.")
+
+    def who(self) -> str:
+        """``for 95 % of built robots`` / ``for the robot with probability 0.95``."""
+        if self.population == "fleet":
+            return f"for {100 * self.share:g} % of built robots"
+        return f"for the robot, with probability {self.share:g}"
+
+    def text(self) -> str:
+        lim = getattr(self, f"limit_{self.unit}")
+        guard = "; demonstrated with the measurement uncertainty" if self.guard_band else ""
+        return (f"{self.symbol} <= {lim:g} {self.unit} {self.who()} (ISO 9283 {self.clause}; "
+                f"{self.conditions.text()}{guard})")
+
+
+@dataclass(frozen=True, kw_only=True)
+class PoseAccuracy(IsoRequirement):
+    """Position accuracy ``AP_P <= limit_mm`` at every test pose P1-P5 (ISO 9283 7.2.1): the distance from the
+    command position to the barycentre of the ``cycles`` attained positions.
+
+    Examples
+    --------
+    >>> PoseAccuracy(limit_mm=0.5).text()
+    'AP_P <= 0.5 mm for 95 % of built robots (ISO 9283 7.2.1; 100 % rated load, 100 % rated velocity)'
+    """
+
+    limit_mm: float = 0.5
+    kind: ClassVar[str] = "pose_accuracy"
+    clause: ClassVar[str] = "7.2.1"
+    symbol: ClassVar[str] = "AP_P"
+
+
+@dataclass(frozen=True, kw_only=True)
+class PoseRepeatability(IsoRequirement):
+    """Position repeatability ``RP_l <= limit_mm`` at every test pose (ISO 9283 7.2.2; the datasheet's
+    ``+-limit_mm``): ``RP_l = lb + 3 S_l`` of the distances of the attained positions to their barycentre."""
+
+    limit_mm: float = 0.05
+    kind: ClassVar[str] = "pose_repeatability"
+    clause: ClassVar[str] = "7.2.2"
+    symbol: ClassVar[str] = "RP_l"
+
+
+@dataclass(frozen=True, kw_only=True)
+class OrientationAccuracy(IsoRequirement):
+    """Orientation accuracy ``|AP_a|, |AP_b|, |AP_c| <= limit_deg`` at every test pose (ISO 9283 7.2.1), each angle
+    on its own: the mean attained angle minus the command angle."""
+
+    limit_deg: float = 0.05
+    kind: ClassVar[str] = "orientation_accuracy"
+    clause: ClassVar[str] = "7.2.1"
+    symbol: ClassVar[str] = "|AP_a|, |AP_b|, |AP_c|"
+    unit: ClassVar[str] = "deg"
+
+
+@dataclass(frozen=True, kw_only=True)
+class OrientationRepeatability(IsoRequirement):
+    """Orientation repeatability ``RP_a, RP_b, RP_c <= limit_deg`` at every test pose (ISO 9283 7.2.2; the
+    datasheet's ``+-limit_deg``), each angle on its own: ``3 S`` of the attained angles."""
+
+    limit_deg: float = 0.01
+    kind: ClassVar[str] = "orientation_repeatability"
+    clause: ClassVar[str] = "7.2.2"
+    symbol: ClassVar[str] = "RP_a, RP_b, RP_c"
+    unit: ClassVar[str] = "deg"
+
+
+@dataclass(frozen=True, kw_only=True)
+class DistanceAccuracy(IsoRequirement):
+    """Distance accuracy ``|AD_P| <= limit_mm`` between two test poses (ISO 9283 7.3; default P2 and P4): the mean
+    attained distance minus the command distance.
+
+    Attributes
+    ----------
+    poses : tuple of two int
+        The two test poses, numbered 1-5 as P1-P5.
+    """
+
+    limit_mm: float = 0.5
+    poses: tuple = (2, 4)
+    kind: ClassVar[str] = "distance_accuracy"
+    clause: ClassVar[str] = "7.3"
+    symbol: ClassVar[str] = "|AD_P|"
+
+    def check(self) -> None:
+        super().check()
+        p = self.poses
+        ok = (isinstance(p, (tuple, list)) and len(p) == 2 and all(
+            isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 1 <= i <= 5 for i in p) and p[0] != p[1])
+        if not ok:
+            raise ArgumentError(self._field("poses"), f"expected two different test poses numbered 1-5 (P1-P5), "
+                                f"e.g. (2, 4), got {p!r}.")
+        object.__setattr__(self, "poses", (int(p[0]), int(p[1])))
+
+    def text(self) -> str:
+        return super().text().replace("AD_P|", f"AD_P| (P{self.poses[0]}-P{self.poses[1]})", 1)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PathAccuracy(IsoRequirement):
+    """Path accuracy ``AT_P <= limit_mm`` along a command path (ISO 9283 8.2): the largest distance from a command
+    point to the barycentre of the attained points of the cycles (ISO 9283 6.9: 10 cycles).
+
+    Attributes
+    ----------
+    points : int
+        Command points along the path at which the attained path is measured (>= 2).
+    """
+
+    limit_mm: float = 0.5
+    points: int = 11
+    kind: ClassVar[str] = "path_accuracy"
+    clause: ClassVar[str] = "8.2"
+    symbol: ClassVar[str] = "AT_P"
+
+    def check(self) -> None:
+        super().check()
+        if isinstance(self.points, bool) or not isinstance(self.points, (int, np.integer)) or self.points < 2:
+            raise ArgumentError(self._field("points"), f"expected a whole number of path points >= 2 (e.g. 11), "
+                                f"got {self.points!r}.")
+
+
+#: every requirement class by its kind
+REQUIREMENT_KINDS = {c.kind: c for c in (PositionRequirement, OrientationRequirement, PoseAccuracy,
+                                         PoseRepeatability, OrientationAccuracy, OrientationRepeatability,
+                                         DistanceAccuracy, PathAccuracy)}
+
+
+def check_requirements(value, argument: str = "requirement") -> tuple:
+    """One :class:`Requirement` or a list of them -> a tuple, at most one of each kind, in the order of
+    :data:`REQUIREMENT_KINDS`."""
+    items = list(value) if isinstance(value, (list, tuple)) else [value]
+    bad = [v for v in items if not isinstance(v, Requirement)]
+    if not items or bad:
+        raise ArgumentError(argument, "expected a requirement or a list of them, e.g. "
+                            "[tolalloc.acceptance.PoseAccuracy(limit_mm=0.5), "
+                            f"tolalloc.acceptance.PoseRepeatability(limit_mm=0.05)], got {(bad or [value])[0]!r}.")
+    kinds = [r.kind for r in items]
+    twice = sorted({k for k in kinds if kinds.count(k) > 1})
+    if twice:
+        raise ArgumentError(argument, f"expected at most one requirement of each kind, got {kinds.count(twice[0])} of "
+                            f"kind {twice[0]}; keep the one that must hold.")
+    order = list(REQUIREMENT_KINDS)
+    return tuple(sorted(items, key=lambda r: order.index(r.kind)))
+
+
+def split_requirements(requirements) -> tuple:
+    """``(position, orientation, iso)``: the ball requirements (or None) and the ISO 9283 ones (a tuple)."""
+    reqs = check_requirements(requirements)
+    pos = next((r for r in reqs if r.kind == "position"), None)
+    ori = next((r for r in reqs if r.kind == "orientation"), None)
+    return pos, ori, tuple(r for r in reqs if isinstance(r, IsoRequirement))

@@ -1,0 +1,201 @@
+"""The ISO 9283 statistics of a test, computed from attained poses exactly as the standard defines them.
+
+ISO 9283:1998 (Manipulating industrial robots -- Performance criteria and related test methods):
+
+* **pose accuracy** (7.2.1): the distance from the command position to the *barycentre* of the attained
+  positions of ``n`` cycles approaching the command pose from the same direction::
+
+      AP_P = sqrt((xb - xc)^2 + (yb - yc)^2 + (zb - zc)^2),   xb = (1/n) sum_j x_j  (likewise y, z)
+
+  and per orientation angle ``AP_a = ab - ac`` (likewise ``b``, ``c``);
+* **pose repeatability** (7.2.2)::
+
+      RP_l = lb + 3 S_l,   l_j = |P_j - barycentre|,   lb = (1/n) sum_j l_j,
+      S_l = sqrt(sum_j (l_j - lb)^2 / (n - 1))
+
+  and per angle ``RP_a = +-3 S_a``, ``S_a = sqrt(sum_j (a_j - ab)^2 / (n - 1))`` (likewise ``b``, ``c``);
+* **distance accuracy** (7.3): with ``D_j = |P1_j - P2_j|`` the attained and ``D_c = |P1c - P2c|`` the command
+  distance of two poses, ``AD_P = Db - D_c`` (``Db`` the mean of the ``D_j``); **distance repeatability**
+  ``RD = +-3 S_D``;
+* **path accuracy** (8.2): the largest distance, over the points of the command path, from the command point to
+  the barycentre of the attained points of ``n`` cycles, ``AT_P = max_i |Pb_i - P_ci|``; **path repeatability**
+  (8.3) ``RT_P = max_i (lb_i + 3 S_li)``.
+
+Orientation angles: the standard states them as rotations ``a, b, c`` about the base axes x, y, z. For the small
+deviations of a test they are, to first order, the components of the rotation vector of ``R_attained R_command^T``
+(base frame); that is how the simulations of this package give them.
+
+Every function takes plain arrays [mm, rad] and needs at least two cycles (``S`` divides by ``n - 1``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.exceptions import TolallocError
+
+__all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
+           "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "check_cycles",
+           "MIN_CYCLES"]
+
+#: the fewest cycles a repeatability needs (its standard deviation divides by n - 1)
+MIN_CYCLES = 2
+
+
+def check_cycles(n, name: str = "cycles") -> int:
+    """A whole number of cycles of at least :data:`MIN_CYCLES`, as int."""
+    ok = isinstance(n, (int, np.integer)) and not isinstance(n, bool) and int(n) >= MIN_CYCLES
+    if not ok:
+        raise TolallocError(f"{name}: expected a whole number of cycles of at least {MIN_CYCLES} (ISO 9283 uses 30 "
+                            f"for pose and distance characteristics, 10 for path characteristics), got {n!r}; a "
+                            "repeatability needs at least two attained poses of one command pose.")
+    return int(n)
+
+
+def _cycles(x, width: int, name: str) -> np.ndarray:
+    """``x`` as an array (..., n, width) of finite values with n >= 2 cycles."""
+    a = np.asarray(x, dtype=float)
+    if a.ndim < 2 or a.shape[-1] != width:
+        raise TolallocError(f"{name}: expected the attained values of the cycles as an array of shape (n, {width}) "
+                            f"(n cycles), got shape {a.shape}.")
+    check_cycles(a.shape[-2], f"{name} (number of cycles)")
+    if not np.all(np.isfinite(a)):
+        raise TolallocError(f"{name}: every attained value must be a finite number; got NaN or inf.")
+    return a
+
+
+def pose_accuracy(attained_mm, commanded_mm) -> np.ndarray:
+    """ISO 9283 7.2.1 position accuracy ``AP_P``: distance from the command position to the barycentre.
+
+    Parameters
+    ----------
+    attained_mm : array, shape (..., n, 3) [mm]
+        Attained positions of ``n`` cycles.
+    commanded_mm : array, shape (..., 3) [mm]
+
+    Returns
+    -------
+    array, shape (...) [mm]
+    """
+    a = _cycles(attained_mm, 3, "attained_mm")
+    return np.linalg.norm(a.mean(axis=-2) - np.asarray(commanded_mm, float), axis=-1)
+
+
+def pose_repeatability(attained_mm) -> np.ndarray:
+    """ISO 9283 7.2.2 position repeatability ``RP_l = lb + 3 S_l`` of the attained positions.
+
+    Parameters
+    ----------
+    attained_mm : array, shape (..., n, 3) [mm]
+
+    Returns
+    -------
+    array, shape (...) [mm]
+    """
+    a = _cycles(attained_mm, 3, "attained_mm")
+    l_ = np.linalg.norm(a - a.mean(axis=-2, keepdims=True), axis=-1)
+    return l_.mean(axis=-1) + 3.0 * l_.std(axis=-1, ddof=1)
+
+
+def orientation_accuracy(attained_rad, commanded_rad) -> np.ndarray:
+    """ISO 9283 7.2.1 orientation accuracy ``(AP_a, AP_b, AP_c)``: mean attained angle minus command angle.
+
+    Parameters
+    ----------
+    attained_rad : array, shape (..., n, 3) [rad]
+        Attained angles ``a, b, c`` of ``n`` cycles.
+    commanded_rad : array, shape (..., 3) [rad]
+
+    Returns
+    -------
+    array, shape (..., 3) [rad], signed
+    """
+    a = _cycles(attained_rad, 3, "attained_rad")
+    return a.mean(axis=-2) - np.asarray(commanded_rad, float)
+
+
+def orientation_repeatability(attained_rad) -> np.ndarray:
+    """ISO 9283 7.2.2 orientation repeatability ``(RP_a, RP_b, RP_c) = 3 S`` of each angle (the standard writes
+    ``+-3 S_a``; the half-width is returned).
+
+    Parameters
+    ----------
+    attained_rad : array, shape (..., n, 3) [rad]
+
+    Returns
+    -------
+    array, shape (..., 3) [rad]
+    """
+    a = _cycles(attained_rad, 3, "attained_rad")
+    return 3.0 * a.std(axis=-2, ddof=1)
+
+
+def _distances(p1, p2):
+    a1 = _cycles(p1, 3, "attained_1_mm")
+    a2 = _cycles(p2, 3, "attained_2_mm")
+    if a1.shape != a2.shape:
+        raise TolallocError(f"attained_1_mm, attained_2_mm: expected the same cycles at both poses, got shapes "
+                            f"{a1.shape} and {a2.shape}.")
+    return np.linalg.norm(a1 - a2, axis=-1)
+
+
+def distance_accuracy(attained_1_mm, attained_2_mm, commanded_1_mm, commanded_2_mm) -> np.ndarray:
+    """ISO 9283 7.3 distance accuracy ``AD_P = Db - D_c`` between two poses (signed).
+
+    Parameters
+    ----------
+    attained_1_mm, attained_2_mm : array, shape (..., n, 3) [mm]
+        Attained positions at the two poses, cycle by cycle.
+    commanded_1_mm, commanded_2_mm : array, shape (..., 3) [mm]
+
+    Returns
+    -------
+    array, shape (...) [mm]
+    """
+    d = _distances(attained_1_mm, attained_2_mm)
+    dc = np.linalg.norm(np.asarray(commanded_1_mm, float) - np.asarray(commanded_2_mm, float), axis=-1)
+    return d.mean(axis=-1) - dc
+
+
+def distance_repeatability(attained_1_mm, attained_2_mm) -> np.ndarray:
+    """ISO 9283 7.3 distance repeatability ``RD = 3 S_D`` (the standard writes ``+-3 S_D``).
+
+    Returns
+    -------
+    array, shape (...) [mm]
+    """
+    return 3.0 * _distances(attained_1_mm, attained_2_mm).std(axis=-1, ddof=1)
+
+
+def _path(attained, commanded):
+    a = np.asarray(attained, dtype=float)
+    c = np.asarray(commanded, dtype=float)
+    if a.ndim != 3 or a.shape[-1] != 3 or c.shape != a.shape[1:]:
+        raise TolallocError(f"attained_mm, commanded_mm: expected the attained path points of n cycles as shape "
+                            f"(n, m, 3) and the m command points as (m, 3), got {a.shape} and {c.shape}.")
+    return _cycles(np.swapaxes(a, 0, 1), 3, "attained_mm"), c  # (m, n, 3)
+
+
+def path_accuracy(attained_mm, commanded_mm) -> float:
+    """ISO 9283 8.2 path accuracy ``AT_P = max_i |barycentre_i - P_ci|`` over the command points.
+
+    Parameters
+    ----------
+    attained_mm : array, shape (n, m, 3) [mm]
+        Attained path points of ``n`` cycles at the ``m`` command points (each where the attained path crosses
+        the plane normal to the command path at that point).
+    commanded_mm : array, shape (m, 3) [mm]
+
+    Returns
+    -------
+    float [mm]
+    """
+    a, c = _path(attained_mm, commanded_mm)
+    return float(pose_accuracy(a, c).max())
+
+
+def path_repeatability(attained_mm) -> float:
+    """ISO 9283 8.3 path repeatability ``RT_P = max_i (lb_i + 3 S_li)``; ``attained_mm`` as :func:`path_accuracy`."""
+    a = np.asarray(attained_mm, dtype=float)
+    a, _ = _path(a, np.zeros(a.shape[1:]) if a.ndim == 3 else a)
+    return float(pose_repeatability(a).max())

@@ -1,0 +1,357 @@
+"""From error screws to a drawing and a purchase list: the features that produce each error parameter.
+
+Each error parameter of a design is mapped to what a drawing or a purchase order carries (ISO 1101, ISO 286):
+
+``link_length``
+    The distance between two joints. Where the link locates the next joint's axis sideways, a *position*
+    tolerance of that axis (``⌖``, a zone of two parallel planes ``2 t`` apart across the link, i.e. the IT value);
+    else (along the next axis, a slide, the tool flange) a *size* ``±t``. Both carry the ISO 286 grade of the
+    design.
+``axis_deflection`` (two tilts per revolute joint)
+    The axis of the joint's bearing-seat pair, its orientation to the datum of the joint before it (the first
+    joint: the base mounting face, datum ``A``): *perpendicularity* ``⊥``, *parallelism* ``∥`` or *angularity*
+    ``∠`` by the nominal geometry, over the seat span ``L``. An orientation zone of width ``t_zone`` over ``L``
+    bounds the tilt in its direction to ``t_zone / L``: ``t_zone = L t`` (``t`` the allocated half-width [rad]).
+    The two tilts with equal half-widths share one *diameter* zone bounding the tilt magnitude; it is placed at the
+    two-dimensional coverage of the tolerance (for normal components the magnitude is Rayleigh distributed:
+    ``Ø t_zone = L sigma sqrt(-2 ln(1 - p_c))`` with ``p_c = P(|N| < z)``, not ``z`` per component). Unequal
+    tilts get a zone in each direction.
+``clearance_tilt``
+    The *coaxiality* ``◎`` of the joint's two bearing seats over the span, as above.
+``clearance_radial``
+    An ISO 286 *fit* of the seats (:mod:`tolalloc.allocate.fits`): the loosest preferred clearance fit whose
+    largest radial play ``c_max / 2`` is at most the design's radial bound ``sqrt(2) t`` (the ring's magnitude at
+    the tolerance's coverage); the fit's ``c_max`` gives back ``sigma = c_max / (2 sqrt(2) z)``.
+``clearance_axial``
+    A *size* ``±t`` of the axial stack (spacer or shim) of the bearing arrangement.
+``joint_drive``
+    A *purchased part*: the joint's reducer and encoder with their accuracy grade and catalogue source
+    (:class:`~tolalloc.allocate.purchase.PurchasedPart`; the robot file's ``[components]``, or the chooser of
+    :class:`HandoverSettings`).
+
+Spans, datums and seat diameters come from the robot file's ``[components.joints.<joint>.bearing]`` (``span_mm``,
+``datum``, ``seat_diameter_mm``); where it gives none, the stated defaults of :class:`HandoverSettings`, labelled
+``assumed`` in every table.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from math import erf, log, sqrt
+
+import numpy as np
+
+from tolalloc.allocate.fits import PREFERRED_CLEARANCE_FITS, clearance_fits
+from tolalloc.allocate.purchase import drive_part
+from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, it_row
+from tolalloc.exceptions import TolallocError
+
+__all__ = ["Callout", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor",
+           "SYMBOLS", "TILT_ZONES"]
+
+#: ISO 1101 symbols (and the drawing's sign for a size and a fit).
+SYMBOLS = {"perpendicularity": "⊥", "parallelism": "∥", "angularity": "∠", "coaxiality": "◎", "position": "⌖",
+           "size": "±", "fit": "fit"}
+TILT_ZONES = ("auto", "diameter", "directions")
+
+
+@dataclass(frozen=True)
+class HandoverSettings:
+    """How a design becomes a drawing: the defaults used where the robot file says nothing.
+
+    Attributes
+    ----------
+    default_span_mm : float or None
+        Axial distance between a joint's two bearing seats where the robot file gives no ``span_mm`` [mm]
+        (None: a joint without one is an error).
+    default_seat_diameter_mm : float or None
+        Nominal seat diameter for a fit where the robot file gives no ``seat_diameter_mm`` [mm].
+    default_datums : bool
+        Name datums where the robot file gives none: ``A`` the base mounting face, then ``B``, ``C`` ... the joints'
+        seat axes in chain order. False: a callout without a datum keeps an empty one (the export refuses it).
+    tilt_zone : {"auto", "diameter", "directions"}
+        ``auto``: one diameter zone for two tilts of equal half-width, else a zone per direction; ``diameter``: one
+        diameter zone at the smaller of the two (tighter than the design where they differ); ``directions``: always
+        a zone per direction.
+    fits : tuple of str
+        Candidate fits of the radial clearance, ISO 286 classes (default: the preferred clearance fits).
+    part_chooser : callable or None
+        The per-joint choice of the bought part (:func:`tolalloc.allocate.purchase.drive_part`); None: the robot
+        file's ``[components]``.
+    """
+
+    default_span_mm: float | None = 100.0
+    default_seat_diameter_mm: float | None = 50.0
+    default_datums: bool = True
+    tilt_zone: str = "auto"
+    fits: tuple = PREFERRED_CLEARANCE_FITS
+    part_chooser: object = None
+
+    def __post_init__(self):
+        for name in ("default_span_mm", "default_seat_diameter_mm"):
+            v = getattr(self, name)
+            if v is not None and (isinstance(v, bool) or not np.isfinite(v) or v <= 0):
+                raise TolallocError(f"{name}: expected a length > 0 [mm] or None, got {v!r}.")
+        if self.tilt_zone not in TILT_ZONES:
+            raise TolallocError(f"tilt_zone: expected one of {', '.join(TILT_ZONES)}, got {self.tilt_zone!r}.")
+
+
+@dataclass(frozen=True)
+class Callout:
+    """One drawing callout.
+
+    Attributes
+    ----------
+    feature : str
+        What is toleranced (``"j2 bearing-seat axis"``).
+    characteristic : str
+        Key of :data:`SYMBOLS`.
+    zone_mm : float
+        Zone width or diameter [mm]; a size: the full width ``2 t``; a fit: its largest clearance.
+    diameter : bool
+        A diameter zone (``Ø``).
+    direction : str
+        Base axis the zone's width is measured along (a zone per direction), else ``""``.
+    datum : str
+    length_mm : float
+        Span of the zone (seat span) or nominal size.
+    grade : str
+        ``"IT9"``, a fit ``"H7/g6"`` or ``""``.
+    parameters : tuple of str
+        Error parameters it bounds.
+    factor : float
+        ``zone_mm = factor * t`` (``t`` the parameters' half-width [mm or rad]; a fit: ``2 sqrt(2)``, its largest
+        clearance is twice the radial play bound ``sqrt(2) t``, so a fit gives back ``t`` at or below the design's).
+    span_source : str
+        ``"robot file"`` or ``"assumed default"`` (span, seat diameter); ``"nominal"`` for a link length.
+    """
+
+    feature: str
+    characteristic: str
+    zone_mm: float
+    diameter: bool
+    direction: str
+    datum: str
+    length_mm: float
+    grade: str
+    parameters: tuple
+    factor: float
+    span_source: str
+
+    @property
+    def symbol(self) -> str:
+        return SYMBOLS[self.characteristic]
+
+
+@dataclass(frozen=True)
+class FeatureMap:
+    """The drawing callouts and purchased parts of one design (:func:`feature_map`).
+
+    Attributes
+    ----------
+    callouts : tuple of Callout
+    parts : tuple of tolalloc.allocate.purchase.PurchasedPart
+    z : float
+        ``sigma = t / z``.
+    distribution : {"normal", "uniform"}
+    settings : HandoverSettings
+    defaults_used : tuple of str
+        The stated defaults this map relied on (for the assumptions).
+    warnings : tuple of str
+        Callouts looser than the design (a radial clearance finer than every candidate fit, with ``strict=False``).
+    """
+
+    callouts: tuple
+    parts: tuple
+    z: float
+    distribution: str
+    settings: HandoverSettings = field(default_factory=HandoverSettings)
+    defaults_used: tuple = ()
+    warnings: tuple = ()
+
+
+def diameter_factor(z: float, distribution: str = "normal") -> float:
+    """``f`` with ``Ø zone = L f t`` for two tilts of half-width ``t`` [rad] bounded by one diameter zone.
+
+    Normal components: the magnitude is Rayleigh (scale ``sigma = t / z``); at the coverage ``p_c = P(|N| < z)`` of
+    the one-dimensional tolerance its quantile is ``sigma sqrt(-2 ln(1 - p_c))``, so ``f = sqrt(-2 ln(1 - p_c)) / z``
+    (1.1464 at z = 3). Uniform components (the square ``±t``): ``f = sqrt(2)``, the circle around the square.
+    """
+    if distribution == "uniform":
+        return sqrt(2.0)
+    tail = 1.0 - erf(z / sqrt(2.0))
+    return sqrt(-2.0 * log(tail)) / z
+
+
+def _angle(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.degrees(np.arccos(np.clip(abs(float(a @ b)), 0.0, 1.0))))
+
+
+def _orientation(axis: np.ndarray, datum_dir: np.ndarray, datum_is_plane: bool) -> str:
+    """Perpendicularity, parallelism or angularity of ``axis`` to a datum axis (or plane of normal ``datum_dir``)."""
+    ang = _angle(axis, datum_dir)
+    if datum_is_plane:
+        ang = 90.0 - ang
+    if ang < 1e-6:
+        return "parallelism"
+    return "perpendicularity" if abs(ang - 90.0) < 1e-6 else "angularity"
+
+
+class _Frame:
+    """Spans, datums and seat diameters of the joints (robot file, else the stated defaults)."""
+
+    def __init__(self, robot, settings: HandoverSettings):
+        self.robot, self.settings, self.used = robot, settings, []
+        comps = robot.components
+        letters = iter("BCDEFGHJKLMNPRSTUVWXYZ")
+        self.datum = {}
+        for jt in robot.joints:
+            b = comps.joint(jt.name).bearing
+            own = b.datum if b is not None and b.datum else None
+            self.datum[jt.name] = own or (next(letters) if settings.default_datums else "")
+            if own is None and settings.default_datums:
+                self._note("datums named A (base mounting face), then B, C ... per joint axis in chain order")
+        self.base_datum = "A" if settings.default_datums else ""
+
+    def _note(self, text: str) -> None:
+        if text not in self.used:
+            self.used.append(text)
+
+    def bearing_value(self, j: int, key: str, default, what: str) -> tuple[float, str]:
+        jt = self.robot.joints[j]
+        b = self.robot.components.joint(jt.name).bearing
+        v = getattr(b, key) if b is not None else None
+        if v is not None:
+            return float(v), "robot file"
+        if default is None:
+            raise TolallocError(f"joint {jt.name}: no {what} ({key}) in the robot file's [components.joints."
+                                f"{jt.name}.bearing] and no default given; add {key} there or pass a default "
+                                f"(default_{key}).")
+        self._note(f"{what} {default:g} mm where the robot file gives none (assumed default)")
+        return float(default), "assumed default"
+
+    def previous(self, j: int):
+        """``(datum letter, direction, is_plane)`` of the feature joint ``j``'s seats are located from."""
+        if j == 0:
+            return self.base_datum, np.array([0.0, 0.0, 1.0]), True
+        prev = self.robot.joints[j - 1]
+        return self.datum[prev.name], np.asarray(prev.axis, float), False
+
+
+def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
+                settings: HandoverSettings | None = None, strict: bool = True) -> FeatureMap:
+    """Drawing callouts and purchased parts of design ``t`` of ``model``.
+
+    Parameters
+    ----------
+    model : ErrorModel
+        Its robot's ``components`` give spans, datums, seat diameters and bought parts.
+    t : array, shape (K,) [mm or rad]
+        Half-width of every parameter.
+    labels : sequence of str, optional
+        Standard label per parameter (``"IT7"``, a class) of the design, shown as the grade.
+    z : float
+        ``sigma = t / z``.
+    distribution : {"normal", "uniform"}
+    settings : HandoverSettings, optional
+    strict : bool
+        Refuse a radial clearance finer than every candidate fit (False: the finest fit, listed in ``warnings``).
+    """
+    settings = settings or HandoverSettings()
+    t = np.asarray(t, float)
+    if t.shape != (len(model.params),) or not np.all(np.isfinite(t)) or np.any(t <= 0):
+        raise TolallocError(f"feature_map: expected {len(model.params)} half-widths > 0 [mm or rad], got shape "
+                            f"{t.shape}.")
+    labels = list(labels) or [""] * len(t)
+    fr = _Frame(model.robot, settings)
+    fr.strict, fr.warnings = strict, []
+    by_joint: dict = {}
+    callouts, parts = [], []
+    for k, p in enumerate(model.params):
+        if p.kind == "link_length":
+            callouts.append(_link_callout(model.robot, p, t[k], labels[k], fr))
+        elif p.kind == "joint_drive":
+            parts.append(drive_part(model.robot, p, t[k], settings.part_chooser))
+        else:
+            by_joint.setdefault((p.element, p.kind), []).append(k)
+    for (joint, kind), ks in by_joint.items():
+        j = [jt.name for jt in model.robot.joints].index(joint)
+        if kind in ("axis_deflection", "clearance_tilt"):
+            callouts += _tilt_callouts(model, j, kind, ks, t, fr, z, distribution)
+        elif kind == "clearance_radial":
+            callouts.append(_fit_callout(model, j, ks, t, fr, z))
+        else:  # clearance_axial
+            span, src = fr.bearing_value(j, "span_mm", settings.default_span_mm, "seat span")
+            p = model.params[ks[0]]
+            callouts.append(Callout(f"{joint} axial stack (bearing spacer)", "size", 2 * t[ks[0]], False, "",
+                                    fr.datum[joint],
+                                    span, _grade_within(span, 2 * t[ks[0]]), (p.name,), 2.0, src))
+    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
+                      tuple(fr.warnings))
+
+
+def _grade_within(size_mm: float, width_mm: float) -> str:
+    """The coarsest IT grade whose value at ``size_mm`` is at most ``width_mm`` (``""`` if none or no size)."""
+    if not 0 < size_mm <= IT_SIZES_MM[-1]:
+        return ""
+    ok = np.flatnonzero(IT_TABLE_UM[it_row(size_mm)] / 1000.0 <= width_mm * (1 + 1e-9))
+    return f"IT{ok[-1] + 1}" if ok.size else ""
+
+
+def _link_callout(robot, p, t: float, label: str, fr: _Frame) -> Callout:
+    li = [lk.name for lk in robot.links].index(p.element)
+    link, site = robot.links[li], int(robot.link_sites[li])
+    datum = fr.previous(site)[0]
+    nxt = robot.joints[site] if site < robot.n_joints else None
+    grade = label if label.startswith("IT") else _grade_within(link.length_mm, 2 * t)
+    if nxt is not None and nxt.is_revolute and _angle(link.direction, np.asarray(nxt.axis, float)) > 45.0:
+        return Callout(f"{nxt.name} axis, {link.length_mm:g} mm from the datum ({link.name})", "position", 2 * t,
+                       False, "", datum, link.length_mm, grade, (p.name,), 2.0, "nominal")
+    what = f"{nxt.name} seat" if nxt is not None else "tool flange"
+    return Callout(f"{what} distance {link.length_mm:g} mm ({link.name})", "size", 2 * t, False, "", datum,
+                   link.length_mm, grade, (p.name,), 2.0, "nominal")
+
+
+def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distribution: str) -> list:
+    jt = model.robot.joints[j]
+    span, src = fr.bearing_value(j, "span_mm", fr.settings.default_span_mm, "seat span")
+    if kind == "clearance_tilt":
+        feature, char, datum = f"{jt.name} second bearing seat", "coaxiality", fr.datum[jt.name]
+    else:
+        datum, ddir, plane = fr.previous(j)
+        feature, char = f"{jt.name} bearing-seat axis", _orientation(np.asarray(jt.axis, float), ddir, plane)
+    names = tuple(model.params[k].name for k in ks)
+    tk = t[list(ks)]
+    mode = fr.settings.tilt_zone
+    equal = len(ks) == 2 and abs(tk[0] - tk[1]) <= 1e-9 * max(tk)
+    if char == "coaxiality" or (len(ks) == 2 and (mode == "diameter" or (mode == "auto" and equal))):
+        f = span * diameter_factor(z, distribution)
+        return [Callout(feature, char, f * float(tk.min()), True, "", datum, span, "", names, f, src)]
+    out = []
+    for k in ks:
+        p = model.params[k]
+        letter = p.name[-1]
+        out.append(Callout(f"{feature}, tilt about {letter}", char, span * t[k],
+                           False, letter, datum, span, "", (p.name,), span, src))
+    return out
+
+
+def _fit_callout(model, j: int, ks, t, fr: _Frame, z: float) -> Callout:
+    jt = model.robot.joints[j]
+    d, src = fr.bearing_value(j, "seat_diameter_mm", fr.settings.default_seat_diameter_mm, "seat diameter")
+    names = tuple(model.params[k].name for k in ks)
+    allowed = sqrt(2.0) * float(np.min(t[list(ks)]))  # largest radial play at the tolerance's coverage [mm]
+    fits = [f for f in clearance_fits(d, fr.settings.fits) if f.kind == "clearance"]
+    ok = [f for f in fits if f.radial_play_max_mm <= allowed * (1 + 1e-9)]
+    if not ok:
+        fine = fits[0]
+        text = (f"{jt.name} bearing seats (Ø{d:g} mm): the radial clearance allows a play of at most "
+                f"{allowed * 1000:.3g} um, finer than every candidate fit; the finest, {fine.name}, has up to "
+                f"{fine.radial_play_max_mm * 1000:.3g} um")
+        if fr.strict:
+            raise TolallocError(f"{text}. Give a finer fit (fits=...) or widen the clearance tolerance.")
+        fr.warnings.append(f"{text}: the drawing carries {fine.name}, looser than the design")
+        ok = [fine]
+    fit = ok[-1]
+    return Callout(f"{jt.name} bearing seats Ø{d:g} mm", "fit", fit.clearance_max_um / 1000.0, False, "",
+                   fr.datum[jt.name], d, fit.name, names, 2.0 * sqrt(2.0), src)

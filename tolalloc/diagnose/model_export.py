@@ -1,0 +1,209 @@
+"""Export of an identified model (:class:`~tolalloc.diagnose.model_use.IdentifiedModel`) as robot files, and its
+rebuild from the exported TOML.
+
+* **TOML chain layout** (:func:`identified_robot_dict`): the identified geometry as ``[[chain]]`` links and joints --
+  every joint axis where the diagnosis put it, the joint offsets folded into the geometry (``exp(S (q + d))`` is
+  ``exp(S q) exp(S d)``, and ``exp(S d)`` is carried to the right through the rest of the chain, turning every later
+  screw by its adjoint), the tool point at the measured target (the fitted probe offset). Its forward kinematics is
+  the identified geometry's (without effects); ``tolalloc.load_robot`` reads it.
+* **URDF** (:func:`identified_urdf`): the same chain, one link frame per joint (base-aligned at the zero
+  configuration, at the joint's point), a fixed ``tool`` link at the target point.
+* The **[identified] section** of the TOML (ignored by the kinematics; :data:`FORMAT`): the nominal robot's name, the
+  probe offset, the training file's registration, the diagnosis's geometric parameters, and the non-geometric
+  effects as their fitted parameters -- per effect the variant, the column names (with their units) and values --
+  with the training file's reference values (mean temperature, time origin, load scale per joint, gear ratios)
+  the effects' columns are computed from. :func:`model_from_identified` rebuilds the identified model from it and the
+  nominal robot, so a program can be compensated from the file alone; thermal variants driven by the training
+  file's history (``lag``, ``activity``, ``motor``) are recorded but cannot be rebuilt from the file.
+
+The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
+points coincide and the identified axes are skew, the link between them is the axes' small distance (a link the
+robot-file loader takes for a unit slip unless ``trust_units``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.robot.lie import adjoint, exp_se3
+from tolalloc.robot.model import Robot
+from tolalloc.diagnose.calibrate import Fit
+from tolalloc.diagnose.geometry import build_geometry_model
+from tolalloc.diagnose.model_use import IdentifiedModel
+
+__all__ = ["FORMAT", "identified_geometry", "identified_robot_dict", "identified_urdf", "model_from_identified",
+           "HISTORY_VARIANTS"]
+
+#: The ``format`` key of the ``[identified]`` section.
+FORMAT = "tolalloc identified model 1"
+#: Thermal variants whose columns need the training file's history (not rebuilt from a file).
+HISTORY_VARIANTS = ("lag", "activity", "motor")
+
+
+def identified_geometry(model: IdentifiedModel) -> tuple:
+    """The identified chain without joint offsets and with the tool at the target point.
+
+    Returns
+    -------
+    screws : array, shape (n, 6)   space screws at the zero configuration (offsets folded in)
+    points : array, shape (n, 3) [mm]   a point on each joint axis (nearest the nominal joint point)
+    home : array, shape (4, 4)     the target frame at the zero configuration (rotation: the flange's)
+    """
+    screws, home, dq = model.chain()
+    E = np.eye(4)
+    out = np.empty_like(screws)
+    for j in range(len(screws)):
+        out[j] = adjoint(E) @ screws[j]
+        E = E @ exp_se3(screws[j] * dq[j])
+    home = E @ home
+    home[:3, 3] = home[:3, 3] + home[:3, :3] @ model.fit.t_mm
+    points = np.empty((len(out), 3))
+    nominal = model.robot.joint_points_mm
+    for j, (s, jt) in enumerate(zip(out, model.robot.joints)):
+        if jt.is_revolute:
+            w = s[:3] / np.linalg.norm(s[:3])
+            foot = np.cross(w, s[3:])
+            points[j] = foot + np.dot(nominal[j] - foot, w) * w
+        else:
+            points[j] = nominal[j]
+    return out, points, home
+
+
+def _axis(s, revolute: bool) -> list:
+    a = s[:3] if revolute else s[3:]
+    return [float(v) for v in a / np.linalg.norm(a)]
+
+
+def _limits(robot: Robot, j: int) -> dict:
+    jt = robot.joints[j]
+    if jt.is_revolute:
+        return {"limits_rad": [float(jt.lower), float(jt.upper)], "nominal_rad": float(jt.nominal)}
+    return {"limits_mm": [float(jt.lower), float(jt.upper)], "nominal_mm": float(jt.nominal)}
+
+
+def identified_robot_dict(model: IdentifiedModel, name: str | None = None) -> dict:
+    """The identified model as a chain-layout robot file (a dict for ``tomli_w``; module docstring)."""
+    robot = model.robot
+    screws, points, home = identified_geometry(model)
+    chain, prev = [], np.zeros(3)
+    for j, jt in enumerate(robot.joints):
+        vec = points[j] - prev
+        if np.any(vec):
+            chain.append({"link": f"to_{jt.name}", "vector_mm": [float(v) for v in vec]})
+        chain.append({"joint": jt.name, "type": "revolute" if jt.is_revolute else "prismatic",
+                      "axis": _axis(screws[j], jt.is_revolute), **_limits(robot, j)})
+        prev = points[j]
+    chain.append({"link": "to_target", "vector_mm": [float(v) for v in home[:3, 3] - prev]})
+    rpy = Rotation.from_matrix(home[:3, :3]).as_euler("xyz")
+    return {"name": name or f"{robot.name}_identified",
+            "description": f"Identified model of robot {robot.name!r} from a tolalloc diagnosis: the identified "
+                           "geometry (joint offsets folded in), tool point at the measured target; the [identified] "
+                           "section holds the fitted parameters and the non-geometric effects.",
+            "gravity": [float(v) for v in robot.gravity], "chain": chain,
+            "tool": {"offset_mm": [0.0, 0.0, 0.0], "rpy_rad": [float(v) for v in rpy]},
+            "identified": identified_section(model)}
+
+
+def identified_section(model: IdentifiedModel) -> dict:
+    """The ``[identified]`` section (module docstring)."""
+    fit = model.fit
+    geo = [{"name": fit.model.params[k].name, "value": float(fit.delta[k]), "unit": fit.model.params[k].unit}
+           for k in fit.geo_index]
+    effects, a = [], 0
+    for e in model.effects:
+        names = [nm for nm in fit.effect_names if nm.startswith(f"{e}:")]
+        effects.append({"effect": e, "variant": model.variants[e], "columns": list(model.columns[e]),
+                        "fitted_columns": [nm.split(":", 1)[1] for nm in names],
+                        "values": [float(v) for v in fit.beta[a:a + len(names)]]})
+        a += len(names)
+    ref = model.ref or {}
+    reference = {k: v for k, v in (("temperature_c", ref.get("temperature_c")), ("time0_s", ref.get("time0_s")))
+                 if v is not None}
+    if ref.get("load_scale") is not None:
+        reference["load_scale_per_joint"] = [float(v) for v in ref["load_scale"]]
+    if ref.get("gear_ratio") is not None:
+        reference["gear_ratio"] = [float(v) for v in ref["gear_ratio"]]
+    return {"format": FORMAT, "nominal_robot": model.robot.name,
+            "target_offset_mm": [float(v) for v in fit.t_mm],
+            "basis_target_offset_mm": [float(v) for v in model.basis_t_mm],
+            "registration_rotation": [[float(v) for v in row] for row in fit.R],
+            "registration_translation_mm": [float(v) for v in fit.p_mm],
+            "payload_in_training": bool(model.payload_in_training), "noise_mm": float(model.noise_mm),
+            "geometry": geo, "effects": effects, "reference": reference}
+
+
+def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
+    """The identified geometry as URDF text (metres, radians; module docstring)."""
+    robot = model.robot
+    screws, points, home = identified_geometry(model)
+    nm = name or f"{robot.name}_identified"
+    f = (lambda v: " ".join(repr(float(x)) for x in v))
+    lines = ['<?xml version="1.0"?>', f'<robot name="{nm}">',
+             "  <!-- identified geometry of a tolalloc diagnosis (joint offsets folded in; tool link at the measured "
+             "target); the non-geometric effects are in the TOML export's [identified] section -->",
+             '  <link name="base_link"/>']
+    parent, prev = "base_link", np.zeros(3)
+    for j, jt in enumerate(robot.joints):
+        child = f"{jt.name}_link"
+        kind = "revolute" if jt.is_revolute else "prismatic"
+        lo, hi = (jt.lower, jt.upper) if jt.is_revolute else (jt.lower / 1000.0, jt.upper / 1000.0)
+        lines += [f'  <link name="{child}"/>', f'  <joint name="{jt.name}" type="{kind}">',
+                  f'    <parent link="{parent}"/>', f'    <child link="{child}"/>',
+                  f'    <origin xyz="{f((points[j] - prev) / 1000.0)}" rpy="0 0 0"/>',
+                  f'    <axis xyz="{f(_axis(screws[j], jt.is_revolute))}"/>',
+                  f'    <limit lower="{lo!r}" upper="{hi!r}" effort="0" velocity="0"/>', "  </joint>"]
+        parent, prev = child, points[j]
+    rpy = Rotation.from_matrix(home[:3, :3]).as_euler("xyz")
+    lines += ['  <link name="tool"/>', '  <joint name="tool_fixed" type="fixed">', f'    <parent link="{parent}"/>',
+              '    <child link="tool"/>', f'    <origin xyz="{f((home[:3, 3] - prev) / 1000.0)}" rpy="{f(rpy)}"/>',
+              "  </joint>", "</robot>", ""]
+    return "\n".join(lines)
+
+
+def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
+    """The identified model rebuilt from an ``[identified]`` section and the nominal ``robot`` (no covariance)."""
+    if not isinstance(section, dict) or section.get("format") != FORMAT:
+        raise TolallocError(f"identified model: expected an [identified] section with format = {FORMAT!r} (written "
+                            "by a tolalloc export), got " + (repr(section.get("format")) if isinstance(section, dict)
+                                                             else type(section).__name__) + ".")
+    if section.get("nominal_robot") != robot.name:
+        raise TolallocError(f"identified model: it was identified on robot {section.get('nominal_robot')!r}, the "
+                            f"nominal robot given is {robot.name!r}; give the robot the diagnosis used.")
+    geo_model = build_geometry_model(robot)
+    delta, idx = np.zeros(len(geo_model.params)), []
+    for g in section.get("geometry", []):
+        try:
+            k = geo_model.index(g["name"])
+        except Exception:
+            raise TolallocError(f"identified model: geometric parameter {g.get('name')!r} is not one of robot "
+                                f"{robot.name!r}'s; was the file written for another robot?") from None
+        delta[k] = float(g["value"])
+        idx.append(k)
+    effects, variants, columns, keep, names, beta, a = [], {}, {}, [], [], [], 0
+    for e in section.get("effects", []):
+        v = e["variant"]
+        if e["effect"] == "thermal" and v.startswith(HISTORY_VARIANTS):
+            raise TolallocError(f"identified model: its thermal effect (variant {v}) is driven by the training file's "
+                                "history, which the file does not hold; use the diagnosis itself "
+                                "(MeasurementDiagnosis.compensate) for this model.")
+        effects.append(e["effect"])
+        variants[e["effect"]] = v
+        columns[e["effect"]] = tuple(e["columns"])
+        keep += [a + e["columns"].index(c) for c in e["fitted_columns"]]
+        names += [f"{e['effect']}:{c}" for c in e["fitted_columns"]]
+        beta += list(e["values"])
+        a += len(e["columns"])
+    ref_in = section.get("reference", {})
+    ref = {"temperature_c": ref_in.get("temperature_c"), "time0_s": ref_in.get("time0_s"), "history": None,
+           "motion": None, "variants": dict(variants),
+           "gear_ratio": None if "gear_ratio" not in ref_in else np.asarray(ref_in["gear_ratio"], float),
+           "load_scale": None if "load_scale_per_joint" not in ref_in else
+           np.asarray(ref_in["load_scale_per_joint"], float)}
+    fit = Fit(geo_model, np.asarray(section["registration_rotation"], float),
+              np.asarray(section["registration_translation_mm"], float), np.asarray(section["target_offset_mm"], float),
+              delta, np.asarray(idx, int), np.asarray(beta, float), np.arange(len(beta)), tuple(names))
+    return IdentifiedModel(robot, fit, tuple(effects), variants, columns, np.asarray(keep, int), ref,
+                           np.asarray(section["basis_target_offset_mm"], float), None,
+                           float(section.get("noise_mm", np.nan)), bool(section.get("payload_in_training", False)))

@@ -1,0 +1,114 @@
+"""Gear ratios the robot file does not give, searched on the training residual: the strain-wave orders ``N`` and
+``2N`` of :mod:`tolalloc.physics.transmission`.
+
+For every revolute joint without a known ratio and every candidate ``N`` of
+:data:`~tolalloc.physics.transmission.PLAUSIBLE_RATIOS`, the four columns ``sin/cos(N q_j)``, ``sin/cos(2N q_j)``
+(mapped to the target point, turned into the tracker frame and projected off the registration, offset and geometric
+columns, as :mod:`.choice` does) are fitted to the geometric fit's training residual; the drop of the residual sum
+of squares, scaled by the noise variance, is ``chi^2_4`` for a ratio the data do not carry. The noise variance is the
+robust (MAD) estimate of the residual's, raised where the bulk of the candidates says it is larger (their median drop
+above the ``chi^2_4`` median: a residual with structure the noise estimate misses, which would inflate every
+candidate's drop). A joint's ratio is
+**found** when its best candidate exceeds the ``1 - alpha / m`` quantile of ``chi^2_4`` (Bonferroni over the ``m``
+candidates of all searched joints), the poses resolve it -- no other candidate (other than ``N/2`` and ``2N``,
+which share a column with it) comes within ``2 log(20)`` (a likelihood ratio of 20) of its fit -- **and** it
+replicates: fitted on each half of the training poses alone, its drop exceeds the single-test ``1 - alpha``
+quantile in both (the search picks the best of many frequencies on the whole file; a frequency the noise favoured
+there does not come back in both halves, and the selection's cross-validation, which sees the chosen frequency, could
+not tell). Otherwise the joint
+gets no gear term, with the reason -- no claim at a frequency the poses cannot tell. Files with fewer than
+:data:`MIN_DOF` residual degrees of freedom are not searched.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.stats import chi2
+
+from tolalloc.physics.loads import point_jacobian, target_points
+from tolalloc.physics.transmission import PLAUSIBLE_RATIOS, ratio_columns
+from tolalloc.diagnose.choice import projected_residual
+
+__all__ = ["search_ratios", "RESOLVE_LR"]
+
+#: Likelihood ratio by which the best ratio must beat every unrelated candidate to count as resolved.
+RESOLVE_LR = 20.0
+#: Residual degrees of freedom (coordinates beyond the fixed columns) a search needs: the robust noise estimate
+#: behind its chi^2 scale must rest on more than a handful of numbers.
+MIN_DOF = 60
+
+
+def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Residual sum-of-squares drop of each candidate's columns ``X`` (K, n, 4) fitted to ``r`` (n,), shape (K,)."""
+    G = np.einsum("kni,knj->kij", X, X)
+    h = np.einsum("kni,n->ki", X, r)
+    G = G + 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] * np.eye(X.shape[2])
+    return np.einsum("ki,ki->k", h, np.linalg.solve(G, h[..., None])[..., 0])
+
+
+def _columns(fit, Jpj: np.ndarray, qj: np.ndarray, cand: np.ndarray, Q: np.ndarray) -> np.ndarray:
+    """The candidates' ``N``, ``2N`` columns at the target in the tracker frame, projected off ``Q``, (K, 3P, 4)."""
+    cols = np.stack([ratio_columns(qj, N) for N in cand])  # (K, P, 4)
+    X = np.einsum("ij,pj,kpm->kpim", fit.R, Jpj, cols).reshape(len(cand), -1, 4)
+    return X - np.einsum("ni,kim->knm", Q, np.einsum("ni,knm->kim", Q, X))
+
+
+def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: np.ndarray, known=None,
+                  alpha: float = 0.01, candidates=PLAUSIBLE_RATIOS) -> tuple:
+    """Gear ratios (n,) -- ``known`` where given, the found ratio, else NaN -- and one note per searched joint.
+
+    Parameters
+    ----------
+    q : array, shape (P, n) [rad, mm]       training poses
+    fit : Fit                                the geometric fit (its rotation ``R`` and target offset ``t_mm``)
+    J_fixed : array, shape (3P, k)           its fixed columns (registration, offset, geometry)
+    residual_mm : array, shape (P, 3)        its training residual
+    known : array, shape (n,), optional      ratios from the robot file (NaN where unknown)
+    """
+    n = robot.n_joints
+    out = np.full(n, np.nan) if known is None else np.array(known, float)
+    todo = [j for j in range(n) if robot.joints[j].is_revolute and not np.isfinite(out[j])]
+    if not todo:
+        return out, []
+    Q, r, dof = projected_residual(fit, J_fixed, residual_mm)
+    s2 = (1.4826 * np.median(np.abs(r - np.median(r)))) ** 2
+    if dof < MIN_DOF or not s2 > 0:
+        return out, [f"gear ratio search: too few training poses ({len(q)}) to search a frequency"]
+    cand = np.asarray(candidates, float)
+    limit = chi2.isf(alpha / (len(cand) * len(todo)), 4)
+    Jp = point_jacobian(robot, q, target_points(robot, q, fit.t_mm))  # (P, 3, n)
+    step = max(1, int(2e6 // (12 * len(q))))  # candidates per block: at most ~16 MB of columns
+    order = np.random.default_rng(0).permutation(len(q))  # two halves of the poses (rows of 3 coordinates each)
+    halves_of = [np.concatenate([3 * i + np.arange(3) for i in np.sort(h)]) for h in np.array_split(order, 2)]
+    replicate = chi2.isf(alpha, 4)
+    notes = []
+    for j in todo:
+        stat = np.concatenate([_drops(_columns(fit, Jp[:, :, j], q[:, j], cand[a:a + step], Q), r)
+                               for a in range(0, len(cand), step)]) / s2
+        s2j = s2 * max(1.0, float(np.median(stat)) / chi2.median(4))  # the bulk of candidates calibrates the null
+        stat = stat * s2 / s2j
+        b = int(np.argmax(stat))
+        N = cand[b]
+        related = np.isin(cand, (N, 2 * N, N / 2))
+        other = np.max(np.where(related, -np.inf, stat))
+        name = robot.joints[j].name
+        X = _columns(fit, Jp[:, :, j], q[:, j], np.array([N]), Q)[0]
+        halves = min(_drops(X[None, rows], r[rows])[0] / s2j for rows in halves_of)
+        if stat[b] >= limit and stat[b] - other >= 2 * np.log(RESOLVE_LR) and halves < replicate:
+            notes.append(f"gear ratio of {name}: N = {N:g} stands out in the training residual (chi2 = {stat[b]:.3g}, "
+                         f"limit {limit:.3g}) but does not replicate in both halves of the training poses (chi2 "
+                         f"{halves:.3g} < {replicate:.3g} in one); no gear term")
+        elif stat[b] >= limit and stat[b] - other >= 2 * np.log(RESOLVE_LR):
+            out[j] = N
+            notes.append(f"gear ratio of {name}: N = {N:g} found in the training residual (chi2 = {stat[b]:.3g}, "
+                         f"limit {limit:.3g}; the next unrelated frequency {other:.3g})")
+        elif other >= limit:
+            N2 = cand[int(np.argmax(np.where(related, -np.inf, stat)))]
+            notes.append(f"gear ratio of {name}: the poses cannot resolve the frequency (N = {N:g} and N = {N2:g} fit "
+                         f"about equally well, chi2 {stat[b]:.3g} vs {other:.3g}, both above the limit {limit:.3g}); no "
+                         "gear term")
+        else:
+            notes.append(f"gear ratio of {name}: no frequency N = {cand[0]:g}-{cand[-1]:g} stands out in the training "
+                         f"residual (best N = {N:g}, chi2 = {stat[b]:.3g}, limit {limit:.3g}, next unrelated "
+                         f"{other:.3g}); no gear term")
+    return out, notes
