@@ -86,6 +86,7 @@ class MipOutcome:
     v: np.ndarray | None = None
     w: np.ndarray | None = None
     message: str = ""
+    part: np.ndarray | None = None  # chosen part option per slot (with part_slot), indices into the options
 
 
 @dataclass(frozen=True)
@@ -132,6 +133,11 @@ class OuterApproximation:
     s : array, shape (R,)
     hint_t : array (Ka,) [mm or rad], optional
         Values near which chords start dense (the continuous optimum).
+    part_slot, part_cost : arrays, shape (Z,), optional
+        Bought parts (:mod:`tolalloc.allocate.parts_discrete`): the slot of each part option (one option per slot
+        is bought: binaries ``z``) and its cost; the rows become ``A u + R z <= s``.
+    R : array, shape (R, Z), optional
+        The part options' row coefficients.
     """
 
     cat: Catalogue
@@ -139,6 +145,9 @@ class OuterApproximation:
     s: np.ndarray
     hint_t: np.ndarray | None = None
     chords: dict = field(default_factory=dict)
+    part_slot: np.ndarray | None = None
+    part_cost: np.ndarray | None = None
+    R: np.ndarray | None = None
 
     def __post_init__(self):
         cat = self.cat
@@ -156,8 +165,10 @@ class OuterApproximation:
         cat = self.cat
         return np.where(cat.stepped, (np.nan_to_num(cat.n_hi * cat.step) / cat.t_ref[cat.param]) ** 2, 1.0)
 
-    def add_rows(self, A, s) -> None:
+    def add_rows(self, A, s, R=None) -> None:
         self.A, self.s = np.vstack([self.A, A]), np.concatenate([self.s, s])
+        if self.part_slot is not None:
+            self.R = np.vstack([self.R, np.zeros((len(s), len(self.part_slot))) if R is None else R])
 
     def tighten(self, opt, n, out: MipOutcome) -> bool:
         """Add chords where the solution's relaxed variance or cost is below the exact one; True if any."""
@@ -183,7 +194,7 @@ class OuterApproximation:
 
         t0 = time.perf_counter()
         _quiet_highs()
-        prob, y, nv, v, w = self._program(cost_cap)
+        prob, y, nv, v, w, z = self._program(cost_cap)
         try:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
@@ -208,7 +219,11 @@ class OuterApproximation:
             if cat.stepped[o]:
                 nn[a] = int(np.clip(np.round(nv.value[pos[int(o)]]), cat.n_lo[o], cat.n_hi[o]))
         bound = float(getattr(prob.solver_stats.extra_stats, "mip_dual_bound", prob.value))
-        return MipOutcome(opt, nn, float(prob.value), min(bound, float(prob.value)), "optimal", dt, vv, ww)
+        part = None
+        if z is not None:
+            zv, sl = np.asarray(z.value), self.part_slot
+            part = np.array([int(np.flatnonzero(sl == g)[np.argmax(zv[sl == g])]) for g in range(sl.max() + 1)])
+        return MipOutcome(opt, nn, float(prob.value), min(bound, float(prob.value)), "optimal", dt, vv, ww, part=part)
 
     def _program(self, cost_cap):
         import cvxpy as cp
@@ -258,11 +273,19 @@ class OuterApproximation:
                 parts.setdefault(part, []).append(gi)
             cons += [cp.sum(g[gs]) <= 1 for gs in parts.values() if len(gs) > 1]
             cost = cost + np.array([gr[2] for gr in cat.groups]) @ g
+        z = None
+        lhs = self.A @ U
+        if self.part_slot is not None:
+            Z = len(self.part_slot)
+            z = cp.Variable(Z, boolean=True)
+            cons.append(sp.csr_matrix((np.ones(Z), (self.part_slot, np.arange(Z)))) @ z == 1)
+            cost = cost + self.part_cost @ z
+            lhs = lhs + self.R @ z
         if len(self.s):
-            cons.append(self.A @ U <= self.s - ROW_MARGIN)
+            cons.append(lhs <= self.s - ROW_MARGIN)
         if cost_cap is not None:
             cons.append(cost <= cost_cap)
-        return cp.Problem(cp.Minimize(cost), cons), y, nv, v, w
+        return cp.Problem(cp.Minimize(cost), cons), y, nv, v, w, z
 
 
 def repair(cat: Catalogue, opt, n, violation, max_steps: int = 200):

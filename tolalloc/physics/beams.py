@@ -19,6 +19,8 @@ A telescopic stage also tilts in its guide (:func:`guide_columns`): bearing comp
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
@@ -32,11 +34,12 @@ __all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_c
 MIN_OVERHANG_MM = 200.0
 
 
-def deflection_segments(robot: Robot) -> list:
+@lru_cache(maxsize=32)
+def deflection_segments(robot: Robot) -> tuple:
     """Arm segments that may bend: ``(start_joint, end_joint or None for the flange, max overhang [mm])``.
 
     Kept when the segment's horizontal overhang reaches :data:`MIN_OVERHANG_MM` on a fixed sample of 400 poses
-    within the joint limits (seed 0), so the list depends on the robot only.
+    within the joint limits (seed 0), so the list depends on the robot only (and is computed once per robot).
     """
     rev = [j for j in range(robot.n_joints) if robot.joints[j].is_revolute]
     rng = np.random.default_rng(0)
@@ -49,7 +52,7 @@ def deflection_segments(robot: Robot) -> list:
         h = segment_geometry(robot, q, j, k)[1]
         if h.max() >= MIN_OVERHANG_MM:
             segs.append((j, k, float(h.max())))
-    return segs
+    return tuple(segs)
 
 
 def segment_geometry(robot: Robot, q, j: int, k: int | None):

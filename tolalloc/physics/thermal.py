@@ -34,7 +34,8 @@ from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import gravity_torques
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
-           "link_joint_matrix", "activity", "lag_filter", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S"]
+           "link_joint_matrix", "activity", "lag_filter", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
+           "motor_rise", "link_temperature"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -228,3 +229,41 @@ def _motor_basis(robot: Robot, grow: np.ndarray, lj: np.ndarray, heat: np.ndarra
             labels.append(f"{'h' if part == 0 else 'hl'}_{robot.joints[j].name} [{unit}] ({variant})")
     B = np.stack(cols, axis=-1) if cols else np.zeros((grow.shape[0], 3, 0))
     return tuple(labels), B
+
+
+# ---- the design's forward model: growth over an ambient range and a duty cycle ----------------------------------
+
+def link_cte(robot: Robot) -> np.ndarray:
+    """Coefficient of thermal expansion [1/K] of every link of nonzero length (the order of :func:`link_growth`),
+    from its section in the robot file; 0 where the file gives none (such a link does not grow)."""
+    return np.array([robot.components.links[lk.name].cte_per_K if lk.name in robot.components.links else 0.0
+                     for lk in robot.links if lk.length_mm > 0])
+
+
+def motor_rise(robot: Robot, tau: np.ndarray, duty: float) -> np.ndarray:
+    """Steady temperature rise [K] of every joint's motor, shape (P, n), holding the loads ``tau`` (P, n) [N m] for the
+    fraction ``duty`` of the time: copper losses ``R_w (tau / (N k_t))^2`` through the thermal resistance ``R_th``
+    (``N`` the reducer's ratio; 1 without one). Joints without complete motor figures, and prismatic joints, do not
+    heat."""
+    out = np.zeros_like(np.asarray(tau, float))
+    for j, jt in enumerate(robot.joints):
+        parts = robot.components.joint(jt.name)
+        m = parts.motor
+        if (not jt.is_revolute or m is None or None in (m.winding_resistance_ohm, m.torque_constant_Nm_per_A,
+                                                          m.thermal_resistance_K_per_W)):
+            continue
+        ratio = parts.reducer.ratio if parts.reducer is not None and parts.reducer.ratio else 1.0
+        current = tau[:, j] / (ratio * m.torque_constant_Nm_per_A)
+        out[:, j] = m.thermal_resistance_K_per_W * duty * m.winding_resistance_ohm * current ** 2
+    return out
+
+
+def link_temperature(robot: Robot, ambient_delta_c, rise: np.ndarray) -> np.ndarray:
+    """Temperature of every link of nonzero length above the reference [K], shape (P, L): the ambient's departure
+    ``ambient_delta_c`` (P,) plus, per motor at the link's ends, its ``link_coupling`` share of its rise ``rise``
+    (P, n) (:func:`motor_rise`), averaged over those motors."""
+    lj = link_joint_matrix(robot)  # (L, n)
+    coup = np.array([getattr(robot.components.joint(jt.name).motor, "link_coupling", None) or 0.0
+                     for jt in robot.joints])
+    heat = (rise * coup) @ lj.T / np.maximum(lj.sum(axis=1), 1.0)
+    return np.asarray(ambient_delta_c, float)[:, None] + heat

@@ -90,3 +90,18 @@ def transmission_error(q: np.ndarray, orders, amplitudes, phases) -> np.ndarray:
     q = np.asarray(q, float)[:, None]
     return np.sum(np.asarray(amplitudes, float) * np.sin(np.asarray(orders, float) * q + np.asarray(phases, float)),
                   axis=1)
+
+
+#: How the catalogue's peak-to-peak transmission accuracy is shared among the orders 1, N and 2N of a gear (an
+#: ASSUMPTION: most of the error once per output turn, as the periodograms of the UR10 in reports/sim2real_ur10 find
+#: little at N and 2N). The amplitudes sum to half the peak-to-peak, so the sum of sines never exceeds the figure.
+GEAR_SHARES = (0.7, 0.15, 0.15)
+
+
+def catalogue_amplitudes(ptp: float, ratio: float | None) -> tuple:
+    """Orders and amplitudes [rad or mm] of a gear whose catalogue transmission accuracy is ``ptp`` (peak-to-peak
+    over one output turn): :data:`GEAR_SHARES` of ``ptp / 2`` at orders 1, N and 2N (all at order 1 without a
+    ratio). Returns ``(orders (K,), amplitudes (K,))``; the variance over a random phase is ``sum(a^2) / 2``."""
+    if ratio is None or not np.isfinite(ratio):
+        return np.array([1.0]), np.array([ptp / 2.0])
+    return np.array(gear_orders(ratio)), ptp / 2.0 * np.array(GEAR_SHARES)

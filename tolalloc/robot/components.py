@@ -21,17 +21,23 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     lost_motion_arcmin = 1.0         # total lost motion (hysteresis loss + backlash), full width
     hysteresis_arcmin = 1.0
     transmission_accuracy_arcmin = 1.0   # peak-to-peak kinematic error over one output turn
+    repeatability_arcsec = 6         # +- band of repeated approaches to one position (half-width)
+    stiffness_sd_pct = 10            # part-to-part spread of the stiffness (one standard deviation)
     rated_torque_Nm = 178
     source = "Harmonic Drive CSG-32-100 catalogue"
 
     [components.joints.shoulder_lift_joint.encoder]
     side = "output"                  # output | motor
     accuracy_arcsec = 20             # peak-to-peak
+    eccentricity_um = 5              # mounting eccentricity of the scale (reads e / r once per turn)
+    scale_radius_mm = 50
     source = "assumed"
 
     [components.joints.shoulder_lift_joint.bearing]
     precision_class = "P5"           # ISO 492 class of the joint's bearings
     span_mm = 80                     # axial distance between the two bearing seats
+    bore_mm = 60                     # bore of the bearings (selects the ISO 492 runout row)
+    radial_runout_um = 5             # Kia, radial runout of the assembled inner ring (full indicator reading)
     datum = "A"                      # datum feature of the seat axis on the drawing
     seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6
@@ -41,6 +47,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     torque_constant_Nm_per_A = 0.12
     thermal_resistance_K_per_W = 0.8
     thermal_time_constant_min = 30
+    link_coupling_pct = 30           # share of the motor's temperature rise reached by the links it sits between
 
     [components.links.a2]
     section = "tube"                 # tube | solid | box
@@ -49,6 +56,13 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     material = "aluminium"           # steel | aluminium | cast_iron | cfrp; or the figures below
     youngs_modulus_GPa = 70          # optional, overrides the material's
     cte_um_per_m_K = 23
+
+A joint's part may instead be a *slot* of the component catalogue (:mod:`tolalloc.robot.part_catalogue`):
+``reducer = { part = "HD-CSG-32-100" }`` (a fixed catalogue part), ``{ family = "HD-CSG-32-100" }`` or
+``{ options = ["...", "..."] }`` (the design picks one; a bearing slot adds ``bore_mm``, ``span_mm``, ``datum``).
+Slots are listed in :attr:`Components.slots`; they fill the joint's entry only once a part is chosen
+(:meth:`Components.with_choice`; a slot of one part is chosen by itself), so the diagnosis, which reads the joints'
+entries, sees only the parts whose figures the file gives.
 
 Joint and link entries are named as in the chain (joint and link names of the robot file). A prismatic joint's
 reducer gives ``stiffness_N_per_mm``, ``lost_motion_mm``, ``transmission_accuracy_mm`` and ``rated_force_N``.
@@ -66,7 +80,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = ["Components", "JointComponents", "Reducer", "Encoder", "Bearing", "Motor", "LinkSection", "Mount",
-           "Payload", "MATERIALS", "REDUCER_TYPES", "parse_components", "read_table"]
+           "Payload", "MATERIALS", "REDUCER_TYPES", "ARCMIN", "ARCSEC"]
 
 ARCMIN = np.pi / 10800.0
 ARCSEC = np.pi / 648000.0
@@ -103,6 +117,8 @@ class Reducer:
     transmission_accuracy : float or None     peak-to-peak kinematic error over one output turn [rad, or mm]
     rated_torque : float or None      [N m, or N]
     source : str
+    repeatability : float or None     half-width of the band of repeated approaches [rad, or mm]
+    stiffness_sd : float or None      part-to-part standard deviation of the stiffness, relative (0.1 = 10 %)
     """
 
     type: str = "strain_wave"
@@ -114,6 +130,8 @@ class Reducer:
     transmission_accuracy: float | None = None
     rated_torque: float | None = None
     source: str = ""
+    repeatability: float | None = None
+    stiffness_sd: float | None = None
 
     def deflection(self, torque: np.ndarray) -> np.ndarray:
         """Elastic wind-up under ``torque`` [N m or N] (any shape): the catalogue's piecewise-linear torque-torsion
@@ -130,36 +148,45 @@ class Reducer:
 
 @dataclass(frozen=True)
 class Encoder:
-    """Position encoder: ``side`` (``output`` or ``motor``), peak-to-peak ``accuracy`` [rad or mm], source."""
+    """Position encoder: ``side`` (``output`` or ``motor``), peak-to-peak ``accuracy`` [rad or mm], source; the scale's
+    mounting ``eccentricity`` [mm] on its ``scale_radius_mm`` (an output-side rotary encoder then reads ``e / r``
+    [rad] once per turn)."""
 
     side: str = "output"
     accuracy: float | None = None
     source: str = ""
+    eccentricity: float | None = None
+    scale_radius_mm: float | None = None
 
 
 @dataclass(frozen=True)
 class Bearing:
     """The joint's bearing arrangement: ISO 492 ``precision_class``, seat ``span_mm``, drawing ``datum``,
-    ``tilt_stiffness`` [N m/rad], source, nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit)."""
+    ``tilt_stiffness`` [N m/rad], source, ``bore_mm`` and ``radial_runout`` [mm] (Kia: the full indicator reading of
+    the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit)."""
 
     precision_class: str | None = None
     span_mm: float | None = None
     datum: str | None = None
     tilt_stiffness: float | None = None
     source: str = ""
+    bore_mm: float | None = None
+    radial_runout: float | None = None
     seat_diameter_mm: float | None = None
 
 
 @dataclass(frozen=True)
 class Motor:
     """Motor figures for its losses and heating: winding resistance [ohm], torque constant [N m/A], thermal
-    resistance [K/W], thermal time constant [s], source."""
+    resistance [K/W], thermal time constant [s], source; ``link_coupling``: the share of the motor's steady
+    temperature rise the links at its joint reach (0.3 = 30 %)."""
 
     winding_resistance_ohm: float | None = None
     torque_constant_Nm_per_A: float | None = None
     thermal_resistance_K_per_W: float | None = None
     thermal_time_constant_s: float | None = None
     source: str = ""
+    link_coupling: float | None = None
 
 
 @dataclass(frozen=True)
@@ -224,13 +251,32 @@ class Payload:
 
 @dataclass(frozen=True)
 class Components:
-    """A robot's component data (all optional): ``joints`` and ``links`` by name, ``mount``, ``payload``, ``source``."""
+    """A robot's component data (all optional): ``joints`` and ``links`` by name, ``mount``, ``payload``, ``source``;
+    ``slots``: the catalogue slots ``{(joint name, part kind): Slot}`` (:mod:`tolalloc.robot.part_catalogue`)."""
 
     joints: dict = field(default_factory=dict)
     links: dict = field(default_factory=dict)
     mount: Mount = field(default_factory=Mount)
     payload: Payload = field(default_factory=Payload)
     source: str = ""
+    slots: dict = field(default_factory=dict)
+
+    def with_choice(self, choice: dict) -> "Components":
+        """A copy with the catalogue parts ``choice`` ``{(joint name, kind): part name}`` in the joints' entries (every
+        slot needs one unless it holds one part); raises ValueError naming a missing or unknown choice."""
+        from dataclasses import replace as _replace
+
+        joints = dict(self.joints)
+        for key, slot in self.slots.items():
+            name = choice.get(key, slot.options[0].name if len(slot.options) == 1 else None)
+            if name is None:
+                raise ValueError(f"components.joints.{key[0]}.{key[1]}: no part chosen; options: "
+                                 + ", ".join(o.name for o in slot.options))
+            joints[key[0]] = _replace(joints.get(key[0], JointComponents()), **{key[1]: slot.resolve(name)})
+        extra = [k for k in choice if k not in self.slots]
+        if extra:
+            raise ValueError(f"choice {extra[0]}: not a catalogue slot of the robot; slots: {sorted(self.slots)}")
+        return _replace(self, joints=joints)
 
     def joint(self, name: str) -> JointComponents:
         """The parts of joint ``name`` (empty when the file gives none)."""
@@ -242,206 +288,4 @@ class Components:
         return None if np.all(np.isnan(r)) else r
 
     def __bool__(self) -> bool:
-        return bool(self.joints or self.links or self.mount.tilt_stiffness or self.payload.rated_kg)
-
-
-# ---- parsing ------------------------------------------------------------------------------------------------------
-
-def read_table(table: dict, spec: dict, where: str, text: tuple = ()) -> dict:
-    """Values of the unit-suffixed keys of ``table`` in internal units, ``{base: value}`` (absent keys: None).
-
-    ``spec``: ``{base: (units {suffix: factor}, shape or None)}``; ``text``: plain keys (no unit) also allowed.
-    Raises ValueError naming the key for a missing unit suffix, an unknown unit or key, or a non-finite value.
-    """
-    if not isinstance(table, dict):
-        raise ValueError(f"{where}: expected a table of keys, got {table!r}")
-    out, used = {b: None for b in spec}, set()
-    for base, (units, shape) in spec.items():
-        keys = [k for k in table if k == base or (k.startswith(base + "_") and k[len(base) + 1:] in units)]
-        if base in table:
-            raise ValueError(f"{where}.{base}: the key has no unit; write it as "
-                             + " or ".join(f"{base}_{u}" for u in units))
-        if len(keys) > 1:
-            raise ValueError(f"{where}: give {base} once, got {keys}")
-        if not keys:
-            continue
-        k = keys[0]
-        try:
-            v = np.asarray(table[k], dtype=float) * units[k[len(base) + 1:]]
-        except (TypeError, ValueError):
-            raise ValueError(f"{where}.{k}: expected a number or a list of numbers, got {table[k]!r}") from None
-        if not np.all(np.isfinite(v)) or (shape is not None and v.shape not in shape):
-            want = " or ".join("a number" if s == () else f"{s[0]} numbers" for s in shape or ((),))
-            raise ValueError(f"{where}.{k}: expected {want} (finite), got {table[k]!r}")
-        out[base] = float(v) if v.ndim == 0 else tuple(float(x) for x in v)
-        used.add(k)
-    extra = [k for k in table if k not in used and k not in text]
-    if extra:
-        k = extra[0]
-        base = next((b for b in spec if k.startswith(b + "_")), None)
-        if base is not None:
-            raise ValueError(f"{where}.{k}: unknown unit {k[len(base) + 1:]!r}; expected "
-                             + " or ".join(f"{base}_{u}" for u in spec[base][0]))
-        keys = [f"{b}_<{'|'.join(spec[b][0])}>" for b in spec] + list(text)
-        raise ValueError(f"{where}: unknown key {k!r}; expected keys among {', '.join(keys)}")
-    return out
-
-
-def _text(table: dict, key: str, where: str, default=None, choices=None):
-    v = table.get(key, default)
-    if v is not None and not isinstance(v, str):
-        raise ValueError(f"{where}.{key}: expected a string, got {v!r}")
-    if choices is not None and v is not None and v not in choices:
-        raise ValueError(f"{where}.{key}: expected one of {', '.join(choices)}, got {v!r}")
-    return v
-
-
-def _positive(v, key: str, where: str, allow_zero: bool = False):
-    vals = (v,) if isinstance(v, float) else v
-    if v is not None and any((x < 0 if allow_zero else x <= 0) for x in vals):
-        raise ValueError(f"{where}.{key}: expected {'non-negative' if allow_zero else 'positive'} values, got {v}")
-    return v
-
-
-def _reducer(table: dict, where: str, revolute: bool) -> Reducer:
-    ang = _ANGLE if revolute else _LENGTH
-    spec = {"stiffness": (_ROT_STIFF if revolute else _LIN_STIFF, ((), (1,), (3,))),
-            "torque_bands": ({"Nm": 1.0} if revolute else {"N": 1.0}, ((2,),)),
-            "lost_motion": (ang, ((),)), "hysteresis": (ang, ((),)), "transmission_accuracy": (ang, ((),)),
-            "rated_torque" if revolute else "rated_force": ({"Nm": 1.0} if revolute else {"N": 1.0}, ((),))}
-    v = read_table(table, spec, where, text=("type", "ratio", "source", "cost", "cost_source", "part"))
-    kind = _text(table, "type", where, "strain_wave", REDUCER_TYPES)
-    ratio = table.get("ratio")
-    if ratio is not None:
-        if isinstance(ratio, bool) or not isinstance(ratio, (int, float)) or not np.isfinite(ratio) or ratio <= 0:
-            raise ValueError(f"{where}.ratio: expected a positive gear ratio (input turns per output turn, e.g. "
-                             f"101), got {ratio!r}")
-    k = v["stiffness"]
-    k = () if k is None else ((k,) if isinstance(k, float) else tuple(k))
-    _positive(k or None, "stiffness", where)
-    bands = v["torque_bands"] or ()
-    if len(k) == 3:
-        if any(b < a for a, b in zip(k, k[1:])):
-            raise ValueError(f"{where}.stiffness: the curve softens with torque (K1, K2, K3 = {list(k)}); a gear's "
-                             "torsional stiffness rises with torque: expected K1 <= K2 <= K3 (catalogue order)")
-        if len(bands) != 2 or not 0 < bands[0] < bands[1]:
-            raise ValueError(f"{where}.torque_bands: three stiffnesses need the band limits T1 < T2 (both > 0), "
-                             f"got {list(bands) or 'none'}")
-    elif bands:
-        raise ValueError(f"{where}.torque_bands: band limits need three stiffnesses K1, K2, K3, got {len(k)}")
-    for key in ("lost_motion", "hysteresis", "transmission_accuracy"):
-        _positive(v[key], key, where, allow_zero=True)
-    rated = v["rated_torque" if revolute else "rated_force"]
-    _positive(rated, "rated torque", where)
-    return Reducer(kind, None if ratio is None else float(ratio), k, tuple(bands), v["lost_motion"],
-                   v["hysteresis"], v["transmission_accuracy"], rated, _text(table, "source", where, ""))
-
-
-def _section(table: dict, where: str) -> LinkSection:
-    spec = {"outer_diameter": (_LENGTH, ((),)), "wall": (_LENGTH, ((),)), "width": (_LENGTH, ((),)),
-            "height": (_LENGTH, ((),)), "youngs_modulus": (_MODULUS, ((),)), "shear_modulus": (_MODULUS, ((),)),
-            "density": ({"kg_per_m3": 1e-9}, ((),)), "cte": (_CTE, ((),))}
-    v = read_table(table, spec, where, text=("section", "material", "source"))
-    kind = _text(table, "section", where, None, ("tube", "solid", "box"))
-    if kind is None:
-        raise ValueError(f"{where}: missing section; expected section = \"tube\", \"solid\" or \"box\"")
-    need = {"tube": ("outer_diameter", "wall"), "solid": ("outer_diameter",), "box": ("width", "height", "wall")}[kind]
-    missing = [f"{k}_mm" for k in need if v[k] is None]
-    if missing:
-        raise ValueError(f"{where}: a {kind} section needs {', '.join(missing)}")
-    for k in need:
-        _positive(v[k], k, where)
-    if kind == "tube":
-        D, t = v["outer_diameter"], v["wall"]
-        if 2 * t >= D:
-            raise ValueError(f"{where}.wall_mm: the wall {t:g} mm is at least half the diameter {D:g} mm; use "
-                             "section = \"solid\"")
-        d = D - 2 * t
-        A, I = np.pi / 4 * (D**2 - d**2), np.pi / 64 * (D**4 - d**4)
-    elif kind == "solid":
-        D = v["outer_diameter"]
-        A, I = np.pi / 4 * D**2, np.pi / 64 * D**4
-    else:
-        b, h, t = v["width"], v["height"], v["wall"]
-        if 2 * t >= min(b, h):
-            raise ValueError(f"{where}.wall_mm: the wall {t:g} mm is at least half the width or height")
-        A, I = b * h - (b - 2 * t) * (h - 2 * t), (b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12
-    material = _text(table, "material", where, None, tuple(MATERIALS))
-    E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
-    E, G = v["youngs_modulus"] or E, v["shear_modulus"] or G
-    rho, cte = v["density"] or rho, v["cte"] if v["cte"] is not None else cte
-    if E is None:
-        raise ValueError(f"{where}: no material figures; give material = one of {', '.join(MATERIALS)}, or "
-                         "youngs_modulus_GPa (and shear_modulus_GPa, density_kg_per_m3, cte_um_per_m_K)")
-    G = G if G is not None else E / 2.6
-    return LinkSection(kind, float(A), float(I), float(E), float(G), float(rho or 0.0), float(cte or 0.0),
-                       material or "", _text(table, "source", where, src or ""))
-
-
-def _joint_parts(table: dict, where: str, revolute: bool) -> JointComponents:
-    extra = [k for k in table if k not in ("reducer", "encoder", "bearing", "motor")]
-    if extra:
-        raise ValueError(f"{where}: unknown part {extra[0]!r}; expected reducer, encoder, bearing or motor")
-    red = table.get("reducer")
-    red = None if red is None else _reducer(red, f"{where}.reducer", revolute)
-    enc = bear = mot = None
-    if "encoder" in table:
-        t, w = table["encoder"], f"{where}.encoder"
-        v = read_table(t, {"accuracy": (_ANGLE if revolute else _LENGTH, ((),))}, w, text=("side", "source"))
-        enc = Encoder(_text(t, "side", w, "output", ("output", "motor")),
-                      _positive(v["accuracy"], "accuracy", w, True), _text(t, "source", w, ""))
-    if "bearing" in table:
-        t, w = table["bearing"], f"{where}.bearing"
-        v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)),
-                           "seat_diameter": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source"))
-        bear = Bearing(_text(t, "precision_class", w), _positive(v["span"], "span", w), _text(t, "datum", w),
-                       _positive(v["tilt_stiffness"], "tilt_stiffness", w), _text(t, "source", w, ""),
-                       _positive(v["seat_diameter"], "seat_diameter", w))
-    if "motor" in table:
-        t, w = table["motor"], f"{where}.motor"
-        v = read_table(t, {"winding_resistance": ({"ohm": 1.0}, ((),)), "torque_constant": ({"Nm_per_A": 1.0}, ((),)),
-                           "thermal_resistance": ({"K_per_W": 1.0}, ((),)),
-                           "thermal_time_constant": (_TIME, ((),))}, w, text=("source",))
-        for k, x in v.items():
-            _positive(x, k, w)
-        mot = Motor(v["winding_resistance"], v["torque_constant"], v["thermal_resistance"],
-                    v["thermal_time_constant"], _text(t, "source", w, ""))
-    return JointComponents(red, enc, bear, mot)
-
-
-def parse_components(data: dict | None, joint_kinds: dict, link_names, where: str = "components") -> Components:
-    """:class:`Components` from a robot file's ``[components]`` table (None or empty: no component data).
-
-    ``joint_kinds``: ``{joint name: is revolute}`` of the chain; ``link_names``: the chain's link names.
-    Raises ValueError naming the key (the robot-file loaders turn it into a TolallocError with the file's name).
-    """
-    if not data:
-        return Components()
-    if not isinstance(data, dict):
-        raise ValueError(f"{where}: expected a table, got {data!r}")
-    extra = [k for k in data if k not in ("source", "payload", "mount", "joints", "links")]
-    if extra:
-        raise ValueError(f"{where}: unknown key {extra[0]!r}; expected source, payload, mount, joints or links")
-    joints, links = {}, {}
-    for name, table in (data.get("joints") or {}).items():
-        if name not in joint_kinds:
-            raise ValueError(f"{where}.joints.{name}: not a joint of the chain; joints: {', '.join(joint_kinds)}")
-        joints[name] = _joint_parts(table, f"{where}.joints.{name}", joint_kinds[name])
-    for name, table in (data.get("links") or {}).items():
-        if name not in link_names:
-            raise ValueError(f"{where}.links.{name}: not a link of the chain; links: {', '.join(link_names)}")
-        links[name] = _section(table, f"{where}.links.{name}")
-    mount = Mount()
-    if "mount" in data:
-        w = f"{where}.mount"
-        v = read_table(data["mount"], {"tilt_stiffness": (_ROT_STIFF, ((), (2,)))}, w, text=("source",))
-        k = v["tilt_stiffness"]
-        k = None if k is None else ((k, k) if isinstance(k, float) else tuple(k))
-        mount = Mount(_positive(k, "tilt_stiffness", w), _text(data["mount"], "source", w, ""))
-    payload = Payload()
-    if "payload" in data:
-        w = f"{where}.payload"
-        v = read_table(data["payload"], {"rated": ({"kg": 1.0}, ((),)), "com": (_LENGTH, ((3,),))}, w)
-        payload = Payload(_positive(v["rated"], "rated", w, True),
-                          np.zeros(3) if v["com"] is None else np.array(v["com"]))
-    return Components(joints, links, mount, payload, _text(data, "source", where, "") or "")
+        return bool(self.joints or self.links or self.mount.tilt_stiffness or self.payload.rated_kg or self.slots)

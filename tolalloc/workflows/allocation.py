@@ -29,7 +29,8 @@ __all__ = ["allocate_tolerances", "ESTIMATORS", "CALIBRATED_ESTIMATORS", "DEFAUL
 def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: float | None = None,
                         prob: float | None = None, region=None, costs=None, error_model=None, solver=None,
                         verification=None, n_mc: int | None = None, calibration=None, progress: bool | None = None,
-                        tool: str | None = None, trust_units: bool = False):
+                        tool: str | None = None, trust_units: bool = False,
+                        parts=None):
     """Cheapest tolerances meeting ``P(|dP| < radius_mm) >= prob`` wherever the robot must work, verified.
 
     Parameters
@@ -66,6 +67,12 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
         The job's stages on stderr (:mod:`tolalloc.progress`: a status line on a terminal, a line per stage in a log).
     tool, trust_units
         URDF tool link; accept inputs that look like a unit slip (radians for degrees ...).
+    parts : bool or dict, optional
+        Design with the bought parts too: the robot file's catalogue slots are chosen with the machining standard
+        values over the region, a payload and an ambient range (:func:`tolalloc.verify.parts.verified_parts`: True,
+        or its options ``payload_kg``, ``ambient_c``, ``duty``, ``after`` ...); returns a
+        :class:`~tolalloc.allocate.parts_result.PartsAllocation` (its ``verification``: the nonlinear Monte Carlo at
+        the worst point, ``n_mc`` draws). Default: the machining tolerances alone.
 
     Returns
     -------
@@ -98,6 +105,8 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
     inputs_record = _record(rob, label, cost_set, s, box is not None, tool=tool, trust_units=trust_units)
     run = dict(snap=sol.snap, angle_step_deg=sol.angle_step_deg, verify=ver.monte_carlo, n_mc=ver.n_mc, seed=ver.seed,
                estimator=ver.estimator, coverage_n=s.region.coverage_n, inputs_record=inputs_record)
+    if parts:
+        return _allocate_parts(model, box, q, parts, s, cost_set)
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
         if s.calibration is not None:
             bar.stage("calibration-aware allocation")
@@ -105,6 +114,18 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
                                          costs_path=s.costs.file, exact=sol.method == "exact", **run, **kw)
         return _allocate(model, label, box, q, kw, solver=sol.method, correction=s.correction,
                          correction_rounds=s.correction_rounds, scheduler=ver.scheduler, bar=bar, **run)
+
+
+def _allocate_parts(model, box, q, parts, s, cost_set):
+    """The joint allocation with the robot file's catalogue parts (:func:`tolalloc.verify.parts.verified_parts`)."""
+    if s.calibration is not None or len(s.requirements) > 1:
+        raise ArgumentError("parts", "the design with bought parts takes the position requirement alone, without a "
+                            "calibration plan; drop `calibration` / the orientation requirement, or `parts`")
+    from tolalloc.verify.parts import verified_parts
+
+    req, ver = s.position, s.verification
+    return verified_parts(model, box, q, parts, radius_mm=float(req.radius_mm), prob=float(req.prob), costs=cost_set,
+                          verify=ver.monte_carlo, n_mc=ver.n_mc or 20000, seed=ver.seed)
 
 
 def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,

@@ -28,6 +28,11 @@ The convex step is :mod:`tolalloc.allocate.calibrated.step`: one cvxpy problem c
 parameters (DPP), its pose LMIs on a working set of poses grown until the requirement holds exactly at every
 working pose (the same step solution as with all pose LMIs, at a fraction of the interior-point cost).
 
+Bought parts: a :class:`~tolalloc.allocate.parts_problem.PartsProblem` (the parts chosen, e.g. a
+:class:`~tolalloc.allocate.parts_result.PartsAllocation`'s ``problem`` allocated with ``after="compensation"``) adds
+its covariance -- the parts' random parts and what the compensation leaves of their systematic ones
+(:mod:`tolalloc.errormodel.parts`) -- to the fixed part, and its mean shrinks the radius, in every step and check.
+
 Repeatability grades (``grade`` tables of the costs file's ``[calibration]`` section, see
 :mod:`tolalloc.calibration.split`): the random part of a systematic parameter (e.g. a joint's encoder /
 transmission repeatability) becomes a decision variable with its own cost law and process limits, in the scaled
@@ -308,8 +313,10 @@ def post_ratio(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationP
     """``max_i lambda_max(Sigma_post(q_i)) / b`` of half-widths ``t`` and the :class:`Posterior`."""
     model = problem.model_for(t)
     post = posterior(split.with_model(model), plan)
-    C = post.tool_covariance(problem.q)
-    return float((np.linalg.eigvalsh(C)[:, -1] / problem.blocks[0]["eig_bound"]).max()), post
+    C, b = post.tool_covariance(problem.q), problem.blocks[0]["eig_bound"]
+    if getattr(problem, "extra_cov", None) is not None:  # bought parts: their covariance, the radius their mean leaves
+        C, b = C + problem.extra_cov, b / problem.scale
+    return float((np.linalg.eigvalsh(C)[:, -1] / b).max()), post
 
 
 def _repair(problem, split, plan, t):

@@ -74,6 +74,8 @@ class StepData:
             if k not in self.a_pos:
                 fixed_var[k] = (pr.costs.fixed_tol[k] / z) ** 2
         self.C_fixed = np.einsum("pik,k,pjk->pij", self.J, fixed_var, self.J)  # (P, 3, 3)
+        if getattr(pr, "extra_cov", None) is not None:  # bought parts (allocate.parts_problem): what calibration leaves
+            self.C_fixed, self.b = self.C_fixed + pr.extra_cov, self.b / pr.scale
         # random-part direction of each variable u_j (random-only allocatable) and v_g (grade), (P, 3, 3) each
         self.R_dirs = [self.s[k] ** 2 * np.einsum("pi,pj->pij", self.J[:, :, k], self.J[:, :, k]) for k in self.R_alloc]
         self.G_dirs = [(gr.t_ref[g] / gr.z) ** 2 * np.einsum("pi,pj->pij", self.J[:, :, k], self.J[:, :, k])

@@ -35,7 +35,7 @@ from pydantic import BaseModel, ConfigDict
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.dh_rows import CSV_COLUMNS, parse_dh_rows, row_from_cells
-from tolalloc.robot.io.robotfile import _finish_robot, _validate, parse_tool
+from tolalloc.robot.io.robotfile import source_dir, _finish_robot, _validate, parse_tool
 from tolalloc.robot.elements import chain_from_dh
 
 __all__ = ["robot_from_dh_dict", "chain_from_dh", "load_dh_csv"]
@@ -52,6 +52,7 @@ class DHFile(BaseModel):
     masses: list[dict] = []
     pose_sets: dict[str, dict] = {}
     sigma_sets: dict[str, dict] = {}
+    regions: dict[str, dict] = {}
     components: dict = {}
 
 
@@ -64,8 +65,8 @@ def robot_from_dh_dict(data: dict, source: str = "<dict>"):
     offset, R_tool = parse_tool(spec.tool)
     # the tool of a DH robot is given in the last DH frame
     return _finish_robot(spec.name, chain, R_last @ offset, R_last @ R_tool, spec.gravity, spec.masses,
-                         spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False,
-                         components=spec.components)
+                         spec.pose_sets, spec.description, spec.sigma_sets, tiny_links_suspect=False, regions=spec.regions,
+                         components=spec.components, base_dir=source_dir(source))
 
 
 def load_dh_csv(path):

@@ -23,7 +23,7 @@ from pydantic import BaseModel, ConfigDict, ValidationError, field_validator, mo
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.lie import exp_so3
 from tolalloc.robot.checks import check_reserved_names
-from tolalloc.robot.components import parse_components
+from tolalloc.robot.components_file import parse_components
 from tolalloc.robot.model import Joint, Link, Mass, Robot
 from tolalloc.robot.dh_rows import check_limits
 from tolalloc.units import ALL_UNITS, ANGLE_UNITS, LENGTH_UNITS, check_reach, unit_value
@@ -213,7 +213,24 @@ def robot_from_chain_dict(data: dict, source: str = "<dict>") -> Robot:
             raise TolallocError(f"{where} ({item.link if model is LinkEntry else item.joint}): {exc}") from None
     offset, R_tool = parse_tool(spec.tool)
     return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets,
-                         regions=spec.regions, components=spec.components)
+                         regions=spec.regions, components=spec.components, base_dir=source_dir(source))
+
+
+def source_dir(source: str):
+    """The folder of the robot file ``source`` names (``robot file '<path>'``, a built-in robot, or a path; None for a
+    dict): where the file's ``[components] catalogue_file`` is read from."""
+    import ast
+    from pathlib import Path
+
+    if source.startswith("built-in robot"):
+        return Path(__file__).resolve().parents[2] / "data" / "robots"
+    if source.startswith("robot file "):
+        try:
+            source = ast.literal_eval(source[len("robot file "):])
+        except (ValueError, SyntaxError):
+            return None
+    p = Path(source)
+    return p.parent if p.is_file() else None
 
 
 def parse_tool(tool: dict):
@@ -231,7 +248,7 @@ def parse_tool(tool: dict):
 
 
 def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, description, sigma_sets=None, *,
-                  regions=None, tiny_links_suspect: bool = True, components=None) -> Robot:
+                  regions=None, tiny_links_suspect: bool = True, components=None, base_dir=None) -> Robot:
     """Shared tail of the chain and DH loaders: gravity, masses, pose sets.
 
     ``tiny_links_suspect``: a sub-millimetre link among long ones is taken for a length in metres (chain
@@ -280,7 +297,7 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     object.__setattr__(robot, "regions", _parse_regions(robot, regions or {}))
     try:
         parts = parse_components(components, {j.name: j.is_revolute for j in robot.joints},
-                                 [lk.name for lk in robot.links])
+                                 [lk.name for lk in robot.links], base_dir=base_dir)
     except ValueError as exc:
         raise TolallocError(str(exc)) from None
     object.__setattr__(robot, "components", parts)

@@ -1,0 +1,384 @@
+"""The bought parts in the error model: each effect as terms with a mean, a systematic and a random part.
+
+A *term* moves the tool point along a column ``c`` (P, 3) -- a column of the error Jacobian of
+:func:`parts_error_model` (joint offsets, link lengths, the bearings' body displacements), or a displacement the
+physics stage computes directly (beam sag, mount tilt) -- by a value with, at each point (pose, payload, ambient):
+
+* a **mean** -- the deterministic part at that payload and temperature, which a compensation model removes (a
+  stiffness model given the payload, a temperature model);
+* a **systematic** standard deviation -- fixed for one built robot, different between robots (part-to-part spread,
+  a gear's or a bearing's error at its random phase), which a calibration or an error table removes;
+* a **random** standard deviation -- new at every move, what repeatability sees.
+
+The split, per effect (:data:`EFFECTS`; one implementation of each physical model, in :mod:`tolalloc.physics`)::
+
+    effect        term (per joint / link)              mean                      systematic sd        random sd
+    compliance    gear wind-up (motor-side loop)       catalogue curve at load   s |wind-up|          -
+    lost_motion   flank +-b/2 by approach direction    0                         -                    b / 2
+    transmission  gear error at orders 1, N, 2N        0                         sqrt(sum a^2 / 2)    repeat. / sqrt(3)
+    encoder       graduation and eccentricity          0                         sqrt(sum a^2 / 2)    -
+    bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
+    thermal       link growth (ambient and motors)     alpha dT L                THERMAL_SD |mean|    -
+    beam          link bending (sections)              sag                       BEAM_SD |sag|        -
+    mount         base tilt                            tilt                      MOUNT_SD |tilt|      -
+
+A joint whose encoder is on the **output** side closes its position loop on the output angle: its gear's wind-up,
+lost motion and transmission error do not reach the joint angle, the encoder's own error does. ``s`` is the
+reducer's ``stiffness_sd``. Statistics: :class:`EffectTerms` (``mean_mm``, ``systematic_covariance``,
+``random_covariance``, ``moments``); :mod:`tolalloc.errormodel.parts_sample` draws the same effects physically
+(nonlinear in the catalogue curve, at the actual joint angle) for the Monte Carlo.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, replace
+
+import numpy as np
+import pandas as pd
+
+from tolalloc.exceptions import TolallocError
+from tolalloc.errormodel.build import build_error_model
+from tolalloc.errormodel.model import ErrorModel, ErrorParameter, perpendicular_axes
+from tolalloc.physics.beams import beam_sag
+from tolalloc.physics.bearings import runout_sd
+from tolalloc.physics.compliance import joint_loads, mount_tilt
+from tolalloc.physics.loads import target_points
+from tolalloc.physics.thermal import link_cte, link_temperature, motor_rise
+from tolalloc.physics.transmission import catalogue_amplitudes
+from tolalloc.robot.model import Robot
+
+__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "Conditions",
+           "PartsModel",
+           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side"]
+
+EFFECTS = ("compliance", "lost_motion", "transmission", "encoder", "bearing", "thermal", "beam", "mount")
+#: Relative spread (one sd) of a link's thermal growth between robots (CTE and temperature field; ASSUMED).
+THERMAL_SD = 0.1
+#: Relative spread of the links' bending (modulus, wall thickness; ASSUMED).
+BEAM_SD = 0.1
+#: Relative spread of the mount's tilt (its stiffness is an estimate; ASSUMED).
+MOUNT_SD = 0.2
+#: Share of a mean and of a systematic part a compensation model leaves (``after="compensation"``; ASSUMED).
+COMPENSATION_RESIDUAL = 0.1
+
+
+def residual_factors(after: str, residual=COMPENSATION_RESIDUAL) -> dict:
+    """Per effect, the share of its mean and systematic part left: 1 everywhere for ``after="none"``; for
+    ``"compensation"`` the number ``residual``, or ``residual[effect]`` (1 where a dict omits the effect: no model
+    for it)."""
+    if after not in ("none", "compensation"):
+        raise TolallocError(f"after: expected 'none' or 'compensation', got {after!r}")
+    if after == "none":
+        return dict.fromkeys(EFFECTS, 1.0)
+    if isinstance(residual, dict):
+        bad = [k for k in residual if k not in EFFECTS]
+        if bad:
+            raise TolallocError(f"residual: unknown effect {bad[0]!r}; effects: {', '.join(EFFECTS)}")
+        out = {e: float(residual.get(e, 1.0)) for e in EFFECTS}
+    else:
+        out = dict.fromkeys(EFFECTS, float(residual))
+    if not all(0.0 <= v <= 1.0 for v in out.values()):
+        raise TolallocError(f"residual: expected shares in [0, 1], got {residual!r}")
+    return out
+
+
+@dataclass(frozen=True)
+class Conditions:
+    """Where the design must hold besides the poses: a payload range [kg], an ambient range [degC] about the
+    ``reference_c`` the robot was built and measured at, and a duty cycle (the fraction of time the motors carry the
+    pose's load)."""
+
+    payload_kg: tuple = (0.0, 0.0)
+    ambient_c: tuple = (20.0, 20.0)
+    reference_c: float = 20.0
+    duty: float = 0.5
+
+    def check(self, robot: Robot) -> "Conditions":
+        """Validated against ``robot`` (a payload above its rating is refused)."""
+        lo, hi = (float(x) for x in self.payload_kg)
+        rated = robot.components.payload.rated_kg
+        if not (np.isfinite(lo) and np.isfinite(hi) and 0 <= lo <= hi):
+            raise TolallocError(f"payload_kg: expected a range 0 <= low <= high [kg], got {self.payload_kg!r}")
+        if rated is not None and hi > rated * (1 + 1e-9):
+            raise TolallocError(f"payload_kg: {hi:g} kg is above the rated payload of robot {robot.name!r} "
+                                f"({rated:g} kg, [components.payload] rated_kg); give a range up to {rated:g} kg")
+        t = tuple(float(x) for x in self.ambient_c)
+        if len(t) != 2 or not all(np.isfinite(t)) or t[0] > t[1]:
+            raise TolallocError(f"ambient_c: expected a range low <= high [degC], got {self.ambient_c!r}")
+        if not 0 <= self.duty <= 1:
+            raise TolallocError(f"duty: expected a fraction of time in [0, 1], got {self.duty!r}")
+        return replace(self, payload_kg=(lo, hi), ambient_c=t, reference_c=float(self.reference_c))
+
+    def corners(self) -> np.ndarray:
+        """The corners of the payload x ambient box, shape (C, 2) [kg, degC] (duplicates dropped)."""
+        pts = {(m, t) for m in self.payload_kg for t in self.ambient_c}
+        return np.array(sorted(pts), float)
+
+
+def with_parts(robot: Robot, choice: dict) -> Robot:
+    """A copy of ``robot`` whose joints carry the catalogue parts ``choice`` ``{(joint, kind): part name}``."""
+    try:
+        comps = robot.components.with_choice(choice)
+    except ValueError as exc:
+        raise TolallocError(str(exc)) from None
+    out = copy.copy(robot)
+    object.__setattr__(out, "components", comps)
+    return out
+
+
+def motor_side(robot: Robot, j: int) -> bool:
+    """Whether joint ``j``'s position loop closes on the motor (its encoder is motor-side, or it has none)."""
+    enc = robot.components.joint(robot.joints[j].name).encoder
+    return enc is None or enc.side == "motor"
+
+
+@dataclass(frozen=True, eq=False)
+class PartsModel:
+    """An error model with the parameters the effects move: every joint drive, every link length and, for joints with
+    a bearing, four body displacements after the joint (``br<j><a|b>`` translations [mm], ``bw<j><a|b>`` tilts
+    [rad]). ``drive`` (n,), ``link`` (L,) and ``bearing`` {joint: (4,)} index the parameters."""
+
+    model: ErrorModel
+    drive: np.ndarray
+    link: np.ndarray
+    bearing: dict
+
+
+def parts_error_model(model: ErrorModel, robot: Robot | None = None) -> PartsModel:
+    """``model`` with the parameters of :class:`PartsModel` it lacks appended (sigma 0); ``robot``: the same robot
+    with its parts chosen (:func:`with_parts`; default the model's), whose bearings get parameters."""
+    robot = model.robot if robot is None else robot
+    params = list(model.params)
+    full = build_error_model(robot, "generic", link_mode=model.link_mode, deflection_mode=model.deflection_mode)
+    names = {p.name for p in params}
+    for p in full.params:
+        if p.kind in ("joint_drive", "link_length") and p.name not in names:
+            params.append(replace(p, sigma=0.0))
+    bearing = {}
+    for j, jt in enumerate(robot.joints):
+        if not jt.is_revolute or robot.components.joint(jt.name).bearing is None:
+            continue
+        pt, idx = robot.joint_points_mm[j], []
+        for kind, tag, rot in (("clearance_radial", "br", False), ("clearance_tilt", "bw", True)):
+            for letter, e in perpendicular_axes(jt.axis):
+                twist = np.concatenate([e, -np.cross(e, pt)]) if rot else np.concatenate([np.zeros(3), e])
+                idx.append(len(params))
+                params.append(ErrorParameter(f"{tag}{j + 1}{letter}", kind, jt.name, "rad" if rot else "mm", j + 1,
+                                             twist, sigma=0.0))
+        bearing[j] = np.array(idx)
+    out = replace(model, robot=robot, params=tuple(params))
+    pos = {p.name: k for k, p in enumerate(out.params)}
+    drive = np.array([pos[f"dth{j + 1}" if jt.is_revolute else f"dd{j + 1}"] for j, jt in enumerate(robot.joints)])
+    link = np.array([pos[f"d{lk.name}"] for lk in robot.links if lk.length_mm > 0], int)
+    return PartsModel(out, drive, link, bearing)
+
+
+@dataclass(frozen=True, eq=False)
+class EffectTerms:
+    """Terms of the bought parts' effects at P points (module docstring).
+
+    Attributes
+    ----------
+    names, effect : tuple of str, (T,)
+    joint : array of int, shape (T,)          joint of the term (-1: none)
+    columns : array, shape (P, 3, T)          tool displacement per unit value [mm per mm or rad, or per unit]
+    mean, sys_sd, rnd_sd : arrays, shape (P, T)
+    """
+
+    names: tuple
+    effect: tuple
+    joint: np.ndarray
+    columns: np.ndarray
+    mean: np.ndarray
+    sys_sd: np.ndarray
+    rnd_sd: np.ndarray
+
+    @staticmethod
+    def empty(P: int) -> "EffectTerms":
+        return EffectTerms((), (), np.zeros(0, int), np.zeros((P, 3, 0)), np.zeros((P, 0)), np.zeros((P, 0)),
+                           np.zeros((P, 0)))
+
+    def __add__(self, other: "EffectTerms") -> "EffectTerms":
+        return EffectTerms(self.names + other.names, self.effect + other.effect,
+                           np.concatenate([self.joint, other.joint]),
+                           *(np.concatenate([getattr(self, a), getattr(other, a)], axis=-1)
+                             for a in ("columns", "mean", "sys_sd", "rnd_sd")))
+
+    def select(self, mask) -> "EffectTerms":
+        """The terms where ``mask`` (T,) is true."""
+        idx = np.flatnonzero(np.asarray(mask, bool))
+        return EffectTerms(tuple(self.names[i] for i in idx), tuple(self.effect[i] for i in idx), self.joint[idx],
+                           self.columns[:, :, idx], self.mean[:, idx], self.sys_sd[:, idx], self.rnd_sd[:, idx])
+
+    def of_effect(self, effect: str) -> "EffectTerms":
+        """The terms of one effect (:data:`EFFECTS`)."""
+        return self.select([e == effect for e in self.effect])
+
+    def mean_mm(self) -> np.ndarray:
+        """Mean tool displacement [mm], shape (P, 3): the compensable part."""
+        return np.einsum("pit,pt->pi", self.columns, self.mean)
+
+    def _cov(self, sd) -> np.ndarray:
+        return np.einsum("pit,pt,pjt->pij", self.columns, sd ** 2, self.columns)
+
+    def systematic_covariance(self) -> np.ndarray:
+        """Covariance [mm^2] (P, 3, 3) of the systematic parts: between robots, fixed for one."""
+        return self._cov(self.sys_sd)
+
+    def random_covariance(self) -> np.ndarray:
+        """Covariance [mm^2] (P, 3, 3) of the random parts: move to move (what repeatability sees)."""
+        return self._cov(self.rnd_sd)
+
+    def moments(self, after: str = "none", residual=COMPENSATION_RESIDUAL) -> tuple:
+        """``(mean (P, 3), covariance (P, 3, 3))`` of the tool error the effects add: ``after="none"`` all parts;
+        ``"compensation"``: the compensation models leave ``residual`` of every mean and systematic sd (a number, or
+        ``{effect: share}`` with 1 for the effects it omits: :func:`residual_factors`)."""
+        f = residual_factors(after, residual)
+        ft = np.array([f[e] for e in self.effect])
+        return (np.einsum("pit,pt->pi", self.columns, self.mean * ft),
+                self._cov(self.sys_sd * ft) + self.random_covariance())
+
+    def to_frame(self, point: int = 0) -> pd.DataFrame:
+        """One row per term at one point: effect, term, joint, mean displacement and the two standard deviations of
+        the tool displacement it adds [mm] (along its column)."""
+        n = np.linalg.norm(self.columns[point], axis=0)
+        return pd.DataFrame({"effect": self.effect, "term": self.names, "joint": self.joint + 1,
+                             "mean_mm": np.abs(self.mean[point]) * n, "systematic_sd_mm": self.sys_sd[point] * n,
+                             "random_sd_mm": self.rnd_sd[point] * n})
+
+
+class PartEffects:
+    """The effects at P points of a robot whose parts are resolved (:func:`with_parts`).
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array, shape (P, n) [rad, mm]
+    payload_kg, ambient_c : arrays, shape (P,)   the condition at each point
+    conditions : Conditions                       reference temperature and duty
+    model : ErrorModel, optional                  the geometric model to extend (default: the robot's generic one)
+    pm : PartsModel, optional                     the extended model, when built already (for ``robot``)
+    """
+
+    def __init__(self, robot: Robot, q, payload_kg, ambient_c, conditions: Conditions = Conditions(),
+                 model: ErrorModel | None = None, pm: PartsModel | None = None):
+        self.robot, self.conditions = robot, conditions
+        self.q = np.atleast_2d(np.asarray(q, float))
+        P = len(self.q)
+        self.payload = np.broadcast_to(np.asarray(payload_kg, float), (P,)).copy()
+        self.ambient = np.broadcast_to(np.asarray(ambient_c, float), (P,)).copy()
+        self.pm = pm if pm is not None else parts_error_model(
+            model if model is not None else build_error_model(robot, "generic"), robot)
+        self.J = self.pm.model.jacobian(self.q)[:, :3, :]
+        self.tool = target_points(robot, self.q, np.zeros(3))
+        T = robot.fk_internal(self.q)
+        self.payload_point = self.tool + T[:, :3, :3] @ robot.components.payload.com_mm
+        self.tau = joint_loads(robot, self.q, self.payload_point, self.payload)[0]
+
+    @property
+    def n_points(self) -> int:
+        return len(self.q)
+
+    def _term(self, names, effect, j, col, mean=None, sys=None, rnd=None) -> EffectTerms:
+        P = self.n_points
+        z = np.zeros((P, 1))
+        f = (lambda a: z if a is None else np.broadcast_to(np.asarray(a, float), (P,))[:, None].copy())
+        return EffectTerms((names,), (effect,), np.array([j]), col[:, :, None], f(mean), f(sys), f(rnd))
+
+    def reducer_terms(self, j: int, red, loop_on_motor: bool = True,
+                      effects: tuple = ("compliance", "lost_motion", "transmission")) -> EffectTerms:
+        """Terms of joint ``j``'s reducer ``red`` among ``effects`` (compliance, lost motion, transmission); none when
+        the loop closes on an output-side encoder."""
+        out, nm = EffectTerms.empty(self.n_points), self.robot.joints[j].name
+        if red is None or not loop_on_motor:
+            return out
+        col = self.J[:, :, self.pm.drive[j]]
+        if red.stiffness and "compliance" in effects:
+            w = red.deflection(self.tau[:, j])
+            out += self._term(f"windup_{nm}", "compliance", j, col, w, (red.stiffness_sd or 0.0) * np.abs(w))
+        if red.lost_motion and "lost_motion" in effects:
+            out += self._term(f"lost_motion_{nm}", "lost_motion", j, col, rnd=red.lost_motion / 2.0)
+        if (red.transmission_accuracy or red.repeatability) and "transmission" in effects:
+            ratio = red.ratio if self.robot.joints[j].is_revolute else None
+            _, amp = catalogue_amplitudes(red.transmission_accuracy or 0.0, ratio)
+            out += self._term(f"transmission_{nm}", "transmission", j, col, sys=np.sqrt(np.sum(amp ** 2) / 2),
+                              rnd=(red.repeatability or 0.0) / np.sqrt(3.0))
+        return out
+
+    def encoder_terms(self, j: int, enc, ratio: float | None) -> EffectTerms:
+        """Terms of joint ``j``'s encoder ``enc``: graduation error (and eccentricity ``e / r`` of an output-side
+        rotary scale) once per turn; a motor-side encoder's error divided by the gear ratio ``ratio``."""
+        if enc is None or not enc.accuracy and not enc.eccentricity:
+            return EffectTerms.empty(self.n_points)
+        amp = np.array([(enc.accuracy or 0.0) / 2.0])
+        if enc.side == "motor" and ratio and self.robot.joints[j].is_revolute:
+            amp = amp / ratio
+        elif enc.eccentricity and enc.scale_radius_mm and self.robot.joints[j].is_revolute:
+            amp = np.append(amp, enc.eccentricity / enc.scale_radius_mm)
+        return self._term(f"encoder_{self.robot.joints[j].name}", "encoder", j, self.J[:, :, self.pm.drive[j]],
+                          sys=np.sqrt(np.sum(amp ** 2) / 2))
+
+    def bearing_terms(self, j: int, bearing) -> EffectTerms:
+        """Terms of joint ``j``'s bearing pair: the four body displacements of :mod:`tolalloc.physics.bearings`."""
+        out = EffectTerms.empty(self.n_points)
+        if bearing is None or j not in self.pm.bearing:
+            return out
+        for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
+            out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, self.J[:, :, k], sys=sd)
+        return out
+
+    def joint_terms(self, j: int) -> EffectTerms:
+        """Every term of joint ``j``'s resolved parts."""
+        parts = self.robot.components.joint(self.robot.joints[j].name)
+        ratio = getattr(parts.reducer, "ratio", None)
+        return (self.reducer_terms(j, parts.reducer, motor_side(self.robot, j))
+                + self.encoder_terms(j, parts.encoder, ratio) + self.bearing_terms(j, parts.bearing))
+
+    def link_temperatures(self) -> np.ndarray:
+        """Temperature of every link above the reference [K], shape (P, L) (:func:`tolalloc.physics.thermal.
+        link_temperature` at the duty's motor heating)."""
+        rise = motor_rise(self.robot, self.tau, self.conditions.duty)
+        return link_temperature(self.robot, self.ambient - self.conditions.reference_c, rise)
+
+    def body_terms(self) -> EffectTerms:
+        """The terms that belong to no joint: thermal growth of every link, beam sag, mount tilt."""
+        out, r = EffectTerms.empty(self.n_points), self.robot
+        cte, dT = link_cte(r), self.link_temperatures()
+        links = [lk for lk in r.links if lk.length_mm > 0]
+        for k, lk in enumerate(links):
+            if cte[k] > 0:
+                grow = cte[k] * dT[:, k] * lk.length_mm
+                out += self._term(f"thermal_{lk.name}", "thermal", -1, self.J[:, :, self.pm.link[k]], grow,
+                                  THERMAL_SD * np.abs(grow))
+        if r.components.links:
+            sag = beam_sag(r, self.q, self.tool, self.payload)
+            out += self._term("beam", "beam", -1, sag, 1.0, BEAM_SD)
+        if r.components.mount.tilt_stiffness is not None:
+            tilt = mount_tilt(r, self.q, self.tool, self.payload_point, self.payload)
+            out += self._term("mount", "mount", -1, tilt, 1.0, MOUNT_SD)
+        return out
+
+    def terms(self) -> EffectTerms:
+        """Every term of the robot's resolved parts, joints first."""
+        out = EffectTerms.empty(self.n_points)
+        for j in range(self.robot.n_joints):
+            out += self.joint_terms(j)
+        return out + self.body_terms()
+
+    def check_rated(self, where: str = "the region") -> None:
+        """Refuse reducers whose rated torque (force) the gravity load at these points exceeds, naming the joint, the
+        part, the load and by how much."""
+        for j, jt in enumerate(self.robot.joints):
+            red = self.robot.components.joint(jt.name).reducer
+            if red is None or red.rated_torque is None:
+                continue
+            i = int(np.argmax(np.abs(self.tau[:, j])))
+            load = abs(float(self.tau[i, j]))
+            if load > red.rated_torque:
+                unit = "N m" if jt.is_revolute else "N"
+                raise TolallocError(
+                    f"joint {jt.name}: the gravity load reaches {load:.4g} {unit} in {where} (payload "
+                    f"{self.payload[i]:g} kg), {load - red.rated_torque:.4g} {unit} ({100 * (load / red.rated_torque - 1):.0f} %) "
+                    f"above the rated torque {red.rated_torque:.4g} {unit} of its reducer ({red.source[:60] or red.type}); "
+                    f"choose a reducer rated for at least {load:.4g} {unit}, or lower the payload range")

@@ -1,0 +1,89 @@
+"""The robot file's ``[components]`` section (format: :mod:`tolalloc.robot.components`) into :class:`Components`.
+
+A joint's part is its figures (:mod:`tolalloc.robot.components_io`) or a slot of the component catalogue
+(:func:`tolalloc.robot.part_catalogue.parse_slot`), resolved against the built-in catalogue and the file's own.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tolalloc.robot.components import _LENGTH, _ROT_STIFF, Components, JointComponents, Mount, Payload
+from tolalloc.robot.components_io import (_positive, _text, read_bearing, read_encoder, read_motor, read_reducer,
+                                          read_section, read_table)
+from tolalloc.robot.part_catalogue import parse_slot, robot_catalogue
+
+__all__ = ["parse_components", "SLOT_KEYS"]
+
+#: Keys that make a joint's part table a catalogue slot (:mod:`tolalloc.robot.part_catalogue`).
+SLOT_KEYS = ("part", "family", "options")
+
+
+def _joint_parts(table: dict, where: str, revolute: bool, slots: dict, name: str, catalogue) -> JointComponents:
+    extra = [k for k in table if k not in ("reducer", "encoder", "bearing", "motor")]
+    if extra:
+        raise ValueError(f"{where}: unknown part {extra[0]!r}; expected reducer, encoder, bearing or motor")
+    parts = {}
+    for kind, fn in (("reducer", lambda t, w: read_reducer(t, w, revolute)), ("encoder", lambda t, w: read_encoder(t, w, revolute)),
+                     ("bearing", lambda t, w: read_bearing(t, w)), ("motor", lambda t, w: read_motor(t, w))):
+        t, w = table.get(kind), f"{where}.{kind}"
+        if t is None:
+            continue
+        if isinstance(t, dict) and any(k in t for k in SLOT_KEYS):
+            slots[(name, kind)] = parse_slot(t, w, kind, name, revolute, catalogue())
+            continue
+        parts[kind] = fn(t, w)
+    return JointComponents(**parts)
+
+
+def parse_components(data: dict | None, joint_kinds: dict, link_names, where: str = "components",
+                     base_dir=None) -> Components:
+    """:class:`Components` from a robot file's ``[components]`` table (None or empty: no component data).
+
+    ``joint_kinds``: ``{joint name: is revolute}`` of the chain; ``link_names``: the chain's link names; ``base_dir``:
+    where a ``catalogue_file`` is looked for (the robot file's folder). Slots are resolved against the built-in
+    component catalogue, the ``catalogue_file`` and the inline ``[components.catalogue]`` tables merged over it.
+    Raises ValueError naming the key (the robot-file loaders turn it into a TolallocError with the file's name).
+    """
+    if not data:
+        return Components()
+    if not isinstance(data, dict):
+        raise ValueError(f"{where}: expected a table, got {data!r}")
+    extra = [k for k in data if k not in ("source", "payload", "mount", "joints", "links", "catalogue",
+                                          "catalogue_file")]
+    if extra:
+        raise ValueError(f"{where}: unknown key {extra[0]!r}; expected source, payload, mount, joints, links, "
+                         "catalogue or catalogue_file")
+    joints, links, slots, cat = {}, {}, {}, []
+
+    def catalogue():
+        if not cat:
+            cat.append(robot_catalogue(data, where, base_dir))
+        return cat[0]
+
+    for name, table in (data.get("joints") or {}).items():
+        if name not in joint_kinds:
+            raise ValueError(f"{where}.joints.{name}: not a joint of the chain; joints: {', '.join(joint_kinds)}")
+        if not isinstance(table, dict):
+            raise ValueError(f"{where}.joints.{name}: expected a table of parts, got {table!r}")
+        joints[name] = _joint_parts(table, f"{where}.joints.{name}", joint_kinds[name], slots, name, catalogue)
+    for name, table in (data.get("links") or {}).items():
+        if name not in link_names:
+            raise ValueError(f"{where}.links.{name}: not a link of the chain; links: {', '.join(link_names)}")
+        links[name] = read_section(table, f"{where}.links.{name}")
+    mount = Mount()
+    if "mount" in data:
+        w = f"{where}.mount"
+        v = read_table(data["mount"], {"tilt_stiffness": (_ROT_STIFF, ((), (2,)))}, w, text=("source",))
+        k = v["tilt_stiffness"]
+        k = None if k is None else ((k, k) if isinstance(k, float) else tuple(k))
+        mount = Mount(_positive(k, "tilt_stiffness", w), _text(data["mount"], "source", w, ""))
+    payload = Payload()
+    if "payload" in data:
+        w = f"{where}.payload"
+        v = read_table(data["payload"], {"rated": ({"kg": 1.0}, ((),)), "com": (_LENGTH, ((3,),))}, w)
+        payload = Payload(_positive(v["rated"], "rated", w, True),
+                          np.zeros(3) if v["com"] is None else np.array(v["com"]))
+    if ("catalogue" in data or "catalogue_file" in data) and not cat:
+        catalogue()  # validate the file's catalogue even when no slot uses it
+    return Components(joints, links, mount, payload, _text(data, "source", where, "") or "", slots)
