@@ -80,5 +80,7 @@ def test_import_tolalloc_stays_cheap():
 def test_the_changelog_has_an_unreleased_section_in_the_agreed_shape():
     text = (ROOT / "CHANGELOG.md").read_text()
     unreleased = text.split("## [Unreleased]\n", 1)[1].split("\n## ", 1)[0]
-    assert re.findall(r"^### (\w+)$", unreleased, re.M) == ["Added", "Changed", "Fixed"]
+    headings = re.findall(r"^### (\w+)$", unreleased, re.M)
+    order = ["Added", "Changed", "Deprecated", "Removed", "Fixed", "Security"]  # Keep a Changelog's kinds, in order
+    assert headings and headings == sorted(set(headings), key=order.index), headings
     assert all(line.startswith(("- ", "  ", "### ")) for line in unreleased.strip().splitlines() if line), unreleased

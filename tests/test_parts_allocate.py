@@ -94,7 +94,8 @@ def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
 
 
 def test_calibration_aware_allocation_sees_the_parts(setup):
-    from tolalloc.allocate.calibrated import allocate_calibrated, post_ratio
+    from tolalloc.allocate.calibrated import allocate_calibrated
+    from tolalloc.allocate.calibrated.certified import post_ratio
     from tolalloc.calibration import make_plan, split_errors
 
     robot, model, points = setup[0], setup[1], setup[2]

@@ -40,8 +40,8 @@ def test_job_options_are_checked(tmp_path):
 
     with pytest.raises(tolalloc.TolallocError, match=r"parts: unknown option 'payload'; expected payload_kg, ambient_c"):
         tolalloc.allocate_tolerances("ur10", parts={"payload": 3})
-    with pytest.raises(tolalloc.TolallocError, match=r"parts: the design with bought parts has the position "
-                                                     r"requirement without a calibration plan"):
+    with pytest.raises(tolalloc.TolallocError, match=r"parts: the design with bought parts takes the position "
+                                                     r"requirement alone, without a calibration plan"):
         tolalloc.allocate_tolerances("ur10", parts=True, angle_radius_deg=0.1)
     bare = tmp_path / "bare.toml"
     bare.write_text(ARM.split("[components.payload]")[0])  # the arm without its [components] section

@@ -10,7 +10,8 @@ from tolalloc.physics import (base_moment, beam_sag, compliance_columns, flank, 
                               link_growth, motor_heat, mount_columns, transmission_error)
 from tolalloc.physics.loads import G
 from tolalloc.robot import Joint, Link, Robot
-from tolalloc.robot.components import Components, LinkSection, Reducer, parse_components
+from tolalloc.robot.components import Components, LinkSection, Reducer
+from tolalloc.robot.components_file import parse_components
 
 
 def test_catalogue_curve_and_its_columns():

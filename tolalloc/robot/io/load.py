@@ -58,7 +58,7 @@ def load_robot(robot: str | Path | Robot, tool: str | None = None) -> Robot:
     --------
     >>> import tolalloc
     >>> tolalloc.load_robot("ur10")
-    <Robot 'ur10': 6 joints (RRRRRR), 6 links, home tool point 1212 mm from the base; pose sets: working (6)>
+    <Robot 'ur10': 6 joints (RRRRRR), 6 links, home tool point 1212 mm from the base; pose sets: working (6); regions: work_cell>
     """
     import os
 
