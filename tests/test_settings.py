@@ -166,7 +166,8 @@ def test_old_keywords_are_refused_by_their_own_names():
 
 def test_every_job_takes_at_most_about_twelve_keywords():
     for job in (tolalloc.allocate_tolerances, tolalloc.analyze_errors, tolalloc.simulate_errors,
-                tolalloc.plan_calibration, tolalloc.diagnose_measurements):
+                tolalloc.plan_calibration, tolalloc.diagnose_measurements, tolalloc.allocate_acceptance,
+                tolalloc.review_drawing, tolalloc.fleet, tolalloc.compensate_program):
         params = inspect.signature(job).parameters
         keywords = [p for p in params if p not in ("robot", "train", "test", "tool", "trust_units")]
         assert len(keywords) <= 12, (job.__name__, keywords)

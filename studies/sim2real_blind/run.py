@@ -336,14 +336,15 @@ def write_report(df: pd.DataFrame, a) -> int:
              "answer is `inconclusive`); `beam` -- more UR10 beam-sag cases, the kind the issue found confused "
              "with compliance (the issue-15 physics).", "",
              f"**Diagnosis settings.** `diagnose(robot, train, test, folds={getattr(a, 'folds', 3)})` with the defaults: "
-             "Tukey M-estimates, the test file sealed until the model is chosen, blocked cross-validation (time "
-             "blocks and joint-space blocks, both scored), effect variants chosen on the training residual (BIC, "
-             "or the marginal likelihood for the transmission's fitted-prior series, whose prior scales every CV fold "
-             "refits on its own training poses), clipped gain and Wilcoxon "
-             "test, forward selection then backward elimination, then the verdict (`effect`, `none`, `ambiguous`: "
-             "another candidate in place of a selected effect is not beaten by the selection's own rule on the same "
-             "out-of-fold poses; `inconclusive`: weak probe offset, unstable out-of-fold registration, or a final "
-             "model worse than nominal on the test file).", "",
+             "robust loss `auto` (Tukey's biweight, Huber where the file has fewer than 10 poses per parameter), the test "
+             "file sealed until the model is chosen, blocked cross-validation (time blocks and joint-space blocks, both "
+             "scored), effect variants chosen on the training residual (BIC, or the marginal likelihood for the "
+             "transmission's fitted-prior series; a gear-ratio search where the robot file gives no ratio), clipped gain "
+             "and Wilcoxon test, forward selection then backward elimination, then the verdict by the size of the "
+             "evidence (`effect`; `ambiguous` only where at most two rival families come within the 5 % practical "
+             "margin of held-out RMS; `none`; `inconclusive`: too few poses for the model, weak probe offset, unstable "
+             "out-of-fold registration, a final model that does not hold out of fold or is worse than nominal on the "
+             "test file).", "",
              "**Reference** (truth-aware): the diagnosis's geometric calibration model plus the first-order columns "
              "of the true effect's own amplitudes from the generator's own physics (true lag, harmonic order, side "
              "rule and mass model known, amplitudes fitted free), fitted on the training poses, scored on the test "
