@@ -569,7 +569,7 @@ def test_a_save_whose_outputs_overlap_leaves_nothing(tmp_path):
 def _in_scratch(kwargs: dict, work: Path) -> dict:
     """Relative output paths of a save() call placed in the scratch folder ``work``."""
     return {k: work / v if isinstance(v, (str, Path)) and str(v) not in ("", "/", "a\x00b") and k in
-            ("out", "json", "path", "report", "predictions") else v for k, v in kwargs.items()}
+            ("directory", "out", "json", "path", "report", "predictions") else v for k, v in kwargs.items()}
 
 
 @settings(max_examples=examples(40, deep=2500), **SETTINGS)
