@@ -222,3 +222,23 @@ def plan_path(tmp_path_factory):
     path = tmp_path_factory.mktemp("plan") / "plan.csv"
     write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, path)
     return path
+
+
+# ---- no test writes into the checkout: new top-level entries after the run fail it (xdist: the controller checks) ----
+_CHECKOUT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+_MAY_APPEAR = {".pytest_cache", ".hypothesis", "build", "__pycache__", ".venv", "tolalloc.egg-info", "dist", ".coverage"}
+
+
+def pytest_sessionstart(session):
+    if not hasattr(session.config, "workerinput"):
+        session.config._entries_before = set(os.listdir(_CHECKOUT))
+
+
+def pytest_sessionfinish(session, exitstatus):
+    before = getattr(session.config, "_entries_before", None)
+    if before is None:
+        return
+    new = sorted(set(os.listdir(_CHECKOUT)) - before - _MAY_APPEAR)
+    if new:
+        print(f"\nerror: the tests wrote into the checkout {_CHECKOUT}: {', '.join(new)} (write into tmp_path)")
+        session.exitstatus = pytest.ExitCode.TESTS_FAILED
