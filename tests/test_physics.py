@@ -6,6 +6,7 @@ import pytest
 
 import tolalloc
 from tolalloc.errormodel import build_error_model
+from tolalloc.physics.thermal import PAUSE_STEPS, active_time
 from tolalloc.physics import (base_moment, beam_sag, compliance_columns, flank, gear_orders, joint_loads, lag_filter,
                               link_growth, motor_heat, mount_columns, transmission_error)
 from tolalloc.physics.loads import G
@@ -114,6 +115,30 @@ def test_motor_heat_holds_the_previous_pose_load_squared():
     h = motor_heat(t, q, load, 1e-9)  # a lag much faster than the poses: the inputs themselves
     np.testing.assert_allclose(h[:, 0], [0.0, 0.01, 0.0], atol=1e-12)  # speed over the interval before each pose
     np.testing.assert_allclose(h[:, 1], [0.0, 4.0, 9.0], atol=1e-12)  # the load held before it, squared
+
+
+def test_motor_heat_cools_during_a_pause():
+    """Poses every 60 s, then a 3600 s gap: the robot works for 5 median intervals (300 s) of it, then the links
+    cool for the remaining 3300 s (closed form of the first-order lag)."""
+    tau = 900.0
+    t = np.r_[np.arange(0.0, 1200.0, 60.0), 1140.0 + 3600.0]
+    q = np.zeros((len(t), 1))
+    load = np.ones((len(t), 1))  # the same load held throughout
+    h = motor_heat(t, q, load, tau)[:, 1]
+    np.testing.assert_allclose(h[:-1], 1 - np.exp(-t[:-1] / tau), atol=1e-12)
+    warm = 1 - np.exp(-(1140.0 + 300.0) / tau)  # heated 300 s into the gap, then cooled
+    np.testing.assert_allclose(h[-1], warm * np.exp(-3300.0 / tau), atol=1e-12)
+    assert active_time(t)[-1] == PAUSE_STEPS * 60.0 and np.all(active_time(t)[1:-1] == 60.0)
+
+
+def test_motor_heat_speed_is_the_move_over_the_working_time():
+    t = np.r_[np.arange(0.0, 660.0, 60.0), 600.0 + 3600.0]  # poses every 60 s, then a pause
+    q = 0.6 * np.arange(len(t), dtype=float)[:, None]  # 0.6 rad before every pose
+    fast = motor_heat(t, q, np.zeros((len(t), 1)), 1e-9)[:, 0]  # a lag much faster than the poses: the inputs
+    np.testing.assert_allclose(fast[1:-1], 0.01, atol=1e-12)  # 0.6 rad in 60 s
+    assert fast[-1] == 0.0  # the move before the last pose heated, then the pause cooled the links down again
+    slow = motor_heat(t, q, np.zeros((len(t), 1)), 1e12)[:, 0]  # no cooling: the heat is speed x working time
+    np.testing.assert_allclose(slow[-1] / slow[-2], 1.0 + 0.6 / 300.0 * 300.0 / (0.01 * 600.0), rtol=1e-6)
 
 
 def test_link_growth_agrees_with_the_error_models_link_length_jacobian():

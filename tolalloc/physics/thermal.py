@@ -17,7 +17,8 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   and the copper losses of the torque it holds (``I^2 R``, with the current proportional to the gravity load: the
   load squared, held over the interval before each pose), each through the first-order lag of heating and cooling
   (time constant ``tau``); the heat of joint ``j`` warms the links at its two ends, which grow along themselves --
-  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. A pause (no motion, little load) cools them.
+  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`PAUSE_STEPS`
+  median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
 
 Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
 session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
@@ -34,7 +35,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import gravity_torques
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
-           "link_joint_matrix", "activity", "lag_filter", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
+           "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
            "motor_rise", "link_temperature"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
@@ -42,6 +43,8 @@ LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240
 MAX_SPAN_S = 2 * 86400.0
 #: A median step between consecutive poses above this [s] (10 min) is taken for another unit (ms).
 MAX_STEP_S = 600.0
+#: An interval longer than this many median intervals between poses holds a pause (the motors idle, the links cool).
+PAUSE_STEPS = 5.0
 
 
 def time_problem(time_s) -> str | None:
@@ -78,18 +81,33 @@ def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
     return out
 
 
-def lag_filter(time_s: np.ndarray, inputs: np.ndarray, tau_s: float) -> np.ndarray:
+def lag_filter(time_s: np.ndarray, inputs: np.ndarray, tau_s: float, on_s: np.ndarray | None = None) -> np.ndarray:
     """First-order lag (heating and cooling) of interval inputs, shape (P, m): ``inputs[i]`` (P, m) acts over the
-    interval before pose ``i`` (time order; the first pose's is ignored), the state starts at 0 (a cold robot)."""
+    interval before pose ``i`` (time order; the first pose's is ignored), the state starts at 0 (a cold robot).
+    ``on_s`` (P,) [s]: how long of each interval the input acts (in time order, the rest of the interval cools; default
+    the whole interval)."""
     order = np.argsort(time_s, kind="stable")
     ts, u = time_s[order], np.asarray(inputs, float)[order]
-    a = 1.0 - np.exp(-np.diff(ts) / tau_s)
+    dt = np.diff(ts)
+    on = dt if on_s is None else np.minimum(np.asarray(on_s, float)[order][1:], dt)
+    a, cool = 1.0 - np.exp(-on / tau_s), np.exp(-(dt - on) / tau_s)
     y = np.zeros_like(u)
     for i in range(1, len(ts)):
-        y[i] = y[i - 1] + a[i - 1] * (u[i] - y[i - 1])
+        y[i] = (y[i - 1] + a[i - 1] * (u[i] - y[i - 1])) * cool[i - 1]
     out = np.empty_like(y)
     out[order] = y
     return out
+
+
+def active_time(time_s: np.ndarray) -> np.ndarray:
+    """How long the robot works in the interval before each pose [s], shape (P,): the interval, at most
+    :data:`PAUSE_STEPS` median intervals -- a longer gap is a pause (motors idle, the links cool) after that."""
+    order = np.argsort(time_s, kind="stable")
+    dt = np.diff(time_s[order])
+    med = float(np.median(dt[dt > 0])) if np.any(dt > 0) else 0.0
+    on = np.zeros(len(time_s))
+    on[order[1:]] = np.minimum(dt, PAUSE_STEPS * med)
+    return on
 
 
 def _speed(time_s: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -110,13 +128,17 @@ def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
 
 
 def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float) -> np.ndarray:
-    """Lagged motor losses per joint, shape (P, 2n): the speed (friction losses) and the squared load held over the
-    interval before each pose (copper losses; the load of the previous pose in time order), each through the
-    first-order lag of time constant ``tau_s`` (heating while the inputs last, cooling after)."""
+    """Lagged motor losses per joint, shape (P, 2n): the speed of the move (friction losses) and the squared load
+    held over the interval before each pose (copper losses; the load of the previous pose in time order), each
+    acting while the robot works (:func:`active_time`: a long gap is a pause that cools) through the first-order lag
+    of time constant ``tau_s``."""
     order = np.argsort(time_s, kind="stable")
+    on = active_time(time_s)
     held = np.zeros_like(load, dtype=float)
     held[order[1:]] = np.asarray(load, float)[order[:-1]] ** 2
-    return lag_filter(time_s, np.concatenate([_speed(time_s, q), held], axis=1), tau_s)
+    speed = _speed(time_s, q) * np.diff(np.sort(time_s), prepend=np.min(time_s))[np.argsort(order)][:, None]
+    speed = speed / np.maximum(on, 1e-9)[:, None]  # the move's distance over the time the robot works
+    return lag_filter(time_s, np.concatenate([speed, held], axis=1), tau_s, on_s=on)
 
 
 def thermal_variants(meas) -> tuple:
