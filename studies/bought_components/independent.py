@@ -8,7 +8,8 @@ spreads of stiffness 10 %, thermal growth 10 %, bending 10 %, mount 20 %; lost m
 computes itself: forward kinematics from the standard DH matrices, the gravity loads by virtual work (central
 differences of the masses' potential energy), the catalogue's three-band torque-torsion curve, the sums of sines,
 the bearings' rotating eccentricities as rigid displacements after the joint's rotation, the links' thermal growth
-as longer DH lengths, cantilever bending of the two arm tubes and the mount's tilt. It draws its own random numbers
+as longer DH lengths, bending, torsion and shear of the two arm tubes by quadrature along them, and the
+mount's tilt. It draws its own random numbers
 and estimates P(|dP| < r) by plain Monte Carlo with a Wilson interval.
 """
 
@@ -206,27 +207,38 @@ class UR10Sim:
         base = ambient_c - self.cond.reference_c
         return np.column_stack([base + (rise[:, 1] + rise[:, 2]) / 2, base + (rise[:, 2] + rise[:, 3]) / 2])
 
-    def bending(self, q, payload_kg) -> np.ndarray:
-        """Tip displacement (N, 3) [mm] of the two tubes bending under their own and the distal weight."""
-        pts, _, T = self.mass_points(q)
+    def bending(self, q, payload_kg, nodes: int = 2000) -> np.ndarray:
+        """Tip displacement (N, 3) [mm] of the two arm tubes as cantilevers from their proximal joint: every mass the
+        tube carries (on the tube, beyond its section, or distal in the chain) and the payload as a point load where
+        it sits; each section bends (1/EI) and twists (1/GJ, J = 2 I of a round tube) under the moment of the loads it
+        carries, and shears (1/kGA) under their force across it; the distal arm turns rigidly with the section. By
+        numerical quadrature along the tube (midpoint rule on ``nodes`` sections)."""
+        pts, pay, T = self.mass_points(q)
         tip = T[6][:, :3, 3]
-        g = np.array([0.0, 0.0, -1.0])
         out = np.zeros_like(tip)
+        down = np.array([0.0, 0.0, -G])
         for (j, k, link) in ((1, 2, "a2"), (2, 3, "a3")):
             start, end = T[j][:, :3, 3], T[k][:, :3, 3]
-            L = end - start
-            Lh = L - (L @ g)[:, None] * g
-            h, Ln = np.linalg.norm(Lh, axis=1), np.linalg.norm(L, axis=1)
-            u = Lh / np.maximum(h, 1e-9)[:, None]
-            own = sum(kg for b, kg, _ in self.masses if j < b <= k)
-            distal = sum(kg for b, kg, _ in self.masses if b > k) + payload_kg
+            Ln = np.linalg.norm(end - start, axis=1)
+            e = (end - start) / np.maximum(Ln, 1e-9)[:, None]
             I, A = self.sections[link]
-            EI, GA = ALUMINIUM["E"] * I, SHEAR_FACTOR_TUBE * ALUMINIUM["G"] * A
-            w, F, c = own * G / Ln, distal * G, h / Ln
-            drop = ((w * Ln ** 4 / 8 + F * Ln ** 3 / 3) / EI + (w * Ln ** 2 / 2 + F * Ln) / GA) * c
-            slope = (w * Ln ** 3 / 6 + F * Ln ** 2 / 2) / EI * c
-            axis = np.cross(u, g)
-            out += drop[:, None] * g + slope[:, None] * np.cross(axis, tip - end)
+            EI, GJ, GA = ALUMINIUM["E"] * I, ALUMINIUM["G"] * 2 * I, SHEAR_FACTOR_TUBE * ALUMINIUM["G"] * A
+            loads = [(kg, p, b == k) for (b, kg, _), (_, p) in zip(self.masses, pts) if b >= k]
+            loads.append((payload_kg, pay, False))
+            for i in range(len(tip)):
+                s = (np.arange(nodes) + 0.5) / nodes * Ln[i]
+                x = start[i] + s[:, None] * e[i]  # (nodes, 3) section centres
+                M, F = np.zeros((nodes, 3)), np.zeros((nodes, 3))
+                for kg, p, on_tube in loads:
+                    f = kg * down
+                    carried = ((p[i] - start[i]) @ e[i] > s) if on_tube else np.ones(nodes, bool)
+                    M += carried[:, None] * np.cross(p[i] - x, f)
+                    F += carried[:, None] * f
+                axial = M @ e[i]
+                kappa = (M - axial[:, None] * e[i]) / EI + axial[:, None] * e[i] / GJ  # (nodes, 3) [1/mm]
+                F_perp = F - (F @ e[i])[:, None] * e[i]
+                ds = Ln[i] / nodes
+                out[i] += (np.cross(kappa, tip[i] - x).sum(axis=0) + F_perp.sum(axis=0) / GA) * ds
         return out
 
     def tilt(self, q, payload_kg) -> np.ndarray:

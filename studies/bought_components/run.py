@@ -53,7 +53,7 @@ OUT = HERE.parents[1] / "reports" / "bought_components"
 PROB, SEED = 0.95, 42
 #: The controller's models: stiffness given the payload, temperature (link growth), bending, mount; 10 % left.
 MODELS = {"compliance": 0.1, "thermal": 0.1, "beam": 0.1, "mount": 0.1}
-UR10 = dict(radius_mm=0.6, conditions=Conditions((0.0, 10.0), (15.0, 30.0), 20.0, 0.5), after="compensation",
+UR10 = dict(radius_mm=0.75, conditions=Conditions((0.0, 10.0), (15.0, 30.0), 20.0, 0.5), after="compensation",
             residual=MODELS)
 TOOL_CHANGER = dict(radius_mm=2.0, conditions=Conditions((0.0, 20.0), (5.0, 35.0), 20.0, 0.5),
                     after="compensation", residual=MODELS)
@@ -136,7 +136,7 @@ def sweep_conditions(quick: bool) -> pd.DataFrame:
 def sweep_precision(quick: bool) -> pd.DataFrame:
     rows = []
     cases = [("compensation", r) for r in ((1.0,) if quick else (1.0, 1.1, 1.2, 1.5))]
-    cases += [("none", r) for r in ((4.5,) if quick else (4.0, 4.5, 5.0))]
+    cases += [("none", r) for r in ((6.0,) if quick else (5.0, 6.0, 7.0))]
     for after, radius in cases:
         kw = dict(UR10, radius_mm=radius, after=after)
         try:
@@ -212,7 +212,7 @@ def main(quick: bool = False) -> None:
 
     write_report(OUT, quick, dict(ur=ur, s_ur=s_ur, ver=ver, ver_std=ver_std, ind=ind, ind_mean=ind_mean, tc=tc,
                                   s_tc=s_tc, ver_tc=ver_tc, tc_quick=tc_quick, cond=cond, prec=prec, comp=comp, files=files,
-                                  time_s=time.perf_counter() - t_start, n_mc=n_mc))
+                                  time_s=time.perf_counter() - t_start, n_mc=n_mc, ur_radius_mm=UR10["radius_mm"]))
 
 
 if __name__ == "__main__":

@@ -43,6 +43,14 @@ def fitted_compliance(robot, session: str) -> np.ndarray:
     return c
 
 
+def fitted_variant(session: str) -> str:
+    """The joint-compliance variant the diagnosis chose on the session's random split (``masses``: linear)."""
+    summ = pd.read_csv(ROOT / "reports" / "sim2real_ur10" / "summary.csv").set_index("run")
+    variants = str(summ.loc[f"random_{session}", "variants"])
+    return next((v.split(":", 1)[1].strip() for v in variants.split(";") if v.strip().startswith("joint_compliance")),
+                "none")
+
+
 def compare(choice: dict, every: int = 4) -> pd.DataFrame:
     """One row per session: RMS wind-up displacement measured and predicted, all poses and loaded poses [mm]."""
     robot = tolalloc.load_robot("ur10")
@@ -50,6 +58,10 @@ def compare(choice: dict, every: int = 4) -> pd.DataFrame:
                 for jt in robot.joints]
     rows = []
     for s, f in SESSIONS.items():
+        variant = fitted_variant(s)
+        if variant != "masses":  # a hardening fit's linear term alone is not its wind-up: no figure to compare with
+            rows.append({"session": s, "fitted_variant": variant})
+            continue
         df = read_ipa_ur10(DATA / f)
         q = robot.q_from_interface(df[[f"q{j + 1}" for j in range(6)]].to_numpy()[::every])
         tau = gravity_torques(robot, q)
@@ -68,7 +80,7 @@ def compare(choice: dict, every: int = 4) -> pd.DataFrame:
         def rms(x):
             return float(np.sqrt(np.mean(x ** 2)))
 
-        rows.append({"session": s, "poses": len(q), "loaded_poses": int(loaded.sum()),
+        rows.append({"session": s, "fitted_variant": variant, "poses": len(q), "loaded_poses": int(loaded.sum()),
                      "measured_rms_mm": rms(measured), "predicted_rms_mm": rms(predicted),
                      "ratio": rms(predicted) / rms(measured),
                      "measured_loaded_rms_mm": rms(measured[loaded]), "predicted_loaded_rms_mm": rms(predicted[loaded]),

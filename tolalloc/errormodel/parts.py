@@ -352,7 +352,7 @@ class PartEffects:
                 out += self._term(f"thermal_{lk.name}", "thermal", -1, self.J[:, :, self.pm.link[k]], grow,
                                   THERMAL_SD * np.abs(grow))
         if r.components.links:
-            sag = beam_sag(r, self.q, self.tool, self.payload)
+            sag = beam_sag(r, self.q, self.tool, self.payload, self.payload_point)
             out += self._term("beam", "beam", -1, sag, 1.0, BEAM_SD)
         if r.components.mount.tilt_stiffness is not None:
             tilt = mount_tilt(r, self.q, self.tool, self.payload_point, self.payload)

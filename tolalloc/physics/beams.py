@@ -69,20 +69,24 @@ def segment_geometry(robot: Robot, q, j: int, k: int | None):
 
 def _load_integrals(start, e, L, loads, p) -> dict:
     """End-displacement integrals of a cantilever segment (start (P, 3) [mm], unit axis ``e`` (P, 3), length ``L``
-    (P,) [mm]) under point forces ``loads = [(F (P, 3) [N], at (P, 3) [mm])]``, at the points ``p`` (P, 3) beyond it.
+    (P,) [mm]) under point forces ``loads = [(F (P, 3) [N], at (P, 3) [mm], through_end)]``, at the points ``p``
+    (P, 3) beyond it.
 
-    The internal moment at station ``s`` is ``M(s) = sum (c - x(s)) x F`` over the loads whose projection ``a`` lies
-    beyond ``s`` (``x(s) = start + s e``); the section turns by ``C M(s) ds`` with the compliance
+    The internal moment at station ``s`` is ``M(s) = sum (c - x(s)) x F`` over the loads the section carries
+    (``x(s) = start + s e``): a load on the segment up to its projection ``a`` on the axis, a load attached beyond
+    the segment's end (``through_end``: a later body, the payload) over the whole length, wherever it hangs (a folded
+    arm's distal masses may project back over the segment). The section turns by ``C M(s) ds`` with the compliance
     ``C = b (I - e e^T) + t e e^T`` (bending ``b = 1/EI``, torsion ``t = 1/GJ``), which moves ``p`` by
     ``C M(s) ds x (p - x(s))``; shear moves everything beyond ``s`` by ``F_perp ds / kGA``. Integrated in closed form
     (``M`` linear in ``s``): ``{"bend": (P, 3) [N mm^3], "twist": ..., "shear": (P, 3) [N mm]}`` per unit
-    ``b``, ``t`` and ``1/kGA``."""
+    ``b``, ``t`` and ``1/kGA``; a pair ``(F, at)`` is a load on the segment."""
     out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
     p0 = p - start
     along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
-    for F, c in loads:
+    for load in loads:
+        F, c = load[0], load[1]
         r = c - start
-        a = np.clip(np.einsum("pi,pi->p", r, e), 0.0, L)[:, None]
+        a = (L if len(load) > 2 and load[2] else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
         m0, m1 = np.cross(r, F), np.cross(e, F)
         for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
             c0, c1 = C(m0), C(m1)
@@ -92,13 +96,18 @@ def _load_integrals(start, e, L, loads, p) -> dict:
     return out
 
 
-def segment_loads(robot: Robot, masses, j: int, p_t, kg_at_target=None) -> list:
-    """Gravity point loads ``[(F (P, 3) [N], at (P, 3) [mm])]`` a segment from joint ``j`` carries: every mass after
-    joint ``j`` and ``kg_at_target`` (P,) at the target points ``p_t``."""
+def segment_loads(robot: Robot, masses, j: int, p_t, kg_at_target=None, k: int | None = None,
+                  payload_at=None) -> list:
+    """Gravity point loads ``[(F (P, 3) [N], at (P, 3) [mm], through_end)]`` the segment from joint ``j`` to joint
+    ``k`` (None: to the flange) carries: every mass after joint ``j`` (``through_end`` for those after joint ``k``)
+    and ``kg_at_target`` (P,) at ``payload_at`` (P, 3) (default the target points ``p_t``), carried through the
+    end."""
     g = G * np.asarray(robot.gravity, dtype=float)
-    loads = [(np.broadcast_to(m.mass_kg * g, c.shape), c) for m, c in masses if m.body > j]
+    loads = [(np.broadcast_to(m.mass_kg * g, c.shape), c, k is not None and m.body > k)
+             for m, c in masses if m.body > j]
     if kg_at_target is not None:
-        loads.append((np.asarray(kg_at_target, float).reshape(-1, 1) * g, p_t))
+        loads.append((np.asarray(kg_at_target, float).reshape(-1, 1) * g, p_t if payload_at is None else payload_at,
+                      True))
     return loads
 
 
@@ -133,12 +142,12 @@ def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) ->
             continue
         start = point_at(Pm[:, j], robot.joint_points_mm[j])
         e = (end - start) / np.maximum(L, 1e-9)[:, None]
-        I = _load_integrals(start, e, L, segment_loads(robot, masses, j, p_t, payload_kg), p_t)
+        I = _load_integrals(start, e, L, segment_loads(robot, masses, j, p_t, payload_kg, k), p_t)
         terms = [("e", I["bend"]), ("r", I["twist"])]
         if variant == "beam+w":
             terms.append(("w", _load_integrals(start, e, L, _weight_loads(robot, start, e, L), p_t)["bend"]))
         if variant == "beam+tip":
-            tip = [(G * np.broadcast_to(g, p_t.shape), p_t)]
+            tip = [(G * np.broadcast_to(g, p_t.shape), p_t, True)]
             terms.append(("t", _load_integrals(start, e, L, tip, p_t)["bend"]))
         for lab, B in terms:
             cols.append(1e-12 * B)  # [N mm^3] x 1/(MN m^2) = 1e-12 / (N mm^2)
@@ -190,12 +199,12 @@ def segment_section(robot: Robot, j: int, k: int | None):
     return best
 
 
-def beam_sag(robot: Robot, q, p_t, payload_kg=None) -> np.ndarray:
+def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None) -> np.ndarray:
     """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``), torsion
     (``GJ``, ``J = 2 I``: exact for round tubes and bars, an approximation for a box) and shear (``kGA``) under every
-    mass the segment carries as a point load where it sits and the payload at the target (:func:`_load_integrals`),
-    plus the section's own weight where the robot file puts no mass on the segment. Segments without a section do not
-    bend here."""
+    mass the segment carries as a point load where it sits and the payload at ``payload_at`` (P, 3) (default the
+    target ``p_t``; :func:`_load_integrals`), plus the section's own weight where the robot file puts no mass on the
+    segment. Segments without a section do not bend here."""
     masses = mass_points(robot, q)
     Pm = poe_prefix(robot.screws, q)
     out = np.zeros((len(q), 3))
@@ -206,7 +215,7 @@ def beam_sag(robot: Robot, q, p_t, payload_kg=None) -> np.ndarray:
         end, _, _, L = segment_geometry(robot, q, j, k)
         start = point_at(Pm[:, j], robot.joint_points_mm[j])
         e = (end - start) / np.maximum(L, 1e-9)[:, None]
-        loads = segment_loads(robot, masses, j, p_t, payload_kg)
+        loads = segment_loads(robot, masses, j, p_t, payload_kg, k, payload_at)
         if not any(m.body > j and (k is None or m.body <= k) for m, _ in masses):
             per_kg_m = sec.area_mm2 * sec.density_kg_per_mm3 * 1e3  # [kg/m]
             loads += [(F * per_kg_m, c) for F, c in _weight_loads(robot, start, e, L)]
