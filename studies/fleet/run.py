@@ -299,8 +299,8 @@ def main(argv=None) -> int:
         return 0
     n, reps = (10, 1) if args.quick else (args.robots, args.replications)
     OUT.mkdir(parents=True, exist_ok=True)
-    allocation = tolalloc.allocate_tolerances("ur10", radius_mm=RADIUS_MM, prob=0.95, solver="certified",
-                                              verify=False, snap=False, progress=False)
+    allocation = tolalloc.allocate_tolerances("ur10", radius_mm=RADIUS_MM, prob=0.95, verification=False,
+                                              solver=tolalloc.Solver(method="certified", snap=False), progress=False)
     sim = simulated(n, args.workers, allocation)
     sim["table"].to_csv(OUT / "sim_fleet.csv", index=False, float_format="%.6g")
     ax = sim["res"].plot_spread()
