@@ -139,6 +139,7 @@ def _comparison(comp, ur) -> list:
         md(comp), "",
         f"Predicted / measured: {lo:.2f} to {hi:.2f} over session(s) {', '.join(used['session'])}, all poses and "
         "loaded poses: " + ("within a factor of 2." if within else "NOT within a factor of 2.")
-        + "".join(f" Session {r.session} is left out: its diagnosis fitted the `{r.fitted_variant}` law, whose "
-                  "linear term alone is not the wind-up." for r in skipped.itertuples()),
+        + "".join(f" Session {r.session} is left out: " + ("its diagnosis selected no joint compliance (another "
+                  "gravity family took the sag)." if r.fitted_variant == "none" else f"its diagnosis fitted the "
+                  f"`{r.fitted_variant}` law, whose linear term alone is not the wind-up.") for r in skipped.itertuples()),
         ""]
