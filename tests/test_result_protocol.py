@@ -25,7 +25,8 @@ import tolalloc  # noqa: E402
 from tolalloc.outputs import MANIFEST  # noqa: E402
 
 CLASSES = ["ToleranceAllocation", "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
-           "CalibrationPlanDesign", "MeasurementDiagnosis", "AcceptanceAllocation", "DrawingReview"]
+           "CalibrationPlanDesign", "MeasurementDiagnosis", "AcceptanceAllocation", "DrawingReview",
+           "PartsToleranceAllocation"]
 
 
 @pytest.fixture(scope="module")
@@ -51,8 +52,18 @@ def results(plan_path, tmp_path_factory):
     drawing = tmp_path_factory.mktemp("drawing")
     out["ToleranceAllocation"].save(drawing)
     out["DrawingReview"] = tolalloc.review_drawing("tool_changer", drawing / "drawing.csv", region="nominal")
+    out["PartsToleranceAllocation"] = _parts(tmp_path_factory.mktemp("arm"))
     assert sorted(out) == sorted(CLASSES) and all(type(v).__name__ == k for k, v in out.items())
     return out
+
+
+def _parts(folder):
+    """The small arm of the bought-parts tests with its catalogue slots, over its box, 0-1 kg and 15-30 degC."""
+    from parts_robot import arm
+
+    return tolalloc.allocate_tolerances(arm(folder), radius_mm=0.5, region="work", n_mc=500,
+                                        parts={"payload_kg": (0.0, 1.0), "ambient_c": (15.0, 30.0),
+                                               "after": "compensation"})
 
 
 def _acceptance():

@@ -37,7 +37,8 @@ if TYPE_CHECKING:  # what the names below resolve to, for type checkers and IDEs
     from tolalloc.workflows import (CalibratedToleranceAllocation, CalibrationPlanDesign, CompensationResult, Costs,
                                     DrawingReview, ErrorAnalysis, ErrorModelOptions, ErrorSimulation, FitOptions,
                                     FleetAnalysis, Measurement, MeasurementDiagnosis, MonteCarlo,
-                                    OrientationRequirement, PositionRequirement, Refit, Region, Requirement, Solver,
+                                    OrientationRequirement, PartsToleranceAllocation, PositionRequirement, Refit, Region,
+                                    Requirement, Solver,
                                     ToleranceAllocation, Verification, allocate_tolerances, analyze_errors,
                                     compensate_program, diagnose_measurements, fleet, plan_calibration, review_drawing,
                                     simulate_errors)
@@ -48,7 +49,8 @@ if TYPE_CHECKING:  # what the names below resolve to, for type checkers and IDEs
 _HOME = {
     **{name: "tolalloc.workflows" for name in ("allocate_tolerances", "analyze_errors", "simulate_errors",
                                                "plan_calibration", "diagnose_measurements", "ToleranceAllocation",
-                                               "CalibratedToleranceAllocation", "ErrorAnalysis", "ErrorSimulation",
+                                               "CalibratedToleranceAllocation", "PartsToleranceAllocation", "ErrorAnalysis",
+                                               "ErrorSimulation",
                                                "CalibrationPlanDesign", "MeasurementDiagnosis", "review_drawing",
                                                "DrawingReview", "fleet", "FleetAnalysis", "compensate_program",
                                                "CompensationResult", "Requirement",

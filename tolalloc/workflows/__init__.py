@@ -5,6 +5,7 @@ job                        function                                    result
 =========================  ==========================================  ==============================
 tolerance allocation       :func:`allocate_tolerances`                 :class:`ToleranceAllocation`
                            (``calibration=PLAN``)                      :class:`CalibratedToleranceAllocation`
+                           (``parts=True``: with bought parts)         :class:`PartsToleranceAllocation`
 linear analysis            :func:`analyze_errors`                      :class:`ErrorAnalysis`
 nonlinear Monte Carlo      :func:`simulate_errors`                     :class:`ErrorSimulation`
 calibration plan           :func:`plan_calibration`                    :class:`CalibrationPlanDesign`
@@ -31,6 +32,7 @@ from tolalloc.workflows.allocation_settings import Region, Solver, Verification
 from tolalloc.workflows.diagnosis_settings import FitOptions, Refit
 from tolalloc.workflows.allocation import allocate_tolerances
 from tolalloc.workflows.allocation_result import ToleranceAllocation
+from tolalloc.workflows.parts import PartsToleranceAllocation
 from tolalloc.workflows.analysis import ErrorAnalysis, analyze_errors
 from tolalloc.workflows.calibrated import CalibratedToleranceAllocation
 from tolalloc.workflows.calplan import CalibrationPlanDesign, plan_calibration
@@ -40,7 +42,8 @@ from tolalloc.workflows.fleet import FleetAnalysis, fleet
 from tolalloc.workflows.model_use import CompensationResult, compensate_program
 from tolalloc.workflows.simulation import ErrorSimulation, simulate_errors
 
-__all__ = ["allocate_tolerances", "ToleranceAllocation", "CalibratedToleranceAllocation", "analyze_errors",
+__all__ = ["allocate_tolerances", "ToleranceAllocation", "CalibratedToleranceAllocation", "PartsToleranceAllocation",
+           "analyze_errors",
            "ErrorAnalysis", "simulate_errors", "ErrorSimulation", "plan_calibration", "CalibrationPlanDesign",
            "diagnose_measurements", "MeasurementDiagnosis", "review_drawing", "DrawingReview", "fleet", "FleetAnalysis",
            "compensate_program", "CompensationResult", "Requirement", "PositionRequirement",

@@ -71,8 +71,8 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
         Design with the bought parts too: the robot file's catalogue slots are chosen with the machining standard
         values over the region, a payload and an ambient range (:func:`tolalloc.verify.parts.verified_parts`: True,
         or its options ``payload_kg``, ``ambient_c``, ``duty``, ``after`` ...); returns a
-        :class:`~tolalloc.allocate.parts_result.PartsAllocation` (its ``verification``: the nonlinear Monte Carlo at
-        the worst point, ``n_mc`` draws). Default: the machining tolerances alone.
+        :class:`~tolalloc.workflows.parts.PartsToleranceAllocation` (its ``verification``: the nonlinear Monte Carlo
+        at the worst point, ``n_mc`` draws). Default: the machining tolerances alone.
 
     Returns
     -------
@@ -106,7 +106,7 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
     run = dict(snap=sol.snap, angle_step_deg=sol.angle_step_deg, verify=ver.monte_carlo, n_mc=ver.n_mc, seed=ver.seed,
                estimator=ver.estimator, coverage_n=s.region.coverage_n, inputs_record=inputs_record)
     if parts:
-        return _allocate_parts(model, box, q, parts, s, cost_set)
+        return _allocate_parts(model, label, box, q, parts, s, cost_set, inputs_record)
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
         if s.calibration is not None:
             bar.stage("calibration-aware allocation")
@@ -116,16 +116,19 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
                          correction_rounds=s.correction_rounds, scheduler=ver.scheduler, bar=bar, **run)
 
 
-def _allocate_parts(model, box, q, parts, s, cost_set):
+def _allocate_parts(model, label, box, q, parts, s, cost_set, inputs_record):
     """The joint allocation with the robot file's catalogue parts (:func:`tolalloc.verify.parts.verified_parts`)."""
     if s.calibration is not None or len(s.requirements) > 1:
         raise ArgumentError("parts", "the design with bought parts takes the position requirement alone, without a "
                             "calibration plan; drop `calibration` / the orientation requirement, or `parts`")
     from tolalloc.verify.parts import verified_parts
 
+    from tolalloc.workflows.parts import PartsToleranceAllocation
+
     req, ver = s.position, s.verification
-    return verified_parts(model, box, q, parts, radius_mm=float(req.radius_mm), prob=float(req.prob), costs=cost_set,
-                          verify=ver.monte_carlo, n_mc=ver.n_mc or 20000, seed=ver.seed)
+    res = verified_parts(model, box, q, parts, radius_mm=float(req.radius_mm), prob=float(req.prob), costs=cost_set,
+                         verify=ver.monte_carlo, n_mc=ver.n_mc or 20000, seed=ver.seed)
+    return PartsToleranceAllocation(res, float(req.radius_mm), float(req.prob), label, inputs_record)
 
 
 def _allocate(model, label, box, q, kw, *, solver, snap, angle_step_deg, verify, n_mc, seed, estimator, correction,

@@ -62,3 +62,15 @@ def plot_feature_shares(frame, *, top: int = 12, ax=None):
     ax.set_xlabel("share of the variance at the worst pose [%]")
     ax.tick_params(axis="y", labelsize=7)
     return ax
+
+
+def plot_source_shares(frame, *, top: int = 12, ax=None):
+    """Horizontal bars of each source's share of the tool-error variance at the worst point, largest first
+    (``frame``: :meth:`~tolalloc.allocate.parts_result.PartsAllocation.variance_shares`). Returns the axes."""
+    rows = frame.sort_values("share_pct").tail(top)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 0.3 * len(rows) + 1.2))
+    ax.barh([f"{s} ({w})" for s, w in zip(rows["source"], rows["what"])], rows["share_pct"], color="C0")
+    ax.set_xlabel("share of the variance at the worst point [%]")
+    ax.tick_params(axis="y", labelsize=7)
+    return ax
