@@ -79,14 +79,13 @@ def _load_integrals(start, e, L, loads, p) -> dict:
     ``C = b (I - e e^T) + t e e^T`` (bending ``b = 1/EI``, torsion ``t = 1/GJ``), which moves ``p`` by
     ``C M(s) ds x (p - x(s))``; shear moves everything beyond ``s`` by ``F_perp ds / kGA``. Integrated in closed form
     (``M`` linear in ``s``): ``{"bend": (P, 3) [N mm^3], "twist": ..., "shear": (P, 3) [N mm]}`` per unit
-    ``b``, ``t`` and ``1/kGA``; a pair ``(F, at)`` is a load on the segment."""
+    ``b``, ``t`` and ``1/kGA``."""
     out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
     p0 = p - start
     along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
-    for load in loads:
-        F, c = load[0], load[1]
+    for F, c, through_end in loads:
         r = c - start
-        a = (L if len(load) > 2 and load[2] else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
+        a = (L if through_end else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
         m0, m1 = np.cross(r, F), np.cross(e, F)
         for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
             c0, c1 = C(m0), C(m1)
@@ -113,11 +112,12 @@ def segment_loads(robot: Robot, masses, j: int, p_t, kg_at_target=None, k: int |
 
 def _weight_loads(robot: Robot, start, e, L) -> list:
     """A distributed weight of 1 kg/m along the segment as point loads at Gauss-Legendre nodes: the end displacement
-    of a load at distance ``a`` is a cubic in ``a``, so the 2-node rule integrates it exactly."""
+    of a load at distance ``a`` is a cubic in ``a``, so the 2-node rule integrates it exactly (loads on the segment,
+    as :func:`_load_integrals` takes them)."""
     g = G * np.asarray(robot.gravity, dtype=float)
     x, w = np.polynomial.legendre.leggauss(2)
     return [(np.broadcast_to(g, start.shape) * (L * wi / 2 / 1000.0)[:, None],
-             start + e * (L * (1 + xi) / 2)[:, None]) for xi, wi in zip(x, w)]
+             start + e * (L * (1 + xi) / 2)[:, None], False) for xi, wi in zip(x, w)]
 
 
 def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) -> tuple:
@@ -218,7 +218,7 @@ def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None) -> np.ndarr
         loads = segment_loads(robot, masses, j, p_t, payload_kg, k, payload_at)
         if not any(m.body > j and (k is None or m.body <= k) for m, _ in masses):
             per_kg_m = sec.area_mm2 * sec.density_kg_per_mm3 * 1e3  # [kg/m]
-            loads += [(F * per_kg_m, c) for F, c in _weight_loads(robot, start, e, L)]
+            loads += [(F * per_kg_m, c, on) for F, c, on in _weight_loads(robot, start, e, L)]
         I = _load_integrals(start, e, L, loads, p_t)
         out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / (sec.shear_modulus_MPa * 2 * sec.inertia_mm4)
                 + I["shear"] / sec.shear_stiffness_N)

@@ -110,15 +110,20 @@ def active_time(time_s: np.ndarray) -> np.ndarray:
     return on
 
 
+def _moves(time_s: np.ndarray, q: np.ndarray) -> tuple:
+    """``(|q_i - q_(i-1)|`` (P, n), ``t_i - t_(i-1)`` (P,)): the move and the interval before each pose in time
+    order (0 for the first), in the order of the poses."""
+    order = np.argsort(time_s, kind="stable")
+    step, dt = np.zeros(q.shape), np.zeros(len(time_s))
+    step[order[1:]] = np.abs(np.diff(q[order], axis=0))
+    dt[order[1:]] = np.diff(time_s[order])
+    return step, dt
+
+
 def _speed(time_s: np.ndarray, q: np.ndarray) -> np.ndarray:
     """Joint speed over the interval before each pose in time order (0 for the first), shape (P, n)."""
-    order = np.argsort(time_s, kind="stable")
-    ts, qs = time_s[order], q[order]
-    sp = np.zeros_like(qs)
-    sp[1:] = np.abs(np.diff(qs, axis=0)) / np.maximum(np.diff(ts), 1e-9)[:, None]
-    out = np.empty_like(sp)
-    out[order] = sp
-    return out
+    step, dt = _moves(time_s, q)
+    return step / np.maximum(dt, 1e-9)[:, None]
 
 
 def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
@@ -136,8 +141,7 @@ def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float
     on = active_time(time_s)
     held = np.zeros_like(load, dtype=float)
     held[order[1:]] = np.asarray(load, float)[order[:-1]] ** 2
-    speed = _speed(time_s, q) * np.diff(np.sort(time_s), prepend=np.min(time_s))[np.argsort(order)][:, None]
-    speed = speed / np.maximum(on, 1e-9)[:, None]  # the move's distance over the time the robot works
+    speed = _moves(time_s, q)[0] / np.maximum(on, 1e-9)[:, None]  # the move over the time the robot works
     return lag_filter(time_s, np.concatenate([speed, held], axis=1), tau_s, on_s=on)
 
 

@@ -55,22 +55,23 @@ def plot_feature_shares(frame, *, top: int = 12, ax=None):
     """Horizontal bars of the drawing features' share of the position-error variance at the worst pose, largest
     first (``frame``: :meth:`~tolalloc.allocate.tolerance_analysis.DrawingAnalysis.feature_frame`). Returns the axes."""
     rows = frame.head(top).iloc[::-1]
-    if ax is None:
-        _, ax = plt.subplots(figsize=(6.0, 0.3 * len(rows) + 1.2))
-    ax.barh([f"{f} ({c})" for f, c in zip(rows["feature"], rows["characteristic"])], rows["variance_share_pct"],
-            color="C0")
-    ax.set_xlabel("share of the variance at the worst pose [%]")
-    ax.tick_params(axis="y", labelsize=7)
-    return ax
+    return _share_bars([f"{f} ({c})" for f, c in zip(rows["feature"], rows["characteristic"])],
+                       rows["variance_share_pct"], "share of the variance at the worst pose [%]", ax)
 
 
 def plot_source_shares(frame, *, top: int = 12, ax=None):
     """Horizontal bars of each source's share of the tool-error variance at the worst point, largest first
     (``frame``: :meth:`~tolalloc.allocate.parts_result.PartsAllocation.variance_shares`). Returns the axes."""
     rows = frame.sort_values("share_pct").tail(top)
+    return _share_bars([f"{s} ({w})" for s, w in zip(rows["source"], rows["what"])], rows["share_pct"],
+                       "share of the variance at the worst point [%]", ax)
+
+
+def _share_bars(labels, shares, xlabel: str, ax):
+    """Horizontal bars of variance shares [%], the largest at the top (``labels`` and ``shares`` bottom to top)."""
     if ax is None:
-        _, ax = plt.subplots(figsize=(6.0, 0.3 * len(rows) + 1.2))
-    ax.barh([f"{s} ({w})" for s, w in zip(rows["source"], rows["what"])], rows["share_pct"], color="C0")
-    ax.set_xlabel("share of the variance at the worst point [%]")
+        _, ax = plt.subplots(figsize=(6.0, 0.3 * len(labels) + 1.2))
+    ax.barh(labels, shares, color="C0")
+    ax.set_xlabel(xlabel)
     ax.tick_params(axis="y", labelsize=7)
     return ax
