@@ -47,8 +47,8 @@ def test_check_and_split():
     reqs = [PoseRepeatability(limit_mm=0.05), PositionRequirement(radius_mm=0.3), PoseAccuracy(limit_mm=0.5)]
     pos, ori, iso = split_requirements(reqs)
     assert pos.radius_mm == 0.3 and ori is None and [r.kind for r in iso] == ["pose_accuracy", "pose_repeatability"]
-    with pytest.raises(ArgumentError, match=r"requirement: expected at most one requirement of each kind, got 2 of "
-                                            r"kind pose_accuracy"):
+    with pytest.raises(ArgumentError, match=r"requirement: expected at most one requirement of each kind, got 2 "
+                                            r"pose_accuracy requirements"):
         check_requirements([PoseAccuracy(limit_mm=0.5), PoseAccuracy(limit_mm=0.4)])
     with pytest.raises(ArgumentError, match=r"requirement: expected a requirement or a list of them"):
         check_requirements(["AP <= 0.5"])

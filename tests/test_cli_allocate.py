@@ -1,6 +1,7 @@
 """`tolalloc allocate`: outputs, summary keys, infeasible message, bad input."""
 
 import json
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -166,3 +167,39 @@ def test_bad_trajectory_exits_2(tmp_path, capsys, rows, match):
 def test_unknown_region_exits_2(capsys):
     assert main(["allocate", "tool_changer", "--region", "nowhere", "--no-verify"]) == 2
     assert "--region: 'nowhere'" in capsys.readouterr().err
+
+
+def test_parts_flags_reach_the_parts_design(tmp_path, capsys):
+    """`--parts` with its ranges gives allocate_tolerances the options the Python call takes; a design whose parts'
+    mean error alone exceeds the radius (no compensation) is refused with the reason, and nothing is written."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).parent))
+    from parts_robot import arm
+
+    from tolalloc.cli import build_parser
+    from tolalloc.cli.allocate import settings
+
+    arm(tmp_path)
+    robot = str(tmp_path / "arm3.toml")
+    args = build_parser().parse_args(["allocate", robot, "--parts", "--payload-kg", "0", "1", "--ambient-c", "15",
+                                      "30", "--duty", "0.3", "--after-compensation"])
+    assert settings(args)["parts"] == {"payload_kg": (0.0, 1.0), "ambient_c": (15.0, 30.0), "duty": 0.3,
+                                       "after": "compensation"}
+    assert "parts" not in settings(build_parser().parse_args(["allocate", robot]))
+    assert settings(build_parser().parse_args(["allocate", robot, "--parts"]))["parts"] is True  # the defaults
+    rc = main(["allocate", robot, "--radius-mm", "0.5", "--region", "work", "--no-verify", "--parts",
+               "--payload-kg", "0", "1", "--ambient-c", "15", "30", "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert rc == 2 and "the bought parts' mean error alone is" in err and "after='compensation'" in err
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("flags, message", [
+    (["--payload-kg", "0", "5"], "error: --payload-kg 0 5 needs --parts: it sets the design with bought parts."),
+    (["--duty", "0.2"], "error: --duty 0.2 needs --parts: it sets the design with bought parts."),
+    (["--after-compensation"], "error: --after-compensation needs --parts: it sets the design with bought parts."),
+])
+def test_parts_options_without_parts_are_refused(flags, message, capsys):
+    assert main(["allocate", "ur10", *flags]) == 2
+    assert capsys.readouterr().err.strip() == message

@@ -39,7 +39,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from tolalloc.exceptions import ArgumentError
+from tolalloc.exceptions import ArgumentError, describe
 from tolalloc.units import check_positive, check_probability
 
 __all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement",
@@ -378,20 +378,26 @@ REQUIREMENT_KINDS = {c.kind: c for c in (PositionRequirement, OrientationRequire
                                          DistanceAccuracy, PathAccuracy)}
 
 
-def check_requirements(value, argument: str = "requirement") -> tuple:
-    """One :class:`Requirement` or a list of them -> a tuple, at most one of each kind, in the order of
-    :data:`REQUIREMENT_KINDS`."""
+def check_requirements(value, argument: str = "requirement", *, need: tuple = ()) -> tuple:
+    """One :class:`Requirement` or a list / tuple of them -> a tuple, at most one of each kind, the kinds in
+    ``need`` present, in the order of :data:`REQUIREMENT_KINDS` (position first)."""
     items = list(value) if isinstance(value, (list, tuple)) else [value]
     bad = [v for v in items if not isinstance(v, Requirement)]
     if not items or bad:
         raise ArgumentError(argument, "expected a requirement or a list of them, e.g. "
-                            "[tolalloc.acceptance.PoseAccuracy(limit_mm=0.5), "
-                            f"tolalloc.acceptance.PoseRepeatability(limit_mm=0.05)], got {(bad or [value])[0]!r}.")
+                            "tolalloc.PositionRequirement(radius_mm=0.25, prob=0.95) or [PositionRequirement(...), "
+                            f"tolalloc.acceptance.PoseAccuracy(limit_mm=0.5)], got {describe((bad or [value])[0])}.")
     kinds = [r.kind for r in items]
     twice = sorted({k for k in kinds if kinds.count(k) > 1})
     if twice:
-        raise ArgumentError(argument, f"expected at most one requirement of each kind, got {kinds.count(twice[0])} of "
-                            f"kind {twice[0]}; keep the one that must hold.")
+        raise ArgumentError(argument, f"expected at most one requirement of each kind, got {kinds.count(twice[0])} "
+                            f"{twice[0]} requirements ({'; '.join(r.text() for r in items if r.kind == twice[0])}); "
+                            "keep the one that must hold.")
+    missing = [k for k in need if k not in kinds]
+    if missing:
+        raise ArgumentError(argument, f"needs a {missing[0]} requirement (the allocation is built on the tool's "
+                            f"{missing[0]} error), got only {', '.join(r.text() for r in items)}; add "
+                            "tolalloc.PositionRequirement(radius_mm=..., prob=...).")
     order = list(REQUIREMENT_KINDS)
     return tuple(sorted(items, key=lambda r: order.index(r.kind)))
 

@@ -94,9 +94,28 @@ def register(sub) -> None:
                    "standard grades; per parameter 'calibrated away', 'loose (at t_max)', 'loose (coarsest grade)' or 'must "
                    "be held'. Position "
                    "requirement only; refuses --correction-rounds, --scheduler and --estimator importance")
+    _add_parts_args(p)
     p.add_argument("--out", metavar="DIR", help="write tables, summary.json and figures to DIR")
     p.add_argument("--report", metavar="DIR", help="write the same files and a self-contained report.html to DIR")
     p.set_defaults(func=cmd_allocate)
+
+
+def _add_parts_args(p) -> None:
+    """The flags of the design with bought parts."""
+    parts = p.add_argument_group("bought parts (robot files whose [components] name catalogue slots)")
+    parts.add_argument("--parts", action="store_true",
+                       help="choose the catalogue parts (reducer grades, bearings, encoders) with the machining "
+                       "tolerances, over a payload and an ambient range; the worst point checked by the physical "
+                       "Monte Carlo (--n-mc draws). Position requirement only; not with --calibration")
+    parts.add_argument("--payload-kg", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
+                       help="with --parts: payload range [kg] (default 0 to the robot's rated payload)")
+    parts.add_argument("--ambient-c", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
+                       help="with --parts: ambient temperature range [degC] (default the 20 degC reference)")
+    parts.add_argument("--duty", type=float, default=None, metavar="FRACTION",
+                       help="with --parts: share of the time the drives work, for their heat (default 0.5)")
+    parts.add_argument("--after-compensation", action="store_true",
+                       help="with --parts: the requirement holds after the compensation models (stiffness given the "
+                       "payload, thermal growth given the temperature) remove their share of the parts' errors")
 
 
 def settings(args) -> dict:
@@ -112,13 +131,27 @@ def settings(args) -> dict:
                                        D.PROB if args.prob is None else args.prob)]
     if args.angle_radius_deg is not None:
         requirement.append(OrientationRequirement(args.angle_radius_deg, args.angle_prob))
-    return dict(requirement=requirement, region=Region(args.region, args.poses, args.coverage_n),
+    kw = {"parts": _parts(args) or True} if args.parts else {}
+    for flag, value in (("payload_kg", args.payload_kg), ("ambient_c", args.ambient_c), ("duty", args.duty),
+                        ("after_compensation", args.after_compensation or None)):
+        if value is not None and not args.parts:
+            shown = "".join(f"{v:g} " for v in value) if isinstance(value, list) else (
+                "" if value is True else f"{value:g} ")
+            raise ArgumentError(flag, f"{shown}needs `parts`: it sets the design with bought parts.")
+    return dict(kw, requirement=requirement, region=Region(args.region, args.poses, args.coverage_n),
                 costs=Costs(args.costs, args.z, args.uniform), error_model=error_model_options(args),
                 solver=Solver(args.solver, not args.no_snap, args.angle_step_deg),
                 verification=Verification(None if args.no_verify else args.n_mc, args.seed, args.estimator,
                                           False if args.no_correction else None, args.correction_rounds,
                                           args.scheduler),
                 calibration=args.calibration)
+
+
+def _parts(args) -> dict:
+    """The options of the bought-parts design (:func:`tolalloc.verify.parts.verified_parts`) from the flags."""
+    opts = {"payload_kg": args.payload_kg, "ambient_c": args.ambient_c, "duty": args.duty,
+            "after": "compensation" if args.after_compensation else None}
+    return {k: tuple(v) if isinstance(v, list) else v for k, v in opts.items() if v is not None}
 
 
 def cmd_allocate(args) -> int:
@@ -134,7 +167,7 @@ def cmd_allocate(args) -> int:
         print(f"error: {flag_text(res.infeasible, args)}", file=sys.stderr)
         return 1
     print(res.text())
-    if not res.writable:
+    if not getattr(res, "writable", True):
         return 1
     for folder, report in ((args.out, False), (args.report, True)):
         if folder is not None:

@@ -105,7 +105,7 @@ def allocate_tolerances(robot="tool_changer", requirement=None, *, radius_mm: fl
     inputs_record = _record(rob, label, cost_set, s, box is not None, tool=tool, trust_units=trust_units)
     run = dict(snap=sol.snap, angle_step_deg=sol.angle_step_deg, verify=ver.monte_carlo, n_mc=ver.n_mc, seed=ver.seed,
                estimator=ver.estimator, coverage_n=s.region.coverage_n, inputs_record=inputs_record)
-    if parts:
+    if parts is not None and parts is not False:  # True, or a dict of options (empty: the defaults)
         return _allocate_parts(model, label, box, q, parts, s, cost_set, inputs_record)
     with StageBar(show_progress(progress), f"allocate {rob.name}") as bar:
         if s.calibration is not None:

@@ -226,7 +226,7 @@ def _requirements(requirement, radius_mm, prob) -> tuple:
             if value is not None:
                 raise ArgumentError(name, f"{shown(value)} and `requirement` both state the position requirement; "
                                     f"give one of them (PositionRequirement({name}=...) in the requirement).")
-        return check_requirements(requirement)
+        return check_requirements(requirement, need=("position",))
     with named_fields("", {"radius_mm": "radius_mm", "prob": "prob"}):
         return (PositionRequirement(D.RADIUS_MM if radius_mm is None else radius_mm, D.PROB if prob is None else prob),)
 
