@@ -22,7 +22,7 @@ from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures, features_to_dict
 from tolalloc.montecarlo.streaming import Extras, HistSpec, Moments
 
-__all__ = ["BLOCK_SIZE", "SUB_BLOCK", "McSpec", "run_blocks"]
+__all__ = ["BLOCK_SIZE", "SUB_BLOCK", "KernelSpec", "McSpec", "run_blocks"]
 
 #: Samples per random-number block (the unit of reproducibility).
 BLOCK_SIZE = 2**16
@@ -31,36 +31,52 @@ SUB_BLOCK = 8192
 
 
 # ----------------------------------------------------------------- block task
-class McSpec:
-    """Everything a block needs (picklable; the prepared kernel is rebuilt once per process)."""
+class KernelSpec:
+    """A picklable task specification whose prepared kernel (chain programs per pose ...) is built once per
+    process, on first use, under a lock (threads of one process share it); pickling leaves it out."""
 
-    def __init__(self, model, q, n, seed, radii, aradii, hist: HistSpec | None, keep: int, engine: str = "numpy"):
-        self.model, self.q, self.n, self.seed = model, q, n, seed
-        self.radii, self.aradii, self.hist, self.keep = radii, aradii, hist, keep
-        self.engine = engine  # "numba" (tolalloc.kernel) or "numpy"; resolved by the caller
-        self._kernel = None
-        self._lock = threading.Lock()
+    _kernel = None
+    _lock = None
+
+    def _build(self):  # pragma: no cover - every spec defines it
+        raise NotImplementedError
 
     def __getstate__(self):
         return {k: v for k, v in self.__dict__.items() if k not in ("_kernel", "_lock")}
 
     def __setstate__(self, state):
         self.__dict__.update(state)
-        self._kernel, self._lock = None, threading.Lock()
 
     def kernel(self):
-        with self._lock:
+        lock = self.__dict__.setdefault("_lock", threading.Lock())
+        with lock:
             if self._kernel is None:
-                chain = FastChain(self.model)
-                V = np.empty((len(self.model.params), 1))
-                mult = draw_rows(self.model, 1, np.random.default_rng(0), V)
-                progs = [chain.program(qi, mult) for qi in self.q]
-                feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
-                compiled = None
-                if self.engine == "numba" and NUMBA_AVAILABLE:  # a worker without numba: numpy
-                    compiled = kernel_mod.compile_programs(progs, feats, chain.home)
-                self._kernel = (chain, progs, feats, compiled)
+                self._kernel = self._build()
             return self._kernel
+
+    def _chain_and_programs(self):
+        """The fast chain and its program at every pose (multipliers of standard-normal rows)."""
+        chain = FastChain(self.model)
+        mult = draw_rows(self.model, 1, np.random.default_rng(0), np.empty((len(self.model.params), 1)))
+        return chain, mult, [chain.program(qi, mult) for qi in self.q]
+
+
+class McSpec(KernelSpec):
+    """Everything a block needs (picklable; the prepared kernel is rebuilt once per process)."""
+
+    def __init__(self, model, q, n, seed, radii, aradii, hist: HistSpec | None, keep: int, engine: str = "numpy"):
+        self.model, self.q, self.n, self.seed = model, q, n, seed
+        self.radii, self.aradii, self.hist, self.keep = radii, aradii, hist, keep
+        self.engine = engine  # "numba" (tolalloc.kernel) or "numpy"; resolved by the caller
+        self._lock = threading.Lock()
+
+    def _build(self):
+        chain, _, progs = self._chain_and_programs()
+        feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
+        compiled = None
+        if self.engine == "numba" and NUMBA_AVAILABLE:  # a worker without numba: numpy
+            compiled = kernel_mod.compile_programs(progs, feats, chain.home)
+        return chain, progs, feats, compiled
 
 
 _local = threading.local()

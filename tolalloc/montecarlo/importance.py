@@ -34,9 +34,8 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import FastChain
-from tolalloc.errormodel.sampling import draw_rows
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
-from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK
+from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, KernelSpec
 from tolalloc.montecarlo.intervals import paired_difference_ci
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.paired import _check_budget, control_fallback_reason
@@ -62,36 +61,22 @@ def _weight(rho2, s: float, d: int, alpha: float):
     return 1.0 / (alpha + (1.0 - alpha) * s ** (-d) * np.exp(0.5 * rho2 * (1.0 - 1.0 / s**2)))
 
 
-class _IsSpec:
+class _IsSpec(KernelSpec):
     def __init__(self, model, q, n, seed, radius, alpha):
         self.model, self.q, self.n, self.seed, self.radius, self.alpha = model, q, int(n), int(seed), radius, alpha
-        self._kernel = None
         self._lock = threading.Lock()
 
-    def __getstate__(self):
-        return {k: v for k, v in self.__dict__.items() if k not in ("_kernel", "_lock")}
-
-    def __setstate__(self, state):
-        self.__dict__.update(state)
-        self._kernel, self._lock = None, threading.Lock()
-
-    def kernel(self):
-        with self._lock:
-            if self._kernel is None:
-                chain = FastChain(self.model)
-                K = len(self.model.params)
-                mult = draw_rows(self.model, 1, np.random.default_rng(0), np.empty((K, 1)))
-                progs, per_pose = [], []
-                for qi in self.q:
-                    progs.append(chain.program(qi, mult))
-                    A = self.model.jacobian(qi)[:3] * mult  # (3, K) on standard-normal rows
-                    U, S, Vt = np.linalg.svd(A, full_matrices=False)
-                    d = int(np.sum(S > 1e-12 * max(S[0], 1e-300)))
-                    s = proposal_scale(A @ A.T, self.radius)
-                    per_pose.append((A, np.ascontiguousarray(Vt[:d]), d, s, float(S[0]),
-                                     self.model.robot.fk_internal(qi)[:3, 3].copy()))
-                self._kernel = (chain, progs, per_pose)
-            return self._kernel
+    def _build(self):
+        chain, mult, progs = self._chain_and_programs()
+        per_pose = []
+        for qi in self.q:
+            A = self.model.jacobian(qi)[:3] * mult  # (3, K) on standard-normal rows
+            U, S, Vt = np.linalg.svd(A, full_matrices=False)
+            d = int(np.sum(S > 1e-12 * max(S[0], 1e-300)))
+            s = proposal_scale(A @ A.T, self.radius)
+            per_pose.append((A, np.ascontiguousarray(Vt[:d]), d, s, float(S[0]),
+                             self.model.robot.fk_internal(qi)[:3, 3].copy()))
+        return chain, progs, per_pose
 
 
 def _is_block(spec: _IsSpec, task):

@@ -33,7 +33,7 @@ from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures
 from tolalloc.errormodel.sampling import draw_rows
 from tolalloc.linear.probability import p_within_radius
-from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK
+from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, KernelSpec
 from tolalloc.montecarlo.estimate import ProbabilityEstimate, variance_reduction
 from tolalloc.montecarlo.intervals import paired_difference_ci
 from tolalloc.montecarlo.parallel import check_scheduler, default_jobs, ordered_map
@@ -68,32 +68,19 @@ def control_fallback_reason(model) -> str:
 
 
 # ----------------------------------------------------------------- block task
-class _PairSpec:
+class _PairSpec(KernelSpec):
     """What a block needs: model, poses, radii; the prepared chain programs are built once per process."""
 
     def __init__(self, model, q, n, seed, radii, aradii, keep):
         self.model, self.q, self.n, self.seed = model, q, int(n), int(seed)
         self.radii, self.aradii, self.keep = list(radii), list(aradii), int(keep)
-        self._kernel = None
         self._lock = threading.Lock()
 
-    def __getstate__(self):
-        return {k: v for k, v in self.__dict__.items() if k not in ("_kernel", "_lock")}
-
-    def __setstate__(self, state):
-        self.__dict__.update(state)
-        self._kernel, self._lock = None, threading.Lock()
-
-    def kernel(self):
-        with self._lock:
-            if self._kernel is None:
-                chain = FastChain(self.model)
-                mult = draw_rows(self.model, 1, np.random.default_rng(0), np.empty((len(self.model.params), 1)))
-                progs = [chain.program(qi, mult) for qi in self.q]
-                feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
-                A = self.model.jacobian(self.q) * mult  # (P, 6, K): linear map of the drawn rows
-                self._kernel = (chain, progs, feats, np.ascontiguousarray(A))
-            return self._kernel
+    def _build(self):
+        chain, mult, progs = self._chain_and_programs()
+        feats = [ErrorFeatures(self.model.robot.fk_internal(qi)) for qi in self.q]
+        A = self.model.jacobian(self.q) * mult  # (P, 6, K): linear map of the drawn rows
+        return chain, progs, feats, np.ascontiguousarray(A)
 
 
 def _pair_block(spec: _PairSpec, b: int):
