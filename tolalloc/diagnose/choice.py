@@ -18,8 +18,9 @@ from dataclasses import replace
 import numpy as np
 
 from tolalloc.diagnose.evidence import ard_evidence
+from tolalloc.physics.thermal import is_air_variant
 
-__all__ = ["choose_variant", "projected_residual", "prior_weights"]
+__all__ = ["choose_variant", "combined_thermal", "projected_residual", "prior_weights"]
 
 
 def projected_residual(fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None):
@@ -63,6 +64,20 @@ def choose_variant(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarra
         if bic < best_bic:
             best, best_bic = c, bic
     return best
+
+
+def combined_thermal(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None) -> list:
+    """The thermal variant that takes both drivers at once: the best air-driven variant (logged temperature, lagged
+    or not) and the best activity-driven one (warm-up, motion, motor losses), each chosen by :func:`choose_variant`
+    among its kind, their columns side by side -- a one-element list, empty when the data carry only one kind.
+    It then competes with the single variants by the same BIC, which charges it for its extra columns."""
+    air = [c for c in cands if is_air_variant(c.variant)]
+    work = [c for c in cands if not is_air_variant(c.variant)]
+    if not air or not work:
+        return []
+    a, w = (choose_variant(k, fit, J_fixed, residual_mm) for k in (air, work))
+    return [replace(a, names=a.names + w.names, B=np.concatenate([a.B, w.B], axis=2),
+                    variant=f"{a.variant}+{w.variant}")]
 
 
 def _by_evidence(cands: list, fit, Q, r, n: int):

@@ -35,7 +35,7 @@ from dataclasses import replace
 import numpy as np
 
 from tolalloc.diagnose.calibrate import Fit, fit_model, fixed_jacobian, select_columns
-from tolalloc.diagnose.choice import choose_variant, prior_weights
+from tolalloc.diagnose.choice import choose_variant, combined_thermal, prior_weights
 from tolalloc.diagnose.effects import EFFECTS, applicable, effect_basis, effect_bases, effect_reference, variants
 from tolalloc.diagnose.folds import CV_SCHEMES, fold_count, make_folds
 from tolalloc.diagnose.geometry import as_built_levels
@@ -43,7 +43,7 @@ from tolalloc.diagnose.uncertainty import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.ratio_search import search_ratios
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
-from tolalloc.physics.thermal import time_problem
+from tolalloc.physics.thermal import is_air_variant, time_problem, variant_parts
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
@@ -83,6 +83,8 @@ class _Context:
             if not ok:
                 continue
             cands = effect_bases(e, robot, train, t, self.ref, names)
+            if e == "thermal":
+                cands += combined_thermal(cands, cal.geometric, self.J_fixed, self.geo_residual)
             chosen = choose_variant(cands, cal.geometric, self.J_fixed, self.geo_residual)
             self.bases[e] = chosen
             self.ref["variants"][e] = chosen.variant
@@ -149,9 +151,10 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
     if effect == "backlash" and variant in ("approach", "preload") and test.direction is None:
         return "the test file has no dir1..dirN columns (the approach direction of each joint)"
     if effect == "thermal":
-        if (variant == "temperature" or variant.startswith("lag")) and test.temperature_c is None:
+        parts = variant_parts(variant)
+        if any(is_air_variant(v) for v in parts) and test.temperature_c is None:
             return "the test file has no temperature_c column"
-        if variant != "temperature" and (why := time_problem(test.time_s)) is not None:
+        if parts != ("temperature",) and (why := time_problem(test.time_s)) is not None:
             return f"test file: {why}"
     return None
 

@@ -20,6 +20,10 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`PAUSE_STEPS`
   median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
 
+* ``<air>+<activity>``: an air-driven variant (``temperature`` or ``lag_<tau>min``) and an activity-driven one
+  (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
+  drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
+
 Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
 session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
 is built from the training rows alone; a test file's basis runs the lag filters over the training and test
@@ -36,7 +40,7 @@ from tolalloc.physics.loads import gravity_torques
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
-           "motor_rise", "link_temperature"]
+           "motor_rise", "link_temperature", "is_air_variant", "variant_parts"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -156,6 +160,16 @@ def thermal_variants(meas) -> tuple:
     return tuple(out)
 
 
+def is_air_variant(variant: str) -> bool:
+    """Whether ``variant`` is driven by the logged air temperature (``temperature``, ``lag_<tau>min``)."""
+    return variant == "temperature" or variant.startswith("lag_")
+
+
+def variant_parts(variant: str) -> tuple:
+    """The single variants of a (possibly combined, ``a+b``) thermal variant."""
+    return tuple(variant.split("+"))
+
+
 def _tau_s(variant: str) -> float:
     return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
 
@@ -225,6 +239,10 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
     lj = link_joint_matrix(robot)
     out = []
     for v in names:
+        if "+" in v:  # a combined variant: its parts' columns side by side
+            parts = thermal_bases(robot, meas, ref, variant_parts(v))
+            out.append((sum((lab for lab, _ in parts), ()), np.concatenate([B for _, B in parts], axis=2)))
+            continue
         s = thermal_signal(meas, ref, v, lj, robot)
         if v.startswith("motor"):
             out.append(_motor_basis(robot, grow, lj, s, v))
