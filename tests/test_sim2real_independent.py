@@ -58,6 +58,7 @@ def test_generator_imports_nothing_of_tolalloc():
                  if m.startswith("sim2real_indep.") and (PKG / f"{m.split('.')[1]}.py").exists()]
     reached = {p.stem for p in seen}
     assert {"kinematics", "physics", "session", "hardware", "effects_joint", "effects_body", "families"} <= reached
+    assert {"effects_c", "effects_c_thermal", "effects_c_joint", "effects_c_body"} <= reached  # set C
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -197,3 +198,48 @@ def test_scoring_rules():
     assert score(hedge)["right"]
     quiet = {"label": "absorbed", "named": "", "effects": "thermal", "candidates": "", "verdict": "effect"}
     assert score(quiet)["false_claim"] and not score(quiet | {"verdict": "inconclusive"})["false_claim"]
+
+
+def _linear_displacement(c, ctx):
+    """Target displacement (P, 3) of a Contribution at first order (joint offsets, link strains, displacements)."""
+    out = np.zeros((len(ctx.q), 3))
+    if c.dq is not None:
+        out += np.einsum("pij,pj->pi", ctx.jac, c.dq)
+    if c.strain is not None:
+        for li in range(len(ctx.chain.links)):
+            out += ctx.link_scale_feature(np.arange(len(ctx.chain.links)) == li) * c.strain[:, li:li + 1]
+    if c.displace is not None:
+        out += c.displace
+    return out
+
+
+def test_set_c_effects_apply_equals_features_times_true_amplitudes():
+    """Set C: 24 cases on the three arms covering every family; a few new kinds' apply equals their true-structure
+    features times the true amplitudes (explicit for rv_error, track, dahl; least squares for the others)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_c_body as cb
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_C) == 24 and cs.SETS["C"][1] == cs.SEED_C == 40_7003
+    assert {c[1] for c in cs.SET_C} == {"ur10", "tool_changer", "kr16_like"}
+    assert {FAMILY[k] for c in cs.SET_C for k in c[2]} == set(FAMILIES)
+    case = gen.generate("t", "kr16_like", ("rv_error", "track", "dahl", "box_torsion", "twonode"), 14, 7)
+    t = case.truth
+    ctx = case.model_ctx(t["probe_mm"])
+
+    def check(kind, amp=None):
+        d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx)
+        F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+        A = F.reshape(len(F), -1).T
+        if amp is None:
+            amp = np.linalg.lstsq(A, d.ravel(), rcond=None)[0]
+        assert np.abs(A @ amp - d.ravel()).max() < 1e-9 * max(1.0, np.abs(d).max())
+        assert np.abs(d).max() > 1e-4  # a real effect [mm]
+
+    rv = t["params"]["rv_error"]
+    check("rv_error", np.concatenate([[a * np.cos(ph_), a * np.sin(ph_)] for g in rv
+                                      for a, ph_ in zip(g["amp"], g["phase"])]).ravel())
+    check("track", cb._track_amp(t["params"]["track"]))
+    check("dahl", np.array([a for b in t["params"]["dahl"] for a in (b["half_b"], b["c"])]))
+    check("box_torsion")
+    check("twonode")

@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from sim2real_indep import effects_body as eb
+from sim2real_indep import effects_c as ec
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -47,6 +48,7 @@ EFFECTS = {
     "ambient": (eb.ambient_draw, eb.ambient_apply, eb.ambient_features),
     "sag": (eb.sag_draw, eb.sag_apply, eb.sag_features),
     "mount": (eb.mount_draw, eb.mount_apply, eb.mount_features),
+    **ec.EFFECTS_C,  # set C's new kinds
 }
 PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
@@ -119,7 +121,7 @@ def _session_options(robot_key, physics, rng):
         opts.update(blocks=max(opts["blocks"], len(steps)), payload_steps=tuple(steps))
     else:
         opts["payload_steps"] = (float(np.round(rng.uniform(0, pmax) * (rng.random() < 0.5), 1)),)
-    return opts
+    return ec.session_options(robot_key, physics, rng, opts)
 
 
 def _tracker(rng):
@@ -144,8 +146,9 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     masses = nominal.masses * rng.uniform(0.85, 1.15, len(nominal.masses))
     com = nominal.mass_com + rng.normal(0, 20.0, nominal.mass_com.shape)
     session = make_session(nominal, robot_key, n_poses, rng, **_session_options(robot_key, physics, rng))
+    session = ec.session_hook(physics, session, rng)
     probe = _unit(rng) * rng.uniform(5, 100)
-    payload_com = _unit(rng) * rng.uniform(0, 80)
+    payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale
@@ -157,6 +160,8 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     for kind in physics:
         draw, apply, _ = EFFECTS[kind]
         params[kind] = draw(ctx, hw, rng)
+        if kind in ec.AFTER_TRACKER:
+            continue
         c = apply(params[kind], ctx, hw)
         dq += 0 if c.dq is None else c.dq
         strain += 0 if c.strain is None else c.strain
@@ -164,6 +169,10 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     links = true_chain.links[None] * (1 + strain[..., None])
     pos = kin.target(true_chain, session.q + dq, probe, links=links) + disp
     R_f, t_f = _tracker(rng)
+    hw["tracker"] = {"R": R_f, "t": t_f}
+    for kind in physics:
+        if kind in ec.AFTER_TRACKER:  # a measurement effect: needs the tracker's frame
+            pos = pos + EFFECTS[kind][1](params[kind], ctx, hw).displace
     noise = rng.uniform(0.01, 0.05)
     meas = pos @ R_f.T + t_f + rng.normal(0, noise, pos.shape)
     frame = _frame(nominal, session, meas)

@@ -1,14 +1,16 @@
 """The benchmark's two case sets (seeded; the measurement tables are regenerated, never stored).
 
 Set A (24 cases, 8 per arm) emphasises the physics the project's own benchmark lacks; set B (25 cases) is a
-held-out draw of another mix with another seed. A case: (id, robot, physics kinds, poses, split).
+held-out draw of another mix with another seed; set C (24 cases, 8 per arm) holds physics variants neither A nor
+B contains (:mod:`effects_c`), written after the diagnosis had been tuned on A and B. A case: (id, robot, physics
+kinds, poses, split).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-SEED_A, SEED_B = 40_7001, 40_7002
+SEED_A, SEED_B, SEED_C = 40_7001, 40_7002, 40_7003
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -57,7 +59,35 @@ def set_b():
     return out
 
 
-SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B)}
+#: set C: 13 new kinds (every family), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split by time
+SET_C = [
+    ("C01", "ur10", ("twonode",), 160, "time"),
+    ("C02", "ur10", ("dual_encoder",), 120, "random"),
+    ("C03", "ur10", ("hyst_stiffness",), 120, "random"),
+    ("C04", "ur10", ("bearing_tilt",), 90, "random"),
+    ("C05", "ur10", ("dahl",), 60, "random"),
+    ("C06", "ur10", ("bolted_tube",), 140, "random"),
+    ("C07", "ur10", (), 80, "random"),
+    ("C08", "ur10", ("track",), 100, "random"),
+    ("C09", "tool_changer", ("rv_error",), 200, "random"),
+    ("C10", "tool_changer", ("column_bow",), 180, "time"),
+    ("C11", "tool_changer", ("box_torsion",), 120, "random"),
+    ("C12", "tool_changer", ("dahl",), 100, "random"),
+    ("C13", "tool_changer", ("track",), 80, "random"),
+    ("C14", "tool_changer", (), 30, "random"),
+    ("C15", "tool_changer", ("tracker_scale",), 150, "time"),
+    ("C16", "tool_changer", ("hyst_stiffness", "twonode"), 150, "time"),
+    ("C17", "kr16_like", ("workcell",), 180, "time"),
+    ("C18", "kr16_like", ("rv_error",), 150, "random"),
+    ("C19", "kr16_like", ("bearing_tilt",), 120, "random"),
+    ("C20", "kr16_like", ("box_torsion",), 100, "random"),
+    ("C21", "kr16_like", (), 100, "random"),
+    ("C22", "kr16_like", ("runout",), 120, "random"),
+    ("C23", "kr16_like", ("dahl", "bolted_tube"), 160, "random"),
+    ("C24", "kr16_like", ("rv_error", "column_bow"), 200, "random"),
+]
+
+SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -12,7 +12,13 @@ from sim2real_indep.session import Session
 
 FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", "ambient": "thermal",
           "hardening": "joint_compliance", "compliance": "joint_compliance", "mount": "mount_compliance",
-          "sag": "link_deflection", "backlash": "backlash", "none": "none"}
+          "sag": "link_deflection", "backlash": "backlash", "none": "none",
+          # set C (sim2real_indep.effects_c); tracker_scale is a measurement error that follows the air
+          # temperature: scored as thermal, the family whose generic model (air-driven scaling) describes it
+          "twonode": "thermal", "workcell": "thermal", "column_bow": "thermal", "tracker_scale": "thermal",
+          "rv_error": "transmission", "dual_encoder": "transmission", "runout": "transmission",
+          "hyst_stiffness": "joint_compliance", "bearing_tilt": "joint_compliance", "dahl": "backlash",
+          "track": "mount_compliance", "box_torsion": "link_deflection", "bolted_tube": "link_deflection"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -36,7 +36,7 @@ class Session:
     temperature; air : the air temperature law (see :func:`air_temperature`); speed : (P, n) [rad/s or mm/s] mean
     joint speed of the move into each pose; move_s, dwell_s :
     (P,) durations of that move and of the dwell; gap_s : (P,) exercise (>0) or pause (<0) time before the pose
-    [s]; exercise_speed : (n,) mean |speed| of the exercise cycle.
+    [s]; exercise_speed : (n,) mean |speed| of the exercise cycle; approach : set C's approach plan (or None).
     """
 
     q: np.ndarray
@@ -50,6 +50,7 @@ class Session:
     gap_s: np.ndarray
     exercise_speed: np.ndarray
     air: dict
+    approach: dict | None = None  # set C: final approach travel / speed per pose and joint (P, n) [rad, rad/s]
 
 
 def sample_poses(chain: kin.Chain, robot_key: str, n: int, rng) -> np.ndarray:
