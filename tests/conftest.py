@@ -7,12 +7,19 @@ and also exposed as the fixture ``make_chain``.
 from __future__ import annotations
 
 import os
+import sys
 
 # One BLAS thread per test process: the suite runs one pytest-xdist worker per core (pyproject's addopts), and
 # BLAS threads on top of the workers only contend for the same cores. Set before numpy is imported (it reads them
 # when it loads OpenBLAS); subprocesses of the tests inherit them.
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
+
+# Compiled modules are cached inside the suite even where the environment forbids it (PYTHONDONTWRITEBYTECODE): both
+# workers, the command-line subprocesses and the documentation's notebook kernels then compile the package and the
+# rewritten test modules once instead of at every start.
+sys.dont_write_bytecode = False
+os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
 
 import numpy as np  # noqa: E402
 import pytest
