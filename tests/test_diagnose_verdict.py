@@ -267,3 +267,47 @@ def test_safe_model_with_a_larger_largest_error_than_nominal_says_so():
     assert safe_max_note(diag("geometric", 2.303)) == ""  # the safe geometric model's largest error is below nominal's
     assert safe_max_note(diag("nominal", 2.303)) == ""
     assert safe_max_note(SimpleNamespace(test=None)) == ""
+
+
+@pytest.mark.parametrize("gain_m, a_tied, verdict", [(2.3, False, "effect"), (8.0, False, "ambiguous"),
+                                                     (2.3, True, "ambiguous")])
+def test_a_tie_on_a_minor_further_effect_leaves_the_clear_one_claimed(gain_m, a_tied, verdict):
+    """a is selected first (gain 30 %), m on top of it; m is tied with j. m's own gain below the 5 % margin (leaving
+    it out is itself within the margin) and a clearly ahead of b: the verdict names a alone and reports m with j as
+    not claimed. m's gain beyond the margin, or a tied too: ambiguous, as before."""
+    from tolalloc.diagnose.verdict import Comparison
+
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    m = Candidate("m", True, "", 1, 0.1, 0.1, 1e-4, gain_m, True, 0.1, "v")
+    j = Candidate("j", True, "", 1, 0.1, 0.1, 1e-3, 2.0, True, 0.1, "v")
+    stages = [Stage((), 0.30, (_cand("a"), _cand("b")), "a"), Stage(("a",), 0.20, (m, j), "m")]
+    comps = (Comparison("a", "b", 1e-6, 20.0, 0.1, 0.12, not a_tied, 2.0 if a_tied else 20.0),
+             Comparison("m", "j", 0.4, 1.0, 0.1, 0.101, False, 1.0))
+    v = verdict_of(ctx, stages, _ev(("a", "m"), np.zeros((5, 3))), None, comps, [], (), "geometric+a+m", None)
+    assert v.verdict == verdict and v.selected == ("a", "m")
+    if verdict == "effect":
+        assert v.candidates == ("a",) and v.headline() == "verdict: effect -- a"
+        line = next(r for r in v.reasons if r.startswith("m adds a gain below the practical margin"))
+        assert "(+2.3 % < 5 %)" in line and "from j in its place" in line and "not claimed" in line
+    else:
+        assert "m" in v.candidates and "j" in v.candidates
+
+
+def test_a_mount_about_a_pivot_below_the_base_is_one_more_column_whose_ratio_is_the_depth():
+    """The pivot variant's columns reproduce a rigid tilt omega = c M_h about a point h below the base origin."""
+    from tolalloc.physics.compliance import mount_columns
+    from tolalloc.physics.loads import base_moment, target_points
+
+    robot = tolalloc.load_robot("ur10")
+    q = np.random.default_rng(3).uniform(-2, 2, (6, robot.n_joints))
+    p = target_points(robot, q, np.zeros(3))
+    c, h = 2e-7, 350.0
+    B, names = mount_columns(robot, q, p, p, None, "pivot")
+    assert B.shape == (6, 3, 2) and names == ["c_mount [rad/(N m)]", "c_mount_depth [rad mm/(N m)]"]
+    g = np.asarray(robot.gravity, float)
+    M = base_moment(robot, q, p, 0.0)
+    omega = c * (M - (M @ g)[:, None] * g)
+    expected = np.cross(omega, p - h * g)
+    np.testing.assert_allclose(B @ np.array([c, c * h]), expected, rtol=1e-12, atol=1e-15)
+    iso, _ = mount_columns(robot, q, p, p, None, "isotropic")
+    np.testing.assert_allclose(B[..., 0], iso[..., 0])

@@ -17,7 +17,8 @@ signature:
                       ``T0 = f`` x the joint's largest load), ``catalogue`` (the reducer's K1/K2/K3 bands from the
                       robot file).
 ``mount_compliance``  the whole robot tilts on a compliant base under the gravity moment of its masses and payload
-                      (``isotropic``: one compliance; ``axes``: about base x and y) [rad/(N m)].
+                      (``isotropic``: one compliance; ``axes``: about base x and y; ``pivot``: one compliance
+                      about a pivot below the base, its depth fitted) [rad/(N m)].
 ``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
                       beyond by their moment), a logged payload and an own weight (:mod:`tolalloc.physics.beams`):
                       ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
@@ -45,7 +46,7 @@ import numpy as np
 from tolalloc.robot.model import Robot
 from tolalloc.physics.beams import beam_columns, guide_columns, guide_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
-    mount_columns
+    mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import flank, lost_motion_columns
 from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
@@ -147,7 +148,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
         return ("masses", "masses+tip") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
     if effect == "mount_compliance":
-        return ("isotropic", "axes")
+        return MOUNT_VARIANTS
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()
     return ("tip", "beam", "beam+w", "beam+tip") + guide
 

@@ -3,11 +3,13 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from tolalloc.physics.thermal import time_problem
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import Verdict, tied
 
-__all__ = ["verdict_of", "input_notes"]
+__all__ = ["verdict_of", "input_notes", "minor_ties"]
 
 
 def input_notes(ctx, stages: list) -> tuple[list, list]:
@@ -109,7 +111,8 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
     amb = tied(comparisons)
     scheme = scheme_text(getattr(ctx, "cv", "blocked"))
     sel = [_selected_line(stages, e, final.effects, scheme) for e in final.effects]
-    if amb:
+    minor = minor_ties(stages, final.effects, amb)
+    if amb and len(minor) < len(amb):
         names = []
         for e in final.effects:
             names += [x for x in (e, *[c.alternative for c in amb if c.effect == e]) if x not in names]
@@ -123,5 +126,32 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
                             "training range)" if out_n else ""))
         return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions, **kw)
     sep = [f"{c.effect} beats {c.alternative} in its place: {c.alternative}'s clipped out-of-fold RMS is "
-           f"{c.excess_pct:+.1f} % larger, beyond the practical margin of {c.margin_pct:g} %" for c in comparisons]
-    return Verdict("effect", tuple(final.effects), tuple(sel + sep + notes), safe, comparisons, **kw)
+           f"{c.excess_pct:+.1f} % larger, beyond the practical margin of {c.margin_pct:g} %"
+           for c in comparisons if c.separable]
+    small = sorted({c.effect for c in minor}, key=final.effects.index)
+    lines = [f"{e} adds a gain below the practical margin ({_gain_of(stages, e):+.1f} % < {minor[0].margin_pct:g} %) "
+             f"and the data cannot tell it from {' or '.join(c.alternative for c in minor if c.effect == e)} in its "
+             f"place: a minor further effect of an unnamed family, kept in the final model, not claimed"
+             for e in small]
+    named = tuple(e for e in final.effects if e not in small)
+    return Verdict("effect", named, tuple(sel + sep + lines + notes), safe, comparisons, **kw)
+
+
+def _gain_of(stages: list, e: str) -> float:
+    """The clipped out-of-fold gain [%] of ``e`` at the forward step that selected it (inf when it has none)."""
+    fwd = next((st for st in stages if st.selected == e), None)
+    c = None if fwd is None else next((c for c in fwd.candidates if c.effect == e), None)
+    return np.inf if c is None else float(c.gain_pct)
+
+
+def minor_ties(stages: list, effects: tuple, amb: list) -> list:
+    """The tied comparisons ``amb`` that leave the verdict ``effect``: those of a *minor* effect (its own gain at its
+    step below the practical margin, so that leaving it out is itself within the margin) when another selected
+    effect is clearly ahead (gain at least the margin, no tied alternative)."""
+    if not amb:
+        return []
+    margin = amb[0].margin_pct
+    tied_effects = {c.effect for c in amb}
+    if not any(e not in tied_effects and _gain_of(stages, e) >= margin for e in effects):
+        return []
+    return [c for c in amb if _gain_of(stages, c.effect) < margin]

@@ -15,7 +15,9 @@ the payload at the target) winds up by ``dq_j = phi_j(tau_j)`` [rad, or mm for a
 **Mount compliance.** A robot on a compliant base (a floor plate, a pedestal, a mobile platform) tilts as a whole under
 the gravity moment of its moving masses and payload about the base (:func:`~.loads.base_moment`): the rotation
 ``omega = (c_x M_x, c_y M_y, 0)`` [rad] about the base origin moves the target by ``omega x p``. ``isotropic`` (one
-``c``) or ``axes`` (``c_x``, ``c_y``).
+``c``) or ``axes`` (``c_x``, ``c_y``). ``pivot``: one ``c`` about a pivot at a depth ``h`` below the base origin
+(a pedestal or column bending under the moment turns about a point inside it, an anchor plate about the floor:
+``omega x (p + h g_hat)``); linear in ``c`` and ``c h`` [rad mm/(N m)], so ``h`` is their ratio.
 
 Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
 the catalogue's stiffness figures.
@@ -35,7 +37,7 @@ __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_lo
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
 #: Shape parameters of the ``hardening`` law: T0 as a fraction of the joint's largest load.
 HARDENING_FRACTIONS = (0.2, 0.4)
-MOUNT_VARIANTS = ("isotropic", "axes")
+MOUNT_VARIANTS = ("isotropic", "axes", "pivot")
 
 
 def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None) -> tuple:
@@ -122,6 +124,9 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
     Mh = M - (M @ g)[:, None] * g  # the moment about the vertical does not tilt the base
     if variant == "isotropic":
         return np.cross(Mh, p)[:, :, None], ["c_mount [rad/(N m)]"]
+    if variant == "pivot":
+        return (np.stack([np.cross(Mh, p), np.cross(Mh, np.broadcast_to(-g, p.shape))], axis=-1),
+                ["c_mount [rad/(N m)]", "c_mount_depth [rad mm/(N m)]"])
     cols, names = [], []
     for i, ax in enumerate("xyz"):
         if abs(g[i]) > 0.99:
