@@ -59,6 +59,7 @@ def test_generator_imports_nothing_of_tolalloc():
     reached = {p.stem for p in seen}
     assert {"kinematics", "physics", "session", "hardware", "effects_joint", "effects_body", "families"} <= reached
     assert {"effects_c", "effects_c_thermal", "effects_c_joint", "effects_c_body"} <= reached  # set C
+    assert {"effects_d", "effects_d_thermal", "effects_d_joint", "effects_d_body"} <= reached  # set D
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -243,3 +244,81 @@ def test_set_c_effects_apply_equals_features_times_true_amplitudes():
     check("dahl", np.array([a for b in t["params"]["dahl"] for a in (b["half_b"], b["c"])]))
     check("box_torsion")
     check("twonode")
+
+
+def test_set_d_effects_apply_equals_features_times_true_amplitudes():
+    """Set D: 24 cases, 8 per arm, every family (two kinds each for the gravity families), 3 geometry-only cases,
+    3 mixtures; every new kind's apply equals its true-structure features times the true amplitudes; a few
+    known answers (a tapered beam of constant section is the uniform cantilever; the gas spring opposes gravity;
+    refraction of a few um at tracker ranges)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_d as ed
+    from sim2real_indep import effects_d_body as db
+    from sim2real_indep import effects_d_joint as dj
+    from sim2real_indep import effects_d_thermal as dt
+    from sim2real_indep import hardware as hwm
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_D) == 24 and cs.SETS["D"][1] == cs.SEED_D == 40_7004
+    assert {r: sum(c[1] == r for c in cs.SET_D) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cs.SET_D) == 3 and sum(len(c[2]) == 2 for c in cs.SET_D) == 3
+    assert all(30 <= c[3] <= 200 for c in cs.SET_D) and sum(c[4] == "time" for c in cs.SET_D) == 6
+    kinds = {k for c in cs.SET_D for k in c[2]}
+    assert kinds == set(ed.EFFECTS_D) and not kinds & {k for s in ("A", "B", "C") for c in cs.SETS[s][0] for k in c[2]}
+    assert all(FAMILY[k] == ed.FAMILY_D[k] for k in kinds) and set(ed.FAMILY_D.values()) == set(FAMILIES)
+    for fam in ("joint_compliance", "mount_compliance", "link_deflection"):
+        assert sum(f == fam for f in ed.FAMILY_D.values()) >= 2
+
+    def check(case, kind, amp):
+        t = case.truth
+        ctx = case.model_ctx(t["probe_mm"])
+        d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx)
+        F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+        A = F.reshape(len(F), -1).T
+        assert np.abs(A @ np.asarray(amp, float) - d.ravel()).max() < 1e-9 * max(1.0, np.abs(d).max()), kind
+        assert np.abs(d).max() > 1e-4, kind  # a real effect [mm]
+
+    tc = gen.generate("t", "tool_changer", ("gas_spring", "ball_screw", "tapered", "bracket", "refraction",
+                                            "tool_heat"), 14, 8)
+    kr = gen.generate("t", "kr16_like", ("loose_anchor", "pad_creep", "varlash", "belt", "thermal_bend",
+                                         "dresspack"), 14, 9)
+    for case in (tc, kr):
+        P, hw = case.truth["params"], case.truth["hw"]
+        c = np.array([hwm.torsion(d, 1.0, False) for d in hw["drives"]])  # joint compliance per unit load
+        if "gas_spring" in P:
+            check(case, "gas_spring", np.r_[c, c[dj.SPRING_JOINT] * P["gas_spring"]["F1_N"]])
+            check(case, "ball_screw", [a for g in P["ball_screw"] for a in (
+                g["e_p_mm"], g["bow_mm"], g["wobble_mm"] * np.cos(g["phase"]), g["wobble_mm"] * np.sin(g["phase"]))])
+            check(case, "tapered", [a for s in P["tapered"].values() for a in (1 / s["E"], 1 / s["G"])])
+            check(case, "bracket", [1 / P["bracket"]["E"], 1 / P["bracket"]["G"]])
+            check(case, "refraction", [P["refraction"]["G0_K_per_m"], P["refraction"]["G1_per_K"]])
+            check(case, "tool_heat", [P["tool_heat"]["cte_tool"] * P["tool_heat"]["L_tool_mm"], P["tool_heat"]["cte"]])
+        else:
+            check(case, "loose_anchor", db._anchor_amp(P["loose_anchor"], hw))
+            p = P["pad_creep"]
+            check(case, "pad_creep", [p["C0"], p["C0"], p["C1"], p["C1"]])
+            check(case, "varlash", [a for b in P["varlash"] for a in (
+                b["b0"] / 2, b["b0"] * b["eps"] * np.cos(b["phi"]) / 2, -b["b0"] * b["eps"] * np.sin(b["phi"]) / 2,
+                -b["h"] / 2)])
+            check(case, "belt", [a for g in P["belt"] for a0, ph_ in zip(g["amp"], g["phase"])
+                                 for a in (a0 * np.cos(ph_), a0 * np.sin(ph_))])
+            check(case, "thermal_bend", [a for lk in P["thermal_bend"]["links"].values()
+                                         for a in (1.0, P["thermal_bend"]["cte"] * lk["mean_ratio"])])
+            check(case, "dresspack", np.r_[c, [a for h in P["dresspack"] for a in (
+                -h["k_Nm_per_rad"] * c[h["joint"]], -h["friction_Nm"] * c[h["joint"]])]])
+
+    # a tapered beam of constant section (beta = 1) is the uniform cantilever: a_k = L^(k+1) / ((k+1) I)
+    a = db._taper_integrals(0.7, 2e-6, 1.0)
+    assert a == pytest.approx([0.7 ** (k + 1) / ((k + 1) * 2e-6) for k in range(4)], rel=1e-4)
+    # the counterbalance torque opposes the mean gravity torque on joint 2
+    ctx = tc.model_ctx(tc.truth["probe_mm"])
+    tau_s = dj.spring_torque_shape(tc.truth["params"]["gas_spring"], ctx.q[:, dj.SPRING_JOINT])
+    assert np.mean(tau_s) * np.mean(ctx.loads[:, dj.SPRING_JOINT]) < 0
+    # refraction in 1 K/m over 5 m: 0.93e-6 x 25 / 2 m = 11.6 um at most
+    shape = dt.refraction_parts(ctx, tc.truth["hw"])[0]
+    rng_m = np.linalg.norm(ctx.target + tc.truth["hw"]["tracker"]["R"].T @ tc.truth["hw"]["tracker"]["t"], axis=1) / 1e3
+    assert np.all(np.linalg.norm(shape, axis=1) <= 0.93e-6 * rng_m ** 2 / 2 * 1000 * (1 + 1e-12))
+    # two first-order lags in series: the wrist follows the tool, both reach their steady rise
+    x1, x2 = dt.series_lags(np.full(400, 60.0), np.ones(400), 600.0, 1800.0)
+    assert x1[-1] == pytest.approx(1.0, abs=1e-6) and x2[-1] == pytest.approx(1.0, abs=1e-5) and np.all(x2 <= x1)

@@ -29,6 +29,7 @@ import pandas as pd
 
 from sim2real_indep import effects_body as eb
 from sim2real_indep import effects_c as ec
+from sim2real_indep import effects_d as ed
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -49,8 +50,10 @@ EFFECTS = {
     "sag": (eb.sag_draw, eb.sag_apply, eb.sag_features),
     "mount": (eb.mount_draw, eb.mount_apply, eb.mount_features),
     **ec.EFFECTS_C,  # set C's new kinds
+    **ed.EFFECTS_D,  # set D's new kinds
 }
 PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
+AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER  # measurement effects: need the tracker's frame
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -121,7 +124,8 @@ def _session_options(robot_key, physics, rng):
         opts.update(blocks=max(opts["blocks"], len(steps)), payload_steps=tuple(steps))
     else:
         opts["payload_steps"] = (float(np.round(rng.uniform(0, pmax) * (rng.random() < 0.5), 1)),)
-    return ec.session_options(robot_key, physics, rng, opts)
+    opts = ec.session_options(robot_key, physics, rng, opts)
+    return ed.session_options(robot_key, physics, rng, opts)  # set D (no draws without a set-D kind)
 
 
 def _tracker(rng):
@@ -160,7 +164,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     for kind in physics:
         draw, apply, _ = EFFECTS[kind]
         params[kind] = draw(ctx, hw, rng)
-        if kind in ec.AFTER_TRACKER:
+        if kind in AFTER_TRACKER:
             continue
         c = apply(params[kind], ctx, hw)
         dq += 0 if c.dq is None else c.dq
@@ -171,7 +175,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     R_f, t_f = _tracker(rng)
     hw["tracker"] = {"R": R_f, "t": t_f}
     for kind in physics:
-        if kind in ec.AFTER_TRACKER:  # a measurement effect: needs the tracker's frame
+        if kind in AFTER_TRACKER:  # a measurement effect: needs the tracker's frame
             pos = pos + EFFECTS[kind][1](params[kind], ctx, hw).displace
     noise = rng.uniform(0.01, 0.05)
     meas = pos @ R_f.T + t_f + rng.normal(0, noise, pos.shape)

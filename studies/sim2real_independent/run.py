@@ -5,8 +5,8 @@ called only through the public API ``tolalloc.diagnose_measurements(robot, train
 reports/sim2real_independent/: report.md and cases.csv (the measurement tables are regenerated from the seeds,
 never stored).
 
-Usage: python studies/sim2real_independent/run.py [--set A|B|C|both|all] [--quick] [--jobs N] [--out DIR]
-(``both``: sets A and B; ``all``: A, B and C.)
+Usage: python studies/sim2real_independent/run.py [--set A|B|C|D|both|all] [--quick] [--jobs N] [--out DIR]
+(``both``: sets A and B; ``all``: A, B, C and D.)
 """
 
 from __future__ import annotations
@@ -80,12 +80,12 @@ def run_case(spec):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--set", choices=["A", "B", "C", "both", "all"], default="A")
+    ap.add_argument("--set", choices=["A", "B", "C", "D", "both", "all"], default="A")
     ap.add_argument("--quick", action="store_true", help="the first four cases of each set, 40 poses each")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--out", type=Path, default=OUT)
     args = ap.parse_args(argv)
-    names = {"both": ["A", "B"], "all": ["A", "B", "C"]}.get(args.set, [args.set])
+    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D"]}.get(args.set, [args.set])
     specs = []
     for name in names:
         cases = cs.SETS[name][0]

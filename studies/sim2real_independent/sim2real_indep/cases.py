@@ -1,16 +1,17 @@
-"""The benchmark's two case sets (seeded; the measurement tables are regenerated, never stored).
+"""The benchmark's case sets (seeded; the measurement tables are regenerated, never stored).
 
 Set A (24 cases, 8 per arm) emphasises the physics the project's own benchmark lacks; set B (25 cases) is a
 held-out draw of another mix with another seed; set C (24 cases, 8 per arm) holds physics variants neither A nor
-B contains (:mod:`effects_c`), written after the diagnosis had been tuned on A and B. A case: (id, robot, physics
-kinds, poses, split).
+B contains (:mod:`effects_c`), written after the diagnosis had been tuned on A and B; set D (24 cases, 8 per arm)
+is a further independent test set of new physics kinds (:mod:`effects_d`). A case: (id, robot, physics kinds,
+poses, split).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-SEED_A, SEED_B, SEED_C = 40_7001, 40_7002, 40_7003
+SEED_A, SEED_B, SEED_C, SEED_D = 40_7001, 40_7002, 40_7003, 40_7004
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -87,7 +88,36 @@ SET_C = [
     ("C24", "kr16_like", ("rv_error", "column_bow"), 200, "random"),
 ]
 
-SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C)}
+#: set D: 12 new kinds (every family, two for each gravity family), 3 geometry-only cases, 3 mixtures of two new
+#: kinds, a quarter split by time (:mod:`effects_d`); written as an independent test set after set C
+SET_D = [
+    ("D01", "ur10", ("gas_spring",), 120, "random"),
+    ("D02", "ur10", ("loose_anchor",), 90, "random"),
+    ("D03", "ur10", ("bracket",), 140, "random"),
+    ("D04", "ur10", ("varlash",), 60, "random"),
+    ("D05", "ur10", ("thermal_bend",), 160, "time"),
+    ("D06", "ur10", ("belt",), 100, "random"),
+    ("D07", "ur10", (), 70, "random"),
+    ("D08", "ur10", ("dresspack", "tool_heat"), 180, "time"),
+    ("D09", "tool_changer", ("ball_screw",), 120, "random"),
+    ("D10", "tool_changer", ("pad_creep",), 150, "time"),
+    ("D11", "tool_changer", ("tapered",), 100, "random"),
+    ("D12", "tool_changer", ("bracket",), 80, "random"),
+    ("D13", "tool_changer", ("gas_spring",), 200, "random"),
+    ("D14", "tool_changer", ("refraction",), 150, "time"),
+    ("D15", "tool_changer", (), 30, "random"),
+    ("D16", "tool_changer", ("ball_screw", "varlash"), 160, "random"),
+    ("D17", "kr16_like", ("dresspack",), 130, "random"),
+    ("D18", "kr16_like", ("loose_anchor",), 110, "random"),
+    ("D19", "kr16_like", ("tapered",), 150, "random"),
+    ("D20", "kr16_like", ("tool_heat",), 170, "time"),
+    ("D21", "kr16_like", ("varlash",), 40, "random"),
+    ("D22", "kr16_like", ("belt",), 120, "random"),
+    ("D23", "kr16_like", (), 100, "random"),
+    ("D24", "kr16_like", ("pad_creep", "thermal_bend"), 200, "time"),
+]
+
+SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -18,7 +18,12 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "twonode": "thermal", "workcell": "thermal", "column_bow": "thermal", "tracker_scale": "thermal",
           "rv_error": "transmission", "dual_encoder": "transmission", "runout": "transmission",
           "hyst_stiffness": "joint_compliance", "bearing_tilt": "joint_compliance", "dahl": "backlash",
-          "track": "mount_compliance", "box_torsion": "link_deflection", "bolted_tube": "link_deflection"}
+          "track": "mount_compliance", "box_torsion": "link_deflection", "bolted_tube": "link_deflection",
+          # set D (sim2real_indep.effects_d; refraction, a measurement error following the air, scored as thermal)
+          "gas_spring": "joint_compliance", "dresspack": "joint_compliance", "varlash": "backlash",
+          "belt": "transmission", "ball_screw": "transmission", "loose_anchor": "mount_compliance",
+          "pad_creep": "mount_compliance", "tapered": "link_deflection", "bracket": "link_deflection",
+          "thermal_bend": "thermal", "tool_heat": "thermal", "refraction": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

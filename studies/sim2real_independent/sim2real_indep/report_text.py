@@ -29,12 +29,16 @@ gravity preload) -- and whether it stays quiet where the data cannot name anythi
 the diagnosis's own fitted model comes to the truth beyond the RMS ratio reported below.
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
-`--set B`; both: `--set both`; set C: `--set C`; all three: `--set all`). The measurement tables are
-regenerated from the seeds and never stored.
+`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; all four: `--set all`). The measurement
+tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
 its physics kinds are variants neither set contains (`sim2real_indep/effects_c*.py`, table below), so it is the
 set that measures how the diagnosis does on physics it was not built against.
+
+**Set D** (24 cases, seed 40_7004) is a further independent test set of twelve new physics kinds
+(`sim2real_indep/effects_d*.py`, table below), written by a helper who did not read the diagnosis or its effect
+models, and meant to be run once to judge a change of the diagnosis.
 """
 
 PHYSICS = """## How the physics was written (sources)
@@ -75,6 +79,23 @@ Set C's kinds (same case machinery: geometric errors, mass model, tracker, targe
 | box_torsion | link_deflection | rectangular box links bending about two principal axes and twisting (Bredt) under an offset gripper payload (120-250 mm off the tool axis); pick and place | Timoshenko & Gere; Roark |
 | bolted_tube | link_deflection | 1-2 tube links as cantilevers plus a bolted root flange: 2-5 x EI/L until decompression (40-80 % of the session's largest moment), then 2-3x softer; pick and place | VDI 2230 Part 1; EN 1993-1-8 6.3.1 |
 
+Set D's kinds (same case machinery):
+
+| kind | family | physics and ranges | sources |
+| --- | --- | --- | --- |
+| gas_spring | joint_compliance | a gas-spring counterbalance on joint 2 (polytropic n = 1-1.3, progression 1.2-1.6, pivot / rod-eye radii by arm, sized for 40-90 % of the largest gravity torque, opposing it): the gear deflects under the net torque; linear torsion of every joint; pick and place | Stabilus / Suspa gas-spring catalogues (progression); two-force-member statics (Craig ch. 5) |
+| dresspack | joint_compliance | a hose package twisted by the three wrist joints: torsion spring (2-30 N m at 180 deg by arm) plus 10-25 % guide friction against the motion, loading the compliant wrist gears; gravity torsion of every joint; pick and place | dress-pack twist limits of robot makers (assumed torques); Harmonic Drive K3 |
+| loose_anchor | mount_compliance | the mount of set A (plate about two axes, pedestal) plus one loose anchor: past a threshold moment (10-60 % of the largest) lifting its side the plate joint opens and rocks 1-4x more compliantly; pick and place | EN 1993-1-8 6.2.8 / 6.3.4; Wald et al., HERON 53 2008 (component method for column bases) |
+| pad_creep | mount_compliance | elastomer levelling pads: tilt C0 M + creep of a standard linear solid (C1 / C0 = 0.3-1, tau 5-40 min) under the gravity moment's history (moment held during pauses, averaged during exercise); pick and place | Findley, Lai & Onaran 1976; Gent, *Engineering with Rubber* ch. 6 |
+| tapered | link_deflection | cast links whose I falls linearly from the root to 0.3-0.6x at the tip: Mohr's integrals of M(x) / EI(x) for the tip deflection and slope, own weight, torsion with the mean GJ; pick and place | Timoshenko & Gere (non-prismatic beams); Roark |
+| bracket | link_deflection | an end-effector extension boom (square hollow bar, 200-800 mm, aluminium or steel by arm) mostly across the tool axis, carrying payload and target: bending, shear, Bredt torsion under payload and own weight; pick and place | Timoshenko & Gere; Roark |
+| varlash | backlash | lost motion 1-3 arcmin modulated once per output turn by the wheel's eccentricity, b0 (1 + 0.3-0.7 cos(theta + phi)); gravity above a 2-8 % preload holds the flank; hysteresis 0.1-0.5 arcmin | ISO 1328-1 / ISO 21771 (backlash from centre distance); AGMA 2002; Nordin & Gutman 2002 |
+| thermal_bend | thermal | 1-2 tube links warmed on one side by the drive at their root or tip (lag 15-60 min): 1-4 K across -> bow with curvature alpha dT / D (tip shift and rotation), mean rise 1-3x -> growth; duty cycle with exercise and pauses | Timoshenko & Goodier; Roark; Heisel, Richter & Wurst, CIRP Annals 46(1) 1997 |
+| tool_heat | thermal | a process tool (spindle / torch head) working during the exercise periods between blocks, idle 0-10 % while measured: tool housing (tau 5-20 min, 10-40 K) -> wrist (tau 20-60 min, 3-10 K) in series; the 150-300 mm steel tool grows along its axis, the wrist links expand | Incropera & DeWitt ch. 5 (lumped nodes), assumed ranges |
+| refraction | thermal (a measurement error, expected absorbed) | the beam bends in a vertically stratified air (0.2-1.5 K/m, growing 0.1-0.3 K/m per K of warming): the target appears raised by (dn/dT) G L^2 / 2, a few um at 1.5-5 m | Edlen 1966; Birch & Downs 1993; Estler et al., CIRP Annals 51(2) 2002 |
+| belt | transmission | 1-2 wrist joints through a timing belt of non-integer ratio Z2 / Z1: driven and driver pulley eccentricities 5-25 um (1 and Z2 / Z1 cycles per output turn) and a tooth-mesh ripple at Z2, divided by the driven pitch radius | ISO 5294 / ISO 13050 pulley tolerances (as recalled), assumed ripple |
+| ball_screw | transmission | lead deviation of the prismatic stage's ball screw: mean travel deviation log-U(0.03, 0.25) mm over the travel (classes C5-C10), bow 5-30 um, wobble 2-8 um at the lead (5, 10 or 20 mm) | ISO 3408-3 / JIS B 1192 lead accuracy (THK / NSK catalogues, as recalled) |
+
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
 example) and the RV values are as recalled from the catalogue, not re-checked against it.
@@ -106,8 +127,8 @@ NOTES = """## Reading these numbers
   (gravity-driven families mimic each other).
 * Mount tilt, joint compliance and link sag are all driven by the gravity load: the same pose set often cannot
   separate them, which the ambiguous labels record.
-* What the physics leaves out: thermal bending and axis shifts of the links from temperature gradients (per-link
-  uniform expansion; set C bends only a pedestal column), dynamic loads, tracker outliers and anisotropic tracker
+* What the physics leaves out: axis shifts of the links from temperature gradients (per-link uniform expansion;
+  set C bends a pedestal column, set D bends links warmed on one side), dynamic loads, tracker outliers and anisotropic tracker
   noise, a second tracker station, the overlap compliance of the telescopic stage.
 """
 
