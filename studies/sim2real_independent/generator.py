@@ -52,7 +52,6 @@ EFFECTS = {
     **ec.EFFECTS_C,  # set C's new kinds
     **ed.EFFECTS_D,  # set D's new kinds
 }
-PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
 AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER  # measurement effects: need the tracker's frame
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
@@ -118,7 +117,7 @@ def _session_options(robot_key, physics, rng):
         # a working day: blocks with pauses of 30-90 min, the shop's air drifting by 2-6 K
         opts.update(blocks=int(rng.integers(5, 9)), gap_kind="pause", pause_min=(30.0, 90.0),
                     air={"drift_K": drift, "cycle_K": rng.uniform(0.0, 1.0), "period_min": rng.uniform(60, 180)})
-    pmax = PAYLOAD_MAX_KG[robot_key]
+    pmax = hwm.PAYLOAD_MAX_KG[robot_key]
     if "sag" in kinds or (kinds & GRAVITY_KINDS and rng.random() < 0.5):
         steps = np.round(rng.uniform(0, pmax, int(rng.integers(2, 4))), 1)
         opts.update(blocks=max(opts["blocks"], len(steps)), payload_steps=tuple(steps))

@@ -41,10 +41,9 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
     """Why ``e`` is in the final model ``effects``: its forward step or, when that step's base holds an effect the
     backward elimination removed since, the backward test of keeping it beside the others (or, for the last effect
     left, its out-of-fold RMS against the geometric model's)."""
-    fwd = next((st for st in stages if st.selected == e), None)
+    fwd, c = _forward(stages, e)
     if fwd is None:
         return f"{e} was selected"
-    c = next(c for c in fwd.candidates if c.effect == e)
     if set(fwd.base) <= set(effects):
         base = "+".join(("geometric", *fwd.base))
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
@@ -137,10 +136,15 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
     return Verdict("effect", named, tuple(sel + sep + lines + notes), safe, comparisons, **kw)
 
 
+def _forward(stages: list, e: str) -> tuple:
+    """The forward step that selected ``e`` and ``e``'s candidate there, or ``(None, None)``."""
+    fwd = next((st for st in stages if st.selected == e), None)
+    return fwd, None if fwd is None else next(c for c in fwd.candidates if c.effect == e)
+
+
 def _gain_of(stages: list, e: str) -> float:
     """The clipped out-of-fold gain [%] of ``e`` at the forward step that selected it (inf when it has none)."""
-    fwd = next((st for st in stages if st.selected == e), None)
-    c = None if fwd is None else next((c for c in fwd.candidates if c.effect == e), None)
+    c = _forward(stages, e)[1]
     return np.inf if c is None else float(c.gain_pct)
 
 

@@ -14,6 +14,7 @@ import numpy as np
 from sim2real_indep import effects_c_body as cb
 from sim2real_indep import effects_c_joint as cj
 from sim2real_indep import effects_c_thermal as ct
+from sim2real_indep.hardware import PAYLOAD_MAX_KG
 
 #: kind -> (draw, apply, true-structure features)
 EFFECTS_C = {
@@ -37,7 +38,6 @@ DRIVE_HEAT = {"twonode", "workcell", "column_bow"}
 AIR = {"workcell", "tracker_scale"}
 #: kinds whose sessions change the payload between blocks (pick and place with several loads)
 PICK_PLACE = {"hyst_stiffness", "bearing_tilt", "box_torsion", "bolted_tube", "track"}
-PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
 
 
 def session_options(robot_key, physics, rng, opts):

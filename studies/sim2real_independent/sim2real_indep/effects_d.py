@@ -12,6 +12,7 @@ import numpy as np
 from sim2real_indep import effects_d_body as db
 from sim2real_indep import effects_d_joint as dj
 from sim2real_indep import effects_d_thermal as dt
+from sim2real_indep.hardware import PAYLOAD_MAX_KG
 
 #: kind -> (draw, apply, true-structure features)
 EFFECTS_D = {
@@ -42,7 +43,6 @@ AIR = {"refraction"}
 CREEP = {"pad_creep"}
 #: kinds whose sessions change the payload between blocks (pick and place with several loads)
 PICK_PLACE = {"gas_spring", "loose_anchor", "pad_creep", "tapered", "bracket", "dresspack"}
-PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
 
 
 def session_options(robot_key, physics, rng, opts):

@@ -41,6 +41,9 @@ STEEL = {"E": 210e9, "nu": 0.30, "cte": 11.7e-6, "rho": 7850.0}
 #: per robot: gear kind per joint, link tube sections {link: (D range [mm], wall range [mm])}, material,
 #: pedestal (height range [mm], D [mm], wall [mm]), base-plate rotational stiffness range [N m/rad],
 #: copper-loss / rated-speed data
+#: The largest payload each arm is given in a session [kg].
+PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
+
 ROBOTS = {
     "ur10": {"gears": ["HD"] * 6, "material": ALUMINIUM,
              "tubes": {"a2": ((85, 110), (3, 5)), "a3": ((75, 95), (3, 5))},
