@@ -115,8 +115,17 @@ def test_the_lock_is_taken_before_the_command_computes(tmp_path, monkeypatch, ca
     assert list(tmp_path.iterdir()) == []
 
 
+def _default_signals() -> None:
+    # a background or nohup shell starts the suite with SIGINT ignored, which a child inherits; Python then never
+    # installs its KeyboardInterrupt handler
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 def _python(script: str, cwd: Path, **kw) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    if sys.platform != "win32":
+        kw.setdefault("preexec_fn", _default_signals)
     return subprocess.run([sys.executable, "-c", textwrap.dedent(script)], cwd=cwd, env=env, capture_output=True,
                           text=True, timeout=120, **kw)
 

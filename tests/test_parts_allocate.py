@@ -89,7 +89,7 @@ def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
     with pytest.raises(tolalloc.TolallocError, match=r"no design meets P\(\|dP\| < 0.01 mm\) >= 0.95 with these parts "
                                                      r"and process limits: the bought parts' mean error alone is "
                                                      r"0.9\d+ mm at point \d \(payload 1 kg, ambient 15 degC\), at or "
-                                                     r"above the radius 0.01 mm: compensate it \(after="):
+                                                     r"above the radius 0.01 mm: compensate it \(`after='compensation'`"):
         allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.01, exact=False)
 
 

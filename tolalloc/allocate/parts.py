@@ -86,7 +86,7 @@ def _best_reachable(model, robot, points, cond, kw) -> str:
             f"exceeded by a factor {r:.4g}; at point {i + 1} (payload {points.payload_kg[i]:g} kg, ambient "
             f"{points.ambient_c[i]:g} degC) the bought parts carry {share:.0f} % of the variance and their mean error is "
             f"{np.linalg.norm(ob.bias_mm[i]):.3g} mm: relax the radius, "
-            + ("compensate (after='compensation')" if kw["after"] == "none" else "compensate more (a smaller residual)")
+            + ("compensate (`after='compensation'`)" if kw["after"] == "none" else "compensate more (a smaller residual)")
             + ", or offer finer parts in the slots")
 
 

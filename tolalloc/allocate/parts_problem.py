@@ -83,7 +83,7 @@ def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float
         i = int(bad[np.argmax(b[bad])])
         raise TolallocError(f"the bought parts' mean error alone is {b[i]:.4g} mm at point {i + 1} (payload "
                             f"{points.payload_kg[i]:g} kg, ambient {points.ambient_c[i]:g} degC), at or above the "
-                            f"radius {radius_mm:g} mm: compensate it (after='compensation', or a smaller residual), "
+                            f"radius {radius_mm:g} mm: compensate it (`after='compensation'`, or a smaller residual), "
                             "choose stiffer parts, or relax the radius")
     s = (radius_mm / (radius_mm - b)) ** 2
     blk = dict(base.blocks[0])

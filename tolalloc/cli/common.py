@@ -131,6 +131,8 @@ _RENAMED = [("verify", "no_verify"), ("correction", "no_correction"), ("snap", "
 #: settings fields whose flag is not the field's name (``OrientationRequirement.prob`` is ``--angle-prob``)
 _FIELD_FLAGS = {"OrientationRequirement.prob": "angle_prob", "OrientationRequirement.radius_deg": "angle_radius_deg",
                 "OrientationRequirement": "angle_radius_deg"}
+#: a keyword with one value whose flag is a switch (`` `after='compensation'` `` is ``--after-compensation``)
+_VALUE_FLAGS = {"after='compensation'": "after_compensation"}
 
 
 def flag_map(parser) -> dict:
@@ -145,7 +147,7 @@ def flag_map(parser) -> dict:
     for name, dest in _RENAMED:
         if dest in flags:
             flags.setdefault(name, flags[dest])
-    for name, dest in _FIELD_FLAGS.items():
+    for name, dest in (*_FIELD_FLAGS.items(), *_VALUE_FLAGS.items()):
         if dest in flags:
             flags.setdefault(name, flags[dest])
     return flags
@@ -157,9 +159,9 @@ def _flag(flags: dict, name: str) -> str:
 
 
 def flag_text(text: str, args) -> str:
-    """A workflow message in command-line terms: `argument` references become their flags."""
+    """A workflow message in command-line terms: `argument` and `argument='value'` references become their flags."""
     flags = getattr(args, "flags", {})
-    return re.sub(r"`([A-Za-z_][A-Za-z0-9_.]*)`", lambda m: _flag(flags, m.group(1)), text)
+    return re.sub(r"`([A-Za-z_][A-Za-z0-9_.]*(?:='[A-Za-z_]+')?)`", lambda m: _flag(flags, m.group(1)), text)
 
 
 def error_line(exc: TolallocError, args) -> str:

@@ -40,8 +40,8 @@ MIN_DOF = 60
 
 def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Residual sum-of-squares drop of each candidate's columns ``X`` (K, n, 4) fitted to ``r`` (n,), shape (K,)."""
-    G = np.einsum("kni,knj->kij", X, X)
-    h = np.einsum("kni,n->ki", X, r)
+    G = X.transpose(0, 2, 1) @ X
+    h = X.transpose(0, 2, 1) @ r
     G = G + 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] * np.eye(X.shape[2])
     return np.einsum("ki,ki->k", h, np.linalg.solve(G, h[..., None])[..., 0])
 
@@ -49,8 +49,8 @@ def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
 def _columns(fit, Jpj: np.ndarray, qj: np.ndarray, cand: np.ndarray, Q: np.ndarray) -> np.ndarray:
     """The candidates' ``N``, ``2N`` columns at the target in the tracker frame, projected off ``Q``, (K, 3P, 4)."""
     cols = np.stack([ratio_columns(qj, N) for N in cand])  # (K, P, 4)
-    X = np.einsum("ij,pj,kpm->kpim", fit.R, Jpj, cols).reshape(len(cand), -1, 4)
-    return X - np.einsum("ni,kim->knm", Q, np.einsum("ni,knm->kim", Q, X))
+    X = ((Jpj @ fit.R.T)[None, :, :, None] * cols[:, :, None, :]).reshape(len(cand), -1, 4)
+    return X - Q @ (Q.T @ X)
 
 
 def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: np.ndarray, known=None,
