@@ -30,6 +30,7 @@ import pandas as pd
 from sim2real_indep import effects_body as eb
 from sim2real_indep import effects_c as ec
 from sim2real_indep import effects_d as ed
+from sim2real_indep import effects_e as ee
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -51,6 +52,7 @@ EFFECTS = {
     "mount": (eb.mount_draw, eb.mount_apply, eb.mount_features),
     **ec.EFFECTS_C,  # set C's new kinds
     **ed.EFFECTS_D,  # set D's new kinds
+    **ee.EFFECTS_E,  # set E's new kinds
 }
 AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER  # measurement effects: need the tracker's frame
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
@@ -124,7 +126,8 @@ def _session_options(robot_key, physics, rng):
     else:
         opts["payload_steps"] = (float(np.round(rng.uniform(0, pmax) * (rng.random() < 0.5), 1)),)
     opts = ec.session_options(robot_key, physics, rng, opts)
-    return ed.session_options(robot_key, physics, rng, opts)  # set D (no draws without a set-D kind)
+    opts = ed.session_options(robot_key, physics, rng, opts)  # set D (no draws without a set-D kind)
+    return ee.session_options(robot_key, physics, rng, opts)  # set E (no draws without a set-E kind)
 
 
 def _tracker(rng):

@@ -5,8 +5,11 @@ called only through the public API ``tolalloc.diagnose_measurements(robot, train
 reports/sim2real_independent/: report.md and cases.csv (the measurement tables are regenerated from the seeds,
 never stored).
 
-Usage: python studies/sim2real_independent/run.py [--set A|B|C|D|both|all] [--quick] [--jobs N] [--out DIR]
-(``both``: sets A and B; ``all``: A, B, C and D.)
+Usage: python studies/sim2real_independent/run.py [--set A|B|C|D|E|both|all] [--quick] [--jobs N] [--out DIR]
+[--oracle-only]
+(``both``: sets A and B; ``all``: A, B, C and D; set E, the last independent test set, only by name. With
+``--oracle-only`` the cases are generated and labelled, not diagnosed: oracle_<sets>.csv beside cases.csv, which
+it leaves alone, and no report.)
 """
 
 from __future__ import annotations
@@ -58,13 +61,13 @@ def _diagnose(case):
             "diag_s": time.perf_counter() - t}
 
 
-def run_case(spec):
+def run_case(spec, diagnose=True):
     set_name, index, (cid, robot, physics, n, split) = spec
     t = time.perf_counter()
     case = gen.generate(cid, robot, physics, n, cs.case_seed(set_name, index), split)
     o = orc.run_oracle(case)
     t_oracle = time.perf_counter() - t
-    d = _diagnose(case)
+    d = _diagnose(case) if diagnose else {"verdict": "", "effects": [], "candidates": [], "error": "", "diag_s": 0.0}
     e = case.truth["effect_mm"]
     row = {"set": set_name, "case": cid, "robot": robot, "physics": "+".join(physics) or "none",
            "truth": case.label_truth, "poses": n, "split": split, "noise_mm": case.truth["noise_mm"],
@@ -75,15 +78,21 @@ def run_case(spec):
            "rms_without": ";".join(f"{k}={v:.4f}" for k, v in o.rms_without.items()), "oracle_s": t_oracle, **d}
     row["effects"] = "+".join(row["effects"])
     row["candidates"] = "+".join(row["candidates"])
-    return row | score(row)
+    return (row | score(row)) if diagnose else row
+
+
+def _oracle_only(spec):
+    return run_case(spec, diagnose=False)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--set", choices=["A", "B", "C", "D", "both", "all"], default="A")
+    ap.add_argument("--set", choices=["A", "B", "C", "D", "E", "both", "all"], default="A")
     ap.add_argument("--quick", action="store_true", help="the first four cases of each set, 40 poses each")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--out", type=Path, default=OUT)
+    ap.add_argument("--oracle-only", action="store_true",
+                    help="generate and label the cases without diagnosing them (writes oracle_<sets>.csv only)")
     args = ap.parse_args(argv)
     names = {"both": ["A", "B"], "all": ["A", "B", "C", "D"]}.get(args.set, [args.set])
     specs = []
@@ -92,17 +101,23 @@ def main(argv=None):
         for i, c in enumerate(cases[:4] if args.quick else cases):
             specs.append((name, i, c[:3] + (40, c[4]) if args.quick else c))
     t0 = time.perf_counter()
+    work = _oracle_only if args.oracle_only else run_case
     if args.jobs > 1:
         with ProcessPoolExecutor(args.jobs) as pool:
-            rows = list(pool.map(run_case, specs))
+            rows = list(pool.map(work, specs))
     else:
-        rows = [run_case(s) for s in specs]
+        rows = [work(s) for s in specs]
     wall = time.perf_counter() - t0
     frame = pd.DataFrame(rows)
     args.out.mkdir(parents=True, exist_ok=True)
-    tmp = args.out / "cases.csv.tmp"
+    name = f"oracle_{''.join(names)}.csv" if args.oracle_only else "cases.csv"
+    tmp = args.out / f"{name}.tmp"
     frame.to_csv(tmp, index=False, float_format="%.5g")
-    os.replace(tmp, args.out / "cases.csv")
+    os.replace(tmp, args.out / name)
+    if args.oracle_only:
+        cols = ["set", "case", "robot", "physics", "poses", "split", "label", "oracle_gain"]
+        print(frame[cols].to_string(index=False))
+        return
     write_report(frame, args.out / "report.md", wall=wall, jobs=args.jobs, quick=args.quick)
     print(f"{len(frame)} cases in {wall:.0f} s -> {args.out}")
     for name, part in frame.groupby("set"):

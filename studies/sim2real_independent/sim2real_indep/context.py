@@ -23,7 +23,12 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "gas_spring": "joint_compliance", "dresspack": "joint_compliance", "varlash": "backlash",
           "belt": "transmission", "ball_screw": "transmission", "loose_anchor": "mount_compliance",
           "pad_creep": "mount_compliance", "tapered": "link_deflection", "bracket": "link_deflection",
-          "thermal_bend": "thermal", "tool_heat": "thermal", "refraction": "thermal"}
+          "thermal_bend": "thermal", "tool_heat": "thermal", "refraction": "thermal",
+          # set E (sim2real_indep.effects_e)
+          "parallelogram": "joint_compliance", "varstiff": "joint_compliance", "friction_windup": "backlash",
+          "scissor_gear": "backlash", "magnetic_ring": "transmission", "ring_gear": "transmission",
+          "table_frame": "mount_compliance", "soft_foot": "mount_compliance", "channel": "link_deflection",
+          "ram": "link_deflection", "sunlight": "thermal", "fan_thermostat": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -29,8 +29,9 @@ gravity preload) -- and whether it stays quiet where the data cannot name anythi
 the diagnosis's own fitted model comes to the truth beyond the RMS ratio reported below.
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
-`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; all four: `--set all`). The measurement
-tables are regenerated from the seeds and never stored.
+`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; all four: `--set all`; set E: `--set E`, never
+part of `all`; labels alone, without diagnosing: `--oracle-only`). The measurement tables are regenerated from the
+seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
 its physics kinds are variants neither set contains (`sim2real_indep/effects_c*.py`, table below), so it is the
@@ -39,6 +40,10 @@ set that measures how the diagnosis does on physics it was not built against.
 **Set D** (24 cases, seed 40_7004) is a further independent test set of twelve new physics kinds
 (`sim2real_indep/effects_d*.py`, table below), written by a helper who did not read the diagnosis or its effect
 models, and meant to be run once to judge a change of the diagnosis.
+
+**Set E** (24 cases, seed 40_7005) is another independent test set of twelve new kinds
+(`sim2real_indep/effects_e*.py`, table below), written by a helper who read neither the diagnosis, its effect
+models, nor the results of sets A-D; run on its own (`--set E`).
 """
 
 PHYSICS = """## How the physics was written (sources)
@@ -96,6 +101,23 @@ Set D's kinds (same case machinery):
 | belt | transmission | 1-2 wrist joints through a timing belt of non-integer ratio Z2 / Z1: driven and driver pulley eccentricities 5-25 um (1 and Z2 / Z1 cycles per output turn) and a tooth-mesh ripple at Z2, divided by the driven pitch radius | ISO 5294 / ISO 13050 pulley tolerances (as recalled), assumed ripple |
 | ball_screw | transmission | lead deviation of the prismatic stage's ball screw: mean travel deviation log-U(0.03, 0.25) mm over the travel (classes C5-C10), bow 5-30 um, wobble 2-8 um at the lead (5, 10 or 20 mm) | ISO 3408-3 / JIS B 1192 lead accuracy (THK / NSK catalogues, as recalled) |
 
+Set E's kinds (same case machinery):
+
+| kind | family | physics and ranges | sources |
+| --- | --- | --- | --- |
+| parallelogram | joint_compliance | axis 3 driven from the base through a link bar: gear 2 carries tau2 - tau3, gear 3 (+10-40 % bar compliance) tau3, joint compliance G^-1 diag(c) G^-T with off-diagonal terms; linear torsion of the other joints; pick and place | Craig ch. 5 / 8; Alici & Shirinzadeh, IEEE T-RO 21(4) 2005 |
+| varstiff | joint_compliance | joint compliance modulated along the output turn, C0 (1 + 0.1-0.3 cos(theta) + 0.05-0.2 cos(k theta)), k = 2N (strain-wave) or the crank order (RV); pick and place | ISO 6336-1 mesh stiffness; Kahraman & Singh, JSV 146 1991; Blanche & Yang 1989 |
+| friction_windup | backlash | output-side friction (2-6 % of rated torque + crossed-roller bearing friction mu (2.2 M_k + d_M/2 (F_a + 2.2 F_r)), mu 0.003-0.006) winds the compliant gear and stays locked after the stop: the output trails the last motion by C T_f; pick and place | INA / Schaeffler crossed-roller friction formula (as recalled) |
+| scissor_gear | backlash | anti-backlash split gear on the wrist joints whose spring (preload 20-60 % of the largest load against it) yields: 1-4 arcmin taken up at the spring rate, one load direction only; pick and place | Michalec, *Precision Gearing* 1966 |
+| magnetic_ring | transmission | off-axis magnetic ring encoder (pole pitch 1-5 mm, ring 60-150 mm): sub-divisional error at P and 2P cycles per turn (P = pi D / pitch), 1-6 um on the ring, 2-4 joints | HEIDENHAIN interpolation error; RLS / Renishaw ring data sheets |
+| ring_gear | transmission | pinion on a large ring gear at axis 1: cumulative pitch deviation F_p (ISO 1328-1 formula, classes 7-9) as harmonics 1-10 (~k^-1.5), pinion runout 10-25 um at Z / z, single pitch 3-8 um at Z | ISO 1328-1 (as recalled); Smith, *Gear Noise and Vibration* 2003 |
+| table_frame | mount_compliance | welded stand 400-900 mm high, 2-4x softer in its unbraced direction, the robot 100-350 mm off its centre (its weight tilts the frame), legs sinking 50-200 N/um; pick and place | Koenigsberger & Tlusty 1970; Roark (assumed ranges) |
+| soft_foot | mount_compliance | base plate on four feet, one short by 0.03-0.12 mm: rocks onto the other tripod (tilt g / (sqrt(2) a) about the diagonal) when the gravity moment about that diagonal changes sign; elastic feet; pick and place | Piotrowski, *Shaft Alignment Handbook* 2006 (soft foot); four-legged table statics |
+| channel | link_deflection | an upper arm / forearm of ribbed open channel section (flanges 0.6-0.9 h, J x 5-15 for ribs): bending about both principal axes, Saint-Venant torsion by loads missing the shear centre (e = 3 b^2 / (6 b + h) behind the web); pick and place | Timoshenko & Gere; Vlasov 1961; Roark (shear centres) |
+| ram | link_deflection | the prismatic stage as a ram through a carriage with two guide pads 0.25-0.45 m apart (100-400 N/um): pad yield tilts the ram; the ram bends over its overhang L0 + q (tool_changer only); pick and place | Timoshenko & Gere; Roark; linear-guide catalogues (as recalled) |
+| sunlight | thermal | sun through the hall's windows over a half-day session (start 8-12 h, sun path from the hour angle): tubes 0.5-2.5 K warmer on the side facing the sun (quasi-static), bowing away from it, and 2-6 K warmer on the mean through a 15-60 min lag; the logged air is still | Duffie & Beckman 2013 ch. 1; Incropera & DeWitt; Timoshenko & Goodier |
+| fan_thermostat | thermal | main-axis motor housings heated by the drive losses from a cold start, fan switched on by a thermostat at 35-60 % of the fan-less rise (15-35 K) and off 2-5 K lower, cutting the thermal resistance to 0.35-0.6x: a rise, overshoot and limit cycle; link bodies 1-3 expand with their drives | Incropera & DeWitt ch. 7-9; servo-motor forced-ventilation ratings (as recalled) |
+
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
 example) and the RV values are as recalled from the catalogue, not re-checked against it.
@@ -129,7 +151,8 @@ NOTES = """## Reading these numbers
   separate them, which the ambiguous labels record.
 * What the physics leaves out: axis shifts of the links from temperature gradients (per-link uniform expansion;
   set C bends a pedestal column, set D bends links warmed on one side), dynamic loads, tracker outliers and anisotropic tracker
-  noise, a second tracker station, the overlap compliance of the telescopic stage.
+  noise, a second tracker station, the overlap compliance of the telescopic stage (set E's ram models the
+  stage's guide pads and overhang, not the overlap).
 """
 
 
