@@ -60,6 +60,7 @@ def test_generator_imports_nothing_of_tolalloc():
     assert {"kinematics", "physics", "session", "hardware", "effects_joint", "effects_body", "families"} <= reached
     assert {"effects_c", "effects_c_thermal", "effects_c_joint", "effects_c_body"} <= reached  # set C
     assert {"effects_d", "effects_d_thermal", "effects_d_joint", "effects_d_body"} <= reached  # set D
+    assert {"effects_e", "effects_e_thermal", "effects_e_joint", "effects_e_body"} <= reached  # set E
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -322,3 +323,37 @@ def test_set_d_effects_apply_equals_features_times_true_amplitudes():
     # two first-order lags in series: the wrist follows the tool, both reach their steady rise
     x1, x2 = dt.series_lags(np.full(400, 60.0), np.ones(400), 600.0, 1800.0)
     assert x1[-1] == pytest.approx(1.0, abs=1e-6) and x2[-1] == pytest.approx(1.0, abs=1e-5) and np.all(x2 <= x1)
+
+
+def test_set_e_cases_and_every_kind_lies_in_its_true_structure():
+    """Set E: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark, 3 geometry-only cases,
+    3 mixtures; every new kind's displacement lies in the span of its true-structure features (what the oracle
+    fits), to rounding."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_e as ee
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_E) == 24 and cs.SETS["E"][1] == cs.SEED_E == 40_7005
+    assert {r: sum(c[1] == r for c in cs.SET_E) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cs.SET_E) == 3 and sum(len(c[2]) == 2 for c in cs.SET_E) == 3
+    assert all(30 <= c[3] <= 200 for c in cs.SET_E)
+    kinds = {k for c in cs.SET_E for k in c[2]}
+    earlier = {k for s in ("A", "B", "C", "D") for c in cs.SETS[s][0] for k in c[2]}
+    assert kinds == set(ee.EFFECTS_E) and not kinds & earlier
+    assert all(FAMILY[k] == ee.FAMILY_E[k] for k in kinds) and set(ee.FAMILY_E.values()) == set(FAMILIES)
+    for fam in FAMILIES:
+        assert sum(f == fam for f in ee.FAMILY_E.values()) >= 2, fam
+    for robot, physics in (("tool_changer", ("ram", "parallelogram", "soft_foot", "magnetic_ring", "sunlight")),
+                           ("kr16_like", ("ring_gear", "channel", "table_frame", "varstiff", "friction_windup",
+                                          "scissor_gear", "fan_thermostat"))):
+        case = gen.generate("t", robot, physics, 30, 11)
+        t = case.truth
+        ctx = case.model_ctx(t["probe_mm"])
+        for kind in physics:
+            d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx).ravel()
+            F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+            A = F.reshape(len(F), -1).T
+            amp = np.linalg.lstsq(A, d, rcond=None)[0]
+            assert np.abs(A @ amp - d).max() < 1e-8 * max(1.0, np.abs(d).max()), kind
+            assert np.abs(d).max() > 1e-4, kind  # a real effect [mm]

@@ -7,7 +7,7 @@ never stored).
 
 Usage: python studies/sim2real_independent/run.py [--set A|B|C|D|E|both|all] [--quick] [--jobs N] [--out DIR]
 [--oracle-only]
-(``both``: sets A and B; ``all``: A, B, C and D; set E, the last independent test set, only by name. With
+(``both``: sets A and B; ``all``: A, B, C, D and E. With
 ``--oracle-only`` the cases are generated and labelled, not diagnosed: oracle_<sets>.csv beside cases.csv, which
 it leaves alone, and no report.)
 """
@@ -94,7 +94,7 @@ def main(argv=None):
     ap.add_argument("--oracle-only", action="store_true",
                     help="generate and label the cases without diagnosing them (writes oracle_<sets>.csv only)")
     args = ap.parse_args(argv)
-    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D"]}.get(args.set, [args.set])
+    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D", "E"]}.get(args.set, [args.set])
     specs = []
     for name in names:
         cases = cs.SETS[name][0]

@@ -29,8 +29,8 @@ gravity preload) -- and whether it stays quiet where the data cannot name anythi
 the diagnosis's own fitted model comes to the truth beyond the RMS ratio reported below.
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
-`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; all four: `--set all`; set E: `--set E`, never
-part of `all`; labels alone, without diagnosing: `--oracle-only`). The measurement tables are regenerated from the
+`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; all five:
+`--set all`; labels alone, without diagnosing: `--oracle-only`). The measurement tables are regenerated from the
 seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -43,7 +43,8 @@ models, and meant to be run once to judge a change of the diagnosis.
 
 **Set E** (24 cases, seed 40_7005) is another independent test set of twelve new kinds
 (`sim2real_indep/effects_e*.py`, table below), written by a helper who read neither the diagnosis, its effect
-models, nor the results of sets A-D; run on its own (`--set E`).
+models, nor the results of sets A-D. It was run once, on the code of this report, as an unseen judge: nothing in
+the diagnosis was changed after its results were seen.
 """
 
 PHYSICS = """## How the physics was written (sources)
