@@ -23,6 +23,7 @@ import argparse  # noqa: E402
 import sys  # noqa: E402
 import time  # noqa: E402
 from concurrent.futures import ProcessPoolExecutor  # noqa: E402
+from functools import partial  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -81,10 +82,6 @@ def run_case(spec, diagnose=True):
     return (row | score(row)) if diagnose else row
 
 
-def _oracle_only(spec):
-    return run_case(spec, diagnose=False)
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--set", choices=["A", "B", "C", "D", "E", "both", "all"], default="A")
@@ -101,7 +98,7 @@ def main(argv=None):
         for i, c in enumerate(cases[:4] if args.quick else cases):
             specs.append((name, i, c[:3] + (40, c[4]) if args.quick else c))
     t0 = time.perf_counter()
-    work = _oracle_only if args.oracle_only else run_case
+    work = partial(run_case, diagnose=False) if args.oracle_only else run_case
     if args.jobs > 1:
         with ProcessPoolExecutor(args.jobs) as pool:
             rows = list(pool.map(work, specs))

@@ -40,8 +40,8 @@ MIN_DOF = 60
 
 def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Residual sum-of-squares drop of each candidate's columns ``X`` (K, n, 4) fitted to ``r`` (n,), shape (K,)."""
-    G = X.transpose(0, 2, 1) @ X
-    h = X.transpose(0, 2, 1) @ r
+    Xt = X.transpose(0, 2, 1)
+    G, h = Xt @ X, Xt @ r
     G = G + 1e-12 * np.trace(G, axis1=1, axis2=2)[:, None, None] * np.eye(X.shape[2])
     return np.einsum("ki,ki->k", h, np.linalg.solve(G, h[..., None])[..., 0])
 

@@ -153,6 +153,25 @@ def _own_weight(ctx, name, tube):
     return tube["rho"] * tube["A"] * GRAVITY_N  # a link without a listed mass: its tube's own weight
 
 
+def links_sum(displacement, p, ctx) -> np.ndarray:
+    """Sum over the links of ``p`` ({link name: section}) of ``displacement(ctx, li, section, E, G)`` at the
+    sections' own moduli, (P, 3) [mm]: the apply of a per-link beam kind."""
+    out = np.zeros((len(ctx.q), 3))
+    for name, s in p.items():
+        out += displacement(ctx, ctx.chain.link_names.index(name), s, s["E"], s["G"])
+    return out
+
+
+def links_columns(displacement, p, ctx) -> np.ndarray:
+    """Per link of ``p``, the displacement per unit 1/E (shear rigid) and per unit 1/G (bending rigid),
+    (2 links, P, 3) [mm]: the true-structure features of a per-link beam kind."""
+    cols = []
+    for name, s in p.items():
+        li = ctx.chain.link_names.index(name)
+        cols += [displacement(ctx, li, s, 1.0, np.inf), displacement(ctx, li, s, np.inf, 1.0)]
+    return np.array(cols)
+
+
 def sag_apply(params, ctx, hw):
     out = np.zeros((len(ctx.q), 3))
     for name, tb in hw["tubes"].items():

@@ -163,18 +163,11 @@ def _box_displacement(ctx, li, s, E, G):
 
 
 def box_apply(p, ctx, hw):
-    out = np.zeros((len(ctx.q), 3))
-    for name, s in p.items():
-        out += _box_displacement(ctx, ctx.chain.link_names.index(name), s, s["E"], s["G"])
-    return Contribution(displace=out)
+    return Contribution(displace=eb.links_sum(_box_displacement, p, ctx))
 
 
 def box_features(p, ctx, hw):
-    cols = []
-    for name, s in p.items():
-        li = ctx.chain.link_names.index(name)
-        cols += [_box_displacement(ctx, li, s, 1.0, np.inf), _box_displacement(ctx, li, s, np.inf, 1.0)]
-    return np.array(cols)
+    return eb.links_columns(_box_displacement, p, ctx)
 
 
 # ---------------------------------------------------------------------------------- bolted tube links

@@ -155,18 +155,11 @@ def _taper_displacement(ctx, li, s, E, G):
 
 
 def taper_apply(p, ctx, hw):
-    out = np.zeros((len(ctx.q), 3))
-    for name, s in p.items():
-        out += _taper_displacement(ctx, ctx.chain.link_names.index(name), s, s["E"], s["G"])
-    return Contribution(displace=out)
+    return Contribution(displace=eb.links_sum(_taper_displacement, p, ctx))
 
 
 def taper_features(p, ctx, hw):
-    cols = []
-    for name, s in p.items():
-        li = ctx.chain.link_names.index(name)
-        cols += [_taper_displacement(ctx, li, s, 1.0, np.inf), _taper_displacement(ctx, li, s, np.inf, 1.0)]
-    return np.array(cols)
+    return eb.links_columns(_taper_displacement, p, ctx)
 
 
 # ----------------------------------------------------------------------------------------- end-effector bracket
