@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
+import scipy.linalg.lapack
 
 __all__ = ["Evidence", "ard_evidence"]
 
@@ -50,13 +51,21 @@ class Evidence:
 
 
 def _posterior(G, h, alpha, beta):
-    """Posterior mean, diagonal of the posterior covariance and ``log |A|`` for ``A = beta G + diag(alpha)``."""
+    """Posterior mean, diagonal of the posterior covariance and ``log |A|`` for ``A = beta G + diag(alpha)``.
+
+    LAPACK directly (Cholesky, then the triangular inverse ``L^-1``: ``A^-1 = L^-T L^-1``): the evidence iterates
+    this hundreds of times per fit on small matrices, where scipy's wrappers cost as much as the factorisation."""
     M = len(h)
-    A = beta * G + np.diag(alpha)
-    L = scipy.linalg.cholesky(A + 1e-12 * np.trace(A) / M * np.eye(M), lower=True)
-    Linv = scipy.linalg.solve_triangular(L, np.eye(M), lower=True)
+    A = beta * G
+    A[np.diag_indices(M)] += alpha
+    A[np.diag_indices(M)] += 1e-12 * np.trace(A) / M
+    L, info = scipy.linalg.lapack.dpotrf(A, lower=1, clean=1, overwrite_a=1)
+    if info == 0:
+        Linv, info = scipy.linalg.lapack.dtrtri(L, lower=1)
+    if info != 0:
+        raise np.linalg.LinAlgError(f"the posterior precision is not positive definite (LAPACK info {info})")
     m = beta * (Linv.T @ (Linv @ h))
-    return m, np.sum(Linv * Linv, axis=0), 2.0 * float(np.sum(np.log(np.diag(L))))
+    return m, np.einsum("ij,ij->j", Linv, Linv), 2.0 * float(np.sum(np.log(np.diag(L))))
 
 
 def _log_ml(alpha, beta, E, m, logdet, n) -> float:
