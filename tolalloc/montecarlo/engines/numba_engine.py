@@ -77,8 +77,8 @@ def block_stats(compiled: tuple, V: np.ndarray, sub: int, radii, aradii, hist, k
     mn = np.empty((P, 11))
     cnt = np.zeros((P, len(radii) + len(aradii)), np.int64)
     kept = np.empty((11, keep))
-    ok = _kernel()(V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, lo, inv_w, nb, keep,
-                   mean, M2, mx, mn, cnt, H, kept)
+    ok = _call(0, V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, lo, inv_w, nb, keep,
+               mean, M2, mx, mn, cnt, H, kept)
     if not ok:
         return None
     m = V.shape[1]
@@ -88,14 +88,26 @@ def block_stats(compiled: tuple, V: np.ndarray, sub: int, radii, aradii, hist, k
 
 def fill_standard_normal(rng: np.random.Generator, out: np.ndarray) -> None:
     """Fill ``out`` (rows, m), C-contiguous, like ``rng.standard_normal(out=out)`` (same numbers), compiled."""
-    _kernel()
-    _jit[1](rng, out)
+    _call(1, rng, out)
 
 
-def _kernel():
+#: Which of the kernels (0 block, 1 normal draws) this process has called once.
+_READY: set = set()
+
+
+def _call(which: int, *args):
+    """Call kernel ``which``; its first call in a process (the compilation, or the load of the disk cache) runs under
+    :func:`~tolalloc.engine.first_compile`, so processes that start together on an empty cache compile once."""
     global _jit
     if _jit is None:
-        from tolalloc.montecarlo.engines._kernel_nb import block_kernel, fill_standard_normal as fill
+        from tolalloc.montecarlo.engines import _kernel_nb
 
-        _jit = (block_kernel, fill)
-    return _jit[0]
+        _jit = (_kernel_nb.block_kernel, _kernel_nb.fill_standard_normal, _kernel_nb.__file__)
+    if which in _READY:
+        return _jit[which](*args)
+    from tolalloc.engine import first_compile
+
+    with first_compile(_jit[2]):
+        out = _jit[which](*args)
+    _READY.add(which)
+    return out
