@@ -14,7 +14,7 @@ import numpy as np
 from sim2real_indep import effects_c_body as cb
 from sim2real_indep import effects_c_joint as cj
 from sim2real_indep import effects_c_thermal as ct
-from sim2real_indep.hardware import PAYLOAD_MAX_KG
+from sim2real_indep.hardware import pick_place
 
 #: kind -> (draw, apply, true-structure features)
 EFFECTS_C = {
@@ -54,9 +54,7 @@ def session_options(robot_key, physics, rng, opts):
                     pause_min=(10.0, 60.0), air={"drift_K": rng.choice([-1, 1]) * rng.uniform(2.0, 5.0),
                                                  "cycle_K": rng.uniform(0.0, 0.8), "period_min": rng.uniform(60, 180)})
     if kinds & PICK_PLACE:
-        loads = np.round(np.r_[0.0, rng.uniform(0.2, 1.0, int(rng.integers(1, 4))) * PAYLOAD_MAX_KG[robot_key]], 1)
-        blocks = int(rng.integers(6, 11))
-        opts.update(blocks=max(opts["blocks"], blocks), payload_steps=tuple(rng.choice(loads, blocks)))
+        opts.update(pick_place(robot_key, rng, opts["blocks"]))
     return opts
 
 

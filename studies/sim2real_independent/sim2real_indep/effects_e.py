@@ -7,12 +7,10 @@ unchanged. Imports nothing of tolalloc.
 
 from __future__ import annotations
 
-import numpy as np
-
 from sim2real_indep import effects_e_body as xb
 from sim2real_indep import effects_e_joint as xj
 from sim2real_indep import effects_e_thermal as xt
-from sim2real_indep.hardware import PAYLOAD_MAX_KG
+from sim2real_indep.hardware import pick_place
 
 #: kind -> (draw, apply, true-structure features)
 EFFECTS_E = {
@@ -55,7 +53,5 @@ def session_options(robot_key, physics, rng, opts):
     if kinds & DRIVE_HEAT:
         opts.update(blocks=int(rng.integers(5, 10)), gap_kind="mixed", pause_min=(5.0, 40.0))
     if kinds & PICK_PLACE:
-        loads = np.round(np.r_[0.0, rng.uniform(0.2, 1.0, int(rng.integers(1, 4))) * PAYLOAD_MAX_KG[robot_key]], 1)
-        blocks = int(rng.integers(6, 11))
-        opts.update(blocks=max(opts["blocks"], blocks), payload_steps=tuple(rng.choice(loads, blocks)))
+        opts.update(pick_place(robot_key, rng, opts["blocks"]))
     return opts

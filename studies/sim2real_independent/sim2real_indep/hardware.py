@@ -44,6 +44,14 @@ STEEL = {"E": 210e9, "nu": 0.30, "cte": 11.7e-6, "rho": 7850.0}
 #: The largest payload each arm is given in a session [kg].
 PAYLOAD_MAX_KG = {"ur10": 10.0, "tool_changer": 80.0, "kr16_like": 16.0}
 
+
+def pick_place(robot_key, rng, blocks_now: int) -> dict:
+    """Session options of pick and place: 2-4 loads (empty and up to the arm's largest payload) changed between
+    6-10 blocks (at least ``blocks_now``)."""
+    loads = np.round(np.r_[0.0, rng.uniform(0.2, 1.0, int(rng.integers(1, 4))) * PAYLOAD_MAX_KG[robot_key]], 1)
+    blocks = int(rng.integers(6, 11))
+    return {"blocks": max(blocks_now, blocks), "payload_steps": tuple(rng.choice(loads, blocks))}
+
 ROBOTS = {
     "ur10": {"gears": ["HD"] * 6, "material": ALUMINIUM,
              "tubes": {"a2": ((85, 110), (3, 5)), "a3": ((75, 95), (3, 5))},

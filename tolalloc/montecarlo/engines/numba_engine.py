@@ -27,7 +27,7 @@ from tolalloc.errormodel.pose_program import FD
 
 __all__ = ["compile_programs", "block_stats", "fill_standard_normal"]
 
-_jit = None
+_nb = None  # the compiled kernels' module, imported at the first use
 
 
 def compile_programs(progs: list, feats: list, home: np.ndarray) -> tuple:
@@ -77,7 +77,7 @@ def block_stats(compiled: tuple, V: np.ndarray, sub: int, radii, aradii, hist, k
     mn = np.empty((P, 11))
     cnt = np.zeros((P, len(radii) + len(aradii)), np.int64)
     kept = np.empty((11, keep))
-    ok = _call(0, V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, lo, inv_w, nb, keep,
+    ok = _call("block_kernel", V, sub, fi, fk, fcf, fd, endoff, pose_c, home, radii, aradii, lo, inv_w, nb, keep,
                mean, M2, mx, mn, cnt, H, kept)
     if not ok:
         return None
@@ -88,26 +88,25 @@ def block_stats(compiled: tuple, V: np.ndarray, sub: int, radii, aradii, hist, k
 
 def fill_standard_normal(rng: np.random.Generator, out: np.ndarray) -> None:
     """Fill ``out`` (rows, m), C-contiguous, like ``rng.standard_normal(out=out)`` (same numbers), compiled."""
-    _call(1, rng, out)
+    _call("fill_standard_normal", rng, out)
 
 
-#: Which of the kernels (0 block, 1 normal draws) this process has called once.
+#: The kernels this process has called once.
 _READY: set = set()
 
 
-def _call(which: int, *args):
-    """Call kernel ``which``; its first call in a process (the compilation, or the load of the disk cache) runs under
-    :func:`~tolalloc.engine.first_compile`, so processes that start together on an empty cache compile once."""
-    global _jit
-    if _jit is None:
-        from tolalloc.montecarlo.engines import _kernel_nb
-
-        _jit = (_kernel_nb.block_kernel, _kernel_nb.fill_standard_normal, _kernel_nb.__file__)
-    if which in _READY:
-        return _jit[which](*args)
+def _call(name: str, *args):
+    """Call the kernel ``name`` of :mod:`._kernel_nb`; its first call in a process (the compilation, or the load of the
+    disk cache) runs under :func:`~tolalloc.engine.first_compile`, so processes that start together on an empty cache
+    compile once."""
+    global _nb
+    if _nb is None:
+        from tolalloc.montecarlo.engines import _kernel_nb as _nb
+    if name in _READY:
+        return getattr(_nb, name)(*args)
     from tolalloc.engine import first_compile
 
-    with first_compile(_jit[2]):
-        out = _jit[which](*args)
-    _READY.add(which)
+    with first_compile(_nb.__file__):
+        out = getattr(_nb, name)(*args)
+    _READY.add(name)
     return out
