@@ -118,3 +118,50 @@ def test_air_drift_and_drive_warmup_together_are_one_combined_variant(warmup):
         assert air in ("temperature", "lag_5min") and not is_air_variant(work), variant
     assert d.effect == "thermal"
     assert d.final.heldout_rms_mm < 0.5 * d.geometric.heldout_rms_mm
+
+
+def _bowed_chain(robot, name: str, axis_home: np.ndarray, theta: float, pieces: int = 400) -> Robot:
+    """``robot`` with link ``name`` bent into an arc: ``pieces`` short links, each turned about ``axis_home`` (across
+    the link, at home) by the curvature up to its middle, and everything after the link turned by the whole angle
+    ``theta`` about its end (the joint axes, later links and the tool): the bowed robot built from its elements,
+    independent of :func:`link_bow`."""
+    turn = lambda a: Rotation.from_rotvec(axis_home * a).as_matrix()  # noqa: E731
+    chain, after = [], False
+    for el in robot.chain:
+        if isinstance(el, Link) and el.name == name:
+            v = np.asarray(el.vector_mm, float)
+            chain += [Link(f"{name}_{i}", turn(theta * (i + 0.5) / pieces) @ v / pieces) for i in range(pieces)]
+            after = True
+        elif after and isinstance(el, Link):
+            chain.append(Link(el.name, turn(theta) @ np.asarray(el.vector_mm, float)))
+        elif after:
+            chain.append(type(el)(el.name, el.kind, turn(theta) @ np.asarray(el.axis, float), el.lower, el.upper,
+                                  el.nominal))
+        else:
+            chain.append(el)
+    return Robot(robot.name, tuple(chain), tool_offset_mm=turn(theta) @ robot.tool_offset_mm,
+                 tool_rotation=turn(theta) @ robot.tool_rotation, trust_units=True)
+
+
+@pytest.mark.parametrize("robot_name", ["ur10", "tool_changer"])
+def test_link_bow_is_the_tool_shift_of_an_arc_bent_link(robot_name):
+    """A uniform curvature along a link (a temperature difference across its section) moves the tool point as the
+    robot rebuilt with that link bent into an arc does (first order in the angle; 400 pieces)."""
+    from tolalloc.physics.thermal import BOW_MIN_MM, link_bow
+
+    robot = tolalloc.load_robot(robot_name)
+    rng = np.random.default_rng(3)
+    q = rng.uniform(np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi), (5, robot.n_joints))
+    B, names = link_bow(robot, q)
+    long_links = [lk.name for lk in robot.links if lk.length_mm >= BOW_MIN_MM]
+    assert names == tuple(long_links) and B.shape == (5, 3, 2 * len(names)) and len(names) >= 2
+    theta = 2e-4  # 200 urad: the second-order term is ~theta^2 L ~ 1e-5 mm
+    for i, name in enumerate(names):
+        v = np.asarray(next(lk for lk in robot.links if lk.name == name).vector_mm, float)
+        e = v / np.linalg.norm(v)
+        a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
+        for k, axis in enumerate((a1 / np.linalg.norm(a1), np.cross(e, a1 / np.linalg.norm(a1)))):
+            bent = _bowed_chain(robot, name, axis, theta)
+            exact = bent.fk_internal(q)[:, :3, 3] - robot.fk_internal(q)[:, :3, 3]
+            np.testing.assert_allclose(B[:, :, 2 * i + k] * theta / 1e-6, exact, atol=2e-3 * np.abs(exact).max())
+            assert np.abs(exact).max() > 0.01  # a measurable bow: 200 urad over a long link

@@ -27,8 +27,9 @@ signature:
 ``backlash``          lost motion ``dq_j = b_j s_j`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
                       ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``.
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
-                      ``lag_<tau>min``), a warm-up with time, the motion history (``activity_<tau>min``) or the
-                      motors' losses from motion and holding torque (``motor_<tau>min``).
+                      ``lag_<tau>min``), a warm-up with time (with links that also bow across their section:
+                      ``bow_<tau>min``), the motion history (``activity_<tau>min``) or the motors' losses from
+                      motion and holding torque (``motor_<tau>min``).
 ``transmission``      kinematic error periodic in each revolute joint's angle (:mod:`tolalloc.physics.transmission`):
                       low orders (``1x``, ``1x2x``, ``2x3x``, ``series<K>``), and ``gear``: once per turn plus the
                       strain-wave orders ``N`` and ``2N`` of the gear ratio -- from the robot file's reducers, or

@@ -9,6 +9,9 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   links [1e-6].
 * ``links_warmup_<tau>min``: the same warm-up with its own growth per link (motors of different power sit at
   different links) [1e-6 per link].
+* ``bow_<tau>min``: the same warm-up warming each link unevenly across its section (a motor flanged to one side,
+  sun on one face): every link grows by its own amount and every link at least :data:`BOW_MIN_MM` long also bows
+  about two axes across it fixed in the link (:func:`link_bow`) [1e-6 per link, urad per bow axis].
 * ``activity_<tau>min``: motion history: per joint the joint speed between consecutive poses in time order
   (``|q_i - q_(i-1)| / (t_i - t_(i-1))``, rad/s or mm/s) through a first-order lag of time constant ``tau`` (the
   heat stored in its motor); link ``k`` grows with the lagged activity of the joints at its two ends, with its
@@ -40,7 +43,7 @@ from tolalloc.physics.loads import gravity_torques
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
-           "motor_rise", "link_temperature", "is_air_variant", "variant_parts"]
+           "motor_rise", "link_temperature", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -49,6 +52,8 @@ MAX_SPAN_S = 2 * 86400.0
 MAX_STEP_S = 600.0
 #: An interval longer than this many median intervals between poses holds a pause (the motors idle, the links cool).
 PAUSE_STEPS = 5.0
+#: Links shorter than this [mm] do not bow measurably under a temperature difference across them.
+BOW_MIN_MM = 200.0
 
 
 def time_problem(time_s) -> str | None:
@@ -156,7 +161,8 @@ def thermal_variants(meas) -> tuple:
     if time_problem(t) is None:
         if out:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
-        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "activity", "motor") for m in LAG_MIN]
+        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor")
+                for m in LAG_MIN]
     return tuple(out)
 
 
@@ -192,7 +198,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     if variant == "temperature":
         return meas.temperature_c - ref["temperature_c"]
     tau, t = _tau_s(variant), meas.time_s
-    if variant.startswith(("warmup", "links_warmup")):
+    if variant.startswith(("warmup", "links_warmup", "bow")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
     if variant.startswith("activity"):
         return _history(meas, ref, lambda ts, qs: activity(ts, qs, tau)) @ link_joints.T
@@ -247,6 +253,9 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
         if v.startswith("motor"):
             out.append(_motor_basis(robot, grow, lj, s, v))
             continue
+        if v.startswith("bow"):
+            out.append(_bow_basis(robot, meas.q, grow, links, s, v))
+            continue
         if v.startswith(("links_warmup", "activity")):
             per = s[:, None] if s.ndim == 1 else s
             B = grow * (per if per.shape[1] == grow.shape[2] else np.repeat(per, grow.shape[2], axis=1))[:, None, :]
@@ -257,6 +266,43 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
             labels = (f"alpha [1e-6/K] ({v})" if not v.startswith("warmup") else f"growth [1e-6] ({v})",)
         out.append((labels, np.asarray(B, dtype=float)))
     return out
+
+
+def link_bow(robot: Robot, q: np.ndarray, min_length_mm: float = BOW_MIN_MM) -> tuple:
+    """Displacement of the tool point per 1e-6 rad of thermal bow of every link at least ``min_length_mm`` long,
+    about two axes across it fixed in the link, shape (P, 3, 2L'), and the links' names.
+
+    A temperature difference across a link's section bends it with a uniform curvature ``kappa`` (Timoshenko &
+    Goodier: ``alpha dT / D``, ``D`` the depth): its far end turns by ``theta = kappa L`` and shifts by
+    ``kappa L^2 / 2`` across it, which is the turn ``theta`` about an axis through the link's midpoint."""
+    q = np.atleast_2d(q)
+    prefix = poe_prefix(robot.screws, q)
+    tip = robot.fk_internal(q)[:, :3, 3]
+    start = np.zeros(3)
+    cols, names = [], []
+    for lk, site in zip(robot.links, robot.link_sites):
+        v = np.asarray(lk.vector_mm, float)
+        if lk.length_mm >= min_length_mm:
+            e = v / np.linalg.norm(v)
+            a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
+            a1 /= np.linalg.norm(a1)
+            R, p = prefix[:, site, :3, :3], prefix[:, site, :3, 3]
+            mid = R @ (start + v / 2) + p
+            for a0 in (a1, np.cross(e, a1)):
+                cols.append(1e-6 * np.cross(R @ a0, tip - mid))
+            names.append(lk.name)
+        start = start + v
+    B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
+    return B, tuple(names)
+
+
+def _bow_basis(robot: Robot, q, grow, links, s, variant: str) -> tuple:
+    """(names, B (P, 3, M)) of ``bow``: every link grows, and every link long enough bows (:func:`link_bow`), by its
+    own amount times the warm-up ``s`` (P,)."""
+    bow, bowed = link_bow(robot, q)
+    labels = [f"alpha_{nm} [1e-6] ({variant})" for nm in links]
+    labels += [f"bow_{nm}_{ax} [urad] ({variant})" for nm in bowed for ax in ("u", "v")]
+    return tuple(labels), np.concatenate([grow, bow], axis=2) * s[:, None, None]
 
 
 def _motor_basis(robot: Robot, grow: np.ndarray, lj: np.ndarray, heat: np.ndarray, variant: str) -> tuple:
