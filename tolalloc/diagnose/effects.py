@@ -203,4 +203,5 @@ def effect_bases(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     """:func:`effect_basis` for every variant in ``names`` (thermal: the link-growth field is computed once)."""
     if effect != "thermal":
         return [effect_basis(effect, robot, meas, t_mm, ref, v) for v in names]
-    return [EffectBasis(effect, labels, B, v) for v, (labels, B) in zip(names, thermal_bases(robot, meas, ref, names))]
+    bases = thermal_bases(robot, meas, ref, names, target_points(robot, np.atleast_2d(meas.q), t_mm))
+    return [EffectBasis(effect, labels, B, v) for v, (labels, B) in zip(names, bases)]

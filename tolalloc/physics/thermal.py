@@ -238,15 +238,16 @@ def link_joint_matrix(robot: Robot) -> np.ndarray:
     return np.array(rows).reshape(-1, robot.n_joints)
 
 
-def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
-    """(names, B (P, 3, M)) of every variant in ``names`` (the link-growth field is computed once)."""
+def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | None = None) -> list:
+    """(names, B (P, 3, M)) of every variant in ``names`` (the link-growth field is computed once), at the measured
+    points ``points_mm`` (P, 3) (default the tool point; growth moves every point alike, a bow turns them)."""
     grow, links = link_growth(robot, meas.q)
     total = grow.sum(axis=2)  # (P, 3): every link by the same relative amount
     lj = link_joint_matrix(robot)
     out = []
     for v in names:
         if "+" in v:  # a combined variant: its parts' columns side by side
-            parts = thermal_bases(robot, meas, ref, variant_parts(v))
+            parts = thermal_bases(robot, meas, ref, variant_parts(v), points_mm)
             out.append((sum((lab for lab, _ in parts), ()), np.concatenate([B for _, B in parts], axis=2)))
             continue
         s = thermal_signal(meas, ref, v, lj, robot)
@@ -254,7 +255,7 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
             out.append(_motor_basis(robot, grow, lj, s, v))
             continue
         if v.startswith("bow"):
-            out.append(_bow_basis(robot, meas.q, grow, links, s, v))
+            out.append(_bow_basis(robot, meas.q, grow, links, s, v, points_mm))
             continue
         if v.startswith(("links_warmup", "activity")):
             per = s[:, None] if s.ndim == 1 else s
@@ -268,16 +269,18 @@ def thermal_bases(robot: Robot, meas, ref: dict, names) -> list:
     return out
 
 
-def link_bow(robot: Robot, q: np.ndarray, min_length_mm: float = BOW_MIN_MM) -> tuple:
-    """Displacement of the tool point per 1e-6 rad of thermal bow of every link at least ``min_length_mm`` long,
-    about two axes across it fixed in the link, shape (P, 3, 2L'), and the links' names.
+def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
+             min_length_mm: float = BOW_MIN_MM) -> tuple:
+    """Displacement of the points ``points_mm`` (P, 3) carried by the flange (default the tool point) per 1e-6 rad of
+    thermal bow of every link at least ``min_length_mm`` long, about two axes across it fixed in the link, shape
+    (P, 3, 2L'), and the links' names.
 
     A temperature difference across a link's section bends it with a uniform curvature ``kappa`` (Timoshenko &
     Goodier: ``alpha dT / D``, ``D`` the depth): its far end turns by ``theta = kappa L`` and shifts by
     ``kappa L^2 / 2`` across it, which is the turn ``theta`` about an axis through the link's midpoint."""
     q = np.atleast_2d(q)
     prefix = poe_prefix(robot.screws, q)
-    tip = robot.fk_internal(q)[:, :3, 3]
+    tip = robot.fk_internal(q)[:, :3, 3] if points_mm is None else np.asarray(points_mm, float)
     start = np.zeros(3)
     cols, names = [], []
     for lk, site in zip(robot.links, robot.link_sites):
@@ -296,10 +299,10 @@ def link_bow(robot: Robot, q: np.ndarray, min_length_mm: float = BOW_MIN_MM) -> 
     return B, tuple(names)
 
 
-def _bow_basis(robot: Robot, q, grow, links, s, variant: str) -> tuple:
+def _bow_basis(robot: Robot, q, grow, links, s, variant: str, points_mm) -> tuple:
     """(names, B (P, 3, M)) of ``bow``: every link grows, and every link long enough bows (:func:`link_bow`), by its
     own amount times the warm-up ``s`` (P,)."""
-    bow, bowed = link_bow(robot, q)
+    bow, bowed = link_bow(robot, q, points_mm)
     labels = [f"alpha_{nm} [1e-6] ({variant})" for nm in links]
     labels += [f"bow_{nm}_{ax} [urad] ({variant})" for nm in bowed for ax in ("u", "v")]
     return tuple(labels), np.concatenate([grow, bow], axis=2) * s[:, None, None]
