@@ -61,6 +61,7 @@ def test_generator_imports_nothing_of_tolalloc():
     assert {"effects_c", "effects_c_thermal", "effects_c_joint", "effects_c_body"} <= reached  # set C
     assert {"effects_d", "effects_d_thermal", "effects_d_joint", "effects_d_body"} <= reached  # set D
     assert {"effects_e", "effects_e_thermal", "effects_e_joint", "effects_e_body"} <= reached  # set E
+    assert {"effects_f", "effects_f_thermal", "effects_f_joint", "effects_f_body"} <= reached  # set F
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -357,3 +358,102 @@ def test_set_e_cases_and_every_kind_lies_in_its_true_structure():
             amp = np.linalg.lstsq(A, d, rcond=None)[0]
             assert np.abs(A @ amp - d).max() < 1e-8 * max(1.0, np.abs(d).max()), kind
             assert np.abs(d).max() > 1e-4, kind  # a real effect [mm]
+
+
+def test_set_f_cases_kinds_and_determinism():
+    """Set F: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_f as ef
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_F) == 24 and cs.SETS["F"][1] == cs.SEED_F == 40_7006
+    assert {r: sum(c[1] == r for c in cs.SET_F) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cs.SET_F) == 3 and sum(len(c[2]) == 2 for c in cs.SET_F) == 3
+    assert all(30 <= c[3] <= 200 for c in cs.SET_F) and min(c[3] for c in cs.SET_F) <= 50
+    assert sum(c[4] == "time" for c in cs.SET_F) == 6
+    for r in ("ur10", "tool_changer", "kr16_like"):
+        assert sum(len(c[2]) == 1 for c in cs.SET_F if c[1] == r) >= 5
+    kinds = {k for c in cs.SET_F for k in c[2]}
+    earlier = set(cs.KINDS) | {k for s in "ABCDE" for c in cs.SETS[s][0] for k in c[2]}
+    assert kinds == set(ef.EFFECTS_F) and not kinds & earlier
+    assert all(gen.EFFECTS[k] == ef.EFFECTS_F[k] for k in kinds)
+    for fam in FAMILIES:
+        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    for i, (cid, robot, physics, n, split) in enumerate(cs.SET_F):
+        if physics and n > 40:
+            continue
+        a = gen.generate(cid, robot, physics, n, cs.case_seed("F", i), split)
+        b = gen.generate(cid, robot, physics, n, cs.case_seed("F", i), split)
+        assert a.frame.equals(b.frame) and np.array_equal(a.train, b.train) and np.array_equal(a.test, b.test), cid
+        if not physics:  # geometry and noise only
+            assert a.truth["params"] == {} and np.abs(a.truth["effect_mm"]).max() < 1e-9
+            assert orc.run_oracle(a).label == "none"
+
+
+def test_set_f_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-F kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the lever kinds do nothing on ur10 (no cylinders); and
+    known answers: the lever's angle derivatives against finite differences of the law of cosines, the tilt of a
+    plate on a tensionless bed continuous at the kern, the vector play operator, the tape-scale sawtooth's jump
+    g / R, the brake's offset only on braked poses."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_f_body as fb
+    from sim2real_indep import effects_f_joint as fj
+
+    for robot, physics in (("ur10", ("cable_balancer", "uplift", "eccentric_axis", "weld_crack", "tape_scale",
+                                     "day_night")),
+                           ("tool_changer", ("lever_drive", "lever_stiffness", "screw_growth", "plate_yield",
+                                             "brake_hub", "wear_zones")),
+                           ("ur10", ("lever_drive", "lever_stiffness", "screw_growth"))):
+        case = gen.generate("t", robot, physics, 30, 12)
+        t = case.truth
+        ctx = case.model_ctx(t["probe_mm"])
+        for kind in physics:
+            d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx).ravel()
+            F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+            if robot == "ur10" and kind in ("lever_drive", "screw_growth"):
+                assert len(F) == 0 and np.abs(d).max() == 0.0, kind
+                continue
+            A = F.reshape(len(F), -1).T
+            amp = np.linalg.lstsq(A, d, rcond=None)[0]
+            assert np.abs(A @ amp - d).max() < 1e-8 * max(1.0, np.abs(d).max()), kind
+            assert np.abs(d).max() > 1e-3, kind  # a real effect [mm]
+
+    lv = {"r1": 0.9, "r2": 0.3, "s": 1.0, "psi0": 0.4}
+    q = np.linspace(0.2, 1.6, 7)
+    psi, L, a = fj.lever_state(lv, q)
+    assert a == pytest.approx(lv["r1"] * lv["r2"] * np.sin(psi) / L)
+    acos = lambda L_, r1, r2: np.arccos((r1 * r1 + r2 * r2 - L_ * L_) / (2 * r1 * r2))  # noqa: E731
+    h = 1e-7
+    fd = [(acos(L, lv["r1"] + h, lv["r2"]) - acos(L, lv["r1"] - h, lv["r2"])) / (2 * h),
+          (acos(L, lv["r1"], lv["r2"] + h) - acos(L, lv["r1"], lv["r2"] - h)) / (2 * h),
+          (acos(L + h, lv["r1"], lv["r2"]) - acos(L - h, lv["r1"], lv["r2"])) / (2 * h)]
+    assert fj.lever_partials(lv, q) == pytest.approx(np.array(fd), rel=1e-6)
+
+    # tensionless bed: 12 W e / B^4 and 2 W / (B c^2) meet at e = B / 6 (c = B), the sink W / B^2 as well; at
+    # e = B / 3 the contact is half the plate and the tilt twice the linear law's
+    B, W = 0.8, 2000.0
+    theta, sink = fb.bed_tilt(W, np.array([B / 6 - 1e-9, B / 6 + 1e-9, B / 3]), B)
+    assert theta[:2] == pytest.approx(2 * W / B ** 3, rel=1e-6) and sink[:2] == pytest.approx(W / B ** 2, rel=1e-6)
+    assert theta[2] == pytest.approx(2 * 12 * W * (B / 3) / B ** 4) and abs(sink[2]) < 1e-9 * W / B ** 2
+
+    beta = fb.play2(np.zeros(2), np.array([3.0, 4.0]), 2.0)  # moved to within r of the input, along the line
+    assert beta == pytest.approx([1.8, 2.4]) and fb.play2(beta, np.array([3.0, 3.0]), 2.0) is beta
+
+    tape = {"joint": 0, "theta_g": 1.0, "eps": 1e-4}
+    sig = fj.tape_signal(tape, SimpleNamespace(q=np.array([[1.0 - 1e-6], [1.0 + 1e-6], [1.5]])))
+    assert sig[0] - sig[1] == pytest.approx(2 * np.pi, abs=1e-5) and sig[2] == pytest.approx(0.5)  # x eps: g / R
+
+    case = gen.generate("t", "kr16_like", ("brake_hub",), 40, 3)
+    p = case.truth["params"]["brake_hub"]
+    ctx = case.model_ctx(case.truth["probe_mm"])
+    off = ctx.session.dwell_s <= p["t_brake_s"]
+    assert off.any() and (~off).any()
+    for b in p["joints"]:
+        s = fj.brake_signal(p, b, ctx)
+        assert np.all(s[off] == 0) and set(np.unique(s)) <= {-2.0, 0.0, 2.0}
+

@@ -31,6 +31,7 @@ from sim2real_indep import effects_body as eb
 from sim2real_indep import effects_c as ec
 from sim2real_indep import effects_d as ed
 from sim2real_indep import effects_e as ee
+from sim2real_indep import effects_f as ef
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -53,6 +54,7 @@ EFFECTS = {
     **ec.EFFECTS_C,  # set C's new kinds
     **ed.EFFECTS_D,  # set D's new kinds
     **ee.EFFECTS_E,  # set E's new kinds
+    **ef.EFFECTS_F,  # set F's new kinds
 }
 AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER  # measurement effects: need the tracker's frame
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
@@ -127,7 +129,8 @@ def _session_options(robot_key, physics, rng):
         opts["payload_steps"] = (float(np.round(rng.uniform(0, pmax) * (rng.random() < 0.5), 1)),)
     opts = ec.session_options(robot_key, physics, rng, opts)
     opts = ed.session_options(robot_key, physics, rng, opts)  # set D (no draws without a set-D kind)
-    return ee.session_options(robot_key, physics, rng, opts)  # set E (no draws without a set-E kind)
+    opts = ee.session_options(robot_key, physics, rng, opts)  # set E (no draws without a set-E kind)
+    return ef.session_options(robot_key, physics, rng, opts)  # set F (no draws without a set-F kind)
 
 
 def _tracker(rng):

@@ -28,7 +28,13 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "parallelogram": "joint_compliance", "varstiff": "joint_compliance", "friction_windup": "backlash",
           "scissor_gear": "backlash", "magnetic_ring": "transmission", "ring_gear": "transmission",
           "table_frame": "mount_compliance", "soft_foot": "mount_compliance", "channel": "link_deflection",
-          "ram": "link_deflection", "sunlight": "thermal", "fan_thermostat": "thermal"}
+          "ram": "link_deflection", "sunlight": "thermal", "fan_thermostat": "thermal",
+          # set F (sim2real_indep.effects_f)
+          "cable_balancer": "joint_compliance", "lever_stiffness": "joint_compliance",
+          "plate_yield": "mount_compliance", "uplift": "mount_compliance", "eccentric_axis": "link_deflection",
+          "weld_crack": "link_deflection", "wear_zones": "backlash", "brake_hub": "backlash",
+          "tape_scale": "transmission", "lever_drive": "transmission", "day_night": "thermal",
+          "screw_growth": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
