@@ -5,6 +5,8 @@ growth is recovered from a chain whose links are scaled one by one (independent 
 the guide tilt of the tool_changer's stage on horizontal poses equals the rigid rotation of the target about the
 guide point by the hand-computed gravity moment of the masses beyond it."""
 
+import json
+
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
@@ -196,3 +198,14 @@ def test_a_link_bowing_as_it_warms_up_is_diagnosed_as_thermal_bow():
     bow = params[[n for n in params.index if n.startswith(f"thermal:bow_{link.name}_")]]
     assert len(bow) == 2 and 300 < bow.iloc[0] < 500 and abs(bow.iloc[1]) < 30, bow  # the bow about the true axis
     assert d.final.heldout_rms_mm < 0.25 * d.geometric.heldout_rms_mm
+    # the identified model written to its file and read back predicts the bowed arm at new poses and times alike
+    from tolalloc.diagnose.model_export import identified_section, model_from_identified
+    from tolalloc.diagnose.model_use import identified_model
+
+    m = identified_model(d)
+    back = model_from_identified(json.loads(json.dumps(identified_section(m))), robot)
+    q_new, t_new = q[::7] + 0.1, ts[::7] + 15.0
+    a, b = (x.points(x.measurements(q_new, time_s=t_new), "tracker") for x in (m, back))
+    np.testing.assert_allclose(b, a, atol=1e-9)
+    later = m.points(m.measurements(q_new, time_s=t_new + 7200.0), "tracker")
+    assert np.abs(later - a).max() > 0.05  # the bow is in the prediction: two hours later the arm is warmer
