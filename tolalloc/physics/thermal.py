@@ -39,7 +39,7 @@ import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
-from tolalloc.physics.loads import gravity_torques
+from tolalloc.physics.loads import gravity_torques, point_at
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
@@ -244,6 +244,7 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
     grow, links = link_growth(robot, meas.q)
     total = grow.sum(axis=2)  # (P, 3): every link by the same relative amount
     lj = link_joint_matrix(robot)
+    bow = None  # the bow field, computed once for every bow variant (only the warm-up differs)
     out = []
     for v in names:
         if "+" in v:  # a combined variant: its parts' columns side by side
@@ -255,7 +256,8 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
             out.append(_motor_basis(robot, grow, lj, s, v))
             continue
         if v.startswith("bow"):
-            out.append(_bow_basis(robot, meas.q, grow, links, s, v, points_mm))
+            bow = link_bow(robot, meas.q, points_mm) if bow is None else bow
+            out.append(_bow_basis(grow, links, bow, s, v))
             continue
         if v.startswith(("links_warmup", "activity")):
             per = s[:, None] if s.ndim == 1 else s
@@ -289,20 +291,19 @@ def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
             e = v / np.linalg.norm(v)
             a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
             a1 /= np.linalg.norm(a1)
-            R, p = prefix[:, site, :3, :3], prefix[:, site, :3, 3]
-            mid = R @ (start + v / 2) + p
+            mid = point_at(prefix[:, site], start + v / 2)
             for a0 in (a1, np.cross(e, a1)):
-                cols.append(1e-6 * np.cross(R @ a0, tip - mid))
+                cols.append(1e-6 * np.cross(prefix[:, site, :3, :3] @ a0, tip - mid))
             names.append(lk.name)
         start = start + v
     B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
     return B, tuple(names)
 
 
-def _bow_basis(robot: Robot, q, grow, links, s, variant: str, points_mm) -> tuple:
-    """(names, B (P, 3, M)) of ``bow``: every link grows, and every link long enough bows (:func:`link_bow`), by its
-    own amount times the warm-up ``s`` (P,)."""
-    bow, bowed = link_bow(robot, q, points_mm)
+def _bow_basis(grow: np.ndarray, links: tuple, bow_field: tuple, s: np.ndarray, variant: str) -> tuple:
+    """(names, B (P, 3, M)) of ``bow``: every link grows (``grow``, ``links``: :func:`link_growth`), and every link
+    long enough bows (``bow_field``: :func:`link_bow`), by its own amount times the warm-up ``s`` (P,)."""
+    bow, bowed = bow_field
     labels = [f"alpha_{nm} [1e-6] ({variant})" for nm in links]
     labels += [f"bow_{nm}_{ax} [urad] ({variant})" for nm in bowed for ax in ("u", "v")]
     return tuple(labels), np.concatenate([grow, bow], axis=2) * s[:, None, None]
