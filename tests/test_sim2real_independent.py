@@ -216,6 +216,23 @@ def _linear_displacement(c, ctx):
     return out
 
 
+def _effect_and_features(case, ctx, kind):
+    """The first-order target displacement of ``kind`` in ``case`` (3P,) and its true-structure features as columns
+    (3P, M), on the poses of ``ctx`` (``case.model_ctx``)."""
+    t = case.truth
+    d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx).ravel()
+    F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+    return d, (F.reshape(len(F), -1).T if len(F) else np.zeros((len(d), 0)))
+
+
+def _assert_features_reproduce(d, A, amp=None, *, rtol: float, min_mm: float, what: str = ""):
+    """The features ``A`` times the amplitudes ``amp`` (default: the least-squares ones) give the displacement ``d``
+    within ``rtol`` of its size, and the effect is real (``min_mm`` at its largest)."""
+    amp = np.linalg.lstsq(A, d, rcond=None)[0] if amp is None else np.asarray(amp, float).ravel()
+    assert np.abs(A @ amp - d).max() < rtol * max(1.0, np.abs(d).max()), what
+    assert np.abs(d).max() > min_mm, what  # a real effect [mm]
+
+
 def test_set_c_effects_apply_equals_features_times_true_amplitudes():
     """Set C: 24 cases on the three arms covering every family; a few new kinds' apply equals their true-structure
     features times the true amplitudes (explicit for rv_error, track, dahl; least squares for the others)."""
@@ -231,13 +248,7 @@ def test_set_c_effects_apply_equals_features_times_true_amplitudes():
     ctx = case.model_ctx(t["probe_mm"])
 
     def check(kind, amp=None):
-        d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx)
-        F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
-        A = F.reshape(len(F), -1).T
-        if amp is None:
-            amp = np.linalg.lstsq(A, d.ravel(), rcond=None)[0]
-        assert np.abs(A @ amp - d.ravel()).max() < 1e-9 * max(1.0, np.abs(d).max())
-        assert np.abs(d).max() > 1e-4  # a real effect [mm]
+        _assert_features_reproduce(*_effect_and_features(case, ctx, kind), amp, rtol=1e-9, min_mm=1e-4, what=kind)
 
     rv = t["params"]["rv_error"]
     check("rv_error", np.concatenate([[a * np.cos(ph_), a * np.sin(ph_)] for g in rv
@@ -273,13 +284,8 @@ def test_set_d_effects_apply_equals_features_times_true_amplitudes():
         assert sum(f == fam for f in ed.FAMILY_D.values()) >= 2
 
     def check(case, kind, amp):
-        t = case.truth
-        ctx = case.model_ctx(t["probe_mm"])
-        d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx)
-        F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
-        A = F.reshape(len(F), -1).T
-        assert np.abs(A @ np.asarray(amp, float) - d.ravel()).max() < 1e-9 * max(1.0, np.abs(d).max()), kind
-        assert np.abs(d).max() > 1e-4, kind  # a real effect [mm]
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        _assert_features_reproduce(*_effect_and_features(case, ctx, kind), amp, rtol=1e-9, min_mm=1e-4, what=kind)
 
     tc = gen.generate("t", "tool_changer", ("gas_spring", "ball_screw", "tapered", "bracket", "refraction",
                                             "tool_heat"), 14, 8)
@@ -352,12 +358,7 @@ def test_set_e_cases_and_every_kind_lies_in_its_true_structure():
         t = case.truth
         ctx = case.model_ctx(t["probe_mm"])
         for kind in physics:
-            d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx).ravel()
-            F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
-            A = F.reshape(len(F), -1).T
-            amp = np.linalg.lstsq(A, d, rcond=None)[0]
-            assert np.abs(A @ amp - d).max() < 1e-8 * max(1.0, np.abs(d).max()), kind
-            assert np.abs(d).max() > 1e-4, kind  # a real effect [mm]
+            _assert_features_reproduce(*_effect_and_features(case, ctx, kind), rtol=1e-8, min_mm=1e-4, what=kind)
 
 
 def test_set_f_cases_kinds_and_determinism():
@@ -413,15 +414,11 @@ def test_set_f_every_kind_lies_in_its_true_structure_and_known_answers():
         t = case.truth
         ctx = case.model_ctx(t["probe_mm"])
         for kind in physics:
-            d = _linear_displacement(gen.EFFECTS[kind][1](t["params"][kind], ctx, t["hw"]), ctx).ravel()
-            F = gen.EFFECTS[kind][2](t["params"][kind], ctx, t["hw"])
+            d, A = _effect_and_features(case, ctx, kind)
             if robot == "ur10" and kind in ("lever_drive", "screw_growth"):
-                assert len(F) == 0 and np.abs(d).max() == 0.0, kind
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
                 continue
-            A = F.reshape(len(F), -1).T
-            amp = np.linalg.lstsq(A, d, rcond=None)[0]
-            assert np.abs(A @ amp - d).max() < 1e-8 * max(1.0, np.abs(d).max()), kind
-            assert np.abs(d).max() > 1e-3, kind  # a real effect [mm]
+            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
 
     lv = {"r1": 0.9, "r2": 0.3, "s": 1.0, "psi0": 0.4}
     q = np.linspace(0.2, 1.6, 7)
