@@ -159,6 +159,36 @@ def test_backlash_gravity_side_recovered_without_dir_columns():
         assert beta[f"b_{robot.joints[j].name} [rad]"] == pytest.approx(b[j], rel=2e-3)
 
 
+def test_lost_motion_held_by_load_with_a_hysteresis_loss_chosen_and_recovered():
+    """A gear that trails its last motion by b/2 where its load is inside the friction band, rests on the flank the
+    load presses outside it, and loses h/2 to hysteresis against the motion at every load: the
+    ``preload+hysteresis`` variant is chosen and returns b/2 and h/2 on the loaded joints."""
+    robot = tolalloc.load_robot("ur10")
+    P = 150
+    q = _q(robot, P, 6)
+    d_dir = np.random.default_rng(7).choice([-1.0, 1.0], q.shape)
+    tau = _potential_torque(robot, q)
+    held = np.abs(tau) > 0.1 * np.ptp(tau, axis=0)
+    flank = np.where(held, np.sign(tau), -d_dir)
+    half_b, half_h = 4e-5, 1.5e-5  # rad, on the shoulder, elbow and wrist-1 joints
+    b = np.array([0.0, half_b, half_b, half_b, 0.0, 0.0])
+    h = np.array([0.0, half_h, half_h, half_h, 0.0, 0.0])
+    t = np.array([0.0, 0.0, 120.0])
+    d = target_points(robot, q + flank * b - d_dir * h, t) - target_points(robot, q, t)
+    meas = Measurements(q, np.zeros((P, 3)), None, d_dir)
+    ref = effect_reference(meas)
+    assert "preload+hysteresis" in variants("backlash", meas)
+    fit, J = _fit_with_residual(robot, q, t, d)
+    best = choose_variant([effect_basis("backlash", robot, meas, t, ref, v) for v in variants("backlash", meas)],
+                          fit, J)
+    assert best.variant == "preload+hysteresis"
+    beta = dict(zip(best.names, _lsq(best, d)))
+    for j in (1, 2, 3):
+        name = robot.joints[j].name
+        assert beta[f"b_{name} [rad]"] == pytest.approx(half_b, rel=5e-3)
+        assert beta[f"h_{name} [rad]"] == pytest.approx(half_h, rel=5e-3)
+
+
 def test_compliance_with_payload_and_with_unknown_tip_mass():
     robot = tolalloc.load_robot("ur10")
     P = 80

@@ -112,6 +112,11 @@ def test_compensation_of_nominal_targets_and_nominal_ik(backlash):
     # without joint values: seeds from the nominal robot's inverse kinematics, then the same targets reached
     free = compensate(m, targets_mm=res.targets_mm, meas=meas, tol_mm=1e-9)
     assert free.ok.all() and free.error_mm.max() < 1e-9
+    # the tool chose these joint values, so they stay inside the limits: one row's nominal solution lies on
+    # wrist_1's +360 deg limit, which the unclamped compensation left by 0.004 deg
+    robot = m.robot
+    assert np.isclose(free.q_seed, robot.upper).any()
+    assert ((free.q >= robot.lower) & (free.q <= robot.upper)).all()
 
 
 def test_unreachable_and_joint_limit_rows_are_refused(backlash):

@@ -8,7 +8,7 @@ import tolalloc
 from tolalloc.errormodel import build_error_model
 from tolalloc.physics.thermal import PAUSE_STEPS, active_time
 from tolalloc.physics import (base_moment, beam_sag, compliance_columns, flank, gear_orders, joint_loads, lag_filter,
-                              link_growth, motor_heat, mount_columns, transmission_error)
+                              link_growth, lost_motion_basis, motor_heat, mount_columns, transmission_error)
 from tolalloc.physics.loads import G
 from tolalloc.robot import Joint, Link, Robot
 from tolalloc.robot.components import Components, LinkSection, Reducer
@@ -154,11 +154,50 @@ def test_link_growth_agrees_with_the_error_models_link_length_jacobian():
 def test_lost_motion_flanks():
     tau = np.array([[5.0], [-5.0], [0.1], [-0.1]])
     d = np.array([[1.0], [1.0], [-1.0], [1.0]])
-    np.testing.assert_array_equal(flank(tau, d, "approach"), d)
+    # moving along +axis the motor pushes the output from behind: it trails by b/2 (s = -dir); a load above the
+    # band holds it on the flank the load presses (s = sign(tau)), both in the convention dq = s b / 2
+    np.testing.assert_array_equal(flank(tau, d, "approach"), -d)
     np.testing.assert_array_equal(flank(tau, d, "gravity"), np.sign(tau))
-    np.testing.assert_array_equal(flank(tau, d, "preload"), [[1.0], [-1.0], [-1.0], [1.0]])
+    np.testing.assert_array_equal(flank(tau, d, "preload"), [[1.0], [-1.0], [1.0], [-1.0]])
     with pytest.raises(ValueError, match="needs the approach directions"):
         flank(tau, None, "preload")
+    with pytest.raises(ValueError, match="unknown flank rule 'preloaded'"):
+        flank(tau, d, "preloaded")
+    # a joint no load reaches (rounding of 1e-14 N m on a vertical axis) has no gravity flank: it trails the motion
+    tau2 = np.hstack([tau, 1e-14 * np.array([[1.0], [-1.0], [1.0], [-1.0]])])
+    d2 = np.hstack([d, d])
+    np.testing.assert_array_equal(flank(tau2, d2, "gravity")[:, 1], 0.0)
+    np.testing.assert_array_equal(flank(tau2, d2, "gravity_soft")[:, 1], 0.0)
+    np.testing.assert_array_equal(flank(tau2, d2, "preload")[:, 1], -d[:, 0])
+
+
+def test_lost_motion_with_hysteresis_loss_recovers_both_widths():
+    # a gear held on its flank by a load above the band, trailing the motion below it, and a hysteresis loss that
+    # trails the motion at every load: dq = b/2 s_preload - h/2 dir, with b = 3 arcmin and h = 1 arcmin
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(5)
+    q = rng.uniform(-np.pi, np.pi, (80, robot.n_joints))
+    d = rng.choice([-1.0, 1.0], q.shape)
+    tau = joint_loads(robot, q)[0]
+    arcmin = np.pi / 180 / 60
+    dq = 1.5 * arcmin * flank(tau, d, "preload") - 0.5 * arcmin * d
+    A, names = lost_motion_basis(robot, tau, d, "preload+hysteresis")
+    n = robot.n_joints
+    assert names[:n] == [f"b_{jt.name} [rad]" for jt in robot.joints]
+    assert names[n:] == [f"h_{jt.name} [rad]" for jt in robot.joints]
+    beta, *_ = np.linalg.lstsq(A.reshape(-1, A.shape[-1]), dq.ravel(), rcond=None)
+    np.testing.assert_allclose(A @ beta, dq, atol=1e-12)
+    # where a load holds the flank the two widths separate; on a joint no load reaches (the vertical base axis, the
+    # last wrist axis) both columns trail the motion and only b/2 + h/2 is determined
+    held = (flank(tau, d, "preload") != -d).any(0)
+    assert held.sum() >= 3 and not held[0]
+    np.testing.assert_allclose(beta[:n][held], 1.5 * arcmin, rtol=1e-9)
+    np.testing.assert_allclose(beta[n:][held], 0.5 * arcmin, rtol=1e-9)
+    np.testing.assert_allclose((beta[:n] + beta[n:])[~held], 2.0 * arcmin, rtol=1e-9)
+    # the approach variant alone cannot carry the held flank: it leaves a residual of the lost motion's size
+    A1, _ = lost_motion_basis(robot, tau, d, "approach")
+    b1, res, *_ = np.linalg.lstsq(A1.reshape(-1, A1.shape[-1]), dq.ravel(), rcond=None)
+    assert np.sqrt(res[0] / dq.size) > 0.5 * arcmin
 
 
 def test_joint_loads_add_the_payload_at_the_target():

@@ -62,6 +62,8 @@ def test_generator_imports_nothing_of_tolalloc():
     assert {"effects_d", "effects_d_thermal", "effects_d_joint", "effects_d_body"} <= reached  # set D
     assert {"effects_e", "effects_e_thermal", "effects_e_joint", "effects_e_body"} <= reached  # set E
     assert {"effects_f", "effects_f_thermal", "effects_f_joint", "effects_f_body"} <= reached  # set F
+    assert {"effects_g", "effects_g_thermal", "effects_g_joint", "effects_g_body"} <= reached  # set G
+    assert {"effects_h", "effects_h_thermal", "effects_h_joint", "effects_h_body"} <= reached  # set H
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -201,6 +203,22 @@ def test_scoring_rules():
     assert score(hedge)["right"]
     quiet = {"label": "absorbed", "named": "", "effects": "thermal", "candidates": "", "verdict": "effect"}
     assert score(quiet)["false_claim"] and not score(quiet | {"verdict": "inconclusive"})["false_claim"]
+
+
+def _assert_regenerates(set_name: str, *, max_effect_poses: int):
+    """The set's geometry-only cases and its effect cases of at most ``max_effect_poses`` poses regenerate
+    bit-for-bit from their seeds; the geometry-only ones carry no effect and the oracle labels them ``none``."""
+    from sim2real_indep import cases as cs
+
+    for i, (cid, robot, physics, n, split) in enumerate(cs.SETS[set_name][0]):
+        if physics and n > max_effect_poses:
+            continue
+        a = gen.generate(cid, robot, physics, n, cs.case_seed(set_name, i), split)
+        b = gen.generate(cid, robot, physics, n, cs.case_seed(set_name, i), split)
+        assert a.frame.equals(b.frame) and np.array_equal(a.train, b.train) and np.array_equal(a.test, b.test), cid
+        if not physics:  # geometry and noise only
+            assert a.truth["params"] == {} and np.abs(a.truth["effect_mm"]).max() < 1e-9
+            assert orc.run_oracle(a).label == "none"
 
 
 def _linear_displacement(c, ctx):
@@ -383,15 +401,7 @@ def test_set_f_cases_kinds_and_determinism():
     assert all(gen.EFFECTS[k] == ef.EFFECTS_F[k] for k in kinds)
     for fam in FAMILIES:
         assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
-    for i, (cid, robot, physics, n, split) in enumerate(cs.SET_F):
-        if physics and n > 40:
-            continue
-        a = gen.generate(cid, robot, physics, n, cs.case_seed("F", i), split)
-        b = gen.generate(cid, robot, physics, n, cs.case_seed("F", i), split)
-        assert a.frame.equals(b.frame) and np.array_equal(a.train, b.train) and np.array_equal(a.test, b.test), cid
-        if not physics:  # geometry and noise only
-            assert a.truth["params"] == {} and np.abs(a.truth["effect_mm"]).max() < 1e-9
-            assert orc.run_oracle(a).label == "none"
+    _assert_regenerates("F", max_effect_poses=40)
 
 
 def test_set_f_every_kind_lies_in_its_true_structure_and_known_answers():
@@ -454,3 +464,324 @@ def test_set_f_every_kind_lies_in_its_true_structure_and_known_answers():
         s = fj.brake_signal(p, b, ctx)
         assert np.all(s[off] == 0) and set(np.unique(s)) <= {-2.0, 0.0, 2.0}
 
+
+
+def test_set_g_cases_kinds_and_determinism():
+    """Set G: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-G kind
+    alone."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_g as eg
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_G) == 24 and cs.SETS["G"][1] == cs.SEED_G == 40_7007
+    assert {r: sum(c[1] == r for c in cs.SET_G) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cs.SET_G) == 3 and sum(len(c[2]) == 2 for c in cs.SET_G) == 3
+    assert all(30 <= c[3] <= 200 for c in cs.SET_G) and min(c[3] for c in cs.SET_G if c[2]) <= 50
+    assert sum(c[4] == "time" for c in cs.SET_G) == 6
+    for r in ("ur10", "tool_changer", "kr16_like"):
+        assert sum(len(c[2]) == 1 for c in cs.SET_G if c[1] == r) >= 5
+    kinds = {k for c in cs.SET_G for k in c[2]}
+    earlier = set(cs.KINDS) | {k for s in "ABCDEF" for c in cs.SETS[s][0] for k in c[2]}
+    assert kinds == set(eg.EFFECTS_G) and not kinds & earlier
+    assert all(gen.EFFECTS[k] == eg.EFFECTS_G[k] and FAMILY[k] == eg.FAMILY_G[k] for k in kinds)
+    for fam in FAMILIES:
+        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
+    opts = {"blocks": 2, "gap_kind": "none"}
+    assert eg.session_options("ur10", ("gear", "day_night"), rng_a, opts) is opts
+    assert rng_a.random() == rng_b.random()                          # no draws without a set-G kind
+    probe = np.array([3.0, -4.0, 12.0])                              # |probe| 13 mm
+    assert eg.probe_hook(("sag",), probe) is probe
+    rod = eg.probe_hook(("target_rod",), probe)
+    assert np.linalg.norm(rod) == pytest.approx(250 + 350 * 8 / 95) and np.allclose(np.cross(rod, probe), 0)
+    _assert_regenerates("G", max_effect_poses=50)
+
+
+def test_set_g_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-G kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the cycloid-arm kinds do nothing on ur10; and known
+    answers: the twin pinions' bilinear twist, the catenary's end forces, the held load integral, the levelling
+    valves' plane and dead band, the moment integral along a span, the rod's sag direction, the axial float's
+    flank, the clearance tilt normal to the axis, a rounded RV ratio, the ring encoder's eccentricity rule, the
+    tripod's sinking points and the parallelogram's turn against the exact four-bar."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_g_body as gb
+    from sim2real_indep import effects_g_joint as gj
+
+    runs = {}
+    for robot, physics in (("ur10", ("hose_catenary", "jack_leak", "air_isolator", "cfrp_twist", "target_rod",
+                                     "bearing_clearance", "ring_shift", "tripod_growth")),
+                           ("tool_changer", ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion")),
+                           ("ur10", ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion"))):
+        case = gen.generate("t", robot, physics, 30, 14)
+        t = case.truth
+        ctx = case.model_ctx(t["probe_mm"])
+        runs.setdefault(robot, (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if robot == "ur10" and kind in ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion"):
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
+                continue
+            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
+
+    # twin pinions: slope 1 / 2k up to twice the bias, 1 / k beyond, continuous
+    g = {"joint": 0, "T_bias_Nm": 100.0, "k_Nm_per_rad": 1e6}
+    tau = np.array([[-500.0], [-200.0], [150.0], [200.0], [500.0]])
+    twist = np.sum(gj.dual_signals(g, SimpleNamespace(loads=tau)), axis=0) / (2 * g["k_Nm_per_rad"])
+    assert twist == pytest.approx([-4e-4, -1e-4, 7.5e-5, 1e-4, 4e-4])
+
+    # catenary: ends at one height carry half the hose each; the two ends' pulls balance the hose's weight S
+    A, S = np.array([0.0, 0.0, 2.0]), 3.0
+    B = np.array([[2.0, 0.0, 2.0], [1.5, 1.0, 1.2]])
+    fB = gj.catenary_end_force(A, B, S)
+    assert fB[0, 2] == pytest.approx(-S / 2, rel=1e-9)
+    assert 2 * fB[0, 0] * np.sinh(2.0 / (2 * fB[0, 0])) == pytest.approx(S, rel=1e-9)  # H = a solves the length
+    fA = gj.catenary_end_force(B[1], A[None], S)[0]
+    assert fA[2] + fB[1, 2] == pytest.approx(-S, rel=1e-9) and fA[:2] + fB[1, :2] == pytest.approx([0, 0], abs=1e-9)
+
+    case, ctx = runs["ur10"]
+    p = case.truth["params"]
+    # a load held constant integrates to load x session time; levelling valves: heights inside the band, unit
+    # heights of all three valves lift the table bodily by 1 mm
+    assert gb.held_integral(ctx, np.ones((30, 1)))[:, 0] == pytest.approx(ctx.session.time_s)
+    z = gb.valve_heights(p["air_isolator"], ctx)
+    assert np.abs(z).max() <= p["air_isolator"]["band_mm"] + 1e-12 and np.all(z[0] == 0)
+    assert gb.air_parts(p["air_isolator"], ctx).sum(axis=0) == pytest.approx(np.tile([0, 0, 1.0], (30, 1)))
+    # the span integral of the section moment against quadrature
+    rng = np.random.default_rng(0)
+    M, F, w, e = rng.normal(size=(4, 1, 3))
+    x = np.linspace(0, 0.7, 20001)
+    Mx = M + np.cross(e, F) * (0.7 - x)[:, None] + np.cross(e, w) * ((0.7 - x) ** 2 / 2)[:, None]
+    assert gb.span_moment_integral(M, F, w, e, 0.7)[0] == pytest.approx(np.trapezoid(Mx, x, axis=0), rel=1e-8)
+    # the rod sags along gravity's part normal to it; the clearance tilts normal to the joint axis, along the moment
+    g_perp = gb.rod_direction(ctx)
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    u = Rt @ (ctx.probe_mm / np.linalg.norm(ctx.probe_mm))
+    assert np.abs(np.einsum("pi,pi->p", g_perp, u)).max() < 1e-12
+    assert np.sum(g_perp ** 2, axis=1) + u[:, 2] ** 2 == pytest.approx(np.ones(30))
+    _, Mj, wj, _ = gj.joint_wrench(ctx)
+    for c in p["bearing_clearance"]:
+        tilt, j = gb.clear_tilt(c, ctx), c["joint"]
+        Mp = Mj[:, j] - np.einsum("pi,pi->p", Mj[:, j], wj[:, j])[:, None] * wj[:, j]
+        big = np.linalg.norm(Mp, axis=1) > c["M_friction_Nm"]
+        assert np.abs(np.einsum("pi,pi->p", tilt, wj[:, j])).max() < 1e-12 and big.any()
+        assert tilt[big] == pytest.approx(Mp[big] / np.linalg.norm(Mp[big], axis=1, keepdims=True))
+    # ring encoder: a ring a_e off the tilt centre, tilted theta = M / K, reads (u . t_h) / R_e = -a_e (M . n_h) / R_e K
+    # (the joint is then off by minus that: ring_apply's a_e (M . n_h) / R_e K)
+    n_h, wax = np.array([0.6, 0.8, 0.0]), np.array([0.0, 0.0, 1.0])
+    Mv, K, a_e, R_e = np.array([30.0, -50.0, 7.0]), 2e6, 25.0, 40.0
+    shift = a_e * np.cross(Mv / K, wax)
+    assert shift @ np.cross(wax, n_h) / R_e == pytest.approx(-a_e / (R_e * K) * (Mv @ n_h), rel=1e-12)
+    for g in p["ring_shift"]:
+        dq = gen.EFFECTS["ring_shift"][1](p["ring_shift"], ctx, case.truth["hw"]).dq[:, g["joint"]]
+        assert dq == pytest.approx(g["a_e_mm"] / (g["R_e_mm"] * g["K_tilt"]) * np.einsum(
+            "pi,pi->p", Mj[:, g["joint"]], kin.body_transforms(ctx.chain, ctx.q)[0][:, g["joint"]] @ g["n_home"]))
+    # tripod: points only sink or rise, by alpha h dT
+    d = gen.EFFECTS["tripod_growth"][1](p["tripod_growth"], ctx, case.truth["hw"]).displace
+    assert np.abs(d[:, :2]).max() == 0.0 and np.abs(d[:, 2]).max() > 0
+
+    # axial float: the flank follows the axial force once it beats friction, else stays
+    case, ctx = runs["tool_changer"]
+    F, _, wj, _ = gj.joint_wrench(ctx)
+    for g in case.truth["params"]["axial_float"]:
+        s, Fa = gj.float_state(g, ctx), np.einsum("pi,pi->p", F[:, g["joint"]], wj[:, g["joint"]])
+        big = np.abs(Fa) > g["F_friction_N"]
+        assert set(np.unique(s)) <= {-1.0, 1.0} and np.array_equal(s[big], np.sign(Fa[big]))
+        assert np.array_equal(s[1:][~big[1:]], s[:-1][~big[1:]])
+    # a ratio 2133 / 13 configured as 164.1: the joint runs 164.1 / (2133 / 13) - 1 = 1.40e-4 of its angle off
+    q = np.array([[0.0, 0.0, -1.2], [0.0, 0.0, 0.5]])
+    dq = gj.ratio_apply([{"joint": 2, "R": 2133 / 13, "R_cfg": 164.1}], SimpleNamespace(q=q), None).dq
+    assert dq[:, 2] == pytest.approx((164.1 * 13 / 2133 - 1) * q[:, 2]) and abs(dq[0, 2]) > 1.6e-4
+    # parallelogram: a bar longer by delta turns the lever by delta / (r sin gamma) (the exact four-bar to first order)
+    L, r, delta = 0.68, 0.2, 1e-5
+    for gamma in np.deg2rad([50.0, 90.0, 130.0]):
+        B0 = r * np.array([np.cos(gamma), np.sin(gamma)])
+        f = lambda psi: np.sum((np.array([L, 0.0]) + r * np.array([np.cos(psi), np.sin(psi)]) - B0) ** 2)  # noqa
+        lo, hi = gamma - 1e-3, gamma + 1e-3                      # |BC|^2 falls through (L + delta)^2 as psi grows
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if f(mid) > (L + delta) ** 2 else (lo, mid)
+        assert abs(0.5 * (lo + hi) - gamma) == pytest.approx(delta / (r * np.sin(gamma)), rel=1e-3)
+
+
+def test_set_h_cases_kinds_and_determinism():
+    """Set H: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session hook leaves cases without a set-H kind alone."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_h as eh
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    assert len(cs.SET_H) == 24 and cs.SETS["H"][1] == cs.SEED_H == 40_7008
+    assert {r: sum(c[1] == r for c in cs.SET_H) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cs.SET_H) == 3 and sum(len(c[2]) == 2 for c in cs.SET_H) == 3
+    assert all(30 <= c[3] <= 200 for c in cs.SET_H) and min(c[3] for c in cs.SET_H if c[2]) <= 50
+    assert sum(c[4] == "time" for c in cs.SET_H) == 6
+    for r in ("ur10", "tool_changer", "kr16_like"):
+        assert sum(len(c[2]) == 1 for c in cs.SET_H if c[1] == r) >= 5
+    kinds = {k for c in cs.SET_H for k in c[2]}
+    earlier = set(cs.KINDS) | {k for s in "ABCDEFG" for c in cs.SETS[s][0] for k in c[2]}
+    assert kinds == set(eh.EFFECTS_H) and not kinds & earlier and not kinds & set(gen.EFFECTS) - set(eh.EFFECTS_H)
+    assert all(gen.EFFECTS[k] == eh.EFFECTS_H[k] and FAMILY[k] == eh.FAMILY_H[k] for k in kinds)
+    assert eh.AFTER_TRACKER <= gen.AFTER_TRACKER
+    for fam in FAMILIES:
+        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
+    opts = {"blocks": 2, "gap_kind": "none"}
+    assert eh.session_options("ur10", ("gear", "tripod_growth"), rng_a, opts) is opts
+    assert rng_a.random() == rng_b.random()                          # no draws without a set-H kind
+    _assert_regenerates("H", max_effect_poses=50)
+
+
+def test_set_h_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-H kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the coupled-wrist and helical kinds do nothing on ur10;
+    and known answers: load data that match the payload leave nothing, the creep state's exact lag, the stale
+    table's samples and interpolation, the rounded coupling factor, the wrist train's own direction, the platform's
+    statics, Hetenyi's skid in equilibrium with its loads, the arc against a straight cantilever and
+    Roark's quarter circle, the bonded root's moment, the warming tracker's drift directions, the helical shift's
+    rate and the cold grease's fading wind-up."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_h_body as hb
+    from sim2real_indep import effects_h_joint as hj
+    from sim2real_indep import effects_h_thermal as ht
+    from sim2real_indep.context import Ctx
+
+    wrist = ("wrist_lash", "wrist_coupling", "helix_shift")
+    runs = {}
+    for robot, physics in (("ur10", ("load_data", "gear_creep", "agv_wheels", "skid", "curved_link", "bond_creep",
+                                     "cold_grease", "stale_table", "tracker_warmup")),
+                           ("kr16_like", wrist), ("ur10", wrist)):
+        case = gen.generate("t", robot, physics, 30, 15)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault(robot, (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if robot == "ur10" and kind in wrist:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
+                continue
+            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
+
+    case, ctx = runs["ur10"]
+    p, hw = case.truth["params"], case.truth["hw"]
+    # load data: a model with the true masses and the carried payload leaves nothing; a payload lighter than the
+    # load data by dm leaves the loads of -dm at the payload's centre of mass
+    ch = ctx.chain
+    same = Ctx(ch, ctx.session, ch.masses, ch.mass_com, ctx.mass_link, ctx.payload_com_mm, ctx.probe_mm)
+    m_p = float(ctx.session.payload_kg[0])
+    sess = replace(ctx.session, payload_kg=np.full(30, m_p))
+    g = {"m_prog_kg": m_p, "com_prog_mm": ctx.payload_com_mm, "eps": np.zeros(6)}
+    assert np.abs(hj.load_apply(g, replace(same, session=sess), hw).dq).max() < 1e-15
+    g["m_prog_kg"] = m_p + 2.0
+    tau = hj.model_loads(g, same) - hj.model_loads({**g, "m_prog_kg": m_p}, same)
+    unit = Ctx(ch, replace(ctx.session, payload_kg=np.full(30, 1.0)), 0 * ch.masses, ch.mass_com, ctx.mass_link,
+               ctx.payload_com_mm, ctx.probe_mm).loads
+    assert tau == pytest.approx(2.0 * unit, rel=1e-9, abs=1e-9)
+    # creep: a constant load keeps the state; a step held over a pause of T relaxes as 1 - exp(-T / tau)
+    s = SimpleNamespace(gap_s=np.array([0.0, -600.0]), move_s=np.array([0.0, 0.0]), dwell_s=np.array([0.0, 0.0]))
+    X = np.array([[0.0], [1.0]])
+    x = hj.creep_state(SimpleNamespace(session=s), X, 300.0)
+    assert x[0, 0] == pytest.approx(0.5) and x[1, 0] == pytest.approx(0.5 * np.exp(-2.0))  # held at 0 (pause)
+    s.dwell_s = np.array([0.0, 300.0])
+    x = hj.creep_state(SimpleNamespace(session=s), X, 300.0)
+    assert x[1, 0] == pytest.approx(1.0 + (0.5 * np.exp(-2.0) - 1.0) * np.exp(-1.0))
+    assert hj.creep_state(ctx, np.full((30, 2), 3.0), 900.0) == pytest.approx(np.full((30, 2), 3.0))
+    # stale table: the old error at the grid points, linear in between
+    for t in p["stale_table"]:
+        h = t["step_rad"]
+        q = np.zeros((3, 6))
+        q[:, t["joint"]] = [2 * h, 3 * h, 2.25 * h]
+        sig, e2, e3 = hj.table_signal(t, q), *hj.old_error(t, [2 * h, 3 * h])
+        assert sig == pytest.approx([e2, e3, 0.75 * e2 + 0.25 * e3], abs=1e-15)
+        assert np.abs(hj.old_error(t, np.linspace(0, 2 * np.pi, 2001))).max() > 0.3 * ph.ARCMIN
+    # the platform: the wheel loads carry the weight and the moment, all of them positive
+    a = p["agv_wheels"]
+    R = hb.wheel_loads(a, ctx)
+    M = eb.mount_moment(ctx)
+    assert R[:, 0] + R[:, 1] + 2 * R[:, 2] == pytest.approx(hb._weight(ctx) + a["W_platform_N"])
+    assert a["a_x_m"] * (R[:, 0] + R[:, 1] - 2 * R[:, 2]) == pytest.approx(M[:, 1])
+    assert a["a_y_m"] * (R[:, 0] - R[:, 1]) == pytest.approx(-M[:, 0])
+    assert R.min() > 1.0                                                      # no wheel lifts: the chassis stands
+    # Hetenyi's skid: the bed's reactions balance the end force (and carry no moment about the end); an end moment
+    # is balanced by the reactions' moment; the slope is the sink's derivative; the twist's reactions carry the torque
+    sk = p["skid"]
+    x = np.linspace(0, 60 / sk["beta"], 400001)
+    resp = np.array([hb.skid_response(sk, xi) for xi in (x[:3])])
+    w_P = 2 * sk["beta"] * hb.hetenyi(sk["beta"], x)[2]
+    w_M = -2 * sk["beta"] ** 2 * hb.hetenyi(sk["beta"], x)[1]
+    assert np.trapezoid(w_P, x) == pytest.approx(1.0, rel=1e-6) and abs(np.trapezoid(w_P * x, x)) < 1e-6
+    assert abs(np.trapezoid(w_M, x)) < 1e-6 and abs(np.trapezoid(w_M * x, x)) == pytest.approx(1.0, rel=1e-6)
+    assert np.trapezoid(sk["lam"] * np.exp(-sk["lam"] * x), x) == pytest.approx(1.0, rel=1e-6)
+    assert (resp[2, :2, 0] - resp[0, :2, 0]) / (x[2] - x[0]) == pytest.approx(resp[1, :2, 1], rel=1e-6)
+    # the arc: a straight one is Euler-Bernoulli's cantilever; a quarter circle under an out-of-plane tip force
+    # deflects P R^3 (pi / 4 EI + (3 pi / 4 - 2) / GJ) (Roark, curved beams loaded normal to their plane)
+    e, b = np.array([[1.0, 0, 0]]), np.array([[0, 1.0, 0]])
+    F, Mt, tip = np.array([[0, 0, -50.0]]), np.array([[3.0, -4.0, 2.0]]), np.array([[700.0, 0, 0]])
+    d0 = hb.arc_displacement(e, b, tip, 0.7, 0.0, F, Mt, np.zeros(3), 2e4, 1.5e4, tip, n=4000)
+    dc, rc = ph.cantilever_tip(e, 0.7, F, Mt, np.zeros(3), 2e4, np.inf, 1.5e4)
+    assert d0 == pytest.approx(1000 * dc, rel=1e-5)
+    Rq = 0.5
+    tip = np.array([[1000 * Rq * np.sqrt(2), 0, 0]])                           # [mm]; the target at the tip
+    d1 = hb.arc_displacement(e, b, tip, Rq * np.sqrt(2), np.pi / 4, np.array([[0, 0, -1.0]]), np.zeros((1, 3)),
+                             np.zeros(3), 2e4, 1.5e4, tip, n=4000)
+    assert -d1[0, 2] == pytest.approx(1000 * Rq ** 3 * (np.pi / 4 / 2e4 + (3 * np.pi / 4 - 2) / 1.5e4), rel=1e-5)
+    # bonded root: the tube-frame root moment is the gravity moment of everything beyond the root
+    for name in p["bond_creep"]:
+        li = ch.link_names.index(name)
+        root, Rb, e0, m = hb.root_state(ctx, li)
+        mm, pos, _ = ctx.mass_state
+        beyond = ctx.mass_index >= li
+        own = ctx.mass_index == li
+        arm = (pos[:, beyond] - root[:, None]) / 1000.0
+        arm[:, own[beyond]] = ((root + hb.eb._beam_state(ctx, li)[1]) / 2 - root)[:, None] / 1000.0
+        Mg = np.cross(arm, mm[:, beyond, None] * eb.GRAVITY_N).sum(axis=1)
+        assert np.einsum("pij,pj->pi", Rb, m) == pytest.approx(Mg, rel=1e-9, abs=1e-9)
+    # the warming tracker: azimuth drift about its vertical axis, elevation normal to the line of sight (r per rad),
+    # range along it; the share reached grows as 1 - exp(-t / tau)
+    parts = ht.warm_parts(ctx, hw)
+    R_T, t_T = hw["tracker"]["R"], hw["tracker"]["t"]
+    rel = ctx.target + R_T.T @ t_T
+    assert parts[0] @ (R_T.T @ [0, 0, 1.0]) == pytest.approx(np.zeros(30), abs=1e-9)
+    assert np.einsum("pi,pi->p", parts[0], rel) == pytest.approx(np.zeros(30), abs=1e-6)
+    assert np.einsum("pi,pi->p", parts[1], rel) == pytest.approx(np.zeros(30), abs=1e-6)
+    assert np.linalg.norm(parts[1], axis=1) == pytest.approx(np.linalg.norm(rel, axis=1))
+    assert parts[2] == pytest.approx(rel / np.linalg.norm(rel, axis=1, keepdims=True))
+    w = p["tracker_warmup"]
+    t = ctx.session.time_s - ctx.session.time_s[0] + w["t_on_s"]
+    assert ht.warm_signal(w, ctx) == pytest.approx(1 - np.exp(-t / w["tau_s"]))
+    # cold grease: the wind-up trails the last motion and its viscous part fades as the drive warms (cold start)
+    cg = p["cold_grease"]
+    sig = ht.grease_signals(cg, ctx, hw)
+    rise = ht.drive_rise(cg, ctx, hw)
+    assert np.array_equal(sig[0], -ctx.session.direction[:, cg["joints"]])
+    assert rise.min() >= 0 and np.all(rise.max(axis=0) > 1.0)                # some kelvin over the production runs
+    assert sig[1] / sig[0] == pytest.approx(np.exp(-cg["k_per_K"] * rise))
+
+    case, ctx = runs["kr16_like"]
+    p, hw = case.truth["params"], case.truth["hw"]
+    # coupling factors rounded to three decimals: the joint runs (c_cfg - c) of the angle it is coupled to off
+    for g in p["wrist_coupling"]:
+        assert 5e-5 < abs(g["c_cfg"] - g["c"]) <= 5e-4 + 1e-12
+    dq = hj.couple_apply(p["wrist_coupling"], ctx, hw).dq
+    assert dq[:, 5] == pytest.approx(sum((g["c_cfg"] - g["c"]) * ctx.q[:, g["through"]]
+                                         for g in p["wrist_coupling"] if g["joint"] == 5))
+    # the train's direction: opposite equal moves of joint and coupled joint (c = 1) leave the train at rest
+    sess = SimpleNamespace(q=np.array([[0.0, 0.0], [0.1, -0.1], [0.3, -0.1], [0.2, -0.2]]),
+                           direction=np.array([[-1.0, 1.0]]))
+    assert np.array_equal(hj.train_direction({"joint": 0, "c": {1: 1.0}}, sess), [-1.0, -1.0, 1.0, -1.0])
+    for g in p["wrist_lash"]:
+        own = ctx.session.direction[:, g["joint"]]
+        assert np.any(hj.train_direction(g, ctx.session) != own)
+    # helical shift: alpha L tan(beta) / r per K of the drive's rise
+    hs = p["helix_shift"]
+    assert np.all((np.abs(hs["k_rad_per_K"]) > 11.7e-6 * 100 * np.tan(np.deg2rad(20)) / 50)
+                  & (np.abs(hs["k_rad_per_K"]) < 11.7e-6 * 180 * np.tan(np.deg2rad(30)) / 25))
+    dq = ht.helix_apply(hs, ctx, hw).dq
+    assert dq[:, hs["joints"]] == pytest.approx(ht.drive_rise(hs, ctx, hw) * hs["k_rad_per_K"])

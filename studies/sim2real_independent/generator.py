@@ -32,6 +32,8 @@ from sim2real_indep import effects_c as ec
 from sim2real_indep import effects_d as ed
 from sim2real_indep import effects_e as ee
 from sim2real_indep import effects_f as ef
+from sim2real_indep import effects_g as eg
+from sim2real_indep import effects_h as eh
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -55,8 +57,10 @@ EFFECTS = {
     **ed.EFFECTS_D,  # set D's new kinds
     **ee.EFFECTS_E,  # set E's new kinds
     **ef.EFFECTS_F,  # set F's new kinds
+    **eg.EFFECTS_G,  # set G's new kinds
+    **eh.EFFECTS_H,  # set H's new kinds
 }
-AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER  # measurement effects: need the tracker's frame
+AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -130,7 +134,9 @@ def _session_options(robot_key, physics, rng):
     opts = ec.session_options(robot_key, physics, rng, opts)
     opts = ed.session_options(robot_key, physics, rng, opts)  # set D (no draws without a set-D kind)
     opts = ee.session_options(robot_key, physics, rng, opts)  # set E (no draws without a set-E kind)
-    return ef.session_options(robot_key, physics, rng, opts)  # set F (no draws without a set-F kind)
+    opts = ef.session_options(robot_key, physics, rng, opts)  # set F (no draws without a set-F kind)
+    opts = eg.session_options(robot_key, physics, rng, opts)  # set G (no draws without a set-G kind)
+    return eh.session_options(robot_key, physics, rng, opts)  # set H (no draws without a set-H kind)
 
 
 def _tracker(rng):
@@ -156,7 +162,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     com = nominal.mass_com + rng.normal(0, 20.0, nominal.mass_com.shape)
     session = make_session(nominal, robot_key, n_poses, rng, **_session_options(robot_key, physics, rng))
     session = ec.session_hook(physics, session, rng)
-    probe = _unit(rng) * rng.uniform(5, 100)
+    probe = eg.probe_hook(physics, _unit(rng) * rng.uniform(5, 100))  # set G's target rod (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)

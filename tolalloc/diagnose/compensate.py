@@ -209,12 +209,16 @@ def compensate(model: IdentifiedModel, q_program=None, targets_mm=None, meas: Me
     ``q_program`` (P, n) [rad, mm]: the program's joint values (the seeds; without ``targets_mm`` the targets are the
     positions the nominal robot reaches there, :func:`nominal_targets`). ``targets_mm`` (P, 3) without
     ``q_program``: the seeds are the nominal robot's inverse kinematics from its nominal joint values (give the
-    program's joint values whenever there are some: a position has many joint solutions).
+    program's joint values whenever there are some: a position has many joint solutions), and the compensated
+    solution is kept inside the joint limits -- the tool chose the joint values, so a seed on a limit (where the
+    nominal solution lies) must not leave it by the compensation's few thousandths of a degree; a taught program's
+    row that would leave them is refused instead.
     """
     if q_program is None and targets_mm is None:
         raise TolallocError("compensate: expected the program's joint values and / or targets, got neither.")
-    if q_program is None:
+    chosen = q_program is None
+    if chosen:
         q_program = _nominal_ik(model, np.atleast_2d(np.asarray(targets_mm, float)), frame, tol_mm, max_iter)
     q_program = np.atleast_2d(np.asarray(q_program, float))
     x = nominal_targets(model, q_program, frame) if targets_mm is None else targets_mm
-    return solve_targets(model, x, q_program, meas, frame=frame, tol_mm=tol_mm, max_iter=max_iter)
+    return solve_targets(model, x, q_program, meas, frame=frame, tol_mm=tol_mm, max_iter=max_iter, clamp=chosen)

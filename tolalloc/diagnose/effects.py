@@ -24,8 +24,9 @@ signature:
                       ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
                       stage also ``guide``,
                       ``guide+overlap``, ``beam+guide``.
-``backlash``          lost motion ``dq_j = b_j s_j`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
-                      ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``.
+``backlash``          lost motion ``dq_j = s_j b_j / 2`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
+                      ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``,
+                      ``preload+hysteresis`` (a trailing hysteresis loss ``h_j`` beside the held flank).
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
                       ``lag_<tau>min``), a warm-up with time (with links that also bow across their section:
                       ``bow_<tau>min``), the motion history (``activity_<tau>min``) or the motors' losses from
@@ -49,7 +50,7 @@ from tolalloc.physics.beams import beam_columns, guide_columns, guide_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
-from tolalloc.physics.lost_motion import flank, lost_motion_columns
+from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
 from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
 from tolalloc.physics.transmission import SERIES_ORDERS, transmission_columns
 from tolalloc.diagnose.measurements import Measurements
@@ -106,7 +107,7 @@ def joint_effect_dq(effect: str, robot: Robot, q, direction=None, *, variant: st
         law = "linear" if variant in ("", "masses", "masses+tip") else variant
         return compliance_columns(robot, tau, tip, law, tip_mass=variant == "masses+tip", scale=load_scale)
     if effect == "backlash":
-        return lost_motion_columns(robot, flank(tau, direction, variant or "approach"))
+        return lost_motion_basis(robot, tau, direction, variant or "approach")
     if effect == "transmission":
         A, names, _ = transmission_columns(robot, q, variant or "2x3x", gear_ratio)
         return A, names
@@ -136,7 +137,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
     if effect == "backlash":
         d = meas.direction
         both = d is not None and np.any((d > 0).any(0) & (d < 0).any(0))
-        return ("approach", "gravity", "gravity_soft", "preload") if both else ("gravity", "gravity_soft")
+        return SIDES if both else GRAVITY_SIDES
     if effect == "thermal":
         return thermal_variants(meas)
     if effect == "transmission":

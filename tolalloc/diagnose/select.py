@@ -44,6 +44,7 @@ from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.ratio_search import search_ratios
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
 from tolalloc.physics.thermal import is_air_variant, time_problem, variant_parts
+from tolalloc.physics.lost_motion import DIRECTION_SIDES
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
 
 __all__ = ["Candidate", "Stage", "Evaluation", "make_context", "make_folds", "fold_count", "choose_variant", "evaluate",
@@ -148,7 +149,7 @@ def align_basis(basis, names: tuple):
 def carry_problem(effect: str, variant: str, test) -> str | None:
     """Why the test file cannot carry ``effect`` in ``variant`` (a column its basis needs is missing or unusable),
     or None when it can."""
-    if effect == "backlash" and variant in ("approach", "preload") and test.direction is None:
+    if effect == "backlash" and variant in DIRECTION_SIDES and test.direction is None:
         return "the test file has no dir1..dirN columns (the approach direction of each joint)"
     if effect == "thermal":
         parts = variant_parts(variant)

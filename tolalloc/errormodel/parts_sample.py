@@ -19,7 +19,6 @@ from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD,
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
-from tolalloc.physics.lost_motion import flank
 from tolalloc.physics.thermal import link_cte
 from tolalloc.physics.transmission import catalogue_amplitudes, transmission_error
 
@@ -43,7 +42,7 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple
             k = np.maximum(1.0 + (red.stiffness_sd or 0.0) * rng.standard_normal(n), 0.5)
             sys += f["compliance"] * red.deflection(np.full(n, fx.tau[i, j])) / k
         if red.lost_motion:
-            side = flank(np.zeros((n, 1)), rng.choice([-1.0, 1.0], (n, 1)), "approach")[:, 0]
+            side = rng.choice([-1.0, 1.0], (n, 1))[:, 0]  # the flank of a random approach, either side
             rnd += side * red.lost_motion / 2.0
         if red.transmission_accuracy:
             orders, amps = catalogue_amplitudes(red.transmission_accuracy, red.ratio if rev else None)

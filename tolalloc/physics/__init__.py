@@ -16,12 +16,12 @@ from tolalloc.physics.compliance import (COMPLIANCE_LAWS, compliance_columns, jo
                                          mount_columns, mount_tilt)
 from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacobian, robot_masses, target_points,
                                     tip_load)
-from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_columns
+from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_basis, lost_motion_columns
 from tolalloc.physics.thermal import lag_filter, link_growth, motor_heat, time_problem
 from tolalloc.physics.transmission import gear_orders, transmission_columns, transmission_error
 
 __all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "guide_joints", "COMPLIANCE_LAWS",
            "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "G", "base_moment",
            "gravity_torques", "point_jacobian", "robot_masses", "target_points", "tip_load", "SIDES", "flank",
-           "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem", "gear_orders",
-           "transmission_columns", "transmission_error"]
+           "lost_motion_basis", "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem",
+           "gear_orders", "transmission_columns", "transmission_error"]

@@ -34,7 +34,20 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "plate_yield": "mount_compliance", "uplift": "mount_compliance", "eccentric_axis": "link_deflection",
           "weld_crack": "link_deflection", "wear_zones": "backlash", "brake_hub": "backlash",
           "tape_scale": "transmission", "lever_drive": "transmission", "day_night": "thermal",
-          "screw_growth": "thermal"}
+          "screw_growth": "thermal",
+          # set G (sim2real_indep.effects_g; target_rod, the target's support bending, scored as link deflection;
+          # tripod_growth, a drift of the measurement frame following the air, scored as thermal)
+          "twin_pinion": "joint_compliance", "hose_catenary": "joint_compliance", "jack_leak": "mount_compliance",
+          "air_isolator": "mount_compliance", "cfrp_twist": "link_deflection", "target_rod": "link_deflection",
+          "axial_float": "backlash", "bearing_clearance": "backlash", "ratio_rounding": "transmission",
+          "ring_shift": "transmission", "tripod_growth": "thermal", "bar_expansion": "thermal",
+          # set H (sim2real_indep.effects_h; skid, the arm's base and the tracker's stand on one bedded skid, scored
+          # as mount compliance; tracker_warmup, the instrument's warm-up drift, as thermal; cold_grease, friction
+          # lost motion fading as the joints warm, as backlash)
+          "load_data": "joint_compliance", "gear_creep": "joint_compliance", "agv_wheels": "mount_compliance",
+          "skid": "mount_compliance", "curved_link": "link_deflection", "bond_creep": "link_deflection",
+          "wrist_lash": "backlash", "cold_grease": "backlash", "stale_table": "transmission",
+          "wrist_coupling": "transmission", "tracker_warmup": "thermal", "helix_shift": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

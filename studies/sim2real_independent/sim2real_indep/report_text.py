@@ -29,8 +29,8 @@ gravity preload) -- and whether it stays quiet where the data cannot name anythi
 the diagnosis's own fitted model comes to the truth beyond the RMS ratio reported below.
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
-`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; all six:
-`--set all`; labels alone, without diagnosing: `--oracle-only`). The measurement tables are regenerated from the
+`--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
+`--set G`; set H: `--set H`; all eight: `--set all`; labels alone, without diagnosing: `--oracle-only`). The measurement tables are regenerated from the
 seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -51,6 +51,25 @@ the diagnosis was changed after its results were seen.
 diagnosis, its effect models, nor any result of sets A-E, and who did not run the diagnosis. It was first run on
 the code of this report, after the last change of the diagnosis (the thermal `bow` variant) was committed; nothing
 in the diagnosis was changed after its results were seen.
+
+**Set G** (24 cases, seed 40_7007) is a seventh independent test set of twelve new kinds
+(`sim2real_indep/effects_g*.py`, table below), written from the literature by a helper who read neither the
+diagnosis, its effect models, nor any result of sets A-F, and who did not run the diagnosis (its brief listed a
+few example effects to show the breadth wanted; it chose its own). It was first run on the code of this report,
+after the session's last change of the diagnosis (the lost-motion flank convention and the `preload+hysteresis`
+variant) was made; nothing in the diagnosis was changed after its results were seen. The same cases diagnosed by
+the code before those changes score the same.
+
+**Set H** (24 cases, seed 40_7008) is an eighth independent test set of twelve new kinds
+(`sim2real_indep/effects_h*.py`, table below), written the same way by another helper, whose brief named no
+example effects. It was first run on the code of this report, after set G had been judged and with nothing in the
+diagnosis changed since; the code before this release's lost-motion changes scores one case fewer on it (H08,
+whose grease friction holds the output trailing its last motion, was `ambiguous`).
+
+"The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
+mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
+this study's own generic model of its family too, and a diagnosis built on family models can at best stay quiet
+or name a family that mimics it: such a miss is a gap in the physics, not in the decision.
 """
 
 PHYSICS = """## How the physics was written (sources)
@@ -142,6 +161,40 @@ Set F's kinds (same case machinery; every number the module docstrings do not so
 | day_night | thermal | the hall's air cycles over 24 h; the arm follows with a 20-90 min lag and the floor slab's top with 1-4 h, so the slab curls and tilts the base | Westergaard 1926; Bradbury 1938; Neville; Incropera & DeWitt |
 | screw_growth | thermal | the cylinders' ball screws (and the tool_changer's ram screw) grow with their own friction heat, which the motor encoder does not see | Bryan 1990; Ramesh et al. 2000; Mayr et al. 2012 |
 
+Set G's kinds (same case machinery; every number the module docstrings do not source is marked assumed there):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| twin_pinion | joint_compliance | two pinions preloaded against each other on a sector gear (axes 2-3): twist tau / 2k while the load is below twice the bias torque, slope 1/k beyond (a softening joint) | Gawronski et al., IEEE Antennas Propag. Mag. 42(6) 2000 |
+| hose_catenary | joint_compliance | a heavy hose hanging as a catenary from a boom to the flange: its end force loads the joints (tau = J^T F), which twist through their gear stiffness | Irvine, *Cable Structures* 1981; Craig ch. 5 |
+| jack_leak | mount_compliance | a mobile platform parked on four hydraulic jacks: oil-column spring plus leakage with pressure, so tilt and sink follow the time integral of the support loads | Merritt, *Hydraulic Control Systems* 1967 |
+| air_isolator | mount_compliance | self-levelling air isolators whose height valves leave each support inside a dead band (a stop operator along the load path) | levelling-valve notes (as recalled); Krasnosel'skii & Pokrovskii 1989 |
+| cfrp_twist | link_deflection | carbon-fibre tube links with an unbalanced layup: bending-twist coupling on top of bending, shear and torsion | Chandra, Stemple & Chopra, J. Aircraft 27(7) 1990; Hodges 2006 |
+| target_rod | link_deflection | the reflector on a 250-600 mm carbon extension rod sagging under its own weight and the reflector's | Timoshenko & Gere |
+| axial_float | backlash | a helical output stage whose shaft floats in its bearings' axial play: it turns by the float times tan(helix) / r, the flank set by the axial gravity force, with friction memory (tool_changer, kr16_like) | ISO 21771; bearing catalogues |
+| bearing_clearance | backlash | a wrist shaft in an unpreloaded bearing pair tilting by its clearance over the span towards the moment across its axis, with friction memory | ISO 5753-1 clearance groups |
+| ratio_rounding | transmission | a fractional RV ratio entered rounded to 0.1 in the drive: a joint scale error (tool_changer, kr16_like) | Nabtesco RV-N catalogue (as recalled) |
+| ring_shift | transmission | an output ring encoder read by one head while the bearing tilts under the moment across the axis: the reading errs by the ring's shift over its radius | HEIDENHAIN angle encoders (2e/D) |
+| tripod_growth | thermal (a measurement error) | the tracker's tripod grows with the air temperature through a 5-20 min lag: every measured point sinks | Bryan, CIRP Annals 39(2) 1990; Incropera & DeWitt |
+| bar_expansion | thermal | a parallelogram axis 3 whose bar and upper arm are of different metals with different lags: the length difference turns the forearm, and the arm expands (tool_changer, kr16_like) | Hartenberg & Denavit 1964; Incropera & DeWitt |
+
+Set H's kinds (same case machinery; every number the module docstrings do not source is marked assumed there):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| load_data | joint_compliance | the controller compensates the deflection for the file's masses and a fixed programmed load, not the payload carried, with a +-15 % stiffness-model error: the joints deflect by the rest | robot makers' load-data and absolute-accuracy options (as recalled); Nubiola & Bonev 2013 |
+| gear_creep | joint_compliance | polymer strain-wave gears creeping (standard linear solid) under the load history (ur10) | Findley, Lai & Onaran 1976; Crawford, *Plastics Engineering* (ranges assumed) |
+| agv_wheels | mount_compliance | a mobile platform on elastomer tyres (deflection ~ F^(2/3)) with a rocker axle: three supports, wheel loads from statics | Johnson, *Contact Mechanics* (ranges assumed) |
+| skid | mount_compliance | arm and tracker stand on one skid bedded on the floor: the measurement sees the skid's motion under the arm minus that under the tracker | Hetenyi 1946; Roark |
+| curved_link | link_deflection | a curved (gooseneck) forearm: out-of-plane loads twist the arc | Timoshenko & Gere; Roark (curved beams) |
+| bond_creep | link_deflection | adhesive-bonded tube roots: an elastic and a creeping root rotation in the tube's own frame | Adams, Comyn & Wake 1997; Findley et al. 1976 |
+| wrist_lash | backlash | backlash in a coupled wrist's bevel train: the flank follows the train's last motion (a sum of the coupled joints' moves), not the joint's own | Craig ch. 8; Nordin & Gutman 2002 |
+| cold_grease | backlash | output-side grease friction winds the gear against the last motion and fades as the drive warms | SKF / Palmgren friction; ASTM D341 |
+| stale_table | transmission | the joint-error compensation table of a replaced reducer left active: minus the old error, sampled on a grid and interpolated | ISO 230-2; Ghorbel et al. 2001; Blanche & Yang 1989 |
+| wrist_coupling | transmission | wrist coupling factors configured to three decimals: a joint off by (c_cfg - c) q_k | Craig ch. 8 |
+| tracker_warmup | thermal (a measurement error) | the tracker measuring while it warms up: azimuth, elevation and distance drift as 1 - exp(-t / tau) | Muralikrishnan et al. 2016; ASME B89.4.19 (amplitudes assumed) |
+| helix_shift | thermal | a wrist motor's shaft grows with the drive's heat and pushes its helical pinion: a joint offset alpha L dT tan(beta) / r | ISO 21771; Incropera & DeWitt |
+
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
 example) and the RV values are as recalled from the catalogue, not re-checked against it.
@@ -190,6 +243,9 @@ def _summary(part: pd.DataFrame) -> list[str]:
     quiet = part[part.label.isin(["none", "absorbed"])]
     mix = part[part.named.fillna("").str.contains(r"\+")]
     ratio = part.diag_final_mm / part.oracle_true_mm
+    eff = part[~part.label.isin(["none", "absorbed"])]
+    helps = np.array([any(r[f"rms_{f}_mm"] <= 0.95 * r.oracle_geom_mm for f in r.truth.split("+"))
+                      for _, r in eff.iterrows()], bool)
     lines = [
         "| measure | count |", "| --- | --- |",
         f"| cases | {len(part)} |",
@@ -213,6 +269,10 @@ def _summary(part: pd.DataFrame) -> list[str]:
         f"| diagnosis errors | {int((part.verdict == 'error').sum())} |",
         f"| median final test RMS / oracle true-structure test RMS | "
         f"{np.nanmedian(ratio):.2f} |",
+        f"| effect labels where the true family's generic model helps: named right | "
+        f"{_pct(int(eff[helps].right.sum()), int(helps.sum()))} |",
+        f"| effect labels where it does not (a physics gap): named right | "
+        f"{_pct(int(eff[~helps].right.sum()), int((~helps).sum()))} |",
     ]
     return lines
 
