@@ -145,6 +145,13 @@ def _bowed_chain(robot, name: str, axis_home: np.ndarray, theta: float, pieces: 
                  tool_rotation=turn(theta) @ robot.tool_rotation, trust_units=True)
 
 
+def _across(e: np.ndarray) -> tuple:
+    """The two unit axes across a link of direction ``e`` (at home) about which :func:`link_bow` orders its bows."""
+    a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
+    a1 /= np.linalg.norm(a1)
+    return a1, np.cross(e, a1)
+
+
 @pytest.mark.parametrize("robot_name", ["ur10", "tool_changer"])
 def test_link_bow_is_the_tool_shift_of_an_arc_bent_link(robot_name):
     """A uniform curvature along a link (a temperature difference across its section) moves the tool point as the
@@ -160,9 +167,7 @@ def test_link_bow_is_the_tool_shift_of_an_arc_bent_link(robot_name):
     theta = 2e-4  # 200 urad: the second-order term is ~theta^2 L ~ 1e-5 mm
     for i, name in enumerate(names):
         v = np.asarray(next(lk for lk in robot.links if lk.name == name).vector_mm, float)
-        e = v / np.linalg.norm(v)
-        a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
-        for k, axis in enumerate((a1 / np.linalg.norm(a1), np.cross(e, a1 / np.linalg.norm(a1)))):
+        for k, axis in enumerate(_across(v / np.linalg.norm(v))):
             bent = _bowed_chain(robot, name, axis, theta)
             exact = bent.fk_internal(q)[:, :3, 3] - robot.fk_internal(q)[:, :3, 3]
             np.testing.assert_allclose(B[:, :, 2 * i + k] * theta / 1e-6, exact, atol=2e-3 * np.abs(exact).max())
@@ -183,9 +188,7 @@ def test_a_link_bowing_as_it_warms_up_is_diagnosed_as_thermal_bow():
     ts = 30.0 * np.arange(P)
     t = np.array([0.0, 30.0, 50.0])
     link = max(robot.links, key=lambda lk: lk.length_mm)
-    e = np.asarray(link.vector_mm, float) / link.length_mm
-    axis = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
-    axis /= np.linalg.norm(axis)
+    axis = _across(np.asarray(link.vector_mm, float) / link.length_mm)[0]
     theta = 400e-6 * (1 - np.exp(-ts / 1800.0))
     xyz = np.stack([target_points(_bowed_chain(robot, link.name, axis, theta[i], pieces=40), q[i:i + 1], t)[0]
                     for i in range(P)])

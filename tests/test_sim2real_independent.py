@@ -205,6 +205,32 @@ def test_scoring_rules():
     assert score(quiet)["false_claim"] and not score(quiet | {"verdict": "inconclusive"})["false_claim"]
 
 
+def _assert_set_layout(set_name: str, seed: int, registry: dict) -> set:
+    """A later independent set's layout: 24 cases on seed ``seed``, 8 per arm, 3 geometry-only, 3 mixtures, 30-200
+    poses with an effect case of at most 50, six split by time, at least 5 single-kind cases per arm; its kinds are
+    exactly ``registry``'s, new to every earlier set, registered in the generator, two per family. Returns them."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep.context import FAMILIES, FAMILY
+
+    cases = cs.SETS[set_name][0]
+    assert len(cases) == 24 and cs.SETS[set_name][1] == seed
+    assert {r: sum(c[1] == r for c in cases) for r in ("ur10", "tool_changer", "kr16_like")} == {
+        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
+    assert sum(not c[2] for c in cases) == 3 and sum(len(c[2]) == 2 for c in cases) == 3
+    assert all(30 <= c[3] <= 200 for c in cases) and min(c[3] for c in cases if c[2]) <= 50
+    assert sum(c[4] == "time" for c in cases) == 6
+    for r in ("ur10", "tool_changer", "kr16_like"):
+        assert sum(len(c[2]) == 1 for c in cases if c[1] == r) >= 5
+    kinds = {k for c in cases for k in c[2]}
+    earlier_sets = [s for s in cs.SETS if s < set_name]
+    earlier = set(cs.KINDS) | {k for s in earlier_sets for c in cs.SETS[s][0] for k in c[2]}
+    assert kinds == set(registry) and not kinds & earlier
+    assert all(gen.EFFECTS[k] == registry[k] for k in kinds)
+    for fam in FAMILIES:
+        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    return kinds
+
+
 def _assert_regenerates(set_name: str, *, max_effect_poses: int):
     """The set's geometry-only cases and its effect cases of at most ``max_effect_poses`` poses regenerate
     bit-for-bit from their seeds; the geometry-only ones carry no effect and the oracle labels them ``none``."""
@@ -383,24 +409,9 @@ def test_set_f_cases_kinds_and_determinism():
     """Set F: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
     generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
     a case regenerates bit-identically from its seed."""
-    from sim2real_indep import cases as cs
     from sim2real_indep import effects_f as ef
-    from sim2real_indep.context import FAMILIES, FAMILY
 
-    assert len(cs.SET_F) == 24 and cs.SETS["F"][1] == cs.SEED_F == 40_7006
-    assert {r: sum(c[1] == r for c in cs.SET_F) for r in ("ur10", "tool_changer", "kr16_like")} == {
-        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
-    assert sum(not c[2] for c in cs.SET_F) == 3 and sum(len(c[2]) == 2 for c in cs.SET_F) == 3
-    assert all(30 <= c[3] <= 200 for c in cs.SET_F) and min(c[3] for c in cs.SET_F) <= 50
-    assert sum(c[4] == "time" for c in cs.SET_F) == 6
-    for r in ("ur10", "tool_changer", "kr16_like"):
-        assert sum(len(c[2]) == 1 for c in cs.SET_F if c[1] == r) >= 5
-    kinds = {k for c in cs.SET_F for k in c[2]}
-    earlier = set(cs.KINDS) | {k for s in "ABCDE" for c in cs.SETS[s][0] for k in c[2]}
-    assert kinds == set(ef.EFFECTS_F) and not kinds & earlier
-    assert all(gen.EFFECTS[k] == ef.EFFECTS_F[k] for k in kinds)
-    for fam in FAMILIES:
-        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    _assert_set_layout("F", 40_7006, ef.EFFECTS_F)
     _assert_regenerates("F", max_effect_poses=40)
 
 
@@ -471,24 +482,11 @@ def test_set_g_cases_kinds_and_determinism():
     generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
     a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-G kind
     alone."""
-    from sim2real_indep import cases as cs
     from sim2real_indep import effects_g as eg
-    from sim2real_indep.context import FAMILIES, FAMILY
+    from sim2real_indep.context import FAMILY
 
-    assert len(cs.SET_G) == 24 and cs.SETS["G"][1] == cs.SEED_G == 40_7007
-    assert {r: sum(c[1] == r for c in cs.SET_G) for r in ("ur10", "tool_changer", "kr16_like")} == {
-        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
-    assert sum(not c[2] for c in cs.SET_G) == 3 and sum(len(c[2]) == 2 for c in cs.SET_G) == 3
-    assert all(30 <= c[3] <= 200 for c in cs.SET_G) and min(c[3] for c in cs.SET_G if c[2]) <= 50
-    assert sum(c[4] == "time" for c in cs.SET_G) == 6
-    for r in ("ur10", "tool_changer", "kr16_like"):
-        assert sum(len(c[2]) == 1 for c in cs.SET_G if c[1] == r) >= 5
-    kinds = {k for c in cs.SET_G for k in c[2]}
-    earlier = set(cs.KINDS) | {k for s in "ABCDEF" for c in cs.SETS[s][0] for k in c[2]}
-    assert kinds == set(eg.EFFECTS_G) and not kinds & earlier
-    assert all(gen.EFFECTS[k] == eg.EFFECTS_G[k] and FAMILY[k] == eg.FAMILY_G[k] for k in kinds)
-    for fam in FAMILIES:
-        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
+    kinds = _assert_set_layout("G", 40_7007, eg.EFFECTS_G)
+    assert all(FAMILY[k] == eg.FAMILY_G[k] for k in kinds)
     rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
     opts = {"blocks": 2, "gap_kind": "none"}
     assert eg.session_options("ur10", ("gear", "day_night"), rng_a, opts) is opts
@@ -612,25 +610,13 @@ def test_set_h_cases_kinds_and_determinism():
     """Set H: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
     generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
     a case regenerates bit-identically from its seed; the session hook leaves cases without a set-H kind alone."""
-    from sim2real_indep import cases as cs
     from sim2real_indep import effects_h as eh
-    from sim2real_indep.context import FAMILIES, FAMILY
+    from sim2real_indep.context import FAMILY
 
-    assert len(cs.SET_H) == 24 and cs.SETS["H"][1] == cs.SEED_H == 40_7008
-    assert {r: sum(c[1] == r for c in cs.SET_H) for r in ("ur10", "tool_changer", "kr16_like")} == {
-        "ur10": 8, "tool_changer": 8, "kr16_like": 8}
-    assert sum(not c[2] for c in cs.SET_H) == 3 and sum(len(c[2]) == 2 for c in cs.SET_H) == 3
-    assert all(30 <= c[3] <= 200 for c in cs.SET_H) and min(c[3] for c in cs.SET_H if c[2]) <= 50
-    assert sum(c[4] == "time" for c in cs.SET_H) == 6
-    for r in ("ur10", "tool_changer", "kr16_like"):
-        assert sum(len(c[2]) == 1 for c in cs.SET_H if c[1] == r) >= 5
-    kinds = {k for c in cs.SET_H for k in c[2]}
-    earlier = set(cs.KINDS) | {k for s in "ABCDEFG" for c in cs.SETS[s][0] for k in c[2]}
-    assert kinds == set(eh.EFFECTS_H) and not kinds & earlier and not kinds & set(gen.EFFECTS) - set(eh.EFFECTS_H)
-    assert all(gen.EFFECTS[k] == eh.EFFECTS_H[k] and FAMILY[k] == eh.FAMILY_H[k] for k in kinds)
+    kinds = _assert_set_layout("H", 40_7008, eh.EFFECTS_H)
+    assert not kinds & set(gen.EFFECTS) - set(eh.EFFECTS_H)
+    assert all(FAMILY[k] == eh.FAMILY_H[k] for k in kinds)
     assert eh.AFTER_TRACKER <= gen.AFTER_TRACKER
-    for fam in FAMILIES:
-        assert sum(FAMILY[k] == fam for k in kinds) == 2, fam
     rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
     opts = {"blocks": 2, "gap_kind": "none"}
     assert eh.session_options("ur10", ("gear", "tripod_growth"), rng_a, opts) is opts

@@ -56,7 +56,7 @@ def flank(tau: np.ndarray, direction: np.ndarray | None, variant: str) -> np.nda
         raise ValueError(f"the {variant!r} flank needs the approach directions (dir1..dirN)")
     trailing = -np.asarray(direction, float)
     if variant == "preload":
-        return np.where((np.abs(tau) > PRELOAD_BAND * span) & (tau != 0), np.sign(tau), trailing)
+        return np.where(np.abs(tau) > PRELOAD_BAND * span, np.sign(tau), trailing)
     return trailing
 
 
