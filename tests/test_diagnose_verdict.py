@@ -311,3 +311,74 @@ def test_a_mount_about_a_pivot_below_the_base_is_one_more_column_whose_ratio_is_
     np.testing.assert_allclose(B @ np.array([c, c * h]), expected, rtol=1e-12, atol=1e-15)
     iso, _ = mount_columns(robot, q, p, p, None, "isotropic")
     np.testing.assert_allclose(B[..., 0], iso[..., 0])
+
+
+@pytest.mark.parametrize("log_bf, verdict", [(np.log(30.0), "effect"), (np.log(10.0), "ambiguous"),
+                                             (-np.log(30.0), "ambiguous")])
+def test_a_tie_in_held_out_rms_is_decided_by_strong_evidence_only(log_bf, verdict):
+    """Two families tied on the held-out RMS (``b`` in place of ``a`` as good): a Bayes factor of 30 for the selected
+    family separates them (named alone, the reason states the factor); 10 (below Kass and Raftery's 20) or a factor
+    for the alternative leaves the verdict ambiguous."""
+    from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, bayes_factor
+
+    evals, stages = _world(0.0)
+    logml = {"none": -50.0, "a": 10.0 + log_bf, "b": 10.0}
+    out = compare_alternatives(None, evals["geometric+a"], stages, evals, None, clip_level(evals["geometric"].oof_mm),
+                               0.01, 0.02, logml=logml)
+    assert out[0].bayes_factor == pytest.approx(np.exp(log_bf)) == bayes_factor(logml, "a", "b")
+    assert abs(out[0].excess_pct) < out[0].margin_pct                  # tied by what the two predict
+    assert out[0].separable is bool(np.exp(log_bf) >= DECISIVE_BAYES_FACTOR) is out[0].by_evidence
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    v = verdict_of(ctx, stages, evals["geometric+a"], None, out, [], (), "geometric+a", None)
+    assert v.verdict == verdict
+    if verdict == "effect":
+        assert v.candidates == ("a",) and any("Bayes factor of 30 (decisive from 20)" in r for r in v.reasons)
+    # a comparison at a later step (a base of other effects) has no single-family evidence: the margin rule alone
+    later = [Stage(("x",), 0.2, stages[0].candidates, "a")]
+    assert not compare_alternatives(None, evals["geometric+a"], later, evals, None, 1.0, 0.01, 0.02,
+                                    logml=logml)[0].separable
+
+
+def test_the_first_step_selects_the_family_the_evidence_favours_among_those_tied_with_the_best():
+    """evidence_pick: among the significant candidates within the practical margin of the best clipped held-out RMS,
+    the one with a Bayes factor of at least 20 over each other; none when the factor is weaker, when one of the
+    tied candidates is not favoured against, or when no other candidate is within the margin."""
+    from tolalloc.diagnose.families import evidence_pick
+
+    def cand(e, r, sig=True):
+        return replace(_cand(e, sig), robust_rms_mm=r)
+
+    cands = [cand("a", 0.100), cand("b", 0.103), cand("c", 0.104), cand("d", 0.200), cand("e", 0.101, sig=False)]
+    strong = {"a": 0.0, "b": 10.0, "c": 5.0, "d": 100.0, "e": 100.0}   # d: better evidence, beaten on RMS
+    assert evidence_pick(cands, strong, 0.05).effect == "b"             # BF e^5 over c, e^10 over a
+    assert evidence_pick(cands, {**strong, "c": 8.0}, 0.05) is None     # BF e^2 = 7.4 over c: not decisive
+    assert evidence_pick(cands, strong, 0.02) is None                   # only a within 2 %: no tie
+    assert evidence_pick(cands, {}, 0.05) is None                       # no evidence stated
+    assert evidence_pick(cands[:3], {"a": 4.0, "b": 0.0, "c": 0.0}, 0.05).effect == "a"
+
+
+def test_a_family_too_wide_for_the_residual_is_left_out_of_the_evidence_not_the_others():
+    """family_log_evidence on a constructed residual (P = 40 poses, 120 coordinates, 6 fixed columns): the family
+    that made it (``a``, 2 columns) gets a decisive factor over one that did not (``b``); a 60-column family (more
+    than a third of the 114 degrees of freedom) is left out instead of silencing every probability; the ``none``
+    evidence is the Gaussian likelihood at the ML noise level."""
+    from tolalloc.diagnose.choice import projected_residual
+    from tolalloc.diagnose.families import bayes_factor, family_log_evidence, posterior_probabilities
+
+    rng = np.random.default_rng(3)
+    P = 40
+    J_fixed = rng.normal(size=(3 * P, 6))
+    Ba, Bb, Bwide = rng.normal(size=(P, 3, 2)), rng.normal(size=(P, 3, 2)), rng.normal(size=(P, 3, 60))
+    res = (Ba @ np.array([0.3, -0.2]) + rng.normal(0, 0.02, (P, 3)))
+    fit = SimpleNamespace(R=np.eye(3), residual_mm=res)
+    ctx = SimpleNamespace(cal=SimpleNamespace(geometric=fit), J_fixed=J_fixed, geo_residual=res,
+                          bases={"a": SimpleNamespace(B=Ba, groups=None), "b": SimpleNamespace(B=Bb, groups=None),
+                                 "wide": SimpleNamespace(B=Bwide, groups=None)})
+    logml = family_log_evidence(ctx)
+    assert set(logml) == {"none", "a", "b"}                           # 3 x 60 > 114: wide is not weighed
+    _, r, n = projected_residual(fit, J_fixed, res)
+    assert n == 3 * P - 6
+    assert logml["none"] == pytest.approx(-0.5 * n * (np.log(2 * np.pi * (r @ r) / n) + 1.0))
+    assert bayes_factor(logml, "a", "b") > 1e6 and posterior_probabilities(logml)["a"] > 0.999
+    ctx.bases = {"wide": ctx.bases["wide"]}
+    assert family_log_evidence(ctx) == {} and posterior_probabilities({}) == {}

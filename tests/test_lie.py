@@ -132,3 +132,14 @@ def test_broadcasting_over_stacks():
     assert rotvec(T[..., :3, :3]).shape == (4, 5, 3)
     assert euler_xyz_fixed(T[..., :3, :3]).shape == (4, 5, 3)
     assert exp_so3(xi[..., :3]).shape == (4, 5, 3, 3)
+
+
+def test_cross_equals_numpy_cross_and_broadcasts():
+    """lie.cross against numpy.cross on stacks of different shapes, broadcasting a single vector and a stack."""
+    from tolalloc.robot.lie import cross
+
+    rng = np.random.default_rng(0)
+    for sa, sb in (((3,), (3,)), ((7, 3), (7, 3)), ((4, 5, 3), (5, 3)), ((6, 3), (3,)), ((2, 1, 3), (1, 4, 3))):
+        a, b = rng.normal(size=sa), rng.normal(size=sb)
+        assert np.array_equal(cross(a, b), np.cross(a, b)), (sa, sb)
+    assert np.array_equal(cross([1, 0, 0], [0, 1, 0]), [0.0, 0.0, 1.0])

@@ -64,6 +64,7 @@ def test_generator_imports_nothing_of_tolalloc():
     assert {"effects_f", "effects_f_thermal", "effects_f_joint", "effects_f_body"} <= reached  # set F
     assert {"effects_g", "effects_g_thermal", "effects_g_joint", "effects_g_body"} <= reached  # set G
     assert {"effects_h", "effects_h_thermal", "effects_h_joint", "effects_h_body"} <= reached  # set H
+    assert {"effects_i", "effects_i_thermal", "effects_i_joint", "effects_i_body"} <= reached  # set I
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -269,6 +270,24 @@ def _effect_and_features(case, ctx, kind):
     return d, (F.reshape(len(F), -1).T if len(F) else np.zeros((len(d), 0)))
 
 
+def _assert_kinds_reproduce(specs, seed: int, *, inert=(), min_mm: float) -> dict:
+    """Every kind of ``specs`` ((robot, kinds) pairs, a 30-pose case each from ``seed``) displaces the robot within the
+    span of its true-structure features, by at least ``min_mm``; the ``inert`` kinds do nothing on ur10. Returns
+    ``{robot: (case, ctx)}`` of each robot's first case, for the known-answer checks."""
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, seed)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault(robot, (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if robot == "ur10" and kind in inert:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
+                continue
+            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=min_mm, what=kind)
+    return runs
+
+
 def _assert_features_reproduce(d, A, amp=None, *, rtol: float, min_mm: float, what: str = ""):
     """The features ``A`` times the amplitudes ``amp`` (default: the least-squares ones) give the displacement ``d``
     within ``rtol`` of its size, and the effect is real (``min_mm`` at its largest)."""
@@ -395,14 +414,9 @@ def test_set_e_cases_and_every_kind_lies_in_its_true_structure():
     assert all(FAMILY[k] == ee.FAMILY_E[k] for k in kinds) and set(ee.FAMILY_E.values()) == set(FAMILIES)
     for fam in FAMILIES:
         assert sum(f == fam for f in ee.FAMILY_E.values()) >= 2, fam
-    for robot, physics in (("tool_changer", ("ram", "parallelogram", "soft_foot", "magnetic_ring", "sunlight")),
-                           ("kr16_like", ("ring_gear", "channel", "table_frame", "varstiff", "friction_windup",
-                                          "scissor_gear", "fan_thermostat"))):
-        case = gen.generate("t", robot, physics, 30, 11)
-        t = case.truth
-        ctx = case.model_ctx(t["probe_mm"])
-        for kind in physics:
-            _assert_features_reproduce(*_effect_and_features(case, ctx, kind), rtol=1e-8, min_mm=1e-4, what=kind)
+    _assert_kinds_reproduce((("tool_changer", ("ram", "parallelogram", "soft_foot", "magnetic_ring", "sunlight")),
+                             ("kr16_like", ("ring_gear", "channel", "table_frame", "varstiff", "friction_windup",
+                                            "scissor_gear", "fan_thermostat"))), 11, min_mm=1e-4)
 
 
 def test_set_f_cases_kinds_and_determinism():
@@ -426,20 +440,12 @@ def test_set_f_every_kind_lies_in_its_true_structure_and_known_answers():
     from sim2real_indep import effects_f_body as fb
     from sim2real_indep import effects_f_joint as fj
 
-    for robot, physics in (("ur10", ("cable_balancer", "uplift", "eccentric_axis", "weld_crack", "tape_scale",
-                                     "day_night")),
-                           ("tool_changer", ("lever_drive", "lever_stiffness", "screw_growth", "plate_yield",
-                                             "brake_hub", "wear_zones")),
-                           ("ur10", ("lever_drive", "lever_stiffness", "screw_growth"))):
-        case = gen.generate("t", robot, physics, 30, 12)
-        t = case.truth
-        ctx = case.model_ctx(t["probe_mm"])
-        for kind in physics:
-            d, A = _effect_and_features(case, ctx, kind)
-            if robot == "ur10" and kind in ("lever_drive", "screw_growth"):
-                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
-                continue
-            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
+    _assert_kinds_reproduce((("ur10", ("cable_balancer", "uplift", "eccentric_axis", "weld_crack", "tape_scale",
+                                       "day_night")),
+                             ("tool_changer", ("lever_drive", "lever_stiffness", "screw_growth", "plate_yield",
+                                               "brake_hub", "wear_zones")),
+                             ("ur10", ("lever_drive", "lever_stiffness", "screw_growth"))), 12,
+                            inert=("lever_drive", "screw_growth"), min_mm=1e-3)
 
     lv = {"r1": 0.9, "r2": 0.3, "s": 1.0, "psi0": 0.4}
     q = np.linspace(0.2, 1.6, 7)
@@ -510,21 +516,10 @@ def test_set_g_every_kind_lies_in_its_true_structure_and_known_answers():
     from sim2real_indep import effects_g_body as gb
     from sim2real_indep import effects_g_joint as gj
 
-    runs = {}
-    for robot, physics in (("ur10", ("hose_catenary", "jack_leak", "air_isolator", "cfrp_twist", "target_rod",
-                                     "bearing_clearance", "ring_shift", "tripod_growth")),
-                           ("tool_changer", ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion")),
-                           ("ur10", ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion"))):
-        case = gen.generate("t", robot, physics, 30, 14)
-        t = case.truth
-        ctx = case.model_ctx(t["probe_mm"])
-        runs.setdefault(robot, (case, ctx))
-        for kind in physics:
-            d, A = _effect_and_features(case, ctx, kind)
-            if robot == "ur10" and kind in ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion"):
-                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
-                continue
-            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
+    geared = ("twin_pinion", "axial_float", "ratio_rounding", "bar_expansion")
+    runs = _assert_kinds_reproduce((("ur10", ("hose_catenary", "jack_leak", "air_isolator", "cfrp_twist", "target_rod",
+                                              "bearing_clearance", "ring_shift", "tripod_growth")),
+                                    ("tool_changer", geared), ("ur10", geared)), 14, inert=geared, min_mm=1e-3)
 
     # twin pinions: slope 1 / 2k up to twice the bias, 1 / k beyond, continuous
     g = {"joint": 0, "T_bias_Nm": 100.0, "k_Nm_per_rad": 1e6}
@@ -641,19 +636,9 @@ def test_set_h_every_kind_lies_in_its_true_structure_and_known_answers():
     from sim2real_indep.context import Ctx
 
     wrist = ("wrist_lash", "wrist_coupling", "helix_shift")
-    runs = {}
-    for robot, physics in (("ur10", ("load_data", "gear_creep", "agv_wheels", "skid", "curved_link", "bond_creep",
-                                     "cold_grease", "stale_table", "tracker_warmup")),
-                           ("kr16_like", wrist), ("ur10", wrist)):
-        case = gen.generate("t", robot, physics, 30, 15)
-        ctx = case.model_ctx(case.truth["probe_mm"])
-        runs.setdefault(robot, (case, ctx))
-        for kind in physics:
-            d, A = _effect_and_features(case, ctx, kind)
-            if robot == "ur10" and kind in wrist:
-                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, kind
-                continue
-            _assert_features_reproduce(d, A, rtol=1e-8, min_mm=1e-3, what=kind)
+    runs = _assert_kinds_reproduce((("ur10", ("load_data", "gear_creep", "agv_wheels", "skid", "curved_link",
+                                              "bond_creep", "cold_grease", "stale_table", "tracker_warmup")),
+                                    ("kr16_like", wrist), ("ur10", wrist)), 15, inert=wrist, min_mm=1e-3)
 
     case, ctx = runs["ur10"]
     p, hw = case.truth["params"], case.truth["hw"]
@@ -771,3 +756,240 @@ def test_set_h_every_kind_lies_in_its_true_structure_and_known_answers():
                   & (np.abs(hs["k_rad_per_K"]) < 11.7e-6 * 180 * np.tan(np.deg2rad(30)) / 25))
     dq = ht.helix_apply(hs, ctx, hw).dq
     assert dq[:, hs["joints"]] == pytest.approx(ht.drive_rise(hs, ctx, hw) * hs["k_rad_per_K"])
+
+
+def test_set_i_cases_kinds_and_determinism():
+    """Set I: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-I kind
+    alone (no random numbers drawn)."""
+    from sim2real_indep import effects_i as ei
+    from sim2real_indep.context import FAMILY
+
+    kinds = _assert_set_layout("I", 40_7009, ei.EFFECTS_I)
+    assert not kinds & set(gen.EFFECTS) - set(ei.EFFECTS_I)
+    assert all(FAMILY[k] == ei.FAMILY_I[k] for k in kinds)
+    assert ei.AFTER_TRACKER <= gen.AFTER_TRACKER
+    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
+    opts = {"blocks": 2, "gap_kind": "none"}
+    assert ei.session_options("ur10", ("gear", "helix_shift"), rng_a, opts) is opts
+    assert rng_a.random() == rng_b.random()                          # no draws without a set-I kind
+    probe = np.array([3.0, -4.0, 12.0])                              # |probe| 13 mm
+    assert ei.probe_hook(("sag", "target_rod"), probe) is probe
+    boom = ei.probe_hook(("rail_boom",), probe)
+    assert np.linalg.norm(boom) == pytest.approx(400 + 500 * 8 / 95) and np.allclose(np.cross(boom, probe), 0)
+    _assert_regenerates("I", max_effect_poses=50)
+
+
+def _beam_curve(L, a, P, EI, n=200001):
+    """Deflection (down) and slope at a of a simply supported beam under a force P at a, by integrating w'' = -M/EI
+    twice (the trapezoidal rule) with w(0) = w(L) = 0."""
+    x = np.linspace(0, L, n)
+    k = -np.where(x <= a, P * (L - a) * x / L, P * a * (L - x) / L) / EI
+    cum = lambda f: np.r_[0.0, np.cumsum((f[1:] + f[:-1]) / 2 * np.diff(x))]  # noqa: E731
+    wp = cum(k)
+    w = cum(wp)
+    c = -w[-1] / L
+    i = int(np.argmin(np.abs(x - a)))
+    return w[i] + c * x[i], wp[i] + c
+
+
+def test_set_i_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-I kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the heavy-arm, coupled-wrist, fork and prismatic kinds do
+    nothing on ur10; and known answers: the inclined loads as the gradient of the potential, the balancer charge's exact
+    lag against a fine integration and its moment arm, the floor beam's flexibility against the integrated elastic
+    curve and the plate's statics, the portal's sway and fixed-end answers, the splice's Masing branch and section
+    moment, the warping twist's limits and boundary conditions, the overrun flank and the trapezoid's deceleration,
+    the nut's flank, the idler's and the parallelogram reducer's angles and spectra, Timoshenko's bimetal and the
+    housings' axial shift."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_c_thermal as ct
+    from sim2real_indep import effects_g_joint as gj
+    from sim2real_indep import effects_h_thermal as ht
+    from sim2real_indep import effects_i_body as ib
+    from sim2real_indep import effects_i_joint as ij
+    from sim2real_indep import effects_i_thermal as it
+
+    heavy = ("balancer_relax", "fork_arm", "nut_play", "idler_runout", "para_gear")
+    runs = _assert_kinds_reproduce((("ur10", ("tilted_base", "floor_beams", "portal", "lap_splice", "overrun_lash",
+                                              "rail_boom", "housing_growth")),
+                                    ("kr16_like", ("balancer_relax", "fork_arm", "idler_runout", "para_gear")),
+                                    ("tool_changer", ("nut_play", "para_gear")), ("ur10", heavy)), 16, inert=heavy,
+                                   min_mm=1e-2)
+
+    case, ctx = runs["ur10"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # inclined base: zero tilt is the file's gravity; the loads are minus the gradient of the potential -m G g . r
+    tb = p["tilted_base"]
+    assert ij.tilt_loads({"tilt_rad": 0.0, "azimuth_rad": 1.0}, ctx) == pytest.approx(ctx.loads, abs=1e-9)
+    g = ij.tilt_gravity(tb)
+    assert np.linalg.norm(g) == pytest.approx(1.0) and -g[2] == pytest.approx(np.cos(tb["tilt_rad"]))
+    ch, q = ctx.chain, ctx.q[:4]
+    V = lambda qq: -(ch.masses * kin.G * (kin.mass_positions(ch, qq) @ g) / 1000).sum(axis=1)  # noqa: E731
+    tau = kin.gravity_loads(ch, q, ch.masses, kin.mass_positions(ch, q), ch.mass_body, gravity=g)
+    for j in range(ch.n):
+        e = 1e-6 * np.eye(ch.n)[j]
+        assert tau[:, j] == pytest.approx(-(V(q + e) - V(q - e)) / 2e-6, rel=1e-5, abs=1e-6)
+    assert np.abs(ij.tilt_loads(tb, ctx)[:, 0]).max() > 1.0                  # axis 1 now carries gravity
+    # floor beams: the flexibility against the integrated elastic curve (force column), Maxwell's symmetry and the
+    # central couple (slope L / 12 EI, no deflection); the plate's statics and equal slopes
+    L, a, EI = 4.0, 1.3, 2e6
+    F = ib.beam_flexibility(L, a) / EI
+    assert _beam_curve(L, a, 1000.0, EI) == pytest.approx(tuple(1000.0 * F[:, 0]), rel=1e-6)
+    assert ib.beam_flexibility(L, L / 2)[1] == pytest.approx([0.0, L / 12]) and F[0, 1] == F[1, 0]
+    fb = p["floor_beams"]
+    (P1, P2, C1, C2), _, _, _, e, n = ib.floor_state(fb, ctx)
+    Fb = ib.beam_flexibility(fb["L_m"], fb["a_m"])
+    M = ib.eb.mount_moment(ctx)
+    assert P1 + P2 == pytest.approx(ib._weight(ctx)) and C1 + C2 == pytest.approx(M @ n)
+    assert (P1 - P2) * fb["s_m"] / 2 == pytest.approx(-(M @ e))
+    assert Fb[1, 0] * P1 + Fb[1, 1] * C1 == pytest.approx(Fb[1, 0] * P2 + Fb[1, 1] * C2)
+    # portal: a rigid beam sways as two fixed-guided columns, H^3 / 24 EI (+ the columns' axial shortening); rigid
+    # columns leave a fixed-fixed beam: B^3 / 192 EI under a central force, B / 16 EI under a central couple
+    H, B, EIc = 2.0, 3.0, 1e6
+    assert ib.portal_flexibility(H, B, EIc, 1e6 * EIc)[0, 0] == pytest.approx(H ** 3 / (24 * EIc), rel=2e-2)
+    f = ib.portal_flexibility(H, B, 1e6 * EIc, EIc)
+    assert f[1, 1] == pytest.approx(B ** 3 / (192 * EIc), rel=1e-4)
+    assert f[2, 2] == pytest.approx(B / (16 * EIc), rel=1e-4)
+    assert abs(f[1, 2]) < 1e-9 * f[2, 2] and np.allclose(f, f.T, rtol=0, atol=1e-12 * np.abs(f).max())
+    # splice: the vector play; Masing: loading a ray to m_max leaves m_max - r, unloading to zero min(r, m_max - r)
+    assert ib.play_vec(np.zeros(3), np.array([3.0, 4.0, 0.0]), 2.0) == pytest.approx([1.8, 2.4, 0.0])
+    y = np.array([1.0, 1.0, 0.0])
+    assert ib.play_vec(y, np.array([2.0, 1.5, 0.0]), 2.0) is y
+    u = np.array([0.6, 0.0, 0.8])
+    ys = ib.play_path(np.outer(np.linspace(0, 10.0, 21), u), np.zeros(21), [1.0, 3.0, 7.0])
+    assert ys[-1] == pytest.approx(np.outer([9.0, 7.0, 3.0], u)) and ys[0] == pytest.approx(np.outer([1, 3, 3.0], u))
+    # the section moment: everything beyond the splice, the tube's own weight beyond it by quadrature
+    sp = p["lap_splice"]
+    li = ch.link_names.index(sp["link"])
+    m_s, pos = ib.section_moment(ctx, li, sp["s"])
+    e_l, tip, Ll = ib.eb._beam_state(ctx, li)
+    mm, mpos, _ = ctx.mass_state
+    beyond, own = ctx.mass_index > li, ctx.mass_index == li
+    Mg = np.cross((mpos[:, beyond] - pos[:, None]) / 1000.0, mm[:, beyond, None] * ib.eb.GRAVITY_N).sum(axis=1)
+    xs = np.linspace(0.0, (1 - sp["s"]) * Ll, 2001)
+    wl = mm[0, own].sum() * ib.eb.GRAVITY_N / Ll
+    Mg += np.trapezoid(np.cross(xs[None, :, None] * e_l[:, None], np.broadcast_to(wl, (30, 2001, 3))), xs, axis=1)
+    Mg -= np.einsum("pi,pi->p", Mg, e_l)[:, None] * e_l
+    assert m_s == pytest.approx(Mg, rel=1e-6, abs=1e-6)
+    # overrun: trapezoidal moves cover |dq| = alpha RAMP (move - RAMP); the flank: gravity's above the friction, else
+    # leading where J alpha + d tau beats it, trailing otherwise
+    alpha = ij.stop_deceleration(s)
+    moved = s.move_s > 0
+    dq = np.abs(np.diff(np.vstack([s.q[:1], s.q]), axis=0))
+    assert (alpha * ij.RAMP_S * np.maximum(s.move_s - ij.RAMP_S, ij.RAMP_S)[:, None])[moved] == pytest.approx(dq[moved])
+    J = ct.inertia_about_joints(ctx)
+    for g_ in p["overrun_lash"]:
+        j, d, t = g_["joint"], s.direction[:, g_["joint"]], ctx.loads[:, g_["joint"]]
+        fl = ij.overrun_flank(g_, ctx)
+        assert set(np.unique(fl)) <= {-1.0, 1.0}
+        loaded = np.abs(t) > g_["T_f_Nm"]
+        assert np.array_equal(fl[loaded], np.sign(t[loaded]))
+        assert np.array_equal(fl[~loaded], np.where(J[~loaded, j] * alpha[~loaded, j] + (d * t)[~loaded] > g_["T_f_Nm"],
+                                                    d[~loaded], -d[~loaded]))
+    fl = ij.overrun_flank(p["overrun_lash"][0], ctx)                         # axis 1: no gravity, both flanks
+    assert set(fl * s.direction[:, 0]) == {-1.0, 1.0}
+    # bimetal: Timoshenko's two strips (unit width); the boom grows along itself and bows towards the steel rail
+    E1, E2, t1, t2 = 70e9, 210e9, 0.003, 0.002
+    kap, eps = it.bimetal(E1, t1, t1 ** 3 / 12, 23e-6, E2, t2, t2 ** 3 / 12, 11.7e-6, (t1 + t2) / 2)
+    m_, n_ = t1 / t2, E1 / E2
+    assert kap == pytest.approx(6 * (11.7e-6 - 23e-6) * (1 + m_) ** 2 / (
+        (t1 + t2) * (3 * (1 + m_) ** 2 + (1 + m_ * n_) * (m_ * m_ + 1 / (m_ * n_)))), rel=1e-12)
+    assert 11.7e-6 < eps < 23e-6
+    bm = p["rail_boom"]
+    grow, bow = it.boom_parts(bm, ctx)
+    _, Rt = kin.flange(ch, ctx.q)
+    dT = ib.eb.structure_temperature(bm, ctx)
+    Lb = np.linalg.norm(ctx.probe_mm)
+    assert grow == pytest.approx((Rt @ (bm["eps_per_K"] * ctx.probe_mm)) * dT[:, None])
+    assert bow == pytest.approx((Rt @ bm["rail_dir"]) * (-bm["kappa_per_K"] * Lb ** 2 / 2000.0 * dT)[:, None])
+    assert bm["kappa_per_K"] < 0 and np.abs(dT).max() > 1.0
+    # housings: a growth delta along joint j's axis is the chain with delta * axis added to the first link after j
+    hg = p["housing_growth"]
+    parts, rise = it.housing_parts(hg, ctx, hw), ht.drive_rise(hg, ctx, hw)
+    assert rise.min() >= 0 and np.all(rise.max(axis=0) > 5.0)
+    for k, j in enumerate(hg["joints"][:3]):
+        links = ch.links.copy()
+        links[np.flatnonzero(ch.link_body == j + 1)[0]] += 1e-3 * ch.axes[j]
+        shift = kin.target(ch, ctx.q, ctx.probe_mm, links=links) - ctx.target
+        assert parts[k] == pytest.approx(1e3 * shift * rise[:, k:k + 1], rel=1e-6, abs=1e-6)
+
+    case, ctx = runs["kr16_like"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # balancer: the exact lag against a fine integration of d(theta)/dt = -(gamma - 1) d(ln V)/dt - theta / tau (ln V
+    # linear over the move), then decaying through dwells and a pause; the moment arm is dL / dpsi
+    bp = dict(p["balancer_relax"], tau_th_s=12.0)
+    q = np.zeros((3, 6))
+    q[:, 1] = [bp["q_mid"] - 0.3, bp["q_mid"] + 0.4, bp["q_mid"] + 0.4]
+    ses = SimpleNamespace(gap_s=np.array([0.0, 0.0, -50.0]), move_s=np.array([0.0, 2.5, 0.0]),
+                          dwell_s=np.array([5.0, 4.0, 6.0]))
+    th = ij.bal_theta(bp, SimpleNamespace(session=ses, q=q))
+    lnv = np.log(ij.bal_volume(bp, ij.bal_geometry(bp, q[:, 1])[0]))
+    x, dt = 0.0, 1e-4
+    for _ in range(25000):                                                   # the move
+        x += dt * (-(bp["gamma"] - 1) * (lnv[1] - lnv[0]) / 2.5 - x / 12.0)
+    x *= np.exp(-4.0 / 12.0)                                                 # the dwell (Euler's error: dt / 2 tau)
+    assert th[0] == 0.0 and th[1] == pytest.approx(x, rel=1e-5) and th[2] == pytest.approx(x * np.exp(-56.0 / 12.0),
+                                                                                            rel=1e-5)
+    psi = np.linspace(0.5, 2.5, 7)
+    Lc = lambda ps: np.sqrt(bp["r1"] ** 2 + bp["r2"] ** 2 - 2 * bp["r1"] * bp["r2"] * np.cos(ps))  # noqa: E731
+    q2 = bp["q_mid"] + bp["sign"] * (psi - bp["psi_mid"])
+    assert ij.bal_geometry(bp, q2)[1] == pytest.approx((Lc(psi + 1e-6) - Lc(psi - 1e-6)) / 2e-6, rel=1e-6)
+    iso, _ = ij.bal_torque_shapes(p["balancer_relax"], ctx)
+    share = -np.mean(p["balancer_relax"]["F0_N"] * iso) / np.mean(ctx.loads[:, 1])
+    assert 0.45 < share < 0.95                                               # opposes gravity, as sized (model ctx)
+    # warping twist: Saint-Venant for lambda L >> 1, T L^3 / (3 E Gamma) for lambda L << 1; the closed-form twist line
+    # meets the root (no twist, no warping), the free tip (no bimoment) and carries T
+    T, Lf, GJ = 40.0, 0.7, 2e4
+    assert ib.warping_twist(T, Lf, GJ, GJ * (Lf / 2000) ** 2) == pytest.approx(T * Lf / GJ, rel=2e-3)
+    EG = GJ * (Lf * 2000) ** 2
+    assert ib.warping_twist(T, Lf, GJ, EG) == pytest.approx(T * Lf ** 3 / (3 * EG), rel=1e-5)
+    EG = 0.4 * GJ
+    lam = np.sqrt(GJ / EG)
+    tl = np.tanh(lam * Lf)
+    phi = lambda xx: T / (GJ * lam) * (lam * xx - np.sinh(lam * xx) + tl * (np.cosh(lam * xx) - 1))  # noqa: E731
+    h = 1e-3
+    d1 = lambda xx: (phi(xx + h) - phi(xx - h)) / (2 * h)  # noqa: E731
+    d2 = lambda xx: (phi(xx + h) - 2 * phi(xx) + phi(xx - h)) / h ** 2  # noqa: E731
+    d3 = lambda xx: (phi(xx + 2 * h) - 2 * phi(xx + h) + 2 * phi(xx - h) - phi(xx - 2 * h)) / (2 * h ** 3)  # noqa
+    assert phi(0.0) == 0.0 and abs(d1(0.0)) < 1e-9 and abs(d2(Lf)) < 1e-6 * T / GJ
+    assert GJ * d1(Lf) - EG * d3(Lf) == pytest.approx(T, rel=1e-4)
+    assert phi(Lf) == pytest.approx(ib.warping_twist(T, Lf, GJ, EG), rel=1e-12)
+    # idler: a train move that keeps q_j + c q_k leaves the idler where it was; the error repeats per idler turn
+    g_ = {"joint": 5, "c": {3: 0.5, 4: -0.7}, "i_g": 1.6, "amp_rad": np.array([1e-3, 2e-4]),
+          "phase": np.array([0.3, 1.0])}
+    qa = np.zeros((3, 6))
+    qa[1, [5, 3]] = [0.2, -0.4]                                              # 0.2 + 0.5 (-0.4) = 0
+    qa[2, 5] = 2 * np.pi / 1.6
+    dq5 = ij.idler_apply([g_], SimpleNamespace(q=qa), None).dq[:, 5]
+    assert dq5 == pytest.approx(np.full(3, dq5[0])) and abs(dq5[0]) > 1e-4
+    for g_ in p["idler_runout"]:
+        assert g_["joint"] in (4, 5) and set(g_["c"]) == set(range(3, g_["joint"]))  # through the earlier wrist axes
+    # parallelogram reducer: it turns with q2 + q3 (q2 + d, q3 - d leaves it), lines at its orders per forearm turn
+    pg = {"orders": np.array([30.0, 60.0, 1.0, 131.0]), "amp": np.array([3e-4, 1e-4, 2e-4, 5e-5]),
+          "phase": np.array([0.3, 1.1, 2.0, 0.5])}
+    qq = np.zeros((4096, 6))
+    qq[:, 2] = np.linspace(0, 2 * np.pi, 4096, endpoint=False)
+    e3 = ij.para_apply(pg, SimpleNamespace(q=qq), None).dq[:, 2]
+    qs = qq.copy()
+    qs[:, 1] += 0.37
+    qs[:, 2] -= 0.37
+    assert ij.para_apply(pg, SimpleNamespace(q=qs), None).dq[:, 2] == pytest.approx(e3, abs=1e-15)
+    spec = np.abs(np.fft.rfft(e3)) * 2 / 4096
+    assert spec[[30, 60, 1, 131]] == pytest.approx(pg["amp"], rel=1e-9)
+
+    case, ctx = runs["tool_changer"]
+    s = ctx.session
+    # nut: the ram rests on the flank its axial gravity force pushes it to when that beats the guide friction (seals
+    # plus the blocks' loads), else trails its last motion
+    for g_ in case.truth["params"]["nut_play"]:
+        j = g_["joint"]
+        fric, Fa = ij.guide_friction(g_, ctx), ctx.loads[:, j]
+        Fw, Mw, ww, _ = gj.joint_wrench(ctx)
+        assert Fa == pytest.approx(np.einsum("pi,pi->p", Fw[:, j], ww[:, j]))   # the axial force along the ram
+        assert np.all(fric > g_["F_seal_N"])
+        fl, big = ij.nut_flank(g_, ctx), np.abs(Fa) > fric
+        assert np.array_equal(fl[big], np.sign(Fa[big])) and np.array_equal(fl[~big], -s.direction[~big, j])
+        assert big.any() and set(np.sign(Fa[big])) == {-1.0, 1.0}

@@ -34,6 +34,7 @@ from sim2real_indep import effects_e as ee
 from sim2real_indep import effects_f as ef
 from sim2real_indep import effects_g as eg
 from sim2real_indep import effects_h as eh
+from sim2real_indep import effects_i as ei
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -59,8 +60,10 @@ EFFECTS = {
     **ef.EFFECTS_F,  # set F's new kinds
     **eg.EFFECTS_G,  # set G's new kinds
     **eh.EFFECTS_H,  # set H's new kinds
+    **ei.EFFECTS_I,  # set I's new kinds
 }
-AFTER_TRACKER = ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
+AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
+                 | ei.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -136,7 +139,8 @@ def _session_options(robot_key, physics, rng):
     opts = ee.session_options(robot_key, physics, rng, opts)  # set E (no draws without a set-E kind)
     opts = ef.session_options(robot_key, physics, rng, opts)  # set F (no draws without a set-F kind)
     opts = eg.session_options(robot_key, physics, rng, opts)  # set G (no draws without a set-G kind)
-    return eh.session_options(robot_key, physics, rng, opts)  # set H (no draws without a set-H kind)
+    opts = eh.session_options(robot_key, physics, rng, opts)  # set H (no draws without a set-H kind)
+    return ei.session_options(robot_key, physics, rng, opts)  # set I (no draws without a set-I kind)
 
 
 def _tracker(rng):
@@ -163,6 +167,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     session = make_session(nominal, robot_key, n_poses, rng, **_session_options(robot_key, physics, rng))
     session = ec.session_hook(physics, session, rng)
     probe = eg.probe_hook(physics, _unit(rng) * rng.uniform(5, 100))  # set G's target rod (no draws)
+    probe = ei.probe_hook(physics, probe)  # set I's bimetal boom (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)

@@ -5,9 +5,14 @@ training residual, projected off the registration, offset and geometric columns 
 ``r = Phi_f beta + e`` with ``beta ~ N(0, s^2)`` (one prior scale per family -- per joint for the transmission's
 harmonics -- fitted by type-II maximum likelihood, :func:`~.evidence.ard_evidence`) and ``e ~ N(0, sigma^2)``. The
 ``none`` model is the noise alone. With equal prior odds, ``P(f | data) = exp(log_ml_f) / sum exp(log_ml)`` over
-``none`` and the applicable families. The evidence penalises columns a family does not need (Occam's factor), so it
-complements the held-out RMS the selection scores; both are printed, and the verdict's margin rule
-(:mod:`.verdict`) uses the held-out RMS.
+``none`` and the applicable families the residual can weigh (:data:`MIN_DOF_PER_COLUMN`). The evidence penalises columns a family does not need (Occam's factor), so it
+complements the held-out RMS the selection scores; both are printed.
+
+Where the held-out RMS cannot separate two families (within the verdict's practical margin, :mod:`.verdict`), the
+evidence decides when it is strong: a Bayes factor of at least :data:`DECISIVE_BAYES_FACTOR` (Kass and Raftery,
+"Bayes factors", JASA 1995: ``2 ln B > 6``, *strong* evidence). The first forward step then selects the family the
+evidence favours among those tied with the best (:func:`evidence_pick`), and the verdict names it alone
+(:func:`bayes_factor`); a weaker factor leaves the tie ``ambiguous``.
 """
 
 from __future__ import annotations
@@ -17,24 +22,31 @@ import numpy as np
 from tolalloc.diagnose.choice import projected_residual
 from tolalloc.diagnose.evidence import ard_evidence
 
-__all__ = ["family_log_evidence", "family_probabilities"]
+__all__ = ["family_log_evidence", "family_probabilities", "posterior_probabilities", "bayes_factor", "evidence_pick",
+           "DECISIVE_BAYES_FACTOR"]
 
 
-#: Residual degrees of freedom per column of the largest family below which no probabilities are stated: the
-#: evidence of a fitted prior scale on a nearly interpolated residual says nothing.
+#: Residual degrees of freedom per column below which a family's evidence is not stated: the evidence of a fitted
+#: prior scale on a nearly interpolated residual says nothing. A family with more columns (a long harmonic series)
+#: is left out of the probabilities; the others are weighed among themselves and ``none``.
 MIN_DOF_PER_COLUMN = 3
+
+#: Bayes factor from which the evidence separates two families that predict the held-out poses alike
+DECISIVE_BAYES_FACTOR = 20.0
 
 
 def family_log_evidence(ctx) -> dict:
-    """``{family: log marginal likelihood}`` of the training residual, with ``none`` (noise alone); empty when the
-    residual has too few degrees of freedom (:data:`MIN_DOF_PER_COLUMN`)."""
+    """``{family: log marginal likelihood}`` of the training residual, with ``none`` (noise alone); a family with
+    more columns than the residual's degrees of freedom allow (:data:`MIN_DOF_PER_COLUMN`) is left out, and the
+    result is empty when no family is left."""
     fit = ctx.cal.geometric
     Q, r, n = projected_residual(fit, ctx.J_fixed, ctx.geo_residual)
-    if n < MIN_DOF_PER_COLUMN * max((b.B.shape[2] for b in ctx.bases.values()), default=1):
+    weighed = {e: b for e, b in ctx.bases.items() if n >= MIN_DOF_PER_COLUMN * b.B.shape[2]}
+    if not weighed:
         return {}
     rr = max(float(r @ r), 1e-300)
     out = {"none": 0.5 * n * (np.log(max(n, 1) / rr) - 1.0 - np.log(2 * np.pi))}
-    for e, b in ctx.bases.items():
+    for e, b in weighed.items():
         J = np.einsum("ij,pjm->pim", fit.R, b.B).reshape(len(r), -1)
         J = J - Q @ (Q.T @ J)
         keep = np.linalg.norm(J, axis=0) > 1e-9 * max(1.0, float(np.abs(J).max(initial=0.0)))
@@ -48,10 +60,44 @@ def family_log_evidence(ctx) -> dict:
 def family_probabilities(ctx) -> dict:
     """``{family: posterior probability}`` with equal prior odds over ``none`` and the applicable families (empty
     when the residual has too few degrees of freedom to weigh them)."""
-    logml = family_log_evidence(ctx)
+    return posterior_probabilities(family_log_evidence(ctx))
+
+
+def posterior_probabilities(logml: dict) -> dict:
+    """``{family: posterior probability}`` from ``{family: log marginal likelihood}`` (equal prior odds)."""
     if not logml:
         return {}
     names = list(logml)
     v = np.array([logml[k] for k in names])
     w = np.exp(v - v.max())
     return {k: float(x) for k, x in zip(names, w / w.sum())}
+
+
+def bayes_factor(logml: dict, a: str, b: str) -> float:
+    """``p(data | a) / p(data | b)`` from the log marginal likelihoods (NaN when either is not stated)."""
+    if a not in logml or b not in logml:
+        return float("nan")
+    return float(np.exp(min(logml[a] - logml[b], 700.0)))
+
+
+def evidence_pick(candidates, logml: dict, margin: float):
+    """The significant candidate the evidence favours decisively over every other significant candidate whose
+    clipped out-of-fold RMS is within ``margin`` (a fraction) of the best one's; None when there is no such tie or
+    the evidence does not decide it (a Bayes factor below :data:`DECISIVE_BAYES_FACTOR` against one of them).
+
+    Parameters
+    ----------
+    candidates : sequence of :class:`~.scores.Candidate`   one forward step's candidates
+    logml : dict    ``{family: log marginal likelihood}`` (:func:`family_log_evidence`)
+    margin : float  the practical margin (:data:`~.verdict.PRACTICAL_MARGIN`)
+    """
+    sig = [c for c in candidates if c.significant and np.isfinite(c.robust_rms_mm)]
+    if len(sig) < 2 or not logml:
+        return None
+    best = min(c.robust_rms_mm for c in sig)
+    close = [c for c in sig if c.robust_rms_mm <= (1.0 + margin) * best]
+    for c in close:
+        others = [o for o in close if o is not c]
+        if others and all(bayes_factor(logml, c.effect, o.effect) >= DECISIVE_BAYES_FACTOR for o in others):
+            return c
+    return None

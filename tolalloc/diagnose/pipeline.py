@@ -27,7 +27,7 @@ from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats, rms
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test
 from tolalloc.diagnose.stepwise import select_effects
-from tolalloc.diagnose.families import family_probabilities
+from tolalloc.diagnose.families import family_log_evidence, posterior_probabilities
 from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
                                        separating_poses, tied)
 from tolalloc.diagnose.verdict_text import verdict_of
@@ -196,12 +196,14 @@ def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
     with fit_counter(f"cross-validation ({ctx.train.n_poses:,} rows)"):
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
-        stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects)
+        logml = family_log_evidence(ctx)
+        stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects,
+                                              logml=logml)
         clip = clip_level(geometric.selection_mm)
         chosen, msgs = cv_fallback(nominal, geometric, final)
-        comparisons = (compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain)
+        comparisons = (compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain, logml=logml)
                        if chosen is final and final.effects else ())
-    probs = family_probabilities(ctx)
+    probs = posterior_probabilities(logml)
     if stages:
         stages[0] = replace(stages[0], candidates=tuple(replace(c, probability=probs.get(c.effect, float("nan")))
                                                         for c in stages[0].candidates))

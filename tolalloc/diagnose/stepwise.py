@@ -21,8 +21,10 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.diagnose.effects import EFFECTS
+from tolalloc.diagnose.families import evidence_pick
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, paired_pvalue, rms, robust_rms
 from tolalloc.diagnose.select import _Context, evaluate, rows_problem
+from tolalloc.diagnose.verdict import PRACTICAL_MARGIN
 
 __all__ = ["select_effects", "BLOWUP_RATIO"]
 
@@ -67,8 +69,11 @@ def _score(ctx, chosen, e, current, clip, m, alpha, min_gain):
 
 
 def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01, min_gain: float = 0.02,
-                   max_effects: int = 3):
+                   max_effects: int = 3, logml: dict | None = None):
     """Sequential forward selection; returns (stages, evaluations by label, final evaluation).
+
+    ``logml``: ``{family: log marginal likelihood}`` of the geometric residual (:func:`.families.family_log_evidence`),
+    which decides ties of the first step; None or empty: the lowest clipped held-out RMS alone.
 
     Scores use the training file's out-of-fold residuals (:attr:`Evaluation.selection_mm`); the gain and the Wilcoxon test use
     3-D errors clipped at :func:`clip_level` of the geometric model's held-out errors (fixed for the whole
@@ -93,6 +98,8 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         best = next((c for c in cands if c.significant), None)
+        if not chosen and logml:
+            best = evidence_pick(cands, logml, PRACTICAL_MARGIN) or best
         stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None, n_tests=m))
         if best is None:
             break

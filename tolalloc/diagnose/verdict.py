@@ -6,7 +6,10 @@
   An alternative whose clipped out-of-fold RMS is within the practical margin :data:`PRACTICAL_MARGIN` (5 %) of the
   selected model's is *tied*: the data cannot separate the two physics by what they predict. ``ambiguous`` names the
   selected effect and its (at most :data:`MAX_TIED` closest) tied alternatives, with the margin; an alternative
-  worse by more than the margin is beaten, whatever its p-value, and the verdict stays ``effect``. The Wilcoxon
+  worse by more than the margin is beaten, whatever its p-value, and the verdict stays ``effect``. A tie with the
+  effect of the first step is also decided where the model evidence is strong: a Bayes factor of at least
+  :data:`~.families.DECISIVE_BAYES_FACTOR` for the selected family over the alternative (:mod:`.families`; the
+  first step has already selected the family the evidence favours, :func:`.families.evidence_pick`). The Wilcoxon
   p-value of each comparison is reported, not used. :func:`separating_poses` suggests poses where two tied models'
   predictions differ most.
 * ``inconclusive`` -- no effect is claimed when the data cannot support one (:func:`inconclusive_reasons`): the
@@ -35,6 +38,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.diagnose.effects import effect_basis
+from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, bayes_factor
 from tolalloc.diagnose.guards import FALLBACK_MARGIN, extrapolation_flags, outside_range
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.diagnose.select import align_basis
@@ -62,7 +66,9 @@ class Comparison:
     """A selected effect against an alternative in its place, on the same out-of-fold training poses.
 
     ``excess_pct``: how much larger the alternative model's clipped out-of-fold RMS is than the selected model's
-    (``100 (r_alt / r - 1)``); ``separable``: the excess beyond the practical margin; ``p_value``: one-sided Wilcoxon
+    (``100 (r_alt / r - 1)``); ``bayes_factor``: ``p(data | effect) / p(data | alternative)`` from the marginal
+    likelihoods (the first step's effect only, NaN elsewhere); ``separable``: the excess beyond the practical margin,
+    or a Bayes factor of at least :data:`~.families.DECISIVE_BAYES_FACTOR`; ``p_value``: one-sided Wilcoxon
     that the selected model has smaller clipped errors (reported, not used); ``gain_pct``: the selected model's clipped
     gain over the swapped one.
     """
@@ -76,14 +82,22 @@ class Comparison:
     separable: bool
     excess_pct: float = float("nan")
     margin_pct: float = 100.0 * PRACTICAL_MARGIN
+    bayes_factor: float = float("nan")
 
     @property
     def alternative_label(self) -> str:
         """How the headline names the alternative."""
         return self.alternative
 
+    @property
+    def by_evidence(self) -> bool:
+        """Separated by the model evidence, not by the held-out RMS (within the practical margin)."""
+        return bool(self.separable and not self.excess_pct > self.margin_pct)
+
     def to_dict(self) -> dict:
-        return dict(self.__dict__)
+        out = dict(self.__dict__)
+        out["bayes_factor"] = self.bayes_factor if np.isfinite(self.bayes_factor) else None
+        return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,13 +170,14 @@ def tied(comparisons) -> list:
 
 
 def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: float, alpha: float,
-                         min_gain: float, margin: float = PRACTICAL_MARGIN) -> tuple:
+                         min_gain: float, margin: float = PRACTICAL_MARGIN, logml: dict | None = None) -> tuple:
     """:class:`Comparison` of every selected effect of ``final`` with every candidate that explains part of the residual
     at its step (clipped gain over the step's base of at least ``min_gain``), fitted in its place.
 
     ``evaluate(ctx, effects)`` fits a model not yet in ``evals`` (keys: evaluation labels). The alternative is tied
     (``separable`` False) when its clipped out-of-fold RMS exceeds the selected model's by at most ``margin``
-    (:data:`PRACTICAL_MARGIN`); ``alpha`` is kept for the reported p-value's context only.
+    (:data:`PRACTICAL_MARGIN`) and the evidence does not separate them (``logml``: ``{family: log marginal
+    likelihood}``, for the effect of the first step); ``alpha`` is kept for the reported p-value's context only.
     """
     out = []
     for e in final.effects:
@@ -179,8 +194,10 @@ def compare_alternatives(ctx, final, stages: list, evals: dict, evaluate, clip: 
             p = paired_pvalue(ev.selection_stack, final.selection_stack, clip)
             r, r_alt = robust_rms(final.selection_mm, clip), robust_rms(ev.selection_mm, clip)
             excess = 100.0 * (r_alt / max(r, 1e-300) - 1.0)
+            bf = bayes_factor(logml or {}, e, c.effect) if not step.base else float("nan")
             out.append(Comparison(e, c.effect, p, 100.0 * (1.0 - r / r_alt), rms(final.selection_mm),
-                                  rms(ev.selection_mm), bool(excess > 100.0 * margin), excess, 100.0 * margin))
+                                  rms(ev.selection_mm), bool(excess > 100.0 * margin or bf >= DECISIVE_BAYES_FACTOR),
+                                  excess, 100.0 * margin, bf))
     return tuple(out)
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.physics.thermal import time_problem
+from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import Verdict, tied
 
@@ -91,6 +92,16 @@ def _pair_line(c) -> str:
             f"{c.margin_pct:g} %; unclipped {c.rms_mm:.4g} vs {c.alternative_rms_mm:.4g} mm)")
 
 
+def _separated_line(c) -> str:
+    if c.by_evidence:
+        return (f"{c.effect} is named before {c.alternative} in its place: their clipped out-of-fold RMS lie within "
+                f"the practical margin ({c.alternative} {c.excess_pct:+.1f} %, margin {c.margin_pct:g} %), but the "
+                f"model evidence favours {c.effect} by a Bayes factor of {c.bayes_factor:.3g} (decisive from "
+                f"{DECISIVE_BAYES_FACTOR:g})")
+    return (f"{c.effect} beats {c.alternative} in its place: {c.alternative}'s clipped out-of-fold RMS is "
+            f"{c.excess_pct:+.1f} % larger, beyond the practical margin of {c.margin_pct:g} %")
+
+
 def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclusive: list, fallback_msgs,
                safe: str, suggestions, alpha: float = 0.01, min_gain: float = 0.02) -> Verdict:
     """The :class:`~tolalloc.diagnose.verdict.Verdict` (precedence: inconclusive, none, ambiguous, effect)."""
@@ -124,9 +135,7 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
                             "extrapolate (column joints_outside_training_range: the joints to move beyond their "
                             "training range)" if out_n else ""))
         return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions, **kw)
-    sep = [f"{c.effect} beats {c.alternative} in its place: {c.alternative}'s clipped out-of-fold RMS is "
-           f"{c.excess_pct:+.1f} % larger, beyond the practical margin of {c.margin_pct:g} %"
-           for c in comparisons if c.separable]
+    sep = [_separated_line(c) for c in comparisons if c.separable]
     small = sorted({c.effect for c in minor}, key=final.effects.index)
     lines = [f"{e} adds a gain below the practical margin ({_gain_of(stages, e):+.1f} % < {minor[0].margin_pct:g} %) "
              f"and the data cannot tell it from {' or '.join(c.alternative for c in minor if c.effect == e)} in its "

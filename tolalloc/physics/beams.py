@@ -24,6 +24,7 @@ from functools import lru_cache
 import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
+from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import G, mass_points, point_at
 
@@ -86,11 +87,11 @@ def _load_integrals(start, e, L, loads, p) -> dict:
     for F, c, through_end in loads:
         r = c - start
         a = (L if through_end else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
-        m0, m1 = np.cross(r, F), np.cross(e, F)
+        m0, m1 = cross(r, F), cross(e, F)
         for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
             c0, c1 = C(m0), C(m1)
-            out[key] += (a * np.cross(c0, p0) - a ** 2 / 2 * (np.cross(c0, e) + np.cross(c1, p0))
-                         + a ** 3 / 3 * np.cross(c1, e))
+            out[key] += (a * cross(c0, p0) - a ** 2 / 2 * (cross(c0, e) + cross(c1, p0))
+                         + a ** 3 / 3 * cross(c1, e))
         out["shear"] += a * (F - along_e(F))
     return out
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
+from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Mass, Robot
 
 __all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "point_at",
@@ -68,7 +69,7 @@ def _point_load(robot: Robot, P, c, F, below: int) -> np.ndarray:
         w = P[:, j, :3, :3] @ robot.joints[j].axis
         if robot.joints[j].is_revolute:
             pj = point_at(P[:, j], robot.joint_points_mm[j])
-            tau[:, j] = np.einsum("pi,pi->p", w, np.cross(c - pj, F)) / 1000.0
+            tau[:, j] = np.einsum("pi,pi->p", w, cross(c - pj, F)) / 1000.0
         else:
             tau[:, j] = np.einsum("pi,pi->p", w, F)
     return tau

@@ -12,7 +12,7 @@ import numpy as np
 
 from tolalloc.engine import resolve_engine
 from tolalloc.exceptions import TolallocError, describe
-from tolalloc.robot.lie import _rodrigues, adjoint, exp_se3, exp_se3_rp, inv_transform
+from tolalloc.robot.lie import _rodrigues, adjoint, cross, exp_se3, exp_se3_rp, inv_transform
 
 __all__ = [
     "fk_poe",
@@ -90,8 +90,8 @@ def _joint_exp_rp(screws: np.ndarray, q: np.ndarray):
     th = q * np.sqrt(w2)
     s, c = np.sin(th), np.cos(th)
     R = _rodrigues(w, np.sqrt(w2), s, 1.0 - c)  # c I + s [w] + (1 - c) w w^T for |w| = 1; I for w = 0
-    u = np.cross(w, v)
-    p = ((1.0 - c)[..., None] * u - s[..., None] * np.cross(w, u)
+    u = cross(w, v)
+    p = ((1.0 - c)[..., None] * u - s[..., None] * cross(w, u)
          + (np.sum(w * v, axis=-1) * q)[..., None] * w + ((1.0 - w2) * q)[..., None] * v)
     return R, p
 

@@ -47,7 +47,14 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "load_data": "joint_compliance", "gear_creep": "joint_compliance", "agv_wheels": "mount_compliance",
           "skid": "mount_compliance", "curved_link": "link_deflection", "bond_creep": "link_deflection",
           "wrist_lash": "backlash", "cold_grease": "backlash", "stale_table": "transmission",
-          "wrist_coupling": "transmission", "tracker_warmup": "thermal", "helix_shift": "thermal"}
+          "wrist_coupling": "transmission", "tracker_warmup": "thermal", "helix_shift": "thermal",
+          # set I (sim2real_indep.effects_i; tilted_base, the gear torsion under gravity acting obliquely in the base
+          # frame of an inclined installation, scored as joint compliance; rail_boom, a tool-side boom bowing like a
+          # bimetal strip with the air temperature, as thermal; nut_play, a prismatic stage's nut play, as backlash)
+          "tilted_base": "joint_compliance", "balancer_relax": "joint_compliance", "floor_beams": "mount_compliance",
+          "portal": "mount_compliance", "lap_splice": "link_deflection", "fork_arm": "link_deflection",
+          "overrun_lash": "backlash", "nut_play": "backlash", "idler_runout": "transmission",
+          "para_gear": "transmission", "rail_boom": "thermal", "housing_growth": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
