@@ -232,6 +232,23 @@ def _assert_set_layout(set_name: str, seed: int, registry: dict) -> set:
     return kinds
 
 
+def _assert_set_module(set_name: str, seed: int, module, foreign: tuple) -> set:
+    """:func:`_assert_set_layout` of a set whose module registers ``EFFECTS_<set>`` and ``FAMILY_<set>``: its families
+    are the benchmark's, its measurement kinds (``AFTER_TRACKER``, where it has them) are the generator's, and its
+    session hook returns the options of a case of ``foreign`` (earlier sets') kinds unchanged, drawing no random
+    number. Returns its kinds."""
+    from sim2real_indep.context import FAMILY
+
+    kinds = _assert_set_layout(set_name, seed, getattr(module, f"EFFECTS_{set_name}"))
+    assert all(FAMILY[k] == getattr(module, f"FAMILY_{set_name}")[k] for k in kinds)
+    assert set(getattr(module, "AFTER_TRACKER", ())) <= gen.AFTER_TRACKER
+    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
+    opts = {"blocks": 2, "gap_kind": "none"}
+    assert module.session_options("ur10", foreign, rng_a, opts) is opts
+    assert rng_a.random() == rng_b.random()                          # no draws without a kind of this set
+    return kinds
+
+
 def _assert_regenerates(set_name: str, *, max_effect_poses: int):
     """The set's geometry-only cases and its effect cases of at most ``max_effect_poses`` poses regenerate
     bit-for-bit from their seeds; the geometry-only ones carry no effect and the oracle labels them ``none``."""
@@ -489,14 +506,8 @@ def test_set_g_cases_kinds_and_determinism():
     a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-G kind
     alone."""
     from sim2real_indep import effects_g as eg
-    from sim2real_indep.context import FAMILY
 
-    kinds = _assert_set_layout("G", 40_7007, eg.EFFECTS_G)
-    assert all(FAMILY[k] == eg.FAMILY_G[k] for k in kinds)
-    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
-    opts = {"blocks": 2, "gap_kind": "none"}
-    assert eg.session_options("ur10", ("gear", "day_night"), rng_a, opts) is opts
-    assert rng_a.random() == rng_b.random()                          # no draws without a set-G kind
+    _assert_set_module("G", 40_7007, eg, ("gear", "day_night"))
     probe = np.array([3.0, -4.0, 12.0])                              # |probe| 13 mm
     assert eg.probe_hook(("sag",), probe) is probe
     rod = eg.probe_hook(("target_rod",), probe)
@@ -606,16 +617,8 @@ def test_set_h_cases_kinds_and_determinism():
     generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
     a case regenerates bit-identically from its seed; the session hook leaves cases without a set-H kind alone."""
     from sim2real_indep import effects_h as eh
-    from sim2real_indep.context import FAMILY
 
-    kinds = _assert_set_layout("H", 40_7008, eh.EFFECTS_H)
-    assert not kinds & set(gen.EFFECTS) - set(eh.EFFECTS_H)
-    assert all(FAMILY[k] == eh.FAMILY_H[k] for k in kinds)
-    assert eh.AFTER_TRACKER <= gen.AFTER_TRACKER
-    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
-    opts = {"blocks": 2, "gap_kind": "none"}
-    assert eh.session_options("ur10", ("gear", "tripod_growth"), rng_a, opts) is opts
-    assert rng_a.random() == rng_b.random()                          # no draws without a set-H kind
+    _assert_set_module("H", 40_7008, eh, ("gear", "tripod_growth"))
     _assert_regenerates("H", max_effect_poses=50)
 
 
@@ -764,16 +767,8 @@ def test_set_i_cases_kinds_and_determinism():
     a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-I kind
     alone (no random numbers drawn)."""
     from sim2real_indep import effects_i as ei
-    from sim2real_indep.context import FAMILY
 
-    kinds = _assert_set_layout("I", 40_7009, ei.EFFECTS_I)
-    assert not kinds & set(gen.EFFECTS) - set(ei.EFFECTS_I)
-    assert all(FAMILY[k] == ei.FAMILY_I[k] for k in kinds)
-    assert ei.AFTER_TRACKER <= gen.AFTER_TRACKER
-    rng_a, rng_b = np.random.default_rng(5), np.random.default_rng(5)
-    opts = {"blocks": 2, "gap_kind": "none"}
-    assert ei.session_options("ur10", ("gear", "helix_shift"), rng_a, opts) is opts
-    assert rng_a.random() == rng_b.random()                          # no draws without a set-I kind
+    _assert_set_module("I", 40_7009, ei, ("gear", "helix_shift"))
     probe = np.array([3.0, -4.0, 12.0])                              # |probe| 13 mm
     assert ei.probe_hook(("sag", "target_rod"), probe) is probe
     boom = ei.probe_hook(("rail_boom",), probe)

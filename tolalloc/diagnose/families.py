@@ -5,8 +5,9 @@ training residual, projected off the registration, offset and geometric columns 
 ``r = Phi_f beta + e`` with ``beta ~ N(0, s^2)`` (one prior scale per family -- per joint for the transmission's
 harmonics -- fitted by type-II maximum likelihood, :func:`~.evidence.ard_evidence`) and ``e ~ N(0, sigma^2)``. The
 ``none`` model is the noise alone. With equal prior odds, ``P(f | data) = exp(log_ml_f) / sum exp(log_ml)`` over
-``none`` and the applicable families the residual can weigh (:data:`MIN_DOF_PER_COLUMN`). The evidence penalises columns a family does not need (Occam's factor), so it
-complements the held-out RMS the selection scores; both are printed.
+``none`` and the applicable families the residual can weigh (:data:`MIN_DOF_PER_COLUMN`). The evidence penalises
+columns a family does not need (Occam's factor), so it complements the held-out RMS the selection scores; both are
+printed.
 
 Where the held-out RMS cannot separate two families (within the verdict's practical margin, :mod:`.verdict`), the
 evidence decides when it is strong: a Bayes factor of at least :data:`DECISIVE_BAYES_FACTOR` (Kass and Raftery,
@@ -22,8 +23,7 @@ import numpy as np
 from tolalloc.diagnose.choice import projected_residual
 from tolalloc.diagnose.evidence import ard_evidence
 
-__all__ = ["family_log_evidence", "family_probabilities", "posterior_probabilities", "bayes_factor", "evidence_pick",
-           "DECISIVE_BAYES_FACTOR"]
+__all__ = ["family_log_evidence", "posterior_probabilities", "bayes_factor", "evidence_pick", "DECISIVE_BAYES_FACTOR"]
 
 
 #: Residual degrees of freedom per column below which a family's evidence is not stated: the evidence of a fitted
@@ -55,12 +55,6 @@ def family_log_evidence(ctx) -> dict:
         groups = np.zeros(J.shape[1], int) if b.groups is None else np.asarray(b.groups)
         out[e] = ard_evidence(J[:, keep], r, groups[keep], n_eff=n).log_ml
     return out
-
-
-def family_probabilities(ctx) -> dict:
-    """``{family: posterior probability}`` with equal prior odds over ``none`` and the applicable families (empty
-    when the residual has too few degrees of freedom to weigh them)."""
-    return posterior_probabilities(family_log_evidence(ctx))
 
 
 def posterior_probabilities(logml: dict) -> dict:

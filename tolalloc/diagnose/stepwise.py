@@ -98,8 +98,8 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         best = next((c for c in cands if c.significant), None)
-        if not chosen and logml:
-            best = evidence_pick(cands, logml, PRACTICAL_MARGIN) or best
+        if not chosen:
+            best = evidence_pick(cands, logml or {}, PRACTICAL_MARGIN) or best
         stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None, n_tests=m))
         if best is None:
             break
