@@ -247,6 +247,15 @@ def test_check_q_non_numeric_is_a_tolalloc_error():
         robot.check_q([15, "a", -10, 0, -20, -5], "joints", interface=True)
 
 
+@pytest.mark.parametrize("q", [np.ones(6, bool), np.array(["1"] * 6), [True] * 6, np.array([1.0] * 5 + [True], object)],
+                         ids=["bool_array", "str_array", "bool_list", "object_array_with_a_bool"])
+def test_joint_array_refuses_bools_and_strings_of_every_container(q):
+    # numeric arrays skip the value-by-value scan: a bool or string array must still be caught by its dtype
+    with pytest.raises(TolallocError, match="q: expected numbers"):
+        load_robot("ur10").joint_array(q)
+    assert load_robot("ur10").joint_array(np.arange(6)).dtype == float
+
+
 def _arm(shoulder, upper_arm=(600.0, 0.0, 0.0), base=(0.0, 0.0, 400.0), **kwargs):
     return Robot("demo_arm", (Link("base", np.array(base)), shoulder, Link("upper_arm", np.array(upper_arm))), **kwargs)
 

@@ -166,7 +166,9 @@ def joint_array(q, n: int, robot: str, name: str = "q", units: str = "rad / mm",
             arr = np.asarray(q, dtype=float)
         except (TypeError, ValueError, OverflowError):
             arr = None
-    kinds = np.asarray(q, dtype=object).ravel() if arr is not None and 0 < arr.size < 10**5 else ()
+    # a numeric array holds no bool or string: only other inputs (lists, object arrays) are scanned value by value
+    numeric = isinstance(q, np.ndarray) and q.dtype.kind in "fiu"
+    kinds = np.asarray(q, dtype=object).ravel() if arr is not None and not numeric and 0 < arr.size < 10**5 else ()
     if arr is None or any(isinstance(v, (bool, np.bool_, str, bytes)) for v in kinds):
         raise TolallocError(f"{name}: expected numbers, {want}, got {describe(q)}.")
     if arr.ndim == 0 or arr.shape[-1] != n or arr.size == 0:
