@@ -65,6 +65,7 @@ def test_generator_imports_nothing_of_tolalloc():
     assert {"effects_g", "effects_g_thermal", "effects_g_joint", "effects_g_body"} <= reached  # set G
     assert {"effects_h", "effects_h_thermal", "effects_h_joint", "effects_h_body"} <= reached  # set H
     assert {"effects_i", "effects_i_thermal", "effects_i_joint", "effects_i_body"} <= reached  # set I
+    assert {"effects_j", "effects_j_thermal", "effects_j_joint", "effects_j_body"} <= reached  # set J
 
 
 @pytest.mark.parametrize("robot", ["ur10", "tool_changer", "kr16_like"])
@@ -988,3 +989,182 @@ def test_set_i_every_kind_lies_in_its_true_structure_and_known_answers():
         fl, big = ij.nut_flank(g_, ctx), np.abs(Fa) > fric
         assert np.array_equal(fl[big], np.sign(Fa[big])) and np.array_equal(fl[~big], -s.direction[~big, j])
         assert big.any() and set(np.sign(Fa[big])) == {-1.0, 1.0}
+
+
+def test_set_j_cases_kinds_and_determinism():
+    """Set J: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-J
+    kind alone (no random numbers drawn); the tool plate's target sits at its gripper's tip, its payload in the jaws."""
+    from sim2real_indep import effects_j as ej
+
+    _assert_set_module("J", 40_7010, ej, ("gear", "rail_boom"))
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert ej.probe_hook(("sag", "rail_boom"), probe) is probe and ej.payload_hook(("sag",), com, probe) is com
+    plate = ej.probe_hook(("tool_plate",), probe)
+    d, reach, drop = ej.jb.plate_geometry(plate)
+    assert d == pytest.approx([0.6, -0.8, 0.0]) and reach == pytest.approx(100 + 100 * 8 / 95)
+    assert drop == pytest.approx(150 + 150 * 12 / 13)
+    assert ej.payload_hook(("tool_plate",), com, plate) == pytest.approx(reach * d + [0, 0, 0.75 * drop] + com / 4)
+    _assert_regenerates("J", max_effect_poses=50)
+
+
+def test_set_j_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-J kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the differential wrist, the bar's pins and the wrist shafts
+    do nothing on ur10; and known answers: the planets' filter of the ring's harmonics and their pins' line, the
+    differential's mixing, the flange's relay, the bar pins' flank and lever, the hose pull as the gradient of the
+    retract spring's energy, the shafts' symmetric compliance and its energy, Boltzmann's sum of the double power law,
+    the console's cantilever and end plate, the skewed section's unsymmetric bending and its isotropic limit, the
+    plate's torsion factor and a load through its axis, the brake-heated housing's exact lag and its coil off in the
+    pauses, the laminate's shear expansion and the twist's geometry."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_j_body as jb
+    from sim2real_indep import effects_j_joint as jj
+    from sim2real_indep import effects_j_thermal as jt
+
+    inert = ("diff_wrist", "bar_pins", "wrist_shafts")
+    runs = _assert_kinds_reproduce((("ur10", ("planet_stage", "flange_slip", "hose_retract", "grout_creep",
+                                              "wall_console", "skew_casting", "tool_plate", "brake_tilt",
+                                              "laminate_twist")),
+                                    ("kr16_like", inert), ("tool_changer", ("wrist_shafts", "bar_pins")),
+                                    ("ur10", inert)), 17, inert=inert, min_mm=1e-2)
+
+    case, ctx = runs["ur10"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # planets: only the ring's harmonics k = 0 mod Np reach the carrier, at half the deviation over r_c; a planet's
+    # eccentricity appears at the spin order Zr / Zp over Np r_c, and equal ones phased 2 pi / Np apart cancel
+    th = np.linspace(0, 2 * np.pi, 4096, endpoint=False)
+    g = {"Np": 3, "teeth": (21, 30, 81), "r_c_m": 0.05, "ring_um": np.arange(6, 0, -1) * 5.0,
+         "ring_phase": np.linspace(0, 1, 6), "ecc_um": np.zeros(3), "ecc_phase": np.zeros(3)}
+    spec = np.abs(np.fft.rfft(jj.planet_error(g, th))) * 2 / 4096
+    assert spec[[3, 6]] == pytest.approx(g["ring_um"][[2, 5]] / (2 * 5e4), rel=1e-9)
+    assert np.delete(spec, [3, 6]).max() < 1e-15 and jj.planet_orders(g) == [3.0, 6.0, 81 / 30]
+    g.update(ring_um=np.zeros(6), ecc_um=np.array([8.0, 0.0, 0.0]))
+    assert np.abs(jj.planet_error(g, th)).max() == pytest.approx(8.0 / (3 * 5e4), rel=1e-4)
+    g.update(ecc_um=np.full(3, 8.0), ecc_phase=np.array([0.0, 2.0, 4.0]) * np.pi / 3)
+    assert np.abs(jj.planet_error(g, th)).max() < 1e-18
+    for g in p["planet_stage"]:
+        Zs, Zp, Zr = g["teeth"]
+        assert Zr == Zs + 2 * Zp and (Zr + Zs) % g["Np"] == 0 and 3.5 <= 1 + Zr / Zs <= 6
+    # flange slip: the relay keeps its side until the torque passes the other threshold; production passes the loads
+    tau = np.array([0.0, 5.0, 1.0, -1.0, -5.0, 2.0, 6.0])
+    assert np.array_equal(jj.relay(tau, 3.0, np.zeros(7)), [1, 1, 1, 1, -1, -1, 1])
+    assert np.array_equal(jj.relay(tau, 3.0, np.r_[np.zeros(5), 600.0, 0.0]), [1, 1, 1, 1, -1, 1, 1])
+    for g in p["flange_slip"]:
+        t = ctx.loads[:, g["joint"]]
+        assert -t.min() > g["T_s"] and t.max() > g["T_s"]                     # both thresholds inside the session
+    # the hose pull: with a constant force the joint loads are minus the gradient of F0 times the hose's length
+    rp = dict(p["hose_retract"], rate=0.0)
+    ch, q = ctx.chain, ctx.q[:4]
+    sub = SimpleNamespace(chain=ch, q=q)
+    ell = lambda qq: np.linalg.norm(np.subtract(*jj.retract_points(rp, SimpleNamespace(chain=ch, q=qq))), axis=1)  # noqa
+    loads = jj.retract_loads(rp, sub)
+    assert np.abs(loads[:, :jj.RETRACT_BODY]).max() == 0.0                   # an internal force: none on axes 1-3
+    for j in range(jj.RETRACT_BODY, ch.n):
+        e = 1e-6 * np.eye(ch.n)[j]
+        assert loads[:, j] == pytest.approx(-rp["F0_N"] * (ell(q + e) - ell(q - e)) / 2e-6 / 1000, rel=1e-5, abs=1e-7)
+    # grout: Boltzmann's sum of the double power law -- a step held, two steps superposed
+    t = np.array([0.5, 1.0, 4.0]) * jb.DAY_S
+    assert jb.dpl_creep([0.0], np.array([[2.0, 1.0]]), t, 0.125) == pytest.approx(np.outer([0.5, 1, 4], [2, 1]) ** 0.125
+                                                                                    * [2 ** 0.875, 1])
+    two = jb.dpl_creep([0.0, 0.75 * jb.DAY_S], np.array([[1.0], [-1.0]]), t, 0.125)[:, 0]
+    assert two == pytest.approx([0.5 ** 0.125, 1 - 0.25 ** 0.125, 4 ** 0.125 - 3.25 ** 0.125])
+    # console: the weight W at the arm's base (no moment) bends the tip down W L^3 / 3EI and turns it by W L^2 / 2EI
+    # (the base, d above the section's axis, moves away from the wall); the end plate turns all by W L / S_j
+    cp, W = p["wall_console"], 800.0
+    lone = SimpleNamespace(mass_state=(np.array([[W / kin.G]]), np.zeros((1, 1, 3)), np.array([1])),
+                           target=np.zeros((1, 3)))
+    L, c, dep, EI = cp["L_m"], cp["c"], cp["depth_mm"], 2e5
+    z = np.array([0, 0, 1.0])
+    bend = jb.console_response(cp, lone, EI, np.inf, np.inf, np.inf)[0]
+    assert bend == pytest.approx(W * L ** 2 / (2 * EI) * dep * c - 1000 * W * L ** 3 / (3 * EI) * z)
+    plate = jb.console_response(cp, lone, np.inf, np.inf, np.inf, 3e5)[0]
+    assert plate == pytest.approx(W * L / 3e5 * (dep * c - 1000 * L * z))
+    # skewed section: a tip force along the plane's direction u0 deflects F L^3 / 3E (cos^2/I1 + sin^2/I2) in the
+    # plane and F L^3 / 3E sin cos (1/I1 - 1/I2) out of it (unsymmetric bending); equal I is the tube's cantilever
+    e, u0, v0 = np.array([1.0, 0, 0]), np.array([0, 0, 1.0]), np.array([0, -1.0, 0])
+    psi, I1, I2, F = 0.5, 2e-6, 5e-6, np.array([[0, 0, 300.0]])
+    d, _ = jb.principal_tip(e, np.cos(psi) * u0 + np.sin(psi) * np.cross(e, u0), 0.7, F, np.zeros((1, 3)),
+                            np.zeros(3), 70e9 * I1, 70e9 * I2, np.inf, np.inf)
+    k = 300 * 0.7 ** 3 / (3 * 70e9)
+    assert d[0] @ u0 == pytest.approx(k * (np.cos(psi) ** 2 / I1 + np.sin(psi) ** 2 / I2))
+    assert d[0] @ v0 == pytest.approx(k * np.sin(psi) * np.cos(psi) * (1 / I1 - 1 / I2))
+    name, sk = next(iter(p["skew_casting"].items()))
+    li = ch.link_names.index(name)
+    iso = dict(sk, I1=hw["tubes"][name]["I"], I2=hw["tubes"][name]["I"])
+    tb = hw["tubes"][name]
+    assert jb.skew_displacement(ctx, li, iso, tb["E"], tb["G"]) == pytest.approx(eb._beam_displacement(
+        ctx, li, tb["E"] * tb["I"], tb["k"] * tb["G"] * tb["A"], tb["G"] * tb["J"],
+        eb._own_weight(ctx, name, tb)), rel=1e-9, abs=1e-12)
+    # tool plate: Saint-Venant's factor of a square (0.141) and of a thin strip (1/3); a load through the plate's
+    # axis does not twist it
+    assert jb.torsion_beta(1.0, 1.0) == pytest.approx(0.1406, abs=2e-4) and jb.torsion_beta(1.0, 1e-4) == pytest.approx(
+        1 / 3, rel=1e-4)
+    tp = dict(p["tool_plate"], drop_mm=0.0)
+    on_axis = replace(ctx, payload_com_mm=tp["reach_mm"] * tp["d"])
+    assert np.abs(jb.plate_displacement(tp, on_axis, np.inf, 1.0)).max() < 1e-12
+    assert np.abs(jb.plate_displacement(p["tool_plate"], ctx, np.inf, 1.0)).max() > 0
+    # brake-heated housings: the coil is off in the pauses; the lag against Euler's integration in steps of 1 s (its
+    # error ~ dt / 2 tau); the tilt axes are normal to the joints' axes
+    bp = p["brake_tilt"]
+    heat, rise = jt.brake_heat(bp, ctx, hw), jt.brake_rise(bp, ctx, hw)
+    assert np.abs(heat[s.gap_s < 0, 0]).max(initial=0.0) == 0.0 and (s.gap_s < 0).any()
+    dur, u = jt.ct._segment_times(s), (heat * bp["R_K_per_W"]).reshape(-1, len(bp["joints"]))
+    x, fine = np.zeros(len(bp["joints"])), []
+    for dt_, ui in zip(dur, u):
+        n_ = max(int(np.ceil(dt_)), 1)
+        for _ in range(n_):
+            x = x + dt_ / n_ * (ui - x) / bp["tau_s"]
+        fine.append(x)
+    assert rise == pytest.approx(np.array(fine)[2::3], rel=2e-3, abs=1e-6) and rise.max() > 3.0
+    true_axes = case.truth["chain"].axes[bp["joints"]]                      # drawn on the true robot
+    assert np.abs(np.einsum("ki,ki->k", bp["normal_home"], true_axes)).max() < 1e-12
+    # laminate: the shear expansion of an off-axis ply; the twist turns the chain about the tube's axis at its tip
+    assert jt.shear_cte(-0.5e-6, 30e-6, np.pi / 4) == pytest.approx(-30.5e-6) and jt.shear_cte(1, 2, 0.0) == 0.0
+    parts, lp = jt.laminate_parts(p["laminate_twist"], ctx), p["laminate_twist"]
+    for k_, name in enumerate(lp["links"]):
+        e, tip, L = eb._beam_state(ctx, ch.link_names.index(name))
+        r = ctx.target - tip
+        assert np.abs(np.einsum("pi,pi->p", parts[k_], e)).max() < 1e-9 * np.abs(parts[k_]).max()
+        assert np.abs(np.einsum("pi,pi->p", parts[k_], r)).max() < 1e-9 * np.abs(parts[k_]).max() * 1e3
+        assert 0.2 * 25e-6 * np.sin(np.deg2rad(40)) / 0.06 < abs(lp["links"][name]) < 0.5 * 35.7e-6 / 0.03
+
+    case, ctx = runs["kr16_like"]
+    p, hw = case.truth["params"], case.truth["hw"]
+    # differential: a move along gear A's constant angle (pitch + i roll) leaves its error; one train's error splits
+    # into dq_pitch = e / 2 and dq_roll = +-e / 2i
+    dp = p["diff_wrist"]
+    one = dict(dp, trains=dp["trains"][:1])
+    qa = np.zeros((3, 6))
+    qa[1, [4, 5]] = [0.3 * dp["i"], -0.3]
+    qa[2, [4, 5]] = [0.1, 0.7]
+    dq = jj.diff_apply(one, SimpleNamespace(q=qa), None).dq
+    assert dq[1, 4] == pytest.approx(dq[0, 4], abs=1e-15) and dq[2, 5] == pytest.approx(dq[2, 4] / dp["i"])
+    assert abs(dq[2, 4]) > 0 and 25 / 45 <= dp["i"] <= 45 / 25
+    # bar pins: the flank is the load's once |tau_3| beats the drag, else it trails the crank (q2 + q3); the lever
+    # turns by c / 2 r sin(gamma)
+    bp = p["bar_pins"]
+    sig, t3 = jj.pin_signal(bp, ctx), ctx.loads[:, 2]
+    gamma = bp["gamma_mid"] + ctx.q[:, 2] - bp["q_mid"]
+    crank = np.sign(np.diff(ctx.q[:, 1] + ctx.q[:, 2]))
+    big = np.abs(t3) > bp["T_f"]
+    assert np.array_equal(np.sign(sig[big]), np.sign(t3[big])) and np.abs(sig * np.sin(gamma)) == pytest.approx(1.0)
+    small = ~big[1:] & (crank != 0)
+    assert np.array_equal(np.sign(sig[1:][small]), -crank[small])
+    assert jj.pin_apply(bp, ctx, hw).dq[:, 2] == pytest.approx(bp["c_mm"] / 2e3 / bp["r_m"] * sig)
+    # wrist shafts: the compliance G^-1 diag(L / GJ) G^-T is symmetric (Maxwell) and tau . dq is the shafts' energy
+    wp = p["wrist_shafts"]
+    W, Gi = wp["W"], np.linalg.inv(jj.shaft_matrix(wp))
+    cols = jj.shaft_columns(wp, ctx)
+    for k_, sh in enumerate(wp["shafts"]):
+        a = W.index(sh["joint"])
+        assert cols[k_][:, W] == pytest.approx(np.outer(ctx.loads[:, W] @ Gi[:, a], Gi[:, a]))
+        assert np.einsum("pn,pn->p", ctx.loads, cols[k_]) == pytest.approx((ctx.loads[:, W] @ Gi[:, a]) ** 2)
+    C = sum(sh["L_m"] / sh["GJ"] * np.outer(Gi[:, W.index(sh["joint"])], Gi[:, W.index(sh["joint"])])
+            for sh in wp["shafts"])
+    assert C == pytest.approx(C.T) and set(wp["c"]) == {(4, 3), (5, 3), (5, 4)}
+    bare = dict(wp, c={}, N2={j: 2.0 for j in W})
+    assert jj.shaft_columns(bare, ctx)[0][:, 4] == pytest.approx(ctx.loads[:, 4] / 4.0)

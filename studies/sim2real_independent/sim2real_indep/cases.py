@@ -6,8 +6,9 @@ B contains (:mod:`effects_c`), written after the diagnosis had been tuned on A a
 is a further independent test set of new physics kinds (:mod:`effects_d`), set E (24 cases, 8 per arm) another
 one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more kinds written from the engineering
 literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
-each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), and set I (24 cases, 8 per arm) a
-ninth (:mod:`effects_i`). A case: (id, robot, physics kinds, poses, split).
+each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
+ninth (:mod:`effects_i`) and set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`). A case: (id, robot, physics
+kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
-SEED_G, SEED_H, SEED_I = 40_7007, 40_7008, 40_7009
+SEED_G, SEED_H, SEED_I, SEED_J = 40_7007, 40_7008, 40_7009, 40_7010
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -292,10 +293,58 @@ SET_I = [
     ("I24", "kr16_like", ("rail_boom", "fork_arm"), 200, "time"),
 ]
 
+#: set J: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_j`); written as an independent test set after set I, from the literature, without reading how
+#: the diagnosis models effects. The differential wrist, the coupled wrist's shafts and the parallelogram bar's pins sit
+#: on the arms with motor-driven wrists / a parallelogram axis 3 (they do nothing on ur10; on tool_changer the pins'
+#: load rarely changes sign -- the transmission model within 2-10 % in trial draws -- and the differential's lever is
+#: short -- gains of 12-19 % in half the trial draws --, so both are used on kr16_like); the wall console on ur10 and
+#: the grout on tool_changer (on kr16_like and tool_changer the first link's bending mimics a base tilt, the link model
+#: within 13 % in most trial draws of the console and of kr16_like's grout; ur10's base moments left the grout absorbed
+#: or ambiguous in half the draws); the flange slip on ur10 and kr16_like (tool_changer's main-axis loads keep one sign:
+#: only its wrist slips, by some 0.02 mm). Oracle labels when written (oracle.py only; the diagnosis was not run): every
+#: case its truth (gains 26-92 %; each mixture component's removal costs 66 % or more), the geometry-only cases none; no
+#: soft labels (no gain below 20 %, no rival family's model within 25 % of the truth; the closest: J20's backlash model
+#: 1.26x, J09's link model 1.28x, J10's link model 1.34x, J14's mount model 1.35x). Draw ranges changed after trial
+#: draws (other seeds): the brake-heated housings first on axes 2-3 at 3-10 K (absorbed in most draws), the laminate's
+#: unbalanced share first 10-30 %, the planets' ring first 20-50 um, the differential's runouts first 10-25 / 5-15 um,
+#: the tool plates first 12-18 / 15-25 mm thick with 1-3 / 3-8 kg grippers; a three-groove kinematic coupling (Hertz
+#: contacts) was dropped for the wall console: its micrometre deflections were absorbed on every arm. After this set's
+#: own first check: the hose pull and the wrist shafts first included the main axes' gravity twist (effects of 1-3 mm,
+#: set A's compliance; now left out), the shafts' bevel ratio N2 was lowered (J09 and J20 had their rivals at 1.24x /
+#: 1.22x), and the grout's creep, first on the whole tilt compliance, was put on the share of the anchors' bond and the
+#: bed (J10 had its joint model at 1.09x; the added draw redrew the case); no pose count or seed was changed.
+SET_J = [
+    ("J01", "ur10", ("planet_stage",), 120, "random"),
+    ("J02", "ur10", ("flange_slip",), 45, "random"),
+    ("J03", "ur10", ("skew_casting",), 140, "random"),
+    ("J04", "ur10", ("wall_console",), 100, "random"),
+    ("J05", "ur10", ("brake_tilt",), 170, "time"),
+    ("J06", "ur10", ("laminate_twist",), 160, "time"),
+    ("J07", "ur10", (), 70, "random"),
+    ("J08", "ur10", ("hose_retract", "tool_plate"), 150, "random"),
+    ("J09", "tool_changer", ("wrist_shafts",), 130, "random"),
+    ("J10", "tool_changer", ("grout_creep",), 180, "time"),
+    ("J11", "tool_changer", ("hose_retract",), 110, "random"),
+    ("J12", "tool_changer", ("skew_casting",), 120, "random"),
+    ("J13", "tool_changer", ("planet_stage",), 140, "random"),
+    ("J14", "tool_changer", ("brake_tilt",), 150, "time"),
+    ("J15", "tool_changer", (), 30, "random"),
+    ("J16", "tool_changer", ("skew_casting", "brake_tilt"), 190, "time"),
+    ("J17", "kr16_like", ("diff_wrist",), 160, "random"),
+    ("J18", "kr16_like", ("bar_pins",), 120, "random"),
+    ("J19", "kr16_like", ("flange_slip",), 110, "random"),
+    ("J20", "kr16_like", ("wrist_shafts",), 140, "random"),
+    ("J21", "kr16_like", ("tool_plate",), 130, "random"),
+    ("J22", "kr16_like", ("laminate_twist",), 180, "time"),
+    ("J23", "kr16_like", (), 90, "random"),
+    ("J24", "kr16_like", ("bar_pins", "diff_wrist"), 200, "random"),
+]
+
 #: ``all`` in run.py means sets A-I
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
-        "I": (SET_I, SEED_I)}
+        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -54,7 +54,14 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "tilted_base": "joint_compliance", "balancer_relax": "joint_compliance", "floor_beams": "mount_compliance",
           "portal": "mount_compliance", "lap_splice": "link_deflection", "fork_arm": "link_deflection",
           "overrun_lash": "backlash", "nut_play": "backlash", "idler_runout": "transmission",
-          "para_gear": "transmission", "rail_boom": "thermal", "housing_growth": "thermal"}
+          "para_gear": "transmission", "rail_boom": "thermal", "housing_growth": "thermal",
+          # set J (sim2real_indep.effects_j; flange_slip, a link turned across its bolt-hole clearance by its load's
+          # history, and bar_pins, the play of a parallelogram bar's pins, scored as backlash; tool_plate, the
+          # end-of-arm plate carrying the target, as link deflection)
+          "planet_stage": "transmission", "diff_wrist": "transmission", "flange_slip": "backlash",
+          "bar_pins": "backlash", "hose_retract": "joint_compliance", "wrist_shafts": "joint_compliance",
+          "grout_creep": "mount_compliance", "wall_console": "mount_compliance", "skew_casting": "link_deflection",
+          "tool_plate": "link_deflection", "brake_tilt": "thermal", "laminate_twist": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
