@@ -143,3 +143,6 @@ def test_cross_equals_numpy_cross_and_broadcasts():
         a, b = rng.normal(size=sa), rng.normal(size=sb)
         assert np.array_equal(cross(a, b), np.cross(a, b)), (sa, sb)
     assert np.array_equal(cross([1, 0, 0], [0, 1, 0]), [0.0, 0.0, 1.0])
+    # the 3-vectors as columns (axis=-2): a vector across a stack of K columns, as the error model's Jacobian uses it
+    a, B = rng.normal(size=(4, 3)), rng.normal(size=(4, 3, 7))
+    assert np.array_equal(cross(a[..., :, None], B, axis=-2), np.cross(a[..., :, None], B, axisa=-2, axisb=-2, axisc=-2))

@@ -38,7 +38,7 @@ import pandas as pd
 from tolalloc.engine import resolve_engine
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.chain import JOINT, ChainProgram, chain_program, check_joint_values, check_parameter_values
-from tolalloc.robot.lie import adjoint, exp_se3
+from tolalloc.robot.lie import adjoint, cross, exp_se3
 from tolalloc.robot.kinematics import jacobian_kernel, prefix_lists
 from tolalloc.robot.model import Robot
 from tolalloc.units import unit_columns
@@ -293,7 +293,7 @@ class ErrorModel:
         for site, idx, cf, W in self.program.site_groups():
             Rs = np.ascontiguousarray(np.broadcast_to(R[site], batch + (3, 3)))
             rw = (Rs.reshape(-1, 3) @ W[:3]).reshape(batch + (3, len(idx)))  # one BLAS product per site
-            vv = (Rs.reshape(-1, 3) @ W[3:]).reshape(batch + (3, len(idx))) + _cross_cols(p[site], rw)
+            vv = (Rs.reshape(-1, 3) @ W[3:]).reshape(batch + (3, len(idx))) + cross(p[site][..., :, None], rw, axis=-2)
             if cf == 1.0:
                 Rw[..., idx] += rw
                 Vv[..., idx] += vv
@@ -304,12 +304,5 @@ class ErrorModel:
                 Rw[..., idx] += cf * rw
                 Vv[..., idx] += cf * vv
         p_tool = (R[-1] @ self.robot.home[:3, 3]) + p[-1]  # (..., 3)
-        dp = Vv - _cross_cols(p_tool, Rw)  # (..., 3, K)
+        dp = Vv - cross(p_tool[..., :, None], Rw, axis=-2)  # (..., 3, K): p_tool x every column
         return np.concatenate([dp, Rw], axis=-2)
-
-
-def _cross_cols(a: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """``a x B[:, k]`` for every column k: ``a`` (..., 3), ``B`` (..., 3, K) -> (..., 3, K)."""
-    a0, a1, a2 = a[..., 0, None], a[..., 1, None], a[..., 2, None]
-    b0, b1, b2 = B[..., 0, :], B[..., 1, :], B[..., 2, :]
-    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-2)

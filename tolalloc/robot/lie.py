@@ -30,24 +30,26 @@ __all__ = [
 ]
 
 
-def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """``a x b`` over the last axis, broadcasting as :func:`numpy.cross` does for 3-vectors.
+def cross(a: np.ndarray, b: np.ndarray, axis: int = -1) -> np.ndarray:
+    """``a x b`` over the 3-vector axis ``axis`` (negative: counted from the end), broadcasting as :func:`numpy.cross`.
 
     Parameters
     ----------
-    a, b : array, shape (..., 3)
+    a, b : array, shape (..., 3) for ``axis=-1``; (..., 3, K) for ``axis=-2`` (K vectors as columns)
+    axis : int, negative
 
     Returns
     -------
-    array, shape (broadcast of the leading axes, 3)
+    array, the broadcast shape with the 3-vector at ``axis``
 
-    The kinematics and load models call it many thousand times on small stacks, where :func:`numpy.cross`'s axis
-    handling costs about twice the arithmetic.
+    The kinematics, error and load models call it many thousand times on small stacks, where :func:`numpy.cross`'s
+    axis handling costs about twice the arithmetic.
     """
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
-    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
-    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+    tail = (slice(None),) * (-axis - 1)
+    a0, a1, a2 = (a[(Ellipsis, i) + tail] for i in range(3))
+    b0, b1, b2 = (b[(Ellipsis, i) + tail] for i in range(3))
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=axis)
 
 
 def hat(w: np.ndarray) -> np.ndarray:
