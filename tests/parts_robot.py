@@ -72,3 +72,17 @@ def arm(tmp_path, extra: str = "", name: str = "arm3.toml"):
     p = tmp_path / name
     p.write_text(ARM + textwrap.dedent(extra))
     return tolalloc.load_robot(str(p))
+
+
+#: Standard classes for the angles (listed options: a small program, quick to solve and to enumerate), as a costs
+#: mapping; :func:`write_classes` writes the same classes as a costs file for the jobs.
+CLASSES = {"kinds": {k: {"classes_deg": {"A": 0.002, "B": 0.005, "C": 0.01, "D": 0.03, "E": 0.1}}
+                     for k in ("joint_drive", "axis_deflection")}}
+
+
+def write_classes(path):
+    """:data:`CLASSES` as a costs file (TOML) at ``path``; returns the path."""
+    tables = [f"[kinds.{kind}.classes_deg]\n" + "".join(f"{g} = {v}\n" for g, v in c["classes_deg"].items())
+              for kind, c in CLASSES["kinds"].items()]
+    path.write_text("".join(tables))
+    return path

@@ -19,13 +19,10 @@ from tolalloc.errormodel import build_error_model
 from tolalloc.errormodel.parts import Conditions
 from tolalloc.robot.part_catalogue import builtin_catalogue
 
-from parts_robot import arm
+from parts_robot import CLASSES, arm
 
 COND = Conditions((0.0, 1.0), (15.0, 30.0))
 RADIUS = 1.5
-#: Standard classes for the angles (listed options: a small program, so that the enumeration below is quick).
-CLASSES = {"kinds": {k: {"classes_deg": {"A": 0.002, "B": 0.005, "C": 0.01, "D": 0.03, "E": 0.1}}
-                     for k in ("joint_drive", "axis_deflection")}}
 
 
 @pytest.fixture(scope="module")

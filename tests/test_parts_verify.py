@@ -10,7 +10,7 @@ from tolalloc.errormodel.parts import Conditions
 from tolalloc.verify.parts import verify_parts
 
 from parts_robot import arm
-from test_parts_allocate import CLASSES
+from parts_robot import CLASSES
 
 
 @pytest.fixture(scope="module")

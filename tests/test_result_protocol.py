@@ -61,12 +61,10 @@ def _parts(folder):
     """The small arm of the bought-parts tests with its catalogue slots, over its box, 0-1 kg and 15-30 degC; the
     angles machined to five listed classes (a small program: the default continuous costs take 20x longer to solve
     and exercise nothing more of the result protocol)."""
-    from parts_robot import arm
+    from parts_robot import arm, write_classes
 
-    costs = folder / "classes.toml"
-    costs.write_text("".join(f"[kinds.{kind}.classes_deg]\nA = 0.002\nB = 0.005\nC = 0.01\nD = 0.03\nE = 0.1\n"
-                             for kind in ("joint_drive", "axis_deflection")))
-    return tolalloc.allocate_tolerances(arm(folder), radius_mm=0.5, region="work", n_mc=500, costs=costs,
+    return tolalloc.allocate_tolerances(arm(folder), radius_mm=0.5, region="work", n_mc=500,
+                                        costs=write_classes(folder / "classes.toml"),
                                         parts={"payload_kg": (0.0, 1.0), "ambient_c": (15.0, 30.0),
                                                "after": "compensation"})
 
