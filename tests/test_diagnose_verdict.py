@@ -382,3 +382,43 @@ def test_a_family_too_wide_for_the_residual_is_left_out_of_the_evidence_not_the_
     assert bayes_factor(logml, "a", "b") > 1e6 and posterior_probabilities(logml)["a"] > 0.999
     ctx.bases = {"wide": ctx.bases["wide"]}
     assert family_log_evidence(ctx) == {} and posterior_probabilities({}) == {}
+
+
+def test_the_evidence_leader_beats_no_effect_and_every_other_family_by_a_very_strong_factor():
+    """evidence_leader: the family whose Bayes factor against ``none`` and each other family is at least 150 (Kass
+    and Raftery's *very strong*, 2 ln B > 10); none when a rival or the noise alone comes closer, or when ``none``
+    is not weighed."""
+    from tolalloc.diagnose.families import LEADING_BAYES_FACTOR, evidence_leader
+
+    assert LEADING_BAYES_FACTOR == 150.0
+    e = np.log(LEADING_BAYES_FACTOR)
+    assert evidence_leader({"none": 0.0, "a": e + 0.1, "b": 0.0})[0] == "a"
+    assert evidence_leader({"none": 0.0, "a": e + 0.1, "b": 0.0})[1] == pytest.approx(np.exp(e + 0.1))
+    assert evidence_leader({"none": 0.0, "a": e + 0.1, "b": 0.2})[0] is None      # b within a factor 150
+    assert evidence_leader({"none": 1.0, "a": e + 0.5, "b": -9.0})[0] is None     # no effect within a factor 150
+    assert evidence_leader({"a": 50.0, "b": 0.0})[0] is None                      # no effect not weighed
+    assert evidence_leader({})[0] is None
+
+
+@pytest.mark.parametrize("p, gain, leader, led", [
+    (0.004, 9.0, "a", True),     # not below 0.01 / 6, below 0.01; gain above the 5 % margin: named
+    (0.02, 9.0, "a", False),     # not below alpha
+    (0.004, 3.0, "a", False),    # gain below the practical margin
+    (0.004, 9.0, "b", False),    # the evidence singles out another family
+])
+def test_the_family_the_evidence_singles_out_is_tested_at_the_uncorrected_level(p, gain, leader, led):
+    """_evidence_led: where no candidate passes alpha / m, the family the evidence singles out is significant at
+    p < alpha with a clipped gain of at least the practical margin; its reason line says so."""
+    from tolalloc.diagnose.stepwise import _evidence_led
+
+    c = replace(_cand("a", sig=False), p_value=p, gain_pct=gain)
+    logml = {"none": 0.0, leader: 20.0, "a" if leader == "b" else "b": 1.0}
+    out = _evidence_led(c, logml, 0.01)
+    assert out.significant is led and out.evidence_led is led and out.to_dict()["evidence_led"] is led
+    if led:
+        ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+        v = verdict_of(ctx, [Stage((), 0.3, (out, _cand("b", sig=False)), "a", n_tests=6)],
+                       _ev(("a",), np.zeros((5, 3))), None, (), [], (), "geometric+a", None)
+        assert v.verdict == "effect" and v.candidates == ("a",)
+        assert "tested alone, at alpha without the factor for 6 candidates and with a 5 % minimum gain" in v.reasons[0]
+        assert "Bayes factor of at least 150 against no effect and every other family" in v.reasons[0]

@@ -14,6 +14,12 @@ evidence decides when it is strong: a Bayes factor of at least :data:`DECISIVE_B
 "Bayes factors", JASA 1995: ``2 ln B > 6``, *strong* evidence). The first forward step then selects the family the
 evidence favours among those tied with the best (:func:`evidence_pick`), and the verdict names it alone
 (:func:`bayes_factor`); a weaker factor leaves the tie ``ambiguous``.
+
+Where no candidate passes the selection's Bonferroni-corrected test, a family the evidence singles out -- a Bayes
+factor of at least :data:`LEADING_BAYES_FACTOR` against no effect and against every other family weighed (Kass and
+Raftery: ``2 ln B > 10``, *very strong*) -- is the one hypothesis left to test (:func:`evidence_leader`): the first
+forward step then tests it at the uncorrected level, with the practical margin as its minimum gain
+(:func:`.stepwise.select_effects`).
 """
 
 from __future__ import annotations
@@ -23,7 +29,8 @@ import numpy as np
 from tolalloc.diagnose.choice import projected_residual
 from tolalloc.diagnose.evidence import ard_evidence
 
-__all__ = ["family_log_evidence", "posterior_probabilities", "bayes_factor", "evidence_pick", "DECISIVE_BAYES_FACTOR"]
+__all__ = ["family_log_evidence", "posterior_probabilities", "bayes_factor", "evidence_pick", "evidence_leader",
+           "DECISIVE_BAYES_FACTOR", "LEADING_BAYES_FACTOR"]
 
 
 #: Residual degrees of freedom per column below which a family's evidence is not stated: the evidence of a fitted
@@ -33,6 +40,8 @@ MIN_DOF_PER_COLUMN = 3
 
 #: Bayes factor from which the evidence separates two families that predict the held-out poses alike
 DECISIVE_BAYES_FACTOR = 20.0
+#: Bayes factor against no effect and every other family from which the evidence singles one family out
+LEADING_BAYES_FACTOR = 150.0
 
 
 def family_log_evidence(ctx) -> dict:
@@ -72,6 +81,17 @@ def bayes_factor(logml: dict, a: str, b: str) -> float:
     if a not in logml or b not in logml:
         return float("nan")
     return float(np.exp(min(logml[a] - logml[b], 700.0)))
+
+
+def evidence_leader(logml: dict) -> tuple:
+    """``(family, smallest Bayes factor against the rest)`` of the family whose evidence beats no effect and every
+    other family weighed by at least :data:`LEADING_BAYES_FACTOR`, or ``(None, nan)``."""
+    fams = [k for k in logml if k != "none"]
+    if not fams or "none" not in logml:
+        return None, float("nan")
+    top = max(fams, key=lambda k: logml[k])
+    bf = min(bayes_factor(logml, top, o) for o in logml if o != top)
+    return (top, bf) if bf >= LEADING_BAYES_FACTOR else (None, float("nan"))
 
 
 def evidence_pick(candidates, logml: dict, margin: float):

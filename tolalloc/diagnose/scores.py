@@ -133,13 +133,16 @@ class Candidate:
     robust_rms_mm: float = float("nan")
     variant: str = ""
     probability: float = float("nan")
+    #: significant at the uncorrected level as the family the evidence singles out (:func:`.families.evidence_leader`)
+    evidence_led: bool = False
 
     def to_dict(self) -> dict:
         return {"effect": self.effect, "heldout_rms_mm": self.heldout_rms_mm, "p_value": self.p_value,
                 "cv_rms_mm": self.cv_rms_mm, "gain_pct": self.gain_pct,
                 "n_params": self.n_params, "significant": self.significant, "applicable": self.applicable,
                 "reason": self.reason, "robust_rms_mm": self.robust_rms_mm, "variant": self.variant,
-                "probability": self.probability if np.isfinite(self.probability) else None}
+                "probability": self.probability if np.isfinite(self.probability) else None,
+                "evidence_led": self.evidence_led}
 
 
 @dataclass(frozen=True, eq=False)

@@ -6,9 +6,9 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.physics.thermal import time_problem
-from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR
+from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACTOR
 from tolalloc.diagnose.scores import scheme_text
-from tolalloc.diagnose.verdict import Verdict, tied
+from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied
 
 __all__ = ["verdict_of", "input_notes", "minor_ties"]
 
@@ -47,9 +47,12 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
         return f"{e} was selected"
     if set(fwd.base) <= set(effects):
         base = "+".join(("geometric", *fwd.base))
+        led = (f"; tested alone, at alpha without the factor for {fwd.n_tests} candidates and with a "
+               f"{100 * PRACTICAL_MARGIN:g} % minimum gain: the model evidence singles it out, a Bayes factor of at least {LEADING_BAYES_FACTOR:g} against "
+               "no effect and every other family") if c.evidence_led else ""
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
                 f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
-                f"p = {c.p_value:.2g})")
+                f"p = {c.p_value:.2g}{led})")
     back = [st for st in stages if st.selected is None and st.removed is None and tuple(st.base) == tuple(effects)]
     if back and len(effects) > 1:
         st = back[-1]

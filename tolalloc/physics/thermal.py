@@ -23,6 +23,12 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`PAUSE_STEPS`
   median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
 
+* ``tilt_<tau>min``: heat that tilts the joints' axes: a housing warmed on one side (the motor and its holding-brake
+  coil flanged to it) grows more on that side, and the axis it carries tilts by ``alpha h dT / s`` (wall height ``h``,
+  bearing spacing ``s``; Bryan, CIRP Annals 39(2), 1990; ISO 230-3). The heat flows while the robot works and stops
+  in a pause (:func:`duty_warmup`), so the tilt rises over production and falls back in a pause. Every revolute
+  joint's axis tilts about two axes across it fixed in the link that carries it (:func:`axis_tilt`) [urad per joint
+  and axis].
 * ``<air>+<activity>``: an air-driven variant (``temperature`` or ``lag_<tau>min``) and an activity-driven one
   (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
   drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
@@ -43,7 +49,8 @@ from tolalloc.physics.loads import gravity_torques, point_at
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
-           "motor_rise", "link_temperature", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM"]
+           "motor_rise", "link_temperature", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt",
+           "duty_warmup"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -119,6 +126,13 @@ def active_time(time_s: np.ndarray) -> np.ndarray:
     return on
 
 
+def duty_warmup(time_s: np.ndarray, tau_s: float) -> np.ndarray:
+    """Warm-up of a heat source that is on while the robot works and off in its pauses (:func:`active_time`), shape
+    (P,): 0 at the first pose (a cold start), 1 - exp(-t / tau) over uninterrupted work, decaying by exp(-t / tau)
+    over a pause."""
+    return lag_filter(time_s, np.ones((len(time_s), 1)), tau_s, on_s=active_time(time_s))[:, 0]
+
+
 def _moves(time_s: np.ndarray, q: np.ndarray) -> tuple:
     """``(|q_i - q_(i-1)|`` (P, n), ``t_i - t_(i-1)`` (P,)): the move and the interval before each pose in time
     order (0 for the first), in the order of the poses."""
@@ -161,7 +175,7 @@ def thermal_variants(meas) -> tuple:
     if time_problem(t) is None:
         if out:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
-        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor")
+        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor", "tilt")
                 for m in LAG_MIN]
     return tuple(out)
 
@@ -200,6 +214,8 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     tau, t = _tau_s(variant), meas.time_s
     if variant.startswith(("warmup", "links_warmup", "bow")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
+    if variant.startswith("tilt"):
+        return _history(meas, ref, lambda ts, qs: duty_warmup(ts, tau))
     if variant.startswith("activity"):
         return _history(meas, ref, lambda ts, qs: activity(ts, qs, tau)) @ link_joints.T
     if variant.startswith("motor"):
@@ -244,7 +260,7 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
     grow, links = link_growth(robot, meas.q)
     total = grow.sum(axis=2)  # (P, 3): every link by the same relative amount
     lj = link_joint_matrix(robot)
-    bow = None  # the bow field, computed once for every bow variant (only the warm-up differs)
+    bow = tilt = None  # the bow and tilt fields, computed once for all their variants (only the warm-up differs)
     out = []
     for v in names:
         if "+" in v:  # a combined variant: its parts' columns side by side
@@ -254,6 +270,10 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
         s = thermal_signal(meas, ref, v, lj, robot)
         if v.startswith("motor"):
             out.append(_motor_basis(robot, grow, lj, s, v))
+            continue
+        if v.startswith("tilt"):
+            tilt = axis_tilt(robot, meas.q, points_mm) if tilt is None else tilt
+            out.append((tuple(f"{lab} ({v})" for lab in tilt[1]), tilt[0] * s[:, None, None]))
             continue
         if v.startswith("bow"):
             bow = link_bow(robot, meas.q, points_mm) if bow is None else bow
@@ -296,6 +316,28 @@ def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
                 cols.append(1e-6 * np.cross(prefix[:, site, :3, :3] @ a0, tip - mid))
             names.append(lk.name)
         start = start + v
+    B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
+    return B, tuple(names)
+
+
+def axis_tilt(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None) -> tuple:
+    """Displacement of the points ``points_mm`` (P, 3) carried by the flange (default the tool point) per 1e-6 rad of
+    tilt of every revolute joint's axis, about two axes across it fixed in the link that carries the joint and
+    through a point of the axis, shape (P, 3, 2R), and the columns' names (``tilt_<joint>_u [urad]``, ``_v``)."""
+    q = np.atleast_2d(q)
+    prefix = poe_prefix(robot.screws, q)
+    tip = robot.fk_internal(q)[:, :3, 3] if points_mm is None else np.asarray(points_mm, float)
+    cols, names = [], []
+    for j, jt in enumerate(robot.joints):
+        if not jt.is_revolute:
+            continue
+        w = robot.screws[j, :3]
+        a1 = np.cross(w, [1.0, 0.0, 0.0] if abs(w[0]) < 0.9 else [0.0, 1.0, 0.0])
+        a1 /= np.linalg.norm(a1)
+        p = point_at(prefix[:, j], robot.joint_points_mm[j])
+        for a0, ax in ((a1, "u"), (np.cross(w, a1), "v")):
+            cols.append(1e-6 * np.cross(prefix[:, j, :3, :3] @ a0, tip - p))
+            names.append(f"tilt_{jt.name}_{ax} [urad]")
     B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
     return B, tuple(names)
 
