@@ -305,3 +305,40 @@ def test_an_axis_tilting_as_the_robot_works_is_diagnosed_as_thermal_tilt():
     with pytest.raises(tolalloc.TolallocError, match="history"):
         from tolalloc.diagnose.model_export import model_from_identified
         model_from_identified(json.loads(json.dumps(identified_section(identified_model(d)))), robot)
+
+
+def test_frame_drift_columns_are_a_translation_of_the_measuring_frame():
+    """frame_drift: three translations of 1 um, the same at every pose, named as the measuring frame's columns."""
+    from tolalloc.physics.thermal import MEASUREMENT_PREFIX, frame_drift, is_measurement_column
+
+    B, names = frame_drift(4)
+    assert B.shape == (4, 3, 3) and all(is_measurement_column(n) for n in names)
+    assert names == tuple(f"{MEASUREMENT_PREFIX}{a} [um]" for a in "xyz")
+    np.testing.assert_array_equal(B, np.broadcast_to(1e-3 * np.eye(3), (4, 3, 3)))
+    assert not is_measurement_column("alpha [1e-6/K] (warmup_30min)")
+
+
+def test_a_tracker_warming_up_is_named_as_a_drift_of_the_frames_and_left_out_of_the_robot():
+    """The measuring frame drifts by 0.12 mm over a 40 min warm-up (the robot itself unchanged): the diagnosis names
+    thermal in a drift variant, says what it means, and the identified model's base-frame points do not move with
+    time while its tracker-frame points do."""
+    from tolalloc.diagnose import diagnose
+    from tolalloc.diagnose.model_use import identified_model
+
+    robot = tolalloc.load_robot("ur10")
+    P = 120
+    rng = np.random.default_rng(13)
+    q = rng.uniform(np.maximum(robot.lower, -np.pi), np.minimum(robot.upper, np.pi), (P, robot.n_joints))
+    ts = 30.0 * np.arange(P)
+    x = target_points(robot, q, np.array([0.0, 30.0, 50.0]))
+    s = 1 - np.exp(-ts / 2400.0)
+    xyz = x + np.outer(s, [0.08, -0.06, 0.07]) + rng.normal(0.0, 0.005, (P, 3))
+    d = diagnose(robot, Measurements(q, xyz, None, None, None, ts), folds=3, max_effects=1)
+    assert d.effect == "thermal", d.verdict
+    variant = next(c.variant for c in d.ranking if c.effect == "thermal")
+    assert variant.startswith("drift_"), variant
+    assert any("the measuring frame and the robot's base drift apart" in r for r in d.verdict.reasons)
+    m = identified_model(d)
+    early, late = (m.measurements(q[:10], time_s=t + 10.0 * np.arange(10)) for t in (0.0, 7200.0))
+    np.testing.assert_allclose(m.points(late, "base"), m.points(early, "base"), atol=1e-12)
+    assert np.abs(m.points(late, "tracker") - m.points(early, "tracker")).max() > 0.05

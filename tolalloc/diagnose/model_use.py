@@ -25,6 +25,7 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.kinematics import fk_poe, space_jacobian
 from tolalloc.robot.model import Robot
+from tolalloc.physics.thermal import is_measurement_column
 from tolalloc.diagnose.calibrate import Fit
 from tolalloc.diagnose.effects import effect_basis, effect_reference
 from tolalloc.diagnose.measurements import Measurements
@@ -138,9 +139,23 @@ class IdentifiedModel:
         return np.concatenate(parts, axis=2)[:, :, self.keep]
 
     def points(self, meas: Measurements, frame: str = "base") -> np.ndarray:
-        """Predicted target points at the poses of ``meas`` [mm], shape (P, 3), in ``frame``."""
-        x = self.fit.base_points(meas.q, self.basis(meas))
-        return x if _frame(frame) == "base" else x @ self.fit.R.T + self.fit.p_mm
+        """Predicted target points at the poses of ``meas`` [mm], shape (P, 3), in ``frame``: ``tracker`` what the
+        instrument measures, ``base`` where the robot puts the target relative to its base -- without a drift between
+        the two frames (:func:`~tolalloc.physics.thermal.is_measurement_column`)."""
+        B = self.basis(meas)
+        if _frame(frame) == "base":
+            return self.fit.base_points(meas.q, self.robot_only(B))
+        return self.fit.base_points(meas.q, B) @ self.fit.R.T + self.fit.p_mm
+
+    def robot_only(self, B: np.ndarray | None) -> np.ndarray | None:
+        """``B`` (P, 3, m) (:meth:`basis`) with the columns of a drift between the measuring frame and the base set to
+        zero."""
+        inst = [is_measurement_column(nm.split(":", 1)[1]) for nm in self.fit.effect_names]
+        if B is None or not any(inst):
+            return B
+        B = B.copy()
+        B[:, :, np.array(inst)] = 0.0
+        return B
 
     def chain(self) -> tuple:
         """The identified geometry as a POE chain: ``screws (n, 6)``, ``home (4, 4)``, joint offsets ``dq (n,)``;

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.thermal import time_problem
+from tolalloc.physics.thermal import is_measurement_variant, time_problem
 from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACTOR
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied
@@ -52,7 +52,7 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
                "no effect and every other family") if c.evidence_led else ""
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
                 f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
-                f"p = {c.p_value:.2g}{led})")
+                f"p = {c.p_value:.2g}{led})" + _instrument(c.variant))
     back = [st for st in stages if st.selected is None and st.removed is None and tuple(st.base) == tuple(effects)]
     if back and len(effects) > 1:
         st = back[-1]
@@ -67,6 +67,16 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
     return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
             f"{stages[0].base_rms_mm:.4g} (geometric) to {final_rms:.4g} mm; the backward elimination removed "
             f"{', '.join(st.removed for st in removed)} (not significant beside it)")
+
+
+def _instrument(variant: str) -> str:
+    """What a variant with a drift of the measuring frame means, or an empty string."""
+    if not is_measurement_variant(variant):
+        return ""
+    return ("; its drift_ columns are a translation common to every pose: the measuring frame and the robot's base "
+            "drift apart (the instrument warming up, its stand or the robot's pedestal settling), the robot relative "
+            "to its own base unchanged -- base-frame predictions and compensation leave them out, tracker-frame "
+            "predictions keep them")
 
 
 def _best_line(stages: list, alpha: float, min_gain: float) -> str:

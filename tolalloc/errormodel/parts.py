@@ -44,7 +44,7 @@ from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_sd
 from tolalloc.physics.compliance import joint_loads, mount_tilt
 from tolalloc.physics.loads import target_points
-from tolalloc.physics.thermal import link_cte, link_temperature, motor_rise
+from tolalloc.physics.thermal_design import link_cte, link_temperature, motor_rise
 from tolalloc.physics.transmission import catalogue_amplitudes
 from tolalloc.robot.model import Robot
 

@@ -19,7 +19,7 @@ from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD,
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
-from tolalloc.physics.thermal import link_cte
+from tolalloc.physics.thermal_design import link_cte
 from tolalloc.physics.transmission import catalogue_amplitudes, transmission_error
 
 __all__ = ["sample_effects"]

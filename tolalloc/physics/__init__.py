@@ -8,7 +8,8 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 * :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
 * :mod:`.lost_motion` -- backlash and hysteresis loss: the flank a joint rests on;
 * :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history or the motors'
-  losses, with first-order heating and cooling.
+  losses, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame drifting;
+* :mod:`.thermal_design` -- the design's forward model: the links' temperatures over an ambient range and a duty cycle.
 """
 
 from tolalloc.physics.beams import beam_columns, beam_sag, deflection_segments, guide_columns, guide_joints

@@ -29,6 +29,12 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   in a pause (:func:`duty_warmup`), so the tilt rises over production and falls back in a pause. Every revolute
   joint's axis tilts about two axes across it fixed in the link that carries it (:func:`axis_tilt`) [urad per joint
   and axis].
+* ``drift_<tau>min``: the measuring frame and the robot's base drift apart as the session goes on (a laser tracker
+  warming up, its stand or the robot's pedestal settling): a translation common to every pose, ``1 - exp(-(t - t0)
+  / tau)`` times three components (:func:`frame_drift`) [um]; ``tau`` at least :data:`DRIFT_MIN_MIN`. Relative to
+  its own base the robot is unchanged: its columns (:data:`MEASUREMENT_PREFIX`, :func:`is_measurement_column`)
+  move what the instrument sees, not the target in the base frame. (Turns are left out: a turn of the whole arm
+  about its base is what a tilting first axis does.)
 * ``<air>+<activity>``: an air-driven variant (``temperature`` or ``lag_<tau>min``) and an activity-driven one
   (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
   drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
@@ -48,9 +54,9 @@ from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import gravity_torques, point_at
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
-           "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S", "link_cte",
-           "motor_rise", "link_temperature", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt",
-           "duty_warmup"]
+           "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S", "MAX_STEP_S",
+           "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt",
+           "duty_warmup", "frame_drift", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column", "is_measurement_variant"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -61,6 +67,11 @@ MAX_STEP_S = 600.0
 PAUSE_STEPS = 5.0
 #: Links shorter than this [mm] do not bow measurably under a temperature difference across them.
 BOW_MIN_MM = 200.0
+#: Shortest warm-up [min] of the instrument's drift: a laser tracker settles over tens of minutes to hours (makers ask
+#: for a warm-up before measuring); a faster transient at the start of a session is not the instrument's.
+DRIFT_MIN_MIN = 20.0
+#: Name prefix of the columns that move the measuring frame against the robot's base, not the robot's target.
+MEASUREMENT_PREFIX = "drift_"
 
 
 def time_problem(time_s) -> str | None:
@@ -177,12 +188,24 @@ def thermal_variants(meas) -> tuple:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
         out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor", "tilt")
                 for m in LAG_MIN]
+        out += [f"drift_{m:g}min" for m in LAG_MIN if m >= DRIFT_MIN_MIN]
     return tuple(out)
 
 
 def is_air_variant(variant: str) -> bool:
     """Whether ``variant`` is driven by the logged air temperature (``temperature``, ``lag_<tau>min``)."""
     return variant == "temperature" or variant.startswith("lag_")
+
+
+def is_measurement_column(name: str) -> bool:
+    """Whether the effect column ``name`` moves the measuring frame against the robot's base (not the target relative
+    to the base)."""
+    return name.startswith(MEASUREMENT_PREFIX)
+
+
+def is_measurement_variant(variant: str) -> bool:
+    """Whether ``variant`` (or a part of a combined one) is a drift of the measuring frame (``drift_<tau>min``)."""
+    return any(v.startswith("drift") for v in variant_parts(variant))
 
 
 def variant_parts(variant: str) -> tuple:
@@ -212,7 +235,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     if variant == "temperature":
         return meas.temperature_c - ref["temperature_c"]
     tau, t = _tau_s(variant), meas.time_s
-    if variant.startswith(("warmup", "links_warmup", "bow")):
+    if variant.startswith(("warmup", "links_warmup", "bow", "drift")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
     if variant.startswith("tilt"):
         return _history(meas, ref, lambda ts, qs: duty_warmup(ts, tau))
@@ -270,6 +293,10 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
         s = thermal_signal(meas, ref, v, lj, robot)
         if v.startswith("motor"):
             out.append(_motor_basis(robot, grow, lj, s, v))
+            continue
+        if v.startswith("drift"):
+            drift = frame_drift(len(s))
+            out.append((tuple(f"{lab} ({v})" for lab in drift[1]), drift[0] * s[:, None, None]))
             continue
         if v.startswith("tilt"):
             tilt = axis_tilt(robot, meas.q, points_mm) if tilt is None else tilt
@@ -342,6 +369,14 @@ def axis_tilt(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None) 
     return B, tuple(names)
 
 
+def frame_drift(n_poses: int) -> tuple:
+    """Apparent displacement of every measured point per micrometre of drift between the measuring frame and the
+    robot's base along the base axes x, y, z, shape (P, 3, 3), and the columns' names (``drift_x [um]`` ..,
+    :data:`MEASUREMENT_PREFIX`)."""
+    return (np.broadcast_to(1e-3 * np.eye(3), (n_poses, 3, 3)).copy(),
+            tuple(f"{MEASUREMENT_PREFIX}{a} [um]" for a in "xyz"))
+
+
 def _bow_basis(grow: np.ndarray, links: tuple, bow_field: tuple, s: np.ndarray, variant: str) -> tuple:
     """(names, B (P, 3, M)) of ``bow``: every link grows (``grow``, ``links``: :func:`link_growth`), and every link
     long enough bows (``bow_field``: :func:`link_bow`), by its own amount times the warm-up ``s`` (P,)."""
@@ -365,41 +400,3 @@ def _motor_basis(robot: Robot, grow: np.ndarray, lj: np.ndarray, heat: np.ndarra
             labels.append(f"{'h' if part == 0 else 'hl'}_{robot.joints[j].name} [{unit}] ({variant})")
     B = np.stack(cols, axis=-1) if cols else np.zeros((grow.shape[0], 3, 0))
     return tuple(labels), B
-
-
-# ---- the design's forward model: growth over an ambient range and a duty cycle ----------------------------------
-
-def link_cte(robot: Robot) -> np.ndarray:
-    """Coefficient of thermal expansion [1/K] of every link of nonzero length (the order of :func:`link_growth`),
-    from its section in the robot file; 0 where the file gives none (such a link does not grow)."""
-    return np.array([robot.components.links[lk.name].cte_per_K if lk.name in robot.components.links else 0.0
-                     for lk in robot.links if lk.length_mm > 0])
-
-
-def motor_rise(robot: Robot, tau: np.ndarray, duty: float) -> np.ndarray:
-    """Steady temperature rise [K] of every joint's motor, shape (P, n), holding the loads ``tau`` (P, n) [N m] for the
-    fraction ``duty`` of the time: copper losses ``R_w (tau / (N k_t))^2`` through the thermal resistance ``R_th``
-    (``N`` the reducer's ratio; 1 without one). Joints without complete motor figures, and prismatic joints, do not
-    heat."""
-    out = np.zeros_like(np.asarray(tau, float))
-    for j, jt in enumerate(robot.joints):
-        parts = robot.components.joint(jt.name)
-        m = parts.motor
-        if (not jt.is_revolute or m is None or None in (m.winding_resistance_ohm, m.torque_constant_Nm_per_A,
-                                                          m.thermal_resistance_K_per_W)):
-            continue
-        ratio = parts.reducer.ratio if parts.reducer is not None and parts.reducer.ratio else 1.0
-        current = tau[:, j] / (ratio * m.torque_constant_Nm_per_A)
-        out[:, j] = m.thermal_resistance_K_per_W * duty * m.winding_resistance_ohm * current ** 2
-    return out
-
-
-def link_temperature(robot: Robot, ambient_delta_c, rise: np.ndarray) -> np.ndarray:
-    """Temperature of every link of nonzero length above the reference [K], shape (P, L): the ambient's departure
-    ``ambient_delta_c`` (P,) plus, per motor at the link's ends, its ``link_coupling`` share of its rise ``rise``
-    (P, n) (:func:`motor_rise`), averaged over those motors."""
-    lj = link_joint_matrix(robot)  # (L, n)
-    coup = np.array([getattr(robot.components.joint(jt.name).motor, "link_coupling", None) or 0.0
-                     for jt in robot.joints])
-    heat = (rise * coup) @ lj.T / np.maximum(lj.sum(axis=1), 1.0)
-    return np.asarray(ambient_delta_c, float)[:, None] + heat
