@@ -1168,3 +1168,184 @@ def test_set_j_every_kind_lies_in_its_true_structure_and_known_answers():
     assert C == pytest.approx(C.T) and set(wp["c"]) == {(4, 3), (5, 3), (5, 4)}
     bare = dict(wp, c={}, N2={j: 2.0 for j in W})
     assert jj.shaft_columns(bare, ctx)[0][:, 4] == pytest.approx(ctx.loads[:, 4] / 4.0)
+
+
+def test_set_k_cases_kinds_and_determinism():
+    """Set K: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-K
+    kind alone (no random numbers drawn); the RCC's target sits at its gripper's tip with the payload in the jaws, the
+    ram's cutter 250-450 mm off the wrist axis."""
+    from sim2real_indep import effects_k as ek
+
+    _assert_set_module("K", 40_7011, ek, ("gear", "laminate_twist"))
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert ek.probe_hook(("sag", "ram_roll"), probe) is probe and ek.payload_hook(("sag",), com, probe) is com
+    grip = ek.probe_hook(("rcc",), probe)
+    assert grip == pytest.approx([3.0, -4.0, 150 + 100 * 12 / 13])
+    assert ek.payload_hook(("rcc",), com, grip) == pytest.approx(0.8 * grip + com / 4)
+    assert ek.payload_hook(("ram_roll",), com, probe) == pytest.approx([250 + 200 * np.sqrt(125) / 80, 0.0, 5.0])
+    _assert_regenerates("K", max_effect_poses=50)
+
+
+def test_set_k_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-K kind's displacement lies in the span of its true-structure features (what the oracle fits), to
+    rounding, and is a real effect where the kind applies; the telescopic arm's kinds, the bulkhead, the side cylinder
+    and the thermal backlash do nothing on ur10; and known answers: the hose's pull as virtual work and its vacuum,
+    the ropes' linear limit and their lengths, the RCC's translation under a force through its centre, Terzaghi's
+    T_50 and T_90 and a load held, the clamped plate's slope, the cylinder holding axis 2 by the law of cosines, the
+    ram's roll torque as the gradient of the potential, Hooke's joint's largest error, the spline's proportional
+    twist, the AGMA backlash change, the housing's exact lag and the copper part of the drives' heat."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_k_body as kb
+    from sim2real_indep import effects_k_joint as kj
+    from sim2real_indep import effects_k_thermal as kt
+
+    inert = ("bulkhead", "side_cylinder", "tele_rope", "thermal_lash", "ram_roll", "cardan", "spline_twist")
+    runs = _assert_kinds_reproduce((("ur10", ("vacuum_hose", "rcc", "outrigger_soil", "read_head", "comp_mismatch")),
+                                    ("tool_changer", inert), ("kr16_like", ("vacuum_hose", "thermal_lash")),
+                                    ("ur10", inert)), 11, inert=inert, min_mm=1e-2)
+
+    case, ctx = runs["ur10"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    ch = ctx.chain
+    # vacuum hose: the loads of a unit pull are its virtual work, F . dp_fit / dq (the fitting's position moved by
+    # each joint); none while no part is held (the vacuum off); the thrust dp pi D^2 / 4
+    vp = p["vacuum_hose"]
+    held = s.payload_kg > 0
+    assert held.any() and (~held).any()
+    loads = kj.vac_loads(vp, ctx)
+    assert np.abs(loads[~held]).max() == 0.0
+    i = int(np.flatnonzero(held)[0])
+
+    def fit(qq):
+        fl, Rt = kin.flange(ch, qq[None])
+        return (fl + Rt @ vp["fitting_mm"])[0]
+    u = vp["anchor_mm"] - fit(ctx.q[i])
+    u /= np.linalg.norm(u)
+    for j in range(ch.n):
+        e = 1e-6 * np.eye(ch.n)[j]
+        virtual = u @ (fit(ctx.q[i] + e) - fit(ctx.q[i] - e)) / 2e-6 / 1000
+        assert loads[i, j] == pytest.approx(virtual, rel=1e-5, abs=1e-9)
+    assert 0.6e5 * np.pi / 4 * 0.014 ** 2 <= vp["thrust_N"] <= 0.85e5 * np.pi / 4 * 0.025 ** 2
+    # RCC: with the gripper weightless and the payload at the compliance centre, a force through the centre moves the
+    # gripper without turning it: only the lateral and axial columns, the weight's parts across and along the tool axis
+    rp = dict(p["rcc"], m_grip=0.0)
+    at_centre = replace(ctx, payload_com_mm=rp["centre_mm"])
+    parts = kb.rcc_parts(rp, at_centre)
+    assert np.abs(parts[2:]).max() < 1e-12
+    _, Rt = kin.flange(ch, ctx.q)
+    ax = Rt[:, :, 2]
+    W = s.payload_kg * kin.G
+    assert np.linalg.norm(parts[0], axis=1) == pytest.approx(W * np.sqrt(1 - ax[:, 2] ** 2), abs=1e-9)
+    assert np.einsum("pi,pi->p", parts[1], ax) == pytest.approx(-W * ax[:, 2], abs=1e-9)
+    # outriggers: Terzaghi's time factors for 50 % and 90 % consolidation (0.197, 0.848), the early sqrt(4 T / pi);
+    # a load held since before the session consolidates as U((t + t_pre) / t_ref)
+    assert kb.terzaghi_U([0.197, 0.848]) == pytest.approx([0.5, 0.9], abs=2e-3)
+    assert kb.terzaghi_U([1e-5, 0.0, -1.0]) == pytest.approx([np.sqrt(4e-5 / np.pi), 0.0, 0.0])
+    op = p["outrigger_soil"]
+    X = np.ones((len(ctx.q), 2))
+    _, dur = kb.load_history(ctx, X)
+    t_meas = np.cumsum(dur.ravel())[1::2]
+    assert kb.consolidated(op, ctx, X)[:, 0] == pytest.approx(kb.terzaghi_U((t_meas + op["pre_s"]) / op["t_ref_s"]))
+    # read heads: the housing's lag against Euler's integration in steps of 1 s (its error ~ dt / 2 tau); it warms
+    hp = p["read_head"]
+    rise = kt.head_rise(hp, ctx, hw)
+    dT_ex = kt.ct.drive_heat(ctx, hw, hp["accel_s"], hp["duty"], exercise_only=True)[hp["joints"]]
+    u_seg = (kt.ct.drive_heat(ctx, hw, hp["accel_s"], hp["duty"])[:, :, hp["joints"]] * (hp["rise_K"] / dT_ex)).reshape(
+        -1, len(hp["joints"]))
+    x, fine = np.zeros(len(hp["joints"])), []
+    for dt_, ui in zip(kt.ct._segment_times(s), u_seg):
+        n_ = max(int(np.ceil(dt_)), 1)
+        for _ in range(n_):
+            x = x + dt_ / n_ * (ui - x) / hp["tau_s"]
+        fine.append(x)
+    assert rise == pytest.approx(np.array(fine)[2::3], rel=2e-3, abs=1e-6) and rise.max() > 5.0
+    assert kt.head_apply(hp, ctx, hw).dq[:, hp["joints"]] == pytest.approx(rise * hp["k_rad_per_K"])
+    # compensation: the winding's heat is the drive's copper loss: the whole loss at a dwell (no speed), the whole loss
+    # less the friction loss f T_rated |omega| in a move; kappa, exact at the production cycle's steady state
+    cp = p["comp_mismatch"]
+    cu, cu_ex = kt.copper_heat(ctx, hw, cp["accel_s"], cp["duty"])
+    whole = kt.ct.drive_heat(ctx, hw, cp["accel_s"], cp["duty"])
+    assert cu[:, 2] == pytest.approx(whole[:, 2])
+    fr = np.array([d["friction_frac"] * d["T_rated"] for d in hw["drives"]])
+    assert whole[:, 1] - cu[:, 1] == pytest.approx(fr * s.speed, rel=1e-9, abs=1e-9)
+    ex_whole = kt.ct.drive_heat(ctx, hw, cp["accel_s"], cp["duty"], exercise_only=True)
+    assert ex_whole - cu_ex == pytest.approx(fr * s.exercise_speed)
+    assert cp["kappa"] == pytest.approx(cp["rise_l"] / cp["rise_w"])
+
+    case, ctx = runs["tool_changer"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    ch = ctx.chain
+    # ropes: with g = 0 the stretch is F times the holding rope's free length over EA (retraction rope L_ret + q for
+    # a push out, extension rope L_ext - q for a pull in)
+    rp = dict(p["tele_rope"], g=0.0)
+    F, q = ctx.loads[:, 3], ctx.q[:, 3] / 1000
+    L = np.where(F > 0, rp["L_ret_m"] + q, rp["L_ext_m"] - q)
+    assert (F > 0).any() and (F < 0).any() and L.min() > 0.2
+    assert kj.rope_apply(rp, ctx, hw).dq[:, 3] == pytest.approx(1000 * F * L * rp["c_per_m"])
+    # bulkhead: the clamped plate's slope is -dw/dr, w(0) = 1, w(a) = slope(a) = 0; the base moves along y and turns
+    # about x: no target moves along x; the pressure change starts at zero
+    a_ = 3.0
+    r = np.linspace(0.1, 2.9, 29)
+    w1, sl = kb.plate_shape(a_, r)
+    assert sl == pytest.approx(-(kb.plate_shape(a_, r + 1e-6)[0] - kb.plate_shape(a_, r - 1e-6)[0]) / 2e-6, rel=1e-6)
+    assert kb.plate_shape(a_, 0.0)[0] == 1.0 and kb.plate_shape(a_, a_) == (0.0, 0.0)
+    bp = p["bulkhead"]
+    assert np.abs(kb.bulk_pattern(bp, ctx)[:, 0]).max() < 1e-12 and kb.chamber_pressure(bp, s.time_s)[0] == 0.0
+    # side cylinder: its force holds axis 2's gravity load (moment -tau_2 about the axis at the eye), its moment arm the
+    # law of cosines' r1 r2 sin(psi) / L; without the offset nothing twists the arm about its axis
+    cp = p["side_cylinder"]
+    Fc, e, w2, eye = kb.cyl_force(cp, ctx)
+    root = eye - 1000 * cp["r2"] * e
+    assert np.einsum("pi,pi->p", np.cross((eye - root) / 1000, Fc), w2) == pytest.approx(-ctx.loads[:, 1])
+    psi = cp["psi0"] + cp["s"] * ctx.q[:, 1]
+    Lc = np.sqrt(cp["r1"] ** 2 + cp["r2"] ** 2 - 2 * cp["r1"] * cp["r2"] * np.cos(psi))
+    arm = cp["r1"] * cp["r2"] * np.sin(psi) / Lc
+    assert np.linalg.norm(Fc, axis=1) == pytest.approx(np.abs(ctx.loads[:, 1]) / arm)
+    # the offset's moment twists the root segment by e F_n r2 / GJ, F_n the force's part across the arm in its plane
+    tb = hw["tubes"][ch.link_names[cp["link"]]]
+    d, rot = ph.cantilever_tip(e, cp["r2"], Fc, np.cross(cp["e_m"] * w2, Fc), np.zeros(3), np.inf, np.inf,
+                               tb["G"] * tb["J"])
+    F_n = np.einsum("pi,pi->p", Fc, np.cross(w2, e))
+    assert np.einsum("pi,pi->p", rot, e) == pytest.approx(-cp["e_m"] * F_n * cp["r2"] / (tb["G"] * tb["J"]))
+    assert np.abs(d).max() == 0.0 and 0.25 <= abs(cp["e_m"]) <= 0.4
+    # ram roll: the roll torque is minus the derivative of the masses' potential under a roll about the ram's axis;
+    # the ram sits on the torque's side once it beats the friction
+    gp = p["ram_roll"]
+    T = kj.roll_torque(ctx, 3)
+    m, pos, body = ctx.mass_state
+    w, c = kin.joint_frames(ch, ctx.q)
+    on = body >= 4
+
+    def potential(phi):
+        R = kin._rot(w[:, 3], phi * np.ones(len(ctx.q)))
+        rel = np.einsum("pij,pbj->pbi", R, pos[:, on] - c[:, 3, None]) + c[:, 3, None]
+        return (m[:, on] * kin.G * rel[..., 2] / 1000).sum(axis=1)
+    assert T == pytest.approx(-(potential(1e-6) - potential(-1e-6)) / 2e-6, rel=1e-5, abs=1e-6)
+    side = np.einsum("pi,pi->p", kj.roll_part(gp, ctx), np.cross(w[:, 3], ctx.target - c[:, 3]))
+    big = np.abs(T) > gp["T_f"]
+    assert np.array_equal(np.sign(side[big]), np.sign(T[big])) and set(np.sign(T[big])) == {-1.0, 1.0}
+    # Cardan joint: tan(phi_2) = tan(phi_1) / cos(beta); its largest error atan((1 - cos b) / (2 sqrt(cos b))) at
+    # tan(phi) = sqrt(cos b), twice per turn, none straight
+    phi = np.linspace(0, 2 * np.pi, 20001)
+    for b in (0.05, 0.3):
+        err = kj.hooke_error(phi, b)
+        assert err.max() == pytest.approx(np.arctan((1 - np.cos(b)) / (2 * np.sqrt(np.cos(b)))), rel=1e-6)
+        assert kj.hooke_error(phi + np.pi, b) == pytest.approx(err, abs=1e-12)
+        assert np.tan(phi[:100] + err[:100]) == pytest.approx(np.tan(phi[:100]) / np.cos(b))
+    assert np.abs(kj.hooke_error(phi, 0.0)).max() < 1e-12
+    # spline: the wrist joints off in proportion to the extension, by the groove's torsion over r_g and N_b
+    for sp in p["spline_twist"]:
+        assert 8e-5 / 20 / 2.9 <= abs(sp["rad_per_mm"]) <= 20e-5 / 10 / 1.3
+    dq = kj.spline_apply(p["spline_twist"], ctx, hw).dq
+    assert dq[:, 4] == pytest.approx(p["spline_twist"][0]["rad_per_mm"] * ctx.q[:, 3])
+    # thermal backlash: AGMA's 2 tan(alpha_n) da over the ring's radius; axis 1 (no gravity load) trails its motion
+    lp = p["thermal_lash"]
+    assert 2 * np.tan(np.deg2rad(20)) * 11.7e-6 * 0.5 / 0.55 <= lp["k_rad_per_K"] <= 2 * np.tan(
+        np.deg2rad(20)) * 11.7e-6 * 0.65 / 0.42
+    sig = kt.lash_signals(lp, ctx, hw)
+    assert np.array_equal(sig[0], -s.direction[:, 0]) and sig[1].max() > 1.0
+    width = lp["b0_rad"] * sig[0] + lp["k_rad_per_K"] * sig[1]
+    assert kt.lash_apply(lp, ctx, hw).dq[:, 0] == pytest.approx(width / 2)

@@ -36,6 +36,7 @@ from sim2real_indep import effects_g as eg
 from sim2real_indep import effects_h as eh
 from sim2real_indep import effects_i as ei
 from sim2real_indep import effects_j as ejs  # set J (ej is effects_joint)
+from sim2real_indep import effects_k as ek
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -63,9 +64,10 @@ EFFECTS = {
     **eh.EFFECTS_H,  # set H's new kinds
     **ei.EFFECTS_I,  # set I's new kinds
     **ejs.EFFECTS_J,  # set J's new kinds
+    **ek.EFFECTS_K,  # set K's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
-                 | ei.AFTER_TRACKER | ejs.AFTER_TRACKER)
+                 | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -143,7 +145,8 @@ def _session_options(robot_key, physics, rng):
     opts = eg.session_options(robot_key, physics, rng, opts)  # set G (no draws without a set-G kind)
     opts = eh.session_options(robot_key, physics, rng, opts)  # set H (no draws without a set-H kind)
     opts = ei.session_options(robot_key, physics, rng, opts)  # set I (no draws without a set-I kind)
-    return ejs.session_options(robot_key, physics, rng, opts)  # set J (no draws without a set-J kind)
+    opts = ejs.session_options(robot_key, physics, rng, opts)  # set J (no draws without a set-J kind)
+    return ek.session_options(robot_key, physics, rng, opts)  # set K (no draws without a set-K kind)
 
 
 def _tracker(rng):
@@ -172,8 +175,10 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = eg.probe_hook(physics, _unit(rng) * rng.uniform(5, 100))  # set G's target rod (no draws)
     probe = ei.probe_hook(physics, probe)  # set I's bimetal boom (no draws)
     probe = ejs.probe_hook(physics, probe)  # set J's tool plate (no draws)
+    probe = ek.probe_hook(physics, probe)  # set K's gripper on the RCC (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
+    payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

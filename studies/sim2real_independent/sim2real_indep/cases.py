@@ -7,8 +7,8 @@ is a further independent test set of new physics kinds (:mod:`effects_d`), set E
 one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more kinds written from the engineering
 literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
 each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
-ninth (:mod:`effects_i`) and set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`). A case: (id, robot, physics
-kinds, poses, split).
+ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`) and set K (24 cases, 8 per arm) an
+eleventh (:mod:`effects_k`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
-SEED_G, SEED_H, SEED_I, SEED_J = 40_7007, 40_7008, 40_7009, 40_7010
+SEED_G, SEED_H, SEED_I, SEED_J, SEED_K = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -341,10 +341,61 @@ SET_J = [
     ("J24", "kr16_like", ("bar_pins", "diff_wrist"), 200, "random"),
 ]
 
-#: ``all`` in run.py means sets A-I
+#: set K: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_k`); written as an independent test set after set J, from the literature, without reading how
+#: the diagnosis models effects. The telescopic arm's kinds (extension ropes, ram roll, Cardan shafts, spline twist),
+#: the pressure bulkhead and the side cylinder sit on tool_changer (the TBM manipulator with a prismatic stage; they do
+#: nothing on the other arms); the vacuum hose on the pick-and-place arms (ur10, kr16_like), the thermal backlash on the
+#: arms given a pinion and ring gear on axis 1 (kr16_like, tool_changer; ur10's joints are strain-wave). Oracle labels
+#: when written (oracle.py only; the diagnosis was not run): every case its truth (gains 30-94 %; each mixture
+#: component's removal costs 85 % or more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival
+#: family's model within 25 % of the truth; the closest: K09's link model 1.29x, K19's link model 1.30x, K01's link
+#: model 1.40x, K20's link model 1.43x). Changed after trial draws (other seeds): the joint kind on ur10 was first a
+#: magnetic coupling in canned drives (a sine torque law, mostly linear: the link model within 1.25x or ambiguous on all
+#: arms; replaced by the vacuum hose); a transmission kind was first inclinometers reading axes 2-3 of tool_changer
+#: (their offset errors, cos and sin of the links' inclinations, have the shape of the gravity torques: the joint and
+#: link models within 2 %; replaced by the spline twist); the link kind was first a gas-spring strut beside the arm (a
+#: nearly constant force: absorbed; then the driving cylinder); the outriggers' soil, the bulkhead's pressure swings,
+#: the ropes, the read heads' brackets and the spline's twist were first drawn smaller (absorbed or gains below 20 % in
+#: some draws; the ranges in the modules' docstrings). After this set's own first check: K03 (gain 19 %, the joint model
+#: at 1.05x, then 1.18x) got softer ground and a larger, faster consolidation; K05's compensation residual (split by
+#: time) extrapolated its twelve free columns (gain -83 %) and K22 gained 14 %: the winding now follows its copper loss
+#: alone and the true structure is one column; K11's cylinder, nearly normal to the arm, twisted it the way a base tilt
+#: or joint 2 would (ambiguous twice): now shallow, its offset axial force bends the arm sideways; K13's ram kept one
+#: flank (the cutter's roll torque never beat the wrist's bias): the cutter now gripped at its rim and the slot worn
+#: wider; K14's Cardan offset and K17's hose were enlarged (rivals at 1.28x and 1.23x); K09's ropes made unequal (the
+#: link model at 1.25x, then 1.17x). No pose count or seed was changed.
+SET_K = [
+    ("K01", "ur10", ("vacuum_hose",), 120, "random"),
+    ("K02", "ur10", ("rcc",), 90, "random"),
+    ("K03", "ur10", ("outrigger_soil",), 140, "random"),
+    ("K04", "ur10", ("read_head",), 170, "time"),
+    ("K05", "ur10", ("comp_mismatch",), 160, "time"),
+    ("K06", "ur10", (), 70, "random"),
+    ("K07", "ur10", ("rcc", "read_head"), 150, "random"),
+    ("K08", "ur10", ("vacuum_hose", "comp_mismatch"), 180, "time"),
+    ("K09", "tool_changer", ("tele_rope",), 130, "random"),
+    ("K10", "tool_changer", ("bulkhead",), 180, "time"),
+    ("K11", "tool_changer", ("side_cylinder",), 120, "random"),
+    ("K12", "tool_changer", ("thermal_lash",), 150, "time"),
+    ("K13", "tool_changer", ("ram_roll",), 110, "random"),
+    ("K14", "tool_changer", ("cardan",), 100, "random"),
+    ("K15", "tool_changer", ("spline_twist",), 45, "random"),
+    ("K16", "tool_changer", (), 30, "random"),
+    ("K17", "kr16_like", ("vacuum_hose",), 140, "random"),
+    ("K18", "kr16_like", ("rcc",), 110, "random"),
+    ("K19", "kr16_like", ("outrigger_soil",), 130, "random"),
+    ("K20", "kr16_like", ("thermal_lash",), 160, "random"),
+    ("K21", "kr16_like", ("read_head",), 150, "time"),
+    ("K22", "kr16_like", ("comp_mismatch",), 190, "random"),
+    ("K23", "kr16_like", (), 90, "random"),
+    ("K24", "kr16_like", ("outrigger_soil", "thermal_lash"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-K)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
-        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J)}
+        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -61,7 +61,18 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "planet_stage": "transmission", "diff_wrist": "transmission", "flange_slip": "backlash",
           "bar_pins": "backlash", "hose_retract": "joint_compliance", "wrist_shafts": "joint_compliance",
           "grout_creep": "mount_compliance", "wall_console": "mount_compliance", "skew_casting": "link_deflection",
-          "tool_plate": "link_deflection", "brake_tilt": "thermal", "laminate_twist": "thermal"}
+          "tool_plate": "link_deflection", "brake_tilt": "thermal", "laminate_twist": "thermal",
+          # set K (sim2real_indep.effects_k; vacuum_hose, the hose's pressure thrust twisting the gears, and tele_rope,
+          # the ropes holding the telescopic stage, scored as joint compliance; rcc, the compliant device carrying the
+          # gripper and the target, as link deflection; bulkhead, the arm's support bowed by the chamber's pressure, as
+          # mount compliance; thermal_lash, a backlash whose width follows a housing's temperature, and ram_roll, the
+          # telescopic ram turning in its key's clearance, as backlash; spline_twist, a wrist angle off in proportion
+          # to the extension, as transmission; comp_mismatch, the residual of the controller's thermal correction, as
+          # thermal)
+          "vacuum_hose": "joint_compliance", "tele_rope": "joint_compliance", "rcc": "link_deflection",
+          "outrigger_soil": "mount_compliance", "bulkhead": "mount_compliance", "side_cylinder": "link_deflection",
+          "thermal_lash": "backlash", "ram_roll": "backlash", "cardan": "transmission",
+          "spline_twist": "transmission", "read_head": "thermal", "comp_mismatch": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
