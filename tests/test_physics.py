@@ -227,3 +227,33 @@ def test_a_mass_beside_the_beam_axis_twists_it():
             + w * L**4 / (8 * sec.EI_Nmm2) + w * L**2 / (2 * sec.shear_stiffness_N))
     np.testing.assert_allclose(beam_sag(robot, np.zeros((1, 2)), np.array([[1000.0, 300.0, 0.0]])),
                                [[0.0, 0.0, -drop]], rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("q1_deg", [0.0, 90.0])
+def test_a_tool_on_a_compliant_mount_drops_by_the_torsion_spring_closed_form(q1_deg):
+    """flange_columns on a one-joint arm (link 500 mm along x, tool 200 mm beyond the flange along the tool axis x,
+    gravity -z): a unit mass at the target is a moment 0.2 G N m about the tool's y axis, so a turn compliance c_y
+    drops the target by c_y 0.2 G x 200 um per urad/(N m); the shear compliance s_z lowers it by G um per um/N; the
+    other columns of this load are zero (no moment about x or z, no force along x or y) -- at any turn of the joint.
+    The known load: the link's default mass (5 kg at its midpoint, 250 mm behind the flange, on the last body) tips the
+    tool up, a logged payload of 3 kg at the target down."""
+    from tolalloc.physics.beams import flange_columns
+
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([500.0, 0.0, 0.0])))
+    robot = Robot("mount", chain, tool_offset_mm=np.array([200.0, 0.0, 0.0]), trust_units=True)
+    q = np.array([[np.deg2rad(q1_deg)]])
+    p_t = robot.fk_internal(q)[:, :3, 3]
+    for payload, known_lift in ((None, 250.0), (np.array([3.0]), 250.0 - 3 * 0.2 * 200.0)):
+        B, names = flange_columns(robot, q, p_t, payload)
+        col = dict(zip(names, B[0].T))
+        assert [n for n in names if n.endswith("_tool [urad/(N m)]") or n.endswith("_tool [um/N]")] == [
+            "cx_tool [urad/(N m)]", "cy_tool [urad/(N m)]", "cz_tool [urad/(N m)]", "sx_tool [um/N]",
+            "sy_tool [um/N]", "sz_tool [um/N]"] and len(names) == 12
+        np.testing.assert_allclose(col["cy_tool [urad/(N m)]"], [0.0, 0.0, -1e-6 * 0.2 * G * 200.0], atol=1e-15)
+        np.testing.assert_allclose(col["sz_tool [um/N]"], [0.0, 0.0, -1e-3 * G], atol=1e-15)
+        np.testing.assert_allclose(col["cy_known [urad/(N m)]"], [0.0, 0.0, 1e-6 * G * known_lift], atol=1e-15)
+        for ax in "xz":
+            np.testing.assert_allclose(col[f"c{ax}_tool [urad/(N m)]"], 0.0, atol=1e-15)
+            np.testing.assert_allclose(col[f"c{ax}_known [urad/(N m)]"], 0.0, atol=1e-15)
+        for ax in "xy":
+            np.testing.assert_allclose(col[f"s{ax}_tool [um/N]"], 0.0, atol=1e-15)

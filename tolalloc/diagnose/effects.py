@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tolalloc.robot.model import Robot
-from tolalloc.physics.beams import beam_columns, guide_columns, guide_joints
+from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, guide_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
@@ -152,7 +152,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
     if effect == "mount_compliance":
         return MOUNT_VARIANTS
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()
-    return ("tip", "beam", "beam+w", "beam+tip") + guide
+    return ("tip", "beam", "beam+w", "beam+tip", "flange") + guide
 
 
 def applicable(effect: str, meas: Measurements) -> tuple[bool, str]:
@@ -187,8 +187,8 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     elif effect == "mount_compliance":
         B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant)
     elif effect == "link_deflection":
-        parts = []
-        if not variant.startswith("guide"):
+        parts = [flange_columns(robot, q, p_t, meas.payload_kg)] if variant == "flange" else []
+        if not variant.startswith(("guide", "flange")):
             parts.append(beam_columns(robot, q, p_t, "tip" if variant == "tip" else variant.replace("+guide", ""),
                                       meas.payload_kg))
         if "guide" in variant:

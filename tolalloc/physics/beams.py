@@ -13,6 +13,10 @@ included). Without them the diagnosis fits the compliances of the same load shap
 (one ``k h^3`` drop per segment, ``h`` its horizontal overhang [m]), ``beam`` (``1/EI`` and ``1/GJ`` per segment),
 ``beam+w`` (also a distributed own weight the mass model lacks), ``beam+tip`` (also an unknown mass at the target).
 
+What sits between the flange and the tool -- a force-torque sensor, a tool changer, a compliance device, a gripper on
+flexures -- is itself a short compliant element (:func:`flange_columns`): the tool turns and shifts on it under the
+load beyond the flange, compliance per axis of the tool frame.
+
 A telescopic stage also tilts in its guide (:func:`guide_columns`): bearing compliance or clearance, by ``g M``
 [rad per N m] with ``M`` the bending moment of the masses beyond the guide about the guide point.
 """
@@ -28,7 +32,7 @@ from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import G, mass_points, point_at
 
-__all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_columns", "guide_joints",
+__all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_columns", "flange_columns", "guide_joints",
            "guide_columns", "segment_section", "segment_loads", "beam_sag"]
 
 #: Segments whose horizontal overhang never reaches this [mm] do not bend measurably.
@@ -154,6 +158,46 @@ def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) ->
             cols.append(1e-12 * B)  # [N mm^3] x 1/(MN m^2) = 1e-12 / (N mm^2)
             names.append(f"{lab}_{nm} [1/(MN m^2)]")
     return (np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))), names
+
+
+def flange_columns(robot: Robot, q, p_t, payload_kg=None) -> tuple:
+    """A compliant element between the flange and the tool (module docstring), columns (P, 3, m) and names.
+
+    The load beyond the flange -- the masses on the last body and the logged payload at the target (``known``), and a
+    unit mass at the target (``tool``, a tool the mass model lacks) -- gives the force ``F`` and the moment ``M`` about
+    the flange point. In the tool frame (axes ``x, y, z``) the element turns by ``c_i M_i`` [urad per N m] and shifts by
+    ``s_i F_i`` [um per N] along each axis; a turn moves the target about the flange point. Without known loads only the
+    ``tool`` columns are given."""
+    q = np.atleast_2d(q)
+    g = np.asarray(robot.gravity, dtype=float)
+    Pm = poe_prefix(robot.screws, q)
+    n = robot.n_joints
+    R = Pm[:, n, :3, :3] @ robot.tool_rotation
+    pf = point_at(Pm[:, n], robot.home[:3, 3] - robot.tool_offset_mm)  # the flange point (the tool's root)
+    F = np.zeros((len(q), 3))
+    M = np.zeros((len(q), 3))
+    for m, c in mass_points(robot, q, Pm):
+        if m.body == n:
+            F += m.mass_kg * G * g
+            M += np.cross((c - pf) / 1000.0, m.mass_kg * G * g)
+    if payload_kg is not None:
+        w = np.asarray(payload_kg, float)[:, None] * G * g
+        F, M = F + w, M + np.cross((p_t - pf) / 1000.0, w)
+    unit_F = np.broadcast_to(G * g, (len(q), 3))
+    loads = [("tool", unit_F, np.cross((p_t - pf) / 1000.0, unit_F))]
+    if np.abs(F).max(initial=0.0) > 0:
+        loads.insert(0, ("known", F, M))
+    cols, names = [], []
+    for lab, Fl, Ml in loads:
+        Mt, Ft = np.einsum("pji,pj->pi", R, Ml), np.einsum("pji,pj->pi", R, Fl)  # in the tool frame
+        for i, ax in enumerate("xyz"):
+            turn = 1e-6 * R[:, :, i] * Mt[:, i:i + 1]
+            cols.append(np.cross(turn, p_t - pf))
+            names.append(f"c{ax}_{lab} [urad/(N m)]")
+        for i, ax in enumerate("xyz"):
+            cols.append(1e-3 * R[:, :, i] * Ft[:, i:i + 1])
+            names.append(f"s{ax}_{lab} [um/N]")
+    return np.stack(cols, axis=-1), names
 
 
 def guide_joints(robot: Robot) -> list:
