@@ -260,3 +260,43 @@ def test_a_tool_tilting_on_a_compliant_mount_is_named_link_deflection_in_the_fla
     assert d.effect == "link_deflection", d.verdict
     assert next(c.variant for c in d.ranking if c.effect == "link_deflection") == "flange"
     assert d.final.heldout_rms_mm < 0.5 * d.geometric.heldout_rms_mm
+
+
+def test_coupling_columns_are_the_other_joints_positions_on_each_revolute_joint():
+    """coupling_columns: for every revolute joint j one column per joint k holding q_k (rad; a prismatic stroke in m)
+    in joint j's slot, grouped by j; the tool_changer's prismatic joint 4 has no columns of its own."""
+    from tolalloc.physics.transmission import coupling_columns
+
+    robot = tolalloc.load_robot("tool_changer")
+    q = _q(robot, 7, 2)
+    A, names, groups = coupling_columns(robot, q)
+    rev = [j for j in range(robot.n_joints) if robot.joints[j].is_revolute]
+    assert A.shape == (7, robot.n_joints, len(rev) * robot.n_joints) and len(names) == A.shape[2]
+    for m, (j, k) in enumerate((j, k) for j in rev for k in range(robot.n_joints)):
+        expect = np.zeros((7, robot.n_joints))
+        expect[:, j] = q[:, k] / (1.0 if robot.joints[k].is_revolute else 1000.0)
+        np.testing.assert_array_equal(A[:, :, m], expect)
+        assert groups[m] == j and names[m].startswith(f"k_{robot.joints[j].name}_{robot.joints[k].name} [rad/")
+    assert names[rev.index(4) * robot.n_joints + 3].endswith("[rad/m]")
+
+
+def test_a_coupled_wrist_with_a_wrong_coupling_factor_is_named_transmission_coupling():
+    """A UR10 whose wrist 3 turns by 0.002 rad per rad of wrist 2 (a coupled wrist's factor off in the controller;
+    the poses from the forward kinematics at q6 + 0.002 q5): the diagnosis names transmission in the ``coupling``
+    variant and recovers the factor within 10 %."""
+    from tolalloc.diagnose import diagnose
+
+    robot = tolalloc.load_robot("ur10")
+    P = 90
+    rng = np.random.default_rng(22)
+    q = _q(robot, P, 22)
+    t = np.array([0.0, 40.0, 120.0])
+    qt = q.copy()
+    qt[:, 5] += 0.002 * q[:, 4]
+    xyz = target_points(robot, qt, t) + rng.normal(0.0, 0.005, (P, 3))
+    d = diagnose(robot, Measurements(q, xyz, None, None, None, None), folds=3, max_effects=1)
+    assert d.effect == "transmission", d.verdict
+    assert next(c.variant for c in d.ranking if c.effect == "transmission") == "coupling"
+    params = d.final.fit.parameters_frame().set_index("parameter")["value"]
+    k = params["transmission:k_wrist_3_joint_wrist_2_joint [rad/rad]"]
+    assert abs(k - 0.002) < 2e-4, k

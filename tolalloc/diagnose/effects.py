@@ -23,19 +23,22 @@ signature:
                       beyond by their moment), a logged payload and an own weight (:mod:`tolalloc.physics.beams`):
                       ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
                       stage also ``guide``,
-                      ``guide+overlap``, ``beam+guide``.
+                      ``guide+overlap``, ``beam+guide``; ``flange``: a compliant element between the flange and
+                      the tool.
 ``backlash``          lost motion ``dq_j = s_j b_j / 2`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
                       ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``,
                       ``preload+hysteresis`` (a trailing hysteresis loss ``h_j`` beside the held flank).
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
                       ``lag_<tau>min``), a warm-up with time (with links that also bow across their section:
                       ``bow_<tau>min``), the motion history (``activity_<tau>min``) or the motors' losses from
-                      motion and holding torque (``motor_<tau>min``).
+                      motion and holding torque (``motor_<tau>min``); heat that tilts the joints' axes
+                      (``tilt_<tau>min``); a drift between the measuring frame and the base (``drift_<tau>min``).
 ``transmission``      kinematic error periodic in each revolute joint's angle (:mod:`tolalloc.physics.transmission`):
                       low orders (``1x``, ``1x2x``, ``2x3x``, ``series<K>``), and ``gear``: once per turn plus the
                       strain-wave orders ``N`` and ``2N`` of the gear ratio -- from the robot file's reducers, or
                       found by a frequency search on the training residual (:mod:`.ratio_search`) and used only for
-                      the joints whose frequency the poses resolve. Every transmission variant carries a Gaussian
+                      the joints whose frequency the poses resolve; ``coupling``: each joint turning in proportion
+                      to its own and the other joints' positions. Every transmission variant carries a Gaussian
                       prior per joint (``groups``) fitted by marginal likelihood (:mod:`.evidence`): a ridge.
 """
 
@@ -145,7 +148,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 2 * meas.n_poses)
         ratio = ref.get("gear_ratio")
         gear = ("gear",) if ratio is not None and np.any(np.isfinite(ratio)) else ()
-        return ("2x3x", "1x", "1x2x") + series + gear
+        return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",)
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
         return ("masses", "masses+tip") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat

@@ -23,7 +23,7 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 
-__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "gear_orders", "variant_orders",
+__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "gear_orders", "variant_orders", "coupling_columns",
            "transmission_columns", "ratio_columns", "transmission_error"]
 
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
@@ -62,6 +62,8 @@ def transmission_columns(robot: Robot, q: np.ndarray, variant: str, ratios: np.n
     """Joint-offset basis ``A`` (P, n, M) [rad per unit amplitude], column names and the joint of each column (M,)
     (one prior scale per joint). ``ratios`` (n,): gear ratios (NaN where unknown)."""
     P, n = q.shape
+    if variant == "coupling":
+        return coupling_columns(robot, q)
     cols, names, groups = [], [], []
     for j in range(n):
         if not robot.joints[j].is_revolute:
@@ -77,6 +79,26 @@ def transmission_columns(robot: Robot, q: np.ndarray, variant: str, ratios: np.n
                 groups.append(j)
     A = np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))
     return A, names, np.array(groups, int)
+
+
+def coupling_columns(robot: Robot, q: np.ndarray) -> tuple:
+    """Joint-offset basis of ratio and coupling errors (:func:`transmission_columns`' layout): every revolute joint
+    ``j`` turns by ``k_jj q_j`` (its own ratio off) and ``k_jk q_k`` (a coupling to joint ``k``: a coupled wrist's
+    coupling factor, a shaft or spline running through another axis) [rad per rad, or per m of a prismatic joint's
+    stroke]; one prior scale per joint."""
+    P, n = q.shape
+    cols, names, groups = [], [], []
+    for j in range(n):
+        if not robot.joints[j].is_revolute:
+            continue
+        for k in range(n):
+            a = np.zeros((P, n))
+            rev = robot.joints[k].is_revolute
+            a[:, j] = q[:, k] if rev else q[:, k] / 1000.0
+            cols.append(a)
+            names.append(f"k_{robot.joints[j].name}_{robot.joints[k].name} [rad/{'rad' if rev else 'm'}]")
+            groups.append(j)
+    return np.stack(cols, axis=-1), names, np.array(groups, int)
 
 
 def ratio_columns(qj: np.ndarray, ratio: float) -> np.ndarray:
