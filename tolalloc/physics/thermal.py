@@ -318,6 +318,13 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
     return out
 
 
+def _across(e: np.ndarray) -> tuple:
+    """Two unit axes across the unit direction ``e`` (3,), ``(u, e x u)``, ``u`` fixed by ``e`` alone."""
+    u = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    return u, np.cross(e, u)
+
+
 def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
              min_length_mm: float = BOW_MIN_MM) -> tuple:
     """Displacement of the points ``points_mm`` (P, 3) carried by the flange (default the tool point) per 1e-6 rad of
@@ -336,10 +343,8 @@ def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
         v = np.asarray(lk.vector_mm, float)
         if lk.length_mm >= min_length_mm:
             e = v / np.linalg.norm(v)
-            a1 = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
-            a1 /= np.linalg.norm(a1)
             mid = point_at(prefix[:, site], start + v / 2)
-            for a0 in (a1, np.cross(e, a1)):
+            for a0 in _across(e):
                 cols.append(1e-6 * np.cross(prefix[:, site, :3, :3] @ a0, tip - mid))
             names.append(lk.name)
         start = start + v
@@ -359,10 +364,8 @@ def axis_tilt(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None) 
         if not jt.is_revolute:
             continue
         w = robot.screws[j, :3]
-        a1 = np.cross(w, [1.0, 0.0, 0.0] if abs(w[0]) < 0.9 else [0.0, 1.0, 0.0])
-        a1 /= np.linalg.norm(a1)
         p = point_at(prefix[:, j], robot.joint_points_mm[j])
-        for a0, ax in ((a1, "u"), (np.cross(w, a1), "v")):
+        for a0, ax in zip(_across(w), "uv"):
             cols.append(1e-6 * np.cross(prefix[:, j, :3, :3] @ a0, tip - p))
             names.append(f"tilt_{jt.name}_{ax} [urad]")
     B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
