@@ -1349,3 +1349,191 @@ def test_set_k_every_kind_lies_in_its_true_structure_and_known_answers():
     assert np.array_equal(sig[0], -s.direction[:, 0]) and sig[1].max() > 1.0
     width = lp["b0_rad"] * sig[0] + lp["k_rad_per_K"] * sig[1]
     assert kt.lash_apply(lp, ctx, hw).dq[:, 0] == pytest.approx(width / 2)
+
+
+def test_set_l_cases_kinds_and_determinism():
+    """Set L: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-L
+    kind alone (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a gripper
+    case's target sits on a finger's tip, its part between the fingers, and its blocks both hold a part and not."""
+    from sim2real_indep import effects_l as el
+    from sim2real_indep import effects_l_body as lb
+
+    _assert_set_module("L", 40_7012, el, ("gear", "comp_mismatch"))
+    for name in ("effects_l", "effects_l_joint", "effects_l_body", "effects_l_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_l" in _imports(STUDY / "generator.py")
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert el.probe_hook(("sag", "rcc"), probe, "ur10") is probe and el.payload_hook(("sag",), com, probe) is com
+    tip = el.probe_hook(("grip_spread",), probe, "ur10")
+    assert tip == pytest.approx([0.6 * (15 + 30 * 8 / 95), -0.8 * (15 + 30 * 8 / 95), 130 + 90 * 12 / 13])
+    assert el.payload_hook(("hot_part",), com, tip) == pytest.approx([0, 0, 0.85 * tip[2]] + com / 4)
+    d, w, z = lb.finger_geometry(tip)
+    assert d == pytest.approx([0.6, -0.8, 0.0]) and lb.finger_length("ur10", z) == pytest.approx(60 + 50 * 12 / 13)
+    for seed in range(4):
+        steps = el.session_options("tool_changer", ("grip_spread",), np.random.default_rng(seed),
+                                   {"blocks": 2, "gap_kind": "none"})["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+    _assert_regenerates("L", max_effect_poses=50)
+
+
+def test_set_l_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-L kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds of other arms do nothing; and known answers: the
+    polymer's modulus falling by a third over 37 K, the cartridge's mass history and its weight's virtual work, the
+    measuring pinion's lead, the valve band's edges, the pins' staircase, a corner load on the frame's four feet,
+    Junker's law and the plate rocking about its compressed edge, the finger's cantilever, the holder's dead zone and
+    stroke end, the guide's Legendre curves and the directions of its error motions, the two lags' step response and
+    the wet tube's drying decay."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_l_body as lb
+    from sim2real_indep import effects_l_joint as lj
+    from sim2real_indep import effects_l_thermal as lt
+    from sim2real_indep import hardware as hwm
+
+    inert = {"ur10": ("gauge_pinion", "valve_lap", "pin_ring", "anchor_loose", "guide_errors", "hot_part"),
+             "kr16_like": ("polymer_heat", "valve_lap", "pin_ring", "anchor_loose", "guide_errors"),
+             "tool_changer": ("polymer_heat", "dispense_drain", "pallet_load", "float_holder", "wet_arm", "hot_part")}
+    specs = (("ur10", ("polymer_heat", "dispense_drain", "pallet_load", "grip_spread", "float_holder", "wet_arm")),
+             ("kr16_like", ("gauge_pinion", "hot_part")),
+             ("tool_changer", ("valve_lap", "pin_ring", "guide_errors", "anchor_loose")),
+             ("ur10", inert["ur10"]), ("kr16_like", inert["kr16_like"]), ("tool_changer", inert["tool_changer"]))
+    runs = {}
+    for k, (robot, physics) in enumerate(specs):
+        case = gen.generate("t", robot, physics, 30, 12)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault(robot, (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p, hw = case.truth["params"][kind], case.truth["hw"]
+            amp = {"polymer_heat": lambda: [c for c, s in zip(p["c0_rad_per_Nm"], lj.soft_signals(p, ctx, hw))
+                                            if np.abs(s).max() > 1e-12],
+                   "dispense_drain": lambda: [hwm.torsion(hw["drives"][j], 1.0, False) for j in range(ctx.chain.n)
+                                              if np.abs(lj.drain_loads(p, ctx)[:, j]).max() > 1e-9],
+                   "gauge_pinion": lambda: [p["half_rad"]], "valve_lap": lambda: [p["e_db_mm"]],
+                   "pin_ring": lambda: [-p["sigma_mm"] / (1000 * p["R_m"])],
+                   "pallet_load": lambda: [1 / p["k_N_per_m"]],
+                   "anchor_loose": lambda: [p["c_open"]], "grip_spread": lambda: p["c_mm_per_N"],
+                   "float_holder": lambda: [1.0], "guide_errors": lambda: np.ones(5), "hot_part": lambda: np.ones(2),
+                   "wet_arm": lambda: np.ones(2 * len(p["tubes"]))}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs["ur10"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    ch = ctx.chain
+    # polymer gears: a modulus falling from 3 to 2 GPa over 37 K (POM) grows the twist by half; none at room temperature
+    assert lj.softening(np.log(1.5) / 37, 37.0) == pytest.approx(0.5) and lj.softening(0.01, 0.0) == 0.0
+    sp = p["polymer_heat"]
+    assert lj.soft_signals(sp, ctx, hw) == pytest.approx(ctx.loads[:, sp["joints"]].T * np.expm1(
+        sp["beta_per_K"][:, None] * lj.soft_rise(sp, ctx, hw).T))
+    # cartridge: full 2 kg from the start, 1 g/s: 1.4 kg after 10 min of production, 0.2 kg after 30, then a full one
+    # replaces the empty (5 %) one: 1.5 kg after 40 min; the unit loads are the weight's virtual work, -g dz/dq
+    cp = dict(p["dispense_drain"], full_kg=2.0, start_kg=2.0, rate_kg_s=1e-3)
+    fake = SimpleNamespace(gap_s=np.array([0.0, 600.0, -300.0, 1200.0, 600.0]))
+    assert lj.cartridge_mass(cp, fake) == pytest.approx([2.0, 1.4, 1.4, 0.2, 1.5])
+    loads = lj.drain_unit_loads(cp, ctx)
+
+    def height(qq):
+        fl, Rt = kin.flange(ch, qq[None])
+        return (fl + Rt @ cp["com_mm"])[0, 2]
+    for j in range(ch.n):
+        e = 1e-6 * np.eye(ch.n)[j]
+        assert loads[0, j] == pytest.approx(-kin.G * (height(ctx.q[0] + e) - height(ctx.q[0] - e)) / 2e-6 / 1000,
+                                            rel=1e-5, abs=1e-9)
+    # palletising frame: a load W on a corner foot of a rigid frame on four equal feet sinks that corner by 3W / 4k and
+    # lifts the opposite one by W / 4k
+    a, b, k, W = 0.5, 0.4, 2e6, 1000.0
+    pp = {"a_m": a, "b_m": b, "k_N_per_m": k, "base_m": np.zeros(3), "pallet_m": np.array([a, b, 0.0]),
+          "full_kg": 1e4, "start_kg": W / kin.G, "rate_kg_s": 0.0}
+    corners = 1000.0 * np.array([[a, b, 0.0], [-a, -b, 0.0], [a, -b, 0.0]])
+    stub = SimpleNamespace(mass_state=(np.zeros((3, 1)), np.zeros((3, 1, 3)), np.array([1])), target=corners,
+                           session=SimpleNamespace(gap_s=np.zeros(3)))
+    assert lb.pallet_part(pp, stub)[:, 2] / k == pytest.approx(1000 * W / k * np.array([-0.75, 0.25, -0.25]))
+    # finger: a force at the tip bends the cantilever by L^3 / 3EI, none at the root; no part held, no spread
+    assert lb.tip_compliance(0.1, 0.1, 50.0) == pytest.approx(0.1 ** 3 / 150) and lb.tip_compliance(0.1, 0.0, 50) == 0
+    gp = p["grip_spread"]
+    assert gp["c_mm_per_N"][0] == pytest.approx(1000 * lb.tip_compliance(gp["L_m"], gp["a_m"], gp["E"] * gp["b_m"]
+                                                                         * gp["t_m"] ** 3 / 12))
+    empty = replace(ctx, session=replace(s, payload_kg=np.zeros(len(s.q))))
+    assert np.abs(lb.grip_parts(gp, empty)).max() == 0.0 and (s.payload_kg == 0).any() and (s.payload_kg > 0).any()
+    # holder: no motion below the preload, the excess at the rate beyond it, the stroke end
+    fp = p["float_holder"]
+    g, Rt = lb._gravity_tool(ctx)
+    side = np.linalg.norm((fp["m_tool_kg"] + s.payload_kg)[:, None] * g[:, :2], axis=1)
+    move = np.linalg.norm(lb.float_part(fp, ctx), axis=1)
+    assert move == pytest.approx(np.clip((side - fp["F_p_N"]) / fp["k_N_per_mm"], 0.0, fp["stroke_mm"]), abs=1e-12)
+    assert (side < fp["F_p_N"]).any() and (move > 0).any()
+    # wet tube: the diameter from the section; after the film has dried the tube's share decays as exp(-t / tau)
+    A_, I_, _ = ph.tube_section(0.09, 0.004)
+    assert lt.tube_diameter({"A": A_, "I": I_}) == pytest.approx(0.09)
+    wp = dict(p["wet_arm"], pre_s=900.0, dry_s=300.0, tau_s=400.0)
+    still = replace(s, gap_s=np.zeros(len(s.q)))
+    t_end = np.cumsum(lt.ct._segment_times(still).reshape(-1, 3).sum(axis=1))
+    assert lt.wet_state(wp, still) == pytest.approx(np.exp((300.0 - 900.0 - t_end) / 400.0))
+
+    case, ctx = runs["kr16_like"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # measuring pinion: the joint leads its reading by half the backlash over the ring's radius, towards its last motion
+    gp = p["gauge_pinion"]
+    assert lj.gauge_apply(gp, ctx, hw).dq[:, 0] == pytest.approx(gp["jn_mm"] / 2000 / gp["R_m"] * s.direction[:, 0])
+    assert 0.05 / 2000 / 0.38 <= gp["half_rad"] <= 0.2 / 2000 / 0.25
+    # hot parts: the two lags' response to a step from rest -- x1 = 1 - e1, x2 = 1 - (tau1 e1 - tau2 e2) / (tau1 - tau2)
+    # -- and a steady state that stays
+    t = np.array([60.0, 300.0, 1200.0])
+    x1, x2 = lt.two_lags(np.diff(np.r_[0.0, t]), np.ones(3), 200.0, 900.0, 0.0, 0.0)
+    e1, e2 = np.exp(-t / 200), np.exp(-t / 900)
+    assert x1 == pytest.approx(1 - e1) and x2 == pytest.approx(1 - (200 * e1 - 900 * e2) / (200 - 900))
+    assert np.array(lt.two_lags([50.0, 70.0], [0.4, 0.4], 200.0, 900.0, 0.4, 0.4)) == pytest.approx(0.4)
+    assert lt.hot_temperatures(p["hot_part"], ctx).max() > 5.0
+
+    case, ctx = runs["tool_changer"]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # valve band: with no leakage the cylinder stops short on the side of its approach; with much leakage at the load's
+    # edge; in between, drifted by the leakage
+    vp = p["valve_lap"]
+    loads = np.zeros_like(ctx.q)
+    loads[:, 1] = np.linspace(-3000.0, 3000.0, len(ctx.q))
+    lever = SimpleNamespace(q=ctx.q, loads=loads, session=s)
+    d_L, s_F = vp["s"] * s.direction[:, 1], np.sign(vp["s"] * loads[:, 1])
+    assert lj.valve_band(dict(vp, rho_per_Ns=0.0), lever)[0] == pytest.approx(-d_L)
+    assert lj.valve_band(dict(vp, rho_per_Ns=1.0), lever)[0][np.abs(loads[:, 1]) > 100] == pytest.approx(
+        s_F[np.abs(loads[:, 1]) > 100])
+    g_, a_ = lj.valve_band(vp, lever)
+    rho = vp["rho_per_Ns"] * np.abs(loads[:, 1]) / a_ * s.dwell_s
+    assert g_ == pytest.approx(np.clip(-d_L + s_F * rho, -1, 1)) and np.abs(g_).max() <= 1.0
+    # pin ring: each pin's error while it meshes, the handover's mean half-way; the drawn errors, not a smooth curve
+    rp = p["pin_ring"]
+    th = (np.arange(rp["Z"]) * 2 * np.pi - rp["phase"] * rp["Z"]) / rp["Z"]
+    assert lj.pin_error(rp, th) == pytest.approx(rp["e"]) and lj.pin_error(rp, th + np.pi / rp["Z"]) == pytest.approx(
+        (rp["e"] + np.roll(rp["e"], -1)) / 2)
+    # guideway: P_k(+-1) = (+-1)^k; straightness across the ram, roll normal to the axis and the arm
+    gp = p["guide_errors"]
+    ends = lb.guide_curves(gp, [gp["lo"], gp["hi"]])
+    assert ends[:, 1] == pytest.approx([c.sum() for c in gp["coef"].values()])
+    assert ends[:, 0] == pytest.approx([(c * (-1.0) ** np.arange(5)).sum() for c in gp["coef"].values()])
+    parts = lb.guide_parts(gp, ctx)
+    w, c = kin.joint_frames(ctx.chain, ctx.q)
+    axis = w[:, 3]
+    for k_ in (0, 1, 2):
+        assert np.abs(np.einsum("pi,pi->p", parts[k_], axis)).max() < 1e-9 * max(np.abs(parts[k_]).max(), 1e-9)
+    assert np.abs(np.einsum("pi,pi->p", parts[2], ctx.target - c[:, 3])).max() < 1e-6
+    # anchors: Junker's fall (1 - s after 9 N0 cycles, floored at a fifth); the plate rocks about its compressed edge,
+    # which stays put, the far edge lifting 2 R omega
+    ap = p["anchor_loose"]
+    N9 = SimpleNamespace(gap_s=np.array([0.0, 9 * ap["N0"] * ap["cycle_s"]]))
+    assert lb.clamp_share(ap, N9) == pytest.approx([1.0, 1 - ap["s"]])
+    assert lb.clamp_share(dict(ap, s=5.0), N9)[1] == 0.2
+    R, h = ap["R_m"], ap["h_mm"]
+    m = np.array([[1000.0], [1000.0]])
+    pos = np.array([[[2000.0, 0.0, 500.0]], [[2000.0, 0.0, 500.0]]])
+    edges = np.array([[1000 * R, 0.0, -h], [-1000 * R, 0.0, -h]])
+    rock = SimpleNamespace(mass_state=(m, pos, np.array([1])), target=edges, session=SimpleNamespace(gap_s=np.zeros(2)))
+    omega = 1000 * kin.G * 2.0 - lb.decompression(ap, rock)[0]
+    assert omega > 0
+    assert lb.loose_part(ap, rock) == pytest.approx(np.array([[0, 0, 0], [0, 0, 2000 * R * omega]]), abs=1e-6)

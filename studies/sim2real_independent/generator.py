@@ -37,6 +37,7 @@ from sim2real_indep import effects_h as eh
 from sim2real_indep import effects_i as ei
 from sim2real_indep import effects_j as ejs  # set J (ej is effects_joint)
 from sim2real_indep import effects_k as ek
+from sim2real_indep import effects_l as el
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -65,9 +66,10 @@ EFFECTS = {
     **ei.EFFECTS_I,  # set I's new kinds
     **ejs.EFFECTS_J,  # set J's new kinds
     **ek.EFFECTS_K,  # set K's new kinds
+    **el.EFFECTS_L,  # set L's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
-                 | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER)
+                 | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -146,7 +148,8 @@ def _session_options(robot_key, physics, rng):
     opts = eh.session_options(robot_key, physics, rng, opts)  # set H (no draws without a set-H kind)
     opts = ei.session_options(robot_key, physics, rng, opts)  # set I (no draws without a set-I kind)
     opts = ejs.session_options(robot_key, physics, rng, opts)  # set J (no draws without a set-J kind)
-    return ek.session_options(robot_key, physics, rng, opts)  # set K (no draws without a set-K kind)
+    opts = ek.session_options(robot_key, physics, rng, opts)  # set K (no draws without a set-K kind)
+    return el.session_options(robot_key, physics, rng, opts)  # set L (no draws without a set-L kind)
 
 
 def _tracker(rng):
@@ -176,9 +179,11 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ei.probe_hook(physics, probe)  # set I's bimetal boom (no draws)
     probe = ejs.probe_hook(physics, probe)  # set J's tool plate (no draws)
     probe = ek.probe_hook(physics, probe)  # set K's gripper on the RCC (no draws)
+    probe = el.probe_hook(physics, probe, robot_key)  # set L's gripper finger (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
+    payload_com = el.payload_hook(physics, payload_com, probe)  # set L's part between the fingers (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

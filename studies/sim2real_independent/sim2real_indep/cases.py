@@ -7,8 +7,9 @@ is a further independent test set of new physics kinds (:mod:`effects_d`), set E
 one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more kinds written from the engineering
 literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
 each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
-ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`) and set K (24 cases, 8 per arm) an
-eleventh (:mod:`effects_k`). A case: (id, robot, physics kinds, poses, split).
+ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
+eleventh (:mod:`effects_k`) and set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`). A case: (id, robot, physics
+kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
-SEED_G, SEED_H, SEED_I, SEED_J, SEED_K = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011
+SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -392,10 +393,64 @@ SET_K = [
     ("K24", "kr16_like", ("outrigger_soil", "thermal_lash"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-K)
+#: set L: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_l`); written as an independent test set after set K, from the literature, without reading how
+#: the diagnosis models effects. The polymer gears sit on ur10 (the arm of set H's polymer gears); the sealant
+#: cartridge, the palletising frame, the compliant holder and the coolant-wetted forearm on the cobot and the industrial
+#: arm (ur10, kr16_like); the hot die-cast parts on kr16_like; the measuring pinion on axis 1 of the arms given a ring
+#: gear there (kr16_like, tool_changer); the hydraulic axis 2, the pin ring, the telescopic stage's guideway and the
+#: loosening anchors on tool_changer (the tunnel-boring machine's arm); the gripper fingers on all three (they do
+#: nothing on the other arms). Oracle labels when written (oracle.py only; the diagnosis was not run): every case its
+#: truth (gains 25-91 %; each mixture component's removal costs 147 % or more), the geometry-only cases none; no soft
+#: labels (no gain below 20 %, no rival family's model within 25 % of the truth; the closest: L14's thermal model 1.31x,
+#: L21's link model 1.36x, L10's transmission model 1.44x, L02's link and L04's mount model 1.53x). Changed after trial
+#: draws (other seeds; the first ranges in the modules' docstrings): the loosening anchors were first on all arms (on
+#: ur10 and kr16_like the arm's weight over the plate's half width holds the plate closed: absorbed or ambiguous with
+#: the joint model) and then with a lower threshold (nearly linear in the moment: the link model within 1.25x); the
+#: compliant holder first had a low preload and no stroke end (nearly linear: ambiguous with the joint model); the hot
+#: parts were first also cutters on tool_changer and moulded parts on ur10, the castings cooler and the fingers shorter
+#: (growths of some 0.05 mm: absorbed or the joint model within 1.2x); the wet forearm first dried in 5-25 min at one
+#: rate (a session of production periods without pauses stayed wet throughout: absorbed); the palletising frame first
+#: stood on stiffer feet with lighter pallets, the cartridge was first lighter, the guideway straighter (gains below 20
+#: % or rivals within 1.25x). After this set's own first check: L01 (the link model at 1.25x) got polymer gears 2-4x
+#: (first 1-2x) as compliant as the metal ones; L13 (the joint model at 1.19x) got its anchors re-tightened before the
+#: session (first 0-300 cycles before it, so the loosening hardly changed over the session) and a faster loosening; L20
+#: (gain 18 %, the joint model at 1.20x) got the extraction gripper's longer fingers (150-250 mm on tips 250-400 mm
+#: high, first 100-200 on 200-350); the fingers' length was then tied to the tip's height (the hot parts and the grip
+#: share one gripper; it removed a draw), which left L14 absorbed (0.06 mm): the cutter gripper's prongs were made
+#: thinner (25-35 mm, first 25-40) and its force 8-20 kN (first 5-15), ur10's grip 100-450 N (first 100-300) and
+#: kr16_like's longer fingers stouter. No pose count or seed was changed.
+SET_L = [
+    ("L01", "ur10", ("polymer_heat",), 150, "time"),
+    ("L02", "ur10", ("dispense_drain",), 120, "random"),
+    ("L03", "ur10", ("pallet_load",), 110, "random"),
+    ("L04", "ur10", ("grip_spread",), 90, "random"),
+    ("L05", "ur10", ("float_holder",), 140, "random"),
+    ("L06", "ur10", ("wet_arm",), 170, "time"),
+    ("L07", "ur10", (), 70, "random"),
+    ("L08", "ur10", ("polymer_heat", "grip_spread"), 180, "time"),
+    ("L09", "tool_changer", ("gauge_pinion",), 45, "random"),
+    ("L10", "tool_changer", ("valve_lap",), 120, "random"),
+    ("L11", "tool_changer", ("pin_ring",), 130, "random"),
+    ("L12", "tool_changer", ("guide_errors",), 110, "random"),
+    ("L13", "tool_changer", ("anchor_loose",), 160, "time"),
+    ("L14", "tool_changer", ("grip_spread",), 100, "random"),
+    ("L15", "tool_changer", (), 30, "random"),
+    ("L16", "tool_changer", ("anchor_loose", "pin_ring"), 190, "random"),
+    ("L17", "kr16_like", ("dispense_drain",), 150, "time"),
+    ("L18", "kr16_like", ("pallet_load",), 130, "random"),
+    ("L19", "kr16_like", ("gauge_pinion",), 120, "random"),
+    ("L20", "kr16_like", ("hot_part",), 160, "time"),
+    ("L21", "kr16_like", ("wet_arm",), 140, "random"),
+    ("L22", "kr16_like", ("float_holder",), 110, "random"),
+    ("L23", "kr16_like", (), 90, "random"),
+    ("L24", "kr16_like", ("hot_part", "gauge_pinion"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-L)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
-        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K)}
+        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L)}
 
 
 def case_seed(set_name: str, index: int) -> int:

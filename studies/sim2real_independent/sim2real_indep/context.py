@@ -72,7 +72,21 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "vacuum_hose": "joint_compliance", "tele_rope": "joint_compliance", "rcc": "link_deflection",
           "outrigger_soil": "mount_compliance", "bulkhead": "mount_compliance", "side_cylinder": "link_deflection",
           "thermal_lash": "backlash", "ram_roll": "backlash", "cardan": "transmission",
-          "spline_twist": "transmission", "read_head": "thermal", "comp_mismatch": "thermal"}
+          "spline_twist": "transmission", "read_head": "thermal", "comp_mismatch": "thermal",
+          # set L (sim2real_indep.effects_l; polymer_heat, the twist of polymer gears growing as their drives warm them,
+          # scored as joint compliance, the family whose model holds its shape (as set K's thermal backlash is
+          # backlash); dispense_drain, the gears twisted by an unlogged, emptying cartridge, as joint compliance;
+          # gauge_pinion, the lost motion of the pinion driving axis 1's secondary encoder (the joint leads its
+          # reading), and valve_lap, a hydraulic axis stopping anywhere in its valve's dead band and drifting across it
+          # by the leakage, as backlash; guide_errors, the telescopic stage's straightness and angular error motions
+          # along its stroke, as transmission (a joint's motion errors as a function of its own position, as set C's
+          # bearing runout); grip_spread, the target's finger spread by the grip force and the part, and float_holder, a
+          # tool on a preloaded compliant holder, as link deflection (the end-of-arm structure carrying the target);
+          # hot_part, the gripper heated by the hot parts it holds, as thermal)
+          "polymer_heat": "joint_compliance", "dispense_drain": "joint_compliance", "gauge_pinion": "backlash",
+          "valve_lap": "backlash", "pin_ring": "transmission", "guide_errors": "transmission",
+          "pallet_load": "mount_compliance", "anchor_loose": "mount_compliance", "grip_spread": "link_deflection",
+          "float_holder": "link_deflection", "hot_part": "thermal", "wet_arm": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
