@@ -300,3 +300,13 @@ def test_a_coupled_wrist_with_a_wrong_coupling_factor_is_named_transmission_coup
     params = d.final.fit.parameters_frame().set_index("parameter")["value"]
     k = params["transmission:k_wrist_3_joint_wrist_2_joint [rad/rad]"]
     assert abs(k - 0.002) < 2e-4, k
+
+
+def test_coupling_columns_of_a_robot_without_revolute_joints_are_empty():
+    from tolalloc.physics.transmission import coupling_columns
+
+    chain = (tolalloc.robot.Joint("x", "prismatic", np.array([1.0, 0.0, 0.0]), 0.0, 500.0),
+             tolalloc.robot.Link("l", np.array([0.0, 0.0, 100.0])))
+    robot = tolalloc.robot.Robot("gantry", chain, trust_units=True)
+    A, names, groups = coupling_columns(robot, np.zeros((4, 1)))
+    assert A.shape == (4, 1, 0) and names == [] and groups.shape == (0,)

@@ -98,7 +98,8 @@ def coupling_columns(robot: Robot, q: np.ndarray) -> tuple:
             cols.append(a)
             names.append(f"k_{robot.joints[j].name}_{robot.joints[k].name} [rad/{'rad' if rev else 'm'}]")
             groups.append(j)
-    return np.stack(cols, axis=-1), names, np.array(groups, int)
+    A = np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))  # no revolute joint: no column
+    return A, names, np.array(groups, int)
 
 
 def ratio_columns(qj: np.ndarray, ratio: float) -> np.ndarray:
