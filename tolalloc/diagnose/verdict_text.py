@@ -48,8 +48,8 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
     if set(fwd.base) <= set(effects):
         base = "+".join(("geometric", *fwd.base))
         led = (f"; tested alone, at alpha without the factor for {fwd.n_tests} candidates and with a "
-               f"{100 * PRACTICAL_MARGIN:g} % minimum gain: the model evidence singles it out, a Bayes factor of at least {LEADING_BAYES_FACTOR:g} against "
-               "no effect and every other family") if c.evidence_led else ""
+               f"{100 * PRACTICAL_MARGIN:g} % minimum gain: the model evidence singles it out, a Bayes factor of at "
+               f"least {LEADING_BAYES_FACTOR:g} against no effect and every other family") if c.evidence_led else ""
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
                 f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
                 f"p = {c.p_value:.2g}{led})" + _instrument(c.variant))

@@ -32,8 +32,8 @@ from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import G, mass_points, point_at
 
-__all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_columns", "flange_columns", "guide_joints",
-           "guide_columns", "segment_section", "segment_loads", "beam_sag"]
+__all__ = ["MIN_OVERHANG_MM", "deflection_segments", "segment_geometry", "beam_columns", "flange_columns",
+           "guide_joints", "guide_columns", "segment_section", "segment_loads", "beam_sag"]
 
 #: Segments whose horizontal overhang never reaches this [mm] do not bend measurably.
 MIN_OVERHANG_MM = 200.0
