@@ -409,11 +409,12 @@ def test_the_evidence_leader_beats_no_effect_and_every_other_family_by_a_very_st
 def test_the_family_the_evidence_singles_out_is_tested_at_the_uncorrected_level(p, gain, leader, led):
     """_evidence_led: where no candidate passes alpha / m, the family the evidence singles out is significant at
     p < alpha with a clipped gain of at least the practical margin; its reason line says so."""
+    from tolalloc.diagnose.families import evidence_leader
     from tolalloc.diagnose.stepwise import _evidence_led
 
     c = replace(_cand("a", sig=False), p_value=p, gain_pct=gain)
     logml = {"none": 0.0, leader: 20.0, "a" if leader == "b" else "b": 1.0}
-    out = _evidence_led(c, logml, 0.01)
+    out = _evidence_led(c, evidence_leader(logml)[0], 0.01)
     assert out.significant is led and out.evidence_led is led and out.to_dict()["evidence_led"] is led
     if led:
         ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})

@@ -106,7 +106,8 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         if not chosen and not any(c.significant for c in cands):
-            cands = [_evidence_led(c, logml or {}, alpha) for c in cands]
+            leader = evidence_leader(logml or {})[0]
+            cands = [_evidence_led(c, leader, alpha) for c in cands]
         best = next((c for c in cands if c.significant), None)
         if not chosen:
             best = evidence_pick(cands, logml or {}, PRACTICAL_MARGIN) or best
@@ -119,10 +120,10 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
     return stages, evals, current
 
 
-def _evidence_led(c: Candidate, logml: dict, alpha: float) -> Candidate:
-    """``c`` made significant when it is the family the evidence singles out and passes the uncorrected test
-    (``p < alpha``, clipped gain of at least the practical margin, no other reason against it); else ``c``."""
-    leader, _ = evidence_leader(logml)
+def _evidence_led(c: Candidate, leader: str | None, alpha: float) -> Candidate:
+    """``c`` made significant when it is ``leader``, the family the evidence singles out
+    (:func:`.families.evidence_leader`), and passes the uncorrected test (``p < alpha``, clipped gain of at least the
+    practical margin, no other reason against it); else ``c``."""
     if (c.effect != leader or not c.applicable or c.reason or not c.n_params or not c.p_value < alpha
             or not c.gain_pct >= 100.0 * PRACTICAL_MARGIN):
         return c

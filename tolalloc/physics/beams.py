@@ -174,15 +174,9 @@ def flange_columns(robot: Robot, q, p_t, payload_kg=None) -> tuple:
     n = robot.n_joints
     R = Pm[:, n, :3, :3] @ robot.tool_rotation
     pf = point_at(Pm[:, n], robot.home[:3, 3] - robot.tool_offset_mm)  # the flange point (the tool's root)
-    F = np.zeros((len(q), 3))
-    M = np.zeros((len(q), 3))
-    for m, c in mass_points(robot, q, Pm):
-        if m.body == n:
-            F += m.mass_kg * G * g
-            M += np.cross((c - pf) / 1000.0, m.mass_kg * G * g)
-    if payload_kg is not None:
-        w = np.asarray(payload_kg, float)[:, None] * G * g
-        F, M = F + w, M + np.cross((p_t - pf) / 1000.0, w)
+    F, M = np.zeros((len(q), 3)), np.zeros((len(q), 3))
+    for Fk, at, _ in segment_loads(robot, mass_points(robot, q, Pm), n - 1, p_t, payload_kg):  # beyond the last joint
+        F, M = F + Fk, M + np.cross((at - pf) / 1000.0, Fk)
     unit_F = np.broadcast_to(G * g, (len(q), 3))
     loads = [("tool", unit_F, np.cross((p_t - pf) / 1000.0, unit_F))]
     if np.abs(F).max(initial=0.0) > 0:
