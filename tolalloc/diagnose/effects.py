@@ -38,8 +38,11 @@ signature:
                       strain-wave orders ``N`` and ``2N`` of the gear ratio -- from the robot file's reducers, or
                       found by a frequency search on the training residual (:mod:`.ratio_search`) and used only for
                       the joints whose frequency the poses resolve; ``coupling``: each joint turning in proportion
-                      to its own and the other joints' positions. Every transmission variant carries a Gaussian
-                      prior per joint (``groups``) fitted by marginal likelihood (:mod:`.evidence`): a ridge.
+                      to its own and the other joints' positions; ``stroke`` (robots with a prismatic joint): a linear
+                      axis' six error motions along its stroke (:mod:`tolalloc.physics.error_motions`). Every
+                      transmission variant carries a Gaussian prior per joint (``groups``; ``stroke``: one for a
+                      joint's translations, one for its rotations) fitted by marginal likelihood (:mod:`.evidence`):
+                      a ridge.
 """
 
 from __future__ import annotations
@@ -50,6 +53,7 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, guide_joints
+from tolalloc.physics.error_motions import stroke_columns
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
@@ -148,7 +152,8 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 2 * meas.n_poses)
         ratio = ref.get("gear_ratio")
         gear = ("gear",) if ratio is not None and np.any(np.isfinite(ratio)) else ()
-        return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",)
+        stroke = ("stroke",) if robot is not None and not robot.revolute_mask.all() else ()
+        return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
         return ("masses", "masses+tip") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
@@ -179,7 +184,9 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     q = meas.q
     p_t = target_points(robot, q, t_mm)
     groups = None
-    if effect in JOINT_EFFECTS:
+    if effect == "transmission" and variant == "stroke":
+        B, names, groups = stroke_columns(robot, q, p_t)
+    elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
                                    load_scale=ref.get("load_scale"))

@@ -19,7 +19,7 @@ from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Mass, Robot
 
 __all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "point_at",
-           "target_points", "point_jacobian", "mass_points"]
+           "target_points", "point_jacobian", "mass_points", "across_axes"]
 
 #: Standard gravity [m/s^2].
 G = 9.81
@@ -115,3 +115,10 @@ def base_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
         kg = np.broadcast_to(np.asarray(tip_kg, float), (len(q),))
         M += kg[:, None] * np.cross(np.asarray(tip_mm, float) / 1000.0, g)
     return M
+
+
+def across_axes(e: np.ndarray) -> tuple:
+    """Two unit axes across the unit direction ``e`` (3,), ``(u, e x u)``, ``u`` fixed by ``e`` alone."""
+    u = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
+    u /= np.linalg.norm(u)
+    return u, np.cross(e, u)

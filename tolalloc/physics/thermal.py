@@ -51,7 +51,7 @@ import numpy as np
 
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
-from tolalloc.physics.loads import gravity_torques, point_at
+from tolalloc.physics.loads import across_axes, gravity_torques, point_at
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
@@ -318,13 +318,6 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
     return out
 
 
-def _across(e: np.ndarray) -> tuple:
-    """Two unit axes across the unit direction ``e`` (3,), ``(u, e x u)``, ``u`` fixed by ``e`` alone."""
-    u = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
-    u /= np.linalg.norm(u)
-    return u, np.cross(e, u)
-
-
 def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
              min_length_mm: float = BOW_MIN_MM) -> tuple:
     """Displacement of the points ``points_mm`` (P, 3) carried by the flange (default the tool point) per 1e-6 rad of
@@ -344,7 +337,7 @@ def link_bow(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None,
         if lk.length_mm >= min_length_mm:
             e = v / np.linalg.norm(v)
             mid = point_at(prefix[:, site], start + v / 2)
-            for a0 in _across(e):
+            for a0 in across_axes(e):
                 cols.append(1e-6 * np.cross(prefix[:, site, :3, :3] @ a0, tip - mid))
             names.append(lk.name)
         start = start + v
@@ -365,7 +358,7 @@ def axis_tilt(robot: Robot, q: np.ndarray, points_mm: np.ndarray | None = None) 
             continue
         w = robot.screws[j, :3]
         p = point_at(prefix[:, j], robot.joint_points_mm[j])
-        for a0, ax in zip(_across(w), "uv"):
+        for a0, ax in zip(across_axes(w), "uv"):
             cols.append(1e-6 * np.cross(prefix[:, j, :3, :3] @ a0, tip - p))
             names.append(f"tilt_{jt.name}_{ax} [urad]")
     B = np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))
