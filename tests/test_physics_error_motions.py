@@ -102,3 +102,19 @@ def test_a_guideway_with_pitch_and_yaw_along_the_stroke_is_named_transmission_st
     d = diagnose(robot, Measurements(q, xyz, None, None, None, None), folds=3, max_effects=1)
     assert d.effect == "transmission", d.verdict
     assert next(c.variant for c in d.ranking if c.effect == "transmission") == "stroke"
+    # the identified model, written to its file and read back, predicts the guided stage alike at new poses, and the
+    # error motions are in its prediction: it is nearer the true points than the geometric model alone
+    import json
+
+    from tolalloc.diagnose.model_export import identified_section, model_from_identified
+    from tolalloc.diagnose.model_use import identified_model
+
+    m = identified_model(d)
+    back = model_from_identified(json.loads(json.dumps(identified_section(m))), robot)
+    q_new = _q(robot, 20, 32)
+    a, b = (x.points(x.measurements(q_new), "tracker") for x in (m, back))
+    np.testing.assert_allclose(b, a, atol=1e-9)
+    true, _ = _guided(robot, q_new, j, lambda s: 0.2 * _legendre(s, 3), lambda s: 0.3 * _legendre(s, 2),
+                      lambda s: 0.0)
+    geo = m.geometric_points(q_new)
+    assert np.sqrt(np.mean((a - true) ** 2)) < 0.5 * np.sqrt(np.mean((geo - true) ** 2))
