@@ -46,7 +46,8 @@ def _guided(robot, q, j, roll_mrad, pitch_mrad, lateral_mm):
     s = stroke_position(robot, q, j)
     out = p.copy()
     for i in range(len(q)):
-        rot = Rotation.from_rotvec(1e-3 * roll_mrad(s[i]) * u[i]) * Rotation.from_rotvec(1e-3 * pitch_mrad(s[i]) * across[i])
+        rot = (Rotation.from_rotvec(1e-3 * roll_mrad(s[i]) * u[i])
+               * Rotation.from_rotvec(1e-3 * pitch_mrad(s[i]) * across[i]))
         out[i] = o[i] + rot.apply(p[i] - o[i]) + lateral_mm(s[i]) * np.cross(u[i], across[i])
     return out, p
 
@@ -118,3 +119,16 @@ def test_a_guideway_with_pitch_and_yaw_along_the_stroke_is_named_transmission_st
                       lambda s: 0.0)
     geo = m.geometric_points(q_new)
     assert np.sqrt(np.mean((a - true) ** 2)) < 0.5 * np.sqrt(np.mean((geo - true) ** 2))
+
+
+def test_a_prismatic_joint_without_limits_gets_no_error_motions():
+    """The stroke is normalised by the joint's limits: an unbounded one has no stroke to normalise by, so no columns
+    and no ``stroke`` variant (rather than NaN columns)."""
+    chain = (tolalloc.robot.Joint("x", "prismatic", np.array([1.0, 0.0, 0.0]), -np.inf, np.inf),
+             tolalloc.robot.Link("l", np.array([0.0, 0.0, 100.0])))
+    robot = tolalloc.robot.Robot("rail", chain, trust_units=True)
+    q = np.linspace(0.0, 300.0, 5)[:, None]
+    B, names, _ = stroke_columns(robot, q, target_points(robot, q, T_MM))
+    assert B.shape == (5, 3, 0) and names == []
+    assert "stroke" not in variants("transmission", Measurements(q, np.zeros((5, 3)), None, None, None, None), {},
+                                    robot)

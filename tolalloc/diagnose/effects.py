@@ -38,11 +38,11 @@ signature:
                       strain-wave orders ``N`` and ``2N`` of the gear ratio -- from the robot file's reducers, or
                       found by a frequency search on the training residual (:mod:`.ratio_search`) and used only for
                       the joints whose frequency the poses resolve; ``coupling``: each joint turning in proportion
-                      to its own and the other joints' positions; ``stroke`` (robots with a prismatic joint): a linear
-                      axis' six error motions along its stroke (:mod:`tolalloc.physics.error_motions`). Every
-                      transmission variant carries a Gaussian prior per joint (``groups``; ``stroke``: one for a
-                      joint's translations, one for its rotations) fitted by marginal likelihood (:mod:`.evidence`):
-                      a ridge.
+                      to its own and the other joints' positions; ``stroke`` (a prismatic joint with a bounded
+                      stroke): a linear axis' six error motions along its stroke
+                      (:mod:`tolalloc.physics.error_motions`). Every transmission variant carries a Gaussian prior
+                      per joint (``groups``; ``stroke``: one for a joint's translations, one for its rotations) fitted
+                      by marginal likelihood (:mod:`.evidence`): a ridge.
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, guide_joints
-from tolalloc.physics.error_motions import stroke_columns
+from tolalloc.physics.error_motions import stroke_columns, stroke_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
@@ -152,7 +152,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 2 * meas.n_poses)
         ratio = ref.get("gear_ratio")
         gear = ("gear",) if ratio is not None and np.any(np.isfinite(ratio)) else ()
-        stroke = ("stroke",) if robot is not None and not robot.revolute_mask.all() else ()
+        stroke = ("stroke",) if robot is not None and stroke_joints(robot) else ()
         return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()

@@ -25,10 +25,16 @@ from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import across_axes, point_at
 
-__all__ = ["STROKE_ORDER", "stroke_position", "stroke_columns"]
+__all__ = ["STROKE_ORDER", "stroke_joints", "stroke_position", "stroke_columns"]
 
 #: Highest Legendre order of the error motions along the stroke.
 STROKE_ORDER = 3
+
+
+def stroke_joints(robot: Robot) -> list:
+    """The prismatic joints whose stroke is bounded (finite limits): those that get error motions."""
+    return [j for j, jt in enumerate(robot.joints)
+            if not jt.is_revolute and np.isfinite(robot.lower[j]) and np.isfinite(robot.upper[j])]
 
 
 def stroke_position(robot: Robot, q: np.ndarray, j: int) -> np.ndarray:
@@ -38,7 +44,8 @@ def stroke_position(robot: Robot, q: np.ndarray, j: int) -> np.ndarray:
 
 
 def stroke_columns(robot: Robot, q: np.ndarray, p_t: np.ndarray, order: int = STROKE_ORDER) -> tuple:
-    """Displacement basis of the error motions of every prismatic joint along its stroke (module docstring).
+    """Displacement basis of the error motions of every prismatic joint with a bounded stroke along it (module
+    docstring; :func:`stroke_joints`).
 
     Parameters
     ----------
@@ -57,9 +64,8 @@ def stroke_columns(robot: Robot, q: np.ndarray, p_t: np.ndarray, order: int = ST
     q = np.atleast_2d(np.asarray(q, float))
     Pm = poe_prefix(robot.screws, q)
     cols, names, groups = [], [], []
-    for j, joint in enumerate(robot.joints):
-        if joint.is_revolute:
-            continue
+    for j in stroke_joints(robot):
+        joint = robot.joints[j]
         R = Pm[:, j, :3, :3]
         axis = np.asarray(joint.axis, float) / np.linalg.norm(joint.axis)
         dirs = [R @ e for e in (axis, *across_axes(axis))]
