@@ -17,7 +17,7 @@ HUGE = 10**12
 
 
 def test_a_streamed_sample_count_runs_in_bounded_memory(monkeypatch):
-    """simulate_errors(n=1e12) streams its samples: stopped after a moment (the CLI's interrupt checkpoint), it
+    """simulate_errors(n_mc=1e12) streams its samples: stopped after a moment (the CLI's interrupt checkpoint), it
     has held well under 300 MB -- a dense draw of 1e12 samples would need 10^5 GB."""
     monkeypatch.setenv("TOLALLOC_TIME_BUDGET_S", "inf")  # hours of work: the time budget would refuse it
     monkeypatch.setenv("TOLALLOC_ANNOUNCE_S", "inf")
@@ -27,7 +27,7 @@ def test_a_streamed_sample_count_runs_in_bounded_memory(monkeypatch):
     timer.start()
     try:
         with pytest.raises(Interrupted):
-            tolalloc.simulate_errors("tool_changer", HUGE, keep_samples=0)
+            tolalloc.simulate_errors("tool_changer", monte_carlo=tolalloc.MonteCarlo(n_mc=HUGE, keep_samples=0))
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()
@@ -37,14 +37,18 @@ def test_a_streamed_sample_count_runs_in_bounded_memory(monkeypatch):
 
 
 @pytest.mark.parametrize("call, argument", [
-    (lambda: tolalloc.simulate_errors("tool_changer", HUGE, keep_samples=HUGE), "keep_samples"),
-    (lambda: tolalloc.simulate_errors("tool_changer", 100, hist_bins=HUGE), "hist_bins"),
-    (lambda: tolalloc.simulate_errors("tool_changer", 100, jobs=HUGE), "jobs"),
+    (lambda: tolalloc.simulate_errors("tool_changer", monte_carlo=tolalloc.MonteCarlo(n_mc=HUGE, keep_samples=HUGE)),
+     "MonteCarlo.keep_samples"),
+    (lambda: tolalloc.simulate_errors("tool_changer", monte_carlo=tolalloc.MonteCarlo(n_mc=100, hist_bins=HUGE)),
+     "MonteCarlo.hist_bins"),
+    (lambda: tolalloc.simulate_errors("tool_changer", monte_carlo=tolalloc.MonteCarlo(n_mc=100, jobs=HUGE)),
+     "MonteCarlo.jobs"),
     (lambda: tolalloc.plan_calibration("tool_changer", 10, n_candidates=HUGE), "n_candidates"),
     (lambda: tolalloc.plan_calibration("tool_changer", HUGE, n_candidates=2000), "n_poses"),
     (lambda: tolalloc.load_robot("tool_changer").random_q(np.random.default_rng(0), HUGE), "n"),
     (lambda: tolalloc.analyze_errors("tool_changer", sobol_n=HUGE), "sobol_n"),
-    (lambda: tolalloc.allocate_tolerances("tool_changer", correction_rounds=HUGE), "correction_rounds"),
+    (lambda: tolalloc.allocate_tolerances("tool_changer", verification=tolalloc.Verification(correction_rounds=HUGE)),
+     "Verification.correction_rounds"),
 ])
 def test_counts_whose_arrays_cannot_be_streamed_are_refused_by_name(call, argument):
     with pytest.raises(tolalloc.ArgumentError) as info:

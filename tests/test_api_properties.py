@@ -47,9 +47,9 @@ def earlier_results() -> dict:
 
         arm = two_link()
         a = tolalloc.analyze_errors(TC, radius_mm=0.25)
-        al = tolalloc.allocate_tolerances(arm, region="nominal", verify=False)
+        al = tolalloc.allocate_tolerances(arm, region="nominal", verification=False)
         plan = tolalloc.plan_calibration(arm, 4, n_candidates=8)
-        plan.save(SCRATCH / "plan.csv")
+        plan.save_plan(SCRATCH / "plan.csv")
         case = generate(arm, "none", 30, np.random.default_rng(2))
         _RESULTS.update(analysis=a, allocation=al, frame=al.to_frame(), summary=a.summary(),
                         linear=a.linear, budget=a.budget_frame(), plan=plan,

@@ -311,7 +311,7 @@ def test_cli_writes_the_standard_grades(tc, tmp_path, capsys):
     assert s["built"]["standard"] and s["cost_standard"] == pytest.approx(s["standard"]["cost"])
     assert s["cost"] == s["cost_standard"] == s["built"]["cost"] and s["cost_rounded"] >= s["cost_standard"]
     assert s["standard_premium_pct"] == pytest.approx(100 * (s["cost_standard"] / s["cost_continuous"] - 1))
-    job = allocate_tolerances("tool_changer", calibration=str(path), region="nominal", verify=False)
+    job = allocate_tolerances("tool_changer", calibration=str(path), region="nominal", verification=False)
     assert job.cost == pytest.approx(s["cost_standard"]) and job.built is job.standard
     note = job.grade_note()
     assert "standard values" in note and "holds at p at every pose" in note and "not a proven one" in note

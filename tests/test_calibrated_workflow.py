@@ -23,13 +23,16 @@ from tolalloc.workflows import allocate_tolerances
 @pytest.fixture(scope="module")
 def certified(plan_path):
     """Certified stage only, no standard grades, a small end-to-end Monte Carlo; correction=False is honoured."""
-    return allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", solver="certified", snap=False,
-                               n_mc=200, seed=4, estimator="plain", correction=False)
+    return allocate_tolerances("tool_changer", calibration=plan_path, region=tolalloc.Region(poses="nominal"),
+                               solver=tolalloc.Solver(method="certified", snap=False),
+                               verification=tolalloc.Verification(n_mc=200, seed=4, estimator="plain",
+                                                                  correction=False))
 
 
 @pytest.fixture(scope="module")
 def plain():
-    return allocate_tolerances("tool_changer", poses="nominal", snap=False, verify=False)
+    return allocate_tolerances("tool_changer", region=tolalloc.Region(poses="nominal"),
+                               solver=tolalloc.Solver(snap=False), verification=False)
 
 
 def test_solver_certified_stops_after_the_certified_stage(certified):
@@ -45,7 +48,8 @@ def test_solver_certified_stops_after_the_certified_stage(certified):
 
 
 def test_solver_exact_runs_both_stages(plan_path):
-    job = allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", snap=False, verify=False)
+    job = allocate_tolerances("tool_changer", calibration=plan_path, region=tolalloc.Region(poses="nominal"),
+                              solver=tolalloc.Solver(snap=False), verification=False)
     assert job.result.exact_accepted and job.summary()["design"] == "exact"
     assert job.stages() == "certified -> exact" and "exact stage: not run" not in job.text()
     assert "end-to-end Monte Carlo: not run (verification=False)" in job.text()
@@ -160,8 +164,8 @@ def test_unidentifiable_parameters_are_split_by_what_the_allocation_did(certifie
 def test_verified_means_the_end_to_end_monte_carlo_ran_and_passed(certified, plan_path):
     assert certified.end_to_end is not None and certified.end_to_end.passed
     assert certified.verified is True and certified.ok
-    unverified = allocate_tolerances("tool_changer", calibration=plan_path, poses="nominal", solver="certified",
-                                     snap=False, verify=False)
+    unverified = allocate_tolerances("tool_changer", calibration=plan_path, region=tolalloc.Region(poses="nominal"),
+                                     solver=tolalloc.Solver(method="certified", snap=False), verification=False)
     assert unverified.ok and unverified.verified is False  # as ToleranceAllocation.verified: False when none ran
 
 
@@ -175,17 +179,18 @@ def test_the_plan_calibration_result_is_a_calibration(designed, tmp_path):
     from tolalloc.workflows.calibrated import PLAN_IN_MEMORY
     from tolalloc.workflows.reproduce import allocation_command
 
-    kw = dict(poses="nominal", solver="certified", snap=False, verify=False)
+    kw = dict(region=tolalloc.Region(poses="nominal"), solver=tolalloc.Solver(method="certified", snap=False),
+              verification=False)
     job = allocate_tolerances("tool_changer", calibration=designed, **kw)
     assert job.plan is designed.plan and job.plan_source == PLAN_IN_MEMORY and job.plan_file is None
     assert job.summary()["plan_file"] is None and PLAN_IN_MEMORY in job.text()
-    designed.save(tmp_path / "plan.csv")
+    designed.save_plan(tmp_path / "plan.csv")
     from_file = allocate_tolerances("tool_changer", calibration=tmp_path / "plan.csv", **kw)
     assert from_file.plan_file == str(tmp_path / "plan.csv")
     assert job.cost == pytest.approx(from_file.cost, rel=1e-9)
     cli, python, notes = allocation_command(job)  # the reproduce command asks for the plan saved to a file
     assert "--calibration PLAN.csv" in cli and "calibration='PLAN.csv'" in python
-    assert any("plan.save('PLAN.csv')" in n for n in notes)
+    assert any("plan.save_plan('PLAN.csv')" in n for n in notes)
 
 
 def test_a_plan_designed_for_another_robot_is_refused_in_one_line(designed):
@@ -194,7 +199,8 @@ def test_a_plan_designed_for_another_robot_is_refused_in_one_line(designed):
     other = replace(designed, robot=tolalloc.load_robot("ur10"))
     with pytest.raises(tolalloc.TolallocError, match="designed for the robot 'ur10', but the allocation is for "
                                                      "'tool_changer'") as err:
-        allocate_tolerances("tool_changer", calibration=other, poses="nominal", verify=False)
+        allocate_tolerances("tool_changer", calibration=other, region=tolalloc.Region(poses="nominal"),
+                            verification=False)
     assert "\n" not in str(err.value)
     with pytest.raises(tolalloc.TolallocError, match="expected the CalibrationPlanDesign plan_calibration returns"):
-        allocate_tolerances("tool_changer", calibration=3, poses="nominal", verify=False)
+        allocate_tolerances("tool_changer", calibration=3, region=tolalloc.Region(poses="nominal"), verification=False)

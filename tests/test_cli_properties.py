@@ -288,8 +288,9 @@ def test_joint_value_inputs_share_one_unit_rule(tmp_path):
     np.savetxt(tmp_path / "traj.csv", rad, delimiter=",")
     calls = {
         "q_deg_mm": lambda **kw: tolalloc.analyze_errors(robot, q_deg_mm=rad, **kw),
-        "region": lambda **kw: tolalloc.allocate_tolerances(robot, region=rad, verify=False, **kw),
-        "region ": lambda **kw: tolalloc.allocate_tolerances(robot, region=tmp_path / "traj.csv", verify=False, **kw),
+        "region": lambda **kw: tolalloc.allocate_tolerances(robot, region=rad, verification=False, **kw),
+        "region ": lambda **kw: tolalloc.allocate_tolerances(robot, region=tmp_path / "traj.csv",
+                                                             verification=False, **kw),
         "train": lambda **kw: tolalloc.diagnose_measurements(robot, frame, folds=2, **kw),
         "train ": lambda **kw: tolalloc.diagnose_measurements(robot, tmp_path / "train.csv", folds=2, **kw),
     }

@@ -43,9 +43,10 @@ def files(tmp_path_factory):
     return folder
 
 
-def _run(files, test="test.csv", **kw):
+def _run(files, test="test.csv", **refit):
+    """The diagnosis of ``test`` re-registered on the fields ``refit`` of its :class:`tolalloc.Refit`."""
     return diagnose_measurements("tool_changer", files / "train.csv", files / test, folds=3,
-                                 **({"test_frame": "refit"} | kw))
+                                 test_frame=tolalloc.Refit(**refit))
 
 
 def test_given_rows_register_the_frame_and_are_never_scored(files):
@@ -85,7 +86,7 @@ def test_rows_of_a_previous_run_reproduce_its_split_and_figures(files):
 
 
 def test_calibration_update_on_given_rows_says_so(files):
-    job = _run(files, register_rows=list(range(1, 13)), register_update="calibration")
+    job = _run(files, register_rows=list(range(1, 13)), update="calibration")
     reg = job.summary()["test"]["registration"]
     assert reg["update"] == "calibration" and reg["registration_rows"] == list(range(1, 13))
     assert reg["method"].startswith("the rows given as registration rows") and "k-means" not in reg["method"]
@@ -118,11 +119,19 @@ def test_split_from_rows_numbers_rows_as_measurements_do():
      r"expected data rows of the test file, numbered from 1 .*: whole numbers .* got 2.5 among the 3 rows given"),
     (dict(register_rows=[0, 1, 2, 3, 4]), r"numbered from 1 .*: whole numbers .* got 0 among the 5 rows given"),
     (dict(register_rows="1-10"), r"expected a list of data rows of the test file, .* got '1-10'"),
-    (dict(register_rows=range(1, 11), test_frame="same"), r"register_rows needs `test_frame` refit"),
 ])
 def test_refusals(files, kw, match):
     with pytest.raises(TolallocError, match=match):
         _run(files, **kw)
+
+
+def test_the_old_keyword_without_a_refit_is_refused(files):
+    """``register_rows``, the keyword before :class:`tolalloc.Refit` (deprecated), is refused with the test file in
+    the same frame (only a Refit re-registers)."""
+    with pytest.raises(TolallocError, match=r"register_rows needs `test_frame` refit"), \
+            pytest.warns(DeprecationWarning, match=r"register_rows -> test_frame=tolalloc.Refit\(register_rows=...\)"):
+        diagnose_measurements("tool_changer", files / "train.csv", files / "test.csv", folds=3, test_frame="same",
+                              register_rows=range(1, 11))
 
 
 def test_library_refusals_before_any_fit(files):

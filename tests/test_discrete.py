@@ -293,7 +293,7 @@ def test_a_part_the_costs_file_fixes_is_in_the_standard_design_cost(tmp_path):
 
     path = tmp_path / "costs.toml"
     path.write_text("[parameters.e1x]\nfixed = true\ntol_deg = 0.002\n")
-    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", costs=path, verify=False)
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", costs=path, verification=False)
     frame = res.to_frame()
     assert frame.loc[frame.parameter == "e1x", "role"].item() == "fixed"
     assert res.cost == pytest.approx(frame["cost"].sum(), rel=1e-12)

@@ -28,7 +28,7 @@ ARCSEC = np.pi / 648000.0
 
 @pytest.fixture(scope="module")
 def job():
-    return tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False, progress=False)
+    return tolalloc.allocate_tolerances("tool_changer", region="nominal", verification=False, progress=False)
 
 
 @pytest.fixture(scope="module")

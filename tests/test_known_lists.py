@@ -118,15 +118,18 @@ TRIGGERS = {
         lambda tmp: __import__("tolalloc.errormodel", fromlist=["x"]).build_error_model(_crowded_robot(), "nope"),
         ["generic", "tight", "loose"]),
     ("workflows/checks.py", "check_name"): (
-        lambda tmp: tolalloc.analyze_errors(_crowded_robot(), sigma_set="nope"), ["generic", "tight", "loose"]),
+        lambda tmp: tolalloc.analyze_errors(
+            _crowded_robot(), error_model=tolalloc.ErrorModelOptions(sigma_set="nope")), ["generic", "tight", "loose"]),
     ("workflows/inputs.py", "resolve_poses"): (
         lambda tmp: tolalloc.analyze_errors(_crowded_robot(), poses="nope"), ["nominal", "working", "reach"]),
     ("workflows/inputs.py", "sigma_overrides"): (
-        lambda tmp: tolalloc.analyze_errors("tool_changer", sigma={"nope": 0.1}), ["dl1", "dl2"]),
+        lambda tmp: tolalloc.analyze_errors(
+            "tool_changer", error_model=tolalloc.ErrorModelOptions(sigma={"nope": 0.1})), ["dl1", "dl2"]),
     ("workflows/inputs.py", "error_model"): (
-        lambda tmp: tolalloc.analyze_errors("tool_changer", exclude=["nope"]), ["dl1", "dl2"]),
+        lambda tmp: tolalloc.analyze_errors(
+            "tool_changer", error_model=tolalloc.ErrorModelOptions(exclude=["nope"])), ["dl1", "dl2"]),
     ("workflows/inputs.py", "resolve_region"): (
-        lambda tmp: tolalloc.allocate_tolerances(_crowded_robot(), region="nope", verify=False),
+        lambda tmp: tolalloc.allocate_tolerances(_crowded_robot(), region="nope", verification=False),
         ["limits", "working", "reach", "nominal"]),
     ("allocate/calibrated/design.py", "resolve_region"): (
         lambda tmp: __import__("tolalloc.allocate.calibrated.design", fromlist=["x"]).resolve_region(
@@ -135,7 +138,7 @@ TRIGGERS = {
         lambda tmp: tolalloc.plan_calibration(_crowded_robot(), 4, region="nope"), ["limits", "working", "reach"]),
     ("allocate/costs.py", "_entries"): (
         lambda tmp: tolalloc.allocate_tolerances("tool_changer", costs=_costs(tmp, "[parameters.nope]\na = 1\n"),
-                                                 verify=False), ["dl1", "dl2"]),
+                                                 verification=False), ["dl1", "dl2"]),
     ("calibration/split.py", "split_errors"): (
         lambda tmp: tolalloc.plan_calibration("tool_changer", 4, n_candidates=16,
                                               costs=_costs(tmp, "[calibration.kinds.nope]\nsystematic = 0.5\n")),
@@ -177,7 +180,7 @@ def test_region_list_of_the_tool_changer_names_working_once():
     """The tool_changer has a box region and a pose set both called ``working``: one name to type, listed once,
     after the built-in box and before the built-in pose set."""
     with pytest.raises(tolalloc.ArgumentError) as info:
-        tolalloc.allocate_tolerances("tool_changer", region="nonexistent_box", verify=False)
+        tolalloc.allocate_tolerances("tool_changer", region="nonexistent_box", verification=False)
     assert _listed(str(info.value)) == ["limits", "working", "nominal"]
     assert "or give a path to a .csv file" in str(info.value)
 

@@ -28,7 +28,7 @@ def _no_space(*args, **kwargs):
 
 @pytest.fixture(scope="module")
 def sim():
-    return tolalloc.simulate_errors("tool_changer", n=200, seed=1, progress=False)
+    return tolalloc.simulate_errors("tool_changer", n_mc=200, seed=1, progress=False)
 
 
 def test_full_disk_on_the_command_line_is_one_error_line(tmp_path, monkeypatch, capsys):

@@ -42,9 +42,11 @@ def test_job_options_are_checked(tmp_path):
         tolalloc.allocate_tolerances("ur10", parts={"payload": 3})
     with pytest.raises(tolalloc.TolallocError, match=r"parts: the design with bought parts takes the position "
                                                      r"requirement alone, without a calibration plan"):
-        tolalloc.allocate_tolerances("ur10", parts=True, angle_radius_deg=0.1)
+        tolalloc.allocate_tolerances("ur10", [tolalloc.PositionRequirement(),
+                                              tolalloc.OrientationRequirement(radius_deg=0.1)], parts=True)
     with pytest.raises(tolalloc.TolallocError, match=r"parts: the design with bought parts takes the position"):
-        tolalloc.allocate_tolerances("ur10", parts={}, angle_radius_deg=0.1)  # no options: the defaults, not ignored
+        tolalloc.allocate_tolerances("ur10", [tolalloc.PositionRequirement(),  # no options: the defaults, not ignored
+                                              tolalloc.OrientationRequirement(radius_deg=0.1)], parts={})
     bare = tmp_path / "bare.toml"
     bare.write_text(ARM.split("[components.payload]")[0])  # the arm without its [components] section
     with pytest.raises(tolalloc.TolallocError, match=r"parts: robot 'arm3' names no catalogue slots"):

@@ -110,7 +110,7 @@ def test_the_allocation_names_its_stages_by_default_when_stderr_is_a_log(capsys)
     stages = re.findall(STAGE_LINE.format(job="allocate tool_changer"), err, re.M)
     assert stages[:2] == ["exact design and standard grades", "Monte Carlo verification (500 samples per pose)"]
     assert len(stages) == err.count("\n") and "\r" not in err  # nothing else: no bar
-    tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False, progress=False)
+    tolalloc.allocate_tolerances("tool_changer", region="nominal", verification=False, progress=False)
     assert capsys.readouterr().err == ""
 
 

@@ -106,9 +106,11 @@ def test_rotation_static_joints_are_probed_with_uneven_variances():
 
 def test_allocation_summary_and_text_state_both_requirements(tmp_path):
     (tmp_path / "costs.toml").write_text("[parameters.e1x]\nfixed = true\ntol_deg = 0.002\n")
-    res = tolalloc.allocate_tolerances(robot_from_chain_dict(YAW_PITCH), radius_mm=5.0, angle_radius_deg=0.05,
-                                       costs=tmp_path / "costs.toml", coverage_n=1000, verify=False, snap=False,
-                                       progress=False)
+    res = tolalloc.allocate_tolerances(robot_from_chain_dict(YAW_PITCH),
+                                       [tolalloc.PositionRequirement(radius_mm=5.0),
+                                        tolalloc.OrientationRequirement(radius_deg=0.05)],
+                                       costs=tmp_path / "costs.toml", region=tolalloc.Region(coverage_n=1000),
+                                       verification=False, solver=tolalloc.Solver(snap=False), progress=False)
     s = res.summary()
     assert res.ok and s["region"]["converged"] and s["region"]["worst_p_angle_linear"] >= 0.95 - 1e-4
     c = s["coverage"]
@@ -124,8 +126,12 @@ def test_report_card_gives_the_orientation_coverage(tmp_path):
     from test_report_html import Page
 
     # the two-joint robot of this file over the box of its limits (the card does not depend on the robot's size)
-    res = tolalloc.allocate_tolerances(robot_from_chain_dict(YAW_PITCH), radius_mm=0.3, angle_radius_deg=0.05,
-                                       region="limits", n_mc=500, coverage_n=500, snap=False, correction=False)
+    res = tolalloc.allocate_tolerances(robot_from_chain_dict(YAW_PITCH),
+                                       [tolalloc.PositionRequirement(radius_mm=0.3),
+                                        tolalloc.OrientationRequirement(radius_deg=0.05)],
+                                       region=tolalloc.Region("limits", coverage_n=500),
+                                       solver=tolalloc.Solver(snap=False),
+                                       verification=tolalloc.Verification(n_mc=500, correction=False))
     assert res.summary()["coverage"]["min_p_angle"] is not None
     res.save(tmp_path / "rep", report=True)
     page = Page((tmp_path / "rep" / "report.html").read_text(encoding="utf-8"))
@@ -137,8 +143,10 @@ def test_region_infeasible_by_its_orientation_requirement_names_it_in_deg(tmp_pa
     # near the end of joint 1's range; the message names the orientation requirement with its own numbers
     (tmp_path / "costs.toml").write_text("[parameters.e1x]\nfixed = true\ntol_deg = 0.2\n")
     robot = robot_from_chain_dict(YAW_PITCH)
-    res = tolalloc.allocate_tolerances(robot, region="working", radius_mm=5.0, angle_radius_deg=0.05,
-                                       costs=tmp_path / "costs.toml", verify=False, snap=False, progress=False)
+    res = tolalloc.allocate_tolerances(robot, [tolalloc.PositionRequirement(radius_mm=5.0),
+                                               tolalloc.OrientationRequirement(radius_deg=0.05)],
+                                       region="working", costs=tmp_path / "costs.toml", verification=False,
+                                       solver=tolalloc.Solver(snap=False), progress=False)
     msg = res.infeasible
     m = re.fullmatch(r"`region` working: even with every tolerance at its tightest process limit, the orientation "
                      r"requirement P\(\|dw\| < 0\.05 deg\) >= 0\.95 cannot be met \(at the worst pose found for it, "

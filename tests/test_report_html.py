@@ -116,7 +116,7 @@ class Page(HTMLParser):
 # ---------------------------------------------------------------------------------------------- fixtures
 @pytest.fixture(scope="module")
 def allocation(tmp_path_factory):
-    job = allocate_tolerances("tool_changer", region="nominal", n_mc=2000, seed=3)
+    job = allocate_tolerances("tool_changer", region="nominal", verification=tolalloc.Verification(n_mc=2000, seed=3))
     out = tmp_path_factory.mktemp("alloc") / "res"
     names = [p.name for p in job.save(out, report=True)]
     return job, out, names, Page((out / "report.html").read_text(encoding="utf-8"))
@@ -131,7 +131,7 @@ def calibrated(tmp_path_factory):
     folder = tmp_path_factory.mktemp("calib")
     plan = folder / "plan.csv"
     write_plan(make_plan(tc, tc.lower + (tc.upper - tc.lower) * rng.random((12, 6))), tc, plan)
-    job = allocate_tolerances("tool_changer", calibration=str(plan), n_mc=200, coverage_n=5000)
+    job = allocate_tolerances("tool_changer", calibration=str(plan), region=tolalloc.Region(coverage_n=5000), n_mc=200)
     names = [p.name for p in job.save(folder / "res", report=True)]
     return job, folder / "res", names, Page((folder / "res" / "report.html").read_text(encoding="utf-8"))
 
@@ -291,10 +291,11 @@ def test_allocation_command_reproduces_the_tables(allocation, tmp_path):
     assert call.keywords and all(k.arg in params for k in call.keywords)
 
 
-@pytest.mark.parametrize("kw, word", [(dict(verify=False), "NOT VERIFIED"), (dict(radius_mm=0.005), "INFEASIBLE")])
+@pytest.mark.parametrize("kw, word", [(dict(verification=False), "NOT VERIFIED"),
+                                      (dict(n_mc=2000, radius_mm=0.005), "INFEASIBLE")])
 def test_allocation_without_verification_or_design(kw, word, tmp_path):
     """No Monte Carlo: the pose table holds the linear P only; no design: the verdict says so, nothing verified."""
-    job = allocate_tolerances("tool_changer", region="nominal", n_mc=2000, **kw)
+    job = allocate_tolerances("tool_changer", region="nominal", **kw)
     job.save(tmp_path / "r", report=True)
     page = Page((tmp_path / "r" / "report.html").read_text(encoding="utf-8"))
     assert page.text("verdict").startswith(word)
@@ -303,7 +304,7 @@ def test_allocation_without_verification_or_design(kw, word, tmp_path):
     assert page.column("pose-table", "p_linear") == [f"{row['p_linear']:.4f}" for row in s["poses"]]
     assert page.column("tolerance-table", "parameter") == list(job.to_frame()["parameter"])
     assert len(page.images) == 1  # the error budget; no verification figures
-    assert ("--no-verify" in page.text("command-cli")) == (not kw.get("verify", True))
+    assert ("--no-verify" in page.text("command-cli")) == (kw.get("verification") is False)
     assert "verified" not in page.text("design-note").replace("NOT verified", "")  # nothing verified, nothing said so
     if word == "NOT VERIFIED":
         assert job.ok and not job.verified and not s["verified"] and "NOT verified by Monte Carlo" in s["tables_design"]
@@ -342,8 +343,8 @@ def test_calibrated_command_gives_back_the_call(calibrated, monkeypatch, tmp_pat
 
     job = calibrated[0]
     assert job.region is not None and job.inputs["coverage_n"] == 5000
-    assert_reproduced(job, dict(robot="tool_changer", calibration=job.plan_source, n_mc=200, coverage_n=5000),
-                      monkeypatch, tmp_path)
+    assert_reproduced(job, dict(robot="tool_changer", calibration=job.plan_source, n_mc=200,
+                                region=tolalloc.Region(coverage_n=5000)), monkeypatch, tmp_path)
 
 
 # ---------------------------------------------------------------------------------------------- diagnosis

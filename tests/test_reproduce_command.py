@@ -85,21 +85,25 @@ def assert_reproduced(job, original: dict, monkeypatch, tmp_path) -> None:
 
 
 def test_allocation_options_are_reproduced(monkeypatch, tmp_path):
-    original = dict(robot="tool_changer", poses="nominal", radius_mm=0.3, prob=0.9, z=2.5, solver="certified",
-                    snap=False, angle_step_deg=0.001, n_mc=200, seed=5, estimator="plain", correction_rounds=1)
+    original = dict(robot="tool_changer", radius_mm=0.3, prob=0.9, region=tolalloc.Region(poses="nominal"),
+                    costs=tolalloc.Costs(z=2.5), solver=tolalloc.Solver(method="certified", snap=False,
+                                                                        angle_step_deg=0.001),
+                    verification=tolalloc.Verification(n_mc=200, seed=5, estimator="plain", correction_rounds=1))
     job = allocate_tolerances(**original)
     assert job.inputs["correction_rounds"] == 1 and job.inputs["snap"] is False
     assert_reproduced(job, original, monkeypatch, tmp_path)
 
 
 def test_allocation_without_verification_or_correction_is_reproduced(monkeypatch, tmp_path):
-    original = dict(robot="tool_changer", poses="nominal", verify=False, correction=False, seed=2)
+    original = dict(robot="tool_changer", region=tolalloc.Region(poses="nominal"),
+                    verification=tolalloc.Verification(n_mc=None, correction=False, seed=2))
     assert_reproduced(allocate_tolerances(**original), original, monkeypatch, tmp_path)
 
 
 def test_calibrated_options_are_reproduced(plan_path, monkeypatch, tmp_path):
-    original = dict(robot="tool_changer", calibration=plan_path, poses="nominal", solver="certified", snap=False,
-                    n_mc=200, seed=4, estimator="plain", correction=False)
+    original = dict(robot="tool_changer", calibration=plan_path, region=tolalloc.Region(poses="nominal"),
+                    solver=tolalloc.Solver(method="certified", snap=False),
+                    verification=tolalloc.Verification(n_mc=200, seed=4, estimator="plain", correction=False))
     job = allocate_tolerances(**original)
     assert job.inputs["correction_rounds"] is None  # no correction loop after calibration
     assert_reproduced(job, original, monkeypatch, tmp_path)

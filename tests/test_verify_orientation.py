@@ -104,8 +104,10 @@ def test_orientation_target_rule_and_problem_target():
 @pytest.fixture(scope="module")
 def ur10_orientation():
     # ur10, r = 0.5 mm and 0.05 deg at p = 0.95: the exact design sits on the orientation requirement at every pose
-    return tolalloc.allocate_tolerances("ur10", radius_mm=0.5, angle_radius_deg=0.05, n_mc=2000, snap=False,
-                                        correction=False)
+    return tolalloc.allocate_tolerances("ur10", [tolalloc.PositionRequirement(radius_mm=0.5),
+                                                 tolalloc.OrientationRequirement(radius_deg=0.05)],
+                                        solver=tolalloc.Solver(snap=False),
+                                        verification=tolalloc.Verification(n_mc=2000, correction=False))
 
 
 def test_allocation_with_orientation_below_p_is_not_demonstrated(ur10_orientation):

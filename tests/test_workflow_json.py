@@ -24,7 +24,7 @@ def test_summary_is_json_as_it_is(job):
     if job == "analysis":
         res = tolalloc.analyze_errors("tool_changer", radius_mm=0.25)
     elif job == "allocation":
-        res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False)
+        res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verification=False)
     else:
         robot = tolalloc.load_robot("ur10")
         case = generate(robot, "none", 40, np.random.default_rng(1))

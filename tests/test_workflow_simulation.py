@@ -22,7 +22,8 @@ def test_a_radius_not_simulated_is_refused_naming_the_simulated_ones():
 
     from tolalloc.montecarlo import RadiusNotSimulated
 
-    sim = tolalloc.simulate_errors("tool_changer", 300, seed=1, radius_mm=[0.25, 25.0], estimator="paired")
+    sim = tolalloc.simulate_errors("tool_changer", radius_mm=[0.25, 25.0],
+                                   monte_carlo=tolalloc.MonteCarlo(n_mc=300, seed=1, estimator="paired"))
     with pytest.raises(RadiusNotSimulated, match=r"^radius 0.3 mm was not simulated; simulated radii: 0.25 mm, 25 mm\. "
                                                  r"Simulate it with radius_mm=\[0.25, 25, 0.3\] \(simulate_errors; "
                                                  r"--radius-mm\): the same seed gives the same samples\.$") as info:

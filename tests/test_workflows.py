@@ -85,8 +85,8 @@ def test_allocate_cli_equals_api(tmp_path, capsys):
             "--coverage-n", "1000", "--seed", "3"]
     assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
     printed = capsys.readouterr().out
-    res = tolalloc.allocate_tolerances("tool_changer", region="working", n_mc=2000, coverage_n=1000,
-                                       seed=3)
+    res = tolalloc.allocate_tolerances("tool_changer", region=tolalloc.Region("working", coverage_n=1000),
+                                       verification=tolalloc.Verification(n_mc=2000, seed=3))
     names = [p.name for p in res.save(tmp_path / "api")]
     assert "verification.csv" in names and res.ok
     assert_same_files(tmp_path / "cli", tmp_path / "api")
@@ -101,13 +101,14 @@ def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
     api_plan = tolalloc.plan_calibration("tool_changer", 8, n_candidates=64)
     stages = re.findall(r"^plan_calibration tool_changer: (.+): \d+\.\d+ s$", capsys.readouterr().err, re.M)
     assert stages == ["64 candidate poses", "A-optimal 8-pose plan"]  # stderr is no terminal: one line each
-    api_plan.save(tmp_path / "plan_api.csv")
+    api_plan.save_plan(tmp_path / "plan_api.csv")
     assert plan.read_bytes() == (tmp_path / "plan_api.csv").read_bytes()
     # at the working poses without the standard-grade search (the region path and the standard grades of the same call
     # are the tutorial's and the report test's)
     rc = main(["allocate", "tool_changer", "--calibration", str(plan), "--poses", "working", "--no-snap", "--n-mc",
                "200", "--out", str(tmp_path / "cli")])
-    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, poses="working", snap=False, n_mc=200)
+    res = tolalloc.allocate_tolerances("tool_changer", calibration=plan, region=tolalloc.Region(poses="working"),
+                                       solver=tolalloc.Solver(snap=False), n_mc=200)
     assert isinstance(res, tolalloc.CalibratedToleranceAllocation) and rc == (0 if res.ok else 1)
     res.save(tmp_path / "api")
     assert_same_files(tmp_path / "cli", tmp_path / "api")
@@ -116,7 +117,8 @@ def test_calibrated_allocate_cli_equals_api(tmp_path, capsys):
 def test_analyze_cli_equals_api(tmp_path):
     argv = ["analyze", "ur10", "--poses", "working", "--radius-mm", "0.5", "--prob", "0.9", "--clearance"]
     assert main([*argv, "--out", str(tmp_path / "cli"), "--json", str(tmp_path / "cli.json")]) == 0
-    res = tolalloc.analyze_errors("ur10", poses="working", radius_mm=0.5, prob=0.9, clearance=True)
+    res = tolalloc.analyze_errors("ur10", poses="working", radius_mm=0.5, prob=0.9,
+                                  error_model=tolalloc.ErrorModelOptions(clearance=True))
     res.save(tmp_path / "api", json=tmp_path / "api.json")
     assert_same_files(tmp_path / "cli", tmp_path / "api")
     assert (tmp_path / "cli.json").read_bytes() == (tmp_path / "api.json").read_bytes()
@@ -125,7 +127,8 @@ def test_analyze_cli_equals_api(tmp_path):
 def test_mc_cli_equals_api(tmp_path):
     argv = ["mc", "tool_changer", "--n", "3000", "--seed", "7", "--pose", "15,30,-10,0,-20,-5", "--hist-bins", "20"]
     assert main([*argv, "--out", str(tmp_path / "cli")]) == 0
-    res = tolalloc.simulate_errors("tool_changer", 3000, seed=7, q_deg_mm=[15, 30, -10, 0, -20, -5], hist_bins=20)
+    res = tolalloc.simulate_errors("tool_changer", q_deg_mm=[15, 30, -10, 0, -20, -5],
+                                   monte_carlo=tolalloc.MonteCarlo(n_mc=3000, seed=7, hist_bins=20))
     assert {p.name for p in res.save(tmp_path / "api")} | {MANIFEST} == {p.name for p in (tmp_path / "api").iterdir()}
     assert_same_files(tmp_path / "cli", tmp_path / "api")
 
@@ -201,7 +204,7 @@ def test_a_certified_verification_says_its_second_looks_are_counted_everywhere()
 
 
 def test_an_unverified_allocation_never_says_verified(tmp_path):
-    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verify=False)
+    res = tolalloc.allocate_tolerances("tool_changer", region="nominal", verification=False)
     assert res.ok and not res.verified  # ok: nothing that was checked failed; verified: nothing was run
     note = res.design_note()
     assert note.startswith("standard grades (discrete-exact), the design to build; NOT verified by Monte Carlo")
@@ -272,17 +275,29 @@ def test_bad_input_raises_project_errors_naming_the_argument(call, exc, pattern)
 Q1 = [15, 30, -10, 0, -20, -5]
 
 
+def _old(call):
+    """``call``, made with a deprecated keyword, with its DeprecationWarning asserted."""
+    def run():
+        with pytest.warns(DeprecationWarning, match="are deprecated"):
+            return call()
+    return run
+
+
 @pytest.mark.parametrize("call, argument, pattern", [
-    (lambda: tolalloc.allocate_tolerances("tool_changer", poses="working", region="working", verify=False), "region",
-     r"^region: 'working' and `poses` 'working' both say where the requirement holds; give one of them"),
+    (lambda: tolalloc.allocate_tolerances("tool_changer", region=tolalloc.Region(where="working", poses="working"),
+                                          verification=False), "Region.where",
+     r"^Region.where: 'working' and `poses` 'working' both say where the requirement holds; give one of them"),
     (lambda: tolalloc.analyze_errors("tool_changer", poses="working", q_deg_mm=Q1), "q_deg_mm",
      r"^q_deg_mm: list \[15, .*\] and `poses` 'working' both give the poses; give one of them"),
     (lambda: tolalloc.simulate_errors("tool_changer", 10, poses="working", q_deg_mm=Q1), "q_deg_mm",
      r"^q_deg_mm: .* and `poses` 'working' both give the poses; give one of them"),
-    (lambda: tolalloc.simulate_errors("tool_changer", 10, angle_radius_deg=0.1, angle_radius_rad=0.002),
+    # the old keywords (DeprecationWarning asserted): each meets the argument that replaced it, or reads nothing
+    (_old(lambda: tolalloc.allocate_tolerances("tool_changer", poses="working", region="working", verification=False)),
+     "region", r"^region: 'working' and `poses` 'working' both say where the requirement holds; give one of them"),
+    (_old(lambda: tolalloc.simulate_errors("tool_changer", 10, angle_radius_deg=0.1, angle_radius_rad=0.002)),
      "angle_radius_rad", r"^angle_radius_rad 0.002 and `angle_radius_deg` 0.1 both give the radii of the rotation "
                          r"error; give angle_radius_deg only"),
-    (lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, radius_mm=0.1), "radius_mm",
+    (_old(lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, radius_mm=0.1)), "radius_mm",
      r"^radius_mm 0.1 is read only for a plan designed for an allocation, but `for_allocation` is off"),
     (lambda: tolalloc.plan_calibration("tool_changer", 8, n_candidates=64, random_plans=5), "random_plans",
      r"^random_plans 5 is read only .* add `for_allocation`"),
@@ -314,8 +329,8 @@ def test_radians_are_accepted_when_trusted():
 def test_argument_errors_read_as_flags_on_the_command_line(capsys):
     assert main(["allocate", "tool_changer", "--prob", "1.5", "--no-verify"]) == 2
     assert capsys.readouterr().err.startswith("error: --prob: expected a probability strictly between 0 and 1")
-    with pytest.raises(tolalloc.ArgumentError) as info:
-        tolalloc.allocate_tolerances("tool_changer", angle_prob=0.9)
+    with pytest.raises(tolalloc.ArgumentError) as info, pytest.warns(DeprecationWarning, match="angle_prob"):
+        tolalloc.allocate_tolerances("tool_changer", angle_prob=0.9)  # the old keyword, named as given
     assert info.value.argument == "angle_prob" and "`angle_radius_deg`" in str(info.value)
     assert main(["allocate", "tool_changer", "--angle-prob", "0.9", "--no-verify"]) == 2
     assert "--angle-prob 0.9 needs an orientation requirement: add --angle-radius-deg" in capsys.readouterr().err
@@ -355,8 +370,9 @@ def test_plan_designed_for_the_allocation_against_random_plans(tmp_path):
     assert rnd["n_random"] == 12 and rnd["designed_worst_p"] >= rnd["random_p90"]
     assert rnd["designed_worst_p"] <= rnd["all_candidates_worst_p"] + 1e-9  # no plan beats measuring every candidate
     assert "random 10-pose plans" in d.text()
-    d.save(tmp_path / "plan.csv")
-    res = tolalloc.allocate_tolerances("ur10", calibration=tmp_path / "plan.csv", snap=False, verify=False)
+    d.save_plan(tmp_path / "plan.csv")
+    res = tolalloc.allocate_tolerances("ur10", calibration=tmp_path / "plan.csv", solver=tolalloc.Solver(snap=False),
+                                       verification=False)
     assert res.continuous_cost == pytest.approx(fa["cost"], rel=1e-6)
 
 
@@ -367,7 +383,7 @@ def test_a_robot_without_a_working_set_is_allocated_at_the_nominal_pose_with_a_w
     with pytest.warns(UserWarning, match=r"^robot 'arm' has no working region or pose set: allocated at the nominal "
                                          r"pose only \(1 pose\); for the working region pass region='limits' "
                                          r"\(--region limits"):
-        res = tolalloc.allocate_tolerances(arm, verify=False)
+        res = tolalloc.allocate_tolerances(arm, verification=False)
     assert res.problem.n_poses == 1
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # asked for, or a robot with a working set: no warning

@@ -129,7 +129,7 @@ def _allocation_checks(job, inp: dict, notes: list) -> dict:
     if calibration is not None and getattr(job, "plan_file", "") is None:  # a plan_calibration result, not a file
         kw["calibration"] = "PLAN.csv"
         notes.append("The calibration plan was given as a plan_calibration result, not a file: save it "
-                     "(plan.save('PLAN.csv')) and put its path in place of PLAN.csv.")
+                     "(plan.save_plan('PLAN.csv')) and put its path in place of PLAN.csv.")
     elif calibration is not None:
         kw["calibration"] = str(calibration)
     snap = inp.get("snap", getattr(job.result, "standard", "n/a") is not None)
