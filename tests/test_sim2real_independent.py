@@ -1537,3 +1537,173 @@ def test_set_l_every_kind_lies_in_its_true_structure_and_known_answers():
     omega = 1000 * kin.G * 2.0 - lb.decompression(ap, rock)[0]
     assert omega > 0
     assert lb.loose_part(ap, rock) == pytest.approx(np.array([[0, 0, 0], [0, 0, 2000 * R * omega]]), abs=1e-6)
+
+
+def test_set_m_cases_kinds_and_determinism():
+    """Set M: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-M
+    kind alone (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a bar or
+    jaw case's target sits on the bar's end or the finger's tip, its part on the bar's middle or between the fingers,
+    its blocks both hold a part and not; a docked cart's blocks are separated by production periods."""
+    from sim2real_indep import effects_m as em
+
+    _assert_set_module("M", 40_7013, em, ("gear", "wet_arm"))
+    for name in ("effects_m", "effects_m_joint", "effects_m_body", "effects_m_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_m" in _imports(STUDY / "generator.py")
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert em.probe_hook(("sag", "grip_spread"), probe, "ur10") is probe
+    assert em.payload_hook(("sag",), com, probe) is com
+    end = em.probe_hook(("tie_rod_bar",), probe, "kr16_like")
+    assert end == pytest.approx([0.6 * (600 + 300 * 8 / 95), -0.8 * (600 + 300 * 8 / 95), 60 + 0.4 * 12])
+    assert em.payload_hook(("tie_rod_bar",), com, end) == pytest.approx(end / 2)
+    tip = em.probe_hook(("jaw_play",), probe, "tool_changer")
+    assert tip == pytest.approx([0.6 * (120 + 80 * 8 / 95), -0.8 * (120 + 80 * 8 / 95), 300 + 150 * 12 / 13])
+    assert em.payload_hook(("jaw_play",), com, tip) == pytest.approx([0, 0, 0.85 * tip[2]] + com / 4)
+    for seed in range(4):
+        steps = em.session_options("ur10", ("jaw_play",), np.random.default_rng(seed),
+                                   {"blocks": 2, "gap_kind": "none"})["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+        opts = em.session_options("kr16_like", ("cart_dock",), np.random.default_rng(seed),
+                                  {"blocks": 2, "gap_kind": "none"})
+        assert opts["blocks"] >= 5 and opts["gap_kind"] == "exercise"
+    _assert_regenerates("M", max_effect_poses=50)
+
+
+def test_set_m_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-M kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds of other arms do nothing; and known answers:
+    Archimedes' lift on a drowned cutter, the hydraulic spring beta A^2 / V and Boyle's law for the air, the dither's
+    centred and trailing axis 1, the chain's chordal extreme, the wheel's order and scale, the dockings' rigid moves,
+    the carriage held inside its friction band, the play operator, the bar's uniform-load tip deflection, the jaw
+    opened by the grip, the plume's optical path and bend through a Gaussian column and the oil's first-order
+    warm-up."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_m_body as mb
+    from sim2real_indep import effects_m_joint as mj
+    from sim2real_indep import effects_m_thermal as mt
+    from sim2real_indep import hardware as hwm
+
+    inert = {"ur10": ("slurry_lift", "oil_column", "spindle_dither", "chain_stage", "friction_wheel", "oil_growth"),
+             "kr16_like": ("slurry_lift", "oil_column", "chain_stage", "jaw_play", "oil_growth"),
+             "tool_changer": ("cart_dock", "carriage_play", "rope_mount", "tie_rod_bar")}
+    specs = (("ur10", ("cart_dock", "carriage_play", "rope_mount", "hot_plume")), ("ur10", ("jaw_play",)),
+             ("kr16_like", ("spindle_dither", "friction_wheel", "tie_rod_bar")),
+             ("tool_changer", ("slurry_lift", "oil_column", "chain_stage", "oil_growth")),
+             ("ur10", inert["ur10"]), ("kr16_like", inert["kr16_like"]), ("tool_changer", inert["tool_changer"]))
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 13)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault((robot, physics[0]), (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p, hw = case.truth["params"][kind], case.truth["hw"]
+            amp = {"slurry_lift": lambda: [hwm.torsion(hw["drives"][j], 1.0, False) for j in range(ctx.chain.n)
+                                           if np.abs(mj.slurry_loads(p, ctx)[:, j]).max() > 1e-9],
+                   "oil_column": lambda: [1 / p["beta_Pa"], p["eps"]] * len(p["cyl"]),
+                   "spindle_dither": lambda: p["b_rad"] / 2, "chain_stage": lambda: [1.0, p["elong"]],
+                   "friction_wheel": lambda: mj.wheel_amplitudes(p), "cart_dock": lambda: p["amp"][1:].ravel(),
+                   "carriage_play": lambda: [p["theta_rad"]], "rope_mount": lambda: p["c_mm_per_N"],
+                   "tie_rod_bar": lambda: p["c_mm_per_N"], "jaw_play": lambda: p["amp_mm"],
+                   "hot_plume": lambda: [p["dT_K"]], "oil_growth": lambda: [mt.STEEL_CTE] * len(p["cyl"])}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs[("tool_changer", "slurry_lift")]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # slurry: half a body below the level at its centre; a cutter drowned whole (no wrist) is lifted by rho / rho_steel
+    # of its weight -- its joint loads are that share of its gravity loads, reversed
+    assert mj.submerged(100.0, [100.0, -500.0, 500.0], 200.0) == pytest.approx([0.5, 1.0, 0.0])
+    sp = dict(p["slurry_lift"], level_mm=1e9, wrist=[], fill=[], h_wrist_mm=[])
+    m, pos, body = ctx.mass_state
+    grav = kin.gravity_loads(ctx.chain, ctx.q, m[:, -1:], pos[:, -1:], body[-1:])
+    assert mj.slurry_loads(sp, ctx) == pytest.approx(-sp["rho"] / mj.STEEL_RHO * grav, abs=1e-9)
+    # oil column: without air the cylinder shortens by F / (beta A^2 / V) (the hydraulic spring); the air's share is
+    # Boyle's volume change eps V p0 (1 / p_b - 1 / p)
+    op, j = p["oil_column"], 1
+    c = op["cyl"][j]
+    _, L, a = mj.fj.lever_state(c, ctx.q[:, j])
+    F = c["s"] * ctx.loads[:, j] / a
+    A = np.where(F >= 0, c["A_cap"], c["A_rod"])
+    V = np.where(F >= 0, c["A_cap"] * (L - c["L_lo"]), c["A_rod"] * (c["L_hi"] - L)) + c["V_pipe"]
+    oil, air = mj.oil_signals(op, ctx, j)
+    assert np.abs(oil / op["beta_Pa"] * a) == pytest.approx(np.abs(F) / (op["beta_Pa"] * A ** 2 / V))
+    p_b, p_1 = op["p_b_Pa"], op["p_b_Pa"] + np.abs(F) / A
+    assert np.abs(air * a) * A == pytest.approx(V * mj.P0 * (1 / p_b - 1 / p_1))
+    # chain: the chordal error vanishes mid-tooth and at its ends; its extreme lies where the link's speed R cos(phi)
+    # equals the mean, cos(phi*) = (z / pi) sin(pi / z): 0.100 mm for z = 9, p = 25.4 mm
+    cp = dict(p["chain_stage"], z=9, pitch_mm=25.4, phase=np.pi / 9)
+    u = np.linspace(0, 25.4, 20001)
+    e = mj.chordal_error(cp, u)
+    R, phi = 25.4 / (2 * np.sin(np.pi / 9)), np.arccos(9 / np.pi * np.sin(np.pi / 9))
+    assert e[[0, 10000, 20000]] == pytest.approx(0.0, abs=1e-9)
+    assert np.abs(e).max() == pytest.approx(R * np.sin(phi) - 9 * 25.4 * phi / (2 * np.pi), rel=1e-6)
+    assert np.abs(e).max() == pytest.approx(0.100, abs=1e-3)
+    # oil growth: under steady production the oil approaches its rise as 1 - (1 - x0) exp(-t / tau)
+    gp = dict(p["oil_growth"], x0=0.1, tau_s=1200.0, rise_K=20.0)
+    still = SimpleNamespace(gap_s=np.array([0.0, 600.0, 1800.0]), move_s=np.zeros(3), dwell_s=np.zeros(3))
+    assert mt.oil_temperature(gp, still) == pytest.approx(20 * (1 - 0.9 * np.exp(-np.array([0, 600, 2400]) / 1200)))
+
+    case, ctx = runs[("kr16_like", "spindle_dither")]
+    p, s = case.truth["params"], ctx.session
+    # dither: axis 1 (no gravity load in the file's geometry) centred while the spindle runs, trailing its last motion
+    # while it stands; both kinds of blocks occur
+    dp = p["spindle_dither"]
+    on = dp["on"][mj.block_index(s)]
+    side = mj.dither_sides(dp, ctx)[0]
+    assert on.any() and (~on).any() and dp["joints"][0] == 0
+    assert side[on] == pytest.approx(0.0) and side[~on] == pytest.approx(-s.direction[~on, 0])
+    # wheel: R / r turns of the wheel per turn of the ring; the scale error grows with the angle
+    wp = p["friction_wheel"]
+    assert 0.25 / 0.04 <= wp["order"] <= 0.38 / 0.02 and wp["order"] != round(wp["order"])
+    dq = mj.wheel_apply(wp, ctx, case.truth["hw"]).dq[:, 0]
+    assert dq == pytest.approx(wp["scale"] * ctx.q[:, 0] + wp["ecc_rad"] * np.sin(wp["order"] * ctx.q[:, 0]
+                                                                                + wp["phase"]))
+    # tie-rod bar: a uniform load W on a cantilever of length L deflects its end by W L^3 / 8 EI
+    assert mb.bar_draw(ctx, case.truth["hw"], np.random.default_rng(0))["c_mm_per_N"][1] == pytest.approx(
+        1000 * (p["tie_rod_bar"]["L_mm"] / 1000) ** 3 / (8 * np.random.default_rng(0).uniform(6e3, 1.5e4)))
+
+    case, ctx = runs[("ur10", "cart_dock")]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # dock: the first docking is the reference; within a later one the robot moves rigidly (its pin's yaw and shift)
+    kp = p["cart_dock"]
+    disp = mb.dock_apply(kp, ctx, hw).displace
+    b = mj.block_index(s)
+    assert kp["blocks"] >= 5 and np.abs(disp[b == 0]).max() == 0.0
+    k = 1
+    dx, dy, yaw = kp["amp"][k]
+    want = np.array([dx, dy, 0.0]) + yaw * np.cross([0, 0, 1.0], ctx.target - kp["pin_mm"])
+    assert disp[b == k] == pytest.approx(want[b == k])
+    # carriage: the carriage stays on its rollers while the moment about the rail is inside the friction band
+    cp = dict(p["carriage_play"], band_Nm=10.0, start=1.0, rail=np.array([1.0, 0, 0]))
+    M = np.array([[0, 0, 0], [-5.0, 0, 0], [-20.0, 0, 0], [5.0, 0, 0], [30.0, 0, 0]]) @ np.diag([1, 1, 1])
+    stub = SimpleNamespace(mass_state=(np.ones((5, 1)), np.zeros((5, 1, 3)), np.array([1])))
+    eb_moment = mb.eb.mount_moment
+    try:
+        mb.eb.mount_moment = lambda _: M
+        assert mb.carriage_side(cp, stub) == pytest.approx([1, 1, -1, -1, 1])
+    finally:
+        mb.eb.mount_moment = eb_moment
+    # the play operator: follows the input at most r behind, stays while it turns back inside the band
+    assert mb.play_operator(np.array([0.0, 5.0, 2.0, -4.0, 0.0]), 2.0) == pytest.approx([0, 3, 3, -2, -2])
+    # plume: a horizontal ray through the axis of a Gaussian column of excess temperature 1 K, far above its source,
+    # is not bent and gains the optical path -kappa w sqrt(pi); one passing w / sqrt(2) off the axis is bent, at the
+    # target, by (D - s_c) kappa sqrt(2 pi) exp(-1/2) towards the cooler side
+    pp = {"w_mm": 200.0, "along": 0.5, "off": 0.0, "z_src_mm": -1e6, "work_mm": np.array([4000.0, 0.0])}
+    hw_stub = {"tracker": {"R": np.eye(3), "t": np.zeros(3)}}
+    ray = SimpleNamespace(target=np.array([[4000.0, 0.0, 0.0], [4000.0, 200 / np.sqrt(2) * 2, 0.0]]))
+    out = mt.plume_part(pp, ray, hw_stub, n=20000)
+    assert out[0] == pytest.approx([-mt.KAPPA * 200 * np.sqrt(np.pi), 0, 0], rel=1e-6, abs=1e-12)
+    bend = 2000 * mt.KAPPA * np.sqrt(2 * np.pi) * np.exp(-0.5)
+    assert np.linalg.norm(out[1]) == pytest.approx(bend, rel=0.02)
+
+    case, ctx = runs[("ur10", "jaw_play")]
+    p = case.truth["params"]["jaw_play"]
+    # jaw: opened by the grip whenever a part is held
+    held = ctx.session.payload_kg > 0
+    assert held.any() and (~held).any() and mb.jaw_sides(p, ctx)[0][held] == pytest.approx(1.0)

@@ -5,9 +5,9 @@ called only through the public API ``tolalloc.diagnose_measurements(robot, train
 reports/sim2real_independent/: report.md and cases.csv (the measurement tables are regenerated from the seeds,
 never stored).
 
-Usage: python studies/sim2real_independent/run.py [--set A|B|C|D|E|F|G|H|I|both|all] [--quick] [--jobs N] [--out DIR]
+Usage: python studies/sim2real_independent/run.py [--set A|B|...|M|both|all] [--quick] [--jobs N] [--out DIR]
 [--oracle-only]
-(``both``: sets A and B; ``all``: A, B, C, D, E, F, G, H and I. With
+(``both``: sets A and B; ``all``: every set, A-M. With
 ``--oracle-only`` the cases are generated and labelled, not diagnosed: oracle_<sets>.csv beside cases.csv, which
 it leaves alone, and no report.)
 """
@@ -84,14 +84,14 @@ def run_case(spec, diagnose=True):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--set", choices=["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "both", "all"], default="A")
+    ap.add_argument("--set", choices=["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "both", "all"], default="A")
     ap.add_argument("--quick", action="store_true", help="the first four cases of each set, 40 poses each")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--oracle-only", action="store_true",
                     help="generate and label the cases without diagnosing them (writes oracle_<sets>.csv only)")
     args = ap.parse_args(argv)
-    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L"]}.get(args.set, [args.set])
+    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M"]}.get(args.set, [args.set])
     specs = []
     for name in names:
         cases = cs.SETS[name][0]

@@ -8,8 +8,8 @@ one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more 
 literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
 each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
 ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
-eleventh (:mod:`effects_k`) and set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`). A case: (id, robot, physics
-kinds, poses, split).
+eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`) and set M (24 cases, 8 per arm)
+a thirteenth (:mod:`effects_m`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
+SEED_M = 40_7013
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -447,10 +448,64 @@ SET_L = [
     ("L24", "kr16_like", ("hot_part", "gauge_pinion"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-L)
+#: set M: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_m`); written as an independent test set after set L, from the literature, without reading how
+#: the diagnosis models effects. The slurry shield's chamber, the hydraulic boom's oil columns and oil growth and the
+#: telescopic stage's chain sit on tool_changer (the tunnel machine's arm); the docked cart, the track carriage, the
+#: wire-rope mount and the tie-rod bar on ur10 and kr16_like; the measuring wheel and the spindle's dither on kr16_like
+#: (they apply to tool_changer's slewing ring and cycloid main axes too); the jaw play on ur10 and tool_changer; the hot
+#: air plume on all three (they do nothing on the other arms). Oracle labels when written (oracle.py only; the diagnosis
+#: was not run): every case its truth (gains 24-95 %; each mixture component's removal costs 49 % or more), the
+#: geometry-only cases none; no soft labels (no gain below 20 %, no rival family's model within 25 % of the truth; the
+#: closest: M12's transmission model 1.29x, M10's link model 1.31x, M18's thermal model 1.33x, M01's link and thermal
+#: models 2.01x). Changed after trial draws (this set's seed and two offsets of it, the first ranges in the modules'
+#: docstrings' order): a link kind was first a tool hung in a sprung gimbal, its swing stiffened or softened by the
+#: tool's own weight (the pendulum's gravity stiffness): with the swing of 0.05-1 mm the brief asks for, the spring
+#: dwarfs the gravity stiffness and the law is a linear compliance (a new parameterisation of sets K's and L's
+#: end-of-arm compliances), and with a softer spring the swing reached 80-400 mm; replaced by the wire-rope mount. The
+#: jaw first flipped with the sign of the weight's component (one pose near zero flipped between the true and the file's
+#: geometry: the true structure missed by 0.6 mm there): friction now holds it inside a band. The dither first sent an
+#: unloaded axis 1 to the flank of the tiny torque its tilted axis gets from gravity (the file's geometry has none): the
+#: spindle's own torque now centres an axis loaded below it. The spindle's dither on tool_changer (its main axes' loads
+#: keep one sign: gains of -9 and 9 %, the link model within 1.09x) was replaced there by the hot plume, and the plume
+#: on ur10 (a small working volume: its rays sweep little of the plume; gains of 3-15 % in two of three draws) by a
+#: second carriage case; the plume first at 30-70 % of the way from the tracker and 30-80 K (absorbed on ur10). The
+#: docking pins first had 0.05-0.2 mm clearance at 0.4-0.8 m (gain 24 %, rivals 1.33x), kr16_like's tie-rod bar was
+#: first 0.5-0.8 m of EI 1e4-3e4 N m^2 (gain 21 %, the thermal model 1.26x), the oil cylinders' bores first 180-250 /
+#: 125-180 mm with a stiffer back pressure (the link model 1.18x), and the oil first rose 8-15 K with 20-60 min
+#: (absorbed), then 20-35 K with 10-30 min (up to 2.6 mm). No pose count or seed was changed.
+SET_M = [
+    ("M01", "ur10", ("cart_dock",), 120, "random"),
+    ("M02", "ur10", ("carriage_play",), 100, "random"),
+    ("M03", "ur10", ("rope_mount",), 140, "random"),
+    ("M04", "ur10", ("jaw_play",), 45, "random"),
+    ("M05", "ur10", ("carriage_play",), 160, "time"),
+    ("M06", "ur10", ("tie_rod_bar",), 110, "random"),
+    ("M07", "ur10", (), 70, "random"),
+    ("M08", "ur10", ("cart_dock", "rope_mount"), 180, "random"),
+    ("M09", "tool_changer", ("slurry_lift",), 130, "random"),
+    ("M10", "tool_changer", ("oil_column",), 120, "random"),
+    ("M11", "tool_changer", ("chain_stage",), 110, "random"),
+    ("M12", "tool_changer", ("oil_growth",), 170, "time"),
+    ("M13", "tool_changer", ("hot_plume",), 150, "time"),
+    ("M14", "tool_changer", ("jaw_play",), 100, "random"),
+    ("M15", "tool_changer", (), 30, "random"),
+    ("M16", "tool_changer", ("oil_column", "chain_stage"), 190, "random"),
+    ("M17", "kr16_like", ("friction_wheel",), 140, "random"),
+    ("M18", "kr16_like", ("carriage_play",), 120, "random"),
+    ("M19", "kr16_like", ("tie_rod_bar",), 130, "random"),
+    ("M20", "kr16_like", ("spindle_dither",), 160, "time"),
+    ("M21", "kr16_like", ("hot_plume",), 150, "time"),
+    ("M22", "kr16_like", ("rope_mount",), 110, "random"),
+    ("M23", "kr16_like", (), 90, "random"),
+    ("M24", "kr16_like", ("friction_wheel", "hot_plume"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-M)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
-        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L)}
+        "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
+        "M": (SET_M, SEED_M)}
 
 
 def case_seed(set_name: str, index: int) -> int:

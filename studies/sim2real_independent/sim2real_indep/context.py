@@ -86,7 +86,19 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "polymer_heat": "joint_compliance", "dispense_drain": "joint_compliance", "gauge_pinion": "backlash",
           "valve_lap": "backlash", "pin_ring": "transmission", "guide_errors": "transmission",
           "pallet_load": "mount_compliance", "anchor_loose": "mount_compliance", "grip_spread": "link_deflection",
-          "float_holder": "link_deflection", "hot_part": "thermal", "wet_arm": "thermal"}
+          "float_holder": "link_deflection", "hot_part": "thermal", "wet_arm": "thermal",
+          # set M (sim2real_indep.effects_m; slurry_lift, the gears twisted by the slurry's lift on what dips into it,
+          # and oil_column, the hydraulic axes' oil springs, scored as joint compliance; spindle_dither, the main axes'
+          # lost motion whose flank a running spindle's vibration chooses, and jaw_play, the target's jaw rocking in its
+          # guide's clearance, as backlash; friction_wheel, axis 1 read through a measuring wheel, as transmission;
+          # cart_dock, the cart docked anew between the blocks, and carriage_play, the track carriage rocking across its
+          # rollers' clearance, as mount compliance (the robot's support); rope_mount, the tool on wire-rope
+          # isolators, and tie_rod_bar, a gripper bar bending at two rates, as link deflection (the end-of-arm structure
+          # carrying the target); hot_plume, a measurement error following a hot air column's temperature, as thermal)
+          "slurry_lift": "joint_compliance", "oil_column": "joint_compliance", "spindle_dither": "backlash",
+          "jaw_play": "backlash", "chain_stage": "transmission", "friction_wheel": "transmission",
+          "cart_dock": "mount_compliance", "carriage_play": "mount_compliance", "rope_mount": "link_deflection",
+          "tie_rod_bar": "link_deflection", "hot_plume": "thermal", "oil_growth": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; all twelve: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; all thirteen: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -96,8 +96,22 @@ joint's position) -- so the set K figures below measure code fitted to them; set
 **Set L** (24 cases, seed 40_7012) is a twelfth independent test set of twelve new kinds
 (`sim2real_indep/effects_l*.py`, table below), written the same way by another helper, who read neither the
 diagnosis, its effect models, nor any result of sets A-K, and who did not run the diagnosis (its brief named no
-example mechanisms). It was run once, on the code of this report, after set K's misses had shaped the `flange` and
-`coupling` variants and before anything was written while looking at set L.
+example mechanisms). It was first run once on the code that set K's misses had shaped (the `flange` and `coupling`
+variants), none of it written while looking at set L: 13/24 strict, 14 lenient, no false claim, median final / oracle
+RMS 1.63 (a growing pallet on the base frame, L03 and L18, hot parts, L20, grip-spread fingers, L04 and L14, the
+telescopic guideway's error motions, L12, and a hydraulic dead band, L10, were `none`; loosening anchors, L13, were
+called thermal). One variant was written after those misses were seen -- transmission's `stroke` (a linear axis'
+error motions along its stroke) -- so the set L figures below measure code fitted to it; set M judges it.
+
+**Set M** (24 cases, seed 40_7013) is a thirteenth independent test set of twelve new kinds
+(`sim2real_indep/effects_m*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-L, and who did not run the diagnosis. Its independence is
+weaker than the earlier sets': the helper's brief reached it empty, and before finding the written brief it read the
+subject lines of the latest commits, which name the diagnosis's newest variants (among them the `flange` variant of a
+compliant element between the flange and the tool). Two of its link kinds sit there (the wire-rope tool mount and the
+tie-rod gripper bar: M03, M06, M08, M19, M22). It was run once, on the code of this report (after set L's misses had
+shaped the `stroke` variant, nothing written while looking at set M); the code before the `stroke` variant scores one
+case fewer (M11, a telescopic stage pulled by a roller chain, was `ambiguous`).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -298,6 +312,24 @@ comment):
 | float_holder | link_deflection | a tool on a preloaded, radially compliant holder: no motion below the preload, then the spring rate up to a stroke end (ur10, kr16_like) | Shigley; ATI / SCHUNK compensation units |
 | hot_part | thermal | hot die-cast parts heat the gripper's fingers (fast) and body (slow) while held; both grow along the tool axis (kr16_like) | Incropera & DeWitt; Madhusudana |
 | wet_arm | thermal | coolant on one side of the forearm evaporating towards the wet-bulb temperature: the tube bows towards the wet side and shortens (ur10, kr16_like) | ASHRAE Fundamentals; Incropera & DeWitt; Timoshenko & Goodier |
+
+Set M's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_M
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| slurry_lift | joint_compliance | a slurry shield's half-drained excavation chamber buoys the held cutter and the wrist bodies below its level; the lift twists the gears (tool_changer) | Maidl et al. 2012; Archimedes; Craig (statics) |
+| oil_column | joint_compliance | the trapped oil (with entrained air) of the axis-2 / axis-3 cylinders is a spring whose chamber volumes follow the stroke (tool_changer) | Merritt 1967; Yu, Chen & Lu 1994; Jelali & Kroll 2003 |
+| spindle_dither | backlash | where a spindle runs, its vibration lets the main axes' lost motion settle on the gravity flank; otherwise friction holds the last motion's flank (kr16_like, tool_changer) | Armstrong-Helouvry et al. 1994; Nordin & Gutman 2002 |
+| jaw_play | backlash | a gripper jaw carrying the target rocks in its guide's clearance: opened by the grip, turned by gravity, friction-held near zero load (ur10, tool_changer) | Shigley; gripper catalogues |
+| chain_stage | transmission | the telescopic stage pulled by a roller chain: chordal action at the sprocket's pitch and wear elongation (tool_changer) | ISO 606; Binder 1956 (chordal action) |
+| friction_wheel | transmission | axis 1 read through a measuring wheel rolling on the slewing ring: a scale error and an eccentricity at the non-integer order R / r (kr16_like, tool_changer) | HEIDENHAIN / measuring-wheel notes; Slocum 1992 |
+| cart_dock | mount_compliance | a mobile cart re-docked between production runs lands elsewhere inside its docking pins' clearance (ur10, kr16_like) | Rong & Zhu 1999; ISO 286 |
+| carriage_play | mount_compliance | a track carriage rocks across its cam followers' clearance as the arm's moment about the rail changes sign, friction-held inside a band (ur10, kr16_like) | Slocum 1992; roller-guide catalogues |
+| rope_mount | link_deflection | a tool on wire-rope isolators: elastic deflection plus dry-friction slip of the strands (a play operator) (ur10, kr16_like) | wire-rope isolator catalogues; Krasnosel'skii & Pokrovskii |
+| tie_rod_bar | link_deflection | a long gripper bar stiffened by a tension-only tie rod: it bends at two rates (ur10, kr16_like) | Roark; Timoshenko & Gere |
+| hot_plume | thermal | a column of hot air between the tracker and the robot bends the beams through its flanks and lengthens their optical path (all three arms) | Edlen 1966; Ciddor 1996; Born & Wolf; Estler et al. 2002 |
+| oil_growth | thermal | the hydraulic oil warms through production; cylinders servoed on their own stroke grow between their pins (tool_changer) | Merritt 1967; Incropera & DeWitt |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
