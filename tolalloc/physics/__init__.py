@@ -6,6 +6,7 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
   tilt of a compliant mount;
 * :mod:`.beams` -- arm segments bending and shearing as cantilevers; a telescopic stage tilting in its guide;
 * :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
+* :mod:`.error_motions` -- a linear axis' six error motions along its stroke (ISO 230-1);
 * :mod:`.lost_motion` -- backlash and hysteresis loss: the flank a joint rests on;
 * :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history or the motors'
   losses, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame drifting;
@@ -17,6 +18,7 @@ from tolalloc.physics.compliance import (COMPLIANCE_LAWS, compliance_columns, jo
                                          mount_columns, mount_tilt)
 from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacobian, robot_masses, target_points,
                                     tip_load)
+from tolalloc.physics.error_motions import stroke_columns
 from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_basis, lost_motion_columns
 from tolalloc.physics.thermal import lag_filter, link_growth, motor_heat, time_problem
 from tolalloc.physics.transmission import gear_orders, transmission_columns, transmission_error
@@ -25,4 +27,4 @@ __all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "
            "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "G", "base_moment",
            "gravity_torques", "point_jacobian", "robot_masses", "target_points", "tip_load", "SIDES", "flank",
            "lost_motion_basis", "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem",
-           "gear_orders", "transmission_columns", "transmission_error"]
+           "gear_orders", "transmission_columns", "transmission_error", "stroke_columns"]
