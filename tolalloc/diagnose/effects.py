@@ -184,16 +184,13 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     q = meas.q
     p_t = target_points(robot, q, t_mm)
     groups = None
-    if effect == "transmission" and variant == "stroke":
-        B, names, groups = stroke_columns(robot, q, p_t)
+    if effect == "transmission":
+        B, names, groups = _transmission_basis(robot, q, p_t, variant, ref.get("gear_ratio"))
     elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
                                    load_scale=ref.get("load_scale"))
         B = np.einsum("pin,pnm->pim", point_jacobian(robot, q, p_t), A)
-        if effect == "transmission":  # one prior scale per joint
-            groups = np.array([int(np.flatnonzero(np.abs(A[:, :, m]).sum(0))[0]) if np.abs(A[:, :, m]).any() else 0
-                               for m in range(A.shape[2])], int)
     elif effect == "mount_compliance":
         B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant)
     elif effect == "link_deflection":
@@ -208,6 +205,16 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     else:
         return effect_bases("thermal", robot, meas, t_mm, ref, (variant,))[0]
     return EffectBasis(effect, tuple(names), np.asarray(B, dtype=float), variant, groups)
+
+
+def _transmission_basis(robot: Robot, q, p_t, variant: str, ratios) -> tuple:
+    """``(B (P, 3, M), names, groups (M,))`` of transmission: the joints' kinematic error through the point Jacobian,
+    one prior group per joint as :func:`~tolalloc.physics.transmission.transmission_columns` gives it, or a linear
+    axis' error motions (``stroke``, :func:`~tolalloc.physics.error_motions.stroke_columns`)."""
+    if variant == "stroke":
+        return stroke_columns(robot, q, p_t)
+    A, names, groups = transmission_columns(robot, q, variant or "2x3x", ratios)
+    return np.einsum("pin,pnm->pim", point_jacobian(robot, q, p_t), A), names, groups
 
 
 def effect_bases(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict, names) -> list:

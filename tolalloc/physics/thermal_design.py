@@ -16,8 +16,9 @@ __all__ = ["link_cte", "motor_rise", "link_temperature"]
 
 
 def link_cte(robot: Robot) -> np.ndarray:
-    """Coefficient of thermal expansion [1/K] of every link of nonzero length (the order of :func:`link_growth`),
-    from its section in the robot file; 0 where the file gives none (such a link does not grow)."""
+    """Coefficient of thermal expansion [1/K] of every link of nonzero length (the order of
+    :func:`~tolalloc.physics.thermal.link_growth`), from its section in the robot file; 0 where the file gives none
+    (such a link does not grow)."""
     return np.array([robot.components.links[lk.name].cte_per_K if lk.name in robot.components.links else 0.0
                      for lk in robot.links if lk.length_mm > 0])
 
