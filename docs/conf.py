@@ -77,9 +77,15 @@ html_show_sourcelink = False
 
 
 def _tutorial_environment(app):
-    """The tutorials' arguments (``--quick`` unless TOLALLOC_DOCS_FULL=1) and where they write their files; the
-    notebook kernels inherit the environment."""
-    os.environ.setdefault("TOLALLOC_TUTORIAL_ARGS", "" if os.environ.get("TOLALLOC_DOCS_FULL") == "1" else "--quick")
+    """The tutorials' arguments (``--quick`` unless TOLALLOC_DOCS_FULL=1; with it the numpy engine) and where they
+    write their files; the notebook kernels inherit the environment."""
+    quick = os.environ.get("TOLALLOC_DOCS_FULL") != "1"
+    os.environ.setdefault("TOLALLOC_TUTORIAL_ARGS", "--quick" if quick else "")
+    if quick:
+        # --quick's sample counts are small enough that the numpy engine beats loading the compiled kernels (and,
+        # in a fresh checkout, waiting for their first compile); both engines draw the same samples and agree to
+        # rounding
+        os.environ.setdefault("TOLALLOC_NUMBA", "0")
     os.environ.setdefault("TOLALLOC_TUTORIAL_OUT", str(Path(app.outdir) / "_tutorial_output"))
 
 

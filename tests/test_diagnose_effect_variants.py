@@ -152,7 +152,8 @@ def test_backlash_gravity_side_recovered_without_dir_columns():
     b = np.array([0.0, 3e-5, 2e-5, 1e-5, 0.0, 0.0])  # rad, half backlash of j2, j3, j4
     d = target_points(robot, q + side * b, t) - target_points(robot, q, t)
     meas = Measurements(q, np.zeros((80, 3)))  # no dir columns: only the gravity-held variant applies
-    assert variants("backlash", meas) == ("gravity", "gravity_soft")  # gravity-held sides only
+    # gravity-held sides only, and the bearings' clearance (also held by gravity)
+    assert variants("backlash", meas) == ("gravity", "gravity_soft", "clearance")
     basis = effect_basis("backlash", robot, meas, t, effect_reference(meas))
     beta = dict(zip(basis.names, _lsq(basis, d)))
     for j in (1, 2, 3):

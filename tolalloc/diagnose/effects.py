@@ -18,7 +18,8 @@ signature:
                       robot file).
 ``mount_compliance``  the whole robot tilts on a compliant base under the gravity moment of its masses and payload
                       (``isotropic``: one compliance; ``axes``: about base x and y; ``pivot``: one compliance
-                      about a pivot below the base, its depth fitted) [rad/(N m)].
+                      about a pivot below the base, its depth fitted) [rad/(N m)]; ``play``: a compliance and a
+                      rocking in the moment's direction (a base standing within a clearance) [mrad].
 ``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
                       beyond by their moment), a logged payload and an own weight (:mod:`tolalloc.physics.beams`):
                       ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
@@ -27,7 +28,9 @@ signature:
                       the tool.
 ``backlash``          lost motion ``dq_j = s_j b_j / 2`` on the flank ``s_j`` (:mod:`tolalloc.physics.lost_motion`):
                       ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``,
-                      ``preload+hysteresis`` (a trailing hysteresis loss ``h_j`` beside the held flank).
+                      ``preload+hysteresis`` (a trailing hysteresis loss ``h_j`` beside the held flank);
+                      ``clearance``: the joints' bearing play (axial, radial, tilt; a prismatic joint's roll) taken up
+                      on the side the gravity load presses (:mod:`tolalloc.physics.clearance`).
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
                       ``lag_<tau>min``), a warm-up with time (with links that also bow across their section:
                       ``bow_<tau>min``), the motion history (``activity_<tau>min``) or the motors' losses from
@@ -53,6 +56,7 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, guide_joints
+from tolalloc.physics.clearance import clearance_columns
 from tolalloc.physics.error_motions import stroke_columns, stroke_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
     mount_columns, MOUNT_VARIANTS
@@ -144,7 +148,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
     if effect == "backlash":
         d = meas.direction
         both = d is not None and np.any((d > 0).any(0) & (d < 0).any(0))
-        return SIDES if both else GRAVITY_SIDES
+        return (SIDES if both else GRAVITY_SIDES) + ("clearance",)
     if effect == "thermal":
         return thermal_variants(meas)
     if effect == "transmission":
@@ -186,6 +190,8 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     groups = None
     if effect == "transmission":
         B, names, groups = _transmission_basis(robot, q, p_t, variant, ref.get("gear_ratio"))
+    elif effect == "backlash" and variant == "clearance":
+        B, names, groups = clearance_columns(robot, q, p_t, p_t, meas.payload_kg)
     elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),

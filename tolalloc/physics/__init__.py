@@ -3,11 +3,12 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 
 * :mod:`.loads` -- the mass model, gravity loads on the joints and on the base mount, a payload at the target;
 * :mod:`.compliance` -- joint wind-up (linear, the catalogue's K1/K2/K3 bands, a smooth hardening law) and the
-  tilt of a compliant mount;
+  tilt (and rocking) of a compliant mount;
 * :mod:`.beams` -- arm segments bending and shearing as cantilevers; a telescopic stage tilting in its guide;
 * :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
 * :mod:`.error_motions` -- a linear axis' six error motions along its stroke (ISO 230-1);
 * :mod:`.lost_motion` -- backlash and hysteresis loss: the flank a joint rests on;
+* :mod:`.clearance` -- the joints' bearing play (axial, radial, tilt), taken up on the side the load presses;
 * :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history or the motors'
   losses, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame drifting;
 * :mod:`.thermal_design` -- the design's forward model: the links' temperatures over an ambient range and a duty cycle.
@@ -18,6 +19,7 @@ from tolalloc.physics.compliance import (COMPLIANCE_LAWS, compliance_columns, jo
                                          mount_columns, mount_tilt)
 from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacobian, robot_masses, target_points,
                                     tip_load)
+from tolalloc.physics.clearance import clearance_columns, joint_wrenches
 from tolalloc.physics.error_motions import stroke_columns
 from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_basis, lost_motion_columns
 from tolalloc.physics.thermal import lag_filter, link_growth, motor_heat, time_problem
@@ -27,4 +29,5 @@ __all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "
            "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "G", "base_moment",
            "gravity_torques", "point_jacobian", "robot_masses", "target_points", "tip_load", "SIDES", "flank",
            "lost_motion_basis", "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem",
-           "gear_orders", "transmission_columns", "transmission_error", "stroke_columns"]
+           "gear_orders", "transmission_columns", "transmission_error", "stroke_columns",
+           "clearance_columns", "joint_wrenches"]

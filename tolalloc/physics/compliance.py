@@ -17,7 +17,11 @@ the gravity moment of its moving masses and payload about the base (:func:`~.loa
 ``omega = (c_x M_x, c_y M_y, 0)`` [rad] about the base origin moves the target by ``omega x p``. ``isotropic`` (one
 ``c``) or ``axes`` (``c_x``, ``c_y``). ``pivot``: one ``c`` about a pivot at a depth ``h`` below the base origin
 (a pedestal or column bending under the moment turns about a point inside it, an anchor plate about the floor:
-``omega x (p + h g_hat)``); linear in ``c`` and ``c h`` [rad mm/(N m)], so ``h`` is their ratio.
+``omega x (p + h g_hat)``); linear in ``c`` and ``c h`` [rad mm/(N m)], so ``h`` is their ratio. ``play``: ``c`` plus
+a rocking ``r`` [mrad] in the direction of the horizontal moment whatever its size, ``omega = c M_h + r M_h / |M_h|``
+(a base that rocks within a clearance -- a short foot, a loose anchor, a carriage on its rollers -- and then stands
+on the side the moment presses; the first joint's bearing tilt clearance has the same signature, so the clearance
+model of :mod:`~.clearance` leaves it to this one).
 
 Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
 the catalogue's stiffness figures.
@@ -37,7 +41,7 @@ __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_lo
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
 #: Shape parameters of the ``hardening`` law: T0 as a fraction of the joint's largest load.
 HARDENING_FRACTIONS = (0.2, 0.4)
-MOUNT_VARIANTS = ("isotropic", "axes", "pivot")
+MOUNT_VARIANTS = ("isotropic", "axes", "pivot", "play")
 
 
 def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None) -> tuple:
@@ -127,6 +131,11 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
     if variant == "pivot":
         return (np.stack([np.cross(Mh, p), np.cross(Mh, np.broadcast_to(-g, p.shape))], axis=-1),
                 ["c_mount [rad/(N m)]", "c_mount_depth [rad mm/(N m)]"])
+    if variant == "play":
+        size = np.linalg.norm(Mh, axis=1, keepdims=True)
+        side = np.where(size > 1e-9 * max(float(size.max(initial=0.0)), 1e-300), Mh / np.maximum(size, 1e-300), 0.0)
+        return (np.stack([np.cross(Mh, p), 1e-3 * np.cross(side, p)], axis=-1),
+                ["c_mount [rad/(N m)]", "r_mount [mrad]"])
     cols, names = [], []
     for i, ax in enumerate("xyz"):
         if abs(g[i]) > 0.99:
