@@ -45,6 +45,8 @@ def choose_variant(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarra
     ``residual_mm`` (P, 3): the fit's residual on the poses of ``J_fixed`` (default ``fit.residual_mm``, when the
     fit was made on those very poses; a subsampled diagnosis passes the subsample's).
     """
+    # a variant with no column on this robot explains nothing: it is the choice only when every variant is so
+    cands = [c for c in cands if c.B.shape[2]] or cands[:1]
     if len(cands) == 1 and getattr(cands[0], "groups", None) is None:
         return cands[0]
     Q, r, n = projected_residual(fit, J_fixed, residual_mm)  # n: residual degrees of freedom left

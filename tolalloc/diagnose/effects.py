@@ -191,7 +191,7 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     if effect == "transmission":
         B, names, groups = _transmission_basis(robot, q, p_t, variant, ref.get("gear_ratio"))
     elif effect == "backlash" and variant == "clearance":
-        B, names, groups = clearance_columns(robot, q, p_t, p_t, meas.payload_kg)
+        B, names, _ = clearance_columns(robot, q, p_t, p_t, meas.payload_kg)  # no prior: as the flank variants
     elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
