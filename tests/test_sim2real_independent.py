@@ -1707,3 +1707,190 @@ def test_set_m_every_kind_lies_in_its_true_structure_and_known_answers():
     # jaw: opened by the grip whenever a part is held
     held = ctx.session.payload_kg > 0
     assert held.any() and (~held).any() and mb.jaw_sides(p, ctx)[0][held] == pytest.approx(1.0)
+
+
+def test_set_n_cases_kinds_and_determinism():
+    """Set N: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-N
+    kind alone (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a lattice
+    boom's target sits on its tip's lower node and its part at the tip, a ring frame's target on the ring and its part
+    on the tool axis below the grip; a panel case carries one load, a pick-and-place case both none and some, and the
+    heated, pumped and re-referenced cases have their blocks."""
+    from sim2real_indep import effects_n as en
+    from sim2real_indep import effects_n_body as nb
+    from sim2real_indep import effects_n_joint as nj
+
+    _assert_set_module("N", 40_7014, en, ("gear", "oil_growth"))
+    for name in ("effects_n", "effects_n_joint", "effects_n_body", "effects_n_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_n" in _imports(STUDY / "generator.py")
+    assert en.AFTER_TRACKER == {"tripod_tilt"}
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert en.probe_hook(("sag", "jaw_play"), probe, "ur10") is probe and en.payload_hook(("sag",), com, probe) is com
+    tip = en.probe_hook(("truss_slack",), probe, "kr16_like")
+    assert tip == pytest.approx([0.6 * (500 + 300 * 8 / 95), -0.8 * (500 + 300 * 8 / 95), nj.CHORD_Z_MM])
+    assert en.payload_hook(("truss_slack",), com, tip) == pytest.approx(tip)
+    ring = en.probe_hook(("ring_frame",), probe, "ur10")
+    assert ring == pytest.approx([0.6 * (120 + 80 * 8 / 95), -0.8 * (120 + 80 * 8 / 95), nb.HUB_Z_MM])
+    part = en.payload_hook(("ring_frame",), com, ring)
+    assert part == pytest.approx([0, 0, nb.HUB_Z_MM + nb.FINGER_MM + 30 + 70 * np.linalg.norm(com) / 80])
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": en.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 2, "gap_kind": "none"})
+        steps = opts(("ring_frame",))["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+        panel = opts(("wind_panel", "harness_lash"), "ur10")["payload_steps"]
+        assert len(panel) == 1 and 5.0 <= panel[0] <= 9.0
+        heat = opts(("tripod_tilt",))
+        assert heat["blocks"] >= 5 and heat["gap_kind"] == "pause"
+        assert opts(("mag_drift", "pad_heat"))["gap_kind"] == "mixed"
+        assert opts(("rope_creep",), "tool_changer")["pause_min"] == (2.0, 10.0)
+    _assert_regenerates("N", max_effect_poses=50)
+
+
+def test_set_n_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-N kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds of other arms do nothing; and known answers: the
+    cross-flow force on a panel, a jet's momentum flux against the water-jetting rule, the harness's flank, the
+    counterbalance's law of cosines and the net torque's flank, the rope's creep per travel and its reset, Bekker's
+    sinkage of a centred carrier and the soil's stiff reloading, Fancher's leaf-spring branches, the lattice's axial load
+    path and its Williot slack, the frame element's cantilever, the part stiffening the ring, the tripod head's motion
+    under its legs' growths, the pads' rise and tilt and the encoders' drift growing with the temperature."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_k_thermal as kt
+    from sim2real_indep import effects_n_body as nb
+    from sim2real_indep.context import Ctx
+    from sim2real_indep import effects_n_joint as nj
+    from sim2real_indep import effects_n_thermal as nt
+    from sim2real_indep import hardware as hwm
+
+    inert = {"ur10": ("jet_reaction", "balanced_lash", "rope_creep"),
+             "tool_changer": ("wind_panel", "crawler_sink", "leaf_springs", "ring_frame", "pad_heat", "mag_drift"),
+             "kr16_like": ("rope_creep",)}
+    specs = (("ur10", ("wind_panel", "leaf_springs", "harness_lash", "pad_heat", "mag_drift", "tripod_tilt")),
+             ("ur10", ("ring_frame", "crawler_sink")),
+             ("kr16_like", ("jet_reaction", "balanced_lash", "truss_slack")),
+             ("tool_changer", ("rope_creep", "harness_lash", "balanced_lash")),
+             ("ur10", inert["ur10"]), ("tool_changer", inert["tool_changer"]), ("kr16_like", inert["kr16_like"]))
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 14)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault((robot, physics[0]), (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p, hw = case.truth["params"][kind], case.truth["hw"]
+            gear = lambda loads: [hwm.torsion(hw["drives"][j], 1.0, False) for j in range(ctx.chain.n)  # noqa: E731
+                                  if np.abs(loads[:, j]).max() > 1e-9]
+            amp = {"wind_panel": lambda: gear(nj.wind_loads(p, ctx)), "jet_reaction": lambda: gear(nj.jet_loads(p, ctx)),
+                   "harness_lash": lambda: [p["b_rad"] / 2], "balanced_lash": lambda: [p["b_rad"] / 2],
+                   "rope_creep": lambda: [1 / p["EA_N"]], "truss_slack": lambda: p["c_mm"] / 2,
+                   "crawler_sink": lambda: np.ones(3), "leaf_springs": lambda: np.ones(3),
+                   "ring_frame": lambda: [1 / p["E"]], "tripod_tilt": lambda: [nt.ALUMINIUM_CTE * p["dT_K"]] * 3,
+                   "pad_heat": lambda: [p["alpha"] * p["t_mm"] * p["dT_K"]],
+                   "mag_drift": lambda: -p["amp"].ravel()}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs[("ur10", "wind_panel")]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # panel: 1/2 rho A C_N90 V^2 along the normal at normal incidence, none edge-on, reversed with the wind
+    wp = dict(p["wind_panel"], A_m2=2.0)
+    Rt = np.broadcast_to(np.eye(3), (3, 3, 3))
+    V = np.array([[0, 0, 10.0], [10.0, 0, 0], [0, 0, -10.0]])
+    assert nj.panel_force(dict(wp, V=V), Rt) == pytest.approx(0.5 * 1.2 * 2.0 * 1.17 * 100 * np.array(
+        [[0, 0, 1.0], [0, 0, 0], [0, 0, -1.0]]))
+    # harness: far beyond its neutral twist the spring wins the drag (the flank of its torque, -10 -+ 1 N m), near it
+    # (-1 -+ 1 N m, inside the 3 N m drag) axis 1 trails its last motion
+    hp = dict(p["harness_lash"], k_Nm_rad=10.0, f_Nm=1.0, drag_Nm=3.0, q_n=0.0)
+    stub = SimpleNamespace(q=np.array([[1.0] + [0] * 5, [0.1] + [0] * 5]),
+                           session=SimpleNamespace(direction=np.ones((2, 6))))
+    assert nj.harness_side(hp, stub) == pytest.approx([-1.0, -1.0])
+    stub.session.direction[:, 0] = -1.0
+    assert nj.harness_side(hp, stub) == pytest.approx([-1.0, 1.0])
+    # pads: equal growths lift the plate without tilting it; the heater's lag from the switching
+    pp = dict(p["pad_heat"], w=np.ones(4), t_on=0.0, t_off=np.inf, tau_s=600.0)
+    move = nt.pad_part(pp, ctx)
+    assert move == pytest.approx(nt.heater_curve(pp, s.time_s)[:, None] * [0, 0, 1.0])
+    assert nt.heater_curve(dict(pp, t_on=100.0, t_off=700.0), [50.0, 700.0, 1300.0]) == pytest.approx(
+        [0.0, 1 - np.exp(-1.0), (1 - np.exp(-1.0)) * np.exp(-1.0)])
+    # encoders: the error grows with the drive's temperature, dT cos(q - phi) per unit drift
+    mp = p["mag_drift"]
+    dT = kt.node_rise(ctx, hw, mp["joints"], mp["rise_K"], mp["tau_s"], mp["accel_s"], mp["duty"])
+    S = nt.mag_signals(mp, ctx, hw)
+    assert S[1, 0] == pytest.approx(dT[:, 1] * np.cos(ctx.q[:, 1] - mp["phase"][1, 0]))
+    assert S[2, 1] == pytest.approx(dT[:, 2] * np.cos(2 * ctx.q[:, 2] - mp["phase"][2, 1]))
+    # tripod: equal growths of the three legs lift the head without turning it; one leg's growth moves its hinge along
+    # the leg by as much and the others' not at all along theirs nor any hinge across its leg's plane
+    tp, o = p["tripod_tilt"], np.array([3000.0, 1000.0, 200.0])
+    X = nt.head_motion(tp, o)
+    assert np.abs(X.sum(axis=0)[3:]).max() < 1e-12 and np.abs(X.sum(axis=0)[:2]).max() < 1e-9
+    foot, hinge, L, rad = nt.tripod_legs(tp, o)
+    u = (hinge - foot) / L[:, None]
+    moved = X[0, :3] + np.cross(X[0, 3:], hinge - o)
+    assert np.einsum("ki,ki->k", u, moved) == pytest.approx([1.0, 0.0, 0.0], abs=1e-12)
+    assert np.einsum("ki,ki->k", np.cross([0, 0, 1.0], rad), moved) == pytest.approx(0.0, abs=1e-12)
+    # leaf spring: the branch from a reversal starts at its force and approaches the envelope k d + s F_f
+    F, k = nb.fancher(np.array([10.0, 10.5, 60.0]), 10.0, 800.0, 1.0, 100.0, 200.0, 1.0)
+    assert F == pytest.approx([800.0, 1250 - 450 * np.exp(-0.5), 6200.0])
+    assert k[0] == pytest.approx(100.0 * 0 + 400.0)                  # (env - F_r) / beta at the reversal
+
+    case, ctx = runs[("ur10", "ring_frame")]
+    p = case.truth["params"]
+    # frame element: a cantilever's tip deflection F L^3 / 3 EI and twist T L / GJ
+    A, I, J = nb._tube(30.0, 3.0)
+    Kb = nb._beam(np.zeros(3), np.array([400.0, 0, 0]), A, I, J, E=70e3, G=70e3 / 2.66)[6:, 6:]
+    u = np.linalg.solve(Kb, [0, 50.0, 100.0, 1e4, 0, 0])
+    assert u[[1, 2, 3]] == pytest.approx([50 * 400 ** 3 / (3 * 70e3 * I), 100 * 400 ** 3 / (3 * 70e3 * I),
+                                          1e4 * 400 / (70e3 / 2.66 * J)])
+    # ring: the held part stiffens the frame against its own weight
+    C = p["ring_frame"]["C"]
+    assert np.abs(C[1]).max() < np.abs(C[0]).max()
+    # crawler: a centred load on virgin soil sinks both tracks evenly by (p / k)^(1 / n); lifted back to a lighter load
+    # the soil rebounds along its stiff reloading line
+    cp = p["crawler_sink"]
+    W = 2 * cp["A_mm2"] * 10 * 0.05                                   # 0.05 N/mm^2 on all 20 soil columns
+    x = nb.solve_carrier([1.0, 0, 0], W, np.zeros(2), cp["xy"], nb._soil(cp, np.zeros(20)))
+    z = (0.05 / cp["k"]) ** (1 / cp["n"])
+    assert x == pytest.approx([z, 0, 0], abs=1e-9)
+    x2 = nb.solve_carrier(x, 0.8 * W, np.zeros(2), cp["xy"], nb._soil(cp, np.full(20, z)))
+    assert x2[0] == pytest.approx(z - 0.2 * 0.05 / (cp["r_u"] * cp["n"] * 0.05 / z))
+
+    case, ctx = runs[("kr16_like", "jet_reaction")]
+    p, hw = case.truth["params"], case.truth["hw"]
+    # jet: rho Q v against the water-jetting rule 0.052 Q sqrt(p) lbf (gpm, psi), times C_v
+    rule = 0.052 * (10 / 3.78541) * np.sqrt(1000 * 14.5038) * 4.44822
+    assert nj.jet_force(1000.0, 10.0) == pytest.approx(nj.C_V * rule, rel=0.02)   # the rule rounded to 0.052
+    # counterbalance: the cylinder's length by the law of cosines, its moment arm dL/dpsi; the stored flank is the net
+    # torque's (gravity, balancer, seal friction against the last motion)
+    bp = p["balanced_lash"]
+    q2 = ctx.q[:, 1]
+    L, a = nj.balance_geometry(bp, q2)
+    Lh, _ = nj.balance_geometry(bp, q2 + 1e-6)
+    assert a == pytest.approx((Lh - L) / 1e-6 * bp["s"], rel=1e-4)
+    shape, arm = nj.balance_torque(bp, q2)
+    t = case.truth
+    true = Ctx(t["chain"], t["session"], t["masses"], t["com"], case.nominal.mass_link, t["payload_com_mm"],
+               t["probe_mm"])
+    tau = true.loads[:, 1] + bp["F0_N"] * shape - bp["Fs_N"] * arm * ctx.session.direction[:, 1]
+    assert nj.net_torque(bp, true) == pytest.approx(tau)
+    assert bp["side"] == pytest.approx(ph.backlash_offset(ctx.session.direction[:, 1], tau, bp["drag_Nm"], 2.0, 0.0))
+    # lattice: a tip load along the boom runs along the lower chord alone; each lower chord's slack moves the tip by as
+    # much along the boom
+    tr = p["truss_slack"]
+    nodes, mem = nj.truss_geometry(tr["L_mm"], tr["h_mm"], tr["N"])
+    _, _, unit = nj.truss_unit(tr)
+    lower = np.array([nodes[a_][1] == nodes[b_][1] == nj.CHORD_Z_MM for a_, b_ in mem])
+    assert unit[0][lower] == pytest.approx(1.0) and np.abs(unit[0][~lower]).max() < 1e-9
+
+    case, ctx = runs[("tool_changer", "rope_creep")]
+    rp = case.truth["params"]["rope_creep"]
+    # rope: a load F slips the stage by F |du| / EA whichever way it moves; re-referenced at a block's start
+    stub = SimpleNamespace(loads=np.full((4, 6), 500.0), q=np.zeros((4, 6)),
+                           session=SimpleNamespace(gap_s=np.array([0.0, 0.0, 0.0, -60.0])))
+    stub.q[:, rp["joint"]] = [0.0, 100.0, 40.0, 90.0]
+    assert nj.creep_signal(rp, stub) == pytest.approx([0.0, 500 * 100, 500 * 160, 0.0])

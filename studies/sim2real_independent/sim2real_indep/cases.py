@@ -8,8 +8,9 @@ one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more 
 literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
 each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
 ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
-eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`) and set M (24 cases, 8 per arm)
-a thirteenth (:mod:`effects_m`). A case: (id, robot, physics kinds, poses, split).
+eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
+a thirteenth (:mod:`effects_m`) and set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`). A case: (id, robot,
+physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
-SEED_M = 40_7013
+SEED_M, SEED_N = 40_7013, 40_7014
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -501,11 +502,63 @@ SET_M = [
     ("M24", "kr16_like", ("friction_wheel", "hot_plume"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-M)
+#: set N: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_n`); written as an independent test set after set M, from the literature, without reading how
+#: the diagnosis models effects. The wind on a carried panel, the tracked carrier, the leaf-sprung vehicle, the ring
+#: gripper frame, the heated elastomer pads and the magnetic encoders sit on ur10 and kr16_like; the water jet on
+#: kr16_like and tool_changer; the counterbalanced axis 2 on kr16_like and tool_changer; the rope-driven telescopic
+#: stage on tool_changer; the lattice boom, the base harness's lash and the tracker's heated tripod on all three (they
+#: do nothing on the other arms). Oracle labels when written (oracle.py only; the diagnosis was not run): every case its
+#: truth (gains 25-89 %; each mixture component's removal costs 33 % or more), the geometry-only cases none; no soft
+#: labels (no gain below 20 %, no rival family's model within 25 % of the truth; the closest: N22's link model 1.32x,
+#: N06's joint model 1.47x, N04's joint model 1.52x, N24's link model 1.53x). Changed after trial draws (other seeds;
+#: the first ranges in the modules' docstrings): the panel was first glass of 10-16 kg/m^2 in 6-11 m/s wind (gains of
+#: 12-18 %); kr16_like's jet first up to 1000 bar and 20 l/min (1.1 mm); the lattice's pins first 0.03-0.10 mm (1.2 mm);
+#: the carrier's soil first sank 3-8 mm (2.7 mm at the tool); the vehicle's rear springs first started on their loading
+#: envelope (the van settled 3-5 mm over the session by the friction band) and its payload changed between blocks; the
+#: magnetic encoders first drifted 2-8 / 1-4 urad/K (gains of 6-30 %); the pads' heater first stood 1.2-2.5 m away on
+#: 20-50 mm pads (absorbed or gains below 20 %). After this set's own first check (N04 and N22 mislabelled, the rest
+#: clean): N04 (gain 16 %, the joint model at 1.17x) got the worn flexspline's lost motion on ur10's axis 1, 0.8-2
+#: arcmin (first 0.5-1.5); N22 (split by time, its twelve free sine and cosine columns extrapolated: absorbed, a gain of
+#: -43 %) got the encoders' drift phases as shape parameters (one column per harmonic and joint; it redrew N06, which
+#: stayed clean). Trial draws on two offsets of the seed and six other seeds then moved, with the set's cases clean
+#: before and after: the carrier's soil to a sinkage of 1.5-3.5 mm with a reloading line 4-10 times as stiff and heavier
+#: carriers (where the ratcheting sinkage, a drift in time, dominated, the thermal, link or transmission model came
+#: within 1.03-1.25x), the van's springs softer and the arm further ahead of its rear axle (gains of 14-25 %, the link
+#: model within 1.04-1.21x), ur10's ring frame lighter (gains of 17-21 %), the pads' heater left on once switched on (a
+#: time split's test part saw the pads cooling: absorbed). No pose count or seed was changed.
+SET_N = [
+    ("N01", "ur10", ("wind_panel",), 120, "random"),
+    ("N02", "ur10", ("leaf_springs",), 100, "random"),
+    ("N03", "ur10", ("ring_frame",), 140, "random"),
+    ("N04", "ur10", ("harness_lash",), 45, "random"),
+    ("N05", "ur10", ("pad_heat",), 170, "time"),
+    ("N06", "ur10", ("mag_drift",), 160, "random"),
+    ("N07", "ur10", (), 70, "random"),
+    ("N08", "ur10", ("crawler_sink", "tripod_tilt"), 180, "time"),
+    ("N09", "tool_changer", ("jet_reaction",), 130, "random"),
+    ("N10", "tool_changer", ("harness_lash",), 110, "random"),
+    ("N11", "tool_changer", ("balanced_lash",), 120, "random"),
+    ("N12", "tool_changer", ("rope_creep",), 150, "time"),
+    ("N13", "tool_changer", ("truss_slack",), 100, "random"),
+    ("N14", "tool_changer", ("tripod_tilt",), 160, "time"),
+    ("N15", "tool_changer", (), 30, "random"),
+    ("N16", "tool_changer", ("jet_reaction", "rope_creep"), 190, "random"),
+    ("N17", "kr16_like", ("jet_reaction",), 140, "random"),
+    ("N18", "kr16_like", ("crawler_sink",), 120, "random"),
+    ("N19", "kr16_like", ("truss_slack",), 130, "random"),
+    ("N20", "kr16_like", ("balanced_lash",), 110, "random"),
+    ("N21", "kr16_like", ("tripod_tilt",), 150, "time"),
+    ("N22", "kr16_like", ("mag_drift",), 180, "time"),
+    ("N23", "kr16_like", (), 90, "random"),
+    ("N24", "kr16_like", ("wind_panel", "harness_lash"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-N)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
-        "M": (SET_M, SEED_M)}
+        "M": (SET_M, SEED_M), "N": (SET_N, SEED_N)}
 
 
 def case_seed(set_name: str, index: int) -> int:

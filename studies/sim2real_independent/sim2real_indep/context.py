@@ -98,7 +98,22 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "slurry_lift": "joint_compliance", "oil_column": "joint_compliance", "spindle_dither": "backlash",
           "jaw_play": "backlash", "chain_stage": "transmission", "friction_wheel": "transmission",
           "cart_dock": "mount_compliance", "carriage_play": "mount_compliance", "rope_mount": "link_deflection",
-          "tie_rod_bar": "link_deflection", "hot_plume": "thermal", "oil_growth": "thermal"}
+          "tie_rod_bar": "link_deflection", "hot_plume": "thermal", "oil_growth": "thermal",
+          # set N (sim2real_indep.effects_n; wind_panel, the gears twisted by the wind on a carried panel, and
+          # jet_reaction, by a water jet's reaction, scored as joint compliance; harness_lash, axis 1's lost motion
+          # whose flank the base harness's torsion chooses, and balanced_lash, axis 2's under gravity, a counterbalance
+          # and its seal friction, as backlash; rope_creep, a telescopic stage's rope creeping on its traction sheave,
+          # and mag_drift, magnetic encoders' once- and twice-per-turn errors growing as they warm (the family whose
+          # model holds the shape), as transmission; crawler_sink, a tracked carrier sinking into soft ground, and
+          # leaf_springs, a vehicle's hysteretic leaf-spring suspension, as mount compliance (the robot's support);
+          # truss_slack, a lattice gripper boom's pin slack, and ring_frame, a ring gripper frame that the held part
+          # stiffens, as link deflection (the end-of-arm structure carrying the target); tripod_tilt, the tracker's head
+          # tilted by its unequally heated tripod legs (a measurement effect), and pad_heat, the base lifted and tilted
+          # by unequally heated elastomer pads, as thermal)
+          "wind_panel": "joint_compliance", "jet_reaction": "joint_compliance", "harness_lash": "backlash",
+          "balanced_lash": "backlash", "rope_creep": "transmission", "mag_drift": "transmission",
+          "crawler_sink": "mount_compliance", "leaf_springs": "mount_compliance", "truss_slack": "link_deflection",
+          "ring_frame": "link_deflection", "tripod_tilt": "thermal", "pad_heat": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
