@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; all thirteen: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; all fourteen: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -109,9 +109,26 @@ diagnosis, its effect models, nor any result of sets A-L, and who did not run th
 weaker than the earlier sets': the helper's brief reached it empty, and before finding the written brief it read the
 subject lines of the latest commits, which name the diagnosis's newest variants (among them the `flange` variant of a
 compliant element between the flange and the tool). Two of its link kinds sit there (the wire-rope tool mount and the
-tie-rod gripper bar: M03, M06, M08, M19, M22). It was run once, on the code of this report (after set L's misses had
+tie-rod gripper bar: M03, M06, M08, M19, M22). It was run once, on the code of the release that added it (after set L's misses had
 shaped the `stroke` variant, nothing written while looking at set M); the code before the `stroke` variant scores one
 case fewer (M11, a telescopic stage pulled by a roller chain, was `ambiguous`).
+
+**Set N** (24 cases, seed 40_7014) is a fourteenth independent test set of twelve new kinds
+(`sim2real_indep/effects_n*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-M, and who did not run the diagnosis (by its own report it
+read nothing of them; a search for its own placeholder names ran over the three files it must not read and found
+nothing, and it counted their lines). It was run once, on the code that set M's misses had shaped (the `clearance`
+variant of backlash and the `play` variant of mount compliance; the code before them scores the same, 11/24), none of
+it written while looking at set N: 11/24 strict, 11 lenient, no false claim, median final / oracle RMS 2.83; right on
+5 of 7 effect cases where the true family's generic model helps, 3 of 14 where it does not. Unlogged forces at the
+tool (a jet's reaction, N09, N16, N17, wind on a carried panel, N01) were `none` or thermal; the tracker's tripod
+tilting with heat (N14, N21) was thermal but did not transfer to the later test file (`inconclusive`); magnetic
+encoders drifting with heat (N06, N22), a rope creeping on its sheave (N12) and a truss boom's pin clearances on the
+tool changer (N13) were `none`; a counterbalanced axis 2's lost motion (N11, N20) was named joint compliance and
+transmission. A variant written after those misses were seen (an unknown constant force at the target winding the
+joints up, in the tool frame or across gravity) changed no set N verdict -- the jet runs only in some blocks and the
+wind gusts -- and cost other sets a right name (J17); it was not kept, so the set N figures below are those of its
+one judging run.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -283,7 +300,7 @@ comment):
 | kind | family | physics | sources |
 | --- | --- | --- | --- |
 | vacuum_hose | joint_compliance | a vacuum hose's pull (pressure x area) drags the gripper towards its fixed stand while a part is held; the pull's joint loads twist the gears (ur10, kr16_like) | EJMA (bellows pressure thrust); Craig (statics) |
-| tele_rope | joint_compliance | the telescopic stage held by two unequal wire ropes whose stretch depends on the stroke and the load's sign, stiffening with load (tool_changer) | Feyrer, *Wire Ropes* |
+| tele_rope | joint_compliance | the telescopic stage held by two unequal wire ropes whose stretch depends on the stroke and the load's sign, stiffening with load (tool_changer) | Feyrer, *Wire Ropes* 2015 |
 | outrigger_soil | mount_compliance | outrigger pads settling into soft ground (rigid-punch settlement) plus Terzaghi consolidation over the load history (ur10, kr16_like) | Boussinesq; Poulos & Davis; Terzaghi; Das |
 | bulkhead | mount_compliance | the excavation chamber's support pressure (drifting and cycling) bows the tunnel machine's pressure bulkhead that carries the robot (tool_changer) | Timoshenko & Woinowsky-Krieger (clamped plates); Maidl et al. |
 | side_cylinder | link_deflection | axis 2 driven by one cylinder beside the arm: its offset force twists the upper arm's root and bends it sideways (tool_changer) | law of cosines; Timoshenko & Gere |
@@ -330,6 +347,24 @@ comment):
 | tie_rod_bar | link_deflection | a long gripper bar stiffened by a tension-only tie rod: it bends at two rates (ur10, kr16_like) | Roark; Timoshenko & Gere |
 | hot_plume | thermal | a column of hot air between the tracker and the robot bends the beams through its flanks and lengthens their optical path (all three arms) | Edlen 1966; Ciddor 1996; Born & Wolf; Estler et al. 2002 |
 | oil_growth | thermal | the hydraulic oil warms through production; cylinders servoed on their own stroke grow between their pins (tool_changer) | Merritt 1967; Incropera & DeWitt |
+
+Set N's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_N
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| wind_panel | joint_compliance | gusty wind's normal force on a carried panel (cross-flow drag), J^T F twisting the gears (ur10, kr16_like) | Hoerner, *Fluid-Dynamic Drag* 1965; EN 1991-1-4; ESDU 85020 |
+| jet_reaction | joint_compliance | a water jet's reaction rho Q v along the nozzle in the blocks where the pump runs (kr16_like, tool_changer) | Bernoulli and the momentum balance; Momber & Kovacevic 1998 |
+| harness_lash | backlash | axis 1's lost motion, its flank chosen by the base cable harness's spring-plus-friction torque (all three arms) | Nordin & Gutman 2002; dress-pack guidelines |
+| balanced_lash | backlash | axis 2's lost motion under gravity plus a counterbalance and its seal friction (kr16_like, tool_changer) | Nordin & Gutman 2002; set D's gas spring; seal makers' friction data |
+| rope_creep | transmission | the telescopic stage's rope creeping on its traction sheave, F abs(du) / EA, reset per block (tool_changer) | Feyrer, *Wire Ropes* 2015 |
+| mag_drift | transmission | magnetic encoders' once- and twice-per-turn errors growing with the drive's temperature (ur10, kr16_like) | HEIDENHAIN angle-encoder brochure; ams AS5047 / iC-Haus iC-MU data sheets |
+| crawler_sink | mount_compliance | a tracked carrier on soft ground: Bekker sinkage, stiff unloading and reloading that remembers the largest past load (ur10, kr16_like) | Bekker 1956; Wong, *Theory of Ground Vehicles* 2008 |
+| leaf_springs | mount_compliance | a van's bed on rear leaf springs with inter-leaf friction hysteresis (ur10, kr16_like) | Fancher, Ervin, MacAdam & Winkler 1980 |
+| truss_slack | link_deflection | a lattice gripper boom whose pinned members take up their clearance by the sign of their force (all three arms) | Williot-Mohr; Timoshenko & Young |
+| ring_frame | link_deflection | a ring gripper frame on spokes (a 3-D frame model), stiffened by the part it holds (ur10, kr16_like) | Roark's *Formulas for Stress and Strain* |
+| tripod_tilt | thermal | the tracker's tripod legs heated unequally, tilting the head (the error arises after the tracker) (all three arms) | Lee & Shah 1988; Bryan 1990; Estler et al. 2002; Incropera & DeWitt |
+| pad_heat | thermal | elastomer levelling pads heated unequally by a heater, lifting and tilting the base (ur10, kr16_like) | Gent, *Engineering with Rubber* 2012 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
