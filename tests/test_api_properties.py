@@ -2,15 +2,25 @@
 (a verdict, finite numbers) or raises a :class:`tolalloc.TolallocError` naming the argument, what arrived and what
 would work -- never an exception from numpy, pandas, SciPy, cvxpy or CasADi, never a NaN, never a partial file.
 
-Each job has two tests: ``*_refuses_or_runs`` perturbs one or two arguments with values from the odd pools
-(:mod:`property_strategies`) around otherwise valid, cheap arguments; ``*_valid_runs_are_finite`` draws only valid
-arguments (generated robots, poses, requirements) and checks the result. Examples per test: see
-:func:`property_strategies.examples` (``TOLALLOC_HYPOTHESIS_PROFILE=long`` for the long run).
+The jobs are called as their documentation tells users to: the settings objects (:class:`tolalloc.Region`,
+:class:`tolalloc.Verification`, :class:`tolalloc.MonteCarlo` ...) and the short keywords that remain (``radius_mm``,
+``region="nominal"``, ``verification=False`` ...), never the deprecated flat keywords (a ``DeprecationWarning`` fails
+the call, :func:`property_strategies.outcome`; :func:`test_the_deprecated_keywords_still_work_and_warn` keeps them).
+
+Each job has two tests: ``*_refuses_or_runs`` perturbs one or two keywords or fields of a settings object with values
+from the odd pools (:mod:`property_strategies`) around otherwise valid, cheap arguments (:func:`perturbed`); a wrong
+field is refused when its object is built or when the job runs, naming ``ClassName.field`` (or the keyword of its
+short form); ``*_valid_runs_are_finite`` draws only valid arguments (generated robots, poses, requirements) and checks
+the result. Examples per test: see :func:`property_strategies.examples` (``TOLALLOC_HYPOTHESIS_PROFILE=long`` for the
+long run).
 """
 
 from __future__ import annotations
 
+import json
+import os
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -20,10 +30,11 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import tolalloc
-from property_strategies import (check_refusal, check_result, costs_texts, counts, examples,
-                                 generated_robots,
-                                 interface_poses, joint_values, measurement_frame, measurement_frames,
-                                 numbers_near_bounds, odd_values, outcome)
+from property_strategies import (KNOWN_FAULTS, REFUSED, Draft, build, call_job, check_refusal, check_result,
+                                 costs_texts, count, counts, examples, generated_robots, interface_poses, joint_values,
+                                 measurement_frame, measurement_frames, numbers_near_bounds, odd_values, outcome)
+from tolalloc import (Costs, ErrorModelOptions, FitOptions, Measurement, MonteCarlo, OrientationRequirement,
+                      PositionRequirement, Refit, Region, Solver, Verification)
 
 #: argument left at its default
 OMIT = object()
@@ -72,15 +83,54 @@ def bad(*extra):
     return st.one_of(odd_values(), results(), *extra)
 
 
+class Obj:
+    """A settings object in a job's valid arguments: its class, a strategy per field (valid values; ``st.just(OMIT)``:
+    left at its default) and the wrong values of some fields (the others: :func:`bad`). Each field is a place
+    :func:`perturbed` may put a wrong value."""
+
+    def __init__(self, cls, valid: dict, wrong: dict | None = None):
+        self.cls, self.valid, self.wrong = cls, valid, wrong or {}
+
+    def __repr__(self) -> str:
+        return f"Obj({self.cls.__name__})"
+
+
+def _objects(shape) -> list:
+    """The :class:`Obj` of a drawn valid value: itself, the ones of a list (requirements), or none."""
+    if isinstance(shape, Obj):
+        return [shape]
+    return [o for o in shape if isinstance(o, Obj)] if isinstance(shape, list) else []
+
+
 @st.composite
-def perturbed(draw, valid: dict, wrong: dict, n_bad=(1, 1, 1, 2)):
-    """Keyword arguments: valid ones, with one or two of them replaced from their ``wrong`` strategy."""
-    names = list(valid)
-    k = draw(st.sampled_from(n_bad))
-    chosen = set(draw(st.lists(st.sampled_from(names), min_size=k, max_size=k, unique=True)))
+def perturbed(draw, valid, wrong: dict, n_bad=(1, 1, 1, 2)):
+    """Keyword arguments of a job: valid ones (``valid``: a dict of strategies, or a list of such dicts -- the forms
+    of a call, e.g. short keywords or their objects), with one or two places given a wrong value: a keyword (from its
+    ``wrong`` strategy, else :func:`bad`) or a field of a settings object drawn for the call (from the
+    :class:`Obj`'s). Settings objects come as :class:`~property_strategies.Draft` (built by
+    :func:`~property_strategies.call_job`, so a refusal at construction is checked too)."""
+    forms = valid if isinstance(valid, list) else [valid]
+    form = forms[draw(st.integers(0, len(forms) - 1))]
+    shapes = {name: draw(strategy) for name, strategy in form.items()}  # a value, OMIT, an Obj or a list of Obj
+    places = [(name,) for name in shapes] + [(name, i, f) for name, shape in shapes.items()
+                                             for i, o in enumerate(_objects(shape)) for f in o.valid]
+    k = min(draw(st.sampled_from(n_bad)), len(places))
+    chosen = {places[i] for i in draw(st.lists(st.integers(0, len(places) - 1), min_size=k, max_size=k, unique=True))}
+
+    def drafted(name, i, o):
+        fields = {f: draw(o.wrong.get(f, bad()) if (name, i, f) in chosen else s) for f, s in o.valid.items()}
+        return Draft(o.cls, **{f: v for f, v in fields.items() if v is not OMIT})
+
     kwargs = {}
-    for name in names:
-        value = draw(wrong.get(name, bad()) if name in chosen else valid[name])
+    for name, shape in shapes.items():
+        if (name,) in chosen:
+            value = draw(wrong.get(name, bad()))
+        elif isinstance(shape, Obj):
+            value = drafted(name, 0, shape)
+        elif isinstance(shape, list) and _objects(shape):
+            value = [drafted(name, i, o) for i, o in enumerate(shape)]
+        else:
+            value = shape
         if value is not OMIT:
             kwargs[name] = value
     return kwargs
@@ -96,55 +146,133 @@ def costs_file(text: str) -> Path:
     return path
 
 
+def other_objects(*classes):
+    """Settings objects of other classes (where one class is expected)."""
+    return st.sampled_from(classes).map(lambda cls: cls())
+
+
 SETTINGS = dict(deadline=None)
+ALL_CLASSES = (Costs, ErrorModelOptions, MonteCarlo, Measurement, Region, Solver, Verification, Refit, FitOptions,
+               PositionRequirement)
+
+# ------------------------------------------------------------------------------------------------ settings objects
+EXCLUDE_WRONG = ["dl1", ("dl1", "nope"), ["link_length"], ("axis_deflection", "link_length", "joint_drive",
+                                                            "clearance_axial")]
+
+
+def error_model_options(sigma=st.just(OMIT), exclude=omit_or(st.just(())), exclude_wrong=EXCLUDE_WRONG) -> Obj:
+    """An :class:`ErrorModelOptions`: sigma set, link and deflection model, clearance, exclusions, overrides."""
+    return Obj(ErrorModelOptions,
+               {"sigma_set": st.just(OMIT), "link_mode": omit_or(st.sampled_from(["consistent", "axes_only"])),
+                "deflection_mode": omit_or(st.sampled_from(["screw", "tilt"])), "clearance": omit_or(st.booleans()),
+                "clearance_tilt_literal": st.just(OMIT), "sigma": sigma, "exclude": exclude},
+               {"sigma_set": bad(st.sampled_from(["table1", "table2", "generic", "nope"])),
+                "exclude": bad(st.sampled_from(exclude_wrong)),
+                "clearance_tilt_literal": bad(st.booleans()),
+                "sigma": bad(st.just({"link_length": 0.1}),
+                             st.dictionaries(st.sampled_from(["dl1", "link_length", "nope", "dth2", 3]),
+                                             odd_values() | numbers_near_bounds(), max_size=3))})
+
+
+def costs_options(z=omit_or(st.sampled_from([2.0, 3.0])), uniform=omit_or(st.just(False))) -> Obj:
+    """A :class:`Costs`: a costs file (none, or one of the generated odd ones), ``z``, uniform errors."""
+    return Obj(Costs, {"file": st.just(OMIT), "z": z, "uniform": uniform},
+               {"file": bad(costs_texts().map(costs_file), st.sampled_from([Path("no/such.toml"), SCRATCH])),
+                "z": bad(numbers_near_bounds()), "uniform": bad(st.booleans())})
+
 
 # ------------------------------------------------------------------------------------------------ allocate
-ALLOCATE_VALID = {
+POSITION = Obj(PositionRequirement, {"radius_mm": st.floats(0.05, 2.0), "prob": st.floats(0.5, 0.999)},
+               {"radius_mm": bad(numbers_near_bounds()), "prob": bad(numbers_near_bounds())})
+ORIENTATION = Obj(OrientationRequirement, {"radius_deg": st.floats(0.01, 1.0), "prob": omit_or(st.floats(0.5, 0.999))},
+                  {"radius_deg": bad(numbers_near_bounds()), "prob": bad(numbers_near_bounds())})
+
+
+def not_none(strategy):
+    """``strategy`` without None: the default region, the tool_changer's working box, whose search is its own test
+    (the examples below), would only take long here."""
+    return strategy.filter(lambda v: v is not None)
+
+
+_REGION_WRONG = {"where": not_none(bad(st.sampled_from(["limits", "nope", "", "traj.csv", "working "]),
+                                       joint_values(TC), st.just(np.zeros((3, 6))))),
+                 "poses": not_none(bad(st.sampled_from(["nope", "working", "nominal"]))), "coverage_n": bad(counts())}
+#: pose sets (the tool_changer's box search, region="working", is its own test): a Region's where, or its poses
+REGIONS = [Obj(Region, {"where": st.just("nominal"), "poses": st.just(OMIT),
+                        "coverage_n": omit_or(st.just(100))}, _REGION_WRONG),
+           Obj(Region, {"where": st.just(OMIT), "poses": st.sampled_from(["nominal", "working"]),
+                        "coverage_n": omit_or(st.just(100))}, _REGION_WRONG)]
+
+
+def _slow_step(value) -> bool:
+    """A valid angle step far below any drawing's (1e-9 .. 1e-5 deg, under 0.04 arc-second): accepted, and the
+    standard search then takes seconds (up to 8 s on the tool_changer with an orientation requirement)."""
+    return isinstance(value, (int, float, np.floating)) and not isinstance(value, bool) and 1e-9 <= value < 1e-5
+
+
+SOLVER = Obj(Solver, {"method": omit_or(st.sampled_from(["exact", "certified"])), "snap": omit_or(st.booleans()),
+                      "angle_step_deg": omit_or(st.just(0.001))},
+             {"method": bad(st.sampled_from(["EXACT", "ipopt"])),
+              # the slow valid steps only take long here
+              "angle_step_deg": bad(numbers_near_bounds()).filter(lambda v: not _slow_step(v))})
+#: no Monte Carlo (n_mc None): the verification's other fields are still checked (a correction loop without it, or
+#: rounds of a loop that is off, are refused)
+VERIFICATION = Obj(Verification, {"n_mc": st.just(None), "seed": omit_or(st.integers(0, 2**31)),
+                                  "estimator": omit_or(st.just("auto")), "correction": omit_or(st.booleans()),
+                                  "correction_rounds": omit_or(st.just(1)), "scheduler": st.just(OMIT)},
+                   {"n_mc": bad(counts()), "seed": bad(counts()), "correction_rounds": bad(counts()),
+                    "estimator": bad(st.sampled_from(["paired", "is"])), "correction": bad(st.booleans()),
+                    "scheduler": bad(st.sampled_from(["threads", "bogus", "tcp://"]))})
+_ALLOCATE_COMMON = {
     "robot": st.sampled_from([TC, "tool_changer"]) | st.builds(two_link),
-    "radius_mm": st.floats(0.05, 2.0), "prob": st.floats(0.5, 0.999),
-    "region": st.sampled_from(["nominal", "working"]),  # pose sets (the tool_changer's box search is its own test)
-    "poses": st.just(OMIT), "verify": st.just(False), "n_mc": omit_or(st.just(200)),  # poses: not with region
-    "seed": omit_or(st.integers(0, 2**31)), "solver": omit_or(st.sampled_from(["exact", "certified"])),
-    "snap": omit_or(st.booleans()), "z": omit_or(st.sampled_from([2.0, 3.0])), "uniform": omit_or(st.just(False)),
-    "sigma_set": st.just(OMIT), "link_mode": omit_or(st.sampled_from(["consistent", "axes_only"])),
-    "deflection_mode": omit_or(st.sampled_from(["screw", "tilt"])), "clearance": omit_or(st.booleans()),
-    "exclude": omit_or(st.just(())), "angle_radius_deg": st.just(OMIT), "angle_prob": st.just(OMIT),
-    "angle_step_deg": omit_or(st.just(0.001)), "calibration": st.just(OMIT), "estimator": omit_or(st.just("auto")),
-    "correction": omit_or(st.booleans()), "correction_rounds": omit_or(st.just(1)), "coverage_n": omit_or(st.just(100)),
-    "scheduler": st.just(OMIT), "tool": st.just(OMIT), "trust_units": omit_or(st.booleans()),
-    "costs": st.just(OMIT),
+    "region": st.just("nominal") | st.sampled_from(REGIONS),
+    "costs": omit_or(st.just(costs_options())), "error_model": omit_or(st.just(error_model_options())),
+    "solver": omit_or(st.sampled_from(["exact", "certified", SOLVER])),
+    "verification": st.sampled_from([False, VERIFICATION]), "n_mc": st.just(OMIT),
+    "calibration": st.just(OMIT), "tool": st.just(OMIT), "trust_units": omit_or(st.booleans()),
+    "progress": omit_or(st.just(False)),
 }
+ALLOCATE_VALID = [
+    # the short keywords of the position requirement
+    {**_ALLOCATE_COMMON, "radius_mm": st.floats(0.05, 2.0), "prob": st.floats(0.5, 0.999),
+     "requirement": st.just(OMIT)},
+    # the requirement objects: a position requirement, with an orientation requirement
+    {**_ALLOCATE_COMMON, "requirement": st.sampled_from([POSITION, [POSITION, ORIENTATION]])},
+]
 ALLOCATE_WRONG = {
     "robot": bad(generated_robots(1, 8)),
-    "radius_mm": bad(numbers_near_bounds()), "prob": bad(numbers_near_bounds()), "z": bad(numbers_near_bounds()),
-    "angle_radius_deg": bad(numbers_near_bounds()), "angle_prob": bad(numbers_near_bounds()),
-    "angle_step_deg": bad(numbers_near_bounds()), "n_mc": bad(counts()), "coverage_n": bad(counts()),
-    "seed": bad(counts()), "correction_rounds": bad(counts()),
-    "region": bad(st.sampled_from(["limits", "nope", "", "traj.csv", "working "]),
-                  joint_values(TC), st.just(np.zeros((3, 6)))),
-    "poses": bad(st.sampled_from(["nope", "working", "nominal"])),
-    "costs": bad(costs_texts().map(costs_file), st.sampled_from([Path("no/such.toml"), SCRATCH])),
+    "radius_mm": bad(numbers_near_bounds()), "prob": bad(numbers_near_bounds()),
+    "requirement": bad(other_objects(*ALL_CLASSES), st.just([PositionRequirement(), PositionRequirement()]),
+                       st.just([OrientationRequirement()]), st.just(PositionRequirement(0.1, 0.9))),
+    "n_mc": bad(counts()),
+    "region": not_none(bad(st.sampled_from(["limits", "nope", "", "traj.csv", "working "]),
+                           joint_values(TC), st.just(np.zeros((3, 6))), other_objects(Solver, Costs))),
+    "costs": bad(costs_texts().map(costs_file), st.sampled_from([Path("no/such.toml"), SCRATCH]),
+                 other_objects(Region, ErrorModelOptions)),
+    "error_model": bad(st.sampled_from(["table1", "generic"]), st.just({"sigma_set": "table1"}),
+                       other_objects(Costs, MonteCarlo)),
     "calibration": bad(st.sampled_from([Path("no/such/plan.csv"), SCRATCH])),
-    "solver": bad(st.sampled_from(["EXACT", "ipopt"])), "estimator": bad(st.sampled_from(["paired", "is"])),
-    "sigma_set": bad(st.sampled_from(["table1", "table2", "generic", "nope"])),
-    "exclude": bad(st.sampled_from(["dl1", ("dl1", "nope"), ["link_length"], ("axis_deflection", "link_length",
-                                                                             "joint_drive", "clearance_axial")])),
-    "scheduler": bad(st.sampled_from(["threads", "bogus", "tcp://"])),
+    "solver": bad(st.sampled_from(["EXACT", "ipopt"]), other_objects(Verification, Region)),
+    # None and True are the full verification (10^6 samples per pose, with the correction loop: seconds): not here
+    "verification": bad(st.just(False), other_objects(MonteCarlo, Solver)).filter(
+        lambda v: v is not None and not (isinstance(v, (bool, np.bool_)) and v)),
     "tool": bad(st.sampled_from(["tool0", "flange"])),
 }
 
 
 @settings(max_examples=examples(24), **SETTINGS)
-@example(kwargs={"robot": TC, "radius_mm": 0.0625, "prob": 0.5, "region": "working", "verify": False, "z": 1.0})
-@example(kwargs={"robot": TC, "radius_mm": 0.0546875, "prob": 0.5, "region": "working", "verify": False, "z": 1.0})
+@example(kwargs={"robot": TC, "radius_mm": 0.0625, "prob": 0.5, "region": "working", "verification": False,
+                 "costs": Draft(Costs, z=1.0)})
+@example(kwargs={"robot": TC, "radius_mm": 0.0546875, "prob": 0.5, "region": "working", "verification": False,
+                 "costs": Draft(Costs, z=1.0)})
 @given(perturbed(ALLOCATE_VALID, ALLOCATE_WRONG))
 def test_allocate_tolerances_refuses_or_runs(kwargs):
     # the examples (found by the long profile): no standard design meets P on the region, so the standard search has
     # no worst P (the summary said NaN, not JSON, and the text "round limit reached"); no design at all covers the
     # region (the text was empty)
-    res = outcome(tolalloc.allocate_tolerances, kwargs)
+    res = call_job(tolalloc.allocate_tolerances, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
 
 
 @settings(max_examples=examples(3, 0.02), **SETTINGS)
@@ -160,11 +288,13 @@ def test_allocate_tolerances_valid_runs_are_finite(robot, seed, radius_mm, prob,
         region = interface_poses(robot, np.random.default_rng(seed), 3)
     elif region == "limits" and not np.all(np.isfinite(robot.lower) & np.isfinite(robot.upper)):
         region = None
-    kwargs = dict(robot=robot, radius_mm=radius_mm, prob=prob, region=region, verify=verify, n_mc=200,
-                  coverage_n=100, solver=solver, seed=seed, clearance=clearance, correction_rounds=1)
-    res = outcome(tolalloc.allocate_tolerances, kwargs)
+    kwargs = dict(robot=robot, requirement=Draft(PositionRequirement, radius_mm=radius_mm, prob=prob),
+                  region=Draft(Region, where=region, coverage_n=100), solver=solver,
+                  verification=Draft(Verification, n_mc=200 if verify else None, seed=seed, correction_rounds=1),
+                  error_model=Draft(ErrorModelOptions, clearance=clearance))
+    res = call_job(tolalloc.allocate_tolerances, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
         assert res.verdict in (None, "demonstrated", "consistent", "failed")
         assert (res.verdict is None) == (not verify or res.status != "optimal"), (res.verdict, res.status)
 
@@ -175,10 +305,10 @@ ANALYZE_VALID = {
     "q_deg_mm": st.just(OMIT), "poses": omit_or(st.sampled_from(["nominal"])),
     "radius_mm": omit_or(st.floats(0.01, 5.0), st.lists(st.floats(0.01, 5.0), max_size=3)),
     "prob": omit_or(st.floats(0.01, 0.999), st.lists(st.floats(0.01, 0.999), max_size=3)),
-    "sigma_set": st.just(OMIT), "link_mode": omit_or(st.sampled_from(["consistent", "axes_only"])),
-    "deflection_mode": omit_or(st.sampled_from(["screw", "tilt"])), "clearance": omit_or(st.booleans()),
-    "clearance_tilt_literal": st.just(OMIT), "sigma": omit_or(st.just({"link_length": 0.1})),
-    "exclude": omit_or(st.just("clearance_tilt")), "top": omit_or(st.integers(1, 30)), "tool": st.just(OMIT),
+    "error_model": omit_or(st.just(error_model_options(sigma=omit_or(st.just({"link_length": 0.1})),
+                                                       exclude=omit_or(st.just("clearance_tilt")),
+                                                       exclude_wrong=EXCLUDE_WRONG[:3]))),
+    "top": omit_or(st.integers(1, 30)), "tool": st.just(OMIT),
     "trust_units": omit_or(st.booleans()), "sobol_n": omit_or(st.just(0)), "seed": omit_or(st.integers(0, 99)),
 }
 ANALYZE_WRONG = {
@@ -187,20 +317,18 @@ ANALYZE_WRONG = {
     "radius_mm": bad(numbers_near_bounds(), st.lists(numbers_near_bounds(), max_size=3)),
     "prob": bad(numbers_near_bounds(), st.lists(numbers_near_bounds(), max_size=3)),
     "top": bad(counts()), "poses": bad(st.sampled_from(["nope", "working", "nominal"])),
-    "sigma": bad(st.dictionaries(st.sampled_from(["dl1", "link_length", "nope", "dth2", 3]),
-                                 odd_values() | numbers_near_bounds(), max_size=3)),
-    "sigma_set": bad(st.sampled_from(["table1", "table2", "generic", "nope"])),
-    "exclude": bad(st.sampled_from(["dl1", ("dl1", "nope"), ["link_length"]])),
-    "clearance_tilt_literal": bad(st.booleans()), "sobol_n": bad(counts(), st.just(16)), "seed": bad(counts()),
+    "error_model": bad(st.sampled_from(["table1", "generic"]), st.just({"clearance": True}),
+                       other_objects(Costs, MonteCarlo)),
+    "sobol_n": bad(counts(), st.just(16)), "seed": bad(counts()),
 }
 
 
 @settings(max_examples=examples(30), **SETTINGS)
 @given(perturbed(ANALYZE_VALID, ANALYZE_WRONG))
 def test_analyze_errors_refuses_or_runs(kwargs):
-    res = outcome(tolalloc.analyze_errors, kwargs)
+    res = call_job(tolalloc.analyze_errors, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
 
 
 @settings(max_examples=examples(10, 0.1), **SETTINGS)
@@ -210,43 +338,71 @@ def test_analyze_errors_valid_runs_are_finite(robot, data):
         return
     q = data.draw(joint_values(robot))
     kwargs = dict(robot=robot, q_deg_mm=q, radius_mm=data.draw(st.floats(0.01, 10.0)),
-                  prob=data.draw(st.floats(0.01, 0.999)), clearance=data.draw(st.booleans()))
-    res = outcome(tolalloc.analyze_errors, kwargs)
+                  prob=data.draw(st.floats(0.01, 0.999)),
+                  error_model=Draft(ErrorModelOptions, clearance=data.draw(st.booleans())))
+    res = call_job(tolalloc.analyze_errors, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
         assert np.all(np.isfinite(res.linear.std_mm)) and np.all(res.linear.std_mm >= 0)
 
 
 # ------------------------------------------------------------------------------------------------ simulate
-SIMULATE_VALID = {
-    "robot": st.sampled_from([TC, UR10]) | st.builds(two_link), "n": st.sampled_from([1, 2, 100]),
-    "seed": omit_or(st.integers(0, 2**31)), "q_deg_mm": st.just(OMIT), "poses": omit_or(st.just("nominal")),
-    "radius_mm": omit_or(st.floats(0.01, 5.0)), "angle_radius_rad": omit_or(st.floats(1e-4, 0.1)),
-    "angle_radius_deg": st.just(OMIT), "ci": omit_or(st.sampled_from(["wilson", "exact"])),
-    "clearance": omit_or(st.booleans()), "scheduler": st.just(OMIT), "jobs": omit_or(st.integers(1, 2)),
-    "chunk_size": st.just(OMIT), "progress": omit_or(st.just(False)), "hist_bins": omit_or(st.sampled_from([0, 2, 8])),
-    "hist_range_mm": st.just(OMIT), "keep_samples": omit_or(st.sampled_from([0, 10])),
-    "estimator": omit_or(st.sampled_from(["plain", "paired"])), "trust_units": omit_or(st.booleans()),
-}
-SIMULATE_WRONG = {
-    "robot": bad(generated_robots(1, 8)), "n": bad(counts()), "seed": bad(counts()),
-    "q_deg_mm": bad(joint_values(TC)), "radius_mm": bad(numbers_near_bounds()),
-    "angle_radius_rad": bad(numbers_near_bounds()), "angle_radius_deg": bad(numbers_near_bounds()),
-    "ci": bad(st.sampled_from(["WILSON", "clopper-pearson"])), "jobs": bad(counts()), "chunk_size": bad(counts()),
-    "hist_bins": bad(counts()), "hist_range_mm": bad(numbers_near_bounds()), "keep_samples": bad(counts()),
+MONTE_CARLO = Obj(MonteCarlo, {
+    "n_mc": st.sampled_from([1, 2, 100]), "seed": omit_or(st.integers(0, 2**31)),
+    "ci": omit_or(st.sampled_from(["wilson", "exact"])), "estimator": omit_or(st.sampled_from(["plain", "paired"])),
+    "keep_samples": omit_or(st.sampled_from([0, 10])), "hist_bins": omit_or(st.sampled_from([0, 2, 8])),
+    "hist_range_mm": st.just(OMIT), "scheduler": st.just(OMIT), "jobs": omit_or(st.integers(1, 2)),
+    "chunk_size": st.just(OMIT)}, {
+    "n_mc": bad(counts()), "seed": bad(counts()), "ci": bad(st.sampled_from(["WILSON", "clopper-pearson"])),
+    "jobs": bad(counts()), "chunk_size": bad(counts()), "hist_bins": bad(counts()),
+    "hist_range_mm": bad(numbers_near_bounds()), "keep_samples": bad(counts()),
     "estimator": bad(st.sampled_from(["importance", "auto", "Paired"])),
-    "scheduler": bad(st.sampled_from(["threads", "bogus", "sync"])), "progress": bad(st.booleans()),
+    "scheduler": bad(st.sampled_from(["threads", "bogus", "sync"]))})
+_SIMULATE_COMMON = {
+    "robot": st.sampled_from([TC, UR10]) | st.builds(two_link),
+    "q_deg_mm": st.just(OMIT), "poses": omit_or(st.just("nominal")),
+    "radius_mm": omit_or(st.floats(0.01, 5.0)), "angle_radius_deg": omit_or(st.floats(0.006, 5.7)),
+    "error_model": omit_or(st.just(error_model_options())),
+    "progress": omit_or(st.just(False)), "trust_units": omit_or(st.booleans()),
 }
+SIMULATE_VALID = [
+    # the short keywords n_mc and seed
+    {**_SIMULATE_COMMON, "n_mc": st.sampled_from([1, 2, 100]), "seed": omit_or(st.integers(0, 2**31)),
+     "monte_carlo": st.just(OMIT)},
+    # the MonteCarlo object
+    {**_SIMULATE_COMMON, "n_mc": st.just(OMIT), "seed": st.just(OMIT), "monte_carlo": st.just(MONTE_CARLO)},
+]
+SIMULATE_WRONG = {
+    "robot": bad(generated_robots(1, 8)), "n_mc": bad(counts()), "seed": bad(counts()),
+    "q_deg_mm": bad(joint_values(TC)), "radius_mm": bad(numbers_near_bounds()),
+    "angle_radius_deg": bad(numbers_near_bounds()), "progress": bad(st.booleans()),
+    "monte_carlo": bad(st.just({"n_mc": 100}), other_objects(Verification, ErrorModelOptions)),
+    "error_model": bad(st.sampled_from(["table1"]), other_objects(MonteCarlo)),
+}
+
+
+def _huge(value) -> bool:
+    return isinstance(value, (int, float)) and value >= 1e12
+
+
+def _affordable(kwargs: dict) -> dict:
+    """A huge ``n_mc`` (or ``keep_samples``) is streamed (test_memory_is_bounded); here it would only take long: the
+    call gets n_mc = 100 instead."""
+    mc = kwargs.get("monte_carlo")
+    fields = mc.fields if isinstance(mc, Draft) else {}
+    if not any(_huge(v) for v in (kwargs.get("n_mc"), fields.get("n_mc"), fields.get("keep_samples"))):
+        return kwargs
+    if isinstance(mc, Draft):
+        return {**kwargs, "monte_carlo": Draft(MonteCarlo, **{**fields, "n_mc": 100})}
+    return {**kwargs, "n_mc": 100}
 
 
 @settings(max_examples=examples(30), **SETTINGS)
 @given(perturbed(SIMULATE_VALID, SIMULATE_WRONG))
 def test_simulate_errors_refuses_or_runs(kwargs):
-    if any(isinstance(kwargs.get(k), (int, float)) and kwargs[k] >= 1e12 for k in ("n", "keep_samples")):
-        kwargs = {**kwargs, "n": 100}  # a huge n is streamed (test_memory_is_bounded); here it would only take long
-    res = outcome(tolalloc.simulate_errors, kwargs)
+    res = call_job(tolalloc.simulate_errors, _affordable(kwargs), tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
 
 
 @settings(max_examples=examples(4, 0.05), **SETTINGS)
@@ -257,15 +413,17 @@ def test_simulate_errors_valid_runs_are_finite(robot, data):
         return
     if data is None:  # the explicit example: every option at once
         data = _Fixed([100, 7, 5, 2, 0.5, "paired", True, 4])
-    kwargs = dict(robot=robot, n=data.draw(st.sampled_from([1, 2, 100])), seed=data.draw(st.integers(0, 99)),
-                  q_deg_mm=interface_poses(robot, np.random.default_rng(data.draw(st.integers(0, 99))),
-                                           data.draw(st.integers(1, 3))),
-                  radius_mm=data.draw(st.floats(0.01, 10.0)), estimator=data.draw(st.sampled_from([None, "paired"])),
-                  clearance=data.draw(st.booleans()), hist_bins=data.draw(st.sampled_from([0, 4])))
-    res = outcome(tolalloc.simulate_errors, kwargs)
+    n, seed = data.draw(st.sampled_from([1, 2, 100])), data.draw(st.integers(0, 99))
+    q = interface_poses(robot, np.random.default_rng(data.draw(st.integers(0, 99))), data.draw(st.integers(1, 3)))
+    radius, estimator = data.draw(st.floats(0.01, 10.0)), data.draw(st.sampled_from([None, "paired"]))
+    clearance, bins = data.draw(st.booleans()), data.draw(st.sampled_from([0, 4]))
+    kwargs = dict(robot=robot, q_deg_mm=q, radius_mm=radius,
+                  monte_carlo=Draft(MonteCarlo, n_mc=n, seed=seed, estimator=estimator, hist_bins=bins),
+                  error_model=Draft(ErrorModelOptions, clearance=clearance))
+    res = call_job(tolalloc.simulate_errors, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
-        assert res.mc.n == kwargs["n"]
+        check_result(res, tolerate_known=True)
+        assert res.mc.n == n
 
 
 class _Fixed:
@@ -279,19 +437,31 @@ class _Fixed:
 
 
 # ------------------------------------------------------------------------------------------------ calibration plan
+_MEASUREMENT_WRONG = {"kind": bad(st.sampled_from(["orientation", "Position"])), "noise_mm": bad(numbers_near_bounds()),
+                      "noise_deg": bad(numbers_near_bounds())}
+MEASUREMENTS = [Obj(Measurement, {"kind": omit_or(st.just("position")), "noise_mm": omit_or(st.floats(0.005, 0.1)),
+                                  "noise_deg": st.just(OMIT), "registration": omit_or(st.booleans())},
+                    _MEASUREMENT_WRONG),
+                Obj(Measurement, {"kind": st.just("pose"), "noise_mm": omit_or(st.floats(0.005, 0.1)),
+                                  "noise_deg": omit_or(st.floats(1e-4, 0.01)), "registration": omit_or(st.booleans())},
+                    _MEASUREMENT_WRONG)]
 CALPLAN_VALID = {
     "robot": st.builds(two_link), "n_poses": st.sampled_from([2, 3]), "n_candidates": st.sampled_from([8, 12]),
     "region": omit_or(st.just("limits")), "eval_poses": omit_or(st.just("nominal")),
-    "measurement": omit_or(st.sampled_from(["position", "pose"])), "noise_mm": omit_or(st.floats(0.005, 0.1)),
-    "noise_deg": omit_or(st.floats(1e-4, 0.01)), "registration": omit_or(st.booleans()), "costs": st.just(OMIT),
-    "sigma_set": st.just(OMIT), "seed": omit_or(st.integers(0, 2**31)), "trust_units": omit_or(st.booleans()),
+    "measurement": omit_or(st.sampled_from(["position", "pose"]), st.sampled_from(MEASUREMENTS)),
+    "costs": omit_or(st.just(costs_options(z=st.just(OMIT), uniform=st.just(OMIT)))),
+    "error_model": omit_or(st.just(Obj(ErrorModelOptions, {"sigma_set": st.just(OMIT)},
+                                       {"sigma_set": bad(st.sampled_from(["table1", "generic", "nope"]))}))),
+    "seed": omit_or(st.integers(0, 2**31)), "random_plans": st.just(OMIT), "trust_units": omit_or(st.booleans()),
+    "progress": omit_or(st.just(False)),
 }
 CALPLAN_WRONG = {
     "robot": bad(generated_robots(1, 8), st.just(TC)), "n_poses": bad(counts()), "n_candidates": bad(counts()),
     "region": bad(st.sampled_from(["nope", "working", "nominal"])), "eval_poses": bad(st.sampled_from(["nope"])),
-    "measurement": bad(st.sampled_from(["orientation", "Position"])), "noise_mm": bad(numbers_near_bounds()),
-    "noise_deg": bad(numbers_near_bounds()), "seed": bad(counts()),
-    "costs": bad(costs_texts().map(costs_file)), "sigma_set": bad(st.sampled_from(["table1", "generic", "nope"])),
+    "measurement": bad(st.sampled_from(["orientation", "Position"]), other_objects(Costs, MonteCarlo)),
+    "seed": bad(counts()), "random_plans": bad(counts()),
+    "costs": bad(costs_texts().map(costs_file), other_objects(Measurement)),
+    "error_model": bad(st.sampled_from(["table1", "generic", "nope"]), other_objects(Costs)),
 }
 
 
@@ -300,9 +470,9 @@ CALPLAN_WRONG = {
 def test_plan_calibration_refuses_or_runs(kwargs):
     if isinstance(kwargs.get("robot"), tolalloc.Robot) and kwargs["robot"].n_joints > 3:
         kwargs = {**kwargs, "n_candidates": 8}  # a design over a long chain's candidates takes seconds
-    res = outcome(tolalloc.plan_calibration, kwargs)
+    res = call_job(tolalloc.plan_calibration, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
         assert res.design.score_mm2 >= res.design.floor_mm2 - 1e-9
 
 
@@ -314,41 +484,52 @@ def test_plan_calibration_valid_runs_feed_the_calibrated_allocation(robot, n_pos
     """A plan is designed, saved, and read back by the calibration-aware allocation (a result passed on)."""
     if robot is None or not np.all(np.isfinite(robot.lower) & np.isfinite(robot.upper)):
         return
-    design = outcome(tolalloc.plan_calibration, dict(robot=robot, n_poses=n_poses, n_candidates=12, seed=seed,
-                                                     measurement=measurement))
+    design = call_job(tolalloc.plan_calibration, dict(robot=robot, n_poses=n_poses, n_candidates=12, seed=seed,
+                                                      measurement=Draft(Measurement, kind=measurement)),
+                      tolerate_known=True)
     if design is None:
         return
-    check_result(design)
+    check_result(design, tolerate_known=True)
     path = Path(tempfile.mkdtemp(dir=SCRATCH)) / "plan.csv"
     assert design.save_plan(path) == [path] and path.is_file()
-    res = outcome(tolalloc.allocate_tolerances, dict(robot=robot, calibration=path, n_mc=200, seed=seed))
+    res = call_job(tolalloc.allocate_tolerances, dict(robot=robot, calibration=path,
+                                                      verification=Draft(Verification, n_mc=200, seed=seed)),
+                   tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
 
 
 # ------------------------------------------------------------------------------------------------ diagnosis
+REFIT = Obj(Refit, {"register_n": st.just(OMIT), "register_rows": st.just(OMIT), "update": st.just(OMIT)},
+            {"register_n": bad(numbers_near_bounds()), "register_rows": bad(st.lists(st.integers(-1, 40), max_size=12)),
+             "update": bad(st.sampled_from(["calibration", "Frame", "registration"]))})
+FIT = Obj(FitOptions, {"robust_loss": omit_or(st.sampled_from(["auto", "huber"])), "target_offset_mm": st.just(OMIT),
+                       "target_offset_sd_mm": st.just(OMIT)},
+          {"robust_loss": bad(st.sampled_from(["Tukey", "l2", "soft_l1"])),
+           "target_offset_mm": bad(st.sampled_from([(0.0, 0.0, 50.0), (np.nan, 0.0, 0.0), (1.0, 2.0)])),
+           "target_offset_sd_mm": bad(numbers_near_bounds())})
 DIAGNOSE_VALID = {
     "robot": st.just(TC), "train": st.builds(lambda: measurement_frame().iloc[:36]),
     "test": omit_or(st.builds(lambda: measurement_frame().iloc[36:])), "folds": st.just(2),
     "alpha": omit_or(st.sampled_from([0.01, 0.05])), "seed": omit_or(st.integers(0, 100)),
-    "test_frame": st.just(OMIT), "register_n": st.just(OMIT), "register_rows": st.just(OMIT), "cv_rows": st.just(OMIT),
-    "gap_split": st.just(OMIT), "progress": omit_or(st.just(False)), "trust_units": omit_or(st.booleans()),
+    "test_frame": omit_or(st.just("same"), st.just(REFIT)), "cv_rows": st.just(OMIT), "gap_split": st.just(OMIT),
+    "fit": omit_or(st.just(FIT)), "progress": omit_or(st.just(False)), "trust_units": omit_or(st.booleans()),
 }
 DIAGNOSE_WRONG = {
     "robot": bad(st.just(UR10), generated_robots(1, 6)), "train": bad(measurement_frames()),
     "test": bad(measurement_frames()), "folds": bad(counts()), "alpha": bad(numbers_near_bounds()),
-    "seed": bad(counts()), "test_frame": bad(st.sampled_from(["refit", "other"])),
-    "register_n": bad(numbers_near_bounds()), "register_rows": bad(st.lists(st.integers(-1, 40), max_size=12)),
+    "seed": bad(counts()), "test_frame": bad(st.sampled_from(["refit", "other"]), other_objects(FitOptions)),
     "cv_rows": bad(counts()), "gap_split": bad(st.booleans()),
+    "fit": bad(st.sampled_from(["huber"]), other_objects(Refit)),
 }
 
 
 @settings(max_examples=examples(24, 0.1), **SETTINGS)
 @given(perturbed(DIAGNOSE_VALID, DIAGNOSE_WRONG))
 def test_diagnose_measurements_refuses_or_runs(kwargs):
-    res = outcome(tolalloc.diagnose_measurements, kwargs)
+    res = call_job(tolalloc.diagnose_measurements, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
         assert isinstance(res.effect, str)
 
 
@@ -370,7 +551,7 @@ def test_diagnose_measurements_valid_runs_on_generated_robots(robot, effect, see
         kwargs["test"] = frame.iloc[30:]
     res = outcome(tolalloc.diagnose_measurements, kwargs, tolerate_known=True)
     if res is not None:
-        check_result(res)
+        check_result(res, tolerate_known=True)
 
 
 def test_diagnosis_of_a_robot_without_link_deflection_answers():
@@ -510,6 +691,146 @@ def test_error_classes_carry_their_argument():
     check_refusal(exc, {"radius_mm": -1})
 
 
+def test_a_refusal_names_what_was_given():
+    """The oracle: a refusal names a keyword that was passed, or ``ClassName.field`` of a field given to an object that
+    was passed (or set by the keyword's short form) -- not a bare field, not a field left at its default."""
+    verification = build(Draft(Verification, n_mc=None, seed=3))
+    check_refusal(tolalloc.ArgumentError("Verification.seed", "expected a whole number >= 0, got -1."),
+                  {"verification": verification}, "allocate_tolerances")
+    check_refusal(tolalloc.ArgumentError("verification", "expected a tolalloc.Verification(...), got 1."),
+                  {"verification": verification}, "allocate_tolerances")
+    for named in ("seed", "Verification.estimator", "MonteCarlo.seed"):  # bare, left at its default, another class
+        with pytest.raises(AssertionError, match="which was not given"):
+            check_refusal(tolalloc.ArgumentError(named, "expected a whole number >= 0, got -1."),
+                          {"verification": verification}, "allocate_tolerances")
+    # a short form names its keyword or the field it sets; another job's short form is no short form
+    check_refusal(tolalloc.ArgumentError("Region.where", "expected a pose set, got 'nope'."), {"region": "nope"},
+                  "allocate_tolerances")
+    with pytest.raises(AssertionError, match="which was not given"):
+        check_refusal(tolalloc.ArgumentError("MonteCarlo.n_mc", "expected a whole number >= 1, got 0."), {"n_mc": 0},
+                      "allocate_tolerances")
+    # a construction names ClassName.field of a field given
+    assert build(Draft(Verification, n_mc=5)) is REFUSED
+    with pytest.raises(AssertionError, match="which was not given"):
+        check_refusal(tolalloc.ArgumentError("n_mc", "expected at least 100, got 5."), {"n_mc": 5},
+                      names={"Verification.n_mc"})
+
+
+#: calls that reproduce the refusals of :data:`property_strategies.KNOWN_FAULTS` that name the wrong argument
+MISNAMED = {
+    ("names", "poses", "Region.poses"):
+        lambda: tolalloc.allocate_tolerances(TC, region=Region(poses="nope"), verification=False),
+    ("names", "coverage_n", "Region.coverage_n"):
+        lambda: tolalloc.allocate_tolerances(TC, region=Region(where="working", coverage_n=10**12), verification=False),
+    ("names", "n_mc", "Verification.n_mc"):
+        lambda: tolalloc.allocate_tolerances(TC, region="nominal", verification=Verification(n_mc=10**12)),
+    ("names", "sigma_set", "ErrorModelOptions.sigma_set"):
+        lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma_set="nope")),
+    ("names", "exclude", "ErrorModelOptions.exclude"):
+        lambda: tolalloc.simulate_errors(TC, 10, error_model=ErrorModelOptions(exclude="nope")),
+    ("names", "sigma", "ErrorModelOptions.sigma"):
+        lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma={"nope": 0.1})),
+    ("names", "estimator", "MonteCarlo.estimator"):
+        lambda: tolalloc.simulate_errors(TC, monte_carlo=MonteCarlo(n_mc=100, estimator="importance"),
+                                         error_model=ErrorModelOptions(clearance=True)),
+    ("names", "estimator", "Verification.estimator"):
+        lambda: tolalloc.allocate_tolerances(two_link(), region="nominal", error_model=ErrorModelOptions(clearance=True),
+                                             verification=Verification(n_mc=1000, estimator="paired")),
+    ("names", "register_rows", "Refit.register_rows"):
+        lambda: tolalloc.diagnose_measurements(TC, measurement_frame().iloc[:36], measurement_frame().iloc[36:],
+                                               folds=2, test_frame=Refit(register_rows=[1, 2, 3, 4, 5, 40])),
+}
+
+
+@pytest.mark.parametrize("fault", sorted(k for k in KNOWN_FAULTS if k[0] == "names"), ids=lambda k: k[2])
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason="a known fault (property_strategies.KNOWN_FAULTS)")
+def test_known_misnamed_refusals(fault):
+    """Each refusal :data:`~property_strategies.KNOWN_FAULTS` tolerates as naming the wrong argument, reproduced
+    (strict xfail: when the library names the field, this fails and the entry goes)."""
+    _, named, should = fault
+    with pytest.raises(tolalloc.TolallocError) as info:
+        MISNAMED[fault]()
+    assert getattr(info.value, "argument", None) == should, (str(info.value), KNOWN_FAULTS[fault])
+
+
+@pytest.mark.xfail(strict=True, raises=ValueError, reason=KNOWN_FAULTS[("allocate/drawing.py", "diameter_factor")])
+def test_known_fault_a_large_z_breaks_the_allocation_table():
+    """:data:`~property_strategies.KNOWN_FAULTS` ``allocate/drawing.py:diameter_factor``, reproduced (strict xfail:
+    when the library is fixed, this fails and the entry goes)."""
+    res = tolalloc.allocate_tolerances(two_link(), radius_mm=1.0, prob=0.5, region="nominal", costs=Costs(z=100.0),
+                                       verification=False)
+    assert len(res.to_frame())
+
+
+@pytest.mark.xfail(strict=True, raises=(TypeError, AttributeError),
+                   reason=KNOWN_FAULTS[("report/plots/mc.py", "scatter_density")])
+def test_known_fault_plot_scatter_takes_no_axes():
+    """:data:`~property_strategies.KNOWN_FAULTS` ``report/plots/mc.py:scatter_density``, reproduced (as above)."""
+    import matplotlib.pyplot as plt
+
+    try:
+        fig, ax = plt.subplots()
+        assert earlier_results()["simulation"].plot_scatter(ax=ax) is ax
+    finally:
+        plt.close("all")
+
+
+@pytest.mark.xfail(strict=True, raises=ValueError, reason=KNOWN_FAULTS[("workflows/calplan.py", "_target")])
+def test_known_fault_random_plans_of_an_array():
+    """:data:`~property_strategies.KNOWN_FAULTS` ``workflows/calplan.py:_target``, reproduced (as above)."""
+    with pytest.raises(tolalloc.ArgumentError, match="^random_plans"):
+        tolalloc.plan_calibration(two_link(), 2, n_candidates=8, random_plans=np.array([0.1, 0.2]))
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=KNOWN_FAULTS[("shows", "report")])
+def test_known_fault_save_shows_report_raw(tmp_path):
+    """:data:`~property_strategies.KNOWN_FAULTS` ``("shows", "report")``, reproduced (as above)."""
+    with pytest.raises(tolalloc.ArgumentError) as info:
+        earlier_results()["analysis"].save(tmp_path / "out", report=object())
+    assert "object at 0x" not in str(info.value), str(info.value)
+
+
+def _same(a, b) -> None:
+    """Two results with the same summary (their timings aside)."""
+    def numbers(res):
+        return json.dumps({k: v for k, v in res.summary().items() if k != "times_s"}, default=str, sort_keys=True)
+
+    assert numbers(a) == numbers(b)
+
+
+def test_the_deprecated_keywords_still_work_and_warn():
+    """The flat keywords the jobs took before their settings objects give the same answer as the objects for one more
+    release, with a DeprecationWarning naming what replaces them (the allocation's: tests/test_settings.py). Every
+    other call in this module is made without them: :func:`property_strategies.outcome` fails a call that warns."""
+    from tolalloc.diagnose import generate
+
+    arm = two_link()
+    frame = generate(arm, "none", 30, np.random.default_rng(2)).frame
+    calls = [
+        ("analyze_errors", lambda: tolalloc.analyze_errors(TC, sigma_set="table1", clearance=True, exclude="dl1"),
+         lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma_set="table1", clearance=True,
+                                                                           exclude="dl1"))),
+        ("simulate_errors", lambda: tolalloc.simulate_errors(arm, n=100, seed=3, ci="exact", hist_bins=4,
+                                                             link_mode="axes_only"),
+         lambda: tolalloc.simulate_errors(arm, monte_carlo=MonteCarlo(n_mc=100, seed=3, ci="exact", hist_bins=4),
+                                          error_model=ErrorModelOptions(link_mode="axes_only"))),
+        ("plan_calibration", lambda: tolalloc.plan_calibration(arm, 4, n_candidates=8, noise_mm=0.05,
+                                                               registration=False),
+         lambda: tolalloc.plan_calibration(arm, 4, n_candidates=8,
+                                           measurement=Measurement(noise_mm=0.05, registration=False))),
+        ("diagnose_measurements", lambda: tolalloc.diagnose_measurements(arm, frame.iloc[:22], frame.iloc[22:], folds=2,
+                                                                         robust_loss="huber"),
+         lambda: tolalloc.diagnose_measurements(arm, frame.iloc[:22], frame.iloc[22:], folds=2,
+                                                fit=FitOptions(robust_loss="huber"))),
+    ]
+    for job, old, new in calls:
+        with pytest.warns(DeprecationWarning, match=rf"^{job}\(\): the keyword\(s\) .* are deprecated .* -> "):
+            before = old()
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", DeprecationWarning)
+            _same(before, new())
+
+
 # ------------------------------------------------------------------------------------------------ every result method
 def _axes(count):
     """Matplotlib axes to draw into: the right number, too few, or not axes at all."""
@@ -554,9 +875,28 @@ def result_calls(which: str) -> list:
         "calibrated": [("verification_frame", st.just({})), save],
         "diagnosis": [("ranking_frame", st.just({})), ("predictions_frame", st.just({})),
                       ("save", some_of(directory=_out_paths(), json=_out_paths(), predictions=_out_paths(),
-                                       report=st.booleans() | odd_values(),
+                                       # a folder as `report` is the deprecated save(report=DIR)
+                                       report=st.booleans() | odd_values().filter(
+                                           lambda v: not isinstance(v, (str, os.PathLike))),
                                        optional=("json", "predictions", "report")))],
     }[which]
+
+
+def _known_partial_save(res, kwargs) -> bool:
+    """The save is :data:`~property_strategies.KNOWN_FAULTS` ``("partial", "MeasurementDiagnosis.save")``: its
+    predictions file inside the path given as its JSON file."""
+    json_path, predictions = kwargs.get("json"), kwargs.get("predictions")
+    return (("partial", f"{type(res).__name__}.save") in KNOWN_FAULTS and isinstance(json_path, (str, Path))
+            and isinstance(predictions, (str, Path)) and Path(json_path) in Path(predictions).parents)
+
+
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=KNOWN_FAULTS[("partial", "MeasurementDiagnosis.save")])
+def test_known_fault_a_refused_diagnosis_save_leaves_its_predictions(tmp_path):
+    """:data:`~property_strategies.KNOWN_FAULTS` ``("partial", "MeasurementDiagnosis.save")``, reproduced (strict
+    xfail: when the library is fixed, this fails and the entry goes)."""
+    with pytest.raises(tolalloc.TolallocError):
+        earlier_results()["diagnosis"].save(json=tmp_path / "dir", predictions=tmp_path / "dir" / "sub")
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_a_save_whose_outputs_overlap_leaves_nothing(tmp_path):
@@ -587,14 +927,18 @@ def test_every_result_method_answers_or_refuses(which, data):
     name, kwargs = data.draw(st.sampled_from(result_calls(which)).flatmap(lambda t: st.tuples(st.just(t[0]), t[1])))
     work = Path(tempfile.mkdtemp(dir=SCRATCH))
     (work / "afile").write_text("keep\n")
-    kwargs = _in_scratch(kwargs, work) if name == "save" else kwargs
+    kwargs = _in_scratch(kwargs, work) if name in ("save", "save_plan") else kwargs
     before = listing(work)
     try:
-        out = outcome(getattr(res, name), kwargs, label=f"{type(res).__name__}.{name}")
+        out = outcome(getattr(res, name), kwargs, label=f"{type(res).__name__}.{name}", tolerate_known=True)
     finally:
         plt.close("all")
     if name == "save":
-        assert (out is None) == (listing(work) == before) or not any(v is not None for v in kwargs.values())
+        whole = (out is None) == (listing(work) == before) or not any(v is not None for v in kwargs.values())
+        if not whole and _known_partial_save(res, kwargs):
+            count("known_faults", f"{type(res).__name__}.save partial")
+        else:
+            assert whole, (kwargs, out, sorted(listing(work)))
     elif name == "summary" and out is not None:
         json.dumps(out, default=_json_default, allow_nan=False)
         finite_json(out)
