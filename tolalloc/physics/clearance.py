@@ -14,10 +14,10 @@ component (axial, radial) or turned by half the tilt clearance about the moment'
 the joint (and a payload at the target) put through it, ``p`` the target point. A prismatic joint's motion is along
 ``w`` (its drive's lost motion is the axial play, :mod:`~tolalloc.physics.lost_motion`); instead it has roll play,
 a turn about ``w`` by the sign of the moment about it (a ram turning in its key's clearance). A revolute joint's turn
-about ``w`` is the gear's lost motion, not a bearing's. The first joint's tilt turns the whole arm about the base as a
-rocking mount does (:mod:`~.compliance`'s ``play``): it is left to the mount. Textbook forms: Harris & Kotzalas, *Rolling Bearing
-Analysis* (2007), ch. 2 (internal clearance, axial and radial play, tilt), and the joint-clearance error screws of
-the error model (:mod:`tolalloc.errormodel`), here set by the load instead of drawn.
+about ``w`` is the gear's lost motion, not a bearing's. The first joint's tilt turns the whole arm about the base as
+a rocking mount does (:mod:`~.compliance`'s ``play``): it is left to the mount. Textbook forms: Harris & Kotzalas,
+*Rolling Bearing Analysis* (2007), ch. 2 (internal clearance, axial and radial play, tilt), and the joint-clearance
+error screws of the error model (:mod:`tolalloc.errormodel`), here set by the load instead of drawn.
 
 :func:`clearance_columns` gives the target displacement per unit half-clearance, one column per joint and direction
 whose side changes between the poses (a side that never changes is a constant offset, which the geometric
