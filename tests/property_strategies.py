@@ -488,53 +488,7 @@ def _json_default(obj):
 #: * ("shows", argument) -> what goes wrong (a refusal of the argument that shows the value as its raw repr: an
 #:   address, several lines);
 #: * ("partial", "Result.save") -> what goes wrong (a refused save that leaves files behind).
-KNOWN_FAULTS: dict = {
-    ("allocate/drawing.py", "diameter_factor"):
-        "an allocation with Costs(z=Z), 8.4 <= Z <= 100 (accepted): its table (to_frame, the handover's tilt "
-        "callouts) raises ValueError 'math domain error' from math.log, as 1 - erf(Z / sqrt 2) is 0 in floating point",
-    ("report/plots/mc.py", "scatter_density"):
-        "ErrorSimulation.plot_scatter(ax=AX) with any AX other than None (one Axes, several, or a string) raises "
-        "AttributeError / TypeError from matplotlib: the 3-D scatter figure takes no axes, and AX is not checked",
-    ("workflows/calplan.py", "_target"):
-        "plan_calibration(random_plans=X), X an array or a Series (anything whose != is elementwise): ValueError "
-        "'truth value ... is ambiguous' from numpy / pandas, random_plans compared with its default unchecked",
-    ("shows", "report"):
-        "Result.save(report=X), X not a bool: the refusal shows repr(X) ('<object object at 0x...>', a Series over "
-        "several lines) instead of a short form (workflows/base.py JobResult._save)",
-    ("names", "poses", "Region.poses"):
-        "allocate_tolerances(region=Region(poses=P)), P no pose set of the robot: refused at run time as `poses` "
-        "(workflows/inputs.py resolve_region -> resolve_poses), not Region.poses",
-    ("names", "coverage_n", "Region.coverage_n"):
-        "allocate_tolerances(region=Region(where=BOX, coverage_n=10**12)): the time budget refuses `coverage_n` "
-        "(verify/cost.py check_allocation_budgets -> budget.py check_count), not Region.coverage_n",
-    ("names", "n_mc", "Verification.n_mc"):
-        "allocate_tolerances(verification=Verification(n_mc=N)): N over the time budget (verify/cost.py "
-        "check_allocation_budgets -> budget.py check_count) or too small to resolve the tail 1 - p "
-        "(verify/resolution.py check_resolvable) is refused at run time as `n_mc`, not Verification.n_mc",
-    ("names", "sigma_set", "ErrorModelOptions.sigma_set"):
-        "every job: error_model=ErrorModelOptions(sigma_set=S), S no sigma set of the robot: refused at run time as "
-        "`sigma_set` (workflows/inputs.py error_model), not ErrorModelOptions.sigma_set",
-    ("names", "exclude", "ErrorModelOptions.exclude"):
-        "every job: error_model=ErrorModelOptions(exclude=E), E naming no parameter or kind of the robot (or all of "
-        "them): refused at run time as `exclude` (workflows/inputs.py error_model), not ErrorModelOptions.exclude",
-    ("names", "sigma", "ErrorModelOptions.sigma"):
-        "analyze_errors / simulate_errors: error_model=ErrorModelOptions(sigma={unknown name or bad sigma}): refused "
-        "at run time as `sigma` (workflows/inputs.py error_model -> sigma_overrides), not ErrorModelOptions.sigma",
-    ("names", "estimator", "MonteCarlo.estimator"):
-        "simulate_errors(monte_carlo=MonteCarlo(estimator='paired' or 'importance')) with non-Gaussian parameters "
-        "(error_model=ErrorModelOptions(clearance=True)): a TolallocError 'estimator: ... needs Gaussian parameters' "
-        "at run time (montecarlo/paired.py, montecarlo/importance.py), no ArgumentError of MonteCarlo.estimator",
-    ("names", "estimator", "Verification.estimator"):
-        "allocate_tolerances(verification=Verification(estimator='paired' or 'importance')) with non-Gaussian "
-        "parameters (clearance): a TolallocError 'estimator: ... needs Gaussian parameters' at run time, no "
-        "ArgumentError of Verification.estimator",
-    ("partial", "MeasurementDiagnosis.save"):
-        "MeasurementDiagnosis.save(json=P, predictions=P/FILE): refused ('cannot write an output file at P (Is a "
-        "directory)') after writing P/FILE -- a refused save leaves a file behind",
-    ("names", "register_rows", "Refit.register_rows"):
-        "diagnose_measurements(test_frame=Refit(register_rows=R)), R beyond the test file's rows: refused at run time "
-        "as `register_rows` (diagnose/register.py split_from_rows), not Refit.register_rows",
-}
+KNOWN_FAULTS: dict = {}
 #: generated calls per public call, known faults met, and other exceptions (must stay 0) -- written to the file
 #: named by TOLALLOC_PROPERTY_COUNTS at exit
 COUNTS = {"calls": {}, "refused": {}, "known_faults": {}, "non_project_exceptions": {}, "cli_exit_codes": {}}

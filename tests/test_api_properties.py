@@ -18,6 +18,7 @@ long run).
 from __future__ import annotations
 
 import json
+import math
 import os
 import tempfile
 import warnings
@@ -30,7 +31,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import tolalloc
-from property_strategies import (KNOWN_FAULTS, REFUSED, Draft, build, call_job, check_refusal, check_result,
+from property_strategies import (REFUSED, Draft, build, call_job, check_refusal, check_result,
                                  costs_texts, count, counts, examples, generated_robots, interface_poses, joint_values,
                                  measurement_frame, measurement_frames, numbers_near_bounds, odd_values, outcome)
 from tolalloc import (Costs, ErrorModelOptions, FitOptions, Measurement, MonteCarlo, OrientationRequirement,
@@ -716,78 +717,85 @@ def test_a_refusal_names_what_was_given():
                       names={"Verification.n_mc"})
 
 
-#: calls that reproduce the refusals of :data:`property_strategies.KNOWN_FAULTS` that name the wrong argument
-MISNAMED = {
-    ("names", "poses", "Region.poses"):
-        lambda: tolalloc.allocate_tolerances(TC, region=Region(poses="nope"), verification=False),
-    ("names", "coverage_n", "Region.coverage_n"):
+#: run-time refusals of a settings object's field: each names ``ClassName.field`` of the object passed
+RUN_TIME_REFUSALS = {
+    "Region.poses": lambda: tolalloc.allocate_tolerances(TC, region=Region(poses="nope"), verification=False),
+    "Region.coverage_n":
         lambda: tolalloc.allocate_tolerances(TC, region=Region(where="working", coverage_n=10**12), verification=False),
-    ("names", "n_mc", "Verification.n_mc"):
+    "Verification.n_mc":
         lambda: tolalloc.allocate_tolerances(TC, region="nominal", verification=Verification(n_mc=10**12)),
-    ("names", "sigma_set", "ErrorModelOptions.sigma_set"):
-        lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma_set="nope")),
-    ("names", "exclude", "ErrorModelOptions.exclude"):
+    "ErrorModelOptions.sigma_set": lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma_set="nope")),
+    "ErrorModelOptions.exclude":
         lambda: tolalloc.simulate_errors(TC, 10, error_model=ErrorModelOptions(exclude="nope")),
-    ("names", "sigma", "ErrorModelOptions.sigma"):
-        lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma={"nope": 0.1})),
-    ("names", "estimator", "MonteCarlo.estimator"):
+    "ErrorModelOptions.sigma": lambda: tolalloc.analyze_errors(TC, error_model=ErrorModelOptions(sigma={"nope": 0.1})),
+    "MonteCarlo.estimator":
         lambda: tolalloc.simulate_errors(TC, monte_carlo=MonteCarlo(n_mc=100, estimator="importance"),
                                          error_model=ErrorModelOptions(clearance=True)),
-    ("names", "estimator", "Verification.estimator"):
+    "Verification.estimator":
         lambda: tolalloc.allocate_tolerances(two_link(), region="nominal", error_model=ErrorModelOptions(clearance=True),
                                              verification=Verification(n_mc=1000, estimator="paired")),
-    ("names", "register_rows", "Refit.register_rows"):
+    "Refit.register_rows":
         lambda: tolalloc.diagnose_measurements(TC, measurement_frame().iloc[:36], measurement_frame().iloc[36:],
                                                folds=2, test_frame=Refit(register_rows=[1, 2, 3, 4, 5, 40])),
 }
 
 
-@pytest.mark.parametrize("fault", sorted(k for k in KNOWN_FAULTS if k[0] == "names"), ids=lambda k: k[2])
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason="a known fault (property_strategies.KNOWN_FAULTS)")
-def test_known_misnamed_refusals(fault):
-    """Each refusal :data:`~property_strategies.KNOWN_FAULTS` tolerates as naming the wrong argument, reproduced
-    (strict xfail: when the library names the field, this fails and the entry goes)."""
-    _, named, should = fault
-    with pytest.raises(tolalloc.TolallocError) as info:
-        MISNAMED[fault]()
-    assert getattr(info.value, "argument", None) == should, (str(info.value), KNOWN_FAULTS[fault])
+@pytest.mark.parametrize("should", sorted(RUN_TIME_REFUSALS))
+def test_run_time_refusals_name_the_field_of_the_object_passed(should):
+    """A value refused only when the job runs (a pose set the robot lacks, a sample count over the time budget, an
+    estimator the model's parameters cannot use) names ``ClassName.field`` of the settings object it came in."""
+    with pytest.raises(tolalloc.ArgumentError) as info:
+        RUN_TIME_REFUSALS[should]()
+    assert info.value.argument == should, str(info.value)
+    assert str(info.value).startswith(should), str(info.value)
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError, reason=KNOWN_FAULTS[("allocate/drawing.py", "diameter_factor")])
-def test_known_fault_a_large_z_breaks_the_allocation_table():
-    """:data:`~property_strategies.KNOWN_FAULTS` ``allocate/drawing.py:diameter_factor``, reproduced (strict xfail:
-    when the library is fixed, this fails and the entry goes)."""
+def test_run_time_refusals_name_a_keyword_as_it_was_given():
+    """The same refusals of a short keyword, or of a keyword the job took before its settings objects, name it."""
+    with pytest.raises(tolalloc.ArgumentError, match="^n_mc"):
+        tolalloc.allocate_tolerances(TC, region="nominal", n_mc=10**12)
+    with pytest.warns(DeprecationWarning), pytest.raises(tolalloc.ArgumentError, match="^poses") as info:
+        tolalloc.allocate_tolerances(TC, poses="nope", verify=False)
+    assert info.value.argument == "poses"
+
+
+def test_a_large_z_gives_a_finite_allocation_table():
+    """``Costs(z=Z)`` up to 100: the diameter factor of the tilt callouts stays finite (its tail probability is taken
+    in logarithms) and tends to 1 as the Rayleigh quantile meets the one-dimensional one."""
+    from tolalloc.allocate.drawing import diameter_factor
+
     res = tolalloc.allocate_tolerances(two_link(), radius_mm=1.0, prob=0.5, region="nominal", costs=Costs(z=100.0),
                                        verification=False)
     assert len(res.to_frame())
+    assert diameter_factor(3.0) == pytest.approx(1.1464, abs=1e-4)
+    assert diameter_factor(8.0) == pytest.approx(math.sqrt(-2 * math.log(math.erfc(8 / math.sqrt(2)))) / 8, rel=1e-9)
+    assert 1.0 < diameter_factor(100.0) < diameter_factor(8.0)
 
 
-@pytest.mark.xfail(strict=True, raises=(TypeError, AttributeError),
-                   reason=KNOWN_FAULTS[("report/plots/mc.py", "scatter_density")])
-def test_known_fault_plot_scatter_takes_no_axes():
-    """:data:`~property_strategies.KNOWN_FAULTS` ``report/plots/mc.py:scatter_density``, reproduced (as above)."""
+def test_plot_scatter_draws_into_four_axes_or_refuses():
     import matplotlib.pyplot as plt
 
+    sim = earlier_results()["simulation"]
     try:
-        fig, ax = plt.subplots()
-        assert earlier_results()["simulation"].plot_scatter(ax=ax) is ax
+        fig = plt.figure()
+        four = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
+        assert list(sim.plot_scatter(ax=four)) == four
+        for bad in (plt.subplots()[1], "ax", list(plt.subplots(1, 4)[1])):
+            with pytest.raises(tolalloc.ArgumentError, match="^ax"):
+                sim.plot_scatter(ax=bad)
     finally:
         plt.close("all")
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError, reason=KNOWN_FAULTS[("workflows/calplan.py", "_target")])
-def test_known_fault_random_plans_of_an_array():
-    """:data:`~property_strategies.KNOWN_FAULTS` ``workflows/calplan.py:_target``, reproduced (as above)."""
+def test_random_plans_of_an_array_is_refused():
     with pytest.raises(tolalloc.ArgumentError, match="^random_plans"):
         tolalloc.plan_calibration(two_link(), 2, n_candidates=8, random_plans=np.array([0.1, 0.2]))
 
 
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=KNOWN_FAULTS[("shows", "report")])
-def test_known_fault_save_shows_report_raw(tmp_path):
-    """:data:`~property_strategies.KNOWN_FAULTS` ``("shows", "report")``, reproduced (as above)."""
+def test_save_shows_a_bad_report_flag_short(tmp_path):
     with pytest.raises(tolalloc.ArgumentError) as info:
         earlier_results()["analysis"].save(tmp_path / "out", report=object())
-    assert "object at 0x" not in str(info.value), str(info.value)
+    assert "object at 0x" not in str(info.value) and str(info.value).startswith("report"), str(info.value)
 
 
 def _same(a, b) -> None:
@@ -867,7 +875,7 @@ def result_calls(which: str) -> list:
                                                optional=("ax", "title"))),
                        ("plot_pose_probabilities", some_of(ax=_axes(1), optional=("ax",))),
                        ("plot_cloud", some_of(ax=_axes(3), optional=("ax",))), save],
-        "simulation": [("probability_frame", st.just({})), ("plot_scatter", some_of(ax=_axes(1), optional=("ax",))),
+        "simulation": [("probability_frame", st.just({})), ("plot_scatter", some_of(ax=_axes(4), optional=("ax",))),
                        save],
         "plan": [("plan_for", some_of(robot=st.sampled_from(["ur10", "tool_changer", "nope"]) | st.builds(two_link)
                                       | odd_values())),
@@ -882,18 +890,8 @@ def result_calls(which: str) -> list:
     }[which]
 
 
-def _known_partial_save(res, kwargs) -> bool:
-    """The save is :data:`~property_strategies.KNOWN_FAULTS` ``("partial", "MeasurementDiagnosis.save")``: its
-    predictions file inside the path given as its JSON file."""
-    json_path, predictions = kwargs.get("json"), kwargs.get("predictions")
-    return (("partial", f"{type(res).__name__}.save") in KNOWN_FAULTS and isinstance(json_path, (str, Path))
-            and isinstance(predictions, (str, Path)) and Path(json_path) in Path(predictions).parents)
-
-
-@pytest.mark.xfail(strict=True, raises=AssertionError, reason=KNOWN_FAULTS[("partial", "MeasurementDiagnosis.save")])
-def test_known_fault_a_refused_diagnosis_save_leaves_its_predictions(tmp_path):
-    """:data:`~property_strategies.KNOWN_FAULTS` ``("partial", "MeasurementDiagnosis.save")``, reproduced (strict
-    xfail: when the library is fixed, this fails and the entry goes)."""
+def test_a_refused_diagnosis_save_leaves_nothing(tmp_path):
+    """A file output below another file output is refused before anything is written."""
     with pytest.raises(tolalloc.TolallocError):
         earlier_results()["diagnosis"].save(json=tmp_path / "dir", predictions=tmp_path / "dir" / "sub")
     assert list(tmp_path.iterdir()) == []
@@ -935,10 +933,7 @@ def test_every_result_method_answers_or_refuses(which, data):
         plt.close("all")
     if name == "save":
         whole = (out is None) == (listing(work) == before) or not any(v is not None for v in kwargs.values())
-        if not whole and _known_partial_save(res, kwargs):
-            count("known_faults", f"{type(res).__name__}.save partial")
-        else:
-            assert whole, (kwargs, out, sorted(listing(work)))
+        assert whole, (kwargs, out, sorted(listing(work)))
     elif name == "summary" and out is not None:
         json.dumps(out, default=_json_default, allow_nan=False)
         finite_json(out)

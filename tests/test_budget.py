@@ -99,13 +99,13 @@ def one_second(fixed_probe, monkeypatch):
 
 @pytest.mark.parametrize("call, match", [
     (lambda: tolalloc.simulate_errors("tool_changer", 7e15),
-     r"^n 7e\+15 samples at 1 pose would take about [\d.e+,]+ years"),
+     r"^n_mc 7e\+15 samples at 1 pose would take about [\d.e+,]+ years"),
     (lambda: tolalloc.allocate_tolerances("tool_changer", region="nominal", n_mc=10**15),
      r"^n_mc 1e\+15 samples per pose at 1 pose would take about [\d.e+,]+ years( on \d+ threads)? \(.*; one "
      r"verification, of up to 4 with the correction loop\), more than .* or switch the verification off\.$"),
     (lambda: tolalloc.allocate_tolerances("tool_changer", region=tolalloc.Region(coverage_n=10**15),
                                           verification=False),
-     r"^coverage_n 1e\+15 coverage poses would take about [\d.,]+ years \(1.2e-05 s per coverage pose"),
+     r"^Region.coverage_n 1e\+15 coverage poses would take about [\d.,]+ years \(1.2e-05 s per coverage pose"),
 ])
 def test_jobs_refuse_counts_that_cannot_finish_in_a_day(fixed_probe, call, match):
     with pytest.raises(tolalloc.ArgumentError, match=match):

@@ -162,11 +162,18 @@ def _check_place(p: Path, flag: str, directory: bool) -> None:
                             "choose another path.")
 
 
-def check_distinct_outputs(outputs, inputs=()) -> None:
-    """Refuse two output flags naming the same path, or an output that would overwrite an input.
+def check_distinct_outputs(outputs, inputs=(), *, files=()) -> None:
+    """Refuse two output flags naming the same path, an output that would overwrite an input, or an output below
+    one that is a file (the flags in ``files``).
 
     ``outputs`` and ``inputs`` are ``(flag, path or None)`` pairs; ``None`` and ``'-'`` are skipped.
     """
+    real = {flag: Path(os.path.realpath(str(path))) for flag, path in outputs if path is not None and str(path) != "-"}
+    for flag, path in real.items():
+        for outer in files:
+            if outer in real and outer != flag and real[outer] in path.parents:
+                raise TolallocError(f"{flag} {str(path)!r}: lies below the file that {outer} writes "
+                                    f"({str(real[outer])!r}); give {flag} a path outside it.")
     seen = {}
     for flag, path in inputs:
         if path is not None:

@@ -37,9 +37,10 @@ Spans, datums and seat diameters come from the robot file's ``[components.joints
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from math import erf, log, sqrt
+from math import log, sqrt
 
 import numpy as np
+from scipy.special import log_ndtr
 
 from tolalloc.allocate.fits import PREFERRED_CLEARANCE_FITS, clearance_fits
 from tolalloc.allocate.purchase import drive_part
@@ -179,8 +180,8 @@ def diameter_factor(z: float, distribution: str = "normal") -> float:
     """
     if distribution == "uniform":
         return sqrt(2.0)
-    tail = 1.0 - erf(z / sqrt(2.0))
-    return sqrt(-2.0 * log(tail)) / z
+    log_tail = log(2.0) + float(log_ndtr(-z))  # ln(1 - p_c) = ln 2 Phi(-z), finite for any z
+    return sqrt(-2.0 * log_tail) / z
 
 
 def _angle(a: np.ndarray, b: np.ndarray) -> float:

@@ -191,7 +191,7 @@ class ParameterCheck:
         """Guard lines: implausible and weakly identified parameters, weakly identified probe offset."""
         out = []
         for i, st in enumerate(self.status):
-            ratio = abs(self.value[i]) / self.level[i]
+            ratio = abs(self.value[i]) / self.level[i] if self.level[i] > 0 else float("inf")
             if st == "implausible":
                 out.append(f"implausible parameter: {self._line(i)} is {ratio:.1f} x the plausibility level "
                            f"({self.level[i]:.3g} {self.units[i]}: the robot class's as-built accuracy or the prior, if larger; "

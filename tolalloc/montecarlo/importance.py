@@ -32,7 +32,7 @@ import threading
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.montecarlo.blocks import BLOCK_SIZE, SUB_BLOCK, KernelSpec
@@ -148,7 +148,7 @@ def importance_probability(model, q, n: int, seed: int = 0, *, radius_mm: float,
 
     reason = control_fallback_reason(model)
     if reason:
-        raise TolallocError(f"estimator: 'importance' needs Gaussian parameters; {reason.split(':')[0]}. Use "
+        raise ArgumentError("estimator", f"'importance' needs Gaussian parameters; {reason.split(':')[0]}. Use "
                             "estimator='auto' or 'plain' (and more samples) for this model.")
     if not (0 < alpha < 1):
         raise TolallocError(f"alpha: expected the defensive weight strictly between 0 and 1 (e.g. 0.1), got {alpha!r}.")

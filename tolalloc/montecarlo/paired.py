@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.errormodel.chain import FastChain
 from tolalloc.errormodel.features import N_BUF, ErrorFeatures
 from tolalloc.errormodel.sampling import draw_rows
@@ -242,7 +242,7 @@ def estimate_radii(model, q, n: int, seed: int = 0, *, radii_mm=(), angle_radii_
     q = np.atleast_2d(model.robot.check_q(q, "q"))
     reason = control_fallback_reason(model)
     if estimator == "paired" and reason:
-        raise TolallocError(f"estimator: 'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
+        raise ArgumentError("estimator", f"'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
                             "estimator='auto' (plain Monte Carlo for this model) or 'plain'.")
     radii, aradii = [float(r) for r in radii_mm], [float(a) for a in angle_radii_rad]
     pc = paired_counts(model, q, n, seed, radii_mm=radii, angle_radii_rad=aradii, keep_samples=keep_samples,

@@ -39,7 +39,7 @@ import pandas as pd
 from tolalloc.calibration.plan import CalibrationPlan
 from tolalloc.calibration.posterior import nuisance_columns, posterior
 from tolalloc.calibration.split import ErrorSplit
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.linear.probability import p_within_radius
 from tolalloc.montecarlo.estimate import ProbabilityEstimate
 from tolalloc.montecarlo.intervals import simultaneous_level
@@ -253,7 +253,7 @@ def verify_calibration(split: ErrorSplit, plan: CalibrationPlan, q_eval, radius_
     model = split.model
     reason = control_fallback_reason(model)
     if estimator == "paired" and reason:
-        raise TolallocError(f"estimator: 'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
+        raise ArgumentError("estimator", f"'paired' needs Gaussian parameters; {reason.split(':')[0]}. Use "
                             "estimator='auto' or 'plain'.")
     if plan.measurement != "position" or plan.estimate is not None:
         raise TolallocError("verify_calibration: expected a position plan estimating all systematic parameters "

@@ -25,6 +25,7 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.outputs import check_distinct_outputs, check_output, output_group, write_json
+from tolalloc.workflows.checks import check_flag
 
 __all__ = ["JobResult", "html_card", "format_labels", "compact_frame", "axes_of", "CARD_ROWS"]
 
@@ -152,8 +153,7 @@ class JobResult:
         others."""
         self.check_savable()
         directory = self.check_out(directory, "directory")
-        if not isinstance(report, (bool, np.bool_)):
-            raise ArgumentError("report", f"expected True or False, got {report!r}.")
+        report = check_flag(report, "report")
         if report and not self.has_report:
             raise ArgumentError("report", f"{type(self).__name__} has no HTML report (the allocations and the "
                                 "diagnosis have one); leave out report.")
@@ -165,7 +165,8 @@ class JobResult:
         if directory is None and json is None and not extra:
             raise ArgumentError("directory", "nothing to save: expected a directory to write into (a str or "
                                 "pathlib.Path), and / or json=FILE ('-' for standard output).")
-        check_distinct_outputs([("directory", directory), ("json", json_path), *[(a, p) for a, p, _ in extra]])
+        check_distinct_outputs([("directory", directory), ("json", json_path), *[(a, p) for a, p, _ in extra]],
+                               files=("json", *[a for a, _, _ in extra]))
         written = []
         with output_group() as group:
             if directory is not None:

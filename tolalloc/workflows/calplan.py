@@ -162,11 +162,11 @@ def _target(for_allocation, random_plans, meas, cost, options):
         target = for_allocation
     else:
         target = PositionRequirement() if inputs.check_flag(for_allocation, "for_allocation") else None
+    random_plans = inputs.check_count(random_plans, "random_plans", example="100")
     if target is None and random_plans != D.RANDOM_PLANS:
         raise ArgumentError("random_plans", f"{inputs.shown(random_plans)} is read only for a plan designed for an "
                             "allocation, but `for_allocation` is off; add `for_allocation` (or leave out this option).")
     if target is not None:
-        inputs.check_count(random_plans, "random_plans", example="100")
         if meas.kind != "position":
             raise ArgumentError("for_allocation", "needs `measurement` position: the allocation's end-to-end check "
                                 "simulates position measurements.")

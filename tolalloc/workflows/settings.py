@@ -45,8 +45,8 @@ MAX_JOBS = 1024
 @contextlib.contextmanager
 def named_fields(owner: str, rename: dict | None = None):
     """Within the block, an :class:`ArgumentError` of a bare argument ``x`` names ``owner.x`` (``owner``: a class
-    name); one of a field ``Class.x`` names ``rename[x]`` instead where ``rename`` maps ``x`` (the job keyword the
-    field came from). Other errors pass unchanged."""
+    name); without an owner, one of ``x`` or of a field ``Class.x`` names ``rename[x]`` where ``rename`` maps ``x``
+    (the job keyword the value came from). Other errors pass unchanged."""
     try:
         yield
     except ArgumentError as exc:
@@ -54,7 +54,7 @@ def named_fields(owner: str, rename: dict | None = None):
         field = arg.rsplit(".", 1)[-1]
         if owner and "." not in arg:
             name = f"{owner}.{arg}"
-        elif rename is not None and "." in arg and field in rename:
+        elif rename is not None and field in rename:
             name = rename[field]
         else:
             raise

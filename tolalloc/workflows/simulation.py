@@ -81,9 +81,11 @@ def simulate_errors(robot="tool_changer", n_mc: int | None = None, *, seed: int 
     from tolalloc.errormodel.model import CLEARANCE_SIGMA, CLEARANCE_TILT_LITERAL_RAD
     from tolalloc.montecarlo.run import run_mc
 
-    res = run_mc(model, q, mc.n_mc, mc.seed, radii_mm=radii, angle_radii_rad=arad or [ANGLE_RADIUS_RAD],
-                 keep_samples=mc.kept, ci=mc.ci, n_jobs=mc.jobs, scheduler=mc.scheduler, chunk_size=mc.chunk_size,
-                 progress=progress, hist_bins=mc.hist_bins, hist_range_mm=mc.hist_range_mm, estimator=mc.estimator)
+    with named_fields("", {"n": "n_mc"}):  # the sampler's count is this job's n_mc
+        res = run_mc(model, q, mc.n_mc, mc.seed, radii_mm=radii, angle_radii_rad=arad or [ANGLE_RADIUS_RAD],
+                     keep_samples=mc.kept, ci=mc.ci, n_jobs=mc.jobs, scheduler=mc.scheduler,
+                     chunk_size=mc.chunk_size, progress=progress, hist_bins=mc.hist_bins,
+                     hist_range_mm=mc.hist_range_mm, estimator=mc.estimator)
     tilt = ((CLEARANCE_TILT_LITERAL_RAD if model_options.clearance_tilt_literal else CLEARANCE_SIGMA["tilt_rad"])
             if model_options.clearance else None)
     return ErrorSimulation(res, rob, tilt, {"sigma_overrides": sorted(model_options.sigma or {})})
@@ -234,12 +236,18 @@ class ErrorSimulation(JobResult):
 
         from tolalloc.report.plots.mc import scatter_density
         from tolalloc.workflows.base import axes_of
+        from tolalloc.workflows.checks import check_axes
 
+        check_axes(ax, "ax", 4)
+        if ax is not None and getattr(np.ravel(np.asarray(ax, dtype=object))[0], "name", "") != "3d":
+            raise ArgumentError("ax", "expected its first Axes with projection='3d' (the error cloud), got a 2-D one: "
+                                "fig.add_subplot(1, 4, 1, projection='3d') and three more.")
         if ax is None:  # the four panels (their colorbars are axes of the figure too, not panels)
             fig = plt.figure(figsize=(13, 3.6))
             ax = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
+        ax = list(np.ravel(np.asarray(ax, dtype=object)))
         scatter_density(self.mc, None, axes=ax)
-        return axes_of(list(ax))
+        return axes_of(ax)
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
         """Write ``mc_table.csv``, ``mc_summary.json``, ``mc_scatter.png`` (and the histograms) into an existing
