@@ -62,14 +62,14 @@ CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
 class Requirement:
     """Base of the requirements on the tool-pose error; subclasses are frozen dataclasses.
 
-    Class attributes
-    ----------------
+    A subclass checks its fields in :meth:`check` (called at construction) and implements :meth:`text`.
+
+    Attributes
+    ----------
     kind : str
         What the requirement bounds; a job takes one requirement of each kind at most.
     clause : str
-        Where the statistic is defined (``""`` for the balls).
-
-    A subclass checks its fields in :meth:`check` (called at construction) and implements :meth:`text`.
+        Where the statistic is defined (``""`` for the balls). Both are class attributes.
     """
 
     kind: ClassVar[str] = ""
