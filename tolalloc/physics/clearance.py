@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.loads import G, mass_points, point_at
+from tolalloc.physics.loads import G, mass_points, point_at, unit_along
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 
@@ -67,9 +67,7 @@ def joint_wrenches(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None
 def _side(v: np.ndarray, whole: np.ndarray) -> np.ndarray:
     """Unit vectors (P, 3) along the component ``v`` (P, 3) of a load; zero where ``|v|`` is below :data:`NO_LOAD` of
     the whole load ``whole`` (P, 3)'s largest size."""
-    size = np.linalg.norm(v, axis=1)
-    keep = size > NO_LOAD * max(float(np.linalg.norm(whole, axis=1).max(initial=0.0)), 1e-300)
-    return np.where(keep[:, None], v / np.where(keep, size, 1.0)[:, None], 0.0)
+    return unit_along(v, np.linalg.norm(whole, axis=1).max(initial=0.0), NO_LOAD)
 
 
 def clearance_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray | None = None,

@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.robot.model import Robot
-from tolalloc.physics.loads import base_moment, gravity_torques, tip_load
+from tolalloc.physics.loads import base_moment, gravity_torques, tip_load, unit_along
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
            "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt"]
@@ -132,8 +132,7 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
         return (np.stack([np.cross(Mh, p), np.cross(Mh, np.broadcast_to(-g, p.shape))], axis=-1),
                 ["c_mount [rad/(N m)]", "c_mount_depth [rad mm/(N m)]"])
     if variant == "play":
-        size = np.linalg.norm(Mh, axis=1, keepdims=True)
-        side = np.where(size > 1e-9 * max(float(size.max(initial=0.0)), 1e-300), Mh / np.maximum(size, 1e-300), 0.0)
+        side = unit_along(Mh, np.linalg.norm(Mh, axis=1).max(initial=0.0), 1e-9)
         return (np.stack([np.cross(Mh, p), 1e-3 * np.cross(side, p)], axis=-1),
                 ["c_mount [rad/(N m)]", "r_mount [mrad]"])
     cols, names = [], []

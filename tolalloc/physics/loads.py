@@ -19,7 +19,7 @@ from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Mass, Robot
 
 __all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "point_at",
-           "target_points", "point_jacobian", "mass_points", "across_axes"]
+           "target_points", "point_jacobian", "mass_points", "across_axes", "unit_along"]
 
 #: Standard gravity [m/s^2].
 G = 9.81
@@ -122,3 +122,11 @@ def across_axes(e: np.ndarray) -> tuple:
     u = np.cross(e, [1.0, 0.0, 0.0] if abs(e[0]) < 0.9 else [0.0, 1.0, 0.0])
     u /= np.linalg.norm(u)
     return u, np.cross(e, u)
+
+
+def unit_along(v: np.ndarray, scale: float, rel: float) -> np.ndarray:
+    """Unit vectors (P, 3) along the loads ``v`` (P, 3) (the side a load presses a clearance or a play to); zero
+    where ``|v|`` is at most ``rel`` times ``scale``, the size below which a load is rounding noise."""
+    size = np.linalg.norm(v, axis=1)
+    keep = size > rel * max(float(scale), 1e-300)
+    return np.where(keep[:, None], v / np.where(keep, size, 1.0)[:, None], 0.0)
