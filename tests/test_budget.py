@@ -138,7 +138,7 @@ def test_the_command_line_refuses_by_the_flag(fixed_probe, capsys):
 def test_a_registration_count_beyond_the_test_file_says_what_fits():
     from tolalloc.diagnose.register import register_count
 
-    with pytest.raises(TolallocError, match=r"^--register-n 1e\+15 asks for 1,000,000,000,000,000 registration poses, "
+    with pytest.raises(TolallocError, match=r"^register_n 1e\+15 asks for 1,000,000,000,000,000 registration poses, "
                                             r"but the 20 test poses leave at most \d+ after the \d+ scored ones; "
                                             r"expected a count from 5 to \d+ or a fraction below 1"):
         register_count(20, 1e15)

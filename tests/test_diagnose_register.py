@@ -7,6 +7,7 @@ held-out poses reports it (residual ~ the move).
 """
 
 import numpy as np
+import pandas as pd
 import pytest
 from scipy.spatial.transform import Rotation
 
@@ -110,5 +111,17 @@ def test_pipeline_rejects_a_register_n_that_leaves_too_few_scored_poses_before_f
     rng = np.random.default_rng(2)
     q = rng.uniform(*_limits(robot), (40, 6))
     m = Measurements(q, _points(robot, q, np.eye(3), np.zeros(3)))
-    with pytest.raises(TolallocError, match="--register-n 38 gives 38 registration and 2 scored"):
+    with pytest.raises(TolallocError, match="^register_n 38 gives 38 registration and 2 scored"):
         diagnose(robot, m, m, test_frame="refit", register_n=38)
+
+
+def test_a_refit_registration_count_is_refused_as_its_field():
+    """Through the job, a Refit's count that the test file cannot hold names ``Refit.register_n``."""
+    robot = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(2)
+    q = rng.uniform(*_limits(robot), (80, 6))
+    frame = pd.DataFrame(np.column_stack([np.rad2deg(q), _points(robot, q, np.eye(3), np.zeros(3))]),
+                         columns=[*(f"q{i + 1}" for i in range(6)), "x_mm", "y_mm", "z_mm"])
+    with pytest.raises(tolalloc.ArgumentError, match="^Refit.register_n 38 gives 38 registration"):
+        tolalloc.diagnose_measurements(robot, frame.iloc[:40], frame.iloc[40:],
+                                       test_frame=tolalloc.Refit(register_n=38))

@@ -95,26 +95,26 @@ class RegistrationSplit:
 def register_count(n_test: int, register_n: float) -> int:
     """Number of registration poses: ``register_n`` itself when >= 1, else that fraction of ``n_test`` (rounded).
 
-    Raises :class:`TolallocError` when it leaves fewer than :data:`MIN_REGISTER` registration or
+    Raises :class:`ArgumentError` (``register_n``) when it leaves fewer than :data:`MIN_REGISTER` registration or
     :data:`MIN_SCORED` scored poses.
     """
     if not np.isfinite(register_n) or register_n <= 0:
-        raise TolallocError(f"--register-n: expected a pose count >= {MIN_REGISTER} or a fraction in (0, 1), "
+        raise ArgumentError("register_n", f"expected a pose count >= {MIN_REGISTER} or a fraction in (0, 1), "
                             f"got {register_n!r}.")
     n = int(register_n) if register_n >= 1 else int(round(register_n * n_test))
     if register_n >= 1 and n != register_n:
-        raise TolallocError(f"--register-n: a count must be a whole number, got {register_n!r}; "
-                            "use a value below 1 for a fraction.")
+        raise ArgumentError("register_n", f"a count must be a whole number, got {register_n!r}; use a value below 1 "
+                            "for a fraction.")
     if n > n_test:  # more registration poses than the test file has
-        raise TolallocError(f"--register-n {register_n:g} asks for {n:,} registration poses, but the {n_test} test "
+        raise ArgumentError("register_n", f"{register_n:g} asks for {n:,} registration poses, but the {n_test} test "
                             f"poses leave at most {max(0, n_test - MIN_SCORED)} after the {MIN_SCORED} scored ones; expected "
                             f"a count from {MIN_REGISTER} to {max(MIN_REGISTER, n_test - MIN_SCORED)} or a fraction "
-                            "below 1 -- choose another --register-n or a larger test file.")
+                            "below 1 -- choose another `register_n` or a larger test file.")
     if n < MIN_REGISTER or n_test - n < MIN_SCORED:
-        raise TolallocError(
-            f"--register-n {register_n:g} gives {n} registration and {n_test - n} scored poses of the {n_test} test poses; "
+        raise ArgumentError(
+            "register_n", f"{register_n:g} gives {n} registration and {n_test - n} scored poses of the {n_test} test poses; "
             f"re-registering needs at least {MIN_REGISTER} registration and {MIN_SCORED} scored poses -- "
-            "choose another --register-n or a larger test file.")
+            "choose another `register_n` or a larger test file.")
     return n
 
 
