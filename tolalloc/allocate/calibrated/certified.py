@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Design, make_design
 from tolalloc.calibration.plan import CalibrationPlan
@@ -158,20 +158,20 @@ def parameter_status(design: Design, post: Posterior) -> list:
 def _check(problem: AllocationProblem, split: ErrorSplit, plan: CalibrationPlan) -> np.ndarray:
     estimated_index(split, plan)  # unknown names first
     if problem.acceptance is not None:
-        raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only, "
+        raise ArgumentError("calibration", "the calibration-aware allocation handles the position requirement only, "
                             "not ISO 9283 requirements; predict their acceptance test after a calibration with "
                             "tolalloc.acceptance.predict_acceptance(..., posterior=...).")
     if len(problem.blocks) != 1:
-        raise TolallocError("--calibration: the calibration-aware allocation handles the position requirement only; "
-                            "drop --angle-radius-deg.")
+        raise ArgumentError("calibration", "the calibration-aware allocation handles the position requirement only; "
+                            "drop the orientation requirement (`angle_radius_deg`).")
     if plan.estimate is not None:
-        raise TolallocError("--calibration: the allocation needs a plan that estimates every systematic parameter "
+        raise ArgumentError("calibration", "the allocation needs a plan that estimates every systematic parameter "
                             "(estimate = all); got an explicit list.")
     E = split.sys_index
     for k in E:
         cm = problem.costs.models[k]
         if problem.costs.role[k] == "allocate" and cm.model in ("exponential", "michael_siddall"):
-            raise TolallocError(f"--calibration: {problem.model.names[k]} has the {cm.model} cost law, which the "
+            raise ArgumentError("calibration", f"{problem.model.names[k]} has the {cm.model} cost law, which the "
                                 "calibration-aware allocation does not support for systematic parameters; use "
                                 "reciprocal or reciprocal_power in the costs file.")
     return E
