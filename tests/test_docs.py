@@ -356,6 +356,23 @@ def test_every_public_module_is_in_the_api_reference():
         [n for n in tolalloc.__all__ if f"`{n}`" not in index and f"`tolalloc.{n}`" not in index]
 
 
+def test_api_pages_document_the_stage_api_in_full_and_list_the_building_blocks():
+    """A stage package's exports in full (automodule members); a submodule's other names as short entries (still
+    cross-reference targets) with the first paragraph of their docstrings or ``#:`` comments; a module named in a
+    marker (the foundation) in full."""
+    spec = importlib.util.spec_from_file_location("api_pages", DOCS / "_ext" / "api_pages.py")
+    api_pages = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(api_pages)
+    text = api_pages.expand("tolalloc.allocate")
+    assert ".. automodule:: tolalloc.allocate\n   :members:" in text
+    section = text.split("## `tolalloc.allocate.drawing`", 1)[1].split("\n## ", 1)[0]
+    assert ":no-members:" in section
+    assert ".. py:function:: diameter_factor\n\n   ``f`` with ``Ø zone = L f t`` for two tilts" in section
+    assert ".. py:data:: SYMBOLS\n\n   ISO 1101 symbols" in section and ".. py:class:: FeatureMap" in section
+    foundation = api_pages.expand("tolalloc.exceptions")
+    assert ".. automodule:: tolalloc.exceptions" in foundation and ":no-members:" not in foundation
+
+
 def test_relative_links_and_included_cells_exist():
     for page in PAGES:
         text = page.read_text()
