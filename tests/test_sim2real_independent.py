@@ -1898,3 +1898,189 @@ def test_set_n_every_kind_lies_in_its_true_structure_and_known_answers():
                            session=SimpleNamespace(gap_s=np.array([0.0, 0.0, 0.0, -60.0])))
     stub.q[:, rp["joint"]] = [0.0, 100.0, 40.0, 90.0]
     assert nj.creep_signal(rp, stub) == pytest.approx([0.0, 500 * 100, 500 * 160, 0.0])
+
+
+def test_set_o_cases_kinds_and_determinism():
+    """Set O: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-O
+    kind alone (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a C-frame's
+    target sits on its die and a spindle's on its nose, their weights half way; the purged and the bolting cases have
+    their blocks, the floating and guyed cases their loads changed, the tool cases one load."""
+    from sim2real_indep import effects_o as eo
+    from sim2real_indep import effects_o_body as ob
+
+    _assert_set_module("O", 40_7015, eo, ("gear", "pad_heat"))
+    for name in ("effects_o", "effects_o_joint", "effects_o_body", "effects_o_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_o" in _imports(STUDY / "generator.py")
+    assert eo.AFTER_TRACKER == set()
+    probe, com = np.array([3.0, -4.0, 12.0]), np.array([10.0, 0.0, 5.0])   # |probe| 13 mm
+    assert eo.probe_hook(("sag", "jaw_play"), probe, "ur10") is probe
+    assert eo.payload_hook(("sag",), com, probe, "ur10") is com
+    die = eo.probe_hook(("weld_gun",), probe, "tool_changer")
+    assert die == pytest.approx([0.6 * (200 + 200 * 8 / 95), -0.8 * (200 + 200 * 8 / 95), 450.0])
+    assert eo.payload_hook(("weld_gun",), com, die, "tool_changer") == pytest.approx(die / 2)
+    nose = eo.probe_hook(("milling_force",), probe, "ur10")
+    a = 70 + 60 * 8 / 95
+    assert nose == pytest.approx([0.6 * (a + 35), -0.8 * (a + 35), 130.0])
+    assert eo.payload_hook(("spindle_bracket",), com, nose, "ur10") == pytest.approx([0.6 * a, -0.8 * a, 65.0])
+    assert eo.probe_hook(("weld_gun",), probe, "ur10") is probe                  # no C-frame on ur10
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": eo.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        purge = opts(("purge_air",))
+        assert 2 <= purge["blocks"] <= 3 and purge["gap_kind"] == "pause" and purge["pause_min"] == (15.0, 40.0)
+        bolt = opts(("bolt_torque",), "tool_changer")
+        assert 4 <= bolt["blocks"] <= 7 and bolt["pause_min"] == (2.0, 6.0)
+        steps = opts(("pontoon",), "ur10")["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+        gun = opts(("weld_gun", "mesh_te"), "tool_changer")["payload_steps"]
+        assert len(gun) == 1 and 48.0 <= gun[0] <= 72.0
+        assert len(opts(("milling_force",))["payload_steps"]) == 1
+    assert ob.CFRAME["tool_changer"][1] == 450.0
+    _assert_regenerates("O", max_effect_poses=50)
+
+
+def test_set_o_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-O kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds of other arms do nothing; and known answers: the
+    mean forces and torque of a slot cut, the nutrunner's reaction along the tool axis, the cut flank's rule, the
+    encoder hysteresis' overshoot, the quantised stop at a count's edge, the mesh error's period, the pontoon's
+    waterplane compliances, the guys' catenary law and a balanced mast, the C-frame's squeeze along the punch axis, the
+    bar's end against the cantilever formulas, the purge's exact lag and the infrared panel's inverse square."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_o_body as ob
+    from sim2real_indep import effects_o_joint as oj
+    from sim2real_indep import effects_o_thermal as ot
+    from sim2real_indep import hardware as hwm
+    from sim2real_indep.context import Ctx
+
+    inert = {"ur10": ("bolt_torque", "mesh_te", "weld_gun", "purge_air"),
+             "tool_changer": ("milling_force", "cut_flank", "spindle_bracket", "pontoon", "guyed_mast"),
+             "kr16_like": ()}
+    specs = (("ur10", ("milling_force", "cut_flank", "spindle_bracket", "enc_hysteresis", "lsb_stop", "ir_dryer")),
+             ("ur10", ("pontoon", "guyed_mast")),
+             ("kr16_like", ("bolt_torque", "mesh_te", "purge_air", "weld_gun", "lsb_stop")),
+             ("tool_changer", ("bolt_torque", "weld_gun", "mesh_te", "lsb_stop", "enc_hysteresis", "purge_air")),
+             ("ur10", inert["ur10"]), ("tool_changer", inert["tool_changer"]))
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 15)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault((robot, physics[0]), (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p, hw = case.truth["params"][kind], case.truth["hw"]
+            gear = lambda loads: [hwm.torsion(hw["drives"][j], 1.0, False) for j in range(ctx.chain.n)  # noqa: E731
+                                  if np.abs(loads[:, j]).max() > 1e-9]
+            amp = {"milling_force": lambda: gear(oj.cut_joint_loads(p, ctx)),
+                   "bolt_torque": lambda: gear(oj.moment_loads(ctx, oj.bolt_moment(p, ctx))),
+                   "cut_flank": lambda: p["b_rad"] / 2, "enc_hysteresis": lambda: p["h_rad"] / 2,
+                   "lsb_stop": lambda: p["delta_rad"], "mesh_te": lambda: p["A_mm"] / p["r_mm"],
+                   "pontoon": lambda: ob.pontoon_compliance(p), "guyed_mast": lambda: np.ones(2),
+                   "weld_gun": lambda: [p["c_mm_N"]], "spindle_bracket": lambda: [1 / p["E"]],
+                   "purge_air": lambda: [hw["material"]["cte"] * p["dT_K"]],
+                   "ir_dryer": lambda: ot.ir_amplitudes(p, hw)}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    # cut: a slot (0 to pi) without edge or axial coefficients -- mean feed force -N a_p f_z K_rc / 4, normal force
+    # N a_p f_z K_tc / 4, torque D N K_tc a_p f_z / (2000 pi) [N m]
+    c = {"N": 3, "D_mm": 10.0, "ap_mm": 2.0, "fz_mm": 0.1, "Ktc": 800.0, "Krc": 300.0, "Kac": 0.0, "Kte": 0.0,
+         "Kre": 0.0, "mode": "slot"}
+    F, T = oj.mean_cut(c)
+    assert F == pytest.approx([-3 * 2 * 0.1 * 300 / 4, 3 * 2 * 0.1 * 800 / 4, 0.0], rel=1e-4, abs=1e-9)
+    assert T == pytest.approx(10 * 3 * 800 * 2 * 0.1 / (2000 * np.pi), rel=1e-4)
+    # lsb: from below the axis stops at the target count's lower edge, from above at its upper edge
+    lp = {"joints": [0], "delta_rad": np.array([0.01]), "phi0": np.array([0.0])}
+    stub = SimpleNamespace(q=np.array([[0.0537], [0.0537]]),
+                           session=SimpleNamespace(direction=np.array([[1.0], [-1.0]])))
+    assert 0.01 * oj.lsb_signals(lp, stub)[0] == pytest.approx([0.05 - 0.0537, 0.06 - 0.0537])
+    # flank: a torque beyond the drag chooses its flank, inside it the axis trails its last motion
+    assert ph.backlash_offset(np.array([1.0, 1.0]), np.array([5.0, 0.5]), 1.0, 2.0, 0.0) == pytest.approx([1.0, -1.0])
+
+    case, ctx = runs[("ur10", "milling_force")]
+    p, hw = case.truth["params"], case.truth["hw"]
+    t = case.truth
+    true = Ctx(t["chain"], t["session"], t["masses"], t["com"], case.nominal.mass_link, t["payload_com_mm"],
+               t["probe_mm"])
+    fp = p["cut_flank"]
+    tau = oj.cut_joint_loads(fp["cut"], true) + true.loads
+    for k, j in enumerate(oj.LASH_JOINTS):
+        assert fp["side"][k] == pytest.approx(ph.backlash_offset(ctx.session.direction[:, j], tau[:, j],
+                                                                 fp["drag_Nm"][k], 2.0, 0.0))
+    assert p["cut_flank"]["cut"]["psi"] is p["milling_force"]["psi"] is hw["cut"]["psi"]   # one cut shared
+    # encoder hysteresis: the joint overshoots by h / 2 in the direction of its last motion
+    hp = p["enc_hysteresis"]
+    dq = oj.hyst_apply(hp, ctx, hw).dq
+    assert dq[:, :3] == pytest.approx(hp["h_rad"] / 2 * ctx.session.direction[:, :3]) and not dq[:, 3:].any()
+    # bar: a square bar's end against Timoshenko's cantilever under an end force and moment (no stretch)
+    d = np.array([0.6, 0.8, 0.0])
+    Fb = np.array([[0.0, 0.0, 30.0], [-40.0, 30.0, 0.0]])
+    Mb = np.array([[100.0, -200.0, 300.0], [0.0, 0.0, 500.0]])
+    delta, rot = ob.bar_end_motion(100.0, 10.0, 10.0, 0.3, d, Fb, Mb)
+    EI, GJ = 1e4 / 12 * 1e-6, 1e4 / 3 * (1 - 0.63) / 2.6 * 1e-6              # E = 1 [N/mm^2], in N m^2
+    ref_d, ref_r = ph.cantilever_tip(d, 0.1, Fb, Mb * 1e-3, np.zeros(3), EI, np.inf, GJ)
+    assert delta == pytest.approx(ref_d * 1e3, rel=1e-9) and rot == pytest.approx(ref_r, rel=1e-9)
+    # infrared: a link's midpoint at the panel is clipped to 0.3 m, (0.5 / 0.3)^2; a far panel sends nothing
+    ip = dict(p["ir_dryer"], k_on=0)
+    R, tt = kin.body_transforms(ctx.chain, ctx.q)
+    li = ip["links"][0]
+    mid = R[0, ctx.chain.link_body[li]] @ (np.cumsum(ctx.chain.links, axis=0)[li] - ctx.chain.links[li] / 2) \
+        + tt[0, ctx.chain.link_body[li]]
+    assert ot.ir_inputs(dict(ip, lamp_mm=mid), ctx)[0, 0] == pytest.approx((500 / 300) ** 2)
+    assert ot.ir_inputs(dict(ip, lamp_mm=np.array([0, 0, 1e7])), ctx).max() < 1e-8
+    assert ot.ir_amplitudes(dict(ip, a_s=0.5, E0_W_m2=8000.0, h=10.0, f=np.ones(1)), hw) == pytest.approx(
+        hw["material"]["cte"] * 0.5 * 8000 / (np.pi * 10))
+
+    case, ctx = runs[("ur10", "pontoon")]
+    p = case.truth["params"]
+    # pontoon: heave 1 / (rho g L B), heel and trim 12 / (rho g L B^3) and 12 / (rho g B L^3); a 10 x 5 m hull sinks
+    # 2.04 um per newton
+    assert ob.pontoon_compliance({"L_mm": 1e4, "B_mm": 5e3}) == pytest.approx(
+        [1 / (1000 * 9.80665e-9 * 5e7), 12 / (1000 * 9.80665e-9 * 1e4 * 1.25e11),
+         12 / (1000 * 9.80665e-9 * 5e3 * 1e12)])
+    assert 1e3 * ob.pontoon_compliance({"L_mm": 1e4, "B_mm": 5e3})[0] == pytest.approx(2.04, abs=0.005)
+    # guys: the tension inverts the elastic catenary's chord law and stays positive as a guy slackens; three equal
+    # guys hold a mast plumb under a weight on its axis
+    mp = p["guyed_mast"]
+    dl = np.array([-2.0, 0.0, 0.3])
+    T = ob.guy_tension(mp, dl)
+    law = (T - mp["T0"]) * mp["l0"] / mp["EA"] + mp["c"] * (1 / mp["T0"] ** 2 - 1 / T ** 2)
+    assert law == pytest.approx(dl, abs=1e-9) and T[1] == pytest.approx(mp["T0"]) and (T > 0).all()
+    assert ob.mast_residual(mp, np.zeros(2), np.array([50.0]), np.array([[0.0, 0.0, 200.0]])) == pytest.approx(
+        [0.0, 0.0], abs=1e-6)
+
+    case, ctx = runs[("kr16_like", "bolt_torque")]
+    p, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # nutrunner: +T along the tool axis while fitting, -k T while removing; each revolute joint carries its axis' share
+    bp = p["bolt_torque"]
+    M = oj.bolt_moment(bp, ctx)
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    sense = bp["sense"][oj.block_index(s)]
+    assert np.einsum("pi,pi->p", M, Rt[:, :, 2]) == pytest.approx(np.where(sense > 0, 1, bp["k_loose"]) * sense
+                                                                  * bp["T_Nm"])
+    assert (sense > 0).any() and (sense < 0).any()
+    w, _ = kin.joint_frames(ctx.chain, ctx.q)
+    assert oj.moment_loads(ctx, M) == pytest.approx(np.einsum("pji,pi->pj", w, M))
+    # mesh: the error repeats once per tooth
+    mt = p["mesh_te"]
+    shifted = SimpleNamespace(q=ctx.q + np.r_[2 * np.pi / mt["Z"], np.zeros(5)])
+    assert oj.mesh_signals(mt, shifted) == pytest.approx(oj.mesh_signals(mt, ctx), abs=1e-9)
+    # C-frame: the die moves along the punch (tool) axis by c F
+    cp = p["weld_gun"]
+    assert ob.cframe_apply(cp, ctx, hw).displace == pytest.approx(cp["c_mm_N"] * cp["F_N"][:, None] * Rt[:, :, 2])
+    assert set(cp["F_N"]) <= set(cp["levels"])
+    # purge: in the first block the deficit starts at 1 - exp(-t_pp / tau) and decays to r_low with tau
+    pp = p["purge_air"]
+    x = ot.purge_signal(pp, ctx)
+    pre, run = ot.purge_windows(pp, s)
+    first = s.time_s <= run[0][1]
+    x0 = 1 - np.exp(-pp["t_pp_s"] / pp["tau_s"])
+    ref = pp["r_low"] + (x0 - pp["r_low"]) * np.exp(-(s.time_s[first] - run[0][0]) / pp["tau_s"])
+    assert x[first] == pytest.approx(ref, rel=1e-9)
+    assert len(pre) >= 2 and pre[1][1] - pre[1][0] == pytest.approx(pp["t_pp_s"])

@@ -40,6 +40,7 @@ from sim2real_indep import effects_k as ek
 from sim2real_indep import effects_l as el
 from sim2real_indep import effects_m as em
 from sim2real_indep import effects_n as en
+from sim2real_indep import effects_o as eo
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -71,10 +72,11 @@ EFFECTS = {
     **el.EFFECTS_L,  # set L's new kinds
     **em.EFFECTS_M,  # set M's new kinds
     **en.EFFECTS_N,  # set N's new kinds
+    **eo.EFFECTS_O,  # set O's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
-                 | em.AFTER_TRACKER | en.AFTER_TRACKER)
+                 | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -156,7 +158,8 @@ def _session_options(robot_key, physics, rng):
     opts = ek.session_options(robot_key, physics, rng, opts)  # set K (no draws without a set-K kind)
     opts = el.session_options(robot_key, physics, rng, opts)  # set L (no draws without a set-L kind)
     opts = em.session_options(robot_key, physics, rng, opts)  # set M (no draws without a set-M kind)
-    return en.session_options(robot_key, physics, rng, opts)  # set N (no draws without a set-N kind)
+    opts = en.session_options(robot_key, physics, rng, opts)  # set N (no draws without a set-N kind)
+    return eo.session_options(robot_key, physics, rng, opts)  # set O (no draws without a set-O kind)
 
 
 def _tracker(rng):
@@ -189,12 +192,14 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = el.probe_hook(physics, probe, robot_key)  # set L's gripper finger (no draws)
     probe = em.probe_hook(physics, probe, robot_key)  # set M's gimbal tool, gripper bar, finger (no draws)
     probe = en.probe_hook(physics, probe, robot_key)  # set N's lattice boom (no draws)
+    probe = eo.probe_hook(physics, probe, robot_key)  # set O's spindle nose, C-frame die (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
     payload_com = el.payload_hook(physics, payload_com, probe)  # set L's part between the fingers (no draws)
     payload_com = em.payload_hook(physics, payload_com, probe)  # set M's part on the tool, bar, fingers (no draws)
     payload_com = en.payload_hook(physics, payload_com, probe)  # set N's part at the boom's tip (no draws)
+    payload_com = eo.payload_hook(physics, payload_com, probe, robot_key)  # set O's spindle, C-frame (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

@@ -84,14 +84,16 @@ def run_case(spec, diagnose=True):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--set", choices=["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "both", "all"], default="A")
+    letters = sorted(cs.SETS)
+    ap.add_argument("--set", choices=[*letters, "both", "all"], default="A",
+                    help="one set, both (A and B) or all (every set of cases.SETS)")
     ap.add_argument("--quick", action="store_true", help="the first four cases of each set, 40 poses each")
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--out", type=Path, default=OUT)
     ap.add_argument("--oracle-only", action="store_true",
                     help="generate and label the cases without diagnosing them (writes oracle_<sets>.csv only)")
     args = ap.parse_args(argv)
-    names = {"both": ["A", "B"], "all": ["A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N"]}.get(args.set, [args.set])
+    names = {"both": ["A", "B"], "all": letters}.get(args.set, [args.set])
     specs = []
     for name in names:
         cases = cs.SETS[name][0]

@@ -113,7 +113,20 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "wind_panel": "joint_compliance", "jet_reaction": "joint_compliance", "harness_lash": "backlash",
           "balanced_lash": "backlash", "rope_creep": "transmission", "mag_drift": "transmission",
           "crawler_sink": "mount_compliance", "leaf_springs": "mount_compliance", "truss_slack": "link_deflection",
-          "ring_frame": "link_deflection", "tripod_tilt": "thermal", "pad_heat": "thermal"}
+          "ring_frame": "link_deflection", "tripod_tilt": "thermal", "pad_heat": "thermal",
+          # set O (sim2real_indep.effects_o; cut_flank, the lost motion of axes 1, 4 and 6 whose flank a milling cut's
+          # load chooses, and enc_hysteresis, the hysteresis band of the output encoders closing the position loop,
+          # scored as backlash; lsb_stop, those encoders' counts and stopping dead band, and mesh_te, a ring gear's
+          # tooth-mesh transmission error, as transmission; pontoon, a floating support, and guyed_mast, a guyed mast,
+          # as mount compliance (the robot's support); weld_gun, a C-frame tool opened by its squeeze force, and
+          # spindle_bracket, a spindle's bracket bent by the cut, as link deflection (the end-of-arm structure
+          # carrying the target); purge_air, the hollow arm cooled by its purge air, and ir_dryer, the links warmed
+          # by an infrared panel, as thermal; milling_force and bolt_torque, the gears twisted by a cut and by a
+          # nutrunner's reaction, as joint compliance)
+          "milling_force": "joint_compliance", "bolt_torque": "joint_compliance", "cut_flank": "backlash",
+          "enc_hysteresis": "backlash", "lsb_stop": "transmission", "mesh_te": "transmission",
+          "pontoon": "mount_compliance", "guyed_mast": "mount_compliance", "weld_gun": "link_deflection",
+          "spindle_bracket": "link_deflection", "purge_air": "thermal", "ir_dryer": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
