@@ -62,6 +62,8 @@ ROOT = Path(__file__).resolve().parents[1]
                                                                       r"exclusive"),
     (lambda: tolalloc.FitOptions(target_offset_mm=[0, 0, 10]), r"^FitOptions.target_offset_mm: a prior mean needs its "
                                                                 r"standard deviation"),
+    (lambda: tolalloc.FitOptions(target_offset_mm=(1, 2), target_offset_sd_mm=5),
+     r"^FitOptions.target_offset_mm: expected three finite numbers \(x, y, z in the flange frame"),
 ])
 def test_a_bad_setting_is_refused_when_built_naming_the_field(build, match):
     with pytest.raises(tolalloc.ArgumentError, match=match) as info:
