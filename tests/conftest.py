@@ -201,7 +201,22 @@ def warm_numba_kernels(request, tmp_path_factory):
             return
     from tolalloc.montecarlo.engines.warmup import warm_numba_kernels as warm
 
-    warm()
+    if warm():
+        _warm_other_kernels()
+
+
+def _warm_other_kernels() -> None:
+    """The numba kernels outside the Monte Carlo warm-up, compiled here once for the run rather than by both workers
+    at once: the error model's perturbed-chain walk and the diagnosis's point kinematics."""
+    import tolalloc
+    from tolalloc.diagnose.scale import point_kinematics
+    from tolalloc.errormodel import build_error_model
+
+    robot = tolalloc.load_robot("tool_changer")
+    model = build_error_model(robot, "table2")
+    model.perturbed_chain(np.zeros((2, len(model.names))), engine="numba")
+    ur10 = tolalloc.load_robot("ur10")  # unit screws: the compiled path
+    point_kinematics(ur10.screws, ur10.home, np.zeros((2, ur10.n_joints)), np.zeros(3))
 
 
 # The documentation build: the longest single test, and one that needs no numba kernel (see warm_numba_kernels).

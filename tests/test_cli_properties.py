@@ -223,8 +223,15 @@ def check_run(code, out, err, written, argv):
 
 TWO_LINK = dh_csv([{"name": "j1", "d_mm": 400, "a_mm": 0, "alpha_deg": 90},
                   {"name": "j2", "d_mm": 0, "a_mm": 600, "alpha_deg": 0}], "standard")
-TRAIN = _write("train_valid.csv", measurement_frame().iloc[:36].to_csv(index=False))
-TEST = _write("test_valid.csv", measurement_frame().iloc[36:].to_csv(index=False))
+# the valid measurement files of the examples below: named at import, written by the test (the measurements are
+# simulated, which needs compiled kernels; at import both workers would compile them at once on a fresh checkout)
+TRAIN, TEST = str(SCRATCH / "train_valid.csv"), str(SCRATCH / "test_valid.csv")
+
+
+def _write_valid_measurements() -> None:
+    if not Path(TEST).exists():
+        _write("train_valid.csv", measurement_frame().iloc[:36].to_csv(index=False))
+        _write("test_valid.csv", measurement_frame().iloc[36:].to_csv(index=False))
 
 
 @settings(max_examples=examples(30, 0.1), **SETTINGS)
@@ -236,6 +243,7 @@ TEST = _write("test_valid.csv", measurement_frame().iloc[36:].to_csv(index=False
 @example(argv=["fk", TWO_LINK, "--q", "10,20", "--json"])
 @given(argv=command_lines())
 def test_every_command_exits_cleanly(argv, capsys):
+    _write_valid_measurements()
     if argv[0] == "calplan" and argv[1] in ("tool_changer", "ur10"):
         argv = [argv[0], TWO_LINK, *argv[2:]]  # a design over the tool_changer's candidates takes seconds
     if argv[0] == "allocate" and argv[1] == "tool_changer" and "working" in argv and "--no-verify" not in argv:
