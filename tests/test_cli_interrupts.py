@@ -37,11 +37,22 @@ def _wait_handlers(proc, timeout=60.0):
     raise AssertionError("the process never installed its signal handlers")
 
 
-def _wait_running(proc, seconds):
-    """Let the process take the signals over, then compute for ``seconds`` (it must still be running after)."""
+def _cpu_s(pid) -> float:
+    """CPU time [s] a process has used (Linux: utime + stime of /proc/PID/stat)."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _wait_running(proc, cpu_s, timeout=60.0):
+    """Let the process take the signals over, then run until it has used ``cpu_s`` of CPU (past its imports, into
+    the computation, however loaded the machine; without /proc: that long on the clock). It must still be running."""
     if Path("/proc/self/status").exists():
         _wait_handlers(proc)
-    time.sleep(seconds)
+        t0 = time.monotonic()
+        while _cpu_s(proc.pid) < cpu_s and time.monotonic() - t0 < timeout and proc.poll() is None:
+            time.sleep(0.02)
+    else:
+        time.sleep(cpu_s)
     assert proc.poll() is None, proc.communicate()
 
 
@@ -51,7 +62,7 @@ def _wait_running(proc, seconds):
 ])
 def test_interrupt_prints_one_line_and_leaves_nothing(tmp_path, argv, sig, code):
     proc = _start(argv, tmp_path)
-    _wait_running(proc, 3.0)
+    _wait_running(proc, 2.5)
     proc.send_signal(sig)
     out, err = proc.communicate(timeout=60)
     assert proc.returncode == code, err
