@@ -31,7 +31,7 @@ __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_p
            "default_pose_set", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
            "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path", "check_positive",
            "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number", "shown",
-           "check_axes", "check_text", "RANGES", "Z_RANGE", "field_sources"]
+           "check_axes", "check_text", "RANGES", "Z_RANGE"]
 
 
 _Job = TypeVar("_Job", bound=Callable[..., Any])  # job_entry keeps the job's signature for type checkers
@@ -68,7 +68,7 @@ def job_entry(fn: _Job) -> _Job:
         # an old keyword renamed (simulate_errors' n is n_mc now): an error of its value names it as it was given;
         # a run-time error of a settings object's field names ClassName.field (or the old keyword that set it)
         renamed = {moved[k][0]: k for k in kwargs if k in moved and moved[k][1] is None}
-        renamed.update(field_sources(signature, args, kwargs, moved))
+        renamed.update(_field_sources(signature, args, kwargs, moved))
         try:
             if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
                 old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
@@ -85,7 +85,7 @@ def job_entry(fn: _Job) -> _Job:
     return run  # type: ignore[return-value]  # the same signature as ``fn``
 
 
-def field_sources(signature, args: tuple, kwargs: dict, moved: dict) -> dict:
+def _field_sources(signature, args: tuple, kwargs: dict, moved: dict) -> dict:
     """``{bare field: the name its refusal shows}`` for one call of a job: ``ClassName.field`` for every field of a
     settings object passed (alone or in a list), the old keyword for a field it set; a name passed as a keyword of
     its own, or a field two objects share, keeps its bare name."""
