@@ -76,7 +76,8 @@ def _attribute_doc(module: str, name: str) -> str | None:
 
 def _summary(name: str, skip) -> list[str]:
     """Short entries for the names module ``name`` exports (its ``__all__``, less ``skip``): each a cross-reference
-    target (``py:class``, ``py:function`` or ``py:data``) with the first paragraph of its docstring or ``#:`` comment."""
+    target (``py:class``, ``py:function`` or ``py:data``) with the first paragraph of its docstring or ``#:``
+    comment."""
     import inspect
 
     module = importlib.import_module(name)

@@ -47,7 +47,7 @@ def job_entry(fn: _Job) -> _Job:
     import functools
     import inspect
 
-    from tolalloc.workflows.keywords import MOVED, fold_moved
+    from tolalloc.workflows.keywords import MOVED, field_sources, fold_moved
 
     signature = inspect.signature(fn)
     keywords = [name for name, p in signature.parameters.items()
@@ -68,7 +68,7 @@ def job_entry(fn: _Job) -> _Job:
         # an old keyword renamed (simulate_errors' n is n_mc now): an error of its value names it as it was given;
         # a run-time error of a settings object's field names ClassName.field (or the old keyword that set it)
         renamed = {moved[k][0]: k for k in kwargs if k in moved and moved[k][1] is None}
-        renamed.update(_field_sources(signature, args, kwargs, moved))
+        renamed.update(field_sources(signature, args, kwargs, moved))
         try:
             if any(name in moved for name in kwargs):  # positional arguments by name, so the old keywords meet them
                 old = {k: kwargs.pop(k) for k in list(kwargs) if k in moved}
@@ -83,30 +83,6 @@ def job_entry(fn: _Job) -> _Job:
             raise ArgumentError(renamed[exc.argument], exc.detail) from None
 
     return run  # type: ignore[return-value]  # the same signature as ``fn``
-
-
-def _field_sources(signature, args: tuple, kwargs: dict, moved: dict) -> dict:
-    """``{bare field: the name its refusal shows}`` for one call of a job: ``ClassName.field`` for every field of a
-    settings object passed (alone or in a list), the old keyword for a field it set; a name passed as a keyword of
-    its own, or a field two objects share, keeps its bare name."""
-    from dataclasses import fields
-
-    from tolalloc.workflows.settings import Settings
-
-    try:
-        given = signature.bind_partial(*args, **{k: v for k, v in kwargs.items() if k not in moved}).arguments
-    except TypeError:  # the call itself fails the same way, with Python's message
-        return {}
-    owners: dict = {}
-    for value in given.values():
-        for obj in (value if isinstance(value, (list, tuple)) else [value]):
-            if isinstance(obj, Settings):
-                for f in fields(obj):
-                    owners.setdefault(f.name, set()).add(f"{type(obj).__name__}.{f.name}")
-    for k in kwargs:
-        if k in moved and moved[k][1] is not None:
-            owners[moved[k][1]] = {k}
-    return {f: next(iter(names)) for f, names in owners.items() if len(names) == 1 and f not in given}
 
 
 def as_robot(robot, *, tool: str | None = None, trust_units: bool = False) -> Robot:

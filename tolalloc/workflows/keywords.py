@@ -10,15 +10,16 @@ and folded into the objects that now hold them (``allocate_tolerances(seed=3)`` 
 from __future__ import annotations
 
 import warnings
+from dataclasses import fields as dataclass_fields
 
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.workflows import defaults as D
 from tolalloc.workflows.checks import check_flag, check_positive, check_values, shown
-from tolalloc.workflows.settings import named_fields
+from tolalloc.workflows.settings import Settings, named_fields
 
-__all__ = ["MOVED", "CLASSES", "SHORT_FIELD", "fold_moved", "grouped_call"]
+__all__ = ["MOVED", "CLASSES", "SHORT_FIELD", "fold_moved", "field_sources", "grouped_call"]
 
 _MODEL = {k: ("error_model", k) for k in ("sigma_set", "link_mode", "deflection_mode", "clearance",
                                           "clearance_tilt_literal", "sigma", "exclude")}
@@ -91,6 +92,27 @@ def fold_moved(job: str, kwargs: dict) -> dict:
         with named_fields("", rename):
             kwargs[target] = _FOLD.get(target, _fold_object)(target, kwargs, fields, rename)
     return kwargs
+
+
+
+def field_sources(signature, args: tuple, kwargs: dict, moved: dict) -> dict:
+    """``{bare field: the name its refusal shows}`` for one call of a job: ``ClassName.field`` for every field of a
+    settings object passed (alone or in a list), the old keyword for a field it set; a name passed as a keyword of
+    its own, or a field two objects share, keeps its bare name."""
+    try:
+        given = signature.bind_partial(*args, **{k: v for k, v in kwargs.items() if k not in moved}).arguments
+    except TypeError:  # the call itself fails the same way, with Python's message
+        return {}
+    owners: dict = {}
+    for value in given.values():
+        for obj in (value if isinstance(value, (list, tuple)) else [value]):
+            if isinstance(obj, Settings):
+                for f in dataclass_fields(obj):
+                    owners.setdefault(f.name, set()).add(f"{type(obj).__name__}.{f.name}")
+    for k in kwargs:
+        if k in moved and moved[k][1] is not None:
+            owners[moved[k][1]] = {k}
+    return {f: next(iter(names)) for f, names in owners.items() if len(names) == 1 and f not in given}
 
 
 def _warn(job: str, old: list, moved: dict) -> None:
