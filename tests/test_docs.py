@@ -336,10 +336,11 @@ def test_readme_is_a_front_page():
         assert path is None or path.exists(), target
 
 
-def test_every_public_module_is_in_the_api_reference():
+def test_every_public_module_is_in_the_api_reference(monkeypatch):
     spec = importlib.util.spec_from_file_location("api_pages", DOCS / "_ext" / "api_pages.py")
     api_pages = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(api_pages)
+    monkeypatch.setattr(api_pages, "_summary", lambda name, skip: [])  # the module blocks only (entries: below)
     text = "".join(p.read_text() for p in (DOCS / "api").glob("*.md"))
     documented = set(re.findall(r"\.\. automodule:: ([\w.]+)", text))
     for names in api_pages.MARKER.findall(text):
