@@ -35,7 +35,7 @@ import numpy as np
 import pandas as pd
 from scipy.spatial.transform import Rotation
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import ArgumentError, TolallocError, describe
 from tolalloc.errormodel.model import ErrorModel
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.measurements import Measurements, file_rows
@@ -47,7 +47,7 @@ from tolalloc.diagnose.scale import (CHUNK_ROWS, LOSSES, Problem, norm_scale, po
 
 __all__ = ["Fit", "Identifiability", "Calibration", "calibrate", "fit_model", "identifiability", "initial_fit",
            "fixed_jacobian", "is_collinear", "kabsch", "select_columns", "DEFAULT_TOL", "DEFAULT_LOSS", "HUBER_C",
-           "TUKEY_C", "OUTLIER_C", "outlier_rows"]
+           "TUKEY_C", "OUTLIER_C", "outlier_rows", "offset_prior"]
 
 #: Robust loss of the diagnosis's fits (see :func:`fit_model`).
 DEFAULT_LOSS = "tukey"
@@ -250,6 +250,32 @@ def fixed_jacobian(fit: Fit, q: np.ndarray, xyz: np.ndarray) -> np.ndarray:
     """Jacobian (3P, 9 + len(geo_index)) of the registration, offset and fitted geometric columns at ``fit``."""
     prob = _Problem(fit, q, xyz, fit.geo_index, None)
     return prob.jac(prob.x0())
+
+
+def offset_prior(target_offset_mm, target_offset_sd_mm) -> tuple | None:
+    """The prior of the probe / target offset, ``(mean (3,), sd (3,))`` [mm], or None without a standard deviation;
+    refuses a mean without its standard deviation, a standard deviation that is not positive (one or three values)
+    and a mean that is not three finite numbers (x, y, z in the flange frame, relative to the tool point)."""
+    if target_offset_sd_mm is None:
+        if target_offset_mm is not None:
+            raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give "
+                                "`target_offset_sd_mm` too (e.g. 5 for a tool drawing good to a few mm).")
+        return None
+    try:
+        sd = np.broadcast_to(np.asarray(target_offset_sd_mm, dtype=float), (3,))
+    except (TypeError, ValueError):
+        sd = np.full(3, np.nan)
+    if not np.all(np.isfinite(sd)) or np.any(sd <= 0):
+        raise ArgumentError("target_offset_sd_mm", "expected a positive standard deviation in mm (one or three "
+                            f"values), got {describe(target_offset_sd_mm)}.")
+    try:
+        mean = np.zeros(3) if target_offset_mm is None else np.asarray(target_offset_mm, dtype=float)
+    except (TypeError, ValueError):
+        mean = None
+    if mean is None or mean.shape != (3,) or not np.all(np.isfinite(mean)):
+        raise ArgumentError("target_offset_mm", "expected three finite numbers (x, y, z in the flange frame, "
+                            f"relative to the robot's tool point) [mm], got {describe(target_offset_mm)}.")
+    return mean, sd.copy()
 
 
 def initial_fit(model: ErrorModel, q: np.ndarray, xyz: np.ndarray) -> Fit:

@@ -11,7 +11,7 @@ from threadpoolctl import threadpool_limits
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import (DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, initial_fit,
-                                        is_collinear, outlier_rows)
+                                        is_collinear, offset_prior, outlier_rows)
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
@@ -86,20 +86,7 @@ def _check_args(robot, train, test, test_frame, folds, register_n, subsample_row
                             f"subsample, got {subsample_rows}.")
     if robust_loss not in LOSS_CHOICES:
         raise TolallocError(f"robust_loss: expected one of {', '.join(LOSS_CHOICES)}, got {robust_loss!r}.")
-    if target_offset_sd_mm is None:
-        if target_offset_mm is not None:
-            raise TolallocError("target_offset_mm: a prior mean needs its standard deviation; pass "
-                                "target_offset_sd_mm too (e.g. 5 for a tool drawing good to a few mm).")
-        return None
-    sd = np.broadcast_to(np.asarray(target_offset_sd_mm, dtype=float), (3,))
-    if not np.all(np.isfinite(sd)) or np.any(sd <= 0):
-        raise TolallocError(f"target_offset_sd_mm: expected a positive standard deviation in mm (one or three "
-                            f"values), got {target_offset_sd_mm!r}.")
-    mean = np.zeros(3) if target_offset_mm is None else np.asarray(target_offset_mm, dtype=float)
-    if mean.shape != (3,) or not np.all(np.isfinite(mean)):
-        raise TolallocError(f"target_offset_mm: expected three finite numbers (x, y, z in the flange frame, "
-                            f"relative to the robot's tool point), got {target_offset_mm!r}.")
-    return mean, sd.copy()
+    return offset_prior(target_offset_mm, target_offset_sd_mm)
 
 
 def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None, *, folds: int = 5,

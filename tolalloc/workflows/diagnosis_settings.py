@@ -81,20 +81,12 @@ class FitOptions(Settings):
     target_offset_sd_mm: float | None = None
 
     def check(self) -> None:
+        from tolalloc.diagnose.calibrate import offset_prior
+
         check_choice(self.robust_loss, "robust_loss", ("auto", "tukey", "huber", "soft_l1"))
-        if self.target_offset_mm is not None and self.target_offset_sd_mm is None:
-            raise ArgumentError("target_offset_mm", "a prior mean needs its standard deviation: give "
-                                "`target_offset_sd_mm` too (e.g. 5 for a tool drawing good to a few mm).")
         if self.target_offset_sd_mm is not None:
             check_positive(self.target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
-        if self.target_offset_mm is not None:
-            try:
-                off = np.asarray(self.target_offset_mm, dtype=float)
-            except (TypeError, ValueError):
-                off = None
-            if off is None or off.shape != (3,) or not np.all(np.isfinite(off)):
-                raise ArgumentError("target_offset_mm", "expected three finite numbers (x, y, z in the flange frame, "
-                                    f"relative to the robot's tool point) [mm], got {shown(self.target_offset_mm)}.")
+        offset_prior(self.target_offset_mm, self.target_offset_sd_mm)
 
     def to_dict(self) -> dict:
         off = self.target_offset_mm
