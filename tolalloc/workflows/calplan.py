@@ -102,7 +102,7 @@ def plan_calibration(robot="tool_changer", n_poses: int = D.N_POSES, *, region: 
     meas = as_settings(measurement, Measurement, "measurement", lambda v: Measurement(kind=v))
     cost = as_settings(costs, Costs, "costs", lambda v: Costs(file=v))
     options = as_settings(error_model, ErrorModelOptions, "error_model")
-    target = _target(for_allocation, random_plans, meas, cost, options)
+    target, random_plans = _target(for_allocation, random_plans, meas, cost, options)
     inputs.check_optional_flag(progress, "progress")
     seed = inputs.check_seed(seed)
     inputs.check_name(region, "region", "'limits' or the name of a pose set of the robot")
@@ -148,14 +148,13 @@ def _eval_poses(model, eval_poses, random_plans) -> tuple:
     if random_plans is not None:
         from tolalloc.calibration.design_worst import check_random_plans_budget
 
-        check_random_plans_budget(inputs.check_count(random_plans, "random_plans", example="100"), len(q_eval),
-                                  announce=True)
+        check_random_plans_budget(random_plans, len(q_eval), announce=True)
     return ev, q_eval
 
 
-def _target(for_allocation, random_plans, meas, cost, options):
-    """The requirement the plan serves (None: a plan for the A-optimal criterion alone); refuses options nothing
-    would read."""
+def _target(for_allocation, random_plans, meas, cost, options) -> tuple:
+    """``(requirement, random_plans)``: the requirement the plan serves (None: a plan for the A-optimal criterion
+    alone) and the count of random plans, checked; refuses options nothing would read."""
     from tolalloc.workflows.requirements import PositionRequirement
 
     if isinstance(for_allocation, PositionRequirement):
@@ -177,7 +176,7 @@ def _target(for_allocation, random_plans, meas, cost, options):
     if unread:
         raise ArgumentError("error_model", f"a plan reads only ErrorModelOptions.sigma_set (the prior), got "
                             f"{', '.join(unread)} too; leave them out.")
-    return target
+    return target, random_plans
 
 
 def _check_region(rob, region: str) -> None:
@@ -199,7 +198,6 @@ def _for_allocation(model, split, start, cand, q_eval, *, costs, target, random_
     from tolalloc.allocate.costs import cost_set, load_costs
     from tolalloc.allocate.region import box_region
 
-    count = inputs.check_count(random_plans, "random_plans", example="100")
     robot = model.robot
     box = None
     if "working" in robot.regions:
@@ -209,7 +207,7 @@ def _for_allocation(model, split, start, cand, q_eval, *, costs, target, random_
     alloc = design_plan_for_allocation(problem, start.n_poses, cand, split=split, region=box, start=start,
                                        coverage_n=0, baseline=False, seed=seed, noise_mm=measurement.noise_mm,
                                        registration=measurement.registration)
-    return alloc, compare_with_random_plans(alloc.result, cand, count=count, seed=seed)
+    return alloc, compare_with_random_plans(alloc.result, cand, count=random_plans, seed=seed)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
