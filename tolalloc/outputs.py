@@ -168,24 +168,24 @@ def check_distinct_outputs(outputs, inputs=(), *, files=()) -> None:
 
     ``outputs`` and ``inputs`` are ``(flag, path or None)`` pairs; ``None`` and ``'-'`` are skipped.
     """
-    real = {flag: Path(os.path.realpath(str(path))) for flag, path in outputs if path is not None and str(path) != "-"}
-    for flag, path in real.items():
+    given = [(flag, str(path), Path(os.path.realpath(str(path)))) for flag, path in outputs
+             if path is not None and str(path) != "-"]
+    real = {flag: r for flag, _, r in given}
+    for flag, text, path in given:
         for outer in files:
             if outer in real and outer != flag and real[outer] in path.parents:
-                raise TolallocError(f"{flag} {str(path)!r}: lies below the file that {outer} writes "
+                raise TolallocError(f"{flag} {text!r}: lies below the file that {outer} writes "
                                     f"({str(real[outer])!r}); give {flag} a path outside it.")
     seen = {}
     for flag, path in inputs:
         if path is not None:
             seen.setdefault(os.path.realpath(str(path)), ("input", flag))
-    for flag, path in outputs:
-        if path is None or str(path) == "-":
-            continue
-        key = os.path.realpath(str(path))
+    for flag, text, path in given:
+        key = str(path)
         if key in seen:
             role, other = seen[key]
             what = f"the input {other}; an output would overwrite it" if role == "input" else f"the same path as {other}"
-            raise TolallocError(f"{flag} {str(path)!r}: {what}; give each output its own path.")
+            raise TolallocError(f"{flag} {text!r}: {what}; give each output its own path.")
         seen[key] = ("output", flag)
 
 

@@ -5,11 +5,10 @@ the page is parsed the marker is replaced by an ``automodule`` block for the pac
 it exports (its ``__all__``) under the package's name (``tolalloc.allocate.build_problem``), and, for every public
 submodule (no ``_`` in its name), a section with its module docstring and a short entry for each other name it
 exports: the first paragraph of its docstring (the stage's building blocks; ``help()`` shows the whole docstring),
-still a target of cross-references. A
-module named in a marker itself (the foundation modules) is documented in full. Names the top-level package exports
-(``tolalloc.allocate_tolerances``, the results and settings objects) are left out here: the job pages document them
-under those names. A module added to a stage appears in the reference without editing any page;
-``tests/test_docs.py`` checks that the markers cover every public module.
+still a target of cross-references. A module named in a marker itself (the foundation modules) is documented in
+full. Names the top-level package exports (``tolalloc.allocate_tolerances``, the results and settings objects) are
+left out here: the job pages document them under those names. A module added to a stage appears in the reference
+without editing any page; ``tests/test_docs.py`` checks that the markers cover every public module.
 """
 
 from __future__ import annotations

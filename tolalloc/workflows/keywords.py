@@ -94,7 +94,6 @@ def fold_moved(job: str, kwargs: dict) -> dict:
     return kwargs
 
 
-
 def field_sources(signature, args: tuple, kwargs: dict, moved: dict) -> dict:
     """``{bare field: the name its refusal shows}`` for one call of a job: ``ClassName.field`` for every field of a
     settings object passed (alone or in a list), the old keyword for a field it set; a name passed as a keyword of

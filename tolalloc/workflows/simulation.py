@@ -239,13 +239,13 @@ class ErrorSimulation(JobResult):
         from tolalloc.workflows.checks import check_axes
 
         check_axes(ax, "ax", 4)
-        if ax is not None and getattr(np.ravel(np.asarray(ax, dtype=object))[0], "name", "") != "3d":
-            raise ArgumentError("ax", "expected its first Axes with projection='3d' (the error cloud), got a 2-D one: "
-                                "fig.add_subplot(1, 4, 1, projection='3d') and three more.")
         if ax is None:  # the four panels (their colorbars are axes of the figure too, not panels)
             fig = plt.figure(figsize=(13, 3.6))
             ax = [fig.add_subplot(1, 4, 1, projection="3d")] + [fig.add_subplot(1, 4, k) for k in (2, 3, 4)]
         ax = list(np.ravel(np.asarray(ax, dtype=object)))
+        if ax[0].name != "3d":
+            raise ArgumentError("ax", "expected its first Axes with projection='3d' (the error cloud), got a 2-D one: "
+                                "fig.add_subplot(1, 4, 1, projection='3d') and three more.")
         scatter_density(self.mc, None, axes=ax)
         return axes_of(ax)
 
