@@ -10,6 +10,7 @@
 """
 
 import re
+import shlex
 from types import SimpleNamespace
 
 import numpy as np
@@ -115,6 +116,26 @@ def test_flange_that_never_turns_is_inconclusive_unless_the_offset_prior_is_give
     assert not any("probe offset" in r for r in told.verdict.reasons) and told.verdict.safe_model != "none"
     assert told.settings["target_offset_prior_mm"]["sd"] == [0.05] * 3
 
+
+
+def test_the_offset_prior_takes_one_sd_per_axis_through_the_job_and_its_command(backlash_case, tmp_path):
+    """``FitOptions.target_offset_sd_mm`` takes one value or one per axis, as ``diagnose`` does; the result records
+    the three and its command line gives them back to ``--target-offset-sd-mm`` (which takes one or three)."""
+    from tolalloc.cli import build_parser
+    from tolalloc.workflows import diagnose_measurements
+    from tolalloc.workflows.reproduce import diagnosis_command
+
+    train, te = backlash_case
+    te.to_csv(tmp_path / "train.csv", index=False)
+    fit = tolalloc.FitOptions(target_offset_mm=(0.0, 0.0, 0.0), target_offset_sd_mm=(2.0, 2.0, 5.0))
+    job = diagnose_measurements(ROBOT, tmp_path / "train.csv", folds=2, fit=fit, progress=False)
+    assert job.diagnosis.settings["target_offset_prior_mm"]["sd"] == [2.0, 2.0, 5.0]
+    assert fit.to_dict()["target_offset_sd_mm"] == [2.0, 2.0, 5.0]
+    assert tolalloc.FitOptions(target_offset_mm=(0, 0, 1), target_offset_sd_mm=2).to_dict()["target_offset_sd_mm"] == 2
+    cli, _, _ = diagnosis_command(job)
+    assert build_parser().parse_args(shlex.split(cli)[1:]).target_offset_sd_mm == [2.0, 2.0, 5.0]
+    with pytest.raises(tolalloc.ArgumentError, match=r"^FitOptions.target_offset_sd_mm: .*one or three values"):
+        tolalloc.FitOptions(target_offset_sd_mm=(1.0, 2.0))
 
 def test_test_file_of_another_robot_is_refused(backlash_case):
     train, te = backlash_case

@@ -73,9 +73,9 @@ def register(sub) -> None:
     p.add_argument("--target-offset-mm", type=finite_float, nargs=3, metavar=("X", "Y", "Z"), default=None,
                    help="prior mean of the probe / target offset in the flange frame, relative to the robot's tool "
                    "point [mm] (needs --target-offset-sd-mm)")
-    p.add_argument("--target-offset-sd-mm", type=finite_float, default=None, metavar="SD",
-                   help="prior standard deviation of the probe / target offset [mm]; every fit uses it (default: each "
-                   "fold borrows the full training fit's offset)")
+    p.add_argument("--target-offset-sd-mm", type=finite_float, nargs="+", default=None, metavar="SD",
+                   help="prior standard deviation of the probe / target offset [mm], one value or one each for x, y "
+                   "and z; every fit uses it (default: each fold borrows the full training fit's offset)")
     p.set_defaults(func=cmd_diagnose)
 
 
@@ -110,7 +110,8 @@ def cmd_diagnose(args) -> int:
     check_distinct_outputs([("--json", args.json), ("--predictions", args.predictions), ("--report", args.report),
                             ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])
-    fit = FitOptions(args.robust_loss, args.target_offset_mm, args.target_offset_sd_mm)
+    sd = args.target_offset_sd_mm
+    fit = FitOptions(args.robust_loss, args.target_offset_mm, sd[0] if sd is not None and len(sd) == 1 else sd)
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=test_frame(args), folds=args.folds,
                                 alpha=args.alpha, seed=args.seed, cv_rows=args.cv_rows, gap_split=args.gap_split,
                                 fit=fit, progress=args.progress, **robot_kwargs(args))

@@ -109,12 +109,12 @@ def register_count(n_test: int, register_n: float) -> int:
         raise ArgumentError("register_n", f"{register_n:g} asks for {n:,} registration poses, but the {n_test} test "
                             f"poses leave at most {max(0, n_test - MIN_SCORED)} after the {MIN_SCORED} scored ones; expected "
                             f"a count from {MIN_REGISTER} to {max(MIN_REGISTER, n_test - MIN_SCORED)} or a fraction "
-                            "below 1 -- choose another `register_n` or a larger test file.")
+                            "below 1 -- choose another count or fraction, or a larger test file.")
     if n < MIN_REGISTER or n_test - n < MIN_SCORED:
         raise ArgumentError(
             "register_n", f"{register_n:g} gives {n} registration and {n_test - n} scored poses of the {n_test} test poses; "
             f"re-registering needs at least {MIN_REGISTER} registration and {MIN_SCORED} scored poses -- "
-            "choose another `register_n` or a larger test file.")
+            "choose another count or fraction, or a larger test file.")
     return n
 
 

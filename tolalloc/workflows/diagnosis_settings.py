@@ -9,10 +9,18 @@ import numpy as np
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.workflows import defaults as D
-from tolalloc.workflows.checks import check_choice, check_positive, number, shown
+from tolalloc.workflows.checks import check_choice, number, shown
 from tolalloc.workflows.settings import Settings
 
 __all__ = ["Refit", "FitOptions"]
+
+
+def _numbers(value):
+    """``value`` for a JSON record: None, one number, or a list of numbers."""
+    if value is None:
+        return None
+    flat = [float(v) for v in np.ravel(value)]
+    return flat[0] if np.ndim(value) == 0 else flat
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,25 +79,23 @@ class FitOptions(Settings):
     target_offset_mm : array (3,), optional
         Prior mean of the probe / target offset in the flange frame, relative to the robot's tool point [mm]
         (needs ``target_offset_sd_mm``).
-    target_offset_sd_mm : float, optional
-        Its prior standard deviation [mm], used by every fit; without it each fold borrows the full training fit's
-        offset as its prior.
+    target_offset_sd_mm : float or array (3,), optional
+        Its prior standard deviation [mm], one value for x, y and z or one each, used by every fit; without it each
+        fold borrows the full training fit's offset as its prior.
     """
 
     robust_loss: str = D.ROBUST_LOSS
     target_offset_mm: object = None
-    target_offset_sd_mm: float | None = None
+    target_offset_sd_mm: object = None
 
     def check(self) -> None:
         from tolalloc.diagnose.calibrate import offset_prior
 
         check_choice(self.robust_loss, "robust_loss", ("auto", "tukey", "huber", "soft_l1"))
-        if self.target_offset_sd_mm is not None:
-            check_positive(self.target_offset_sd_mm, "target_offset_sd_mm", "mm", "5")
         offset_prior(self.target_offset_mm, self.target_offset_sd_mm)
 
     def to_dict(self) -> dict:
         off = self.target_offset_mm
         return {"robust_loss": self.robust_loss,
-                "target_offset_mm": None if off is None else [float(v) for v in np.ravel(off)],
-                "target_offset_sd_mm": self.target_offset_sd_mm}
+                "target_offset_mm": _numbers(off),
+                "target_offset_sd_mm": _numbers(self.target_offset_sd_mm)}

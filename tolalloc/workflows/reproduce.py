@@ -206,8 +206,8 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
     train = kw.pop("train")
     extra = ([] if "target_offset_mm" not in offset else
              ["--target-offset-mm", *(_cli_value(float(v)) for v in offset["target_offset_mm"])])
-    extra += [] if "target_offset_sd_mm" not in offset else ["--target-offset-sd-mm",
-                                                             _cli_value(float(offset["target_offset_sd_mm"]))]
+    extra += [] if "target_offset_sd_mm" not in offset else [
+        "--target-offset-sd-mm", *(_cli_value(float(v)) for v in _as_list(offset["target_offset_sd_mm"]))]
     kw.update(offset)
     cli_kw = {k: v for k, v in kw.items() if k not in offset}
     if "register_rows" in cli_kw:
@@ -226,3 +226,8 @@ def _measurement_path(source: str, placeholder: str, notes: list) -> str:
                      f"of {placeholder}.")
         return placeholder
     return str(source)
+
+
+def _as_list(value) -> list:
+    """A recorded number or list of numbers as a list."""
+    return [value] if isinstance(value, (int, float)) else list(value)
