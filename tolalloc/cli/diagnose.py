@@ -17,7 +17,8 @@ def register(sub) -> None:
         "the training measurements, break the residual down, select the unmodelled effect that lowers the "
         "held-out error (cross-validation + test file) significantly, or 'none'. CSV columns: one per joint, "
         "q1_deg / q4_mm ... (deg / mm; a calibration plan's joint names and plain q1..qN are read too), x_mm, y_mm, "
-        "z_mm; optional temperature_c, dir1..dirN (+1/-1), payload_kg, time_s. Rows with empty cells are skipped "
+        "z_mm; optional temperature_c, dir1..dirN (+1/-1), payload_kg, time_s, and a process wrench at the target in "
+        "the base frame (force_x_n..force_z_n [N], torque_x_nm..torque_z_nm [N m]). Rows with empty cells are skipped "
         "and counted.")
     add_robot_arg(p)
     p.add_argument("--train", required=True, metavar="TRAIN.csv", help="measurements to fit (and cross-validate)")

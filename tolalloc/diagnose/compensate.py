@@ -138,7 +138,7 @@ def solve_targets(model: IdentifiedModel, targets_mm, q_seed, meas: Measurements
 
     def at(qq):
         return model.points(Measurements(qq, base.xyz_mm, base.temperature_c, base.direction, base.payload_kg,
-                                         base.time_s), frame)
+                                         base.time_s, wrench=base.wrench), frame)
 
     err = x - at(q)
     norm = np.linalg.norm(err, axis=1)

@@ -11,12 +11,13 @@ Joint-type effects move joint ``j`` by ``dq_j`` and displace the target by ``(v_
 (:mod:`tolalloc.diagnose.choice`); :func:`variants` lists those the data can carry. One family per physical
 signature:
 
-``joint_compliance``  the joints wind up under gravity and payload (:mod:`tolalloc.physics.compliance`): ``masses``
+``joint_compliance``  the joints wind up under gravity, payload and a logged process wrench (``force_x_n`` ...,
+                      :mod:`tolalloc.physics.compliance`): ``masses``
                       (linear, ``c_j = 1/K_j`` [rad/(N m)]), ``masses+tip`` (also ``d_j`` per kg at the target: an
                       unknown tool mass), ``hardening_<f>`` (a stiffness that rises with torque, smooth law with
                       ``T0 = f`` x the joint's largest load), ``catalogue`` (the reducer's K1/K2/K3 bands from the
                       robot file).
-``mount_compliance``  the whole robot tilts on a compliant base under the gravity moment of its masses and payload
+``mount_compliance``  the whole robot tilts on a compliant base under the moment of its masses, payload and wrench
                       (``isotropic``: one compliance; ``axes``: about base x and y; ``pivot``: one compliance
                       about a pivot below the base, its depth fitted) [rad/(N m)]; ``play``: a compliance and a
                       rocking in the moment's direction (a base standing within a clearance) [mrad].
@@ -104,16 +105,17 @@ class EffectBasis:
 
 
 def joint_effect_dq(effect: str, robot: Robot, q, direction=None, *, variant: str = "", tip_mm=None,
-                    payload_kg=None, gear_ratio=None, load_scale=None):
+                    payload_kg=None, gear_ratio=None, load_scale=None, wrench=None):
     """Joint-offset basis of a joint-type effect: ``dq = A @ beta``, ``A`` shape (P, n, M), with names.
 
     ``variant`` as in the module docstring (default: the first); ``tip_mm`` (P, 3) the target points and
-    ``payload_kg`` (P,) the payload (compliance, gravity-held backlash); ``gear_ratio`` (n,) for ``gear`` and
+    ``payload_kg`` (P,) the payload and ``wrench`` (P, 6) a logged process wrench at the target (compliance,
+    gravity-held backlash); ``gear_ratio`` (n,) for ``gear`` and
     ``motor``; ``load_scale`` (n,) the torque scale of ``hardening`` (default: the largest load on these poses --
     pass the training file's for other poses).
     """
     if effect in ("joint_compliance", "backlash"):
-        tau, tip = joint_loads(robot, q, tip_mm, payload_kg)
+        tau, tip = joint_loads(robot, q, tip_mm, payload_kg, wrench)
     if effect == "joint_compliance":
         law = "linear" if variant in ("", "masses", "masses+tip") else variant
         return compliance_columns(robot, tau, tip, law, tip_mass=variant == "masses+tip", scale=load_scale)
@@ -195,10 +197,10 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
-                                   load_scale=ref.get("load_scale"))
+                                   load_scale=ref.get("load_scale"), wrench=meas.wrench)
         B = np.einsum("pin,pnm->pim", point_jacobian(robot, q, p_t), A)
     elif effect == "mount_compliance":
-        B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant)
+        B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant, meas.wrench)
     elif effect == "link_deflection":
         parts = [flange_columns(robot, q, p_t, meas.payload_kg)] if variant == "flange" else []
         if not variant.startswith(("guide", "flange")):

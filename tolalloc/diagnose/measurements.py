@@ -8,6 +8,9 @@ Columns (other columns are ignored):
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
 ``payload_kg``      optional
 ``time_s``          optional, time stamp [s]
+``force_x_n ...``   optional, ``force_x_n, force_y_n, force_z_n``: the force a process applies to the tool at the
+                    measured target [N], robot base frame (all three or none)
+``torque_x_nm ...`` optional, ``torque_x_nm, torque_y_nm, torque_z_nm``: the moment it applies [N m], base frame
 
 The joint columns are named by the rule of :mod:`tolalloc.robot.columns`: ``q<k>_deg`` / ``q<k>_mm``, the
 calibration plan's ``<joint name>_deg`` / ``_mm``, or plain ``q1..qN``.
@@ -21,6 +24,7 @@ NaN policy: a row with an empty / NaN cell in a required column (joints, ``x_mm.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -34,12 +38,15 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.scale import point_kinematics
 
 __all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "comment_lines",
+           "WRENCH_COLUMNS",
            "file_rows", "POSITION_COLUMNS"]
 
 #: fewer distinct poses than this cannot fix the tracker registration and target offset (9 unknowns, 3 per pose)
 MIN_DISTINCT_POSES = 3
 
 POSITION_COLUMNS = ("x_mm", "y_mm", "z_mm")
+#: The logged process wrench at the target, robot base frame: force [N] and moment [N m] (each all three or none).
+WRENCH_COLUMNS = (("force_x_n", "force_y_n", "force_z_n"), ("torque_x_nm", "torque_y_nm", "torque_z_nm"))
 
 
 #: The optional covariates and their one accepted unit: a column of the same quantity in another unit is refused.
@@ -55,6 +62,12 @@ def _check_covariate_units(cols, source: str) -> None:
         if want is not None and unit and c != want:
             raise TolallocError(f"{source}: column {c!r}: expected {want!r} (the one unit the diagnosis reads); "
                                 f"convert the column to {want.split('_')[1]} and rename it {want}.")
+        axis = re.fullmatch(r"(force|torque)_([xyz])_(\w+)", str(c))
+        if axis and c not in WRENCH_COLUMNS[axis[1] == "torque"]:
+            want = f"{axis[1]}_{axis[2]}_{'n' if axis[1] == 'force' else 'nm'}"
+            raise TolallocError(f"{source}: column {c!r}: expected {want!r} (the process {axis[1]} in "
+                                f"{'N' if axis[1] == 'force' else 'N m'}, the one unit the diagnosis reads); convert "
+                                f"the column and rename it {want}.")
 
 
 def file_rows(rows: np.ndarray | None, n: int) -> np.ndarray:
@@ -80,6 +93,8 @@ class Measurements:
     n_skipped : int
         Rows skipped because a required cell was empty / NaN.
     source : str
+    wrench : array, shape (P, 6) or None
+        The logged process wrench at the target, robot base frame: force [N], moment [N m].
     """
 
     q: np.ndarray
@@ -91,6 +106,7 @@ class Measurements:
     rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
     n_skipped: int = 0
     source: str = "<frame>"
+    wrench: np.ndarray | None = None
 
     @property
     def n_poses(self) -> int:
@@ -101,7 +117,8 @@ class Measurements:
         idx = np.asarray(idx)
         pick = (lambda a: None if a is None else a[idx])
         return Measurements(self.q[idx], self.xyz_mm[idx], pick(self.temperature_c), pick(self.direction),
-                            pick(self.payload_kg), pick(self.time_s), self.rows[idx], 0, self.source)
+                            pick(self.payload_kg), pick(self.time_s), self.rows[idx], 0, self.source,
+                            pick(self.wrench))
 
     def pose_groups(self) -> np.ndarray:
         """Group number per row, equal for rows with the same joint values (repeated measurements of one pose),
@@ -282,7 +299,26 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
     _check_poses(Q, X, rows, source)
     _scale_check(robot, qi, X, source)
     return Measurements(qi, X, optional("temperature_c"), direction, optional("payload_kg"), optional("time_s"),
-                        rows, n_skipped, source)
+                        rows, n_skipped, source, _wrench(cols, optional, source))
+
+
+def _wrench(cols, optional, source: str) -> np.ndarray | None:
+    """The logged process wrench (P, 6) from the columns of :data:`WRENCH_COLUMNS`, or None without any; a force or
+    moment needs all three of its columns (the other one is zero when absent)."""
+    parts = []
+    for names in WRENCH_COLUMNS:
+        present = [c for c in names if c in cols]
+        if present and len(present) != 3:
+            raise TolallocError(f"{source}: column(s) {present} given, expected all of {list(names)} (base frame) or "
+                                "none; add the missing axes (0 where the process has no component).")
+        parts.append(np.column_stack([optional(c) for c in names]) if present else None)
+    if parts[0] is None and parts[1] is None:
+        return None
+    n = len(next(p for p in parts if p is not None))
+    wrench = np.column_stack([p if p is not None else np.zeros((n, 3)) for p in parts])
+    if not np.all(np.isfinite(wrench)):
+        raise TolallocError(f"{source}: the force / torque columns hold an infinite value; expected finite numbers.")
+    return wrench
 
 
 def read_measurements(path, robot: Robot) -> Measurements:

@@ -19,7 +19,7 @@ from scipy.stats import spearmanr
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import Fit
 from tolalloc.physics.loads import gravity_torques
-from tolalloc.diagnose.measurements import Measurements
+from tolalloc.diagnose.measurements import WRENCH_COLUMNS, Measurements
 
 __all__ = ["WhereBreakdown", "where_breakdown", "pose_features"]
 
@@ -71,6 +71,10 @@ def pose_features(robot: Robot, meas: Measurements, points_base_mm: np.ndarray) 
         cols[f"gravity_load_j{j + 1}_{'Nm' if robot.joints[j].is_revolute else 'N'}"] = tau[:, j]
     for key, v in meas.covariates().items():
         cols[key] = v
+    if meas.wrench is not None:
+        for k, name in enumerate(name for names in WRENCH_COLUMNS for name in names):
+            cols[name] = meas.wrench[:, k]
+        cols["force_n"] = np.linalg.norm(meas.wrench[:, :3], axis=1)
     if meas.direction is not None:
         for j in range(robot.n_joints):
             cols[f"dir{j + 1}"] = meas.direction[:, j]

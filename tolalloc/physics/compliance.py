@@ -23,6 +23,10 @@ a rocking ``r`` [mrad] in the direction of the horizontal moment whatever its si
 on the side the moment presses; the first joint's bearing tilt clearance has the same signature, so the clearance
 model of :mod:`~.clearance` leaves it to this one).
 
+**A logged process wrench.** Where the data carry the force and moment a process applies at the tool (a cut, a
+press, a screwing reaction; :func:`~.loads.wrench_load`), both loads include it: the joints carry its virtual work
+and the mount its moment about the base. The beams of :mod:`~.beams` carry gravity and the payload only.
+
 Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
 the catalogue's stiffness figures.
 """
@@ -32,7 +36,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.robot.model import Robot
-from tolalloc.physics.loads import base_moment, gravity_torques, tip_load, unit_along
+from tolalloc.physics.loads import base_moment, gravity_torques, tip_load, unit_along, wrench_load, wrench_moment
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
            "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt"]
@@ -44,13 +48,17 @@ HARDENING_FRACTIONS = (0.2, 0.4)
 MOUNT_VARIANTS = ("isotropic", "axes", "pivot", "play")
 
 
-def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None) -> tuple:
-    """Gravity loads (P, n) of the robot's masses plus the payload at the target points ``tip_mm`` (P, 3), and the
-    load of 1 kg at the target (P, n) [N m or N per kg] (zeros without ``tip_mm``)."""
+def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
+                wrench=None) -> tuple:
+    """Gravity loads (P, n) of the robot's masses plus the payload at the target points ``tip_mm`` (P, 3) and a
+    logged process wrench there (``wrench`` (P, 6), :func:`~tolalloc.physics.loads.wrench_load`), and the load of
+    1 kg at the target (P, n) [N m or N per kg] (zeros without ``tip_mm``)."""
     tau = gravity_torques(robot, q)
     tip = np.zeros_like(tau) if tip_mm is None else tip_load(robot, q, tip_mm)
     if payload_kg is not None:
         tau = tau + np.asarray(payload_kg, float)[:, None] * tip
+    if wrench is not None and tip_mm is not None:
+        tau = tau + wrench_load(robot, q, tip_mm, wrench)
     return tau, tip
 
 
@@ -118,12 +126,15 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
 
 
 def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
-                  variant: str = "isotropic") -> tuple:
+                  variant: str = "isotropic", wrench=None) -> tuple:
     """Target-displacement basis of a compliant mount, ``B`` shape (P, 3, M) [mm per rad/(N m)], and names.
 
-    ``p`` (P, 3): the target points [mm]; the payload ``payload_kg`` (P,) sits at ``tip_mm`` (P, 3).
+    ``p`` (P, 3): the target points [mm]; the payload ``payload_kg`` (P,) and a logged process wrench ``wrench``
+    (P, 6) (:func:`~tolalloc.physics.loads.wrench_moment`) act at ``tip_mm`` (P, 3).
     """
     M = base_moment(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg)
+    if wrench is not None and tip_mm is not None:
+        M = M + wrench_moment(tip_mm, wrench)
     g = np.asarray(robot.gravity, dtype=float)
     Mh = M - (M @ g)[:, None] * g  # the moment about the vertical does not tilt the base
     if variant == "isotropic":

@@ -18,7 +18,8 @@ from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Mass, Robot
 
-__all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "point_at",
+__all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "wrench_load",
+           "wrench_moment", "point_at",
            "target_points", "point_jacobian", "mass_points", "across_axes", "unit_along"]
 
 #: Standard gravity [m/s^2].
@@ -115,6 +116,31 @@ def base_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
         kg = np.broadcast_to(np.asarray(tip_kg, float), (len(q),))
         M += kg[:, None] * np.cross(np.asarray(tip_mm, float) / 1000.0, g)
     return M
+
+
+def wrench_load(robot: Robot, q: np.ndarray, tip_mm: np.ndarray, wrench: np.ndarray) -> np.ndarray:
+    """Load on every joint of a wrench applied to the robot at the target points, shape (P, n) [N m, N].
+
+    ``wrench`` (P, 6): the force [N] at ``tip_mm`` (P, 3) [mm] and the moment [N m], both in the base frame (what
+    a process -- a cut, a press, a screwing reaction -- does to the tool). A joint carries the virtual work of the
+    wrench per unit joint motion: ``w_j . (M + (c - p_j) x F)`` about a revolute axis, ``w_j . F`` along a prismatic
+    one; a force ``m g`` at the target gives :func:`tip_load` times ``m``.
+    """
+    q = np.atleast_2d(q)
+    wrench = np.asarray(wrench, dtype=float)
+    P = poe_prefix(robot.screws, q)
+    tau = _point_load(robot, P, np.asarray(tip_mm, dtype=float), wrench[:, :3], robot.n_joints)
+    for j, joint in enumerate(robot.joints):
+        if joint.is_revolute:
+            tau[:, j] += np.einsum("pi,pi->p", P[:, j, :3, :3] @ joint.axis, wrench[:, 3:])
+    return tau
+
+
+def wrench_moment(tip_mm: np.ndarray, wrench: np.ndarray) -> np.ndarray:
+    """Moment [N m] about the base origin of the wrench ``wrench`` (P, 6) applied at ``tip_mm`` (P, 3) [mm], base
+    frame, shape (P, 3) (see :func:`wrench_load`): what it adds to :func:`base_moment`."""
+    wrench = np.asarray(wrench, dtype=float)
+    return np.cross(np.asarray(tip_mm, float) / 1000.0, wrench[:, :3]) + wrench[:, 3:]
 
 
 def across_axes(e: np.ndarray) -> tuple:

@@ -35,7 +35,8 @@ def diagnose_measurements(robot, train, test=None, *, test_frame="same", folds: 
     robot : Robot, str or path
     train, test : str, path or DataFrame
         Measurements: columns q1..qN (deg / mm), x_mm, y_mm, z_mm; optional temperature_c, dir1..dirN (+1 / -1),
-        payload_kg, time_s. Rows with empty cells are skipped and counted.
+        payload_kg, time_s, and a process wrench at the target in the robot's base frame (force_x_n, force_y_n,
+        force_z_n [N]; torque_x_nm, torque_y_nm, torque_z_nm [N m]). Rows with empty cells are skipped and counted.
     test_frame : {"same", "refit"} or Refit
         ``"same"``: the test file shares the training file's tracker frame. ``"refit"`` or a
         :class:`~tolalloc.workflows.Refit` (needs ``test``): the test file is another session in another tracker
