@@ -8,9 +8,10 @@ Columns (other columns are ignored):
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
 ``payload_kg``      optional
 ``time_s``          optional, time stamp [s]
-``force_x_n ...``   optional, ``force_x_n, force_y_n, force_z_n``: the force a process applies to the tool at the
-                    measured target [N], robot base frame (all three or none)
-``torque_x_nm ...`` optional, ``torque_x_nm, torque_y_nm, torque_z_nm``: the moment it applies [N m], base frame
+``force_x_n ...``   optional, ``force_x_n, force_y_n, force_z_n``: process force on the tool at the target [N]
+``torque_x_nm ...`` optional, ``torque_x_nm, torque_y_nm, torque_z_nm``: the process moment [N m]
+
+The force and moment (:data:`WRENCH_COLUMNS`) are in the robot's base frame, each set all three or none.
 
 The joint columns are named by the rule of :mod:`tolalloc.robot.columns`: ``q<k>_deg`` / ``q<k>_mm``, the
 calibration plan's ``<joint name>_deg`` / ``_mm``, or plain ``q1..qN``.
