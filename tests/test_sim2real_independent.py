@@ -2084,3 +2084,161 @@ def test_set_o_every_kind_lies_in_its_true_structure_and_known_answers():
     ref = pp["r_low"] + (x0 - pp["r_low"]) * np.exp(-(s.time_s[first] - run[0][0]) / pp["tau_s"])
     assert x[first] == pytest.approx(ref, rel=1e-9)
     assert len(pre) >= 2 and pre[1][1] - pre[1][0] == pytest.approx(pp["t_pp_s"])
+
+
+def test_set_p_cases_kinds_and_determinism():
+    """Set P: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-P kind alone
+    (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a lance's target sits
+    at its nozzle, a vacuum plate's on its face, a changed tool's out on the tool; the tool-changing and charging cases
+    have their blocks, the tool cases a tool of its own weight in each, the pick-and-place cases an empty block."""
+    from sim2real_indep import effects_p as ep
+
+    _assert_set_module("P", 40_7016, ep, ("gear", "pad_heat"))
+    for name in ("effects_p", "effects_p_joint", "effects_p_body", "effects_p_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_p" in _imports(STUDY / "generator.py")
+    assert ep.AFTER_TRACKER == set()
+    probe = np.array([3.0, -4.0, 12.0])                                     # |probe| 13 mm
+    assert ep.probe_hook(("sag", "ir_dryer"), probe, "ur10") is probe
+    share = 8 / 95
+    assert ep.probe_hook(("hose_lance",), probe, "ur10") == pytest.approx([0, 0, 250 + 150 * share])
+    assert ep.probe_hook(("hose_lance",), probe, "tool_changer") is probe       # no lance on tool_changer
+    assert ep.probe_hook(("vacuum_plate",), probe, "tool_changer") == pytest.approx(
+        [3 / 13 * 50, -4 / 13 * 50, 60 + 60 * share])
+    assert ep.probe_hook(("quick_change",), probe, "kr16_like") == pytest.approx(probe / 13 * (120 + 130 * share))
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ep.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        qc = opts(("quick_change",), "tool_changer")
+        assert 4 <= qc["blocks"] <= 7 and qc["pause_min"] == (1.0, 3.0) and len(qc["payload_steps"]) == qc["blocks"]
+        assert min(qc["payload_steps"]) >= 8.0 and max(qc["payload_steps"]) <= 48.0
+        ch = opts(("charging_heat",))
+        assert 3 <= ch["blocks"] <= 5 and ch["gap_kind"] == "pause" and ch["pause_min"] == (10.0, 25.0)
+        steps = opts(("vacuum_plate",), "ur10")["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+    _assert_regenerates("P", max_effect_poses=50)
+
+
+def test_set_p_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-P kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds of other arms do nothing; and known answers: the
+    magnetic coupling's sine law, the belt's stiffness halving past the slack torque, the seals' relaxation, the tool's
+    landing in its pins' clearance, the pole-pitch walk's period and peak, a dipole's field on its axis, the vacuum
+    feet's statics, the platen's rotation, the plate's bow, the lance's end load, the jacket's sawtooth and the deck's
+    charging lag."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_p_body as pb
+    from sim2real_indep import effects_p_joint as pj
+    from sim2real_indep import effects_p_thermal as pt
+
+    inert = {"ur10": ("belt_slack",),
+             "tool_changer": ("mag_coupling", "vacuum_feet", "platen_clamp", "hose_lance", "jacket_cycle",
+                              "charging_heat"), "kr16_like": ()}
+    specs = (("ur10", ("mag_coupling", "seal_relax", "stray_field", "pole_pitch", "platen_clamp", "jacket_cycle")),
+             ("ur10", ("vacuum_feet", "charging_heat", "hose_lance")),
+             ("kr16_like", ("belt_slack", "quick_change", "vacuum_plate", "stray_field")),
+             ("tool_changer", ("belt_slack", "stray_field", "pole_pitch", "seal_relax", "vacuum_plate")),
+             ("ur10", inert["ur10"]), ("tool_changer", inert["tool_changer"]))
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 16)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault((robot, physics[0]), (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"mag_coupling": lambda: 1 / (p["p"] * p["N"]), "belt_slack": lambda: [p["c_rad_Nm"]],
+                   "seal_relax": lambda: pj.seal_amplitudes(p), "quick_change": lambda: [p["c_mm"]],
+                   "pole_pitch": lambda: p["peak_rad"],
+                   "stray_field": lambda: -np.concatenate([pj.stray_coeffs(s) for s in p]),
+                   "vacuum_feet": lambda: [p["delta_r"]], "platen_clamp": lambda: [p["theta_rad"]],
+                   "vacuum_plate": lambda: [p["w0_mm"]], "hose_lance": lambda: [p["k_N_mm"] / p["EI"]],
+                   "jacket_cycle": lambda: [pt.ALU_CTE], "charging_heat": lambda: [p["tilt_rad"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs[("ur10", "mag_coupling")]
+    P = case.truth["params"]
+    # coupling: a load N T_max sin(x) slips the coupling by x / p, the output by x / (p N)
+    mp = P["mag_coupling"]
+    x = np.array([0.1, -0.4, 0.9])
+    stub = SimpleNamespace(loads=np.zeros((3, 6)))
+    stub.loads[:, mp["joints"][0]] = mp["N"][0] * mp["T_max"][0] * np.sin(x)
+    assert pj.coupling_signals(mp, stub)[0] == pytest.approx(x)
+    # seals: the whole wind-up right at the stop, rho of it long after, against the last motion
+    sp = P["seal_relax"]
+    s0 = SimpleNamespace(session=SimpleNamespace(dwell_s=np.array([0.0, 1e6]), direction=np.ones((2, 6))))
+    sig = pj.seal_signals(sp, s0)
+    assert sig[:, 0] == pytest.approx(-np.ones(len(sp["joints"]))) and sig[:, 1] == pytest.approx(-sp["rho"])
+    # stray field: on a dipole's axis the field is mu0 m / (2 pi r^3) along it
+    assert pj.dipole_field(np.array([0.0, 0.0, 0.2]), np.array([0.0, 0.0, 0.1])) == pytest.approx(
+        [0, 0, 2e-7 * 0.2 / 1e-3])
+    st = P["stray_field"][0]
+    q = 0.7
+    m = st["m"] * (np.cos(q + st["phi"]) * st["u"] + np.sin(q + st["phi"]) * st["v"])
+    c1, c2 = pj.stray_coeffs(st)
+    assert c1 * np.cos(q) + c2 * np.sin(q) == pytest.approx(pj.dipole_field(m, st["r_m"]) @ st["t0"] / st["B0"])
+    # pole pitch: the walk closes around the ring and its largest error is the drawn peak
+    pp = P["pole_pitch"]
+    grid = np.linspace(-np.pi, np.pi, 4001)
+    ring = SimpleNamespace(q=np.tile(grid[:, None], (1, 6)))
+    shapes = pj.pole_shapes(pp, ring)
+    assert shapes[:, 0] == pytest.approx(shapes[:, -1]) and np.abs(shapes).max(axis=1) == pytest.approx(1, abs=2e-3)
+    # platen: nothing while the mould is open, a turn about the platen's axis through its pivot while clamped
+    lp = P["platen_clamp"]
+    sh = pb.platen_shape(lp, ctx)
+    assert not sh[lp["state"] == 0].any()
+    arm = ctx.target + lp["h_mm"] * pb.Z
+    assert np.abs(np.einsum("pi,pi->p", sh, arm)).max() < 1e-9 and np.abs(sh @ lp["axis"]).max() < 1e-9
+    # jacket: the band's edges at the switching moments; a lagged constant stays constant
+    jp = dict(P["jacket_cycle"], phase=0.0)
+    assert pt.jacket_air(jp, [0.0, jp["t_on_s"], jp["t_on_s"] + jp["t_off_s"]]) == pytest.approx(
+        [jp["A_K"], -jp["A_K"], jp["A_K"]])
+
+    case, ctx = runs[("ur10", "vacuum_feet")]
+    P = case.truth["params"]
+    # vacuum feet: the pads carry the vacuum's preload and the weights, their moments balance, the least keeps 10-30 %
+    vp = P["vacuum_feet"]
+    C = pb.vac_forces(vp, ctx)
+    m, pos, _ = ctx.mass_state
+    assert C.sum(axis=1) == pytest.approx(3 * vp["F_v"] + kin.G * m.sum(axis=1))
+    assert 0.1 * vp["F_v"] * 0.99 < C.min() < 0.3 * vp["F_v"] * 1.01
+    flat = dict(vp, n=1.0)
+    stub = SimpleNamespace(mass_state=(np.zeros_like(m), pos, None), target=ctx.target)
+    heave = pb.vac_shape(flat, stub)                                      # equal pads: a pure sink by delta_r
+    assert heave == pytest.approx(np.tile([0.0, 0.0, -1.0], (len(heave), 1)))
+    # lance: the nozzle moves across the lance by the hose's pull times L^3 / 3 (times k / E I)
+    lp = P["hose_lance"]
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    part = pb.lance_part(lp, ctx)
+    assert np.abs(np.einsum("pi,pi->p", part, Rt[:, :, 2])).max() < 1e-6 * np.abs(part).max()
+    # charging: a long pause charges the deck fully, a long block leaves the working share
+    cp = P["charging_heat"]
+    ses = SimpleNamespace(gap_s=np.array([0.0, -1e7, 0.0]), move_s=np.array([0.0, 0.0, 1e7]),
+                          dwell_s=np.zeros(3), time_s=np.zeros(3))
+    assert pt.charge_signal(cp, SimpleNamespace(session=ses))[1:] == pytest.approx([1.0, cp["r_work"]])
+
+    case, ctx = runs[("kr16_like", "belt_slack")]
+    P = case.truth["params"]
+    # belt: both spans share below 2 T0 r; past it the twist grows twice as fast (the slack span gone)
+    bp = P["belt_slack"]
+    ts = bp["tau_s"]
+    assert pj.belt_signal(bp, np.array([0.5 * ts, -0.5 * ts, 2 * ts, -3 * ts])) == pytest.approx(
+        [0.5 * ts, -0.5 * ts, 3 * ts, -5 * ts])
+    assert bp["c_rad_Nm"] == pytest.approx(bp["L_mm"] * 1e-3 / (2 * bp["EA_N"] * (bp["r_mm"] * 1e-3) ** 2))
+    # quick change: equal landings translate the plate; opposite ones across the pins' line turn it about the tool axis
+    qp = dict(P["quick_change"], pin_az=0.0, R_pin_mm=30.0)
+    qp["a"], qp["b"] = np.array([[0.5, 0.2], [0.0, 1.0]]), np.array([[0.5, 0.2], [0.0, -1.0]])
+    loc = pb.qc_local(qp, np.array([100.0, 0.0, 50.0]), np.array([0, 1]))
+    assert loc == pytest.approx(np.array([[0.5, 0.2, 0.0], [0.0, 100 / 30, 0.0]]))
+    # vacuum plate: a clamped plate's centre bows p a^4 / (64 D); only the held poses
+    wp = P["vacuum_plate"]
+    D = 70e3 * wp["t_mm"] ** 3 / (12 * (1 - 0.33 ** 2))
+    assert wp["w0_mm"] == pytest.approx(wp["dp"] * wp["a_mm"] ** 4 / (64 * D))
+    held = ctx.session.payload_kg > 0
+    assert not pb.vplate_part(wp, ctx)[~held].any() and held.any()

@@ -9,8 +9,9 @@ literature without reading how the diagnosis models effects (:mod:`effects_f`); 
 each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
 ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
 eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
-a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`) and set O (24 cases, 8
-per arm) a fifteenth (:mod:`effects_o`). A case: (id, robot, physics kinds, poses, split).
+a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
+per arm) a fifteenth (:mod:`effects_o`) and set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`). A case: (id,
+robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
-SEED_M, SEED_N, SEED_O = 40_7013, 40_7014, 40_7015
+SEED_M, SEED_N, SEED_O, SEED_P = 40_7013, 40_7014, 40_7015, 40_7016
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -609,11 +610,61 @@ SET_O = [
     ("O24", "kr16_like", ("bolt_torque", "ir_dryer"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-O)
+#: set P: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_p`); written as an independent test set after set O, from the literature, without reading how
+#: the diagnosis models effects. The magnetic couplings, vacuum feet, platen, lance, jacket and charging deck sit on
+#: ur10
+#: and kr16_like, the slack belt on kr16_like and tool_changer (they do nothing on the other arms). Oracle labels when
+#: written (oracle.py only; the diagnosis was not run): every case its truth (gains 28-93 %; each mixture component's
+#: removal costs 40 % or more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's
+#: model
+#: within 25 % of the truth; the closest: P02's mount model 1.36x, P01's backlash model 1.44x, P08's joint model 1.43x,
+#: P14's mount model 1.56x). Changed after trial draws (the first ranges in the modules' docstrings): the magnetic
+#: couplings moved from axes 2-3 to the wrist (the link model mimicked the main axes' twist under gravity: P01 1.04x,
+#: P20 1.12x), with fewer pole pairs and a smaller service factor (on the wrist, ur10's case first gained 11 %); the
+#: seals' drag raised to 5-12 % of the rated torque (P02: gain 15 %); the stray field's dipoles first 0.05-0.3 A m^2 at
+#: 60-120 mm on axes 1-2 of every arm (up to 2.3 mm at the tool), then 0.03-0.15 at 80-140 mm (P06 then on ur10: gain
+#: 14 %; P14: 7 %, tool_changer's axes 2-3 turning through 70 deg only) -- now 0.05-0.2 (ur10) and 0.1-0.4 (the heavier
+#: arms' brakes) at 70-120 mm, axis 5 read too on tool_changer and kr16_like; the vacuum feet's cups first fixed in size
+#: on soft pads (nearly linear: the joint model within 1.06x in P08, the link model within 1.23x on kr16_like, whose
+#: 0.675 m base column the link model bends), now sized for the load on hard pads -- P17 moved to kr16_like's stray
+#: field and P06 (vacuum feet on ur10, the joint model at 1.07x) to ur10's quick change, the vacuum feet left to the P08
+#: mixture; the lance first slimmer (2-5 mm at the nozzle), the jacket's band first 4-8 K (0.05 mm on ur10), the deck's
+#: charging difference first 1-3 K (P18: gain 29 %). No pose count or seed was changed. A trial draw on the seed + 1 was
+#: clean in 20 of 24 cases (gains below 20 %: P13's vacuum plate 12 %, P14's stray field 15 %, P18's charging deck 15 %,
+#: P19's quick change 10 %: small effects under a large noise draw), not tuned further.
+SET_P = [
+    ("P01", "ur10", ("mag_coupling",), 120, "random"),
+    ("P02", "ur10", ("seal_relax",), 45, "random"),
+    ("P03", "ur10", ("platen_clamp",), 100, "random"),
+    ("P04", "ur10", ("hose_lance",), 140, "random"),
+    ("P05", "ur10", ("jacket_cycle",), 170, "time"),
+    ("P06", "ur10", ("quick_change",), 110, "random"),
+    ("P07", "ur10", (), 70, "random"),
+    ("P08", "ur10", ("vacuum_feet", "charging_heat"), 180, "time"),
+    ("P09", "tool_changer", ("belt_slack",), 130, "random"),
+    ("P10", "tool_changer", ("quick_change",), 150, "time"),
+    ("P11", "tool_changer", ("pole_pitch",), 120, "random"),
+    ("P12", "tool_changer", ("seal_relax",), 110, "random"),
+    ("P13", "tool_changer", ("vacuum_plate",), 140, "random"),
+    ("P14", "tool_changer", ("stray_field",), 160, "time"),
+    ("P15", "tool_changer", (), 30, "random"),
+    ("P16", "tool_changer", ("belt_slack", "pole_pitch"), 190, "random"),
+    ("P17", "kr16_like", ("stray_field",), 130, "random"),
+    ("P18", "kr16_like", ("charging_heat",), 160, "time"),
+    ("P19", "kr16_like", ("quick_change",), 120, "random"),
+    ("P20", "kr16_like", ("mag_coupling",), 110, "random"),
+    ("P21", "kr16_like", ("platen_clamp",), 150, "random"),
+    ("P22", "kr16_like", ("hose_lance",), 120, "random"),
+    ("P23", "kr16_like", (), 90, "random"),
+    ("P24", "kr16_like", ("jacket_cycle", "vacuum_plate"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-P)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
-        "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O)}
+        "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -126,7 +126,23 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "milling_force": "joint_compliance", "bolt_torque": "joint_compliance", "cut_flank": "backlash",
           "enc_hysteresis": "backlash", "lsb_stop": "transmission", "mesh_te": "transmission",
           "pontoon": "mount_compliance", "guyed_mast": "mount_compliance", "weld_gun": "link_deflection",
-          "spindle_bracket": "link_deflection", "purge_air": "thermal", "ir_dryer": "thermal"}
+          "spindle_bracket": "link_deflection", "purge_air": "thermal", "ir_dryer": "thermal",
+          # set P (sim2real_indep.effects_p; mag_coupling, the main axes' gear inputs lagging their motors across
+          # magnetic couplings, and belt_slack, a wrist axis' belt stage softening as its slack span goes slack, scored
+          # as joint compliance; seal_relax, the output seals' relaxing wind-up against the last motion, and
+          # quick_change, the tool re-seated in its locating pins' clearance at each change, as backlash (lost motion in
+          # a clearance or a friction-held wind-up); pole_pitch, a magnetised encoder ring's accumulated pitch errors,
+          # and stray_field, a magnetic encoder turned by the next axis' brake magnet, as transmission; vacuum_feet, a
+          # portable arm's vacuum-held pads, and platen_clamp, a moulding machine's platen bent by the clamp, as mount
+          # compliance (the robot's support); vacuum_plate, a vacuum gripper's face plate bowed in while it holds a
+          # part,
+          # and hose_lance, a dispensing lance bent by its supply hose, as link deflection (the end-of-arm structure
+          # carrying the target); jacket_cycle, the links following a jacket cooler's on-off cycle, and
+          # charging_heat, an AMR's deck bowed by its charging battery, as thermal)
+          "mag_coupling": "joint_compliance", "belt_slack": "joint_compliance", "seal_relax": "backlash",
+          "quick_change": "backlash", "pole_pitch": "transmission", "stray_field": "transmission",
+          "vacuum_feet": "mount_compliance", "platen_clamp": "mount_compliance", "vacuum_plate": "link_deflection",
+          "hose_lance": "link_deflection", "jacket_cycle": "thermal", "charging_heat": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
