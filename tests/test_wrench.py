@@ -9,6 +9,8 @@ model the diagnosis fits): with the columns the joints' compliance is named and 
 them the same data name nothing.
 """
 
+import shlex
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -151,3 +153,34 @@ def test_gears_twisted_by_a_logged_tool_force_are_named_and_predict_held_out_pos
     blind = diagnose(robot, measurements_from_frame(train.drop(columns=FORCES), robot),
                      measurements_from_frame(test.drop(columns=FORCES), robot), folds=3, max_effects=1)
     assert not blind.effects and rms(blind.final.test_mm) > 5 * rms(d.final.test_mm)
+
+
+def test_an_error_far_above_the_instruments_noise_is_said_once_the_noise_is_stated(cutting_session, tmp_path):
+    """The tool-force session without its force columns: the final model's held-out error is far above the 0.01 mm
+    noise the data were written with. Stated, the noise gives a guard naming the ratio (self-consistent: the noise is
+    the generator's); not stated, nothing; stated at the residual's own size, nothing. The command line and the
+    result's reproduction carry it."""
+    from tolalloc.cli import build_parser, main
+    from tolalloc.workflows import diagnose_measurements
+    from tolalloc.workflows.reproduce import diagnosis_command
+
+    robot, df, _ = cutting_session
+    df.drop(columns=FORCES).to_csv(tmp_path / "train.csv", index=False)
+    job = diagnose_measurements(robot, tmp_path / "train.csv", folds=3, progress=False,
+                                fit=tolalloc.FitOptions(instrument_noise_mm=0.01))
+    noisy = [g for g in job.diagnosis.guards if "times the instrument's stated noise" in g]
+    assert len(noisy) == 1 and "(0.01 mm per axis, 0.0173 mm in 3-D)" in noisy[0]
+    assert job.inputs["instrument_noise_mm"] == job.diagnosis.settings["instrument_noise_mm"] == 0.01
+    cli, python, _ = diagnosis_command(job)
+    assert build_parser().parse_args(shlex.split(cli)[1:]).instrument_noise_mm == 0.01
+    assert "instrument_noise_mm=0.01" in python
+    quiet = diagnose_measurements(robot, tmp_path / "train.csv", folds=3, progress=False)
+    assert not any("instrument's stated noise" in g for g in quiet.diagnosis.guards)
+    r = float(np.sqrt(np.mean(np.sum(job.diagnosis.final.oof_mm ** 2, axis=1))))
+    loud = diagnose_measurements(robot, tmp_path / "train.csv", folds=3, progress=False,
+                                 fit=tolalloc.FitOptions(instrument_noise_mm=r / np.sqrt(3.0)))
+    assert not any("instrument's stated noise" in g for g in loud.diagnosis.guards)
+    for bad in (0, -0.01, "0.01", True, float("nan")):
+        with pytest.raises(tolalloc.ArgumentError, match=r"^FitOptions.instrument_noise_mm: expected the measuring"):
+            tolalloc.FitOptions(instrument_noise_mm=bad)
+    assert main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--instrument-noise-mm", "-1"]) == 2

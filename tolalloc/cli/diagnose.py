@@ -77,6 +77,10 @@ def register(sub) -> None:
     p.add_argument("--target-offset-sd-mm", type=finite_float, nargs="+", default=None, metavar="SD",
                    help="prior standard deviation of the probe / target offset [mm], one value or one each for x, y "
                    "and z; every fit uses it (default: each fold borrows the full training fit's offset)")
+    p.add_argument("--instrument-noise-mm", type=finite_float, default=None, metavar="SD",
+                   help="the measuring instrument's stated noise [mm, one sd per axis]: a final model whose "
+                   "out-of-fold error lies far above it gets a guard (a disturbance no column carries); choices "
+                   "and verdicts do not use it")
     p.set_defaults(func=cmd_diagnose)
 
 
@@ -112,7 +116,8 @@ def cmd_diagnose(args) -> int:
                             ("--export-model", args.export_model)],
                            inputs=[("--train", args.train), ("--test", args.test)])
     sd = args.target_offset_sd_mm
-    fit = FitOptions(args.robust_loss, args.target_offset_mm, sd[0] if sd is not None and len(sd) == 1 else sd)
+    fit = FitOptions(args.robust_loss, args.target_offset_mm, sd[0] if sd is not None and len(sd) == 1 else sd,
+                     args.instrument_noise_mm)
     res = diagnose_measurements(args.robot, args.train, args.test, test_frame=test_frame(args), folds=args.folds,
                                 alpha=args.alpha, seed=args.seed, cv_rows=args.cv_rows, gap_split=args.gap_split,
                                 fit=fit, progress=args.progress, **robot_kwargs(args))

@@ -33,13 +33,14 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from tolalloc.exceptions import ArgumentError, describe
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 from tolalloc.diagnose.uncertainty import parameter_covariance
 
 __all__ = ["Extrapolation", "extrapolation_flags", "outside_range", "prior_flags", "ParameterCheck", "parameter_checks", "reading",
            "FINDING_FRACTION", "cv_fallback", "RANGE_MARGIN_DEG", "RANGE_MARGIN_MM", "FAR_FACTOR", "PRIOR_N_SIGMA",
-           "FALLBACK_MARGIN"]
+           "FALLBACK_MARGIN", "noise_guard", "NOISE_FACTOR", "instrument_noise"]
 
 RANGE_MARGIN_DEG = 5.0
 RANGE_MARGIN_MM = 5.0
@@ -124,6 +125,10 @@ def outside_range(robot: Robot, q_train: np.ndarray, q: np.ndarray) -> np.ndarra
     for k in np.flatnonzero(rev):
         out_j[:, k] = _outside_arc(q_train[:, k], q[:, k], margin[k])
     return out_j
+
+
+#: The final model's out-of-fold error above this many times the instrument's stated 3-D noise gets :func:`noise_guard`.
+NOISE_FACTOR = 3.0
 
 
 def extrapolation_flags(robot: Robot, q_train: np.ndarray, q_test: np.ndarray, *, far_factor: float = FAR_FACTOR) -> Extrapolation:
@@ -276,6 +281,37 @@ def parameter_checks(fit, q: np.ndarray, *, level: np.ndarray | None = None,
 def prior_flags(fit, q: np.ndarray, **kw) -> tuple:
     """Guard lines of :func:`parameter_checks` (implausible / weakly identified parameters and probe offset)."""
     return parameter_checks(fit, q, **kw).guards()
+
+
+def instrument_noise(noise_mm) -> float | None:
+    """The instrument's stated noise [mm, one sd per axis] as a float, None for None; refuses anything but a positive
+    finite number."""
+    if noise_mm is None:
+        return None
+    try:
+        value = float(noise_mm) if not isinstance(noise_mm, (bool, str)) else np.nan
+    except (TypeError, ValueError):
+        value = np.nan
+    if not np.isfinite(value) or value <= 0:
+        raise ArgumentError("instrument_noise_mm", "expected the measuring instrument's noise in mm, one standard "
+                            "deviation per axis (e.g. 0.01 for a laser tracker at a few metres), got "
+                            f"{describe(noise_mm)}.")
+    return value
+
+
+def noise_guard(final, noise_mm: float | None, factor: float = NOISE_FACTOR) -> str | None:
+    """A guard when the final model's out-of-fold error is more than ``factor`` times the measuring instrument's stated
+    noise (``noise_mm``, one sd per axis; None: no guard): what is left is neither noise nor a fitted effect."""
+    if noise_mm is None:
+        return None
+    r = float(np.sqrt(np.mean(np.sum(final.oof_mm ** 2, axis=1))))
+    floor = float(np.sqrt(3.0)) * noise_mm
+    if r <= factor * floor:
+        return None
+    return (f"the final model's out-of-fold error, {r:.3g} mm RMS, is {r / floor:.1f} times the instrument's stated "
+            f"noise ({noise_mm:g} mm per axis, {floor:.3g} mm in 3-D): about {np.sqrt(r * r - floor * floor):.3g} mm "
+            "RMS is neither noise nor a fitted effect -- a load or disturbance no column of the data carries (a process "
+            "force, a loose fixture or target, a tracker that moved) or physics outside the candidate families")
 
 
 def cv_fallback(nominal, geometric, final, margin: float = FALLBACK_MARGIN) -> tuple:

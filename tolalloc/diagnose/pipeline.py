@@ -17,7 +17,8 @@ from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.misfit import check_nominal_misfit
 from tolalloc.diagnose.effect_checks import compliance_sign_flags
-from tolalloc.diagnose.guards import cv_fallback, extrapolation_flags, parameter_checks
+from tolalloc.diagnose.guards import (cv_fallback, extrapolation_flags, instrument_noise, noise_guard,
+                                      parameter_checks)
 from tolalloc.diagnose.uncertainty import prediction_uncertainty
 from tolalloc.diagnose.measurements import Measurements, file_rows
 from tolalloc.diagnose.recalibrate import REGISTER_UPDATES, UNCERTAINTY_SCOPE, CalibrationUpdate, update_loss
@@ -95,7 +96,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
              register_n: float | None = None, cv: str = "blocked", progress: bool | None = False,
              subsample_rows: int = SUBSAMPLE_ROWS, robust_loss: str = "auto",
              target_offset_mm=None, target_offset_sd_mm=None, register_update: str = "frame",
-             register_rows=None) -> Diagnosis:
+             register_rows=None, instrument_noise_mm: float | None = None) -> Diagnosis:
     """Diagnose the gap between a robot model and its measurements.
 
     The **test file is sealed**: the variants, fold counts, clip level, significance tests, effect selection and
@@ -144,7 +145,10 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
     target_offset_sd_mm : float or array (3,) [mm], optional
         Prior sd of the target offset: every fit (training, folds, test re-registration) uses the prior. Without
         it the training fits leave the offset free and the folds borrow the training fit's (:mod:`.select`).
+    instrument_noise_mm : float [mm], optional
+        The instrument's stated noise, one sd per axis: only for the guard :func:`~.guards.noise_guard`.
     """
+    instrument_noise_mm = instrument_noise(instrument_noise_mm)
     t_prior = _check_args(robot, train, test, test_frame, folds, register_n, subsample_rows, robust_loss,
                           target_offset_mm, target_offset_sd_mm, register_update, register_rows)
     with threadpool_limits(threads), progress_scope(progress):
@@ -175,7 +179,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         scored = _score_sealed_test(ctx, sel["nominal"], sel["geometric"], sel["final"], sel["chosen"])
         sel["nominal"], sel["geometric"], sel["final"], sel["chosen"] = scored
     return _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, robust_loss,
-                     alpha, min_gain)
+                     alpha, min_gain, instrument_noise_mm)
 
 
 def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
@@ -202,7 +206,7 @@ def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
 
 
 def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample, threads, t_prior, loss,
-              alpha, min_gain) -> Diagnosis:
+              alpha, min_gain, noise_mm=None) -> Diagnosis:
     """Guards, the CV fallback, the verdict and the result."""
     nominal, geometric, final, chosen = sel["nominal"], sel["geometric"], sel["final"], sel["chosen"]
     effects = final.effects  # forward selection, then backward elimination (stepwise._backward)
@@ -222,6 +226,9 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
         fallback, final, effects = chosen.label, chosen, ()
     update = _calibration_update(ctx, nominal, geometric, final)
     guards.extend(_kept_gross_errors(ctx, final))
+    noisy = noise_guard(final, noise_mm)
+    if noisy is not None:
+        guards.append(noisy)
     extrap, unc, reg = _test_guards(ctx, robot, train, nominal, geometric, final, threads, guards)
     ctx.robust_notes = _robust_baseline(ctx, cal, nominal, t_prior)
     tstats = scored_test_stats(nominal, geometric, final)
@@ -236,7 +243,8 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                                                                         "sd": t_prior[1].tolist()},
                 "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist(),
                 "register_update": ctx.register_update if ctx.registration is not None else None,
-                "register_update_robust_loss": None if update is None else update.robust_loss}
+                "register_update_robust_loss": None if update is None else update.robust_loss,
+                "instrument_noise_mm": noise_mm}
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
                      check.findings(cal.identifiability.aliases), verdict, _downweighted(train, nominal, geometric, final), settings, update,

@@ -94,6 +94,7 @@ def diagnose_measurements(robot, train, test=None, *, test_frame="same", folds: 
     d = diagnose(rob, tr, te, folds=folds, alpha=alpha, seed=seed, test_frame=frame, register_n=register_n,
                  register_rows=rows, progress=progress, robust_loss=fit.robust_loss,
                  target_offset_mm=fit.target_offset_mm, target_offset_sd_mm=fit.target_offset_sd_mm,
+                 instrument_noise_mm=fit.instrument_noise_mm,
                  register_update=update or "frame", **({} if cv_rows is None else {"subsample_rows": cv_rows}))
     gap = _gap_split(d, progress) if gap_split else None
     record = {"robot": rob.name, "train": tr.source, "test": None if te is None else te.source, "test_frame": frame,

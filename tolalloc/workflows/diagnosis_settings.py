@@ -82,20 +82,28 @@ class FitOptions(Settings):
     target_offset_sd_mm : float or array (3,), optional
         Its prior standard deviation [mm], one value for x, y and z or one each, used by every fit; without it each
         fold borrows the full training fit's offset as its prior.
+    instrument_noise_mm : float, optional
+        The measuring instrument's stated noise, one standard deviation per axis [mm]: a final model whose
+        out-of-fold error is far above it gets a guard (an unlogged load or disturbance, or physics outside the
+        families). Choices and verdicts do not use it.
     """
 
     robust_loss: str = D.ROBUST_LOSS
     target_offset_mm: object = None
     target_offset_sd_mm: object = None
+    instrument_noise_mm: float | None = None
 
     def check(self) -> None:
         from tolalloc.diagnose.calibrate import offset_prior
+        from tolalloc.diagnose.guards import instrument_noise
 
         check_choice(self.robust_loss, "robust_loss", ("auto", "tukey", "huber", "soft_l1"))
         offset_prior(self.target_offset_mm, self.target_offset_sd_mm)
+        instrument_noise(self.instrument_noise_mm)
 
     def to_dict(self) -> dict:
         off = self.target_offset_mm
         return {"robust_loss": self.robust_loss,
                 "target_offset_mm": _numbers(off),
-                "target_offset_sd_mm": _numbers(self.target_offset_sd_mm)}
+                "target_offset_sd_mm": _numbers(self.target_offset_sd_mm),
+                "instrument_noise_mm": _numbers(self.instrument_noise_mm)}

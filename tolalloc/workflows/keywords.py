@@ -45,7 +45,8 @@ MOVED = {
     "diagnose_measurements": {
         "register_n": ("test_frame", "register_n"), "register_rows": ("test_frame", "register_rows"),
         "register_update": ("test_frame", "update"),
-        **{k: ("fit", k) for k in ("robust_loss", "target_offset_mm", "target_offset_sd_mm")}},
+        **{k: ("fit", k) for k in ("robust_loss", "target_offset_mm", "target_offset_sd_mm",
+                                    "instrument_noise_mm")}},
 }
 #: the object each keyword takes (its class name in tolalloc)
 CLASSES = {"requirement": "OrientationRequirement", "region": "Region", "costs": "Costs",

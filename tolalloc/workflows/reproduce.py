@@ -24,7 +24,7 @@ _FLAG = {"radius_mm": "--radius-mm", "prob": "--prob", "region": "--region", "po
          "exclude": "--exclude", "test": "--test", "test_frame": "--test-frame", "register_n": "--register-n",
          "register_rows": "--register-rows",
          "register_update": "--register-update", "folds": "--folds", "alpha": "--alpha", "cv_rows": "--cv-rows", "gap_split": "--gap-split",
-         "train": "--train", "robust_loss": "--robust-loss"}
+         "train": "--train", "robust_loss": "--robust-loss", "instrument_noise_mm": "--instrument-noise-mm"}
 #: boolean keyword arguments whose command-line flag switches them off
 _NEGATED = {"verify": "--no-verify", "correction": "--no-correction", "snap": "--no-snap"}
 
@@ -202,6 +202,8 @@ def diagnosis_command(job) -> tuple[str, str, list[str]]:
         kw["trust_units"] = True
     if inp.get("robust_loss", "auto") != "auto":
         kw["robust_loss"] = inp["robust_loss"]
+    if inp.get("instrument_noise_mm") is not None:
+        kw["instrument_noise_mm"] = inp["instrument_noise_mm"]
     offset = {k: inp[k] for k in ("target_offset_mm", "target_offset_sd_mm") if inp.get(k) is not None}
     train = kw.pop("train")
     extra = ([] if "target_offset_mm" not in offset else
