@@ -193,3 +193,36 @@ def test_an_error_far_above_the_instruments_noise_is_said_once_the_noise_is_stat
         with pytest.raises(tolalloc.ArgumentError, match=r"^FitOptions.instrument_noise_mm: expected the measuring"):
             tolalloc.FitOptions(instrument_noise_mm=bad)
     assert main(["diagnose", "ur10", "--train", str(tmp_path / "train.csv"), "--instrument-noise-mm", "-1"]) == 2
+
+
+@pytest.mark.parametrize("variant", ["beam", "beam+tip"])
+def test_the_beams_and_the_flange_carry_a_force_at_the_target_as_the_payload(variant):
+    from tolalloc.physics.beams import beam_columns, flange_columns
+
+    robot = tolalloc.load_robot("ur10")
+    q = _poses(robot, 6, 7)
+    tip = target_points(robot, q, np.array([0.0, 30.0, 150.0]))
+    kg = np.linspace(1.0, 9.0, len(q))
+    W = np.hstack([kg[:, None] * G * np.asarray(robot.gravity, float), np.zeros((len(q), 3))])
+    for columns in (lambda **kw: beam_columns(robot, q, tip, variant, **kw),
+                    lambda **kw: flange_columns(robot, q, tip, **kw)):
+        B_w, names_w = columns(wrench=W)
+        B_p, names_p = columns(payload_kg=kg)
+        assert names_w == names_p
+        np.testing.assert_allclose(B_w, B_p, rtol=1e-10, atol=1e-12)
+
+
+def test_a_couple_beyond_a_cantilever_bends_it_by_the_closed_form():
+    """End moment M on a cantilever of length L: tip deflection M L^2 / (2 EI), slope M L / EI (per unit 1/EI)."""
+    from tolalloc.physics.beams import _load_integrals
+
+    L = np.array([1000.0])
+    start, e = np.zeros((1, 3)), np.array([[1.0, 0.0, 0.0]])
+    M = np.array([[0.0, 2.0, 0.0]])  # [N m] about +y: the +x tip goes down
+    tip = _load_integrals(start, e, L, [], np.array([[1000.0, 0.0, 0.0]]), (M,))
+    np.testing.assert_allclose(tip["bend"], [[0.0, 0.0, -2000.0 * 1000.0 ** 2 / 2]])
+    beyond = _load_integrals(start, e, L, [], np.array([[1500.0, 0.0, 0.0]]), (M,))  # the slope carries it on
+    np.testing.assert_allclose(beyond["bend"], [[0.0, 0.0, -2000.0 * (1000.0 ** 2 / 2 + 1000.0 * 500.0)]])
+    np.testing.assert_allclose(tip["twist"], 0.0, atol=1e-9)
+    twist = _load_integrals(start, e, L, [], np.array([[1000.0, 0.0, 50.0]]), (np.array([[3.0, 0.0, 0.0]]),))
+    np.testing.assert_allclose(twist["twist"], [[0.0, -3000.0 * 1000.0 * 50.0, 0.0]])  # turn T L / GJ about x

@@ -22,7 +22,8 @@ signature:
                       about a pivot below the base, its depth fitted) [rad/(N m)]; ``play``: a compliance and a
                       rocking in the moment's direction (a base standing within a clearance) [mrad].
 ``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
-                      beyond by their moment), a logged payload and an own weight (:mod:`tolalloc.physics.beams`):
+                      beyond by their moment), a logged payload and process wrench, and an own weight
+                      (:mod:`tolalloc.physics.beams`):
                       ``tip``, ``beam`` (bending and torsion), ``beam+w``, ``beam+tip``; robots with a telescopic
                       stage also ``guide``,
                       ``guide+overlap``, ``beam+guide``; ``flange``: a compliant element between the flange and
@@ -202,10 +203,10 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     elif effect == "mount_compliance":
         B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant, meas.wrench)
     elif effect == "link_deflection":
-        parts = [flange_columns(robot, q, p_t, meas.payload_kg)] if variant == "flange" else []
+        parts = [flange_columns(robot, q, p_t, meas.payload_kg, meas.wrench)] if variant == "flange" else []
         if not variant.startswith(("guide", "flange")):
             parts.append(beam_columns(robot, q, p_t, "tip" if variant == "tip" else variant.replace("+guide", ""),
-                                      meas.payload_kg))
+                                      meas.payload_kg, meas.wrench))
         if "guide" in variant:
             parts.append(guide_columns(robot, q, p_t, meas.payload_kg, overlap=variant == "guide+overlap"))
         B = np.concatenate([b for b, _ in parts], axis=2)

@@ -72,7 +72,7 @@ def segment_geometry(robot: Robot, q, j: int, k: int | None):
     return end, h, Lh / np.maximum(h, 1e-9)[:, None], np.linalg.norm(L, axis=1)
 
 
-def _load_integrals(start, e, L, loads, p) -> dict:
+def _load_integrals(start, e, L, loads, p, couples=()) -> dict:
     """End-displacement integrals of a cantilever segment (start (P, 3) [mm], unit axis ``e`` (P, 3), length ``L``
     (P,) [mm]) under point forces ``loads = [(F (P, 3) [N], at (P, 3) [mm], through_end)]``, at the points ``p``
     (P, 3) beyond it.
@@ -84,7 +84,8 @@ def _load_integrals(start, e, L, loads, p) -> dict:
     ``C = b (I - e e^T) + t e e^T`` (bending ``b = 1/EI``, torsion ``t = 1/GJ``), which moves ``p`` by
     ``C M(s) ds x (p - x(s))``; shear moves everything beyond ``s`` by ``F_perp ds / kGA``. Integrated in closed form
     (``M`` linear in ``s``): ``{"bend": (P, 3) [N mm^3], "twist": ..., "shear": (P, 3) [N mm]}`` per unit
-    ``b``, ``t`` and ``1/kGA``."""
+    ``b``, ``t`` and ``1/kGA``. ``couples``: moments (P, 3) [N m] applied beyond the segment's end (a process
+    wrench's moment), constant along it."""
     out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
     p0 = p - start
     along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
@@ -97,21 +98,28 @@ def _load_integrals(start, e, L, loads, p) -> dict:
             out[key] += (a * cross(c0, p0) - a ** 2 / 2 * (cross(c0, e) + cross(c1, p0))
                          + a ** 3 / 3 * cross(c1, e))
         out["shear"] += a * (F - along_e(F))
+    for M in couples:
+        for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
+            c0 = C(1000.0 * np.asarray(M, dtype=float))  # [N mm]
+            out[key] += L[:, None] * cross(c0, p0) - L[:, None] ** 2 / 2 * cross(c0, e)
     return out
 
 
 def segment_loads(robot: Robot, masses, j: int, p_t, kg_at_target=None, k: int | None = None,
-                  payload_at=None) -> list:
-    """Gravity point loads ``[(F (P, 3) [N], at (P, 3) [mm], through_end)]`` the segment from joint ``j`` to joint
-    ``k`` (None: to the flange) carries: every mass after joint ``j`` (``through_end`` for those after joint ``k``)
-    and ``kg_at_target`` (P,) at ``payload_at`` (P, 3) (default the target points ``p_t``), carried through the
-    end."""
+                  payload_at=None, wrench=None) -> list:
+    """Point loads ``[(F (P, 3) [N], at (P, 3) [mm], through_end)]`` the segment from joint ``j`` to joint ``k``
+    (None: to the flange) carries: the weight of every mass after joint ``j`` (``through_end`` for those after joint
+    ``k``), ``kg_at_target`` (P,) at ``payload_at`` (P, 3) (default the target points ``p_t``) and the force of a
+    process ``wrench`` (P, 6) at ``p_t``, both carried through the end (the wrench's moment: ``couples`` of
+    :func:`_load_integrals`)."""
     g = G * np.asarray(robot.gravity, dtype=float)
     loads = [(np.broadcast_to(m.mass_kg * g, c.shape), c, k is not None and m.body > k)
              for m, c in masses if m.body > j]
     if kg_at_target is not None:
         loads.append((np.asarray(kg_at_target, float).reshape(-1, 1) * g, p_t if payload_at is None else payload_at,
                       True))
+    if wrench is not None:
+        loads.append((np.asarray(wrench, float)[:, :3], p_t, True))
     return loads
 
 
@@ -125,14 +133,15 @@ def _weight_loads(robot: Robot, start, e, L) -> list:
              start + e * (L * (1 + xi) / 2)[:, None], False) for xi, wi in zip(x, w)]
 
 
-def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) -> tuple:
+def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None, wrench=None) -> tuple:
     """Target-displacement basis of link deflection, ``B`` (P, 3, M) per unit coefficient, and names.
 
     ``tip``: one ``k h^3`` drop per segment. ``beam``: per segment the bending ``e`` and torsion ``r`` of the robot's
     mass model and the logged payload (:func:`_load_integrals`: each mass a point load where it sits, its moment
     about every section), coefficients ``1/EI`` and ``1/GJ`` [1/(MN m^2)]; ``beam+w`` also the bending of a
     distributed own weight the mass model lacks (``w``, [1/(MN m^2)] per kg/m); ``beam+tip`` also the bending of an
-    unknown mass at the target (``t``, [1/(MN m^2)] per kg)."""
+    unknown mass at the target (``t``, [1/(MN m^2)] per kg). A logged process ``wrench`` (P, 6) at the target loads
+    the ``beam`` variants beside the payload."""
     g = np.asarray(robot.gravity, dtype=float)
     cols, names = [], []
     masses = mass_points(robot, q)
@@ -147,7 +156,9 @@ def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) ->
             continue
         start = point_at(Pm[:, j], robot.joint_points_mm[j])
         e = (end - start) / np.maximum(L, 1e-9)[:, None]
-        I = _load_integrals(start, e, L, segment_loads(robot, masses, j, p_t, payload_kg, k), p_t)
+        couples = () if wrench is None else (np.asarray(wrench, float)[:, 3:],)
+        I = _load_integrals(start, e, L, segment_loads(robot, masses, j, p_t, payload_kg, k, wrench=wrench), p_t,
+                            couples)
         terms = [("e", I["bend"]), ("r", I["twist"])]
         if variant == "beam+w":
             terms.append(("w", _load_integrals(start, e, L, _weight_loads(robot, start, e, L), p_t)["bend"]))
@@ -160,12 +171,12 @@ def beam_columns(robot: Robot, q, p_t, variant: str = "tip", payload_kg=None) ->
     return (np.stack(cols, axis=-1) if cols else np.zeros((len(q), 3, 0))), names
 
 
-def flange_columns(robot: Robot, q, p_t, payload_kg=None) -> tuple:
+def flange_columns(robot: Robot, q, p_t, payload_kg=None, wrench=None) -> tuple:
     """A compliant element between the flange and the tool (module docstring), columns (P, 3, m) and names.
 
     The load beyond the flange -- the masses on the last body and the logged payload at the target (``known``), and a
     unit mass at the target (``tool``, a tool the mass model lacks) -- gives the force ``F`` and the moment ``M`` about
-    the flange point. In the tool frame (axes ``x, y, z``) the element turns by ``c_i M_i`` [urad per N m] and shifts by
+    the flange point (a logged process ``wrench`` (P, 6) at the target adds to the known load). In the tool frame (axes ``x, y, z``) the element turns by ``c_i M_i`` [urad per N m] and shifts by
     ``s_i F_i`` [um per N] along each axis; a turn moves the target about the flange point. Without known loads only the
     ``tool`` columns are given."""
     q = np.atleast_2d(q)
@@ -175,8 +186,10 @@ def flange_columns(robot: Robot, q, p_t, payload_kg=None) -> tuple:
     R = Pm[:, n, :3, :3] @ robot.tool_rotation
     pf = point_at(Pm[:, n], robot.home[:3, 3] - robot.tool_offset_mm)  # the flange point (the tool's root)
     F, M = np.zeros((len(q), 3)), np.zeros((len(q), 3))
-    for Fk, at, _ in segment_loads(robot, mass_points(robot, q, Pm), n - 1, p_t, payload_kg):  # beyond the last joint
-        F, M = F + Fk, M + np.cross((at - pf) / 1000.0, Fk)
+    for Fk, at, _ in segment_loads(robot, mass_points(robot, q, Pm), n - 1, p_t, payload_kg, wrench=wrench):
+        F, M = F + Fk, M + np.cross((at - pf) / 1000.0, Fk)  # beyond the last joint
+    if wrench is not None:
+        M = M + np.asarray(wrench, float)[:, 3:]
     unit_F = np.broadcast_to(G * g, (len(q), 3))
     loads = [("tool", unit_F, np.cross((p_t - pf) / 1000.0, unit_F))]
     if np.abs(F).max(initial=0.0) > 0:

@@ -25,7 +25,7 @@ model of :mod:`~.clearance` leaves it to this one).
 
 **A logged process wrench.** Where the data carry the force and moment a process applies at the tool (a cut, a
 press, a screwing reaction; :func:`~.loads.wrench_load`), both loads include it: the joints carry its virtual work
-and the mount its moment about the base. The beams of :mod:`~.beams` carry gravity and the payload only.
+and the mount its moment about the base (the beams and the flange element of :mod:`~.beams` carry it too).
 
 Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
 the catalogue's stiffness figures.
