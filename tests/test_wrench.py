@@ -226,3 +226,28 @@ def test_a_couple_beyond_a_cantilever_bends_it_by_the_closed_form():
     np.testing.assert_allclose(tip["twist"], 0.0, atol=1e-9)
     twist = _load_integrals(start, e, L, [], np.array([[1000.0, 0.0, 50.0]]), (np.array([[3.0, 0.0, 0.0]]),))
     np.testing.assert_allclose(twist["twist"], [[0.0, -3000.0 * 1000.0 * 50.0, 0.0]])  # turn T L / GJ about x
+
+
+def test_the_identified_model_predicts_and_compensates_under_a_logged_wrench(cutting_session, tmp_path):
+    """The model fitted with the force columns predicts the held-out measured points (tracker frame) within the noise
+    when it is given their forces -- as an array or as a program's columns -- and not without them; compensation
+    takes the columns too."""
+    robot, df, _ = cutting_session
+    train, test = split_frame(df, 0.25, np.random.default_rng(0))
+    train.to_csv(tmp_path / "train.csv", index=False)
+    job = tolalloc.diagnose_measurements(robot, tmp_path / "train.csv", folds=3, progress=False)
+    assert "joint_compliance" in job.diagnosis.effects
+    qcols = [f"q{j + 1}" for j in range(6)]
+    measured = test[["x_mm", "y_mm", "z_mm"]].to_numpy()
+    err = lambda p: float(np.sqrt(np.mean(np.sum((p[["x_mm", "y_mm", "z_mm"]].to_numpy() - measured) ** 2, axis=1))))  # noqa: E731
+    with_array = job.predict(test[qcols].to_numpy(), wrench=np.hstack([test[FORCES].to_numpy(), np.zeros((len(test), 3))]),
+                             frame="tracker")
+    with_columns = job.predict(test[qcols + FORCES], frame="tracker")
+    without = job.predict(test[qcols].to_numpy(), frame="tracker")
+    np.testing.assert_allclose(with_array[["x_mm", "y_mm", "z_mm"]], with_columns[["x_mm", "y_mm", "z_mm"]])
+    assert err(with_columns) < 0.04 < 0.2 < err(without)
+    comp = job.compensate(test[qcols + FORCES]).to_frame()
+    assert (comp["status"] == "ok").all() and comp["error_mm"].max() < 1e-3  # under the wrench, on the targets
+    dq = [f"dq{j + 1}_deg" for j in range(6)]
+    unloaded = job.compensate(test[qcols]).to_frame()
+    assert np.abs(comp[dq].to_numpy() - unloaded[dq].to_numpy()).max() > 1e-3  # the force moves the correction

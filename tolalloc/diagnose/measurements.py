@@ -39,7 +39,7 @@ from tolalloc.robot.model import Robot
 from tolalloc.diagnose.scale import point_kinematics
 
 __all__ = ["Measurements", "read_measurements", "measurements_from_frame", "check_train_test", "comment_lines",
-           "WRENCH_COLUMNS",
+           "WRENCH_COLUMNS", "read_wrench",
            "file_rows", "POSITION_COLUMNS"]
 
 #: fewer distinct poses than this cannot fix the tracker registration and target offset (9 unknowns, 3 per pose)
@@ -300,19 +300,20 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
     _check_poses(Q, X, rows, source)
     _scale_check(robot, qi, X, source)
     return Measurements(qi, X, optional("temperature_c"), direction, optional("payload_kg"), optional("time_s"),
-                        rows, n_skipped, source, _wrench(cols, optional, source))
+                        rows, n_skipped, source, read_wrench(cols, optional, source))
 
 
-def _wrench(cols, optional, source: str) -> np.ndarray | None:
-    """The logged process wrench (P, 6) from the columns of :data:`WRENCH_COLUMNS`, or None without any; a force or
-    moment needs all three of its columns (the other one is zero when absent)."""
+def read_wrench(cols, column, source: str) -> np.ndarray | None:
+    """The logged process wrench (P, 6) from the columns of :data:`WRENCH_COLUMNS` among ``cols``, each read by
+    ``column(name)`` (P,), or None without any; a force or moment needs all three of its columns (the other one is
+    zero when absent)."""
     parts = []
     for names in WRENCH_COLUMNS:
         present = [c for c in names if c in cols]
         if present and len(present) != 3:
             raise TolallocError(f"{source}: column(s) {present} given, expected all of {list(names)} (base frame) or "
                                 "none; add the missing axes (0 where the process has no component).")
-        parts.append(np.column_stack([optional(c) for c in names]) if present else None)
+        parts.append(np.column_stack([column(c) for c in names]) if present else None)
     if parts[0] is None and parts[1] is None:
         return None
     n = len(next(p for p in parts if p is not None))

@@ -100,22 +100,25 @@ class IdentifiedModel:
                 need.setdefault("payload_kg", []).append(f"{e} ({v})")
         return need
 
-    def measurements(self, q, *, payload_kg=None, temperature_c=None, time_s=None, direction=None) -> Measurements:
+    def measurements(self, q, *, payload_kg=None, temperature_c=None, time_s=None, direction=None,
+                     wrench=None) -> Measurements:
         """Poses ``q`` (P, n) [rad, mm] with their covariates as a measurement set (no positions), checked against what
-        the model's effects need (:meth:`covariates`)."""
+        the model's effects need (:meth:`covariates`); ``wrench`` (P, 6) a process wrench at the target [N, N m], base
+        frame (none: no process force)."""
         q = np.atleast_2d(np.asarray(q, dtype=float))
         P = len(q)
 
         def col(v, name):
             if v is None:
                 return None
-            a = np.broadcast_to(np.asarray(v, dtype=float), (P,) if name != "dir" else q.shape).copy()
+            shape = {"dir": q.shape, "wrench": (P, 6)}.get(name, (P,))
+            a = np.broadcast_to(np.asarray(v, dtype=float), shape).copy()
             if not np.all(np.isfinite(a)):
                 raise TolallocError(f"{name}: expected finite values, one per pose, got NaN or infinite ones.")
             return a
 
         meas = Measurements(q, np.zeros((P, 3)), col(temperature_c, "temperature_c"), col(direction, "dir"),
-                            col(payload_kg, "payload_kg"), col(time_s, "time_s"))
+                            col(payload_kg, "payload_kg"), col(time_s, "time_s"), wrench=col(wrench, "wrench"))
         for e in self.effects:
             why = carry_problem(e, self.variants[e], meas)
             if why is not None:

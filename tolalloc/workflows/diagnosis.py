@@ -258,10 +258,11 @@ class MeasurementDiagnosis(JobResult):
         """The final model, ready to evaluate at new poses (:class:`~tolalloc.diagnose.model_use.IdentifiedModel`)."""
         return self._identified
 
-    def predict(self, q, *, payload_kg=None, temperature_c=None, time_s=None, dir=None,
+    def predict(self, q, *, payload_kg=None, temperature_c=None, time_s=None, dir=None, wrench=None,
                 frame: str = "base") -> pd.DataFrame:
         """The final model's target points at joint values ``q`` [deg / mm] (an array (P, n), or a CSV path /
-        DataFrame with a column per joint and the covariate columns), with the covariates its effects read.
+        DataFrame with a column per joint and the covariate columns), with the covariates its effects read
+        (``wrench`` (P, 6): a process force [N] and moment [N m] at the target, base frame).
 
         Returns one row per pose: ``x_mm, y_mm, z_mm`` in ``frame`` (``base``: the robot's base frame; ``tracker``: the
         training file's measurement frame), ``sigma_mm`` (1-sigma of the 3-D prediction error from the parameter
@@ -271,7 +272,7 @@ class MeasurementDiagnosis(JobResult):
 
         inputs.check_choice(frame, "frame", FRAMES)
         return predict_frame(self.identified_model(), q, frame=frame, payload_kg=payload_kg,
-                             temperature_c=temperature_c, time_s=time_s, dir=dir)
+                             temperature_c=temperature_c, time_s=time_s, dir=dir, wrench=wrench)
 
     def compensate(self, program, *, frame: str = "base", tol_mm: float = 1e-6):
         """Joint values that put the target point where the nominal robot would (or on the program's ``x_mm, y_mm,

@@ -84,10 +84,10 @@ def read_program(robot, program, argument: str = "program") -> dict:
     """Joint values, optional targets and covariates of a program.
 
     ``program``: a CSV path or DataFrame (a column per joint in deg / mm, optional ``x_mm, y_mm, z_mm`` targets,
-    ``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``; a table of ``x_mm, y_mm, z_mm`` alone: targets
-    without joint values), or joint values (P, n) [deg / mm]. Returns
+    ``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``, a process wrench ``force_x_n`` ... ``torque_z_nm``;
+    a table of ``x_mm, y_mm, z_mm`` alone: targets without joint values), or joint values (P, n) [deg / mm]. Returns
     ``{"q": (P, n) [rad, mm] or None, "targets_mm": (P, 3) or None, "covariates": {name: (P,)}, "direction": (P, n) or None,
-    "columns": joint column names or None}``.
+    "columns": joint column names or None, "wrench": (P, 6) or None}``.
     """
     frame = _frame_of(program, argument)
     if frame is None:
@@ -115,20 +115,24 @@ def read_program(robot, program, argument: str = "program") -> dict:
         raise ArgumentError(argument, f"approach directions need all of dir1..dir{robot.n_joints}; got "
                             f"{', '.join(present)}.")
     direction = np.column_stack([_numeric(frame, c, argument) for c in dirs]) if present else None
-    return {"q": q, "targets_mm": targets, "covariates": cov, "direction": direction, "columns": cols}
+    from tolalloc.diagnose.measurements import read_wrench
+
+    wrench = read_wrench(list(frame.columns), lambda c: _numeric(frame, c, argument), argument)
+    return {"q": q, "targets_mm": targets, "covariates": cov, "direction": direction, "columns": cols,
+            "wrench": wrench}
 
 
 def _meas(model, prog: dict, q=None):
     """The model's measurement set of a program's poses (or ``q``) and covariates."""
     c = prog["covariates"]
     return model.measurements(prog["q"] if q is None else q, payload_kg=c.get("payload_kg"), temperature_c=c.get("temperature_c"),
-                              time_s=c.get("time_s"), direction=prog["direction"])
+                              time_s=c.get("time_s"), direction=prog["direction"], wrench=prog.get("wrench"))
 
 
 def predict_frame(model, q, *, frame: str = "base", **covariates) -> pd.DataFrame:
     """Predicted target points of ``model`` (an :class:`~tolalloc.diagnose.model_use.IdentifiedModel`) at ``q``
     (a program as :func:`read_program` takes it; ``covariates``: ``payload_kg``, ``temperature_c``, ``time_s``,
-    ``dir`` arrays, beside or instead of the program's columns): ``row``, ``x_mm, y_mm, z_mm`` in ``frame``,
+    ``dir`` arrays and ``wrench`` (P, 6) [N, N m], beside or instead of the program's columns): ``row``, ``x_mm, y_mm, z_mm`` in ``frame``,
     ``sigma_mm`` (1-sigma of the 3-D prediction error from the parameter covariance) and ``radius95_mm`` (the radius
     holding a measurement with 95 % probability, measurement noise included)."""
     from tolalloc.linear.probability import radius_for_prob
@@ -139,10 +143,12 @@ def predict_frame(model, q, *, frame: str = "base", **covariates) -> pd.DataFram
             continue
         if k == "dir":
             prog["direction"] = v
+        elif k == "wrench":
+            prog["wrench"] = v
         elif k in COVARIATES:
             prog["covariates"][k] = v
         else:
-            raise ArgumentError(k, f"expected one of the covariates {', '.join(COVARIATES)}, dir; got {k!r}.")
+            raise ArgumentError(k, f"expected one of the covariates {', '.join(COVARIATES)}, dir, wrench; got {k!r}.")
     meas = _meas(model, prog)
     x = model.points(meas, frame)
     out = pd.DataFrame({"row": np.arange(1, len(x) + 1), "x_mm": x[:, 0], "y_mm": x[:, 1], "z_mm": x[:, 2]})
@@ -255,7 +261,8 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
     program : str, path, DataFrame or array
         One row per pose: the program's joint values (deg / mm; the seeds), optional ``x_mm, y_mm, z_mm`` targets
         (default: where the nominal robot puts the target point at those joint values) and the covariates the model's
-        effects read (``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``). Targets without joint values
+        effects read (``payload_kg``, ``temperature_c``, ``time_s``, ``dir1..dirN``, a process wrench ``force_x_n`` ...
+        ``torque_z_nm``). Targets without joint values
         are seeded by the nominal robot's inverse kinematics (a position has many joint solutions: give the
         program's joint values where there are some).
     robot : str, path or Robot, optional
