@@ -239,9 +239,10 @@ def test_the_identified_model_predicts_and_compensates_under_a_logged_wrench(cut
     assert "joint_compliance" in job.diagnosis.effects
     qcols = [f"q{j + 1}" for j in range(6)]
     measured = test[["x_mm", "y_mm", "z_mm"]].to_numpy()
-    err = lambda p: float(np.sqrt(np.mean(np.sum((p[["x_mm", "y_mm", "z_mm"]].to_numpy() - measured) ** 2, axis=1))))  # noqa: E731
-    with_array = job.predict(test[qcols].to_numpy(), wrench=np.hstack([test[FORCES].to_numpy(), np.zeros((len(test), 3))]),
-                             frame="tracker")
+    xyz = ["x_mm", "y_mm", "z_mm"]
+    err = lambda p: float(np.sqrt(np.mean(np.sum((p[xyz].to_numpy() - measured) ** 2, axis=1))))  # noqa: E731
+    W = np.hstack([test[FORCES].to_numpy(), np.zeros((len(test), 3))])
+    with_array = job.predict(test[qcols].to_numpy(), wrench=W, frame="tracker")
     with_columns = job.predict(test[qcols + FORCES], frame="tracker")
     without = job.predict(test[qcols].to_numpy(), frame="tracker")
     np.testing.assert_allclose(with_array[["x_mm", "y_mm", "z_mm"]], with_columns[["x_mm", "y_mm", "z_mm"]])

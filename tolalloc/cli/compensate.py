@@ -13,7 +13,8 @@ def register(sub) -> None:
         "program's x_mm, y_mm, z_mm targets) under the model a diagnosis identified (the identified.toml that "
         "`tolalloc diagnose --export-model DIR` writes). PROGRAM.csv: one row per pose, a column per joint "
         "(q1_deg / q4_mm ..., deg / mm: the seeds), optional x_mm, y_mm, z_mm targets and the covariates the "
-        "model's effects read (payload_kg, temperature_c, time_s, dir1..dirN, a process wrench force_x_n..torque_z_nm). "
+        "model's effects read (payload_kg, temperature_c, time_s, dir1..dirN, a process wrench "
+        "force_x_n..torque_z_nm). "
         "Writes compensated.csv into DIR: "
         "the compensated joint values, their corrections, the model's point, status and reason; rows outside the "
         "reachable space or whose correction leaves the joint limits are refused and listed.")

@@ -310,8 +310,8 @@ def noise_guard(final, noise_mm: float | None, factor: float = NOISE_FACTOR) -> 
         return None
     return (f"the final model's out-of-fold error, {r:.3g} mm RMS, is {r / floor:.1f} times the instrument's stated "
             f"noise ({noise_mm:g} mm per axis, {floor:.3g} mm in 3-D): about {np.sqrt(r * r - floor * floor):.3g} mm "
-            "RMS is neither noise nor a fitted effect -- a load or disturbance no column of the data carries (a process "
-            "force, a loose fixture or target, a tracker that moved) or physics outside the candidate families")
+            "RMS is neither noise nor a fitted effect -- a load or disturbance no column of the data carries (a "
+            "process force, a loose fixture or target, a tracker that moved) or physics outside the candidate families")
 
 
 def cv_fallback(nominal, geometric, final, margin: float = FALLBACK_MARGIN) -> tuple:

@@ -176,9 +176,9 @@ def flange_columns(robot: Robot, q, p_t, payload_kg=None, wrench=None) -> tuple:
 
     The load beyond the flange -- the masses on the last body and the logged payload at the target (``known``), and a
     unit mass at the target (``tool``, a tool the mass model lacks) -- gives the force ``F`` and the moment ``M`` about
-    the flange point (a logged process ``wrench`` (P, 6) at the target adds to the known load). In the tool frame (axes ``x, y, z``) the element turns by ``c_i M_i`` [urad per N m] and shifts by
-    ``s_i F_i`` [um per N] along each axis; a turn moves the target about the flange point. Without known loads only the
-    ``tool`` columns are given."""
+    the flange point (a logged process ``wrench`` (P, 6) at the target adds to the known load). In the tool frame (axes
+    ``x, y, z``) the element turns by ``c_i M_i`` [urad per N m] and shifts by ``s_i F_i`` [um per N] along each axis; a
+    turn moves the target about the flange point. Without known loads only the ``tool`` columns are given."""
     q = np.atleast_2d(q)
     g = np.asarray(robot.gravity, dtype=float)
     Pm = poe_prefix(robot.screws, q)
@@ -192,7 +192,7 @@ def flange_columns(robot: Robot, q, p_t, payload_kg=None, wrench=None) -> tuple:
         M = M + np.asarray(wrench, float)[:, 3:]
     unit_F = np.broadcast_to(G * g, (len(q), 3))
     loads = [("tool", unit_F, np.cross((p_t - pf) / 1000.0, unit_F))]
-    if np.abs(F).max(initial=0.0) > 0:
+    if max(np.abs(F).max(initial=0.0), np.abs(M).max(initial=0.0)) > 0:
         loads.insert(0, ("known", F, M))
     cols, names = [], []
     for lab, Fl, Ml in loads:
