@@ -2242,3 +2242,169 @@ def test_set_p_every_kind_lies_in_its_true_structure_and_known_answers():
     assert wp["w0_mm"] == pytest.approx(wp["dp"] * wp["a_mm"] ** 4 / (64 * D))
     held = ctx.session.payload_kg > 0
     assert not pb.vplate_part(wp, ctx)[~held].any() and held.any()
+
+
+def test_set_q_cases_kinds_and_determinism():
+    """Set Q: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-Q kind alone
+    (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a gripper boom's target
+    sits at its tip, a gooseneck's at its nozzle, a holder's out on the holder; the door's cases have their blocks and
+    pauses, the ejector's an empty block among held ones."""
+    from sim2real_indep import effects_q as eq
+
+    _assert_set_module("Q", 40_7017, eq, ("gear", "charging_heat"))
+    for name in ("effects_q", "effects_q_joint", "effects_q_body", "effects_q_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_q" in _imports(STUDY / "generator.py")
+    assert eq.AFTER_TRACKER == set()
+    probe = np.array([3.0, -4.0, 12.0])                                     # |probe| 13 mm
+    share = 8 / 95
+    assert eq.probe_hook(("sag", "lash_comp"), probe) is probe
+    assert eq.probe_hook(("ejector_chill",), probe) == pytest.approx([0, 0, 400 + 300 * share])
+    R = 60 + 60 * share
+    assert eq.probe_hook(("gooseneck",), probe) == pytest.approx([3 / 5 * R, -4 / 5 * R, 40 + R])
+    assert eq.probe_hook(("ball_holder",), probe) == pytest.approx(probe / 13 * (150 + 100 * share))
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": eq.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        door = opts(("door_draught",))
+        assert 4 <= door["blocks"] <= 7 and door["gap_kind"] == "pause" and door["pause_min"] == (5.0, 15.0)
+        steps = opts(("ejector_chill",), "ur10")["payload_steps"]
+        assert min(steps) == 0.0 and max(steps) > 0.0
+    _assert_regenerates("Q", max_effect_poses=50)
+
+
+def test_set_q_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-Q kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the draw wire does nothing on the arms without a telescopic
+    stage; and known answers: the sensors' stops, the tank's free surface, the compensated lash's flanks, the servo
+    tail's decay, the ball-pass rate, the draw wire's stretch and eccentricity, Almen-Laszlo's curve and the feet's
+    statics, Hertz's constant and the coupling's statics, the holder's joints, the gooseneck's uncurling (against a
+    difference quotient of the arc), the boom's shrink and bow, and the door's lags."""
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_q_body as qb
+    from sim2real_indep import effects_q_joint as qj
+    from sim2real_indep import effects_q_thermal as qt
+
+    specs = (("ur10", ("sensor_stops", "fluid_tank", "lash_comp", "servo_tail", "ball_pass", "disc_springs",
+                       "door_draught", "draw_wire")),
+             ("tool_changer", ("draw_wire", "ball_holder", "kinematic_mount", "lash_comp")),
+             ("kr16_like", ("ejector_chill", "fluid_tank", "draw_wire")), ("ur10", ("gooseneck",)))
+    inert = {"ur10": ("draw_wire",), "kr16_like": ("draw_wire",), "tool_changer": ()}
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 17)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs.setdefault((robot, physics[0]), (case, ctx))
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"sensor_stops": lambda: 1 / p["k"], "fluid_tank": lambda: [p["mass_kg"]],
+                   "lash_comp": lambda: qj.comp_amplitudes(p), "servo_tail": lambda: p["A_s"],
+                   "ball_pass": lambda: qj.pass_amplitudes(p), "draw_wire": lambda: [-1.0, -1.0, -1.0],
+                   "disc_springs": lambda: [p["stroke_mm"]], "kinematic_mount": lambda: [p["c_H"]],
+                   "ball_holder": lambda: 1 / p["k_Nmm"], "gooseneck": lambda: [p["eps"]],
+                   "ejector_chill": lambda: [p["dT_K"]], "door_draught": lambda: [p["dT_K"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs[("ur10", "sensor_stops")]
+    P = case.truth["params"]
+    # torque sensors: the flexure twists with the torque up to its stop, then no further
+    sp = P["sensor_stops"]
+    stub = SimpleNamespace(loads=np.zeros((3, 6)))
+    T = sp["T_stop"][0]
+    stub.loads[:, sp["joints"][0]] = [0.5 * T, -2 * T, 3 * T]
+    assert qj.sensor_signals(sp, stub)[0] == pytest.approx([0.5 * T, -T, T])
+    # tank: full, it is a point mass at its centre; half full, its liquid lies below the level through the centre
+    tp = P["fluid_tank"]
+    fl, Rt = kin.flange(ctx.chain, ctx.q)
+    assert qj.tank_com(dict(tp, fill=1.0), ctx) == pytest.approx(fl + Rt @ tp["centre_mm"])
+    com = qj.tank_com(dict(tp, fill=0.5), ctx)
+    assert np.all(com[:, 2] < (fl + Rt @ tp["centre_mm"])[:, 2])
+    # compensated lash: a load holds its flank (+b/2 sign tau), unloaded the output trails; the compensation leads
+    lp = P["lash_comp"]
+    j0 = lp["joints"][1]
+    stub = SimpleNamespace(loads=np.zeros((2, 6)), session=SimpleNamespace(direction=np.ones((2, 6))))
+    stub.loads[:, j0] = [-10 * lp["hold"][1], 0.0]
+    sig = qj.comp_signals(lp, stub)
+    m = len(lp["joints"])
+    assert sig[1] == pytest.approx([-1.0, -1.0]) and sig[m + 1] == pytest.approx([1.0, 1.0])
+    # servo tail: the overshoot per speed in the motion direction, right after the stop; 1 / e of it after T_i
+    tp = P["servo_tail"]
+    ses = SimpleNamespace(direction=-np.ones((2, 6)), speed=np.full((2, 6), 0.5),
+                          dwell_s=np.array([0.0, tp["T_i"][0]]))
+    assert qj.tail_signals(tp, SimpleNamespace(session=ses))[0] == pytest.approx([-0.5, -0.5 / np.e])
+    # ball pass: 2 (1 - f_c) N periods per output turn, f_c = (1 - d / D cos alpha) / 2
+    bp = P["ball_pass"]
+    assert np.all((bp["f_c"] > 0.37) & (bp["f_c"] < 0.43))
+    assert bp["order"] == pytest.approx(2 * (1 - bp["f_c"]) * bp["N"])
+    q = np.zeros((2, 6))
+    q[1, bp["joints"][0]] = 2 * np.pi / bp["order"][0]
+    s = qj.pass_signals(bp, SimpleNamespace(q=q))
+    assert s[:, 0] == pytest.approx(s[:, 1])
+    # disc springs: Almen-Laszlo's curve at the flat position is r; its inverse; the feet carry preload and weights
+    dp = P["disc_springs"]
+    x = np.linspace(0.1, 0.9, 5)
+    assert qb.disc_curve(1.0, dp["r"]) == pytest.approx(dp["r"])
+    assert qb.disc_x(dp, qb.disc_curve(x, dp["r"]) * dp["F_unit"]) == pytest.approx(x, abs=1e-6)
+    F = qb.disc_reactions(dp, ctx)
+    mm, _, _ = ctx.mass_state
+    assert F.sum(axis=1) == pytest.approx(3 * dp["F_pre"] + kin.G * mm.sum(axis=1))
+    xs = qb.disc_x(dp, F)
+    assert xs.min() > 0.15 - 0.01 and xs.max() <= 1.0      # (the nominal geometry here; a flat stack is solid)
+    # door: a door open for ever chills the links by the full fall (after both lags), a shut one not at all
+    door = P["door_draught"]
+    far = SimpleNamespace(session=SimpleNamespace(time_s=np.array([5e5, 6e5])))
+    chill = qt.door_signal(dict(door, open=np.array([[-1e9, 1e9]])), far)
+    assert -1 < chill[0] < 0 and chill[1] == pytest.approx(-1, abs=1e-6)
+    assert qt.door_signal(dict(door, open=np.array([[-1e9, -1e8]])), far) == pytest.approx([0, 0], abs=1e-9)
+    # draw wire: stretch (F0 + k_s x)(x + L0) / EA less its value at x = 0; the drum's error repeats every 2 pi r
+    case, ctx = runs[("tool_changer", "draw_wire")]
+    P = case.truth["params"]
+    wp = P["draw_wire"]
+    x = np.array([0.0, 100.0, 2 * np.pi * wp["r_mm"]])
+    t = qj.wire_terms(wp, x)
+    assert t[0] + t[1] == pytest.approx(((wp["F0_N"] + wp["ks_N_mm"] * x) * (x + wp["L0_mm"])
+                                         - wp["F0_N"] * wp["L0_mm"]) / wp["EA_N"])
+    assert t[2] == pytest.approx([0.0, t[2][1], 0.0], abs=1e-12)
+    # kinematic coupling: Hertz's constant; the contacts carry the clamp and the weights, none pulls
+    kp = P["kinematic_mount"]
+    Es = 210e3 / (2 * (1 - 0.09))
+    assert kp["c_H"] == pytest.approx((9 / (16 * Es ** 2 * kp["R_ball"])) ** (1 / 3))
+    f = qb.kc_forces(kp, ctx)
+    mm, _, _ = ctx.mass_state
+    assert (f * kp["normals"][:, 2]).sum(axis=1) == pytest.approx(kp["F_p"] + kin.G * mm.sum(axis=1))
+    assert f.min() > 0
+    # holder: gravity along the last segment puts no moment on its joint; a joint's turn moves the target across
+    hp = dict(P["ball_holder"], m_seg=np.zeros(2))
+    g = (hp["S"] - hp["B2"])[None]
+    assert np.abs(qb.holder_moments(hp, g)[1]).max() < 1e-9
+
+    case, ctx = runs[("kr16_like", "ejector_chill")]
+    P = case.truth["params"]
+    # boom: shrinks by alpha L per kelvin, bows towards the exhaust side by alpha r_g L^2 / (2 D)
+    cp = P["ejector_chill"]
+    loc = qt.chill_local(cp)
+    assert loc[2] == pytest.approx(-qt.ALU_CTE * cp["L_mm"])
+    assert loc[:2] @ cp["side"][:2] == pytest.approx(qt.ALU_CTE * cp["r_g"] * cp["L_mm"] ** 2 / (2 * cp["D_mm"]))
+    ses = SimpleNamespace(payload_kg=np.array([0.0, 5.0, 5.0]), time_s=np.array([0.0, 1.0, 1e6]))
+    assert qt.chill_signal(dict(cp, x0=0.0), SimpleNamespace(session=ses)) == pytest.approx(
+        [0.0, 1 - np.exp(-1 / cp["tau_s"]), 1.0])
+
+    case, ctx = runs[("ur10", "gooseneck")]
+    # gooseneck: the nozzle's motion per unit eps is -kappa d(tip)/d(kappa) at fixed length (a difference quotient)
+    npar = case.truth["params"]["gooseneck"]
+    R, e = qb.neck_geometry(npar["tip"])
+    s_len = R * np.pi / 2
+
+    def tip(k):
+        return (qb.NECK_L0_MM + np.sin(k * s_len) / k) * qb.Z + (1 - np.cos(k * s_len)) / k * e
+
+    assert tip(1 / R) == pytest.approx(npar["tip"])
+    h = 1e-6
+    assert qb.neck_local(npar) == pytest.approx((tip((1 - h) / R) - tip(1 / R)) / h, rel=1e-4, abs=1e-6)

@@ -10,8 +10,8 @@ each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), se
 ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
 eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
-per arm) a fifteenth (:mod:`effects_o`) and set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`). A case: (id,
-robot, physics kinds, poses, split).
+per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`) and set Q (24 cases,
+8 per arm) a seventeenth (:mod:`effects_q`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
-SEED_M, SEED_N, SEED_O, SEED_P = 40_7013, 40_7014, 40_7015, 40_7016
+SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -660,11 +660,65 @@ SET_P = [
     ("P24", "kr16_like", ("jacket_cycle", "vacuum_plate"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-P)
+#: set Q: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_q`); written as an independent test set after set P, from the literature, without reading how
+#: the diagnosis models effects. The draw wire sits on tool_changer only (its telescopic stage); the other kinds act on
+#: every arm, but the cases put each where it is large enough (the ball pass on ur10, whose six axes are strain-wave
+#: gears; the fluid tank, the gooseneck and the door on the lighter arms). Oracle labels when written (oracle.py only;
+#: the diagnosis was not run): every case its truth (gains 38-93 %; each mixture component's removal costs 27 % or
+#: more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's model within 25 % of the
+#: truth; the closest: Q09's link model 1.41x, Q10's 1.42x, Q19's 1.43x, Q03's 1.45x). Changed after trial draws (the
+#: first ranges in the modules' docstrings): the second mount kind was first a hexapod under the base (struts of 8-20
+#: N/um on ur10, 20-50 on kr16_like); its platform turns nearly in proportion to the weights' moment, which the link
+#: model bending the arm's long links under the same weights reproduced (1.02x on ur10 with a gain of 12 %, 0.99x on
+#: kr16_like, 0.99-1.11x on tool_changer, softer struts too), so it gave way to the disc springs, whose regressive curve
+#: the link model cannot follow -- and only with cone heights near sqrt 2 and a working range up to near flat (first h /
+#: t 1-1.35 and s / h 0.2-0.85: 1.07x on kr16_like; 0.3-0.98 was no better). The disc springs' second case (Q20,
+#: kr16_like, 16 % and the link model at 1.10x) and then the torque sensors there (kr16_like's 0.675 m base column a
+#: beam of the link model: 1.03x) gave way to the servo tail on kr16_like; ur10's mount case (Q03: the kinematic
+#: coupling was 0.03 mm there) to the fluid tank; Q05's door on ur10 (gain 5 %, its aluminium tubes short) to the
+#: ejector on ur10 -- the door left to kr16_like and the Q08 mixture, with a loading door's openings of 5-20 min (first
+#: 1-3 min, removal cost of the door 6 %), the air's fall 5-12 K (first 3-8), the hall's mixing 2-5 min (first 4-10).
+#: The compensated lash's holding torque got a floor of 3 % of the rated torque: axis 1 of tool_changer carries no
+#: gravity load, and the true arm's tilted axis gave it a flank the nominal model never sees (Q12: gain 11 %, now 93 %).
+#: The kinematic coupling's balls 6-12 mm at 120-200 mm with 5-15 % of the clamp left (first 8-16 mm, 150-250 mm, 10-30
+#: %: kr16_like 8 % and the link model at 1.02x; Q20 then moved off it, the coupling left to tool_changer), the
+#: ejector's chill 4-10 K on a 30-50 mm boom (first 3-8 K, 40-60 mm: Q18 18 %), the ball pass 10-30 arcsec (first 8-25).
+#: No pose count or seed was changed. A trial draw on the seed + 1 was clean in 23 of 24 cases (Q01's torque sensors:
+#: the link model at 1.12x), not tuned further.
+SET_Q = [
+    ("Q01", "ur10", ("sensor_stops",), 120, "random"),
+    ("Q02", "ur10", ("servo_tail",), 45, "random"),
+    ("Q03", "ur10", ("fluid_tank",), 100, "random"),
+    ("Q04", "ur10", ("gooseneck",), 140, "random"),
+    ("Q05", "ur10", ("ejector_chill",), 170, "time"),
+    ("Q06", "ur10", ("ball_pass",), 150, "random"),
+    ("Q07", "ur10", (), 70, "random"),
+    ("Q08", "ur10", ("lash_comp", "door_draught"), 180, "time"),
+    ("Q09", "tool_changer", ("draw_wire",), 130, "random"),
+    ("Q10", "tool_changer", ("kinematic_mount",), 150, "time"),
+    ("Q11", "tool_changer", ("sensor_stops",), 110, "random"),
+    ("Q12", "tool_changer", ("lash_comp",), 120, "random"),
+    ("Q13", "tool_changer", ("ball_holder",), 140, "random"),
+    ("Q14", "tool_changer", ("servo_tail",), 160, "time"),
+    ("Q15", "tool_changer", (), 30, "random"),
+    ("Q16", "tool_changer", ("draw_wire", "ball_holder"), 190, "random"),
+    ("Q17", "kr16_like", ("fluid_tank",), 130, "random"),
+    ("Q18", "kr16_like", ("ejector_chill",), 160, "time"),
+    ("Q19", "kr16_like", ("disc_springs",), 120, "random"),
+    ("Q20", "kr16_like", ("servo_tail",), 110, "random"),
+    ("Q21", "kr16_like", ("gooseneck",), 150, "random"),
+    ("Q22", "kr16_like", ("door_draught",), 160, "time"),
+    ("Q23", "kr16_like", (), 90, "random"),
+    ("Q24", "kr16_like", ("fluid_tank", "ejector_chill"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Q)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
-        "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P)}
+        "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
+        "Q": (SET_Q, SEED_Q)}
 
 
 def case_seed(set_name: str, index: int) -> int:

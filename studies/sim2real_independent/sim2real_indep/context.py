@@ -142,7 +142,22 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "mag_coupling": "joint_compliance", "belt_slack": "joint_compliance", "seal_relax": "backlash",
           "quick_change": "backlash", "pole_pitch": "transmission", "stray_field": "transmission",
           "vacuum_feet": "mount_compliance", "platen_clamp": "mount_compliance", "vacuum_plate": "link_deflection",
-          "hose_lance": "link_deflection", "jacket_cycle": "thermal", "charging_heat": "thermal"}
+          "hose_lance": "link_deflection", "jacket_cycle": "thermal", "charging_heat": "thermal",
+          # set Q (sim2real_indep.effects_q; sensor_stops, the main axes' torque-sensor flexures locking on their
+          # overload stops, and fluid_tank, the gears twisted by a tool tank's liquid settling to its low side, scored
+          # as joint compliance; lash_comp, the controller's backlash compensation against the worn gears' lost motion,
+          # and servo_tail, a PI-controlled axis' overshoot decaying through the dwell, as backlash (errors that follow
+          # the last motion); ball_pass, strain-wave gears' error at their wave-generator bearing's ball-pass rate, and
+          # draw_wire, the telescopic stage's draw-wire sensor, as transmission; disc_springs, the arm's feet on disc
+          # springs, and kinematic_mount, its base on a clamped three-ball coupling, as mount compliance (the robot's
+          # support); ball_holder, the reflector's articulated holder, and gooseneck, the nozzle's supply tube
+          # straightening under its pressure, as link deflection (the end-of-arm structure carrying the target);
+          # ejector_chill, a gripper boom chilled by its ejector's exhaust, and door_draught, the arm chilled by a hall
+          # door's draught, as thermal)
+          "sensor_stops": "joint_compliance", "fluid_tank": "joint_compliance", "lash_comp": "backlash",
+          "servo_tail": "backlash", "ball_pass": "transmission", "draw_wire": "transmission",
+          "disc_springs": "mount_compliance", "kinematic_mount": "mount_compliance", "ball_holder": "link_deflection",
+          "gooseneck": "link_deflection", "ejector_chill": "thermal", "door_draught": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
