@@ -166,7 +166,7 @@ diagnosis, its effect models, nor any result of sets A-P, and who did not run th
 code as it stood after set P had been judged -- the logged process wrench now also in link deflection and the
 identified model, and a guard on a stated instrument noise (neither acts on set Q, whose data carry no force and whose
 runs state no noise), none of it written while looking at set Q: 16/24 strict, 17 lenient, no false claim, median
-final / oracle RMS 1.38; right on 12 of 14 effect cases where the true family's generic model helps, 1 of 7 where it
+final / oracle RMS 1.37; right on 12 of 14 effect cases where the true family's generic model helps, 1 of 7 where it
 does not. Its misses: a pressurised gooseneck tube straightening while its valve is open (Q04, Q21) and a vacuum
 ejector's cold exhaust chilling the gripper boom while a part is held (Q05, Q18), all `none` -- the valve's state is
 not logged, and the holding schedule, which the logged payload marks, drives heat no thermal variant follows; a
