@@ -149,6 +149,7 @@ def test_gears_twisted_by_a_logged_tool_force_are_named_and_predict_held_out_pos
     rms = lambda a: float(np.sqrt(np.mean(np.sum(a ** 2, axis=1))))  # noqa: E731
     assert rms(d.final.test_mm) < 0.35 * rms(d.geometric.test_mm)
     assert rms(d.final.test_mm) < 0.03  # noise 0.01 mm per axis
+    assert not any("force / torque columns" in g for g in d.guards)  # both files carry them
     # the same positions without the force columns: the compliance has no load to follow
     blind = diagnose(robot, measurements_from_frame(train.drop(columns=FORCES), robot),
                      measurements_from_frame(test.drop(columns=FORCES), robot), folds=3, max_effects=1)
@@ -252,3 +253,13 @@ def test_the_identified_model_predicts_and_compensates_under_a_logged_wrench(cut
     dq = [f"dq{j + 1}_deg" for j in range(6)]
     unloaded = job.compensate(test[qcols]).to_frame()
     assert np.abs(comp[dq].to_numpy() - unloaded[dq].to_numpy()).max() > 1e-3  # the force moves the correction
+
+
+def test_a_test_file_without_the_training_files_force_columns_gets_a_guard(cutting_session):
+    robot, df, _ = cutting_session
+    train, test = split_frame(df, 0.25, np.random.default_rng(0))
+    d = diagnose(robot, measurements_from_frame(train, robot), measurements_from_frame(test.drop(columns=FORCES), robot),
+                 folds=3, max_effects=1)
+    said = [g for g in d.guards if "force / torque columns" in g]
+    assert said == ["test file: no force / torque columns while the training file has them; the test poses are taken "
+                    "as without a process force"]

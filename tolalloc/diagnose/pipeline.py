@@ -343,6 +343,10 @@ def _test_guards(ctx, robot, train, nominal: Evaluation, geometric: Evaluation, 
     extrap = extrapolation_flags(robot, train.q, test.q)
     if extrap.message():
         guards.append(extrap.message())
+    if (train.wrench is None) != (test.wrench is None):
+        has, lacks = ("training", "test") if test.wrench is None else ("test", "training")
+        guards.append(f"{lacks} file: no force / torque columns while the {has} file has them; the {lacks} poses are "
+                      "taken as without a process force")
     models = [("geometric", geometric), ("final", final)] if final is not geometric else [("geometric", geometric)]
     for name, ev in models:
         worse = {k: (error_stats(ev.test_mm)[k], error_stats(nominal.test_mm)[k]) for k in ("rms_mm", "max_mm")}
