@@ -35,6 +35,7 @@ from scipy.spatial import cKDTree
 
 from tolalloc.exceptions import ArgumentError, describe
 from tolalloc.robot.model import Robot
+from tolalloc.diagnose.scores import rms
 from tolalloc.diagnose.geometry import as_built_levels, plausibility_levels
 from tolalloc.diagnose.uncertainty import parameter_covariance
 
@@ -304,7 +305,7 @@ def noise_guard(final, noise_mm: float | None, factor: float = NOISE_FACTOR) -> 
     noise (``noise_mm``, one sd per axis; None: no guard): what is left is neither noise nor a fitted effect."""
     if noise_mm is None:
         return None
-    r = float(np.sqrt(np.mean(np.sum(final.oof_mm ** 2, axis=1))))
+    r = rms(final.oof_mm)
     floor = float(np.sqrt(3.0)) * noise_mm
     if r <= factor * floor:
         return None
@@ -327,7 +328,7 @@ def cv_fallback(nominal, geometric, final, margin: float = FALLBACK_MARGIN) -> t
     chosen : Evaluation
     messages : tuple of str   empty when nothing fired
     """
-    cv = {name: float(np.sqrt(np.mean(np.sum(ev.oof_mm ** 2, axis=1))))
+    cv = {name: rms(ev.oof_mm)
           for name, ev in (("nominal", nominal), ("geometric", geometric), ("final", final))}
 
     def pct(a, b):

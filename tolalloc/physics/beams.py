@@ -89,17 +89,18 @@ def _load_integrals(start, e, L, loads, p, couples=()) -> dict:
     out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
     p0 = p - start
     along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
+    parts = (("bend", lambda v: v - along_e(v)), ("twist", along_e))  # C's bending and torsion parts
     for F, c, through_end in loads:
         r = c - start
         a = (L if through_end else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
         m0, m1 = cross(r, F), cross(e, F)
-        for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
+        for key, C in parts:
             c0, c1 = C(m0), C(m1)
             out[key] += (a * cross(c0, p0) - a ** 2 / 2 * (cross(c0, e) + cross(c1, p0))
                          + a ** 3 / 3 * cross(c1, e))
         out["shear"] += a * (F - along_e(F))
     for M in couples:
-        for key, C in (("bend", lambda v: v - along_e(v)), ("twist", along_e)):
+        for key, C in parts:
             c0 = C(1000.0 * np.asarray(M, dtype=float))  # [N mm]
             out[key] += L[:, None] * cross(c0, p0) - L[:, None] ** 2 / 2 * cross(c0, e)
     return out
