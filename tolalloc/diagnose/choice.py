@@ -4,7 +4,9 @@ Linearised at the geometric fit: residual and effect columns are projected off t
 geometric columns; residual components beyond 3 robust sigma are clipped first, so a few outliers do not pick the
 variant. Variants without a prior compete by BIC on the residual degrees of freedom; variants whose columns carry
 a fitted prior (``EffectBasis.groups``, e.g. the transmission's harmonic series) by their marginal likelihood
-with the prior scales fitted (:mod:`.evidence`), and the chosen one keeps its ridge weights (``prior_w``).
+with the prior scales fitted (:mod:`.evidence`), and the chosen one keeps its ridge weights (``prior_w``). A variant
+with a prior among variants without one (backlash's ``reseat`` beside the flank variants) competes by BIC and, when
+chosen, keeps the ridge weights its evidence fits.
 
 The prior scales are hyper-parameters fitted to data: a cross-validation fold must fit them on its own training
 poses (:func:`prior_weights`), or the held-out block has helped to set the ridge that predicts it -- and ``M``
@@ -65,7 +67,8 @@ def choose_variant(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarra
         bic = n * np.log(max(rss, 1e-300) / (n - M)) + M * np.log(n) if n - M > 0 else np.inf
         if bic < best_bic:
             best, best_bic = c, bic
-    return best
+    # a winner whose columns carry a prior among variants without one keeps its ridge, fitted as below
+    return best if getattr(best, "groups", None) is None else _by_evidence([best], fit, Q, r, n)
 
 
 def combined_thermal(cands: list, fit, J_fixed: np.ndarray, residual_mm: np.ndarray | None = None) -> list:

@@ -32,11 +32,14 @@ signature:
                       ``approach`` (needs ``dir1..dirN``), ``gravity``, ``gravity_soft``, ``preload``,
                       ``preload+hysteresis`` (a trailing hysteresis loss ``h_j`` beside the held flank);
                       ``clearance``: the joints' bearing play (axial, radial, tilt; a prismatic joint's roll) taken up
-                      on the side the gravity load presses (:mod:`tolalloc.physics.clearance`).
+                      on the side the gravity load presses (:mod:`tolalloc.physics.clearance`); ``reseat``: the tool
+                      re-seated within its coupling's clearance at each tool change, read from the logged payload in
+                      time order (:mod:`tolalloc.physics.seating`).
 ``thermal``           link growth (:mod:`tolalloc.physics.thermal`): the logged temperature (``temperature``,
                       ``lag_<tau>min``), a warm-up with time (with links that also bow across their section:
                       ``bow_<tau>min``), the motion history (``activity_<tau>min``) or the motors' losses from
-                      motion and holding torque (``motor_<tau>min``); heat that tilts the joints' axes
+                      motion and holding torque (``motor_<tau>min``), heat exchanged with a held part
+                      (``held_<tau>min``, the logged payload's history); heat that tilts the joints' axes
                       (``tilt_<tau>min``); a drift between the measuring frame and the base (``drift_<tau>min``).
 ``transmission``      kinematic error periodic in each revolute joint's angle (:mod:`tolalloc.physics.transmission`):
                       low orders (``1x``, ``1x2x``, ``2x3x``, ``series<K>``), and ``gear``: once per turn plus the
@@ -64,12 +67,13 @@ from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, co
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
+from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
 from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
 from tolalloc.physics.transmission import SERIES_ORDERS, transmission_columns
 from tolalloc.diagnose.measurements import Measurements
 
 __all__ = ["EFFECTS", "EffectBasis", "effect_basis", "effect_bases", "effect_reference", "applicable", "variants",
-           "joint_effect_dq", "target_points", "point_jacobian"]
+           "joint_effect_dq", "target_points", "point_jacobian", "is_block_parameter"]
 
 EFFECTS = ("joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission")
 #: Effects that move the joints (their basis is ``point_jacobian @ A``).
@@ -138,6 +142,7 @@ def effect_reference(meas: Measurements, gear_ratio=None, robot: Robot | None = 
             "time0_s": float(np.min(t)) if t is not None else None,
             "history": (t, T) if (t is not None and T is not None) else None,
             "motion": (t, meas.q) if t is not None else None,
+            "payload_history": (t, meas.payload_kg) if (t is not None and meas.payload_kg is not None) else None,
             "gear_ratio": None if gear_ratio is None else np.asarray(gear_ratio, float),
             "load_scale": scale, "variants": {}}
 
@@ -151,7 +156,8 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
     if effect == "backlash":
         d = meas.direction
         both = d is not None and np.any((d > 0).any(0) & (d < 0).any(0))
-        return (SIDES if both else GRAVITY_SIDES) + ("clearance",)
+        reseat = ("reseat",) if seat_problem(meas.time_s, meas.payload_kg) is None else ()
+        return (SIDES if both else GRAVITY_SIDES) + ("clearance",) + reseat
     if effect == "thermal":
         return thermal_variants(meas)
     if effect == "transmission":
@@ -195,6 +201,9 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
         B, names, groups = _transmission_basis(robot, q, p_t, variant, ref.get("gear_ratio"))
     elif effect == "backlash" and variant == "clearance":
         B, names, _ = clearance_columns(robot, q, p_t, p_t, meas.payload_kg)  # no prior: as the flank variants
+    elif effect == "backlash" and variant == "reseat":  # the seats as random draws: one prior scale (a ridge)
+        B, names = _seat_basis(robot, meas, ref)
+        groups = np.zeros(len(names), int)
     elif effect in JOINT_EFFECTS:
         A, names = joint_effect_dq(effect, robot, q, meas.direction, variant=variant, tip_mm=p_t,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
@@ -214,6 +223,22 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     else:
         return effect_bases("thermal", robot, meas, t_mm, ref, (variant,))[0]
     return EffectBasis(effect, tuple(names), np.asarray(B, dtype=float), variant, groups)
+
+
+def is_block_parameter(name: str) -> bool:
+    """Whether the fitted parameter ``name`` (``effect:column``) belongs to one block of tool changes (``reseat``):
+    poses of a block no fit has seen are predicted at the mean seat only."""
+    return name.startswith("backlash:seat_")
+
+
+def _seat_basis(robot: Robot, meas: Measurements, ref: dict) -> tuple:
+    """``(B (P, 3, M), names)`` of ``reseat``: the blocks of the training file's tool changes, placed by time."""
+    ht, hm = ref["payload_history"]
+    if meas.time_s is None or meas.payload_kg is None:
+        raise ValueError("the re-seat of the tool needs time_s and payload_kg in every file (the training file has "
+                         "them): add them to this file, or diagnose without the backlash variant 'reseat'")
+    blocks = seat_blocks(meas.time_s, meas.payload_kg, ht, hm)
+    return seat_columns(robot, meas.q, blocks, np.bincount(seat_blocks(ht, hm, ht, hm)))
 
 
 def _transmission_basis(robot: Robot, q, p_t, variant: str, ratios) -> tuple:

@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from tolalloc.diagnose.effects import effect_basis
+from tolalloc.diagnose.effects import effect_basis, is_block_parameter
 from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, bayes_factor
 from tolalloc.diagnose.guards import FALLBACK_MARGIN, extrapolation_flags, outside_range
 from tolalloc.diagnose.measurements import Measurements
@@ -269,6 +269,15 @@ def separating_poses(ctx, pairs: list, evals: dict, *, n: int = N_SUGGESTED, n_s
     return pd.DataFrame(rows)
 
 
+def _interpolation_oof(ev) -> tuple:
+    """(out-of-fold RMS, its scheme's words) for the interpolation check: the time blocks', or the joint-space
+    blocks' for a model with a seat per tool change (:mod:`tolalloc.physics.seating`) -- a time block holds out
+    whole tool changes, whose seats no fit can know, which is the seats' scatter, not a fit that interpolates."""
+    if ev.oof_joint_mm is not None and any(is_block_parameter(n) for n in ev.param_names):
+        return rms(ev.oof_joint_mm), " (joint-space blocks: time blocks hold out whole tool changes)"
+    return rms(ev.oof_mm), ""
+
+
 def inconclusive_reasons(parameter_check, evals: dict, cal, test_stats: dict | None, *, alpha: float = 0.01,
                          min_gain: float = 0.02, untestable: tuple = ()) -> list:
     """Reasons to claim no effect (module docstring).
@@ -289,10 +298,10 @@ def inconclusive_reasons(parameter_check, evals: dict, cal, test_stats: dict | N
                                          f"for its {len(final.param_names)} effect parameters beside the geometry: the "
                                          "fits interpolate): its"))
     for ev, fit, what in checks:
-        oof, train = rms(ev.oof_mm), fit.rms_mm
+        (oof, scheme), train = _interpolation_oof(ev), fit.rms_mm
         if oof > UNSTABLE_RATIO * train:
-            out.append(f"{what} out-of-fold RMS {oof:.4g} mm is {oof / max(train, 1e-300):.3g} x its training RMS "
-                       f"{train:.4g} mm (limit {UNSTABLE_RATIO:g} x)")
+            out.append(f"{what} out-of-fold RMS {oof:.4g} mm{scheme} is {oof / max(train, 1e-300):.3g} x its training "
+                       f"RMS {train:.4g} mm (limit {UNSTABLE_RATIO:g} x)")
     if final.effects and final is not geometric and rms(final.oof_mm) > (1 - min_gain) * rms(geometric.oof_mm):
         out.append(f"the selected effect(s) do not lower the out-of-fold RMS of the training file by {100 * min_gain:g} "
                    f"%: {rms(final.oof_mm):.4g} mm against the geometric model's {rms(geometric.oof_mm):.4g} mm (time "

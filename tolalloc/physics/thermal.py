@@ -23,6 +23,14 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`PAUSE_STEPS`
   median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
 
+* ``held_<tau>min``: heat exchanged with what the robot holds: a gripped part warmer or colder than the arm (a
+  casting from the die, a chilled or frozen part), a gripper's own heat source or sink (a solenoid, a vacuum ejector's
+  expanding air) acting while it holds. The logged payload held over the interval before each pose (the previous
+  pose's ``payload_kg`` in time order: the heat a part exchanges scales with its mass) through the first-order lag of
+  heating and cooling (time constant ``tau``); the links grow or shrink each by its own coefficient (the heat enters
+  at the wrist and spreads unevenly) [1e-6 per kg]. Needs a payload that varies; a held part that never changes is
+  the warm-up's shape.
+
 * ``tilt_<tau>min``: heat that tilts the joints' axes: a housing warmed on one side (the motor and its holding-brake
   coil flanged to it) grows more on that side, and the axis it carries tilts by ``alpha h dT / s`` (wall height ``h``,
   bearing spacing ``s``; Bryan, CIRP Annals 39(2), 1990; ISO 230-3). The heat flows while the robot works and stops
@@ -56,7 +64,7 @@ from tolalloc.physics.loads import across_axes, gravity_torques, point_at
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
            "MAX_STEP_S", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt", "duty_warmup",
-           "frame_drift", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column", "is_measurement_variant"]
+           "frame_drift", "held_heat", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column", "is_measurement_variant"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -179,14 +187,24 @@ def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float
     return lag_filter(time_s, np.concatenate([speed, held], axis=1), tau_s, on_s=on)
 
 
+def held_heat(time_s: np.ndarray, payload_kg: np.ndarray, tau_s: float) -> np.ndarray:
+    """Lagged heat of a held payload, shape (P,): the payload of the previous pose in time order held over the interval
+    before each pose (0 before the first), through the first-order lag of time constant ``tau_s`` started at 0 [kg]."""
+    order = np.argsort(time_s, kind="stable")
+    held = np.zeros(len(time_s))
+    held[order[1:]] = np.asarray(payload_kg, float)[order[:-1]]
+    return lag_filter(time_s, held[:, None], tau_s)[:, 0]
+
+
 def thermal_variants(meas) -> tuple:
     """Thermal variants the data can carry (first: the default), empty when none."""
-    T, t = meas.temperature_c, meas.time_s
+    T, t, m_kg = meas.temperature_c, meas.time_s, meas.payload_kg
     out = ["temperature"] if T is not None and np.ptp(T) >= 0.05 else []
     if time_problem(t) is None:
         if out:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
-        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor", "tilt")
+        held = ("held",) if m_kg is not None and np.ptp(m_kg) > 0 else ()
+        out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor", "tilt") + held
                 for m in LAG_MIN]
         out += [f"drift_{m:g}min" for m in LAG_MIN if m >= DRIFT_MIN_MIN]
     return tuple(out)
@@ -227,6 +245,15 @@ def _history(meas, ref: dict, fn):
     return fn(np.concatenate([ht, t]), np.concatenate([hq, meas.q]))[len(ht):]
 
 
+def _held_history(meas, ref: dict, tau_s: float) -> np.ndarray:
+    """:func:`held_heat` over the training poses and then these, in time order (as :func:`_history`)."""
+    ht, hm = ref["payload_history"]
+    t, m = meas.time_s, meas.payload_kg
+    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hm, m):
+        return held_heat(t, m, tau_s)
+    return held_heat(np.concatenate([ht, t]), np.concatenate([hm, m]), tau_s)[len(ht):]
+
+
 def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None,
                    robot: Robot | None = None) -> np.ndarray:
     """The driving signal of ``variant`` on the poses of ``meas``: shape (P,) for the one-coefficient variants and
@@ -243,6 +270,8 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
         return _history(meas, ref, lambda ts, qs: activity(ts, qs, tau)) @ link_joints.T
     if variant.startswith("motor"):
         return _history(meas, ref, lambda ts, qs: motor_heat(ts, qs, gravity_torques(robot, qs), tau))
+    if variant.startswith("held"):
+        return _held_history(meas, ref, tau)
     ht, hT = ref["history"]  # lag of the temperature log
     allt, allT = np.concatenate([ht, t]), np.concatenate([hT, meas.temperature_c])
     y = lagged(allt, allT, tau)[len(ht):]
@@ -306,10 +335,10 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
             bow = link_bow(robot, meas.q, points_mm) if bow is None else bow
             out.append(_bow_basis(grow, links, bow, s, v))
             continue
-        if v.startswith(("links_warmup", "activity")):
+        if v.startswith(("links_warmup", "activity", "held")):
             per = s[:, None] if s.ndim == 1 else s
             B = grow * (per if per.shape[1] == grow.shape[2] else np.repeat(per, grow.shape[2], axis=1))[:, None, :]
-            unit = "1e-6" if v.startswith("links") else "1e-6 per rad/s"
+            unit = {"links": "1e-6", "held": "1e-6 per kg"}.get(v.split("_")[0], "1e-6 per rad/s")
             labels = tuple(f"alpha_{nm} [{unit}] ({v})" for nm in links)
         else:
             B = (total * s[:, None])[:, :, None]
