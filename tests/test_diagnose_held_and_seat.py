@@ -97,6 +97,7 @@ def test_a_part_chilling_the_arm_while_held_is_diagnosed_as_held_heat():
     variant = next(c.variant for c in d.ranking if c.effect == "thermal")
     assert variant.startswith("held_") and 7.5 <= float(variant[5:-3]) <= 30, variant
     assert d.final.heldout_rms_mm < 0.5 * d.geometric.heldout_rms_mm
+    _export_refused(d, robot, "held_")
 
 
 # ------------------------------------------------------------------------------------------------ tool re-seat
@@ -186,3 +187,22 @@ def test_a_tool_reseated_at_every_change_is_diagnosed_as_backlash_reseat():
     assert d.effect == "backlash", d.verdict
     assert next(c.variant for c in d.ranking if c.effect == "backlash") == "reseat"
     assert rms(d.final.test_mm) < 0.025 < 0.1 < rms(d.geometric.test_mm)
+    # the identified model predicts the session's poses with their payload and time; its file refuses the seats
+    from tolalloc.diagnose.model_use import identified_model
+
+    model = identified_model(d)
+    pred = model.points(model.measurements(q[test], payload_kg=m[test], time_s=t[test]), "base")
+    assert rms(pred - xyz[test]) < 0.025
+    _export_refused(d, robot, "reseat")
+
+
+def _export_refused(d, robot, variant: str):
+    """The identified model's file records the effect but refuses to rebuild it (it needs the training session)."""
+    import json
+
+    from tolalloc.diagnose.model_export import identified_section, model_from_identified
+    from tolalloc.diagnose.model_use import identified_model
+
+    section = json.loads(json.dumps(identified_section(identified_model(d))))
+    with pytest.raises(tolalloc.TolallocError, match=variant):
+        model_from_identified(section, robot)

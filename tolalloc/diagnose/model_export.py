@@ -14,7 +14,8 @@ rebuild from the exported TOML.
   with the training file's reference values (mean temperature, time origin, load scale per joint, gear ratios)
   the effects' columns are computed from. :func:`model_from_identified` rebuilds the identified model from it and the
   nominal robot, so a program can be compensated from the file alone; thermal variants driven by the training
-  file's history (``lag``, ``activity``, ``motor``) are recorded but cannot be rebuilt from the file.
+  file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``) and the seats of its tool changes (backlash
+  ``reseat``) are recorded but cannot be rebuilt from the file.
 
 The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
 points coincide and the identified axes are skew, the link between them is the axes' small distance (a link the
@@ -39,7 +40,7 @@ __all__ = ["FORMAT", "identified_geometry", "identified_robot_dict", "identified
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
 #: Thermal variants whose columns need the training file's history (not rebuilt from a file).
-HISTORY_VARIANTS = ("lag", "activity", "motor", "tilt")
+HISTORY_VARIANTS = ("lag", "activity", "motor", "tilt", "held")
 
 
 def identified_geometry(model: IdentifiedModel) -> tuple:
@@ -188,6 +189,11 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
             raise TolallocError(f"identified model: its thermal effect (variant {v}) is driven by the training file's "
                                 "history, which the file does not hold; use the diagnosis itself "
                                 "(MeasurementDiagnosis.compensate) for this model.")
+        if e["effect"] == "backlash" and v == "reseat":
+            raise TolallocError("identified model: its backlash effect (variant reseat) holds the tool's seats in the "
+                                "training session's tool changes, which a new tool change does not keep; use the "
+                                "diagnosis itself for that session, or diagnose without the tool changes' payload "
+                                "blocks for a model of the mean seat.")
         effects.append(e["effect"])
         variants[e["effect"]] = v
         columns[e["effect"]] = tuple(e["columns"])
