@@ -121,6 +121,7 @@ def test_seat_problems_are_named():
     t = 60.0 * np.arange(40)
     assert seat_problem(None, np.zeros(40)).startswith("needs time_s")
     assert seat_problem(t, np.full(40, 2.0)) == "the payload never changes"
+    assert seat_problem(t[::-1], np.repeat([1.0, 2.0], 20)) is not None  # a time that runs backwards
     assert seat_problem(t, np.repeat([0.0, 2.0], 20)).startswith("the payload drops to zero")
     assert "at most" in seat_problem(t, 1.0 + np.arange(40.0) % 2)
     assert f"at least {MIN_BLOCK_POSES}" in seat_problem(t, np.repeat([1.0, 2.0], [37, 3]))

@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.physics.loads import target_points
+from tolalloc.physics.thermal import time_problem
 from tolalloc.robot.model import Robot
 
 __all__ = ["MAX_BLOCKS", "MIN_BLOCK_POSES", "block_contrasts", "seat_blocks", "seat_columns", "seat_problem"]
@@ -51,6 +52,9 @@ def seat_problem(time_s, payload_kg) -> str | None:
     """Why the training poses cannot carry a re-seat per block (None when they can)."""
     if time_s is None or payload_kg is None:
         return "needs time_s and payload_kg (the tool changes are read from the payload in time order)"
+    why = time_problem(np.asarray(time_s, float))
+    if why is not None:
+        return why
     if np.min(payload_kg) <= 0:
         return ("the payload drops to zero: an empty gripper between picks, not a tool change (a tool's mass stays "
                 "in the payload)")
