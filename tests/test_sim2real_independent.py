@@ -2408,3 +2408,186 @@ def test_set_q_every_kind_lies_in_its_true_structure_and_known_answers():
     assert tip(1 / R) == pytest.approx(npar["tip"])
     h = 1e-6
     assert qb.neck_local(npar) == pytest.approx((tip((1 - h) / R) - tip(1 / R)) / h, rel=1e-4, abs=1e-6)
+
+
+def test_set_r_cases_kinds_and_determinism():
+    """Set R: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session and probe hooks leave cases without a set-R kind alone
+    (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a bracket's target
+    sits at its tip, a swing-away tool's out on the tool; the rehoming, sprayer, welding and hose cases have their
+    blocks."""
+    from sim2real_indep import effects_r as er
+
+    _assert_set_module("R", 40_7018, er, ("gear", "door_draught"))
+    for name in ("effects_r", "effects_r_joint", "effects_r_body", "effects_r_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_r" in _imports(STUDY / "generator.py")
+    assert er.AFTER_TRACKER == set()
+    probe = np.array([3.0, -4.0, 12.0])                                     # |probe| 13 mm
+    share = 8 / 95
+    assert er.probe_hook(("sag", "stick_band"), probe) is probe
+    L = 120 + 100 * share
+    assert er.probe_hook(("web_buckling",), probe) == pytest.approx([3 / 5 * L, -4 / 5 * L, 30.0])
+    assert er.probe_hook(("swing_mount",), probe) == pytest.approx(probe / 13 * (150 + 100 * share))
+    for seed in range(3):
+        opts = lambda kinds: er.session_options("kr16_like", kinds, np.random.default_rng(seed),  # noqa: E731
+                                                {"blocks": 1, "gap_kind": "none"})
+        home = opts(("rehoming",))
+        assert 3 <= home["blocks"] <= 5 and home["gap_kind"] == "pause" and home["pause_min"] == (5.0, 20.0)
+        weld = opts(("welding_cable",))
+        assert 4 <= weld["blocks"] <= 7 and weld["gap_kind"] == "exercise"
+        assert opts(("sprayer_tank", "floor_cable"))["gap_kind"] == "pause"
+        assert opts(("slide_shift",)) == {"blocks": 1, "gap_kind": "none"}
+    _assert_regenerates("R", max_effect_poses=50)
+
+
+def test_set_r_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-R kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the balancer, the homing and the belt do nothing on the arms
+    without them; and known answers: the line's sawtooth and the balancer's lever, the slide's moment, the stick band's
+    stop, the cable's pull, the homing's blocks, the splice's span, the slab's basin (Westergaard's w(0) = P / 8 k l^2),
+    the chassis' statics and the tank's draining, the web's buckling, the swing mount's dead zone and turn, and the
+    links' growth and lags."""
+    from types import SimpleNamespace
+
+    from scipy.special import kei
+
+    from sim2real_indep import effects_r_body as rb
+    from sim2real_indep import effects_r_joint as rj
+    from sim2real_indep import effects_r_thermal as rt
+
+    specs = (("ur10", ("slide_shift", "stick_band", "floor_cable", "forklift_slab", "sprayer_tank", "heated_hose",
+                       "line_pressure", "rehoming", "belt_splice")),
+             ("kr16_like", ("line_pressure", "rehoming", "belt_splice", "welding_cable", "web_buckling")),
+             ("tool_changer", ("swing_mount", "belt_splice", "stick_band")))
+    inert = {"ur10": ("line_pressure", "rehoming", "belt_splice"), "kr16_like": (), "tool_changer": ("belt_splice",)}
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 18)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"line_pressure": lambda: [p["dF_N"]], "slide_shift": lambda: [p["m_kg"]],
+                   "stick_band": lambda: rj.band_amplitudes(p), "floor_cable": lambda: [p["F_N"]],
+                   "rehoming": lambda: rj.home_amplitudes(p), "belt_splice": lambda: [p["delta_mm"]],
+                   "forklift_slab": lambda: [p["A_mm"]], "sprayer_tank": lambda: [1 / p["k_N_mm"]],
+                   "web_buckling": lambda: rb.web_amplitudes(p), "swing_mount": lambda: [1 / p["k_Nmm"]],
+                   "heated_hose": lambda: [p["dT_K"]], "welding_cable": lambda: [p["dT_K"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs["ur10"]
+    P = case.truth["params"]
+    # slide: the carriage's weight moves by the stroke: axis 1 (vertical) sees nothing, axis 2 the moment change
+    sp = P["slide_shift"]
+    sig = rj.slide_signal(sp, ctx, case.truth["hw"])
+    assert np.abs(sig[:, 0]).max() < 1e-15 and not sig[sp["state"] == 0].any()
+    fl, Rt = kin.flange(ctx.chain, ctx.q)
+    w, c = kin.joint_frames(ctx.chain, ctx.q)
+    arm = (fl + Rt @ (sp["p_ret"] + sp["s_mm"])) - (fl + Rt @ sp["p_ret"])
+    dtau = np.einsum("pi,pi->p", np.cross(arm / 1000, [0, 0, -kin.G]), w[:, 1])
+    comp = 1 / np.array([hw["K3"] / hw["soften"] for hw in case.truth["hw"]["drives"]])[1]
+    assert sig[:, 1] == pytest.approx(sp["state"] * dtau * comp)
+    # stick band: unloaded, the axis stops short of its target by T_f / K_s (0.5-1.5 arcmin) on the approach's side
+    bp = P["stick_band"]
+    stub = SimpleNamespace(q=np.zeros((2, 6)), loads=np.zeros((2, 6)),
+                           session=SimpleNamespace(direction=np.array([[1.0] * 6, [-1.0] * 6])))
+    dq = rj.band_apply(bp, stub, None).dq[:, bp["joints"]]
+    half = bp["T_f"] / bp["K_s"]
+    assert dq == pytest.approx(np.array([-half, half]))
+    assert np.all((half > 0.49 * ph.ARCMIN) & (half < 1.51 * ph.ARCMIN))
+    # floor cable: pulled where the flange drew away from the anchor; the pull's torque is w . ((p - c) x F)
+    cp = P["floor_cable"]
+    dist = np.linalg.norm(fl - cp["anchor"], axis=1)
+    assert rj.cable_pulled(cp, ctx)[1:] == pytest.approx((np.diff(dist) > 0).astype(float))
+    u = (cp["anchor"] - fl) / dist[:, None]
+    tau2 = np.einsum("pi,pi->p", np.cross((fl - c[:, 1]) / 1000, u), w[:, 1])
+    assert rj.cable_signal(cp, ctx, case.truth["hw"])[:, 1] == pytest.approx(rj.cable_pulled(cp, ctx) * tau2 * comp)
+    # slab: Westergaard's centre deflection P / (8 k l^2); the basin falls away from the load; only while it stands
+    fp = P["forklift_slab"]
+    assert rb.slab_basin(dict(fp, r_mm=0.0))[0] == pytest.approx(1 / 8) and -kei(0.0) == pytest.approx(np.pi / 4)
+    w1, dw = rb.slab_basin(fp)
+    h = 1e-3
+    assert dw < 0 and dw == pytest.approx((rb.slab_basin(dict(fp, r_mm=fp["r_mm"] + h))[0] - w1) / h, rel=1e-4)
+    assert rb.slab_present(fp, fp["stays"][:, 0] - 1.0).sum() <= len(fp["stays"]) - 1
+    assert rb.slab_present(fp, fp["stays"][:1, 0] + 1.0) == pytest.approx([1.0])
+    # chassis: the springs carry every weight (unit compliance); the tank is refilled at each block's start
+    tp = P["sprayer_tank"]
+    m, pos, _ = ctx.mass_state
+    mt = rb.tank_mass(tp, ctx.session)
+    pivot = rb.tank_shape(tp, SimpleNamespace(mass_state=ctx.mass_state, session=ctx.session,
+                                              target=np.zeros((30, 3)) + tp["O"]))
+    assert pivot[:, :2] == pytest.approx(np.zeros((30, 2)), abs=1e-12)  # the chassis' centre only heaves
+    assert 4 * pivot[:, 2] == pytest.approx(-kin.G * (m.sum(axis=1) + mt))  # four unit springs carry every weight
+    blocks = np.cumsum(ctx.session.gap_s < 0)
+    last = np.r_[np.flatnonzero(np.diff(blocks)), len(blocks) - 1]
+    assert mt[last] == pytest.approx(tp["full_kg"] * (1 - tp["drain"])) and mt.max() <= tp["full_kg"]
+    # heated hose: nothing before the switch-on, 1 - 1/e one lag after; without a gradient the link only grows
+    hp = P["heated_hose"]
+    assert rt.hose_signal(hp, [hp["t_on_s"] - 5, hp["t_on_s"] + hp["tau_s"]]) == pytest.approx([0.0, 1 - np.exp(-1)])
+    R, _ = kin.body_transforms(ctx.chain, ctx.q)
+    li = hp["link"]
+    grow = rt.bow_per_kelvin(ctx, li, hp["side"], 0.0, hp["D_mm"], hp["cte"])
+    assert grow == pytest.approx(np.einsum("pij,j->pi", R[:, ctx.chain.link_body[li]], hp["cte"] * ctx.chain.links[li]))
+    # with a gradient, the far end moves away from the warm side by alpha r_g dT L^2 / 2D per kelvin
+    L = np.linalg.norm(ctx.chain.links[li])
+    Rb, tb = R[:, ctx.chain.link_body[li]], kin.body_transforms(ctx.chain, ctx.q)[1][:, ctx.chain.link_body[li]]
+    end_only = SimpleNamespace(chain=ctx.chain, q=ctx.q,
+                               target=np.einsum("pij,j->pi", Rb, np.cumsum(ctx.chain.links, 0)[li]) + tb)
+    side = np.einsum("pij,j->pi", Rb, hp["side"])
+    bow = rt.bow_per_kelvin(end_only, li, hp["side"], 1.0, hp["D_mm"], hp["cte"])
+    # (the side was drawn square to the true link, 0.1-0.5 mm off the file's: 1e-3)
+    assert np.einsum("pi,pi->p", bow, side) == pytest.approx(-hp["cte"] * L ** 2 / (2 * hp["D_mm"]) * np.ones(30),
+                                                             rel=1e-3)
+
+    case, ctx = runs["kr16_like"]
+    P = case.truth["params"]
+    # line pressure: the sawtooth's cut-in and cut-out; the lever at a right angle r1 r2 / sqrt(r1^2 + r2^2)
+    lp = P["line_pressure"]
+    t = np.array([0.0, lp["t_load_s"] - 1e-9, lp["t_load_s"] + lp["t_unload_s"] / 2]) - lp["phase_s"]
+    assert rj.sawtooth(t, lp) == pytest.approx([-0.5, 0.5, 0.0], abs=1e-6)
+    r1, r2 = lp["r1_mm"], lp["r2_mm"]
+    assert rj.lever_m(lp, np.array([np.pi / 2 - lp["g0"]])) == pytest.approx([r1 * r2 / np.hypot(r1, r2) / 1000])
+    assert lp["sign"] == -np.sign(ctx.loads[:, 1].mean())
+    # rehoming: the first block keeps the calibration's zero, each later one its own offsets
+    hp = P["rehoming"]
+    b = rj.block_of(ctx.session)
+    assert b.max() >= 2 and not hp["offset"][0].any()
+    assert rj.home_apply(hp, ctx, None).dq[:, hp["joints"]] == pytest.approx(hp["offset"][b])
+    # belt splice: off the span nothing, inside it the full pitch error, ramps over the splice; period L / r
+    sp = P["belt_splice"]
+    r, s0 = sp["r_mm"], sp["s0_mm"]
+    s = np.array([0.0, sp["w_mm"] / 2, sp["span_mm"] / 2, sp["span_mm"] + 1.0])
+    q = (s - s0) / r
+    assert rj.splice_on_span(sp, q) == pytest.approx([0.0, 0.5, 1.0, 0.0])
+    assert rj.splice_on_span(sp, q + sp["L_mm"] / r) == pytest.approx([0.0, 0.5, 1.0, 0.0])
+    # web: the first part never beyond V_cr, the second only past it
+    wp = P["web_buckling"]
+    V = rb.web_shear(wp, ctx)
+    parts = rb.web_parts(wp, ctx)
+    assert np.linalg.norm(parts[0], axis=1).max() <= wp["V_cr"] * (1 + 1e-12)
+    assert not parts[1][np.abs(V) <= wp["V_cr"]].any() and (np.abs(V) > wp["V_cr"]).any()
+    assert wp["k2"] < 0.46 * wp["k1"]
+    # welding: the production periods are the exercise gaps; without welding the side cools from x0 through the lag
+    cp = P["welding_cable"]
+    ses = ctx.session
+    assert rt.welding_periods(ses)[:, 1] - rt.welding_periods(ses)[:, 0] == pytest.approx(ses.gap_s[ses.gap_s > 0])
+    cold = SimpleNamespace(time_s=ses.time_s, dwell_s=ses.dwell_s, move_s=ses.move_s, gap_s=np.zeros_like(ses.gap_s))
+    x = rt.weld_signal(cp, cold)                                        # (linear between the 10 s grid's points)
+    since = ses.time_s - ses.time_s[0] + ses.dwell_s[0] + rt.GRID_S
+    assert x == pytest.approx(cp["x0"] * np.exp(-since / cp["tau_s"]), rel=1e-4)
+
+    case, ctx = runs["tool_changer"]
+    # swing mount: on its stop below the preload; off it, a turn about the hinge's axis
+    wp = case.truth["params"]["swing_mount"]
+    sh = rb.swing_shape(wp, ctx)
+    M = wp["side"] * rb.swing_moment(wp, ctx)
+    assert not sh[M <= wp["M_pre"]].any() and (M > wp["M_pre"]).any()
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    assert np.abs(np.einsum("pi,pi->p", sh, Rt @ wp["axis"])).max() < 1e-9 * np.abs(sh).max()
+    assert np.abs(np.einsum("pi,pi->p", sh, Rt @ (wp["T"] - wp["H"]))).max() < 1e-9 * np.abs(sh).max() * 250

@@ -43,6 +43,7 @@ from sim2real_indep import effects_n as en
 from sim2real_indep import effects_o as eo
 from sim2real_indep import effects_p as ep
 from sim2real_indep import effects_q as eq
+from sim2real_indep import effects_r as er
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -77,11 +78,12 @@ EFFECTS = {
     **eo.EFFECTS_O,  # set O's new kinds
     **ep.EFFECTS_P,  # set P's new kinds
     **eq.EFFECTS_Q,  # set Q's new kinds
+    **er.EFFECTS_R,  # set R's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
-                 | eq.AFTER_TRACKER)
+                 | eq.AFTER_TRACKER | er.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -166,7 +168,8 @@ def _session_options(robot_key, physics, rng):
     opts = en.session_options(robot_key, physics, rng, opts)  # set N (no draws without a set-N kind)
     opts = eo.session_options(robot_key, physics, rng, opts)  # set O (no draws without a set-O kind)
     opts = ep.session_options(robot_key, physics, rng, opts)  # set P (no draws without a set-P kind)
-    return eq.session_options(robot_key, physics, rng, opts)  # set Q (no draws without a set-Q kind)
+    opts = eq.session_options(robot_key, physics, rng, opts)  # set Q (no draws without a set-Q kind)
+    return er.session_options(robot_key, physics, rng, opts)  # set R (no draws without a set-R kind)
 
 
 def _tracker(rng):
@@ -202,6 +205,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = eo.probe_hook(physics, probe, robot_key)  # set O's spindle nose, C-frame die (no draws)
     probe = ep.probe_hook(physics, probe, robot_key)  # set P's changed tool (no draws)
     probe = eq.probe_hook(physics, probe)  # set Q's holder, gooseneck, gripper boom (no draws)
+    probe = er.probe_hook(physics, probe)  # set R's bracket, swing-away tool (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

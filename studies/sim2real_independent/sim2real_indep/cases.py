@@ -10,8 +10,9 @@ each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), se
 ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
 eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
-per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`) and set Q (24 cases,
-8 per arm) a seventeenth (:mod:`effects_q`). A case: (id, robot, physics kinds, poses, split).
+per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
+8 per arm) a seventeenth (:mod:`effects_q`) and set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`). A case:
+(id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ import numpy as np
 
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
-SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017
+SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -713,12 +714,60 @@ SET_Q = [
     ("Q24", "kr16_like", ("fluid_tank", "ejector_chill"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Q)
+#: set R: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_r`); written as an independent test set after set Q, from the literature, without reading how
+#: the diagnosis models effects. The pneumatic balancer and the homing sit on kr16_like and tool_changer, the belt splice
+#: on kr16_like only (they do nothing on the other arms); the rest act on every arm. Oracle labels when written
+#: (oracle.py only; the diagnosis was not run): every case its truth (gains 24-93 %; each mixture component's removal
+#: costs 33 % or more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's model within
+#: 25 % of the truth; the closest: R01's mount model 1.31x, R21's joint model 1.33x, R09's transmission model 1.52x,
+#: R11's joint model 1.64x). Changed after trial draws (the first ranges in the modules' docstrings): the sprayer's
+#: chassis first on a truck's soft leaf springs with a larger tank (6-8 mm at the tool), now a compact carrier's rubber
+#: axles; tool_changer's homing first on the precision switch of kr16_like's cams (R10: gain 29 %, the thermal model at
+#: 1.22x), now on the inductive proximity switches heavy axes use; the belt splice first on tool_changer's axis 5 too
+#: with a long belt, whose splice never reached the tight span over the axis' +-90 deg (R13 gained nothing): the stage is
+#: now a compact one on kr16_like only, and R13 holds tool_changer's stick band; the swing mount's spring first stiffer
+#: (R21: gain 10 %, the transmission model at 1.11x), now sized to release at a light collision; the heated hose first
+#: 2-5 K on steel (R14 on tool_changer: 0.06 mm, absorbed), now 4-10 K with a steeper gradient (steel's lower
+#: conductivity), and R14 holds tool_changer's forklift slab; the welding cable first on kr16_like (R22) with the cell
+#: warm from earlier welding (its side rose only from 58 to 95 % of its steady value, 0.2 mm with most of it constant:
+#: absorbed), now with the shift starting at the session, the cell cold, and R22 holds kr16_like's heated hose. No pose
+#: count or seed was changed. A trial draw on the seed + 1 was clean in 22 of 24 cases (R09's balancer on tool_changer:
+#: gain 15 %, the thermal model at 1.18x, a small force swing on a stiff gear; R20's belt splice: gain 7 %, the splice
+#: hardly on the span over the axis' travel), not tuned further.
+SET_R = [
+    ("R01", "ur10", ("slide_shift",), 120, "random"),
+    ("R02", "ur10", ("stick_band",), 45, "random"),
+    ("R03", "ur10", ("forklift_slab",), 100, "time"),
+    ("R04", "ur10", ("web_buckling",), 140, "random"),
+    ("R05", "ur10", ("welding_cable",), 170, "time"),
+    ("R06", "ur10", ("sprayer_tank",), 110, "random"),
+    ("R07", "ur10", (), 70, "random"),
+    ("R08", "ur10", ("floor_cable", "heated_hose"), 180, "time"),
+    ("R09", "tool_changer", ("line_pressure",), 130, "random"),
+    ("R10", "tool_changer", ("rehoming",), 150, "random"),
+    ("R11", "tool_changer", ("swing_mount",), 110, "random"),
+    ("R12", "tool_changer", ("slide_shift",), 120, "random"),
+    ("R13", "tool_changer", ("stick_band",), 140, "random"),
+    ("R14", "tool_changer", ("forklift_slab",), 160, "time"),
+    ("R15", "tool_changer", (), 30, "random"),
+    ("R16", "tool_changer", ("line_pressure", "web_buckling"), 190, "random"),
+    ("R17", "kr16_like", ("floor_cable",), 130, "random"),
+    ("R18", "kr16_like", ("sprayer_tank",), 160, "time"),
+    ("R19", "kr16_like", ("rehoming",), 120, "random"),
+    ("R20", "kr16_like", ("belt_splice",), 110, "random"),
+    ("R21", "kr16_like", ("swing_mount",), 150, "random"),
+    ("R22", "kr16_like", ("heated_hose",), 160, "time"),
+    ("R23", "kr16_like", (), 90, "random"),
+    ("R24", "kr16_like", ("forklift_slab", "stick_band"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-R)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
-        "Q": (SET_Q, SEED_Q)}
+        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -157,7 +157,23 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "sensor_stops": "joint_compliance", "fluid_tank": "joint_compliance", "lash_comp": "backlash",
           "servo_tail": "backlash", "ball_pass": "transmission", "draw_wire": "transmission",
           "disc_springs": "mount_compliance", "kinematic_mount": "mount_compliance", "ball_holder": "link_deflection",
-          "gooseneck": "link_deflection", "ejector_chill": "thermal", "door_draught": "thermal"}
+          "gooseneck": "link_deflection", "ejector_chill": "thermal", "door_draught": "thermal",
+          # set R (sim2real_indep.effects_r; line_pressure, axis 2's gear twisted by a line-fed pneumatic balancer's
+          # force swinging with the compressor's load / unload cycle, and slide_shift, the gears twisted by a tool
+          # slide's carriage standing out or in, scored as joint compliance; stick_band, axes held by a proportional
+          # loop short of their target by their friction on the approach's side, and floor_cable, the joints twisted by
+          # a floor-dragged cable's friction only when it was last pulled out, as backlash (errors that follow the last
+          # motion); rehoming, incremental encoders' zero set anew at each power-up's homing, and belt_splice, a belt
+          # splice's pitch error as a function of axis 5's angle, as transmission (the joints' reading and drive);
+          # forklift_slab, the base on a slab dished by a parked truck, and sprayer_tank, the base on a sprung chassis
+          # under its draining tank, as mount compliance (the robot's support); web_buckling, the target's sheet-metal
+          # bracket buckling in shear, and swing_mount, the target's tool swung off its stop by its weight, as link
+          # deflection (the end-of-arm structure carrying the target); heated_hose and welding_cable, links bowed by a
+          # heated hose and a welding cable, as thermal)
+          "line_pressure": "joint_compliance", "slide_shift": "joint_compliance", "stick_band": "backlash",
+          "floor_cable": "backlash", "rehoming": "transmission", "belt_splice": "transmission",
+          "forklift_slab": "mount_compliance", "sprayer_tank": "mount_compliance", "web_buckling": "link_deflection",
+          "swing_mount": "link_deflection", "heated_hose": "thermal", "welding_cable": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
