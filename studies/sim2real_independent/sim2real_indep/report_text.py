@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; all seventeen: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; all eighteen: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -158,7 +158,9 @@ jacket's thermostat cycle that the logged hall air does not see (P05, and with a
 locating pins land anywhere in their clearance at each tool change (P06, P10, P19: a new target offset per block,
 which the logged tool weight marks but no family models). A slender dispensing lance bent by its hose was named
 transmission (P04) or a transmission / joint compliance tie (P22), and the mixture of a slack belt and pole-pitch
-encoder errors a three-way tie (P16).
+encoder errors a three-way tie (P16). The tool re-seat per tool change written after these misses (backlash
+`reseat`) names P06 and P19 in the tables below (16/24 on the code as it stands); a re-run after a set's misses were
+seen is not a judgement of the set -- set R judges it.
 
 **Set Q** (24 cases, seed 40_7017) is a seventeenth independent test set of twelve new kinds
 (`sim2real_indep/effects_q*.py`, table below), written the same way by another helper, who read neither the
@@ -174,6 +176,22 @@ strain-wave gear's error at the wave-generator bearing's ball-pass rate, a non-i
 `none`); a servo's overshoot in the direction of motion, scaled by the move's speed (Q02, named transmission); torque
 sensors' flexures locked by their overload stops (Q11, a tie won by link deflection); and a base on disc-spring stacks
 softening towards flat (Q19, named transmission).
+
+**Set R** (24 cases, seed 40_7018) is an eighteenth independent test set of twelve new kinds
+(`sim2real_indep/effects_r*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-Q, and who did not run the diagnosis. It was run once, on the
+code as it stood after set Q had been judged -- the diagnosis had gained two effects read from the logged payload's
+history, heat exchanged with a held part (thermal `held_<tau>min`) and a tool re-seated at each tool change (backlash
+`reseat`), written from the misses of sets P and Q; neither acts on a set-R case -- none of it written while looking
+at set R: 10/24 strict, 12 lenient, no false claim, median final / oracle RMS 1.62; right on 5 of 9 effect cases
+where the true family's generic model helps, 2 of 12 where it does not. Six of the twelve kinds are driven by
+quantities no column carries and four only partly (the helper's own account): the shop air line's pressure under a
+pneumatic counterbalance (R09, `none`), a pneumatic tool slide's state (R01 `none`, R12 named link deflection), a
+forklift dishing the floor slab while it stands (R03, R14, `none`), a sprayer's tank draining and refilled on a sprung
+carrier (R06, R18, hedged over three or four families without the truth in R06), incremental encoders re-homed after
+each power-down (R10 named thermal, R19 `none`), a floor cable's friction pulling the flange (R17, and with a heated
+hose in R08, `none`), and a swing-away mount beyond its spring's preload (R21 `none`, R11 a link deflection /
+backlash tie).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -464,6 +482,24 @@ comment):
 | gooseneck | link_deflection | a curved supply tube carrying the nozzle, straightening under pressure like a Bourdon tube while the valve is open (ur10, kr16_like) | Wolf 1946; Clark & Reissner 1950 |
 | ejector_chill | thermal | a vacuum ejector's cold exhaust making the gripper boom shrink and bow while a part is held, through a lag (ur10, kr16_like) | Incropera & DeWitt; ejector data |
 | door_draught | thermal | cold air through a loading door's random openings chilling the whole arm through two lags, unseen by the hall's sensor (ur10, kr16_like) | Incropera & DeWitt |
+
+Set R's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_R
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| line_pressure | joint_compliance | a pneumatic counterbalance on axis 2 fed from the shop air line, whose pressure saws with the compressor's load / unload cycle (not logged) (tool_changer) | Atlas Copco, *Compressed Air Manual* 2015; Craig, *Introduction to Robotics* ch. 5 |
+| slide_shift | joint_compliance | a pneumatic slide on the tool whose carriage mass sits extended or retracted (the valve not logged) (ur10, tool_changer) | Craig, *Introduction to Robotics* ch. 5; pneumatic slide catalogues |
+| stick_band | backlash | axes under a proportional position loop stopping short on the approach side by friction over servo stiffness (all three arms) | Armstrong-Helouvry, Dupont & Canudas de Wit, *Automatica* 30, 1994; Ellis 2012 |
+| floor_cable | backlash | a cable on the floor pulling the flange only when it was last pulled out (Coulomb friction) (ur10, kr16_like) | Coulomb friction; Craig, *Introduction to Robotics* ch. 5 |
+| rehoming | transmission | incremental encoders re-homed on a reference switch after each power-down pause (tool_changer, kr16_like) | precision-switch data sheets; SINUMERIK "Reference point approach"; IEC 60947-5-2 |
+| belt_splice | transmission | a welded belt's splice pitch error while the splice is on the tight span, a function of q5 (kr16_like) | Perneder & Osborne, *Handbook Timing Belts* 2012 |
+| forklift_slab | mount_compliance | a parked forklift dishing the floor slab (Westergaard / Hetenyi basin), the base sinking and tilting while it stands (all three arms) | Westergaard 1926; Hetenyi 1946 |
+| sprayer_tank | mount_compliance | the arm on a sprung carrier loaded by its own weights and a tank that drains during work and is refilled in pauses (ur10, kr16_like) | sprung rigid-body statics |
+| web_buckling | link_deflection | a thin-web bracket carrying the target buckling in shear, then a tension field (Wagner / Kuhn): bilinear in the gravity component along the tool (ur10, tool_changer) | Kuhn 1956; Wagner 1929 |
+| swing_mount | link_deflection | a swing-away tool mount on a preloaded spring, swung off its stop above the preload (tool_changer, kr16_like) | breakaway-mount statics |
+| heated_hose | thermal | a heated hot-melt hose strapped along one side of the forearm, which bows and grows after switch-on (ur10, kr16_like) | Boley & Weiner, *Theory of Thermal Stresses* 1960; Incropera & DeWitt |
+| welding_cable | thermal | a welding cable's Joule heat warming the upper arm in production periods between blocks (ur10) | Incropera & DeWitt ch. 5 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
