@@ -15,8 +15,8 @@ import pytest
 import tolalloc
 from tolalloc.diagnose.effects import effect_basis, effect_reference, target_points, variants
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.physics.seating import (MAX_BLOCKS, MIN_BLOCK_POSES, block_contrasts, seat_blocks, seat_columns,
-                                      seat_problem)
+from tolalloc.physics.blocks import MAX_BLOCKS, MIN_BLOCK_POSES, contrasts
+from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
 from tolalloc.physics.thermal import held_heat
 from tolalloc.robot.model import Link, Robot
 
@@ -131,7 +131,7 @@ def test_seat_problems_are_named():
 
 def test_block_contrasts_are_orthonormal_in_the_pose_counts():
     n = np.array([12.0, 7.0, 30.0, 9.0])
-    C = block_contrasts(n)
+    C = contrasts(n)
     assert C.shape == (4, 3)
     np.testing.assert_allclose(n @ C, 0.0, atol=1e-12)
     np.testing.assert_allclose(C.T @ (n[:, None] * C), n.sum() * np.eye(3), atol=1e-10)
@@ -150,7 +150,7 @@ def test_seat_columns_are_the_target_of_the_tool_shifted_on_the_flange():
     assert B.shape == (30, 3, 6) and names[3] == "seat_x_contrast2 [mm]"
     d = np.array([[0.02, 0.0, -0.01], [0.05, -0.03, 0.02], [-0.04, 0.06, 0.01]])  # the blocks' seats on the flange
     mean = n @ d / n.sum()
-    C = block_contrasts(n)
+    C = contrasts(n)
     c = C.T @ (n[:, None] * (d - mean)) / n.sum()  # (2, 3): the contrasts' coefficients per flange axis
     want = np.stack([target_points(robot, q[i:i + 1], TOOL + d[blocks[i]])[0] for i in range(30)]) \
         - target_points(robot, q, TOOL + mean)
@@ -207,3 +207,109 @@ def _export_refused(d, robot, variant: str):
     section = json.loads(json.dumps(identified_section(identified_model(d))))
     with pytest.raises(tolalloc.TolallocError, match=variant):
         model_from_identified(section, robot)
+
+
+# ------------------------------------------------------------------------------------------------ joint zeros homed
+def _cycles():
+    """Four power cycles of 30 poses (30 s apart) separated by 40 min pauses."""
+    return 30.0 * np.arange(120) + 2400.0 * (np.arange(120) // 30)
+
+
+def test_power_cycles_are_cut_at_the_pauses_and_placed_by_time():
+    from tolalloc.physics.rehoming import cycle_blocks, cycle_gap_s
+
+    t = _cycles()
+    assert cycle_gap_s(t) == pytest.approx(150.0)  # 5 median intervals
+    np.testing.assert_array_equal(cycle_blocks(t, t), np.repeat(np.arange(4), 30))
+    # between two training poses of a cycle: that cycle; after a pause beyond the last training pose: none
+    other = np.array([45.0, t[35] + 10.0, t[-1] + 20.0, t[-1] + 3600.0])
+    np.testing.assert_array_equal(cycle_blocks(other, t), [0, 1, 3, -1])
+
+
+def test_rehome_problems_are_named():
+    from tolalloc.physics.rehoming import rehome_problem
+
+    assert rehome_problem(None).startswith("needs time_s")
+    assert rehome_problem(30.0 * np.arange(60)) == "no power cycle in the training poses"
+    assert rehome_problem(_cycles()) is None
+    short = np.concatenate([30.0 * np.arange(40), 5000.0 + 30.0 * np.arange(3)])
+    assert f"at least {MIN_BLOCK_POSES}" in rehome_problem(short)
+
+
+def _incremental_tool_changer(tmp_path):
+    """The tool_changer with incremental encoders (homed at each power-up) on its first three joints: the first three
+    of its robot file's encoder entries (j1, j2, j3) replaced."""
+    from importlib.resources import files
+
+    text = (files("tolalloc") / "data" / "robots" / "tool_changer.toml").read_text()
+    part = 'encoder = { part = "MOTOR-ENC-STD" }'
+    assert text.index("[components.joints.j4]") > [i for i in range(len(text)) if text.startswith(part, i)][2]
+    text = text.replace(part, 'encoder = { side = "motor", accuracy_arcmin = 4, homing = "incremental" }', 3)
+    path = tmp_path / "tool_changer_incremental.toml"
+    path.write_text(text)
+    return tolalloc.load_robot(path)
+
+
+def test_rehome_is_offered_only_for_joints_homed_at_power_up(tmp_path):
+    from tolalloc.physics.rehoming import homed_joints, rehome_problem
+
+    t = _cycles()
+    plain = tolalloc.load_robot("tool_changer")
+    assert not len(homed_joints(plain)) and "homing = incremental" in rehome_problem(t, plain)
+    meas = Measurements(np.zeros((120, 6)), np.zeros((120, 3)), None, None, None, t)
+    assert "rehome" not in variants("transmission", meas, robot=plain)
+    robot = _incremental_tool_changer(tmp_path)
+    np.testing.assert_array_equal(homed_joints(robot), [0, 1, 2])
+    assert "rehome" in variants("transmission", meas, robot=robot)
+
+
+def _rehomed(robot, q, t, zeros: np.ndarray, blocks: np.ndarray) -> np.ndarray:
+    """The target of the robot whose joint zeros are ``zeros[b]`` (B, n) [rad / mm] in power cycle b."""
+    return np.stack([target_points(robot, q[i:i + 1] + zeros[blocks[i]], TOOL)[0] for i in range(len(q))])
+
+
+def test_rehome_columns_are_the_target_of_the_joints_homed_anew():
+    """First order in the zeros: a joint's zero in each cycle is the mean zero plus the contrasts' columns."""
+    from tolalloc.physics.blocks import contrasts
+    from tolalloc.physics.loads import point_jacobian
+    from tolalloc.physics.rehoming import cycle_blocks, rehome_columns
+
+    robot = tolalloc.load_robot("tool_changer")
+    t = _cycles()
+    q = _poses(robot, 120, 2)
+    blocks = cycle_blocks(t, t)
+    n = np.bincount(blocks).astype(float)
+    zeros = np.random.default_rng(3).normal(0.0, 1e-6, (4, robot.n_joints))
+    mean = n @ zeros / n.sum()
+    B, names, groups = rehome_columns(point_jacobian(robot, q + mean, target_points(robot, q + mean, TOOL)), blocks,
+                                      n, [j.name for j in robot.joints], ["rad"] * robot.n_joints)
+    assert B.shape == (120, 3, 3 * robot.n_joints) and names[0].endswith("_contrast1 [rad]")
+    np.testing.assert_array_equal(groups, np.repeat(np.arange(robot.n_joints), 3))
+    c = contrasts(n).T @ (n[:, None] * (zeros - mean)) / n.sum()  # (3, n): the contrasts' coefficients per joint
+    want = _rehomed(robot, q, t, zeros, blocks) - _rehomed(robot, q, t, np.broadcast_to(mean, zeros.shape), blocks)
+    np.testing.assert_allclose(B @ c.T.ravel(), want, atol=1e-5 * np.abs(want).max())  # second order: ~1e-6
+
+
+def test_joints_homed_anew_at_each_power_up_are_diagnosed_as_transmission_rehome(tmp_path):
+    """A tool_changer whose first three axes home on proximity switches (zeros scattered by 2e-4 rad) in four power
+    cycles; every fourth pose held out: named transmission in the rehome variant, the test poses predicted to the
+    noise; the identified model's file refuses the zeros."""
+    from tolalloc.diagnose import diagnose
+    from tolalloc.diagnose.scores import rms
+    from tolalloc.physics.rehoming import cycle_blocks
+
+    robot = _incremental_tool_changer(tmp_path)
+    rng = np.random.default_rng(21)
+    t = _cycles()
+    q = _poses(robot, 120, 4)
+    zeros = np.zeros((4, robot.n_joints))
+    zeros[:, :3] = rng.normal(0.0, 2e-4, (4, 3))
+    xyz = _rehomed(robot, q, t, zeros, cycle_blocks(t, t)) + rng.normal(0.0, 0.01, (120, 3))
+    test = np.arange(120) % 4 == 3
+    train, held = (Measurements(q[k], xyz[k], None, None, None, t[k]) for k in (~test, test))
+    assert "rehome" in variants("transmission", train, robot=robot)
+    d = diagnose(robot, train, held, folds=3, max_effects=1)
+    assert d.effect == "transmission", d.verdict
+    assert next(c.variant for c in d.ranking if c.effect == "transmission") == "rehome"
+    assert rms(d.final.test_mm) < 0.025 < 0.1 < rms(d.geometric.test_mm)
+    _export_refused(d, robot, "rehome")

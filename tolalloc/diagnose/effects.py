@@ -48,7 +48,10 @@ signature:
                       the joints whose frequency the poses resolve; ``coupling``: each joint turning in proportion
                       to its own and the other joints' positions; ``stroke`` (a prismatic joint with a bounded
                       stroke): a linear axis' six error motions along its stroke
-                      (:mod:`tolalloc.physics.error_motions`). Every transmission variant carries a Gaussian prior
+                      (:mod:`tolalloc.physics.error_motions`); ``rehome``: the zeros of joints with incremental encoders
+                      (the robot file's ``homing``) homed anew at each power-up, read from the pauses in ``time_s``
+                      (:mod:`tolalloc.physics.rehoming`). Every
+                      transmission variant carries a Gaussian prior
                       per joint (``groups``; ``stroke``: one for a joint's translations, one for its rotations) fitted
                       by marginal likelihood (:mod:`.evidence`): a ridge.
 """
@@ -67,6 +70,7 @@ from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, co
     mount_columns, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
+from tolalloc.physics.rehoming import cycle_blocks, homed_joints, rehome_columns, rehome_problem
 from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
 from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
 from tolalloc.physics.transmission import SERIES_ORDERS, transmission_columns
@@ -166,7 +170,8 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         ratio = ref.get("gear_ratio")
         gear = ("gear",) if ratio is not None and np.any(np.isfinite(ratio)) else ()
         stroke = ("stroke",) if robot is not None and stroke_joints(robot) else ()
-        return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke
+        rehome = ("rehome",) if robot is not None and rehome_problem(meas.time_s, robot) is None else ()
+        return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke + rehome
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
         return ("masses", "masses+tip") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
@@ -197,7 +202,9 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
     q = meas.q
     p_t = target_points(robot, q, t_mm)
     groups = None
-    if effect == "transmission":
+    if effect == "transmission" and variant == "rehome":
+        B, names, groups = _rehome_basis(robot, meas, p_t, ref)
+    elif effect == "transmission":
         B, names, groups = _transmission_basis(robot, q, p_t, variant, ref.get("gear_ratio"))
     elif effect == "backlash" and variant == "clearance":
         B, names, _ = clearance_columns(robot, q, p_t, p_t, meas.payload_kg)  # no prior: as the flank variants
@@ -226,9 +233,21 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
 
 
 def is_block_parameter(name: str) -> bool:
-    """Whether the fitted parameter ``name`` (``effect:column``) belongs to one block of tool changes (``reseat``):
-    poses of a block no fit has seen are predicted at the mean seat only."""
-    return name.startswith("backlash:seat_")
+    """Whether the fitted parameter ``name`` (``effect:column``) belongs to one block of a session -- a tool change
+    (backlash ``reseat``) or a power cycle (transmission ``rehome``): poses of a block no fit has seen are predicted
+    at the mean only."""
+    return name.startswith(("backlash:seat_", "transmission:rehome_"))
+
+
+def _rehome_basis(robot: Robot, meas: Measurements, p_t: np.ndarray, ref: dict) -> tuple:
+    """``(B (P, 3, M), names, groups)`` of ``rehome``: the training file's power cycles, placed by time."""
+    if meas.time_s is None:
+        raise ValueError("the joint zeros per power cycle need time_s in every file (the training file has it): add "
+                         "it to this file, or diagnose without the transmission variant 'rehome'")
+    ht, homed = ref["motion"][0], homed_joints(robot)
+    units = ["rad" if robot.joints[j].is_revolute else "mm" for j in homed]
+    return rehome_columns(point_jacobian(robot, meas.q, p_t)[:, :, homed], cycle_blocks(meas.time_s, ht),
+                          np.bincount(cycle_blocks(ht, ht)), [robot.joints[j].name for j in homed], units)
 
 
 def _seat_basis(robot: Robot, meas: Measurements, ref: dict) -> tuple:

@@ -14,8 +14,9 @@ rebuild from the exported TOML.
   with the training file's reference values (mean temperature, time origin, load scale per joint, gear ratios)
   the effects' columns are computed from. :func:`model_from_identified` rebuilds the identified model from it and the
   nominal robot, so a program can be compensated from the file alone; thermal variants driven by the training
-  file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``) and the seats of its tool changes (backlash
-  ``reseat``) are recorded but cannot be rebuilt from the file.
+  file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), the seats of its tool changes (backlash
+  ``reseat``) and the zeros of its power cycles (transmission ``rehome``) are recorded but cannot be rebuilt from the
+  file.
 
 The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
 points coincide and the identified axes are skew, the link between them is the axes' small distance (a link the
@@ -189,6 +190,10 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
             raise TolallocError(f"identified model: its thermal effect (variant {v}) is driven by the training file's "
                                 "history, which the file does not hold; use the diagnosis itself "
                                 "(MeasurementDiagnosis.compensate) for this model.")
+        if e["effect"] == "transmission" and v == "rehome":
+            raise TolallocError("identified model: its transmission effect (variant rehome) holds the joints' zeros in "
+                                "the training session's power cycles, which the next homing does not keep; use the "
+                                "diagnosis itself for that session, or calibrate the zeros after each power-up.")
         if e["effect"] == "backlash" and v == "reseat":
             raise TolallocError("identified model: its backlash effect (variant reseat) holds the tool's seats in the "
                                 "training session's tool changes, which a new tool change does not keep; use the "

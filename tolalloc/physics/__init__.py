@@ -9,9 +9,12 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 * :mod:`.error_motions` -- a linear axis' six error motions along its stroke (ISO 230-1);
 * :mod:`.lost_motion` -- backlash and hysteresis loss: the flank a joint rests on;
 * :mod:`.clearance` -- the joints' bearing play (axial, radial, tilt), taken up on the side the load presses;
-* :mod:`.seating` -- a tool re-seated within its coupling's clearance at every tool change (blocks of the payload);
-* :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history or the motors'
-  losses or a held part, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame drifting;
+* :mod:`.blocks` -- runs of a session between tool changes or power cycles, with an offset per run;
+* :mod:`.seating` -- a tool re-seated within its coupling's clearance at every tool change (payload blocks);
+* :mod:`.rehoming` -- incremental encoders' zeros homed anew at each power-up (blocks between pauses);
+* :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history, the motors'
+  losses or a held part, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame
+  drifting;
 * :mod:`.thermal_design` -- the design's forward model: the links' temperatures over an ambient range and a duty cycle.
 """
 

@@ -14,7 +14,7 @@ read from the logged payload (:func:`seat_blocks`): a change of ``payload_kg`` b
 order starts a block. The payload must carry the tool's own mass, so it never drops to zero: a payload that does is
 a gripper picking and releasing parts (its blocks are held parts, not seats), and no block is formed
 (:func:`seat_problem`). The geometric calibration's tool offset is the mean seat; the blocks' departures from it are
-``B - 1`` contrasts of three columns each (:func:`block_contrasts`, :func:`seat_columns`). A pose in a block with no
+``B - 1`` contrasts of three columns each (:func:`~.blocks.contrasts`, :func:`seat_columns`). A pose in a block with no
 training pose (a tool put on again after the training poses) cannot be predicted beyond the mean seat: its columns
 are zero. Sources: Slocum, *Precision Machine Design* (1992),
 ch. 7 (kinematic and clearance couplings, repeatability of re-seating); ISO 9409-1 (flange and coupling
@@ -25,27 +25,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from tolalloc.physics.blocks import block_problem, contrasts, place, runs
 from tolalloc.physics.loads import target_points
 from tolalloc.physics.thermal import time_problem
 from tolalloc.robot.model import Robot
 
-__all__ = ["MAX_BLOCKS", "MIN_BLOCK_POSES", "block_contrasts", "seat_blocks", "seat_columns", "seat_problem"]
-
-#: At most this many blocks (tool changes + 1) in the training poses: more changes than this are a payload that
-#: varies pose by pose, not a tool that stays on.
-MAX_BLOCKS = 8
-#: Every training block needs this many poses to fix its three offsets.
-MIN_BLOCK_POSES = 6
-
-
-def _runs(time_s: np.ndarray, payload_kg: np.ndarray) -> np.ndarray:
-    """Run index of every pose, shape (P,): the poses in time order, a new run where the payload changes."""
-    order = np.argsort(time_s, kind="stable")
-    m = np.asarray(payload_kg, float)[order]
-    run = np.concatenate([[0], np.cumsum(np.abs(np.diff(m)) > 1e-9)])
-    out = np.empty(len(m), dtype=int)
-    out[order] = run
-    return out
+__all__ = ["seat_blocks", "seat_columns", "seat_problem"]
 
 
 def seat_problem(time_s, payload_kg) -> str | None:
@@ -58,55 +43,26 @@ def seat_problem(time_s, payload_kg) -> str | None:
     if np.min(payload_kg) <= 0:
         return ("the payload drops to zero: an empty gripper between picks, not a tool change (a tool's mass stays "
                 "in the payload)")
-    runs = _runs(np.asarray(time_s, float), payload_kg)
-    n = int(runs.max()) + 1
-    if n < 2:
+    if np.ptp(payload_kg) == 0:
         return "the payload never changes"
-    if n > MAX_BLOCKS:
-        return f"the payload changes {n - 1} times (at most {MAX_BLOCKS - 1} tool changes)"
-    short = int(np.bincount(runs).min())
-    if short < MIN_BLOCK_POSES:
-        return f"a block has {short} poses (at least {MIN_BLOCK_POSES} per tool change)"
-    return None
+    return block_problem(runs(np.asarray(time_s, float), payload_kg), "tool change")
 
 
 def seat_blocks(time_s: np.ndarray, payload_kg: np.ndarray, train_time_s: np.ndarray,
                 train_payload_kg: np.ndarray) -> np.ndarray:
-    """Training block of every pose, shape (P,) int, -1 where its block holds no training pose.
-
-    The poses are placed among the training poses in time order (a test file's poses between two training poses of
-    one payload share their block); the training file itself passes its own poses twice."""
-    t, m = np.asarray(time_s, float), np.asarray(payload_kg, float)
-    ht, hm = np.asarray(train_time_s, float), np.asarray(train_payload_kg, float)
-    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hm, m):
-        return _runs(t, m)
-    runs = _runs(np.concatenate([ht, t]), np.concatenate([hm, m]))
-    # a run of the merged poses holding training poses lies within one training block (a payload change between
-    # two training blocks is still a change once other poses come between them)
-    index = dict(zip(runs[:len(ht)].tolist(), _runs(ht, hm).tolist()))
-    return np.array([index.get(int(r), -1) for r in runs[len(ht):]], dtype=int)
-
-
-def block_contrasts(counts: np.ndarray) -> np.ndarray:
-    """Contrasts of ``B`` blocks, shape (B, B - 1): columns orthogonal to the blocks' pose counts ``counts`` (B,)
-    (``counts @ C = 0``) and orthonormal in their weight, scaled by the square root of the poses in all.
-
-    A seat offset per block written as ``t + C d`` leaves the tool offset ``t`` the mean seat over the poses, so a
-    pose in a block the fit has not seen is predicted at the mean seat, not at some reference block's."""
-    n = np.asarray(counts, float)
-    root = np.sqrt(n)
-    Q, _ = np.linalg.qr(np.column_stack([root, np.eye(len(n))]))
-    return np.sqrt(n.sum()) * Q[:, 1:len(n)] / root[:, None]
+    """Training block of every pose, shape (P,) int, -1 where its block holds no training pose: the runs of the
+    payload in time order (:func:`~.blocks.place`)."""
+    return place(time_s, payload_kg, train_time_s, train_payload_kg)
 
 
 def seat_columns(robot: Robot, q: np.ndarray, blocks: np.ndarray, counts: np.ndarray) -> tuple:
     """Target displacement per mm of each seat contrast, ``(B (P, 3, 3 (K - 1)), names)``, ``K = len(counts)``.
 
     ``blocks`` (P,) from :func:`seat_blocks`, ``counts`` (K,) the training poses per block: the seat of block ``b``
-    is the calibrated tool offset (the mean seat) plus ``C[b] @ d`` on the flange (:func:`block_contrasts`); poses in
+    is the calibrated tool offset (the mean seat) plus ``C[b] @ d`` on the flange (:func:`~.blocks.contrasts`); poses in
     no training block (-1) get no column (the mean seat)."""
     q = np.atleast_2d(q)
-    C = block_contrasts(counts)
+    C = contrasts(counts)
     zero = target_points(robot, q, np.zeros(3))
     R = np.stack([target_points(robot, q, e) - zero for e in np.eye(3)], axis=2)  # (P, 3, 3): the flange's axes
     w = np.zeros((len(q), C.shape[1]))

@@ -64,7 +64,8 @@ from tolalloc.physics.loads import across_axes, gravity_torques, point_at
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
            "MAX_STEP_S", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt", "duty_warmup",
-           "frame_drift", "held_heat", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column", "is_measurement_variant"]
+           "frame_drift", "held_heat", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column",
+           "is_measurement_variant"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).

@@ -150,13 +150,15 @@ class Reducer:
 class Encoder:
     """Position encoder: ``side`` (``output`` or ``motor``), peak-to-peak ``accuracy`` [rad or mm], source; the scale's
     mounting ``eccentricity`` [mm] on its ``scale_radius_mm`` (an output-side rotary encoder then reads ``e / r``
-    [rad] once per turn)."""
+    [rad] once per turn); ``homing``: ``absolute`` (the zero kept through a power cycle) or ``incremental`` (homed on a
+    reference switch at each power-up, the zero set anew each time)."""
 
     side: str = "output"
     accuracy: float | None = None
     source: str = ""
     eccentricity: float | None = None
     scale_radius_mm: float | None = None
+    homing: str = "absolute"
 
 
 @dataclass(frozen=True)

@@ -151,10 +151,11 @@ def read_section(table: dict, where: str) -> LinkSection:
 def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Encoder:
     """An :class:`Encoder` from its table."""
     v = read_table(t, {"accuracy": (_ANGLE if revolute else _LENGTH, ((),)), "eccentricity": (_LENGTH, ((),)),
-                       "scale_radius": (_LENGTH, ((),))}, w, text=("side", "source") + extra_keys)
+                       "scale_radius": (_LENGTH, ((),))}, w, text=("side", "source", "homing") + extra_keys)
     return Encoder(_text(t, "side", w, "output", ("output", "motor")), _positive(v["accuracy"], "accuracy", w, True),
                    _text(t, "source", w, ""), _positive(v["eccentricity"], "eccentricity", w, True),
-                   _positive(v["scale_radius"], "scale_radius", w))
+                   _positive(v["scale_radius"], "scale_radius", w),
+                   _text(t, "homing", w, "absolute", ("absolute", "incremental")))
 
 
 def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
