@@ -250,6 +250,17 @@ def _incremental_tool_changer(tmp_path):
     return tolalloc.load_robot(path)
 
 
+def test_an_encoder_homing_other_than_absolute_or_incremental_is_refused(tmp_path):
+    from importlib.resources import files
+
+    text = (files("tolalloc") / "data" / "robots" / "tool_changer.toml").read_text()
+    path = tmp_path / "bad.toml"
+    bad = 'encoder = { side = "motor", homing = "relative" }'
+    path.write_text(text.replace('encoder = { part = "MOTOR-ENC-STD" }', bad, 1))
+    with pytest.raises(tolalloc.TolallocError, match="homing: expected one of absolute, incremental, got 'relative'"):
+        tolalloc.load_robot(path)
+
+
 def test_rehome_is_offered_only_for_joints_homed_at_power_up(tmp_path):
     from tolalloc.physics.rehoming import homed_joints, rehome_problem
 
