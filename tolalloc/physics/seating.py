@@ -16,9 +16,8 @@ a gripper picking and releasing parts (its blocks are held parts, not seats), an
 (:func:`seat_problem`). The geometric calibration's tool offset is the mean seat; the blocks' departures from it are
 ``B - 1`` contrasts of three columns each (:func:`~.blocks.contrasts`, :func:`seat_columns`). A pose in a block with no
 training pose (a tool put on again after the training poses) cannot be predicted beyond the mean seat: its columns
-are zero. Sources: Slocum, *Precision Machine Design* (1992),
-ch. 7 (kinematic and clearance couplings, repeatability of re-seating); ISO 9409-1 (flange and coupling
-locating pins).
+are zero. Sources: Slocum, *Precision Machine Design* (1992), ch. 7 (kinematic and clearance couplings,
+repeatability of re-seating); ISO 9409-1 (flange and coupling locating pins).
 """
 
 from __future__ import annotations
