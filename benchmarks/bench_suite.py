@@ -7,7 +7,8 @@ fresh state (every ``__pycache__`` outside ``.venv``, ``.pytest_cache`` and ``.h
 are compiled and the test modules rewritten again, as on a fresh clone), then warm. A small pytest plugin
 (``suite_timeline.py`` beside this file) stamps each test's start and end, wall and CPU, per xdist worker. Printed:
 
-* the wall time of each run and their ratio (fresh / warm: what a fresh clone adds),
+* the wall time of each run and their ratio (fresh / warm: what a fresh clone adds), and the CPU time of the run's
+  processes with the share of the cores it kept busy (near 100 %: only less work makes the suite faster),
 * per worker: when its first test starts (collection), when its last one ends (the balance between workers), and the
   wall time its tests spent waiting on other processes (subprocesses, notebook kernels, a compile lock),
 * the files with the most summed test time,
@@ -22,6 +23,10 @@ import argparse
 import collections
 import json
 import os
+try:
+    import resource  # POSIX: the CPU time of the suite's processes
+except ImportError:  # pragma: no cover - Windows
+    resource = None
 import shutil
 import subprocess
 import sys
@@ -49,16 +54,21 @@ def _run(label: str, fresh: bool) -> dict:
     env = {**os.environ, "TOLALLOC_SUITE_TIMELINE": str(out),
            "PYTHONPATH": os.pathsep.join([str(ROOT / "benchmarks"), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    before = resource.getrusage(resource.RUSAGE_CHILDREN) if resource else None
     t0 = time.time()
     run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-rf", "-p", "suite_timeline"], cwd=ROOT, env=env,
                          capture_output=True, text=True)
     wall = time.time() - t0
+    cpu = None
+    if resource:
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     lines = run.stdout.strip().splitlines()
     tail = "; ".join([*(x for x in lines if x.startswith("FAILED")), lines[-1]]) if lines else run.stderr.strip()[-200:]
     events = [json.loads(line) for f in sorted(out.glob("*.jsonl")) for line in f.read_text().splitlines()]
     shutil.rmtree(out, ignore_errors=True)
     return {"label": label, "wall_s": wall, "load": load, "result": tail, "events": events, "t0": t0,
-            "returncode": run.returncode}
+            "returncode": run.returncode, "cpu_s": cpu}
 
 
 def _workers(res: dict) -> list[str]:
@@ -90,6 +100,10 @@ def main(argv=None) -> int:
     runs.append(_run("warm", False))
     for r in runs:
         print(f"{r['label']:5s} run: {r['wall_s']:6.1f} s wall (load average before: {r['load']:.2f}); {r['result']}")
+        if r["cpu_s"] is not None:  # the suite is CPU-bound: its CPU over the cores is the wall it cannot go below
+            cores = os.cpu_count() or 1
+            print(f"  CPU of the run and its subprocesses: {r['cpu_s']:.1f} s, {r['cpu_s'] / (cores * r['wall_s']):.1%}"
+                  f" of {cores} cores busy")
         print("\n".join(_workers(r)))
     if len(runs) == 2:
         fresh, warm = runs
