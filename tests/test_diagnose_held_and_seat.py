@@ -324,3 +324,17 @@ def test_joints_homed_anew_at_each_power_up_are_diagnosed_as_transmission_rehome
     assert next(c.variant for c in d.ranking if c.effect == "transmission") == "rehome"
     assert rms(d.final.test_mm) < 0.025 < 0.1 < rms(d.geometric.test_mm)
     _export_refused(d, robot, "rehome")
+
+
+def test_a_test_file_without_the_history_leaves_the_effect_judged_on_the_training_file():
+    """Trained with the tool changes logged, tested on a file without its payload column: no traceback; the reason
+    says the test file cannot carry the seats."""
+    from tolalloc.diagnose import diagnose
+
+    robot = tolalloc.load_robot("tool_changer")
+    q, t, m, xyz = _reseat_session(robot, 160, 8)
+    test = np.arange(160) % 4 == 3
+    train = Measurements(q[~test], xyz[~test], None, None, m[~test], t[~test])
+    d = diagnose(robot, train, Measurements(q[test], xyz[test], None, None, None, t[test]), folds=3, max_effects=1)
+    assert any("backlash (reseat) was judged on the training file only: the test file has no payload_kg column" in r
+               for r in d.verdict.reasons), d.verdict.reasons

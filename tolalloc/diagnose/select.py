@@ -157,6 +157,13 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
             return "the test file has no temperature_c column"
         if parts != ("temperature",) and (why := time_problem(test.time_s)) is not None:
             return f"test file: {why}"
+        if any(v.startswith("held") for v in parts) and test.payload_kg is None:
+            return "the test file has no payload_kg column (the held part's history)"
+    if (effect, variant) in (("backlash", "reseat"), ("transmission", "rehome")):
+        if (why := time_problem(test.time_s)) is not None:
+            return f"test file: {why}"
+        if variant == "reseat" and test.payload_kg is None:
+            return "the test file has no payload_kg column (the tool changes)"
     return None
 
 
