@@ -44,8 +44,9 @@ def part_figures(kind: str, spec) -> str:
 
 
 def check_rated_options(robot, model, region, q, cond, seed: int = 0) -> None:
-    """Refuse every reducer (a slot's option, or the figures of the file) whose rated torque the gravity load exceeds
-    at the top of the payload range, at ``q`` or anywhere in a 256-point Sobol sample of ``region``."""
+    """Refuse every reducer (a slot's option, or the figures of the file) whose rated torque the gravity load (with the
+    conditions' process wrench) exceeds at the top of the payload range, at ``q`` or anywhere in a 256-point Sobol
+    sample of ``region``."""
     if region is not None:
         lo, hi = region.q_min, region.q_max
         q = np.vstack([q, lo + qmc.Sobol(len(lo), scramble=True, seed=seed).random(256) * (hi - lo)])
@@ -65,13 +66,14 @@ def check_rated_options(robot, model, region, q, cond, seed: int = 0) -> None:
                         if p.motion == ("rotary" if jt.is_revolute else "linear") and p.spec.rated_torque
                         and p.spec.rated_torque >= load[j])
             fams = list(dict.fromkeys(f"{f} ({r:.4g} {unit})" for r, f in ok))[:3]
+            what = "the load (gravity and the process wrench)" if cond.has_process_wrench else "the gravity load"
             raise TolallocError(
-                f"joint {jt.name}: {name} is rated {red.rated_torque:.4g} {unit}, but the gravity load reaches "
+                f"joint {jt.name}: {name} is rated {red.rated_torque:.4g} {unit}, but {what} reaches "
                 f"{load[j]:.4g} {unit} in {where} at the payload of {cond.payload_kg[1]:g} kg, "
                 f"{load[j] - red.rated_torque:.4g} {unit} ({100 * (load[j] / red.rated_torque - 1):.0f} %) above; "
                 f"drop it, or choose a reducer rated for at least {load[j]:.4g} {unit}"
                 + (f" (in the built-in catalogue: {', '.join(fams)})" if fams else "")
-                + ", or lower the payload range")
+                + ", or lower the payload range" + (" or the process wrench" if cond.has_process_wrench else ""))
 
 
 @dataclass(frozen=True, eq=False)

@@ -113,6 +113,11 @@ def _add_parts_args(p) -> None:
                        help="with --parts: ambient temperature range [degC] (default the 20 degC reference)")
     parts.add_argument("--duty", type=float, default=None, metavar="FRACTION",
                        help="with --parts: share of the time the drives work, for their heat (default 0.5)")
+    parts.add_argument("--process-force-n", type=float, nargs=3, metavar=("FX", "FY", "FZ"), default=None,
+                       help="with --parts: a process force [N] at the tool point in the tool frame, at every pose (a "
+                       "drill's thrust, a cutting force): the joints, beams and mount carry it beside gravity")
+    parts.add_argument("--process-torque-nm", type=float, nargs=3, metavar=("MX", "MY", "MZ"), default=None,
+                       help="with --parts: a process moment [N m] at the tool point in the tool frame, at every pose")
     parts.add_argument("--after-compensation", action="store_true",
                        help="with --parts: the requirement holds after the compensation models (stiffness given the "
                        "payload, thermal growth given the temperature) remove their share of the parts' errors")
@@ -133,6 +138,7 @@ def settings(args) -> dict:
         requirement.append(OrientationRequirement(args.angle_radius_deg, args.angle_prob))
     kw = {"parts": _parts(args) or True} if args.parts else {}
     for flag, value in (("payload_kg", args.payload_kg), ("ambient_c", args.ambient_c), ("duty", args.duty),
+                        ("process_force_n", args.process_force_n), ("process_torque_nm", args.process_torque_nm),
                         ("after_compensation", args.after_compensation or None)):
         if value is not None and not args.parts:
             shown = "".join(f"{v:g} " for v in value) if isinstance(value, list) else (
@@ -150,6 +156,7 @@ def settings(args) -> dict:
 def _parts(args) -> dict:
     """The options of the bought-parts design (:func:`tolalloc.verify.parts.verified_parts`) from the flags."""
     opts = {"payload_kg": args.payload_kg, "ambient_c": args.ambient_c, "duty": args.duty,
+            "process_force_n": args.process_force_n, "process_torque_nm": args.process_torque_nm,
             "after": "compensation" if args.after_compensation else None}
     return {k: tuple(v) if isinstance(v, list) else v for k, v in opts.items() if v is not None}
 

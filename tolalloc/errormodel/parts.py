@@ -86,13 +86,17 @@ def residual_factors(after: str, residual=COMPENSATION_RESIDUAL) -> dict:
 @dataclass(frozen=True)
 class Conditions:
     """Where the design must hold besides the poses: a payload range [kg], an ambient range [degC] about the
-    ``reference_c`` the robot was built and measured at, and a duty cycle (the fraction of time the motors carry the
-    pose's load)."""
+    ``reference_c`` the robot was built and measured at, a duty cycle (the fraction of time the motors carry the
+    pose's load), and a process force ``process_force_n`` [N] and moment ``process_torque_nm`` [N m] at the tool
+    point in the tool frame (a drill's thrust, a spindle's cutting force), acting at every pose -- the same loads
+    the diagnosis reads from a logged wrench (:func:`tolalloc.physics.loads.wrench_load`)."""
 
     payload_kg: tuple = (0.0, 0.0)
     ambient_c: tuple = (20.0, 20.0)
     reference_c: float = 20.0
     duty: float = 0.5
+    process_force_n: tuple = (0.0, 0.0, 0.0)
+    process_torque_nm: tuple = (0.0, 0.0, 0.0)
 
     def check(self, robot: Robot) -> "Conditions":
         """Validated against ``robot`` (a payload above its rating is refused)."""
@@ -108,7 +112,21 @@ class Conditions:
             raise TolallocError(f"ambient_c: expected a range low <= high [degC], got {self.ambient_c!r}")
         if not 0 <= self.duty <= 1:
             raise TolallocError(f"duty: expected a fraction of time in [0, 1], got {self.duty!r}")
-        return replace(self, payload_kg=(lo, hi), ambient_c=t, reference_c=float(self.reference_c))
+        wrench = {}
+        for key in ("process_force_n", "process_torque_nm"):
+            v = np.asarray(getattr(self, key), dtype=object).ravel()
+            ok = v.size == 3 and all(isinstance(x, (int, float, np.integer, np.floating)) and not isinstance(x, bool)
+                                     and np.isfinite(float(x)) for x in v)
+            if not ok:
+                raise TolallocError(f"{key}: expected three finite numbers (x, y, z in the tool frame), got "
+                                    f"{getattr(self, key)!r}")
+            wrench[key] = tuple(float(x) for x in v)
+        return replace(self, payload_kg=(lo, hi), ambient_c=t, reference_c=float(self.reference_c), **wrench)
+
+    @property
+    def has_process_wrench(self) -> bool:
+        """Whether a process force or moment acts."""
+        return any(float(x) != 0.0 for x in (*self.process_force_n, *self.process_torque_nm))
 
     def corners(self) -> np.ndarray:
         """The corners of the payload x ambient box, shape (C, 2) [kg, degC] (duplicates dropped)."""
@@ -125,6 +143,18 @@ def with_parts(robot: Robot, choice: dict) -> Robot:
     out = copy.copy(robot)
     object.__setattr__(out, "components", comps)
     return out
+
+
+def _process_wrench(R: np.ndarray, tool: np.ndarray, payload_point: np.ndarray, conditions: Conditions) -> tuple:
+    """The conditions' process wrench in the base frame, shape (P, 6) [N, N m], at the tool point and moved to the
+    payload's point (the moment about it: ``M + (tool - payload point) x F``, the lever in m); ``(None, None)``
+    without one. ``R`` (P, 3, 3): the tool frame's orientation at each pose; ``tool``, ``payload_point`` (P, 3) [mm]."""
+    if not conditions.has_process_wrench:
+        return None, None
+    F = R @ np.asarray(conditions.process_force_n, float)
+    M = R @ np.asarray(conditions.process_torque_nm, float)
+    moved = M + 1e-3 * np.cross(tool - payload_point, F)
+    return np.concatenate([F, M], axis=1), np.concatenate([F, moved], axis=1)
 
 
 def motor_side(robot: Robot, j: int) -> bool:
@@ -274,7 +304,8 @@ class PartEffects:
         self.tool = target_points(robot, self.q, np.zeros(3))
         T = robot.fk_internal(self.q)
         self.payload_point = self.tool + T[:, :3, :3] @ robot.components.payload.com_mm
-        self.tau = joint_loads(robot, self.q, self.payload_point, self.payload)[0]
+        self.wrench_tool, self.wrench = _process_wrench(T[:, :3, :3], self.tool, self.payload_point, conditions)
+        self.tau = joint_loads(robot, self.q, self.payload_point, self.payload, self.wrench)[0]
 
     @property
     def n_points(self) -> int:
@@ -352,10 +383,10 @@ class PartEffects:
                 out += self._term(f"thermal_{lk.name}", "thermal", -1, self.J[:, :, self.pm.link[k]], grow,
                                   THERMAL_SD * np.abs(grow))
         if r.components.links:
-            sag = beam_sag(r, self.q, self.tool, self.payload, self.payload_point)
+            sag = beam_sag(r, self.q, self.tool, self.payload, self.payload_point, self.wrench_tool)
             out += self._term("beam", "beam", -1, sag, 1.0, BEAM_SD)
         if r.components.mount.tilt_stiffness is not None:
-            tilt = mount_tilt(r, self.q, self.tool, self.payload_point, self.payload)
+            tilt = mount_tilt(r, self.q, self.tool, self.payload_point, self.payload, self.wrench)
             out += self._term("mount", "mount", -1, tilt, 1.0, MOUNT_SD)
         return out
 
@@ -367,7 +398,7 @@ class PartEffects:
         return out + self.body_terms()
 
     def check_rated(self, where: str = "the region") -> None:
-        """Refuse reducers whose rated torque (force) the gravity load at these points exceeds, naming the joint, the
+        """Refuse reducers whose rated torque (force) the load at these points exceeds, naming the joint, the
         part, the load and by how much."""
         for j, jt in enumerate(self.robot.joints):
             red = self.robot.components.joint(jt.name).reducer
@@ -378,7 +409,7 @@ class PartEffects:
             if load > red.rated_torque:
                 unit = "N m" if jt.is_revolute else "N"
                 raise TolallocError(
-                    f"joint {jt.name}: the gravity load reaches {load:.4g} {unit} in {where} (payload "
+                    f"joint {jt.name}: the load reaches {load:.4g} {unit} in {where} (payload "
                     f"{self.payload[i]:g} kg), {load - red.rated_torque:.4g} {unit} ({100 * (load / red.rated_torque - 1):.0f} %) "
                     f"above the rated torque {red.rated_torque:.4g} {unit} of its reducer ({red.source[:60] or red.type}); "
                     f"choose a reducer rated for at least {load:.4g} {unit}, or lower the payload range")

@@ -99,10 +99,11 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     grow = cte * dT * lengths
     values[:, pm.link] += f["thermal"] * grow[None, :] * (1.0 + THERMAL_SD * rng.standard_normal((n, len(grow))))
     q1, p1 = fx.q[i:i + 1], fx.tool[i:i + 1]
+    w_tool, w = (None if x is None else x[i:i + 1] for x in (fx.wrench_tool, fx.wrench))
     if r.components.links:
-        sag = beam_sag(r, q1, p1, fx.payload[i:i + 1], fx.payload_point[i:i + 1])[0]
+        sag = beam_sag(r, q1, p1, fx.payload[i:i + 1], fx.payload_point[i:i + 1], w_tool)[0]
         direct += f["beam"] * sag[None, :] * (1.0 + BEAM_SD * rng.standard_normal((n, 1)))
     if r.components.mount.tilt_stiffness is not None:
-        tilt = mount_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1])[0]
+        tilt = mount_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1], w)[0]
         direct += f["mount"] * tilt[None, :] * (1.0 + MOUNT_SD * rng.standard_normal((n, 1)))
     return values, direct

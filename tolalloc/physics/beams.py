@@ -252,12 +252,13 @@ def segment_section(robot: Robot, j: int, k: int | None):
     return best
 
 
-def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None) -> np.ndarray:
+def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None, wrench=None) -> np.ndarray:
     """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``), torsion
     (``GJ``, ``J = 2 I``: exact for round tubes and bars, an approximation for a box) and shear (``kGA``) under every
     mass the segment carries as a point load where it sits and the payload at ``payload_at`` (P, 3) (default the
     target ``p_t``; :func:`_load_integrals`), plus the section's own weight where the robot file puts no mass on the
-    segment. Segments without a section do not bend here."""
+    segment, and a process ``wrench`` (P, 6) at ``p_t`` (its force a point load, its moment a couple, as
+    :func:`beam_columns`). Segments without a section do not bend here."""
     masses = mass_points(robot, q)
     Pm = poe_prefix(robot.screws, q)
     out = np.zeros((len(q), 3))
@@ -268,11 +269,12 @@ def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None) -> np.ndarr
         end, _, _, L = segment_geometry(robot, q, j, k)
         start = point_at(Pm[:, j], robot.joint_points_mm[j])
         e = (end - start) / np.maximum(L, 1e-9)[:, None]
-        loads = segment_loads(robot, masses, j, p_t, payload_kg, k, payload_at)
+        loads = segment_loads(robot, masses, j, p_t, payload_kg, k, payload_at, wrench)
         if not any(m.body > j and (k is None or m.body <= k) for m, _ in masses):
             per_kg_m = sec.area_mm2 * sec.density_kg_per_mm3 * 1e3  # [kg/m]
             loads += [(F * per_kg_m, c, on) for F, c, on in _weight_loads(robot, start, e, L)]
-        I = _load_integrals(start, e, L, loads, p_t)
+        couples = () if wrench is None else (np.asarray(wrench, float)[:, 3:],)
+        I = _load_integrals(start, e, L, loads, p_t, couples)
         out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / (sec.shear_modulus_MPa * 2 * sec.inertia_mm4)
                 + I["shear"] / sec.shear_stiffness_N)
     return out

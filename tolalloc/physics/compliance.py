@@ -170,11 +170,11 @@ def joint_windup(robot: Robot, tau: np.ndarray, stiffness_scale: np.ndarray | fl
     return out
 
 
-def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None) -> np.ndarray:
-    """Target displacement [mm] (P, 3) of the mount tilting under its load with the robot file's mount stiffness
-    (zeros when the file gives none)."""
+def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> np.ndarray:
+    """Target displacement [mm] (P, 3) of the mount tilting under its load (a process ``wrench`` (P, 6) at ``tip_mm``
+    included) with the robot file's mount stiffness (zeros when the file gives none)."""
     k = robot.components.mount.tilt_stiffness
     if k is None:
         return np.zeros_like(p)
-    B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes")
+    B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes", wrench)
     return B @ (1.0 / np.asarray(k, float)[:B.shape[2]])

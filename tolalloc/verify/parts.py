@@ -191,7 +191,8 @@ def verify_parts(res, *, which: str = "certified", points: str = "worst", n_mc: 
                              pr.prob, pr.radius_mm, seed, time.perf_counter() - t0, robot.q_to_interface(pts.q))
 
 
-_OPTIONS = ("payload_kg", "ambient_c", "duty", "reference_c", "after", "residual", "rules")
+_OPTIONS = ("payload_kg", "ambient_c", "duty", "reference_c", "process_force_n", "process_torque_nm", "after",
+            "residual", "rules")
 
 
 def verified_parts(model, region, q, options, *, radius_mm: float, prob: float, costs=None, verify: bool = True,
@@ -201,8 +202,9 @@ def verified_parts(model, region, q, options, *, radius_mm: float, prob: float, 
     ``verification``.
 
     ``options``: True, or a dict of ``payload_kg`` (low, high) [kg] (default 0 to the robot's rated payload),
-    ``ambient_c`` (low, high) [degC] (default the reference), ``duty``, ``reference_c`` (default 20), ``after``,
-    ``residual`` and ``rules``.
+    ``ambient_c`` (low, high) [degC] (default the reference), ``duty``, ``reference_c`` (default 20),
+    ``process_force_n`` and ``process_torque_nm`` (x, y, z) [N, N m] at the tool point in the tool frame (default none),
+    ``after``, ``residual`` and ``rules``.
     """
     from dataclasses import replace
 
@@ -223,7 +225,8 @@ def verified_parts(model, region, q, options, *, radius_mm: float, prob: float, 
     ref = float(opts.get("reference_c", 20.0))
     rated = robot.components.payload.rated_kg or 0.0
     cond = Conditions(tuple(opts.get("payload_kg", (0.0, rated))), tuple(opts.get("ambient_c", (ref, ref))), ref,
-                      float(opts.get("duty", 0.5)))
+                      float(opts.get("duty", 0.5)), tuple(opts.get("process_force_n", (0.0, 0.0, 0.0))),
+                      tuple(opts.get("process_torque_nm", (0.0, 0.0, 0.0))))
     kw = {k: opts[k] for k in ("after", "residual", "rules") if k in opts}
     res = allocate_parts(model, region, q, conditions=cond, radius_mm=radius_mm, prob=prob, costs=costs, seed=seed,
                          **kw)

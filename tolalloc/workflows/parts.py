@@ -67,7 +67,7 @@ class PartsToleranceAllocation(JobResult):
         q = ", ".join(f"{v:.4g}" for v in r.problem.model.robot.q_to_interface(w.q[0]))
         return [f"robot: {r.problem.model.robot.name}   requirement: P(|dP| < {self.radius_mm:g} mm) >= {self.prob:g} "
                 f"over {self.label!r} x payload {c.payload_kg[0]:g}-{c.payload_kg[1]:g} kg x ambient "
-                f"{c.ambient_c[0]:g}-{c.ambient_c[1]:g} degC (after: {r.after})",
+                f"{c.ambient_c[0]:g}-{c.ambient_c[1]:g} degC{_process(c)} (after: {r.after})",
                 f"cost {r.cost:.4g} = machining {r.machining_cost:.4g} + bought parts {r.parts_cost:.4g}   "
                 f"(program {r.outcome.status}, relative gap {r.outcome.gap:g})",
                 f"worst point: q = {q} deg / mm, payload {w.payload_kg[0]:g} kg, ambient {w.ambient_c[0]:g} degC",
@@ -115,3 +115,11 @@ class PartsToleranceAllocation(JobResult):
             frame.to_csv(folder / name, index=False, float_format="%.8g")
         write_json(self.summary(), folder / "summary.json")
         return [*files, "summary.json"]
+
+
+def _process(c) -> str:
+    """The conditions' process wrench in words (empty without one)."""
+    if not c.has_process_wrench:
+        return ""
+    f, m = (", ".join(f"{v:g}" for v in x) for x in (c.process_force_n, c.process_torque_nm))
+    return f" x process force ({f}) N and moment ({m}) N m at the tool, tool frame"
