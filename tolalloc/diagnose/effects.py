@@ -50,10 +50,9 @@ signature:
                       stroke): a linear axis' six error motions along its stroke
                       (:mod:`tolalloc.physics.error_motions`); ``rehome``: the zeros of joints with incremental encoders
                       (the robot file's ``homing``) homed anew at each power-up, read from the pauses in ``time_s``
-                      (:mod:`tolalloc.physics.rehoming`). Every
-                      transmission variant carries a Gaussian prior
-                      per joint (``groups``; ``stroke``: one for a joint's translations, one for its rotations) fitted
-                      by marginal likelihood (:mod:`.evidence`): a ridge.
+                      (:mod:`tolalloc.physics.rehoming`). Every transmission variant carries a Gaussian prior per
+                      joint (``groups``; ``stroke``: one for a joint's translations, one for its rotations) fitted by
+                      marginal likelihood (:mod:`.evidence`): a ridge.
 """
 
 from __future__ import annotations
