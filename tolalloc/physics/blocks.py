@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MAX_BLOCKS", "MIN_BLOCK_POSES", "runs", "place", "contrasts", "block_problem"]
+__all__ = ["MAX_BLOCKS", "MIN_BLOCK_POSES", "runs", "place", "contrasts", "pose_contrasts", "block_problem"]
 
 #: At most this many blocks in the training poses: more are a quantity that varies pose by pose, not a setting that
 #: holds for a block.
@@ -60,6 +60,16 @@ def contrasts(counts: np.ndarray) -> np.ndarray:
     root = np.sqrt(n)
     Q, _ = np.linalg.qr(np.column_stack([root, np.eye(len(n))]))
     return np.sqrt(n.sum()) * Q[:, 1:len(n)] / root[:, None]
+
+
+def pose_contrasts(blocks: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Every pose's row of :func:`contrasts`, shape (P, K - 1): ``blocks`` (P,) from :func:`place`, ``counts`` (K,) the
+    training poses per block; a pose in no training block (-1) gets zeros (the mean)."""
+    C = contrasts(counts)
+    w = np.zeros((len(blocks), C.shape[1]))
+    seen = blocks >= 0
+    w[seen] = C[blocks[seen]]
+    return w
 
 
 def block_problem(block: np.ndarray, what: str) -> str | None:

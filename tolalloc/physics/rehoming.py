@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.blocks import block_problem, contrasts, place, runs
+from tolalloc.physics.blocks import block_problem, place, pose_contrasts, runs
 from tolalloc.physics.thermal import PAUSE_STEPS, time_problem
 
 __all__ = ["homed_joints", "cycle_gap_s", "cycle_blocks", "rehome_problem", "rehome_columns"]
@@ -75,12 +75,9 @@ def rehome_columns(Jp: np.ndarray, blocks: np.ndarray, counts: np.ndarray, joint
     :func:`cycle_blocks`; ``counts`` (K,) the training poses per cycle; ``joint_names``, ``units`` (n,) the joints'
     names and "rad" or "mm". The zero of joint ``j`` in cycle ``b`` is its calibrated offset plus ``C[b] @ z_j``
     (:func:`~.blocks.contrasts`); ``groups`` (n (K - 1),): the joint of each column (one prior scale per joint)."""
-    C = contrasts(counts)
-    w = np.zeros((len(blocks), C.shape[1]))
-    seen = blocks >= 0
-    w[seen] = C[blocks[seen]]
+    w = pose_contrasts(blocks, counts)
     n = Jp.shape[2]
     B = np.einsum("pin,pk->pink", Jp, w).reshape(len(blocks), 3, -1)
-    names = tuple(f"rehome_{joint_names[j]}_contrast{k + 1} [{units[j]}]" for j in range(n) for k in range(C.shape[1]))
-    groups = np.repeat(np.arange(n), C.shape[1])
+    names = tuple(f"rehome_{joint_names[j]}_contrast{k + 1} [{units[j]}]" for j in range(n) for k in range(w.shape[1]))
+    groups = np.repeat(np.arange(n), w.shape[1])
     return B, names, groups

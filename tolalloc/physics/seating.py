@@ -24,8 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.blocks import block_problem, contrasts, place, runs
-from tolalloc.physics.loads import target_points
+from tolalloc.physics.blocks import block_problem, place, pose_contrasts, runs
 from tolalloc.physics.thermal import time_problem
 from tolalloc.robot.model import Robot
 
@@ -61,12 +60,8 @@ def seat_columns(robot: Robot, q: np.ndarray, blocks: np.ndarray, counts: np.nda
     is the calibrated tool offset (the mean seat) plus ``C[b] @ d`` on the flange (:func:`~.blocks.contrasts`); poses in
     no training block (-1) get no column (the mean seat)."""
     q = np.atleast_2d(q)
-    C = contrasts(counts)
-    zero = target_points(robot, q, np.zeros(3))
-    R = np.stack([target_points(robot, q, e) - zero for e in np.eye(3)], axis=2)  # (P, 3, 3): the flange's axes
-    w = np.zeros((len(q), C.shape[1]))
-    seen = blocks >= 0
-    w[seen] = C[blocks[seen]]
+    w = pose_contrasts(blocks, counts)
+    R = robot.fk_internal(q)[:, :3, :3]  # (P, 3, 3): the flange's axes, what an offset on the flange turns by
     B = np.einsum("pia,pk->pika", R, w).reshape(len(q), 3, -1)
-    names = tuple(f"seat_{ax}_contrast{k + 1} [mm]" for k in range(C.shape[1]) for ax in "xyz")
+    names = tuple(f"seat_{ax}_contrast{k + 1} [mm]" for k in range(w.shape[1]) for ax in "xyz")
     return B, names

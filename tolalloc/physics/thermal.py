@@ -180,10 +180,8 @@ def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float
     held over the interval before each pose (copper losses; the load of the previous pose in time order), each
     acting while the robot works (:func:`active_time`: a long gap is a pause that cools) through the first-order lag
     of time constant ``tau_s``."""
-    order = np.argsort(time_s, kind="stable")
     on = active_time(time_s)
-    held = np.zeros_like(load, dtype=float)
-    held[order[1:]] = np.asarray(load, float)[order[:-1]] ** 2
+    held = _previous(time_s, load) ** 2
     speed = _moves(time_s, q)[0] / np.maximum(on, 1e-9)[:, None]  # the move over the time the robot works
     return lag_filter(time_s, np.concatenate([speed, held], axis=1), tau_s, on_s=on)
 
@@ -191,10 +189,16 @@ def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float
 def held_heat(time_s: np.ndarray, payload_kg: np.ndarray, tau_s: float) -> np.ndarray:
     """Lagged heat of a held payload, shape (P,): the payload of the previous pose in time order held over the interval
     before each pose (0 before the first), through the first-order lag of time constant ``tau_s`` started at 0 [kg]."""
+    return lag_filter(time_s, _previous(time_s, payload_kg)[:, None], tau_s)[:, 0]
+
+
+def _previous(time_s: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """``values`` (P, ...) of the previous pose in time order, at each pose (0 at the first): what was held over the
+    interval before it."""
     order = np.argsort(time_s, kind="stable")
-    held = np.zeros(len(time_s))
-    held[order[1:]] = np.asarray(payload_kg, float)[order[:-1]]
-    return lag_filter(time_s, held[:, None], tau_s)[:, 0]
+    out = np.zeros(np.shape(values), dtype=float)
+    out[order[1:]] = np.asarray(values, float)[order[:-1]]
+    return out
 
 
 def thermal_variants(meas) -> tuple:
@@ -236,23 +240,15 @@ def _tau_s(variant: str) -> float:
     return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
 
 
-def _history(meas, ref: dict, fn):
-    """``fn(time_s, q)`` over the training poses (``ref["motion"]``) and then these, in time order, on these poses:
-    what is known before a pose is measured (the training file itself: over its own poses)."""
-    ht, hq = ref["motion"]
-    t = meas.time_s
-    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hq, meas.q):
-        return fn(t, meas.q)
-    return fn(np.concatenate([ht, t]), np.concatenate([hq, meas.q]))[len(ht):]
-
-
-def _held_history(meas, ref: dict, tau_s: float) -> np.ndarray:
-    """:func:`held_heat` over the training poses and then these, in time order (as :func:`_history`)."""
-    ht, hm = ref["payload_history"]
-    t, m = meas.time_s, meas.payload_kg
-    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hm, m):
-        return held_heat(t, m, tau_s)
-    return held_heat(np.concatenate([ht, t]), np.concatenate([hm, m]), tau_s)[len(ht):]
+def _history(meas, ref: dict, fn, key: str = "motion", values=None):
+    """``fn(time_s, values)`` over the training poses (``ref[key]``: their times and values, default the joint values
+    of ``ref["motion"]``) and then these, in time order, on these poses: what is known before a pose is measured (the
+    training file itself: over its own poses). ``values``: these poses' (default ``meas.q``)."""
+    ht, hv = ref[key]
+    t, v = meas.time_s, (meas.q if values is None else values)
+    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hv, v):
+        return fn(t, v)
+    return fn(np.concatenate([ht, t]), np.concatenate([hv, v]))[len(ht):]
 
 
 def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None,
@@ -272,7 +268,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     if variant.startswith("motor"):
         return _history(meas, ref, lambda ts, qs: motor_heat(ts, qs, gravity_torques(robot, qs), tau))
     if variant.startswith("held"):
-        return _held_history(meas, ref, tau)
+        return _history(meas, ref, lambda ts, ms: held_heat(ts, ms, tau), "payload_history", meas.payload_kg)
     ht, hT = ref["history"]  # lag of the temperature log
     allt, allT = np.concatenate([ht, t]), np.concatenate([hT, meas.temperature_c])
     y = lagged(allt, allT, tau)[len(ht):]
