@@ -342,9 +342,10 @@ def test_every_public_module_is_in_the_api_reference(monkeypatch):
     spec.loader.exec_module(api_pages)
     monkeypatch.setattr(api_pages, "_summary", lambda name, skip: [])  # the module blocks only (entries: below)
     text = "".join(p.read_text() for p in (DOCS / "api").glob("*.md"))
-    documented = set(re.findall(r"\.\. automodule:: ([\w.]+)", text))
+    module = r"\.\. (?:automodule|py:module):: ([\w.]+)"
+    documented = set(re.findall(module, text))
     for names in api_pages.MARKER.findall(text):
-        documented |= set(re.findall(r"\.\. automodule:: ([\w.]+)", api_pages.expand(names)))
+        documented |= set(re.findall(module, api_pages.expand(names)))
     public = {"tolalloc"}
     for info in pkgutil.walk_packages(tolalloc.__path__, "tolalloc."):
         parts = info.name.split(".")
@@ -368,7 +369,8 @@ def test_api_pages_document_the_stage_api_in_full_and_list_the_building_blocks()
     text = api_pages.expand("tolalloc.allocate")
     assert ".. automodule:: tolalloc.allocate\n   :members:" in text
     section = text.split("## `tolalloc.allocate.drawing`", 1)[1].split("\n## ", 1)[0]
-    assert ":no-members:" in section
+    doc = tolalloc.allocate.drawing.__doc__.strip().splitlines()[0]
+    assert section.startswith(f"\n\n```{{eval-rst}}\n.. py:module:: tolalloc.allocate.drawing\n\n{doc}")
     assert ".. py:function:: diameter_factor\n\n   ``f`` with ``Ø zone = L f t`` for two tilts" in section
     assert ".. py:data:: SYMBOLS\n\n   ISO 1101 symbols" in section and ".. py:class:: FeatureMap" in section
     foundation = api_pages.expand("tolalloc.exceptions")
