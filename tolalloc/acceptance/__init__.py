@@ -14,6 +14,7 @@ from tolalloc.acceptance.layout import AcceptanceTest, acceptance_test
 from tolalloc.acceptance.model import ErrorEffects, EffectCovariance, StatisticModel, statistic_models
 from tolalloc.acceptance.decision import Decision, decide
 from tolalloc.acceptance.predict import AcceptancePrediction, StatisticPrediction, predict_acceptance
+from tolalloc.acceptance.parts import parts_effects
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
            "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "Requirement",
@@ -22,4 +23,4 @@ __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orien
            "check_requirements", "split_requirements", "TestCube", "CubePlacement", "place_cube", "Tracker",
            "AcceptanceTest", "acceptance_test", "ErrorEffects", "EffectCovariance", "StatisticModel",
            "statistic_models", "Decision", "decide", "AcceptancePrediction", "StatisticPrediction",
-           "predict_acceptance"]
+           "predict_acceptance", "parts_effects"]

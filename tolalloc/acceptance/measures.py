@@ -36,25 +36,30 @@ def _psd(C) -> np.ndarray:
     return 0.5 * (C + np.swapaxes(C, -1, -2))
 
 
-def measure_cdf(measure: str, C, b, n: int) -> np.ndarray:
-    """``P(statistic <= b)`` for covariances ``C`` (..., 3, 3) [mm^2 or rad^2], shape ``C.shape[:-2]``."""
+def measure_cdf(measure: str, C, b, n: int, mean=None) -> np.ndarray:
+    """``P(statistic <= b)`` for covariances ``C`` (..., 3, 3) [mm^2 or rad^2], shape ``C.shape[:-2]``; ``mean``
+    (..., 3): the vector's mean (a *ball* only)."""
     _check(measure)
     C = _psd(C)
     if measure == "ball":
-        return p_within_radius(C, np.broadcast_to(np.asarray(b, float), C.shape[:-2]))
+        return p_within_radius(C, np.broadcast_to(np.asarray(b, float), C.shape[:-2]), mean)
     if measure == "rp":
         return p_rp_within(C, b, n)
     return p_sd3_within(np.einsum("...ii->...", C), b, n)
 
 
-def measure_quantile(measure: str, C, p, n: int) -> np.ndarray:
-    """The ``p``-quantile of the statistic [mm or rad], shape ``C.shape[:-2]``."""
+def measure_quantile(measure: str, C, p, n: int, mean=None) -> np.ndarray:
+    """The ``p``-quantile of the statistic [mm or rad], shape ``C.shape[:-2]``; ``mean`` (..., 3): the vector's
+    mean (a *ball* only; a zero covariance then gives its length)."""
     _check(measure)
     C = _psd(C)
     if measure == "ball":
         tr = np.einsum("...ii->...", C)
         safe = np.where((tr > 0)[..., None, None], C, np.eye(3))
-        return np.where(tr > 0, radius_for_prob(safe, p), 0.0)
+        if mean is None:
+            return np.where(tr > 0, radius_for_prob(safe, p), 0.0)
+        mean = np.asarray(mean, float)
+        return np.where(tr > 0, radius_for_prob(safe, p, mean), np.linalg.norm(mean, axis=-1))
     if measure == "rp":
         return rp_quantile(C, p, n)
     return sd3_quantile(np.einsum("...ii->...", C), p, n)

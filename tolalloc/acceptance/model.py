@@ -61,12 +61,16 @@ class EffectCovariance:
         Joint covariance over the poses of the part each built robot keeps (compliance under the test load, thermal
         offset ...); rows per pose: position [mm], rotation [rad].
     random : array, shape (M, 6, 6)
-        Covariance per pose of the part new at every move (lost motion by approach, transmission error, encoder
-        noise, drift within the test), independent between moves.
+        Covariance per pose of the part new at every move (a gear's repeatability, encoder noise, drift within the
+        test), independent between moves.
+    mean : array, shape (M * 6,), optional
+        The part every built robot shares at the poses (the wind-up under the test load, the sag of the links, the
+        thermal growth at the test's temperature); ``None``: zero.
     """
 
     systematic: np.ndarray
     random: np.ndarray
+    mean: np.ndarray | None = None
 
 
 class ErrorEffects(Protocol):
@@ -184,6 +188,13 @@ class StatisticModel:
         (P, 3, 3) (zero for a repeatability)."""
         Lf = self.L.reshape(self.n_rows, 3, -1)
         return np.einsum("pai,ij,pbj->pab", Lf, cov, Lf) * float(self.systematic)
+
+    def effect_mean(self, effects: EffectCovariance | None) -> np.ndarray | None:
+        """The statistic vector's mean over the built robots from the effects' mean, shape (P, 3) (``None`` without
+        one, and for a repeatability: the cycles' scatter about their barycentre does not see it)."""
+        if effects is None or effects.mean is None or not self.systematic:
+            return None
+        return np.einsum("pai,i->pa", self.L.reshape(self.n_rows, 3, -1), effects.mean)
 
     def covariance(self, J, sys_cov, rand_var, *, effects: EffectCovariance | None = None, tracker=None):
         """The statistic vector's covariance over the built robots, shape (P, 3, 3).

@@ -209,14 +209,17 @@ def _split_for(model, split):
 def _predict_one(sm: StatisticModel, J, S, V, eff, tracker) -> StatisticPrediction:
     C = sm.covariance(J, S, V, effects=eff)
     C_sys = sm.covariance(J, S, np.zeros_like(V))
+    if eff is not None:
+        C_sys = C_sys + sm.joint_covariance(eff.systematic)
     C_inst = sm.instrument_covariance(tracker)
+    mu = sm.effect_mean(eff)
     tr = np.einsum("pii->p", C)
     share = np.where(tr > 0, np.einsum("pii->p", C_sys) / np.where(tr > 0, tr, 1.0), 0.0)
     tgt, n = sm.target, sm.cycles
-    robot = measure_quantile(sm.measure, C, tgt, n)
-    measured = measure_quantile(sm.measure, C + C_inst, tgt, n)
-    median = measure_quantile(sm.measure, C + C_inst, 0.5, n)
-    p = measure_cdf(sm.measure, C, sm.limit, n)
+    robot = measure_quantile(sm.measure, C, tgt, n, mu)
+    measured = measure_quantile(sm.measure, C + C_inst, tgt, n, mu)
+    median = measure_quantile(sm.measure, C + C_inst, 0.5, n, mu)
+    p = measure_cdf(sm.measure, C, sm.limit, n, mu)
     U = expanded_uncertainty(sm.measure, C_inst, n, tracker.k)
     decisions = tuple(decide(y, sm.limit, u) for y, u in zip(measured, U))
     return StatisticPrediction(sm, C, C_inst, share, robot, measured, median, p, U, decisions)

@@ -141,7 +141,8 @@ def simulate_acceptance(test, requirements, model, split=None, *, posterior=None
         After a calibration: the systematic parts are drawn from its remaining covariance (normal), the random
         parts with its variances.
     effects : ErrorEffects, optional
-        Bought-part effects, drawn as normal errors of their covariances (the conditions of the first requirement).
+        Bought-part effects, drawn as normal errors of their means and covariances (the conditions of the first
+        requirement).
     n_robots : int
     seed : int
     """
@@ -189,6 +190,8 @@ class _Lab:
         if self.eff is not None:
             lam, vec = np.linalg.eigh(self.eff.systematic)
             self.eff_sys = (rng.standard_normal((n, len(lam))) @ (vec * np.sqrt(np.maximum(lam, 0))).T).reshape(n, M, 6)
+            if self.eff.mean is not None:
+                self.eff_sys += self.eff.mean.reshape(M, 6)
         tr = test.tracker
         self.noise_mm, self.noise_rad = tr.sigma_mm, tr.sigma_rad
         self.R_true, self.t_true, self.R_meas, self.t_meas = self._register()

@@ -50,7 +50,8 @@ from tolalloc.robot.model import Robot
 
 __all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "Conditions",
            "PartsModel",
-           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side"]
+           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics",
+           "encoder_harmonics"]
 
 EFFECTS = ("compliance", "lost_motion", "transmission", "encoder", "bearing", "thermal", "beam", "mount")
 #: Relative spread (one sd) of a link's thermal growth between robots (CTE and temperature field; ASSUMED).
@@ -157,6 +158,35 @@ def _process_wrench(R: np.ndarray, tool: np.ndarray, payload_point: np.ndarray, 
     return np.concatenate([F, M], axis=1), np.concatenate([F, moved], axis=1)
 
 
+def _rotation_of(displacement, p: np.ndarray) -> np.ndarray:
+    """Rotation [rad] (P, 3) of the rigid body beyond a deflection whose displacement of a target point ``p`` (P, 3)
+    is ``displacement(p)``: ``d(p + e) - d(p) = theta x e`` for the unit axes ``e`` (the loads stay where they are;
+    a process wrench moves with the point by 1 mm, a 1e-3 relative change of its moment at a metre's reach)."""
+    d0 = displacement(p)
+    dx, dy, dz = (displacement(p + e) - d0 for e in np.eye(3))
+    # theta x e_x = (0, t_z, -t_y), theta x e_y = (-t_z, 0, t_x), theta x e_z = (t_y, -t_x, 0)
+    return np.stack([(dy[:, 2] - dz[:, 1]) / 2, (dz[:, 0] - dx[:, 2]) / 2, (dx[:, 1] - dy[:, 0]) / 2], axis=1)
+
+
+def gear_harmonics(red, revolute: bool) -> tuple:
+    """``(orders (K,), amplitudes (K,))`` [rad or mm] of reducer ``red``'s transmission error in its joint's angle
+    (:func:`~tolalloc.physics.transmission.catalogue_amplitudes`; zero amplitudes without a transmission accuracy):
+    sinusoids at random phases, each of variance ``a^2 / 2``."""
+    return catalogue_amplitudes(red.transmission_accuracy or 0.0, red.ratio if revolute else None)
+
+
+def encoder_harmonics(enc, ratio: float | None, revolute: bool) -> tuple:
+    """``(orders (K,), amplitudes (K,))`` [rad or mm] of encoder ``enc``'s error in its joint's angle: the graduation
+    error ``accuracy / 2`` once per turn, and an output-side rotary scale's eccentricity ``e / r`` once per turn
+    beside it; a motor-side encoder's error at the gear ``ratio``, divided by it."""
+    a = (enc.accuracy or 0.0) / 2.0
+    if enc.side == "motor" and ratio and revolute:
+        return np.array([float(ratio)]), np.array([a / ratio])
+    if enc.eccentricity and enc.scale_radius_mm and revolute:
+        return np.ones(2), np.array([a, enc.eccentricity / enc.scale_radius_mm])
+    return np.ones(1), np.array([a])
+
+
 def motor_side(robot: Robot, j: int) -> bool:
     """Whether joint ``j``'s position loop closes on the motor (its encoder is motor-side, or it has none)."""
     enc = robot.components.joint(robot.joints[j].name).encoder
@@ -214,6 +244,7 @@ class EffectTerms:
     joint : array of int, shape (T,)          joint of the term (-1: none)
     columns : array, shape (P, 3, T)          tool displacement per unit value [mm per mm or rad, or per unit]
     mean, sys_sd, rnd_sd : arrays, shape (P, T)
+    rotation : array, shape (P, 3, T)         tool rotation per unit value [rad per mm or rad, or per unit]
     """
 
     names: tuple
@@ -223,23 +254,25 @@ class EffectTerms:
     mean: np.ndarray
     sys_sd: np.ndarray
     rnd_sd: np.ndarray
+    rotation: np.ndarray
 
     @staticmethod
     def empty(P: int) -> "EffectTerms":
         return EffectTerms((), (), np.zeros(0, int), np.zeros((P, 3, 0)), np.zeros((P, 0)), np.zeros((P, 0)),
-                           np.zeros((P, 0)))
+                           np.zeros((P, 0)), np.zeros((P, 3, 0)))
 
     def __add__(self, other: "EffectTerms") -> "EffectTerms":
         return EffectTerms(self.names + other.names, self.effect + other.effect,
                            np.concatenate([self.joint, other.joint]),
                            *(np.concatenate([getattr(self, a), getattr(other, a)], axis=-1)
-                             for a in ("columns", "mean", "sys_sd", "rnd_sd")))
+                             for a in ("columns", "mean", "sys_sd", "rnd_sd", "rotation")))
 
     def select(self, mask) -> "EffectTerms":
         """The terms where ``mask`` (T,) is true."""
         idx = np.flatnonzero(np.asarray(mask, bool))
         return EffectTerms(tuple(self.names[i] for i in idx), tuple(self.effect[i] for i in idx), self.joint[idx],
-                           self.columns[:, :, idx], self.mean[:, idx], self.sys_sd[:, idx], self.rnd_sd[:, idx])
+                           self.columns[:, :, idx], self.mean[:, idx], self.sys_sd[:, idx], self.rnd_sd[:, idx],
+                           self.rotation[:, :, idx])
 
     def of_effect(self, effect: str) -> "EffectTerms":
         """The terms of one effect (:data:`EFFECTS`)."""
@@ -300,7 +333,8 @@ class PartEffects:
         self.ambient = np.broadcast_to(np.asarray(ambient_c, float), (P,)).copy()
         self.pm = pm if pm is not None else parts_error_model(
             model if model is not None else build_error_model(robot, "generic"), robot)
-        self.J = self.pm.model.jacobian(self.q)[:, :3, :]
+        self.J6 = self.pm.model.jacobian(self.q)
+        self.J = self.J6[:, :3, :]
         self.tool = target_points(robot, self.q, np.zeros(3))
         T = robot.fk_internal(self.q)
         self.payload_point = self.tool + T[:, :3, :3] @ robot.components.payload.com_mm
@@ -311,11 +345,17 @@ class PartEffects:
     def n_points(self) -> int:
         return len(self.q)
 
-    def _term(self, names, effect, j, col, mean=None, sys=None, rnd=None) -> EffectTerms:
+    def _term(self, names, effect, j, col, mean=None, sys=None, rnd=None, rot=None) -> EffectTerms:
+        """One term along ``col`` (P, 3), or along the error model's parameter ``col`` (an index: its position and
+        rotation columns); ``rot`` (P, 3) the rotation of a direct displacement."""
         P = self.n_points
         z = np.zeros((P, 1))
         f = (lambda a: z if a is None else np.broadcast_to(np.asarray(a, float), (P,))[:, None].copy())
-        return EffectTerms((names,), (effect,), np.array([j]), col[:, :, None], f(mean), f(sys), f(rnd))
+        if np.ndim(col) == 0:
+            col, rot = self.J6[:, :3, col], self.J6[:, 3:, col]
+        rot = np.zeros((P, 3)) if rot is None else rot
+        return EffectTerms((names,), (effect,), np.array([j]), col[:, :, None], f(mean), f(sys), f(rnd),
+                           rot[:, :, None])
 
     def reducer_terms(self, j: int, red, loop_on_motor: bool = True,
                       effects: tuple = ("compliance", "lost_motion", "transmission")) -> EffectTerms:
@@ -324,15 +364,14 @@ class PartEffects:
         out, nm = EffectTerms.empty(self.n_points), self.robot.joints[j].name
         if red is None or not loop_on_motor:
             return out
-        col = self.J[:, :, self.pm.drive[j]]
+        col = self.pm.drive[j]
         if red.stiffness and "compliance" in effects:
             w = red.deflection(self.tau[:, j])
             out += self._term(f"windup_{nm}", "compliance", j, col, w, (red.stiffness_sd or 0.0) * np.abs(w))
         if red.lost_motion and "lost_motion" in effects:
             out += self._term(f"lost_motion_{nm}", "lost_motion", j, col, rnd=red.lost_motion / 2.0)
         if (red.transmission_accuracy or red.repeatability) and "transmission" in effects:
-            ratio = red.ratio if self.robot.joints[j].is_revolute else None
-            _, amp = catalogue_amplitudes(red.transmission_accuracy or 0.0, ratio)
+            _, amp = gear_harmonics(red, self.robot.joints[j].is_revolute)
             out += self._term(f"transmission_{nm}", "transmission", j, col, sys=np.sqrt(np.sum(amp ** 2) / 2),
                               rnd=(red.repeatability or 0.0) / np.sqrt(3.0))
         return out
@@ -342,12 +381,8 @@ class PartEffects:
         rotary scale) once per turn; a motor-side encoder's error divided by the gear ratio ``ratio``."""
         if enc is None or not enc.accuracy and not enc.eccentricity:
             return EffectTerms.empty(self.n_points)
-        amp = np.array([(enc.accuracy or 0.0) / 2.0])
-        if enc.side == "motor" and ratio and self.robot.joints[j].is_revolute:
-            amp = amp / ratio
-        elif enc.eccentricity and enc.scale_radius_mm and self.robot.joints[j].is_revolute:
-            amp = np.append(amp, enc.eccentricity / enc.scale_radius_mm)
-        return self._term(f"encoder_{self.robot.joints[j].name}", "encoder", j, self.J[:, :, self.pm.drive[j]],
+        _, amp = encoder_harmonics(enc, ratio, self.robot.joints[j].is_revolute)
+        return self._term(f"encoder_{self.robot.joints[j].name}", "encoder", j, self.pm.drive[j],
                           sys=np.sqrt(np.sum(amp ** 2) / 2))
 
     def bearing_terms(self, j: int, bearing) -> EffectTerms:
@@ -356,7 +391,7 @@ class PartEffects:
         if bearing is None or j not in self.pm.bearing:
             return out
         for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
-            out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, self.J[:, :, k], sys=sd)
+            out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
         return out
 
     def joint_terms(self, j: int) -> EffectTerms:
@@ -380,14 +415,14 @@ class PartEffects:
         for k, lk in enumerate(links):
             if cte[k] > 0:
                 grow = cte[k] * dT[:, k] * lk.length_mm
-                out += self._term(f"thermal_{lk.name}", "thermal", -1, self.J[:, :, self.pm.link[k]], grow,
+                out += self._term(f"thermal_{lk.name}", "thermal", -1, self.pm.link[k], grow,
                                   THERMAL_SD * np.abs(grow))
         if r.components.links:
-            sag = beam_sag(r, self.q, self.tool, self.payload, self.payload_point, self.wrench_tool)
-            out += self._term("beam", "beam", -1, sag, 1.0, BEAM_SD)
+            sag = (lambda p: beam_sag(r, self.q, p, self.payload, self.payload_point, self.wrench_tool))
+            out += self._term("beam", "beam", -1, sag(self.tool), 1.0, BEAM_SD, rot=_rotation_of(sag, self.tool))
         if r.components.mount.tilt_stiffness is not None:
-            tilt = mount_tilt(r, self.q, self.tool, self.payload_point, self.payload, self.wrench)
-            out += self._term("mount", "mount", -1, tilt, 1.0, MOUNT_SD)
+            tilt = (lambda p: mount_tilt(r, self.q, p, self.payload_point, self.payload, self.wrench))
+            out += self._term("mount", "mount", -1, tilt(self.tool), 1.0, MOUNT_SD, rot=_rotation_of(tilt, self.tool))
         return out
 
     def terms(self) -> EffectTerms:

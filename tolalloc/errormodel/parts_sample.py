@@ -15,12 +15,12 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD, THERMAL_SD, PartEffects,
-                                       motor_side, residual_factors)
+                                       encoder_harmonics, gear_harmonics, motor_side, residual_factors)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
 from tolalloc.physics.thermal_design import link_cte
-from tolalloc.physics.transmission import catalogue_amplitudes, transmission_error
+from tolalloc.physics.transmission import transmission_error
 
 __all__ = ["sample_effects"]
 
@@ -45,19 +45,13 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple
             side = rng.choice([-1.0, 1.0], (n, 1))[:, 0]  # the flank of a random approach, either side
             rnd += side * red.lost_motion / 2.0
         if red.transmission_accuracy:
-            orders, amps = catalogue_amplitudes(red.transmission_accuracy, red.ratio if rev else None)
-            sys += f["transmission"] * _sines(qj, orders, amps, rng, n)
+            sys += f["transmission"] * _sines(qj, *gear_harmonics(red, rev), rng, n)
         if red.repeatability:
             rnd += rng.uniform(-red.repeatability, red.repeatability, n)
     if enc is not None and (enc.accuracy or enc.eccentricity):
-        ratio, e = getattr(red, "ratio", None), np.zeros(n)
-        if enc.side == "motor" and ratio and rev:
-            e += _sines(qj, np.array([ratio]), np.array([(enc.accuracy or 0.0) / 2 / ratio]), rng, n)
-        else:
-            e += _sines(qj, np.array([1.0]), np.array([(enc.accuracy or 0.0) / 2]), rng, n)
-            if enc.eccentricity and enc.scale_radius_mm and rev:
-                e += _sines(qj, np.array([1.0]), np.array([enc.eccentricity / enc.scale_radius_mm]), rng, n)
-        sys += f["encoder"] * e
+        orders, amps = encoder_harmonics(enc, getattr(red, "ratio", None), rev)
+        # one sinusoid at a time: each its own phase
+        sys += f["encoder"] * sum(_sines(qj, orders[k:k + 1], amps[k:k + 1], rng, n) for k in range(len(orders)))
     return sys, rnd
 
 

@@ -1,0 +1,170 @@
+"""Bought parts in the ISO 9283 acceptance test (tolalloc.acceptance.parts): the covariance over the test poses
+against physical draws through the robot's own forward kinematics, the means against the kinematics of the deflected
+joints, lost motion seen by the accuracy and not by the repeatability, and the refusals."""
+
+import copy
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from tolalloc.acceptance import PoseAccuracy, PoseRepeatability, predict_acceptance
+from tolalloc.acceptance.parts import effect_covariance, parts_effects
+from tolalloc.acceptance.simulate import simulate_acceptance
+from tolalloc.calibration.split import split_errors
+from tolalloc.errormodel import build_error_model
+from tolalloc.errormodel.parts import PartEffects, with_parts
+from tolalloc.exceptions import TolallocError
+from tolalloc.physics.compliance import mount_tilt
+from tolalloc.physics.transmission import catalogue_amplitudes, transmission_error
+from tolalloc.robot.components import JointComponents, Mount, Reducer
+from iso_setup import ur10_test
+
+ARCMIN = np.deg2rad(1 / 60)
+
+
+def _resolved():
+    robot, test = ur10_test()
+    return with_parts(robot, {k: s.options[0].name for k, s in robot.components.slots.items()}), test
+
+
+def _only(robot, joints=None, mount=None, links=False):
+    """``robot`` whose components are only ``joints`` ({name: JointComponents}), ``mount`` and, with ``links``, its
+    link sections (the payload rating kept)."""
+    comps = replace(robot.components, joints=dict(joints or {}), mount=mount or Mount(), slots={},
+                    links=robot.components.links if links else {})
+    out = copy.copy(robot)
+    object.__setattr__(out, "components", comps)
+    return out
+
+
+def _pose_error(robot, q, dq):
+    """Position [mm] and rotation [rad] error (..., 6) of joint offsets ``dq`` (n, P, J) from the forward
+    kinematics: the tool point's move and the rotation vector of ``R(q + dq) R(q)^T``."""
+    T0 = robot.fk_internal(q)
+    n, P = dq.shape[:2]
+    T = robot.fk_internal((q[None] + dq).reshape(n * P, -1)).reshape(n, P, 4, 4)
+    dp = T[..., :3, 3] - T0[None, :, :3, 3]
+    R = np.einsum("npab,pcb->npac", T[..., :3, :3], T0[:, :3, :3])
+    return np.concatenate([dp, Rotation.from_matrix(R.reshape(-1, 3, 3)).as_rotvec().reshape(n, P, 3)], axis=-1)
+
+
+def test_gear_error_covariance_over_the_poses_is_that_of_physical_draws():
+    """A strain-wave gear's kinematic error (orders 1, N, 2N at random phases) on the shoulder and elbow: the joint
+    covariance over the test's poses equals that of 20 000 robots drawn physically and moved through the forward
+    kinematics (including the pairs of poses, which a per-pose model does not give)."""
+    robot, test = _resolved()
+    red = Reducer(ratio=100.0, transmission_accuracy=1.0 * ARCMIN)
+    names = ("shoulder_lift_joint", "elbow_joint")
+    r = _only(robot, {nm: JointComponents(reducer=red) for nm in names})
+    q = np.vstack([test.q_test, test.q_registration[:3]])
+    eff = effect_covariance(r, q, 0.0)
+    rng = np.random.default_rng(3)
+    n = 20_000
+    dq = np.zeros((n, len(q), r.n_joints))
+    orders, amps = catalogue_amplitudes(red.transmission_accuracy, red.ratio)
+    for nm in names:
+        j = [jt.name for jt in r.joints].index(nm)
+        phases = rng.uniform(0, 2 * np.pi, (n, len(orders)))
+        dq[:, :, j] = np.stack([transmission_error(np.full(n, qm), orders, amps, phases) for qm in q[:, j]], axis=1)
+    x = _pose_error(r, q, dq).reshape(n, -1)
+    emp = np.cov(x, rowvar=False)
+    sd = np.sqrt(np.diag(eff.systematic)) + 1e-6 * np.sqrt(np.max(np.diag(eff.systematic)))
+    err = np.abs(eff.systematic - emp) / np.outer(sd, sd)       # in units of the correlation
+    assert np.max(err) < 0.05, np.unravel_index(np.argmax(err), err.shape)
+    assert np.allclose(eff.mean, 0.0) and np.allclose(eff.random, 0.0)
+    # poses apart in the elbow angle are correlated as the cosine of their phase difference, not independently
+    off_diag = eff.systematic[:6, 6:12]
+    assert np.linalg.norm(off_diag) > 0.05 * np.linalg.norm(eff.systematic[:6, :6])
+
+
+def test_means_are_the_kinematics_of_the_wound_up_joints_and_the_tilted_mount():
+    """Linear reducer stiffness at 100 % of the rated load: the mean pose error is the forward kinematics with every
+    joint wound up by its torque over its stiffness (position and rotation); a mount's tilt turns the tool by the
+    same rotation that moves every point ``theta x d``."""
+    robot, test = _resolved()
+    red = Reducer(ratio=100.0, stiffness=(2.0e5,))
+    r = _only(robot, {jt.name: JointComponents(reducer=red) for jt in robot.joints})
+    q = test.q_test
+    eff = effect_covariance(r, q, 100.0)
+    fx = PartEffects(r, q, robot.components.payload.rated_kg, 20.0)
+    w = fx.tau / 2.0e5                                                 # (P, J) wind-up [rad]
+    want = _pose_error(r, q, w[None])[0]
+    np.testing.assert_allclose(eff.mean.reshape(-1, 6), want, rtol=2e-3, atol=1e-7)
+    assert np.max(np.abs(want[:, :3])) > 0.05                           # a visible mean: > 50 um
+    # the arm's own weight winds the joints up at no load; the payload adds in proportion (linear stiffness)
+    half, none = (effect_covariance(r, q, pct).mean for pct in (50.0, 0.0))
+    np.testing.assert_allclose(half, (none + eff.mean) / 2, atol=1e-9)
+    assert np.linalg.norm(eff.mean - none) > 0.1 * np.linalg.norm(eff.mean)
+
+    m = _only(robot, mount=Mount((1.0e6, 1.0e6)))
+    mean = effect_covariance(m, q, 100.0).mean.reshape(-1, 6)
+    fxm = PartEffects(m, q, robot.components.payload.rated_kg, 20.0)
+    other = fxm.tool + np.array([150.0, -80.0, 40.0])
+    moved = mount_tilt(m, q, other, fxm.payload_point, fxm.payload)
+    np.testing.assert_allclose(moved - mean[:, :3], np.cross(mean[:, 3:], other - fxm.tool), rtol=1e-6, atol=1e-9)
+    assert np.all(np.linalg.norm(mean[:, 3:], axis=1) > 0)
+
+
+def _design(robot):
+    names = [p.name for p in build_error_model(robot).params if p.kind != "joint_drive"]
+    model = build_error_model(robot, exclude=tuple(names)).with_sigma(np.full(robot.n_joints, np.deg2rad(1e-5)))
+    return model, split_errors(model)
+
+
+def test_lost_motion_is_seen_by_the_accuracy_and_not_by_the_repeatability():
+    """The test approaches each pose the same way every cycle: a gear's lost motion is an offset of the pose (the
+    accuracy grows with it) and the cycles repeat it (the repeatability does not move); a gear's repeatability is
+    new at every move (the repeatability grows)."""
+    robot, test = _resolved()
+    reqs = [PoseAccuracy(limit_mm=1.0), PoseRepeatability(limit_mm=1.0)]
+    out = {}
+    for name, red in (("none", None), ("lost", Reducer(ratio=100.0, lost_motion=2 * ARCMIN)),
+                      ("repeat", Reducer(ratio=100.0, repeatability=0.2 * ARCMIN))):
+        r = _only(robot, {jt.name: JointComponents(reducer=red) for jt in robot.joints} if red else {})
+        model, split = _design(r)
+        t = replace(test, robot=r)
+        frame = predict_acceptance(t, reqs, model, split, effects=parts_effects()).to_frame().set_index(
+            ["statistic", "where"])["robot_mm"]
+        out[name] = frame
+    ap, rp = ("AP_P", "P1"), ("RP_l", "P1")
+    assert out["lost"][ap] > 5 * out["none"][ap] and out["lost"][rp] == pytest.approx(out["none"][rp], rel=1e-6)
+    assert out["repeat"][rp] > 5 * out["none"][rp]
+
+
+def test_simulated_test_with_parts_agrees_with_the_prediction():
+    """The catalogue parts of the UR10 (means, gears, bearings, links, mount): the test simulated on 2000 robots
+    agrees with the prediction within its confidence interval (AP and RP at every pose)."""
+    robot, test = _resolved()
+    model, split = _design(robot)
+    t = replace(test, robot=robot)
+    reqs = [PoseAccuracy(limit_mm=0.5), PoseRepeatability(limit_mm=0.1)]
+    pred = predict_acceptance(t, reqs, model, split, effects=parts_effects()).to_frame().set_index(
+        ["statistic", "where"])
+    sim = simulate_acceptance(t, reqs, model, split, effects=parts_effects(), n_robots=2000, seed=4).to_frame(
+        ).set_index(["statistic", "where"])
+    inside = (sim["robot_low"] * 0.98 <= pred["robot_mm"]) & (pred["robot_mm"] <= sim["robot_high"] * 1.02)
+    assert inside.all(), pd_text(pred, sim)
+    assert pred.loc[("AP_P", "P1"), "robot_mm"] > 0.1          # the parts are visible: 0.47 mm at P1
+
+
+def pd_text(pred, sim):
+    return f"{pred['robot_mm'].to_dict()} vs {sim[['robot_low', 'robot_high']].to_dict()}"
+
+
+def test_refusals_name_what_to_do():
+    robot, test = ur10_test()
+    with pytest.raises(TolallocError, match="hold no chosen part.*with_parts"):
+        effect_covariance(robot, test.q_test, 100.0)
+    r, _ = _resolved()
+    unrated = copy.copy(r)
+    object.__setattr__(unrated, "components", replace(r.components, payload=replace(r.components.payload,
+                                                                                      rated_kg=None)))
+    with pytest.raises(TolallocError, match="rated_kg, or test at load_pct = 0"):
+        effect_covariance(unrated, test.q_test, 100.0)
+    assert effect_covariance(unrated, test.q_test, 0.0).systematic.shape == (30, 30)
+    with pytest.raises(TolallocError, match="duty"):
+        parts_effects(duty=1.5)
+    with pytest.raises(TolallocError, match="ambient_c"):
+        parts_effects(ambient_c=float("nan"))
