@@ -168,3 +168,53 @@ def test_refusals_name_what_to_do():
         parts_effects(duty=1.5)
     with pytest.raises(TolallocError, match="ambient_c"):
         parts_effects(ambient_c=float("nan"))
+
+
+def test_an_incremental_encoders_homing_is_kept_through_the_test_and_random_to_the_design(tmp_path):
+    """``homing_repeatability_arcsec`` (incremental encoders only): the zero falls in +-h at each power-up. The parts
+    model counts it as random (no calibration removes it; the Monte Carlo draws it uniform), the acceptance test,
+    run in one power cycle, as a zero every pose of a robot shares: AP in the robot's base frame sees it, RP does
+    not."""
+    from parts_robot import arm
+    from tolalloc.errormodel.parts_sample import sample_effects
+
+    enc = 'encoder = { side = "motor", homing = "incremental", homing_repeatability_arcsec = 3 }'
+    r = arm(tmp_path, f"[components.joints.j3]\n{enc}\n")
+    h = np.deg2rad(3 / 3600)
+    assert r.components.joint("j3").encoder.homing_repeatability == pytest.approx(h)
+    with pytest.raises(ValueError, match='homing_repeatability: an absolute encoder.*homing = "incremental"'):
+        arm(tmp_path, "[components.joints.j3]\n" + enc.replace('"incremental"', '"absolute"') + "\n", "bad.toml")
+    r = with_parts(r, {k: slot.options[0].name for k, slot in r.components.slots.items()})
+    fx = PartEffects(r, np.array([[0.1, -0.2, 0.3]]), 0.0, 20.0)
+    row = fx.terms().to_frame().set_index("term").loc["homing_j3"]
+    col = np.linalg.norm(fx.J[0, :, fx.pm.drive[2]])
+    assert row["effect"] == "homing" and row["random_sd_mm"] == pytest.approx(h / np.sqrt(3) * col)
+    assert row["systematic_sd_mm"] == 0 and row["mean_mm"] == 0
+    values, _ = sample_effects(fx, 0, 40_000, np.random.default_rng(5))
+    j3 = values[:, fx.pm.drive[2]]                              # j3 has no reducer: its zero only
+    assert np.max(np.abs(j3)) <= h and np.std(j3) == pytest.approx(h / np.sqrt(3), rel=0.02)
+
+    robot, test = _resolved()
+    homed = Reducer(ratio=100.0)
+    incremental = replace(robot.components.joint("wrist_1_joint").encoder, homing="incremental",
+                          homing_repeatability=20 * np.deg2rad(1 / 3600), accuracy=None)
+    reqs = [PoseAccuracy(limit_mm=1.0), PoseRepeatability(limit_mm=1.0)]
+    out = {}
+    for name, joints in (("none", {}), ("homed", {"wrist_1_joint": JointComponents(reducer=homed,
+                                                                                   encoder=incremental)})):
+        rr = _only(robot, joints)
+        model, split = _design(rr)
+        for reg in ("corners", "none"):
+            t = replace(test, robot=rr, registration=reg)
+            out[name, reg] = predict_acceptance(t, reqs, model, split, effects=parts_effects()).to_frame(
+                ).set_index(["statistic", "where"])["robot_mm"]
+        if joints:
+            eff = effect_covariance(rr, test.q_test, 100.0)
+            assert np.allclose(eff.random, 0) and np.linalg.norm(eff.systematic[:6, 6:12]) > 0   # shared by the poses
+    ap, rp = ("AP_P", "P1"), ("RP_l", "P1")
+    # measured in the robot's base frame (no registration) the zero shows in AP; registered on the cube's corners,
+    # the same zero at every pose of a small cube is nearly a rigid shift, which the registration takes out
+    assert out["homed", "none"][ap] > 3 * out["none", "none"][ap]
+    assert out["homed", "corners"][ap] == pytest.approx(out["none", "corners"][ap], rel=0.05)
+    for reg in ("corners", "none"):
+        assert out["homed", reg][rp] == pytest.approx(out["none", reg][rp], rel=1e-6)

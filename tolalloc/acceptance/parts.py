@@ -15,6 +15,7 @@ pose ``m`` (position [mm] and rotation [rad] per unit value)::
                                                                                  c_m c_m'^T
     lost motion                 the flank each pose is approached on             (b / 2)^2 c_m c_m^T per pose, none
                                                                                  between poses
+    homing                      an incremental encoder's zero, set at power-up   rank one: v_m = c_m h / sqrt(3)
     gear repeatability          nothing: new at every move                       random, per pose
 
 ``s_m`` is the term's systematic sd at pose ``m``, ``a_k, n_k`` the amplitudes and orders of
@@ -23,7 +24,11 @@ test approaches each pose the same way in every cycle (ISO 9283, 7.2.1: the pose
 so a gear rests on the same flank through the cycles: its lost motion is an offset of that pose, which an accuracy
 sees and a repeatability does not; the flank at another pose is drawn independently (the approach directions are the
 test path's, which the design does not know). The means enter the accuracies as the mean of the statistic's vector
-(:meth:`~tolalloc.acceptance.model.StatisticModel.effect_mean`): every robot built to the design shares them.
+(:meth:`~tolalloc.acceptance.model.StatisticModel.effect_mean`): every robot built to the design shares them. The
+test runs in one power cycle, so the zero an incremental encoder was homed to holds through it: a robot keeps it at
+every pose, like a systematic part (it changes at the next power-up, which no calibration follows). Over a small
+cube it is nearly a rigid shift, which a registration on the cube's corners takes out: ``AP`` sees it where the test
+measures in the robot's base frame (``registration="none"``).
 
 The load is the requirement's: ``load_pct`` of the rated payload (``[components.payload] rated_kg``) at its centre
 of mass; the temperature the test room's (``ambient_c``, the reference temperature by default), with the motors'
@@ -107,6 +112,10 @@ def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residua
     sys, rnd = np.zeros((M * 6, M * 6)), np.zeros((M, 6, 6))
     for t, effect in enumerate(terms.effect):
         c = col[:, :, t]
+        if effect == "homing":
+            v = (c * terms.rnd_sd[:, t, None]).ravel()
+            sys += np.outer(v, v)
+            continue
         if effect in _RANK_ONE:
             v = (c * (terms.sys_sd[:, t] * np.where(terms.mean[:, t] < 0, -1.0, 1.0) * ft[t])[:, None]).ravel()
             sys += np.outer(v, v)

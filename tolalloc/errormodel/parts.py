@@ -17,6 +17,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     lost_motion   flank +-b/2 by approach direction    0                         -                    b / 2
     transmission  gear error at orders 1, N, 2N        0                         sqrt(sum a^2 / 2)    repeat. / sqrt(3)
     encoder       graduation and eccentricity          0                         sqrt(sum a^2 / 2)    -
+    homing        zero of an incremental encoder       0                         -                    h / sqrt(3)
     bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
     thermal       link growth (ambient and motors)     alpha dT L                THERMAL_SD |mean|    -
     beam          link bending (sections)              sag                       BEAM_SD |sag|        -
@@ -24,7 +25,9 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
 
 A joint whose encoder is on the **output** side closes its position loop on the output angle: its gear's wind-up,
 lost motion and transmission error do not reach the joint angle, the encoder's own error does. ``s`` is the
-reducer's ``stiffness_sd``. Statistics: :class:`EffectTerms` (``mean_mm``, ``systematic_covariance``,
+reducer's ``stiffness_sd``. An incremental encoder's zero (``homing_repeatability`` +-h) is set anew at every
+power-up: no calibration or compensation removes it, so it is random here; within one power cycle it holds still
+(:mod:`tolalloc.acceptance.parts` keeps it through an acceptance test). Statistics: :class:`EffectTerms` (``mean_mm``, ``systematic_covariance``,
 ``random_covariance``, ``moments``); :mod:`tolalloc.errormodel.parts_sample` draws the same effects physically
 (nonlinear in the catalogue curve, at the actual joint angle) for the Monte Carlo.
 """
@@ -35,11 +38,12 @@ import copy
 from dataclasses import dataclass, replace
 
 import numpy as np
-import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.build import build_error_model
 from tolalloc.errormodel.model import ErrorModel, ErrorParameter, perpendicular_axes
+from tolalloc.errormodel.parts_terms import (BEAM_SD, COMPENSATION_RESIDUAL, EFFECTS, MOUNT_SD, THERMAL_SD,
+                                             EffectTerms, residual_factors)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_sd
 from tolalloc.physics.compliance import joint_loads, mount_tilt
@@ -52,36 +56,6 @@ __all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUA
            "PartsModel",
            "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics",
            "encoder_harmonics"]
-
-EFFECTS = ("compliance", "lost_motion", "transmission", "encoder", "bearing", "thermal", "beam", "mount")
-#: Relative spread (one sd) of a link's thermal growth between robots (CTE and temperature field; ASSUMED).
-THERMAL_SD = 0.1
-#: Relative spread of the links' bending (modulus, wall thickness; ASSUMED).
-BEAM_SD = 0.1
-#: Relative spread of the mount's tilt (its stiffness is an estimate; ASSUMED).
-MOUNT_SD = 0.2
-#: Share of a mean and of a systematic part a compensation model leaves (``after="compensation"``; ASSUMED).
-COMPENSATION_RESIDUAL = 0.1
-
-
-def residual_factors(after: str, residual=COMPENSATION_RESIDUAL) -> dict:
-    """Per effect, the share of its mean and systematic part left: 1 everywhere for ``after="none"``; for
-    ``"compensation"`` the number ``residual``, or ``residual[effect]`` (1 where a dict omits the effect: no model
-    for it)."""
-    if after not in ("none", "compensation"):
-        raise TolallocError(f"after: expected 'none' or 'compensation', got {after!r}")
-    if after == "none":
-        return dict.fromkeys(EFFECTS, 1.0)
-    if isinstance(residual, dict):
-        bad = [k for k in residual if k not in EFFECTS]
-        if bad:
-            raise TolallocError(f"residual: unknown effect {bad[0]!r}; effects: {', '.join(EFFECTS)}")
-        out = {e: float(residual.get(e, 1.0)) for e in EFFECTS}
-    else:
-        out = dict.fromkeys(EFFECTS, float(residual))
-    if not all(0.0 <= v <= 1.0 for v in out.values()):
-        raise TolallocError(f"residual: expected shares in [0, 1], got {residual!r}")
-    return out
 
 
 @dataclass(frozen=True)
@@ -234,83 +208,6 @@ def parts_error_model(model: ErrorModel, robot: Robot | None = None) -> PartsMod
     return PartsModel(out, drive, link, bearing)
 
 
-@dataclass(frozen=True, eq=False)
-class EffectTerms:
-    """Terms of the bought parts' effects at P points (module docstring).
-
-    Attributes
-    ----------
-    names, effect : tuple of str, (T,)
-    joint : array of int, shape (T,)          joint of the term (-1: none)
-    columns : array, shape (P, 3, T)          tool displacement per unit value [mm per mm or rad, or per unit]
-    mean, sys_sd, rnd_sd : arrays, shape (P, T)
-    rotation : array, shape (P, 3, T)         tool rotation per unit value [rad per mm or rad, or per unit]
-    """
-
-    names: tuple
-    effect: tuple
-    joint: np.ndarray
-    columns: np.ndarray
-    mean: np.ndarray
-    sys_sd: np.ndarray
-    rnd_sd: np.ndarray
-    rotation: np.ndarray
-
-    @staticmethod
-    def empty(P: int) -> "EffectTerms":
-        return EffectTerms((), (), np.zeros(0, int), np.zeros((P, 3, 0)), np.zeros((P, 0)), np.zeros((P, 0)),
-                           np.zeros((P, 0)), np.zeros((P, 3, 0)))
-
-    def __add__(self, other: "EffectTerms") -> "EffectTerms":
-        return EffectTerms(self.names + other.names, self.effect + other.effect,
-                           np.concatenate([self.joint, other.joint]),
-                           *(np.concatenate([getattr(self, a), getattr(other, a)], axis=-1)
-                             for a in ("columns", "mean", "sys_sd", "rnd_sd", "rotation")))
-
-    def select(self, mask) -> "EffectTerms":
-        """The terms where ``mask`` (T,) is true."""
-        idx = np.flatnonzero(np.asarray(mask, bool))
-        return EffectTerms(tuple(self.names[i] for i in idx), tuple(self.effect[i] for i in idx), self.joint[idx],
-                           self.columns[:, :, idx], self.mean[:, idx], self.sys_sd[:, idx], self.rnd_sd[:, idx],
-                           self.rotation[:, :, idx])
-
-    def of_effect(self, effect: str) -> "EffectTerms":
-        """The terms of one effect (:data:`EFFECTS`)."""
-        return self.select([e == effect for e in self.effect])
-
-    def mean_mm(self) -> np.ndarray:
-        """Mean tool displacement [mm], shape (P, 3): the compensable part."""
-        return np.einsum("pit,pt->pi", self.columns, self.mean)
-
-    def _cov(self, sd) -> np.ndarray:
-        return np.einsum("pit,pt,pjt->pij", self.columns, sd ** 2, self.columns)
-
-    def systematic_covariance(self) -> np.ndarray:
-        """Covariance [mm^2] (P, 3, 3) of the systematic parts: between robots, fixed for one."""
-        return self._cov(self.sys_sd)
-
-    def random_covariance(self) -> np.ndarray:
-        """Covariance [mm^2] (P, 3, 3) of the random parts: move to move (what repeatability sees)."""
-        return self._cov(self.rnd_sd)
-
-    def moments(self, after: str = "none", residual=COMPENSATION_RESIDUAL) -> tuple:
-        """``(mean (P, 3), covariance (P, 3, 3))`` of the tool error the effects add: ``after="none"`` all parts;
-        ``"compensation"``: the compensation models leave ``residual`` of every mean and systematic sd (a number, or
-        ``{effect: share}`` with 1 for the effects it omits: :func:`residual_factors`)."""
-        f = residual_factors(after, residual)
-        ft = np.array([f[e] for e in self.effect])
-        return (np.einsum("pit,pt->pi", self.columns, self.mean * ft),
-                self._cov(self.sys_sd * ft) + self.random_covariance())
-
-    def to_frame(self, point: int = 0) -> pd.DataFrame:
-        """One row per term at one point: effect, term, joint, mean displacement and the two standard deviations of
-        the tool displacement it adds [mm] (along its column)."""
-        n = np.linalg.norm(self.columns[point], axis=0)
-        return pd.DataFrame({"effect": self.effect, "term": self.names, "joint": self.joint + 1,
-                             "mean_mm": np.abs(self.mean[point]) * n, "systematic_sd_mm": self.sys_sd[point] * n,
-                             "random_sd_mm": self.rnd_sd[point] * n})
-
-
 class PartEffects:
     """The effects at P points of a robot whose parts are resolved (:func:`with_parts`).
 
@@ -379,11 +276,14 @@ class PartEffects:
     def encoder_terms(self, j: int, enc, ratio: float | None) -> EffectTerms:
         """Terms of joint ``j``'s encoder ``enc``: graduation error (and eccentricity ``e / r`` of an output-side
         rotary scale) once per turn; a motor-side encoder's error divided by the gear ratio ``ratio``."""
-        if enc is None or not enc.accuracy and not enc.eccentricity:
-            return EffectTerms.empty(self.n_points)
-        _, amp = encoder_harmonics(enc, ratio, self.robot.joints[j].is_revolute)
-        return self._term(f"encoder_{self.robot.joints[j].name}", "encoder", j, self.pm.drive[j],
-                          sys=np.sqrt(np.sum(amp ** 2) / 2))
+        out, nm = EffectTerms.empty(self.n_points), self.robot.joints[j].name
+        if enc is not None and (enc.accuracy or enc.eccentricity):
+            _, amp = encoder_harmonics(enc, ratio, self.robot.joints[j].is_revolute)
+            out += self._term(f"encoder_{nm}", "encoder", j, self.pm.drive[j], sys=np.sqrt(np.sum(amp ** 2) / 2))
+        if enc is not None and enc.homing_repeatability:
+            out += self._term(f"homing_{nm}", "homing", j, self.pm.drive[j],
+                              rnd=enc.homing_repeatability / np.sqrt(3.0))
+        return out
 
     def bearing_terms(self, j: int, bearing) -> EffectTerms:
         """Terms of joint ``j``'s bearing pair: the four body displacements of :mod:`tolalloc.physics.bearings`."""

@@ -52,6 +52,8 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple
         orders, amps = encoder_harmonics(enc, getattr(red, "ratio", None), rev)
         # one sinusoid at a time: each its own phase
         sys += f["encoder"] * sum(_sines(qj, orders[k:k + 1], amps[k:k + 1], rng, n) for k in range(len(orders)))
+    if enc is not None and enc.homing_repeatability:
+        rnd += rng.uniform(-enc.homing_repeatability, enc.homing_repeatability, n)   # this power-up's zero
     return sys, rnd
 
 

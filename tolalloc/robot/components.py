@@ -31,6 +31,8 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     accuracy_arcsec = 20             # peak-to-peak
     eccentricity_um = 5              # mounting eccentricity of the scale (reads e / r once per turn)
     scale_radius_mm = 50
+    homing = "absolute"              # absolute (zero kept through a power cycle) | incremental (homed at power-up)
+    # homing_repeatability_arcsec = 3    # incremental only: +- band of the zero from one homing to the next
     source = "assumed"
 
     [components.joints.shoulder_lift_joint.bearing]
@@ -151,7 +153,8 @@ class Encoder:
     """Position encoder: ``side`` (``output`` or ``motor``), peak-to-peak ``accuracy`` [rad or mm], source; the scale's
     mounting ``eccentricity`` [mm] on its ``scale_radius_mm`` (an output-side rotary encoder then reads ``e / r``
     [rad] once per turn); ``homing``: ``absolute`` (the zero kept through a power cycle) or ``incremental`` (homed on a
-    reference switch at each power-up, the zero set anew each time)."""
+    reference switch at each power-up, the zero set anew each time), with ``homing_repeatability`` [rad or mm] the
+    half-width of the band the zero falls in from one homing to the next."""
 
     side: str = "output"
     accuracy: float | None = None
@@ -159,6 +162,7 @@ class Encoder:
     eccentricity: float | None = None
     scale_radius_mm: float | None = None
     homing: str = "absolute"
+    homing_repeatability: float | None = None
 
 
 @dataclass(frozen=True)
