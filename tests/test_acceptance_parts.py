@@ -52,7 +52,7 @@ def _pose_error(robot, q, dq):
 
 def test_gear_error_covariance_over_the_poses_is_that_of_physical_draws():
     """A strain-wave gear's kinematic error (orders 1, N, 2N at random phases) on the shoulder and elbow: the joint
-    covariance over the test's poses equals that of 20 000 robots drawn physically and moved through the forward
+    covariance over the test's poses equals that of 12 000 robots drawn physically and moved through the forward
     kinematics (including the pairs of poses, which a per-pose model does not give)."""
     robot, test = _resolved()
     red = Reducer(ratio=100.0, transmission_accuracy=1.0 * ARCMIN)
@@ -61,7 +61,7 @@ def test_gear_error_covariance_over_the_poses_is_that_of_physical_draws():
     q = np.vstack([test.q_test, test.q_registration[:3]])
     eff = effect_covariance(r, q, 0.0)
     rng = np.random.default_rng(3)
-    n = 20_000
+    n = 12_000
     dq = np.zeros((n, len(q), r.n_joints))
     orders, amps = catalogue_amplitudes(red.transmission_accuracy, red.ratio)
     for nm in names:
@@ -72,7 +72,7 @@ def test_gear_error_covariance_over_the_poses_is_that_of_physical_draws():
     emp = np.cov(x, rowvar=False)
     sd = np.sqrt(np.diag(eff.systematic)) + 1e-6 * np.sqrt(np.max(np.diag(eff.systematic)))
     err = np.abs(eff.systematic - emp) / np.outer(sd, sd)       # in units of the correlation
-    assert np.max(err) < 0.05, np.unravel_index(np.argmax(err), err.shape)
+    assert np.max(err) < 0.07, np.unravel_index(np.argmax(err), err.shape)
     assert np.allclose(eff.mean, 0.0) and np.allclose(eff.random, 0.0)
     # poses apart in the elbow angle are correlated as the cosine of their phase difference, not independently
     off_diag = eff.systematic[:6, 6:12]
@@ -100,7 +100,7 @@ def test_means_are_the_kinematics_of_the_wound_up_joints_and_the_tilted_mount():
 
     m = _only(robot, mount=Mount((1.0e6, 1.0e6)))
     mean = effect_covariance(m, q, 100.0).mean.reshape(-1, 6)
-    fxm = PartEffects(m, q, robot.components.payload.rated_kg, 20.0)
+    fxm = PartEffects(m, q, robot.components.payload.rated_kg, 20.0, rotations=True)
     other = fxm.tool + np.array([150.0, -80.0, 40.0])
     moved = mount_tilt(m, q, other, fxm.payload_point, fxm.payload)
     np.testing.assert_allclose(moved - mean[:, :3], np.cross(mean[:, 3:], other - fxm.tool), rtol=1e-6, atol=1e-9)

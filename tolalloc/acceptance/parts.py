@@ -102,7 +102,7 @@ def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residua
     payload = (rated or 0.0) * load_pct / 100.0
     ref = Conditions().reference_c
     amb = ref if ambient_c is None else float(ambient_c)
-    fx = PartEffects(robot, q, payload, amb, Conditions((payload, payload), (amb, amb), ref, duty))
+    fx = PartEffects(robot, q, payload, amb, Conditions((payload, payload), (amb, amb), ref, duty), rotations=True)
     terms = fx.terms()
     f = residual_factors(after, residual)
     ft = np.array([f.get(e, 1.0) for e in terms.effect])

@@ -219,11 +219,13 @@ class PartEffects:
     conditions : Conditions                       reference temperature and duty
     model : ErrorModel, optional                  the geometric model to extend (default: the robot's generic one)
     pm : PartsModel, optional                     the extended model, when built already (for ``robot``)
+    rotations : bool                              also the rotation beyond the beams' and the mount's deflection
+                                                  (three more evaluations each; the chain terms carry theirs)
     """
 
     def __init__(self, robot: Robot, q, payload_kg, ambient_c, conditions: Conditions = Conditions(),
-                 model: ErrorModel | None = None, pm: PartsModel | None = None):
-        self.robot, self.conditions = robot, conditions
+                 model: ErrorModel | None = None, pm: PartsModel | None = None, rotations: bool = False):
+        self.robot, self.conditions, self.rotations = robot, conditions, rotations
         self.q = np.atleast_2d(np.asarray(q, float))
         P = len(self.q)
         self.payload = np.broadcast_to(np.asarray(payload_kg, float), (P,)).copy()
@@ -307,6 +309,9 @@ class PartEffects:
         rise = motor_rise(self.robot, self.tau, self.conditions.duty)
         return link_temperature(self.robot, self.ambient - self.conditions.reference_c, rise)
 
+    def _rotation(self, displacement) -> np.ndarray | None:
+        return _rotation_of(displacement, self.tool) if self.rotations else None
+
     def body_terms(self) -> EffectTerms:
         """The terms that belong to no joint: thermal growth of every link, beam sag, mount tilt."""
         out, r = EffectTerms.empty(self.n_points), self.robot
@@ -319,10 +324,10 @@ class PartEffects:
                                   THERMAL_SD * np.abs(grow))
         if r.components.links:
             sag = (lambda p: beam_sag(r, self.q, p, self.payload, self.payload_point, self.wrench_tool))
-            out += self._term("beam", "beam", -1, sag(self.tool), 1.0, BEAM_SD, rot=_rotation_of(sag, self.tool))
+            out += self._term("beam", "beam", -1, sag(self.tool), 1.0, BEAM_SD, rot=self._rotation(sag))
         if r.components.mount.tilt_stiffness is not None:
             tilt = (lambda p: mount_tilt(r, self.q, p, self.payload_point, self.payload, self.wrench))
-            out += self._term("mount", "mount", -1, tilt(self.tool), 1.0, MOUNT_SD, rot=_rotation_of(tilt, self.tool))
+            out += self._term("mount", "mount", -1, tilt(self.tool), 1.0, MOUNT_SD, rot=self._rotation(tilt))
         return out
 
     def terms(self) -> EffectTerms:
