@@ -218,3 +218,43 @@ def test_an_incremental_encoders_homing_is_kept_through_the_test_and_random_to_t
     assert out["homed", "corners"][ap] == pytest.approx(out["none", "corners"][ap], rel=0.05)
     for reg in ("corners", "none"):
         assert out["homed", reg][rp] == pytest.approx(out["none", reg][rp], rel=1e-6)
+
+
+@pytest.fixture(scope="module")
+def ur10_drives():
+    robot, test = ur10_test()
+    others = tuple(p.name for p in build_error_model(robot).params if p.kind != "joint_drive")
+    choice = {k: s.options[0].name for k, s in robot.components.slots.items()}
+    return robot, test, others, choice
+
+
+def _allocate(ur10_drives, ap_mm, parts, n_robots=300):
+    import tolalloc
+
+    robot, test, others, _ = ur10_drives
+    return tolalloc.allocate_acceptance(robot, [PoseAccuracy(limit_mm=ap_mm), PoseRepeatability(limit_mm=0.12)],
+                                        error_model=tolalloc.ErrorModelOptions(exclude=others), test=test,
+                                        solver=tolalloc.Solver(snap=False), n_robots=n_robots, parts=parts)
+
+
+def test_the_acceptance_allocation_budgets_the_bought_parts(ur10_drives):
+    """``allocate_acceptance(parts=...)``: the parts' covariances enter the constraints and their mean shortens the
+    limit, so the design the allocation returns meets the requirement under the exact law with the mean (the
+    prediction) and in the simulated test; the parts show in RP; too coarse parts are named as the cause."""
+    choice = ur10_drives[3]
+    without, with_parts_ = _allocate(ur10_drives, 0.6, None), _allocate(ur10_drives, 0.6, choice)
+    assert without.ok and with_parts_.ok
+    pred = with_parts_.prediction.to_frame().set_index(["statistic", "where"])
+    assert (pred["p_meets"] >= 0.95 - 1e-6).all()
+    assert with_parts_.simulation.to_frame()["p_meets"].min() >= 0.93          # 300 robots
+    rp = ("RP_l", "P1")
+    assert pred.loc[rp, "robot_mm"] > 2 * without.prediction.to_frame().set_index(["statistic", "where"]).loc[
+        rp, "robot_mm"]
+    assert with_parts_.inputs["parts"]["elbow_joint.reducer"] == "HD-CSG-32-100" and without.inputs["parts"] is None
+    tight = _allocate(ur10_drives, 0.52, choice, n_robots=2)
+    assert not tight.ok and _allocate(ur10_drives, 0.52, None, n_robots=2).ok
+    assert "bought parts' mean error" in tight.text() and "choose finer parts" in tight.text()
+    with pytest.raises(TolallocError, match="mean error alone .* reaches the limit 0.05 mm"):
+        _allocate(ur10_drives, 0.05, choice, n_robots=2)
+    with pytest.raises(TolallocError, match="parts: expected a choice"):
+        _allocate(ur10_drives, 0.6, "HD-CSG-32-100", n_robots=2)

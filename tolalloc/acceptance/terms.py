@@ -14,6 +14,11 @@ with the statistic's own law (:mod:`tolalloc.acceptance.measures`) in place of t
 With ``guard_band`` the requirement is allocated for conformance *demonstrated* by the test (ISO 14253-1): the
 tracker's share enters ``C0`` (the statistic as measured) and the limit shrinks by the expanded uncertainty ``U`` of
 the measurement.
+
+Bought-part effects with a mean (the wind-up under the test load, :mod:`tolalloc.acceptance.parts`) give an
+accuracy's vector a mean ``mu`` every robot shares. The allocation holds the row to ``r - |mu|`` instead of ``r``
+(``P(|x| < r) >= P(|x - mu| < r - |mu|)``, a lower bound), by scaling the row's covariances by
+``(r / (r - |mu|))^2``, as the parts allocation does; ``bias`` keeps ``|mu|`` for the reports.
 """
 
 from __future__ import annotations
@@ -81,6 +86,8 @@ class StatisticTerms:
         Bought-part effects and, with a guard band, the tracker.
     U : array, shape (P,)
         Expanded uncertainty of the measurement at each row.
+    bias : array, shape (P,)
+        Length of the effects' mean at each row [mm or rad] (zeros without one; module docstring).
     """
 
     name: str
@@ -95,6 +102,7 @@ class StatisticTerms:
     repeatability: np.ndarray
     const: np.ndarray
     U: np.ndarray = field(default=None)
+    bias: np.ndarray = field(default=None)
 
 
 def _split_of(spec: AcceptanceSpec, model):
@@ -148,9 +156,27 @@ def statistic_terms(spec: AcceptanceSpec, model) -> list[StatisticTerms]:
             _check_guard_band(sm, radius, U, const, spec.test.tracker)
         rows_q = ev.q[_row_poses(sm, ev)]
         rep = np.einsum("pkab,k->pab", R, rep_var)
+        mu = sm.effect_mean(eff)
+        bias = np.zeros(sm.n_rows) if mu is None else np.linalg.norm(mu, axis=1)
+        if np.any(bias > 0):
+            _check_bias(sm, radius, bias)
+            s = (radius / (radius - bias)) ** 2
+            per_tol, rep, const = per_tol * s[:, None, None, None], rep * s[:, None, None], const * s[:, None, None]
         out.append(StatisticTerms(sm.name, sm.measure, sm.cycles, sm.labels, float(radius), sm.requirement,
-                                  sm.target, rows_q, per_tol, rep, const, U))
+                                  sm.target, rows_q, per_tol, rep, const, U, bias))
     return out
+
+
+def _check_bias(sm, radius: float, bias) -> None:
+    """Refuse a row whose effects' mean alone reaches the limit."""
+    if np.all(bias < radius):
+        return
+    f, u = (180 / np.pi, "deg") if sm.unit == "deg" else (1.0, "mm")
+    i = int(np.argmax(bias))
+    raise TolallocError(
+        f"{sm.requirement.kind}: at {sm.labels[i]} the bought parts' mean error alone ({bias[i] * f:.4g} {u}: the "
+        f"wind-up under the test load, the sag, the thermal growth) reaches the limit {radius * f:.4g} {u}; no "
+        "tolerance can meet it. Choose stiffer parts, compensate the mean, or test at a lower load.")
 
 
 def _check_guard_band(sm, radius, U, const, tracker) -> None:

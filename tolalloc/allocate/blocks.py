@@ -36,7 +36,7 @@ def acceptance_blocks(spec, sub, alloc, fixed, t_ref, sig, z) -> list:
         out.append({"name": tm.name, "rows": None, "radius": tm.radius, "prob": tm.requirement.share,
                     "target": np.asarray(tm.target, float), "A": A, "C0": C0, "trace_bound": np.asarray(tb, float),
                     "eig_bound": np.asarray(eb, float), "measure": tm.measure, "cycles": tm.cycles, "q": tm.q,
-                    "labels": tm.labels, "requirement": tm.requirement})
+                    "labels": tm.labels, "requirement": tm.requirement, "bias": tm.bias})
     return out
 
 
@@ -48,7 +48,8 @@ def block_covariances(problem, b: dict, t) -> np.ndarray:
 
 
 def block_probability(b: dict, C) -> np.ndarray:
-    """The probability a block's requirement holds, per pose, for covariances ``C`` (P_b, 3, 3)."""
+    """The probability a block's requirement holds, per pose, for covariances ``C`` (P_b, 3, 3) (a lower bound where
+    the block carries a mean: :mod:`tolalloc.acceptance.terms`)."""
     if b.get("measure") is None:
         return p_within_radius(C, b["radius"])
     from tolalloc.acceptance.measures import measure_cdf
@@ -62,4 +63,8 @@ def block_radius(b: dict, C, p) -> np.ndarray:
         return radius_for_prob(C, p)
     from tolalloc.acceptance.measures import measure_quantile
 
-    return measure_quantile(b["measure"], C, p, b["cycles"])
+    r = measure_quantile(b["measure"], C, p, b["cycles"])
+    bias = b.get("bias")
+    if bias is None or not np.any(bias):
+        return r
+    return r * (b["radius"] - bias) / b["radius"] + bias     # back from the scaled covariances: an upper bound

@@ -396,6 +396,19 @@ def _binding(problem: AllocationProblem, b: dict, i: int, t) -> list:
     return [(names[k], float(share[k])) for k in order if share[k] >= 0.02][:8]
 
 
+def _fixed_text(b: dict, i: int, C, f: float, unit: str) -> str:
+    """An ISO block's fixed part at row ``i`` (its share of the variance) and the bought parts' mean, as text."""
+    if b.get("measure") is None:
+        return ""
+    out = (f" The fixed part (bought parts' effects, repeatabilities, fixed tolerances) carries "
+           f"{np.trace(b['C0'][i]) / max(np.trace(C[i]), 1e-300):.0%} of the variance there")
+    bias = b.get("bias")
+    if bias is not None and bias[i] > 0:
+        out += (f"; the bought parts' mean error ({bias[i] * f:.4g} {unit}) leaves "
+                f"{(b['radius'] - bias[i]) * f:.4g} {unit} of the limit")
+    return out + "."
+
+
 def check_process_limits(problem: AllocationProblem) -> LimitReport:
     """Best achievable probability and radius within the process limits, and the limits that bind."""
     t = problem.t_min.copy()
@@ -424,7 +437,9 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
                 f"({_where(problem, b, i)}) reaches P({stat} {'<' if b.get('measure') is None else '<='} "
                 f"{b['radius'] * f:g} {unit}) = {p[i]:.4f} "
                 f"< {b['target'][i]:g}; the {b['name']} {'radius' if b.get('measure') is None else 'value'} achievable "
-                f"at p = {b['prob']:g} is {r.max() * f:.4g} {unit}. "
-                f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
-                f"tolerances) in a costs file (--costs) or relax the requirement.")
+                f"at p = {b['prob']:g} is {r.max() * f:.4g} {unit}.{_fixed_text(b, i, C, f, unit)} "
+                + (f"Limits that bind (variance share at that pose): {lim}. Lower these t_min (or the fixed "
+                   "tolerances) in a costs file (--costs) or relax the requirement." if lim else
+                   "No tolerance binds: choose finer parts (a better reducer or encoder grade) or relax the "
+                   "requirement."))
     return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")

@@ -13,7 +13,7 @@ stages; this module wires them.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -28,8 +28,8 @@ __all__ = ["allocate_acceptance", "AcceptanceAllocation"]
 
 @inputs.job_entry
 def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, costs=None, error_model=None,
-                        solver=None, test=None, verification=None, n_robots: int = 2000, tool: str | None = None,
-                        trust_units: bool = False) -> "AcceptanceAllocation":
+                        solver=None, test=None, verification=None, n_robots: int = 2000, parts=None,
+                        tool: str | None = None, trust_units: bool = False) -> "AcceptanceAllocation":
     """Cheapest tolerances meeting ISO 9283 requirements (``AP``, ``RP``, ...), with the acceptance test simulated.
 
     Parameters
@@ -56,6 +56,11 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
         (the :class:`~tolalloc.workflows.Verification`'s ``seed``).
     n_robots : int
         Robots of the simulated acceptance test (default 2000).
+    parts : dict or True, optional
+        The bought parts in the test (:mod:`tolalloc.acceptance.parts`): a choice ``{(joint, kind): part}`` of the
+        robot's catalogue slots, or ``True`` for the parts its file names (every slot one part). Their effects under
+        the test load enter the allocation (their mean as a shorter limit), the predicted and the simulated test.
+        Default: the error model alone.
 
     Returns
     -------
@@ -77,6 +82,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     if solver not in ("exact", "certified"):
         raise ArgumentError("solver", f"expected 'exact' or 'certified', got {solver!r}.")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    rob, effects = _parts(rob, parts)
     model = inputs.error_model(rob, sigma_set=em.sigma_set, link_mode=em.link_mode, deflection_mode=em.deflection_mode,
                                clearance=em.clearance, exclude=em.exclude)
     cost_set = _costs(cost, model)
@@ -84,7 +90,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     times = {}
     t0 = time.perf_counter()
     if isinstance(test, AcceptanceTest):
-        lay = test
+        lay = test if effects is None else replace(test, robot=rob)
     else:
         kw = dict(test_kw if test is None else _test_options(test))
         lay = acceptance_test(rob, _region(rob, region), **kw)
@@ -92,7 +98,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     pos = next((r for r in reqs if r.kind == "position"), None)
     ori = next((r for r in reqs if r.kind == "orientation"), None)
     iso = tuple(r for r in reqs if r.kind not in ("position", "orientation"))
-    spec = AcceptanceSpec(iso, lay, split=split)
+    spec = AcceptanceSpec(iso, lay, split=split, effects=effects)
     q = None if pos is None else inputs.resolve_poses(rob, None, poses)[1]
     t0 = time.perf_counter()
     problem = build_problem(model, q, radius_mm=None if pos is None else pos.radius_mm,
@@ -101,14 +107,36 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
                             angle_prob=None if ori is None else ori.prob, acceptance=spec)
     res = allocate(problem, solver=solver, snap=snap, angle_step_deg=angle_step_deg)
     times["allocation_s"] = time.perf_counter() - t0
-    pred, sim = _predicted(res, problem, lay, iso, split, verify, n_robots, seed, times)
+    pred, sim = _predicted(res, problem, spec, verify, n_robots, seed, times)
     record = {"robot": rob.name, "requirements": [r.to_dict() for r in reqs], "requirement_source": source,
+              "parts": None if effects is None else _part_names(rob, parts),
               "test": lay.summary(), "solver": solver, "snap": snap, "n_robots": n_robots if verify else None,
               "seed": seed, "costs_source": cost_set.source}
     return AcceptanceAllocation(res, lay, reqs, pred, sim, record, times)
 
 
-def _predicted(res, problem, lay, iso, split, verify: bool, n_robots: int, seed: int, times: dict) -> tuple:
+def _parts(robot, parts) -> tuple:
+    """``(robot, effects)``: the robot with the chosen parts and their :func:`~tolalloc.acceptance.parts.
+    parts_effects`, or ``(robot, None)`` without ``parts``."""
+    if parts is None or parts is False:
+        return robot, None
+    if parts is not True and not isinstance(parts, dict):
+        raise ArgumentError("parts", f"expected a choice {{(joint, kind): part name}} of the robot's catalogue slots "
+                                     f"or True (the parts its file names), got {parts!r}.")
+    from tolalloc.acceptance.parts import parts_effects
+    from tolalloc.errormodel.parts import with_parts
+
+    return with_parts(robot, {} if parts is True else parts), parts_effects()
+
+
+def _part_names(robot, parts) -> dict:
+    """``{"joint.kind": part name}`` of the robot's catalogue slots as chosen (a slot of one part: that part)."""
+    choice = parts if isinstance(parts, dict) else {}
+    return {f"{j}.{kind}": choice.get((j, kind), slot.options[0].name)
+            for (j, kind), slot in sorted(robot.components.slots.items())}
+
+
+def _predicted(res, problem, spec, verify: bool, n_robots: int, seed: int, times: dict) -> tuple:
     """The acceptance test predicted for the design of ``res`` and, with ``verify``, simulated on ``n_robots``
     robots: ``(prediction, simulation)`` (None where not made); their durations into ``times``."""
     from tolalloc.acceptance.predict import predict_acceptance
@@ -118,12 +146,14 @@ def _predicted(res, problem, lay, iso, split, verify: bool, n_robots: int, seed:
         return None, None
     t0 = time.perf_counter()
     design_model = problem.model_for(res.built.t)
-    pred = predict_acceptance(lay, iso, design_model, spec_split(split, problem.model))
+    lay, iso, split = spec.test, spec.requirements, spec.split
+    pred = predict_acceptance(lay, iso, design_model, spec_split(split, problem.model), effects=spec.effects)
     times["prediction_s"] = time.perf_counter() - t0
     if not verify:
         return pred, None
     t0 = time.perf_counter()
-    sim = simulate_acceptance(lay, iso, design_model, spec_split(split, problem.model), n_robots=n_robots, seed=seed)
+    sim = simulate_acceptance(lay, iso, design_model, spec_split(split, problem.model), effects=spec.effects,
+                              n_robots=n_robots, seed=seed)
     times["simulation_s"] = time.perf_counter() - t0
     return pred, sim
 
