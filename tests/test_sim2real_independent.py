@@ -2591,3 +2591,198 @@ def test_set_r_every_kind_lies_in_its_true_structure_and_known_answers():
     _, Rt = kin.flange(ctx.chain, ctx.q)
     assert np.abs(np.einsum("pi,pi->p", sh, Rt @ wp["axis"])).max() < 1e-9 * np.abs(sh).max()
     assert np.abs(np.einsum("pi,pi->p", sh, Rt @ (wp["T"] - wp["H"]))).max() < 1e-9 * np.abs(sh).max() * 250
+
+
+def test_set_s_cases_kinds_and_determinism():
+    """Set S: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session, probe and payload hooks leave cases without a set-S
+    kind alone (no random numbers drawn); the generator reaches the set's modules and none imports tolalloc; a profile
+    frame's target and part sit at its gripper module; the trapped oil's cases have production between their blocks, the
+    measuring wheel's a working day's pauses and a drifting air, the isolators' and the pinion's pick and place."""
+    from sim2real_indep import effects_s as es
+
+    _assert_set_module("S", 40_7019, es, ("gear", "welding_cable"))
+    for name in ("effects_s", "effects_s_joint", "effects_s_body", "effects_s_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_s" in _imports(STUDY / "generator.py")
+    assert es.AFTER_TRACKER == set()
+    probe = np.array([3.0, -4.0, 12.0])                                     # |probe| 13 mm
+    assert es.probe_hook(("sag", "cogging"), probe) is probe
+    L = 150 + 150 * 8 / 95
+    assert es.probe_hook(("profile_frame",), probe) == pytest.approx([3 / 5 * L, -4 / 5 * L, 30.0])
+    com = np.array([1.0, 2.0, 3.0])
+    assert es.payload_hook(("diaphragm",), com, probe) is com
+    assert es.payload_hook(("profile_frame",), com, probe) == pytest.approx(probe)
+    for seed in range(3):
+        opts = lambda kinds, robot="tool_changer": es.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                      {"blocks": 1, "gap_kind": "none"})
+        oil = opts(("oil_shrink",))
+        assert 4 <= oil["blocks"] <= 7 and oil["gap_kind"] == "exercise"
+        wheel = opts(("wheel_growth",), "kr16_like")
+        assert 5 <= wheel["blocks"] <= 8 and wheel["gap_kind"] == "pause" and wheel["pause_min"] == (30.0, 90.0)
+        assert 2.0 <= abs(wheel["air"]["drift_K"]) <= 6.0
+        assert opts(("oil_shrink", "wheel_growth"))["gap_kind"] == "mixed"
+        for kind in ("mullins_mounts", "float_pinion"):
+            steps = opts((kind,))["payload_steps"]
+            assert min(steps) == 0.0 and len(steps) >= 6
+        assert opts(("cogging", "dowel_yaw")) == {"blocks": 1, "gap_kind": "none"}
+    _assert_regenerates("S", max_effect_poses=50)
+
+
+def test_set_s_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-S kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the pinion, the bellows, the potentiometers, the diaphragm,
+    the trapped oil and the wheel do nothing on the arms without them; and known answers: the pinion's lift-off, the
+    bellows' pull and its torques, the overshoot's crossing of the lost motion, the cogging's period, the loaded
+    divider's error and the cylinder's lever, the dowels' relay, the twin table's statics, the isolators' reloading
+    curve and the plate's equilibrium, Kishi-Chen's curve, the diaphragm's large-deflection law, the oil's node and
+    shrink, and the wheel's expansion."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_s_body as sb
+    from sim2real_indep import effects_s_joint as sj
+    from sim2real_indep import effects_s_thermal as st
+
+    specs = (("ur10", ("wall_boot", "overshoot_lash", "cogging", "dowel_yaw", "twin_robot", "mullins_mounts",
+                       "diaphragm", "float_pinion", "pot_loading", "oil_shrink", "wheel_growth")),
+             ("tool_changer", ("float_pinion", "pot_loading", "oil_shrink", "wheel_growth", "wall_boot", "diaphragm")),
+             ("kr16_like", ("profile_frame", "float_pinion", "wall_boot", "pot_loading")))
+    inert = {"ur10": ("float_pinion", "pot_loading", "oil_shrink", "wheel_growth"),
+             "tool_changer": ("wall_boot", "diaphragm"), "kr16_like": ("pot_loading",)}
+    runs = {}
+    for robot, physics in specs:
+        case = gen.generate("t", robot, physics, 30, 19)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in physics:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"float_pinion": lambda: [p["c_x"]], "wall_boot": lambda: [p["k_a"], p["k_l"]],
+                   "overshoot_lash": lambda: p["b"], "cogging": lambda: sj.cog_amplitudes(p),
+                   "pot_loading": lambda: p["rho"], "dowel_yaw": lambda: [p["c_mm"] / (2 * p["r_d"])],
+                   "twin_robot": lambda: [1 / p["k_N_mm"]], "mullins_mounts": lambda: [1 / p["k_v"]],
+                   "profile_frame": lambda: [1 / p["R_ki"]], "diaphragm": lambda: [1.0],
+                   "oil_shrink": lambda: [p["dT_s"]], "wheel_growth": lambda: [p["alpha_eff"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=kind)
+
+    case, ctx = runs["ur10"]
+    P, hw = case.truth["params"], case.truth["hw"]
+    # bellows: no pull with the collar at its relaxed position; a joint's torque is w . ((p - c) x F); none beyond it
+    bp = P["wall_boot"]
+    pc, body = sj.collar(bp, ctx)
+    assert not sj.boot_signals(dict(bp, p0=pc[0]), ctx, hw)[:, 0].any()
+    w, c = kin.joint_frames(ctx.chain, ctx.q)
+    d = pc - bp["p0"]
+    F = -(bp["k_a"] * np.outer(d @ bp["n"], bp["n"]) + bp["k_l"] * (d - np.outer(d @ bp["n"], bp["n"])))
+    tau1 = np.einsum("pi,pi->p", np.cross((pc - c[:, 1]) / 1000, F), w[:, 1])
+    dq = sj.boot_apply(bp, ctx, hw).dq
+    assert dq[:, 1] == pytest.approx(tau1 * sj.compliance(hw)[1]) and not dq[:, body:].any()
+    # overshoot lash: unloaded, no overshoot trails by b/2, a full return leads by b/2, half of it centres; loaded:
+    # its gravity flank
+    lp = P["overshoot_lash"]
+    ses = SimpleNamespace(q=np.array([[0.0] * 6, [0.2] * 6, [0.4] * 6]), move_s=np.array([0.0, 1.5, 1.5]),
+                          direction=np.ones((3, 6)))
+    v = sj.cruise_speed(ses)[:, 0]
+    assert v == pytest.approx([0.0, 0.2, 0.2])
+    m = len(lp["joints"])
+    kp = dict(lp, kappa=np.array([lp["b"][0] / 0.2, lp["b"][1] / 0.4, 0.0]))
+    fl = sj.lash_flank(kp, np.zeros((3, m)), ses)
+    assert fl[:, 0] == pytest.approx([-0.5, 0.5, 0.5]) and fl[1:, 1] == pytest.approx([0.0, 0.0])
+    assert sj.lash_flank(kp, np.full((3, m), 1e6), ses) == pytest.approx(np.full((3, m), 0.5))
+    # cogging: a period of 2 pi / (Z N) at the output; the amplitude A
+    cp = P["cogging"]
+    q = np.zeros((2, 6))
+    j0 = cp["joints"][0]
+    q[1, j0] = 2 * np.pi / (cp["Z"][0] * cp["N"][0])
+    s = sj.cog_signals(cp, q)
+    assert s[:, 0] == pytest.approx(s[:, 1], abs=1e-9)
+    assert np.hypot(*sj.cog_amplitudes(cp)[[0, m]]) == pytest.approx(cp["A"][0])
+    # dowels: the stop's reaction throws the base with the motion, the start's against it, else it stays
+    tq = np.array([[0.0, 5.0, 0.0, 5.0], [0.0, 0.0, 5.0, 5.0]])
+    assert sb.dowel_state(tq, np.array([1.0, -1.0, -1.0, 1.0]), 1.0, 1.0) == pytest.approx([1.0, 1.0, -1.0, 1.0])
+    dp = P["dowel_yaw"]
+    col = sb.dowel_shape(dp, ctx)
+    assert np.abs(col[:, 2]).max() == 0 and np.abs(np.einsum("pi,pi->p", col, ctx.target - dp["centre"])).max() < 1e-6
+    # twin table: four unit feet carry the twin's weights; its pose steps through the cycle, period T_c
+    tp = P["twin_robot"]
+    Kmat, a = sb._rigid_plate(tp["feet"])
+    u = np.linalg.solve(Kmat, tp["f_cycle"].T).T
+    assert (-a @ u.T).sum(axis=0) == pytest.approx(-tp["f_cycle"][:, 0])
+    t = np.array([0.0, 0.3, 0.6]) * tp["T_c"]
+    assert sb.twin_index(tp, t) == pytest.approx(sb.twin_index(tp, t + 7 * tp["T_c"]))
+    # isolators: the reloading curve meets the virgin one at the largest compression; the plate carries every weight
+    mp = P["mullins_mounts"]
+    x = np.array([0.0, 0.5, 1.0, 2.0])
+    assert sb.mullins_force(x, 1.0, mp["m"]) == pytest.approx([0.0, 0.5 ** mp["m"], 1.0, 2.0])
+    loads = sb.mullins_loads(mp, ctx)
+    u = sb.mullins_solve(mp, loads)
+    Kmat, a = sb._rigid_plate(mp["feet"])
+    c_m = mp["c_m0"].copy()
+    for ui, g in zip(u, loads):                                          # each pose in equilibrium, maxima carried
+        assert a.T @ sb.mullins_force(-a @ ui, c_m, mp["m"]) == pytest.approx(-g, rel=1e-8, abs=1e-8 * np.abs(g).max())
+        c_m = np.maximum(c_m, np.abs(a @ ui))
+    # diaphragms: u + beta u^3 = f (Cardano), linear for a small load, odd
+    dp = P["diaphragm"]
+    D = sb.STEEL_E * dp["t"] ** 3 / (12 * (1 - sb.STEEL_NU ** 2))
+    Fs = np.array([-80.0, 1e-3, 40.0, 120.0])
+    wv = sb.diaphragm_w(dp, Fs) / dp["t"]
+    assert wv + dp["beta"] * wv ** 3 == pytest.approx(Fs * dp["a"] ** 2 / (2 * 16 * np.pi * D * dp["t"]))
+    assert sb.diaphragm_w(dp, 1e-3) == pytest.approx(1e-3 * dp["a"] ** 2 / (2 * 16 * np.pi * D), rel=1e-6)
+    assert sb.diaphragm_w(dp, -40.0) == pytest.approx(-sb.diaphragm_w(dp, 40.0))
+
+    case, ctx = runs["tool_changer"]
+    P = case.truth["params"]
+    # pinion: nothing below the lift-off torque, the load beyond it above; T_0 = F_0 R / tan(alpha_w)
+    pp = P["float_pinion"]
+    assert pp["T0"] == pytest.approx(pp["F0"] * pp["R_m"] / np.tan(pp["alpha"]))
+    assert pp["c_x"] == pytest.approx(np.tan(pp["alpha"]) ** 2 / (pp["k_s"] * pp["R_m"] ** 2))
+    assert sj.pinion_signal(pp, [0.5 * pp["T0"], -2 * pp["T0"]]) == pytest.approx([0.0, -pp["T0"]])
+    # potentiometer: the loaded divider reads true at both ends and lowest near 2/3, by rho 4/27; dL/dq of the lever
+    op = P["pot_loading"]
+    uu = np.array([0.0, 2 / 3, 1.0])
+    assert sj.pot_error(uu, 1e-4) == pytest.approx([0.0, -1e-4 * 4 / 27, 0.0], abs=1e-9)
+    lv = op["levers"][0]
+    qq = np.array([0.1, 0.5])
+    dL = (sj.lever_length(lv, qq + 1e-6) - sj.lever_length(lv, qq - 1e-6)) / 2e-6
+    assert sj.lever_arm(lv, qq) == pytest.approx(dL, rel=1e-6)
+    # trapped oil: the supply node reaches one after a long production, stays there with the pump at full heat and
+    # cools to nothing in a long pause; no dwell, no shrink; the cap chamber loaded (a push), the boom sinks
+    oil = P["oil_shrink"]
+    ses = ctx.session
+    later = np.r_[0.0, np.full(len(ses.time_s) - 1, 3e4)]
+    for gap, idle, x in ((3e4, 1.0, 1.0), (-3e4, 0.0, 0.0)):
+        stub = SimpleNamespace(time_s=ses.time_s + later, dwell_s=ses.dwell_s, move_s=ses.move_s,
+                               gap_s=np.r_[0.0, gap, np.zeros(len(ses.gap_s) - 2)])
+        assert st.supply_node(dict(oil, x0=0.5, idle=idle), stub)[1:] == pytest.approx(x, abs=1e-9)
+    assert not st.oil_signals(oil, SimpleNamespace(session=replace(ses, dwell_s=0 * ses.dwell_s), q=ctx.q)).any()
+    sig = st.oil_signals(oil, ctx)
+    for k, lv in enumerate(oil["levers"]):
+        dL = sig[k] * sj.lever_arm(lv, ctx.q[:, lv["joint"]])
+        assert np.all(np.where(oil["push"][k], dL <= 0, dL >= 0))
+    # wheel: alpha_eff of the hub and tread; at the joint's zero no error; a still air no error
+    wp = P["wheel_growth"]
+    assert wp["alpha_eff"] == pytest.approx((st.ALU_CTE * (wp["r_mm"] - wp["t_mm"]) + wp["alpha_pu"] * wp["t_mm"])
+                                            / wp["r_mm"])
+    q0 = ctx.q.copy()
+    q0[:, 0] = 0.0
+    assert not st.wheel_signal(wp, SimpleNamespace(session=ctx.session, q=q0)).any()
+    still = replace(ctx.session, air=dict(ctx.session.air, drift_K=0.0, cycle_K=0.0))
+    assert np.abs(st.wheel_signal(wp, SimpleNamespace(session=still, q=ctx.q))).max() < 1e-9
+
+    case, ctx = runs["kr16_like"]
+    # profile frame: Kishi-Chen's M = R theta / (1 + (theta / theta_0)^n)^(1/n) holds at the joint; no turn about the
+    # bar
+    fp = case.truth["params"]["profile_frame"]
+    M = np.linalg.norm(sb.frame_moment(fp, ctx), axis=1)
+    theta = M / fp["R_ki"] / (1 - (M / fp["M_u"]) ** fp["n"]) ** (1 / fp["n"])
+    assert M == pytest.approx(fp["R_ki"] * theta / (1 + (theta * fp["R_ki"] / fp["M_u"]) ** fp["n"]) ** (1 / fp["n"]))
+    Rt, _ = sb._gravity_tool(ctx)
+    e = Rt @ (fp["tip"] - fp["root"])
+    sh = sb.frame_shape(fp, ctx)
+    assert np.abs(np.einsum("pi,pi->p", sh, e)).max() < 1e-9 * np.abs(sh).max()
+    assert M.max() < fp["M_u"] and fp["tip"] == pytest.approx(case.truth["payload_com_mm"])

@@ -44,6 +44,7 @@ from sim2real_indep import effects_o as eo
 from sim2real_indep import effects_p as ep
 from sim2real_indep import effects_q as eq
 from sim2real_indep import effects_r as er
+from sim2real_indep import effects_s as es
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -79,11 +80,12 @@ EFFECTS = {
     **ep.EFFECTS_P,  # set P's new kinds
     **eq.EFFECTS_Q,  # set Q's new kinds
     **er.EFFECTS_R,  # set R's new kinds
+    **es.EFFECTS_S,  # set S's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
-                 | eq.AFTER_TRACKER | er.AFTER_TRACKER)
+                 | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -169,7 +171,8 @@ def _session_options(robot_key, physics, rng):
     opts = eo.session_options(robot_key, physics, rng, opts)  # set O (no draws without a set-O kind)
     opts = ep.session_options(robot_key, physics, rng, opts)  # set P (no draws without a set-P kind)
     opts = eq.session_options(robot_key, physics, rng, opts)  # set Q (no draws without a set-Q kind)
-    return er.session_options(robot_key, physics, rng, opts)  # set R (no draws without a set-R kind)
+    opts = er.session_options(robot_key, physics, rng, opts)  # set R (no draws without a set-R kind)
+    return es.session_options(robot_key, physics, rng, opts)  # set S (no draws without a set-S kind)
 
 
 def _tracker(rng):
@@ -206,6 +209,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ep.probe_hook(physics, probe, robot_key)  # set P's changed tool (no draws)
     probe = eq.probe_hook(physics, probe)  # set Q's holder, gooseneck, gripper boom (no draws)
     probe = er.probe_hook(physics, probe)  # set R's bracket, swing-away tool (no draws)
+    probe = es.probe_hook(physics, probe)  # set S's profile frame (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -213,6 +217,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = em.payload_hook(physics, payload_com, probe)  # set M's part on the tool, bar, fingers (no draws)
     payload_com = en.payload_hook(physics, payload_com, probe)  # set N's part at the boom's tip (no draws)
     payload_com = eo.payload_hook(physics, payload_com, probe, robot_key)  # set O's spindle, C-frame (no draws)
+    payload_com = es.payload_hook(physics, payload_com, probe)  # set S's profile frame's module (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

@@ -11,8 +11,8 @@ ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`)
 eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
 per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
-8 per arm) a seventeenth (:mod:`effects_q`) and set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`). A case:
-(id, robot, physics kinds, poses, split).
+8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`) and set S (24
+cases, 8 per arm) a nineteenth (:mod:`effects_s`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
+SEED_S = 40_7019
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -762,12 +763,61 @@ SET_R = [
     ("R24", "kr16_like", ("forklift_slab", "stick_band"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-R)
+#: set S: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_s`); written as an independent test set after set R, from the literature, without reading how
+#: the diagnosis models effects. The floating pinion and the measuring wheel sit on kr16_like and tool_changer, the wall
+#: bellows and the diaphragm flexure on ur10 and kr16_like, the boom cylinders' loaded potentiometers and trapped oil on
+#: tool_changer (they do nothing on the other arms); the rest act on every arm. Oracle labels when written (oracle.py
+#: only; the diagnosis was not run): every case its truth (gains 35-91 %; each mixture component's removal costs 17 % or
+#: more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's model within 25 % of the
+#: truth; the closest: S16's link model 1.50x, S19's joint model 1.57x, S17's transmission model 1.65x, S11's link model
+#: 1.73x). Changed after trial draws (the set's seed and three offsets of it; the first ranges in the modules'
+#: docstrings): the floating pinion first lifted at 30-60 % of the session's largest axis-2 load (S09 ambiguous with the
+#: transmission model at 1.04x, S17 at 1.06x: axis 2's load is nearly a function of q2 alone), then with pick and place,
+#: whose part varies the load at a given q2, and at 20-50 % (S09: the link model at 1.12x -- tool_changer's axis-2 load
+#: never falls below a third of its largest, so nearly every pose was past the knee, a give linear in the load); it now
+#: lifts between the 50th and the 80th percentile of the loads, with a give of 2-5e-4 / 2-4e-4 rad at the largest (first
+#: 1.5-4e-4 / 0.6-1.5e-4); the sector on axis 3 was tried and dropped (the link model copied the forearm's twist,
+#: 1.07-1.20x). ur10's twin table first stood on feet of 300-1000 N/mm (a trial draw gained 8 %), the measuring wheel's
+#: tread was first 3-6 mm (tool_changer's case gained 10 % in a trial draw), the isolators' reloading exponent first
+#: 1.5-3 and ur10's rates 3000-6000 N/mm (the joint model at 1.10x in a trial draw); the trapped oil's excess was first
+#: 25-40 K with a chamber lag of 4-12 min and the potentiometers' load ratio 4e-4 - 2e-3 (1.4 and 1.06 mm at the tool).
+#: No pose count or seed was changed. Trial draws on the seed + 1, + 2 and + 3 were clean in 23, 22 and 23 of 24 cases
+#: (S17's pinion: the transmission model at 1.20x; S05's isolators: the joint model at 1.21x; S14's wheel: gain 14 %;
+#: S02's 45 poses under a noise of 0.048 mm: gain 20 %, the transmission model at 1.21x), not tuned further.
+SET_S = [
+    ("S01", "ur10", ("wall_boot",), 120, "random"),
+    ("S02", "ur10", ("overshoot_lash",), 45, "random"),
+    ("S03", "ur10", ("twin_robot",), 100, "time"),
+    ("S04", "ur10", ("profile_frame",), 140, "random"),
+    ("S05", "ur10", ("mullins_mounts",), 150, "random"),
+    ("S06", "ur10", ("cogging",), 110, "random"),
+    ("S07", "ur10", (), 70, "random"),
+    ("S08", "ur10", ("dowel_yaw", "diaphragm"), 160, "random"),
+    ("S09", "tool_changer", ("float_pinion",), 130, "random"),
+    ("S10", "tool_changer", ("oil_shrink",), 170, "time"),
+    ("S11", "tool_changer", ("pot_loading",), 120, "random"),
+    ("S12", "tool_changer", ("dowel_yaw",), 140, "random"),
+    ("S13", "tool_changer", ("twin_robot",), 110, "random"),
+    ("S14", "tool_changer", ("wheel_growth",), 180, "time"),
+    ("S15", "tool_changer", (), 30, "random"),
+    ("S16", "tool_changer", ("pot_loading", "mullins_mounts"), 190, "random"),
+    ("S17", "kr16_like", ("float_pinion",), 140, "random"),
+    ("S18", "kr16_like", ("wheel_growth",), 170, "time"),
+    ("S19", "kr16_like", ("overshoot_lash",), 110, "random"),
+    ("S20", "kr16_like", ("wall_boot",), 120, "random"),
+    ("S21", "kr16_like", ("diaphragm",), 150, "random"),
+    ("S22", "kr16_like", ("profile_frame",), 130, "time"),
+    ("S23", "kr16_like", (), 90, "random"),
+    ("S24", "kr16_like", ("twin_robot", "cogging"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-S)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
-        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R)}
+        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S)}
 
 
 def case_seed(set_name: str, index: int) -> int:

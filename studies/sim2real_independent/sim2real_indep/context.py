@@ -173,7 +173,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "line_pressure": "joint_compliance", "slide_shift": "joint_compliance", "stick_band": "backlash",
           "floor_cable": "backlash", "rehoming": "transmission", "belt_splice": "transmission",
           "forklift_slab": "mount_compliance", "sprayer_tank": "mount_compliance", "web_buckling": "link_deflection",
-          "swing_mount": "link_deflection", "heated_hose": "thermal", "welding_cable": "thermal"}
+          "swing_mount": "link_deflection", "heated_hose": "thermal", "welding_cable": "thermal",
+          # set S (sim2real_indep.effects_s; float_pinion, axis 2's gear let go by a sprung pinion that its teeth wedge
+          # out of mesh, and wall_boot, the joints twisted by the spring rates of a wall bellows the forearm passes
+          # through, scored as joint compliance; overshoot_lash, the lost motion of axes 1, 4 and 6 crossed back by the
+          # position loop's overshoot, and dowel_yaw, the base turned across its dowels' clearance by axis 1's reaction
+          # torque, as backlash (errors that follow the last motion); cogging, the drives' cogging torque against a
+          # proportional loop at standstill, and pot_loading, the boom cylinders' potentiometric transducers read
+          # through an input of finite impedance, as transmission (a joint's error as a function of its own position);
+          # twin_robot, the table shared with a twin robot tilted by its production cycle, and mullins_mounts, the base
+          # on new isolators softening below their largest load so far, as mount compliance (the robot's support);
+          # profile_frame, the target's profile-frame joint turning by its semi-rigid curve, and diaphragm, the tool on
+          # a double-diaphragm flexure stiffening by membrane action, as link deflection (the end-of-arm structure
+          # carrying the target); oil_shrink, the boom sinking as the oil trapped in its cylinders cools in the dwell,
+          # and wheel_growth, axis 1's measuring wheel and ring growing apart with the hall's air, as thermal)
+          "float_pinion": "joint_compliance", "wall_boot": "joint_compliance", "overshoot_lash": "backlash",
+          "dowel_yaw": "backlash", "cogging": "transmission", "pot_loading": "transmission",
+          "twin_robot": "mount_compliance", "mullins_mounts": "mount_compliance", "profile_frame": "link_deflection",
+          "diaphragm": "link_deflection", "oil_shrink": "thermal", "wheel_growth": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
