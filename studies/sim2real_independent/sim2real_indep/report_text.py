@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; all eighteen: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; all nineteen: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -192,6 +192,23 @@ carrier (R06, R18, hedged over three or four families without the truth in R06),
 each power-down (R10 named thermal, R19 `none`), a floor cable's friction pulling the flange (R17, and with a heated
 hose in R08, `none`), and a swing-away mount beyond its spring's preload (R21 `none`, R11 a link deflection /
 backlash tie).
+
+**Set S** (24 cases, seed 40_7019) is a nineteenth independent test set of twelve new kinds
+(`sim2real_indep/effects_s*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-R, and who did not run the diagnosis. It was run once, on the
+code as it stood after set R had been judged -- the diagnosis had gained transmission `rehome` (offered only for joints
+whose encoder the robot file declares incremental, which no study robot file does), none of it written while looking at
+set S; the session's other changes were on the design side: 14/24 strict, 15 lenient, no false claim, median final /
+oracle RMS 2.13; right on 8 of 10 effect cases where the true family's generic model helps, 3 of 11 where it does not.
+Its misses, all `none` but one: a twin robot on the same table tilting it through its own production cycle, nothing of
+which is logged (S03, S13, and with motor cogging in S24); motor cogging at Z N periods per output turn, an order the
+poses cannot resolve (S06); a measuring wheel on axis 1 whose tread grows with the logged hall air, a scale error of q1
+that follows the temperature (S14, S18) -- driven by a logged column, but no thermal variant scales a joint's angle;
+a pinion pushed out of mesh above a load threshold on tool_changer (S09; named on kr16_like, S17); a base turning on
+its dowels under axis 1's reaction at the start and stop of moves, which `time_s` and the joints only imply (S12; in
+S08, beside a flexure on the tool, the flexure is named and the yaw is not); a servo's overshoot carried across the lost motion on
+kr16_like (S19; named on ur10, S02); and a booth wall's bellows pulling the forearm on ur10, hedged over three families
+with the truth among them (S01; named on kr16_like, S20).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -500,6 +517,24 @@ comment):
 | swing_mount | link_deflection | a swing-away tool mount on a preloaded spring, swung off its stop above the preload (tool_changer, kr16_like) | breakaway-mount statics |
 | heated_hose | thermal | a heated hot-melt hose strapped along one side of the forearm, which bows and grows after switch-on (ur10, kr16_like) | Boley & Weiner, *Theory of Thermal Stresses* 1960; Incropera & DeWitt |
 | welding_cable | thermal | a welding cable's Joule heat warming the upper arm in production periods between blocks (ur10) | Incropera & DeWitt ch. 5 |
+
+Set S's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_S
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| float_pinion | joint_compliance | axis 2's pinion held in mesh by a radial spring, pushed out above a load threshold: a give sign(tau) (\|tau\| - T_0)+ tan^2(alpha) / (k_s R^2) (kr16_like, tool_changer) | Niemann & Winter, *Maschinenelemente* II; ISO 21771 |
+| wall_boot | joint_compliance | the forearm passing a booth wall through a rubber bellows whose axial and lateral rates pull on a collar, the joints twisting under tau = J^T F (ur10, kr16_like) | EJMA Standards, 10th ed.; Craig, *Introduction to Robotics* ch. 5 |
+| overshoot_lash | backlash | a position loop's overshoot, a share of the following error, carried back across the lost motion only as far as it reaches (all three arms) | Ellis, *Control System Design Guide*; Nordin & Gutman, Automatica 38, 2002 |
+| dowel_yaw | backlash | a base on two dowel pins with clearance and slack bolts, turned across the clearance by axis 1's reaction at the start and stop of moves (a relay) (all three arms) | VDI 2230 Part 1; Junker, SAE 690055; Krasnosel'skii & Pokrovskii |
+| cogging | transmission | motor cogging torque against a proportional loop at standstill, A sin(Z N q + phi) (all three arms, axes 1, 4, 6) | servo-motor cogging literature (module docstring) |
+| pot_loading | transmission | the boom cylinders' potentiometric stroke sensors read through a finite input impedance, u / (1 + rho u (1 - u)) (tool_changer) | potentiometer loading (module docstring) |
+| twin_robot | mount_compliance | a twin robot on the same table running its production cycle, its weights tilting the table top on its feet (not logged) (all three arms) | Timoshenko & Young, *Engineering Mechanics* |
+| mullins_mounts | mount_compliance | new filled-rubber isolators softening on reloading below their largest compression so far (Mullins; Ogden & Roxburgh), the plate solved pose by pose with its history (all three arms) | Mullins 1969; Ogden & Roxburgh 1999 |
+| profile_frame | link_deflection | the target on an aluminium profile frame whose T-slot bracket follows a semi-rigid moment-rotation curve (all three arms) | Kishi & Chen (semi-rigid connections) |
+| diaphragm | link_deflection | the tool on a double-diaphragm axial flexure stiffened by membrane action (large-deflection plate law) (ur10, kr16_like) | large-deflection plate theory (module docstring) |
+| oil_shrink | thermal | warm oil trapped in the loaded cylinder chambers cooling during the dwell, shrinking and letting the boom sink (oil temperature not logged) (tool_changer) | Merritt, *Hydraulic Control Systems*; Incropera & DeWitt |
+| wheel_growth | thermal | axis 1 read by a polyurethane-tyred measuring wheel on a steel ring, wheel and ring growing by different amounts with different lags: q1 (alpha_eff dT_w - alpha_St dT_R), driven by the logged hall air (kr16_like, tool_changer) | Incropera & DeWitt ch. 5; material data |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
