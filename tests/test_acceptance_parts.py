@@ -258,3 +258,38 @@ def test_the_acceptance_allocation_budgets_the_bought_parts(ur10_drives):
         _allocate(ur10_drives, 0.05, choice, n_robots=2)
     with pytest.raises(TolallocError, match="parts: expected a choice"):
         _allocate(ur10_drives, 0.6, "HD-CSG-32-100", n_robots=2)
+
+
+def test_the_command_line_passes_the_parts_to_the_acceptance_job(monkeypatch, capsys):
+    """``allocate --requirement FILE``: ``--part JOINT.KIND=NAME`` (repeated) is the choice, ``--parts`` alone the
+    robot file's parts; malformed parts, the design's conditions and ``--part`` without a requirement file are
+    refused (exit 2)."""
+    from pathlib import Path
+
+    import tolalloc.workflows.acceptance as job
+    from tolalloc.cli import main
+
+    seen = []
+
+    class Result:
+        ok, prediction = True, None
+
+        def text(self):
+            return "stub"
+
+    monkeypatch.setattr(job, "allocate_acceptance", lambda *a, **kw: seen.append(kw) or Result())
+    req = str(Path(__file__).resolve().parents[1] / "examples" / "requirements_iso9283.toml")
+    base = ["allocate", "ur10", "--requirement", req]
+    assert main(base + ["--part", "elbow_joint.encoder=RING-100-STD", "--part",
+                        "shoulder_lift_joint.encoder=RING-100-PREC"]) == 0
+    assert seen[-1]["parts"] == {("elbow_joint", "encoder"): "RING-100-STD",
+                                 ("shoulder_lift_joint", "encoder"): "RING-100-PREC"}
+    assert main(base + ["--parts"]) == 0 and seen[-1]["parts"] is True
+    assert main(base) == 0 and seen[-1]["parts"] is None
+    capsys.readouterr()
+    for extra, message in ((["--part", "elbow_joint=RING"], "JOINT.KIND=NAME"),
+                           (["--parts", "--payload-kg", "0", "5"], "does not apply to --requirement")):
+        assert main(base + extra) == 2 and message in capsys.readouterr().err
+    assert main(["allocate", "ur10", "--part", "elbow_joint.encoder=RING-100-STD"]) == 2
+    assert "applies to --requirement" in capsys.readouterr().err
+    assert len(seen) == 3

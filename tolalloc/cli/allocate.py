@@ -107,6 +107,10 @@ def _add_parts_args(p) -> None:
                        help="choose the catalogue parts (reducer grades, bearings, encoders) with the machining "
                        "tolerances, over a payload and an ambient range; the worst point checked by the physical "
                        "Monte Carlo (--n-mc draws). Position requirement only; not with --calibration")
+    parts.add_argument("--part", action="append", metavar="JOINT.KIND=NAME", default=None,
+                       help="with --requirement: the catalogue part of one slot in the ISO 9283 acceptance test (e.g. "
+                       "elbow_joint.encoder=RING-100-STD), repeated per slot; slots of one part need none. With "
+                       "--requirement, --parts alone takes the parts the robot file names")
     parts.add_argument("--payload-kg", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
                        help="with --parts: payload range [kg] (default 0 to the robot's rated payload)")
     parts.add_argument("--ambient-c", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
@@ -136,6 +140,9 @@ def settings(args) -> dict:
                                        D.PROB if args.prob is None else args.prob)]
     if args.angle_radius_deg is not None:
         requirement.append(OrientationRequirement(args.angle_radius_deg, args.angle_prob))
+    if args.part:
+        raise ArgumentError("part", "applies to --requirement (the parts in the ISO 9283 acceptance test); the design "
+                            "with --parts chooses the parts itself.")
     kw = {"parts": _parts(args) or True} if args.parts else {}
     for flag, value in (("payload_kg", args.payload_kg), ("ambient_c", args.ambient_c), ("duty", args.duty),
                         ("process_force_n", args.process_force_n), ("process_torque_nm", args.process_torque_nm),
@@ -159,6 +166,30 @@ def _parts(args) -> dict:
             "process_force_n": args.process_force_n, "process_torque_nm": args.process_torque_nm,
             "after": "compensation" if args.after_compensation else None}
     return {k: tuple(v) if isinstance(v, list) else v for k, v in opts.items() if v is not None}
+
+
+def _acceptance_parts(args):
+    """``parts`` of the ISO 9283 job: ``{(joint, kind): name}`` from ``--part``, True with ``--parts`` alone, else
+    None. The design's conditions (payload, ambient, duty, process wrench) do not apply: the test load is the
+    requirement's."""
+    from tolalloc.exceptions import ArgumentError
+
+    extra = _parts(args)
+    if extra:
+        key = next(iter(extra))
+        raise ArgumentError({"after": "after_compensation"}.get(key, key), "does not apply to --requirement: the acceptance test's load is the "
+                            "requirement's (its conditions' load_pct of the rated payload).")
+    if not args.part:
+        return True if args.parts else None
+    choice = {}
+    for text in args.part:
+        slot, _, name = text.partition("=")
+        joint, _, kind = slot.rpartition(".")
+        if not (joint and kind and name):
+            raise ArgumentError("part", f"expected JOINT.KIND=NAME (e.g. elbow_joint.encoder=RING-100-STD), got "
+                                f"{text!r}.")
+        choice[(joint, kind)] = name
+    return choice
 
 
 def cmd_allocate(args) -> int:
@@ -202,7 +233,7 @@ def _cmd_requirement_file(args) -> int:
         else Region(args.region), costs=Costs(args.costs, args.z, args.uniform), error_model=error_model_options(args),
         solver=Solver(args.solver, not args.no_snap, args.angle_step_deg),
         verification=False if args.no_verify else Verification(seed=args.seed), n_robots=args.n_robots,
-        **robot_kwargs(args))
+        parts=_acceptance_parts(args), **robot_kwargs(args))
     print(res.text())
     if args.out is not None and res.prediction is not None:
         paths = res.save(args.out)
