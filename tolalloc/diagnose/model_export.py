@@ -41,7 +41,7 @@ __all__ = ["FORMAT", "identified_geometry", "identified_robot_dict", "identified
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
 #: Thermal variants whose columns need the training file's history (not rebuilt from a file).
-HISTORY_VARIANTS = ("lag", "activity", "motor", "tilt", "held")
+HISTORY_VARIANTS = ("lag", "activity", "motor", "tilt", "held", "scale_lag")
 
 
 def identified_geometry(model: IdentifiedModel) -> tuple:

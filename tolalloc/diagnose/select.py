@@ -155,7 +155,7 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
         parts = variant_parts(variant)
         if any(is_air_variant(v) for v in parts) and test.temperature_c is None:
             return "the test file has no temperature_c column"
-        if parts != ("temperature",) and (why := time_problem(test.time_s)) is not None:
+        if any(v not in ("temperature", "scale") for v in parts) and (why := time_problem(test.time_s)) is not None:
             return f"test file: {why}"
         if any(v.startswith("held") for v in parts) and test.payload_kg is None:
             return "the test file has no payload_kg column (the held part's history)"

@@ -20,6 +20,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     homing        zero of an incremental encoder       0                         -                    h / sqrt(3)
     bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
     thermal       link growth (ambient and motors)     alpha dT L                THERMAL_SD |mean|    -
+                  an encoder's scale (declared)         c q dT (ambient)          THERMAL_SD |mean|    -
     beam          link bending (sections)              sag                       BEAM_SD |sag|        -
     mount         base tilt                            tilt                      MOUNT_SD |tilt|      -
 
@@ -49,6 +50,7 @@ from tolalloc.physics.bearings import runout_sd
 from tolalloc.physics.compliance import joint_loads, mount_tilt
 from tolalloc.physics.loads import target_points
 from tolalloc.physics.thermal_design import link_cte, link_temperature, motor_rise
+from tolalloc.physics.thermal_scale import scale_error
 from tolalloc.physics.transmission import catalogue_amplitudes
 from tolalloc.robot.model import Robot
 
@@ -285,6 +287,9 @@ class PartEffects:
         if enc is not None and enc.homing_repeatability:
             out += self._term(f"homing_{nm}", "homing", j, self.pm.drive[j],
                               rnd=enc.homing_repeatability / np.sqrt(3.0))
+        if enc is not None and enc.scale_expansion is not None:
+            grow = scale_error(enc.scale_expansion, self.q[:, j], self.ambient - self.conditions.reference_c)
+            out += self._term(f"scale_{nm}", "thermal", j, self.pm.drive[j], grow, THERMAL_SD * np.abs(grow))
         return out
 
     def bearing_terms(self, j: int, bearing) -> EffectTerms:

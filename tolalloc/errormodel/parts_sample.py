@@ -20,6 +20,7 @@ from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
 from tolalloc.physics.thermal_design import link_cte
+from tolalloc.physics.thermal_scale import scale_error
 from tolalloc.physics.transmission import transmission_error
 
 __all__ = ["sample_effects"]
@@ -54,6 +55,9 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple
         sys += f["encoder"] * sum(_sines(qj, orders[k:k + 1], amps[k:k + 1], rng, n) for k in range(len(orders)))
     if enc is not None and enc.homing_repeatability:
         rnd += rng.uniform(-enc.homing_repeatability, enc.homing_repeatability, n)   # this power-up's zero
+    if enc is not None and enc.scale_expansion is not None:
+        grow = scale_error(enc.scale_expansion, qj, fx.ambient[i] - fx.conditions.reference_c)
+        sys += f["thermal"] * grow * (1.0 + THERMAL_SD * rng.standard_normal(n))
     return sys, rnd
 
 

@@ -15,6 +15,7 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 * :mod:`.thermal` -- link growth driven by the logged temperature, a warm-up, the motion history, the motors'
   losses or a held part, with first-order heating and cooling; links bowing, joint axes tilting, the measuring frame
   drifting;
+* :mod:`.thermal_scale` -- a declared position scale growing with the air temperature (``c_j q_j dT``);
 * :mod:`.thermal_design` -- the design's forward model: the links' temperatures over an ambient range and a duty cycle.
 """
 

@@ -43,6 +43,8 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   its own base the robot is unchanged: its columns (:data:`MEASUREMENT_PREFIX`, :func:`is_measurement_column`)
   move what the instrument sees, not the target in the base frame. (Turns are left out: a turn of the whole arm
   about its base is what a tilting first axis does.)
+* ``scale``, ``scale_lag_<tau>min``: the joints' own position scales growing with the logged air, directly or
+  through a lag, for the encoders the robot file declares a scale for (:mod:`.thermal_scale`) [1e-6/K per joint].
 * ``<air>+<activity>``: an air-driven variant (``temperature`` or ``lag_<tau>min``) and an activity-driven one
   (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
   drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
@@ -60,6 +62,7 @@ import numpy as np
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import across_axes, gravity_torques, point_at
+from tolalloc.physics.thermal_scale import joint_scale
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
@@ -216,8 +219,9 @@ def thermal_variants(meas) -> tuple:
 
 
 def is_air_variant(variant: str) -> bool:
-    """Whether ``variant`` is driven by the logged air temperature (``temperature``, ``lag_<tau>min``)."""
-    return variant == "temperature" or variant.startswith("lag_")
+    """Whether ``variant`` is driven by the logged air temperature (``temperature``, ``lag_<tau>min``, ``scale``,
+    ``scale_lag_<tau>min``)."""
+    return variant == "temperature" or variant.startswith(("lag_", "scale"))
 
 
 def is_measurement_column(name: str) -> bool:
@@ -256,7 +260,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     """The driving signal of ``variant`` on the poses of ``meas``: shape (P,) for the one-coefficient variants and
     ``links_warmup``, (P, L) for ``activity`` (``link_joints`` (L, n): :func:`link_joint_matrix`), (P, 2n) for
     ``motor`` (speeds, then squared loads; needs ``robot``)."""
-    if variant == "temperature":
+    if variant in ("temperature", "scale"):
         return meas.temperature_c - ref["temperature_c"]
     tau, t = _tau_s(variant), meas.time_s
     if variant.startswith(("warmup", "links_warmup", "bow", "drift")):
@@ -309,7 +313,7 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
     grow, links = link_growth(robot, meas.q)
     total = grow.sum(axis=2)  # (P, 3): every link by the same relative amount
     lj = link_joint_matrix(robot)
-    bow = tilt = None  # the bow and tilt fields, computed once for all their variants (only the warm-up differs)
+    bow = tilt = scale = None  # the bow, tilt and scale fields, computed once for all their variants
     out = []
     for v in names:
         if "+" in v:  # a combined variant: its parts' columns side by side
@@ -323,6 +327,11 @@ def thermal_bases(robot: Robot, meas, ref: dict, names, points_mm: np.ndarray | 
         if v.startswith("drift"):
             drift = frame_drift(len(s))
             out.append((tuple(f"{lab} ({v})" for lab in drift[1]), drift[0] * s[:, None, None]))
+            continue
+        if v.startswith("scale"):
+            pts = robot.fk_internal(meas.q)[:, :3, 3] if points_mm is None else points_mm
+            scale = joint_scale(robot, meas.q, pts) if scale is None else scale
+            out.append((tuple(f"{lab} ({v})" for lab in scale[1]), scale[0] * s[:, None, None]))
             continue
         if v.startswith("tilt"):
             tilt = axis_tilt(robot, meas.q, points_mm) if tilt is None else tilt

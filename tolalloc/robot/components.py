@@ -33,6 +33,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     scale_radius_mm = 50
     homing = "absolute"              # absolute (zero kept through a power cycle) | incremental (homed at power-up)
     # homing_repeatability_arcsec = 3    # incremental only: +- band of the zero from one homing to the next
+    # scale_expansion_um_per_m_K = 12    # a scale's expansion less the structure's it measures (a wheel, a tape)
     source = "assumed"
 
     [components.joints.shoulder_lift_joint.bearing]
@@ -154,7 +155,9 @@ class Encoder:
     mounting ``eccentricity`` [mm] on its ``scale_radius_mm`` (an output-side rotary encoder then reads ``e / r``
     [rad] once per turn); ``homing``: ``absolute`` (the zero kept through a power cycle) or ``incremental`` (homed on a
     reference switch at each power-up, the zero set anew each time), with ``homing_repeatability`` [rad or mm] the
-    half-width of the band the zero falls in from one homing to the next."""
+    half-width of the band the zero falls in from one homing to the next; ``scale_expansion`` [1 per K]: a scale's
+    thermal expansion less that of the structure it measures (a linear scale, a measuring wheel on a ring), the
+    joint then reading ``expansion q dT`` off (:mod:`tolalloc.physics.thermal_scale`)."""
 
     side: str = "output"
     accuracy: float | None = None
@@ -163,6 +166,7 @@ class Encoder:
     scale_radius_mm: float | None = None
     homing: str = "absolute"
     homing_repeatability: float | None = None
+    scale_expansion: float | None = None
 
 
 @dataclass(frozen=True)

@@ -152,7 +152,8 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
     """An :class:`Encoder` from its table."""
     ang = _ANGLE if revolute else _LENGTH
     v = read_table(t, {"accuracy": (ang, ((),)), "eccentricity": (_LENGTH, ((),)), "scale_radius": (_LENGTH, ((),)),
-                       "homing_repeatability": (ang, ((),))}, w, text=("side", "source", "homing") + extra_keys)
+                       "homing_repeatability": (ang, ((),)), "scale_expansion": (_CTE, ((),))}, w,
+                   text=("side", "source", "homing") + extra_keys)
     homing = _text(t, "homing", w, "absolute", ("absolute", "incremental"))
     if v["homing_repeatability"] is not None and homing != "incremental":
         raise ValueError(f"{w}.homing_repeatability: an absolute encoder keeps its zero through a power cycle; the "
@@ -160,7 +161,7 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
     return Encoder(_text(t, "side", w, "output", ("output", "motor")), _positive(v["accuracy"], "accuracy", w, True),
                    _text(t, "source", w, ""), _positive(v["eccentricity"], "eccentricity", w, True),
                    _positive(v["scale_radius"], "scale_radius", w), homing,
-                   _positive(v["homing_repeatability"], "homing_repeatability", w, True))
+                   _positive(v["homing_repeatability"], "homing_repeatability", w, True), v["scale_expansion"])
 
 
 def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
