@@ -110,23 +110,26 @@ def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residua
     M = len(fx.q)
     mean = np.einsum("mat,mt->ma", col, terms.mean * ft).ravel()
     sys, rnd = np.zeros((M * 6, M * 6)), np.zeros((M, 6, 6))
+    blocks = sys.reshape(M, 6, M, 6)             # a view: pose m's block is blocks[m, :, m, :]
+    poses = np.arange(M)
     for t, effect in enumerate(terms.effect):
-        c = col[:, :, t]
-        if effect == "homing":
-            v = (c * terms.rnd_sd[:, t, None]).ravel()
-            sys += np.outer(v, v)
-            continue
+        c, r = col[:, :, t], terms.rnd_sd[:, t]
         if effect in _RANK_ONE:
             v = (c * (terms.sys_sd[:, t] * np.where(terms.mean[:, t] < 0, -1.0, 1.0) * ft[t])[:, None]).ravel()
             sys += np.outer(v, v)
         elif effect in ("transmission", "encoder"):
             K = _periodic_kernel(robot, terms.joint[t], effect, fx.q) * ft[t] ** 2
             sys += np.einsum("mn,ma,nb->manb", K, c, c).reshape(M * 6, M * 6)
-        if effect == "lost_motion":
-            for m in range(M):
-                sys[6 * m:6 * m + 6, 6 * m:6 * m + 6] += terms.rnd_sd[m, t] ** 2 * np.outer(c[m], c[m])
+        # the part the parts model calls random: a zero kept through the power cycle (homing), a flank kept through
+        # the cycles at each pose (lost motion), else new at every move
+        per_pose = r[:, None, None] ** 2 * np.einsum("ma,mb->mab", c, c)
+        if effect == "homing":
+            v = (c * r[:, None]).ravel()
+            sys += np.outer(v, v)
+        elif effect == "lost_motion":
+            blocks[poses, :, poses, :] += per_pose
         else:
-            rnd += terms.rnd_sd[:, t, None, None] ** 2 * np.einsum("ma,mb->mab", c, c)
+            rnd += per_pose
     return EffectCovariance(0.5 * (sys + sys.T), rnd, mean)
 
 

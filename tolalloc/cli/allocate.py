@@ -177,8 +177,9 @@ def _acceptance_parts(args):
     extra = _parts(args)
     if extra:
         key = next(iter(extra))
-        raise ArgumentError({"after": "after_compensation"}.get(key, key), "does not apply to --requirement: the acceptance test's load is the "
-                            "requirement's (its conditions' load_pct of the rated payload).")
+        raise ArgumentError({"after": "after_compensation"}.get(key, key), "does not apply to --requirement: the "
+                            "acceptance test's load is the requirement's (its conditions' load_pct of the rated "
+                            "payload).")
     if not args.part:
         return True if args.parts else None
     choice = {}

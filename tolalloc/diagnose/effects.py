@@ -73,8 +73,7 @@ from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
 from tolalloc.physics.rehoming import cycle_blocks, homed_joints, rehome_columns, rehome_problem
 from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
-from tolalloc.physics.thermal import LAG_MIN, thermal_bases, thermal_variants, time_problem
-from tolalloc.physics.thermal_scale import scale_joints
+from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
 from tolalloc.physics.transmission import SERIES_ORDERS, transmission_columns
 from tolalloc.diagnose.measurements import Measurements
 
@@ -165,11 +164,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         reseat = ("reseat",) if seat_problem(meas.time_s, meas.payload_kg) is None else ()
         return (SIDES if both else GRAVITY_SIDES) + ("clearance",) + reseat
     if effect == "thermal":
-        out = thermal_variants(meas)
-        if robot is None or not len(scale_joints(robot)) or "temperature" not in out:
-            return out
-        lags = tuple(f"scale_lag_{m:g}min" for m in LAG_MIN) if time_problem(meas.time_s) is None else ()
-        return out + ("scale",) + lags
+        return thermal_variants(meas, robot)
     if effect == "transmission":
         n_rev = int(robot.revolute_mask.sum()) if robot is not None else meas.q.shape[1]
         series = tuple(f"series{K}" for K in SERIES_ORDERS if 2 * K * n_rev <= 2 * meas.n_poses)

@@ -20,7 +20,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     homing        zero of an incremental encoder       0                         -                    h / sqrt(3)
     bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
     thermal       link growth (ambient and motors)     alpha dT L                THERMAL_SD |mean|    -
-                  an encoder's scale (declared)         c q dT (ambient)          THERMAL_SD |mean|    -
+                  an encoder's scale (declared)        c q dT (ambient)          THERMAL_SD |mean|    -
     beam          link bending (sections)              sag                       BEAM_SD |sag|        -
     mount         base tilt                            tilt                      MOUNT_SD |tilt|      -
 
@@ -28,8 +28,8 @@ A joint whose encoder is on the **output** side closes its position loop on the 
 lost motion and transmission error do not reach the joint angle, the encoder's own error does. ``s`` is the
 reducer's ``stiffness_sd``. An incremental encoder's zero (``homing_repeatability`` +-h) is set anew at every
 power-up: no calibration or compensation removes it, so it is random here; within one power cycle it holds still
-(:mod:`tolalloc.acceptance.parts` keeps it through an acceptance test). Statistics: :class:`EffectTerms` (``mean_mm``, ``systematic_covariance``,
-``random_covariance``, ``moments``); :mod:`tolalloc.errormodel.parts_sample` draws the same effects physically
+(:mod:`tolalloc.acceptance.parts` keeps it through an acceptance test). Statistics: :class:`EffectTerms`
+(``mean_mm``, ``systematic_covariance``, ``random_covariance``, ``moments``); :mod:`tolalloc.errormodel.parts_sample` draws the same effects physically
 (nonlinear in the catalogue curve, at the actual joint angle) for the Monte Carlo.
 """
 

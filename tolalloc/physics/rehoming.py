@@ -31,12 +31,7 @@ __all__ = ["homed_joints", "cycle_gap_s", "cycle_blocks", "rehome_problem", "reh
 def homed_joints(robot) -> np.ndarray:
     """Indices of the joints whose encoder is homed at each power-up (``homing = "incremental"`` in the robot file's
     components), shape (k,)."""
-    out = []
-    for j, jt in enumerate(robot.joints):
-        enc = robot.components.joint(jt.name).encoder
-        if enc is not None and enc.homing == "incremental":
-            out.append(j)
-    return np.asarray(out, int)
+    return robot.components.encoder_joints([jt.name for jt in robot.joints], lambda enc: enc.homing == "incremental")
 
 
 def cycle_gap_s(train_time_s: np.ndarray) -> float:

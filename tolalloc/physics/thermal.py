@@ -62,7 +62,7 @@ import numpy as np
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import across_axes, gravity_torques, point_at
-from tolalloc.physics.thermal_scale import joint_scale
+from tolalloc.physics.thermal_scale import joint_scale, scale_joints
 
 __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
@@ -204,17 +204,22 @@ def _previous(time_s: np.ndarray, values: np.ndarray) -> np.ndarray:
     return out
 
 
-def thermal_variants(meas) -> tuple:
-    """Thermal variants the data can carry (first: the default), empty when none."""
+def thermal_variants(meas, robot: Robot | None = None) -> tuple:
+    """Thermal variants the data can carry (first: the default), empty when none; ``scale`` and ``scale_lag_<tau>min``
+    only for a ``robot`` whose file declares a scale (:func:`~.thermal_scale.scale_joints`)."""
     T, t, m_kg = meas.temperature_c, meas.time_s, meas.payload_kg
-    out = ["temperature"] if T is not None and np.ptp(T) >= 0.05 else []
-    if time_problem(t) is None:
-        if out:
+    air = T is not None and np.ptp(T) >= 0.05
+    timed = time_problem(t) is None
+    out = ["temperature"] if air else []
+    if timed:
+        if air:
             out += [f"lag_{m:g}min" for m in LAG_MIN]
         held = ("held",) if m_kg is not None and np.ptp(m_kg) > 0 else ()
         out += [f"{kind}_{m:g}min" for kind in ("warmup", "links_warmup", "bow", "activity", "motor", "tilt") + held
                 for m in LAG_MIN]
         out += [f"drift_{m:g}min" for m in LAG_MIN if m >= DRIFT_MIN_MIN]
+    if air and robot is not None and len(scale_joints(robot)):
+        out += ["scale"] + ([f"scale_lag_{m:g}min" for m in LAG_MIN] if timed else [])
     return tuple(out)
 
 

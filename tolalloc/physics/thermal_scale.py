@@ -27,8 +27,8 @@ __all__ = ["scale_joints", "joint_scale", "scale_error"]
 
 def scale_joints(robot: Robot) -> np.ndarray:
     """Indices of the joints whose encoder declares a scale expansion, shape (k,)."""
-    return np.asarray([j for j, jt in enumerate(robot.joints)
-                       if getattr(robot.components.joint(jt.name).encoder, "scale_expansion", None) is not None], int)
+    return robot.components.encoder_joints([jt.name for jt in robot.joints],
+                                           lambda enc: enc.scale_expansion is not None)
 
 
 def joint_scale(robot: Robot, q: np.ndarray, points_mm: np.ndarray) -> tuple:

@@ -292,6 +292,11 @@ class Components:
         """The parts of joint ``name`` (empty when the file gives none)."""
         return self.joints.get(name, JointComponents())
 
+    def encoder_joints(self, joint_names, declares) -> np.ndarray:
+        """Indices (k,) of the joints ``joint_names`` (in chain order) whose encoder ``declares(encoder)`` holds."""
+        return np.asarray([j for j, nm in enumerate(joint_names)
+                           if (enc := self.joint(nm).encoder) is not None and declares(enc)], int)
+
     def gear_ratios(self, joint_names) -> np.ndarray | None:
         """Gear ratio of every joint, shape (n,), NaN where unknown; None when no joint has one."""
         r = np.array([getattr(self.joint(nm).reducer, "ratio", None) or np.nan for nm in joint_names], float)
