@@ -251,6 +251,8 @@ def test_the_acceptance_allocation_budgets_the_bought_parts(ur10_drives):
     assert pred.loc[rp, "robot_mm"] > 2 * without.prediction.to_frame().set_index(["statistic", "where"]).loc[
         rp, "robot_mm"]
     assert with_parts_.inputs["parts"]["elbow_joint.reducer"] == "HD-CSG-32-100" and without.inputs["parts"] is None
+    assert "bought parts in the test" in with_parts_.text() and "HD-CSG-32-100" in with_parts_.text()
+    assert "bought parts" not in without.text()
     tight = _allocate(ur10_drives, 0.52, choice, n_robots=2)
     assert not tight.ok and _allocate(ur10_drives, 0.52, None, n_robots=2).ok
     assert "bought parts' mean error" in tight.text() and "choose finer parts" in tight.text()

@@ -268,6 +268,9 @@ class AcceptanceAllocation(JobResult):
 
     def text(self) -> str:
         out = ["\n".join(self.headline()), self.result.message or ""]
+        if self.inputs.get("parts"):
+            out.append("bought parts in the test, their effects under the test load included: "
+                       + ", ".join(dict.fromkeys(self.inputs["parts"].values())))
         if self.prediction is not None:
             out.append(self.prediction.text())
         if self.simulation is not None:
