@@ -237,7 +237,7 @@ def test_mean_isotropic_is_noncentral_chi2_and_rank_one_off_axis():
 
 def test_ray_rule_agrees_with_nested_quadrature_inside_its_range():
     """The fast ray rule is used only for |mean| <= 0.75 r: there it matches the exact nested rule to 1e-6."""
-    from tolalloc.linear.probability import RAY_RULE_MAX_MEAN, _p_mean_nested, _p_with_mean
+    from tolalloc.linear.probability_mean import RAY_RULE_MAX_MEAN, _p_mean_nested, _p_with_mean
 
     rng = np.random.default_rng(11)
     for _ in range(3):  # each exact reference takes seconds (nested adaptive quadrature)
@@ -288,3 +288,40 @@ def test_full_rank_path_gives_the_numbers_of_the_guarded_path():
     assert np.all(lam[:, 2] > 0) and lam_g[-1, 2] == 0
     for a, b in zip(fast, guarded):
         assert np.array_equal(a, b[:-1])
+
+
+def test_grazing_means_by_imhof_agree_with_monte_carlo_and_the_nested_rule():
+    """Means many standard deviations from the centre, the ball's surface near them (a multi-directional accuracy's
+    lost-motion offset): Imhof's integral against 10^6 draws, and against the nested quadrature at a moderate
+    offset; p_within_radius takes it there. The ray rule's extended range (mean inside by >= 0.5 sd) agrees to 1e-7."""
+    from tolalloc.linear.probability_mean import RAY_RULE_MIN_MARGIN, _p_mean_imhof, _p_mean_nested, _p_with_mean
+
+    rng = np.random.default_rng(7)
+    z = rng.standard_normal((1_000_000, 3))
+    for lam, m, r in [((6.2e-5, 1e-6, 4e-8), (1e-4, 0.02, 0.1726), 0.1728),
+                      ((2.5e-6, 2e-6, 1e-6), (0.18, 0.01, 0.0), 0.181),
+                      ((1e-4, 3e-5, 1e-5), (0.05, -0.2, 0.1), 0.228)]:
+        lam, m = np.array(lam), np.array(m)
+        x = z * np.sqrt(lam) + m
+        mc = np.mean(np.einsum("ij,ij->i", x, x) < r * r)
+        P = _p_mean_imhof(lam, m, r)
+        assert abs(P - mc) < 4 * np.sqrt(mc * (1 - mc) / len(z)) + 1e-6, (P, mc)
+        assert abs(float(p_within_radius(np.diag(lam), r, m)) - P) < 1e-12
+    lam, m = np.array([0.04, 0.01, 0.002]), np.array([0.6, 0.8, 0.0])       # 5 sd out
+    assert abs(_p_mean_imhof(lam, m, 1.05) - _p_mean_nested(lam, m, 1.05)) < 1e-9
+    for r in (1.0 + RAY_RULE_MIN_MARGIN * 0.2, 1.0 + 2 * 0.2):              # inside by >= the margin
+        ray = float(_p_with_mean(lam[None], m[None], np.array([r]))[0])
+        assert abs(ray - _p_mean_imhof(lam, m, r)) < 1e-7
+    assert p_within_radius(np.diag(lam) / 16, 1.0 - 8 * 0.05, m) == 0.0     # the half-space bound is below 1e-13
+    m = m / 2                                                               # 2.5 sd out: Imhof's integral does
+    assert np.isnan(_p_mean_imhof(lam, m, 0.55))                            # not converge, the nested rule serves
+    assert float(p_within_radius(np.diag(lam), 0.55, m)) == _p_mean_nested(lam, m, 0.55)
+
+
+def test_radius_with_a_grazing_mean_is_the_inverse():
+    """radius_for_prob with a mean (bracketed by the half-space and the shifted-ball bounds) inverts P to 1e-9."""
+    lam, m = np.array([6.2e-5, 1e-6, 4e-8]), np.array([1e-4, 0.02, 0.1726])
+    for p in (0.5, 0.95, 0.9833):
+        r = float(radius_for_prob(np.diag(lam), p, m))
+        assert abs(float(p_within_radius(np.diag(lam), r, m)) - p) < 1e-9
+        assert np.linalg.norm(m) < r < np.linalg.norm(m) + 4 * np.sqrt(lam.max())

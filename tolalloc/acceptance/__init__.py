@@ -2,12 +2,12 @@
 with the measurement uncertainty (ISO 14253-1)."""
 
 from tolalloc.acceptance.statistics import (pose_accuracy, pose_repeatability, orientation_accuracy,
-                                            orientation_repeatability, distance_accuracy, distance_repeatability,
-                                            path_accuracy, path_repeatability)
+                                            orientation_repeatability, multidirectional_accuracy, distance_accuracy,
+                                            distance_repeatability, path_accuracy, path_repeatability)
 from tolalloc.acceptance.requirements import (Requirement, Conditions, PositionRequirement, OrientationRequirement,
                                               IsoRequirement, PoseAccuracy, PoseRepeatability, OrientationAccuracy,
-                                              OrientationRepeatability, DistanceAccuracy, PathAccuracy,
-                                              check_requirements, split_requirements)
+                                              OrientationRepeatability, MultiDirectionalAccuracy, DistanceAccuracy,
+                                              PathAccuracy, check_requirements, split_requirements)
 from tolalloc.acceptance.cube import TestCube, CubePlacement, place_cube
 from tolalloc.acceptance.instrument import Tracker
 from tolalloc.acceptance.layout import AcceptanceTest, acceptance_test
@@ -17,6 +17,7 @@ from tolalloc.acceptance.predict import AcceptancePrediction, StatisticPredictio
 from tolalloc.acceptance.parts import parts_effects
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
+           "multidirectional_accuracy", "MultiDirectionalAccuracy",
            "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "Requirement",
            "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement", "PoseAccuracy",
            "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability", "DistanceAccuracy", "PathAccuracy",

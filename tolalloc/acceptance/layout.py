@@ -23,7 +23,11 @@ from tolalloc.acceptance.cube import CubePlacement, TestCube, place_cube, solve_
 from tolalloc.acceptance.instrument import REGISTRATIONS, Tracker
 from tolalloc.acceptance.statistics import check_cycles
 
-__all__ = ["AcceptanceTest", "acceptance_test", "acceptance_test_at", "default_region", "TestPath"]
+__all__ = ["AcceptanceTest", "acceptance_test", "acceptance_test_at", "default_region", "TestPath",
+           "joint_directions", "MOVING_SHARE"]
+
+#: a joint whose share of the tool's motion in an approach is below this is not said to move (its flank is unknown)
+MOVING_SHARE = 1e-3
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,6 +110,12 @@ class AcceptanceTest:
         t = (ends[1] - ends[0]) / np.linalg.norm(ends[1] - ends[0])
         return TestPath(q, pts, np.tile(t, (len(pts), 1)))
 
+    def joint_directions(self, q, directions) -> np.ndarray:
+        """Each joint's direction of motion (+1 / -1, 0 where it hardly moves) when the tool approaches the poses
+        ``q`` (P, n) along ``directions`` (D, 3), the cube's orientation held or free: shape (P, D, n)
+        (:func:`joint_directions`)."""
+        return joint_directions(self.robot, q, directions, self.placement.cube.fixed_orientation)
+
     def summary(self) -> dict:
         """The test's settings for reports (JSON-ready)."""
         c = self.placement.cube
@@ -117,6 +127,39 @@ class AcceptanceTest:
                 "tracker_distance_m": self.tracker.distance_m, "tracker_angle_mpe_deg": self.tracker.angle_mpe_deg,
                 "coverage_factor_k": self.tracker.k,
                 "q_test_deg_mm": np.round(self.robot.q_to_interface(self.q_test), 4).tolist()}
+
+
+def joint_directions(robot, q, directions, fixed_orientation: bool = True) -> np.ndarray:
+    """Each joint's direction of motion while the tool moves along ``directions`` into the poses ``q``.
+
+    The joint rates of a straight approach are ``J^+ (u, 0)`` with the tool's orientation held (``J`` the 6 x n
+    Jacobian of the tool point and frame), or ``Jp^+ u`` with it free (the least-norm rates a resolved-rate
+    controller takes). A joint whose share ``|Jp_j qdot_j|`` of the tool's unit motion is below
+    :data:`MOVING_SHARE` gets 0: the flank it rests on is then the one its last motion before the approach left.
+
+    Parameters
+    ----------
+    robot : Robot
+    q : array, shape (P, n) [rad, mm]
+    directions : array, shape (D, 3)
+        Unit directions of the tool's motion.
+    fixed_orientation : bool
+
+    Returns
+    -------
+    array, shape (P, D, n) of +1., -1. or 0.
+    """
+    q = np.atleast_2d(np.asarray(q, float))
+    Js = robot.space_jacobian_internal(q)                         # (P, 6, n): rows angular, linear
+    p = robot.fk_internal(q)[:, :3, 3]
+    Jw = Js[:, :3]
+    Jp = Js[:, 3:] - np.cross(p[:, :, None], Jw, axis=1)          # the tool point: v + w x p
+    J = np.concatenate([Jp, Jw], axis=1) if fixed_orientation else Jp
+    u = np.asarray(directions, float)
+    rhs = np.concatenate([u, np.zeros_like(u)], axis=1) if fixed_orientation else u
+    qd = np.einsum("pnr,dr->pdn", np.linalg.pinv(J), rhs)
+    share = np.abs(qd) * np.linalg.norm(Jp, axis=1)[:, None, :]
+    return np.where(share >= MOVING_SHARE, np.sign(qd), 0.0)
 
 
 def default_region(robot) -> tuple[np.ndarray, np.ndarray, str]:

@@ -24,6 +24,11 @@ covariance joint over the evaluation poses, random covariance per pose) and ``T_
 * ``AP_a, AP_b, AP_c`` (7.2.1), *ball* (one row each): the mean angle minus the command angle, registered; ``1/n``;
 * ``RP_l`` (7.2.2), *rp*: the attained position of one cycle; weight 1;
 * ``RP_a, RP_b, RP_c`` (7.2.2), *sd3* (one row each): the attained angle of one cycle; weight 1;
+* ``vAP_P`` (7.2.3), *ball* (one row per pose and pair of approach directions): the barycentre from one direction
+  minus that from another, each pose evaluated once per direction (the approach known, :attr:`EvaluationPoses.
+  approach`); ``1/n`` each. Whatever a robot keeps at the pose cancels (``L J = 0``); the flank lost motion rests
+  on, which the direction sets, and the random parts remain. The largest of a pose's three pairs is ``vAP_P``:
+  each pair is held at ``1 - (1 - share) / 3`` (Bonferroni, as the path points);
 * ``AD_P`` (7.3), *ball* (one row): ``u . (Pb - Pa)`` of the mean positions, ``u`` the command direction; ``1/n``;
 * ``AT_P`` (8.2), *ball*: the barycentre minus the command point across the path, registered; ``1/n`` (path
   cycles).
@@ -43,9 +48,11 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.acceptance.instrument import registration_map, _skew
 from tolalloc.acceptance.requirements import IsoRequirement
+from tolalloc.acceptance.statistics import PAIRS
 
 __all__ = ["StatisticModel", "ErrorEffects", "EffectCovariance", "EvaluationPoses", "evaluation_poses",
-           "statistic_models", "design_variances", "MEASURES", "ANGLES"]
+           "statistic_models", "design_variances", "effects_at", "requirement_poses",
+           "multidirectional_labels", "MEASURES", "ANGLES"]
 
 MEASURES = ("ball", "rp", "sd3")
 ANGLES = ("a", "b", "c")
@@ -78,10 +85,29 @@ class ErrorEffects(Protocol):
 
     ``q`` (M, n) [rad, mm] are the evaluation poses, ``conditions`` the requirement's
     :class:`~tolalloc.acceptance.requirements.Conditions` (load, velocity). ``None``: no effect beyond the error
-    model (the default).
+    model (the default). Where the test knows how poses are approached (a multi-directional accuracy), it passes
+    ``approach=`` (M, n): each joint's direction of motion into the pose (+1 / -1, 0 unknown); an effect that
+    depends on it (lost motion) takes that keyword.
     """
 
-    def __call__(self, robot, q: np.ndarray, conditions) -> EffectCovariance | None: ...
+    def __call__(self, robot, q: np.ndarray, conditions, **approach) -> EffectCovariance | None: ...
+
+
+def effects_at(effects, robot, ev: EvaluationPoses, conditions) -> EffectCovariance | None:
+    """``effects`` at the evaluation poses ``ev`` (with ``approach=`` where some poses' approach is known)."""
+    if effects is None:
+        return None
+    if ev.approach is None or not np.any(ev.approach):
+        return effects(robot, ev.q, conditions)
+    try:
+        return effects(robot, ev.q, conditions, approach=ev.approach)
+    except TypeError as err:
+        if "approach" not in str(err):
+            raise
+        raise TolallocError("effects: a multi-directional accuracy needs the bought-part effects with the approach "
+                            "directions (effects(robot, q, conditions, approach=...)); this effects callable does "
+                            f"not take them ({err}). Use tolalloc.acceptance.parts_effects(), or add the keyword.") \
+            from None
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,6 +123,12 @@ class EvaluationPoses:
         Command positions.
     tangents : array, shape (len(path), 3)
         Unit tangents of the command path.
+    directional : array of int, shape (V, 3)
+        Rows of a multi-directional test: pose ``v`` approached along each of the three directions (``V = 0``
+        without one).
+    approach : array, shape (M, n), optional
+        Each joint's direction of motion into the pose (+1 / -1, 0 unknown), known at the directional rows only;
+        ``None`` without them.
     """
 
     q: np.ndarray
@@ -105,21 +137,40 @@ class EvaluationPoses:
     path: np.ndarray
     points_mm: np.ndarray
     tangents: np.ndarray
+    directional: np.ndarray = None
+    approach: np.ndarray | None = None
 
 
-def evaluation_poses(test, path_points: int = 0) -> EvaluationPoses:
+def evaluation_poses(test, path_points: int = 0, multidirectional=None) -> EvaluationPoses:
     """The evaluation poses of an :class:`~tolalloc.acceptance.layout.AcceptanceTest` (with a path of
-    ``path_points`` points when > 0)."""
+    ``path_points`` points when > 0, and the directional visits of a
+    :class:`~tolalloc.acceptance.requirements.MultiDirectionalAccuracy` ``multidirectional``)."""
     parts = [test.q_test, test.q_registration]
     tang = np.zeros((0, 3))
     if path_points:
         tp = test.path(path_points)
         parts.append(tp.q)
         tang = tp.tangents
+    if multidirectional is not None:
+        qv = test.q_test[[i - 1 for i in multidirectional.poses]]
+        parts.append(np.repeat(qv, 3, axis=0))
     sizes = np.cumsum([0] + [len(p) for p in parts])
     q = np.vstack(parts)
     rng = [np.arange(sizes[i], sizes[i + 1]) for i in range(len(parts))]
-    return EvaluationPoses(q, rng[0], rng[1], rng[2] if path_points else np.zeros(0, int), test.commanded(q), tang)
+    path = rng[2] if path_points else np.zeros(0, int)
+    directional, approach = np.zeros((0, 3), int), None
+    if multidirectional is not None:
+        directional = rng[-1].reshape(-1, 3)
+        approach = np.zeros_like(q)
+        approach[directional] = test.joint_directions(q[directional[:, 0]], multidirectional.directions())
+    return EvaluationPoses(q, rng[0], rng[1], path, test.commanded(q), tang, directional, approach)
+
+
+def requirement_poses(test, requirements) -> EvaluationPoses:
+    """:func:`evaluation_poses` for the requirements' statistics (the path and the directional visits they read)."""
+    path = next((r for r in requirements if r.kind == "path_accuracy"), None)
+    vap = next((r for r in requirements if r.kind == "multidirectional_accuracy"), None)
+    return evaluation_poses(test, path.points if path is not None else 0, vap)
 
 
 @dataclass(frozen=True, eq=False)
@@ -278,9 +329,8 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
         Default :func:`evaluation_poses` of the test (with the path of a path accuracy requirement).
     """
     reqs = list(requirements)
-    path_req = next((r for r in reqs if r.kind == "path_accuracy"), None)
     if ev is None:
-        ev = evaluation_poses(test, path_req.points if path_req is not None else 0)
+        ev = requirement_poses(test, reqs)
     n, visits = test.cycles, test.registration_visits
     nt = len(ev.test)
     P1_5 = tuple(f"P{i}" for i in range(1, nt + 1))
@@ -309,6 +359,8 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
             else:
                 out += [StatisticModel(f"RP_{a}", req, "sd3", n, req.limit, tgt, P1_5, _one_row(L, j), W, "deg",
                                        systematic=False) for j, a in enumerate(ANGLES)]
+        elif k == "multidirectional_accuracy":
+            out.append(_multidirectional_model(req, ev, n))
         elif k == "distance_accuracy":
             out.append(_distance_model(req, ev, n))
         elif k == "path_accuracy":
@@ -321,6 +373,28 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
         else:  # pragma: no cover - every IsoRequirement kind is handled above
             raise TolallocError(f"requirements: no statistic model for kind {k!r}.")
     return out
+
+
+def _multidirectional_model(req, ev: EvaluationPoses, n: int) -> StatisticModel:
+    """``vAP_P``: per pose and pair of directions, the barycentre of one direction's cycles minus the other's."""
+    if len(ev.directional) != len(req.poses):
+        raise TolallocError("multidirectional_accuracy: the evaluation poses lack its directional visits; build them "
+                            "with evaluation_poses(test, multidirectional=requirement).")
+    M = len(ev.q)
+    rows = len(req.poses) * len(PAIRS)
+    L, W = np.zeros((rows, 3, M, 6)), np.zeros((rows, M))
+    for v, visits in enumerate(ev.directional):
+        for k, (a, b) in enumerate(PAIRS):
+            i = v * len(PAIRS) + k
+            L[i, :, visits[a], :3], L[i, :, visits[b], :3] = np.eye(3), -np.eye(3)
+            W[i, visits[[a, b]]] = 1.0 / n
+    target = np.full(rows, 1 - (1 - req.share) / len(PAIRS))
+    return StatisticModel("vAP_P", req, "ball", n, req.limit, target, multidirectional_labels(req), L, W)
+
+
+def multidirectional_labels(req) -> tuple:
+    """Row labels of ``vAP_P``: pose and pair of approach directions (``P1 -x/-y``), pose by pose."""
+    return tuple(f"P{pose} {req.approach[a]}/{req.approach[b]}" for pose in req.poses for a, b in PAIRS)
 
 
 def _distance_model(req, ev: EvaluationPoses, n: int) -> StatisticModel:

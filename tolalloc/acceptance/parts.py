@@ -28,7 +28,12 @@ test path's, which the design does not know). The means enter the accuracies as 
 test runs in one power cycle, so the zero an incremental encoder was homed to holds through it: a robot keeps it at
 every pose, like a systematic part (it changes at the next power-up, which no calibration follows). Over a small
 cube it is nearly a rigid shift, which a registration on the cube's corners takes out: ``AP`` sees it where the test
-measures in the robot's base frame (``registration="none"``).
+measures in the robot's base frame (``registration="none"``). Where the test knows how a pose is approached
+(``approach``: a multi-directional accuracy's visits, the tool moving along a base axis), a joint that moves into
+the pose rests on its trailing flank, ``-dir b / 2``: every robot built with that gear has it, a mean of that visit
+(the catalogue's lost motion taken whole, the conservative reading of a maximum); a compensation does not remove it.
+A joint that hardly moves in the approach (direction 0) keeps the flank an earlier move left, drawn independently
+per visit, as at the other poses (the moves before the approach are not known).
 
 The load is the requirement's: ``load_pct`` of the rated payload (``[components.payload] rated_kg``) at its centre
 of mass; the temperature the test room's (``ambient_c``, the reference temperature by default), with the motors'
@@ -73,9 +78,9 @@ def parts_effects(*, after: str = "none", residual=COMPENSATION_RESIDUAL, ambien
     if not 0.0 <= float(duty) <= 1.0:
         raise TolallocError(f"duty: expected a fraction of time in [0, 1], got {duty!r}")
 
-    def effects(robot, q, conditions) -> EffectCovariance:
+    def effects(robot, q, conditions, approach=None) -> EffectCovariance:
         return effect_covariance(robot, q, conditions.load_pct, after=after, residual=residual, ambient_c=ambient_c,
-                                 duty=duty)
+                                 duty=duty, approach=approach)
 
     return effects
 
@@ -91,9 +96,10 @@ def _check_resolved(robot) -> None:
 
 
 def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residual=COMPENSATION_RESIDUAL,
-                      ambient_c: float | None = None, duty: float = 0.5) -> EffectCovariance:
+                      ambient_c: float | None = None, duty: float = 0.5, approach=None) -> EffectCovariance:
     """The parts' mean and covariances at the evaluation poses ``q`` (M, n) [rad, mm] under ``load_pct`` of the
-    rated payload (module docstring)."""
+    rated payload (module docstring); ``approach`` (M, n): each joint's direction of motion into the pose (+1 / -1,
+    0 or None unknown)."""
     _check_resolved(robot)
     rated = robot.components.payload.rated_kg
     if rated is None and load_pct > 0:
@@ -112,6 +118,7 @@ def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residua
     sys, rnd = np.zeros((M * 6, M * 6)), np.zeros((M, 6, 6))
     blocks = sys.reshape(M, 6, M, 6)             # a view: pose m's block is blocks[m, :, m, :]
     poses = np.arange(M)
+    known = np.zeros((M, robot.n_joints)) if approach is None else np.asarray(approach, float)
     for t, effect in enumerate(terms.effect):
         c, r = col[:, :, t], terms.rnd_sd[:, t]
         if effect in _RANK_ONE:
@@ -127,7 +134,9 @@ def effect_covariance(robot, q, load_pct: float, *, after: str = "none", residua
             v = (c * r[:, None]).ravel()
             sys += np.outer(v, v)
         elif effect == "lost_motion":
-            blocks[poses, :, poses, :] += per_pose
+            side = -known[:, terms.joint[t]]                   # the trailing flank, 0 where the approach is unknown
+            mean += (c * (r * side)[:, None]).ravel()
+            blocks[poses, :, poses, :] += per_pose * (side == 0)[:, None, None]
         else:
             rnd += per_pose
     return EffectCovariance(0.5 * (sys + sys.T), rnd, mean)

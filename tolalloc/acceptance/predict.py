@@ -25,7 +25,8 @@ import pandas as pd
 from tolalloc.exceptions import TolallocError
 from tolalloc.acceptance.decision import Decision, decide
 from tolalloc.acceptance.measures import expanded_uncertainty, measure_cdf, measure_quantile
-from tolalloc.acceptance.model import StatisticModel, design_variances, evaluation_poses, statistic_models
+from tolalloc.acceptance.model import (StatisticModel, design_variances, effects_at, requirement_poses,
+                                      statistic_models)
 from tolalloc.acceptance.requirements import IsoRequirement, check_requirements
 
 __all__ = ["StatisticPrediction", "AcceptancePrediction", "predict_acceptance", "NO_SYSTEMATIC_SHARE", "MET_TOL"]
@@ -177,13 +178,12 @@ def predict_acceptance(test, requirements, model, split=None, *, posterior=None,
         raise TolallocError("requirements: expected at least one ISO 9283 requirement (PoseAccuracy, "
                             "PoseRepeatability, ...); the ball requirements are not statistics of the test.")
     split = _split_for(model, split)
-    path = next((r for r in reqs if r.kind == "path_accuracy"), None)
-    ev = evaluation_poses(test, path.points if path is not None else 0)
+    ev = requirement_poses(test, reqs)
     J = model.jacobian(ev.q)
     S, V = design_variances(split, posterior)
     out, notes = [], []
     for sm in statistic_models(reqs, test, ev):
-        eff = effects(test.robot, ev.q, sm.requirement.conditions) if effects is not None else None
+        eff = effects_at(effects, test.robot, ev, sm.requirement.conditions)
         pred = _predict_one(sm, J, S, V, eff, test.tracker)
         out.append(pred)
         if sm.name.startswith("AP") and np.all(pred.systematic_share < NO_SYSTEMATIC_SHARE):

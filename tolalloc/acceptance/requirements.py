@@ -11,6 +11,8 @@ Each requirement is a frozen dataclass, checked at construction (a bad field is 
 * :class:`PoseRepeatability` (``pose_repeatability``): ``RP_l`` at P1-P5 (7.2.2);
 * :class:`OrientationAccuracy` (``orientation_accuracy``): ``AP_a, AP_b, AP_c`` at P1-P5 (7.2.1);
 * :class:`OrientationRepeatability` (``orientation_repeatability``): ``RP_a, RP_b, RP_c`` at P1-P5 (7.2.2);
+* :class:`MultiDirectionalAccuracy` (``multidirectional_accuracy``): ``vAP_P`` at P1, P2, P4, each approached from
+  three orthogonal directions (7.2.3);
 * :class:`DistanceAccuracy` (``distance_accuracy``): ``AD_P`` between two of P1-P5 (7.3);
 * :class:`PathAccuracy` (``path_accuracy``): ``AT_P`` along a command path (8.2).
 
@@ -40,14 +42,17 @@ from typing import ClassVar
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError, describe
+from tolalloc.acceptance.conditions import Conditions
 from tolalloc.units import check_positive, check_probability
 
 __all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement",
            "PoseAccuracy", "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability",
-           "DistanceAccuracy", "PathAccuracy", "check_requirements", "split_requirements", "REQUIREMENT_KINDS",
-           "POPULATIONS"]
+           "MultiDirectionalAccuracy", "DistanceAccuracy", "PathAccuracy", "check_requirements", "split_requirements",
+           "REQUIREMENT_KINDS", "POPULATIONS", "AXES"]
 
 POPULATIONS = ("fleet", "robot")
+#: directions of motion along the base frame's axes (the approach directions of a multi-directional test)
+AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
 
 
 #: the requirement when none is given: ``P(|dP| < 0.25 mm) >= 0.95`` (the command line's defaults too)
@@ -180,36 +185,6 @@ class OrientationRequirement(Requirement):
                                                                   ["--angle-prob", f"{self.prob:g}"])
 
 
-@dataclass(frozen=True)
-class Conditions:
-    """Test conditions of ISO 9283: load (6.6) and velocity (6.7), in percent of the rated values.
-
-    Attributes
-    ----------
-    load_pct : float
-        Load on the mechanical interface, % of the rated load (the standard tests at 100 %, and optionally at
-        10 %); 0 to 100.
-    speed_pct : float
-        Velocity, % of the rated velocity (100, 50 or 10 in the standard); > 0 to 100.
-    """
-
-    load_pct: float = 100.0
-    speed_pct: float = 100.0
-
-    def __post_init__(self):
-        for name, lo in (("load_pct", 0.0), ("speed_pct", 0.0)):
-            v = getattr(self, name)
-            ok = not isinstance(v, bool) and isinstance(v, (int, float, np.floating)) and np.isfinite(v)
-            if not ok or not (lo <= v <= 100) or (name == "speed_pct" and v == 0):
-                raise ArgumentError(f"Conditions.{name}", f"expected a percentage of the rated value in "
-                                    f"{'[0, 100]' if name == 'load_pct' else '(0, 100]'} (ISO 9283 tests at 100 "
-                                    f"and {'10' if name == 'load_pct' else '50, 10'}), got {v!r}.")
-            object.__setattr__(self, name, float(v))
-
-    def text(self) -> str:
-        return f"{self.load_pct:g} % rated load, {self.speed_pct:g} % rated velocity"
-
-
 @dataclass(frozen=True, kw_only=True)
 class IsoRequirement(Requirement):
     """Common fields of the ISO 9283 requirements (a base class; use its subclasses).
@@ -318,6 +293,55 @@ class OrientationRepeatability(IsoRequirement):
 
 
 @dataclass(frozen=True, kw_only=True)
+class MultiDirectionalAccuracy(IsoRequirement):
+    """Multi-directional pose accuracy variation ``vAP_P <= limit_mm`` at test poses (ISO 9283 7.2.3; default P1,
+    P2, P4): each pose approached ``cycles`` times from each of three orthogonal directions, ``vAP_P`` the largest
+    distance between the three barycentres. What one robot keeps at a pose cancels; what the approach direction
+    changes (the flank a gear's lost motion rests on) and the random parts remain.
+
+    Attributes
+    ----------
+    poses : tuple of int
+        The test poses, numbered 1-5 as P1-P5.
+    approach : tuple of three str
+        The tool's direction of motion into the pose along the base frame's axes (``"-z"``: coming down from above),
+        three mutually orthogonal ones.
+
+    Examples
+    --------
+    >>> MultiDirectionalAccuracy(limit_mm=0.1).text()
+    'vAP_P <= 0.1 mm for 95 % of built robots (ISO 9283 7.2.3; 100 % rated load, 100 % rated velocity)'
+    """
+
+    limit_mm: float = 0.1
+    poses: tuple = (1, 2, 4)
+    approach: tuple = ("-x", "-y", "-z")
+    kind: ClassVar[str] = "multidirectional_accuracy"
+    clause: ClassVar[str] = "7.2.3"
+    symbol: ClassVar[str] = "vAP_P"
+
+    def check(self) -> None:
+        super().check()
+        p, a = self.poses, self.approach
+        ok = (isinstance(p, (tuple, list)) and 0 < len(p) == len(set(p)) and all(
+            isinstance(i, (int, np.integer)) and not isinstance(i, bool) and 1 <= i <= 5 for i in p))
+        if not ok:
+            raise ArgumentError(self._field("poses"), f"expected different test poses numbered 1-5 (P1-P5), e.g. "
+                                f"(1, 2, 4), got {p!r}.")
+        axes = [str(x).strip() for x in a] if isinstance(a, (tuple, list)) else []
+        if len(axes) != 3 or any(x not in AXES for x in axes) or len({x[1] for x in axes}) != 3:
+            raise ArgumentError(self._field("approach"), f"expected three mutually orthogonal directions of the base "
+                                f"frame's axes among {', '.join(AXES)}, one per axis (e.g. ('-x', '-y', '-z')), got "
+                                f"{a!r}.")
+        object.__setattr__(self, "poses", tuple(int(i) for i in p))
+        object.__setattr__(self, "approach", tuple(axes))
+
+    def directions(self) -> np.ndarray:
+        """Unit directions of motion of the three approaches, shape (3, 3), rows in the order of :attr:`approach`."""
+        return np.array([AXES[x] for x in self.approach], float)
+
+
+@dataclass(frozen=True, kw_only=True)
 class DistanceAccuracy(IsoRequirement):
     """Distance accuracy ``|AD_P| <= limit_mm`` between two test poses (ISO 9283 7.3; default P2 and P4): the mean
     attained distance minus the command distance.
@@ -375,7 +399,7 @@ class PathAccuracy(IsoRequirement):
 #: every requirement class by its kind
 REQUIREMENT_KINDS = {c.kind: c for c in (PositionRequirement, OrientationRequirement, PoseAccuracy,
                                          PoseRepeatability, OrientationAccuracy, OrientationRepeatability,
-                                         DistanceAccuracy, PathAccuracy)}
+                                         MultiDirectionalAccuracy, DistanceAccuracy, PathAccuracy)}
 
 
 def check_requirements(value, argument: str = "requirement", *, need: tuple = ()) -> tuple:

@@ -29,7 +29,8 @@ import pandas as pd
 from scipy.stats import binom
 
 from tolalloc.exceptions import TolallocError, whole_number
-from tolalloc.acceptance.model import ANGLES, evaluation_poses
+from tolalloc.acceptance.model import (ANGLES, effects_at, multidirectional_labels, requirement_poses,
+                                      statistic_models)
 from tolalloc.acceptance.requirements import IsoRequirement, check_requirements
 from tolalloc.acceptance import statistics as st
 from tolalloc.errormodel.chain import FastChain
@@ -79,7 +80,8 @@ class SimulatedAcceptance:
     n_robots, seed : int
     targets : dict name -> array
         The share each row is judged at: the requirement's, and for the path points of ``AT_P`` the prediction's
-        ``1 - (1 - share) / m`` (the largest over the points is then held at the share).
+        ``1 - (1 - share) / m`` (the largest over the points is then held at the share); for ``vAP_P``, per pair of
+        directions, ``1 - (1 - share) / 3``.
     """
 
     test: object
@@ -156,15 +158,13 @@ def simulate_acceptance(test, requirements, model, split=None, *, posterior=None
         raise TolallocError("requirements: expected at least one ISO 9283 requirement to simulate.")
     split = _split_for(model, split)
     rng = np.random.default_rng(seed)
-    path_req = next((r for r in reqs if r.kind == "path_accuracy"), None)
-    ev = evaluation_poses(test, path_req.points if path_req is not None else 0)
+    ev = requirement_poses(test, reqs)
     sim = _Lab(test, model, split, posterior, effects, ev, reqs[0].conditions, n_robots, rng)
-    robot, measured, labels, byname, targets = {}, {}, {}, {}, {}
+    robot, measured, labels, byname = {}, {}, {}, {}
     for req in reqs:
         for name, (r_vals, m_vals, lab) in sim.statistics(req).items():
             robot[name], measured[name], labels[name], byname[name] = r_vals, m_vals, lab, req
-            m = len(lab)
-            targets[name] = np.full(m, 1 - (1 - req.share) / m if name == "AT_P" else req.share)
+    targets = {sm.name: sm.target for sm in statistic_models(reqs, test, ev)}  # the prediction's shares per row
     return SimulatedAcceptance(test, robot, measured, labels, byname, n_robots, seed, targets)
 
 
@@ -184,7 +184,7 @@ class _Lab:
         self.chain = FastChain(model)
         self.programs = [self.chain.program(q) for q in ev.q]
         self.work = FastChain.workspace(n)
-        self.eff = effects(test.robot, ev.q, conditions) if effects is not None else None
+        self.eff = effects_at(effects, test.robot, ev, conditions)
         M = len(ev.q)
         self.eff_sys = np.zeros((n, M, 6))
         if self.eff is not None:
@@ -267,6 +267,11 @@ class _Lab:
             lab = (f"P{req.poses[0]}-P{req.poses[1]}",)
             ad = [np.abs(st.distance_accuracy(x[:, a], x[:, b], cmd[a], cmd[b]))[:, None] for x in (pt, pm)]
             return {"AD_P": (ad[0], ad[1], lab)}
+        if req.kind == "multidirectional_accuracy":
+            V = len(ev.directional)
+            pt, pm, _, _ = self.cycles(ev.directional.ravel(), n_c)
+            d = [st.barycentre_distances(x.reshape(self.n, V, 3, n_c, 3)).reshape(self.n, -1) for x in (pt, pm)]
+            return {"vAP_P": (d[0], d[1], multidirectional_labels(req))}
         pt, pm, _, _ = self.cycles(ev.path, self.test.path_cycles)
         cmd = ev.points_mm[ev.path]
         t = ev.tangents

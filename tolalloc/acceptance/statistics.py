@@ -14,6 +14,11 @@ ISO 9283:1998 (Manipulating industrial robots -- Performance criteria and relate
       S_l = sqrt(sum_j (l_j - lb)^2 / (n - 1))
 
   and per angle ``RP_a = +-3 S_a``, ``S_a = sqrt(sum_j (a_j - ab)^2 / (n - 1))`` (likewise ``b``, ``c``);
+* **multi-directional pose accuracy variation** (7.2.3): the pose approached ``n`` times from each of three
+  orthogonal directions ``h``, the largest distance between the barycentres of the directions::
+
+      vAP_P = max_{h, k} sqrt((xb_h - xb_k)^2 + (yb_h - yb_k)^2 + (zb_h - zb_k)^2)
+
 * **distance accuracy** (7.3): with ``D_j = |P1_j - P2_j|`` the attained and ``D_c = |P1c - P2c|`` the command
   distance of two poses, ``AD_P = Db - D_c`` (``Db`` the mean of the ``D_j``); **distance repeatability**
   ``RD = +-3 S_D``;
@@ -35,8 +40,11 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
-           "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "check_cycles",
-           "MIN_CYCLES"]
+           "multidirectional_accuracy", "barycentre_distances", "distance_accuracy", "distance_repeatability",
+           "path_accuracy", "path_repeatability", "check_cycles", "MIN_CYCLES", "PAIRS"]
+
+#: the pairs of the three approach directions of a multi-directional test, in the order of :func:`barycentre_distances`
+PAIRS = ((0, 1), (0, 2), (1, 2))
 
 #: the fewest cycles a repeatability needs (its standard deviation divides by n - 1)
 MIN_CYCLES = 2
@@ -128,6 +136,41 @@ def orientation_repeatability(attained_rad) -> np.ndarray:
     """
     a = _cycles(attained_rad, 3, "attained_rad")
     return 3.0 * a.std(axis=-2, ddof=1)
+
+
+def barycentre_distances(attained_mm) -> np.ndarray:
+    """Distances between the barycentres of the three approach directions, per pair of :data:`PAIRS`.
+
+    Parameters
+    ----------
+    attained_mm : array, shape (..., 3, n, 3) [mm]
+        Attained positions: per direction, cycle by cycle.
+
+    Returns
+    -------
+    array, shape (..., 3) [mm]
+    """
+    a = _cycles(attained_mm, 3, "attained_mm")
+    if a.ndim < 3 or a.shape[-3] != 3:
+        raise TolallocError(f"attained_mm: expected the cycles of three approach directions, shape (..., 3, n, 3), "
+                            f"got shape {a.shape}.")
+    b = a.mean(axis=-2)
+    return np.stack([np.linalg.norm(b[..., h, :] - b[..., k, :], axis=-1) for h, k in PAIRS], axis=-1)
+
+
+def multidirectional_accuracy(attained_mm) -> np.ndarray:
+    """ISO 9283 7.2.3 multi-directional pose accuracy variation ``vAP_P``: the largest distance between the
+    barycentres of the cycles approached from each of three directions.
+
+    Parameters
+    ----------
+    attained_mm : array, shape (..., 3, n, 3) [mm]
+
+    Returns
+    -------
+    array, shape (...) [mm]
+    """
+    return barycentre_distances(attained_mm).max(axis=-1)
 
 
 def _distances(p1, p2):

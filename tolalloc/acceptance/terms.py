@@ -29,7 +29,7 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 from tolalloc.acceptance.measures import expanded_uncertainty
-from tolalloc.acceptance.model import evaluation_poses, statistic_models
+from tolalloc.acceptance.model import effects_at, requirement_poses, statistic_models
 from tolalloc.acceptance.requirements import IsoRequirement, check_requirements
 
 __all__ = ["AcceptanceSpec", "StatisticTerms", "statistic_terms"]
@@ -77,7 +77,8 @@ class StatisticTerms:
     requirement : IsoRequirement
     target : array, shape (P,)
     q : array, shape (P, n) [rad, mm]
-        The poses of the rows (P1-P5, the first pose of a distance, the path points).
+        The poses of the rows (P1-P5, the first pose of a distance, the path points, a multi-directional test's
+        poses once per pair of directions).
     per_tolerance : array, shape (P, K, 3, 3)
         Covariance per unit variance of each parameter's tolerance (systematic or random part, by its split).
     repeatability : array, shape (P, 3, 3)
@@ -130,8 +131,7 @@ def statistic_terms(spec: AcceptanceSpec, model) -> list[StatisticTerms]:
 
     split = _split_of(spec, model)
     reqs = spec.requirements
-    path = next((r for r in reqs if r.kind == "path_accuracy"), None)
-    ev = evaluation_poses(spec.test, path.points if path is not None else 0)
+    ev = requirement_poses(spec.test, reqs)
     J = model.jacobian(ev.q)
     fac = np.array([VARIANCE_FACTOR[p.distribution] for p in model.params])
     rep_var = np.where(split.systematic, fac * split.random_sigma**2, 0.0)
@@ -141,11 +141,11 @@ def statistic_terms(spec: AcceptanceSpec, model) -> list[StatisticTerms]:
         R = sm.random_units(J)  # (P, K, 3, 3)
         S = np.einsum("pak,pbk->pkab", G, G)
         per_tol = np.where(split.systematic[None, :, None, None], S, R) * fac[None, :, None, None]
-        eff = spec.effects(spec.test.robot, ev.q, sm.requirement.conditions) if spec.effects is not None else None
+        eff = effects_at(spec.effects, spec.test.robot, ev, sm.requirement.conditions)
         const = np.zeros((sm.n_rows, 3, 3))
         if eff is not None:
             const = const + sm.joint_covariance(eff.systematic) + sm.pose_covariance(eff.random)
-        if sm.systematic:
+        if sm.systematic and sm.name != "vAP_P":  # vAP compares one robot's poses: what it keeps cancels
             _check_systematic(sm, split, S, eff)
         C_inst = sm.instrument_covariance(spec.test.tracker)
         U = expanded_uncertainty(sm.measure, C_inst, sm.cycles, spec.test.tracker.k)
@@ -173,10 +173,15 @@ def _check_bias(sm, radius: float, bias) -> None:
         return
     f, u = (180 / np.pi, "deg") if sm.unit == "deg" else (1.0, "mm")
     i = int(np.argmax(bias))
+    if sm.name == "vAP_P":
+        what, advice = ("the gears' lost motion, on the flank each approach direction leaves", "Choose reducers with "
+                        "less lost motion, or close the position loop on the output (an output-side encoder).")
+    else:
+        what, advice = ("the wind-up under the test load, the sag, the thermal growth", "Choose stiffer parts, "
+                        "compensate the mean, or test at a lower load.")
     raise TolallocError(
-        f"{sm.requirement.kind}: at {sm.labels[i]} the bought parts' mean error alone ({bias[i] * f:.4g} {u}: the "
-        f"wind-up under the test load, the sag, the thermal growth) reaches the limit {radius * f:.4g} {u}; no "
-        "tolerance can meet it. Choose stiffer parts, compensate the mean, or test at a lower load.")
+        f"{sm.requirement.kind}: at {sm.labels[i]} the bought parts' mean error alone ({bias[i] * f:.4g} {u}: "
+        f"{what}) reaches the limit {radius * f:.4g} {u}; no tolerance can meet it. {advice}")
 
 
 def _check_guard_band(sm, radius, U, const, tracker) -> None:
@@ -204,6 +209,8 @@ def _row_poses(sm, ev) -> np.ndarray:
         return ev.path
     if sm.name == "AD_P":
         return ev.test[[sm.requirement.poses[0] - 1]]
+    if sm.name == "vAP_P":
+        return np.repeat(ev.directional[:, 0], sm.n_rows // max(len(ev.directional), 1))
     return ev.test
 
 

@@ -28,34 +28,23 @@ evaluations, about 0.2 ms for one covariance (mostly call overhead) and 10-20 ms
 derivative ``dP/dr`` has the closed form ``(2/pi) int (r/a) exp(-r^2/2a) erf(..)/sqrt(eps)``,
 which the inverse :func:`radius_for_prob` uses for safeguarded Newton steps.
 
-**Non-zero mean (numpy).** Two exact methods, chosen by where the mean lies. (a) Rays from the
-Gaussian centre: ``x = mean + rho L u`` with ``L = cov^{1/2}``, ``rho ~ chi_3`` independent of the
-uniform direction ``u``; along each ray the ball is the interval of a quadratic in ``rho``, so
-``P = E_u[F_chi3(rho_+) - F_chi3(rho_-)]``, averaged with a Lebedev rule of order 131 (5810
-directions), batched, about 1 ms per covariance. It is smooth, and accurate to < 1e-6, only while
-the mean is well inside the ball; as ``|mean| -> r`` rays graze the ball and the error grows
-(to ~1e-4 - 1e-3 at ``|mean| = r`` for anisotropic covariances). (b) So for
-``|mean| > RAY_RULE_MAX_MEAN r`` (0.75) the probability is computed by nested adaptive quadrature in
-the eigenframe (:func:`_p_mean_nested`: the smallest variance in closed form, the two others in
-boundary-fitted angles split at the density peaks), to ~1e-11 absolute, 0.05-0.3 s per covariance
-(up to ~0.7 s for variance ratios of 1e-6), so the issue's sub-millisecond target holds only on path (a).
-Tests (tests/test_probability.py): the noncentral chi-square CDF (isotropic, 3 and 2 degrees of
-freedom) to 1e-9 for means inside, on and outside the ball; rank one ``Phi((r' - m)/s) -
-Phi((-r' - m)/s)`` to 1e-9; the ray rule against the nested rule on random anisotropic covariances
-with ``|mean| <= 0.75 r`` to 1e-6; and 4e6-draw Monte Carlo within its standard error.
+**Non-zero mean (numpy).** Exact rules chosen by where the mean lies, in
+:mod:`tolalloc.linear.probability_mean` (:func:`~tolalloc.linear.probability_mean.p_with_mean`): rays from the
+Gaussian centre (about 1 ms) where the ball's surface stays away from the mean, Imhof's integral (a few ms) or a
+nested quadrature (0.05-0.7 s) where it passes near it. The inverse :func:`radius_for_prob` brackets the radius
+between two exact bounds before Brent's method.
 
 **CasADi (differentiable, for IPOPT)**: :mod:`tolalloc.linear.probability_casadi`.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
-from scipy.special import erf, ndtr
+from scipy.special import erf
 from scipy.stats import chi2
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.linear.probability_mean import RAY_RULE_MAX_MEAN, RAY_RULE_MIN_MARGIN, chi2_3_cdf, p_with_mean
 
 __all__ = [
     "p_within_radius",
@@ -85,13 +74,6 @@ _COS2, _SIN2 = np.cos(_PHI) ** 2, np.sin(_PHI) ** 2
 
 
 # ------------------------------------------------------------------ helpers
-def chi2_3_cdf(w):
-    """CDF of the chi-square distribution with 3 degrees of freedom at ``w`` (broadcasts)."""
-    w = np.asarray(w, dtype=float)
-    s = np.sqrt(np.maximum(w, 0.0))
-    return erf(s / _SQRT2) - np.sqrt(2 / np.pi) * s * np.exp(-0.5 * w)
-
-
 def _check_cov(cov, name="cov"):
     try:
         cov = np.asarray(cov, dtype=float)
@@ -192,104 +174,6 @@ def _p_zero_mean(lam, r, with_derivative=False):
 
 
 # ------------------------------------------------------------------ with mean
-@lru_cache(maxsize=2)
-def _lebedev_full(order: int):
-    from scipy.integrate import lebedev_rule
-
-    x, w = lebedev_rule(order)
-    return x.T, w / w.sum()
-
-
-def _p_with_mean(lam, m, r, order: int = 131):
-    """Rays from the Gaussian centre: x = m + rho Lambda^(1/2) u, rho ~ chi_3, u uniform (eigenframe).
-
-    lam, m : (N, 3); r : (N,). Returns (N,).
-    """
-    u, w = _lebedev_full(order)  # (M, 3), (M,)
-    sl = np.sqrt(lam)
-    A = (u * u) @ lam.T  # (M, N)
-    B = u @ (m * sl).T
-    C = np.sum(m * m, axis=-1)
-    D = r * r - C  # (N,)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        disc = np.maximum(B * B + A * D, 0.0)
-        root = np.sqrt(disc)
-        # inside: one positive root, stable form
-        den = B + root
-        rho_in = np.where(den > 0, D / np.where(den > 0, den, 1.0), np.inf)
-        p_in = chi2_3_cdf(np.minimum(rho_in, 1e150) ** 2)
-        # outside: the ray enters and leaves the ball (B < 0, disc >= 0)
-        hit = (B < 0) & (B * B + A * D >= 0) & (A > 0)
-        As = np.where(A > 0, A, 1.0)
-        rp, rm = (-B + root) / As, (-B - root) / As
-        p_out = np.where(hit, chi2_3_cdf(rp**2) - chi2_3_cdf(np.maximum(rm, 0.0) ** 2), 0.0)
-    Pu = np.where(D > 0, p_in, p_out)
-    return np.clip(w @ Pu, 0.0, 1.0)
-
-
-#: Mean paths with ``|mean| <= RAY_RULE_MAX_MEAN * r`` use the fast ray rule, others the nested quadrature.
-RAY_RULE_MAX_MEAN = 0.75
-
-
-def _ball_1d(t, m, lam):
-    """``P(|y| < t)`` for ``y ~ N(m, lam)``, ``t >= 0`` (vectorised in ``t``); ``lam = 0``: an indicator."""
-    t = np.maximum(t, 0.0)
-    if lam <= 0:
-        return (np.abs(m) < t).astype(float)
-    s = np.sqrt(lam)
-    return ndtr((t - m) / s) - ndtr((-t - m) / s)
-
-
-def _density(y, m, lam):
-    return np.exp(-0.5 * (y - m) ** 2 / lam) / np.sqrt(2 * np.pi * lam)
-
-
-def _p_mean_nested(lam, m, r, eps: float = 1e-11) -> float:
-    """Exact ``P(|y| < r)`` for independent ``y_i ~ N(m_i, lam_i)`` by nested adaptive quadrature.
-
-    Zero-variance coordinates shift ``r^2``; the smallest variance is integrated in closed form
-    (:func:`_ball_1d`); the two others by ``y1 = R sin(beta)``, ``y2 = R cos(beta) sin(alpha)``, which
-    makes the integrand smooth up to the ball's boundary, with :func:`scipy.integrate.quad_vec`
-    (absolute tolerance ``eps``) split at the density peaks and where the closed-form factor switches on.
-    """
-    from scipy.integrate import quad_vec
-
-    keep = lam > 1e-14 * r * r  # a variance below this moves P by < ~1e-7: taken as exactly zero
-    r2 = r * r - float(np.sum(m[~keep] ** 2))
-    lam, m = lam[keep], m[keep]
-    if r2 <= 0:
-        return 0.0
-    R = np.sqrt(r2)
-    k = len(lam)
-    if k == 0:
-        return 1.0
-    if k == 1:
-        return float(_ball_1d(R, m[0], lam[0]))
-    (l1, l2), (m1, m2) = lam[:2], m[:2]
-    l3, m3 = (lam[2], m[2]) if k == 3 else (0.0, 0.0)
-
-    def inner(beta):
-        S, y1 = R * np.cos(beta), R * np.sin(beta)
-        pts = [np.arcsin(m2 / S)] if S > abs(m2) else []
-        if k == 3 and abs(m3) < S:
-            a = np.arccos(abs(m3) / S)
-            pts += [-a, a]
-
-        def f(alpha):
-            F3 = _ball_1d(S * np.cos(alpha), m3, l3) if k == 3 else 1.0
-            return _density(S * np.sin(alpha), m2, l2) * F3 * S * np.cos(alpha)
-
-        val, _ = quad_vec(f, -np.pi / 2, np.pi / 2, epsabs=eps, epsrel=1e-10, points=sorted(pts) or None, limit=400)
-        return _density(y1, m1, l1) * val * R * np.cos(beta)
-
-    pts = [np.arcsin(m1 / R)] if abs(m1) < R else []
-    for v in (abs(m2) / R, abs(m3) / R):
-        if 0 < v < 1:
-            pts += [-np.arccos(v), np.arccos(v)]
-    val, _ = quad_vec(inner, -np.pi / 2, np.pi / 2, epsabs=eps, epsrel=1e-10, points=sorted(pts) or None, limit=400)
-    return float(min(max(val, 0.0), 1.0))
-
-
 # ------------------------------------------------------------------ public API
 def p_within_radius(cov, r, mean=None) -> np.ndarray:
     """Probability that a 3-D Gaussian vector lies within a ball: ``P(|x| < r)``.
@@ -322,11 +206,7 @@ def p_within_radius(cov, r, mean=None) -> np.ndarray:
     lam_b = np.broadcast_to(lam, shape + (3,)).reshape(-1, 3)
     m_b = np.broadcast_to(m, shape + (3,)).reshape(-1, 3)
     r_b = np.broadcast_to(r, shape).reshape(-1)
-    P = _p_with_mean(lam_b, m_b, r_b)
-    near = np.linalg.norm(m_b, axis=-1) > RAY_RULE_MAX_MEAN * r_b  # grazing rays: the ray rule is not 1e-6 there
-    for i in np.flatnonzero(near):
-        P[i] = _p_mean_nested(lam_b[i], m_b[i], r_b[i])
-    return P.reshape(shape)
+    return p_with_mean(lam_b, m_b, r_b).reshape(shape)
 
 
 def radius_for_prob(cov, p, mean=None) -> np.ndarray:
@@ -355,17 +235,7 @@ def radius_for_prob(cov, p, mean=None) -> np.ndarray:
     lo = np.zeros(shape)
     hi = np.broadcast_to(np.sqrt(tr / (1 - p)) + mnorm, shape).copy() + 1e-300  # Chebyshev bound
     if mean is not None and np.any(np.asarray(mean, dtype=float)):
-        from scipy.optimize import brentq  # mean path: Brent's method per element on the exact P
-
-        cov_b = np.broadcast_to(cov, shape + (3, 3))
-        mean_b = np.broadcast_to(np.asarray(mean, dtype=float), shape + (3,))
-        out = np.empty(shape)
-        for idx in np.ndindex(shape):
-            def f(rr, idx=idx):
-                return float(p_within_radius(cov_b[idx], rr, mean_b[idx])) - float(p[idx])
-
-            out[idx] = brentq(f, 0.0, float(hi[idx]), xtol=1e-14, rtol=1e-12)
-        return out
+        return _radius_with_mean(cov, p, np.asarray(mean, dtype=float), shape, hi)
     # zero mean: safeguarded Newton inside a shrinking bracket, from the isotropic guess
     r = np.sqrt(tr / 3 * chi2.ppf(p, 3))
     for _ in range(100):
@@ -384,6 +254,35 @@ def radius_for_prob(cov, p, mean=None) -> np.ndarray:
         if done:
             break
     return np.where(tr <= 0, 0.0, r)
+
+
+def _radius_with_mean(cov, p, mean, shape, hi):
+    """The mean path of :func:`radius_for_prob`: Brent's method per element on the exact P, bracketed by
+    ``|m| + sd_m Phi^-1(p)`` (the half-space ``x . m/|m| < r`` holds the ball: P there is at most p) and ``|m|`` plus
+    the zero-mean radius (the ball about the mean inside the ball: P there is at least p)."""
+    from scipy.optimize import brentq
+    from scipy.special import ndtri
+
+    cov_b = np.broadcast_to(cov, shape + (3, 3))
+    mean_b = np.broadcast_to(mean, shape + (3,))
+    mn = np.linalg.norm(mean_b, axis=-1)
+    u = mean_b / np.where(mn > 0, mn, 1.0)[..., None]
+    sd_m = np.sqrt(np.maximum(np.einsum("...i,...ij,...j->...", u, cov_b, u), 0.0))
+    lo = np.maximum(mn + sd_m * ndtri(p), 0.0)
+    top = np.minimum(mn + radius_for_prob(cov_b, p), hi)
+    sd = np.sqrt(np.linalg.eigvalsh(cov_b)[..., -1])
+    # the lower bound only where P is cheap there (the ray rule's range), else the exact P(0) = 0
+    lo = np.where((mn <= RAY_RULE_MAX_MEAN * lo) | (lo - mn >= RAY_RULE_MIN_MARGIN * sd), lo, 0.0)
+    out = np.empty(shape)
+    for idx in np.ndindex(shape):
+        def f(rr, idx=idx):
+            return float(p_within_radius(cov_b[idx], rr, mean_b[idx])) - float(p[idx])
+
+        try:
+            out[idx] = brentq(f, float(lo[idx]), float(top[idx]), xtol=1e-14, rtol=1e-12)
+        except ValueError:  # the bounds are exact, but rounding in P may cross one: the wide bracket
+            out[idx] = brentq(f, 0.0, float(hi[idx]), xtol=1e-14, rtol=1e-12)
+    return out
 
 
 # ------------------------------------------------------------------ orientation aliases
