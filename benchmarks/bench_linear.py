@@ -1,4 +1,5 @@
-"""Benchmark: error Jacobians and covariances of 1000 tool_changer poses (goal < 50 ms), P(|x|<r) cost.
+"""Benchmark: error Jacobians and covariances of 1000 tool_changer poses (goal < 50 ms), P(|x|<r) cost, and a mean
+near the ball's surface (a multi-directional accuracy's lost-motion offset) against the nested quadrature alone.
 
 Run ``python benchmarks/bench_linear.py``. Prints medians of repeated runs and ratios against
 peers measured in the same run (the robot's own space Jacobian, a per-pose Python loop).
@@ -15,6 +16,7 @@ from tolalloc.errormodel import build_error_model
 from tolalloc.linear.covariance import linear_map
 from tolalloc.linear.probability import p_within_radius, radius_for_prob
 from tolalloc.linear.probability_casadi import p_within_radius_lebedev
+from tolalloc.linear.probability_mean import _p_mean_nested
 
 
 def timeit(fn, repeat=15):
@@ -53,6 +55,14 @@ def main() -> None:
     print(f"p_within_radius: one cov {t1 * 1e6:.0f} us; 1000 covs {tb * 1e3:.1f} ms "
           f"(Lebedev-65 rule as peer: {tl * 1e3:.1f} ms); radius_for_prob 1000 covs {ti * 1e3:.1f} ms; "
           f"with a mean, one cov {tm * 1e3:.2f} ms")
+    # a mean 20 standard deviations out, the ball's surface a fraction of one beyond it: Imhof's integral (the
+    # rule p_within_radius takes there) against the nested quadrature (the rule it took before)
+    lam, m, r = np.array([6.2e-5, 1e-6, 4e-8]), np.array([1e-4, 0.02, 0.1726]), 0.1728
+    tg = timeit(lambda: p_within_radius(np.diag(lam), r, m), repeat=20)
+    tn = timeit(lambda: _p_mean_nested(lam, m, r), repeat=3)
+    tq = timeit(lambda: radius_for_prob(np.diag(lam), 0.9833, m), repeat=3)
+    print(f"grazing mean: p_within_radius {tg * 1e3:.2f} ms, nested quadrature (peer) {tn * 1e3:.0f} ms "
+          f"({tn / tg:.0f}x); radius_for_prob {tq * 1e3:.0f} ms")
 
 
 if __name__ == "__main__":
