@@ -170,6 +170,10 @@ def test_allocation_meets_it_or_names_the_lost_motion():
     sim = res.simulation.to_frame()
     assert (sim.loc[sim.statistic == "vAP_P", "p_meets"] >= 0.95).all()
     assert "vAP_P <= 0.8 mm" in res.text() and "vAP_P 1.000" in res.text()
+    ax = res.plot_acceptance()                                                # the pairs named on the figure
+    assert [t.get_text() for t in ax[1].get_xticklabels()][:2] == ["P1 -x/-y", "P1 -x/-z"]
+    import matplotlib.pyplot as plt
+    plt.close(ax[0].figure)
     with pytest.raises(TolallocError, match="lost motion"):
         tolalloc.allocate_acceptance("ur10", [PoseAccuracy(limit_mm=1.0), MultiDirectionalAccuracy(limit_mm=0.15)],
                                      parts=choice, verification=False)

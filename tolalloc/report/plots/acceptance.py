@@ -43,7 +43,12 @@ def plot_acceptance(prediction, simulation=None, *, names=None, ax=None):
         a.plot(x, s.robot * f, "x", color="C2", label="predicted, robot")
         a.axhline(m.limit * f, color="C3", label="limit")
         a.plot(x, (m.limit - s.U) * f, "--", color="C3", label="limit - U")
-        a.set_xticks(x, m.labels if m.n_rows <= 6 else [str(i + 1) for i in x], fontsize=8)
+        if m.n_rows <= 6:
+            a.set_xticks(x, m.labels, fontsize=8)
+        elif m.n_rows <= 12:                          # a multi-directional test's pairs: "P1 -x/-y" ...
+            a.set_xticks(x, m.labels, fontsize=7, rotation=60, ha="right")
+        else:
+            a.set_xticks(x, [str(i + 1) for i in x], fontsize=8)
         a.set_title(f"{m.name} ({m.requirement.who()})", fontsize=9)
         a.set_ylabel(f"{m.name} [{unit}]")
         a.set_ylim(bottom=0)
