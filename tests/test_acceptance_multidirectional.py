@@ -14,7 +14,7 @@ from scipy.spatial.transform import Rotation
 import tolalloc
 from tolalloc.acceptance import (MultiDirectionalAccuracy, PoseAccuracy, multidirectional_accuracy, parts_effects,
                                  predict_acceptance)
-from tolalloc.acceptance.layout import joint_directions
+from tolalloc.acceptance.layout import acceptance_test_at, joint_directions
 from tolalloc.acceptance.model import requirement_poses, statistic_models
 from tolalloc.acceptance.requirement_file import parse_requirements
 from tolalloc.acceptance.simulate import simulate_acceptance
@@ -155,6 +155,9 @@ approach = ["+x", "-y", "+z"]
 
     with pytest.raises(TolallocError, match="approach directions"):
         predict_acceptance(t, [VAP], build_error_model(r), effects=old_style)
+    three = acceptance_test_at(r, t.q_test[:3])                              # a test at three given poses
+    with pytest.raises(TolallocError, match=r"poses \[1, 2, 4\] but the test has 3 test poses"):
+        predict_acceptance(three, [VAP], build_error_model(r))
 
 
 def test_allocation_meets_it_or_names_the_lost_motion():
