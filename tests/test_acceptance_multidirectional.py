@@ -12,7 +12,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import tolalloc
-from tolalloc.acceptance import (MultiDirectionalAccuracy, PoseAccuracy, multidirectional_accuracy, parts_effects,
+from tolalloc.acceptance import (MultiDirectionalAccuracy, MultiDirectionalOrientation, PoseAccuracy,
+                                 multidirectional_accuracy, multidirectional_orientation, parts_effects,
                                  predict_acceptance)
 from tolalloc.acceptance.layout import acceptance_test_at, joint_directions
 from tolalloc.acceptance.model import requirement_poses, statistic_models
@@ -28,6 +29,7 @@ from iso_setup import ur10_test
 
 ARCMIN = np.deg2rad(1 / 60)
 VAP = MultiDirectionalAccuracy(limit_mm=0.5)
+VAP_ANGLES = MultiDirectionalOrientation(limit_deg=0.05)
 
 
 def _catalogue(robot):
@@ -45,6 +47,7 @@ def test_statistic_is_the_largest_distance_between_the_directions_barycentres():
     assert multidirectional_accuracy(x @ R.T + [5.0, 1.0, -2.0]) == pytest.approx(np.hypot(0.1, 0.2), abs=1e-12)
     with pytest.raises(TolallocError, match="three approach directions"):
         multidirectional_accuracy(x[:2])
+    np.testing.assert_allclose(multidirectional_orientation(x), [0.1, 0.2, 0.0], atol=1e-12)   # per angle
 
 
 @pytest.mark.parametrize("fixed", [True, False])
@@ -93,16 +96,22 @@ def test_lost_motion_offset_between_two_approaches_is_that_of_the_forward_kinema
     eff = parts_effects()(r, ev.q, VAP.conditions, approach=ev.approach)
     mu = sm.effect_mean(eff)                                                  # (9, 3)
     dirs = joint_directions(r, t.q_test[[0, 1, 3]], VAP.directions())         # P1, P2, P4
-    expect = []
+    expect, turn = [], []
     for v, qv in enumerate(t.q_test[[0, 1, 3]]):
-        p = []
+        T0, p, w = r.fk_internal(qv), [], []
         for h in range(3):
             dq = np.zeros(r.n_joints)
             dq[j] = -dirs[v, h, j] * b / 2
-            p.append(r.fk_internal(qv + dq)[:3, 3])
+            T = r.fk_internal(qv + dq)
+            p.append(T[:3, 3])
+            w.append(Rotation.from_matrix(T[:3, :3] @ T0[:3, :3].T).as_rotvec())
         expect += [p[0] - p[1], p[0] - p[2], p[1] - p[2]]
+        turn += [w[0] - w[1], w[0] - w[2], w[1] - w[2]]
     np.testing.assert_allclose(mu, expect, atol=2e-6 * np.abs(expect).max())
     assert np.abs(expect).max() > 0.05                                        # a tenth of a millimetre, not a zero
+    angles = statistic_models([VAP_ANGLES], t, ev)                            # vAP_a, vAP_b, vAP_c: the rotation
+    mu_w = np.stack([sm_a.effect_mean(eff)[:, 0] for sm_a in angles], axis=1)
+    np.testing.assert_allclose(mu_w, turn, atol=1e-3 * np.abs(turn).max())
     G = sm.systematic_map(build_error_model(r).jacobian(ev.q))
     assert np.abs(G).max() < 1e-9                                             # what a robot keeps cancels
 
@@ -117,17 +126,18 @@ def test_prediction_agrees_with_the_simulated_test_with_and_without_parts():
     t = replace(test, robot=r)
     model = build_error_model(r)
     split = split_errors(model)
-    for fx, limit in ((None, 0.006), (parts_effects(), 0.3)):
-        req = replace(VAP, limit_mm=limit)
-        pred = predict_acceptance(t, [req], model, split, effects=fx).to_frame().set_index("where")
-        sim = simulate_acceptance(t, [req], model, split, effects=fx, n_robots=2000, seed=2).to_frame().set_index(
-            "where")
-        assert list(pred.index) == list(sim.index) and len(pred) == 9
+    for fx, limit, angle in ((None, 0.006, 0.001), (parts_effects(), 0.3, 0.025)):
+        reqs = [replace(VAP, limit_mm=limit), replace(VAP_ANGLES, limit_deg=angle)]
+        pred = predict_acceptance(t, reqs, model, split, effects=fx).to_frame().set_index(["statistic", "where"])
+        sim = simulate_acceptance(t, reqs, model, split, effects=fx, n_robots=2000, seed=2).to_frame().set_index(
+            ["statistic", "where"])
+        assert list(pred.index) == list(sim.index) and len(pred) == 4 * 9
         for w in pred.index:
+            got = pred.loc[w, "robot_mm"] if w[0] == "vAP_P" else pred.loc[w, "robot_deg"]
             lo, hi = sim.loc[w, "robot_low"], sim.loc[w, "robot_high"]
-            assert 0.98 * lo <= pred.loc[w, "robot_mm"] <= 1.02 * hi, (w, pred.loc[w, "robot_mm"], lo, hi)
+            assert 0.98 * lo <= got <= 1.02 * hi, (w, got, lo, hi)
             assert abs(pred.loc[w, "p_meets"] - sim.loc[w, "p_meets"]) < 0.02, w
-    assert pred["robot_mm"].max() > 0.1                                      # the lost motion shows
+    assert pred["robot_mm"].max() > 0.1 and pred["robot_deg"].max() > 0.02   # the lost motion shows
 
 
 def test_requirement_file_and_bad_input():
@@ -146,6 +156,9 @@ approach = ["+x", "-y", "+z"]
         MultiDirectionalAccuracy(limit_mm=0.1, approach=("-x", "+x", "-z"))
     with pytest.raises(TolallocError, match="poses.*1-5"):
         MultiDirectionalAccuracy(limit_mm=0.1, poses=(1, 6))
+    angles = parse_requirements(tomllib.loads(text.replace("accuracy", "orientation").replace(
+        "limit_um = 200", "limit_arcsec = 36"))).requirements[0]
+    assert isinstance(angles, MultiDirectionalOrientation) and angles.limit_deg == pytest.approx(0.01)
     robot, test = ur10_test()
     r = _one_gear(robot, "elbow_joint", ARCMIN)
     t = replace(test, robot=r)
@@ -155,6 +168,8 @@ approach = ["+x", "-y", "+z"]
 
     with pytest.raises(TolallocError, match="approach directions"):
         predict_acceptance(t, [VAP], build_error_model(r), effects=old_style)
+    with pytest.raises(TolallocError, match="one test approaches each pose one way"):
+        predict_acceptance(t, [VAP, replace(VAP_ANGLES, poses=(1, 2))], build_error_model(r))
     three = acceptance_test_at(r, t.q_test[:3])                              # a test at three given poses
     with pytest.raises(TolallocError, match=r"poses \[1, 2, 4\] but the test has 3 test poses"):
         predict_acceptance(three, [VAP], build_error_model(r))

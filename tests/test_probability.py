@@ -313,6 +313,8 @@ def test_grazing_means_by_imhof_agree_with_monte_carlo_and_the_nested_rule():
         ray = float(_p_with_mean(lam[None], m[None], np.array([r]))[0])
         assert abs(ray - _p_mean_imhof(lam, m, r)) < 1e-7
     assert p_within_radius(np.diag(lam) / 16, 1.0 - 8 * 0.05, m) == 0.0     # the half-space bound is below 1e-13
+    one = _p_mean_imhof(np.array([0.01, 0.0, 0.0]), np.array([0.3, 0.2, 0.0]), 0.5)   # one direction of spread:
+    assert abs(one - (norm.cdf((np.sqrt(0.21) - 0.3) / 0.1) - norm.cdf((-np.sqrt(0.21) - 0.3) / 0.1))) < 1e-12
     m = m / 2                                                               # 2.5 sd out: Imhof's integral does
     assert np.isnan(_p_mean_imhof(lam, m, 0.55))                            # not converge, the nested rule serves
     assert float(p_within_radius(np.diag(lam), 0.55, m)) == _p_mean_nested(lam, m, 0.55)

@@ -2,11 +2,13 @@
 with the measurement uncertainty (ISO 14253-1)."""
 
 from tolalloc.acceptance.statistics import (pose_accuracy, pose_repeatability, orientation_accuracy,
-                                            orientation_repeatability, multidirectional_accuracy, distance_accuracy,
+                                            orientation_repeatability, multidirectional_accuracy,
+                                            multidirectional_orientation, distance_accuracy,
                                             distance_repeatability, path_accuracy, path_repeatability)
 from tolalloc.acceptance.requirements import (Requirement, Conditions, PositionRequirement, OrientationRequirement,
                                               IsoRequirement, PoseAccuracy, PoseRepeatability, OrientationAccuracy,
-                                              OrientationRepeatability, MultiDirectionalAccuracy, DistanceAccuracy,
+                                              OrientationRepeatability, MultiDirectionalAccuracy,
+                                              MultiDirectionalOrientation, DistanceAccuracy,
                                               PathAccuracy, check_requirements, split_requirements)
 from tolalloc.acceptance.cube import TestCube, CubePlacement, place_cube
 from tolalloc.acceptance.instrument import Tracker
@@ -17,7 +19,8 @@ from tolalloc.acceptance.predict import AcceptancePrediction, StatisticPredictio
 from tolalloc.acceptance.parts import parts_effects
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
-           "multidirectional_accuracy", "MultiDirectionalAccuracy",
+           "multidirectional_accuracy", "MultiDirectionalAccuracy", "multidirectional_orientation",
+           "MultiDirectionalOrientation",
            "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "Requirement",
            "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement", "PoseAccuracy",
            "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability", "DistanceAccuracy", "PathAccuracy",

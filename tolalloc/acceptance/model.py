@@ -28,7 +28,8 @@ covariance joint over the evaluation poses, random covariance per pose) and ``T_
   minus that from another, each pose evaluated once per direction (the approach known, :attr:`EvaluationPoses.
   approach`); ``1/n`` each. Whatever a robot keeps at the pose cancels (``L J = 0``); the flank lost motion rests
   on, which the direction sets, and the random parts remain. The largest of a pose's three pairs is ``vAP_P``:
-  each pair is held at ``1 - (1 - share) / 3`` (Bonferroni, as the path points);
+  each pair is held at ``1 - (1 - share) / 3`` (Bonferroni, as the path points); ``vAP_a, vAP_b, vAP_c``
+  likewise per angle (one row each), from the mean rotations;
 * ``AD_P`` (7.3), *ball* (one row): ``u . (Pb - Pa)`` of the mean positions, ``u`` the command direction; ``1/n``;
 * ``AT_P`` (8.2), *ball*: the barycentre minus the command point across the path, registered; ``1/n`` (path
   cycles).
@@ -172,8 +173,13 @@ def evaluation_poses(test, path_points: int = 0, multidirectional=None) -> Evalu
 def requirement_poses(test, requirements) -> EvaluationPoses:
     """:func:`evaluation_poses` for the requirements' statistics (the path and the directional visits they read)."""
     path = next((r for r in requirements if r.kind == "path_accuracy"), None)
-    vap = next((r for r in requirements if r.kind == "multidirectional_accuracy"), None)
-    return evaluation_poses(test, path.points if path is not None else 0, vap)
+    vap = [r for r in requirements if r.kind.startswith("multidirectional")]
+    if len(vap) == 2 and (vap[0].poses, vap[0].approach) != (vap[1].poses, vap[1].approach):
+        raise TolallocError(f"multidirectional requirements: one test approaches each pose one way for the position "
+                            f"and the orientation, but they name poses {list(vap[0].poses)} and "
+                            f"{list(vap[1].poses)}, approaches {list(vap[0].approach)} and {list(vap[1].approach)}; "
+                            "give both the same.")
+    return evaluation_poses(test, path.points if path is not None else 0, vap[0] if vap else None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -363,7 +369,14 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
                 out += [StatisticModel(f"RP_{a}", req, "sd3", n, req.limit, tgt, P1_5, _one_row(L, j), W, "deg",
                                        systematic=False) for j, a in enumerate(ANGLES)]
         elif k == "multidirectional_accuracy":
-            out.append(_multidirectional_model(req, ev, n))
+            L, W = _multidirectional_map(req, ev, n)
+            out.append(StatisticModel("vAP_P", req, "ball", n, req.limit, _pair_target(req),
+                                      multidirectional_labels(req), L, W))
+        elif k == "multidirectional_orientation":
+            L, W = _multidirectional_map(req, ev, n, rotation=True)
+            out += [StatisticModel(f"vAP_{a}", req, "ball", n, req.limit, _pair_target(req),
+                                   multidirectional_labels(req), _one_row(L, j), W, "deg")
+                    for j, a in enumerate(ANGLES)]
         elif k == "distance_accuracy":
             out.append(_distance_model(req, ev, n))
         elif k == "path_accuracy":
@@ -378,21 +391,26 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
     return out
 
 
-def _multidirectional_model(req, ev: EvaluationPoses, n: int) -> StatisticModel:
-    """``vAP_P``: per pose and pair of directions, the barycentre of one direction's cycles minus the other's."""
+def _multidirectional_map(req, ev: EvaluationPoses, n: int, rotation: bool = False):
+    """L and W of a multi-directional statistic: per pose and pair of directions, the barycentre (position, or mean
+    rotation with ``rotation``) of one direction's cycles minus the other's."""
     if len(ev.directional) != len(req.poses):
-        raise TolallocError("multidirectional_accuracy: the evaluation poses lack its directional visits; build them "
-                            "with evaluation_poses(test, multidirectional=requirement).")
-    M = len(ev.q)
+        raise TolallocError(f"{req.kind}: the evaluation poses lack its directional visits; build them with "
+                            "evaluation_poses(test, multidirectional=requirement).")
+    M, off = len(ev.q), 3 if rotation else 0
     rows = len(req.poses) * len(PAIRS)
     L, W = np.zeros((rows, 3, M, 6)), np.zeros((rows, M))
     for v, visits in enumerate(ev.directional):
         for k, (a, b) in enumerate(PAIRS):
             i = v * len(PAIRS) + k
-            L[i, :, visits[a], :3], L[i, :, visits[b], :3] = np.eye(3), -np.eye(3)
+            L[i, :, visits[a], off:off + 3], L[i, :, visits[b], off:off + 3] = np.eye(3), -np.eye(3)
             W[i, visits[[a, b]]] = 1.0 / n
-    target = np.full(rows, 1 - (1 - req.share) / len(PAIRS))
-    return StatisticModel("vAP_P", req, "ball", n, req.limit, target, multidirectional_labels(req), L, W)
+    return L, W
+
+
+def _pair_target(req) -> np.ndarray:
+    """Each pair of directions at ``1 - (1 - share) / 3``: the largest of a pose's pairs then meets the share."""
+    return np.full(len(req.poses) * len(PAIRS), 1 - (1 - req.share) / len(PAIRS))
 
 
 def multidirectional_labels(req) -> tuple:

@@ -4,8 +4,8 @@ Schema (``examples/requirements_iso9283.toml`` is a complete example)::
 
     [[requirement]]               # one table per requirement; `kind` says which
     kind = "pose_repeatability"   # position, orientation, pose_accuracy, pose_repeatability, orientation_accuracy,
-                                  # orientation_repeatability, multidirectional_accuracy, distance_accuracy,
-                                  # path_accuracy
+                                  # orientation_repeatability, multidirectional_accuracy,
+                                  # multidirectional_orientation, distance_accuracy, path_accuracy
     limit_mm = 0.05               # the limit, its unit in the key: limit_mm / limit_um (lengths),
                                   # limit_deg / limit_arcsec / limit_rad (orientation statistics)
     share = 0.95                  # share of the built robots meeting it (optional, default 0.95)
@@ -13,9 +13,9 @@ Schema (``examples/requirements_iso9283.toml`` is a complete example)::
     load_pct = 100                # test load, % of the rated load (optional, default 100)
     speed_pct = 100               # test velocity, % of the rated velocity (optional, default 100)
     guard_band = false            # allocate for conformance demonstrated by the test (ISO 14253-1; optional)
-    poses = [2, 4]                # distance_accuracy: the two test poses (default P2, P4); multidirectional_accuracy:
-                                  # the poses approached from three directions (default [1, 2, 4])
-    approach = ["-x", "-y", "-z"] # multidirectional_accuracy only: the tool's motion into the pose, one per base axis
+    poses = [2, 4]                # distance_accuracy: the two test poses (default P2, P4); multidirectional_*: the
+                                  # poses approached from three directions (default [1, 2, 4])
+    approach = ["-x", "-y", "-z"] # multidirectional_* only: the tool's motion into the pose, one per base axis
     points = 11                   # path_accuracy only: command points along the path (default 11)
 
     [[requirement]]
@@ -160,7 +160,8 @@ def _requirement(t: dict, where: str):
         return _build(cls, kw, where)
     units, unit = (_ANGLE, "deg") if cls.unit == "deg" else (_LENGTH, "mm")
     extra = {"distance_accuracy": ("poses",), "path_accuracy": ("points",),
-             "multidirectional_accuracy": ("poses", "approach")}.get(kind, ())
+             "multidirectional_accuracy": ("poses", "approach"),
+             "multidirectional_orientation": ("poses", "approach")}.get(kind, ())
     _unknown(t, {"kind", *_COMMON, *extra, "limit"} | {f"limit_{u}" for u in units}, where)
     lim = _value(t, "limit", units, where, unit)
     if lim is None:

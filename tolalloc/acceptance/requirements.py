@@ -12,7 +12,8 @@ Each requirement is a frozen dataclass, checked at construction (a bad field is 
 * :class:`OrientationAccuracy` (``orientation_accuracy``): ``AP_a, AP_b, AP_c`` at P1-P5 (7.2.1);
 * :class:`OrientationRepeatability` (``orientation_repeatability``): ``RP_a, RP_b, RP_c`` at P1-P5 (7.2.2);
 * :class:`MultiDirectionalAccuracy` (``multidirectional_accuracy``): ``vAP_P`` at P1, P2, P4, each approached from
-  three orthogonal directions (7.2.3);
+  three orthogonal directions (7.2.3); :class:`MultiDirectionalOrientation` (``multidirectional_orientation``):
+  ``vAP_a, vAP_b, vAP_c``;
 * :class:`DistanceAccuracy` (``distance_accuracy``): ``AD_P`` between two of P1-P5 (7.3);
 * :class:`PathAccuracy` (``path_accuracy``): ``AT_P`` along a command path (8.2).
 
@@ -36,91 +37,22 @@ P1-P5 of the test cube, ``cycles`` cycles each approached from the same side.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
 
 from tolalloc.exceptions import ArgumentError, describe
 from tolalloc.acceptance.conditions import Conditions
+from tolalloc.acceptance.requirement_base import (AXES, CALIBRATED_ESTIMATORS, DEFAULT_PROB, DEFAULT_RADIUS_MM,
+                                                  ESTIMATORS, POPULATIONS, IsoRequirement, Requirement)
 from tolalloc.units import check_positive, check_probability
 
 __all__ = ["Requirement", "Conditions", "PositionRequirement", "OrientationRequirement", "IsoRequirement",
            "PoseAccuracy", "PoseRepeatability", "OrientationAccuracy", "OrientationRepeatability",
-           "MultiDirectionalAccuracy", "DistanceAccuracy", "PathAccuracy", "check_requirements", "split_requirements",
-           "REQUIREMENT_KINDS", "POPULATIONS", "AXES"]
-
-POPULATIONS = ("fleet", "robot")
-#: directions of motion along the base frame's axes (the approach directions of a multi-directional test)
-AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
-
-
-#: the requirement when none is given: ``P(|dP| < 0.25 mm) >= 0.95`` (the command line's defaults too)
-DEFAULT_RADIUS_MM = 0.25
-DEFAULT_PROB = 0.95
-#: probability estimators of the verification (see :func:`tolalloc.verify.verify_design`)
-ESTIMATORS = ("auto", "plain", "paired", "importance")
-#: those of the calibration-aware allocation's end-to-end Monte Carlo (it has no importance sampler)
-CALIBRATED_ESTIMATORS = ("auto", "plain", "paired")
-
-
-class Requirement:
-    """Base of the requirements on the tool-pose error; subclasses are frozen dataclasses.
-
-    A subclass checks its fields in :meth:`check` (called at construction) and implements :meth:`text`.
-
-    Attributes
-    ----------
-    kind : str
-        What the requirement bounds; a job takes one requirement of each kind at most.
-    clause : str
-        Where the statistic is defined (``""`` for the balls). Both are class attributes.
-    """
-
-    kind: ClassVar[str] = ""
-    clause: ClassVar[str] = ""
-    calibration_aware: ClassVar[bool] = False
-
-    def __post_init__(self):
-        self.check()
-
-    def check(self) -> None:  # pragma: no cover - every subclass overrides it
-        raise NotImplementedError
-
-    def text(self) -> str:  # pragma: no cover
-        """The requirement as a formula with its units."""
-        raise NotImplementedError
-
-    def problem_arguments(self) -> dict:  # pragma: no cover
-        """Keyword arguments of :func:`tolalloc.allocate.build_problem` that state this requirement."""
-        raise NotImplementedError
-
-    def cli_arguments(self) -> list[str]:  # pragma: no cover
-        """The command-line flags that state this requirement (``["--radius-mm", "0.25", ...]``)."""
-        raise NotImplementedError
-
-    def estimators(self, calibrated: bool = False) -> tuple[str, ...]:
-        """Verification estimators that can judge this requirement (``calibrated``: in the calibration-aware
-        allocation's end-to-end Monte Carlo)."""
-        return CALIBRATED_ESTIMATORS if calibrated else ESTIMATORS
-
-    def to_dict(self) -> dict:
-        """The fields (units in their names) and the kind, for JSON records and requirement files."""
-        out = {"kind": self.kind}
-        for k, v in asdict(self).items():
-            if isinstance(v, dict):  # the test conditions, flattened as in a requirement file
-                out.update(v)
-            elif isinstance(v, np.ndarray):
-                out[k] = v.tolist()
-            elif v is not None:
-                out[k] = list(v) if isinstance(v, tuple) else v
-        return out
-
-    def _field(self, name: str) -> str:
-        return f"{type(self).__name__}.{name}"
-
-    def __str__(self) -> str:
-        return self.text()
+           "MultiDirectionalAccuracy", "MultiDirectionalOrientation", "DistanceAccuracy", "PathAccuracy",
+           "check_requirements", "split_requirements", "REQUIREMENT_KINDS", "POPULATIONS", "AXES", "DEFAULT_RADIUS_MM",
+           "DEFAULT_PROB", "ESTIMATORS", "CALIBRATED_ESTIMATORS"]
 
 
 @dataclass(frozen=True)
@@ -186,61 +118,6 @@ class OrientationRequirement(Requirement):
 
 
 @dataclass(frozen=True, kw_only=True)
-class IsoRequirement(Requirement):
-    """Common fields of the ISO 9283 requirements (a base class; use its subclasses).
-
-    Attributes
-    ----------
-    share : float
-        Share of the built robots that meet the limit (``population="fleet"``), or the probability that the robot
-        at hand meets it (``"robot"``); in (0, 1).
-    population : {"fleet", "robot"}
-    conditions : Conditions
-    guard_band : bool
-        Allocate for conformance *demonstrated* by the acceptance test (ISO 14253-1), not only met.
-    """
-
-    share: float = 0.95
-    population: str = "fleet"
-    conditions: Conditions = field(default_factory=Conditions)
-    guard_band: bool = False
-    #: statistic symbol, unit of the limit, whether the limit bounds a signed value's magnitude
-    symbol: ClassVar[str] = ""
-    unit: ClassVar[str] = "mm"
-
-    @property
-    def limit(self) -> float:
-        """The limit in internal units [mm or rad]."""
-        v = getattr(self, f"limit_{self.unit}")
-        return float(np.deg2rad(v)) if self.unit == "deg" else float(v)
-
-    def check(self) -> None:
-        check_positive(getattr(self, f"limit_{self.unit}"), self._field(f"limit_{self.unit}"), self.unit,
-                  "0.05" if self.unit == "mm" else "0.01")
-        check_probability(self.share, self._field("share"))
-        if self.population not in POPULATIONS:
-            raise ArgumentError(self._field("population"), f"expected one of {', '.join(POPULATIONS)} (a share of "
-                                f"the built robots, or the robot at hand), got {self.population!r}.")
-        if not isinstance(self.conditions, Conditions):
-            raise ArgumentError(self._field("conditions"), "expected tolalloc.acceptance.Conditions(load_pct=..., "
-                                f"speed_pct=...), got {self.conditions!r}.")
-        if not isinstance(self.guard_band, (bool, np.bool_)):
-            raise ArgumentError(self._field("guard_band"), f"expected True or False, got {self.guard_band!r}.")
-
-    def who(self) -> str:
-        """``for 95 % of built robots`` / ``for the robot with probability 0.95``."""
-        if self.population == "fleet":
-            return f"for {100 * self.share:g} % of built robots"
-        return f"for the robot, with probability {self.share:g}"
-
-    def text(self) -> str:
-        lim = getattr(self, f"limit_{self.unit}")
-        guard = "; demonstrated with the measurement uncertainty" if self.guard_band else ""
-        return (f"{self.symbol} <= {lim:g} {self.unit} {self.who()} (ISO 9283 {self.clause}; "
-                f"{self.conditions.text()}{guard})")
-
-
-@dataclass(frozen=True, kw_only=True)
 class PoseAccuracy(IsoRequirement):
     """Position accuracy ``AP_P <= limit_mm`` at every test pose P1-P5 (ISO 9283 7.2.1): the distance from the
     command position to the barycentre of the ``cycles`` attained positions.
@@ -293,32 +170,24 @@ class OrientationRepeatability(IsoRequirement):
 
 
 @dataclass(frozen=True, kw_only=True)
-class MultiDirectionalAccuracy(IsoRequirement):
-    """Multi-directional pose accuracy variation ``vAP_P <= limit_mm`` at test poses (ISO 9283 7.2.3; default P1,
-    P2, P4): each pose approached ``cycles`` times from each of three orthogonal directions, ``vAP_P`` the largest
-    distance between the three barycentres. What one robot keeps at a pose cancels; what the approach direction
-    changes (the flank a gear's lost motion rests on) and the random parts remain.
+class MultiDirectional(IsoRequirement):
+    """Common fields of the multi-directional requirements (ISO 9283 7.2.3; a base class): each pose approached
+    ``cycles`` times from each of three orthogonal directions. What one robot keeps at a pose cancels between the
+    directions; what the approach direction changes (the flank a gear's lost motion rests on) and the random parts
+    remain.
 
     Attributes
     ----------
     poses : tuple of int
-        The test poses, numbered 1-5 as P1-P5.
+        The test poses, numbered 1-5 as P1-P5 (default P1, P2, P4).
     approach : tuple of three str
         The tool's direction of motion into the pose along the base frame's axes (``"-z"``: coming down from above),
         three mutually orthogonal ones.
-
-    Examples
-    --------
-    >>> MultiDirectionalAccuracy(limit_mm=0.1).text()
-    'vAP_P <= 0.1 mm for 95 % of built robots (ISO 9283 7.2.3; 100 % rated load, 100 % rated velocity)'
     """
 
-    limit_mm: float = 0.1
     poses: tuple = (1, 2, 4)
     approach: tuple = ("-x", "-y", "-z")
-    kind: ClassVar[str] = "multidirectional_accuracy"
     clause: ClassVar[str] = "7.2.3"
-    symbol: ClassVar[str] = "vAP_P"
 
     def check(self) -> None:
         super().check()
@@ -339,6 +208,33 @@ class MultiDirectionalAccuracy(IsoRequirement):
     def directions(self) -> np.ndarray:
         """Unit directions of motion of the three approaches, shape (3, 3), rows in the order of :attr:`approach`."""
         return np.array([AXES[x] for x in self.approach], float)
+
+
+@dataclass(frozen=True, kw_only=True)
+class MultiDirectionalAccuracy(MultiDirectional):
+    """Multi-directional pose accuracy variation ``vAP_P <= limit_mm`` (ISO 9283 7.2.3): the largest distance between
+    the barycentres of the three directions' cycles (:class:`MultiDirectional`).
+
+    Examples
+    --------
+    >>> MultiDirectionalAccuracy(limit_mm=0.1).text()
+    'vAP_P <= 0.1 mm for 95 % of built robots (ISO 9283 7.2.3; 100 % rated load, 100 % rated velocity)'
+    """
+
+    limit_mm: float = 0.1
+    kind: ClassVar[str] = "multidirectional_accuracy"
+    symbol: ClassVar[str] = "vAP_P"
+
+
+@dataclass(frozen=True, kw_only=True)
+class MultiDirectionalOrientation(MultiDirectional):
+    """Multi-directional orientation accuracy variation ``vAP_a, vAP_b, vAP_c <= limit_deg`` (ISO 9283 7.2.3), each
+    angle on its own: the largest difference between the three directions' mean angles (:class:`MultiDirectional`)."""
+
+    limit_deg: float = 0.02
+    kind: ClassVar[str] = "multidirectional_orientation"
+    symbol: ClassVar[str] = "vAP_a, vAP_b, vAP_c"
+    unit: ClassVar[str] = "deg"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -399,7 +295,8 @@ class PathAccuracy(IsoRequirement):
 #: every requirement class by its kind
 REQUIREMENT_KINDS = {c.kind: c for c in (PositionRequirement, OrientationRequirement, PoseAccuracy,
                                          PoseRepeatability, OrientationAccuracy, OrientationRepeatability,
-                                         MultiDirectionalAccuracy, DistanceAccuracy, PathAccuracy)}
+                                         MultiDirectionalAccuracy, MultiDirectionalOrientation, DistanceAccuracy,
+                                         PathAccuracy)}
 
 
 def check_requirements(value, argument: str = "requirement", *, need: tuple = ()) -> tuple:

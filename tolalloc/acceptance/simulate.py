@@ -242,6 +242,20 @@ class _Lab:
                 wm[:, i, j] = _rotvec(self.R_meas @ R @ Rc.T) + self._noise(p.shape, self.noise_rad)
         return pt, pm, wt, wm
 
+    def _multidirectional(self, req) -> dict:
+        """vAP_P or vAP_a, vAP_b, vAP_c per pose and pair of directions (the directional visits run once for both)."""
+        ev, n_c, V = self.ev, self.test.cycles, len(self.ev.directional)
+        if not hasattr(self, "_directional_cycles"):
+            self._directional_cycles = [x.reshape(self.n, V, 3, n_c, 3)
+                                        for x in self.cycles(ev.directional.ravel(), n_c)]
+        pt, pm, wt, wm = self._directional_cycles
+        lab = multidirectional_labels(req)
+        if req.kind == "multidirectional_accuracy":
+            d = [st.barycentre_distances(x).reshape(self.n, -1) for x in (pt, pm)]
+            return {"vAP_P": (d[0], d[1], lab)}
+        a = [st.angle_differences(x).reshape(self.n, -1, 3) for x in (wt, wm)]
+        return {f"vAP_{c}": (a[0][..., j], a[1][..., j], lab) for j, c in enumerate(ANGLES)}
+
     def statistics(self, req) -> dict:
         """name -> (robot (n, P), measured (n, P), labels) of one requirement."""
         ev, n_c = self.ev, self.test.cycles
@@ -267,11 +281,8 @@ class _Lab:
             lab = (f"P{req.poses[0]}-P{req.poses[1]}",)
             ad = [np.abs(st.distance_accuracy(x[:, a], x[:, b], cmd[a], cmd[b]))[:, None] for x in (pt, pm)]
             return {"AD_P": (ad[0], ad[1], lab)}
-        if req.kind == "multidirectional_accuracy":
-            V = len(ev.directional)
-            pt, pm, _, _ = self.cycles(ev.directional.ravel(), n_c)
-            d = [st.barycentre_distances(x.reshape(self.n, V, 3, n_c, 3)).reshape(self.n, -1) for x in (pt, pm)]
-            return {"vAP_P": (d[0], d[1], multidirectional_labels(req))}
+        if req.kind.startswith("multidirectional"):
+            return self._multidirectional(req)
         pt, pm, _, _ = self.cycles(ev.path, self.test.path_cycles)
         cmd = ev.points_mm[ev.path]
         t = ev.tangents

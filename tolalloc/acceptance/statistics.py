@@ -19,6 +19,8 @@ ISO 9283:1998 (Manipulating industrial robots -- Performance criteria and relate
 
       vAP_P = max_{h, k} sqrt((xb_h - xb_k)^2 + (yb_h - yb_k)^2 + (zb_h - zb_k)^2)
 
+  and per orientation angle ``vAP_a = max_{h, k} |ab_h - ab_k|`` (likewise ``b``, ``c``);
+
 * **distance accuracy** (7.3): with ``D_j = |P1_j - P2_j|`` the attained and ``D_c = |P1c - P2c|`` the command
   distance of two poses, ``AD_P = Db - D_c`` (``Db`` the mean of the ``D_j``); **distance repeatability**
   ``RD = +-3 S_D``;
@@ -40,7 +42,7 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
-           "multidirectional_accuracy", "barycentre_distances", "distance_accuracy", "distance_repeatability",
+           "multidirectional_accuracy", "barycentre_distances", "multidirectional_orientation", "angle_differences", "distance_accuracy", "distance_repeatability",
            "path_accuracy", "path_repeatability", "check_cycles", "MIN_CYCLES", "PAIRS"]
 
 #: the pairs of the three approach directions of a multi-directional test, in the order of :func:`barycentre_distances`
@@ -150,12 +152,18 @@ def barycentre_distances(attained_mm) -> np.ndarray:
     -------
     array, shape (..., 3) [mm]
     """
-    a = _cycles(attained_mm, 3, "attained_mm")
+    return np.linalg.norm(_pair_differences(attained_mm, "attained_mm"), axis=-1)
+
+
+def _pair_differences(x, name: str) -> np.ndarray:
+    """Barycentre of one direction's cycles minus another's, per pair of :data:`PAIRS`: (..., 3, n, 3) ->
+    (..., 3 pairs, 3)."""
+    a = _cycles(x, 3, name)
     if a.ndim < 3 or a.shape[-3] != 3:
-        raise TolallocError(f"attained_mm: expected the cycles of three approach directions, shape (..., 3, n, 3), "
+        raise TolallocError(f"{name}: expected the cycles of three approach directions, shape (..., 3, n, 3), "
                             f"got shape {a.shape}.")
     b = a.mean(axis=-2)
-    return np.stack([np.linalg.norm(b[..., h, :] - b[..., k, :], axis=-1) for h, k in PAIRS], axis=-1)
+    return np.stack([b[..., h, :] - b[..., k, :] for h, k in PAIRS], axis=-2)
 
 
 def multidirectional_accuracy(attained_mm) -> np.ndarray:
@@ -171,6 +179,37 @@ def multidirectional_accuracy(attained_mm) -> np.ndarray:
     array, shape (...) [mm]
     """
     return barycentre_distances(attained_mm).max(axis=-1)
+
+
+def angle_differences(attained_rad) -> np.ndarray:
+    """Absolute differences between the mean angles ``a, b, c`` of the three approach directions, per pair of
+    :data:`PAIRS`.
+
+    Parameters
+    ----------
+    attained_rad : array, shape (..., 3, n, 3) [rad]
+        Attained angles: per direction, cycle by cycle.
+
+    Returns
+    -------
+    array, shape (..., 3 pairs, 3 angles) [rad]
+    """
+    return np.abs(_pair_differences(attained_rad, "attained_rad"))
+
+
+def multidirectional_orientation(attained_rad) -> np.ndarray:
+    """ISO 9283 7.2.3 ``vAP_a, vAP_b, vAP_c``: per angle, the largest difference between the mean angles of the three
+    approach directions.
+
+    Parameters
+    ----------
+    attained_rad : array, shape (..., 3, n, 3) [rad]
+
+    Returns
+    -------
+    array, shape (..., 3) [rad]
+    """
+    return angle_differences(attained_rad).max(axis=-2)
 
 
 def _distances(p1, p2):

@@ -145,7 +145,7 @@ def statistic_terms(spec: AcceptanceSpec, model) -> list[StatisticTerms]:
         const = np.zeros((sm.n_rows, 3, 3))
         if eff is not None:
             const = const + sm.joint_covariance(eff.systematic) + sm.pose_covariance(eff.random)
-        if sm.systematic and sm.name != "vAP_P":  # vAP compares one robot's poses: what it keeps cancels
+        if sm.systematic and not sm.name.startswith("vAP"):  # vAP compares one robot's poses: what it keeps cancels
             _check_systematic(sm, split, S, eff)
         C_inst = sm.instrument_covariance(spec.test.tracker)
         U = expanded_uncertainty(sm.measure, C_inst, sm.cycles, spec.test.tracker.k)
@@ -173,7 +173,7 @@ def _check_bias(sm, radius: float, bias) -> None:
         return
     f, u = (180 / np.pi, "deg") if sm.unit == "deg" else (1.0, "mm")
     i = int(np.argmax(bias))
-    if sm.name == "vAP_P":
+    if sm.name.startswith("vAP"):
         what, advice = ("the gears' lost motion, on the flank each approach direction leaves", "Choose reducers with "
                         "less lost motion, or close the position loop on the output (an output-side encoder).")
     else:
@@ -209,7 +209,7 @@ def _row_poses(sm, ev) -> np.ndarray:
         return ev.path
     if sm.name == "AD_P":
         return ev.test[[sm.requirement.poses[0] - 1]]
-    if sm.name == "vAP_P":
+    if sm.name.startswith("vAP"):
         return np.repeat(ev.directional[:, 0], sm.n_rows // max(len(ev.directional), 1))
     return ev.test
 

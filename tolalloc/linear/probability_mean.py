@@ -162,6 +162,8 @@ def _p_mean_imhof(lam, m, r) -> float:
         return 0.0
     if len(lam) == 0:
         return 1.0
+    if len(lam) == 1:                     # one direction of spread (a scalar statistic): the closed form
+        return float(_ball_1d(np.sqrt(q), m[0], lam[0]))
     s = float(lam.max())
     lam_s, q_s, d2 = lam / s, q / s, m * m / lam
 
