@@ -17,6 +17,7 @@ from tolalloc.acceptance.model import ErrorEffects, EffectCovariance, StatisticM
 from tolalloc.acceptance.decision import Decision, decide
 from tolalloc.acceptance.predict import AcceptancePrediction, StatisticPrediction, predict_acceptance
 from tolalloc.acceptance.parts import parts_effects
+from tolalloc.acceptance.static_load import StaticCompliance, static_compliance
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
            "multidirectional_accuracy", "MultiDirectionalAccuracy", "multidirectional_orientation",
@@ -27,4 +28,4 @@ __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orien
            "check_requirements", "split_requirements", "TestCube", "CubePlacement", "place_cube", "Tracker",
            "AcceptanceTest", "acceptance_test", "ErrorEffects", "EffectCovariance", "StatisticModel",
            "statistic_models", "Decision", "decide", "AcceptancePrediction", "StatisticPrediction",
-           "predict_acceptance", "parts_effects"]
+           "predict_acceptance", "parts_effects", "StaticCompliance", "static_compliance"]

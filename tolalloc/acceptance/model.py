@@ -154,7 +154,7 @@ def evaluation_poses(test, path_points: int = 0, multidirectional=None) -> Evalu
         tang = tp.tangents
     if multidirectional is not None:
         if max(multidirectional.poses) > len(test.q_test):
-            raise TolallocError(f"multidirectional_accuracy: poses {list(multidirectional.poses)} but the test has "
+            raise TolallocError(f"{multidirectional.kind}: poses {list(multidirectional.poses)} but the test has "
                                 f"{len(test.q_test)} test poses; name poses 1-{len(test.q_test)}.")
         qv = test.q_test[[i - 1 for i in multidirectional.poses]]
         parts.append(np.repeat(qv, 3, axis=0))
