@@ -188,6 +188,10 @@ def test_allocation_meets_it_or_names_the_lost_motion():
     sim = res.simulation.to_frame()
     assert (sim.loc[sim.statistic == "vAP_P", "p_meets"] >= 0.95).all()
     assert "vAP_P <= 0.8 mm" in res.text() and "vAP_P 1.000" in res.text()
+    assert "static compliance at P1" in res.text()                            # the parts' stiffness, at P1
+    stiff = res.summary()["static_compliance_mm_per_N"]
+    np.testing.assert_allclose(list(stiff.values()), res.compliance.compliance_mm_per_n)
+    np.testing.assert_array_equal(res.compliance.q, res.test.q_test[0])
     ax = res.plot_acceptance()                                                # the pairs named on the figure
     assert [t.get_text() for t in ax[1].get_xticklabels()][:2] == ["P1 -x/-y", "P1 -x/-z"]
     import matplotlib.pyplot as plt

@@ -112,7 +112,16 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
               "parts": None if effects is None else _part_names(rob, parts),
               "test": lay.summary(), "solver": solver, "snap": snap, "n_robots": n_robots if verify else None,
               "seed": seed, "costs_source": cost_set.source}
-    return AcceptanceAllocation(res, lay, reqs, pred, sim, record, times)
+    return AcceptanceAllocation(res, lay, reqs, pred, sim, record, times, _stiffness(rob, lay, effects))
+
+
+def _stiffness(robot, test, effects):
+    """With the bought parts: the static compliance at P1, the cube's centre (ISO 9283 10); else None."""
+    if effects is None or robot.components.payload.rated_kg is None:
+        return None
+    from tolalloc.acceptance import static_compliance
+
+    return static_compliance(robot, test.q_test[0])
 
 
 def _parts(robot, parts) -> tuple:
@@ -231,6 +240,8 @@ class AcceptanceAllocation(JobResult):
     simulation : SimulatedAcceptance or None
     inputs : dict
     times_s : dict
+    compliance : StaticCompliance or None
+        With the bought parts: the static compliance at P1 predicted from them (ISO 9283 10).
     """
 
     result: object
@@ -240,6 +251,7 @@ class AcceptanceAllocation(JobResult):
     simulation: object
     inputs: dict = field(default_factory=dict)
     times_s: dict = field(default_factory=dict)
+    compliance: object = None
 
     @property
     def ok(self) -> bool:
@@ -277,6 +289,13 @@ class AcceptanceAllocation(JobResult):
             out.append(f"simulated test ({self.simulation.n_robots} robots, seed {self.simulation.seed}): share of "
                        "robots meeting each limit (worst test pose) " + ", ".join(
                            f"{k} {v.min():.3f}" for k, v in self._sim_share().items()))
+        if self.compliance is not None:
+            from tolalloc.acceptance.static_load import LOAD_DIRECTIONS
+
+            c = self.compliance
+            out.append(f"static compliance at P1 (ISO 9283 10; predicted from the parts, loads up to "
+                       f"{c.loads_n[-1]:.4g} N): " + ", ".join(
+                           f"{d} {1000 * v:.3g}" for d, v in zip(LOAD_DIRECTIONS, c.compliance_mm_per_n)) + " um/N")
         return "\n".join(x for x in out if x)
 
     def _sim_share(self) -> dict:
@@ -293,6 +312,10 @@ class AcceptanceAllocation(JobResult):
             out["notes"] = list(self.prediction.notes)
         if self.simulation is not None:
             out["simulated_share_meeting"] = {k: v.tolist() for k, v in self._sim_share().items()}
+        if self.compliance is not None:
+            from tolalloc.acceptance.static_load import LOAD_DIRECTIONS
+
+            out["static_compliance_mm_per_N"] = dict(zip(LOAD_DIRECTIONS, self.compliance.compliance_mm_per_n))
         return json_native(out)
 
     def plot_acceptance(self, ax=None):
@@ -309,8 +332,9 @@ class AcceptanceAllocation(JobResult):
             raise ArgumentError("directory", f"nothing to save: no design was found ({self.result.message}).")
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:
-        """``tolerances.csv/.md/.tex``, ``datasheet.csv/.md``, ``simulation.csv``, ``summary.json`` and
-        ``acceptance.png`` into an existing ``folder`` (not atomic: :meth:`save` publishes them together)."""
+        """``tolerances.csv/.md/.tex``, ``datasheet.csv/.md``, ``simulation.csv``, ``static_compliance.csv`` (with the
+        parts), ``summary.json`` and ``acceptance.png`` into an existing ``folder`` (not atomic: :meth:`save`
+        publishes them together)."""
         import matplotlib.pyplot as plt
 
         from tolalloc.report.plots.acceptance import plot_acceptance
@@ -326,6 +350,9 @@ class AcceptanceAllocation(JobResult):
         if self.simulation is not None:
             self.simulation.to_frame().to_csv(tmp / "simulation.csv", index=False, float_format="%.6g")
             names.append("simulation.csv")
+        if self.compliance is not None:
+            self.compliance.to_frame().to_csv(tmp / "static_compliance.csv", index=False, float_format="%.6g")
+            names.append("static_compliance.csv")
         write_json(self.summary(), tmp / "summary.json")
         axes = plot_acceptance(self.prediction, self.simulation)
         fig = np.atleast_1d(axes)[0].figure
