@@ -2786,3 +2786,201 @@ def test_set_s_every_kind_lies_in_its_true_structure_and_known_answers():
     sh = sb.frame_shape(fp, ctx)
     assert np.abs(np.einsum("pi,pi->p", sh, e)).max() < 1e-9 * np.abs(sh).max()
     assert M.max() < fp["M_u"] and fp["tip"] == pytest.approx(case.truth["payload_com_mm"])
+
+
+def test_set_t_cases_kinds_and_determinism():
+    """Set T: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session hook leaves cases without a set-T kind alone (no random
+    numbers drawn); the generator reaches the set's modules and none imports tolalloc; the intervention's and the working
+    session's kinds have their blocks and pauses, the lockable float a gripper alternately empty and holding a part."""
+    from sim2real_indep import effects_t as et
+
+    _assert_set_module("T", 40_7020, et, ("gear", "wheel_growth"))
+    for name in ("effects_t", "effects_t_joint", "effects_t_body", "effects_t_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_t" in _imports(STUDY / "generator.py")
+    assert et.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": et.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        leak = opts(("balancer_leak",))
+        assert 4 <= leak["blocks"] <= 7 and leak["gap_kind"] == "pause" and leak["pause_min"] == (20.0, 60.0)
+        crane = opts(("crane_runway",), "ur10")
+        assert 3 <= crane["blocks"] <= 5 and crane["pause_min"] == (5.0, 20.0)
+        for kind in ("shield_squeeze", "main_drive"):
+            o = opts((kind,), "tool_changer")
+            assert 4 <= o["blocks"] <= 7 and o["gap_kind"] == "pause" and o["pause_min"] == (15.0, 45.0)
+        assert opts(("dew_warming", "shield_squeeze"))["gap_kind"] == "mixed"
+        steps = np.array(opts(("lockable_float",), "ur10")["payload_steps"])
+        assert 6 <= len(steps) <= 10 and not steps[::2].any() and (steps[1::2] >= 3.0).all()
+        assert opts(("charge_cable", "via_approach")) == {"blocks": 1, "gap_kind": "none"}
+    _assert_regenerates("T", max_effect_poses=50)
+
+
+def test_set_t_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-T kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the kinds do nothing on the arms without their hardware; and
+    known answers: the cable's touchdown catenary and its joint loads, the balancer's lever and leak, Euler-Eytelwein's
+    ratio and the hose's sliding state, the approach's joint rates and flank, the inclinometers' servoed readings, the
+    rangefinder's period, the propped column's slope and prop, the crane's influence line, the inextensional ring, the
+    lock, the play operator, the saturation humidity and the dew's boost, and the main drive's nodes."""
+    from dataclasses import replace
+    from types import SimpleNamespace
+
+    from sim2real_indep import effects_t_body as tb
+    from sim2real_indep import effects_t_joint as tj
+    from sim2real_indep import effects_t_thermal as tt
+    from sim2real_indep.effects_s_joint import compliance
+
+    every = ("charge_cable", "balancer_leak", "hose_capstan", "via_approach", "inclinometer", "rangefinder",
+             "crane_runway", "shield_squeeze", "lockable_float", "plunger_stiction", "dew_warming", "main_drive")
+    inert = {"ur10": ("balancer_leak", "inclinometer", "rangefinder", "shield_squeeze", "main_drive"),
+             "tool_changer": ("charge_cable", "crane_runway", "lockable_float", "plunger_stiction", "dew_warming"),
+             "kr16_like": ("inclinometer", "rangefinder", "main_drive")}
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 20)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"charge_cable": lambda: [p["w_N_m"]], "balancer_leak": lambda: [p["F_ref"]],
+                   "hose_capstan": lambda: [p["F0_N"]], "via_approach": lambda: p["b"],
+                   "inclinometer": lambda: p["c"].ravel(), "rangefinder": lambda: p["amp"],
+                   "crane_runway": lambda: [p["e"] / (tb.STEEL_E_PA * p["I"])],
+                   "shield_squeeze": lambda: [p["delta_inf"]], "lockable_float": lambda: [1 / p["k_N_mm"]],
+                   "plunger_stiction": lambda: [1 / p["k_N_mm"]], "dew_warming": lambda: [p["cte"]],
+                   "main_drive": lambda: [p["dT0"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, hw = case.truth["params"], case.truth["hw"]
+    # cable: s = sqrt(h^2 + 2 a h) is the catenary's arc from its touchdown (a sinh of the reach over a); the pull is
+    # -s up and a towards the charger; its joint loads are J^T F at the clamp
+    cp = P["charge_cable"]
+    a = cp["a_m"]
+    h = np.array([0.3, 1.0, 2.0])
+    assert np.sqrt(h ** 2 + 2 * a * h) == pytest.approx(a * np.sinh(np.arccosh(1 + h / a)))
+    F, A = tj.cable_force(cp, ctx)
+    s = np.sqrt(((A[:, 2] - cp["z_floor"]) / 1000) ** 2 + 2 * a * (A[:, 2] - cp["z_floor"]) / 1000)
+    assert F[:, 2] == pytest.approx(-s) and np.linalg.norm(F[:, :2], axis=1) == pytest.approx(np.full(len(F), a))
+    assert np.einsum("pi,pi->p", F[:, :2], cp["charger"] - A[:, :2]) == pytest.approx(
+        a * np.linalg.norm(cp["charger"] - A[:, :2], axis=1))
+    J = kin.position_jacobian(ctx.chain, ctx.q, A)
+    assert tj.force_loads(ctx, A, F) == pytest.approx(np.einsum("pij,pi->pj", J, F) / 1000.0)
+    # capstan: pulled out the clamp's side carries exp(2 mu theta) times the drawn-in tension; an internal force between
+    # the turret and the tool loads no joint before axis 2; the sliding state follows the clamp's distance from the ring
+    hp = P["hose_capstan"]
+    theta, _ = tj.capstan_wrap(hp, ctx)
+    out_, in_ = (1 + (np.exp(s_ * hp["mu"] * theta) - 1) for s_ in (1.0, -1.0))
+    assert out_ / in_ == pytest.approx(np.exp(2 * hp["mu"] * theta))
+    assert not tj.capstan_loads(hp, ctx)[:, 0].any()
+    ring, clamp, _ = tj.capstan_points(hp, ctx)
+    ell = np.linalg.norm(clamp - ring, axis=1)
+    moved = np.abs(np.diff(ell)) > 1.0
+    assert (hp["s"][1:][moved] == np.sign(np.diff(ell))[moved]).all() and hp["s"][0] == hp["s0"]
+    # approach: the rates move the tool along the approach direction without turning it; the flank is the gravity one
+    # where the load beats the drag, else the approach's trailing one
+    ap = P["via_approach"]
+    rates = tj.approach_rates(ap, ctx)
+    eps = 1e-6
+    f0, R0 = kin.flange(ctx.chain, ctx.q)
+    f1, R1 = kin.flange(ctx.chain, ctx.q + eps * rates)
+    assert (f1 - f0) / eps == pytest.approx(R0 @ ap["a_tool"], abs=1e-4)
+    assert np.abs(R1 - R0).max() / eps < 1e-3
+    tau = ctx.loads[:, ap["joints"]]
+    loaded = np.abs(tau) > ap["drag"]
+    assert ap["flank"][loaded] == pytest.approx(0.5 * np.sign(tau[loaded]))
+    assert (np.abs(ap["flank"]) == 0.5).all()
+    # crane: the propped column -- integrating EI v'' = M(z) (the couple below a, the prop's moment) from the fixed
+    # foot meets the prop at H with no deflection and the closed-form slope at the bracket; the influence line
+    crp = P["crane_runway"]
+    H, a_c, zb = crp["H"], crp["a"], crp["z_b"]
+    pp = -3 * a_c * (H - a_c / 2) / H ** 3
+    z = np.linspace(0.0, H, 200001)
+    M = (z < a_c) + pp * (H - z)
+    slope = np.r_[0.0, np.cumsum((M[1:] + M[:-1]) / 2 * np.diff(z))]
+    v = np.r_[0.0, np.cumsum((slope[1:] + slope[:-1]) / 2 * np.diff(z))]
+    assert abs(v[-1]) < 1e-4 * np.abs(v).max()                         # the step at a: trapezoid error
+    assert np.interp(zb, z, slope) == pytest.approx(zb * (1 + pp * (2 * H - zb) / 2), rel=1e-6)
+    assert np.interp(zb, z, v) == pytest.approx(zb ** 2 * (0.5 + pp * (3 * H - zb) / 6), rel=1e-6)
+    R = tb.crane_schedule(crp, crp["t_event"])
+    assert R == pytest.approx(crp["R_event"]) and (R >= 0).all() and R.max() > 0
+    # lockable float: nothing while a part is held; free, the tool's weight across its axis over the rate
+    fp = P["lockable_float"]
+    sh = tb.float_shape(fp, ctx)
+    held = ctx.session.payload_kg > 0
+    assert held.any() and (~held).any() and not sh[held].any()
+    Rt, g_t = tb._gravity_tool(ctx)
+    assert np.abs(np.einsum("pi,pi->p", sh, Rt[:, :, 2])).max() < 1e-9
+    assert np.linalg.norm(sh[~held], axis=1) == pytest.approx(fp["m_kg"] * np.linalg.norm(g_t[~held, :2], axis=1))
+    # plunger: within F_f of the frictionless place, moving only when pushed out of the band, along the tool axis
+    pl = P["plunger_stiction"]
+    x = tb.plunger_state(pl, ctx)
+    x_eq = (pl["m_kg"] + ctx.session.payload_kg) * g_t[:, 2]
+    assert (np.abs(x - x_eq) <= pl["F_f"] + 1e-9).all()
+    still = np.abs(x_eq[1:] - x[:-1]) <= pl["F_f"]
+    assert x[1:][still] == pytest.approx(x[:-1][still])
+    assert np.abs(x[1:][~still] - x_eq[1:][~still]) == pytest.approx(np.full((~still).sum(), pl["F_f"]))
+    # dew: the saturation ratio at 20 degC (psychrometric tables: 0.0147); dry air -- the exact first-order warm-up in a
+    # still shop; the dew's latent heat warms the cold arm faster
+    assert tt.saturation_ratio(20.0) == pytest.approx(0.0147, abs=2e-4)
+    dp = P["dew_warming"]
+    ses = replace(ctx.session, air=dict(ctx.session.air, cycle_K=0.0, drift_K=0.0))
+    stub = SimpleNamespace(session=ses, q=ctx.q)
+    dry = tt.dew_temperatures(dict(dp, w_air=0.0), stub)
+    taus = np.array([dp["tau_s"][b] for b in dp["bodies"]] + [dp["tau_ped"]])
+    t = ses.time_s - ses.time_s[0] + dp["t_in"]
+    exact = dp["dT0"] * (np.exp(-dp["t_in"] / taus) - np.exp(-t[:, None] / taus))
+    assert dry == pytest.approx(exact, abs=0.02 * dp["dT0"])
+    fresh = dict(dp, t_in=0.0)                                           # both start at the first pose
+    assert (tt.dew_temperatures(fresh, stub) >= tt.dew_temperatures(dict(fresh, w_air=0.0), stub) - 1e-12).all()
+    assert tt.dew_temperatures(fresh, stub)[1].sum() > tt.dew_temperatures(dict(fresh, w_air=0.0), stub)[1].sum()
+
+    case, ctx = runs["tool_changer"]
+    P, hw = case.truth["params"], case.truth["hw"]
+    # balancer: dL/dq2 by differences; the leak lost the drawn share of the gas by the last pose; the push holds the arm
+    # up at the most loaded pose
+    bp = P["balancer_leak"]
+    qq = np.array([0.2, 0.5])
+    dL = (tj.balancer_length(bp, qq + 1e-6)[0] - tj.balancer_length(bp, qq - 1e-6)[0]) / 2e-6
+    assert tj.balancer_length(bp, qq)[1] == pytest.approx(dL, rel=1e-6)
+    sig = tj.leak_signal(bp, ctx.session)
+    assert sig[0] == 0.0 and 0.2 <= -sig[-1] <= 0.45
+    tau2 = ctx.loads[:, 1]
+    k = int(np.argmax(np.abs(tau2)))
+    share = -bp["F_ref"] * tj.balancer_torque(bp, ctx.q[k:k + 1, 1])[0] / tau2[k]
+    assert 0.6 <= share <= 0.9
+    assert tj.leak_twist(bp, ctx, hw) == pytest.approx(compliance(hw)[1] * tj.balancer_torque(bp, ctx.q[:, 1]) * sig)
+    # inclinometers: servoed on the readings, each link's absolute pitch reads as commanded (to second order)
+    ip = P["inclinometer"]
+    dq = tj.incl_apply(ip, ctx, hw).dq
+    for k, js in enumerate(ip["sensors"]):
+        a_true = (ctx.q + dq)[:, list(js)].sum(axis=1)
+        read = a_true + ip["c"][k] @ tj.incl_harmonics(a_true)
+        assert read == pytest.approx(ctx.q[:, list(js)].sum(axis=1), abs=1e-5)
+    # rangefinder: the cyclic error repeats with the fine unit U
+    rp = P["rangefinder"]
+    q2 = ctx.q.copy()
+    q2[:, 3] += rp["U"]
+    assert tj.range_signals(rp, q2) == pytest.approx(tj.range_signals(rp, ctx.q), abs=1e-9)
+    # shield: the ring mode is inextensional (u_r + du_phi / dphi = 0); the convergence grows from the session's start
+    sp = P["shield_squeeze"]
+    phi = np.linspace(0, 2 * np.pi, 7)
+    u_r = lambda f: np.cos(2 * (f - sp["phi_p"]))  # noqa: E731
+    du_phi = (-0.5 * np.sin(2 * (phi + 1e-6 - sp["phi_p"])) + 0.5 * np.sin(2 * (phi - 1e-6 - sp["phi_p"]))) / 2e-6
+    assert u_r(phi) + du_phi == pytest.approx(np.zeros(7), abs=1e-6)
+    g = tb.squeeze_signal(sp, ctx.session)
+    assert g[0] == 0.0 and (np.diff(g) >= 0).all() and g[-1] < 1.0
+    # main drive: without the inching the console follows the two-node closed form; the inching warms it
+    mp = P["main_drive"]
+    calm = tt.drive_node(dict(mp, inch=0.0), ctx.session)
+    tt_ = mp["t_start"] + ctx.session.time_s - ctx.session.time_s[0]
+    td, tc = mp["tau_d"], mp["tau_c"]
+    assert calm == pytest.approx((td * np.exp(-tt_ / td) - tc * np.exp(-tt_ / tc)) / (td - tc), abs=2e-3)
+    assert (tt.drive_node(mp, ctx.session) >= calm - 1e-12).all()

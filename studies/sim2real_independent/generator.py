@@ -45,6 +45,7 @@ from sim2real_indep import effects_p as ep
 from sim2real_indep import effects_q as eq
 from sim2real_indep import effects_r as er
 from sim2real_indep import effects_s as es
+from sim2real_indep import effects_t as et
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -81,11 +82,12 @@ EFFECTS = {
     **eq.EFFECTS_Q,  # set Q's new kinds
     **er.EFFECTS_R,  # set R's new kinds
     **es.EFFECTS_S,  # set S's new kinds
+    **et.EFFECTS_T,  # set T's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
-                 | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER)
+                 | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -172,7 +174,8 @@ def _session_options(robot_key, physics, rng):
     opts = ep.session_options(robot_key, physics, rng, opts)  # set P (no draws without a set-P kind)
     opts = eq.session_options(robot_key, physics, rng, opts)  # set Q (no draws without a set-Q kind)
     opts = er.session_options(robot_key, physics, rng, opts)  # set R (no draws without a set-R kind)
-    return es.session_options(robot_key, physics, rng, opts)  # set S (no draws without a set-S kind)
+    opts = es.session_options(robot_key, physics, rng, opts)  # set S (no draws without a set-S kind)
+    return et.session_options(robot_key, physics, rng, opts)  # set T (no draws without a set-T kind)
 
 
 def _tracker(rng):

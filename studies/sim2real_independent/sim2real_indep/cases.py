@@ -11,8 +11,9 @@ ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`)
 eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
 per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
-8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`) and set S (24
-cases, 8 per arm) a nineteenth (:mod:`effects_s`). A case: (id, robot, physics kinds, poses, split).
+8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
+cases, 8 per arm) a nineteenth (:mod:`effects_s`) and set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`). A
+case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
-SEED_S = 40_7019
+SEED_S, SEED_T = 40_7019, 40_7020
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -812,12 +813,68 @@ SET_S = [
     ("S24", "kr16_like", ("twin_robot", "cogging"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-S)
+#: set T: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_t`); written as an independent test set after set S, from the literature, without reading how
+#: the diagnosis models effects. The charging cable, the lockable float, the plunger and the dew warming sit on ur10 and
+#: kr16_like, the crane runway too, the balancer leak on kr16_like and tool_changer, the shield squeeze on tool_changer
+#: and kr16_like, the inclinometers, the rangefinder and the main drive on tool_changer (they do nothing on the other
+#: arms); the hose capstan and the hidden approach act on every arm. Oracle labels when written (oracle.py only; the
+#: diagnosis was not run): every case its truth (gains 28-94 %; each mixture component's removal costs 50 % or more),
+#: the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's model within 25 % of the truth;
+#: the closest: T14's joint model 1.39x, T06's transmission model 1.65x, T24's thermal model 1.70x, T01's link model and
+#: T17's thermal model 1.78x). Changed after trial draws (the first ranges in the modules' docstrings): a thermal kind
+#: of hollow links bowed by the drive-heated air stratified in them (a gradient turning with each link's orientation to
+#: gravity) was dropped for the dew warming -- the links swinging over the vertical averaged its gradient below 1 K
+#: (0.02 mm on ur10, absorbed on kr16_like); the crane bracket first stood 0.8-1.6 m high under lighter cranes (T03,
+#: then split by time: gain 11 %; it is now split at random, the time splits going to the drifts of T13 and T17); the
+#: balancer first lost 5-20 % of a 0.3-0.8 m gas column holding 40-70 % of the load (0.03 mm on kr16_like, absorbed;
+#: with more, still a gain of 8 % and the mount model at 1.10x in a trial draw), so its single-kind case went to
+#: tool_changer (T13), whose heavier boom twists more, and the column now follows the stroke (a short one had gone
+#: negative in a trial draw); the shield's console first stood near the invert with 0.5-2 mm of ovalisation (T13 on
+#: tool_changer, split at random, ambiguous with the thermal model at 1.00x: the vertical drift is its per-body drift of
+#: the column link), now at the side with 2-6 mm, the second case on kr16_like (T17, a handling arm in the same shield)
+#: split by time; the main drive first cooled without the cutterhead's inching under a shorter, deeper console (T14
+#: absorbed, then 1.26x); the dew warming on ur10 first had faster bodies, 8-20 K and an arrival up to 30 min early
+#: (gain 12 % in a trial draw); the inclinometers' gain mismatch was tried smaller (2e-4 - 1e-3: the offsets'
+#: once-per-turn term, which the link model copies as a gravity sag, dominated: 1.20x in a trial draw); the lockable
+#: float first used the shared pick-and-place schedule, which may hold a part in every block and never unlock (absorbed
+#: in a trial draw), now an alternately empty and holding gripper; ur10's hose pull was 30-80 N (T06: a gain of 33 %
+#: with the transmission model at 1.43x). No pose count or seed was changed. Trial draws on the seed + 1, + 2 and + 3
+#: were clean in all 24 cases each (the closest: the thermal model at 1.44x on T19 and 1.48x on T13, the link model at
+#: 1.50x on T11; the smallest gains 31 % on T19 and 38 % on T14).
+SET_T = [
+    ("T01", "ur10", ("charge_cable",), 120, "random"),
+    ("T02", "ur10", ("via_approach",), 45, "random"),
+    ("T03", "ur10", ("crane_runway",), 110, "random"),
+    ("T04", "ur10", ("lockable_float",), 140, "random"),
+    ("T05", "ur10", ("dew_warming",), 170, "time"),
+    ("T06", "ur10", ("hose_capstan",), 120, "random"),
+    ("T07", "ur10", (), 70, "random"),
+    ("T08", "ur10", ("plunger_stiction", "via_approach"), 180, "random"),
+    ("T09", "tool_changer", ("inclinometer",), 130, "random"),
+    ("T10", "tool_changer", ("shield_squeeze",), 160, "time"),
+    ("T11", "tool_changer", ("rangefinder",), 120, "random"),
+    ("T12", "tool_changer", ("main_drive",), 170, "time"),
+    ("T13", "tool_changer", ("balancer_leak",), 140, "time"),
+    ("T14", "tool_changer", ("main_drive",), 150, "random"),
+    ("T15", "tool_changer", (), 30, "random"),
+    ("T16", "tool_changer", ("rangefinder", "inclinometer"), 190, "random"),
+    ("T17", "kr16_like", ("shield_squeeze",), 160, "time"),
+    ("T18", "kr16_like", ("charge_cable",), 130, "random"),
+    ("T19", "kr16_like", ("hose_capstan",), 110, "random"),
+    ("T20", "kr16_like", ("crane_runway",), 150, "random"),
+    ("T21", "kr16_like", ("dew_warming",), 170, "time"),
+    ("T22", "kr16_like", ("lockable_float",), 130, "random"),
+    ("T23", "kr16_like", (), 90, "random"),
+    ("T24", "kr16_like", ("balancer_leak", "plunger_stiction"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-T)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
-        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S)}
+        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -190,7 +190,27 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "float_pinion": "joint_compliance", "wall_boot": "joint_compliance", "overshoot_lash": "backlash",
           "dowel_yaw": "backlash", "cogging": "transmission", "pot_loading": "transmission",
           "twin_robot": "mount_compliance", "mullins_mounts": "mount_compliance", "profile_frame": "link_deflection",
-          "diaphragm": "link_deflection", "oil_shrink": "thermal", "wheel_growth": "thermal"}
+          "diaphragm": "link_deflection", "oil_shrink": "thermal", "wheel_growth": "thermal",
+          # set T (sim2real_indep.effects_t; charge_cable, the joints twisted by a floor-lying charging cable's
+          # hanging weight, which grows with the clamp's height, and balancer_leak, axis 2's gear loaded by its
+          # balancer's gas leaking away through a worn seal, scored as joint compliance; hose_capstan, the joints
+          # twisted by a retracted hose's pull that the guide ring's capstan friction raises after a pull-out and lowers
+          # after a retraction, and via_approach, the lost motion's flank set by a hidden approach move along a
+          # tool-fixed direction, as backlash (errors that follow the last motion); inclinometer, tool_changer's boom
+          # joints read as differences of the links' absolute pitches from MEMS inclinometers, and rangefinder, its
+          # telescopic stage read by a phase-comparison laser rangefinder with cyclic errors, as transmission (the
+          # joints' reading); crane_runway, the base on a hall column bent by an overhead crane's wheel loads on its
+          # corbel, and shield_squeeze, the console on a shield that squeezing rock ovalises during the standstill, as
+          # mount compliance (the robot's support); lockable_float, a tool floating under its weight on a compliance
+          # unit that is locked while a part is held, and plunger_stiction, a tool on an axial compliance plunger held
+          # by its guide friction (a play operator of the axial weight), as link deflection (the end-of-arm structure
+          # carrying the target); dew_warming, an arm brought in cold and warmed by the air and by the dew condensing
+          # on it, and main_drive, the console bowed back as a tunnelling machine's main drive cools, as thermal)
+          "charge_cable": "joint_compliance", "balancer_leak": "joint_compliance", "hose_capstan": "backlash",
+          "via_approach": "backlash", "inclinometer": "transmission", "rangefinder": "transmission",
+          "crane_runway": "mount_compliance", "shield_squeeze": "mount_compliance",
+          "lockable_float": "link_deflection", "plunger_stiction": "link_deflection", "dew_warming": "thermal",
+          "main_drive": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
