@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; all nineteen: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; all twenty: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -209,6 +209,23 @@ its dowels under axis 1's reaction at the start and stop of moves, which `time_s
 S08, beside a flexure on the tool, the flexure is named and the yaw is not); a servo's overshoot carried across the lost motion on
 kr16_like (S19; named on ur10, S02); and a booth wall's bellows pulling the forearm on ur10, hedged over three families
 with the truth among them (S01; named on kr16_like, S20).
+
+**Set T** (24 cases, seed 40_7020) is a twentieth independent test set of twelve new kinds
+(`sim2real_indep/effects_t*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-S, and who did not run the diagnosis. It was run once, on the
+code as it stood after set S had been judged -- the diagnosis unchanged since then (the session's changes were on the
+design side: ISO 9283's multi-directional accuracy and static compliance, and the ball probability with a mean far
+from the centre, which the diagnosis does not use): 14/24 strict, 15 lenient, no false claim, median final / oracle
+RMS 1.46; right on 10 of 12 effect cases where the true family's generic model helps, 1 of 9 where it does not. Its
+misses: an overhead crane's wheel loads bending the hall column the robot hangs on, nothing of which is logged (T03,
+T20, `none`); a hose sliding round a guide ring whose friction follows the hose's last sliding direction, which no
+joint's direction column gives (T06, T19, `none`); a tunnel shield squeezed by the rock during the standstill, moving
+the console with time alone -- named thermal, the family whose time-driven variants copy a drift (T10, T17: confident
+and wrong, where the oracle's generic mount model gains nothing); a leaking gas balancer loading gear 2 more as the
+session goes on, likewise named thermal with link deflection (T13; with a plunger's stiction on the tool, T24, hedged
+between thermal and joint compliance); and MEMS inclinometers reading axes 2, 3 and 5 with pitch-dependent offset and
+gain errors, hedged over four families with the truth among them (T09, and with a laser rangefinder's cyclic error,
+T16; the rangefinder alone is named, T11).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -535,6 +552,24 @@ comment):
 | diaphragm | link_deflection | the tool on a double-diaphragm axial flexure stiffened by membrane action (large-deflection plate law) (ur10, kr16_like) | large-deflection plate theory (module docstring) |
 | oil_shrink | thermal | warm oil trapped in the loaded cylinder chambers cooling during the dwell, shrinking and letting the boom sink (oil temperature not logged) (tool_changer) | Merritt, *Hydraulic Control Systems*; Incropera & DeWitt |
 | wheel_growth | thermal | axis 1 read by a polyurethane-tyred measuring wheel on a steel ring, wheel and ring growing by different amounts with different lags: q1 (alpha_eff dT_w - alpha_St dT_R), driven by the logged hall air (kr16_like, tool_changer) | Incropera & DeWitt ch. 5; material data |
+
+Set T's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_T
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| charge_cable | joint_compliance | a heavy charging cable lying on the floor and hanging up to a clamp on the tool: its weight on the clamp grows with the clamp's height, the joints twisting under tau = J^T F (ur10, kr16_like) | Irvine, *Cable Structures* 1981; Craig ch. 5 |
+| balancer_leak | joint_compliance | axis 2's gas balancer losing gas through a worn seal, gear 2 carrying more of the load as the session goes on (kr16_like, tool_changer) | Merritt, *Hydraulic Control Systems* 1967 (laminar leakage) |
+| hose_capstan | backlash | a retracted hose sliding round a guide ring on the turret, its pull raised after a pull-out and lowered after a retraction by the ring's friction (capstan law) (all three arms) | Euler-Eytelwein belt friction: Johnson, *Contact Mechanics* 1985 |
+| via_approach | backlash | each pose reached by a short hidden approach move along a tool-fixed direction, which sets the flank the lightly loaded joints rest on (all three arms) | Whitney, IEEE Trans. Man-Mach. Syst. 10(2) 1969; Nordin & Gutman, Automatica 38, 2002 |
+| inclinometer | transmission | axes 2, 3 and 5 read as differences of MEMS tilt sensors on the links, with offset, gain and orthogonality errors varying with each link's pitch (tool_changer) | Fisher, Analog Devices AN-1057, 2010; Luczak et al., IEEE Sensors J. 6(6), 2006 |
+| rangefinder | transmission | the telescopic axis read by a phase-comparison laser distance sensor with cyclic errors in the stroke (tool_changer) | Ruger, *Electronic Distance Measurement* |
+| crane_runway | mount_compliance | the robot on a bracket of a hall column whose corbel an overhead crane's wheel loads bend as the crane travels and lifts (ur10, kr16_like) | EN 1993-6; Timoshenko & Gere, *Mechanics of Materials* |
+| shield_squeeze | mount_compliance | a tunnel-boring machine's shield ovalised by squeezing rock during the cutter-change standstill, moving the robot's console (tool_changer, kr16_like) | Sulem, Panet & Guenot, Int. J. Rock Mech. Min. Sci. 24(3), 1987; Timoshenko, *Strength of Materials* II |
+| lockable_float | link_deflection | the tool on a lateral compliance unit sagging under its own weight, locked and centred while a part is held (ur10, kr16_like) | compliance units with locking (as recalled from SCHUNK AGE-XY / ATI data) |
+| plunger_stiction | link_deflection | the tool on an axial spring plunger whose guide friction keeps it where it last stuck (ur10, kr16_like) | Krasnosel'skii & Pokrovskii, *Systems with Hysteresis* 1989 |
+| dew_warming | thermal | the arm brought in cold, warming with the air and faster while dew condenses on it (ur10, kr16_like) | Incropera & DeWitt ch. 5-6 (Chilton-Colburn); Threlkeld 1970; Alduchov & Eskridge 1996 |
+| main_drive | thermal | the robot's console on the tunnel machine's bulkhead bowing back as the main drive cools, re-warmed each time the cutterhead is inched (tool_changer) | Incropera & DeWitt ch. 5; Timoshenko & Goodier, *Theory of Elasticity* |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
