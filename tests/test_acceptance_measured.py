@@ -70,6 +70,30 @@ def test_measured_beside_prediction(data):
     assert len(cmp_) == 10 and cmp_.fleet_share_at_or_below.between(0.001, 0.999).all()
 
 
+def test_approach_groups_give_vap_and_ap_rp_from_the_first(data):
+    """The 30 cycles of each test pose taken as three approaches of 10 (direction columns), the second and third
+    shifted by known vectors: vAP_P is the largest distance between the shifts, within 4 standard deviations of the
+    barycentres' noise; AP_P and RP_l use the first approach's 10 cycles; without the columns vAP_P is NaN."""
+    robot, test, model, s, meas, xyz = data
+    shifts = np.array([[0.0, 0.0, 0.0], [0.1, 0.0, 0.0], [0.0, 0.2, 0.05]])
+    way = np.concatenate([np.repeat(np.arange(3), 10)] * 5 + [np.zeros(20, int)])
+    d = np.ones((len(way), 6))
+    d[way == 1, 0], d[way == 2, 1] = -1.0, -1.0
+    R0 = exp_so3(np.array([0.3, -0.2, 1.1]))                                  # the fixture's tracker rotation
+    moved = xyz + shifts[way] @ R0.T
+    m = measured_acceptance(Measurements(meas.q, moved, None, d, rows=meas.rows, source="synthetic"), robot,
+                            target_offset_mm=T_MM)
+    expect = max(np.linalg.norm(a - b) for a in shifts for b in shifts)
+    sd = xyz[:150].reshape(5, 30, 3).std(axis=1, ddof=1).max()                # the cycles' scatter per coordinate
+    np.testing.assert_array_less(np.abs(m.vap_mm - expect), 4 * np.sqrt(3 * 2 / 10) * sd)
+    assert list(m.approaches) == [3] * 5 and list(m.cycles) == [10] * 5 and "first approach" in m.note
+    np.testing.assert_allclose(m.rp_mm, pose_repeatability(moved[:150].reshape(5, 3, 10, 3)[:, 0]), rtol=1e-9)
+    frame = m.to_frame()                                                      # (it raised before: Joint.type)
+    assert frame["vAP_P_mm"].notna().all() and {"q1_deg", "q6_deg"} <= set(frame.columns)
+    plain = measured_acceptance(meas, robot, target_offset_mm=T_MM)
+    assert np.isnan(plain.vap_mm).all() and list(plain.approaches) == [1] * 5
+
+
 def test_no_repeated_pose_refused(data):
     robot, test, model, s, meas, _ = data
     once = meas.subset(np.arange(150, 170))

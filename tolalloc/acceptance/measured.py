@@ -10,7 +10,14 @@ established at poses other than the test poses). A file that repeats every pose 
 then fitted on the groups' barycentres themselves, which absorbs the rigid-body part of the robot's errors (said in
 :attr:`MeasuredAcceptance.note`). ``RP_l`` does not depend on the frame.
 
-Only positions are read (the measurement format has no orientation), so only ``AP_P`` and ``RP_l`` are computed.
+Where the file logs the approach directions (``dir1..dirN``) and a pose was approached in more than one way, each
+way at least twice, the pose's multi-directional accuracy variation ``vAP_P`` (ISO 9283 7.2.3) is the largest
+distance between the barycentres of its approach groups (the joints' directions, which set the flanks the gears
+rest on; the standard's three Cartesian approaches are one instance), and ``AP_P`` and ``RP_l`` use the cycles of the
+pose's first approach only (the standard's same-direction cycles).
+
+Only positions are read (the measurement format has no orientation), so only ``AP_P``, ``RP_l`` and ``vAP_P`` are
+computed.
 """
 
 from __future__ import annotations
@@ -38,6 +45,7 @@ class MeasuredAcceptance:
     q : array, shape (G, n) [rad, mm]
         The repeated command poses.
     cycles : array of int, shape (G,)
+        Cycles ``AP_P`` and ``RP_l`` use (those of the pose's first approach).
     ap_mm, rp_mm : arrays, shape (G,)
     rows : tuple of arrays
         File rows of each pose's cycles.
@@ -47,6 +55,10 @@ class MeasuredAcceptance:
         RMS residual of that fit.
     note : str
     robot : Robot
+    vap_mm : array, shape (G,)
+        ``vAP_P`` of each pose, NaN where it was approached one way only.
+    approaches : array of int, shape (G,)
+        Approach groups of each pose with at least two cycles.
     """
 
     q: np.ndarray
@@ -58,14 +70,17 @@ class MeasuredAcceptance:
     rms_registration_mm: float
     note: str
     robot: object
+    vap_mm: np.ndarray = None
+    approaches: np.ndarray = None
 
     def to_frame(self) -> pd.DataFrame:
-        """One row per repeated pose: ``pose``, ``cycles``, ``AP_P_mm``, ``RP_l_mm``, ``q<k>_deg`` / ``q<k>_mm``."""
+        """One row per repeated pose: ``pose``, ``cycles``, ``AP_P_mm``, ``RP_l_mm``, ``approaches``, ``vAP_P_mm``
+        (NaN for a pose approached one way), ``q<k>_deg`` / ``q<k>_mm``."""
         df = pd.DataFrame({"pose": np.arange(1, len(self.q) + 1), "cycles": self.cycles, "AP_P_mm": self.ap_mm,
-                           "RP_l_mm": self.rp_mm})
+                           "RP_l_mm": self.rp_mm, "approaches": self.approaches, "vAP_P_mm": self.vap_mm})
         qi = self.robot.q_to_interface(self.q)
         for j, jt in enumerate(self.robot.joints):
-            df[f"q{j + 1}_{'deg' if jt.type == 'revolute' else 'mm'}"] = qi[:, j]
+            df[f"q{j + 1}_{'deg' if jt.is_revolute else 'mm'}"] = qi[:, j]
         return df
 
 
@@ -124,17 +139,39 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
         R, p = kabsch(fit0.base_points(q_reg), x_reg)
         fit = replace(fit0, R=R, p_mm=p)
         fit = replace(fit, residual_mm=x_reg - fit.predict(q_reg))
-    ap, rp, rows, qs = [], [], [], []
+    ap, rp, rows, qs, vap, ways, n = [], [], [], [], [], [], []
     for g in rep:
         idx = np.flatnonzero(groups == g)
         base = (meas.xyz_mm[idx] - fit.p_mm) @ fit.R  # tracker -> base frame
         cmd = fit.base_points(meas.q[idx[:1]])[0]
-        ap.append(float(pose_accuracy(base, cmd)))
-        rp.append(float(pose_repeatability(base)))
+        bary, first = _approach_groups(meas.direction, idx, base)
+        ap.append(float(pose_accuracy(base[first], cmd)))
+        rp.append(float(pose_repeatability(base[first])))
+        vap.append(max((float(np.linalg.norm(a - b)) for i, a in enumerate(bary) for b in bary[i + 1:]),
+                       default=np.nan))
+        ways.append(len(bary))
+        n.append(int(first.sum()))
         rows.append(meas.rows[idx] if len(meas.rows) else idx + 1)
         qs.append(meas.q[idx[0]])
-    return MeasuredAcceptance(np.array(qs), counts[rep], np.array(ap), np.array(rp), tuple(rows),
-                              np.asarray(reg_rows), fit.rms_mm, note, robot)
+    if any(w > 1 for w in ways):
+        note += ("; poses approached in more than one way: AP_P and RP_l from the cycles of each pose's first "
+                 "approach, vAP_P between the approaches' barycentres (ISO 9283 7.2.1-7.2.3)")
+    return MeasuredAcceptance(np.array(qs), np.array(n), np.array(ap), np.array(rp), tuple(rows),
+                              np.asarray(reg_rows), fit.rms_mm, note, robot, np.array(vap), np.array(ways))
+
+
+def _approach_groups(direction, idx, base) -> tuple:
+    """The barycentres (base frame) of one pose's approach groups with at least two cycles -- rows of ``idx`` with
+    the same joint directions, in order of first appearance (one group without direction columns) -- and the mask
+    of the first group's rows in ``idx``."""
+    if direction is None:
+        return [base.mean(axis=0)], np.ones(len(idx), bool)
+    _, first_at, inverse = np.unique(direction[idx], axis=0, return_index=True, return_inverse=True)
+    inverse = np.ravel(inverse)
+    kept = [k for k in np.argsort(first_at) if np.sum(inverse == k) >= MIN_CYCLES]
+    if not kept:                      # every approach once: the pose's cycles together, as without the columns
+        return [base.mean(axis=0)], np.ones(len(idx), bool)
+    return [base[inverse == k].mean(axis=0) for k in kept], inverse == kept[0]
 
 
 def compare_with_prediction(measured: MeasuredAcceptance, prediction) -> pd.DataFrame:
