@@ -114,3 +114,31 @@ def test_beam_sag_equals_an_independent_quadrature_on_folded_and_loaded_arms():
         at = tool + robot.fk_internal(q)[:, :3, :3] @ robot.components.payload.com_mm
         lib = beam_sag(robot, q, tool, np.full(len(q), kg), at)
         np.testing.assert_allclose(lib, sim.bending(q, kg), atol=2e-5 * np.abs(lib).max())
+
+
+def test_a_screw_errs_over_its_stroke_not_over_2_pi_mm():
+    """A ball screw's catalogue travel deviation is one half-wave over the joint's stroke (order pi / stroke in
+    rad/mm, amplitude half the peak-to-peak), so two poses a few mm apart on the stroke keep nearly the same error in
+    the acceptance test's kernel; a missing stroke is refused."""
+    from tolalloc.acceptance.parts import _periodic_kernel
+    from tolalloc.errormodel.parts import gear_harmonics, stroke_of, with_parts
+    from tolalloc.exceptions import TolallocError
+    from tolalloc.robot.io import load_robot
+
+    robot = load_robot("tool_changer")
+    robot = with_parts(robot, {k: s.options[0].name for k, s in robot.components.slots.items()})
+    j = next(i for i, jt in enumerate(robot.joints) if not jt.is_revolute)
+    red = robot.components.joint(robot.joints[j].name).reducer
+    S = stroke_of(robot, j)
+    assert S == pytest.approx(robot.upper[j] - robot.lower[j]) and S > 100
+    orders, amps = gear_harmonics(red, False, S)
+    np.testing.assert_allclose(orders, [np.pi / S])
+    np.testing.assert_allclose(amps, [red.transmission_accuracy / 2])
+    q = np.tile(0.5 * (robot.lower + robot.upper), (3, 1))
+    q[:, j] += np.array([0.0, 5.0, S / 2])                                   # 5 mm and half the stroke apart
+    K = _periodic_kernel(robot, j, "transmission", q)
+    a2 = amps[0] ** 2 / 2
+    np.testing.assert_allclose(K[0], a2 * np.cos(np.pi / S * (q[0, j] - q[:, j])), rtol=1e-12)
+    assert K[0, 1] > 0.99 * a2 and abs(K[0, 2]) < 1e-9 * a2
+    with pytest.raises(TolallocError, match="stroke"):
+        gear_harmonics(red, False, None)

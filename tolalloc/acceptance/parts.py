@@ -47,7 +47,7 @@ import numpy as np
 
 from tolalloc.acceptance.model import EffectCovariance
 from tolalloc.errormodel.parts import (COMPENSATION_RESIDUAL, Conditions, PartEffects, encoder_harmonics,
-                                       gear_harmonics, residual_factors)
+                                       gear_harmonics, residual_factors, stroke_of)
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["parts_effects", "effect_covariance"]
@@ -148,7 +148,7 @@ def _periodic_kernel(robot, j: int, effect: str, q: np.ndarray) -> np.ndarray:
     parts = robot.components.joint(robot.joints[j].name)
     rev = robot.joints[j].is_revolute
     if effect == "transmission":
-        orders, amps = gear_harmonics(parts.reducer, rev)
+        orders, amps = gear_harmonics(parts.reducer, rev, stroke_of(robot, j))
     else:
         orders, amps = encoder_harmonics(parts.encoder, getattr(parts.reducer, "ratio", None), rev)
     d = q[:, j][:, None] - q[:, j][None, :]

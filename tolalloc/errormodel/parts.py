@@ -15,7 +15,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     effect        term (per joint / link)              mean                      systematic sd        random sd
     compliance    gear wind-up (motor-side loop)       catalogue curve at load   s |wind-up|          -
     lost_motion   flank +-b/2 by approach direction    0                         -                    b / 2
-    transmission  gear error at orders 1, N, 2N        0                         sqrt(sum a^2 / 2)    repeat. / sqrt(3)
+    transmission  gear error at orders 1, N, 2N (*)    0                         sqrt(sum a^2 / 2)    repeat. / sqrt(3)
     encoder       graduation and eccentricity          0                         sqrt(sum a^2 / 2)    -
     homing        zero of an incremental encoder       0                         -                    h / sqrt(3)
     bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
@@ -24,6 +24,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     beam          link bending (sections)              sag                       BEAM_SD |sag|        -
     mount         base tilt                            tilt                      MOUNT_SD |tilt|      -
 
+(*) a linear reducer (a ball screw): one half-wave of its travel deviation over the stroke (:func:`gear_harmonics`).
 A joint whose encoder is on the **output** side closes its position loop on the output angle: its gear's wind-up,
 lost motion and transmission error do not reach the joint angle, the encoder's own error does. ``s`` is the
 reducer's ``stiffness_sd``. An incremental encoder's zero (``homing_repeatability`` +-h) is set anew at every
@@ -56,7 +57,7 @@ from tolalloc.robot.model import Robot
 
 __all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "Conditions",
            "PartsModel",
-           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics",
+           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics", "stroke_of",
            "encoder_harmonics"]
 
 
@@ -144,11 +145,24 @@ def _rotation_of(displacement, p: np.ndarray) -> np.ndarray:
     return np.stack([(dy[:, 2] - dz[:, 1]) / 2, (dz[:, 0] - dx[:, 2]) / 2, (dx[:, 1] - dy[:, 0]) / 2], axis=1)
 
 
-def gear_harmonics(red, revolute: bool) -> tuple:
+def gear_harmonics(red, revolute: bool, stroke_mm: float | None = None) -> tuple:
     """``(orders (K,), amplitudes (K,))`` [rad or mm] of reducer ``red``'s transmission error in its joint's angle
     (:func:`~tolalloc.physics.transmission.catalogue_amplitudes`; zero amplitudes without a transmission accuracy):
-    sinusoids at random phases, each of variance ``a^2 / 2``."""
-    return catalogue_amplitudes(red.transmission_accuracy or 0.0, red.ratio if revolute else None)
+    sinusoids at random phases, each of variance ``a^2 / 2``. A linear reducer's figure (a ball screw's travel
+    deviation, ISO 3408-3) is the peak-to-peak over the stroke: one half-wave over the joint's ``stroke_mm``, order
+    ``pi / stroke`` [rad/mm] (a bow and, at its phase, a trend over the stroke; a screw's wobble within one turn of
+    its lead is not in the catalogue's figure and is not modelled)."""
+    ptp = red.transmission_accuracy or 0.0
+    if revolute:
+        return catalogue_amplitudes(ptp, red.ratio)
+    if not stroke_mm or not np.isfinite(stroke_mm) or stroke_mm <= 0:
+        raise TolallocError(f"a linear reducer's transmission error needs the joint's stroke [mm], got {stroke_mm!r}")
+    return np.array([np.pi / float(stroke_mm)]), np.array([ptp / 2.0])
+
+
+def stroke_of(robot: Robot, j: int) -> float | None:
+    """Joint ``j``'s range [mm] if it is prismatic (its limits), else None."""
+    return None if robot.joints[j].is_revolute else float(robot.upper[j] - robot.lower[j])
 
 
 def encoder_harmonics(enc, ratio: float | None, revolute: bool) -> tuple:
@@ -272,7 +286,7 @@ class PartEffects:
         if red.lost_motion and "lost_motion" in effects:
             out += self._term(f"lost_motion_{nm}", "lost_motion", j, col, rnd=red.lost_motion / 2.0)
         if (red.transmission_accuracy or red.repeatability) and "transmission" in effects:
-            _, amp = gear_harmonics(red, self.robot.joints[j].is_revolute)
+            _, amp = gear_harmonics(red, self.robot.joints[j].is_revolute, stroke_of(self.robot, j))
             out += self._term(f"transmission_{nm}", "transmission", j, col, sys=np.sqrt(np.sum(amp ** 2) / 2),
                               rnd=(red.repeatability or 0.0) / np.sqrt(3.0))
         return out

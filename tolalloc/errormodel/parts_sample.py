@@ -15,7 +15,8 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD, THERMAL_SD, PartEffects,
-                                       encoder_harmonics, gear_harmonics, motor_side, residual_factors)
+                                       encoder_harmonics, gear_harmonics, motor_side, residual_factors,
+                                       stroke_of)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
 from tolalloc.physics.compliance import mount_tilt
@@ -46,7 +47,7 @@ def _joint_draws(fx: PartEffects, i: int, j: int, n: int, rng, f: dict) -> tuple
             side = rng.choice([-1.0, 1.0], (n, 1))[:, 0]  # the flank of a random approach, either side
             rnd += side * red.lost_motion / 2.0
         if red.transmission_accuracy:
-            sys += f["transmission"] * _sines(qj, *gear_harmonics(red, rev), rng, n)
+            sys += f["transmission"] * _sines(qj, *gear_harmonics(red, rev, stroke_of(fx.robot, j)), rng, n)
         if red.repeatability:
             rnd += rng.uniform(-red.repeatability, red.repeatability, n)
     if enc is not None and (enc.accuracy or enc.eccentricity):
