@@ -18,7 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.errormodel.parts import Conditions, PartEffects
+from tolalloc.errormodel.build import build_error_model
+from tolalloc.errormodel.parts import Conditions, PartEffects, parts_error_model
 from tolalloc.exceptions import ArgumentError, TolallocError
 
 __all__ = ["StaticCompliance", "static_compliance", "ELASTIC", "LOAD_DIRECTIONS", "GRAVITY"]
@@ -122,23 +123,25 @@ def static_compliance(robot, q, *, load_n: float | None = None, steps: int = 10)
         raise ArgumentError("load_n", f"expected a load > 0 [N], e.g. 100, got {load_n!r}.")
     loads = float(load_n) * np.arange(1, steps + 1) / steps
     R = robot.fk_internal(q)[0, :3, :3]
-    base = _elastic(robot, q, np.zeros(3))
+    pm = parts_error_model(build_error_model(robot, "generic"), robot)   # built once for every load
+    base = _elastic(robot, q, np.zeros(3), pm)
     disp = np.zeros((len(LOAD_DIRECTIONS), steps, 3))
     parts = {e: np.zeros_like(disp) for e in base}
     for d, name in enumerate(LOAD_DIRECTIONS):
         axis = np.zeros(3)
         axis["xyz".index(name[1])] = 1.0 if name[0] == "+" else -1.0
         for s, load in enumerate(loads):
-            loaded = _elastic(robot, q, R.T @ (load * axis))       # the process force is given in the tool frame
+            loaded = _elastic(robot, q, R.T @ (load * axis), pm)   # the process force is given in the tool frame
             for e in base:
                 parts[e][d, s] = loaded[e] - base[e]
             disp[d, s] = sum(parts[e][d, s] for e in base)
     return StaticCompliance(robot.name, q[0], loads, disp, parts)
 
 
-def _elastic(robot, q, force_tool) -> dict:
-    """The elastic effects' mean displacement of the tool point [mm] under a force at it (tool frame), per effect."""
-    fx = PartEffects(robot, q, 0.0, 20.0, Conditions(process_force_n=tuple(force_tool)))
+def _elastic(robot, q, force_tool, pm) -> dict:
+    """The elastic effects' mean displacement of the tool point [mm] under a force at it (tool frame), per effect
+    (``pm``: the robot's parts error model)."""
+    fx = PartEffects(robot, q, 0.0, 20.0, Conditions(process_force_n=tuple(force_tool)), pm=pm)
     t = fx.terms()
     out = {}
     for e in ELASTIC:
