@@ -2984,3 +2984,155 @@ def test_set_t_every_kind_lies_in_its_true_structure_and_known_answers():
     td, tc = mp["tau_d"], mp["tau_c"]
     assert calm == pytest.approx((td * np.exp(-tt_ / td) - tc * np.exp(-tt_ / tc)) / (td - tc), abs=2e-3)
     assert (tt.drive_node(mp, ctx.session) >= calm - 1e-12).all()
+
+
+def test_set_u_cases_kinds_and_determinism():
+    """Set U: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session hook leaves cases without a set-U kind alone (no random
+    numbers drawn) and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; the
+    platform's working day, the parked tool's blocks and the gripper alternately empty and holding a part."""
+    from sim2real_indep import effects_u as eu
+
+    _assert_set_module("U", 40_7021, eu, ("gear", "main_drive"))
+    for name in ("effects_u", "effects_u_joint", "effects_u_body", "effects_u_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_u" in _imports(STUDY / "generator.py")
+    assert eu.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": eu.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        day = opts(("platform_growth",))
+        assert 5 <= day["blocks"] <= 8 and day["gap_kind"] == "pause" and day["pause_min"] == (30.0, 90.0)
+        assert 2.0 <= abs(day["air"]["drift_K"]) <= 6.0
+        park = opts(("parked_tool",), "ur10")
+        assert 4 <= park["blocks"] <= 8 and park["gap_kind"] == "pause" and park["pause_min"] == (5.0, 20.0)
+        for kind in ("magnet_coil", "sandwich_boom"):
+            steps = np.array(opts((kind,), "ur10")["payload_steps"])
+            assert 6 <= len(steps) <= 10 and not steps[::2].any() and (steps[1::2] >= 3.0).all()
+        assert opts(("integral_clamp", "bowden_lash", "soiled_disc")) == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert eu.probe_hook(("gear",), probe) is probe
+    assert eu.probe_hook(("sleeve_rock",), probe) == pytest.approx(probe + [0, 0, 250.0])
+    assert eu.probe_hook(("sandwich_boom",), probe) == pytest.approx(probe + [400.0, 0, 0])
+    _assert_regenerates("U", max_effect_poses=50)
+
+
+def test_set_u_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-U kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the chain and the Bowden cable do nothing on tool_changer;
+    and known answers: the clamp's dead zone, the parked tool's J^T F and blocks, the sagging span's extra length, the
+    sheath's wrap, the dropped counts' telescoping travel, the soiled sector's bump, the moment about a point below the
+    base, the slab's two sides, the sandwich's face stiffness and its sag with gravity, the sleeve's throw, the
+    platform's lag of a ramp and the coil's node."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_u_body as ub
+    from sim2real_indep import effects_u_joint as uj
+    from sim2real_indep import effects_u_thermal as ut
+    from sim2real_indep.effects_body import mount_moment
+
+    every = ("integral_clamp", "parked_tool", "chain_slack", "bowden_lash", "dropped_counts", "soiled_disc",
+             "trunnion", "slab_joint", "sandwich_boom", "sleeve_rock", "platform_growth", "magnet_coil")
+    inert = {"ur10": (), "tool_changer": ("chain_slack", "bowden_lash"), "kr16_like": ()}
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 21)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"integral_clamp": lambda: 1 / p["K_s"], "parked_tool": lambda: [p["m_kg"]],
+                   "chain_slack": lambda: [p["b_h"]], "bowden_lash": lambda: [p["b0"]],
+                   "dropped_counts": lambda: p["eps"], "soiled_disc": lambda: [p["A"]],
+                   "trunnion": lambda: [1 / p["k_t"]], "slab_joint": lambda: [p["c_s"], p["c_i"]],
+                   "sandwich_boom": lambda: [p["c_tip"], p["d_own"]], "sleeve_rock": lambda: [p["throw_mm"]],
+                   "platform_growth": lambda: [p["alpha"]], "magnet_coil": lambda: [p["alpha"] * p["dT_max"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, hw, s = case.truth["params"], case.truth["hw"], ctx.session
+    # clamp: the proportional term holds what the clamped integrator leaves, tau - clip(tau, -T_I, T_I)
+    assert uj.clamp_dead_zone(np.array([-3.0, -1.0, 0.0, 1.0, 3.0]), 2.0) == pytest.approx([-1, 0, 0, 0, 1])
+    cp = P["integral_clamp"]
+    tau = ctx.loads[:, cp["joints"]]
+    assert uj.clamp_signals(cp, ctx) == pytest.approx(tau - np.clip(tau, -cp["T_I"], cp["T_I"]))
+    # parked tool: J^T F at its centre of mass, nothing on the joints from its body on, the same in a whole block
+    pp = P["parked_tool"]
+    x = uj.parked_point(pp, ctx)
+    J = kin.position_jacobian(ctx.chain, ctx.q, x)
+    full = np.einsum("pij,i->pj", J, [0.0, 0.0, -kin.G]) / 1000.0
+    loads = uj.parked_loads(pp, ctx)
+    assert loads[:, :3] == pytest.approx(full[:, :3] * pp["present"][:, None]) and not loads[:, 3:].any()
+    b = uj.block_index(s)
+    assert all(len(set(pp["present"][b == k])) == 1 for k in set(b)) and pp["pattern"].any() and not pp["pattern"].all()
+    # chain: a horizontal span of sag f hangs 8 f^2 / (3 L) longer (the parabola's arc); the play b = that / r
+    ch = P["chain_slack"]
+    f = ch["w_N_m"] * ch["L_m"] ** 2 / (8 * ch["H_N"])
+    xx = np.linspace(0.0, ch["L_m"], 200001)
+    y = 4 * f * xx * (ch["L_m"] - xx) / ch["L_m"] ** 2
+    arc = np.sum(np.hypot(np.diff(xx), np.diff(y)))
+    assert (arc - ch["L_m"]) / ch["r_m"] == pytest.approx(ch["b_h"], rel=1e-3)
+    c2 = uj.chain_cos2(ch, ctx)
+    assert (c2 >= 0).all() and (c2 <= 1).all() and (np.abs(ch["flank"]) == 0.5).all()
+    loaded = np.abs(ctx.loads[:, 2]) > ch["drag"]
+    assert ch["flank"][loaded] == pytest.approx(0.5 * np.sign(ctx.loads[loaded, 2]))
+    # Bowden: the sheath runs straight at q3_n (wrap theta0); the drawn play at theta0 + 1 rad
+    bp = P["bowden_lash"]
+    q = np.zeros((1, 6))
+    q[0, 2] = bp["q3_n"]
+    assert uj.bowden_wrap(bp, q) == pytest.approx([bp["theta0"]])
+    play = np.rad2deg(bp["b0"] * (np.exp(bp["mu"] * (bp["theta0"] + 1.0)) - 1.0))
+    assert 0.1 <= play <= 0.35
+    # dropped counts: every move fast, the travel telescopes to q - q[0]; none fast, nothing
+    dp = P["dropped_counts"]
+    assert uj.count_signals(dict(dp, v_c=np.full(3, -1.0)), s) == pytest.approx(s.q[:, :3] - s.q[0, :3])
+    assert not uj.count_signals(dict(dp, v_c=np.full(3, np.inf)), s).any()
+    # soiled sector: a bump of 1 at its centre, exp(-1/2) one width off
+    sp = P["soiled_disc"]
+    qs = np.zeros((3, 6))
+    qs[:, 1] = sp["theta_c"] + np.array([0.0, sp["w"], -sp["w"]])
+    assert uj.soil_signal(sp, qs) == pytest.approx([1.0, np.exp(-0.5), np.exp(-0.5)])
+    # trunnion: the gravity moment about a point below the base equals the one about the base origin; the table turns
+    # about its axis
+    tp = P["trunnion"]
+    m, pos, _ = ctx.mass_state
+    p0 = np.array([0.0, 0.0, -tp["h_mm"]])
+    M0 = np.cross((pos - p0) / 1000.0, m[..., None] * np.array([0.0, 0.0, -kin.G])).sum(axis=1)
+    assert M0 == pytest.approx(mount_moment(ctx))
+    sh = ub.trunnion_shape(tp, ctx)
+    assert np.abs(sh @ tp["axis"]).max() < 1e-9 * np.abs(sh).max()
+    # slab: both sides alike, a linear tilt about the joint's line
+    lp = P["slab_joint"]
+    lin = ub._tilt(lp["axis"], mount_moment(ctx) @ lp["axis"], ctx.target, lp["pivot"]) * lp["c_i"]
+    assert ub.slab_apply(dict(lp, c_s=lp["c_i"]), ctx, hw).displace == pytest.approx(lin)
+    # sandwich: the faces' D = E b t d^2 / 2 within 10 % of the exact two-face section's; the boom sags with gravity
+    E, bb, tf, cc = 70e9, 0.1, 0.0015, 0.03
+    exact = E * bb * ((cc + 2 * tf) ** 3 - cc ** 3) / 12
+    assert E * bb * tf * (cc + tf) ** 2 / 2 == pytest.approx(exact, rel=0.1)
+    sw = P["sandwich_boom"]
+    dsp = ub.boom_apply(sw, ctx, hw).displace
+    assert (dsp[:, 2] <= 1e-12).all() and np.abs(dsp).max() > 0
+    # sleeve: the throw across the tube, towards gravity's transverse component, at most the full throw
+    sl = P["sleeve_rock"]
+    u = ub.sleeve_shape(sl, ctx)
+    Rt, g_t = ub._gravity_tool(ctx)
+    assert np.abs(np.einsum("pi,pi->p", u, Rt[:, :, 2])).max() < 1e-12
+    assert (np.linalg.norm(u, axis=1) <= 1).all() and (u[:, 2] <= 1e-12).all()
+    # platform: a ramping air, the steel lags it by tau (the first-order response to a ramp)
+    pg = P["platform_growth"]
+    ramp = replace(s, air=dict(s.air, cycle_K=0.0, drift_K=3.0))
+    t = ramp.time_s - ramp.time_s[0]
+    rate = 3.0 / t[-1]
+    assert ut.platform_temperature(pg, ramp) == pytest.approx(rate * (t - pg["tau_s"] * (1 - np.exp(-t / pg["tau_s"]))),
+                                                             abs=1e-3)
+    # coil: off until a part is held; held from the first pose on, 1 - exp(-t / tau)
+    mc = P["magnet_coil"]
+    node = ut.coil_node(mc, s)
+    held = s.payload_kg > 0
+    assert not node[:np.argmax(held)].any() and (node >= 0).all() and (node < 1).all()
+    assert ut.coil_node(mc, replace(s, payload_kg=np.ones(len(t)))) == pytest.approx(1 - np.exp(-t / mc["tau_s"]))

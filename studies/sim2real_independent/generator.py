@@ -46,6 +46,7 @@ from sim2real_indep import effects_q as eq
 from sim2real_indep import effects_r as er
 from sim2real_indep import effects_s as es
 from sim2real_indep import effects_t as et
+from sim2real_indep import effects_u as eu
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -83,11 +84,12 @@ EFFECTS = {
     **er.EFFECTS_R,  # set R's new kinds
     **es.EFFECTS_S,  # set S's new kinds
     **et.EFFECTS_T,  # set T's new kinds
+    **eu.EFFECTS_U,  # set U's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
-                 | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER)
+                 | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER | eu.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -175,7 +177,8 @@ def _session_options(robot_key, physics, rng):
     opts = eq.session_options(robot_key, physics, rng, opts)  # set Q (no draws without a set-Q kind)
     opts = er.session_options(robot_key, physics, rng, opts)  # set R (no draws without a set-R kind)
     opts = es.session_options(robot_key, physics, rng, opts)  # set S (no draws without a set-S kind)
-    return et.session_options(robot_key, physics, rng, opts)  # set T (no draws without a set-T kind)
+    opts = et.session_options(robot_key, physics, rng, opts)  # set T (no draws without a set-T kind)
+    return eu.session_options(robot_key, physics, rng, opts)  # set U (no draws without a set-U kind)
 
 
 def _tracker(rng):
@@ -213,6 +216,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = eq.probe_hook(physics, probe)  # set Q's holder, gooseneck, gripper boom (no draws)
     probe = er.probe_hook(physics, probe)  # set R's bracket, swing-away tool (no draws)
     probe = es.probe_hook(physics, probe)  # set S's profile frame (no draws)
+    probe = eu.probe_hook(physics, probe)  # set U's sandwich boom, sleeve extension (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

@@ -12,8 +12,8 @@ eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effect
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
 per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
 8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
-cases, 8 per arm) a nineteenth (:mod:`effects_s`) and set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`). A
-case: (id, robot, physics kinds, poses, split).
+cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`) and set U
+(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
-SEED_S, SEED_T = 40_7019, 40_7020
+SEED_S, SEED_T, SEED_U = 40_7019, 40_7020, 40_7021
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -869,12 +869,72 @@ SET_T = [
     ("T24", "kr16_like", ("balancer_leak", "plunger_stiction"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-T)
+#: set U: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_u`); written as an independent test set after set T, from the literature, without
+#: reading how the diagnosis models effects. The chain stage and the Bowden cable sit on ur10 and kr16_like (none on
+#: tool_changer), the sandwich boom's cases on ur10 and kr16_like (its booms sized for their parts), the others on
+#: every arm. Oracle labels when written (oracle.py only; the diagnosis was not run): every case its truth (gains
+#: 24-93 %; each mixture component's removal costs 12 % or more), the geometry-only cases none; no soft labels (no
+#: gain below 20 %, no rival family's model within 25 % of the truth; the closest: U01's link model 1.27x, U18's
+#: backlash model 1.32x, U09's joint model 1.47x; the smallest gains 24 % on U18 and 45 % on U09). Changed after
+#: trial draws (the first ranges in the modules' docstrings): the integrator clamp was first at 40-75 % of the
+#: largest load with a proportional stiffness of 0.5-2x the gear's (U01: the link model at 1.25x -- a clamp that low
+#: leaves a sag nearly proportional to the load, the beams' law), now 55-85 % and 0.3-1.5x; the platform was steel on
+#: every arm, 2-6 m from its fixed bearing, lagging by 30-90 min (U05 on ur10: a gain of 10 %, 0.05 mm), now an
+#: aluminium-profile platform under the light arm, 3-8 m; the chain stage was first on tool_changer and kr16_like
+#: with a slack-side tension of 300-700 N (U09 on tool_changer ambiguous with the transmission model at 1.03x: its
+#: axis 3 is loaded one way over its range, so the flank never turns and the play reads as a function of axis 2's
+#: angle), so the tool_changer case went to ur10 (U06, whose soiled-disc case went to tool_changer as U09) and the
+#: tension now follows a tensioner's sag of the span (tried at the ordinary drives' 1-4 %: 2-4 mm at the tool; at
+#: 0.3-0.5 %: U19 absorbed in a trial draw), 0.5-1 %; the Bowden sheath's drag was 5-15 % of the rated torque (U20:
+#: the joint model at 1.14x in a trial draw, the gravity flank nearly everywhere), now 10-30 %; the parked tool
+#: weighed 2-5 / 4-10 / 20-50 kg, sat by axis 4 and was parked at random in some blocks (U17: a gain of 22 % with the
+#: mount model at 1.25x; U12, split by time, absorbed in a trial draw with the tool in every training block), now
+#: 40-90 % of the largest payload, in a holder by the wrist, changed at each block; the magnet coil's gripper was
+#: 120-250 mm long, 15-40 K warm, of 10-30 min (U18 absorbed, 0.03 mm), now 200-400 mm, 25-60 K, 5-15 min, and U18,
+#: then at a gain of 10 % with the link model at 1.12x on its split by time (the part's weight bends the tubes in the
+#: same blocks that warm the gripper), is now split at random, the time split going to U10; the slab joint took the
+#: plate stiffness of hardware.py with a ratio of 2-5 (6 mm at tool_changer's tool), now per-arm ranges and 2-4; the
+#: sandwich boom's core was aluminium honeycomb of one section for all (1.1 mm on kr16_like), now a PMI foam with
+#: per-arm sections; the trunnion under ur10 was 0.4-1.5e6 N m/rad (0.03 mm, absorbed in a trial draw), now
+#: 0.2-0.8e6. No pose count or seed was changed. Trial draws on the seed + 1, + 2 and + 3 (the case seeds + 1000003
+#: k): + 1 clean in all 24 cases (the closest: the link model at 1.31x on U19); + 2 all but U03 (the trunnion under
+#: ur10 at a gain of 14 %, the joint model at 1.13x); + 3 all but U10 (the slab joint under tool_changer at a gain of
+#: 6 %) and U14 (the link model at 1.25x).
+SET_U = [
+    ("U01", "ur10", ("integral_clamp",), 120, "random"),
+    ("U02", "ur10", ("bowden_lash",), 45, "random"),
+    ("U03", "ur10", ("trunnion",), 100, "random"),
+    ("U04", "ur10", ("sandwich_boom",), 140, "random"),
+    ("U05", "ur10", ("platform_growth",), 170, "time"),
+    ("U06", "ur10", ("chain_slack",), 120, "random"),
+    ("U07", "ur10", (), 70, "random"),
+    ("U08", "ur10", ("magnet_coil", "dropped_counts"), 180, "time"),
+    ("U09", "tool_changer", ("soiled_disc",), 130, "random"),
+    ("U10", "tool_changer", ("slab_joint",), 150, "time"),
+    ("U11", "tool_changer", ("dropped_counts",), 120, "time"),
+    ("U12", "tool_changer", ("parked_tool",), 160, "time"),
+    ("U13", "tool_changer", ("sleeve_rock",), 140, "random"),
+    ("U14", "tool_changer", ("integral_clamp",), 110, "random"),
+    ("U15", "tool_changer", (), 30, "random"),
+    ("U16", "tool_changer", ("trunnion", "soiled_disc"), 190, "random"),
+    ("U17", "kr16_like", ("parked_tool",), 140, "random"),
+    ("U18", "kr16_like", ("magnet_coil",), 160, "random"),
+    ("U19", "kr16_like", ("chain_slack",), 110, "random"),
+    ("U20", "kr16_like", ("bowden_lash",), 120, "random"),
+    ("U21", "kr16_like", ("sleeve_rock",), 150, "random"),
+    ("U22", "kr16_like", ("platform_growth",), 170, "time"),
+    ("U23", "kr16_like", (), 90, "random"),
+    ("U24", "kr16_like", ("slab_joint", "sandwich_boom"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-U)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
-        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T)}
+        "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
+        "U": (SET_U, SEED_U)}
 
 
 def case_seed(set_name: str, index: int) -> int:

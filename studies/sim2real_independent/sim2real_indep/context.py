@@ -210,7 +210,23 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "via_approach": "backlash", "inclinometer": "transmission", "rangefinder": "transmission",
           "crane_runway": "mount_compliance", "shield_squeeze": "mount_compliance",
           "lockable_float": "link_deflection", "plunger_stiction": "link_deflection", "dew_warming": "thermal",
-          "main_drive": "thermal"}
+          "main_drive": "thermal",
+          # set U (sim2real_indep.effects_u; integral_clamp, the main axes sagging by the load their anti-windup-clamped
+          # integrator leaves to the proportional term, and parked_tool, the gears twisted by a spare tool parked on the
+          # forearm in some blocks, scored as joint compliance; chain_slack, axis 3's lost motion across a roller
+          # chain's sagging slack strand, and bowden_lash, axis 5's across a Bowden cable's sheath friction over the
+          # elbow, as backlash (errors that follow the last motion); dropped_counts, the main axes' incremental encoders
+          # dropping counts in fast moves, and soiled_disc, axis 2's optical encoder misreading a soiled sector, as
+          # transmission (the joints' reading); trunnion, the arm on a tilting positioner's worm drive, and slab_joint,
+          # its base plate straddling a floor slab's sawn joint, as mount compliance (the robot's support);
+          # sandwich_boom, a sandwich gripper boom carrying the part and the target, and sleeve_rock, the target's
+          # telescopic extension rocking in its sleeve's clearance, as link deflection (the end-of-arm structure
+          # carrying the target); platform_growth, the arm's steel mezzanine following the hall's air, and magnet_coil,
+          # a magnetic gripper warmed by its coil while it holds a part, as thermal)
+          "integral_clamp": "joint_compliance", "parked_tool": "joint_compliance", "chain_slack": "backlash",
+          "bowden_lash": "backlash", "dropped_counts": "transmission", "soiled_disc": "transmission",
+          "trunnion": "mount_compliance", "slab_joint": "mount_compliance", "sandwich_boom": "link_deflection",
+          "sleeve_rock": "link_deflection", "platform_growth": "thermal", "magnet_coil": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
