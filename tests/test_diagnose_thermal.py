@@ -197,6 +197,8 @@ def test_a_link_bowing_as_it_warms_up_is_diagnosed_as_thermal_bow():
     assert d.effect == "thermal", d.verdict
     variant = next(c.variant for c in d.ranking if c.effect == "thermal")
     assert variant.startswith("bow_"), variant
+    # no temperature column drives a bow: the reasons say the time alone does, and what else could
+    assert any("time since the session's start alone" in r and "creep, a leak" in r for r in d.verdict.reasons)
     params = d.final.fit.parameters_frame().set_index("parameter")["value"]
     bow = params[[n for n in params.index if n.startswith(f"thermal:bow_{link.name}_")]]
     assert len(bow) == 2 and 300 < bow.iloc[0] < 500 and abs(bow.iloc[1]) < 30, bow  # the bow about the true axis
@@ -342,3 +344,12 @@ def test_a_tracker_warming_up_is_named_as_a_drift_of_the_frames_and_left_out_of_
     early, late = (m.measurements(q[:10], time_s=t + 10.0 * np.arange(10)) for t in (0.0, 7200.0))
     np.testing.assert_allclose(m.points(late, "base"), m.points(early, "base"), atol=1e-12)
     assert np.abs(m.points(late, "tracker") - m.points(early, "tracker")).max() > 0.05
+
+
+def test_clock_variants_are_the_time_driven_ones():
+    from tolalloc.physics.thermal import is_clock_variant
+
+    assert all(is_clock_variant(v) for v in ("warmup_45min", "links_warmup_30min", "bow_120min",
+                                             "warmup_10min+bow_60min"))
+    assert not any(is_clock_variant(v) for v in ("temperature", "drift_240min", "activity_5min", "ambient_lag_30min",
+                                                 "temperature+warmup_10min", "held_15min"))

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.thermal import is_measurement_variant, time_problem
+from tolalloc.physics.thermal import is_clock_variant, is_measurement_variant, time_problem
 from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACTOR
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied
@@ -52,7 +52,7 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
                f"least {LEADING_BAYES_FACTOR:g} against no effect and every other family") if c.evidence_led else ""
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
                 f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
-                f"p = {c.p_value:.2g}{led})" + _instrument(c.variant))
+                f"p = {c.p_value:.2g}{led})" + _instrument(c.variant) + _clock(e, c.variant))
     back = [st for st in stages if st.selected is None and st.removed is None and tuple(st.base) == tuple(effects)]
     if back and len(effects) > 1:
         st = back[-1]
@@ -77,6 +77,15 @@ def _instrument(variant: str) -> str:
             "drift apart (the instrument warming up, its stand or the robot's pedestal settling), the robot relative "
             "to its own base unchanged -- base-frame predictions and compensation leave them out, tracker-frame "
             "predictions keep them")
+
+
+def _clock(effect: str, variant: str) -> str:
+    """What a thermal variant driven by the time alone can and cannot tell, or an empty string."""
+    if effect != "thermal" or not variant or not is_clock_variant(variant):
+        return ""
+    return ("; its driver is the time since the session's start alone (no logged temperature, motion or load "
+            "enters it): a warm-up or cool-down of the structure fits, and so would any slow process with the same "
+            "time course (creep, a leak, a settling support) -- check the cause before compensating it as heat")
 
 
 def _best_line(stages: list, alpha: float, min_gain: float) -> str:

@@ -68,7 +68,7 @@ __all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_sig
            "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
            "MAX_STEP_S", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt", "duty_warmup",
            "frame_drift", "held_heat", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column",
-           "is_measurement_variant"]
+           "is_measurement_variant", "is_clock_variant"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
@@ -238,6 +238,12 @@ def is_measurement_column(name: str) -> bool:
 def is_measurement_variant(variant: str) -> bool:
     """Whether ``variant`` (or a part of a combined one) is a drift of the measuring frame (``drift_<tau>min``)."""
     return any(v.startswith("drift") for v in variant_parts(variant))
+
+
+def is_clock_variant(variant: str) -> bool:
+    """Whether ``variant`` is driven by the time since the session's start alone (``warmup``, ``links_warmup``,
+    ``bow``): no logged temperature, motion or load enters it."""
+    return all(v.startswith(("warmup", "links_warmup", "bow")) for v in variant_parts(variant))
 
 
 def variant_parts(variant: str) -> tuple:
