@@ -100,15 +100,22 @@ def effects_at(effects, robot, ev: EvaluationPoses, conditions) -> EffectCovaria
         return None
     if ev.approach is None or not np.any(ev.approach):
         return effects(robot, ev.q, conditions)
-    try:
-        return effects(robot, ev.q, conditions, approach=ev.approach)
-    except TypeError as err:
-        if "approach" not in str(err):
-            raise
+    if not _takes_approach(effects):
         raise TolallocError("effects: a multi-directional accuracy needs the bought-part effects with the approach "
                             "directions (effects(robot, q, conditions, approach=...)); this effects callable does "
-                            f"not take them ({err}). Use tolalloc.acceptance.parts_effects(), or add the keyword.") \
-            from None
+                            "not take the keyword. Use tolalloc.acceptance.parts_effects(), or add it.")
+    return effects(robot, ev.q, conditions, approach=ev.approach)
+
+
+def _takes_approach(fn) -> bool:
+    """Whether ``fn`` accepts the keyword ``approach`` (a callable whose signature cannot be read is trusted)."""
+    import inspect
+
+    try:
+        params = inspect.signature(fn).parameters.values()
+    except (TypeError, ValueError):
+        return True
+    return any(p.name == "approach" or p.kind is p.VAR_KEYWORD for p in params)
 
 
 @dataclass(frozen=True, eq=False)

@@ -42,8 +42,9 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["pose_accuracy", "pose_repeatability", "orientation_accuracy", "orientation_repeatability",
-           "multidirectional_accuracy", "barycentre_distances", "multidirectional_orientation", "angle_differences", "distance_accuracy", "distance_repeatability",
-           "path_accuracy", "path_repeatability", "check_cycles", "MIN_CYCLES", "PAIRS"]
+           "multidirectional_accuracy", "barycentre_distances", "multidirectional_orientation", "angle_differences",
+           "distance_accuracy", "distance_repeatability", "path_accuracy", "path_repeatability", "check_cycles",
+           "MIN_CYCLES", "PAIRS"]
 
 #: the pairs of the three approach directions of a multi-directional test, in the order of :func:`barycentre_distances`
 PAIRS = ((0, 1), (0, 2), (1, 2))

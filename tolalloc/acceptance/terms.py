@@ -31,6 +31,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.acceptance.measures import expanded_uncertainty
 from tolalloc.acceptance.model import effects_at, requirement_poses, statistic_models
 from tolalloc.acceptance.requirements import IsoRequirement, check_requirements
+from tolalloc.acceptance.statistics import PAIRS
 
 __all__ = ["AcceptanceSpec", "StatisticTerms", "statistic_terms"]
 
@@ -210,7 +211,7 @@ def _row_poses(sm, ev) -> np.ndarray:
     if sm.name == "AD_P":
         return ev.test[[sm.requirement.poses[0] - 1]]
     if sm.name.startswith("vAP"):
-        return np.repeat(ev.directional[:, 0], sm.n_rows // max(len(ev.directional), 1))
+        return np.repeat(ev.directional[:, 0], len(PAIRS))          # a pose's row per pair of directions
     return ev.test
 
 

@@ -44,7 +44,7 @@ from scipy.special import erf
 from scipy.stats import chi2
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.linear.probability_mean import RAY_RULE_MAX_MEAN, RAY_RULE_MIN_MARGIN, chi2_3_cdf, p_with_mean
+from tolalloc.linear.probability_mean import chi2_3_cdf, p_with_mean, ray_rule_holds
 
 __all__ = [
     "p_within_radius",
@@ -54,7 +54,6 @@ __all__ = [
     "chi2_3_cdf",
 ]
 
-_SQRT2 = np.sqrt(2.0)
 
 
 # ------------------------------------------------------------------ quadrature rules
@@ -271,8 +270,7 @@ def _radius_with_mean(cov, p, mean, shape, hi):
     lo = np.maximum(mn + sd_m * ndtri(p), 0.0)
     top = np.minimum(mn + radius_for_prob(cov_b, p), hi)
     sd = np.sqrt(np.linalg.eigvalsh(cov_b)[..., -1])
-    # the lower bound only where P is cheap there (the ray rule's range), else the exact P(0) = 0
-    lo = np.where((mn <= RAY_RULE_MAX_MEAN * lo) | (lo - mn >= RAY_RULE_MIN_MARGIN * sd), lo, 0.0)
+    lo = np.where(ray_rule_holds(mn, sd, lo), lo, 0.0)   # the bound only where P is cheap there, else P(0) = 0
     out = np.empty(shape)
     for idx in np.ndindex(shape):
         def f(rr, idx=idx):

@@ -30,7 +30,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.special import erf, ndtr
 
-__all__ = ["p_with_mean", "chi2_3_cdf", "RAY_RULE_MAX_MEAN", "RAY_RULE_MIN_MARGIN", "FAR_OUTSIDE_P"]
+__all__ = ["p_with_mean", "ray_rule_holds", "chi2_3_cdf", "RAY_RULE_MAX_MEAN", "RAY_RULE_MIN_MARGIN", "FAR_OUTSIDE_P"]
 
 
 def chi2_3_cdf(w):
@@ -182,6 +182,13 @@ def _p_mean_imhof(lam, m, r) -> float:
     return float(min(max(0.5 - val / np.pi, 0.0), 1.0))
 
 
+def ray_rule_holds(mean_norm, sd_max, r) -> np.ndarray:
+    """Where the ray rule is exact enough (module docstring): the ball's surface away from the mean, ``|m| <=
+    RAY_RULE_MAX_MEAN r`` or the mean inside by ``RAY_RULE_MIN_MARGIN`` of the largest standard deviation; arrays
+    broadcasting together."""
+    return (mean_norm <= RAY_RULE_MAX_MEAN * r) | (r - mean_norm >= RAY_RULE_MIN_MARGIN * sd_max)
+
+
 def p_with_mean(lam, m, r) -> np.ndarray:
     """``P(|x| < r)`` per element (module docstring).
 
@@ -199,7 +206,7 @@ def p_with_mean(lam, m, r) -> np.ndarray:
     """
     P = _p_with_mean(lam, m, r)
     mn, sd = np.linalg.norm(m, axis=-1), np.sqrt(np.maximum(lam.max(axis=-1), 0.0))
-    near = (mn > RAY_RULE_MAX_MEAN * r) & (r - mn < RAY_RULE_MIN_MARGIN * sd)
+    near = ~ray_rule_holds(mn, sd, r)
     far = ndtr((r - mn) / np.where(sd > 0, sd, 1.0)) < FAR_OUTSIDE_P    # an upper bound of P (the half-space)
     P[near & far] = 0.0
     for i in np.flatnonzero(near & ~far):

@@ -84,6 +84,8 @@ BOW_MIN_MM = 200.0
 DRIFT_MIN_MIN = 20.0
 #: Name prefix of the columns that move the measuring frame against the robot's base, not the robot's target.
 MEASUREMENT_PREFIX = "drift_"
+#: variants driven by the time since the session's start alone (a drift of the measuring frame is one too, kept apart)
+CLOCK_VARIANTS = ("warmup", "links_warmup", "bow")
 
 
 def time_problem(time_s) -> str | None:
@@ -243,7 +245,7 @@ def is_measurement_variant(variant: str) -> bool:
 def is_clock_variant(variant: str) -> bool:
     """Whether ``variant`` is driven by the time since the session's start alone (``warmup``, ``links_warmup``,
     ``bow``): no logged temperature, motion or load enters it."""
-    return all(v.startswith(("warmup", "links_warmup", "bow")) for v in variant_parts(variant))
+    return all(v.startswith(CLOCK_VARIANTS) for v in variant_parts(variant))
 
 
 def variant_parts(variant: str) -> tuple:
@@ -274,7 +276,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     if variant in ("temperature", "scale"):
         return meas.temperature_c - ref["temperature_c"]
     tau, t = _tau_s(variant), meas.time_s
-    if variant.startswith(("warmup", "links_warmup", "bow", "drift")):
+    if variant.startswith((*CLOCK_VARIANTS, "drift")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
     if variant.startswith("tilt"):
         return _history(meas, ref, lambda ts, qs: duty_warmup(ts, tau))
