@@ -74,6 +74,20 @@ class Site:
     build: subprocess.CompletedProcess | None = None
 
 
+# A kernel that nbclient shuts down can race its own output thread and log an ENOTSOCK traceback through tornado
+# (ipykernel 7, ipython/ipykernel#1518 fixes one path of it). It is the kernel's noise after the notebook ran, not a
+# warning of the docs build; only that exact block is dropped before the check.
+_KERNEL_SHUTDOWN_RACE = re.compile(
+    r"ERROR:tornado\.general:Uncaught exception in ZMQStream callback\n"
+    r"Traceback \(most recent call last\):\n(?:[ \t]+[^\n]*\n)+zmq\.error\.ZMQError: [^\n]*\n?")
+
+
+def build_log(stderr: str) -> str:
+    """``stderr`` of the docs build without the kernel's shutdown race and its ``[IPKernelApp] WARNING`` lines."""
+    kept = _KERNEL_SHUTDOWN_RACE.sub(lambda m: "" if "ipykernel" in m.group(0) else m.group(0), stderr)
+    return kept.replace("[IPKernelApp] WARNING", "")
+
+
 def _notebook_text(path: Path) -> str:
     """The stdout of every code cell of an executed notebook, in order."""
     cells = json.loads(path.read_text())["cells"]
@@ -125,8 +139,8 @@ def test_docs_build_strict_with_no_warning(site):
         pytest.skip(f"the docs extra is not installed (needs {', '.join(DOCS_EXTRA)}): pip install -e '.[docs]'")
     run, out = site.build, site.html
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
-    assert "WARNING" not in run.stderr.replace("[IPKernelApp] WARNING", "") and "ERROR" not in run.stderr, \
-        run.stderr[-3000:]
+    log = build_log(run.stderr)
+    assert "WARNING" not in log and "ERROR" not in log, log[-3000:]
     cli = (out / "cli.html").read_text()
     for flag in ("--radius-mm", "--region", "--estimator", "--test-frame", "--n-poses"):  # generated from the parsers
         assert flag in cli, flag
@@ -387,3 +401,20 @@ def test_relative_links_and_included_cells_exist():
             source = (page.parent / script).read_text()
             for marker in re.findall(r':(?:start-after|end-before): "(.*?)"', options):
                 assert marker in source, f"{page.relative_to(ROOT)}: {script} has no {marker!r}"
+
+
+def test_build_log_drops_only_the_kernel_shutdown_race():
+    race = ("ERROR:tornado.general:Uncaught exception in ZMQStream callback\n"
+            "Traceback (most recent call last):\n"
+            '  File "/v/lib/python3.11/site-packages/zmq/eventloop/zmqstream.py", line 585, in _log_error\n'
+            "    f.result()\n"
+            '  File "/v/lib/python3.11/site-packages/ipykernel/iostream.py", line 343, in schedule\n'
+            '    self._event_pipe.send(b"")\n'
+            "               ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^\n"
+            "zmq.error.ZMQError: Socket operation on non-socket\n")
+    tcp = "[IPKernelApp] WARNING | Kernel is running over TCP without encryption.\n"
+    sphinx = "docs/stages.md:12: WARNING: undefined label: 'x'\n"
+    assert "ERROR" not in build_log(tcp + race) and "WARNING" not in build_log(tcp + race)
+    assert build_log(race + sphinx) == sphinx
+    foreign = race.replace("ipykernel", "myst_nb")  # the same shape from another package is kept
+    assert "ERROR" in build_log(foreign)
