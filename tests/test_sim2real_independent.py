@@ -3136,3 +3136,164 @@ def test_set_u_every_kind_lies_in_its_true_structure_and_known_answers():
     held = s.payload_kg > 0
     assert not node[:np.argmax(held)].any() and (node >= 0).all() and (node < 1).all()
     assert ut.coil_node(mc, replace(s, payload_kg=np.ones(len(t)))) == pytest.approx(1 - np.exp(-t / mc["tau_s"]))
+
+
+# ---------------------------------------------------------------------------------------------------------- set V
+def test_set_v_cases_kinds_and_determinism():
+    """Set V: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time;
+    a case regenerates bit-identically from its seed; the session hook leaves cases without a set-V kind alone (no random
+    numbers drawn) and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; the
+    working day of the restrained bar and the slab, the long day of the printed boom and the carriers' blocks."""
+    from sim2real_indep import effects_v as ev
+
+    _assert_set_module("V", 40_7022, ev, ("gear", "magnet_coil"))
+    for name in ("effects_v", "effects_v_joint", "effects_v_body", "effects_v_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_v" in _imports(STUDY / "generator.py")
+    assert ev.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ev.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        for kind in ("restrained_bar", "slab_curl"):
+            day = opts((kind,))
+            assert 5 <= day["blocks"] <= 8 and day["gap_kind"] == "pause" and day["pause_min"] == (30.0, 90.0)
+            assert 2.0 <= abs(day["air"]["drift_K"]) <= 6.0
+        long = opts(("moisture_swell",))
+        assert 5 <= long["blocks"] <= 8 and long["pause_min"] == (30.0, 90.0) and "air" not in long
+        for kind in ("stabilizer_jacks", "self_leveling"):
+            b = opts((kind,), "ur10")
+            assert 4 <= b["blocks"] <= 8 and b["gap_kind"] == "pause" and b["pause_min"] == (5.0, 20.0)
+        assert opts(("coiled_cord", "coupled_flank", "interpolation_error")) == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ev.probe_hook(("gear",), probe) is probe
+    assert ev.probe_hook(("bolt_loosening",), probe) == pytest.approx(probe + [400.0, 0, 0])
+    assert ev.probe_hook(("moisture_swell",), probe) == pytest.approx(probe + [400.0, 0, 0])
+    assert ev.probe_hook(("restrained_bar",), probe) == pytest.approx(probe + [0, 0, 150.0])
+    _assert_regenerates("V", max_effect_poses=50)
+
+
+def test_set_v_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-V kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect where the kind applies; the coupled wrist acts on kr16_like only, the pins and the
+    rack on tool_changer only; and known answers: the coiled cord's spring law, the catenary's equilibrium, the coupled
+    motor's flank, the pin's friction-angle shift, the first-order interpolation error against the exact demodulation,
+    the rack's steps, the carrier's block states and levelling, the bolts' log law and sag across the boom, Fick's
+    early-time root, the bar's amplification and the slab's sink."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_v_body as vb
+    from sim2real_indep import effects_v_joint as vj
+    from sim2real_indep import effects_v_thermal as vt
+    from sim2real_indep.effects_u_joint import block_index
+
+    every = ("coiled_cord", "overhead_festoon", "coupled_flank", "journal_climb", "interpolation_error",
+             "rack_segments", "stabilizer_jacks", "self_leveling", "bolt_loosening", "moisture_swell",
+             "restrained_bar", "slab_curl")
+    inert = {"ur10": ("coupled_flank", "journal_climb", "rack_segments"), "tool_changer": ("coupled_flank",),
+             "kr16_like": ("journal_climb", "rack_segments")}
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 22)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            if kind in inert[robot]:
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0, (robot, kind)
+                continue
+            p = case.truth["params"][kind]
+            amp = {"coiled_cord": lambda: [p["k"]], "overhead_festoon": lambda: [p["w"]],
+                   "coupled_flank": lambda: [p["b"] / 2], "journal_climb": lambda: p["e_mm"],
+                   "interpolation_error": lambda: p["coef"].ravel(), "rack_segments": lambda: p["amp"],
+                   "stabilizer_jacks": lambda: p["c"], "self_leveling": lambda: p["c"],
+                   "bolt_loosening": lambda: [p["c0"], p["c0"] * p["gamma"]], "moisture_swell": lambda: [p["a"]],
+                   "restrained_bar": lambda: [p["delta0_mm"]], "slab_curl": lambda: [p["a"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # coiled cord: F_i + k (d - L0) along the chord, nothing when slack
+    cp = P["coiled_cord"]
+    B = kin.flange(ctx.chain, ctx.q)[0] / 1000.0
+    dist = np.linalg.norm(cp["A_m"] - B, axis=1)
+    pull = vj.cord_pull(cp, ctx) * cp["k"]
+    assert np.linalg.norm(pull, axis=1) == pytest.approx(cp["Fi"] + cp["k"] * (dist - cp["L0_m"]))
+    assert not vj.cord_pull(dict(cp, L0_m=10.0), ctx).any()
+    # catenary: level ends share the weight, w L / 2 each; in general the ends carry w L together, H equal and opposite
+    A0, Bs, L = np.zeros(3), np.array([[2.0, 0.0, 0.0], [1.5, 1.0, -0.8]]), 3.0
+    fB = vj.catenary_end_force(A0, Bs, L, 9.81)
+    fA = np.array([vj.catenary_end_force(b, A0[None], L, 9.81)[0] for b in Bs])
+    assert fB[0, 2] == pytest.approx(-9.81 * L / 2, rel=1e-6)
+    assert fA[:, 2] + fB[:, 2] == pytest.approx(-9.81 * L, rel=1e-6)
+    assert fA[:, :2] == pytest.approx(-fB[:, :2], rel=1e-6)
+    # coupled flank: without the coupling the motor moves with its own axis; the loaded poses take the load's flank
+    fp = P["coupled_flank"]
+    j = fp["joints"][0]
+    moved = np.r_[False, np.diff(s.q[:, j]) != 0]
+    assert vj.coupled_net_motion(dict(fp, c=0.0), s)[moved] == pytest.approx(s.direction[moved, j])
+    loaded = np.abs(ctx.loads[:, j]) > fp["drag"]
+    assert fp["flank"][loaded] == pytest.approx(np.sign(ctx.loads[loaded, j]))
+    # journal climb: a horizontal unit shift across the axis; c_r sin(atan mu) = c_r mu / sqrt(1 + mu^2)
+    case_t, ctx_t = runs["tool_changer"]
+    jp = case_t.truth["params"]["journal_climb"]
+    sh = vj.climb_shift(jp, ctx_t)
+    w, _ = kin.joint_frames(ctx_t.chain, ctx_t.q)
+    assert np.abs(sh[..., 2]).max() < 1e-12 and np.linalg.norm(sh, axis=2) == pytest.approx(1.0)
+    assert np.abs(np.einsum("kpi,pki->kp", sh, w[:, list(jp["joints"])])).max() < 1e-12
+    assert jp["e_mm"] == pytest.approx(jp["c_r_mm"] * jp["mu"] / np.sqrt(1 + jp["mu"] ** 2))
+    # interpolation: the first-order harmonics agree with the exact arctangent demodulation to second order
+    ip = P["interpolation_error"]
+    N, qq = ip["N"][0], np.linspace(0.0, 0.2, 2001)
+    phi = N * qq
+    o_s, o_c, eps, dlt = -ip["coef"][0, 0], ip["coef"][0, 1], -2 * ip["coef"][0, 2], -2 * ip["coef"][0, 3]
+    exact = np.angle(np.exp(1j * (np.arctan2((1 + eps) * np.sin(phi + dlt) + o_s, np.cos(phi) + o_c) - phi))) - dlt / 2
+    q6 = np.zeros((len(qq), 6))
+    q6[:, ip["joints"][0]] = qq
+    first = -N * ip["coef"][0] @ vj.interp_signals(ip, q6)[0]
+    assert np.abs(exact - first).max() < 3 * max(abs(o_s), abs(o_c), abs(eps), abs(dlt)) ** 2
+    # rack: the stage's error steps by each butt joint's gap
+    rp = case_t.truth["params"]["rack_segments"]
+    qa = np.zeros((2 * len(rp["joints_mm"]), 6))
+    qa[:, vj.RACK_JOINT] = np.repeat(rp["joints_mm"], 2) + np.tile([-1e-6, 1e-6], len(rp["joints_mm"]))
+    e = rp["amp"] @ vj.rack_signals(rp, qa)
+    assert np.diff(e)[::2] == pytest.approx(rp["gaps_mm"], abs=1e-6)
+    # carrier: one state per block, alternating; on jacks the wheel columns vanish and the other way round
+    jk = P["stabilizer_jacks"]
+    b = block_index(s)
+    assert all(len(set(jk["jacks"][b == k])) == 1 for k in set(b)) and (np.diff(jk["pattern"].astype(int)) != 0).all()
+    F = vb.jacks_features(jk, ctx, case.truth["hw"])
+    assert not F[:2][:, jk["jacks"] == 1].any() and not F[2:][:, jk["jacks"] == 0].any()
+    # self-levelling: level at each block's first pose
+    lv = P["self_leveling"]
+    first = np.r_[0, np.flatnonzero(np.diff(b)) + 1]
+    assert not vb.level_moment(lv, ctx)[first].any()
+    assert not vb.level_features(lv, ctx, case.truth["hw"])[:, first].any()
+    # bolts: ln(1 + n / n0), nothing lost at the first move; the sag across the boom and downwards
+    bp = P["bolt_loosening"]
+    assert vb.bolt_count(bp, s) == pytest.approx(np.log(1 + np.arange(len(s.q)) / bp["n0"]))
+    sag = vb.bolt_sag(bp, ctx)
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    assert np.abs(np.einsum("pi,pi->p", sag, Rt[:, :, 0])).max() < 1e-9 and (sag[:, 2] <= 1e-12).all()
+    # moisture: Fick's early-time uptake (4 / h) sqrt(D t / pi), the growth along the boom's axis
+    mp = P["moisture_swell"]
+    t = s.time_s - s.time_s[0] + mp["t_out_s"]
+    uptake = 4 / mp["h_m"] * np.sqrt(mp["D"] * t / np.pi)
+    assert uptake.max() < 0.6                                              # the early-time law's range
+    strain = mp["a"] * vb.moist_root(mp, s)
+    assert strain == pytest.approx(mp["beta"] * mp["M_inf"] * uptake)
+    # restrained bar: stable (|r| < 1), and the bow doubles at half the critical rise (delta0 r / (1 - r) at r = 1/2)
+    rb = P["restrained_bar"]
+    r = vt.bar_ratio(rb, s)
+    assert np.abs(r).max() < 1 / 1.5 + 1e-12
+    flat = replace(s, air=dict(s.air, drift_K=0.0, cycle_K=0.0))
+    half = dict(rb, T_off=-rb["dT_cr"] / 2)
+    assert vt.bar_features(half, replace(ctx, session=flat), None)[0] == pytest.approx(Rt[:, :, 0], rel=1e-6)
+    # slab: the base's own point sinks by kappa D^2 / 2 and turns about the horizontal axis across the line
+    cu = P["slab_curl"]
+    dT = vt.air_lag(s, cu["tau_s"])
+    n = np.cross([0.0, 0.0, 1.0], cu["e"])
+    Fc = vt.curl_features(cu, ctx, None)[0]
+    assert Fc + cu["D_m"] * dT[:, None] * np.cross(n, ctx.target) == pytest.approx(
+        -1000.0 * cu["D_m"] ** 2 / 2 * dT[:, None] * np.array([0.0, 0.0, 1.0]), abs=1e-9)
+    assert abs(n[2]) < 1e-12 and abs(n @ cu["e"]) < 1e-12

@@ -12,8 +12,9 @@ eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effect
 a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
 per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
 8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
-cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`) and set U
-(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`). A case: (id, robot, physics kinds, poses, split).
+cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U
+(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`) and set V (24 cases, 8 per arm) a twenty-second
+(:mod:`effects_v`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
-SEED_S, SEED_T, SEED_U = 40_7019, 40_7020, 40_7021
+SEED_S, SEED_T, SEED_U, SEED_V = 40_7019, 40_7020, 40_7021, 40_7022
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -928,13 +929,71 @@ SET_U = [
     ("U24", "kr16_like", ("slab_joint", "sandwich_boom"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-U)
+#: set V: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_v`); written as an independent test set after set U, from the literature, without
+#: reading how the diagnosis models effects. The coupled wrist sits on kr16_like (none on ur10 or tool_changer), the
+#: pinned boom joints and the butted rack on tool_changer (none on the others), the others on every arm. Oracle labels
+#: when written (oracle.py only; the diagnosis was not run): every case its truth (gains 26-92 %; each mixture
+#: component's removal costs 26 % or more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival
+#: family's model within 25 % of the truth; the closest: V22's joint model 1.34x, V18's link model 1.49x, V20's
+#: thermal model 1.59x, V02's link model 1.64x; the smallest gains 26 % on V22 and 38 % on V20). Changed after
+#: trial draws (the modules' docstrings give the final ranges): a joint-compliance kind of link-side torque sensors whose
+#: crosstalk from the overturning moment set axis 1 off in a twist-compensating controller was dropped for the coiled
+#: cord -- at 1-3 % crosstalk it moved the tool by 0.02-0.04 mm (V01 and V09 absorbed), and more crosstalk is not a
+#: sensor anyone would fit; a mount kind of a six-strut (hexapod-like) stand was dropped for the self-levelling carrier
+#: -- its moment-driven sideways shift reads as a scale of the arm's reach, which the geometry absorbs (V03 and V12:
+#: gains of 10-12 %, ambiguous with four families; set Q met the same with a hexapod); a link kind of a slender
+#: boom whose bending the axial part of gravity amplifies (P-delta) was dropped before any draw -- at a sag of tenths of
+#: a mm its amplification is 1e-3 of it; the coupled wrist was first also on tool_changer's axis 6, which turns the
+#: target about itself (V12: 0.008 mm, a gain of 9 %), so V12 went to the self-levelling carrier and the coupled wrist's
+#: second case is V24's mixture on kr16_like (first the strut stand's, with the slab); V09 (the festoon on tool_changer:
+#: absorbed, its stiff gears twist by 0.07 mm under a nearly constant pull) took the coiled cord, and the festoon's
+#: kr16_like case is V18;
+#: ur10's festoon hose weighed 0.5-1.2 kg/m (V02: the link model at 1.20x), now 1-2.5; the slab's free curl was 10-30 %
+#: of 150-250 mm slabs (V14: a gain of 14 %), now 30-60 % of 120-200 mm panels; the printed boom took up 0.5-1 % at
+#: D 1-3e-12 m^2/s with beta 0.15-0.3, out of its cabinet up to 60 min early (V21: a gain of 15 %, the mount model at
+#: 1.16x; V06 at 1.28x), now 0.7-1.2 %, 2-5e-12, 0.2-0.35 and up to 20 min; the bar's critical rise was 2-4 times the
+#: session's excursion (V22: the joint model at 1.24x), now 1.5-3; ur10's bolted boom root was 2-6e4 N m/rad like the
+#: heavier flanges' (V04 at gains of 19 % and 12 % in trial draws on the seed + 2 and + 3; 35 % on the seed), now 1-3e4,
+#: its small four-M6 flange (V04: 61 %). No pose count or seed was changed. Trial draws on the seed + 1, + 2 and + 3 (the
+#: case seeds + 1000003 k): + 1 all but V09 (the coiled cord on tool_changer at a gain of 23 %) and V16 (the rack's
+#: removal costing under 5 %: named backlash alone); + 2 all but V11 (the rack at a gain of 17 %); + 3 clean in all 24
+#: (V04 at 37 % after the change). The rack (its butt errors of 0.06-0.15 mm against noise of up to 0.05 mm) is the
+#: weakest kind; butt errors of 0.08-0.2 mm were tried and left (+ 2: V11 then ambiguous-close, the link model at 1.18x).
+SET_V = [
+    ("V01", "ur10", ("coiled_cord",), 50, "random"),
+    ("V02", "ur10", ("overhead_festoon",), 120, "random"),
+    ("V03", "ur10", ("self_leveling",), 110, "random"),
+    ("V04", "ur10", ("bolt_loosening",), 140, "random"),
+    ("V05", "ur10", ("restrained_bar",), 170, "time"),
+    ("V06", "ur10", ("moisture_swell",), 160, "time"),
+    ("V07", "ur10", (), 70, "random"),
+    ("V08", "ur10", ("stabilizer_jacks", "interpolation_error"), 180, "random"),
+    ("V09", "tool_changer", ("coiled_cord",), 120, "random"),
+    ("V10", "tool_changer", ("journal_climb",), 130, "random"),
+    ("V11", "tool_changer", ("rack_segments",), 120, "random"),
+    ("V12", "tool_changer", ("self_leveling",), 140, "random"),
+    ("V13", "tool_changer", ("interpolation_error",), 150, "random"),
+    ("V14", "tool_changer", ("slab_curl",), 170, "time"),
+    ("V15", "tool_changer", (), 30, "random"),
+    ("V16", "tool_changer", ("journal_climb", "rack_segments"), 190, "random"),
+    ("V17", "kr16_like", ("coupled_flank",), 120, "random"),
+    ("V18", "kr16_like", ("overhead_festoon",), 130, "random"),
+    ("V19", "kr16_like", ("stabilizer_jacks",), 140, "time"),
+    ("V20", "kr16_like", ("bolt_loosening",), 130, "random"),
+    ("V21", "kr16_like", ("moisture_swell",), 170, "time"),
+    ("V22", "kr16_like", ("restrained_bar",), 160, "time"),
+    ("V23", "kr16_like", (), 90, "random"),
+    ("V24", "kr16_like", ("coupled_flank", "slab_curl"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-V)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
-        "U": (SET_U, SEED_U)}
+        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V)}
 
 
 def case_seed(set_name: str, index: int) -> int:

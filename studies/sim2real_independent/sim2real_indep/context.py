@@ -226,7 +226,26 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "integral_clamp": "joint_compliance", "parked_tool": "joint_compliance", "chain_slack": "backlash",
           "bowden_lash": "backlash", "dropped_counts": "transmission", "soiled_disc": "transmission",
           "trunnion": "mount_compliance", "slab_joint": "mount_compliance", "sandwich_boom": "link_deflection",
-          "sleeve_rock": "link_deflection", "platform_growth": "thermal", "magnet_coil": "thermal"}
+          "sleeve_rock": "link_deflection", "platform_growth": "thermal", "magnet_coil": "thermal",
+          # set V (sim2real_indep.effects_v; coiled_cord, the joints twisted by a coiled cord's spring pull towards
+          # its junction box, and overhead_festoon, by a hose hanging as a catenary from an overhead boom, scored as
+          # joint compliance; coupled_flank, a wrist axis' lost motion whose flank its motor's net motion (its own move
+          # plus the coupling compensation for the axis it passes through) chooses, and journal_climb, tool_changer's
+          # boom pins climbing the walls of their worn bushes against the last rotation, as backlash (errors that follow
+          # the last motion); interpolation_error, the output encoders' sub-divisional error within their signal
+          # periods, and rack_segments, the telescopic stage's rack of butted segments and its pinion's runout, as
+          # transmission (the joints' reading and drive); stabilizer_jacks, a mobile carrier standing on its suspension
+          # or on its jacks by block, and self_leveling, a carrier levelled on its locked jacks at the start of each
+          # block, as mount compliance (the robot's support); bolt_loosening, a gripper boom's root bolts loosening move
+          # by move, and moisture_swell, a printed polyamide boom swelling with the humidity it takes up, as link
+          # deflection (the end-of-arm structure carrying the target); restrained_bar, a crossbar restrained by its
+          # frame bowing as the air warms it, and slab_curl, the floor slab between the arm and the tracker curling with
+          # the air, as thermal)
+          "coiled_cord": "joint_compliance", "overhead_festoon": "joint_compliance", "coupled_flank": "backlash",
+          "journal_climb": "backlash", "interpolation_error": "transmission", "rack_segments": "transmission",
+          "stabilizer_jacks": "mount_compliance", "self_leveling": "mount_compliance",
+          "bolt_loosening": "link_deflection", "moisture_swell": "link_deflection", "restrained_bar": "thermal",
+          "slab_curl": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
