@@ -78,7 +78,7 @@ class Site:
 # (ipykernel 7, ipython/ipykernel#1518 fixes one path of it). It is the kernel's noise after the notebook ran, not a
 # warning of the docs build; only that exact block is dropped before the check.
 _KERNEL_SHUTDOWN_RACE = re.compile(
-    r"ERROR:tornado\.general:Uncaught exception in ZMQStream callback\n"
+    r"ERROR:tornado\.\w+:(?:Uncaught exception in ZMQStream callback|Exception in callback[^\n]*)\n"
     r"Traceback \(most recent call last\):\n(?:[ \t]+[^\n]*\n)+zmq\.error\.ZMQError: [^\n]*\n?")
 
 
@@ -418,3 +418,6 @@ def test_build_log_drops_only_the_kernel_shutdown_race():
     assert build_log(race + sphinx) == sphinx
     foreign = race.replace("ipykernel", "myst_nb")  # the same shape from another package is kept
     assert "ERROR" in build_log(foreign)
+    other = race.replace("tornado.general:Uncaught exception in ZMQStream callback",
+                         "tornado.application:Exception in callback functools.partial(<function f>)")
+    assert build_log(other) == ""
