@@ -15,7 +15,7 @@ import pytest
 import tolalloc
 from tolalloc.diagnose.calibrate import fixed_jacobian, initial_fit
 from tolalloc.diagnose.effects import effect_basis, effect_reference, target_points, variants
-from tolalloc.physics.thermal import lagged
+from tolalloc.physics.thermal_history import lagged
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.physics.loads import G, gravity_torques, robot_masses
 from tolalloc.diagnose.measurements import Measurements
@@ -98,11 +98,18 @@ def test_transmission_gear_orders_with_gear_ratio():
     assert "s2N_shoulder_lift_joint [rad]" in basis.names and "s1x_shoulder_lift_joint [rad]" in basis.names
 
 
+def _sampled_step(t, jump, tau, dt):
+    """The lag of a log sampled every ``dt`` that reads 0 at t = 0 and ``jump`` from the next sample on: the log runs
+    linearly between samples, so the jump arrives as a ramp over the first step, then the lag closes on it."""
+    y_dt = jump * (1 - tau / dt * (1 - np.exp(-dt / tau)))
+    return np.where(t > 0, jump - (jump - y_dt) * np.exp(-(t - dt) / tau), 0.0)
+
+
 def test_lag_filter_step_response_closed_form():
     t = np.arange(0.0, 7200.0, 30.0)
     T = np.where(t > 0, 23.0, 20.0)
     y = lagged(t, T, 900.0)
-    np.testing.assert_allclose(y, 20.0 + 3.0 * (1 - np.exp(-t / 900.0)), atol=1e-12)
+    np.testing.assert_allclose(y, 20.0 + _sampled_step(t, 3.0, 900.0, 30.0), atol=1e-12)
     perm = np.random.default_rng(0).permutation(len(t))  # row order does not matter, time does
     np.testing.assert_allclose(lagged(t[perm], T[perm], 900.0), y[perm], atol=1e-12)
 
@@ -125,7 +132,7 @@ def test_thermal_lag_variant_chosen_and_alpha_recovered():
     alpha = 40.0  # 1e-6/K
     meas = Measurements(q, np.zeros((P, 3)), temp, None, None, t_s)
     ref = effect_reference(meas)
-    dT = 20.0 + 4.0 * (1 - np.exp(-t_s / 1800.0)) - ref["temperature_c"]  # closed-form lag
+    dT = 20.0 + _sampled_step(t_s, 4.0, 1800.0, 30.0) - ref["temperature_c"]  # closed-form lag
     # exact growth of every link vector by alpha dT: scale the chain's links (independent of the error model)
     d = np.stack([_grown_point(robot, q[i], t, 1e-6 * alpha * dT[i]) for i in range(P)]) - target_points(robot, q, t)
     fit, J = _fit_with_residual(robot, q, t, d)

@@ -17,7 +17,7 @@ from tolalloc.diagnose.effects import effect_basis, effect_reference, target_poi
 from tolalloc.diagnose.measurements import Measurements
 from tolalloc.physics.blocks import MAX_BLOCKS, MIN_BLOCK_POSES, contrasts
 from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
-from tolalloc.physics.thermal import held_heat
+from tolalloc.physics.thermal_history import held_heat
 from tolalloc.robot.model import Link, Robot
 
 TOOL = np.array([0.0, 30.0, 120.0])

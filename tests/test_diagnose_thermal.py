@@ -15,7 +15,8 @@ import tolalloc
 from tolalloc.diagnose.effects import effect_basis, effect_reference, target_points, variants
 from tolalloc.physics.loads import G
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.physics.thermal import activity, is_air_variant, time_problem
+from tolalloc.physics.thermal import is_air_variant
+from tolalloc.physics.thermal_history import activity, time_problem
 from tolalloc.robot.model import Link, Robot
 
 
@@ -261,7 +262,7 @@ def test_duty_warmup_heats_while_working_and_cools_in_a_pause():
     """The warm-up of a heat source that is on while the robot works: the step response 1 - exp(-t / tau) over
     uninterrupted work, then, over a gap of 65 median intervals, 5 intervals more of heating and a cooling by
     exp(-60 / tau) (in intervals); the poses' order does not matter."""
-    from tolalloc.physics.thermal import PAUSE_STEPS, duty_warmup
+    from tolalloc.physics.thermal_history import PAUSE_STEPS, duty_warmup
 
     tau = 600.0
     t = np.concatenate([10.0 * np.arange(50), 490.0 + 650.0 + 10.0 * np.arange(10)])
@@ -282,7 +283,7 @@ def test_an_axis_tilting_as_the_robot_works_is_diagnosed_as_thermal_tilt():
     from tolalloc.diagnose import diagnose
     from tolalloc.diagnose.model_export import identified_section
     from tolalloc.diagnose.model_use import identified_model
-    from tolalloc.physics.thermal import duty_warmup
+    from tolalloc.physics.thermal_history import duty_warmup
 
     robot = tolalloc.load_robot("ur10")
     P = 120

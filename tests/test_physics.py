@@ -6,7 +6,7 @@ import pytest
 
 import tolalloc
 from tolalloc.errormodel import build_error_model
-from tolalloc.physics.thermal import PAUSE_STEPS, active_time
+from tolalloc.physics.thermal_history import PAUSE_STEPS, active_time
 from tolalloc.physics import (base_moment, beam_sag, compliance_columns, flank, gear_orders, joint_loads, lag_filter,
                               link_growth, lost_motion_basis, motor_heat, mount_columns, transmission_error)
 from tolalloc.physics.loads import G

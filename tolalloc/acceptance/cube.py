@@ -224,6 +224,17 @@ def _placement(cube, q, q_min, q_max, searched) -> CubePlacement:
     return CubePlacement(cube, np.vstack([q[13], q[27:31]]), q[corner_rows], q_min, q_max, searched)
 
 
+def _finite_point(x) -> np.ndarray:
+    try:
+        c = np.asarray(x, float)
+    except (TypeError, ValueError):
+        c = None
+    if c is None or c.shape != (3,) or not np.all(np.isfinite(c)):
+        raise TolallocError(f"cube_centre_mm: expected the cube's centre as three finite numbers (x, y, z) [mm] in "
+                            f"the base frame, got {x!r}.")
+    return c
+
+
 def place_cube(robot, q_min, q_max, *, centre_mm=None, edge_mm=None, plane: int = 1, orientation: str = "auto",
                candidates: int = 8, seed: int = 0) -> CubePlacement:
     """The test cube in a joint-space box: the largest found, or the one given (checked).
@@ -261,7 +272,12 @@ def place_cube(robot, q_min, q_max, *, centre_mm=None, edge_mm=None, plane: int 
     if orientation not in ("auto", "fixed", "free"):
         raise TolallocError(f"orientation: expected 'auto', 'fixed' or 'free', got {orientation!r}.")
     q_min, q_max = np.asarray(q_min, float), np.asarray(q_max, float)
-    centre = None if centre_mm is None else np.asarray(centre_mm, float).reshape(3)
+    centre = None if centre_mm is None else _finite_point(centre_mm)
+    if edge_mm is not None:
+        if isinstance(edge_mm, bool) or not isinstance(edge_mm, (int, float, np.integer, np.floating)) \
+                or not np.isfinite(edge_mm) or edge_mm <= 0:
+            raise TolallocError(f"cube_edge_mm: expected the cube's edge as a number > 0 [mm], got {edge_mm!r}.")
+        edge_mm = float(edge_mm)
     largest = {}
     for mode in (("fixed", "free") if orientation == "auto" else (orientation,)):
         pl, largest[mode] = _place(robot, q_min, q_max, centre, edge_mm, plane, mode == "fixed", candidates, seed)

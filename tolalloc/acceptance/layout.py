@@ -202,12 +202,7 @@ def acceptance_test(robot, region=None, *, cube_edge_mm=None, cube_centre_mm=Non
     if registration not in REGISTRATIONS:
         raise ArgumentError("registration", f"expected one of {', '.join(REGISTRATIONS)} (the cube's corners "
                             f"measured to fit the base frame, or a base frame known beforehand), got {registration!r}.")
-    if isinstance(registration_visits, bool) or not isinstance(registration_visits, (int, np.integer)) \
-            or registration_visits < 1:
-        raise ArgumentError("registration_visits", f"expected a whole number >= 1, got {registration_visits!r}.")
-    tracker = Tracker() if tracker is None else tracker
-    if not isinstance(tracker, Tracker):
-        raise ArgumentError("tracker", f"expected tolalloc.acceptance.Tracker(...), got {tracker!r}.")
+    tracker, registration_visits = _instrument(tracker, registration_visits)
     if region is None:
         lo, hi, _ = default_region(robot)
     elif hasattr(region, "q_min"):
@@ -218,7 +213,18 @@ def acceptance_test(robot, region=None, *, cube_edge_mm=None, cube_centre_mm=Non
     robot.check_q(np.stack([lo, hi]), "region")
     pl = place_cube(robot, lo, hi, centre_mm=cube_centre_mm, edge_mm=cube_edge_mm, plane=plane,
                     orientation=orientation, candidates=candidates, seed=seed)
-    return AcceptanceTest(robot, pl, cycles, path_cycles, tracker, registration, int(registration_visits))
+    return AcceptanceTest(robot, pl, cycles, path_cycles, tracker, registration, registration_visits)
+
+
+def _instrument(tracker, registration_visits) -> tuple:
+    """``(tracker, registration_visits)`` checked: a :class:`Tracker` (default ``Tracker()``), a whole number >= 1."""
+    if isinstance(registration_visits, bool) or not isinstance(registration_visits, (int, np.integer)) \
+            or registration_visits < 1:
+        raise ArgumentError("registration_visits", f"expected a whole number >= 1, got {registration_visits!r}.")
+    tracker = Tracker() if tracker is None else tracker
+    if not isinstance(tracker, Tracker):
+        raise ArgumentError("tracker", f"expected tolalloc.acceptance.Tracker(...), got {tracker!r}.")
+    return tracker, int(registration_visits)
 
 
 def acceptance_test_at(robot, q_test, q_registration=None, *, cycles: int = 30, tracker: Tracker | None = None,
@@ -235,6 +241,8 @@ def acceptance_test_at(robot, q_test, q_registration=None, *, cycles: int = 30, 
         At least 3 poses.
     """
     q_test = np.atleast_2d(robot.check_q(q_test, "q_test"))
+    cycles = check_cycles(cycles, "cycles")
+    tracker, registration_visits = _instrument(tracker, registration_visits)
     reg = "none" if q_registration is None else "corners"
     q_reg = np.zeros((0, robot.n_joints)) if q_registration is None else np.atleast_2d(
         robot.check_q(q_registration, "q_registration"))
@@ -246,5 +254,4 @@ def acceptance_test_at(robot, q_test, q_registration=None, *, cycles: int = 30, 
     both = np.vstack([q_test, q_reg])
     lo, hi = both.min(axis=0), both.max(axis=0)
     pl = CubePlacement(cube, q_test, q_reg, lo, hi, searched=False)
-    return AcceptanceTest(robot, pl, check_cycles(cycles, "cycles"), 10, Tracker() if tracker is None else tracker, reg,
-                          int(registration_visits))
+    return AcceptanceTest(robot, pl, cycles, 10, tracker, reg, registration_visits)

@@ -134,7 +134,7 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
         fit = fit_model(initial_fit(model, q_reg, x_reg), q_reg, x_reg, geo_index=np.zeros(0, int), prior=False,
                         robust=False)
     else:
-        t = np.asarray(target_offset_mm, float).reshape(3)
+        t = _offset(target_offset_mm)
         fit0 = replace(initial_fit(model, q_reg, x_reg), t_mm=t)
         R, p = kabsch(fit0.base_points(q_reg), x_reg)
         fit = replace(fit0, R=R, p_mm=p)
@@ -158,6 +158,17 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
                  "approach, vAP_P between the approaches' barycentres (ISO 9283 7.2.1-7.2.3)")
     return MeasuredAcceptance(np.array(qs), np.array(n), np.array(ap), np.array(rp), tuple(rows),
                               np.asarray(reg_rows), fit.rms_mm, note, robot, np.array(vap), np.array(ways))
+
+
+def _offset(x) -> np.ndarray:
+    try:
+        t = np.asarray(x, float)
+    except (TypeError, ValueError):
+        t = None
+    if t is None or t.shape != (3,) or not np.all(np.isfinite(t)):
+        raise TolallocError(f"target_offset_mm: expected the target's offset in the flange frame as three finite "
+                            f"numbers [mm], got {x!r}.")
+    return t
 
 
 def _approach_groups(direction, idx, base) -> tuple:
@@ -190,8 +201,13 @@ def compare_with_prediction(measured: MeasuredAcceptance, prediction) -> pd.Data
         if len(vals) != s.model.n_rows:
             raise TolallocError(f"prediction: expected a prediction at the {len(vals)} measured poses, got "
                                 f"{s.model.n_rows} rows; predict at acceptance_test_at(robot, measured.q, ...).")
+        if np.any(measured.cycles != s.model.cycles):
+            raise TolallocError(f"prediction: made for {s.model.cycles} cycles per pose, but the measured poses have "
+                                f"{', '.join(map(str, np.unique(measured.cycles)))}; the laws of AP_P and RP_l depend "
+                                "on the count: predict at acceptance_test_at(robot, measured.q, ..., cycles=n) with the "
+                                "measured count (poses measured a different number of times: one prediction each).")
         C = s.cov_robot + s.cov_instrument
-        pct = measure_cdf(s.model.measure, C, vals, s.model.cycles)
+        pct = measure_cdf(s.model.measure, C, vals, s.model.cycles, s.mean)
         for i, v in enumerate(vals):
             rows.append({"statistic": s.model.name, "pose": i + 1, "measured_mm": v,
                          "predicted_median_mm": s.median_measured[i], "predicted_at_share_mm": s.measured[i],

@@ -47,9 +47,11 @@ from typing import Protocol
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.acceptance.evaluation import EvaluationPoses, evaluation_poses, requirement_poses
 from tolalloc.acceptance.instrument import registration_map, _skew
 from tolalloc.acceptance.requirements import IsoRequirement
 from tolalloc.acceptance.statistics import PAIRS
+from tolalloc.linear.repeatability import RP_LAW_MIN_CYCLES
 
 __all__ = ["StatisticModel", "ErrorEffects", "EffectCovariance", "EvaluationPoses", "evaluation_poses",
            "statistic_models", "design_variances", "effects_at", "requirement_poses",
@@ -116,77 +118,6 @@ def _takes_approach(fn) -> bool:
     except (TypeError, ValueError):
         return True
     return any(p.name == "approach" or p.kind is p.VAR_KEYWORD for p in params)
-
-
-@dataclass(frozen=True, eq=False)
-class EvaluationPoses:
-    """The poses a test's statistics read: P1-P5, the registration poses and the path points.
-
-    Attributes
-    ----------
-    q : array, shape (M, n) [rad, mm]
-    test, registration, path : arrays of int
-        Rows of ``q``.
-    points_mm : array, shape (M, 3)
-        Command positions.
-    tangents : array, shape (len(path), 3)
-        Unit tangents of the command path.
-    directional : array of int, shape (V, 3)
-        Rows of a multi-directional test: pose ``v`` approached along each of the three directions (``V = 0``
-        without one).
-    approach : array, shape (M, n), optional
-        Each joint's direction of motion into the pose (+1 / -1, 0 unknown), known at the directional rows only;
-        ``None`` without them.
-    """
-
-    q: np.ndarray
-    test: np.ndarray
-    registration: np.ndarray
-    path: np.ndarray
-    points_mm: np.ndarray
-    tangents: np.ndarray
-    directional: np.ndarray = None
-    approach: np.ndarray | None = None
-
-
-def evaluation_poses(test, path_points: int = 0, multidirectional=None) -> EvaluationPoses:
-    """The evaluation poses of an :class:`~tolalloc.acceptance.layout.AcceptanceTest` (with a path of
-    ``path_points`` points when > 0, and the directional visits of a
-    :class:`~tolalloc.acceptance.requirements.MultiDirectionalAccuracy` ``multidirectional``)."""
-    parts = [test.q_test, test.q_registration]
-    tang = np.zeros((0, 3))
-    if path_points:
-        tp = test.path(path_points)
-        parts.append(tp.q)
-        tang = tp.tangents
-    if multidirectional is not None:
-        if max(multidirectional.poses) > len(test.q_test):
-            raise TolallocError(f"{multidirectional.kind}: poses {list(multidirectional.poses)} but the test has "
-                                f"{len(test.q_test)} test poses; name poses 1-{len(test.q_test)}.")
-        qv = test.q_test[[i - 1 for i in multidirectional.poses]]
-        parts.append(np.repeat(qv, 3, axis=0))
-    sizes = np.cumsum([0] + [len(p) for p in parts])
-    q = np.vstack(parts)
-    rng = [np.arange(sizes[i], sizes[i + 1]) for i in range(len(parts))]
-    path = rng[2] if path_points else np.zeros(0, int)
-    directional, approach = np.zeros((0, 3), int), None
-    if multidirectional is not None:
-        directional = rng[-1].reshape(-1, 3)
-        approach = np.zeros_like(q)
-        approach[directional] = test.joint_directions(q[directional[:, 0]], multidirectional.directions())
-    return EvaluationPoses(q, rng[0], rng[1], path, test.commanded(q), tang, directional, approach)
-
-
-def requirement_poses(test, requirements) -> EvaluationPoses:
-    """:func:`evaluation_poses` for the requirements' statistics (the path and the directional visits they read)."""
-    path = next((r for r in requirements if r.kind == "path_accuracy"), None)
-    vap = [r for r in requirements if r.kind.startswith("multidirectional")]
-    if len(vap) == 2 and (vap[0].poses, vap[0].approach) != (vap[1].poses, vap[1].approach):
-        raise TolallocError(f"multidirectional requirements: one test approaches each pose one way for the position "
-                            f"and the orientation, but they name poses {list(vap[0].poses)} and "
-                            f"{list(vap[1].poses)}, approaches {list(vap[0].approach)} and {list(vap[1].approach)}; "
-                            "give both the same.")
-    return evaluation_poses(test, path.points if path is not None else 0, vap[0] if vap else None)
 
 
 @dataclass(frozen=True, eq=False)
@@ -371,6 +302,10 @@ def statistic_models(requirements, test, ev: EvaluationPoses | None = None) -> l
                 L[i, :, m, off:off + 3] = np.eye(3)
                 W[i, m] = 1.0
             if k == "pose_repeatability":
+                if n < RP_LAW_MIN_CYCLES:
+                    raise TolallocError(f"cycles: RP_l is predicted for tests of at least {RP_LAW_MIN_CYCLES} "
+                                        f"cycles (its law's range; ISO 9283 uses 30), the test has {n}; lay the test "
+                                        f"out with cycles >= {RP_LAW_MIN_CYCLES}.")
                 out.append(StatisticModel("RP_l", req, "rp", n, req.limit, tgt, P1_5, L, W, systematic=False))
             else:
                 out += [StatisticModel(f"RP_{a}", req, "sd3", n, req.limit, tgt, P1_5, _one_row(L, j), W, "deg",
@@ -427,8 +362,14 @@ def multidirectional_labels(req) -> tuple:
 
 def _distance_model(req, ev: EvaluationPoses, n: int) -> StatisticModel:
     """``AD_P``: the mean attained distance minus the command distance, ``u . (mean P_b - mean P_a)``."""
+    if max(req.poses) > len(ev.test):
+        raise TolallocError(f"{req.kind}: poses {list(req.poses)} but the test has {len(ev.test)} test poses; name "
+                            f"poses 1-{len(ev.test)}.")
     a, b = (ev.test[i - 1] for i in req.poses)
     u = ev.points_mm[b] - ev.points_mm[a]
+    if not np.linalg.norm(u) > 1e-9:
+        raise TolallocError(f"{req.kind}: the command positions of P{req.poses[0]} and P{req.poses[1]} coincide, "
+                            "so the distance between them has no direction; name two distinct test poses.")
     u = u / np.linalg.norm(u)
     M = len(ev.q)
     L, W = np.zeros((1, 3, M, 6)), np.zeros((1, M))

@@ -56,6 +56,8 @@ class StatisticPrediction:
         Expanded uncertainty of the measurement.
     decisions : tuple of Decision
         ISO 14253-1 verdict on ``measured`` per row.
+    mean : array, shape (P, 3), optional [mm or rad]
+        Mean of the statistic vector that every built robot shares (the bought parts' effects), None without.
     """
 
     model: StatisticModel
@@ -68,6 +70,7 @@ class StatisticPrediction:
     p_robot: np.ndarray
     U: np.ndarray
     decisions: tuple
+    mean: np.ndarray | None = None
 
     @property
     def met(self) -> bool:
@@ -78,6 +81,11 @@ class StatisticPrediction:
     def demonstrated(self) -> bool:
         """Whether the test demonstrates conformance at every row (ISO 14253-1)."""
         return all(d.demonstrated for d in self.decisions)
+
+    def p_meets_path(self) -> float:
+        """Share of the robots whose largest row (``AT_P`` over the path points) meets the limit, from below:
+        ``1 - sum(1 - p_i)`` (Bonferroni), 0 at worst. The smallest row's share would bound it from above."""
+        return float(max(0.0, 1.0 - np.sum(1.0 - self.p_robot)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -110,7 +118,8 @@ class AcceptancePrediction:
         Columns: ``statistic``, ``where``, ``unit`` and, in that unit (``_mm`` / ``_deg`` pairs), ``limit``,
         ``robot`` (the robot's statistic at the share), ``measured`` (what the test reports at the share),
         ``median_measured``, ``U``, ``margin`` (``limit - measured - U``); ``share`` (the requirement's),
-        ``p_meets`` (share of robots meeting the limit), ``decision``.
+        ``p_meets`` (share of robots meeting the limit; for ``AT_P`` a lower bound,
+        :meth:`StatisticPrediction.p_meets_path`), ``decision``.
         """
         rows = []
         for s in self.statistics:
@@ -124,7 +133,7 @@ class AcceptancePrediction:
                              "limit": m.limit * f, "robot": (s.robot.max() if m.name == "AT_P" else s.robot[i]) * f,
                              "measured": s.measured[i] * f, "median_measured": s.median_measured[i] * f,
                              "U": s.U[i] * f, "margin": d.margin * f, "share": m.requirement.share,
-                             "p_meets": float(s.p_robot.min() if m.name == "AT_P" else s.p_robot[i]),
+                             "p_meets": s.p_meets_path() if m.name == "AT_P" else float(s.p_robot[i]),
                              "decision": d.outcome})
         df = pd.DataFrame(rows)
         out = df[["statistic", "where", "unit"]].copy()
@@ -222,4 +231,4 @@ def _predict_one(sm: StatisticModel, J, S, V, eff, tracker) -> StatisticPredicti
     p = measure_cdf(sm.measure, C, sm.limit, n, mu)
     U = expanded_uncertainty(sm.measure, C_inst, n, tracker.k)
     decisions = tuple(decide(y, sm.limit, u) for y, u in zip(measured, U))
-    return StatisticPrediction(sm, C, C_inst, share, robot, measured, median, p, U, decisions)
+    return StatisticPrediction(sm, C, C_inst, share, robot, measured, median, p, U, decisions, mu)

@@ -115,11 +115,12 @@ def static_compliance(robot, q, *, load_n: float | None = None, steps: int = 10)
         raise ArgumentError("steps", f"expected a whole number of load steps >= 1 (the standard: 10), got {steps!r}.")
     if load_n is None:
         rated = robot.components.payload.rated_kg
-        if rated is None:
-            raise TolallocError(f"robot {robot.name!r}: no load_n given and no rated payload ([components.payload] "
-                                "rated_kg) to take the full load from; give load_n [N].")
+        if rated is None or not rated > 0:
+            raise TolallocError(f"robot {robot.name!r}: no load_n given and no rated payload > 0 ([components.payload] "
+                                f"rated_kg, here {rated!r}) to take the full load from; give load_n [N].")
         load_n = rated * GRAVITY
-    if not (isinstance(load_n, (int, float, np.floating)) and np.isfinite(load_n) and load_n > 0):
+    if isinstance(load_n, bool) or not (isinstance(load_n, (int, float, np.integer, np.floating))
+                                        and np.isfinite(load_n) and load_n > 0):
         raise ArgumentError("load_n", f"expected a load > 0 [N], e.g. 100, got {load_n!r}.")
     loads = float(load_n) * np.arange(1, steps + 1) / steps
     R = robot.fk_internal(q)[0, :3, :3]

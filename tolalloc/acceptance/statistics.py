@@ -75,6 +75,33 @@ def _cycles(x, width: int, name: str) -> np.ndarray:
     return a
 
 
+def _commanded(x, attained: np.ndarray, name: str) -> np.ndarray:
+    """``x`` as finite values of one command per cycle group: shape ``attained.shape[:-2] + (3,)`` or broadcasting
+    to it."""
+    try:
+        c = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise TolallocError(f"{name}: expected the command as numbers [mm or rad], got {x!r}.") from None
+    want = attained.shape[:-2] + (3,)
+    try:
+        if np.broadcast_shapes(c.shape, want) != want:
+            raise ValueError
+    except ValueError:
+        raise TolallocError(f"{name}: expected the command as shape {want} (one per group of cycles), got shape "
+                            f"{c.shape}.") from None
+    if c.ndim == 0 or c.shape[-1] != 3:
+        raise TolallocError(f"{name}: expected three values per command (x, y, z or a, b, c), got shape {c.shape}.")
+    if not np.all(np.isfinite(c)):
+        raise TolallocError(f"{name}: every commanded value must be a finite number; got NaN or inf.")
+    return c
+
+
+def _wrapped(angles: np.ndarray, reference) -> np.ndarray:
+    """``angles - reference`` [rad] wrapped into [-pi, pi): a tool pointing down reads +-180 deg, and the cycles on
+    either side of that seam are a few thousandths apart, not 2 pi."""
+    return (angles - reference + np.pi) % (2 * np.pi) - np.pi
+
+
 def pose_accuracy(attained_mm, commanded_mm) -> np.ndarray:
     """ISO 9283 7.2.1 position accuracy ``AP_P``: distance from the command position to the barycentre.
 
@@ -89,7 +116,7 @@ def pose_accuracy(attained_mm, commanded_mm) -> np.ndarray:
     array, shape (...) [mm]
     """
     a = _cycles(attained_mm, 3, "attained_mm")
-    return np.linalg.norm(a.mean(axis=-2) - np.asarray(commanded_mm, float), axis=-1)
+    return np.linalg.norm(a.mean(axis=-2) - _commanded(commanded_mm, a, "commanded_mm"), axis=-1)
 
 
 def pose_repeatability(attained_mm) -> np.ndarray:
@@ -109,7 +136,8 @@ def pose_repeatability(attained_mm) -> np.ndarray:
 
 
 def orientation_accuracy(attained_rad, commanded_rad) -> np.ndarray:
-    """ISO 9283 7.2.1 orientation accuracy ``(AP_a, AP_b, AP_c)``: mean attained angle minus command angle.
+    """ISO 9283 7.2.1 orientation accuracy ``(AP_a, AP_b, AP_c)``: mean attained angle minus command angle (each
+    cycle's difference wrapped into [-pi, pi) first, so angles across the +-180 deg seam average correctly).
 
     Parameters
     ----------
@@ -122,7 +150,8 @@ def orientation_accuracy(attained_rad, commanded_rad) -> np.ndarray:
     array, shape (..., 3) [rad], signed
     """
     a = _cycles(attained_rad, 3, "attained_rad")
-    return a.mean(axis=-2) - np.asarray(commanded_rad, float)
+    c = _commanded(commanded_rad, a, "commanded_rad")
+    return _wrapped(a, c[..., None, :]).mean(axis=-2)
 
 
 def orientation_repeatability(attained_rad) -> np.ndarray:
@@ -138,7 +167,7 @@ def orientation_repeatability(attained_rad) -> np.ndarray:
     array, shape (..., 3) [rad]
     """
     a = _cycles(attained_rad, 3, "attained_rad")
-    return 3.0 * a.std(axis=-2, ddof=1)
+    return 3.0 * _wrapped(a, a[..., :1, :]).std(axis=-2, ddof=1)
 
 
 def barycentre_distances(attained_mm) -> np.ndarray:
@@ -195,7 +224,8 @@ def angle_differences(attained_rad) -> np.ndarray:
     -------
     array, shape (..., 3 pairs, 3 angles) [rad]
     """
-    return np.abs(_pair_differences(attained_rad, "attained_rad"))
+    a = _cycles(attained_rad, 3, "attained_rad")
+    return np.abs(_pair_differences(_wrapped(a, a[..., :1, :1, :]), "attained_rad"))
 
 
 def multidirectional_orientation(attained_rad) -> np.ndarray:
@@ -236,7 +266,9 @@ def distance_accuracy(attained_1_mm, attained_2_mm, commanded_1_mm, commanded_2_
     array, shape (...) [mm]
     """
     d = _distances(attained_1_mm, attained_2_mm)
-    dc = np.linalg.norm(np.asarray(commanded_1_mm, float) - np.asarray(commanded_2_mm, float), axis=-1)
+    a1 = _cycles(attained_1_mm, 3, "attained_1_mm")
+    dc = np.linalg.norm(_commanded(commanded_1_mm, a1, "commanded_1_mm") - _commanded(commanded_2_mm, a1,
+                                                                                      "commanded_2_mm"), axis=-1)
     return d.mean(axis=-1) - dc
 
 

@@ -22,21 +22,27 @@ from tolalloc.robot.part_catalogue import builtin_catalogue
 __all__ = ["PartsAllocation", "check_rated_options", "part_figures"]
 
 
-def part_figures(kind: str, spec) -> str:
-    """The figures of a part that matter for accuracy, as one line."""
+def part_figures(kind: str, spec, motion: str = "rotary") -> str:
+    """The figures of a part that matter for accuracy, as one line; ``motion``: ``"linear"`` for a prismatic joint's
+    part (a ball screw, a linear scale: mm, N/um, N), else rotary (arcmin, arcsec, N m/rad, N m)."""
+    linear = motion == "linear"
+    ang = (lambda x: f"{x * 1000:.3g} um") if linear else (lambda x: f"{x / ARCMIN:.3g} arcmin")
     if kind == "reducer":
         out = [spec.type]
         if spec.transmission_accuracy is not None:
-            out.append(f"transmission accuracy {spec.transmission_accuracy / ARCMIN:.3g} arcmin")
+            out.append(f"transmission accuracy {ang(spec.transmission_accuracy)}")
         if spec.lost_motion is not None:
-            out.append(f"lost motion {spec.lost_motion / ARCMIN:.3g} arcmin")
+            out.append(f"lost motion {ang(spec.lost_motion)}")
         if spec.stiffness:
-            out.append(f"stiffness {spec.stiffness[-1]:.3g} N m/rad")
+            out.append(f"stiffness {spec.stiffness[-1] / 1000:.3g} N/um" if linear else
+                       f"stiffness {spec.stiffness[-1]:.3g} N m/rad")
         if spec.rated_torque is not None:
-            out.append(f"rated {spec.rated_torque:.4g} N m")
+            out.append(f"rated {spec.rated_torque:.4g} {'N' if linear else 'N m'}")
         return ", ".join(out)
     if kind == "encoder":
-        return f"{spec.side}-side, accuracy {(spec.accuracy or 0) / ARCSEC:.3g} arcsec peak-to-peak"
+        acc = (spec.accuracy or 0)
+        figure = f"{acc * 1000:.3g} um" if linear else f"{acc / ARCSEC:.3g} arcsec"
+        return f"{spec.side}-side, accuracy {figure} peak-to-peak"
     if kind == "bearing":
         return (f"ISO 492 {spec.precision_class}: Kia {spec.radial_runout * 1000:.3g} um at bore {spec.bore_mm:g} mm, "
                 f"span {spec.span_mm:g} mm")
@@ -179,7 +185,7 @@ class PartsAllocation:
             p = slot.part(self.choice[key])
             rows.append({"joint": key[0], "kind": key[1], "part": p.name, "family": p.family, "grade": p.grade,
                          "options": " | ".join(slot.names), "cost": p.cost, "cost_source": p.cost_source,
-                         "figures": part_figures(key[1], slot.resolve(p.name)), "source": p.source,
+                         "figures": part_figures(key[1], slot.resolve(p.name), p.motion), "source": p.source,
                          "variance_share_pct": float(shares.get(f"{key[0]} {key[1]}", np.nan))})
         return pd.DataFrame(rows)
 

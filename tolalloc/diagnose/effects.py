@@ -73,7 +73,8 @@ from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
 from tolalloc.physics.rehoming import cycle_blocks, homed_joints, rehome_columns, rehome_problem
 from tolalloc.physics.seating import seat_blocks, seat_columns, seat_problem
-from tolalloc.physics.thermal import thermal_bases, thermal_variants, time_problem
+from tolalloc.physics.thermal import thermal_bases, thermal_variants
+from tolalloc.physics.thermal_history import time_problem
 from tolalloc.physics.transmission import SERIES_ORDERS, transmission_columns
 from tolalloc.diagnose.measurements import Measurements
 

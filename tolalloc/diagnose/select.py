@@ -43,7 +43,8 @@ from tolalloc.diagnose.uncertainty import parameter_covariance
 from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.ratio_search import search_ratios
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
-from tolalloc.physics.thermal import is_air_variant, time_problem, variant_parts
+from tolalloc.physics.thermal import is_air_variant, variant_parts
+from tolalloc.physics.thermal_history import time_problem
 from tolalloc.physics.lost_motion import DIRECTION_SIDES
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
 

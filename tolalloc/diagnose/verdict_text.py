@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.thermal import is_clock_variant, is_measurement_variant, time_problem
+from tolalloc.physics.thermal import is_clock_variant, is_measurement_variant
+from tolalloc.physics.thermal_history import time_problem
 from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACTOR
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied

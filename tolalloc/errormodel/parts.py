@@ -311,6 +311,12 @@ class PartEffects:
         out = EffectTerms.empty(self.n_points)
         if bearing is None or j not in self.pm.bearing:
             return out
+        if bearing.radial_runout is None or bearing.span_mm is None:
+            name = self.robot.joints[j].name
+            raise TolallocError(f"robot {self.robot.name!r}: joint {name!r}'s bearing gives no "
+                                f"{'radial_runout_um' if bearing.radial_runout is None else 'span_mm'}; add "
+                                f"components.joints.{name}.bearing.radial_runout_um (Kia of its ISO 492 class at its "
+                                "bore) and span_mm, or choose the bearing from a catalogue slot")
         for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
             out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
         return out

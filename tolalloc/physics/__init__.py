@@ -27,7 +27,8 @@ from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacob
 from tolalloc.physics.clearance import clearance_columns, joint_wrenches
 from tolalloc.physics.error_motions import stroke_columns
 from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_basis, lost_motion_columns
-from tolalloc.physics.thermal import lag_filter, link_growth, motor_heat, time_problem
+from tolalloc.physics.thermal import link_growth
+from tolalloc.physics.thermal_history import lag_filter, motor_heat, time_problem
 from tolalloc.physics.transmission import gear_orders, transmission_columns, transmission_error
 
 __all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "guide_joints", "COMPLIANCE_LAWS",

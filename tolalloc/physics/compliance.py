@@ -35,6 +35,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from tolalloc.exceptions import TolallocError
+
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import base_moment, gravity_torques, tip_load, unit_along, wrench_load, wrench_moment
 
@@ -176,5 +178,14 @@ def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_
     k = robot.components.mount.tilt_stiffness
     if k is None:
         return np.zeros_like(p)
-    B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes", wrench)
-    return B @ (1.0 / np.asarray(k, float)[:B.shape[2]])
+    k = np.asarray(k, float)
+    if k[0] == k[1]:  # one stiffness about every horizontal axis, whichever way gravity points
+        return mount_columns(robot, q, p, tip_mm, payload_kg, "isotropic", wrench)[0][..., 0] / k[0]
+    g = np.asarray(robot.gravity, dtype=float)
+    if abs(g[2]) < 0.99:
+        raise TolallocError(f"robot {robot.name!r}: [components.mount] tilt_stiffness_Nm_per_rad gives two values, "
+                            f"about the base x and y axes, which are the horizontal ones only with gravity along base "
+                            f"z; this robot's gravity is {np.round(g, 3).tolist()}. Give one value (the same about "
+                            "every horizontal axis).")
+    B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes", wrench)  # columns about x, then y
+    return B @ (1.0 / k)

@@ -5,7 +5,7 @@ homed joint's zero a little differently::
 
     dq_j,i = z_j,b(i)        the zero of joint j in the power cycle b of pose i [rad or mm]
 
-Power cycles are read from ``time_s``: a pause longer than :data:`~.thermal.PAUSE_STEPS` median intervals between
+Power cycles are read from ``time_s``: a pause longer than :data:`~.thermal_history.PAUSE_STEPS` median intervals between
 two poses in time order may be a power-down (:func:`cycle_blocks`; a pause without one only costs the fit columns
 the evidence does not want). The calibrated joint offsets are the mean zeros; each cycle departs from them by
 contrasts (:func:`~.blocks.contrasts`), one prior scale per joint (a homing's spread differs between axes). A test
@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.physics.blocks import block_problem, place, pose_contrasts, runs
-from tolalloc.physics.thermal import PAUSE_STEPS, time_problem
+from tolalloc.physics.thermal_history import PAUSE_STEPS, time_problem
 
 __all__ = ["homed_joints", "cycle_gap_s", "cycle_blocks", "rehome_problem", "rehome_columns"]
 
@@ -35,7 +35,7 @@ def homed_joints(robot) -> np.ndarray:
 
 
 def cycle_gap_s(train_time_s: np.ndarray) -> float:
-    """The pause that may be a power cycle [s]: :data:`~.thermal.PAUSE_STEPS` median intervals of the training
+    """The pause that may be a power cycle [s]: :data:`~.thermal_history.PAUSE_STEPS` median intervals of the training
     poses in time order."""
     dt = np.diff(np.sort(np.asarray(train_time_s, float)))
     return PAUSE_STEPS * float(np.median(dt[dt > 0])) if np.any(dt > 0) else np.inf

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.physics.blocks import block_problem, place, pose_contrasts, runs
-from tolalloc.physics.thermal import time_problem
+from tolalloc.physics.thermal_history import time_problem
 from tolalloc.robot.model import Robot
 
 __all__ = ["seat_blocks", "seat_columns", "seat_problem"]

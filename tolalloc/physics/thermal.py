@@ -20,7 +20,7 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   and the copper losses of the torque it holds (``I^2 R``, with the current proportional to the gravity load: the
   load squared, held over the interval before each pose), each through the first-order lag of heating and cooling
   (time constant ``tau``); the heat of joint ``j`` warms the links at its two ends, which grow along themselves --
-  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`PAUSE_STEPS`
+  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`~tolalloc.physics.thermal_history.PAUSE_STEPS`
   median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
 
 * ``held_<tau>min``: heat exchanged with what the robot holds: a gripped part warmer or colder than the arm (a
@@ -49,7 +49,7 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
   drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
 
-Time-driven variants need a usable ``time_s`` (:func:`time_problem`): present, non-decreasing in row order (one
+Time-driven variants need a usable ``time_s`` (:func:`~tolalloc.physics.thermal_history.time_problem`): present, non-decreasing in row order (one
 session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
 is built from the training rows alone; a test file's basis runs the lag filters over the training and test
 rows together in time order (their joint values and times only -- what is known before a pose is measured).
@@ -62,21 +62,14 @@ import numpy as np
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import across_axes, gravity_torques, point_at
+from tolalloc.physics.thermal_history import activity, duty_warmup, held_heat, lagged, motor_heat, time_problem
 from tolalloc.physics.thermal_scale import joint_scale, scale_joints
 
-__all__ = ["LAG_MIN", "lagged", "time_problem", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth",
-           "link_joint_matrix", "activity", "lag_filter", "active_time", "PAUSE_STEPS", "motor_heat", "MAX_SPAN_S",
-           "MAX_STEP_S", "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt", "duty_warmup",
-           "frame_drift", "held_heat", "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column",
-           "is_measurement_variant", "is_clock_variant"]
+__all__ = ["LAG_MIN", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth", "link_joint_matrix",
+           "is_air_variant", "variant_parts", "link_bow", "BOW_MIN_MM", "axis_tilt", "frame_drift",
+           "MEASUREMENT_PREFIX", "DRIFT_MIN_MIN", "is_measurement_column", "is_measurement_variant", "is_clock_variant"]
 
 LAG_MIN = (5.0, 7.5, 10.0, 15.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 180.0, 240.0)
-#: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
-MAX_SPAN_S = 2 * 86400.0
-#: A median step between consecutive poses above this [s] (10 min) is taken for another unit (ms).
-MAX_STEP_S = 600.0
-#: An interval longer than this many median intervals between poses holds a pause (the motors idle, the links cool).
-PAUSE_STEPS = 5.0
 #: Links shorter than this [mm] do not bow measurably under a temperature difference across them.
 BOW_MIN_MM = 200.0
 #: Shortest warm-up [min] of the instrument's drift: a laser tracker settles over tens of minutes to hours (makers ask
@@ -86,124 +79,6 @@ DRIFT_MIN_MIN = 20.0
 MEASUREMENT_PREFIX = "drift_"
 #: variants driven by the time since the session's start alone (a drift of the measuring frame is one too, kept apart)
 CLOCK_VARIANTS = ("warmup", "links_warmup", "bow")
-
-
-def time_problem(time_s) -> str | None:
-    """Why ``time_s`` (P,) cannot drive time-dependent effects, or None when it can."""
-    if time_s is None:
-        return "no time_s column"
-    t = np.asarray(time_s, float)
-    if len(t) < 2 or np.ptp(t) <= 0:
-        return "time_s does not advance"
-    step = np.diff(t)
-    if np.any(step < 0):
-        i = int(np.flatnonzero(step < 0)[0])
-        return (f"time_s is not increasing within the session (pose {i + 2}: {t[i + 1]:g} s after {t[i]:g} s); "
-                "expected one session per file with time stamps in measurement order")
-    pos = step[step > 0]
-    med = float(np.median(pos)) if len(pos) else 0.0
-    if np.ptp(t) > MAX_SPAN_S or med > MAX_STEP_S:
-        return (f"time_s looks like another unit than seconds (span {np.ptp(t):.4g}, median step {med:.4g} between "
-                f"poses; expected at most {MAX_SPAN_S:g} s and {MAX_STEP_S:g} s): convert it to seconds (ms / 1000)")
-    return None
-
-
-def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
-    """First-order lag of a signal (time order), ``dy/dt = (T - y) / tau``, started at ``T[0]``, shape (P,)."""
-    order = np.argsort(time_s, kind="stable")
-    ts, Ts = time_s[order], temp_c[order]
-    y = np.empty_like(Ts)
-    y[0] = Ts[0]
-    a = 1.0 - np.exp(-np.diff(ts) / tau_s)
-    for i in range(1, len(Ts)):
-        y[i] = y[i - 1] + a[i - 1] * (Ts[i] - y[i - 1])
-    out = np.empty_like(y)
-    out[order] = y
-    return out
-
-
-def lag_filter(time_s: np.ndarray, inputs: np.ndarray, tau_s: float, on_s: np.ndarray | None = None) -> np.ndarray:
-    """First-order lag (heating and cooling) of interval inputs, shape (P, m): ``inputs[i]`` (P, m) acts over the
-    interval before pose ``i`` (time order; the first pose's is ignored), the state starts at 0 (a cold robot).
-    ``on_s`` (P,) [s]: how long of each interval the input acts (in time order, the rest of the interval cools; default
-    the whole interval)."""
-    order = np.argsort(time_s, kind="stable")
-    ts, u = time_s[order], np.asarray(inputs, float)[order]
-    dt = np.diff(ts)
-    on = dt if on_s is None else np.minimum(np.asarray(on_s, float)[order][1:], dt)
-    a, cool = 1.0 - np.exp(-on / tau_s), np.exp(-(dt - on) / tau_s)
-    y = np.zeros_like(u)
-    for i in range(1, len(ts)):
-        y[i] = (y[i - 1] + a[i - 1] * (u[i] - y[i - 1])) * cool[i - 1]
-    out = np.empty_like(y)
-    out[order] = y
-    return out
-
-
-def active_time(time_s: np.ndarray) -> np.ndarray:
-    """How long the robot works in the interval before each pose [s], shape (P,): the interval, at most
-    :data:`PAUSE_STEPS` median intervals -- a longer gap is a pause (motors idle, the links cool) after that."""
-    order = np.argsort(time_s, kind="stable")
-    dt = np.diff(time_s[order])
-    med = float(np.median(dt[dt > 0])) if np.any(dt > 0) else 0.0
-    on = np.zeros(len(time_s))
-    on[order[1:]] = np.minimum(dt, PAUSE_STEPS * med)
-    return on
-
-
-def duty_warmup(time_s: np.ndarray, tau_s: float) -> np.ndarray:
-    """Warm-up of a heat source that is on while the robot works and off in its pauses (:func:`active_time`), shape
-    (P,): 0 at the first pose (a cold start), 1 - exp(-t / tau) over uninterrupted work, decaying by exp(-t / tau)
-    over a pause."""
-    return lag_filter(time_s, np.ones((len(time_s), 1)), tau_s, on_s=active_time(time_s))[:, 0]
-
-
-def _moves(time_s: np.ndarray, q: np.ndarray) -> tuple:
-    """``(|q_i - q_(i-1)|`` (P, n), ``t_i - t_(i-1)`` (P,)): the move and the interval before each pose in time
-    order (0 for the first), in the order of the poses."""
-    order = np.argsort(time_s, kind="stable")
-    step, dt = np.zeros(q.shape), np.zeros(len(time_s))
-    step[order[1:]] = np.abs(np.diff(q[order], axis=0))
-    dt[order[1:]] = np.diff(time_s[order])
-    return step, dt
-
-
-def _speed(time_s: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Joint speed over the interval before each pose in time order (0 for the first), shape (P, n)."""
-    step, dt = _moves(time_s, q)
-    return step / np.maximum(dt, 1e-9)[:, None]
-
-
-def activity(time_s: np.ndarray, q: np.ndarray, tau_s: float) -> np.ndarray:
-    """Lagged joint activity, shape (P, n): joint speed over the interval before each pose (time order; 0 for the
-    first), through a first-order lag of time constant ``tau_s`` started at 0 (a cold robot)."""
-    return lag_filter(time_s, _speed(time_s, q), tau_s)
-
-
-def motor_heat(time_s: np.ndarray, q: np.ndarray, load: np.ndarray, tau_s: float) -> np.ndarray:
-    """Lagged motor losses per joint, shape (P, 2n): the speed of the move (friction losses) and the squared load
-    held over the interval before each pose (copper losses; the load of the previous pose in time order), each
-    acting while the robot works (:func:`active_time`: a long gap is a pause that cools) through the first-order lag
-    of time constant ``tau_s``."""
-    on = active_time(time_s)
-    held = _previous(time_s, load) ** 2
-    speed = _moves(time_s, q)[0] / np.maximum(on, 1e-9)[:, None]  # the move over the time the robot works
-    return lag_filter(time_s, np.concatenate([speed, held], axis=1), tau_s, on_s=on)
-
-
-def held_heat(time_s: np.ndarray, payload_kg: np.ndarray, tau_s: float) -> np.ndarray:
-    """Lagged heat of a held payload, shape (P,): the payload of the previous pose in time order held over the interval
-    before each pose (0 before the first), through the first-order lag of time constant ``tau_s`` started at 0 [kg]."""
-    return lag_filter(time_s, _previous(time_s, payload_kg)[:, None], tau_s)[:, 0]
-
-
-def _previous(time_s: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """``values`` (P, ...) of the previous pose in time order, at each pose (0 at the first): what was held over the
-    interval before it."""
-    order = np.argsort(time_s, kind="stable")
-    out = np.zeros(np.shape(values), dtype=float)
-    out[order[1:]] = np.asarray(values, float)[order[:-1]]
-    return out
 
 
 def thermal_variants(meas, robot: Robot | None = None) -> tuple:

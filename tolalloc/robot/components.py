@@ -102,7 +102,8 @@ MATERIALS = {
     "steel": (210e3, 81e3, 7.85e-6, 11.7e-6, "structural steel, handbook values (e.g. Roark's Formulas, table of properties)"),
     "aluminium": (70e3, 26e3, 2.70e-6, 23.1e-6, "wrought aluminium alloy (6061-T6 / 7075), handbook values"),
     "cast_iron": (120e3, 47e3, 7.20e-6, 10.5e-6, "grey cast iron EN-GJL-250, handbook values"),
-    "cfrp": (70e3, 5e3, 1.55e-6, 0.5e-6, "quasi-isotropic carbon-fibre laminate, typical handbook values (assumed)"),
+    "cfrp": (70e3, 27e3, 1.55e-6, 0.5e-6, "quasi-isotropic carbon-fibre laminate, typical handbook values; G from E "
+                                          "with an in-plane Poisson's ratio of 0.3 (assumed)"),
 }
 
 

@@ -138,8 +138,12 @@ def read_section(table: dict, where: str) -> LinkSection:
         A, I = b * h - (b - 2 * t) * (h - 2 * t), (b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12
     material = _text(table, "material", where, None, tuple(MATERIALS))
     E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
-    E, G = v["youngs_modulus"] or E, v["shear_modulus"] or G
-    rho, cte = v["density"] or rho, v["cte"] if v["cte"] is not None else cte
+    for k in ("youngs_modulus", "shear_modulus", "density"):
+        _positive(v[k], k, where)
+    E = v["youngs_modulus"] if v["youngs_modulus"] is not None else E
+    G = v["shear_modulus"] if v["shear_modulus"] is not None else G
+    rho = v["density"] if v["density"] is not None else rho
+    cte = v["cte"] if v["cte"] is not None else cte
     if E is None:
         raise ValueError(f"{where}: no material figures; give material = one of {', '.join(MATERIALS)}, or "
                          "youngs_modulus_GPa (and shear_modulus_GPa, density_kg_per_m3, cte_um_per_m_K)")
@@ -155,10 +159,18 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
                        "homing_repeatability": (ang, ((),)), "scale_expansion": (_CTE, ((),))}, w,
                    text=("side", "source", "homing") + extra_keys)
     homing = _text(t, "homing", w, "absolute", ("absolute", "incremental"))
+    side = _text(t, "side", w, "output", ("output", "motor"))
+    if v["eccentricity"] is not None and (side != "output" or not revolute):
+        raise ValueError(f"{w}.eccentricity_um: a scale's mounting eccentricity is an error of an output-side rotary "
+                         "encoder (e / r once per turn); this one is "
+                         f"{'motor-side' if side != 'output' else 'linear'}: drop the key (its accuracy covers it)")
+    if v["eccentricity"] is not None and v["scale_radius"] is None:
+        raise ValueError(f"{w}.eccentricity_um: the error it gives is e / r once per turn; give the scale's radius "
+                         "scale_radius_mm too")
     if v["homing_repeatability"] is not None and homing != "incremental":
         raise ValueError(f"{w}.homing_repeatability: an absolute encoder keeps its zero through a power cycle; the "
                          "repeatability of the homing applies to homing = \"incremental\" (set it, or drop the key)")
-    return Encoder(_text(t, "side", w, "output", ("output", "motor")), _positive(v["accuracy"], "accuracy", w, True),
+    return Encoder(side, _positive(v["accuracy"], "accuracy", w, True),
                    _text(t, "source", w, ""), _positive(v["eccentricity"], "eccentricity", w, True),
                    _positive(v["scale_radius"], "scale_radius", w), homing,
                    _positive(v["homing_repeatability"], "homing_repeatability", w, True), v["scale_expansion"])

@@ -1,0 +1,163 @@
+"""Edges of the component physics: the air's first-order lag against its closed form, the mount on a robot whose
+gravity is not along base z, link-section and encoder figures that cannot be right, a bearing without its runout, and
+the parts table's units for a prismatic joint's parts."""
+
+from __future__ import annotations
+
+import textwrap
+
+import numpy as np
+import pytest
+
+import tolalloc
+from tolalloc.allocate.parts_result import part_figures
+from tolalloc.errormodel.parts import Conditions, PartEffects
+from tolalloc.exceptions import TolallocError
+from tolalloc.physics.compliance import mount_columns, mount_tilt
+from tolalloc.physics.loads import base_moment
+from tolalloc.physics.thermal_history import lagged
+from tolalloc.robot.components import MATERIALS
+from tolalloc.robot.components_io import read_encoder, read_section
+
+# a horizontal cantilever: j1 about the vertical, j2 about y at the root of a 1 m tube along x, a wrist j3; a 10 kg
+# mass at the tip
+CANTILEVER = """
+name = "cant"
+gravity = GRAVITY
+[[chain]]
+link = "base"
+vector_mm = [0, 0, 100]
+[[chain]]
+joint = "j1"
+type = "revolute"
+axis = [0, 0, 1]
+limits_deg = [-90, 90]
+[[chain]]
+joint = "j2"
+type = "revolute"
+axis = [0, 1, 0]
+limits_deg = [-10, 10]
+[[chain]]
+link = "arm"
+vector_mm = [1000, 0, 0]
+[[chain]]
+joint = "j3"
+type = "revolute"
+axis = [0, 0, 1]
+limits_deg = [-10, 10]
+[[chain]]
+link = "tool"
+vector_mm = [0, 0, -50]
+[[masses]]
+link = "tool"
+mass_kg = 10.0
+com_mm = [1000, 0, 50]
+[components.links.arm]
+section = "tube"
+outer_diameter_mm = 60
+wall_mm = 3
+material = "steel"
+"""
+
+
+def cantilever(tmp_path, extra: str = "", gravity: str = "[0, 0, -1]"):
+    path = tmp_path / "cant.toml"
+    path.write_text(textwrap.dedent(CANTILEVER.replace("GRAVITY", gravity) + extra))
+    return tolalloc.load_robot(str(path))
+
+
+# ------------------------------------------------------------------------------------------------ the air's lag
+@pytest.mark.parametrize("step_min", [1.0, 10.0, 30.0])
+def test_lag_of_a_ramp_is_exact_at_any_sampling(step_min):
+    """A ramp T = r t through dy/dt = (T - y) / tau from y(0) = T(0): y = r (t - tau (1 - e^(-t/tau))). The lag is
+    exact for a log linear between samples, so sparse samples (30 min against tau = 30 min) give the same values."""
+    tau, rate = 1800.0, 1.0 / 3600.0
+    t = np.arange(0.0, 4 * 3600.0 + 1, step_min * 60.0)
+    y = lagged(t, rate * t, tau)
+    assert y == pytest.approx(rate * (t - tau * (1 - np.exp(-t / tau))), abs=1e-12)
+    assert rate * t[-1] - y[-1] == pytest.approx(rate * tau, rel=2e-3)  # the steady lag, 0.5 K
+
+
+def test_lag_of_a_step_decays_and_repeated_times_hold():
+    t = np.array([0.0, 100.0, 100.0, 400.0])
+    T = np.array([0.0, 1.0, 1.0, 1.0])
+    y = lagged(t, T, 300.0)
+    # the step arrives linearly over 0-100 s: y(100) = 1 - tau/100 (1 - e^(-100/tau)); then it decays towards 1
+    y100 = 1 - 3.0 * (1 - np.exp(-1 / 3.0))
+    assert y[1] == pytest.approx(y100) and y[2] == y[1]
+    assert y[3] == pytest.approx(1 - (1 - y100) * np.exp(-1.0))
+    assert lagged(t[::-1].copy(), T[::-1].copy(), 300.0)[::-1] == pytest.approx(y)  # time order, not row order
+
+
+# ------------------------------------------------------------------------------------------------ the mount
+def test_mount_with_one_stiffness_tilts_about_gravity_whatever_its_direction(tmp_path):
+    q = np.zeros((1, 3))
+    for gravity in ("[0, 0, -1]", "[0, -0.5, -0.8660254037844386]", "[-1, 0, 0]"):
+        r = cantilever(tmp_path, "[components.mount]\ntilt_stiffness_Nm_per_rad = 2.0e6\n", gravity)
+        p = r.fk_internal(q)[:, :3, 3]
+        M = base_moment(r, q)
+        g = np.asarray(r.gravity, float)
+        Mh = M - (M @ g)[:, None] * g
+        assert mount_tilt(r, q, p)[0] == pytest.approx(np.cross(Mh[0] / 2.0e6, p[0]), abs=1e-15)
+        assert np.abs(mount_tilt(r, q, p)).max() > 1e-5
+
+
+def test_mount_with_two_stiffnesses_reads_them_about_x_and_y_or_refuses(tmp_path):
+    q = np.zeros((1, 3))
+    r = cantilever(tmp_path, "[components.mount]\ntilt_stiffness_Nm_per_rad = [1.0e6, 4.0e6]\n")
+    p = r.fk_internal(q)[:, :3, 3]
+    B, names = mount_columns(r, q, p, variant="axes")
+    assert names == ["c_mount_x [rad/(N m)]", "c_mount_y [rad/(N m)]"]
+    assert mount_tilt(r, q, p)[0] == pytest.approx(B[0, :, 0] / 1.0e6 + B[0, :, 1] / 4.0e6)
+    tilted = cantilever(tmp_path, "[components.mount]\ntilt_stiffness_Nm_per_rad = [1.0e6, 4.0e6]\n", "[-1, 0, 0]")
+    with pytest.raises(TolallocError, match="tilt_stiffness_Nm_per_rad gives two values.*one value"):
+        mount_tilt(tilted, q, tilted.fk_internal(q)[:, :3, 3])
+
+
+# ------------------------------------------------------------------------------------------------ figures
+@pytest.mark.parametrize("figures, key", [({"youngs_modulus_GPa": -210}, "youngs_modulus"),
+                                          ({"material": "steel", "youngs_modulus_GPa": 0}, "youngs_modulus"),
+                                          ({"material": "steel", "shear_modulus_GPa": -5}, "shear_modulus"),
+                                          ({"material": "steel", "density_kg_per_m3": -7850}, "density")])
+def test_a_section_refuses_material_figures_that_are_not_positive(figures, key):
+    with pytest.raises(ValueError, match=f"links.arm.{key}: expected positive"):
+        read_section({"section": "tube", "outer_diameter_mm": 60, "wall_mm": 3, **figures}, "links.arm")
+    kept = read_section({"section": "tube", "outer_diameter_mm": 60, "wall_mm": 3, "material": "steel",
+                         "youngs_modulus_GPa": 200}, "links.arm")
+    assert kept.youngs_modulus_MPa == 200e3  # a given figure wins over the material's
+
+
+def test_every_material_has_a_poisson_ratio_of_a_real_isotropic_solid():
+    for name, (E, G, *_rest) in MATERIALS.items():
+        assert 0.0 < E / (2 * G) - 1 < 0.5, name
+
+
+def test_an_encoder_eccentricity_needs_its_scale_radius_and_an_output_side_rotary_scale():
+    ok = read_encoder({"side": "output", "accuracy_arcsec": 20, "eccentricity_um": 5, "scale_radius_mm": 50}, "e",
+                      True)
+    assert ok.eccentricity == pytest.approx(0.005) and ok.scale_radius_mm == 50
+    with pytest.raises(ValueError, match="e.eccentricity_um: .*scale_radius_mm"):
+        read_encoder({"side": "output", "accuracy_arcsec": 20, "eccentricity_um": 5}, "e", True)
+    with pytest.raises(ValueError, match="e.eccentricity_um: .*motor-side"):
+        read_encoder({"side": "motor", "accuracy_arcsec": 20, "eccentricity_um": 5, "scale_radius_mm": 50}, "e", True)
+    with pytest.raises(ValueError, match="e.eccentricity_um: .*linear"):
+        read_encoder({"side": "output", "accuracy_mm": 0.01, "eccentricity_um": 5, "scale_radius_mm": 50}, "e", False)
+
+
+def test_a_bearing_without_its_runout_is_named_with_its_key(tmp_path):
+    r = cantilever(tmp_path, "[components.joints.j2.bearing]\nprecision_class = \"P5\"\nspan_mm = 80\nbore_mm = 60\n")
+    fx = PartEffects(r, np.zeros((1, 3)), 0.0, 20.0, Conditions((0.0, 0.0), (20.0, 20.0)))
+    with pytest.raises(TolallocError, match="joint 'j2'.*components.joints.j2.bearing.radial_runout_um"):
+        fx.terms()
+
+
+def test_the_parts_table_gives_a_prismatic_joints_parts_in_mm_and_newtons():
+    tc = tolalloc.load_robot("tool_changer")
+    slots = tc.components.slots
+    key = next(k for k, s in slots.items() if k[1] == "reducer" and s.options[0].motion == "linear")
+    screw = slots[key].options[0]
+    line = part_figures("reducer", slots[key].resolve(screw.name), screw.motion)
+    assert "arcmin" not in line and " um" in line and "N/um" in line and "N m" not in line
+    rotary = next(s for k, s in slots.items() if k[1] == "reducer" and s.options[0].motion == "rotary")
+    line = part_figures("reducer", rotary.resolve(rotary.options[0].name), "rotary")
+    assert "arcmin" in line and "N m/rad" in line
