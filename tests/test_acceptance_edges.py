@@ -169,15 +169,19 @@ def test_requirements_a_test_at_given_poses_cannot_hold_are_refused(ur10_poses):
 
 
 def test_measured_target_offset_and_static_load_inputs():
-    from tolalloc.acceptance.measured import _offset
-
-    assert _offset([1, 2, 3]) == pytest.approx([1, 2, 3])
-    for bad in ([np.nan, 0, 0], [0, 0], "abc"):
-        with pytest.raises(TolallocError, match="target_offset_mm: expected"):
-            _offset(bad)
-    from tolalloc.errormodel.parts import with_parts
+    from tolalloc.acceptance.measured import measured_acceptance
+    from tolalloc.diagnose.measurements import Measurements
 
     ur10 = tolalloc.load_robot("ur10")
+    rng = np.random.default_rng(2)
+    q = np.repeat(ur10.lower + (ur10.upper - ur10.lower) * rng.random((6, 6)), 2, axis=0)
+    meas = Measurements(q, ur10.fk_internal(q)[:, :3, 3])
+    assert measured_acceptance(meas, ur10, target_offset_mm=[0, 0, 0]).ap_mm == pytest.approx(0.0, abs=1e-6)
+    for bad in ([np.nan, 0, 0], [0, 0], "abc"):
+        with pytest.raises(TolallocError, match="target_offset_mm: expected"):
+            measured_acceptance(meas, ur10, target_offset_mm=bad)
+    from tolalloc.errormodel.parts import with_parts
+
     robot = with_parts(ur10, {k: s.options[0].name for k, s in ur10.components.slots.items()})
     q = np.deg2rad([10.0, -60.0, 80.0, -100.0, -90.0, 20.0])
     with pytest.raises(ArgumentError, match="load_n"):

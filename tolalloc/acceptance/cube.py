@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import qmc
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, check_vector
 from tolalloc.robot.lie import rotvec
 
 __all__ = ["TestCube", "CubePlacement", "place_cube", "solve_ik", "PLANES", "TEST_POINT_SHARE", "MIN_FIXED_EDGE_MM"]
@@ -224,17 +224,6 @@ def _placement(cube, q, q_min, q_max, searched) -> CubePlacement:
     return CubePlacement(cube, np.vstack([q[13], q[27:31]]), q[corner_rows], q_min, q_max, searched)
 
 
-def _finite_point(x) -> np.ndarray:
-    try:
-        c = np.asarray(x, float)
-    except (TypeError, ValueError):
-        c = None
-    if c is None or c.shape != (3,) or not np.all(np.isfinite(c)):
-        raise TolallocError(f"cube_centre_mm: expected the cube's centre as three finite numbers (x, y, z) [mm] in "
-                            f"the base frame, got {x!r}.")
-    return c
-
-
 def place_cube(robot, q_min, q_max, *, centre_mm=None, edge_mm=None, plane: int = 1, orientation: str = "auto",
                candidates: int = 8, seed: int = 0) -> CubePlacement:
     """The test cube in a joint-space box: the largest found, or the one given (checked).
@@ -272,7 +261,7 @@ def place_cube(robot, q_min, q_max, *, centre_mm=None, edge_mm=None, plane: int 
     if orientation not in ("auto", "fixed", "free"):
         raise TolallocError(f"orientation: expected 'auto', 'fixed' or 'free', got {orientation!r}.")
     q_min, q_max = np.asarray(q_min, float), np.asarray(q_max, float)
-    centre = None if centre_mm is None else _finite_point(centre_mm)
+    centre = None if centre_mm is None else check_vector(centre_mm, "cube_centre_mm", 3)
     if edge_mm is not None:
         if isinstance(edge_mm, bool) or not isinstance(edge_mm, (int, float, np.integer, np.floating)) \
                 or not np.isfinite(edge_mm) or edge_mm <= 0:

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, check_vector
 from tolalloc.acceptance.statistics import MIN_CYCLES, pose_accuracy, pose_repeatability
 
 __all__ = ["MeasuredAcceptance", "measured_acceptance", "compare_with_prediction", "MIN_REGISTRATION_POSES"]
@@ -134,7 +134,7 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
         fit = fit_model(initial_fit(model, q_reg, x_reg), q_reg, x_reg, geo_index=np.zeros(0, int), prior=False,
                         robust=False)
     else:
-        t = _offset(target_offset_mm)
+        t = check_vector(target_offset_mm, "target_offset_mm", 3)
         fit0 = replace(initial_fit(model, q_reg, x_reg), t_mm=t)
         R, p = kabsch(fit0.base_points(q_reg), x_reg)
         fit = replace(fit0, R=R, p_mm=p)
@@ -158,17 +158,6 @@ def measured_acceptance(meas, robot, *, target_offset_mm=None) -> MeasuredAccept
                  "approach, vAP_P between the approaches' barycentres (ISO 9283 7.2.1-7.2.3)")
     return MeasuredAcceptance(np.array(qs), np.array(n), np.array(ap), np.array(rp), tuple(rows),
                               np.asarray(reg_rows), fit.rms_mm, note, robot, np.array(vap), np.array(ways))
-
-
-def _offset(x) -> np.ndarray:
-    try:
-        t = np.asarray(x, float)
-    except (TypeError, ValueError):
-        t = None
-    if t is None or t.shape != (3,) or not np.all(np.isfinite(t)):
-        raise TolallocError(f"target_offset_mm: expected the target's offset in the flange frame as three finite "
-                            f"numbers [mm], got {x!r}.")
-    return t
 
 
 def _approach_groups(direction, idx, base) -> tuple:
