@@ -41,7 +41,6 @@ def test_measured_values_are_placed_in_the_fleet_with_the_parts_mean(ur10_poses)
     """Every built robot sags 0.3 mm (a mean of the parts' effects) and no registration takes it out: a measured AP_P
     equal to the predicted median sits at the fleet's median, not at its 95th percentile."""
     robot, q, _ = ur10_poses
-    q = q[:1]  # one pose: the probability with a mean near the ball's surface takes Imhof's integral (0.1-0.2 s)
 
     def sag(robot, q, conditions):
         mean = np.zeros((len(q), 6))
