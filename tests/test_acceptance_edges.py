@@ -79,6 +79,7 @@ def test_path_accuracy_share_is_a_lower_bound_the_simulated_test_keeps():
     s = pred.statistics[0]
     row = pred.to_frame().iloc[0]
     assert row.p_meets == pytest.approx(1 - np.sum(1 - s.p_robot)) and row.p_meets < s.p_robot.min()
+    assert row.target == row.share == 0.95  # the largest point against the requirement's share
     sim = simulate_acceptance(test, reqs, model, split, n_robots=1500, seed=7)
     simulated = np.mean(sim.robot["AT_P"].max(axis=1) <= 0.04)
     assert row.p_meets <= simulated + 0.02 and simulated <= s.p_robot.min() + 0.02

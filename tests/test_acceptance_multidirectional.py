@@ -138,6 +138,8 @@ def test_prediction_agrees_with_the_simulated_test_with_and_without_parts():
             assert 0.98 * lo <= got <= 1.02 * hi, (w, got, lo, hi)
             assert abs(pred.loc[w, "p_meets"] - sim.loc[w, "p_meets"]) < 0.02, w
     assert pred["robot_mm"].max() > 0.1 and pred["robot_deg"].max() > 0.02   # the lost motion shows
+    # each pair is held to 1 - (1 - share) / 3 so that a pose's largest pair meets the share: the table says so
+    assert pred["target"].to_numpy() == pytest.approx(1 - (1 - pred["share"].to_numpy()) / 3)
 
 
 def test_requirement_file_and_bad_input():

@@ -118,8 +118,10 @@ class AcceptancePrediction:
         Columns: ``statistic``, ``where``, ``unit`` and, in that unit (``_mm`` / ``_deg`` pairs), ``limit``,
         ``robot`` (the robot's statistic at the share), ``measured`` (what the test reports at the share),
         ``median_measured``, ``U``, ``margin`` (``limit - measured - U``); ``share`` (the requirement's),
-        ``p_meets`` (share of robots meeting the limit; for ``AT_P`` a lower bound,
-        :meth:`StatisticPrediction.p_meets_path`), ``decision``.
+        ``target`` (the share the row is held to: the requirement's, or for a pair of a multi-directional
+        statistic ``1 - (1 - share) / 3``, so that a pose's largest pair meets the share), ``p_meets`` (share of
+        robots meeting the limit; for ``AT_P`` a lower bound, :meth:`StatisticPrediction.p_meets_path`),
+        ``decision``.
         """
         rows = []
         for s in self.statistics:
@@ -133,6 +135,7 @@ class AcceptancePrediction:
                              "limit": m.limit * f, "robot": (s.robot.max() if m.name == "AT_P" else s.robot[i]) * f,
                              "measured": s.measured[i] * f, "median_measured": s.median_measured[i] * f,
                              "U": s.U[i] * f, "margin": d.margin * f, "share": m.requirement.share,
+                             "target": m.requirement.share if m.name == "AT_P" else float(m.target[i]),
                              "p_meets": s.p_meets_path() if m.name == "AT_P" else float(s.p_robot[i]),
                              "decision": d.outcome})
         df = pd.DataFrame(rows)
@@ -141,7 +144,7 @@ class AcceptancePrediction:
         for col in ("limit", "robot", "measured", "median_measured", "U", "margin"):
             out[f"{col}_mm"] = np.where(mm, df[col], np.nan)
             out[f"{col}_deg"] = np.where(mm, np.nan, df[col])
-        for col in ("share", "p_meets", "decision"):
+        for col in ("share", "target", "p_meets", "decision"):
             out[col] = df[col]
         return out
 
