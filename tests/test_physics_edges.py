@@ -120,7 +120,7 @@ def test_mount_with_two_stiffnesses_reads_them_about_x_and_y_or_refuses(tmp_path
                                           ({"material": "steel", "shear_modulus_GPa": -5}, "shear_modulus"),
                                           ({"material": "steel", "density_kg_per_m3": -7850}, "density")])
 def test_a_section_refuses_material_figures_that_are_not_positive(figures, key):
-    with pytest.raises(ValueError, match=f"links.arm.{key}: expected positive"):
+    with pytest.raises(ValueError, match=f"links.arm.{key}_[A-Za-z_0-9]+: expected positive values, got -?[0-9]"):
         read_section({"section": "tube", "outer_diameter_mm": 60, "wall_mm": 3, **figures}, "links.arm")
     kept = read_section({"section": "tube", "outer_diameter_mm": 60, "wall_mm": 3, "material": "steel",
                          "youngs_modulus_GPa": 200}, "links.arm")
@@ -161,3 +161,13 @@ def test_the_parts_table_gives_a_prismatic_joints_parts_in_mm_and_newtons():
     rotary = next(s for k, s in slots.items() if k[1] == "reducer" and s.options[0].motion == "rotary")
     line = part_figures("reducer", rotary.resolve(rotary.options[0].name), "rotary")
     assert "arcmin" in line and "N m/rad" in line
+
+
+def test_a_refused_figure_is_named_by_its_file_key_and_value():
+    """The check runs on internal units (N m/rad) but the message gives what the file says."""
+    from tolalloc.robot.components_io import read_reducer
+
+    with pytest.raises(ValueError, match=r"j2.reducer.stiffness_Nm_per_arcmin: expected positive values, got -5"):
+        read_reducer({"stiffness_Nm_per_arcmin": -5, "rated_torque_Nm": 100}, "j2.reducer", True)
+    with pytest.raises(ValueError, match=r"j2.reducer.lost_motion_arcmin: expected non-negative values, got -1"):
+        read_reducer({"lost_motion_arcmin": -1}, "j2.reducer", True)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.robot.components import _LENGTH, _ROT_STIFF, Components, JointComponents, Mount, Payload
-from tolalloc.robot.components_io import (_positive, _text, read_bearing, read_encoder, read_motor, read_reducer,
+from tolalloc.robot.components_io import (_positive_in, _text, read_bearing, read_encoder, read_motor, read_reducer,
                                           read_section, read_table)
 from tolalloc.robot.part_catalogue import parse_slot, robot_catalogue
 
@@ -75,14 +75,14 @@ def parse_components(data: dict | None, joint_kinds: dict, link_names, where: st
     if "mount" in data:
         w = f"{where}.mount"
         v = read_table(data["mount"], {"tilt_stiffness": (_ROT_STIFF, ((), (2,)))}, w, text=("source",))
-        k = v["tilt_stiffness"]
+        k = _positive_in(v, "tilt_stiffness", w)
         k = None if k is None else ((k, k) if isinstance(k, float) else tuple(k))
-        mount = Mount(_positive(k, "tilt_stiffness", w), _text(data["mount"], "source", w, ""))
+        mount = Mount(k, _text(data["mount"], "source", w, ""))
     payload = Payload()
     if "payload" in data:
         w = f"{where}.payload"
         v = read_table(data["payload"], {"rated": ({"kg": 1.0}, ((),)), "com": (_LENGTH, ((3,),))}, w)
-        payload = Payload(_positive(v["rated"], "rated", w, True),
+        payload = Payload(_positive_in(v, "rated", w, True),
                           np.zeros(3) if v["com"] is None else np.array(v["com"]))
     if ("catalogue" in data or "catalogue_file" in data) and not cat:
         catalogue()  # validate the file's catalogue even when no slot uses it

@@ -13,6 +13,15 @@ from tolalloc.robot.components import (_ANGLE, _CTE, _LENGTH, _LIN_STIFF, _MODUL
 __all__ = ["read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor", "read_section"]
 
 
+class Values(dict):
+    """:func:`read_table`'s values in internal units, ``{base: value}``; ``source[base]``: the file's key and value it
+    came from (for messages in the file's own terms)."""
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.source = {}
+
+
 def read_table(table: dict, spec: dict, where: str, text: tuple = ()) -> dict:
     """Values of the unit-suffixed keys of ``table`` in internal units, ``{base: value}`` (absent keys: None).
 
@@ -21,7 +30,7 @@ def read_table(table: dict, spec: dict, where: str, text: tuple = ()) -> dict:
     """
     if not isinstance(table, dict):
         raise ValueError(f"{where}: expected a table of keys, got {table!r}")
-    out, used = {b: None for b in spec}, set()
+    out, used = Values({b: None for b in spec}), set()
     for base, (units, shape) in spec.items():
         keys = [k for k in table if k == base or (k.startswith(base + "_") and k[len(base) + 1:] in units)]
         if base in table:
@@ -40,6 +49,7 @@ def read_table(table: dict, spec: dict, where: str, text: tuple = ()) -> dict:
             want = " or ".join("a number" if s == () else f"{s[0]} numbers" for s in shape or ((),))
             raise ValueError(f"{where}.{k}: expected {want} (finite), got {table[k]!r}")
         out[base] = float(v) if v.ndim == 0 else tuple(float(x) for x in v)
+        out.source[base] = (k, table[k])
         used.add(k)
     extra = [k for k in table if k not in used and k not in text]
     if extra:
@@ -62,10 +72,15 @@ def _text(table: dict, key: str, where: str, default=None, choices=None):
     return v
 
 
-def _positive(v, key: str, where: str, allow_zero: bool = False):
+def _positive_in(values: Values, key: str, where: str, allow_zero: bool = False):
+    """``values[key]`` (a :func:`read_table` value), refused naming the file's key and value unless every entry is
+    > 0 (>= 0 with ``allow_zero``); None passes."""
+    v = values[key]
     vals = (v,) if isinstance(v, float) else v
     if v is not None and any((x < 0 if allow_zero else x <= 0) for x in vals):
-        raise ValueError(f"{where}.{key}: expected {'non-negative' if allow_zero else 'positive'} values, got {v}")
+        file_key, raw = values.source.get(key, (key, v))
+        raise ValueError(f"{where}.{file_key}: expected {'non-negative' if allow_zero else 'positive'} values, got "
+                         f"{raw!r}")
     return v
 
 
@@ -84,9 +99,8 @@ def read_reducer(table: dict, where: str, revolute: bool, extra_keys: tuple = ()
         if isinstance(ratio, bool) or not isinstance(ratio, (int, float)) or not np.isfinite(ratio) or ratio <= 0:
             raise ValueError(f"{where}.ratio: expected a positive gear ratio (input turns per output turn, e.g. "
                              f"101), got {ratio!r}")
-    k = v["stiffness"]
+    k = _positive_in(v, "stiffness", where)
     k = () if k is None else ((k,) if isinstance(k, float) else tuple(k))
-    _positive(k or None, "stiffness", where)
     bands = v["torque_bands"] or ()
     if len(k) == 3:
         if any(b < a for a, b in zip(k, k[1:])):
@@ -98,9 +112,8 @@ def read_reducer(table: dict, where: str, revolute: bool, extra_keys: tuple = ()
     elif bands:
         raise ValueError(f"{where}.torque_bands: band limits need three stiffnesses K1, K2, K3, got {len(k)}")
     for key in ("lost_motion", "hysteresis", "transmission_accuracy", "repeatability", "stiffness_sd"):
-        _positive(v[key], key, where, allow_zero=True)
-    rated = v["rated_torque" if revolute else "rated_force"]
-    _positive(rated, "rated torque", where)
+        _positive_in(v, key, where, allow_zero=True)
+    rated = _positive_in(v, "rated_torque" if revolute else "rated_force", where)
     return Reducer(kind, None if ratio is None else float(ratio), k, tuple(bands), v["lost_motion"],
                    v["hysteresis"], v["transmission_accuracy"], rated, _text(table, "source", where, ""),
                    v["repeatability"], v["stiffness_sd"])
@@ -120,7 +133,7 @@ def read_section(table: dict, where: str) -> LinkSection:
     if missing:
         raise ValueError(f"{where}: a {kind} section needs {', '.join(missing)}")
     for k in need:
-        _positive(v[k], k, where)
+        _positive_in(v, k, where)
     if kind == "tube":
         D, t = v["outer_diameter"], v["wall"]
         if 2 * t >= D:
@@ -139,7 +152,7 @@ def read_section(table: dict, where: str) -> LinkSection:
     material = _text(table, "material", where, None, tuple(MATERIALS))
     E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
     for k in ("youngs_modulus", "shear_modulus", "density"):
-        _positive(v[k], k, where)
+        _positive_in(v, k, where)
     E = v["youngs_modulus"] if v["youngs_modulus"] is not None else E
     G = v["shear_modulus"] if v["shear_modulus"] is not None else G
     rho = v["density"] if v["density"] is not None else rho
@@ -170,20 +183,20 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
     if v["homing_repeatability"] is not None and homing != "incremental":
         raise ValueError(f"{w}.homing_repeatability: an absolute encoder keeps its zero through a power cycle; the "
                          "repeatability of the homing applies to homing = \"incremental\" (set it, or drop the key)")
-    return Encoder(side, _positive(v["accuracy"], "accuracy", w, True),
-                   _text(t, "source", w, ""), _positive(v["eccentricity"], "eccentricity", w, True),
-                   _positive(v["scale_radius"], "scale_radius", w), homing,
-                   _positive(v["homing_repeatability"], "homing_repeatability", w, True), v["scale_expansion"])
+    return Encoder(side, _positive_in(v, "accuracy", w, True),
+                   _text(t, "source", w, ""), _positive_in(v, "eccentricity", w, True),
+                   _positive_in(v, "scale_radius", w), homing,
+                   _positive_in(v, "homing_repeatability", w, True), v["scale_expansion"])
 
 
 def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
     """A :class:`Bearing` from its table."""
     v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)), "bore": (_LENGTH, ((),)),
                        "radial_runout": (_LENGTH, ((),)), "seat_diameter": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
-    return Bearing(_text(t, "precision_class", w), _positive(v["span"], "span", w), _text(t, "datum", w),
-                   _positive(v["tilt_stiffness"], "tilt_stiffness", w), _text(t, "source", w, ""),
-                   _positive(v["bore"], "bore", w), _positive(v["radial_runout"], "radial_runout", w, True),
-                   _positive(v["seat_diameter"], "seat_diameter", w))
+    return Bearing(_text(t, "precision_class", w), _positive_in(v, "span", w), _text(t, "datum", w),
+                   _positive_in(v, "tilt_stiffness", w), _text(t, "source", w, ""),
+                   _positive_in(v, "bore", w), _positive_in(v, "radial_runout", w, True),
+                   _positive_in(v, "seat_diameter", w))
 
 
 def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:
@@ -191,7 +204,7 @@ def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:
     v = read_table(t, {"winding_resistance": ({"ohm": 1.0}, ((),)), "torque_constant": ({"Nm_per_A": 1.0}, ((),)),
                        "thermal_resistance": ({"K_per_W": 1.0}, ((),)), "thermal_time_constant": (_TIME, ((),)),
                        "link_coupling": ({"pct": 0.01}, ((),))}, w, text=("source",) + extra_keys)
-    for k, x in v.items():
-        _positive(x, k, w, allow_zero=k == "link_coupling")
+    for k in v:
+        _positive_in(v, k, w, allow_zero=k == "link_coupling")
     return Motor(v["winding_resistance"], v["torque_constant"], v["thermal_resistance"], v["thermal_time_constant"],
                  _text(t, "source", w, ""), v["link_coupling"])

@@ -54,7 +54,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.robot.components import _LENGTH, Bearing
-from tolalloc.robot.components_io import (_positive, _text, read_encoder, read_motor, read_reducer,
+from tolalloc.robot.components_io import (_positive_in, _text, read_encoder, read_motor, read_reducer,
                                           read_table)
 
 __all__ = ["Part", "BearingClass", "PartCatalogue", "Slot", "KINDS", "BUILTIN_CATALOGUE", "load_part_catalogue",
@@ -173,7 +173,7 @@ def _entry(kind: str, name: str, table: dict, where: str, default_cost_source: s
 def _bearing_class(table: dict, where: str) -> BearingClass:
     v = read_table(table, {"bore_limits": (_LENGTH, None), "radial_runout": (_LENGTH, None)}, where,
                    text=("precision_class",) + _COMMON)
-    lim, kia = v["bore_limits"], v["radial_runout"]
+    lim, kia = v["bore_limits"], _positive_in(v, "radial_runout", where, allow_zero=True)
     if lim is None or kia is None:
         raise ValueError(f"{where}: a bearing class needs bore_limits_mm (B + 1 increasing limits) and "
                          "radial_runout_um (B values, Kia per bore range)")
@@ -182,7 +182,6 @@ def _bearing_class(table: dict, where: str) -> BearingClass:
     if len(lim) != len(kia) + 1 or any(b <= a for a, b in zip(lim, lim[1:])):
         raise ValueError(f"{where}: expected {len(kia) + 1} increasing bore_limits_mm for {len(kia)} radial_runout "
                          f"values, got {len(lim)} limits")
-    _positive(tuple(kia), "radial_runout", where, allow_zero=True)
     cls = _text(table, "precision_class", where, None)
     if cls is None:
         raise ValueError(f"{where}: missing precision_class (the ISO 492 class, e.g. \"P5\")")
@@ -339,9 +338,8 @@ def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, c
     if kind == "bearing":
         if v["bore"] is None:
             raise ValueError(f"{where}: a bearing slot needs bore_mm (it selects the ISO 492 runout row)")
-        geometry = {"bore_mm": v["bore"], "span_mm": _positive(v["span"], "span", where),
-                    "datum": _text(table, "datum", where), "tilt_stiffness": _positive(v["tilt_stiffness"],
-                                                                                      "tilt_stiffness", where)}
+        geometry = {"bore_mm": v["bore"], "span_mm": _positive_in(v, "span", where),
+                    "datum": _text(table, "datum", where), "tilt_stiffness": _positive_in(v, "tilt_stiffness", where)}
         if geometry["span_mm"] is None:
             raise ValueError(f"{where}: a bearing slot needs span_mm (the distance between its two bearings: "
                              "runout over the span tilts the axis)")
