@@ -171,3 +171,17 @@ def test_a_refused_figure_is_named_by_its_file_key_and_value():
         read_reducer({"stiffness_Nm_per_arcmin": -5, "rated_torque_Nm": 100}, "j2.reducer", True)
     with pytest.raises(ValueError, match=r"j2.reducer.lost_motion_arcmin: expected non-negative values, got -1"):
         read_reducer({"lost_motion_arcmin": -1}, "j2.reducer", True)
+
+
+def test_static_compliance_loads_and_reads_the_mechanical_interface(tmp_path):
+    """ISO 9283 clause 10 loads the mechanical interface: a tool offset in the robot file changes nothing."""
+    from dataclasses import replace
+
+    from tolalloc.acceptance import static_compliance
+
+    r = cantilever(tmp_path, "[components.mount]\ntilt_stiffness_Nm_per_rad = 2.0e5\n")
+    q = np.zeros(3)
+    flange = static_compliance(r, q, load_n=100.0, steps=2)
+    tooled = static_compliance(replace(r, tool_offset_mm=np.array([0.0, 0.0, -300.0])), q, load_n=100.0, steps=2)
+    assert tooled.displacement_mm == pytest.approx(flange.displacement_mm, abs=1e-15)
+    assert np.abs(flange.displacement_mm).max() > 1e-3

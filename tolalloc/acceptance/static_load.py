@@ -2,7 +2,9 @@
 
 The standard loads the mechanical interface in steps up to the rated load, along and against each axis of the base
 frame, with the robot holding its pose, and states the largest displacement per unit load [mm/N] per direction. The
-prediction applies the same loads to the parts' elastic physics (:class:`tolalloc.errormodel.parts.PartEffects`,
+prediction loads and reads the mechanical interface too -- the end of the robot file's chain, its tool offset left out
+(a tool point away from the flange would add the tool's lever to every load) -- and applies the loads to the parts'
+elastic physics (:class:`tolalloc.errormodel.parts.PartEffects`,
 one implementation with the design and the diagnosis): the gears' wind-up on their catalogue torque-torsion curves
 (a hardening gear is stiffer once the arm's own weight has taken up its soft band, so the preload matters), the
 links' bending and the mount's tilt. The displacement of a load is the elastic deflection with it less the
@@ -13,7 +15,7 @@ left out.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -123,6 +125,8 @@ def static_compliance(robot, q, *, load_n: float | None = None, steps: int = 10)
                                         and np.isfinite(load_n) and load_n > 0):
         raise ArgumentError("load_n", f"expected a load > 0 [N], e.g. 100, got {load_n!r}.")
     loads = float(load_n) * np.arange(1, steps + 1) / steps
+    if np.any(robot.tool_offset_mm):  # the mechanical interface: the chain's end
+        robot = replace(robot, tool_offset_mm=np.zeros(3), trust_units=True)
     R = robot.fk_internal(q)[0, :3, :3]
     pm = parts_error_model(build_error_model(robot, "generic"), robot)   # built once for every load
     base = _elastic(robot, q, np.zeros(3), pm)
