@@ -208,7 +208,7 @@ def test_missing_span_and_datum():
         HandoverSettings(default_span_mm=0)
     data = copy.deepcopy(_robot_data())
     data["components"] = {"joints": {"j1": {"bearing": {"span_mm": 0}}}}
-    with pytest.raises(TolallocError, match=r"bearing.span: expected positive values"):
+    with pytest.raises(TolallocError, match=r"bearing.span_mm: expected positive values, got 0"):
         robot_from_dict(data)
 
 
