@@ -185,3 +185,13 @@ def test_static_compliance_loads_and_reads_the_mechanical_interface(tmp_path):
     tooled = static_compliance(replace(r, tool_offset_mm=np.array([0.0, 0.0, -300.0])), q, load_n=100.0, steps=2)
     assert tooled.displacement_mm == pytest.approx(flange.displacement_mm, abs=1e-15)
     assert np.abs(flange.displacement_mm).max() > 1e-3
+
+
+def test_a_motor_cannot_warm_its_links_beyond_its_own_rise():
+    from tolalloc.robot.components_io import read_motor
+
+    figures = {"winding_resistance_ohm": 1.2, "torque_constant_Nm_per_A": 0.45, "thermal_resistance_K_per_W": 1.0,
+               "thermal_time_constant_s": 1500.0}
+    assert read_motor({**figures, "link_coupling_pct": 100}, "j1.motor").link_coupling == pytest.approx(1.0)
+    with pytest.raises(ValueError, match=r"j1.motor.link_coupling_pct: .*at most 100 %, got 130"):
+        read_motor({**figures, "link_coupling_pct": 130}, "j1.motor")

@@ -206,5 +206,8 @@ def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:
                        "link_coupling": ({"pct": 0.01}, ((),))}, w, text=("source",) + extra_keys)
     for k in v:
         _positive_in(v, k, w, allow_zero=k == "link_coupling")
+    if v["link_coupling"] is not None and v["link_coupling"] > 1.0:
+        raise ValueError(f"{w}.{v.source['link_coupling'][0]}: the links reach a share of the motor's temperature rise, "
+                         f"at most 100 %, got {v.source['link_coupling'][1]!r}")
     return Motor(v["winding_resistance"], v["torque_constant"], v["thermal_resistance"], v["thermal_time_constant"],
                  _text(t, "source", w, ""), v["link_coupling"])
