@@ -99,8 +99,9 @@ def test_rp_law_is_used_from_five_cycles_and_refused_below(ur10_poses):
         predict_acceptance(acceptance_test_at(robot, q, q_reg, cycles=3), [PoseRepeatability(limit_mm=0.05)],
                            build_error_model(robot, "generic"))
     # AP_P alone has an exact law at any count
-    predict_acceptance(acceptance_test_at(robot, q, q_reg, cycles=3), [PoseAccuracy(limit_mm=0.5)],
-                       build_error_model(robot, "generic"))
+    ap = predict_acceptance(acceptance_test_at(robot, q, q_reg, cycles=3), [PoseAccuracy(limit_mm=0.5)],
+                            build_error_model(robot, "generic")).statistics[0]
+    assert ap.model.cycles == 3 and np.all(np.isfinite(ap.robot))
 
 
 def test_orientation_statistics_across_the_180_degree_seam():
@@ -144,8 +145,10 @@ def test_a_test_at_given_poses_checks_its_instrument_like_the_cube(ur10_poses, k
                               tracker=Tracker()).registration_visits == 2
 
 
-@pytest.mark.parametrize("kw, match", [({"cube_edge_mm": -20.0}, "cube_edge_mm: expected the cube's edge as a number > 0"),
-                                       ({"cube_edge_mm": 0.0}, "cube_edge_mm"), ({"cube_edge_mm": "20"}, "cube_edge_mm"),
+@pytest.mark.parametrize("kw, match", [({"cube_edge_mm": -20.0}, "cube_edge_mm: expected the cube's edge as a "
+                                                                 "number > 0"),
+                                       ({"cube_edge_mm": 0.0}, "cube_edge_mm"),
+                                       ({"cube_edge_mm": "20"}, "cube_edge_mm"),
                                        ({"cube_edge_mm": 20.0, "cube_centre_mm": [0, 0]}, "cube_centre_mm: expected"),
                                        ({"cube_edge_mm": 20.0, "cube_centre_mm": [np.nan, 0, 0]}, "cube_centre_mm")])
 def test_the_cube_refuses_an_edge_or_centre_that_is_no_cube(kw, match):

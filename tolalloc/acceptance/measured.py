@@ -193,8 +193,8 @@ def compare_with_prediction(measured: MeasuredAcceptance, prediction) -> pd.Data
         if np.any(measured.cycles != s.model.cycles):
             raise TolallocError(f"prediction: made for {s.model.cycles} cycles per pose, but the measured poses have "
                                 f"{', '.join(map(str, np.unique(measured.cycles)))}; the laws of AP_P and RP_l depend "
-                                "on the count: predict at acceptance_test_at(robot, measured.q, ..., cycles=n) with the "
-                                "measured count (poses measured a different number of times: one prediction each).")
+                                "on the count: predict at acceptance_test_at(robot, measured.q, ..., cycles=n) with "
+                                "the measured count (poses measured a different number of times: one prediction each).")
         C = s.cov_robot + s.cov_instrument
         pct = measure_cdf(s.model.measure, C, vals, s.model.cycles, s.mean)
         for i, v in enumerate(vals):

@@ -1,4 +1,5 @@
-"""ISO 9283 static compliance (clause 10) predicted from the bought parts: the tool's displacement per unit load.
+"""ISO 9283 static compliance (clause 10) predicted from the bought parts: the mechanical interface's displacement
+per unit load.
 
 The standard loads the mechanical interface in steps up to the rated load, along and against each axis of the base
 frame, with the robot holding its pose, and states the largest displacement per unit load [mm/N] per direction. The
@@ -45,7 +46,7 @@ class StaticCompliance:
     loads_n : array, shape (S,) [N]
         The load steps.
     displacement_mm : array, shape (6, S, 3) [mm]
-        The tool point's displacement per load direction (:data:`LOAD_DIRECTIONS`) and step, base frame.
+        The mechanical interface's displacement per load direction (:data:`LOAD_DIRECTIONS`) and step, base frame.
     by_effect_mm : dict effect -> array, shape (6, S, 3)
         Each elastic effect's part of it (:data:`ELASTIC`).
     """
@@ -80,7 +81,7 @@ class StaticCompliance:
         """One line per direction: the compliance and the effect that gives most of it at the full load."""
         c = self.compliance_mm_per_n
         lines = [f"ISO 9283 static compliance (predicted from the parts) of {self.robot}, loads up to "
-                 f"{self.loads_n[-1]:.4g} N at the tool point:"]
+                 f"{self.loads_n[-1]:.4g} N at the mechanical interface:"]
         for d, name in enumerate(LOAD_DIRECTIONS):
             v = self.displacement_mm[d, -1]
             shares = {e: float(p[d, -1] @ v) for e, p in self.by_effect_mm.items()}
@@ -144,8 +145,8 @@ def static_compliance(robot, q, *, load_n: float | None = None, steps: int = 10)
 
 
 def _elastic(robot, q, force_tool, pm) -> dict:
-    """The elastic effects' mean displacement of the tool point [mm] under a force at it (tool frame), per effect
-    (``pm``: the robot's parts error model)."""
+    """The elastic effects' mean displacement of ``robot``'s tool point [mm] under a force at it (tool frame), per
+    effect (``pm``: the robot's parts error model); the caller passes the robot without its tool offset."""
     fx = PartEffects(robot, q, 0.0, 20.0, Conditions(process_force_n=tuple(force_tool)), pm=pm)
     t = fx.terms()
     out = {}

@@ -5,9 +5,9 @@ homed joint's zero a little differently::
 
     dq_j,i = z_j,b(i)        the zero of joint j in the power cycle b of pose i [rad or mm]
 
-Power cycles are read from ``time_s``: a pause longer than :data:`~.thermal_history.PAUSE_STEPS` median intervals between
-two poses in time order may be a power-down (:func:`cycle_blocks`; a pause without one only costs the fit columns
-the evidence does not want). The calibrated joint offsets are the mean zeros; each cycle departs from them by
+Power cycles are read from ``time_s``: a pause longer than :data:`~.thermal_history.PAUSE_STEPS` median intervals
+between two poses in time order may be a power-down (:func:`cycle_blocks`; a pause without one only costs the fit
+columns the evidence does not want). The calibrated joint offsets are the mean zeros; each cycle departs from them by
 contrasts (:func:`~.blocks.contrasts`), one prior scale per joint (a homing's spread differs between axes). A test
 pose in a cycle with no training pose (the robot powered up again after the training poses) cannot be predicted
 beyond the mean zeros. Absolute encoders keep their zero through a power cycle, and most arms have them: only the joints

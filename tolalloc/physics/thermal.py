@@ -20,8 +20,9 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   and the copper losses of the torque it holds (``I^2 R``, with the current proportional to the gravity load: the
   load squared, held over the interval before each pose), each through the first-order lag of heating and cooling
   (time constant ``tau``); the heat of joint ``j`` warms the links at its two ends, which grow along themselves --
-  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most :data:`~tolalloc.physics.thermal_history.PAUSE_STEPS`
-  median intervals of a gap between poses; the rest of a longer gap is a pause in which the links cool.
+  two coefficients per joint [1e-6 per rad/s, 1e-6 per (N m)^2]. The robot works for at most
+  :data:`~tolalloc.physics.thermal_history.PAUSE_STEPS` median intervals of a gap between poses; the rest of a longer
+  gap is a pause in which the links cool.
 
 * ``held_<tau>min``: heat exchanged with what the robot holds: a gripped part warmer or colder than the arm (a
   casting from the die, a chilled or frozen part), a gripper's own heat source or sink (a solenoid, a vacuum ejector's
@@ -49,10 +50,11 @@ Every link ``k`` grows by ``alpha_k dT_k L_k`` along itself; the target moves by
   (``warmup``, ``links_warmup``, ``activity`` or ``motor``) together, their columns side by side: a workshop whose air
   drifts while the drives warm the arm (:func:`is_air_variant` tells the two kinds apart).
 
-Time-driven variants need a usable ``time_s`` (:func:`~tolalloc.physics.thermal_history.time_problem`): present, non-decreasing in row order (one
-session per file) and in seconds. Otherwise they are skipped and the reason is reported. The training basis
-is built from the training rows alone; a test file's basis runs the lag filters over the training and test
-rows together in time order (their joint values and times only -- what is known before a pose is measured).
+Time-driven variants need a usable ``time_s`` (:func:`~tolalloc.physics.thermal_history.time_problem`): present,
+non-decreasing in row order (one session per file) and in seconds. Otherwise they are skipped and the reason is
+reported. The training basis is built from the training rows alone; a test file's basis runs the lag filters over the
+training and test rows together in time order (their joint values and times only -- what is known before a pose is
+measured).
 """
 
 from __future__ import annotations

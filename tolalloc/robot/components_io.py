@@ -78,7 +78,7 @@ def _positive_in(values: Values, key: str, where: str, allow_zero: bool = False)
     v = values[key]
     vals = (v,) if isinstance(v, float) else v
     if v is not None and any((x < 0 if allow_zero else x <= 0) for x in vals):
-        file_key, raw = values.source.get(key, (key, v))
+        file_key, raw = values.source[key]
         raise ValueError(f"{where}.{file_key}: expected {'non-negative' if allow_zero else 'positive'} values, got "
                          f"{raw!r}")
     return v
@@ -132,7 +132,7 @@ def read_section(table: dict, where: str) -> LinkSection:
     missing = [f"{k}_mm" for k in need if v[k] is None]
     if missing:
         raise ValueError(f"{where}: a {kind} section needs {', '.join(missing)}")
-    for k in need:
+    for k in (*need, "youngs_modulus", "shear_modulus", "density"):
         _positive_in(v, k, where)
     if kind == "tube":
         D, t = v["outer_diameter"], v["wall"]
@@ -151,8 +151,6 @@ def read_section(table: dict, where: str) -> LinkSection:
         A, I = b * h - (b - 2 * t) * (h - 2 * t), (b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12
     material = _text(table, "material", where, None, tuple(MATERIALS))
     E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
-    for k in ("youngs_modulus", "shear_modulus", "density"):
-        _positive_in(v, k, where)
     E = v["youngs_modulus"] if v["youngs_modulus"] is not None else E
     G = v["shear_modulus"] if v["shear_modulus"] is not None else G
     rho = v["density"] if v["density"] is not None else rho
@@ -207,7 +205,8 @@ def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:
     for k in v:
         _positive_in(v, k, w, allow_zero=k == "link_coupling")
     if v["link_coupling"] is not None and v["link_coupling"] > 1.0:
-        raise ValueError(f"{w}.{v.source['link_coupling'][0]}: the links reach a share of the motor's temperature rise, "
-                         f"at most 100 %, got {v.source['link_coupling'][1]!r}")
+        key, raw = v.source["link_coupling"]
+        raise ValueError(f"{w}.{key}: the links reach a share of the motor's temperature rise, at most 100 %, got "
+                         f"{raw!r}")
     return Motor(v["winding_resistance"], v["torque_constant"], v["thermal_resistance"], v["thermal_time_constant"],
                  _text(t, "source", w, ""), v["link_coupling"])
