@@ -137,10 +137,11 @@ def test_prediction_agrees_with_independent_simulation(setup):
 
 def test_library_simulation_agrees_with_prediction(setup):
     robot, test, model, split = setup
-    reqs = [PoseAccuracy(limit_mm=0.5), PoseRepeatability(limit_mm=0.05)]
+    reqs = [PoseAccuracy(limit_mm=0.5), PoseRepeatability(limit_mm=0.05), OrientationAccuracy(limit_deg=0.05),
+            OrientationRepeatability(limit_deg=0.01)]
     pr = {s.model.name: s for s in predict_acceptance(test, reqs, model, split).statistics}
     sim = simulate_acceptance(test, reqs, model, split, n_robots=600, seed=5)
-    for name in ("AP_P", "RP_l"):
+    for name in ("AP_P", "RP_l", "AP_a", "AP_c", "RP_b"):
         for i in range(5):
             assert _within(pr[name].robot[i], sim.robot[name][:, i], 0.95)[0]
             assert _within(pr[name].measured[i], sim.measured[name][:, i], 0.95)[0]

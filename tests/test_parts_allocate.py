@@ -73,12 +73,12 @@ def test_region_loop_parts_table_and_budget(setup):
 
 def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
     model = build_error_model(arm(tmp_path, "", "a.toml"))
-    heavy = arm(tmp_path, "", "b.toml")  # j1 offered a size 14 gear, rated 7.8 N m
+    heavy = arm(tmp_path, "", "b.toml")  # j1 offered a size 14 gear, rated 10 N m
     slots = dict(heavy.components.slots)
     slots[("j1", "reducer")] = replace(slots[("j1", "reducer")], options=builtin_catalogue().family("reducer",
                                                                                                   "HD-CSG-14-100"))
     object.__setattr__(heavy, "components", replace(heavy.components, slots=slots))
-    with pytest.raises(tolalloc.TolallocError, match=r"joint j1: HD-CSG-14-100 is rated 7.8 N m, but the gravity load "
+    with pytest.raises(tolalloc.TolallocError, match=r"joint j1: HD-CSG-14-100 is rated 10 N m, but the gravity load "
                                                      r"reaches 14.59 N m in the poses at the payload of 1 kg, .* "
                                                      r"above; drop it, or choose a reducer rated for at least .* "
                                                      r"\(in the built-in catalogue: HD-CSG-17-100 \(31 N m\)"):

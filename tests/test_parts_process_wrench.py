@@ -66,14 +66,14 @@ def test_a_process_force_that_is_not_three_finite_numbers_is_refused(robot, bad)
 
 
 def test_a_process_force_that_overloads_a_reducer_option_is_refused_naming_it(tmp_path):
-    """arm3's j2 options include a size 14 gear rated 7.8 N m: a 15 N push down in the tool frame (beside 1 kg of
+    """arm3's j2 options include a size 14 gear rated 10 N m: a 25 N push down in the tool frame (beside 1 kg of
     payload) overloads it somewhere in the region, and the refusal names the process wrench."""
     robot = arm(tmp_path)
-    with pytest.raises(tolalloc.TolallocError, match=r"joint j2: HD-CSG-14-100 is rated 7.8 N m, but the load "
+    with pytest.raises(tolalloc.TolallocError, match=r"joint j2: HD-CSG-14-100 is rated 10 N m, but the load "
                                                      r"\(gravity and the process wrench\) reaches .* or the process "
                                                      r"wrench"):
         tolalloc.allocate_tolerances(robot, region="work", parts={"payload_kg": (0.0, 1.0),
-                                                                  "process_force_n": (0.0, 0.0, -15.0)},
+                                                                  "process_force_n": (0.0, 0.0, -25.0)},
                                      requirement=tolalloc.PositionRequirement(1.5, 0.95), verification=False)
 
 

@@ -221,7 +221,7 @@ def test_a_mass_beside_the_beam_axis_twists_it():
     object.__setattr__(robot, "masses", (tolalloc.robot.Mass("m", 2, 20.0, np.array([1000.0, 300.0, 0.0])),))
     object.__setattr__(robot, "components", Components(links={"l1": sec}))
     P, L, d = 20 * G, 1000.0, 300.0
-    GJ = sec.shear_modulus_MPa * 2 * sec.inertia_mm4
+    GJ = sec.shear_modulus_MPa * np.pi / 32 * (100**4 - 90**4)  # polar moment of the round tube
     w = sec.area_mm2 * sec.density_kg_per_mm3 * G  # [N/mm]
     drop = (P * L**3 / (3 * sec.EI_Nmm2) + P * L / sec.shear_stiffness_N + P * d * L / GJ * d
             + w * L**4 / (8 * sec.EI_Nmm2) + w * L**2 / (2 * sec.shear_stiffness_N))

@@ -12,7 +12,8 @@ from scipy.spatial.transform import Rotation
 import tolalloc
 from tolalloc.diagnose.effects import target_points, variants
 from tolalloc.diagnose.measurements import Measurements
-from tolalloc.physics.clearance import clearance_columns, joint_wrenches
+from tolalloc.physics.clearance import clearance_columns
+from tolalloc.physics.loads import joint_wrenches
 from tolalloc.physics.compliance import mount_columns
 from tolalloc.physics.loads import G, base_moment, gravity_torques
 from tolalloc.robot.model import Joint, Link, Mass, Robot

@@ -127,6 +127,21 @@ def test_a_section_refuses_material_figures_that_are_not_positive(figures, key):
     assert kept.youngs_modulus_MPa == 200e3  # a given figure wins over the material's
 
 
+def test_a_box_twists_by_bredts_closed_section_and_a_thin_tube_agrees_with_it():
+    """Roark (Table 10.7, hollow rectangle, walls t and t1): K = 2 t t1 (a-t)^2 (b-t1)^2 / (a t + b t1 - t^2 - t1^2);
+    a round tube's polar moment is Bredt's 4 A_m^2 t / s = 2 pi r_m^3 t times (1 + (t / 2 r_m)^2), exactly."""
+    a, b, t = 220.0, 260.0, 12.0
+    box = read_section({"section": "box", "width_mm": a, "height_mm": b, "wall_mm": t, "material": "steel"}, "l")
+    roark = 2 * t * t * (a - t) ** 2 * (b - t) ** 2 / (a * t + b * t - 2 * t**2)
+    assert box.torsion_mm4 == pytest.approx(roark, rel=1e-12)
+    assert box.torsion_mm4 < 2 * box.inertia_mm4  # the polar-moment stand-in overstated a box's stiffness
+    assert box.GJ_Nmm2 == pytest.approx(box.shear_modulus_MPa * roark, rel=1e-12)
+    D, w = 200.0, 2.0
+    tube = read_section({"section": "tube", "outer_diameter_mm": D, "wall_mm": w, "material": "steel"}, "l")
+    r_m = (D - w) / 2
+    assert tube.torsion_mm4 == pytest.approx(2 * np.pi * r_m**3 * w * (1 + (w / (2 * r_m)) ** 2), rel=1e-12)
+
+
 def test_every_material_has_a_poisson_ratio_of_a_real_isotropic_solid():
     for name, (E, G, *_rest) in MATERIALS.items():
         assert 0.0 < E / (2 * G) - 1 < 0.5, name

@@ -271,7 +271,7 @@ class _Lab:
         if req.kind == "pose_repeatability":
             return {"RP_l": (st.pose_repeatability(pt), st.pose_repeatability(pm), P1_5)}
         if req.kind == "orientation_accuracy":
-            a_t, a_m = np.abs(st.orientation_accuracy(wt, 0.0)), np.abs(st.orientation_accuracy(wm, 0.0))
+            a_t, a_m = (np.abs(st.orientation_accuracy(w, np.zeros(3))) for w in (wt, wm))  # deviations: command 0
             return {f"AP_{a}": (a_t[..., j], a_m[..., j], P1_5) for j, a in enumerate(ANGLES)}
         if req.kind == "orientation_repeatability":
             r_t, r_m = st.orientation_repeatability(wt), st.orientation_repeatability(wm)

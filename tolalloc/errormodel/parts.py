@@ -19,6 +19,7 @@ The split, per effect (:data:`EFFECTS`; one implementation of each physical mode
     encoder       graduation and eccentricity          0                         sqrt(sum a^2 / 2)    -
     homing        zero of an incremental encoder       0                         -                    h / sqrt(3)
     bearing       runout of the bearing pair (4)       0                         eps / 2, eps / span  -
+    compliance    bearing tilt under its moment        M_perp / k (tilt)         TILT_SD |tilt|       -
     thermal       link growth (ambient and motors)     alpha dT L                THERMAL_SD |mean|    -
                   an encoder's scale (declared)        c q dT (ambient)          THERMAL_SD |mean|    -
     beam          link bending (sections)              sag                       BEAM_SD |sag|        -
@@ -44,18 +45,19 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.build import build_error_model
 from tolalloc.errormodel.model import ErrorModel, ErrorParameter, perpendicular_axes
-from tolalloc.errormodel.parts_terms import (BEAM_SD, COMPENSATION_RESIDUAL, EFFECTS, MOUNT_SD, THERMAL_SD,
+from tolalloc.errormodel.parts_terms import (BEAM_SD, COMPENSATION_RESIDUAL, EFFECTS, MOUNT_SD, THERMAL_SD, TILT_SD,
                                              EffectTerms, residual_factors)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_sd
-from tolalloc.physics.compliance import joint_loads, mount_tilt
+from tolalloc.physics.compliance import bearing_tilt, joint_loads, mount_tilt
 from tolalloc.physics.loads import target_points
 from tolalloc.physics.thermal_design import link_cte, link_temperature, motor_rise
 from tolalloc.physics.thermal_scale import scale_error
 from tolalloc.physics.transmission import catalogue_amplitudes
 from tolalloc.robot.model import Robot
 
-__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "Conditions",
+__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "TILT_SD", "COMPENSATION_RESIDUAL", "residual_factors",
+           "Conditions",
            "PartsModel",
            "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics", "stroke_of",
            "encoder_harmonics"]
@@ -319,7 +321,16 @@ class PartEffects:
                                 "bore) and span_mm, or choose the bearing from a catalogue slot")
         for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
             out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
+        if bearing.tilt_stiffness:
+            tilt = (lambda p: self.bearing_tilt(p)[:, :, j])
+            out += self._term(f"tilt_{self.robot.joints[j].name}", "compliance", j, tilt(self.tool), 1.0, TILT_SD,
+                              rot=self._rotation(tilt))
         return out
+
+    def bearing_tilt(self, p) -> np.ndarray:
+        """Displacement [mm] of the points ``p`` (P, 3) from every bearing's tilt at these points, shape (P, 3, n)
+        (:func:`~tolalloc.physics.compliance.bearing_tilt`)."""
+        return bearing_tilt(self.robot, self.q, p, self.payload_point, self.payload, self.wrench)
 
     def joint_terms(self, j: int) -> EffectTerms:
         """Every term of joint ``j``'s resolved parts."""

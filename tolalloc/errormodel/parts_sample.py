@@ -6,20 +6,20 @@ on, the gear's repeatability). The effects are evaluated physically -- the catal
 drawn stiffness, the gear and encoder errors at the actual joint angle, the bearings' rotating eccentricities -- by the
 physics stage's functions (the linear terms of :mod:`tolalloc.errormodel.parts` are their first-order moments). The
 draws are parameter values of :func:`~tolalloc.errormodel.parts.parts_error_model` (joint offsets, link growth,
-bearing displacements, which the exact perturbed chain carries) plus a direct tool displacement (beam sag, mount
-tilt).
+bearing displacements, which the exact perturbed chain carries) plus a direct tool displacement (beam sag, the
+bearings' and the mount's tilt).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD, THERMAL_SD, PartEffects,
+from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD, THERMAL_SD, TILT_SD, PartEffects,
                                        encoder_harmonics, gear_harmonics, motor_side, residual_factors,
                                        stroke_of)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
-from tolalloc.physics.compliance import mount_tilt
+from tolalloc.physics.compliance import bearing_tilt, mount_tilt
 from tolalloc.physics.thermal_design import link_cte
 from tolalloc.physics.thermal_scale import scale_error
 from tolalloc.physics.transmission import transmission_error
@@ -84,7 +84,7 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     values : array, shape (n, K)
         Parameter values of ``fx.pm.model`` [mm, rad] (the effects' only; add the geometric draws).
     direct : array, shape (n, 3)
-        Tool displacement beside the chain (beam sag, mount tilt) [mm].
+        Tool displacement beside the chain (beam sag, bearing and mount tilt) [mm].
     """
     f = residual_factors(after, residual)
     r, pm = fx.robot, fx.pm
@@ -104,6 +104,10 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     if r.components.links:
         sag = beam_sag(r, q1, p1, fx.payload[i:i + 1], fx.payload_point[i:i + 1], w_tool)[0]
         direct += f["beam"] * sag[None, :] * (1.0 + BEAM_SD * rng.standard_normal((n, 1)))
+    tilts = bearing_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1], w)[0]  # (3, n)
+    if np.any(tilts):
+        spread = 1.0 + TILT_SD * rng.standard_normal((n, r.n_joints))
+        direct += f["compliance"] * spread @ tilts.T
     if r.components.mount.tilt_stiffness is not None:
         tilt = mount_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1], w)[0]
         direct += f["mount"] * tilt[None, :] * (1.0 + MOUNT_SD * rng.standard_normal((n, 1)))

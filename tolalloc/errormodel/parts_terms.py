@@ -12,7 +12,8 @@ import pandas as pd
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "COMPENSATION_RESIDUAL", "residual_factors", "EffectTerms"]
+__all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "TILT_SD", "COMPENSATION_RESIDUAL", "residual_factors",
+           "EffectTerms"]
 
 EFFECTS = ("compliance", "lost_motion", "transmission", "encoder", "homing", "bearing", "thermal", "beam", "mount")
 #: Relative spread (one sd) of a link's thermal growth between robots (CTE and temperature field; ASSUMED).
@@ -21,6 +22,9 @@ THERMAL_SD = 0.1
 BEAM_SD = 0.1
 #: Relative spread of the mount's tilt (its stiffness is an estimate; ASSUMED).
 MOUNT_SD = 0.2
+#: Relative spread of a bearing's tilt under its moment (the catalogue's moment stiffness is nominal, the preload
+#: and the housing's stiffness vary; ASSUMED).
+TILT_SD = 0.2
 #: Share of a mean and of a systematic part a compensation model leaves (``after="compensation"``; ASSUMED).
 COMPENSATION_RESIDUAL = 0.1
 

@@ -2,8 +2,8 @@
 the diagnosis (fitted to measurements) and by the design (sampled from catalogue figures).
 
 * :mod:`.loads` -- the mass model, gravity loads on the joints and on the base mount, a payload at the target;
-* :mod:`.compliance` -- joint wind-up (linear, the catalogue's K1/K2/K3 bands, a smooth hardening law) and the
-  tilt (and rocking) of a compliant mount;
+* :mod:`.compliance` -- joint wind-up (linear, the catalogue's K1/K2/K3 bands, a smooth hardening law), a joint
+  bearing's tilt under the moment across its axis, and the tilt (and rocking) of a compliant mount;
 * :mod:`.beams` -- arm segments bending and shearing as cantilevers; a telescopic stage tilting in its guide;
 * :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
 * :mod:`.error_motions` -- a linear axis' six error motions along its stroke (ISO 230-1);
@@ -20,11 +20,11 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 """
 
 from tolalloc.physics.beams import beam_columns, beam_sag, deflection_segments, guide_columns, guide_joints
-from tolalloc.physics.compliance import (COMPLIANCE_LAWS, compliance_columns, joint_loads, joint_windup,
+from tolalloc.physics.compliance import (COMPLIANCE_LAWS, bearing_tilt, compliance_columns, joint_loads, joint_windup,
                                          mount_columns, mount_tilt)
-from tolalloc.physics.loads import (G, base_moment, gravity_torques, point_jacobian, robot_masses, target_points,
-                                    tip_load)
-from tolalloc.physics.clearance import clearance_columns, joint_wrenches
+from tolalloc.physics.loads import (G, base_moment, gravity_torques, joint_wrenches, point_jacobian, robot_masses,
+                                    target_points, tip_load)
+from tolalloc.physics.clearance import clearance_columns
 from tolalloc.physics.error_motions import stroke_columns
 from tolalloc.physics.lost_motion import SIDES, flank, lost_motion_basis, lost_motion_columns
 from tolalloc.physics.thermal import link_growth
@@ -32,7 +32,8 @@ from tolalloc.physics.thermal_history import lag_filter, motor_heat, time_proble
 from tolalloc.physics.transmission import gear_orders, transmission_columns, transmission_error
 
 __all__ = ["beam_columns", "beam_sag", "deflection_segments", "guide_columns", "guide_joints", "COMPLIANCE_LAWS",
-           "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "G", "base_moment",
+           "compliance_columns", "joint_loads", "joint_windup", "mount_columns", "mount_tilt", "bearing_tilt", "G",
+           "base_moment",
            "gravity_torques", "point_jacobian", "robot_masses", "target_points", "tip_load", "SIDES", "flank",
            "lost_motion_basis", "lost_motion_columns", "lag_filter", "link_growth", "motor_heat", "time_problem",
            "gear_orders", "transmission_columns", "transmission_error", "stroke_columns",

@@ -254,7 +254,7 @@ def segment_section(robot: Robot, j: int, k: int | None):
 
 def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None, wrench=None) -> np.ndarray:
     """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``), torsion
-    (``GJ``, ``J = 2 I``: exact for round tubes and bars, an approximation for a box) and shear (``kGA``) under every
+    (``GJ``, the section's torsion constant ``torsion_mm4``) and shear (``kGA``) under every
     mass the segment carries as a point load where it sits and the payload at ``payload_at`` (P, 3) (default the
     target ``p_t``; :func:`_load_integrals`), plus the section's own weight where the robot file puts no mass on the
     segment, and a process ``wrench`` (P, 6) at ``p_t`` (its force a point load, its moment a couple, as
@@ -275,6 +275,6 @@ def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None, wrench=None
             loads += [(F * per_kg_m, c, on) for F, c, on in _weight_loads(robot, start, e, L)]
         couples = () if wrench is None else (np.asarray(wrench, float)[:, 3:],)
         I = _load_integrals(start, e, L, loads, p_t, couples)
-        out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / (sec.shear_modulus_MPa * 2 * sec.inertia_mm4)
+        out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / sec.GJ_Nmm2
                 + I["shear"] / sec.shear_stiffness_N)
     return out

@@ -3,8 +3,9 @@
 A joint's bearings leave the body beyond it free to move within a clearance in the five directions the joint does
 not drive: along the axis (axial play), across it (radial play) and about the two axes across it (tilt play). Under
 a static load the body rests against the clearance's side the load presses -- the gravity force and moment carried
-through the joint (:func:`joint_wrenches`) -- so it is displaced by half the clearance in the direction of the force
-component (axial, radial) or turned by half the tilt clearance about the moment's component across the axis::
+through the joint (:func:`~.loads.joint_wrenches`) -- so it is displaced by half the clearance in the direction of
+the force component (axial, radial) or turned by half the tilt clearance about the moment's component across the
+axis::
 
     axial    d = (c_a / 2) sign(F . w) w
     radial   d = (c_r / 2) F_r / |F_r|                         F_r = F - (F . w) w
@@ -28,40 +29,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.loads import G, mass_points, point_at, unit_along
-from tolalloc.robot.kinematics import poe_prefix
+from tolalloc.physics.loads import joint_wrenches, unit_along
 from tolalloc.robot.model import Robot
 
-__all__ = ["joint_wrenches", "clearance_columns"]
+__all__ = ["clearance_columns"]
 
 #: A load component below this fraction of the whole load's largest value over the poses has no side (a bearing
 #: loaded across it by rounding only).
 NO_LOAD = 1e-6
-
-
-def joint_wrenches(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, tip_kg=0.0) -> tuple:
-    """Gravity force [N] and moment [N m] about each joint's point that the masses beyond it carry through the
-    joint, base frame: ``F, M`` each shape (P, n, 3), and the joints' points ``o`` (P, n, 3) [mm] and axes ``w``
-    (P, n, 3).
-
-    ``tip_mm`` (P, 3) and ``tip_kg`` (P,) or float: an extra point mass (the payload) at the target.
-    """
-    q = np.atleast_2d(q)
-    P, n = q.shape
-    prefix = poe_prefix(robot.screws, q)
-    o = np.stack([point_at(prefix[:, j], robot.joint_points_mm[j]) for j in range(n)], axis=1)
-    w = np.stack([prefix[:, j, :3, :3] @ robot.joints[j].axis for j in range(n)], axis=1)
-    g = G * np.asarray(robot.gravity, dtype=float)
-    F, M = np.zeros((P, n, 3)), np.zeros((P, n, 3))
-    loads = [(m.body, c, np.broadcast_to(m.mass_kg * g, c.shape)) for m, c in mass_points(robot, q, prefix)]
-    if tip_mm is not None:
-        kg = np.broadcast_to(np.asarray(tip_kg, float), (P,))
-        loads.append((n, np.asarray(tip_mm, float), kg[:, None] * g))
-    for body, c, f in loads:
-        for j in range(min(body, n)):
-            F[:, j] += f
-            M[:, j] += np.cross((c - o[:, j]) / 1000.0, f)
-    return F, M, o, w
 
 
 def _side(v: np.ndarray, whole: np.ndarray) -> np.ndarray:

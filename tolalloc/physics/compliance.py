@@ -23,6 +23,11 @@ a rocking ``r`` [mrad] in the direction of the horizontal moment whatever its si
 on the side the moment presses; the first joint's bearing tilt clearance has the same signature, so the clearance
 model of :mod:`~.clearance` leaves it to this one).
 
+**Bearing tilt.** A revolute joint's bearing pair (a cross-roller bearing, an angular-contact pair) carries the
+moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`) and tilts by ``M_perp / k`` [rad]
+with its catalogue moment stiffness ``k`` (``tilt_stiffness_Nm_per_rad``): the distal chain turns about the joint
+point (:func:`bearing_tilt`). It is a joint-axis deflection, the rotary counterpart of the mount's tilt.
+
 **A logged process wrench.** Where the data carry the force and moment a process applies at the tool (a cut, a
 press, a screwing reaction; :func:`~.loads.wrench_load`), both loads include it: the joints carry its virtual work
 and the mount its moment about the base (the beams and the flange element of :mod:`~.beams` carry it too).
@@ -38,10 +43,11 @@ import numpy as np
 from tolalloc.exceptions import TolallocError
 
 from tolalloc.robot.model import Robot
-from tolalloc.physics.loads import base_moment, gravity_torques, tip_load, unit_along, wrench_load, wrench_moment
+from tolalloc.physics.loads import (base_moment, gravity_torques, joint_wrenches, tip_load, unit_along, wrench_load,
+                                   wrench_moment)
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
-           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt"]
+           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt", "bearing_tilt"]
 
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
@@ -189,3 +195,20 @@ def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_
                             "every horizontal axis).")
     B, _ = mount_columns(robot, q, p, tip_mm, payload_kg, "axes", wrench)  # columns about x, then y
     return B @ (1.0 / k)
+
+
+def bearing_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> np.ndarray:
+    """Displacement [mm] of the points ``p`` (P, 3) from each revolute joint's bearing tilting under the moment
+    across its axis (module docstring), shape (P, 3, n); zeros for joints whose bearing gives no
+    ``tilt_stiffness``. The payload ``payload_kg`` (P,) and a process ``wrench`` (P, 6) act at ``tip_mm`` (P, 3)."""
+    q = np.atleast_2d(q)
+    out = np.zeros((len(q), 3, robot.n_joints))
+    stiff = {j: robot.components.joint(jt.name).bearing for j, jt in enumerate(robot.joints) if jt.is_revolute}
+    stiff = {j: b.tilt_stiffness for j, b in stiff.items() if b is not None and b.tilt_stiffness}
+    if not stiff:
+        return out
+    _, M, o, w = joint_wrenches(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg, wrench)
+    for j, k in stiff.items():
+        across = M[:, j] - np.einsum("pi,pi->p", M[:, j], w[:, j])[:, None] * w[:, j]
+        out[:, :, j] = np.cross(across / k, p - o[:, j])
+    return out

@@ -18,8 +18,8 @@ from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.lie import cross
 from tolalloc.robot.model import Mass, Robot
 
-__all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "wrench_load",
-           "wrench_moment", "point_at",
+__all__ = ["G", "DEFAULT_KG_PER_M", "robot_masses", "gravity_torques", "tip_load", "base_moment", "joint_wrenches",
+           "wrench_load", "wrench_moment", "point_at",
            "target_points", "point_jacobian", "mass_points", "across_axes", "unit_along"]
 
 #: Standard gravity [m/s^2].
@@ -116,6 +116,37 @@ def base_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
         kg = np.broadcast_to(np.asarray(tip_kg, float), (len(q),))
         M += kg[:, None] * np.cross(np.asarray(tip_mm, float) / 1000.0, g)
     return M
+
+
+def joint_wrenches(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, tip_kg=0.0,
+                   wrench: np.ndarray | None = None) -> tuple:
+    """Gravity force [N] and moment [N m] about each joint's point that the masses beyond it carry through the
+    joint, base frame: ``F, M`` each shape (P, n, 3), and the joints' points ``o`` (P, n, 3) [mm] and axes ``w``
+    (P, n, 3). The part of ``M`` along a revolute axis is the joint's torque (:func:`gravity_torques`); the part
+    across it is what the joint's bearings carry.
+
+    ``tip_mm`` (P, 3) and ``tip_kg`` (P,) or float: an extra point mass (the payload) at the target; ``wrench``
+    (P, 6): a process force [N] and moment [N m] applied there (:func:`wrench_load`).
+    """
+    q = np.atleast_2d(q)
+    P, n = q.shape
+    prefix = poe_prefix(robot.screws, q)
+    o = np.stack([point_at(prefix[:, j], robot.joint_points_mm[j]) for j in range(n)], axis=1)
+    w = np.stack([prefix[:, j, :3, :3] @ robot.joints[j].axis for j in range(n)], axis=1)
+    g = G * np.asarray(robot.gravity, dtype=float)
+    F, M = np.zeros((P, n, 3)), np.zeros((P, n, 3))
+    loads = [(m.body, c, np.broadcast_to(m.mass_kg * g, c.shape)) for m, c in mass_points(robot, q, prefix)]
+    if tip_mm is not None:
+        kg = np.broadcast_to(np.asarray(tip_kg, float), (P,))
+        loads.append((n, np.asarray(tip_mm, float), kg[:, None] * g))
+        if wrench is not None:
+            loads.append((n, np.asarray(tip_mm, float), np.asarray(wrench, float)[:, :3]))
+            M += np.asarray(wrench, float)[:, None, 3:]
+    for body, c, f in loads:
+        for j in range(min(body, n)):
+            F[:, j] += f
+            M[:, j] += np.cross((c - o[:, j]) / 1000.0, f)
+    return F, M, o, w
 
 
 def wrench_load(robot: Robot, q: np.ndarray, tip_mm: np.ndarray, wrench: np.ndarray) -> np.ndarray:

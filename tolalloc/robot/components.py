@@ -43,7 +43,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     radial_runout_um = 5             # Kia, radial runout of the assembled inner ring (full indicator reading)
     datum = "A"                      # datum feature of the seat axis on the drawing
     seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
-    tilt_stiffness_Nm_per_rad = 1.0e6
+    tilt_stiffness_Nm_per_rad = 1.0e6  # moment stiffness across the axis: the bearing tilts by M / k under its load
 
     [components.joints.shoulder_lift_joint.motor]
     winding_resistance_ohm = 0.6
@@ -217,7 +217,11 @@ class LinkSection:
     Attributes
     ----------
     section : {"tube", "solid", "box"}
-    area_mm2, inertia_mm4 : float      cross-section area and second moment of area
+    area_mm2, inertia_mm4 : float      cross-section area and second moment of area (a box: about its width axis,
+                                       i.e. bending in the plane of its height)
+    torsion_mm4 : float                torsion constant ``J``: the polar moment for a round tube or bar (exact),
+                                       Bredt's thin-walled closed section ``2 t (b-t)^2 (h-t)^2 / (b+h-2t)``
+                                       for a box
     youngs_modulus_MPa, shear_modulus_MPa : float
     density_kg_per_mm3, cte_per_K : float
     material, source : str
@@ -226,6 +230,7 @@ class LinkSection:
     section: str
     area_mm2: float
     inertia_mm4: float
+    torsion_mm4: float
     youngs_modulus_MPa: float
     shear_modulus_MPa: float
     density_kg_per_mm3: float
@@ -237,6 +242,11 @@ class LinkSection:
     def EI_Nmm2(self) -> float:
         """Bending stiffness ``E I`` [N mm^2]."""
         return self.youngs_modulus_MPa * self.inertia_mm4
+
+    @property
+    def GJ_Nmm2(self) -> float:
+        """Torsional stiffness ``G J`` [N mm^2]."""
+        return self.shear_modulus_MPa * self.torsion_mm4
 
     @property
     def shear_stiffness_N(self) -> float:

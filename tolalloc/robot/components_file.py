@@ -33,6 +33,10 @@ def _joint_parts(table: dict, where: str, revolute: bool, slots: dict, name: str
             slots[(name, kind)] = parse_slot(t, w, kind, name, revolute, catalogue())
             continue
         parts[kind] = fn(t, w)
+    if "bearing" in parts and not revolute:
+        raise ValueError(f"{where}.bearing: {name} is a prismatic joint; a bearing table (ISO 492 runout, tilt "
+                         "stiffness) describes a revolute joint's rotary bearing pair. Drop the table: a linear "
+                         "guide's errors go in the joint's tolerances")
     return JointComponents(**parts)
 
 

@@ -141,14 +141,17 @@ def read_section(table: dict, where: str) -> LinkSection:
                              "section = \"solid\"")
         d = D - 2 * t
         A, I = np.pi / 4 * (D**2 - d**2), np.pi / 64 * (D**4 - d**4)
+        J = 2 * I
     elif kind == "solid":
         D = v["outer_diameter"]
         A, I = np.pi / 4 * D**2, np.pi / 64 * D**4
+        J = 2 * I
     else:
         b, h, t = v["width"], v["height"], v["wall"]
         if 2 * t >= min(b, h):
             raise ValueError(f"{where}.wall_mm: the wall {t:g} mm is at least half the width or height")
         A, I = b * h - (b - 2 * t) * (h - 2 * t), (b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12
+        J = 2 * t * (b - t) ** 2 * (h - t) ** 2 / (b + h - 2 * t)  # Bredt, wall midline
     material = _text(table, "material", where, None, tuple(MATERIALS))
     E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
     E = v["youngs_modulus"] if v["youngs_modulus"] is not None else E
@@ -159,7 +162,7 @@ def read_section(table: dict, where: str) -> LinkSection:
         raise ValueError(f"{where}: no material figures; give material = one of {', '.join(MATERIALS)}, or "
                          "youngs_modulus_GPa (and shear_modulus_GPa, density_kg_per_m3, cte_um_per_m_K)")
     G = G if G is not None else E / 2.6
-    return LinkSection(kind, float(A), float(I), float(E), float(G), float(rho or 0.0), float(cte or 0.0),
+    return LinkSection(kind, float(A), float(I), float(J), float(E), float(G), float(rho or 0.0), float(cte or 0.0),
                        material or "", _text(table, "source", where, src or ""))
 
 

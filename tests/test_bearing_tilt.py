@@ -1,0 +1,75 @@
+"""A joint bearing's tilt under the moment across its axis (tolalloc.physics.compliance.bearing_tilt) against a closed
+form, in the parts' terms and in their physical draws."""
+
+import numpy as np
+import pytest
+
+from tolalloc.errormodel.parts import TILT_SD, PartEffects
+from tolalloc.errormodel.parts_sample import sample_effects
+from tolalloc.physics.compliance import bearing_tilt
+from tolalloc.physics.loads import G, gravity_torques, joint_wrenches
+from tolalloc.robot import Joint, Link, Mass, Robot
+from tolalloc.robot.components import Bearing, Components, JointComponents
+from tolalloc.robot.components_file import parse_components
+
+K = 1.0e6  # [N m/rad]
+KG = 20.0
+
+
+def _arm() -> Robot:
+    """j1 about the vertical at the origin, a 1 m link along x, j2 about x, 20 kg at (1000, 300, 0) mm on the last
+    body; j1's bearing tilts by K, j2's is rigid."""
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([1000.0, 0.0, 0.0])),
+             Joint("j2", "revolute", np.array([1.0, 0.0, 0.0])), Link("l2", np.array([0.0, 300.0, 0.0])))
+    robot = Robot("arm", chain)
+    object.__setattr__(robot, "masses", (Mass("m", 2, KG, np.array([1000.0, 300.0, 0.0])),))
+    bearing = Bearing("P5", 100.0, None, K, "", 60.0, 0.005)
+    object.__setattr__(robot, "components", Components(joints={"j1": JointComponents(bearing=bearing)}))
+    return robot
+
+
+def test_a_vertical_joints_bearing_tilts_the_arm_down_by_m_g_r2_over_k():
+    """The 20 kg at horizontal reach r from j1's vertical axis: moment m g r across the axis, tilt m g r / K, the
+    point at reach r drops by m g r^2 / K; j2's axis carries the same load as a torque only."""
+    robot, q = _arm(), np.zeros((1, 2))
+    p = np.array([[1000.0, 300.0, 0.0]])
+    M = joint_wrenches(robot, q)[1]
+    np.testing.assert_allclose(M[0, 0], np.cross([1.0, 0.3, 0.0], [0.0, 0.0, -KG * G]), rtol=1e-12)
+    np.testing.assert_allclose(M[0, 1], [-KG * G * 0.3, 0.0, 0.0], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(M[0, 1, 0], gravity_torques(robot, q)[0, 1], rtol=1e-12)  # the axis part: the torque
+    d = bearing_tilt(robot, q, p)
+    drop = KG * G * (1000.0**2 + 300.0**2) / 1000.0 / K
+    np.testing.assert_allclose(d[0, :, 0], [0.0, 0.0, -drop], atol=1e-12)
+    np.testing.assert_allclose(d[0, :, 1], 0.0, atol=0.0)  # no stiffness given: rigid
+
+
+def test_a_payload_and_a_process_wrench_add_their_moments():
+    """5 kg at the tool and a 10 N m moment about base x there: j1's moment grows by r x m g and by the couple."""
+    robot, q = _arm(), np.zeros((1, 2))
+    tip = np.array([[1000.0, 300.0, 0.0]])
+    wrench = np.array([[0.0, 0.0, 0.0, 10.0, 0.0, 0.0]])
+    M0, M = joint_wrenches(robot, q)[1][0, 0], joint_wrenches(robot, q, tip, 5.0, wrench)[1][0, 0]
+    np.testing.assert_allclose(M - M0, np.cross([1.0, 0.3, 0.0], [0.0, 0.0, -5.0 * G]) + [10.0, 0.0, 0.0],
+                               rtol=1e-12)
+
+
+def test_the_tilt_is_a_compliance_term_and_its_draws_have_its_mean_and_spread():
+    robot = _arm()
+    pm_robot = robot  # its parts are given, not chosen from slots
+    fx = PartEffects(pm_robot, np.array([[0.3, 0.2]]), 0.0, 20.0)
+    terms = fx.terms()
+    k = terms.names.index("tilt_j1")
+    assert terms.effect[k] == "compliance"
+    expect = bearing_tilt(pm_robot, fx.q, fx.tool)[0, :, 0]
+    np.testing.assert_allclose(terms.columns[0, :, k] * terms.mean[0, k], expect, rtol=1e-12)
+    assert terms.sys_sd[0, k] == pytest.approx(TILT_SD)
+    n = 40_000
+    _, direct = sample_effects(fx, 0, n, np.random.default_rng(5))
+    np.testing.assert_allclose(direct.mean(axis=0), expect, atol=5 * TILT_SD * np.abs(expect).max() / np.sqrt(n))
+    assert direct[:, 2].std() == pytest.approx(TILT_SD * abs(expect[2]), rel=0.03)
+
+
+def test_a_bearing_on_a_prismatic_joint_is_refused_naming_the_joint():
+    with pytest.raises(ValueError, match=r"joints.slide.bearing: slide is a prismatic joint"):
+        parse_components({"joints": {"slide": {"bearing": {"tilt_stiffness_Nm_per_rad": 1e6}}}}, {"slide": False},
+                         ["l1"])
