@@ -210,3 +210,19 @@ def test_a_motor_cannot_warm_its_links_beyond_its_own_rise():
     assert read_motor({**figures, "link_coupling_pct": 100}, "j1.motor").link_coupling == pytest.approx(1.0)
     with pytest.raises(ValueError, match=r"j1.motor.link_coupling_pct: .*at most 100 %, got 130"):
         read_motor({**figures, "link_coupling_pct": 130}, "j1.motor")
+
+
+def test_a_motor_heats_by_its_three_phase_copper_loss():
+    """A star winding of line-to-line resistance R carries I = tau / (N k_t) rms in each of three phases of R / 2:
+    loss 3 (R / 2) I^2; the rise is R_th times it times the duty."""
+    from tolalloc.physics.thermal_design import motor_rise
+    from tolalloc.robot import Joint, Link, Robot
+    from tolalloc.robot.components import Components, JointComponents, Motor, Reducer
+
+    R, kt, N, Rth, tau, duty = 1.2, 0.45, 100.0, 0.8, 90.0, 0.5
+    chain = (Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])), Link("l1", np.array([500.0, 0.0, 0.0])))
+    robot = Robot("arm", chain)
+    parts = JointComponents(reducer=Reducer(ratio=N), motor=Motor(R, kt, Rth, 1800.0))
+    object.__setattr__(robot, "components", Components(joints={"j1": parts}))
+    current = tau / (N * kt)
+    assert motor_rise(robot, np.array([[tau]]), duty)[0, 0] == pytest.approx(Rth * duty * 3 * (R / 2) * current**2)

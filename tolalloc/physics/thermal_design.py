@@ -12,7 +12,11 @@ import numpy as np
 from tolalloc.robot.model import Robot
 from tolalloc.physics.thermal import link_joint_matrix
 
-__all__ = ["link_cte", "motor_rise", "link_temperature"]
+__all__ = ["COPPER_LOSS_FACTOR", "link_cte", "motor_rise", "link_temperature"]
+
+#: Copper loss per ``R_w I^2`` of a three-phase winding in star: three phases of ``R_w / 2`` each (``R_w`` the
+#: line-to-line resistance, ``I`` the rms phase current of the torque constant).
+COPPER_LOSS_FACTOR = 1.5
 
 
 def link_cte(robot: Robot) -> np.ndarray:
@@ -25,9 +29,10 @@ def link_cte(robot: Robot) -> np.ndarray:
 
 def motor_rise(robot: Robot, tau: np.ndarray, duty: float) -> np.ndarray:
     """Steady temperature rise [K] of every joint's motor, shape (P, n), holding the loads ``tau`` (P, n) [N m] for the
-    fraction ``duty`` of the time: copper losses ``R_w (tau / (N k_t))^2`` through the thermal resistance ``R_th``
-    (``N`` the reducer's ratio; 1 without one). Joints without complete motor figures, and prismatic joints, do not
-    heat."""
+    fraction ``duty`` of the time: copper losses through the thermal resistance ``R_th``. The figures are a servo
+    datasheet's: ``R_w`` the winding's line-to-line resistance, ``k_t`` per ampere rms, so a three-phase winding in
+    star with the current ``I = tau / (N k_t)`` loses ``3 (R_w / 2) I^2`` (:data:`COPPER_LOSS_FACTOR`; ``N`` the
+    reducer's ratio, 1 without one). Joints without complete motor figures, and prismatic joints, do not heat."""
     out = np.zeros_like(np.asarray(tau, float))
     for j, jt in enumerate(robot.joints):
         parts = robot.components.joint(jt.name)
@@ -37,7 +42,8 @@ def motor_rise(robot: Robot, tau: np.ndarray, duty: float) -> np.ndarray:
             continue
         ratio = parts.reducer.ratio if parts.reducer is not None and parts.reducer.ratio else 1.0
         current = tau[:, j] / (ratio * m.torque_constant_Nm_per_A)
-        out[:, j] = m.thermal_resistance_K_per_W * duty * m.winding_resistance_ohm * current ** 2
+        loss = COPPER_LOSS_FACTOR * m.winding_resistance_ohm * current ** 2
+        out[:, j] = m.thermal_resistance_K_per_W * duty * loss
     return out
 
 

@@ -46,7 +46,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     tilt_stiffness_Nm_per_rad = 1.0e6  # moment stiffness across the axis: the bearing tilts by M / k under its load
 
     [components.joints.shoulder_lift_joint.motor]
-    winding_resistance_ohm = 0.6
+    winding_resistance_ohm = 0.6     # line to line (three-phase servo datasheet); torque constant per A rms
     torque_constant_Nm_per_A = 0.12
     thermal_resistance_K_per_W = 0.8
     thermal_time_constant_min = 30
@@ -188,9 +188,10 @@ class Bearing:
 
 @dataclass(frozen=True)
 class Motor:
-    """Motor figures for its losses and heating: winding resistance [ohm], torque constant [N m/A], thermal
-    resistance [K/W], thermal time constant [s], source; ``link_coupling``: the share of the motor's steady
-    temperature rise the links at its joint reach (0.3 = 30 %)."""
+    """Motor figures for its losses and heating, as a servo datasheet gives them: the winding's line-to-line
+    resistance [ohm] and the torque constant per ampere rms [N m/A] of a three-phase motor (copper loss
+    ``1.5 R I^2``), thermal resistance [K/W], thermal time constant [s], source; ``link_coupling``: the share of the
+    motor's steady temperature rise the links at its joint reach (0.3 = 30 %)."""
 
     winding_resistance_ohm: float | None = None
     torque_constant_Nm_per_A: float | None = None
