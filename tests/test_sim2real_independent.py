@@ -3297,3 +3297,155 @@ def test_set_v_every_kind_lies_in_its_true_structure_and_known_answers():
     assert Fc + cu["D_m"] * dT[:, None] * np.cross(n, ctx.target) == pytest.approx(
         -1000.0 * cu["D_m"] ** 2 / 2 * dT[:, None] * np.array([0.0, 0.0, 1.0]), abs=1e-9)
     assert abs(n[2]) < 1e-12 and abs(n @ cu["e"]) < 1e-12
+
+
+# ---------------------------------------------------------------------------------------------------------- set W
+def test_set_w_cases_kinds_and_determinism():
+    """Set W: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time (the
+    step kinds at random); a case regenerates bit-identically from its seed; the session hook leaves cases without a
+    set-W kind alone (no random numbers drawn) and the probe hook draws none; the generator reaches the set's modules and
+    none imports tolalloc; the grout's long day and the production between the blocks."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_w as ew
+
+    _assert_set_module("W", 40_7023, ew, ("gear", "slab_curl"))
+    for name in ("effects_w", "effects_w_joint", "effects_w_body", "effects_w_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_w" in _imports(STUDY / "generator.py")
+    assert ew.AFTER_TRACKER == set()
+    steps = {"hub_slip", "emi_counts", "bent_bracket"}
+    assert all(c[4] == "random" for c in cs.SET_W if set(c[2]) & steps)
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ew.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        for kind in ("young_grout", "air_stratification"):
+            long = opts((kind,))
+            assert 5 <= long["blocks"] <= 8 and long["gap_kind"] == "pause" and long["pause_min"] == (30.0, 90.0)
+        for kind, (lo, hi) in ew.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        assert opts(("rail_trolley", "stable_probe", "part_slide", "cracked_plinth", "air_bellows")) == {
+            "blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ew.probe_hook(("gear",), probe) is probe
+    assert ew.probe_hook(("cooling_part",), probe) == pytest.approx(probe + [300.0, 0, 0])
+    _assert_regenerates("W", max_effect_poses=50)
+
+
+def test_set_w_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-W kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect on every arm; and known answers: the chips' weight turns no vertical axis and weighs
+    nothing before the first machining, the trolley's pull has no part along its rail, the creep left at the stable-probe
+    trigger moves eps in the window, the part's stop downhill, the hub's step, the encoders' whole counts, the crack
+    opening with the moment, ACI 209's strength law, the compressor's saw-tooth, the bracket's step, the part's lumped
+    cooling and the links' mid heights."""
+    from sim2real_indep import effects_w_body as wb
+    from sim2real_indep import effects_w_joint as wj
+    from sim2real_indep import effects_w_thermal as wt
+    from sim2real_indep.effects_u_joint import block_index
+
+    every = ("swarf_shroud", "rail_trolley", "stable_probe", "part_slide", "hub_slip", "emi_counts", "cracked_plinth",
+             "young_grout", "air_bellows", "bent_bracket", "cooling_part", "air_stratification")
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 23)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"swarf_shroud": lambda: [p["rate"]], "rail_trolley": lambda: [p["T"]],
+                   "stable_probe": lambda: [p["lag"]], "part_slide": lambda: [p["c_mm"] / 2],
+                   "hub_slip": lambda: p["slip"], "emi_counts": lambda: p["offset"].ravel(),
+                   "cracked_plinth": lambda: p["c"], "young_grout": lambda: p["c"], "air_bellows": lambda: p["a"],
+                   "bent_bracket": lambda: p["d_mm"], "cooling_part": lambda: [p["dT0"]],
+                   "air_stratification": lambda: [p["G"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    b = block_index(s)
+    # swarf: the chips' weight turns no vertical axis (ur10's axis 1) and nothing is collected before the first gap
+    tw = wj.swarf_twist(P["swarf_shroud"], ctx, hw)
+    assert np.abs(tw[:, 0]).max() < 1e-12 * np.abs(tw).max()
+    assert not wj.swarf_features(P["swarf_shroud"], ctx, hw)[0][b == 0].any()
+    assert wj.machining_s(s)[-1] == pytest.approx(s.gap_s[s.gap_s > 0].sum())
+    # trolley: a unit pull across the rail, upwards towards it
+    tp = P["rail_trolley"]
+    pull = wj.trolley_pull(tp, ctx)
+    assert np.abs(pull @ tp["e"]).max() < 1e-12 and np.linalg.norm(pull, axis=1) == pytest.approx(1.0)
+    assert (pull[:, 2] > 0).all()
+    # stable probe: the creep e0 exp(-t / tau) left at the trigger moves eps within the window; unit approaches
+    sp = P["stable_probe"]
+    assert sp["lag"] * (1 - np.exp(-sp["dt_w"] / sp["tau"])) == pytest.approx(sp["eps"])
+    u = wj.approach(ctx)
+    assert not u[0].any() and np.linalg.norm(u[1:], axis=1) == pytest.approx(1.0)
+    # part slide: downhill where the weight beats friction
+    sl = P["part_slide"]
+    side = wj.slide_side(sl, ctx)
+    x = kin.flange(ctx.chain, ctx.q)[1][:, :, 0]
+    steep = np.abs(x[:, 2]) > sl["mu"]
+    assert side[steep] == pytest.approx(-np.sign(x[steep, 2])) and set(side) <= {-1.0, 1.0}
+    # hub slip: a step inside the session, blocks before and after
+    hp = P["hub_slip"]
+    step = wj.hub_step(hp, s)
+    assert 2 <= hp["block"] <= b.max() - 1 and not step[b < hp["block"]].any() and step[b >= hp["block"]].all()
+    assert np.rad2deg(np.abs(hp["slip"])).min() >= 0.008
+    # EMI: whole counts of 2^16 per turn, the running sum; block 0 untouched
+    ep = P["emi_counts"]
+    assert ep["counts"] == pytest.approx(np.rint(ep["counts"]))
+    assert ep["offset"] == pytest.approx(-np.cumsum(ep["counts"], axis=0) * 2 * np.pi / 2 ** 16)
+    assert not wj.emi_apply(ep, ctx, hw).dq[b == 0].any()
+    # cracked plinth: open exactly where the moment about the crack's axis is positive, 3-5 times softer open
+    cp = P["cracked_plinth"]
+    a = np.array([np.cos(cp["psi"]), np.sin(cp["psi"]), 0.0])
+    assert (wb.plinth_open(cp, ctx) == (eb.mount_moment(ctx) @ a > 0)).all()
+    assert 3.0 <= cp["c"][0] / cp["c"][1] <= 5.0
+    F = wb.plinth_features(cp, ctx, hw)
+    assert not F[0][~wb.plinth_open(cp, ctx)].any() and not F[1][wb.plinth_open(cp, ctx)].any()
+    # young grout: ACI 209's moist-cured law gives the 28-day strength; the compliance falls from 1 through the day
+    assert wb.grout_strength(28.0, 4.0, 0.85) == pytest.approx(1.0, abs=0.01)
+    fall = wb.grout_fall(P["young_grout"], s)
+    assert fall[0] == pytest.approx(1.0) and (np.diff(fall) <= 1e-15).all() and fall[-1] < 1.0
+    # bellows: a saw-tooth over the band, continuous at the end of the loading
+    bp = P["air_bellows"]
+    tt = np.linspace(0, 3 * bp["period_s"], 30001)
+    pr = wb.bellows_pressure(bp, tt)
+    assert pr.max() == pytest.approx(bp["band_bar"] / 2, rel=1e-3) and pr.min() == pytest.approx(-bp["band_bar"] / 2,
+                                                                                                 rel=1e-3)
+    assert np.abs(np.diff(pr)).max() < 1e-3 * bp["band_bar"] * 10
+    # bent bracket: the target off by |d| from the collision's block on
+    bb = P["bent_bracket"]
+    Fb = np.einsum("k,kpi->pi", bb["d_mm"], wb.bracket_features(bb, ctx, hw))
+    after = b >= bb["block"]
+    assert np.linalg.norm(Fb[after], axis=1) == pytest.approx(np.linalg.norm(bb["d_mm"])) and not Fb[~after].any()
+    # cooling part: lumped cooling, exp(-dt / tau) between the poses of a block
+    cpp = P["cooling_part"]
+    dec = wt.part_decay(cpp, s)
+    same = np.r_[False, np.diff(b) == 0]
+    ratio = dec[same] / dec[np.flatnonzero(same) - 1]
+    assert ratio == pytest.approx(np.exp(-np.diff(s.time_s)[same[1:]] / cpp["tau_s"]))
+    first = np.r_[0, np.flatnonzero(np.diff(b)) + 1]
+    assert dec[first] == pytest.approx(np.exp(-(s.move_s + s.dwell_s + cpp["transfer_s"][b])[first] / cpp["tau_s"]))
+    # stratification: at the home pose the links' middles stand at the running sum of the links' heights; the gradient
+    # builds up from the lighting, 1 - exp(-t_on / tau) at the first pose
+    home = _ctx_at(ctx, np.zeros((1, ctx.chain.n)))
+    ch = ctx.chain
+    mids = (np.cumsum(ch.links, axis=0) - ch.links / 2)[:, 2] / 1000.0
+    assert wt.link_heights(home)[0] == pytest.approx(mids)
+    st = P["air_stratification"]
+    grow = wt.strat_growth(st, s)
+    assert grow[0] == pytest.approx(1 - np.exp(-st["t_on_s"] / st["tau_s"])) and (np.diff(grow) >= 0).all()
+    assert wt.strat_strain(st, ctx, hw) == pytest.approx(
+        hw["material"]["cte"] * (wt.link_heights(ctx) - st["z_s_m"]) * grow[:, None])
+
+
+def _ctx_at(ctx, q):
+    """``ctx`` at the joint values ``q`` (a session of those poses), for known answers at chosen poses."""
+    from dataclasses import replace
+
+    n = len(q)
+    s = replace(ctx.session, q=q, time_s=np.zeros(n), direction=np.ones_like(q), payload_kg=np.zeros(n),
+                air_c=np.zeros(n), speed=np.zeros_like(q), move_s=np.zeros(n), dwell_s=np.zeros(n), gap_s=np.zeros(n))
+    return replace(ctx, chain=replace(ctx.chain, q_offset=np.zeros(ctx.chain.n)), session=s)

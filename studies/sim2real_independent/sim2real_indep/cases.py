@@ -13,8 +13,9 @@ a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:
 per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
 8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
 cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U
-(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`) and set V (24 cases, 8 per arm) a twenty-second
-(:mod:`effects_v`). A case: (id, robot, physics kinds, poses, split).
+(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second
+(:mod:`effects_v`) and set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`). A case: (id, robot, physics
+kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
-SEED_S, SEED_T, SEED_U, SEED_V = 40_7019, 40_7020, 40_7021, 40_7022
+SEED_S, SEED_T, SEED_U, SEED_V, SEED_W = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -987,13 +988,71 @@ SET_V = [
     ("V24", "kr16_like", ("coupled_flank", "slab_curl"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-V)
+#: set W: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_w`); written as an independent test set after set V, from the literature, without
+#: reading how the diagnosis models effects. The step kinds (hub_slip, emi_counts, bent_bracket) are split at random
+#: (a step inside the held-out last quarter could not be learnt); every kind acts on every arm. Oracle labels when
+#: written (oracle.py only; the diagnosis was not run): every case its truth (gains 48-89 %; each mixture component's
+#: removal costs 51 % or more), the geometry-only cases none; no soft labels (no gain below 20 %, no rival family's
+#: model within 25 % of the truth; the closest: W06's link model 1.35x, W02's transmission model 1.65x, W09's mount
+#: model 1.88x, W20's link model 1.91x; the smallest gains 48 % on W02 and W20). Changed after trial draws (the
+#: modules' docstrings give the final ranges): young_grout was first on tool_changer (W12: a gain of 9 %, ambiguous
+#: with the joint and link models -- its stiff bed under a heavy arm whose base turns through +-60 deg only tilts
+#: nearly the same way in every pose, which the geometry takes up) and then on kr16_like (W19: the link model at
+#: 1.02x -- the bed's tilt under the arm's moment is the bending the same moment gives kr16_like's 675-mm column link,
+#: and the grout's hydration changes it by only 10-20 % in a day); the ur10 has no such column, so its case is W06 and
+#: W12 / W19 took stable_probe and emi_counts; air_stratification was first on tool_changer (W14: absorbed -- steel
+#: links expand half as much as aluminium ones and its boom's heights vary little), so W14 took the swarf shroud, and
+#: the gradient was given its build-up from the furnace's lighting over a long day (a settled gradient's pose-varying
+#: part is under 0.1 mm: W20 absorbed in the trial draw on the seed + 1; after it 0.48 / 0.49 / 0.15 on the seed,
+#: + 1, + 2); swapping it to ur10 (W03) and the cracked plinth to kr16_like (W20) was tried and left (ambiguous and
+#: absorbed on the seed); ur10's shroud collected 5-20 g/min (W01: the thermal model at 1.24x), then 10-30, now 20-40,
+#: and tool_changer's 60-200, now 100-300 (a roughing cut's removal rate; trial + 2: W01 a gain of 8 %, W14 the thermal
+#: model at 1.05x); the stable-probe tolerance was 0.02-0.05 mm with a settling time constant of 0.4-1.5 s (W02: a gain
+#: of 21 %, the transmission model at 1.25x), now 0.03-0.08 mm and 0.5-2 s (a cobot's soft loop); the hub slips were
+#: 0.004-0.015 deg at a gap in the session's first half (W18: a gain of 9 %, the thermal model at 1.02x -- an early
+#: step reads as a warm-up), now 0.008-0.025 deg at a gap with blocks before and after; the encoders' miscounts were
+#: N(0, 1-3) counts a gap (W19 moved the tool by 1.05 mm), now N(0, 0.7-2); the bracket's bend was 0.1-0.5 mm (trial
+#: + 2: W21 a gain of 15 %, the transmission model at 1.15x against 0.05 mm of noise), now 0.15-0.6 mm. No pose count
+#: or seed was changed. Trial draws on the seed + 1 and + 2 (the case seeds + 1000003 k) with the final physics: every
+#: case labelled its truth in both; + 1 one soft label (W06, the link model at 1.12x), + 2 five (W01 the backlash
+#: model at 1.21x, W05 a gain of 18 %, W14 the thermal model at 1.12x, W18 the thermal model at 1.16x, W20 a gain of
+#: 15 %): the weakest kinds are the shroud's chips (a staircase in time that the thermal drift follows in part), a
+#: single hub slip against up to 0.05 mm of noise and the stratification (its pose-varying part about 0.1 mm).
+SET_W = [
+    ("W01", "ur10", ("swarf_shroud",), 120, "random"),
+    ("W02", "ur10", ("stable_probe",), 45, "random"),
+    ("W03", "ur10", ("cracked_plinth",), 110, "time"),
+    ("W04", "ur10", ("air_bellows",), 140, "random"),
+    ("W05", "ur10", ("cooling_part",), 160, "time"),
+    ("W06", "ur10", ("young_grout",), 150, "random"),
+    ("W07", "ur10", (), 70, "random"),
+    ("W08", "ur10", ("part_slide", "young_grout"), 180, "random"),
+    ("W09", "tool_changer", ("rail_trolley",), 120, "time"),
+    ("W10", "tool_changer", ("part_slide",), 130, "random"),
+    ("W11", "tool_changer", ("hub_slip",), 140, "random"),
+    ("W12", "tool_changer", ("stable_probe",), 150, "random"),
+    ("W13", "tool_changer", ("bent_bracket",), 130, "random"),
+    ("W14", "tool_changer", ("swarf_shroud",), 160, "random"),
+    ("W15", "tool_changer", (), 30, "random"),
+    ("W16", "tool_changer", ("emi_counts", "cooling_part"), 190, "random"),
+    ("W17", "kr16_like", ("swarf_shroud",), 130, "time"),
+    ("W18", "kr16_like", ("hub_slip",), 120, "random"),
+    ("W19", "kr16_like", ("emi_counts",), 140, "random"),
+    ("W20", "kr16_like", ("air_stratification",), 150, "time"),
+    ("W21", "kr16_like", ("bent_bracket",), 130, "random"),
+    ("W22", "kr16_like", ("rail_trolley",), 140, "time"),
+    ("W23", "kr16_like", (), 90, "random"),
+    ("W24", "kr16_like", ("stable_probe", "air_bellows"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-W)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
-        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V)}
+        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W)}
 
 
 def case_seed(set_name: str, index: int) -> int:

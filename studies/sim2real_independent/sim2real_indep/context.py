@@ -245,7 +245,25 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "journal_climb": "backlash", "interpolation_error": "transmission", "rack_segments": "transmission",
           "stabilizer_jacks": "mount_compliance", "self_leveling": "mount_compliance",
           "bolt_loosening": "link_deflection", "moisture_swell": "link_deflection", "restrained_bar": "thermal",
-          "slab_curl": "thermal"}
+          "slab_curl": "thermal",
+          # set W (sim2real_indep.effects_w; swarf_shroud, the gears twisted by the chips a spindle's suction shroud
+          # collects in the production between the blocks, and rail_trolley, by a balancer hanging from a trolley
+          # that runs freely on an overhead rail, scored as joint compliance; stable_probe, the tracker's stable-probe
+          # trigger firing while the servo still creeps (the point taken behind the pose along the last approach), and
+          # part_slide, a part sliding in its gripper nest to the stop the last move's deceleration or its weight
+          # chose, as backlash (errors that follow the last motion); hub_slip, the output hubs of axes 2 and 3
+          # slipping on their shafts when an emergency stop's brakes catch the arm, and emi_counts, welding noise
+          # miscounting the main axes' incremental output encoders, as transmission (the joints' reading and drive);
+          # cracked_plinth, the arm's concrete plinth cracked at its root, and young_grout, its pedestal's grout bed
+          # still stiffening as it hydrates, as mount compliance (the robot's support); air_bellows, the tool on a
+          # bellows compliance unit that follows the shop air's pressure cycle, and bent_bracket, the target's bracket
+          # bent for good in a collision, as link deflection (the end-of-arm structure carrying the target);
+          # cooling_part, a hot part carrying the target shrinking as it cools in the gripper, and air_stratification,
+          # the links at the temperatures of the stratified air at their heights, as thermal)
+          "swarf_shroud": "joint_compliance", "rail_trolley": "joint_compliance", "stable_probe": "backlash",
+          "part_slide": "backlash", "hub_slip": "transmission", "emi_counts": "transmission",
+          "cracked_plinth": "mount_compliance", "young_grout": "mount_compliance", "air_bellows": "link_deflection",
+          "bent_bracket": "link_deflection", "cooling_part": "thermal", "air_stratification": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
