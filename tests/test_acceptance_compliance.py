@@ -91,6 +91,28 @@ def test_mount_alone_is_linear_and_the_catalogue_robot_names_its_sources():
     assert "um/N" in full.text() and len(full.text().splitlines()) == 7
 
 
+def test_a_joint_bearing_tilts_by_the_moment_across_its_axis():
+    """Only the base joint's bearing, moment stiffness K: a force F at the mechanical interface p turns the arm
+    about the joint point o by ((p - o) x F)_perp / K (the part across the vertical axis), which moves p by that
+    rotation x (p - o); linear in the load, and filed under compliance."""
+    from tolalloc.robot.components import Bearing
+
+    K = 2.0e6
+    r = _ur10({"shoulder_pan_joint": JointComponents(bearing=Bearing("P5", 60.0, None, K, "", 90.0, 0.005))})
+    sc = static_compliance(r, Q, load_n=100.0, steps=2)
+    T = r.fk_internal(Q)
+    p = T[:3, 3]
+    o, w = r.joint_points_mm[0], r.joints[0].axis          # the base joint does not move with the pose
+    for d, name in enumerate(LOAD_DIRECTIONS):
+        F = np.zeros(3)
+        F["xyz".index(name[1])] = 100.0 if name[0] == "+" else -100.0
+        M = np.cross((p - o) / 1000.0, F)
+        expect = np.cross((M - (M @ w) * w) / K, p - o)
+        np.testing.assert_allclose(sc.by_effect_mm["compliance"][d, -1], expect, atol=1e-12)
+        np.testing.assert_allclose(sc.displacement_mm[d, -1], expect, atol=1e-12)
+    np.testing.assert_allclose(sc.displacement_mm[:, 0], sc.displacement_mm[:, 1] / 2, atol=1e-12)
+
+
 def test_refusals():
     r = _ur10(rated_kg=None)
     with pytest.raises(TolallocError, match="rated payload"):
