@@ -201,8 +201,9 @@ class UR10Sim:
             m, red = p.get("motor"), p.get("reducer")
             if m is None or red is None:
                 continue
-            cur = tau[:, j] / (red.ratio * m.torque_constant_Nm_per_A)
-            rise[:, j] = m.thermal_resistance_K_per_W * self.cond.duty * m.winding_resistance_ohm * cur ** 2
+            cur = tau[:, j] / (red.ratio * m.torque_constant_Nm_per_A)    # rms phase current
+            r_phase = m.winding_resistance_ohm / 2.0                         # star winding: half the line-to-line
+            rise[:, j] = m.thermal_resistance_K_per_W * self.cond.duty * 3.0 * r_phase * cur ** 2
             rise[:, j] *= m.link_coupling or 0.0
         base = ambient_c - self.cond.reference_c
         return np.column_stack([base + (rise[:, 1] + rise[:, 2]) / 2, base + (rise[:, 2] + rise[:, 3]) / 2])

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 from tolalloc.report.tables import markdown_table
@@ -33,6 +34,23 @@ def _parts(res) -> pd.DataFrame:
 def _budget(res, top: int = 8) -> pd.DataFrame:
     v = res.variance_shares().sort_values("share_pct", ascending=False)
     return v[v["share_pct"] > 0.05].head(top)
+
+
+def _means(res) -> pd.DataFrame:
+    """Each effect's deterministic part at the worst point, before the compensation models: the length [mm] of the
+    tool point's mean displacement (what a stiffness or temperature model would remove)."""
+    from tolalloc.errormodel.parts import PartEffects, with_parts
+
+    w = res.worst_point
+    robot = with_parts(res.problem.model.robot, res.choice)
+    t = PartEffects(robot, w.q, w.payload_kg, w.ambient_c, res.conditions).terms()
+    rows = []
+    for e in dict.fromkeys(t.effect):
+        sel = [i for i, x in enumerate(t.effect) if x == e]
+        mean = np.einsum("at,t->a", t.columns[0][:, sel], t.mean[0, sel])
+        if np.linalg.norm(mean) > 0:
+            rows.append((e, float(np.linalg.norm(mean))))
+    return pd.DataFrame(rows, columns=["effect", "mean_mm"]).sort_values("mean_mm", ascending=False)
 
 
 def _verification(v) -> pd.DataFrame:
@@ -79,6 +97,8 @@ def write_report(out, quick: bool, r: dict) -> None:
         "Parts to buy (variance share: of the tool-error variance at the worst point):", "",
         md(_parts(ur)), "",
         "Largest sources of the variance at the worst point:", "", md(_budget(ur)), "",
+        "The effects' deterministic parts at the worst point, before the compensation models (the length of the "
+        "tool point's mean displacement; what a stiffness or temperature model removes):", "", md(_means(ur)), "",
         _machining(ur), "",
         f"**Verification** (nonlinear Monte Carlo, {r['n_mc']} draws per point, paired estimator with the linear "
         "map as control, 95 % intervals): the certified design at the worst point and every active point:", "",
