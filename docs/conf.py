@@ -43,8 +43,7 @@ exclude_patterns = ["_build", "_ext", "**/__pycache__", "conf.py", "howto/*.py",
 
 # the tutorials: percent-format scripts read by jupytext, executed at every build; a failing cell fails the build
 nb_custom_formats = {".py": ["jupytext.reads", {"fmt": "py:percent"}]}
-# in Sphinx's own process, one notebook after another: no kernel to start (about 3 s each) or to shut down
-nb_execution_mode = "inline"
+nb_execution_mode = "force"
 nb_execution_timeout = 1800
 nb_execution_raise_on_error = True
 nb_execution_show_tb = True

@@ -73,3 +73,44 @@ def test_a_bearing_on_a_prismatic_joint_is_refused_naming_the_joint():
     with pytest.raises(ValueError, match=r"joints.slide.bearing: slide is a prismatic joint"):
         parse_components({"joints": {"slide": {"bearing": {"tilt_stiffness_Nm_per_rad": 1e6}}}}, {"slide": False},
                          ["l1"])
+
+
+def test_a_slotted_bearings_tilt_is_in_the_allocations_mean_not_in_its_options(tmp_path):
+    """The UR10's bearing slots with a tilt stiffness: the tilt is the slot's geometry, the same for every option, so
+    the allocation's fixed terms carry its mean (bias_mm equals the whole design's mean) and no option carries it."""
+    import re
+    from importlib.resources import files
+
+    from tolalloc.allocate.parts_problem import Points, option_blocks, signature_combos
+    from tolalloc.errormodel.build import build_error_model
+    from tolalloc.errormodel.parts import Conditions, with_parts
+    from tolalloc.robot import load_robot
+
+    src = (files("tolalloc") / "data" / "robots" / "ur10.toml").read_text()
+    path = tmp_path / "ur10_tilt.toml"
+    path.write_text(re.sub(r'(bearing = \{ family = "ISO492", [^}]*?)( \})', r'\1, tilt_stiffness_Nm_per_rad = 2.0e5\2',
+                           src))
+    robot = load_robot(path)
+    model = build_error_model(robot, "generic")
+    q = robot.random_q(np.random.default_rng(0), 3)
+    cond = Conditions(payload_kg=(10.0, 10.0)).check(robot)
+    combo = signature_combos(robot)[0]
+    blocks = option_blocks(robot, model, Points(q, np.full(3, 10.0), np.full(3, 20.0)), combo, cond)
+    terms = PartEffects(with_parts(robot, {k: v[0] for k, v in combo.items()}), q, 10.0, 20.0, cond, model).terms()
+    tilt = terms.select([n.startswith("tilt_") for n in terms.names])
+    assert len(tilt.names) == 6 and np.abs(tilt.mean_mm()).max() > 0.1   # six bearing slots, a tenth of a mm
+    np.testing.assert_allclose(blocks.bias_mm, terms.mean_mm(), atol=1e-12)
+    assert not any(n.startswith("tilt_") for t in blocks.terms for n in t.names)
+
+
+def test_a_payload_or_a_wrench_without_its_point_is_refused():
+    from tolalloc.physics.compliance import mount_columns
+
+    robot, q = _arm(), np.zeros((1, 2))
+    wrench = np.array([[0.0, 0.0, 0.0, 10.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="needs tip_mm"):
+        joint_wrenches(robot, q, None, 0.0, wrench)
+    with pytest.raises(ValueError, match="needs tip_mm"):
+        joint_wrenches(robot, q, None, 5.0)
+    with pytest.raises(ValueError, match="needs tip_mm"):
+        mount_columns(robot, q, np.zeros((1, 3)), None, None, wrench=wrench)

@@ -5,13 +5,13 @@ The standard loads the mechanical interface in steps up to the rated load, along
 frame, with the robot holding its pose, and states the largest displacement per unit load [mm/N] per direction. The
 prediction loads and reads the mechanical interface too -- the end of the robot file's chain, its tool offset left out
 (a tool point away from the flange would add the tool's lever to every load) -- and applies the loads to the parts'
-elastic physics (:class:`tolalloc.errormodel.parts.PartEffects`,
-one implementation with the design and the diagnosis): the gears' wind-up on their catalogue torque-torsion curves
-(a hardening gear is stiffer once the arm's own weight has taken up its soft band, so the preload matters), the
-joint bearings' tilt (both filed under ``compliance``), the links' bending and the mount's tilt. The displacement of a load is the elastic deflection with it less the
-deflection under the arm's own weight alone (the test zeroes its indicator at the unloaded pose). The robot carries
-no payload (the load is the test's); thermal growth, gear and encoder errors do not change with the load and are
-left out.
+elastic physics (:class:`tolalloc.errormodel.parts.PartEffects`, one implementation with the design and the
+diagnosis): the gears' wind-up on their catalogue torque-torsion curves (a hardening gear is stiffer once the arm's
+own weight has taken up its soft band, so the preload matters), the joint bearings' tilt (both filed under
+``compliance``), the links' bending and the mount's tilt. The displacement of a load is the elastic deflection with
+it less the deflection under the arm's own weight alone (the test zeroes its indicator at the unloaded pose). The
+robot carries no payload (the load is the test's); thermal growth, gear and encoder errors do not change with the
+load and are left out.
 """
 
 from __future__ import annotations

@@ -170,8 +170,8 @@ def _option_terms(fx: PartEffects, robot, key, name) -> EffectTerms:
     if key[1] == "encoder":
         red = fx.robot.components.joint(key[0]).reducer
         return fx.encoder_terms(j, spec, getattr(red, "ratio", None))
-    if key[1] == "bearing":
-        return fx.bearing_terms(j, spec)
+    if key[1] == "bearing":   # the runout; the tilt under load is the slot's geometry, the same for every option
+        return fx.bearing_terms(j, spec, ("bearing",))
     return EffectTerms.empty(fx.n_points)
 
 
@@ -193,7 +193,9 @@ def option_blocks(robot, model, points: Points, combo: dict, conditions: Conditi
             fixed += fx.reducer_terms(j, parts.reducer, motor_side(rep, j))
         if (jt.name, "encoder") not in slotted:
             fixed += fx.encoder_terms(j, parts.encoder, getattr(parts.reducer, "ratio", None))
-        if (jt.name, "bearing") not in slotted:
+        if (jt.name, "bearing") in slotted:
+            fixed += fx.bearing_terms(j, parts.bearing, ("compliance",))
+        else:
             fixed += fx.bearing_terms(j, parts.bearing)
     keys = tuple(combo)
     names, slot, cost, cov, terms = [], [], [], [], []

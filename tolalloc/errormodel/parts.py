@@ -237,7 +237,8 @@ class PartEffects:
     conditions : Conditions                       reference temperature and duty
     model : ErrorModel, optional                  the geometric model to extend (default: the robot's generic one)
     pm : PartsModel, optional                     the extended model, when built already (for ``robot``)
-    rotations : bool                              also the rotation beyond the beams' and the mount's deflection
+    rotations : bool                              also the rotation beyond the beams', the bearings' tilt and the
+                                                  mount's deflection
                                                   (three more evaluations each; the chain terms carry theirs)
     """
 
@@ -308,20 +309,23 @@ class PartEffects:
             out += self._term(f"scale_{nm}", "thermal", j, self.pm.drive[j], grow, THERMAL_SD * np.abs(grow))
         return out
 
-    def bearing_terms(self, j: int, bearing) -> EffectTerms:
-        """Terms of joint ``j``'s bearing pair: the four body displacements of :mod:`tolalloc.physics.bearings`."""
+    def bearing_terms(self, j: int, bearing, effects: tuple = ("bearing", "compliance")) -> EffectTerms:
+        """Terms of joint ``j``'s bearing pair among ``effects``: its runout (``bearing``, the four body
+        displacements of :mod:`tolalloc.physics.bearings`) and its tilt under the moment across the axis
+        (``compliance``, where it gives a tilt stiffness)."""
         out = EffectTerms.empty(self.n_points)
         if bearing is None or j not in self.pm.bearing:
             return out
-        if bearing.radial_runout is None or bearing.span_mm is None:
-            name = self.robot.joints[j].name
-            raise TolallocError(f"robot {self.robot.name!r}: joint {name!r}'s bearing gives no "
-                                f"{'radial_runout_um' if bearing.radial_runout is None else 'span_mm'}; add "
-                                f"components.joints.{name}.bearing.radial_runout_um (Kia of its ISO 492 class at its "
-                                "bore) and span_mm, or choose the bearing from a catalogue slot")
-        for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
-            out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
-        if bearing.tilt_stiffness:
+        if "bearing" in effects:
+            if bearing.radial_runout is None or bearing.span_mm is None:
+                name = self.robot.joints[j].name
+                raise TolallocError(f"robot {self.robot.name!r}: joint {name!r}'s bearing gives no "
+                                    f"{'radial_runout_um' if bearing.radial_runout is None else 'span_mm'}; add "
+                                    f"components.joints.{name}.bearing.radial_runout_um (Kia of its ISO 492 class at "
+                                    "its bore) and span_mm, or choose the bearing from a catalogue slot")
+            for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
+                out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
+        if bearing.tilt_stiffness and "compliance" in effects:
             tilt = (lambda p: self.bearing_tilt(p)[:, :, j])
             out += self._term(f"tilt_{self.robot.joints[j].name}", "compliance", j, tilt(self.tool), 1.0, TILT_SD,
                               rot=self._rotation(tilt))

@@ -32,8 +32,8 @@ point (:func:`bearing_tilt`). It is a joint-axis deflection, the rotary counterp
 press, a screwing reaction; :func:`~.loads.wrench_load`), both loads include it: the joints carry its virtual work
 and the mount its moment about the base (the beams and the flange element of :mod:`~.beams` carry it too).
 
-Both are linear in their compliances, so the diagnosis fits them by least squares and the design samples them from
-the catalogue's stiffness figures.
+All three are linear in their compliances, so the diagnosis fits them by least squares (the joints' and the
+mount's) and the design samples them from the catalogue's stiffness figures.
 """
 
 from __future__ import annotations
@@ -140,8 +140,10 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
     ``p`` (P, 3): the target points [mm]; the payload ``payload_kg`` (P,) and a logged process wrench ``wrench``
     (P, 6) (:func:`~tolalloc.physics.loads.wrench_moment`) act at ``tip_mm`` (P, 3).
     """
+    if tip_mm is None and (wrench is not None or payload_kg is not None):
+        raise ValueError("mount_columns: a payload or a process wrench needs tip_mm, the point it acts at")
     M = base_moment(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg)
-    if wrench is not None and tip_mm is not None:
+    if wrench is not None:
         M = M + wrench_moment(tip_mm, wrench)
     g = np.asarray(robot.gravity, dtype=float)
     Mh = M - (M @ g)[:, None] * g  # the moment about the vertical does not tilt the base

@@ -120,14 +120,18 @@ def base_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None,
 
 def joint_wrenches(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, tip_kg=0.0,
                    wrench: np.ndarray | None = None) -> tuple:
-    """Gravity force [N] and moment [N m] about each joint's point that the masses beyond it carry through the
-    joint, base frame: ``F, M`` each shape (P, n, 3), and the joints' points ``o`` (P, n, 3) [mm] and axes ``w``
-    (P, n, 3). The part of ``M`` along a revolute axis is the joint's torque (:func:`gravity_torques`); the part
-    across it is what the joint's bearings carry.
+    """Force [N] and moment [N m] about each joint's point that the loads beyond it put through the joint -- the
+    gravity of the masses it carries, a payload and a process wrench at the target -- base frame: ``F, M`` each shape
+    (P, n, 3), and the joints' points ``o`` (P, n, 3) [mm] and axes ``w`` (P, n, 3). The part of ``M`` along a
+    revolute axis is the joint's torque (:func:`gravity_torques`); the part across it is what the joint's bearings
+    carry.
 
     ``tip_mm`` (P, 3) and ``tip_kg`` (P,) or float: an extra point mass (the payload) at the target; ``wrench``
-    (P, 6): a process force [N] and moment [N m] applied there (:func:`wrench_load`).
+    (P, 6): a process force [N] and moment [N m] applied there (:func:`wrench_load`). A payload or a wrench without
+    ``tip_mm`` is refused (ValueError): it has no point to act at.
     """
+    if tip_mm is None and (wrench is not None or np.any(np.asarray(tip_kg, float) != 0.0)):
+        raise ValueError("joint_wrenches: a payload or a process wrench needs tip_mm, the point it acts at")
     q = np.atleast_2d(q)
     P, n = q.shape
     prefix = poe_prefix(robot.screws, q)
