@@ -114,3 +114,43 @@ def test_a_payload_or_a_wrench_without_its_point_is_refused():
         joint_wrenches(robot, q, None, 5.0)
     with pytest.raises(ValueError, match="needs tip_mm"):
         mount_columns(robot, q, np.zeros((1, 3)), None, None, wrench=wrench)
+
+
+def test_the_tilt_turns_about_the_pairs_centre_wherever_the_joint_point_sits_on_the_axis():
+    """j1's point moved 500 mm up its own axis (the same arm) with the bearing's centre left where it was: the tilt
+    under load and the runout's tilt columns do not change; with the centre moved along too, they do."""
+    from tolalloc.errormodel.build import build_error_model
+    from tolalloc.errormodel.parts import parts_error_model
+
+    def arm(first, centre):
+        chain = (*first, Joint("j1", "revolute", np.array([0.0, 0.0, 1.0])),
+                 Link("l1", np.array([1000.0, 0.0, -sum(lk.vector_mm[2] for lk in first)])),
+                 Joint("j2", "revolute", np.array([1.0, 0.0, 0.0])), Link("l2", np.array([0.0, 300.0, 0.0])))
+        robot = Robot("arm", chain)
+        object.__setattr__(robot, "masses", (Mass("m", 2, KG, np.array([1000.0, 300.0, 0.0])),))
+        bearing = Bearing("P5", 100.0, None, K, "", 60.0, 0.005, centre_mm=centre)
+        object.__setattr__(robot, "components", Components(joints={"j1": JointComponents(bearing=bearing)}))
+        return robot
+
+    low, high, moved = arm((), 500.0), arm((Link("l0", np.array([0.0, 0.0, 500.0])),), 0.0), arm((), 0.0)
+    q = np.array([[0.3, 0.2], [-1.0, 0.7]])
+    p = low.fk_internal(q)[:, :3, 3]
+    np.testing.assert_allclose(high.fk_internal(q)[:, :3, 3], p, atol=1e-9)   # the same arm
+    tip, kg = p, np.array([5.0, 5.0])
+    a, b = bearing_tilt(low, q, p, tip, kg), bearing_tilt(high, q, p, tip, kg)
+    np.testing.assert_allclose(a, b, atol=1e-12)
+    assert np.abs(a - bearing_tilt(moved, q, p, tip, kg)).max() > 1e-3
+    cols = [parts_error_model(build_error_model(r, "generic"), r) for r in (low, high)]
+    J = [pm.model.jacobian(q)[:, :, pm.bearing[0]] for pm in cols]
+    np.testing.assert_allclose(J[0], J[1], atol=1e-9)
+
+
+def test_the_centre_is_read_from_a_bearing_table_and_a_catalogue_slot():
+    inline = parse_components({"joints": {"j1": {"bearing": {"span_mm": 80, "radial_runout_um": 5,
+                                                             "centre_mm": -40}}}}, {"j1": True}, ["l1"])
+    assert inline.joints["j1"].bearing.centre_mm == -40.0
+    slot = parse_components({"joints": {"j1": {"bearing": {"family": "ISO492", "bore_mm": 90, "span_mm": 60,
+                                                           "centre_mm": 25}}}}, {"j1": True}, ["l1"])
+    assert all(slot.slots[("j1", "bearing")].resolve(n).centre_mm == 25.0 for n in slot.slots[("j1", "bearing")].names)
+    plain = parse_components({"joints": {"j1": {"bearing": {"span_mm": 80}}}}, {"j1": True}, ["l1"])
+    assert plain.joints["j1"].bearing.centre_mm == 0.0

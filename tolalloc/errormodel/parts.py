@@ -211,7 +211,7 @@ def parts_error_model(model: ErrorModel, robot: Robot | None = None) -> PartsMod
     for j, jt in enumerate(robot.joints):
         if not jt.is_revolute or robot.components.joint(jt.name).bearing is None:
             continue
-        pt, idx = robot.joint_points_mm[j], []
+        pt, idx = robot.joint_points_mm[j] + robot.components.joint(jt.name).bearing.centre_mm * jt.axis, []
         for kind, tag, rot in (("clearance_radial", "br", False), ("clearance_tilt", "bw", True)):
             for letter, e in perpendicular_axes(jt.axis):
                 twist = np.concatenate([e, -np.cross(e, pt)]) if rot else np.concatenate([np.zeros(3), e])

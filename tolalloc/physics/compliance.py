@@ -24,9 +24,10 @@ on the side the moment presses; the first joint's bearing tilt clearance has the
 model of :mod:`~.clearance` leaves it to this one).
 
 **Bearing tilt.** A revolute joint's bearing pair (a cross-roller bearing, an angular-contact pair) carries the
-moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`) and tilts by ``M_perp / k`` [rad]
-with its catalogue moment stiffness ``k`` (``tilt_stiffness_Nm_per_rad``): the distal chain turns about the joint
-point (:func:`bearing_tilt`). It is a joint-axis deflection, the rotary counterpart of the mount's tilt.
+moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`), taken about the pair's centre, and
+tilts by ``M_perp / k`` [rad] with its catalogue moment stiffness ``k`` (``tilt_stiffness_Nm_per_rad``): the distal
+chain turns about that centre (``centre_mm`` along the axis from the joint point; :func:`bearing_tilt`). It is a
+joint-axis deflection, the rotary counterpart of the mount's tilt.
 
 **A logged process wrench.** Where the data carry the force and moment a process applies at the tool (a cut, a
 press, a screwing reaction; :func:`~.loads.wrench_load`), both loads include it: the joints carry its virtual work
@@ -201,16 +202,19 @@ def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_
 
 def bearing_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> np.ndarray:
     """Displacement [mm] of the points ``p`` (P, 3) from each revolute joint's bearing tilting under the moment
-    across its axis (module docstring), shape (P, 3, n); zeros for joints whose bearing gives no
-    ``tilt_stiffness``. The payload ``payload_kg`` (P,) and a process ``wrench`` (P, 6) act at ``tip_mm`` (P, 3)."""
+    across its axis about the pair's centre (``centre_mm`` along the axis from the joint point; module docstring),
+    shape (P, 3, n); zeros for joints whose bearing gives no ``tilt_stiffness``. The payload ``payload_kg`` (P,) and a
+    process ``wrench`` (P, 6) act at ``tip_mm`` (P, 3)."""
     q = np.atleast_2d(q)
     out = np.zeros((len(q), 3, robot.n_joints))
-    stiff = {j: robot.components.joint(jt.name).bearing for j, jt in enumerate(robot.joints) if jt.is_revolute}
-    stiff = {j: b.tilt_stiffness for j, b in stiff.items() if b is not None and b.tilt_stiffness}
-    if not stiff:
+    bearings = {j: robot.components.joint(jt.name).bearing for j, jt in enumerate(robot.joints) if jt.is_revolute}
+    bearings = {j: b for j, b in bearings.items() if b is not None and b.tilt_stiffness}
+    if not bearings:
         return out
-    _, M, o, w = joint_wrenches(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg, wrench)
-    for j, k in stiff.items():
-        across = M[:, j] - np.einsum("pi,pi->p", M[:, j], w[:, j])[:, None] * w[:, j]
-        out[:, :, j] = np.cross(across / k, p - o[:, j])
+    F, M, o, w = joint_wrenches(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg, wrench)
+    for j, b in bearings.items():
+        shift = b.centre_mm * w[:, j]                               # the pair's centre from the joint point [mm]
+        Mc = M[:, j] - np.cross(shift / 1000.0, F[:, j])            # the moment about the centre [N m]
+        across = Mc - np.einsum("pi,pi->p", Mc, w[:, j])[:, None] * w[:, j]
+        out[:, :, j] = np.cross(across / b.tilt_stiffness, p - o[:, j] - shift)
     return out

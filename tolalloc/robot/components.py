@@ -44,6 +44,8 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     datum = "A"                      # datum feature of the seat axis on the drawing
     seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6  # moment stiffness across the axis: the bearing tilts by M / k under its load
+    centre_mm = 0                    # the bearing pair's centre along the joint axis from the joint point (it tilts
+                                     # about it)
 
     [components.joints.shoulder_lift_joint.motor]
     winding_resistance_ohm = 0.6     # line to line (three-phase servo datasheet); torque constant per A rms
@@ -62,7 +64,8 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
 
 A joint's part may instead be a *slot* of the component catalogue (:mod:`tolalloc.robot.part_catalogue`):
 ``reducer = { part = "HD-CSG-32-100" }`` (a fixed catalogue part), ``{ family = "HD-CSG-32-100" }`` or
-``{ options = ["...", "..."] }`` (the design picks one; a bearing slot adds ``bore_mm``, ``span_mm``, ``datum``).
+``{ options = ["...", "..."] }`` (the design picks one; a bearing slot adds ``bore_mm``, ``span_mm``, ``datum``,
+``tilt_stiffness_Nm_per_rad``, ``centre_mm``).
 Slots are listed in :attr:`Components.slots`; they fill the joint's entry only once a part is chosen
 (:meth:`Components.with_choice`; a slot of one part is chosen by itself), so the diagnosis, which reads the joints'
 entries, sees only the parts whose figures the file gives.
@@ -174,7 +177,9 @@ class Encoder:
 class Bearing:
     """The joint's bearing arrangement: ISO 492 ``precision_class``, seat ``span_mm``, drawing ``datum``,
     ``tilt_stiffness`` [N m/rad], source, ``bore_mm`` and ``radial_runout`` [mm] (Kia: the full indicator reading of
-    the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit)."""
+    the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit),
+    ``centre_mm``: the pair's centre along the joint axis from the joint point [mm], about which the body tilts (its
+    runout's tilt and its tilt under load; 0: at the joint point)."""
 
     precision_class: str | None = None
     span_mm: float | None = None
@@ -184,6 +189,7 @@ class Bearing:
     bore_mm: float | None = None
     radial_runout: float | None = None
     seat_diameter_mm: float | None = None
+    centre_mm: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -193,11 +193,12 @@ def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Enc
 def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
     """A :class:`Bearing` from its table."""
     v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)), "bore": (_LENGTH, ((),)),
-                       "radial_runout": (_LENGTH, ((),)), "seat_diameter": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
+                       "radial_runout": (_LENGTH, ((),)), "seat_diameter": (_LENGTH, ((),)),
+                       "centre": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
     return Bearing(_text(t, "precision_class", w), _positive_in(v, "span", w), _text(t, "datum", w),
                    _positive_in(v, "tilt_stiffness", w), _text(t, "source", w, ""),
                    _positive_in(v, "bore", w), _positive_in(v, "radial_runout", w, True),
-                   _positive_in(v, "seat_diameter", w))
+                   _positive_in(v, "seat_diameter", w), float(v["centre"] or 0.0))
 
 
 def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:

@@ -299,7 +299,7 @@ class Slot:
         g = self.geometry
         kia = p.spec.runout_at(g["bore_mm"], f"components.joints.{self.joint}.bearing ({p.name})")
         return Bearing(p.spec.precision_class, g.get("span_mm"), g.get("datum"), g.get("tilt_stiffness"), p.source,
-                       g["bore_mm"], kia)
+                       g["bore_mm"], kia, centre_mm=g.get("centre_mm", 0.0))
 
 
 def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, catalogue: PartCatalogue) -> Slot:
@@ -307,7 +307,7 @@ def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, c
     sel = [k for k in ("part", "family", "options") if k in table]
     if len(sel) != 1:
         raise ValueError(f"{where}: give one of part, family or options, got {sel}")
-    geo_spec = {"bore": (_LENGTH, ((),)), "span": (_LENGTH, ((),)),
+    geo_spec = {"bore": (_LENGTH, ((),)), "span": (_LENGTH, ((),)), "centre": (_LENGTH, ((),)),
                 "tilt_stiffness": ({"Nm_per_rad": 1.0}, ((),))} if kind == "bearing" else {}
     v = read_table(table, geo_spec, where, text=("part", "family", "options", "source")
                    + (("datum",) if kind == "bearing" else ()))
@@ -339,7 +339,8 @@ def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, c
         if v["bore"] is None:
             raise ValueError(f"{where}: a bearing slot needs bore_mm (it selects the ISO 492 runout row)")
         geometry = {"bore_mm": v["bore"], "span_mm": _positive_in(v, "span", where),
-                    "datum": _text(table, "datum", where), "tilt_stiffness": _positive_in(v, "tilt_stiffness", where)}
+                    "datum": _text(table, "datum", where), "tilt_stiffness": _positive_in(v, "tilt_stiffness", where),
+                    "centre_mm": float(v["centre"] or 0.0)}
         if geometry["span_mm"] is None:
             raise ValueError(f"{where}: a bearing slot needs span_mm (the distance between its two bearings: "
                              "runout over the span tilts the axis)")
