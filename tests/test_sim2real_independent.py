@@ -3449,3 +3449,146 @@ def _ctx_at(ctx, q):
     s = replace(ctx.session, q=q, time_s=np.zeros(n), direction=np.ones_like(q), payload_kg=np.zeros(n),
                 air_c=np.zeros(n), speed=np.zeros_like(q), move_s=np.zeros(n), dwell_s=np.zeros(n), gap_s=np.zeros(n))
     return replace(ctx, chain=replace(ctx.chain, q_offset=np.zeros(ctx.chain.n)), session=s)
+
+
+# ---------------------------------------------------------------------------------------------------------- set X
+def test_set_x_cases_kinds_and_determinism():
+    """Set X: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time (the
+    collision's step at random); a case regenerates bit-identically from its seed; the session hook leaves cases without
+    a set-X kind alone (no random numbers drawn) and the probe hook draws none; the generator reaches the set's modules
+    and none imports tolalloc; the production, the sanitation pauses and a new part for each block."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_x as ex
+
+    _assert_set_module("X", 40_7024, ex, ("gear", "air_stratification"))
+    for name in ("effects_x", "effects_x_joint", "effects_x_body", "effects_x_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_x" in _imports(STUDY / "generator.py")
+    assert ex.AFTER_TRACKER == set()
+    assert all(c[4] == "random" for c in cs.SET_X if "collision_shift" in c[2])
+    assert all(c[1] == "tool_changer" for c in cs.SET_X if "cosine_error" in c[2])   # needs a prismatic joint
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ex.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        for kind, (lo, hi) in ex.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        wash = opts(("washdown",))
+        assert 4 <= wash["blocks"] < 7 and wash["gap_kind"] == "pause" and wash["pause_min"] == (15.0, 40.0)
+        for kind, kg in ex.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 2 <= part["blocks"] <= 4 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("magnet_fanner", "support_arm", "ring_lobing", "cosine_error"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ex.probe_hook(("gear",), probe) is probe
+    assert ex.probe_hook(("printed_fingers",), probe) == pytest.approx(probe + [0, 0, 80.0])
+    assert ex.probe_hook(("suction_cup",), probe) == pytest.approx(probe + [0, 0, 60.0])
+    _assert_regenerates("X", max_effect_poses=50)
+
+
+def test_set_x_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-X kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect on every arm (the cosine error on tool_changer, inert elsewhere); and known answers:
+    the pole's inverse-cube pull, the support arm's vertical lift, the track's flank per block, the run-in curve and the
+    trailing flank of an unloaded axis, the ring's three lobes, the cosine error, the collision's step and turn, the
+    foot lowering its own corner only, the fingers' design sag and creep, the cup's moment across its axis, the
+    wash-down's lumped cooling and the stray field's first-order heating."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_x_body as xb
+    from sim2real_indep import effects_x_joint as xj
+    from sim2real_indep import effects_x_thermal as xt
+    from sim2real_indep.effects_u_joint import block_index
+    from sim2real_indep.effects_w_joint import machining_s
+
+    every = ("magnet_fanner", "support_arm", "track_lash", "run_in_wear", "ring_lobing", "cosine_error",
+             "collision_shift", "levelling_foot", "printed_fingers", "suction_cup", "washdown", "induction_stray")
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 24)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        cte = case.truth["hw"]["material"]["cte"]
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            if kind == "cosine_error" and robot != "tool_changer":
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0
+                continue
+            amp = {"magnet_fanner": lambda: [p["F_ref"]], "support_arm": lambda: [p["F0"], p["k"]],
+                   "track_lash": lambda: [p["c_mm"] / 2], "run_in_wear": lambda: p["b_r"] / 2,
+                   "ring_lobing": lambda: p["amp"], "cosine_error": lambda: [p["kappa"]],
+                   "collision_shift": lambda: p["amp"], "levelling_foot": lambda: [p["rate"]],
+                   "printed_fingers": lambda: p["amp"], "suction_cup": lambda: [p["c"]],
+                   "washdown": lambda: cte * p["dT0"], "induction_stray": lambda: [cte * p["dT_ss"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    b = block_index(s)
+    # magnet: unit pull at r_ref from a point pole, an eighth of it at twice the distance, towards the pole
+    pole = dict(P["magnet_fanner"], face_mm=0.0)
+    pts = pole["pole_mm"] + np.array([[xj.FANNER_REF_MM, 0, 0], [0, 2 * xj.FANNER_REF_MM, 0]])
+    law = xj.fanner_law(pole, pts)
+    assert np.linalg.norm(law, axis=1) == pytest.approx([1.0, 1 / 8]) and law[0] == pytest.approx([-1.0, 0, 0])
+    # support arm: a vertical force turns no vertical axis (ur10's axis 1); the rate's column is F0's times the height
+    sp = P["support_arm"]
+    tw = xj.support_twists(sp, ctx, hw)
+    assert np.abs(tw[0][:, 0]).max() < 1e-12 * np.abs(tw[0]).max()
+    z = kin.flange(ctx.chain, ctx.q)[0][:, 2]
+    assert tw[1] == pytest.approx(tw[0] * ((z - sp["z0_mm"]) / 1000.0)[:, None])
+    # track lash: one side per block, both sides in the session, along the rail
+    tl = P["track_lash"]
+    F = xj.track_features(tl, ctx, hw)[0]
+    assert set(tl["sides"]) == {-1.0, 1.0} and np.abs(F @ tl["e"]) == pytest.approx(1.0)
+    # run-in: nothing before the first production, the running-in curve after; axis 1 (no gravity torque) trails
+    wp = P["run_in_wear"]
+    g = xj.wear_growth(wp, s)
+    assert not g[b == 0].any() and g == pytest.approx(1 - np.exp(-machining_s(s) / wp["tau_s"]))
+    assert xj.wear_sides(wp, ctx)[:, 0] == pytest.approx(-s.direction[:, 0])
+    # ring lobing: a / (3 R), three-fold symmetric
+    lp = P["ring_lobing"]
+    assert lp["A"] == pytest.approx(lp["a_mm"] / (3 * lp["R_mm"]))
+    q3 = replace(ctx, session=replace(s, q=s.q + np.r_[2 * np.pi / 3, np.zeros(5)]))
+    assert xj.lobing_apply(lp, q3, hw).dq[:, 0] == pytest.approx(xj.lobing_apply(lp, ctx, hw).dq[:, 0])
+    # cosine error on tool_changer's telescopic stage: q4 (1 / cos beta - 1)
+    tc, tctx = runs["tool_changer"]
+    cp = tc.truth["params"]["cosine_error"]
+    assert cp["joints"] == (3,) and cp["kappa"] == pytest.approx(1 / np.cos(cp["beta"]) - 1)
+    assert xj.cosine_apply(cp, tctx, tc.truth["hw"]).dq[:, 3] == pytest.approx(cp["kappa"] * tctx.q[:, 3])
+    # collision: a step inside the session; the turn moves the target across its radius
+    cs_ = P["collision_shift"]
+    st = xb.collision_step(cs_, s)
+    assert 2 <= cs_["block"] <= b.max() - 1 and not st[b < cs_["block"]].any() and st[b >= cs_["block"]].all()
+    turn = xb.collision_features(cs_, ctx, hw)[2]
+    assert np.abs(np.einsum("pi,pi->p", turn, ctx.target)).max() < 1e-9
+    # levelling foot: a unit drop lowers foot 0 by 1 mm and leaves the others where they are
+    fp = P["levelling_foot"]
+    f, e, pt, d = xb.foot_geometry(fp)
+    mv = np.cross(e, f - pt) / d
+    assert mv[0, 2] == pytest.approx(-1.0) and np.abs(mv[1:]).max() < 1e-12
+    # fingers: the heaviest part across the fingers sags them by the design sag; the grip's age grows in a block
+    fg = P["printed_fingers"]
+    assert fg["amp"][0] * kin.G * s.payload_kg.max() == pytest.approx(fg["sag_mm"])
+    age = xb.grip_age_h(s)
+    same = np.r_[False, np.diff(b) == 0]
+    assert (age > 0).all() and (np.diff(age)[same[1:]] > 0).all()
+    assert np.abs(np.einsum("pi,pi->p", xb.finger_weight(ctx), kin.flange(ctx.chain, ctx.q)[1][:, :, 2])).max() < 1e-9
+    # suction cup: the moment lies across the cup's axis
+    M, _ = xb.cup_moment(P["suction_cup"], ctx)
+    assert np.abs(np.einsum("pi,pi->p", M, kin.flange(ctx.chain, ctx.q)[1][:, :, 2])).max() < 1e-9
+    # wash-down: lumped cooling, exp(-dt / tau) between the poses of a block, from each rinse's own dT0
+    wd = P["washdown"]
+    assert len(wd["dT0"]) == b.max() + 1 and 10.0 <= wd["dT0"].min() and wd["dT0"].max() <= 25.0
+    dec = xt.wash_decay(wd, s)
+    ratio = dec[same] / dec[np.flatnonzero(same) - 1]
+    assert ratio == pytest.approx(np.exp(-np.diff(s.time_s)[same[1:]] / wd["tau_s"])) and (dec < 1).all()
+    # stray field: cold before the first production, heated towards 1 across each exercise gap; ur10's forearm is a3
+    sf = P["induction_stray"]
+    T = xt.stray_temperature(sf, s)
+    assert not T[b == 0].any() and (T < 1).all() and (T[s.gap_s > 0] > T[np.flatnonzero(s.gap_s > 0) - 1]).all()
+    assert [n for n, m in zip(ctx.chain.link_names, xt.forearm_mask(ctx.chain)) if m] == ["a3"]

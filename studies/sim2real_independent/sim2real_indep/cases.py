@@ -14,7 +14,8 @@ per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth
 8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
 cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U
 (24 cases, 8 per arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second
-(:mod:`effects_v`) and set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`). A case: (id, robot, physics
+(:mod:`effects_v`), set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`) and set X (24 cases, 8 per arm)
+a twenty-fourth (:mod:`effects_x`). A case: (id, robot, physics
 kinds, poses, split).
 """
 
@@ -25,7 +26,7 @@ import numpy as np
 SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7004, 40_7005, 40_7006
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
-SEED_S, SEED_T, SEED_U, SEED_V, SEED_W = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023
+SEED_S, SEED_T, SEED_U, SEED_V, SEED_W, SEED_X = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023, 40_7024
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1046,13 +1047,73 @@ SET_W = [
     ("W24", "kr16_like", ("stable_probe", "air_bellows"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-W)
+#: set X: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_x`); written as an independent test set after set W, from the literature, without
+#: reading how the diagnosis models effects. The step kind (collision_shift) and the wash-down (each rinse its own,
+#: unlearnable temperature) are split at random; cosine_error needs a prismatic joint (tool_changer's telescopic stage)
+#: and is inert elsewhere. Oracle labels when written (oracle.py only; the diagnosis was not run): every case its truth
+#: (gains 23-84 %; each mixture component's removal costs 19 % or more), the geometry-only cases none; no soft labels
+#: (no gain below 20 %, no rival family's model within 25 % of the truth; the closest: X05's backlash model 1.29x, X16's
+#: thermal model 1.43x, X11's thermal model 1.45x, X21's joint model 1.51x, X01's transmission model 1.54x; the smallest
+#: gains 23 % on X05, 37 % on X01 and X08). Changed after trial draws (the modules' docstrings give the final ranges):
+#: the second mount kind was first a hexapod under the base (legs of 5-150 N/um; X06 on ur10 ambiguous with the joint
+#: and link models at 1.01x, and on tool_changer / kr16_like with the link model at 1.02 / 1.01x: a compliant support
+#: under the arm's moment tilts it as the shoulder's gear and the column link bend under the same moment) and was
+#: replaced by the levelling foot unscrewing through the production (a tilt that grows with the production time, not
+#: with the moment); induction_stray was first on tool_changer with the aluminium range of 5-15 K (X14: absorbed, 0.03
+#: mm on a steel forearm), then steel's 15-35 K (a ferromagnetic wall takes up far more of the stray field; still a
+#: gain of 16 %, the link model at 1.21x), so it moved to kr16_like (X18) and the ur10 mixture (X08), and tool_changer
+#: took the wash-down (X14); the magnetic fanner on kr16_like (X17) moved 0.015 mm at 40-120 N (absorbed; 150-400 N
+#: still a gain of 10 %: its RV gears are too stiff), so kr16_like took the support arm (X17) and the ur10 mixture the
+#: fanner (X08, first support_arm + induction_stray); the fanner's pole stood first beyond three quarters of the
+#: targets' reach with a face of 60-120 mm (trial + 1: X01 absorbed, 0.02 mm), now in the targets' footprint with a
+#: face of 100-200 mm (a fanner block is about as tall as its stack), ur10's pull 15-40 N at 300 mm (10-30 tried);
+#: the printed fingers' section was first drawn (12-20 x 6-10 mm: X21 moved 4 mm), now sized to sag 0.15-0.4 mm under
+#: the session's heaviest part; the wash-down first raised every block by one dT0 (trial + 1: X05 and X14 a gain of 11
+#: %, the per-block pattern repeating), now each rinse its own, and its cases (first split by time, which left the last
+#: block's rinse unlearnable: gains of -246 %) are split at random, X06 and X18 by time instead; the levelling foot
+#: first dropped 0.02-0.08 mm/h (trial + 2: X06 a gain of 11 %), now 0.04-0.12; tool_changer's suction cups 1500-4000
+#: N m/rad (trial + 2: X13 a gain of 21 %, the joint model at 1.15x), now 800-2500. No pose count or seed was changed.
+#: Trial draws on the seed + 1 and + 2 (the case seeds + 1000003 k) with the final physics: every case labelled its
+#: truth in both but X01 (the fanner on ur10, 50 poses) on + 1, absorbed (0.33 mm at its nearest pose, too few poses
+#: near the pole); on + 2 X01 gained 7 % (the thermal model at 1.07x: the pole far from the working volume); + 1 one
+#: more soft label (X11, the run-in on tool_changer, the transmission model at 1.11x: its loaded axes 2 and 3 rest on
+#: one flank, so the opening reads as a slow zero drift). The fanner (its 1 / r^3 pull concentrated on the poses near
+#: the pole) is the weakest kind.
+SET_X = [
+    ("X01", "ur10", ("magnet_fanner",), 50, "random"),
+    ("X02", "ur10", ("track_lash",), 110, "random"),
+    ("X03", "ur10", ("ring_lobing",), 120, "random"),
+    ("X04", "ur10", ("printed_fingers",), 150, "time"),
+    ("X05", "ur10", ("washdown",), 160, "random"),
+    ("X06", "ur10", ("levelling_foot",), 140, "time"),
+    ("X07", "ur10", (), 70, "random"),
+    ("X08", "ur10", ("magnet_fanner", "induction_stray"), 180, "random"),
+    ("X09", "tool_changer", ("support_arm",), 120, "random"),
+    ("X10", "tool_changer", ("cosine_error",), 110, "random"),
+    ("X11", "tool_changer", ("run_in_wear",), 150, "time"),
+    ("X12", "tool_changer", ("collision_shift",), 140, "random"),
+    ("X13", "tool_changer", ("suction_cup",), 130, "random"),
+    ("X14", "tool_changer", ("washdown",), 160, "random"),
+    ("X15", "tool_changer", (), 30, "random"),
+    ("X16", "tool_changer", ("cosine_error", "run_in_wear"), 190, "time"),
+    ("X17", "kr16_like", ("support_arm",), 130, "random"),
+    ("X18", "kr16_like", ("induction_stray",), 140, "time"),
+    ("X19", "kr16_like", ("ring_lobing",), 130, "random"),
+    ("X20", "kr16_like", ("collision_shift",), 140, "random"),
+    ("X21", "kr16_like", ("printed_fingers",), 150, "time"),
+    ("X22", "kr16_like", ("track_lash",), 120, "random"),
+    ("X23", "kr16_like", (), 90, "random"),
+    ("X24", "kr16_like", ("levelling_foot", "suction_cup"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-X)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
-        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W)}
+        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -263,7 +263,26 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "swarf_shroud": "joint_compliance", "rail_trolley": "joint_compliance", "stable_probe": "backlash",
           "part_slide": "backlash", "hub_slip": "transmission", "emi_counts": "transmission",
           "cracked_plinth": "mount_compliance", "young_grout": "mount_compliance", "air_bellows": "link_deflection",
-          "bent_bracket": "link_deflection", "cooling_part": "thermal", "air_stratification": "thermal"}
+          "bent_bracket": "link_deflection", "cooling_part": "thermal", "air_stratification": "thermal",
+          # set X (sim2real_indep.effects_x; magnet_fanner, the gears twisted by a sheet fanner's magnetic pull on the
+          # steel blank in the gripper, and support_arm, by a spring-balanced tool-support arm's lift that changes with
+          # the flange's height, scored as joint compliance; track_lash, the arm's linear track (an unlogged seventh
+          # axis) left on the flank of its carriage's last approach to the station, and run_in_wear, a replaced gear
+          # set's lost motion opening as its flanks run in through the production, as backlash (errors that follow the
+          # last motion); ring_lobing, axis 1's ring scale pulled into three lobes by its clamping screws, and
+          # cosine_error, the telescopic stage's length sensor mounted at an angle to its travel, as transmission (the
+          # joints' reading); collision_shift, the base plate slipped on its friction-grip bolted joint in a collision,
+          # and levelling_foot, the stand's levelling foot unscrewing in the production's vibration, as mount
+          # compliance (the robot's support);
+          # printed_fingers, 3D-printed gripper fingers creeping under the held part, and suction_cup, a part tilting
+          # on its suction cup, as link deflection (the end-of-arm structure carrying the target); washdown, the arm
+          # cooling after a hot sanitation rinse, and induction_stray, the forearm heated by an induction heater's
+          # stray field, as thermal)
+          "magnet_fanner": "joint_compliance", "support_arm": "joint_compliance", "track_lash": "backlash",
+          "run_in_wear": "backlash", "ring_lobing": "transmission", "cosine_error": "transmission",
+          "collision_shift": "mount_compliance", "levelling_foot": "mount_compliance",
+          "printed_fingers": "link_deflection", "suction_cup": "link_deflection", "washdown": "thermal",
+          "induction_stray": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; all twenty-three: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; all twenty-four: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -274,6 +274,20 @@ rolling on an overhead rail (W09, `none`; W22 hedged between backlash and transm
 towards gravity or its last deceleration, named link deflection at the flange with confidence (W10: a tool-frame
 offset that follows gravity, which the flange load also gives), and beside a young grout bed hedged over four
 families, the slide read as link deflection (W08).
+
+**Set X** (24 cases, seed 40_7024) is a twenty-fourth independent test set of twelve new kinds
+(`sim2real_indep/effects_x*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-W, and who did not run the diagnosis. It was run once, on the
+code as it stood after set W had been judged -- the diagnosis unchanged since then (a variant for joint zeros that
+step at a pause was tried on sets A-W in between and not kept: it named steps, but it cost as many thermal and
+quiet cases of the earlier sets as it gained): 16/24 strict, 16 lenient, no false claim, median final / oracle RMS
+1.26; right on 8 of 10 effect cases where the true family's generic model helps, 5 of 11 where it does not. Its
+misses: events and drivers no column logs, read as a course in time -- a base plate slipping on its bolted joint in a
+collision between blocks (X12, X20), a levelling foot unscrewing with the production's vibration (X06) and a
+replaced gear's lash opening as it runs in (X11), all named thermal through a variant driven by the time alone,
+whose reason says a slow process of any kind would fit as well; a sheet fanner's magnet pulling on the blank (X01),
+the rack lash of a seventh-axis track the file does not know (X02, X22) and a hot wash-down before each block
+(X14), `none`.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -672,6 +686,24 @@ comment):
 | bent_bracket | link_deflection | the target's bracket bent past yield in a collision between blocks: a step in the target's offset in the tool frame (not logged) (tool_changer, kr16_like) | Timoshenko & Gere, *Mechanics of Materials* (plastic bending) |
 | cooling_part | thermal | a hot part (40-100 K above the air, tau 3-8 min) carrying the target, shrinking as it cools in the gripper; a new part at each block (not logged) (ur10, tool_changer) | Incropera & DeWitt ch. 5 (lumped capacitance) |
 | air_stratification | thermal | each link in air stratified beside a furnace (3-8 K/m, building up over 1-3 h), growing by alpha G (z_mid - z_sensor) (one sensor height logged) (kr16_like) | ASHRAE Handbook -- Fundamentals ch. 20; Awbi, *Ventilation of Buildings* (2003) ch. 8 |
+
+Set X's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_X
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| magnet_fanner | joint_compliance | a sheet fanner's magnet pulling the steel blank in the gripper, the pull falling as 1 / r^3 from its pole and twisting the joints (not logged) (ur10) | Furlani, *Permanent Magnet and Electromechanical Devices*; Gilbert pole model |
+| support_arm | joint_compliance | a spring-balanced tool-support arm lifting the flange by F0 + k (z - z0) (not logged) (tool_changer, kr16_like) | zero-gravity tool-arm and balancer data (as recalled; the drift with height assumed) |
+| track_lash | backlash | the rack-and-pinion lash of a seventh-axis track the robot file does not know: each block on the flank the carriage last approached (not logged) (ur10, kr16_like) | ISO 1328 (rack quality) |
+| run_in_wear | backlash | a replaced gear set's lash opening along a running-in curve, the flank chosen by load or last motion (production time not logged) (tool_changer) | Blau, *Friction and Wear Transitions of Materials*; Archard |
+| ring_lobing | transmission | axis 1's ring scale pulled into three lobes by its clamping screws: the reading errs by (a / 3R) sin 3 (q - phi) (ur10, kr16_like) | Timoshenko, *Strength of Materials* (thin rings); Renishaw / HEIDENHAIN ring-scale guides |
+| cosine_error | transmission | the telescopic stage's position sensor mounted at an angle beta: the stage stands off by q (1 / cos beta - 1) (tool_changer) | Slocum, *Precision Machine Design* |
+| collision_shift | mount_compliance | the base plate slipping on its friction-grip bolted joint in a collision between blocks: a slide and a turn, as a step (not logged) (tool_changer, kr16_like) | VDI 2230 Part 1; EN 1993-1-8 |
+| levelling_foot | mount_compliance | one of three levelling feet unscrewing in the production's vibration, the stand tilting about the line through the other two (not logged) (ur10, kr16_like) | Junker (self-loosening under transverse vibration) |
+| printed_fingers | link_deflection | 3D-printed fingers bending under the part's weight and creeping from the grip, a power law in time (ur10, kr16_like) | Findley, Lai & Onaran, *Creep and Relaxation of Nonlinear Viscoelastic Materials* |
+| suction_cup | link_deflection | the part tilting on its suction cup's lip under its weight's moment, theta = M_perp / k_t (tool_changer, kr16_like) | Schmalz / Piab cup data; Roark, *Formulas for Stress and Strain* |
+| washdown | thermal | a hot sanitation rinse before each block heating the arm, which then cools as a lumped body (not logged) (ur10, tool_changer) | Incropera & DeWitt ch. 5 |
+| induction_stray | thermal | an induction heater's stray field heating the forearm during production, first-order heating and cooling (not logged) (ur10, kr16_like) | Rudnev, Loveless & Cook, *Handbook of Induction Heating* |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
