@@ -86,7 +86,9 @@ def _clock(effect: str, variant: str) -> str:
         return ""
     return ("; its driver is the time since the session's start alone (no logged temperature, motion or load "
             "enters it): a warm-up or cool-down of the structure fits, and so would any slow process with the same "
-            "time course (creep, a leak, a settling support) -- check the cause before compensating it as heat")
+            "time course (creep, a leak, a settling support), and, roughly, a step at a pause between blocks (a "
+            "joint slipping at a stop, a base shifted by a collision, a screw loosening) -- check the cause before "
+            "compensating it as heat")
 
 
 def _best_line(stages: list, alpha: float, min_gain: float) -> str:
