@@ -44,13 +44,9 @@ def _means(res) -> pd.DataFrame:
     w = res.worst_point
     robot = with_parts(res.problem.model.robot, res.choice)
     t = PartEffects(robot, w.q, w.payload_kg, w.ambient_c, res.conditions).terms()
-    rows = []
-    for e in dict.fromkeys(t.effect):
-        sel = [i for i, x in enumerate(t.effect) if x == e]
-        mean = np.einsum("at,t->a", t.columns[0][:, sel], t.mean[0, sel])
-        if np.linalg.norm(mean) > 0:
-            rows.append((e, float(np.linalg.norm(mean))))
-    return pd.DataFrame(rows, columns=["effect", "mean_mm"]).sort_values("mean_mm", ascending=False)
+    rows = [(e, float(np.linalg.norm(t.of_effect(e).mean_mm()[0]))) for e in dict.fromkeys(t.effect)]
+    frame = pd.DataFrame(rows, columns=["effect", "mean_mm"])
+    return frame[frame["mean_mm"] > 0].sort_values("mean_mm", ascending=False)
 
 
 def _verification(v) -> pd.DataFrame:

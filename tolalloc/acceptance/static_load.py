@@ -149,8 +149,4 @@ def _elastic(robot, q, force_tool, pm) -> dict:
     effect (``pm``: the robot's parts error model); the caller passes the robot without its tool offset."""
     fx = PartEffects(robot, q, 0.0, 20.0, Conditions(process_force_n=tuple(force_tool)), pm=pm)
     t = fx.terms()
-    out = {}
-    for e in ELASTIC:
-        sel = [i for i, name in enumerate(t.effect) if name == e]
-        out[e] = (np.einsum("at,t->a", t.columns[0][:, sel], t.mean[0, sel]) if sel else np.zeros(3))
-    return out
+    return {e: t.of_effect(e).mean_mm()[0] for e in ELASTIC}

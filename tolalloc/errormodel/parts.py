@@ -38,6 +38,7 @@ power-up: no calibration or compensation removes it, so it is random here; withi
 from __future__ import annotations
 
 import copy
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -49,7 +50,7 @@ from tolalloc.errormodel.parts_terms import (BEAM_SD, COMPENSATION_RESIDUAL, EFF
                                              EffectTerms, residual_factors)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_sd
-from tolalloc.physics.compliance import bearing_tilt, joint_loads, mount_tilt
+from tolalloc.physics.compliance import bearing_rotations, joint_loads, mount_tilt
 from tolalloc.physics.loads import target_points
 from tolalloc.physics.thermal_design import link_cte, link_temperature, motor_rise
 from tolalloc.physics.thermal_scale import scale_error
@@ -57,10 +58,8 @@ from tolalloc.physics.transmission import catalogue_amplitudes
 from tolalloc.robot.model import Robot
 
 __all__ = ["EFFECTS", "THERMAL_SD", "BEAM_SD", "MOUNT_SD", "TILT_SD", "COMPENSATION_RESIDUAL", "residual_factors",
-           "Conditions",
-           "PartsModel",
-           "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side", "gear_harmonics", "stroke_of",
-           "encoder_harmonics"]
+           "Conditions", "PartsModel", "parts_error_model", "EffectTerms", "PartEffects", "with_parts", "motor_side",
+           "gear_harmonics", "stroke_of", "encoder_harmonics"]
 
 
 @dataclass(frozen=True)
@@ -326,15 +325,16 @@ class PartEffects:
             for k, sd in zip(self.pm.bearing[j], runout_sd(bearing)):
                 out += self._term(f"bearing_{self.pm.model.params[k].name}", "bearing", j, k, sys=sd)
         if bearing.tilt_stiffness and "compliance" in effects:
-            tilt = (lambda p: self.bearing_tilt(p)[:, :, j])
-            out += self._term(f"tilt_{self.robot.joints[j].name}", "compliance", j, tilt(self.tool), 1.0, TILT_SD,
-                              rot=self._rotation(tilt))
+            theta, centre = (x[:, j] for x in self.bearing_rotations)
+            out += self._term(f"tilt_{self.robot.joints[j].name}", "compliance", j,
+                              np.cross(theta, self.tool - centre), 1.0, TILT_SD, rot=theta if self.rotations else None)
         return out
 
-    def bearing_tilt(self, p) -> np.ndarray:
-        """Displacement [mm] of the points ``p`` (P, 3) from every bearing's tilt at these points, shape (P, 3, n)
-        (:func:`~tolalloc.physics.compliance.bearing_tilt`)."""
-        return bearing_tilt(self.robot, self.q, p, self.payload_point, self.payload, self.wrench)
+    @functools.cached_property
+    def bearing_rotations(self) -> tuple:
+        """Every bearing's tilt [rad] and the centre it turns about [mm] at these points, each (P, n, 3)
+        (:func:`~tolalloc.physics.compliance.bearing_rotations`): computed once for all the joints' terms."""
+        return bearing_rotations(self.robot, self.q, self.payload_point, self.payload, self.wrench)
 
     def joint_terms(self, j: int) -> EffectTerms:
         """Every term of joint ``j``'s resolved parts."""

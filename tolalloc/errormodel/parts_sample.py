@@ -19,7 +19,7 @@ from tolalloc.errormodel.parts import (BEAM_SD, COMPENSATION_RESIDUAL, MOUNT_SD,
                                        stroke_of)
 from tolalloc.physics.beams import beam_sag
 from tolalloc.physics.bearings import runout_values
-from tolalloc.physics.compliance import bearing_tilt, mount_tilt
+from tolalloc.physics.compliance import mount_tilt
 from tolalloc.physics.thermal_design import link_cte
 from tolalloc.physics.thermal_scale import scale_error
 from tolalloc.physics.transmission import transmission_error
@@ -104,10 +104,10 @@ def sample_effects(fx: PartEffects, i: int, n: int, rng: np.random.Generator, *,
     if r.components.links:
         sag = beam_sag(r, q1, p1, fx.payload[i:i + 1], fx.payload_point[i:i + 1], w_tool)[0]
         direct += f["beam"] * sag[None, :] * (1.0 + BEAM_SD * rng.standard_normal((n, 1)))
-    tilts = bearing_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1], w)[0]  # (3, n)
-    if np.any(tilts):
+    theta, centre = (x[i] for x in fx.bearing_rotations)                   # (n_joints, 3) each
+    if np.any(theta):
         spread = 1.0 + TILT_SD * rng.standard_normal((n, r.n_joints))
-        direct += f["compliance"] * spread @ tilts.T
+        direct += f["compliance"] * spread @ np.cross(theta, fx.tool[i] - centre)
     if r.components.mount.tilt_stiffness is not None:
         tilt = mount_tilt(r, q1, p1, fx.payload_point[i:i + 1], fx.payload[i:i + 1], w)[0]
         direct += f["mount"] * tilt[None, :] * (1.0 + MOUNT_SD * rng.standard_normal((n, 1)))

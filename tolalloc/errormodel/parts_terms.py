@@ -60,7 +60,7 @@ class EffectTerms:
     columns : array, shape (P, 3, T)          tool displacement per unit value [mm per mm or rad, or per unit]
     mean, sys_sd, rnd_sd : arrays, shape (P, T)
     rotation : array, shape (P, 3, T)         tool rotation per unit value [rad per mm or rad, or per unit]; a
-                                              a beam's, a bearing's tilt or the mount's only with
+                                              beam's, a bearing's tilt or the mount's only with
                                               PartEffects(rotations=True)
     """
 

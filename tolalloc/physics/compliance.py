@@ -26,7 +26,8 @@ model of :mod:`~.clearance` leaves it to this one).
 **Bearing tilt.** A revolute joint's bearing pair (a cross-roller bearing, an angular-contact pair) carries the
 moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`), taken about the pair's centre, and
 tilts by ``M_perp / k`` [rad] with its catalogue moment stiffness ``k`` (``tilt_stiffness_Nm_per_rad``): the distal
-chain turns about that centre (``centre_mm`` along the axis from the joint point; :func:`bearing_tilt`). It is a
+chain turns about that centre (``centre_mm`` along the axis from the joint point; :func:`bearing_rotations`,
+:func:`bearing_tilt`). It is a
 joint-axis deflection, the rotary counterpart of the mount's tilt.
 
 **A logged process wrench.** Where the data carry the force and moment a process applies at the tool (a cut, a
@@ -48,7 +49,7 @@ from tolalloc.physics.loads import (base_moment, gravity_torques, joint_wrenches
                                    wrench_moment)
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
-           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt", "bearing_tilt"]
+           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations", "bearing_tilt"]
 
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
@@ -200,21 +201,29 @@ def mount_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_
     return B @ (1.0 / k)
 
 
-def bearing_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> np.ndarray:
-    """Displacement [mm] of the points ``p`` (P, 3) from each revolute joint's bearing tilting under the moment
-    across its axis about the pair's centre (``centre_mm`` along the axis from the joint point; module docstring),
-    shape (P, 3, n); zeros for joints whose bearing gives no ``tilt_stiffness``. The payload ``payload_kg`` (P,) and a
-    process ``wrench`` (P, 6) act at ``tip_mm`` (P, 3)."""
+def bearing_rotations(robot: Robot, q: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> tuple:
+    """Each revolute joint's bearing tilt under the moment across its axis (module docstring): the rotation [rad]
+    ``theta`` (P, n, 3) and the pair's centre it turns about [mm] ``c`` (P, n, 3) (``centre_mm`` along the axis from
+    the joint point); zero rotation for joints whose bearing gives no ``tilt_stiffness``. The payload ``payload_kg``
+    (P,) and a process ``wrench`` (P, 6) act at ``tip_mm`` (P, 3)."""
     q = np.atleast_2d(q)
-    out = np.zeros((len(q), 3, robot.n_joints))
+    theta, centre = np.zeros((len(q), robot.n_joints, 3)), np.zeros((len(q), robot.n_joints, 3))
     bearings = {j: robot.components.joint(jt.name).bearing for j, jt in enumerate(robot.joints) if jt.is_revolute}
     bearings = {j: b for j, b in bearings.items() if b is not None and b.tilt_stiffness}
     if not bearings:
-        return out
+        return theta, centre
     F, M, o, w = joint_wrenches(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg, wrench)
     for j, b in bearings.items():
         shift = b.centre_mm * w[:, j]                               # the pair's centre from the joint point [mm]
         Mc = M[:, j] - np.cross(shift / 1000.0, F[:, j])            # the moment about the centre [N m]
         across = Mc - np.einsum("pi,pi->p", Mc, w[:, j])[:, None] * w[:, j]
-        out[:, :, j] = np.cross(across / b.tilt_stiffness, p - o[:, j] - shift)
-    return out
+        theta[:, j], centre[:, j] = across / b.tilt_stiffness, o[:, j] + shift
+    return theta, centre
+
+
+def bearing_tilt(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm=None, payload_kg=None, wrench=None) -> np.ndarray:
+    """Displacement [mm] of the points ``p`` (P, 3) from each revolute joint's bearing tilt
+    (:func:`bearing_rotations`, same arguments), shape (P, 3, n); zeros for joints whose bearing gives no
+    ``tilt_stiffness``."""
+    theta, centre = bearing_rotations(robot, q, tip_mm, payload_kg, wrench)
+    return np.cross(theta, np.asarray(p, float)[:, None, :] - centre).transpose(0, 2, 1)
