@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from tolalloc.errormodel.parts import TILT_SD, PartEffects
+from tolalloc.exceptions import TolallocError
 from tolalloc.errormodel.parts_sample import sample_effects
 from tolalloc.physics.compliance import bearing_tilt
 from tolalloc.physics.loads import G, gravity_torques, joint_wrenches
@@ -67,6 +68,34 @@ def test_the_tilt_is_a_compliance_term_and_its_draws_have_its_mean_and_spread():
     _, direct = sample_effects(fx, 0, n, np.random.default_rng(5))
     np.testing.assert_allclose(direct.mean(axis=0), expect, atol=5 * TILT_SD * np.abs(expect).max() / np.sqrt(n))
     assert direct[:, 2].std() == pytest.approx(TILT_SD * abs(expect[2]), rel=0.03)
+
+
+def test_a_bearing_with_a_tilt_stiffness_and_no_runout_budgets_its_tilt_only():
+    """A table that gives the pair's stiffness and no runout: the tilt term as with a runout, no runout parameters or
+    terms, and draws that are the tilt alone; the arm with the runout too has the same tilt and four runout terms."""
+    from dataclasses import replace
+
+    with_runout = _arm()
+    stiff_only = _arm()
+    b = with_runout.components.joint("j1").bearing
+    object.__setattr__(stiff_only, "components", Components(joints={"j1": JointComponents(
+        bearing=replace(b, precision_class=None, radial_runout=None, span_mm=None))}))
+    q = np.array([[0.3, 0.2]])
+    fx, fx_r = PartEffects(stiff_only, q, 0.0, 20.0), PartEffects(with_runout, q, 0.0, 20.0)
+    terms, terms_r = fx.terms(), fx_r.terms()
+    assert fx.pm.bearing == {} and list(fx_r.pm.bearing) == [0]
+    assert [n for n in terms.names if n.startswith("bearing_")] == []
+    assert len([n for n in terms_r.names if n.startswith("bearing_")]) == 4
+    k, k_r = terms.names.index("tilt_j1"), terms_r.names.index("tilt_j1")
+    np.testing.assert_allclose(terms.columns[0, :, k] * terms.mean[0, k],
+                               terms_r.columns[0, :, k_r] * terms_r.mean[0, k_r], rtol=1e-12)
+    values, direct = sample_effects(fx, 0, 2_000, np.random.default_rng(1))
+    assert values.shape[1] == len(fx.pm.model.params) and np.abs(direct).max() > 0
+    classed = _arm()   # an ISO 492 class without its runout: the runout is asked for, tilt stiffness or not
+    object.__setattr__(classed, "components", Components(joints={"j1": JointComponents(
+        bearing=replace(b, radial_runout=None))}))
+    with pytest.raises(TolallocError, match="joint 'j1'.*bearing.radial_runout_um"):
+        PartEffects(classed, q, 0.0, 20.0).terms()
 
 
 def test_a_bearing_on_a_prismatic_joint_is_refused_naming_the_joint():

@@ -326,6 +326,20 @@ def test_howto_own_robot_python_chain_is_the_toml_example(monkeypatch):
     assert g["res"].ok
 
 
+def test_howto_own_robot_components_example_is_read_whole():
+    """The page's [components] example parses with the robot-file reader, every part and its units as stated."""
+    from tolalloc.robot.components_file import parse_components
+
+    page = (DOCS / "howto" / "own-robot.md").read_text()
+    block = next(b for b in re.findall(r"```toml\n(.*?)```", page, flags=re.S) if "[components]" in b)
+    table = tomllib.loads(block)["components"]
+    comps = parse_components(table, {f"j{i}": True for i in range(1, 7)}, [f"l{i}" for i in range(1, 8)])
+    parts = comps.joint("j2")
+    assert parts.reducer.ratio == 100 and parts.encoder.homing == "absolute"
+    assert parts.bearing.radial_runout == pytest.approx(0.005) and parts.bearing.tilt_stiffness == 2.0e6
+    assert parts.motor.thermal_time_constant_s == pytest.approx(1800.0)
+
+
 # ---------------------------------------------------------------------------------------------- consistency
 def test_getting_started_repeats_the_readme():
     from test_workflows import PYTHON_EXAMPLE

@@ -49,7 +49,7 @@ from tolalloc.errormodel.model import ErrorModel, ErrorParameter, perpendicular_
 from tolalloc.errormodel.parts_terms import (BEAM_SD, COMPENSATION_RESIDUAL, EFFECTS, MOUNT_SD, THERMAL_SD, TILT_SD,
                                              EffectTerms, residual_factors)
 from tolalloc.physics.beams import beam_sag
-from tolalloc.physics.bearings import runout_sd
+from tolalloc.physics.bearings import budgets_runout, runout_sd
 from tolalloc.physics.compliance import bearing_rotations, joint_loads, mount_tilt
 from tolalloc.physics.loads import target_points
 from tolalloc.physics.thermal_design import link_cte, link_temperature, motor_rise
@@ -186,9 +186,9 @@ def motor_side(robot: Robot, j: int) -> bool:
 
 @dataclass(frozen=True, eq=False)
 class PartsModel:
-    """An error model with the parameters the effects move: every joint drive, every link length and, for joints with
-    a bearing, four body displacements after the joint (``br<j><a|b>`` translations [mm], ``bw<j><a|b>`` tilts
-    [rad]). ``drive`` (n,), ``link`` (L,) and ``bearing`` {joint: (4,)} index the parameters."""
+    """An error model with the parameters the effects move: every joint drive, every link length and, for joints whose
+    bearing's runout is budgeted (:func:`~tolalloc.physics.bearings.budgets_runout`), four body displacements after
+    the joint (``br<j><a|b>`` translations [mm], ``bw<j><a|b>`` tilts [rad]). ``drive`` (n,), ``link`` (L,) and ``bearing`` {joint: (4,)} index the parameters."""
 
     model: ErrorModel
     drive: np.ndarray
@@ -208,9 +208,10 @@ def parts_error_model(model: ErrorModel, robot: Robot | None = None) -> PartsMod
             params.append(replace(p, sigma=0.0))
     bearing = {}
     for j, jt in enumerate(robot.joints):
-        if not jt.is_revolute or robot.components.joint(jt.name).bearing is None:
+        b = robot.components.joint(jt.name).bearing
+        if not jt.is_revolute or b is None or not budgets_runout(b):
             continue
-        pt, idx = robot.joint_points_mm[j] + robot.components.joint(jt.name).bearing.centre_mm * jt.axis, []
+        pt, idx = robot.joint_points_mm[j] + b.centre_mm * jt.axis, []
         for kind, tag, rot in (("clearance_radial", "br", False), ("clearance_tilt", "bw", True)):
             for letter, e in perpendicular_axes(jt.axis):
                 twist = np.concatenate([e, -np.cross(e, pt)]) if rot else np.concatenate([np.zeros(3), e])
@@ -310,12 +311,12 @@ class PartEffects:
 
     def bearing_terms(self, j: int, bearing, effects: tuple = ("bearing", "compliance")) -> EffectTerms:
         """Terms of joint ``j``'s bearing pair among ``effects``: its runout (``bearing``, the four body
-        displacements of :mod:`tolalloc.physics.bearings`) and its tilt under the moment across the axis
-        (``compliance``, where it gives a tilt stiffness)."""
+        displacements of :mod:`tolalloc.physics.bearings`, where :func:`~tolalloc.physics.bearings.budgets_runout`)
+        and its tilt under the moment across the axis (``compliance``, where it gives a tilt stiffness)."""
         out = EffectTerms.empty(self.n_points)
-        if bearing is None or j not in self.pm.bearing:
+        if bearing is None or not self.robot.joints[j].is_revolute:
             return out
-        if "bearing" in effects:
+        if "bearing" in effects and j in self.pm.bearing:
             if bearing.radial_runout is None or bearing.span_mm is None:
                 name = self.robot.joints[j].name
                 raise TolallocError(f"robot {self.robot.name!r}: joint {name!r}'s bearing gives no "

@@ -21,7 +21,14 @@ import numpy as np
 
 from tolalloc.robot.components import Bearing
 
-__all__ = ["runout_sd", "runout_values"]
+__all__ = ["budgets_runout", "runout_sd", "runout_values"]
+
+
+def budgets_runout(bearing: Bearing) -> bool:
+    """Whether ``bearing``'s runout is part of the errors: it gives one, an ISO 492 class, or no tilt stiffness (in
+    the last two cases a missing runout is asked for). A table with a tilt stiffness and neither a runout nor a class
+    describes the pair's stiffness only."""
+    return bearing.radial_runout is not None or bool(bearing.precision_class) or not bearing.tilt_stiffness
 
 
 def _check(bearing: Bearing) -> tuple:
