@@ -3592,3 +3592,173 @@ def test_set_x_every_kind_lies_in_its_true_structure_and_known_answers():
     T = xt.stray_temperature(sf, s)
     assert not T[b == 0].any() and (T < 1).all() and (T[s.gap_s > 0] > T[np.flatnonzero(s.gap_s > 0) - 1]).all()
     assert [n for n, m in zip(ctx.chain.link_names, xt.forearm_mask(ctx.chain)) if m] == ["a3"]
+
+
+# ---------------------------------------------------------------------------------------------------------- set Y
+def test_set_y_cases_kinds_and_determinism():
+    """Set Y: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time; a
+    case regenerates bit-identically from its seed; the session hook leaves cases without a set-Y kind alone (no random
+    numbers drawn) and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; the
+    production, the pauses and a new part for each block."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_y as ey
+
+    _assert_set_module("Y", 40_7025, ey, ("gear", "induction_stray"))
+    for name in ("effects_y", "effects_y_joint", "effects_y_body", "effects_y_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_y" in _imports(STUDY / "generator.py")
+    assert ey.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ey.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        for kind, (lo, hi) in ey.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        for kind, ((lo, hi), pause) in ey.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, kg in ey.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 2 <= part["blocks"] <= 4 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("coupling_play", "squeeze_film", "pinion_runout", "torque_arm"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ey.probe_hook(("gear",), probe) is probe
+    assert ey.probe_hook(("foam_gripper",), probe) == pytest.approx(probe + [0, 0, 50.0])
+    assert ey.probe_hook(("sheet_part",), probe) == pytest.approx(probe + [400.0, 0, 0])
+    _assert_regenerates("Y", max_effect_poses=50)
+
+
+def test_set_y_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-Y kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect on every arm; and known answers: the frost's share by length and its linear growth,
+    the brakes' give in the braked blocks only, the coupling play driving the joint along
+    its motion, the lash crossed through the grease by the dwell's end, the pinion's period, the torque arms' error
+    following the joints before the axis, the base's walk and
+    turn, the leaking tyre's exponential sink at its own corner, the foam's normal and shear split and design sag, the
+    panel's bending across its thickness, the lamp's first-order warming in the lit blocks and the thermal bows."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_y_body as yb
+    from sim2real_indep import effects_y_joint as yj
+    from sim2real_indep import effects_y_thermal as yt
+    from sim2real_indep.effects_s_joint import compliance
+    from sim2real_indep.effects_u_joint import block_index
+    from sim2real_indep.effects_w_joint import machining_s
+    from sim2real_indep.effects_x_body import foot_geometry
+
+    every = ("frost_load", "output_brake", "coupling_play", "squeeze_film", "pinion_runout", "torque_arm",
+             "press_walk", "tyre_leak", "foam_gripper", "sheet_part", "vision_lamp", "cabinet_exhaust")
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 25)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"frost_load": lambda: [p["rate_kg_h"]], "output_brake": lambda: p["c_b"],
+                   "coupling_play": lambda: p["play"] / 2, "squeeze_film": lambda: p["b"] / 2,
+                   "pinion_runout": lambda: p["amp"], "torque_arm": lambda: p["amp"], "press_walk": lambda: p["amp"],
+                   "tyre_leak": lambda: [p["delta0"]], "foam_gripper": lambda: [p["c"]], "sheet_part": lambda: [p["c"]],
+                   "vision_lamp": lambda: p["amp"], "cabinet_exhaust": lambda: p["amp"]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    b = block_index(s)
+    same = np.r_[False, np.diff(b) == 0]
+    # frost: shares by link length, nothing at the first pose, growing with the hours; a vertical axis 1 feels none
+    share = yj.frost_shares(ctx)
+    L = np.linalg.norm(ctx.chain.links, axis=1)
+    assert share.sum() == pytest.approx(1.0) and share == pytest.approx(L / L.sum())     # ur10: a mass on every link
+    h = yj.frost_hours(s)
+    assert h[0] == 0.0 and (np.diff(h) > 0).all()
+    tw = yj.frost_twist(ctx, hw)
+    assert np.abs(tw[:, 0]).max() < 1e-9 * np.abs(tw).max()
+    # output brake: the brakes' give in the braked blocks only (both kinds of block present), proportional to the load
+    bp = P["output_brake"]
+    on = bp["braked"][b]
+    assert set(bp["braked"]) == {0.0, 1.0} and bp["joints"] == (1, 2)
+    assert (bp["c_b"] <= 0.5 * compliance(hw)[[1, 2]]).all()
+    assert yj.brake_signal(bp, ctx) == pytest.approx(ctx.loads[:, [1, 2]] * on[:, None])
+    # coupling play: the joint driven past its target along its last motion
+    cp = P["coupling_play"]
+    dq = yj.play_apply(cp, ctx, hw).dq
+    assert dq[:, :3] == pytest.approx(cp["play"] / 2 * s.direction[:, :3]) and not dq[:, 3:].any()
+    # squeeze film: stopped on the trailing flank, on the way to the load's flank by exp(-dwell / tau); where the two
+    # agree the output sits on that flank
+    fp_ = P["squeeze_film"]
+    s0, sg = yj.film_sides(fp_, ctx)
+    sig = yj.film_signal(fp_, ctx)
+    assert fp_["joints"] == (1, 2) and s0 == pytest.approx(-s.direction[:, [1, 2]])
+    agree = s0 == sg
+    assert sig[agree] == pytest.approx(s0[agree]) and (~agree).any() and (np.abs(sig[~agree]) < 1).all()
+    left = (sig - sg)[~agree] / (s0 - sg)[~agree]                        # the share of the crossing still to go
+    assert left == pytest.approx(np.exp(-s.dwell_s[:, None] / fp_["tau_s"])[~agree])
+    # pinion runout: e / R, repeating every 1 / i of a turn
+    pp = P["pinion_runout"]
+    assert pp["A"] == pytest.approx(pp["e_mm"] / pp["R_mm"]) and pp["i"] == pytest.approx(pp["Zr"] / pp["Zp"])
+    shift = replace(ctx, session=replace(s, q=s.q + np.r_[2 * np.pi / pp["i"], np.zeros(5)]))
+    assert yj.pinion_apply(pp, shift, hw).dq[:, 0] == pytest.approx(yj.pinion_apply(pp, ctx, hw).dq[:, 0])
+    # torque arm: the encoder's weight turns its stator by A at most; axis 3's error follows q2, not q3 (ur10)
+    ap = P["torque_arm"]
+    assert ap["joints"] == (2, 3, 4) and ap["A"] == pytest.approx(ap["m_kg"] * kin.G * ap["r_m"] / ap["k_Nm_rad"])
+    sig = yj.arm_signal(ap, ctx)
+    assert (np.abs(sig) <= 1 + 1e-12).all()
+    turn3 = replace(ctx, session=replace(s, q=s.q + np.r_[0.0, 0.0, 0.7, 0.0, 0.0, 0.0]))
+    turn2 = replace(ctx, session=replace(s, q=s.q + np.r_[0.0, 0.7, 0.0, 0.0, 0.0, 0.0]))
+    assert yj.arm_signal(ap, turn3)[:, 0] == pytest.approx(sig[:, 0])
+    assert np.abs(yj.arm_signal(ap, turn2)[:, 0] - sig[:, 0]).max() > 0.1
+    # press walk: nothing before the first production, then the production hours; the turn moves across the radius
+    wf = yb.walk_features(P["press_walk"], ctx, hw)
+    E = machining_s(s) / 3600.0
+    assert not wf[:, b == 0].any() and wf[0][:, 0] == pytest.approx(E)
+    assert np.abs(np.einsum("pi,pi->p", wf[2], ctx.target)).max() < 1e-9
+    # tyre leak: delta0 (exp(t / tau) - 1) at the leaking wheel, which alone sinks
+    tp = P["tyre_leak"]
+    g = yb.leak_growth(tp, s)
+    assert g[0] == 0.0 and g == pytest.approx(np.expm1((s.time_s - s.time_s[0]) / tp["tau_s"]))
+    f, e, pt, d = foot_geometry(tp)
+    mv = np.cross(e, f - pt) / d
+    assert mv[0, 2] == pytest.approx(-1.0) and np.abs(mv[1:]).max() < 1e-12
+    # foam: the weight's normal part along the pad's axis, its shear part E / G = 2 (1 + nu) times; the design sag
+    fp = P["foam_gripper"]
+    z = kin.flange(ctx.chain, ctx.q)[1][:, :, 2]
+    W = np.zeros((len(z), 3))
+    W[:, 2] = -kin.G * s.payload_kg
+    Wz = np.einsum("pi,pi->p", W, z)
+    fl = yb.foam_load(fp, ctx)
+    assert np.einsum("pi,pi->p", fl, z) == pytest.approx(Wz)
+    assert fl - Wz[:, None] * z == pytest.approx(2 * (1 + fp["nu"]) * (W - Wz[:, None] * z))
+    assert fp["c"] * kin.G * s.payload_kg.max() == pytest.approx(fp["sag_mm"])
+    # sheet: only the weight across the panel (the tool's y) bends it, along that axis
+    sp = P["sheet_part"]
+    y = kin.flange(ctx.chain, ctx.q)[1][:, :, 1]
+    assert yb.sheet_load(ctx) == pytest.approx(np.einsum("pi,pi->p", W, y)[:, None] * y)
+    assert sp["c"] * kin.G * s.payload_kg.max() == pytest.approx(sp["sag_mm"])
+    # vision lamp: every second block lit, first-order warming towards 1 lit and cooling dark; ur10's upper arm is a2
+    vp = P["vision_lamp"]
+    on = yt.lamp_on(vp, s)
+    assert set(on[b % 2 == vp["parity"]]) == {1.0} and not on[b % 2 != vp["parity"]].any()
+    T = yt.lamp_temperature(vp, s)
+    k = np.flatnonzero(same)
+    decay = np.exp(-np.diff(s.time_s)[k - 1] / vp["tau_s"])
+    assert (on[k] - T[k]) == pytest.approx((on[k] - T[k - 1]) * decay) and (T < 1).all() and (T >= 0).all()
+    assert ctx.chain.link_names[yt.upper_arm(ctx.chain)] == "a2"
+    # the bow turns about an axis across the link: no displacement along that axis
+    li = yt.upper_arm(ctx.chain)
+    side = yt.lamp_side(ctx.chain, li, vp["psi"])
+    a = np.cross(side, ctx.chain.links[li] / np.linalg.norm(ctx.chain.links[li]))
+    R = kin.body_transforms(ctx.chain, ctx.q)[0][:, 2]
+    assert np.abs(np.einsum("pi,pi->p", yt.link_bow(ctx, li, side), R @ a)).max() < 1e-9
+    # cabinet exhaust: cold until the first production, heated in the gaps; the bow turns about the horizontal axis
+    # across the cabinet's heading, the rise is vertical
+    xp = P["cabinet_exhaust"]
+    xf = yt.exhaust_features(xp, ctx, hw)
+    hd = np.array([np.cos(xp["psi"]), np.sin(xp["psi"]), 0.0])
+    assert not xf[:, b == 0].any() and np.abs(xf[0][:, :2]).max() == 0.0
+    assert np.abs(xf[1] @ np.cross(hd, [0, 0, 1.0])).max() < 1e-9

@@ -14,8 +14,8 @@ per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth
 8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
 cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U
 (24 cases, 8 per arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second
-(:mod:`effects_v`), set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`) and set X (24 cases, 8 per arm)
-a twenty-fourth (:mod:`effects_x`). A case: (id, robot, physics
+(:mod:`effects_v`), set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm)
+a twenty-fourth (:mod:`effects_x`) and set Y (24 cases, 8 per arm) a twenty-fifth (:mod:`effects_y`). A case: (id, robot, physics
 kinds, poses, split).
 """
 
@@ -27,6 +27,7 @@ SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
 SEED_S, SEED_T, SEED_U, SEED_V, SEED_W, SEED_X = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023, 40_7024
+SEED_Y = 40_7025
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1107,13 +1108,68 @@ SET_X = [
     ("X24", "kr16_like", ("levelling_foot", "suction_cup"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-X)
+#: set Y: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_y`); written as an independent test set after set X, from the literature, without
+#: reading how the diagnosis models effects. Oracle labels when written (oracle.py only; the diagnosis was not run):
+#: every case its truth (gains 31-91 %; each mixture component's removal costs 15 % or more: Y16's frost 15 %, Y08's
+#: walk 125 %), the geometry-only cases none; no soft labels (the closest rivals: Y19's joint model 1.26x, Y21's joint
+#: model 1.35x, Y03's joint model 1.42x, Y14's joint model 1.44x, Y12's thermal model 1.74x; the smallest gains 31 % on
+#: Y14, 40 % on Y21). Changed after trial draws (the modules' docstrings give the final ranges): three first kinds
+#: proved, on reading the earlier sets' docstrings, to repeat earlier mechanisms and were replaced -- axis 1's lash
+#: swinging with its ring gear's runout (set D's varlash) by the squeeze film, a reducer flange softening past its
+#: decompression (set C's bolted flange) by the output brake, the cycloid crankshafts' error (set C's RV error) by the
+#: torque arm; the runout lash had first read axis 1's flank from a friction threshold relative to its tiny load in the
+#: true (tilted) geometry (Y10 / Y18 absorbed), the flange on tool_changer had the link model at 1.23x. The torque
+#: arm first had m 0.3-1 kg, r 10-40 mm, k 300-1500 N m/rad (gains of 2 % or less), now its arm turns 0.8-2.5 arcmin
+#: under the encoder's full weight; on tool_changer (Y11) it was ambiguous with the joint and link models at 1.02-1.03x
+#: (axes 2 and 3 move over short ranges, so an error in q2 reads as axis 3's gravity twist in q2 + q3), so ur10 (Y03)
+#: took it and tool_changer the pinion runout; the output brake first gave 0.3-0.8 times the gear's compliance (up to
+#: 1.4 mm), now 0.2-0.5. The vision lamp was first lit in the inspection blocks only, with pauses of 5-15 min between
+#: blocks of about 5 min, tau 10-25 min and 2-5 K across the tube: gains of 7 % on ur10, 6 % on tool_changer and 7 %
+#: on kr16_like (too short to warm the tube); now the inspection cycle in the production gap before its block lights
+#: it too, tau 5-12 min (the wall near the clamp), 3-8 K, and its single case is on tool_changer (Y09; ur10's Y06 took
+#: the brake); the frost's pauses were 20-40 min (Y01: a gain of 27 %, the link model at 1.22x), now 40-90 min; the
+#: foam pad's design sag 0.05-0.15 mm (Y21: a gain of 21 %, the joint model at 1.14x), now 0.1-0.25 mm; the squeeze
+#: film's lash 1-3 arcmin (1.4 mm on tool_changer), now 0.7-2; the tyre's leak tau 20-60 h (1.3 mm on kr16_like), now
+#: 30-80 h. No pose count or seed was changed. Trial draws on the seed + 1 and + 2 (the case seeds + 1000003 k) with
+#: the final physics: every case labelled its truth in both; soft only on + 2, the torque arm (Y03 on ur10: a gain of
+#: 17 %, the link model at 1.16x; Y19 on kr16_like: the link model at 1.20x) -- the weakest kind, an error of a
+#: fraction of an arcmin that follows the arm's posture as gravity twists do; on + 1 the closest rival 1.34x (Y14).
+SET_Y = [
+    ("Y01", "ur10", ("frost_load",), 140, "time"),
+    ("Y02", "ur10", ("coupling_play",), 45, "random"),
+    ("Y03", "ur10", ("torque_arm",), 120, "random"),
+    ("Y04", "ur10", ("tyre_leak",), 150, "time"),
+    ("Y05", "ur10", ("foam_gripper",), 130, "random"),
+    ("Y06", "ur10", ("output_brake",), 160, "random"),
+    ("Y07", "ur10", (), 80, "random"),
+    ("Y08", "ur10", ("sheet_part", "press_walk"), 180, "random"),
+    ("Y09", "tool_changer", ("vision_lamp",), 120, "random"),
+    ("Y10", "tool_changer", ("squeeze_film",), 110, "random"),
+    ("Y11", "tool_changer", ("pinion_runout",), 130, "random"),
+    ("Y12", "tool_changer", ("press_walk",), 140, "time"),
+    ("Y13", "tool_changer", ("sheet_part",), 130, "random"),
+    ("Y14", "tool_changer", ("cabinet_exhaust",), 150, "time"),
+    ("Y15", "tool_changer", (), 40, "random"),
+    ("Y16", "tool_changer", ("frost_load", "coupling_play"), 190, "random"),
+    ("Y17", "kr16_like", ("output_brake",), 130, "random"),
+    ("Y18", "kr16_like", ("squeeze_film",), 120, "random"),
+    ("Y19", "kr16_like", ("torque_arm",), 150, "time"),
+    ("Y20", "kr16_like", ("tyre_leak",), 140, "random"),
+    ("Y21", "kr16_like", ("foam_gripper",), 130, "random"),
+    ("Y22", "kr16_like", ("cabinet_exhaust",), 150, "random"),
+    ("Y23", "kr16_like", (), 100, "random"),
+    ("Y24", "kr16_like", ("pinion_runout", "vision_lamp"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Y)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
-        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X)}
+        "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
+        "Y": (SET_Y, SEED_Y)}
 
 
 def case_seed(set_name: str, index: int) -> int:

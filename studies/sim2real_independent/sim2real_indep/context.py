@@ -282,7 +282,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "run_in_wear": "backlash", "ring_lobing": "transmission", "cosine_error": "transmission",
           "collision_shift": "mount_compliance", "levelling_foot": "mount_compliance",
           "printed_fingers": "link_deflection", "suction_cup": "link_deflection", "washdown": "thermal",
-          "induction_stray": "thermal"}
+          "induction_stray": "thermal",
+          # set Y (sim2real_indep.effects_y; frost_load, the gears twisted by the frost a cold-store arm gathers on its
+          # links, and output_brake, the outputs of axes 2 and 3 held in some blocks by safety brakes whose armatures
+          # give under the load, scored as joint compliance; coupling_play, the output encoders of axes 1-3 dragged
+          # across their couplings' play (the joint driven past its target along the last motion), and squeeze_film,
+          # the lost motion of axes 2 and 3 crossed slowly under their load through stiff grease (the point taken while
+          # the output is on its way), as backlash (errors that follow the last motion); pinion_runout, axis 1's gauge
+          # pinion running eccentrically, and torque_arm, the output encoders of axes 3-5 turned by their own weight on
+          # their torque arms, as transmission (the joints' reading); press_walk, the base plate walking on its bolted
+          # joint under a press's shocks through the production, and tyre_leak, the arm's cart sinking at a leaking
+          # tyre, as mount compliance (the robot's support); foam_gripper, a part compressing and shearing a foam
+          # vacuum pad, and sheet_part, a thin panel held at one edge bending under its own weight, as link deflection
+          # (the end-of-arm structure carrying the target); vision_lamp, the upper arm bowed by the vision lamps clamped
+          # to one side of it, and cabinet_exhaust, the pedestal bowed by the drive cabinet's exhaust, as thermal)
+          "frost_load": "joint_compliance", "output_brake": "joint_compliance", "coupling_play": "backlash",
+          "squeeze_film": "backlash", "pinion_runout": "transmission", "torque_arm": "transmission",
+          "press_walk": "mount_compliance", "tyre_leak": "mount_compliance", "foam_gripper": "link_deflection",
+          "sheet_part": "link_deflection", "vision_lamp": "thermal", "cabinet_exhaust": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; all twenty-four: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; all twenty-five: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -288,6 +288,21 @@ replaced gear's lash opening as it runs in (X11), all named thermal through a va
 whose reason says a slow process of any kind would fit as well; a sheet fanner's magnet pulling on the blank (X01),
 the rack lash of a seventh-axis track the file does not know (X02, X22) and a hot wash-down before each block
 (X14), `none`.
+
+**Set Y** (24 cases, seed 40_7025) is a twenty-fifth independent test set of twelve new kinds
+(`sim2real_indep/effects_y*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-X, and who did not run the diagnosis. It was run once, on the
+code as it stood after set X had been judged -- the diagnosis unchanged since then: 14/24 strict, 16 lenient, no false
+claim, median final / oracle RMS 1.35; right on 7 of 13 effect cases where the true family's generic model helps, 4
+of 8 where it does not. Its misses: a base that moves with the time alone -- a cart's leaking tyre sinking as
+exp(t / tau) (Y04, Y20) and a base plate walking under a press's shocks through the production (Y12) -- named
+thermal through the drift variant, a translation common to every pose that grows with the time, whose reason reads it
+as the measuring frame and the robot's base drifting apart (a settling pedestal among its causes) but which the
+diagnosis files under heat; frost gathering on a cold-store arm's links (Y01) and safety brakes closed in some
+blocks (Y06), `none`, the brakes on kr16_like hedged between joint compliance and link deflection (Y17, lenient);
+encoders turned by their own weight on their torque arms, hedged between link deflection and transmission (Y03,
+lenient); grease-damped lost motion still crossing at the dwell, named joint compliance (Y18); vision lamps bowing the
+upper arm in every second block, alone (Y09) and beside a gauge pinion's runout (Y24), `none`.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -704,6 +719,24 @@ comment):
 | suction_cup | link_deflection | the part tilting on its suction cup's lip under its weight's moment, theta = M_perp / k_t (tool_changer, kr16_like) | Schmalz / Piab cup data; Roark, *Formulas for Stress and Strain* |
 | washdown | thermal | a hot sanitation rinse before each block heating the arm, which then cools as a lumped body (not logged) (ur10, tool_changer) | Incropera & DeWitt ch. 5 |
 | induction_stray | thermal | an induction heater's stray field heating the forearm during production, first-order heating and cooling (not logged) (ur10, kr16_like) | Rudnev, Loveless & Cook, *Handbook of Induction Heating* |
+
+Set Y's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_Y
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| frost_load | joint_compliance | frost gathering on a cold-store arm's links at a steady rate, by link length, the joints twisting under its weight, tau = J^T m g (the time logged, the frost's mass not) (ur10, tool_changer) | Incropera & DeWitt ch. 6; Hayashi, Aoki & Yuhara, Heat Transfer Jpn. Res. 6 (1977); Craig ch. 5 |
+| output_brake | joint_compliance | safety brakes on the outputs of axes 2 and 3 closed in some blocks, their armatures giving by c_b tau under the load (brake mode not logged) (ur10, kr16_like) | EN ISO 10218-1, 5.13; Shigley ch. 16; spring-applied brake makers' data (as recalled) |
+| coupling_play | backlash | output encoders of axes 1-3 coupled through play and dragged across it by their seals: the joint overshoots by d / 2 along its last motion (ur10, tool_changer) | coupling makers' catalogues (R+W, KTR; as recalled) |
+| squeeze_film | backlash | the lost motion of axes 2 and 3 crossed slowly through stiff grease under the load, caught part-way at the dwell (dwell not logged) (tool_changer, kr16_like) | Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film Lubrication* (2004) |
+| pinion_runout | transmission | axis 1 read through an eccentric gauge pinion: (e / R) sin(i q1 + phi), i = Z_r / Z_p (tool_changer, kr16_like) | Smith, *Gear Noise and Vibration* (2003) ch. 2; Litvin & Fuentes (2004) |
+| torque_arm | transmission | the output encoders of axes 3-5 turned on their leaf-spring torque arms by their own weight: an error that follows the joints before the axis, not its own angle (ur10, kr16_like) | HEIDENHAIN, *Rotary encoders* (stator couplings; as recalled); Craig ch. 5 |
+| press_walk | mount_compliance | the base plate ratcheting on its friction-grip joint under a neighbouring press's shocks, sliding and turning at a steady rate through the production (not logged) (ur10, tool_changer) | VDI 2230 Part 1; Junker, SAE 690055 (1969); Pai & Hess, Eng. Fail. Anal. 9 (2002) |
+| tyre_leak | mount_compliance | a three-wheeled cart one of whose tyres leaks, its corner sinking by delta0 (exp(t / tau) - 1) (the time logged, the pressure not) (ur10, kr16_like) | Rhyne, Tire Sci. Technol. 33(3) (2005) |
+| foam_gripper | link_deflection | a part on a foam vacuum pad that compresses along its axis and shears across it (E / G = 2 (1 + nu)) under the part's weight (ur10, kr16_like) | Gibson & Ashby, *Cellular Solids* (1997) ch. 5 |
+| sheet_part | link_deflection | a thin panel held at one edge bending under its own weight across its thickness, q L^4 / (8 E I) (ur10, tool_changer) | Roark, *Formulas for Stress and Strain* |
+| vision_lamp | thermal | vision lamps clamped to one side of the upper arm, lit in every second gap and block, bowing and lengthening it (not logged) (tool_changer, kr16_like) | Incropera & DeWitt ch. 5; Timoshenko & Goodier; Boley & Weiner (1960) |
+| cabinet_exhaust | thermal | the drive cabinet's exhaust heating one side of the steel pedestal in the production gaps: the base rises and tilts (not logged) (tool_changer, kr16_like) | Incropera & DeWitt ch. 5; Boley & Weiner (1960) |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
