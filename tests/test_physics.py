@@ -88,6 +88,68 @@ def test_cantilever_end_drop_from_bending_and_shear():
                                [[0.0, 0.0, -expect]], rtol=1e-9, atol=1e-12)
 
 
+def _box(**extra):
+    table = {"section": "box", "width_mm": 100, "height_mm": 200, "wall_mm": 5, "material": "steel", **extra}
+    return parse_components({"links": {"l1": table}}, {"j1": True}, ["l1"],
+                            link_vectors={"l1": np.array([1000.0, 0.0, 0.0])}).links["l1"]
+
+
+@pytest.mark.parametrize("height, I_key", [([0, 0, 1], "inertia_mm4"), ([0, 1, 0], "inertia_side_mm4")])
+def test_a_box_bends_with_the_second_moment_of_the_plane_its_load_lies_in(height, I_key):
+    """The 1 m cantilever as a 100 x 200 x 5 mm steel box, 20 kg at its end: height vertical, it drops by
+    F L^3 / (3 E I_strong); turned on its side, by F L^3 / (3 E I_side), I about each axis by the box formula."""
+    sec = _box(height_direction=height)
+    b, h, t = 100.0, 200.0, 5.0
+    assert sec.inertia_mm4 == pytest.approx((b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12)
+    assert sec.inertia_side_mm4 == pytest.approx((h * b**3 - (h - 2 * t) * (b - 2 * t) ** 3) / 12)
+    robot, F, L = _cantilever(sec), 20 * G, 1000.0
+    drop = F * L**3 / (3 * sec.youngs_modulus_MPa * getattr(sec, I_key)) + F * L / sec.shear_stiffness_N
+    np.testing.assert_allclose(beam_sag(robot, np.zeros((1, 1)), np.array([[1000.0, 0.0, 0.0]])),
+                               [[0.0, 0.0, -drop]], rtol=1e-9, atol=1e-12)
+
+
+def test_a_tilted_box_deflects_towards_its_weak_plane_and_its_height_turns_with_the_joint():
+    """Height at 30 deg from the vertical: the end load splits into the two planes, d = L^3 / 3E (u u.F / I +
+    w w.F / I_side) (u the height, w the width axis: bending along the height is resisted by I about the width axis),
+    so the end also moves sideways, to the side the weak plane leans. Turned 90 deg about the
+    vertical joint, the box's height turns with it and the same deflection turns too. Without an orientation the box
+    bends with I in both planes, as before."""
+    a = np.radians(30.0)
+    u = np.array([0.0, np.sin(a), np.cos(a)])
+    sec = _box(height_direction=list(u))
+    robot, F, L = _cantilever(sec), 20 * G, 1000.0
+    w = np.cross([1.0, 0.0, 0.0], u)
+    g = np.array([0.0, 0.0, -F])
+    E = sec.youngs_modulus_MPa
+    d = (L**3 / (3 * E) * (u * (u @ g) / sec.inertia_mm4 + w * (w @ g) / sec.inertia_side_mm4)
+         + g * L / sec.shear_stiffness_N)
+    got = beam_sag(robot, np.zeros((1, 1)), np.array([[1000.0, 0.0, 0.0]]))[0]
+    np.testing.assert_allclose(got, d, rtol=1e-9, atol=1e-12)
+    assert got[1] > 1e-2   # sideways: sin a cos a (1 / I_side - 1 / I) F L^3 / 3E
+    Rz = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    turned = beam_sag(robot, np.array([[np.pi / 2]]), np.array([[0.0, 1000.0, 0.0]]))[0]
+    np.testing.assert_allclose(turned, Rz @ d, rtol=1e-9, atol=1e-12)
+    plain = beam_sag(_cantilever(_box()), np.zeros((1, 1)), np.array([[1000.0, 0.0, 0.0]]))[0]
+    drop = F * L**3 / (3 * E * sec.inertia_mm4) + F * L / sec.shear_stiffness_N
+    np.testing.assert_allclose(plain, [0.0, 0.0, -drop], rtol=1e-9, atol=1e-12)
+
+
+_BOX = {"section": "box", "width_mm": 100, "height_mm": 200, "wall_mm": 5}
+
+
+@pytest.mark.parametrize("table, match", [
+    ({"section": "tube", "outer_diameter_mm": 60, "wall_mm": 3, "height_direction": [0, 0, 1]}, "for section = \"box\""),
+    ({**_BOX, "height_direction": [0, 1]}, "3 finite"),
+    ({**_BOX, "height_direction": [0, 0, 0]}, "not all zero"),
+    ({**_BOX, "height_direction": "up"}, "3 finite"),
+    ({**_BOX, "height_direction": [1, 0, 0.2]}, "deg off the plane across the link"),
+])
+def test_a_box_height_direction_is_checked_where_it_is_read(table, match):
+    with pytest.raises(ValueError, match=match):
+        parse_components({"links": {"l1": {**table, "material": "steel"}}}, {"j1": True}, ["l1"],
+                         link_vectors={"l1": np.array([1000.0, 0.0, 0.0])})
+
+
 def test_strain_wave_error_repeats_at_n_and_2n_per_output_turn():
     N = 101.0
     orders = gear_orders(N)

@@ -1,6 +1,6 @@
 """Edges of the component physics: the air's first-order lag against its closed form, the mount on a robot whose
-gravity is not along base z, link-section and encoder figures that cannot be right, a bearing without its runout, and
-the parts table's units for a prismatic joint's parts."""
+gravity is not along base z, link-section and encoder figures that cannot be right, a box section's orientation, a
+bearing without its runout, and the parts table's units for a prismatic joint's parts."""
 
 from __future__ import annotations
 
@@ -226,3 +226,23 @@ def test_a_motor_heats_by_its_three_phase_copper_loss():
     object.__setattr__(robot, "components", Components(joints={"j1": parts}))
     current = tau / (N * kt)
     assert motor_rise(robot, np.array([[tau]]), duty)[0, 0] == pytest.approx(Rth * duty * 3 * (R / 2) * current**2)
+
+
+def test_a_robot_file_box_is_checked_against_its_link_and_bends_by_its_orientation(tmp_path):
+    """The cantilever's arm as a 100 x 200 x 5 mm box: a height along the arm is refused naming the file's key; with
+    its height vertical the arm drops less than on its side (I about the width axis is the larger)."""
+    def robot(direction):
+        box = (f'section = "box"\nwidth_mm = 100\nheight_mm = 200\nwall_mm = 5\nmaterial = "steel"\n'
+               f"height_direction = {direction}\n")
+        path = tmp_path / "box.toml"
+        path.write_text(textwrap.dedent(CANTILEVER.replace("GRAVITY", "[0, 0, -1]")).split("[components.links.arm]")[0]
+                        + "[components.links.arm]\n" + box)
+        return tolalloc.load_robot(str(path))
+
+    with pytest.raises(TolallocError, match=r"components.links.arm.height_direction: .*deg off the plane"):
+        robot("[1, 0, 0]")
+    from tolalloc.physics import beam_sag
+
+    q, tip = np.zeros((1, 3)), np.array([[1000.0, 0.0, 50.0]])
+    upright, flat = (beam_sag(robot(d), q, tip)[0, 2] for d in ("[0, 0, 1]", "[0, 1, 0]"))
+    assert flat < upright < 0.0

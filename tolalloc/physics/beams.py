@@ -72,7 +72,7 @@ def segment_geometry(robot: Robot, q, j: int, k: int | None):
     return end, h, Lh / np.maximum(h, 1e-9)[:, None], np.linalg.norm(L, axis=1)
 
 
-def _load_integrals(start, e, L, loads, p, couples=()) -> dict:
+def _load_integrals(start, e, L, loads, p, couples=(), height=None) -> dict:
     """End-displacement integrals of a cantilever segment (start (P, 3) [mm], unit axis ``e`` (P, 3), length ``L``
     (P,) [mm]) under point forces ``loads = [(F (P, 3) [N], at (P, 3) [mm], through_end)]``, at the points ``p``
     (P, 3) beyond it.
@@ -85,11 +85,19 @@ def _load_integrals(start, e, L, loads, p, couples=()) -> dict:
     ``C M(s) ds x (p - x(s))``; shear moves everything beyond ``s`` by ``F_perp ds / kGA``. Integrated in closed form
     (``M`` linear in ``s``): ``{"bend": (P, 3) [N mm^3], "twist": ..., "shear": (P, 3) [N mm]}`` per unit
     ``b``, ``t`` and ``1/kGA``. ``couples``: moments (P, 3) [N m] applied beyond the segment's end (a process
-    wrench's moment), constant along it."""
+    wrench's moment), constant along it. ``height``: a box's height direction (P, 3), unit and across ``e``; given,
+    the bending part splits in two, ``C = b w w^T + b_side u u^T + t e e^T`` (``u`` the height, ``w = e x u`` the
+    width axis: a moment about ``w`` bends the box in the plane of its height), and ``"bend_side"`` holds the
+    integrals per unit ``b_side``."""
     out = {"bend": np.zeros_like(p), "twist": np.zeros_like(p), "shear": np.zeros_like(p)}
     p0 = p - start
-    along_e = lambda v: e * np.einsum("pi,pi->p", e, v)[:, None]  # noqa: E731
-    parts = (("bend", lambda v: v - along_e(v)), ("twist", along_e))  # C's bending and torsion parts
+    along = lambda a: (lambda v: a * np.einsum("pi,pi->p", a, v)[:, None])  # noqa: E731
+    along_e = along(e)
+    if height is None:
+        parts = (("bend", lambda v: v - along_e(v)), ("twist", along_e))  # C's bending and torsion parts
+    else:
+        out["bend_side"] = np.zeros_like(p)
+        parts = (("bend", along(cross(e, height))), ("bend_side", along(height)), ("twist", along_e))
     for F, c, through_end in loads:
         r = c - start
         a = (L if through_end else np.clip(np.einsum("pi,pi->p", r, e), 0.0, L))[:, None]
@@ -253,7 +261,8 @@ def segment_section(robot: Robot, j: int, k: int | None):
 
 
 def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None, wrench=None) -> np.ndarray:
-    """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``), torsion
+    """Target displacement [mm] (P, 3) of the segments with a section in the robot file: bending (``EI``; a box with
+    its ``height_direction``: ``EI`` in the plane of its height, ``EI_side`` in the plane of its width), torsion
     (``GJ``, the section's torsion constant ``torsion_mm4``) and shear (``kGA``) under every
     mass the segment carries as a point load where it sits and the payload at ``payload_at`` (P, 3) (default the
     target ``p_t``; :func:`_load_integrals`), plus the section's own weight where the robot file puts no mass on the
@@ -274,7 +283,21 @@ def beam_sag(robot: Robot, q, p_t, payload_kg=None, payload_at=None, wrench=None
             per_kg_m = sec.area_mm2 * sec.density_kg_per_mm3 * 1e3  # [kg/m]
             loads += [(F * per_kg_m, c, on) for F, c, on in _weight_loads(robot, start, e, L)]
         couples = () if wrench is None else (np.asarray(wrench, float)[:, 3:],)
-        I = _load_integrals(start, e, L, loads, p_t, couples)
-        out += (I["bend"] / sec.EI_Nmm2 + I["twist"] / sec.GJ_Nmm2
+        I = _load_integrals(start, e, L, loads, p_t, couples, _height(sec, Pm[:, j + 1, :3, :3], e))
+        out += (I["bend"] / sec.EI_Nmm2 + I.get("bend_side", 0.0) / sec.EI_side_Nmm2 + I["twist"] / sec.GJ_Nmm2
                 + I["shear"] / sec.shear_stiffness_N)
     return out
+
+
+def _height(sec, R, e) -> np.ndarray | None:
+    """The box's height direction at the poses, across the segment axis ``e`` (P, 3), or None (no orientation
+    given). ``R`` (P, 3, 3): the segment body's rotation (its joints after the first are prismatic)."""
+    if sec.height_direction is None:
+        return None
+    h = R @ np.asarray(sec.height_direction, float)
+    u = h - e * np.einsum("pi,pi->p", e, h)[:, None]
+    n = np.linalg.norm(u, axis=1)
+    if n.min() < 0.5:
+        raise ValueError(f"a box section's height_direction {list(sec.height_direction)} lies within 30 deg of its "
+                         "segment's axis at some poses: give the direction of the box's height across the link")
+    return u / n[:, None]

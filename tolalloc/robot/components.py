@@ -226,12 +226,18 @@ class LinkSection:
     section : {"tube", "solid", "box"}
     area_mm2, inertia_mm4 : float      cross-section area and second moment of area (a box: about its width axis,
                                        i.e. bending in the plane of its height)
+    inertia_side_mm4 : float           a box's second moment about its height axis (bending in the plane of its
+                                       width); a round section's equals ``inertia_mm4``
     torsion_mm4 : float                torsion constant ``J``: the polar moment for a round tube or bar (exact),
                                        Bredt's thin-walled closed section ``2 t (b-t)^2 (h-t)^2 / (b+h-2t)``
                                        for a box
     youngs_modulus_MPa, shear_modulus_MPa : float
     density_kg_per_mm3, cte_per_K : float
     material, source : str
+    height_direction : tuple of 3 float or None
+        a box's height direction at the home pose, in the base frame (unit; across the link). Given, the box bends
+        with ``inertia_mm4`` in the plane of its height and ``inertia_side_mm4`` in the plane of its width; None
+        (unknown orientation), with ``inertia_mm4`` in both planes.
     """
 
     section: str
@@ -244,11 +250,18 @@ class LinkSection:
     cte_per_K: float
     material: str = ""
     source: str = ""
+    inertia_side_mm4: float | None = None
+    height_direction: tuple | None = None
 
     @property
     def EI_Nmm2(self) -> float:
         """Bending stiffness ``E I`` [N mm^2]."""
         return self.youngs_modulus_MPa * self.inertia_mm4
+
+    @property
+    def EI_side_Nmm2(self) -> float:
+        """Bending stiffness in the plane of a box's width, ``E I_side`` [N mm^2] (a round section: ``E I``)."""
+        return self.youngs_modulus_MPa * (self.inertia_mm4 if self.inertia_side_mm4 is None else self.inertia_side_mm4)
 
     @property
     def GJ_Nmm2(self) -> float:

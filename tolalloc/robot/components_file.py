@@ -40,11 +40,25 @@ def _joint_parts(table: dict, where: str, revolute: bool, slots: dict, name: str
     return JointComponents(**parts)
 
 
+def _check_across(section, vector, where: str) -> None:
+    """A box's height direction must lie across its link: within 10 deg of normal to the link's home vector."""
+    if section.height_direction is None or vector is None or np.linalg.norm(vector) == 0.0:
+        return
+    e = np.asarray(vector, float) / np.linalg.norm(vector)
+    off = np.degrees(np.arcsin(min(1.0, abs(float(np.dot(e, section.height_direction))))))
+    if off > 10.0:
+        raise ValueError(f"{where}.height_direction: {list(section.height_direction)} is {off:.1f} deg off the plane "
+                         f"across the link (its vector {list(np.asarray(vector, float))} mm at the home pose); give "
+                         "the direction of the box's height across the link, at the home pose, in the base frame")
+
+
 def parse_components(data: dict | None, joint_kinds: dict, link_names, where: str = "components",
-                     base_dir=None) -> Components:
+                     base_dir=None, link_vectors: dict | None = None) -> Components:
     """:class:`Components` from a robot file's ``[components]`` table (None or empty: no component data).
 
-    ``joint_kinds``: ``{joint name: is revolute}`` of the chain; ``link_names``: the chain's link names; ``base_dir``:
+    ``joint_kinds``: ``{joint name: is revolute}`` of the chain; ``link_names``: the chain's link names;
+    ``link_vectors``: ``{link name: vector at the home pose [mm]}``, to check a box's height direction lies across its
+    link (optional); ``base_dir``:
     where a ``catalogue_file`` is looked for (the robot file's folder). Slots are resolved against the built-in
     component catalogue, the ``catalogue_file`` and the inline ``[components.catalogue]`` tables merged over it.
     Raises ValueError naming the key (the robot-file loaders turn it into a TolallocError with the file's name).
@@ -75,6 +89,7 @@ def parse_components(data: dict | None, joint_kinds: dict, link_names, where: st
         if name not in link_names:
             raise ValueError(f"{where}.links.{name}: not a link of the chain; links: {', '.join(link_names)}")
         links[name] = read_section(table, f"{where}.links.{name}")
+        _check_across(links[name], (link_vectors or {}).get(name), f"{where}.links.{name}")
     mount = Mount()
     if "mount" in data:
         w = f"{where}.mount"

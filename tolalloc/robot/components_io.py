@@ -124,7 +124,7 @@ def read_section(table: dict, where: str) -> LinkSection:
     spec = {"outer_diameter": (_LENGTH, ((),)), "wall": (_LENGTH, ((),)), "width": (_LENGTH, ((),)),
             "height": (_LENGTH, ((),)), "youngs_modulus": (_MODULUS, ((),)), "shear_modulus": (_MODULUS, ((),)),
             "density": ({"kg_per_m3": 1e-9}, ((),)), "cte": (_CTE, ((),))}
-    v = read_table(table, spec, where, text=("section", "material", "source"))
+    v = read_table(table, spec, where, text=("section", "material", "source", "height_direction"))
     kind = _text(table, "section", where, None, ("tube", "solid", "box"))
     if kind is None:
         raise ValueError(f"{where}: missing section; expected section = \"tube\", \"solid\" or \"box\"")
@@ -151,6 +151,7 @@ def read_section(table: dict, where: str) -> LinkSection:
         if 2 * t >= min(b, h):
             raise ValueError(f"{where}.wall_mm: the wall {t:g} mm is at least half the width or height")
         A, I = b * h - (b - 2 * t) * (h - 2 * t), (b * h**3 - (b - 2 * t) * (h - 2 * t) ** 3) / 12
+        I_side = (h * b**3 - (h - 2 * t) * (b - 2 * t) ** 3) / 12
         J = 2 * t * (b - t) ** 2 * (h - t) ** 2 / (b + h - 2 * t)  # Bredt, wall midline
     material = _text(table, "material", where, None, tuple(MATERIALS))
     E, G, rho, cte, src = MATERIALS.get(material, (None,) * 5)
@@ -163,7 +164,26 @@ def read_section(table: dict, where: str) -> LinkSection:
                          "youngs_modulus_GPa (and shear_modulus_GPa, density_kg_per_m3, cte_um_per_m_K)")
     G = G if G is not None else E / 2.6
     return LinkSection(kind, float(A), float(I), float(J), float(E), float(G), float(rho or 0.0), float(cte or 0.0),
-                       material or "", _text(table, "source", where, src or ""))
+                       material or "", _text(table, "source", where, src or ""),
+                       float(I_side) if kind == "box" else float(I), _height_direction(table, kind, where))
+
+
+def _height_direction(table: dict, kind: str, where: str) -> tuple | None:
+    """A box's ``height_direction`` (three numbers, normalised), or None where the table gives none."""
+    raw = table.get("height_direction")
+    if raw is None:
+        return None
+    if kind != "box":
+        raise ValueError(f"{where}.height_direction: a {kind} section bends alike in every plane; the key is for "
+                         "section = \"box\" (drop it)")
+    try:
+        d = np.asarray(raw, dtype=float)
+    except (TypeError, ValueError):
+        d = np.full(1, np.nan)
+    if d.shape != (3,) or not np.all(np.isfinite(d)) or np.linalg.norm(d) == 0.0:
+        raise ValueError(f"{where}.height_direction: expected 3 finite numbers, not all zero (the box's height "
+                         f"direction at the home pose, base frame), got {raw!r}")
+    return tuple(float(x) for x in d / np.linalg.norm(d))
 
 
 def read_encoder(t: dict, w: str, revolute: bool, extra_keys: tuple = ()) -> Encoder:

@@ -297,7 +297,8 @@ def _finish_robot(name, chain, offset, R_tool, gravity, masses, pose_sets, descr
     object.__setattr__(robot, "regions", _parse_regions(robot, regions or {}))
     try:
         parts = parse_components(components, {j.name: j.is_revolute for j in robot.joints},
-                                 [lk.name for lk in robot.links], base_dir=base_dir)
+                                 [lk.name for lk in robot.links], base_dir=base_dir,
+                                 link_vectors={lk.name: lk.vector_mm for lk in robot.links})
     except ValueError as exc:
         raise TolallocError(str(exc)) from None
     object.__setattr__(robot, "components", parts)
