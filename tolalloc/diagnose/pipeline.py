@@ -28,9 +28,10 @@ from tolalloc.diagnose.scale import CHUNK_ROWS, SUBSAMPLE_ROWS, point_kinematics
 from tolalloc.diagnose.scores import Evaluation, clip_level, error_stats, rms
 from tolalloc.diagnose.select import align_basis, evaluate, kept_basis, make_context, score_test
 from tolalloc.diagnose.stepwise import select_effects
+from tolalloc.diagnose.steps import step_check
 from tolalloc.diagnose.families import family_log_evidence, posterior_probabilities
-from tolalloc.diagnose.verdict import (compare_alternatives, inconclusive_reasons, safe_model, scored_test_stats,
-                                       separating_poses, tied)
+from tolalloc.diagnose.verdict import (PRACTICAL_MARGIN, compare_alternatives, inconclusive_reasons, safe_model,
+                                       scored_test_stats, separating_poses, tied)
 from tolalloc.diagnose.verdict_text import verdict_of
 from tolalloc.diagnose.where import where_breakdown
 
@@ -245,10 +246,12 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                 "register_update": ctx.register_update if ctx.registration is not None else None,
                 "register_update_robust_loss": None if update is None else update.robust_loss,
                 "instrument_noise_mm": noise_mm}
+    clip = clip_level(geometric.selection_mm)
+    step = None if fallback else step_check(ctx, final, evaluate, clip, PRACTICAL_MARGIN)
+    findings = check.findings(cal.identifiability.aliases) + (() if step is None else (step.line(),))
     return Diagnosis(robot, train, test, cal, tuple(sel["stages"]), effects, nominal, geometric, final, where,
                      ctx.test_frame, tuple(guards), extrap, fallback, ctx.registration, unc, reg, subsample, check,
-                     check.findings(cal.identifiability.aliases), verdict, _downweighted(train, nominal, geometric, final), settings, update,
-                     ctx.ref)
+                     findings, verdict, _downweighted(train, nominal, geometric, final), settings, update, ctx.ref)
 
 
 def _downweighted(train, nominal: Evaluation, geometric: Evaluation, final: Evaluation) -> tuple:
