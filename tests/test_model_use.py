@@ -179,6 +179,75 @@ def test_identified_section_refusals(backlash):
     assert identified_robot_dict(m)["identified"]["format"] == sec["format"]
 
 
+def _cut(text: str, before: str) -> str:
+    """``text`` cut at the start of the first line that begins with ``before`` (a file cut short at a line)."""
+    lines = text.splitlines(keepends=True)
+    return "".join(lines[:next(i for i, ln in enumerate(lines) if ln.startswith(before))])
+
+
+def test_a_damaged_model_file_is_refused_naming_what_is_wrong(backlash, tmp_path):
+    """A file cut short at an entry (still valid TOML: read before as a smaller model, every row "compensated"), a
+    missing key, a value that is text or NaN, a rotation that is not one, a unit changed, a robot changed under the
+    same name, and a [[chain]] edited apart from the [identified] section: each a clear error, never a model."""
+    import dataclasses
+
+    import tomli_w
+
+    from tolalloc.robot.model import Link
+
+    d, m = backlash
+    MeasurementDiagnosis(d).export_model(tmp_path / "exp")
+    path = tmp_path / "exp" / "identified.toml"
+    text = path.read_text()
+    data = tomllib.loads(text)
+    assert data["identified"]["n_geometry"] == len(data["identified"]["geometry"]) > 0
+    assert "x_tracker = registration_rotation x_base" in data["identified"]["frames"]
+
+    def refused(doc, match, robot=None):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(doc if isinstance(doc, str) else tomli_w.dumps(doc))
+        with pytest.raises(TolallocError, match=match):
+            load_identified(bad, robot)
+
+    refused(_cut(text, "geometry = ["), r"0 geometry entries where the section says n_geometry = \d+")
+    sec = data["identified"]
+
+    def altered(**changes):
+        return {**data, "identified": {k: v for k, v in {**sec, **changes}.items() if v is not None}}
+
+    refused(altered(registration_translation_mm=None), "has no registration_translation_mm; the file is incomplete")
+    refused(altered(target_offset_mm=[0.0, 1.0, 2.0, 3.0]), r"target_offset_mm must be finite numbers of shape \(3,\)")
+    refused(altered(registration_rotation=[[5.0, 0, 0], [0, 1, 0], [0, 0, 1]]), "is not a rotation")
+    geo = [dict(g) for g in sec["geometry"]]
+    geo[0]["value"] = "abc"
+    refused(altered(geometry=geo), r"geometry\[0\].value is 'abc'; expected a finite number")
+    geo[0]["value"], geo[0]["unit"] = float("nan"), geo[0]["unit"]
+    refused(altered(geometry=geo), r"geometry\[0\].value is nan")
+    geo = [dict(g) for g in sec["geometry"]]
+    geo[0]["unit"] = "deg" if geo[0]["unit"] == "rad" else "um"
+    refused(altered(geometry=geo), r"geometry\[0\] .* is in '(deg|um)'; the parameter's unit is")
+    chain = list(ROBOT.chain)
+    i = next(k for k, e in enumerate(chain) if isinstance(e, Link) and np.linalg.norm(e.vector_mm) > 300)
+    chain[i] = dataclasses.replace(chain[i], vector_mm=np.asarray(chain[i].vector_mm) * 1.01)
+    other = dataclasses.replace(ROBOT, chain=tuple(chain))
+    refused(text, r"the nominal robot given \('ur10'\) differs from the one the model was identified on", other)
+    moved = {**data, "chain": [dict(c) for c in data["chain"]]}
+    link = next(c for c in moved["chain"] if "vector_mm" in c and np.linalg.norm(c["vector_mm"]) > 300)
+    link["vector_mm"] = [v + 1.0 for v in link["vector_mm"]]
+    refused(moved, r"its \[\[chain\]\] and its \[identified\] section give forward kinematics .* mm apart")
+
+
+def test_non_finite_or_misshapen_rows_are_input_errors_not_compensated_rows(backlash):
+    _, m = backlash
+    q = ROBOT.random_q(np.random.default_rng(1), 2) * 0.7
+    with pytest.raises(TolallocError, match=r"targets_mm: row 0 is not finite .* 2 such row\(s\)"):
+        solve_targets(m, np.array([[np.nan, 0.0, 0.0], [np.inf, 0.0, 0.0]]), q)
+    with pytest.raises(TolallocError, match=r"q_program: row 0 is not finite"):
+        compensate(m, np.full((1, 6), np.nan))
+    with pytest.raises(TolallocError, match=r"q_program: expected rows of 6 joint values \[rad, mm\], got shape"):
+        compensate(m, np.zeros((1, 5)))
+
+
 def test_workflow_predict_compensate_and_plots(backlash, tmp_path):
     d, m = backlash
     md = MeasurementDiagnosis(d)

@@ -11,7 +11,8 @@ joints is left out of ``J``; their displacement is re-evaluated at every step, s
 
 Rows are refused, never silently kept: ``unreachable`` (the error stays above ``tol_mm`` after ``max_iter`` steps
 -- the row's distance from the target at the closest joint values found says how far) or ``joint_limits`` (the
-solution leaves a joint's limits; which joints and by how much).
+solution leaves a joint's limits; which joints and by how much). Rows that are not finite (a NaN target or seed)
+are an input error, raised before any solving.
 """
 
 from __future__ import annotations
@@ -113,6 +114,21 @@ def _limit_reason(robot, q: np.ndarray) -> str:
     return ("the compensated joint values leave the joint limits: " + ", ".join(parts)) if parts else ""
 
 
+def _finite_rows(values, width: int, name: str, what: str) -> np.ndarray:
+    """``values`` as finite rows of ``width`` numbers, shape (P, width); a clear error otherwise."""
+    try:
+        a = np.atleast_2d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise TolallocError(f"{name}: expected rows of {width} {what}, got {type(values).__name__}.") from None
+    if a.ndim != 2 or a.shape[1] != width:
+        raise TolallocError(f"{name}: expected rows of {width} {what}, got shape {a.shape}.")
+    bad = np.flatnonzero(~np.isfinite(a).all(axis=1))
+    if len(bad):
+        raise TolallocError(f"{name}: row {int(bad[0])} is not finite ({a[bad[0]].tolist()}); {len(bad)} such row(s) "
+                            "in all -- drop or fill them before compensating.")
+    return a
+
+
 def solve_targets(model: IdentifiedModel, targets_mm, q_seed, meas: Measurements | None = None, *, frame: str = "base",
                   tol_mm: float = TOL_MM, max_iter: int = MAX_ITER, clamp: bool = False) -> Compensation:
     """Damped least squares for the joint values that put ``model``'s target point on ``targets_mm`` (module docstring).
@@ -129,11 +145,11 @@ def solve_targets(model: IdentifiedModel, targets_mm, q_seed, meas: Measurements
         Keep every step inside the joint limits (projected onto them): the nominal inverse kinematics of
         :func:`compensate`; the compensation itself does not clamp, it refuses a row that leaves the limits.
     """
-    x = np.atleast_2d(np.asarray(targets_mm, dtype=float))
-    q = np.atleast_2d(np.asarray(q_seed, dtype=float)).copy()
-    if x.shape != (len(q), 3):
-        raise TolallocError(f"targets: expected one x, y, z target [mm] per seed row, shape ({len(q)}, 3), got "
-                            f"shape {x.shape}.")
+    q = _finite_rows(q_seed, model.robot.n_joints, "q_seed", "joint values [rad, mm]").copy()
+    x = _finite_rows(targets_mm, 3, "targets_mm", "x, y, z targets [mm]")
+    if len(x) != len(q):
+        raise TolallocError(f"targets_mm: expected one x, y, z target [mm] per seed row ({len(q)}), got {len(x)} "
+                            "rows.")
     base = meas if meas is not None else model.measurements(q)
 
     def at(qq):
@@ -164,10 +180,12 @@ def solve_targets(model: IdentifiedModel, targets_mm, q_seed, meas: Measurements
     status, reason = [], []
     for i in range(len(q)):
         lim = _limit_reason(model.robot, q[i])
-        if norm[i] > tol_mm:
+        if not norm[i] <= tol_mm:
+            why = (f"the step limit ({max_iter}) was reached" if it[i] >= max_iter else
+                   "no step reduced the error any more")
             status.append("unreachable")
-            reason.append(f"target not reached: {norm[i]:.4g} mm away at the closest joint values found (outside the "
-                          "reachable space, or too far from the seed for the local solver)")
+            reason.append(f"target not reached: {norm[i]:.4g} mm away at the closest joint values found, {why} "
+                          "(outside the reachable space, or too far from the seed for the local solver)")
         elif lim:
             status.append("joint_limits")
             reason.append(lim)
@@ -218,7 +236,8 @@ def compensate(model: IdentifiedModel, q_program=None, targets_mm=None, meas: Me
         raise TolallocError("compensate: expected the program's joint values and / or targets, got neither.")
     chosen = q_program is None
     if chosen:
-        q_program = _nominal_ik(model, np.atleast_2d(np.asarray(targets_mm, float)), frame, tol_mm, max_iter)
-    q_program = np.atleast_2d(np.asarray(q_program, float))
+        q_program = _nominal_ik(model, _finite_rows(targets_mm, 3, "targets_mm", "x, y, z targets [mm]"), frame,
+                                tol_mm, max_iter)
+    q_program = _finite_rows(q_program, model.robot.n_joints, "q_program", "joint values [rad, mm]")
     x = nominal_targets(model, q_program, frame) if targets_mm is None else targets_mm
     return solve_targets(model, x, q_program, meas, frame=frame, tol_mm=tol_mm, max_iter=max_iter, clamp=chosen)

@@ -14,10 +14,11 @@ reported, ~0 since the geometric model is complete).
 G^T``; the allocated standard deviation of combination ``j`` is the square root of its diagonal.
 
 **Capability.** ``Cpk_j = (z sigma_alloc,j - |mu_j|) / (3 tau_j)``: the combination's implied tolerance
-``+-z sigma_alloc`` against the fleet's mean ``mu`` and spread ``tau`` (1 when the fleet is exactly as allocated and
-centred); ``cpk_lo`` takes the interval ends that make it smallest. The spread is *tighter than asked* when the
-upper end of its interval is below the allocated standard deviation, *looser than asked* when the lower end is above
-it; *shifted* when the mean's interval excludes 0.
+``+-z sigma_alloc`` against the fleet's mean ``mu`` and spread ``tau``. A fleet exactly as allocated and centred has
+``Cpk = z / 3``: 1 at the normal model's ``z = 3``, 0.58 at a uniform model's ``z = sqrt 3`` (a tolerance held by
+its own range, not by three standard deviations). ``cpk_lo`` takes the interval ends that make it smallest. The
+spread is *tighter than asked* when the upper end of its interval is below the allocated standard deviation, *looser
+than asked* when the lower end is above it; *shifted* when the mean's interval excludes 0.
 
 **Shared error.** The fleet's mean geometric error ``mu`` displaces the target by ``J_geo mu`` at every pose, the same
 on every robot: what a design change (a corrected nominal) would remove; the spread displaces it by ``sqrt(tr J_geo

@@ -35,11 +35,15 @@ from tolalloc.diagnose.calibrate import Fit
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.model_use import IdentifiedModel
 
-__all__ = ["FORMAT", "identified_geometry", "identified_robot_dict", "identified_urdf", "model_from_identified",
-           "HISTORY_VARIANTS"]
+__all__ = ["FORMAT", "FRAMES", "check_section", "identified_geometry", "identified_robot_dict", "identified_urdf",
+           "model_from_identified", "HISTORY_VARIANTS"]
 
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
+#: The frames of the ``[identified]`` section's figures (written into it).
+FRAMES = ("x_tracker = registration_rotation x_base + registration_translation_mm (base frame: the nominal robot's); "
+          "target_offset_mm and basis_target_offset_mm in the flange frame; nominal_screws (unit axis, moment [mm]) and "
+          "nominal_home_mm in the base frame at the zero configuration")
 #: Thermal variants whose columns need the training file's history (not rebuilt from a file).
 HISTORY_VARIANTS = ("lag", "activity", "motor", "tilt", "held", "scale_lag")
 
@@ -127,7 +131,10 @@ def identified_section(model: IdentifiedModel) -> dict:
         reference["load_scale_per_joint"] = [float(v) for v in ref["load_scale"]]
     if ref.get("gear_ratio") is not None:
         reference["gear_ratio"] = [float(v) for v in ref["gear_ratio"]]
-    return {"format": FORMAT, "nominal_robot": model.robot.name,
+    return {"format": FORMAT, "nominal_robot": model.robot.name, "n_geometry": len(geo), "n_effects": len(effects),
+            "frames": FRAMES,
+            "nominal_screws": [[float(v) for v in row] for row in model.robot.screws],
+            "nominal_home_mm": [[float(v) for v in row] for row in model.robot.home],
             "target_offset_mm": [float(v) for v in fit.t_mm],
             "basis_target_offset_mm": [float(v) for v in model.basis_t_mm],
             "registration_rotation": [[float(v) for v in row] for row in fit.R],
@@ -173,15 +180,20 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
     if section.get("nominal_robot") != robot.name:
         raise TolallocError(f"identified model: it was identified on robot {section.get('nominal_robot')!r}, the "
                             f"nominal robot given is {robot.name!r}; give the robot the diagnosis used.")
+    check_section(section, robot)
     geo_model = build_geometry_model(robot)
     delta, idx = np.zeros(len(geo_model.params)), []
-    for g in section.get("geometry", []):
+    for i, g in enumerate(section.get("geometry", [])):
         try:
             k = geo_model.index(g["name"])
         except Exception:
             raise TolallocError(f"identified model: geometric parameter {g.get('name')!r} is not one of robot "
                                 f"{robot.name!r}'s; was the file written for another robot?") from None
-        delta[k] = float(g["value"])
+        unit = geo_model.params[k].unit
+        if g.get("unit", unit) != unit:
+            raise TolallocError(f"identified model: geometry[{i}] ({g['name']}) is in {g['unit']!r}; the parameter's "
+                                f"unit is {unit!r} (the file's values are not converted).")
+        delta[k] = _number(g.get("value"), f"geometry[{i}].value")
         idx.append(k)
     effects, variants, columns, keep, names, beta, a = [], {}, {}, [], [], [], 0
     for e in section.get("effects", []):
@@ -218,3 +230,70 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
     return IdentifiedModel(robot, fit, tuple(effects), variants, columns, np.asarray(keep, int), ref,
                            np.asarray(section["basis_target_offset_mm"], float), None,
                            float(section.get("noise_mm", np.nan)), bool(section.get("payload_in_training", False)))
+
+
+def _number(value, key: str) -> float:
+    """``value`` as a finite float, or a TolallocError naming ``key``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = float("nan")
+    if not np.isfinite(v):
+        raise TolallocError(f"identified model: {key} is {value!r}; expected a finite number.")
+    return v
+
+
+def _array(section: dict, key: str, shape: tuple) -> np.ndarray:
+    """``section[key]`` as a finite array of ``shape``, or a TolallocError naming the key."""
+    if key not in section:
+        raise TolallocError(f"identified model: the [identified] section has no {key}; the file is incomplete "
+                            "(cut short?) -- export the model again.")
+    try:
+        a = np.asarray(section[key], dtype=float)
+    except (TypeError, ValueError):
+        a = np.full(1, np.nan)
+    if a.shape != shape or not np.all(np.isfinite(a)):
+        raise TolallocError(f"identified model: {key} must be finite numbers of shape {shape}, got "
+                            f"{section[key]!r}.")
+    return a
+
+
+def check_section(section: dict, robot: Robot) -> None:
+    """The ``[identified]`` section whole and consistent (raises TolallocError naming what is wrong).
+
+    Its figures have their shapes and are finite, the registration rotation is a rotation, the geometry and effect
+    entries are as many as the section says (a file cut short at an entry is refused, not read as a smaller model),
+    each effect's fitted columns are among its columns with one value each, and the nominal robot given has the
+    screws and home pose the model was identified on (files written before these were recorded skip the checks)."""
+    R = _array(section, "registration_rotation", (3, 3))
+    if np.abs(R.T @ R - np.eye(3)).max() > 1e-6 or np.linalg.det(R) < 0:
+        raise TolallocError("identified model: registration_rotation is not a rotation (R^T R = I, det R = 1); "
+                            "the file was altered -- export the model again.")
+    for key in ("registration_translation_mm", "target_offset_mm", "basis_target_offset_mm"):
+        _array(section, key, (3,))
+    for key, count in (("geometry", "n_geometry"), ("effects", "n_effects")):
+        entries = section.get(key, [])
+        if not isinstance(entries, list) or not all(isinstance(e, dict) for e in entries):
+            raise TolallocError(f"identified model: {key} must be a list of tables, got {type(entries).__name__}.")
+        if count in section and len(entries) != section[count]:
+            raise TolallocError(f"identified model: {len(entries)} {key} entries where the section says "
+                                f"{count} = {section[count]!r}; the file is incomplete (cut short?) -- export the "
+                                "model again.")
+    for i, e in enumerate(section.get("effects", [])):
+        cols, fitted, values = e.get("columns"), e.get("fitted_columns"), e.get("values")
+        if not (isinstance(cols, list) and isinstance(fitted, list) and isinstance(values, list)
+                and set(fitted) <= set(cols) and len(values) == len(fitted) and isinstance(e.get("variant"), str)
+                and isinstance(e.get("effect"), str)):
+            raise TolallocError(f"identified model: effects[{i}] needs effect, variant, columns, fitted_columns (among "
+                                "the columns) and one value per fitted column; the entry is incomplete or altered.")
+        for k, v in enumerate(values):
+            _number(v, f"effects[{i}].values[{k}]")
+    if "nominal_screws" in section:
+        screws = _array(section, "nominal_screws", robot.screws.shape)
+        home = _array(section, "nominal_home_mm", (4, 4))
+        gap = max(np.abs(screws - robot.screws).max(), np.abs(home - robot.home).max())
+        if gap > 1e-6:
+            raise TolallocError(f"identified model: the nominal robot given ({robot.name!r}) differs from the one the "
+                                f"model was identified on by {gap:.3g} (mm or unit-axis components) in its screws or "
+                                "home pose (a changed robot or tool file under the same name); give the robot the "
+                                "diagnosis used.")
