@@ -145,3 +145,20 @@ def test_map_to_the_tolerance_model_and_the_fleet_job(calibrated_fleet, tmp_path
         rc = main(["fleet", "ur10", str(tmp_path / "one.csv"), "--out", str(tmp_path / "out")])
     assert rc == 2 and "a fleet needs at least two robots to estimate a spread; got 1" in err.getvalue()
     assert not (tmp_path / "out").exists()
+
+
+def test_a_robot_far_outside_the_others_is_flagged_and_a_clean_fleet_is_not():
+    """Ten robots, twenty parameters drawn from one population (sampling sd 0.3, spread 1): nothing is flagged; the
+    same fleet with one robot 12 spreads out on one parameter: that robot and parameter alone, with its z; fewer
+    than three robots: no test."""
+    from tolalloc.diagnose.fleet_pool import fleet_outliers
+
+    rng = np.random.default_rng(3)
+    Y = rng.normal(0.0, 1.0, (10, 20)) + rng.normal(0.0, 0.3, (10, 20))
+    V = np.full(Y.shape, 0.09)
+    names, robots = [f"p{k}" for k in range(20)], [f"r{i}" for i in range(10)]
+    assert fleet_outliers(Y, V, names, robots).empty
+    Y[4, 7] = Y[np.arange(10) != 4, 7].mean() + 12.0
+    out = fleet_outliers(Y, V, names, robots)
+    assert out[["robot", "parameter"]].values.tolist() == [["r4", "p7"]] and out.z.iloc[0] > 6
+    assert fleet_outliers(Y[:2], V[:2], names, robots[:2]).empty

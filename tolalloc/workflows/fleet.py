@@ -251,7 +251,9 @@ class FleetAnalysis(JobResult):
 
     def summary(self) -> dict:
         p = self.pool
+        outliers = [] if p.outliers is None else p.outliers.to_dict(orient="records")
         return json_native({"inputs": self.inputs, "robots": [r.name for r in p.robots], "excluded": p.excluded,
+                            "outliers": outliers,
                             "unidentifiable": p.unidentifiable, "unpooled": p.unpooled, "shared": self.shared,
                             "parameters": self.to_frame().to_dict(orient="records")})
 
@@ -259,6 +261,11 @@ class FleetAnalysis(JobResult):
         lines = self.headline()
         for name, why in self.pool.excluded.items():
             lines.append(f"left out {name}: {why}")
+        out = self.pool.outliers
+        for r in ([] if out is None else out.itertuples()):
+            lines.append(f"OUTLIER {r.robot}: {r.parameter} = {r.value:.4g}, where the other robots give "
+                         f"{r.others_mean:.4g} +- {r.others_spread:.4g} (z = {r.z:+.1f}); it stays in the pool, whose "
+                         "mean and spread it moves -- check its build, its measurement or its diagnosis")
         tab = self.to_frame()
         cols = [c for c in ("parameter", "unit", "mean", "mean_lo", "mean_hi", "spread", "spread_lo", "spread_hi",
                             "cpk", "status") if c in tab.columns]
