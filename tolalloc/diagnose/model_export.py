@@ -151,7 +151,9 @@ def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
     f = (lambda v: " ".join(repr(float(x)) for x in v))
     lines = ['<?xml version="1.0"?>', f'<robot name="{nm}">',
              "  <!-- identified geometry of a tolalloc diagnosis (joint offsets folded in; tool link at the measured "
-             "target); the non-geometric effects are in the TOML export's [identified] section -->",
+             "target); the non-geometric effects are in the TOML export's [identified] section; joint limits: "
+             "position from the robot file, effort and velocity 0 as placeholders (tolalloc does not know them: set "
+             "them before a controller or planner reads them) -->",
              '  <link name="base_link"/>']
     parent, prev = "base_link", np.zeros(3)
     for j, jt in enumerate(robot.joints):
