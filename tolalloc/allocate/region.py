@@ -34,7 +34,7 @@ from tolalloc.allocate.problem import AllocationProblem, build_problem
 from tolalloc.allocate.region_coverage import Coverage, _position_cov, _rotation_cov, coverage
 from tolalloc.linear.probability import p_within_angle, p_within_radius
 
-__all__ = ["Region", "box_region", "pose_probability", "pose_angle_probability", "static_joints", "worst_pose",
+__all__ = ["REGION_TOL", "Region", "box_region", "pose_probability", "pose_angle_probability", "static_joints", "worst_pose",
            "WorstPoses", "search_region", "region_static", "allocate_region", "RegionAllocation", "Coverage", "coverage"]
 
 
@@ -325,7 +325,12 @@ class RegionAllocation:
     worst_q_angle: np.ndarray | None = None
 
 
-def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", tol: float = 1e-4,
+#: A design holds over the region when no requirement's worst shortfall found is ``tol`` or more below its ``p``
+#: (the default of :func:`allocate_region`; a drawing's review accepts the same, :mod:`.tolerance_analysis`).
+REGION_TOL = 1e-4
+
+
+def allocate_region(model, region: Region, q0=None, *, solver: str = "exact", tol: float = REGION_TOL,
                     max_rounds: int = 30, seed: int = 0, n_seed: int = 512, n_starts: int = 6,
                     **problem_kw) -> RegionAllocation:
     """Cutting-plane allocation over a box: solve on the active set, add the worst pose, repeat.

@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate.drawing import FeatureMap
+from tolalloc.allocate.region import REGION_TOL
 from tolalloc.exceptions import TolallocError
 from tolalloc.linear.covariance import variance_share
 from tolalloc.linear.probability import p_within_radius
@@ -85,9 +86,24 @@ class DrawingAnalysis:
         return float(self.p[self.worst])
 
     @property
+    def shortfall(self) -> float:
+        """How far the worst pose's ``P`` lies below ``prob`` (0 when it does not)."""
+        return float(max(self.prob - self.p_worst, 0.0))
+
+    @property
     def ok(self) -> bool:
-        """Whether ``P >= prob`` at every pose analysed."""
-        return bool(np.all(self.p >= self.prob))
+        """Whether ``P >= prob`` at every pose analysed, to within the tolerance the allocation's region search
+        accepts (:data:`~tolalloc.allocate.region.REGION_TOL` in ``P``): the review of a drawing holds it to the rule
+        the design was allocated by."""
+        return bool(np.all(self.p >= self.prob - REGION_TOL))
+
+    def verdict(self) -> str:
+        """``meets it``, ``meets it within the allocation's tolerance ...`` (short by less than it) or ``does NOT meet
+        it``; the worst pose's shortfall is in :meth:`text`."""
+        if self.shortfall == 0.0:
+            return "meets it"
+        return (f"meets it within the allocation's tolerance of {REGION_TOL:g} in P" if self.ok else
+                "does NOT meet it")
 
     def feature_frame(self) -> pd.DataFrame:
         """One row per callout and part: ``feature, characteristic, parameters, variance_share_pct`` at the worst
@@ -101,10 +117,10 @@ class DrawingAnalysis:
         return frame.sort_values("variance_share_pct", ascending=False, ignore_index=True)
 
     def text(self) -> str:
-        verdict = "meets" if self.ok else "does NOT meet"
-        lines = [f"drawing review: P(|dP| < {self.radius_mm:g} mm) >= {self.prob:g}: the drawing {verdict} it at "
-                 f"{int(np.sum(self.p >= self.prob))} of {len(self.p)} pose(s); worst pose {self.worst + 1}: "
-                 f"P = {self.p_worst:.6f}",
+        short = f" ({self.shortfall:.2g} short)" if self.shortfall > 0 else ""
+        lines = [f"drawing review: P(|dP| < {self.radius_mm:g} mm) >= {self.prob:g}: the drawing {self.verdict()} at "
+                 f"{int(np.sum(self.p >= self.prob - REGION_TOL))} of {len(self.p)} pose(s); worst pose "
+                 f"{self.worst + 1}: P = {self.p_worst:.6f}{short}",
                  "feature shares of the position-error variance at the worst pose:"]
         fr = self.feature_frame()
         lines += [f"  {r.variance_share_pct:6.2f} %  {r.characteristic:16s} {r.feature} ({r.parameters})"
