@@ -190,8 +190,9 @@ def test_bad_drawings_are_refused_naming_the_feature(job, drawing_csv):
         read_drawing(_edit(drawing_csv, i, length_mm="0"), model)
     with pytest.raises(TolallocError, match=r"j1 bearing-seat axis, tilt about x.*finer than any process.*lapping"):
         read_drawing(_edit(drawing_csv, i, zone_mm="0.0001"), model)
-    fit = _edit(drawing_csv, i, characteristic="fit", grade="H7/x6", length_mm="50")
-    with pytest.raises(TolallocError, match=r"tilt about x\): 'x6': the fundamental deviation 'x' is not implemented"):
+    fit = _edit(drawing_csv, i, characteristic="fit", grade="H7/g6", length_mm="50")
+    with pytest.raises(TolallocError, match=r"tilt about x\): characteristic 'fit' cannot bound e1x \(kind "
+                                            r"axis_deflection, unit rad\); .* perpendicularity, parallelism"):
         read_drawing(fit, model)
     with pytest.raises(TolallocError, match=r"no callout or part bounds e1x"):
         halfwidths_from_drawing(model, read_drawing(frame.drop(index=i), model))

@@ -17,13 +17,17 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     ``Ø t_zone = L sigma sqrt(-2 ln(1 - p_c))`` with ``p_c = P(|N| < z)``, not ``z`` per component). Unequal
     tilts get a zone in each direction.
 ``clearance_tilt``
-    The *coaxiality* ``◎`` of the joint's two bearing seats over the span, as above.
+    The *coaxiality* ``◎`` of the joint's second bearing seat to the first over the span. A coaxiality zone is a
+    cylinder centred on the datum axis, so a tilt of magnitude ``a`` (the second seat's radial offset ``L a``)
+    needs a zone of diameter ``2 L a``: ``Ø t_zone = 2 L f t`` with the diameter factor ``f`` above.
 ``clearance_radial``
     An ISO 286 *fit* of the seats (:mod:`tolalloc.allocate.fits`): the loosest preferred clearance fit whose
     largest radial play ``c_max / 2`` is at most the design's radial bound ``sqrt(2) t`` (the ring's magnitude at
     the tolerance's coverage); the fit's ``c_max`` gives back ``sigma = c_max / (2 sqrt(2) z)``.
 ``clearance_axial``
-    A *size* ``±t`` of the axial stack (spacer or shim) of the bearing arrangement.
+    A *size* ``±t`` of the axial stack (spacer or shim) of the bearing arrangement. The robot file gives no nominal
+    length of the stack: the seat span stands for it (for the ISO 286 grade's size range), stated as an
+    assumption.
 ``joint_drive``
     A *purchased part*: the joint's reducer and encoder with their accuracy grade and catalogue source
     (:class:`~tolalloc.allocate.purchase.PurchasedPart`; the robot file's ``[components]``, or the chooser of
@@ -42,18 +46,30 @@ from math import log, sqrt
 import numpy as np
 from scipy.special import log_ndtr
 
-from tolalloc.allocate.fits import PREFERRED_CLEARANCE_FITS, clearance_fits
+from tolalloc.allocate.fits import FIT_MAX_SIZE_MM, PREFERRED_CLEARANCE_FITS, check_clearance_fits, clearance_fits
 from tolalloc.allocate.purchase import drive_part
-from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, it_row
+from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, is_real_number, it_row
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["Callout", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor",
-           "SYMBOLS", "TILT_ZONES"]
+__all__ = ["Callout", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor", "zone_factor", "check_z",
+           "SYMBOLS", "TILT_ZONES", "DISTRIBUTIONS"]
 
 #: ISO 1101 symbols (and the drawing's sign for a size and a fit).
 SYMBOLS = {"perpendicularity": "⊥", "parallelism": "∥", "angularity": "∠", "coaxiality": "◎", "position": "⌖",
            "size": "±", "fit": "fit"}
 TILT_ZONES = ("auto", "diameter", "directions")
+DISTRIBUTIONS = ("normal", "uniform")
+
+
+def check_z(z, distribution: str, where: str) -> float:
+    """``z`` of ``sigma = t / z`` as a float > 0 and ``distribution`` one of :data:`DISTRIBUTIONS`; TolallocError
+    naming ``where`` otherwise."""
+    if not (is_real_number(z) and np.isfinite(z) and z > 0):
+        raise TolallocError(f"{where}: z expected a number > 0 (sigma = t / z, e.g. 3), got {z!r}.")
+    if distribution not in DISTRIBUTIONS:
+        raise TolallocError(f"{where}: distribution expected one of {', '.join(DISTRIBUTIONS)}, got "
+                            f"{distribution!r}.")
+    return float(z)
 
 
 @dataclass(frozen=True)
@@ -66,7 +82,8 @@ class HandoverSettings:
         Axial distance between a joint's two bearing seats where the robot file gives no ``span_mm`` [mm]
         (None: a joint without one is an error).
     default_seat_diameter_mm : float or None
-        Nominal seat diameter for a fit where the robot file gives no ``seat_diameter_mm`` [mm].
+        Nominal seat diameter for a fit where the robot file gives no ``seat_diameter_mm`` [mm], within ISO 286's
+        fit sizes (up to 500 mm).
     default_datums : bool
         Name datums where the robot file gives none: ``A`` the base mounting face, then ``B``, ``C`` ... the joints'
         seat axes in chain order. False: a callout without a datum keeps an empty one (the export refuses it).
@@ -75,7 +92,8 @@ class HandoverSettings:
         diameter zone at the smaller of the two (tighter than the design where they differ); ``directions``: always
         a zone per direction.
     fits : tuple of str
-        Candidate fits of the radial clearance, ISO 286 classes (default: the preferred clearance fits).
+        Candidate fits of the radial clearance, ISO 286 clearance fits such as ``"H7/g6"`` (default: the preferred
+        clearance fits).
     part_chooser : callable or None
         The per-joint choice of the bought part (:func:`tolalloc.allocate.purchase.drive_part`); None: the robot
         file's ``[components]``.
@@ -91,10 +109,16 @@ class HandoverSettings:
     def __post_init__(self):
         for name in ("default_span_mm", "default_seat_diameter_mm"):
             v = getattr(self, name)
-            if v is not None and (isinstance(v, bool) or not np.isfinite(v) or v <= 0):
-                raise TolallocError(f"{name}: expected a length > 0 [mm] or None, got {v!r}.")
+            if v is not None and not (is_real_number(v) and np.isfinite(v) and v > 0):
+                raise TolallocError(f"{name}: expected a length > 0 [mm] (a number) or None, got {v!r} "
+                                    f"({type(v).__name__}).")
+        d = self.default_seat_diameter_mm
+        if d is not None and d > FIT_MAX_SIZE_MM:
+            raise TolallocError(f"default_seat_diameter_mm: expected a seat diameter within ISO 286's fit sizes "
+                                f"(0 < D <= {FIT_MAX_SIZE_MM:g} mm), got {d!r} mm.")
         if self.tilt_zone not in TILT_ZONES:
             raise TolallocError(f"tilt_zone: expected one of {', '.join(TILT_ZONES)}, got {self.tilt_zone!r}.")
+        object.__setattr__(self, "fits", check_clearance_fits(self.fits, where="fits"))
 
 
 @dataclass(frozen=True)
@@ -112,7 +136,7 @@ class Callout:
     diameter : bool
         A diameter zone (``Ø``).
     direction : str
-        Base axis the zone's width is measured along (a zone per direction), else ``""``.
+        Base axis the bounded tilt is about (``x``, ``y``, ``z``; a zone per direction), else ``""``.
     datum : str
     length_mm : float
         Span of the zone (seat span) or nominal size.
@@ -182,6 +206,15 @@ def diameter_factor(z: float, distribution: str = "normal") -> float:
         return sqrt(2.0)
     log_tail = log(2.0) + float(log_ndtr(-z))  # ln(1 - p_c) = ln 2 Phi(-z), finite for any z
     return sqrt(-2.0 * log_tail) / z
+
+
+def zone_factor(characteristic: str, diameter: bool, length_mm: float, z: float, distribution: str) -> float:
+    """``factor`` with ``zone = factor * t`` of a tilt zone over ``length_mm``: ``L`` in one direction, ``L f`` for
+    a diameter orientation zone (bounds the tilt magnitude ``f t``), ``2 L f`` for coaxiality (a cylinder centred on
+    the datum axis: the second seat's radial offset ``L f t`` is its radius)."""
+    if characteristic == "coaxiality":
+        return 2.0 * length_mm * diameter_factor(z, distribution)
+    return length_mm * diameter_factor(z, distribution) if diameter else length_mm
 
 
 def _angle(a: np.ndarray, b: np.ndarray) -> float:
@@ -258,6 +291,7 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
     strict : bool
         Refuse a radial clearance finer than every candidate fit (False: the finest fit, listed in ``warnings``).
     """
+    z = check_z(z, distribution, "feature_map")
     settings = settings or HandoverSettings()
     t = np.asarray(t, float)
     if t.shape != (len(model.params),) or not np.all(np.isfinite(t)) or np.any(t <= 0):
@@ -282,13 +316,21 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         elif kind == "clearance_radial":
             callouts.append(_fit_callout(model, j, ks, t, fr, z))
         else:  # clearance_axial
-            span, src = fr.bearing_value(j, "span_mm", settings.default_span_mm, "seat span")
-            p = model.params[ks[0]]
-            callouts.append(Callout(f"{joint} axial stack (bearing spacer)", "size", 2 * t[ks[0]], False, "",
-                                    fr.datum[joint],
-                                    span, _grade_within(span, 2 * t[ks[0]]), (p.name,), 2.0, src))
+            callouts.append(_stack_callout(model, j, ks[0], t, fr))
     return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
                       tuple(fr.warnings))
+
+
+def _stack_callout(model, j: int, k: int, t, fr: _Frame) -> Callout:
+    """The axial stack's size: the robot file gives no nominal length of the spacer, so the seat span stands for
+    it (the size ISO 286's grade is looked up at), stated in the feature and the assumptions."""
+    joint = model.robot.joints[j].name
+    span, src = fr.bearing_value(j, "span_mm", fr.settings.default_span_mm, "seat span")
+    fr._note("axial stack (bearing spacer): nominal length taken as the seat span (assumed), the size its ISO 286 "
+             "grade is looked up at")
+    return Callout(f"{joint} axial stack (bearing spacer; nominal length = seat span {span:g} mm, assumed)", "size",
+                   2 * t[k], False, "", fr.datum[joint], span, _grade_within(span, 2 * t[k]),
+                   (model.params[k].name,), 2.0, f"{src} (seat span as the stack's nominal length, assumed)")
 
 
 def _grade_within(size_mm: float, width_mm: float) -> str:
@@ -326,7 +368,7 @@ def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distri
     mode = fr.settings.tilt_zone
     equal = len(ks) == 2 and abs(tk[0] - tk[1]) <= 1e-9 * max(tk)
     if char == "coaxiality" or (len(ks) == 2 and (mode == "diameter" or (mode == "auto" and equal))):
-        f = span * diameter_factor(z, distribution)
+        f = zone_factor(char, True, span, z, distribution)
         return [Callout(feature, char, f * float(tk.min()), True, "", datum, span, "", names, f, src)]
     out = []
     for k in ks:
@@ -342,7 +384,8 @@ def _fit_callout(model, j: int, ks, t, fr: _Frame, z: float) -> Callout:
     d, src = fr.bearing_value(j, "seat_diameter_mm", fr.settings.default_seat_diameter_mm, "seat diameter")
     names = tuple(model.params[k].name for k in ks)
     allowed = sqrt(2.0) * float(np.min(t[list(ks)]))  # largest radial play at the tolerance's coverage [mm]
-    fits = [f for f in clearance_fits(d, fr.settings.fits) if f.kind == "clearance"]
+    fits = [f for f in clearance_fits(d, fr.settings.fits, where=f"{jt.name} bearing seats (seat_diameter_mm)")
+            if f.kind == "clearance"]
     ok = [f for f in fits if f.radial_play_max_mm <= allowed * (1 + 1e-9)]
     if not ok:
         fine = fits[0]

@@ -10,8 +10,8 @@ rules of ISO 286-1 for nominal sizes up to 500 mm and the letters a robot joint'
   0 for the other grades);
 - holes ``D E F G H`` (``EI = -es`` of the shaft letter), ``JS`` (``±IT/2``) and ``K M N P`` (``ES = -ei + Delta``
   with ``Delta = IT_n - IT_(n-1)`` for K, M, N up to IT8 and P up to IT7; ``ES = -ei`` for M and P above, 0 for
-  K and N above; sizes up to 3 mm without ``Delta``; the standard's special case M6 over 250 up to 315 mm,
-  ``ES = -9 um``).
+  K and N above; sizes up to 3 mm without ``Delta`` and at every grade K 0, M -2, N -4, P -6 um, ISO 286-2's N9
+  at 2 mm being -4/-29 um; the standard's special case M6 over 250 up to 315 mm, ``ES = -9 um``).
 
 The tests check the limit deviations against ISO 286-2's tabulated values. A fit ``H7/g6`` is a hole class and a
 shaft class at one nominal size: its clearance ranges from ``EI - es`` (minimum) to ``ES - ei`` (maximum), a
@@ -25,11 +25,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from tolalloc.allocate.standards import IT_TABLE_UM, it_row
+from tolalloc.allocate.standards import IT_TABLE_UM, is_real_number, it_row
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["ToleranceClass", "Fit", "tolerance_class", "parse_fit", "clearance_fits", "SHAFT_LETTERS", "HOLE_LETTERS",
-           "PREFERRED_CLEARANCE_FITS", "FIT_MAX_SIZE_MM"]
+           "PREFERRED_CLEARANCE_FITS", "FIT_MAX_SIZE_MM", "check_clearance_fits"]
 
 #: Largest nominal size the fundamental deviations here cover [mm].
 FIT_MAX_SIZE_MM = 500.0
@@ -55,6 +55,8 @@ HOLE_LETTERS = tuple(x.upper() for x in SHAFT_LETTERS)
 PREFERRED_CLEARANCE_FITS = ("H6/h5", "H6/g5", "H7/h6", "H7/g6", "H8/h7", "H7/f7", "H8/f7", "H8/e8", "H9/e9",
                             "H9/d9")
 _CLASS = re.compile(r"^([A-Za-z]{1,2})(\d{1,2})$")
+#: Upper ends of ISO 286's size ranges up to 500 mm (one nominal size per range checks a fit at every size).
+_SIZES_MM = (3, 6, 10, 18, 30, 50, 80, 120, 180, 250, 315, 400, 500)
 
 
 @dataclass(frozen=True)
@@ -156,9 +158,10 @@ def tolerance_class(name: str, size_mm: float, *, where: str = "tolerance class"
                             f"{letters}.")
     if not 1 <= grade <= 18:
         raise TolallocError(f"{where}: {name!r}: grade IT{grade} is not an ISO 286 grade (IT1..IT18).")
-    if not (np.isfinite(size_mm) and 0 < size_mm <= FIT_MAX_SIZE_MM):
-        raise TolallocError(f"{where}: {name} at {size_mm!r} mm: the fundamental deviations here cover nominal sizes "
-                            f"0 < D <= {FIT_MAX_SIZE_MM:g} mm.")
+    if not (is_real_number(size_mm) and np.isfinite(size_mm) and 0 < size_mm <= FIT_MAX_SIZE_MM):
+        raise TolallocError(f"{where}: {name} size_mm: expected a nominal size 0 < D <= {FIT_MAX_SIZE_MM:g} mm (a "
+                            f"number; the fundamental deviations here cover these sizes), got {size_mm!r} "
+                            f"({type(size_mm).__name__}).")
     row = it_row(size_mm)
     it = _it_um(row, grade)
     if letter.islower():
@@ -187,13 +190,13 @@ def _hole(letter: str, grade: int, row: int, it: float, size_mm: float):
         ei = -_SHAFT_ES[letter][row]
         return ei, ei + it
     small = size_mm <= 3.0
-    delta = 0.0 if small or grade < 2 else _it_um(row, grade) - _it_um(row, grade - 1)
+    delta = 0.0 if grade < 2 else _it_um(row, grade) - _it_um(row, grade - 1)
     ei_shaft = _SHAFT_EI[letter][row]  # k: the table's value for IT4 to IT7
-    if grade <= (7 if letter == "p" else 8):
+    if small:  # up to 3 mm one value for every grade: K 0, M -2, N -4, P -6 um (ISO 286-1, Table 3)
+        es = 0.0 if letter == "k" else -ei_shaft
+    elif grade <= (7 if letter == "p" else 8):
         if letter == "m" and grade == 6 and 250 < size_mm <= 315:
             es = -9.0  # ISO 286-1's special case
-        elif letter == "k" and small:
-            es = 0.0
         else:
             es = -ei_shaft + delta
     elif letter in ("m", "p"):
@@ -217,7 +220,24 @@ def parse_fit(text: str, size_mm: float, *, where: str = "fit") -> Fit:
     return Fit(tolerance_class(hole, size_mm, where=where), tolerance_class(shaft, size_mm, where=where))
 
 
-def clearance_fits(size_mm: float, names=PREFERRED_CLEARANCE_FITS) -> list[Fit]:
-    """The fits ``names`` at nominal size ``size_mm`` [mm], ordered by their largest clearance (finest first)."""
-    fits = [parse_fit(n, size_mm) for n in names]
+def clearance_fits(size_mm: float, names=PREFERRED_CLEARANCE_FITS, *, where: str = "fit") -> list[Fit]:
+    """The fits ``names`` at nominal size ``size_mm`` [mm], ordered by their largest clearance (finest first);
+    TolallocError naming ``where`` for a bad fit or size."""
+    fits = [parse_fit(n, size_mm, where=where) for n in names]
     return sorted(fits, key=lambda f: f.clearance_max_um)
+
+
+def check_clearance_fits(names, *, where: str = "fits") -> tuple:
+    """``names`` as a tuple of ISO 286 fits that are clearance fits at every nominal size up to 500 mm (the
+    candidates of a radial clearance); TolallocError naming ``where``, the fit and the size otherwise."""
+    if isinstance(names, str) or not isinstance(names, (tuple, list)) or not names:
+        raise TolallocError(f"{where}: expected a non-empty tuple of ISO 286 fits such as ('H7/g6', 'H8/f7'), got "
+                            f"{names!r}.")
+    for name in names:
+        for size in _SIZES_MM:
+            fit = parse_fit(name, size, where=f"{where}: {name!r}")
+            if fit.kind != "clearance":
+                raise TolallocError(f"{where}: {name!r} is not a clearance fit ({fit.kind} at Ø{size:g} mm: smallest "
+                                    f"clearance {fit.clearance_min_um:g} um); a radial clearance needs a clearance "
+                                    "fit such as H7/g6.")
+    return tuple(names)

@@ -230,7 +230,8 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
         f"Two tilts bounded by one diameter zone: the zone is set at the two-dimensional coverage of the tolerance "
         "(Rayleigh-distributed tilt magnitude for normal tilts): "
         f"Ø = L x {diameter_factor(fm.z, fm.distribution):.4f} "
-        "x t, not z per component.",
+        "x t, not z per component; a coaxiality zone is centred on the datum axis, so its diameter is twice the "
+        "second seat's radial offset: Ø = 2 L x f x t.",
         "A radial clearance becomes the loosest preferred ISO 286 clearance fit whose largest radial play is at most "
         "sqrt(2) t (the ring's magnitude at the tolerance's coverage); back from a fit, sigma = c_max / (2 sqrt(2) z).",
         "Joint drives are bought parts: the order names the allowed transmission + encoder error as a half-width "

@@ -19,7 +19,8 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 
-__all__ = ["IT_SIZES_MM", "IT_GRADES", "IT_TABLE_UM", "it_row", "it_value_mm", "snap_length", "snap_angle", "ANGLE_STEP_DEG"]
+__all__ = ["IT_SIZES_MM", "IT_GRADES", "IT_TABLE_UM", "it_row", "it_value_mm", "snap_length", "snap_angle",
+           "ANGLE_STEP_DEG", "is_real_number"]
 
 #: Upper ends of the nominal size ranges [mm] ("over previous, up to and including this").
 IT_SIZES_MM = np.array([3, 6, 10, 18, 30, 50, 80, 120, 180, 250, 315, 400, 500,
@@ -54,9 +55,16 @@ IT_TABLE_UM = np.array([
 ANGLE_STEP_DEG = 1.0 / 3600.0
 
 
+def is_real_number(v) -> bool:
+    """A real scalar (int, float, a numpy scalar or 0-d array), not a bool, a string or None."""
+    if isinstance(v, np.ndarray):
+        return v.ndim == 0 and np.issubdtype(v.dtype, np.number) and not np.issubdtype(v.dtype, np.complexfloating)
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+
+
 def it_row(size_mm: float) -> int:
     """Row of :data:`IT_TABLE_UM` for nominal size ``size_mm`` [mm] (0 < D <= 3150)."""
-    if not np.isfinite(size_mm) or size_mm <= 0 or size_mm > IT_SIZES_MM[-1]:
+    if not is_real_number(size_mm) or not np.isfinite(size_mm) or size_mm <= 0 or size_mm > IT_SIZES_MM[-1]:
         raise TolallocError(f"ISO 286 nominal size: expected 0 < D <= 3150 mm, got {size_mm!r} mm; "
                             "give the part a nominal size in range or set it to none (snap to a step).")
     return int(np.searchsorted(IT_SIZES_MM, size_mm - 1e-9))
@@ -87,7 +95,14 @@ def snap_length(t_mm: float, size_mm: float, t_min_mm: float = 0.0) -> tuple[flo
         ``IT / 2`` [mm].
     grade : str
         ``"IT7"``; ``"<IT1"`` if even IT1 is wider than ``2 t`` (then ``t`` is kept unsnapped).
+
+    Raises TolallocError for a half-width that is not a number > 0 or a process limit that is not a number >= 0.
     """
+    if not (is_real_number(t_mm) and np.isfinite(t_mm) and t_mm > 0):
+        raise TolallocError(f"snap_length: t_mm expected a half-width > 0 [mm] (a number), got {t_mm!r}.")
+    if not (is_real_number(t_min_mm) and np.isfinite(t_min_mm) and t_min_mm >= 0):
+        raise TolallocError(f"snap_length: t_min_mm expected a process limit >= 0 [mm] (a number), got "
+                            f"{t_min_mm!r}.")
     widths = IT_TABLE_UM[it_row(size_mm)] / 1000.0
     ok = np.nonzero(widths <= 2.0 * t_mm * (1 + 1e-12))[0]
     if ok.size == 0:

@@ -22,7 +22,9 @@ def register(sub) -> None:
     p.add_argument("--region", default=None, metavar="SPEC",
                    help="where the requirement holds: a box of the robot file, 'limits', a pose set or a trajectory "
                    "CSV (default: the robot's working box, else its working pose set)")
-    p.add_argument("--z", type=float, default=None, help="sigma = t / z (default 3)")
+    p.add_argument("--z", type=float, default=None,
+                   help="sigma = t / z (default: the z the drawing file records, else 3; a value that disagrees "
+                        "with the file is refused)")
     p.add_argument("--uniform", action="store_true", help="errors uniform over +-t: sigma = t / sqrt(3)")
     p.add_argument("--sigma-set", default=None, help="sigma set for parameters the drawing does not bound "
                    "(with --others model)")

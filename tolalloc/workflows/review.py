@@ -7,8 +7,8 @@ error variance at the worst pose (:func:`tolalloc.allocate.tolerance_analysis.an
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
-
 from pathlib import Path
 
 import numpy as np
@@ -38,7 +38,10 @@ def review_drawing(robot="tool_changer", drawing=None, *, radius_mm: float = 0.2
     region : str, array or Region, optional
         Where: as in :func:`tolalloc.allocate_tolerances` (a box is searched for its worst pose).
     costs : Costs, optional
-        Only its ``z`` (sigma = t / z, default 3) or ``uniform`` (errors uniform over ±t) are read.
+        Only its ``z`` (sigma = t / z) or ``uniform`` (errors uniform over ±t) are read. A drawing file that
+        records its design's z and distribution (columns ``z``, ``distribution``) is reviewed with them and a given
+        value that disagrees is refused; a file without them (written before they were recorded, or by hand) is
+        reviewed with the given z, else 3. The review's ``inputs`` name the z used and where it came from.
     error_model : ErrorModelOptions, optional
         Sigma set, link and deflection model (clearance parameters are included when the drawing bounds any).
     others : {"error", "model"}
@@ -55,30 +58,35 @@ def review_drawing(robot="tool_changer", drawing=None, *, radius_mm: float = 0.2
     em = as_settings(error_model, ErrorModelOptions, "error_model")
     z, uniform = cost.z, cost.uniform
     sigma_set, link_mode, deflection_mode = em.sigma_set, em.link_mode, em.deflection_mode
-    from tolalloc.allocate.drawing_io import read_drawing, read_rows
+    from tolalloc.allocate.drawing_io import read_drawing, read_rows, recorded_z
     from tolalloc.allocate.tolerance_analysis import analyze_drawing
     from tolalloc.exceptions import ArgumentError
 
-    if drawing is None:
-        raise ArgumentError("drawing", "expected the path of a drawing exchange CSV (drawing.csv), got None.")
+    if drawing is None or not isinstance(drawing, (str, os.PathLike)):
+        raise ArgumentError("drawing", f"expected the path (str or pathlib.Path) of a drawing exchange CSV "
+                            f"(drawing.csv), got {drawing!r} ({type(drawing).__name__}).")
     inputs.check_probability(prob, "prob")
     inputs.check_positive(radius_mm, "radius_mm", "mm", "0.25")
     inputs.check_seed(seed, "seed")
     rb = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
-    zz = float(np.sqrt(3.0)) if uniform else (3.0 if z is None else inputs.check_z(z))
-    dist = "uniform" if uniform else "normal"
     frame = read_rows(drawing)
-    clearance = any(str(p).startswith(("ca", "cr", "cw")) for p in " ".join(frame["parameters"]).split())
+    cells = frame["parameters"] if "parameters" in frame.columns else []  # a missing column: read_drawing says so
+    clearance = any(str(p).startswith(("ca", "cr", "cw")) for p in " ".join(cells).split())
     model = inputs.error_model(rb, sigma_set=sigma_set, link_mode=link_mode, deflection_mode=deflection_mode,
                                clearance=clearance)
-    fmap = read_drawing(frame, model, z=zz, distribution=dist)
+    given_z = None if z is None else inputs.check_z(z)
+    fmap = read_drawing(frame, model, z=given_z, distribution="uniform" if uniform else None, name=str(drawing))
+    zz, dist = fmap.z, fmap.distribution
+    z_source = ("the drawing file" if recorded_z(frame)[0] is not None else
+                "given (the drawing file records none)" if z is not None or uniform else
+                "default (the drawing file records none)")
     label, box, q = inputs.resolve_region(rb, region, poses)
     if box is not None:
         q = box.sample(1, seed)
     analysis = analyze_drawing(model, fmap, q, radius_mm=radius_mm, prob=prob, region=box, others=others, seed=seed)
     return DrawingReview(analysis, label, rb, {"robot": rb.name, "drawing": str(drawing), "radius_mm": radius_mm,
                                            "prob": prob, "region": label, "z": zz, "distribution": dist,
-                                           "seed": seed})
+                                           "z_source": z_source, "seed": seed})
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -107,9 +115,11 @@ class DrawingReview(JobResult):
         a = self.analysis
         q = ", ".join(f"{v:.4g}" for v in self.robot.q_to_interface(a.q[a.worst]))
         return [f"robot: {self.inputs.get('robot')}   drawing: {self.inputs.get('drawing')}",
-                f"requirement: P(|dP| < {a.radius_mm:g} mm) >= {a.prob:g} over {self.label!r}",
-                f"worst pose {a.worst + 1} (q = {q} deg / mm): P = {a.p_worst:.6f} "
-                f"({'meets' if a.ok else 'does NOT meet'} it)"]
+                f"requirement: P(|dP| < {a.radius_mm:g} mm) >= {a.prob:g} over {self.label!r}; sigma = t / z with "
+                f"z = {self.inputs.get('z', 3.0):.4g} ({self.inputs.get('distribution', 'normal')}, "
+                f"{self.inputs.get('z_source', 'given')})",
+                f"worst pose {a.worst + 1} (q = {q} deg / mm): P = {a.p_worst:.6f}"
+                + (f", {a.shortfall:.2g} short" if a.shortfall > 0 else "") + f" (the drawing {a.verdict()})"]
 
     def to_frame(self) -> pd.DataFrame:
         """Each feature's share of the position-error variance at the worst pose."""

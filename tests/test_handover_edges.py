@@ -1,0 +1,238 @@
+"""Edges of the handover and the drawing review: the coaxiality zone (ISO 1101), ISO 286-2's N holes up to 3 mm,
+the design's z recorded in drawing.csv, rows the reader refuses (no datum, a characteristic that cannot bound the
+parameter, a zone that disagrees with its grade, a bad direction) and wrong-type inputs. Known answers: ISO 286-2's
+tabulated deviations, ISO 286-1's IT values and the closed forms of the zones."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy.stats import norm, rayleigh
+
+import tolalloc
+from tolalloc import TolallocError
+from tolalloc.allocate.drawing import Callout, HandoverSettings, feature_map
+from tolalloc.allocate.drawing_io import DRAWING_COLUMNS, export_frame, read_drawing
+from tolalloc.allocate.fits import tolerance_class
+from tolalloc.allocate.handover import Handover
+from tolalloc.allocate.standards import snap_length
+from tolalloc.allocate.tolerance_analysis import halfwidths_from_drawing
+from tolalloc.errormodel import build_error_model
+from tolalloc.workflows.settings import Costs
+
+#: Rayleigh quantile at the coverage of +-3 sigma over 3: the diameter factor f at z = 3 (closed form).
+F3 = rayleigh.ppf(2 * norm.cdf(3.0) - 1) / 3.0
+
+
+@pytest.fixture(scope="module")
+def job():
+    return tolalloc.allocate_tolerances("tool_changer", region="nominal", verification=False, progress=False)
+
+
+@pytest.fixture(scope="module")
+def drawing_csv(job, tmp_path_factory):
+    path = tmp_path_factory.mktemp("edges") / "drawing.csv"
+    export_frame(job.handover()).to_csv(path, index=False, float_format="%.10g")
+    return path
+
+
+@pytest.fixture(scope="module")
+def clearance_model():
+    return build_error_model(tolalloc.load_robot("tool_changer"), clearance=True)
+
+
+def _clearance_t(model):
+    by_kind = {"clearance_tilt": 1e-4, "clearance_radial": 0.02, "clearance_axial": 0.03}
+    return np.array([by_kind.get(p.kind, 1e-4 if p.unit == "rad" else 0.05) for p in model.params])
+
+
+def _handover(fm) -> Handover:
+    """A handover of feature map ``fm`` without processes or costs (enough for the export)."""
+    n, m = len(fm.callouts), len(fm.parts)
+    return Handover(fm, ("",) * n, ("",) * n, (True,) * n, (0.0,) * (n + m), ("",) * (n + m), ())
+
+
+def _row(**cells) -> dict:
+    out = {c: "" for c in DRAWING_COLUMNS}
+    out.update(cells)
+    return out
+
+
+def _read(rows, model, **kw):
+    return read_drawing(pd.DataFrame(rows, columns=list(DRAWING_COLUMNS)), model, **kw)
+
+
+PERP = dict(characteristic="perpendicularity", zone_mm="0.01", direction="x", datum="A", length_mm="100",
+            parameters="e1x")
+
+
+# --- 3: coaxiality ------------------------------------------------------------------------------------------------
+
+def test_coaxiality_zone_is_a_cylinder_around_the_datum_axis(clearance_model):
+    model, t = clearance_model, _clearance_t(clearance_model)
+    fm = feature_map(model, t, z=3.0, strict=False)
+    coax = [c for c in fm.callouts if c.characteristic == "coaxiality"]
+    assert coax
+    for c in coax:
+        # the second seat's radial offset at the tolerance's coverage is L f t; the zone's diameter is twice that
+        assert c.zone_mm == pytest.approx(2 * 100.0 * F3 * 1e-4, rel=1e-12)
+        assert c.diameter and c.factor == pytest.approx(2 * 100.0 * F3, rel=1e-12)
+    # the read-back turns the Ø into the same t
+    frame = export_frame(_handover(fm))
+    back = halfwidths_from_drawing(model, read_drawing(frame, model, check_processes=False))
+    for c in coax:
+        for p in c.parameters:
+            assert back[model.index(p)] == pytest.approx(1e-4, rel=1e-9)
+    row = frame[frame.characteristic == "coaxiality"].iloc[0]
+    hand = _read([_row(characteristic="coaxiality", zone_mm=str(row.zone_mm), diameter_zone="true", datum="B",
+                       length_mm="100", parameters=row.parameters)], model, z=3.0, check_processes=False)
+    assert hand.callouts[0].zone_mm / hand.callouts[0].factor == pytest.approx(1e-4, rel=1e-9)
+
+
+# --- 4: ISO 286-2, K M N P holes up to 3 mm -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name, upper, lower", [
+    ("N9", -4, -29), ("N10", -4, -44), ("N11", -4, -64), ("N8", -4, -18), ("N7", -4, -14), ("N6", -4, -10),
+    ("K8", 0, -14), ("K9", 0, -25), ("M8", -2, -16), ("M7", -2, -12), ("P9", -6, -31), ("P7", -6, -16),
+    ("P6", -6, -12)])
+def test_holes_up_to_3_mm_follow_iso_286_2(name, upper, lower):
+    tc = tolerance_class(name, 2.5)
+    assert (tc.upper_um, tc.lower_um) == (upper, lower)
+
+
+# --- 6: z recorded in drawing.csv -----------------------------------------------------------------------------------
+
+def test_drawing_records_z_and_the_review_uses_it(job, drawing_csv, tmp_path):
+    frame = pd.read_csv(drawing_csv, dtype=str, keep_default_na=False)
+    assert list(frame.columns) == list(DRAWING_COLUMNS)
+    assert set(frame.z.astype(float)) == {job.problem.costs.z} and set(frame.distribution) == {"normal"}
+    z2 = frame.assign(z="2")
+    path = tmp_path / "z2.csv"
+    z2.to_csv(path, index=False)
+    model = job.problem.model
+    assert read_drawing(z2, model).z == 2.0
+    with pytest.raises(TolallocError, match=r"review's z = 3 differs from the drawing's z = 2"):
+        read_drawing(z2, model, z=3.0)
+    with pytest.raises(TolallocError, match=r"z2.csv: the review's z = 3 differs from the drawing's z = 2"):
+        tolalloc.review_drawing("tool_changer", path, region="nominal", costs=Costs(z=3))
+    with pytest.raises(TolallocError, match=r"distribution uniform differs from the drawing's normal"):
+        tolalloc.review_drawing("tool_changer", path, region="nominal", costs=Costs(uniform=True))
+    rev = tolalloc.review_drawing("tool_changer", path, region="nominal")
+    assert rev.inputs["z"] == 2.0 and rev.inputs["z_source"] == "the drawing file"
+    assert "z = 2 (normal, the drawing file)" in rev.text()
+    with pytest.raises(TolallocError, match=r"column z records different values \(2, 3\)"):
+        read_drawing(z2.assign(z=["2"] + ["3"] * (len(z2) - 1)), model)
+
+
+def test_a_drawing_without_z_keeps_working(job, drawing_csv, tmp_path):
+    old = pd.read_csv(drawing_csv, dtype=str, keep_default_na=False).drop(columns=["z", "distribution"])
+    path = tmp_path / "v1.csv"
+    old.to_csv(path, index=False)
+    assert read_drawing(old, job.problem.model).z == 3.0
+    assert read_drawing(old, job.problem.model, z=2.0).z == 2.0
+    rev = tolalloc.review_drawing("tool_changer", path, region="nominal")
+    assert rev.inputs["z"] == 3.0 and rev.inputs["z_source"] == "default (the drawing file records none)"
+    rev = tolalloc.review_drawing("tool_changer", path, region="nominal", costs=Costs(z=2))
+    assert rev.inputs["z"] == 2.0 and rev.inputs["z_source"] == "given (the drawing file records none)"
+
+
+# --- 7, 8, 9: rows the reader refuses -------------------------------------------------------------------------------
+
+def test_rows_without_datum_are_refused(job):
+    model = job.problem.model
+    with pytest.raises(TolallocError, match=r"row 1 \(j1\): column datum is empty; a perpendicularity zone"):
+        _read([_row(**{**PERP, "feature": "j1", "datum": ""})], model)
+    with pytest.raises(TolallocError, match=r"row 1 \(l2\): column datum is empty; a position zone"):
+        _read([_row(feature="l2", characteristic="position", zone_mm="0.1", length_mm="210", parameters="dl2")],
+              model)
+
+
+def test_a_characteristic_must_bound_its_parameters_kind(job, clearance_model):
+    model = job.problem.model
+    with pytest.raises(TolallocError, match=r"'perpendicularity' cannot bound dl1 \(kind link_length, unit mm\); "
+                                            r"parameters of kind link_length are bounded by: size, position"):
+        _read([_row(**{**PERP, "parameters": "dl1", "direction": ""})], model)
+    with pytest.raises(TolallocError, match=r"'position' cannot bound e1x \(kind axis_deflection, unit rad\); .*"
+                                            r"perpendicularity, parallelism, angularity, coaxiality"):
+        _read([_row(characteristic="position", zone_mm="0.1", datum="A", length_mm="210", parameters="e1x")], model)
+    with pytest.raises(TolallocError, match=r"'fit' cannot bound dl1 \(kind link_length"):
+        _read([_row(characteristic="fit", grade="H7/g6", length_mm="50", parameters="dl1")], clearance_model)
+    with pytest.raises(TolallocError, match=r"'size' cannot bound dth1 \(kind joint_drive, unit rad\); .*: "
+                                            r"purchased_part"):
+        _read([_row(characteristic="size", zone_mm="0.1", length_mm="100", parameters="dth1")], model)
+
+
+def test_zone_and_grade_must_agree(job, clearance_model):
+    model = job.problem.model
+    # ISO 286-1 at 250-315 mm: IT7 = 52 um, IT8 = 81 um
+    with pytest.raises(TolallocError, match=r"zone_mm 1e-06 mm disagrees with grade IT7, 0.052 mm at 315 mm .* "
+                                            r"next grade's 0.081 mm"):
+        _read([_row(characteristic="size", grade="IT7", zone_mm="0.000001", length_mm="315", parameters="dl1")],
+              model)
+    with pytest.raises(TolallocError, match=r"zone_mm 0.09 mm disagrees with grade IT7"):
+        _read([_row(characteristic="size", grade="IT7", zone_mm="0.09", length_mm="315", parameters="dl1")], model)
+    ok = _read([_row(characteristic="size", grade="IT7", zone_mm="0.06", length_mm="315", parameters="dl1")], model)
+    assert ok.callouts[0].zone_mm == 0.06
+    # H7/g6 at 50 mm: ES = +25, ei = -25 um (ISO 286-2): largest clearance 0.050 mm
+    with pytest.raises(TolallocError, match=r"zone_mm 0.04 mm disagrees with the fit H7/g6 at Ø50 mm, whose largest "
+                                            r"clearance is 0.05 mm"):
+        _read([_row(characteristic="fit", grade="H7/g6", zone_mm="0.04", length_mm="50", parameters="cr1x cr1y")],
+              clearance_model)
+
+
+def test_direction_is_the_tilt_axis_of_the_parameter(job, drawing_csv):
+    model = job.problem.model
+    with pytest.raises(TolallocError, match=r"direction 'q' does not match e1x, a tilt about the base x axis; "
+                                            r"expected direction 'x'"):
+        _read([_row(**{**PERP, "direction": "q"})], model)
+    with pytest.raises(TolallocError, match=r"direction 'y' does not match e1x"):
+        _read([_row(**{**PERP, "direction": "y"})], model)
+    with pytest.raises(TolallocError, match=r"direction 'x' given for a perpendicularity diameter zone"):
+        _read([_row(**{**PERP, "diameter_zone": "true", "parameters": "e1x e1y"})], model)
+    # 11: the exported direction is the base axis the parameter's tilt is about, as the docstring says
+    for c in read_drawing(drawing_csv, model).callouts:
+        if c.direction:
+            twist = model.params[model.index(c.parameters[0])].twist[:3]
+            assert c.direction == "xyz"[int(np.argmax(np.abs(twist)))]
+    assert "tilt is about" in Callout.__doc__ and "width is measured along" not in Callout.__doc__
+
+
+# --- 10: wrong-type inputs ----------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: tolerance_class("H7", "40"), r"H7 size_mm: expected a nominal size 0 < D <= 500 mm .*got '40' \(str\)"),
+    (lambda: tolerance_class("H7", None), r"H7 size_mm: expected .*got None \(NoneType\)"),
+    (lambda: HandoverSettings(default_span_mm="80"), r"default_span_mm: expected a length > 0 .*got '80' \(str\)"),
+    (lambda: HandoverSettings(default_seat_diameter_mm=600), r"default_seat_diameter_mm: .*0 < D <= 500 mm\), got 600"),
+    (lambda: HandoverSettings(fits=("H7/x6",)), r"fits: 'H7/x6': 'x6': the fundamental deviation 'x'"),
+    (lambda: HandoverSettings(fits=("H7/k6",)), r"fits: 'H7/k6' is not a clearance fit \(transition"),
+    (lambda: HandoverSettings(fits="H7/g6"), r"fits: expected a non-empty tuple of ISO 286 fits"),
+    (lambda: snap_length(0.0, 40), r"snap_length: t_mm expected a half-width > 0 \[mm\].*got 0.0"),
+    (lambda: snap_length(-0.01, 40), r"t_mm expected .*got -0.01"),
+    (lambda: snap_length(float("nan"), 40), r"t_mm expected .*got nan"),
+    (lambda: tolalloc.review_drawing("tool_changer", 123), r"drawing: expected the path .*got 123 \(int\)"),
+])
+def test_wrong_inputs_name_the_field(call, message):
+    with pytest.raises(TolallocError, match=message):
+        call()
+
+
+@pytest.mark.parametrize("z", [0, -3, float("nan"), "3"])
+def test_feature_map_refuses_a_bad_z(z):
+    model = build_error_model(tolalloc.load_robot("tool_changer"))
+    with pytest.raises(TolallocError, match=r"feature_map: z expected a number > 0"):
+        feature_map(model, model.sigma * 3, z=z)
+
+
+# --- 12: the axial stack's nominal ------------------------------------------------------------------------------------
+
+def test_axial_stack_states_its_nominal(clearance_model):
+    fm = feature_map(clearance_model, _clearance_t(clearance_model), z=3.0, strict=False)
+    stack = [c for c in fm.callouts if "axial stack" in c.feature]
+    assert stack
+    for c in stack:
+        # 2 t = 0.06 mm at 100 mm (ISO 286-1, 80-120 mm: IT8 = 54 um, IT9 = 87 um): IT8, at the span taken as nominal
+        assert c.length_mm == 100.0 and c.grade == "IT8" and c.zone_mm == pytest.approx(0.06)
+        assert "nominal length = seat span 100 mm, assumed" in c.feature
+    assert any("nominal length taken as the seat span" in u for u in fm.defaults_used)
