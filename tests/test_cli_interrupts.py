@@ -280,3 +280,30 @@ def test_signals_deferred_holds_a_signal_another_thread_receives(python_sigint):
             seen.append("block finished")
     assert seen == ["block finished"]  # delivered after the block, not inside it
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_an_interrupt_inside_a_native_callback_prints_nothing(monkeypatch):
+    """The handler's exception raised inside a ctypes callback (numba's object cache notifying llvmlite while a
+    kernel compiles) cannot propagate; Python would hand it to ``sys.unraisablehook``, which prints "Exception
+    ignored ..." with a traceback. Inside the command line's handlers it is dropped (the interrupt stays recorded for
+    the next checkpoint); other unraisable errors still reach the hook, and after the block the hook is back."""
+    import ctypes
+
+    from tolalloc.cli import _interrupt_handlers
+    from tolalloc.exceptions import Interrupted
+
+    seen = []
+    monkeypatch.setattr(sys, "unraisablehook", lambda u: seen.append(type(u.exc_value).__name__))
+
+    def interrupted():
+        raise Interrupted(signal.SIGTERM)
+
+    def broken():
+        raise ValueError("a real error")
+
+    hook = sys.unraisablehook
+    with _interrupt_handlers():
+        ctypes.CFUNCTYPE(None)(interrupted)()
+        ctypes.CFUNCTYPE(None)(broken)()
+    assert seen == ["ValueError"]
+    assert sys.unraisablehook is hook

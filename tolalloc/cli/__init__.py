@@ -101,6 +101,19 @@ def _on_signal(signum, frame):
     raise Interrupted(signum)
 
 
+def _quiet_unraisable(previous):
+    """An ``sys.unraisablehook`` that drops the :class:`Interrupted` our handler raised where Python cannot propagate
+    it -- inside a ctypes callback (numba's object cache notifying llvmlite, say), where Python would print
+    "Exception ignored ..." and a traceback; the interrupt is recorded and re-raised at the next checkpoint. Anything
+    else goes to ``previous``."""
+    def hook(unraisable):
+        if isinstance(unraisable.exc_value, Interrupted):
+            return
+        previous(unraisable)
+
+    return hook
+
+
 def _not_after_an_interrupt(record) -> bool:
     """Logging filter: drop what a library logs about the exception our interrupt raised inside it (cvxpy logs
     ``Encountered unexpected exception importing solver ...: ImportError('initialization failed')``)."""
@@ -121,11 +134,13 @@ def _interrupt_handlers():
     solver_log = logging.getLogger("__cvxpy__")
     solver_log.addFilter(_not_after_an_interrupt)
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
+    hook, sys.unraisablehook = sys.unraisablehook, _quiet_unraisable(sys.unraisablehook)
     try:
         yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
+        sys.unraisablehook = hook
         solver_log.removeFilter(_not_after_an_interrupt)
         clear_interrupt()
 
