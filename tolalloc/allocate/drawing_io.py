@@ -236,8 +236,10 @@ def _check_row(c: Callout, params, model, where: str) -> None:
         raise TolallocError(f"{where}: column direction {c.direction!r} given for a {c.characteristic} "
                             f"{'diameter ' if c.diameter else ''}zone; only a zone per direction of an orientation "
                             "tolerance names one (leave it empty).")
+    # the export writes the tilt's letter (e2z -> z: the base axis its twist was built from), which is also the
+    # largest component of the twist's rotation except near a tie
     twist = np.asarray(model.params[model.index(params[0])].twist[:3], float)
-    axis = "xyz"[int(np.argmax(np.abs(twist)))]
+    axis = params[0][-1] if params[0][-1] in "xyz" else "xyz"[int(np.argmax(np.abs(twist)))]
     if c.direction != axis:
         raise TolallocError(f"{where}: column direction {c.direction!r} does not match {params[0]}, a tilt about "
                             f"the base {axis} axis; expected direction {axis!r} (valid directions: x, y, z, that "
