@@ -236,3 +236,36 @@ def test_axial_stack_states_its_nominal(clearance_model):
         assert c.length_mm == 100.0 and c.grade == "IT8" and c.zone_mm == pytest.approx(0.06)
         assert "nominal length = seat span 100 mm, assumed" in c.feature
     assert any("nominal length taken as the seat span" in u for u in fm.defaults_used)
+
+
+@pytest.mark.parametrize("robot, tilts, positions", [
+    ("tool_changer", {"e2z", "e5y", "e6x"}, {"dl2", "dl5"}),
+    ("ur10", {"e2z", "e5y", "e6z"}, {"dd1", "dd4", "dd5"}),
+])
+def test_a_callout_its_datum_cannot_bound_is_named_with_the_datum_it_needs(robot, tilts, positions):
+    """A zone to a datum axis (two planes perpendicular to it) bounds only the tilt that changes the angle to that
+    axis; a position measured from a datum axis locates nothing along it. The tilts flagged are exactly those whose
+    small rotation leaves the angle to the datum axis unchanged (checked here by rotating the axis), the positions
+    exactly those whose link runs along its datum axis; each is listed in the assumptions as DATUM NEEDED."""
+    from tolalloc.robot.lie import exp_so3
+
+    res = tolalloc.allocate_tolerances(robot, region="nominal", verification=False, progress=False)
+    model, h = res.problem.model, res.handover()
+    names = [jt.name for jt in model.robot.joints]
+    gaps = h.features.datum_gaps
+    flagged = {c.parameters[0] for c in h.callouts if any(g.startswith(c.feature + " (") for g in gaps)}
+    for c in h.callouts:
+        if c.characteristic not in ("perpendicularity", "angularity") or not c.direction:
+            continue
+        p = model.params[model.index(c.parameters[0])]
+        j = names.index(p.element)
+        if j == 0:
+            continue
+        d, a = (np.asarray(model.robot.joints[i].axis, float) for i in (j - 1, j))
+        w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
+        eps = 1e-4
+        rate = abs(np.arccos(np.clip(d @ (exp_so3(eps * w) @ a), -1, 1)) - np.arccos(np.clip(d @ a, -1, 1))) / eps
+        assert (rate < 1e-3) == (p.name in flagged), (p.name, rate)
+    assert flagged == tilts | positions
+    assert sum(a.startswith("DATUM NEEDED") for a in h.assumptions) == len(tilts) + len(positions)
+    assert all("secondary datum" in g or "datum plane" in g for g in gaps)

@@ -15,7 +15,9 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     The two tilts with equal half-widths share one *diameter* zone bounding the tilt magnitude; it is placed at the
     two-dimensional coverage of the tolerance (for normal components the magnitude is Rayleigh distributed:
     ``Ø t_zone = L sigma sqrt(-2 ln(1 - p_c))`` with ``p_c = P(|N| < z)``, not ``z`` per component). Unequal
-    tilts get a zone in each direction.
+    tilts get a zone in each direction. To a datum *axis* at an angle a zone (two planes perpendicular to it) bounds
+    only the tilt that changes the angle to it: each tilt gets its own zone, and a tilt about the datum axis' own
+    direction is listed in :attr:`FeatureMap.datum_gaps` (it needs a secondary datum, :func:`datum_gaps`).
 ``clearance_tilt``
     The *coaxiality* ``◎`` of the joint's second bearing seat to the first over the span. A coaxiality zone is a
     cylinder centred on the datum axis, so a tilt of magnitude ``a`` (the second seat's radial offset ``L a``)
@@ -52,7 +54,7 @@ from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, is_real_number
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["Callout", "HandoverSettings", "FeatureMap", "feature_map", "diameter_factor", "zone_factor", "check_z",
-           "SYMBOLS", "TILT_ZONES", "DISTRIBUTIONS"]
+           "datum_gaps", "SYMBOLS", "TILT_ZONES", "DISTRIBUTIONS"]
 
 #: ISO 1101 symbols (and the drawing's sign for a size and a fit).
 SYMBOLS = {"perpendicularity": "⊥", "parallelism": "∥", "angularity": "∠", "coaxiality": "◎", "position": "⌖",
@@ -184,6 +186,9 @@ class FeatureMap:
         The stated defaults this map relied on (for the assumptions).
     warnings : tuple of str
         Callouts looser than the design (a radial clearance finer than every candidate fit, with ``strict=False``).
+    datum_gaps : tuple of str
+        Callouts their datum cannot make bound what they stand for (:func:`datum_gaps`): a tilt about a datum axis'
+        own direction, a location along a datum axis. The drawing needs another datum there.
     """
 
     callouts: tuple
@@ -193,6 +198,7 @@ class FeatureMap:
     settings: HandoverSettings = field(default_factory=HandoverSettings)
     defaults_used: tuple = ()
     warnings: tuple = ()
+    datum_gaps: tuple = ()
 
 
 def diameter_factor(z: float, distribution: str = "normal") -> float:
@@ -318,7 +324,7 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         else:  # clearance_axial
             callouts.append(_stack_callout(model, j, ks[0], t, fr))
     return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
-                      tuple(fr.warnings))
+                      tuple(fr.warnings), datum_gaps(model, callouts, fr))
 
 
 def _stack_callout(model, j: int, k: int, t, fr: _Frame) -> Callout:
@@ -358,6 +364,7 @@ def _link_callout(robot, p, t: float, label: str, fr: _Frame) -> Callout:
 def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distribution: str) -> list:
     jt = model.robot.joints[j]
     span, src = fr.bearing_value(j, "span_mm", fr.settings.default_span_mm, "seat span")
+    plane = True
     if kind == "clearance_tilt":
         feature, char, datum = f"{jt.name} second bearing seat", "coaxiality", fr.datum[jt.name]
     else:
@@ -367,6 +374,8 @@ def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distri
     tk = t[list(ks)]
     mode = fr.settings.tilt_zone
     equal = len(ks) == 2 and abs(tk[0] - tk[1]) <= 1e-9 * max(tk)
+    if kind == "axis_deflection" and not plane and char != "parallelism" and mode == "auto":
+        equal = False  # to a datum axis a zone bounds one direction of tilt: a Ø zone is no ISO 1101 zone there
     if char == "coaxiality" or (len(ks) == 2 and (mode == "diameter" or (mode == "auto" and equal))):
         f = zone_factor(char, True, span, z, distribution)
         return [Callout(feature, char, f * float(tk.min()), True, "", datum, span, "", names, f, src)]
@@ -399,3 +408,43 @@ def _fit_callout(model, j: int, ks, t, fr: _Frame, z: float) -> Callout:
     fit = ok[-1]
     return Callout(f"{jt.name} bearing seats Ø{d:g} mm", "fit", fit.clearance_max_um / 1000.0, False, "",
                    fr.datum[jt.name], d, fit.name, names, 2.0 * sqrt(2.0), src)
+
+
+def datum_gaps(model, callouts, fr: _Frame) -> tuple:
+    """The callouts whose datum cannot bound what they stand for, one sentence each.
+
+    * An orientation zone to a datum *axis* (two planes perpendicular to it, ISO 1101) bounds the tilt that changes
+      the angle between the feature's axis ``a`` and the datum's ``d``: the component about ``n = d x a``. A tilt
+      about another direction (about ``d`` itself where ``a`` is perpendicular to it) leaves the angle unchanged: the
+      zone needs a secondary datum that fixes the rotation about ``d`` (the angular locating feature of the datum
+      joint's output, a pin or a key).
+    * A position zone measured from a datum axis locates the feature across that axis only: a link that runs along
+      the datum axis needs a datum plane across it (the datum joint's seat shoulder face).
+    """
+    robot, out = model.robot, []
+    names = [jt.name for jt in robot.joints]
+    for c in callouts:
+        if c.characteristic in ("perpendicularity", "angularity") and c.direction:
+            p = model.params[model.index(c.parameters[0])]
+            j = names.index(p.element)
+            if j == 0:
+                continue
+            d, a = np.asarray(robot.joints[j - 1].axis, float), np.asarray(robot.joints[j].axis, float)
+            n = np.cross(d, a) / np.linalg.norm(np.cross(d, a))
+            w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
+            share = abs(float(w @ n))
+            if share < 1.0 - 1e-6:
+                part = "none of this one" if share < 1e-6 else f"{share:.0%} of this one"
+                out.append(f"{c.feature} ({c.symbol} | {c.datum}): a zone to datum axis {c.datum} bounds only the "
+                           f"tilt that changes the angle to it, {part}; the rest turns the axis about "
+                           f"{c.datum}'s direction -- add a secondary datum that fixes that rotation (the angular "
+                           f"locating feature, pin or key, of {names[j - 1]}'s output) to the callout")
+        elif c.characteristic == "position":
+            li = [lk.name for lk in robot.links].index(model.params[model.index(c.parameters[0])].element)
+            link, site = robot.links[li], int(robot.link_sites[li])
+            letter, ddir, is_plane = fr.previous(site)
+            if not is_plane and _angle(link.direction, ddir) < 45.0:
+                out.append(f"{c.feature} (⌖ | {c.datum}): {link.name} runs along datum axis {c.datum}, which locates "
+                           f"nothing along itself -- the {link.length_mm:g} mm need a datum plane across that axis "
+                           f"(the seat shoulder face of {names[site - 1]}) in the callout's datum system")
+    return tuple(out)

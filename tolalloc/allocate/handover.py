@@ -245,6 +245,7 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
     out.append("Processes: " + PROCESS_TABLE_SOURCE + ".")
     out += [f"{u[0].upper()}{u[1:]}." for u in fm.defaults_used]
     out += [f"LOOSER THAN THE DESIGN: {w}." for w in fm.warnings]
+    out += [f"DATUM NEEDED: {w}." for w in fm.datum_gaps]
     if unheld:
         out.append("Some callouts are finer than any process of the table holds: their process names the finest "
                    "one (see the drawing table).")
