@@ -269,3 +269,16 @@ def test_a_callout_its_datum_cannot_bound_is_named_with_the_datum_it_needs(robot
     assert flagged == tilts | positions
     assert sum(a.startswith("DATUM NEEDED") for a in h.assumptions) == len(tilts) + len(positions)
     assert all("secondary datum" in g or "datum plane" in g for g in gaps)
+
+
+def test_the_review_of_a_drawing_names_the_callouts_its_verdict_leans_on(job, drawing_csv):
+    """The review's P takes every row as bounding its parameter; the tool changer's own drawing has five rows whose
+    datum cannot (the tilts e2z, e5y, e6x and the positions of l2, l5): the review lists them under its verdict, in
+    its text and its summary, with the datum each needs (j4 is the slide: its carriage, not a bearing seat)."""
+    rv = tolalloc.review_drawing("tool_changer", drawing=drawing_csv, region="nominal")
+    gaps = rv.summary()["datum_gaps"]
+    assert len(gaps) == 5 and sum(line.startswith("DATUM NEEDED: ") for line in rv.text().splitlines()) == 5
+    assert "the verdict holds only once each has the datum it needs" in rv.text()
+    assert any("j5 bearing-seat axis, tilt about y" in g and "anti-rotation guide of j4's carriage" in g for g in gaps)
+    assert any("j5 axis, 240 mm" in g and "a face of j4's carriage" in g for g in gaps)
+    assert any("j2 bearing-seat axis, tilt about z" in g and "pin or key, of j1's output" in g for g in gaps)

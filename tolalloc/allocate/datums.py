@@ -91,16 +91,20 @@ def datum_gaps(model, callouts, fr: _Frame) -> tuple:
             share = abs(float(w @ n))
             if share < 1.0 - 1e-6:
                 part = "none of this one" if share < 1e-6 else f"{share:.0%} of this one"
+                fix = (f"the angular locating feature, pin or key, of {names[j - 1]}'s output"
+                       if robot.joints[j - 1].is_revolute else f"the anti-rotation guide of {names[j - 1]}'s carriage")
                 out.append(f"{c.feature} ({c.symbol} | {c.datum}): a zone to datum axis {c.datum} bounds only the "
                            f"tilt that changes the angle to it, {part}; the rest turns the axis about "
-                           f"{c.datum}'s direction -- add a secondary datum that fixes that rotation (the angular "
-                           f"locating feature, pin or key, of {names[j - 1]}'s output) to the callout")
+                           f"{c.datum}'s direction -- add a secondary datum that fixes that rotation ({fix}) to the "
+                           "callout")
         elif c.characteristic == "position":
             li = [lk.name for lk in robot.links].index(model.params[model.index(c.parameters[0])].element)
             link, site = robot.links[li], int(robot.link_sites[li])
             letter, ddir, is_plane = fr.previous(site)
             if not is_plane and _angle(link.direction, ddir) < 45.0:
+                face = (f"the seat shoulder face of {names[site - 1]}" if robot.joints[site - 1].is_revolute
+                        else f"a face of {names[site - 1]}'s carriage across its stroke")
                 out.append(f"{c.feature} (⌖ | {c.datum}): {link.name} runs along datum axis {c.datum}, which locates "
                            f"nothing along itself -- the {link.length_mm:g} mm need a datum plane across that axis "
-                           f"(the seat shoulder face of {names[site - 1]}) in the callout's datum system")
+                           f"({face}) in the callout's datum system")
     return tuple(out)

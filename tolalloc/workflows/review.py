@@ -119,7 +119,16 @@ class DrawingReview(JobResult):
                 f"z = {self.inputs.get('z', 3.0):.4g} ({self.inputs.get('distribution', 'normal')}, "
                 f"{self.inputs.get('z_source', 'given')})",
                 f"worst pose {a.worst + 1} (q = {q} deg / mm): P = {a.p_worst:.6f}"
-                + (f", {a.shortfall:.2g} short" if a.shortfall > 0 else "") + f" (the drawing {a.verdict()})"]
+                + (f", {a.shortfall:.2g} short" if a.shortfall > 0 else "") + f" (the drawing {a.verdict()})"
+                ] + self._gap_lines()
+
+    def _gap_lines(self) -> list[str]:
+        """The callouts whose datum cannot bound their parameter: P above takes them as bounding it."""
+        gaps = self.analysis.features.datum_gaps
+        if not gaps:
+            return []
+        return ([f"P takes every callout as bounding its parameter; {len(gaps)} cannot as drawn, and the verdict "
+                 "holds only once each has the datum it needs:"] + [f"DATUM NEEDED: {g}" for g in gaps])
 
     def to_frame(self) -> pd.DataFrame:
         """Each feature's share of the position-error variance at the worst pose."""
@@ -134,7 +143,8 @@ class DrawingReview(JobResult):
         from tolalloc.outputs import json_native
 
         a = self.analysis
-        return json_native({"inputs": self.inputs, "ok": a.ok, "worst_pose": a.worst + 1, "p_worst": a.p_worst,
+        return json_native({"inputs": self.inputs, "ok": a.ok, "datum_gaps": list(a.features.datum_gaps),
+                            "worst_pose": a.worst + 1, "p_worst": a.p_worst,
                             "q_worst_deg_mm": self.robot.q_to_interface(a.q[a.worst]).tolist(),
                             "p_linear": a.p.tolist(), "features": self.to_frame().to_dict("records")})
 
