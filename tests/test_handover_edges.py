@@ -225,6 +225,17 @@ def test_feature_map_refuses_a_bad_z(z):
         feature_map(model, model.sigma * 3, z=z)
 
 
+def test_feature_map_names_the_half_width_that_is_not_positive():
+    model = build_error_model(tolalloc.load_robot("tool_changer"))
+    t = model.sigma * 3
+    t[model.index("e2z")], t[model.index("dl3")] = 0.0, np.nan
+    with pytest.raises(TolallocError, match=r"the half-width of dl3 is nan \[mm\]; every half-width must be a number "
+                                            r"> 0 \(2 are not\)"):
+        feature_map(model, t, z=3.0)
+    with pytest.raises(TolallocError, match=r"one per parameter of the model, got shape \(3,\)"):
+        feature_map(model, t[:3], z=3.0)
+
+
 # --- 12: the axial stack's nominal ------------------------------------------------------------------------------------
 
 def test_axial_stack_states_its_nominal(clearance_model):

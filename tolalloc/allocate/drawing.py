@@ -246,9 +246,14 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
     z = check_z(z, distribution, "feature_map")
     settings = settings or HandoverSettings()
     t = np.asarray(t, float)
-    if t.shape != (len(model.params),) or not np.all(np.isfinite(t)) or np.any(t <= 0):
-        raise TolallocError(f"feature_map: expected {len(model.params)} half-widths > 0 [mm or rad], got shape "
-                            f"{t.shape}.")
+    if t.shape != (len(model.params),):
+        raise TolallocError(f"feature_map: expected {len(model.params)} half-widths > 0 [mm or rad], one per "
+                            f"parameter of the model, got shape {t.shape}.")
+    bad = np.flatnonzero(~(np.isfinite(t) & (t > 0)))
+    if bad.size:
+        k = int(bad[0])
+        raise TolallocError(f"feature_map: the half-width of {model.params[k].name} is {float(t[k])!r} "
+                            f"[{model.params[k].unit}]; every half-width must be a number > 0 ({bad.size} are not).")
     labels = list(labels) or [""] * len(t)
     fr = _Frame(model.robot, settings)
     fr.strict, fr.warnings = strict, []
