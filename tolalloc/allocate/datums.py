@@ -60,13 +60,19 @@ class _Frame:
 
     def previous(self, j: int):
         """``(datum letter, direction, is_plane)`` of the feature joint ``j``'s seats are located from."""
-        if j == 0:
-            return self.base_datum, np.array([0.0, 0.0, 1.0]), True
-        prev = self.robot.joints[j - 1]
-        return self.datum[prev.name], np.asarray(prev.axis, float), False
+        letter = self.base_datum if j == 0 else self.datum[self.robot.joints[j - 1].name]
+        return (letter, *_datum_feature(self.robot, j))
 
 
-def datum_gaps(model, callouts, fr: _Frame) -> tuple:
+def _datum_feature(robot, j: int) -> tuple:
+    """``(direction, is_plane)`` of the feature joint ``j``'s seats are located from: the base mounting face (normal
+    base z) for the first joint, else the axis of the joint before."""
+    if j == 0:
+        return np.array([0.0, 0.0, 1.0]), True
+    return np.asarray(robot.joints[j - 1].axis, float), False
+
+
+def datum_gaps(model, callouts) -> tuple:
     """The callouts whose datum cannot bound what they stand for, one sentence each.
 
     * An orientation zone to a datum *axis* (two planes perpendicular to it, ISO 1101) bounds the tilt that changes
@@ -83,9 +89,10 @@ def datum_gaps(model, callouts, fr: _Frame) -> tuple:
         if c.characteristic in ("perpendicularity", "angularity") and c.direction:
             p = model.params[model.index(c.parameters[0])]
             j = names.index(p.element)
-            if j == 0:
+            d, is_plane = _datum_feature(robot, j)
+            if is_plane:
                 continue
-            d, a = np.asarray(robot.joints[j - 1].axis, float), np.asarray(robot.joints[j].axis, float)
+            a = np.asarray(robot.joints[j].axis, float)
             n = np.cross(d, a) / np.linalg.norm(np.cross(d, a))
             w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
             share = abs(float(w @ n))
@@ -100,7 +107,7 @@ def datum_gaps(model, callouts, fr: _Frame) -> tuple:
         elif c.characteristic == "position":
             li = [lk.name for lk in robot.links].index(model.params[model.index(c.parameters[0])].element)
             link, site = robot.links[li], int(robot.link_sites[li])
-            letter, ddir, is_plane = fr.previous(site)
+            ddir, is_plane = _datum_feature(robot, site)
             if not is_plane and _angle(link.direction, ddir) < 45.0:
                 face = (f"the seat shoulder face of {names[site - 1]}" if robot.joints[site - 1].is_revolute
                         else f"a face of {names[site - 1]}'s carriage across its stroke")

@@ -275,7 +275,7 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         else:  # clearance_axial
             callouts.append(_stack_callout(model, j, ks[0], t, fr))
     return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
-                      tuple(fr.warnings), datum_gaps(model, callouts, fr))
+                      tuple(fr.warnings), datum_gaps(model, callouts))
 
 
 def _stack_callout(model, j: int, k: int, t, fr: _Frame) -> Callout:

@@ -45,8 +45,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.datums import _Frame, datum_gaps
-from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, HandoverSettings, check_z, zone_factor
+from tolalloc.allocate.datums import datum_gaps
+from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, check_z, zone_factor
 from tolalloc.allocate.purchase import PurchasedPart
 from tolalloc.allocate.fits import parse_fit
 from tolalloc.allocate.process_table import require_process
@@ -212,8 +212,7 @@ def read_drawing(source, model, *, z: float | None = None, distribution: str | N
         else:
             callouts.append(_callout(row, char, params, feature, where, z, distribution, check_processes))
             _check_row(callouts[-1], params, model, where)
-    gaps = datum_gaps(model, callouts, _Frame(model.robot, HandoverSettings()))
-    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, datum_gaps=gaps)
+    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, datum_gaps=datum_gaps(model, callouts))
 
 
 def _check_bounds(char: str, params, model, where: str) -> None:
