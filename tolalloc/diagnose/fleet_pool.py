@@ -127,6 +127,15 @@ def _q_stat(y: np.ndarray, v: np.ndarray, t2: float) -> float:
     return float(np.sum(w * (y - mu) ** 2))
 
 
+def _pooled(y: np.ndarray, v: np.ndarray) -> tuple:
+    """``(mu, tau^2, w, v)``: the REML spread, the inverse-variance weights ``1 / (v + tau^2)`` and the weighted mean
+    of estimates ``y`` with sampling variances ``v`` (floored at a tiny fraction of their scale)."""
+    v = np.maximum(v, 1e-30 * max(np.max(v), np.var(y), 1e-300))
+    t2 = _reml_tau2(y, v)
+    w = 1.0 / (v + t2)
+    return float(np.sum(w * y) / np.sum(w)), t2, w, v
+
+
 def random_effects(y, v, level: float = LEVEL) -> dict:
     """The normal-normal hierarchical model of one parameter (module docstring).
 
@@ -146,10 +155,7 @@ def random_effects(y, v, level: float = LEVEL) -> dict:
     N = len(y)
     if N < 2:
         raise TolallocError(f"random_effects: expected estimates of at least two robots, got {N}.")
-    v = np.maximum(v, 1e-30 * max(np.max(v), np.var(y), 1e-300))
-    t2 = _reml_tau2(y, v)
-    w = 1.0 / (v + t2)
-    mu = float(np.sum(w * y) / np.sum(w))
+    mu, t2, w, v = _pooled(y, v)
     q_hk = max(_q_stat(y, v, t2) / (N - 1), 1.0)
     half = float(student_t.ppf(0.5 + level / 2, N - 1) * np.sqrt(q_hk / np.sum(w)))
     a = 1.0 - level
@@ -207,8 +213,8 @@ class FleetPool:
 def fleet_outliers(Y: np.ndarray, V: np.ndarray, names, robots, alpha: float = OUTLIER_ALPHA) -> pd.DataFrame:
     """Robots far outside the others, per parameter (leave one out; at least three robots).
 
-    For robot ``r`` and parameter ``k`` the others' random-effects mean ``mu`` and spread ``tau``
-    (:func:`random_effects`) predict a new robot as ``mu +- t_(N-2) sqrt(tau^2 + 1/sum w + v_r)``; the robot is
+    For robot ``r`` and parameter ``k`` the others' random-effects mean ``mu`` and spread ``tau`` (the estimates of
+    :func:`random_effects`, without its intervals) predict a new robot as ``mu +- t_(N-2) sqrt(tau^2 + 1/sum w + v_r)``; the robot is
     flagged where ``|z| = |y - mu| / sqrt(...)`` exceeds the two-sided ``t_(N-2)`` quantile at ``alpha / (N p)``
     (Bonferroni over robots and parameters). Returns a frame (``robot``, ``parameter``, ``value``, ``others_mean``,
     ``others_spread``, ``z``), empty when none is flagged or fewer than three robots are pooled. The level holds
@@ -223,12 +229,10 @@ def fleet_outliers(Y: np.ndarray, V: np.ndarray, names, robots, alpha: float = O
     for k in range(p):
         for r in range(N):
             rest = np.arange(N) != r
-            re = random_effects(Y[rest, k], V[rest, k])
-            v = np.maximum(V[rest, k], 1e-30 * max(np.max(V[rest, k]), 1e-300))
-            se2 = 1.0 / np.sum(1.0 / (v + re["spread"] ** 2))
-            z = (Y[r, k] - re["mean"]) / np.sqrt(re["spread"] ** 2 + se2 + V[r, k] + 1e-300)
+            mu, t2, w, _ = _pooled(Y[rest, k], np.maximum(V[rest, k], 0.0))
+            z = (Y[r, k] - mu) / np.sqrt(t2 + 1.0 / np.sum(w) + V[r, k] + 1e-300)
             if abs(z) > limit:
-                rows.append(dict(zip(cols, (robots[r], names[k], float(Y[r, k]), re["mean"], re["spread"], float(z)))))
+                rows.append(dict(zip(cols, (robots[r], names[k], float(Y[r, k]), mu, float(np.sqrt(t2)), float(z)))))
     return pd.DataFrame(rows, columns=cols)
 
 
