@@ -216,13 +216,14 @@ def test_a_damaged_model_file_is_refused_naming_what_is_wrong(backlash, tmp_path
         return {**data, "identified": {k: v for k, v in {**sec, **changes}.items() if v is not None}}
 
     refused(altered(registration_translation_mm=None), "has no registration_translation_mm; the file is incomplete")
-    refused(altered(target_offset_mm=[0.0, 1.0, 2.0, 3.0]), r"target_offset_mm must be finite numbers of shape \(3,\)")
+    refused(altered(target_offset_mm=[0.0, 1.0, 2.0, 3.0]),
+            r"target_offset_mm: expected an array of shape \(3\), got shape \(4,\)")
     refused(altered(registration_rotation=[[5.0, 0, 0], [0, 1, 0], [0, 0, 1]]), "is not a rotation")
     geo = [dict(g) for g in sec["geometry"]]
     geo[0]["value"] = "abc"
-    refused(altered(geometry=geo), r"geometry\[0\].value is 'abc'; expected a finite number")
+    refused(altered(geometry=geo), r"geometry\[0\].value: expected numbers, got 'abc'")
     geo[0]["value"], geo[0]["unit"] = float("nan"), geo[0]["unit"]
-    refused(altered(geometry=geo), r"geometry\[0\].value is nan")
+    refused(altered(geometry=geo), r"geometry\[0\].value: expected finite numbers, got nan")
     geo = [dict(g) for g in sec["geometry"]]
     geo[0]["unit"] = "deg" if geo[0]["unit"] == "rad" else "um"
     refused(altered(geometry=geo), r"geometry\[0\] .* is in '(deg|um)'; the parameter's unit is")

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from tolalloc.exceptions import TolallocError
+from tolalloc.exceptions import TolallocError, check_finite_array
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import Fit
@@ -236,28 +236,15 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
 
 def _number(value, key: str) -> float:
     """``value`` as a finite float, or a TolallocError naming ``key``."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = float("nan")
-    if not np.isfinite(v):
-        raise TolallocError(f"identified model: {key} is {value!r}; expected a finite number.")
-    return v
+    return float(check_finite_array(value, f"identified model: {key}", ()))
 
 
 def _array(section: dict, key: str, shape: tuple) -> np.ndarray:
-    """``section[key]`` as a finite array of ``shape``, or a TolallocError naming the key."""
+    """``section[key]`` as a finite array of ``shape``, or a TolallocError naming the key (also where it is absent)."""
     if key not in section:
         raise TolallocError(f"identified model: the [identified] section has no {key}; the file is incomplete "
                             "(cut short?) -- export the model again.")
-    try:
-        a = np.asarray(section[key], dtype=float)
-    except (TypeError, ValueError):
-        a = np.full(1, np.nan)
-    if a.shape != shape or not np.all(np.isfinite(a)):
-        raise TolallocError(f"identified model: {key} must be finite numbers of shape {shape}, got "
-                            f"{section[key]!r}.")
-    return a
+    return check_finite_array(section[key], f"identified model: {key}", shape)
 
 
 def check_section(section: dict, robot: Robot) -> None:
