@@ -34,8 +34,8 @@ from tolalloc.allocate.problem import AllocationProblem, build_problem
 from tolalloc.allocate.region_coverage import Coverage, _position_cov, _rotation_cov, coverage
 from tolalloc.linear.probability import p_within_angle, p_within_radius
 
-__all__ = ["REGION_TOL", "Region", "box_region", "pose_probability", "pose_angle_probability", "static_joints", "worst_pose",
-           "WorstPoses", "search_region", "region_static", "allocate_region", "RegionAllocation", "Coverage", "coverage"]
+__all__ = ["REGION_TOL", "Region", "box_region", "pose_probability", "pose_angle_probability", "static_joints",
+           "worst_pose", "WorstPoses", "search_region", "region_static", "allocate_region", "RegionAllocation", "Coverage", "coverage"]
 
 
 @dataclass(frozen=True)

@@ -188,7 +188,8 @@ def motor_side(robot: Robot, j: int) -> bool:
 class PartsModel:
     """An error model with the parameters the effects move: every joint drive, every link length and, for joints whose
     bearing's runout is budgeted (:func:`~tolalloc.physics.bearings.budgets_runout`), four body displacements after
-    the joint (``br<j><a|b>`` translations [mm], ``bw<j><a|b>`` tilts [rad]). ``drive`` (n,), ``link`` (L,) and ``bearing`` {joint: (4,)} index the parameters."""
+    the joint (``br<j><a|b>`` translations [mm], ``bw<j><a|b>`` tilts [rad]). ``drive`` (n,), ``link`` (L,) and
+    ``bearing`` {joint: (4,)} index the parameters."""
 
     model: ErrorModel
     drive: np.ndarray
