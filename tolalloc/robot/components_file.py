@@ -47,9 +47,10 @@ def _check_across(section, vector, where: str) -> None:
     e = np.asarray(vector, float) / np.linalg.norm(vector)
     off = np.degrees(np.arcsin(min(1.0, abs(float(np.dot(e, section.height_direction))))))
     if off > 10.0:
+        vec = [round(float(v), 6) for v in vector]
         raise ValueError(f"{where}.height_direction: {list(section.height_direction)} is {off:.1f} deg off the plane "
-                         f"across the link (its vector {list(np.asarray(vector, float))} mm at the home pose); give "
-                         "the direction of the box's height across the link, at the home pose, in the base frame")
+                         f"across the link (its vector {vec} mm at the home pose); give the direction of the box's "
+                         "height across the link, at the home pose, in the base frame")
 
 
 def parse_components(data: dict | None, joint_kinds: dict, link_names, where: str = "components",
