@@ -3762,3 +3762,181 @@ def test_set_y_every_kind_lies_in_its_true_structure_and_known_answers():
     hd = np.array([np.cos(xp["psi"]), np.sin(xp["psi"]), 0.0])
     assert not xf[:, b == 0].any() and np.abs(xf[0][:, :2]).max() == 0.0
     assert np.abs(xf[1] @ np.cross(hd, [0, 0, 1.0])).max() < 1e-9
+
+
+# ---------------------------------------------------------------------------------------------------------- set Z
+def test_set_z_cases_kinds_and_determinism():
+    """Set Z: 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark and registered in the
+    generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a quarter split by time; a
+    case regenerates bit-identically from its seed; the session hook leaves cases without a set-Z kind alone (no random
+    numbers drawn) and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; the
+    drifting hall, the pauses, the production and a new part for each block."""
+    from sim2real_indep import effects_z as ez
+
+    _assert_set_module("Z", 40_7026, ez, ("gear", "cabinet_exhaust"))
+    for name in ("effects_z", "effects_z_joint", "effects_z_body", "effects_z_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+    assert "sim2real_indep.effects_z" in _imports(STUDY / "generator.py")
+    assert ez.AFTER_TRACKER == {"tripod_windup"} and "tripod_windup" in gen.AFTER_TRACKER
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ez.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                   {"blocks": 1, "gap_kind": "none"})
+        for kind, ((lo, hi), pause, (d_lo, d_hi)) in ez.AIR.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+            assert d_lo <= abs(b["air"]["drift_K"]) <= d_hi
+        for kind, ((lo, hi), pause) in ez.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, (lo, hi) in ez.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        for kind, kg in ez.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("water_slug", "balancer_seal", "tripod_windup", "band_spiral", "oil_canning", "bowstring"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ez.probe_hook(("gear",), probe) is probe
+    assert ez.probe_hook(("water_slug",), probe) == pytest.approx(probe + [350.0, 0, 0])
+    assert ez.probe_hook(("stress_relief",), probe) == pytest.approx(probe + [300.0, 0, 0])
+    _assert_regenerates("Z", max_effect_poses=50)
+
+
+def test_set_z_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-Z kind's displacement is its true-structure features times its true amplitudes (what the oracle fits),
+    to rounding, and a real effect on every arm (the band drive only where the arm has its telescopic stage); and known
+    answers: the water at the boom's lower end, the balancer's dead centre at the upright arm, its gas law and its
+    opposing gravity, the seal holding axis 2 back against its last motion, the tracker turned about its vertical by
+    its last slew, the spiral band's error vanishing at both stroke ends, the encoder's largest misreading, the
+    isolators' compliance at 20 degC, the plate's play operator, the harness' tension, the frame's relaxation across
+    its arm from the first production on, the plate's curl decaying and the duct's bow from the two sides' lags."""
+    from sim2real_indep import effects_z_body as zb
+    from sim2real_indep import effects_z_joint as zj
+    from sim2real_indep import effects_z_thermal as zt
+    from sim2real_indep.effects_body import mount_moment
+    from sim2real_indep.effects_s_joint import compliance
+    from sim2real_indep.effects_u_joint import block_index
+    from sim2real_indep.effects_y_thermal import STEEL_CTE, upper_arm
+
+    every = ("water_slug", "balancer_gas", "balancer_seal", "tripod_windup", "band_spiral", "head_tilt",
+             "warm_isolators", "oil_canning", "bowstring", "stress_relief", "floor_heating", "duct_lag")
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 26)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            if kind == "band_spiral" and robot != "tool_changer":             # no telescopic stage: inert
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0 and not p["active"]
+                continue
+            amp = {"water_slug": lambda: [p["kg"]], "balancer_gas": lambda: [p["F20_N"]],
+                   "balancer_seal": lambda: [p["Fs_N"]], "tripod_windup": lambda: [p["w_rad"]],
+                   "band_spiral": lambda: [p["k"]], "head_tilt": lambda: [p["amp"]],
+                   "warm_isolators": lambda: [p["c20"], p["c20"] * p["beta"]], "oil_canning": lambda: [p["turn"]],
+                   "bowstring": lambda: [p["kappa"]], "stress_relief": lambda: p["amp"],
+                   "floor_heating": lambda: [p["turn"]], "duct_lag": lambda: p["amp"]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    C = compliance(hw)
+    # water slug: at the root end of the boom when its tip points up, at the tip when it points down
+    wp = P["water_slug"]
+    pf, Rt = kin.flange(ctx.chain, ctx.q)
+    x = Rt[:, :, 0]
+    along = np.einsum("pi,pi->p", zj.slug_position(wp, ctx) - pf, x)
+    up, down = x[:, 2] > zj.RAMP, x[:, 2] < -zj.RAMP
+    assert up.any() and down.any()
+    assert along[up] == pytest.approx(np.full(up.sum(), zj.BOOM_MM * wp["puddle"] / 2))
+    assert along[down] == pytest.approx(np.full(down.sum(), zj.BOOM_MM * (1 - wp["puddle"] / 2)))
+    # balancer: no moment arm at the upright arm; it opposes gravity and carries share of the largest load at 20 degC
+    gp = P["balancer_gas"]
+    arm, _ = zj.balancer_arm(gp, ctx)
+    psi = zj.upright_angle(ctx)
+    assert np.sign(arm) == pytest.approx(np.sign(np.sin(psi)))
+    tb = zj.balancer_torque(gp, ctx)
+    assert np.dot(tb, ctx.loads[:, 1]) < 0
+    assert gp["F20_N"] * np.abs(tb).max() == pytest.approx(gp["share"] * np.abs(ctx.loads[:, 1]).max(), rel=1e-3)
+    Tg = zj.gas_temperature(gp, s)
+    assert zj.gas_signal(gp, ctx, hw) == pytest.approx(C[1] * tb * (Tg - 20.0) / 293.15)
+    assert Tg[0] == pytest.approx(s.air_c[0])
+    # balancer seal: axis 2 held back against its last motion
+    sp = P["balancer_seal"]
+    dq2 = zj.seal_apply(sp, ctx, hw).dq
+    assert not np.delete(dq2, 1, axis=1).any()
+    moved = np.abs(zj.balancer_arm(sp, ctx)[0]) > 1e-6
+    assert (np.sign(dq2[moved, 1]) == -s.direction[moved, 1]).all()
+    # tripod windup: a turn about the tracker's vertical through it, by the sign of the last azimuth slew
+    tp = P["tripod_windup"]
+    tr = hw["tracker"]
+    F = zj.windup_features(tp, ctx, hw)[0]
+    zT = tr["R"].T @ [0.0, 0.0, 1.0]
+    assert np.abs(F @ zT).max() < 1e-9
+    pt = ctx.target @ tr["R"].T + tr["t"]
+    az = np.unwrap(np.arctan2(pt[:, 1], pt[:, 0]))
+    sg = zj.slew_sign(tp, ctx, hw)
+    assert sg[0] == tp["s0"] and (sg[1:] == np.sign(np.diff(az))).all()
+    assert np.linalg.norm(F, axis=1) == pytest.approx(np.linalg.norm(pt[:, :2], axis=1))
+    # band spiral (tool_changer): k = t / (4 pi r0^2), nothing at the stroke's ends, -k S^2 / 4 at its middle
+    bc, bctx = runs["tool_changer"]
+    bp = bc.truth["params"]["band_spiral"]
+    assert bp["active"] and bp["k"] == pytest.approx(bp["t_mm"] / (4 * np.pi * bp["r0_mm"] ** 2))
+    q4 = lambda v: type(bctx)(bctx.chain, type(bctx.session)(**{**bctx.session.__dict__,  # noqa: E731
+                                                                "q": np.tile([0, 0, 0, v, 0, 0.0], (2, 1))}),
+                              bctx.masses, bctx.com, bctx.mass_link, bctx.payload_com_mm, bctx.probe_mm)
+    assert not zj.band_apply(bp, q4(0.0), bc.truth["hw"]).dq.any()
+    assert np.abs(zj.band_apply(bp, q4(500.0), bc.truth["hw"]).dq).max() < 1e-12
+    assert zj.band_apply(bp, q4(250.0), bc.truth["hw"]).dq[0, 3] == pytest.approx(-bp["k"] * 500.0 ** 2 / 4)
+    # head tilt: axis 1 alone, misread by err at the session's largest moment along the head's direction
+    hp = P["head_tilt"]
+    dq = zj.head_apply(hp, ctx, hw).dq
+    assert not dq[:, 1:].any()
+    assert np.abs(dq[:, 0]).max() == pytest.approx(hp["err_rad"], rel=1e-2)                # drawn on the true arm
+    # warm isolators: c_20 at 20 degC, softer by beta per kelvin; the largest tilt as drawn; the base turns about a
+    # horizontal axis through the isolators' plane
+    ip = P["warm_isolators"]
+    fi = zb.iso_features(ip, ctx, hw)
+    Ti = zb.iso_temperature(ip, s)
+    assert fi[1] == pytest.approx(fi[0] * (Ti - 20.0)[:, None])
+    M = mount_moment(ctx)
+    assert 0.25e-3 * 0.99 <= ip["c20"] * np.linalg.norm(M[:, :2], axis=1).max() <= 0.6e-3 * 1.01
+    rot = np.c_[M[:, :2], np.zeros(len(M))]
+    assert np.abs(np.einsum("pi,pi->p", fi[0], rot)).max() < 1e-9 * np.abs(fi[0]).max() * np.abs(rot).max()
+    # oil canning: a play operator of the moment about the plate's weak axis, about the mean moment
+    cp = P["oil_canning"]
+    st = zb.can_state(cp, ctx)
+    m = M @ zb.can_axis(cp) - cp["Mc"]
+    assert set(st) <= {-1.0, 1.0} and (st[m > cp["Ms"]] == 1).all() and (st[m < -cp["Ms"]] == -1).all()
+    inside = np.flatnonzero(np.abs(m) <= cp["Ms"])
+    prev = np.r_[cp["s0"], st[:-1]]
+    assert (st[inside] == prev[inside]).all() and cp["turn"] == pytest.approx(cp["w_mm"] / cp["b_mm"])
+    # bowstring: no tension where the harness runs straight, 1 at the far edge of the range; the elbow's design move
+    bw = P["bowstring"]
+    T = zb.bow_tension(bw, ctx)
+    assert T.min() >= 0 and T.max() == pytest.approx(1.0)
+    L = np.linalg.norm(case.truth["chain"].links[upper_arm(ctx.chain)])                     # drawn on the true arm
+    assert bw["kappa"] * L ** 2 / 2 == pytest.approx(bw["elbow_mm"])
+    # stress relief: nothing before the first production, across the frame's arm (the tool's x) only
+    rp = P["stress_relief"]
+    fr = zb.relief_features(rp, ctx, hw)
+    b = block_index(s)
+    assert not fr[:, b == 0].any() and np.abs(fr[:, b > 0]).max() > 0
+    assert np.abs(np.einsum("kpi,pi->kp", fr, x)).max() < 1e-12 and not fr[:, 0].any()
+    # floor heating: the curl decays by exp(-t / tau) from its value at the first pose, about a horizontal axis
+    fp = P["floor_heating"]
+    dec = zt.floor_decay(fp, s)
+    assert dec[0] == 1.0 and (np.diff(dec) < 0).all()
+    assert fp["turn"] == pytest.approx(STEEL_CTE * fp["dT0"] * fp["w_mm"] / (2 * fp["t_mm"]))
+    a = np.array([np.cos(fp["psi"]), np.sin(fp["psi"]), 0.0])
+    assert np.abs(zt.floor_features(fp, ctx, hw)[0] @ a).max() < 1e-9
+    # duct lag: the two sides start at the air, the duct's side lags more; the bow follows their difference
+    dp = P["duct_lag"]
+    Tf, Ts = zt.duct_temperatures(dp, s)
+    assert Tf[0] == Ts[0] == s.air_c[0] and dp["tau_s_s"] > dp["tau_f_s"]
+    fd = zt.duct_features(dp, ctx, hw)
+    assert not fd[1][0].any() and dp["amp"][1] == pytest.approx(dp["amp"][0] * dp["share"] / dp["D_mm"])

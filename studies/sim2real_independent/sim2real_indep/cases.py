@@ -1,22 +1,22 @@
 """The benchmark's case sets (seeded; the measurement tables are regenerated, never stored).
 
-Set A (24 cases, 8 per arm) emphasises the physics the project's own benchmark lacks; set B (25 cases) is a
-held-out draw of another mix with another seed; set C (24 cases, 8 per arm) holds physics variants neither A nor
-B contains (:mod:`effects_c`), written after the diagnosis had been tuned on A and B; set D (24 cases, 8 per arm)
-is a further independent test set of new physics kinds (:mod:`effects_d`), set E (24 cases, 8 per arm) another
-one (:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more kinds written from the engineering
-literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm
-each) two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a
-ninth (:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an
-eleventh (:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm)
-a thirteenth (:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8
-per arm) a fifteenth (:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases,
-8 per arm) a seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24
-cases, 8 per arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U
-(24 cases, 8 per arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second
-(:mod:`effects_v`), set W (24 cases, 8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm)
-a twenty-fourth (:mod:`effects_x`) and set Y (24 cases, 8 per arm) a twenty-fifth (:mod:`effects_y`). A case: (id, robot, physics
-kinds, poses, split).
+Set A (24 cases, 8 per arm) emphasises the physics the project's own benchmark lacks; set B (25 cases) is a held-out
+draw of another mix with another seed; set C (24 cases, 8 per arm) holds physics variants neither A nor B contains
+(:mod:`effects_c`), written after the diagnosis had been tuned on A and B; set D (24 cases, 8 per arm) is a further
+independent test set of new physics kinds (:mod:`effects_d`), set E (24 cases, 8 per arm) another one
+(:mod:`effects_e`), and set F (24 cases, 8 per arm) a sixth, of twelve more kinds written from the engineering
+literature without reading how the diagnosis models effects (:mod:`effects_f`); sets G and H (24 cases, 8 per arm each)
+two more of twelve new kinds each (:mod:`effects_g`, :mod:`effects_h`), set I (24 cases, 8 per arm) a ninth
+(:mod:`effects_i`), set J (24 cases, 8 per arm) a tenth (:mod:`effects_j`), set K (24 cases, 8 per arm) an eleventh
+(:mod:`effects_k`), set L (24 cases, 8 per arm) a twelfth (:mod:`effects_l`), set M (24 cases, 8 per arm) a thirteenth
+(:mod:`effects_m`), set N (24 cases, 8 per arm) a fourteenth (:mod:`effects_n`), set O (24 cases, 8 per arm) a fifteenth
+(:mod:`effects_o`), set P (24 cases, 8 per arm) a sixteenth (:mod:`effects_p`), set Q (24 cases, 8 per arm) a
+seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:`effects_r`), set S (24 cases, 8 per
+arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U (24 cases, 8 per
+arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second (:mod:`effects_v`), set W (24 cases,
+8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm) a twenty-fourth (:mod:`effects_x`), set Y (24
+cases, 8 per arm) a twenty-fifth (:mod:`effects_y`) and set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`). A
+case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ SEED_A, SEED_B, SEED_C, SEED_D, SEED_E, SEED_F = 40_7001, 40_7002, 40_7003, 40_7
 SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7010, 40_7011, 40_7012
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
 SEED_S, SEED_T, SEED_U, SEED_V, SEED_W, SEED_X = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023, 40_7024
-SEED_Y = 40_7025
+SEED_Y, SEED_Z = 40_7025, 40_7026
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1162,14 +1162,70 @@ SET_Y = [
     ("Y24", "kr16_like", ("pinion_runout", "vision_lamp"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Y)
+#: set Z: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter split
+#: by time (:mod:`effects_z`); written as an independent test set after set Y, from the literature, without reading how
+#: the diagnosis models effects. Oracle labels when written (oracle.py only; the diagnosis was not run): every case its
+#: truth (gains 26-93 %; each mixture component's removal costs 27 % or more: Z24's head tilt 27 %, Z08's bowstring 35
+#: %), the geometry-only cases none; no soft labels (the closest rivals: Z18's link model 1.30x, Z06's thermal model
+#: 1.54x, Z05's mount model 1.58x, Z19's mount model 1.65x, Z24's joint model 1.65x; the smallest gains 26 % on Z18, 37
+#: % on Z05). Changed after trial draws (the modules' docstrings give the final ranges): the water slug was first in the
+#: hollow upper arm (0.3-1 / 0.6-2 / 2-6 kg: effects of 1-6 um, absorbed on Z01 and on tool_changer's Z11 -- the main
+#: axes' gears are too stiff for a mass that size), now in a hollow gripper boom carrying the target, where the soft
+#: wrist gears and the boom's lever feel it, and its kr16_like case (Z17) took tool_changer's place; the balancer gas
+#: first followed a hall's 6-12 K at 50-90 % of the largest load (Z17 on kr16_like: an effect of 11 um, absorbed -- the
+#: gas law moves the force by 3 % at most), now a heavy outdoor machine (tool_changer, Z11) in air changing by 15-25 K,
+#: the balancer carrying 70-95 %; the balancer seal's friction 5-15 % (Z18: a gain of 15 %, the transmission model at
+#: 1.15x), now 8-20 % (a rod seal's breakaway friction at a robot's low speeds); the warm isolators first softened by
+#: 1-3 %/K in 6-12 K on ur10 (Z03: ambiguous with the link model at 1.02x, the beams taking the tilt's constant part;
+#: 2-4 %/K and 8-14 K still left it at 1.11x), now 3-6 %/K (a damping compound in its transition region) in 8-14 K on
+#: kr16_like (Z21), and ur10's Z03 took the duct lag; the bowstring's design elbow move 0.06-0.15 mm (Z05: a gain of 19
+#: %, the mount model at 1.23x), now 0.1-0.25 mm; the stress relief first moved the target by a free 3-D vector in the
+#: tool frame (Z06: a gain of 20 %, the thermal model's warm-up of the last link at 1.10x), now the frame's arm bends at
+#: its root weld, moving its end across the arm only; the duct lag's sides first lagged 8-20 / 60-150 min with a share
+#: of 0.4-0.8 in 6-12 K (Z21 on kr16_like: a gain of 10 %), now 5-15 / 90-240 min, 0.5-0.9, 8-14 K; the oil canning's
+#: snap thresholds were first +-M_s about zero (on kr16_like, whose arm stays in front of the base, the plate never
+#: snapped on the seed + 2: absorbed), now about the session's mean moment (the plate bedded in under the arm's mean
+#: load); the tripod windup 20-50 urad, now 25-60. No pose count or seed was changed. Trial draws on the seed + 1 and +
+#: 2 (the case seeds + 1000003 k) with the final physics: 21 and 22 of 24 clean; the misses are the head tilt on
+#: tool_changer (Z12: gains of 5 % and 15 %, the thermal and mount models at 1.05x and 1.17x) and on kr16_like (Z19 on +
+#: 1: a gain of 11 %), the weakest kind (a reading error of a fraction of an arcmin that follows the base's moment,
+#: partly taken by the axis' geometry), and the balancer gas (Z11: a gain of 18 % and the thermal model at 1.06x on + 1,
+#: 1.19x on + 2 -- the air drives the uniform expansion too).
+SET_Z = [
+    ("Z01", "ur10", ("water_slug",), 120, "random"),
+    ("Z02", "ur10", ("tripod_windup",), 140, "random"),
+    ("Z03", "ur10", ("duct_lag",), 150, "time"),
+    ("Z04", "ur10", ("oil_canning",), 130, "random"),
+    ("Z05", "ur10", ("bowstring",), 50, "random"),
+    ("Z06", "ur10", ("stress_relief",), 150, "time"),
+    ("Z07", "ur10", (), 70, "random"),
+    ("Z08", "ur10", ("floor_heating", "bowstring"), 180, "random"),
+    ("Z09", "tool_changer", ("band_spiral",), 120, "random"),
+    ("Z10", "tool_changer", ("balancer_seal",), 130, "random"),
+    ("Z11", "tool_changer", ("balancer_gas",), 140, "time"),
+    ("Z12", "tool_changer", ("head_tilt",), 130, "random"),
+    ("Z13", "tool_changer", ("floor_heating",), 150, "time"),
+    ("Z14", "tool_changer", ("duct_lag",), 150, "random"),
+    ("Z15", "tool_changer", (), 40, "random"),
+    ("Z16", "tool_changer", ("band_spiral", "stress_relief"), 190, "time"),
+    ("Z17", "kr16_like", ("water_slug",), 140, "random"),
+    ("Z18", "kr16_like", ("balancer_seal",), 120, "random"),
+    ("Z19", "kr16_like", ("head_tilt",), 150, "time"),
+    ("Z20", "kr16_like", ("oil_canning",), 140, "random"),
+    ("Z21", "kr16_like", ("warm_isolators",), 150, "random"),
+    ("Z22", "kr16_like", ("tripod_windup",), 130, "random"),
+    ("Z23", "kr16_like", (), 100, "random"),
+    ("Z24", "kr16_like", ("head_tilt", "duct_lag"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
-        "Y": (SET_Y, SEED_Y)}
+        "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z)}
 
 
 def case_seed(set_name: str, index: int) -> int:

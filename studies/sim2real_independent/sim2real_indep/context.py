@@ -299,7 +299,25 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "frost_load": "joint_compliance", "output_brake": "joint_compliance", "coupling_play": "backlash",
           "squeeze_film": "backlash", "pinion_runout": "transmission", "torque_arm": "transmission",
           "press_walk": "mount_compliance", "tyre_leak": "mount_compliance", "foam_gripper": "link_deflection",
-          "sheet_part": "link_deflection", "vision_lamp": "thermal", "cabinet_exhaust": "thermal"}
+          "sheet_part": "link_deflection", "vision_lamp": "thermal", "cabinet_exhaust": "thermal",
+          # set Z (sim2real_indep.effects_z; water_slug, the gears twisted by water trapped in a hollow gripper boom and
+          # running to its lower end, and balancer_gas, axis 2's gear loaded by its gas balancer's force following the
+          # hall's air by the gas law, scored as joint compliance; balancer_seal, axis 2 held back against its last
+          # motion by the balancer's rod-seal friction, and tripod_windup, the tracker's frame turned by its tripod's
+          # friction-held windup after each slew, as backlash (errors that follow the last motion); band_spiral, the
+          # telescopic stage driven by a band winding on its drum in a spiral, and head_tilt, axis 1's output encoder
+          # misread as its bearing tilts under the arm's moment, as transmission (the joints' reading and drive);
+          # warm_isolators, the base's elastomer isolators softening as the hall warms them, and oil_canning, the base
+          # table's thin top plate snapping between its two dished shapes, as mount compliance (the robot's support);
+          # bowstring, the upper arm bent by a harness strapped taut along it, and stress_relief, a welded gripper frame
+          # distorting as the production's vibration relaxes its welding stresses, as link deflection (the arm's and
+          # the end-of-arm structure carrying the target); floor_heating, the base plate curled by an underfloor
+          # heating loop cooling after its switch-off, and duct_lag, the upper arm bowed as the air drifts because a
+          # duct slows one side, as thermal)
+          "water_slug": "joint_compliance", "balancer_gas": "joint_compliance", "balancer_seal": "backlash",
+          "tripod_windup": "backlash", "band_spiral": "transmission", "head_tilt": "transmission",
+          "warm_isolators": "mount_compliance", "oil_canning": "mount_compliance", "bowstring": "link_deflection",
+          "stress_relief": "link_deflection", "floor_heating": "thermal", "duct_lag": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
