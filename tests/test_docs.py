@@ -337,6 +337,7 @@ def test_howto_own_robot_components_example_is_read_whole():
     parts = comps.joint("j2")
     assert parts.reducer.ratio == 100 and parts.encoder.homing == "absolute"
     assert parts.bearing.radial_runout == pytest.approx(0.005) and parts.bearing.tilt_stiffness == 2.0e6
+    assert (parts.bearing.datum, parts.bearing.locating_datum, parts.bearing.shoulder_datum) == ("C", "J", "K")
     assert parts.motor.thermal_time_constant_s == pytest.approx(1800.0)
 
 

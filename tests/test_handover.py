@@ -79,11 +79,16 @@ def test_every_row_has_a_callout_or_a_part_and_a_process(job):
 
 def test_zones_follow_the_design(job):
     h, t = job.handover(), dict(zip(job.problem.model.names, job.design.t))
+    model = job.problem.model
+    # the tool changer's bearings are catalogue slots: their seat spans (tool_changer.toml) are the zones' lengths
+    spans = {"j1": 250.0, "j2": 300.0, "j3": 250.0, "j5": 120.0, "j6": 100.0}
     for c in h.callouts:
         if c.characteristic in ("size", "position"):
             assert c.zone_mm == pytest.approx(2 * t[c.parameters[0]], rel=1e-12)
         elif not c.diameter:
-            assert c.zone_mm == pytest.approx(100.0 * t[c.parameters[0]], rel=1e-12)  # t_zone = L alpha
+            span = spans[model.params[model.index(c.parameters[0])].element]
+            assert c.length_mm == span and c.span_source == "robot file"
+            assert c.zone_mm == pytest.approx(span * t[c.parameters[0]], rel=1e-12)  # t_zone = L alpha
     assert {c.grade for c in h.callouts if c.characteristic in ("size", "position")} <= set(job.result.grade)
 
 
@@ -92,8 +97,8 @@ def test_cost_source_and_assumptions_are_stated(job):
     assert len(h.cost_source) == len(h.callouts) + len(h.parts)
     assert all("assumed" in s and "Chase & Greenwood (1988)" in s for s in h.cost_source)
     text = " ".join(h.assumptions)
-    for word in ("Rigid links", "temperature", "normal (Gaussian)", "z = 3", "ASSUMED", "Seat span 100 mm",
-                 "Rayleigh"):
+    for word in ("Rigid links", "temperature", "normal (Gaussian)", "z = 3", "ASSUMED", "Rayleigh",
+                 "Datum features: A the base mounting face (assumed letter); B j1 bearing-seat axis (robot file)"):
         assert word in text
     md = handover_markdown(h, "t")
     assert "## Assumptions behind the verdict" in md and "## Purchase list" in md and "⊥" in md
@@ -140,7 +145,9 @@ def test_components_give_spans_datums_fits_and_parts():
     fm = feature_map(model, t, z=3.0)
     by = {c.parameters: c for c in fm.callouts}
     assert by[("e1x", "e1y")].length_mm == 80 and by[("e1x", "e1y")].span_source == "robot file"
-    assert all(by[(n,)].datum == "K" and by[(n,)].length_mm == 120 for n in ("e2y", "e2z"))  # to datum axis K
+    # to datum axis K; e2z turns about K's own direction: its zone is to K and the pin or key of j1's output
+    assert by[("e2y",)].datum == "K" and by[("e2z",)].datum.split("|")[0] == "K"
+    assert all(by[(n,)].length_mm == 120 for n in ("e2y", "e2z"))
     fit = by[("cr1x", "cr1y")]
     assert fit.length_mm == 62 and fit.characteristic == "fit"
     assert fit.zone_mm / 2 <= np.sqrt(2) * 0.03 + 1e-12  # largest radial play within the design's bound
@@ -161,7 +168,8 @@ def test_tilt_zone_modes():
     zones = {m: [c for c in feature_map(model, t, z=3.0, settings=HandoverSettings(tilt_zone=m)).callouts
                  if c.parameters[0].startswith("e1")] for m in ("auto", "diameter", "directions")}
     assert len(zones["auto"]) == 2 and len(zones["directions"]) == 2 and len(zones["diameter"]) == 1
-    assert zones["diameter"][0].zone_mm == pytest.approx(100 * diameter_factor(3.0) * t[model.index("e1x")])
+    # j1's seat span: 250 mm (tool_changer.toml)
+    assert zones["diameter"][0].zone_mm == pytest.approx(250 * diameter_factor(3.0) * t[model.index("e1x")])
 
 
 def test_process_table():
@@ -203,7 +211,9 @@ def test_bad_drawings_are_refused_naming_the_feature(job, drawing_csv):
 
 
 def test_missing_span_and_datum():
-    model = build_error_model(tolalloc.load_robot("tool_changer"))
+    bare = copy.deepcopy(_robot_data())
+    del bare["components"]
+    model = build_error_model(robot_from_dict(bare))
     t = model.sigma * 3
     with pytest.raises(TolallocError, match=r"joint j1: no seat span \(span_mm\).*and no default given"):
         feature_map(model, t, z=3.0, settings=HandoverSettings(default_span_mm=None))
@@ -217,7 +227,8 @@ def test_missing_span_and_datum():
 
 def test_export_refuses_a_zone_without_datum(job):
     h = handover(job.result, settings=HandoverSettings(default_datums=False))
-    with pytest.raises(TolallocError, match=r"export: j2 axis, 210 mm from the datum \(l2\) \(position\) has no "
+    # the robot file names the seat axes of j1-j3, j5, j6, not j4 (the slide): l5's position is located from j4
+    with pytest.raises(TolallocError, match=r"export: j5 axis, 240 mm from the datum \(l5\) \(position\) has no "
                                             r"datum"):
         export_frame(h)
 

@@ -15,7 +15,7 @@ from tolalloc import TolallocError
 from tolalloc.allocate.drawing import Callout, HandoverSettings, feature_map
 from tolalloc.allocate.drawing_io import DRAWING_COLUMNS, export_frame, read_drawing
 from tolalloc.allocate.fits import tolerance_class
-from tolalloc.allocate.handover import Handover
+from tolalloc.allocate.handover import Handover, handover
 from tolalloc.allocate.standards import snap_length
 from tolalloc.allocate.tolerance_analysis import halfwidths_from_drawing
 from tolalloc.errormodel import build_error_model
@@ -76,8 +76,10 @@ def test_coaxiality_zone_is_a_cylinder_around_the_datum_axis(clearance_model):
     assert coax
     for c in coax:
         # the second seat's radial offset at the tolerance's coverage is L f t; the zone's diameter is twice that
-        assert c.zone_mm == pytest.approx(2 * 100.0 * F3 * 1e-4, rel=1e-12)
-        assert c.diameter and c.factor == pytest.approx(2 * 100.0 * F3, rel=1e-12)
+        span = {"j1": 250.0, "j2": 300.0, "j3": 250.0, "j5": 120.0, "j6": 100.0}[c.feature.split()[0]]
+        assert c.length_mm == span  # the seat span of tool_changer.toml
+        assert c.zone_mm == pytest.approx(2 * span * F3 * 1e-4, rel=1e-12)
+        assert c.diameter and c.factor == pytest.approx(2 * span * F3, rel=1e-12)
     # the read-back turns the Ø into the same t
     frame = export_frame(_handover(fm))
     back = halfwidths_from_drawing(model, read_drawing(frame, model, check_processes=False))
@@ -86,7 +88,7 @@ def test_coaxiality_zone_is_a_cylinder_around_the_datum_axis(clearance_model):
             assert back[model.index(p)] == pytest.approx(1e-4, rel=1e-9)
     row = frame[frame.characteristic == "coaxiality"].iloc[0]
     hand = _read([_row(characteristic="coaxiality", zone_mm=str(row.zone_mm), diameter_zone="true", datum="B",
-                       length_mm="100", parameters=row.parameters)], model, z=3.0, check_processes=False)
+                       length_mm=str(row.length_mm), parameters=row.parameters)], model, z=3.0, check_processes=False)
     assert hand.callouts[0].zone_mm / hand.callouts[0].factor == pytest.approx(1e-4, rel=1e-9)
 
 
@@ -242,55 +244,117 @@ def test_axial_stack_states_its_nominal(clearance_model):
     fm = feature_map(clearance_model, _clearance_t(clearance_model), z=3.0, strict=False)
     stack = [c for c in fm.callouts if "axial stack" in c.feature]
     assert stack
+    # 2 t = 0.06 mm at the seat span taken as nominal (tool_changer.toml), ISO 286-1: 180-250 mm IT7 = 46 um,
+    # IT8 = 72 um; 250-315 mm IT7 = 52 um, IT8 = 81 um; 80-120 mm IT8 = 54 um, IT9 = 87 um
+    grade = {250.0: "IT7", 300.0: "IT7", 120.0: "IT8", 100.0: "IT8"}
+    assert sorted(c.length_mm for c in stack) == [100.0, 120.0, 250.0, 250.0, 300.0]
     for c in stack:
-        # 2 t = 0.06 mm at 100 mm (ISO 286-1, 80-120 mm: IT8 = 54 um, IT9 = 87 um): IT8, at the span taken as nominal
-        assert c.length_mm == 100.0 and c.grade == "IT8" and c.zone_mm == pytest.approx(0.06)
-        assert "nominal length = seat span 100 mm, assumed" in c.feature
+        assert c.grade == grade[c.length_mm] and c.zone_mm == pytest.approx(0.06)
+        assert f"nominal length = seat span {c.length_mm:g} mm, assumed" in c.feature
     assert any("nominal length taken as the seat span" in u for u in fm.defaults_used)
+
+
+def _rotation_rate(model, p) -> float:
+    """How fast a small rotation of parameter ``p``'s tilt changes the angle between its joint's axis and the axis of
+    the joint before (the datum axis): zero where the tilt turns the axis about the datum's own direction."""
+    from tolalloc.robot.lie import exp_so3
+
+    names = [jt.name for jt in model.robot.joints]
+    j = names.index(p.element)
+    d, a = (np.asarray(model.robot.joints[i].axis, float) for i in (j - 1, j))
+    w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
+    eps = 1e-4
+    return abs(np.arccos(np.clip(d @ (exp_so3(eps * w) @ a), -1, 1)) - np.arccos(np.clip(d @ a, -1, 1))) / eps
 
 
 @pytest.mark.parametrize("robot, tilts, positions", [
     ("tool_changer", {"e2z", "e5y", "e6x"}, {"dl2", "dl5"}),
     ("ur10", {"e2z", "e5y", "e6z"}, {"dd1", "dd4", "dd5"}),
 ])
-def test_a_callout_its_datum_cannot_bound_is_named_with_the_datum_it_needs(robot, tilts, positions, request):
+def test_a_callout_one_datum_axis_cannot_bound_gets_the_datum_system_it_needs(robot, tilts, positions, request):
     """A zone to a datum axis (two planes perpendicular to it) bounds only the tilt that changes the angle to that
-    axis; a position measured from a datum axis locates nothing along it. The tilts flagged are exactly those whose
-    small rotation leaves the angle to the datum axis unchanged (checked here by rotating the axis), the positions
-    exactly those whose link runs along its datum axis; each is listed in the assumptions as DATUM NEEDED."""
-    from tolalloc.robot.lie import exp_so3
-
+    axis; a position measured from a datum axis locates nothing along it. The tilts given a datum system are exactly
+    those whose small rotation leaves the angle to the datum axis unchanged (checked here by rotating the axis):
+    ``axis|pin or key of the datum joint's output``; the positions exactly those whose link runs along its datum axis:
+    ``shoulder face|axis``. Each new letter is listed among the datum features; nothing is left as DATUM NEEDED.
+    Without default letters (``default_datums=False``, the robot files name no locating feature or shoulder face)
+    the same callouts keep one datum and are listed as DATUM NEEDED."""
     res = (request.getfixturevalue("job") if robot == "tool_changer" else
            tolalloc.allocate_tolerances(robot, region="nominal", verification=False, progress=False))
     model, h = res.problem.model, res.handover()
-    names = [jt.name for jt in model.robot.joints]
-    gaps = h.features.datum_gaps
-    flagged = {c.parameters[0] for c in h.callouts if any(g.startswith(c.feature + " (") for g in gaps)}
+    systems = {c.parameters[0]: c.datum.split("|") for c in h.callouts if "|" in c.datum}
     for c in h.callouts:
-        if c.characteristic not in ("perpendicularity", "angularity") or not c.direction:
-            continue
         p = model.params[model.index(c.parameters[0])]
-        j = names.index(p.element)
-        if j == 0:
-            continue
-        d, a = (np.asarray(model.robot.joints[i].axis, float) for i in (j - 1, j))
-        w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
-        eps = 1e-4
-        rate = abs(np.arccos(np.clip(d @ (exp_so3(eps * w) @ a), -1, 1)) - np.arccos(np.clip(d @ a, -1, 1))) / eps
-        assert (rate < 1e-3) == (p.name in flagged), (p.name, rate)
-    assert flagged == tilts | positions
-    assert sum(a.startswith("DATUM NEEDED") for a in h.assumptions) == len(tilts) + len(positions)
+        if c.characteristic in ("perpendicularity", "angularity") and c.direction and p.site > 0:
+            assert (_rotation_rate(model, p) < 1e-3) == (p.name in systems), p.name
+    assert set(systems) == tilts | positions and not h.features.datum_gaps
+    assert not any(a.startswith("DATUM NEEDED") for a in h.assumptions)
+    features = {k: what for k, what, _ in h.features.datum_features}
+    for name, letters in systems.items():
+        second, first = features[letters[1]], features[letters[0]]
+        if name in tilts:   # the axis primary, the pin or key (a slide: its anti-rotation guide) secondary
+            assert "bearing-seat axis" in first or "guide axis" in first
+            assert "pin or key" in second or "anti-rotation guide" in second
+        else:               # the face primary, the axis secondary
+            assert "shoulder face" in first or "carriage across its stroke" in first
+            assert "axis" in second
+    bare = handover(res.result, settings=HandoverSettings(default_datums=False))
+    gaps = bare.features.datum_gaps
+    assert {c.parameters[0] for c in bare.callouts if any(g.startswith(c.feature + " (") for g in gaps)} == (
+        tilts | positions)
+    assert sum(a.startswith("DATUM NEEDED") for a in bare.assumptions) == len(tilts) + len(positions)
     assert all("secondary datum" in g or "datum plane" in g for g in gaps)
 
 
-def test_the_review_of_a_drawing_names_the_callouts_its_verdict_leans_on(job, drawing_csv):
-    """The review's P takes every row as bounding its parameter; the tool changer's own drawing has five rows whose
-    datum cannot (the tilts e2z, e5y, e6x and the positions of l2, l5): the review lists them under its verdict, in
-    its text and its summary, with the datum each needs (j4 is the slide: its carriage, not a bearing seat)."""
-    rv = tolalloc.review_drawing("tool_changer", drawing=drawing_csv, region="nominal")
+def test_the_robot_files_letters_complete_the_datum_system():
+    """``locating_datum`` and ``shoulder_datum`` of a bearing table name the features; a letter given to two
+    features, or one that is no letter, is refused naming the key."""
+    import copy
+    import tomllib
+
+    from tolalloc.robot.io.load import _builtin_dir, robot_from_dict
+
+    data = tomllib.loads((_builtin_dir() / "tool_changer.toml").read_text())
+    data["components"]["joints"]["j1"]["bearing"].update(locating_datum="P", shoulder_datum="R")
+    model = build_error_model(robot_from_dict(data))
+    fm = feature_map(model, model.sigma * 3, z=3.0)
+    by = {c.parameters[0]: c for c in fm.callouts}
+    assert by["e2z"].datum == "B|P" and by["dl2"].datum == "R|B"  # both from j1's axis B
+    listed = {k: (what, src) for k, what, src in fm.datum_features}
+    assert listed["P"] == ("the angular locating feature, pin or key, of j1's output", "robot file")
+    assert listed["R"] == ("the seat shoulder face of j1", "robot file")
+    clash = copy.deepcopy(data)
+    clash["components"]["joints"]["j1"]["bearing"]["locating_datum"] = "C"
+    with pytest.raises(TolallocError, match=r"datum C names two features: j2 bearing-seat axis and the angular "
+                                            r"locating feature, pin or key, of j1's output"):
+        feature_map(build_error_model(robot_from_dict(clash)), model.sigma * 3, z=3.0)
+    clash["components"]["joints"]["j1"]["bearing"]["locating_datum"] = "p1"
+    with pytest.raises(TolallocError, match=r"j1.bearing.locating_datum: expected a datum letter \(one or two "
+                                            r"capital letters, as B or AB\), got 'p1'"):
+        robot_from_dict(clash)
+
+
+def test_the_review_of_a_drawing_names_the_callouts_its_verdict_leans_on(job, drawing_csv, tmp_path):
+    """The review's P takes every row as bounding its parameter. The tool changer's own drawing carries the datum
+    systems the tilts e2z, e5y, e6x and the positions of l2, l5 need, and its review lists no gap; the same drawing
+    with those rows cut back to one datum axis has five rows whose datum cannot bound them: the review lists them
+    under its verdict, in its text and its summary, with the datum each needs (j4 is the slide: its carriage, not a
+    bearing seat). A datum that is no letter or datum system is refused."""
+    assert tolalloc.review_drawing("tool_changer", drawing=drawing_csv, region="nominal").summary()["datum_gaps"] == []
+    frame = pd.read_csv(drawing_csv, dtype=str, keep_default_na=False)
+    systems = frame.datum.str.contains("|", regex=False)
+    assert set(frame.parameters[systems]) == {"e2z", "e5y", "e6x", "dl2", "dl5"}
+    frame.loc[systems, "datum"] = [d.split("|")[0] if p.startswith("e") else d.split("|")[1]
+                                   for d, p in zip(frame.datum[systems], frame.parameters[systems])]
+    frame.to_csv(tmp_path / "cut.csv", index=False)
+    rv = tolalloc.review_drawing("tool_changer", drawing=tmp_path / "cut.csv", region="nominal")
     gaps = rv.summary()["datum_gaps"]
     assert len(gaps) == 5 and sum(line.startswith("DATUM NEEDED: ") for line in rv.text().splitlines()) == 5
     assert "the verdict holds only once each has the datum it needs" in rv.text()
     assert any("j5 bearing-seat axis, tilt about y" in g and "anti-rotation guide of j4's carriage" in g for g in gaps)
     assert any("j5 axis, 240 mm" in g and "a face of j4's carriage" in g for g in gaps)
     assert any("j2 bearing-seat axis, tilt about z" in g and "pin or key, of j1's output" in g for g in gaps)
+    frame.loc[frame.parameters == "e2z", "datum"] = "C/K"
+    frame.to_csv(tmp_path / "bad.csv", index=False)
+    with pytest.raises(TolallocError, match=r"column datum 'C/K' is no datum letter or datum system"):
+        tolalloc.review_drawing("tool_changer", drawing=tmp_path / "bad.csv", region="nominal")

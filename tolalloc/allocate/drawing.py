@@ -4,7 +4,8 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
 
 ``link_length``
     The distance between two joints. Where the link locates the next joint's axis sideways, a *position*
-    tolerance of that axis (``⌖``, a zone of two parallel planes ``2 t`` apart across the link, i.e. the IT value);
+    tolerance of that axis (``⌖``, a zone of two parallel planes ``2 t`` apart across the link, i.e. the IT value;
+    a link along its datum axis is located in the datum system ``shoulder face|axis``);
     else (along the next axis, a slide, the tool flange) a *size* ``±t``. Both carry the ISO 286 grade of the
     design.
 ``axis_deflection`` (two tilts per revolute joint)
@@ -17,7 +18,8 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     ``Ø t_zone = L sigma sqrt(-2 ln(1 - p_c))`` with ``p_c = P(|N| < z)``, not ``z`` per component). Unequal
     tilts get a zone in each direction. To a datum *axis* at an angle a zone (two planes perpendicular to it) bounds
     only the tilt that changes the angle to it: each tilt gets its own zone, and a tilt about the datum axis' own
-    direction is listed in :attr:`FeatureMap.datum_gaps` (it needs a secondary datum, :func:`datum_gaps`).
+    direction is bounded in the datum system ``axis|locating feature`` (the angular locating feature, pin or key,
+    of the datum joint's output: it fixes the rotation about the datum axis; :func:`complete_datums`).
 ``clearance_tilt``
     The *coaxiality* ``◎`` of the joint's second bearing seat to the first over the span. A coaxiality zone is a
     cylinder centred on the datum axis, so a tilt of magnitude ``a`` (the second seat's radial offset ``L a``)
@@ -36,7 +38,8 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     :class:`HandoverSettings`).
 
 Spans, datums and seat diameters come from the robot file's ``[components.joints.<joint>.bearing]`` (``span_mm``,
-``datum``, ``seat_diameter_mm``); where it gives none, the stated defaults of :class:`HandoverSettings`, labelled
+``datum``, ``locating_datum``, ``shoulder_datum``, ``seat_diameter_mm``; a table of its own or a catalogue slot's);
+where it gives none, the stated defaults of :class:`HandoverSettings`, labelled
 ``assumed`` in every table.
 """
 
@@ -48,7 +51,7 @@ from math import log, sqrt
 import numpy as np
 from scipy.special import log_ndtr
 
-from tolalloc.allocate.datums import _Frame, _angle, _orientation, datum_gaps
+from tolalloc.allocate.datums import _Frame, _angle, _orientation, complete_datums, datum_gaps
 from tolalloc.allocate.fits import FIT_MAX_SIZE_MM, PREFERRED_CLEARANCE_FITS, check_clearance_fits, clearance_fits
 from tolalloc.allocate.purchase import drive_part
 from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, is_real_number, it_row
@@ -189,7 +192,11 @@ class FeatureMap:
         Callouts looser than the design (a radial clearance finer than every candidate fit, with ``strict=False``).
     datum_gaps : tuple of str
         Callouts their datum cannot make bound what they stand for (:func:`datum_gaps`): a tilt about a datum axis'
-        own direction, a location along a datum axis. The drawing needs another datum there.
+        own direction, a location along a datum axis, where no letter names the feature that completes the datum
+        system (``default_datums=False`` and none in the robot file). The drawing needs another datum there.
+    datum_features : tuple of (str, str, str)
+        ``(letter, feature, source)`` of every datum the callouts name, by letter; ``source`` is ``"robot file"``
+        or ``"assumed letter"``.
     """
 
     callouts: tuple
@@ -200,6 +207,7 @@ class FeatureMap:
     defaults_used: tuple = ()
     warnings: tuple = ()
     datum_gaps: tuple = ()
+    datum_features: tuple = ()
 
 
 def diameter_factor(z: float, distribution: str = "normal") -> float:
@@ -274,8 +282,9 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
             callouts.append(_fit_callout(model, j, ks, t, fr, z))
         else:  # clearance_axial
             callouts.append(_stack_callout(model, j, ks[0], t, fr))
+    callouts, gaps = complete_datums(model, callouts, fr)
     return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
-                      tuple(fr.warnings), datum_gaps(model, callouts))
+                      tuple(fr.warnings), gaps, tuple((k, *fr.features[k]) for k in sorted(fr.features)))
 
 
 def _stack_callout(model, j: int, k: int, t, fr: _Frame) -> Callout:

@@ -18,7 +18,8 @@ Schema (version 2; columns in this order; units in the names; empty cells where 
     diameter_zone       true for a diameter zone (Ø), else false
     direction           the base axis a per-direction zone's tilt is about (x, y, z; that of the row's parameter),
                         else empty
-    datum               datum letter (required for every orientation, coaxiality and position zone)
+    datum               datum letter, or datum system in order of precedence (``B|K``, ``H|B``); required for every
+                        orientation, coaxiality and position zone
     length_mm           the zone's length (seat span) or the nominal size (a size, a position, a fit's diameter)
     grade               ISO 286 grade (IT7) or fit (H7/g6)
     tol_arcsec, tol_um  a purchased part's allowed (or, in a review, its actual) error as a half-width
@@ -45,7 +46,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.datums import datum_gaps
+from tolalloc.allocate.datums import DATUM_PATTERN, datum_gaps
 from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, check_z, zone_factor
 from tolalloc.allocate.purchase import PurchasedPart
 from tolalloc.allocate.fits import parse_fit
@@ -231,6 +232,9 @@ def _check_row(c: Callout, params, model, where: str) -> None:
     if c.characteristic in NEEDS_DATUM and not c.datum:
         raise TolallocError(f"{where}: column datum is empty; a {c.characteristic} zone is located or oriented from "
                             "a datum: give its letter (A, B ...).")
+    if c.datum and not DATUM_PATTERN.fullmatch(c.datum):
+        raise TolallocError(f"{where}: column datum {c.datum!r} is no datum letter or datum system; expected capital "
+                            "letters, a system of up to three in order of precedence separated by | (B, B|K, H|B).")
     if not c.direction:
         return
     if c.characteristic not in _ORIENT or c.diameter or c.characteristic == "coaxiality":

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from tolalloc.allocate.datums import datum_letters
 from tolalloc.allocate.drawing import FeatureMap, HandoverSettings, diameter_factor, feature_map
 from tolalloc.allocate.fits import parse_fit
 from tolalloc.allocate.process_table import (COST_LAW_SURVEYS, PROCESS_TABLE_SOURCE, PROCESSES, choose_process,
@@ -57,7 +58,7 @@ def callout_text(c) -> str:
         return f"Ø{c.length_mm:g} {c.grade}"
     if c.characteristic == "size":
         return f"{c.length_mm:g} ±{_mm(c.zone_mm / 2)}" + (f" ({c.grade})" if c.grade else "")
-    head = f"{c.symbol} {'Ø' if c.diameter else ''}{_mm(c.zone_mm)}" + (f" | {c.datum}" if c.datum else "")
+    head = f"{c.symbol} {'Ø' if c.diameter else ''}{_mm(c.zone_mm)}" + "".join(f" | {d}" for d in datum_letters(c.datum))
     if c.characteristic == "position":
         return f"{head} (TED {c.length_mm:g}" + (f", {c.grade}" if c.grade else "") + ")"
     return f"{head} over {c.length_mm:g}" + (f", tilt about {c.direction}" if c.direction else "")
@@ -245,6 +246,11 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
     out.append("Processes: " + PROCESS_TABLE_SOURCE + ".")
     out += [f"{u[0].upper()}{u[1:]}." for u in fm.defaults_used]
     out += [f"LOOSER THAN THE DESIGN: {w}." for w in fm.warnings]
+    if fm.datum_features:
+        out.append("Datum features: " + "; ".join(f"{k} {what} ({src})" for k, what, src in fm.datum_features)
+                   + ". A datum system is read in order of precedence: axis | locating feature (the axis primary, "
+                   "the pin or key fixing the rotation about it), face | axis (the shoulder face primary, then the "
+                   "axis).")
     out += [f"DATUM NEEDED: {w}." for w in fm.datum_gaps]
     if unheld:
         out.append("Some callouts are finer than any process of the table holds: their process names the finest "

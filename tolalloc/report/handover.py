@@ -36,8 +36,9 @@ def handover_markdown(h, title: str) -> str:
     out = [f"# {title}", "",
            "## Drawing callouts (ISO 1101, ISO 286)", "",
            "Zones in mm as the drawing carries them, rounded down (never looser than the design); `zone_um` and "
-           "`drawing.csv` carry the exact zone. Datum letters and spans marked `assumed default` in `drawing.csv` "
-           "are stated defaults (see the assumptions).", "",
+           "`drawing.csv` carry the exact zone. Spans marked `assumed default` and datum letters marked `assumed "
+           "letter` are stated defaults (see the assumptions, which list every datum feature); a datum system is "
+           "read in order of precedence (`B|K`: axis B primary, then K).", "",
            _md_table(draw[_DRAWING]), "",
            "## Purchase list", "",
            "Allowed error of each joint drive (reducer + encoder) as a half-width: arcsec (revolute), um "

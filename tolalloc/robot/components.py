@@ -41,7 +41,9 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     span_mm = 80                     # axial distance between the two bearing seats
     bore_mm = 60                     # bore of the bearings (selects the ISO 492 runout row)
     radial_runout_um = 5             # Kia, radial runout of the assembled inner ring (full indicator reading)
-    datum = "A"                      # datum feature of the seat axis on the drawing
+    datum = "B"                      # datum feature of the seat axis on the drawing (A: the base mounting face)
+    locating_datum = "J"             # the output's angular locating feature (pin or key) on the drawing
+    shoulder_datum = "K"             # the seat shoulder face on the drawing
     seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6  # moment stiffness across the axis: the bearing tilts by M / k under its load
     centre_mm = 0                    # the bearing pair's centre along the joint axis from the joint point (it tilts
@@ -65,7 +67,7 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
 A joint's part may instead be a *slot* of the component catalogue (:mod:`tolalloc.robot.part_catalogue`):
 ``reducer = { part = "HD-CSG-32-100" }`` (a fixed catalogue part), ``{ family = "HD-CSG-32-100" }`` or
 ``{ options = ["...", "..."] }`` (the design picks one; a bearing slot adds ``bore_mm``, ``span_mm``, ``datum``,
-``tilt_stiffness_Nm_per_rad``, ``centre_mm``).
+``locating_datum``, ``shoulder_datum``, ``seat_diameter_mm``, ``tilt_stiffness_Nm_per_rad``, ``centre_mm``).
 Slots are listed in :attr:`Components.slots`; they fill the joint's entry only once a part is chosen
 (:meth:`Components.with_choice`; a slot of one part is chosen by itself), so the diagnosis, which reads the joints'
 entries, sees only the parts whose figures the file gives.
@@ -179,7 +181,9 @@ class Bearing:
     ``tilt_stiffness`` [N m/rad], source, ``bore_mm`` and ``radial_runout`` [mm] (Kia: the full indicator reading of
     the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit),
     ``centre_mm``: the pair's centre along the joint axis from the joint point [mm], about which the body tilts (its
-    runout's tilt and its tilt under load; 0: at the joint point)."""
+    runout's tilt and its tilt under load; 0: at the joint point); ``locating_datum`` and ``shoulder_datum``: the drawing's
+    letters of the output's angular locating feature (a pin or a key) and of the seat shoulder face, the features that
+    complete a datum system on the joint's axis."""
 
     precision_class: str | None = None
     span_mm: float | None = None
@@ -190,6 +194,8 @@ class Bearing:
     radial_runout: float | None = None
     seat_diameter_mm: float | None = None
     centre_mm: float = 0.0
+    locating_datum: str | None = None
+    shoulder_datum: str | None = None
 
 
 @dataclass(frozen=True)

@@ -5,12 +5,14 @@ entries of the component catalogue (:mod:`tolalloc.robot.part_catalogue`) both r
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from tolalloc.robot.components import (_ANGLE, _CTE, _LENGTH, _LIN_STIFF, _MODULUS, _ROT_STIFF, _TIME, MATERIALS,
                                        REDUCER_TYPES, Bearing, Encoder, LinkSection, Motor, Reducer)
 
-__all__ = ["read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor", "read_section"]
+__all__ = ["DATUM_KEYS", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor", "read_section"]
 
 
 class Values(dict):
@@ -69,6 +71,19 @@ def _text(table: dict, key: str, where: str, default=None, choices=None):
         raise ValueError(f"{where}.{key}: expected a string, got {v!r}")
     if choices is not None and v is not None and v not in choices:
         raise ValueError(f"{where}.{key}: expected one of {', '.join(choices)}, got {v!r}")
+    return v
+
+
+#: A bearing table's drawing letters: the seat axis, the output's angular locating feature, the seat shoulder face.
+DATUM_KEYS = ("datum", "locating_datum", "shoulder_datum")
+
+
+def datum_letter(table: dict, key: str, where: str) -> str | None:
+    """``table[key]``, a datum letter (ISO 5459: one or two capital letters), refused naming the key otherwise;
+    None where it is missing."""
+    v = _text(table, key, where)
+    if v is not None and not re.fullmatch(r"[A-Z]{1,2}", v):
+        raise ValueError(f"{where}.{key}: expected a datum letter (one or two capital letters, as B or AB), got {v!r}")
     return v
 
 
@@ -214,11 +229,12 @@ def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
     """A :class:`Bearing` from its table."""
     v = read_table(t, {"span": (_LENGTH, ((),)), "tilt_stiffness": (_ROT_STIFF, ((),)), "bore": (_LENGTH, ((),)),
                        "radial_runout": (_LENGTH, ((),)), "seat_diameter": (_LENGTH, ((),)),
-                       "centre": (_LENGTH, ((),))}, w, text=("precision_class", "datum", "source") + extra_keys)
-    return Bearing(_text(t, "precision_class", w), _positive_in(v, "span", w), _text(t, "datum", w),
+                       "centre": (_LENGTH, ((),))}, w, text=("precision_class", "source", *DATUM_KEYS) + extra_keys)
+    return Bearing(_text(t, "precision_class", w), _positive_in(v, "span", w), datum_letter(t, "datum", w),
                    _positive_in(v, "tilt_stiffness", w), _text(t, "source", w, ""),
                    _positive_in(v, "bore", w), _positive_in(v, "radial_runout", w, True),
-                   _positive_in(v, "seat_diameter", w), float(v["centre"] or 0.0))
+                   _positive_in(v, "seat_diameter", w), float(v["centre"] or 0.0),
+                   datum_letter(t, "locating_datum", w), datum_letter(t, "shoulder_datum", w))
 
 
 def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:

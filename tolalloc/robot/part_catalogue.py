@@ -54,8 +54,8 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.robot.components import _LENGTH, Bearing
-from tolalloc.robot.components_io import (_positive_in, _text, read_encoder, read_motor, read_reducer,
-                                          read_table)
+from tolalloc.robot.components_io import (DATUM_KEYS, _positive_in, _text, datum_letter, read_encoder, read_motor,
+                                          read_reducer, read_table)
 
 __all__ = ["Part", "BearingClass", "PartCatalogue", "Slot", "KINDS", "BUILTIN_CATALOGUE", "load_part_catalogue",
            "builtin_catalogue", "robot_catalogue", "parse_slot"]
@@ -272,7 +272,8 @@ class Slot:
     ----------
     joint, kind : str
     options : tuple of Part        cheapest first (for a family) or as listed
-    geometry : dict                bearing slots: ``bore_mm``, ``span_mm``, ``datum``, ``tilt_stiffness``
+    geometry : dict                bearing slots: ``bore_mm``, ``span_mm``, ``datum``, ``locating_datum``,
+                                   ``shoulder_datum``, ``seat_diameter_mm``, ``tilt_stiffness``
     """
 
     joint: str
@@ -299,7 +300,8 @@ class Slot:
         g = self.geometry
         kia = p.spec.runout_at(g["bore_mm"], f"components.joints.{self.joint}.bearing ({p.name})")
         return Bearing(p.spec.precision_class, g.get("span_mm"), g.get("datum"), g.get("tilt_stiffness"), p.source,
-                       g["bore_mm"], kia, centre_mm=g.get("centre_mm", 0.0))
+                       g["bore_mm"], kia, g.get("seat_diameter_mm"), g.get("centre_mm", 0.0), g.get("locating_datum"),
+                       g.get("shoulder_datum"))
 
 
 def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, catalogue: PartCatalogue) -> Slot:
@@ -308,9 +310,10 @@ def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, c
     if len(sel) != 1:
         raise ValueError(f"{where}: give one of part, family or options, got {sel}")
     geo_spec = {"bore": (_LENGTH, ((),)), "span": (_LENGTH, ((),)), "centre": (_LENGTH, ((),)),
+                "seat_diameter": (_LENGTH, ((),)),
                 "tilt_stiffness": ({"Nm_per_rad": 1.0}, ((),))} if kind == "bearing" else {}
     v = read_table(table, geo_spec, where, text=("part", "family", "options", "source")
-                   + (("datum",) if kind == "bearing" else ()))
+                   + (DATUM_KEYS if kind == "bearing" else ()))
     key = sel[0]
     if key == "options":
         names = table["options"]
@@ -339,7 +342,9 @@ def parse_slot(table: dict, where: str, kind: str, joint: str, revolute: bool, c
         if v["bore"] is None:
             raise ValueError(f"{where}: a bearing slot needs bore_mm (it selects the ISO 492 runout row)")
         geometry = {"bore_mm": v["bore"], "span_mm": _positive_in(v, "span", where),
-                    "datum": _text(table, "datum", where), "tilt_stiffness": _positive_in(v, "tilt_stiffness", where),
+                    "tilt_stiffness": _positive_in(v, "tilt_stiffness", where),
+                    "seat_diameter_mm": _positive_in(v, "seat_diameter", where),
+                    **{k: datum_letter(table, k, where) for k in DATUM_KEYS},
                     "centre_mm": float(v["centre"] or 0.0)}
         if geometry["span_mm"] is None:
             raise ValueError(f"{where}: a bearing slot needs span_mm (the distance between its two bearings: "
