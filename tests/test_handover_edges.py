@@ -254,61 +254,86 @@ def test_axial_stack_states_its_nominal(clearance_model):
     assert any("nominal length taken as the seat span" in u for u in fm.defaults_used)
 
 
-def _rotation_rate(model, p) -> float:
-    """How fast a small rotation of parameter ``p``'s tilt changes the angle between its joint's axis and the axis of
-    the joint before (the datum axis): zero where the tilt turns the axis about the datum's own direction."""
+def _needs_second_datum(model, c) -> bool:
+    """Whether callout ``c``'s zone is fixed by its datum only up to a turn about the datum's direction (checked
+    here by turning the axis): a per-direction zone whose normal -- the direction a small tilt moves the axis -- is
+    not along the datum's direction (an axis, or a plane's normal); a diameter zone at an angle to it."""
     from tolalloc.robot.lie import exp_so3
 
     names = [jt.name for jt in model.robot.joints]
+    p = model.params[model.index(c.parameters[0])]
     j = names.index(p.element)
-    d, a = (np.asarray(model.robot.joints[i].axis, float) for i in (j - 1, j))
+    d = np.array([0.0, 0.0, 1.0]) if j == 0 else np.asarray(model.robot.joints[j - 1].axis, float)
+    a = np.asarray(model.robot.joints[j].axis, float)
+    if c.diameter:
+        return abs(d @ a) < 1 - 1e-6
     w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
-    eps = 1e-4
-    return abs(np.arccos(np.clip(d @ (exp_so3(eps * w) @ a), -1, 1)) - np.arccos(np.clip(d @ a, -1, 1))) / eps
+    move = (exp_so3(1e-6 * w) @ a - a) / 1e-6
+    return abs(d @ move) / np.linalg.norm(move) < 1 - 1e-4
 
 
 @pytest.mark.parametrize("robot, tilts, positions", [
-    ("tool_changer", {"e2z", "e5y", "e6x"}, {"dl2", "dl5"}),
-    ("ur10", {"e2z", "e5y", "e6z"}, {"dd1", "dd4", "dd5"}),
+    ("tool_changer", {"e1x", "e1y", "e2z", "e3y", "e3z", "e5y", "e6x"}, {"dl2", "dl5"}),
+    ("ur10", {"e2z", "e3x", "e3z", "e4x", "e4z", "e5y", "e6z"}, {"dd1", "dd4", "dd5"}),
 ])
-def test_a_callout_one_datum_axis_cannot_bound_gets_the_datum_system_it_needs(robot, tilts, positions, request):
-    """A zone to a datum axis (two planes perpendicular to it) bounds only the tilt that changes the angle to that
-    axis; a position measured from a datum axis locates nothing along it. The tilts given a datum system are exactly
-    those whose small rotation leaves the angle to the datum axis unchanged (checked here by rotating the axis):
-    ``axis|pin or key of the datum joint's output``; the positions exactly those whose link runs along its datum axis:
-    ``shoulder face|axis``. Each new letter is listed among the datum features; nothing is left as DATUM NEEDED.
-    Without default letters (``default_datums=False``, the robot files name no locating feature or shoulder face)
-    the same callouts keep one datum and are listed as DATUM NEEDED."""
+def test_a_callout_its_datum_fixes_only_up_to_a_turn_gets_the_datum_system_it_needs(robot, tilts, positions,
+                                                                                      request):
+    """A zone of two parallel planes is fixed by a datum axis or plane only up to a turn about its direction; so is a
+    diameter zone at an angle to it (ISO 1101, ISO 5459). The orientation zones given a second datum are exactly those
+    that turn would move (checked by turning the axis), with the locating pin hole or keyway of the datum joint's
+    output flange (the base: of its mounting face; the slide j4: its anti-rotation guide) second; the positions of a
+    link along its datum axis get the datum joint's shoulder face second. Nothing is left as DATUM NEEDED; each
+    letter is listed among the datum features. Without default letters (``default_datums=False``; the robot files
+    name no locating feature or shoulder face) the same callouts keep one datum and are listed as DATUM NEEDED."""
     res = (request.getfixturevalue("job") if robot == "tool_changer" else
            tolalloc.allocate_tolerances(robot, region="nominal", verification=False, progress=False))
     model, h = res.problem.model, res.handover()
+    names = [jt.name for jt in model.robot.joints]
     systems = {c.parameters[0]: c.datum.split("|") for c in h.callouts if "|" in c.datum}
     for c in h.callouts:
-        p = model.params[model.index(c.parameters[0])]
-        if c.characteristic in ("perpendicularity", "angularity") and c.direction and p.site > 0:
-            assert (_rotation_rate(model, p) < 1e-3) == (p.name in systems), p.name
+        if c.characteristic in ("perpendicularity", "parallelism", "angularity"):
+            assert _needs_second_datum(model, c) == (c.parameters[0] in systems), c.parameters
     assert set(systems) == tilts | positions and not h.features.datum_gaps
     assert not any(a.startswith("DATUM NEEDED") for a in h.assumptions)
     features = {k: what for k, what, _ in h.features.datum_features}
-    for name, letters in systems.items():
-        second, first = features[letters[1]], features[letters[0]]
-        if name in tilts:   # the axis primary, the pin or key (a slide: its anti-rotation guide) secondary
-            assert "bearing-seat axis" in first or "guide axis" in first
-            assert "pin or key" in second or "anti-rotation guide" in second
-        else:               # the face primary, the axis secondary
-            assert "shoulder face" in first or "carriage across its stroke" in first
-            assert "axis" in second
+    assert set(features) == {x for c in h.callouts for x in c.datum.split("|") if x}
+    for name, (first, second) in systems.items():
+        p = model.params[model.index(name)]
+        if name in tilts:   # the datum, then what fixes the turn about it, both of the joint before
+            j = names.index(p.element)
+            before = "base mounting face" if j == 0 else names[j - 1]
+            assert before in features[first] and before in features[second]
+            assert "pin hole" in features[second] or "anti-rotation guide" in features[second]
+        else:               # the datum axis, then the face across it, both of the joint the link starts at
+            before = names[model.robot.link_sites[[lk.name for lk in model.robot.links].index(p.element)] - 1]
+            assert features[first].startswith(before) and before in features[second]
+            assert "shoulder face" in features[second] or "carriage across its stroke" in features[second]
     bare = handover(res.result, settings=HandoverSettings(default_datums=False))
     gaps = bare.features.datum_gaps
     assert {c.parameters[0] for c in bare.callouts if any(g.startswith(c.feature + " (") for g in gaps)} == (
         tilts | positions)
     assert sum(a.startswith("DATUM NEEDED") for a in bare.assumptions) == len(tilts) + len(positions)
-    assert all("secondary datum" in g or "datum plane" in g for g in gaps)
+    assert all("secondary datum" in g for g in gaps)
+
+
+def test_a_diameter_zone_at_an_angle_to_its_datum_axis_gets_the_locating_feature(job):
+    """With ``tilt_zone="diameter"`` j2's two tilts share one Ø zone; j2's axis is perpendicular to its datum, j1's
+    axis B: the cylinder can turn about B, so the zone is to B and j1's flange's pin hole or keyway. j1's Ø zone is
+    along A's normal, which needs nothing more."""
+    model = job.problem.model
+    fm = feature_map(model, model.sigma * 3, z=3.0, settings=HandoverSettings(tilt_zone="diameter"))
+    by = {c.parameters: c for c in fm.callouts}
+    features = {k: what for k, what, _ in fm.datum_features}
+    assert by[("e1x", "e1y")].diameter and by[("e1x", "e1y")].datum == "A"
+    first, second = by[("e2y", "e2z")].datum.split("|")
+    assert by[("e2y", "e2z")].diameter and first == "B" and features[second] == (
+        "the locating pin hole or keyway of j1's output flange")
+    assert not fm.datum_gaps
 
 
 def test_the_robot_files_letters_complete_the_datum_system():
-    """``locating_datum`` and ``shoulder_datum`` of a bearing table name the features; a letter given to two
-    features, or one that is no letter, is refused naming the key."""
+    """``locating_datum`` and ``shoulder_datum`` of a bearing table (here a catalogue slot's) name the features; a
+    letter given to two features, the base face's A, or one that is no letter, is refused naming the key."""
     import copy
     import tomllib
 
@@ -319,42 +344,68 @@ def test_the_robot_files_letters_complete_the_datum_system():
     model = build_error_model(robot_from_dict(data))
     fm = feature_map(model, model.sigma * 3, z=3.0)
     by = {c.parameters[0]: c for c in fm.callouts}
-    assert by["e2z"].datum == "B|P" and by["dl2"].datum == "R|B"  # both from j1's axis B
+    assert by["e2z"].datum == "B|P" and by["dl2"].datum == "B|R"  # both from j1's axis B
     listed = {k: (what, src) for k, what, src in fm.datum_features}
-    assert listed["P"] == ("the angular locating feature, pin or key, of j1's output", "robot file")
-    assert listed["R"] == ("the seat shoulder face of j1", "robot file")
+    assert listed["P"] == ("the locating pin hole or keyway of j1's output flange", "robot file")
+    assert listed["R"] == ("the shoulder face of j1's axially locating bearing seat", "robot file")
     clash = copy.deepcopy(data)
-    clash["components"]["joints"]["j1"]["bearing"]["locating_datum"] = "C"
-    with pytest.raises(TolallocError, match=r"datum C names two features: j2 bearing-seat axis and the angular "
-                                            r"locating feature, pin or key, of j1's output"):
+    clash["components"]["joints"]["j3"]["bearing"]["locating_datum"] = "B"   # j1's axis; j3's pin is never used
+    with pytest.raises(TolallocError, match=r"components.joints.j3.bearing.locating_datum = 'B': datum B already "
+                                            r"names components.joints.j1.bearing.datum; give each datum feature its "
+                                            r"own letter"):
         feature_map(build_error_model(robot_from_dict(clash)), model.sigma * 3, z=3.0)
-    clash["components"]["joints"]["j1"]["bearing"]["locating_datum"] = "p1"
-    with pytest.raises(TolallocError, match=r"j1.bearing.locating_datum: expected a datum letter \(one or two "
+    clash["components"]["joints"]["j3"]["bearing"]["locating_datum"] = "A"
+    with pytest.raises(TolallocError, match=r"locating_datum = 'A': datum A already names the base mounting face "
+                                            r"\(A is the base mounting face\)"):
+        feature_map(build_error_model(robot_from_dict(clash)), model.sigma * 3, z=3.0)
+    clash["components"]["joints"]["j3"]["bearing"]["locating_datum"] = "p1"
+    with pytest.raises(TolallocError, match=r"j3.bearing.locating_datum: expected a datum letter \(one or two "
                                             r"capital letters, as B or AB\), got 'p1'"):
         robot_from_dict(clash)
 
 
+def test_a_slot_gives_the_seat_diameter_else_its_bore(clearance_model):
+    """The fit of a joint's bearing seats is drawn at the slot's ``seat_diameter_mm``, else at its bearing's bore
+    (the inner ring's shaft seat: tool_changer.toml's bores 200, 200, 160, 100, 90 mm), not the 50 mm default."""
+    fm = feature_map(clearance_model, _clearance_t(clearance_model), z=3.0, strict=False)
+    fits = {c.feature.split()[0]: c for c in fm.callouts if c.characteristic == "fit"}
+    assert {j: c.length_mm for j, c in fits.items()} == {"j1": 200.0, "j2": 200.0, "j3": 160.0, "j5": 100.0,
+                                                          "j6": 90.0}
+    assert all(c.span_source == "robot file (the bearing's bore)" for c in fits.values())
+    assert any("seat diameter taken as the bearing's bore" in u for u in fm.defaults_used)
+
+
 def test_the_review_of_a_drawing_names_the_callouts_its_verdict_leans_on(job, drawing_csv, tmp_path):
     """The review's P takes every row as bounding its parameter. The tool changer's own drawing carries the datum
-    systems the tilts e2z, e5y, e6x and the positions of l2, l5 need, and its review lists no gap; the same drawing
-    with those rows cut back to one datum axis has five rows whose datum cannot bound them: the review lists them
-    under its verdict, in its text and its summary, with the datum each needs (j4 is the slide: its carriage, not a
-    bearing seat). A datum that is no letter or datum system is refused."""
+    systems its rows need, and its review lists no gap; the same drawing with those rows cut back to their first
+    datum lists each of them under its verdict, in its text and its summary, with the datum it needs (j4 is the
+    slide: its carriage, not a bearing seat). A datum written with spaces (as handover.md prints it) is read; one
+    that names a datum twice, or is no letter or datum system, is refused."""
     assert tolalloc.review_drawing("tool_changer", drawing=drawing_csv, region="nominal").summary()["datum_gaps"] == []
     frame = pd.read_csv(drawing_csv, dtype=str, keep_default_na=False)
     systems = frame.datum.str.contains("|", regex=False)
-    assert set(frame.parameters[systems]) == {"e2z", "e5y", "e6x", "dl2", "dl5"}
-    frame.loc[systems, "datum"] = [d.split("|")[0] if p.startswith("e") else d.split("|")[1]
-                                   for d, p in zip(frame.datum[systems], frame.parameters[systems])]
+    assert set(frame.parameters[systems]) == {"e1x", "e1y", "e2z", "e3y", "e3z", "e5y", "e6x", "dl2", "dl5"}
+    spaced = frame.copy()
+    spaced.loc[systems, "datum"] = spaced.datum[systems].str.replace("|", " | ", regex=False)
+    spaced.to_csv(tmp_path / "spaced.csv", index=False)
+    assert tolalloc.review_drawing("tool_changer", drawing=tmp_path / "spaced.csv",
+                                   region="nominal").summary()["datum_gaps"] == []
+    frame.loc[systems, "datum"] = frame.datum[systems].str.split("|").str[0]
     frame.to_csv(tmp_path / "cut.csv", index=False)
     rv = tolalloc.review_drawing("tool_changer", drawing=tmp_path / "cut.csv", region="nominal")
     gaps = rv.summary()["datum_gaps"]
-    assert len(gaps) == 5 and sum(line.startswith("DATUM NEEDED: ") for line in rv.text().splitlines()) == 5
+    assert len(gaps) == 9 and sum(line.startswith("DATUM NEEDED: ") for line in rv.text().splitlines()) == 9
     assert "the verdict holds only once each has the datum it needs" in rv.text()
     assert any("j5 bearing-seat axis, tilt about y" in g and "anti-rotation guide of j4's carriage" in g for g in gaps)
     assert any("j5 axis, 240 mm" in g and "a face of j4's carriage" in g for g in gaps)
-    assert any("j2 bearing-seat axis, tilt about z" in g and "pin or key, of j1's output" in g for g in gaps)
-    frame.loc[frame.parameters == "e2z", "datum"] = "C/K"
-    frame.to_csv(tmp_path / "bad.csv", index=False)
-    with pytest.raises(TolallocError, match=r"column datum 'C/K' is no datum letter or datum system"):
-        tolalloc.review_drawing("tool_changer", drawing=tmp_path / "bad.csv", region="nominal")
+    assert any("j2 bearing-seat axis, tilt about z" in g and "pin hole or keyway of j1's output flange" in g
+               for g in gaps)
+    assert any("j1 bearing-seat axis, tilt about x" in g and "pin hole of the base mounting face" in g for g in gaps)
+    for bad, match in (("C/K", r"column datum 'C/K' is no datum letter or datum system"),
+                       ("B|B", r"column datum 'B\|B' names a datum twice")):
+        frame.loc[frame.parameters == "e2z", "datum"] = bad
+        frame.to_csv(tmp_path / "bad.csv", index=False)
+        with pytest.raises(TolallocError, match=match):
+            tolalloc.review_drawing("tool_changer", drawing=tmp_path / "bad.csv", region="nominal")
+
+

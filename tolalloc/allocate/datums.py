@@ -1,23 +1,37 @@
 """Datums of a drawing: the letters of the joints' seat axes and of the features that complete a datum system (the
 robot file, else the stated defaults), the orientation characteristic of an axis to its datum, and the callouts one
-datum axis cannot make bound what they stand for (:func:`complete_datums`, :func:`datum_gaps`). Used by
-:mod:`tolalloc.allocate.drawing` and, for a drawing read back, :mod:`tolalloc.allocate.drawing_io`."""
+datum cannot make bound what they stand for (:func:`complete_datums`, :func:`datum_gaps`). Used by
+:mod:`tolalloc.allocate.drawing` and, for a drawing read back, :mod:`tolalloc.allocate.drawing_io`.
+
+A zone of two parallel planes to a datum axis or plane, or a cylinder at an angle to it, is fixed by that datum
+only up to a rotation about the datum's direction (ISO 1101, ISO 5459): it bounds the tilt it stands for only where
+that rotation leaves it unchanged -- planes perpendicular to the datum axis (parallel to the datum plane), a
+cylinder along the datum's direction. Elsewhere the datum system gains, as its secondary datum, a feature that fixes
+that rotation: the locating pin hole or keyway of the datum joint's output flange (the base: of its mounting face; a
+slide: its anti-rotation guide). A position along a datum axis, which locates nothing along itself, gains a face
+across it: the shoulder of the datum joint's axially locating bearing seat. The datum features themselves are taken
+as perfect relative to their axes (stated in the handover's assumptions).
+"""
 
 from __future__ import annotations
 
 import re
 from dataclasses import replace
+from itertools import chain, product
 
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.robot.components import Bearing
 
 __all__ = ["datum_gaps", "complete_datums", "datum_letters", "DATUM_PATTERN"]
 
 #: A datum letter (ISO 5459: capital letters; the defaults skip I, O and Q) or a datum system of up to three, in
-#: order of precedence, separated by ``|`` as in the feature control frame (``B|J``).
-DATUM_PATTERN = re.compile(r"[A-Z]{1,2}(\|[A-Z]{1,2}){0,2}")
+#: order of precedence, separated by ``|`` as in the feature control frame (``B|J``; spaces around ``|`` allowed).
+DATUM_PATTERN = re.compile(r"[A-Z]{1,2}( *\| *[A-Z]{1,2}){0,2}")
 _POOL = "BCDEFGHJKLMNPRSTUVWXYZ"
+_KEYS = ("datum", "locating_datum", "shoulder_datum")
+_PARALLEL = 1.0 - 1e-6
 
 
 def datum_letters(datum: str) -> tuple:
@@ -40,15 +54,18 @@ def _orientation(axis: np.ndarray, datum_dir: np.ndarray, datum_is_plane: bool) 
 
 
 def _what(robot, i: int, kind: str) -> str:
-    """The feature of joint ``i`` a ``kind`` datum is: the seat axis, the angular locating feature of its output or
-    a face across its axis."""
+    """The feature of joint ``i`` (``-1``: the base) a ``kind`` datum is: the seat axis, the feature that fixes the
+    rotation about it, or a face across it."""
+    if i < 0:
+        return "the base mounting face" if kind == "axis" else "the locating pin hole of the base mounting face"
     jt = robot.joints[i]
     if kind == "axis":
         return f"{jt.name} bearing-seat axis" if jt.is_revolute else f"{jt.name} guide axis"
     if kind == "locating":
-        return (f"the angular locating feature, pin or key, of {jt.name}'s output" if jt.is_revolute
+        return (f"the locating pin hole or keyway of {jt.name}'s output flange" if jt.is_revolute
                 else f"the anti-rotation guide of {jt.name}'s carriage")
-    return f"the seat shoulder face of {jt.name}" if jt.is_revolute else f"a face of {jt.name}'s carriage across its stroke"
+    return (f"the shoulder face of {jt.name}'s axially locating bearing seat" if jt.is_revolute
+            else f"a face of {jt.name}'s carriage across its stroke")
 
 
 def _bearing(robot, name: str):
@@ -56,7 +73,17 @@ def _bearing(robot, name: str):
     option of the slot; the class of the option does not enter a drawing's datums, spans or seat diameters)."""
     b = robot.components.joint(name).bearing
     slot = robot.components.slots.get((name, "bearing"))
-    return b if b is not None or slot is None else slot.resolve(slot.options[0].name)
+    if b is not None or slot is None:
+        return b
+    g = slot.geometry
+    return Bearing(None, g.get("span_mm"), g.get("datum"), None, "", g.get("bore_mm"), None,
+                   g.get("seat_diameter_mm"), g.get("centre_mm", 0.0), g.get("locating_datum"),
+                   g.get("shoulder_datum"))
+
+
+def _letters():
+    """Default letters: B ... Z without I, O, Q, then two-letter names (AA, AB ...)."""
+    return chain(_POOL, ("".join(p) for p in product("ABCDEFGHJKLMNPRSTUVWXYZ", repeat=2)))
 
 
 class _Frame:
@@ -65,9 +92,8 @@ class _Frame:
     def __init__(self, robot, settings):
         self.robot, self.settings, self.used = robot, settings, []
         self._bearings = [_bearing(robot, jt.name) for jt in robot.joints]
-        given = {x for b in self._bearings if b is not None
-                 for x in (b.datum, b.locating_datum, b.shoulder_datum) if x}
-        letters = (c for c in _POOL if c not in given)
+        given = self._check_letters()
+        letters = (c for c in _letters() if c not in given)
         self.datum, self.features = {}, {}
         self.base_datum = "A" if settings.default_datums else ""
         if self.base_datum:
@@ -76,26 +102,40 @@ class _Frame:
             own = b.datum if b is not None and b.datum else None
             self.datum[jt.name] = own or (next(letters) if settings.default_datums else "")
             if own is None and settings.default_datums:
-                self._note("datums named A (base mounting face), then B, C ... per joint axis in chain order")
+                self._note("datums named A (base mounting face) and, where the robot file names none, the joint "
+                           "axes B, C ... in chain order")
             if self.datum[jt.name]:
                 self._feature(self.datum[jt.name], _what(robot, i, "axis"), "robot file" if own else "assumed letter")
-        self._spare = (c for c in _POOL if c not in given and c not in self.datum.values())
+        self._spare = (c for c in _letters() if c not in given and c not in self.datum.values())
+
+    def _check_letters(self) -> set:
+        """The robot file's letters, refused where one names two features (or the base face's A)."""
+        seen = {"A": "the base mounting face"} if self.settings.default_datums else {}
+        for jt, b in zip(self.robot.joints, self._bearings):
+            for key in _KEYS if b is not None else ():
+                letter = getattr(b, key)
+                if letter is None:
+                    continue
+                where = f"components.joints.{jt.name}.bearing.{key}"
+                if letter in seen:
+                    raise TolallocError(f"{where} = {letter!r}: datum {letter} already names {seen[letter]}"
+                                        f"{' (A is the base mounting face)' if letter == 'A' else ''}; give each "
+                                        "datum feature its own letter.")
+                seen[letter] = where
+        return set(seen)
 
     def _note(self, text: str) -> None:
         if text not in self.used:
             self.used.append(text)
 
     def _feature(self, letter: str, what: str, source: str) -> None:
-        if letter in self.features and self.features[letter][0] != what:
-            raise TolallocError(f"datum {letter} names two features: {self.features[letter][0]} and {what}; give "
-                                "each datum feature its own letter in the robot file's [components.joints.<joint>."
-                                "bearing] (datum, locating_datum, shoulder_datum).")
         self.features[letter] = (what, source)
 
     def secondary(self, i: int, kind: str) -> str:
-        """The letter of joint ``i``'s ``kind`` (``"locating"`` or ``"shoulder"``) datum feature: the robot file's
-        ``locating_datum`` / ``shoulder_datum``, else the next free letter (with ``default_datums``), else ``""``."""
-        b = self._bearings[i]
+        """The letter of joint ``i``'s (``-1``: the base's) ``kind`` (``"locating"`` or ``"shoulder"``) datum
+        feature: the robot file's ``locating_datum`` / ``shoulder_datum``, else the next free letter (with
+        ``default_datums``), else ``""``."""
+        b = self._bearings[i] if i >= 0 else None
         own = getattr(b, f"{kind}_datum") if b is not None else None
         what = _what(self.robot, i, kind)
         for letter, (w, _) in self.features.items():
@@ -105,8 +145,8 @@ class _Frame:
             return ""
         letter = own or next(self._spare)
         if own is None:
-            self._note("the features that complete a datum system (an output's angular locating feature, a seat "
-                       "shoulder face) named with the letters after the joint axes'")
+            self._note("the features that complete a datum system (a locating pin hole or keyway, a seat shoulder "
+                       "face) named with the letters after the joint axes'")
         self._feature(letter, what, "robot file" if own else "assumed letter")
         return letter
 
@@ -116,6 +156,10 @@ class _Frame:
         v = getattr(b, key) if b is not None else None
         if v is not None:
             return float(v), "robot file"
+        if key == "seat_diameter_mm" and b is not None and b.bore_mm is not None:
+            self._note("seat diameter taken as the bearing's bore where the robot file gives no seat diameter (the "
+                       "shaft seat of the inner ring)")
+            return float(b.bore_mm), "robot file (the bearing's bore)"
         if default is None:
             raise TolallocError(f"joint {jt.name}: no {what} ({key}) in the robot file's [components.joints."
                                 f"{jt.name}.bearing] and no default given; add {key} there or pass a default "
@@ -137,73 +181,77 @@ def _datum_feature(robot, j: int) -> tuple:
     return np.asarray(robot.joints[j - 1].axis, float), False
 
 
-def _need(model, c) -> tuple | None:
-    """``(kind, i, sentence)`` where callout ``c``'s datum axis alone cannot bound what it stands for, else None.
+def _unit(v) -> np.ndarray:
+    v = np.asarray(v, float)
+    return v / np.linalg.norm(v)
 
-    * An orientation zone to a datum *axis* (two planes perpendicular to it, ISO 1101) bounds the tilt that changes
-      the angle between the feature's axis ``a`` and the datum's ``d``: the component about ``n = d x a``. A tilt
-      about another direction (about ``d`` itself where ``a`` is perpendicular to it) leaves the angle unchanged:
-      the zone needs a secondary datum that fixes the rotation about ``d`` (kind ``"locating"``: the angular
-      locating feature of the datum joint ``i``'s output, a pin or a key).
-    * A position zone measured from a datum axis locates the feature across that axis only: a link that runs along
-      the datum axis needs a datum plane across it (kind ``"shoulder"``: the datum joint's seat shoulder face).
-    """
+
+def _orientation_need(model, c) -> tuple | None:
+    """``("locating", i, sentence)`` where the orientation zone of ``c`` can turn about its datum's direction."""
     robot = model.robot
-    names = [jt.name for jt in robot.joints]
-    letters = datum_letters(c.datum) or ("(none)",)
-    if c.characteristic in ("perpendicularity", "angularity") and c.direction:
-        p = model.params[model.index(c.parameters[0])]
-        j = names.index(p.element)
-        d, is_plane = _datum_feature(robot, j)
-        if is_plane:
+    p = model.params[model.index(c.parameters[0])]
+    j = [jt.name for jt in robot.joints].index(p.element)
+    d, is_plane = _datum_feature(robot, j)
+    a = _unit(robot.joints[j].axis)
+    x = (datum_letters(c.datum) or ("(none)",))[0]
+    kind = "plane" if is_plane else "axis"
+    if c.diameter:
+        if abs(float(a @ d)) >= _PARALLEL:
             return None
-        a = np.asarray(robot.joints[j].axis, float)
-        n = np.cross(d, a) / np.linalg.norm(np.cross(d, a))
-        w = np.asarray(p.twist[:3], float) / np.linalg.norm(p.twist[:3])
-        share = abs(float(w @ n))
-        if share >= 1.0 - 1e-6:
+        why = (f"a diameter zone at an angle to datum {kind} {x} is fixed by {x} only up to a turn about {x}'s "
+               "direction, which the tilt about that direction takes")
+    else:
+        m = np.cross(_unit(p.twist[:3]), a)  # the direction the tilt moves the axis: the zone's normal
+        if np.linalg.norm(m) < 1e-12 or abs(float(_unit(m) @ d)) >= _PARALLEL:
             return None
-        part = "none of this one" if share < 1e-6 else f"{share:.0%} of this one"
-        return ("locating", j - 1,
-                f"a zone to datum axis {letters[0]} bounds only the tilt that changes the angle to it, {part}; "
-                f"the rest turns the axis about {letters[0]}'s direction -- add a secondary "
-                f"datum that fixes that rotation ({_what(robot, j - 1, 'locating')}) to the callout")
+        why = (f"a zone of two parallel planes {'across' if is_plane else 'along'} datum {kind} {x} is fixed by {x} "
+               f"only up to a turn about {x}'s direction, so it bounds its tilt only once that turn is fixed")
+    return ("locating", j - 1, f"{why} -- add a secondary datum that fixes the rotation about {x} "
+                               f"({_what(robot, j - 1, 'locating')}) to the callout")
+
+
+def _need(model, c) -> tuple | None:
+    """``(kind, i, sentence)`` where callout ``c``'s one datum cannot make it bound what it stands for, else None:
+    kind ``"locating"`` (an orientation zone that can turn about its datum's direction, module docstring) or
+    ``"shoulder"`` (a position along a datum axis), ``i`` the datum joint (``-1``: the base)."""
+    robot = model.robot
+    if c.characteristic in ("perpendicularity", "parallelism", "angularity"):
+        return _orientation_need(model, c)
     if c.characteristic == "position":
         li = [lk.name for lk in robot.links].index(model.params[model.index(c.parameters[0])].element)
         link, site = robot.links[li], int(robot.link_sites[li])
         ddir, is_plane = _datum_feature(robot, site)
         if not is_plane and _angle(link.direction, ddir) < 45.0:
+            x = (datum_letters(c.datum) or ("(none)",))[0]
             return ("shoulder", site - 1,
-                    f"{link.name} runs along datum axis {letters[-1]}, which locates nothing along "
-                    f"itself -- the {link.length_mm:g} mm need a datum plane across that axis "
-                    f"({_what(robot, site - 1, 'shoulder')}) in the callout's datum system")
+                    f"{link.name} runs along datum axis {x}, which locates nothing along itself -- the "
+                    f"{link.length_mm:g} mm need a datum plane across that axis "
+                    f"({_what(robot, site - 1, 'shoulder')}) as the secondary datum")
     return None
 
 
+def _gap(c, sentence: str) -> str:
+    frame = f"{c.symbol} | {c.datum}" if c.datum else f"{c.symbol}, no datum"
+    return f"{c.feature} ({frame}): {sentence}"
+
+
 def complete_datums(model, callouts, frame: _Frame) -> tuple:
-    """``(callouts, gaps)``: each callout a datum axis alone cannot make bound its parameter (:func:`_need`) given
-    the datum system it needs -- ``axis|locating`` for an orientation zone, ``shoulder|axis`` for a position -- where
-    ``frame`` has the letter; the others' sentences in ``gaps``."""
+    """``(callouts, gaps)``: each callout its one datum cannot make bound its parameter (:func:`_need`) given the
+    datum system it needs -- the datum, then the feature that fixes the rotation about it or the face across it --
+    where ``frame`` has the letter; the others' sentences in ``gaps``."""
     out, gaps = [], []
     for c in callouts:
         need = _need(model, c)
         letter = frame.secondary(need[1], need[0]) if need is not None and c.datum else ""
-        if need is None:
-            out.append(c)
-        elif not letter:
-            out.append(c)
-            gaps.append(f"{c.feature} ({c.symbol} | {c.datum}): {need[2]}")
-        else:
-            out.append(replace(c, datum=f"{c.datum}|{letter}" if need[0] == "locating" else f"{letter}|{c.datum}"))
+        if need is not None and not letter:
+            gaps.append(_gap(c, need[2]))
+        out.append(replace(c, datum=f"{c.datum}|{letter}") if letter else c)
     return tuple(out), tuple(gaps)
 
 
 def datum_gaps(model, callouts) -> tuple:
     """The callouts whose datum cannot bound what they stand for, one sentence each: those :func:`_need` names
-    whose datum is a single letter (a datum system of two or more letters is taken to carry the feature named)."""
-    out = []
-    for c in callouts:
-        need = _need(model, c)
-        if need is not None and len(datum_letters(c.datum)) < 2:
-            out.append(f"{c.feature} ({c.symbol} | {c.datum}): {need[2]}")
-    return tuple(out)
+    whose datum is a single letter. A datum system of two or more letters is taken to carry the feature named (the
+    reader cannot tell what a letter of a drawing stands for)."""
+    return tuple(_gap(c, need[2]) for c in callouts
+                 if (need := _need(model, c)) is not None and len(datum_letters(c.datum)) < 2)

@@ -5,7 +5,7 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
 ``link_length``
     The distance between two joints. Where the link locates the next joint's axis sideways, a *position*
     tolerance of that axis (``⌖``, a zone of two parallel planes ``2 t`` apart across the link, i.e. the IT value;
-    a link along its datum axis is located in the datum system ``shoulder face|axis``);
+    a link along its datum axis is located in the datum system ``axis|shoulder face``);
     else (along the next axis, a slide, the tool flange) a *size* ``±t``. Both carry the ISO 286 grade of the
     design.
 ``axis_deflection`` (two tilts per revolute joint)
@@ -18,8 +18,10 @@ Each error parameter of a design is mapped to what a drawing or a purchase order
     ``Ø t_zone = L sigma sqrt(-2 ln(1 - p_c))`` with ``p_c = P(|N| < z)``, not ``z`` per component). Unequal
     tilts get a zone in each direction. To a datum *axis* at an angle a zone (two planes perpendicular to it) bounds
     only the tilt that changes the angle to it: each tilt gets its own zone, and a tilt about the datum axis' own
-    direction is bounded in the datum system ``axis|locating feature`` (the angular locating feature, pin or key,
-    of the datum joint's output: it fixes the rotation about the datum axis; :func:`complete_datums`).
+    direction -- and any zone the datum fixes only up to a turn about its direction (per-direction zones to a datum
+    plane or a parallel axis, a Ø zone at an angle) -- is bounded in the datum system ``datum|locating feature`` (the
+    locating pin hole or keyway of the datum joint's output flange, of the base's mounting face: it fixes the
+    rotation about the datum; :mod:`tolalloc.allocate.datums`).
 ``clearance_tilt``
     The *coaxiality* ``◎`` of the joint's second bearing seat to the first over the span. A coaxiality zone is a
     cylinder centred on the datum axis, so a tilt of magnitude ``a`` (the second seat's radial offset ``L a``)
@@ -51,7 +53,7 @@ from math import log, sqrt
 import numpy as np
 from scipy.special import log_ndtr
 
-from tolalloc.allocate.datums import _Frame, _angle, _orientation, complete_datums, datum_gaps
+from tolalloc.allocate.datums import _Frame, _angle, _orientation, complete_datums, datum_gaps, datum_letters
 from tolalloc.allocate.fits import FIT_MAX_SIZE_MM, PREFERRED_CLEARANCE_FITS, check_clearance_fits, clearance_fits
 from tolalloc.allocate.purchase import drive_part
 from tolalloc.allocate.standards import IT_SIZES_MM, IT_TABLE_UM, is_real_number, it_row
@@ -283,8 +285,9 @@ def feature_map(model, t, labels=(), *, z: float, distribution: str = "normal",
         else:  # clearance_axial
             callouts.append(_stack_callout(model, j, ks[0], t, fr))
     callouts, gaps = complete_datums(model, callouts, fr)
+    named = {x for c in callouts for x in datum_letters(c.datum)}
     return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, settings, tuple(fr.used),
-                      tuple(fr.warnings), gaps, tuple((k, *fr.features[k]) for k in sorted(fr.features)))
+                      tuple(fr.warnings), gaps, tuple((k, *fr.features[k]) for k in sorted(fr.features) if k in named))
 
 
 def _stack_callout(model, j: int, k: int, t, fr: _Frame) -> Callout:

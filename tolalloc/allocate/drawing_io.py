@@ -46,7 +46,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.datums import DATUM_PATTERN, datum_gaps
+from tolalloc.allocate.datums import DATUM_PATTERN, datum_gaps, datum_letters
 from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, check_z, zone_factor
 from tolalloc.allocate.purchase import PurchasedPart
 from tolalloc.allocate.fits import parse_fit
@@ -234,7 +234,11 @@ def _check_row(c: Callout, params, model, where: str) -> None:
                             "a datum: give its letter (A, B ...).")
     if c.datum and not DATUM_PATTERN.fullmatch(c.datum):
         raise TolallocError(f"{where}: column datum {c.datum!r} is no datum letter or datum system; expected capital "
-                            "letters, a system of up to three in order of precedence separated by | (B, B|K, H|B).")
+                            "letters, a system of up to three in order of precedence separated by | (B, B|K).")
+    letters = datum_letters(c.datum)
+    if len(set(letters)) < len(letters):
+        raise TolallocError(f"{where}: column datum {c.datum!r} names a datum twice; a datum system names each datum "
+                            "feature once, in order of precedence (B|K).")
     if not c.direction:
         return
     if c.characteristic not in _ORIENT or c.diameter or c.characteristic == "coaxiality":

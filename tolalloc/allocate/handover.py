@@ -58,7 +58,8 @@ def callout_text(c) -> str:
         return f"Ø{c.length_mm:g} {c.grade}"
     if c.characteristic == "size":
         return f"{c.length_mm:g} ±{_mm(c.zone_mm / 2)}" + (f" ({c.grade})" if c.grade else "")
-    head = f"{c.symbol} {'Ø' if c.diameter else ''}{_mm(c.zone_mm)}" + "".join(f" | {d}" for d in datum_letters(c.datum))
+    head = f"{c.symbol} {'Ø' if c.diameter else ''}{_mm(c.zone_mm)}"
+    head += "".join(f" | {d}" for d in datum_letters(c.datum))
     if c.characteristic == "position":
         return f"{head} (TED {c.length_mm:g}" + (f", {c.grade}" if c.grade else "") + ")"
     return f"{head} over {c.length_mm:g}" + (f", tilt about {c.direction}" if c.direction else "")
@@ -248,9 +249,10 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
     out += [f"LOOSER THAN THE DESIGN: {w}." for w in fm.warnings]
     if fm.datum_features:
         out.append("Datum features: " + "; ".join(f"{k} {what} ({src})" for k, what, src in fm.datum_features)
-                   + ". A datum system is read in order of precedence: axis | locating feature (the axis primary, "
-                   "the pin or key fixing the rotation about it), face | axis (the shoulder face primary, then the "
-                   "axis).")
+                   + ". A datum system is read in order of precedence: the datum the zone is oriented or located "
+                   "from, then the feature that fixes the rotation about it (a locating pin hole or keyway) or the "
+                   "face across it (a seat shoulder). The datum features are taken as perfect relative to their axes "
+                   "and faces: their own tolerances are not in the budget.")
     out += [f"DATUM NEEDED: {w}." for w in fm.datum_gaps]
     if unheld:
         out.append("Some callouts are finer than any process of the table holds: their process names the finest "

@@ -42,8 +42,8 @@ The optional ``[components]`` section of a robot file (chain or DH layout), ever
     bore_mm = 60                     # bore of the bearings (selects the ISO 492 runout row)
     radial_runout_um = 5             # Kia, radial runout of the assembled inner ring (full indicator reading)
     datum = "B"                      # datum feature of the seat axis on the drawing (A: the base mounting face)
-    locating_datum = "J"             # the output's angular locating feature (pin or key) on the drawing
-    shoulder_datum = "K"             # the seat shoulder face on the drawing
+    locating_datum = "J"             # the output flange's locating pin hole or keyway on the drawing
+    shoulder_datum = "K"             # the shoulder face of the axially locating bearing seat on the drawing
     seat_diameter_mm = 62            # nominal diameter of the bearing seats (the size of the joint's ISO 286 fit)
     tilt_stiffness_Nm_per_rad = 1.0e6  # moment stiffness across the axis: the bearing tilts by M / k under its load
     centre_mm = 0                    # the bearing pair's centre along the joint axis from the joint point (it tilts
@@ -181,9 +181,9 @@ class Bearing:
     ``tilt_stiffness`` [N m/rad], source, ``bore_mm`` and ``radial_runout`` [mm] (Kia: the full indicator reading of
     the assembled inner ring's radial runout), nominal ``seat_diameter_mm`` (the size of the seats' ISO 286 fit),
     ``centre_mm``: the pair's centre along the joint axis from the joint point [mm], about which the body tilts (its
-    runout's tilt and its tilt under load; 0: at the joint point); ``locating_datum`` and ``shoulder_datum``: the drawing's
-    letters of the output's angular locating feature (a pin or a key) and of the seat shoulder face, the features that
-    complete a datum system on the joint's axis."""
+    runout's tilt and its tilt under load; 0: at the joint point); ``locating_datum`` and ``shoulder_datum``: the
+    drawing's letters of the output flange's locating pin hole or keyway and of the axially locating seat's shoulder
+    face, the features that complete a datum system on the joint's axis."""
 
     precision_class: str | None = None
     span_mm: float | None = None

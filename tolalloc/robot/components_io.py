@@ -12,7 +12,8 @@ import numpy as np
 from tolalloc.robot.components import (_ANGLE, _CTE, _LENGTH, _LIN_STIFF, _MODULUS, _ROT_STIFF, _TIME, MATERIALS,
                                        REDUCER_TYPES, Bearing, Encoder, LinkSection, Motor, Reducer)
 
-__all__ = ["DATUM_KEYS", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor", "read_section"]
+__all__ = ["DATUM_KEYS", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor",
+           "read_section"]
 
 
 class Values(dict):
