@@ -71,7 +71,9 @@ def test_every_row_has_a_callout_or_a_part_and_a_process(job):
     j3 = draw[draw.parameters.str.startswith("e3")]
     assert set(j3.characteristic) == {"parallelism"} and {d.split("|")[0] for d in j3.datum} == {"C"}
     assert all(len(d.split("|")) == 2 for d in [*j1.datum, *j3.datum])
-    assert draw.set_index("parameters").loc["dl1", "characteristic"] == "size"
+    # a step from the base face A to j1's seat shoulder: a position at the exact distance, not a size (ISO 14405-2)
+    assert draw.set_index("parameters").loc["dl1", "characteristic"] == "position"
+    assert draw.set_index("parameters").loc["dl1", "datum"] == "A"
     assert draw.set_index("parameters").loc["dl3", "characteristic"] == "position"
     # e6x and e6y sit at the same limit, but their datum is j5's axis F: a zone to a datum axis bounds one direction
     # of tilt (two planes perpendicular to it), so each tilt gets its own zone, not one diameter zone
@@ -230,9 +232,9 @@ def test_missing_span_and_datum():
 
 def test_export_refuses_a_zone_without_datum(job):
     h = handover(job.result, settings=HandoverSettings(default_datums=False))
-    # the robot file names the seat axes of j1-j3, j5, j6, not j4 (the slide): l5's position is located from j4
-    with pytest.raises(TolallocError, match=r"export: j5 axis, 240 mm from the datum \(l5\) \(position\) has no "
-                                            r"datum"):
+    # the robot file names the seat axes of j1-j3, j5, j6, not the base face (l1's position is located from it)
+    with pytest.raises(TolallocError, match=r"export: shoulder face of j1's axially locating bearing seat, 315 mm from "
+                                            r"the datum \(l1\) \(position\) has no datum"):
         export_frame(h)
 
 

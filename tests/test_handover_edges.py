@@ -274,7 +274,7 @@ def _needs_second_datum(model, c) -> bool:
 
 @pytest.mark.parametrize("robot, tilts, positions", [
     ("tool_changer", {"e1x", "e1y", "e2z", "e3y", "e3z", "e5y", "e6x"}, {"dl2", "dl5"}),
-    ("ur10", {"e2z", "e3x", "e3z", "e4x", "e4z", "e5y", "e6z"}, {"dd1", "dd4", "dd5"}),
+    ("ur10", {"e2z", "e3x", "e3z", "e4x", "e4z", "e5y", "e6z"}, {"dd1", "dd4", "dd5", "dd6"}),
 ])
 def test_a_callout_its_datum_fixes_only_up_to_a_turn_gets_the_datum_system_it_needs(robot, tilts, positions,
                                                                                       request):
@@ -409,3 +409,36 @@ def test_the_review_of_a_drawing_names_the_callouts_its_verdict_leans_on(job, dr
             tolalloc.review_drawing("tool_changer", drawing=tmp_path / "bad.csv", region="nominal")
 
 
+
+
+def test_a_robot_file_that_names_every_datum_feature_needs_no_default_letter():
+    """With the base face's letters (``[components.mount]``), the slide's (``[components.joints.j4.guide]``) and
+    every bearing's locating and shoulder letters in the robot file, ``default_datums=False`` gives a complete drawing:
+    every callout has the datum (system) it needs, each letter from the file, and the export takes it."""
+    import tomllib
+
+    from tolalloc.robot.io.load import _builtin_dir, robot_from_dict
+
+    data = tomllib.loads((_builtin_dir() / "tool_changer.toml").read_text())
+    comps = data["components"]
+    comps["mount"].update(datum="W", locating_datum="X")
+    comps["joints"]["j4"]["guide"] = {"datum": "E", "locating_datum": "U", "shoulder_datum": "V"}
+    for j, (pin, face) in {"j1": ("P", "R"), "j2": ("S", "T"), "j3": ("H", "J"), "j5": ("K", "L")}.items():
+        comps["joints"][j]["bearing"].update(locating_datum=pin, shoulder_datum=face)
+    model = build_error_model(robot_from_dict(data))
+    t = model.sigma * 3
+    t[[model.index("e1x"), model.index("e3y")]] *= 0.5   # unequal tilts: a zone per direction
+    fm = feature_map(model, t, z=3.0, settings=HandoverSettings(default_datums=False))
+    by = {c.parameters[0]: c.datum for c in fm.callouts}
+    assert (by["e1x"], by["dl1"], by["e2z"], by["dl2"], by["e3y"]) == ("W|X", "W", "B|P", "B|R", "C|S")
+    assert (by["e5y"], by["dl5"], by["e6x"]) == ("E|U", "E|V", "F|K")
+    assert not fm.datum_gaps and all(src == "robot file" for _, _, src in fm.datum_features)
+    assert len(export_frame(_handover(fm))) == len(fm.callouts) + len(fm.parts)
+    bad = tomllib.loads((_builtin_dir() / "tool_changer.toml").read_text())
+    bad["components"]["joints"]["j1"]["guide"] = {"datum": "Q"}
+    with pytest.raises(TolallocError, match=r"j1.guide: j1 is a revolute joint; its drawing letters go in its bearing"):
+        robot_from_dict(bad)
+    bad = tomllib.loads((_builtin_dir() / "tool_changer.toml").read_text())
+    bad["components"]["joints"]["j4"]["guide"] = {"datum": "E", "span_mm": 3}
+    with pytest.raises(TolallocError, match=r"j4.guide: unknown key 'span_mm'; expected datum, locating_datum"):
+        robot_from_dict(bad)

@@ -70,8 +70,12 @@ def _what(robot, i: int, kind: str) -> str:
 
 def _bearing(robot, name: str):
     """The joint's bearing figures: its own table, else its catalogue slot's seat geometry (the same for every
-    option of the slot; the class of the option does not enter a drawing's datums, spans or seat diameters)."""
-    b = robot.components.joint(name).bearing
+    option of the slot; the class of the option does not enter a drawing's datums, spans or seat diameters); a
+    prismatic joint's guide letters."""
+    parts = robot.components.joint(name)
+    if parts.guide is not None:
+        return parts.guide
+    b = parts.bearing
     slot = robot.components.slots.get((name, "bearing"))
     if b is not None or slot is None:
         return b
@@ -92,12 +96,14 @@ class _Frame:
     def __init__(self, robot, settings):
         self.robot, self.settings, self.used = robot, settings, []
         self._bearings = [_bearing(robot, jt.name) for jt in robot.joints]
+        self._mount = robot.components.mount
         given = self._check_letters()
         letters = (c for c in _letters() if c not in given)
         self.datum, self.features = {}, {}
-        self.base_datum = "A" if settings.default_datums else ""
+        self.base_datum = self._mount.datum or ("A" if settings.default_datums else "")
         if self.base_datum:
-            self.features["A"] = ("the base mounting face", "assumed letter")
+            self.features[self.base_datum] = ("the base mounting face",
+                                              "robot file" if self._mount.datum else "assumed letter")
         for i, (jt, b) in enumerate(zip(robot.joints, self._bearings)):
             own = b.datum if b is not None and b.datum else None
             self.datum[jt.name] = own or (next(letters) if settings.default_datums else "")
@@ -110,13 +116,19 @@ class _Frame:
 
     def _check_letters(self) -> set:
         """The robot file's letters, refused where one names two features (or the base face's A)."""
-        seen = {"A": "the base mounting face"} if self.settings.default_datums else {}
+        m = self._mount
+        seen = {x: f"components.mount.{k}" for k, x in (("datum", m.datum), ("locating_datum", m.locating_datum)) if x}
+        if m.locating_datum and m.locating_datum == m.datum:
+            raise TolallocError(f"components.mount.locating_datum = {m.datum!r}: the same letter as the base face's "
+                                "datum; give each datum feature its own letter.")
+        if not m.datum and self.settings.default_datums:
+            seen.setdefault("A", "the base mounting face")
         for jt, b in zip(self.robot.joints, self._bearings):
             for key in _KEYS if b is not None else ():
                 letter = getattr(b, key)
                 if letter is None:
                     continue
-                where = f"components.joints.{jt.name}.bearing.{key}"
+                where = f"components.joints.{jt.name}.{'bearing' if jt.is_revolute else 'guide'}.{key}"
                 if letter in seen:
                     raise TolallocError(f"{where} = {letter!r}: datum {letter} already names {seen[letter]}"
                                         f"{' (A is the base mounting face)' if letter == 'A' else ''}; give each "
@@ -135,8 +147,8 @@ class _Frame:
         """The letter of joint ``i``'s (``-1``: the base's) ``kind`` (``"locating"`` or ``"shoulder"``) datum
         feature: the robot file's ``locating_datum`` / ``shoulder_datum``, else the next free letter (with
         ``default_datums``), else ``""``."""
-        b = self._bearings[i] if i >= 0 else None
-        own = getattr(b, f"{kind}_datum") if b is not None else None
+        b = self._bearings[i] if i >= 0 else self._mount
+        own = getattr(b, f"{kind}_datum", None) if b is not None else None
         what = _what(self.robot, i, kind)
         for letter, (w, _) in self.features.items():
             if w == what:
@@ -153,10 +165,10 @@ class _Frame:
     def bearing_value(self, j: int, key: str, default, what: str) -> tuple[float, str]:
         jt = self.robot.joints[j]
         b = self._bearings[j]
-        v = getattr(b, key) if b is not None else None
+        v = getattr(b, key, None)
         if v is not None:
             return float(v), "robot file"
-        if key == "seat_diameter_mm" and b is not None and b.bore_mm is not None:
+        if key == "seat_diameter_mm" and getattr(b, "bore_mm", None) is not None:
             self._note("seat diameter taken as the bearing's bore where the robot file gives no seat diameter (the "
                        "shaft seat of the inner ring)")
             return float(b.bore_mm), "robot file (the bearing's bore)"

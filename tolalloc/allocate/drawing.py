@@ -3,11 +3,13 @@
 Each error parameter of a design is mapped to what a drawing or a purchase order carries (ISO 1101, ISO 286):
 
 ``link_length``
-    The distance between two joints. Where the link locates the next joint's axis sideways, a *position*
-    tolerance of that axis (``⌖``, a zone of two parallel planes ``2 t`` apart across the link, i.e. the IT value;
-    a link along its datum axis is located in the datum system ``axis|shoulder face``);
-    else (along the next axis, a slide, the tool flange) a *size* ``±t``. Both carry the ISO 286 grade of the
-    design.
+    The distance between two joints: a *position* tolerance (``⌖``, a zone of two parallel planes ``2 t`` apart
+    across the link, i.e. the IT value, at the theoretically exact distance) of what the link locates -- the next
+    joint's axis where the link runs across it, else (along the next axis, a slide, the tool flange) the face that
+    locates it along the link: the shoulder of the next joint's axially locating bearing seat, its guide's mounting
+    face, the tool flange face. A step between two faces is no feature of size, so not a size ``±t`` (ISO 14405-2).
+    A link along its datum axis is located in the datum system ``axis|shoulder face``. It carries the ISO 286 grade
+    of the design.
 ``axis_deflection`` (two tilts per revolute joint)
     The axis of the joint's bearing-seat pair, its orientation to the datum of the joint before it (the first
     joint: the base mounting face, datum ``A``): *perpendicularity* ``⊥``, *parallelism* ``∥`` or *angularity*
@@ -317,11 +319,14 @@ def _link_callout(robot, p, t: float, label: str, fr: _Frame) -> Callout:
     nxt = robot.joints[site] if site < robot.n_joints else None
     grade = label if label.startswith("IT") else _grade_within(link.length_mm, 2 * t)
     if nxt is not None and nxt.is_revolute and _angle(link.direction, np.asarray(nxt.axis, float)) > 45.0:
-        return Callout(f"{nxt.name} axis, {link.length_mm:g} mm from the datum ({link.name})", "position", 2 * t,
-                       False, "", datum, link.length_mm, grade, (p.name,), 2.0, "nominal")
-    what = f"{nxt.name} seat" if nxt is not None else "tool flange"
-    return Callout(f"{what} distance {link.length_mm:g} mm ({link.name})", "size", 2 * t, False, "", datum,
-                   link.length_mm, grade, (p.name,), 2.0, "nominal")
+        what = f"{nxt.name} axis"
+    elif nxt is None:
+        what = "tool flange face"
+    else:
+        what = (f"shoulder face of {nxt.name}'s axially locating bearing seat" if nxt.is_revolute
+                else f"mounting face of {nxt.name}'s guide")
+    return Callout(f"{what}, {link.length_mm:g} mm from the datum ({link.name})", "position", 2 * t, False, "",
+                   datum, link.length_mm, grade, (p.name,), 2.0, "nominal")
 
 
 def _tilt_callouts(model, j: int, kind: str, ks, t, fr: _Frame, z: float, distribution: str) -> list:

@@ -214,6 +214,16 @@ class Motor:
 
 
 @dataclass(frozen=True)
+class Guide:
+    """A prismatic joint's linear guide on the drawing: the letters of its guide axis (``datum``), its carriage's
+    anti-rotation guide (``locating_datum``) and a face of its carriage across its stroke (``shoulder_datum``)."""
+
+    datum: str | None = None
+    locating_datum: str | None = None
+    shoulder_datum: str | None = None
+
+
+@dataclass(frozen=True)
 class JointComponents:
     """The bought parts of one joint (each None where the file says nothing)."""
 
@@ -221,6 +231,7 @@ class JointComponents:
     encoder: Encoder | None = None
     bearing: Bearing | None = None
     motor: Motor | None = None
+    guide: Guide | None = None
 
 
 @dataclass(frozen=True)
@@ -282,10 +293,13 @@ class LinkSection:
 
 @dataclass(frozen=True)
 class Mount:
-    """The base mount: tilting stiffness about base x and y [N m/rad] (None: unknown), source."""
+    """The base mount: tilting stiffness about base x and y [N m/rad] (None: unknown), source; the drawing's letters
+    of the base mounting face (``datum``) and of its locating pin hole (``locating_datum``)."""
 
     tilt_stiffness: tuple | None = None
     source: str = ""
+    datum: str | None = None
+    locating_datum: str | None = None
 
 
 @dataclass(frozen=True)

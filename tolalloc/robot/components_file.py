@@ -9,8 +9,8 @@ from __future__ import annotations
 import numpy as np
 
 from tolalloc.robot.components import _LENGTH, _ROT_STIFF, Components, JointComponents, Mount, Payload
-from tolalloc.robot.components_io import (_positive_in, _text, read_bearing, read_encoder, read_motor, read_reducer,
-                                          read_section, read_table)
+from tolalloc.robot.components_io import (_positive_in, _text, datum_letter, read_bearing, read_encoder,
+                                          read_guide, read_motor, read_reducer, read_section, read_table)
 from tolalloc.robot.part_catalogue import parse_slot, robot_catalogue
 
 __all__ = ["parse_components", "SLOT_KEYS"]
@@ -20,10 +20,15 @@ SLOT_KEYS = ("part", "family", "options")
 
 
 def _joint_parts(table: dict, where: str, revolute: bool, slots: dict, name: str, catalogue) -> JointComponents:
-    extra = [k for k in table if k not in ("reducer", "encoder", "bearing", "motor")]
+    extra = [k for k in table if k not in ("reducer", "encoder", "bearing", "motor", "guide")]
     if extra:
-        raise ValueError(f"{where}: unknown part {extra[0]!r}; expected reducer, encoder, bearing or motor")
+        raise ValueError(f"{where}: unknown part {extra[0]!r}; expected reducer, encoder, bearing, motor or guide")
     parts = {}
+    if "guide" in table:
+        if revolute:
+            raise ValueError(f"{where}.guide: {name} is a revolute joint; its drawing letters go in its bearing "
+                             "table (datum, locating_datum, shoulder_datum)")
+        parts["guide"] = read_guide(table["guide"], f"{where}.guide")
     for kind, fn in (("reducer", lambda t, w: read_reducer(t, w, revolute)), ("encoder", lambda t, w: read_encoder(t, w, revolute)),
                      ("bearing", lambda t, w: read_bearing(t, w)), ("motor", lambda t, w: read_motor(t, w))):
         t, w = table.get(kind), f"{where}.{kind}"
@@ -94,10 +99,12 @@ def parse_components(data: dict | None, joint_kinds: dict, link_names, where: st
     mount = Mount()
     if "mount" in data:
         w = f"{where}.mount"
-        v = read_table(data["mount"], {"tilt_stiffness": (_ROT_STIFF, ((), (2,)))}, w, text=("source",))
+        v = read_table(data["mount"], {"tilt_stiffness": (_ROT_STIFF, ((), (2,)))}, w,
+                       text=("source", "datum", "locating_datum"))
         k = _positive_in(v, "tilt_stiffness", w)
         k = None if k is None else ((k, k) if isinstance(k, float) else tuple(k))
-        mount = Mount(k, _text(data["mount"], "source", w, ""))
+        mount = Mount(k, _text(data["mount"], "source", w, ""), datum_letter(data["mount"], "datum", w),
+                      datum_letter(data["mount"], "locating_datum", w))
     payload = Payload()
     if "payload" in data:
         w = f"{where}.payload"

@@ -10,10 +10,10 @@ import re
 import numpy as np
 
 from tolalloc.robot.components import (_ANGLE, _CTE, _LENGTH, _LIN_STIFF, _MODULUS, _ROT_STIFF, _TIME, MATERIALS,
-                                       REDUCER_TYPES, Bearing, Encoder, LinkSection, Motor, Reducer)
+                                       REDUCER_TYPES, Bearing, Encoder, Guide, LinkSection, Motor, Reducer)
 
 __all__ = ["DATUM_KEYS", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor",
-           "read_section"]
+           "read_guide", "read_section"]
 
 
 class Values(dict):
@@ -236,6 +236,16 @@ def read_bearing(t: dict, w: str, extra_keys: tuple = ()) -> Bearing:
                    _positive_in(v, "bore", w), _positive_in(v, "radial_runout", w, True),
                    _positive_in(v, "seat_diameter", w), float(v["centre"] or 0.0),
                    datum_letter(t, "locating_datum", w), datum_letter(t, "shoulder_datum", w))
+
+
+def read_guide(t: dict, w: str) -> Guide:
+    """A :class:`Guide` (a prismatic joint's drawing letters) from its table."""
+    if not isinstance(t, dict):
+        raise ValueError(f"{w}: expected a table of datum letters ({', '.join(DATUM_KEYS)}), got {t!r}")
+    extra = [k for k in t if k not in DATUM_KEYS]
+    if extra:
+        raise ValueError(f"{w}: unknown key {extra[0]!r}; expected {', '.join(DATUM_KEYS)}")
+    return Guide(*(datum_letter(t, k, w) for k in DATUM_KEYS))
 
 
 def read_motor(t: dict, w: str, extra_keys: tuple = ()) -> Motor:
