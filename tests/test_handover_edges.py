@@ -433,7 +433,7 @@ def test_a_robot_file_that_names_every_datum_feature_needs_no_default_letter():
     assert (by["e1x"], by["dl1"], by["e2z"], by["dl2"], by["e3y"]) == ("W|X", "W", "B|P", "B|R", "C|S")
     assert (by["e5y"], by["dl5"], by["e6x"]) == ("E|U", "E|V", "F|K")
     assert not fm.datum_gaps and all(src == "robot file" for _, _, src in fm.datum_features)
-    assert len(export_frame(_handover(fm))) == len(fm.callouts) + len(fm.parts)
+    assert len(export_frame(_handover(fm))) == len(fm.callouts) + len(fm.parts) + len(fm.datum_features)
     bad = tomllib.loads((_builtin_dir() / "tool_changer.toml").read_text())
     bad["components"]["joints"]["j1"]["guide"] = {"datum": "Q"}
     with pytest.raises(TolallocError, match=r"j1.guide: j1 is a revolute joint; its drawing letters go in its bearing"):
@@ -442,3 +442,36 @@ def test_a_robot_file_that_names_every_datum_feature_needs_no_default_letter():
     bad["components"]["joints"]["j4"]["guide"] = {"datum": "E", "span_mm": 3}
     with pytest.raises(TolallocError, match=r"j4.guide: unknown key 'span_mm'; expected datum, locating_datum"):
         robot_from_dict(bad)
+
+
+def test_the_drawing_says_what_its_letters_stand_for_and_the_review_checks_them(job, drawing_csv, tmp_path):
+    """drawing.csv carries a ``datum_feature`` row per letter it uses (what the letter stands for). The review reads
+    them back and checks each datum system against them: a system whose second letter stands for another feature
+    than its zone needs (j2's tilt about B located by j1's shoulder face instead of its flange's pin hole or keyway)
+    is listed as DATUM NEEDED, naming both. A drawing without such rows is read as before; a bad row is refused."""
+    frame = pd.read_csv(drawing_csv, dtype=str, keep_default_na=False)
+    rows = frame[frame.characteristic == "datum_feature"]
+    h = job.handover()
+    assert list(zip(rows.datum, rows.feature)) == [(k, what) for k, what, _ in h.features.datum_features]
+    assert (rows.parameters == "").all() and rows.id.str.startswith("D").all()
+    model = job.problem.model
+    back = read_drawing(drawing_csv, model)
+    assert [k for k, _, _ in back.datum_features] == [k for k, _, _ in h.features.datum_features]
+    assert not back.datum_gaps
+    letter = dict(zip(rows.feature, rows.datum))
+    face = letter["the shoulder face of j1's axially locating bearing seat"]
+    wrong = frame.copy()
+    wrong.loc[wrong.parameters == "e2z", "datum"] = f"B|{face}"
+    gaps = read_drawing(wrong, model).datum_gaps
+    assert len(gaps) == 1 and gaps[0].startswith("j2 bearing-seat axis, tilt about z")
+    assert (f"its datum {face} is the shoulder face of j1's axially locating bearing seat, where the zone needs the "
+            "locating pin hole or keyway of j1's output flange") in gaps[0]
+    assert not read_drawing(frame[frame.characteristic != "datum_feature"], model).datum_gaps
+    bad = frame.copy()
+    bad.loc[bad.index[bad.characteristic == "datum_feature"][0], "parameters"] = "e1x"
+    with pytest.raises(TolallocError, match=r"a datum_feature row bounds no parameter"):
+        read_drawing(bad, model)
+    bad = frame.copy()
+    bad.loc[bad.index[bad.characteristic == "datum_feature"][0], "datum"] = "B|C"
+    with pytest.raises(TolallocError, match=r"a datum_feature row names one datum letter"):
+        read_drawing(bad, model)

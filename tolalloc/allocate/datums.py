@@ -261,9 +261,31 @@ def complete_datums(model, callouts, frame: _Frame) -> tuple:
     return tuple(out), tuple(gaps)
 
 
-def datum_gaps(model, callouts) -> tuple:
+def _mismatch(robot, need: tuple, letters: tuple, features: dict) -> str:
+    """Why a callout's datum system does not name the features ``need`` asks for (the drawing's ``features``:
+    letter -> what it stands for), ``""`` where it does or the drawing does not say what its letters stand for."""
+    kind, i, _ = need
+    for letter, want in ((letters[0], _what(robot, i, "axis")), (letters[1], _what(robot, i, kind))):
+        said = features.get(letter)
+        if said is not None and said != want:
+            return (f"its datum {letter} is {said}, where the zone needs {want} -- name that feature in the datum "
+                    "system")
+    return ""
+
+
+def datum_gaps(model, callouts, features: dict | None = None) -> tuple:
     """The callouts whose datum cannot bound what they stand for, one sentence each: those :func:`_need` names
-    whose datum is a single letter. A datum system of two or more letters is taken to carry the feature named (the
-    reader cannot tell what a letter of a drawing stands for)."""
-    return tuple(_gap(c, need[2]) for c in callouts
-                 if (need := _need(model, c)) is not None and len(datum_letters(c.datum)) < 2)
+    whose datum is a single letter, or whose datum system names other features than the zone needs where the
+    drawing says what its letters stand for (``features``: letter -> feature, its ``datum_feature`` rows, as
+    :func:`complete_datums` words them). A system whose letters the drawing does not explain is taken to carry the
+    features needed."""
+    out = []
+    for c in callouts:
+        need = _need(model, c)
+        if need is None:
+            continue
+        letters = datum_letters(c.datum)
+        why = need[2] if len(letters) < 2 else _mismatch(model.robot, need, letters, features or {})
+        if why:
+            out.append(_gap(c, why))
+    return tuple(out)

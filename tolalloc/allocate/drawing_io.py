@@ -8,10 +8,10 @@ so a CAD, PLM or metrology importer maps the rows one to one.
 
 Schema (version 2; columns in this order; units in the names; empty cells where a column does not apply)::
 
-    id                  C1, C2 ... (callouts), P1, P2 ... (purchased parts)
-    feature             what is toleranced, or the part
+    id                  C1, C2 ... (callouts), P1, P2 ... (purchased parts), D1, D2 ... (datum features)
+    feature             what is toleranced, the part, or what a datum letter stands for
     characteristic      perpendicularity | parallelism | angularity | coaxiality | position | size | fit |
-                        purchased_part
+                        purchased_part | datum_feature (a row naming one letter's feature; no parameters)
     qif_characteristic  the QIF 3 characteristic type (PerpendicularityCharacteristic ...); empty for a part
     symbol              ISO 1101 symbol (⊥ ∥ ∠ ◎ ⌖), ± for a size, "fit" for a fit
     zone_mm             zone width (or diameter) [mm]; a size: the full width 2 t; a fit: its largest clearance
@@ -39,6 +39,8 @@ coaxiality zone, a length [mm] a size or position, a radial clearance a fit, a j
 """
 
 from __future__ import annotations
+
+import re
 
 from os import PathLike
 from pathlib import Path
@@ -93,6 +95,9 @@ def export_frame(h) -> pd.DataFrame:
                      "grade": p.grade, "process": "purchased part", "cost": h.cost[n + i],
                      "cost_source": h.cost_source[n + i], "catalogue_source": p.source,
                      "parameters": " ".join(p.parameters), **design})
+    for i, (letter, what, _) in enumerate(h.features.datum_features):
+        rows.append({"id": f"D{i + 1}", "feature": what, "characteristic": "datum_feature", "datum": letter,
+                     **design})
     return pd.DataFrame(rows, columns=list(DRAWING_COLUMNS))
 
 
@@ -193,11 +198,14 @@ def read_drawing(source, model, *, z: float | None = None, distribution: str | N
     if missing:
         raise TolallocError(f"{name}: missing column(s) {', '.join(missing)}; expected {', '.join(DRAWING_COLUMNS)}.")
     z, distribution = _design_z(frame, name, z, distribution)
-    known, callouts, parts = set(model.names), [], []
+    known, callouts, parts, datums = set(model.names), [], [], {}
     for i, row in enumerate(frame.to_dict("records")):
         row = {k: ("" if v is None or (isinstance(v, float) and np.isnan(v)) else v) for k, v in row.items()}
         feature = str(row.get("feature") or f"row {i + 1}")
         where = f"{name} row {i + 1} ({feature})"
+        if str(row["characteristic"]).strip() == "datum_feature":
+            _datum_row(row, datums, where)
+            continue
         params = tuple(str(row["parameters"]).split())
         bad = [p for p in params if p not in known]
         if not params or bad:
@@ -213,7 +221,22 @@ def read_drawing(source, model, *, z: float | None = None, distribution: str | N
         else:
             callouts.append(_callout(row, char, params, feature, where, z, distribution, check_processes))
             _check_row(callouts[-1], params, model, where)
-    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution, datum_gaps=datum_gaps(model, callouts))
+    return FeatureMap(tuple(callouts), tuple(parts), float(z), distribution,
+                      datum_gaps=datum_gaps(model, callouts, datums),
+                      datum_features=tuple((k, what, "drawing") for k, what in sorted(datums.items())))
+
+
+def _datum_row(row, datums: dict, where: str) -> None:
+    """A ``datum_feature`` row into ``datums`` (letter -> what it stands for): one letter, a feature, no parameter."""
+    letter, what = str(row.get("datum", "")).strip(), str(row.get("feature", "")).strip()
+    if not re.fullmatch(r"[A-Z]{1,2}", letter) or not what:
+        raise TolallocError(f"{where}: a datum_feature row names one datum letter (column datum, as B) and what it "
+                            f"stands for (column feature); got datum {letter!r}, feature {what!r}.")
+    if str(row.get("parameters", "")).strip():
+        raise TolallocError(f"{where}: a datum_feature row bounds no parameter; leave column parameters empty.")
+    if letter in datums and datums[letter] != what:
+        raise TolallocError(f"{where}: datum {letter} is already {datums[letter]!r}; a letter names one feature.")
+    datums[letter] = what
 
 
 def _check_bounds(char: str, params, model, where: str) -> None:
