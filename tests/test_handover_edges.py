@@ -467,6 +467,9 @@ def test_the_drawing_says_what_its_letters_stand_for_and_the_review_checks_them(
     assert (f"its datum {face} is the shoulder face of j1's axially locating bearing seat, where the zone needs the "
             "locating pin hole or keyway of j1's output flange") in gaps[0]
     assert not read_drawing(frame[frame.characteristic != "datum_feature"], model).datum_gaps
+    common = frame.copy()   # a common datum (ISO 5459: the axis common to two features) is read
+    common.loc[common.parameters == "e2z", "datum"] = "B-C|" + frame.datum[frame.parameters == "e2z"].iloc[0][2:]
+    assert read_drawing(common, model).callouts
     bad = frame.copy()
     bad.loc[bad.index[bad.characteristic == "datum_feature"][0], "parameters"] = "e1x"
     with pytest.raises(TolallocError, match=r"a datum_feature row bounds no parameter"):

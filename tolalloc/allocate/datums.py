@@ -26,9 +26,10 @@ from tolalloc.robot.components import Bearing
 
 __all__ = ["datum_gaps", "complete_datums", "datum_letters", "DATUM_PATTERN"]
 
-#: A datum letter (ISO 5459: capital letters; the defaults skip I, O and Q) or a datum system of up to three, in
-#: order of precedence, separated by ``|`` as in the feature control frame (``B|J``; spaces around ``|`` allowed).
-DATUM_PATTERN = re.compile(r"[A-Z]{1,2}( *\| *[A-Z]{1,2}){0,2}")
+#: A datum letter (ISO 5459: capital letters; the defaults skip I, O and Q), a common datum (``B-C``), or a datum
+#: system of up to three, in order of precedence, separated by ``|`` as in the feature control frame (``B|J``; spaces
+#: around ``|`` allowed).
+DATUM_PATTERN = re.compile(r"[A-Z]{1,2}(-[A-Z]{1,2})?( *\| *[A-Z]{1,2}(-[A-Z]{1,2})?){0,2}")
 _POOL = "BCDEFGHJKLMNPRSTUVWXYZ"
 _KEYS = ("datum", "locating_datum", "shoulder_datum")
 _PARALLEL = 1.0 - 1e-6

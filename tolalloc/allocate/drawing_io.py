@@ -257,7 +257,8 @@ def _check_row(c: Callout, params, model, where: str) -> None:
                             "a datum: give its letter (A, B ...).")
     if c.datum and not DATUM_PATTERN.fullmatch(c.datum):
         raise TolallocError(f"{where}: column datum {c.datum!r} is no datum letter or datum system; expected capital "
-                            "letters, a system of up to three in order of precedence separated by | (B, B|K).")
+                            "letters, a common datum (B-C), a system of up to three in order of precedence separated "
+                            "by | (B, B|K).")
     letters = datum_letters(c.datum)
     if len(set(letters)) < len(letters):
         raise TolallocError(f"{where}: column datum {c.datum!r} names a datum twice; a datum system names each datum "

@@ -249,7 +249,12 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
     out += [f"LOOSER THAN THE DESIGN: {w}." for w in fm.warnings]
     if fm.datum_features:
         out.append("Datum features: " + "; ".join(f"{k} {what} ({src})" for k, what, src in fm.datum_features)
-                   + ". A datum system is read in order of precedence: the datum the zone is oriented or located "
+                   + ". A zone per direction names the base axis its tilt is about at the home pose (column "
+                   "direction): its two planes lie across the direction that tilt moves the axis, in the frame its "
+                   "datum system fixes -- the second datum (a locating pin hole or keyway) fixes the turn of the "
+                   "base axes about the first. The drawer adds the ISO 1101 orientation plane indicator that shows "
+                   "it (the callouts here give it as the column direction only). A datum system is read in order of precedence: the datum the zone is oriented or "
+                   "located "
                    "from, then the feature that fixes the rotation about it (a locating pin hole or keyway) or the "
                    "face across it (a seat shoulder). The datum features are taken as perfect relative to their axes "
                    "and faces: their own tolerances are not in the budget.")
