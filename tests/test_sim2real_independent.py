@@ -3940,3 +3940,151 @@ def test_set_z_every_kind_lies_in_its_true_structure_and_known_answers():
     assert Tf[0] == Ts[0] == s.air_c[0] and dp["tau_s_s"] > dp["tau_f_s"]
     fd = zt.duct_features(dp, ctx, hw)
     assert not fd[1][0].any() and dp["amp"][1] == pytest.approx(dp["amp"][0] * dp["share"] / dp["D_mm"])
+
+
+# --------------------------------------------------------------------------------------------------------- set ZA
+def test_set_za_cases_kinds_and_determinism():
+    """Set ZA (the first two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark
+    and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a
+    quarter split by time; its name keys the case seeds and sorts after Z; a case regenerates bit-identically from its
+    seed; the session hook leaves cases without a set-ZA kind alone (no random numbers drawn) and the probe hook draws
+    none; the generator reaches the set's modules and none imports tolalloc; the pauses, the production and a new part
+    for each block."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_za as eza
+
+    assert "Z" < "ZA" < "ZB" and "ZA" in cs.SETS and all(s < "ZA" for s in cs.SETS if len(s) == 1)
+    assert cs.case_seed("ZA", 3) == 40_7027 * 1000 + 3 and [c[0] for c in cs.SET_ZA] == [f"ZA{i:02d}" for i in
+                                                                                          range(1, 25)]
+    _assert_set_module("ZA", 40_7027, eza, ("gear", "duct_lag"))
+    for name in ("effects_za", "effects_za_joint", "effects_za_body", "effects_za_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_za" in _imports(STUDY / "generator.py")
+    assert eza.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": eza.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, ((lo, hi), pause) in eza.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, (lo, hi) in eza.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        for kind, kg in eza.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("flank_stiffness", "luff_rope", "guide_drag", "tool_recoil", "scratch_count"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert eza.probe_hook(("gear",), probe) is probe
+    assert eza.probe_hook(("offcentre_pick",), probe) == pytest.approx(probe + [250.0, 0, 40.0])
+    assert eza.probe_hook(("soft_fingers",), probe) == pytest.approx(probe + [0, 0, 80.0])
+    _assert_regenerates("ZA", max_effect_poses=50)
+
+
+def test_set_za_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZA kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm (the luff rope and the guide drag only on tool_changer, which has
+    the boom and the telescopic stage); and known answers: the soft flank's extra twist, the tackle's lever and free
+    length, the guides holding the stage back against its last stroke, the mount's recoil along the last move, the
+    scale's step at its scratch, the belt's tooth after its block, the slide's extension per block, the thaw's square
+    root, the bar's twist across it, the fingers' bend across them and the two heat sources' signs."""
+    from sim2real_indep import effects_za_body as zab
+    from sim2real_indep import effects_za_joint as zaj
+    from sim2real_indep import effects_za_thermal as zat
+    from sim2real_indep.effects_s_joint import compliance
+    from sim2real_indep.effects_u_joint import block_index
+
+    every = ("flank_stiffness", "luff_rope", "guide_drag", "tool_recoil", "scratch_count", "tooth_skip",
+             "slide_overhang", "ground_thaw", "offcentre_pick", "soft_fingers", "ac_jet", "oven_door")
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, every, 30, 27)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in every:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            if kind in ("luff_rope", "guide_drag") and robot != "tool_changer":    # no boom / stage: inert
+                assert A.shape[1] == 0 and np.abs(d).max() == 0.0
+                continue
+            amp = {"flank_stiffness": lambda: p["amp"], "luff_rope": lambda: [p["inv_nEA"]],
+                   "guide_drag": lambda: p["amp"], "tool_recoil": lambda: [p["c"]],
+                   "scratch_count": lambda: [p["delta"]], "tooth_skip": lambda: [p["step"]],
+                   "slide_overhang": lambda: [p["inv_EI"]], "ground_thaw": lambda: [p["c0"], p["c1"]],
+                   "offcentre_pick": lambda: [p["c"]], "soft_fingers": lambda: [p["inv_kp"]],
+                   "ac_jet": lambda: p["amp"], "oven_door": lambda: p["amp"]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    C = compliance(hw)
+    # flank stiffness: axis 3 alone, c tau on the stiff side, c (1 + r) tau on the soft side (times s)
+    fp = P["flank_stiffness"]
+    tau = ctx.loads[:, 2]
+    want = fp["s"] * C[2] * tau * np.where(np.sign(tau) == fp["soft_sign"], 1 + fp["r"], 1.0)
+    got = np.einsum("kpi,k->pi", zaj.flank_features(fp, ctx, hw), fp["amp"])
+    assert got == pytest.approx(ctx.joint_feature(2, want), abs=1e-12)
+    # scratch: nothing on the first pose's side, delta beyond the scratch
+    sp = P["scratch_count"]
+    q = ctx.q[:, sp["joint"]]
+    sig = zaj.scratch_signal(sp, ctx)
+    assert sig[0] == 0 and ((q > sp["q_s"]) != (q[0] > sp["q_s"])).astype(float) == pytest.approx(sig)
+    assert 0.4 * zaj.ARCMIN <= abs(sp["delta"]) <= 1.0 * zaj.ARCMIN
+    # tooth skip: one tooth of the motor pulley through the reducer, on a wrist axis, from its block on
+    kp = P["tooth_skip"]
+    b = block_index(s)
+    assert abs(kp["step"]) == pytest.approx(2 * np.pi / (kp["Z"] * kp["ratio"])) and kp["joint"] in (3, 4)
+    dq = zaj.skip_apply(kp, ctx, hw).dq
+    assert not dq[b < kp["block"]].any() and (dq[b >= kp["block"], kp["joint"]] == kp["step"]).all()
+    assert not np.delete(dq, kp["joint"], axis=1).any() and b.max() >= kp["block"] >= 1
+    # tool recoil: nothing on the first pose, ahead along the end velocity, decaying over the dwell
+    rp = P["tool_recoil"]
+    r = zaj.recoil_signal(rp, ctx)
+    v = np.einsum("pij,pj->pi", ctx.jac, np.diff(np.vstack([ctx.q[:1], ctx.q]), axis=0) / s.move_s.clip(1e-9)[:, None])
+    assert not r[0].any() and r[1:] == pytest.approx(v[1:] / zaj.RAMP_S * np.exp(-s.dwell_s[1:] / rp["tau_s"])[:, None])
+    # slide overhang: the block's extension; the base turns about the horizontal across the slide
+    op = P["slide_overhang"]
+    L = zab.slide_length(op, s)
+    assert L == pytest.approx(op["L0_m"] + op["ext_m"][np.minimum(b, len(op["ext_m"]) - 1)])
+    assert 0.2 <= L.min() and L.max() <= 0.7
+    # ground thaw: the thaw's square root of the time since sunrise, 1 at the session's end
+    tp = P["ground_thaw"]
+    root = zab.thaw_root(tp, s)
+    assert root[-1] == pytest.approx(1.0) and (np.diff(root) > 0).all() and root[0] > 0
+    ft = zab.thaw_features(tp, ctx, hw)
+    assert ft[1] == pytest.approx(ft[0] * root[:, None])
+    # off-centre pick: the target turns about the bar (the tool's x): no move along it; none without an offset
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    pk = P["offcentre_pick"]
+    assert np.abs(np.einsum("pi,pi->p", zab.pick_unit(pk, ctx), Rt[:, :, 0])).max() < 1e-9
+    assert not zab.pick_unit({**pk, "e_mm": np.zeros_like(pk["e_mm"])}, ctx).any()
+    # soft fingers: bent across them (no move along the tool's z), softer at a lower pressure
+    fg = P["soft_fingers"]
+    u = zab.finger_unit(fg, ctx)
+    assert np.abs(np.einsum("pi,pi->p", u, Rt[:, :, 2])).max() < 1e-9
+    low = zab.finger_unit({**fg, "p_kPa": np.full_like(fg["p_kPa"], 20.0)}, ctx)
+    high = zab.finger_unit({**fg, "p_kPa": np.full_like(fg["p_kPa"], 120.0)}, ctx)
+    loaded = np.linalg.norm(high, axis=1) > 0
+    assert (np.linalg.norm(low, axis=1)[loaded] > np.linalg.norm(high, axis=1)[loaded]).all()
+    # the AC jet cools (the wall at the hall's air at the start), the oven door heats
+    jt, dt = zat.jet_temperature(P["ac_jet"], s), zat.door_temperature(P["oven_door"], s)
+    assert jt[0] == 0 and jt.max() <= 0 and jt.min() >= -P["ac_jet"]["dT_K"]
+    assert dt[0] == 0 and dt.min() >= 0
+    assert zat.forearm(ctx.chain) == 4 and zat.forearm(runs["ur10"][1].chain) == 2
+    # luff rope and guide drag (tool_changer): the lever and free length of the tackle; the stage held back
+    bc, bctx = runs["tool_changer"]
+    lp, gp, bhw = bc.truth["params"]["luff_rope"], bc.truth["params"]["guide_drag"], bc.truth["hw"]
+    Lr, lever = zaj.luff_geometry(lp, bctx)
+    g = np.arccos((lp["r1_m"] ** 2 + lp["r2_m"] ** 2 - Lr ** 2) / (2 * lp["r1_m"] * lp["r2_m"]))
+    assert lever == pytest.approx(lp["r1_m"] * lp["r2_m"] * np.sin(g) / Lr)
+    assert zaj.luff_signal(lp, bctx) == pytest.approx(bctx.loads[:, 1] * Lr / lever ** 2)
+    dq4 = zaj.guide_features(gp, bctx, bhw)
+    load = zaj.guide_load(gp, bctx)
+    assert load.max() == pytest.approx(1.0) and load.min() >= 0 and sum(gp["amp"]) == pytest.approx(gp["w_mm"])
+    step = bctx.jac[:, :, 3]
+    along = np.einsum("kpi,pi->kp", dq4, step) / np.einsum("pi,pi->p", step, step)
+    assert along[0] == pytest.approx(-bctx.session.direction[:, 3]) and along[1] == pytest.approx(along[0] * load)

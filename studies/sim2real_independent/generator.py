@@ -52,6 +52,7 @@ from sim2real_indep import effects_w as ew
 from sim2real_indep import effects_x as ex
 from sim2real_indep import effects_y as ey
 from sim2real_indep import effects_z as ez
+from sim2real_indep import effects_za as eza
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -95,13 +96,14 @@ EFFECTS = {
     **ex.EFFECTS_X,  # set X's new kinds
     **ey.EFFECTS_Y,  # set Y's new kinds
     **ez.EFFECTS_Z,  # set Z's new kinds
+    **eza.EFFECTS_ZA,  # set ZA's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
                  | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER | eu.AFTER_TRACKER
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
-                 | ez.AFTER_TRACKER)
+                 | ez.AFTER_TRACKER | eza.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -195,7 +197,8 @@ def _session_options(robot_key, physics, rng):
     opts = ew.session_options(robot_key, physics, rng, opts)  # set W (no draws without a set-W kind)
     opts = ex.session_options(robot_key, physics, rng, opts)  # set X (no draws without a set-X kind)
     opts = ey.session_options(robot_key, physics, rng, opts)  # set Y (no draws without a set-Y kind)
-    return ez.session_options(robot_key, physics, rng, opts)  # set Z (no draws without a set-Z kind)
+    opts = ez.session_options(robot_key, physics, rng, opts)  # set Z (no draws without a set-Z kind)
+    return eza.session_options(robot_key, physics, rng, opts)  # set ZA (no draws without a set-ZA kind)
 
 
 def _tracker(rng):
@@ -239,6 +242,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ex.probe_hook(physics, probe)  # set X's printed fingers, suction cup (no draws)
     probe = ey.probe_hook(physics, probe)  # set Y's foam pad, panel (no draws)
     probe = ez.probe_hook(physics, probe)  # set Z's gripper boom, welded frame (no draws)
+    probe = eza.probe_hook(physics, probe)  # set ZA's gripper bar, soft fingers (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

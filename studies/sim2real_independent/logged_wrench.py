@@ -29,10 +29,11 @@ WRENCH = ["force_x_n", "force_y_n", "force_z_n", "torque_x_nm", "torque_y_nm", "
 
 def case_with_wrench(case_id: str):
     """The generated case and its frame with the applied cutting wrench at the target (base frame) as columns."""
-    cases = cs.SETS[case_id[0]][0]
+    set_name = case_id.rstrip("0123456789")  # O01 -> O, ZA01 -> ZA
+    cases = cs.SETS[set_name][0]
     i = [c[0] for c in cases].index(case_id)
     cid, robot, physics, n, split = cases[i][:5]
-    case = gen.generate(cid, robot, physics, n, cs.case_seed(case_id[0], i), split)
+    case = gen.generate(cid, robot, physics, n, cs.case_seed(set_name, i), split)
     t = case.truth
     ctx = Ctx(t["chain"], t["session"], t["masses"], t["com"], case.nominal.mass_link, t["payload_com_mm"],
               t["probe_mm"])

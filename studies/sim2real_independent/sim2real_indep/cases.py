@@ -15,8 +15,8 @@ seventeenth (:mod:`effects_q`), set R (24 cases, 8 per arm) an eighteenth (:mod:
 arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:mod:`effects_t`), set U (24 cases, 8 per
 arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second (:mod:`effects_v`), set W (24 cases,
 8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm) a twenty-fourth (:mod:`effects_x`), set Y (24
-cases, 8 per arm) a twenty-fifth (:mod:`effects_y`) and set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`). A
-case: (id, robot, physics kinds, poses, split).
+cases, 8 per arm) a twenty-fifth (:mod:`effects_y`), set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`) and
+set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ SEED_G, SEED_H, SEED_I, SEED_J, SEED_K, SEED_L = 40_7007, 40_7008, 40_7009, 40_7
 SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7016, 40_7017, 40_7018
 SEED_S, SEED_T, SEED_U, SEED_V, SEED_W, SEED_X = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023, 40_7024
 SEED_Y, SEED_Z = 40_7025, 40_7026
+SEED_ZA = 40_7027  # the sets after Z are named ZA, ZB, ... (two letters; they sort after Z)
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1218,14 +1219,70 @@ SET_Z = [
     ("Z24", "kr16_like", ("head_tilt", "duct_lag"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z)
+#: set ZA: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_za`); the first two-letter set (its name sorts after Z; every place keys sets by the
+#: name as a string); written as an independent test set after set Z, from the literature, without reading how the
+#: diagnosis models effects. Oracle labels when written (oracle.py only; the diagnosis was not run): every case its
+#: truth (gains 36-86 %; each mixture component's removal costs 20 % or more: ZA16's AC jet 20 %, ZA08's soft fingers 62
+#: %), the geometry-only cases none; no soft labels (the closest rivals: ZA09's link model 1.44x, ZA14's mount model
+#: 1.45x, ZA20's backlash model 1.51x, ZA05's thermal model 1.54x, ZA18's transmission model 1.55x; the smallest gains
+#: 36 % on ZA14, ZA18 and ZA20). Changed after trial draws (the modules' docstrings give the final ranges): the flank
+#: stiffness first acted on axes 2 and 3 (2.1-2.3 mm at the tool on ur10 and kr16_like, 4.9 mm and ambiguous with the
+#: link model on tool_changer), now on axis 3 alone and only on ur10 (ZA01; kr16_like's axis 3 alone had the link model
+#: at 1.10x, its axis 2 alone 1.8 mm); the luff rope's mast first stood for g about 90 deg mid-range with a largest
+#: twist of 0.1-0.3 mrad (ZA09: a gain of 14 %, the link model at 1.06x: a lever that hardly changes leaves a twist in
+#: proportion to the gravity load), now a short mast (g 50-60 deg) and 0.3-0.6 mrad; the ground thaw first had a frozen
+#: tilt of 0.05-0.15 mrad thawing to 1.5-3 times that (ur10's ZA05: the link model at 1.05x; on tool_changer the thermal
+#: model at 1.24x and 1.04x -- its heavy boom's mean moment makes the thaw mostly a drift), now 0.03-0.08 mrad plus
+#: 0.15-0.35 mrad from the thawed layer (10-50 times softer soil), on ur10 (in the mixture ZA08) and kr16_like (ZA19);
+#: the bar's twist 0.1-0.3 mm (gains of 20 % and 16 % on ZA06 and ZA20), now 0.2-0.5 mm (a thinner wall); the soft
+#: fingers' kappa 10-40 and pressures 30-100 kPa (tool_changer: the joint model at 1.08x), now 5-20 and 20-120 kPa, and
+#: ur10 took the single case (ZA05); the oven door's pulses 2-5 K (gains 24-28 %; on tool_changer, whose forearm is
+#: deep, 7-12 % on the trial seeds even at 4-8 K), now 4-8 K and only on kr16_like (ZA17, ZA22), whose forearm tube is
+#: its link d4 (body 4: first the 35 mm link a3 was bowed, an effect of 4 um); the tooth skip's tool_changer case was
+#: split by time (ZA11: absorbed, the skipped tooth fell in the held-out last quarter -- a step after every training
+#: pose cannot be learnt), now random, and tool_changer's time-split single case is the tool recoil (ZA13; the AC jet
+#: there gained 21 % with the backlash model at 1.21x, the thaw as above). No pose count or seed was changed. Trial
+#: draws on the seed + 1 and + 2 (the case seeds + 1000003 k) with the final physics: every case labelled its truth in
+#: both, none absorbed or ambiguous; below the 20 % / 1.25x bar on + 1 the scratch (ZA02, 50 poses: a gain of 17 %, the
+#: link model at 1.06x), the bar's twist (ZA06: 15 %, 1.17x) and the luff rope (ZA09: 1.22x), on + 2 the flank stiffness
+#: (ZA01: 1.12x), the luff rope (ZA09: 1.19x) and the oven door (ZA17: a gain of 18 %, 1.20x) -- the luff rope the
+#: weakest kind (its twist follows the gravity load except near the mast's dead centre).
+SET_ZA = [
+    ("ZA01", "ur10", ("flank_stiffness",), 130, "random"),
+    ("ZA02", "ur10", ("scratch_count",), 50, "random"),
+    ("ZA03", "ur10", ("ac_jet",), 150, "time"),
+    ("ZA04", "ur10", ("tool_recoil",), 120, "random"),
+    ("ZA05", "ur10", ("soft_fingers",), 140, "random"),
+    ("ZA06", "ur10", ("offcentre_pick",), 150, "time"),
+    ("ZA07", "ur10", (), 70, "random"),
+    ("ZA08", "ur10", ("ground_thaw", "soft_fingers"), 180, "random"),
+    ("ZA09", "tool_changer", ("luff_rope",), 120, "random"),
+    ("ZA10", "tool_changer", ("guide_drag",), 110, "random"),
+    ("ZA11", "tool_changer", ("tooth_skip",), 140, "random"),
+    ("ZA12", "tool_changer", ("slide_overhang",), 130, "random"),
+    ("ZA13", "tool_changer", ("tool_recoil",), 130, "time"),
+    ("ZA14", "tool_changer", ("offcentre_pick",), 150, "time"),
+    ("ZA15", "tool_changer", (), 40, "random"),
+    ("ZA16", "tool_changer", ("guide_drag", "ac_jet"), 190, "time"),
+    ("ZA17", "kr16_like", ("oven_door",), 130, "random"),
+    ("ZA18", "kr16_like", ("tool_recoil",), 120, "random"),
+    ("ZA19", "kr16_like", ("ground_thaw",), 150, "time"),
+    ("ZA20", "kr16_like", ("offcentre_pick",), 140, "random"),
+    ("ZA21", "kr16_like", ("tooth_skip",), 140, "random"),
+    ("ZA22", "kr16_like", ("oven_door",), 150, "random"),
+    ("ZA23", "kr16_like", (), 100, "random"),
+    ("ZA24", "kr16_like", ("slide_overhang", "scratch_count"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
-        "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z)}
+        "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA)}
 
 
 def case_seed(set_name: str, index: int) -> int:

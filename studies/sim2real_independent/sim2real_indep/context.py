@@ -317,7 +317,23 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "water_slug": "joint_compliance", "balancer_gas": "joint_compliance", "balancer_seal": "backlash",
           "tripod_windup": "backlash", "band_spiral": "transmission", "head_tilt": "transmission",
           "warm_isolators": "mount_compliance", "oil_canning": "mount_compliance", "bowstring": "link_deflection",
-          "stress_relief": "link_deflection", "floor_heating": "thermal", "duct_lag": "thermal"}
+          "stress_relief": "link_deflection", "floor_heating": "thermal", "duct_lag": "thermal",
+          # set ZA (sim2real_indep.effects_za; flank_stiffness, gears stiffer on one tooth flank than on the other, and
+          # luff_rope, tool_changer's boom luffed by a rope tackle whose compliance follows the luff angle, scored as
+          # joint compliance; guide_drag, the telescopic stage held back against its last stroke by its guides'
+          # friction, and tool_recoil, a tool on viscoelastic mounts still creeping back from the last stop's
+          # deceleration, as backlash (errors that follow the last motion); scratch_count, a ring scale losing counts at
+          # a scratch, and tooth_skip, a wrist belt that jumped a tooth between two blocks, as transmission;
+          # slide_overhang, the arm on a slide table pulled out to another length for each block, and ground_thaw,
+          # outrigger pads on thawing ground, as mount compliance; offcentre_pick, a gripper bar twisted by parts picked
+          # off its centre line, and soft_fingers, an inflatable gripper's fingers bent by the part, as link deflection
+          # (the end-of-arm structure carrying the target); ac_jet, the upper arm bowed by an air conditioner's cycling
+          # cold jet, and oven_door, the forearm heated by an oven door's pulses, as thermal)
+          "flank_stiffness": "joint_compliance", "luff_rope": "joint_compliance", "guide_drag": "backlash",
+          "tool_recoil": "backlash", "scratch_count": "transmission", "tooth_skip": "transmission",
+          "slide_overhang": "mount_compliance", "ground_thaw": "mount_compliance",
+          "offcentre_pick": "link_deflection", "soft_fingers": "link_deflection", "ac_jet": "thermal",
+          "oven_door": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
