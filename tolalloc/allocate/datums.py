@@ -22,14 +22,15 @@ from itertools import chain, product
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
-from tolalloc.robot.components import Bearing
+from tolalloc.robot.components_io import DATUM_LETTER
 
 __all__ = ["datum_gaps", "complete_datums", "datum_letters", "DATUM_PATTERN"]
 
 #: A datum letter (ISO 5459: capital letters; the defaults skip I, O and Q), a common datum (``B-C``), or a datum
 #: system of up to three, in order of precedence, separated by ``|`` as in the feature control frame (``B|J``; spaces
 #: around ``|`` allowed).
-DATUM_PATTERN = re.compile(r"[A-Z]{1,2}(-[A-Z]{1,2})?( *\| *[A-Z]{1,2}(-[A-Z]{1,2})?){0,2}")
+_ONE = f"{DATUM_LETTER}(-{DATUM_LETTER})?"
+DATUM_PATTERN = re.compile(f"{_ONE}( *\\| *{_ONE}){{0,2}}")
 _POOL = "BCDEFGHJKLMNPRSTUVWXYZ"
 _KEYS = ("datum", "locating_datum", "shoulder_datum")
 _PARALLEL = 1.0 - 1e-6
@@ -76,19 +77,13 @@ def _bearing(robot, name: str):
     parts = robot.components.joint(name)
     if parts.guide is not None:
         return parts.guide
-    b = parts.bearing
     slot = robot.components.slots.get((name, "bearing"))
-    if b is not None or slot is None:
-        return b
-    g = slot.geometry
-    return Bearing(None, g.get("span_mm"), g.get("datum"), None, "", g.get("bore_mm"), None,
-                   g.get("seat_diameter_mm"), g.get("centre_mm", 0.0), g.get("locating_datum"),
-                   g.get("shoulder_datum"))
+    return parts.bearing if parts.bearing is not None or slot is None else slot.seat()
 
 
 def _letters():
     """Default letters: B ... Z without I, O, Q, then two-letter names (AA, AB ...)."""
-    return chain(_POOL, ("".join(p) for p in product("ABCDEFGHJKLMNPRSTUVWXYZ", repeat=2)))
+    return chain(_POOL, ("".join(p) for p in product("A" + _POOL, repeat=2)))
 
 
 class _Frame:
@@ -112,7 +107,7 @@ class _Frame:
                 self._note("datums named A (base mounting face) and, where the robot file names none, the joint "
                            "axes B, C ... in chain order")
             if self.datum[jt.name]:
-                self._feature(self.datum[jt.name], _what(robot, i, "axis"), "robot file" if own else "assumed letter")
+                self.features[self.datum[jt.name]] = (_what(robot, i, "axis"), "robot file" if own else "assumed letter")
         self._spare = (c for c in _letters() if c not in given and c not in self.datum.values())
 
     def _check_letters(self) -> set:
@@ -141,9 +136,6 @@ class _Frame:
         if text not in self.used:
             self.used.append(text)
 
-    def _feature(self, letter: str, what: str, source: str) -> None:
-        self.features[letter] = (what, source)
-
     def secondary(self, i: int, kind: str) -> str:
         """The letter of joint ``i``'s (``-1``: the base's) ``kind`` (``"locating"`` or ``"shoulder"``) datum
         feature: the robot file's ``locating_datum`` / ``shoulder_datum``, else the next free letter (with
@@ -160,7 +152,7 @@ class _Frame:
         if own is None:
             self._note("the features that complete a datum system (a locating pin hole or keyway, a seat shoulder "
                        "face) named with the letters after the joint axes'")
-        self._feature(letter, what, "robot file" if own else "assumed letter")
+        self.features[letter] = (what, "robot file" if own else "assumed letter")
         return letter
 
     def bearing_value(self, j: int, key: str, default, what: str) -> tuple[float, str]:

@@ -49,6 +49,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.allocate.datums import DATUM_PATTERN, datum_gaps, datum_letters
+from tolalloc.robot.components_io import DATUM_LETTER
 from tolalloc.allocate.drawing import SYMBOLS, Callout, FeatureMap, check_z, zone_factor
 from tolalloc.allocate.purchase import PurchasedPart
 from tolalloc.allocate.fits import parse_fit
@@ -229,7 +230,7 @@ def read_drawing(source, model, *, z: float | None = None, distribution: str | N
 def _datum_row(row, datums: dict, where: str) -> None:
     """A ``datum_feature`` row into ``datums`` (letter -> what it stands for): one letter, a feature, no parameter."""
     letter, what = str(row.get("datum", "")).strip(), str(row.get("feature", "")).strip()
-    if not re.fullmatch(r"[A-Z]{1,2}", letter) or not what:
+    if not re.fullmatch(DATUM_LETTER, letter) or not what:
         raise TolallocError(f"{where}: a datum_feature row names one datum letter (column datum, as B) and what it "
                             f"stands for (column feature); got datum {letter!r}, feature {what!r}.")
     if str(row.get("parameters", "")).strip():

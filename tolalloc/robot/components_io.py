@@ -12,7 +12,7 @@ import numpy as np
 from tolalloc.robot.components import (_ANGLE, _CTE, _LENGTH, _LIN_STIFF, _MODULUS, _ROT_STIFF, _TIME, MATERIALS,
                                        REDUCER_TYPES, Bearing, Encoder, Guide, LinkSection, Motor, Reducer)
 
-__all__ = ["DATUM_KEYS", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor",
+__all__ = ["DATUM_KEYS", "DATUM_LETTER", "datum_letter", "read_table", "read_reducer", "read_encoder", "read_bearing", "read_motor",
            "read_guide", "read_section"]
 
 
@@ -77,13 +77,15 @@ def _text(table: dict, key: str, where: str, default=None, choices=None):
 
 #: A bearing table's drawing letters: the seat axis, the output's angular locating feature, the seat shoulder face.
 DATUM_KEYS = ("datum", "locating_datum", "shoulder_datum")
+#: One datum letter (ISO 5459: capital letters; two where one alphabet runs out), as a regular expression.
+DATUM_LETTER = "[A-Z]{1,2}"
 
 
 def datum_letter(table: dict, key: str, where: str) -> str | None:
     """``table[key]``, a datum letter (ISO 5459: one or two capital letters), refused naming the key otherwise;
     None where it is missing."""
     v = _text(table, key, where)
-    if v is not None and not re.fullmatch(r"[A-Z]{1,2}", v):
+    if v is not None and not re.fullmatch(DATUM_LETTER, v):
         raise ValueError(f"{where}.{key}: expected a datum letter (one or two capital letters, as B or AB), got {v!r}")
     return v
 

@@ -297,10 +297,15 @@ class Slot:
         p = self.part(name)
         if self.kind != "bearing":
             return replace(p.spec, source=p.source) if hasattr(p.spec, "source") else p.spec
+        kia = p.spec.runout_at(self.geometry["bore_mm"], f"components.joints.{self.joint}.bearing ({p.name})")
+        return replace(self.seat(), precision_class=p.spec.precision_class, source=p.source, radial_runout=kia)
+
+    def seat(self) -> Bearing:
+        """A bearing slot's seat geometry as a :class:`Bearing` with no class chosen (span, datum letters, bore, seat
+        diameter, tilt stiffness, centre: the same for every option; precision class and runout None)."""
         g = self.geometry
-        kia = p.spec.runout_at(g["bore_mm"], f"components.joints.{self.joint}.bearing ({p.name})")
-        return Bearing(p.spec.precision_class, g.get("span_mm"), g.get("datum"), g.get("tilt_stiffness"), p.source,
-                       g["bore_mm"], kia, g.get("seat_diameter_mm"), g.get("centre_mm", 0.0), g.get("locating_datum"),
+        return Bearing(None, g.get("span_mm"), g.get("datum"), g.get("tilt_stiffness"), "", g["bore_mm"], None,
+                       g.get("seat_diameter_mm"), g.get("centre_mm", 0.0), g.get("locating_datum"),
                        g.get("shoulder_datum"))
 
 
