@@ -73,6 +73,7 @@ class _Context:
         self.geo_residual = train.xyz_mm - cal.geometric.predict(train.q)  # the geometric fit's, on these poses
         self.fold_t_sd = _fold_t_sd(cal.geometric, train.q)
         self.bases, self.bases_test, self.reasons, self.untestable = {}, {}, {}, {}
+        self.fold_weights = {}  # (effect, id of its basis, fold rows) -> (basis, ridge weights): _fold_prior_w
         t = cal.geometric.t_mm
         robot = cal.geometric.model.robot
         known = robot.components.gear_ratios([jt.name for jt in robot.joints]) if gear_ratio is None else gear_ratio
@@ -245,15 +246,25 @@ def score_test(ctx: _Context, full: Fit, effects: tuple, keep: np.ndarray,
 
 def _fold_prior_w(ctx, effects, keep, rows):
     """Ridge weights of the kept effect columns with every fitted prior scale refitted on the poses ``rows`` (a
-    fold's training poses) only (:func:`tolalloc.diagnose.choice.prior_weights`); None without a prior."""
-    J = ctx.J_fixed.reshape(ctx.train.n_poses, 3, -1)[rows].reshape(3 * len(rows), -1)
+    fold's training poses) only (:func:`tolalloc.diagnose.choice.prior_weights`); None without a prior.
+
+    An effect's weights on a fold depend on its basis and the fold alone, not on the other effects of the model, so
+    they are computed once per (basis, fold) and kept on the context for the later selection steps."""
+    J = None
     parts = []
     for e in effects:
         b = ctx.bases[e]
         if getattr(b, "prior_w", None) is None:
             parts.append(np.zeros(b.B.shape[-1]))
-        else:
-            parts.append(prior_weights(replace(b, B=b.B[rows]), ctx.cal.geometric, J, ctx.geo_residual[rows]))
+            continue
+        key = (e, id(b), rows.tobytes())
+        if key not in ctx.fold_weights:
+            if J is None:
+                J = ctx.J_fixed.reshape(ctx.train.n_poses, 3, -1)[rows].reshape(3 * len(rows), -1)
+            # the basis is kept with its weights: its id cannot be reused while the entry lives
+            ctx.fold_weights[key] = (b, prior_weights(replace(b, B=b.B[rows]), ctx.cal.geometric, J,
+                                                      ctx.geo_residual[rows]))
+        parts.append(ctx.fold_weights[key][1])
     w = np.concatenate(parts)[keep]
     return w if w.any() else None
 
