@@ -101,3 +101,46 @@ def test_fold_fits_refit_the_prior_scales_so_noise_is_not_an_effect(seed):
     geo, trans = evaluate(ctx), evaluate(ctx, ("transmission",))
     clip = clip_level(geo.selection_mm)
     assert paired_pvalue(geo.selection_stack, trans.selection_stack, clip) > 0.05
+
+
+def test_fold_weights_are_kept_per_basis_and_fold():
+    """The ridge weights of a fold (select._fold_prior_w) are those of prior_weights on the fold's poses, computed once
+    per (effect basis, fold) and reused by later models; a context copied with another basis for the effect (as the
+    step check makes one) gets that basis's weights, not the kept ones."""
+    import copy
+    from dataclasses import replace
+
+    from tolalloc.diagnose.select import _fold_prior_w
+
+    robot = tolalloc.load_robot("ur10")
+    case = synth.generate(robot, "none", 90, np.random.default_rng(1))
+    m = measurements_from_frame(case.frame, robot, "train")
+    ctx = make_context(calibrate(robot, m), m, folds=3)
+    ridged = [e for e, b in ctx.bases.items() if getattr(b, "prior_w", None) is not None]
+    assert ridged
+    e = ridged[0]
+    P = m.n_poses
+
+    def direct(basis, rows):
+        J = ctx.J_fixed.reshape(P, 3, -1)[rows].reshape(3 * len(rows), -1)
+        return prior_weights(replace(basis, B=basis.B[rows]), ctx.cal.geometric, J, ctx.geo_residual[rows])
+
+    b = ctx.bases[e]
+    keep = np.arange(b.B.shape[-1])
+    for f in ctx.folds:
+        rows = np.setdiff1d(np.arange(P), f)
+        want = direct(b, rows)
+        got = _fold_prior_w(ctx, (e,), keep, rows)
+        np.testing.assert_allclose(got if got is not None else np.zeros_like(want), want, rtol=0, atol=0)
+        n_kept = len(ctx.fold_weights)
+        again = _fold_prior_w(ctx, (e,), keep, rows)
+        assert len(ctx.fold_weights) == n_kept and (again is None) == (got is None)
+        if got is not None:
+            np.testing.assert_array_equal(again, got)
+    alt = copy.copy(ctx)
+    alt.bases = {**ctx.bases, e: replace(b, B=2.0 * b.B)}
+    rows = np.setdiff1d(np.arange(P), ctx.folds[0])
+    want = direct(alt.bases[e], rows)
+    got = _fold_prior_w(alt, (e,), keep, rows)
+    np.testing.assert_allclose(got if got is not None else np.zeros_like(want), want, rtol=0, atol=0)
+    assert not np.allclose(want, direct(b, rows))

@@ -4088,3 +4088,179 @@ def test_set_za_every_kind_lies_in_its_true_structure_and_known_answers():
     step = bctx.jac[:, :, 3]
     along = np.einsum("kpi,pi->kp", dq4, step) / np.einsum("pi,pi->p", step, step)
     assert along[0] == pytest.approx(-bctx.session.direction[:, 3]) and along[1] == pytest.approx(along[0] * load)
+
+
+# --------------------------------------------------------------------------------------------------------- set ZB
+ZB_KINDS = ("impedance_preset", "hose_wrap", "pawl_notch", "reversal_pulse", "nonius_slip", "fieldbus_rounding",
+            "mecanum_base", "grout_void", "insulating_flange", "stay_cable", "air_knife", "sonotrode")
+
+
+def test_set_zb_cases_kinds_and_determinism():
+    """Set ZB (the second two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZA; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZB kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; the
+    pauses, the production, a new part for each block and the torch as the payload."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zb as ezb
+    from sim2real_indep import effects_zb_body as zbb
+
+    assert "Z" < "ZA" < "ZB" and "ZB" in cs.SETS and all(s < "ZB" for s in cs.SETS if s != "ZB")
+    assert cs.case_seed("ZB", 3) == 40_7028 * 1000 + 3 and [c[0] for c in cs.SET_ZB] == [f"ZB{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezb.EFFECTS_ZB) == set(ZB_KINDS)
+    _assert_set_module("ZB", 40_7028, ezb, ("gear", "oven_door", "flank_stiffness"))
+    for name in ("effects_zb", "effects_zb_joint", "effects_zb_body", "effects_zb_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zb" in _imports(STUDY / "generator.py")
+    assert ezb.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezb.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, ((lo, hi), pause) in ezb.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, (lo, hi) in ezb.PRODUCTION.items():
+            b = opts((kind,), "ur10")
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "exercise"
+        for kind, kg in ezb.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        torch = opts(("insulating_flange",))
+        assert len(torch["payload_steps"]) == 1 and 3.0 <= torch["payload_steps"][0] <= 8.0
+        plain = opts(("hose_wrap", "pawl_notch", "reversal_pulse", "nonius_slip", "fieldbus_rounding", "grout_void",
+                      "air_knife"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezb.probe_hook(("gear",), probe) is probe and ezb.payload_hook(("gear",), probe) is probe
+    assert ezb.probe_hook(("insulating_flange",), probe) == pytest.approx(probe + [0, 40.0, 320.0])
+    assert ezb.probe_hook(("stay_cable",), probe) == pytest.approx(probe + [500.0, 0, -40.0])
+    assert ezb.probe_hook(("sonotrode",), probe) == pytest.approx(probe + [0, 0, 300.0])
+    assert ezb.payload_hook(("insulating_flange",), probe) == pytest.approx(zbb.TORCH_COM_MM)
+    _assert_regenerates("ZB", max_effect_poses=50)
+
+
+def test_set_zb_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZB kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the impedance's residual torque and its
+    blocks, the hose slack, the brake's notch walls, the reversal's new direction, the nonius window, the fieldbus
+    integers, four equal wheels' statics, the grout void's one side, the torch's twist about its axis, the stay's sag
+    term (Ernst), the curtain's sector and the welding stack's cold start and heating."""
+    from sim2real_indep import effects_zb_body as zbb
+    from sim2real_indep import effects_zb_joint as zbj
+    from sim2real_indep import effects_zb_thermal as zbt
+    from sim2real_indep.effects_body import GRAVITY_N, mount_moment
+    from sim2real_indep.effects_u_joint import block_index
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZB_KINDS, 30, 28)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZB_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"impedance_preset": lambda: p["amp"], "hose_wrap": lambda: [p["k_h"]],
+                   "pawl_notch": lambda: p["pitch"], "reversal_pulse": lambda: p["e"],
+                   "nonius_slip": lambda: [p["delta"]], "fieldbus_rounding": lambda: [1.0],
+                   "mecanum_base": lambda: [p["inv_k0"]], "grout_void": lambda: [p["c0"], p["cv"]],
+                   "insulating_flange": lambda: [p["cb"], p["ct"]], "stay_cable": lambda: [p["c_el"], p["c_sag"]],
+                   "air_knife": lambda: p["amp"], "sonotrode": lambda: [p["cte"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    b = block_index(s)
+    # impedance: the part's load plus e of the arm's; one column per block, on the wrist alone
+    ip = P["impedance_preset"]
+    assert zbj.residual_torque({"e": 1.0}, ctx) == pytest.approx(ctx.loads)
+    part = zbj.residual_torque({"e": 0.0}, ctx)
+    assert zbj.residual_torque(ip, ctx) == pytest.approx(part + ip["e"] * (ctx.loads - part))
+    F = zbj.impedance_features(ip, ctx, hw)
+    assert len(F) == b.max() + 1 and all(not F[k][b != k].any() for k in range(len(F)))
+    assert ip["amp"] == pytest.approx(ip["A"] / ip["s"])
+    # hose wrap: nothing within the slack, a pull beyond it
+    hp = P["hose_wrap"]
+    st = zbj.hose_stretch(hp, ctx)
+    assert st == pytest.approx(np.clip(hp["r_mm"] * np.abs(ctx.q[:, 5] - hp["q0"]) - hp["slack_mm"], 0, None))
+    assert not zbj.hose_unit(hp, ctx, hw)[st == 0].any()
+    # pawl notch: the braked axis turns with its load onto a notch wall, less than a pitch
+    pp = P["pawl_notch"]
+    f = zbj.pawl_fraction(pp, ctx)
+    assert pp["pitch"] == pytest.approx(2 * np.pi / (pp["Z"] * pp["ratio"]))
+    for k, j in enumerate(zbj.PAWL_JOINTS):
+        on = f[:, j] != 0
+        assert on.any() and (np.abs(f[:, j]) < 1).all() and (np.sign(f[on, j]) == np.sign(ctx.loads[on, j])).all()
+        wall = np.mod(ctx.q[on, j] / pp["pitch"][k] + pp["phase"][k] + f[on, j] + 0.5, 1.0) - 0.5
+        assert np.abs(wall).max() < 1e-6
+    assert not np.delete(f, zbj.PAWL_JOINTS, axis=1).any()
+    # reversal pulse: the new direction where the axis reversed, nothing where it kept its direction
+    r = zbj.reversal_signal(s)
+    d = s.direction
+    assert not r[0].any() and (r[1:] == np.where(d[1:] != d[:-1], d[1:], 0)).all() and np.abs(r).sum() > 0
+    # nonius: a period's slip (+1) at the window's centre, none a quarter turn away
+    npar = P["nonius_slip"]
+    assert zbj.nonius_signal(npar, np.array([npar["c"], npar["c"] + np.pi / 2])) == pytest.approx([1.0, 0.0])
+    assert abs(npar["delta"]) == pytest.approx(2 * np.pi / npar["N"])
+    assert set(np.unique(zbj.nonius_signal(npar, ctx.q[:, npar["joint"]]))) <= {-1.0, 0.0, 1.0}
+    # fieldbus: the commanded joints are integers of 0.01 deg, within a step of the logged ones
+    for mode in ("round", "trunc"):
+        res = zbj.fieldbus_residual({"mode": mode}, ctx.chain, ctx.q)
+        cmd = np.rad2deg(ctx.q + res) / 0.01
+        assert np.abs(cmd - np.round(cmd)).max() < 1e-6
+        lim = np.deg2rad(0.01) * (0.5 if mode == "round" else 1.0)
+        assert np.abs(res).max() <= lim + 1e-15
+        if mode == "trunc":
+            assert (res * ctx.q <= 1e-18).all()                     # towards zero
+    # mecanum base: four equal wheels carry a quarter of the weight each, the tilt M / (4 a^2) about each axis
+    mp = {**P["mecanum_base"], "a": 0.0}
+    ax, ay = mp["half_mm"]
+    m, _, _ = ctx.mass_state
+    M = mount_moment(ctx) * 1000.0
+    rot = np.c_[M[:, 0] / (4 * ay ** 2), M[:, 1] / (4 * ax ** 2), np.zeros(len(M))]
+    want = (-m.sum(axis=1) * np.linalg.norm(GRAVITY_N) / 4)[:, None] * [0, 0, 1.0] + np.cross(
+        rot, ctx.target - [0, 0, -mp["h_mm"]])
+    assert zbb.mecanum_unit(mp, ctx) == pytest.approx(want, rel=1e-9, abs=1e-12)
+    # grout void: no turn while the moment lifts the void's edge, the far edge stays
+    vp = P["grout_void"]
+    n = np.array([np.cos(vp["psi"]), np.sin(vp["psi"]), 0.0])
+    press = mount_moment(ctx) @ np.cross(n, [0, 0, 1.0])
+    vparts = zbb.void_parts(vp, ctx)
+    assert not vparts[1][press <= 0].any() and (np.linalg.norm(vparts[1][press > 0], axis=1) > 0).all()
+    assert np.abs(vparts[0][:, :] @ [0, 0, 1.0] - np.cross(
+        np.c_[mount_moment(ctx)[:, :2], np.zeros(len(press))], ctx.target)[:, 2]).max() < 1e-9
+    # insulating flange: the twist turns the tip about the tool's z (no move along it), by |M_z| r
+    _, Rt = kin.flange(ctx.chain, ctx.q)
+    tw = zbb.flange_parts({}, ctx)[1]
+    assert np.abs(np.einsum("pi,pi->p", tw, Rt[:, :, 2])).max() < 1e-9
+    g = np.einsum("pji,j->pi", Rt, GRAVITY_N) * s.payload_kg[:, None]
+    Mz = np.cross(ctx.payload_com_mm, g)[:, 2]
+    assert np.linalg.norm(tw, axis=1) == pytest.approx(np.abs(Mz) * np.linalg.norm(ctx.probe_mm[:2]))
+    # stay cable: the sag term is Ernst's integral, nothing at the pretension; the tip drops along the tool's -z
+    sp = P["stay_cable"]
+    T = np.array([sp["T0"], 2 * sp["T0"], 4 * sp["T0"]])
+    integral = [np.trapezoid(2 / np.linspace(sp["T0"], t, 20001) ** 3, np.linspace(sp["T0"], t, 20001)) for t in T]
+    assert 1 / sp["T0"] ** 2 - 1 / T ** 2 == pytest.approx(integral, rel=1e-6)
+    parts = zbb.stay_parts(sp, ctx)
+    along = np.einsum("kpi,pi->kp", parts, Rt[:, :, 2])
+    assert np.linalg.norm(parts, axis=2) == pytest.approx(np.abs(along))
+    # air knife: the curtain's sector; a cold wall until it is entered, never above dT
+    kp = P["air_knife"]
+    assert zbt.in_curtain(kp, np.array([kp["centre"], kp["centre"] + 2 * kp["half"]])) == pytest.approx([1.0, 0.0])
+    kt = zbt.knife_temperature(kp, s)
+    on = zbt.in_curtain(kp, s.q[:, 0])
+    first = np.argmax(on > 0) if on.any() else len(on)
+    assert not kt[:first].any() and kt.min() >= 0 and kt.max() <= kp["dT_K"]
+    # sonotrode: cold in the first block, warmed by the first production gap (first-order heating, then cooling)
+    hp = P["sonotrode"]
+    ht = zbt.horn_temperature(hp, s)
+    assert not ht[b == 0].any() and (s.gap_s >= 0).all()
+    k = int(np.argmax(s.gap_s > 0))
+    warm = hp["dT_K"] * (1 - np.exp(-s.gap_s[k] / hp["tau_s"]))
+    cool = np.exp(-(s.time_s[k] - s.time_s[k - 1] - s.gap_s[k]) / hp["tau_s"])
+    assert ht[k] == pytest.approx(warm * cool) and 0 < ht.max() <= hp["dT_K"]
+    assert hp["cte"] in (23e-6, 8.6e-6)

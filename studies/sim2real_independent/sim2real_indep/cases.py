@@ -16,7 +16,8 @@ arm) a nineteenth (:mod:`effects_s`), set T (24 cases, 8 per arm) a twentieth (:
 arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-second (:mod:`effects_v`), set W (24 cases,
 8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm) a twenty-fourth (:mod:`effects_x`), set Y (24
 cases, 8 per arm) a twenty-fifth (:mod:`effects_y`), set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`) and
-set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`). A case: (id, robot, physics kinds, poses, split).
+set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 cases, 8 per arm) a twenty-eighth
+(:mod:`effects_zb`). A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ SEED_M, SEED_N, SEED_O, SEED_P, SEED_Q, SEED_R = 40_7013, 40_7014, 40_7015, 40_7
 SEED_S, SEED_T, SEED_U, SEED_V, SEED_W, SEED_X = 40_7019, 40_7020, 40_7021, 40_7022, 40_7023, 40_7024
 SEED_Y, SEED_Z = 40_7025, 40_7026
 SEED_ZA = 40_7027  # the sets after Z are named ZA, ZB, ... (two letters; they sort after Z)
+SEED_ZB = 40_7028
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1275,14 +1277,67 @@ SET_ZA = [
     ("ZA24", "kr16_like", ("slide_overhang", "scratch_count"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA)
+#: set ZB: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_zb`); written as an independent test set after set ZA, from the literature, without
+#: reading how the diagnosis models effects. Oracle labels when written (oracle.py only; the diagnosis was not run):
+#: every case its truth (gains 32-84 %; each mixture component's removal costs 19 % or more: ZB16's sonotrode 19 %,
+#: ZB08's stay cable 57 %), the geometry-only cases none; no soft labels (the closest rivals: ZB06's joint model 1.32x,
+#: ZB20's 1.38x, ZB11's transmission model 1.52x, ZB01's thermal model 1.54x; the smallest gains 32 % on ZB06, 36 % on
+#: ZB01 and ZB11, 38 % on ZB09). Changed after trial draws (the modules' docstrings give the final ranges): the
+#: impedance presets first softened all six axes, s_b 0.3-3 and 0.15-0.4 mm (ZB01: a gain of 19 %, the link model at
+#: 1.09x), then s_b 0.2-5 and 0.25-0.6 mm (the link model still at 1.20-1.24x: the main axes' twist under the part looks
+#: like a beam's sag), now the wrist alone (compliant-assembly presets); the hose's pull first moved the target 0.1-0.35
+#: mm (ZB09: 20 %, the transmission model at 1.25x), now 0.2-0.5 mm (a pressurised package); the nonius encoder first
+#: had 16384 or 32768 fine periods on every arm (ZB02: 23 %, the joint model at 1.24x), now 8192 or 16384
+#: (tool_changer's larger rings 16384 or 32768: 8192 moved its target 1.9 mm on a trial seed); the notched brake first
+#: had 60-120 notches (1.7-1.8 mm at the tool on ZB08 and ZB10), now 150-300 (a face-toothed ring); the mecanum base was
+#: first sized by a rough moment rule (1.0 mm at the tool on ZB12), now by the target's move, 0.2-0.6 mm; the welding
+#: stack first counted 250 mm and 30-60 K (ZB11: 20 %, the transmission model at 1.24x), now 300 mm (converter and
+#: booster) and 40-80 K; the air knife's wall first lagged 2-6 min behind a 15-30 deg curtain at 10-20 K (absorbed on a
+#: trial seed), then 0.75-2 min and 25-50 deg (ZB03: 20 %, the link model at 1.23x: the wall followed axis 1 almost at
+#: once), now 1-3 min and 20-40 K (the wall's jet side nearly at the jet's temperature); the stay cable's drop 0.15-0.4
+#: mm (ZB14: 10 % on a trial seed), now 0.2-0.5 mm. No pose count, arm or seed was changed. Trial draws on the seed + 1
+#: and + 2 (the case seeds + 1000003 k) with the final physics: every case labelled its truth in both, none absorbed or
+#: ambiguous; below the 20 % / 1.25x bar on + 1 the air knife (ZB03: a gain of 7 %, 1.07x -- few poses in the curtain),
+#: the grout void (ZB06: 1.20x) and the stay cable (ZB14: 16 %, 1.15x), on + 2 the hose wrap (ZB09: 6 %, 1.07x -- axis 6
+#: seldom beyond the slack) -- the air knife and the hose wrap the weakest kinds (both act on a share of the poses
+#: only).
+SET_ZB = [
+    ("ZB01", "ur10", ("impedance_preset",), 130, "random"),
+    ("ZB02", "ur10", ("nonius_slip",), 50, "random"),
+    ("ZB03", "ur10", ("air_knife",), 150, "time"),
+    ("ZB04", "ur10", ("reversal_pulse",), 120, "random"),
+    ("ZB05", "ur10", ("insulating_flange",), 140, "random"),
+    ("ZB06", "ur10", ("grout_void",), 150, "time"),
+    ("ZB07", "ur10", (), 70, "random"),
+    ("ZB08", "ur10", ("stay_cable", "pawl_notch"), 180, "random"),
+    ("ZB09", "tool_changer", ("hose_wrap",), 120, "random"),
+    ("ZB10", "tool_changer", ("pawl_notch",), 110, "random"),
+    ("ZB11", "tool_changer", ("sonotrode",), 140, "random"),
+    ("ZB12", "tool_changer", ("mecanum_base",), 130, "random"),
+    ("ZB13", "tool_changer", ("fieldbus_rounding",), 130, "time"),
+    ("ZB14", "tool_changer", ("stay_cable",), 150, "time"),
+    ("ZB15", "tool_changer", (), 40, "random"),
+    ("ZB16", "tool_changer", ("nonius_slip", "sonotrode"), 190, "time"),
+    ("ZB17", "kr16_like", ("fieldbus_rounding",), 130, "random"),
+    ("ZB18", "kr16_like", ("mecanum_base",), 120, "random"),
+    ("ZB19", "kr16_like", ("hose_wrap",), 150, "time"),
+    ("ZB20", "kr16_like", ("insulating_flange",), 140, "random"),
+    ("ZB21", "kr16_like", ("reversal_pulse",), 140, "random"),
+    ("ZB22", "kr16_like", ("impedance_preset",), 150, "random"),
+    ("ZB23", "kr16_like", (), 100, "random"),
+    ("ZB24", "kr16_like", ("air_knife", "hose_wrap"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
         "M": (SET_M, SEED_M), "N": (SET_N, SEED_N), "O": (SET_O, SEED_O), "P": (SET_P, SEED_P),
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
-        "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA)}
+        "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
+        "ZB": (SET_ZB, SEED_ZB)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -333,7 +333,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "tool_recoil": "backlash", "scratch_count": "transmission", "tooth_skip": "transmission",
           "slide_overhang": "mount_compliance", "ground_thaw": "mount_compliance",
           "offcentre_pick": "link_deflection", "soft_fingers": "link_deflection", "ac_jet": "thermal",
-          "oven_door": "thermal"}
+          "oven_door": "thermal",
+          # set ZB (sim2real_indep.effects_zb; impedance_preset, a torque-controlled arm's joint-impedance stiffness set
+          # per block, and hose_wrap, the joints yielding to a hose wrapped round the wrist by axis 6, scored as joint
+          # compliance; pawl_notch, gravity-loaded axes settling onto the next notch of a positive-locking brake, and
+          # reversal_pulse, a friction-compensation pulse left over after a reversal, as backlash (lost motion in a
+          # clearance, errors that follow the last motion); nonius_slip, a two-track absolute encoder decoding the
+          # wrong fine period in a window of angles, and fieldbus_rounding, joint targets sent as integers of 0.01 deg,
+          # as transmission (the joints' reading and command); mecanum_base, an AMR's mecanum wheels whose stiffness
+          # changes at each docking, and grout_void, a base plate over a grout void under one edge, as mount
+          # compliance; insulating_flange, a torch turning on its insulating flange, and stay_cable, a tool boom on a
+          # sagging stay cable, as link deflection (the end-of-arm structure carrying the target); air_knife, the
+          # forearm heated when axis 1 turns it into a hot air curtain, and sonotrode, an ultrasonic welding stack
+          # warming in the production, as thermal)
+          "impedance_preset": "joint_compliance", "hose_wrap": "joint_compliance", "pawl_notch": "backlash",
+          "reversal_pulse": "backlash", "nonius_slip": "transmission", "fieldbus_rounding": "transmission",
+          "mecanum_base": "mount_compliance", "grout_void": "mount_compliance",
+          "insulating_flange": "link_deflection", "stay_cable": "link_deflection", "air_knife": "thermal",
+          "sonotrode": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
