@@ -63,3 +63,40 @@ def test_pose_probabilities_with_an_estimate_of_one_and_a_rounded_interval_end(t
     path = tmp_path / "p.png"
     plot_pose_probabilities(v, path)
     assert path.stat().st_size > 0
+
+
+def test_cloud_draws_its_points_and_the_densities_all_kept(model):
+    res = run_mc(model, model.robot.q_nominal, 3000, seed=0, keep_samples=3000)
+    fig = mcplots.scatter_density(res, max_points=2000, cloud_points=300)
+    cloud = fig.axes[0].collections[0]
+    assert len(cloud.get_offsets()) == 300
+    dp = res.samples["dp_mm"][:2000]
+    xy = fig.axes[1].collections[0].get_coordinates()  # the x-y density's cell corners span the first 2000 samples
+    assert xy[..., 0].min() == pytest.approx(dp[:, 0].min()) and xy[..., 0].max() == pytest.approx(dp[:, 0].max())
+    assert xy[..., 1].min() == pytest.approx(dp[:, 1].min()) and xy[..., 1].max() == pytest.approx(dp[:, 1].max())
+    plt.close(fig)
+
+
+def test_fit_layout_leaves_no_engine_and_the_same_pixels(tmp_path):
+    """tight_layout leaves a placeholder layout engine, which makes savefig draw the figure once more; fit_layout
+    removes it, and the file is the same to the byte."""
+    from tolalloc.report.plots import fit_layout
+
+    def figure():
+        fig, axes = plt.subplots(2, 2, figsize=(6, 4))
+        for ax in axes.flat:
+            ax.scatter(np.arange(50), np.arange(50) ** 0.5, s=3)
+            ax.set_title("panel")
+            ax.set_xlabel("x [mm]")
+        fig.suptitle("title")
+        return fig
+
+    plain, fitted = figure(), figure()
+    plain.tight_layout()
+    assert plain.get_layout_engine() is not None
+    fit_layout(fitted)
+    assert fitted.get_layout_engine() is None
+    plain.savefig(tmp_path / "plain.png", dpi=60)
+    fitted.savefig(tmp_path / "fitted.png", dpi=60)
+    assert (tmp_path / "plain.png").read_bytes() == (tmp_path / "fitted.png").read_bytes()
+    plt.close("all")

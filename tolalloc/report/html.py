@@ -272,6 +272,7 @@ def plot_calibrated_tolerances(table: pd.DataFrame):
     """
     import matplotlib.pyplot as plt
 
+    from tolalloc.report.plots import fit_layout
     from tolalloc.units import in_row_unit
 
     y = np.arange(len(table))[::-1]
@@ -284,5 +285,5 @@ def plot_calibrated_tolerances(table: pd.DataFrame):
     ax.set_yticks(y, [f"{p} [{u}]" for p, u in zip(table["parameter"], table["unit"])], fontsize=8)
     ax.set_xlabel("tolerance ± (mm or deg, log scale)")
     ax.legend(fontsize=8, loc="lower right")
-    fig.tight_layout()
+    fit_layout(fig)
     return fig

@@ -337,6 +337,7 @@ class AcceptanceAllocation(JobResult):
         publishes them together)."""
         import matplotlib.pyplot as plt
 
+        from tolalloc.report.plots import fit_layout
         from tolalloc.report.plots.acceptance import plot_acceptance
         from tolalloc.report.tables import write_tables
 
@@ -356,7 +357,7 @@ class AcceptanceAllocation(JobResult):
         write_json(self.summary(), tmp / "summary.json")
         axes = plot_acceptance(self.prediction, self.simulation)
         fig = np.atleast_1d(axes)[0].figure
-        fig.tight_layout()
+        fit_layout(fig)
         fig.savefig(tmp / "acceptance.png", dpi=100)
         plt.close(fig)
         return names + ["summary.json", "acceptance.png"]

@@ -342,6 +342,8 @@ class CalibrationPlanDesign(JobResult):
         the Axes."""
         import matplotlib.pyplot as plt
 
+        from tolalloc.report.plots import fit_layout
+
         d = self.design
         if ax is None:
             _, ax = plt.subplots(figsize=(6, 2.6))
@@ -352,7 +354,7 @@ class CalibrationPlanDesign(JobResult):
         ax.set_xscale("log")
         ax.set_xlabel("mean post-calibration position variance (systematic part) [mm²]")
         ax.set_title(f"{self.robot.name}: calibration plan at the {self.eval_poses} poses", fontsize=9)
-        ax.figure.tight_layout()
+        fit_layout(ax.figure)
         return ax
 
     def write_files(self, folder, *, report: bool = False) -> list[str]:

@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from tolalloc.units import in_row_unit  # noqa: E402
+from tolalloc.report.plots import fit_layout  # noqa: E402
 
 __all__ = ["plot_budget", "plot_cloud", "plot_pareto", "plot_pose_probabilities"]
 
@@ -53,7 +54,7 @@ def plot_budget(table, path=None, *, title: str = "", dpi: int = 100, axes=None)
     ax.legend(handles, [k for k in _KIND_COLORS if k in set(table["kind"])], fontsize=7, loc="lower right")
     if title:
         fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
+    fit_layout(fig)
     return _finish(fig, path, dpi)
 
 
@@ -88,7 +89,7 @@ def plot_cloud(verification, path=None, *, title: str = "", dpi: int = 100, axes
     k = verification.samples_pose
     fig.suptitle(title or f"pose {k + 1}: {len(s)} of the Monte Carlo samples, "
                  f"P_hat = {verification.p_mc[k]:.4f} (linear {verification.p_linear[k]:.4f})", fontsize=10)
-    fig.tight_layout()
+    fit_layout(fig)
     return _finish(fig, path, dpi)
 
 
@@ -119,7 +120,7 @@ def plot_pose_probabilities(verification, path=None, *, dpi: int = 100, ax=None,
     ax.set_ylabel(f"P(|dP| < {v.radius_mm:g} mm)")
     ax.set_xticks(x)
     ax.legend(fontsize=8)
-    fig.tight_layout()
+    fit_layout(fig)
     return _finish(fig, path, dpi)
 
 
@@ -150,7 +151,7 @@ def plot_pareto(frame, x: str, path=None, *, xlabel: str = "", logx: bool = Fals
         ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
-    fig.tight_layout()
+    fit_layout(fig)
     return _finish(fig, path, dpi)
 
 

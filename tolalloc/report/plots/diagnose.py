@@ -11,6 +11,8 @@ if "ipykernel" not in sys.modules:  # files only; a notebook keeps its inline ba
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tolalloc.report.plots import fit_layout  # noqa: E402
+
 __all__ = ["plot_where", "plot_ranking", "plot_before_after", "plot_confusion", "draw_where", "where_figure",
            "where_panels", "plot_corrections"]
 
@@ -70,7 +72,7 @@ def plot_where(where, path, n_features: int = 6, dpi: int = 72, max_points: int 
     fig, axes = where_figure(where, n_features)
     draw_where(where, axes, n_features, max_points)
     fig.suptitle("Residual after geometric calibration: where")
-    fig.tight_layout()
+    fit_layout(fig)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
 
@@ -110,7 +112,7 @@ def plot_before_after(table, path=None, dpi: int = 90, ax=None):
 
 def _done(fig, ax, path, dpi):
     """Save and close the figure (``path``), or return the Axes drawn on."""
-    fig.tight_layout()
+    fit_layout(fig)
     if path is None:
         return ax
     fig.savefig(path, dpi=dpi)
@@ -131,7 +133,7 @@ def plot_confusion(matrix, labels, path, title: str = "", dpi: int = 90) -> None
     ax.set_xlabel("diagnosed")
     ax.set_ylabel("true (withheld)")
     ax.set_title(title, fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
 

@@ -8,6 +8,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from tolalloc.report.plots import fit_layout  # noqa: E402
+
 __all__ = ["plot_spread", "plot_cpk"]
 
 
@@ -31,7 +33,7 @@ def plot_spread(table, ax=None):
     ax.set_xscale("log")
     ax.set_xlabel(label)
     ax.set_title("Robot-to-robot spread of the identifiable parameters (interval)", fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     return ax
 
 
@@ -49,5 +51,5 @@ def plot_cpk(table, ax=None):
     ax.invert_yaxis()
     ax.set_xlabel("Cpk against the allocated tolerance (clipped at 10)")
     ax.legend(fontsize=7)
-    fig.tight_layout()
+    fit_layout(fig)
     return ax

@@ -6,6 +6,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from tolalloc.linear.covariance import ErrorBudget
+from tolalloc.report.plots import fit_layout
 
 __all__ = ["budget_bars", "linearisation_figure"]
 
@@ -54,7 +55,7 @@ def budget_bars(b: ErrorBudget, path=None, *, pose="worst", by: str = "parameter
     ax.set_title(f"{b.quantity} error budget, pose {pose_i} (q = {qtxt} deg/mm)", fontsize=9)
     ax.legend(fontsize=7, loc="lower right")
     ax.grid(axis="x", alpha=0.3)
-    fig.tight_layout()
+    fit_layout(fig)
     if path is not None:
         fig.savefig(path, dpi=dpi)
     return fig
@@ -111,7 +112,7 @@ def linearisation_figure(table, path=None, *, dpi: int = 110):
     ax.set_xlabel("P(|dp| < r), Monte Carlo")
     ax.set_ylabel("linear-Gaussian P - MC P (bars: 2 s.e.)")
     ax.set_title("probabilities (r = radius of MC p = 0.5, 0.9, 0.99)", fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     if path is not None:
         fig.savefig(path, dpi=dpi)
     return fig

@@ -11,6 +11,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from tolalloc.exceptions import TolallocError
+from tolalloc.report.plots import fit_layout
 
 __all__ = ["scatter_density", "hist_density", "sensitivity_curves", "trajectory_plot"]
 
@@ -23,11 +24,14 @@ def _save(fig, path, dpi):
     return fig
 
 
-def scatter_density(result, path=None, *, title: str = "", max_points: int = 20000, dpi: int = 90, axes=None):
+def scatter_density(result, path=None, *, title: str = "", max_points: int = 20000, cloud_points: int = 5000,
+                    dpi: int = 90, axes=None):
     """3-D scatter of ``p' - p`` and x-y, x-z, y-z projection densities (the paper's Figs. 6 and 12).
 
-    Needs ``result.samples`` (run :func:`run_mc` with ``keep_samples > 0``). ``axes``: draw into these four Axes
-    (the first with ``projection="3d"``); default a new figure.
+    Needs ``result.samples`` (run :func:`run_mc` with ``keep_samples > 0``). The densities use the first
+    ``max_points`` kept samples, the 3-D cloud the first ``cloud_points`` of them (more only overplot it, and a 3-D
+    scatter costs its drawing time per point). ``axes``: draw into these four Axes (the first with
+    ``projection="3d"``); default a new figure.
     """
     if not result.samples:
         raise TolallocError("scatter_density: the result has no samples; run the Monte Carlo with keep_samples > 0.")
@@ -38,7 +42,8 @@ def scatter_density(result, path=None, *, title: str = "", max_points: int = 200
     else:
         fig = axes[0].figure
     ax = axes[0]
-    ax.scatter(dp[:, 0], dp[:, 1], dp[:, 2], s=0.5, alpha=0.3)
+    cloud = dp[:cloud_points]
+    ax.scatter(cloud[:, 0], cloud[:, 1], cloud[:, 2], s=0.5, alpha=0.3)
     ax.set_xlabel("Δx [mm]")
     ax.set_ylabel("Δy [mm]")
     ax.set_zlabel("Δz [mm]")
@@ -53,7 +58,7 @@ def scatter_density(result, path=None, *, title: str = "", max_points: int = 200
     lab = result.labels
     fig.suptitle(title or f"n={result.n}, {lab.get('sigma_set')}, links {lab.get('link_mode')}, "
                  f"deflection {lab.get('deflection_mode')}, clearance {lab.get('clearance')}", fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     return _save(fig, path, dpi)
 
 
@@ -86,7 +91,7 @@ def sensitivity_curves(result, quantities=("dx", "dy", "dz", "norm"), path=None,
     axes[0][-1].legend(fontsize=7)
     if title:
         fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     return _save(fig, path, dpi)
 
 
@@ -106,7 +111,7 @@ def trajectory_plot(result, path=None, *, title: str = "", dpi: int = 90):
     axes[-1].legend(fontsize=7)
     if title:
         fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     return _save(fig, path, dpi)
 
 
@@ -128,5 +133,5 @@ def hist_density(result, path=None, *, pose: int = 0, title: str = "", dpi: int 
         ax.set_ylabel(f"Δ{plane[1]} [mm]")
         ax.set_title(f"{plane[0]}-{plane[1]} density ({h.outside[pose, k] / h.n:.1e} outside)", fontsize=9)
     fig.suptitle(title or f"n={h.n}, pose {pose}", fontsize=9)
-    fig.tight_layout()
+    fit_layout(fig)
     return _save(fig, path, dpi)
