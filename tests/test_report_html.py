@@ -446,3 +446,22 @@ def test_the_monte_carlo_card_says_how_a_paired_estimate_relates_to_the_linear_p
                           p_mc=np.array([0.96, 0.97]), n_discordant=np.array([3.0, 0.0]))
     assert "disagree on 3 of 1,000,000 samples" in _paired_note(ver, 0)
     assert _paired_note(ver, 1) == ""
+
+
+def test_a_figure_a_plotting_function_saves_itself_carries_no_date():
+    """writer_figure_item (the diagnosis report's figures: the plotting function calls savefig) drops the SVG metadata
+    block, whose date made two reports of one diagnosis differ."""
+    import base64
+
+    import matplotlib.pyplot as plt
+
+    from tolalloc.report.html import writer_figure_item
+
+    def write(f):
+        fig, ax = plt.subplots()
+        ax.plot([1, 2, 3])
+        fig.savefig(f, format="svg")
+        plt.close(fig)
+
+    svg = base64.b64decode(writer_figure_item(write, figure_id="a", caption="c")["uri"].split(",", 1)[1])
+    assert b"<metadata>" not in svg and b"dc:date" not in svg and svg.startswith(b"<svg")

@@ -144,11 +144,14 @@ def html_table(frame: pd.DataFrame, columns, *, table_id: str, caption: str, not
 
 # ---------------------------------------------------------------------------------------------- figures
 _SVG_PROLOGUE = re.compile(rb"<\?xml[^>]*\?>\s*(<!DOCTYPE[^>]*>\s*)?", re.S)
+_SVG_METADATA = re.compile(rb"\s*<metadata>.*?</metadata>", re.S)
 
 
 def _data_uri(payload: bytes, fmt: str) -> str:
     if fmt == "svg":
         payload = _SVG_PROLOGUE.sub(b"", payload, count=1)  # the DOCTYPE names an external DTD; not needed
+        # the date a plotting function's own savefig writes (writer_figure_item): the same figure, the same bytes
+        payload = _SVG_METADATA.sub(b"", payload, count=1)
     mime = "image/svg+xml" if fmt == "svg" else "image/png"
     return f"data:{mime};base64,{base64.b64encode(payload).decode('ascii')}"
 
