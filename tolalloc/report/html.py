@@ -150,17 +150,16 @@ _SVG_METADATA = re.compile(rb"\s*<metadata>.*?</metadata>", re.S)
 def _data_uri(payload: bytes, fmt: str) -> str:
     if fmt == "svg":
         payload = _SVG_PROLOGUE.sub(b"", payload, count=1)  # the DOCTYPE names an external DTD; not needed
-        # the date a plotting function's own savefig writes (writer_figure_item): the same figure, the same bytes
-        payload = _SVG_METADATA.sub(b"", payload, count=1)
+        payload = _SVG_METADATA.sub(b"", payload, count=1)  # its date: the same figure gives the same bytes
     mime = "image/svg+xml" if fmt == "svg" else "image/png"
     return f"data:{mime};base64,{base64.b64encode(payload).decode('ascii')}"
 
 
 def _savefig_options(fmt: str) -> tuple[dict, dict]:
-    """``(rcParams, savefig keyword arguments)`` for reproducible figure bytes without metadata."""
+    """``(rcParams, savefig keyword arguments)`` for reproducible figure bytes without metadata (an SVG's metadata
+    block, with its date, is dropped by :func:`_data_uri`, also where a plotting function saves the figure itself)."""
     if fmt == "svg":
-        return {"svg.hashsalt": "tolalloc", "savefig.format": "svg"}, {
-            "metadata": {"Date": None, "Creator": None, "Format": None, "Type": None}}
+        return {"svg.hashsalt": "tolalloc", "savefig.format": "svg"}, {}
     if fmt == "png":
         return {"savefig.format": "png"}, {"metadata": {"Software": None}}
     raise ValueError(f"figure format: expected 'svg' or 'png', got {fmt!r}")

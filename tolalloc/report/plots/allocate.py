@@ -12,8 +12,8 @@ if "ipykernel" not in sys.modules:  # files only; a notebook keeps its inline ba
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from tolalloc.units import in_row_unit  # noqa: E402
 from tolalloc.report.plots import fit_layout  # noqa: E402
+from tolalloc.units import in_row_unit  # noqa: E402
 
 __all__ = ["plot_budget", "plot_cloud", "plot_pareto", "plot_pose_probabilities"]
 
