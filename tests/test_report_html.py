@@ -465,3 +465,25 @@ def test_a_figure_a_plotting_function_saves_itself_carries_no_date():
 
     svg = base64.b64decode(writer_figure_item(write, figure_id="a", caption="c")["uri"].split(",", 1)[1])
     assert b"<metadata>" not in svg and b"dc:date" not in svg and svg.startswith(b"<svg")
+
+
+def test_the_banner_names_a_further_effect_with_its_tied_families():
+    """An `effect` verdict with a further effect whose family the data cannot tell: the banner's word names the clear
+    effect and, in brackets, the further one with its alternatives; its first line is the verdict's headline."""
+    from types import SimpleNamespace
+
+    from tolalloc.diagnose.verdict import Comparison, Verdict
+    from tolalloc.report.html_diagnosis import _verdict
+
+    tie = Comparison("backlash", "joint_compliance", 0.6, 1.0, 0.1, 0.101, False, 1.0)
+    v = Verdict("effect", ("mount_compliance",), ("why",), "geometric+mount_compliance+backlash", (tie,),
+                selected=("mount_compliance", "backlash"), further=("backlash",))
+    block = pd.DataFrame({"model": ["nominal", "geometric", "final"], "rms_mm": [1.0, 0.2, 0.1],
+                          "rms_shrink_pct": [0.0, 80.0, 90.0]})
+    card = _verdict(SimpleNamespace(verdict=v, fallback=None, guards=(), test=None), block, "test")
+    assert card["word"] == "EFFECT: mount_compliance + (backlash or joint_compliance)"
+    assert card["lines"][0] == ("Verdict: mount_compliance; a further effect the data cannot attribute to one family: "
+                                "backlash or joint_compliance.")
+    plain = _verdict(SimpleNamespace(verdict=Verdict("effect", ("backlash",), (), "x"), fallback=None, guards=(),
+                                     test=None), block, "test")
+    assert plain["word"] == "EFFECT: backlash"

@@ -11,7 +11,11 @@
   :data:`~.families.DECISIVE_BAYES_FACTOR` for the selected family over the alternative (:mod:`.families`; the
   first step has already selected the family the evidence favours, :func:`.families.evidence_pick`). The Wilcoxon
   p-value of each comparison is reported, not used. :func:`separating_poses` suggests poses where two tied models'
-  predictions differ most.
+  predictions differ most. A tie on a later effect leaves the verdict ``effect`` when the first selected effect is
+  clear (no tied alternative, a gain of at least the margin): the clear effects are named, and the tied one is a
+  further effect whose family the data cannot tell, named with its alternatives (``Verdict.further``); so is a tie
+  on a *minor* effect (its own gain below the margin) beside any clear effect, reported as not claimed
+  (:func:`.verdict_text.further_ties`).
 * ``inconclusive`` -- no effect is claimed when the data cannot support one (:func:`inconclusive_reasons`): the
   probe offset is only weakly identified (the parameter check); the out-of-fold registration is unstable (the
   nominal model's out-of-fold RMS above :data:`UNSTABLE_RATIO` x its training RMS); the geometric model or the final
@@ -115,6 +119,9 @@ class Verdict:
     suggestions : DataFrame or None   poses separating the ambiguous pairs (interface units)
     selected : tuple of str the effects of the final model (also for ``inconclusive``, where they are not claimed)
     untested : tuple of str effects (or variants) the data could not test, each with its reason in ``reasons``
+    further : tuple of str  (``effect``) selected effects after a clear first one whose family the data cannot tell
+                            from a tied alternative: in the final model, named in the headline with the alternatives,
+                            not claimed as a family (:func:`.verdict_text.further_ties`)
     """
 
     verdict: str
@@ -125,11 +132,19 @@ class Verdict:
     suggestions: pd.DataFrame | None = field(default=None)
     selected: tuple = ()
     untested: tuple = ()
+    further: tuple = ()
 
     def headline(self) -> str:
         """The first printed line."""
         if self.verdict == "effect":
-            return f"verdict: effect -- {' + '.join(self.candidates)}"
+            if not self.further:
+                return f"verdict: effect -- {' + '.join(self.candidates)}"
+            alts = {}
+            for c in tied(self.comparisons):
+                alts.setdefault(c.effect, []).append(c.alternative_label)
+            terms = " and ".join(" or ".join((e, *alts.get(e, ()))) for e in self.further)
+            return (f"verdict: effect -- {' + '.join(self.candidates)}; a further effect the data cannot attribute "
+                    f"to one family: {terms}")
         if self.verdict == "ambiguous":
             return f"verdict: ambiguous -- {self._ambiguous_terms()}; these poses cannot tell them apart"
         if self.verdict == "inconclusive":
@@ -155,6 +170,7 @@ class Verdict:
     def to_dict(self) -> dict:
         return {"verdict": self.verdict, "candidates": list(self.candidates), "reasons": list(self.reasons),
                 "safe_model": self.safe_model, "selected": list(self.selected), "untested": list(self.untested),
+                "further": list(self.further),
                 "comparisons": [c.to_dict() for c in self.comparisons],
                 "suggested_poses": None if self.suggestions is None else self.suggestions.to_dict(orient="records")}
 

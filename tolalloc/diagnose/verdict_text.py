@@ -11,7 +11,7 @@ from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACT
 from tolalloc.diagnose.scores import scheme_text
 from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied
 
-__all__ = ["verdict_of", "input_notes", "minor_ties"]
+__all__ = ["verdict_of", "input_notes", "further_ties"]
 
 
 def input_notes(ctx, stages: list) -> tuple[list, list]:
@@ -146,28 +146,45 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
     amb = tied(comparisons)
     scheme = scheme_text(getattr(ctx, "cv", "blocked"))
     sel = [_selected_line(stages, e, final.effects, scheme) for e in final.effects]
-    minor = minor_ties(stages, final.effects, amb)
-    if amb and len(minor) < len(amb):
+    further = further_ties(stages, final.effects, amb)
+    if amb and len(further) < len(amb):
         names = []
         for e in final.effects:
             names += [x for x in (e, *[c.alternative for c in amb if c.effect == e]) if x not in names]
-        lines = [_pair_line(c) for c in amb] + sel
-        if suggestions is not None and len(suggestions):
-            out_n = int(suggestions["outside_training"].sum())
-            lines.append("poses that would separate them: suggested_poses (where the two fitted models' predictions "
-                         f"differ most, up to {suggestions['predicted_difference_mm'].max():.3g} mm)"
-                         + (f"; {out_n} of {len(suggestions)} lie outside the training data, where both fits "
-                            "extrapolate (column joints_outside_training_range: the joints to move beyond their "
-                            "training range)" if out_n else ""))
+        lines = [_pair_line(c) for c in amb] + sel + _suggestion_lines(suggestions)
         return Verdict("ambiguous", tuple(names), tuple(lines + notes), safe, comparisons, suggestions, **kw)
     sep = [_separated_line(c) for c in comparisons if c.separable]
-    small = sorted({c.effect for c in minor}, key=final.effects.index)
-    lines = [f"{e} adds a gain below the practical margin ({_gain_of(stages, e):+.1f} % < {minor[0].margin_pct:g} %) "
-             f"and the data cannot tell it from {' or '.join(c.alternative for c in minor if c.effect == e)} in its "
-             f"place: a minor further effect of an unnamed family, kept in the final model, not claimed"
-             for e in small]
-    named = tuple(e for e in final.effects if e not in small)
-    return Verdict("effect", named, tuple(sel + sep + lines + notes), safe, comparisons, **kw)
+    unnamed = sorted({c.effect for c in further}, key=final.effects.index)
+    big = tuple(e for e in unnamed if _gain_of(stages, e) >= further[0].margin_pct)
+    lines = [_further_line(stages, e, [c for c in further if c.effect == e]) for e in unnamed]
+    lines += _suggestion_lines(suggestions) if big else []
+    named = tuple(e for e in final.effects if e not in unnamed)
+    return Verdict("effect", named, tuple(sel + sep + lines + notes), safe, comparisons,
+                   suggestions if big else None, further=big, **kw)
+
+
+def _suggestion_lines(suggestions) -> list:
+    """The line pointing at the poses that would separate tied families (none without suggestions)."""
+    if suggestions is None or not len(suggestions):
+        return []
+    out_n = int(suggestions["outside_training"].sum())
+    return ["poses that would separate them: suggested_poses (where the two fitted models' predictions differ most, "
+            f"up to {suggestions['predicted_difference_mm'].max():.3g} mm)"
+            + (f"; {out_n} of {len(suggestions)} lie outside the training data, where both fits extrapolate (column "
+               "joints_outside_training_range: the joints to move beyond their training range)" if out_n else "")]
+
+
+def _further_line(stages: list, e: str, ties: list) -> str:
+    """Why the tied later effect ``e`` is kept in the final model without its family being claimed."""
+    gain, margin = _gain_of(stages, e), ties[0].margin_pct
+    alts = " or ".join(f"{c.alternative} ({c.excess_pct:+.1f} %)" for c in ties)
+    if gain < margin:
+        return (f"{e} adds a gain below the practical margin ({gain:+.1f} % < {margin:g} %) and the data cannot tell "
+                f"it from {' or '.join(c.alternative for c in ties)} in its place: a minor further effect of an unnamed "
+                f"family, kept in the final model, not claimed")
+    return (f"{e} adds a further gain of {gain:+.1f} % after the clear first effect, but {alts} in its place explains "
+            f"the training file within the practical margin of {margin:g} %: a further effect whose family the data "
+            f"cannot tell, kept in the final model (as {e}), its family not claimed")
 
 
 def _forward(stages: list, e: str) -> tuple:
@@ -182,14 +199,22 @@ def _gain_of(stages: list, e: str) -> float:
     return np.inf if c is None else float(c.gain_pct)
 
 
-def minor_ties(stages: list, effects: tuple, amb: list) -> list:
-    """The tied comparisons ``amb`` that leave the verdict ``effect``: those of a *minor* effect (its own gain at its
-    step below the practical margin, so that leaving it out is itself within the margin) when another selected
-    effect is clearly ahead (gain at least the margin, no tied alternative)."""
+def further_ties(stages: list, effects: tuple, amb: list) -> list:
+    """The tied comparisons ``amb`` that leave the verdict ``effect``.
+
+    A selected effect is *clear* when it has no tied alternative and a gain at its step of at least the practical
+    margin. When the first selected effect of the final model (in the order of the forward steps) is clear, every tie
+    is on a later effect: the clear effects are named and each tied one is a further effect whose family the data
+    cannot tell. Otherwise, beside any clear effect, only the ties of *minor* effects (own gain below the margin, so
+    that leaving them out is itself within the margin) leave the verdict ``effect``."""
     if not amb:
         return []
     margin = amb[0].margin_pct
     tied_effects = {c.effect for c in amb}
-    if not any(e not in tied_effects and _gain_of(stages, e) >= margin for e in effects):
+    clear = [e for e in effects if e not in tied_effects and _gain_of(stages, e) >= margin]
+    if not clear:
         return []
+    order = [st.selected for st in stages if st.selected in effects]
+    if order and order[0] in clear:
+        return list(amb)
     return [c for c in amb if _gain_of(stages, c.effect) < margin]
