@@ -54,6 +54,7 @@ from sim2real_indep import effects_y as ey
 from sim2real_indep import effects_z as ez
 from sim2real_indep import effects_za as eza
 from sim2real_indep import effects_zb as ezb
+from sim2real_indep import effects_zc as ezc
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -99,13 +100,14 @@ EFFECTS = {
     **ez.EFFECTS_Z,  # set Z's new kinds
     **eza.EFFECTS_ZA,  # set ZA's new kinds
     **ezb.EFFECTS_ZB,  # set ZB's new kinds
+    **ezc.EFFECTS_ZC,  # set ZC's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
                  | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER | eu.AFTER_TRACKER
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
-                 | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER)
+                 | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -201,7 +203,8 @@ def _session_options(robot_key, physics, rng):
     opts = ey.session_options(robot_key, physics, rng, opts)  # set Y (no draws without a set-Y kind)
     opts = ez.session_options(robot_key, physics, rng, opts)  # set Z (no draws without a set-Z kind)
     opts = eza.session_options(robot_key, physics, rng, opts)  # set ZA (no draws without a set-ZA kind)
-    return ezb.session_options(robot_key, physics, rng, opts)  # set ZB (no draws without a set-ZB kind)
+    opts = ezb.session_options(robot_key, physics, rng, opts)  # set ZB (no draws without a set-ZB kind)
+    return ezc.session_options(robot_key, physics, rng, opts)  # set ZC (no draws without a set-ZC kind)
 
 
 def _tracker(rng):
@@ -247,6 +250,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ez.probe_hook(physics, probe)  # set Z's gripper boom, welded frame (no draws)
     probe = eza.probe_hook(physics, probe)  # set ZA's gripper bar, soft fingers (no draws)
     probe = ezb.probe_hook(physics, probe)  # set ZB's torch, stay-cable boom, welding horn (no draws)
+    probe = ezc.probe_hook(physics, probe)  # set ZC's bayonet tool, bush boom, bonded part (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -256,6 +260,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = eo.payload_hook(physics, payload_com, probe, robot_key)  # set O's spindle, C-frame (no draws)
     payload_com = es.payload_hook(physics, payload_com, probe)  # set S's profile frame's module (no draws)
     payload_com = ezb.payload_hook(physics, payload_com)  # set ZB's torch, part at the boom's tip (no draws)
+    payload_com = ezc.payload_hook(physics, payload_com)  # set ZC's off-axis part, boom tip, bonded part (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

@@ -350,7 +350,25 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "reversal_pulse": "backlash", "nonius_slip": "transmission", "fieldbus_rounding": "transmission",
           "mecanum_base": "mount_compliance", "grout_void": "mount_compliance",
           "insulating_flange": "link_deflection", "stay_cable": "link_deflection", "air_knife": "thermal",
-          "sonotrode": "thermal"}
+          "sonotrode": "thermal",
+          # set ZC (sim2real_indep.effects_zc; spool_tension, the joints yielding to a dancer-tensioned wire pulled
+          # towards its guide eye, and coupled_wrist, a wrist whose drive trains' compliances act in motor coordinates,
+          # scored as joint compliance; bayonet_play, a tool turned across its bayonet's play by its hose's drag against
+          # axis 6's last rotation, and air_preload, axis 1's gear play preloaded by a cylinder only in the blocks with
+          # the air on, as backlash (lost motion in a clearance, errors that follow the last motion); swapped_bits, the
+          # output encoders' words logged with two data lines crossed, and multistart_worm, a worm stage's
+          # start-to-start index error, as transmission (the joints' reading and drive); hexapod_mount, the arm on a
+          # six-strut pedestal whose struts are softer in tension, and counterweight_base, a carrier whose active
+          # counterweight cancels the arm's moment only within its stroke, as mount compliance (the robot's support);
+          # rubber_bush, a tool boom hinged on a progressive rubber bush, and floor_hose, a tool boom bent by the hose
+          # it lifts off the floor, as link deflection (the end-of-arm structure carrying the target); cure_exotherm, a
+          # bonded part warmed by its adhesive's cure, and link_convection, the forearm bowed by the warm air its
+          # motors stratify inside it, as thermal)
+          "spool_tension": "joint_compliance", "coupled_wrist": "joint_compliance", "bayonet_play": "backlash",
+          "air_preload": "backlash", "swapped_bits": "transmission", "multistart_worm": "transmission",
+          "hexapod_mount": "mount_compliance", "counterweight_base": "mount_compliance",
+          "rubber_bush": "link_deflection", "floor_hose": "link_deflection", "cure_exotherm": "thermal",
+          "link_convection": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; all twenty-eight: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; all twenty-nine: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -347,6 +347,26 @@ pulling it once taut, `none` alone (ZB09, ZB19) and beside an air knife's hot cu
 letting gravity-loaded axes settle onto the next notch, `none` on tool_changer (ZB10); an ultrasonic welding stack
 warming in the production between blocks, not logged, `none` (ZB11); joint targets sent over a fieldbus as integers
 of 0.01 deg, `none` on tool_changer (ZB13) -- named transmission on kr16_like (ZB17).
+
+**Set ZC** (24 cases, seed 40_7029) is a twenty-ninth independent test set of twelve new kinds
+(`sim2real_indep/effects_zc*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZB, and who did not run the diagnosis. It was run once, on the
+code with one change of the verdict made after set ZB had been judged and decided on sets A-ZB alone: a tie on a later
+effect leaves the verdict `effect` when the first selected effect is clear (it names the clear effects and reports the
+tied one as a further effect whose family the data cannot tell, kept in the final model), where before any tie of an
+effect with a gain of at least the margin made the whole verdict `ambiguous`. On sets A-ZB it turns 22 `ambiguous`
+verdicts into `effect`: 13 now name the truth, 9 name a first effect that is not the truth (which the `ambiguous`
+headline also led with); A-ZB score 458 strict (445 before), 491 lenient (489), still no false claim, no other case
+changed. The benchmark scores what an `effect` verdict names (its candidates), not the final model's effects, so a
+further effect whose family is not claimed never counts. Set ZC: 16/24 strict, 17 lenient, no false claim, median
+final / oracle RMS 1.59; the code before the change scores 15 (ZC19, heat stratifying in the forearm, was `ambiguous`
+for its further effect); right on 9 of 11 effect cases where the true family's generic model helps, 4 of 10 where it
+does not. Its misses: a wire laid from a spool at a constant tension, its tension set per roll and not logged, named
+transmission (ZC01 on ur10, ZC09 on tool_changer, with thermal); encoder words logged with two data lines crossed
+(ZC02) and a multi-start worm's index error (ZC11), `none`; a bonded part warmed by its adhesive's cure (ZC14),
+`none`; heat stratifying in the hollow forearm on ur10, hedged between link deflection, joint compliance and thermal
+(ZC03, lenient); a six-strut pedestal on kr16_like, named transmission (ZC18); a counterweight base's dead zone on
+kr16_like (ZC22), `none`.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -836,6 +856,24 @@ comment):
 | air_knife | thermal | the forearm heated whenever axis 1 puts it in a drying air knife's hot curtain, first-order heating and cooling (ur10, kr16_like) | Martin, Adv. Heat Transfer 13 (1977); Timoshenko & Goodier |
 | sonotrode | thermal | an ultrasonic welding stack warming in the production between blocks and cooling while measured (the production not logged) (tool_changer) | Graff, in *Power Ultrasonics* (2015) ch. 2 (as recalled); Incropera & DeWitt ch. 5 |
 
+Set ZC's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZC
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| spool_tension | joint_compliance | a wire laid from a spool at a constant tension pulls the flange towards a fixed guide eye, the joints yield by their compliance, dq = C J^T T u; the tension set anew for each roll (not logged) (ur10, tool_changer) | Ebler, Arnason, Michaelis & D'Sa, IEEE T-IA 29 (1993); Craig, *Introduction to Robotics* ch. 5 |
+| coupled_wrist | joint_compliance | a wrist whose motors sit in the forearm: the drive trains' compliances act in motor coordinates, dq = T^-1 diag(c) T^-T tau, so a torque on one wrist axis turns the others too (kr16_like) | Tsai, *Robot Analysis* (1999) ch. 10 |
+| bayonet_play | backlash | a tool on a bayonet coupling lagging across its lugs' play about the tool axis, held on the flank by its hose's drag after axis 6's last rotation (ur10, kr16_like) | Nordin & Gutman, Automatica 38 (2002); quick-change coupling makers (as recalled) |
+| air_preload | backlash | a pneumatic cylinder takes up axis 1's gear play while the air is on; in blocks with the air off the axis stands on its last approach's flank (the air not logged) (tool_changer, kr16_like) | preloaded gear trains of positioners, makers' notes (as recalled) |
+| swapped_bits | transmission | output-encoder words logged through an interface with two data lines crossed: bits k and k+1 exchanged in the logged angle (ur10, tool_changer) | parallel absolute-encoder outputs, makers' data sheets (as recalled) |
+| multistart_worm | transmission | a 2-4-start worm's start-to-start index error: a transmission error repeating Z/s times per output turn (tool_changer) | DIN 3974 / ISO 1328; Dudley, *Handbook of Practical Gear Design* (1984) (as recalled) |
+| hexapod_mount | mount_compliance | the arm on a tall six-strut pedestal whose struts are stiffer in compression than in tension: the top plate sinks, tilts, slides and turns together, K = sum k_i s_i s_i^T (tool_changer, kr16_like) | Merlet, *Parallel Robots* (2006) ch. 8; Gosselin, IEEE T-RA 6 (1990) |
+| counterweight_base | mount_compliance | a mobile carrier's active counterweight cancels the arm's moment only within its stroke; the suspension tilts under the rest, a dead zone (tool_changer, kr16_like) | Huang, Sugano & Tanie, Adv. Robotics 13 (1999) |
+| rubber_bush | link_deflection | a tool boom hinged on a rubber torsion bush whose stiffness rises with the turn angle, M = k0 phi (1 + gamma phi^2) (ur10, kr16_like) | Goebel, *Gummifedern* (1969); Gent, *Engineering with Rubber* (2012) ch. 10 |
+| floor_hose | link_deflection | a tool boom bent by a hose it lifts off the floor, the hanging weight growing with the tip's height (ur10, tool_changer) | Irvine, *Cable Structures* (1981) ch. 1; Roark, table 8.1 |
+| cure_exotherm | thermal | a freshly bonded part carrying the target warmed by its adhesive's cure, then cooling, a new part each block (the bonding times not logged) (ur10, tool_changer) | Kamal & Sourour, Polym. Eng. Sci. 13 (1973); Incropera & DeWitt ch. 5 |
+| link_convection | thermal | motor heat stratifying inside the hollow forearm: the side that is up runs warmer, so the bow follows gravity, not the link (ur10, kr16_like) | Ostrach, J. Heat Transfer 110 (1988); Incropera & DeWitt ch. 9; Timoshenko & Goodier |
+
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
 example) and the RV values are as recalled from the catalogue, not re-checked against it.
@@ -862,6 +900,8 @@ NOTES = """## Reading these numbers
   generic models; a stronger rival model would turn more labels `ambiguous`, a weaker one fewer.
 * The 5 % thresholds are applied to one held-out split. {noise_note} Labels near the thresholds (gains of 5-15 %,
   rivals within 5-15 %) are therefore soft; the per-case table shows the RMS values behind each label.
+* An `effect` verdict names its candidates. Its final model may hold a further effect whose family the diagnosis
+  does not claim (tied with another family in its place, or a minor one); that effect is not counted as named.
 * `right` is about naming, not fit: a verdict can name the truth while its final test RMS is no better than the
   geometric model (e.g. a time split, where a thermal model extrapolates), and a wrong name can still fit well
   (gravity-driven families mimic each other).
@@ -934,7 +974,10 @@ def _cases(part: pd.DataFrame) -> list[str]:
              "| " + " | ".join(["---"] * (13 + len(FAMILIES) - 1)) + " |"]
     for _, r in part.iterrows():
         fam = " | ".join(f"{r[f'rms_{f}_mm']:.3f}" for f in FAMILIES)
-        said = r.effects if r.verdict == "effect" else (r.candidates if isinstance(r.candidates, str) else "")
+        said = r.candidates if isinstance(r.candidates, str) else ""
+        unnamed = [e for e in str(r.effects).split("+") if r.verdict == "effect" and isinstance(r.effects, str)
+                   and e not in said.split("+")]
+        said += f" (+ {'+'.join(unnamed)}: family not claimed)" if unnamed else ""
         mark = "right" if r.right else ("lenient" if r.right_lenient else "wrong")
         final = "-" if pd.isna(r.get("diag_final_mm")) else f"{r.diag_final_mm:.3f}"
         lines.append(f"| {r.case} | {r.robot} | {r.physics} | {r.poses} / {r.split} | {r.effect_rms_mm:.3f} | "
@@ -954,7 +997,8 @@ def write_report(frame: pd.DataFrame, path, *, wall: float, jobs: int, quick: bo
                 "", f"### Set {name} case by case\n",
                 "RMS in mm on the test poses: effect RMS = the effects' displacement before any fit; geom = oracle "
                 "(a); true = oracle (b); then each family's generic model (c); final = the diagnosis's final "
-                "model. Verdict `effect`: the effects it named; otherwise its candidates.\n", *_cases(part), ""]
+                "model. Verdict `effect`: the effects it named (a further effect in its final model whose family it does "
+                "not claim in brackets); otherwise its candidates.\n", *_cases(part), ""]
         errs = part[part.verdict == "error"]
         if len(errs):
             out += ["Diagnosis errors:\n"] + [f"- {r.case}: {r.error}" for _, r in errs.iterrows()] + [""]

@@ -2,7 +2,9 @@
 
 * label ``none`` / ``absorbed``: right = verdict ``none`` or ``inconclusive``; any other verdict is a false claim.
 * a clear label (a family, or a mixture ``a+b``): right = verdict ``effect`` naming it (a mixture: at least one of
-  the two; ``both`` says whether it named both).
+  the two; ``both`` says whether it named both). An ``effect`` verdict names its ``candidates``: the final model's
+  ``effects`` may also hold a further effect whose family the diagnosis does not claim (a tie on a later or a minor
+  effect), which does not count as named.
 * label ``ambiguous:{...}``: right = verdict ``ambiguous`` with at most two candidates including the truth
   (``right3``: at most three); a verdict ``effect`` there is a *confident claim where the data cannot decide*.
 * lenient (reported beside): also a confident ``effect`` naming the truth on an ambiguous label, and an
@@ -19,7 +21,8 @@ def _names(text):
 def score(row) -> dict:
     label, verdict = row["label"], row["verdict"]
     named = _names(row["named"])
-    effects, cands = _names(row["effects"]), _names(row["candidates"])
+    cands = _names(row["candidates"])
+    effects = cands if verdict == "effect" else _names(row["effects"])  # what an `effect` verdict claims
     out = {"right": False, "right3": False, "right_lenient": False, "false_claim": False,
            "confident_undecidable": False, "both": False}
     if label in ("none", "absorbed"):
