@@ -162,3 +162,19 @@ def test_a_robot_far_outside_the_others_is_flagged_and_a_clean_fleet_is_not():
     out = fleet_outliers(Y, V, names, robots)
     assert out[["robot", "parameter"]].values.tolist() == [["r4", "p7"]] and out.z.iloc[0] > 6
     assert fleet_outliers(Y[:2], V[:2], names, robots[:2]).empty
+
+
+def test_a_tie_between_parameter_sets_goes_to_the_first_robot(monkeypatch):
+    """Two robots whose poses chose different representatives: the fleet's set is the first robot's, whichever robot
+    comes first (before, the tie went by the iteration order of a set of tuples of names, which follows the process's
+    string-hash seed: the fleet study's UR10 table changed from run to run, and one of these two orders failed)."""
+    from tolalloc.diagnose import fleet_pool
+
+    def robot(name, names):
+        return SimpleNamespace(name=name, names=names, n_geometric=2, model=SimpleNamespace(verdict="effect"))
+
+    monkeypatch.setattr(fleet_pool, "in_parameters", lambda e, names: SimpleNamespace(**{**vars(e), "names": names}))
+    a, b = robot("a", ("x", "y", "e")), robot("b", ("x", "z", "e"))
+    for first, second in ((a, b), (b, a)):
+        kept, left_out = fleet_pool._common_geometry([first, second])
+        assert not left_out and [e.names[:2] for e in kept] == [first.names[:2]] * 2

@@ -20,7 +20,8 @@ lower quantile, give the interval ``{0}``). The between-robot covariance of all 
 parameterisations) is the moment estimate ``cov(theta_ML) - mean(v_r)``, projected onto the positive semi-definite
 matrices.
 
-**One parameter set.** The fleet's identifiable geometric parameters are the set most robots fitted. A robot whose
+**One parameter set.** The fleet's identifiable geometric parameters are the set most robots fitted (of sets
+fitted equally often, the first robot's). A robot whose
 poses chose other representatives of the same combinations (column pivoting near a tie) is re-expressed in the
 fleet's set (:func:`in_parameters`: the values that move its target points as its own do, the registration and probe
 offset absorbing what they can, the covariance carried along); one whose poses identify other combinations is left
@@ -254,7 +255,7 @@ def _common_geometry(estimates: list) -> tuple[list, dict]:
     sets = [e.names[:e.n_geometric] for e in left]
     if not sets:
         return [], out
-    common = max(set(sets), key=sets.count)
+    common = max(sets, key=sets.count)  # the most frequent set; a tie goes to the first robot's, never to hash order
     kept = []
     for e, own in zip(left, sets):
         if own == common:
