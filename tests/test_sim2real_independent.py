@@ -4289,7 +4289,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_body as zcb
     from sim2real_indep import effects_zc_thermal as zct
 
-    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS and all(s < "ZC" for s in cs.SETS if s != "ZC")
+    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS and all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4452,3 +4452,161 @@ def test_set_zc_every_kind_lies_in_its_true_structure_and_known_answers():
     c3 = replace(c3, session=replace(c3.session, time_s=np.array([0.0, 1e6, 1e6])))
     bow = zct.convection_parts(lp, c3)[1]
     assert np.linalg.norm(bow[1]) < 1e-6 * np.linalg.norm(bow[2]) and bow[2, 2] < 0
+
+
+# --------------------------------------------------------------------------------------------------------- set ZD
+ZD_KINDS = ("soft_float", "torque_crosstalk", "floating_sun", "spline_drag", "readhead_dropout", "range_shift",
+            "levelling_valves", "scissor_lift", "curing_bond", "drive_tendons", "bake_booth", "gun_warmup")
+
+
+def test_set_zd_cases_kinds_and_determinism():
+    """Set ZD (the fourth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZC; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZD kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; the
+    pauses (a head's window misted, the range shifted, the booth's mode switched) and a new part for each block."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zd as ezd
+    from sim2real_indep import effects_zd_body as zdb
+    from sim2real_indep import effects_zd_thermal as zdt
+
+    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS and all(s < "ZD" for s in cs.SETS if s != "ZD")
+    assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
+    _assert_set_module("ZD", 40_7030, ezd, ("gear", "sonotrode", "spool_tension", "link_convection"))
+    for name in ("effects_zd", "effects_zd_joint", "effects_zd_body", "effects_zd_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zd" in _imports(STUDY / "generator.py")
+    assert ezd.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezd.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, ((lo, hi), pause) in ezd.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, kg in ezd.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("floating_sun", "spline_drag", "levelling_valves", "curing_bond", "gun_warmup"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezd.probe_hook(("gear",), probe) is probe and ezd.payload_hook(("gear",), probe) is probe
+    assert ezd.probe_hook(("curing_bond",), probe) == pytest.approx(probe + [zdb.BOND_BOOM_MM, 0, 0])
+    assert ezd.probe_hook(("gun_warmup",), probe) == pytest.approx(probe + [0, 0, zdt.GUN_MM])
+    assert ezd.payload_hook(("drive_tendons",), probe) == pytest.approx([60.0, 0, 150.0])
+    _assert_regenerates("ZD", max_effect_poses=50)
+
+
+def test_set_zd_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZD kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm (the spline drag on tool_changer, the only arm with a
+    telescope); and known answers: an isotropic soft float yields along the weight, the sensors' moments hold the
+    joints' torques along their axes, the sun's float where the load vanishes, the spline's flank, the read-heads' and
+    the range's blocks, the mounts' statics and their play within the band, the scissor table's vertical heave, the
+    bond's stiffening, the tendons' bend by the wrist's torque, the booth's lag and the gun's S-curve."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zd_body as zdb
+    from sim2real_indep import effects_zd_joint as zdj
+    from sim2real_indep import effects_zd_thermal as zdt
+    from sim2real_indep.effects_body import mount_moment
+    from sim2real_indep.effects_u_joint import block_index
+    from sim2real_indep.effects_y_thermal import lamp_side, link_bow
+    from sim2real_indep.effects_za_thermal import forearm
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZD_KINDS, 30, 30)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZD_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            if kind == "spline_drag" and robot != "tool_changer":
+                assert A.shape[1] == 0 and not d.any()
+                continue
+            amp = {"soft_float": lambda: p["c"], "torque_crosstalk": lambda: p["a"], "floating_sun": lambda: p["half"],
+                   "spline_drag": lambda: p["half"], "readhead_dropout": lambda: p["a"],
+                   "range_shift": lambda: [p["eps"]], "levelling_valves": lambda: [p["delta"]],
+                   "scissor_lift": lambda: p["amp"], "curing_bond": lambda: p["amp"], "drive_tendons": lambda: [p["k"]],
+                   "bake_booth": lambda: [p["amp"]], "gun_warmup": lambda: [p["cte"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s, hw = case.truth["params"], ctx.session, case.truth["hw"]
+    b = block_index(s)
+    # soft float: equal compliances along the three tool axes yield along the weight (tool and part)
+    fp = P["soft_float"]
+    W = (s.payload_kg + fp["tool_kg"])[:, None] * [0, 0, -kin.G]
+    assert zdj.float_parts(fp, ctx).sum(axis=0) == pytest.approx(W, rel=1e-9, abs=1e-9)
+    assert len(set(s.payload_kg)) > 1
+    # torque crosstalk: the moments across each joint hold its gravity torque along its axis; the gauges' direction lies
+    # across the axis
+    tp = P["torque_crosstalk"]
+    M = zdj.bending_moments(ctx)
+    w, _ = kin.joint_frames(ctx.chain, ctx.q)
+    assert np.einsum("pji,pji->pj", M, w) == pytest.approx(ctx.loads, rel=1e-9, abs=1e-9)
+    for j in zdj.crosstalk_joints(ctx.chain):
+        assert np.abs(np.einsum("pi,pi->p", zdj.sensor_direction(tp, ctx, j), w[:, j])).max() < 1e-12
+    # floating sun: the flank is the load's where it beats the friction, the float's share 1 at no load
+    sp = P["floating_sun"]
+    sig = zdj.sun_signals(sp, ctx)
+    tau = ctx.loads[:, sp["joint"]]
+    big = np.abs(tau) > sp["f_Nm"]
+    assert (sig[0][big] == np.sign(tau[big])).all() and (np.abs(sig[0]) == 1).all()
+    assert zdj.sun_signals({**sp, "tau_c": 1e30}, ctx)[1] == pytest.approx(sig[0])
+    # spline drag (tool_changer): an unloaded wrist axis rests on the flank the telescope's last stroke chose
+    tcase, tctx = runs["tool_changer"]
+    dp = tcase.truth["params"]["spline_drag"]
+    assert dp["prismatic"] == 3 and dp["wrist"] == [4, 5]
+    for k, j in enumerate(dp["wrist"]):
+        f = zdj.spline_flank(dp, tctx, j, k)
+        lim = 0.03 * np.abs(tctx.loads[:, j]).max()
+        free = np.abs(tctx.loads[:, j]) <= lim
+        assert (f[free] == dp["sense"][k] * tctx.session.direction[free, 3]).all()
+    # read-heads: nothing in the blocks read by both heads, both states present
+    rp = P["readhead_dropout"]
+    one = zdj.dropout_mask(rp, s).astype(bool)
+    assert one.any() and (~one).any() and not zdj.dropout_signals(rp, ctx)[:, ~one].any()
+    # range shift: eps q1 in the low-range blocks only
+    gp = P["range_shift"]
+    dq = zdj.range_apply(gp, ctx, hw).dq
+    low = np.asarray(gp["low"])[np.minimum(b, len(gp["low"]) - 1)].astype(bool)
+    assert dq[low, 0] == pytest.approx(gp["eps"] * ctx.q[low, 0]) and not dq[~low].any() and low.any()
+    # levelling valves: the mounts carry the weight and the moment; their play stays within the band from zero
+    vp = P["levelling_valves"]
+    F = zdb.mount_loads(vp, ctx)
+    a = vp["psi"] + np.deg2rad([0.0, 120.0, 240.0])
+    x, y = vp["r_m"] * np.cos(a), vp["r_m"] * np.sin(a)
+    assert F.sum(axis=1) == pytest.approx(zdb._weight_N(ctx)) and (F > 0).all()
+    assert F @ y == pytest.approx(-mount_moment(ctx)[:, 0]) and F @ -x == pytest.approx(-mount_moment(ctx)[:, 1])
+    e = zdb.valve_play(vp, ctx)
+    assert not e[0].any() and np.abs(e).max() <= 1.0 and np.abs(e).max() == pytest.approx(1.0)
+    heave = zdb.plate_motion(vp, ctx, np.ones((len(ctx.q), 3)))
+    assert heave == pytest.approx(np.tile([0, 0, 1.0], (len(ctx.q), 1)))
+    # scissor lift: the heave columns are vertical, the first one the weight's
+    parts = zdb.scissor_parts(P["scissor_lift"], ctx)
+    assert not parts[:2, :, :2].any() and parts[0, :, 2] == pytest.approx(-zdb._weight_N(ctx))
+    # curing bond: the joint stiffens from c0 at the first pose towards c_inf
+    bp = P["curing_bond"]
+    fac = zdb.bond_age_factor(bp, s)
+    assert (np.diff(fac) < 0).all() and bp["amp"][1] == pytest.approx((bp["ratio"] - 1) * bp["c_inf"])
+    # drive tendons: the forearm's bend follows axis 5's torque
+    tdp = P["drive_tendons"]
+    li = forearm(ctx.chain)
+    want = link_bow(ctx, li, lamp_side(ctx.chain, li, tdp["psi"])) * (ctx.loads[:, 4] * 1000.0)[:, None]
+    assert zdb.tendon_unit(tdp, ctx) == pytest.approx(want)
+    # bake booth: the links at the hall's temperature at the start, within the booth's rise, both modes present
+    kp = P["bake_booth"]
+    T = zdt.booth_temperature(kp, s)
+    assert T[0] == pytest.approx(0.0) and T.min() >= 0 and T.max() <= 1 and set(np.unique(kp["warm"])) == {0, 1}
+    # gun warm-up: cold with zero slope at the switch-on, the full rise long after
+    up = {**P["gun_warmup"], "lead_s": 0.0}
+    s2 = replace(s, time_s=s.time_s[0] + np.array([0.0, 1.0, 1e7]))
+    g = zdt.gun_temperature(up, s2)
+    assert g[0] == pytest.approx(0.0, abs=1e-12) and g[1] < 1e-4 and g[2] == pytest.approx(1.0)

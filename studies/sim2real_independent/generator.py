@@ -55,6 +55,7 @@ from sim2real_indep import effects_z as ez
 from sim2real_indep import effects_za as eza
 from sim2real_indep import effects_zb as ezb
 from sim2real_indep import effects_zc as ezc
+from sim2real_indep import effects_zd as ezd
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -101,13 +102,15 @@ EFFECTS = {
     **eza.EFFECTS_ZA,  # set ZA's new kinds
     **ezb.EFFECTS_ZB,  # set ZB's new kinds
     **ezc.EFFECTS_ZC,  # set ZC's new kinds
+    **ezd.EFFECTS_ZD,  # set ZD's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
                  | em.AFTER_TRACKER | en.AFTER_TRACKER | eo.AFTER_TRACKER | ep.AFTER_TRACKER
                  | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER | eu.AFTER_TRACKER
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
-                 | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER)
+                 | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
+                 | ezd.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -204,7 +207,8 @@ def _session_options(robot_key, physics, rng):
     opts = ez.session_options(robot_key, physics, rng, opts)  # set Z (no draws without a set-Z kind)
     opts = eza.session_options(robot_key, physics, rng, opts)  # set ZA (no draws without a set-ZA kind)
     opts = ezb.session_options(robot_key, physics, rng, opts)  # set ZB (no draws without a set-ZB kind)
-    return ezc.session_options(robot_key, physics, rng, opts)  # set ZC (no draws without a set-ZC kind)
+    opts = ezc.session_options(robot_key, physics, rng, opts)  # set ZC (no draws without a set-ZC kind)
+    return ezd.session_options(robot_key, physics, rng, opts)  # set ZD (no draws without a set-ZD kind)
 
 
 def _tracker(rng):
@@ -251,6 +255,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = eza.probe_hook(physics, probe)  # set ZA's gripper bar, soft fingers (no draws)
     probe = ezb.probe_hook(physics, probe)  # set ZB's torch, stay-cable boom, welding horn (no draws)
     probe = ezc.probe_hook(physics, probe)  # set ZC's bayonet tool, bush boom, bonded part (no draws)
+    probe = ezd.probe_hook(physics, probe)  # set ZD's bonded boom, hot-melt nozzle (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -261,6 +266,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = es.payload_hook(physics, payload_com, probe)  # set S's profile frame's module (no draws)
     payload_com = ezb.payload_hook(physics, payload_com)  # set ZB's torch, part at the boom's tip (no draws)
     payload_com = ezc.payload_hook(physics, payload_com)  # set ZC's off-axis part, boom tip, bonded part (no draws)
+    payload_com = ezd.payload_hook(physics, payload_com)  # set ZD's off-axis part (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

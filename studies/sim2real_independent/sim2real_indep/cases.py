@@ -17,7 +17,8 @@ arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-sec
 8 per arm) a twenty-third (:mod:`effects_w`), set X (24 cases, 8 per arm) a twenty-fourth (:mod:`effects_x`), set Y (24
 cases, 8 per arm) a twenty-fifth (:mod:`effects_y`), set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`) and
 set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 cases, 8 per arm) a twenty-eighth
-(:mod:`effects_zb`), set ZC (24 cases, 8 per arm) a twenty-ninth (:mod:`effects_zc`). A case: (id, robot, physics
+(:mod:`effects_zb`), set ZC (24 cases, 8 per arm) a twenty-ninth (:mod:`effects_zc`), set ZD (24 cases, 8 per arm) a thirtieth
+(:mod:`effects_zd`). A case: (id, robot, physics
 kinds, poses, split).
 """
 
@@ -33,6 +34,7 @@ SEED_Y, SEED_Z = 40_7025, 40_7026
 SEED_ZA = 40_7027  # the sets after Z are named ZA, ZB, ... (two letters; they sort after Z)
 SEED_ZB = 40_7028
 SEED_ZC = 40_7029
+SEED_ZD = 40_7030
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1385,7 +1387,56 @@ SET_ZC = [
     ("ZC24", "kr16_like", ("coupled_wrist", "bayonet_play"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC)
+#: set ZD: 12 new kinds (every family, two for each), 3 geometry-only cases, 3 mixtures of two new kinds, a quarter
+#: split by time (:mod:`effects_zd`); written as an independent test set after set ZC, from the literature, without
+#: reading how the diagnosis models effects. Oracle labels when written (oracle.py only; the diagnosis was not run):
+#: every case its truth (gains 28-92 %; each mixture component's removal costs 8 % or more: ZD24's levelling valves 8 %
+#: and drive tendons 9 %, ZD08's range shift 214 %, ZD16's gun warm-up 271 %), the geometry-only cases none; no soft
+#: labels (the closest rivals: ZD10's backlash model 1.39x, ZD14's link model 1.41x, ZD21's link model 1.42x, ZD01's
+#: backlash model 1.42x, ZD02's transmission model 1.43x; the smallest gains 28 % on ZD10, 29 % on ZD01). Changed after
+#: trial draws (the modules' docstrings give the final ranges and the first ones): the crosstalk first moved the target
+#: 0.15-0.45 mm (ZD02: 18 %, the transmission model at 1.10x), now 0.3-0.6 mm (a compliant joint impedance); the
+#: spline drag's play was first 0.1-0.3 mrad whatever the wrist's lever (ZD09: 0.05 mm, 17 %, 1.14x), now sized by its
+#: move, 0.15-0.4 mm; the scissor table's heave was first 60-80 % of a 0.3-0.6 mm move (ZD21: the link model at 1.18x,
+#: then 1.24x at 75-90 %), now 75-90 % of 0.4-0.8 mm (the table at full height); the booth's flash-off first 10-20 K
+#: with 3-10 min pauses (ZD22 on kr16_like: 14 %, 1.14x), now 15-30 K with 5-15 min; the read-heads' eccentricity first
+#: moved the target 0.15-0.4 mm (9-15 % on ZD04 and ZD20 in draws on other seeds), now 0.3-0.6 mm; the floating sun was
+#: first on ur10 (ZD03: 13 %, the link model at 1.13x; 1.18x at a larger float) and then on tool_changer (ZD14:
+#: ambiguous, 10 %; absorbed on the seed + 1 and + 2): ur10's joints are strain-wave gears, and tool_changer's boom axes
+#: never unload, so the float stays taken up -- it is on kr16_like alone (ZD19), ZD03 and ZD14 carry the soft float.
+#: No pose count or seed was changed. Trial draws on the seed + 1 and + 2 (the case seeds + 1000003 k) with the final
+#: physics: every case labelled its truth in both, none absorbed or ambiguous; below the 20 % / 1.25x bar the bake booth
+#: on kr16_like (ZD22, + 1: 7 %, the link model at 1.08x -- its thick walls lag a short schedule), the scissor table on
+#: kr16_like (ZD21, + 2: the link model at 1.09x) and the soft float on tool_changer (ZD14, + 2: 1.11x) -- the booth the
+#: weakest kind.
+SET_ZD = [
+    ("ZD01", "ur10", ("soft_float",), 130, "random"),
+    ("ZD02", "ur10", ("torque_crosstalk",), 120, "random"),
+    ("ZD03", "ur10", ("soft_float",), 50, "random"),
+    ("ZD04", "ur10", ("readhead_dropout",), 140, "random"),
+    ("ZD05", "ur10", ("levelling_valves",), 130, "time"),
+    ("ZD06", "ur10", ("bake_booth",), 150, "time"),
+    ("ZD07", "ur10", (), 70, "random"),
+    ("ZD08", "ur10", ("curing_bond", "range_shift"), 180, "random"),
+    ("ZD09", "tool_changer", ("spline_drag",), 120, "random"),
+    ("ZD10", "tool_changer", ("range_shift",), 140, "random"),
+    ("ZD11", "tool_changer", ("scissor_lift",), 130, "random"),
+    ("ZD12", "tool_changer", ("curing_bond",), 150, "time"),
+    ("ZD13", "tool_changer", ("gun_warmup",), 150, "time"),
+    ("ZD14", "tool_changer", ("soft_float",), 120, "random"),
+    ("ZD15", "tool_changer", (), 40, "random"),
+    ("ZD16", "tool_changer", ("spline_drag", "gun_warmup"), 190, "random"),
+    ("ZD17", "kr16_like", ("drive_tendons",), 130, "random"),
+    ("ZD18", "kr16_like", ("torque_crosstalk",), 130, "random"),
+    ("ZD19", "kr16_like", ("floating_sun",), 120, "random"),
+    ("ZD20", "kr16_like", ("readhead_dropout",), 140, "random"),
+    ("ZD21", "kr16_like", ("scissor_lift",), 140, "random"),
+    ("ZD22", "kr16_like", ("bake_booth",), 150, "time"),
+    ("ZD23", "kr16_like", (), 100, "random"),
+    ("ZD24", "kr16_like", ("drive_tendons", "levelling_valves"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1393,7 +1444,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "Q": (SET_Q, SEED_Q), "R": (SET_R, SEED_R), "S": (SET_S, SEED_S), "T": (SET_T, SEED_T),
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
         "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
-        "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC)}
+        "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD)}
 
 
 def case_seed(set_name: str, index: int) -> int:

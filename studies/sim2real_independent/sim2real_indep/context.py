@@ -368,7 +368,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "air_preload": "backlash", "swapped_bits": "transmission", "multistart_worm": "transmission",
           "hexapod_mount": "mount_compliance", "counterweight_base": "mount_compliance",
           "rubber_bush": "link_deflection", "floor_hose": "link_deflection", "cure_exotherm": "thermal",
-          "link_convection": "thermal"}
+          "link_convection": "thermal",
+          # set ZD (sim2real_indep.effects_zd; soft_float, a Cartesian soft-float compliance yielding to the tool's and
+          # part's weight in the tool frame, and torque_crosstalk, joint torque sensors' bending-moment crosstalk in a
+          # torque-controlled arm, scored as joint compliance; floating_sun, a planetary stage's floating-sun play that
+          # the load takes up, and spline_drag, tool_changer's wrist play whose flank the telescope's last stroke
+          # chooses, as backlash (lost motion in a clearance, errors that follow the last motion); readhead_dropout, a
+          # diametric read-head pair whose averaging lapses in some blocks, and range_shift, a range-change gearbox's
+          # rounded low-range ratio, as transmission (the joints' reading and drive); levelling_valves, air mounts
+          # re-levelled by valves with a dead band, and scissor_lift, a scissor lift table heaved by its cylinder's oil
+          # column, as mount compliance (the robot's support); curing_bond, a tool boom whose root bond stiffens as it
+          # cures, and drive_tendons, the forearm bent by the wrist's drive tendons, as link deflection; bake_booth,
+          # the arm in a paint booth whose unlogged air follows its flash-off schedule, and gun_warmup, a tool bracket
+          # warmed by a hot-melt gun's warm-up, as thermal)
+          "soft_float": "joint_compliance", "torque_crosstalk": "joint_compliance", "floating_sun": "backlash",
+          "spline_drag": "backlash", "readhead_dropout": "transmission", "range_shift": "transmission",
+          "levelling_valves": "mount_compliance", "scissor_lift": "mount_compliance",
+          "curing_bond": "link_deflection", "drive_tendons": "link_deflection", "bake_booth": "thermal",
+          "gun_warmup": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

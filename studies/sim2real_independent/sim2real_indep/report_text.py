@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; all twenty-nine: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; all thirty: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -367,6 +367,22 @@ transmission (ZC01 on ur10, ZC09 on tool_changer, with thermal); encoder words l
 `none`; heat stratifying in the hollow forearm on ur10, hedged between link deflection, joint compliance and thermal
 (ZC03, lenient); a six-strut pedestal on kr16_like, named transmission (ZC18); a counterweight base's dead zone on
 kr16_like (ZC22), `none`.
+
+**Set ZD** (24 cases, seed 40_7030) is a thirtieth independent test set of twelve new kinds
+(`sim2real_indep/effects_zd*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZC, and who did not run the diagnosis. It was run once, on the
+code as it stood after set ZC had been judged (the diagnosis unchanged since): 9/24 strict, 10 lenient, median final /
+oracle RMS 1.55, and **one false claim**, the first in the benchmark: a geometry-only case on tool_changer with 30
+training poses for 25 parameters (ZD15), named link deflection for an out-of-fold gain of 6.8 % (p = 3.6e-4), less
+than the spread of a test RMS over 30 poses (about 7.5 %). The later-tie rule scores one case more on it than the rule
+before (ZD19, a floating sun's play, was `ambiguous` for its further effect). Right on 3 of 10 effect cases where the
+true family's generic model helps, 4 of 11 where it does not. Its misses: a controller's Cartesian stiffness yielding
+to the tool's and the part's weight, named link deflection (ZD01, ZD03, ZD14); joint torque sensors reading part of
+the bending moment, named transmission on ur10 (ZD02) and `none` on kr16_like (ZD18); an encoder's read-head
+dropping out in some blocks (ZD04, ZD20) and a two-speed gearbox's rounded low-range ratio (ZD10), `none`; air
+mounts with levelling valves, named transmission (ZD05) and hedged beside the tendons (ZD24, lenient); a paint
+booth's flash-off air on ur10 (ZD06), `none`; a scissor lift table's oil column, named link deflection (ZD11, ZD21);
+a wrist's spline drag beside a hot-melt gun's warm-up, named link deflection (ZD16).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -873,6 +889,24 @@ comment):
 | floor_hose | link_deflection | a tool boom bent by a hose it lifts off the floor, the hanging weight growing with the tip's height (ur10, tool_changer) | Irvine, *Cable Structures* (1981) ch. 1; Roark, table 8.1 |
 | cure_exotherm | thermal | a freshly bonded part carrying the target warmed by its adhesive's cure, then cooling, a new part each block (the bonding times not logged) (ur10, tool_changer) | Kamal & Sourour, Polym. Eng. Sci. 13 (1973); Incropera & DeWitt ch. 5 |
 | link_convection | thermal | motor heat stratifying inside the hollow forearm: the side that is up runs warmer, so the bow follows gravity, not the link (ur10, kr16_like) | Ostrach, J. Heat Transfer 110 (1988); Incropera & DeWitt ch. 9; Timoshenko & Goodier |
+
+Set ZD's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZD
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| soft_float | joint_compliance | a controller's Cartesian stiffness ("soft float") yielding to the tool's (unlogged) and the part's weight, softest along the tool's axis, K^-1 W (ur10, tool_changer) | Salisbury, IEEE CDC (1980); Hogan, ASME J. Dyn. Syst. 107 (1985) |
+| torque_crosstalk | joint_compliance | a torque-controlled arm whose joint torque sensors also read 1-3 % of the bending moment across them: each joint settles off by -(kappa / K) M.e (ur10, kr16_like) | Kashiri, Malzahn & Tsagarakis, IEEE RA-L 2 (2017); Albu-Schaeffer, Ott & Hirzinger, IJRR 26 (2007) |
+| floating_sun | backlash | a planetary stage's floating sun adding lost motion at light load, taken up as the mesh forces centre it; the flank from the load, else the last motion (kr16_like) | Mueller, *Epicyclic Drive Trains* (1982); Kahraman, Mech. Mach. Theory 29 (1994); Nordin & Gutman, Automatica 38 (2002) |
+| spline_drag | backlash | a wrist axis resting on the flank the telescope's last stroke chose, dragged round by its ball spline's friction and helix (tool_changer) | THK ball-spline catalogue (as recalled) |
+| readhead_dropout | transmission | a ring encoder's eccentricity error, cancelled by its opposite read-head, returning in blocks where one head drops out (not logged) (ur10, kr16_like) | HEIDENHAIN modular angle encoders (as recalled) |
+| range_shift | transmission | axis 1 behind a two-speed gearbox whose low range's ratio the controller holds rounded: an error proportional to the angle in the low-range blocks (not logged) (ur10, tool_changer) | range-change gearboxes of positioners (as recalled) |
+| levelling_valves | mount_compliance | air mounts whose levelling valves act only outside a dead band: each mount's height a play operator of its load history (ur10, kr16_like) | Rivin, *Passive Vibration Isolation* (2003) ch. 4 |
+| scissor_lift | mount_compliance | a scissor lift table heaved by its cylinder's oil column under a load whose lever changes with where it stands, plus a small tilt (tool_changer, kr16_like) | Merritt, *Hydraulic Control Systems* (1967); EN 1570-1 (as recalled) |
+| curing_bond | link_deflection | a tool boom bonded into its root fitting with an epoxy still curing: the root's compliance falls with the adhesive's conversion (ur10, tool_changer) | Kamal & Sourour, Polym. Eng. Sci. 13 (1973) |
+| drive_tendons | link_deflection | a wrist's drive tendons run off the forearm's axis: their tension, following axis 5's torque, bends the forearm, T e L^2 / 2EI (kr16_like) | Townsend & Salisbury (1993); Tsai, *Robot Analysis* ch. 10; Roark, table 8.1 |
+| bake_booth | thermal | a paint booth's flash-off air switched by block, the links following through their walls' lag; the logged air is the hall's (ur10, kr16_like) | Goldschmidt & Streitberger, *BASF Handbook on Basics of Coating Technology* (2007) ch. 7; Incropera & DeWitt ch. 5 |
+| gun_warmup | thermal | a hot-melt gun warming its bracket through two lags in series, an S-shaped growth from the switch-on (not logged) (tool_changer) | Incropera & DeWitt ch. 5 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
