@@ -139,12 +139,8 @@ class Verdict:
         if self.verdict == "effect":
             if not self.further:
                 return f"verdict: effect -- {' + '.join(self.candidates)}"
-            alts = {}
-            for c in tied(self.comparisons):
-                alts.setdefault(c.effect, []).append(c.alternative_label)
-            terms = " and ".join(" or ".join((e, *alts.get(e, ()))) for e in self.further)
             return (f"verdict: effect -- {' + '.join(self.candidates)}; a further effect the data cannot attribute "
-                    f"to one family: {terms}")
+                    f"to one family: {self.further_terms()}")
         if self.verdict == "ambiguous":
             return f"verdict: ambiguous -- {self._ambiguous_terms()}; these poses cannot tell them apart"
         if self.verdict == "inconclusive":
@@ -156,11 +152,21 @@ class Verdict:
                     f"tested: {', '.join(self.untested)} (see the reasons)")
         return "verdict: none -- no unmodelled effect lowers the held-out error significantly"
 
-    def _ambiguous_terms(self) -> str:
-        """The selected effects with their indistinguishable alternatives, e.g. ``a + (b or c)``."""
+    def _alternatives(self) -> dict:
+        """``{effect: [its named tied alternatives]}`` (:func:`tied`)."""
         alts = {}
         for c in tied(self.comparisons):
             alts.setdefault(c.effect, []).append(c.alternative_label)
+        return alts
+
+    def further_terms(self) -> str:
+        """The further effects with their tied alternatives, e.g. ``b or c`` (``and`` between two); empty without."""
+        alts = self._alternatives()
+        return " and ".join(" or ".join((e, *alts.get(e, ()))) for e in self.further)
+
+    def _ambiguous_terms(self) -> str:
+        """The selected effects with their indistinguishable alternatives, e.g. ``a + (b or c)``."""
+        alts = self._alternatives()
         selected = self.selected or tuple(e for e in self.candidates if e in alts)
         terms = [" or ".join((e, *alts.get(e, ()))) for e in selected]
         if len(terms) == 1:

@@ -55,7 +55,7 @@ def _verdict(d, block, which: str) -> dict:
     if d.fallback is not None:
         lines.append(f"The fitted model lost on cross-validation; the final model falls back to {d.fallback}.")
     lines.append(f"{len(d.guards)} guard(s) fired: see 'Guards and findings'." if d.guards else "No guard fired.")
-    further = f" + ({head[-1].split(': ', 1)[1]})" if v.verdict == "effect" and v.further else ""
+    further = f" + ({v.further_terms()})" if v.verdict == "effect" and v.further else ""
     word = {"effect": f"EFFECT: {' + '.join(v.candidates)}{further}", "none": "NO EFFECT FOUND",
             "ambiguous": "AMBIGUOUS: " + head[-1].split(";")[0], "inconclusive": "INCONCLUSIVE"}[v.verdict]
     cls = "ok" if v.verdict in ("effect", "none") and not d.guards and d.fallback is None else "warn"
