@@ -9,7 +9,7 @@ import pytest
 
 import tolalloc
 from tolalloc.diagnose import diagnose, generate, measurements_from_frame
-from tolalloc.diagnose.calibrate import Fit, _loss_for_size, fixed_jacobian, outlier_rows
+from tolalloc.diagnose.calibrate import Fit, _loss_for_size, fixed_jacobian, outlier_rows, small_file_min_gain
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.guards import ParameterCheck
 from tolalloc.diagnose.ratio_search import search_ratios
@@ -60,6 +60,11 @@ def test_strain_wave_gear_error_is_named_transmission_with_its_probability():
     assert top["effect"] == "transmission" and top["variant"] == "gear" and top["probability"] > 0.9
     assert s["test_rms_mm"]["final"] < 0.5 * s["test_rms_mm"]["geometric"]
     assert any(r.startswith("gear ratio of shoulder_lift_joint: N = 101 found") for r in s["reasons"])
+    # 110 training poses for more than 11 parameters: a small file, whose selection asks for a gain beyond the spread
+    # of its own out-of-fold RMS (the transmission's is far above it)
+    assert s["settings"]["selection_min_gain"] == pytest.approx(1.0 / np.sqrt(6 * 110))
+    assert any(r.startswith("minimum gain of a selected effect raised from 2 % to 3.89 %: 110 training poses") for r
+               in s["reasons"])
 
 
 def test_robust_fits_choose_huber_on_small_files_and_say_so():
@@ -67,6 +72,15 @@ def test_robust_fits_choose_huber_on_small_files_and_say_so():
     loss, note = _loss_for_size(18, 36)
     assert loss == "huber" and note.startswith("robust loss: Huber in place of Tukey's biweight: 18 training poses "
                                                "for 36 parameters (fewer than 10 per parameter)")
+
+
+def test_small_files_raise_the_minimum_gain_to_the_spread_of_their_rms():
+    assert small_file_min_gain(400, 40, 0.02) == (0.02, "")  # 10 poses per parameter: not small
+    gain, note = small_file_min_gain(30, 25, 0.02)
+    assert gain == pytest.approx(1.0 / np.sqrt(180))  # relative sd of an RMS over 90 coordinates
+    assert note.startswith("minimum gain of a selected effect raised from 2 % to 7.45 %: 30 training poses for 25 "
+                           "parameters") and "1/sqrt(2 x 90)" in note
+    assert small_file_min_gain(30, 25, 0.10) == (0.10, "")  # asked for more than the spread: kept
 
 
 def test_down_weighted_rows_are_listed_with_their_stage():

@@ -210,6 +210,18 @@ def test_none_says_which_effects_were_not_tested():
     assert "thermal not tested: no temperature_c column" in v.reasons[-1]
 
 
+def test_none_names_the_raised_minimum_gain_of_a_small_file():
+    note = "minimum gain of a selected effect raised from 2 % to 7.45 %: 30 training poses for 25 parameters"
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={}, robust_notes=[note])
+    weak = Candidate("a", True, "", 2, 0.1, 0.1, 3e-4, 6.8, False, 0.095, "v")
+    st = [Stage((), 0.1, (weak,), None)]
+    v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None, min_gain=1 / np.sqrt(180))
+    assert v.verdict == "none"
+    assert v.reasons[0] == ("no candidate effect is selected; the best, a (v), fails: its clipped gain +6.8 % is below "
+                            "the minimum 7.45 %")
+    assert note in v.reasons
+
+
 def test_reason_lines_do_not_quote_a_model_the_backward_step_removed():
     """Forward: a, then b on top of a; backward: a removed. b's line compares with the geometric model, not a."""
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})

@@ -487,3 +487,24 @@ def test_the_banner_names_a_further_effect_with_its_tied_families():
     plain = _verdict(SimpleNamespace(verdict=Verdict("effect", ("backlash",), (), "x"), fallback=None, guards=(),
                                      test=None), block, "test")
     assert plain["word"] == "EFFECT: backlash"
+
+
+def test_the_diagnosis_repr_names_a_further_effect_apart_from_the_claimed_one():
+    """The result's headline (its ``repr`` and notebook card) lists a further effect whose family is not claimed apart
+    from the candidates, with its tied alternatives."""
+    from types import SimpleNamespace
+
+    from tolalloc.diagnose.verdict import Comparison, Verdict
+    from tolalloc.workflows.diagnosis import MeasurementDiagnosis
+
+    tie = Comparison("backlash", "joint_compliance", 0.6, 1.0, 0.1, 0.101, False, 1.0)
+    v = Verdict("effect", ("mount_compliance",), ("why",), "geometric+mount_compliance+backlash", (tie,),
+                selected=("mount_compliance", "backlash"), further=("backlash",))
+    block = pd.DataFrame({"model": ["nominal", "geometric", "final"], "rms_mm": [1.0, 0.2, 0.1]})
+    d = SimpleNamespace(verdict=v, effect="mount_compliance", robot=SimpleNamespace(name="ur10"), guards=(),
+                        train=SimpleNamespace(n_poses=40), test=None, before_after=lambda which: block)
+    lines = MeasurementDiagnosis(d).headline()
+    assert lines[1] == ("verdict: effect   effect: mount_compliance   candidates: mount_compliance   further, family not "
+                        "claimed: backlash or joint_compliance")
+    assert "further" not in MeasurementDiagnosis(SimpleNamespace(**{**vars(d), "verdict": Verdict(
+        "effect", ("backlash",), (), "x")})).headline()[1]

@@ -362,6 +362,27 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
 POSES_PER_PARAMETER = 10
 
 
+def small_file_min_gain(n_poses: int, n_params: int, min_gain: float) -> tuple[float, str]:
+    """(minimum gain, note) of the effect selection on a training file of ``n_poses`` poses for ``n_params`` fitted
+    parameters.
+
+    On a small file (fewer than POSES_PER_PARAMETER poses per parameter) an out-of-fold RMS over its ``3 n_poses``
+    coordinates is uncertain by about ``1 / sqrt(2 * 3 n_poses)`` of itself (the relative sd of an RMS of Gaussian
+    errors); a gain within that spread is not a finding, however consistent its sign. The minimum gain is raised to
+    that spread there; elsewhere ``min_gain`` is returned with an empty note.
+    """
+    if n_poses >= POSES_PER_PARAMETER * n_params:
+        return min_gain, ""
+    spread = 1.0 / np.sqrt(6.0 * n_poses)
+    if spread <= min_gain:
+        return min_gain, ""
+    return float(spread), (f"minimum gain of a selected effect raised from {100 * min_gain:g} % to {100 * spread:.2f} %: "
+                           f"{n_poses} training poses for {n_params} parameters (fewer than {POSES_PER_PARAMETER} per "
+                           f"parameter), where an out-of-fold RMS over {3 * n_poses} coordinates is itself uncertain by "
+                           f"about 1/sqrt(2 x {3 * n_poses}) = {100 * spread:.2f} % and a smaller gain is not told from "
+                           "that spread")
+
+
 def _loss_for_size(n_poses: int, n_params: int) -> tuple:
     """(loss, note) of ``loss="auto"``: Tukey's biweight, or Huber on a small file (fewer than POSES_PER_PARAMETER
     poses per parameter)."""

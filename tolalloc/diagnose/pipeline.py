@@ -11,7 +11,7 @@ from threadpoolctl import threadpool_limits
 from tolalloc.exceptions import TolallocError
 from tolalloc.robot.model import Robot
 from tolalloc.diagnose.calibrate import (DEFAULT_LOSS, DEFAULT_TOL, Calibration, calibrate, fit_model, initial_fit,
-                                        is_collinear, offset_prior, outlier_rows)
+                                        is_collinear, offset_prior, outlier_rows, small_file_min_gain)
 from tolalloc.diagnose.diagnosis import Diagnosis
 from tolalloc.diagnose.effects import effect_basis
 from tolalloc.diagnose.geometry import build_geometry_model
@@ -162,7 +162,7 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
         ctx = make_context(cal, cv_train, test, folds=folds, seed=seed, test_frame=test_frame, tol=tol,
                            register_n=register_n, cv=cv, t_prior=t_prior, loss=robust_loss,
                            register_update=register_update, register_rows=register_rows)
-        sel = _select(ctx, alpha, min_gain, max_effects, seed)
+        sel = _select(ctx, alpha, min_gain, max_effects, seed, train.n_poses)
         subsample = None
         if sub is not None:
             sel["nominal"], sel["geometric"], sel["final"] = _all_rows(ctx, train, cal, sel["nominal"],
@@ -183,14 +183,19 @@ def diagnose(robot: Robot, train: Measurements, test: Measurements | None = None
                      alpha, min_gain, instrument_noise_mm)
 
 
-def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
-    """Cross-validated selection on the training file, the CV fallback and the ambiguity comparisons."""
+def _select(ctx, alpha, min_gain, max_effects, seed, n_poses) -> dict:
+    """Cross-validated selection on the training file, the CV fallback and the ambiguity comparisons.
+
+    A selection step asks for ``min_gain``, raised on a small file of ``n_poses`` training poses
+    (:func:`~.calibrate.small_file_min_gain`); the comparisons keep ``min_gain``, so that a small file's alternatives
+    are not dropped from a tie by the stricter step."""
+    step_gain, ctx.min_gain_note = small_file_min_gain(n_poses, 9 + len(ctx.cal.geometric.geo_index), min_gain)
     with fit_counter(f"cross-validation ({ctx.train.n_poses:,} rows)"):
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
         logml = family_log_evidence(ctx)
-        stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=min_gain, max_effects=max_effects,
-                                              logml=logml)
+        stages, evals, final = select_effects(ctx, geometric, alpha=alpha, min_gain=step_gain,
+                                              max_effects=max_effects, logml=logml)
         clip = clip_level(geometric.selection_mm)
         chosen, msgs = cv_fallback(nominal, geometric, final)
         comparisons = (compare_alternatives(ctx, final, stages, evals, evaluate, clip, alpha, min_gain, logml=logml)
@@ -202,7 +207,7 @@ def _select(ctx, alpha, min_gain, max_effects, seed) -> dict:
     swap = (lambda c: "+".join(("geometric", *(c.alternative if x == c.effect else x for x in final.effects))))
     pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in tied(comparisons)]
     return {"nominal": nominal, "geometric": geometric, "final": final, "chosen": chosen, "stages": stages,
-            "messages": msgs, "comparisons": comparisons,
+            "step_gain": step_gain, "messages": msgs, "comparisons": comparisons,
             "suggestions": separating_poses(ctx, pairs, evals, seed=seed) if pairs else None}
 
 
@@ -238,8 +243,9 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
                                   alpha=alpha, min_gain=min_gain, untestable=untestable)
     verdict = verdict_of(ctx, sel["stages"], final, fallback, sel["comparisons"], inconc, sel["messages"],
                          safe_model(nominal, geometric, final, tstats, bool(inconc)), sel["suggestions"], alpha,
-                         min_gain)
+                         sel["step_gain"])
     settings = {"robust_loss": loss, "cv": ctx.cv, "folds_per_scheme": len(ctx.folds),
+                "selection_min_gain": sel["step_gain"],
                 "target_offset_prior_mm": None if t_prior is None else {"mean": t_prior[0].tolist(),
                                                                         "sd": t_prior[1].tolist()},
                 "fold_target_offset_sd_mm": ctx.fold_t_sd.tolist(),
@@ -267,8 +273,8 @@ BASELINE_MOVE = 0.10
 def _robust_baseline(ctx, cal, nominal: Evaluation, t_prior) -> list:
     """A guard when robust weighting moved the nominal baseline's test RMS by more than :data:`BASELINE_MOVE`
     against plain least squares (the improvements the summary prints are measured from that baseline), and the
-    note of a robust loss that fell back on a small file."""
-    out = [cal.loss_note] if cal.loss_note else []
+    notes of a small file (the robust loss that fell back, the raised minimum gain)."""
+    out = [n for n in (cal.loss_note, ctx.min_gain_note) if n]
     if ctx.test is None or cal.nominal.loss == "none":
         return out
     plain = fit_model(cal.nominal, ctx.train.q, ctx.train.xyz_mm, robust=False, t_prior=t_prior)

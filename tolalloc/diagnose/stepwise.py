@@ -8,7 +8,8 @@ Scores are robust: 3-D held-out errors are clipped at 2.5 x the geometric model'
 squared held-out error (base model - base + candidate), one difference per pose (the mean over the two CV
 schemes, which score the same poses). A candidate is *significant* when ``p < alpha / m``
 (Bonferroni over the ``m`` applicable candidates) **and** it lowers the clipped held-out RMS
-(:func:`.scores.robust_rms`) by at least ``min_gain`` (default 2 %), and its unclipped out-of-fold RMS stays within
+(:func:`.scores.robust_rms`) by at least ``min_gain`` (default 2 %; more on a small file:
+:func:`.calibrate.small_file_min_gain`), and its unclipped out-of-fold RMS stays within
 :data:`BLOWUP_RATIO` x the base model's (clipping must not hide held-out predictions that blow up). The significant
 candidate with the lowest clipped held-out RMS is selected; the others are then tested on top of it (sequential
 forward selection, at most ``max_effects``: pairs where the data supports both), and every selected effect must

@@ -103,7 +103,7 @@ def _best_line(stages: list, alpha: float, min_gain: float) -> str:
     if c.reason:
         failed.append(c.reason)
     if not c.gain_pct >= 100.0 * min_gain:
-        failed.append(f"its clipped gain {c.gain_pct:+.1f} % is below the minimum {100.0 * min_gain:g} %")
+        failed.append(f"its clipped gain {c.gain_pct:+.1f} % is below the minimum {100.0 * min_gain:.3g} %")
     if not c.p_value < level:
         failed.append(f"its p-value {c.p_value:.2g} is not below the level {level:.2g} (alpha {alpha:g} over "
                       f"{stages[0].n_tests} candidates)")

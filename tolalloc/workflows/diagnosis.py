@@ -230,7 +230,8 @@ class MeasurementDiagnosis(JobResult):
         lines = [f"robot: {self.robot.name}   {d.train.n_poses} training poses"
                  + ("" if d.test is None else f", {d.test.n_poses} test poses"),
                  f"verdict: {self.verdict}   effect: {d.effect}"
-                 + ("" if v is None or not v.candidates else f"   candidates: {', '.join(v.candidates)}")]
+                 + ("" if v is None or not v.candidates else f"   candidates: {', '.join(v.candidates)}")
+                 + ("" if v is None or not v.further else f"   further, family not claimed: {v.further_terms()}")]
         # the JSON's test_rms_mm with a test file, else its cv_rms_mm
         block = d.before_after("test" if d.test is not None else "cv")
         lines.append(("test" if d.test is not None else "cross-validation") + " RMS [mm]: "
