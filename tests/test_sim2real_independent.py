@@ -4289,7 +4289,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_body as zcb
     from sim2real_indep import effects_zc_thermal as zct
 
-    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS and all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD"))
+    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS and all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4471,7 +4471,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_body as zdb
     from sim2real_indep import effects_zd_thermal as zdt
 
-    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS and all(s < "ZD" for s in cs.SETS if s != "ZD")
+    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS and all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4610,3 +4610,150 @@ def test_set_zd_every_kind_lies_in_its_true_structure_and_known_answers():
     s2 = replace(s, time_s=s.time_s[0] + np.array([0.0, 1.0, 1e7]))
     g = zdt.gun_temperature(up, s2)
     assert g[0] == pytest.approx(0.0, abs=1e-12) and g[1] < 1e-4 and g[2] == pytest.approx(1.0)
+
+
+# --------------------------------------------------------------------------------------------------------- set ZE
+ZE_KINDS = ("tether_reel", "ball_reducer", "rotary_clamp", "noback_brake", "disc_shift", "reversal_counts",
+            "slender_pedestal", "slewing_rock", "shuttle_boom", "ringing_boom", "holding_heat", "pcm_tool")
+
+
+def test_set_ze_cases_kinds_and_determinism():
+    """Set ZE (the fifth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZD; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZE kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; the pauses (the
+    clamp, the shuttle's station, the brakes holding) and a new part for each block (the pedestal)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_ze as eze
+    from sim2real_indep import effects_ze_body as zeb
+    from sim2real_indep import effects_ze_thermal as zet
+
+    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s != "ZE")
+    assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
+    _assert_set_module("ZE", 40_7031, eze, ("gear", "soft_float", "gun_warmup", "sonotrode"))
+    for name in ("effects_ze", "effects_ze_joint", "effects_ze_body", "effects_ze_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_ze" in _imports(STUDY / "generator.py")
+    assert eze.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": eze.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, ((lo, hi), pause) in eze.PAUSES.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        for kind, kg in eze.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        plain = opts(("tether_reel", "ball_reducer", "noback_brake", "disc_shift", "reversal_counts",
+                      "slewing_rock", "ringing_boom", "pcm_tool"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert eze.probe_hook(("gear",), probe, "ur10") is probe
+    assert eze.probe_hook(("shuttle_boom",), probe, "kr16_like") == pytest.approx(probe + [700.0, 0, 0])
+    assert eze.probe_hook(("ringing_boom",), probe, "ur10") == pytest.approx(probe + [0, 0, zeb.RING_MM])
+    assert eze.probe_hook(("pcm_tool",), probe, "ur10") == pytest.approx(probe + [0, 0, zet.PCM_MM])
+    _assert_regenerates("ZE", max_effect_poses=50)
+
+
+def test_set_ze_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZE kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the tether's unit pull towards its anchor
+    and its torques J^T F, the Hertzian 2/3 law, the clamp's side in the clamped blocks, the no-back's quadrant, the
+    disc's reading by the moment, the reversal count, the pedestal's amplification, the slewing ring's saturating rock,
+    the cantilever's station factor, the boom's decaying ring, the holding heat's pauses and the wax's plateau."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_ze_body as zeb
+    from sim2real_indep import effects_ze_joint as zej
+    from sim2real_indep import effects_ze_thermal as zet
+    from sim2real_indep.effects_body import mount_moment
+    from sim2real_indep.effects_u_joint import block_index
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZE_KINDS, 30, 31)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZE_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"tether_reel": lambda: p["c"], "ball_reducer": lambda: p["c"], "rotary_clamp": lambda: p["half"],
+                   "noback_brake": lambda: p["delta"], "disc_shift": lambda: p["k"], "reversal_counts": lambda: p["step"],
+                   "slender_pedestal": lambda: p["c"], "slewing_rock": lambda: p["theta"],
+                   "shuttle_boom": lambda: p["amp"], "ringing_boom": lambda: p["gain"], "holding_heat": lambda: p["amp"],
+                   "pcm_tool": lambda: [p["cte"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    b = block_index(s)
+    # tether: a unit pull towards the anchor, its torques J^T F [N m]
+    tp = P["tether_reel"]
+    u = zej.tether_pull(tp, ctx)
+    assert np.linalg.norm(u, axis=1) == pytest.approx(1.0)
+    assert np.cross(u, tp["anchor_mm"] - ctx.target) == pytest.approx(np.zeros_like(u), abs=1e-6)
+    assert zej.tether_torques(tp, ctx)[:, 1] == pytest.approx(
+        np.einsum("pi,pi->p", ctx.jac[:, :, 1], u) / 1000.0)
+    # ball reducer: the Hertzian law equals the load at tau_ref, grows as its 2/3 power, odd
+    assert zej.hertz_twist(np.array([8.0, -8.0, 1.0]), 8.0) == pytest.approx([8.0, -8.0, 2.0])
+    # rotary clamp: the clamp's side in the clamped blocks, the trailing flank elsewhere, both present
+    cp = P["rotary_clamp"]
+    on = np.asarray(cp["clamped"])[np.minimum(b, len(cp["clamped"]) - 1)].astype(bool)
+    sig = zej.clamp_signal(cp, ctx)
+    assert on.any() and (~on).any() and (sig[on] == cp["side"]).all()
+    assert (sig[~on] == -s.direction[~on, 0]).all()
+    # no-back: lost motion only where the last motion went the load's way
+    nb = zej.noback_signal(ctx)
+    d1, s1 = s.direction[:, 1], np.sign(ctx.loads[:, 1])
+    assert (nb[d1 != s1] == 0).all() and (nb[d1 == s1] == -d1[d1 == s1]).all() and (d1 == s1).any()
+    # disc shift: the reading follows the horizontal moment on axis 1 only
+    dp = P["disc_shift"]
+    F = zej.disc_features(dp, ctx, case.truth["hw"])
+    M = mount_moment(ctx)
+    assert F[0] == pytest.approx(ctx.jac[:, :, 0] * M[:, :1]) and F[1] == pytest.approx(ctx.jac[:, :, 0] * M[:, 1:2])
+    # reversal counts: one per sign change of the logged direction
+    dirs = np.array([[1.0], [1.0], [-1.0], [-1.0], [1.0], [-1.0]])
+    assert zej.reversals(replace(s, direction=dirs), 0) == pytest.approx([0, 0, 1, 1, 2, 3])
+    # slender pedestal: the amplification 1 / (1 - W / W_cr), above 1, growing with the part
+    pp = P["slender_pedestal"]
+    amp = zeb.pedestal_amplification(pp, ctx)
+    W = zeb.total_weight_N(ctx)
+    assert amp == pytest.approx(1 / (1 - W / pp["W_cr_N"])) and (amp > 1).all() and len(set(s.payload_kg)) > 1
+    assert np.corrcoef(W, amp)[0, 1] > 0.99
+    # slewing rock: the rock's axis along the moment, its share below one and saturating at large moments
+    rp = P["slewing_rock"]
+    ax = zeb.rock_axis(rp, ctx)
+    assert (np.linalg.norm(ax, axis=1) < 1).all() and not ax[:, 2].any()
+    assert zeb.rock_axis({**rp, "M_c": 1e-9}, ctx) == pytest.approx(
+        ax / np.linalg.norm(ax, axis=1, keepdims=True), abs=1e-6)
+    # shuttle boom: the cantilever's factor a^2 (3 - a) / 2: 1 at the tip, 0 at the root
+    sp = P["shuttle_boom"]
+    assert zeb.station_factor({"station": [1.0, 0.0, 0.5]}, replace(s, gap_s=np.r_[0, -1, -1, np.zeros(len(s.gap_s) - 3)])
+                              )[:3] == pytest.approx([1.0, 0.0, 0.3125])
+    assert len(sp["station"]) == b.max() + 1
+    # ringing boom: the ring decays with the dwell (zeta omega) and starts at the ramp's sinc
+    gp = P["ringing_boom"]
+    w = 2 * np.pi * gp["f_hz"]
+    long = zeb.ring_response(gp, replace(s, dwell_s=np.array([0.0, 1e3])))
+    assert long[0] == pytest.approx(abs(np.sin(w * 0.25) / (w * 0.25))) and abs(long[1]) < 1e-6
+    # holding heat: cold at the start, within the unit rise, cooling in the pauses
+    hp = P["holding_heat"]
+    T = zet.holding_temperature(hp, ctx)
+    assert T[:, 0] == pytest.approx(0.0) and T.min() >= 0 and T.max() <= 1
+    src = zet.holding_source(hp, ctx, 1)
+    k = int(np.flatnonzero(s.gap_s < 0)[0])
+    t0 = s.time_s - s.time_s[0]
+    assert src(np.array([t0[k] - s.move_s[k] - s.dwell_s[k] - 1.0]))[0] == 0.0
+    # PCM tool: warming, halting at the melting rise across the latent store, warming on towards T_inf
+    cp = {"lead_s": 0.0, "tau_s": 600.0, "T_inf": 30.0, "T_m": 10.0, "L_K": 15.0}
+    t = np.linspace(0.0, 2e4, 2001)
+    Tc = zet.pcm_temperature(cp, t)
+    assert Tc[0] == 0.0 and (np.diff(Tc) >= -1e-12).all() and Tc[-1] == pytest.approx(30.0, abs=0.05)
+    plateau = np.abs(Tc - 10.0) < 1e-9
+    assert plateau.sum() * 10.0 == pytest.approx(15.0 * 600.0 / 20.0, rel=0.05)  # L tau / (T_inf - T_m)

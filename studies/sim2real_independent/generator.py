@@ -56,6 +56,7 @@ from sim2real_indep import effects_za as eza
 from sim2real_indep import effects_zb as ezb
 from sim2real_indep import effects_zc as ezc
 from sim2real_indep import effects_zd as ezd
+from sim2real_indep import effects_ze as eze
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -103,6 +104,7 @@ EFFECTS = {
     **ezb.EFFECTS_ZB,  # set ZB's new kinds
     **ezc.EFFECTS_ZC,  # set ZC's new kinds
     **ezd.EFFECTS_ZD,  # set ZD's new kinds
+    **eze.EFFECTS_ZE,  # set ZE's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -110,7 +112,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | eq.AFTER_TRACKER | er.AFTER_TRACKER | es.AFTER_TRACKER | et.AFTER_TRACKER | eu.AFTER_TRACKER
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
-                 | ezd.AFTER_TRACKER)
+                 | ezd.AFTER_TRACKER | eze.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -208,7 +210,8 @@ def _session_options(robot_key, physics, rng):
     opts = eza.session_options(robot_key, physics, rng, opts)  # set ZA (no draws without a set-ZA kind)
     opts = ezb.session_options(robot_key, physics, rng, opts)  # set ZB (no draws without a set-ZB kind)
     opts = ezc.session_options(robot_key, physics, rng, opts)  # set ZC (no draws without a set-ZC kind)
-    return ezd.session_options(robot_key, physics, rng, opts)  # set ZD (no draws without a set-ZD kind)
+    opts = ezd.session_options(robot_key, physics, rng, opts)  # set ZD (no draws without a set-ZD kind)
+    return eze.session_options(robot_key, physics, rng, opts)  # set ZE (no draws without a set-ZE kind)
 
 
 def _tracker(rng):
@@ -256,6 +259,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezb.probe_hook(physics, probe)  # set ZB's torch, stay-cable boom, welding horn (no draws)
     probe = ezc.probe_hook(physics, probe)  # set ZC's bayonet tool, bush boom, bonded part (no draws)
     probe = ezd.probe_hook(physics, probe)  # set ZD's bonded boom, hot-melt nozzle (no draws)
+    probe = eze.probe_hook(physics, probe, robot_key)  # set ZE's shuttle boom, ringing boom, PCM bracket (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

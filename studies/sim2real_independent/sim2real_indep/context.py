@@ -385,7 +385,20 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "spline_drag": "backlash", "readhead_dropout": "transmission", "range_shift": "transmission",
           "levelling_valves": "mount_compliance", "scissor_lift": "mount_compliance",
           "curing_bond": "link_deflection", "drive_tendons": "link_deflection", "bake_booth": "thermal",
-          "gun_warmup": "thermal"}
+          "gun_warmup": "thermal",
+          # set ZE (sim2real_indep.effects_ze; tether_reel, the gears twisted by a constant-force tether's pull towards
+          # a fixed anchor, and ball_reducer, the Hertzian twist of ball reducers, scored as joint compliance;
+          # rotary_clamp, axis 1's flank chosen by a clamp, and noback_brake, a no-back brake's release travel, as
+          # backlash; disc_shift, axis 1's encoder disc shifted by the bearing's tilt, and reversal_counts, a decoder's
+          # count gained per reversal, as transmission; slender_pedestal, a riser's P-delta tilt, and slewing_rock, a
+          # slewing ring's tilting clearance, as mount compliance; shuttle_boom, a boom bent by a parked carriage, and
+          # ringing_boom, a boom's residual vibration, as link deflection; holding_heat, the links warmed by the
+          # motors' holding copper loss, and pcm_tool, a bracket on a phase-change heat sink, as thermal)
+          "tether_reel": "joint_compliance", "ball_reducer": "joint_compliance", "rotary_clamp": "backlash",
+          "noback_brake": "backlash", "disc_shift": "transmission", "reversal_counts": "transmission",
+          "slender_pedestal": "mount_compliance", "slewing_rock": "mount_compliance",
+          "shuttle_boom": "link_deflection", "ringing_boom": "link_deflection", "holding_heat": "thermal",
+          "pcm_tool": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

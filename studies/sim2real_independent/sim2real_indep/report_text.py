@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; all thirty: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; all thirty-one: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -382,7 +382,30 @@ the bending moment, named transmission on ur10 (ZD02) and `none` on kr16_like (Z
 dropping out in some blocks (ZD04, ZD20) and a two-speed gearbox's rounded low-range ratio (ZD10), `none`; air
 mounts with levelling valves, named transmission (ZD05) and hedged beside the tendons (ZD24, lenient); a paint
 booth's flash-off air on ur10 (ZD06), `none`; a scissor lift table's oil column, named link deflection (ZD11, ZD21);
-a wrist's spline drag beside a hot-melt gun's warm-up, named link deflection (ZD16).
+a wrist's spline drag beside a hot-melt gun's warm-up, named link deflection (ZD16). After set ZD had been judged, a
+selection step on a small training file (fewer than 10 poses per fitted parameter) asks for a gain beyond the spread
+of its out-of-fold RMS (below): on that code ZD15 is `none`, and set ZD scores 10/24 strict, 11 lenient, no false
+claim (the table and totals below are from the current code).
+
+**Set ZE** (24 cases, seed 40_7031) is a thirty-first independent test set of twelve new kinds
+(`sim2real_indep/effects_ze*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZD, and who did not run the diagnosis. It was run once, on the
+code with one change of the selection made after set ZD had been judged and decided on sets A-ZD alone: on a small
+training file (fewer than 10 poses per fitted parameter; every case of this benchmark is one) each forward and backward
+step asks for a clipped out-of-fold gain of at least 1/sqrt(6P) for P training poses (the relative spread of an RMS
+over 3P coordinates; 7.45 % for 30 poses) instead of 2 %. On sets A-ZD it turns ZD15's false claim into `none`, costs
+Z04 a lenient three-way `ambiguous` (its first step gained 3.5 %, below 4.12 %) and drops a weak later effect from
+five final models (the verdicts unchanged): 484 strict (483 before), 518 lenient (518), no false claim. Set ZE: 17/24
+strict, 18 lenient, no false claim, median final / oracle RMS 1.37; the code before the change scores the same (only
+ZE17's final model differs, by a weak joint compliance); right on 10 of 13 effect cases where the true family's
+generic model helps, 4 of 8 where it does not. Its misses: a constant-force tether pulling the tool towards an
+anchor beside the cell, hedged between link deflection, joint compliance and backlash on ur10 (ZE01, lenient); axis
+1's encoder disc carried under its read head by the main bearing's tilt, `none` on ur10 (ZE03); a rotary clamp
+choosing axis 1's flank in the blocks it is used, `none` on ur10 with 50 poses (ZE06) and beside a ringing tool boom
+on kr16_like (ZE24); a quadrature decoder gaining a count at each reversal of axis 1, named thermal (ZE13); a lightly
+damped tool boom still ringing from the last stop, `none` on tool_changer (ZE14); a slewing ring's tilting clearance
+rocking the base towards the moment on kr16_like, named transmission, with a further effect the data cannot attribute
+to mount compliance, joint compliance or link deflection (ZE17).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -907,6 +930,24 @@ comment):
 | drive_tendons | link_deflection | a wrist's drive tendons run off the forearm's axis: their tension, following axis 5's torque, bends the forearm, T e L^2 / 2EI (kr16_like) | Townsend & Salisbury (1993); Tsai, *Robot Analysis* ch. 10; Roark, table 8.1 |
 | bake_booth | thermal | a paint booth's flash-off air switched by block, the links following through their walls' lag; the logged air is the hall's (ur10, kr16_like) | Goldschmidt & Streitberger, *BASF Handbook on Basics of Coating Technology* (2007) ch. 7; Incropera & DeWitt ch. 5 |
 | gun_warmup | thermal | a hot-melt gun warming its bracket through two lags in series, an S-shaped growth from the switch-on (not logged) (tool_changer) | Incropera & DeWitt ch. 5 |
+
+Set ZE's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZE
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| tether_reel | joint_compliance | a constant-force tether reel anchored beside the cell pulling the tool towards the anchor with a constant tension; the pull twists the gears through J^T F (ur10) | Wahl, *Mechanical Springs* (1963); Craig, *Introduction to Robotics* ch. 5 |
+| ball_reducer | joint_compliance | ball reducers on the wrist axes whose Hertzian point contacts twist as the torque to the 2/3 power, soft at small loads (ur10, kr16_like) | Terada, J. Mech. Sci. Tech. 24 (2010) (as recalled); Johnson, *Contact Mechanics* (1985) ch. 4; Harris & Kotzalas (2007) |
+| rotary_clamp | backlash | a hydraulic clamp on axis 1 pulling the output to its side of the lash in the blocks it is used (not logged), elsewhere the flank of the last motion (ur10, kr16_like) | ISO 230-1 on clamping (as recalled); Nordin & Gutman, Automatica 38 (2002) |
+| noback_brake | backlash | a no-back brake on axis 2 whose release travel makes the output lag only when the last motion went the load's way (tool_changer, kr16_like) | Duff-Norton no-back catalogue (as recalled) |
+| disc_shift | transmission | axis 1's encoder disc carried sideways under its read head by the main bearing's tilt under the overturning moment (all three arms) | IKO / THK crossed-roller bearing catalogues (as recalled) |
+| reversal_counts | transmission | a quadrature decoder with a marginal channel phase gaining one count at every reversal of axis 1 (ur10, tool_changer) | encoder signal processing (as recalled) |
+| slender_pedestal | mount_compliance | a slender riser column whose tilt under the overturning moment is amplified by the weight on it, 1 / (1 - W / W_cr) (P-delta), a new part each block (ur10) | Timoshenko & Gere, *Theory of Elastic Stability* (1961) ch. 1 |
+| slewing_rock | mount_compliance | the base on a slewing ring rocking across its tilting clearance towards the moment, the play taken up progressively (kr16_like) | Rothe Erde slewing-bearing catalogue (as recalled) |
+| shuttle_boom | link_deflection | a tool boom bent by a carriage parked at a new station along it each block (not logged), W a^2 (3L - a) / 6EI (all three arms) | Roark, *Formulas for Stress and Strain* (7th ed.) table 8.1 |
+| ringing_boom | link_deflection | a lightly damped tool boom still vibrating from the last stop's deceleration when the tracker measures (tool_changer, kr16_like) | Singer & Seering, ASME J. Dyn. Syst. 112 (1990) |
+| holding_heat | thermal | the motors of axes 2 and 3 heating their links by the copper loss of the gravity torque they hold, through a lag, cooling in the pauses (tool_changer) | Hughes & Drury, *Electric Motors and Drives* (2013) ch. 9; Incropera & DeWitt ch. 5 |
+| pcm_tool | thermal | a tool head on a paraffin phase-change heat sink: its bracket warms, halts on a plateau while the wax melts, then warms on (all three arms) | Mehling & Cabeza, *Heat and Cold Storage with PCM* (2008); Voller, Numer. Heat Transfer B 17 (1990) |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
