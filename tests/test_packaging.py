@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 import tolalloc
-from tolalloc.cli import main
+from tolalloc.cli import build_parser, main
 
 ROOT = Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
@@ -24,8 +24,9 @@ PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text())
 def test_the_version_is_written_once_and_shown_everywhere(capsys):
     version = PYPROJECT["project"]["version"]
     assert tolalloc.__version__ == version
-    with pytest.raises(SystemExit) as stop:
-        main(["--version"])
+    assert main(["--version"]) == 0 and capsys.readouterr().out == f"tolalloc {version}\n"
+    with pytest.raises(SystemExit) as stop:  # the full parser's --version (listed in --help) says the same
+        build_parser().parse_args(["--version"])
     assert stop.value.code == 0 and capsys.readouterr().out == f"tolalloc {version}\n"
     literal = re.compile(r"""__version__\s*=\s*["']|^\s*version\s*=\s*["']\d""", re.M)  # not <?xml version="1.0"?>
     assert not [p for p in (ROOT / "tolalloc").rglob("*.py") if literal.search(p.read_text())]

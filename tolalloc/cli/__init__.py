@@ -178,6 +178,12 @@ def _run(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] == ["--version"]:  # answered before the commands' modules (and their numerical stack) are imported
+        from tolalloc.version import package_version
+
+        print(f"tolalloc {package_version()}")
+        return 0
     from tolalloc.outputs import published, reservations
 
     published(reset=True)
