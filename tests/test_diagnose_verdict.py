@@ -423,13 +423,15 @@ def test_the_evidence_leader_beats_no_effect_and_every_other_family_by_a_very_st
     assert evidence_leader({})[0] is None
 
 
-@pytest.mark.parametrize("p, gain, leader, led", [
-    (0.004, 9.0, "a", True),     # not below 0.01 / 6, below 0.01; gain above the 5 % margin: named
-    (0.02, 9.0, "a", False),     # not below alpha
-    (0.004, 3.0, "a", False),    # gain below the practical margin
-    (0.004, 9.0, "b", False),    # the evidence singles out another family
+@pytest.mark.parametrize("p, gain, leader, led, step_gain", [
+    (0.004, 9.0, "a", True, 0.02),     # not below 0.01 / 6, below 0.01; gain above the 5 % margin: named
+    (0.02, 9.0, "a", False, 0.02),     # not below alpha
+    (0.004, 3.0, "a", False, 0.02),    # gain below the practical margin
+    (0.004, 9.0, "b", False, 0.02),    # the evidence singles out another family
+    (0.004, 6.0, "a", False, 0.0745),  # above the margin, below a small file's raised minimum gain
+    (0.004, 9.0, "a", True, 0.0745),   # above both
 ])
-def test_the_family_the_evidence_singles_out_is_tested_at_the_uncorrected_level(p, gain, leader, led):
+def test_the_family_the_evidence_singles_out_is_tested_at_the_uncorrected_level(p, gain, leader, led, step_gain):
     """_evidence_led: where no candidate passes alpha / m, the family the evidence singles out is significant at
     p < alpha with a clipped gain of at least the practical margin; its reason line says so."""
     from tolalloc.diagnose.families import evidence_leader
@@ -437,12 +439,14 @@ def test_the_family_the_evidence_singles_out_is_tested_at_the_uncorrected_level(
 
     c = replace(_cand("a", sig=False), p_value=p, gain_pct=gain)
     logml = {"none": 0.0, leader: 20.0, "a" if leader == "b" else "b": 1.0}
-    out = _evidence_led(c, evidence_leader(logml)[0], 0.01)
+    out = _evidence_led(c, evidence_leader(logml)[0], 0.01, step_gain)
     assert out.significant is led and out.evidence_led is led and out.to_dict()["evidence_led"] is led
     if led:
         ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
         v = verdict_of(ctx, [Stage((), 0.3, (out, _cand("b", sig=False)), "a", n_tests=6)],
-                       _ev(("a",), np.zeros((5, 3))), None, (), [], (), "geometric+a", None)
+                       _ev(("a",), np.zeros((5, 3))), None, (), [], (), "geometric+a", None, min_gain=step_gain)
         assert v.verdict == "effect" and v.candidates == ("a",)
-        assert "tested alone, at alpha without the factor for 6 candidates and with a 5 % minimum gain" in v.reasons[0]
+        bar = max(5.0, 100 * step_gain)
+        assert (f"tested alone, at alpha without the factor for 6 candidates and with a {bar:.3g} % minimum gain"
+                in v.reasons[0])
         assert "Bayes factor of at least 150 against no effect and every other family" in v.reasons[0]

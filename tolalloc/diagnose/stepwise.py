@@ -108,7 +108,7 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
         if not chosen and not any(c.significant for c in cands):
             leader = evidence_leader(logml or {})[0]
-            cands = [_evidence_led(c, leader, alpha) for c in cands]
+            cands = [_evidence_led(c, leader, alpha, min_gain) for c in cands]
         best = next((c for c in cands if c.significant), None)
         if not chosen:
             best = evidence_pick(cands, logml or {}, PRACTICAL_MARGIN) or best
@@ -121,12 +121,12 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
     return stages, evals, current
 
 
-def _evidence_led(c: Candidate, leader: str | None, alpha: float) -> Candidate:
+def _evidence_led(c: Candidate, leader: str | None, alpha: float, min_gain: float = 0.0) -> Candidate:
     """``c`` made significant when it is ``leader``, the family the evidence singles out
     (:func:`.families.evidence_leader`), and passes the uncorrected test (``p < alpha``, clipped gain of at least the
-    practical margin, no other reason against it); else ``c``."""
+    practical margin and of the step's ``min_gain``, no other reason against it); else ``c``."""
     if (c.effect != leader or not c.applicable or c.reason or not c.n_params or not c.p_value < alpha
-            or not c.gain_pct >= 100.0 * PRACTICAL_MARGIN):
+            or not c.gain_pct >= 100.0 * max(PRACTICAL_MARGIN, min_gain)):
         return c
     return replace(c, significant=True, evidence_led=True)
 

@@ -39,7 +39,8 @@ def input_notes(ctx, stages: list) -> tuple[list, list]:
     return out, untested
 
 
-def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and joint-space blocks") -> str:
+def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and joint-space blocks",
+                   min_gain: float = 0.0) -> str:
     """Why ``e`` is in the final model ``effects``: its forward step or, when that step's base holds an effect the
     backward elimination removed since, the backward test of keeping it beside the others (or, for the last effect
     left, its out-of-fold RMS against the geometric model's)."""
@@ -49,8 +50,9 @@ def _selected_line(stages: list, e: str, effects: tuple, scheme: str = "time and
     if set(fwd.base) <= set(effects):
         base = "+".join(("geometric", *fwd.base))
         led = (f"; tested alone, at alpha without the factor for {fwd.n_tests} candidates and with a "
-               f"{100 * PRACTICAL_MARGIN:g} % minimum gain: the model evidence singles it out, a Bayes factor of at "
-               f"least {LEADING_BAYES_FACTOR:g} against no effect and every other family") if c.evidence_led else ""
+               f"{100 * max(PRACTICAL_MARGIN, min_gain):.3g} % minimum gain: the model evidence singles it out, a Bayes "
+               f"factor of at least {LEADING_BAYES_FACTOR:g} against no effect and every other family"
+               ) if c.evidence_led else ""
         return (f"{e} ({c.variant}) lowers the out-of-fold RMS of the training file ({scheme}) from "
                 f"{fwd.base_rms_mm:.4g} ({base}) to {c.heldout_rms_mm:.4g} mm (clipped gain {c.gain_pct:+.1f} %, "
                 f"p = {c.p_value:.2g}{led})" + _instrument(c.variant) + _clock(e, c.variant))
@@ -145,7 +147,7 @@ def verdict_of(ctx, stages: list, final, fallback, comparisons: tuple, inconclus
         return Verdict("none", (), tuple(first + notes), safe, comparisons, **kw)
     amb = tied(comparisons)
     scheme = scheme_text(getattr(ctx, "cv", "blocked"))
-    sel = [_selected_line(stages, e, final.effects, scheme) for e in final.effects]
+    sel = [_selected_line(stages, e, final.effects, scheme, min_gain) for e in final.effects]
     further = further_ties(stages, final.effects, amb)
     if amb and len(further) < len(amb):
         names = []
