@@ -4289,7 +4289,8 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_body as zcb
     from sim2real_indep import effects_zc_thermal as zct
 
-    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS and all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE"))
+    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4471,7 +4472,8 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_body as zdb
     from sim2real_indep import effects_zd_thermal as zdt
 
-    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS and all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE"))
+    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4629,7 +4631,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s != "ZE")
+    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4757,3 +4759,143 @@ def test_set_ze_every_kind_lies_in_its_true_structure_and_known_answers():
     assert Tc[0] == 0.0 and (np.diff(Tc) >= -1e-12).all() and Tc[-1] == pytest.approx(30.0, abs=0.05)
     plateau = np.abs(Tc - 10.0) < 1e-9
     assert plateau.sum() * 10.0 == pytest.approx(15.0 * 600.0 / 20.0, rel=0.05)  # L tau / (T_inf - T_m)
+
+
+# --------------------------------------------------------------------------------------------------------- set ZF
+ZF_KINDS = ("bungee_cord", "warm_preload", "viscous_crossing", "centring_spring", "repaired_sector", "sagging_disc",
+            "shelf_bracket", "shim_friction", "polymer_boom", "flange_gapping", "peltier_loop", "marking_pulses")
+
+
+def test_set_zf_cases_kinds_and_determinism():
+    """Set ZF (the sixth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZE; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZF kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; a new part for
+    each block (the shelf bracket) and the air's drift across paused blocks (the polymer boom)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zf as ezf
+    from sim2real_indep import effects_zf_body as zfb
+    from sim2real_indep import effects_zf_thermal as zft
+
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s != "ZF")
+    assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
+    _assert_set_module("ZF", 40_7032, ezf, ("gear", "tether_reel", "pcm_tool", "gun_warmup"))
+    for name in ("effects_zf", "effects_zf_joint", "effects_zf_body", "effects_zf_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zf" in _imports(STUDY / "generator.py")
+    assert ezf.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezf.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezf.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), pause, (d0, d1)) in ezf.AIR_DRIFT.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+            assert d0 <= abs(b["air"]["drift_K"]) <= d1
+        plain = opts(("bungee_cord", "warm_preload", "viscous_crossing", "centring_spring", "repaired_sector",
+                      "sagging_disc", "shim_friction", "flange_gapping", "peltier_loop", "marking_pulses"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezf.probe_hook(("gear",), probe) is probe
+    assert ezf.probe_hook(("polymer_boom",), probe) == pytest.approx(probe + [zfb.BOOM_MM, 0, 0])
+    assert ezf.probe_hook(("flange_gapping",), probe) == pytest.approx(probe + [zfb.BOOM_MM, 0, 0])
+    assert ezf.probe_hook(("peltier_loop",), probe) == pytest.approx(probe + [0, 0, zft.BRACKET_MM])
+    assert ezf.probe_hook(("marking_pulses",), probe) == pytest.approx(probe + [0, 0, zft.BRACKET_MM])
+    _assert_regenerates("ZF", max_effect_poses=50)
+
+
+def test_set_zf_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZF kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the cord's pull by its stretch towards the
+    eye, the preload's stiffening share, the oil's crossing share, the centring spring's clip, the sector's bump, the
+    disc's gravity in its housing, the shelf's turn and drop, the shims' slip sign, the polymer's modulus factor, the
+    flange's opening threshold, the Peltier loop's damped swing and the marking pulses' decay."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zf_body as zfb
+    from sim2real_indep import effects_zf_joint as zfj
+    from sim2real_indep import effects_zf_thermal as zft
+    from sim2real_indep.effects_body import mount_moment
+    from sim2real_indep.effects_ze_body import total_weight_N
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZF_KINDS, 30, 32)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZF_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"bungee_cord": lambda: p["c"], "warm_preload": lambda: p["c"], "viscous_crossing": lambda: p["half"],
+                   "centring_spring": lambda: p["half"], "repaired_sector": lambda: p["e"],
+                   "sagging_disc": lambda: p["k"], "shelf_bracket": lambda: p["c"], "shim_friction": lambda: p["f"],
+                   "polymer_boom": lambda: p["amp"], "flange_gapping": lambda: p["c"],
+                   "peltier_loop": lambda: [p["amp"]], "marking_pulses": lambda: [p["amp"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # bungee cord: the pull along the line to the eye, its size the stretch past L0
+    bp = P["bungee_cord"]
+    F = zfj.cord_force(bp, ctx)
+    dvec = bp["eye_mm"] - ctx.target
+    assert np.cross(F, dvec) == pytest.approx(np.zeros_like(F), abs=1e-6) and (np.einsum("pi,pi->p", F, dvec) > 0).all()
+    assert np.linalg.norm(F, axis=1) == pytest.approx(np.linalg.norm(dvec, axis=1) - bp["L0_mm"])
+    # warm preload: 1 at the start, falling to 1 - beta
+    wp = P["warm_preload"]
+    f = zfj.preload_factor(wp, s)
+    assert f[0] == pytest.approx(1.0) and (np.diff(f) <= 1e-12).all() and f.min() > 1 - wp["beta"]
+    assert zfj.preload_factor(wp, replace(s, time_s=np.array([0.0, 1e9])))[1] == pytest.approx(1 - wp["beta"])
+    # viscous crossing: on the trailing flank without a dwell, on the load's flank after a long one
+    vp = P["viscous_crossing"]
+    tau, d1 = ctx.loads[:, 1], s.direction[:, 1]
+    short = zfj.crossing_flank(vp, replace(ctx, session=replace(s, dwell_s=np.zeros(len(tau)))), 1, vp["B"][0])
+    long = zfj.crossing_flank(vp, replace(ctx, session=replace(s, dwell_s=np.full(len(tau), 1e9))), 1, vp["B"][0])
+    assert short == pytest.approx(-d1) and long == pytest.approx(np.sign(tau))
+    mid = zfj.crossing_flank(vp, ctx, 1, vp["B"][0])
+    assert (np.abs(mid) <= 1 + 1e-12).all() and (mid[np.sign(tau) == -d1] == -d1[np.sign(tau) == -d1]).all()
+    # centring spring: linear inside the clearance, on the flank beyond T_c, odd
+    assert zfj.centring_flank(np.array([-3.0, -0.5, 0.0, 0.25, 2.0]), 1.0) == pytest.approx([-1, -0.5, 0, 0.25, 1])
+    # repaired sector: 1 at the sector's centre, e^-1 one width away
+    rp = P["repaired_sector"]
+    assert zfj.sector_bump(rp, np.array([rp["q_s"], rp["q_s"] + rp["w"]])) == pytest.approx([1.0, np.exp(-1)])
+    # sagging disc: gravity's share across the axis, at most 1
+    g = zfj.housing_gravity(ctx, P["sagging_disc"]["joint"])
+    assert (np.linalg.norm(g, axis=1) <= 1 + 1e-12).all() and np.ptp(g, axis=0).max() > 0.1
+    # shelf bracket: Roark's tip turn and drop of a cantilever under W and M
+    sp = P["shelf_bracket"]
+    th, dr = zfb.shelf_turn_drop({**sp, "psi": 0.0}, ctx)
+    W, L, Mu = total_weight_N(ctx), sp["L_mm"], mount_moment(ctx)[:, 1] * 1000.0
+    assert th * 1e9 == pytest.approx(W * L ** 2 / 2 + Mu * L) and dr * 1e9 == pytest.approx(W * L ** 3 / 3 + Mu * L ** 2 / 2)
+    assert len(set(s.payload_kg)) > 1
+    # shim friction: the sign of the moment's change since the last pose
+    M = mount_moment(ctx)[:, :2]
+    sg = zfb.slip_sign(ctx)
+    assert (sg[1:] == np.sign(np.diff(M, axis=0))).all() and (sg[0] == np.sign(M[0])).all()
+    # polymer boom: E_0 / E(T) = 1 + kappa (T - T_0), the air drifting over the session
+    pp = P["polymer_boom"]
+    mf = zfb.modulus_factor(pp, s)
+    assert mf == pytest.approx(1 + pp["kappa"] * (s.air_c - s.air_c[0])) and np.ptp(s.air_c) > 1.0
+    # flange gapping: no rotation below M_0, the excess about the moment's axis beyond
+    gp = P["flange_gapping"]
+    Mf = zfb.flange_moment(ctx, gp["m_kg"])
+    rot = zfb.gap_rotation(gp, ctx)
+    n = np.linalg.norm(Mf, axis=1)
+    assert (rot[n <= gp["M0"]] == 0).all() and (n > gp["M0"]).any()
+    assert np.linalg.norm(rot, axis=1) == pytest.approx(np.maximum(n - gp["M0"], 0.0))
+    # Peltier loop: the offset 1 at switch-on, swinging below the set point, decaying
+    lp = {"lead_s": 0.0, "period_s": 1200.0, "zeta": 0.1}
+    off = zft.peltier_offset(lp, np.array([0.0, 600.0, 1e6]))
+    assert off[0] == pytest.approx(1.0) and -1 < off[1] < 0 and abs(off[2]) < 1e-9
+    # marking pulses: each dwell's pulse decays by exp(-dt / tau), normalised to a peak of 1
+    T = zft.pulse_temperature({"tau_s": 100.0}, np.array([0.0, 100.0, 200.0]), np.array([2.0, 1.0, 5.0]))
+    raw = np.array([0.0, 2 * np.exp(-1), (2 * np.exp(-1) + 1) * np.exp(-1)])
+    assert T == pytest.approx(raw / raw.max())

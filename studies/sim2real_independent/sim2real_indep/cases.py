@@ -18,7 +18,8 @@ arm) a twenty-first (:mod:`effects_u`), set V (24 cases, 8 per arm) a twenty-sec
 cases, 8 per arm) a twenty-fifth (:mod:`effects_y`), set Z (24 cases, 8 per arm) a twenty-sixth (:mod:`effects_z`) and
 set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 cases, 8 per arm) a twenty-eighth
 (:mod:`effects_zb`), set ZC (24 cases, 8 per arm) a twenty-ninth (:mod:`effects_zc`), set ZD (24 cases, 8 per arm) a thirtieth
-(:mod:`effects_zd`). A case: (id, robot, physics
+(:mod:`effects_zd`), set ZE (24 cases, 8 per arm) a thirty-first (:mod:`effects_ze`), set ZF (24 cases, 8 per
+arm) a thirty-second (:mod:`effects_zf`). A case: (id, robot, physics
 kinds, poses, split).
 """
 
@@ -36,6 +37,7 @@ SEED_ZB = 40_7028
 SEED_ZC = 40_7029
 SEED_ZD = 40_7030
 SEED_ZE = 40_7031
+SEED_ZF = 40_7032
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1487,7 +1489,49 @@ SET_ZE = [
     ("ZE24", "kr16_like", ("rotary_clamp", "ringing_boom"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE)
+#: Set ZF (seed 40_7032): twelve new kinds, two per family (sim2real_indep.effects_zf; physics and sources in
+#: effects_zf_joint, effects_zf_body, effects_zf_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Every effect case is labelled its truth by the oracle (gains 21 % on ZF05 to 93 %
+#: on ZF12; the closest rivals ZF05's mount model at 1.27x, ZF01's link model at 1.31x; a mixture component's removal
+#: costs 28 % at least, ZF16's shelf bracket), the geometry-only cases none. Changed after trial draws (the modules'
+#: docstrings give the first ranges): the centring spring first held the output across 20-40 % of the largest torque
+#: (ZF02 and ZF17: the joint model at 1.07x and 1.08x -- a spring that stiff is a compliance), now 5-12 % (a soft
+#: spring); the repaired sector first 6-15 deg wide (ZF03: a gain of 9.5 %, few poses in it), now 12-25 deg (4-8 teeth);
+#: the Peltier loop first swung with a 12-30 min period and zeta 0.1-0.3 (ZF05 absorbed, 2.9 %: settled before the
+#: held-out last quarter), now 20-40 min and 0.05-0.15 (a loosely tuned loop); the bungee cord first also on kr16_like
+#: (ZF19: the link model at 1.08x, its near-vertical pull bending the long arm as gravity does), now on ur10 and
+#: tool_changer (ZF11; ZF19 carries the viscous crossing); the sagging disc first also on tool_changer (ZF11: the joint
+#: model at 1.17x, its axis-5 housing's attitude following the wrist's torque), now on kr16_like alone (ZF18). No seed was
+#: changed and no pose count to fix a label; ZF22 was first drawn with 120 poses (labelled its truth, 90 %) and set to 50
+#: for the layout's short effect case (46.7 %, the thermal model at 1.86x).
+SET_ZF = [
+    ("ZF01", "ur10", ("bungee_cord",), 130, "random"),
+    ("ZF02", "ur10", ("centring_spring",), 120, "random"),
+    ("ZF03", "ur10", ("repaired_sector",), 140, "random"),
+    ("ZF04", "ur10", ("shelf_bracket",), 120, "random"),
+    ("ZF05", "ur10", ("peltier_loop",), 150, "time"),
+    ("ZF06", "ur10", ("flange_gapping",), 110, "random"),
+    ("ZF07", "ur10", (), 60, "random"),
+    ("ZF08", "ur10", ("viscous_crossing", "marking_pulses"), 180, "time"),
+    ("ZF09", "tool_changer", ("warm_preload",), 160, "time"),
+    ("ZF10", "tool_changer", ("viscous_crossing",), 120, "random"),
+    ("ZF11", "tool_changer", ("bungee_cord",), 130, "random"),
+    ("ZF12", "tool_changer", ("shim_friction",), 140, "random"),
+    ("ZF13", "tool_changer", ("polymer_boom",), 150, "random"),
+    ("ZF14", "tool_changer", ("marking_pulses",), 150, "time"),
+    ("ZF15", "tool_changer", (), 40, "random"),
+    ("ZF16", "tool_changer", ("shelf_bracket", "repaired_sector"), 190, "random"),
+    ("ZF17", "kr16_like", ("centring_spring",), 120, "random"),
+    ("ZF18", "kr16_like", ("sagging_disc",), 130, "random"),
+    ("ZF19", "kr16_like", ("viscous_crossing",), 130, "random"),
+    ("ZF20", "kr16_like", ("shim_friction",), 140, "random"),
+    ("ZF21", "kr16_like", ("peltier_loop",), 160, "time"),
+    ("ZF22", "kr16_like", ("flange_gapping",), 50, "random"),
+    ("ZF23", "kr16_like", (), 90, "random"),
+    ("ZF24", "kr16_like", ("warm_preload", "polymer_boom"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1496,7 +1540,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
         "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
-        "ZE": (SET_ZE, SEED_ZE)}
+        "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -398,7 +398,21 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "noback_brake": "backlash", "disc_shift": "transmission", "reversal_counts": "transmission",
           "slender_pedestal": "mount_compliance", "slewing_rock": "mount_compliance",
           "shuttle_boom": "link_deflection", "ringing_boom": "link_deflection", "holding_heat": "thermal",
-          "pcm_tool": "thermal"}
+          "pcm_tool": "thermal",
+          # set ZF (sim2real_indep.effects_zf; bungee_cord, the gears twisted by an elastic cord's stretch towards an
+          # overhead eye, and warm_preload, joints stiffening as their preload grows with warming, scored as joint
+          # compliance; viscous_crossing, the output crossing its lash in the dwell against an oil film, and
+          # centring_spring, the output held inside its clearance by a centring spring, as backlash; repaired_sector, a
+          # re-cut sector of axis 1's gear, and sagging_disc, a wrist encoder disc sinking on its hub, as transmission;
+          # shelf_bracket, the base on a cantilevered shelf, and shim_friction, the base slipping on its shims, as mount
+          # compliance; polymer_boom, a printed boom softening as the air warms, and flange_gapping, a tool flange
+          # opening past its preload, as link deflection; peltier_loop, a bracket on a PID-run Peltier cooler, and
+          # marking_pulses, a bracket warmed by a marking laser's pulses, as thermal)
+          "bungee_cord": "joint_compliance", "warm_preload": "joint_compliance", "viscous_crossing": "backlash",
+          "centring_spring": "backlash", "repaired_sector": "transmission", "sagging_disc": "transmission",
+          "shelf_bracket": "mount_compliance", "shim_friction": "mount_compliance",
+          "polymer_boom": "link_deflection", "flange_gapping": "link_deflection", "peltier_loop": "thermal",
+          "marking_pulses": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

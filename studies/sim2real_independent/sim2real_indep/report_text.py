@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; all thirty-one: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; all thirty-two: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -406,6 +406,21 @@ on kr16_like (ZE24); a quadrature decoder gaining a count at each reversal of ax
 damped tool boom still ringing from the last stop, `none` on tool_changer (ZE14); a slewing ring's tilting clearance
 rocking the base towards the moment on kr16_like, named transmission, with a further effect the data cannot attribute
 to mount compliance, joint compliance or link deflection (ZE17).
+
+**Set ZF** (24 cases, seed 40_7032) is a thirty-second independent test set of twelve new kinds
+(`sim2real_indep/effects_zf*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZE, and who did not run the diagnosis. It was run once, on the
+code after set ZE had been judged, with one change since: the evidence-led first step asks for the small file's raised
+minimum gain too, where it asked for the 5 % margin alone (it changes none of the 134 cases of A-ZD with at most 90
+poses, nor set ZE). Set ZF: 17/24 strict, 18 lenient, no false claim, median final / oracle RMS 1.40; the code before
+the small-file rule diagnoses every ZF case the same; right on 9 of 14 effect cases where the true family's generic
+model helps, 5 of 7 where it does not. Its misses: a soft spring centring the output in its lash (ZF02 on ur10, named
+joint compliance; right on kr16_like); a welded and re-cut sector of axis 1's ring gear (ZF03), a wrist encoder disc
+sinking on its compliant hub (ZF18) and a Peltier bracket's PID loop settling as a damped oscillation on kr16_like
+(ZF21), `none`; bearing preload rising as the joint warms (ZF09, named thermal, with a further effect the data cannot
+attribute to joint compliance or link deflection); a bungee cord pulling towards an overhead eye on tool_changer,
+hedged between link deflection, joint compliance and transmission (ZF11, lenient); micro-slip in a shimmed base on
+kr16_like, named backlash (ZF20; on tool_changer named beside backlash, ZF12).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -948,6 +963,24 @@ comment):
 | ringing_boom | link_deflection | a lightly damped tool boom still vibrating from the last stop's deceleration when the tracker measures (tool_changer, kr16_like) | Singer & Seering, ASME J. Dyn. Syst. 112 (1990) |
 | holding_heat | thermal | the motors of axes 2 and 3 heating their links by the copper loss of the gravity torque they hold, through a lag, cooling in the pauses (tool_changer) | Hughes & Drury, *Electric Motors and Drives* (2013) ch. 9; Incropera & DeWitt ch. 5 |
 | pcm_tool | thermal | a tool head on a paraffin phase-change heat sink: its bracket warms, halts on a plateau while the wax melts, then warms on (all three arms) | Mehling & Cabeza, *Heat and Cold Storage with PCM* (2008); Voller, Numer. Heat Transfer B 17 (1990) |
+
+Set ZF's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZF
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| bungee_cord | joint_compliance | a rubber cord to an overhead eye pulling the tool with a tension k (|d| - L0), twisting the gears through J^T F (ur10, tool_changer) | Treloar, *The Physics of Rubber Elasticity* (1975); Craig ch. 5 |
+| warm_preload | joint_compliance | bearing and gear preload rising as the joint warms, so the joint's compliance falls over the session (tool_changer, kr16_like) | Stein & Tu, ASME J. Dyn. Syst. 116 (1994) |
+| viscous_crossing | backlash | an oil-bath gearbox whose output gravity pushes across the lash during the dwell, against the oil's drag (all three arms) | Hamrock, *Fundamentals of Fluid Film Lubrication* (1994) |
+| centring_spring | backlash | a soft spring centring the output in its clearance: the flank clip(tau / T_c, -1, 1), the motion's direction playing no part (ur10, kr16_like) | Slocum, *Precision Machine Design* (1992) |
+| repaired_sector | transmission | a welded and re-cut sector of axis 1's ring gear: one local bump of transmission error in the angle (ur10, tool_changer) | ISO 1328-1:2013 |
+| sagging_disc | transmission | a wrist encoder's thin disc sinking on its compliant hub, the head reading gravity's share across the axis (kr16_like) | encoder mounting practice (no specific citation) |
+| shelf_bracket | mount_compliance | the base on a steel shelf bracket cantilevered from a wall, turning and dropping under the arm's weight and moment, a new part each block (ur10, tool_changer) | Roark, *Formulas for Stress and Strain* table 8.1 |
+| shim_friction | mount_compliance | micro-slip in a shimmed base joint: the base tilts by the sign of the moment's change since the last pose (tool_changer, kr16_like) | Iwan, ASME J. Appl. Mech. 33 (1966); Segalman, ASME J. Appl. Mech. 72 (2005) |
+| polymer_boom | link_deflection | a printed PA12 tool boom sagging more as its modulus falls with the logged air temperature (tool_changer, kr16_like) | Ashby, *Materials Selection in Mechanical Design* (2011) (as recalled) |
+| flange_gapping | link_deflection | a bolted tool flange opening once the tool's moment exceeds its preload's limit: a threshold rotation (ur10, kr16_like) | VDI 2230 Part 1 (2015) |
+| peltier_loop | thermal | a Peltier-cooled bracket under a loosely tuned PID loop settling as a damped oscillation from its switch-on (not logged) (ur10, kr16_like) | Rowe, *CRC Handbook of Thermoelectrics* (1995); Astrom & Murray, *Feedback Systems* (2008) |
+| marking_pulses | thermal | a laser marker heating its bracket by one pulse per dwell, each decaying through the bracket's lag (ur10, tool_changer) | Incropera & DeWitt ch. 5 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
