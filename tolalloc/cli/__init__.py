@@ -72,15 +72,20 @@ def _unrecognized(parser: argparse.ArgumentParser, extras: list) -> str:
     return text
 
 
+def _version_text() -> str:
+    """What ``tolalloc --version`` prints."""
+    from tolalloc.version import package_version
+
+    return f"tolalloc {package_version()}"
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
         prog="tolalloc",
         description="Tolerance allocation, verification and sim-to-real diagnosis for serial robots. "
         "Units: lengths in mm, joint values in deg (revolute) and mm (prismatic).",
     )
-    from tolalloc.version import package_version
-
-    parser.add_argument("--version", action="version", version=f"tolalloc {package_version()}",
+    parser.add_argument("--version", action="version", version=_version_text(),
                         help="print the installed version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
@@ -180,9 +185,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run one command; returns the exit status (0 ok, 1 a requirement not met, 2 bad input, 130/143 interrupted)."""
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv[:1] == ["--version"]:  # answered before the commands' modules (and their numerical stack) are imported
-        from tolalloc.version import package_version
-
-        print(f"tolalloc {package_version()}")
+        print(_version_text())
         return 0
     from tolalloc.outputs import published, reservations
 

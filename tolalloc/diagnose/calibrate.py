@@ -362,6 +362,13 @@ def calibrate(robot: Robot, meas: Measurements, *, model: ErrorModel | None = No
 POSES_PER_PARAMETER = 10
 
 
+def is_small_file(n_poses: int, n_params: int) -> bool:
+    """Whether a training file is small: fewer than POSES_PER_PARAMETER poses per fitted parameter (registration,
+    offset, geometry). The robust loss (:func:`_loss_for_size`) and the selection's minimum gain
+    (:func:`small_file_min_gain`) both change there."""
+    return n_poses < POSES_PER_PARAMETER * n_params
+
+
 def small_file_min_gain(n_poses: int, n_params: int, min_gain: float) -> tuple[float, str]:
     """(minimum gain, note) of the effect selection on a training file of ``n_poses`` poses for ``n_params`` fitted
     parameters.
@@ -371,7 +378,7 @@ def small_file_min_gain(n_poses: int, n_params: int, min_gain: float) -> tuple[f
     errors); a gain within that spread is not a finding, however consistent its sign. The minimum gain is raised to
     that spread there; elsewhere ``min_gain`` is returned with an empty note.
     """
-    if n_poses >= POSES_PER_PARAMETER * n_params:
+    if not is_small_file(n_poses, n_params):
         return min_gain, ""
     spread = 1.0 / np.sqrt(6.0 * n_poses)
     if spread <= min_gain:
@@ -386,7 +393,7 @@ def small_file_min_gain(n_poses: int, n_params: int, min_gain: float) -> tuple[f
 def _loss_for_size(n_poses: int, n_params: int) -> tuple:
     """(loss, note) of ``loss="auto"``: Tukey's biweight, or Huber on a small file (fewer than POSES_PER_PARAMETER
     poses per parameter)."""
-    if n_poses >= POSES_PER_PARAMETER * n_params:
+    if not is_small_file(n_poses, n_params):
         return "tukey", ""
     return "huber", (f"robust loss: Huber in place of Tukey's biweight: {n_poses} training poses for {n_params} "
                      f"parameters (fewer than {POSES_PER_PARAMETER} per parameter), where a zero weight would drop "

@@ -189,7 +189,7 @@ def _select(ctx, alpha, min_gain, max_effects, seed, n_poses) -> dict:
     A selection step asks for ``min_gain``, raised on a small file of ``n_poses`` training poses
     (:func:`~.calibrate.small_file_min_gain`); the comparisons keep ``min_gain``, so that a small file's alternatives
     are not dropped from a tie by the stricter step."""
-    step_gain, ctx.min_gain_note = small_file_min_gain(n_poses, 9 + len(ctx.cal.geometric.geo_index), min_gain)
+    step_gain, gain_note = small_file_min_gain(n_poses, 9 + len(ctx.cal.geometric.geo_index), min_gain)
     with fit_counter(f"cross-validation ({ctx.train.n_poses:,} rows)"):
         nominal = evaluate(ctx, nominal=True)
         geometric = evaluate(ctx)
@@ -207,7 +207,7 @@ def _select(ctx, alpha, min_gain, max_effects, seed, n_poses) -> dict:
     swap = (lambda c: "+".join(("geometric", *(c.alternative if x == c.effect else x for x in final.effects))))
     pairs = [(final, evals[swap(c)], c.effect, c.alternative) for c in tied(comparisons)]
     return {"nominal": nominal, "geometric": geometric, "final": final, "chosen": chosen, "stages": stages,
-            "step_gain": step_gain, "messages": msgs, "comparisons": comparisons,
+            "step_gain": step_gain, "gain_note": gain_note, "messages": msgs, "comparisons": comparisons,
             "suggestions": separating_poses(ctx, pairs, evals, seed=seed) if pairs else None}
 
 
@@ -236,7 +236,7 @@ def _conclude(ctx, robot, train, test, cal, sel, where, sub, cv_train, subsample
     if noisy is not None:
         guards.append(noisy)
     extrap, unc, reg = _test_guards(ctx, robot, train, nominal, geometric, final, threads, guards)
-    ctx.robust_notes = _robust_baseline(ctx, cal, nominal, t_prior)
+    ctx.robust_notes = _robust_baseline(ctx, cal, nominal, t_prior, sel["gain_note"])
     tstats = scored_test_stats(nominal, geometric, final)
     untestable = tuple(e for e in final.effects if e in ctx.untestable)
     inconc = inconclusive_reasons(check, {"nominal": nominal, "geometric": geometric, "final": final}, cal, tstats,
@@ -270,11 +270,11 @@ def _downweighted(train, nominal: Evaluation, geometric: Evaluation, final: Eval
 BASELINE_MOVE = 0.10
 
 
-def _robust_baseline(ctx, cal, nominal: Evaluation, t_prior) -> list:
+def _robust_baseline(ctx, cal, nominal: Evaluation, t_prior, gain_note: str) -> list:
     """A guard when robust weighting moved the nominal baseline's test RMS by more than :data:`BASELINE_MOVE`
     against plain least squares (the improvements the summary prints are measured from that baseline), and the
     notes of a small file (the robust loss that fell back, the raised minimum gain)."""
-    out = [n for n in (cal.loss_note, ctx.min_gain_note) if n]
+    out = [n for n in (cal.loss_note, gain_note) if n]
     if ctx.test is None or cal.nominal.loss == "none":
         return out
     plain = fit_model(cal.nominal, ctx.train.q, ctx.train.xyz_mm, robust=False, t_prior=t_prior)

@@ -65,7 +65,6 @@ class _Context:
                  loss=None):
         self.cal, self.train, self.test, self.tol, self.test_frame = cal, train, test, tol, test_frame
         self.cv, self.t_prior, self.loss = cv, t_prior, loss
-        self.min_gain_note = ""  # why the selection's minimum gain was raised (.calibrate.small_file_min_gain)
         self.register_update = "frame"  # ``refit``: frame-only re-registration, or "calibration" (.recalibrate)
         self.J_fixed = fixed_jacobian(cal.geometric, train.q, train.xyz_mm)
         k = fold_count(folds, *self.J_fixed.shape)
