@@ -4,6 +4,7 @@ joints, lost motion seen by the accuracy and not by the repeatability, and the r
 
 import copy
 from dataclasses import replace
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -259,10 +260,40 @@ def test_the_acceptance_allocation_budgets_the_bought_parts(ur10_drives):
     with pytest.raises(TolallocError, match="mean error alone .* reaches the limit 0.05 mm"):
         _allocate(ur10_drives, 0.05, choice, n_robots=2)
     with pytest.raises(TolallocError, match="parts: expected a choice"):
-        _allocate(ur10_drives, 0.6, "HD-CSG-32-100", n_robots=2)
+        _allocate(ur10_drives, 0.6, 32, n_robots=2)
 
 
-def test_the_command_line_passes_the_parts_to_the_acceptance_job(monkeypatch, capsys):
+def test_the_parts_a_design_chose_carry_over_to_the_acceptance_job(ur10_drives, tmp_path):
+    """The parts of a design with bought parts -- its result or the parts.csv it saved -- are the acceptance job's
+    choice, the same as the dict; ``parts=True`` where the robot file offers options, and a parts table that names no
+    choice, are refused with what to do."""
+    import pandas as pd
+
+    import tolalloc
+    from tolalloc.workflows.parts import PartsToleranceAllocation
+
+    choice = ur10_drives[3]
+    table = pd.DataFrame([{"joint": j, "kind": k, "part": p, "family": "x", "cost": 1.0} for (j, k), p in
+                          choice.items()])
+    table.to_csv(tmp_path / "parts.csv", index=False)
+    design = PartsToleranceAllocation(result=SimpleNamespace(choice=choice), radius_mm=0.75, prob=0.95, label="box")
+    ref = _allocate(ur10_drives, 0.6, choice, n_robots=2)
+    for source in (tmp_path / "parts.csv", str(tmp_path / "parts.csv"), design):
+        res = _allocate(ur10_drives, 0.6, source, n_robots=2)
+        assert res.cost == pytest.approx(ref.cost, rel=1e-9) and res.inputs["parts"] == ref.inputs["parts"]
+    with pytest.raises(tolalloc.ArgumentError, match=r"^parts: robot 'ur10' offers a choice in \d+ catalogue slot\(s\) "
+                                                     r"no part is named for: .*The ISO 9283 job does not choose parts"):
+        _allocate(ur10_drives, 0.6, True, n_robots=2)
+    table.iloc[:1].assign(part="other").pipe(lambda t: pd.concat([table, t])).to_csv(tmp_path / "twice.csv",
+                                                                                     index=False)
+    table.drop(columns="part").to_csv(tmp_path / "nopart.csv", index=False)
+    for name, message in (("twice.csv", "is chosen twice"), ("nopart.csv", "missing part"),
+                          ("absent.csv", "does not exist")):
+        with pytest.raises(tolalloc.ArgumentError, match=f"^parts: .*{message}"):
+            _allocate(ur10_drives, 0.6, tmp_path / name, n_robots=2)
+
+
+def test_the_command_line_passes_the_parts_to_the_acceptance_job(monkeypatch, capsys, tmp_path):
     """``allocate --requirement FILE``: ``--part JOINT.KIND=NAME`` (repeated) is the choice, ``--parts`` alone the
     robot file's parts; malformed parts, the design's conditions and ``--part`` without a requirement file are
     refused (exit 2)."""
@@ -295,3 +326,13 @@ def test_the_command_line_passes_the_parts_to_the_acceptance_job(monkeypatch, ca
     assert main(["allocate", "ur10", "--part", "elbow_joint.encoder=RING-100-STD"]) == 2
     assert "applies to --requirement" in capsys.readouterr().err
     assert len(seen) == 3
+    # --parts-file: a design's parts.csv, --part overriding one of its slots
+    (tmp_path / "parts.csv").write_text("joint,kind,part,cost\nelbow_joint,encoder,RING-100-STD,3\n"
+                                        "elbow_joint,bearing,ISO492-P5,2\n")
+    assert main(base + ["--parts-file", str(tmp_path / "parts.csv"), "--part", "elbow_joint.bearing=ISO492-P4"]) == 0
+    assert seen[-1]["parts"] == {("elbow_joint", "encoder"): "RING-100-STD", ("elbow_joint", "bearing"): "ISO492-P4"}
+    capsys.readouterr()
+    assert main(["allocate", "ur10", "--parts-file", str(tmp_path / "parts.csv")]) == 2
+    assert "error: --parts-file: applies to --requirement" in capsys.readouterr().err
+    assert main(base + ["--parts-file", str(tmp_path / "none.csv")]) == 2
+    assert "error: --parts-file: " in capsys.readouterr().err and len(seen) == 4

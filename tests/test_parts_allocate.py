@@ -88,6 +88,10 @@ def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
                                                      r"0.9\d+ mm at point \d \(payload 1 kg, ambient 15 degC\), at or "
                                                      r"above the radius 0.01 mm: compensate it \(`after='compensation'`"):
         allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.01, exact=False)
+    # stated after compensation already, the advice is to compensate more, not to turn it on
+    with pytest.raises(tolalloc.TolallocError, match=r"above the radius 0.001 mm: compensate more \(a smaller "
+                                                     r"residual\), choose stiffer parts"):
+        allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.001, after="compensation", exact=False)
 
 
 def test_calibration_aware_allocation_sees_the_parts(setup):

@@ -48,7 +48,7 @@ def _solve_points(model, robot, points, cond, kw, first: int = 0) -> tuple:
         ob = option_blocks(robot, model, points, combos[c], cond, kw["after"], kw["residual"])
         try:
             pr = parts_problem(model, points, ob.fixed_cov, ob.bias_mm, radius_mm=kw["radius_mm"], prob=kw["prob"],
-                               costs=kw["costs"])
+                               costs=kw["costs"], after=kw["after"])
         except TolallocError as exc:  # this combination's mean alone reaches the radius
             notes.append(str(exc))
             continue
@@ -71,7 +71,7 @@ def _best_reachable(model, robot, points, cond, kw) -> str:
     for combo in signature_combos(robot):
         ob = option_blocks(robot, model, points, combo, cond, kw["after"], kw["residual"])
         pr = parts_problem(model, points, ob.fixed_cov, ob.bias_mm, radius_mm=kw["radius_mm"], prob=kw["prob"],
-                           costs=kw["costs"])
+                           costs=kw["costs"], after=kw["after"])
         part = _finest_parts(ob, _scaled(pr, ob))
         for rule in kw["rules"]:
             r = float(parts_ratio(pr, ob, rule, pr.u_min, part)[0])
@@ -191,7 +191,7 @@ def _finish(robot, model, out: PartsOutcome, ob, pr, cat, points, worst: WorstPo
     choice = ob.choice(out.part)
     extra = ob.fixed_cov + ob.cov[out.part].sum(axis=0)
     final = parts_problem(model, points, extra, ob.bias_mm, radius_mm=kw["radius_mm"], prob=kw["prob"],
-                          costs=kw["costs"])
+                          costs=kw["costs"], after=kw["after"])
     t = final.t_from_u(cat.u_of(out.opt, out.n))
     solver = Solver.DISCRETE_TRACE if out.rule == "trace" else Solver.DISCRETE_LMI
     design = make_design(final, solver, t, time_s=out.time_s, message=out.message,

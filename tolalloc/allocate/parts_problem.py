@@ -73,9 +73,11 @@ class PartsProblem(AllocationProblem):
         return (super().covariances(t, rows) + self.extra_cov) * self.scale[:, None, None]
 
 
-def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float, prob: float, costs) -> PartsProblem:
+def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float, prob: float, costs,
+                  after: str = "none") -> PartsProblem:
     """The machining problem at ``points`` with the parts' covariance and mean (raises where the mean alone reaches
-    the radius: no covariance can meet the requirement there)."""
+    the radius: no covariance can meet the requirement there; ``after``, the compensation the mean is stated after,
+    chooses the advice)."""
     base = build_problem(model, points.q, radius_mm=radius_mm, prob=prob, costs=costs)
     b = np.linalg.norm(bias_mm, axis=1)
     bad = np.flatnonzero(b >= radius_mm)
@@ -83,8 +85,10 @@ def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float
         i = int(bad[np.argmax(b[bad])])
         raise TolallocError(f"the bought parts' mean error alone is {b[i]:.4g} mm at point {i + 1} (payload "
                             f"{points.payload_kg[i]:g} kg, ambient {points.ambient_c[i]:g} degC), at or above the "
-                            f"radius {radius_mm:g} mm: compensate it (`after='compensation'`, or a smaller residual), "
-                            "choose stiffer parts, or relax the radius")
+                            f"radius {radius_mm:g} mm: "
+                            + ("compensate it (`after='compensation'`, or a smaller residual)" if after == "none"
+                               else "compensate more (a smaller residual)")
+                            + ", choose stiffer parts, or relax the radius")
     s = (radius_mm / (radius_mm - b)) ** 2
     blk = dict(base.blocks[0])
     blk["A"] = blk["A"] * s[:, None, None, None]

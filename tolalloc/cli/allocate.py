@@ -111,6 +111,9 @@ def _add_parts_args(p) -> None:
                        help="with --requirement: the catalogue part of one slot in the ISO 9283 acceptance test (e.g. "
                        "elbow_joint.encoder=RING-100-STD), repeated per slot; slots of one part need none. With "
                        "--requirement, --parts alone takes the parts the robot file names")
+    parts.add_argument("--parts-file", metavar="PARTS.csv", default=None,
+                       help="with --requirement: the parts a design with bought parts chose (the parts.csv of "
+                       "`allocate ROBOT --parts --out DIR`) in the ISO 9283 acceptance test; --part overrides a slot")
     parts.add_argument("--payload-kg", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
                        help="with --parts: payload range [kg] (default 0 to the robot's rated payload)")
     parts.add_argument("--ambient-c", type=float, nargs=2, metavar=("LOW", "HIGH"), default=None,
@@ -140,9 +143,10 @@ def settings(args) -> dict:
                                        D.PROB if args.prob is None else args.prob)]
     if args.angle_radius_deg is not None:
         requirement.append(OrientationRequirement(args.angle_radius_deg, args.angle_prob))
-    if args.part:
-        raise ArgumentError("part", "applies to --requirement (the parts in the ISO 9283 acceptance test); the design "
-                            "with --parts chooses the parts itself.")
+    for flag, value in (("part", args.part), ("parts_file", args.parts_file)):
+        if value:
+            raise ArgumentError(flag, "applies to --requirement (the parts in the ISO 9283 acceptance test); the "
+                                "design with --parts chooses the parts itself.")
     kw = {"parts": _parts(args) or True} if args.parts else {}
     for flag, value in (("payload_kg", args.payload_kg), ("ambient_c", args.ambient_c), ("duty", args.duty),
                         ("process_force_n", args.process_force_n), ("process_torque_nm", args.process_torque_nm),
@@ -169,8 +173,8 @@ def _parts(args) -> dict:
 
 
 def _acceptance_parts(args):
-    """``parts`` of the ISO 9283 job: ``{(joint, kind): name}`` from ``--part``, True with ``--parts`` alone, else
-    None. The design's conditions (payload, ambient, duty, process wrench) do not apply: the test load is the
+    """``parts`` of the ISO 9283 job: ``{(joint, kind): name}`` from ``--parts-file`` and ``--part`` (which overrides
+    the file's slot), True with ``--parts`` alone, else None. The design's conditions (payload, ambient, duty, process wrench) do not apply: the test load is the
     requirement's."""
     from tolalloc.exceptions import ArgumentError
 
@@ -180,10 +184,12 @@ def _acceptance_parts(args):
         raise ArgumentError({"after": "after_compensation"}.get(key, key), "does not apply to --requirement: the "
                             "acceptance test's load is the requirement's (its conditions' load_pct of the rated "
                             "payload).")
-    if not args.part:
+    if not args.part and args.parts_file is None:
         return True if args.parts else None
-    choice = {}
-    for text in args.part:
+    from tolalloc.workflows.parts import read_parts_choice
+
+    choice = {} if args.parts_file is None else read_parts_choice(args.parts_file, "parts_file")
+    for text in args.part or ():
         slot, _, name = text.partition("=")
         joint, _, kind = slot.rpartition(".")
         if not (joint and kind and name):

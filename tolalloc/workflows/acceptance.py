@@ -12,6 +12,7 @@ stages; this module wires them.
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -56,11 +57,13 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
         (the :class:`~tolalloc.workflows.Verification`'s ``seed``).
     n_robots : int
         Robots of the simulated acceptance test (default 2000).
-    parts : dict or True, optional
+    parts : dict, True, PartsToleranceAllocation, str or path, optional
         The bought parts in the test (:mod:`tolalloc.acceptance.parts`): a choice ``{(joint, kind): part}`` of the
-        robot's catalogue slots, or ``True`` for the parts its file names (every slot one part). Their effects under
-        the test load enter the allocation (their mean as a shorter limit), the predicted and the simulated test.
-        Default: the error model alone.
+        robot's catalogue slots; ``True`` for the parts its file names (every slot one part); or the parts a design
+        with bought parts chose -- its result (``allocate_tolerances(..., parts=...)``) or the ``parts.csv`` it saved
+        (:func:`~tolalloc.workflows.parts.read_parts_choice`). This job does not choose parts itself. Their effects
+        under the test load enter the allocation (their mean as a shorter limit), the predicted and the simulated
+        test. Default: the error model alone.
 
     Returns
     -------
@@ -82,6 +85,7 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
     if solver not in ("exact", "certified"):
         raise ArgumentError("solver", f"expected 'exact' or 'certified', got {solver!r}.")
     rob = inputs.as_robot(robot, tool=tool, trust_units=trust_units)
+    parts = _choice(parts)
     rob, effects = _parts(rob, parts)
     model = inputs.error_model(rob, sigma_set=em.sigma_set, link_mode=em.link_mode, deflection_mode=em.deflection_mode,
                                clearance=em.clearance, exclude=em.exclude)
@@ -124,18 +128,42 @@ def _stiffness(robot, test, effects):
     return static_compliance(robot, test.q_test[0])
 
 
+def _choice(parts):
+    """``parts`` as the job uses it: None, True or a ``{(joint, kind): part}`` choice (a design with bought parts,
+    its result or its parts table, read into one)."""
+    from tolalloc.workflows.parts import PartsToleranceAllocation, read_parts_choice
+
+    if parts is None or parts is False or parts is True or isinstance(parts, dict):
+        return parts
+    if isinstance(parts, PartsToleranceAllocation):
+        return dict(parts.choice)
+    if isinstance(parts, (str, os.PathLike)):
+        return read_parts_choice(parts)
+    raise ArgumentError("parts", f"expected a choice {{(joint, kind): part name}} of the robot's catalogue slots, True "
+                                 "(the parts its file names), a design with bought parts or the parts.csv it saved, got "
+                                 f"{inputs.shown(parts)}.")
+
+
 def _parts(robot, parts) -> tuple:
     """``(robot, effects)``: the robot with the chosen parts and their :func:`~tolalloc.acceptance.parts.
     parts_effects`, or ``(robot, None)`` without ``parts``."""
     if parts is None or parts is False:
         return robot, None
-    if parts is not True and not isinstance(parts, dict):
-        raise ArgumentError("parts", f"expected a choice {{(joint, kind): part name}} of the robot's catalogue slots "
-                                     f"or True (the parts its file names), got {parts!r}.")
     from tolalloc.acceptance.parts import parts_effects
     from tolalloc.errormodel.parts import with_parts
 
-    return with_parts(robot, {} if parts is True else parts), parts_effects()
+    choice = {} if parts is True else parts
+    open_slots = [f"{j}.{kind} ({' | '.join(o.name for o in slot.options)})"
+                  for (j, kind), slot in sorted(robot.components.slots.items())
+                  if len(slot.options) > 1 and (j, kind) not in choice]
+    if open_slots:
+        raise ArgumentError("parts", f"robot {robot.name!r} offers a choice in {len(open_slots)} catalogue slot(s) "
+                            f"no part is named for: {'; '.join(open_slots)}. The ISO 9283 job does not choose parts: "
+                            "name one per slot ({(joint, kind): part} in Python, --part JOINT.KIND=NAME on the command "
+                            "line), or pass the parts a design with bought parts chose (allocate_tolerances(robot, "
+                            "parts=True), tolalloc allocate ROBOT --parts --out DIR): its result or its parts.csv "
+                            "(--parts-file DIR/parts.csv).")
+    return with_parts(robot, choice), parts_effects()
 
 
 def _part_names(robot, parts) -> dict:
@@ -257,6 +285,11 @@ class AcceptanceAllocation(JobResult):
     def ok(self) -> bool:
         """A design was found and its robots meet every ISO 9283 requirement at its share (the prediction)."""
         return self.result.status == "optimal" and self.prediction is not None and self.prediction.met
+
+    @property
+    def cost(self) -> float:
+        """Cost of the design to build (``result.built``)."""
+        return float(self.result.built.cost)
 
     @property
     def demonstrated(self) -> bool:

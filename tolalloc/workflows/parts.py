@@ -4,15 +4,20 @@ together (:func:`tolalloc.verify.parts.verified_parts`), on the shared result pr
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pandas as pd
 
+from tolalloc.exceptions import ArgumentError
 from tolalloc.outputs import json_native, write_json
 from tolalloc.workflows.base import JobResult
 
-__all__ = ["PartsToleranceAllocation"]
+__all__ = ["PartsToleranceAllocation", "read_parts_choice"]
+
+#: The columns of a parts table that name a choice (``parts.csv`` of a design with bought parts).
+CHOICE_COLUMNS = ("joint", "kind", "part")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -115,6 +120,51 @@ class PartsToleranceAllocation(JobResult):
             frame.to_csv(folder / name, index=False, float_format="%.8g")
         write_json(self.summary(), folder / "summary.json")
         return [*files, "summary.json"]
+
+
+def read_parts_choice(source, argument: str = "parts") -> dict:
+    """``{(joint, kind): part name}`` from the parts table of a design with bought parts.
+
+    Parameters
+    ----------
+    source : str, os.PathLike or pandas.DataFrame
+        The ``parts.csv`` that ``allocate_tolerances(..., parts=...)`` saves (``tolalloc allocate ROBOT --parts --out
+        DIR``), or its ``to_frame()``: one row per catalogue slot, columns ``joint``, ``kind``, ``part`` (others are
+        ignored).
+    argument : str
+        The argument's name in the errors.
+    """
+    if isinstance(source, pd.DataFrame):
+        frame, where = source, "the table"
+    elif isinstance(source, (str, os.PathLike)) and str(source).strip():
+        where = repr(str(source))
+        if not Path(source).is_file():
+            raise ArgumentError(argument, f"{where} does not exist; expected the parts.csv of a design with bought "
+                                "parts (tolalloc allocate ROBOT --parts --out DIR writes DIR/parts.csv).")
+        try:
+            frame = pd.read_csv(source, dtype=str, keep_default_na=False, skipinitialspace=True, encoding="utf-8-sig")
+        except (ValueError, OSError, UnicodeDecodeError) as exc:
+            raise ArgumentError(argument, f"{where}: cannot read the CSV ({exc}).") from None
+    else:
+        raise ArgumentError(argument, f"expected a parts table: a path to a parts.csv or a DataFrame, got "
+                            f"{type(source).__name__}.")
+    frame = frame.set_axis([str(c).strip() for c in frame.columns], axis=1)
+    missing = [c for c in CHOICE_COLUMNS if c not in frame.columns]
+    if missing:
+        raise ArgumentError(argument, f"{where}: expected the columns {', '.join(CHOICE_COLUMNS)} (the parts.csv of a "
+                            f"design with bought parts); missing {', '.join(missing)}.")
+    choice = {}
+    for i, row in enumerate(frame[list(CHOICE_COLUMNS)].astype(str).itertuples(index=False), start=1):
+        joint, kind, part = (v.strip() for v in row)
+        if not (joint and kind and part):
+            raise ArgumentError(argument, f"{where}, row {i}: expected a joint, a kind and a part, got "
+                                f"{joint!r}, {kind!r}, {part!r}.")
+        if choice.setdefault((joint, kind), part) != part:
+            raise ArgumentError(argument, f"{where}, row {i}: slot {joint}.{kind} is chosen twice ({choice[(joint, kind)]}"
+                                f" and {part}); keep one row per slot.")
+    if not choice:
+        raise ArgumentError(argument, f"{where}: no rows; expected one row per catalogue slot.")
+    return choice
 
 
 def _process(c) -> str:
