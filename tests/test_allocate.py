@@ -6,7 +6,7 @@ from scipy.stats import chi2, norm
 
 from tolalloc import TolallocError, load_robot
 from tolalloc.allocate import allocate, build_problem
-from tolalloc.allocate.problem import check_process_limits
+from tolalloc.allocate.limits import check_process_limits
 from tolalloc.allocate.convex import solve_rule
 from tolalloc.allocate.exact import solve_exact
 from tolalloc.errormodel import build_error_model

@@ -30,7 +30,8 @@ import pandas as pd
 
 from tolalloc import load_robot
 from tolalloc.allocate import allocate, build_problem
-from tolalloc.allocate.problem import check_process_limits, make_design
+from tolalloc.allocate.limits import check_process_limits
+from tolalloc.allocate.problem import make_design
 from tolalloc.units import in_row_unit
 from tolalloc.allocate.region import allocate_region, box_region, coverage
 from tolalloc.errormodel import build_error_model

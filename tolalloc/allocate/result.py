@@ -10,7 +10,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
-from tolalloc.allocate.problem import AllocationProblem, Design, LimitReport, make_design
+from tolalloc.allocate.limits import LimitReport
+from tolalloc.allocate.problem import AllocationProblem, Design, make_design
 from tolalloc.linear.covariance import variance_share
 
 __all__ = ["AllocationResult", "snap_design", "parameter_columns"]

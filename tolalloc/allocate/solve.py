@@ -12,7 +12,8 @@ import numpy as np
 from tolalloc.allocate.convex import solve_certified
 from tolalloc.allocate.discretize import discretize
 from tolalloc.allocate.exact import solve_exact
-from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Solver, check_process_limits, make_design
+from tolalloc.allocate.limits import check_process_limits
+from tolalloc.allocate.problem import NOT_CONVERGED, AllocationProblem, Solver, make_design
 from tolalloc.allocate.result import AllocationResult, snap_design
 from tolalloc.exceptions import TolallocError, describe
 
