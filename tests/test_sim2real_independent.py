@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4631,7 +4631,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF"))
+    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4778,7 +4778,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s != "ZF")
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4899,3 +4899,150 @@ def test_set_zf_every_kind_lies_in_its_true_structure_and_known_answers():
     T = zft.pulse_temperature({"tau_s": 100.0}, np.array([0.0, 100.0, 200.0]), np.array([2.0, 1.0, 5.0]))
     raw = np.array([0.0, 2 * np.exp(-1), (2 * np.exp(-1) + 1) * np.exp(-1)])
     assert T == pytest.approx(raw / raw.max())
+
+
+# --------------------------------------------------------------------------------------------------------- set ZG
+ZG_KINDS = ("gravcomp_payload", "taut_harness", "tilt_flank", "coast_flank", "chipped_pinion", "missing_pin",
+            "settlement_tilt", "bolt_relaxation", "beam_column", "leaf_boom", "drying_film", "rotary_union")
+
+
+def test_set_zg_cases_kinds_and_determinism():
+    """Set ZG (the seventh two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZF; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZG kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; a new part for
+    each block (the payload mismatch, the beam-column boom) and hours of paused blocks (the time-driven kinds)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zg as ezg
+    from sim2real_indep import effects_zg_body as zgb
+    from sim2real_indep import effects_zg_thermal as zgt
+
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s != "ZG")
+    assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
+    _assert_set_module("ZG", 40_7033, ezg, ("gear", "tether_reel", "moisture_swell", "marking_pulses"))
+    for name in ("effects_zg", "effects_zg_joint", "effects_zg_body", "effects_zg_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zg" in _imports(STUDY / "generator.py")
+    assert ezg.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezg.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezg.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), pause) in ezg.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        plain = opts(("taut_harness", "tilt_flank", "coast_flank", "chipped_pinion", "missing_pin", "bolt_relaxation",
+                      "leaf_boom"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezg.probe_hook(("gear",), probe) is probe
+    assert ezg.probe_hook(("beam_column",), probe) == pytest.approx(probe + [zgb.BOOM_MM, 0, 0])
+    assert ezg.probe_hook(("leaf_boom",), probe) == pytest.approx(probe + [zgb.BOOM_MM, 0, 0])
+    assert ezg.probe_hook(("rotary_union",), probe) == pytest.approx(probe + [0, 0, zgt.BRACKET_MM])
+    _assert_regenerates("ZG", max_effect_poses=50)
+
+
+def test_set_zg_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZG kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the payload torque per kg (the loads' share
+    of the part), the harness's progressive pull past its slack, the wedge's gravity and axis 1's flank, the coast
+    flank's speed threshold, the chipped tooth's dip, the missing pin's pulse, the settlement's growth in time, the
+    bolts' relaxation factor, the beam-column's amplification, the leaf's principal axes, the drying film's recovery and
+    the rotary union's heat per turn."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zg_body as zgb
+    from sim2real_indep import effects_zg_joint as zgj
+    from sim2real_indep import effects_zg_thermal as zgt
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZG_KINDS, 30, 33)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZG_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"gravcomp_payload": lambda: p["c"], "taut_harness": lambda: p["ck"], "tilt_flank": lambda: p["half"],
+                   "coast_flank": lambda: p["half"], "chipped_pinion": lambda: p["e"], "missing_pin": lambda: p["k"],
+                   "settlement_tilt": lambda: p["rate"], "bolt_relaxation": lambda: p["C"],
+                   "beam_column": lambda: p["inv_EI"], "leaf_boom": lambda: p["inv_EI"],
+                   "drying_film": lambda: [p["amp"]], "rotary_union": lambda: [p["amp"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # gravity-compensation mismatch: the per-kg payload torque times the part is the loads' share of the part, and
+    # nothing deflects when the part is the declared load
+    t1 = zgj.payload_torque_per_kg(ctx) * s.payload_kg[:, None]
+    empty = replace(ctx, session=replace(s, payload_kg=np.zeros(len(s.payload_kg))))
+    assert t1 == pytest.approx(ctx.loads - empty.loads, abs=1e-9) and len(set(s.payload_kg)) > 1
+    gp = P["gravcomp_payload"]
+    at_decl = replace(ctx, session=replace(s, payload_kg=np.full(len(s.payload_kg), gp["m_decl_kg"])))
+    assert np.abs(zgj.gravcomp_features(gp, at_decl, None)).max() == 0
+    # taut harness: nothing inside the slack, the square of the excess beyond it, opposing it
+    assert zgj.harness_stretch({"q_t": 1.0}, np.array([0.0, 1.0, 1.5, 3.0])) == pytest.approx([0, 0, -0.25, -4.0])
+    # tilt flank: a level base has no gravity torque on axis 1 (flank trails the motion); the wedge's gravity is a unit
+    # vector alpha off the vertical
+    tp = P["tilt_flank"]
+    assert zgj.tilt_gravity({**tp, "alpha": 0.0}) == pytest.approx([0, 0, -1])
+    assert zgj.tilt_gravity(tp) @ [0, 0, -1] == pytest.approx(np.cos(tp["alpha"]))
+    assert np.abs(zgj.tilt_torque({**tp, "alpha": 0.0}, ctx)).max() < 1e-9
+    assert zgj.tilt_flank({**tp, "alpha": 0.0}, ctx) == pytest.approx(-s.direction[:, 0])
+    tau1 = zgj.tilt_torque(tp, ctx)
+    f = zgj.tilt_flank(tp, ctx)
+    out = np.abs(tau1) > tp["T_f"]
+    assert out.any() and (~out).any() and (f[out] == np.sign(tau1[out])).all()
+    # coast flank: the move's mean speed; beyond the friction the gravity flank, inside it leading above v_c
+    v = zgj.move_speed(s, 1)
+    assert v[0] == 0 and v[1:] == pytest.approx(np.abs(np.diff(s.q[:, 1])) / s.move_s[1:])
+    d1 = s.direction[:, 1]
+    assert zgj.coast_flank(ctx, 1, np.inf, -1.0) == pytest.approx(d1)
+    assert zgj.coast_flank(ctx, 1, np.inf, np.inf) == pytest.approx(-d1)
+    assert zgj.coast_flank(ctx, 1, 0.0, 0.0) == pytest.approx(np.sign(ctx.loads[:, 1]))
+    # chipped pinion: a dip of 1 where the chipped tooth meshes, 1/2 half a span away, none beyond, once per pinion turn
+    cp = P["chipped_pinion"]
+    q0 = -cp["phase"] / cp["ratio"]
+    qs = q0 + np.array([0.0, cp["h"] / 2, 1.01 * cp["h"], 2 * np.pi]) / cp["ratio"]
+    assert zgj.chip_dip(cp, qs) == pytest.approx([1.0, 0.5, 0.0, 1.0])
+    # missing pin: a pulse of 1 at the pin, exp(-2 / w^2) opposite, once per crank turn
+    mp = P["missing_pin"]
+    q0 = -mp["phi"] / (mp["z_p"] - 1)
+    qs = q0 + np.array([0.0, np.pi, 2 * np.pi]) / (mp["z_p"] - 1)
+    assert zgj.pin_pulse(mp, qs) == pytest.approx([1.0, np.exp(-2 / mp["w"] ** 2), 1.0])
+    # settlement: nothing at the session's start, growing in proportion to the time
+    F = zgb.settle_features(P["settlement_tilt"], ctx, None)
+    assert np.abs(F[:, 0]).max() == 0 and np.ptp(s.time_s) > 3600
+    # bolt relaxation: 1 at the start, 1 + beta ln 2 at t0
+    rp = P["bolt_relaxation"]
+    rf = zgb.relax_factor(rp, replace(s, time_s=np.array([0.0, rp["t0_s"]])))
+    assert rf == pytest.approx([1.0, 1 + rp["beta"] * np.log(2)])
+    # beam-column: 1 / (1 - P / P_cr), P the weight along the boom (compression when it points up)
+    bp = P["beam_column"]
+    e = zgb.boom_axis(ctx)[:, :, 0]
+    comp = (s.payload_kg + bp["boom_kg"] / 2) * zgb.G * -e[:, 2]
+    amp = zgb.amplification(bp, ctx)
+    assert amp == pytest.approx(1 / (1 - comp / bp["P_cr"])) and (amp[e[:, 2] > 0.1] < 1).all()
+    # leaf boom: deflection across the boom; a square bar (ratio 1) deflects along the weight's component across it
+    lp = P["leaf_boom"]
+    Fl = zgb.leaf_features(lp, ctx, None)[0]
+    assert np.einsum("pi,pi->p", Fl, e) == pytest.approx(np.zeros(len(e)), abs=1e-9)
+    iso = zgb.leaf_features({**lp, "ratio": 1.0}, ctx, None)[0]
+    g = np.array([0.0, 0.0, -1.0])
+    assert iso == pytest.approx((g - e * (e @ g)[:, None]) * zgb.BOOM_MM ** 4 / 8e9)
+    # drying film: the links at the full depression at the start, recovering once the film has dried
+    fp = P["drying_film"]
+    T = zgt.film_temperature(fp, np.linspace(0.0, fp["t_dry_s"] + 30 * fp["tau_s"], 4000))
+    assert T[0] == pytest.approx(-1.0) and (np.diff(T) >= -1e-12).all() and abs(T[-1]) < 1e-6
+    # rotary union: each move's |dq6| of heat decays by exp(-dt / tau), normalised to a peak of 1
+    U = zgt.union_temperature({"tau_s": 100.0}, np.array([0.0, 2.0, 1.0]), np.array([0.0, 100.0, 200.0]))
+    raw = np.array([0.0, 2 * np.exp(-1), (2 * np.exp(-1) + 1) * np.exp(-1)])
+    assert U == pytest.approx(raw / raw.max())

@@ -19,8 +19,8 @@ cases, 8 per arm) a twenty-fifth (:mod:`effects_y`), set Z (24 cases, 8 per arm)
 set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 cases, 8 per arm) a twenty-eighth
 (:mod:`effects_zb`), set ZC (24 cases, 8 per arm) a twenty-ninth (:mod:`effects_zc`), set ZD (24 cases, 8 per arm) a thirtieth
 (:mod:`effects_zd`), set ZE (24 cases, 8 per arm) a thirty-first (:mod:`effects_ze`), set ZF (24 cases, 8 per
-arm) a thirty-second (:mod:`effects_zf`). A case: (id, robot, physics
-kinds, poses, split).
+arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-third (:mod:`effects_zg`).
+A case: (id, robot, physics kinds, poses, split).
 """
 
 from __future__ import annotations
@@ -38,6 +38,7 @@ SEED_ZC = 40_7029
 SEED_ZD = 40_7030
 SEED_ZE = 40_7031
 SEED_ZF = 40_7032
+SEED_ZG = 40_7033
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1531,7 +1532,54 @@ SET_ZF = [
     ("ZF24", "kr16_like", ("warm_preload", "polymer_boom"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF)
+#: Set ZG (seed 40_7033): twelve new kinds, two per family (sim2real_indep.effects_zg; physics and sources in
+#: effects_zg_joint, effects_zg_body, effects_zg_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth (gains 22 % on ZG18 to 90 % on ZG08; the closest rivals ZG17's transmission model and ZG18's thermal
+#: model, both at 1.27x; a mixture component's removal costs 32 % at least, ZG16's drying film), the geometry-only
+#: cases none. Changed after trial draws (the modules' docstrings give the first ranges): the bolts' relaxation first
+#: grew the compliance by beta 0.2-0.5 of a near-isotropic C (ZG22 absorbed, 4.6 %: an isotropic tilt following the
+#: moment turns the arm in its own plane as a joint-2 offset does), now 0.8-1.5 (a plate embedding into a soft pad) and
+#: an anisotropic C (one bolt row relaxing); on tool_changer it stayed at 20-32 % with the thermal model at 1.14-1.21x
+#: (its moment varies little, so the growth is a near-uniform drift in time), so it moved to ur10 (ZG08, with the coast
+#: flank) and tool_changer took the settlement (ZG09); the taut harness first pulled linearly past the 70-85 % quantile
+#: of axis 1 (ZG17: the transmission model at 1.15x -- a long ramp over +-90 deg is nearly a sine), now progressively
+#: ((q - q_t)^2, a straightening catenary) past the 80-90 % quantile; the chipped pinion first spanned 1.3-1.8
+#: pitches of a 12-17-tooth pinion (ZG18: 17 %, the thermal model at 1.19x), now 1.5-2 pitches of a 9-12-tooth
+#: one. Two kinds were replaced before any label counted, for novelty: a PA6 bracket's moisture swelling (the name and
+#: mechanism of set V's moisture_swell, which the generator's registry would have overwritten: V06 and V21 changed) by
+#: the rotary union, and a segmented ring gear (set V's rack segments on a rotary axis) by the chipped pinion. No seed
+#: or pose count was changed. A trial on the seed + 1 (case seeds + 1000003): below the 20 % / 1.25x bar the taut
+#: harness on ur10 (ZG02, 11 %), the bolts' relaxation on kr16_like (ZG22, 16 %, the joint model at 1.14x) and the
+#: payload mismatch on tool_changer (ZG14, the link model at 1.17x) -- the weakest kinds.
+SET_ZG = [
+    ("ZG01", "ur10", ("gravcomp_payload",), 130, "random"),
+    ("ZG02", "ur10", ("taut_harness",), 120, "random"),
+    ("ZG03", "ur10", ("chipped_pinion",), 140, "random"),
+    ("ZG04", "ur10", ("leaf_boom",), 120, "random"),
+    ("ZG05", "ur10", ("drying_film",), 150, "time"),
+    ("ZG06", "ur10", ("tilt_flank",), 50, "random"),
+    ("ZG07", "ur10", (), 60, "random"),
+    ("ZG08", "ur10", ("coast_flank", "bolt_relaxation"), 180, "time"),
+    ("ZG09", "tool_changer", ("settlement_tilt",), 160, "time"),
+    ("ZG10", "tool_changer", ("coast_flank",), 120, "random"),
+    ("ZG11", "tool_changer", ("beam_column",), 140, "random"),
+    ("ZG12", "tool_changer", ("missing_pin",), 140, "random"),
+    ("ZG13", "tool_changer", ("rotary_union",), 150, "time"),
+    ("ZG14", "tool_changer", ("gravcomp_payload",), 150, "random"),
+    ("ZG15", "tool_changer", (), 40, "random"),
+    ("ZG16", "tool_changer", ("tilt_flank", "drying_film"), 190, "random"),
+    ("ZG17", "kr16_like", ("taut_harness",), 130, "random"),
+    ("ZG18", "kr16_like", ("chipped_pinion",), 130, "random"),
+    ("ZG19", "kr16_like", ("missing_pin",), 130, "random"),
+    ("ZG20", "kr16_like", ("settlement_tilt",), 160, "time"),
+    ("ZG21", "kr16_like", ("beam_column",), 140, "random"),
+    ("ZG22", "kr16_like", ("bolt_relaxation",), 120, "random"),
+    ("ZG23", "kr16_like", (), 100, "random"),
+    ("ZG24", "kr16_like", ("gravcomp_payload", "rotary_union"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1540,7 +1588,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "U": (SET_U, SEED_U), "V": (SET_V, SEED_V), "W": (SET_W, SEED_W), "X": (SET_X, SEED_X),
         "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
-        "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF)}
+        "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG)}
 
 
 def case_seed(set_name: str, index: int) -> int:

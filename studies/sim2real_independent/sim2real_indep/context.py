@@ -412,7 +412,22 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "centring_spring": "backlash", "repaired_sector": "transmission", "sagging_disc": "transmission",
           "shelf_bracket": "mount_compliance", "shim_friction": "mount_compliance",
           "polymer_boom": "link_deflection", "flange_gapping": "link_deflection", "peltier_loop": "thermal",
-          "marking_pulses": "thermal"}
+          "marking_pulses": "thermal",
+          # set ZG (sim2real_indep.effects_zg; gravcomp_payload, an impedance-controlled arm yielding to the part's
+          # weight beyond the load its gravity compensation declares, and taut_harness, axis 1 twisted by its supply
+          # bundle past the bundle's slack, scored as joint compliance; tilt_flank, axis 1's lost motion flanked by an
+          # inclined installation's gravity torque, and coast_flank, the loaded axes' lost motion crossed by the link's
+          # inertia at a fast move's end, as backlash; chipped_pinion, axis 1's pinion with a chipped tooth, and missing_pin,
+          # axis 2's RV reducer with a broken ring pin, as transmission; settlement_tilt, the foundation settling
+          # unevenly in time, and bolt_relaxation, the base's anchor bolts relaxing, as mount compliance; beam_column,
+          # a slender boom whose bending the axial load amplifies, and leaf_boom, a flat-bar boom bending towards its
+          # weak axis, as link deflection; drying_film, the links held below the air by an evaporating film, and
+          # rotary_union, a bracket warmed by the seals of a rotary union that axis 6 turns, as thermal)
+          "gravcomp_payload": "joint_compliance", "taut_harness": "joint_compliance", "tilt_flank": "backlash",
+          "coast_flank": "backlash", "chipped_pinion": "transmission", "missing_pin": "transmission",
+          "settlement_tilt": "mount_compliance", "bolt_relaxation": "mount_compliance",
+          "beam_column": "link_deflection", "leaf_boom": "link_deflection", "drying_film": "thermal",
+          "rotary_union": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
