@@ -19,33 +19,38 @@ from tolalloc.physics.loads import point_jacobian, target_points
 UR10 = tolalloc.load_robot("ur10")
 
 
-def _gear_frame(seed: int, amp: float, P: int = 150):
-    """UR10 poses whose first three joints carry a strain-wave error at N = 101 and 2N (and noise 0.02 mm)."""
+def _gear_frame(seed: int, amp: float, P: int = 150, N: int = 101):
+    """UR10 poses whose first three joints carry a strain-wave error at N = 101 and 2N, or a stage's at another N (and
+    noise 0.02 mm)."""
     rng = np.random.default_rng(seed)
     q = rng.uniform(-np.pi, np.pi, (P, 6))
     dq = np.zeros_like(q)
     for j in range(3):
-        dq[:, j] = amp * np.sin(101 * q[:, j] + 1.0) + 0.7 * amp * np.sin(202 * q[:, j] + 0.3)
+        dq[:, j] = amp * np.sin(N * q[:, j] + 1.0) + 0.7 * amp * np.sin(2 * N * q[:, j] + 0.3)
     x = target_points(UR10, q + dq, np.array([0.0, 0.0, 50.0])) + rng.normal(0, 0.02, (P, 3))
     df = pd.DataFrame(np.degrees(q), columns=[f"q{i + 1}_deg" for i in range(6)])
     df[["x_mm", "y_mm", "z_mm"]] = x
     return q, x, df
 
 
-@pytest.mark.parametrize("amp, found", [(1.5e-4, True), (0.0, False)])
-def test_gear_ratio_search_finds_n_only_where_the_residual_carries_it(amp, found):
-    q, x, _ = _gear_frame(1, amp)
+@pytest.mark.parametrize("amp, N, found", [(1.5e-4, 101, True), (1.5e-4, 12, True), (0.0, 101, False)])
+def test_gear_ratio_search_finds_n_only_where_the_residual_carries_it(amp, N, found):
+    """A reducer's N (30-200) or, where none stands out, a stage's before the output (7-29) is found where the
+    residual carries it; pure noise finds neither band's."""
+    q, x, _ = _gear_frame(1, amp, N=N)
     model = build_geometry_model(UR10)
     fit = Fit(model, np.eye(3), np.zeros(3), np.array([0.0, 0.0, 50.0]), np.zeros(len(model.params)),
               np.zeros(0, int))
     resid = x - target_points(UR10, q, fit.t_mm)
     ratios, notes = search_ratios(UR10, q, fit, fixed_jacobian(fit, q, x), resid)
     if found:
-        np.testing.assert_array_equal(ratios[:3], [101.0, 101.0, 101.0])
-        assert re.match(r"gear ratio of shoulder_pan_joint: N = 101 found in the training residual", notes[0])
+        np.testing.assert_array_equal(ratios[:3], [N, N, N])
+        assert re.match(rf"gear ratio of shoulder_pan_joint: N = {N} found in the training residual", notes[0])
+        assert np.all(np.isnan(ratios[3:]))
     else:
         assert np.all(np.isnan(ratios))
-        assert all("no frequency N = 30-200 stands out" in n for n in notes)
+        assert all("no frequency N = 30-200 stands out" in n and "; no frequency N = 7-29 stands out" in n
+                   and n.endswith("; no gear term") for n in notes)
     known = np.array([101.0, np.nan, np.nan, np.nan, np.nan, np.nan])
     ratios, notes = search_ratios(UR10, q, fit, fixed_jacobian(fit, q, x), resid, known=known)
     assert ratios[0] == 101.0 and len(notes) == 5  # a ratio the robot file gives is not searched

@@ -9,12 +9,14 @@ A revolute joint's output lags or leads its commanded angle ``q`` by ``dq(q) = s
 * ``N`` and ``2N`` (``N`` the gear ratio): a strain-wave gear's wave generator turns ``N`` times per output turn and
   deforms the flexspline twice per turn of its own, so its tooth-meshing error repeats at ``N`` and ``2N`` cycles per
   output turn (its catalogue figure, the *transmission accuracy*, is the peak-to-peak of the whole error over one
-  output turn); a motor-side encoder's eccentricity repeats at ``N`` too.
+  output turn); a motor-side encoder's eccentricity repeats at ``N`` too. A stage before the output -- a pinion on a
+  ring gear, a spur or belt stage of ratio ``N`` -- repeats its runout and its damaged teeth at ``N`` and ``2N``
+  in the same way.
 
 :func:`transmission_columns` is the basis the diagnosis fits (one Gaussian prior scale per joint: a ridge). Where the
-robot file gives no ratio, :data:`PLAUSIBLE_RATIOS` are the candidates of a frequency search
-(:func:`ratio_columns`), which the diagnosis runs on its training residual and claims only when the poses resolve
-the frequency. :func:`transmission_error` is the forward model the design samples.
+robot file gives no ratio, :data:`PLAUSIBLE_RATIOS` (reducers) and then :data:`STAGE_RATIOS` (a stage before the
+output) are the candidates of a frequency search (:func:`ratio_columns`), which the diagnosis runs on its training
+residual and claims only when the poses resolve the frequency. :func:`transmission_error` is the forward model the design samples.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 
-__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "gear_orders", "variant_orders", "coupling_columns",
+__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "STAGE_RATIOS", "gear_orders", "variant_orders", "coupling_columns",
            "transmission_columns", "ratio_columns", "transmission_error"]
 
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
@@ -32,6 +34,9 @@ SERIES_ORDERS = (6, 12, 24, 36)
 #: Gear ratios a frequency search tries where the robot file gives none: strain-wave and cycloid reducers of robot
 #: joints are built from 30:1 to 200:1 (integer ratios: tooth counts).
 PLAUSIBLE_RATIOS = tuple(range(30, 201))
+#: Orders of a stage before the output tried where no reducer ratio stands out: a pinion on a ring gear, a spur or a
+#: belt stage turning 7 to 29 times per output turn (below 7 the low-order ``series`` variants cover it).
+STAGE_RATIOS = tuple(range(7, 30))
 
 
 def gear_orders(ratio: float) -> tuple:
