@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4631,7 +4631,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG"))
+    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4778,7 +4778,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG"))
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4918,7 +4918,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s != "ZG")
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5046,3 +5046,134 @@ def test_set_zg_every_kind_lies_in_its_true_structure_and_known_answers():
     U = zgt.union_temperature({"tau_s": 100.0}, np.array([0.0, 2.0, 1.0]), np.array([0.0, 100.0, 200.0]))
     raw = np.array([0.0, 2 * np.exp(-1), (2 * np.exp(-1) + 1) * np.exp(-1)])
     assert U == pytest.approx(raw / raw.max())
+
+
+# --------------------------------------------------------------------------------------------------------- set ZH
+ZH_KINDS = ("worn_mesh", "tooth_crack", "grease_gel", "pinion_handover", "running_in_te", "brazier_pedestal",
+            "dished_plate", "inflated_boom", "collet_root", "loose_pivot", "wrist_conduction", "regen_resistor")
+
+
+def test_set_zh_cases_kinds_and_determinism():
+    """Set ZH (the eighth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZG; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZH kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; a new part for
+    each block (the dished plate, the inflated boom) and hours of paused blocks (the pause- and time-driven kinds)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zh as ezh
+    from sim2real_indep import effects_zh_body as zhb
+
+    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s != "ZH")
+    assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
+    _assert_set_module("ZH", 40_7034, ezh, ("gear", "tether_reel", "rotary_union", "taut_harness"))
+    for name in ("effects_zh", "effects_zh_joint", "effects_zh_body", "effects_zh_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zh" in _imports(STUDY / "generator.py")
+    assert ezh.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezh.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezh.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), pause) in ezh.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == "pause" and b["pause_min"] == pause
+        plain = opts(("worn_mesh", "tooth_crack", "pinion_handover", "running_in_te", "brazier_pedestal",
+                      "collet_root", "loose_pivot"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezh.probe_hook(("gear",), probe) is probe
+    assert ezh.probe_hook(("inflated_boom",), probe) == pytest.approx(probe + [zhb.BOOM_MM, 0, 0])
+    assert ezh.probe_hook(("collet_root",), probe) == pytest.approx(probe + [zhb.BOOM_MM, 0, 0])
+    assert ezh.probe_hook(("loose_pivot",), probe) == pytest.approx(probe + [0, 0, zhb.PIVOT_MM])
+    _assert_regenerates("ZH", max_effect_poses=50)
+
+
+def test_set_zh_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZH kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the wear zone's Gaussian, the cracked tooth's
+    window, the gel's share after a pause, the pinions' handover with the direction, the run-in's decay with the travel,
+    the Brazier factor and the bias's own tilt removed, the plate's sink under the weight's change, the wrinkling
+    factor, Hetenyi's root give, the pivot's stops with memory, the conduction's sqrt(t) and the resistor's heat from
+    the lowering moves."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zh_body as zhb
+    from sim2real_indep import effects_zh_joint as zhj
+    from sim2real_indep import effects_zh_thermal as zht
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZH_KINDS, 30, 34)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZH_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"worn_mesh": lambda: p["c"], "tooth_crack": lambda: p["c"], "grease_gel": lambda: p["half"],
+                   "pinion_handover": lambda: p["e"], "running_in_te": lambda: p["e"],
+                   "brazier_pedestal": lambda: p["inv_EI"], "dished_plate": lambda: p["c"],
+                   "inflated_boom": lambda: p["inv_EI"], "collet_root": lambda: p["inv_k"],
+                   "loose_pivot": lambda: p["delta"], "wrist_conduction": lambda: [p["amp"]],
+                   "regen_resistor": lambda: [p["amp"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # worn mesh: 1 at the zone's centre, exp(-1/2) one width away
+    wp = P["worn_mesh"]
+    assert zhj.wear_zone(wp, np.array([wp["q_w"], wp["q_w"] + wp["s"]])) == pytest.approx([1.0, np.exp(-0.5)])
+    # tooth crack: 1 at the tooth, 1/2 half a span away, nothing beyond
+    cp = P["tooth_crack"]
+    qs = cp["q_c"] + np.array([0.0, cp["h"] / 2, 1.01 * cp["h"], -1.01 * cp["h"]])
+    assert zhj.crack_window(cp, qs) == pytest.approx([1.0, 0.5, 0.0, 0.0])
+    # grease gel: the moves since the last pause, the share 1 - exp(-n / n0)
+    gs = replace(s, time_s=np.arange(5.0), gap_s=np.array([0.0, 10.0, -600.0, 10.0, 5.0]))
+    assert zhj.moves_since_pause(gs) == pytest.approx([0, 1, 1, 2, 3])
+    assert zhj.gel_share({"n0": 2.0}, gs) == pytest.approx(1 - np.exp(-np.array([0, 1, 1, 2, 3]) / 2.0))
+    # pinion handover: pinion A's runout after a positive move, B's after a negative one
+    sig = zhj.handover_signals({"ratio": 2.0}, np.array([0.3, 0.3]), np.array([1, -1]))
+    assert sig[:, 0] == pytest.approx([np.sin(0.6), np.cos(0.6), 0, 0])
+    assert sig[:, 1] == pytest.approx([0, 0, np.sin(0.6), np.cos(0.6)])
+    # running-in: the travel so far (|dq2| summed), the error fading by exp(-E / E0)
+    E = zhj.travel(s, 1)
+    assert E[0] == 0 and E[-1] == pytest.approx(np.abs(np.diff(s.q[:, 1])).sum()) and (np.diff(E) >= 0).all()
+    # Brazier: 1 + (M / M_b)^2; nothing at the bias alone (its tilt is the calibrated geometry)
+    bp = P["brazier_pedestal"]
+    assert zhb.brazier_factor(bp, np.array([[bp["M_b"], 0.0, 0.0]])) == pytest.approx([2.0])
+    assert np.abs(zhb.brazier_curvature(bp, np.zeros((2, 3)))).max() < 1e-9
+    # dished plate: no sink at the first pose's weight, the sink c_F per newton of the weight's change
+    Fp = zhb.plate_features(P["dished_plate"], ctx, None)
+    W = zhb.total_weight(ctx)
+    assert Fp[0, :, 2] == pytest.approx(-(W - W[0])) and np.ptp(W) > 0
+    # inflated boom: linear below the wrinkling moment, 1 + a (m - 1)^2 beyond
+    ip = P["inflated_boom"]
+    assert zhb.wrinkle_factor(ip, np.array([0.5, 1.0, 2.0]) * ip["M_w"]) == pytest.approx([1.0, 1.0, 1 + ip["a"]])
+    # collet root (Hetenyi): y0 = 2 beta (V - beta M) / k, theta0 = 2 beta^2 (2 beta M - V) / k
+    y0, th0 = zhb.collet_give({"inv_beta_mm": 20.0}, 10.0, 0.0)
+    assert (y0, th0) == pytest.approx((2 / 20 * 10, -2 / 400 * 10))
+    # loose pivot: rests on the stop its moment chooses beyond the friction, stays where it was inside it
+    lp = P["loose_pivot"]
+    side, mom = zhb.pivot_side(lp, ctx), zhb.pivot_moment(ctx)
+    out = np.abs(mom) > lp["f"]
+    assert out.any() and (side[out] == np.sign(mom[out])).all() and set(np.unique(side)) <= {-1.0, 1.0}
+    inside = np.flatnonzero(~out)
+    assert all(side[k] == (side[k - 1] if k else 1.0) for k in inside)
+    # wrist conduction: 2 sqrt(a t / pi), capped at the forearm's length
+    L = zht.conduction_length({"t_on_s": 0.0, "a_m2s": 1e-5}, np.array([0.0, 3600.0, 1e9]), 600.0)
+    assert L == pytest.approx([0.0, 2 * np.sqrt(1e-5 * 3600 / np.pi) * 1000, 600.0])
+    # regen resistor: only lowering moves heat, each decaying by exp(-dt / tau), normalised to a peak of 1
+    T = zht.resistor_temperature({"tau_s": 100.0}, np.array([10.0, 4.0, 9.0, 8.0]), np.array([0.0, 100, 200, 300]))
+    raw = np.zeros(4)
+    raw[1] = 6 * np.exp(-1)
+    raw[2] = raw[1] * np.exp(-1)
+    raw[3] = (raw[2] + 1) * np.exp(-1)
+    assert T == pytest.approx(raw / raw.max())
+

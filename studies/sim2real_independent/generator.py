@@ -59,6 +59,7 @@ from sim2real_indep import effects_zd as ezd
 from sim2real_indep import effects_ze as eze
 from sim2real_indep import effects_zf as ezf
 from sim2real_indep import effects_zg as ezg
+from sim2real_indep import effects_zh as ezh
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -109,6 +110,7 @@ EFFECTS = {
     **eze.EFFECTS_ZE,  # set ZE's new kinds
     **ezf.EFFECTS_ZF,  # set ZF's new kinds
     **ezg.EFFECTS_ZG,  # set ZG's new kinds
+    **ezh.EFFECTS_ZH,  # set ZH's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -117,7 +119,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
-                 | ezg.AFTER_TRACKER)
+                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -218,7 +220,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezd.session_options(robot_key, physics, rng, opts)  # set ZD (no draws without a set-ZD kind)
     opts = eze.session_options(robot_key, physics, rng, opts)  # set ZE (no draws without a set-ZE kind)
     opts = ezf.session_options(robot_key, physics, rng, opts)  # set ZF (no draws without a set-ZF kind)
-    return ezg.session_options(robot_key, physics, rng, opts)  # set ZG (no draws without a set-ZG kind)
+    opts = ezg.session_options(robot_key, physics, rng, opts)  # set ZG (no draws without a set-ZG kind)
+    return ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
 
 
 def _tracker(rng):
@@ -269,6 +272,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = eze.probe_hook(physics, probe, robot_key)  # set ZE's shuttle boom, ringing boom, PCM bracket (no draws)
     probe = ezf.probe_hook(physics, probe)  # set ZF's polymer boom, gapping tool, brackets (no draws)
     probe = ezg.probe_hook(physics, probe)  # set ZG's beam-column and leaf booms, PA6 bracket (no draws)
+    probe = ezh.probe_hook(physics, probe)  # set ZH's inflated boom, collet boom, swinging bracket (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

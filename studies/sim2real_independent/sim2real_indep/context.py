@@ -427,7 +427,22 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "coast_flank": "backlash", "chipped_pinion": "transmission", "missing_pin": "transmission",
           "settlement_tilt": "mount_compliance", "bolt_relaxation": "mount_compliance",
           "beam_column": "link_deflection", "leaf_boom": "link_deflection", "drying_film": "thermal",
-          "rotary_union": "thermal"}
+          "rotary_union": "thermal",
+          # set ZH (sim2real_indep.effects_zh; worn_mesh, axis 2's mesh softened in its worn production zone, and
+          # tooth_crack, axis 3's ring softened while a cracked tooth meshes, scored as joint compliance; grease_gel,
+          # the loaded axes' lost motion held centred by grease gelled in each pause, and loose_pivot, a target bracket
+          # between the stops of a loose pin, as backlash; pinion_handover, axis 1's runout switching between two
+          # torque-biased pinions, and running_in_te, axis 2's tooth-mesh error fading as the gears run in, as
+          # transmission; brazier_pedestal, a thin tube pedestal softened by ovalisation, and dished_plate, the base on
+          # a rim-clamped plate, as mount compliance; inflated_boom, an air-inflated boom wrinkling past a moment, and
+          # collet_root, a boom giving in its clamp bush, as link deflection; wrist_conduction, a hot tool's heat
+          # diffusing into the forearm, and regen_resistor, a braking resistor on the pedestal heated by the lowering
+          # moves, as thermal)
+          "worn_mesh": "joint_compliance", "tooth_crack": "joint_compliance", "grease_gel": "backlash",
+          "loose_pivot": "backlash", "pinion_handover": "transmission", "running_in_te": "transmission",
+          "brazier_pedestal": "mount_compliance", "dished_plate": "mount_compliance",
+          "inflated_boom": "link_deflection", "collet_root": "link_deflection", "wrist_conduction": "thermal",
+          "regen_resistor": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
