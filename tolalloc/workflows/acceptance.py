@@ -288,7 +288,8 @@ class AcceptanceAllocation(JobResult):
 
     @property
     def cost(self) -> float:
-        """Cost of the design to build (``result.built``)."""
+        """Cost of the machining design to build (``result.built``); bought parts, given to this job, are not priced
+        in it (a design with bought parts prices them: ``PartsToleranceAllocation.cost``)."""
         return float(self.result.built.cost)
 
     @property
