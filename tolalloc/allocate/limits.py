@@ -100,7 +100,8 @@ def check_process_limits(problem: AllocationProblem) -> LimitReport:
                    "tolerances) in a costs file (--costs) or relax the requirement." if lim else
                    "No tolerance binds: choose finer parts (a better reducer or encoder grade) or relax the "
                    "requirement."))
-    return LimitReport(feasible, p_best, r_best, worst, binding, " ".join(lines) if lines else "feasible within the process limits")
+    return LimitReport(feasible, p_best, r_best, worst, binding,
+                       " ".join(lines) if lines else "feasible within the process limits")
 
 
 def _where(problem: AllocationProblem, b: dict, i: int) -> str:

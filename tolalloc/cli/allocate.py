@@ -174,8 +174,8 @@ def _parts(args) -> dict:
 
 def _acceptance_parts(args):
     """``parts`` of the ISO 9283 job: ``{(joint, kind): name}`` from ``--parts-file`` and ``--part`` (which overrides
-    the file's slot), True with ``--parts`` alone, else None. The design's conditions (payload, ambient, duty, process wrench) do not apply: the test load is the
-    requirement's."""
+    the file's slot), True with ``--parts`` alone, else None. The design's conditions (payload, ambient, duty, process
+    wrench) do not apply: the test load is the requirement's."""
     from tolalloc.exceptions import ArgumentError
 
     extra = _parts(args)

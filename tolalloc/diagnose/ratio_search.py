@@ -3,22 +3,21 @@
 
 For every revolute joint without a known ratio and every candidate ``N`` of a band -- first the reducers'
 :data:`~tolalloc.physics.transmission.PLAUSIBLE_RATIOS`, then, where none is found there, a stage's before the output
-(:data:`~tolalloc.physics.transmission.STAGE_RATIOS`: a pinion on a ring gear, a spur or belt stage) -- the four columns ``sin/cos(N q_j)``, ``sin/cos(2N q_j)``
-(mapped to the target point, turned into the tracker frame and projected off the registration, offset and geometric
-columns, as :mod:`.choice` does) are fitted to the geometric fit's training residual; the drop of the residual sum
-of squares, scaled by the noise variance, is ``chi^2_4`` for a ratio the data do not carry. The noise variance is the
-robust (MAD) estimate of the residual's, raised where the bulk of the candidates says it is larger (their median drop
-above the ``chi^2_4`` median: a residual with structure the noise estimate misses, which would inflate every
-candidate's drop; each band calibrates its own). A joint's ratio is
+(:data:`~tolalloc.physics.transmission.STAGE_RATIOS`: a pinion on a ring gear, a spur or belt stage) -- the four
+columns ``sin/cos(N q_j)``, ``sin/cos(2N q_j)`` (mapped to the target point, turned into the tracker frame and
+projected off the registration, offset and geometric columns, as :mod:`.choice` does) are fitted to the geometric
+fit's training residual; the drop of the residual sum of squares, scaled by the noise variance, is ``chi^2_4`` for a
+ratio the data do not carry. The noise variance is the robust (MAD) estimate of the residual's, raised where the bulk
+of the candidates says it is larger (their median drop above the ``chi^2_4`` median: a residual with structure the
+noise estimate misses, which would inflate every candidate's drop; each band calibrates its own). A joint's ratio is
 **found** when its best candidate exceeds the ``1 - alpha / m`` quantile of ``chi^2_4`` (Bonferroni over the ``m``
-candidates of every band and searched joint), the poses resolve it -- no other candidate (other than ``N/2`` and ``2N``,
-which share a column with it) comes within ``2 log(20)`` (a likelihood ratio of 20) of its fit -- **and** it
-replicates: fitted on each half of the training poses alone, its drop exceeds the single-test ``1 - alpha``
-quantile in both (the search picks the best of many frequencies on the whole file; a frequency the noise favoured
-there does not come back in both halves, and the selection's cross-validation, which sees the chosen frequency, could
-not tell). Otherwise the joint
-gets no gear term, with the reason -- no claim at a frequency the poses cannot tell. Files with fewer than
-:data:`MIN_DOF` residual degrees of freedom are not searched.
+candidates of every band and searched joint), the poses resolve it -- no other candidate (other than ``N/2`` and
+``2N``, which share a column with it) comes within ``2 log(20)`` (a likelihood ratio of 20) of its fit -- **and** it
+replicates: fitted on each half of the training poses alone, its drop exceeds the single-test ``1 - alpha`` quantile
+in both (the search picks the best of many frequencies on the whole file; a frequency the noise favoured there does
+not come back in both halves, and the selection's cross-validation, which sees the chosen frequency, could not tell).
+Otherwise the joint gets no gear term, with the reason -- no claim at a frequency the poses cannot tell.
+Files with fewer than :data:`MIN_DOF` residual degrees of freedom are not searched.
 """
 
 from __future__ import annotations

@@ -16,7 +16,8 @@ A revolute joint's output lags or leads its commanded angle ``q`` by ``dq(q) = s
 :func:`transmission_columns` is the basis the diagnosis fits (one Gaussian prior scale per joint: a ridge). Where the
 robot file gives no ratio, :data:`PLAUSIBLE_RATIOS` (reducers) and then :data:`STAGE_RATIOS` (a stage before the
 output) are the candidates of a frequency search (:func:`ratio_columns`), which the diagnosis runs on its training
-residual and claims only when the poses resolve the frequency. :func:`transmission_error` is the forward model the design samples.
+residual and claims only when the poses resolve the frequency. :func:`transmission_error` is the forward model the
+design samples.
 """
 
 from __future__ import annotations
@@ -25,8 +26,8 @@ import numpy as np
 
 from tolalloc.robot.model import Robot
 
-__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "STAGE_RATIOS", "gear_orders", "variant_orders", "coupling_columns",
-           "transmission_columns", "ratio_columns", "transmission_error"]
+__all__ = ["HARMONICS", "SERIES_ORDERS", "PLAUSIBLE_RATIOS", "STAGE_RATIOS", "gear_orders", "variant_orders",
+           "coupling_columns", "transmission_columns", "ratio_columns", "transmission_error"]
 
 HARMONICS = {"1x": (1,), "1x2x": (1, 2), "2x3x": (2, 3)}
 #: Highest orders of the ``series<K>`` variants (all orders 1..K).

@@ -140,8 +140,8 @@ def _choice(parts):
     if isinstance(parts, (str, os.PathLike)):
         return read_parts_choice(parts)
     raise ArgumentError("parts", f"expected a choice {{(joint, kind): part name}} of the robot's catalogue slots, True "
-                                 "(the parts its file names), a design with bought parts or the parts.csv it saved, got "
-                                 f"{inputs.shown(parts)}.")
+                        "(the parts its file names), a design with bought parts or the parts.csv it saved, got "
+                        f"{inputs.shown(parts)}.")
 
 
 def _parts(robot, parts) -> tuple:

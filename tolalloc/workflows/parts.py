@@ -160,8 +160,8 @@ def read_parts_choice(source, argument: str = "parts") -> dict:
             raise ArgumentError(argument, f"{where}, row {i}: expected a joint, a kind and a part, got "
                                 f"{joint!r}, {kind!r}, {part!r}.")
         if choice.setdefault((joint, kind), part) != part:
-            raise ArgumentError(argument, f"{where}, row {i}: slot {joint}.{kind} is chosen twice ({choice[(joint, kind)]}"
-                                f" and {part}); keep one row per slot.")
+            raise ArgumentError(argument, f"{where}, row {i}: slot {joint}.{kind} is chosen twice "
+                                f"({choice[(joint, kind)]} and {part}); keep one row per slot.")
     if not choice:
         raise ArgumentError(argument, f"{where}: no rows; expected one row per catalogue slot.")
     return choice
