@@ -264,9 +264,9 @@ def test_the_acceptance_allocation_budgets_the_bought_parts(ur10_drives):
 
 
 def test_the_parts_a_design_chose_carry_over_to_the_acceptance_job(ur10_drives, tmp_path):
-    """The parts of a design with bought parts -- its result or the parts.csv it saved -- are the acceptance job's
-    choice, the same as the dict; ``parts=True`` where the robot file offers options, and a parts table that names no
-    choice, are refused with what to do."""
+    """The parts of a design with bought parts -- its result, the parts.csv it saved or that table -- are the
+    acceptance job's choice, the same as the dict; ``parts=True`` where the robot file offers options, and a parts
+    table that names no choice, are refused with what to do."""
     import pandas as pd
 
     import tolalloc
@@ -278,7 +278,7 @@ def test_the_parts_a_design_chose_carry_over_to_the_acceptance_job(ur10_drives, 
     table.to_csv(tmp_path / "parts.csv", index=False)
     design = PartsToleranceAllocation(result=SimpleNamespace(choice=choice), radius_mm=0.75, prob=0.95, label="box")
     ref = _allocate(ur10_drives, 0.6, choice, n_robots=2)
-    for source in (tmp_path / "parts.csv", str(tmp_path / "parts.csv"), design):
+    for source in (tmp_path / "parts.csv", str(tmp_path / "parts.csv"), design, table):
         res = _allocate(ur10_drives, 0.6, source, n_robots=2)
         assert res.cost == pytest.approx(ref.cost, rel=1e-9) and res.inputs["parts"] == ref.inputs["parts"]
     with pytest.raises(tolalloc.ArgumentError, match=r"^parts: robot 'ur10' offers a choice in \d+ catalogue slot\(s\) "

@@ -92,6 +92,15 @@ def test_parts_that_cannot_carry_the_load_are_refused(tmp_path):
     with pytest.raises(tolalloc.TolallocError, match=r"above the radius 0.001 mm: compensate more \(a smaller "
                                                      r"residual\), choose stiffer parts"):
         allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.001, after="compensation", exact=False)
+    # the mean below the radius but the finest parts' spread too wide: the same advice, one wording for both reasons
+    with pytest.raises(tolalloc.TolallocError, match=r"the finest part of every slot the trace rule is exceeded by a "
+                                                     r"factor 3.75\d; .* mean error is 0.963 mm: relax the radius, "
+                                                     r"compensate it \(`after='compensation'`, or a smaller residual\), "
+                                                     r"or offer finer parts"):
+        allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=1.1, exact=False)
+    with pytest.raises(tolalloc.TolallocError, match=r"mean error is 0.0963 mm: relax the radius, compensate more "
+                                                     r"\(a smaller residual\), or offer finer parts"):
+        allocate_parts(model, conditions=COND, q=np.zeros((1, 3)), radius_mm=0.1, after="compensation", exact=False)
 
 
 def test_calibration_aware_allocation_sees_the_parts(setup):

@@ -29,7 +29,8 @@ import numpy as np
 from tolalloc.allocate.catalogue import build_catalogue
 from tolalloc.allocate.costs import CostSet, cost_set
 from tolalloc.allocate.parts_discrete import PartsOutcome, parts_ratio, solve_parts_rule
-from tolalloc.allocate.parts_problem import Points, option_blocks, parts_problem, signature_combos
+from tolalloc.allocate.parts_problem import (Points, compensation_advice, option_blocks, parts_problem,
+                                             signature_combos)
 from tolalloc.allocate.parts_region import PointRatio, WorstPoint, worst_point
 from tolalloc.allocate.parts_result import PartsAllocation, check_rated_options
 from tolalloc.allocate.problem import Solver, make_design
@@ -86,8 +87,7 @@ def _best_reachable(model, robot, points, cond, kw) -> str:
             f"exceeded by a factor {r:.4g}; at point {i + 1} (payload {points.payload_kg[i]:g} kg, ambient "
             f"{points.ambient_c[i]:g} degC) the bought parts carry {share:.0f} % of the variance and their mean error is "
             f"{np.linalg.norm(ob.bias_mm[i]):.3g} mm: relax the radius, "
-            + ("compensate (`after='compensation'`)" if kw["after"] == "none" else "compensate more (a smaller residual)")
-            + ", or offer finer parts in the slots")
+            + compensation_advice(kw["after"]) + ", or offer finer parts in the slots")
 
 
 def _checked(model, region, q, conditions, costs, after, residual, rules, seed) -> tuple:

@@ -25,7 +25,7 @@ from tolalloc.errormodel.parts import Conditions, EffectTerms, PartEffects, moto
 from tolalloc.exceptions import TolallocError
 
 __all__ = ["PartsProblem", "Points", "OptionBlocks", "signature_combos", "parts_problem", "option_blocks",
-           "MAX_COMBOS"]
+           "compensation_advice", "MAX_COMBOS"]
 
 #: Most combinations of joint signatures (stiffness, ratio, encoder side) the allocation enumerates.
 MAX_COMBOS = 32
@@ -73,6 +73,13 @@ class PartsProblem(AllocationProblem):
         return (super().covariances(t, rows) + self.extra_cov) * self.scale[:, None, None]
 
 
+def compensation_advice(after: str) -> str:
+    """What to advise about compensation where the parts' mean error is too large: turn it on (``after='none'``),
+    or compensate more (a smaller residual)."""
+    return ("compensate it (`after='compensation'`, or a smaller residual)" if after == "none"
+            else "compensate more (a smaller residual)")
+
+
 def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float, prob: float, costs,
                   after: str = "none") -> PartsProblem:
     """The machining problem at ``points`` with the parts' covariance and mean (raises where the mean alone reaches
@@ -86,9 +93,7 @@ def parts_problem(model, points: Points, extra_cov, bias_mm, *, radius_mm: float
         raise TolallocError(f"the bought parts' mean error alone is {b[i]:.4g} mm at point {i + 1} (payload "
                             f"{points.payload_kg[i]:g} kg, ambient {points.ambient_c[i]:g} degC), at or above the "
                             f"radius {radius_mm:g} mm: "
-                            + ("compensate it (`after='compensation'`, or a smaller residual)" if after == "none"
-                               else "compensate more (a smaller residual)")
-                            + ", choose stiffer parts, or relax the radius")
+                            + compensation_advice(after) + ", choose stiffer parts, or relax the radius")
     s = (radius_mm / (radius_mm - b)) ** 2
     blk = dict(base.blocks[0])
     blk["A"] = blk["A"] * s[:, None, None, None]

@@ -57,11 +57,11 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
         (the :class:`~tolalloc.workflows.Verification`'s ``seed``).
     n_robots : int
         Robots of the simulated acceptance test (default 2000).
-    parts : dict, True, PartsToleranceAllocation, str or path, optional
+    parts : dict, True, PartsToleranceAllocation, str, path or pandas.DataFrame, optional
         The bought parts in the test (:mod:`tolalloc.acceptance.parts`): a choice ``{(joint, kind): part}`` of the
         robot's catalogue slots; ``True`` for the parts its file names (every slot one part); or the parts a design
-        with bought parts chose -- its result (``allocate_tolerances(..., parts=...)``) or the ``parts.csv`` it saved
-        (:func:`~tolalloc.workflows.parts.read_parts_choice`). This job does not choose parts itself. Their effects
+        with bought parts chose -- its result (``allocate_tolerances(..., parts=...)``), the ``parts.csv`` it saved or
+        that table read into a DataFrame (:func:`~tolalloc.workflows.parts.read_parts_choice`). This job does not choose parts itself. Their effects
         under the test load enter the allocation (their mean as a shorter limit), the predicted and the simulated
         test. Default: the error model alone.
 
@@ -131,17 +131,19 @@ def _stiffness(robot, test, effects):
 def _choice(parts):
     """``parts`` as the job uses it: None, True or a ``{(joint, kind): part}`` choice (a design with bought parts,
     its result or its parts table, read into one)."""
+    import pandas as pd
+
     from tolalloc.workflows.parts import PartsToleranceAllocation, read_parts_choice
 
     if parts is None or parts is False or parts is True or isinstance(parts, dict):
         return parts
     if isinstance(parts, PartsToleranceAllocation):
         return dict(parts.choice)
-    if isinstance(parts, (str, os.PathLike)):
+    if isinstance(parts, (str, os.PathLike, pd.DataFrame)):
         return read_parts_choice(parts)
     raise ArgumentError("parts", f"expected a choice {{(joint, kind): part name}} of the robot's catalogue slots, True "
-                        "(the parts its file names), a design with bought parts or the parts.csv it saved, got "
-                        f"{inputs.shown(parts)}.")
+                        "(the parts its file names), a design with bought parts, the parts.csv it saved or that table "
+                        f"as a DataFrame, got {inputs.shown(parts)}.")
 
 
 def _parts(robot, parts) -> tuple:
