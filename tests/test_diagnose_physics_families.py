@@ -45,12 +45,13 @@ def test_gear_ratio_search_finds_n_only_where_the_residual_carries_it(amp, N, fo
     ratios, notes = search_ratios(UR10, q, fit, fixed_jacobian(fit, q, x), resid)
     if found:
         np.testing.assert_array_equal(ratios[:3], [N, N, N])
-        assert re.match(rf"gear ratio of shoulder_pan_joint: N = {N} found in the training residual", notes[0])
+        assert re.match(rf"gear ratio of shoulder_pan_joint: N = {N} found in the training residual", notes[0].text)
+        assert all(n.telling for n in notes[:3]) and not any(n.telling for n in notes[3:])
         assert np.all(np.isnan(ratios[3:]))
     else:
         assert np.all(np.isnan(ratios))
-        assert all("no frequency N = 30-200 stands out" in n and "; no frequency N = 7-29 stands out" in n
-                   and n.endswith("; no gear term") for n in notes)
+        assert all("no frequency N = 30-200 stands out" in n.text and "; no frequency N = 7-29 stands out" in n.text
+                   and n.text.endswith("; no gear term") and not n.telling for n in notes)
     known = np.array([101.0, np.nan, np.nan, np.nan, np.nan, np.nan])
     ratios, notes = search_ratios(UR10, q, fit, fixed_jacobian(fit, q, x), resid, known=known)
     assert ratios[0] == 101.0 and len(notes) == 5  # a ratio the robot file gives is not searched

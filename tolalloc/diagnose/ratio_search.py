@@ -22,6 +22,8 @@ Files with fewer than :data:`MIN_DOF` residual degrees of freedom are not search
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from scipy.stats import chi2
 
@@ -29,13 +31,27 @@ from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.transmission import PLAUSIBLE_RATIOS, STAGE_RATIOS, ratio_columns
 from tolalloc.diagnose.choice import projected_residual
 
-__all__ = ["search_ratios", "RESOLVE_LR"]
+__all__ = ["search_ratios", "RatioNote", "RESOLVE_LR"]
 
 #: Likelihood ratio by which the best ratio must beat every unrelated candidate to count as resolved.
 RESOLVE_LR = 20.0
 #: Residual degrees of freedom (coordinates beyond the fixed columns) a search needs: the robust noise estimate
 #: behind its chi^2 scale must rest on more than a handful of numbers.
 MIN_DOF = 60
+
+
+@dataclass(frozen=True)
+class RatioNote:
+    """What the search found for one joint (or why it could not search).
+
+    ``telling`` is False where no band's frequency stood out (nothing a reader needs); True for a find, a frequency
+    the poses cannot resolve or that does not replicate, and a file too small to search."""
+
+    text: str
+    telling: bool
+
+    def __str__(self) -> str:
+        return self.text
 
 
 def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
@@ -55,7 +71,8 @@ def _columns(fit, Jpj: np.ndarray, qj: np.ndarray, cand: np.ndarray, Q: np.ndarr
 
 def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: np.ndarray, known=None,
                   alpha: float = 0.01, bands=(PLAUSIBLE_RATIOS, STAGE_RATIOS)) -> tuple:
-    """Gear ratios (n,) -- ``known`` where given, the found ratio, else NaN -- and one note per searched joint.
+    """Gear ratios (n,) -- ``known`` where given, the found ratio, else NaN -- and one :class:`RatioNote` per searched
+    joint.
 
     Parameters
     ----------
@@ -76,7 +93,7 @@ def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: n
     Q, r, dof = projected_residual(fit, J_fixed, residual_mm)
     s2 = (1.4826 * np.median(np.abs(r - np.median(r)))) ** 2
     if dof < MIN_DOF or not s2 > 0:
-        return out, [f"gear ratio search: too few training poses ({len(q)}) to search a frequency"]
+        return out, [RatioNote(f"gear ratio search: too few training poses ({len(q)}) to search a frequency", True)]
     bands = [np.asarray(b, float) for b in bands]
     limit = chi2.isf(alpha / (sum(len(b) for b in bands) * len(todo)), 4)
     Jp = point_jacobian(robot, q, target_points(robot, q, fit.t_mm))  # (P, 3, n)
@@ -85,20 +102,23 @@ def search_ratios(robot, q: np.ndarray, fit, J_fixed: np.ndarray, residual_mm: n
     notes = []
     for j in todo:
         name = robot.joints[j].name
-        why = []
+        why, telling = [], False
         for cand in bands:
-            N, note = _search_joint(fit, Jp[:, :, j], q[:, j], cand, Q, r, s2, limit, halves_of, alpha)
+            N, note, stood_out = _search_joint(fit, Jp[:, :, j], q[:, j], cand, Q, r, s2, limit, halves_of, alpha)
+            telling |= stood_out
             if np.isfinite(N):
                 out[j] = N
                 why = [note]
                 break
             why.append(note)
-        notes.append(f"gear ratio of {name}: " + "; ".join(why) + ("" if np.isfinite(out[j]) else "; no gear term"))
+        notes.append(RatioNote(f"gear ratio of {name}: " + "; ".join(why)
+                               + ("" if np.isfinite(out[j]) else "; no gear term"), telling))
     return out, notes
 
 
 def _search_joint(fit, Jpj, qj, cand, Q, r, s2, limit, halves_of, alpha) -> tuple:
-    """``(N found or NaN, why)`` of one joint's search over the candidate ratios ``cand`` (K,)."""
+    """``(N found or NaN, why, whether a frequency stood out)`` of one joint's search over the candidate ratios
+    ``cand`` (K,)."""
     step = max(1, int(2e6 // (12 * len(qj))))  # candidates per block: at most ~16 MB of columns
     stat = np.concatenate([_drops(_columns(fit, Jpj, qj, cand[a:a + step], Q), r)
                            for a in range(0, len(cand), step)]) / s2
@@ -115,13 +135,13 @@ def _search_joint(fit, Jpj, qj, cand, Q, r, s2, limit, halves_of, alpha) -> tupl
     if resolved and halves < replicate:
         return np.nan, (f"N = {N:g} stands out in the training residual (chi2 = {stat[b]:.3g}, limit {limit:.3g}) but "
                         f"does not replicate in both halves of the training poses (chi2 {halves:.3g} < "
-                        f"{replicate:.3g} in one)")
+                        f"{replicate:.3g} in one)"), True
     if resolved:
         return N, (f"N = {N:g} found in the training residual (chi2 = {stat[b]:.3g}, limit {limit:.3g}; the next "
-                   f"unrelated frequency {other:.3g})")
+                   f"unrelated frequency {other:.3g})"), True
     if other >= limit:
         N2 = cand[int(np.argmax(np.where(related, -np.inf, stat)))]
         return np.nan, (f"the poses cannot resolve the frequency (N = {N:g} and N = {N2:g} fit about equally well, "
-                        f"chi2 {stat[b]:.3g} vs {other:.3g}, both above the limit {limit:.3g})")
+                        f"chi2 {stat[b]:.3g} vs {other:.3g}, both above the limit {limit:.3g})"), True
     return np.nan, (f"no frequency N = {cand[0]:g}-{cand[-1]:g} stands out in the training residual (best N = {N:g}, "
-                    f"chi2 = {stat[b]:.3g}, limit {limit:.3g}, next unrelated {other:.3g})")
+                    f"chi2 = {stat[b]:.3g}, limit {limit:.3g}, next unrelated {other:.3g})"), False

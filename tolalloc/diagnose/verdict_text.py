@@ -21,10 +21,7 @@ def input_notes(ctx, stages: list) -> tuple[list, list]:
     left out of its predictions, so its figures do not judge them)."""
     out, untested = [], []
     out += list(getattr(ctx, "robust_notes", ()))
-    # a joint where no band's frequency stood out says nothing the reader needs; a find, an unresolved or an
-    # unreplicated frequency does
-    out += [n for n in getattr(ctx, "ratio_notes", ()) if any(w in n for w in (" found ", "cannot resolve",
-                                                                                 "does not replicate", "too few"))]
+    out += [n.text for n in getattr(ctx, "ratio_notes", ()) if n.telling]
     why_t = time_problem(ctx.train.time_s)
     if why_t is not None and "thermal" in ctx.bases:
         out.append(f"thermal: only the temperature-driven variant was tested; the time-driven ones (warm-up, motion "
