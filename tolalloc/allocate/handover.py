@@ -253,11 +253,11 @@ def assumptions(result, design, fm: FeatureMap, unheld: bool) -> list:
                    "direction): its two planes lie across the direction that tilt moves the axis, in the frame its "
                    "datum system fixes -- the second datum (a locating pin hole or keyway) fixes the turn of the "
                    "base axes about the first. The drawer adds the ISO 1101 orientation plane indicator that shows "
-                   "it (the callouts here give it as the column direction only). A datum system is read in order of precedence: the datum the zone is oriented or "
-                   "located "
-                   "from, then the feature that fixes the rotation about it (a locating pin hole or keyway) or the "
-                   "face across it (a seat shoulder). The datum features are taken as perfect relative to their axes "
-                   "and faces: their own tolerances are not in the budget.")
+                   "it (the callouts here give it as the column direction only). A datum system is read in order of "
+                   "precedence: the datum the zone is oriented or located from, then the feature that fixes the "
+                   "rotation about it (a locating pin hole or keyway) or the face across it (a seat shoulder). The "
+                   "datum features are taken as perfect relative to their axes and faces: their own tolerances are "
+                   "not in the budget.")
     out += [f"DATUM NEEDED: {w}." for w in fm.datum_gaps]
     if unheld:
         out.append("Some callouts are finer than any process of the table holds: their process names the finest "
