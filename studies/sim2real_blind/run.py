@@ -9,8 +9,9 @@ cases. They import nothing of tolalloc (tests/test_sim2real_blind.py checks it):
 generate the data; tolalloc only loads the robots' nominal descriptions.
 
 Per case, 75 % of the poses train (with the diagnosis's own cross-validation), 25 % are the test file. The
-diagnosis sees only the tables. Scores from the verdict: top-1 (verdict ``effect`` naming the withheld effect; for
-mixed cases one of the two; on ``none`` cases: ``none`` or ``inconclusive``), ambiguous with the truth (verdict
+diagnosis sees only the tables. Scores from the verdict: top-1 (verdict ``effect`` whose first named effect is the
+withheld one, for mixed cases one of the two; on ``none`` cases: ``none`` or ``inconclusive``), exact (verdict
+``effect`` naming every withheld effect and no other), ambiguous with the truth (verdict
 ``ambiguous`` with the withheld effect among the candidates), right (either), inconclusive, top-2 (withheld effect
 among the first selected effect and the best-ranked candidates), claims on ``none`` cases, and the final test RMS
 against a truth-aware reference fit (see :mod:`cases`). The issue-25 cases (:data:`ISSUE25`) add physics unlike
@@ -104,12 +105,14 @@ def score_case(robot, case, rng, folds: int = 5) -> dict:
     first = d.effects[0] if d.effects else "none"
     top2 = ([first] if first != "none" else []) + [e for e in ranked if e != first]
     ba = d.before_after("test")
-    top1 = (v.verdict == "effect" and d.effect in truth) or (case.label == "none" and v.verdict in ("none", "inconclusive"))
+    quiet = case.label == "none" and v.verdict in ("none", "inconclusive")
+    top1 = (v.verdict == "effect" and d.effect in truth) or quiet
+    exact = (v.verdict == "effect" and set(d.effects) == truth) or quiet
     amb_truth = v.verdict == "ambiguous" and bool(truth & set(v.candidates))
     alt = [c for c in v.comparisons if not c.separable]
     return {"true": case.label, "variant": case.variant, "verdict": v.verdict, "candidates": "+".join(v.candidates),
             "diagnosed": d.effect, "sequence": "+".join(d.effects) or "none", "safe_model": v.safe_model,
-            "top1": top1, "ambiguous_with_truth": amb_truth, "right": top1 or amb_truth,
+            "top1": top1, "exact": exact, "ambiguous_with_truth": amb_truth, "right": top1 or amb_truth,
             "inconclusive": v.verdict == "inconclusive",
             "false_claim": case.label == "none" and v.verdict in ("effect", "ambiguous"),
             "top2": (case.label == "none" and d.effect == "none") or bool(truth & set(top2[:2])),
@@ -155,7 +158,7 @@ def _one(job):
         row = {"robot": name, **score_case(robot, case, rng, folds)}
     except tolalloc.TolallocError as exc:  # e.g. too few poses for the robot's identifiable parameters
         row = {"robot": name, "true": label, "variant": variant, "verdict": "error", "diagnosed": "error",
-               "sequence": "error", "top1": False, "top2": False, "right": False, "ambiguous_with_truth": False,
+               "sequence": "error", "top1": False, "exact": False, "top2": False, "right": False, "ambiguous_with_truth": False,
                "inconclusive": False, "false_claim": False, "poses": poses, "detail": str(exc).splitlines()[0]}
     row["_k"] = k
     print(f"{name:12s} {label:30s} {variant:11s} {poses:4d} -> {row['verdict']:12s} {row.get('candidates', '')!s:30s} "
@@ -210,7 +213,8 @@ def summary_lines(df: pd.DataFrame) -> tuple[list, dict]:
     ratio = df["test_rms_final_mm"] / df["test_rms_reference_mm"]
     none = df[df["true"] == "none"]
     eff = df[df["true"] != "none"]
-    fig = {"cases": len(df), "top1": float(df["top1"].mean()), "right": float(df["right"].mean()),
+    fig = {"cases": len(df), "top1": float(df["top1"].mean()), "exact": float(df["exact"].mean()),
+           "right": float(df["right"].mean()),
            "ambiguous_with_truth": int(df["ambiguous_with_truth"].sum()), "inconclusive": int(df["inconclusive"].sum()),
            "top2": float(df["top2"].mean()), "top1_effects": float(eff["top1"].mean()), "none_cases": len(none),
            "false_claims_on_none": int(none["false_claim"].sum()),
@@ -221,6 +225,8 @@ def summary_lines(df: pd.DataFrame) -> tuple[list, dict]:
     lines = [f"* cases: {fig['cases']} ({len(none)} with no effect)",
              f"* top-1 (verdict `effect` naming the withheld effect; `none` / `inconclusive` on none cases): "
              f"{int(df['top1'].sum())}/{len(df)} = {fig['top1']:.1%} (effect cases only: {fig['top1_effects']:.1%})",
+             f"* exact (verdict `effect` naming every withheld effect and no other; top-1 counts the first named "
+             f"effect only): {int(df['exact'].sum())}/{len(df)} = {fig['exact']:.1%}",
              f"* verdict `ambiguous` with the withheld effect among the candidates: {fig['ambiguous_with_truth']}",
              f"* right (top-1 or ambiguous with the truth): {int(df['right'].sum())}/{len(df)} = {fig['right']:.1%}",
              f"* verdict `inconclusive` (no effect claimed): {fig['inconclusive']} "
@@ -292,7 +298,7 @@ def write_report(df: pd.DataFrame, a) -> int:
     head, fig = summary_lines(df)
     absorbed = (df["true"] != "none") & (df["test_rms_reference_mm"] > 0.95 * df["test_rms_geometric_mm"])
     df["absorbed"] = absorbed
-    head.insert(8, f"* effect cases whose truth-aware reference gains < 5 % over geometry (absorbed): {int(absorbed.sum())}; "
+    head.insert(head.index(""), f"* effect cases whose truth-aware reference gains < 5 % over geometry (absorbed): {int(absorbed.sum())}; "
                 f"right on the other effect cases: {df.loc[(df['true'] != 'none') & ~absorbed, 'right'].mean():.1%}")
     new = df[df["variant"] != ""]
     old = df[df["variant"] == ""]
