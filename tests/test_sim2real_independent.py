@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4631,7 +4631,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH"))
+    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4778,7 +4778,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH"))
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH", "ZI"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4918,7 +4918,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH"))
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5064,7 +5064,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh as ezh
     from sim2real_indep import effects_zh_body as zhb
 
-    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s != "ZH")
+    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5177,3 +5177,144 @@ def test_set_zh_every_kind_lies_in_its_true_structure_and_known_answers():
     raw[3] = (raw[2] + 1) * np.exp(-1)
     assert T == pytest.approx(raw / raw.max())
 
+
+
+# --------------------------------------------------------------------------------------------------------- set ZI
+ZI_KINDS = ("pi_load_step", "helix_tilt", "dog_play", "free_swivel", "flank_profile", "cage_runout", "gravel_ratchet",
+            "crowned_sole", "bernoulli_grip", "jamming_grip", "thermosyphon", "motion_cooling")
+
+
+def test_set_zi_cases_kinds_and_determinism():
+    """Set ZI (the ninth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZH; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZI kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; a new part for
+    each block (the rocking sole, the Bernoulli and jamming grippers) and hours of blocks with production or pauses
+    between them (the thermal kinds)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zi as ezi
+    from sim2real_indep import effects_zi_body as zib
+
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s != "ZI")
+    assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
+    _assert_set_module("ZI", 40_7035, ezi, ("gear", "tether_reel", "regen_resistor", "worn_mesh"))
+    for name in ("effects_zi", "effects_zi_joint", "effects_zi_body", "effects_zi_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zi" in _imports(STUDY / "generator.py")
+    assert ezi.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezi.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezi.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert 3 <= part["blocks"] <= 5 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), gap, pause) in ezi.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        plain = opts(("pi_load_step", "helix_tilt", "dog_play", "free_swivel", "flank_profile", "cage_runout",
+                      "gravel_ratchet"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezi.probe_hook(("gear",), probe) is probe
+    assert ezi.probe_hook(("bernoulli_grip",), probe) == pytest.approx(probe + [0, 0, zib.PART_MM])
+    assert ezi.probe_hook(("jamming_grip",), probe) == pytest.approx(probe + [0, 0, zib.PART_MM])
+    _assert_regenerates("ZI", max_effect_poses=50)
+
+
+def test_set_zi_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZI kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the PI loop's load step and its decay over
+    the dwell, the helical tilt across the axis, the dog's play operator, the swivel's friction band, the loaded
+    flank's switch, the cage's rate, the ratchet's 1 / (N0 + k) sum, the sole's rocking about one axis against the
+    weight, the Bernoulli film's normal load, the jamming grip's reference at each block's start, the thermosyphon's
+    attitude switch and the motion cooling's forced convection."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zi_body as zib
+    from sim2real_indep import effects_zi_joint as zij
+    from sim2real_indep import effects_zi_thermal as zit
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZI_KINDS, 30, 35)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZI_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"pi_load_step": lambda: p["c"], "helix_tilt": lambda: p["c"], "dog_play": lambda: p["twist"],
+                   "free_swivel": lambda: p["e"], "flank_profile": lambda: p["e"], "cage_runout": lambda: p["e"],
+                   "gravel_ratchet": lambda: p["a"], "crowned_sole": lambda: p["inv_Rc"],
+                   "bernoulli_grip": lambda: p["a"], "jamming_grip": lambda: p["c"],
+                   "thermosyphon": lambda: [p["amp"]], "motion_cooling": lambda: [p["amp"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # PI load step: the change of the load from the previous pose (none at the first), decaying as exp(-dwell / T_i)
+    step = zij.load_step(ctx, 1)
+    assert step[0] == 0 and step[1:] == pytest.approx(np.diff(ctx.loads[:, 1]))
+    assert zij.step_share({"Ti_s": 2.0}, s) == pytest.approx(np.exp(-s.dwell_s / 2.0))
+    # helix tilt: the tilt axis lies across the joint's axis; no load, no tilt
+    ax, _ = zij.tilt_axes(P["helix_tilt"], ctx)
+    w, _ = kin.joint_frames(ctx.chain, ctx.q)
+    assert np.einsum("pi,pi->p", ax[0], w[:, 1]) == pytest.approx(np.zeros(len(s.q)), abs=1e-12)
+    assert np.linalg.norm(ax[0], axis=1) == pytest.approx(np.ones(len(s.q)))
+    unloaded = replace(ctx, masses=ctx.masses * 0, session=replace(s, payload_kg=s.payload_kg * 0))
+    assert np.abs(zij.helix_features(P["helix_tilt"], unloaded, None)).max() < 1e-9
+    # dog play: a play operator of half-width D
+    g = zij.guide_angle({"D": 1.0, "u0": 0.0}, np.array([0.0, 0.5, 2.0, 1.5, -1.0]))
+    assert g == pytest.approx([0.0, 0.0, 1.0, 1.0, 0.0])
+    dp = P["dog_play"]
+    assert np.abs(s.q[:, 0] - zij.guide_angle(dp, s.q[:, 0])).max() <= dp["D"] + 1e-12
+    # free swivel: hangs downhill without friction, stays where it is while gravity along the axis dominates
+    g_t = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.05, -0.99]])
+    assert zib.swivel_angle({"f": 0.0, "u0": 0.3}, g_t) == pytest.approx([0.0, np.pi / 2, np.pi / 2])
+    band = zib.swivel_angle({"f": 0.5, "u0": 0.0}, np.array([[1.0, 0, 0], [0.0, 1.0, 0]]))
+    assert band == pytest.approx([0.0, np.pi / 2 - np.arcsin(0.5)])
+    # flank profile: the positive load's flank pattern, then the negative one's
+    sig = zij.flank_signals({"z": 2}, np.array([0.3, 0.3]), np.array([5.0, -5.0]))
+    assert sig[:, 0] == pytest.approx([np.sin(0.6), np.cos(0.6), 0, 0])
+    assert sig[:, 1] == pytest.approx([0, 0, np.sin(0.6), np.cos(0.6)])
+    # cage runout: the cage turns at (1 - gamma cos(alpha)) / 2 of the shaft
+    assert zij.cage_ratio(0.1, 0.0) == pytest.approx(0.45) and 0.4 < P["cage_runout"]["f_c"] < 0.5
+    # gravel ratchet: the moments summed with the weights 1 / (N0 + k)
+    M = np.array([[1.0, 2.0, 7.0]] * 3)
+    tilt = zib.ratchet_tilt({"N0": 1.0}, M)
+    assert tilt == pytest.approx(np.outer(np.cumsum([1 / 2, 1 / 3, 1 / 4]), [1.0, 2.0, 0.0]))
+    # crowned sole: a tilt about the rocking axis alone, inversely as the standing weight
+    sp = P["crowned_sole"]
+    F1 = zib.sole_features(sp, ctx, None)[0]
+    heavy = {**sp, "base_kg": sp["base_kg"] + 100.0}
+    W1, W2 = zib.standing_weight(sp, ctx), zib.standing_weight(heavy, ctx)
+    assert W2 - W1 == pytest.approx(np.full(len(W1), 100 * kin.G))
+    assert zib.sole_features(heavy, ctx, None)[0] == pytest.approx(F1 * (W1 / W2)[:, None])
+    assert F1 @ zib.rocking_axis(sp) == pytest.approx(np.zeros(len(F1)), abs=1e-9)  # a turn about e moves across it
+    # Bernoulli grip: the part's weight along the face normal, pulling when the face looks down
+    Rt = zib.tool_frame(ctx)
+    assert zib.normal_load(ctx) == pytest.approx(s.payload_kg * kin.G * -Rt[:, 2, 2])
+    assert len(set(s.payload_kg)) > 1
+    # jamming grip: each block's first pose is its reference (no tilt there)
+    starts = zib._block_starts(s)
+    assert np.abs(zib.seat_moment(P["jamming_grip"], ctx)[np.unique(starts)]).max() == 0 and len(set(starts)) > 1
+    toy = replace(s, gap_s=np.array([0.0, 0.0, 60.0, 0.0, 0.0]), payload_kg=np.array([1.0, 1.0, 1.0, 2.0, 2.0]))
+    assert list(zib._block_starts(toy)) == [0, 0, 2, 3, 3]
+    # thermosyphon: the pipe off with the wrist end level or up, fully on well below; the rise within [0, 1]
+    tp = P["thermosyphon"]
+    sh = zit.syphon_share(tp, ctx)
+    assert ((sh >= 0) & (sh <= 1)).all() and sh.max() > 0 and sh.min() == 0
+    T = zit.syphon_temperature(tp, ctx)
+    assert ((T >= 0) & (T <= 1)).all() and np.ptp(T) > 0
+    # motion cooling: h / h0 = 1 + b (v / 1 m/s)^0.8; with no forced convection and no gaps a plain first-order rise
+    cp = P["motion_cooling"]
+    assert zit.convection(cp, np.array([0.0, 1.0, 2.0])) == pytest.approx([1.0, 1 + cp["b"], 1 + cp["b"] * 2 ** 0.8])
+    assert zit.link_speed(ctx)[0] == 0 and (zit.link_speed(ctx) >= 0).all()
+    still = replace(ctx, session=replace(s, gap_s=np.zeros(len(s.gap_s))))
+    T = zit.cooling_temperature({**cp, "b": 0.0}, still)
+    assert T == pytest.approx(1 + (cp["T0"] - 1) * np.exp(-(s.time_s - s.time_s[0]) / cp["tau0_s"]))

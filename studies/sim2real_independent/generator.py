@@ -60,6 +60,7 @@ from sim2real_indep import effects_ze as eze
 from sim2real_indep import effects_zf as ezf
 from sim2real_indep import effects_zg as ezg
 from sim2real_indep import effects_zh as ezh
+from sim2real_indep import effects_zi as ezi
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -111,6 +112,7 @@ EFFECTS = {
     **ezf.EFFECTS_ZF,  # set ZF's new kinds
     **ezg.EFFECTS_ZG,  # set ZG's new kinds
     **ezh.EFFECTS_ZH,  # set ZH's new kinds
+    **ezi.EFFECTS_ZI,  # set ZI's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -119,7 +121,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
-                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER)
+                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -221,7 +223,8 @@ def _session_options(robot_key, physics, rng):
     opts = eze.session_options(robot_key, physics, rng, opts)  # set ZE (no draws without a set-ZE kind)
     opts = ezf.session_options(robot_key, physics, rng, opts)  # set ZF (no draws without a set-ZF kind)
     opts = ezg.session_options(robot_key, physics, rng, opts)  # set ZG (no draws without a set-ZG kind)
-    return ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
+    opts = ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
+    return ezi.session_options(robot_key, physics, rng, opts)  # set ZI (no draws without a set-ZI kind)
 
 
 def _tracker(rng):
@@ -273,6 +276,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezf.probe_hook(physics, probe)  # set ZF's polymer boom, gapping tool, brackets (no draws)
     probe = ezg.probe_hook(physics, probe)  # set ZG's beam-column and leaf booms, PA6 bracket (no draws)
     probe = ezh.probe_hook(physics, probe)  # set ZH's inflated boom, collet boom, swinging bracket (no draws)
+    probe = ezi.probe_hook(physics, probe)  # set ZI's parts on the Bernoulli and jamming grippers (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

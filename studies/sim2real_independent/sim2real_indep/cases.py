@@ -20,7 +20,8 @@ set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 ca
 (:mod:`effects_zb`), set ZC (24 cases, 8 per arm) a twenty-ninth (:mod:`effects_zc`), set ZD (24 cases, 8 per arm) a thirtieth
 (:mod:`effects_zd`), set ZE (24 cases, 8 per arm) a thirty-first (:mod:`effects_ze`), set ZF (24 cases, 8 per
 arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-third (:mod:`effects_zg`), set ZH
-(24 cases, 8 per arm) a thirty-fourth (:mod:`effects_zh`).
+(24 cases, 8 per arm) a thirty-fourth (:mod:`effects_zh`), set ZI (24 cases, 8 per arm) a thirty-fifth
+(:mod:`effects_zi`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -41,6 +42,7 @@ SEED_ZE = 40_7031
 SEED_ZF = 40_7032
 SEED_ZG = 40_7033
 SEED_ZH = 40_7034
+SEED_ZI = 40_7035
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1628,7 +1630,58 @@ SET_ZH = [
     ("ZH24", "kr16_like", ("running_in_te", "inflated_boom"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH)
+#: Set ZI (seed 40_7035): twelve new kinds, two per family (sim2real_indep.effects_zi; physics and sources in
+#: effects_zi_joint, effects_zi_body, effects_zi_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth (gains 25 % on ZI20 and 29 % on ZI05 to 92 % on ZI18; the closest rivals ZI20's link model at 1.32x,
+#: ZI04's transmission model at 1.64x and ZI05's backlash model at 1.42x; a mixture component's removal costs 16 % at
+#: least, ZI16's PI load step, then ZI24's cage runout at 24 %), the geometry-only cases none. Changed after trial
+#: draws (the modules' docstrings give the first ranges): the helix tilt first also on tool_changer (ZI09 absorbed,
+#: 3.8 %: on the planar arm a tilt with tau2 about an axis fixed in the housing reads as a constant tilt of axis 2),
+#: now on kr16_like alone (ZI17, ZI24; ZI24 first held the jamming grip with the cage runout); the cage runout then
+#: tried on tool_changer (ZI09 absorbed, 2.4 %: over axis 1's +-60 deg a sine at the cage's rate is nearly a line), so
+#: ZI09 took the jamming grip, ZI06 (first the Bernoulli grip, which moved to tool_changer's ZI12) the jamming grip;
+#: the crowned sole first rocked about the moment's own axis under a heavier pedestal (ZI11 on tool_changer the link
+#: model at 1.07x, ZI22 on kr16_like ambiguous, 5.3 %: a tilt along the moment turns the arm in its plane as the
+#: joints' and links' compliance do; a 1-1.8 m riser did not help), now a sole bowed along its length rocking about
+#: one axis, on ur10 (ZI04, first the free swivel, now ZI11) and kr16_like; the thermosyphon first on tool_changer's
+#: steel forearm (ZI13 absorbed, 2.4 %; ZI13 now the dog play with a time split) and on kr16_like with r 2-5 and 15-35 K
+#: (ZI20 16.8 % as a time split), now on the aluminium arms with r 3-8, 25-45 K and pauses of 20-60 min; ZI20 keeps
+#: the random split of the slot it took over (the dog play's; as a time split it scores 20.9 %, the backlash model at
+#: 1.24x); the motion cooling first warmed the upper arm alone, 10-25 K from a start 30-80 % warm (ZI05 14.5 %, the link
+#: model at 1.18x; with production alone between the blocks 0.3-23 % on ur10), now the upper arm and forearm, 15-35 K
+#: from a start 0-50 % warm, production or pauses between the blocks. No seed or pose count was changed. A trial on
+#: the seed + 1 (case seeds + 1000003): 21 of 24 at the 20 % / 1.25x bar; below it the crowned sole on ur10 (ZI04,
+#: 19.5 %, the transmission model at 1.21x) and the motion cooling (ZI05 absorbed, 1.0 %; ZI21 absorbed, 4.1 %) --
+#: the weakest kinds.
+SET_ZI = [
+    ("ZI01", "ur10", ("pi_load_step",), 130, "random"),
+    ("ZI02", "ur10", ("dog_play",), 120, "random"),
+    ("ZI03", "ur10", ("cage_runout",), 140, "random"),
+    ("ZI04", "ur10", ("crowned_sole",), 120, "random"),
+    ("ZI05", "ur10", ("motion_cooling",), 150, "time"),
+    ("ZI06", "ur10", ("jamming_grip",), 50, "random"),
+    ("ZI07", "ur10", (), 60, "random"),
+    ("ZI08", "ur10", ("gravel_ratchet", "thermosyphon"), 180, "time"),
+    ("ZI09", "tool_changer", ("jamming_grip",), 140, "random"),
+    ("ZI10", "tool_changer", ("flank_profile",), 120, "random"),
+    ("ZI11", "tool_changer", ("free_swivel",), 140, "random"),
+    ("ZI12", "tool_changer", ("bernoulli_grip",), 140, "random"),
+    ("ZI13", "tool_changer", ("dog_play",), 150, "time"),
+    ("ZI14", "tool_changer", ("gravel_ratchet",), 150, "time"),
+    ("ZI15", "tool_changer", (), 40, "random"),
+    ("ZI16", "tool_changer", ("pi_load_step", "free_swivel"), 190, "random"),
+    ("ZI17", "kr16_like", ("helix_tilt",), 130, "random"),
+    ("ZI18", "kr16_like", ("flank_profile",), 130, "random"),
+    ("ZI19", "kr16_like", ("bernoulli_grip",), 130, "random"),
+    ("ZI20", "kr16_like", ("thermosyphon",), 160, "random"),
+    ("ZI21", "kr16_like", ("motion_cooling",), 140, "time"),
+    ("ZI22", "kr16_like", ("crowned_sole",), 120, "random"),
+    ("ZI23", "kr16_like", (), 100, "random"),
+    ("ZI24", "kr16_like", ("helix_tilt", "cage_runout"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1638,7 +1691,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
-        "ZH": (SET_ZH, SEED_ZH)}
+        "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI)}
 
 
 def case_seed(set_name: str, index: int) -> int:

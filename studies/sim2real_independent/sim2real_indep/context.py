@@ -442,7 +442,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "loose_pivot": "backlash", "pinion_handover": "transmission", "running_in_te": "transmission",
           "brazier_pedestal": "mount_compliance", "dished_plate": "mount_compliance",
           "inflated_boom": "link_deflection", "collet_root": "link_deflection", "wrist_conduction": "thermal",
-          "regen_resistor": "thermal"}
+          "regen_resistor": "thermal",
+          # set ZI (sim2real_indep.effects_zi; pi_load_step, the loaded axes' PI loops still recovering from the pose's
+          # load step, and helix_tilt, the outputs tilted by their helical stages' axial thrust, scored as joint
+          # compliance; dog_play, axis 1 twisted by its dress pack inside the wide play of its guide's dog, and
+          # free_swivel, the target on a friction-held swivel hanging downhill, as backlash (errors that follow the path
+          # through a play or a friction band); flank_profile, axis 2's mesh error switching with the loaded flank, and
+          # cage_runout, axis 1's encoder misread by its bearing's cage-borne runout, as transmission; gravel_ratchet,
+          # the base on a granular bed densifying under each move's moment, and crowned_sole, an unanchored base rocking
+          # on its bowed sole against its weight, as mount compliance; bernoulli_grip, a part floating on a Bernoulli
+          # gripper's air film, and jamming_grip, a part in a jamming gripper locked at each block's start, as link
+          # deflection (the end-of-arm structure carrying the target); thermosyphon, the forearm cooled by a heat pipe
+          # that works with the wrist end down, and motion_cooling, the upper arm and forearm cooled by the air they
+          # move through, as thermal)
+          "pi_load_step": "joint_compliance", "helix_tilt": "joint_compliance", "dog_play": "backlash",
+          "free_swivel": "backlash", "flank_profile": "transmission", "cage_runout": "transmission",
+          "gravel_ratchet": "mount_compliance", "crowned_sole": "mount_compliance",
+          "bernoulli_grip": "link_deflection", "jamming_grip": "link_deflection", "thermosyphon": "thermal",
+          "motion_cooling": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; all thirty-four: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; all thirty-five: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -452,6 +452,30 @@ on ur10, `none`; right on kr16_like); a target bracket on a loose pin resting on
 link deflection on all three arms (ZH06, ZH18, and ZH16 beside a heated tool's conduction); a base on a rim-clamped
 dished plate, named link deflection with a further effect not attributed (ZH09); a cracked tooth softening axis 3's
 mesh once per turn (ZH14, `none`).
+
+**Set ZI** (24 cases, seed 40_7035) is a thirty-fifth independent test set of twelve new kinds
+(`sim2real_indep/effects_zi*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZH, and who did not run the diagnosis. It was run once, on the
+code after set ZH had been judged, with no change of the diagnosis since (the gear-ratio search's notes say whether a
+frequency stood out by a flag instead of by their wording; the same reasons are printed). Set ZI: 13/24 strict, 13
+lenient, no false claim, median final / oracle RMS 1.57; right on 6 of 11 effect cases where the true family's generic
+model helps, 4 of 10 where it does not. Its misses: a PI servo without gravity feed-forward still recovering from the
+load step between poses (ZI01, `none`; with a free swivel, ZI16, named transmission); a dress pack twisting axis 1
+inside the wide play of its guide's dog (ZI02 on ur10, named transmission; right on tool_changer); an unanchored base
+rocking on a sole bowed along its length, named transmission on both arms (ZI04, ZI22: the generic mount model of this
+study -- a full 2 x 2 compliance about a pivot below the base -- gains 43 % and 79 % on the test poses, the
+diagnosis's mount variants, an isotropic or a base-x / base-y compliance, 11 % and 3 % out of fold on the training
+file: the sole's rocking axis lies at any heading); a jamming gripper whose seat locked at each block's first pose
+(ZI06 on ur10, named backlash; right on tool_changer); a tooth-mesh error switching between its flanks' profiles with
+the load's sign (ZI10 on tool_changer, `none`; right on kr16_like); a target on a free swivel turned downhill by its
+unbalance until seal friction holds it (ZI11, named link deflection); a gravel bed densifying under each move's moment
+(ZI14, named thermal; beside a thermosyphon in ZI08 only the thermosyphon is named, which counts); helical final
+stages' thrust tilting the outputs of axes 2 and 3 (ZI17, named transmission; beside a cage runout in ZI24 only the runout is
+named, which counts); an arm cooled by the air it moves through (ZI21 on kr16_like: the thermal selection does not
+transfer to the test file, `inconclusive`; right on ur10). The helper flags four kinds as close to earlier ones in
+signal though not in mechanism (pi_load_step / set Q's servo_tail, dog_play / set N's harness_lash, flank_profile /
+the mesh errors, bernoulli_grip / set Y's foam gripper); on a second seed three of its cases fall below the oracle's
+bars (ZI04, ZI05, ZI21).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1048,6 +1072,24 @@ comment):
 | collet_root | link_deflection | a boom held in a long clamp bush giving on it as on an elastic foundation, its root shifting and turning (tool_changer, kr16_like) | Hetenyi, *Beams on Elastic Foundation* (1946) ch. 2 |
 | wrist_conduction | thermal | a heated tool's heat diffusing into the forearm's wall from the wrist, the warmed length growing as sqrt(t) (ur10, tool_changer) | Carslaw & Jaeger (1959) sec. 2.4 |
 | regen_resistor | thermal | a braking resistor on the pedestal heated by the energy of each lowering move, cooling in between (ur10, tool_changer) | Mohan, Undeland & Robbins (2003) ch. 14 |
+
+Set ZI's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZI
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| pi_load_step | joint_compliance | axes 2 and 3 held by PI loops without gravity feed-forward, still recovering at the dwell's end from the load step since the previous pose (ur10, tool_changer) | Astrom & Hagglund, *Advanced PID Control* (2006) sec. 4.2; Ellis (2012) ch. 6 |
+| helix_tilt | joint_compliance | the axial thrust of a helical final stage tilting the output across its axis in proportion to the joint torque (kr16_like) | ISO 21771:2007; Niemann & Winter, *Maschinenelemente* II (1989) ch. 21 |
+| dog_play | backlash | axis 1's dress pack wound up inside the wide play of the dog that drags its rotary guide (ur10, tool_changer) | Krasnosel'skii & Pokrovskii (1989); Visintin (1994) |
+| free_swivel | backlash | a target on a free swivel turned downhill by its unbalance until the seals' friction holds it (tool_changer) | Den Hartog, *Mechanical Vibrations* (4th ed.) ch. 8 |
+| flank_profile | transmission | a tooth-mesh error switching between the left and right flanks' profile errors with the load's sign (tool_changer, kr16_like) | ISO 1328-1:2013; Smith, *Gear Noise and Vibration* (2003) ch. 3, 9 |
+| cage_runout | transmission | bearing runout turning with the cage (0.43-0.5 of the shaft angle), read by axis 1's encoder as an angle (ur10, kr16_like) | Harris & Kotzalas (2007) ch. 1, 8; Heidenhain, *Angle Encoders* (2015) |
+| gravel_ratchet | mount_compliance | a gravel bed densifying under each move's moment, the base tilt ratcheting up with the cycles (ur10, tool_changer) | Sawicki & Swidzinski (1989); Wichtmann et al., Soil Dyn. Earthq. Eng. 25 (2005) |
+| crowned_sole | mount_compliance | an unanchored base rocking on a sole bowed along its length about one axis, its weight the stiffness (ur10, kr16_like) | Timoshenko & Young (1956); Housner, BSSA 53 (1963) |
+| bernoulli_grip | link_deflection | a part floating on a Bernoulli gripper's air film at the gap its weight's normal share sets (tool_changer, kr16_like) | Brun & Melkote, J. Manuf. Sci. Eng. 131 (2009); Li et al., Precis. Eng. (2015) |
+| jamming_grip | link_deflection | a part held in a granular jamming gripper, tilting with the change of its moment since the block's first pose (ur10, tool_changer) | Brown et al., PNAS 107 (2010); Amend et al., IEEE Trans. Robot. 28 (2012) |
+| thermosyphon | thermal | a forearm cooled by a heat pipe that works only while the wrist end hangs below the elbow (ur10, kr16_like) | Faghri (1995) ch. 5, 7; Reay, Kew & McGlen, *Heat Pipes* (2014) ch. 2 |
+| motion_cooling | thermal | upper arm and forearm heated by joint electronics and cooled faster while they move through the air (ur10, kr16_like) | Incropera & DeWitt, ch. 7 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
