@@ -336,6 +336,36 @@ def test_a_mount_about_a_pivot_below_the_base_is_one_more_column_whose_ratio_is_
     np.testing.assert_allclose(B[..., 0], iso[..., 0])
 
 
+def test_a_base_rocking_about_one_horizontal_axis_is_the_tensor_variant_with_the_sole_depth():
+    """A base rocking on a sole bowed along one heading e (omega = e (e . M_h) / (W R), about the sole's crest h below
+    the base): a rank-one symmetric compliance the isotropic and base-axes variants cannot hold; the tensor variant's
+    six columns reproduce it exactly, and its first two are the base-axes variant's."""
+    from tolalloc.physics.compliance import mount_columns
+    from tolalloc.physics.loads import base_moment, target_points
+
+    robot = tolalloc.load_robot("ur10")
+    q = np.random.default_rng(4).uniform(-2, 2, (40, robot.n_joints))
+    p = target_points(robot, q, np.zeros(3))
+    g = np.asarray(robot.gravity, float)
+    M = base_moment(robot, q, p, 0.0)
+    Mh = M - (M @ g)[:, None] * g
+    e, k, h = np.array([np.cos(0.6), np.sin(0.6), 0.0]), 3e-7, 450.0
+    expected = np.cross(k * (Mh @ e)[:, None] * e, p - h * g)
+    B, names = mount_columns(robot, q, p, p, None, "tensor")
+    assert B.shape == (40, 3, 6) and names[:3] == ["c_mount_xx [rad/(N m)]", "c_mount_yy [rad/(N m)]",
+                                                   "c_mount_xy [rad/(N m)]"]
+    C = k * np.outer(e, e)
+    np.testing.assert_allclose(B @ np.r_[C[0, 0], C[1, 1], C[0, 1], h * C[0, 0], h * C[1, 1], h * C[0, 1]], expected,
+                               rtol=1e-10, atol=1e-15)
+    axes, _ = mount_columns(robot, q, p, p, None, "axes")
+    np.testing.assert_allclose(B[..., :2], axes)
+    for variant in ("isotropic", "axes", "pivot"):  # a least-squares fit of the others leaves most of it
+        A, _ = mount_columns(robot, q, p, p, None, variant)
+        A = A.reshape(-1, A.shape[-1])
+        r = expected.ravel() - A @ np.linalg.lstsq(A, expected.ravel(), rcond=None)[0]
+        assert np.linalg.norm(r) > 0.3 * np.linalg.norm(expected), variant
+
+
 @pytest.mark.parametrize("log_bf, verdict", [(np.log(30.0), "effect"), (np.log(10.0), "ambiguous"),
                                              (-np.log(30.0), "ambiguous")])
 def test_a_tie_in_held_out_rms_is_decided_by_strong_evidence_only(log_bf, verdict):

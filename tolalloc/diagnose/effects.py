@@ -20,7 +20,8 @@ signature:
 ``mount_compliance``  the whole robot tilts on a compliant base under the moment of its masses, payload and wrench
                       (``isotropic``: one compliance; ``axes``: about base x and y; ``pivot``: one compliance
                       about a pivot below the base, its depth fitted) [rad/(N m)]; ``play``: a compliance and a
-                      rocking in the moment's direction (a base standing within a clearance) [mrad].
+                      rocking in the moment's direction (a base standing within a clearance) [mrad]; ``tensor``: a
+                      symmetric horizontal compliance (principal axes at any heading) about a pivot of fitted depth.
 ``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
                       beyond by their moment), a logged payload and process wrench, and an own weight
                       (:mod:`tolalloc.physics.beams`):

@@ -21,7 +21,11 @@ the gravity moment of its moving masses and payload about the base (:func:`~.loa
 a rocking ``r`` [mrad] in the direction of the horizontal moment whatever its size, ``omega = c M_h + r M_h / |M_h|``
 (a base that rocks within a clearance -- a short foot, a loose anchor, a carriage on its rollers -- and then stands
 on the side the moment presses; the first joint's bearing tilt clearance has the same signature, so the clearance
-model of :mod:`~.clearance` leaves it to this one).
+model of :mod:`~.clearance` leaves it to this one). ``tensor``: a symmetric 2 x 2 compliance in the horizontal plane,
+``omega = C M_h`` (``c_xx``, ``c_yy``, ``c_xy``; ``x``, ``y`` the base axes projected across gravity), about a pivot at
+a fitted depth: a support whose stiffest and softest axes lie at any heading -- a rectangular plate or anchor
+pattern, a base rocking on a sole bowed along one direction (``C = e e^T / (W R)``, rank one) -- with its columns
+times the depth beside them (six, linear in ``C`` and ``C h``).
 
 **Bearing tilt.** A revolute joint's bearing pair (a cross-roller bearing, an angular-contact pair) carries the
 moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`), taken about the pair's centre, and
@@ -55,7 +59,7 @@ __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_lo
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
 #: Shape parameters of the ``hardening`` law: T0 as a fraction of the joint's largest load.
 HARDENING_FRACTIONS = (0.2, 0.4)
-MOUNT_VARIANTS = ("isotropic", "axes", "pivot", "play")
+MOUNT_VARIANTS = ("isotropic", "axes", "pivot", "play", "tensor")
 
 
 def joint_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
@@ -158,6 +162,8 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
         side = unit_along(Mh, np.linalg.norm(Mh, axis=1).max(initial=0.0), 1e-9)
         return (np.stack([np.cross(Mh, p), 1e-3 * np.cross(side, p)], axis=-1),
                 ["c_mount [rad/(N m)]", "r_mount [mrad]"])
+    if variant == "tensor":
+        return _tensor_columns(Mh, p, g)
     cols, names = [], []
     for i, ax in enumerate("xyz"):
         if abs(g[i]) > 0.99:
@@ -166,6 +172,23 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
         om[:, i] = Mh[:, i]
         cols.append(np.cross(om, p))
         names.append(f"c_mount_{ax} [rad/(N m)]")
+    return np.stack(cols, axis=-1), names
+
+
+def _tensor_columns(Mh: np.ndarray, p: np.ndarray, g: np.ndarray) -> tuple:
+    """The ``tensor`` variant's six columns (P, 3, 6): the rotations ``m_u u``, ``m_v v``, ``m_v u + m_u v`` of a
+    symmetric horizontal compliance (``u``, ``v`` across gravity, from the base x axis, or y where x is vertical),
+    about the base origin and times a pivot's depth along gravity."""
+    ref = np.eye(3)[0] if abs(g[0]) < 0.9 else np.eye(3)[1]
+    u = ref - (ref @ g) * g
+    u = u / np.linalg.norm(u)
+    v = np.cross(u, g)  # (u, v, up) right-handed: base y where gravity is -z
+    mu, mv = Mh @ u, Mh @ v
+    omegas = [mu[:, None] * u, mv[:, None] * v, mv[:, None] * u + mu[:, None] * v]
+    down = np.broadcast_to(-g, p.shape)
+    cols = [np.cross(om, p) for om in omegas] + [np.cross(om, down) for om in omegas]
+    names = [f"c_mount_{ab} [rad/(N m)]" for ab in ("xx", "yy", "xy")]
+    names += [f"c_mount_{ab}_depth [rad mm/(N m)]" for ab in ("xx", "yy", "xy")]
     return np.stack(cols, axis=-1), names
 
 
