@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4631,7 +4631,8 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS and all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI"))
+    assert "ZD" < "ZE" and "ZE" in cs.SETS
+    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4778,7 +4779,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH", "ZI"))
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4918,7 +4919,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI"))
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5064,7 +5065,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh as ezh
     from sim2real_indep import effects_zh_body as zhb
 
-    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI"))
+    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI", "ZJ"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5196,7 +5197,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s != "ZI")
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ"))
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5318,3 +5319,161 @@ def test_set_zi_every_kind_lies_in_its_true_structure_and_known_answers():
     still = replace(ctx, session=replace(s, gap_s=np.zeros(len(s.gap_s))))
     T = zit.cooling_temperature({**cp, "b": 0.0}, still)
     assert T == pytest.approx(1 + (cp["T0"] - 1) * np.exp(-(s.time_s - s.time_s[0]) / cp["tau0_s"]))
+
+
+# --------------------------------------------------------------------------------------------------------- set ZJ
+ZJ_KINDS = ("gauge_zero_drift", "traction_microslip", "gyro_filter", "wind_flank", "stepper_stall", "ghost_order",
+            "hydrostatic_rail", "clay_pier", "gecko_pad", "warm_sag", "stray_weld_current", "plume_bracket")
+
+
+def test_set_zj_cases_kinds_and_determinism():
+    """Set ZJ (the tenth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the benchmark
+    and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3 mixtures, a
+    quarter split by time; its name keys the case seeds and sorts after ZI; a case regenerates bit-identically from its
+    seed; the session hook leaves cases without a set-ZJ kind alone (no random numbers drawn) and the probe hook draws
+    none; the generator reaches the set's modules and none imports tolalloc; a new part for each block (the gecko pad,
+    the warm panel, the plume's hot part) and hours of blocks with production or pauses between them (the sensors'
+    warm-up, the welding current, the plume)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zj as ezj
+    from sim2real_indep import effects_zj_body as zjb
+    from sim2real_indep import effects_zj_thermal as zjt
+
+    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s != "ZJ")
+    assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
+    _assert_set_module("ZJ", 40_7036, ezj, ("gear", "tether_reel", "thermosyphon", "jamming_grip"))
+    for name in ("effects_zj", "effects_zj_joint", "effects_zj_body", "effects_zj_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zj" in _imports(STUDY / "generator.py")
+    assert ezj.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezj.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezj.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert part["blocks"] >= 3 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), gap, pause) in ezj.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        plain = opts(("traction_microslip", "gyro_filter", "wind_flank", "stepper_stall", "ghost_order",
+                      "hydrostatic_rail", "clay_pier"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezj.probe_hook(("gear",), probe) is probe
+    assert ezj.probe_hook(("gecko_pad",), probe) == pytest.approx(probe + [0, 0, zjb.PART_MM])
+    assert ezj.probe_hook(("warm_sag",), probe) == pytest.approx(probe + [zjb.PANEL_MM, 0, 0])
+    assert ezj.probe_hook(("plume_bracket",), probe) == pytest.approx(probe + [0, 0, zjt.BRACKET_MM])
+    _assert_regenerates("ZJ", max_effect_poses=50)
+
+
+def test_set_zj_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZJ kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm; and known answers: the sensors' warm-up node, Mindlin's virgin
+    curve and Masing's rule, the complementary filter's memory, the stalls' losses against the motion, the ghost
+    order's sine, the opposed pads' cube law and the rail's roll, the piers' cube about their line, the gecko pad's
+    shear stiffening, the warm panel's creep reset with each part, the wind's flank and its torque's sign, the welding
+    node's heating in production and the plume's attitude share."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zj_body as zjb
+    from sim2real_indep import effects_zj_joint as zjj
+    from sim2real_indep import effects_zj_thermal as zjt
+
+    runs = {}
+    for robot in ("ur10", "tool_changer", "kr16_like"):
+        case = gen.generate("t", robot, ZJ_KINDS, 30, 36)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in ZJ_KINDS:
+            d, A = _effect_and_features(case, ctx, kind)
+            p = case.truth["params"][kind]
+            amp = {"gauge_zero_drift": lambda: p["c"], "traction_microslip": lambda: p["A"],
+                   "gyro_filter": lambda: p["s"], "wind_flank": lambda: [p["b2"]], "stepper_stall": lambda: p["loss"],
+                   "ghost_order": lambda: p["e"], "hydrostatic_rail": lambda: [p["h0"]], "clay_pier": lambda: [p["c"]],
+                   "gecko_pad": lambda: [p["inv_k0"]], "warm_sag": lambda: [p["A"]],
+                   "stray_weld_current": lambda: p["amp"], "plume_bracket": lambda: [p["amp"]]}[kind]()
+            _assert_features_reproduce(d, A, amp, rtol=1e-8, min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    t = s.time_s - s.time_s[0]
+    # the sensors' warm-up: without gaps a plain first-order rise from T0 towards 1; a pause cools towards 0
+    still = replace(s, gap_s=np.zeros(len(s.gap_s)))
+    zp = P["gauge_zero_drift"]
+    assert zjj.zero_node(zp, still) == pytest.approx(1 + (zp["T0"] - 1) * np.exp(-t / zp["tau_s"]))
+    toy = replace(s, time_s=np.array([0.0, 4000.0]), gap_s=np.array([0.0, -3600.0]), dwell_s=np.array([5.0, 5.0]))
+    node = zjt.gap_node(toy, 1.0, 600.0, 1.0, 1.5, 0.0)
+    assert node[1] == pytest.approx(1 + (np.exp(-6.0) - 1) * np.exp(-400 / 600))
+    # Mindlin micro-slip: the virgin curve from the unloaded state; Masing's branch from a reversal
+    u = np.linspace(0.0, 0.8, 41)
+    assert zjj.mindlin_masing(u) == pytest.approx(zjj.mindlin_virgin(u), abs=2e-3)
+    assert zjj.mindlin_virgin(0.5) == pytest.approx(1 - 0.5 ** (2 / 3))
+    path = np.r_[np.linspace(0.0, 0.7, 15), np.linspace(0.65, -0.5, 24)]
+    x = zjj.mindlin_masing(path)
+    branch = x[14] - 2 * zjj.mindlin_virgin((0.7 - path[15:]) / 2)
+    assert x[15:] == pytest.approx(branch, abs=3e-3)
+    assert zjj.mindlin_masing(-path) == pytest.approx(-x)
+    # the complementary filter: a move's share decays over its dwell, then with the time between poses
+    fs = replace(s, time_s=np.array([0.0, 10.0, 20.0]), dwell_s=np.array([5.0, 4.0, 6.0]))
+    E = zjj.filter_memory({"tau_s": 3.0}, fs, np.array([[0.0], [0.2], [0.2]]))
+    assert E[:, 0] == pytest.approx([0.0, 0.2 * np.exp(-4 / 3), 0.2 * np.exp(-4 / 3) * np.exp(-10 / 3)])
+    # stepper stalls: one loss against the motion per stalled move; some 5-15 % of the moves stall
+    assert zjj.stall_count([0, 1, 0, 1, 1], np.array([0.0, 1.0, 2.0, 1.5, 1.0])) == pytest.approx([0, -1, -1, 0, 1])
+    for ev in P["stepper_stall"]["events"]:
+        assert 0 < np.mean(ev[1:]) <= 0.2 and not ev[0]
+    # ghost order: the hobbing machine's index order on axis 1
+    gp = P["ghost_order"]
+    assert 60 <= gp["z"] <= 200
+    assert zjj.ghost_features(gp, ctx, None)[0] == pytest.approx(ctx.joint_feature(0, np.sin(gp["z"] * s.q[:, 0])))
+    # opposed constant-flow pads: the film change solves the cube law; equal sides do not roll the carriage
+    f = np.array([-2.0, 0.0, 0.7, 5.0])
+    d = zjb.opposed_film(f)
+    assert (1 - d) ** -3 - (1 + d) ** -3 == pytest.approx(f, rel=1e-6, abs=1e-9) and d[1] == pytest.approx(0, abs=1e-9)
+    hp = P["hydrostatic_rail"]
+    sides = zjb.rail_sides(hp, ctx)
+    m, _, _ = ctx.mass_state
+    assert sides.sum(axis=1) == pytest.approx(hp["f_nom"] * (m.sum(axis=1) + hp["carriage_kg"]) * kin.G / hp["F_ref"])
+    level = {**hp, "s_mm": 1e12}  # a very wide rail: the roll moment no longer loads the sides apart
+    Fl = zjb.hydro_features(level, ctx, None)[0]
+    assert Fl[:, :2] == pytest.approx(np.zeros((len(Fl), 2)), abs=1e-9)
+    # clay piers: a turn about their line, with the cube of the moment along it
+    cp = P["clay_pier"]
+    e = zjb.pier_axis(cp)
+    assert zjb.pier_features(cp, ctx, None)[0] @ e == pytest.approx(np.zeros(len(s.q)), abs=1e-9)
+    M = np.array([[100.0, 50.0, 3.0]])
+    assert zjb.pier_tilt(cp, 2 * M) == pytest.approx(8 * zjb.pier_tilt(cp, M))
+    # gecko pad: the plain weight moment over (1 + kappa S+ / S_ref)
+    gk = P["gecko_pad"]
+    w = s.payload_kg[:, None] * kin.G * -zjb.tool_frame(ctx)[:, 2, :]
+    plain = np.cross([0.0, 0.0, gk["d_mm"] / 1000.0], w)
+    stiff = 1 + gk["kappa"] * np.maximum(w[:, 0], 0) / gk["S_ref"]
+    assert zjb.gecko_tilt(gk, ctx) * stiff[:, None] == pytest.approx(plain)
+    # warm sag: nothing at each part's first pose; with the part's weight across it held, the creep sums the fluidity
+    starts = zjb._block_starts(s)
+    hist = zjb.creep_history(P["warm_sag"], ctx)
+    assert np.abs(hist[np.unique(starts)]).max() == 0 and len(set(starts)) > 1
+    # wind flank: where the wind's torque beats the drag, its sign; a reversed wind reverses the torque
+    wp = P["wind_flank"]
+    T = zjb.wind_torque(case.truth["chain"], s.q, wp["psi"])
+    big = np.abs(T) > 1.01 * wp["share"] * np.abs(T).max()
+    assert np.asarray(wp["flank"])[big] == pytest.approx(np.sign(T[big])) and big.any()
+    assert zjb.wind_torque(case.truth["chain"], s.q, wp["psi"] + np.pi) == pytest.approx(-T)
+    # stray welding current: the housings warm in production only; the shifts lie along the joints' axes
+    toy = replace(s, time_s=np.array([0.0, 1000.0, 1300.0]), gap_s=np.array([0.0, 900.0, 0.0]))
+    node = zjt.weld_node({"T0": 0.5, "tau_s": 600.0}, toy)
+    hot = 1 - 0.5 * np.exp(-1.5)
+    assert node == pytest.approx([0.5, hot * np.exp(-100 / 600), hot * np.exp(-400 / 600)])
+    wf = zjt.weld_features(P["stray_weld_current"], ctx, None)
+    axes, _ = kin.joint_frames(ctx.chain, ctx.q)
+    assert np.cross(wf[1], axes[:, 1]) == pytest.approx(np.zeros((len(s.q), 3)), abs=1e-12)
+    # hot part's plume: the whole plume with the tool pointing down, none pointing up; the bracket's rise in [0, 1]
+    pp = P["plume_bracket"]
+    down = np.array([np.diag([1.0, -1.0, -1.0]), np.eye(3)])
+    assert zjt.plume_share(pp, down) == pytest.approx([1.0, 0.0])
+    Tb = zjt.plume_temperature(pp, ctx)
+    assert ((Tb >= 0) & (Tb <= 1)).all() and Tb.max() > 0

@@ -61,6 +61,7 @@ from sim2real_indep import effects_zf as ezf
 from sim2real_indep import effects_zg as ezg
 from sim2real_indep import effects_zh as ezh
 from sim2real_indep import effects_zi as ezi
+from sim2real_indep import effects_zj as ezj
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -113,6 +114,7 @@ EFFECTS = {
     **ezg.EFFECTS_ZG,  # set ZG's new kinds
     **ezh.EFFECTS_ZH,  # set ZH's new kinds
     **ezi.EFFECTS_ZI,  # set ZI's new kinds
+    **ezj.EFFECTS_ZJ,  # set ZJ's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -121,7 +123,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
-                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER)
+                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -224,7 +226,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezf.session_options(robot_key, physics, rng, opts)  # set ZF (no draws without a set-ZF kind)
     opts = ezg.session_options(robot_key, physics, rng, opts)  # set ZG (no draws without a set-ZG kind)
     opts = ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
-    return ezi.session_options(robot_key, physics, rng, opts)  # set ZI (no draws without a set-ZI kind)
+    opts = ezi.session_options(robot_key, physics, rng, opts)  # set ZI (no draws without a set-ZI kind)
+    return ezj.session_options(robot_key, physics, rng, opts)  # set ZJ (no draws without a set-ZJ kind)
 
 
 def _tracker(rng):
@@ -277,6 +280,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezg.probe_hook(physics, probe)  # set ZG's beam-column and leaf booms, PA6 bracket (no draws)
     probe = ezh.probe_hook(physics, probe)  # set ZH's inflated boom, collet boom, swinging bracket (no draws)
     probe = ezi.probe_hook(physics, probe)  # set ZI's parts on the Bernoulli and jamming grippers (no draws)
+    probe = ezj.probe_hook(physics, probe)  # set ZJ's gecko part, warm panel, plume bracket (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

@@ -459,7 +459,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "free_swivel": "backlash", "flank_profile": "transmission", "cage_runout": "transmission",
           "gravel_ratchet": "mount_compliance", "crowned_sole": "mount_compliance",
           "bernoulli_grip": "link_deflection", "jamming_grip": "link_deflection", "thermosyphon": "thermal",
-          "motion_cooling": "thermal"}
+          "motion_cooling": "thermal",
+          # set ZJ (sim2real_indep.effects_zj; gauge_zero_drift, joint torque sensors' thermal zero drift that a joint-
+          # impedance controller turns into joint offsets, and traction_microslip, traction-roller wrist reducers
+          # yielding by Mindlin micro-slip with Masing's memory, scored as joint compliance; gyro_filter, link angles
+          # from gyro-aided inclination sensors whose complementary filter still carries the last moves' gyro scale
+          # error, and wind_flank, axis 1's lost motion whose flank a steady wind's torque chooses, as backlash (errors
+          # that follow the last motion); stepper_stall, open-loop stepper wrists losing steps in loaded, fast moves,
+          # and ghost_order, axis 1's wheel carrying its hobbing machine's index order, as transmission (the joints'
+          # drive); hydrostatic_rail, the base on a carriage held by opposed constant-flow hydrostatic pads, and
+          # clay_pier, the base on a pair of short piers in soft clay, as mount compliance; gecko_pad, a part on a
+          # directional dry adhesive stiffened by its shear, and warm_sag, a warm moulding creeping under its weight's
+          # history, as link deflection (the end-of-arm structure carrying the target); stray_weld_current, the main
+          # bearings heated by a welding current returning through the arm, and plume_bracket, a bracket heated by a hot
+          # part's plume while the tool points down, as thermal)
+          "gauge_zero_drift": "joint_compliance", "traction_microslip": "joint_compliance", "gyro_filter": "backlash",
+          "wind_flank": "backlash", "stepper_stall": "transmission", "ghost_order": "transmission",
+          "hydrostatic_rail": "mount_compliance", "clay_pier": "mount_compliance", "gecko_pad": "link_deflection",
+          "warm_sag": "link_deflection", "stray_weld_current": "thermal", "plume_bracket": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 

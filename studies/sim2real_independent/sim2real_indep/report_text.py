@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; all thirty-five: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; all thirty-six: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -476,6 +476,27 @@ transfer to the test file, `inconclusive`; right on ur10). The helper flags four
 signal though not in mechanism (pi_load_step / set Q's servo_tail, dog_play / set N's harness_lash, flank_profile /
 the mesh errors, bernoulli_grip / set Y's foam gripper); on a second seed three of its cases fall below the oracle's
 bars (ZI04, ZI05, ZI21).
+
+**Set ZJ** (24 cases, seed 40_7036) is a thirty-sixth independent test set of twelve new kinds
+(`sim2real_indep/effects_zj*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZI, ran no git command and did not run the diagnosis. It was
+run once, on the code after one change made after set ZI's misses were seen: a `tensor` variant of the mount's
+compliance (a symmetric 2 x 2 horizontal compliance about a pivot of fitted depth: a support whose stiff and soft axes
+lie at any heading; set ZI's base rocking on a bowed sole was named transmission on both arms). On A-ZI it names 14
+more cases (C08, E19, I20, Q19, R06, R18, Z04, Z20, ZA12, ZA24, ZC18, ZG22, ZI04, ZI22), loses none and claims
+nothing on a quiet case: 561 -> 575 strict, 598 -> 610 lenient, median final / oracle RMS 1.41 -> 1.37; the UR10's
+verdicts and final models are unchanged. Set ZJ: 14/24 strict, 14 lenient, no false claim, median final / oracle RMS
+1.65; the code before the change scores 13/24 (ZJ10, a base on a pair of piers in soft clay turning about the line
+through them, is `none` there); right on 7 of 10 effect cases where the true family's generic model helps, 4 of 11
+where it does not. Its misses: joint torque sensors whose zero drifts as the joint electronics warm, turned into
+offsets by an impedance controller (ZJ01, ZJ17, `none`); link inclination sensors whose gyro-aided filter still
+carries the last moves' scale error (ZJ03, `none`); a bracket heated by a hot part's plume only while the tool points
+down (ZJ06, `none`); a warm moulding that set in the shape its attitude history gave it (ZJ11, ZJ21, named backlash);
+a steady wind choosing the flank of axis 1's lost motion (ZJ12, named transmission; ZJ22, `none`); welding current
+returning through the arm's bearings (ZJ13, `none`); open-loop stepper wrists losing steps in loaded fast moves (ZJ18,
+`none`). The helper flags two kinds as open to the objection of a new parameterisation (traction_microslip, built from
+play operators; ghost_order, another periodic mesh error) and dropped two candidates that repeated earlier mechanisms;
+on a second seed three of its cases fall below the oracle's bars (ZJ06, ZJ13, ZJ20).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1090,6 +1111,24 @@ comment):
 | jamming_grip | link_deflection | a part held in a granular jamming gripper, tilting with the change of its moment since the block's first pose (ur10, tool_changer) | Brown et al., PNAS 107 (2010); Amend et al., IEEE Trans. Robot. 28 (2012) |
 | thermosyphon | thermal | a forearm cooled by a heat pipe that works only while the wrist end hangs below the elbow (ur10, kr16_like) | Faghri (1995) ch. 5, 7; Reay, Kew & McGlen, *Heat Pipes* (2014) ch. 2 |
 | motion_cooling | thermal | upper arm and forearm heated by joint electronics and cooled faster while they move through the air (ur10, kr16_like) | Incropera & DeWitt, ch. 7 |
+
+Set ZJ's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZJ
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| gauge_zero_drift | joint_compliance | joint torque sensors' zero drifting as the joint electronics warm, the impedance controller turning the phantom torque into offsets of axes 1-3 (ur10, kr16_like) | Albu-Schaeffer, Ott & Hirzinger, IJRR 26 (2007); Hoffmann, HBM (2012) |
+| traction_microslip | joint_compliance | traction-roller wrist reducers yielding by Mindlin micro-slip with Masing's memory of turning points (ur10, kr16_like) | Mindlin & Deresiewicz, J. Appl. Mech. 20 (1953); Johnson, *Contact Mechanics* (1985) |
+| gyro_filter | backlash | gyro-aided inclination sensors on links 2-3 whose complementary filter still carries the last moves' gyro scale error (ur10, tool_changer) | Mahony, Hamel & Pflimlin, IEEE TAC 53 (2008); Colton, MIT (2007) |
+| wind_flank | backlash | a steady wind's torque about axis 1 choosing the flank of its lost motion (tool_changer, kr16_like) | Hoerner, *Fluid-Dynamic Drag* (1965) |
+| stepper_stall | transmission | open-loop stepper wrists losing a step group in each loaded fast move (ur10, kr16_like) | Kenjo & Sugawara, *Stepping Motors* (2nd ed., 1994) |
+| ghost_order | transmission | axis 1's gear carrying the order of the hobbing machine's index gear (tool_changer, kr16_like) | Smith, *Gear Noise and Vibration* (2003) |
+| hydrostatic_rail | mount_compliance | the base on a rail carriage held by opposed constant-flow pads (cube law), rolling about the rail and sinking (ur10, tool_changer) | Rowe, *Hydrostatic, Aerostatic and Hybrid Bearing Design* (2012) |
+| clay_pier | mount_compliance | the base on a pair of short piers in soft clay turning about the line through them with the cube of the moment (tool_changer, kr16_like) | Matlock, OTC 1204 (1970); API RP 2A |
+| gecko_pad | link_deflection | a part on a directional dry-adhesive pad whose tilt stiffness grows with the shear along its preferred direction (ur10, tool_changer) | Autumn et al., J. Exp. Biol. 209 (2006); Hawkes et al., IEEE/ASME TMech 20 (2015) |
+| warm_sag | link_deflection | a warm moulding creeping under its own weight while it cools, set in the shape its attitude history gave it (tool_changer, kr16_like) | Ferry, *Viscoelastic Properties of Polymers* (3rd ed., 1980) |
+| stray_weld_current | thermal | welding current returning through the arm heating the bearings of axes 1-3, the housings growing along their axes (tool_changer, kr16_like) | Harris & Kotzalas (2007); SKF, *Bearing damage and failure analysis* (2017) |
+| plume_bracket | thermal | a hot part's convective plume heating its bracket only while the tool points down (ur10) | Morton, Taylor & Turner, Proc. R. Soc. A 234 (1956); Gebhart et al. (1988) |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
