@@ -27,7 +27,7 @@ from tolalloc.exceptions import TolallocError
 from tolalloc.robot.io.urdf import load_urdf
 from tolalloc.robot.kinematics import fk_poe
 from tolalloc.workflows.diagnosis import MeasurementDiagnosis
-from tolalloc.workflows.model_use import compensate_program, load_identified
+from tolalloc.workflows.model_use import compensate_program, load_identified, predict_frame
 
 ROBOT = tolalloc.load_robot("ur10")
 
@@ -162,6 +162,28 @@ def test_export_reproduces_the_identified_kinematics(backlash, tmp_path):
     back = load_identified(tmp_path / "exp" / "identified.toml")
     meas = m.measurements(d.test.q, **_kw(d.test))
     np.testing.assert_allclose(back.points(meas), m.points(meas), atol=1e-9)
+    # the exported file's path predicts the points the model itself does (the nominal robot named in the file; the
+    # file holds no parameter covariance, so no sigma columns)
+    q_deg = ROBOT.q_to_interface(d.test.q)
+    from_file = predict_frame(exp / "identified.toml", q_deg, dir=d.test.direction)
+    assert list(from_file.columns) == ["row", "x_mm", "y_mm", "z_mm"]
+    pd.testing.assert_frame_equal(from_file, predict_frame(m, q_deg, dir=d.test.direction)[from_file.columns],
+                                  check_exact=False, atol=1e-9)
+
+
+def test_an_identified_chain_keeps_its_sub_millimetre_links():
+    """Two joint points a calibration pulled a fraction of a millimetre apart are a real link of the identified
+    chain, not a length in metres: a file with an ``[identified]`` section loads with it (a plain robot file with the
+    same link is still refused as a likely unit slip)."""
+    from tolalloc.robot.io.load import robot_from_dict
+
+    data = identified_robot_dict(identified_model(_diagnosis("none", 40, 3, noise_mm=0.001)[2]))
+    data["chain"].insert(len(data["chain"]) - 1, {"link": "to_tcp_shift", "vector_mm": [0.0, 0.4, 0.3]})
+    robot = robot_from_dict(data, "identified.toml")
+    assert any(e.name == "to_tcp_shift" for e in robot.links)
+    plain = {k: v for k, v in data.items() if k != "identified"}
+    with pytest.raises(TolallocError, match="link to_tcp_shift is 0.5 mm long .* looks like a length in metres"):
+        robot_from_dict(plain, "plain.toml")
 
 
 def test_identified_section_refusals(backlash):

@@ -129,14 +129,17 @@ def _meas(model, prog: dict, q=None):
                               time_s=c.get("time_s"), direction=prog["direction"], wrench=prog.get("wrench"))
 
 
-def predict_frame(model, q, *, frame: str = "base", **covariates) -> pd.DataFrame:
-    """Predicted target points of ``model`` (an :class:`~tolalloc.diagnose.model_use.IdentifiedModel`) at ``q``
+def predict_frame(model, q, *, frame: str = "base", robot=None, **covariates) -> pd.DataFrame:
+    """Predicted target points of ``model`` (a diagnosis, its :class:`~tolalloc.diagnose.model_use.IdentifiedModel`
+    or an exported ``identified.toml``, whose nominal robot ``robot`` defaults to the built-in one it names) at ``q``
     (a program as :func:`read_program` takes it; ``covariates``: ``payload_kg``, ``temperature_c``, ``time_s``,
-    ``dir`` arrays and ``wrench`` (P, 6) [N, N m], beside or instead of the program's columns): ``row``, ``x_mm, y_mm, z_mm`` in ``frame``,
-    ``sigma_mm`` (1-sigma of the 3-D prediction error from the parameter covariance) and ``radius95_mm`` (the radius
-    holding a measurement with 95 % probability, measurement noise included)."""
+    ``dir`` arrays and ``wrench`` (P, 6) [N, N m], beside or instead of the program's columns): ``row``,
+    ``x_mm, y_mm, z_mm`` in ``frame``, and where the model holds its parameter covariance (a diagnosis's, not one read
+    from a file) ``sigma_mm`` (1-sigma of the 3-D prediction error) and ``radius95_mm`` (the radius holding a
+    measurement with 95 % probability, measurement noise included)."""
     from tolalloc.linear.probability import radius_for_prob
 
+    model = _identified(model, robot)[0]
     prog = read_program(model.robot, q, "q")
     for k, v in covariates.items():
         if v is None:
@@ -227,6 +230,20 @@ class CompensationResult(JobResult):
         return plot_corrections(self.compensation, ax=ax)
 
 
+def _identified(model, robot) -> tuple:
+    """``(IdentifiedModel, what it came from)`` of a diagnosis, an identified model or an exported file's path."""
+    from tolalloc.diagnose.model_use import IdentifiedModel
+
+    if isinstance(model, IdentifiedModel):
+        return model, "IdentifiedModel"
+    if hasattr(model, "identified_model"):
+        return model.identified_model(), "MeasurementDiagnosis"
+    if isinstance(model, (str, os.PathLike)):
+        return load_identified(model, robot), str(model)
+    raise ArgumentError("model", f"expected a MeasurementDiagnosis, an IdentifiedModel or the path of an exported "
+                        f"identified.toml, got {inputs.shown(model)}.")
+
+
 def load_identified(path, robot=None):
     """The identified model of an exported ``identified.toml`` (:mod:`tolalloc.diagnose.model_export`); ``robot``: the
     nominal robot (default: the built-in robot the file names)."""
@@ -261,10 +278,10 @@ def _check_chain(data: dict, model, path) -> None:
     from tolalloc.robot.io.load import robot_from_dict
 
     try:
-        chain = robot_from_dict({k: v for k, v in data.items() if k != "identified"}, str(path))
+        chain = robot_from_dict(data, str(path))
     except TolallocError as exc:
         raise InputFileError(f"identified model file {str(path)!r}: its [[chain]] cannot be read ({exc}).") from None
-    ident = robot_from_dict({k: v for k, v in identified_robot_dict(model).items() if k != "identified"}, "rebuilt")
+    ident = robot_from_dict(identified_robot_dict(model), "rebuilt")
     if chain.n_joints != ident.n_joints:
         raise InputFileError(f"identified model file {str(path)!r}: its [[chain]] has {chain.n_joints} joints, its "
                              f"[identified] section {ident.n_joints}; the file was altered -- export the model again.")
@@ -305,19 +322,11 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
         Rows outside the reachable space or whose correction leaves the joint limits are refused (status, reason).
     """
     from tolalloc.diagnose.compensate import compensate
-    from tolalloc.diagnose.model_use import FRAMES, IdentifiedModel
+    from tolalloc.diagnose.model_use import FRAMES
 
     inputs.check_choice(frame, "frame", FRAMES)
     tol_mm = inputs.check_positive(tol_mm, "tol_mm", "mm", "1e-6")
-    if isinstance(model, IdentifiedModel):
-        ident, source = model, "IdentifiedModel"
-    elif hasattr(model, "identified_model"):
-        ident, source = model.identified_model(), "MeasurementDiagnosis"
-    elif isinstance(model, (str, os.PathLike)):
-        ident, source = load_identified(model, robot), str(model)
-    else:
-        raise ArgumentError("model", f"expected a MeasurementDiagnosis, an IdentifiedModel or the path of an exported "
-                            f"identified.toml, got {inputs.shown(model)}.")
+    ident, source = _identified(model, robot)
     prog = read_program(ident.robot, program)
     try:
         q0 = prog["q"] if prog["q"] is not None else np.zeros((len(prog["targets_mm"]), ident.robot.n_joints))

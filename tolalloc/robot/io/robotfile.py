@@ -212,8 +212,10 @@ def robot_from_chain_dict(data: dict, source: str = "<dict>") -> Robot:
         except ValueError as exc:
             raise TolallocError(f"{where} ({item.link if model is LinkEntry else item.joint}): {exc}") from None
     offset, R_tool = parse_tool(spec.tool)
-    return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description, spec.sigma_sets,
-                         regions=spec.regions, components=spec.components, base_dir=source_dir(source))
+    # an identified model's chain holds its calibrated offsets: a sub-millimetre link there is real, not metres
+    return _finish_robot(spec.name, chain, offset, R_tool, spec.gravity, spec.masses, spec.pose_sets, spec.description,
+                         spec.sigma_sets, regions=spec.regions, components=spec.components,
+                         base_dir=source_dir(source), tiny_links_suspect=not spec.identified)
 
 
 def source_dir(source: str):
