@@ -185,8 +185,8 @@ def _tensor_columns(Mh: np.ndarray, p: np.ndarray, g: np.ndarray) -> tuple:
     v = np.cross(u, g)  # (u, v, up) right-handed: base y where gravity is -z
     mu, mv = Mh @ u, Mh @ v
     omegas = [mu[:, None] * u, mv[:, None] * v, mv[:, None] * u + mu[:, None] * v]
-    down = np.broadcast_to(-g, p.shape)
-    cols = [np.cross(om, p) for om in omegas] + [np.cross(om, down) for om in omegas]
+    up = np.broadcast_to(-g, p.shape)
+    cols = [np.cross(om, p) for om in omegas] + [np.cross(om, up) for om in omegas]
     names = [f"c_mount_{ab} [rad/(N m)]" for ab in ("xx", "yy", "xy")]
     names += [f"c_mount_{ab}_depth [rad mm/(N m)]" for ab in ("xx", "yy", "xy")]
     return np.stack(cols, axis=-1), names
