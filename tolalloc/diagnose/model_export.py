@@ -19,8 +19,9 @@ rebuild from the exported TOML.
   file.
 
 The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
-points coincide and the identified axes are skew, the link between them is the axes' small distance (a link the
-robot-file loader takes for a unit slip unless ``trust_units``).
+points coincide and the identified axes are skew, the link between them is the axes' small distance (the robot-file
+loader keeps such a sub-millimetre link in a file with an ``[identified]`` section; in a plain robot file it takes it
+for a unit slip unless ``trust_units``).
 """
 
 from __future__ import annotations
