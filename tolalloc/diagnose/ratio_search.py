@@ -50,9 +50,6 @@ class RatioNote:
     text: str
     telling: bool
 
-    def __str__(self) -> str:
-        return self.text
-
 
 def _drops(X: np.ndarray, r: np.ndarray) -> np.ndarray:
     """Residual sum-of-squares drop of each candidate's columns ``X`` (K, n, 4) fitted to ``r`` (n,), shape (K,)."""

@@ -61,9 +61,9 @@ def allocate_acceptance(robot="tool_changer", requirement=None, *, region=None, 
         The bought parts in the test (:mod:`tolalloc.acceptance.parts`): a choice ``{(joint, kind): part}`` of the
         robot's catalogue slots; ``True`` for the parts its file names (every slot one part); or the parts a design
         with bought parts chose -- its result (``allocate_tolerances(..., parts=...)``), the ``parts.csv`` it saved or
-        that table read into a DataFrame (:func:`~tolalloc.workflows.parts.read_parts_choice`). This job does not choose parts itself. Their effects
-        under the test load enter the allocation (their mean as a shorter limit), the predicted and the simulated
-        test. Default: the error model alone.
+        that table read into a DataFrame (:func:`~tolalloc.workflows.parts.read_parts_choice`). This job does not
+        choose parts itself. Their effects under the test load enter the allocation (their mean as a shorter limit),
+        the predicted and the simulated test. Default: the error model alone.
 
     Returns
     -------
