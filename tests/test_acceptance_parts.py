@@ -287,10 +287,11 @@ def test_the_parts_a_design_chose_carry_over_to_the_acceptance_job(ur10_drives, 
     table.iloc[:1].assign(part="other").pipe(lambda t: pd.concat([table, t])).to_csv(tmp_path / "twice.csv",
                                                                                      index=False)
     table.drop(columns="part").to_csv(tmp_path / "nopart.csv", index=False)
-    for name, message in (("twice.csv", "is chosen twice"), ("nopart.csv", "missing part"),
-                          ("absent.csv", "does not exist")):
+    for name, message in (("twice.csv", "is chosen twice"), ("nopart.csv", "missing part")):
         with pytest.raises(tolalloc.ArgumentError, match=f"^parts: .*{message}"):
             _allocate(ur10_drives, 0.6, tmp_path / name, n_robots=2)
+    with pytest.raises(tolalloc.InputFileError, match=r"^parts: '.*absent.csv' does not exist; expected the parts.csv"):
+        _allocate(ur10_drives, 0.6, tmp_path / "absent.csv", n_robots=2)
 
 
 def test_the_command_line_passes_the_parts_to_the_acceptance_job(monkeypatch, capsys, tmp_path):

@@ -368,3 +368,27 @@ def test_outputs_to_devices_are_written_through_never_replaced(tmp_path, monkeyp
     assert main(["analyze", TC, "--json", "/dev/null"]) == 0
     assert stat.S_ISCHR(os.stat("/dev/null").st_mode)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_every_table_a_job_reads_is_refused_the_same_way(tmp_path):
+    """The parts choice, a program to predict or compensate and a fleet's tolerance table are read by one reader
+    (``inputs.read_table``): a path to no file is an InputFileError naming the argument and what the file should be,
+    bytes that are no CSV an ArgumentError naming it -- never pandas' own error."""
+    from tolalloc.workflows import inputs
+    from tolalloc.workflows.model_use import read_program
+    from tolalloc.workflows.parts import read_parts_choice
+
+    robot = tolalloc.load_robot("ur10")
+    garbage = tmp_path / "garbage.csv"
+    garbage.write_bytes(b"\xff\xfe\x00\x81" * 64)
+    calls = {"parts": lambda src: read_parts_choice(src),
+             "program": lambda src: read_program(robot, src),
+             "tolerances": lambda src: inputs.read_table(src, "tolerances", "the tolerances.csv an allocation wrote")}
+    for argument, call in calls.items():
+        with pytest.raises(tolalloc.InputFileError, match=rf"^{argument}: '.*absent.csv' does not exist; expected "):
+            call(tmp_path / "absent.csv")
+        with pytest.raises(tolalloc.ArgumentError, match=rf"^{argument}: '.*garbage.csv': cannot read the CSV"):
+            call(str(garbage))
+    frame = pd.DataFrame({" joint ": ["j1"], "kind": ["reducer"]})
+    assert list(inputs.read_table(frame, "x", "a table").columns) == ["joint", "kind"]
+    assert inputs.read_table(np.zeros((2, 3)), "x", "a table") is None

@@ -78,13 +78,18 @@ class UnknownArgumentError(ArgumentError, TypeError):
 
 
 class InputFileError(TolallocError, FileNotFoundError):
-    """An input file that does not exist (a robot file, a measurement or plan file, a trajectory)."""
+    """An input file that does not exist (a robot file, a measurement or plan file, a trajectory).
+
+    ``argument``: the keyword argument that named the file, when the message starts with it (``"parts: ..."``); the
+    command line prints its flag there instead, as for an :class:`ArgumentError`.
+    """
 
     def __new__(cls, *args, **kwargs):  # OSError's layout, whoever asks (pickling helpers call cls.__new__ bare)
         return OSError.__new__(cls, *args)
 
-    def __init__(self, message="", *more):
+    def __init__(self, message="", *more, argument: str = ""):
         TolallocError.__init__(self, message, *more)
+        self.argument = argument
 
     def __str__(self) -> str:
         return TolallocError.__str__(self)

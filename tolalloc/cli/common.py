@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import re
 
-from tolalloc.exceptions import ArgumentError, TolallocError
+from tolalloc.exceptions import ArgumentError, InputFileError, TolallocError
 from tolalloc.outputs import (check_distinct_outputs, check_output, json_default, reserve_directory,
                               write_json)
 
@@ -165,8 +165,12 @@ def flag_text(text: str, args) -> str:
 
 
 def error_line(exc: TolallocError, args) -> str:
-    """The ``error:`` line of a refused input: an :class:`ArgumentError` names its flag."""
+    """The ``error:`` line of a refused input: an :class:`ArgumentError` (an :class:`InputFileError` that names its
+    argument) names its flag."""
     if isinstance(exc, ArgumentError) and args is not None:
         flags = getattr(args, "flags", {})
         return f"{_flag(flags, exc.argument)}{exc.sep}{flag_text(exc.detail, args)}"
+    named = getattr(exc, "argument", "") if isinstance(exc, InputFileError) else ""
+    if named and args is not None and str(exc).startswith(f"{named}: "):
+        return f"{_flag(getattr(args, 'flags', {}), named)}: {flag_text(str(exc)[len(named) + 2:], args)}"
     return flag_text(str(exc), args)

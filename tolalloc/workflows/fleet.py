@@ -122,12 +122,10 @@ def _table_sigmas(robot, table) -> tuple:
     robot's default error model."""
     from tolalloc.errormodel import build_error_model
 
-    frame = table if isinstance(table, pd.DataFrame) else None
+    frame = inputs.read_table(table, "tolerances", "the tolerances.csv an allocation wrote")
     if frame is None:
-        if not isinstance(table, (str, os.PathLike)) or not Path(table).is_file():
-            raise ArgumentError("tolerances", f"expected the tolerances.csv an allocation wrote (or a DataFrame), got "
-                                f"{inputs.shown(table)}.")
-        frame = pd.read_csv(table)
+        raise ArgumentError("tolerances", f"expected the tolerances.csv an allocation wrote (or a DataFrame), got "
+                            f"{inputs.shown(table)}.")
     need = {"parameter", "sigma_mm", "sigma_deg"}
     if not need <= set(frame.columns):
         raise ArgumentError("tolerances", f"expected the columns {', '.join(sorted(need))} (the tolerances.csv of "

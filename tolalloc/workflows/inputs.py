@@ -28,7 +28,7 @@ from tolalloc.units import trusting_units
 #: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
 __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_poses", "error_model",
            "sigma_overrides", "resolve_region", "check_one_pose_source", "trajectory", "as_measurements",
-           "default_pose_set", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
+           "default_pose_set", "read_table", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
            "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path", "check_positive",
            "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number", "shown",
            "check_axes", "check_text", "RANGES", "Z_RANGE"]
@@ -324,6 +324,38 @@ def trajectory(robot: Robot, path) -> np.ndarray:
         return robot.check_q(rows, where, interface=True)
     except TolallocError as exc:
         raise ArgumentError("region", str(exc)) from None
+
+
+def read_table(source, argument: str, expected: str, *, text: bool = False) -> pd.DataFrame | None:
+    """A table a user gives: a DataFrame as it is, or a CSV file read (a byte-order mark and spaces after the commas
+    allowed); the column names stripped of spaces. None for anything else (the caller says what it accepts).
+
+    Parameters
+    ----------
+    source : str, os.PathLike or pandas.DataFrame
+    argument : str      the argument's name in the errors
+    expected : str      what the file should be, in words (``"the parts.csv of a design with bought parts"``)
+    text : bool         every cell read as text, an empty cell as ``""`` (default: numbers parsed, empty cells NaN)
+
+    Raises
+    ------
+    InputFileError  the path names no file
+    ArgumentError   the file is not a readable CSV
+    """
+    if isinstance(source, pd.DataFrame):
+        frame = source
+    elif isinstance(source, (str, os.PathLike)) and str(source).strip():
+        where = repr(str(source))
+        if not Path(source).is_file():
+            raise InputFileError(f"{argument}: {where} does not exist; expected {expected}.", argument=argument)
+        opts = {"dtype": str, "keep_default_na": False} if text else {}
+        try:
+            frame = pd.read_csv(source, skipinitialspace=True, encoding="utf-8-sig", **opts)
+        except (ValueError, OSError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+            raise ArgumentError(argument, f"{where}: cannot read the CSV ({exc}); expected {expected}.") from None
+    else:
+        return None
+    return frame.set_axis([str(c).strip() for c in frame.columns], axis=1)
 
 
 def _is_number(text) -> bool:

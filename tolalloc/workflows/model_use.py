@@ -55,20 +55,9 @@ def save_result(result, directory, json=None) -> list[Path]:
 
 def _frame_of(program, argument: str) -> pd.DataFrame | None:
     """A DataFrame of a CSV path or a DataFrame; None for an array-like."""
-    if isinstance(program, pd.DataFrame):
-        return program.set_axis([str(c).strip() for c in program.columns], axis=1)
-    if isinstance(program, (str, os.PathLike)):
-        path = Path(program)
-        if not path.is_file():
-            raise InputFileError(f"{argument} file {str(program)!r} does not exist; expected a CSV with one row per "
-                                 "pose: a column per joint (q1_deg ...), optional x_mm, y_mm, z_mm targets and the "
-                                 "covariates (payload_kg, temperature_c, time_s, dir1..dirN).")
-        try:
-            frame = pd.read_csv(path, skipinitialspace=True, encoding="utf-8-sig")
-        except (ValueError, OSError, UnicodeDecodeError) as exc:
-            raise ArgumentError(argument, f"{str(program)!r}: cannot read the CSV ({exc}).") from None
-        return frame.set_axis([str(c).strip() for c in frame.columns], axis=1)
-    return None
+    return inputs.read_table(program, argument, "a CSV with one row per pose: a column per joint (q1_deg ...), "
+                             "optional x_mm, y_mm, z_mm targets and the covariates (payload_kg, temperature_c, "
+                             "time_s, dir1..dirN)")
 
 
 def _numeric(frame: pd.DataFrame, col: str, argument: str) -> np.ndarray:

@@ -4,7 +4,6 @@ together (:func:`tolalloc.verify.parts.verified_parts`), on the shared result pr
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -12,12 +11,14 @@ import pandas as pd
 
 from tolalloc.exceptions import ArgumentError
 from tolalloc.outputs import json_native, write_json
+from tolalloc.workflows import inputs
 from tolalloc.workflows.base import JobResult
 
 __all__ = ["PartsToleranceAllocation", "read_parts_choice"]
 
 #: The columns of a parts table that name a choice (``parts.csv`` of a design with bought parts).
 CHOICE_COLUMNS = ("joint", "kind", "part")
+_PARTS_CSV = "the parts.csv of a design with bought parts (tolalloc allocate ROBOT --parts --out DIR writes DIR/parts.csv)"
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -134,21 +135,11 @@ def read_parts_choice(source, argument: str = "parts") -> dict:
     argument : str
         The argument's name in the errors.
     """
-    if isinstance(source, pd.DataFrame):
-        frame, where = source, "the table"
-    elif isinstance(source, (str, os.PathLike)) and str(source).strip():
-        where = repr(str(source))
-        if not Path(source).is_file():
-            raise ArgumentError(argument, f"{where} does not exist; expected the parts.csv of a design with bought "
-                                "parts (tolalloc allocate ROBOT --parts --out DIR writes DIR/parts.csv).")
-        try:
-            frame = pd.read_csv(source, dtype=str, keep_default_na=False, skipinitialspace=True, encoding="utf-8-sig")
-        except (ValueError, OSError, UnicodeDecodeError) as exc:
-            raise ArgumentError(argument, f"{where}: cannot read the CSV ({exc}).") from None
-    else:
+    frame = inputs.read_table(source, argument, _PARTS_CSV, text=True)
+    if frame is None:
         raise ArgumentError(argument, f"expected a parts table: a path to a parts.csv or a DataFrame, got "
                             f"{type(source).__name__}.")
-    frame = frame.set_axis([str(c).strip() for c in frame.columns], axis=1)
+    where = "the table" if isinstance(source, pd.DataFrame) else repr(str(source))
     missing = [c for c in CHOICE_COLUMNS if c not in frame.columns]
     if missing:
         raise ArgumentError(argument, f"{where}: expected the columns {', '.join(CHOICE_COLUMNS)} (the parts.csv of a "
