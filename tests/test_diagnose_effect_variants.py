@@ -218,6 +218,50 @@ def test_compliance_with_payload_and_with_unknown_tip_mass():
         assert beta[f"d_{nm[j]} [rad/kg]"] / beta[f"c_{nm[j]} [rad/(N m)]"] == pytest.approx(kg, rel=1e-2)
 
 
+def test_a_constant_side_force_at_the_tool_is_the_force_variant():
+    """A hose pulling the tool sideways with a constant 30 N / -20 N (base x / y) while the joints wind up under
+    gravity too: its joint loads come from finite differences of the force's work (not from ``wrench_load``); the
+    ``masses+force`` columns hold the displacement and give the force back as ``h_j / c_j``, while the tip-mass
+    variant, vertical only, leaves most of it. Axis 1, vertical on every pose, gets no side-force column."""
+    robot = tolalloc.load_robot("ur10")
+    P = 80
+    q = _q(robot, P, 7)
+    t = np.array([0.0, 0.0, 150.0])
+    F = np.array([30.0, -20.0, 0.0])
+
+    def work(qq):
+        return target_points(robot, qq, t) @ F / 1000.0  # [N m]
+
+    tau_f = np.zeros_like(q)
+    for j in range(robot.n_joints):
+        e = np.zeros(robot.n_joints)
+        e[j] = 1e-6
+        tau_f[:, j] = (work(q + e) - work(q - e)) / 2e-6
+    tau = _potential_torque(robot, q) + tau_f
+    c = np.array([0.0, 2e-7, 3e-7, 4e-7, 0.0, 0.0])  # rad/(N m) on j2..j4
+    d = target_points(robot, q + tau * c, t) - target_points(robot, q, t)
+    meas = Measurements(q, np.zeros((P, 3)))
+    force = effect_basis("joint_compliance", robot, meas, t, {}, "masses+force")
+    beta = dict(zip(force.names, _lsq(force, d)))
+    r = d.ravel() - force.B.reshape(-1, force.B.shape[-1]) @ _lsq(force, d)
+    assert np.linalg.norm(r) < 1e-2 * np.linalg.norm(d)
+    nm = [jt.name for jt in robot.joints]
+    for j in (1, 2, 3):
+        cj = beta[f"c_{nm[j]} [rad/(N m)]"]
+        assert cj == pytest.approx(c[j], rel=1e-2)
+        # h1 along base x, h2 along g x x = -y (ur10: gravity along -z)
+        assert beta[f"h1_{nm[j]} [rad/N]"] / cj == pytest.approx(F[0], rel=2e-2)
+        assert -beta[f"h2_{nm[j]} [rad/N]"] / cj == pytest.approx(F[1], rel=2e-2)
+    tip = effect_basis("joint_compliance", robot, meas, t, {}, "masses+tip")
+    r = d.ravel() - tip.B.reshape(-1, tip.B.shape[-1]) @ _lsq(tip, d)
+    assert np.linalg.norm(r) > 0.3 * np.linalg.norm(d - target_points(robot, q + _potential_torque(robot, q) * c, t)
+                                                      + target_points(robot, q, t))
+    assert "masses+force" in variants("joint_compliance", meas)
+    # axis 1 stays vertical: a side force's moment about it is once per turn, transmission's signature, not a column
+    assert not any(n.startswith(("h1_" + nm[0], "h2_" + nm[0])) for n in force.names)
+    assert any(n.startswith("h1_" + nm[1]) for n in force.names)
+
+
 def test_beam_deflection_telescopic_lever_arm():
     """The tool changer's telescopic segment j3 -> j5 (560 + 240 mm + stroke), horizontal: the bending column of its
     mass model is the textbook superposition -- l4 (45 kg) 280 mm out and l5 (30 kg) 680 mm + stroke out on the

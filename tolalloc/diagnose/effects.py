@@ -14,7 +14,9 @@ signature:
 ``joint_compliance``  the joints wind up under gravity, payload and a logged process wrench (``force_x_n`` ...,
                       :mod:`tolalloc.physics.compliance`): ``masses``
                       (linear, ``c_j = 1/K_j`` [rad/(N m)]), ``masses+tip`` (also ``d_j`` per kg at the target: an
-                      unknown tool mass), ``hardening_<f>`` (a stiffness that rises with torque, smooth law with
+                      unknown tool mass), ``masses+force`` (also ``d_j`` and ``h1_j``, ``h2_j`` per N of an
+                      unknown constant force at the target, any direction: a hose, cable or balancer pulling one way),
+                      ``hardening_<f>`` (a stiffness that rises with torque, smooth law with
                       ``T0 = f`` x the joint's largest load), ``catalogue`` (the reducer's K1/K2/K3 bands from the
                       robot file).
 ``mount_compliance``  the whole robot tilts on a compliant base under the moment of its masses, payload and wrench
@@ -69,7 +71,7 @@ from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, 
 from tolalloc.physics.clearance import clearance_columns
 from tolalloc.physics.error_motions import stroke_columns, stroke_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
-    mount_columns, MOUNT_VARIANTS
+    mount_columns, side_loads, MOUNT_VARIANTS
 from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
 from tolalloc.physics.rehoming import cycle_blocks, homed_joints, rehome_columns, rehome_problem
@@ -129,8 +131,10 @@ def joint_effect_dq(effect: str, robot: Robot, q, direction=None, *, variant: st
     if effect in ("joint_compliance", "backlash"):
         tau, tip = joint_loads(robot, q, tip_mm, payload_kg, wrench)
     if effect == "joint_compliance":
-        law = "linear" if variant in ("", "masses", "masses+tip") else variant
-        return compliance_columns(robot, tau, tip, law, tip_mass=variant == "masses+tip", scale=load_scale)
+        law = "linear" if variant in ("", "masses", "masses+tip", "masses+force") else variant
+        side = side_loads(robot, q, tip_mm) if variant == "masses+force" and tip_mm is not None else None
+        return compliance_columns(robot, tau, tip, law, tip_mass=variant in ("masses+tip", "masses+force"),
+                                  scale=load_scale, side_loads=side)
     if effect == "backlash":
         return lost_motion_basis(robot, tau, direction, variant or "approach")
     if effect == "transmission":
@@ -177,7 +181,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke + rehome
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
-        return ("masses", "masses+tip") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
+        return ("masses", "masses+tip", "masses+force") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
     if effect == "mount_compliance":
         return MOUNT_VARIANTS
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()

@@ -12,6 +12,11 @@ the payload at the target) winds up by ``dq_j = phi_j(tau_j)`` [rad, or mm for a
   ``s > 0``. ``T0`` is a shape parameter chosen from the data (:data:`HARDENING_FRACTIONS` of the joint's largest
   gravity load).
 
+Unknown loads at the target add columns to any law: an unknown tool mass (``d_j`` per kg, the vertical) and an unknown
+constant force in the horizontal plane (``h1_j``, ``h2_j`` per N, :func:`side_loads`; not on an axis that stays
+vertical, where it reads as a transmission error) -- a hose, cable or balancer that pulls in a fixed direction
+whatever the pose.
+
 **Mount compliance.** A robot on a compliant base (a floor plate, a pedestal, a mobile platform) tilts as a whole under
 the gravity moment of its moving masses and payload about the base (:func:`~.loads.base_moment`): the rotation
 ``omega = (c_x M_x, c_y M_y, 0)`` [rad] about the base origin moves the target by ``omega x p``. ``isotropic`` (one
@@ -48,12 +53,13 @@ import numpy as np
 
 from tolalloc.exceptions import TolallocError
 
+from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import (base_moment, gravity_torques, joint_wrenches, tip_load, unit_along, wrench_load,
                                    wrench_moment)
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
-           "catalogue_bands", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations", "bearing_tilt"]
+           "catalogue_bands", "side_loads", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations", "bearing_tilt"]
 
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
@@ -107,7 +113,8 @@ def _law_columns(t: np.ndarray, law: str, bands=None, scale: float | None = None
 
 
 def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str = "linear",
-                       tip_mass: bool = False, scale: np.ndarray | None = None) -> tuple:
+                       tip_mass: bool = False, scale: np.ndarray | None = None,
+                       side_loads: np.ndarray | None = None) -> tuple:
     """Joint-offset basis of joint compliance: ``dq = A @ beta``, ``A`` shape (P, n, M), and the column names.
 
     Parameters
@@ -117,6 +124,10 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
                                         them stay linear) or ``hardening_<f>``
     tip_mass : bool                     also a column per joint for an unknown mass at the target (``d_j``)
     scale : array, shape (n,), optional the torque scale of ``hardening`` (default: the largest ``|tau_j|``)
+    side_loads : array, shape (P, n, 2), optional
+                                        the loads of 1 N at the target along the two horizontal directions
+                                        (:func:`side_loads`): a column per joint and direction for an unknown
+                                        constant force there (``h1_j``, ``h2_j``)
     """
     P, n = tau.shape
     bands = catalogue_bands(robot) if law == "catalogue" else {}
@@ -136,7 +147,43 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
             a[:, j] = tip[:, j]
             cols.append(a)
             names.append(f"d_{nm} [{dq}/kg]")
+        for k in range(0 if side_loads is None else side_loads.shape[2]):
+            if np.abs(side_loads[:, j, k]).max() > 1e-9:
+                a = np.zeros((P, n))
+                a[:, j] = side_loads[:, j, k]
+                cols.append(a)
+                names.append(f"h{k + 1}_{nm} [{dq}/N]")
     return (np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))), names
+
+
+def side_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray) -> np.ndarray:
+    """Loads on every joint of a force of 1 N at the target points ``tip_mm`` (P, 3) along each of the two horizontal
+    directions (across gravity: the base axes projected, the first kept whole where gravity lies along a base axis),
+    shape (P, n, 2) [N m or N per N]. With :func:`tip_load` (the vertical) they span any constant force at the
+    target: a hose or cable pulled towards a fixed anchor, a spring balancer hung off the vertical, a fixture the
+    tool presses against.
+
+    A revolute joint whose axis stays along gravity on every pose (the first axis of an upright arm) gets zeros: there
+    the side force's moment is ``|r| F sin(q_j - phi)``, once per turn of that joint -- the signature of its
+    transmission error, which that family owns."""
+    g = np.asarray(robot.gravity, dtype=float)
+    g = g / max(np.linalg.norm(g), 1e-12)
+    e1 = np.eye(3)[int(np.argmin(np.abs(g)))]
+    e1 = e1 - (e1 @ g) * g
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(g, e1)
+    q = np.atleast_2d(q)
+    out = []
+    for e in (e1, e2):
+        w = np.zeros((len(q), 6))
+        w[:, :3] = e
+        out.append(wrench_load(robot, q, tip_mm, w))
+    loads = np.stack(out, axis=-1)
+    prefix = poe_prefix(robot.screws, q)
+    for j, joint in enumerate(robot.joints):
+        if joint.is_revolute and np.all(np.abs(prefix[:, j, :3, :3] @ joint.axis @ g) > 1.0 - 1e-6):
+            loads[:, j] = 0.0
+    return loads
 
 
 def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
