@@ -134,7 +134,7 @@ def joint_effect_dq(effect: str, robot: Robot, q, direction=None, *, variant: st
         law = "linear" if variant in ("", "masses", "masses+tip", "masses+force") else variant
         side = side_loads(robot, q, tip_mm) if variant == "masses+force" and tip_mm is not None else None
         return compliance_columns(robot, tau, tip, law, tip_mass=variant in ("masses+tip", "masses+force"),
-                                  scale=load_scale, side_loads=side)
+                                  scale=load_scale, side=side)
     if effect == "backlash":
         return lost_motion_basis(robot, tau, direction, variant or "approach")
     if effect == "transmission":
@@ -181,7 +181,8 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         return ("2x3x", "1x", "1x2x") + series + gear + ("coupling",) + stroke + rehome
     if effect == "joint_compliance":
         cat = ("catalogue",) if robot is not None and catalogue_bands(robot) else ()
-        return ("masses", "masses+tip", "masses+force") + tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS) + cat
+        hardening = tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS)
+        return ("masses", "masses+tip", "masses+force") + hardening + cat
     if effect == "mount_compliance":
         return MOUNT_VARIANTS
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()

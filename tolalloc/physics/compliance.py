@@ -59,7 +59,8 @@ from tolalloc.physics.loads import (base_moment, gravity_torques, joint_wrenches
                                    wrench_moment)
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
-           "catalogue_bands", "side_loads", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations", "bearing_tilt"]
+           "catalogue_bands", "side_loads", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations",
+           "bearing_tilt"]
 
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
@@ -114,7 +115,7 @@ def _law_columns(t: np.ndarray, law: str, bands=None, scale: float | None = None
 
 def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str = "linear",
                        tip_mass: bool = False, scale: np.ndarray | None = None,
-                       side_loads: np.ndarray | None = None) -> tuple:
+                       side: np.ndarray | None = None) -> tuple:
     """Joint-offset basis of joint compliance: ``dq = A @ beta``, ``A`` shape (P, n, M), and the column names.
 
     Parameters
@@ -124,7 +125,7 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
                                         them stay linear) or ``hardening_<f>``
     tip_mass : bool                     also a column per joint for an unknown mass at the target (``d_j``)
     scale : array, shape (n,), optional the torque scale of ``hardening`` (default: the largest ``|tau_j|``)
-    side_loads : array, shape (P, n, 2), optional
+    side : array, shape (P, n, 2), optional
                                         the loads of 1 N at the target along the two horizontal directions
                                         (:func:`side_loads`): a column per joint and direction for an unknown
                                         constant force there (``h1_j``, ``h2_j``)
@@ -147,10 +148,10 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
             a[:, j] = tip[:, j]
             cols.append(a)
             names.append(f"d_{nm} [{dq}/kg]")
-        for k in range(0 if side_loads is None else side_loads.shape[2]):
-            if np.abs(side_loads[:, j, k]).max() > 1e-9:
+        for k in range(0 if side is None else side.shape[2]):
+            if np.abs(side[:, j, k]).max() > 1e-9:
                 a = np.zeros((P, n))
-                a[:, j] = side_loads[:, j, k]
+                a[:, j] = side[:, j, k]
                 cols.append(a)
                 names.append(f"h{k + 1}_{nm} [{dq}/N]")
     return (np.stack(cols, axis=-1) if cols else np.zeros((P, n, 0))), names

@@ -28,10 +28,10 @@ from tolalloc.units import trusting_units
 #: the checks of :mod:`tolalloc.workflows.checks` are reachable here too (``inputs.check_count`` ...)
 __all__ = ["trusting_units", "job_entry", "as_robot", "joint_values", "resolve_poses", "error_model",
            "sigma_overrides", "resolve_region", "check_one_pose_source", "trajectory", "as_measurements",
-           "default_pose_set", "read_table", "check_choice", "check_costs_file", "check_count", "check_flag", "check_model_options",
-           "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path", "check_positive",
-           "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number", "shown",
-           "check_axes", "check_text", "RANGES", "Z_RANGE"]
+           "default_pose_set", "read_table", "check_choice", "check_costs_file", "check_count", "check_flag",
+           "check_model_options", "check_name", "check_names", "check_not_both", "check_optional_flag", "check_path",
+           "check_positive", "check_probability", "check_scheduler", "check_seed", "check_values", "check_z", "number",
+           "shown", "check_axes", "check_text", "RANGES", "Z_RANGE"]
 
 
 _Job = TypeVar("_Job", bound=Callable[..., Any])  # job_entry keeps the job's signature for type checkers

@@ -18,7 +18,8 @@ __all__ = ["PartsToleranceAllocation", "read_parts_choice"]
 
 #: The columns of a parts table that name a choice (``parts.csv`` of a design with bought parts).
 CHOICE_COLUMNS = ("joint", "kind", "part")
-_PARTS_CSV = "the parts.csv of a design with bought parts (tolalloc allocate ROBOT --parts --out DIR writes DIR/parts.csv)"
+_PARTS_CSV = ("the parts.csv of a design with bought parts (tolalloc allocate ROBOT --parts --out DIR writes "
+              "DIR/parts.csv)")
 
 
 @dataclass(frozen=True, eq=False, repr=False)
