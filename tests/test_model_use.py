@@ -8,6 +8,7 @@ kinematics to 1e-9 mm, and the ``[identified]`` section rebuilds the model exact
 """
 
 import contextlib
+import dataclasses
 import io
 import tomllib
 
@@ -162,13 +163,21 @@ def test_export_reproduces_the_identified_kinematics(backlash, tmp_path):
     back = load_identified(tmp_path / "exp" / "identified.toml")
     meas = m.measurements(d.test.q, **_kw(d.test))
     np.testing.assert_allclose(back.points(meas), m.points(meas), atol=1e-9)
-    # the exported file's path predicts the points the model itself does (the nominal robot named in the file; the
-    # file holds no parameter covariance, so no sigma columns)
+    # the exported file's path predicts the points the model itself does (the nominal robot named in the file), with
+    # their uncertainty: the file holds the parameter covariance
+    np.testing.assert_allclose(back.cov, m.cov, rtol=1e-12, atol=0)
+    assert section["covariance"]["parameters"][:9][-1] == "target_offset:z [mm]"
+    assert len(section["covariance"]["parameters"]) == 9 + len(m.fit.geo_index) + len(m.fit.beta)
     q_deg = ROBOT.q_to_interface(d.test.q)
     from_file = predict_frame(exp / "identified.toml", q_deg, dir=d.test.direction)
-    assert list(from_file.columns) == ["row", "x_mm", "y_mm", "z_mm"]
-    pd.testing.assert_frame_equal(from_file, predict_frame(m, q_deg, dir=d.test.direction)[from_file.columns],
+    assert list(from_file.columns) == ["row", "x_mm", "y_mm", "z_mm", "sigma_mm", "radius95_mm"]
+    pd.testing.assert_frame_equal(from_file, predict_frame(m, q_deg, dir=d.test.direction),
                                   check_exact=False, atol=1e-9)
+    # a model without its covariance exports none and predicts without the sigma columns
+    bare = dataclasses.replace(m, cov=None)
+    assert "covariance" not in identified_section(bare)
+    nocov = predict_frame(model_from_identified(identified_section(bare), ROBOT), q_deg, dir=d.test.direction)
+    assert list(nocov.columns) == ["row", "x_mm", "y_mm", "z_mm"]
 
 
 def test_an_identified_chain_keeps_its_sub_millimetre_links():
@@ -211,8 +220,6 @@ def test_a_damaged_model_file_is_refused_naming_what_is_wrong(backlash, tmp_path
     """A file cut short at an entry (still valid TOML: read before as a smaller model, every row "compensated"), a
     missing key, a value that is text or NaN, a rotation that is not one, a unit changed, a robot changed under the
     same name, and a [[chain]] edited apart from the [identified] section: each a clear error, never a model."""
-    import dataclasses
-
     import tomli_w
 
     from tolalloc.robot.model import Link
@@ -258,6 +265,13 @@ def test_a_damaged_model_file_is_refused_naming_what_is_wrong(backlash, tmp_path
     link = next(c for c in moved["chain"] if "vector_mm" in c and np.linalg.norm(c["vector_mm"]) > 300)
     link["vector_mm"] = [v + 1.0 for v in link["vector_mm"]]
     refused(moved, r"its \[\[chain\]\] and its \[identified\] section give forward kinematics .* mm apart")
+    cov = dict(sec["covariance"])
+    refused(altered(covariance={**cov, "parameters": cov["parameters"][::-1]}),
+            "the covariance's parameters are not the model's")
+    matrix = [list(r) for r in cov["matrix"]]
+    matrix[0][1] += 1.0
+    refused(altered(covariance={**cov, "matrix": matrix}), "covariance.matrix is not a covariance")
+    refused(altered(covariance={**cov, "matrix": matrix[:-1]}), r"covariance.matrix: expected an array of shape")
 
 
 def test_non_finite_or_misshapen_rows_are_input_errors_not_compensated_rows(backlash):

@@ -12,11 +12,13 @@ rebuild from the exported TOML.
   probe offset, the training file's registration, the diagnosis's geometric parameters, and the non-geometric
   effects as their fitted parameters -- per effect the variant, the column names (with their units) and values --
   with the training file's reference values (mean temperature, time origin, load scale per joint, gear ratios)
-  the effects' columns are computed from. :func:`model_from_identified` rebuilds the identified model from it and the
-  nominal robot, so a program can be compensated from the file alone; thermal variants driven by the training
-  file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), the seats of its tool changes (backlash
-  ``reseat``) and the zeros of its power cycles (transmission ``rehome``) are recorded but cannot be rebuilt from the
-  file.
+  the effects' columns are computed from, and the parameters' covariance (``[identified.covariance]``: the
+  parameters' names and the matrix, registration and probe offset first) where the model has one.
+  :func:`model_from_identified` rebuilds the identified model from it and the nominal robot, so a program can be
+  compensated -- and its predictions given their uncertainty -- from the file alone; thermal variants driven by the
+  training file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), the seats of its tool changes
+  (backlash ``reseat``) and the zeros of its power cycles (transmission ``rehome``) are recorded but cannot be rebuilt
+  from the file.
 
 The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
 points coincide and the identified axes are skew, the link between them is the axes' small distance (the robot-file
@@ -141,7 +143,45 @@ def identified_section(model: IdentifiedModel) -> dict:
             "registration_rotation": [[float(v) for v in row] for row in fit.R],
             "registration_translation_mm": [float(v) for v in fit.p_mm],
             "payload_in_training": bool(model.payload_in_training), "noise_mm": float(model.noise_mm),
-            "geometry": geo, "effects": effects, "reference": reference}
+            "geometry": geo, "effects": effects, "reference": reference,
+            **({} if model.cov is None else {"covariance": _covariance_table(model)})}
+
+
+#: Names of the parameter covariance's first nine rows (:func:`~.uncertainty.point_jacobian`'s columns).
+FIXED_PARAMETERS = ("registration:rotation_x [rad]", "registration:rotation_y [rad]", "registration:rotation_z [rad]",
+                    "registration:translation_x [mm]", "registration:translation_y [mm]",
+                    "registration:translation_z [mm]", "target_offset:x [mm]", "target_offset:y [mm]",
+                    "target_offset:z [mm]")
+
+
+def _parameter_names(fit) -> list:
+    """The covariance's parameters in its order: registration, probe offset, geometry (``fit.geo_index``), effects."""
+    geo = [f"geometry:{fit.model.params[k].name} [{fit.model.params[k].unit}]" for k in fit.geo_index]
+    return [*FIXED_PARAMETERS, *geo, *fit.effect_names]
+
+
+def _covariance_table(model: IdentifiedModel) -> dict:
+    """The parameter covariance with its parameters' names (rows and columns in that order)."""
+    return {"parameters": _parameter_names(model.fit),
+            "matrix": [[float(v) for v in row] for row in np.asarray(model.cov, float)]}
+
+
+def _covariance(section: dict, fit) -> np.ndarray | None:
+    """The parameter covariance of the section (None in a file written without one), checked against the rebuilt
+    fit's parameters: the same names in the same order, a symmetric matrix with a non-negative diagonal."""
+    table = section.get("covariance")
+    if table is None:
+        return None
+    names = _parameter_names(fit)
+    if not isinstance(table, dict) or table.get("parameters") != names:
+        raise TolallocError("identified model: the covariance's parameters are not the model's (registration, target "
+                            "offset, geometry and effect parameters, in that order); the file was altered -- export "
+                            "the model again.")
+    C = check_finite_array(table.get("matrix"), "identified model: covariance.matrix", (len(names), len(names)))
+    if np.abs(C - C.T).max() > 1e-9 * max(np.abs(C).max(), 1e-300) or np.any(np.diag(C) < 0):
+        raise TolallocError("identified model: covariance.matrix is not a covariance (symmetric, non-negative "
+                            "variances); the file was altered -- export the model again.")
+    return C
 
 
 def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
@@ -175,7 +215,8 @@ def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
 
 
 def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
-    """The identified model rebuilt from an ``[identified]`` section and the nominal ``robot`` (no covariance)."""
+    """The identified model rebuilt from an ``[identified]`` section and the nominal ``robot``, with the parameter
+    covariance where the file holds one (:meth:`~.model_use.IdentifiedModel.point_covariance`)."""
     if not isinstance(section, dict) or section.get("format") != FORMAT:
         raise TolallocError(f"identified model: expected an [identified] section with format = {FORMAT!r} (written "
                             "by a tolalloc export), got " + (repr(section.get("format")) if isinstance(section, dict)
@@ -231,7 +272,7 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
               np.asarray(section["registration_translation_mm"], float), np.asarray(section["target_offset_mm"], float),
               delta, np.asarray(idx, int), np.asarray(beta, float), np.arange(len(beta)), tuple(names))
     return IdentifiedModel(robot, fit, tuple(effects), variants, columns, np.asarray(keep, int), ref,
-                           np.asarray(section["basis_target_offset_mm"], float), None,
+                           np.asarray(section["basis_target_offset_mm"], float), _covariance(section, fit),
                            float(section.get("noise_mm", np.nan)), bool(section.get("payload_in_training", False)))
 
 

@@ -188,8 +188,8 @@ class IdentifiedModel:
         ``base``: the probe offset, geometric and effect parameters (the registration defines the base frame and
         leaves it); ``tracker``: all parameters, the registration's included."""
         if self.cov is None:
-            raise TolallocError("this identified model has no parameter covariance (it was built without the "
-                                "training poses); rebuild it from the diagnosis.")
+            raise TolallocError("this identified model has no parameter covariance (built with covariance=False, or "
+                                "read from a file exported without one); rebuild it from the diagnosis.")
         J = point_jacobian(self.fit, meas.q, self.basis(meas))
         if _frame(frame) == "base":
             J, C = np.einsum("ji,pjk->pik", self.fit.R, J[:, :, 6:]), self.cov[6:, 6:]

@@ -123,9 +123,9 @@ def predict_frame(model, q, *, frame: str = "base", robot=None, **covariates) ->
     or an exported ``identified.toml``, whose nominal robot ``robot`` defaults to the built-in one it names) at ``q``
     (a program as :func:`read_program` takes it; ``covariates``: ``payload_kg``, ``temperature_c``, ``time_s``,
     ``dir`` arrays and ``wrench`` (P, 6) [N, N m], beside or instead of the program's columns): ``row``,
-    ``x_mm, y_mm, z_mm`` in ``frame``, and where the model holds its parameter covariance (a diagnosis's, not one read
-    from a file) ``sigma_mm`` (1-sigma of the 3-D prediction error) and ``radius95_mm`` (the radius holding a
-    measurement with 95 % probability, measurement noise included)."""
+    ``x_mm, y_mm, z_mm`` in ``frame``, and where the model holds its parameter covariance (a diagnosis's, or one read
+    from a file exported with it) ``sigma_mm`` (1-sigma of the 3-D prediction error) and ``radius95_mm`` (the radius
+    holding a measurement with 95 % probability, measurement noise included)."""
     from tolalloc.linear.probability import radius_for_prob
 
     model = _identified(model, robot)[0]
