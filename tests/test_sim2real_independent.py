@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4632,7 +4632,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_thermal as zet
 
     assert "ZD" < "ZE" and "ZE" in cs.SETS
-    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ"))
+    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4779,7 +4779,8 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ"))
+    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS
+                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4919,7 +4920,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI", "ZJ"))
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5065,7 +5066,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh as ezh
     from sim2real_indep import effects_zh_body as zhb
 
-    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI", "ZJ"))
+    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5197,7 +5198,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ"))
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK"))
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5339,7 +5340,7 @@ def test_set_zj_cases_kinds_and_determinism():
     from sim2real_indep import effects_zj_body as zjb
     from sim2real_indep import effects_zj_thermal as zjt
 
-    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s != "ZJ")
+    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK"))
     assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
@@ -5477,3 +5478,161 @@ def test_set_zj_every_kind_lies_in_its_true_structure_and_known_answers():
     assert zjt.plume_share(pp, down) == pytest.approx([1.0, 0.0])
     Tb = zjt.plume_temperature(pp, ctx)
     assert ((Tb >= 0) & (Tb <= 1)).all() and Tb.max() > 0
+
+
+# --------------------------------------------------------------------------------------------------------- set ZK
+ZK_KINDS = ("kt_magnet_drift", "capstan_spans", "sensor_hysteresis", "housing_spread", "quench_ovality",
+            "ride_height", "beam_torsion", "asphalt_creep", "flange_buckling", "dashpot_slide", "drive_board_heat",
+            "ram_wiper_heat")
+
+
+def test_set_zk_cases_kinds_and_determinism():
+    """Set ZK (the eleventh two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZJ; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZK kind alone (no random numbers drawn)
+    and the probe hook draws none; the generator reaches the set's modules and none imports tolalloc; a new part for
+    each block (the buckling bracket, the dashpot slide, the ride height, the beam) and hours of blocks with production
+    or pauses between them (the magnets, the drive boards, the asphalt, the ram)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zk as ezk
+    from sim2real_indep import effects_zk_body as zkb
+
+    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s != "ZK")
+    assert cs.case_seed("ZK", 3) == 40_7037 * 1000 + 3 and [c[0] for c in cs.SET_ZK] == [f"ZK{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezk.EFFECTS_ZK) == set(ZK_KINDS)
+    _assert_set_module("ZK", 40_7037, ezk, ("gear", "gauge_zero_drift", "plume_bracket", "hydrostatic_rail"))
+    for name in ("effects_zk", "effects_zk_joint", "effects_zk_body", "effects_zk_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zk" in _imports(STUDY / "generator.py")
+    assert ezk.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezk.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezk.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                assert part["blocks"] >= 3 and len(part["payload_steps"]) == part["blocks"]
+                assert kg[robot][0] <= min(part["payload_steps"]) and max(part["payload_steps"]) <= kg[robot][1]
+        for kind, ((lo, hi), gap, pause) in ezk.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        plain = opts(("capstan_spans", "sensor_hysteresis", "housing_spread", "quench_ovality"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe = np.array([1.0, 2.0, 3.0])
+    assert ezk.probe_hook(("gear",), probe) is probe
+    assert ezk.probe_hook(("flange_buckling",), probe) == pytest.approx(probe + [0, 0, zkb.BRACKET_MM])
+    assert ezk.probe_hook(("dashpot_slide",), probe) == pytest.approx(probe + [0, 0, zkb.SLIDE_MM])
+    _assert_regenerates("ZK", max_effect_poses=50)
+
+
+def test_set_zk_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZK kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: the magnets' node and the
+    load it scales, the capstan spans' parabola, the play operator of the sensor's hysteresis, the housing's trailing
+    flank and its moment, the ring's orders 2 and 4, the ride height's gap scale, the beam's twist about its line and
+    its sink, the asphalt's creep integrals, the bracket's one-sided buckling, the dashpot's relaxation, the drive
+    boards' levels and the ram's heating by its stroke."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zk_body as zkb
+    from sim2real_indep import effects_zk_joint as zkj
+    from sim2real_indep import effects_zk_thermal as zkt
+    from sim2real_indep.effects_body import mount_moment
+
+    amps = {"kt_magnet_drift": "c", "capstan_spans": "c", "sensor_hysteresis": "a", "housing_spread": "b",
+            "quench_ovality": "e", "ride_height": "e", "beam_torsion": "c", "asphalt_creep": "c",
+            "flange_buckling": "c0", "dashpot_slide": "inv_k", "drive_board_heat": "amp", "ram_wiper_heat": "amp"}
+    specs = {"ur10": ("kt_magnet_drift", "capstan_spans", "sensor_hysteresis", "beam_torsion", "dashpot_slide",
+                      "drive_board_heat", "flange_buckling"),
+             "tool_changer": ("quench_ovality", "housing_spread", "asphalt_creep", "ram_wiper_heat"),
+             "kr16_like": ("ride_height", "quench_ovality", "housing_spread", "sensor_hysteresis")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 37)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    t = s.time_s - s.time_s[0]
+    # magnets: without gaps a first-order rise from T0 towards 1, scaling each loaded axis' gravity load
+    kp = P["kt_magnet_drift"]
+    still = replace(s, gap_s=np.zeros(len(s.gap_s)))
+    T = zkj.magnet_node(kp, still)
+    assert T == pytest.approx(1 + (kp["T0"] - 1) * np.exp(-t / kp["tau_s"]))
+    F = zkj.kt_features(kp, replace(ctx, session=still), None)
+    assert F[0] == pytest.approx(ctx.joint_feature(1, ctx.loads[:, 1] * T))
+    # capstan spans: the parabola 1 - (rho u / u_far)^2, 1 at the sector's centre, 1 - rho^2 at the farther end
+    cp = P["capstan_spans"]
+    lo, hi = np.deg2rad(-250.0), np.deg2rad(70.0)  # ur10's axis 4 in its measurement box
+    qc = (lo + hi) / 2 + cp["shift"][3] * (hi - lo) / 2
+    far = lo if qc - lo > hi - qc else hi
+    assert zkj.span_factor(cp, 3, np.array([qc, far])) == pytest.approx([1.0, 1 - cp["rho"][3] ** 2])
+    # the play operator: follows within +-r, holds inside the band
+    assert zkj.play(np.array([0.0, 3.0, 2.0, 0.5, 4.0]), 1.0) == pytest.approx([0.0, 2.0, 2.0, 1.5, 3.0])
+    e = zkj.hysteresis_error(P["sensor_hysteresis"], ctx, 1)
+    assert (np.abs(e) <= 1 + 1e-12).all() and np.ptp(e) > 0
+    # beam torsion: the twist turns about the beam's line (no motion along it from the twist); a zero sink ratio
+    bp = P["beam_torsion"]
+    tw = zkb.beam_features({**bp, "sink_ratio_m2": 0.0}, ctx, None)[0]
+    assert tw @ zkb.beam_axis(bp) == pytest.approx(np.zeros(len(tw)), abs=1e-9)
+    sink = zkb.beam_features(bp, ctx, None)[0] - tw
+    assert sink[:, :2] == pytest.approx(np.zeros((len(tw), 2)), abs=1e-12) and (sink[:, 2] < 0).all()
+    assert np.unique(sink[:, 2].round(9)).size == len(set(s.payload_kg))  # the sink changes with the part only
+    # dashpot slide: with a very short delay the slide follows the load; a step relaxes with tau
+    dp = P["dashpot_slide"]
+    Fz = zkb.axial_load(dp, ctx)
+    assert zkb.kelvin_voigt({"tau_s": 1e-6}, s, Fz) == pytest.approx(Fz)
+    toy = replace(s, time_s=np.array([0.0, 10.0]), gap_s=np.zeros(2))
+    assert zkb.kelvin_voigt({"tau_s": 5.0}, toy, np.array([1.0, 3.0]))[1] == pytest.approx(3 - 2 * np.exp(-2))
+    # flange buckling: stiff one way, softer by 1 / rho past F_cr the other
+    fb = {"rho": 0.5, "F_cr": 2.0}
+    assert zkb.buckle_law(fb, np.array([-5.0, 1.0, 2.0, 4.0])) == pytest.approx([-5.0, 1.0, 2.0, 6.0])
+    # drive boards: servo on towards 1, pauses towards w_pause; the tubes a2 and a3 stretch
+    bo = P["drive_board_heat"]
+    toy = replace(s, time_s=np.array([0.0, 600.0, 1200.0]), gap_s=np.array([0.0, -600.0, 0.0]))
+    node = zkt.board_node({**bo, "T0": 1.0}, toy)
+    assert node == pytest.approx([1.0, bo["w_pause"] + (1 - bo["w_pause"]) * np.exp(-600 / bo["tau_s"]),
+                                  1 + (node[1] - 1) * np.exp(-600 / bo["tau_s"])])
+    assert [ctx.chain.link_names[i] for i in zkt.hot_links(ctx.chain)] == ["a2", "a3"]
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # quench ovality: orders 2 and 4 of axis 1
+    F = zkj.ovality_features(P["quench_ovality"], ctx, None)
+    assert len(F) == 4 and F[2] == pytest.approx(ctx.joint_feature(0, np.sin(4 * s.q[:, 0])))
+    # housing spread: the trailing flank, widened with the horizontal moment
+    hp = P["housing_spread"]
+    M = np.linalg.norm(mount_moment(ctx)[:, :2], axis=1)
+    assert zkj.housing_moment(ctx) == pytest.approx(M) and hp["M_ref"] == pytest.approx(M.max(), rel=2e-2)
+    F = zkj.spread_features(hp, ctx, None)
+    assert F[1] == pytest.approx(F[0] * (M / hp["M_ref"])[:, None])
+    assert F[0] == pytest.approx(ctx.joint_feature(0, -s.direction[:, 0]))
+    # asphalt: the creep integrals grow with the fluidity, which rises with the pavement's warming
+    ap = P["asphalt_creep"]
+    phi = zkb.fluidity(ap, s)
+    assert phi[0] == pytest.approx(1.0) and (np.diff(phi) >= 0).all()
+    IM, IW = zkb.creep_integrals(ap, ctx)
+    assert IW[0] == 0 and (np.diff(IW) > 0).all()
+    # ram wipers: one full stroke adds kappa; production warms towards 1, a pause cools towards 0
+    rp = {"T0": 0.0, "tau_s": 1e12, "kappa": 0.05}
+    toy = replace(s, time_s=np.array([0.0, 10.0, 20.0]), gap_s=np.zeros(3))
+    assert zkt.ram_node(rp, toy, np.array([0.0, 500.0, 250.0])) == pytest.approx([0.0, 0.05, 0.075])
+    prod = replace(toy, time_s=np.array([0.0, 1000.0, 1010.0]), gap_s=np.array([0.0, 990.0, 0.0]))
+    assert zkt.ram_node({**rp, "tau_s": 600.0}, prod, np.zeros(3))[1] == pytest.approx(
+        (1 - np.exp(-990 / 600)) * np.exp(-10 / 600))
+
+    case, ctx = runs["kr16_like"]
+    # ride height: the gap scale is zero without a payload and grows with it
+    d = zkj.gap_scale(ctx)
+    W0 = float(np.sum(ctx.masses)) * kin.G
+    assert d == pytest.approx(((W0 + ctx.session.payload_kg * kin.G) ** (2 / 3) - W0 ** (2 / 3)) / W0 ** (2 / 3))
+    F = zkj.ride_features(case.truth["params"]["ride_height"], ctx, None)
+    assert len(F) == 8 and F[4] == pytest.approx(F[0] * d[:, None]) and len(set(ctx.session.payload_kg)) > 1

@@ -62,6 +62,7 @@ from sim2real_indep import effects_zg as ezg
 from sim2real_indep import effects_zh as ezh
 from sim2real_indep import effects_zi as ezi
 from sim2real_indep import effects_zj as ezj
+from sim2real_indep import effects_zk as ezk
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -115,6 +116,7 @@ EFFECTS = {
     **ezh.EFFECTS_ZH,  # set ZH's new kinds
     **ezi.EFFECTS_ZI,  # set ZI's new kinds
     **ezj.EFFECTS_ZJ,  # set ZJ's new kinds
+    **ezk.EFFECTS_ZK,  # set ZK's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -123,7 +125,8 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ev.AFTER_TRACKER | ew.AFTER_TRACKER | ex.AFTER_TRACKER | ey.AFTER_TRACKER
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
-                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER)
+                 | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER
+                 | ezk.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -227,7 +230,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezg.session_options(robot_key, physics, rng, opts)  # set ZG (no draws without a set-ZG kind)
     opts = ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
     opts = ezi.session_options(robot_key, physics, rng, opts)  # set ZI (no draws without a set-ZI kind)
-    return ezj.session_options(robot_key, physics, rng, opts)  # set ZJ (no draws without a set-ZJ kind)
+    opts = ezj.session_options(robot_key, physics, rng, opts)  # set ZJ (no draws without a set-ZJ kind)
+    return ezk.session_options(robot_key, physics, rng, opts)  # set ZK (no draws without a set-ZK kind)
 
 
 def _tracker(rng):
@@ -281,6 +285,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezh.probe_hook(physics, probe)  # set ZH's inflated boom, collet boom, swinging bracket (no draws)
     probe = ezi.probe_hook(physics, probe)  # set ZI's parts on the Bernoulli and jamming grippers (no draws)
     probe = ezj.probe_hook(physics, probe)  # set ZJ's gecko part, warm panel, plume bracket (no draws)
+    probe = ezk.probe_hook(physics, probe)  # set ZK's buckling bracket, dashpot slide (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)

@@ -21,7 +21,8 @@ set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 ca
 (:mod:`effects_zd`), set ZE (24 cases, 8 per arm) a thirty-first (:mod:`effects_ze`), set ZF (24 cases, 8 per
 arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-third (:mod:`effects_zg`), set ZH
 (24 cases, 8 per arm) a thirty-fourth (:mod:`effects_zh`), set ZI (24 cases, 8 per arm) a thirty-fifth
-(:mod:`effects_zi`), set ZJ (24 cases, 8 per arm) a thirty-sixth (:mod:`effects_zj`).
+(:mod:`effects_zi`), set ZJ (24 cases, 8 per arm) a thirty-sixth (:mod:`effects_zj`),
+set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -44,6 +45,7 @@ SEED_ZG = 40_7033
 SEED_ZH = 40_7034
 SEED_ZI = 40_7035
 SEED_ZJ = 40_7036
+SEED_ZK = 40_7037
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1732,7 +1734,60 @@ SET_ZJ = [
     ("ZJ24", "kr16_like", ("stray_weld_current", "traction_microslip"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ)
+#: Set ZK (seed 40_7037): twelve new kinds, two per family (sim2real_indep.effects_zk; physics and sources in
+#: effects_zk_joint, effects_zk_body, effects_zk_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every
+#: effect case its truth (gains 24 % on ZK13 and 41 % on ZK17 to 93 % on ZK05; the closest rivals ZK13's backlash model
+#: at 1.32x, ZK01's link model at 1.42x, ZK11's link model at 1.45x and ZK04's transmission model at 1.65x; a mixture
+#: component's removal costs 52 % at least, ZK08's drive boards), the geometry-only cases none. Changed after trial
+#: draws (the modules' docstrings give the first forms): the capstan spans first on ur10's axes 2 and 3 with a centred
+#: sector (ZK02 ambiguous with the link model at 1.04x), then with the sector's centre shifted and its spans nearly
+#: wound off at one end (1.06x: on ur10 the upper arm's and forearm's joint compliance bends the arm as its tubes'
+#: bending does), now on the wrist axes 4 and 5, whose short links the link model does not bend; the beam torsion
+#: first under the sessions' own payload schedule on tool_changer (ZK11, 7.8 %, the link model at 1.08x) and kr16_like
+#: (ZK21, 19.8 %, the transmission model at 1.22x; with parts per block 19.3 % at 1.11x: over axis 1's +-60 / +-90 deg
+#: the moment about the beam's fixed line changes little beyond the mean the base's tilt absorbs), now with a part per
+#: block on tool_changer and on ur10 (ZK04, first the asphalt creep; its axis 1 turns the moment through +-170 deg),
+#: the asphalt creep moved to tool_changer's ZK14 (first the magnets' warming; its time split kept) and kr16_like's ZK21
+#: took the magnets' warming (its random split kept); the ride height first in kr16_like's mixture ZK24 with the housing
+#: spread (its removal cost 3.2 %: a 0-16 kg part opens the gap little next to the arm's weight, in a noisy case), so
+#: ZK24 took the ring gear's ovality and ZK19 (first the ovality) the ride height. No seed or pose count was changed.
+#: Six kinds were dropped before any draw: a polymer gear's lash shrinking as it takes up the hall's moisture (the
+#: teeth's diffusion time is days: nothing changes within a session), a fresh concrete plinth bowed by its hydration
+#: heat (some 0.04 mm of tilt drift over a session), a switchable magnet base (set P's vacuum feet: a hold-down preload
+#: and a contact law), a blocked pneumatic cylinder holding the part (at realistic loads a linear air spring: set ZD's
+#: soft float), a bevel wheel's axial runout (once per turn: set A's gear) and nested wrist shafts' drag choosing axis
+#: 4's flank (synchronised point-to-point moves end together, leaving no drag). A trial on the seed + 1 (case seeds +
+#: 1000003): every effect case its truth, 23 of 24 at the 20 % / 1.25x bar; below it the capstan spans (ZK02, 29.9 %,
+#: the backlash model at 1.21x) -- the weakest kind; the ram wipers (ZK13, 24 %, 1.30x) next.
+SET_ZK = [
+    ("ZK01", "ur10", ("kt_magnet_drift",), 150, "time"),
+    ("ZK02", "ur10", ("capstan_spans",), 130, "random"),
+    ("ZK03", "ur10", ("sensor_hysteresis",), 140, "random"),
+    ("ZK04", "ur10", ("beam_torsion",), 150, "time"),
+    ("ZK05", "ur10", ("dashpot_slide",), 40, "random"),
+    ("ZK06", "ur10", ("drive_board_heat",), 150, "time"),
+    ("ZK07", "ur10", (), 60, "random"),
+    ("ZK08", "ur10", ("capstan_spans", "drive_board_heat"), 180, "random"),
+    ("ZK09", "tool_changer", ("quench_ovality",), 120, "random"),
+    ("ZK10", "tool_changer", ("housing_spread",), 140, "random"),
+    ("ZK11", "tool_changer", ("beam_torsion",), 140, "random"),
+    ("ZK12", "tool_changer", ("flange_buckling",), 140, "random"),
+    ("ZK13", "tool_changer", ("ram_wiper_heat",), 150, "time"),
+    ("ZK14", "tool_changer", ("asphalt_creep",), 160, "time"),
+    ("ZK15", "tool_changer", (), 40, "random"),
+    ("ZK16", "tool_changer", ("ram_wiper_heat", "dashpot_slide"), 190, "random"),
+    ("ZK17", "kr16_like", ("ride_height",), 130, "random"),
+    ("ZK18", "kr16_like", ("sensor_hysteresis",), 130, "random"),
+    ("ZK19", "kr16_like", ("ride_height",), 130, "random"),
+    ("ZK20", "kr16_like", ("asphalt_creep",), 140, "random"),
+    ("ZK21", "kr16_like", ("kt_magnet_drift",), 140, "random"),
+    ("ZK22", "kr16_like", ("flange_buckling",), 130, "random"),
+    ("ZK23", "kr16_like", (), 100, "random"),
+    ("ZK24", "kr16_like", ("housing_spread", "quench_ovality"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1742,7 +1797,8 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "Y": (SET_Y, SEED_Y), "Z": (SET_Z, SEED_Z), "ZA": (SET_ZA, SEED_ZA),
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
-        "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ)}
+        "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
+        "ZK": (SET_ZK, SEED_ZK)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -476,7 +476,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "gauge_zero_drift": "joint_compliance", "traction_microslip": "joint_compliance", "gyro_filter": "backlash",
           "wind_flank": "backlash", "stepper_stall": "transmission", "ghost_order": "transmission",
           "hydrostatic_rail": "mount_compliance", "clay_pier": "mount_compliance", "gecko_pad": "link_deflection",
-          "warm_sag": "link_deflection", "stray_weld_current": "thermal", "plume_bracket": "thermal"}
+          "warm_sag": "link_deflection", "stray_weld_current": "thermal", "plume_bracket": "thermal",
+          # set ZK (sim2real_indep.effects_zk; kt_magnet_drift, the gravity feed-forward of current-based compliant
+          # control falling short as the motors' magnets warm, and capstan_spans, a cable-capstan stage whose free spans
+          # change length with the joint's angle, scored as joint compliance; sensor_hysteresis, joint torque sensors'
+          # hysteresis read by a joint-impedance controller (an error following the load's last change), and
+          # housing_spread, axis 1's lost motion widened as its housing spreads under the tilting moment, as backlash;
+          # quench_ovality, axis 1's ring gear left out of round by its hardening, and ride_height, axis 1's magnetic
+          # ring encoder read across an air gap that the axial load sets, as transmission; beam_torsion, the base on a
+          # single I-beam twisting about its axis, and asphalt_creep, the base's pads creeping into a sun-warmed asphalt
+          # yard, as mount compliance; flange_buckling, a sheet-metal bracket whose free flange buckles when bent one
+          # way, and dashpot_slide, a tool on a spring-and-dashpot compliance slide, as link deflection (the end-of-arm
+          # structure carrying the target); drive_board_heat, the link tubes warmed by the drives built into the joints,
+          # and ram_wiper_heat, the telescopic ram warmed by its wipers' friction, as thermal)
+          "kt_magnet_drift": "joint_compliance", "capstan_spans": "joint_compliance",
+          "sensor_hysteresis": "backlash", "housing_spread": "backlash", "quench_ovality": "transmission",
+          "ride_height": "transmission", "beam_torsion": "mount_compliance", "asphalt_creep": "mount_compliance",
+          "flange_buckling": "link_deflection", "dashpot_slide": "link_deflection", "drive_board_heat": "thermal",
+          "ram_wiper_heat": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
