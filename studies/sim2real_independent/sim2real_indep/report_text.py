@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; all thirty-six: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; all thirty-seven: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -497,6 +497,26 @@ returning through the arm's bearings (ZJ13, `none`); open-loop stepper wrists lo
 `none`). The helper flags two kinds as open to the objection of a new parameterisation (traction_microslip, built from
 play operators; ghost_order, another periodic mesh error) and dropped two candidates that repeated earlier mechanisms;
 on a second seed three of its cases fall below the oracle's bars (ZJ06, ZJ13, ZJ20).
+
+**Set ZK** (24 cases, seed 40_7037) is a thirty-seventh independent test set of twelve new kinds
+(`sim2real_indep/effects_zk*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZJ, ran no git command and did not run the diagnosis. It was
+run once, on the code set ZJ was judged on (the diagnosis's choice had not changed since). Set ZK: 20/24 strict, 21
+lenient, no false claim, median final / oracle RMS 1.46; right on 14 of 16 effect cases where the true family's
+generic model helps, 3 of 5 where it does not. Its misses: a joint torque sensor's hysteresis fed into an impedance
+controller on ur10 (ZK03, `ambiguous` between backlash and joint compliance, lenient; right on kr16_like); a
+telescopic ram warmed by its wiper seals' friction in proportion to its stroke travel (ZK13, the thermal selection
+does not transfer to the test file, `inconclusive`); a base on steel pads creeping into an asphalt yard the sun warms
+(ZK14, ZK20, named thermal: the creep grows with time as a warm-up does). The helper names capstan_spans its weakest
+kind (on a second seed ZK02 gains 30 % with the backlash model at 1.21x, below the oracle's bars) and dropped six
+candidates, four as repeats of earlier mechanisms.
+A change made on sets A-ZJ while set ZK was being written, before any of its results were seen -- a `masses+force`
+variant of joint compliance: beside the gravity load and an unknown tool mass, an unknown constant force at the tool
+along the two horizontal directions (a hose, cable or balancer pulling one way), none about an axis that stays
+vertical -- names 8 more cases of A-ZJ (V02, V09, W09, W22, ZC01, ZC09, ZE01, ZF11) and loses one (I01, now named
+link deflection: the force variant, chosen on the training residual, predicts the held-out poses worse than the
+masses alone), claims nothing on a quiet case (A-ZJ 589 -> 596 strict, 624 -> 628 lenient, median final / oracle RMS
+1.38 -> 1.37) and changes no verdict of set ZK. The figures of this report are of the code with it; set ZL judges it.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1129,6 +1149,24 @@ comment):
 | warm_sag | link_deflection | a warm moulding creeping under its own weight while it cools, set in the shape its attitude history gave it (tool_changer, kr16_like) | Ferry, *Viscoelastic Properties of Polymers* (3rd ed., 1980) |
 | stray_weld_current | thermal | welding current returning through the arm heating the bearings of axes 1-3, the housings growing along their axes (tool_changer, kr16_like) | Harris & Kotzalas (2007); SKF, *Bearing damage and failure analysis* (2017) |
 | plume_bracket | thermal | a hot part's convective plume heating its bracket only while the tool points down (ur10) | Morton, Taylor & Turner, Proc. R. Soc. A 234 (1956); Gebhart et al. (1988) |
+
+Set ZK's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZK
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| kt_magnet_drift | joint_compliance | the gravity feed-forward of current-based compliant control falling short as the motor magnets warm and their torque constant drops (ur10, kr16_like) | Wensing et al., IEEE T-RO 33 (2017); Hendershot & Miller (2010) ch. 3 |
+| capstan_spans | joint_compliance | a cable-capstan wrist stage whose two free spans lengthen and shorten with the angle (ur10) | Townsend, MIT PhD thesis (1988); Baser & Konukseven, Mech. Mach. Theory 45 (2010) |
+| sensor_hysteresis | backlash | a joint torque sensor's hysteresis (a play operator of the load) fed into a joint-impedance controller (ur10, kr16_like) | Hoffmann, HBM (2012); Albu-Schaeffer, Ott & Hirzinger, IJRR 26 (2007) |
+| housing_spread | backlash | axis 1's lost motion widening as its gear housing spreads under the tilting moment (tool_changer, kr16_like) | ISO 21771:2007 sec. 8; Niemann & Winter, *Maschinenelemente* II (1989) ch. 21 |
+| quench_ovality | transmission | axis 1's ring gear left out of round by hardening: errors at 2 and 4 per turn (tool_changer, kr16_like) | Totten & Howes (1997); Smith, *Gear Noise and Vibration* (2003) ch. 3 |
+| ride_height | transmission | axis 1's magnetic ring encoder whose 1- and 2-per-turn errors grow with the air gap the bearing's axial deflection sets (kr16_like) | Furlani (2001) ch. 4; Harris & Kotzalas (2007) |
+| beam_torsion | mount_compliance | the base at mid-span of a single I-beam twisting about its axis under the moment along it (ur10, tool_changer) | Trahair (1993) ch. 10; SCI P385 (2011) |
+| asphalt_creep | mount_compliance | base pads creeping into an asphalt yard whose binder the sun warms (tool_changer, kr16_like) | EN 12697-20/-21; Read & Whiteoak (2003) ch. 8; Ferry (1980) ch. 11 |
+| flange_buckling | link_deflection | a sheet-metal bracket whose free flange buckles when bending compresses it: softer one way only (tool_changer, kr16_like) | Koiter (1945); Bulson (1970); EN 1993-1-5 |
+| dashpot_slide | link_deflection | a tool on a spring-and-dashpot slide lagging its weight's history (ur10, tool_changer) | Whitney, *Mechanical Assemblies* (2004) ch. 10; Findley, Lai & Onaran (1976) ch. 5 |
+| drive_board_heat | thermal | the drive electronics inside the joints heating the tube ends: servo on, production, pause (ur10) | Mohan, Undeland & Robbins (2003) ch. 7; Incropera & DeWitt ch. 5 |
+| ram_wiper_heat | thermal | the telescopic ram heated by its wiper seals' friction in proportion to its stroke travel (tool_changer) | Bhushan (2013) ch. 6; Mueller & Nau (1998) |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
