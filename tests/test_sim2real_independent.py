@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4632,7 +4632,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_thermal as zet
 
     assert "ZD" < "ZE" and "ZE" in cs.SETS
-    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
+    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4780,7 +4780,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_thermal as zft
 
     assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS
-                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK"))
+                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4920,7 +4920,8 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK"))
+    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS
+                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5066,7 +5067,8 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh as ezh
     from sim2real_indep import effects_zh_body as zhb
 
-    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS if s not in ("ZH", "ZI", "ZJ", "ZK"))
+    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS
+                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5198,7 +5200,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK"))
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5340,7 +5342,7 @@ def test_set_zj_cases_kinds_and_determinism():
     from sim2real_indep import effects_zj_body as zjb
     from sim2real_indep import effects_zj_thermal as zjt
 
-    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK"))
+    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL"))
     assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
@@ -5498,7 +5500,7 @@ def test_set_zk_cases_kinds_and_determinism():
     from sim2real_indep import effects_zk as ezk
     from sim2real_indep import effects_zk_body as zkb
 
-    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s != "ZK")
+    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL"))
     assert cs.case_seed("ZK", 3) == 40_7037 * 1000 + 3 and [c[0] for c in cs.SET_ZK] == [f"ZK{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezk.EFFECTS_ZK) == set(ZK_KINDS)
@@ -5636,3 +5638,166 @@ def test_set_zk_every_kind_lies_in_its_true_structure_and_known_answers():
     assert d == pytest.approx(((W0 + ctx.session.payload_kg * kin.G) ** (2 / 3) - W0 ** (2 / 3)) / W0 ** (2 / 3))
     F = zkj.ride_features(case.truth["params"]["ride_height"], ctx, None)
     assert len(F) == 8 and F[4] == pytest.approx(F[0] * d[:, None]) and len(set(ctx.session.payload_kg)) > 1
+
+
+# --------------------------------------------------------------------------------------------------------- set ZL
+ZL_KINDS = ("idle_current", "kt_saturation", "current_remanence", "hose_bourdon", "stator_leakage", "step_truncation",
+            "raised_floor", "load_cells", "ft_sensor", "pad_pivot", "thermal_ratchet", "arc_radiation")
+
+
+def test_set_zl_cases_kinds_and_determinism():
+    """Set ZL (the twelfth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZK; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZL kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; a
+    new part for each block (every other block empty for the hose), and hours of blocks with production or pauses
+    between them (the restrained tubes, the arc)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zl as ezl
+    from sim2real_indep import effects_zl_body as zlb
+
+    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s != "ZL")
+    assert cs.case_seed("ZL", 3) == 40_7038 * 1000 + 3 and [c[0] for c in cs.SET_ZL] == [f"ZL{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezl.EFFECTS_ZL) == set(ZL_KINDS)
+    _assert_set_module("ZL", 40_7038, ezl, ("gear", "kt_magnet_drift", "ram_wiper_heat", "beam_torsion"))
+    for name in ("effects_zl", "effects_zl_joint", "effects_zl_body", "effects_zl_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zl" in _imports(STUDY / "generator.py")
+    assert ezl.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezl.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezl.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                part = opts((kind,), robot)
+                steps = np.array(part["payload_steps"])
+                assert part["blocks"] >= 3 and len(steps) == part["blocks"]
+                if kind in ezl.SOME_EMPTY:  # every other block without a part
+                    assert (steps == 0).sum() in (len(steps) // 2, (len(steps) + 1) // 2) and (steps > 0).any()
+                    steps = steps[steps > 0]
+                assert kg[robot][0] <= steps.min() and steps.max() <= kg[robot][1]
+        for kind, ((lo, hi), gap, pause) in ezl.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        plain = opts(("current_remanence", "stator_leakage", "step_truncation", "load_cells"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe, com = np.array([1.0, 2.0, 3.0]), np.array([30.0, -40.0, 0.0])
+    assert ezl.probe_hook(("gear",), probe) is probe and ezl.payload_hook(("gear",), com) is com
+    assert ezl.probe_hook(("ft_sensor",), probe) == pytest.approx(probe + [0, 0, zlb.FT_TARGET_MM])
+    assert ezl.probe_hook(("pad_pivot",), probe) == pytest.approx(probe + [0, 0, zlb.PART_TARGET_MM])
+    assert ezl.payload_hook(("pad_pivot",), com) == pytest.approx([6.0, -8.0, zlb.PAD_MM + 40.0 + 50.0 * 50 / 80])
+    _assert_regenerates("ZL", max_effect_poses=50)
+
+
+def test_set_zl_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZL kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: the stepper's load angles at
+    the cut current, the saturation's cube, the current sensor's core (its memory, its reset at each enable), the hose
+    flank while a part is held, the leakage's electrical order, the truncated counts' running sum, the raised floor's
+    grid axes, the load cells' tilt and sink, the F/T sensor's loads, the pads' turn about the closing axis, the
+    restrained tubes' play and the arc's node and forearm."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zl_body as zlb
+    from sim2real_indep import effects_zl_joint as zlj
+    from sim2real_indep import effects_zl_thermal as zlt
+    from sim2real_indep.effects_body import mount_moment
+
+    amps = {"idle_current": "c", "kt_saturation": "c", "current_remanence": "a", "hose_bourdon": "b",
+            "stator_leakage": "e", "step_truncation": "amp", "raised_floor": "c", "load_cells": "c",
+            "ft_sensor": "inv_Kt", "pad_pivot": "inv_k", "thermal_ratchet": "amp", "arc_radiation": "amp"}
+    specs = {"ur10": ("idle_current", "current_remanence", "stator_leakage", "raised_floor", "pad_pivot",
+                      "thermal_ratchet", "arc_radiation"),
+             "tool_changer": ("hose_bourdon", "ft_sensor", "kt_saturation", "load_cells"),
+             "kr16_like": ("step_truncation", "kt_saturation", "hose_bourdon", "stator_leakage")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 38)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    # idle current: asin(u / r) - asin(u), none without load, below the pull-out (u / r < 1)
+    ip = P["idle_current"]
+    u = ctx.loads[:, 3] / ip["T_H"][3]
+    assert zlj.idle_sag(ip, ctx, 3) == pytest.approx(np.arcsin(u / ip["r"]) - np.arcsin(u))
+    assert np.abs(u / ip["r"]).max() < 0.81
+    assert zlj.idle_sag({**ip, "T_H": {3: np.inf}}, ctx, 3) == pytest.approx(np.zeros(len(u)))
+    # current remanence: an excursion past I_c sets the core, a smaller one of that sign keeps it, an opposite one
+    # flips it; the auto-zero at an enable takes the state then as the reference
+    x = np.array([[0.0, 0.0, 0.0], [3.0, -1.0, 0.5], [2.5, 0.2, 0.1], [-3.5, 1.0, 0.0], [0.0, 0.0, 0.0]])
+    reset = np.array([True, False, False, False, True])
+    g3, g35 = np.tanh(3.0 / 4.0), np.tanh(3.5 / 4.0)
+    assert zlj.core_state(x, 2.0, 4.0, reset) == pytest.approx([0.0, g3, g3, -g35, 0.0])
+    e = zlj.remanence_error(P["current_remanence"], ctx, 1)
+    assert e[0] == 0 and (np.abs(e) <= 2 + 1e-12).all()
+    # stator leakage: the load times the motor's electrical order p N - 1
+    lp = P["stator_leakage"]
+    assert all(any((K + 1) % p == 0 and 100 <= (K + 1) // p <= 160 for p in range(4, 9)) for K in lp["K"].values())
+    F = zlj.leakage_features(lp, ctx, None)
+    assert len(F) == 4 and F[0] == pytest.approx(ctx.joint_feature(1, ctx.loads[:, 1] / lp["tau_max"][1]
+                                                                   * np.sin(lp["K"][1] * s.q[:, 1])))
+    # raised floor: each column turns the arm about one grid axis (no motion along it from the tilt)
+    fp = P["raised_floor"]
+    e1, e2 = zlb.grid_axes(fp)
+    F = zlb.floor_features({**fp, "Lv_m": 0.0}, ctx, None)
+    assert F[0] @ e1 == pytest.approx(np.zeros(len(s.q)), abs=1e-9) and F[1] @ e2 == pytest.approx(
+        np.zeros(len(s.q)), abs=1e-9)
+    # finger pads: the part turns about the closing axis (the tool's y): no motion along it
+    Fp = zlb.pad_features(P["pad_pivot"], ctx, None)[0]
+    y = zlb.tool_frame(ctx)[:, :, 1]
+    assert np.einsum("pi,pi->p", Fp, y) == pytest.approx(np.zeros(len(s.q)), abs=1e-9)
+    # restrained tubes: a play of the node (no play: the node itself; a play wider than its range: no growth)
+    rp = P["thermal_ratchet"]
+    T = zlt.ratchet_node(rp, s)
+    assert zlt.ratchet_growth({**rp, "r": [0.0, 0.0]}, s, 0) == pytest.approx(T)
+    assert zlt.ratchet_growth({**rp, "r": [9.0, 9.0]}, s, 1) == pytest.approx(np.full(len(T), T[0]))
+    assert zlt.play(np.array([0.0, 0.5, 1.0, 0.6, 0.2]), 0.3) == pytest.approx([0.0, 0.2, 0.7, 0.7, 0.5])
+    # arc radiation: no production, no heat; the forearm's stretch column is its link's
+    ap = P["arc_radiation"]
+    still = replace(s, gap_s=np.where(s.gap_s > 0, -s.gap_s, s.gap_s))
+    assert np.abs(zlt.arc_node(ap, still)).max() == 0.0
+    li = ctx.chain.link_names.index("a3")
+    assert zlt.bow_parts(ap, ctx)[1] == pytest.approx(ctx.link_scale_feature(np.arange(6) == li))
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # hose flank: the roll axis' flank follows sign(tau + T_h) beyond the friction while a part is held
+    hp = P["hose_bourdon"]
+    fl = zlj.bourdon_flank(hp, ctx, 5)
+    held = s.payload_kg > 0
+    t = ctx.loads[:, 5] + held * hp["T_h"][5]
+    assert fl[np.abs(t) > hp["f"][5]] == pytest.approx(np.sign(t[np.abs(t) > hp["f"][5]]))
+    assert fl[np.abs(t) <= hp["f"][5]] == pytest.approx(-s.direction[np.abs(t) <= hp["f"][5], 5])
+    assert held.any() and (~held).any()
+    # Kt saturation: the cube of the load over its largest square (the load itself at the largest)
+    sg = zlj.saturation_sag(ctx, 4)
+    k = np.abs(ctx.loads[:, 4]).argmax()
+    assert sg[k] == pytest.approx(ctx.loads[k, 4]) and sg == pytest.approx(ctx.loads[:, 4] ** 3
+                                                                             / ctx.loads[k, 4] ** 2)
+    # F/T sensor: the force is the tool's and the part's weight
+    Fs, _ = zlb.sensor_loads(P["ft_sensor"], ctx)
+    assert np.linalg.norm(Fs, axis=1) == pytest.approx((P["ft_sensor"]["tool_kg"] + s.payload_kg) * kin.G)
+    # load cells: tilts M_l / (4 a_s^2), M_s / (4 a_l^2) about the cells' top, the sink W / 4
+    cp = P["load_cells"]
+    sq = {**cp, "a_l": 0.5, "a_s": 0.5}
+    M = mount_moment(ctx) * [1.0, 1.0, 0.0]
+    W = zlb.total_weight(ctx)
+    expect = np.cross(M / 1.0, ctx.target - [0, 0, -cp["pivot_mm"]]) - 1000.0 * (W / 4)[:, None] * [0, 0, 1.0]
+    assert zlb.cells_features(sq, ctx, None)[0] == pytest.approx(expect)
+
+    case, ctx = runs["kr16_like"]
+    # step truncation: the running sum of the truncated moves' shortfalls
+    assert zlj.truncation_lag(np.array([0.0, 2.5, 1.2, 1.2]), 1.0) == pytest.approx([0.0, -0.5, -0.2, -0.2])
+    tp = case.truth["params"]["step_truncation"]
+    assert zlj.wrist_joints(ctx.chain) == [3, 4, 5] and all(np.deg2rad(0.005) < v < np.deg2rad(0.05)
+                                                            for v in tp["s"].values())
+    assert zlj.roll_joints(ctx.chain) == [3, 5]

@@ -63,6 +63,7 @@ from sim2real_indep import effects_zh as ezh
 from sim2real_indep import effects_zi as ezi
 from sim2real_indep import effects_zj as ezj
 from sim2real_indep import effects_zk as ezk
+from sim2real_indep import effects_zl as ezl
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -117,6 +118,7 @@ EFFECTS = {
     **ezi.EFFECTS_ZI,  # set ZI's new kinds
     **ezj.EFFECTS_ZJ,  # set ZJ's new kinds
     **ezk.EFFECTS_ZK,  # set ZK's new kinds
+    **ezl.EFFECTS_ZL,  # set ZL's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -126,7 +128,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
                  | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER
-                 | ezk.AFTER_TRACKER)
+                 | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -231,7 +233,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezh.session_options(robot_key, physics, rng, opts)  # set ZH (no draws without a set-ZH kind)
     opts = ezi.session_options(robot_key, physics, rng, opts)  # set ZI (no draws without a set-ZI kind)
     opts = ezj.session_options(robot_key, physics, rng, opts)  # set ZJ (no draws without a set-ZJ kind)
-    return ezk.session_options(robot_key, physics, rng, opts)  # set ZK (no draws without a set-ZK kind)
+    opts = ezk.session_options(robot_key, physics, rng, opts)  # set ZK (no draws without a set-ZK kind)
+    return ezl.session_options(robot_key, physics, rng, opts)  # set ZL (no draws without a set-ZL kind)
 
 
 def _tracker(rng):
@@ -286,6 +289,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezi.probe_hook(physics, probe)  # set ZI's parts on the Bernoulli and jamming grippers (no draws)
     probe = ezj.probe_hook(physics, probe)  # set ZJ's gecko part, warm panel, plume bracket (no draws)
     probe = ezk.probe_hook(physics, probe)  # set ZK's buckling bracket, dashpot slide (no draws)
+    probe = ezl.probe_hook(physics, probe)  # set ZL's F/T sensor's tool, part between the pads (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -297,6 +301,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = ezb.payload_hook(physics, payload_com)  # set ZB's torch, part at the boom's tip (no draws)
     payload_com = ezc.payload_hook(physics, payload_com)  # set ZC's off-axis part, boom tip, bonded part (no draws)
     payload_com = ezd.payload_hook(physics, payload_com)  # set ZD's off-axis part (no draws)
+    payload_com = ezl.payload_hook(physics, payload_com)  # set ZL's sensor's tool, pads (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

@@ -22,7 +22,8 @@ set ZA (24 cases, 8 per arm) a twenty-seventh (:mod:`effects_za`), set ZB (24 ca
 arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-third (:mod:`effects_zg`), set ZH
 (24 cases, 8 per arm) a thirty-fourth (:mod:`effects_zh`), set ZI (24 cases, 8 per arm) a thirty-fifth
 (:mod:`effects_zi`), set ZJ (24 cases, 8 per arm) a thirty-sixth (:mod:`effects_zj`),
-set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`).
+set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`),
+set ZL (24 cases, 8 per arm) a thirty-eighth (:mod:`effects_zl`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -46,6 +47,7 @@ SEED_ZH = 40_7034
 SEED_ZI = 40_7035
 SEED_ZJ = 40_7036
 SEED_ZK = 40_7037
+SEED_ZL = 40_7038
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1787,7 +1789,62 @@ SET_ZK = [
     ("ZK24", "kr16_like", ("housing_spread", "quench_ovality"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK)
+#: Set ZL (seed 40_7038): twelve new kinds, two per family (sim2real_indep.effects_zl; physics and sources in
+#: effects_zl_joint, effects_zl_body, effects_zl_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every
+#: effect case its truth (gains 46.9 % on ZL06 and 48.4 % on ZL18 to 91.1 % on ZL09; the closest rivals ZL06's link
+#: model at 1.38x, ZL02's backlash model at 1.70x, ZL18's at 1.78x, ZL11's transmission model at 1.84x and ZL03's
+#: joint model at 1.85x); a mixture component's removal
+#: costs 67 % at least (ZL24's load cells), the geometry-only cases none. Changed after trial draws (the modules'
+#: docstrings give the first forms): the arc radiation first with production or pauses between its blocks at random
+#: (ur10's first ZL06: a single production gap, in the last, time-split block -- absorbed), now a welding cell's
+#: production between all blocks; its ur10 case dropped in the re-layout below, kr16_like's ZL22 kept. The helical
+#: pinions' preload release (axes 2 and 3) absorbed on tool_changer (first ZL09, 1.2 %: over its boom's short ranges
+#: the gravity twist is the zero offsets') and ambiguous with the link model on kr16_like (first ZL18, 1.07-1.08x with a
+#: release at 30-70 % and at 15-35 % of the largest torque, and on axis 3 alone in trials: a nearly linear twist of the
+#: main axes is the long links' bending): replaced by the wrist motors' torque-constant saturation (kt_saturation, ZL18
+#: and the mixture ZL16). Inclined chevron mounts (their elastic centre above the base) ambiguous with the joint model
+#: at 1.01-1.02x on tool_changer (first ZL13), ur10 and kr16_like, and at 1.24x on ur10 with steep mounts (a tilt about
+#: a point near the shoulder is axis 2's compliance): replaced by a weighing platform's load cells (load_cells), first
+#: on a square (ur10's ZL06 with the link model at 1.09x), then a pallet rectangle with a new part per block (1.19x: the
+#: platform's sink under the part is the tubes' bending under it), now with the session's one part. The raised floor
+#: first on tool_changer (first ZL12, 8.3 %, ambiguous: its axis 1 turns the moment over +-60 deg only) and kr16_like
+#: (first ZL21, the joint model at 1.21x), now on ur10 (ZL04); the current remanence on tool_changer (first ZL12,
+#: 11.1 %: its slow boom's acceleration currents rarely pass the core's coercive level), now only on ur10 (ZL03, ZL08);
+#: tool_changer took the stator leakage (ZL09), the step truncation (ZL12) and the idle current (ZL13), kr16_like the
+#: stator leakage (ZL21). No seed or pose count was changed. A trial on the seed + 1 (case seeds + 1000003): every
+#: effect case its truth or its truth with a near rival, 19 of 21 at the 20 % / 1.25x bar; below it the raised floor
+#: (ZL04, 14.5 %, the joint model at 1.07x) and the idle current on tool_changer (ZL13, ambiguous with the link model
+#: at 1.02x: its one stepper bend, axis 5, under a 10-60 kg part) -- the weakest kinds; the step truncation on
+#: tool_changer (ZL12, 24 %, 1.30x) and the load cells (ZL06, 1.30x) next.
+SET_ZL = [
+    ("ZL01", "ur10", ("thermal_ratchet",), 150, "time"),
+    ("ZL02", "ur10", ("idle_current",), 130, "random"),
+    ("ZL03", "ur10", ("current_remanence",), 140, "time"),
+    ("ZL04", "ur10", ("raised_floor",), 120, "random"),
+    ("ZL05", "ur10", ("pad_pivot",), 40, "random"),
+    ("ZL06", "ur10", ("load_cells",), 150, "random"),
+    ("ZL07", "ur10", (), 60, "random"),
+    ("ZL08", "ur10", ("thermal_ratchet", "current_remanence"), 180, "time"),
+    ("ZL09", "tool_changer", ("stator_leakage",), 120, "random"),
+    ("ZL10", "tool_changer", ("hose_bourdon",), 140, "random"),
+    ("ZL11", "tool_changer", ("ft_sensor",), 140, "random"),
+    ("ZL12", "tool_changer", ("step_truncation",), 140, "random"),
+    ("ZL13", "tool_changer", ("idle_current",), 150, "random"),
+    ("ZL14", "tool_changer", ("pad_pivot",), 160, "random"),
+    ("ZL15", "tool_changer", (), 40, "random"),
+    ("ZL16", "tool_changer", ("ft_sensor", "kt_saturation"), 190, "random"),
+    ("ZL17", "kr16_like", ("step_truncation",), 160, "time"),
+    ("ZL18", "kr16_like", ("kt_saturation",), 130, "random"),
+    ("ZL19", "kr16_like", ("idle_current",), 130, "random"),
+    ("ZL20", "kr16_like", ("hose_bourdon",), 120, "random"),
+    ("ZL21", "kr16_like", ("stator_leakage",), 140, "random"),
+    ("ZL22", "kr16_like", ("arc_radiation",), 130, "time"),
+    ("ZL23", "kr16_like", (), 100, "random"),
+    ("ZL24", "kr16_like", ("load_cells", "step_truncation"), 200, "time"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1798,7 +1855,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
         "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
-        "ZK": (SET_ZK, SEED_ZK)}
+        "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -493,7 +493,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "sensor_hysteresis": "backlash", "housing_spread": "backlash", "quench_ovality": "transmission",
           "ride_height": "transmission", "beam_torsion": "mount_compliance", "asphalt_creep": "mount_compliance",
           "flange_buckling": "link_deflection", "dashpot_slide": "link_deflection", "drive_board_heat": "thermal",
-          "ram_wiper_heat": "thermal"}
+          "ram_wiper_heat": "thermal",
+          # set ZL (sim2real_indep.effects_zl; idle_current, stepper wrists sagging as their drivers cut the holding
+          # current at standstill, and kt_saturation, current-based wrist control whose motors' torque constant
+          # saturates at high currents, scored as joint compliance; current_remanence, Hall current sensors magnetised by the last
+          # large current under current-based joint control (an error following the last moves, reset at each servo
+          # enable), and hose_bourdon, a wrist roll's lash flank chosen by a pressurised gripper hose while a part is
+          # held, as backlash; stator_leakage, output magnetic encoders misread by the motor's current-borne leakage
+          # field, and step_truncation, stepper wrists short by the running sum of truncated step counts, as
+          # transmission (the joints' reading and drive); raised_floor, the base on an access floor's panels and
+          # pedestals, and load_cells, the base on a weighing platform's load cells, as mount compliance; ft_sensor, a force/torque sensor's flexure between flange and tool, and pad_pivot, a part
+          # pivoting between soft finger pads, as link deflection (the end-of-arm structure carrying the target);
+          # thermal_ratchet, link tubes growing through their fits' friction, and arc_radiation, the forearm heated by
+          # the welding arc's radiation, as thermal)
+          "idle_current": "joint_compliance", "kt_saturation": "joint_compliance",
+          "current_remanence": "backlash", "hose_bourdon": "backlash", "stator_leakage": "transmission",
+          "step_truncation": "transmission", "raised_floor": "mount_compliance", "load_cells": "mount_compliance",
+          "ft_sensor": "link_deflection", "pad_pivot": "link_deflection", "thermal_ratchet": "thermal",
+          "arc_radiation": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
