@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; all thirty-seven: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; all thirty-eight: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -517,6 +517,23 @@ vertical -- names 8 more cases of A-ZJ (V02, V09, W09, W22, ZC01, ZC09, ZE01, ZF
 link deflection: the force variant, chosen on the training residual, predicts the held-out poses worse than the
 masses alone), claims nothing on a quiet case (A-ZJ 589 -> 596 strict, 624 -> 628 lenient, median final / oracle RMS
 1.38 -> 1.37) and changes no verdict of set ZK. The figures of this report are of the code with it; set ZL judges it.
+
+**Set ZL** (24 cases, seed 40_7038) is a thirty-eighth independent test set of twelve new kinds
+(`sim2real_indep/effects_zl*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZK, ran no git command and did not run the diagnosis. It was
+run once, on the code with the `masses+force` variant (the change above, which it judges). Set ZL: 17/24 strict, 18
+lenient, no false claim, median final / oracle RMS 1.67; the code before the change scores the same (it changes no
+verdict of set ZL: neutral on both sets it was judged by); right on 9 of 11 effect cases where the true family's
+generic model helps, 5 of 10 where it does not. Its misses: stepper wrists whose drivers cut the holding current at
+standstill on ur10 (ZL02, `ambiguous` between joint compliance and backlash, lenient; right on tool_changer and
+kr16_like); Hall current sensors keeping a remanent offset from the last large current until the drives re-zero
+(ZL03, named joint compliance); a motor's current-borne leakage field misread by the output's magnetic encoder at
+pole pairs x ratio - 1 per turn (ZL09, ZL21, `none`); stepper wrists commanded by relative moves whose step counts
+are truncated, the shortfalls adding up along the session (ZL12, `none`; ZL17, named thermal); a pressurised gripper
+hose coiled round a wrist roll axis choosing its lash flank (ZL20 on kr16_like, named link deflection; right on
+tool_changer). The helper flags idle_current and kt_saturation as related in their observables (both gravity sags
+of the wrist joints), raised_floor and load_cells as close to a generic mount tilt in structure (new in mechanism),
+and on a second seed two cases fall below the oracle's bars (ZL04, ZL13).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1167,6 +1184,24 @@ comment):
 | dashpot_slide | link_deflection | a tool on a spring-and-dashpot slide lagging its weight's history (ur10, tool_changer) | Whitney, *Mechanical Assemblies* (2004) ch. 10; Findley, Lai & Onaran (1976) ch. 5 |
 | drive_board_heat | thermal | the drive electronics inside the joints heating the tube ends: servo on, production, pause (ur10) | Mohan, Undeland & Robbins (2003) ch. 7; Incropera & DeWitt ch. 5 |
 | ram_wiper_heat | thermal | the telescopic ram heated by its wiper seals' friction in proportion to its stroke travel (tool_changer) | Bhushan (2013) ch. 6; Mueller & Nau (1998) |
+
+Set ZL's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZL
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| idle_current | joint_compliance | stepper drivers cutting the holding current at standstill, the wrist joints sagging within a step (ur10, tool_changer, kr16_like) | Acarnley, *Stepping Motors* (4th ed., 2002) |
+| kt_saturation | joint_compliance | current-based wrist control whose motor torque constant falls as the stator iron saturates: a sag cubic in the load (tool_changer, kr16_like) | Wensing et al., IEEE T-RO 33 (2017); Hendershot & Miller (2010); Krishnan (2010) |
+| current_remanence | backlash | Hall current sensors keeping a magnetic offset from the last large current, reset when the drives re-zero at servo enable (ur10) | Ripka, *Magnetic Sensors and Magnetometers* (2001); Wensing et al. (2017) |
+| hose_bourdon | backlash | a pressurised gripper hose coiled round a wrist roll axis straightening and choosing the lash flank while a part is held (tool_changer, kr16_like) | Timoshenko, *Strength of Materials* II (1956); Nordin & Gutman, Automatica 38 (2002) |
+| stator_leakage | transmission | the motor's current-borne leakage field misread by the output's magnetic encoder, at pole pairs x ratio - 1 per turn (tool_changer, kr16_like) | Lenz & Edelstein, IEEE Sensors J. 6 (2006) |
+| step_truncation | transmission | stepper wrists commanded by relative moves whose step counts are truncated towards zero, the shortfalls adding up (tool_changer, kr16_like) | ISO/IEC 9899 sec. 6.3.1.4 |
+| raised_floor | mount_compliance | the base on access-floor panels and pedestals, softer across the stringers, and sinking under the weight (ur10) | CISCA, *Recommended Test Procedures for Access Floors* (2007) |
+| load_cells | mount_compliance | the base on a pallet-sized weighing platform of four shear-beam load cells (ur10, kr16_like) | OIML R 60 (2017) |
+| ft_sensor | link_deflection | a six-axis force-torque sensor's measuring flexure between the flange and the tool (tool_changer) | ATI F/T catalogue (as recalled) |
+| pad_pivot | link_deflection | the part pivoting between elastomer finger pads about the closing axis (ur10, tool_changer) | Xydas & Kao, IJRR 18 (1999) |
+| thermal_ratchet | thermal | tube growth held back by the friction of the clamped end fits: a play operator of the drives' warming (ur10) | Peng & Peng, *Pipe Stress Engineering* (2009); Pokrovskii, *Systems with Hysteresis* (1989) |
+| arc_radiation | thermal | the welding arc's radiation heating the forearm's torch side in production: the forearm bows and grows (kr16_like) | Messler, *Principles of Welding* (1999) |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
