@@ -372,8 +372,8 @@ def test_outputs_to_devices_are_written_through_never_replaced(tmp_path, monkeyp
 
 def test_every_table_a_job_reads_is_refused_the_same_way(tmp_path):
     """The parts choice, a program to predict or compensate and a fleet's tolerance table are read by one reader
-    (``inputs.read_table``): a path to no file is an InputFileError naming the argument and what the file should be,
-    bytes that are no CSV an ArgumentError naming it -- never pandas' own error."""
+    (``inputs.read_table``): a path to nothing is an InputFileError naming the argument and what the file should be,
+    a folder or bytes that are no CSV an ArgumentError naming it -- never pandas' own error."""
     from tolalloc.workflows import inputs
     from tolalloc.workflows.model_use import read_program
     from tolalloc.workflows.parts import read_parts_choice
@@ -389,6 +389,8 @@ def test_every_table_a_job_reads_is_refused_the_same_way(tmp_path):
             call(tmp_path / "absent.csv")
         with pytest.raises(tolalloc.ArgumentError, match=rf"^{argument}: '.*garbage.csv': cannot read the CSV"):
             call(str(garbage))
+        with pytest.raises(tolalloc.ArgumentError, match=rf"^{argument}: '.*' is a folder; expected "):
+            call(tmp_path)
     frame = pd.DataFrame({" joint ": ["j1"], "kind": ["reducer"]})
     assert list(inputs.read_table(frame, "x", "a table").columns) == ["joint", "kind"]
     assert inputs.read_table(np.zeros((2, 3)), "x", "a table") is None

@@ -339,13 +339,15 @@ def read_table(source, argument: str, expected: str, *, text: bool = False) -> p
 
     Raises
     ------
-    InputFileError  the path names no file
-    ArgumentError   the file is not a readable CSV
+    InputFileError  the path names nothing
+    ArgumentError   the path names a folder, or a file that is not a readable CSV
     """
     if isinstance(source, pd.DataFrame):
         frame = source
     elif isinstance(source, (str, os.PathLike)) and str(source).strip():
         where = repr(str(source))
+        if Path(source).is_dir():
+            raise ArgumentError(argument, f"{where} is a folder; expected {expected}.")
         if not Path(source).is_file():
             raise InputFileError(f"{argument}: {where} does not exist; expected {expected}.", argument=argument)
         opts = {"dtype": str, "keep_default_na": False} if text else {}
