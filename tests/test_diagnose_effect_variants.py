@@ -249,9 +249,9 @@ def test_a_constant_side_force_at_the_tool_is_the_force_variant():
     for j in (1, 2, 3):
         cj = beta[f"c_{nm[j]} [rad/(N m)]"]
         assert cj == pytest.approx(c[j], rel=1e-2)
-        # h1 along base x, h2 along g x x = -y (ur10: gravity along -z)
+        # h1 along base x, h2 along base y (ur10: gravity along -z)
         assert beta[f"h1_{nm[j]} [rad/N]"] / cj == pytest.approx(F[0], rel=2e-2)
-        assert -beta[f"h2_{nm[j]} [rad/N]"] / cj == pytest.approx(F[1], rel=2e-2)
+        assert beta[f"h2_{nm[j]} [rad/N]"] / cj == pytest.approx(F[1], rel=2e-2)
     tip = effect_basis("joint_compliance", robot, meas, t, {}, "masses+tip")
     r = d.ravel() - tip.B.reshape(-1, tip.B.shape[-1]) @ _lsq(tip, d)
     assert np.linalg.norm(r) > 0.3 * np.linalg.norm(d - target_points(robot, q + _potential_torque(robot, q) * c, t)

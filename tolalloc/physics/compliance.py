@@ -159,23 +159,18 @@ def compliance_columns(robot: Robot, tau: np.ndarray, tip: np.ndarray, law: str 
 
 def side_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray) -> np.ndarray:
     """Loads on every joint of a force of 1 N at the target points ``tip_mm`` (P, 3) along each of the two horizontal
-    directions (across gravity: the base axes projected, the first kept whole where gravity lies along a base axis),
-    shape (P, n, 2) [N m or N per N]. With :func:`tip_load` (the vertical) they span any constant force at the
-    target: a hose or cable pulled towards a fixed anchor, a spring balancer hung off the vertical, a fixture the
-    tool presses against.
+    directions (:func:`_horizontal_axes`: base x and y projected across gravity), shape (P, n, 2) [N m or N per N].
+    With :func:`tip_load` (the vertical) they span any constant force at the target: a hose or cable pulled towards
+    a fixed anchor, a spring balancer hung off the vertical, a fixture the tool presses against.
 
     A revolute joint whose axis stays along gravity on every pose (the first axis of an upright arm) gets zeros: there
     the side force's moment is ``|r| F sin(q_j - phi)``, once per turn of that joint -- the signature of its
     transmission error, which that family owns."""
     g = np.asarray(robot.gravity, dtype=float)
     g = g / max(np.linalg.norm(g), 1e-12)
-    e1 = np.eye(3)[int(np.argmin(np.abs(g)))]
-    e1 = e1 - (e1 @ g) * g
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(g, e1)
     q = np.atleast_2d(q)
     out = []
-    for e in (e1, e2):
+    for e in _horizontal_axes(g):
         w = np.zeros((len(q), 6))
         w[:, :3] = e
         out.append(wrench_load(robot, q, tip_mm, w))
@@ -223,14 +218,20 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
     return np.stack(cols, axis=-1), names
 
 
-def _tensor_columns(Mh: np.ndarray, p: np.ndarray, g: np.ndarray) -> tuple:
-    """The ``tensor`` variant's six columns (P, 3, 6): the rotations ``m_u u``, ``m_v v``, ``m_v u + m_u v`` of a
-    symmetric horizontal compliance (``u``, ``v`` across gravity, from the base x axis, or y where x is vertical),
-    about the base origin and times a pivot's depth along gravity."""
+def _horizontal_axes(g: np.ndarray) -> tuple:
+    """Unit axes ``(u, v)`` across the unit gravity direction ``g`` (3,): ``u`` the base x axis projected (y where x
+    lies along gravity), ``v = u x g`` -- ``(u, v, up)`` right-handed, base x and y where gravity is -z."""
     ref = np.eye(3)[0] if abs(g[0]) < 0.9 else np.eye(3)[1]
     u = ref - (ref @ g) * g
     u = u / np.linalg.norm(u)
-    v = np.cross(u, g)  # (u, v, up) right-handed: base y where gravity is -z
+    return u, np.cross(u, g)
+
+
+def _tensor_columns(Mh: np.ndarray, p: np.ndarray, g: np.ndarray) -> tuple:
+    """The ``tensor`` variant's six columns (P, 3, 6): the rotations ``m_u u``, ``m_v v``, ``m_v u + m_u v`` of a
+    symmetric horizontal compliance (``u``, ``v``: :func:`_horizontal_axes`), about the base origin and times a
+    pivot's depth along gravity."""
+    u, v = _horizontal_axes(g)
     mu, mv = Mh @ u, Mh @ v
     omegas = [mu[:, None] * u, mv[:, None] * v, mv[:, None] * u + mu[:, None] * v]
     up = np.broadcast_to(-g, p.shape)
