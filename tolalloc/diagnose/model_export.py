@@ -39,7 +39,7 @@ from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.model_use import IdentifiedModel
 
 __all__ = ["FORMAT", "FRAMES", "check_section", "identified_geometry", "identified_robot_dict", "identified_urdf",
-           "model_from_identified", "HISTORY_VARIANTS"]
+           "model_from_identified", "HISTORY_VARIANTS", "FIXED_PARAMETERS"]
 
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
