@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4632,7 +4632,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_thermal as zet
 
     assert "ZD" < "ZE" and "ZE" in cs.SETS
-    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
+    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4780,7 +4780,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_thermal as zft
 
     assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS
-                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
+                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4921,7 +4921,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_thermal as zgt
 
     assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS
-                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL"))
+                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5068,7 +5068,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh_body as zhb
 
     assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS
-                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL"))
+                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5200,7 +5200,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL"))
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5342,7 +5342,7 @@ def test_set_zj_cases_kinds_and_determinism():
     from sim2real_indep import effects_zj_body as zjb
     from sim2real_indep import effects_zj_thermal as zjt
 
-    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL"))
+    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL", "ZM"))
     assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
@@ -5500,7 +5500,7 @@ def test_set_zk_cases_kinds_and_determinism():
     from sim2real_indep import effects_zk as ezk
     from sim2real_indep import effects_zk_body as zkb
 
-    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL"))
+    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL", "ZM"))
     assert cs.case_seed("ZK", 3) == 40_7037 * 1000 + 3 and [c[0] for c in cs.SET_ZK] == [f"ZK{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezk.EFFECTS_ZK) == set(ZK_KINDS)
@@ -5657,7 +5657,7 @@ def test_set_zl_cases_kinds_and_determinism():
     from sim2real_indep import effects_zl as ezl
     from sim2real_indep import effects_zl_body as zlb
 
-    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s != "ZL")
+    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s not in ("ZL", "ZM"))
     assert cs.case_seed("ZL", 3) == 40_7038 * 1000 + 3 and [c[0] for c in cs.SET_ZL] == [f"ZL{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezl.EFFECTS_ZL) == set(ZL_KINDS)
@@ -5801,3 +5801,164 @@ def test_set_zl_every_kind_lies_in_its_true_structure_and_known_answers():
     assert zlj.wrist_joints(ctx.chain) == [3, 4, 5] and all(np.deg2rad(0.005) < v < np.deg2rad(0.05)
                                                             for v in tp["s"].values())
     assert zlj.roll_joints(ctx.chain) == [3, 5]
+
+
+# --------------------------------------------------------------------------------------------------------- set ZM
+ZM_KINDS = ("moment_softening", "mesh_ripple", "upstream_toss", "limiter_play", "microstep_error", "step_accuracy",
+            "conical_mounts", "rail_blocks", "mandrel_rock", "jaw_guide_tilt", "mean_radiant", "enclosure_door")
+
+
+def test_set_zm_cases_kinds_and_determinism():
+    """Set ZM (the thirteenth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZL; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZM kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; a
+    new part for each block, hours of blocks with pauses and a drifting hall air (the radiant envelope), a loading
+    pause before each block (the enclosure's door)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zm as ezm
+    from sim2real_indep import effects_zm_body as zmb
+
+    assert "ZL" < "ZM" and "ZM" in cs.SETS and all(s < "ZM" for s in cs.SETS if s != "ZM")
+    assert cs.case_seed("ZM", 3) == 40_7039 * 1000 + 3 and [c[0] for c in cs.SET_ZM] == [f"ZM{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezm.EFFECTS_ZM) == set(ZM_KINDS)
+    _assert_set_module("ZM", 40_7039, ezm, ("gear", "idle_current", "arc_radiation", "load_cells"))
+    for name in ("effects_zm", "effects_zm_joint", "effects_zm_body", "effects_zm_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zm" in _imports(STUDY / "generator.py")
+    assert ezm.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezm.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezm.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                steps = np.array(opts((kind,), robot)["payload_steps"])
+                assert len(steps) >= 3 and kg[robot][0] <= steps.min() and steps.max() <= kg[robot][1]
+                assert len(steps) == opts((kind,), robot)["blocks"]
+        for kind, ((lo, hi), gap, pause) in ezm.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        air = opts(("mean_radiant",))["air"]
+        assert 3.0 <= abs(air["drift_K"]) <= 8.0 and 0.0 <= air["cycle_K"] <= 0.5
+        plain = opts(("upstream_toss", "limiter_play", "microstep_error", "step_accuracy", "mesh_ripple"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe, com = np.array([1.0, 2.0, 3.0]), np.array([30.0, -40.0, 0.0])
+    assert ezm.probe_hook(("gear",), probe) is probe and ezm.payload_hook(("gear",), com) is com
+    assert ezm.probe_hook(("mandrel_rock",), probe) == pytest.approx(probe + [0, 0, zmb.MANDREL_TARGET_MM])
+    assert ezm.probe_hook(("jaw_guide_tilt",), probe) == pytest.approx(probe + [0, 0, zmb.JAW_TARGET_MM])
+    assert ezm.payload_hook(("mandrel_rock",), com) == pytest.approx([6.0, -8.0, zmb.MANDREL_MM + 30.0 + 50.0 * 50 / 80])
+    assert ezm.payload_hook(("jaw_guide_tilt",), com) == pytest.approx([6.0, -8.0, zmb.JAW_MM + 40.0 + 60.0 * 50 / 80])
+    _assert_regenerates("ZM", max_effect_poses=50)
+
+
+def test_set_zm_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZM kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: the moment softening's and the
+    mesh ripple's twist (the plain gravity twist without them), the toss's flank (the gravity flank where gravity beats
+    the friction, no inertial torque at rest), the limiter's flank, the microstep error's full-step period, the step
+    error's once-per-turn period, the mounts' load distribution (weight and moment balance), the rail blocks' linear
+    limit, the mandrel's and the jaws' turn about their own points, the radiant envelope's node (nothing in still air,
+    the air itself without walls or lag) and the enclosure's node (nothing without loadings)."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zm_body as zmb
+    from sim2real_indep import effects_zm_joint as zmj
+    from sim2real_indep import effects_zm_thermal as zmt
+    from sim2real_indep.effects_body import mount_moment
+
+    amps = {"moment_softening": "c", "mesh_ripple": "c", "upstream_toss": "b", "limiter_play": "b",
+            "microstep_error": "amp", "step_accuracy": "amp", "conical_mounts": "c", "rail_blocks": "c",
+            "mandrel_rock": "inv_kf", "jaw_guide_tilt": "inv_KA", "mean_radiant": "cte", "enclosure_door": "amp"}
+    specs = {"ur10": ("rail_blocks", "limiter_play", "microstep_error", "conical_mounts", "mandrel_rock",
+                      "enclosure_door"),
+             "tool_changer": ("moment_softening", "upstream_toss", "jaw_guide_tilt", "mean_radiant"),
+             "kr16_like": ("upstream_toss", "step_accuracy", "mesh_ripple", "moment_softening")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 39)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # moment softening / mesh ripple: the gravity twist itself without the coupling; the moment about the axis is the load
+    assert zmj.wrist_bends(ctx.chain) == [4]
+    assert np.einsum("pi,pi->p", zmj.joint_moment(ctx, 4), kin.joint_frames(ctx.chain, ctx.q)[0][:, 4]) == \
+        pytest.approx(ctx.loads[:, 4])
+    assert zmj.softening_twist({**P["moment_softening"], "g": 0.0}, ctx, 4) == pytest.approx(ctx.loads[:, 4])
+    rp = P["mesh_ripple"]
+    assert zmj.ripple_twist({**rp, "e": {4: 0.0}}, ctx, 4) == pytest.approx(ctx.loads[:, 4])
+    assert 80 <= rp["N"][4] <= 160
+    # upstream toss: the gravity flank where gravity beats the friction; no inertial torque without moves
+    tp = P["upstream_toss"]
+    fl, tau = zmj.toss_flank(tp, ctx), ctx.loads[:, 4]
+    assert fl[np.abs(tau) > tp["f"]] == pytest.approx(np.sign(tau[np.abs(tau) > tp["f"]]))
+    still = replace(ctx, session=replace(s, speed=np.zeros_like(s.speed)))
+    assert zmj.inertial_torque(still) == pytest.approx(np.zeros(len(tau)))
+    # step accuracy: once per motor turn
+    ap = P["step_accuracy"]
+    th = np.linspace(0.0, 6.0, 7)
+    assert zmj.step_error(ap, 3, th + 2 * np.pi) == pytest.approx(zmj.step_error(ap, 3, th), abs=1e-15)
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    # limiter: the weight torque's flank beyond the seats' friction, the last rotation's otherwise
+    lp = P["limiter_play"]
+    t = zmj.roll_torque(lp, ctx)
+    fl = zmj.limiter_flank(lp, ctx)
+    assert fl[np.abs(t) > lp["f"]] == pytest.approx(np.sign(t[np.abs(t) > lp["f"]]))
+    assert fl[np.abs(t) <= lp["f"]] == pytest.approx(-s.direction[np.abs(t) <= lp["f"], 5])
+    assert zmj.roll_torque({**lp, "tool_kg": 0.0}, replace(ctx, session=replace(s, payload_kg=0 * s.payload_kg))) == \
+        pytest.approx(np.zeros(len(t)), abs=1e-12)
+    # microstep error: one period per full step of the motor (200 N_g per output radian)
+    mp = P["microstep_error"]
+    F = zmj.microstep_features(mp, ctx, None)
+    K = 200 * mp["N_g"][3]
+    shifted = replace(ctx, session=replace(s, q=s.q + np.r_[0, 0, 0, 2 * np.pi / K, 0, 0]))
+    assert np.abs(F[0] @ np.ones(3)).max() > 0
+    assert np.einsum("pi,pi->p", F[0], ctx.jac[:, :, 3]) / np.einsum("pi,pi->p", ctx.jac[:, :, 3], ctx.jac[:, :, 3]) \
+        == pytest.approx(np.sin(K * s.q[:, 3]))
+    assert np.sin(K * shifted.q[:, 3]) == pytest.approx(np.sin(K * s.q[:, 3]), abs=1e-9)
+    # mounts: the loads carry the weight and balance the moment; the rail blocks are linear at kappa = 1
+    cp = P["conical_mounts"]
+    R, xy = zmb.mount_loads(cp, ctx)
+    e1, e2 = zmb._axes(cp["psi"])
+    M = mount_moment(ctx)
+    assert R.sum(axis=1) == pytest.approx(zmb.total_weight(ctx))
+    assert R @ xy[:, 0] == pytest.approx(M @ e2) and R @ xy[:, 1] == pytest.approx(-(M @ e1))
+    bp = P["rail_blocks"]
+    Rb, xyb = zmb.mount_loads(bp, ctx)
+    assert zmb.rail_features({**bp, "kappa": 1.0}, ctx, None) == pytest.approx(zmb._plate(bp, ctx, Rb, xyb))
+    assert (Rb < 0).any() and (Rb >= 0).any()
+    # mandrel: no part, no motion; the shift is across the tool axis
+    mp = P["mandrel_rock"]
+    empty = replace(ctx, session=replace(s, payload_kg=0 * s.payload_kg))
+    assert zmb.mandrel_features(mp, empty, None) == pytest.approx(np.zeros((1, len(s.q), 3)))
+    # enclosure: no loading pauses, no pulses; the door open only during the pauses
+    dp = P["enclosure_door"]
+    shut = replace(s, gap_s=np.zeros_like(s.gap_s))
+    assert np.abs(zmt.door_node(dp, shut)).max() == 0.0
+    node = zmt.door_node(dp, s)
+    assert (s.gap_s < 0).sum() >= 3 and 0 < node.max() < 1
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # jaw guides: equal stiffnesses turn the part about the guides' point by M / 2 (no motion along the arm to it)
+    jp = {**P["jaw_guide_tilt"], "yaw": 1.0, "roll": 1.0}
+    Fj = zmb.jaw_features(jp, ctx, None)[0]
+    arm = np.einsum("pij,j->pi", zmb.tool_frame(ctx), ctx.probe_mm - [0, 0, zmb.JAW_MM])
+    assert np.einsum("pi,pi->p", Fj, arm) == pytest.approx(np.zeros(len(s.q)), abs=1e-9)
+    # radiant envelope: in still air no growth; without walls and with a short lag the links follow the air
+    rp = P["mean_radiant"]
+    flat = replace(s, air={**s.air, "drift_K": 0.0, "cycle_K": 0.0})
+    assert np.abs(zmt.link_temperature(rp, flat)).max() < 1e-12
+    T = zmt.link_temperature({**rp, "s": 0.0, "tau_l": 1e-3}, s)
+    from sim2real_indep.session import air_temperature
+    assert T == pytest.approx(air_temperature(s, s.time_s) - air_temperature(s, s.time_s[0]), abs=0.02)

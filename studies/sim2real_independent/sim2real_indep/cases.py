@@ -23,7 +23,8 @@ arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-
 (24 cases, 8 per arm) a thirty-fourth (:mod:`effects_zh`), set ZI (24 cases, 8 per arm) a thirty-fifth
 (:mod:`effects_zi`), set ZJ (24 cases, 8 per arm) a thirty-sixth (:mod:`effects_zj`),
 set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`),
-set ZL (24 cases, 8 per arm) a thirty-eighth (:mod:`effects_zl`).
+set ZL (24 cases, 8 per arm) a thirty-eighth (:mod:`effects_zl`),
+set ZM (24 cases, 8 per arm) a thirty-ninth (:mod:`effects_zm`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -48,6 +49,7 @@ SEED_ZI = 40_7035
 SEED_ZJ = 40_7036
 SEED_ZK = 40_7037
 SEED_ZL = 40_7038
+SEED_ZM = 40_7039
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1844,7 +1846,59 @@ SET_ZL = [
     ("ZL24", "kr16_like", ("load_cells", "step_truncation"), 200, "time"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL)
+#: Set ZM (seed 40_7039): twelve new kinds, two per family (sim2real_indep.effects_zm; physics and sources in
+#: effects_zm_joint, effects_zm_body, effects_zm_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth (gains 30.1 % on ZM06, 31.2 % on ZM12, 33.6 % on ZM19 and 33.9 % on ZM08 to 95.7 % on ZM18; the
+#: closest rivals ZM12's transmission model at 1.29x, ZM09's link model at 1.36x, ZM06's joint model at 1.42x and ZM19's
+#: thermal model at 1.48x); a mixture component's removal costs 25 % at least (ZM08's microstep error), the
+#: geometry-only cases none. Changed after trial draws (the modules' docstrings give the first forms): the mesh ripple
+#: first on tool_changer (ZM11 ambiguous with the link model at 1.11x: its axis 5 under a 120 kg end-effector twists
+#: almost in proportion to the load, as the boom bends), now on ur10 in trials and kr16_like (ZM20); the cone mounts first
+#: on a near-square frame with softer cones (ur10's ZM04, the joint model at 1.12x: a tilt along the moment just below
+#: the shoulder is axis 2's compliance), now a narrow stand; the step accuracy first with the better motors' 1-3 % / 1-2
+#: % behind N_g 2-4 (ZM19, 8.7 %: 0.07 mm against 0.04 mm of noise), now the catalogue's +-5 % class behind a belt stage
+#: of 1.5-3; the radiant envelope first on tool_changer (ZM14, 10.3 %, the mount model at 1.12x: a steel boom grows 0.07
+#: mm) and on ur10 (absorbed in a trial), now on kr16_like only (ZM22); the enclosure door first with 3-8 min loadings
+#: and 3-8 K (ur10's ZM06, 21.7 %, the joint model at 1.27x; tool_changer's ZM14, 16.7 %, the mount model at 1.18x), now
+#: fixture or pallet loadings of 5-15 min and 4-10 K, on ur10 (ZM06 and the mixture ZM08) -- tool_changer's ZM14 took
+#: the upstream toss; a riser's bolted splice (pedestal_splice) first, on tool_changer (ZM12, 12.6 %, ambiguous) and
+#: kr16_like (ZM20, the link model at 1.21x, 1.17-1.18x after a softer open gap and a turn about the compressed edge),
+#: replaced by a track carriage's rail blocks, softer pulled than pressed, themselves first on a near-square carriage
+#: (kr16_like ambiguous at 12 %, ur10 and tool_changer with the joint model at 1.04-1.08x), now a narrow carriage on ur10
+#: (ZM01, which carried the mesh ripple; tool_changer's ZM12 took the cone mounts, kr16_like's ZM20 the mesh ripple).
+#: No seed or pose count was changed to fix a label. A trial on the seed + 1 (case seeds + 1000003): every effect case
+#: its truth, 20 of 21 at the 20 % / 1.25x bar; below it the cone mounts on tool_changer (ZM12, absorbed at 3.8 %: its
+#: time-split test block carries a part the training blocks did not) -- the weakest kind there; the moment softening on
+#: tool_changer (ZM09, the link model at 1.38x) next.
+SET_ZM = [
+    ("ZM01", "ur10", ("rail_blocks",), 130, "random"),
+    ("ZM02", "ur10", ("limiter_play",), 140, "random"),
+    ("ZM03", "ur10", ("microstep_error",), 120, "random"),
+    ("ZM04", "ur10", ("conical_mounts",), 140, "random"),
+    ("ZM05", "ur10", ("mandrel_rock",), 45, "random"),
+    ("ZM06", "ur10", ("enclosure_door",), 150, "time"),
+    ("ZM07", "ur10", (), 60, "random"),
+    ("ZM08", "ur10", ("microstep_error", "enclosure_door"), 180, "time"),
+    ("ZM09", "tool_changer", ("moment_softening",), 130, "random"),
+    ("ZM10", "tool_changer", ("limiter_play",), 140, "random"),
+    ("ZM11", "tool_changer", ("mandrel_rock",), 130, "random"),
+    ("ZM12", "tool_changer", ("conical_mounts",), 140, "time"),
+    ("ZM13", "tool_changer", ("jaw_guide_tilt",), 140, "random"),
+    ("ZM14", "tool_changer", ("upstream_toss",), 160, "time"),
+    ("ZM15", "tool_changer", (), 40, "random"),
+    ("ZM16", "tool_changer", ("limiter_play", "conical_mounts"), 190, "random"),
+    ("ZM17", "kr16_like", ("moment_softening",), 130, "random"),
+    ("ZM18", "kr16_like", ("upstream_toss",), 140, "random"),
+    ("ZM19", "kr16_like", ("step_accuracy",), 130, "time"),
+    ("ZM20", "kr16_like", ("mesh_ripple",), 130, "random"),
+    ("ZM21", "kr16_like", ("jaw_guide_tilt",), 120, "random"),
+    ("ZM22", "kr16_like", ("mean_radiant",), 150, "time"),
+    ("ZM23", "kr16_like", (), 100, "random"),
+    ("ZM24", "kr16_like", ("upstream_toss", "mandrel_rock"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1855,7 +1909,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
         "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
-        "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL)}
+        "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL), "ZM": (SET_ZM, SEED_ZM)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -510,7 +510,24 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "current_remanence": "backlash", "hose_bourdon": "backlash", "stator_leakage": "transmission",
           "step_truncation": "transmission", "raised_floor": "mount_compliance", "load_cells": "mount_compliance",
           "ft_sensor": "link_deflection", "pad_pivot": "link_deflection", "thermal_ratchet": "thermal",
-          "arc_radiation": "thermal"}
+          "arc_radiation": "thermal",
+          # set ZM (sim2real_indep.effects_zm; moment_softening, wrist gears whose torsional stiffness falls with the
+          # tilting moment on their output bearing, and mesh_ripple, wrist strain-wave gears whose mesh stiffness
+          # ripples with the wave generator's angle, scored as joint compliance; upstream_toss, a wrist bend's lost
+          # motion tossed onto a flank by the main axes' deceleration, and limiter_play, a ball-detent torque limiter's
+          # seat play flanked by the off-axis tool's weight, as backlash; microstep_error, stepper wrists short of their
+          # microsteps, and step_accuracy, their full steps off by the motors' tooth-pitch errors, as transmission (the
+          # joints' drive); conical_mounts, the base on hardening cone mounts, and rail_blocks, the base on a parked
+          # track carriage's profile-rail blocks, softer pulled than pressed, as mount compliance; mandrel_rock, a part rocking on an
+          # expanding mandrel's sleeve, and jaw_guide_tilt, a gripper's jaws tilting in their rail guides, as link
+          # deflection (the end-of-arm structure carrying the target); mean_radiant, links at the operative
+          # temperature of the drifting air and the lagging envelope, and enclosure_door, a conditioned cell opened at
+          # each loading, as thermal)
+          "moment_softening": "joint_compliance", "mesh_ripple": "joint_compliance", "upstream_toss": "backlash",
+          "limiter_play": "backlash", "microstep_error": "transmission", "step_accuracy": "transmission",
+          "conical_mounts": "mount_compliance", "rail_blocks": "mount_compliance",
+          "mandrel_rock": "link_deflection", "jaw_guide_tilt": "link_deflection", "mean_radiant": "thermal",
+          "enclosure_door": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
