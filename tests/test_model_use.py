@@ -207,6 +207,10 @@ def test_identified_section_refusals(backlash):
     with pytest.raises(TolallocError, match=r"thermal effect \(variant lag_60min\) is driven by the training file's "
                                             "history"):
         model_from_identified(lag, ROBOT)
+    creep = {**sec, "effects": [{**sec["effects"][0], "effect": "mount_compliance", "variant": "flow"}]}
+    with pytest.raises(TolallocError, match=r"mount_compliance effect \(variant flow\) creeps under the load history "
+                                            "of the training file"):
+        model_from_identified(creep, ROBOT)
     assert identified_robot_dict(m)["identified"]["format"] == sec["format"]
 
 

@@ -23,7 +23,10 @@ signature:
                       (``isotropic``: one compliance; ``axes``: about base x and y; ``pivot``: one compliance
                       about a pivot below the base, its depth fitted) [rad/(N m)]; ``play``: a compliance and a
                       rocking in the moment's direction (a base standing within a clearance) [mrad]; ``tensor``: a
-                      symmetric horizontal compliance (principal axes at any heading) about a pivot of fitted depth.
+                      symmetric horizontal compliance (principal axes at any heading) about a pivot of fitted depth;
+                      with ``time_s``, a support creeping under the moment it holds
+                      (:mod:`tolalloc.physics.mount_creep`): ``creep_<tau>min`` (an instant and a delayed
+                      compliance), ``flow`` (a viscous support: the tilt grows with the moment's time integral).
 ``link_deflection``   arm segments bend as beams under the mass model (each mass a point load where it sits, those
                       beyond by their moment), a logged payload and process wrench, and an own weight
                       (:mod:`tolalloc.physics.beams`):
@@ -71,7 +74,8 @@ from tolalloc.physics.beams import beam_columns, flange_columns, guide_columns, 
 from tolalloc.physics.clearance import clearance_columns
 from tolalloc.physics.error_motions import stroke_columns, stroke_joints
 from tolalloc.physics.compliance import HARDENING_FRACTIONS, catalogue_bands, compliance_columns, joint_loads, \
-    mount_columns, side_loads, MOUNT_VARIANTS
+    mount_columns, mount_moment, side_loads, MOUNT_VARIANTS
+from tolalloc.physics.mount_creep import creep_columns, creep_signal, creep_variants, is_creep_variant
 from tolalloc.physics.loads import point_jacobian, target_points
 from tolalloc.physics.lost_motion import GRAVITY_SIDES, SIDES, lost_motion_basis
 from tolalloc.physics.rehoming import cycle_blocks, homed_joints, rehome_columns, rehome_problem
@@ -154,6 +158,7 @@ def effect_reference(meas: Measurements, gear_ratio=None, robot: Robot | None = 
             "history": (t, T) if (t is not None and T is not None) else None,
             "motion": (t, meas.q) if t is not None else None,
             "payload_history": (t, meas.payload_kg) if (t is not None and meas.payload_kg is not None) else None,
+            "load_history": (t, meas.q, meas.payload_kg, meas.wrench) if t is not None else None,
             "gear_ratio": None if gear_ratio is None else np.asarray(gear_ratio, float),
             "load_scale": scale, "variants": {}}
 
@@ -184,7 +189,7 @@ def variants(effect: str, meas: Measurements, ref: dict | None = None, robot: Ro
         hardening = tuple(f"hardening_{f:g}" for f in HARDENING_FRACTIONS)
         return ("masses", "masses+tip", "masses+force") + hardening + cat
     if effect == "mount_compliance":
-        return MOUNT_VARIANTS
+        return MOUNT_VARIANTS + creep_variants(meas.time_s)
     guide = ("guide", "guide+overlap", "beam+guide") if robot is not None and guide_joints(robot) else ()
     return ("tip", "beam", "beam+w", "beam+tip", "flange") + guide
 
@@ -224,6 +229,8 @@ def effect_basis(effect: str, robot: Robot, meas: Measurements, t_mm, ref: dict,
                                    payload_kg=meas.payload_kg, gear_ratio=ref.get("gear_ratio"),
                                    load_scale=ref.get("load_scale"), wrench=meas.wrench)
         B = np.einsum("pin,pnm->pim", point_jacobian(robot, q, p_t), A)
+    elif effect == "mount_compliance" and is_creep_variant(variant):
+        B, names = _creep_basis(robot, meas, p_t, t_mm, ref, variant)
     elif effect == "mount_compliance":
         B, names = mount_columns(robot, q, p_t, p_t, meas.payload_kg, variant, meas.wrench)
     elif effect == "link_deflection":
@@ -256,6 +263,20 @@ def _rehome_basis(robot: Robot, meas: Measurements, p_t: np.ndarray, ref: dict) 
     units = ["rad" if robot.joints[j].is_revolute else "mm" for j in homed]
     return rehome_columns(point_jacobian(robot, meas.q, p_t)[:, :, homed], cycle_blocks(meas.time_s, ht),
                           np.bincount(cycle_blocks(ht, ht)), [robot.joints[j].name for j in homed], units)
+
+
+def _creep_basis(robot: Robot, meas: Measurements, p_t: np.ndarray, t_mm, ref: dict, variant: str) -> tuple:
+    """``(B (P, 3, 2), names)`` of a creeping mount: the moment held over the training file's poses and these, in
+    time order."""
+    if meas.time_s is None:
+        raise ValueError(f"the mount's creep (variant {variant}) needs time_s in every file (the training file has "
+                         "it): add it to this file, or diagnose without the creep variants")
+    here = mount_moment(robot, meas.q, p_t, meas.payload_kg, meas.wrench)
+    history = None
+    if ref.get("load_history") is not None:
+        ht, hq, hkg, hw = ref["load_history"]
+        history = (ht, mount_moment(robot, hq, target_points(robot, hq, t_mm), hkg, hw))
+    return creep_columns(here, creep_signal(meas.time_s, here, variant, history), p_t, variant)
 
 
 def _seat_basis(robot: Robot, meas: Measurements, ref: dict) -> tuple:

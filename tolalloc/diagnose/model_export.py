@@ -34,6 +34,7 @@ from scipy.spatial.transform import Rotation
 from tolalloc.exceptions import TolallocError, check_finite_array
 from tolalloc.robot.lie import adjoint, exp_se3
 from tolalloc.robot.model import Robot
+from tolalloc.physics.mount_creep import is_creep_variant
 from tolalloc.diagnose.calibrate import Fit
 from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.model_use import IdentifiedModel
@@ -246,6 +247,10 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
             raise TolallocError(f"identified model: its thermal effect (variant {v}) is driven by the training file's "
                                 "history, which the file does not hold; use the diagnosis itself "
                                 "(MeasurementDiagnosis.compensate) for this model.")
+        if e["effect"] == "mount_compliance" and is_creep_variant(v):
+            raise TolallocError(f"identified model: its mount_compliance effect (variant {v}) creeps under the load "
+                                "history of the training file, which the file does not hold; use the diagnosis "
+                                "itself (MeasurementDiagnosis.compensate) for this model.")
         if e["effect"] == "transmission" and v == "rehome":
             raise TolallocError("identified model: its transmission effect (variant rehome) holds the joints' zeros in "
                                 "the training session's power cycles, which the next homing does not keep; use the "

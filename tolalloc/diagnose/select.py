@@ -44,6 +44,7 @@ from tolalloc.diagnose.recalibrate import reregister
 from tolalloc.diagnose.ratio_search import search_ratios
 from tolalloc.diagnose.register import REGISTER_N, Registered, registration_split, split_from_rows
 from tolalloc.physics.thermal import is_air_variant, variant_parts
+from tolalloc.physics.mount_creep import is_creep_variant
 from tolalloc.physics.thermal_history import time_problem
 from tolalloc.physics.lost_motion import DIRECTION_SIDES
 from tolalloc.diagnose.scores import Candidate, Evaluation, Stage, clip_level, error_stats, rms, robust_rms
@@ -161,6 +162,8 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
             return f"test file: {why}"
         if any(v.startswith("held") for v in parts) and test.payload_kg is None:
             return "the test file has no payload_kg column (the held part's history)"
+    if effect == "mount_compliance" and is_creep_variant(variant) and (why := time_problem(test.time_s)) is not None:
+        return f"test file: {why}"
     if (effect, variant) in (("backlash", "reseat"), ("transmission", "rehome")):
         if (why := time_problem(test.time_s)) is not None:
             return f"test file: {why}"

@@ -4,6 +4,7 @@ the diagnosis (fitted to measurements) and by the design (sampled from catalogue
 * :mod:`.loads` -- the mass model, gravity loads on the joints and on the base mount, a payload at the target;
 * :mod:`.compliance` -- joint wind-up (linear, the catalogue's K1/K2/K3 bands, a smooth hardening law), a joint
   bearing's tilt under the moment across its axis, and the tilt (and rocking) of a compliant mount;
+* :mod:`.mount_creep` -- a mount that creeps under the moment it holds (a delayed compliance, a viscous flow);
 * :mod:`.beams` -- arm segments bending and shearing as cantilevers; a telescopic stage tilting in its guide;
 * :mod:`.transmission` -- kinematic error of gears and encoders at the orders 1, N and 2N of the gear ratio;
 * :mod:`.error_motions` -- a linear axis' six error motions along its stroke (ISO 230-1);

@@ -59,8 +59,8 @@ from tolalloc.physics.loads import (base_moment, gravity_torques, joint_wrenches
                                    wrench_moment)
 
 __all__ = ["COMPLIANCE_LAWS", "HARDENING_FRACTIONS", "MOUNT_VARIANTS", "joint_loads", "compliance_columns",
-           "catalogue_bands", "side_loads", "mount_columns", "joint_windup", "mount_tilt", "bearing_rotations",
-           "bearing_tilt"]
+           "catalogue_bands", "side_loads", "mount_moment", "mount_columns", "joint_windup", "mount_tilt",
+           "bearing_rotations", "bearing_tilt"]
 
 #: Joint-compliance laws (``hardening_<f>``: T0 = f x the joint's largest gravity load on the poses).
 COMPLIANCE_LAWS = ("linear", "catalogue", "hardening")
@@ -182,6 +182,20 @@ def side_loads(robot: Robot, q: np.ndarray, tip_mm: np.ndarray) -> np.ndarray:
     return loads
 
 
+def mount_moment(robot: Robot, q: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
+                 wrench=None) -> np.ndarray:
+    """The horizontal part of the moment the mount carries [N m], shape (P, 3): the robot's moving masses, the payload
+    ``payload_kg`` (P,) and a logged process wrench ``wrench`` (P, 6) at ``tip_mm`` (P, 3) (the moment about the
+    vertical does not tilt the base)."""
+    if tip_mm is None and (wrench is not None or payload_kg is not None):
+        raise ValueError("mount_moment: a payload or a process wrench needs tip_mm, the point it acts at")
+    M = base_moment(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg)
+    if wrench is not None:
+        M = M + wrench_moment(tip_mm, wrench)
+    g = np.asarray(robot.gravity, dtype=float)
+    return M - (M @ g)[:, None] * g
+
+
 def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray | None = None, payload_kg=None,
                   variant: str = "isotropic", wrench=None) -> tuple:
     """Target-displacement basis of a compliant mount, ``B`` shape (P, 3, M) [mm per rad/(N m)], and names.
@@ -189,13 +203,8 @@ def mount_columns(robot: Robot, q: np.ndarray, p: np.ndarray, tip_mm: np.ndarray
     ``p`` (P, 3): the target points [mm]; the payload ``payload_kg`` (P,) and a logged process wrench ``wrench``
     (P, 6) (:func:`~tolalloc.physics.loads.wrench_moment`) act at ``tip_mm`` (P, 3).
     """
-    if tip_mm is None and (wrench is not None or payload_kg is not None):
-        raise ValueError("mount_columns: a payload or a process wrench needs tip_mm, the point it acts at")
-    M = base_moment(robot, q, tip_mm, 0.0 if payload_kg is None else payload_kg)
-    if wrench is not None:
-        M = M + wrench_moment(tip_mm, wrench)
+    Mh = mount_moment(robot, q, tip_mm, payload_kg, wrench)
     g = np.asarray(robot.gravity, dtype=float)
-    Mh = M - (M @ g)[:, None] * g  # the moment about the vertical does not tilt the base
     if variant == "isotropic":
         return np.cross(Mh, p)[:, :, None], ["c_mount [rad/(N m)]"]
     if variant == "pivot":
