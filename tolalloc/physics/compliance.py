@@ -30,7 +30,8 @@ model of :mod:`~.clearance` leaves it to this one). ``tensor``: a symmetric 2 x 
 ``omega = C M_h`` (``c_xx``, ``c_yy``, ``c_xy``; ``x``, ``y`` the base axes projected across gravity), about a pivot at
 a fitted depth: a support whose stiffest and softest axes lie at any heading -- a rectangular plate or anchor
 pattern, a base rocking on a sole bowed along one direction (``C = e e^T / (W R)``, rank one) -- with its columns
-times the depth beside them (six, linear in ``C`` and ``C h``).
+times the depth beside them (six, linear in ``C`` and ``C h``). A support that keeps giving under the moment it holds
+(pads, grout, asphalt) tilts with the history of the poses: :mod:`~.mount_creep`.
 
 **Bearing tilt.** A revolute joint's bearing pair (a cross-roller bearing, an angular-contact pair) carries the
 moment across its axis of everything beyond it (:func:`~.loads.joint_wrenches`), taken about the pair's centre, and

@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; all thirty-eight: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; all thirty-nine: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -534,6 +534,30 @@ hose coiled round a wrist roll axis choosing its lash flank (ZL20 on kr16_like, 
 tool_changer). The helper flags idle_current and kt_saturation as related in their observables (both gravity sags
 of the wrist joints), raised_floor and load_cells as close to a generic mount tilt in structure (new in mechanism),
 and on a second seed two cases fall below the oracle's bars (ZL04, ZL13).
+
+**Set ZM** (24 cases, seed 40_7039) is a thirty-ninth independent test set of twelve new kinds
+(`sim2real_indep/effects_zm*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZL, ran no git command and did not run the diagnosis. It was
+run once, on the code of set ZL's figures (before the creep variants below) and on the code with them: both score
+22/24 strict, 22 lenient, no false claim, median final / oracle RMS 1.23, with the same verdict on every case; right
+on 16 of 17 effect cases where the true family's generic model helps, 3 of 4 where it does not. Its misses: a
+ball-detent torque limiter's seat play at the flange of tool_changer, its flank set by the tool's weight or axis 6's
+last turn (ZM10, named link deflection; right on ur10), and the same limiter with the base on hardening cone mounts
+(ZM16, named link deflection and transmission). The helper names rail_blocks (the law of set ZC's hexapod struts on a
+new machine element), jaw_guide_tilt, enclosure_door and mesh_ripple as the kinds nearest to earlier ones, and on a
+second seed one case falls below the oracle's bars (ZM12).
+A change made on sets A-ZL while set ZM was being written, before any of its results were seen -- mount creep: a
+support that keeps giving under the moment it holds (`tolalloc.physics.mount_creep`), an instant and a delayed
+compliance reached with a time constant (`creep_<tau>min`: elastomer pads, grout) or a viscous flow whose tilt grows
+with the moment's time integral (`flow`: asphalt, soft soil), both driven by the poses' history through `time_s` --
+names 7 more cases of A-ZL (D24, G16, T10, Y20, ZI14, ZK14, ZK20: pads, jacks, tyres, gravel and asphalt giving way
+over the session, named thermal or `ambiguous` before) and loses 6 (J05, J14, T14: heat tilting the joints or
+warming the drive, a slow drift the flow variant now fits as well, `none` or named mount compliance; K03, N18: a
+static or sinking support where the creep variant, chosen on the training residual, predicts the held-out poses
+worse; ZI08 `ambiguous`, lenient). A-ZL: 633 -> 634 strict, 667 -> 672 lenient, no false claim, median final /
+oracle RMS 1.374 -> 1.372; it changes no verdict of set ZM. A creep of the support and a slow drift of any other
+cause share a time course: on a session with no other clue they tie, and the verdict says so. The figures of this
+report are of the code with the change; set ZN judges it.
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1202,6 +1226,24 @@ comment):
 | pad_pivot | link_deflection | the part pivoting between elastomer finger pads about the closing axis (ur10, tool_changer) | Xydas & Kao, IJRR 18 (1999) |
 | thermal_ratchet | thermal | tube growth held back by the friction of the clamped end fits: a play operator of the drives' warming (ur10) | Peng & Peng, *Pipe Stress Engineering* (2009); Pokrovskii, *Systems with Hysteresis* (1989) |
 | arc_radiation | thermal | the welding arc's radiation heating the forearm's torch side in production: the forearm bows and grows (kr16_like) | Messler, *Principles of Welding* (1999) |
+
+Set ZM's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZM
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| moment_softening | joint_compliance | a wrist gear whose torsional stiffness falls as the tilting moment on its output bearing rises (tool_changer, kr16_like) | Harmonic Drive / Nabtesco catalogues; Dhaouadi & Ghorbel (2008); the coupling law assumed |
+| mesh_ripple | joint_compliance | a sound strain-wave gear's mesh stiffness rippling with the wave generator's angle (kr16_like) | Kahraman & Singh (1990); Tuttle & Seering (1996) |
+| upstream_toss | backlash | axis 5's lost motion thrown onto a flank by the main axes braking at the end of each move (tool_changer, kr16_like) | Nordin & Gutman, Automatica 38 (2002) |
+| limiter_play | backlash | a ball-detent torque limiter's seat play at the flange, its flank set by an off-axis tool's weight or axis 6's last turn (ur10, tool_changer) | R+W / Mayr catalogues |
+| microstep_error | transmission | an open-loop stepper stopping short within each full step (detent torque, non-sinusoidal torque curve) (ur10) | Kenjo & Sugawara; Acarnley, *Stepping Motors* |
+| step_accuracy | transmission | a stepper's tooth-pitch errors and rotor eccentricity repeating once per motor turn behind a belt stage (kr16_like) | NEMA ICS 16 |
+| conical_mounts | mount_compliance | the base on hardening cone mounts on a narrow stand (ur10, tool_changer) | Gent, *Engineering with Rubber*; makers' curves |
+| rail_blocks | mount_compliance | the base on a parked track carriage whose rail blocks are softer pulled than pressed (ur10) | THK / Hiwin / Rexroth rigidity data |
+| mandrel_rock | link_deflection | a part gripped by its bore on an expanding elastomer sleeve, shifting and rocking (ur10, tool_changer, kr16_like) | Hetenyi, *Beams on Elastic Foundation* (1946) |
+| jaw_guide_tilt | link_deflection | gripper jaws tilting elastically in preloaded miniature rail guides (tool_changer, kr16_like) | THK / Hiwin catalogues |
+| mean_radiant | thermal | links settling at the operative temperature of the drifting air and of walls lagging it by hours (kr16_like) | ISO 7726; Incropera & DeWitt |
+| enclosure_door | thermal | a conditioned cell off the hall's temperature whose door is opened at each loading (ur10) | ASHRAE Fundamentals ch. 16 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
