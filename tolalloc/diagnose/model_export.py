@@ -16,7 +16,8 @@ rebuild from the exported TOML.
   parameters' names and the matrix, registration and probe offset first) where the model has one.
   :func:`model_from_identified` rebuilds the identified model from it and the nominal robot, so a program can be
   compensated -- and its predictions given their uncertainty -- from the file alone; thermal variants driven by the
-  training file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), the seats of its tool changes
+  training file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), a mount creeping under the history
+  of its load (``creep_<tau>min``, ``flow``), the seats of its tool changes
   (backlash ``reseat``) and the zeros of its power cycles (transmission ``rehome``) are recorded but cannot be rebuilt
   from the file.
 
