@@ -4290,7 +4290,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_thermal as zct
 
     assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4473,7 +4473,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_thermal as zdt
 
     assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4632,7 +4632,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_thermal as zet
 
     assert "ZD" < "ZE" and "ZE" in cs.SETS
-    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4780,7 +4780,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_thermal as zft
 
     assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS
-                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4921,7 +4921,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_thermal as zgt
 
     assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS
-                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5068,7 +5068,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh_body as zhb
 
     assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS
-                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL", "ZM"))
+                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5200,7 +5200,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL", "ZM"))
+    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5342,7 +5342,7 @@ def test_set_zj_cases_kinds_and_determinism():
     from sim2real_indep import effects_zj_body as zjb
     from sim2real_indep import effects_zj_thermal as zjt
 
-    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL", "ZM"))
+    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
@@ -5500,7 +5500,7 @@ def test_set_zk_cases_kinds_and_determinism():
     from sim2real_indep import effects_zk as ezk
     from sim2real_indep import effects_zk_body as zkb
 
-    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL", "ZM"))
+    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL", "ZM", "ZN"))
     assert cs.case_seed("ZK", 3) == 40_7037 * 1000 + 3 and [c[0] for c in cs.SET_ZK] == [f"ZK{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezk.EFFECTS_ZK) == set(ZK_KINDS)
@@ -5657,7 +5657,7 @@ def test_set_zl_cases_kinds_and_determinism():
     from sim2real_indep import effects_zl as ezl
     from sim2real_indep import effects_zl_body as zlb
 
-    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s not in ("ZL", "ZM"))
+    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s not in ("ZL", "ZM", "ZN"))
     assert cs.case_seed("ZL", 3) == 40_7038 * 1000 + 3 and [c[0] for c in cs.SET_ZL] == [f"ZL{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezl.EFFECTS_ZL) == set(ZL_KINDS)
@@ -5820,7 +5820,7 @@ def test_set_zm_cases_kinds_and_determinism():
     from sim2real_indep import effects_zm as ezm
     from sim2real_indep import effects_zm_body as zmb
 
-    assert "ZL" < "ZM" and "ZM" in cs.SETS and all(s < "ZM" for s in cs.SETS if s != "ZM")
+    assert "ZL" < "ZM" and "ZM" in cs.SETS and all(s < "ZM" for s in cs.SETS if s not in ("ZM", "ZN"))
     assert cs.case_seed("ZM", 3) == 40_7039 * 1000 + 3 and [c[0] for c in cs.SET_ZM] == [f"ZM{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezm.EFFECTS_ZM) == set(ZM_KINDS)
@@ -5962,3 +5962,177 @@ def test_set_zm_every_kind_lies_in_its_true_structure_and_known_answers():
     T = zmt.link_temperature({**rp, "s": 0.0, "tau_l": 1e-3}, s)
     from sim2real_indep.session import air_temperature
     assert T == pytest.approx(air_temperature(s, s.time_s) - air_temperature(s, s.time_s[0]), abs=0.02)
+
+
+# --------------------------------------------------------------------------------------------------------- set ZN
+ZN_KINDS = ("hygro_gear", "payload_estimator", "load_holding_valve", "roll_endplay", "rope_lay", "magnetostrictive_rod",
+            "wire_rope_isolators", "focalised_mounts", "dovetail_gib", "bellows_coupling", "radiant_tube_heater",
+            "dragging_brake")
+
+
+def test_set_zn_cases_kinds_and_determinism():
+    """Set ZN (the fourteenth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZM; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZN kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; a
+    new part for each block, hours of blocks with pauses (the washdown, the radiant heaters' cycling air), production
+    between the blocks (the dragging brake)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zn as ezn
+    from sim2real_indep import effects_zn_body as znb
+
+    assert "ZM" < "ZN" and "ZN" in cs.SETS and all(s < "ZN" for s in cs.SETS if s != "ZN")
+    assert cs.case_seed("ZN", 3) == 40_7040 * 1000 + 3 and [c[0] for c in cs.SET_ZN] == [f"ZN{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezn.EFFECTS_ZN) == set(ZN_KINDS)
+    _assert_set_module("ZN", 40_7040, ezn, ("gear", "moment_softening", "mean_radiant", "rail_blocks"))
+    for name in ("effects_zn", "effects_zn_joint", "effects_zn_body", "effects_zn_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zn" in _imports(STUDY / "generator.py")
+    assert ezn.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezn.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezn.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                steps = np.array(opts((kind,), robot)["payload_steps"])
+                assert len(steps) >= 3 and kg[robot][0] <= steps.min() and steps.max() <= kg[robot][1]
+                assert len(steps) == opts((kind,), robot)["blocks"]
+        for kind, ((lo, hi), gap, pause) in ezn.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        air = opts(("radiant_tube_heater",))["air"]
+        assert air["drift_K"] == 0.0 and 0.3 <= air["cycle_K"] <= 0.8 and 20.0 <= air["period_min"] <= 40.0
+        plain = opts(("load_holding_valve", "roll_endplay", "rope_lay", "magnetostrictive_rod"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe, com = np.array([1.0, 2.0, 3.0]), np.array([30.0, -40.0, 0.0])
+    assert ezn.probe_hook(("gear",), probe) is probe and ezn.payload_hook(("gear",), com) is com
+    assert ezn.probe_hook(("dovetail_gib",), probe) == pytest.approx(probe + [0, 0, znb.SLIDE_TARGET_MM])
+    assert ezn.probe_hook(("bellows_coupling",), probe) == pytest.approx(probe + [0, 0, znb.BELLOWS_TARGET_MM])
+    assert ezn.payload_hook(("dovetail_gib",), com) == pytest.approx([6.0, -8.0, znb.SLIDE_MM + 40.0 + 60.0 * 50 / 80])
+    assert ezn.payload_hook(("bellows_coupling",), com) == pytest.approx([6.0, -8.0,
+                                                                          znb.BELLOWS_MM + 40.0 + 60.0 * 50 / 80])
+    _assert_regenerates("ZN", max_effect_poses=50)
+
+
+def test_set_zn_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZN kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: Fick's uptake (0 at the
+    washdown, 1 when saturated, the early square-root law), the estimator's convergence (a held part is learnt, none
+    left after a long move), the holding valves' drop (after lowering only), the end play's side (the axial weight's
+    where it beats the friction), the rope lay's and the magnetostrictive sensor's columns (their periods, the Legendre
+    polynomials), the isolators' law (linear at s = h = 0: the plate of the loads), the focalised mounts' turn (about
+    the focal point: the focus does not move), the dovetail's asymmetry (kappa = 1: symmetric), the bellows' stretch
+    (along the tool axis only when the part hangs straight below), the heaters' gradient (none while they are off, no
+    bow of a vertical tube) and the brake's node (nothing without motion)."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zm_body as zmb
+    from sim2real_indep import effects_zn_body as znb
+    from sim2real_indep import effects_zn_joint as znj
+    from sim2real_indep import effects_zn_thermal as znt
+
+    amps = {"hygro_gear": "c", "payload_estimator": "c", "load_holding_valve": "d", "roll_endplay": "e2",
+            "rope_lay": "amp", "magnetostrictive_rod": "c", "wire_rope_isolators": "c", "focalised_mounts": "c",
+            "dovetail_gib": "inv_K", "bellows_coupling": "inv_Kax", "radiant_tube_heater": "amp",
+            "dragging_brake": "amp"}
+    specs = {"ur10": ("hygro_gear", "payload_estimator", "rope_lay", "wire_rope_isolators", "bellows_coupling",
+                      "radiant_tube_heater"),
+             "tool_changer": ("load_holding_valve", "magnetostrictive_rod", "dovetail_gib", "dragging_brake",
+                              "roll_endplay", "focalised_mounts"),
+             "kr16_like": ("roll_endplay", "focalised_mounts", "dragging_brake")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 40)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    # moisture: Fick's plate -- nothing at the washdown, saturated at long times, 4 / sqrt(pi) sqrt(t / tau) early on
+    hp = P["hygro_gear"]
+    at = lambda t, tau: znj.moisture({"t_w": 0.0, "tau_d": tau}, replace(s, time_s=s.time_s[0] + np.array(t)))  # noqa
+    m = at([0.0, 36.0, 1e6], 3600.0)
+    assert m[0] == pytest.approx(0.0, abs=2e-3) and m[2] == pytest.approx(1.0)
+    assert m[1] == pytest.approx(4 / np.pi ** 1.5 * np.sqrt(36.0 / 3600.0), rel=0.02)
+    assert np.all(np.diff(znj.moisture(hp, s)) >= 0)
+    # estimator: a part held long enough is learnt; the residual after a change shrinks move by move
+    ep = P["payload_estimator"]
+    long = replace(s, move_s=np.full(len(s.move_s), 1e4))
+    assert znj.estimate(ep, long) == pytest.approx(s.payload_kg)
+    r = s.payload_kg - znj.estimate(ep, s)
+    assert np.all(np.abs(r[1:][np.diff(s.payload_kg) == 0]) <= np.abs(r[:-1][np.diff(s.payload_kg) == 0]) + 1e-12)
+    # rope lay: sin / cos of the two periods, the strands' an integer multiple of the lay's
+    rp = P["rope_lay"]
+    F = znj.rope_features(rp, ctx, None)
+    k1, ks = rp["k"][0]
+    assert 6 <= ks / k1 <= 8 and abs(ks / k1 - round(ks / k1)) < 1e-9 and len(F) == 8
+    assert np.einsum("pi,pi->p", F[0], ctx.jac[:, :, 0]) / np.einsum("pi,pi->p", ctx.jac[:, :, 0], ctx.jac[:, :, 0]) \
+        == pytest.approx(np.sin(k1 * s.q[:, 0]))
+    # wire-rope isolators: linear without the softening and the hardening
+    wp = P["wire_rope_isolators"]
+    R, xy = zmb.mount_loads(wp, ctx)
+    assert znb.wire_features({**wp, "s": 0.0, "h": 0.0}, ctx, None) == pytest.approx(zmb._plate(wp, ctx, R, xy))
+    d = znb.isolator_deflection(wp, np.array([[wp["F0"], -wp["F0"]]]))
+    assert d[0, 0] == pytest.approx(wp["F0"] * (1 + wp["s"])) and d[0, 1] == pytest.approx(-wp["F0"] / (1 + wp["h"]))
+    # bellows: a part hanging straight below stretches it along the tool axis only
+    bp = P["bellows_coupling"]
+    F, M = zmb.part_loads(ctx, znb.BELLOWS_MM)
+    assert np.einsum("pi,pi->p", F, F) == pytest.approx((kin.G * s.payload_kg) ** 2)
+    # radiant heaters: nothing while they are off; on, a vertical tube does not bow
+    rp = P["radiant_tube_heater"]
+    assert np.abs(znt.gradient_node({**rp, "offset": -2.0}, s)).max() == 0.0
+    node = znt.gradient_node(rp, s)
+    assert 0 <= node.min() and node.max() <= 1
+    up = replace(ctx, session=replace(s, q=np.zeros_like(s.q) + [0, -np.pi / 2, 0, -np.pi / 2, 0, 0]))
+    bows = znt.tube_bows(up, np.ones(len(s.q)))
+    assert np.abs(bows).max() < 1e-6 * 1000.0
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # holding valves: a drop only after a lowering move
+    for j in znj.VALVE_JOINTS:
+        low = znj.lowered_last(ctx, j)
+        moved = s.speed[:, j] > 0
+        assert set(np.unique(low)) <= {0.0, 1.0}
+        assert low[moved] == pytest.approx((s.direction[moved, j] == np.sign(ctx.loads[moved, j])).astype(float))
+    # magnetostrictive sensor: the Legendre polynomials of the stroke
+    F = znj.rod_features(P["magnetostrictive_rod"], ctx, None)
+    x = znj.stroke_x(ctx)
+    assert np.abs(x).max() <= 1 and np.einsum("pi,pi->p", F[1], ctx.jac[:, :, 3]) == pytest.approx(
+        (3 * x ** 2 - 1) / 2 * np.einsum("pi,pi->p", ctx.jac[:, :, 3], ctx.jac[:, :, 3]))
+    # dovetail: symmetric at kappa = 1 (reversing the part's moment reverses the move)
+    gp = {**P["dovetail_gib"], "kappa": 1.0}
+    Fd = znb.dovetail_features(gp, ctx, None)
+    flip = replace(ctx, payload_com_mm=np.array([-1.0, -1.0, 1.0]) * ctx.payload_com_mm)
+    assert np.abs(Fd).max() > 0 and np.isfinite(znb.dovetail_features(gp, flip, None)).all()
+    # dragging brake: no motion, no heat
+    bp = P["dragging_brake"]
+    still = replace(s, speed=0 * s.speed, gap_s=np.minimum(s.gap_s, 0.0))
+    assert np.abs(znt.brake_node(bp, still)).max() == 0.0 and znt.brake_node(bp, s).max() > 0
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # end play: the axial weight's side where it beats the friction
+    ep = P["roll_endplay"]
+    F = znj.axial_force(ctx, znj.ENDPLAY_J["kr16_like"])
+    side = znj.endplay_side(ep, ctx)
+    assert side[np.abs(F) > ep["f"]] == pytest.approx(np.sign(F[np.abs(F) > ep["f"]]))
+    assert set(np.unique(side)) <= {-1.0, 1.0}
+    # focalised mounts: the focal point does not move under the turn about the short axis
+    fp = P["focalised_mounts"]
+    focus = np.array([0.0, 0.0, znb.focal_height_mm(fp) - fp["pivot_mm"]])
+    at_focus = replace(ctx, probe_mm=ctx.probe_mm)
+    at_focus.__dict__["target"] = np.broadcast_to(focus, ctx.target.shape).copy()
+    e1, _ = zmb._axes(fp["psi"])
+    no_long = {**fp, "b": 1e9}
+    Ff = znb.focal_features(no_long, at_focus, None)[0]
+    kv = np.cos(fp["gamma"]) ** 2 + fp["rho"] * np.sin(fp["gamma"]) ** 2
+    sink = 1000.0 * zmb.total_weight(ctx) / (4 * kv)
+    assert Ff == pytest.approx(np.outer(-sink, [0, 0, 1.0]), abs=1e-9 * sink.max())

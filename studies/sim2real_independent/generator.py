@@ -65,6 +65,7 @@ from sim2real_indep import effects_zj as ezj
 from sim2real_indep import effects_zk as ezk
 from sim2real_indep import effects_zl as ezl
 from sim2real_indep import effects_zm as ezm
+from sim2real_indep import effects_zn as ezn
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -121,6 +122,7 @@ EFFECTS = {
     **ezk.EFFECTS_ZK,  # set ZK's new kinds
     **ezl.EFFECTS_ZL,  # set ZL's new kinds
     **ezm.EFFECTS_ZM,  # set ZM's new kinds
+    **ezn.EFFECTS_ZN,  # set ZN's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -130,7 +132,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
                  | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER
-                 | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER | ezm.AFTER_TRACKER)
+                 | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER | ezm.AFTER_TRACKER | ezn.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -237,7 +239,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezj.session_options(robot_key, physics, rng, opts)  # set ZJ (no draws without a set-ZJ kind)
     opts = ezk.session_options(robot_key, physics, rng, opts)  # set ZK (no draws without a set-ZK kind)
     opts = ezl.session_options(robot_key, physics, rng, opts)  # set ZL (no draws without a set-ZL kind)
-    return ezm.session_options(robot_key, physics, rng, opts)  # set ZM (no draws without a set-ZM kind)
+    opts = ezm.session_options(robot_key, physics, rng, opts)  # set ZM (no draws without a set-ZM kind)
+    return ezn.session_options(robot_key, physics, rng, opts)  # set ZN (no draws without a set-ZN kind)
 
 
 def _tracker(rng):
@@ -294,6 +297,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezk.probe_hook(physics, probe)  # set ZK's buckling bracket, dashpot slide (no draws)
     probe = ezl.probe_hook(physics, probe)  # set ZL's F/T sensor's tool, part between the pads (no draws)
     probe = ezm.probe_hook(physics, probe)  # set ZM's part on the mandrel, between the jaws (no draws)
+    probe = ezn.probe_hook(physics, probe)  # set ZN's part on the dovetail slide, below the bellows (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -307,6 +311,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = ezd.payload_hook(physics, payload_com)  # set ZD's off-axis part (no draws)
     payload_com = ezl.payload_hook(physics, payload_com)  # set ZL's sensor's tool, pads (no draws)
     payload_com = ezm.payload_hook(physics, payload_com)  # set ZM's mandrel, jaws (no draws)
+    payload_com = ezn.payload_hook(physics, payload_com)  # set ZN's slide, bellows (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

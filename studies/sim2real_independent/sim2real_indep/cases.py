@@ -50,6 +50,7 @@ SEED_ZJ = 40_7036
 SEED_ZK = 40_7037
 SEED_ZL = 40_7038
 SEED_ZM = 40_7039
+SEED_ZN = 40_7040
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1898,7 +1899,47 @@ SET_ZM = [
     ("ZM24", "kr16_like", ("upstream_toss", "mandrel_rock"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM)
+#: Set ZN (seed 40_7040): twelve new kinds, two per family (sim2real_indep.effects_zn; physics and sources in
+#: effects_zn_joint, effects_zn_body, effects_zn_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth (gains 35.5 % on ZN03, 35.6 % on ZN10 and 37.4 % on ZN14 to 74.7 % on ZN13); the closest rivals
+#: ZN10's link model at 1.37x, ZN14's transmission model at 1.48x, ZN03's mount model at 1.52x and ZN24's joint model at
+#: 1.68x; a mixture component's removal costs 19.7 % at least (ZN08's payload estimator), the geometry-only cases none.
+#: Changed after trial draws: the payload estimator's time constant, first 5-20 s of excitation (ur10's mixture ZN08
+#: named transmission only: the estimate caught up within a few moves and its removal cost 4.2 %), now 20-60 s (a
+#: forgetting factor slow enough to reject the torque readings' noise); ZN17 set to 45 poses for the layout's short
+#: effect case (it was 130 in the first draw; its label is the truth either way). No seed was changed, and no pose count
+#: to fix a label. A trial on the seed + 1 (case seeds + 1000003): every effect case its truth, 20 of 21 at the 20 % /
+#: 1.25x bar; below it the payload estimator on ur10 (ZN02, 16.5 %, the mount model at 1.20x) -- the weakest kind
+#: there; the focalised mounts on tool_changer (ZN14, 30.0 %, the transmission model at 1.34x) next.
+SET_ZN = [
+    ("ZN01", "ur10", ("hygro_gear",), 140, "time"),
+    ("ZN02", "ur10", ("payload_estimator",), 150, "random"),
+    ("ZN03", "ur10", ("rope_lay",), 120, "random"),
+    ("ZN04", "ur10", ("wire_rope_isolators",), 140, "random"),
+    ("ZN05", "ur10", ("bellows_coupling",), 130, "random"),
+    ("ZN06", "ur10", ("radiant_tube_heater",), 150, "time"),
+    ("ZN07", "ur10", (), 60, "random"),
+    ("ZN08", "ur10", ("rope_lay", "payload_estimator"), 180, "random"),
+    ("ZN09", "tool_changer", ("load_holding_valve",), 130, "random"),
+    ("ZN10", "tool_changer", ("magnetostrictive_rod",), 120, "random"),
+    ("ZN11", "tool_changer", ("dovetail_gib",), 140, "random"),
+    ("ZN12", "tool_changer", ("dragging_brake",), 150, "time"),
+    ("ZN13", "tool_changer", ("roll_endplay",), 130, "random"),
+    ("ZN14", "tool_changer", ("focalised_mounts",), 140, "random"),
+    ("ZN15", "tool_changer", (), 40, "random"),
+    ("ZN16", "tool_changer", ("load_holding_valve", "magnetostrictive_rod"), 190, "time"),
+    ("ZN17", "kr16_like", ("roll_endplay",), 45, "random"),
+    ("ZN18", "kr16_like", ("hygro_gear",), 140, "time"),
+    ("ZN19", "kr16_like", ("focalised_mounts",), 130, "random"),
+    ("ZN20", "kr16_like", ("rope_lay",), 120, "random"),
+    ("ZN21", "kr16_like", ("dovetail_gib",), 120, "random"),
+    ("ZN22", "kr16_like", ("dragging_brake",), 150, "time"),
+    ("ZN23", "kr16_like", (), 100, "random"),
+    ("ZN24", "kr16_like", ("wire_rope_isolators", "bellows_coupling"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM, ZN)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1909,7 +1950,8 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "ZB": (SET_ZB, SEED_ZB), "ZC": (SET_ZC, SEED_ZC), "ZD": (SET_ZD, SEED_ZD),
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
         "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
-        "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL), "ZM": (SET_ZM, SEED_ZM)}
+        "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL), "ZM": (SET_ZM, SEED_ZM),
+        "ZN": (SET_ZN, SEED_ZN)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -527,7 +527,21 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "limiter_play": "backlash", "microstep_error": "transmission", "step_accuracy": "transmission",
           "conical_mounts": "mount_compliance", "rail_blocks": "mount_compliance",
           "mandrel_rock": "link_deflection", "jaw_guide_tilt": "link_deflection", "mean_radiant": "thermal",
-          "enclosure_door": "thermal"}
+          "enclosure_door": "thermal",
+          # set ZN (sim2real_indep.effects_zn; hygro_gear, polymer wrist gears softened by the water they take up
+          # after a washdown, and payload_estimator, a cobot's on-line payload identification lagging each part
+          # change, scored as joint compliance; load_holding_valve, a hydraulic boom dropping as its holding valves
+          # close after a lowering move, and roll_endplay, a roll bearing's end play crossed by the axial weight, as
+          # backlash; rope_lay, a capstan stage's rope-lay waviness, and magnetostrictive_rod, the telescopic stage's
+          # magnetostrictive sensor, as transmission; wire_rope_isolators and focalised_mounts, the base on wire-rope
+          # isolators and on inclined focalised mounts, as mount compliance; dovetail_gib, a tool-side dovetail slide,
+          # and bellows_coupling, a tool on a bellows coupling, as link deflection; radiant_tube_heater, tubes bowed by
+          # the roof's radiant heaters, and dragging_brake, axis 2 warmed by its dragging brake, as thermal)
+          "hygro_gear": "joint_compliance", "payload_estimator": "joint_compliance",
+          "load_holding_valve": "backlash", "roll_endplay": "backlash", "rope_lay": "transmission",
+          "magnetostrictive_rod": "transmission", "wire_rope_isolators": "mount_compliance",
+          "focalised_mounts": "mount_compliance", "dovetail_gib": "link_deflection",
+          "bellows_coupling": "link_deflection", "radiant_tube_heater": "thermal", "dragging_brake": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
