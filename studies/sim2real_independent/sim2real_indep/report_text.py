@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; all thirty-nine: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; set ZN: `--set ZN`; all forty: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -558,6 +558,20 @@ worse; ZI08 `ambiguous`, lenient). A-ZL: 633 -> 634 strict, 667 -> 672 lenient, 
 oracle RMS 1.374 -> 1.372; it changes no verdict of set ZM. A creep of the support and a slow drift of any other
 cause share a time course: on a session with no other clue they tie, and the verdict says so. The figures of this
 report are of the code with the change; set ZN judges it.
+
+**Set ZN** (24 cases, seed 40_7040) is a fortieth independent test set of twelve new kinds
+(`sim2real_indep/effects_zn*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZM, ran no git command and did not run the diagnosis. It was
+run once, on the code with the creep variants (the change above, which it judges): 18/24 strict, 18 lenient, no
+false claim, median final / oracle RMS 1.16; the code before the change scores the same, with the same verdict on
+every case (neutral on both sets it was judged by: neither holds a support that creeps); right on 12 of 12 effect
+cases where the true family's generic model helps, 3 of 9 where it does not. Its misses: an online payload estimate
+lagging each part change (ZN02, `none`), a capstan rope's strand crowns repeating with rope travel (ZN03, ZN20,
+`none`), both together (ZN08, `none`), roof heaters switched by the hall's thermostat bowing the tubes from above
+(ZN06 on ur10, named link deflection), and a roll axis' end play taken up to the side the axial weight pushes on 45
+poses of kr16_like (ZN17, `none`; right on tool_changer). The helper names hygro_gear, payload_estimator and
+radiant_tube_heater as the kinds nearest to earlier ones (a new cause, a familiar response law), and on a second seed
+one case falls below the oracle's bars (ZN02).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1244,6 +1258,24 @@ comment):
 | jaw_guide_tilt | link_deflection | gripper jaws tilting elastically in preloaded miniature rail guides (tool_changer, kr16_like) | THK / Hiwin catalogues |
 | mean_radiant | thermal | links settling at the operative temperature of the drifting air and of walls lagging it by hours (kr16_like) | ISO 7726; Incropera & DeWitt |
 | enclosure_door | thermal | a conditioned cell off the hall's temperature whose door is opened at each loading (ur10) | ASHRAE Fundamentals ch. 16 |
+
+Set ZN's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZN
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| hygro_gear | joint_compliance | polymer gear stages softened by the water their teeth take up after the cell's washdown (ur10, kr16_like) | Kohan, *Nylon Plastics Handbook* (1995); Crank, *The Mathematics of Diffusion* (1975) ch. 4 |
+| payload_estimator | joint_compliance | a cobot's on-line payload identification lagging each part change, the gravity compensation carrying the old estimate (ur10) | Kubus, Kroeger & Wahl, ICRA 2008; Swevers et al., IEEE T-RA 13 (1997) |
+| load_holding_valve | backlash | a hydraulic boom dropping as its load-holding valves close late after a lowering move, not after lifting (tool_changer) | Watton, *Fundamentals of Fluid Power Control* (2009) ch. 4 |
+| roll_endplay | backlash | everything beyond a roll axis sliding along it by the bearings' end play, to the side the axial weight pushes (tool_changer, kr16_like) | Harris & Kotzalas, *Rolling Bearing Analysis* (2007) ch. 1, 5 |
+| rope_lay | transmission | a capstan drive's rope rolling on its strand crowns: an error periodic in rope travel (ur10, kr16_like) | Townsend, MIT PhD thesis (1988); Feyrer, *Wire Ropes* (2015) ch. 1 |
+| magnetostrictive_rod | transmission | the telescopic stage read by a magnetostrictive waveguide sensor: a scale error and a smooth bow along the stroke (tool_changer) | Lenz & Edelstein, IEEE Sensors J. 6 (2006); makers' data as recalled |
+| wire_rope_isolators | mount_compliance | the base on wire-rope isolators, softening pressed and stiffening pulled (ur10, kr16_like) | Demetriades, Constantinou & Reinhorn, Eng. Struct. 15 (1993) |
+| focalised_mounts | mount_compliance | inclined elastomer mounts turning the base about a focal point above their plane (tool_changer, kr16_like) | Harris & Piersol, *Shock and Vibration Handbook* (2002) ch. 30; Rivin (1999) |
+| dovetail_gib | link_deflection | a tool-side dovetail slide turning elastically, softer to its gib's side (tool_changer, kr16_like) | Slocum, *Precision Machine Design* (1992) ch. 8; Rivin (1999) ch. 4 |
+| bellows_coupling | link_deflection | the tool on a metal bellows coupling stretching along the tool axis and tilting in the bellows' ratio (ur10, kr16_like) | EJMA Standards, 10th ed. (2015) |
+| radiant_tube_heater | thermal | roof radiant tube heaters switched by the hall's thermostat bowing the tubes from above (ur10) | EN 416-1; ASHRAE HVAC Systems and Equipment ch. 16; Boley & Weiner (1960) |
+| dragging_brake | thermal | axis 2's holding brake dragging, its friction heat following the axis' speed (tool_changer, kr16_like) | Incropera & DeWitt ch. 5; brake makers' manuals as recalled |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
