@@ -162,9 +162,8 @@ def carry_problem(effect: str, variant: str, test) -> str | None:
             return f"test file: {why}"
         if any(v.startswith("held") for v in parts) and test.payload_kg is None:
             return "the test file has no payload_kg column (the held part's history)"
-    if effect == "mount_compliance" and is_creep_variant(variant) and (why := time_problem(test.time_s)) is not None:
-        return f"test file: {why}"
-    if (effect, variant) in (("backlash", "reseat"), ("transmission", "rehome")):
+    timed = (effect, variant) in (("backlash", "reseat"), ("transmission", "rehome"))
+    if timed or (effect == "mount_compliance" and is_creep_variant(variant)):
         if (why := time_problem(test.time_s)) is not None:
             return f"test file: {why}"
         if variant == "reseat" and test.payload_kg is None:

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from tolalloc.physics.thermal_history import active_time, time_problem
+from tolalloc.physics.thermal_history import active_time, tau_s, through_history, time_problem
 
 __all__ = ["CREEP_MIN", "CREEP_KINDS", "creep_variants", "is_creep_variant", "dwell_times", "creep_signal",
            "creep_columns"]
@@ -59,18 +59,20 @@ def dwell_times(time_s: np.ndarray) -> tuple:
     return dt - 0.5 * on, 0.5 * on
 
 
-def _held(time_s: np.ndarray, values: np.ndarray, tau_s: float | None, start=None) -> np.ndarray:
-    """Time integral [unit h] (``tau_s`` None) or first-order lag of ``values`` (P, m) over the history, the lag
-    starting at ``start`` (m,)."""
+def _held(time_s: np.ndarray, values: np.ndarray, tau: float | None, start: np.ndarray) -> np.ndarray:
+    """Time integral [unit h] (``tau`` None) or first-order lag (time constant ``tau`` [s], starting at ``start``
+    (m,)) of ``values`` (P, m) over the poses in time order."""
     order = np.argsort(time_s, kind="stable")
     prev, new = (d[order] for d in dwell_times(time_s))
     u = np.asarray(values, float)[order]
-    y = np.zeros_like(u) if tau_s is None else np.repeat(np.reshape(start, (1, -1)), len(u), axis=0)
-    for i in range(1, len(u)):
-        if tau_s is None:
-            y[i] = y[i - 1] + (prev[i] * u[i - 1] + new[i] * u[i]) / 3600.0
-        else:
-            a, b = np.exp(-prev[i] / tau_s), np.exp(-new[i] / tau_s)
+    if tau is None:
+        step = np.zeros_like(u)
+        step[1:] = (prev[1:, None] * u[:-1] + new[1:, None] * u[1:]) / 3600.0
+        y = np.cumsum(step, axis=0)
+    else:
+        y = np.repeat(np.reshape(start, (1, -1)), len(u), axis=0)
+        for i in range(1, len(u)):
+            a, b = np.exp(-prev[i] / tau), np.exp(-new[i] / tau)
             y[i] = (y[i - 1] * a + (1.0 - a) * u[i - 1]) * b + (1.0 - b) * u[i]
     out = np.empty_like(y)
     out[order] = y
@@ -80,17 +82,11 @@ def _held(time_s: np.ndarray, values: np.ndarray, tau_s: float | None, start=Non
 def creep_signal(time_s: np.ndarray, load: np.ndarray, variant: str, history: tuple | None = None) -> np.ndarray:
     """The held load of ``variant`` at each pose, shape of ``load`` (P, m): its lag (``creep_<tau>min``, started at
     the mean load of the training poses) or time integral [unit h] (``flow``). ``history`` ``(times (H,), loads
-    (H, m))``: the training file's poses, run through with these in time order; the same poses as these: the file
-    itself (and None)."""
-    if variant == "flow":
-        tau = None
-    else:
-        tau = 60.0 * float(variant.split("_", 1)[1][:-3])
-    if history is None or (len(history[0]) == len(time_s) and np.array_equal(history[0], time_s)
-                           and np.array_equal(history[1], load)):
-        return _held(time_s, load, tau, np.mean(load, axis=0))
-    ht, hl = history
-    return _held(np.concatenate([ht, time_s]), np.concatenate([hl, load]), tau, np.mean(hl, axis=0))[len(ht):]
+    (H, m))``: the training file's poses, run through with these in time order
+    (:func:`~.thermal_history.through_history`); None: these poses are the training file."""
+    tau = None if variant == "flow" else tau_s(variant)
+    start = np.mean(load if history is None else history[1], axis=0)
+    return through_history(lambda ts, vs: _held(ts, vs, tau, start), time_s, load, history)
 
 
 def creep_columns(Mh: np.ndarray, held: np.ndarray, p: np.ndarray, variant: str) -> tuple:

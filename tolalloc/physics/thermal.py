@@ -64,7 +64,8 @@ import numpy as np
 from tolalloc.robot.kinematics import poe_prefix
 from tolalloc.robot.model import Robot
 from tolalloc.physics.loads import across_axes, gravity_torques, point_at
-from tolalloc.physics.thermal_history import activity, duty_warmup, held_heat, lagged, motor_heat, time_problem
+from tolalloc.physics.thermal_history import (activity, duty_warmup, held_heat, lagged, motor_heat, tau_s,
+                                              through_history, time_problem)
 from tolalloc.physics.thermal_scale import joint_scale, scale_joints
 
 __all__ = ["LAG_MIN", "thermal_variants", "thermal_signal", "thermal_bases", "link_growth", "link_joint_matrix",
@@ -130,19 +131,11 @@ def variant_parts(variant: str) -> tuple:
     return tuple(variant.split("+"))
 
 
-def _tau_s(variant: str) -> float:
-    return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
-
-
 def _history(meas, ref: dict, fn, key: str = "motion", values=None):
-    """``fn(time_s, values)`` over the training poses (``ref[key]``: their times and values, default the joint values
-    of ``ref["motion"]``) and then these, in time order, on these poses: what is known before a pose is measured (the
-    training file itself: over its own poses). ``values``: these poses' (default ``meas.q``)."""
-    ht, hv = ref[key]
-    t, v = meas.time_s, (meas.q if values is None else values)
-    if len(ht) == len(t) and np.array_equal(ht, t) and np.array_equal(hv, v):
-        return fn(t, v)
-    return fn(np.concatenate([ht, t]), np.concatenate([hv, v]))[len(ht):]
+    """``fn(time_s, values)`` on the poses of ``meas`` run through after the training poses ``ref[key]`` (their times
+    and values, default the joint values of ``ref["motion"]``; :func:`~.thermal_history.through_history`).
+    ``values``: these poses' (default ``meas.q``)."""
+    return through_history(fn, meas.time_s, meas.q if values is None else values, ref[key])
 
 
 def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None = None,
@@ -152,7 +145,7 @@ def thermal_signal(meas, ref: dict, variant: str, link_joints: np.ndarray | None
     ``motor`` (speeds, then squared loads; needs ``robot``)."""
     if variant in ("temperature", "scale"):
         return meas.temperature_c - ref["temperature_c"]
-    tau, t = _tau_s(variant), meas.time_s
+    tau, t = tau_s(variant), meas.time_s
     if variant.startswith((*CLOCK_VARIANTS, "drift")):
         return 1.0 - np.exp(-np.maximum(t - ref["time0_s"], 0.0) / tau)
     if variant.startswith("tilt"):

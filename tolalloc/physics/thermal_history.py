@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["MAX_SPAN_S", "MAX_STEP_S", "PAUSE_STEPS", "time_problem", "lagged", "lag_filter", "active_time",
-           "duty_warmup", "activity", "motor_heat", "held_heat"]
+__all__ = ["MAX_SPAN_S", "MAX_STEP_S", "PAUSE_STEPS", "time_problem", "tau_s", "through_history", "lagged",
+           "lag_filter", "active_time", "duty_warmup", "activity", "motor_heat", "held_heat"]
 
 #: A session longer than this [s] (2 days) is taken for a ``time_s`` column in another unit (ms).
 MAX_SPAN_S = 2 * 86400.0
@@ -37,6 +37,23 @@ def time_problem(time_s) -> str | None:
         return (f"time_s looks like another unit than seconds (span {np.ptp(t):.4g}, median step {med:.4g} between "
                 f"poses; expected at most {MAX_SPAN_S:g} s and {MAX_STEP_S:g} s): convert it to seconds (ms / 1000)")
     return None
+
+
+def tau_s(variant: str) -> float:
+    """The time constant [s] a variant name ends with (``lag_7.5min``, ``creep_90min``)."""
+    return 60.0 * float(variant.rsplit("_", 1)[1][:-3])
+
+
+def through_history(fn, time_s: np.ndarray, values: np.ndarray, history: tuple | None = None) -> np.ndarray:
+    """``fn(times, values)`` of these poses run through after ``history`` ``(times (H,), values (H, ...))`` -- the
+    training file's poses: what is known before a pose is measured -- in time order, on these poses. A history that
+    is these very poses (the training file itself), or None: over these poses alone."""
+    if history is None:
+        return fn(time_s, values)
+    ht, hv = history
+    if len(ht) == len(time_s) and np.array_equal(ht, time_s) and np.array_equal(hv, values):
+        return fn(time_s, values)
+    return fn(np.concatenate([ht, time_s]), np.concatenate([hv, values]))[len(ht):]
 
 
 def lagged(time_s: np.ndarray, temp_c: np.ndarray, tau_s: float) -> np.ndarray:
