@@ -307,3 +307,21 @@ def test_an_interrupt_inside_a_native_callback_prints_nothing(monkeypatch):
         ctypes.CFUNCTYPE(None)(broken)()
     assert seen == ["ValueError"]
     assert sys.unraisablehook is hook
+
+
+def test_an_interrupt_inside_a_cython_function_prints_no_traceback(monkeypatch):
+    """A Cython function that cannot propagate the handler's exception (scipy's Sobol sampler while the Monte Carlo
+    draws its points) prints it with ``PyErr_PrintEx``, which calls ``sys.excepthook``, before reporting it as
+    unraisable: inside the command line's handlers the hook drops it (the interrupt stays recorded for the next
+    checkpoint); other exceptions still reach the hook, and after the block the hook is back."""
+    from tolalloc.cli import _interrupt_handlers
+    from tolalloc.exceptions import Interrupted
+
+    seen = []
+    monkeypatch.setattr(sys, "excepthook", lambda t, v, tb: seen.append(t.__name__))
+    hook = sys.excepthook
+    with _interrupt_handlers():
+        sys.excepthook(Interrupted, Interrupted(signal.SIGTERM), None)
+        sys.excepthook(ValueError, ValueError("a real error"), None)
+    assert seen == ["ValueError"]
+    assert sys.excepthook is hook

@@ -119,6 +119,19 @@ def _quiet_unraisable(previous):
     return hook
 
 
+def _quiet_excepthook(previous):
+    """An ``sys.excepthook`` that drops the :class:`Interrupted` our handler raised inside a Cython function that
+    cannot propagate it (scipy's Sobol sampler, say): Cython prints its traceback through ``sys.excepthook`` before it
+    reports it as unraisable (:func:`_quiet_unraisable`); the interrupt is recorded and re-raised at the next
+    checkpoint. Anything else goes to ``previous``."""
+    def hook(exc_type, exc_value, tb):
+        if isinstance(exc_value, Interrupted):
+            return
+        previous(exc_type, exc_value, tb)
+
+    return hook
+
+
 def _not_after_an_interrupt(record) -> bool:
     """Logging filter: drop what a library logs about the exception our interrupt raised inside it (cvxpy logs
     ``Encountered unexpected exception importing solver ...: ImportError('initialization failed')``)."""
@@ -140,12 +153,13 @@ def _interrupt_handlers():
     solver_log.addFilter(_not_after_an_interrupt)
     old = {s: signal.signal(s, _on_signal) for s in (signal.SIGINT, signal.SIGTERM)}
     hook, sys.unraisablehook = sys.unraisablehook, _quiet_unraisable(sys.unraisablehook)
+    excepthook, sys.excepthook = sys.excepthook, _quiet_excepthook(sys.excepthook)
     try:
         yield
     finally:
         for s, h in old.items():
             signal.signal(s, h)
-        sys.unraisablehook = hook
+        sys.unraisablehook, sys.excepthook = hook, excepthook
         solver_log.removeFilter(_not_after_an_interrupt)
         clear_interrupt()
 
