@@ -213,6 +213,16 @@ def test_scoring_rules():
     assert score(quiet)["false_claim"] and not score(quiet | {"verdict": "inconclusive"})["false_claim"]
 
 
+def _sorts_after(previous: str, name: str) -> bool:
+    """Set ``name`` is declared right after ``previous`` and sorts after every set declared before it (case seeds and
+    the report's order follow the names)."""
+    from sim2real_indep import cases as cs
+
+    order = list(cs.SETS)
+    i = order.index(name)
+    return i > 0 and order[i - 1] == previous and all(s < name for s in order[:i])
+
+
 def _assert_set_layout(set_name: str, seed: int, registry: dict) -> set:
     """A later independent set's layout: 24 cases on seed ``seed``, 8 per arm, 3 geometry-only, 3 mixtures, 30-200
     poses with an effect case of at most 50, six split by time, at least 5 single-kind cases per arm; its kinds are
@@ -3959,7 +3969,7 @@ def test_set_za_cases_kinds_and_determinism():
     from sim2real_indep import cases as cs
     from sim2real_indep import effects_za as eza
 
-    assert "Z" < "ZA" < "ZB" and "ZA" in cs.SETS and all(s < "ZA" for s in cs.SETS if len(s) == 1)
+    assert _sorts_after("Z", "ZA")
     assert cs.case_seed("ZA", 3) == 40_7027 * 1000 + 3 and [c[0] for c in cs.SET_ZA] == [f"ZA{i:02d}" for i in
                                                                                           range(1, 25)]
     _assert_set_module("ZA", 40_7027, eza, ("gear", "duct_lag"))
@@ -4112,7 +4122,7 @@ def test_set_zb_cases_kinds_and_determinism():
     from sim2real_indep import effects_zb as ezb
     from sim2real_indep import effects_zb_body as zbb
 
-    assert "Z" < "ZA" < "ZB" and "ZB" in cs.SETS and all(s < "ZB" for s in cs.SETS if len(s) == 1 or s == "ZA")
+    assert _sorts_after("ZA", "ZB")
     assert cs.case_seed("ZB", 3) == 40_7028 * 1000 + 3 and [c[0] for c in cs.SET_ZB] == [f"ZB{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezb.EFFECTS_ZB) == set(ZB_KINDS)
@@ -4289,8 +4299,7 @@ def test_set_zc_cases_kinds_and_determinism():
     from sim2real_indep import effects_zc_body as zcb
     from sim2real_indep import effects_zc_thermal as zct
 
-    assert "Z" < "ZA" < "ZB" < "ZC" and "ZC" in cs.SETS
-    assert all(s < "ZC" for s in cs.SETS if s not in ("ZC", "ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZB", "ZC")
     assert cs.case_seed("ZC", 3) == 40_7029 * 1000 + 3 and [c[0] for c in cs.SET_ZC] == [f"ZC{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezc.EFFECTS_ZC) == set(ZC_KINDS)
@@ -4472,8 +4481,7 @@ def test_set_zd_cases_kinds_and_determinism():
     from sim2real_indep import effects_zd_body as zdb
     from sim2real_indep import effects_zd_thermal as zdt
 
-    assert "Z" < "ZA" < "ZB" < "ZC" < "ZD" and "ZD" in cs.SETS
-    assert all(s < "ZD" for s in cs.SETS if s not in ("ZD", "ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZC", "ZD")
     assert cs.case_seed("ZD", 3) == 40_7030 * 1000 + 3 and [c[0] for c in cs.SET_ZD] == [f"ZD{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezd.EFFECTS_ZD) == set(ZD_KINDS)
@@ -4631,8 +4639,7 @@ def test_set_ze_cases_kinds_and_determinism():
     from sim2real_indep import effects_ze_body as zeb
     from sim2real_indep import effects_ze_thermal as zet
 
-    assert "ZD" < "ZE" and "ZE" in cs.SETS
-    assert all(s < "ZE" for s in cs.SETS if s not in ("ZE", "ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZD", "ZE")
     assert cs.case_seed("ZE", 3) == 40_7031 * 1000 + 3 and [c[0] for c in cs.SET_ZE] == [f"ZE{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(eze.EFFECTS_ZE) == set(ZE_KINDS)
@@ -4779,8 +4786,7 @@ def test_set_zf_cases_kinds_and_determinism():
     from sim2real_indep import effects_zf_body as zfb
     from sim2real_indep import effects_zf_thermal as zft
 
-    assert "ZE" < "ZF" and "ZF" in cs.SETS and all(s < "ZF" for s in cs.SETS
-                                                   if s not in ("ZF", "ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZE", "ZF")
     assert cs.case_seed("ZF", 3) == 40_7032 * 1000 + 3 and [c[0] for c in cs.SET_ZF] == [f"ZF{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezf.EFFECTS_ZF) == set(ZF_KINDS)
@@ -4920,8 +4926,7 @@ def test_set_zg_cases_kinds_and_determinism():
     from sim2real_indep import effects_zg_body as zgb
     from sim2real_indep import effects_zg_thermal as zgt
 
-    assert "ZF" < "ZG" and "ZG" in cs.SETS and all(s < "ZG" for s in cs.SETS
-                                                   if s not in ("ZG", "ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZF", "ZG")
     assert cs.case_seed("ZG", 3) == 40_7033 * 1000 + 3 and [c[0] for c in cs.SET_ZG] == [f"ZG{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezg.EFFECTS_ZG) == set(ZG_KINDS)
@@ -5067,8 +5072,7 @@ def test_set_zh_cases_kinds_and_determinism():
     from sim2real_indep import effects_zh as ezh
     from sim2real_indep import effects_zh_body as zhb
 
-    assert "ZG" < "ZH" and "ZH" in cs.SETS and all(s < "ZH" for s in cs.SETS
-                                                   if s not in ("ZH", "ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZG", "ZH")
     assert cs.case_seed("ZH", 3) == 40_7034 * 1000 + 3 and [c[0] for c in cs.SET_ZH] == [f"ZH{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezh.EFFECTS_ZH) == set(ZH_KINDS)
@@ -5200,7 +5204,7 @@ def test_set_zi_cases_kinds_and_determinism():
     from sim2real_indep import effects_zi as ezi
     from sim2real_indep import effects_zi_body as zib
 
-    assert "ZH" < "ZI" and "ZI" in cs.SETS and all(s < "ZI" for s in cs.SETS if s not in ("ZI", "ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZH", "ZI")
     assert cs.case_seed("ZI", 3) == 40_7035 * 1000 + 3 and [c[0] for c in cs.SET_ZI] == [f"ZI{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezi.EFFECTS_ZI) == set(ZI_KINDS)
@@ -5342,7 +5346,7 @@ def test_set_zj_cases_kinds_and_determinism():
     from sim2real_indep import effects_zj_body as zjb
     from sim2real_indep import effects_zj_thermal as zjt
 
-    assert "ZI" < "ZJ" and "ZJ" in cs.SETS and all(s < "ZJ" for s in cs.SETS if s not in ("ZJ", "ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZI", "ZJ")
     assert cs.case_seed("ZJ", 3) == 40_7036 * 1000 + 3 and [c[0] for c in cs.SET_ZJ] == [f"ZJ{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezj.EFFECTS_ZJ) == set(ZJ_KINDS)
@@ -5500,7 +5504,7 @@ def test_set_zk_cases_kinds_and_determinism():
     from sim2real_indep import effects_zk as ezk
     from sim2real_indep import effects_zk_body as zkb
 
-    assert "ZJ" < "ZK" and "ZK" in cs.SETS and all(s < "ZK" for s in cs.SETS if s not in ("ZK", "ZL", "ZM", "ZN"))
+    assert _sorts_after("ZJ", "ZK")
     assert cs.case_seed("ZK", 3) == 40_7037 * 1000 + 3 and [c[0] for c in cs.SET_ZK] == [f"ZK{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezk.EFFECTS_ZK) == set(ZK_KINDS)
@@ -5657,7 +5661,7 @@ def test_set_zl_cases_kinds_and_determinism():
     from sim2real_indep import effects_zl as ezl
     from sim2real_indep import effects_zl_body as zlb
 
-    assert "ZK" < "ZL" and "ZL" in cs.SETS and all(s < "ZL" for s in cs.SETS if s not in ("ZL", "ZM", "ZN"))
+    assert _sorts_after("ZK", "ZL")
     assert cs.case_seed("ZL", 3) == 40_7038 * 1000 + 3 and [c[0] for c in cs.SET_ZL] == [f"ZL{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezl.EFFECTS_ZL) == set(ZL_KINDS)
@@ -5820,7 +5824,7 @@ def test_set_zm_cases_kinds_and_determinism():
     from sim2real_indep import effects_zm as ezm
     from sim2real_indep import effects_zm_body as zmb
 
-    assert "ZL" < "ZM" and "ZM" in cs.SETS and all(s < "ZM" for s in cs.SETS if s not in ("ZM", "ZN"))
+    assert _sorts_after("ZL", "ZM")
     assert cs.case_seed("ZM", 3) == 40_7039 * 1000 + 3 and [c[0] for c in cs.SET_ZM] == [f"ZM{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezm.EFFECTS_ZM) == set(ZM_KINDS)
@@ -5982,7 +5986,7 @@ def test_set_zn_cases_kinds_and_determinism():
     from sim2real_indep import effects_zn as ezn
     from sim2real_indep import effects_zn_body as znb
 
-    assert "ZM" < "ZN" and "ZN" in cs.SETS and all(s < "ZN" for s in cs.SETS if s != "ZN")
+    assert _sorts_after("ZM", "ZN")
     assert cs.case_seed("ZN", 3) == 40_7040 * 1000 + 3 and [c[0] for c in cs.SET_ZN] == [f"ZN{i:02d}" for i in
                                                                                           range(1, 25)]
     assert set(ezn.EFFECTS_ZN) == set(ZN_KINDS)
