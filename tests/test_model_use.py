@@ -345,3 +345,73 @@ def test_cli_compensate(backlash, tmp_path):
     with contextlib.redirect_stderr(io.StringIO()) as err:
         rc = main(["compensate", str(tmp_path / "prog.csv"), str(tmp_path / "prog.csv"), "--out", str(tmp_path / "o2")])
     assert rc == 2 and "not valid TOML" in err.getvalue() and not (tmp_path / "o2").exists()
+
+
+def _with_lag(section: dict) -> dict:
+    """``section`` with a thermal history effect appended (two parameters, correlated with the others in the
+    covariance): an effect an exported file records but cannot rebuild."""
+    lag = {"effect": "thermal", "variant": "lag_60min", "columns": ["lag_a", "lag_b"],
+           "fitted_columns": ["lag_a", "lag_b"], "values": [0.01, -0.02]}
+    cov = section["covariance"]
+    n = len(cov["parameters"])
+    C = np.zeros((n + 2, n + 2))
+    C[:n, :n] = cov["matrix"]
+    C[n:, n:] = [[4e-4, 1e-4], [1e-4, 9e-4]]
+    C[n:, :n] = 1e-6 * np.sqrt(np.diag(C)[:n])
+    C[:n, n:] = C[n:, :n].T
+    return {**section, "effects": [*section["effects"], lag], "n_effects": section["n_effects"] + 1,
+            "covariance": {"parameters": [*cov["parameters"], "thermal:lag_a", "thermal:lag_b"],
+                           "matrix": C.tolist()}}
+
+
+def test_a_session_bound_effect_is_left_out_on_request_or_refused(backlash, tmp_path):
+    import types
+
+    import tomli_w
+
+    d, m = backlash
+    sec = identified_section(m)
+    lag = _with_lag(sec)
+    with pytest.raises(TolallocError, match=r"thermal effect \(variant lag_60min\) is driven by the training file's "
+                                            r"history.*leave the effect out \(without=\('thermal',\); tolalloc "
+                                            "compensate --without thermal\\)"):
+        model_from_identified(lag, ROBOT)
+    whole, left = model_from_identified(sec, ROBOT), model_from_identified(lag, ROBOT, ("thermal",))
+    meas = m.measurements(d.test.q, **_kw(d.test))
+    np.testing.assert_array_equal(left.points(meas), whole.points(meas))
+    np.testing.assert_array_equal(left.cov, whole.cov)  # the kept parameters' block
+    assert left.ref["left_out"] == {"thermal": "lag_60min"} and not whole.ref["left_out"]
+    with pytest.raises(TolallocError, match="cannot leave out 'mount_compliance': the file's effects are backlash, "
+                                            "thermal"):
+        model_from_identified(lag, ROBOT, ("thermal", "mount_compliance"))
+
+    data = identified_robot_dict(m)
+    path = tmp_path / "identified.toml"
+    path.write_text(tomli_w.dumps({**data, "identified": lag}))
+    prog = pd.DataFrame(ROBOT.q_to_interface(d.test.q[:3]), columns=[f"q{j}_deg" for j in range(1, 7)])
+    prog[[f"dir{j}" for j in range(1, 7)]] = d.test.direction[:3]
+    with pytest.raises(TolallocError, match="tolalloc compensate --without thermal"):
+        compensate_program(path, prog)
+    res = compensate_program(path, prog, without="thermal")
+    assert res.ok and res.summary()["inputs"]["left_out"] == {"thermal": "lag_60min"}
+    assert "left out of the model: thermal (lag_60min): its part of the error is not compensated" in res.text()
+    np.testing.assert_allclose(res.to_frame()[prog.columns[:6]].to_numpy(),
+                               compensate_program(m, prog).to_frame()[prog.columns[:6]].to_numpy(), atol=1e-9)
+    prog.to_csv(tmp_path / "prog.csv", index=False)
+    with contextlib.redirect_stdout(io.StringIO()) as out:
+        rc = main(["compensate", str(path), str(tmp_path / "prog.csv"), "--out", str(tmp_path / "out"),
+                   "--without", "thermal"])
+    assert rc == 0 and "left out of the model: thermal (lag_60min)" in out.getvalue()
+    with pytest.raises(TolallocError, match="without: leaves effects out of an exported identified.toml"):
+        compensate_program(m, prog, without="thermal")
+    with pytest.raises(TolallocError, match="without: expected an effect name or a sequence of them"):
+        predict_frame(path, d.test.q[:2], without=3)
+
+    # the diagnosis says which of its final model's effects an exported file cannot carry
+    assert MeasurementDiagnosis(d).export_notes() == []
+    bound = dataclasses.replace(m, effects=("thermal", "mount_compliance"),
+                                variants={"thermal": "lag_60min", "mount_compliance": "creep_30min"})
+    notes = MeasurementDiagnosis.export_notes(types.SimpleNamespace(identified_model=lambda: bound))
+    assert len(notes) == 2 and "compensate --without mount_compliance" in notes[1]
+    assert notes[0].startswith("identified.toml: its thermal effect (variant lag_60min) is driven by the training "
+                               "file's history")

@@ -27,6 +27,10 @@ def register(sub) -> None:
                    help="frame of the targets: the robot's base frame (default) or the training file's tracker frame")
     p.add_argument("--tol-mm", type=finite_float, default=1e-6, metavar="MM",
                    help="distance below which a target counts as reached [mm] (default 1e-6)")
+    p.add_argument("--without", action="append", default=[], metavar="EFFECT",
+                   help="leave an effect of the model file out (repeatable): one bound to the training session (a "
+                        "thermal history variant, a creeping mount) can only be used so; its part of the error is then "
+                        "not compensated")
     p.add_argument("--json", metavar="OUT.json", help="write the summary as JSON ('-' for stdout)")
     p.set_defaults(func=cmd_compensate)
 
@@ -38,7 +42,8 @@ def cmd_compensate(args) -> int:
     check_output(args.out, "--out", directory=True)
     check_distinct_outputs([("--out", args.out), ("--json", args.json)],
                            inputs=[("MODEL", args.model), ("PROGRAM", args.program)])
-    res = compensate_program(args.model, args.program, robot=args.robot, frame=args.frame, tol_mm=args.tol_mm)
+    res = compensate_program(args.model, args.program, robot=args.robot, frame=args.frame, tol_mm=args.tol_mm,
+                             without=tuple(args.without))
     res.save(args.out, json=args.json)
     print(res.text())
     return 0 if res.ok else 1

@@ -126,4 +126,6 @@ def cmd_diagnose(args) -> int:
     if args.export_model is not None:
         res.export_model(args.export_model)
     print(res.text())
+    for line in res.export_notes() if args.export_model is not None else ():
+        print(line)
     return 0

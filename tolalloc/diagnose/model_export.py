@@ -19,7 +19,7 @@ rebuild from the exported TOML.
   training file's history (``lag``, ``activity``, ``motor``, ``tilt``, ``held``), a mount creeping under the history
   of its load (``creep_<tau>min``, ``flow``), the seats of its tool changes
   (backlash ``reseat``) and the zeros of its power cycles (transmission ``rehome``) are recorded but cannot be rebuilt
-  from the file.
+  from the file (:func:`session_bound`): such a file is read with the effect left out (``without``) or not at all.
 
 The joint points are the points of the identified axes nearest the nominal joint points; where two nominal joint
 points coincide and the identified axes are skew, the link between them is the axes' small distance (the robot-file
@@ -41,7 +41,7 @@ from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.model_use import IdentifiedModel
 
 __all__ = ["FORMAT", "FRAMES", "check_section", "identified_geometry", "identified_robot_dict", "identified_urdf",
-           "model_from_identified", "HISTORY_VARIANTS", "FIXED_PARAMETERS"]
+           "model_from_identified", "HISTORY_VARIANTS", "FIXED_PARAMETERS", "session_bound"]
 
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
@@ -168,22 +168,28 @@ def _covariance_table(model: IdentifiedModel) -> dict:
             "matrix": [[float(v) for v in row] for row in np.asarray(model.cov, float)]}
 
 
-def _covariance(section: dict, fit) -> np.ndarray | None:
-    """The parameter covariance of the section (None in a file written without one), checked against the rebuilt
-    fit's parameters: the same names in the same order, a symmetric matrix with a non-negative diagonal."""
+def _covariance(section: dict, fit, kept: np.ndarray) -> np.ndarray | None:
+    """The parameter covariance of the section (None in a file written without one), checked against the file's
+    parameters (the rebuilt fit's, with the left-out effects' parameters where ``kept`` is False): the same names in
+    the same order, a symmetric matrix with a non-negative diagonal. Returns the kept parameters' block."""
     table = section.get("covariance")
     if table is None:
         return None
     names = _parameter_names(fit)
-    if not isinstance(table, dict) or table.get("parameters") != names:
+    n_fixed = len(names) - len(fit.effect_names)
+    listed = table.get("parameters") if isinstance(table, dict) else None
+    if not isinstance(listed, list) or len(listed) != n_fixed + len(kept) or \
+            [nm for nm, k in zip(listed, [True] * n_fixed + list(kept)) if k] != names:
         raise TolallocError("identified model: the covariance's parameters are not the model's (registration, target "
                             "offset, geometry and effect parameters, in that order); the file was altered -- export "
                             "the model again.")
-    C = check_finite_array(table.get("matrix"), "identified model: covariance.matrix", (len(names), len(names)))
+    n = len(listed)
+    C = check_finite_array(table.get("matrix"), "identified model: covariance.matrix", (n, n))
     if np.abs(C - C.T).max() > 1e-9 * max(np.abs(C).max(), 1e-300) or np.any(np.diag(C) < 0):
         raise TolallocError("identified model: covariance.matrix is not a covariance (symmetric, non-negative "
                             "variances); the file was altered -- export the model again.")
-    return C
+    rows = np.flatnonzero(np.r_[np.ones(n_fixed, bool), kept])
+    return C[np.ix_(rows, rows)]
 
 
 def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
@@ -216,9 +222,14 @@ def identified_urdf(model: IdentifiedModel, name: str | None = None) -> str:
     return "\n".join(lines)
 
 
-def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
+def model_from_identified(section: dict, robot: Robot, without: tuple = ()) -> IdentifiedModel:
     """The identified model rebuilt from an ``[identified]`` section and the nominal ``robot``, with the parameter
-    covariance where the file holds one (:meth:`~.model_use.IdentifiedModel.point_covariance`)."""
+    covariance where the file holds one (:meth:`~.model_use.IdentifiedModel.point_covariance`).
+
+    ``without``: effects of the file left out of the model (their names; ``ref["left_out"]`` maps them to their
+    variants). An effect bound to the training session (:func:`session_bound`) can only be rebuilt this way; the
+    identified geometry and the other effects keep the values fitted beside it, and the covariance is the kept
+    parameters' block (the left-out effect's part of the error is neither compensated nor in the uncertainty)."""
     if not isinstance(section, dict) or section.get("format") != FORMAT:
         raise TolallocError(f"identified model: expected an [identified] section with format = {FORMAT!r} (written "
                             "by a tolalloc export), got " + (repr(section.get("format")) if isinstance(section, dict)
@@ -241,36 +252,11 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
                                 f"unit is {unit!r} (the file's values are not converted).")
         delta[k] = _number(g.get("value"), f"geometry[{i}].value")
         idx.append(k)
-    effects, variants, columns, keep, names, beta, a = [], {}, {}, [], [], [], 0
-    for e in section.get("effects", []):
-        v = e["variant"]
-        if e["effect"] == "thermal" and v.startswith(HISTORY_VARIANTS):
-            raise TolallocError(f"identified model: its thermal effect (variant {v}) is driven by the training file's "
-                                "history, which the file does not hold; use the diagnosis itself "
-                                "(MeasurementDiagnosis.compensate) for this model.")
-        if e["effect"] == "mount_compliance" and is_creep_variant(v):
-            raise TolallocError(f"identified model: its mount_compliance effect (variant {v}) creeps under the load "
-                                "history of the training file, which the file does not hold; use the diagnosis "
-                                "itself (MeasurementDiagnosis.compensate) for this model.")
-        if e["effect"] == "transmission" and v == "rehome":
-            raise TolallocError("identified model: its transmission effect (variant rehome) holds the joints' zeros in "
-                                "the training session's power cycles, which the next homing does not keep; use the "
-                                "diagnosis itself for that session, or calibrate the zeros after each power-up.")
-        if e["effect"] == "backlash" and v == "reseat":
-            raise TolallocError("identified model: its backlash effect (variant reseat) holds the tool's seats in the "
-                                "training session's tool changes, which a new tool change does not keep; use the "
-                                "diagnosis itself for that session, or diagnose without the tool changes' payload "
-                                "blocks for a model of the mean seat.")
-        effects.append(e["effect"])
-        variants[e["effect"]] = v
-        columns[e["effect"]] = tuple(e["columns"])
-        keep += [a + e["columns"].index(c) for c in e["fitted_columns"]]
-        names += [f"{e['effect']}:{c}" for c in e["fitted_columns"]]
-        beta += list(e["values"])
-        a += len(e["columns"])
+    effects, variants, columns, keep, names, beta, kept = _effects(section, without)
     ref_in = section.get("reference", {})
     ref = {"temperature_c": ref_in.get("temperature_c"), "time0_s": ref_in.get("time0_s"), "history": None,
            "motion": None, "variants": dict(variants),
+           "left_out": {e["effect"]: e["variant"] for e in section.get("effects", []) if e["effect"] in without},
            "gear_ratio": None if "gear_ratio" not in ref_in else np.asarray(ref_in["gear_ratio"], float),
            "load_scale": None if "load_scale_per_joint" not in ref_in else
            np.asarray(ref_in["load_scale_per_joint"], float)}
@@ -278,8 +264,56 @@ def model_from_identified(section: dict, robot: Robot) -> IdentifiedModel:
               np.asarray(section["registration_translation_mm"], float), np.asarray(section["target_offset_mm"], float),
               delta, np.asarray(idx, int), np.asarray(beta, float), np.arange(len(beta)), tuple(names))
     return IdentifiedModel(robot, fit, tuple(effects), variants, columns, np.asarray(keep, int), ref,
-                           np.asarray(section["basis_target_offset_mm"], float), _covariance(section, fit),
+                           np.asarray(section["basis_target_offset_mm"], float), _covariance(section, fit, kept),
                            float(section.get("noise_mm", np.nan)), bool(section.get("payload_in_training", False)))
+
+
+def session_bound(effect: str, variant: str) -> str | None:
+    """Why an effect of an exported model cannot be rebuilt from the file (what it needs of the training session),
+    or None where it can."""
+    if effect == "thermal" and variant.startswith(HISTORY_VARIANTS):
+        return "is driven by the training file's history, which the file does not hold"
+    if effect == "mount_compliance" and is_creep_variant(variant):
+        return "creeps under the load history of the training file, which the file does not hold"
+    if effect == "transmission" and variant == "rehome":
+        return ("holds the joints' zeros in the training session's power cycles, which the next homing does not "
+                "keep (or calibrate the zeros after each power-up)")
+    if effect == "backlash" and variant == "reseat":
+        return ("holds the tool's seats in the training session's tool changes, which a new tool change does not "
+                "keep (or diagnose without the tool changes' payload blocks for a model of the mean seat)")
+    return None
+
+
+def _effects(section: dict, without: tuple) -> tuple:
+    """The section's effects less ``without``: names, variants, columns, fitted-column index, parameter names and
+    values, and the mask of the covariance's effect parameters kept."""
+    listed = [e["effect"] for e in section.get("effects", [])]
+    unknown = [w for w in without if w not in listed]
+    if unknown:
+        raise TolallocError(f"identified model: cannot leave out {', '.join(map(repr, unknown))}: the file's effects "
+                            f"are {', '.join(listed) or 'none'}.")
+    effects, variants, columns, keep, names, beta, kept, a = [], {}, {}, [], [], [], [], 0
+    for e in section.get("effects", []):
+        v, n_fit = e["variant"], len(e["fitted_columns"])
+        if e["effect"] in without:
+            kept += [False] * n_fit
+            continue
+        reason = session_bound(e["effect"], v)
+        if reason is not None:
+            raise TolallocError(f"identified model: its {e['effect']} effect (variant {v}) {reason}; use the "
+                                "diagnosis itself (MeasurementDiagnosis.compensate) for that session, or leave the "
+                                f"effect out (without=('{e['effect']}',); tolalloc compensate --without "
+                                f"{e['effect']}): the identified geometry and the other effects are kept, the "
+                                "effect's part of the error is then not compensated.")
+        effects.append(e["effect"])
+        variants[e["effect"]] = v
+        columns[e["effect"]] = tuple(e["columns"])
+        keep += [a + e["columns"].index(c) for c in e["fitted_columns"]]
+        names += [f"{e['effect']}:{c}" for c in e["fitted_columns"]]
+        beta += list(e["values"])
+        kept += [True] * n_fit
+        a += len(e["columns"])
+    return effects, variants, columns, keep, names, beta, np.asarray(kept, bool)
 
 
 def _number(value, key: str) -> float:

@@ -293,6 +293,17 @@ class MeasurementDiagnosis(JobResult):
             names = export_files(self.identified_model(), group.directory(directory), name)
         return [directory / nm for nm in names]
 
+    def export_notes(self) -> list[str]:
+        """One line per effect of the final model that an exported file cannot carry (it needs this training
+        session), with what to do instead; empty where the file holds the whole model."""
+        from tolalloc.diagnose.model_export import session_bound
+
+        model = self.identified_model()
+        notes = [(e, model.variants[e], session_bound(e, model.variants[e])) for e in model.effects]
+        return [f"identified.toml: its {e} effect (variant {v}) {why}; compensate with this diagnosis, or from the "
+                f"file without it (tolalloc compensate --without {e}; its part of the error is then not compensated)"
+                for e, v, why in notes if why is not None]
+
     def plot_where(self, ax=None):
         """Where the geometric model's training residual lies (the strongest features, per axis, per region); draws
         into ``ax`` (a sequence of Axes, one per panel) or a new figure and returns the Axes (an array)."""

@@ -118,17 +118,18 @@ def _meas(model, prog: dict, q=None):
                               time_s=c.get("time_s"), direction=prog["direction"], wrench=prog.get("wrench"))
 
 
-def predict_frame(model, q, *, frame: str = "base", robot=None, **covariates) -> pd.DataFrame:
+def predict_frame(model, q, *, frame: str = "base", robot=None, without=(), **covariates) -> pd.DataFrame:
     """Predicted target points of ``model`` (a diagnosis, its :class:`~tolalloc.diagnose.model_use.IdentifiedModel`
     or an exported ``identified.toml``, whose nominal robot ``robot`` defaults to the built-in one it names) at ``q``
     (a program as :func:`read_program` takes it; ``covariates``: ``payload_kg``, ``temperature_c``, ``time_s``,
     ``dir`` arrays and ``wrench`` (P, 6) [N, N m], beside or instead of the program's columns): ``row``,
     ``x_mm, y_mm, z_mm`` in ``frame``, and where the model holds its parameter covariance (a diagnosis's, or one read
     from a file exported with it) ``sigma_mm`` (1-sigma of the 3-D prediction error) and ``radius95_mm`` (the radius
-    holding a measurement with 95 % probability, measurement noise included)."""
+    holding a measurement with 95 % probability, measurement noise included); ``without``: effects of a file left out
+    (as :func:`compensate_program`)."""
     from tolalloc.linear.probability import radius_for_prob
 
-    model = _identified(model, robot)[0]
+    model = _identified(model, robot, without)[0]
     prog = read_program(model.robot, q, "q")
     for k, v in covariates.items():
         if v is None:
@@ -177,6 +178,8 @@ class CompensationResult(JobResult):
         lines = [f"robot: {c.robot.name}   {n} targets, frame {c.frame}",
                  f"compensated: {n - bad}   refused: {bad}"
                  + ("" if not len(dq) else f"   largest joint correction {dq.max():.4g} (deg / mm)")]
+        lines += [f"left out of the model: {e} ({v}): its part of the error is not compensated"
+                  for e, v in self.inputs.get("left_out", {}).items()]
         return lines
 
     def to_frame(self) -> pd.DataFrame:
@@ -219,23 +222,45 @@ class CompensationResult(JobResult):
         return plot_corrections(self.compensation, ax=ax)
 
 
-def _identified(model, robot) -> tuple:
-    """``(IdentifiedModel, what it came from)`` of a diagnosis, an identified model or an exported file's path."""
+def _identified(model, robot, without=()) -> tuple:
+    """``(IdentifiedModel, what it came from)`` of a diagnosis, an identified model or an exported file's path (less
+    the effects ``without``, for a file)."""
     from tolalloc.diagnose.model_use import IdentifiedModel
 
+    without = _without(without)
+    if without and not isinstance(model, (str, os.PathLike)):
+        raise ArgumentError("without", "leaves effects out of an exported identified.toml; a diagnosis or an "
+                            "IdentifiedModel holds its training session and is used whole.")
     if isinstance(model, IdentifiedModel):
         return model, "IdentifiedModel"
     if hasattr(model, "identified_model"):
         return model.identified_model(), "MeasurementDiagnosis"
     if isinstance(model, (str, os.PathLike)):
-        return load_identified(model, robot), str(model)
+        return load_identified(model, robot, without=without), str(model)
     raise ArgumentError("model", f"expected a MeasurementDiagnosis, an IdentifiedModel or the path of an exported "
                         f"identified.toml, got {inputs.shown(model)}.")
 
 
-def load_identified(path, robot=None):
+def _without(without) -> tuple:
+    """``without`` (an effect name or several) as a tuple of names."""
+    if isinstance(without, str):
+        return (without,)
+    if without is None:
+        return ()
+    try:
+        names = tuple(without)
+    except TypeError:
+        names = None
+    if names is None or not all(isinstance(w, str) for w in names):
+        raise ArgumentError("without", f"expected an effect name or a sequence of them (e.g. 'thermal'), got "
+                            f"{inputs.shown(without)}.")
+    return names
+
+
+def load_identified(path, robot=None, *, without=()):
     """The identified model of an exported ``identified.toml`` (:mod:`tolalloc.diagnose.model_export`); ``robot``: the
-    nominal robot (default: the built-in robot the file names)."""
+    nominal robot (default: the built-in robot the file names); ``without``: effects of the file left out (one
+    bound to the training session, such as a thermal history variant, can only be read so)."""
     import tomllib
 
     from tolalloc.diagnose.model_export import model_from_identified
@@ -254,7 +279,7 @@ def load_identified(path, robot=None):
         raise InputFileError(f"identified model file {str(path)!r} has no [identified] section; expected the "
                              "identified.toml a diagnosis exported, not a plain robot file.")
     rob = inputs.as_robot(section.get("nominal_robot") if robot is None else robot)
-    model = model_from_identified(section, rob)
+    model = model_from_identified(section, rob, _without(without))
     _check_chain(data, model, path)
     return model
 
@@ -284,7 +309,7 @@ def _check_chain(data: dict, model, path) -> None:
 
 @inputs.job_entry
 def compensate_program(model, program, *, robot=None, frame: str = "base", tol_mm: float = 1e-6,
-                       trust_units: bool = False) -> CompensationResult:
+                       without=(), trust_units: bool = False) -> CompensationResult:
     """Compensate a program with an identified model.
 
     Parameters
@@ -304,6 +329,10 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
         The frame of the targets: the robot's base frame, or the training file's measurement frame.
     tol_mm : float
         Distance below which a target counts as reached.
+    without : str or sequence of str
+        Effects of an exported model file left out (an effect bound to the training session -- a thermal history
+        variant, a creeping mount -- can only be read so): the identified geometry and the other effects are used,
+        the left-out effect's part of the error is not compensated (the result says so).
 
     Returns
     -------
@@ -315,7 +344,7 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
 
     inputs.check_choice(frame, "frame", FRAMES)
     tol_mm = inputs.check_positive(tol_mm, "tol_mm", "mm", "1e-6")
-    ident, source = _identified(model, robot)
+    ident, source = _identified(model, robot, without)
     prog = read_program(ident.robot, program)
     try:
         q0 = prog["q"] if prog["q"] is not None else np.zeros((len(prog["targets_mm"]), ident.robot.n_joints))
@@ -325,7 +354,8 @@ def compensate_program(model, program, *, robot=None, frame: str = "base", tol_m
     shown = program if isinstance(program, (str, os.PathLike)) else type(program).__name__
     record = {"model": source, "program": shown,
               "frame": frame, "tol_mm": tol_mm, "targets": "given" if prog["targets_mm"] is not None else
-              "nominal robot at the program's joint values"}
+              "nominal robot at the program's joint values",
+              **({"left_out": dict(ident.ref["left_out"])} if (ident.ref or {}).get("left_out") else {})}
     return CompensationResult(comp, prog["columns"], json_native({k: str(v) if isinstance(v, os.PathLike) else v
                                                                    for k, v in record.items()}))
 
