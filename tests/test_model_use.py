@@ -144,7 +144,7 @@ def test_unreachable_and_joint_limit_rows_are_refused(backlash):
 def test_missing_covariates_are_named(backlash):
     _, m = backlash
     with pytest.raises(TolallocError, match=r"backlash effect \(variant approach\) cannot be evaluated at these poses: "
-                                            r"the poses given has no dir1..dirN"):
+                                            r"the program has no dir1..dirN"):
         m.measurements(ROBOT.random_q(np.random.default_rng(0), 2))
 
 

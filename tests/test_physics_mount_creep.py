@@ -119,7 +119,10 @@ def test_creep_variants_need_time_in_every_file():
     assert set(creep_variants(t)) <= set(variants("mount_compliance", timed))
     assert "flow" in variants("mount_compliance", timed)
     assert not any(v.startswith(("creep", "flow")) for v in variants("mount_compliance", untimed))
-    assert carry_problem("mount_compliance", "flow", untimed) == "test file: no time_s column"
+    assert carry_problem("mount_compliance", "flow", untimed) == "the test file has no time_s column"
     assert carry_problem("mount_compliance", "tensor", untimed) is None
+    back = Measurements(q, np.zeros((20, 3)), time_s=np.r_[t[:-1], t[0]])
+    assert carry_problem("mount_compliance", "flow", back, "the program").startswith(
+        "the program: time_s is not increasing within the session (pose 20: ")
     with pytest.raises(ValueError, match=r"mount's creep \(variant flow\) needs time_s in every file"):
         effect_basis("mount_compliance", UR10, untimed, T_MM, effect_reference(timed, robot=UR10), "flow")

@@ -120,12 +120,12 @@ class IdentifiedModel:
         meas = Measurements(q, np.zeros((P, 3)), col(temperature_c, "temperature_c"), col(direction, "dir"),
                             col(payload_kg, "payload_kg"), col(time_s, "time_s"), wrench=col(wrench, "wrench"))
         for e in self.effects:
-            why = carry_problem(e, self.variants[e], meas)
+            why = carry_problem(e, self.variants[e], meas, "the program")
             if why is not None:
                 raise TolallocError(f"the identified model's {e} effect (variant {self.variants[e]}) cannot be "
-                                    "evaluated at these poses: " + why.replace("the test file", "the poses given")
-                                    + "; pass the "
-                                    "column (the training file had it).")
+                                    f"evaluated at these poses: {why}; "
+                                    + ("pass the column (the training file had it)." if " has no " in why else
+                                       "give values it can use, as the training file's were."))
         if meas.payload_kg is None and self.payload_in_training and set(self.effects) & set(LOAD_EFFECTS):
             raise TolallocError("payload_kg: the identified model's load effects ("
                                 + ", ".join(e for e in self.effects if e in LOAD_EFFECTS)

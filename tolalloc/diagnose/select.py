@@ -149,26 +149,34 @@ def align_basis(basis, names: tuple):
     return replace(basis, names=tuple(names), B=B)
 
 
-def carry_problem(effect: str, variant: str, test) -> str | None:
-    """Why the test file cannot carry ``effect`` in ``variant`` (a column its basis needs is missing or unusable),
-    or None when it can."""
+def carry_problem(effect: str, variant: str, test, where: str = "the test file") -> str | None:
+    """Why ``test`` (``where``: how a message names it) cannot carry ``effect`` in ``variant`` (a column its basis
+    needs is missing or unusable), or None when it can."""
     if effect == "backlash" and variant in DIRECTION_SIDES and test.direction is None:
-        return "the test file has no dir1..dirN columns (the approach direction of each joint)"
+        return f"{where} has no dir1..dirN columns (the approach direction of each joint)"
     if effect == "thermal":
         parts = variant_parts(variant)
         if any(is_air_variant(v) for v in parts) and test.temperature_c is None:
-            return "the test file has no temperature_c column"
-        if any(v not in ("temperature", "scale") for v in parts) and (why := time_problem(test.time_s)) is not None:
-            return f"test file: {why}"
+            return f"{where} has no temperature_c column"
+        if any(v not in ("temperature", "scale") for v in parts) and (why := _time(test, where)) is not None:
+            return why
         if any(v.startswith("held") for v in parts) and test.payload_kg is None:
-            return "the test file has no payload_kg column (the held part's history)"
+            return f"{where} has no payload_kg column (the held part's history)"
     timed = (effect, variant) in (("backlash", "reseat"), ("transmission", "rehome"))
     if timed or (effect == "mount_compliance" and is_creep_variant(variant)):
-        if (why := time_problem(test.time_s)) is not None:
-            return f"test file: {why}"
+        if (why := _time(test, where)) is not None:
+            return why
         if variant == "reseat" and test.payload_kg is None:
-            return "the test file has no payload_kg column (the tool changes)"
+            return f"{where} has no payload_kg column (the tool changes)"
     return None
+
+
+def _time(test, where: str) -> str | None:
+    """Why the time stamps of ``test`` cannot drive a time-dependent effect, worded for ``where``; or None."""
+    if test.time_s is None:
+        return f"{where} has no time_s column"
+    why = time_problem(test.time_s)
+    return None if why is None else f"{where}: {why}"
 
 
 def _stack(bases: dict, effects) -> tuple:
