@@ -222,6 +222,44 @@ def test_none_names_the_raised_minimum_gain_of_a_small_file():
     assert note in v.reasons
 
 
+def test_none_names_the_level_the_evidence_leader_failed_and_the_poses_it_would_take():
+    """The best candidate, singled out by the model evidence, fails the uncorrected level too: the reason says both
+    levels and how many poses would pass it at the same gain (z ~ sqrt(poses): 4x the poses where z must double)."""
+    from scipy.stats import norm
+
+    ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})
+    p = float(norm.sf(0.5 * (norm.isf(0.01) + norm.ppf(0.8))))  # half the z that passes 0.01 at 80 % power
+    lead = Candidate("a", True, "", 2, 0.1, 0.1, p, 20.0, False, 0.095, "v")
+    st = [Stage((), 0.1, (lead,), None, n_tests=5, leader="a", n_poses=30)]
+    v = verdict_of(ctx, st, _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
+    assert v.reasons[0] == (f"no candidate effect is selected; the best, a (v), fails: its p-value {p:.2g} is not "
+                            "below the level 0.002 (alpha 0.01 over 5 candidates), nor below 0.01, the level of the "
+                            "family the model evidence singles out; with the same gain per pose, about 120 training "
+                            "poses (now 30) would pass it at 80 % power (a rough extrapolation)")
+    other = verdict_of(ctx, [replace(st[0], leader="b")], _ev((), np.zeros((5, 3))), None, (), [], (), "geometric",
+                       None)
+    assert "nor below" not in other.reasons[0] and "training poses (now 30)" in other.reasons[0]
+    small = verdict_of(ctx, [Stage((), 0.1, (replace(lead, gain_pct=1.0),), None, n_tests=5, leader="a", n_poses=30)],
+                       _ev((), np.zeros((5, 3))), None, (), [], (), "geometric", None)
+    assert "training poses" not in small.reasons[0]  # a gain below the margin: no count of poses
+
+
+def test_poses_to_pass_extrapolates_the_signed_rank_test():
+    """Closed form, and the Wilcoxon test's power at the poses it gives (seeded Monte Carlo)."""
+    from scipy.stats import norm, wilcoxon
+
+    from tolalloc.diagnose.scores import poses_to_pass
+
+    assert poses_to_pass(float(norm.sf(1.0)), float(norm.sf(2.0)), 10, power=0.5) == 40
+    assert poses_to_pass(0.6, 0.01, 10) is None and poses_to_pass(0.1, 0.01, 0) is None
+    rng = np.random.default_rng(5)
+    n0, mu, level = 25, 0.3, 0.01
+    p0 = np.median([wilcoxon(rng.normal(mu, 1.0, n0), alternative="greater").pvalue for _ in range(301)])
+    need = poses_to_pass(float(p0), level, n0)
+    power = np.mean([wilcoxon(rng.normal(mu, 1.0, need), alternative="greater").pvalue < level for _ in range(400)])
+    assert 60 < need < 300 and 0.7 <= power <= 0.92, (need, power)
+
+
 def test_reason_lines_do_not_quote_a_model_the_backward_step_removed():
     """Forward: a, then b on top of a; backward: a removed. b's line compares with the geometric model, not a."""
     ctx = SimpleNamespace(train=SimpleNamespace(time_s=None), test=None, bases={})

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.stats import wilcoxon
+from scipy.stats import norm, wilcoxon
 
 __all__ = ["rms", "error_stats", "robust_rms", "clip_level", "paired_pvalue", "Evaluation", "Candidate", "Stage",
            "scheme_text"]
@@ -155,6 +155,8 @@ class Stage:
     selected: str | None
     removed: str | None = None  # backward step (:func:`.stepwise._backward`): the effect dropped from ``base``, if any
     n_tests: int = 1  # candidates tested at this step: the Bonferroni divisor of its significance level
+    leader: str | None = None  # the family the model evidence singles out (:func:`.families.evidence_leader`)
+    n_poses: int = 0  # poses of the out-of-fold residuals the step's p-values are computed on
 
 
 def robust_rms(res: np.ndarray, clip_mm: float) -> float:
@@ -182,3 +184,15 @@ def paired_pvalue(base: np.ndarray, cand: np.ndarray, clip_mm: float) -> float:
     if np.allclose(d, 0):
         return 1.0
     return float(wilcoxon(d, alternative="greater").pvalue)
+
+
+def poses_to_pass(p_value: float, level: float, n_poses: int, power: float = 0.8) -> int | None:
+    """Training poses at which a one-sided test that gave ``p_value`` on ``n_poses`` poses would pass ``level`` with
+    probability ``power``, the per-pose gain unchanged: the test statistic's z grows with the square root of the
+    poses (the signed-rank statistic's normal approximation), ``n (z_level + z_power)^2 / z_observed^2``. None where
+    the observed gain is not positive (``p_value`` >= 0.5) or the inputs are unusable: a rough extrapolation, not a
+    design."""
+    if not (0.0 < p_value < 0.5 and 0.0 < level < 0.5 and n_poses > 0):
+        return None
+    z = float(norm.isf(p_value))
+    return int(np.ceil(n_poses * ((norm.isf(level) + norm.ppf(power)) / z) ** 2 - 1e-9))

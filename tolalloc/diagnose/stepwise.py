@@ -106,13 +106,14 @@ def select_effects(ctx: _Context, base_eval: Evaluation, *, alpha: float = 0.01,
                 evals[ev.label] = cand_evals[e] = ev
             cands.append(cand)
         cands.sort(key=lambda c: (not c.applicable, c.robust_rms_mm if np.isfinite(c.robust_rms_mm) else np.inf))
+        leader = evidence_leader(logml or {})[0] if not chosen else None
         if not chosen and not any(c.significant for c in cands):
-            leader = evidence_leader(logml or {})[0]
             cands = [_evidence_led(c, leader, alpha, min_gain) for c in cands]
         best = next((c for c in cands if c.significant), None)
         if not chosen:
             best = evidence_pick(cands, logml or {}, PRACTICAL_MARGIN) or best
-        stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None, n_tests=m))
+        stages.append(Stage(chosen, current.cv_rms_mm, tuple(cands), best.effect if best else None, n_tests=m,
+                            leader=leader, n_poses=len(current.oof_mm)))
         if best is None:
             break
         chosen = (*chosen, best.effect)

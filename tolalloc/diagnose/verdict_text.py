@@ -8,7 +8,7 @@ import numpy as np
 from tolalloc.physics.thermal import is_clock_variant, is_measurement_variant
 from tolalloc.physics.thermal_history import time_problem
 from tolalloc.diagnose.families import DECISIVE_BAYES_FACTOR, LEADING_BAYES_FACTOR
-from tolalloc.diagnose.scores import scheme_text
+from tolalloc.diagnose.scores import poses_to_pass, scheme_text
 from tolalloc.diagnose.verdict import PRACTICAL_MARGIN, Verdict, tied
 
 __all__ = ["verdict_of", "input_notes", "further_ties"]
@@ -107,10 +107,23 @@ def _best_line(stages: list, alpha: float, min_gain: float) -> str:
     if not c.gain_pct >= 100.0 * min_gain:
         failed.append(f"its clipped gain {c.gain_pct:+.1f} % is below the minimum {100.0 * min_gain:.3g} %")
     if not c.p_value < level:
-        failed.append(f"its p-value {c.p_value:.2g} is not below the level {level:.2g} (alpha {alpha:g} over "
-                      f"{stages[0].n_tests} candidates)")
+        failed.append(_p_line(c, stages[0], alpha, level, min_gain))
     return (f"no candidate effect is selected; the best, {c.effect} ({c.variant}), fails: " + "; ".join(failed)
             if failed else f"no candidate effect is selected; the best is {c.effect}")
+
+
+def _p_line(c, stage, alpha: float, level: float, min_gain: float) -> str:
+    """The p-value criterion the best candidate failed, with the level it was held to and, where its gain would count,
+    roughly how many training poses would make it pass."""
+    lead = c.effect == stage.leader and alpha > level
+    out = (f"its p-value {c.p_value:.2g} is not below the level {level:.2g} (alpha {alpha:g} over {stage.n_tests} "
+           "candidates)" + (f", nor below {alpha:g}, the level of the family the model evidence singles out"
+                            if lead else ""))
+    need = poses_to_pass(c.p_value, alpha if lead else level, stage.n_poses)
+    if need is not None and c.gain_pct >= 100.0 * max(min_gain, PRACTICAL_MARGIN) and need > stage.n_poses:
+        out += (f"; with the same gain per pose, about {need} training poses (now {stage.n_poses}) would pass it at "
+                "80 % power (a rough extrapolation)")
+    return out
 
 
 def _pair_line(c) -> str:
