@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from tolalloc.outputs import write_json
-from tolalloc.workflows.base import JobResult, _old_axes, axes_of
+from tolalloc.workflows.base import AllocationJobResult, _old_axes, axes_of
 
 __all__ = ["ToleranceAllocation"]
 
@@ -17,7 +17,7 @@ ALLOCATION_FILES = ("tolerances.csv", "tolerances.md", "tolerances.tex", "summar
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class ToleranceAllocation(JobResult):
+class ToleranceAllocation(AllocationJobResult):
     """Tolerances allocated for a requirement over a region, with their checks.
 
     Attributes
@@ -68,20 +68,6 @@ class ToleranceAllocation(JobResult):
     built: object = None
 
     # ------------------------------------------------------------------ the headline numbers
-    def reproduce_command(self) -> tuple:
-        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
-        from tolalloc.workflows.reproduce import allocation_command
-
-        return allocation_command(self)
-
-    @property
-    def robot(self):
-        return self.result.problem.model.robot
-
-    @property
-    def problem(self):
-        return self.result.problem
-
     @property
     def design(self):
         """The design that will be built (verified, covered): the standard one, or the continuous one."""

@@ -27,7 +27,7 @@ from tolalloc.exceptions import ArgumentError, TolallocError
 from tolalloc.outputs import check_distinct_outputs, check_output, output_group, write_json
 from tolalloc.workflows.checks import check_flag
 
-__all__ = ["JobResult", "html_card", "format_labels", "compact_frame", "axes_of", "CARD_ROWS"]
+__all__ = ["JobResult", "AllocationJobResult", "html_card", "format_labels", "compact_frame", "axes_of", "CARD_ROWS"]
 
 #: rows of the key table in the HTML card at most (the rest: ``to_frame()``)
 CARD_ROWS = 25
@@ -198,3 +198,22 @@ class JobResult:
 def format_labels(labels: dict) -> str:
     """Model options for a one-line header: ``sigma_set=table2, link_mode=consistent, ...``."""
     return ", ".join(f"{k}={v}" for k, v in labels.items() if v is not None)
+
+
+class AllocationJobResult(JobResult):
+    """Base of the two allocation results (:class:`~.allocation_result.ToleranceAllocation`,
+    :class:`~.calibrated.CalibratedToleranceAllocation`): both hold the allocation's ``result`` (its ``problem``)."""
+
+    def reproduce_command(self) -> tuple:
+        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
+        from tolalloc.workflows.reproduce import allocation_command
+
+        return allocation_command(self)
+
+    @property
+    def robot(self):
+        return self.result.problem.model.robot
+
+    @property
+    def problem(self):
+        return self.result.problem

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tolalloc.outputs import write_json
-from tolalloc.workflows.base import JobResult
+from tolalloc.workflows.base import AllocationJobResult
 
 __all__ = ["CalibratedToleranceAllocation", "calibrated_allocation", "split_from_costs", "N_ROBOTS_RANGE",
            "PLAN_IN_MEMORY"]
@@ -87,7 +87,7 @@ def calibrated_allocation(model, label, box, q, plan, plan_source: str, *, costs
 
 
 @dataclass(frozen=True, eq=False, repr=False)
-class CalibratedToleranceAllocation(JobResult):
+class CalibratedToleranceAllocation(AllocationJobResult):
     """Tolerances for the accuracy after a calibration plan: per parameter 'calibrated away', 'loose (at t_max)' or
     'must be held'.
 
@@ -125,19 +125,6 @@ class CalibratedToleranceAllocation(JobResult):
     inputs: dict = field(default_factory=dict)
     standard: object = None
 
-    def reproduce_command(self) -> tuple:
-        """``(command line, Python call, notes)`` that reproduce this result (:mod:`tolalloc.workflows.reproduce`)."""
-        from tolalloc.workflows.reproduce import allocation_command
-
-        return allocation_command(self)
-
-    @property
-    def robot(self):
-        return self.result.problem.model.robot
-
-    @property
-    def problem(self):
-        return self.result.problem
 
     @property
     def plan_file(self) -> str | None:
