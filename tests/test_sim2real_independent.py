@@ -6140,3 +6140,204 @@ def test_set_zn_every_kind_lies_in_its_true_structure_and_known_answers():
     kv = np.cos(fp["gamma"]) ** 2 + fp["rho"] * np.sin(fp["gamma"]) ** 2
     sink = 1000.0 * zmb.total_weight(ctx) / (4 * kv)
     assert Ff == pytest.approx(np.outer(-sink, [0, 0, 1.0]), abs=1e-9 * sink.max())
+
+
+# --------------------------------------------------------------------------------------------------------- set ZO
+ZO_KINDS = ("gravity_table", "entrained_air", "differential_lash", "tensioner_stop", "race_waviness", "lever_cam_fit",
+            "deck_cupping", "closed_cell_pads", "cross_spring_pivot", "qzs_mount", "ultrasonic_ram", "dry_ice_nozzle")
+
+
+def test_set_zo_cases_kinds_and_determinism():
+    """Set ZO (the fifteenth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZN; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZO kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; a
+    new part for each block, hours of blocks with pauses (the deck's washdown, the ultrasonic sensor's drifting and
+    cycling air), production between the blocks (the dry-ice nozzle)."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zo as ezo
+    from sim2real_indep import effects_zo_body as zob
+    from sim2real_indep import effects_zo_thermal as zot
+
+    assert _sorts_after("ZN", "ZO")
+    assert cs.case_seed("ZO", 3) == 40_7041 * 1000 + 3 and [c[0] for c in cs.SET_ZO] == [f"ZO{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezo.EFFECTS_ZO) == set(ZO_KINDS)
+    _assert_set_module("ZO", 40_7041, ezo, ("gear", "hygro_gear", "radiant_tube_heater", "wire_rope_isolators"))
+    for name in ("effects_zo", "effects_zo_joint", "effects_zo_body", "effects_zo_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zo" in _imports(STUDY / "generator.py")
+    assert ezo.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezo.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezo.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                steps = np.array(opts((kind,), robot)["payload_steps"])
+                assert len(steps) >= 3 and kg[robot][0] <= steps.min() and steps.max() <= kg[robot][1]
+                assert len(steps) == opts((kind,), robot)["blocks"]
+        for kind, ((lo, hi), gap, pause) in ezo.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        air = opts(("ultrasonic_ram",), "tool_changer")["air"]
+        assert 2.0 <= abs(air["drift_K"]) <= 5.0 and 0.3 <= air["cycle_K"] <= 1.0 and 40.0 <= air["period_min"] <= 120.0
+        plain = opts(("gravity_table", "race_waviness", "lever_cam_fit", "qzs_mount"))
+        assert plain == {"blocks": 1, "gap_kind": "none"}
+    probe, com = np.array([1.0, 2.0, 3.0]), np.array([30.0, -40.0, 0.0])
+    assert ezo.probe_hook(("gear",), probe) is probe and ezo.payload_hook(("gear",), com) is com
+    assert ezo.probe_hook(("cross_spring_pivot",), probe) == pytest.approx(probe + [0, 0, zob.CS_TARGET_MM])
+    assert ezo.probe_hook(("dry_ice_nozzle",), probe) == pytest.approx(probe + [0, 0, zot.NOZZLE_MM])
+    assert ezo.payload_hook(("cross_spring_pivot",), com) == pytest.approx([15.0, -20.0,
+                                                                            zob.CS_MM + 40.0 + 60.0 * 50 / 80])
+    _assert_regenerates("ZO", max_effect_poses=50)
+
+
+def test_set_zo_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZO kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: the gravity table's residual
+    (none at its nodes), the trapped air's law (linear without air, stiffening with it), the differential's trains (a
+    pure pitch torque puts both on its flank; a pitch move drives both), the tensioner's relay (on its stop beyond the
+    upper threshold, at rest below the lower), the raceway's orders (Z f_c - Z +- 1, non-integer), the cam's residual
+    (the first-order error of the exact lever law, equioscillating), Fick's cupping (none at the washdown, the early
+    square-root law, a target at the base only rises), the foam's law (the design strain under the lightest load, linear
+    without gas), the cross-spring pivot (the plain tilt without load stiffening), the QZS isolator's cubic (no move at
+    the design attitude), the ultrasonic sensor's lag (none in still air, rate x tau on a ramp) and the nozzle's chill
+    (none without production, along the tool's z)."""
+    from dataclasses import replace
+
+    from sim2real_indep import effects_zm_body as zmb
+    from sim2real_indep import effects_zo_body as zob
+    from sim2real_indep import effects_zo_joint as zoj
+    from sim2real_indep import effects_zo_thermal as zot
+
+    amps = {"gravity_table": "c", "entrained_air": "c", "differential_lash": "b2", "tensioner_stop": "c",
+            "race_waviness": "amp", "lever_cam_fit": "amp", "deck_cupping": "c", "closed_cell_pads": "t_mm",
+            "cross_spring_pivot": "inv_K0", "qzs_mount": "x_ref", "ultrasonic_ram": "amp", "dry_ice_nozzle": "amp"}
+    specs = {"ur10": ("tensioner_stop", "race_waviness", "deck_cupping", "qzs_mount", "dry_ice_nozzle",
+                      "cross_spring_pivot", "closed_cell_pads"),
+             "tool_changer": ("entrained_air", "differential_lash", "lever_cam_fit", "ultrasonic_ram"),
+             "kr16_like": ("gravity_table", "differential_lash", "tensioner_stop")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 41)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-2, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    # tensioner: a relay in sigma x the belt's torque -- on its stop beyond hi, at rest below lo (poses at rest)
+    tp = P["tensioner_stop"]
+    bends = zoj.wrist_bends(ctx.chain)
+    assert bends == [3, 4]
+    for k, j in enumerate(bends):
+        st = zoj.tensioner_state(tp, ctx, j, k)
+        x = tp["sigma"][k] * ctx.loads[:, j]
+        assert set(np.unique(st)) <= {0.0, 1.0}
+        assert np.all(st[x > tp["hi"][k]] == 1.0) and np.all(st[x < tp["lo"][k] - tp["fric"][k]] == 0.0)
+    # raceway waviness: sin / cos at the orders Z f_c - Z -+ 1 per turn, non-integer
+    wp = P["race_waviness"]
+    nu = zoj.wave_orders(wp)
+    assert nu[0] - nu[1] == pytest.approx(2.0) and abs(nu[0] - round(nu[0])) > 1e-3
+    F = zoj.wave_features(wp, ctx, None)
+    J0 = ctx.jac[:, :, 0]
+    proj = np.einsum("pi,pi->p", F[0], J0) / np.einsum("pi,pi->p", J0, J0)
+    assert proj == pytest.approx(np.sin(nu[0] * s.q[:, 0]))
+    # deck cupping: none at the washdown, the early square-root law 24 / pi^1.5 sqrt(t / tau), a target at the base
+    # only rises
+    cp = P["deck_cupping"]
+    at = lambda t: zob.cup_curvature({**cp, "t_w": 0.0}, replace(s, time_s=s.time_s[0] + np.array(t)))
+    k = at([0.0, 1e-3 * cp["tau_d"], 1e3 * cp["tau_d"]])
+    assert k[0] == pytest.approx(0.0, abs=1e-9) and k[2] == pytest.approx(0.0, abs=1e-9)
+    assert k[1] == pytest.approx(24 / np.pi ** 1.5 * np.sqrt(1e-3), rel=0.05)
+    base = replace(ctx)
+    base.__dict__["target"] = np.zeros_like(ctx.target)
+    Fc = zob.cup_features(cp, base, None)[0]
+    assert np.abs(Fc[:, :2]).max() < 1e-12 and np.abs(Fc[:, 2]).max() > 0
+    # closed-cell pads: the design strain under the lightest quarter weight; linear without the gas
+    pp = P["closed_cell_pads"]
+    assert zob.foam_strain(pp, np.array([pp["W4"]]))[0] == pytest.approx(pp["eps0"], rel=1e-4)
+    R, xy = zmb.mount_loads(pp, ctx)
+    lin = {**pp, "g": 0.0}
+    assert zob.pads_features(lin, ctx, None) == pytest.approx(
+        zmb._plate(lin, ctx, np.maximum(R, 0) / pp["W4"] * pp["eps0"], xy), rel=1e-4, abs=1e-9)
+    # cross-spring pivot: without load stiffening, the plain tilt M_x / K0 about the tool's x
+    xp = P["cross_spring_pivot"]
+    _, M = zmb.part_loads(ctx, zob.CS_MM)
+    plain = zmb._to_world(ctx, np.cross(M * [1.0, 0.0, 0.0], ctx.probe_mm - [0.0, 0.0, zob.CS_MM]))
+    assert zob.cross_features({**xp, "F_c": 1e30}, ctx, None)[0] == pytest.approx(plain)
+    # QZS isolator: Cardano's root solves the cubic; no move with the tool pointing straight down
+    qp = P["qzs_mount"]
+    y = np.linspace(-2.0, 0.0, 9)
+    xi = zob.qzs_stroke(qp["eta"], y)
+    assert qp["eta"] * xi + xi ** 3 == pytest.approx(y, abs=1e-12) and xi[-1] == pytest.approx(0.0, abs=1e-12)
+    # dry-ice nozzle: no production, no chill; the move along the tool's z
+    ip = P["dry_ice_nozzle"]
+    idle = replace(s, gap_s=np.minimum(s.gap_s, 0.0))
+    node = zot.ice_node(ip, s)
+    assert np.abs(zot.ice_node(ip, idle)).max() == 0.0 and node.max() > 0 and node.max() <= ip["duty"]
+    Fi = zot.ice_features(ip, ctx, None)[0]
+    assert np.abs(np.cross(Fi, zob.tool_frame(ctx)[:, :, 2])).max() < 1e-9
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # trapped air: linear in the load without air; stiffening (a falling slope) with it
+    ap = P["entrained_air"]
+    tau = ctx.loads[:, zoj.AIR_J[0]]
+    big = np.abs(tau) / ap["tau_s"][0] * ap["ps_bar"] > zoj.P_MIN_BAR
+    g0 = zoj.air_yield({**ap, "x0": 0.0}, ctx)[:, 0]
+    assert g0[big] == pytest.approx(tau[big] / ap["tau_s"][0])
+    r = np.linspace(0.05, 1.0, 50)
+    lo = replace(ctx)
+    lo.__dict__["loads"] = np.zeros((50, ctx.chain.n))
+    lo.__dict__["loads"][:, zoj.AIR_J[0]] = r * ap["tau_s"][0]
+    g = zoj.air_yield(ap, lo)[:, 0]
+    assert np.all(np.diff(g) > 0) and np.all(np.diff(np.diff(g) / np.diff(r)) < 0)
+    # differential: a pure pitch torque beyond both trains' friction puts both on its flank; a pitch move drives both
+    dp = P["differential_lash"]
+    pure = replace(ctx)
+    pure.__dict__["loads"] = ctx.loads * [1, 1, 1, 1, 1, 0]
+    fl = zoj.diff_flanks(dp, pure)
+    tp_ = ctx.loads[:, zoj.PITCH_J]
+    both = np.abs(tp_ / 2) > max(dp["f"])
+    assert fl[both, 0] == pytest.approx(np.sign(tp_[both])) and fl[both, 1] == pytest.approx(np.sign(tp_[both]))
+    m = zoj.train_motion(ctx, dp["i"])
+    dq = np.diff(s.q, axis=0)
+    only5 = np.flatnonzero((dq[:, zoj.ROLL_J] == 0) & (dq[:, zoj.PITCH_J] != 0)) + 1
+    assert m[only5, 0] == pytest.approx(np.sign(dq[only5 - 1, zoj.PITCH_J])) and (m[only5, 0] == m[only5, 1]).all()
+    # cam: the first-order error agrees with the exact lever law's; the cubic's residual equioscillates
+    gp = P["lever_cam_fit"]
+    for geo, j in zip(gp["geo"], zoj.CAM_J):
+        lo_, hi_ = ctx.chain.lower[j], ctx.chain.upper[j]
+        qs = np.linspace(lo_, hi_, 400)
+        e = zoj.cam_residual(geo, qs, lo_, hi_)
+        assert np.count_nonzero(np.diff(np.sign(e))) >= 4
+        r1, r2, psi0 = geo["r1"], geo["r2"], geo["psi0"]
+        L = np.sqrt(r1 ** 2 + r2 ** 2 - 2 * r1 * r2 * np.cos(psi0 + qs))
+        target = L + e * r1 * r2 * np.sin(psi0 + qs) / L
+        psi = np.arccos((r1 ** 2 + r2 ** 2 - target ** 2) / (2 * r1 * r2))
+        assert psi - psi0 - qs == pytest.approx(e, rel=0.02, abs=1e-3 * np.abs(e).max())
+    # ultrasonic sensor: no lag in still air; on a steady ramp the lag settles to rate x tau
+    up = P["ultrasonic_ram"]
+    still = replace(s, air={**s.air, "drift_K": 0.0, "cycle_K": 0.0})
+    assert np.abs(zot.sensor_lag(up, still)).max() < 1e-12
+    ramp = replace(s, air={**s.air, "cycle_K": 0.0})
+    span = s.time_s[-1] - s.time_s[0]
+    assert span > 6 * up["tau"]
+    assert zot.sensor_lag(up, ramp)[-1] == pytest.approx(s.air["drift_K"] / span * up["tau"], rel=0.02)
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # gravity table: no residual at the table's nodes, some between them
+    tb = P["gravity_table"]
+    h = np.deg2rad(tb["h_deg"])
+    q = s.q.copy()
+    for j in zoj.TABLE_J:
+        q[:, j] = ctx.chain.lower[j] + np.round((q[:, j] - ctx.chain.lower[j]) / h) * h
+    assert np.abs(zoj.table_residual(tb, _ctx_at(ctx, q))).max() < 1e-9 * np.abs(zoj.link_gravity(ctx, s.q)).max()
+    assert np.abs(zoj.table_residual(tb, ctx)).max() > 1e-3 * np.abs(zoj.link_gravity(ctx, s.q)).max()

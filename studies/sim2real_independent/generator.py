@@ -66,6 +66,7 @@ from sim2real_indep import effects_zk as ezk
 from sim2real_indep import effects_zl as ezl
 from sim2real_indep import effects_zm as ezm
 from sim2real_indep import effects_zn as ezn
+from sim2real_indep import effects_zo as ezo
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -123,6 +124,7 @@ EFFECTS = {
     **ezl.EFFECTS_ZL,  # set ZL's new kinds
     **ezm.EFFECTS_ZM,  # set ZM's new kinds
     **ezn.EFFECTS_ZN,  # set ZN's new kinds
+    **ezo.EFFECTS_ZO,  # set ZO's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -132,7 +134,8 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ez.AFTER_TRACKER | eza.AFTER_TRACKER | ezb.AFTER_TRACKER | ezc.AFTER_TRACKER
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
                  | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER
-                 | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER | ezm.AFTER_TRACKER | ezn.AFTER_TRACKER)
+                 | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER | ezm.AFTER_TRACKER | ezn.AFTER_TRACKER
+                 | ezo.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -240,7 +243,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezk.session_options(robot_key, physics, rng, opts)  # set ZK (no draws without a set-ZK kind)
     opts = ezl.session_options(robot_key, physics, rng, opts)  # set ZL (no draws without a set-ZL kind)
     opts = ezm.session_options(robot_key, physics, rng, opts)  # set ZM (no draws without a set-ZM kind)
-    return ezn.session_options(robot_key, physics, rng, opts)  # set ZN (no draws without a set-ZN kind)
+    opts = ezn.session_options(robot_key, physics, rng, opts)  # set ZN (no draws without a set-ZN kind)
+    return ezo.session_options(robot_key, physics, rng, opts)  # set ZO (no draws without a set-ZO kind)
 
 
 def _tracker(rng):
@@ -298,6 +302,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezl.probe_hook(physics, probe)  # set ZL's F/T sensor's tool, part between the pads (no draws)
     probe = ezm.probe_hook(physics, probe)  # set ZM's part on the mandrel, between the jaws (no draws)
     probe = ezn.probe_hook(physics, probe)  # set ZN's part on the dovetail slide, below the bellows (no draws)
+    probe = ezo.probe_hook(physics, probe)  # set ZO's tool beyond the cross-spring pivot, dry-ice nozzle (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -312,6 +317,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = ezl.payload_hook(physics, payload_com)  # set ZL's sensor's tool, pads (no draws)
     payload_com = ezm.payload_hook(physics, payload_com)  # set ZM's mandrel, jaws (no draws)
     payload_com = ezn.payload_hook(physics, payload_com)  # set ZN's slide, bellows (no draws)
+    payload_com = ezo.payload_hook(physics, payload_com)  # set ZO's part below the cross-spring pivot (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

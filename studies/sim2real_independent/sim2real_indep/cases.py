@@ -24,7 +24,9 @@ arm) a thirty-second (:mod:`effects_zf`), set ZG (24 cases, 8 per arm) a thirty-
 (:mod:`effects_zi`), set ZJ (24 cases, 8 per arm) a thirty-sixth (:mod:`effects_zj`),
 set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`),
 set ZL (24 cases, 8 per arm) a thirty-eighth (:mod:`effects_zl`),
-set ZM (24 cases, 8 per arm) a thirty-ninth (:mod:`effects_zm`).
+set ZM (24 cases, 8 per arm) a thirty-ninth (:mod:`effects_zm`),
+set ZN (24 cases, 8 per arm) a fortieth (:mod:`effects_zn`),
+set ZO (24 cases, 8 per arm) a forty-first (:mod:`effects_zo`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -51,6 +53,7 @@ SEED_ZK = 40_7037
 SEED_ZL = 40_7038
 SEED_ZM = 40_7039
 SEED_ZN = 40_7040
+SEED_ZO = 40_7041
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1939,7 +1942,56 @@ SET_ZN = [
     ("ZN24", "kr16_like", ("wire_rope_isolators", "bellows_coupling"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM, ZN)
+#: Set ZO (seed 40_7041): twelve new kinds, two per family (sim2real_indep.effects_zo; physics and sources in
+#: effects_zo_joint, effects_zo_body, effects_zo_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth (gains 32.1 % on ZO09 and 32.2 % on ZO04 to 89.4 % on ZO10); the closest rivals ZO19's joint model at
+#: 1.30x, ZO12's link model at 1.37x, ZO04's thermal model at 1.38x and ZO09's transmission model at 1.46x; a mixture
+#: component's removal costs 53.6 % at least (ZO24's QZS isolator), the geometry-only cases none. Changed after trial
+#: draws: the tabulated gravity first on ur10 too (ZO01, 6.5 %: its light upper arm and forearm, drawn at 0.26 mm
+#: against 0.05 mm of noise, left a residual of the noise's size), now on kr16_like only (ZO17), ur10's ZO01 taking the
+#: closed-cell pads; the entrained air first in axes 2 and 3's cylinders with both chambers live (ZO09 absorbed at 1.3
+#: %: one-signed, smooth gravity torques that the geometry takes up; the mixture ZO16 lost 3.5 % without it), then with
+#: their loaded chambers alone holding the load (still 7.7 %, ambiguous; then 15.2 % with the ram's cylinder added), now
+#: the telescopic ram's cylinder alone, whose axial load changes side as the ram tips (the long cylinder where air
+#: gathers); the dry-ice nozzle first on a 400 mm bracket chilled 15-35 K (ur10's ZO06 at 20.0 % with the joint model at
+#: 1.23x, kr16_like's ZO22 13.6 %), now on a 600 mm lance chilled 25-45 K; the deck cupping first with the washdown
+#: 10-40 min before the session and pauses of 15-45 min (ZO04, 23.3 %, the thermal model at 1.25x: a short session on
+#: the flat part of the square-root law), now 3-10 min (the session at the shift's end) and pauses of 20-60 min;
+#: supports nearer the deck's centre were tried and dropped (ZO04 20.7 %, the backlash model at 1.26x). No seed or pose
+#: count was changed to fix a label. A trial on the seed + 1 (case seeds + 1000003): every effect case its truth, 18 of
+#: 21 at the 20 % / 1.25x bar; below it the QZS isolator on ur10 (ZO05, 45 poses, 14.2 %, the thermal model at 1.16x) --
+#: the weakest kind there --, the foam pads on tool_changer (ZO12, 22.2 %, the link model at 1.14x) and the gravity
+#: table (ZO17, the link model at 1.20x); the dry-ice nozzle on kr16_like just above it (ZO22, 20.5 %, the joint model
+#: at 1.252x).
+SET_ZO = [
+    ("ZO01", "ur10", ("closed_cell_pads",), 140, "random"),
+    ("ZO02", "ur10", ("tensioner_stop",), 140, "random"),
+    ("ZO03", "ur10", ("race_waviness",), 130, "random"),
+    ("ZO04", "ur10", ("deck_cupping",), 150, "time"),
+    ("ZO05", "ur10", ("qzs_mount",), 45, "random"),
+    ("ZO06", "ur10", ("dry_ice_nozzle",), 150, "time"),
+    ("ZO07", "ur10", (), 60, "random"),
+    ("ZO08", "ur10", ("cross_spring_pivot", "deck_cupping"), 180, "time"),
+    ("ZO09", "tool_changer", ("entrained_air",), 130, "random"),
+    ("ZO10", "tool_changer", ("differential_lash",), 140, "random"),
+    ("ZO11", "tool_changer", ("lever_cam_fit",), 120, "random"),
+    ("ZO12", "tool_changer", ("closed_cell_pads",), 140, "random"),
+    ("ZO13", "tool_changer", ("cross_spring_pivot",), 130, "random"),
+    ("ZO14", "tool_changer", ("ultrasonic_ram",), 160, "time"),
+    ("ZO15", "tool_changer", (), 40, "random"),
+    ("ZO16", "tool_changer", ("entrained_air", "ultrasonic_ram"), 190, "time"),
+    ("ZO17", "kr16_like", ("gravity_table",), 130, "random"),
+    ("ZO18", "kr16_like", ("differential_lash",), 140, "random"),
+    ("ZO19", "kr16_like", ("closed_cell_pads",), 130, "random"),
+    ("ZO20", "kr16_like", ("cross_spring_pivot",), 120, "random"),
+    ("ZO21", "kr16_like", ("tensioner_stop",), 130, "random"),
+    ("ZO22", "kr16_like", ("dry_ice_nozzle",), 150, "time"),
+    ("ZO23", "kr16_like", (), 100, "random"),
+    ("ZO24", "kr16_like", ("race_waviness", "qzs_mount"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM, ZN, ZO)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -1951,7 +2003,7 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
         "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
         "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL), "ZM": (SET_ZM, SEED_ZM),
-        "ZN": (SET_ZN, SEED_ZN)}
+        "ZN": (SET_ZN, SEED_ZN), "ZO": (SET_ZO, SEED_ZO)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -541,7 +541,23 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "load_holding_valve": "backlash", "roll_endplay": "backlash", "rope_lay": "transmission",
           "magnetostrictive_rod": "transmission", "wire_rope_isolators": "mount_compliance",
           "focalised_mounts": "mount_compliance", "dovetail_gib": "link_deflection",
-          "bellows_coupling": "link_deflection", "radiant_tube_heater": "thermal", "dragging_brake": "thermal"}
+          "bellows_coupling": "link_deflection", "radiant_tube_heater": "thermal", "dragging_brake": "thermal",
+          # set ZO (sim2real_indep.effects_zo; gravity_table, a soft servo's gravity feed-forward read from a coarse
+          # table, and entrained_air, the telescopic ram's cylinder softened by the air in its loaded chamber, scored
+          # as joint compliance; differential_lash, a differential wrist's two side-gear trains' lost motions, and
+          # tensioner_stop, a wrist belt's tensioner arm pushed to its stop when its span is the tight one, as
+          # backlash; race_waviness, axis 1's encoder read on a wavy bearing raceway, and lever_cam_fit, hydraulic
+          # axes driven through a fitted cam polynomial, as transmission; deck_cupping, a cart deck cupping as its
+          # underside takes up moisture, and closed_cell_pads, the stand on gas-stiffened foam pads, as mount
+          # compliance; cross_spring_pivot, a tool on a load-stiffened flexure pivot, and qzs_mount, a sensor on a
+          # quasi-zero-stiffness isolator, as link deflection; ultrasonic_ram, the telescopic stage read by an
+          # ultrasonic sensor whose compensation lags the air (a reading following the air, as set C's tracker scale),
+          # and dry_ice_nozzle, a tool bracket chilled by dry-ice blasting, as thermal)
+          "gravity_table": "joint_compliance", "entrained_air": "joint_compliance",
+          "differential_lash": "backlash", "tensioner_stop": "backlash", "race_waviness": "transmission",
+          "lever_cam_fit": "transmission", "deck_cupping": "mount_compliance",
+          "closed_cell_pads": "mount_compliance", "cross_spring_pivot": "link_deflection",
+          "qzs_mount": "link_deflection", "ultrasonic_ram": "thermal", "dry_ice_nozzle": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
