@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; set ZN: `--set ZN`; all forty: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; set ZN: `--set ZN`; set ZO: `--set ZO`; all forty-one: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -572,6 +572,20 @@ lagging each part change (ZN02, `none`), a capstan rope's strand crowns repeatin
 poses of kr16_like (ZN17, `none`; right on tool_changer). The helper names hygro_gear, payload_estimator and
 radiant_tube_heater as the kinds nearest to earlier ones (a new cause, a familiar response law), and on a second seed
 one case falls below the oracle's bars (ZN02).
+
+**Set ZO** (24 cases, seed 40_7041) is a forty-first independent test set of twelve new kinds
+(`sim2real_indep/effects_zo*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZN, ran no git command and did not run the diagnosis. It was
+run once, on the code as it stood after set ZN had been judged (no verdict of the diagnosis changed since; the
+session's changes were to its reason texts and to reading exported models): 19/24 strict, 20 lenient, no false claim,
+median final / oracle RMS 1.38; right on 10 of 14 effect cases where the true family's generic model helps, 6 of 7
+where it does not. Its misses: a wrist belt's tensioner arm swinging to its stop when its span is the tight one (ZO02
+on ur10, named joint compliance; ZO21 on kr16_like, `none`), a cart's fibreboard deck cupping as its underside takes up
+the washdown's water (ZO04, named thermal: the humidity is not logged, and a support drifting with the time alone
+ties with a warm-up), the tool changer's telescopic stage read by an ultrasonic sensor whose temperature
+compensation lags the air (ZO14, `none`), and the stand on closed-cell foam pads on tool_changer (ZO12, `ambiguous`
+between mount compliance, link deflection and transmission; lenient; right on ur10 and kr16_like). On a second seed
+three cases fall below the oracle's bars (ZO05, ZO12, ZO17) and one sits at them (ZO22).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1276,6 +1290,24 @@ comment):
 | bellows_coupling | link_deflection | the tool on a metal bellows coupling stretching along the tool axis and tilting in the bellows' ratio (ur10, kr16_like) | EJMA Standards, 10th ed. (2015) |
 | radiant_tube_heater | thermal | roof radiant tube heaters switched by the hall's thermostat bowing the tubes from above (ur10) | EN 416-1; ASHRAE HVAC Systems and Equipment ch. 16; Boley & Weiner (1960) |
 | dragging_brake | thermal | axis 2's holding brake dragging, its friction heat following the axis' speed (tool_changer, kr16_like) | Incropera & DeWitt ch. 5; brake makers' manuals as recalled |
+
+Set ZO's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZO
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| gravity_table | joint_compliance | a soft servo's gravity feed-forward read from a coarse (q2, q3) table and interpolated bilinearly (kr16_like) | Raibert & Horn, The Industrial Robot 5 (1978); de Boor, *A Practical Guide to Splines* (1978) ch. 2 |
+| entrained_air | joint_compliance | the telescopic ram's loaded cylinder chamber softened by entrained air following the gas law (tool_changer) | Merritt, *Hydraulic Control Systems* (1967) ch. 2; Yu, Chen & Lu, J. Dyn. Syst. Meas. Control 116 (1994) |
+| differential_lash | backlash | a roll-pitch bevel differential wrist whose two side-gear trains each have their own lost motion (tool_changer, kr16_like) | Rosheim, *Robot Wrist Actuators* (1989); Nordin & Gutman, Automatica 38 (2002) |
+| tensioner_stop | backlash | a wrist belt's tensioner arm swinging to its stop when its span is the tight one (ur10, kr16_like) | Gates synchronous belt design manual (as recalled); Beikmann, Perkins & Ulsoy, J. Vib. Acoust. 118 (1996) |
+| race_waviness | transmission | axis 1's encoder read on a bearing inner ring with raceway waviness, at the orders near Z (1 - f_c) (ur10, kr16_like) | Yhland, Proc. IMechE 206 (1992); Wardle, Proc. IMechE 202 (1988); Harris & Kotzalas (2007) ch. 8 |
+| lever_cam_fit | transmission | hydraulic axes driven to a cylinder stroke mapped from the joint angle by a fitted cubic (tool_changer) | VDI 2143; PLCopen Motion Control part 1 (as recalled) |
+| deck_cupping | mount_compliance | a cart's fibreboard deck cupping as its bare underside takes up the washdown's water (ur10) | Crank, *The Mathematics of Diffusion* (1975) eq. 4.17; Timoshenko & Goodier ch. 13; *Wood Handbook* (2010) ch. 13 |
+| closed_cell_pads | mount_compliance | the stand on closed-cell foam pads whose trapped cell gas stiffens them as they are squeezed (ur10, tool_changer, kr16_like) | Gibson & Ashby, *Cellular Solids* (1997) ch. 5 |
+| cross_spring_pivot | link_deflection | the tool on a cross-spring flexure pivot whose stiffness the load along its leaves changes (ur10, tool_changer, kr16_like) | Haringx, Appl. Sci. Res. A1 (1949); Wittrick, Aeronaut. Q. 1 (1948); Jensen & Howell, Mech. Mach. Theory 39 (2004) |
+| qzs_mount | link_deflection | a sensor on a quasi-zero-stiffness isolator moving by the cube root of its load's change (ur10, kr16_like) | Carrella, Brennan & Waters, J. Sound Vib. 301 (2007); Ibrahim, J. Sound Vib. 314 (2008) |
+| ultrasonic_ram | thermal | the telescopic stage read by an ultrasonic sensor whose speed-of-sound compensation lags the air (tool_changer) | Kinsler, Frey, Coppens & Sanders, *Fundamentals of Acoustics* (2000) ch. 5; makers' notes as recalled; Incropera & DeWitt ch. 5 |
+| dry_ice_nozzle | thermal | a dry-ice blasting lance's bracket chilled in the production between the blocks, warming while measured (ur10, kr16_like) | Spur, Uhlmann & Elbing, Wear 233-235 (1999); Incropera & DeWitt ch. 5 |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
