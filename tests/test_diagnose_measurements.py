@@ -103,3 +103,26 @@ def test_a_covariate_in_another_unit_is_refused_not_ignored(col, want):
     df[col] = 1.0
     with pytest.raises(TolallocError, match=f"column '{col}': expected '{want}' .* rename it {want}"):
         measurements_from_frame(df, robot)
+
+
+def test_a_payload_in_grams_or_negative_is_refused(robot, frame):
+    """tool_changer's rated payload is 20 kg: 10x that is taken for grams; a robot file without a rated payload is
+    held to the heaviest any serial robot carries; a negative mass is refused."""
+    from dataclasses import replace
+
+    from tolalloc.diagnose.measurements import PAYLOAD_MAX_KG
+
+    ok = frame.assign(payload_kg=np.linspace(0.0, 190.0, len(frame)))
+    assert measurements_from_frame(ok, robot).payload_kg.max() == 190.0
+    grams = frame.assign(payload_kg=np.linspace(0.0, 8000.0, len(frame)))
+    with pytest.raises(TolallocError, match=rf"row {len(frame)}: payload_kg = 8000 is 400 times the rated payload of "
+                                            r"robot 'tool_changer', 20 kg \(components.payload.rated_kg\); a column in "
+                                            "grams\\? Expected kilograms: divide the column by 1000"):
+        measurements_from_frame(grams, robot)
+    bare = replace(robot, components=replace(robot.components, payload=replace(robot.components.payload,
+                                                                                 rated_kg=None)))
+    assert measurements_from_frame(ok.assign(payload_kg=3000.0), bare).payload_kg.max() == 3000.0
+    with pytest.raises(TolallocError, match=rf"is more than any serial robot carries \({PAYLOAD_MAX_KG:g} kg\)"):
+        measurements_from_frame(grams, bare)
+    with pytest.raises(TolallocError, match="row 3: payload_kg = -2 is negative; expected the mass the robot holds"):
+        measurements_from_frame(ok.assign(payload_kg=np.r_[0.0, 0.0, -2.0, np.zeros(len(frame) - 3)]), robot)

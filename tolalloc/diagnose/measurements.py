@@ -6,7 +6,8 @@ Columns (other columns are ignored):
 ``x_mm,y_mm,z_mm``  measured target position in the tracker's fixed frame [mm]
 ``temperature_c``   optional, ambient temperature [degC]
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
-``payload_kg``      optional
+``payload_kg``      optional, the mass held [kg]: a negative one, or one above ten times the robot's rated payload
+                    (above 5 t without one), is refused as another unit (grams)
 ``time_s``          optional, time stamp [s]
 ``force_x_n ...``   optional, ``force_x_n, force_y_n, force_z_n``: process force on the tool at the target [N]
 ``torque_x_nm ...`` optional, ``torque_x_nm, torque_y_nm, torque_z_nm``: the process moment [N m]
@@ -299,8 +300,35 @@ def measurements_from_frame(df: pd.DataFrame, robot: Robot, source: str = "<fram
             raise TolallocError(f"{source}: dir columns must hold +1 or -1 (sign of the last motion), got {bad_v:g}.")
     _check_poses(Q, X, rows, source)
     _scale_check(robot, qi, X, source)
-    return Measurements(qi, X, optional("temperature_c"), direction, optional("payload_kg"), optional("time_s"),
+    payload = optional("payload_kg")
+    _check_payload(robot, payload, rows, source)
+    return Measurements(qi, X, optional("temperature_c"), direction, payload, optional("time_s"),
                         rows, n_skipped, source, read_wrench(cols, optional, source))
+
+
+#: A logged payload above this many times the robot's rated payload is taken for another unit (grams).
+PAYLOAD_RATED_FACTOR = 10.0
+#: Without a rated payload in the robot file: no serial robot carries this much [kg] (the largest, about 2.3 t).
+PAYLOAD_MAX_KG = 5000.0
+
+
+def _check_payload(robot, payload, rows: np.ndarray, source: str) -> None:
+    """Refuse a negative payload, and one too heavy for the robot to be in kilograms (a column in grams)."""
+    if payload is None:
+        return
+    if (payload < 0).any():
+        i = int(np.flatnonzero(payload < 0)[0])
+        raise TolallocError(f"{source}: row {rows[i]}: payload_kg = {payload[i]:g} is negative; expected the mass the "
+                            "robot holds at each pose, in kg (0 for none).")
+    rated_kg = robot.components.payload.rated_kg
+    limit = PAYLOAD_RATED_FACTOR * rated_kg if rated_kg else PAYLOAD_MAX_KG
+    if payload.max() > limit:
+        i = int(np.argmax(payload))
+        what = (f"{payload[i] / rated_kg:.0f} times the rated payload of robot {robot.name!r}, {rated_kg:g} kg "
+                "(components.payload.rated_kg)" if rated_kg else
+                f"more than any serial robot carries ({PAYLOAD_MAX_KG:g} kg)")
+        raise TolallocError(f"{source}: row {rows[i]}: payload_kg = {payload[i]:g} is {what}; a column in grams? "
+                            "Expected kilograms: divide the column by 1000.")
 
 
 def read_wrench(cols, column, source: str) -> np.ndarray | None:
