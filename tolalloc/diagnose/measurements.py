@@ -6,8 +6,7 @@ Columns (other columns are ignored):
 ``x_mm,y_mm,z_mm``  measured target position in the tracker's fixed frame [mm]
 ``temperature_c``   optional, ambient temperature [degC]
 ``dir1..dirN``      optional, sign (+1/-1) of each joint's last motion before the point
-``payload_kg``      optional, the mass held [kg]: a negative one, or one above ten times the robot's rated payload
-                    (above 5 t without one), is refused as another unit (grams)
+``payload_kg``      optional, the mass held [kg] (above 10 x the rated payload or below 0: refused)
 ``time_s``          optional, time stamp [s]
 ``force_x_n ...``   optional, ``force_x_n, force_y_n, force_z_n``: process force on the tool at the target [N]
 ``torque_x_nm ...`` optional, ``torque_x_nm, torque_y_nm, torque_z_nm``: the process moment [N m]
