@@ -6341,3 +6341,170 @@ def test_set_zo_every_kind_lies_in_its_true_structure_and_known_answers():
         q[:, j] = ctx.chain.lower[j] + np.round((q[:, j] - ctx.chain.lower[j]) / h) * h
     assert np.abs(zoj.table_residual(tb, _ctx_at(ctx, q))).max() < 1e-9 * np.abs(zoj.link_gravity(ctx, s.q)).max()
     assert np.abs(zoj.table_residual(tb, ctx)).max() > 1e-3 * np.abs(zoj.link_gravity(ctx, s.q)).max()
+
+
+# --------------------------------------------------------------------------------------------------------- set ZP
+ZP_KINDS = ("soaked_jacket", "vessel_list", "clevis_clearance", "clock_spring_flank", "mylar_strip",
+            "tacho_integration", "magnet_base", "ballast_stand", "needle_gripper", "ltb_boom", "heated_bed",
+            "air_motor_heat")
+
+
+def test_set_zp_cases_kinds_and_determinism():
+    """Set ZP (the sixteenth two-letter set): 24 cases, 8 per arm, every family (two kinds each), kinds new to the
+    benchmark and registered in the generator with their families, 3 geometry-only cases that carry no effect, 3
+    mixtures, a quarter split by time; its name keys the case seeds and sorts after ZO; a case regenerates
+    bit-identically from its seed; the session hook leaves cases without a set-ZP kind alone (no random numbers drawn)
+    and the probe and payload hooks draw none; the generator reaches the set's modules and none imports tolalloc; a
+    new part for each block, blocks with pauses for the kinds that follow the time."""
+    from sim2real_indep import cases as cs
+    from sim2real_indep import effects_zp as ezp
+    from sim2real_indep import effects_zp_body as zpb
+    from sim2real_indep import effects_zp_thermal as zpt
+
+    assert _sorts_after("ZO", "ZP")
+    assert cs.case_seed("ZP", 3) == 40_7042 * 1000 + 3 and [c[0] for c in cs.SET_ZP] == [f"ZP{i:02d}" for i in
+                                                                                          range(1, 25)]
+    assert set(ezp.EFFECTS_ZP) == set(ZP_KINDS)
+    _assert_set_module("ZP", 40_7042, ezp, ("gear", "gravity_table", "dry_ice_nozzle", "qzs_mount"))
+    for name in ("effects_zp", "effects_zp_joint", "effects_zp_body", "effects_zp_thermal"):
+        assert not any(m.split(".")[0] == "tolalloc" for m in _imports(PKG / f"{name}.py")), name
+        assert len((PKG / f"{name}.py").read_text(encoding="utf-8").splitlines()) < 400, name
+    assert "sim2real_indep.effects_zp" in _imports(STUDY / "generator.py")
+    assert ezp.AFTER_TRACKER == set()
+    for seed in range(3):
+        opts = lambda kinds, robot="kr16_like": ezp.session_options(robot, kinds, np.random.default_rng(seed),  # noqa
+                                                                    {"blocks": 1, "gap_kind": "none"})
+        for kind, kg in ezp.PART_KG.items():
+            for robot in ("ur10", "tool_changer", "kr16_like"):
+                steps = np.array(opts((kind,), robot)["payload_steps"])
+                assert len(steps) >= 3 and kg[robot][0] <= steps.min() and steps.max() <= kg[robot][1]
+                assert len(steps) == opts((kind,), robot)["blocks"]
+        for kind, ((lo, hi), gap, pause) in ezp.LONG.items():
+            b = opts((kind,))
+            assert lo <= b["blocks"] < hi and b["gap_kind"] == gap and b["pause_min"] == pause
+        assert opts(("air_motor_heat",)) == {"blocks": 1, "gap_kind": "none"}
+    probe, com = np.array([1.0, 2.0, 3.0]), np.array([30.0, -40.0, 0.0])
+    assert ezp.probe_hook(("gear",), probe) is probe and ezp.payload_hook(("gear",), com) is com
+    assert ezp.probe_hook(("ltb_boom",), probe) == pytest.approx(probe + [0, 0, zpb.LTB_MM])
+    assert ezp.probe_hook(("air_motor_heat",), probe) == pytest.approx(probe + [0, 0, zpt.SPINDLE_MM])
+    assert ezp.payload_hook(("ltb_boom",), com) == pytest.approx([9.0, -12.0, zpb.LTB_MM])
+    _assert_regenerates("ZP", max_effect_poses=50)
+
+
+def test_set_zp_every_kind_lies_in_its_true_structure_and_known_answers():
+    """Every set-ZP kind's displacement is its true-structure features times its true amplitudes (what the oracle
+    fits), to rounding, and a real effect on every arm it is used on; and known answers: the jacket's water gone after
+    long drying, the list's torques odd in its direction and loading axis 1, the clevis' lever arm and the side of the
+    cylinders' net force, the spiral spring's flank, the code strip's reference and dry start, the tachos' homing, the
+    magnet base's log law linear under a strong magnet, the ballasted stand's feet in statics and never pulling, the
+    needles' anisotropic compliance, the boom's buckling amplification, the bed's exposure and the compressor's duty."""
+    from sim2real_indep import effects_zp_body as zpb
+    from sim2real_indep import effects_zp_joint as zpj
+    from sim2real_indep import effects_zp_thermal as zpt
+    from sim2real_indep.effects_zi_body import tool_frame
+    from sim2real_indep.effects_zm_body import _plate, mount_loads, part_loads, total_weight
+
+    amps = {"soaked_jacket": "c", "vessel_list": "c", "clevis_clearance": "c", "clock_spring_flank": "b",
+            "mylar_strip": "amp", "tacho_integration": "amp", "magnet_base": "inv_kappa", "ballast_stand": "C",
+            "needle_gripper": "inv_Nk", "ltb_boom": "a0", "heated_bed": "amp", "air_motor_heat": "amp"}
+    specs = {"ur10": ("vessel_list", "clock_spring_flank", "magnet_base", "needle_gripper", "ltb_boom",
+                      "heated_bed", "air_motor_heat"),
+             "tool_changer": ("clevis_clearance", "tacho_integration", "ballast_stand", "mylar_strip"),
+             "kr16_like": ("soaked_jacket", "mylar_strip")}
+    runs = {}
+    for robot, kinds in specs.items():
+        case = gen.generate("t", robot, kinds, 30, 42)
+        ctx = case.model_ctx(case.truth["probe_mm"])
+        runs[robot] = (case, ctx)
+        for kind in kinds:
+            d, A = _effect_and_features(case, ctx, kind)
+            _assert_features_reproduce(d, A, np.atleast_1d(case.truth["params"][kind][amps[kind]]), rtol=1e-8,
+                                       min_mm=1e-3, what=f"{robot} {kind}")
+
+    case, ctx = runs["ur10"]
+    P, s = case.truth["params"], ctx.session
+    # vessel list: nothing at the start; the torques odd in the list's direction; axis 1 loaded
+    vp = P["vessel_list"]
+    assert np.abs(zpj.list_features(vp, ctx, None)[:, 0]).max() == 0.0
+    back = zpj.list_torque({**vp, "psi": vp["psi"] + np.pi}, ctx)
+    assert back == pytest.approx(-zpj.list_torque(vp, ctx), abs=1e-9)
+    assert np.abs(zpj.list_torque(vp, ctx)[:, 0]).max() > 0.1
+    # spiral spring: the flank is the sign of gravity plus the spring where their sum passes the friction band
+    sp = P["clock_spring_flank"]
+    fl = zpj.spring_flanks(sp, ctx)
+    for k, j in enumerate(zpj.SPRING_J):
+        x = ctx.loads[:, j] + zpj.spring_torque(sp, ctx, k, j)
+        big = np.abs(x) > sp["f"][k]
+        assert fl[big, k] == pytest.approx(np.sign(x[big]))
+    # magnet base: under a very strong magnet the log law is the linear plate of the loads over the reference
+    mp = P["magnet_base"]
+    strong = {**mp, "F_m": 1e9, "R_ref": 1e9 / 4}
+    R, xy = mount_loads(strong, ctx)
+    lin = _plate(strong, ctx, R / strong["R_ref"], xy)
+    assert zpb.magnet_features(strong, ctx, None) == pytest.approx(lin, rel=1e-4, abs=1e-12)
+    # needle gripper: the part moves by the weight over (cos^2 a, 1, sin^2 a) in the tool frame
+    npar = P["needle_gripper"]
+    F, _ = part_loads(ctx, 0.0)
+    local = np.einsum("pji,pj->pi", tool_frame(ctx), zpb.needle_features(npar, ctx, None)[0])
+    a = npar["alpha"]
+    assert local == pytest.approx(F / [np.cos(a) ** 2, 1.0, np.sin(a) ** 2], rel=1e-9, abs=1e-12)
+    # LTB boom: odd in the moment, a0 mu for a small moment, 1 / (1 - mu^2) amplification
+    lp = P["ltb_boom"]
+    mu = zpb.ltb_ratio(lp, ctx)
+    assert np.abs(mu).max() < 1 and np.abs(mu).max() == pytest.approx(
+        np.abs(F[:, 0]).max() * zpb.LTB_MM / 1000 / lp["M_cr"])
+    weak = zpb.ltb_ratio({**lp, "M_cr": lp["M_cr"] * 1e6}, ctx)
+    assert np.linalg.norm(zpb.ltb_features({**lp, "M_cr": lp["M_cr"] * 1e6}, ctx, None)[0], axis=1) == pytest.approx(
+        np.abs(weak), rel=1e-9)
+    # heated bed: the exposure 1 at the lowest pose, the forearm cold at the start and below the exposure's peak
+    bp = P["heated_bed"]
+    e = zpt.bed_exposure(bp, ctx)
+    z, _ = kin.flange(ctx.chain, ctx.q)
+    assert e.max() == pytest.approx(1.0) and e[np.argmin(z[:, 2])] == pytest.approx(1.0)
+    node = zpt.bed_node(bp, ctx)
+    assert 0 <= node.min() and node.max() <= 1 and node[0] < node.max()
+    # compressor: on for its duty's share of many cycles
+    ap = P["air_motor_heat"]
+    tg = np.arange(0.0, 200 * ap["period"], 1.0)
+    assert zpt.compressor_cycle(ap, tg).mean() == pytest.approx(ap["duty"], abs=0.01)
+
+    case, ctx = runs["tool_changer"]
+    P, s = case.truth["params"], ctx.session
+    # clevis: the lever arm of the cylinder's geometry; the clearance on the side of the net force
+    cp = P["clevis_clearance"]
+    g = cp["geo"][0]
+    psi = g["psi0"] + ctx.q[:, 1]
+    L = np.sqrt(g["r1"] ** 2 + g["r2"] ** 2 - 2 * g["r1"] * g["r2"] * np.cos(psi))
+    assert zpj.lever_arm(g, ctx.q[:, 1]) == pytest.approx(g["r1"] * g["r2"] * np.sin(psi) / L)
+    fl = zpj.clevis_flanks(cp, ctx)
+    for k, j in enumerate(zpj.CLEVIS_J):
+        x = ctx.loads[:, j] - cp["bal"][k]
+        big = np.abs(x) > cp["f"][k]
+        assert fl[big, k] == pytest.approx(np.sign(x[big]))
+    # tachos: no gain error at the homing (the lower limit); the drift grows with the time
+    tp = P["tacho_integration"]
+    at_home = ctx.q.copy()
+    at_home[:, list(zpj.TACHO_J)] = ctx.chain.lower[list(zpj.TACHO_J)]
+    Ft = zpj.tacho_features(tp, _ctx_at(ctx, at_home), None)
+    assert np.abs(Ft[0]).max() < 1e-9 and np.abs(Ft[2]).max() < 1e-9
+    # ballasted stand: the feet's loads in statics with the ballast, never pulling; four feet under heavy ballast
+    bs = P["ballast_stand"]
+    Rf, xy = zpb.stand_loads(bs, ctx)
+    R4, _ = mount_loads(bs, ctx)
+    assert Rf.min() >= 0 and Rf.sum(axis=1) == pytest.approx(total_weight(ctx) + bs["W_b"])
+    assert Rf @ xy[:, 0] == pytest.approx((R4 + bs["W_b"] / 4) @ xy[:, 0], rel=1e-9, abs=1e-6)
+    heavy = {**bs, "W_b": 1e6}
+    assert zpb.stand_loads(heavy, ctx)[0] == pytest.approx(R4 + 1e6 / 4)
+    # code strip: no error at the reference mark; the drifting column starts dry
+    mp = P["mylar_strip"]
+    at_ref = ctx.q.copy()
+    at_ref[:, 0] = mp["q_ref"]
+    assert np.abs(zpj.strip_features(mp, _ctx_at(ctx, at_ref), None)).max() < 1e-12
+    assert zpj.strip_humidity(mp, s)[0] == pytest.approx(0.0, abs=1e-9) and zpj.strip_humidity(mp, s)[-1] > 0
+
+    case, ctx = runs["kr16_like"]
+    P, s = case.truth["params"], ctx.session
+    # soaked jacket: the water gone after a long drying
+    jp = P["soaked_jacket"]
+    assert np.abs(zpj.jacket_features({**jp, "t_w": 1e3 * jp["tau_d"]}, ctx, None)).max() < 1e-12
+    assert np.abs(zpj.jacket_torque(ctx)).max() > 1.0

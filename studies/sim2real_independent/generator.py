@@ -67,6 +67,7 @@ from sim2real_indep import effects_zl as ezl
 from sim2real_indep import effects_zm as ezm
 from sim2real_indep import effects_zn as ezn
 from sim2real_indep import effects_zo as ezo
+from sim2real_indep import effects_zp as ezp
 from sim2real_indep import effects_joint as ej
 from sim2real_indep import hardware as hwm
 from sim2real_indep import kinematics as kin
@@ -125,6 +126,7 @@ EFFECTS = {
     **ezm.EFFECTS_ZM,  # set ZM's new kinds
     **ezn.EFFECTS_ZN,  # set ZN's new kinds
     **ezo.EFFECTS_ZO,  # set ZO's new kinds
+    **ezp.EFFECTS_ZP,  # set ZP's new kinds
 }
 AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measurement effects: need the tracker
                  | ei.AFTER_TRACKER | ejs.AFTER_TRACKER | ek.AFTER_TRACKER | el.AFTER_TRACKER
@@ -135,7 +137,7 @@ AFTER_TRACKER = (ec.AFTER_TRACKER | ed.AFTER_TRACKER | eh.AFTER_TRACKER  # measu
                  | ezd.AFTER_TRACKER | eze.AFTER_TRACKER | ezf.AFTER_TRACKER
                  | ezg.AFTER_TRACKER | ezh.AFTER_TRACKER | ezi.AFTER_TRACKER | ezj.AFTER_TRACKER
                  | ezk.AFTER_TRACKER | ezl.AFTER_TRACKER | ezm.AFTER_TRACKER | ezn.AFTER_TRACKER
-                 | ezo.AFTER_TRACKER)
+                 | ezo.AFTER_TRACKER | ezp.AFTER_TRACKER)
 GRAVITY_KINDS = {"compliance", "hardening", "sag", "mount", "backlash"}
 
 
@@ -244,7 +246,8 @@ def _session_options(robot_key, physics, rng):
     opts = ezl.session_options(robot_key, physics, rng, opts)  # set ZL (no draws without a set-ZL kind)
     opts = ezm.session_options(robot_key, physics, rng, opts)  # set ZM (no draws without a set-ZM kind)
     opts = ezn.session_options(robot_key, physics, rng, opts)  # set ZN (no draws without a set-ZN kind)
-    return ezo.session_options(robot_key, physics, rng, opts)  # set ZO (no draws without a set-ZO kind)
+    opts = ezo.session_options(robot_key, physics, rng, opts)  # set ZO (no draws without a set-ZO kind)
+    return ezp.session_options(robot_key, physics, rng, opts)  # set ZP (no draws without a set-ZP kind)
 
 
 def _tracker(rng):
@@ -303,6 +306,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     probe = ezm.probe_hook(physics, probe)  # set ZM's part on the mandrel, between the jaws (no draws)
     probe = ezn.probe_hook(physics, probe)  # set ZN's part on the dovetail slide, below the bellows (no draws)
     probe = ezo.probe_hook(physics, probe)  # set ZO's tool beyond the cross-spring pivot, dry-ice nozzle (no draws)
+    probe = ezp.probe_hook(physics, probe)  # set ZP's boom tip, spindle nose (no draws)
     payload_com = ec.payload_com(physics, _unit(rng) * rng.uniform(0, 80), rng)
     payload_com = ejs.payload_hook(physics, payload_com, probe)  # set J's tool plate (no draws)
     payload_com = ek.payload_hook(physics, payload_com, probe)  # set K's gripper and offset cutter (no draws)
@@ -318,6 +322,7 @@ def generate(case_id, robot_key, physics, n_poses, seed, split="random") -> Case
     payload_com = ezm.payload_hook(physics, payload_com)  # set ZM's mandrel, jaws (no draws)
     payload_com = ezn.payload_hook(physics, payload_com)  # set ZN's slide, bellows (no draws)
     payload_com = ezo.payload_hook(physics, payload_com)  # set ZO's part below the cross-spring pivot (no draws)
+    payload_com = ezp.payload_hook(physics, payload_com)  # set ZP's part at the boom's tip (no draws)
     ctx = Ctx(true_chain, session, masses, com, nominal.mass_link, payload_com, probe)
     scale = np.where(nominal.revolute, np.pi / 180, 1.0)
     rated = np.array(RATED_SPEED_DEG_S[robot_key]) * scale

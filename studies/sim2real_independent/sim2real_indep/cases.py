@@ -26,7 +26,8 @@ set ZK (24 cases, 8 per arm) a thirty-seventh (:mod:`effects_zk`),
 set ZL (24 cases, 8 per arm) a thirty-eighth (:mod:`effects_zl`),
 set ZM (24 cases, 8 per arm) a thirty-ninth (:mod:`effects_zm`),
 set ZN (24 cases, 8 per arm) a fortieth (:mod:`effects_zn`),
-set ZO (24 cases, 8 per arm) a forty-first (:mod:`effects_zo`).
+set ZO (24 cases, 8 per arm) a forty-first (:mod:`effects_zo`),
+set ZP (24 cases, 8 per arm) a forty-second (:mod:`effects_zp`).
 A case: (id, robot, physics kinds, poses, split).
 """
 
@@ -54,6 +55,7 @@ SEED_ZL = 40_7038
 SEED_ZM = 40_7039
 SEED_ZN = 40_7040
 SEED_ZO = 40_7041
+SEED_ZP = 40_7042
 KINDS = ["gear", "encoder", "heat", "ambient", "hardening", "compliance", "mount", "sag", "backlash"]
 ROBOTS = ["ur10", "tool_changer", "kr16_like"]
 
@@ -1991,7 +1993,59 @@ SET_ZO = [
     ("ZO24", "kr16_like", ("race_waviness", "qzs_mount"), 200, "random"),
 ]
 
-#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM, ZN, ZO)
+#: Set ZP (seed 40_7042): twelve new kinds, two per family (sim2real_indep.effects_zp; physics and sources in
+#: effects_zp_joint, effects_zp_body, effects_zp_thermal), 8 cases per arm, 3 geometry-only, 3 mixtures of two new
+#: kinds, a quarter split by time. Oracle labels when written (oracle.py only; the diagnosis was not run): every effect
+#: case its truth, gains 22.4 % (ZP13) and 28.7 % (ZP10) to 81.9 % (ZP18); TWO CASES MISS THE 1.25x BAR, left as found:
+#: ZP13's link model at 1.11x and ZP03's at 1.15x (both mount kinds: a base's tilt under the arm's moment resembles the
+#: links' bending); next ZP10's backlash model at 1.34x; a mixture component's removal costs 14.3 % at least (ZP08's
+#: heated bed), the geometry-only cases none.
+#: Changed after trial draws: the clevis clearance first taken up by the cylinders' gravity load alone (ZP09 absorbed at
+#: 1.2 %: the load never changes side, so the play is a smooth function of the pose), now by the load less a
+#: counterbalance set near the median load (heavy booms are counterbalanced); the tachogenerators' gain error first as
+#: large as the offset's drift (ZP10 absorbed at 0.5 %: a scale on a short range the geometry takes up), now the drift
+#: dominant over a working day's pauses of 30-90 min, ZP10 split at random (split by time the thermal model's linear
+#: drift came within 1.22x) and ZP14 split by time instead; the heated bed first sized by its flux at the bed and
+#: lagged 5-15 min (ur10's ZP05 absorbed, 0.09 mm: the node settles to the mean exposure), then by the lowest pose's
+#: flux and a thin wall's 2-5 min (still 5.8 %: a forearm's length change), now with the bed off before the session
+#: and in the mixture ZP08 only (its removal costs 14.3 %), ZP05 holding the boom; the air-motor lance first 250-500 mm
+#: at 3-15 K and a 2-6 min lag (0.03 mm, ZP06 ambiguous), now 700 mm at 10-20 K through 1-3 min (the air flowing
+#: through it); the soaked jacket first on ur10 too (ZP01, the thermal model at 1.08x: its light links carry little
+#: water), now on kr16_like only, ZP01 the vessel list; the ballasted stand first on ur10 and kr16_like (ambiguous with
+#: the link model at 1.04x; absorbed at 1.9 %), now on tool_changer only, and first allowed onto two feet (ZP13 67.9 %,
+#: but such a stand would tip), now ballasted to stay on three at least (24.4 % at 0.3-1.2 weights, 22.4 % at
+#: 0.05-0.4: the link model at 1.09x and 1.11x); the magnet base tried on kr16_like and tool_changer (16.7 % and 9.4 %,
+#: the link model within 1.12x and 1.02x) and on ur10 with holding forces of 2-5 and 1.2-2.5 weights and quarters
+#: 0.1-0.2 and 0.06-0.12 m apart (the link model at 1.17x, 1.16x, 1.15x). No seed or pose count was changed to fix a
+#: label.
+SET_ZP = [
+    ("ZP01", "ur10", ("vessel_list",), 140, "time"),
+    ("ZP02", "ur10", ("clock_spring_flank",), 140, "random"),
+    ("ZP03", "ur10", ("magnet_base",), 130, "random"),
+    ("ZP04", "ur10", ("needle_gripper",), 45, "random"),
+    ("ZP05", "ur10", ("ltb_boom",), 150, "random"),
+    ("ZP06", "ur10", ("air_motor_heat",), 130, "time"),
+    ("ZP07", "ur10", (), 60, "random"),
+    ("ZP08", "ur10", ("heated_bed", "clock_spring_flank"), 180, "random"),
+    ("ZP09", "tool_changer", ("clevis_clearance",), 130, "random"),
+    ("ZP10", "tool_changer", ("tacho_integration",), 140, "random"),
+    ("ZP11", "tool_changer", ("vessel_list",), 150, "time"),
+    ("ZP12", "tool_changer", ("ltb_boom",), 130, "random"),
+    ("ZP13", "tool_changer", ("ballast_stand",), 140, "random"),
+    ("ZP14", "tool_changer", ("mylar_strip",), 120, "time"),
+    ("ZP15", "tool_changer", (), 40, "random"),
+    ("ZP16", "tool_changer", ("clevis_clearance", "ltb_boom"), 190, "random"),
+    ("ZP17", "kr16_like", ("vessel_list",), 130, "random"),
+    ("ZP18", "kr16_like", ("mylar_strip",), 140, "time"),
+    ("ZP19", "kr16_like", ("clock_spring_flank",), 130, "random"),
+    ("ZP20", "kr16_like", ("ltb_boom",), 120, "random"),
+    ("ZP21", "kr16_like", ("air_motor_heat",), 130, "random"),
+    ("ZP22", "kr16_like", ("soaked_jacket",), 150, "time"),
+    ("ZP23", "kr16_like", (), 100, "random"),
+    ("ZP24", "kr16_like", ("needle_gripper", "mylar_strip"), 200, "random"),
+]
+
+#: ``all`` in run.py means every set (A-Z, ZA, ZB, ZC, ZD, ZE, ZF, ZG, ZH, ZI, ZJ, ZK, ZL, ZM, ZN, ZO, ZP)
 SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D": (SET_D, SEED_D),
         "E": (SET_E, SEED_E), "F": (SET_F, SEED_F), "G": (SET_G, SEED_G), "H": (SET_H, SEED_H),
         "I": (SET_I, SEED_I), "J": (SET_J, SEED_J), "K": (SET_K, SEED_K), "L": (SET_L, SEED_L),
@@ -2003,7 +2057,8 @@ SETS = {"A": (SET_A, SEED_A), "B": (set_b(), SEED_B), "C": (SET_C, SEED_C), "D":
         "ZE": (SET_ZE, SEED_ZE), "ZF": (SET_ZF, SEED_ZF), "ZG": (SET_ZG, SEED_ZG),
         "ZH": (SET_ZH, SEED_ZH), "ZI": (SET_ZI, SEED_ZI), "ZJ": (SET_ZJ, SEED_ZJ),
         "ZK": (SET_ZK, SEED_ZK), "ZL": (SET_ZL, SEED_ZL), "ZM": (SET_ZM, SEED_ZM),
-        "ZN": (SET_ZN, SEED_ZN), "ZO": (SET_ZO, SEED_ZO)}
+        "ZN": (SET_ZN, SEED_ZN), "ZO": (SET_ZO, SEED_ZO),
+        "ZP": (SET_ZP, SEED_ZP)}
 
 
 def case_seed(set_name: str, index: int) -> int:

@@ -557,7 +557,22 @@ FAMILY = {"gear": "transmission", "encoder": "transmission", "heat": "thermal", 
           "differential_lash": "backlash", "tensioner_stop": "backlash", "race_waviness": "transmission",
           "lever_cam_fit": "transmission", "deck_cupping": "mount_compliance",
           "closed_cell_pads": "mount_compliance", "cross_spring_pivot": "link_deflection",
-          "qzs_mount": "link_deflection", "ultrasonic_ram": "thermal", "dry_ice_nozzle": "thermal"}
+          "qzs_mount": "link_deflection", "ultrasonic_ram": "thermal", "dry_ice_nozzle": "thermal",
+          # set ZP (sim2real_indep.effects_zp; soaked_jacket, a drying jacket's water on the links, and vessel_list,
+          # gravity turning in the base frame as a vessel lists, scored as joint compliance (the gears twisted);
+          # clevis_clearance, the boom cylinders' eye-pin clearances seen through their lever arms, and
+          # clock_spring_flank, the wrist rolls' lost motion whose flank a spiral spring's wind-up chooses, as backlash;
+          # mylar_strip, axis 1's polyester code strip swelling with the humidity, and tacho_integration, boom axes
+          # read by integrating tachogenerators, as transmission (the joints' reading); magnet_base, a magnetically
+          # clamped base on its rough interface, and ballast_stand, an unanchored stand lifting a foot, as mount
+          # compliance; needle_gripper, a part on a needle gripper, and ltb_boom, a gripper boom near lateral-torsional
+          # buckling, as link deflection; heated_bed, the forearm warmed by a heated bed by where the arm has worked,
+          # and air_motor_heat, a spindle's extension following the compressor-cycled supply air, as thermal)
+          "soaked_jacket": "joint_compliance", "vessel_list": "joint_compliance",
+          "clevis_clearance": "backlash", "clock_spring_flank": "backlash", "mylar_strip": "transmission",
+          "tacho_integration": "transmission", "magnet_base": "mount_compliance",
+          "ballast_stand": "mount_compliance", "needle_gripper": "link_deflection", "ltb_boom": "link_deflection",
+          "heated_bed": "thermal", "air_motor_heat": "thermal"}
 #: the families the diagnosis names (issue 40), in the report's column order
 FAMILIES = ["joint_compliance", "mount_compliance", "link_deflection", "backlash", "thermal", "transmission"]
 
