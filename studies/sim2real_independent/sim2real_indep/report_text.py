@@ -30,7 +30,7 @@ the diagnosis's own fitted model comes to the truth beyond the RMS ratio reporte
 
 Regenerate: `python studies/sim2real_independent/run.py --set A --jobs 2` (set B, the held-out set:
 `--set B`; both: `--set both`; set C: `--set C`; set D: `--set D`; set E: `--set E`; set F: `--set F`; set G:
-`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; set ZN: `--set ZN`; set ZO: `--set ZO`; all forty-one: `--set all`; labels alone, without diagnosing:
+`--set G`; set H: `--set H`; set I: `--set I`; set J: `--set J`; set K: `--set K`; set L: `--set L`; set M: `--set M`; set N: `--set N`; set O: `--set O`; set P: `--set P`; set Q: `--set Q`; set R: `--set R`; set S: `--set S`; set T: `--set T`; set U: `--set U`; set V: `--set V`; set W: `--set W`; set X: `--set X`; set Y: `--set Y`; set Z: `--set Z`; set ZA: `--set ZA`; set ZB: `--set ZB`; set ZC: `--set ZC`; set ZD: `--set ZD`; set ZE: `--set ZE`; set ZF: `--set ZF`; set ZG: `--set ZG`; set ZH: `--set ZH`; set ZI: `--set ZI`; set ZJ: `--set ZJ`; set ZK: `--set ZK`; set ZL: `--set ZL`; set ZM: `--set ZM`; set ZN: `--set ZN`; set ZO: `--set ZO`; set ZP: `--set ZP`; all forty-two: `--set all`; labels alone, without diagnosing:
 `--oracle-only`). The measurement tables are regenerated from the seeds and never stored.
 
 **Set C** (24 cases, seed 40_7003) was written after the diagnosis had been tuned while looking at sets A and B:
@@ -586,6 +586,24 @@ ties with a warm-up), the tool changer's telescopic stage read by an ultrasonic 
 compensation lags the air (ZO14, `none`), and the stand on closed-cell foam pads on tool_changer (ZO12, `ambiguous`
 between mount compliance, link deflection and transmission; lenient; right on ur10 and kr16_like). On a second seed
 three cases fall below the oracle's bars (ZO05, ZO12, ZO17) and one sits at them (ZO22).
+
+**Set ZP** (24 cases, seed 40_7042) is a forty-second independent test set of twelve new kinds
+(`sim2real_indep/effects_zp*.py`, table below), written the same way by another helper, who read neither the
+diagnosis, its effect models, nor any result of sets A-ZO, ran no git command but `git status` and did not run the
+diagnosis. Two of its cases miss the brief's rival bar: the oracle labels them their truth, but the link-deflection
+model comes within 1.15x (ZP03, a magnet base) and 1.11x (ZP13, a ballasted stand rocking onto three feet) of the
+true structure's test RMS; the helper tried several physical changes for each and kept them (`cases.py`'s SET_ZP
+comment). It was run once, on the code of this report (the same code that judged set ZO, with refusals of bad
+payload columns added, which no case here meets): 11/24 strict, 12 lenient, no false claim, median final / oracle
+RMS 1.96; right on 5 of 7 effect cases where the true family's generic model helps, 3 of 14 where it does not -- the
+set holds mostly physics outside the family models. Its misses: a deck listing as ballast is pumped, turning gravity
+in the base frame (ZP01, ZP17 `none`; ZP11 named thermal: the list grows with the time alone), wrist rolls held on
+one flank by a spiral spring (ZP02, ZP19, and in ZP08's mixture: named transmission), a supply air cycled by a
+load / unload compressor warming an air-motor lance (ZP06, ZP21, `none`), a boom cylinder's clevis clearance taken up
+on the side of its net force (ZP09, `ambiguous` without backlash; ZP16, named joint compliance), tachogenerator
+positions integrating an offset drift (ZP10, named thermal: a drift with time), a code strip swelling with an unlogged
+humidity (ZP14 on tool_changer, `ambiguous` with thermal; lenient; right on kr16_like), and a soaked jacket drying on
+the arm (ZP22, named thermal beside joint compliance).
 
 "The true family's generic model helps" below: the generic model (c) of the true family (of one of them, for a
 mixture) gains at least 5 % over geometry alone (a) on the test poses. Where it does not, the effect lies outside
@@ -1308,6 +1326,24 @@ comment):
 | qzs_mount | link_deflection | a sensor on a quasi-zero-stiffness isolator moving by the cube root of its load's change (ur10, kr16_like) | Carrella, Brennan & Waters, J. Sound Vib. 301 (2007); Ibrahim, J. Sound Vib. 314 (2008) |
 | ultrasonic_ram | thermal | the telescopic stage read by an ultrasonic sensor whose speed-of-sound compensation lags the air (tool_changer) | Kinsler, Frey, Coppens & Sanders, *Fundamentals of Acoustics* (2000) ch. 5; makers' notes as recalled; Incropera & DeWitt ch. 5 |
 | dry_ice_nozzle | thermal | a dry-ice blasting lance's bracket chilled in the production between the blocks, warming while measured (ur10, kr16_like) | Spur, Uhlmann & Elbing, Wear 233-235 (1999); Incropera & DeWitt ch. 5 |
+
+Set ZP's kinds (same case machinery; ranges and the changes made while checking the labels are in `cases.py`'s SET_ZP
+comment):
+
+| kind | family | physics | sources |
+| --- | --- | --- | --- |
+| soaked_jacket | joint_compliance | a protective jacket soaked in the washdown drying on the upper arm and forearm, its water's weight twisting axes 2 and 3 (kr16_like) | Keey, *Drying of Loose and Particulate Materials* (1992) ch. 1, 6; Mujumdar (ed.), *Handbook of Industrial Drying* |
+| vessel_list | joint_compliance | the arm and the tracker on a deck listing as ballast is pumped: gravity turns in the base frame and loads axes 1-3 (ur10, tool_changer, kr16_like) | Biran & Lopez-Pulido, *Ship Hydrostatics and Stability* (2014) ch. 2, 6 |
+| clevis_clearance | backlash | the boom cylinders' eye-pin clearances taken up on the side of the cylinder's net force, gravity less a counterbalance (tool_changer) | Shigley's *Mechanical Engineering Design* (10th ed.) ch. 7; Slocum, *Precision Machine Design* (1992) ch. 7 |
+| clock_spring_flank | backlash | wrist rolls held on one flank of their lost motion by a spiral spring, the flank flipping where spring and gravity torques cancel (ur10, kr16_like) | Wahl, *Mechanical Springs* (1963) ch. 15; Slocum (1992) ch. 7 |
+| mylar_strip | transmission | axis 1 read on a polyester code strip swelling with an unlogged humidity (tool_changer, kr16_like) | DuPont Teijin Films *Mylar* bulletin (as recalled); Crank, *The Mathematics of Diffusion* (1975) |
+| tacho_integration | transmission | boom axes positioned by integrating analogue tachogenerators: a gain error and an integrated offset drift (tool_changer) | D'Azzo & Houpis, *Linear Control System Analysis and Design* (1995) |
+| magnet_base | mount_compliance | the base clamped to steel by a permanent-magnet base whose rough interface closes by a log law of the contact pressure (ur10) | Greenwood & Williamson, Proc. R. Soc. A 295 (1966); Johnson, *Contact Mechanics* (1985) ch. 13 |
+| ballast_stand | mount_compliance | an unanchored ballasted stand whose pads take no tension: a foot lifts and the stand rocks onto three (tool_changer) | Johnson (1985) ch. 5; Housner, BSSA 53 (1963) |
+| needle_gripper | link_deflection | a part held on two rows of slanted needles, stiffer along than across them (ur10, kr16_like) | Timoshenko & Gere, *Mechanics of Materials* |
+| ltb_boom | link_deflection | a deep, narrow gripper boom near lateral-torsional buckling moving sideways under its load (ur10, tool_changer, kr16_like) | Timoshenko & Gere, *Theory of Elastic Stability* (1961) ch. 6; Trahair, *Flexural-Torsional Buckling of Structures* (1993) |
+| heated_bed | thermal | the forearm warmed by a heated bed by how low and how long the arm worked over it (ur10, in a mixture) | Howell, *A Catalog of Radiation Heat Transfer Configuration Factors*; Incropera & DeWitt ch. 5 |
+| air_motor_heat | thermal | an idling air-motor spindle's lance following supply air that a load / unload compressor cycles (ur10, kr16_like) | Atlas Copco *Compressed Air Manual* (2015) ch. 3, as recalled |
 
 Parameter ranges marked as assumptions in the module docstrings (`hardware.py`, `session.py`, `effects_body.py`)
 are this study's own choices, not catalogue values; the gear table is an approximation (scaled from one catalogue
