@@ -41,7 +41,7 @@ from tolalloc.diagnose.geometry import build_geometry_model
 from tolalloc.diagnose.model_use import IdentifiedModel
 
 __all__ = ["FORMAT", "FRAMES", "check_section", "identified_geometry", "identified_robot_dict", "identified_urdf",
-           "model_from_identified", "HISTORY_VARIANTS", "FIXED_PARAMETERS", "session_bound"]
+           "model_from_identified", "HISTORY_VARIANTS", "FIXED_PARAMETERS", "session_bound", "leave_out_advice"]
 
 #: The ``format`` key of the ``[identified]`` section.
 FORMAT = "tolalloc identified model 1"
@@ -284,6 +284,12 @@ def session_bound(effect: str, variant: str) -> str | None:
     return None
 
 
+def leave_out_advice(effect: str) -> str:
+    """How to read an exported model without ``effect`` (one :func:`session_bound` names), and what that costs."""
+    return (f"leave the effect out (without=('{effect}',); tolalloc compensate --without {effect}): the identified "
+            "geometry and the other effects are kept, the effect's part of the error is then not compensated")
+
+
 def _effects(section: dict, without: tuple) -> tuple:
     """The section's effects less ``without``: names, variants, columns, fitted-column index, parameter names and
     values, and the mask of the covariance's effect parameters kept."""
@@ -301,10 +307,8 @@ def _effects(section: dict, without: tuple) -> tuple:
         reason = session_bound(e["effect"], v)
         if reason is not None:
             raise TolallocError(f"identified model: its {e['effect']} effect (variant {v}) {reason}; use the "
-                                "diagnosis itself (MeasurementDiagnosis.compensate) for that session, or leave the "
-                                f"effect out (without=('{e['effect']}',); tolalloc compensate --without "
-                                f"{e['effect']}): the identified geometry and the other effects are kept, the "
-                                "effect's part of the error is then not compensated.")
+                                "diagnosis itself (MeasurementDiagnosis.compensate) for that session, or "
+                                f"{leave_out_advice(e['effect'])}.")
         effects.append(e["effect"])
         variants[e["effect"]] = v
         columns[e["effect"]] = tuple(e["columns"])

@@ -296,13 +296,12 @@ class MeasurementDiagnosis(JobResult):
     def export_notes(self) -> list[str]:
         """One line per effect of the final model that an exported file cannot carry (it needs this training
         session), with what to do instead; empty where the file holds the whole model."""
-        from tolalloc.diagnose.model_export import session_bound
+        from tolalloc.diagnose.model_export import leave_out_advice, session_bound
 
         model = self.identified_model()
         notes = [(e, model.variants[e], session_bound(e, model.variants[e])) for e in model.effects]
-        return [f"identified.toml: its {e} effect (variant {v}) {why}; compensate with this diagnosis, or from the "
-                f"file without it (tolalloc compensate --without {e}; its part of the error is then not compensated)"
-                for e, v, why in notes if why is not None]
+        return [f"identified.toml: its {e} effect (variant {v}) {why}; compensate with this diagnosis, or "
+                f"{leave_out_advice(e)}" for e, v, why in notes if why is not None]
 
     def plot_where(self, ax=None):
         """Where the geometric model's training residual lies (the strongest features, per axis, per region); draws
